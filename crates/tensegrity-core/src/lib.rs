@@ -1,0 +1,35 @@
+//! # tensegrity-core
+//!
+//! The model and the topology-independent analyses of the tensegrity toolkit:
+//!
+//! - [`structure`]: nodes N (3×n), bars, strings, supports, loads, gravity, with a validating
+//!   builder;
+//! - [`connectivity`]: C_b, C_s, C_r and B = N C_bᵀ, S = N C_sᵀ, R = N C_rᵀ;
+//! - [`statics`]: equilibrium matrix A q = w, SVD rank, self-stress, mechanisms,
+//!   prestressability (LP), minimal-norm load solve with reactions;
+//! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
+//! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
+//! - [`scene`]: the TOML scene format;
+//! - [`linalg`]: the thin layer over faer.
+//!
+//! Sign conventions: force densities q are tension positive; the member vector is
+//! `n_end − n_start`; members are numbered bars first, then strings.
+#![warn(missing_docs)]
+#![allow(non_snake_case)]
+
+pub mod connectivity;
+pub mod dynamics;
+pub mod error;
+pub mod linalg;
+pub mod material;
+pub mod scene;
+pub mod sizing;
+pub mod statics;
+pub mod stiffness;
+pub mod structure;
+
+pub use connectivity::{Connectivity, Incidence};
+pub use error::{CoreError, Result};
+pub use material::{Material, MaterialTable};
+pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};
+pub use structure::{Bar, Load, MemberId, StringMember, Structure, StructureBuilder, Support};

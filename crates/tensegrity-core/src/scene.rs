@@ -1,0 +1,280 @@
+//! TOML scene files: nodes, materials, bars, strings, supports, loads and gravity.
+//!
+//! Node indices are 0-based. Unknown keys are rejected, and every error names the offending
+//! item and its line:
+//!
+//! ```toml
+//! nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
+//! velocities = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]   # optional
+//! [materials.alu]
+//! density = 2700.0          # kg/m^3
+//! youngs_modulus = 60e9     # Pa
+//! yield_strength = 110e6    # Pa
+//! [[bars]]
+//! nodes = [0, 1]
+//! mass = 1.0                # kg, optional
+//! material = "alu"          # optional
+//! radius = 0.01             # m, optional
+//! [[strings]]
+//! nodes = [0, 2]
+//! stiffness = 100.0         # N/m, optional
+//! rest_length = 0.9         # m, optional
+//! damping = 0.0             # N s/m, optional
+//! material = "alu"          # optional
+//! [[supports]]
+//! node = 0
+//! directions = ["x", "y", "z"]   # optional, all three by default
+//! [[loads]]
+//! node = 1
+//! force = [-1.0e4, 0.0, 0.0]
+//! [gravity]
+//! acceleration = [0.0, 0.0, -9.81]
+//! ```
+
+use crate::error::{CoreError, Result};
+use crate::material::Material;
+use crate::structure::{Bar, StringMember, Structure, Support};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+use toml::Spanned;
+
+/// The raw contents of a scene file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Node positions (m).
+    pub nodes: Vec<Spanned<[f64; 3]>>,
+    /// Initial node velocities (m/s), one per node.
+    #[serde(default)]
+    pub velocities: Option<Vec<[f64; 3]>>,
+    /// User materials by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// Bars.
+    #[serde(default)]
+    pub bars: Vec<Spanned<BarSpec>>,
+    /// Strings.
+    #[serde(default)]
+    pub strings: Vec<Spanned<StringSpec>>,
+    /// Supports.
+    #[serde(default)]
+    pub supports: Vec<Spanned<SupportSpec>>,
+    /// Nodal loads.
+    #[serde(default)]
+    pub loads: Vec<Spanned<LoadSpec>>,
+    /// Gravity.
+    #[serde(default)]
+    pub gravity: Option<GravitySpec>,
+}
+
+/// A `[materials.NAME]` table.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// kg/m³.
+    pub density: f64,
+    /// Pa.
+    pub youngs_modulus: f64,
+    /// Pa.
+    pub yield_strength: f64,
+}
+
+/// A `[[bars]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BarSpec {
+    /// Start and end node.
+    pub nodes: [usize; 2],
+    /// kg.
+    pub mass: Option<f64>,
+    /// Material name.
+    pub material: Option<String>,
+    /// Cross-section radius (m).
+    pub radius: Option<f64>,
+}
+
+/// A `[[strings]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StringSpec {
+    /// Start and end node.
+    pub nodes: [usize; 2],
+    /// N/m.
+    pub stiffness: Option<f64>,
+    /// m.
+    pub rest_length: Option<f64>,
+    /// N·s/m.
+    pub damping: Option<f64>,
+    /// Material name.
+    pub material: Option<String>,
+}
+
+/// A direction letter in a support.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    /// x.
+    X,
+    /// y.
+    Y,
+    /// z.
+    Z,
+}
+
+/// A `[[supports]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SupportSpec {
+    /// The supported node.
+    pub node: usize,
+    /// Fixed directions (default: all three).
+    pub directions: Option<Vec<Axis>>,
+}
+
+/// A `[[loads]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// The loaded node.
+    pub node: usize,
+    /// Force (N).
+    pub force: [f64; 3],
+}
+
+/// The `[gravity]` table.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GravitySpec {
+    /// Acceleration (m/s²).
+    pub acceleration: [f64; 3],
+}
+
+/// A parsed and validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The structure.
+    pub structure: Structure,
+    /// The file contents as parsed (for the tables other analyses read).
+    pub file: SceneFile,
+}
+
+impl Scene {
+    /// Reads and validates a scene file; errors name the file, the item and its line.
+    pub fn from_path(path: &Path) -> Result<Scene> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| CoreError::Scene(format!("{}: cannot read: {e}", path.display())))?;
+        Self::from_str_named(&text, &path.display().to_string())
+    }
+
+    /// Parses and validates scene text; `name` labels error messages.
+    ///
+    /// ```
+    /// use tensegrity_core::scene::Scene;
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 7]\n";
+    /// let err = Scene::from_str_named(text, "demo.toml").unwrap_err().to_string();
+    /// assert!(err.contains("line 3") && err.contains("bar 0") && err.contains("7"), "{err}");
+    /// ```
+    pub fn from_str_named(text: &str, name: &str) -> Result<Scene> {
+        let file: SceneFile = toml::from_str(text)
+            .map_err(|e| CoreError::Scene(format!("{name}: {}", e.to_string().trim_end())))?;
+        let structure = file.to_structure().map_err(|e| {
+            let line = file
+                .line_of(&error_item(&e))
+                .map(|span_start| format!(" (line {})", line_number(text, span_start)))
+                .unwrap_or_default();
+            CoreError::Scene(format!("{name}{line}: {e}"))
+        })?;
+        Ok(Scene { structure, file })
+    }
+}
+
+impl SceneFile {
+    /// Builds and validates the structure.
+    pub fn to_structure(&self) -> Result<Structure> {
+        let mut b = Structure::builder().nodes(self.nodes.iter().map(|n| *n.get_ref()));
+        if let Some(v) = &self.velocities {
+            b = b.velocities(v.iter().copied());
+        }
+        for (name, m) in &self.materials {
+            b = b.material(name, Material::new(m.density, m.youngs_modulus, m.yield_strength));
+        }
+        for bar in &self.bars {
+            let s = bar.get_ref();
+            b = b.bar(Bar {
+                nodes: s.nodes,
+                mass: s.mass,
+                material: s.material.clone(),
+                radius: s.radius,
+            });
+        }
+        for string in &self.strings {
+            let s = string.get_ref();
+            b = b.string(StringMember {
+                nodes: s.nodes,
+                stiffness: s.stiffness,
+                rest_length: s.rest_length,
+                damping: s.damping.unwrap_or(0.0),
+                material: s.material.clone(),
+            });
+        }
+        for sup in &self.supports {
+            let s = sup.get_ref();
+            let fixed = match &s.directions {
+                None => [true; 3],
+                Some(dirs) => [Axis::X, Axis::Y, Axis::Z].map(|a| dirs.contains(&a)),
+            };
+            b = b.support(Support::directions(s.node, fixed));
+        }
+        for load in &self.loads {
+            let l = load.get_ref();
+            b = b.load(l.node, l.force);
+        }
+        if let Some(g) = &self.gravity {
+            b = b.gravity(g.acceleration);
+        }
+        b.build()
+    }
+
+    /// Byte offset where the item named like `bar 3`, `string 0`, `support 1`, `load 2` or
+    /// `node 4` starts.
+    fn line_of(&self, item: &Option<(String, usize)>) -> Option<usize> {
+        let (kind, i) = item.as_ref()?;
+        let span = match kind.as_str() {
+            "bar" => self.bars.get(*i)?.span(),
+            "string" => self.strings.get(*i)?.span(),
+            "support" => self.supports.get(*i)?.span(),
+            "load" => self.loads.get(*i)?.span(),
+            "node" => self.nodes.get(*i)?.span(),
+            _ => return None,
+        };
+        Some(span.start)
+    }
+}
+
+/// The `(kind, index)` of the item an error names, when it is a numbered item.
+fn error_item(e: &CoreError) -> Option<(String, usize)> {
+    let text = match e {
+        CoreError::NodeIndexOutOfRange { item, .. }
+        | CoreError::NonFinite { item, .. }
+        | CoreError::NonPositiveConstant { item, .. }
+        | CoreError::NegativeConstant { item, .. }
+        | CoreError::UnknownMaterial { item, .. } => item.clone(),
+        CoreError::SelfLoop { member, .. }
+        | CoreError::DuplicateMember { member, .. }
+        | CoreError::ZeroLengthMember { member, .. } => member.to_string(),
+        CoreError::IsolatedNode { node } => format!("node {node}"),
+        CoreError::DuplicateSupport { support, .. } | CoreError::EmptySupport { support } => {
+            format!("support {support}")
+        }
+        _ => return None,
+    };
+    let mut words = text.split_whitespace();
+    let kind = words.next()?.to_string();
+    let index = words.next()?.parse().ok()?;
+    Some((kind, index))
+}
+
+fn line_number(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}

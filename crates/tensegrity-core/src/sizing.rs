@@ -1,0 +1,248 @@
+//! Minimum-mass sizing of members (thesis eq. 4.54–4.61).
+//!
+//! For an axial force f = q·l (tension positive) on a member of length l made of a material
+//! (ρ, E, σ_Y), with solid round cross-sections:
+//!
+//! - yield (strings, and bars in either sign): area |f|/σ_Y, so
+//!   r_Y = √(|f| / (π σ_Y)) and m_Y = (ρ/σ_Y) |f| l  (eq. 4.54–4.56, 4.58);
+//! - Euler buckling of a pinned–pinned solid rod in compression, |f| = π³ E r⁴ / (4 l²):
+//!   r_B = (4 |f| l² / (π³ E))^¼ and m_B = 2 ρ l² √(|f| / (π E))  (eq. 4.57, 4.59);
+//! - a bar in compression takes r = max(r_Y, r_B); a bar in tension only yields; a string must
+//!   be in tension ([`CoreError::StringInCompression`] otherwise).
+//!
+//! Total mass is Σ ρ π r² l (eq. 4.60–4.61 times density).
+
+use crate::error::{CoreError, Result};
+use crate::material::Material;
+use crate::structure::{MemberId, Structure};
+use nalgebra::DVector;
+use std::f64::consts::PI;
+
+/// Which failure mode sets a member's size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Governing {
+    /// Material yield.
+    Yield,
+    /// Euler buckling.
+    Buckling,
+    /// The member carries no force (zero size).
+    Unloaded,
+}
+
+/// Yield-limited radius r_Y = √(|f| / (π σ_Y)).
+///
+/// ```
+/// use tensegrity_core::{sizing, Material};
+/// let steel = Material::new(7862.0, 210e9, 690e6);
+/// let r = sizing::yield_radius(&steel, 1000.0);
+/// assert!((std::f64::consts::PI * r * r * 690e6 - 1000.0).abs() < 1e-9);
+/// ```
+pub fn yield_radius(material: &Material, force: f64) -> f64 {
+    (force.abs() / (PI * material.yield_strength)).sqrt()
+}
+
+/// Yield-limited mass m_Y = (ρ/σ_Y) |f| l.
+///
+/// ```
+/// use tensegrity_core::{sizing, Material};
+/// let alu = Material::new(2700.0, 60e9, 110e6);
+/// assert!((sizing::yield_mass(&alu, 1e4, 2.0) - 2700.0 / 110e6 * 2e4).abs() < 1e-15);
+/// ```
+pub fn yield_mass(material: &Material, force: f64, length: f64) -> f64 {
+    material.density / material.yield_strength * force.abs() * length
+}
+
+/// Buckling-limited radius r_B = (4 |f| l² / (π³ E))^¼ (pinned–pinned solid rod).
+///
+/// ```
+/// use tensegrity_core::{sizing, Material};
+/// let alu = Material::new(2700.0, 60e9, 110e6);
+/// let r = sizing::buckling_radius(&alu, 1e4, 2.0);
+/// let euler = std::f64::consts::PI.powi(3) * 60e9 * r.powi(4) / (4.0 * 4.0);
+/// assert!((euler - 1e4).abs() < 1e-6);
+/// ```
+pub fn buckling_radius(material: &Material, force: f64, length: f64) -> f64 {
+    (4.0 * force.abs() * length * length / (PI.powi(3) * material.youngs_modulus)).powf(0.25)
+}
+
+/// Buckling-limited mass m_B = 2 ρ l² √(|f| / (π E)).
+///
+/// ```
+/// use tensegrity_core::{sizing, Material};
+/// let alu = Material::new(2700.0, 60e9, 110e6);
+/// // one 2 m aluminium bar under 10 kN: 4.975116 kg (published benchmark)
+/// assert!((sizing::buckling_mass(&alu, 1e4, 2.0) - 4.975116).abs() < 1e-6);
+/// ```
+pub fn buckling_mass(material: &Material, force: f64, length: f64) -> f64 {
+    2.0 * material.density * length * length * (force.abs() / (PI * material.youngs_modulus)).sqrt()
+}
+
+/// The minimum size of one member.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MemberSize {
+    /// Axial force f (N, tension positive).
+    pub force: f64,
+    /// Length l (m).
+    pub length: f64,
+    /// Radius (m).
+    pub radius: f64,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Mass for yield alone (kg).
+    pub yield_mass: f64,
+    /// Mass for buckling alone (kg), for bars in compression.
+    pub buckling_mass: Option<f64>,
+    /// The governing failure mode.
+    pub governing: Governing,
+}
+
+/// Sizes a string (tension only, yield).
+///
+/// ```
+/// use tensegrity_core::{sizing, Material};
+/// let alu = Material::new(2700.0, 60e9, 110e6);
+/// let s = sizing::size_string(&alu, 1e4, 2.0).unwrap();
+/// assert!((s.mass - 0.490909).abs() < 1e-6);
+/// assert!(sizing::size_string(&alu, -1.0, 2.0).is_none());
+/// ```
+pub fn size_string(material: &Material, force: f64, length: f64) -> Option<MemberSize> {
+    if force < 0.0 {
+        return None;
+    }
+    let governing = if force == 0.0 {
+        Governing::Unloaded
+    } else {
+        Governing::Yield
+    };
+    let m = yield_mass(material, force, length);
+    Some(MemberSize {
+        force,
+        length,
+        radius: yield_radius(material, force),
+        mass: m,
+        yield_mass: m,
+        buckling_mass: None,
+        governing,
+    })
+}
+
+/// Sizes a bar: yield in tension, max(yield, buckling) in compression.
+///
+/// ```
+/// use tensegrity_core::{sizing, Material, sizing::Governing};
+/// let alu = Material::new(2700.0, 60e9, 110e6);
+/// let b = sizing::size_bar(&alu, -1e4, 2.0);
+/// assert_eq!(b.governing, Governing::Buckling);
+/// assert!((b.mass - 4.975116).abs() < 1e-6);
+/// ```
+pub fn size_bar(material: &Material, force: f64, length: f64) -> MemberSize {
+    let m_y = yield_mass(material, force, length);
+    let r_y = yield_radius(material, force);
+    if force >= 0.0 {
+        return MemberSize {
+            force,
+            length,
+            radius: r_y,
+            mass: m_y,
+            yield_mass: m_y,
+            buckling_mass: None,
+            governing: if force == 0.0 {
+                Governing::Unloaded
+            } else {
+                Governing::Yield
+            },
+        };
+    }
+    let m_b = buckling_mass(material, force, length);
+    let r_b = buckling_radius(material, force, length);
+    let (radius, mass, governing) = if m_b > m_y {
+        (r_b, m_b, Governing::Buckling)
+    } else {
+        (r_y, m_y, Governing::Yield)
+    };
+    MemberSize {
+        force,
+        length,
+        radius,
+        mass,
+        yield_mass: m_y,
+        buckling_mass: Some(m_b),
+        governing,
+    }
+}
+
+/// Sizes of every member of a structure for given member forces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SizingReport {
+    /// One entry per member, bars then strings.
+    pub members: Vec<MemberSize>,
+    /// Σ mass of the bars (kg).
+    pub bar_mass: f64,
+    /// Σ mass of the strings (kg).
+    pub string_mass: f64,
+    /// Total mass (kg).
+    pub total_mass: f64,
+    /// Total mass if only yield were considered (kg).
+    pub yield_only_mass: f64,
+}
+
+/// Sizes every member of `structure` for the axial forces `member_force` (bars then strings,
+/// tension positive). Every loaded member needs a material; every string must be in tension
+/// (forces above −1e-9 of the largest force count as zero).
+pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Result<SizingReport> {
+    let lengths = structure.member_lengths();
+    let f_scale = member_force.amax();
+    let mut members = Vec::with_capacity(lengths.len());
+    let (mut bar_mass, mut string_mass, mut yield_only) = (0.0, 0.0, 0.0);
+    for (k, &l) in lengths.iter().enumerate() {
+        let id = structure.member_id(k);
+        let mut f = member_force[k];
+        if f.abs() <= 1e-12 * f_scale {
+            f = 0.0;
+        }
+        let material = match structure.member_material(id) {
+            Some(m) => m,
+            None if f == 0.0 => {
+                members.push(MemberSize {
+                    force: 0.0,
+                    length: l,
+                    radius: 0.0,
+                    mass: 0.0,
+                    yield_mass: 0.0,
+                    buckling_mass: None,
+                    governing: Governing::Unloaded,
+                });
+                continue;
+            }
+            None => {
+                return Err(CoreError::MissingProperty {
+                    member: id,
+                    analysis: "sizing",
+                    property: "material",
+                })
+            }
+        };
+        let size = match id {
+            MemberId::Bar(_) => {
+                let s = size_bar(material, f, l);
+                bar_mass += s.mass;
+                s
+            }
+            MemberId::String(_) => {
+                let s = size_string(material, f, l)
+                    .ok_or(CoreError::StringInCompression { member: id, force: f })?;
+                string_mass += s.mass;
+                s
+            }
+        };
+        yield_only += size.yield_mass;
+        members.push(size);
+    }
+    Ok(SizingReport {
+        members,
+        bar_mass,
+        string_mass,
+        total_mass: bar_mass + string_mass,
+        yield_only_mass: yield_only,
+    })
+}

@@ -1,0 +1,69 @@
+//! Load solve: the minimal-norm force densities q with A q = w (w = free rows of the external
+//! force matrix W, loads plus bar weights), member forces q·l, support reactions and the
+//! equilibrium residual.
+//!
+//! The reaction at a fixed degree of freedom is whatever the support must supply so that the
+//! node balances: r = (A_full q − w) at that row. When w is not in the range of A (the load
+//! drives a mechanism), the least-squares q is returned and the residual ‖A q − w‖ says by how
+//! much equilibrium fails.
+
+use super::{equilibrium_matrix_full, Statics};
+use nalgebra::{DVector, Vector3};
+
+/// The solution of a load problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadSolution {
+    /// Force densities q (N/m, tension positive), bars then strings.
+    pub force_density: DVector<f64>,
+    /// Axial forces q·l (N, tension positive).
+    pub member_force: DVector<f64>,
+    /// `(node, reaction)` for every supported node, in support order (free directions of a
+    /// partially supported node carry 0).
+    pub reactions: Vec<(usize, Vector3<f64>)>,
+    /// ‖A q − w‖₂ over the free degrees of freedom (N).
+    pub residual: f64,
+    /// The residual relative to ‖w‖₂ (0 when w = 0).
+    pub relative_residual: f64,
+}
+
+impl Statics<'_> {
+    /// Solves for the structure's own loads (nodal loads plus gravity on bar masses).
+    pub fn solve_loads(&self) -> LoadSolution {
+        self.solve_nodal_forces(&self.structure().W())
+    }
+
+    /// Solves A q = w for an arbitrary 3×n nodal force matrix `w_nodes`.
+    pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
+        let structure = self.structure();
+        let w = self.dofs().gather(w_nodes);
+        let q = self.solve_min_norm(&w);
+        let lengths = structure.member_lengths();
+        let member_force = DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
+        let residual = (self.matrix() * &q - &w).norm();
+        let w_norm = w.norm();
+        let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
+
+        let a_full = equilibrium_matrix_full(structure);
+        let internal = &a_full * &q;
+        let reactions = structure
+            .supports()
+            .iter()
+            .map(|s| {
+                let mut r = Vector3::zeros();
+                for d in 0..3 {
+                    if s.fixed[d] {
+                        r[d] = internal[3 * s.node + d] - w_nodes[(d, s.node)];
+                    }
+                }
+                (s.node, r)
+            })
+            .collect();
+        LoadSolution {
+            force_density: q,
+            member_force,
+            reactions,
+            residual,
+            relative_residual,
+        }
+    }
+}

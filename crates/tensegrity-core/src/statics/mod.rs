@@ -1,0 +1,249 @@
+//! Statics: the equilibrium matrix, its SVD, self-stress and mechanisms, prestressability and
+//! load solves.
+//!
+//! With force densities q (tension positive, bars then strings) nodal equilibrium reads
+//! N Cᵀ diag(q) C = W, i.e. column-wise A q = w where column k of A holds −m_k at the rows of
+//! the member's start node and +m_k at the rows of its end node (m_k = n_end − n_start). Rows
+//! of fixed degrees of freedom are removed from A; their reactions are reported separately.
+//!
+//! From the SVD A = U Σ Vᵀ with the rank r decided by [`crate::linalg::rank_tolerance`]:
+//! - self-stress states: the last (members − r) columns of V (null space of A);
+//! - mechanisms: 3·(free dofs) − r first-order motions (the null space of Aᵀ, i.e. the last
+//!   columns of U), rigid-body motions included when the supports allow them.
+
+mod load;
+mod prestress;
+
+pub use load::LoadSolution;
+pub use prestress::{Prestressability, PRESTRESS_TOLERANCE};
+
+use crate::error::Result;
+use crate::linalg::{self, Svd};
+use crate::structure::Structure;
+use nalgebra::{DMatrix, DVector};
+
+/// Maps the free degrees of freedom (node, direction) to rows of A.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DofMap {
+    /// `(node, direction)` of each free row.
+    pub free: Vec<(usize, usize)>,
+    /// Row of each node's direction, `None` when fixed.
+    pub row: Vec<[Option<usize>; 3]>,
+}
+
+impl DofMap {
+    /// The free degrees of freedom of `structure` in node-major order.
+    pub fn of(structure: &Structure) -> Self {
+        let fixed = structure.fixed_dofs();
+        let mut free = Vec::new();
+        let mut row = vec![[None; 3]; fixed.len()];
+        for (i, f) in fixed.iter().enumerate() {
+            for d in 0..3 {
+                if !f[d] {
+                    row[i][d] = Some(free.len());
+                    free.push((i, d));
+                }
+            }
+        }
+        Self { free, row }
+    }
+
+    /// Number of free degrees of freedom.
+    pub fn len(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Whether every degree of freedom is fixed.
+    pub fn is_empty(&self) -> bool {
+        self.free.is_empty()
+    }
+
+    /// Restricts a 3×n nodal matrix to the free rows, as a vector.
+    pub fn gather(&self, w: &nalgebra::Matrix3xX<f64>) -> DVector<f64> {
+        DVector::from_iterator(self.free.len(), self.free.iter().map(|&(i, d)| w[(d, i)]))
+    }
+}
+
+/// The full equilibrium matrix (3n × members, no rows removed), node-major rows.
+///
+/// ```
+/// use tensegrity_core::{statics, Bar, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1))
+///     .build()
+///     .unwrap();
+/// let a = statics::equilibrium_matrix_full(&s);
+/// assert_eq!((a[(0, 0)], a[(3, 0)]), (-2.0, 2.0));
+/// ```
+pub fn equilibrium_matrix_full(structure: &Structure) -> DMatrix<f64> {
+    let n = structure.n_nodes();
+    let mut a = DMatrix::zeros(3 * n, structure.n_members());
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let m = structure.nodes()[j] - structure.nodes()[i];
+        for d in 0..3 {
+            a[(3 * i + d, k)] = -m[d];
+            a[(3 * j + d, k)] = m[d];
+        }
+    }
+    a
+}
+
+/// The equilibrium matrix restricted to free degrees of freedom.
+pub fn equilibrium_matrix(structure: &Structure, dofs: &DofMap) -> DMatrix<f64> {
+    let mut a = DMatrix::zeros(dofs.len(), structure.n_members());
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let m = structure.nodes()[j] - structure.nodes()[i];
+        for d in 0..3 {
+            if let Some(r) = dofs.row[i][d] {
+                a[(r, k)] = -m[d];
+            }
+            if let Some(r) = dofs.row[j][d] {
+                a[(r, k)] = m[d];
+            }
+        }
+    }
+    a
+}
+
+/// Settings of a statics analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StaticsSettings {
+    /// Relative rank tolerance (σ counts as zero when σ ≤ tol · σ_max); `None` uses
+    /// max(m, n)·ε.
+    pub rank_tolerance: Option<f64>,
+}
+
+impl StaticsSettings {
+    /// Sets a relative rank tolerance, which must lie in (0, 1).
+    ///
+    /// ```
+    /// use tensegrity_core::statics::StaticsSettings;
+    /// assert!(StaticsSettings::default().rank_tolerance(1e-10).is_ok());
+    /// assert!(StaticsSettings::default().rank_tolerance(-1.0).is_err());
+    /// ```
+    pub fn rank_tolerance(mut self, rel: f64) -> Result<Self> {
+        if !(rel > 0.0 && rel < 1.0) {
+            return Err(crate::CoreError::InvalidParameter {
+                name: "rank_tolerance",
+                value: rel,
+                reason: "a relative tolerance must lie strictly between 0 and 1",
+            });
+        }
+        self.rank_tolerance = Some(rel);
+        Ok(self)
+    }
+}
+
+/// The factored equilibrium problem of one structure: A, its SVD and the rank decision.
+/// Build it once, then ask for self-stress, prestressability or load solutions.
+#[derive(Debug, Clone)]
+pub struct Statics<'a> {
+    structure: &'a Structure,
+    dofs: DofMap,
+    a: DMatrix<f64>,
+    svd: Svd,
+    tolerance: f64,
+    rank: usize,
+}
+
+impl<'a> Statics<'a> {
+    /// Factors the equilibrium matrix of `structure` with default settings.
+    pub fn new(structure: &'a Structure) -> Result<Self> {
+        Self::with_settings(structure, StaticsSettings::default())
+    }
+
+    /// Factors the equilibrium matrix of `structure`.
+    pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
+        let dofs = DofMap::of(structure);
+        let a = equilibrium_matrix(structure, &dofs);
+        let svd = linalg::svd(&a)?;
+        let s_max = svd.s.first().copied().unwrap_or(0.0);
+        let tolerance = linalg::rank_tolerance(a.nrows(), a.ncols(), s_max, settings.rank_tolerance);
+        let rank = svd.rank(tolerance);
+        Ok(Self {
+            structure,
+            dofs,
+            a,
+            svd,
+            tolerance,
+            rank,
+        })
+    }
+
+    /// The analysed structure.
+    pub fn structure(&self) -> &Structure {
+        self.structure
+    }
+
+    /// The free degrees of freedom (rows of A).
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The equilibrium matrix A (free dofs × members).
+    pub fn matrix(&self) -> &DMatrix<f64> {
+        &self.a
+    }
+
+    /// Singular values of A, non-increasing.
+    pub fn singular_values(&self) -> &[f64] {
+        &self.svd.s
+    }
+
+    /// The absolute tolerance below which a singular value counts as zero.
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Rank of A.
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// Dimension of the self-stress space, members − rank.
+    pub fn self_stress_dim(&self) -> usize {
+        self.a.ncols() - self.rank
+    }
+
+    /// Number of first-order mechanisms, free dofs − rank (rigid-body motions included when
+    /// the supports allow them).
+    pub fn mechanisms(&self) -> usize {
+        self.a.nrows() - self.rank
+    }
+
+    /// An orthonormal basis of the self-stress space (one column per state, members bars first).
+    ///
+    /// Each state is oriented so that its strings sum to a positive value (when they sum to
+    /// zero, its first significant entry is positive), which makes a one-dimensional basis
+    /// unique.
+    pub fn self_stress_basis(&self) -> DMatrix<f64> {
+        let m = self.a.ncols();
+        let nb = self.structure.n_bars();
+        let mut basis = self.svd.v.columns(self.rank, m - self.rank).into_owned();
+        for mut col in basis.column_iter_mut() {
+            let string_sum: f64 = col.rows(nb, m - nb).sum();
+            let sign = if string_sum.abs() > 1e-9 {
+                string_sum.signum()
+            } else {
+                col.iter()
+                    .find(|x| x.abs() > 1e-9)
+                    .map_or(1.0, |x| x.signum())
+            };
+            col *= sign;
+        }
+        basis
+    }
+
+    /// An orthonormal basis of the first-order motions δn of the free dofs that keep every
+    /// member length to first order (null space of Aᵀ), rigid-body motions included.
+    pub fn motion_basis(&self) -> DMatrix<f64> {
+        let rows = self.a.nrows();
+        self.svd.u.columns(self.rank, rows - self.rank).into_owned()
+    }
+
+    /// Minimal-norm least-squares solution of A q = w on the free rows.
+    pub fn solve_min_norm(&self, w: &DVector<f64>) -> DVector<f64> {
+        self.svd.solve_min_norm(w, self.rank)
+    }
+}

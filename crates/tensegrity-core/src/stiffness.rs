@@ -1,0 +1,291 @@
+//! Tangent stiffness, first-order flexes, prestress stability and modal analysis.
+//!
+//! For member k with force density q_k (tension positive), length l_k, unit vector e_k and
+//! axial stiffness k_k (k for strings, E·πr²/l for elastic bars), the 3×3 block
+//!
+//! K_k = k_k e_k e_kᵀ + q_k (I₃ − e_k e_kᵀ)
+//!
+//! enters the tangent stiffness as [[K_k, −K_k], [−K_k, K_k]] on its two nodes (material plus
+//! geometric stiffness). The geometric part alone, Σ q_k (…)⊗I₃, is the stress matrix Ω ⊗ I₃
+//! with Ω = Cᵀ diag(q) C.
+//!
+//! First-order flexes are the motions δn of the free degrees of freedom with Aᵀ δn = 0 (no
+//! member changes length to first order). Rigid-body motions δn_i = a + ω × n_i that the
+//! supports allow are trivial flexes; the others are internal mechanisms. A structure with a
+//! self-stress q is prestress stable when δnᵀ (Ω ⊗ I₃) δn > 0 for every internal mechanism δn
+//! (Connelly–Whiteley second-order test with that stress); with no internal mechanism it is
+//! first-order rigid.
+//!
+//! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
+//! of its ends; strings are massless).
+
+use crate::error::{CoreError, Result};
+use crate::linalg;
+use crate::statics::{DofMap, Statics};
+use crate::structure::{MemberId, Structure};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use std::f64::consts::PI;
+
+/// Assembles Σ_k blocks into the free-dof matrix, given each member's 3×3 block.
+fn assemble(structure: &Structure, dofs: &DofMap, block: impl Fn(usize) -> Matrix3<f64>) -> DMatrix<f64> {
+    let n = dofs.len();
+    let mut k_mat = DMatrix::zeros(n, n);
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let b = block(k);
+        for (a, sa) in [(i, 1.0), (j, -1.0)] {
+            for (c, sc) in [(i, 1.0), (j, -1.0)] {
+                for d1 in 0..3 {
+                    let Some(r) = dofs.row[a][d1] else { continue };
+                    for d2 in 0..3 {
+                        if let Some(col) = dofs.row[c][d2] {
+                            k_mat[(r, col)] += sa * sc * b[(d1, d2)];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    k_mat
+}
+
+/// The stress (geometric stiffness) matrix Ω ⊗ I₃ on the free degrees of freedom for force
+/// densities `q` (bars then strings).
+///
+/// ```
+/// use nalgebra::DVector;
+/// use tensegrity_core::{statics::DofMap, stiffness, StringMember, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .string(StringMember::new(0, 1))
+///     .build()
+///     .unwrap();
+/// let k = stiffness::stress_matrix(&s, &DofMap::of(&s), &DVector::from_element(1, 2.0));
+/// assert_eq!((k[(0, 0)], k[(0, 3)]), (2.0, -2.0));
+/// ```
+pub fn stress_matrix(structure: &Structure, dofs: &DofMap, q: &DVector<f64>) -> DMatrix<f64> {
+    assemble(structure, dofs, |k| Matrix3::identity() * q[k])
+}
+
+/// The tangent stiffness (material + geometric) on the free degrees of freedom for force
+/// densities `q` and axial stiffnesses `axial` (N/m, one per member).
+pub fn tangent_stiffness(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    axial: &[f64],
+) -> DMatrix<f64> {
+    assemble(structure, dofs, |k| {
+        let e: Vector3<f64> = structure.member_vector(k).normalize();
+        let eet = e * e.transpose();
+        eet * axial[k] + (Matrix3::identity() - eet) * q[k]
+    })
+}
+
+/// Axial stiffness of every member: k for strings (0 when slack at the current length), E·πr²/l
+/// for bars with a material and a radius.
+pub fn axial_stiffness(structure: &Structure) -> Result<Vec<f64>> {
+    let lengths = structure.member_lengths();
+    (0..structure.n_members())
+        .map(|k| match structure.member_id(k) {
+            MemberId::Bar(i) => {
+                let bar = &structure.bars()[i];
+                let missing = |property| CoreError::MissingProperty {
+                    member: MemberId::Bar(i),
+                    analysis: "tangent stiffness",
+                    property,
+                };
+                let mat = structure
+                    .member_material(MemberId::Bar(i))
+                    .ok_or(missing("material"))?;
+                let r = bar.radius.ok_or(missing("radius"))?;
+                Ok(mat.youngs_modulus * PI * r * r / lengths[k])
+            }
+            MemberId::String(i) => {
+                let s = &structure.strings()[i];
+                let k_s = s.stiffness.ok_or(CoreError::MissingProperty {
+                    member: MemberId::String(i),
+                    analysis: "tangent stiffness",
+                    property: "stiffness",
+                })?;
+                let taut = s.rest_length.is_none_or(|s0| lengths[k] > s0);
+                Ok(if taut { k_s } else { 0.0 })
+            }
+        })
+        .collect()
+}
+
+/// Force densities of the strings from their rest lengths, q = k(1 − s0/l) when taut, else 0
+/// (bars get 0: their forces follow from equilibrium).
+pub fn string_force_densities(structure: &Structure) -> Result<DVector<f64>> {
+    let lengths = structure.member_lengths();
+    let nb = structure.n_bars();
+    let mut q = DVector::zeros(structure.n_members());
+    for (i, s) in structure.strings().iter().enumerate() {
+        let missing = |property| CoreError::MissingProperty {
+            member: MemberId::String(i),
+            analysis: "string tension",
+            property,
+        };
+        let k = s.stiffness.ok_or(missing("stiffness"))?;
+        let s0 = s.rest_length.ok_or(missing("rest_length"))?;
+        let l = lengths[nb + i];
+        q[nb + i] = if l > s0 { k * (1.0 - s0 / l) } else { 0.0 };
+    }
+    Ok(q)
+}
+
+/// Rigid-body motions on the free degrees of freedom that the supports allow: an orthonormal
+/// basis (free dofs × count).
+pub fn rigid_body_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatrix<f64>> {
+    let n = structure.n_nodes();
+    let centre = structure.nodes().iter().sum::<Vector3<f64>>() / n as f64;
+    // T: 3n × 6, columns = three translations and three rotations about the centroid.
+    let mut t = DMatrix::zeros(3 * n, 6);
+    for (i, p) in structure.nodes().iter().enumerate() {
+        let r = p - centre;
+        for d in 0..3 {
+            t[(3 * i + d, d)] = 1.0;
+            let w = Vector3::ith(d, 1.0).cross(&r);
+            for c in 0..3 {
+                t[(3 * i + c, 3 + d)] = w[c];
+            }
+        }
+    }
+    let fixed_rows: Vec<usize> = (0..3 * n)
+        .filter(|&r| dofs.row[r / 3][r % 3].is_none())
+        .collect();
+    let allowed = if fixed_rows.is_empty() {
+        DMatrix::identity(6, 6)
+    } else {
+        let t_fixed = t.select_rows(fixed_rows.iter());
+        let d = linalg::svd(&t_fixed)?;
+        let tol = linalg::rank_tolerance(t_fixed.nrows(), 6, d.s.first().copied().unwrap_or(0.0), None);
+        let r = d.rank(tol);
+        d.v.columns(r, 6 - r).into_owned()
+    };
+    let free_rows: Vec<usize> = dofs.free.iter().map(|&(i, d)| 3 * i + d).collect();
+    let t_free = t.select_rows(free_rows.iter()) * allowed;
+    linalg::orthonormal_basis(&t_free, Some(1e-10))
+}
+
+/// First-order flexes split into trivial (rigid-body) and internal ones.
+#[derive(Debug, Clone)]
+pub struct Flexes {
+    /// Orthonormal basis of the internal mechanisms (free dofs × count).
+    pub internal: DMatrix<f64>,
+    /// Number of rigid-body motions the supports allow.
+    pub rigid_body: usize,
+}
+
+/// Result of the prestress-stability test.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrestressStability {
+    /// Number of internal mechanisms (first-order flexes beyond rigid-body motion).
+    pub internal_mechanisms: usize,
+    /// Eigenvalues of the stress matrix projected on the internal mechanisms, ascending
+    /// (empty when there are none).
+    pub eigenvalues: Vec<f64>,
+    /// Whether every internal mechanism is stiffened by the stress (or there is none).
+    pub stable: bool,
+}
+
+impl Statics<'_> {
+    /// The first-order flexes, split into rigid-body motions and internal mechanisms.
+    pub fn flexes(&self) -> Result<Flexes> {
+        let motions = self.motion_basis();
+        let rigid = rigid_body_motions(self.structure(), self.dofs())?;
+        let n_rigid = rigid.ncols();
+        let projected = &motions - &rigid * (rigid.transpose() * &motions);
+        let internal_dim = motions.ncols().saturating_sub(n_rigid);
+        let internal = if internal_dim == 0 {
+            DMatrix::zeros(motions.nrows(), 0)
+        } else {
+            let d = linalg::svd(&projected)?;
+            d.u.columns(0, internal_dim).into_owned()
+        };
+        Ok(Flexes {
+            internal,
+            rigid_body: n_rigid,
+        })
+    }
+
+    /// Tests prestress stability with force densities `q` (normally a self-stress).
+    ///
+    /// The eigenvalues of the stress matrix projected on the internal mechanisms must exceed
+    /// 1e-9 · max|q|, a tolerance relative to the stress level.
+    pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
+        let flexes = self.flexes()?;
+        let phi = &flexes.internal;
+        let m = phi.ncols();
+        if m == 0 {
+            return Ok(PrestressStability {
+                internal_mechanisms: 0,
+                eigenvalues: Vec::new(),
+                stable: true,
+            });
+        }
+        let omega = stress_matrix(self.structure(), self.dofs(), q);
+        let projected = phi.transpose() * omega * phi;
+        let sym = (&projected + projected.transpose()) * 0.5;
+        let (w, _) = linalg::symmetric_eigen(&sym)?;
+        let tol = 1e-9 * q.amax();
+        let stable = w.first().is_some_and(|&w0| w0 > tol);
+        Ok(PrestressStability {
+            internal_mechanisms: m,
+            eigenvalues: w,
+            stable,
+        })
+    }
+}
+
+/// Lumped nodal masses: half of each bar's mass at each of its ends (strings massless).
+pub fn lumped_masses(structure: &Structure) -> Vec<f64> {
+    let mut m = vec![0.0; structure.n_nodes()];
+    for b in structure.bars() {
+        if let Some(mass) = b.mass {
+            m[b.nodes[0]] += 0.5 * mass;
+            m[b.nodes[1]] += 0.5 * mass;
+        }
+    }
+    m
+}
+
+/// Natural modes of small vibration about the current configuration.
+#[derive(Debug, Clone)]
+pub struct Modes {
+    /// ω² (rad²/s²), ascending.
+    pub eigenvalues: Vec<f64>,
+    /// Natural frequencies f = √max(ω², 0) / 2π (Hz).
+    pub frequencies_hz: Vec<f64>,
+    /// Mode shapes on the free degrees of freedom (M-orthonormal columns).
+    pub shapes: DMatrix<f64>,
+}
+
+/// Solves K φ = ω² M φ with the tangent stiffness for force densities `q` and the lumped mass.
+/// Every free node needs mass; bars need a material and a radius (axial stiffness), strings a
+/// stiffness.
+pub fn modal_analysis(structure: &Structure, q: &DVector<f64>) -> Result<Modes> {
+    let dofs = DofMap::of(structure);
+    let axial = axial_stiffness(structure)?;
+    let k_t = tangent_stiffness(structure, &dofs, q, &axial);
+    let masses = lumped_masses(structure);
+    let mut inv_sqrt = DVector::zeros(dofs.len());
+    for (r, &(node, _)) in dofs.free.iter().enumerate() {
+        if masses[node] <= 0.0 {
+            return Err(CoreError::MasslessNode { node });
+        }
+        inv_sqrt[r] = 1.0 / masses[node].sqrt();
+    }
+    let scaled = DMatrix::from_fn(dofs.len(), dofs.len(), |i, j| {
+        inv_sqrt[i] * k_t[(i, j)] * inv_sqrt[j]
+    });
+    let sym = (&scaled + scaled.transpose()) * 0.5;
+    let (w, v) = linalg::symmetric_eigen(&sym)?;
+    let shapes = DMatrix::from_fn(v.nrows(), v.ncols(), |i, j| inv_sqrt[i] * v[(i, j)]);
+    let frequencies_hz = w.iter().map(|&x| x.max(0.0).sqrt() / (2.0 * PI)).collect();
+    Ok(Modes {
+        eigenvalues: w,
+        frequencies_hz,
+        shapes,
+    })
+}

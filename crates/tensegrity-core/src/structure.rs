@@ -1,0 +1,824 @@
+//! The structure model: nodes N (3×n), bars, strings, supports, loads and gravity.
+//!
+//! A [`Structure`] can only be obtained from [`StructureBuilder::build`], which validates every
+//! item and reports the first problem as a [`CoreError`] naming it. Members are numbered bars
+//! first, then strings, both in insertion order; that order is used by every analysis
+//! (force-density vectors, self-stress bases, ...).
+
+use crate::error::{CoreError, Result};
+use crate::material::{Material, MaterialTable};
+use nalgebra::{Matrix3xX, Vector3};
+use std::collections::HashMap;
+use std::fmt;
+
+/// Identifies a member by kind and 0-based index within its kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MemberId {
+    /// The i-th bar.
+    Bar(usize),
+    /// The i-th string.
+    String(usize),
+}
+
+impl fmt::Display for MemberId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MemberId::Bar(i) => write!(f, "bar {i}"),
+            MemberId::String(i) => write!(f, "string {i}"),
+        }
+    }
+}
+
+/// A compressive member, rigid in dynamics, elastic in stiffness analysis when it has a
+/// material and a radius.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bar {
+    /// Start and end node (the member vector is `n[end] − n[start]`).
+    pub nodes: [usize; 2],
+    /// Mass in kg (dynamics, gravity, modal analysis).
+    pub mass: Option<f64>,
+    /// Material name (sizing, axial stiffness).
+    pub material: Option<String>,
+    /// Cross-section radius in m (axial stiffness E·πr²/l).
+    pub radius: Option<f64>,
+}
+
+impl Bar {
+    /// A bar from `start` to `end` with no other property.
+    ///
+    /// ```
+    /// use tensegrity_core::Bar;
+    /// let bar = Bar::new(0, 1).mass(1.5).material("steel");
+    /// assert_eq!(bar.nodes, [0, 1]);
+    /// assert_eq!(bar.mass, Some(1.5));
+    /// ```
+    pub fn new(start: usize, end: usize) -> Self {
+        Self {
+            nodes: [start, end],
+            mass: None,
+            material: None,
+            radius: None,
+        }
+    }
+
+    /// Sets the mass (kg).
+    pub fn mass(mut self, mass: f64) -> Self {
+        self.mass = Some(mass);
+        self
+    }
+
+    /// Sets the material name.
+    pub fn material(mut self, name: &str) -> Self {
+        self.material = Some(name.to_string());
+        self
+    }
+
+    /// Sets the cross-section radius (m).
+    ///
+    /// ```
+    /// use tensegrity_core::Bar;
+    /// assert_eq!(Bar::new(0, 1).radius(0.01).radius, Some(0.01));
+    /// ```
+    pub fn radius(mut self, radius: f64) -> Self {
+        self.radius = Some(radius);
+        self
+    }
+}
+
+/// A tension-only member: linear elastic with a rest length, optionally damped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StringMember {
+    /// Start and end node.
+    pub nodes: [usize; 2],
+    /// Axial stiffness k in N/m.
+    pub stiffness: Option<f64>,
+    /// Rest length s0 in m.
+    pub rest_length: Option<f64>,
+    /// Damping coefficient c in N·s/m (0 = undamped).
+    pub damping: f64,
+    /// Material name (sizing).
+    pub material: Option<String>,
+}
+
+impl StringMember {
+    /// A string from `start` to `end` with no other property.
+    ///
+    /// ```
+    /// use tensegrity_core::StringMember;
+    /// let s = StringMember::new(0, 2).stiffness(100.0).rest_length(0.9);
+    /// assert_eq!(s.stiffness, Some(100.0));
+    /// assert_eq!(s.rest_length, Some(0.9));
+    /// ```
+    pub fn new(start: usize, end: usize) -> Self {
+        Self {
+            nodes: [start, end],
+            stiffness: None,
+            rest_length: None,
+            damping: 0.0,
+            material: None,
+        }
+    }
+
+    /// Sets the axial stiffness k (N/m).
+    pub fn stiffness(mut self, k: f64) -> Self {
+        self.stiffness = Some(k);
+        self
+    }
+
+    /// Sets the rest length s0 (m).
+    pub fn rest_length(mut self, s0: f64) -> Self {
+        self.rest_length = Some(s0);
+        self
+    }
+
+    /// Sets the damping coefficient c (N·s/m).
+    ///
+    /// ```
+    /// use tensegrity_core::StringMember;
+    /// assert_eq!(StringMember::new(0, 1).damping(2.0).damping, 2.0);
+    /// ```
+    pub fn damping(mut self, c: f64) -> Self {
+        self.damping = c;
+        self
+    }
+
+    /// Sets the material name.
+    ///
+    /// ```
+    /// use tensegrity_core::StringMember;
+    /// assert_eq!(StringMember::new(0, 1).material("steel").material.as_deref(), Some("steel"));
+    /// ```
+    pub fn material(mut self, name: &str) -> Self {
+        self.material = Some(name.to_string());
+        self
+    }
+}
+
+/// A node held fixed in some (by default all) of the three directions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Support {
+    /// The supported node.
+    pub node: usize,
+    /// Which of x, y, z are fixed.
+    pub fixed: [bool; 3],
+}
+
+impl Support {
+    /// A node fixed in all three directions.
+    ///
+    /// ```
+    /// use tensegrity_core::Support;
+    /// assert_eq!(Support::pinned(3).fixed, [true; 3]);
+    /// ```
+    pub fn pinned(node: usize) -> Self {
+        Self {
+            node,
+            fixed: [true; 3],
+        }
+    }
+
+    /// A node fixed only in the directions flagged `true` (x, y, z).
+    ///
+    /// ```
+    /// use tensegrity_core::Support;
+    /// let roller = Support::directions(0, [false, false, true]);
+    /// assert_eq!(roller.fixed, [false, false, true]);
+    /// ```
+    pub fn directions(node: usize, fixed: [bool; 3]) -> Self {
+        Self { node, fixed }
+    }
+}
+
+/// An external force applied at a node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Load {
+    /// The loaded node.
+    pub node: usize,
+    /// The force in N.
+    pub force: Vector3<f64>,
+}
+
+/// A validated tensegrity structure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Structure {
+    nodes: Vec<Vector3<f64>>,
+    velocities: Option<Vec<Vector3<f64>>>,
+    bars: Vec<Bar>,
+    strings: Vec<StringMember>,
+    supports: Vec<Support>,
+    loads: Vec<Load>,
+    gravity: Option<Vector3<f64>>,
+    materials: MaterialTable,
+}
+
+impl Structure {
+    /// Starts a builder.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, StringMember, Structure, Support};
+    /// let s = Structure::builder()
+    ///     .node([0.0, 0.0, 0.0])
+    ///     .node([1.0, 0.0, 0.0])
+    ///     .node([0.0, 1.0, 0.0])
+    ///     .bar(Bar::new(0, 1))
+    ///     .string(StringMember::new(1, 2))
+    ///     .string(StringMember::new(2, 0))
+    ///     .support(Support::pinned(0))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_members(), 3);
+    /// ```
+    pub fn builder() -> StructureBuilder {
+        StructureBuilder::default()
+    }
+
+    /// Node positions, one per node.
+    pub fn nodes(&self) -> &[Vector3<f64>] {
+        &self.nodes
+    }
+
+    /// The node matrix N (3×n, column i = node i).
+    #[allow(non_snake_case)]
+    pub fn N(&self) -> Matrix3xX<f64> {
+        Matrix3xX::from_columns(&self.nodes)
+    }
+
+    /// Initial node velocities, if given.
+    pub fn velocities(&self) -> Option<&[Vector3<f64>]> {
+        self.velocities.as_deref()
+    }
+
+    /// The bars.
+    pub fn bars(&self) -> &[Bar] {
+        &self.bars
+    }
+
+    /// The strings.
+    pub fn strings(&self) -> &[StringMember] {
+        &self.strings
+    }
+
+    /// The supports.
+    pub fn supports(&self) -> &[Support] {
+        &self.supports
+    }
+
+    /// The nodal loads.
+    pub fn loads(&self) -> &[Load] {
+        &self.loads
+    }
+
+    /// The gravitational acceleration, if any (m/s²).
+    pub fn gravity(&self) -> Option<Vector3<f64>> {
+        self.gravity
+    }
+
+    /// The material table (built-in plus user materials).
+    pub fn materials(&self) -> &MaterialTable {
+        &self.materials
+    }
+
+    /// Number of nodes n.
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of bars β.
+    pub fn n_bars(&self) -> usize {
+        self.bars.len()
+    }
+
+    /// Number of strings α.
+    pub fn n_strings(&self) -> usize {
+        self.strings.len()
+    }
+
+    /// Number of members β + α.
+    pub fn n_members(&self) -> usize {
+        self.bars.len() + self.strings.len()
+    }
+
+    /// The member in column `k` of the member ordering (bars first, then strings).
+    pub fn member_id(&self, k: usize) -> MemberId {
+        if k < self.bars.len() {
+            MemberId::Bar(k)
+        } else {
+            MemberId::String(k - self.bars.len())
+        }
+    }
+
+    /// The column of `id` in the member ordering.
+    pub fn member_index(&self, id: MemberId) -> usize {
+        match id {
+            MemberId::Bar(i) => i,
+            MemberId::String(i) => self.bars.len() + i,
+        }
+    }
+
+    /// End nodes `[start, end]` of every member, bars first.
+    pub fn member_nodes(&self) -> Vec<[usize; 2]> {
+        self.bars
+            .iter()
+            .map(|b| b.nodes)
+            .chain(self.strings.iter().map(|s| s.nodes))
+            .collect()
+    }
+
+    /// Member vector `n[end] − n[start]` of member column `k`.
+    pub fn member_vector(&self, k: usize) -> Vector3<f64> {
+        let [i, j] = self.member_nodes_of(k);
+        self.nodes[j] - self.nodes[i]
+    }
+
+    /// Length of every member, bars first.
+    pub fn member_lengths(&self) -> Vec<f64> {
+        (0..self.n_members())
+            .map(|k| self.member_vector(k).norm())
+            .collect()
+    }
+
+    fn member_nodes_of(&self, k: usize) -> [usize; 2] {
+        match self.member_id(k) {
+            MemberId::Bar(i) => self.bars[i].nodes,
+            MemberId::String(i) => self.strings[i].nodes,
+        }
+    }
+
+    /// The material of member `id`, if it names one.
+    pub fn member_material(&self, id: MemberId) -> Option<&Material> {
+        let name = match id {
+            MemberId::Bar(i) => self.bars[i].material.as_deref(),
+            MemberId::String(i) => self.strings[i].material.as_deref(),
+        }?;
+        self.materials.get(name)
+    }
+
+    /// For each node, which directions are fixed.
+    pub fn fixed_dofs(&self) -> Vec<[bool; 3]> {
+        let mut fixed = vec![[false; 3]; self.nodes.len()];
+        for s in &self.supports {
+            for d in 0..3 {
+                fixed[s.node][d] |= s.fixed[d];
+            }
+        }
+        fixed
+    }
+
+    /// Number of bars meeting at each node.
+    pub fn bars_per_node(&self) -> Vec<usize> {
+        let mut count = vec![0; self.nodes.len()];
+        for b in &self.bars {
+            count[b.nodes[0]] += 1;
+            count[b.nodes[1]] += 1;
+        }
+        count
+    }
+
+    /// Class-k joints: `(node, k)` for every node shared by k ≥ 2 bars.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .bar(Bar::new(0, 2))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.class_k_nodes(), vec![(0, 2)]);
+    /// ```
+    pub fn class_k_nodes(&self) -> Vec<(usize, usize)> {
+        self.bars_per_node()
+            .into_iter()
+            .enumerate()
+            .filter(|&(_, k)| k >= 2)
+            .collect()
+    }
+
+    /// The class of the structure: the largest number of bars meeting at a node (at least 1).
+    pub fn class(&self) -> usize {
+        self.bars_per_node().into_iter().max().unwrap_or(0).max(1)
+    }
+
+    /// The total external nodal force matrix W (3×n): loads plus, when gravity is set, half of
+    /// each bar's weight at each of its ends.
+    #[allow(non_snake_case)]
+    pub fn W(&self) -> Matrix3xX<f64> {
+        let mut w = Matrix3xX::zeros(self.nodes.len());
+        for l in &self.loads {
+            let mut col = w.column_mut(l.node);
+            col += l.force;
+        }
+        if let Some(g) = self.gravity {
+            for b in &self.bars {
+                if let Some(m) = b.mass {
+                    for &i in &b.nodes {
+                        let mut col = w.column_mut(i);
+                        col += 0.5 * m * g;
+                    }
+                }
+            }
+        }
+        w
+    }
+
+    /// Whether any external load acts (nodal loads, or gravity on massive bars).
+    pub fn is_loaded(&self) -> bool {
+        !self.loads.is_empty()
+            || (self.gravity.is_some_and(|g| g.norm() > 0.0)
+                && self.bars.iter().any(|b| b.mass.is_some()))
+    }
+
+    /// A copy with new node positions (same topology and properties), validated again.
+    pub fn with_nodes(&self, nodes: Vec<Vector3<f64>>) -> Result<Structure> {
+        let mut b = self.to_builder();
+        b.nodes = nodes;
+        b.build()
+    }
+
+    /// A builder holding everything in this structure, to modify and rebuild.
+    pub fn to_builder(&self) -> StructureBuilder {
+        StructureBuilder {
+            nodes: self.nodes.clone(),
+            velocities: self.velocities.clone(),
+            bars: self.bars.clone(),
+            strings: self.strings.clone(),
+            supports: self.supports.clone(),
+            loads: self.loads.clone(),
+            gravity: self.gravity,
+            materials: self.materials.clone(),
+            user_materials: Vec::new(),
+            allow_isolated: false,
+        }
+    }
+}
+
+/// By-value builder for [`Structure`]; [`build`](StructureBuilder::build) validates.
+#[derive(Debug, Clone, Default)]
+pub struct StructureBuilder {
+    nodes: Vec<Vector3<f64>>,
+    velocities: Option<Vec<Vector3<f64>>>,
+    bars: Vec<Bar>,
+    strings: Vec<StringMember>,
+    supports: Vec<Support>,
+    loads: Vec<Load>,
+    gravity: Option<Vector3<f64>>,
+    materials: MaterialTable,
+    user_materials: Vec<(String, Material)>,
+    allow_isolated: bool,
+}
+
+impl StructureBuilder {
+    /// Appends a node.
+    ///
+    /// ```
+    /// use tensegrity_core::Structure;
+    /// let b = Structure::builder().node([0.0, 0.0, 0.0]);
+    /// assert!(b.build().is_err()); // no members yet
+    /// ```
+    pub fn node(mut self, position: [f64; 3]) -> Self {
+        self.nodes.push(Vector3::from(position));
+        self
+    }
+
+    /// Appends several nodes.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_nodes(), 2);
+    /// ```
+    pub fn nodes<I: IntoIterator<Item = [f64; 3]>>(mut self, positions: I) -> Self {
+        self.nodes
+            .extend(positions.into_iter().map(Vector3::from));
+        self
+    }
+
+    /// Sets the initial velocity of every node (one entry per node).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    ///     .velocities([[0.0; 3], [1.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.velocities().unwrap()[1].x, 1.0);
+    /// ```
+    pub fn velocities<I: IntoIterator<Item = [f64; 3]>>(mut self, velocities: I) -> Self {
+        self.velocities = Some(velocities.into_iter().map(Vector3::from).collect());
+        self
+    }
+
+    /// Appends a bar.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1).mass(1.0))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_bars(), 1);
+    /// ```
+    pub fn bar(mut self, bar: Bar) -> Self {
+        self.bars.push(bar);
+        self
+    }
+
+    /// Appends a string.
+    ///
+    /// ```
+    /// use tensegrity_core::{StringMember, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .string(StringMember::new(0, 1).stiffness(100.0).rest_length(1.8))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_strings(), 1);
+    /// ```
+    pub fn string(mut self, string: StringMember) -> Self {
+        self.strings.push(string);
+        self
+    }
+
+    /// Adds a support.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure, Support};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .support(Support::pinned(0))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.supports().len(), 1);
+    /// ```
+    pub fn support(mut self, support: Support) -> Self {
+        self.supports.push(support);
+        self
+    }
+
+    /// Adds a nodal force (N).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .load(1, [-1e4, 0.0, 0.0])
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.W()[(0, 1)], -1e4);
+    /// ```
+    pub fn load(mut self, node: usize, force: [f64; 3]) -> Self {
+        self.loads.push(Load {
+            node,
+            force: Vector3::from(force),
+        });
+        self
+    }
+
+    /// Sets the gravitational acceleration (m/s²).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1).mass(2.0))
+    ///     .gravity([0.0, 0.0, -9.81])
+    ///     .build()
+    ///     .unwrap();
+    /// assert!((s.W()[(2, 0)] + 9.81).abs() < 1e-12);
+    /// ```
+    pub fn gravity(mut self, acceleration: [f64; 3]) -> Self {
+        self.gravity = Some(Vector3::from(acceleration));
+        self
+    }
+
+    /// Adds a user material (shadowing a built-in one of the same name).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Material, Structure};
+    /// let s = Structure::builder()
+    ///     .material("alu", Material::new(2700.0, 60e9, 110e6))
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1).material("alu"))
+    ///     .build()
+    ///     .unwrap();
+    /// assert!(s.materials().get("alu").is_some());
+    /// ```
+    pub fn material(mut self, name: &str, material: Material) -> Self {
+        self.user_materials.push((name.to_string(), material));
+        self
+    }
+
+    /// Accepts nodes that no member touches (off by default: an isolated node is usually a
+    /// typo, and it makes the equilibrium matrix rank deficient).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let b = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [5.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1));
+    /// assert!(b.clone().build().is_err());
+    /// assert!(b.allow_isolated_nodes(true).build().is_ok());
+    /// ```
+    pub fn allow_isolated_nodes(mut self, allow: bool) -> Self {
+        self.allow_isolated = allow;
+        self
+    }
+
+    /// Validates everything and returns the structure, or the first problem found.
+    pub fn build(self) -> Result<Structure> {
+        let StructureBuilder {
+            nodes,
+            velocities,
+            bars,
+            strings,
+            supports,
+            loads,
+            gravity,
+            mut materials,
+            user_materials,
+            allow_isolated,
+        } = self;
+        for (name, m) in &user_materials {
+            materials.insert(name, *m)?;
+        }
+        let n = nodes.len();
+        for (i, p) in nodes.iter().enumerate() {
+            check_finite(&format!("node {i}"), p)?;
+        }
+        if let Some(v) = &velocities {
+            if v.len() != n {
+                return Err(CoreError::LengthMismatch {
+                    what: "velocities".into(),
+                    expected: n,
+                    found: v.len(),
+                });
+            }
+            for (i, p) in v.iter().enumerate() {
+                check_finite(&format!("velocity of node {i}"), p)?;
+            }
+        }
+        if bars.is_empty() && strings.is_empty() {
+            return Err(CoreError::NoMembers);
+        }
+
+        let mut seen: HashMap<(usize, usize), MemberId> = HashMap::new();
+        let mut touched = vec![false; n];
+        let members = bars
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (MemberId::Bar(i), b.nodes))
+            .chain(
+                strings
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| (MemberId::String(i), s.nodes)),
+            );
+        for (id, [a, b]) in members {
+            for node in [a, b] {
+                if node >= n {
+                    return Err(CoreError::NodeIndexOutOfRange {
+                        item: id.to_string(),
+                        node,
+                        n_nodes: n,
+                    });
+                }
+            }
+            if a == b {
+                return Err(CoreError::SelfLoop {
+                    member: id,
+                    node: a,
+                });
+            }
+            let key = (a.min(b), a.max(b));
+            if let Some(&other) = seen.get(&key) {
+                return Err(CoreError::DuplicateMember {
+                    member: id,
+                    other,
+                    a: key.0,
+                    b: key.1,
+                });
+            }
+            seen.insert(key, id);
+            let length = (nodes[b] - nodes[a]).norm();
+            let scale = nodes[a].norm().max(nodes[b].norm()).max(1.0);
+            if length <= 1e-12 * scale {
+                return Err(CoreError::ZeroLengthMember {
+                    member: id,
+                    a,
+                    b,
+                    length,
+                });
+            }
+            touched[a] = true;
+            touched[b] = true;
+        }
+        if !allow_isolated {
+            if let Some(node) = touched.iter().position(|&t| !t) {
+                return Err(CoreError::IsolatedNode { node });
+            }
+        }
+
+        for (i, b) in bars.iter().enumerate() {
+            let item = MemberId::Bar(i).to_string();
+            positive(&item, "mass", b.mass)?;
+            positive(&item, "radius", b.radius)?;
+            if let Some(name) = &b.material {
+                materials.lookup(name, &item)?;
+            }
+        }
+        for (i, s) in strings.iter().enumerate() {
+            let item = MemberId::String(i).to_string();
+            positive(&item, "stiffness", s.stiffness)?;
+            positive(&item, "rest_length", s.rest_length)?;
+            if !(s.damping.is_finite() && s.damping >= 0.0) {
+                return Err(CoreError::NegativeConstant {
+                    item,
+                    name: "damping",
+                    value: s.damping,
+                });
+            }
+            if let Some(name) = &s.material {
+                materials.lookup(name, &item)?;
+            }
+        }
+
+        let mut supported: Vec<Option<usize>> = vec![None; n];
+        for (i, s) in supports.iter().enumerate() {
+            if s.node >= n {
+                return Err(CoreError::NodeIndexOutOfRange {
+                    item: format!("support {i}"),
+                    node: s.node,
+                    n_nodes: n,
+                });
+            }
+            if let Some(other) = supported[s.node] {
+                return Err(CoreError::DuplicateSupport {
+                    support: i,
+                    other,
+                    node: s.node,
+                });
+            }
+            if !s.fixed.iter().any(|&f| f) {
+                return Err(CoreError::EmptySupport { support: i });
+            }
+            supported[s.node] = Some(i);
+        }
+        for (i, l) in loads.iter().enumerate() {
+            if l.node >= n {
+                return Err(CoreError::NodeIndexOutOfRange {
+                    item: format!("load {i}"),
+                    node: l.node,
+                    n_nodes: n,
+                });
+            }
+            check_finite(&format!("load {i}"), &l.force)?;
+        }
+        if let Some(g) = &gravity {
+            check_finite("gravity", g)?;
+        }
+
+        Ok(Structure {
+            nodes,
+            velocities,
+            bars,
+            strings,
+            supports,
+            loads,
+            gravity,
+            materials,
+        })
+    }
+}
+
+fn check_finite(item: &str, v: &Vector3<f64>) -> Result<()> {
+    for (axis, value) in ['x', 'y', 'z'].into_iter().zip(v.iter()) {
+        if !value.is_finite() {
+            return Err(CoreError::NonFinite {
+                item: item.to_string(),
+                axis,
+                value: *value,
+            });
+        }
+    }
+    Ok(())
+}
+
+fn positive(item: &str, name: &'static str, value: Option<f64>) -> Result<()> {
+    match value {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(CoreError::NonPositiveConstant {
+            item: item.to_string(),
+            name,
+            value: v,
+        }),
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,218 @@
+//! `tensegrity statics SCENE.toml [--json]`.
+
+use anyhow::Result;
+use serde::Serialize;
+use std::path::PathBuf;
+use tensegrity_core::scene::Scene;
+use tensegrity_core::{sizing, Statics, StaticsSettings, Structure};
+
+/// Arguments of `tensegrity statics`.
+#[derive(clap::Args, Debug)]
+pub struct StaticsArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Print JSON instead of a readable report.
+    #[arg(long)]
+    pub json: bool,
+    /// Relative rank tolerance of the SVD (default: max(rows, cols) · machine epsilon).
+    #[arg(long, value_name = "REL")]
+    pub rank_tol: Option<f64>,
+}
+
+/// A support reaction.
+#[derive(Debug, Serialize)]
+pub struct Reaction {
+    /// The supported node.
+    pub node: usize,
+    /// Reaction force (N).
+    pub force: [f64; 3],
+}
+
+/// Everything `tensegrity statics` reports.
+#[derive(Debug, Serialize)]
+pub struct StaticsReport {
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Number of bars.
+    pub bars: usize,
+    /// Number of strings.
+    pub strings: usize,
+    /// Rank of the equilibrium matrix.
+    pub rank: usize,
+    /// Dimension of the self-stress space.
+    pub self_stress_dim: usize,
+    /// First-order mechanisms (rigid-body motions included when unsupported).
+    pub mechanisms: usize,
+    /// Internal mechanisms: mechanisms beyond the rigid-body motions the supports allow.
+    pub internal_mechanisms: usize,
+    /// Whether a self-stress puts every string in tension and every bar in compression.
+    pub prestressable: bool,
+    /// The prestressability LP margin (0 when not prestressable).
+    pub prestress_margin: f64,
+    /// Prestress stability with the max-margin stress (only when prestressable).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prestress_stable: Option<bool>,
+    /// Orthonormal self-stress basis, members bars then strings.
+    pub self_stress: Vec<Vec<f64>>,
+    /// The max-margin self-stress scaled to max|q| = 1 (only when prestressable).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prestress: Option<Vec<f64>>,
+    /// Smallest singular value of the equilibrium matrix.
+    pub smallest_singular_value: f64,
+    /// Absolute rank tolerance used.
+    pub rank_tolerance: f64,
+    /// Force densities for the loads (N/m, tension positive).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_density: Option<Vec<f64>>,
+    /// Member forces for the loads (N, tension positive).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub member_force: Option<Vec<f64>>,
+    /// Support reactions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reactions: Option<Vec<Reaction>>,
+    /// ‖A q − w‖₂ (N).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
+    /// Total minimum mass for the loads (kg), when members have materials.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_kg: Option<f64>,
+    /// Why the mass could not be computed, when members have materials but sizing failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sizing_error: Option<String>,
+}
+
+/// Runs every statics analysis of one structure.
+pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<StaticsReport> {
+    let statics = Statics::with_settings(structure, settings)?;
+    let basis = statics.self_stress_basis();
+    let pre = statics.prestressability()?;
+    let flexes = statics.flexes()?;
+    let prestress_stable = if pre.prestressable {
+        Some(statics.prestress_stability(&pre.stress)?.stable)
+    } else {
+        None
+    };
+    let mut report = StaticsReport {
+        nodes: structure.n_nodes(),
+        bars: structure.n_bars(),
+        strings: structure.n_strings(),
+        rank: statics.rank(),
+        self_stress_dim: statics.self_stress_dim(),
+        mechanisms: statics.mechanisms(),
+        internal_mechanisms: flexes.internal.ncols(),
+        prestressable: pre.prestressable,
+        prestress_margin: pre.margin,
+        prestress_stable,
+        self_stress: basis.column_iter().map(|c| c.iter().copied().collect()).collect(),
+        prestress: pre
+            .prestressable
+            .then(|| pre.stress.iter().copied().collect()),
+        smallest_singular_value: statics.singular_values().last().copied().unwrap_or(0.0),
+        rank_tolerance: statics.tolerance(),
+        force_density: None,
+        member_force: None,
+        reactions: None,
+        residual: None,
+        mass_kg: None,
+        sizing_error: None,
+    };
+    if structure.is_loaded() {
+        let sol = statics.solve_loads();
+        let has_materials = (0..structure.n_members())
+            .any(|k| structure.member_material(structure.member_id(k)).is_some());
+        if has_materials {
+            match sizing::size_structure(structure, &sol.member_force) {
+                Ok(s) => report.mass_kg = Some(s.total_mass),
+                Err(e) => report.sizing_error = Some(e.to_string()),
+            }
+        }
+        report.force_density = Some(sol.force_density.iter().copied().collect());
+        report.member_force = Some(sol.member_force.iter().copied().collect());
+        report.reactions = Some(
+            sol.reactions
+                .iter()
+                .map(|(node, r)| Reaction {
+                    node: *node,
+                    force: [r.x, r.y, r.z],
+                })
+                .collect(),
+        );
+        report.residual = Some(sol.residual);
+    }
+    Ok(report)
+}
+
+/// Prints a readable report.
+pub fn print_report(structure: &Structure, r: &StaticsReport) {
+    println!(
+        "nodes {}  bars {}  strings {}",
+        r.nodes, r.bars, r.strings
+    );
+    println!(
+        "rank {}  self-stress states {}  mechanisms {} ({} internal)",
+        r.rank, r.self_stress_dim, r.mechanisms, r.internal_mechanisms
+    );
+    println!(
+        "smallest singular value {:.3e} (rank tolerance {:.3e})",
+        r.smallest_singular_value, r.rank_tolerance
+    );
+    if r.prestressable {
+        println!(
+            "prestressable: yes, margin {:.6} ({})",
+            r.prestress_margin,
+            if r.prestress_stable == Some(true) {
+                "prestress stable"
+            } else {
+                "NOT prestress stable"
+            }
+        );
+    } else {
+        println!("prestressable: no");
+    }
+    if let Some(q) = &r.prestress {
+        println!("max-margin prestress (force density, max|q| = 1):");
+        for (k, v) in q.iter().enumerate() {
+            println!("  {:<10} {:>12.6}", structure.member_id(k).to_string(), v);
+        }
+    }
+    if let (Some(q), Some(f)) = (&r.force_density, &r.member_force) {
+        println!("load solve (residual {:.3e} N):", r.residual.unwrap_or(0.0));
+        println!("  {:<10} {:>14} {:>14}", "member", "q [N/m]", "force [N]");
+        for k in 0..q.len() {
+            println!(
+                "  {:<10} {:>14.6} {:>14.6}",
+                structure.member_id(k).to_string(),
+                q[k],
+                f[k]
+            );
+        }
+        for rc in r.reactions.iter().flatten() {
+            println!(
+                "  reaction at node {}: [{:.6}, {:.6}, {:.6}] N",
+                rc.node, rc.force[0], rc.force[1], rc.force[2]
+            );
+        }
+    }
+    if let Some(m) = r.mass_kg {
+        println!("minimum mass for these loads: {m:.6} kg");
+    }
+    if let Some(e) = &r.sizing_error {
+        println!("sizing not possible: {e}");
+    }
+}
+
+/// Entry point of `tensegrity statics`.
+pub fn run(args: &StaticsArgs) -> Result<()> {
+    let scene = Scene::from_path(&args.scene)?;
+    let mut settings = StaticsSettings::default();
+    if let Some(tol) = args.rank_tol {
+        settings = settings.rank_tolerance(tol)?;
+    }
+    let report = analyse(&scene.structure, settings)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_report(&scene.structure, &report);
+    }
+    Ok(())
+}
