@@ -24,7 +24,10 @@ pub use tensegrity_core as core;
 /// The example scenes shipped with the toolkit, as `(file name, TOML text)`.
 pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
     ("dbar.toml", include_str!("../examples/dbar.toml")),
-    ("dbar_loaded.toml", include_str!("../examples/dbar_loaded.toml")),
+    (
+        "dbar_loaded.toml",
+        include_str!("../examples/dbar_loaded.toml"),
+    ),
     ("prism.toml", include_str!("../examples/prism.toml")),
     ("tbar.toml", include_str!("../examples/tbar.toml")),
     ("tower.toml", include_str!("../examples/tower.toml")),

@@ -10,7 +10,15 @@ pub fn run() -> Result<()> {
     println!("tensegrity demo: statics of the bundled example scenes\n");
     println!(
         "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>12} {:>10}",
-        "scene", "nodes", "bars", "strings", "rank", "self-stress", "internal", "prestress", "mass [kg]"
+        "scene",
+        "nodes",
+        "bars",
+        "strings",
+        "rank",
+        "self-stress",
+        "internal",
+        "prestress",
+        "mass [kg]"
     );
     for (name, text) in EXAMPLE_SCENES {
         let scene = Scene::from_str_named(text, name)?;
@@ -23,9 +31,19 @@ pub fn run() -> Result<()> {
         let mass = r.mass_kg.map_or("-".to_string(), |m| format!("{m:.6}"));
         println!(
             "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>12} {:>10}",
-            name, r.nodes, r.bars, r.strings, r.rank, r.self_stress_dim, r.internal_mechanisms, prestress, mass
+            name,
+            r.nodes,
+            r.bars,
+            r.strings,
+            r.rank,
+            r.self_stress_dim,
+            r.internal_mechanisms,
+            prestress,
+            mass
         );
     }
-    println!("\nrun `tensegrity statics examples/<scene> [--json]` for the full report of one scene");
+    println!(
+        "\nrun `tensegrity statics examples/<scene> [--json]` for the full report of one scene"
+    );
     Ok(())
 }

@@ -103,7 +103,10 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
         prestressable: pre.prestressable,
         prestress_margin: pre.margin,
         prestress_stable,
-        self_stress: basis.column_iter().map(|c| c.iter().copied().collect()).collect(),
+        self_stress: basis
+            .column_iter()
+            .map(|c| c.iter().copied().collect())
+            .collect(),
         prestress: pre
             .prestressable
             .then(|| pre.stress.iter().copied().collect()),
@@ -144,10 +147,7 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
 
 /// Prints a readable report.
 pub fn print_report(structure: &Structure, r: &StaticsReport) {
-    println!(
-        "nodes {}  bars {}  strings {}",
-        r.nodes, r.bars, r.strings
-    );
+    println!("nodes {}  bars {}  strings {}", r.nodes, r.bars, r.strings);
     println!(
         "rank {}  self-stress states {}  mechanisms {} ({} internal)",
         r.rank, r.self_stress_dim, r.mechanisms, r.internal_mechanisms

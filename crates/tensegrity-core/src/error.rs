@@ -13,7 +13,9 @@ pub type Result<T, E = CoreError> = std::result::Result<T, E>;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum CoreError {
     /// A member, support or load refers to a node that does not exist.
-    #[error("{item}: node index {node} is out of range (the structure has {n_nodes} nodes, 0-based)")]
+    #[error(
+        "{item}: node index {node} is out of range (the structure has {n_nodes} nodes, 0-based)"
+    )]
     NodeIndexOutOfRange {
         /// The item holding the bad index, e.g. `bar 2` or `support 0`.
         item: String,
@@ -140,7 +142,9 @@ pub enum CoreError {
         property: &'static str,
     },
     /// Sizing asked of a string that would have to carry compression.
-    #[error("{member}: a string cannot carry compression (force {force:.6e} N); sizing is undefined")]
+    #[error(
+        "{member}: a string cannot carry compression (force {force:.6e} N); sizing is undefined"
+    )]
     StringInCompression {
         /// The string.
         member: MemberId,

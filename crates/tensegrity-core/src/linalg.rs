@@ -65,7 +65,9 @@ pub fn svd(a: &DMatrix<f64>) -> Result<Svd> {
         });
     }
     let f = to_faer(a);
-    let dec = f.svd().map_err(|_| CoreError::NoConvergence { operation: "SVD" })?;
+    let dec = f
+        .svd()
+        .map_err(|_| CoreError::NoConvergence { operation: "SVD" })?;
     let s = dec.S().column_vector();
     Ok(Svd {
         u: from_faer(dec.U()),

@@ -197,7 +197,10 @@ impl SceneFile {
             b = b.velocities(v.iter().copied());
         }
         for (name, m) in &self.materials {
-            b = b.material(name, Material::new(m.density, m.youngs_modulus, m.yield_strength));
+            b = b.material(
+                name,
+                Material::new(m.density, m.youngs_modulus, m.yield_strength),
+            );
         }
         for bar in &self.bars {
             let s = bar.get_ref();

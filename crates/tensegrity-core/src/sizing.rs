@@ -229,8 +229,10 @@ pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Res
                 s
             }
             MemberId::String(_) => {
-                let s = size_string(material, f, l)
-                    .ok_or(CoreError::StringInCompression { member: id, force: f })?;
+                let s = size_string(material, f, l).ok_or(CoreError::StringInCompression {
+                    member: id,
+                    force: f,
+                })?;
                 string_mass += s.mass;
                 s
             }

@@ -27,7 +27,11 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use std::f64::consts::PI;
 
 /// Assembles Σ_k blocks into the free-dof matrix, given each member's 3×3 block.
-fn assemble(structure: &Structure, dofs: &DofMap, block: impl Fn(usize) -> Matrix3<f64>) -> DMatrix<f64> {
+fn assemble(
+    structure: &Structure,
+    dofs: &DofMap,
+    block: impl Fn(usize) -> Matrix3<f64>,
+) -> DMatrix<f64> {
     let n = dofs.len();
     let mut k_mat = DMatrix::zeros(n, n);
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
@@ -159,7 +163,12 @@ pub fn rigid_body_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatri
     } else {
         let t_fixed = t.select_rows(fixed_rows.iter());
         let d = linalg::svd(&t_fixed)?;
-        let tol = linalg::rank_tolerance(t_fixed.nrows(), 6, d.s.first().copied().unwrap_or(0.0), None);
+        let tol = linalg::rank_tolerance(
+            t_fixed.nrows(),
+            6,
+            d.s.first().copied().unwrap_or(0.0),
+            None,
+        );
         let r = d.rank(tol);
         d.v.columns(r, 6 - r).into_owned()
     };

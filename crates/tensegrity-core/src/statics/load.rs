@@ -38,7 +38,8 @@ impl Statics<'_> {
         let w = self.dofs().gather(w_nodes);
         let q = self.solve_min_norm(&w);
         let lengths = structure.member_lengths();
-        let member_force = DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
+        let member_force =
+            DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
         let residual = (self.matrix() * &q - &w).norm();
         let w_norm = w.norm();
         let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };

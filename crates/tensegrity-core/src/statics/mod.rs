@@ -159,7 +159,8 @@ impl<'a> Statics<'a> {
         let a = equilibrium_matrix(structure, &dofs);
         let svd = linalg::svd(&a)?;
         let s_max = svd.s.first().copied().unwrap_or(0.0);
-        let tolerance = linalg::rank_tolerance(a.nrows(), a.ncols(), s_max, settings.rank_tolerance);
+        let tolerance =
+            linalg::rank_tolerance(a.nrows(), a.ncols(), s_max, settings.rank_tolerance);
         let rank = svd.rank(tolerance);
         Ok(Self {
             structure,

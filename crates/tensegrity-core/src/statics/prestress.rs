@@ -49,23 +49,26 @@ impl Statics<'_> {
         let mut vv = Vec::new();
         let mut b = Vec::new();
         let mut row = 0;
-        let mut push_row = |coefs: &mut dyn Iterator<Item = (usize, f64)>, rhs: f64, b: &mut Vec<f64>| {
-            for (j, v) in coefs {
-                if v != 0.0 {
-                    ii.push(row);
-                    jj.push(j);
-                    vv.push(v);
+        let mut push_row =
+            |coefs: &mut dyn Iterator<Item = (usize, f64)>, rhs: f64, b: &mut Vec<f64>| {
+                for (j, v) in coefs {
+                    if v != 0.0 {
+                        ii.push(row);
+                        jj.push(j);
+                        vv.push(v);
+                    }
                 }
-            }
-            b.push(rhs);
-            row += 1;
-        };
+                b.push(rhs);
+                row += 1;
+            };
         for k in 0..m {
             let r = basis.row(k);
             // sign-constraint: strings  t − q_k ≤ 0;  bars  q_k + t ≤ 0
             let s = if k < nb { 1.0 } else { -1.0 };
             push_row(
-                &mut (0..d).map(|j| (j, s * r[j])).chain(std::iter::once((d, 1.0))),
+                &mut (0..d)
+                    .map(|j| (j, s * r[j]))
+                    .chain(std::iter::once((d, 1.0))),
                 0.0,
                 &mut b,
             );

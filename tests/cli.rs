@@ -1,0 +1,104 @@
+//! The `tensegrity` binary end to end: `statics --json` on the bundled scenes and on bad input.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("binary runs")
+}
+
+fn json(scene: &str) -> serde_json::Value {
+    let out = run(&["statics", scene, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+#[test]
+fn loaded_dbar_json_has_forces_reactions_and_the_benchmark_mass() {
+    let v = json("examples/dbar_loaded.toml");
+    assert_eq!(v["rank"], 5);
+    assert_eq!(v["self_stress_dim"], 0);
+    assert_eq!(v["prestressable"], false);
+    let mass = v["mass_kg"].as_f64().unwrap();
+    assert!((mass - 8.858023).abs() < 5e-7, "{mass}");
+    let f = v["member_force"].as_array().unwrap();
+    assert!((f[4].as_f64().unwrap() - 1e4).abs() < 1e-6);
+    assert!((f[0].as_f64().unwrap() + 1e4 / 2f64.sqrt()).abs() < 1e-6);
+    let r = &v["reactions"][0];
+    assert_eq!(r["node"], 0);
+    assert!((r["force"][0].as_f64().unwrap() - 1e4).abs() < 1e-6);
+    assert!(v["residual"].as_f64().unwrap() < 1e-8);
+}
+
+#[test]
+fn prism_json_reports_the_self_stress_and_margin() {
+    let v = json("examples/prism.toml");
+    assert_eq!(v["rank"], 11);
+    assert_eq!(v["self_stress_dim"], 1);
+    assert_eq!(v["mechanisms"], 7);
+    assert_eq!(v["prestressable"], true);
+    let margin = v["prestress_margin"].as_f64().unwrap();
+    assert!((margin - 1.0 / 3f64.sqrt()).abs() < 1e-9, "{margin}");
+    let basis = v["self_stress"].as_array().unwrap();
+    assert_eq!(basis.len(), 1);
+    let q: Vec<f64> = basis[0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(q.len(), 12);
+    // bars first: −√3 : 1 (rings) : √3 (verticals)
+    assert!((q[0] / q[3] + 3f64.sqrt()).abs() < 1e-12);
+    assert!((q[9] / q[3] - 3f64.sqrt()).abs() < 1e-12);
+    assert!(v.get("force_density").is_none(), "no loads, no load solve");
+}
+
+#[test]
+fn tower_has_two_self_stresses() {
+    let v = json("examples/tower.toml");
+    assert_eq!(v["self_stress_dim"], 2);
+    assert_eq!(v["self_stress"].as_array().unwrap().len(), 2);
+    assert_eq!(v["prestressable"], true);
+}
+
+#[test]
+fn demo_runs_on_built_in_scenes() {
+    let out = run(&["demo"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("dbar_loaded.toml"))
+        .unwrap();
+    assert!(line.contains("8.858023"), "{line}");
+}
+
+#[test]
+fn bad_scene_fails_with_a_clear_message_and_exit_code() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.toml");
+    std::fs::write(
+        &path,
+        "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 4]\n",
+    )
+    .unwrap();
+    let out = run(&["statics", path.to_str().unwrap(), "--json"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bar 0") && err.contains("line 2") && err.contains("out of range"),
+        "{err}"
+    );
+    let out = run(&["statics", "no/such/file.toml"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.toml"));
+}
