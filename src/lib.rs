@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub use tensegrity_core as core;
+pub use toroid;
 
 /// The example scenes shipped with the toolkit, as `(file name, TOML text)`.
 pub const EXAMPLE_SCENES: &[(&str, &str)] = &[

@@ -23,7 +23,7 @@
 //! material = "alu"          # optional
 //! [[supports]]
 //! node = 0
-//! directions = ["x", "y", "z"]   # optional, all three by default
+//! directions = ["x", "y", "z"]   # optional, all three by default (or fixed = [true, true, true])
 //! [[loads]]
 //! node = 1
 //! force = [-1.0e4, 0.0, 0.0]
@@ -130,6 +130,8 @@ pub struct SupportSpec {
     pub node: usize,
     /// Fixed directions (default: all three).
     pub directions: Option<Vec<Axis>>,
+    /// Alternative to `directions`: fixed flags for x, y, z.
+    pub fixed: Option<[bool; 3]>,
 }
 
 /// A `[[loads]]` entry.
@@ -221,11 +223,17 @@ impl SceneFile {
                 material: s.material.clone(),
             });
         }
-        for sup in &self.supports {
+        for (i, sup) in self.supports.iter().enumerate() {
             let s = sup.get_ref();
-            let fixed = match &s.directions {
-                None => [true; 3],
-                Some(dirs) => [Axis::X, Axis::Y, Axis::Z].map(|a| dirs.contains(&a)),
+            let fixed = match (&s.directions, s.fixed) {
+                (Some(_), Some(_)) => {
+                    return Err(CoreError::Scene(format!(
+                        "support {i}: give either `directions` or `fixed`, not both"
+                    )))
+                }
+                (Some(dirs), None) => [Axis::X, Axis::Y, Axis::Z].map(|a| dirs.contains(&a)),
+                (None, Some(flags)) => flags,
+                (None, None) => [true; 3],
             };
             b = b.support(Support::directions(s.node, fixed));
         }

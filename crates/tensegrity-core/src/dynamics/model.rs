@@ -1,0 +1,658 @@
+//! The class-1 model with coincidence constraints, and its right-hand side.
+//!
+//! Every bar k owns two class-1 nodes, 2k (start) and 2k+1 (end). A node of the structure file
+//! shared by several bars becomes one copy per bar; the first copy (lowest bar index) is its
+//! representative and carries its strings, loads and ground contact, the others are tied to it
+//! by coincidence constraints n_rep − n_copy = 0. A supported node adds n_rep·e_d = d for every
+//! fixed direction d. Together these are the columns of N P = D (with D constant). Nodes on no
+//! bar must be fixed in all three directions: they become anchors (fixed points for strings).
+//!
+//! Per bar (thesis eq. 2.1–2.2 with J = m/12, ERRATA 2.3/2.5), with end forces f₁, f₂:
+//!
+//! J b̈ = ½(f₂ − f₁) − (1/(2l²)) b bᵀ(f₂ − f₁) − (J/l²) b ‖ḃ‖²,   m r̈ = f₁ + f₂,
+//!
+//! n̈₁ = r̈ − ½b̈, n̈₂ = r̈ + ½b̈, with the *current* length l. This is N̈M + NK = F with
+//! λ̂ = −Ĵ l̂⁻²⌊ḂᵀḂ⌋ − ½ l̂⁻²⌊BᵀFC_bᵀ⌋, evaluated bar by bar in O(β). The forces are
+//! F = W − S γ̂ C_s + ΩPᵀ (ERRATA 2.8). Ω solves the closed form
+//!
+//! [(PᵀM⁻¹P)⊗I₃ − ¼ Σ_k (J_k l_k²)⁻¹ (h_k h_kᵀ)⊗(b_k b_kᵀ)] vec Ω = vec(D̈ − N̈₀P),
+//!
+//! which is sparse (two constraints interact only through a shared bar); its pattern is
+//! factored symbolically once ([`super::omega`]) and refactored numerically per evaluation.
+//! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
+//! velocities satisfy Ṅ P = 0.
+
+use super::error::DynamicsError;
+use super::forces::{Ground, GroundModel};
+use super::omega::{ConstraintMatrix, Row, RowEntry};
+use super::strings::StringLaw;
+use crate::structure::{MemberId, Structure};
+use nalgebra::Vector3;
+
+/// Time-varying rest lengths: called with t and the slice of rest lengths (one per string,
+/// pre-filled with the static values) to overwrite.
+pub type RestLengthFn = Box<dyn Fn(f64, &mut [f64]) + Send + Sync>;
+/// Time-varying loads: called with t and a zeroed slice (one force per file node) to fill;
+/// these forces are added to the static loads.
+pub type LoadFn = Box<dyn Fn(f64, &mut [Vector3<f64>]) + Send + Sync>;
+
+/// Where a file node lives in the class-1 model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NodeRef {
+    /// Class-1 node index (the representative copy).
+    Free(usize),
+    /// A fixed string anchor at this position.
+    Anchor(Vector3<f64>),
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BarData {
+    pub mass: f64,
+    pub inv_mass: f64,
+    pub length0: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StringData {
+    pub ends: [NodeRef; 2],
+    pub law: StringLaw,
+}
+
+/// A linear scalar constraint row of N P = D: Σ grad·x = target.
+#[derive(Debug, Clone)]
+pub(crate) struct LinearRow {
+    pub row: Row,
+    pub target: f64,
+}
+
+/// The class-1 dynamic model of a [`Structure`].
+pub struct Model {
+    pub(crate) n_nodes: usize,
+    pub(crate) n1: usize,
+    pub(crate) bars: Vec<BarData>,
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) node_map: Vec<NodeRef>,
+    pub(crate) strings: Vec<StringData>,
+    pub(crate) w_const: Vec<Vector3<f64>>,
+    pub(crate) linear_rows: Vec<LinearRow>,
+    pub(crate) ground: Option<Ground>,
+    pub(crate) contact: Vec<(usize, usize)>,
+    pub(crate) total_weight: Vector3<f64>,
+    pub(crate) rest_fn: Option<RestLengthFn>,
+    pub(crate) load_fn: Option<LoadFn>,
+    pub(crate) constrained_bars: Vec<usize>,
+    pub(crate) x0: Vec<f64>,
+}
+
+impl std::fmt::Debug for Model {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Model")
+            .field("nodes", &self.n_nodes)
+            .field("class1_nodes", &self.n1)
+            .field("bars", &self.bars.len())
+            .field("strings", &self.strings.len())
+            .field("constraint_rows", &self.linear_rows.len())
+            .field("ground", &self.ground)
+            .finish()
+    }
+}
+
+/// Preallocated buffers for right-hand-side evaluations (one per integrator).
+pub struct Workspace {
+    pub(crate) f: Vec<Vector3<f64>>,
+    pub(crate) rest: Vec<f64>,
+    pub(crate) gamma: Vec<f64>,
+    pub(crate) extra: Vec<Vector3<f64>>,
+    pub(crate) contact_f: Vec<Vector3<f64>>,
+    pub(crate) omega: Option<ConstraintMatrix>,
+    pub(crate) omega_rhs: Vec<f64>,
+    pub(crate) bhat: Vec<Vector3<f64>>,
+    pub(crate) rhs_evals: u64,
+}
+
+impl std::fmt::Debug for Workspace {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Workspace")
+            .field("rhs_evals", &self.rhs_evals)
+            .finish()
+    }
+}
+
+impl Workspace {
+    /// Number of right-hand-side evaluations made with this workspace.
+    pub fn rhs_evals(&self) -> u64 {
+        self.rhs_evals
+    }
+}
+
+#[inline]
+pub(crate) fn vec3(y: &[f64], i: usize) -> Vector3<f64> {
+    Vector3::new(y[3 * i], y[3 * i + 1], y[3 * i + 2])
+}
+
+#[inline]
+pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
+    y[3 * i] = v.x;
+    y[3 * i + 1] = v.y;
+    y[3 * i + 2] = v.z;
+}
+
+/// Accelerations of the two ends of a rigid bar of mass `m` under end forces `fa`, `fb`.
+#[inline]
+pub(crate) fn bar_accel(
+    m: f64,
+    xa: &Vector3<f64>,
+    xb: &Vector3<f64>,
+    va: &Vector3<f64>,
+    vb: &Vector3<f64>,
+    fa: &Vector3<f64>,
+    fb: &Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let b = xb - xa;
+    let bd = vb - va;
+    let l2 = b.norm_squared();
+    let fd = fb - fa;
+    let inv_j = 12.0 / m;
+    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
+    let rdd = (fa + fb) / m;
+    (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
+}
+
+impl Model {
+    /// Builds the class-1 model of `structure`: every bar needs a mass, every string a
+    /// stiffness (a missing rest length means the initial length, i.e. no prestress).
+    pub fn new(structure: &Structure, ground: Option<Ground>) -> Result<Self, DynamicsError> {
+        let n_nodes = structure.n_nodes();
+        let nb = structure.n_bars();
+        let n1 = 2 * nb;
+        let nodes = structure.nodes();
+        let mut bars = Vec::with_capacity(nb);
+        let mut copies: Vec<Vec<usize>> = vec![Vec::new(); n_nodes];
+        let mut x0 = vec![0.0; 3 * n1];
+        for (k, bar) in structure.bars().iter().enumerate() {
+            let mass = bar.mass.ok_or(DynamicsError::MissingProperty {
+                member: MemberId::Bar(k),
+                property: "mass",
+            })?;
+            let [a, b] = bar.nodes;
+            copies[a].push(2 * k);
+            copies[b].push(2 * k + 1);
+            set3(&mut x0, 2 * k, &nodes[a]);
+            set3(&mut x0, 2 * k + 1, &nodes[b]);
+            bars.push(BarData {
+                mass,
+                inv_mass: 1.0 / mass,
+                length0: (nodes[b] - nodes[a]).norm(),
+            });
+        }
+        let fixed = structure.fixed_dofs();
+        let mut node_map = Vec::with_capacity(n_nodes);
+        let mut linear_rows = Vec::new();
+        for i in 0..n_nodes {
+            if copies[i].is_empty() {
+                if fixed[i] == [true; 3] {
+                    node_map.push(NodeRef::Anchor(nodes[i]));
+                    continue;
+                }
+                // Nodes that no member touches at all are harmless: ignore them as anchors.
+                let touched = structure.strings().iter().any(|s| s.nodes.contains(&i));
+                if touched {
+                    return Err(DynamicsError::MasslessNode { node: i });
+                }
+                node_map.push(NodeRef::Anchor(nodes[i]));
+                continue;
+            }
+            let rep = copies[i][0];
+            node_map.push(NodeRef::Free(rep));
+            for &c in &copies[i][1..] {
+                for d in 0..3 {
+                    let mut e = Vector3::zeros();
+                    e[d] = 1.0;
+                    linear_rows.push(LinearRow {
+                        row: Row {
+                            entries: [
+                                Some(RowEntry { node: rep, grad: e }),
+                                Some(RowEntry { node: c, grad: -e }),
+                            ],
+                        },
+                        target: 0.0,
+                    });
+                }
+            }
+            for d in 0..3 {
+                if fixed[i][d] {
+                    let mut e = Vector3::zeros();
+                    e[d] = 1.0;
+                    linear_rows.push(LinearRow {
+                        row: Row {
+                            entries: [Some(RowEntry { node: rep, grad: e }), None],
+                        },
+                        target: nodes[i][d],
+                    });
+                }
+            }
+        }
+        let mut strings = Vec::with_capacity(structure.n_strings());
+        for (k, s) in structure.strings().iter().enumerate() {
+            let stiffness = s.stiffness.ok_or(DynamicsError::MissingProperty {
+                member: MemberId::String(k),
+                property: "stiffness",
+            })?;
+            let [a, b] = s.nodes;
+            let rest_length = s.rest_length.unwrap_or((nodes[b] - nodes[a]).norm());
+            strings.push(StringData {
+                ends: [node_map[a], node_map[b]],
+                law: StringLaw {
+                    stiffness,
+                    rest_length,
+                    damping: s.damping,
+                },
+            });
+        }
+        let mut w_const = vec![Vector3::zeros(); n1];
+        for l in structure.loads() {
+            if let NodeRef::Free(i) = node_map[l.node] {
+                w_const[i] += l.force;
+            }
+        }
+        let mut total_weight = Vector3::zeros();
+        if let Some(g) = structure.gravity() {
+            for (k, b) in bars.iter().enumerate() {
+                w_const[2 * k] += 0.5 * b.mass * g;
+                w_const[2 * k + 1] += 0.5 * b.mass * g;
+                total_weight += b.mass * g;
+            }
+        }
+        let mut constrained_bars: Vec<usize> = linear_rows
+            .iter()
+            .flat_map(|r| r.row.entries.iter().flatten().map(|e| e.node / 2))
+            .collect();
+        constrained_bars.sort_unstable();
+        constrained_bars.dedup();
+        let inv_mass = bars.iter().map(|b| b.inv_mass).collect();
+        let mut model = Self {
+            n_nodes,
+            n1,
+            bars,
+            inv_mass,
+            node_map,
+            strings,
+            w_const,
+            linear_rows,
+            ground: None,
+            contact: Vec::new(),
+            total_weight,
+            rest_fn: None,
+            load_fn: None,
+            constrained_bars,
+            x0,
+        };
+        if let Some(g) = ground {
+            model.set_ground(g)?;
+        }
+        Ok(model)
+    }
+
+    /// Sets (or replaces) the ground plane.
+    pub fn set_ground(&mut self, ground: Ground) -> Result<(), DynamicsError> {
+        let candidates: Vec<usize> = match &ground.nodes {
+            Some(list) => list.clone(),
+            None => (0..self.n_nodes).collect(),
+        };
+        let mut contact = Vec::new();
+        for (k, &i) in candidates.iter().enumerate() {
+            if i >= self.n_nodes {
+                return Err(DynamicsError::InvalidSpec {
+                    item: format!("ground node {k}"),
+                    reason: format!("node {i} does not exist ({} nodes)", self.n_nodes),
+                });
+            }
+            if let NodeRef::Free(c) = self.node_map[i] {
+                contact.push((i, c));
+            }
+        }
+        if !(ground.normal.iter().all(|v| v.is_finite()) && ground.normal.norm() > 0.0) {
+            return Err(DynamicsError::InvalidSpec {
+                item: "ground".into(),
+                reason: "normal must be a finite non-zero vector".into(),
+            });
+        }
+        self.contact = contact;
+        self.ground = Some(ground);
+        Ok(())
+    }
+
+    /// Makes the string rest lengths follow `f` in time (actuation).
+    pub fn set_rest_length_schedule(&mut self, f: RestLengthFn) {
+        self.rest_fn = Some(f);
+    }
+
+    /// Adds the time-varying nodal loads of `f` (actuation).
+    pub fn set_load_schedule(&mut self, f: LoadFn) {
+        self.load_fn = Some(f);
+    }
+
+    /// Number of class-1 nodes (two per bar).
+    pub fn n_class1_nodes(&self) -> usize {
+        self.n1
+    }
+
+    /// Length of the state vector: positions then velocities of the class-1 nodes.
+    pub fn state_len(&self) -> usize {
+        6 * self.n1
+    }
+
+    /// Number of scalar constraint rows of N P = D.
+    pub fn n_constraint_rows(&self) -> usize {
+        self.linear_rows.len()
+    }
+
+    /// Where each file node lives in the class-1 model.
+    pub fn node_map(&self) -> &[NodeRef] {
+        &self.node_map
+    }
+
+    /// The ground, if any.
+    pub fn ground(&self) -> Option<&Ground> {
+        self.ground.as_ref()
+    }
+
+    /// The initial state from the structure's nodes and (optional) velocities. Fails when a
+    /// fixed direction has a velocity or a bar would change length.
+    pub fn initial_state(&self, structure: &Structure) -> Result<Vec<f64>, DynamicsError> {
+        let mut y = vec![0.0; self.state_len()];
+        y[..3 * self.n1].copy_from_slice(&self.x0);
+        if let Some(vel) = structure.velocities() {
+            let (_, v) = y.split_at_mut(3 * self.n1);
+            for (k, bar) in structure.bars().iter().enumerate() {
+                set3(v, 2 * k, &vel[bar.nodes[0]]);
+                set3(v, 2 * k + 1, &vel[bar.nodes[1]]);
+            }
+            let fixed = structure.fixed_dofs();
+            let vmax = vel.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for (i, f) in fixed.iter().enumerate() {
+                for d in 0..3 {
+                    if f[d] && vel[i][d] != 0.0 {
+                        return Err(DynamicsError::InconsistentVelocity {
+                            item: format!("node {i}"),
+                            reason: "velocity along a fixed direction",
+                            residual: vel[i][d].abs(),
+                        });
+                    }
+                }
+            }
+            for (k, bar) in structure.bars().iter().enumerate() {
+                let [a, b] = bar.nodes;
+                let bv = structure.nodes()[b] - structure.nodes()[a];
+                let rate = bv.dot(&(vel[b] - vel[a])) / bv.norm();
+                if rate.abs() > 1e-9 * vmax.max(1.0) {
+                    return Err(DynamicsError::InconsistentVelocity {
+                        item: MemberId::Bar(k).to_string(),
+                        reason: "the bar would change length (bᵀḃ ≠ 0)",
+                        residual: rate.abs(),
+                    });
+                }
+            }
+        }
+        Ok(y)
+    }
+
+    /// A fresh workspace (allocates the buffers and the symbolic Ω factorisation).
+    pub fn workspace(&self) -> Result<Workspace, DynamicsError> {
+        let omega = if self.linear_rows.is_empty() {
+            None
+        } else {
+            Some(ConstraintMatrix::new(
+                self.linear_rows.iter().map(|r| r.row.clone()).collect(),
+                true,
+            )?)
+        };
+        let rest = self.strings.iter().map(|s| s.law.rest_length).collect();
+        Ok(Workspace {
+            f: vec![Vector3::zeros(); self.n1],
+            rest,
+            gamma: vec![0.0; self.strings.len()],
+            extra: vec![Vector3::zeros(); self.n_nodes],
+            contact_f: vec![Vector3::zeros(); self.contact.len()],
+            omega_rhs: vec![0.0; self.linear_rows.len()],
+            omega,
+            bhat: vec![Vector3::zeros(); self.bars.len()],
+            rhs_evals: 0,
+        })
+    }
+
+    #[inline]
+    fn end_state(&self, r: NodeRef, x: &[f64], v: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
+        match r {
+            NodeRef::Free(i) => (vec3(x, i), vec3(v, i)),
+            NodeRef::Anchor(p) => (p, Vector3::zeros()),
+        }
+    }
+
+    /// Fills `ws.f` with all non-constraint forces on the class-1 nodes at (t, x, v): static
+    /// loads and gravity, actuated loads, strings (ws.gamma), ground (ws.contact_f).
+    pub(crate) fn applied_forces(&self, t: f64, x: &[f64], v: &[f64], ws: &mut Workspace) {
+        ws.f.copy_from_slice(&self.w_const);
+        if let Some(load_fn) = &self.load_fn {
+            ws.extra.iter_mut().for_each(|e| *e = Vector3::zeros());
+            load_fn(t, &mut ws.extra);
+            for (i, e) in ws.extra.iter().enumerate() {
+                if let NodeRef::Free(c) = self.node_map[i] {
+                    ws.f[c] += e;
+                }
+            }
+        }
+        if let Some(rest_fn) = &self.rest_fn {
+            for (r, s) in ws.rest.iter_mut().zip(&self.strings) {
+                *r = s.law.rest_length;
+            }
+            rest_fn(t, &mut ws.rest);
+        }
+        for (k, s) in self.strings.iter().enumerate() {
+            let (xa, va) = self.end_state(s.ends[0], x, v);
+            let (xb, vb) = self.end_state(s.ends[1], x, v);
+            let sv = xb - xa;
+            let gamma = s.law.force_density(&sv, &(vb - va), ws.rest[k]);
+            ws.gamma[k] = gamma;
+            if gamma != 0.0 {
+                let t = sv * gamma;
+                if let NodeRef::Free(i) = s.ends[0] {
+                    ws.f[i] += t;
+                }
+                if let NodeRef::Free(j) = s.ends[1] {
+                    ws.f[j] -= t;
+                }
+            }
+        }
+        if let Some(g) = &self.ground {
+            match g.model {
+                GroundModel::Penalty { .. } => {
+                    for (k, &(_, c)) in self.contact.iter().enumerate() {
+                        let f = g.penalty_force(&vec3(x, c), &vec3(v, c));
+                        ws.contact_f[k] = f;
+                        ws.f[c] += f;
+                    }
+                }
+                GroundModel::Thesis { damping, tolerance } => {
+                    let count = self
+                        .contact
+                        .iter()
+                        .filter(|&&(_, c)| g.height(&vec3(x, c)) <= tolerance)
+                        .count();
+                    let wn = (-self.total_weight.dot(&g.normal)).max(0.0);
+                    let share = if count > 0 { wn / count as f64 } else { 0.0 };
+                    for (k, &(_, c)) in self.contact.iter().enumerate() {
+                        let f = if g.height(&vec3(x, c)) <= tolerance {
+                            g.normal * share - vec3(v, c) * damping
+                        } else {
+                            Vector3::zeros()
+                        };
+                        ws.contact_f[k] = f;
+                        ws.f[c] += f;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The right-hand side of the first-order system y' = (v, a): `y` and `dy` hold the
+    /// positions then velocities of the class-1 nodes. Allocation-free.
+    pub fn rhs(
+        &self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        ws: &mut Workspace,
+    ) -> Result<(), DynamicsError> {
+        ws.rhs_evals += 1;
+        let n3 = 3 * self.n1;
+        let (x, v) = y.split_at(n3);
+        let (dx, dv) = dy.split_at_mut(n3);
+        dx.copy_from_slice(v);
+        self.applied_forces(t, x, v, ws);
+        if let Some(i) = ws.f.iter().position(|f| !f.iter().all(|c| c.is_finite())) {
+            return Err(DynamicsError::NonFinite {
+                t,
+                member: MemberId::Bar(i / 2),
+            });
+        }
+        self.bar_accelerations(x, v, &ws.f, dv, None);
+        if let Some(om) = ws.omega.as_mut() {
+            for (k, bh) in ws.bhat.iter_mut().enumerate() {
+                *bh = (vec3(x, 2 * k + 1) - vec3(x, 2 * k)).normalize();
+            }
+            if let Err(e) = om.assemble_and_factor(&ws.bhat, &self.inv_mass) {
+                // A NaN/∞ in the state or the forces shows up as a failed factorisation:
+                // report it as such, naming the bar.
+                let bad = (0..self.n1).find(|&i| {
+                    !(vec3(x, i).iter().all(|c| c.is_finite())
+                        && vec3(v, i).iter().all(|c| c.is_finite())
+                        && ws.f[i].iter().all(|c| c.is_finite()))
+                });
+                return Err(match bad {
+                    Some(i) => DynamicsError::NonFinite {
+                        t,
+                        member: MemberId::Bar(i / 2),
+                    },
+                    None => e,
+                });
+            }
+            for (r, row) in ws.omega_rhs.iter_mut().zip(&self.linear_rows) {
+                *r = -row
+                    .row
+                    .entries
+                    .iter()
+                    .flatten()
+                    .map(|e| e.grad.dot(&vec3(dv, e.node)))
+                    .sum::<f64>();
+            }
+            om.solve_in_place(&mut ws.omega_rhs);
+            for (w, row) in ws.omega_rhs.iter().zip(&self.linear_rows) {
+                for e in row.row.entries.iter().flatten() {
+                    ws.f[e.node] += e.grad * *w;
+                }
+            }
+            self.bar_accelerations(x, v, &ws.f, dv, Some(&self.constrained_bars));
+        }
+        Ok(())
+    }
+
+    /// Writes the accelerations of the bars (all, or the listed ones) into `dv`.
+    #[inline]
+    pub(crate) fn bar_accelerations(
+        &self,
+        x: &[f64],
+        v: &[f64],
+        f: &[Vector3<f64>],
+        dv: &mut [f64],
+        only: Option<&[usize]>,
+    ) {
+        let mut one = |k: usize| {
+            let (a, b) = (2 * k, 2 * k + 1);
+            let (aa, ab) = bar_accel(
+                self.bars[k].mass,
+                &vec3(x, a),
+                &vec3(x, b),
+                &vec3(v, a),
+                &vec3(v, b),
+                &f[a],
+                &f[b],
+            );
+            set3(dv, a, &aa);
+            set3(dv, b, &ab);
+        };
+        match only {
+            Some(list) => list.iter().for_each(|&k| one(k)),
+            None => (0..self.bars.len()).for_each(one),
+        }
+    }
+
+    /// Positions of the file nodes (representative copies, anchors) from a state.
+    pub fn nodes_of(&self, y: &[f64]) -> Vec<Vector3<f64>> {
+        self.node_map
+            .iter()
+            .map(|r| match *r {
+                NodeRef::Free(i) => vec3(y, i),
+                NodeRef::Anchor(p) => p,
+            })
+            .collect()
+    }
+
+    /// Velocities of the file nodes from a state.
+    pub fn velocities_of(&self, y: &[f64]) -> Vec<Vector3<f64>> {
+        let v = &y[3 * self.n1..];
+        self.node_map
+            .iter()
+            .map(|r| match *r {
+                NodeRef::Free(i) => vec3(v, i),
+                NodeRef::Anchor(_) => Vector3::zeros(),
+            })
+            .collect()
+    }
+
+    /// Axial member forces (N, tension positive, bars then strings) at (t, y):
+    /// bars −λ_k l_k with λ from the closed form including Ω, strings γ‖s‖.
+    pub fn member_forces(
+        &self,
+        t: f64,
+        y: &[f64],
+        ws: &mut Workspace,
+    ) -> Result<Vec<f64>, DynamicsError> {
+        let mut dy = vec![0.0; y.len()];
+        self.rhs(t, y, &mut dy, ws)?;
+        let n3 = 3 * self.n1;
+        let (x, v) = y.split_at(n3);
+        let mut out = Vec::with_capacity(self.bars.len() + self.strings.len());
+        for (k, bar) in self.bars.iter().enumerate() {
+            let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
+            let bd = vec3(v, 2 * k + 1) - vec3(v, 2 * k);
+            let l2 = b.norm_squared();
+            let fd = ws.f[2 * k + 1] - ws.f[2 * k];
+            let lambda = -(bar.mass / 12.0) * bd.norm_squared() / l2 - 0.5 * b.dot(&fd) / l2;
+            out.push(-lambda * l2.sqrt());
+        }
+        for (k, s) in self.strings.iter().enumerate() {
+            let (xa, _) = self.end_state(s.ends[0], x, v);
+            let (xb, _) = self.end_state(s.ends[1], x, v);
+            out.push(ws.gamma[k] * (xb - xa).norm());
+        }
+        Ok(out)
+    }
+
+    /// Ground contact forces on the contact nodes at (t, y): `(file node, force)` pairs.
+    pub fn contact_forces(
+        &self,
+        t: f64,
+        y: &[f64],
+        ws: &mut Workspace,
+    ) -> Vec<(usize, Vector3<f64>)> {
+        let n3 = 3 * self.n1;
+        let (x, v) = y.split_at(n3);
+        self.applied_forces(t, x, v, ws);
+        self.contact
+            .iter()
+            .zip(&ws.contact_f)
+            .map(|(&(i, _), f)| (i, *f))
+            .collect()
+    }
+}

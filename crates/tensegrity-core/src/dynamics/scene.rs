@@ -1,0 +1,347 @@
+//! Scene-file tables of the dynamics (serde, `deny_unknown_fields`), and the function that
+//! turns a [`Structure`] plus these tables into a runnable [`Simulation`].
+//!
+//! ```toml
+//! [simulation]
+//! t_end = 2.0
+//! integrator = "rk45"          # rk4 (default) | rk45 | rattle
+//! dt = 1e-3                    # fixed step (rk4, rattle) / maximum step (rk45)
+//! rtol = 1e-8
+//! atol = 1e-10
+//! output_interval = 0.01       # and/or output_times = [0.5, 1.0]
+//! record = ["nodes", "energy"] # nodes, velocities, member_forces, energy, contact_forces
+//! project = false              # project rk4/rk45 states onto the constraints
+//!
+//! [ground]
+//! point = [0, 0, 0]
+//! normal = [0, 0, 1]
+//! model = "penalty"            # or "thesis"
+//! stiffness = 1e5              # penalty: N/m
+//! damping = 50                 # penalty: N·s/m normal; thesis: N·s/m on contact velocities
+//! mu_static = 0.8
+//! mu_kinetic = 0.6
+//! regularization_velocity = 1e-3
+//! stribeck_velocity = 1e-2
+//! nodes = [0, 1, 2]            # default: every node
+//!
+//! [[actuation]]                # piecewise linear in time, constant outside the table
+//! string = 3
+//! times = [0.0, 1.0]
+//! rest_lengths = [0.9, 0.8]
+//!
+//! [[actuation]]
+//! node = 5
+//! times = [0.0, 0.5]
+//! forces = [[0, 0, 0], [0, 0, -10]]
+//! ```
+
+use super::error::DynamicsError;
+use super::forces::{Ground, GroundModel};
+use super::model::Model;
+use super::recorder::Quantities;
+use super::simulation::{IntegratorKind, Simulation, SimulationSettings};
+use crate::structure::Structure;
+use nalgebra::Vector3;
+use serde::Deserialize;
+
+/// The `[simulation]` table.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSpec {
+    /// End time (s).
+    pub t_end: f64,
+    /// Integrator (default rk4).
+    #[serde(default)]
+    pub integrator: IntegratorKind,
+    /// Fixed step / maximum step (s), default 1e-3.
+    pub dt: Option<f64>,
+    /// RK45 relative tolerance, default 1e-8.
+    pub rtol: Option<f64>,
+    /// RK45 absolute tolerance, default 1e-10.
+    pub atol: Option<f64>,
+    /// Explicit output times (s).
+    #[serde(default)]
+    pub output_times: Vec<f64>,
+    /// Regular output interval (s), from 0 to t_end.
+    pub output_interval: Option<f64>,
+    /// Quantities to record.
+    #[serde(default)]
+    pub record: Vec<RecordQuantity>,
+    /// Project RK states onto the constraints after every step.
+    #[serde(default)]
+    pub project: bool,
+}
+
+/// A recordable quantity name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RecordQuantity {
+    /// Node positions.
+    Nodes,
+    /// Node velocities.
+    Velocities,
+    /// Axial member forces.
+    MemberForces,
+    /// Kinetic and total energy.
+    Energy,
+    /// Ground contact forces.
+    ContactForces,
+}
+
+/// The ground reaction model name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GroundModelKind {
+    /// Penalty spring–damper with regularised Coulomb friction.
+    #[default]
+    Penalty,
+    /// Thesis §3.2.2 model.
+    Thesis,
+}
+
+fn up() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+
+/// The `[ground]` table.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundSpec {
+    /// A point of the plane (default origin).
+    #[serde(default)]
+    pub point: [f64; 3],
+    /// Outward normal (default +z).
+    #[serde(default = "up")]
+    pub normal: [f64; 3],
+    /// Reaction model (default penalty).
+    #[serde(default)]
+    pub model: GroundModelKind,
+    /// Penalty stiffness (N/m), required for the penalty model.
+    pub stiffness: Option<f64>,
+    /// Normal damping (penalty) or contact-velocity damping (thesis), N·s/m; default 0.
+    pub damping: Option<f64>,
+    /// Static friction coefficient (default 0).
+    pub mu_static: Option<f64>,
+    /// Kinetic friction coefficient (default μ_s).
+    pub mu_kinetic: Option<f64>,
+    /// Friction regularisation velocity (m/s), default 1e-3.
+    pub regularization_velocity: Option<f64>,
+    /// Stribeck velocity (m/s), default 1e-2.
+    pub stribeck_velocity: Option<f64>,
+    /// Contact distance of the thesis model (m), default 1e-6.
+    pub tolerance: Option<f64>,
+    /// Nodes that can touch the ground (default all).
+    pub nodes: Option<Vec<usize>>,
+}
+
+/// One `[[actuation]]` table: a piecewise-linear time table for one string's rest length or
+/// one node's extra load.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ActuationSpec {
+    /// The string whose rest length is driven.
+    pub string: Option<usize>,
+    /// The node that gets the extra load.
+    pub node: Option<usize>,
+    /// Increasing times (s).
+    pub times: Vec<f64>,
+    /// Rest lengths (m) at `times` (with `string`).
+    pub rest_lengths: Option<Vec<f64>>,
+    /// Forces (N) at `times` (with `node`).
+    pub forces: Option<Vec<[f64; 3]>>,
+}
+
+/// Piecewise-linear interpolation, constant outside the table.
+fn interp(times: &[f64], t: f64) -> (usize, usize, f64) {
+    if t <= times[0] {
+        return (0, 0, 0.0);
+    }
+    let last = times.len() - 1;
+    if t >= times[last] {
+        return (last, last, 0.0);
+    }
+    let j = times.partition_point(|&x| x <= t);
+    let i = j - 1;
+    (i, j, (t - times[i]) / (times[j] - times[i]))
+}
+
+fn invalid(item: String, reason: &str) -> DynamicsError {
+    DynamicsError::InvalidSpec {
+        item,
+        reason: reason.to_string(),
+    }
+}
+
+fn nonneg(item: &str, name: &str, v: f64) -> Result<f64, DynamicsError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(
+            item.into(),
+            &format!("{name} must be non-negative and finite, got {v}"),
+        ))
+    }
+}
+
+impl GroundSpec {
+    /// The [`Ground`] this table describes.
+    pub fn to_ground(&self) -> Result<Ground, DynamicsError> {
+        let n = Vector3::from(self.normal);
+        if !(n.iter().all(|v| v.is_finite()) && n.norm() > 0.0) {
+            return Err(invalid("ground".into(), "normal must be a non-zero vector"));
+        }
+        let damping = nonneg("ground", "damping", self.damping.unwrap_or(0.0))?;
+        let model = match self.model {
+            GroundModelKind::Penalty => {
+                let stiffness = self.stiffness.ok_or_else(|| {
+                    invalid("ground".into(), "the penalty model needs a stiffness")
+                })?;
+                if !(stiffness.is_finite() && stiffness > 0.0) {
+                    return Err(invalid("ground".into(), "stiffness must be positive"));
+                }
+                let mu_static = nonneg("ground", "mu_static", self.mu_static.unwrap_or(0.0))?;
+                let mu_kinetic =
+                    nonneg("ground", "mu_kinetic", self.mu_kinetic.unwrap_or(mu_static))?;
+                let v_reg = self.regularization_velocity.unwrap_or(1e-3);
+                let v_s = self.stribeck_velocity.unwrap_or(1e-2);
+                if !(v_reg > 0.0 && v_s > 0.0 && v_reg.is_finite() && v_s.is_finite()) {
+                    return Err(invalid(
+                        "ground".into(),
+                        "regularization_velocity and stribeck_velocity must be positive",
+                    ));
+                }
+                GroundModel::Penalty {
+                    stiffness,
+                    damping,
+                    mu_static,
+                    mu_kinetic,
+                    regularization_velocity: v_reg,
+                    stribeck_velocity: v_s,
+                }
+            }
+            GroundModelKind::Thesis => GroundModel::Thesis {
+                damping,
+                tolerance: nonneg("ground", "tolerance", self.tolerance.unwrap_or(1e-6))?,
+            },
+        };
+        let mut g = Ground::new(Vector3::from(self.point), n, model);
+        g.nodes = self.nodes.clone();
+        Ok(g)
+    }
+}
+
+impl SimulationSpec {
+    /// Settings from this table (defaults: dt 1e-3, rtol 1e-8, atol 1e-10).
+    pub fn to_settings(&self) -> SimulationSettings {
+        let mut q = Quantities::default();
+        for r in &self.record {
+            match r {
+                RecordQuantity::Nodes => q.nodes = true,
+                RecordQuantity::Velocities => q.velocities = true,
+                RecordQuantity::MemberForces => q.member_forces = true,
+                RecordQuantity::Energy => q.energy = true,
+                RecordQuantity::ContactForces => q.contact_forces = true,
+            }
+        }
+        let d = SimulationSettings::default();
+        SimulationSettings {
+            t_end: self.t_end,
+            integrator: self.integrator,
+            dt: self.dt.unwrap_or(d.dt),
+            rtol: self.rtol.unwrap_or(d.rtol),
+            atol: self.atol.unwrap_or(d.atol),
+            output_times: self.output_times.clone(),
+            output_interval: self.output_interval,
+            quantities: q,
+            project: self.project,
+            ..d
+        }
+    }
+}
+
+/// Turns a structure plus the optional `[simulation]`, `[ground]` and `[[actuation]]` tables
+/// into a runnable [`Simulation`] (settings default to [`SimulationSettings::default`] when
+/// `sim` is `None`; a caller may still override `simulation.settings`).
+pub fn build_simulation(
+    structure: &Structure,
+    sim: Option<&SimulationSpec>,
+    ground: Option<&GroundSpec>,
+    actuation: &[ActuationSpec],
+) -> Result<Simulation, DynamicsError> {
+    let ground = ground.map(GroundSpec::to_ground).transpose()?;
+    let mut model = Model::new(structure, ground)?;
+    let y0 = model.initial_state(structure)?;
+    let mut rest_tables: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
+    let mut load_tables: Vec<(usize, Vec<f64>, Vec<Vector3<f64>>)> = Vec::new();
+    for (k, a) in actuation.iter().enumerate() {
+        let item = format!("actuation {k}");
+        if a.times.is_empty()
+            || a.times
+                .windows(2)
+                .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err(invalid(
+                item,
+                "times must be non-empty and strictly increasing",
+            ));
+        }
+        if a.times.iter().any(|t| !t.is_finite()) {
+            return Err(invalid(item, "times must be finite"));
+        }
+        match (a.string, a.node, &a.rest_lengths, &a.forces) {
+            (Some(s), None, Some(r), None) => {
+                if s >= structure.n_strings() {
+                    return Err(invalid(item, &format!("string {s} does not exist")));
+                }
+                if r.len() != a.times.len() {
+                    return Err(invalid(item, "rest_lengths and times differ in length"));
+                }
+                if r.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                    return Err(invalid(item, "rest lengths must be positive"));
+                }
+                rest_tables.push((s, a.times.clone(), r.clone()));
+            }
+            (None, Some(n), None, Some(f)) => {
+                if n >= structure.n_nodes() {
+                    return Err(invalid(item, &format!("node {n} does not exist")));
+                }
+                if f.len() != a.times.len() {
+                    return Err(invalid(item, "forces and times differ in length"));
+                }
+                if f.iter().flatten().any(|v| !v.is_finite()) {
+                    return Err(invalid(item, "forces must be finite"));
+                }
+                load_tables.push((n, a.times.clone(), f.iter().map(|&v| v.into()).collect()));
+            }
+            _ => {
+                return Err(invalid(
+                    item,
+                    "give either `string` with `rest_lengths` or `node` with `forces`",
+                ))
+            }
+        }
+    }
+    if !rest_tables.is_empty() {
+        model.set_rest_length_schedule(Box::new(move |t, rest| {
+            for (s, times, values) in &rest_tables {
+                let (i, j, w) = interp(times, t);
+                rest[*s] = values[i] * (1.0 - w) + values[j] * w;
+            }
+        }));
+    }
+    if !load_tables.is_empty() {
+        model.set_load_schedule(Box::new(move |t, loads| {
+            for (n, times, values) in &load_tables {
+                let (i, j, w) = interp(times, t);
+                loads[*n] += values[i] * (1.0 - w) + values[j] * w;
+            }
+        }));
+    }
+    let settings = sim.map(SimulationSpec::to_settings).unwrap_or_default();
+    Ok(Simulation {
+        model,
+        y0,
+        settings,
+        events: Vec::new(),
+    })
+}

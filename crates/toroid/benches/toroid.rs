@@ -1,0 +1,47 @@
+//! Criterion benches: building and analysing the reference toroid (spokes + inner) for
+//! n = 8, 24, 100, and one second of rigid rolling down 50° for n = 8 and 24.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::hint::black_box;
+use toroid::rolling::RigidRolling;
+use toroid::{analyse, build, Stabilize, ToroidParams};
+
+fn options() -> Stabilize {
+    Stabilize {
+        spokes: true,
+        inner: true,
+        outer: false,
+    }
+}
+
+fn bench_build_analyse(c: &mut Criterion) {
+    let mut group = c.benchmark_group("toroid_build_analyse");
+    group.sample_size(10);
+    for n in [8usize, 24, 100] {
+        let p = ToroidParams::default().sides(n);
+        group.bench_with_input(BenchmarkId::new("build", n), &p, |b, p| {
+            b.iter(|| black_box(build(p, options(), 1.0).unwrap()))
+        });
+        let t = build(&p, options(), 1.0).unwrap();
+        group.bench_with_input(BenchmarkId::new("analyse", n), &t, |b, t| {
+            b.iter(|| black_box(analyse(t).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+fn bench_rolling(c: &mut Criterion) {
+    let mut group = c.benchmark_group("toroid_rigid_rolling_1s");
+    for n in [8usize, 24] {
+        let t = build(&ToroidParams::default().sides(n), options(), 1.0).unwrap();
+        let a = analyse(&t).unwrap();
+        let model = RigidRolling::of(&t, &a, 50f64.to_radians());
+        group.bench_with_input(BenchmarkId::from_parameter(n), &model, |b, m| {
+            b.iter(|| black_box(m.run(1.0).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_build_analyse, bench_rolling);
+criterion_main!(benches);

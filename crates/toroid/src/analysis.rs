@@ -1,0 +1,190 @@
+//! Statics of the toroid with the core definitions: self-stress, prestressability margin,
+//! internal mechanisms (first-order flexes beyond the six rigid-body motions), a prestress
+//! design, mass and inertia; and the rim-radius window of single-prism prestressability.
+
+use crate::builder::{build_prism, Toroid};
+use crate::error::{Result, ToroidError};
+use crate::inertia::{wheel_inertia, wheel_mass};
+use crate::params::ToroidParams;
+use nalgebra::{DVector, Matrix3};
+use tensegrity_core::Statics;
+
+/// The analysis of a toroid (or a single prism).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToroidAnalysis {
+    /// Node count.
+    pub nodes: usize,
+    /// Bar count.
+    pub bars: usize,
+    /// String count.
+    pub strings: usize,
+    /// Rank of the equilibrium matrix.
+    pub rank: usize,
+    /// Dimension of the self-stress space.
+    pub self_stress_dim: usize,
+    /// Whether a self-stress tensions every string and compresses every bar.
+    pub prestressable: bool,
+    /// The prestressability LP margin.
+    pub prestress_margin: f64,
+    /// First-order flexes beyond the rigid-body motions.
+    pub internal_mechanisms: usize,
+    /// Total bar mass (kg).
+    pub mass_kg: f64,
+    /// Inertia tensor about the wheel centre (kg m²).
+    pub inertia: Matrix3<f64>,
+    /// I₁ = I(1,1), about the rolling axis.
+    pub i1: f64,
+    /// The max-margin self-stress (max|q| = 1), when prestressable.
+    pub prestress: Option<DVector<f64>>,
+}
+
+/// Runs the statics, flex count, mass and inertia of a built toroid.
+///
+/// ```
+/// use toroid::{analyse, build, ToroidParams};
+/// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
+/// let a = analyse(&t).unwrap();
+/// assert_eq!(a.internal_mechanisms, 0); // ERRATA 3.4: spokes + inner is first-order rigid
+/// ```
+pub fn analyse(toroid: &Toroid) -> Result<ToroidAnalysis> {
+    let s = &toroid.structure;
+    let statics = Statics::new(s)?;
+    let pre = statics.prestressability()?;
+    let flexes = statics.flexes()?;
+    let inertia = wheel_inertia(s);
+    Ok(ToroidAnalysis {
+        nodes: s.n_nodes(),
+        bars: s.n_bars(),
+        strings: s.n_strings(),
+        rank: statics.rank(),
+        self_stress_dim: statics.self_stress_dim(),
+        prestressable: pre.prestressable,
+        prestress_margin: pre.margin,
+        internal_mechanisms: flexes.internal.ncols(),
+        mass_kg: wheel_mass(s),
+        i1: inertia[(0, 0)],
+        inertia,
+        prestress: pre.prestressable.then_some(pre.stress),
+    })
+}
+
+/// A prestress: the max-margin self-stress scaled so the least-tensioned string carries
+/// `min_string_tension` newtons.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrestressDesign {
+    /// Force densities (N/m, tension positive), bars then strings.
+    pub force_density: DVector<f64>,
+    /// Member forces (N).
+    pub member_force: DVector<f64>,
+    /// The scale factor applied to the unit (max|q| = 1) stress.
+    pub scale: f64,
+}
+
+/// Designs a prestress with the given minimum string tension (N).
+///
+/// ```
+/// use toroid::{build, prestress_design, ToroidParams};
+/// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
+/// let d = prestress_design(&t, 10.0).unwrap();
+/// let nb = t.structure.n_bars();
+/// let min = d.member_force.rows(nb, t.structure.n_strings()).min();
+/// assert!((min - 10.0).abs() < 1e-9);
+/// ```
+pub fn prestress_design(toroid: &Toroid, min_string_tension: f64) -> Result<PrestressDesign> {
+    if !(min_string_tension.is_finite() && min_string_tension > 0.0) {
+        return Err(ToroidError::InvalidParameter {
+            name: "min_string_tension",
+            value: min_string_tension,
+            reason: "must be a positive force (N)".into(),
+        });
+    }
+    let s = &toroid.structure;
+    let statics = Statics::new(s)?;
+    let pre = statics.prestressability()?;
+    if !pre.prestressable {
+        return Err(ToroidError::NotPrestressable { margin: pre.margin });
+    }
+    let lengths = s.member_lengths();
+    let nb = s.n_bars();
+    let min_unit = (nb..s.n_members())
+        .map(|k| pre.stress[k] * lengths[k])
+        .fold(f64::INFINITY, f64::min);
+    let scale = min_string_tension / min_unit;
+    let force_density = pre.stress * scale;
+    let member_force = DVector::from_iterator(
+        lengths.len(),
+        force_density.iter().zip(&lengths).map(|(q, l)| q * l),
+    );
+    Ok(PrestressDesign {
+        force_density,
+        member_force,
+        scale,
+    })
+}
+
+/// Whether the single prism of `params` is prestressable.
+pub fn prism_prestressable(params: &ToroidParams) -> Result<bool> {
+    let t = build_prism(params, 1.0)?;
+    Ok(Statics::new(&t.structure)?
+        .prestressability()?
+        .prestressable)
+}
+
+/// The interval of rim radii R_m for which the single prism is prestressable, searched on
+/// (`lo`, `hi`) with `samples` grid points and refined by bisection to `tol`. `None` when no
+/// grid point is prestressable. When several disjoint intervals exist, the one containing the
+/// first prestressable grid point is returned.
+///
+/// ```
+/// use toroid::{rim_radius_window, ToroidParams};
+/// let (a, b) = rim_radius_window(&ToroidParams::default(), 0.05, 1.5, 60, 1e-4).unwrap().unwrap();
+/// // ERRATA 3.3: about [0.68, 0.89] for the reference wheel
+/// assert!((a - 0.68).abs() < 0.02 && (b - 0.89).abs() < 0.02);
+/// ```
+pub fn rim_radius_window(
+    params: &ToroidParams,
+    lo: f64,
+    hi: f64,
+    samples: usize,
+    tol: f64,
+) -> Result<Option<(f64, f64)>> {
+    let ok = |rm: f64| prism_prestressable(&params.rim_radius(rm));
+    let grid: Vec<f64> = (0..samples)
+        .map(|i| lo + (hi - lo) * i as f64 / (samples - 1).max(1) as f64)
+        .collect();
+    let mut first = None;
+    for (i, &rm) in grid.iter().enumerate() {
+        if ok(rm)? {
+            first = Some(i);
+            break;
+        }
+    }
+    let Some(i0) = first else { return Ok(None) };
+    let mut i1 = i0;
+    while i1 + 1 < grid.len() && ok(grid[i1 + 1])? {
+        i1 += 1;
+    }
+    // bisect each edge between a failing and a passing radius
+    let bisect = |mut bad: f64, mut good: f64| -> Result<f64> {
+        while (good - bad).abs() > tol {
+            let mid = 0.5 * (bad + good);
+            if ok(mid)? {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        Ok(0.5 * (bad + good))
+    };
+    let left = if i0 == 0 {
+        grid[0]
+    } else {
+        bisect(grid[i0 - 1], grid[i0])?
+    };
+    let right = if i1 + 1 == grid.len() {
+        grid[i1]
+    } else {
+        bisect(grid[i1 + 1], grid[i1])?
+    };
+    Ok(Some((left, right)))
+}

@@ -1,0 +1,34 @@
+//! Errors of the toroid crate.
+
+use tensegrity_core::CoreError;
+use thiserror::Error;
+
+/// Result alias of the toroid crate.
+pub type Result<T, E = ToroidError> = std::result::Result<T, E>;
+
+/// Everything that can go wrong when building or analysing a toroid.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ToroidError {
+    /// A geometric or physical parameter is out of its valid range.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// The parameter's name as on the command line, e.g. `inner_radius`.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must satisfy.
+        reason: String,
+    },
+    /// An unknown stabilising option.
+    #[error("unknown stabilising option \"{0}\" (use spokes, inner, outer or none)")]
+    UnknownOption(String),
+    /// The structure has no prestress (needed for a prestress design).
+    #[error("the toroid is not prestressable (margin {margin:e}); no prestress design exists")]
+    NotPrestressable {
+        /// The LP margin found.
+        margin: f64,
+    },
+    /// An error of the core analyses.
+    #[error(transparent)]
+    Core(#[from] CoreError),
+}

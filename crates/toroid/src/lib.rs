@@ -1,0 +1,34 @@
+//! # toroid
+//!
+//! The 3-bar-prism tensegrity toroid of the thesis (chapter 3), used as a wheel: geometry from
+//! seven parameters, stabilising string options, statics (self-stress, prestressability,
+//! internal mechanisms, prestress design), mass and inertia, tip-over, and rolling down an
+//! incline.
+//!
+//! ```
+//! use toroid::{analyse, build, ToroidParams};
+//! let t = build(&ToroidParams::default(), "spokes".parse().unwrap(), 1.0).unwrap();
+//! let a = analyse(&t).unwrap();
+//! // ERRATA 3.4: spokes alone leave one zero-energy spin per prism about its rim bar
+//! assert_eq!(a.internal_mechanisms, 8);
+//! ```
+#![warn(missing_docs)]
+#![allow(non_snake_case)]
+
+mod analysis;
+mod builder;
+mod error;
+mod inertia;
+mod params;
+pub mod rolling;
+mod tipover;
+
+pub use analysis::{
+    analyse, prestress_design, prism_prestressable, rim_radius_window, PrestressDesign,
+    ToroidAnalysis,
+};
+pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};
+pub use error::{Result, ToroidError};
+pub use inertia::{bar_inertia, bar_inertia_thesis, wheel_inertia, wheel_mass};
+pub use params::{Stabilize, ToroidParams};
+pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};

@@ -1,0 +1,185 @@
+//! The seven toroid parameters (thesis Fig. 3.2) and the stabilising options (§3.1).
+
+use crate::error::{Result, ToroidError};
+use std::fmt;
+use std::str::FromStr;
+
+/// Geometry of the toroid: n sides, outer/inner tread widths T, t, tread offset D, outer,
+/// inner and rim radii R_o, R_i, R_m (all lengths in m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ToroidParams {
+    /// Number of sides (prisms) n ≥ 3.
+    pub sides: usize,
+    /// Outer tread width T.
+    pub outer_tread: f64,
+    /// Inner tread width t.
+    pub inner_tread: f64,
+    /// Tread offset D (≥ 0).
+    pub offset: f64,
+    /// Outer radius R_o.
+    pub outer_radius: f64,
+    /// Inner radius R_i < R_o.
+    pub inner_radius: f64,
+    /// Rim radius R_m.
+    pub rim_radius: f64,
+}
+
+impl Default for ToroidParams {
+    /// The reference wheel of the thesis errata: n = 8, T = 0.4, t = 0.3, D = 0.1, R_o = 1,
+    /// R_i = 0.6, R_m = 0.8.
+    fn default() -> Self {
+        Self {
+            sides: 8,
+            outer_tread: 0.4,
+            inner_tread: 0.3,
+            offset: 0.1,
+            outer_radius: 1.0,
+            inner_radius: 0.6,
+            rim_radius: 0.8,
+        }
+    }
+}
+
+impl ToroidParams {
+    /// Sets the number of sides.
+    ///
+    /// ```
+    /// use toroid::ToroidParams;
+    /// let p = ToroidParams::default().sides(12).rim_radius(0.75);
+    /// assert_eq!((p.sides, p.rim_radius), (12, 0.75));
+    /// assert!(p.validate().is_ok());
+    /// ```
+    pub fn sides(mut self, n: usize) -> Self {
+        self.sides = n;
+        self
+    }
+
+    /// Sets the rim radius R_m.
+    pub fn rim_radius(mut self, r: f64) -> Self {
+        self.rim_radius = r;
+        self
+    }
+
+    /// Sets the tread offset D.
+    ///
+    /// ```
+    /// use toroid::ToroidParams;
+    /// assert!(ToroidParams::default().offset(-0.1).validate().is_err());
+    /// ```
+    pub fn offset(mut self, d: f64) -> Self {
+        self.offset = d;
+        self
+    }
+
+    /// Checks every parameter; the error names the first offending one.
+    ///
+    /// ```
+    /// use toroid::ToroidParams;
+    /// let bad = ToroidParams { inner_radius: 1.2, ..ToroidParams::default() };
+    /// assert!(bad.validate().unwrap_err().to_string().contains("inner_radius"));
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        if self.sides < 3 {
+            return Err(ToroidError::InvalidParameter {
+                name: "sides",
+                value: self.sides as f64,
+                reason: "a toroid needs at least 3 sides".into(),
+            });
+        }
+        for (name, value) in [
+            ("outer_tread", self.outer_tread),
+            ("inner_tread", self.inner_tread),
+            ("outer_radius", self.outer_radius),
+            ("inner_radius", self.inner_radius),
+            ("rim_radius", self.rim_radius),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ToroidError::InvalidParameter {
+                    name,
+                    value,
+                    reason: "must be a positive length".into(),
+                });
+            }
+        }
+        if !(self.offset.is_finite() && self.offset >= 0.0) {
+            return Err(ToroidError::InvalidParameter {
+                name: "offset",
+                value: self.offset,
+                reason: "must be a non-negative length".into(),
+            });
+        }
+        if self.inner_radius >= self.outer_radius {
+            return Err(ToroidError::InvalidParameter {
+                name: "inner_radius",
+                value: self.inner_radius,
+                reason: format!("must be smaller than outer_radius = {}", self.outer_radius),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Which stabilising string sets are added (any combination, including none).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Stabilize {
+    /// Option 1: an axle bar and spokes from every rim node to both axle ends.
+    pub spokes: bool,
+    /// Option 2: inner tread rings n4_k–n4_{k+1}, n5_k–n5_{k+1}.
+    pub inner: bool,
+    /// Option 3: outer tread rings n1_k–n1_{k+1}, n2_k–n2_{k+1}.
+    pub outer: bool,
+}
+
+impl Stabilize {
+    /// No stabilising strings.
+    pub const NONE: Stabilize = Stabilize {
+        spokes: false,
+        inner: false,
+        outer: false,
+    };
+}
+
+impl FromStr for Stabilize {
+    type Err = ToroidError;
+
+    /// Parses a comma-separated list such as `spokes,inner` or `none`.
+    ///
+    /// ```
+    /// use toroid::Stabilize;
+    /// let s: Stabilize = "spokes,inner".parse().unwrap();
+    /// assert!(s.spokes && s.inner && !s.outer);
+    /// assert_eq!("none".parse::<Stabilize>().unwrap(), Stabilize::NONE);
+    /// assert!("wheels".parse::<Stabilize>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Self> {
+        let mut out = Stabilize::NONE;
+        for word in s.split(',').map(str::trim).filter(|w| !w.is_empty()) {
+            match word {
+                "spokes" => out.spokes = true,
+                "inner" => out.inner = true,
+                "outer" => out.outer = true,
+                "none" => {}
+                other => return Err(ToroidError::UnknownOption(other.to_string())),
+            }
+        }
+        Ok(out)
+    }
+}
+
+impl fmt::Display for Stabilize {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<&str> = [
+            (self.spokes, "spokes"),
+            (self.inner, "inner"),
+            (self.outer, "outer"),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect();
+        if names.is_empty() {
+            write!(f, "none")
+        } else {
+            write!(f, "{}", names.join(","))
+        }
+    }
+}

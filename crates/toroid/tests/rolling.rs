@@ -1,0 +1,142 @@
+//! The rigid rolling model against conservation laws and closed forms, and the Fig. 3.10 claim.
+
+use approx::assert_relative_eq;
+use std::f64::consts::PI;
+use toroid::rolling::RigidRolling;
+use toroid::{analyse, build, ToroidParams};
+
+fn octagon(incline_deg: f64) -> RigidRolling {
+    RigidRolling {
+        sides: 8,
+        outer_radius: 1.0,
+        mass: 12.0,
+        i1: 7.5,
+        incline: incline_deg.to_radians(),
+        gravity: 9.81,
+        dt: 1e-4,
+        output_dt: 1e-3,
+    }
+}
+
+#[test]
+fn energy_is_conserved_while_pivoting_and_lost_only_at_impacts() {
+    let model = octagon(30.0);
+    let r = model.run(4.0).unwrap();
+    assert!(r.impacts >= 3);
+    let ia = model.i1 + model.mass;
+    let ratio = model.impact_ratio();
+    let half = PI / 8.0;
+    let phi = model.incline;
+    let step = 2.0 * half.sin();
+    let mut drops = 0;
+    for w in r.samples.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if b.pivot > a.pivot {
+            assert_relative_eq!(b.pivot - a.pivot, step, max_relative = 1e-12);
+            assert!(b.energy < a.energy, "an impact loses energy");
+            drops += 1;
+        } else {
+            assert!(
+                (b.energy - a.energy).abs() < 1e-8 * (1.0 + a.energy.abs()),
+                "t = {}",
+                b.t
+            );
+        }
+    }
+    assert_eq!(drops, r.impacts);
+    // on the second pivot: ½ I_A ω² = ½ I_A (r ω₁)² + m g R (cos(φ − π/n) − cos(θ + φ)), with
+    // ω₁² = 2 m g R (cos(φ − π/n) − cos(φ + π/n)) / I_A from the first pivot
+    let drop = |theta: f64| {
+        2.0 * model.mass * model.gravity * ((phi - half).cos() - (theta + phi).cos()) / ia
+    };
+    let omega_after_first = drop(half).sqrt() * ratio;
+    let second: Vec<_> = r
+        .samples
+        .iter()
+        .filter(|s| (s.pivot - step).abs() < 1e-12)
+        .collect();
+    assert!(second.len() > 10);
+    for s in second {
+        let theta = (s.s - s.pivot).atan2(s.h);
+        let predicted = (omega_after_first.powi(2) + drop(theta)).sqrt();
+        assert_relative_eq!(s.omega, predicted, max_relative = 1e-7);
+    }
+}
+
+#[test]
+fn speed_converges_to_the_periodic_orbit_of_the_rolling_polygon() {
+    // fixed point of ω⁻² = r² ω⁻² + 2 m g R (cos(φ − π/n) − cos(φ + π/n)) / I_A
+    let model = octagon(35.0);
+    let r = model.run(30.0).unwrap();
+    let (half, phi) = (PI / 8.0, model.incline);
+    let ia = model.i1 + model.mass;
+    let rr = model.impact_ratio();
+    let w_star = (2.0 * model.mass * model.gravity * ((phi - half).cos() - (phi + half).cos())
+        / (ia * (1.0 - rr * rr)))
+        .sqrt();
+    let late_max = r
+        .samples
+        .iter()
+        .filter(|s| s.t > 25.0)
+        .map(|s| s.omega)
+        .fold(0.0, f64::max);
+    assert_relative_eq!(late_max, w_star, max_relative = 2e-3);
+    let late_min = r
+        .samples
+        .iter()
+        .filter(|s| s.t > 25.0)
+        .map(|s| s.omega)
+        .fold(f64::INFINITY, f64::min);
+    assert_relative_eq!(late_min, rr * w_star, max_relative = 2e-3);
+}
+
+#[test]
+fn a_gentle_slope_does_not_start_the_wheel() {
+    let r = octagon(20.0).run(3.0).unwrap(); // 20° < π/8 = 22.5°
+    assert_eq!(r.impacts, 0);
+    assert_eq!(r.mean_speed, 0.0);
+    // at rest on its edge the two pairs share the weight: this pair carries N ≤ m g cos φ
+    let s = r.samples[10];
+    assert!(s.normal > 0.0 && s.normal <= 12.0 * 9.81 * 20f64.to_radians().cos() + 1e-9);
+}
+
+#[test]
+fn axle_height_oscillation_decreases_with_the_number_of_sides_on_fifty_degrees() {
+    // thesis Fig. 3.10: n = 8, 12, 16, 24 on a 50° incline, reference wheel, spokes + inner
+    let mut previous = f64::INFINITY;
+    let mut values = Vec::new();
+    for n in [8, 12, 16, 24] {
+        let t = build(
+            &ToroidParams::default().sides(n),
+            "spokes,inner".parse().unwrap(),
+            1.0,
+        )
+        .unwrap();
+        let a = analyse(&t).unwrap();
+        let r = RigidRolling::of(&t, &a, 50f64.to_radians())
+            .run(5.0)
+            .unwrap();
+        assert!(r.axle_height_oscillation < previous, "n = {n}: {values:?}");
+        previous = r.axle_height_oscillation;
+        values.push(r.axle_height_oscillation);
+        // the oscillation is bounded by the polygon's height swing R_o (1 − cos(π/n))
+        assert!(r.axle_height_oscillation < (1.0 - (PI / n as f64).cos()));
+    }
+    // from n = 8 to n = 24 the bumps shrink by more than a factor 5
+    assert!(values[0] / values[3] > 5.0, "{values:?}");
+}
+
+#[test]
+fn invalid_rolling_parameters_are_named() {
+    let mut m = octagon(30.0);
+    m.incline = 2.0;
+    assert!(m.run(1.0).unwrap_err().to_string().contains("incline"));
+    assert!(octagon(30.0)
+        .run(-1.0)
+        .unwrap_err()
+        .to_string()
+        .contains("t_end"));
+    let mut m = octagon(30.0);
+    m.i1 = f64::NAN;
+    assert!(m.run(1.0).unwrap_err().to_string().contains("i1"));
+}
