@@ -492,8 +492,7 @@ impl StructureBuilder {
     /// assert_eq!(s.n_nodes(), 2);
     /// ```
     pub fn nodes<I: IntoIterator<Item = [f64; 3]>>(mut self, positions: I) -> Self {
-        self.nodes
-            .extend(positions.into_iter().map(Vector3::from));
+        self.nodes.extend(positions.into_iter().map(Vector3::from));
         self
     }
 
