@@ -14,7 +14,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Run the statics of the bundled example scenes and print a summary.
+    /// Run the bundled examples (scene statics, toroid wheel) on built-in defaults.
     Demo,
     /// Equilibrium matrix, self-stress, prestressability, load solve and sizing of a scene.
     Statics(cli::statics::StaticsArgs),

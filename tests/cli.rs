@@ -102,3 +102,62 @@ fn bad_scene_fails_with_a_clear_message_and_exit_code() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/file.toml"));
 }
+
+#[test]
+fn toroid_json_reports_counts_flexes_and_inertia() {
+    let out = run(&["toroid", "--stabilize", "spokes", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (
+            v["nodes"].as_u64(),
+            v["bars"].as_u64(),
+            v["strings"].as_u64()
+        ),
+        (Some(42), Some(25), Some(112))
+    );
+    assert_eq!(v["internal_mechanisms"], 8);
+    let i = &v["inertia"];
+    let i1 = v["I1"].as_f64().unwrap();
+    assert_eq!(i[0][0].as_f64().unwrap(), i1);
+    assert!((i[1][1].as_f64().unwrap() - i[2][2].as_f64().unwrap()).abs() < 1e-9);
+}
+
+#[test]
+fn roll_and_tipover_run_from_the_command_line() {
+    let out = run(&[
+        "roll",
+        "--sides",
+        "12",
+        "--incline",
+        "50deg",
+        "--t-end",
+        "2",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["fidelity"], "rigid");
+    assert!(
+        v["axle_height_oscillation"].as_f64().unwrap() < 1.0 - (std::f64::consts::PI / 12.0).cos()
+    );
+    assert!(v["mean_speed"].as_f64().unwrap() > 0.0);
+    let out = run(&["tipover", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // ρ = 0.4, ε = 0.75, σ = 0.6: F_f/F_e = −(σ + ε)/(1 − σ) = −3.375
+    assert!((v["normalized_friction"].as_f64().unwrap() + 3.375).abs() < 1e-12);
+    let out = run(&["toroid", "--inner-radius", "1.5"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("inner_radius"));
+    let out = run(&["roll", "--incline", "fifty"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("fifty"));
+}

@@ -70,6 +70,9 @@ pub struct ToroidArgs {
     /// Minimum string tension of the prestress design (N).
     #[arg(long, default_value_t = 10.0)]
     min_tension: f64,
+    /// Also search the rim radii R_m for which a single prism is prestressable.
+    #[arg(long)]
+    rim_window: bool,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -92,6 +95,8 @@ struct ToroidReport {
     i1: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     prestress_member_force: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rim_radius_window: Option<[f64; 2]>,
 }
 
 /// Entry point of `tensegrity toroid`.
@@ -105,6 +110,11 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
     let a = analyse(&t)?;
     let design = if a.prestressable {
         Some(prestress_design(&t, args.min_tension)?)
+    } else {
+        None
+    };
+    let window = if args.rim_window {
+        toroid::rim_radius_window(&p, 0.02 * p.outer_radius, 1.5 * p.outer_radius, 75, 1e-6)?
     } else {
         None
     };
@@ -128,6 +138,7 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
         prestress_member_force: design
             .as_ref()
             .map(|d| d.member_force.iter().copied().collect()),
+        rim_radius_window: window.map(|(a, b)| [a, b]),
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -155,6 +166,14 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
             a.inertia[(i, 1)],
             a.inertia[(i, 2)]
         );
+    }
+    if args.rim_window {
+        match window {
+            Some((lo, hi)) => {
+                println!("single prism prestressable for R_m in [{lo:.6}, {hi:.6}] m")
+            }
+            None => println!("single prism prestressable for no R_m in (0, 1.5 R_o)"),
+        }
     }
     if let Some(d) = design {
         let s = &t.structure;
