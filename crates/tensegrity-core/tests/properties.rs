@@ -13,7 +13,11 @@ fn complete_graph(coords: &[[f64; 3]], n_supports: usize) -> Option<Structure> {
     let mut k = 0;
     for i in 0..n {
         for j in i + 1..n {
-            b = if k % 3 == 0 { b.bar(Bar::new(i, j)) } else { b.string(StringMember::new(i, j)) };
+            b = if k % 3 == 0 {
+                b.bar(Bar::new(i, j))
+            } else {
+                b.string(StringMember::new(i, j))
+            };
             k += 1;
         }
     }
@@ -54,6 +58,15 @@ proptest! {
         // the margin is a valid bound: the returned stress satisfies it
         let p = st.prestressability().unwrap();
         prop_assert!(p.margin >= 0.0 && p.margin <= 1.0);
+        // the dense interior point and Clarabel agree on the margin
+        let clarabel = Statics::with_settings(
+            &s,
+            tensegrity_core::StaticsSettings::default().lp_solver(tensegrity_core::statics::LpSolver::Clarabel),
+        )
+        .unwrap()
+        .prestressability()
+        .unwrap();
+        prop_assert!((clarabel.margin - p.margin).abs() < 1e-7, "{} vs {}", clarabel.margin, p.margin);
         if p.prestressable {
             prop_assert!((a * &p.stress).amax() <= 1e-9 * scale);
             for k in 0..m {

@@ -69,7 +69,21 @@ fn internal_mechanisms_per_option_set_match_errata_3_4() {
         ("outer", 5),
     ] {
         let t = build(&ToroidParams::default(), opts(o), 1.0).unwrap();
-        assert_eq!(analyse(&t).unwrap().internal_mechanisms, flexes, "{o}");
+        let a = analyse(&t).unwrap();
+        assert_eq!(a.internal_mechanisms, flexes, "{o}");
+        // the two LP solvers agree on the prestress margin
+        let clarabel = tensegrity_core::StaticsSettings::default()
+            .lp_solver(tensegrity_core::statics::LpSolver::Clarabel);
+        let other = tensegrity_core::Statics::with_settings(&t.structure, clarabel)
+            .unwrap()
+            .prestressability()
+            .unwrap();
+        assert!(
+            (other.margin - a.prestress_margin).abs() < 1e-8,
+            "{o}: {} vs {}",
+            other.margin,
+            a.prestress_margin
+        );
     }
 }
 

@@ -11,6 +11,7 @@
 //! - mechanisms: 3·(free dofs) − r first-order motions (the null space of Aᵀ, i.e. the last
 //!   columns of U), rigid-body motions included when the supports allow them.
 
+mod dense_lp;
 mod load;
 mod prestress;
 
@@ -106,12 +107,25 @@ pub fn equilibrium_matrix(structure: &Structure, dofs: &DofMap) -> DMatrix<f64> 
     a
 }
 
+/// Which solver runs the prestressability LP.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LpSolver {
+    /// The built-in dense predictor–corrector interior-point method (fast on the dense LP;
+    /// falls back to Clarabel if it fails).
+    #[default]
+    DenseInteriorPoint,
+    /// The Clarabel conic solver (sparse LDL).
+    Clarabel,
+}
+
 /// Settings of a statics analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StaticsSettings {
     /// Relative rank tolerance (σ counts as zero when σ ≤ tol · σ_max); `None` uses
     /// max(m, n)·ε.
     pub rank_tolerance: Option<f64>,
+    /// The LP solver for prestressability.
+    pub lp_solver: LpSolver,
 }
 
 impl StaticsSettings {
@@ -133,6 +147,18 @@ impl StaticsSettings {
         self.rank_tolerance = Some(rel);
         Ok(self)
     }
+
+    /// Chooses the prestressability LP solver.
+    ///
+    /// ```
+    /// use tensegrity_core::statics::{LpSolver, StaticsSettings};
+    /// let s = StaticsSettings::default().lp_solver(LpSolver::Clarabel);
+    /// assert_eq!(s.lp_solver, LpSolver::Clarabel);
+    /// ```
+    pub fn lp_solver(mut self, solver: LpSolver) -> Self {
+        self.lp_solver = solver;
+        self
+    }
 }
 
 /// The factored equilibrium problem of one structure: A, its SVD and the rank decision.
@@ -145,6 +171,7 @@ pub struct Statics<'a> {
     svd: Svd,
     tolerance: f64,
     rank: usize,
+    settings: StaticsSettings,
 }
 
 impl<'a> Statics<'a> {
@@ -169,6 +196,7 @@ impl<'a> Statics<'a> {
             svd,
             tolerance,
             rank,
+            settings,
         })
     }
 

@@ -2,19 +2,20 @@
 //! q_s ≥ t, every bar q_b ≤ −t and max|q| ≤ 1.
 //!
 //! The linear programme `max t  s.t.  V_s x ≥ t,  V_b x ≤ −t,  −1 ≤ V x ≤ 1` (with V an
-//! orthonormal self-stress basis) is solved with the Clarabel interior-point solver, written with
-//! two rows per member (t ≥ 0 makes the other two bounds redundant); the margin reported is then
+//! orthonormal self-stress basis) is written with two rows per member (t ≥ 0 makes the other two
+//! bounds redundant) and solved by the dense interior-point method of `dense_lp` (default) or
+//! by the Clarabel conic solver ([`crate::statics::LpSolver`]); the margin reported is then
 //! recomputed exactly from the returned stress scaled to max|q| = 1, so it is a certified lower
 //! bound of the optimum (the two agree to the solver tolerance, 1e-10). The structure is prestressable when
 //! t > [`PRESTRESS_TOLERANCE`]. The margin is 0 when there is no self-stress.
 
-use super::Statics;
+use super::{dense_lp, LpSolver, Statics};
 use crate::error::{CoreError, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 /// Margins at or below this value count as "not prestressable".
 pub const PRESTRESS_TOLERANCE: f64 = 1e-8;
@@ -44,72 +45,33 @@ impl Statics<'_> {
                 stress: DVector::zeros(m),
             });
         }
-        // Variables z = [x (d), t]; constraints A z + s = b, s ≥ 0.
-        let mut ii = Vec::new();
-        let mut jj = Vec::new();
-        let mut vv = Vec::new();
-        let mut b = Vec::new();
-        let mut row = 0;
-        let mut push_row =
-            |coefs: &mut dyn Iterator<Item = (usize, f64)>, rhs: f64, b: &mut Vec<f64>| {
-                for (j, v) in coefs {
-                    if v != 0.0 {
-                        ii.push(row);
-                        jj.push(j);
-                        vv.push(v);
-                    }
-                }
-                b.push(rhs);
-                row += 1;
-            };
-        // t ≥ 0 (x = 0 achieves it), so q_s ≥ t already bounds strings below by −1 and
-        // q_b ≤ −t bounds bars above by 1: two rows per member suffice.
+        // Variables z = [x (d), t]; constraints G z ≤ h. t ≥ 0 (x = 0 achieves it), so
+        // q_s ≥ t already bounds strings below by −1 and q_b ≤ −t bounds bars above by 1: two
+        // rows per member suffice. Strings: t − q_k ≤ 0, q_k ≤ 1; bars: q_k + t ≤ 0, −q_k ≤ 1.
+        let rows = 2 * m + 1;
+        let mut g = DMatrix::zeros(rows, d + 1);
+        let mut h = DVector::zeros(rows);
         for k in 0..m {
-            let r = basis.row(k);
-            let s = if k < nb { 1.0 } else { -1.0 };
-            // strings: t − q_k ≤ 0 and q_k ≤ 1; bars: q_k + t ≤ 0 and −q_k ≤ 1
-            push_row(
-                &mut (0..d)
-                    .map(|j| (j, s * r[j]))
-                    .chain(std::iter::once((d, 1.0))),
-                0.0,
-                &mut b,
-            );
-            push_row(&mut (0..d).map(|j| (j, -s * r[j])), 1.0, &mut b);
-        }
-        push_row(&mut std::iter::once((d, -1.0)), 0.0, &mut b);
-        let n_rows = b.len();
-        let a = CscMatrix::new_from_triplets(n_rows, d + 1, ii, jj, vv);
-        let p = CscMatrix::zeros((d + 1, d + 1));
-        let mut c = vec![0.0; d + 1];
-        c[d] = -1.0;
-        let cones = [SupportedConeT::NonnegativeConeT(n_rows)];
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .tol_gap_abs(1e-10)
-            .tol_gap_rel(1e-10)
-            .tol_feas(1e-10)
-            .max_iter(500)
-            .build()
-            .map_err(|e| CoreError::SolverFailed {
-                problem: "prestressability LP",
-                status: e.to_string(),
-            })?;
-        let mut solver = DefaultSolver::new(&p, &c, &a, &b, &cones, settings).map_err(|e| {
-            CoreError::SolverFailed {
-                problem: "prestressability LP",
-                status: e.to_string(),
+            let sign = if k < nb { 1.0 } else { -1.0 };
+            for j in 0..d {
+                g[(2 * k, j)] = sign * basis[(k, j)];
+                g[(2 * k + 1, j)] = -sign * basis[(k, j)];
             }
-        })?;
-        solver.solve();
-        let status = solver.solution.status;
-        if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
-            return Err(CoreError::SolverFailed {
-                problem: "prestressability LP",
-                status: format!("{status:?}"),
-            });
+            g[(2 * k, d)] = 1.0;
+            h[2 * k + 1] = 1.0;
         }
-        let x = DVector::from_iterator(d, solver.solution.x[..d].iter().copied());
+        g[(2 * m, d)] = -1.0;
+        let mut c = DVector::zeros(d + 1);
+        c[d] = -1.0;
+        let dense = match self.settings.lp_solver {
+            LpSolver::DenseInteriorPoint => dense_lp::solve(&g, &h, &c, 1e-10).ok(),
+            LpSolver::Clarabel => None,
+        };
+        let z = match dense {
+            Some(z) => z,
+            None => solve_clarabel(&g, &h, &c)?,
+        };
+        let x = z.rows(0, d).into_owned();
         let mut q = &basis * x;
         let scale = q.amax();
         if scale <= 0.0 {
@@ -130,4 +92,42 @@ impl Statics<'_> {
             stress: q,
         })
     }
+}
+
+/// Solves min cᵀz s.t. G z ≤ h with Clarabel.
+fn solve_clarabel(g: &DMatrix<f64>, h: &DVector<f64>, c: &DVector<f64>) -> Result<DVector<f64>> {
+    let (rows, cols) = g.shape();
+    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    for j in 0..cols {
+        for i in 0..rows {
+            if g[(i, j)] != 0.0 {
+                ii.push(i);
+                jj.push(j);
+                vv.push(g[(i, j)]);
+            }
+        }
+    }
+    let a = CscMatrix::new_from_triplets(rows, cols, ii, jj, vv);
+    let p = CscMatrix::zeros((cols, cols));
+    let cones = [SupportedConeT::NonnegativeConeT(rows)];
+    let failed = |status: String| CoreError::SolverFailed {
+        problem: "prestressability LP",
+        status,
+    };
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(1e-10)
+        .tol_gap_rel(1e-10)
+        .tol_feas(1e-10)
+        .max_iter(500)
+        .build()
+        .map_err(|e| failed(e.to_string()))?;
+    let mut solver = DefaultSolver::new(&p, c.as_slice(), &a, h.as_slice(), &cones, settings)
+        .map_err(|e| failed(e.to_string()))?;
+    solver.solve();
+    let status = solver.solution.status;
+    if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
+        return Err(failed(format!("{status:?}")));
+    }
+    Ok(DVector::from_column_slice(&solver.solution.x))
 }
