@@ -161,3 +161,43 @@ fn roll_and_tipover_run_from_the_command_line() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("fifty"));
 }
+
+#[test]
+fn an_exported_toroid_scene_gives_the_same_statics() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("toroid.toml");
+    let p = path.to_str().unwrap();
+    let out = run(&[
+        "toroid",
+        "--sides",
+        "6",
+        "--stabilize",
+        "spokes,inner",
+        "--export-scene",
+        p,
+        "--string-stiffness",
+        "5e4",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let toroid: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let statics = json(p);
+    for key in [
+        "rank",
+        "self_stress_dim",
+        "prestressable",
+        "internal_mechanisms",
+    ] {
+        assert_eq!(toroid[key], statics[key], "{key}");
+    }
+    let (a, b) = (
+        toroid["prestress_margin"].as_f64().unwrap(),
+        statics["prestress_margin"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+}

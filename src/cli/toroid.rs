@@ -73,6 +73,13 @@ pub struct ToroidArgs {
     /// Also search the rim radii R_m for which a single prism is prestressable.
     #[arg(long)]
     rim_window: bool,
+    /// Write the structure as a scene file (for `tensegrity statics` or `simulate`).
+    #[arg(long, value_name = "FILE")]
+    export_scene: Option<PathBuf>,
+    /// With --export-scene: give every string this stiffness (N/m) and the rest length that
+    /// realises the prestress design.
+    #[arg(long, value_name = "N_PER_M", requires = "export_scene")]
+    string_stiffness: Option<f64>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -113,6 +120,18 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
     } else {
         None
     };
+    if let Some(path) = &args.export_scene {
+        let structure = match (args.string_stiffness, &design) {
+            (Some(k), Some(d)) => toroid::prestressed_structure(&t, d, k)?,
+            (Some(_), None) => anyhow::bail!("--string-stiffness needs a prestressable toroid"),
+            (None, _) => t.structure.clone(),
+        };
+        std::fs::write(path, tensegrity_core::scene::to_toml(&structure))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        if !args.json {
+            println!("wrote {}", path.display());
+        }
+    }
     let window = if args.rim_window {
         toroid::rim_radius_window(&p, 0.02 * p.outer_radius, 1.5 * p.outer_radius, 75, 1e-6)?
     } else {

@@ -435,6 +435,14 @@ impl Structure {
         b.build()
     }
 
+    /// A builder holding everything in this structure except its strings (to re-add them
+    /// with new properties, in order).
+    pub fn to_builder_without_strings(&self) -> StructureBuilder {
+        let mut b = self.to_builder();
+        b.strings.clear();
+        b
+    }
+
     /// A builder holding everything in this structure, to modify and rebuild.
     pub fn to_builder(&self) -> StructureBuilder {
         StructureBuilder {

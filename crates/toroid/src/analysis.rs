@@ -188,3 +188,51 @@ pub fn rim_radius_window(
     };
     Ok(Some((left, right)))
 }
+
+/// The toroid's structure with every string given stiffness `k` (N/m) and the rest length
+/// that realises `design` at the current geometry, s0 = l (1 − q/k).
+///
+/// ```
+/// use toroid::{build, prestress_design, prestressed_structure, ToroidParams};
+/// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
+/// let d = prestress_design(&t, 10.0).unwrap();
+/// let s = prestressed_structure(&t, &d, 5e4).unwrap();
+/// let q = tensegrity_core::stiffness::string_force_densities(&s).unwrap();
+/// let nb = s.n_bars();
+/// assert!((q[nb] - d.force_density[nb]).abs() < 1e-9);
+/// ```
+pub fn prestressed_structure(
+    toroid: &Toroid,
+    design: &PrestressDesign,
+    k: f64,
+) -> Result<tensegrity_core::Structure> {
+    if !(k.is_finite() && k > 0.0) {
+        return Err(ToroidError::InvalidParameter {
+            name: "string_stiffness",
+            value: k,
+            reason: "must be a positive stiffness (N/m)".into(),
+        });
+    }
+    let s = &toroid.structure;
+    let nb = s.n_bars();
+    let lengths = s.member_lengths();
+    let mut b = s.to_builder_without_strings();
+    for (i, st) in s.strings().iter().enumerate() {
+        let q = design.force_density[nb + i];
+        if q >= k {
+            return Err(ToroidError::InvalidParameter {
+                name: "string_stiffness",
+                value: k,
+                reason: format!(
+                    "string {i} needs force density {q:.6} N/m, which a stiffness of {k} N/m cannot give (rest length ≤ 0)"
+                ),
+            });
+        }
+        b = b.string(
+            tensegrity_core::StringMember::new(st.nodes[0], st.nodes[1])
+                .stiffness(k)
+                .rest_length(lengths[nb + i] * (1.0 - q / k)),
+        );
+    }
+    Ok(b.build()?)
+}

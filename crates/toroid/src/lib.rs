@@ -24,8 +24,8 @@ pub mod rolling;
 mod tipover;
 
 pub use analysis::{
-    analyse, prestress_design, prism_prestressable, rim_radius_window, PrestressDesign,
-    ToroidAnalysis,
+    analyse, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
+    PrestressDesign, ToroidAnalysis,
 };
 pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};
 pub use error::{Result, ToroidError};

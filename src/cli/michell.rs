@@ -1,0 +1,274 @@
+//! `tensegrity michell`: a planar or 3-D discrete Michell truss under a tip load — member
+//! forces, member types, masses (thesis chapter 4, ERRATA ch. 4).
+//!
+//! ```text
+//! tensegrity michell --complexity Q (--planar | --cylindrical DELTA | --spherical EPS)
+//!     --beta B --phi P [--r0 R] [--load W0] [--azimuth A] [--polar G] [--material NAME]
+//!     [--extra-strings PRESTRESS] [--method recursive|global] [--json]
+//! ```
+
+use crate::cli::angle::parse_angle;
+use anyhow::{Context, Result};
+use clap::{ArgGroup, ValueEnum};
+use michell3d::{analyse, AnalysisRequest, MemberKind, Method, MichellParams, MichellReport};
+
+/// Force propagation method.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodArg {
+    /// Level-by-level method of joints (one 3×3 solve per node).
+    Recursive,
+    /// One sparse LU solve of the whole equilibrium system.
+    Global,
+}
+
+/// Arguments of `tensegrity michell`.
+#[derive(clap::Args, Debug)]
+#[command(group(
+    ArgGroup::new("geometry")
+        .required(true)
+        .args(["planar", "cylindrical", "spherical"])
+))]
+pub struct MichellArgs {
+    /// Complexity q (number of member levels; level-q nodes are supports).
+    #[arg(long, value_name = "Q")]
+    pub complexity: usize,
+    /// Skelton's planar truss in the y–z plane (two-index nodes n_ik).
+    #[arg(long)]
+    pub planar: bool,
+    /// 3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11).
+    #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
+    pub cylindrical: Option<f64>,
+    /// 3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24`.
+    #[arg(long, value_name = "EPS", value_parser = parse_angle, allow_hyphen_values = true)]
+    pub spherical: Option<f64>,
+    /// Departure angle β, e.g. `pi/6` or `30deg`.
+    #[arg(long, value_name = "B", value_parser = parse_angle)]
+    pub beta: f64,
+    /// Segmentation angle φ, e.g. `pi/8`.
+    #[arg(long, value_name = "P", value_parser = parse_angle)]
+    pub phi: f64,
+    /// Initial radius r₀ (m).
+    #[arg(long, value_name = "R", default_value_t = 1.0)]
+    pub r0: f64,
+    /// Tip load magnitude w₀ (N).
+    #[arg(long, value_name = "W0", default_value_t = 1000.0)]
+    pub load: f64,
+    /// Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃.
+    #[arg(long, value_name = "A", value_parser = parse_angle, default_value = "0", allow_hyphen_values = true)]
+    pub azimuth: f64,
+    /// Load polar angle γ from ι̂₃ (eq. 4.13).
+    #[arg(long, value_name = "G", value_parser = parse_angle, default_value = "pi", allow_hyphen_values = true)]
+    pub polar: f64,
+    /// Material of bars and strings (aluminium, steel, titanium, carbon_fibre, nylon, uhmwpe).
+    #[arg(long, value_name = "NAME", default_value = "steel")]
+    pub material: String,
+    /// Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to PRESTRESS newtons.
+    #[arg(long = "extra-strings", value_name = "PRESTRESS")]
+    pub extra_strings: Option<f64>,
+    /// Force propagation method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Recursive)]
+    pub method: MethodArg,
+    /// Print JSON instead of a readable report.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl MichellArgs {
+    /// The analysis the arguments describe.
+    pub fn request(&self) -> AnalysisRequest {
+        let q = self.complexity;
+        let params = match (self.cylindrical, self.spherical) {
+            (Some(delta), _) => MichellParams::cylindrical(q, self.r0, self.beta, self.phi, delta),
+            (None, Some(eps)) => MichellParams::spherical(q, self.r0, self.beta, self.phi, eps),
+            (None, None) => MichellParams::planar(q, self.r0, self.beta, self.phi),
+        };
+        AnalysisRequest {
+            params,
+            load: self.load,
+            azimuth: self.azimuth,
+            polar: self.polar,
+            material: self.material.clone(),
+            extra_strings: self.extra_strings,
+            method: match self.method {
+                MethodArg::Recursive => Method::Recursive,
+                MethodArg::Global => Method::Global,
+            },
+        }
+    }
+}
+
+/// Runs `tensegrity michell`.
+pub fn run(args: &MichellArgs) -> Result<()> {
+    let report = analyse(&args.request()).context("michell truss analysis failed")?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", text_report(&report));
+    }
+    Ok(())
+}
+
+fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
+    use std::fmt::Write;
+    let _ = writeln!(
+        s,
+        "{:>16} {:>16} {:>12.6} {:>16.6e} {:>14.6e} {:>6} {:>9}",
+        tuple(&m.parent),
+        tuple(&m.child),
+        m.length,
+        m.force_density,
+        m.force,
+        m.kind.as_str(),
+        m.governing
+    );
+}
+
+fn tuple(t: &[usize]) -> String {
+    let parts: Vec<String> = t.iter().map(|v| v.to_string()).collect();
+    format!("({})", parts.join(","))
+}
+
+/// The readable report.
+pub fn text_report(r: &MichellReport) -> String {
+    use std::fmt::Write;
+    let p = &r.params;
+    let mut s = String::new();
+    let geometry = match p.geometry {
+        michell3d::Geometry::Planar => "planar (Skelton)".to_string(),
+        michell3d::Geometry::Cylindrical { delta } => format!("3-D cylindrical, δ = {delta}"),
+        michell3d::Geometry::Spherical { epsilon } => format!("3-D spherical, ε = {epsilon} rad"),
+    };
+    let _ = writeln!(
+        s,
+        "Michell truss: {geometry}, complexity q = {}",
+        p.complexity
+    );
+    let _ = writeln!(
+        s,
+        "  r0 = {} m, β = {:.6} rad ({:.4}°), φ = {:.6} rad ({:.4}°), a = {:.6}, c = {:.6}",
+        p.r0,
+        p.beta,
+        p.beta.to_degrees(),
+        p.phi,
+        p.phi.to_degrees(),
+        p.a(),
+        p.c()
+    );
+    let _ = writeln!(
+        s,
+        "  tip load w = [{:.6}, {:.6}, {:.6}] N; method {}; material {}",
+        r.load[0],
+        r.load[1],
+        r.load[2],
+        match r.method {
+            Method::Recursive => "recursive",
+            Method::Global => "global",
+        },
+        r.material
+    );
+    let count = |k: MemberKind| r.members.iter().filter(|m| m.kind == k).count();
+    let supports = r.nodes.iter().filter(|n| n.support).count();
+    let _ = writeln!(
+        s,
+        "  {} nodes ({} supports), {} members: {} strings, {} bars, {} none",
+        r.nodes.len(),
+        supports,
+        r.members.len(),
+        count(MemberKind::String),
+        count(MemberKind::Bar),
+        count(MemberKind::None)
+    );
+    let _ = writeln!(
+        s,
+        "\n{:>16} {:>16} {:>12} {:>16} {:>14} {:>6} {:>9}",
+        "parent", "child", "length [m]", "q [N/m]", "force [N]", "kind", "governs"
+    );
+    for m in &r.members {
+        member_row(&mut s, m);
+    }
+    if let Some(t) = r.prestress {
+        let _ = writeln!(s, "\nExtra strings (prestress {t} N each):");
+        for m in &r.extra_strings {
+            member_row(&mut s, m);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nMass: yield {:.6e} kg, yield + buckling {:.6e} kg",
+        r.mass_kg.yield_only, r.mass_kg.yield_buckling
+    );
+    let _ = writeln!(
+        s,
+        "Normalised yield mass Σ|q|l²/(w0 r0) = {:.9}",
+        r.normalized_yield_mass
+    );
+    let _ = writeln!(s, "Buckling-governed bars: {}", r.buckling_governed.len());
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser, Debug)]
+    struct Cli {
+        #[command(flatten)]
+        args: MichellArgs,
+    }
+
+    fn parse(argv: &[&str]) -> Result<MichellArgs, clap::Error> {
+        let mut all = vec!["michell"];
+        all.extend_from_slice(argv);
+        Cli::try_parse_from(all).map(|c| c.args)
+    }
+
+    #[test]
+    fn parses_the_documented_flags() {
+        let a = parse(&[
+            "--complexity",
+            "4",
+            "--cylindrical",
+            "0.25",
+            "--beta",
+            "pi/6",
+            "--phi",
+            "22.5deg",
+            "--azimuth",
+            "-pi/4",
+            "--polar",
+            "3pi/4",
+            "--method",
+            "global",
+            "--json",
+        ])
+        .unwrap();
+        assert_eq!(a.complexity, 4);
+        assert_eq!(a.cylindrical, Some(0.25));
+        assert!((a.phi - std::f64::consts::PI / 8.0).abs() < 1e-15);
+        assert!((a.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        assert_eq!((a.r0, a.load, a.material.as_str()), (1.0, 1000.0, "steel"));
+        assert_eq!(a.method, MethodArg::Global);
+        let req = a.request();
+        assert_eq!(req.method, Method::Global);
+        assert!(analyse(&req).is_ok());
+    }
+
+    #[test]
+    fn geometry_is_required_and_exclusive() {
+        let base = ["--complexity", "2", "--beta", "pi/6", "--phi", "pi/8"];
+        assert!(parse(&base).is_err());
+        let mut both = base.to_vec();
+        both.extend(["--planar", "--spherical", "pi/24"]);
+        assert!(parse(&both).is_err());
+        let mut planar = base.to_vec();
+        planar.push("--planar");
+        let r = analyse(&parse(&planar).unwrap().request()).unwrap();
+        assert_eq!(r.members.len(), 6);
+        assert!(text_report(&r).contains("planar"));
+        let mut bad = base.to_vec();
+        bad.extend(["--cylindrical", "0"]);
+        let err = analyse(&parse(&bad).unwrap().request()).unwrap_err();
+        assert!(err.to_string().contains("delta"));
+    }
+}

@@ -1,0 +1,214 @@
+//! `tensegrity simulate SCENE.toml [--t-end S] [--integrator rk4|rk45|rattle] [--dt S]
+//! [--rtol X] [--atol X] [--out traj.csv] [--output-interval S] [--json]`.
+//!
+//! The scene's `[simulation]`, `[ground]` and `[[actuation]]` tables configure the run;
+//! command-line flags override the file. With `--json` the report is one JSON object with
+//! exactly the keys `t_end`, `steps`, `rhs_evals`, `final_nodes` (n×3, file node numbering:
+//! class-1 copies merged back), `final_velocities`, `energy_drift` (max relative),
+//! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
+//! `wall_time_s` (the integration alone, without parsing and output).
+
+use anyhow::{bail, Context, Result};
+use serde::Serialize;
+use std::io::Write;
+use std::path::PathBuf;
+use tensegrity_core::dynamics::{
+    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, SimulationResult, SimulationSpec,
+};
+use tensegrity_core::Structure;
+
+/// Integrator choice on the command line.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorArg {
+    /// Classic fixed-step RK4.
+    Rk4,
+    /// Adaptive Dormand–Prince 5(4).
+    Rk45,
+    /// Constraint-preserving RATTLE (fixed step, 2nd order).
+    Rattle,
+}
+
+impl From<IntegratorArg> for IntegratorKind {
+    fn from(a: IntegratorArg) -> Self {
+        match a {
+            IntegratorArg::Rk4 => IntegratorKind::Rk4,
+            IntegratorArg::Rk45 => IntegratorKind::Rk45,
+            IntegratorArg::Rattle => IntegratorKind::Rattle,
+        }
+    }
+}
+
+/// Arguments of `tensegrity simulate`.
+#[derive(clap::Args, Debug)]
+pub struct SimulateArgs {
+    /// The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`.
+    pub scene: PathBuf,
+    /// End time (s); overrides `[simulation] t_end`.
+    #[arg(long, value_name = "S")]
+    pub t_end: Option<f64>,
+    /// Integrator; overrides `[simulation] integrator` (default rk4).
+    #[arg(long, value_enum)]
+    pub integrator: Option<IntegratorArg>,
+    /// Fixed step (rk4, rattle) or maximum step (rk45), s.
+    #[arg(long, value_name = "S")]
+    pub dt: Option<f64>,
+    /// Relative tolerance (rk45).
+    #[arg(long, value_name = "X")]
+    pub rtol: Option<f64>,
+    /// Absolute tolerance (rk45).
+    #[arg(long, value_name = "X")]
+    pub atol: Option<f64>,
+    /// Write the node trajectories to this CSV file.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Sampling interval of the CSV (s); default: the scene's output times, else t_end/200.
+    #[arg(long, value_name = "S")]
+    pub output_interval: Option<f64>,
+    /// Print the JSON report.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The JSON report of `tensegrity simulate`.
+#[derive(Debug, Serialize, PartialEq)]
+pub struct SimulateReport {
+    /// Final time reached (s).
+    pub t_end: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side (force) evaluations.
+    pub rhs_evals: u64,
+    /// Final node positions (m), file numbering.
+    pub final_nodes: Vec<[f64; 3]>,
+    /// Final node velocities (m/s), file numbering.
+    pub final_velocities: Vec<[f64; 3]>,
+    /// Max relative total-energy drift.
+    pub energy_drift: f64,
+    /// Max absolute bar-length error (m).
+    pub bar_length_drift: f64,
+    /// Max absolute ‖N P − D‖ component (m).
+    pub constraint_drift: f64,
+    /// Wall time of the integration alone (s).
+    pub wall_time_s: f64,
+}
+
+impl From<&SimulationResult> for SimulateReport {
+    fn from(r: &SimulationResult) -> Self {
+        Self {
+            t_end: r.t_end,
+            steps: r.steps,
+            rhs_evals: r.rhs_evals,
+            final_nodes: r.final_nodes.iter().map(|v| [v.x, v.y, v.z]).collect(),
+            final_velocities: r.final_velocities.iter().map(|v| [v.x, v.y, v.z]).collect(),
+            energy_drift: r.energy_drift,
+            bar_length_drift: r.bar_length_drift,
+            constraint_drift: r.constraint_drift,
+            wall_time_s: r.wall_time_s,
+        }
+    }
+}
+
+/// Runs `tensegrity simulate` on an already parsed scene.
+///
+/// The caller (the scene loader in `main`) passes the structure and the scene's optional
+/// `[simulation]`, `[ground]` and `[[actuation]]` tables; `args` overrides the simulation
+/// table. Prints the report (JSON with `--json`) on stdout and writes `--out` if given.
+pub fn run(
+    args: &SimulateArgs,
+    structure: &Structure,
+    sim: Option<&SimulationSpec>,
+    ground: Option<&GroundSpec>,
+    actuation: &[ActuationSpec],
+) -> Result<()> {
+    let mut simulation = build_simulation(structure, sim, ground, actuation)
+        .with_context(|| format!("setting up the simulation of {}", args.scene.display()))?;
+    let s = &mut simulation.settings;
+    match (args.t_end, sim) {
+        (Some(t), _) => s.t_end = t,
+        (None, Some(_)) => {}
+        (None, None) => bail!(
+            "{}: no end time: give `[simulation] t_end` in the scene or --t-end",
+            args.scene.display()
+        ),
+    }
+    if let Some(i) = args.integrator {
+        s.integrator = i.into();
+    }
+    if let Some(dt) = args.dt {
+        s.dt = dt;
+    }
+    if let Some(r) = args.rtol {
+        s.rtol = r;
+    }
+    if let Some(a) = args.atol {
+        s.atol = a;
+    }
+    if args.out.is_some() {
+        s.quantities.nodes = true;
+        if let Some(dt_out) = args.output_interval {
+            s.output_interval = Some(dt_out);
+        } else if s.output_times.is_empty() && s.output_interval.is_none() {
+            s.output_interval = Some(s.t_end / 200.0);
+        }
+    }
+    let result = simulation
+        .run()
+        .with_context(|| format!("simulating {}", args.scene.display()))?;
+    if let Some(path) = &args.out {
+        write_csv(path, &result)
+            .with_context(|| format!("writing the trajectory to {}", path.display()))?;
+    }
+    let report = SimulateReport::from(&result);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        println!(
+            "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
+            report.t_end,
+            simulation.settings.integrator,
+            report.steps,
+            report.rhs_evals,
+            report.wall_time_s * 1e3
+        );
+        println!("max relative energy drift   {:.3e}", report.energy_drift);
+        println!(
+            "max bar-length drift        {:.3e} m",
+            report.bar_length_drift
+        );
+        println!(
+            "max |N P - D|               {:.3e} m",
+            report.constraint_drift
+        );
+        println!("final nodes (m):");
+        for (i, n) in report.final_nodes.iter().enumerate() {
+            println!("  {i:4}  {:+.9e} {:+.9e} {:+.9e}", n[0], n[1], n[2]);
+        }
+        if let Some(p) = &args.out {
+            println!("trajectory written to {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// Writes `t [s]` and `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]` columns, one row per sample.
+fn write_csv(path: &std::path::Path, result: &SimulationResult) -> Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let n = result.final_nodes.len();
+    let mut header = String::from("t [s]");
+    for i in 0..n {
+        for axis in ["x", "y", "z"] {
+            header.push_str(&format!(",n{i}_{axis} [m]"));
+        }
+    }
+    writeln!(f, "{header}")?;
+    for s in &result.samples {
+        let Some(nodes) = &s.nodes else { continue };
+        write!(f, "{:.17e}", s.t)?;
+        for p in nodes {
+            write!(f, ",{:.17e},{:.17e},{:.17e}", p.x, p.y, p.z)?;
+        }
+        writeln!(f)?;
+    }
+    f.flush()?;
+    Ok(())
+}
