@@ -28,6 +28,15 @@ fn loaded_dbar_json_has_forces_reactions_and_the_benchmark_mass() {
     assert_eq!(v["prestressable"], false);
     let mass = v["mass_kg"].as_f64().unwrap();
     assert!((mass - 8.858023).abs() < 5e-7, "{mass}");
+    let per_member: f64 = v["member_mass_kg"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_f64().unwrap())
+        .sum();
+    assert!((per_member - mass).abs() < 1e-12);
+    assert_eq!(v["governing"][0], "buckling");
+    assert_eq!(v["governing"][4], "yield");
     let f = v["member_force"].as_array().unwrap();
     assert!((f[4].as_f64().unwrap() - 1e4).abs() < 1e-6);
     assert!((f[0].as_f64().unwrap() + 1e4 / 2f64.sqrt()).abs() < 1e-6);

@@ -76,6 +76,15 @@ pub struct StaticsReport {
     /// Total minimum mass for the loads (kg), when members have materials.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mass_kg: Option<f64>,
+    /// Minimum radius of each member for the loads (m), when sized.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub member_radius_m: Option<Vec<f64>>,
+    /// Minimum mass of each member for the loads (kg), when sized.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub member_mass_kg: Option<Vec<f64>>,
+    /// Failure mode setting each member's size: "yield", "buckling" or "unloaded".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub governing: Option<Vec<&'static str>>,
     /// Why the mass could not be computed, when members have materials but sizing failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_error: Option<String>,
@@ -117,6 +126,9 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
         reactions: None,
         residual: None,
         mass_kg: None,
+        member_radius_m: None,
+        member_mass_kg: None,
+        governing: None,
         sizing_error: None,
     };
     if structure.is_loaded() {
@@ -125,7 +137,21 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
             .any(|k| structure.member_material(structure.member_id(k)).is_some());
         if has_materials {
             match sizing::size_structure(structure, &sol.member_force) {
-                Ok(s) => report.mass_kg = Some(s.total_mass),
+                Ok(s) => {
+                    report.mass_kg = Some(s.total_mass);
+                    report.member_radius_m = Some(s.members.iter().map(|m| m.radius).collect());
+                    report.member_mass_kg = Some(s.members.iter().map(|m| m.mass).collect());
+                    report.governing = Some(
+                        s.members
+                            .iter()
+                            .map(|m| match m.governing {
+                                sizing::Governing::Yield => "yield",
+                                sizing::Governing::Buckling => "buckling",
+                                sizing::Governing::Unloaded => "unloaded",
+                            })
+                            .collect(),
+                    );
+                }
                 Err(e) => report.sizing_error = Some(e.to_string()),
             }
         }
@@ -193,7 +219,26 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
             );
         }
     }
-    if let Some(m) = r.mass_kg {
+    if let (Some(m), Some(radii), Some(masses), Some(gov)) = (
+        r.mass_kg,
+        &r.member_radius_m,
+        &r.member_mass_kg,
+        &r.governing,
+    ) {
+        println!("minimum-mass sizing:");
+        println!(
+            "  {:<10} {:>12} {:>12} {:>10}",
+            "member", "radius [mm]", "mass [kg]", "governed"
+        );
+        for k in 0..radii.len() {
+            println!(
+                "  {:<10} {:>12.4} {:>12.6} {:>10}",
+                structure.member_id(k).to_string(),
+                radii[k] * 1e3,
+                masses[k],
+                gov[k]
+            );
+        }
         println!("minimum mass for these loads: {m:.6} kg");
     }
     if let Some(e) = &r.sizing_error {
