@@ -19,6 +19,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub use michell3d;
 pub use tensegrity_core as core;
 pub use toroid;
 

@@ -18,6 +18,12 @@ enum Command {
     Demo,
     /// Equilibrium matrix, self-stress, prestressability, load solve and sizing of a scene.
     Statics(cli::statics::StaticsArgs),
+    /// Simulate a scene in time (rigid-bar dynamics; RK4, adaptive RK45 or RATTLE).
+    Simulate(cli::simulate::SimulateArgs),
+    /// Benchmarks, e.g. the work–precision report of the integrators.
+    Bench(cli::bench::BenchArgs),
+    /// Discrete Michell truss (planar, cylindrical δ or spherical ε): nodes, forces, sizing.
+    Michell(cli::michell::MichellArgs),
     /// Build and analyse the 3-bar-prism tensegrity toroid (counts, prestress, flexes, inertia).
     Toroid(cli::toroid::ToroidArgs),
     /// Roll the toroid wheel down an incline (reduced rigid model).
@@ -31,6 +37,9 @@ fn main() {
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),
+        Command::Simulate(args) => simulate(args),
+        Command::Bench(args) => cli::bench::run(args),
+        Command::Michell(args) => cli::michell::run(args),
         Command::Toroid(args) => cli::toroid::run_toroid(args),
         Command::Roll(args) => cli::toroid::run_roll(args),
         Command::Tipover(args) => cli::toroid::run_tipover(args),
@@ -39,4 +48,15 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
+}
+
+fn simulate(args: &cli::simulate::SimulateArgs) -> anyhow::Result<()> {
+    let scene = tensegrity_core::scene::Scene::from_path(&args.scene)?;
+    cli::simulate::run(
+        args,
+        &scene.structure,
+        scene.file.simulation.as_ref(),
+        scene.file.ground.as_ref(),
+        &scene.file.actuation,
+    )
 }

@@ -146,6 +146,8 @@ fn roll_and_tipover_run_from_the_command_line() {
         "50deg",
         "--t-end",
         "2",
+        "--fidelity",
+        "rigid",
         "--json",
     ]);
     assert!(
@@ -159,6 +161,26 @@ fn roll_and_tipover_run_from_the_command_line() {
         v["axle_height_oscillation"].as_f64().unwrap() < 1.0 - (std::f64::consts::PI / 12.0).cos()
     );
     assert!(v["mean_speed"].as_f64().unwrap() > 0.0);
+    // the full model, briefly: the wheel starts at rest and the hub moves downhill
+    let out = run(&[
+        "roll",
+        "--t-end",
+        "0.3",
+        "--fidelity",
+        "full",
+        "--contact",
+        "penalty",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["fidelity"], "full");
+    assert!(v["mean_speed"].as_f64().unwrap() > 0.0);
+    assert!(v["max_reaction"].as_f64().unwrap() > 0.0);
     let out = run(&["tipover", "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     // ρ = 0.4, ε = 0.75, σ = 0.6: F_f/F_e = −(σ + ε)/(1 − σ) = −3.375

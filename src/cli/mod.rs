@@ -1,6 +1,9 @@
 //! Subcommands of the `tensegrity` binary: argument parsing and output only, no mechanics.
 
 pub mod angle;
+pub mod bench;
 pub mod demo;
+pub mod michell;
+pub mod simulate;
 pub mod statics;
 pub mod toroid;

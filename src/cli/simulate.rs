@@ -49,7 +49,7 @@ pub struct SimulateArgs {
     /// Integrator; overrides `[simulation] integrator` (default rk4).
     #[arg(long, value_enum)]
     pub integrator: Option<IntegratorArg>,
-    /// Fixed step (rk4, rattle) or maximum step (rk45), s.
+    /// Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45; default t_end), s.
     #[arg(long, value_name = "S")]
     pub dt: Option<f64>,
     /// Relative tolerance (rk45).
@@ -136,6 +136,9 @@ pub fn run(
     }
     if let Some(dt) = args.dt {
         s.dt = dt;
+    } else if s.integrator == IntegratorKind::Rk45 && sim.and_then(|x| x.dt).is_none() {
+        // no step given anywhere: rk45 chooses its own, unbounded below t_end
+        s.dt = s.t_end;
     }
     if let Some(r) = args.rtol {
         s.rtol = r;

@@ -5,6 +5,7 @@ use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
 use toroid::rolling::RigidRolling;
+use toroid::rolling_full::{auto_fidelity, ContactModel, Fidelity, FullRolling};
 use toroid::{
     analyse, build, build_prism, friction_grid, prestress_design, tipover, Stabilize, ToroidParams,
 };
@@ -211,6 +212,26 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
     Ok(())
 }
 
+/// `--fidelity` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FidelityArg {
+    /// Reduced rigid polygon.
+    Rigid,
+    /// Full tensegrity dynamics.
+    Full,
+    /// Rigid when the strings are stiff enough.
+    Auto,
+}
+
+/// `--contact` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactArg {
+    /// Thesis §3.2.2: weight-based normal reaction plus velocity damping.
+    Thesis,
+    /// Penalty spring–damper with regularised Coulomb friction.
+    Penalty,
+}
+
 /// Arguments of `tensegrity roll`.
 #[derive(clap::Args, Debug)]
 pub struct RollArgs {
@@ -225,6 +246,28 @@ pub struct RollArgs {
     /// Integration step (s).
     #[arg(long, default_value_t = 1e-4)]
     dt: f64,
+    /// Model: the reduced rigid polygon, the full tensegrity dynamics, or auto (rigid when
+    /// m g / (k R_o) < 1e-3, i.e. the strings barely stretch under the wheel's weight).
+    #[arg(long, value_enum, default_value_t = FidelityArg::Auto)]
+    fidelity: FidelityArg,
+    /// Ground contact of the full model.
+    #[arg(long, value_enum, default_value_t = ContactArg::Thesis)]
+    contact: ContactArg,
+    /// Ground damping (N·s/m): contact-velocity damping (thesis) or normal damping (penalty).
+    #[arg(long, default_value_t = 200.0)]
+    ground_damping: f64,
+    /// Penalty ground stiffness (N/m).
+    #[arg(long, default_value_t = 1e5)]
+    ground_stiffness: f64,
+    /// Static friction coefficient of the penalty ground (kinetic = 0.75 of it).
+    #[arg(long, default_value_t = 0.8)]
+    mu: f64,
+    /// String stiffness of the full model (N/m).
+    #[arg(long, default_value_t = 2e4)]
+    string_stiffness: f64,
+    /// Smallest string tension of the full model's prestress (N).
+    #[arg(long, default_value_t = 20.0)]
+    min_tension: f64,
     /// Write the sampled history (1 ms) to this CSV file.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -259,9 +302,49 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         args.geometry.bar_density,
     )?;
     let a = analyse(&t)?;
-    let mut model = RigidRolling::of(&t, &a, args.incline);
-    model.dt = args.dt;
-    let r = model.run(args.t_end)?;
+    let fidelity = match args.fidelity {
+        FidelityArg::Rigid => Fidelity::Rigid,
+        FidelityArg::Full => Fidelity::Full,
+        FidelityArg::Auto => auto_fidelity(
+            a.mass_kg,
+            9.81,
+            args.string_stiffness,
+            t.params.outer_radius,
+        ),
+    };
+    let r = match fidelity {
+        Fidelity::Rigid => {
+            let mut model = RigidRolling::of(&t, &a, args.incline);
+            model.dt = args.dt;
+            model.run(args.t_end)?
+        }
+        Fidelity::Full => {
+            let contact = match args.contact {
+                ContactArg::Thesis => ContactModel::Thesis {
+                    damping: args.ground_damping,
+                },
+                ContactArg::Penalty => ContactModel::Penalty {
+                    stiffness: args.ground_stiffness,
+                    damping: args.ground_damping,
+                    mu_static: args.mu,
+                    mu_kinetic: 0.75 * args.mu,
+                },
+            };
+            let full = FullRolling {
+                incline: args.incline,
+                contact,
+                string_stiffness: args.string_stiffness,
+                min_string_tension: args.min_tension,
+                dt: args.dt,
+                ..FullRolling::default()
+            };
+            full.run(&t, args.t_end)?
+        }
+    };
+    let fidelity_name = match fidelity {
+        Fidelity::Rigid => "rigid",
+        Fidelity::Full => "full",
+    };
     if let Some(path) = &args.out {
         let mut f = std::io::BufWriter::new(
             std::fs::File::create(path)
@@ -280,7 +363,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         }
     }
     let report = RollReport {
-        fidelity: "rigid",
+        fidelity: fidelity_name,
         sides: args.geometry.sides,
         incline_rad: args.incline,
         t_end: args.t_end,
@@ -298,7 +381,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         println!(
-            "rigid rolling, n = {}, incline {:.3} deg, {} s: {} impacts",
+            "{fidelity_name} rolling, n = {}, incline {:.3} deg, {} s: {} impacts",
             report.sides,
             args.incline.to_degrees(),
             args.t_end,
@@ -314,7 +397,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         );
         if r.min_normal < 0.0 {
             println!(
-                "note: the normal force goes negative for {:.3} s (min {:.3} N): a free wheel would leave the slope there",
+                "note: the net normal force goes negative for {:.3} s (min {:.3} N): the wheel would leave the slope there",
                 r.lift_off_time, r.min_normal
             );
         }

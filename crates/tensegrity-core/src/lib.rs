@@ -9,6 +9,8 @@
 //!   prestressability (LP), minimal-norm load solve with reactions;
 //! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
+//! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
+//!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
 //! - [`scene`]: the TOML scene format;
 //! - [`linalg`]: the thin layer over faer.
 //!
@@ -29,6 +31,9 @@ pub mod stiffness;
 pub mod structure;
 
 pub use connectivity::{Connectivity, Incidence};
+pub use dynamics::{
+    DynamicsError, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
+};
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};

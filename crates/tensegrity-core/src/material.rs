@@ -60,7 +60,7 @@ impl Material {
 /// the others are typical handbook values.
 pub const BUILTIN_MATERIALS: &[(&str, f64, f64, f64)] = &[
     ("aluminium", 2700.0, 60e9, 110e6),
-    ("steel", 7862.0, 210e9, 690e6),
+    ("steel", 7862.0, 206e9, 690e6),
     ("titanium", 4430.0, 114e9, 880e6),
     ("carbon_fibre", 1600.0, 150e9, 1500e6),
     ("nylon", 1140.0, 2.7e9, 75e6),

@@ -66,6 +66,15 @@ pub struct SceneFile {
     /// Gravity.
     #[serde(default)]
     pub gravity: Option<GravitySpec>,
+    /// `[simulation]`: integrator, end time, tolerances, output times.
+    #[serde(default)]
+    pub simulation: Option<crate::dynamics::SimulationSpec>,
+    /// `[ground]`: a plane, its contact model and the nodes that can touch it.
+    #[serde(default)]
+    pub ground: Option<crate::dynamics::GroundSpec>,
+    /// `[[actuation]]`: time tables of string rest lengths or nodal loads.
+    #[serde(default)]
+    pub actuation: Vec<crate::dynamics::ActuationSpec>,
 }
 
 /// A `[materials.NAME]` table.
@@ -175,7 +184,7 @@ impl Scene {
     /// use tensegrity_core::scene::Scene;
     /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 7]\n";
     /// let err = Scene::from_str_named(text, "demo.toml").unwrap_err().to_string();
-    /// assert!(err.contains("line 3") && err.contains("bar 0") && err.contains("7"), "{err}");
+    /// assert!(err.contains("line 2") && err.contains("bar 0") && err.contains("7"), "{err}");
     /// ```
     pub fn from_str_named(text: &str, name: &str) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text)

@@ -28,6 +28,9 @@ pub enum ToroidError {
         /// The LP margin found.
         margin: f64,
     },
+    /// The dynamics engine stopped (its message names the time and member).
+    #[error("dynamics: {0}")]
+    Dynamics(String),
     /// An error of the core analyses.
     #[error(transparent)]
     Core(#[from] CoreError),

@@ -21,6 +21,7 @@ mod error;
 mod inertia;
 mod params;
 pub mod rolling;
+pub mod rolling_full;
 mod tipover;
 
 pub use analysis::{

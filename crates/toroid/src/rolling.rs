@@ -210,7 +210,7 @@ impl RigidRolling {
             }
             samples.push(self.sample(sp, theta, rate, t_out));
         }
-        Ok(self.summarise(samples, impacts))
+        Ok(summarise(samples, impacts, self.output_dt))
     }
 
     fn sample(&self, sp: f64, theta: f64, rate: f64, t: f64) -> RollingSample {
@@ -234,40 +234,43 @@ impl RigidRolling {
                 + m * g * ((h - h0) * cos - (s - s0) * sin),
         }
     }
+}
 
-    fn summarise(&self, samples: Vec<RollingSample>, impacts: usize) -> RollingResult {
-        let t_end = samples.last().map_or(0.0, |s| s.t);
-        let skip = if t_end > 1.0 { 1.0 } else { 0.0 };
-        let tail: Vec<&RollingSample> = samples.iter().filter(|s| s.t >= skip - 1e-12).collect();
-        let mean_h = tail.iter().map(|s| s.h).sum::<f64>() / tail.len() as f64;
-        let rms =
-            (tail.iter().map(|s| (s.h - mean_h).powi(2)).sum::<f64>() / tail.len() as f64).sqrt();
-        let (first, last) = (tail[0], tail[tail.len() - 1]);
-        let mean_speed = if last.t > first.t {
-            (last.s - first.s) / (last.t - first.t)
-        } else {
-            0.0
-        };
-        RollingResult {
-            impacts,
-            axle_height_oscillation: rms,
-            mean_speed,
-            max_reaction: samples
-                .iter()
-                .map(|s| s.normal.hypot(s.tangential))
-                .fold(0.0, f64::max),
-            min_normal: samples
-                .iter()
-                .map(|s| s.normal)
-                .fold(f64::INFINITY, f64::min),
-            lift_off_time: samples.iter().filter(|s| s.normal < 0.0).count() as f64
-                * self.output_dt,
-            required_friction: samples
-                .iter()
-                .filter(|s| s.normal > 0.0)
-                .map(|s| s.tangential.abs() / s.normal)
-                .fold(0.0, f64::max),
-            samples,
-        }
+/// Summary figures of a sampled rolling history (shared by the rigid and the full model).
+pub(crate) fn summarise(
+    samples: Vec<RollingSample>,
+    impacts: usize,
+    output_dt: f64,
+) -> RollingResult {
+    let t_end = samples.last().map_or(0.0, |s| s.t);
+    let skip = if t_end > 1.0 { 1.0 } else { 0.0 };
+    let tail: Vec<&RollingSample> = samples.iter().filter(|s| s.t >= skip - 1e-12).collect();
+    let mean_h = tail.iter().map(|s| s.h).sum::<f64>() / tail.len() as f64;
+    let rms = (tail.iter().map(|s| (s.h - mean_h).powi(2)).sum::<f64>() / tail.len() as f64).sqrt();
+    let (first, last) = (tail[0], tail[tail.len() - 1]);
+    let mean_speed = if last.t > first.t {
+        (last.s - first.s) / (last.t - first.t)
+    } else {
+        0.0
+    };
+    RollingResult {
+        impacts,
+        axle_height_oscillation: rms,
+        mean_speed,
+        max_reaction: samples
+            .iter()
+            .map(|s| s.normal.hypot(s.tangential))
+            .fold(0.0, f64::max),
+        min_normal: samples
+            .iter()
+            .map(|s| s.normal)
+            .fold(f64::INFINITY, f64::min),
+        lift_off_time: samples.iter().filter(|s| s.normal < 0.0).count() as f64 * output_dt,
+        required_friction: samples
+            .iter()
+            .filter(|s| s.normal > 0.0)
+            .map(|s| s.tangential.abs() / s.normal)
+            .fold(0.0, f64::max),
+        samples,
     }
 }

@@ -136,3 +136,39 @@ pub fn spinning_bar(l: f64, omega: f64) -> Result<Structure> {
         .bar(Bar::new(0, 1).mass(1.0))
         .build()
 }
+
+/// `n` D-bars (L = 2, h = 0.5, 1 kg bars, k = 1000 N/m) in a row along x, sharing their end
+/// joints: interior joints are class-4, the ends class-2. Strings are 5 % (span) and 10 %
+/// (height) short. With n ≥ 2 the Ω system has more than 48 rows and uses the sparse path.
+pub fn dbar_chain(n: usize) -> Result<Structure> {
+    let (l, h) = (2.0, 0.5);
+    let mut b = Structure::builder();
+    for k in 0..=n {
+        b = b.node([k as f64 * l, 0.0, 0.0]);
+    }
+    for k in 0..n {
+        let x = k as f64 * l;
+        b = b.node([x + l / 2.0, h / 2.0, 0.0]);
+        b = b.node([x + l / 2.0, -h / 2.0, 0.0]);
+    }
+    for k in 0..n {
+        let (a, d) = (k, k + 1);
+        let (up, dn) = (n + 1 + 2 * k, n + 2 + 2 * k);
+        b = b
+            .bar(Bar::new(a, up).mass(1.0))
+            .bar(Bar::new(a, dn).mass(1.0))
+            .bar(Bar::new(up, d).mass(1.0))
+            .bar(Bar::new(dn, d).mass(1.0))
+            .string(
+                StringMember::new(a, d)
+                    .stiffness(1000.0)
+                    .rest_length(0.95 * l),
+            )
+            .string(
+                StringMember::new(up, dn)
+                    .stiffness(1000.0)
+                    .rest_length(0.9 * h),
+            );
+    }
+    b.build()
+}

@@ -18,7 +18,7 @@
 //! [(PᵀM⁻¹P)⊗I₃ − ¼ Σ_k (J_k l_k²)⁻¹ (h_k h_kᵀ)⊗(b_k b_kᵀ)] vec Ω = vec(D̈ − N̈₀P),
 //!
 //! which is sparse (two constraints interact only through a shared bar); its pattern is
-//! factored symbolically once ([`super::omega`]) and refactored numerically per evaluation.
+//! factored symbolically once (module `omega`) and refactored numerically per evaluation.
 //! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
 //! velocities satisfy Ṅ P = 0.
 
@@ -159,22 +159,41 @@ pub(crate) fn bar_accel(
 }
 
 impl Model {
-    /// Builds the class-1 model of `structure`: every bar needs a mass, every string a
-    /// stiffness (a missing rest length means the initial length, i.e. no prestress).
+    /// Builds the class-1 model of `structure`: every bar needs a mass (given, or ρπr²l from
+    /// its material and radius), every string a stiffness (a missing rest length means the
+    /// initial length, i.e. no prestress).
     pub fn new(structure: &Structure, ground: Option<Ground>) -> Result<Self, DynamicsError> {
         let n_nodes = structure.n_nodes();
         let nb = structure.n_bars();
+        if nb == 0 {
+            return Err(DynamicsError::InvalidSpec {
+                item: "structure".into(),
+                reason: "rigid-bar dynamics needs at least one bar (all mass is in the bars)"
+                    .into(),
+            });
+        }
         let n1 = 2 * nb;
         let nodes = structure.nodes();
         let mut bars = Vec::with_capacity(nb);
         let mut copies: Vec<Vec<usize>> = vec![Vec::new(); n_nodes];
         let mut x0 = vec![0.0; 3 * n1];
         for (k, bar) in structure.bars().iter().enumerate() {
-            let mass = bar.mass.ok_or(DynamicsError::MissingProperty {
-                member: MemberId::Bar(k),
-                property: "mass",
-            })?;
             let [a, b] = bar.nodes;
+            // The mass, or else ρ π r² l from the bar's material and radius.
+            let derived = match (structure.member_material(MemberId::Bar(k)), bar.radius) {
+                (Some(mat), Some(r)) => {
+                    Some(mat.density * std::f64::consts::PI * r * r * (nodes[b] - nodes[a]).norm())
+                }
+                _ => None,
+            };
+            let mass = bar
+                .mass
+                .or(derived)
+                .filter(|m| m.is_finite() && *m > 0.0)
+                .ok_or(DynamicsError::MissingProperty {
+                    member: MemberId::Bar(k),
+                    property: "mass",
+                })?;
             copies[a].push(2 * k);
             copies[b].push(2 * k + 1);
             set3(&mut x0, 2 * k, &nodes[a]);

@@ -13,10 +13,17 @@
 //!
 //! The sparsity pattern and the fill-reducing symbolic Cholesky factorisation are computed once;
 //! each evaluation only refills the values and refactors numerically, without allocating.
+//! Systems of at most [`DENSE_MAX`] rows (a few class-k joints) skip faer: its per-call
+//! overhead (permutation, dispatch) is several times the flops of a 12×12 factorisation, so
+//! they use an in-place dense Cholesky of the same values instead. Larger systems take faer's
+//! AMD ordering and then run the in-house static-schedule factorisation of
+//! [`super::sparse_chol`] (faer's own numeric sparse Cholesky stays available and is
+//! cross-checked in the tests).
 //!
 //! This is the only dynamics file that touches faer; it should move behind `crate::linalg`.
 
 use super::error::DynamicsError;
+use super::sparse_chol::StaticCholesky;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
@@ -26,6 +33,9 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use nalgebra::Vector3;
+
+/// Largest system solved with the dense Cholesky path.
+pub(crate) const DENSE_MAX: usize = 48;
 
 /// One node entry of a constraint row: the class-1 node and the gradient there.
 #[derive(Debug, Clone, Copy)]
@@ -51,6 +61,27 @@ struct Contribution {
     bar: usize,
 }
 
+/// A contribution with constant axis-aligned gradients (±e_d, ±e_d'): its value is
+/// `c0 + c1 · b̂_d b̂_d'` (the Ω system of N P = D, whose rows are all of this kind).
+#[derive(Debug, Clone, Copy)]
+struct AxisContribution {
+    slot: usize,
+    bar: usize,
+    d: usize,
+    d2: usize,
+    c0: f64,
+    c1: f64,
+}
+
+/// The axis and sign of a gradient that is ±e_d, if it is one.
+fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
+    let nz: Vec<usize> = (0..3).filter(|&d| g[d] != 0.0).collect();
+    match nz.as_slice() {
+        [d] if g[*d].abs() == 1.0 => Some((*d, g[*d])),
+        _ => None,
+    }
+}
+
 /// A sparse SPD system over constraint rows with symbolic reuse.
 pub(crate) struct ConstraintMatrix {
     pub rows: Vec<Row>,
@@ -58,12 +89,20 @@ pub(crate) struct ConstraintMatrix {
     row_idx: Vec<usize>,
     values: Vec<f64>,
     contributions: Vec<Contribution>,
+    /// Precomputed form of `contributions` when every gradient is ±e_d and the system is
+    /// rigid (Ω); empty otherwise.
+    axis: Vec<AxisContribution>,
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     buf: MemBuffer,
     /// Ω-type (with the b̂ b̂ᵀ rigid-bar projection) or plain M⁻¹ (RATTLE).
     rigid: bool,
     factored: bool,
+    /// Dense lower-triangular factor (row-major n×n) for small systems, else empty.
+    dense: Vec<f64>,
+    /// The in-house static-schedule sparse Cholesky (default for large systems); `None`
+    /// means faer's numeric sparse Cholesky is used.
+    chol: Option<StaticCholesky>,
 }
 
 impl std::fmt::Debug for ConstraintMatrix {
@@ -76,8 +115,8 @@ impl std::fmt::Debug for ConstraintMatrix {
 }
 
 impl ConstraintMatrix {
-    /// Builds the pattern and the symbolic factorisation. `bar_of(node)` gives the bar owning a
-    /// class-1 node (node 2k and 2k+1 belong to bar k).
+    /// Builds the pattern and the symbolic factorisation (class-1 nodes 2k and 2k+1 belong to
+    /// bar k). `rigid` selects the Ω form (with the b̂b̂ᵀ projection) instead of plain M⁻¹.
     pub fn new(rows: Vec<Row>, rigid: bool) -> Result<Self, DynamicsError> {
         let n = rows.len();
         // bar -> list of (row, entry)
@@ -133,6 +172,12 @@ impl ConstraintMatrix {
                 bar,
             })
             .collect();
+        let contributions: Vec<Contribution> = contributions;
+        let axis = if rigid {
+            Self::axis_form(&rows, &contributions).unwrap_or_default()
+        } else {
+            Vec::new()
+        };
         let values = vec![0.0; row_idx.len()];
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
         let symbolic = factorize_symbolic_cholesky(
@@ -150,18 +195,58 @@ impl ConstraintMatrix {
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
         ]);
         let l_values = vec![0.0; symbolic.len_val()];
+        let fwd: Vec<usize> = match symbolic.perm() {
+            Some(p) => p.arrays().0.to_vec(),
+            None => (0..n).collect(),
+        };
+        let chol = Some(StaticCholesky::new(&col_ptr, &row_idx, fwd));
         Ok(Self {
             rows,
             col_ptr,
             row_idx,
             values,
             contributions,
+            axis,
             symbolic,
             l_values,
             buf: MemBuffer::new(req),
             rigid,
             factored: false,
+            dense: if n <= DENSE_MAX {
+                vec![0.0; n * n]
+            } else {
+                Vec::new()
+            },
+            chol,
         })
+    }
+
+    /// The constant-gradient form of the contributions (None if a gradient is not ±e_d). The
+    /// inverse masses enter at assembly, so only signs and the (α, β) weights are stored.
+    fn axis_form(rows: &[Row], contributions: &[Contribution]) -> Option<Vec<AxisContribution>> {
+        contributions
+            .iter()
+            .map(|c| {
+                let u = rows[c.row_x].entries[c.ent_x].as_ref()?.grad;
+                let w = rows[c.row_y].entries[c.ent_y].as_ref()?.grad;
+                let (d, su) = axis_of(&u)?;
+                let (d2, sw) = axis_of(&w)?;
+                let (alpha, beta) = if c.same_node {
+                    (4.0, -3.0)
+                } else {
+                    (-2.0, 3.0)
+                };
+                let s = su * sw;
+                Some(AxisContribution {
+                    slot: c.slot,
+                    bar: c.bar,
+                    d,
+                    d2,
+                    c0: if d == d2 { s * alpha } else { 0.0 },
+                    c1: s * beta,
+                })
+            })
+            .collect()
     }
 
     /// Refills the values from the current gradients, bar unit vectors `bhat` (only used for
@@ -172,7 +257,13 @@ impl ConstraintMatrix {
         inv_mass: &[f64],
     ) -> Result<(), DynamicsError> {
         self.values.iter_mut().for_each(|v| *v = 0.0);
-        for c in &self.contributions {
+        if !self.axis.is_empty() {
+            for c in &self.axis {
+                let b = &bhat[c.bar];
+                self.values[c.slot] += inv_mass[c.bar] * (c.c0 + c.c1 * b[c.d] * b[c.d2]);
+            }
+        }
+        for c in self.contributions.iter().filter(|_| self.axis.is_empty()) {
             let u = self.rows[c.row_x].entries[c.ent_x]
                 .as_ref()
                 .map(|e| e.grad)
@@ -195,12 +286,22 @@ impl ConstraintMatrix {
             self.values[c.slot] += inv_mass[c.bar] * v;
         }
         let n = self.rows.len();
+        self.factored = false;
+        if !self.dense.is_empty() {
+            self.dense_factor()?;
+            self.factored = true;
+            return Ok(());
+        }
+        if let Some(chol) = self.chol.as_mut() {
+            chol.factor(&self.values)?;
+            self.factored = true;
+            return Ok(());
+        }
         let a = SparseColMatRef::new(
             SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx),
             &self.values,
         );
         let stack = MemStack::new(&mut self.buf);
-        self.factored = false;
         self.symbolic
             .factorize_numeric_llt(
                 &mut self.l_values,
@@ -222,13 +323,175 @@ impl ConstraintMatrix {
         Ok(())
     }
 
+    /// In-place dense Cholesky L Lᵀ of the lower triangle (row-major).
+    fn dense_factor(&mut self) -> Result<(), DynamicsError> {
+        let n = self.rows.len();
+        let a = &mut self.dense;
+        a.iter_mut().for_each(|v| *v = 0.0);
+        for j in 0..n {
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                a[self.row_idx[p] * n + j] = self.values[p];
+            }
+        }
+        // Relative pivot threshold: a pivot below ε·n·max diagonal counts as zero.
+        let dmax = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+        let tol = f64::EPSILON * n as f64 * dmax;
+        for j in 0..n {
+            let (head, tail) = a.split_at_mut((j + 1) * n);
+            let row_j = &mut head[j * n..];
+            let d = row_j[j] - row_j[..j].iter().map(|v| v * v).sum::<f64>();
+            if d.is_nan() || d <= tol {
+                return Err(DynamicsError::SingularConstraint {
+                    rank: j,
+                    expected: n,
+                });
+            }
+            let d = d.sqrt();
+            row_j[j] = d;
+            let row_j = &head[j * n..j * n + j];
+            for row_i in tail.chunks_exact_mut(n) {
+                let v = row_i[j]
+                    - row_i[..j]
+                        .iter()
+                        .zip(row_j)
+                        .map(|(x, y)| x * y)
+                        .sum::<f64>();
+                row_i[j] = v / d;
+            }
+        }
+        Ok(())
+    }
+
     /// Solves A x = rhs in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         debug_assert!(self.factored);
         let n = self.rows.len();
+        if !self.dense.is_empty() {
+            let a = &self.dense;
+            for (i, row) in a.chunks_exact(n).enumerate() {
+                let v = rhs[i]
+                    - row[..i]
+                        .iter()
+                        .zip(&rhs[..i])
+                        .map(|(x, y)| x * y)
+                        .sum::<f64>();
+                rhs[i] = v / row[i];
+            }
+            for i in (0..n).rev() {
+                let mut v = rhs[i];
+                for k in i + 1..n {
+                    v -= a[k * n + i] * rhs[k];
+                }
+                rhs[i] = v / a[i * n + i];
+            }
+            return;
+        }
+        if let Some(chol) = self.chol.as_mut() {
+            chol.solve_in_place(rhs);
+            return;
+        }
         let llt = LltRef::<usize, f64>::new(&self.symbolic, &self.l_values);
         let stack = MemStack::new(&mut self.buf);
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, stack);
+    }
+
+    /// Uses faer's numeric sparse Cholesky instead of the static schedule (tests).
+    #[cfg(test)]
+    fn use_faer(&mut self) {
+        self.dense.clear();
+        self.chol = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::model::Model;
+    use crate::structure::{Bar, StringMember, Structure};
+
+    /// `n` D-bars in a row sharing their end joints: 6 + 9(n−1) + 6n constraint rows.
+    fn dbar_chain(n: usize) -> Structure {
+        let (l, h) = (2.0, 0.5);
+        let mut b = Structure::builder();
+        for k in 0..=n {
+            b = b.node([k as f64 * l, 0.0, 0.1 * k as f64]);
+        }
+        for k in 0..n {
+            let x = k as f64 * l;
+            b = b.node([x + l / 2.0, h / 2.0, 0.0]);
+            b = b.node([x + l / 2.0, -h / 2.0, 0.05]);
+        }
+        for k in 0..n {
+            let (a, d) = (k, k + 1);
+            let (up, dn) = (n + 1 + 2 * k, n + 2 + 2 * k);
+            b = b
+                .bar(Bar::new(a, up).mass(1.0 + k as f64))
+                .bar(Bar::new(a, dn).mass(1.0))
+                .bar(Bar::new(up, d).mass(2.0))
+                .bar(Bar::new(dn, d).mass(1.0))
+                .string(StringMember::new(a, d).stiffness(1000.0))
+                .string(StringMember::new(up, dn).stiffness(1000.0));
+        }
+        b.build().unwrap()
+    }
+
+    #[test]
+    fn sparse_and_dense_paths_agree() {
+        let s = dbar_chain(6);
+        let model = Model::new(&s, None).unwrap();
+        let rows: Vec<Row> = model.linear_rows.iter().map(|r| r.row.clone()).collect();
+        assert!(rows.len() > DENSE_MAX, "{} rows", rows.len());
+        let bhat: Vec<Vector3<f64>> = (0..model.bars.len())
+            .map(|k| {
+                (crate::dynamics::model::vec3(&model.x0, 2 * k + 1)
+                    - crate::dynamics::model::vec3(&model.x0, 2 * k))
+                .normalize()
+            })
+            .collect();
+        let mut sparse = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        sparse.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
+        let mut with_faer = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        with_faer.use_faer();
+        with_faer
+            .assemble_and_factor(&bhat, &model.inv_mass)
+            .unwrap();
+        // the dense path on the same values: a copy with dense storage forced on
+        let mut dense = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        dense.dense = vec![0.0; rows.len() * rows.len()];
+        dense.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
+        // and the generic (non-precomputed) assembly on the dense path
+        let mut generic = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        assert!(!generic.axis.is_empty());
+        generic.axis.clear();
+        generic.dense = vec![0.0; rows.len() * rows.len()];
+        generic.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
+        let rhs: Vec<f64> = (0..rows.len()).map(|i| (i as f64 * 0.37).sin()).collect();
+        let (mut x1, mut x2, mut x3) = (rhs.clone(), rhs.clone(), rhs.clone());
+        sparse.solve_in_place(&mut x1);
+        dense.solve_in_place(&mut x2);
+        let mut x4 = rhs.clone();
+        with_faer.solve_in_place(&mut x4);
+        let diff4 = x1
+            .iter()
+            .zip(&x4)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(diff4 <= 1e-10 * x1.iter().map(|a| a.abs()).fold(0.0, f64::max));
+        generic.solve_in_place(&mut x3);
+        let diff3 = x2
+            .iter()
+            .zip(&x3)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(diff3 <= 1e-12 * x2.iter().map(|a| a.abs()).fold(0.0, f64::max));
+        let diff = x1
+            .iter()
+            .zip(&x2)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let scale = x1.iter().map(|a| a.abs()).fold(0.0, f64::max);
+        assert!(diff <= 1e-10 * scale, "diff {diff:e}, scale {scale:e}");
+        assert!(scale > 1e-3);
     }
 }

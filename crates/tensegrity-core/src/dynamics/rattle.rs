@@ -26,7 +26,6 @@ pub struct ConstraintSet {
     sys: ConstraintMatrix,
     n_bars: usize,
     targets: Vec<f64>,
-    mult: Vec<f64>,
     r: Vec<f64>,
     cf: Vec<Vector3<f64>>,
     length2: Vec<f64>,
@@ -62,7 +61,6 @@ impl ConstraintSet {
             sys: ConstraintMatrix::new(rows, false)?,
             n_bars: nb,
             targets,
-            mult: vec![0.0; n],
             r: vec![0.0; n],
             cf: vec![Vector3::zeros(); model.n1],
             length2: model.bars.iter().map(|b| b.length0 * b.length0).collect(),
@@ -168,9 +166,6 @@ impl ConstraintSet {
             d.iter_mut().for_each(|v| *v = -*v);
             self.sys.solve_in_place(&mut d);
             self.add_minv_gt(model, &d, 1.0, x);
-            for (m, dd) in self.mult.iter_mut().zip(&d) {
-                *m += dd;
-            }
             self.r = d;
         }
         Err(DynamicsError::ConstraintNotConverged { t, residual: res })

@@ -165,9 +165,7 @@ impl Dopri5 {
                 }
                 self.tmp[i] = y[i] + h * acc;
             }
-            let (head, tail) = self.k.split_at_mut(s);
-            let _ = head;
-            model.rhs(t + C[s] * h, &self.tmp, &mut tail[0], ws)?;
+            model.rhs(t + C[s] * h, &self.tmp, &mut self.k[s], ws)?;
             if s == 6 {
                 self.y_new.copy_from_slice(&self.tmp);
             }

@@ -5,7 +5,7 @@
 //! [simulation]
 //! t_end = 2.0
 //! integrator = "rk45"          # rk4 (default) | rk45 | rattle
-//! dt = 1e-3                    # fixed step (rk4, rattle) / maximum step (rk45)
+//! dt = 1e-3                    # fixed step (rk4, rattle) / maximum step (rk45, default t_end)
 //! rtol = 1e-8
 //! atol = 1e-10
 //! output_interval = 0.01       # and/or output_times = [0.5, 1.0]
@@ -42,10 +42,10 @@ use super::recorder::Quantities;
 use super::simulation::{IntegratorKind, Simulation, SimulationSettings};
 use crate::structure::Structure;
 use nalgebra::Vector3;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The `[simulation]` table.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSpec {
     /// End time (s).
@@ -53,7 +53,7 @@ pub struct SimulationSpec {
     /// Integrator (default rk4).
     #[serde(default)]
     pub integrator: IntegratorKind,
-    /// Fixed step / maximum step (s), default 1e-3.
+    /// Fixed step (rk4, rattle; default 1e-3 s) or maximum step (rk45; default t_end).
     pub dt: Option<f64>,
     /// RK45 relative tolerance, default 1e-8.
     pub rtol: Option<f64>,
@@ -73,7 +73,7 @@ pub struct SimulationSpec {
 }
 
 /// A recordable quantity name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RecordQuantity {
     /// Node positions.
@@ -89,7 +89,7 @@ pub enum RecordQuantity {
 }
 
 /// The ground reaction model name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum GroundModelKind {
     /// Penalty spring–damper with regularised Coulomb friction.
@@ -104,7 +104,7 @@ fn up() -> [f64; 3] {
 }
 
 /// The `[ground]` table.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroundSpec {
     /// A point of the plane (default origin).
@@ -136,7 +136,7 @@ pub struct GroundSpec {
 
 /// One `[[actuation]]` table: a piecewise-linear time table for one string's rest length or
 /// one node's extra load.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActuationSpec {
     /// The string whose rest length is driven.
@@ -231,7 +231,8 @@ impl GroundSpec {
 }
 
 impl SimulationSpec {
-    /// Settings from this table (defaults: dt 1e-3, rtol 1e-8, atol 1e-10).
+    /// Settings from this table (defaults: dt 1e-3 s, or t_end for rk45; rtol 1e-8;
+    /// atol 1e-10).
     pub fn to_settings(&self) -> SimulationSettings {
         let mut q = Quantities::default();
         for r in &self.record {
@@ -247,7 +248,10 @@ impl SimulationSpec {
         SimulationSettings {
             t_end: self.t_end,
             integrator: self.integrator,
-            dt: self.dt.unwrap_or(d.dt),
+            dt: self.dt.unwrap_or(match self.integrator {
+                IntegratorKind::Rk45 => self.t_end,
+                _ => d.dt,
+            }),
             rtol: self.rtol.unwrap_or(d.rtol),
             atol: self.atol.unwrap_or(d.atol),
             output_times: self.output_times.clone(),

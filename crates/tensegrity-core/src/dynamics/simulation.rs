@@ -9,13 +9,13 @@ use super::rk4::Rk4;
 use super::rk45::Dopri5;
 use crate::structure::Structure;
 use nalgebra::Vector3;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
 /// The time integrator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorKind {
     /// Classic fixed-step RK4 (MOTES parity).

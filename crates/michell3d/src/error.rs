@@ -1,0 +1,80 @@
+//! The error type of the crate: every failure names the offending parameter, node or item.
+
+use thiserror::Error;
+
+/// Result alias of the crate.
+pub type Result<T> = std::result::Result<T, MichellError>;
+
+/// Everything that can go wrong when building, solving or sizing a Michell truss.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum MichellError {
+    /// A user parameter is outside its valid range.
+    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        /// Parameter name as the user knows it (e.g. `beta`, `delta`, `complexity`).
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// The three (or, in the plane, two) child members of a node are (nearly) linearly
+    /// dependent, so the node equilibrium has no unique solution.
+    #[error("node {node:?} is singular: its child members are linearly dependent (relative determinant {relative_det:.3e})")]
+    SingularNode {
+        /// The node tuple: `[U, D, L, R]`, or `[i, k]` for a planar truss.
+        node: Vec<usize>,
+        /// |det| divided by the product of the member lengths.
+        relative_det: f64,
+    },
+    /// A force density overflowed (a load or radius ratio far outside the f64 range).
+    #[error("force densities overflow at node {node:?}: reduce the load or the complexity")]
+    NonFinite {
+        /// The node tuple whose child members overflowed.
+        node: Vec<usize>,
+    },
+    /// The assembled global equilibrium system could not be solved.
+    #[error("global equilibrium solve failed: {reason}")]
+    SingularSystem {
+        /// What failed (factorisation error or residual check).
+        reason: String,
+    },
+    /// A member index is out of range.
+    #[error("member {index} does not exist (the truss has {count} members)")]
+    UnknownMember {
+        /// Requested index.
+        index: usize,
+        /// Number of members.
+        count: usize,
+    },
+    /// A node index is out of range.
+    #[error("node {index} does not exist (the truss has {count} nodes)")]
+    UnknownNode {
+        /// Requested index.
+        index: usize,
+        /// Number of nodes.
+        count: usize,
+    },
+    /// An error from the core crate (e.g. an unknown material name).
+    #[error(transparent)]
+    Core(#[from] tensegrity_core::CoreError),
+    /// Writing a table failed.
+    #[error("writing {what}: {source}")]
+    Io {
+        /// What was being written.
+        what: &'static str,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// Shorthand for [`MichellError::InvalidParameter`].
+pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>) -> MichellError {
+    MichellError::InvalidParameter {
+        name,
+        value,
+        reason: reason.into(),
+    }
+}

@@ -1,0 +1,223 @@
+//! One complete analysis, as the CLI prints it (text or JSON).
+//!
+//! Build the truss, apply the tip load w₀[cos φ_w sin γ, sin φ_w sin γ, cos γ], propagate the
+//! forces (recursive or global), optionally add prestressed extra strings, classify and size
+//! every member for one material, and collect the masses.
+
+use crate::error::Result;
+use crate::extra_strings::{solve_prestressed, ExtraStrings};
+use crate::loads::{tip_load, NodalLoads};
+use crate::params::MichellParams;
+use crate::propagation::{propagate, Method};
+use crate::sizing::{normalized_yield_mass, size_members, MemberKind};
+use crate::truss::MichellTruss;
+use serde::Serialize;
+use tensegrity_core::sizing::Governing;
+use tensegrity_core::MaterialTable;
+
+/// Everything one analysis needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnalysisRequest {
+    /// Truss parameters.
+    pub params: MichellParams,
+    /// Tip load magnitude w₀ (N).
+    pub load: f64,
+    /// Load azimuth φ_w (rad).
+    pub azimuth: f64,
+    /// Load polar angle γ (rad).
+    pub polar: f64,
+    /// Material of bars and strings (a `tensegrity_core` built-in name, e.g. `steel`).
+    pub material: String,
+    /// Extra strings with this prestress (N), if any.
+    pub extra_strings: Option<f64>,
+    /// Solver.
+    pub method: Method,
+}
+
+impl AnalysisRequest {
+    /// A request with the defaults: w₀ = 1000 N along −ι̂₃ (φ_w = 0, γ = π), steel, recursive,
+    /// no extra strings.
+    pub fn new(params: MichellParams) -> Self {
+        Self {
+            params,
+            load: 1000.0,
+            azimuth: 0.0,
+            polar: std::f64::consts::PI,
+            material: "steel".to_string(),
+            extra_strings: None,
+            method: Method::Recursive,
+        }
+    }
+}
+
+/// A node in the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NodeReport {
+    /// `[U, D, L, R]`, or `[i, k]` for a planar truss.
+    pub index: Vec<usize>,
+    /// Position (m).
+    pub position: [f64; 3],
+    /// Whether it is a (level-q) support.
+    pub support: bool,
+}
+
+/// A member in the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MemberReport {
+    /// Parent tuple (for an extra string: its first node).
+    pub parent: Vec<usize>,
+    /// Child tuple (for an extra string: its second node).
+    pub child: Vec<usize>,
+    /// Length (m).
+    pub length: f64,
+    /// Tension-positive force density q (N/m).
+    pub force_density: f64,
+    /// Axial force q·l (N, tension positive).
+    pub force: f64,
+    /// `"string"`, `"bar"` or `"none"`.
+    pub kind: MemberKind,
+    /// Sizing radius (m); 0 for `none`.
+    pub radius: f64,
+    /// Sized mass (kg): yield for strings, max(yield, buckling) for bars.
+    pub mass: f64,
+    /// `"yield"`, `"buckling"` or `"unloaded"`.
+    pub governing: &'static str,
+}
+
+/// Total masses (kg).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MassReport {
+    /// Every member sized for yield only.
+    #[serde(rename = "yield")]
+    pub yield_only: f64,
+    /// Strings for yield, bars for max(yield, buckling).
+    pub yield_buckling: f64,
+}
+
+/// The result of [`analyse`]; serialises to the JSON of the `michell` subcommand.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MichellReport {
+    /// Parameters used.
+    pub params: MichellParams,
+    /// Solver used.
+    pub method: Method,
+    /// Material name.
+    pub material: String,
+    /// Tip load vector w (N).
+    pub load: [f64; 3],
+    /// Nodes in numbering order.
+    pub nodes: Vec<NodeReport>,
+    /// Members, numbered by parent then child slot.
+    pub members: Vec<MemberReport>,
+    /// Extra strings (empty without `--extra-strings`).
+    pub extra_strings: Vec<MemberReport>,
+    /// Prestress of the extra strings (N), if any.
+    pub prestress: Option<f64>,
+    /// Total masses (kg), extra strings included.
+    pub mass_kg: MassReport,
+    /// Σ|q|·l²/(w₀ r₀) over all members (extra strings included).
+    pub normalized_yield_mass: f64,
+    /// Indices into `members` (then `extra_strings`, offset by `members.len()`) of the
+    /// buckling-governed bars.
+    pub buckling_governed: Vec<usize>,
+    /// Support reactions (N), in support-node order.
+    pub reactions: Vec<[f64; 3]>,
+}
+
+/// Runs one analysis.
+///
+/// ```
+/// use michell3d::{analyse, AnalysisRequest, MichellParams};
+/// let p = MichellParams::planar(2, 1.0, std::f64::consts::FRAC_PI_6, std::f64::consts::FRAC_PI_2);
+/// let r = analyse(&AnalysisRequest::new(p)).unwrap();
+/// assert_eq!(r.members.len(), 6);
+/// assert!((r.normalized_yield_mass - 4.618802153517).abs() < 1e-9); // ERRATA 4.4: 4.62
+/// ```
+pub fn analyse(req: &AnalysisRequest) -> Result<MichellReport> {
+    let truss = MichellTruss::new(req.params)?;
+    let material = *MaterialTable::builtin().lookup(&req.material, "michell truss")?;
+    let mut w = tip_load(req.load, req.azimuth, req.polar)?;
+    let loads = NodalLoads::tip(w);
+    // A planar truss keeps only the in-plane part (NodalLoads rejects a real w_x).
+    loads.dense(&truss)?;
+    if truss.is_planar() {
+        w.x = 0.0;
+    }
+    let (base, strings, extra_q) = match req.extra_strings {
+        Some(t) => {
+            let strings = ExtraStrings::new(&truss)?;
+            let sol = solve_prestressed(&truss, &strings, &loads, t, req.method)?;
+            (sol.base, Some(strings), sol.extra_force_density)
+        }
+        None => (propagate(&truss, &loads, req.method)?, None, Vec::new()),
+    };
+    let mut lengths = truss.lengths();
+    let mut q = base.force_density.clone();
+    let mut ends: Vec<(usize, usize)> = truss
+        .members()
+        .iter()
+        .map(|m| (m.parent, m.child))
+        .collect();
+    if let Some(s) = &strings {
+        lengths.extend_from_slice(s.lengths());
+        q.extend_from_slice(&extra_q);
+        ends.extend(s.pairs().iter().map(|&[a, b]| (a, b)));
+    }
+    let forces: Vec<f64> = q.iter().zip(&lengths).map(|(q, l)| q * l).collect();
+    let sizing = size_members(&lengths, &forces, &material, &material);
+    let mut members: Vec<MemberReport> = (0..q.len())
+        .map(|j| {
+            let s = sizing.members[j];
+            let (radius, mass, governing) = match s.size {
+                Some(sz) => (
+                    sz.radius,
+                    sz.mass,
+                    match sz.governing {
+                        Governing::Yield => "yield",
+                        Governing::Buckling => "buckling",
+                        Governing::Unloaded => "unloaded",
+                    },
+                ),
+                None => (0.0, 0.0, "unloaded"),
+            };
+            MemberReport {
+                parent: truss.label(ends[j].0),
+                child: truss.label(ends[j].1),
+                length: lengths[j],
+                force_density: q[j],
+                force: forces[j],
+                kind: s.kind,
+                radius,
+                mass,
+                governing,
+            }
+        })
+        .collect();
+    let extra_strings = members.split_off(truss.members().len());
+    Ok(MichellReport {
+        params: req.params,
+        method: req.method,
+        material: req.material.clone(),
+        load: w.into(),
+        nodes: truss
+            .nodes()
+            .iter()
+            .enumerate()
+            .map(|(i, n)| NodeReport {
+                index: truss.label(i),
+                position: n.position.into(),
+                support: truss.is_support(i),
+            })
+            .collect(),
+        members,
+        extra_strings,
+        prestress: req.extra_strings,
+        mass_kg: MassReport {
+            yield_only: sizing.yield_mass,
+            yield_buckling: sizing.yield_buckling_mass,
+        },
+        normalized_yield_mass: normalized_yield_mass(&lengths, &q, req.load, req.params.r0),
+        buckling_governed: sizing.buckling_governed,
+        reactions: base.reactions.iter().map(|r| (*r).into()).collect(),
+    })
+}

@@ -1,0 +1,247 @@
+//! Sign maps of member force densities over load directions (Fig. 4.14–4.16).
+//!
+//! The truss is linear, so for a tip load w = w₀[cos φ sin γ, sin φ sin γ, cos γ] (eq. 4.13)
+//! every force density is q_j(φ, γ) = w₀ (q_j^x cos φ sin γ + q_j^y sin φ sin γ + q_j^z cos γ),
+//! with q^x, q^y, q^z the responses to unit tip loads (three propagations). The grid is then
+//! filled in parallel (rayon) row by row. A value counts as zero (sign 0) when
+//! |q_j| ≤ [`ZERO_FORCE_RTOL`]·w₀‖(q_j^x, q_j^y, q_j^z)‖, the largest |q_j| over all directions.
+//!
+//! For q = 1 the signs reproduce eq. 4.21–4.22 and the corrected eq. 4.23 (ERRATA 4.13).
+//! ERRATA 4.22: sweeping γ over [0, 2π] covers the sphere twice; [0, π] suffices.
+
+use crate::error::{invalid, MichellError, Result};
+use crate::propagation::{unit_tip_responses, Method};
+use crate::sizing::ZERO_FORCE_RTOL;
+use crate::truss::MichellTruss;
+use rayon::prelude::*;
+use std::io::Write;
+
+/// `n` evenly spaced angles from `start` to `end`, both included (n ≥ 2), or just `start`
+/// (n = 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AngleGrid {
+    /// First angle (rad).
+    pub start: f64,
+    /// Last angle (rad).
+    pub end: f64,
+    /// Number of angles.
+    pub n: usize,
+}
+
+impl AngleGrid {
+    /// A grid from `start` to `end` with `n` points.
+    pub fn new(start: f64, end: f64, n: usize) -> Self {
+        Self { start, end, n }
+    }
+
+    /// The i-th angle.
+    pub fn at(&self, i: usize) -> f64 {
+        if self.n <= 1 {
+            self.start
+        } else {
+            self.start + (self.end - self.start) * i as f64 / (self.n - 1) as f64
+        }
+    }
+
+    /// All angles.
+    pub fn values(&self) -> Vec<f64> {
+        (0..self.n).map(|i| self.at(i)).collect()
+    }
+
+    fn validate(&self, name: &'static str) -> Result<()> {
+        if self.n == 0 {
+            return Err(invalid(name, 0.0, "the grid needs at least one angle"));
+        }
+        if !(self.start.is_finite() && self.end.is_finite()) {
+            return Err(invalid(name, self.start, "grid bounds must be finite"));
+        }
+        Ok(())
+    }
+}
+
+/// Force density of one member over an (azimuth φ, polar γ) grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SignMap {
+    /// Member index.
+    pub member: usize,
+    /// Azimuth grid (φ).
+    pub azimuth: AngleGrid,
+    /// Polar grid (γ).
+    pub polar: AngleGrid,
+    /// q (N/m), row-major: entry `ip * azimuth.n + ia`.
+    pub force_density: Vec<f64>,
+    /// |q| at or below this counts as zero (N/m).
+    pub zero_threshold: f64,
+}
+
+impl SignMap {
+    /// q at polar index `ip`, azimuth index `ia`.
+    pub fn value(&self, ip: usize, ia: usize) -> f64 {
+        self.force_density[ip * self.azimuth.n + ia]
+    }
+
+    /// Sign (+1 tension, −1 compression, 0 zero) at polar index `ip`, azimuth index `ia`.
+    pub fn sign(&self, ip: usize, ia: usize) -> i8 {
+        let v = self.value(ip, ia);
+        if v.abs() <= self.zero_threshold {
+            0
+        } else if v > 0.0 {
+            1
+        } else {
+            -1
+        }
+    }
+
+    /// Fraction of grid points where the member is in tension.
+    pub fn tension_fraction(&self) -> f64 {
+        let n = self.force_density.len();
+        let t = (0..self.polar.n)
+            .flat_map(|ip| (0..self.azimuth.n).map(move |ia| (ip, ia)))
+            .filter(|&(ip, ia)| self.sign(ip, ia) > 0)
+            .count();
+        t as f64 / n as f64
+    }
+}
+
+/// Sign maps of `members` for a tip load of magnitude `w0` over the grids (3-D trusses only).
+pub fn sign_maps(
+    truss: &MichellTruss,
+    members: &[usize],
+    w0: f64,
+    azimuth: AngleGrid,
+    polar: AngleGrid,
+    method: Method,
+) -> Result<Vec<SignMap>> {
+    if truss.is_planar() {
+        return Err(invalid(
+            "geometry",
+            0.0,
+            "sign maps over (azimuth, polar) need a 3-D truss: a planar truss carries only \
+             in-plane loads (see planar::force_regions)",
+        ));
+    }
+    if !(w0.is_finite() && w0 > 0.0) {
+        return Err(invalid(
+            "load",
+            w0,
+            "the load magnitude w0 must be finite and > 0",
+        ));
+    }
+    azimuth.validate("azimuth")?;
+    polar.validate("polar")?;
+    let count = truss.members().len();
+    if let Some(&bad) = members.iter().find(|&&j| j >= count) {
+        return Err(MichellError::UnknownMember { index: bad, count });
+    }
+    let [qx, qy, qz] = unit_tip_responses(truss, method)?;
+    // Trigonometric tables shared by every member.
+    let az: Vec<(f64, f64)> = azimuth.values().iter().map(|a| a.sin_cos()).collect();
+    let po: Vec<(f64, f64)> = polar.values().iter().map(|g| g.sin_cos()).collect();
+    Ok(members
+        .iter()
+        .map(|&j| {
+            let (bx, by, bz) = (w0 * qx[j], w0 * qy[j], w0 * qz[j]);
+            let mut values = vec![0.0; azimuth.n * polar.n];
+            values
+                .par_chunks_mut(azimuth.n)
+                .zip(po.par_iter())
+                .for_each(|(row, &(sg, cg))| {
+                    for (v, &(sa, ca)) in row.iter_mut().zip(&az) {
+                        *v = bx * ca * sg + by * sa * sg + bz * cg;
+                    }
+                });
+            SignMap {
+                member: j,
+                azimuth,
+                polar,
+                force_density: values,
+                zero_threshold: ZERO_FORCE_RTOL * (bx * bx + by * by + bz * bz).sqrt(),
+            }
+        })
+        .collect())
+}
+
+/// Writes sign maps as CSV: `member,parent,child,azimuth_rad,polar_rad,force_density_N_per_m,sign`
+/// (parent/child as `U-D-L-R` tuples).
+pub fn write_sign_maps_csv<W: Write>(
+    truss: &MichellTruss,
+    maps: &[SignMap],
+    mut out: W,
+) -> Result<()> {
+    let io = |source| MichellError::Io {
+        what: "sign map CSV",
+        source,
+    };
+    let tuple = |n: usize| {
+        truss
+            .label(n)
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join("-")
+    };
+    writeln!(
+        out,
+        "member,parent,child,azimuth_rad,polar_rad,force_density_N_per_m,sign"
+    )
+    .map_err(io)?;
+    for map in maps {
+        let m = &truss.members()[map.member];
+        let (p, c) = (tuple(m.parent), tuple(m.child));
+        for ip in 0..map.polar.n {
+            let g = map.polar.at(ip);
+            for ia in 0..map.azimuth.n {
+                writeln!(
+                    out,
+                    "{},{p},{c},{:.17e},{:.17e},{:.17e},{}",
+                    map.member,
+                    map.azimuth.at(ia),
+                    g,
+                    map.value(ip, ia),
+                    map.sign(ip, ia)
+                )
+                .map_err(io)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::loads::{tip_load, NodalLoads};
+    use crate::params::MichellParams;
+    use crate::propagation::propagate_recursive;
+
+    #[test]
+    fn superposition_equals_direct_solves() {
+        let t = MichellTruss::new(MichellParams::spherical(4, 1.2, 0.5, 0.3, 0.2)).unwrap();
+        let az = AngleGrid::new(0.1, 6.0, 7);
+        let po = AngleGrid::new(0.2, 3.0, 5);
+        let members = [0, 7, 29, 59];
+        let maps = sign_maps(&t, &members, 300.0, az, po, Method::Global).unwrap();
+        for ip in 0..po.n {
+            for ia in 0..az.n {
+                let w = tip_load(300.0, az.at(ia), po.at(ip)).unwrap();
+                let q = propagate_recursive(&t, &NodalLoads::tip(w))
+                    .unwrap()
+                    .force_density;
+                for (map, &j) in maps.iter().zip(&members) {
+                    assert!((map.value(ip, ia) - q[j]).abs() < 1e-9 * q[j].abs().max(1.0));
+                    let expect = if q[j] > 0.0 { 1 } else { -1 };
+                    assert_eq!(map.sign(ip, ia), expect);
+                }
+            }
+        }
+        let mut csv = Vec::new();
+        write_sign_maps_csv(&t, &maps, &mut csv).unwrap();
+        let text = String::from_utf8(csv).unwrap();
+        assert_eq!(text.lines().count(), 1 + members.len() * az.n * po.n);
+        assert!(text
+            .lines()
+            .nth(1)
+            .unwrap()
+            .starts_with("0,0-0-0-0,1-0-1-0,"));
+    }
+}
