@@ -33,6 +33,19 @@ enum Command {
 }
 
 fn main() {
+    // `tensegrity ... | head` closes stdout early: end quietly instead of panicking
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .unwrap_or("");
+        if message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default_hook(info);
+    }));
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),

@@ -232,3 +232,59 @@ fn an_exported_toroid_scene_gives_the_same_statics() {
     );
     assert!((a - b).abs() < 1e-12, "{a} vs {b}");
 }
+
+#[test]
+fn simulate_reproduces_the_published_double_pendulum() {
+    let out = run(&["simulate", "examples/double_pendulum.toml", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["t_end"], 5.0);
+    let tip = &v["final_nodes"][2];
+    let (x, y) = (tip[0].as_f64().unwrap(), tip[1].as_f64().unwrap());
+    assert!(
+        (x - 1.3403149308).abs() < 1e-6 && (y + 1.4793519015).abs() < 1e-6,
+        "({x}, {y})"
+    );
+    // the pin holds and the rods keep their length
+    assert!(v["final_nodes"][0][0].as_f64().unwrap().abs() < 1e-9);
+    assert!(v["bar_length_drift"].as_f64().unwrap() < 1e-8);
+    assert!(v["energy_drift"].as_f64().unwrap() < 1e-8);
+    // a file flag overrides the scene: a shorter run ends earlier
+    let out = run(&[
+        "simulate",
+        "examples/double_pendulum.toml",
+        "--t-end",
+        "0.5",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["t_end"], 0.5);
+}
+
+#[test]
+fn output_piped_into_a_closed_reader_does_not_panic() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(["statics", "examples/prism.toml"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // close the pipe before the report is written
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    assert!(status.success(), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
