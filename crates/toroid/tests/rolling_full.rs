@@ -1,0 +1,85 @@
+//! The full tensegrity model rolling down an incline: the Fig. 3.10 trend, the start from
+//! rest, and agreement of the contact force with the weight while the wheel sits still.
+
+use toroid::rolling_full::{auto_fidelity, ContactModel, Fidelity, FullRolling};
+use toroid::{build, ToroidParams};
+
+fn wheel(n: usize) -> toroid::Toroid {
+    build(
+        &ToroidParams::default().sides(n),
+        "spokes,inner".parse().unwrap(),
+        1.0,
+    )
+    .unwrap()
+}
+
+#[test]
+fn axle_height_oscillation_decreases_with_n_in_the_full_model() {
+    // thesis contact (damping 200 N s/m), 50°, strings 2e4 N/m with a 20 N minimum prestress
+    let roll = FullRolling {
+        contact: ContactModel::Thesis { damping: 200.0 },
+        ..FullRolling::default()
+    };
+    let mut values = Vec::new();
+    for n in [8, 12, 16, 24] {
+        let r = roll.run(&wheel(n), 2.0).unwrap();
+        assert!(r.mean_speed > 1.0, "n = {n}: the wheel rolls downhill");
+        values.push(r.axle_height_oscillation);
+    }
+    assert!(values.windows(2).all(|w| w[1] < w[0]), "{values:?}");
+    assert!(values[0] / values[3] > 10.0, "{values:?}");
+}
+
+#[test]
+fn on_level_ground_the_contact_carries_the_weight_on_average() {
+    // impulse balance: ∫N dt = m g T + m Δv_z; balanced on a pair the wheel barely moves in
+    // 1 s, so the mean normal force is the weight (the strings keep vibrating, so N itself
+    // oscillates about it)
+    let t = wheel(8);
+    let mass = toroid::wheel_mass(&t.structure);
+    let roll = FullRolling {
+        incline: 0.0,
+        ..FullRolling::default()
+    };
+    let r = roll.run(&t, 1.0).unwrap();
+    let mean_normal = r.samples.iter().map(|s| s.normal).sum::<f64>() / r.samples.len() as f64;
+    let weight = mass * 9.81;
+    assert!(
+        (mean_normal - weight).abs() < 0.01 * weight,
+        "{mean_normal} vs {weight}"
+    );
+    assert!(
+        r.samples.iter().all(|s| s.s.abs() < 1e-2),
+        "no slope, no rolling"
+    );
+}
+
+#[test]
+fn auto_fidelity_follows_the_string_stiffness() {
+    let mass = toroid::wheel_mass(&wheel(8).structure);
+    assert_eq!(auto_fidelity(mass, 9.81, 2e4, 1.0), Fidelity::Full);
+    assert_eq!(auto_fidelity(mass, 9.81, 1e6, 1.0), Fidelity::Rigid);
+}
+
+#[test]
+fn bad_full_rolling_settings_are_named() {
+    let t = wheel(8);
+    let bad = FullRolling {
+        incline: 2.0,
+        ..FullRolling::default()
+    };
+    assert!(bad
+        .run(&t, 1.0)
+        .unwrap_err()
+        .to_string()
+        .contains("incline"));
+    let bad = FullRolling {
+        string_stiffness: 1.0,
+        ..FullRolling::default()
+    };
+    let e = bad.run(&t, 0.1).unwrap_err().to_string();
+    assert!(
+        e.contains("string_stiffness") && e.contains("rest length"),
+        "{e}"
+    );
+}
