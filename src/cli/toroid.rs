@@ -292,6 +292,7 @@ struct RollReport {
     min_normal_force: f64,
     lift_off_time: f64,
     required_friction: f64,
+    mean_slip_speed: f64,
 }
 
 /// Entry point of `tensegrity roll`.
@@ -352,13 +353,13 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         );
         writeln!(
             f,
-            "t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J"
+            "t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J,slip_m_s"
         )?;
         for s in &r.samples {
             writeln!(
                 f,
-                "{},{},{},{},{},{},{},{}",
-                s.t, s.s, s.h, s.pivot, s.omega, s.normal, s.tangential, s.energy
+                "{},{},{},{},{},{},{},{},{}",
+                s.t, s.s, s.h, s.pivot, s.omega, s.normal, s.tangential, s.energy, s.slip
             )?;
         }
     }
@@ -376,6 +377,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         min_normal_force: r.min_normal,
         lift_off_time: r.lift_off_time,
         required_friction: r.required_friction,
+        mean_slip_speed: r.mean_slip_speed,
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

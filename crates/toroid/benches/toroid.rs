@@ -1,9 +1,11 @@
 //! Criterion benches: building and analysing the reference toroid (spokes + inner) for
-//! n = 8, 24, 100, and one second of rigid rolling down 50° for n = 8 and 24.
+//! n = 8, 24, 100, and one second of rolling down 50° for n = 8 and 24 with the rigid and the
+//! full model.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use toroid::rolling::RigidRolling;
+use toroid::rolling_full::FullRolling;
 use toroid::{analyse, build, Stabilize, ToroidParams};
 
 fn options() -> Stabilize {
@@ -31,13 +33,18 @@ fn bench_build_analyse(c: &mut Criterion) {
 }
 
 fn bench_rolling(c: &mut Criterion) {
-    let mut group = c.benchmark_group("toroid_rigid_rolling_1s");
+    let mut group = c.benchmark_group("toroid_rolling_1s");
+    group.sample_size(10);
     for n in [8usize, 24] {
         let t = build(&ToroidParams::default().sides(n), options(), 1.0).unwrap();
         let a = analyse(&t).unwrap();
         let model = RigidRolling::of(&t, &a, 50f64.to_radians());
-        group.bench_with_input(BenchmarkId::from_parameter(n), &model, |b, m| {
+        group.bench_with_input(BenchmarkId::new("rigid", n), &model, |b, m| {
             b.iter(|| black_box(m.run(1.0).unwrap()))
+        });
+        let full = FullRolling::default();
+        group.bench_with_input(BenchmarkId::new("full", n), &t, |b, t| {
+            b.iter(|| black_box(full.run(t, 1.0).unwrap()))
         });
     }
     group.finish();

@@ -61,6 +61,9 @@ pub struct RollingSample {
     pub tangential: f64,
     /// Kinetic plus gravitational energy (J), zero at the start.
     pub energy: f64,
+    /// Mean sliding speed of the loaded contact nodes along the slope (m/s); 0 in the rigid
+    /// model, which rolls without slip.
+    pub slip: f64,
 }
 
 /// The result of a rolling run.
@@ -82,6 +85,8 @@ pub struct RollingResult {
     pub lift_off_time: f64,
     /// Largest |F_t|/N with N > 0: the friction coefficient rolling without slip needs.
     pub required_friction: f64,
+    /// Mean over the samples with contact of the contact nodes' sliding speed (m/s).
+    pub mean_slip_speed: f64,
 }
 
 impl RigidRolling {
@@ -230,6 +235,7 @@ impl RigidRolling {
             omega: rate,
             normal: m * (a_h + g * cos),
             tangential: m * (a_s - g * sin),
+            slip: 0.0,
             energy: 0.5 * (self.i1 + m * r * r) * rate * rate
                 + m * g * ((h - h0) * cos - (s - s0) * sin),
         }
@@ -253,7 +259,18 @@ pub(crate) fn summarise(
     } else {
         0.0
     };
+    let with_contact: Vec<f64> = samples
+        .iter()
+        .filter(|s| s.normal > 0.0)
+        .map(|s| s.slip)
+        .collect();
+    let mean_slip_speed = if with_contact.is_empty() {
+        0.0
+    } else {
+        with_contact.iter().sum::<f64>() / with_contact.len() as f64
+    };
     RollingResult {
+        mean_slip_speed,
         impacts,
         axle_height_oscillation: rms,
         mean_speed,

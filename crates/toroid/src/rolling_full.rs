@@ -11,8 +11,9 @@
 //!
 //! Recorded per sample: the axle (hub: the midpoint of the axle bar with spokes, else the
 //! centroid of the rim joints) along the slope s = y and above it h = z + R_o, the spin
-//! ω = mean over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², and the summed contact
-//! force (normal = z, tangential = y components).
+//! ω = mean over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², the summed contact
+//! force (normal = z, tangential = y components) and the slip, the mean in-plane speed of the
+//! contact nodes that carry load.
 
 use crate::analysis::{prestress_design, prestressed_structure};
 use crate::builder::Toroid;
@@ -185,8 +186,14 @@ impl FullRolling {
             let mut pivot = f64::NAN;
             let mut strongest = 0.0;
             let mut touching = vec![false; n];
+            let (mut slip_sum, mut slip_count) = (0.0, 0usize);
             for (node, f) in smp.contact_forces.iter().flatten() {
                 force += f;
+                if f.z > 0.0 {
+                    // sliding speed in the slope plane (z is the slope normal)
+                    slip_sum += v[*node].xy().norm();
+                    slip_count += 1;
+                }
                 if f.z > 0.0 {
                     touching[node / 5] = true;
                 }
@@ -211,6 +218,11 @@ impl FullRolling {
                 normal: force.z,
                 tangential: force.y,
                 energy: smp.energy.map_or(f64::NAN, |(_, total)| total),
+                slip: if slip_count > 0 {
+                    slip_sum / slip_count as f64
+                } else {
+                    0.0
+                },
             });
         }
         if samples.is_empty() {

@@ -83,3 +83,35 @@ fn bad_full_rolling_settings_are_named() {
         "{e}"
     );
 }
+
+#[test]
+fn a_slippery_penalty_ground_makes_the_wheel_slide() {
+    let t = wheel(8);
+    let on = |mu: f64| {
+        let roll = FullRolling {
+            incline: 30f64.to_radians(),
+            contact: ContactModel::Penalty {
+                stiffness: 1e5,
+                damping: 200.0,
+                mu_static: mu,
+                mu_kinetic: 0.75 * mu,
+            },
+            ..FullRolling::default()
+        };
+        roll.run(&t, 1.0).unwrap()
+    };
+    let (ice, rubber) = (on(0.05), on(1.0));
+    assert!(
+        ice.mean_slip_speed > 5.0 * rubber.mean_slip_speed,
+        "{} vs {}",
+        ice.mean_slip_speed,
+        rubber.mean_slip_speed
+    );
+    // on ice the wheel slides down with little rolling: more distance per turn
+    let turns =
+        |r: &toroid::rolling::RollingResult| r.samples.iter().map(|s| s.omega).sum::<f64>() * 1e-3;
+    let last = |r: &toroid::rolling::RollingResult| r.samples.last().unwrap().s;
+    assert!(
+        last(&ice) / turns(&ice).abs().max(1e-9) > last(&rubber) / turns(&rubber).abs().max(1e-9)
+    );
+}
