@@ -7,7 +7,7 @@
 //! drives a mechanism), the least-squares q is returned and the residual ‖A q − w‖ says by how
 //! much equilibrium fails.
 
-use super::{equilibrium_matrix_full, Statics};
+use super::Statics;
 use nalgebra::{DVector, Vector3};
 
 /// The solution of a load problem.
@@ -44,8 +44,13 @@ impl Statics<'_> {
         let w_norm = w.norm();
         let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
 
-        let a_full = equilibrium_matrix_full(structure);
-        let internal = &a_full * &q;
+        // (A_full q) node by node, one member at a time: −q m at the start, +q m at the end
+        let mut internal = vec![Vector3::zeros(); structure.n_nodes()];
+        for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+            let t = structure.member_vector(k) * q[k];
+            internal[i] -= t;
+            internal[j] += t;
+        }
         let reactions = structure
             .supports()
             .iter()
@@ -53,7 +58,7 @@ impl Statics<'_> {
                 let mut r = Vector3::zeros();
                 for d in 0..3 {
                     if s.fixed[d] {
-                        r[d] = internal[3 * s.node + d] - w_nodes[(d, s.node)];
+                        r[d] = internal[s.node][d] - w_nodes[(d, s.node)];
                     }
                 }
                 (s.node, r)
