@@ -288,3 +288,44 @@ fn output_piped_into_a_closed_reader_does_not_panic() {
     assert!(status.success(), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn a_compressed_string_is_sized_with_a_warning() {
+    // the thesis D-bar (two strings, one self-stress) under end compression: the minimal-norm
+    // solution compresses the long string (q = −4166.67 N/m, from the normal equations)
+    let dir = std::env::temp_dir().join(format!("tensegrity-warn-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("dbar2.toml");
+    let mut text = String::from(
+        "nodes = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [2.0, 0.0, 0.0]]\n",
+    );
+    for (kind, [a, b]) in [
+        ("bars", [0, 1]),
+        ("bars", [0, 2]),
+        ("bars", [1, 3]),
+        ("bars", [2, 3]),
+        ("strings", [0, 3]),
+        ("strings", [1, 2]),
+    ] {
+        text += &format!("[[{kind}]]\nnodes = [{a}, {b}]\nmaterial = \"aluminium\"\n");
+    }
+    text += "[[supports]]\nnode = 0\n[[loads]]\nnode = 3\nforce = [-1.0e4, 0.0, 0.0]\n";
+    std::fs::write(&path, text).unwrap();
+    let v = json(path.to_str().unwrap());
+    let q: Vec<f64> = v["force_density"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!((q[4] + 12500.0 / 3.0).abs() < 1e-6, "{q:?}");
+    assert!((q[0] + 2500.0 / 3.0).abs() < 1e-6, "{q:?}");
+    assert!(v["sizing_warning"].as_str().unwrap().contains("string 0"));
+    let per_member: f64 = v["member_mass_kg"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_f64().unwrap())
+        .sum();
+    assert!((per_member - v["mass_kg"].as_f64().unwrap()).abs() < 1e-12);
+}

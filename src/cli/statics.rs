@@ -85,6 +85,10 @@ pub struct StaticsReport {
     /// Failure mode setting each member's size: "yield", "buckling" or "unloaded".
     #[serde(skip_serializing_if = "Option::is_none")]
     pub governing: Option<Vec<&'static str>>,
+    /// Set when the mass was computed but the design is not buildable as is (strings in
+    /// compression).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sizing_warning: Option<String>,
     /// Why the mass could not be computed, when members have materials but sizing failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_error: Option<String>,
@@ -129,6 +133,7 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
         member_radius_m: None,
         member_mass_kg: None,
         governing: None,
+        sizing_warning: None,
         sizing_error: None,
     };
     if structure.is_loaded() {
@@ -136,8 +141,16 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
         let has_materials = (0..structure.n_members())
             .any(|k| structure.member_material(structure.member_id(k)).is_some());
         if has_materials {
-            match sizing::size_structure(structure, &sol.member_force) {
-                Ok(s) => {
+            match sizing::size_structure_lenient(structure, &sol.member_force) {
+                Ok((s, compressed)) => {
+                    if !compressed.is_empty() {
+                        let names: Vec<String> =
+                            compressed.iter().map(|id| id.to_string()).collect();
+                        report.sizing_warning = Some(format!(
+                            "the minimal-norm solution puts {} in compression; sized for yield on |force|, but a string cannot carry compression: add prestress (a self-stress) or make it a bar",
+                            names.join(", ")
+                        ));
+                    }
                     report.mass_kg = Some(s.total_mass);
                     report.member_radius_m = Some(s.members.iter().map(|m| m.radius).collect());
                     report.member_mass_kg = Some(s.members.iter().map(|m| m.mass).collect());
@@ -240,6 +253,9 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
             );
         }
         println!("minimum mass for these loads: {m:.6} kg");
+    }
+    if let Some(w) = &r.sizing_warning {
+        println!("warning: {w}");
     }
     if let Some(e) = &r.sizing_error {
         println!("sizing not possible: {e}");

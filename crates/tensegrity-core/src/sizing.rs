@@ -188,8 +188,45 @@ pub struct SizingReport {
 
 /// Sizes every member of `structure` for the axial forces `member_force` (bars then strings,
 /// tension positive). Every loaded member needs a material; every string must be in tension
-/// (forces above −1e-9 of the largest force count as zero).
+/// (forces within 1e-12 of the largest force count as zero).
 pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Result<SizingReport> {
+    size_members(structure, member_force, false).map(|(report, _)| report)
+}
+
+/// Like [`size_structure`], but a string in compression is sized for yield on |f| (its only
+/// failure mode) instead of being an error; the strings so treated are returned, so that the
+/// caller can warn that the design needs them replaced or prestressed.
+///
+/// ```
+/// use nalgebra::DVector;
+/// use tensegrity_core::{sizing, Bar, Material, MemberId, StringMember, Structure};
+/// let s = Structure::builder()
+///     .material("alu", Material::new(2700.0, 60e9, 110e6))
+///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
+///     .bar(Bar::new(0, 1).material("alu"))
+///     .string(StringMember::new(1, 2).material("alu"))
+///     .string(StringMember::new(2, 0).material("alu"))
+///     .build()
+///     .unwrap();
+/// let f = DVector::from_row_slice(&[-1e3, -1e4, 2e3]);
+/// assert!(sizing::size_structure(&s, &f).is_err());
+/// let (report, compressed) = sizing::size_structure_lenient(&s, &f).unwrap();
+/// assert_eq!(compressed, vec![MemberId::String(0)]);
+/// assert!((report.members[1].mass - 2700.0 / 110e6 * 1e4 * 2f64.sqrt()).abs() < 1e-12);
+/// ```
+pub fn size_structure_lenient(
+    structure: &Structure,
+    member_force: &DVector<f64>,
+) -> Result<(SizingReport, Vec<MemberId>)> {
+    size_members(structure, member_force, true)
+}
+
+fn size_members(
+    structure: &Structure,
+    member_force: &DVector<f64>,
+    lenient: bool,
+) -> Result<(SizingReport, Vec<MemberId>)> {
+    let mut compressed = Vec::new();
     let lengths = structure.member_lengths();
     let f_scale = member_force.amax();
     let mut members = Vec::with_capacity(lengths.len());
@@ -229,10 +266,22 @@ pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Res
                 s
             }
             MemberId::String(_) => {
-                let s = size_string(material, f, l).ok_or(CoreError::StringInCompression {
-                    member: id,
-                    force: f,
-                })?;
+                let s = match size_string(material, f, l) {
+                    Some(s) => s,
+                    None if lenient => {
+                        compressed.push(id);
+                        MemberSize {
+                            force: f,
+                            ..size_bar(material, -f, l)
+                        }
+                    }
+                    None => {
+                        return Err(CoreError::StringInCompression {
+                            member: id,
+                            force: f,
+                        })
+                    }
+                };
                 string_mass += s.mass;
                 s
             }
@@ -240,11 +289,12 @@ pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Res
         yield_only += size.yield_mass;
         members.push(size);
     }
-    Ok(SizingReport {
+    let report = SizingReport {
         members,
         bar_mass,
         string_mass,
         total_mass: bar_mass + string_mass,
         yield_only_mass: yield_only,
-    })
+    };
+    Ok((report, compressed))
 }
