@@ -24,6 +24,8 @@ enum Command {
     Bench(cli::bench::BenchArgs),
     /// Discrete Michell truss (planar, cylindrical δ or spherical ε): nodes, forces, sizing.
     Michell(cli::michell::MichellArgs),
+    /// Fig. 4.18: Michell truss mass against complexity, planar and δ = 0.1, 0.25, 0.5 (CSV).
+    MichellTable(cli::michell::MichellTableArgs),
     /// Build and analyse the 3-bar-prism tensegrity toroid (counts, prestress, flexes, inertia).
     Toroid(cli::toroid::ToroidArgs),
     /// Roll the toroid wheel down an incline (reduced rigid model).
@@ -53,11 +55,19 @@ fn main() {
         Command::Simulate(args) => simulate(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Michell(args) => cli::michell::run(args),
+        Command::MichellTable(args) => cli::michell::run_table(args),
         Command::Toroid(args) => cli::toroid::run_toroid(args),
         Command::Roll(args) => cli::toroid::run_roll(args),
         Command::Tipover(args) => cli::toroid::run_tipover(args),
     };
     if let Err(e) = result {
+        let broken_pipe = e.chain().any(|c| {
+            c.downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+        });
+        if broken_pipe {
+            std::process::exit(0);
+        }
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }

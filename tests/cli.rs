@@ -329,3 +329,67 @@ fn a_compressed_string_is_sized_with_a_warning() {
         .sum();
     assert!((per_member - v["mass_kg"].as_f64().unwrap()).abs() < 1e-12);
 }
+
+#[test]
+fn michell_writes_sign_maps_gamma_sweeps_and_the_mass_table() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-michell-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (map, sweep) = (dir.join("map.csv"), dir.join("sweep.csv"));
+    let out = run(&[
+        "michell",
+        "--complexity",
+        "2",
+        "--cylindrical",
+        "0.25",
+        "--beta",
+        "pi/6",
+        "--phi",
+        "pi/8",
+        "--extra-strings",
+        "5000",
+        "--gamma-sweep",
+        sweep.to_str().unwrap(),
+        "--sign-map",
+        map.to_str().unwrap(),
+        "--map-members",
+        "0,2",
+        "--map-grid",
+        "37x19",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let map_text = std::fs::read_to_string(&map).unwrap();
+    assert_eq!(map_text.lines().count(), 1 + 2 * 37 * 19);
+    // the load along −ι̂₃ (γ = π) compresses the tip member m₀₁₀₀ (member 2), eq. 4.20
+    let row = map_text
+        .lines()
+        .find(|l| {
+            l.starts_with("2,") && l.contains(",0.00000000000000000e0,3.14159265358979312e0,")
+        })
+        .expect("member 2 at azimuth 0, polar π");
+    assert!(row.ends_with(",-1"), "{row}");
+    let sweep_text = std::fs::read_to_string(&sweep).unwrap();
+    assert!(sweep_text.starts_with("polar_rad,member,kind,force_N"));
+    // 721 angles × (12 members + 3 extra strings)
+    assert_eq!(sweep_text.lines().count(), 1 + 721 * 15);
+
+    let out = run(&["michell-table", "--max-complexity", "3"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let planar_q2: Vec<f64> = text
+        .lines()
+        .find(|l| l.starts_with("2,0,"))
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    // closed form q sin φ / (sin β sin(β + φ)) at q = 2, φ = π/2, β = π/6: 8/√3
+    assert!((planar_q2[2] - 8.0 / 3f64.sqrt()).abs() < 1e-9);
+    // ERRATA 4.4: 1.354 kg of steel at w₀ = 1 kN
+    assert!((planar_q2[4] - 1.354).abs() < 5e-4);
+    assert_eq!(text.lines().count(), 1 + 2 * 4);
+}

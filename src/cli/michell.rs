@@ -11,6 +11,7 @@ use crate::cli::angle::parse_angle;
 use anyhow::{Context, Result};
 use clap::{ArgGroup, ValueEnum};
 use michell3d::{analyse, AnalysisRequest, MemberKind, Method, MichellParams, MichellReport};
+use std::path::PathBuf;
 
 /// Force propagation method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,6 +72,52 @@ pub struct MichellArgs {
     /// Print JSON instead of a readable report.
     #[arg(long)]
     pub json: bool,
+    /// Also write sign maps (Figs. 4.14–4.16) of the `--map-members` over the load azimuth
+    /// [0, 2π] × polar angle [0, π] to this CSV (3-D trusses).
+    #[arg(long, value_name = "FILE")]
+    pub sign_map: Option<PathBuf>,
+    /// Members of the sign map (indices as in the report; default the three tip members).
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        default_value = "0,1,2"
+    )]
+    pub map_members: Vec<usize>,
+    /// Sign-map grid, azimuth × polar points.
+    #[arg(long, value_name = "NAxNP", default_value = "361x181", value_parser = parse_grid)]
+    pub map_grid: (usize, usize),
+    /// With --extra-strings: write member forces over γ ∈ [0, 2π] (Fig. 4.20) to this CSV.
+    #[arg(long, value_name = "FILE", requires = "extra_strings")]
+    pub gamma_sweep: Option<PathBuf>,
+}
+
+fn parse_grid(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("invalid grid \"{s}\": expected e.g. 361x181 (both at least 2)");
+    let (a, b) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let a: usize = a.trim().parse().map_err(|_| bad())?;
+    let b: usize = b.trim().parse().map_err(|_| bad())?;
+    if a < 2 || b < 2 {
+        return Err(bad());
+    }
+    Ok((a, b))
+}
+
+/// Arguments of `tensegrity michell-table`.
+#[derive(clap::Args, Debug)]
+pub struct MichellTableArgs {
+    /// Largest complexity (the table runs q = 2..=Q).
+    #[arg(long, value_name = "Q", default_value_t = 35)]
+    pub max_complexity: usize,
+    /// Tip load w₀ (N), along −ι̂₃.
+    #[arg(long, value_name = "W0", default_value_t = 1000.0)]
+    pub load: f64,
+    /// Material of bars and strings.
+    #[arg(long, value_name = "NAME", default_value = "steel")]
+    pub material: String,
+    /// Write the table to this CSV (else print it).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
 }
 
 impl MichellArgs {
@@ -99,11 +146,15 @@ impl MichellArgs {
 
 /// Runs `tensegrity michell`.
 pub fn run(args: &MichellArgs) -> Result<()> {
-    let report = analyse(&args.request()).context("michell truss analysis failed")?;
+    let request = args.request();
+    let report = analyse(&request).context("michell truss analysis failed")?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print!("{}", text_report(&report));
+    }
+    if args.sign_map.is_some() || args.gamma_sweep.is_some() {
+        write_sweeps(args, &request)?;
     }
     Ok(())
 }
@@ -271,4 +322,91 @@ mod tests {
         let err = analyse(&parse(&bad).unwrap().request()).unwrap_err();
         assert!(err.to_string().contains("delta"));
     }
+}
+
+fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>> {
+    Ok(std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
+    ))
+}
+
+/// Writes the sign-map and γ-sweep CSV files asked for.
+fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
+    use michell3d::signmap::{sign_maps, write_sign_maps_csv, AngleGrid};
+    let truss = michell3d::MichellTruss::new(request.params)?;
+    if let Some(path) = &args.sign_map {
+        let n_members = truss.members().len();
+        if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
+            anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
+        }
+        let (na, np) = args.map_grid;
+        let maps = sign_maps(
+            &truss,
+            &args.map_members,
+            args.load,
+            AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
+            AngleGrid::new(0.0, std::f64::consts::PI, np),
+            request.method,
+        )?;
+        write_sign_maps_csv(&truss, &maps, create(path)?)?;
+        if !args.json {
+            for m in &maps {
+                println!(
+                    "sign map of member {}: in tension for {:.1} % of the load directions",
+                    m.member,
+                    100.0 * m.tension_fraction()
+                );
+            }
+            println!("wrote {}", path.display());
+        }
+    }
+    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, args.extra_strings) {
+        use michell3d::extra_strings::{gamma_sweep, write_gamma_sweep_csv, ExtraStrings};
+        let strings = ExtraStrings::new(&truss)?;
+        let sweep = gamma_sweep(
+            &truss,
+            &strings,
+            args.load,
+            args.azimuth,
+            AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
+            prestress,
+            request.method,
+        )?;
+        write_gamma_sweep_csv(&sweep, create(path)?)?;
+        if !args.json {
+            let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
+                .filter(|&j| !sweep.base_keeps_sign[j])
+                .collect();
+            println!(
+                "over γ ∈ [0, 2π] with {prestress} N in the extra strings, members changing sign: {changers:?}; extra strings keeping their sign: {}/{}",
+                sweep.extra_keeps_sign.iter().filter(|&&k| k).count(),
+                sweep.extra_keeps_sign.len()
+            );
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+/// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity).
+pub fn run_table(args: &MichellTableArgs) -> Result<()> {
+    use michell3d::complexity::{mass_vs_complexity, write_mass_table_csv, FIG_4_18_DELTAS};
+    if args.max_complexity < 2 {
+        anyhow::bail!(
+            "--max-complexity must be at least 2, got {}",
+            args.max_complexity
+        );
+    }
+    let material =
+        *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
+    let qs: Vec<usize> = (2..=args.max_complexity).collect();
+    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
+    match &args.out {
+        Some(path) => {
+            write_mass_table_csv(&rows, create(path)?)?;
+            println!("wrote {} rows to {}", rows.len(), path.display());
+        }
+        None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
+    }
+    Ok(())
 }
