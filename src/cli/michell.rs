@@ -257,73 +257,6 @@ pub fn text_report(r: &MichellReport) -> String {
     s
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use clap::Parser;
-
-    #[derive(Parser, Debug)]
-    struct Cli {
-        #[command(flatten)]
-        args: MichellArgs,
-    }
-
-    fn parse(argv: &[&str]) -> Result<MichellArgs, clap::Error> {
-        let mut all = vec!["michell"];
-        all.extend_from_slice(argv);
-        Cli::try_parse_from(all).map(|c| c.args)
-    }
-
-    #[test]
-    fn parses_the_documented_flags() {
-        let a = parse(&[
-            "--complexity",
-            "4",
-            "--cylindrical",
-            "0.25",
-            "--beta",
-            "pi/6",
-            "--phi",
-            "22.5deg",
-            "--azimuth",
-            "-pi/4",
-            "--polar",
-            "3pi/4",
-            "--method",
-            "global",
-            "--json",
-        ])
-        .unwrap();
-        assert_eq!(a.complexity, 4);
-        assert_eq!(a.cylindrical, Some(0.25));
-        assert!((a.phi - std::f64::consts::PI / 8.0).abs() < 1e-15);
-        assert!((a.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
-        assert_eq!((a.r0, a.load, a.material.as_str()), (1.0, 1000.0, "steel"));
-        assert_eq!(a.method, MethodArg::Global);
-        let req = a.request();
-        assert_eq!(req.method, Method::Global);
-        assert!(analyse(&req).is_ok());
-    }
-
-    #[test]
-    fn geometry_is_required_and_exclusive() {
-        let base = ["--complexity", "2", "--beta", "pi/6", "--phi", "pi/8"];
-        assert!(parse(&base).is_err());
-        let mut both = base.to_vec();
-        both.extend(["--planar", "--spherical", "pi/24"]);
-        assert!(parse(&both).is_err());
-        let mut planar = base.to_vec();
-        planar.push("--planar");
-        let r = analyse(&parse(&planar).unwrap().request()).unwrap();
-        assert_eq!(r.members.len(), 6);
-        assert!(text_report(&r).contains("planar"));
-        let mut bad = base.to_vec();
-        bad.extend(["--cylindrical", "0"]);
-        let err = analyse(&parse(&bad).unwrap().request()).unwrap_err();
-        assert!(err.to_string().contains("delta"));
-    }
-}
-
 fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>> {
     Ok(std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
@@ -409,4 +342,71 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser, Debug)]
+    struct Cli {
+        #[command(flatten)]
+        args: MichellArgs,
+    }
+
+    fn parse(argv: &[&str]) -> Result<MichellArgs, clap::Error> {
+        let mut all = vec!["michell"];
+        all.extend_from_slice(argv);
+        Cli::try_parse_from(all).map(|c| c.args)
+    }
+
+    #[test]
+    fn parses_the_documented_flags() {
+        let a = parse(&[
+            "--complexity",
+            "4",
+            "--cylindrical",
+            "0.25",
+            "--beta",
+            "pi/6",
+            "--phi",
+            "22.5deg",
+            "--azimuth",
+            "-pi/4",
+            "--polar",
+            "3pi/4",
+            "--method",
+            "global",
+            "--json",
+        ])
+        .unwrap();
+        assert_eq!(a.complexity, 4);
+        assert_eq!(a.cylindrical, Some(0.25));
+        assert!((a.phi - std::f64::consts::PI / 8.0).abs() < 1e-15);
+        assert!((a.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        assert_eq!((a.r0, a.load, a.material.as_str()), (1.0, 1000.0, "steel"));
+        assert_eq!(a.method, MethodArg::Global);
+        let req = a.request();
+        assert_eq!(req.method, Method::Global);
+        assert!(analyse(&req).is_ok());
+    }
+
+    #[test]
+    fn geometry_is_required_and_exclusive() {
+        let base = ["--complexity", "2", "--beta", "pi/6", "--phi", "pi/8"];
+        assert!(parse(&base).is_err());
+        let mut both = base.to_vec();
+        both.extend(["--planar", "--spherical", "pi/24"]);
+        assert!(parse(&both).is_err());
+        let mut planar = base.to_vec();
+        planar.push("--planar");
+        let r = analyse(&parse(&planar).unwrap().request()).unwrap();
+        assert_eq!(r.members.len(), 6);
+        assert!(text_report(&r).contains("planar"));
+        let mut bad = base.to_vec();
+        bad.extend(["--cylindrical", "0"]);
+        let err = analyse(&parse(&bad).unwrap().request()).unwrap_err();
+        assert!(err.to_string().contains("delta"));
+    }
 }
