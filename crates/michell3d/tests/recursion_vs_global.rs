@@ -117,9 +117,8 @@ fn recursion_equals_global_for_fig_4_18_parameters() {
     }
 }
 
-/// Exhaustive: q = 2..=35 for the cylindrical truss (slow in debug builds).
+/// Exhaustive: q = 2..=35 for the cylindrical truss.
 #[test]
-#[ignore = "slow; run with --ignored"]
 fn recursion_equals_global_up_to_q35() {
     let w = tip_load(1000.0, 1.0, 2.0).unwrap();
     for q in 2..=35 {

@@ -1,7 +1,6 @@
 //! Must-show dynamics tests that need only the fixed-step RK4 (and RK45 for the pendulum).
 //!
-//! All run in a few seconds in a debug build; the longer MOTES-size D-bar run is `#[ignore]`d
-//! (`cargo test -p tensegrity-core --test dynamics_basic -- --ignored`).
+//! All run in a few seconds in the test profile, the MOTES-size D-bar run included.
 
 use nalgebra::Vector3;
 use tensegrity_core::dynamics::examples::{
@@ -208,7 +207,6 @@ fn dbar_class_k_keeps_np_equals_d() {
 
 /// The MOTES comparison size: 5000 RK4 steps of the D-bar.
 #[test]
-#[ignore = "longer run; cargo test -p tensegrity-core --test dynamics_basic -- --ignored"]
 fn dbar_class_k_5000_steps() {
     let r = dbar_run(5000, 1e-3);
     assert!(
