@@ -393,3 +393,34 @@ fn michell_writes_sign_maps_gamma_sweeps_and_the_mass_table() {
     assert!((planar_q2[4] - 1.354).abs() < 5e-4);
     assert_eq!(text.lines().count(), 1 + 2 * 4);
 }
+
+#[test]
+fn statics_reports_natural_frequencies_with_six_rigid_body_modes() {
+    let out = run(&[
+        "statics",
+        "examples/prism.toml",
+        "--modes",
+        "8",
+        "--mass",
+        "consistent",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f: Vec<f64> = v["natural_frequencies_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(f.len(), 8);
+    assert!(f[..6].iter().all(|x| *x < 1e-3 * f[6]), "{f:?}");
+    // the prestress-stiffened mechanism: 1/T of the free oscillation (tests/modes_vs_dynamics)
+    assert!((f[6] - 1.0 / 0.584605).abs() < 1e-5, "{f:?}");
+    let v = json("examples/dbar.toml");
+    assert!(v.get("natural_frequencies_hz").is_none());
+}

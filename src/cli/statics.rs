@@ -17,6 +17,23 @@ pub struct StaticsArgs {
     /// Relative rank tolerance of the SVD (default: max(rows, cols) · machine epsilon).
     #[arg(long, value_name = "REL")]
     pub rank_tol: Option<f64>,
+    /// Also report the K lowest natural frequencies about the current state (strings need
+    /// stiffness and rest length, bars mass, material and radius).
+    #[arg(long, value_name = "K")]
+    pub modes: Option<usize>,
+    /// Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the
+    /// rigid-bar mass matrix of the dynamics).
+    #[arg(long, value_enum, default_value_t = MassArg::Lumped)]
+    pub mass: MassArg,
+}
+
+/// `--mass` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MassArg {
+    /// Diagonal: m/2 at each bar end.
+    Lumped,
+    /// m [[1/3, 1/6], [1/6, 1/3]] per bar, as in the dynamics.
+    Consistent,
 }
 
 /// A support reaction.
@@ -89,6 +106,12 @@ pub struct StaticsReport {
     /// compression).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_warning: Option<String>,
+    /// The lowest natural frequencies (Hz) about the current state, with `--modes`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub natural_frequencies_hz: Option<Vec<f64>>,
+    /// Why the modes could not be computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modal_error: Option<String>,
     /// Why the mass could not be computed, when members have materials but sizing failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_error: Option<String>,
@@ -134,6 +157,8 @@ pub fn analyse(structure: &Structure, settings: StaticsSettings) -> Result<Stati
         member_mass_kg: None,
         governing: None,
         sizing_warning: None,
+        natural_frequencies_hz: None,
+        modal_error: None,
         sizing_error: None,
     };
     if structure.is_loaded() {
@@ -254,6 +279,13 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
         }
         println!("minimum mass for these loads: {m:.6} kg");
     }
+    if let Some(f) = &r.natural_frequencies_hz {
+        let list: Vec<String> = f.iter().map(|x| format!("{x:.4}")).collect();
+        println!("lowest natural frequencies [Hz]: {}", list.join(", "));
+    }
+    if let Some(e) = &r.modal_error {
+        println!("modes not computed: {e}");
+    }
     if let Some(w) = &r.sizing_warning {
         println!("warning: {w}");
     }
@@ -269,7 +301,23 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
     if let Some(tol) = args.rank_tol {
         settings = settings.rank_tolerance(tol)?;
     }
-    let report = analyse(&scene.structure, settings)?;
+    let mut report = analyse(&scene.structure, settings)?;
+    if let Some(k) = args.modes {
+        let modes = tensegrity_core::stiffness::equilibrium_force_densities(&scene.structure)
+            .and_then(|(q, _)| {
+                let mass = match args.mass {
+                    MassArg::Lumped => tensegrity_core::stiffness::MassModel::Lumped,
+                    MassArg::Consistent => tensegrity_core::stiffness::MassModel::Consistent,
+                };
+                tensegrity_core::stiffness::modal_analysis_with(&scene.structure, &q, mass)
+            });
+        match modes {
+            Ok(m) => {
+                report.natural_frequencies_hz = Some(m.frequencies_hz.into_iter().take(k).collect())
+            }
+            Err(e) => report.modal_error = Some(e.to_string()),
+        }
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -138,6 +138,45 @@ pub fn string_force_densities(structure: &Structure) -> Result<DVector<f64>> {
     Ok(q)
 }
 
+/// The force densities of the current state: strings from their rest lengths
+/// ([`string_force_densities`]), bars from equilibrium with them and the external loads,
+/// A_b q_b = w − A_s q_s in the least-squares, minimal-norm sense. Returns q and the equilibrium
+/// residual ‖A q − w‖ (N), which is zero when the rest lengths realise a self-stress.
+///
+/// ```
+/// use tensegrity_core::{stiffness, Bar, StringMember, Structure};
+/// // a bar held in compression by a string along it: the bar force balances the string
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 2))
+///     .string(StringMember::new(0, 1).stiffness(100.0).rest_length(0.9))
+///     .string(StringMember::new(1, 2).stiffness(100.0).rest_length(0.9))
+///     .build()
+///     .unwrap();
+/// let (q, residual) = stiffness::equilibrium_force_densities(&s).unwrap();
+/// assert!((q[1] - 10.0).abs() < 1e-12 && (q[0] + 5.0).abs() < 1e-12 && residual < 1e-12);
+/// ```
+pub fn equilibrium_force_densities(structure: &Structure) -> Result<(DVector<f64>, f64)> {
+    let mut q = string_force_densities(structure)?;
+    let dofs = DofMap::of(structure);
+    let a = crate::statics::equilibrium_matrix(structure, &dofs);
+    let w = dofs.gather(&structure.W());
+    let nb = structure.n_bars();
+    let a_b = a.columns(0, nb).into_owned();
+    let rhs = &w - &a * &q;
+    let d = linalg::svd(&a_b)?;
+    let tol = linalg::rank_tolerance(
+        a_b.nrows(),
+        a_b.ncols(),
+        d.s.first().copied().unwrap_or(0.0),
+        None,
+    );
+    let q_b = d.solve_min_norm(&rhs, d.rank(tol));
+    q.rows_mut(0, nb).copy_from(&q_b);
+    let residual = (&a * &q - &w).norm();
+    Ok((q, residual))
+}
+
 /// Rigid-body motions on the free degrees of freedom that the supports allow: an orthonormal
 /// basis (free dofs × count).
 pub fn rigid_body_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatrix<f64>> {
@@ -270,27 +309,84 @@ pub struct Modes {
     pub shapes: DMatrix<f64>,
 }
 
+/// How bar mass enters modal analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MassModel {
+    /// Half of each bar's mass at each end (diagonal M).
+    #[default]
+    Lumped,
+    /// The rigid-bar mass matrix of the dynamics, m [[1/3, 1/6], [1/6, 1/3]] ⊗ I₃ per bar
+    /// (J = m/12 about the centre plus m at the centre), so the frequencies are those of small
+    /// oscillations of [`crate::dynamics`] with very stiff bars.
+    Consistent,
+}
+
 /// Solves K φ = ω² M φ with the tangent stiffness for force densities `q` and the lumped mass.
 /// Every free node needs mass; bars need a material and a radius (axial stiffness), strings a
 /// stiffness.
 pub fn modal_analysis(structure: &Structure, q: &DVector<f64>) -> Result<Modes> {
+    modal_analysis_with(structure, q, MassModel::Lumped)
+}
+
+/// [`modal_analysis`] with a choice of mass matrix. With M = L Lᵀ (diagonal for the lumped
+/// model, Cholesky for the consistent one) the symmetric problem L⁻¹ K L⁻ᵀ ψ = ω² ψ is solved
+/// and φ = L⁻ᵀ ψ (M-orthonormal shapes).
+pub fn modal_analysis_with(
+    structure: &Structure,
+    q: &DVector<f64>,
+    mass: MassModel,
+) -> Result<Modes> {
     let dofs = DofMap::of(structure);
     let axial = axial_stiffness(structure)?;
     let k_t = tangent_stiffness(structure, &dofs, q, &axial);
     let masses = lumped_masses(structure);
-    let mut inv_sqrt = DVector::zeros(dofs.len());
-    for (r, &(node, _)) in dofs.free.iter().enumerate() {
+    for &(node, _) in &dofs.free {
         if masses[node] <= 0.0 {
             return Err(CoreError::MasslessNode { node });
         }
-        inv_sqrt[r] = 1.0 / masses[node].sqrt();
     }
-    let scaled = DMatrix::from_fn(dofs.len(), dofs.len(), |i, j| {
-        inv_sqrt[i] * k_t[(i, j)] * inv_sqrt[j]
-    });
+    let n = dofs.len();
+    let m = match mass {
+        MassModel::Lumped => DMatrix::from_diagonal(&DVector::from_iterator(
+            n,
+            dofs.free.iter().map(|&(node, _)| masses[node]),
+        )),
+        MassModel::Consistent => {
+            let mut m = DMatrix::zeros(n, n);
+            for b in structure.bars() {
+                let mb = b.mass.unwrap_or(0.0);
+                for (x, y, c) in [
+                    (0, 0, 1.0 / 3.0),
+                    (1, 1, 1.0 / 3.0),
+                    (0, 1, 1.0 / 6.0),
+                    (1, 0, 1.0 / 6.0),
+                ] {
+                    for d in 0..3 {
+                        if let (Some(r), Some(col)) =
+                            (dofs.row[b.nodes[x]][d], dofs.row[b.nodes[y]][d])
+                        {
+                            m[(r, col)] += c * mb;
+                        }
+                    }
+                }
+            }
+            m
+        }
+    };
+    let l = m
+        .clone()
+        .cholesky()
+        .ok_or(CoreError::NoConvergence {
+            operation: "Cholesky factorisation of the mass matrix",
+        })?
+        .unpack();
+    let l_inv = l.clone().try_inverse().ok_or(CoreError::NoConvergence {
+        operation: "inverse of the mass matrix factor",
+    })?;
+    let scaled = &l_inv * &k_t * l_inv.transpose();
     let sym = (&scaled + scaled.transpose()) * 0.5;
     let (w, v) = linalg::symmetric_eigen(&sym)?;
-    let shapes = DMatrix::from_fn(v.nrows(), v.ncols(), |i, j| inv_sqrt[i] * v[(i, j)]);
+    let shapes = l_inv.transpose() * v;
     let frequencies_hz = w.iter().map(|&x| x.max(0.0).sqrt() / (2.0 * PI)).collect();
     Ok(Modes {
         eigenvalues: w,
