@@ -30,6 +30,8 @@ enum Command {
     Toroid(cli::toroid::ToroidArgs),
     /// Roll the toroid wheel down an incline (reduced rigid model).
     Roll(cli::toroid::RollArgs),
+    /// Thesis Figs. 3.10 and 3.11: axle height and reactions of wheels rolling down 50° (SVG).
+    FigRolling(cli::toroid::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
     Tipover(cli::toroid::TipoverArgs),
 }
@@ -59,6 +61,7 @@ fn main() {
         Command::Toroid(args) => cli::toroid::run_toroid(args),
         Command::Roll(args) => cli::toroid::run_roll(args),
         Command::Tipover(args) => cli::toroid::run_tipover(args),
+        Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
     };
     if let Err(e) = result {
         let broken_pipe = e.chain().any(|c| {

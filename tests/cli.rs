@@ -424,3 +424,45 @@ fn statics_reports_natural_frequencies_with_six_rigid_body_modes() {
     let v = json("examples/dbar.toml");
     assert!(v.get("natural_frequencies_hz").is_none());
 }
+
+#[test]
+fn figures_are_written_as_svg() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-fig-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let roll = dir.join("rolling.svg");
+    let out = run(&[
+        "fig-rolling",
+        "--fidelity",
+        "rigid",
+        "--t-end",
+        "2",
+        "--out",
+        roll.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(&roll).unwrap();
+    // four wheels in Fig. 3.10, two in Fig. 3.11
+    assert_eq!(svg.matches("<polyline").count(), 6);
+    let table = dir.join("fig418.svg");
+    let out = run(&[
+        "michell-table",
+        "--max-complexity",
+        "4",
+        "--out",
+        dir.join("t.csv").to_str().unwrap(),
+        "--svg",
+        table.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(&table).unwrap();
+    assert_eq!(svg.matches("<polyline").count(), 4);
+    assert!(svg.contains("δ = 0.25"));
+}

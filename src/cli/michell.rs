@@ -118,6 +118,9 @@ pub struct MichellTableArgs {
     /// Write the table to this CSV (else print it).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this SVG file.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
 }
 
 impl MichellArgs {
@@ -340,6 +343,34 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
             println!("wrote {} rows to {}", rows.len(), path.display());
         }
         None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
+    }
+    if let Some(path) = &args.svg {
+        use super::plot::{Panel, Series};
+        let series = |delta: f64, label: String| Series {
+            label,
+            points: rows
+                .iter()
+                .filter(|r| r.delta == delta)
+                .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
+                .collect(),
+        };
+        let mut all = vec![series(0.0, "planar".into())];
+        all.extend(
+            FIG_4_18_DELTAS
+                .iter()
+                .map(|&d| series(d, format!("δ = {d}"))),
+        );
+        let panel = Panel {
+            title: format!(
+                "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
+                args.material, args.load
+            ),
+            x_label: "complexity q".into(),
+            y_label: "mass [kg]".into(),
+            series: all,
+        };
+        std::fs::write(path, super::plot::svg(&[panel]))
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
 }

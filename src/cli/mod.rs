@@ -4,6 +4,7 @@ pub mod angle;
 pub mod bench;
 pub mod demo;
 pub mod michell;
+pub mod plot;
 pub mod simulate;
 pub mod statics;
 pub mod toroid;

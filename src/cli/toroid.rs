@@ -1,5 +1,6 @@
 //! `tensegrity toroid`, `tensegrity roll` and `tensegrity tipover`.
 
+use super::plot::{Panel, Series};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::io::Write;
@@ -271,6 +272,9 @@ pub struct RollArgs {
     /// Write the sampled history (1 ms) to this CSV file.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Plot the axle height and the contact reactions against time to this SVG file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -346,6 +350,15 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         Fidelity::Rigid => "rigid",
         Fidelity::Full => "full",
     };
+    if let Some(path) = &args.svg {
+        let label = format!("n = {}", args.geometry.sides);
+        let panels = [
+            axle_panel(&[(label.clone(), &r)]),
+            reaction_panel(&[(label, &r)]),
+        ];
+        std::fs::write(path, super::plot::svg(&panels))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
     if let Some(path) = &args.out {
         let mut f = std::io::BufWriter::new(
             std::fs::File::create(path)
@@ -496,5 +509,101 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
             r.min_friction_to_tip
         );
     }
+    Ok(())
+}
+
+fn axle_panel(runs: &[(String, &toroid::rolling::RollingResult)]) -> Panel {
+    Panel {
+        title: "axle height above the incline (Fig. 3.10)".into(),
+        x_label: "time [s]".into(),
+        y_label: "axle height − mean [m]".into(),
+        series: runs
+            .iter()
+            .map(|(label, r)| {
+                let mean = r.samples.iter().map(|s| s.h).sum::<f64>() / r.samples.len() as f64;
+                Series {
+                    label: label.clone(),
+                    points: r.samples.iter().map(|s| (s.t, s.h - mean)).collect(),
+                }
+            })
+            .collect(),
+    }
+}
+
+fn reaction_panel(runs: &[(String, &toroid::rolling::RollingResult)]) -> Panel {
+    Panel {
+        title: "contact reaction (Fig. 3.11)".into(),
+        x_label: "time [s]".into(),
+        y_label: "normal force [N]".into(),
+        series: runs
+            .iter()
+            .map(|(label, r)| Series {
+                label: label.clone(),
+                points: r.samples.iter().map(|s| (s.t, s.normal)).collect(),
+            })
+            .collect(),
+    }
+}
+
+/// Arguments of `tensegrity fig-rolling`.
+#[derive(clap::Args, Debug)]
+pub struct FigRollingArgs {
+    /// Output SVG file.
+    #[arg(long, value_name = "FILE", default_value = "rolling.svg")]
+    out: PathBuf,
+    /// Model.
+    #[arg(long, value_enum, default_value_t = FidelityArg::Full)]
+    fidelity: FidelityArg,
+    /// Slope angle.
+    #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
+    incline: f64,
+    /// Simulated time (s).
+    #[arg(long, default_value_t = 10.0)]
+    t_end: f64,
+}
+
+/// Entry point of `tensegrity fig-rolling`: thesis Figs. 3.10 (n = 8, 12, 16, 24) and 3.11
+/// (n = 8, 16) for the reference wheel with spokes + inner rings.
+pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
+    let mut runs = Vec::new();
+    for n in [8usize, 12, 16, 24] {
+        let t = build(
+            &ToroidParams::default().sides(n),
+            "spokes,inner".parse()?,
+            1.0,
+        )?;
+        let a = analyse(&t)?;
+        let fidelity = match args.fidelity {
+            FidelityArg::Rigid => Fidelity::Rigid,
+            FidelityArg::Full => Fidelity::Full,
+            FidelityArg::Auto => auto_fidelity(a.mass_kg, 9.81, 2e4, t.params.outer_radius),
+        };
+        let r = match fidelity {
+            Fidelity::Rigid => RigidRolling::of(&t, &a, args.incline).run(args.t_end)?,
+            Fidelity::Full => FullRolling {
+                incline: args.incline,
+                contact: ContactModel::Thesis { damping: 200.0 },
+                ..FullRolling::default()
+            }
+            .run(&t, args.t_end)?,
+        };
+        println!(
+            "n = {n:>2}: axle oscillation {:.5} m, mean speed {:.3} m/s",
+            r.axle_height_oscillation, r.mean_speed
+        );
+        runs.push((format!("n = {n}"), r));
+    }
+    let all: Vec<(String, &toroid::rolling::RollingResult)> =
+        runs.iter().map(|(l, r)| (l.clone(), r)).collect();
+    let some: Vec<(String, &toroid::rolling::RollingResult)> = [0, 2]
+        .iter()
+        .map(|&i| (runs[i].0.clone(), &runs[i].1))
+        .collect();
+    std::fs::write(
+        &args.out,
+        super::plot::svg(&[axle_panel(&all), reaction_panel(&some)]),
+    )
+    .with_context(|| format!("cannot write {}", args.out.display()))?;
+    println!("wrote {}", args.out.display());
     Ok(())
 }
