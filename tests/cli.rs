@@ -466,3 +466,36 @@ fn figures_are_written_as_svg() {
     assert_eq!(svg.matches("<polyline").count(), 4);
     assert!(svg.contains("δ = 0.25"));
 }
+
+#[test]
+fn simulate_writes_a_vtk_series() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-vtk-{}", std::process::id()));
+    let out = run(&[
+        "simulate",
+        "examples/double_pendulum.toml",
+        "--t-end",
+        "0.2",
+        "--output-interval",
+        "0.05",
+        "--vtk",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let pvd = std::fs::read_to_string(dir.join("series.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 5); // t = 0, 0.05, …, 0.2
+    let frame = std::fs::read_to_string(dir.join("frame_00000.vtu")).unwrap();
+    assert!(frame.contains(r#"NumberOfPoints="3" NumberOfCells="2""#));
+    // the first frame holds the initial nodes: the tip at (√2, −√2)
+    assert!(
+        frame.contains(&format!(
+            "{:e} {:e} 0e0",
+            2.0 * 0.5f64.sqrt(),
+            -2.0 * 0.5f64.sqrt()
+        )),
+        "{frame}"
+    );
+}

@@ -8,3 +8,4 @@ pub mod plot;
 pub mod simulate;
 pub mod statics;
 pub mod toroid;
+pub mod vtk;

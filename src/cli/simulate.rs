@@ -64,6 +64,9 @@ pub struct SimulateArgs {
     /// Sampling interval of the CSV (s); default: the scene's output times, else t_end/200.
     #[arg(long, value_name = "S")]
     pub output_interval: Option<f64>,
+    /// Write the trajectory for ParaView: one `.vtu` per output time plus `series.pvd`.
+    #[arg(long, value_name = "DIR")]
+    pub vtk: Option<PathBuf>,
     /// Print the JSON report.
     #[arg(long)]
     pub json: bool,
@@ -146,7 +149,7 @@ pub fn run(
     if let Some(a) = args.atol {
         s.atol = a;
     }
-    if args.out.is_some() {
+    if args.out.is_some() || args.vtk.is_some() {
         s.quantities.nodes = true;
         if let Some(dt_out) = args.output_interval {
             s.output_interval = Some(dt_out);
@@ -160,6 +163,16 @@ pub fn run(
     if let Some(path) = &args.out {
         write_csv(path, &result)
             .with_context(|| format!("writing the trajectory to {}", path.display()))?;
+    }
+    if let Some(dir) = &args.vtk {
+        let frames = result
+            .samples
+            .iter()
+            .filter_map(|smp| smp.nodes.as_deref().map(|n| (smp.t, n)));
+        let n = super::vtk::write_series(dir, structure, frames)?;
+        if !args.json {
+            println!("{n} VTK frames and series.pvd written to {}", dir.display());
+        }
     }
     let report = SimulateReport::from(&result);
     if args.json {
