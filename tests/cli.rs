@@ -10,13 +10,21 @@ fn run(args: &[&str]) -> std::process::Output {
         .expect("binary runs")
 }
 
+/// Asserts that a run succeeded, showing its stderr otherwise.
+fn assert_ok(out: &std::process::Output) {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// A fresh scratch directory for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("tensegrity-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 fn json(scene: &str) -> serde_json::Value {
     let out = run(&["statics", scene, "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     serde_json::from_slice(&out.stdout).expect("valid JSON")
 }
 
@@ -92,8 +100,7 @@ fn demo_runs_on_built_in_scenes() {
 
 #[test]
 fn bad_scene_fails_with_a_clear_message_and_exit_code() {
-    let dir = std::env::temp_dir().join(format!("tensegrity-cli-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("cli-test");
     let path = dir.join("bad.toml");
     std::fs::write(
         &path,
@@ -115,11 +122,7 @@ fn bad_scene_fails_with_a_clear_message_and_exit_code() {
 #[test]
 fn toroid_json_reports_counts_flexes_and_inertia() {
     let out = run(&["toroid", "--stabilize", "spokes", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(
         (
@@ -150,11 +153,7 @@ fn roll_and_tipover_run_from_the_command_line() {
         "rigid",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["fidelity"], "rigid");
     assert!(
@@ -172,11 +171,7 @@ fn roll_and_tipover_run_from_the_command_line() {
         "penalty",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["fidelity"], "full");
     assert!(v["mean_speed"].as_f64().unwrap() > 0.0);
@@ -195,8 +190,7 @@ fn roll_and_tipover_run_from_the_command_line() {
 
 #[test]
 fn an_exported_toroid_scene_gives_the_same_statics() {
-    let dir = std::env::temp_dir().join(format!("tensegrity-export-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("export");
     let path = dir.join("toroid.toml");
     let p = path.to_str().unwrap();
     let out = run(&[
@@ -211,11 +205,7 @@ fn an_exported_toroid_scene_gives_the_same_statics() {
         "5e4",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let toroid: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let statics = json(p);
     for key in [
@@ -236,11 +226,7 @@ fn an_exported_toroid_scene_gives_the_same_statics() {
 #[test]
 fn simulate_reproduces_the_published_double_pendulum() {
     let out = run(&["simulate", "examples/double_pendulum.toml", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["t_end"], 5.0);
     let tip = &v["final_nodes"][2];
@@ -293,8 +279,7 @@ fn output_piped_into_a_closed_reader_does_not_panic() {
 fn a_compressed_string_is_sized_with_a_warning() {
     // the thesis D-bar (two strings, one self-stress) under end compression: the minimal-norm
     // solution compresses the long string (q = −4166.67 N/m, from the normal equations)
-    let dir = std::env::temp_dir().join(format!("tensegrity-warn-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("warn");
     let path = dir.join("dbar2.toml");
     let mut text = String::from(
         "nodes = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [2.0, 0.0, 0.0]]\n",
@@ -332,8 +317,7 @@ fn a_compressed_string_is_sized_with_a_warning() {
 
 #[test]
 fn michell_writes_sign_maps_gamma_sweeps_and_the_mass_table() {
-    let dir = std::env::temp_dir().join(format!("tensegrity-michell-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("michell");
     let (map, sweep) = (dir.join("map.csv"), dir.join("sweep.csv"));
     let out = run(&[
         "michell",
@@ -357,11 +341,7 @@ fn michell_writes_sign_maps_gamma_sweeps_and_the_mass_table() {
         "37x19",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let map_text = std::fs::read_to_string(&map).unwrap();
     assert_eq!(map_text.lines().count(), 1 + 2 * 37 * 19);
     // the load along −ι̂₃ (γ = π) compresses the tip member m₀₁₀₀ (member 2), eq. 4.20
@@ -405,11 +385,7 @@ fn statics_reports_natural_frequencies_with_six_rigid_body_modes() {
         "consistent",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let f: Vec<f64> = v["natural_frequencies_hz"]
         .as_array()
@@ -427,8 +403,7 @@ fn statics_reports_natural_frequencies_with_six_rigid_body_modes() {
 
 #[test]
 fn figures_are_written_as_svg() {
-    let dir = std::env::temp_dir().join(format!("tensegrity-fig-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("fig");
     let roll = dir.join("rolling.svg");
     let out = run(&[
         "fig-rolling",
@@ -439,11 +414,7 @@ fn figures_are_written_as_svg() {
         "--out",
         roll.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let svg = std::fs::read_to_string(&roll).unwrap();
     // four wheels in Fig. 3.10, two in Fig. 3.11
     assert_eq!(svg.matches("<polyline").count(), 6);
@@ -457,11 +428,7 @@ fn figures_are_written_as_svg() {
         "--svg",
         table.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let svg = std::fs::read_to_string(&table).unwrap();
     assert_eq!(svg.matches("<polyline").count(), 4);
     assert!(svg.contains("δ = 0.25"));
@@ -469,7 +436,7 @@ fn figures_are_written_as_svg() {
 
 #[test]
 fn simulate_writes_a_vtk_series() {
-    let dir = std::env::temp_dir().join(format!("tensegrity-vtk-{}", std::process::id()));
+    let dir = scratch("vtk");
     let out = run(&[
         "simulate",
         "examples/double_pendulum.toml",
@@ -480,11 +447,7 @@ fn simulate_writes_a_vtk_series() {
         "--vtk",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let pvd = std::fs::read_to_string(dir.join("series.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), 5); // t = 0, 0.05, …, 0.2
     let frame = std::fs::read_to_string(dir.join("frame_00000.vtu")).unwrap();
