@@ -12,7 +12,11 @@ fn run(args: &[&str]) -> std::process::Output {
 
 /// Asserts that a run succeeded, showing its stderr otherwise.
 fn assert_ok(out: &std::process::Output) {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 /// A fresh scratch directory for one test.
