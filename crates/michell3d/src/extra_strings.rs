@@ -205,16 +205,7 @@ pub fn gamma_sweep(
     method: Method,
 ) -> Result<GammaSweep> {
     check_prestress(prestress)?;
-    if !(w0.is_finite() && w0 > 0.0) {
-        return Err(invalid(
-            "load",
-            w0,
-            "the load magnitude w0 must be finite and > 0",
-        ));
-    }
-    if !azimuth.is_finite() {
-        return Err(invalid("azimuth", azimuth, "must be finite"));
-    }
+    crate::loads::check_magnitude_and_azimuth(w0, azimuth)?;
     if polar.n == 0 {
         return Err(invalid("polar", 0.0, "the sweep needs at least one angle"));
     }

@@ -24,16 +24,7 @@ const PLANAR_X_RTOL: f64 = 1e-9;
 /// assert!((w.z + 1000.0).abs() < 1e-9 && w.x.abs() < 1e-9);
 /// ```
 pub fn tip_load(w0: f64, azimuth: f64, polar: f64) -> Result<Vector3<f64>> {
-    if !(w0.is_finite() && w0 > 0.0) {
-        return Err(invalid(
-            "load",
-            w0,
-            "the load magnitude w0 must be finite and > 0",
-        ));
-    }
-    if !azimuth.is_finite() {
-        return Err(invalid("azimuth", azimuth, "must be finite"));
-    }
+    check_magnitude_and_azimuth(w0, azimuth)?;
     if !polar.is_finite() {
         return Err(invalid("polar", polar, "must be finite"));
     }
@@ -116,4 +107,19 @@ impl NodalLoads {
         }
         Ok(w)
     }
+}
+
+/// Checks a load magnitude w₀ (finite, > 0) and azimuth (finite), naming the bad one.
+pub(crate) fn check_magnitude_and_azimuth(w0: f64, azimuth: f64) -> Result<()> {
+    if !(w0.is_finite() && w0 > 0.0) {
+        return Err(invalid(
+            "load",
+            w0,
+            "the load magnitude w0 must be finite and > 0",
+        ));
+    }
+    if !azimuth.is_finite() {
+        return Err(invalid("azimuth", azimuth, "must be finite"));
+    }
+    Ok(())
 }
