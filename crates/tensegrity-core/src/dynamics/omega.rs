@@ -80,10 +80,10 @@ enum Factor {
     /// Dense Cholesky (at most [`DENSE_MAX`] rows).
     Dense(DenseCholesky),
     /// The static-schedule sparse Cholesky (larger systems).
-    Static(StaticCholesky),
+    Static(Box<StaticCholesky>),
     /// The general sparse Cholesky (tests: cross-check of the static schedule).
     #[cfg(test)]
-    General(crate::linalg::SparseCholesky),
+    General(Box<crate::linalg::SparseCholesky>),
 }
 
 /// The constraint-system error for a failed factorisation: a non-positive pivot is a singular
@@ -192,7 +192,9 @@ impl ConstraintMatrix {
         let factor = if n <= DENSE_MAX {
             Factor::Dense(DenseCholesky::new(n))
         } else {
-            Factor::Static(StaticCholesky::new(&pattern).map_err(constraint_error)?)
+            Factor::Static(Box::new(
+                StaticCholesky::new(&pattern).map_err(constraint_error)?,
+            ))
         };
         Ok(Self {
             rows,
@@ -345,7 +347,7 @@ mod tests {
         assert!(matches!(sparse.factor, Factor::Static(_)));
         // the general sparse Cholesky on the same pattern
         let mut general = ConstraintMatrix::new(rows.clone(), true).unwrap();
-        general.factor = Factor::General(SparseCholesky::new(&general.pattern).unwrap());
+        general.factor = Factor::General(Box::new(SparseCholesky::new(&general.pattern).unwrap()));
         general.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
         // the dense path on the same values: a copy with the dense factorisation forced on
         let mut dense = ConstraintMatrix::new(rows.clone(), true).unwrap();

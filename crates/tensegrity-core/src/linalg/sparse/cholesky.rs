@@ -358,3 +358,99 @@ pub fn cholesky_solve(lower: &CscMatrix, b: &[f64]) -> Result<Vec<f64>> {
     chol.solve_in_place(&mut x);
     Ok(x)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Lower triangle of the 5-point Laplacian on a k×k grid, shifted by `shift` (SPD).
+    fn laplacian(k: usize, shift: f64) -> CscMatrix {
+        let idx = |i: usize, j: usize| i * k + j;
+        let mut t = Vec::new();
+        for i in 0..k {
+            for j in 0..k {
+                t.push((idx(i, j), idx(i, j), 4.0 + shift));
+                if i + 1 < k {
+                    t.push((idx(i + 1, j), idx(i, j), -1.0));
+                }
+                if j + 1 < k {
+                    t.push((idx(i, j + 1), idx(i, j), -1.0));
+                }
+            }
+        }
+        CscMatrix::from_triplets(k * k, k * k, &t).unwrap()
+    }
+
+    /// A x for a symmetric matrix stored by its lower triangle.
+    fn sym_mul(a: &CscMatrix, x: &[f64]) -> Vec<f64> {
+        let p = a.pattern();
+        let mut y = vec![0.0; x.len()];
+        for j in 0..p.ncols() {
+            for s in p.col_ptr()[j]..p.col_ptr()[j + 1] {
+                let i = p.row_idx()[s];
+                y[i] += a.values()[s] * x[j];
+                if i != j {
+                    y[j] += a.values()[s] * x[i];
+                }
+            }
+        }
+        y
+    }
+
+    #[test]
+    fn static_and_general_agree_and_solve() {
+        let a = laplacian(9, 0.1);
+        let n = a.pattern().ncols();
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+        let mut st = StaticCholesky::new(a.pattern()).unwrap();
+        let mut ge = SparseCholesky::new(a.pattern()).unwrap();
+        assert_eq!(
+            super::super::amd_ordering(a.pattern()).unwrap(),
+            ge.ordering()
+        );
+        // refactor twice (symbolic reuse) with different values
+        for scale in [1.0, 2.5] {
+            let values: Vec<f64> = a.values().iter().map(|v| v * scale).collect();
+            st.factor(&values).unwrap();
+            ge.factor(&values).unwrap();
+            let (mut x1, mut x2) = (b.clone(), b.clone());
+            st.solve_in_place(&mut x1);
+            ge.solve_in_place(&mut x2);
+            let scaled = CscMatrix::new(a.pattern().clone(), values).unwrap();
+            let r = sym_mul(&scaled, &x1);
+            for i in 0..n {
+                assert!((r[i] - b[i]).abs() < 1e-12, "residual at {i}");
+                assert!((x1[i] - x2[i]).abs() < 1e-12 * x1[i].abs().max(1.0));
+            }
+        }
+        assert!(st.factor_nnz() >= n);
+    }
+
+    #[test]
+    fn indefinite_matrix_reports_the_pivot() {
+        // [[1, 2], [2, 1]] is indefinite: the second pivot is 1 − 4 < 0
+        let a = CscMatrix::from_triplets(2, 2, &[(0, 0, 1.0), (1, 0, 2.0), (1, 1, 1.0)]).unwrap();
+        let mut st = StaticCholesky::with_ordering(a.pattern(), vec![0, 1]).unwrap();
+        let e = st.factor(a.values()).unwrap_err();
+        assert_eq!(
+            e,
+            crate::CoreError::Factorization {
+                operation: "static sparse Cholesky",
+                reason: FactorizationFailure::NonPositivePivot { pivot: 1, dim: 2 },
+            }
+        );
+        let mut ge = SparseCholesky::new(a.pattern()).unwrap();
+        assert!(matches!(
+            ge.factor(a.values()),
+            Err(crate::CoreError::Factorization {
+                reason: FactorizationFailure::NonPositivePivot { .. },
+                ..
+            })
+        ));
+        assert!(st.factor(&[1.0]).is_err()); // wrong number of values
+                                             // an upper-triangular entry is not a lower pattern
+        let upper = CscPattern::new(2, vec![0, 1, 3], vec![0, 0, 1]).unwrap();
+        assert!(StaticCholesky::new(&upper).is_err());
+        assert!(SparseCholesky::new(&upper).is_err());
+    }
+}

@@ -111,3 +111,58 @@ pub fn lu_solve(a: &CscMatrix, b: &[f64]) -> Result<Vec<f64>> {
     lu.solve_in_place(&mut x);
     Ok(x)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{DMatrix, DVector};
+
+    #[test]
+    fn matches_a_dense_solve_and_reuses_the_factorisation() {
+        // a nonsymmetric, diagonally weak 30×30 banded matrix with a zero diagonal entry
+        let n = 30;
+        let mut t = Vec::new();
+        for i in 0..n {
+            if i != 7 {
+                t.push((i, i, 0.5 + (i as f64 * 0.3).sin()));
+            }
+            t.push(((i + 1) % n, i, 2.0 + 0.1 * i as f64));
+            t.push(((i + 5) % n, i, -1.0));
+        }
+        let a = CscMatrix::from_triplets(n, n, &t).unwrap();
+        let mut dense = DMatrix::zeros(n, n);
+        for &(r, c, v) in &t {
+            dense[(r, c)] += v;
+        }
+        let mut lu = SparseLu::new(&a).unwrap();
+        for k in 0..2 {
+            let b: Vec<f64> = (0..n).map(|i| ((i + k) as f64).cos()).collect();
+            let expected = dense
+                .clone()
+                .lu()
+                .solve(&DVector::from_column_slice(&b))
+                .unwrap();
+            let mut x = b.clone();
+            lu.solve_in_place(&mut x);
+            let once = lu_solve(&a, &b).unwrap();
+            for i in 0..n {
+                assert!((x[i] - expected[i]).abs() < 1e-10 * expected.amax());
+                assert_eq!(x[i], once[i]);
+            }
+        }
+    }
+
+    #[test]
+    fn structurally_singular_and_bad_input_fail() {
+        // column 1 is empty
+        let a = CscMatrix::from_triplets(2, 2, &[(0, 0, 1.0), (1, 0, 1.0)]).unwrap();
+        assert!(matches!(
+            lu_solve(&a, &[1.0, 1.0]),
+            Err(crate::CoreError::Factorization { .. })
+        ));
+        let ok = CscMatrix::from_triplets(2, 2, &[(0, 0, 1.0), (1, 1, 1.0)]).unwrap();
+        assert!(lu_solve(&ok, &[1.0]).is_err());
+        let rect = CscMatrix::from_triplets(3, 2, &[(0, 0, 1.0), (1, 1, 1.0)]).unwrap();
+        assert!(SparseLu::new(&rect).is_err());
+    }
+}
