@@ -12,8 +12,12 @@
 //! Rigid-body motions δn_i = a + ω × n_i that the supports allow ([`rigid_body_motions`]) are
 //! the trivial first-order flexes. The flexes themselves ([`Statics::flexes`]) and the
 //! prestress-stability test with the stress matrix ([`Statics::prestress_stability`]) are
-//! methods of [`Statics`](crate::statics::Statics), in `statics/flexes.rs` and
-//! `statics/stability.rs`; their result types are re-exported here.
+//! methods of [`Statics`], in `statics/flexes.rs` and `statics/stability.rs`; their result
+//! types are re-exported here.
+//!
+//! [`Statics`]: crate::statics::Statics
+//! [`Statics::flexes`]: crate::statics::Statics::flexes
+//! [`Statics::prestress_stability`]: crate::statics::Statics::prestress_stability
 //!
 //! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
 //! of its ends; strings are massless).

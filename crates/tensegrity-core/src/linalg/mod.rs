@@ -4,12 +4,12 @@
 //! faer changes its API with each minor release; it is pinned in the workspace manifest and
 //! kept behind this module, whose functions take and return nalgebra matrices, plain slices
 //! and the small sparse types of [`sparse`] (never a faer type). Its errors are converted in
-//! one place, [`failed`], into [`CoreError::Factorization`] with a
+//! one place (this module's private `failed`) into [`CoreError::Factorization`] with a
 //! [`FactorizationFailure`] reason.
 //!
 //! # Layout
 //!
-//! - [`dense`]: the SVD A = U Σ Vᵀ ([`svd`], [`orthonormal_basis`]), the symmetric
+//! - [`dense`]: the SVD A = U Σ Vᵀ ([`svd()`], [`orthonormal_basis`]), the symmetric
 //!   eigendecomposition A = Q Λ Qᵀ ([`symmetric_eigen`]) and an in-place dense Cholesky
 //!   A = L Lᵀ for small SPD systems given in sparse form ([`DenseCholesky`]);
 //! - [`sparse`]: compressed-column storage ([`CscPattern`], [`CscMatrix`]), the fill-reducing
@@ -20,7 +20,7 @@
 //! Where a factorisation is repeated with a fixed pattern (the Ω system of the dynamics is
 //! refactored every step), the symbolic analysis is done once by a constructor and the numeric
 //! `factor` / `solve_in_place` calls work in preallocated storage, without allocating. One-shot
-//! callers use the allocating functions ([`svd`], [`lu_solve`], [`cholesky_solve`]).
+//! callers use the allocating functions ([`svd()`], [`lu_solve`], [`cholesky_solve`]).
 //!
 //! # Rank tolerance
 //!

@@ -1,4 +1,4 @@
-//! Dense factorisations on nalgebra matrices: SVD ([`svd`]), symmetric eigendecomposition
+//! Dense factorisations on nalgebra matrices: SVD ([`svd()`]), symmetric eigendecomposition
 //! ([`eigen`]) and an in-place Cholesky for small SPD systems ([`cholesky`]).
 
 pub mod cholesky;
