@@ -8,9 +8,10 @@
 //!   [`MichellTruss`] (four-index nodes (U, D, L, R) with identical tuples merged; children
 //!   (U+1,D,L+1,R), (U+1,D,L,R+1), (U,D+1,L,R); member vector n_parent − n_child; level-q
 //!   supports);
-//! - force propagation by the recursive method of joints ([`propagate_recursive`], one fixed-size
-//!   solve per node) and, independently, by a global sparse LU ([`global::solve_global`]);
-//!   tension-positive force densities;
+//! - force propagation ([`propagate`], dispatching on [`Method`]) by the recursive method of
+//!   joints ([`propagate_recursive`], one fixed-size solve per node) and, independently, by a
+//!   global sparse LU ([`global::solve_global`]); tension-positive force densities
+//!   ([`ForceSolution`]);
 //! - tip loads w₀[cos φ sin γ, sin φ sin γ, cos γ] ([`tip_load`]) and sign maps over (φ, γ)
 //!   ([`signmap`]);
 //! - member types from the force sign, minimum mass for yield and buckling ([`sizing`]), the
@@ -49,9 +50,11 @@ pub mod nodes;
 pub mod params;
 pub mod planar;
 pub mod propagation;
+pub mod recursive;
 pub mod report;
 pub mod signmap;
 pub mod sizing;
+pub mod solution;
 pub mod truss;
 
 pub use complexity::{mass_vs_complexity, write_mass_table_csv, MassRow};

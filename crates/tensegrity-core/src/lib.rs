@@ -12,7 +12,9 @@
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
 //! - [`scene`]: the TOML scene format;
-//! - [`linalg`]: the thin layer over faer.
+//! - [`linalg`]: dense (SVD, symmetric eigen, small Cholesky) and sparse (ordering, Cholesky
+//!   with symbolic reuse, LU) factorisations, the only module that touches the factorisation
+//!   backend;
 //!
 //! Sign conventions: force densities q are tension positive; the member vector is
 //! `n_end − n_start`; members are numbered bars first, then strings.
@@ -24,6 +26,7 @@ pub mod dynamics;
 pub mod error;
 pub mod linalg;
 pub mod material;
+pub mod member_id;
 pub mod scene;
 pub mod sizing;
 pub mod statics;
@@ -36,5 +39,6 @@ pub use dynamics::{
 };
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
+pub use member_id::MemberId;
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};
-pub use structure::{Bar, Load, MemberId, StringMember, Structure, StructureBuilder, Support};
+pub use structure::{Bar, Load, StringMember, Structure, StructureBuilder, Support};

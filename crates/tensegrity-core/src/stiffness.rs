@@ -1,4 +1,4 @@
-//! Tangent stiffness, first-order flexes, prestress stability and modal analysis.
+//! Tangent stiffness, stress matrix, rigid-body motions and modal analysis.
 //!
 //! For member k with force density q_k (tension positive), length l_k, unit vector e_k and
 //! axial stiffness k_k (k for strings, E·πr²/l for elastic bars), the 3×3 block
@@ -9,19 +9,23 @@
 //! geometric stiffness). The geometric part alone, Σ q_k (…)⊗I₃, is the stress matrix Ω ⊗ I₃
 //! with Ω = Cᵀ diag(q) C.
 //!
-//! First-order flexes are the motions δn of the free degrees of freedom with Aᵀ δn = 0 (no
-//! member changes length to first order). Rigid-body motions δn_i = a + ω × n_i that the
-//! supports allow are trivial flexes; the others are internal mechanisms. A structure with a
-//! self-stress q is prestress stable when δnᵀ (Ω ⊗ I₃) δn > 0 for every internal mechanism δn
-//! (Connelly–Whiteley second-order test with that stress); with no internal mechanism it is
-//! first-order rigid.
+//! Rigid-body motions δn_i = a + ω × n_i that the supports allow ([`rigid_body_motions`]) are
+//! the trivial first-order flexes. The flexes themselves ([`Statics::flexes`]) and the
+//! prestress-stability test with the stress matrix ([`Statics::prestress_stability`]) are
+//! methods of [`Statics`], in `statics/flexes.rs` and `statics/stability.rs`; their result
+//! types are re-exported here.
+//!
+//! [`Statics`]: crate::statics::Statics
+//! [`Statics::flexes`]: crate::statics::Statics::flexes
+//! [`Statics::prestress_stability`]: crate::statics::Statics::prestress_stability
 //!
 //! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
 //! of its ends; strings are massless).
 
 use crate::error::{CoreError, Result};
 use crate::linalg;
-use crate::statics::{DofMap, Statics};
+use crate::statics::DofMap;
+pub use crate::statics::{Flexes, PrestressStability};
 use crate::structure::{MemberId, Structure};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use std::f64::consts::PI;
@@ -214,76 +218,6 @@ pub fn rigid_body_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatri
     let free_rows: Vec<usize> = dofs.free.iter().map(|&(i, d)| 3 * i + d).collect();
     let t_free = t.select_rows(free_rows.iter()) * allowed;
     linalg::orthonormal_basis(&t_free, Some(1e-10))
-}
-
-/// First-order flexes split into trivial (rigid-body) and internal ones.
-#[derive(Debug, Clone)]
-pub struct Flexes {
-    /// Orthonormal basis of the internal mechanisms (free dofs × count).
-    pub internal: DMatrix<f64>,
-    /// Number of rigid-body motions the supports allow.
-    pub rigid_body: usize,
-}
-
-/// Result of the prestress-stability test.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PrestressStability {
-    /// Number of internal mechanisms (first-order flexes beyond rigid-body motion).
-    pub internal_mechanisms: usize,
-    /// Eigenvalues of the stress matrix projected on the internal mechanisms, ascending
-    /// (empty when there are none).
-    pub eigenvalues: Vec<f64>,
-    /// Whether every internal mechanism is stiffened by the stress (or there is none).
-    pub stable: bool,
-}
-
-impl Statics<'_> {
-    /// The first-order flexes, split into rigid-body motions and internal mechanisms.
-    pub fn flexes(&self) -> Result<Flexes> {
-        let motions = self.motion_basis();
-        let rigid = rigid_body_motions(self.structure(), self.dofs())?;
-        let n_rigid = rigid.ncols();
-        let projected = &motions - &rigid * (rigid.transpose() * &motions);
-        let internal_dim = motions.ncols().saturating_sub(n_rigid);
-        let internal = if internal_dim == 0 {
-            DMatrix::zeros(motions.nrows(), 0)
-        } else {
-            let d = linalg::svd(&projected)?;
-            d.u.columns(0, internal_dim).into_owned()
-        };
-        Ok(Flexes {
-            internal,
-            rigid_body: n_rigid,
-        })
-    }
-
-    /// Tests prestress stability with force densities `q` (normally a self-stress).
-    ///
-    /// The eigenvalues of the stress matrix projected on the internal mechanisms must exceed
-    /// 1e-9 · max|q|, a tolerance relative to the stress level.
-    pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
-        let flexes = self.flexes()?;
-        let phi = &flexes.internal;
-        let m = phi.ncols();
-        if m == 0 {
-            return Ok(PrestressStability {
-                internal_mechanisms: 0,
-                eigenvalues: Vec::new(),
-                stable: true,
-            });
-        }
-        let omega = stress_matrix(self.structure(), self.dofs(), q);
-        let projected = phi.transpose() * omega * phi;
-        let sym = (&projected + projected.transpose()) * 0.5;
-        let (w, _) = linalg::symmetric_eigen(&sym)?;
-        let tol = 1e-9 * q.amax();
-        let stable = w.first().is_some_and(|&w0| w0 > tol);
-        Ok(PrestressStability {
-            internal_mechanisms: m,
-            eigenvalues: w,
-            stable,
-        })
-    }
 }
 
 /// Lumped nodal masses: half of each bar's mass at each of its ends (strings massless).

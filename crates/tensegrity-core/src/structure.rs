@@ -7,27 +7,9 @@
 
 use crate::error::{CoreError, Result};
 use crate::material::{Material, MaterialTable};
+pub use crate::member_id::MemberId;
 use nalgebra::{Matrix3xX, Vector3};
 use std::collections::HashMap;
-use std::fmt;
-
-/// Identifies a member by kind and 0-based index within its kind.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum MemberId {
-    /// The i-th bar.
-    Bar(usize),
-    /// The i-th string.
-    String(usize),
-}
-
-impl fmt::Display for MemberId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            MemberId::Bar(i) => write!(f, "bar {i}"),
-            MemberId::String(i) => write!(f, "string {i}"),
-        }
-    }
-}
 
 /// A compressive member, rigid in dynamics, elastic in stiffness analysis when it has a
 /// material and a radius.

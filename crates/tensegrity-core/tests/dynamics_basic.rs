@@ -215,7 +215,7 @@ fn dbar_class_k_5000_steps() {
 #[test]
 fn dbar_chain_sparse_omega_keeps_np_equals_d() {
     // 4 D-bars: class-2 ends (2·3 rows), three class-4 joints (3·9), eight class-2 mid nodes
-    // (8·3): 57 rows > 48, so the faer sparse Cholesky path with symbolic reuse is exercised.
+    // (8·3): 57 rows > 48, so the sparse Cholesky path with symbolic reuse is exercised.
     let s = dbar_chain(4).unwrap();
     let model = Model::new(&s, None).unwrap();
     assert!(

@@ -56,7 +56,6 @@ pub mod rk4;
 pub mod rk45;
 pub mod scene;
 pub mod simulation;
-mod sparse_chol;
 pub mod strings;
 
 pub use error::DynamicsError;

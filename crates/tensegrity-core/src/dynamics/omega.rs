@@ -11,27 +11,19 @@
 //! rigid-bar inverse mass C_b M⁻¹ = ½ Ĵ⁻¹ C_b with the λ projection, DESIGN.md), and β = 0 for
 //! RATTLE (plain M⁻¹ = [[4, −2], [−2, 4]]/m per bar).
 //!
-//! The sparsity pattern and the fill-reducing symbolic Cholesky factorisation are computed once;
-//! each evaluation only refills the values and refactors numerically, without allocating.
-//! Systems of at most [`DENSE_MAX`] rows (a few class-k joints) skip faer: its per-call
-//! overhead (permutation, dispatch) is several times the flops of a 12×12 factorisation, so
-//! they use an in-place dense Cholesky of the same values instead. Larger systems take faer's
-//! AMD ordering and then run the in-house static-schedule factorisation of
-//! [`super::sparse_chol`] (faer's own numeric sparse Cholesky stays available and is
-//! cross-checked in the tests).
-//!
-//! This is the only dynamics file that touches faer; it should move behind `crate::linalg`.
+//! The sparsity pattern (lower triangle, CSC) and the fill-reducing symbolic Cholesky
+//! factorisation are computed once; each evaluation only refills the values and refactors
+//! numerically, without allocating. The factorisations live in [`crate::linalg`]: systems of
+//! at most [`DENSE_MAX`] rows (a few class-k joints) use the in-place
+//! [`DenseCholesky`](crate::linalg::DenseCholesky), since a sparse factorisation's per-call
+//! overhead (permutation, dispatch) is several times the flops of a 12×12 one; larger systems
+//! use the AMD-ordered static-schedule [`StaticCholesky`](crate::linalg::StaticCholesky) (the
+//! general [`SparseCholesky`](crate::linalg::SparseCholesky) is cross-checked against it in the
+//! tests).
 
 use super::error::DynamicsError;
-use super::sparse_chol::StaticCholesky;
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
-};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, MatMut, Par, Side};
+use crate::error::{CoreError, FactorizationFailure};
+use crate::linalg::{CscPattern, DenseCholesky, StaticCholesky};
 use nalgebra::Vector3;
 
 /// Largest system solved with the dense Cholesky path.
@@ -82,27 +74,47 @@ fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
     }
 }
 
+/// The factorisation of a constraint system, chosen by its size.
+#[derive(Debug)]
+enum Factor {
+    /// Dense Cholesky (at most [`DENSE_MAX`] rows).
+    Dense(DenseCholesky),
+    /// The static-schedule sparse Cholesky (larger systems).
+    Static(Box<StaticCholesky>),
+    /// The general sparse Cholesky (tests: cross-check of the static schedule).
+    #[cfg(test)]
+    General(Box<crate::linalg::SparseCholesky>),
+}
+
+/// The constraint-system error for a failed factorisation: a non-positive pivot is a singular
+/// (redundant or conflicting) constraint set.
+fn constraint_error(e: CoreError) -> DynamicsError {
+    match e {
+        CoreError::Factorization {
+            reason: FactorizationFailure::NonPositivePivot { pivot, dim },
+            ..
+        } => DynamicsError::SingularConstraint {
+            rank: pivot,
+            expected: dim,
+        },
+        other => DynamicsError::from(other),
+    }
+}
+
 /// A sparse SPD system over constraint rows with symbolic reuse.
 pub(crate) struct ConstraintMatrix {
     pub rows: Vec<Row>,
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
+    /// Lower triangle of the system (column j holds rows i ≥ j).
+    pattern: CscPattern,
     values: Vec<f64>,
     contributions: Vec<Contribution>,
     /// Precomputed form of `contributions` when every gradient is ±e_d and the system is
     /// rigid (Ω); empty otherwise.
     axis: Vec<AxisContribution>,
-    symbolic: SymbolicCholesky<usize>,
-    l_values: Vec<f64>,
-    buf: MemBuffer,
     /// Ω-type (with the b̂ b̂ᵀ rigid-bar projection) or plain M⁻¹ (RATTLE).
     rigid: bool,
     factored: bool,
-    /// Dense lower-triangular factor (row-major n×n) for small systems, else empty.
-    dense: Vec<f64>,
-    /// The in-house static-schedule sparse Cholesky (default for large systems); `None`
-    /// means faer's numeric sparse Cholesky is used.
-    chol: Option<StaticCholesky>,
+    factor: Factor,
 }
 
 impl std::fmt::Debug for ConstraintMatrix {
@@ -155,11 +167,9 @@ impl ConstraintMatrix {
             col_ptr[j + 1] += col_ptr[j];
         }
         let row_idx: Vec<usize> = pairs.iter().map(|&(i, _)| i).collect();
-        let slot_of = |i: usize, j: usize| -> usize {
-            let lo = col_ptr[j];
-            let hi = col_ptr[j + 1];
-            lo + row_idx[lo..hi].binary_search(&i).expect("slot in pattern")
-        };
+        let pattern = CscPattern::new(n, col_ptr, row_idx).map_err(constraint_error)?;
+        let slot_of =
+            |i: usize, j: usize| -> usize { pattern.slot(i, j).expect("slot in pattern") };
         let contributions = raw
             .into_iter()
             .map(|(rx, ex, ry, ey, same, bar)| Contribution {
@@ -178,46 +188,23 @@ impl ConstraintMatrix {
         } else {
             Vec::new()
         };
-        let values = vec![0.0; row_idx.len()];
-        let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            sym,
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(|_| DynamicsError::SingularConstraint {
-            rank: 0,
-            expected: n,
-        })?;
-        let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        ]);
-        let l_values = vec![0.0; symbolic.len_val()];
-        let fwd: Vec<usize> = match symbolic.perm() {
-            Some(p) => p.arrays().0.to_vec(),
-            None => (0..n).collect(),
+        let values = vec![0.0; pattern.nnz()];
+        let factor = if n <= DENSE_MAX {
+            Factor::Dense(DenseCholesky::new(n))
+        } else {
+            Factor::Static(Box::new(
+                StaticCholesky::new(&pattern).map_err(constraint_error)?,
+            ))
         };
-        let chol = Some(StaticCholesky::new(&col_ptr, &row_idx, fwd));
         Ok(Self {
             rows,
-            col_ptr,
-            row_idx,
+            pattern,
             values,
             contributions,
             axis,
-            symbolic,
-            l_values,
-            buf: MemBuffer::new(req),
             rigid,
             factored: false,
-            dense: if n <= DENSE_MAX {
-                vec![0.0; n * n]
-            } else {
-                Vec::new()
-            },
-            chol,
+            factor,
         })
     }
 
@@ -285,122 +272,27 @@ impl ConstraintMatrix {
             }
             self.values[c.slot] += inv_mass[c.bar] * v;
         }
-        let n = self.rows.len();
         self.factored = false;
-        if !self.dense.is_empty() {
-            self.dense_factor()?;
-            self.factored = true;
-            return Ok(());
+        match &mut self.factor {
+            Factor::Dense(c) => c.factor(&self.pattern, &self.values),
+            Factor::Static(c) => c.factor(&self.values),
+            #[cfg(test)]
+            Factor::General(c) => c.factor(&self.values),
         }
-        if let Some(chol) = self.chol.as_mut() {
-            chol.factor(&self.values)?;
-            self.factored = true;
-            return Ok(());
-        }
-        let a = SparseColMatRef::new(
-            SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx),
-            &self.values,
-        );
-        let stack = MemStack::new(&mut self.buf);
-        self.symbolic
-            .factorize_numeric_llt(
-                &mut self.l_values,
-                a,
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                stack,
-                Default::default(),
-            )
-            .map_err(|e| {
-                let faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } = e;
-                DynamicsError::SingularConstraint {
-                    rank: index,
-                    expected: n,
-                }
-            })?;
+        .map_err(constraint_error)?;
         self.factored = true;
-        Ok(())
-    }
-
-    /// In-place dense Cholesky L Lᵀ of the lower triangle (row-major).
-    fn dense_factor(&mut self) -> Result<(), DynamicsError> {
-        let n = self.rows.len();
-        let a = &mut self.dense;
-        a.iter_mut().for_each(|v| *v = 0.0);
-        for j in 0..n {
-            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
-                a[self.row_idx[p] * n + j] = self.values[p];
-            }
-        }
-        // Relative pivot threshold: a pivot below ε·n·max diagonal counts as zero.
-        let dmax = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
-        let tol = f64::EPSILON * n as f64 * dmax;
-        for j in 0..n {
-            let (head, tail) = a.split_at_mut((j + 1) * n);
-            let row_j = &mut head[j * n..];
-            let d = row_j[j] - row_j[..j].iter().map(|v| v * v).sum::<f64>();
-            if d.is_nan() || d <= tol {
-                return Err(DynamicsError::SingularConstraint {
-                    rank: j,
-                    expected: n,
-                });
-            }
-            let d = d.sqrt();
-            row_j[j] = d;
-            let row_j = &head[j * n..j * n + j];
-            for row_i in tail.chunks_exact_mut(n) {
-                let v = row_i[j]
-                    - row_i[..j]
-                        .iter()
-                        .zip(row_j)
-                        .map(|(x, y)| x * y)
-                        .sum::<f64>();
-                row_i[j] = v / d;
-            }
-        }
         Ok(())
     }
 
     /// Solves A x = rhs in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         debug_assert!(self.factored);
-        let n = self.rows.len();
-        if !self.dense.is_empty() {
-            let a = &self.dense;
-            for (i, row) in a.chunks_exact(n).enumerate() {
-                let v = rhs[i]
-                    - row[..i]
-                        .iter()
-                        .zip(&rhs[..i])
-                        .map(|(x, y)| x * y)
-                        .sum::<f64>();
-                rhs[i] = v / row[i];
-            }
-            for i in (0..n).rev() {
-                let mut v = rhs[i];
-                for k in i + 1..n {
-                    v -= a[k * n + i] * rhs[k];
-                }
-                rhs[i] = v / a[i * n + i];
-            }
-            return;
+        match &mut self.factor {
+            Factor::Dense(c) => c.solve_in_place(rhs),
+            Factor::Static(c) => c.solve_in_place(rhs),
+            #[cfg(test)]
+            Factor::General(c) => c.solve_in_place(rhs),
         }
-        if let Some(chol) = self.chol.as_mut() {
-            chol.solve_in_place(rhs);
-            return;
-        }
-        let llt = LltRef::<usize, f64>::new(&self.symbolic, &self.l_values);
-        let stack = MemStack::new(&mut self.buf);
-        let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
-        llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, stack);
-    }
-
-    /// Uses faer's numeric sparse Cholesky instead of the static schedule (tests).
-    #[cfg(test)]
-    fn use_faer(&mut self) {
-        self.dense.clear();
-        self.chol = None;
     }
 }
 
@@ -408,6 +300,7 @@ impl ConstraintMatrix {
 mod tests {
     use super::*;
     use crate::dynamics::model::Model;
+    use crate::linalg::SparseCholesky;
     use crate::structure::{Bar, StringMember, Structure};
 
     /// `n` D-bars in a row sharing their end joints: 6 + 9(n−1) + 6n constraint rows.
@@ -451,27 +344,27 @@ mod tests {
             .collect();
         let mut sparse = ConstraintMatrix::new(rows.clone(), true).unwrap();
         sparse.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
-        let mut with_faer = ConstraintMatrix::new(rows.clone(), true).unwrap();
-        with_faer.use_faer();
-        with_faer
-            .assemble_and_factor(&bhat, &model.inv_mass)
-            .unwrap();
-        // the dense path on the same values: a copy with dense storage forced on
+        assert!(matches!(sparse.factor, Factor::Static(_)));
+        // the general sparse Cholesky on the same pattern
+        let mut general = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        general.factor = Factor::General(Box::new(SparseCholesky::new(&general.pattern).unwrap()));
+        general.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
+        // the dense path on the same values: a copy with the dense factorisation forced on
         let mut dense = ConstraintMatrix::new(rows.clone(), true).unwrap();
-        dense.dense = vec![0.0; rows.len() * rows.len()];
+        dense.factor = Factor::Dense(DenseCholesky::new(rows.len()));
         dense.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
         // and the generic (non-precomputed) assembly on the dense path
         let mut generic = ConstraintMatrix::new(rows.clone(), true).unwrap();
         assert!(!generic.axis.is_empty());
         generic.axis.clear();
-        generic.dense = vec![0.0; rows.len() * rows.len()];
+        generic.factor = Factor::Dense(DenseCholesky::new(rows.len()));
         generic.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
         let rhs: Vec<f64> = (0..rows.len()).map(|i| (i as f64 * 0.37).sin()).collect();
         let (mut x1, mut x2, mut x3) = (rhs.clone(), rhs.clone(), rhs.clone());
         sparse.solve_in_place(&mut x1);
         dense.solve_in_place(&mut x2);
         let mut x4 = rhs.clone();
-        with_faer.solve_in_place(&mut x4);
+        general.solve_in_place(&mut x4);
         let diff4 = x1
             .iter()
             .zip(&x4)

@@ -12,11 +12,15 @@
 //!   columns of U), rigid-body motions included when the supports allow them.
 
 mod dense_lp;
+mod flexes;
 mod load;
 mod prestress;
+mod stability;
 
+pub use flexes::Flexes;
 pub use load::LoadSolution;
 pub use prestress::{Prestressability, PRESTRESS_TOLERANCE};
+pub use stability::PrestressStability;
 
 use crate::error::Result;
 use crate::linalg::{self, Svd};

@@ -1,13 +1,9 @@
-//! The only module that touches faer: dense SVD and symmetric eigendecomposition on nalgebra
-//! matrices.
-//!
-//! faer runs sequentially here (its `rayon` feature is off), so that parallel parameter sweeps
-//! own the cores. Rank decisions use [`rank_tolerance`]: a singular value σ counts as zero when
-//! σ ≤ max(m, n) · ε · σ_max (the MATLAB/NumPy convention), unless a caller supplies its own
-//! relative tolerance.
+//! The full singular value decomposition A = U Σ Vᵀ, the rank tolerance convention and the
+//! orthonormal basis of a column span.
 
-use crate::error::{CoreError, Result};
-use faer::{Mat, Side};
+use super::{from_faer, to_faer};
+use crate::error::Result;
+use crate::linalg::failed;
 use nalgebra::{DMatrix, DVector};
 
 /// A full singular value decomposition A = U Σ Vᵀ.
@@ -39,14 +35,6 @@ impl Svd {
     }
 }
 
-fn to_faer(a: &DMatrix<f64>) -> Mat<f64> {
-    Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)])
-}
-
-fn from_faer(a: faer::MatRef<'_, f64>) -> DMatrix<f64> {
-    DMatrix::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)])
-}
-
 /// Full SVD of `a`. Empty matrices are handled (U and V are identities, no singular values).
 ///
 /// ```
@@ -64,10 +52,7 @@ pub fn svd(a: &DMatrix<f64>) -> Result<Svd> {
             v: DMatrix::identity(n, n),
         });
     }
-    let f = to_faer(a);
-    let dec = f
-        .svd()
-        .map_err(|_| CoreError::NoConvergence { operation: "SVD" })?;
+    let dec = to_faer(a).svd().map_err(failed("SVD", m.min(n)))?;
     let s = dec.S().column_vector();
     Ok(Svd {
         u: from_faer(dec.U()),
@@ -90,31 +75,17 @@ pub fn rank_tolerance(m: usize, n: usize, s_max: f64, rel: Option<f64>) -> f64 {
     }
 }
 
-/// Eigenvalues (non-decreasing) and orthonormal eigenvectors of a symmetric matrix.
+/// An orthonormal basis (as columns) of the span of the columns of `a`, using the SVD with the
+/// default rank tolerance (relative `rel` when given).
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// let a = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 2.0]);
-/// let (w, _) = tensegrity_core::linalg::symmetric_eigen(&a).unwrap();
-/// assert!((w[0] - 1.0).abs() < 1e-14 && (w[1] - 3.0).abs() < 1e-14);
+/// // two parallel columns span a line
+/// let a = DMatrix::from_row_slice(3, 2, &[1.0, 2.0, 0.0, 0.0, 1.0, 2.0]);
+/// let q = tensegrity_core::linalg::orthonormal_basis(&a, None).unwrap();
+/// assert_eq!(q.ncols(), 1);
+/// assert!((q.column(0).norm() - 1.0).abs() < 1e-14);
 /// ```
-pub fn symmetric_eigen(a: &DMatrix<f64>) -> Result<(Vec<f64>, DMatrix<f64>)> {
-    let n = a.nrows();
-    if n == 0 {
-        return Ok((Vec::new(), DMatrix::zeros(0, 0)));
-    }
-    let f = to_faer(a);
-    let dec = f
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| CoreError::NoConvergence {
-            operation: "symmetric eigendecomposition",
-        })?;
-    let s = dec.S().column_vector();
-    Ok(((0..n).map(|i| s[i]).collect(), from_faer(dec.U())))
-}
-
-/// An orthonormal basis (as columns) of the span of the columns of `a`, using the SVD with the
-/// default rank tolerance (relative `rel` when given).
 pub fn orthonormal_basis(a: &DMatrix<f64>, rel: Option<f64>) -> Result<DMatrix<f64>> {
     if a.ncols() == 0 || a.nrows() == 0 {
         return Ok(DMatrix::zeros(a.nrows(), 0));
