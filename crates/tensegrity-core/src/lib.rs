@@ -36,5 +36,6 @@ pub use dynamics::{
 };
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
+pub use statics::report::{statics_report, StaticsReport, StaticsRequest};
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};
 pub use structure::{Bar, Load, MemberId, StringMember, Structure, StructureBuilder, Support};

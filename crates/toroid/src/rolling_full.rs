@@ -17,6 +17,7 @@
 
 use crate::analysis::{prestress_design, prestressed_structure};
 use crate::builder::Toroid;
+use crate::defaults;
 use crate::error::{Result, ToroidError};
 use crate::rolling::{summarise, RollingResult, RollingSample};
 use nalgebra::Vector3;
@@ -66,24 +67,35 @@ pub struct FullRolling {
     pub output_dt: f64,
 }
 
+impl ContactModel {
+    /// The thesis contact with the default damping [`defaults::GROUND_DAMPING`].
+    pub const THESIS: ContactModel = ContactModel::Thesis {
+        damping: defaults::GROUND_DAMPING,
+    };
+
+    /// The penalty ground with the defaults of [`crate::defaults`]: stiffness 10⁵ N/m,
+    /// damping 200 N·s/m, μ_s = 0.8 and μ_k = 0.75 μ_s = 0.6.
+    pub const PENALTY: ContactModel = ContactModel::Penalty {
+        stiffness: defaults::GROUND_STIFFNESS,
+        damping: defaults::GROUND_DAMPING,
+        mu_static: defaults::STATIC_FRICTION,
+        mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
+    };
+}
+
 impl Default for FullRolling {
-    /// 50° slope, penalty ground (10⁵ N/m, 200 N·s/m, μ 0.8/0.6), strings 2·10⁴ N/m with
-    /// a 20 N minimum prestress, RK4 at 0.1 ms, 1 ms output.
+    /// 50° slope, penalty ground ([`ContactModel::PENALTY`]), strings 2·10⁴ N/m with a 20 N
+    /// minimum prestress, RK4 at 0.1 ms, 1 ms output (the values of [`crate::defaults`]).
     fn default() -> Self {
         Self {
-            incline: 50f64.to_radians(),
-            gravity: 9.81,
-            contact: ContactModel::Penalty {
-                stiffness: 1e5,
-                damping: 200.0,
-                mu_static: 0.8,
-                mu_kinetic: 0.6,
-            },
-            string_stiffness: 2e4,
-            min_string_tension: 20.0,
+            incline: defaults::INCLINE_DEG.to_radians(),
+            gravity: defaults::GRAVITY,
+            contact: ContactModel::PENALTY,
+            string_stiffness: defaults::STRING_STIFFNESS,
+            min_string_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
-            dt: 1e-4,
-            output_dt: 1e-3,
+            dt: defaults::ROLL_DT,
+            output_dt: defaults::ROLL_OUTPUT_DT,
         }
     }
 }
@@ -155,9 +167,9 @@ impl FullRolling {
             },
             ..Default::default()
         };
-        let mut sim = Simulation::new(&structure, settings).map_err(dynamics_error)?;
-        sim.model.set_ground(ground).map_err(dynamics_error)?;
-        let result = sim.run().map_err(dynamics_error)?;
+        let mut sim = Simulation::new(&structure, settings)?;
+        sim.model.set_ground(ground)?;
+        let result = sim.run()?;
 
         let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
         let hub_of = |x: &[Vector3<f64>]| match toroid.axle {
@@ -226,10 +238,8 @@ impl FullRolling {
             });
         }
         if samples.is_empty() {
-            return Err(ToroidError::InvalidParameter {
-                name: "output_dt",
-                value: self.output_dt,
-                reason: "no sample was recorded".into(),
+            return Err(ToroidError::NoSamples {
+                output_dt: self.output_dt,
             });
         }
         // the first sample's pair counts as the starting contact, not an impact
@@ -241,12 +251,9 @@ impl FullRolling {
     }
 }
 
-fn dynamics_error(e: tensegrity_core::dynamics::DynamicsError) -> ToroidError {
-    ToroidError::Dynamics(e.to_string())
-}
-
-/// Which model a rolling run uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which model a rolling run uses; serialises as `"rigid"` or `"full"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Fidelity {
     /// The reduced rigid polygon ([`crate::rolling::RigidRolling`]).
     Rigid,

@@ -14,6 +14,7 @@
 mod dense_lp;
 mod load;
 mod prestress;
+pub mod report;
 
 pub use load::LoadSolution;
 pub use prestress::{Prestressability, PRESTRESS_TOLERANCE};
