@@ -54,7 +54,7 @@ fn main() {
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),
-        Command::Simulate(args) => simulate(args),
+        Command::Simulate(args) => cli::simulate::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Michell(args) => cli::michell::run(args),
         Command::MichellTable(args) => cli::michell::run_table(args),
@@ -74,15 +74,4 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
-}
-
-fn simulate(args: &cli::simulate::SimulateArgs) -> anyhow::Result<()> {
-    let scene = tensegrity_core::scene::Scene::from_path(&args.scene)?;
-    cli::simulate::run(
-        args,
-        &scene.structure,
-        scene.file.simulation.as_ref(),
-        scene.file.ground.as_ref(),
-        &scene.file.actuation,
-    )
 }

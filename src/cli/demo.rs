@@ -1,15 +1,28 @@
 //! `tensegrity demo`: the statics of every bundled example scene and the toroid wheel,
-//! summarised, on built-in defaults.
+//! summarised, on built-in defaults (library calls only).
 
 use anyhow::Result;
 use tensegrity::EXAMPLE_SCENES;
 use tensegrity_core::scene::Scene;
-use tensegrity_core::StaticsSettings;
-use toroid::rolling::RigidRolling;
-use toroid::ToroidParams;
+use tensegrity_core::{statics_report, StaticsRequest};
+use toroid::{FidelityChoice, RollRequest, ToroidRequest, WheelSpec};
 
 /// Runs the demo.
 pub fn run() -> Result<()> {
+    scenes()?;
+    wheels()?;
+    rolling()
+}
+
+fn margin(prestressable: bool, margin: f64) -> String {
+    if prestressable {
+        format!("{margin:.4}")
+    } else {
+        "no".to_string()
+    }
+}
+
+fn scenes() -> Result<()> {
     println!("tensegrity demo: statics of the bundled example scenes\n");
     println!(
         "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>10} {:>10}",
@@ -25,12 +38,7 @@ pub fn run() -> Result<()> {
     );
     for (name, text) in EXAMPLE_SCENES {
         let scene = Scene::from_str_named(text, name)?;
-        let r = super::statics::analyse(&scene.structure, StaticsSettings::default())?;
-        let prestress = if r.prestressable {
-            format!("{:.4}", r.prestress_margin)
-        } else {
-            "no".to_string()
-        };
+        let r = statics_report(&scene.structure, &StaticsRequest::default())?;
         let mass = r.mass_kg.map_or("-".to_string(), |m| format!("{m:.6}"));
         println!(
             "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>10} {:>10}",
@@ -41,26 +49,29 @@ pub fn run() -> Result<()> {
             r.rank,
             r.self_stress_dim,
             r.internal_mechanisms,
-            prestress,
+            margin(r.prestressable, r.prestress_margin),
             mass
         );
     }
     println!("(full report of one scene: tensegrity statics examples/<scene> [--json])\n");
+    Ok(())
+}
 
-    let params = ToroidParams::default();
+fn wheels() -> Result<()> {
     println!("tensegrity toroid wheel: n = 8, T 0.4, t 0.3, D 0.1, R_o 1, R_i 0.6, R_m 0.8 m, bars 1 kg/m\n");
     println!(
         "{:<18} {:>5} {:>4} {:>7} {:>11} {:>9} {:>10}",
         "stabilising", "nodes", "bars", "strings", "self-stress", "internal", "prestress"
     );
     for options in ["none", "spokes", "spokes,inner", "inner,outer"] {
-        let t = toroid::build(&params, options.parse()?, 1.0)?;
-        let a = toroid::analyse(&t)?;
-        let prestress = if a.prestressable {
-            format!("{:.4}", a.prestress_margin)
-        } else {
-            "no".to_string()
+        let request = ToroidRequest {
+            wheel: WheelSpec {
+                stabilize: options.parse()?,
+                ..WheelSpec::default()
+            },
+            ..ToroidRequest::default()
         };
+        let a = toroid::toroid_report(&request)?;
         println!(
             "{:<18} {:>5} {:>4} {:>7} {:>11} {:>9} {:>10}",
             options,
@@ -69,17 +80,23 @@ pub fn run() -> Result<()> {
             a.strings,
             a.self_stress_dim,
             a.internal_mechanisms,
-            prestress
+            margin(a.prestressable, a.prestress_margin)
         );
     }
+    Ok(())
+}
+
+fn rolling() -> Result<()> {
     println!("\nrigid rolling down 50 deg for 5 s (the bumps shrink with n, thesis Fig. 3.10):");
-    for n in [8, 12, 16, 24] {
-        let t = toroid::build(&params.sides(n), "spokes,inner".parse()?, 1.0)?;
-        let a = toroid::analyse(&t)?;
-        let r = RigidRolling::of(&t, &a, 50f64.to_radians()).run(5.0)?;
+    let request = RollRequest {
+        fidelity: FidelityChoice::Rigid,
+        t_end: 5.0,
+        ..RollRequest::default()
+    };
+    for r in toroid::rolling_series(&request, &toroid::defaults::FIG_3_10_SIDES)? {
         println!(
-            "  n = {n:>2}: mass {:>7.3} kg, I1 {:>7.3} kg m^2, axle oscillation {:.5} m, mean speed {:.3} m/s",
-            a.mass_kg, a.i1, r.axle_height_oscillation, r.mean_speed
+            "  n = {:>2}: mass {:>7.3} kg, I1 {:>7.3} kg m^2, axle oscillation {:.5} m, mean speed {:.3} m/s",
+            r.sides, r.mass_kg, r.i1, r.axle_height_oscillation, r.mean_speed
         );
     }
     Ok(())

@@ -10,8 +10,12 @@
 use crate::cli::angle::parse_angle;
 use anyhow::{Context, Result};
 use clap::{ArgGroup, ValueEnum};
-use michell3d::{analyse, AnalysisRequest, MemberKind, Method, MichellParams, MichellReport};
-use std::path::PathBuf;
+use michell3d::signmap::AngleGrid;
+use michell3d::{
+    AnalysisRequest, MemberKind, Method, MichellAnalysis, MichellParams, MichellReport,
+    MichellTruss,
+};
+use std::path::{Path, PathBuf};
 
 /// Force propagation method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -147,17 +151,21 @@ impl MichellArgs {
     }
 }
 
-/// Runs `tensegrity michell`.
+/// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
+/// maps and the γ sweep).
 pub fn run(args: &MichellArgs) -> Result<()> {
     let request = args.request();
-    let report = analyse(&request).context("michell truss analysis failed")?;
+    let analysis = MichellAnalysis::run(&request).context("michell truss analysis failed")?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        println!("{}", serde_json::to_string_pretty(&analysis.report)?);
     } else {
-        print!("{}", text_report(&report));
+        print!("{}", text_report(&analysis.report));
     }
-    if args.sign_map.is_some() || args.gamma_sweep.is_some() {
-        write_sweeps(args, &request)?;
+    if let Some(path) = &args.sign_map {
+        write_sign_maps(args, &request, &analysis.truss, path)?;
+    }
+    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, args.extra_strings) {
+        write_gamma_sweep(args, &request, &analysis.truss, prestress, path)?;
     }
     Ok(())
 }
@@ -185,53 +193,7 @@ fn tuple(t: &[usize]) -> String {
 /// The readable report.
 pub fn text_report(r: &MichellReport) -> String {
     use std::fmt::Write;
-    let p = &r.params;
-    let mut s = String::new();
-    let geometry = match p.geometry {
-        michell3d::Geometry::Planar => "planar (Skelton)".to_string(),
-        michell3d::Geometry::Cylindrical { delta } => format!("3-D cylindrical, δ = {delta}"),
-        michell3d::Geometry::Spherical { epsilon } => format!("3-D spherical, ε = {epsilon} rad"),
-    };
-    let _ = writeln!(
-        s,
-        "Michell truss: {geometry}, complexity q = {}",
-        p.complexity
-    );
-    let _ = writeln!(
-        s,
-        "  r0 = {} m, β = {:.6} rad ({:.4}°), φ = {:.6} rad ({:.4}°), a = {:.6}, c = {:.6}",
-        p.r0,
-        p.beta,
-        p.beta.to_degrees(),
-        p.phi,
-        p.phi.to_degrees(),
-        p.a(),
-        p.c()
-    );
-    let _ = writeln!(
-        s,
-        "  tip load w = [{:.6}, {:.6}, {:.6}] N; method {}; material {}",
-        r.load[0],
-        r.load[1],
-        r.load[2],
-        match r.method {
-            Method::Recursive => "recursive",
-            Method::Global => "global",
-        },
-        r.material
-    );
-    let count = |k: MemberKind| r.members.iter().filter(|m| m.kind == k).count();
-    let supports = r.nodes.iter().filter(|n| n.support).count();
-    let _ = writeln!(
-        s,
-        "  {} nodes ({} supports), {} members: {} strings, {} bars, {} none",
-        r.nodes.len(),
-        supports,
-        r.members.len(),
-        count(MemberKind::String),
-        count(MemberKind::Bar),
-        count(MemberKind::None)
-    );
+    let mut s = text_header(r);
     let _ = writeln!(
         s,
         "\n{:>16} {:>16} {:>12} {:>16} {:>14} {:>6} {:>9}",
@@ -260,66 +222,128 @@ pub fn text_report(r: &MichellReport) -> String {
     s
 }
 
+/// Geometry, load and counts: the first lines of the readable report.
+fn text_header(r: &MichellReport) -> String {
+    use std::fmt::Write;
+    let p = &r.params;
+    let mut s = String::new();
+    let geometry = match p.geometry {
+        michell3d::Geometry::Planar => "planar (Skelton)".to_string(),
+        michell3d::Geometry::Cylindrical { delta } => format!("3-D cylindrical, δ = {delta}"),
+        michell3d::Geometry::Spherical { epsilon } => format!("3-D spherical, ε = {epsilon} rad"),
+    };
+    let _ = writeln!(
+        s,
+        "Michell truss: {geometry}, complexity q = {}",
+        p.complexity
+    );
+    let _ = writeln!(
+        s,
+        "  r0 = {} m, β = {:.6} rad ({:.4}°), φ = {:.6} rad ({:.4}°), a = {:.6}, c = {:.6}",
+        p.r0,
+        p.beta,
+        p.beta.to_degrees(),
+        p.phi,
+        p.phi.to_degrees(),
+        p.a(),
+        p.c()
+    );
+    let method = match r.method {
+        Method::Recursive => "recursive",
+        Method::Global => "global",
+    };
+    let _ = writeln!(
+        s,
+        "  tip load w = [{:.6}, {:.6}, {:.6}] N; method {method}; material {}",
+        r.load[0], r.load[1], r.load[2], r.material
+    );
+    let count = |k: MemberKind| r.members.iter().filter(|m| m.kind == k).count();
+    let supports = r.nodes.iter().filter(|n| n.support).count();
+    let _ = writeln!(
+        s,
+        "  {} nodes ({} supports), {} members: {} strings, {} bars, {} none",
+        r.nodes.len(),
+        supports,
+        r.members.len(),
+        count(MemberKind::String),
+        count(MemberKind::Bar),
+        count(MemberKind::None)
+    );
+    s
+}
+
 fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>> {
     Ok(std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
     ))
 }
 
-/// Writes the sign-map and γ-sweep CSV files asked for.
-fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
-    use michell3d::signmap::{sign_maps, write_sign_maps_csv, AngleGrid};
-    let truss = michell3d::MichellTruss::new(request.params)?;
-    if let Some(path) = &args.sign_map {
-        let n_members = truss.members().len();
-        if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
-            anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
-        }
-        let (na, np) = args.map_grid;
-        let maps = sign_maps(
-            &truss,
-            &args.map_members,
-            args.load,
-            AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
-            AngleGrid::new(0.0, std::f64::consts::PI, np),
-            request.method,
-        )?;
-        write_sign_maps_csv(&truss, &maps, create(path)?)?;
-        if !args.json {
-            for m in &maps {
-                println!(
-                    "sign map of member {}: in tension for {:.1} % of the load directions",
-                    m.member,
-                    100.0 * m.tension_fraction()
-                );
-            }
-            println!("wrote {}", path.display());
-        }
+/// Computes the sign maps of `--map-members` on the analysed truss and writes their CSV.
+fn write_sign_maps(
+    args: &MichellArgs,
+    request: &AnalysisRequest,
+    truss: &MichellTruss,
+    path: &Path,
+) -> Result<()> {
+    use michell3d::signmap::{sign_maps, write_sign_maps_csv};
+    let n_members = truss.members().len();
+    if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
+        anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
     }
-    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, args.extra_strings) {
-        use michell3d::extra_strings::{gamma_sweep, write_gamma_sweep_csv, ExtraStrings};
-        let strings = ExtraStrings::new(&truss)?;
-        let sweep = gamma_sweep(
-            &truss,
-            &strings,
-            args.load,
-            args.azimuth,
-            AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
-            prestress,
-            request.method,
-        )?;
-        write_gamma_sweep_csv(&sweep, create(path)?)?;
-        if !args.json {
-            let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
-                .filter(|&j| !sweep.base_keeps_sign[j])
-                .collect();
+    let (na, np) = args.map_grid;
+    let maps = sign_maps(
+        truss,
+        &args.map_members,
+        args.load,
+        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
+        AngleGrid::new(0.0, std::f64::consts::PI, np),
+        request.method,
+    )?;
+    write_sign_maps_csv(truss, &maps, create(path)?)?;
+    if !args.json {
+        for m in &maps {
             println!(
-                "over γ ∈ [0, 2π] with {prestress} N in the extra strings, members changing sign: {changers:?}; extra strings keeping their sign: {}/{}",
-                sweep.extra_keeps_sign.iter().filter(|&&k| k).count(),
-                sweep.extra_keeps_sign.len()
+                "sign map of member {}: in tension for {:.1} % of the load directions",
+                m.member,
+                100.0 * m.tension_fraction()
             );
-            println!("wrote {}", path.display());
         }
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Sweeps the load polar angle γ over [0, 2π] with prestressed extra strings (Fig. 4.20)
+/// on the analysed truss and writes the CSV.
+fn write_gamma_sweep(
+    args: &MichellArgs,
+    request: &AnalysisRequest,
+    truss: &MichellTruss,
+    prestress: f64,
+    path: &Path,
+) -> Result<()> {
+    use michell3d::extra_strings::{gamma_sweep, write_gamma_sweep_csv, ExtraStrings};
+    let strings = ExtraStrings::new(truss)?;
+    let sweep = gamma_sweep(
+        truss,
+        &strings,
+        args.load,
+        args.azimuth,
+        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
+        prestress,
+        request.method,
+    )?;
+    write_gamma_sweep_csv(&sweep, create(path)?)?;
+    if !args.json {
+        let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
+            .filter(|&j| !sweep.base_keeps_sign[j])
+            .collect();
+        println!(
+            "over γ ∈ [0, 2π] with {prestress} N in the extra strings, members changing sign: {changers:?}; extra strings keeping their sign: {}/{}",
+            sweep.extra_keeps_sign.iter().filter(|&&k| k).count(),
+            sweep.extra_keeps_sign.len()
+        );
+        println!("wrote {}", path.display());
     }
     Ok(())
 }
@@ -345,34 +369,38 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
     }
     if let Some(path) = &args.svg {
-        use super::plot::{Panel, Series};
-        let series = |delta: f64, label: String| Series {
-            label,
-            points: rows
-                .iter()
-                .filter(|r| r.delta == delta)
-                .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
-                .collect(),
-        };
-        let mut all = vec![series(0.0, "planar".into())];
-        all.extend(
-            FIG_4_18_DELTAS
-                .iter()
-                .map(|&d| series(d, format!("δ = {d}"))),
-        );
-        let panel = Panel {
-            title: format!(
-                "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
-                args.material, args.load
-            ),
-            x_label: "complexity q".into(),
-            y_label: "mass [kg]".into(),
-            series: all,
-        };
-        std::fs::write(path, super::plot::svg(&[panel]))
+        std::fs::write(path, super::plot::svg(&[mass_panel(args, &rows)]))
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
+fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> super::plot::Panel {
+    use super::plot::{Panel, Series};
+    let series = |delta: f64, label: String| Series {
+        label,
+        points: rows
+            .iter()
+            .filter(|r| r.delta == delta)
+            .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
+            .collect(),
+    };
+    let mut all = vec![series(0.0, "planar".into())];
+    all.extend(
+        michell3d::complexity::FIG_4_18_DELTAS
+            .iter()
+            .map(|&d| series(d, format!("δ = {d}"))),
+    );
+    Panel {
+        title: format!(
+            "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
+            args.material, args.load
+        ),
+        x_label: "complexity q".into(),
+        y_label: "mass [kg]".into(),
+        series: all,
+    }
 }
 
 #[cfg(test)]
@@ -420,7 +448,7 @@ mod tests {
         assert_eq!(a.method, MethodArg::Global);
         let req = a.request();
         assert_eq!(req.method, Method::Global);
-        assert!(analyse(&req).is_ok());
+        assert!(michell3d::analyse(&req).is_ok());
     }
 
     #[test]
@@ -432,12 +460,12 @@ mod tests {
         assert!(parse(&both).is_err());
         let mut planar = base.to_vec();
         planar.push("--planar");
-        let r = analyse(&parse(&planar).unwrap().request()).unwrap();
+        let r = michell3d::analyse(&parse(&planar).unwrap().request()).unwrap();
         assert_eq!(r.members.len(), 6);
         assert!(text_report(&r).contains("planar"));
         let mut bad = base.to_vec();
         bad.extend(["--cylindrical", "0"]);
-        let err = analyse(&parse(&bad).unwrap().request()).unwrap_err();
+        let err = michell3d::analyse(&parse(&bad).unwrap().request()).unwrap_err();
         assert!(err.to_string().contains("delta"));
     }
 }

@@ -13,7 +13,8 @@ use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
 use tensegrity_core::dynamics::{
-    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, SimulationResult, SimulationSpec,
+    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, SimulationResult,
+    SimulationSettings, SimulationSpec,
 };
 use tensegrity_core::Structure;
 
@@ -111,12 +112,24 @@ impl From<&SimulationResult> for SimulateReport {
     }
 }
 
+/// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
+pub fn run(args: &SimulateArgs) -> Result<()> {
+    let scene = tensegrity_core::scene::Scene::from_path(&args.scene)?;
+    run_scene(
+        args,
+        &scene.structure,
+        scene.file.simulation.as_ref(),
+        scene.file.ground.as_ref(),
+        &scene.file.actuation,
+    )
+}
+
 /// Runs `tensegrity simulate` on an already parsed scene.
 ///
-/// The caller (the scene loader in `main`) passes the structure and the scene's optional
-/// `[simulation]`, `[ground]` and `[[actuation]]` tables; `args` overrides the simulation
-/// table. Prints the report (JSON with `--json`) on stdout and writes `--out` if given.
-pub fn run(
+/// The caller passes the structure and the scene's optional `[simulation]`, `[ground]` and
+/// `[[actuation]]` tables; `args` overrides the simulation table. Prints the report (JSON
+/// with `--json`) on stdout and writes `--out` and `--vtk` if given.
+pub fn run_scene(
     args: &SimulateArgs,
     structure: &Structure,
     sim: Option<&SimulationSpec>,
@@ -125,7 +138,35 @@ pub fn run(
 ) -> Result<()> {
     let mut simulation = build_simulation(structure, sim, ground, actuation)
         .with_context(|| format!("setting up the simulation of {}", args.scene.display()))?;
-    let s = &mut simulation.settings;
+    apply_overrides(args, &mut simulation.settings, sim)?;
+    let result = simulation
+        .run()
+        .with_context(|| format!("simulating {}", args.scene.display()))?;
+    if let Some(path) = &args.out {
+        write_csv(path, &result)
+            .with_context(|| format!("writing the trajectory to {}", path.display()))?;
+    }
+    if let Some(dir) = &args.vtk {
+        let n = write_vtk(dir, structure, &result)?;
+        if !args.json {
+            println!("{n} VTK frames and series.pvd written to {}", dir.display());
+        }
+    }
+    let report = SimulateReport::from(&result);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_report(args, simulation.settings.integrator, &report);
+    }
+    Ok(())
+}
+
+/// Applies the command-line overrides to the scene's simulation settings.
+fn apply_overrides(
+    args: &SimulateArgs,
+    s: &mut SimulationSettings,
+    sim: Option<&SimulationSpec>,
+) -> Result<()> {
     match (args.t_end, sim) {
         (Some(t), _) => s.t_end = t,
         (None, Some(_)) => {}
@@ -157,53 +198,47 @@ pub fn run(
             s.output_interval = Some(s.t_end / 200.0);
         }
     }
-    let result = simulation
-        .run()
-        .with_context(|| format!("simulating {}", args.scene.display()))?;
-    if let Some(path) = &args.out {
-        write_csv(path, &result)
-            .with_context(|| format!("writing the trajectory to {}", path.display()))?;
-    }
-    if let Some(dir) = &args.vtk {
-        let frames = result
-            .samples
-            .iter()
-            .filter_map(|smp| smp.nodes.as_deref().map(|n| (smp.t, n)));
-        let n = super::vtk::write_series(dir, structure, frames)?;
-        if !args.json {
-            println!("{n} VTK frames and series.pvd written to {}", dir.display());
-        }
-    }
-    let report = SimulateReport::from(&result);
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        println!(
-            "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
-            report.t_end,
-            simulation.settings.integrator,
-            report.steps,
-            report.rhs_evals,
-            report.wall_time_s * 1e3
-        );
-        println!("max relative energy drift   {:.3e}", report.energy_drift);
-        println!(
-            "max bar-length drift        {:.3e} m",
-            report.bar_length_drift
-        );
-        println!(
-            "max |N P - D|               {:.3e} m",
-            report.constraint_drift
-        );
-        println!("final nodes (m):");
-        for (i, n) in report.final_nodes.iter().enumerate() {
-            println!("  {i:4}  {:+.9e} {:+.9e} {:+.9e}", n[0], n[1], n[2]);
-        }
-        if let Some(p) = &args.out {
-            println!("trajectory written to {}", p.display());
-        }
-    }
     Ok(())
+}
+
+/// Writes the sampled node positions as a ParaView series; returns the frame count.
+fn write_vtk(
+    dir: &std::path::Path,
+    structure: &Structure,
+    result: &SimulationResult,
+) -> Result<usize> {
+    let frames = result
+        .samples
+        .iter()
+        .filter_map(|smp| smp.nodes.as_deref().map(|n| (smp.t, n)));
+    super::vtk::write_series(dir, structure, frames)
+}
+
+fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &SimulateReport) {
+    println!(
+        "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
+        report.t_end,
+        integrator,
+        report.steps,
+        report.rhs_evals,
+        report.wall_time_s * 1e3
+    );
+    println!("max relative energy drift   {:.3e}", report.energy_drift);
+    println!(
+        "max bar-length drift        {:.3e} m",
+        report.bar_length_drift
+    );
+    println!(
+        "max |N P - D|               {:.3e} m",
+        report.constraint_drift
+    );
+    println!("final nodes (m):");
+    for (i, n) in report.final_nodes.iter().enumerate() {
+        println!("  {i:4}  {:+.9e} {:+.9e} {:+.9e}", n[0], n[1], n[2]);
+    }
+    if let Some(p) = &args.out {
+        println!("trajectory written to {}", p.display());
+    }
 }
 
 /// Writes `t [s]` and `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]` columns, one row per sample.

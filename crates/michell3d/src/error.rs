@@ -28,6 +28,26 @@ pub enum MichellError {
         /// |det| divided by the product of the member lengths.
         relative_det: f64,
     },
+    /// The operation needs a 3-D truss but was given a planar one.
+    #[error("{what} need a 3-D truss: a planar truss carries only in-plane loads")]
+    NeedsThreeD {
+        /// What was asked for, e.g. `extra strings`.
+        what: &'static str,
+    },
+    /// A load on a planar truss (y–z plane) has an out-of-plane component w_x.
+    #[error("a planar truss (y–z plane) cannot carry the out-of-plane component w_x = {w_x} on node {node}; use azimuth = ±π/2 or polar = 0 or π")]
+    OutOfPlaneLoad {
+        /// The loaded node (index).
+        node: usize,
+        /// The out-of-plane component (N).
+        w_x: f64,
+    },
+    /// An angle grid has no points.
+    #[error("the {name} grid needs at least one angle")]
+    EmptyGrid {
+        /// The grid's angle, `azimuth` or `polar`.
+        name: &'static str,
+    },
     /// A force density overflowed (a load or radius ratio far outside the f64 range).
     #[error("force densities overflow at node {node:?}: reduce the load or the complexity")]
     NonFinite {

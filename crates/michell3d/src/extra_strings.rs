@@ -33,11 +33,9 @@ impl ExtraStrings {
     pub fn new(truss: &MichellTruss) -> Result<Self> {
         let q = truss.params().complexity;
         if truss.is_planar() {
-            return Err(invalid(
-                "extra-strings",
-                0.0,
-                "extra strings are defined for 3-D trusses only",
-            ));
+            return Err(MichellError::NeedsThreeD {
+                what: "extra strings",
+            });
         }
         if q < 2 {
             return Err(invalid(
@@ -207,7 +205,7 @@ pub fn gamma_sweep(
     check_prestress(prestress)?;
     crate::loads::check_magnitude_and_azimuth(w0, azimuth)?;
     if polar.n == 0 {
-        return Err(invalid("polar", 0.0, "the sweep needs at least one angle"));
+        return Err(MichellError::EmptyGrid { name: "polar" });
     }
     let pre = solve_prestressed(truss, strings, &NodalLoads::new(), prestress, method)?;
     let [qx, qy, qz] = unit_tip_responses(truss, method)?;

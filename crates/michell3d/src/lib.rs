@@ -66,7 +66,7 @@ pub use loads::{in_plane_load, tip_load, NodalLoads};
 pub use nodes::NodeTuple;
 pub use params::{Geometry, MichellParams};
 pub use propagation::{propagate, propagate_recursive, ForceSolution, Method};
-pub use report::{analyse, AnalysisRequest, MichellReport};
+pub use report::{analyse, AnalysisRequest, MichellAnalysis, MichellReport};
 pub use signmap::{sign_maps, write_sign_maps_csv, AngleGrid, SignMap};
 pub use sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 pub use truss::{Branch, Member, MichellTruss, Node};

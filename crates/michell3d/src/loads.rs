@@ -93,14 +93,7 @@ impl NodalLoads {
         if truss.is_planar() {
             for (node, f) in w.iter_mut().enumerate() {
                 if f.x.abs() > PLANAR_X_RTOL * f.norm() {
-                    return Err(invalid(
-                        "load",
-                        f.x,
-                        format!(
-                            "a planar truss (y–z plane) cannot carry the out-of-plane component \
-                             w_x on node {node}; use azimuth = ±π/2 or polar = 0 or π"
-                        ),
-                    ));
+                    return Err(MichellError::OutOfPlaneLoad { node, w_x: f.x });
                 }
                 f.x = 0.0;
             }

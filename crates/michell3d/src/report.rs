@@ -1,4 +1,5 @@
-//! One complete analysis, as the CLI prints it (text or JSON).
+//! One complete analysis, as the CLI prints it (text or JSON); the truss is built once and
+//! returned with the report ([`MichellAnalysis`]).
 //!
 //! Build the truss, apply the tip load w₀[cos φ_w sin γ, sin φ_w sin γ, cos γ], propagate the
 //! forces (recursive or global), optionally add prestressed extra strings, classify and size
@@ -9,7 +10,7 @@ use crate::extra_strings::{solve_prestressed, ExtraStrings};
 use crate::loads::{tip_load, NodalLoads};
 use crate::params::MichellParams;
 use crate::propagation::{propagate, Method};
-use crate::sizing::{normalized_yield_mass, size_members, MemberKind};
+use crate::sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 use crate::truss::MichellTruss;
 use serde::Serialize;
 use tensegrity_core::sizing::Governing;
@@ -124,7 +125,33 @@ pub struct MichellReport {
     pub reactions: Vec<[f64; 3]>,
 }
 
-/// Runs one analysis.
+/// One analysis together with the truss it was computed on, so that callers that go on with
+/// the same truss (sign maps, γ sweeps) need not build it again.
+#[derive(Debug, Clone)]
+pub struct MichellAnalysis {
+    /// The truss built from the request's parameters.
+    pub truss: MichellTruss,
+    /// The report.
+    pub report: MichellReport,
+}
+
+impl MichellAnalysis {
+    /// Builds the truss of `req` and analyses it.
+    ///
+    /// ```
+    /// use michell3d::{AnalysisRequest, MichellAnalysis, MichellParams};
+    /// let p = MichellParams::cylindrical(3, 1.0, std::f64::consts::FRAC_PI_6, 0.4, 0.25);
+    /// let a = MichellAnalysis::run(&AnalysisRequest::new(p)).unwrap();
+    /// assert_eq!(a.truss.members().len(), a.report.members.len());
+    /// ```
+    pub fn run(req: &AnalysisRequest) -> Result<Self> {
+        let truss = MichellTruss::new(req.params)?;
+        let report = analyse_truss(&truss, req)?;
+        Ok(Self { truss, report })
+    }
+}
+
+/// Runs one analysis (builds the truss; [`MichellAnalysis::run`] also returns it).
 ///
 /// ```
 /// use michell3d::{analyse, AnalysisRequest, MichellParams};
@@ -134,81 +161,121 @@ pub struct MichellReport {
 /// assert!((r.normalized_yield_mass - 4.618802153517).abs() < 1e-9); // ERRATA 4.4: 4.62
 /// ```
 pub fn analyse(req: &AnalysisRequest) -> Result<MichellReport> {
-    let truss = MichellTruss::new(req.params)?;
-    let material = *MaterialTable::builtin().lookup(&req.material, "michell truss")?;
-    let mut w = tip_load(req.load, req.azimuth, req.polar)?;
-    let loads = NodalLoads::tip(w);
-    // A planar truss keeps only the in-plane part (NodalLoads rejects a real w_x).
-    loads.dense(&truss)?;
-    if truss.is_planar() {
-        w.x = 0.0;
-    }
+    Ok(MichellAnalysis::run(req)?.report)
+}
+
+/// The member forces of one analysis: base members then extra strings.
+struct MemberForces {
+    /// Lengths (m).
+    lengths: Vec<f64>,
+    /// Tension-positive force densities (N/m).
+    q: Vec<f64>,
+    /// (parent, child) node indices; an extra string's two ends.
+    ends: Vec<(usize, usize)>,
+    /// Support reactions (N).
+    reactions: Vec<[f64; 3]>,
+}
+
+/// Propagates the load (with prestressed extra strings when asked) and collects the forces.
+fn member_forces(
+    truss: &MichellTruss,
+    req: &AnalysisRequest,
+    loads: &NodalLoads,
+) -> Result<MemberForces> {
     let (base, strings, extra_q) = match req.extra_strings {
         Some(t) => {
-            let strings = ExtraStrings::new(&truss)?;
-            let sol = solve_prestressed(&truss, &strings, &loads, t, req.method)?;
+            let strings = ExtraStrings::new(truss)?;
+            let sol = solve_prestressed(truss, &strings, loads, t, req.method)?;
             (sol.base, Some(strings), sol.extra_force_density)
         }
-        None => (propagate(&truss, &loads, req.method)?, None, Vec::new()),
+        None => (propagate(truss, loads, req.method)?, None, Vec::new()),
     };
-    let mut lengths = truss.lengths();
-    let mut q = base.force_density.clone();
-    let mut ends: Vec<(usize, usize)> = truss
-        .members()
-        .iter()
-        .map(|m| (m.parent, m.child))
-        .collect();
+    let mut out = MemberForces {
+        lengths: truss.lengths(),
+        q: base.force_density.clone(),
+        ends: truss
+            .members()
+            .iter()
+            .map(|m| (m.parent, m.child))
+            .collect(),
+        reactions: base.reactions.iter().map(|r| (*r).into()).collect(),
+    };
     if let Some(s) = &strings {
-        lengths.extend_from_slice(s.lengths());
-        q.extend_from_slice(&extra_q);
-        ends.extend(s.pairs().iter().map(|&[a, b]| (a, b)));
+        out.lengths.extend_from_slice(s.lengths());
+        out.q.extend_from_slice(&extra_q);
+        out.ends.extend(s.pairs().iter().map(|&[a, b]| (a, b)));
     }
-    let forces: Vec<f64> = q.iter().zip(&lengths).map(|(q, l)| q * l).collect();
-    let sizing = size_members(&lengths, &forces, &material, &material);
-    let mut members: Vec<MemberReport> = (0..q.len())
+    Ok(out)
+}
+
+/// The name of a governing failure mode in the report.
+fn governing_name(g: Governing) -> &'static str {
+    match g {
+        Governing::Yield => "yield",
+        Governing::Buckling => "buckling",
+        Governing::Unloaded => "unloaded",
+    }
+}
+
+/// One report row per member of `f`, sized by `sizing`.
+fn member_rows(truss: &MichellTruss, f: &MemberForces, sizing: &TrussSizing) -> Vec<MemberReport> {
+    (0..f.q.len())
         .map(|j| {
             let s = sizing.members[j];
             let (radius, mass, governing) = match s.size {
-                Some(sz) => (
-                    sz.radius,
-                    sz.mass,
-                    match sz.governing {
-                        Governing::Yield => "yield",
-                        Governing::Buckling => "buckling",
-                        Governing::Unloaded => "unloaded",
-                    },
-                ),
+                Some(sz) => (sz.radius, sz.mass, governing_name(sz.governing)),
                 None => (0.0, 0.0, "unloaded"),
             };
             MemberReport {
-                parent: truss.label(ends[j].0),
-                child: truss.label(ends[j].1),
-                length: lengths[j],
-                force_density: q[j],
-                force: forces[j],
+                parent: truss.label(f.ends[j].0),
+                child: truss.label(f.ends[j].1),
+                length: f.lengths[j],
+                force_density: f.q[j],
+                force: f.q[j] * f.lengths[j],
                 kind: s.kind,
                 radius,
                 mass,
                 governing,
             }
         })
-        .collect();
+        .collect()
+}
+
+/// The report rows of the nodes.
+fn node_rows(truss: &MichellTruss) -> Vec<NodeReport> {
+    truss
+        .nodes()
+        .iter()
+        .enumerate()
+        .map(|(i, n)| NodeReport {
+            index: truss.label(i),
+            position: n.position.into(),
+            support: truss.is_support(i),
+        })
+        .collect()
+}
+
+/// Analyses an already built truss (its parameters must be `req.params`).
+fn analyse_truss(truss: &MichellTruss, req: &AnalysisRequest) -> Result<MichellReport> {
+    let material = *MaterialTable::builtin().lookup(&req.material, "michell truss")?;
+    let mut w = tip_load(req.load, req.azimuth, req.polar)?;
+    let loads = NodalLoads::tip(w);
+    // A planar truss keeps only the in-plane part (NodalLoads rejects a real w_x).
+    loads.dense(truss)?;
+    if truss.is_planar() {
+        w.x = 0.0;
+    }
+    let f = member_forces(truss, req, &loads)?;
+    let forces: Vec<f64> = f.q.iter().zip(&f.lengths).map(|(q, l)| q * l).collect();
+    let sizing = size_members(&f.lengths, &forces, &material, &material);
+    let mut members = member_rows(truss, &f, &sizing);
     let extra_strings = members.split_off(truss.members().len());
     Ok(MichellReport {
         params: req.params,
         method: req.method,
         material: req.material.clone(),
         load: w.into(),
-        nodes: truss
-            .nodes()
-            .iter()
-            .enumerate()
-            .map(|(i, n)| NodeReport {
-                index: truss.label(i),
-                position: n.position.into(),
-                support: truss.is_support(i),
-            })
-            .collect(),
+        nodes: node_rows(truss),
         members,
         extra_strings,
         prestress: req.extra_strings,
@@ -216,8 +283,8 @@ pub fn analyse(req: &AnalysisRequest) -> Result<MichellReport> {
             yield_only: sizing.yield_mass,
             yield_buckling: sizing.yield_buckling_mass,
         },
-        normalized_yield_mass: normalized_yield_mass(&lengths, &q, req.load, req.params.r0),
+        normalized_yield_mass: normalized_yield_mass(&f.lengths, &f.q, req.load, req.params.r0),
         buckling_governed: sizing.buckling_governed,
-        reactions: base.reactions.iter().map(|r| (*r).into()).collect(),
+        reactions: f.reactions,
     })
 }

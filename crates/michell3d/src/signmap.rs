@@ -50,7 +50,7 @@ impl AngleGrid {
 
     fn validate(&self, name: &'static str) -> Result<()> {
         if self.n == 0 {
-            return Err(invalid(name, 0.0, "the grid needs at least one angle"));
+            return Err(MichellError::EmptyGrid { name });
         }
         if !(self.start.is_finite() && self.end.is_finite()) {
             return Err(invalid(name, self.start, "grid bounds must be finite"));
@@ -113,12 +113,10 @@ pub fn sign_maps(
     method: Method,
 ) -> Result<Vec<SignMap>> {
     if truss.is_planar() {
-        return Err(invalid(
-            "geometry",
-            0.0,
-            "sign maps over (azimuth, polar) need a 3-D truss: a planar truss carries only \
-             in-plane loads (see planar::force_regions)",
-        ));
+        // a planar truss: see planar::force_regions instead
+        return Err(MichellError::NeedsThreeD {
+            what: "sign maps over (azimuth, polar)",
+        });
     }
     if !(w0.is_finite() && w0 > 0.0) {
         return Err(invalid(

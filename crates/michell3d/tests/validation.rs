@@ -108,7 +108,7 @@ fn invalid_loads_are_named() {
     for m in [Method::Recursive, Method::Global] {
         assert!(matches!(
             propagate(&planar, &out, m),
-            Err(MichellError::InvalidParameter { name: "load", .. })
+            Err(MichellError::OutOfPlaneLoad { w_x, .. }) if w_x.abs() > 1.0
         ));
         let s = propagate(
             &planar,
@@ -141,7 +141,15 @@ fn invalid_loads_are_named() {
             count: 12
         })
     ));
-    assert!(sign_maps(&planar, &[0], 1.0, grid, grid, Method::Recursive).is_err());
+    assert!(matches!(
+        sign_maps(&planar, &[0], 1.0, grid, grid, Method::Recursive),
+        Err(MichellError::NeedsThreeD { .. })
+    ));
+    let empty = AngleGrid::new(0.0, 1.0, 0);
+    assert!(matches!(
+        sign_maps(&t, &[0], 1.0, empty, grid, Method::Recursive),
+        Err(MichellError::EmptyGrid { name: "azimuth" })
+    ));
 }
 
 #[test]

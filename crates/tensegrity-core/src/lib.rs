@@ -40,5 +40,6 @@ pub use dynamics::{
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
 pub use member_id::MemberId;
+pub use statics::report::{statics_report, StaticsReport, StaticsRequest};
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};
 pub use structure::{Bar, Load, StringMember, Structure, StructureBuilder, Support};

@@ -1,5 +1,7 @@
-//! Errors of the toroid crate.
+//! Errors of the toroid crate: one enum, structured fields, the core's errors wrapped with
+//! `#[from]`.
 
+use tensegrity_core::dynamics::DynamicsError;
 use tensegrity_core::CoreError;
 use thiserror::Error;
 
@@ -8,6 +10,7 @@ pub type Result<T, E = ToroidError> = std::result::Result<T, E>;
 
 /// Everything that can go wrong when building or analysing a toroid.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum ToroidError {
     /// A geometric or physical parameter is out of its valid range.
     #[error("invalid parameter {name} = {value}: {reason}")]
@@ -20,17 +23,26 @@ pub enum ToroidError {
         reason: String,
     },
     /// An unknown stabilising option.
-    #[error("unknown stabilising option \"{0}\" (use spokes, inner, outer or none)")]
-    UnknownOption(String),
+    #[error("unknown stabilising option \"{option}\" (use spokes, inner, outer or none)")]
+    UnknownStabilizeOption {
+        /// The word that is not an option.
+        option: String,
+    },
     /// The structure has no prestress (needed for a prestress design).
     #[error("the toroid is not prestressable (margin {margin:e}); no prestress design exists")]
     NotPrestressable {
         /// The LP margin found.
         margin: f64,
     },
-    /// The dynamics engine stopped (its message names the time and member).
-    #[error("dynamics: {0}")]
-    Dynamics(String),
+    /// A rolling run recorded no sample (the output interval exceeds the run).
+    #[error("no sample was recorded: output interval {output_dt} s is longer than the run")]
+    NoSamples {
+        /// The output interval (s).
+        output_dt: f64,
+    },
+    /// The dynamics engine stopped (its error names the time and member).
+    #[error(transparent)]
+    Dynamics(#[from] DynamicsError),
     /// An error of the core analyses.
     #[error(transparent)]
     Core(#[from] CoreError),

@@ -3,7 +3,9 @@
 //! The 3-bar-prism tensegrity toroid of the thesis (chapter 3), used as a wheel: geometry from
 //! seven parameters, stabilising string options, statics (self-stress, prestressability,
 //! internal mechanisms, prestress design), mass and inertia, tip-over, and rolling down an
-//! incline.
+//! incline; and the reports of these studies ([`toroid_report`], [`roll`],
+//! [`tipover_report`], [`rolling_series`]) built from request structs whose defaults are the
+//! named constants of [`defaults`].
 //!
 //! ```
 //! use toroid::{analyse, build, ToroidParams};
@@ -17,9 +19,12 @@
 
 mod analysis;
 mod builder;
+pub mod defaults;
 mod error;
 mod inertia;
 mod params;
+pub mod report;
+mod roll;
 pub mod rolling;
 pub mod rolling_full;
 mod tipover;
@@ -32,4 +37,9 @@ pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, 
 pub use error::{Result, ToroidError};
 pub use inertia::{bar_inertia, bar_inertia_thesis, wheel_inertia, wheel_mass};
 pub use params::{Stabilize, ToroidParams};
+pub use report::{
+    tipover_report, toroid_report, TipoverReport, TipoverRequest, ToroidReport, ToroidRequest,
+    WheelSpec,
+};
+pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};

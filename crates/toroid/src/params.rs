@@ -25,22 +25,25 @@ pub struct ToroidParams {
 }
 
 impl Default for ToroidParams {
-    /// The reference wheel of the thesis errata: n = 8, T = 0.4, t = 0.3, D = 0.1, R_o = 1,
-    /// R_i = 0.6, R_m = 0.8.
+    /// [`ToroidParams::REFERENCE`].
     fn default() -> Self {
-        Self {
-            sides: 8,
-            outer_tread: 0.4,
-            inner_tread: 0.3,
-            offset: 0.1,
-            outer_radius: 1.0,
-            inner_radius: 0.6,
-            rim_radius: 0.8,
-        }
+        Self::REFERENCE
     }
 }
 
 impl ToroidParams {
+    /// The reference wheel of the thesis errata: n = 8, T = 0.4, t = 0.3, D = 0.1, R_o = 1,
+    /// R_i = 0.6, R_m = 0.8.
+    pub const REFERENCE: ToroidParams = ToroidParams {
+        sides: 8,
+        outer_tread: 0.4,
+        inner_tread: 0.3,
+        offset: 0.1,
+        outer_radius: 1.0,
+        inner_radius: 0.6,
+        rim_radius: 0.8,
+    };
+
     /// Sets the number of sides.
     ///
     /// ```
@@ -137,6 +140,19 @@ impl Stabilize {
         inner: false,
         outer: false,
     };
+
+    /// Spokes and inner rings: first-order rigid (ERRATA 3.4), the reference wheel of the
+    /// rolling studies.
+    ///
+    /// ```
+    /// use toroid::Stabilize;
+    /// assert_eq!(Stabilize::SPOKES_INNER.to_string(), "spokes,inner");
+    /// ```
+    pub const SPOKES_INNER: Stabilize = Stabilize {
+        spokes: true,
+        inner: true,
+        outer: false,
+    };
 }
 
 impl FromStr for Stabilize {
@@ -159,7 +175,11 @@ impl FromStr for Stabilize {
                 "inner" => out.inner = true,
                 "outer" => out.outer = true,
                 "none" => {}
-                other => return Err(ToroidError::UnknownOption(other.to_string())),
+                other => {
+                    return Err(ToroidError::UnknownStabilizeOption {
+                        option: other.to_string(),
+                    })
+                }
             }
         }
         Ok(out)

@@ -107,9 +107,9 @@ impl RigidRolling {
             mass: analysis.mass_kg,
             i1: analysis.i1,
             incline,
-            gravity: 9.81,
-            dt: 1e-4,
-            output_dt: 1e-3,
+            gravity: crate::defaults::GRAVITY,
+            dt: crate::defaults::ROLL_DT,
+            output_dt: crate::defaults::ROLL_OUTPUT_DT,
         }
     }
 

@@ -17,12 +17,15 @@
 
 use crate::analysis::{prestress_design, prestressed_structure};
 use crate::builder::Toroid;
+use crate::defaults;
 use crate::error::{Result, ToroidError};
 use crate::rolling::{summarise, RollingResult, RollingSample};
 use nalgebra::Vector3;
 use tensegrity_core::dynamics::{
-    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
+    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationResult,
+    SimulationSettings,
 };
+use tensegrity_core::Structure;
 
 /// The ground contact of the full model.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,24 +69,35 @@ pub struct FullRolling {
     pub output_dt: f64,
 }
 
+impl ContactModel {
+    /// The thesis contact with the default damping [`defaults::GROUND_DAMPING`].
+    pub const THESIS: ContactModel = ContactModel::Thesis {
+        damping: defaults::GROUND_DAMPING,
+    };
+
+    /// The penalty ground with the defaults of [`crate::defaults`]: stiffness 10⁵ N/m,
+    /// damping 200 N·s/m, μ_s = 0.8 and μ_k = 0.75 μ_s = 0.6.
+    pub const PENALTY: ContactModel = ContactModel::Penalty {
+        stiffness: defaults::GROUND_STIFFNESS,
+        damping: defaults::GROUND_DAMPING,
+        mu_static: defaults::STATIC_FRICTION,
+        mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
+    };
+}
+
 impl Default for FullRolling {
-    /// 50° slope, penalty ground (10⁵ N/m, 200 N·s/m, μ 0.8/0.6), strings 2·10⁴ N/m with
-    /// a 20 N minimum prestress, RK4 at 0.1 ms, 1 ms output.
+    /// 50° slope, penalty ground ([`ContactModel::PENALTY`]), strings 2·10⁴ N/m with a 20 N
+    /// minimum prestress, RK4 at 0.1 ms, 1 ms output (the values of [`crate::defaults`]).
     fn default() -> Self {
         Self {
-            incline: 50f64.to_radians(),
-            gravity: 9.81,
-            contact: ContactModel::Penalty {
-                stiffness: 1e5,
-                damping: 200.0,
-                mu_static: 0.8,
-                mu_kinetic: 0.6,
-            },
-            string_stiffness: 2e4,
-            min_string_tension: 20.0,
+            incline: defaults::INCLINE_DEG.to_radians(),
+            gravity: defaults::GRAVITY,
+            contact: ContactModel::PENALTY,
+            string_stiffness: defaults::STRING_STIFFNESS,
+            min_string_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
-            dt: 1e-4,
-            output_dt: 1e-3,
+            dt: defaults::ROLL_DT,
+            output_dt: defaults::ROLL_OUTPUT_DT,
         }
     }
 }
@@ -91,6 +105,41 @@ impl Default for FullRolling {
 impl FullRolling {
     /// Rolls `toroid` for `t_end` seconds from rest on its prism-0 contact pair.
     pub fn run(&self, toroid: &Toroid, t_end: f64) -> Result<RollingResult> {
+        self.validate(t_end)?;
+        let (structure, ground) = self.model(toroid)?;
+        let settings = SimulationSettings {
+            t_end,
+            integrator: self.integrator,
+            dt: self.dt,
+            output_interval: Some(self.output_dt),
+            quantities: Quantities {
+                nodes: true,
+                velocities: true,
+                contact_forces: true,
+                energy: true,
+                member_forces: false,
+            },
+            ..Default::default()
+        };
+        let mut sim = Simulation::new(&structure, settings)?;
+        sim.model.set_ground(ground)?;
+        let result = sim.run()?;
+
+        let (samples, impacts) = wheel_samples(toroid, &result);
+        if samples.is_empty() {
+            return Err(ToroidError::NoSamples {
+                output_dt: self.output_dt,
+            });
+        }
+        // the first sample's pair counts as the starting contact, not an impact
+        Ok(summarise(
+            samples,
+            impacts.saturating_sub(1),
+            self.output_dt,
+        ))
+    }
+
+    fn validate(&self, t_end: f64) -> Result<()> {
         for (name, v) in [
             ("gravity", self.gravity),
             ("dt", self.dt),
@@ -112,6 +161,11 @@ impl FullRolling {
                 reason: "must lie in (−π/2, π/2)".into(),
             });
         }
+        Ok(())
+    }
+
+    /// The prestressed structure under the tilted gravity, and the ground under prism 0.
+    fn model(&self, toroid: &Toroid) -> Result<(Structure, Ground)> {
         let design = prestress_design(toroid, self.min_string_tension)?;
         let (sin, cos) = self.incline.sin_cos();
         let structure = prestressed_structure(toroid, &design, self.string_stiffness)?
@@ -141,112 +195,112 @@ impl FullRolling {
         };
         let mut ground = Ground::new(Vector3::new(0.0, 0.0, -r_o), Vector3::z(), model);
         ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
-        let settings = SimulationSettings {
-            t_end,
-            integrator: self.integrator,
-            dt: self.dt,
-            output_interval: Some(self.output_dt),
-            quantities: Quantities {
-                nodes: true,
-                velocities: true,
-                contact_forces: true,
-                energy: true,
-                member_forces: false,
-            },
-            ..Default::default()
-        };
-        let mut sim = Simulation::new(&structure, settings).map_err(dynamics_error)?;
-        sim.model.set_ground(ground).map_err(dynamics_error)?;
-        let result = sim.run().map_err(dynamics_error)?;
-
-        let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
-        let hub_of = |x: &[Vector3<f64>]| match toroid.axle {
-            Some([a, b]) => 0.5 * (x[a] + x[b]),
-            None => rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64,
-        };
-        let mut samples = Vec::with_capacity(result.samples.len());
-        let mut in_contact = vec![false; n];
-        let mut impacts = 0;
-        for smp in &result.samples {
-            let (Some(x), Some(v)) = (&smp.nodes, &smp.velocities) else {
-                continue;
-            };
-            let hub = hub_of(x);
-            let v_hub = hub_of(v);
-            let omega = rim
-                .iter()
-                .map(|&i| {
-                    let r = x[i] - hub;
-                    let w = v[i] - v_hub;
-                    (r.y * w.z - r.z * w.y) / (r.y * r.y + r.z * r.z)
-                })
-                .sum::<f64>()
-                / n as f64;
-            let mut force = Vector3::zeros();
-            let mut pivot = f64::NAN;
-            let mut strongest = 0.0;
-            let mut touching = vec![false; n];
-            let (mut slip_sum, mut slip_count) = (0.0, 0usize);
-            for (node, f) in smp.contact_forces.iter().flatten() {
-                force += f;
-                if f.z > 0.0 {
-                    // sliding speed in the slope plane (z is the slope normal)
-                    slip_sum += v[*node].xy().norm();
-                    slip_count += 1;
-                }
-                if f.z > 0.0 {
-                    touching[node / 5] = true;
-                }
-                if f.z > strongest {
-                    strongest = f.z;
-                    pivot = x[*node].y;
-                }
-            }
-            impacts += touching
-                .iter()
-                .zip(&in_contact)
-                .filter(|(now, before)| **now && !**before)
-                .count();
-            in_contact = touching;
-            samples.push(RollingSample {
-                t: smp.t,
-                s: hub.y,
-                h: hub.z + r_o,
-                pivot,
-                // the wheel rolls towards +y, i.e. with a negative x spin
-                omega: -omega,
-                normal: force.z,
-                tangential: force.y,
-                energy: smp.energy.map_or(f64::NAN, |(_, total)| total),
-                slip: if slip_count > 0 {
-                    slip_sum / slip_count as f64
-                } else {
-                    0.0
-                },
-            });
-        }
-        if samples.is_empty() {
-            return Err(ToroidError::InvalidParameter {
-                name: "output_dt",
-                value: self.output_dt,
-                reason: "no sample was recorded".into(),
-            });
-        }
-        // the first sample's pair counts as the starting contact, not an impact
-        Ok(summarise(
-            samples,
-            impacts.saturating_sub(1),
-            self.output_dt,
-        ))
+        Ok((structure, ground))
     }
 }
 
-fn dynamics_error(e: tensegrity_core::dynamics::DynamicsError) -> ToroidError {
-    ToroidError::Dynamics(e.to_string())
+/// The wheel's samples of a simulation (hub, spin, summed contact force, slip) and the number
+/// of contact-pair touch-downs (the first sample's pair included).
+fn wheel_samples(toroid: &Toroid, result: &SimulationResult) -> (Vec<RollingSample>, usize) {
+    let n = toroid.params.sides;
+    let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
+    let hub_of = |x: &[Vector3<f64>]| match toroid.axle {
+        Some([a, b]) => 0.5 * (x[a] + x[b]),
+        None => rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64,
+    };
+    let mut samples = Vec::with_capacity(result.samples.len());
+    let mut in_contact = vec![false; n];
+    let mut impacts = 0;
+    for smp in &result.samples {
+        let (Some(x), Some(v)) = (&smp.nodes, &smp.velocities) else {
+            continue;
+        };
+        let (hub, v_hub) = (hub_of(x), hub_of(v));
+        let omega = rim
+            .iter()
+            .map(|&i| {
+                let r = x[i] - hub;
+                let w = v[i] - v_hub;
+                (r.y * w.z - r.z * w.y) / (r.y * r.y + r.z * r.z)
+            })
+            .sum::<f64>()
+            / n as f64;
+        let c = contact_of(smp.contact_forces.iter().flatten(), x, v, n);
+        impacts += c
+            .touching
+            .iter()
+            .zip(&in_contact)
+            .filter(|(now, before)| **now && !**before)
+            .count();
+        in_contact = c.touching;
+        samples.push(RollingSample {
+            t: smp.t,
+            s: hub.y,
+            h: hub.z + toroid.params.outer_radius,
+            pivot: c.pivot,
+            // the wheel rolls towards +y, i.e. with a negative x spin
+            omega: -omega,
+            normal: c.force.z,
+            tangential: c.force.y,
+            energy: smp.energy.map_or(f64::NAN, |(_, total)| total),
+            slip: c.slip,
+        });
+    }
+    (samples, impacts)
 }
 
-/// Which model a rolling run uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The contact of one sample.
+struct Contact {
+    /// Summed contact force (N).
+    force: Vector3<f64>,
+    /// Slope coordinate y of the most loaded contact node (NaN without contact).
+    pivot: f64,
+    /// Which prisms touch the ground.
+    touching: Vec<bool>,
+    /// Mean in-plane speed of the loaded contact nodes (m/s).
+    slip: f64,
+}
+
+fn contact_of<'a>(
+    forces: impl Iterator<Item = &'a (usize, Vector3<f64>)>,
+    x: &[Vector3<f64>],
+    v: &[Vector3<f64>],
+    n: usize,
+) -> Contact {
+    let mut force = Vector3::zeros();
+    let mut pivot = f64::NAN;
+    let mut strongest = 0.0;
+    let mut touching = vec![false; n];
+    let (mut slip_sum, mut slip_count) = (0.0, 0usize);
+    for (node, f) in forces {
+        force += f;
+        if f.z > 0.0 {
+            // sliding speed in the slope plane (z is the slope normal)
+            slip_sum += v[*node].xy().norm();
+            slip_count += 1;
+            touching[node / 5] = true;
+        }
+        if f.z > strongest {
+            strongest = f.z;
+            pivot = x[*node].y;
+        }
+    }
+    let slip = if slip_count > 0 {
+        slip_sum / slip_count as f64
+    } else {
+        0.0
+    };
+    Contact {
+        force,
+        pivot,
+        touching,
+        slip,
+    }
+}
+
+/// Which model a rolling run uses; serialises as `"rigid"` or `"full"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Fidelity {
     /// The reduced rigid polygon ([`crate::rolling::RigidRolling`]).
     Rigid,

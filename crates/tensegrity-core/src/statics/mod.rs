@@ -16,6 +16,7 @@ mod flexes;
 mod load;
 mod prestress;
 mod stability;
+pub mod report;
 
 pub use flexes::Flexes;
 pub use load::LoadSolution;

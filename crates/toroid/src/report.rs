@@ -1,0 +1,253 @@
+//! Reports of the toroid studies, as the CLI prints them (text or JSON): the statics and
+//! inertia of one wheel ([`toroid_report`]) and its tip-over figures ([`tipover_report`]).
+//! The rolling report is in [`crate::roll`].
+//!
+//! Every study starts from a [`WheelSpec`] (the seven parameters, the stabilising options and
+//! the bar density) and a request struct whose [`Default`] is the CLI's default; the numbers
+//! come from [`crate::analyse`], [`crate::prestress_design`], [`crate::rim_radius_window`] and
+//! [`crate::tipover`].
+
+use crate::analysis::{analyse, prestress_design, prestressed_structure, rim_radius_window};
+use crate::builder::{build, build_prism, Toroid};
+use crate::defaults;
+use crate::error::Result;
+use crate::inertia::wheel_mass;
+use crate::params::{Stabilize, ToroidParams};
+use crate::tipover::tipover;
+use serde::Serialize;
+use tensegrity_core::Structure;
+
+/// One wheel: geometry, stabilising strings and bar mass per length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelSpec {
+    /// The seven geometric parameters.
+    pub params: ToroidParams,
+    /// The stabilising string sets.
+    pub stabilize: Stabilize,
+    /// Bar mass per length (kg/m); strings are massless.
+    pub bar_density: f64,
+}
+
+impl Default for WheelSpec {
+    /// The reference wheel: [`ToroidParams::REFERENCE`], spokes + inner rings, 1 kg/m bars.
+    fn default() -> Self {
+        Self {
+            params: ToroidParams::REFERENCE,
+            stabilize: Stabilize::SPOKES_INNER,
+            bar_density: defaults::BAR_DENSITY,
+        }
+    }
+}
+
+impl WheelSpec {
+    /// The reference wheel with `n` sides.
+    pub fn with_sides(n: usize) -> Self {
+        let mut w = Self::default();
+        w.params.sides = n;
+        w
+    }
+
+    /// Builds the toroid.
+    pub fn build(&self) -> Result<Toroid> {
+        build(&self.params, self.stabilize, self.bar_density)
+    }
+}
+
+/// What [`toroid_report`] analyses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ToroidRequest {
+    /// The wheel.
+    pub wheel: WheelSpec,
+    /// Analyse a single prism (six nodes, K6) instead of the whole wheel.
+    pub prism_only: bool,
+    /// Minimum string tension of the prestress design (N).
+    pub min_tension: f64,
+    /// Also search the rim radii R_m for which a single prism is prestressable.
+    pub rim_window: bool,
+    /// Give every string of [`ToroidReport::structure`] this stiffness (N/m) and the rest
+    /// length that realises the prestress design (needs a prestressable toroid).
+    pub string_stiffness: Option<f64>,
+}
+
+impl Default for ToroidRequest {
+    /// The reference wheel, a 10 N prestress design, no rim window, no string stiffness.
+    fn default() -> Self {
+        Self {
+            wheel: WheelSpec::default(),
+            prism_only: false,
+            min_tension: defaults::DESIGN_MIN_TENSION,
+            rim_window: false,
+            string_stiffness: None,
+        }
+    }
+}
+
+/// The statics, mass and inertia of one toroid; serialises to the JSON of `tensegrity toroid`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ToroidReport {
+    /// Node count.
+    pub nodes: usize,
+    /// Bar count.
+    pub bars: usize,
+    /// String count.
+    pub strings: usize,
+    /// The stabilising options (`"prism"` for a single prism).
+    pub stabilize: String,
+    /// Rank of the equilibrium matrix.
+    pub rank: usize,
+    /// Dimension of the self-stress space.
+    pub self_stress_dim: usize,
+    /// Whether a self-stress tensions every string and compresses every bar.
+    pub prestressable: bool,
+    /// The prestressability LP margin.
+    pub prestress_margin: f64,
+    /// First-order flexes beyond the rigid-body motions.
+    pub internal_mechanisms: usize,
+    /// Total bar mass (kg).
+    pub mass_kg: f64,
+    /// Inertia tensor about the wheel centre (kg m²), row-major.
+    pub inertia: [[f64; 3]; 3],
+    /// I₁ about the rolling axis (kg m²).
+    #[serde(rename = "I1")]
+    pub i1: f64,
+    /// Member forces of the prestress design (N, tension positive, bars then strings), when
+    /// prestressable.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prestress_member_force: Option<Vec<f64>>,
+    /// The rim radii [R_m,min, R_m,max] (m) of single-prism prestressability, when searched
+    /// and found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rim_radius_window: Option<[f64; 2]>,
+    /// The analysed structure (with stiff, prestressed strings when the request gives a
+    /// string stiffness), for export; not serialised.
+    #[serde(skip)]
+    pub structure: Structure,
+}
+
+/// Builds and analyses one toroid (or prism): counts, prestress, flexes, mass, inertia, the
+/// prestress design and, on request, the rim-radius window.
+///
+/// ```
+/// use toroid::{toroid_report, ToroidRequest};
+/// let r = toroid_report(&ToroidRequest::default()).unwrap();
+/// assert_eq!((r.nodes, r.internal_mechanisms), (42, 0));
+/// let f = r.prestress_member_force.unwrap();
+/// let min_string = f[r.bars..].iter().copied().fold(f64::INFINITY, f64::min);
+/// assert!((min_string - 10.0).abs() < 1e-9);
+/// ```
+pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
+    let p = request.wheel.params;
+    let t = if request.prism_only {
+        build_prism(&p, request.wheel.bar_density)?
+    } else {
+        request.wheel.build()?
+    };
+    let a = analyse(&t)?;
+    // with a string stiffness, a toroid that is not prestressable fails here (no design)
+    let design = if a.prestressable || request.string_stiffness.is_some() {
+        Some(prestress_design(&t, request.min_tension)?)
+    } else {
+        None
+    };
+    let structure = match (request.string_stiffness, &design) {
+        (Some(k), Some(d)) => prestressed_structure(&t, d, k)?,
+        _ => t.structure.clone(),
+    };
+    let window = if request.rim_window {
+        rim_radius_window(
+            &p,
+            defaults::RIM_WINDOW_FROM * p.outer_radius,
+            defaults::RIM_WINDOW_TO * p.outer_radius,
+            defaults::RIM_WINDOW_SAMPLES,
+            defaults::RIM_WINDOW_TOL,
+        )?
+    } else {
+        None
+    };
+    Ok(ToroidReport {
+        nodes: a.nodes,
+        bars: a.bars,
+        strings: a.strings,
+        stabilize: if request.prism_only {
+            "prism".into()
+        } else {
+            t.stabilize.to_string()
+        },
+        rank: a.rank,
+        self_stress_dim: a.self_stress_dim,
+        prestressable: a.prestressable,
+        prestress_margin: a.prestress_margin,
+        internal_mechanisms: a.internal_mechanisms,
+        mass_kg: a.mass_kg,
+        inertia: std::array::from_fn(|i| std::array::from_fn(|j| a.inertia[(i, j)])),
+        i1: a.i1,
+        prestress_member_force: design.map(|d| d.member_force.iter().copied().collect()),
+        rim_radius_window: window.map(|(lo, hi)| [lo, hi]),
+        structure,
+    })
+}
+
+/// What [`tipover_report`] analyses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TipoverRequest {
+    /// The wheel.
+    pub wheel: WheelSpec,
+    /// Gravity (m/s²).
+    pub gravity: f64,
+}
+
+impl Default for TipoverRequest {
+    /// The reference wheel under [`defaults::GRAVITY`].
+    fn default() -> Self {
+        Self {
+            wheel: WheelSpec::default(),
+            gravity: defaults::GRAVITY,
+        }
+    }
+}
+
+/// Tip-over figures of one wheel; serialises to the JSON of `tensegrity tipover`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TipoverReport {
+    /// Wheel (bar) mass (kg).
+    pub mass_kg: f64,
+    /// ρ = T/R_o.
+    pub rho: f64,
+    /// ε = t/T.
+    pub epsilon: f64,
+    /// σ = R_i/R_o.
+    pub sigma: f64,
+    /// cot θ of the contact bar with the ground.
+    pub cot_theta: f64,
+    /// Lateral axle force at which the wheel tips (N).
+    pub critical_lateral_force: f64,
+    /// F_f/F_e at the threshold (eq. 3.29).
+    pub normalized_friction: f64,
+    /// Smallest static friction coefficient for which the wheel tips before sliding.
+    pub min_friction_to_tip: f64,
+}
+
+/// Builds the wheel and returns its tip-over figures (thesis §3.3.2, ERRATA 3.12–3.15).
+///
+/// ```
+/// use toroid::{tipover_report, TipoverRequest};
+/// let r = tipover_report(&TipoverRequest::default()).unwrap();
+/// // ρ = 0.4, ε = 0.75, σ = 0.6: F_f/F_e = −(σ + ε)/(1 − σ) = −3.375
+/// assert!((r.normalized_friction + 3.375).abs() < 1e-12);
+/// assert!((r.critical_lateral_force - 0.5 * r.mass_kg * 9.81 * 0.4).abs() < 1e-12);
+/// ```
+pub fn tipover_report(request: &TipoverRequest) -> Result<TipoverReport> {
+    let t = request.wheel.build()?;
+    let mass = wheel_mass(&t.structure);
+    let r = tipover(&t.params, mass, request.gravity)?;
+    Ok(TipoverReport {
+        mass_kg: mass,
+        rho: r.rho,
+        epsilon: r.epsilon,
+        sigma: r.sigma,
+        cot_theta: r.cot_theta,
+        critical_lateral_force: r.critical_lateral_force,
+        normalized_friction: r.normalized_friction,
+        min_friction_to_tip: r.min_friction_to_tip,
+    })
+}
