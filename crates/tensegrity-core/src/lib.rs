@@ -31,9 +31,7 @@ pub mod stiffness;
 pub mod structure;
 
 pub use connectivity::{Connectivity, Incidence};
-pub use dynamics::{
-    DynamicsError, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
-};
+pub use dynamics::{IntegratorKind, Simulation, SimulationResult, SimulationSettings};
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};

@@ -241,7 +241,7 @@ impl FullRolling {
     }
 }
 
-fn dynamics_error(e: tensegrity_core::dynamics::DynamicsError) -> ToroidError {
+fn dynamics_error(e: tensegrity_core::CoreError) -> ToroidError {
     ToroidError::Dynamics(e.to_string())
 }
 

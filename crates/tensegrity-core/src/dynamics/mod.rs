@@ -44,7 +44,6 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
-pub mod error;
 pub mod examples;
 pub mod forces;
 pub mod model;
@@ -59,7 +58,6 @@ pub mod simulation;
 mod sparse_chol;
 pub mod strings;
 
-pub use error::DynamicsError;
 pub use forces::{Ground, GroundModel};
 pub use model::{LoadFn, Model, NodeRef, RestLengthFn, Workspace};
 pub use monitors::Monitor;

@@ -22,8 +22,8 @@
 //!
 //! This is the only dynamics file that touches faer; it should move behind `crate::linalg`.
 
-use super::error::DynamicsError;
 use super::sparse_chol::StaticCholesky;
+use crate::error::CoreError;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
@@ -117,7 +117,7 @@ impl std::fmt::Debug for ConstraintMatrix {
 impl ConstraintMatrix {
     /// Builds the pattern and the symbolic factorisation (class-1 nodes 2k and 2k+1 belong to
     /// bar k). `rigid` selects the Ω form (with the b̂b̂ᵀ projection) instead of plain M⁻¹.
-    pub fn new(rows: Vec<Row>, rigid: bool) -> Result<Self, DynamicsError> {
+    pub fn new(rows: Vec<Row>, rigid: bool) -> Result<Self, CoreError> {
         let n = rows.len();
         // bar -> list of (row, entry)
         let mut by_bar: std::collections::BTreeMap<usize, Vec<(usize, usize, usize)>> =
@@ -186,7 +186,7 @@ impl ConstraintMatrix {
             SymmetricOrdering::Amd,
             CholeskySymbolicParams::default(),
         )
-        .map_err(|_| DynamicsError::SingularConstraint {
+        .map_err(|_| CoreError::SingularConstraint {
             rank: 0,
             expected: n,
         })?;
@@ -255,7 +255,7 @@ impl ConstraintMatrix {
         &mut self,
         bhat: &[Vector3<f64>],
         inv_mass: &[f64],
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         self.values.iter_mut().for_each(|v| *v = 0.0);
         if !self.axis.is_empty() {
             for c in &self.axis {
@@ -314,7 +314,7 @@ impl ConstraintMatrix {
             )
             .map_err(|e| {
                 let faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } = e;
-                DynamicsError::SingularConstraint {
+                CoreError::SingularConstraint {
                     rank: index,
                     expected: n,
                 }
@@ -324,7 +324,7 @@ impl ConstraintMatrix {
     }
 
     /// In-place dense Cholesky L Lᵀ of the lower triangle (row-major).
-    fn dense_factor(&mut self) -> Result<(), DynamicsError> {
+    fn dense_factor(&mut self) -> Result<(), CoreError> {
         let n = self.rows.len();
         let a = &mut self.dense;
         a.iter_mut().for_each(|v| *v = 0.0);
@@ -341,7 +341,7 @@ impl ConstraintMatrix {
             let row_j = &mut head[j * n..];
             let d = row_j[j] - row_j[..j].iter().map(|v| v * v).sum::<f64>();
             if d.is_nan() || d <= tol {
-                return Err(DynamicsError::SingularConstraint {
+                return Err(CoreError::SingularConstraint {
                     rank: j,
                     expected: n,
                 });

@@ -3,8 +3,8 @@
 //! y_{n+1} = y_n + h/6 (k₁ + 2k₂ + 2k₃ + k₄). Linear invariants (N P = D) are kept to
 //! round-off; bar lengths drift at O(h⁴) (the λ closed form makes d²‖b‖²/dt² = 0 exactly).
 
-use super::error::DynamicsError;
 use super::model::{Model, Workspace};
+use crate::error::CoreError;
 
 /// Stage buffers of the RK4 stepper.
 #[derive(Debug, Clone)]
@@ -36,7 +36,7 @@ impl Rk4 {
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         let n = y.len();
         model.rhs(t, y, &mut self.k1, ws)?;
         for i in 0..n {

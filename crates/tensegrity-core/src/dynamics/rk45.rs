@@ -8,8 +8,8 @@
 //! Error norm: ‖e‖ = sqrt(mean((e_i / (atol + rtol·max(|y_i|, |y1_i|)))²)); a step is
 //! accepted when ‖e‖ ≤ 1, and the next step is h·min(5, max(0.2, 0.9‖e‖^{-1/5})).
 
-use super::error::DynamicsError;
 use super::model::{Model, Workspace};
+use crate::error::CoreError;
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [
@@ -109,7 +109,7 @@ impl Dopri5 {
         t: f64,
         y: &[f64],
         h_max: f64,
-    ) -> Result<f64, DynamicsError> {
+    ) -> Result<f64, CoreError> {
         let n = y.len();
         model.rhs(t, y, &mut self.k[0], ws)?;
         self.fsal_valid = true;
@@ -148,7 +148,7 @@ impl Dopri5 {
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(bool, f64), DynamicsError> {
+    ) -> Result<(bool, f64), CoreError> {
         let n = y.len();
         if !self.fsal_valid {
             model.rhs(t, y, &mut self.k[0], ws)?;

@@ -1,12 +1,12 @@
 //! The simulation driver: integrator choice, output times, monitors, events, timing.
 
-use super::error::DynamicsError;
 use super::model::{vec3, Model, NodeRef};
 use super::monitors::Monitor;
 use super::rattle::{ConstraintSet, Rattle};
 use super::recorder::{Quantities, Recorder, Sample};
 use super::rk4::Rk4;
 use super::rk45::Dopri5;
+use crate::error::CoreError;
 use crate::structure::Structure;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
@@ -214,15 +214,15 @@ impl fmt::Debug for Simulation {
     }
 }
 
-fn positive(name: &'static str, value: f64) -> Result<(), DynamicsError> {
+fn positive(name: &'static str, value: f64) -> Result<(), CoreError> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(DynamicsError::InvalidParameter {
+        Err(CoreError::invalid_parameter(
             name,
             value,
-            reason: "must be positive and finite",
-        })
+            "must be positive and finite",
+        ))
     }
 }
 
@@ -242,7 +242,7 @@ impl Simulation {
     /// let r = Simulation::new(&s, settings).unwrap().run().unwrap();
     /// assert!(r.bar_length_drift < 1e-10);
     /// ```
-    pub fn new(structure: &Structure, settings: SimulationSettings) -> Result<Self, DynamicsError> {
+    pub fn new(structure: &Structure, settings: SimulationSettings) -> Result<Self, CoreError> {
         let model = Model::new(structure, None)?;
         let y0 = model.initial_state(structure)?;
         Ok(Self {
@@ -254,7 +254,7 @@ impl Simulation {
     }
 
     /// Runs the simulation from t = 0 to `settings.t_end`.
-    pub fn run(&self) -> Result<SimulationResult, DynamicsError> {
+    pub fn run(&self) -> Result<SimulationResult, CoreError> {
         let s = &self.settings;
         positive("t_end", s.t_end)?;
         match s.integrator {
@@ -328,10 +328,9 @@ impl Simulation {
                     }
                     steps += 1;
                     if steps > s.max_steps {
-                        return Err(DynamicsError::InvalidParameter {
-                            name: "max_steps",
-                            value: s.max_steps as f64,
-                            reason: "exceeded",
+                        return Err(CoreError::MaxStepsExceeded {
+                            t: t,
+                            max_steps: s.max_steps,
                         });
                     }
                     model.check_state(t, &y, limit)?;
@@ -358,7 +357,7 @@ impl Simulation {
                 'outer: while t < s.t_end - eps {
                     h = h.min(s.t_end - t).min(s.dt);
                     if h < s.h_min {
-                        return Err(DynamicsError::StepSizeTooSmall { t, h_min: s.h_min });
+                        return Err(CoreError::StepSizeTooSmall { t, h_min: s.h_min });
                     }
                     let (ok, h_next) = dp.try_step(model, &mut ws, t, &mut y, h)?;
                     if !ok {
@@ -372,10 +371,9 @@ impl Simulation {
                     }
                     steps += 1;
                     if steps > s.max_steps {
-                        return Err(DynamicsError::InvalidParameter {
-                            name: "max_steps",
-                            value: s.max_steps as f64,
-                            reason: "exceeded",
+                        return Err(CoreError::MaxStepsExceeded {
+                            t: t_new,
+                            max_steps: s.max_steps,
                         });
                     }
                     model.check_state(t_new, &y, limit)?;

@@ -9,7 +9,7 @@
 //! faer's numeric sparse Cholesky on the same pattern for 50–1000-row constraint systems,
 //! where faer's per-call permutation and `ereach` dominate.
 
-use super::error::DynamicsError;
+use crate::error::CoreError;
 use std::collections::BTreeSet;
 
 /// The static factorisation schedule and its numeric storage.
@@ -108,7 +108,7 @@ impl StaticCholesky {
 
     /// Numeric factorisation of the matrix with lower-triangle values `values` (indexed by
     /// the slots of the pattern given to [`new`](Self::new)).
-    pub fn factor(&mut self, values: &[f64]) -> Result<(), DynamicsError> {
+    pub fn factor(&mut self, values: &[f64]) -> Result<(), CoreError> {
         let n = self.n;
         let mut dmax: f64 = 0.0;
         for j in 0..n {
@@ -135,7 +135,7 @@ impl StaticCholesky {
             x[j] = 0.0;
             if d.is_nan() || d <= tol {
                 x.iter_mut().for_each(|v| *v = 0.0);
-                return Err(DynamicsError::SingularConstraint {
+                return Err(CoreError::SingularConstraint {
                     rank: j,
                     expected: n,
                 });
