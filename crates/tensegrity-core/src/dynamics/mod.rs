@@ -44,8 +44,10 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
+pub mod events;
 pub mod examples;
 pub mod forces;
+pub mod integrator;
 pub mod model;
 pub mod monitors;
 mod omega;
@@ -58,7 +60,9 @@ pub mod simulation;
 mod sparse_chol;
 pub mod strings;
 
+pub use events::{Event, EventFn, EventHit, StateView};
 pub use forces::{Ground, GroundModel};
+pub use integrator::{Integrator, IntegratorKind, IntegratorStats, StepOutcome};
 pub use model::{LoadFn, Model, NodeRef, RestLengthFn, Workspace};
 pub use monitors::Monitor;
 pub use rattle::{ConstraintSet, Rattle};
@@ -68,8 +72,5 @@ pub use rk45::Dopri5;
 pub use scene::{
     build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
 };
-pub use simulation::{
-    Event, EventFn, EventHit, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
-    StateView,
-};
+pub use simulation::{Simulation, SimulationResult, SimulationSettings};
 pub use strings::StringLaw;

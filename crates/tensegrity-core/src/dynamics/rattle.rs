@@ -15,6 +15,7 @@
 //! the previous step). With velocity-dependent forces (string damping, ground) the last
 //! half-kick is iterated twice on v_{n+1}.
 
+use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{set3, vec3, Model, Workspace};
 use super::omega::{ConstraintMatrix, Row, RowEntry};
 use crate::error::CoreError;
@@ -226,16 +227,26 @@ impl Rattle {
             tol: 1e-14 * scale,
         })
     }
+}
+
+impl Integrator for Rattle {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Rattle
+    }
+
+    fn preserves_constraints(&self) -> bool {
+        true
+    }
 
     /// Advances y = (q, v) from t to t + h.
-    pub fn step(
+    fn step(
         &mut self,
         model: &Model,
         ws: &mut Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(), CoreError> {
+    ) -> Result<StepOutcome, CoreError> {
         let n3 = 3 * model.n1;
         let (x, v) = y.split_at_mut(n3);
         if !self.cache_valid {
@@ -273,11 +284,11 @@ impl Rattle {
             self.f_cache.copy_from_slice(&ws.f);
             self.cache_valid = true;
         }
-        Ok(())
+        Ok(StepOutcome::fixed(h))
     }
 
     /// Forces a fresh force evaluation and factorisation at the next step.
-    pub fn invalidate(&mut self) {
+    fn invalidate(&mut self) {
         self.cache_valid = false;
     }
 }
