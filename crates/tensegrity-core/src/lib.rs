@@ -12,7 +12,8 @@
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
 //! - [`scene`]: the TOML scene format;
-//! - [`linalg`]: the thin layer over faer.
+//! - [`linalg`]: the thin layer over faer;
+//! - `test_models` (feature `test-models`): canonical structures with reference answers.
 //!
 //! Sign conventions: force densities q are tension positive; the member vector is
 //! `n_end − n_start`; members are numbered bars first, then strings.
@@ -29,6 +30,8 @@ pub mod sizing;
 pub mod statics;
 pub mod stiffness;
 pub mod structure;
+#[cfg(any(test, feature = "test-models"))]
+pub mod test_models;
 
 pub use connectivity::{Connectivity, Incidence};
 pub use dynamics::{IntegratorKind, Simulation, SimulationResult, SimulationSettings};

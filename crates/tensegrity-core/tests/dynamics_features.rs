@@ -1,10 +1,10 @@
 //! Scene tables, actuation, recorder, projection and error reporting of the dynamics.
 
-use tensegrity_core::dynamics::examples::{double_pendulum, snelson_prism, PrismParams};
 use tensegrity_core::dynamics::{
     build_simulation, ActuationSpec, GroundSpec, IntegratorKind, Model, Quantities, Simulation,
     SimulationSettings, SimulationSpec,
 };
+use tensegrity_core::test_models::{double_pendulum, snelson_prism, PrismParams};
 use tensegrity_core::{Bar, CoreError, MemberId, StringMember, Structure, Support};
 
 #[test]

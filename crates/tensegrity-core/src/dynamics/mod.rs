@@ -45,7 +45,6 @@
 //! ```
 
 pub mod events;
-pub mod examples;
 pub mod forces;
 pub mod integrator;
 pub mod model;
@@ -59,6 +58,8 @@ pub mod scene;
 pub mod simulation;
 mod sparse_chol;
 pub mod strings;
+#[cfg(any(test, feature = "test-models"))]
+pub mod work_precision;
 
 pub use events::{Event, EventFn, EventHit, StateView};
 pub use forces::{Ground, GroundModel};
