@@ -18,8 +18,12 @@
 //! # Integrators
 //!
 //! [`Rk4`] (fixed step, MOTES parity), [`Dopri5`] (adaptive 5(4), dense output, events),
-//! [`Rattle`] (constraint-preserving, symplectic, 2nd order); RK states can be projected back
-//! onto the constraints ([`SimulationSettings::project`]).
+//! [`Rattle`] (constraint-preserving, symplectic, 2nd order), all behind the [`Integrator`]
+//! trait ([`integrator`]) that the one driver loop of [`Simulation::run`] steps; sign changes
+//! of event functions are located by [`events`]; RK states can be projected back onto the
+//! constraints ([`SimulationSettings::project`]). Every run reports its work counters
+//! ([`IntegratorStats`]); `work_precision` (feature `test-models`) measures error against
+//! time on the test models.
 //!
 //! # Example
 //!
