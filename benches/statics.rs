@@ -3,36 +3,11 @@
 //! its self-stress space, and a load solve.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::f64::consts::PI;
 use std::hint::black_box;
-use tensegrity::core::{Bar, Statics, StringMember, Structure, Support};
+use tensegrity::core::{test_models, Statics, Structure};
 
 fn tower(stages: usize) -> Structure {
-    let mut b = Structure::builder();
-    for ring in 0..=stages {
-        for i in 0..3 {
-            let a = 2.0 * PI * i as f64 / 3.0 + ring as f64 * PI / 6.0;
-            b = b.node([a.cos(), a.sin(), ring as f64]);
-        }
-    }
-    for stage in 0..stages {
-        for i in 0..3 {
-            b = b.bar(Bar::new(3 * stage + i, 3 * stage + 3 + (i + 1) % 3));
-            b = b.string(StringMember::new(3 * stage + i, 3 * stage + 3 + i));
-        }
-    }
-    for ring in 0..=stages {
-        for i in 0..3 {
-            b = b.string(StringMember::new(3 * ring + i, 3 * ring + (i + 1) % 3));
-        }
-    }
-    let top = 3 * stages;
-    b.support(Support::pinned(0))
-        .support(Support::pinned(1))
-        .support(Support::pinned(2))
-        .load(top, [100.0, 0.0, -50.0])
-        .build()
-        .expect("valid tower")
+    test_models::snelson_tower(stages).expect("valid tower")
 }
 
 fn bench_statics(c: &mut Criterion) {

@@ -1,20 +1,13 @@
 //! `tensegrity bench work-precision [--out DIR] [--quick]`: error against wall time for every
-//! integrator on three scenes, written as CSV and an SVG plot (log–log, one curve per
-//! integrator, one panel per scene).
-//!
-//! Scenes: a prestressed Snelson prism oscillating (one vertical string 1 % short, 1 s), the
-//! compound double pendulum (class-2 joint, pinned support, 2 s) and a prism dropped on a
-//! penalty ground (contact and friction, no normal damping, 0.5 s). The error is the largest node-position
-//! difference at the end time against a tight RK45 reference (rtol = atol = 1e-13).
+//! integrator on three scenes (the study is
+//! [`tensegrity_core::dynamics::work_precision`]), written as CSV and an SVG plot (log–log,
+//! one curve per integrator, one panel per scene).
 
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::examples::{double_pendulum, snelson_prism, PrismParams};
-use tensegrity_core::dynamics::{
-    build_simulation, GroundModelKind, GroundSpec, IntegratorKind, Simulation,
-};
-use tensegrity_core::Structure;
+use tensegrity_core::dynamics::work_precision::{self, Point};
+use tensegrity_core::dynamics::IntegratorKind;
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]
@@ -42,177 +35,6 @@ pub struct WorkPrecisionArgs {
     pub quick: bool,
 }
 
-/// One measured point.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Point {
-    /// Scene name.
-    pub scene: &'static str,
-    /// Integrator.
-    pub integrator: IntegratorKind,
-    /// dt (fixed step) or rtol (rk45).
-    pub parameter: f64,
-    /// Accepted steps.
-    pub steps: u64,
-    /// Force evaluations.
-    pub rhs_evals: u64,
-    /// Max node-position error at the end time (m).
-    pub error: f64,
-    /// Best-of-N integration wall time (s).
-    pub wall_time_s: f64,
-}
-
-struct Scene {
-    name: &'static str,
-    t_end: f64,
-    make: fn() -> Result<Simulation>,
-}
-
-fn oscillating_prism() -> Result<Simulation> {
-    let s = snelson_prism(&PrismParams::default())?;
-    let mut strings = s.strings().to_vec();
-    strings[6].rest_length = strings[6].rest_length.map(|l| 0.99 * l);
-    let mut b = Structure::builder().nodes(s.nodes().iter().map(|n| [n.x, n.y, n.z]));
-    for bar in s.bars() {
-        b = b.bar(bar.clone());
-    }
-    for st in strings {
-        b = b.string(st);
-    }
-    Ok(build_simulation(&b.build()?, None, None, &[])?)
-}
-
-fn pendulum() -> Result<Simulation> {
-    let s = double_pendulum(std::f64::consts::FRAC_PI_4)?;
-    Ok(build_simulation(&s, None, None, &[])?)
-}
-
-fn dropped_prism() -> Result<Simulation> {
-    let s = snelson_prism(&PrismParams {
-        z0: 0.02,
-        damping: 50.0,
-        prestress: 300.0,
-        ..Default::default()
-    })?;
-    let s = s.to_builder().gravity([0.0, 0.0, -9.81]).build()?;
-    let ground = GroundSpec {
-        point: [0.0; 3],
-        normal: [0.0, 0.0, 1.0],
-        model: GroundModelKind::Penalty,
-        stiffness: Some(1e4),
-        // No normal damping here: with it the contact force jumps by c·v_n at touchdown,
-        // a true discontinuity that no tolerance-based reference can resolve to 1e-13
-        // (the string damping still dissipates; the normal force has only a kink).
-        damping: Some(0.0),
-        mu_static: Some(0.6),
-        mu_kinetic: Some(0.5),
-        regularization_velocity: Some(0.1),
-        stribeck_velocity: Some(0.2),
-        tolerance: None,
-        nodes: None,
-    };
-    Ok(build_simulation(&s, None, Some(&ground), &[])?)
-}
-
-fn run_one(
-    scene: &Scene,
-    integrator: IntegratorKind,
-    parameter: f64,
-    repeats: usize,
-) -> Result<(tensegrity_core::dynamics::SimulationResult, f64)> {
-    let mut sim = (scene.make)()?;
-    sim.settings.t_end = scene.t_end;
-    sim.settings.integrator = integrator;
-    match integrator {
-        IntegratorKind::Rk45 => {
-            sim.settings.rtol = parameter;
-            sim.settings.atol = parameter * 1e-2;
-            sim.settings.dt = scene.t_end;
-        }
-        _ => sim.settings.dt = parameter,
-    }
-    let mut best = f64::INFINITY;
-    let mut last = None;
-    for _ in 0..repeats.max(1) {
-        let r = sim
-            .run()
-            .with_context(|| format!("{} with {integrator} ({parameter:e})", scene.name))?;
-        best = best.min(r.wall_time_s);
-        last = Some(r);
-    }
-    Ok((last.expect("at least one run"), best))
-}
-
-/// Runs every integrator over its parameter range on every scene.
-pub fn measure(quick: bool) -> Result<Vec<Point>> {
-    let scenes = [
-        Scene {
-            name: "prism-oscillating",
-            t_end: 1.0,
-            make: oscillating_prism,
-        },
-        Scene {
-            name: "double-pendulum",
-            t_end: 2.0,
-            make: pendulum,
-        },
-        Scene {
-            name: "prism-dropped",
-            t_end: 0.5,
-            make: dropped_prism,
-        },
-    ];
-    let repeats = if quick { 1 } else { 3 };
-    let dts: Vec<f64> = if quick {
-        vec![4e-3, 1e-3]
-    } else {
-        vec![8e-3, 4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4]
-    };
-    let tols: Vec<f64> = if quick {
-        vec![1e-5, 1e-8]
-    } else {
-        vec![1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11]
-    };
-    let mut points = Vec::new();
-    for scene in &scenes {
-        let (reference, _) = run_one(scene, IntegratorKind::Rk45, 1e-13, 1)?;
-        let err = |r: &tensegrity_core::dynamics::SimulationResult| {
-            r.final_nodes
-                .iter()
-                .zip(&reference.final_nodes)
-                .map(|(a, b)| (a - b).norm())
-                .fold(0.0, f64::max)
-        };
-        for integrator in [
-            IntegratorKind::Rk4,
-            IntegratorKind::Rk45,
-            IntegratorKind::Rattle,
-        ] {
-            let params = if integrator == IntegratorKind::Rk45 {
-                &tols
-            } else {
-                &dts
-            };
-            for &p in params {
-                // RK4 is unstable on the stiff contact scene at the largest steps: skip
-                // failures (blow-up) rather than abort the report.
-                let Ok((r, wall)) = run_one(scene, integrator, p, repeats) else {
-                    continue;
-                };
-                points.push(Point {
-                    scene: scene.name,
-                    integrator,
-                    parameter: p,
-                    steps: r.steps,
-                    rhs_evals: r.rhs_evals,
-                    error: err(&r).max(1e-16),
-                    wall_time_s: wall.max(1e-9),
-                });
-            }
-        }
-    }
-    Ok(points)
-}
-
 /// Runs `tensegrity bench work-precision`.
 pub fn run(args: &BenchArgs) -> Result<()> {
     match &args.what {
@@ -221,7 +43,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
-    let points = measure(args.quick)?;
+    let points = work_precision::measure(args.quick)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let csv_path = args.out.join("work_precision.csv");

@@ -1,48 +1,20 @@
 //! Criterion benches of the dynamics: one right-hand-side evaluation against the member count
 //! (class-1 prism chains and class-2 D-bar chains), and full runs (the MOTES comparison:
 //! 5000 RK4 steps of the 4-bar class-2 D-bar).
-//!
-//! Needs in crates/tensegrity-core/Cargo.toml:
-//! `[dev-dependencies] criterion.workspace = true` and
-//! `[[bench]] name = "dynamics" harness = false`.
+//! The structures come from `tensegrity_core::test_models`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
-use tensegrity_core::dynamics::examples::{self, dbar, snelson_prism, PrismParams};
 use tensegrity_core::dynamics::{IntegratorKind, Model, Simulation, SimulationSettings};
-use tensegrity_core::{Bar, StringMember, Structure};
+use tensegrity_core::test_models::{self, dbar};
+use tensegrity_core::Structure;
 
-/// `n` prisms stacked along z, each its own class-1 unit, tied by vertical strings.
 fn prism_stack(n: usize) -> Structure {
-    let p = snelson_prism(&PrismParams::default()).unwrap();
-    let mut b = Structure::builder();
-    for k in 0..n {
-        let dz = 2.0 * k as f64;
-        b = b.nodes(p.nodes().iter().map(|v| [v.x, v.y, v.z + dz]));
-        let o = 6 * k;
-        for bar in p.bars() {
-            b = b.bar(Bar::new(bar.nodes[0] + o, bar.nodes[1] + o).mass(1.0));
-        }
-        for s in p.strings() {
-            let mut s = s.clone();
-            s.nodes = [s.nodes[0] + o, s.nodes[1] + o];
-            b = b.string(s);
-        }
-        if k > 0 {
-            for i in 0..3 {
-                b = b.string(
-                    StringMember::new(o - 3 + i, o + i)
-                        .stiffness(1000.0)
-                        .rest_length(0.5),
-                );
-            }
-        }
-    }
-    b.build().unwrap()
+    test_models::prism_stack(n).unwrap()
 }
 
 fn dbar_chain(n: usize) -> Structure {
-    examples::dbar_chain(n).unwrap()
+    test_models::dbar_chain(n).unwrap()
 }
 
 fn rhs(c: &mut Criterion) {

@@ -1,7 +1,8 @@
-//! The single error type of the core crate.
+//! The single error type of the core crate, the dynamics included.
 //!
 //! Every variant carries structured fields naming the offending item, so a caller can both print
-//! a clear message and react programmatically.
+//! a clear message and react programmatically. The enum is `#[non_exhaustive]`: other crates
+//! match it with a wildcard arm, so that new conditions can be added without breaking them.
 
 use crate::member_id::MemberId;
 use thiserror::Error;
@@ -9,8 +10,9 @@ use thiserror::Error;
 /// Result alias used throughout the core.
 pub type Result<T, E = CoreError> = std::result::Result<T, E>;
 
-/// Everything that can go wrong when building or analysing a structure.
+/// Everything that can go wrong when building, analysing or simulating a structure.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum CoreError {
     /// A member, support or load refers to a node that does not exist.
     #[error(
@@ -153,7 +155,7 @@ pub enum CoreError {
     },
     /// A node needs mass for modal analysis but has none.
     #[error("node {node}: has no lumped mass, modal analysis needs mass at every free node")]
-    MasslessNode {
+    NoLumpedMass {
         /// The node.
         node: usize,
     },
@@ -179,7 +181,87 @@ pub enum CoreError {
         /// Its value.
         value: f64,
         /// Why it is invalid.
+        reason: String,
+    },
+    /// Dynamics: a node that no bar touches and that is not fixed in all three directions. It
+    /// would be a massless free point (all mass is in the bars), which rigid-bar dynamics
+    /// cannot integrate.
+    #[error("node {node}: no bar ends at it and it is not fixed in all three directions (massless free node)")]
+    FreeNodeWithoutBar {
+        /// The node.
+        node: usize,
+    },
+    /// Dynamics: the initial velocities violate a constraint (a fixed direction moves, or a
+    /// bar changes length).
+    #[error("{item}: initial velocity is inconsistent with the constraints ({reason}, residual {residual:e})")]
+    InconsistentVelocity {
+        /// The offending node or bar, e.g. `node 3` or `bar 1`.
+        item: String,
+        /// What is violated.
         reason: &'static str,
+        /// The size of the violation.
+        residual: f64,
+    },
+    /// Dynamics: the adaptive integrator needed a step smaller than its minimum.
+    #[error("step size fell below the minimum {h_min:e} s at t = {t} s")]
+    StepSizeTooSmall {
+        /// Time at which the step was rejected.
+        t: f64,
+        /// The minimum step size.
+        h_min: f64,
+    },
+    /// Dynamics: the run needed more accepted steps than allowed.
+    #[error("more than {max_steps} steps needed: stopped at t = {t} s")]
+    MaxStepsExceeded {
+        /// Time reached when the limit was hit.
+        t: f64,
+        /// The limit on accepted steps.
+        max_steps: u64,
+    },
+    /// Dynamics: a NaN or infinity appeared in the state or the forces.
+    #[error("non-finite state at t = {t} s in {member}")]
+    NonFiniteState {
+        /// Time of the step that produced it.
+        t: f64,
+        /// The bar owning the offending node.
+        member: MemberId,
+    },
+    /// Dynamics: a node moved implausibly far (the run diverged).
+    #[error("blow-up at t = {t} s: {member} moved {distance:e} m (limit {limit:e} m)")]
+    BlowUp {
+        /// Time of detection.
+        t: f64,
+        /// The bar owning the offending node.
+        member: MemberId,
+        /// Distance from the initial position.
+        distance: f64,
+        /// The blow-up limit.
+        limit: f64,
+    },
+    /// Dynamics: the constraint (Ω or RATTLE) system is singular: redundant or conflicting
+    /// constraints, e.g. a bar pinned at both ends.
+    #[error("the constraint system is singular: pivot {rank} of {expected} is not positive (redundant constraints, e.g. a bar fixed at both ends?)")]
+    SingularConstraint {
+        /// Number of pivots that succeeded (a lower bound on the numerical rank).
+        rank: usize,
+        /// The size of the system.
+        expected: usize,
+    },
+    /// Dynamics: the RATTLE position solve did not converge.
+    #[error("RATTLE constraint iteration did not converge at t = {t} s (residual {residual:e})")]
+    ConstraintNotConverged {
+        /// Time of the step.
+        t: f64,
+        /// Remaining constraint residual.
+        residual: f64,
+    },
+    /// Dynamics: an invalid scene specification (ground, actuation table, ...).
+    #[error("{item}: {reason}")]
+    InvalidSpec {
+        /// The offending item, e.g. `actuation 2`.
+        item: String,
+        /// What is wrong.
+        reason: String,
     },
     /// A scene file could not be read or parsed.
     #[error("{0}")]
@@ -251,4 +333,21 @@ pub enum FactorizationFailure {
     /// A sparse index overflowed the index type.
     #[error("sparse index overflow")]
     IndexOverflow,
+}
+
+impl CoreError {
+    /// Shorthand for [`CoreError::InvalidParameter`].
+    ///
+    /// ```
+    /// use tensegrity_core::CoreError;
+    /// let e = CoreError::invalid_parameter("dt", -1.0, "must be positive and finite");
+    /// assert_eq!(e.to_string(), "dt = -1: must be positive and finite");
+    /// ```
+    pub fn invalid_parameter(name: &'static str, value: f64, reason: impl Into<String>) -> Self {
+        Self::InvalidParameter {
+            name,
+            value,
+            reason: reason.into(),
+        }
+    }
 }

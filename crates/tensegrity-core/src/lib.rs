@@ -15,6 +15,7 @@
 //! - [`linalg`]: dense (SVD, symmetric eigen, small Cholesky) and sparse (ordering, Cholesky
 //!   with symbolic reuse, LU) factorisations, the only module that touches the factorisation
 //!   backend;
+//! - `test_models` (feature `test-models`): canonical structures with reference answers.
 //!
 //! Sign conventions: force densities q are tension positive; the member vector is
 //! `n_end − n_start`; members are numbered bars first, then strings.
@@ -32,11 +33,11 @@ pub mod sizing;
 pub mod statics;
 pub mod stiffness;
 pub mod structure;
+#[cfg(any(test, feature = "test-models"))]
+pub mod test_models;
 
 pub use connectivity::{Connectivity, Incidence};
-pub use dynamics::{
-    DynamicsError, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
-};
+pub use dynamics::{IntegratorKind, Simulation, SimulationResult, SimulationSettings};
 pub use error::{CoreError, Result};
 pub use material::{Material, MaterialTable};
 pub use member_id::MemberId;

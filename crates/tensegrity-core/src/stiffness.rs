@@ -276,7 +276,7 @@ pub fn modal_analysis_with(
     let masses = lumped_masses(structure);
     for &(node, _) in &dofs.free {
         if masses[node] <= 0.0 {
-            return Err(CoreError::MasslessNode { node });
+            return Err(CoreError::NoLumpedMass { node });
         }
     }
     let n = dofs.len();

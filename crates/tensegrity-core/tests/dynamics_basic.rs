@@ -3,11 +3,12 @@
 //! All run in a few seconds in the test profile, the MOTES-size D-bar run included.
 
 use nalgebra::Vector3;
-use tensegrity_core::dynamics::examples::{
-    dbar, dbar_chain, double_pendulum, snelson_prism, spinning_bar, PrismParams,
-};
 use tensegrity_core::dynamics::{
     IntegratorKind, Model, Quantities, Simulation, SimulationSettings,
+};
+use tensegrity_core::test_models::{
+    dbar, dbar_chain, double_pendulum, oscillating_prism as oscillating_prism_model, snelson_prism,
+    spinning_bar, PrismParams, DOUBLE_PENDULUM_TIP_5S,
 };
 use tensegrity_core::Structure;
 
@@ -86,17 +87,7 @@ fn prism_released_at_equilibrium_stays() {
 /// The prism with one vertical string shortened by 1 %: it oscillates (no string goes
 /// slack; with 5 % one does and RK4 loses its order at the kink).
 fn oscillating_prism() -> Structure {
-    let s = snelson_prism(&PrismParams::default()).unwrap();
-    let mut strings = s.strings().to_vec();
-    strings[6].rest_length = strings[6].rest_length.map(|l| 0.99 * l);
-    let mut b = Structure::builder().nodes(s.nodes().iter().map(|n| [n.x, n.y, n.z]));
-    for bar in s.bars() {
-        b = b.bar(bar.clone());
-    }
-    for st in strings {
-        b = b.string(st);
-    }
-    b.build().unwrap()
+    oscillating_prism_model().unwrap()
 }
 
 #[test]
@@ -129,7 +120,7 @@ fn prism_oscillation_conserves_energy_and_lengths() {
     assert!(ke > 0.0 && e.is_finite());
 }
 
-const TIP_REF: [f64; 2] = [1.3403149308, -1.4793519015];
+const TIP_REF: [f64; 2] = DOUBLE_PENDULUM_TIP_5S;
 
 #[test]
 fn double_pendulum_tip_matches_published_value_rk45() {

@@ -3,24 +3,17 @@
 //! RK45 event location finds the touchdown time of a free fall.
 
 use nalgebra::Vector3;
-use tensegrity_core::dynamics::examples::{snelson_prism, PrismParams};
 use tensegrity_core::dynamics::{
     build_simulation, Event, GroundModelKind, GroundSpec, IntegratorKind, Quantities,
     SimulationSettings,
 };
+use tensegrity_core::test_models::{self, DROPPED_PRISM_G};
 
-const G: f64 = 9.81;
+const G: f64 = DROPPED_PRISM_G;
 
 fn dropped_prism(z0: f64, damping: f64) -> tensegrity_core::Structure {
     // A stiff prestress (300 N/m) so that the soft twist mode is damped within seconds.
-    let s = snelson_prism(&PrismParams {
-        z0,
-        damping,
-        prestress: 300.0,
-        ..Default::default()
-    })
-    .unwrap();
-    s.to_builder().gravity([0.0, 0.0, -G]).build().unwrap()
+    test_models::dropped_prism(z0, damping).unwrap()
 }
 
 fn penalty_ground(k: f64) -> GroundSpec {
@@ -67,7 +60,8 @@ fn dropped_prism_rests_with_static_penetration() {
         .fold(0.0, f64::max);
     assert!(vmax < 1e-7, "not at rest: max speed {vmax:e}");
     // 3 bars of 1 kg on 3 contact nodes: 9.81 N each.
-    let expected = 3.0 * G / 3.0 / k;
+    let expected = test_models::dropped_prism_penetration(k);
+    assert_eq!(expected, 3.0 * G / 3.0 / k);
     for i in 0..3 {
         let pen = -r.final_nodes[i].z;
         eprintln!("node {i}: penetration {pen:e} (expected {expected:e}), max speed {vmax:e}");

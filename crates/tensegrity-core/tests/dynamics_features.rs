@@ -1,11 +1,11 @@
 //! Scene tables, actuation, recorder, projection and error reporting of the dynamics.
 
-use tensegrity_core::dynamics::examples::{double_pendulum, snelson_prism, PrismParams};
 use tensegrity_core::dynamics::{
-    build_simulation, ActuationSpec, DynamicsError, GroundSpec, IntegratorKind, Model, Quantities,
-    Simulation, SimulationSettings, SimulationSpec,
+    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, Model, Quantities, Simulation,
+    SimulationSettings, SimulationSpec,
 };
-use tensegrity_core::{Bar, MemberId, StringMember, Structure, Support};
+use tensegrity_core::test_models::{double_pendulum, snelson_prism, PrismParams};
+use tensegrity_core::{Bar, CoreError, MemberId, StringMember, Structure, Support};
 
 #[test]
 fn scene_tables_parse_and_reject_unknown_fields() {
@@ -164,8 +164,9 @@ fn errors_name_the_member_and_time() {
     let e = Model::new(&s, None).unwrap_err();
     assert_eq!(
         e,
-        DynamicsError::MissingProperty {
+        CoreError::MissingProperty {
             member: MemberId::Bar(0),
+            analysis: "dynamics",
             property: "mass"
         }
     );
@@ -201,8 +202,9 @@ fn errors_name_the_member_and_time() {
         .unwrap();
     assert!(matches!(
         Model::new(&s, None).unwrap_err(),
-        DynamicsError::MissingProperty {
+        CoreError::MissingProperty {
             member: MemberId::String(0),
+            analysis: "dynamics",
             property: "stiffness"
         }
     ));
@@ -215,7 +217,7 @@ fn errors_name_the_member_and_time() {
         .unwrap();
     assert_eq!(
         Model::new(&s, None).unwrap_err(),
-        DynamicsError::MasslessNode { node: 2 }
+        CoreError::FreeNodeWithoutBar { node: 2 }
     );
     // a bar pinned at both ends: redundant constraints
     let s = Structure::builder()
@@ -228,7 +230,7 @@ fn errors_name_the_member_and_time() {
     let sim = Simulation::new(&s, SimulationSettings::default()).unwrap();
     assert!(matches!(
         sim.run().unwrap_err(),
-        DynamicsError::SingularConstraint { expected: 6, .. }
+        CoreError::SingularConstraint { expected: 6, .. }
     ));
     // blow-up: a pendulum with a tiny blow-up distance stops with the time and the bar
     let s = double_pendulum(1.0).unwrap();
@@ -239,7 +241,7 @@ fn errors_name_the_member_and_time() {
     };
     let e = Simulation::new(&s, set).unwrap().run().unwrap_err();
     match e {
-        ref e @ DynamicsError::BlowUp { t, distance, .. } => {
+        ref e @ CoreError::BlowUp { t, distance, .. } => {
             assert!(t > 0.0 && t < 1.0);
             assert!(distance > 0.05);
             let msg = e.to_string();
@@ -267,7 +269,7 @@ fn errors_name_the_member_and_time() {
     };
     assert!(matches!(
         Simulation::new(&s, set).unwrap().run().unwrap_err(),
-        DynamicsError::InvalidParameter { name: "dt", .. }
+        CoreError::InvalidParameter { name: "dt", .. }
     ));
 }
 
@@ -281,7 +283,7 @@ fn nan_in_the_state_is_reported_with_time_and_member() {
         }
     }));
     match sim.run().unwrap_err() {
-        DynamicsError::NonFinite { t, member } => {
+        CoreError::NonFiniteState { t, member } => {
             assert!((0.25..0.252).contains(&t), "t = {t}");
             assert_eq!(member, MemberId::Bar(1));
         }

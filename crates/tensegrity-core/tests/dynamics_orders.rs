@@ -2,8 +2,8 @@
 //! RATTLE → 2, on the compound double pendulum (class-2 joint and a pinned support, so the Ω
 //! closed form is exercised) and on the oscillating prism.
 
-use tensegrity_core::dynamics::examples::double_pendulum;
 use tensegrity_core::dynamics::{IntegratorKind, Simulation, SimulationSettings};
+use tensegrity_core::test_models::double_pendulum;
 
 fn final_nodes(integrator: IntegratorKind, dt: f64, rtol: f64) -> Vec<nalgebra::Vector3<f64>> {
     let s = double_pendulum(std::f64::consts::FRAC_PI_4).unwrap();
@@ -96,7 +96,7 @@ fn dbar_omega_closed_form_agrees_with_rattle_multipliers() {
     // Two independent treatments of the class-2 joints: RK45 on the Ω closed form (bars rigid
     // through λ) against RATTLE (bar lengths and N P = D as holonomic constraints with
     // Lagrange multipliers from its own sparse system). Both converge to the same motion.
-    let s = tensegrity_core::dynamics::examples::dbar(2.0, 0.5, 1.0, 1000.0, 0.05).unwrap();
+    let s = tensegrity_core::test_models::dbar(2.0, 0.5, 1.0, 1000.0, 0.05).unwrap();
     let run = |integrator, dt, rtol| {
         let set = SimulationSettings {
             t_end: 0.3,

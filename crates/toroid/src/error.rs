@@ -1,7 +1,6 @@
 //! Errors of the toroid crate: one enum, structured fields, the core's errors wrapped with
 //! `#[from]`.
 
-use tensegrity_core::dynamics::DynamicsError;
 use tensegrity_core::CoreError;
 use thiserror::Error;
 
@@ -40,10 +39,8 @@ pub enum ToroidError {
         /// The output interval (s).
         output_dt: f64,
     },
-    /// The dynamics engine stopped (its error names the time and member).
-    #[error(transparent)]
-    Dynamics(#[from] DynamicsError),
-    /// An error of the core analyses.
+    /// An error of the core analyses or of the dynamics engine (which names the time and
+    /// member where it stopped).
     #[error(transparent)]
     Core(#[from] CoreError),
 }

@@ -18,8 +18,12 @@
 //! # Integrators
 //!
 //! [`Rk4`] (fixed step, MOTES parity), [`Dopri5`] (adaptive 5(4), dense output, events),
-//! [`Rattle`] (constraint-preserving, symplectic, 2nd order); RK states can be projected back
-//! onto the constraints ([`SimulationSettings::project`]).
+//! [`Rattle`] (constraint-preserving, symplectic, 2nd order), all behind the [`Integrator`]
+//! trait ([`integrator`]) that the one driver loop of [`Simulation::run`] steps; sign changes
+//! of event functions are located by [`events`]; RK states can be projected back onto the
+//! constraints ([`SimulationSettings::project`]). Every run reports its work counters
+//! ([`IntegratorStats`]); `work_precision` (feature `test-models`) measures error against
+//! time on the test models.
 //!
 //! # Example
 //!
@@ -44,9 +48,9 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
-pub mod error;
-pub mod examples;
+pub mod events;
 pub mod forces;
+pub mod integrator;
 pub mod model;
 pub mod monitors;
 mod omega;
@@ -57,9 +61,12 @@ pub mod rk45;
 pub mod scene;
 pub mod simulation;
 pub mod strings;
+#[cfg(any(test, feature = "test-models"))]
+pub mod work_precision;
 
-pub use error::DynamicsError;
+pub use events::{Event, EventFn, EventHit, StateView};
 pub use forces::{Ground, GroundModel};
+pub use integrator::{Integrator, IntegratorKind, IntegratorStats, StepOutcome};
 pub use model::{LoadFn, Model, NodeRef, RestLengthFn, Workspace};
 pub use monitors::Monitor;
 pub use rattle::{ConstraintSet, Rattle};
@@ -69,8 +76,5 @@ pub use rk45::Dopri5;
 pub use scene::{
     build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
 };
-pub use simulation::{
-    Event, EventFn, EventHit, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
-    StateView,
-};
+pub use simulation::{Simulation, SimulationResult, SimulationSettings};
 pub use strings::StringLaw;

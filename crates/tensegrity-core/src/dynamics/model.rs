@@ -22,10 +22,10 @@
 //! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
 //! velocities satisfy Ṅ P = 0.
 
-use super::error::DynamicsError;
 use super::forces::{Ground, GroundModel};
 use super::omega::{ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
+use crate::error::CoreError;
 use crate::structure::{MemberId, Structure};
 use nalgebra::Vector3;
 
@@ -162,11 +162,11 @@ impl Model {
     /// Builds the class-1 model of `structure`: every bar needs a mass (given, or ρπr²l from
     /// its material and radius), every string a stiffness (a missing rest length means the
     /// initial length, i.e. no prestress).
-    pub fn new(structure: &Structure, ground: Option<Ground>) -> Result<Self, DynamicsError> {
+    pub fn new(structure: &Structure, ground: Option<Ground>) -> Result<Self, CoreError> {
         let n_nodes = structure.n_nodes();
         let nb = structure.n_bars();
         if nb == 0 {
-            return Err(DynamicsError::InvalidSpec {
+            return Err(CoreError::InvalidSpec {
                 item: "structure".into(),
                 reason: "rigid-bar dynamics needs at least one bar (all mass is in the bars)"
                     .into(),
@@ -190,8 +190,9 @@ impl Model {
                 .mass
                 .or(derived)
                 .filter(|m| m.is_finite() && *m > 0.0)
-                .ok_or(DynamicsError::MissingProperty {
+                .ok_or(CoreError::MissingProperty {
                     member: MemberId::Bar(k),
+                    analysis: "dynamics",
                     property: "mass",
                 })?;
             copies[a].push(2 * k);
@@ -216,7 +217,7 @@ impl Model {
                 // Nodes that no member touches at all are harmless: ignore them as anchors.
                 let touched = structure.strings().iter().any(|s| s.nodes.contains(&i));
                 if touched {
-                    return Err(DynamicsError::MasslessNode { node: i });
+                    return Err(CoreError::FreeNodeWithoutBar { node: i });
                 }
                 node_map.push(NodeRef::Anchor(nodes[i]));
                 continue;
@@ -253,8 +254,9 @@ impl Model {
         }
         let mut strings = Vec::with_capacity(structure.n_strings());
         for (k, s) in structure.strings().iter().enumerate() {
-            let stiffness = s.stiffness.ok_or(DynamicsError::MissingProperty {
+            let stiffness = s.stiffness.ok_or(CoreError::MissingProperty {
                 member: MemberId::String(k),
+                analysis: "dynamics",
                 property: "stiffness",
             })?;
             let [a, b] = s.nodes;
@@ -313,7 +315,7 @@ impl Model {
     }
 
     /// Sets (or replaces) the ground plane.
-    pub fn set_ground(&mut self, ground: Ground) -> Result<(), DynamicsError> {
+    pub fn set_ground(&mut self, ground: Ground) -> Result<(), CoreError> {
         let candidates: Vec<usize> = match &ground.nodes {
             Some(list) => list.clone(),
             None => (0..self.n_nodes).collect(),
@@ -321,7 +323,7 @@ impl Model {
         let mut contact = Vec::new();
         for (k, &i) in candidates.iter().enumerate() {
             if i >= self.n_nodes {
-                return Err(DynamicsError::InvalidSpec {
+                return Err(CoreError::InvalidSpec {
                     item: format!("ground node {k}"),
                     reason: format!("node {i} does not exist ({} nodes)", self.n_nodes),
                 });
@@ -331,7 +333,7 @@ impl Model {
             }
         }
         if !(ground.normal.iter().all(|v| v.is_finite()) && ground.normal.norm() > 0.0) {
-            return Err(DynamicsError::InvalidSpec {
+            return Err(CoreError::InvalidSpec {
                 item: "ground".into(),
                 reason: "normal must be a finite non-zero vector".into(),
             });
@@ -378,7 +380,7 @@ impl Model {
 
     /// The initial state from the structure's nodes and (optional) velocities. Fails when a
     /// fixed direction has a velocity or a bar would change length.
-    pub fn initial_state(&self, structure: &Structure) -> Result<Vec<f64>, DynamicsError> {
+    pub fn initial_state(&self, structure: &Structure) -> Result<Vec<f64>, CoreError> {
         let mut y = vec![0.0; self.state_len()];
         y[..3 * self.n1].copy_from_slice(&self.x0);
         if let Some(vel) = structure.velocities() {
@@ -392,7 +394,7 @@ impl Model {
             for (i, f) in fixed.iter().enumerate() {
                 for d in 0..3 {
                     if f[d] && vel[i][d] != 0.0 {
-                        return Err(DynamicsError::InconsistentVelocity {
+                        return Err(CoreError::InconsistentVelocity {
                             item: format!("node {i}"),
                             reason: "velocity along a fixed direction",
                             residual: vel[i][d].abs(),
@@ -405,7 +407,7 @@ impl Model {
                 let bv = structure.nodes()[b] - structure.nodes()[a];
                 let rate = bv.dot(&(vel[b] - vel[a])) / bv.norm();
                 if rate.abs() > 1e-9 * vmax.max(1.0) {
-                    return Err(DynamicsError::InconsistentVelocity {
+                    return Err(CoreError::InconsistentVelocity {
                         item: MemberId::Bar(k).to_string(),
                         reason: "the bar would change length (bᵀḃ ≠ 0)",
                         residual: rate.abs(),
@@ -417,7 +419,7 @@ impl Model {
     }
 
     /// A fresh workspace (allocates the buffers and the symbolic Ω factorisation).
-    pub fn workspace(&self) -> Result<Workspace, DynamicsError> {
+    pub fn workspace(&self) -> Result<Workspace, CoreError> {
         let omega = if self.linear_rows.is_empty() {
             None
         } else {
@@ -522,7 +524,7 @@ impl Model {
         y: &[f64],
         dy: &mut [f64],
         ws: &mut Workspace,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         ws.rhs_evals += 1;
         let n3 = 3 * self.n1;
         let (x, v) = y.split_at(n3);
@@ -530,7 +532,7 @@ impl Model {
         dx.copy_from_slice(v);
         self.applied_forces(t, x, v, ws);
         if let Some(i) = ws.f.iter().position(|f| !f.iter().all(|c| c.is_finite())) {
-            return Err(DynamicsError::NonFinite {
+            return Err(CoreError::NonFiniteState {
                 t,
                 member: MemberId::Bar(i / 2),
             });
@@ -549,7 +551,7 @@ impl Model {
                         && ws.f[i].iter().all(|c| c.is_finite()))
                 });
                 return Err(match bad {
-                    Some(i) => DynamicsError::NonFinite {
+                    Some(i) => CoreError::NonFiniteState {
                         t,
                         member: MemberId::Bar(i / 2),
                     },
@@ -636,7 +638,7 @@ impl Model {
         t: f64,
         y: &[f64],
         ws: &mut Workspace,
-    ) -> Result<Vec<f64>, DynamicsError> {
+    ) -> Result<Vec<f64>, CoreError> {
         let mut dy = vec![0.0; y.len()];
         self.rhs(t, y, &mut dy, ws)?;
         let n3 = 3 * self.n1;

@@ -5,8 +5,8 @@
 //! Σ ½k_g δ² (penalty ground). It is conserved without damping, friction, actuation or the
 //! thesis ground model.
 
-use super::error::DynamicsError;
 use super::model::{vec3, Model, NodeRef};
+use crate::error::CoreError;
 use crate::structure::MemberId;
 use nalgebra::Vector3;
 
@@ -91,13 +91,13 @@ impl Model {
     /// Checks a state for NaN/∞ and for nodes farther than `limit` from their initial
     /// position; the error names the time and the bar owning the node (for a blow-up, the
     /// node that moved farthest).
-    pub fn check_state(&self, t: f64, y: &[f64], limit: f64) -> Result<(), DynamicsError> {
+    pub fn check_state(&self, t: f64, y: &[f64], limit: f64) -> Result<(), CoreError> {
         let v = &y[3 * self.n1..];
         let mut worst: Option<(usize, f64)> = None;
         for i in 0..self.n1 {
             let x = vec3(y, i);
             if !(x.iter().all(|c| c.is_finite()) && vec3(v, i).iter().all(|c| c.is_finite())) {
-                return Err(DynamicsError::NonFinite {
+                return Err(CoreError::NonFiniteState {
                     t,
                     member: MemberId::Bar(i / 2),
                 });
@@ -108,7 +108,7 @@ impl Model {
             }
         }
         match worst {
-            Some((i, distance)) => Err(DynamicsError::BlowUp {
+            Some((i, distance)) => Err(CoreError::BlowUp {
                 t,
                 member: MemberId::Bar(i / 2),
                 distance,

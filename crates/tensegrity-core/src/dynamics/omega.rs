@@ -21,7 +21,6 @@
 //! general [`SparseCholesky`](crate::linalg::SparseCholesky) is cross-checked against it in the
 //! tests).
 
-use super::error::DynamicsError;
 use crate::error::{CoreError, FactorizationFailure};
 use crate::linalg::{CscPattern, DenseCholesky, StaticCholesky};
 use nalgebra::Vector3;
@@ -88,16 +87,16 @@ enum Factor {
 
 /// The constraint-system error for a failed factorisation: a non-positive pivot is a singular
 /// (redundant or conflicting) constraint set.
-fn constraint_error(e: CoreError) -> DynamicsError {
+fn constraint_error(e: CoreError) -> CoreError {
     match e {
         CoreError::Factorization {
             reason: FactorizationFailure::NonPositivePivot { pivot, dim },
             ..
-        } => DynamicsError::SingularConstraint {
+        } => CoreError::SingularConstraint {
             rank: pivot,
             expected: dim,
         },
-        other => DynamicsError::from(other),
+        other => other,
     }
 }
 
@@ -129,7 +128,7 @@ impl std::fmt::Debug for ConstraintMatrix {
 impl ConstraintMatrix {
     /// Builds the pattern and the symbolic factorisation (class-1 nodes 2k and 2k+1 belong to
     /// bar k). `rigid` selects the Ω form (with the b̂b̂ᵀ projection) instead of plain M⁻¹.
-    pub fn new(rows: Vec<Row>, rigid: bool) -> Result<Self, DynamicsError> {
+    pub fn new(rows: Vec<Row>, rigid: bool) -> Result<Self, CoreError> {
         let n = rows.len();
         // bar -> list of (row, entry)
         let mut by_bar: std::collections::BTreeMap<usize, Vec<(usize, usize, usize)>> =
@@ -242,7 +241,7 @@ impl ConstraintMatrix {
         &mut self,
         bhat: &[Vector3<f64>],
         inv_mass: &[f64],
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         self.values.iter_mut().for_each(|v| *v = 0.0);
         if !self.axis.is_empty() {
             for c in &self.axis {

@@ -15,9 +15,10 @@
 //! the previous step). With velocity-dependent forces (string damping, ground) the last
 //! half-kick is iterated twice on v_{n+1}.
 
-use super::error::DynamicsError;
+use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{set3, vec3, Model, Workspace};
 use super::omega::{ConstraintMatrix, Row, RowEntry};
+use crate::error::CoreError;
 use nalgebra::Vector3;
 
 /// The bar-length and N P = D constraints with their sparse multiplier system.
@@ -33,7 +34,7 @@ pub struct ConstraintSet {
 
 impl ConstraintSet {
     /// Builds the constraint rows of `model` (bars first, then N P = D).
-    pub fn new(model: &Model) -> Result<Self, DynamicsError> {
+    pub fn new(model: &Model) -> Result<Self, CoreError> {
         let nb = model.bars.len();
         let mut rows = Vec::with_capacity(nb + model.linear_rows.len());
         let mut targets = Vec::with_capacity(rows.capacity());
@@ -80,7 +81,7 @@ impl ConstraintSet {
         }
     }
 
-    fn factor(&mut self, model: &Model, x: &[f64]) -> Result<(), DynamicsError> {
+    fn factor(&mut self, model: &Model, x: &[f64]) -> Result<(), CoreError> {
         self.set_grads(x);
         self.sys.assemble_and_factor(&[], &model.inv_mass)
     }
@@ -138,7 +139,7 @@ impl ConstraintSet {
         y: &mut [f64],
         tol: f64,
         t: f64,
-    ) -> Result<f64, DynamicsError> {
+    ) -> Result<f64, CoreError> {
         let n3 = 3 * model.n1;
         let (x, v) = y.split_at_mut(n3);
         self.factor(model, x)?;
@@ -155,7 +156,7 @@ impl ConstraintSet {
         x: &mut [f64],
         tol: f64,
         t: f64,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         let mut res = f64::INFINITY;
         for _ in 0..100 {
             res = self.residual(x);
@@ -168,7 +169,7 @@ impl ConstraintSet {
             self.add_minv_gt(model, &d, 1.0, x);
             self.r = d;
         }
-        Err(DynamicsError::ConstraintNotConverged { t, residual: res })
+        Err(CoreError::ConstraintNotConverged { t, residual: res })
     }
 
     fn project_velocities(&mut self, model: &Model, v: &mut [f64]) {
@@ -208,7 +209,7 @@ pub struct Rattle {
 
 impl Rattle {
     /// A stepper for `model`.
-    pub fn new(model: &Model) -> Result<Self, DynamicsError> {
+    pub fn new(model: &Model) -> Result<Self, CoreError> {
         let velocity_dependent =
             model.ground.is_some() || model.strings.iter().any(|s| s.law.damping > 0.0);
         let scale = model
@@ -226,16 +227,26 @@ impl Rattle {
             tol: 1e-14 * scale,
         })
     }
+}
+
+impl Integrator for Rattle {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Rattle
+    }
+
+    fn preserves_constraints(&self) -> bool {
+        true
+    }
 
     /// Advances y = (q, v) from t to t + h.
-    pub fn step(
+    fn step(
         &mut self,
         model: &Model,
         ws: &mut Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<StepOutcome, CoreError> {
         let n3 = 3 * model.n1;
         let (x, v) = y.split_at_mut(n3);
         if !self.cache_valid {
@@ -273,11 +284,11 @@ impl Rattle {
             self.f_cache.copy_from_slice(&ws.f);
             self.cache_valid = true;
         }
-        Ok(())
+        Ok(StepOutcome::fixed(h))
     }
 
     /// Forces a fresh force evaluation and factorisation at the next step.
-    pub fn invalidate(&mut self) {
+    fn invalidate(&mut self) {
         self.cache_valid = false;
     }
 }

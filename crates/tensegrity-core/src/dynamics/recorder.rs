@@ -1,7 +1,7 @@
 //! Samples a run at requested output times only, and only the requested quantities.
 
-use super::error::DynamicsError;
 use super::model::{Model, Workspace};
+use crate::error::CoreError;
 use nalgebra::Vector3;
 
 /// Which quantities to record at each output time.
@@ -98,7 +98,7 @@ impl Recorder {
         y: &[f64],
         model: &Model,
         ws: &mut Workspace,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<(), CoreError> {
         let q = self.quantities;
         let evals = ws.rhs_evals;
         let sample = Sample {

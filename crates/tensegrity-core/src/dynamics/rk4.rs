@@ -3,8 +3,9 @@
 //! y_{n+1} = y_n + h/6 (k₁ + 2k₂ + 2k₃ + k₄). Linear invariants (N P = D) are kept to
 //! round-off; bar lengths drift at O(h⁴) (the λ closed form makes d²‖b‖²/dt² = 0 exactly).
 
-use super::error::DynamicsError;
+use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{Model, Workspace};
+use crate::error::CoreError;
 
 /// Stage buffers of the RK4 stepper.
 #[derive(Debug, Clone)]
@@ -27,16 +28,22 @@ impl Rk4 {
             tmp: vec![0.0; n],
         }
     }
+}
+
+impl Integrator for Rk4 {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Rk4
+    }
 
     /// Advances `y` from `t` to `t + h` in place (4 right-hand-side evaluations).
-    pub fn step(
+    fn step(
         &mut self,
         model: &Model,
         ws: &mut Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(), DynamicsError> {
+    ) -> Result<StepOutcome, CoreError> {
         let n = y.len();
         model.rhs(t, y, &mut self.k1, ws)?;
         for i in 0..n {
@@ -55,6 +62,6 @@ impl Rk4 {
         for i in 0..n {
             y[i] += h6 * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
         }
-        Ok(())
+        Ok(StepOutcome::fixed(h))
     }
 }

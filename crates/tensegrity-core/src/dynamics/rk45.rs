@@ -8,8 +8,9 @@
 //! Error norm: ‖e‖ = sqrt(mean((e_i / (atol + rtol·max(|y_i|, |y1_i|)))²)); a step is
 //! accepted when ‖e‖ ≤ 1, and the next step is h·min(5, max(0.2, 0.9‖e‖^{-1/5})).
 
-use super::error::DynamicsError;
+use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{Model, Workspace};
+use crate::error::CoreError;
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [
@@ -94,22 +95,36 @@ impl Dopri5 {
             h_old: 0.0,
         }
     }
+}
+
+impl Integrator for Dopri5 {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Rk45
+    }
+
+    fn is_adaptive(&self) -> bool {
+        true
+    }
+
+    fn has_dense_output(&self) -> bool {
+        true
+    }
 
     /// Forgets the cached first stage (call after the state was modified externally, e.g. by a
     /// projection).
-    pub fn invalidate(&mut self) {
+    fn invalidate(&mut self) {
         self.fsal_valid = false;
     }
 
-    /// A starting step size (Hairer & Wanner's heuristic).
-    pub fn initial_step(
+    /// A starting step size (Hairer & Wanner's heuristic, 2 right-hand-side evaluations).
+    fn start(
         &mut self,
         model: &Model,
         ws: &mut Workspace,
         t: f64,
         y: &[f64],
         h_max: f64,
-    ) -> Result<f64, DynamicsError> {
+    ) -> Result<f64, CoreError> {
         let n = y.len();
         model.rhs(t, y, &mut self.k[0], ws)?;
         self.fsal_valid = true;
@@ -138,17 +153,17 @@ impl Dopri5 {
         Ok((100.0 * h0).min(h1).min(h_max))
     }
 
-    /// Attempts one step of size `h` from (t, y). On success (error ≤ 1) `y` is advanced, the
-    /// dense output is set up for [t, t+h] and `Ok((true, h_next))` is returned; otherwise `y`
-    /// is untouched and `Ok((false, h_retry))`.
-    pub fn try_step(
+    /// Attempts one step of size `h` from (t, y). On success (error ≤ 1) `y` is advanced and
+    /// the dense output is set up for [t, t+h]; otherwise `y` is untouched and the outcome
+    /// carries the step to retry with.
+    fn step(
         &mut self,
         model: &Model,
         ws: &mut Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
-    ) -> Result<(bool, f64), DynamicsError> {
+    ) -> Result<StepOutcome, CoreError> {
         let n = y.len();
         if !self.fsal_valid {
             model.rhs(t, y, &mut self.k[0], ws)?;
@@ -182,11 +197,11 @@ impl Dopri5 {
         }
         let err = (err / n as f64).sqrt();
         if !err.is_finite() {
-            return Ok((false, 0.2 * h));
+            return Ok(rejected(0.2 * h));
         }
         let fac = (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
         if err > 1.0 {
-            return Ok((false, h * fac.min(1.0)));
+            return Ok(rejected(h * fac.min(1.0)));
         }
         // dense output
         for i in 0..n {
@@ -208,11 +223,14 @@ impl Dopri5 {
         // FSAL
         let (first, rest) = self.k.split_at_mut(6);
         first[0].copy_from_slice(&rest[0]);
-        Ok((true, h * fac))
+        Ok(StepOutcome {
+            accepted: true,
+            h_next: h * fac,
+        })
     }
 
     /// Dense output of the last accepted step at time `t` (inside it), 4th order.
-    pub fn interpolate(&self, t: f64, out: &mut [f64]) {
+    fn interpolate(&self, t: f64, out: &mut [f64]) -> bool {
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
         for (i, o) in out.iter_mut().enumerate() {
@@ -220,5 +238,13 @@ impl Dopri5 {
                 + th * (self.cont[1][i]
                     + th1 * (self.cont[2][i] + th * (self.cont[3][i] + th1 * self.cont[4][i])));
         }
+        true
+    }
+}
+
+fn rejected(h_next: f64) -> StepOutcome {
+    StepOutcome {
+        accepted: false,
+        h_next,
     }
 }

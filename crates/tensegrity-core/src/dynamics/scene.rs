@@ -35,11 +35,11 @@
 //! forces = [[0, 0, 0], [0, 0, -10]]
 //! ```
 
-use super::error::DynamicsError;
 use super::forces::{Ground, GroundModel};
 use super::model::Model;
 use super::recorder::Quantities;
 use super::simulation::{IntegratorKind, Simulation, SimulationSettings};
+use crate::error::CoreError;
 use crate::structure::Structure;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
@@ -165,14 +165,14 @@ fn interp(times: &[f64], t: f64) -> (usize, usize, f64) {
     (i, j, (t - times[i]) / (times[j] - times[i]))
 }
 
-fn invalid(item: String, reason: &str) -> DynamicsError {
-    DynamicsError::InvalidSpec {
+fn invalid(item: String, reason: &str) -> CoreError {
+    CoreError::InvalidSpec {
         item,
         reason: reason.to_string(),
     }
 }
 
-fn nonneg(item: &str, name: &str, v: f64) -> Result<f64, DynamicsError> {
+fn nonneg(item: &str, name: &str, v: f64) -> Result<f64, CoreError> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
@@ -185,7 +185,7 @@ fn nonneg(item: &str, name: &str, v: f64) -> Result<f64, DynamicsError> {
 
 impl GroundSpec {
     /// The [`Ground`] this table describes.
-    pub fn to_ground(&self) -> Result<Ground, DynamicsError> {
+    pub fn to_ground(&self) -> Result<Ground, CoreError> {
         let n = Vector3::from(self.normal);
         if !(n.iter().all(|v| v.is_finite()) && n.norm() > 0.0) {
             return Err(invalid("ground".into(), "normal must be a non-zero vector"));
@@ -271,7 +271,7 @@ pub fn build_simulation(
     sim: Option<&SimulationSpec>,
     ground: Option<&GroundSpec>,
     actuation: &[ActuationSpec],
-) -> Result<Simulation, DynamicsError> {
+) -> Result<Simulation, CoreError> {
     let ground = ground.map(GroundSpec::to_ground).transpose()?;
     let mut model = Model::new(structure, ground)?;
     let y0 = model.initial_state(structure)?;

@@ -1,56 +1,26 @@
-//! The simulation driver: integrator choice, output times, monitors, events, timing.
+//! The simulation driver: settings, validation, one loop over an [`Integrator`] with output
+//! times, events, projection and monitors, and the result with its work counters.
+//!
+//! Each pass of the loop asks the step control for the next step (fixed-step methods: the
+//! grid t_k = k·dt, shortened to land on output times; adaptive ones: their proposal capped
+//! at `dt`, the end time and refused below `h_min`), lets the integrator attempt it, and on
+//! acceptance checks the state (NaN, blow-up), locates events, records samples (through the
+//! dense output where the integrator has one), projects non-conserving methods back onto the
+//! constraints if asked, and updates the monitors.
 
-use super::error::DynamicsError;
-use super::model::{vec3, Model, NodeRef};
+use super::events::EventTracker;
+pub use super::events::{Event, EventFn, EventHit, StateView};
+pub use super::integrator::IntegratorKind;
+use super::integrator::{Integrator, IntegratorStats, StepOutcome};
+use super::model::{Model, Workspace};
 use super::monitors::Monitor;
-use super::rattle::{ConstraintSet, Rattle};
+use super::rattle::ConstraintSet;
 use super::recorder::{Quantities, Recorder, Sample};
-use super::rk4::Rk4;
-use super::rk45::Dopri5;
+use crate::error::CoreError;
 use crate::structure::Structure;
 use nalgebra::Vector3;
-use serde::{Deserialize, Serialize};
 use std::fmt;
-use std::str::FromStr;
 use std::time::Instant;
-
-/// The time integrator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum IntegratorKind {
-    /// Classic fixed-step RK4 (MOTES parity).
-    #[default]
-    Rk4,
-    /// Adaptive Dormand–Prince 5(4) with dense output and event location.
-    Rk45,
-    /// Fixed-step constraint-preserving RATTLE (2nd order, symplectic).
-    Rattle,
-}
-
-impl fmt::Display for IntegratorKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            IntegratorKind::Rk4 => "rk4",
-            IntegratorKind::Rk45 => "rk45",
-            IntegratorKind::Rattle => "rattle",
-        })
-    }
-}
-
-impl FromStr for IntegratorKind {
-    type Err = String;
-    /// Parses `rk4`, `rk45` or `rattle` (case-insensitive).
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "rk4" => Ok(Self::Rk4),
-            "rk45" | "dopri5" => Ok(Self::Rk45),
-            "rattle" => Ok(Self::Rattle),
-            other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45 or rattle)"
-            )),
-        }
-    }
-}
 
 /// Settings of one run.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,67 +70,6 @@ impl Default for SimulationSettings {
     }
 }
 
-/// Read-only view of a state in file numbering, passed to event functions.
-#[derive(Debug, Clone, Copy)]
-pub struct StateView<'a> {
-    model: &'a Model,
-    y: &'a [f64],
-}
-
-impl StateView<'_> {
-    /// Position of file node `i`.
-    pub fn node(&self, i: usize) -> Vector3<f64> {
-        match self.model.node_map[i] {
-            NodeRef::Free(c) => vec3(self.y, c),
-            NodeRef::Anchor(p) => p,
-        }
-    }
-
-    /// Velocity of file node `i`.
-    pub fn velocity(&self, i: usize) -> Vector3<f64> {
-        match self.model.node_map[i] {
-            NodeRef::Free(c) => vec3(&self.y[3 * self.model.n1..], c),
-            NodeRef::Anchor(_) => Vector3::zeros(),
-        }
-    }
-
-    /// Number of file nodes.
-    pub fn n_nodes(&self) -> usize {
-        self.model.n_nodes
-    }
-}
-
-/// An event function g(t, state); an event happens where g changes sign.
-pub type EventFn = Box<dyn Fn(f64, &StateView<'_>) -> f64 + Send + Sync>;
-
-/// An event to locate (RK45 only, using its dense output).
-pub struct Event {
-    /// Name reported in [`EventHit`].
-    pub name: String,
-    /// The event function.
-    pub function: EventFn,
-    /// Stop the run at the first occurrence.
-    pub terminal: bool,
-}
-
-impl fmt::Debug for Event {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Event")
-            .field("name", &self.name)
-            .field("terminal", &self.terminal)
-            .finish()
-    }
-}
-
-/// A located event.
-#[derive(Debug, Clone, PartialEq)]
-pub struct EventHit {
-    /// The event's name.
-    pub name: String,
-    /// When it happened (s), to ~1e-12 relative.
-    pub t: f64,
-}
-
 /// The outcome of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationResult {
@@ -168,7 +77,7 @@ pub struct SimulationResult {
     pub t_end: f64,
     /// Accepted steps.
     pub steps: u64,
-    /// Rejected steps (RK45).
+    /// Rejected steps (adaptive integrators).
     pub rejected_steps: u64,
     /// Right-hand-side (force) evaluations.
     pub rhs_evals: u64,
@@ -190,6 +99,18 @@ pub struct SimulationResult {
     pub samples: Vec<Sample>,
     /// Located events.
     pub events: Vec<EventHit>,
+}
+
+impl SimulationResult {
+    /// The work counters of the run (accepted and rejected steps, right-hand-side
+    /// evaluations).
+    pub fn stats(&self) -> IntegratorStats {
+        IntegratorStats {
+            steps: self.steps,
+            rejected_steps: self.rejected_steps,
+            rhs_evals: self.rhs_evals,
+        }
+    }
 }
 
 /// A runnable simulation: model, initial state, settings and events.
@@ -214,15 +135,15 @@ impl fmt::Debug for Simulation {
     }
 }
 
-fn positive(name: &'static str, value: f64) -> Result<(), DynamicsError> {
+fn positive(name: &'static str, value: f64) -> Result<(), CoreError> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(DynamicsError::InvalidParameter {
+        Err(CoreError::invalid_parameter(
             name,
             value,
-            reason: "must be positive and finite",
-        })
+            "must be positive and finite",
+        ))
     }
 }
 
@@ -242,7 +163,7 @@ impl Simulation {
     /// let r = Simulation::new(&s, settings).unwrap().run().unwrap();
     /// assert!(r.bar_length_drift < 1e-10);
     /// ```
-    pub fn new(structure: &Structure, settings: SimulationSettings) -> Result<Self, DynamicsError> {
+    pub fn new(structure: &Structure, settings: SimulationSettings) -> Result<Self, CoreError> {
         let model = Model::new(structure, None)?;
         let y0 = model.initial_state(structure)?;
         Ok(Self {
@@ -253,8 +174,30 @@ impl Simulation {
         })
     }
 
-    /// Runs the simulation from t = 0 to `settings.t_end`.
-    pub fn run(&self) -> Result<SimulationResult, DynamicsError> {
+    /// Runs the simulation from t = 0 to `settings.t_end` (or to a terminal event).
+    pub fn run(&self) -> Result<SimulationResult, CoreError> {
+        self.validate()?;
+        let s = &self.settings;
+        let mut integrator = s.integrator.build(&self.model, s.rtol, s.atol)?;
+        let mut driver = Driver::new(self, integrator.as_ref())?;
+        let start = Instant::now();
+        let h0 = integrator.start(&self.model, &mut driver.ws, 0.0, &driver.y, s.dt)?;
+        let mut control = if integrator.is_adaptive() {
+            StepControl::Adaptive {
+                h: h0,
+                h_max: s.dt,
+                h_min: s.h_min,
+            }
+        } else {
+            StepControl::Grid { dt: s.dt, k: 0 }
+        };
+        driver.integrate(integrator.as_mut(), &mut control)?;
+        let wall_time_s = (start.elapsed().as_secs_f64() - driver.diag_time).max(0.0);
+        Ok(driver.finish(wall_time_s))
+    }
+
+    /// Checks the numerical settings of the chosen integrator.
+    fn validate(&self) -> Result<(), CoreError> {
         let s = &self.settings;
         positive("t_end", s.t_end)?;
         match s.integrator {
@@ -265,27 +208,115 @@ impl Simulation {
                 positive("dt", s.dt)?;
             }
         }
-        let model = &self.model;
-        let mut ws = model.workspace()?;
-        let mut y = self.y0.clone();
-        let limit = s
-            .blowup_distance
-            .unwrap_or_else(|| model.default_blowup_limit());
-        let mut times: Vec<f64> = s.output_times.clone();
         if let Some(dt_out) = s.output_interval {
             positive("output_interval", dt_out)?;
+        }
+        Ok(())
+    }
+
+    /// The sorted output times: the explicit ones plus the `output_interval` grid, within
+    /// [0, t_end].
+    fn output_times(&self) -> Vec<f64> {
+        let s = &self.settings;
+        let mut times: Vec<f64> = s.output_times.clone();
+        if let Some(dt_out) = s.output_interval {
             let n = (s.t_end / dt_out * (1.0 + 1e-12)).floor() as usize;
             times.extend((0..=n).map(|i| (i as f64 * dt_out).min(s.t_end)));
         }
         times.retain(|&t| t >= 0.0 && t <= s.t_end * (1.0 + 1e-12));
-        let mut rec = Recorder::new(times, s.quantities);
-        let mut monitor = Monitor::new(model, &y);
-        model.check_state(0.0, &y, limit)?;
+        times
+    }
+}
+
+/// How the driver chooses the next step.
+#[derive(Debug, Clone, Copy)]
+enum StepControl {
+    /// Fixed steps on the grid t_k = k·dt (k counts grid points reached), shortened to land on
+    /// output times.
+    Grid { dt: f64, k: u64 },
+    /// The integrator's proposal `h`, capped at `h_max` and the end time.
+    Adaptive { h: f64, h_max: f64, h_min: f64 },
+}
+
+impl StepControl {
+    /// The step to attempt from `t` and the time it ends at.
+    fn next(
+        &self,
+        t: f64,
+        t_end: f64,
+        next_output: Option<f64>,
+        eps: f64,
+    ) -> Result<(f64, f64), CoreError> {
+        match *self {
+            StepControl::Grid { dt, k } => {
+                let grid = ((k + 1) as f64 * dt).min(t_end);
+                let target = match next_output {
+                    Some(to) if to > t + eps && to < grid - eps => to,
+                    _ => grid,
+                };
+                Ok((target - t, target))
+            }
+            StepControl::Adaptive { h, h_max, h_min } => {
+                let h = h.min(t_end - t).min(h_max);
+                if h < h_min {
+                    return Err(CoreError::StepSizeTooSmall { t, h_min });
+                }
+                let t_new = t + h;
+                Ok((h, if t_end - t_new < eps { t_end } else { t_new }))
+            }
+        }
+    }
+
+    /// Takes note of an attempted step that was to end at `t_new`.
+    fn update(&mut self, t_new: f64, t_end: f64, outcome: &StepOutcome) {
+        match self {
+            StepControl::Grid { dt, k } => {
+                if outcome.accepted && t_new == ((*k + 1) as f64 * *dt).min(t_end) {
+                    *k += 1;
+                }
+            }
+            StepControl::Adaptive { h, .. } => *h = outcome.h_next,
+        }
+    }
+}
+
+/// The mutable state of one run.
+struct Driver<'a> {
+    sim: &'a Simulation,
+    ws: Workspace,
+    y: Vec<f64>,
+    t: f64,
+    /// Time tolerance 10⁻¹² max(t_end, 1).
+    eps: f64,
+    blowup_limit: f64,
+    rec: Recorder,
+    monitor: Monitor,
+    projector: Option<ConstraintSet>,
+    proj_tol: f64,
+    events: EventTracker<'a>,
+    buf: Vec<f64>,
+    stats: IntegratorStats,
+    /// Time spent recording (excluded from the reported wall time).
+    diag_time: f64,
+}
+
+impl<'a> Driver<'a> {
+    /// Workspace, recorder, monitors and projector at t = 0 (samples due at 0 are taken).
+    fn new(sim: &'a Simulation, integ: &dyn Integrator) -> Result<Self, CoreError> {
+        let (model, s) = (&sim.model, &sim.settings);
+        let mut ws = model.workspace()?;
+        let y = sim.y0.clone();
+        let blowup_limit = s
+            .blowup_distance
+            .unwrap_or_else(|| model.default_blowup_limit());
+        let mut rec = Recorder::new(sim.output_times(), s.quantities);
+        let monitor = Monitor::new(model, &y);
+        model.check_state(0.0, &y, blowup_limit)?;
         let eps = 1e-12 * s.t_end.max(1.0);
         while rec.next_time().is_some_and(|to| to <= eps) {
             rec.record(0.0, &y, model, &mut ws)?;
         }
-        let mut projector = if s.project && s.integrator != IntegratorKind::Rattle {
+        let projector = if s.project && !integ.preserves_constraints() {
             Some(ConstraintSet::new(model)?)
         } else {
             None
@@ -296,167 +327,147 @@ impl Simulation {
                 .iter()
                 .map(|b| b.length0 * b.length0)
                 .fold(1.0, f64::max);
-        let mut steps = 0u64;
-        let mut rejected = 0u64;
-        let mut events = Vec::new();
-        let mut t = 0.0;
-        let start = Instant::now();
-        let mut diag_time = 0.0;
-        match s.integrator {
-            IntegratorKind::Rk4 | IntegratorKind::Rattle => {
-                let mut rk4 = Rk4::new(y.len());
-                let mut rattle = if s.integrator == IntegratorKind::Rattle {
-                    Some(Rattle::new(model)?)
-                } else {
-                    None
-                };
-                let mut k = 0u64;
-                while t < s.t_end - eps {
-                    let grid = ((k + 1) as f64 * s.dt).min(s.t_end);
-                    let target = match rec.next_time() {
-                        Some(to) if to > t + eps && to < grid - eps => to,
-                        _ => grid,
-                    };
-                    let h = target - t;
-                    match rattle.as_mut() {
-                        Some(r) => r.step(model, &mut ws, t, &mut y, h)?,
-                        None => rk4.step(model, &mut ws, t, &mut y, h)?,
-                    }
-                    t = target;
-                    if target == grid {
-                        k += 1;
-                    }
-                    steps += 1;
-                    if steps > s.max_steps {
-                        return Err(DynamicsError::InvalidParameter {
-                            name: "max_steps",
-                            value: s.max_steps as f64,
-                            reason: "exceeded",
-                        });
-                    }
-                    model.check_state(t, &y, limit)?;
-                    if let Some(p) = projector.as_mut() {
-                        p.project(model, &mut y, proj_tol, t)?;
-                    }
-                    monitor.observe(model, &y);
-                    while rec.next_time().is_some_and(|to| to <= t + eps) {
-                        let d0 = Instant::now();
-                        rec.record(t, &y, model, &mut ws)?;
-                        diag_time += d0.elapsed().as_secs_f64();
-                    }
-                }
+        let dense = integ.has_dense_output();
+        Ok(Self {
+            sim,
+            events: EventTracker::new(&sim.events, model, 0.0, &y, dense),
+            buf: vec![0.0; y.len()],
+            ws,
+            y,
+            t: 0.0,
+            eps,
+            blowup_limit,
+            rec,
+            monitor,
+            projector,
+            proj_tol,
+            stats: IntegratorStats::default(),
+            diag_time: 0.0,
+        })
+    }
+
+    /// The driver loop: attempt, accept or reject, and post-process accepted steps.
+    fn integrate(
+        &mut self,
+        integ: &mut dyn Integrator,
+        control: &mut StepControl,
+    ) -> Result<(), CoreError> {
+        let (model, s) = (&self.sim.model, &self.sim.settings);
+        while self.t < s.t_end - self.eps {
+            let (h, t_new) = control.next(self.t, s.t_end, self.rec.next_time(), self.eps)?;
+            self.events.before_step(&self.y);
+            let outcome = integ.step(model, &mut self.ws, self.t, &mut self.y, h)?;
+            control.update(t_new, s.t_end, &outcome);
+            if !outcome.accepted {
+                self.stats.rejected_steps += 1;
+                continue;
             }
-            IntegratorKind::Rk45 => {
-                let mut dp = Dopri5::new(y.len(), s.rtol, s.atol);
-                let mut h = dp.initial_step(model, &mut ws, 0.0, &y, s.dt)?;
-                let mut buf = vec![0.0; y.len()];
-                let mut g_prev: Vec<f64> = self
-                    .events
-                    .iter()
-                    .map(|e| (e.function)(0.0, &StateView { model, y: &y }))
-                    .collect();
-                'outer: while t < s.t_end - eps {
-                    h = h.min(s.t_end - t).min(s.dt);
-                    if h < s.h_min {
-                        return Err(DynamicsError::StepSizeTooSmall { t, h_min: s.h_min });
-                    }
-                    let (ok, h_next) = dp.try_step(model, &mut ws, t, &mut y, h)?;
-                    if !ok {
-                        rejected += 1;
-                        h = h_next;
-                        continue;
-                    }
-                    let mut t_new = t + h;
-                    if s.t_end - t_new < eps {
-                        t_new = s.t_end;
-                    }
-                    steps += 1;
-                    if steps > s.max_steps {
-                        return Err(DynamicsError::InvalidParameter {
-                            name: "max_steps",
-                            value: s.max_steps as f64,
-                            reason: "exceeded",
-                        });
-                    }
-                    model.check_state(t_new, &y, limit)?;
-                    // events
-                    let mut stop_at: Option<f64> = None;
-                    for (ei, ev) in self.events.iter().enumerate() {
-                        let g1 = (ev.function)(t_new, &StateView { model, y: &y });
-                        let g0 = g_prev[ei];
-                        if g0 != 0.0 && (g0 < 0.0) != (g1 < 0.0) {
-                            let (mut a, mut b) = (t, t_new);
-                            let mut ga = g0;
-                            for _ in 0..200 {
-                                if b - a <= 1e-13 * b.abs().max(1.0) {
-                                    break;
-                                }
-                                let m = 0.5 * (a + b);
-                                dp.interpolate(m, &mut buf);
-                                let gm = (ev.function)(m, &StateView { model, y: &buf });
-                                if (gm < 0.0) == (ga < 0.0) && gm != 0.0 {
-                                    a = m;
-                                    ga = gm;
-                                } else {
-                                    b = m;
-                                }
-                            }
-                            events.push(EventHit {
-                                name: ev.name.clone(),
-                                t: b,
-                            });
-                            if ev.terminal {
-                                stop_at = Some(stop_at.map_or(b, |s: f64| s.min(b)));
-                            }
-                        }
-                        g_prev[ei] = g1;
-                    }
-                    let t_stop = stop_at.unwrap_or(t_new);
-                    while let Some(to) = rec.next_time() {
-                        if to > t_stop + eps {
-                            break;
-                        }
-                        let d0 = Instant::now();
-                        if (to - t_new).abs() <= eps {
-                            rec.record(to, &y, model, &mut ws)?;
-                        } else {
-                            dp.interpolate(to.max(t), &mut buf);
-                            rec.record(to, &buf, model, &mut ws)?;
-                        }
-                        diag_time += d0.elapsed().as_secs_f64();
-                    }
-                    if let Some(ts) = stop_at {
-                        dp.interpolate(ts, &mut buf);
-                        y.copy_from_slice(&buf);
-                        t = ts;
-                        monitor.observe(model, &y);
-                        break 'outer;
-                    }
-                    if let Some(p) = projector.as_mut() {
-                        p.project(model, &mut y, proj_tol, t_new)?;
-                        dp.invalidate();
-                    }
-                    monitor.observe(model, &y);
-                    t = t_new;
-                    h = h_next;
-                }
+            self.stats.steps += 1;
+            if self.stats.steps > s.max_steps {
+                return Err(CoreError::MaxStepsExceeded {
+                    t: t_new,
+                    max_steps: s.max_steps,
+                });
+            }
+            model.check_state(t_new, &self.y, self.blowup_limit)?;
+            if self.after_step(integ, t_new)? {
+                break;
             }
         }
-        let wall_time_s = (start.elapsed().as_secs_f64() - diag_time).max(0.0);
-        Ok(SimulationResult {
-            t_end: t,
-            steps,
-            rejected_steps: rejected,
-            rhs_evals: ws.rhs_evals,
-            final_nodes: model.nodes_of(&y),
-            final_velocities: model.velocities_of(&y),
-            final_state: y,
-            energy_drift: monitor.energy_drift(),
-            bar_length_drift: monitor.bar_length_drift,
-            constraint_drift: monitor.constraint_drift,
+        Ok(())
+    }
+
+    /// Events, samples, projection and monitors after an accepted step [self.t, t_new];
+    /// returns `true` when a terminal event stopped the run.
+    fn after_step(&mut self, integ: &mut dyn Integrator, t_new: f64) -> Result<bool, CoreError> {
+        let model = &self.sim.model;
+        let span = (self.t, t_new);
+        let stop = self.events.after_step(model, integ, span, &self.y);
+        let dense = integ.has_dense_output();
+        if dense {
+            self.record_dense(integ, span, stop.unwrap_or(t_new))?;
+        }
+        if let Some(ts) = stop {
+            self.events
+                .state_at(integ, span, &self.y, ts, &mut self.buf);
+            self.y.copy_from_slice(&self.buf);
+            self.t = ts;
+            self.monitor.observe(model, &self.y);
+            if !dense {
+                self.record_at_step_end()?;
+            }
+            return Ok(true);
+        }
+        if let Some(p) = self.projector.as_mut() {
+            p.project(model, &mut self.y, self.proj_tol, t_new)?;
+            integ.invalidate();
+        }
+        self.monitor.observe(model, &self.y);
+        self.t = t_new;
+        if !dense {
+            self.record_at_step_end()?;
+        }
+        Ok(false)
+    }
+
+    /// Samples due up to `t_stop` inside the step `span`, from the dense output (the step's
+    /// end state itself at its end).
+    fn record_dense(
+        &mut self,
+        integ: &dyn Integrator,
+        (t0, t_new): (f64, f64),
+        t_stop: f64,
+    ) -> Result<(), CoreError> {
+        let model = &self.sim.model;
+        while let Some(to) = self.rec.next_time() {
+            if to > t_stop + self.eps {
+                break;
+            }
+            let d0 = Instant::now();
+            if (to - t_new).abs() <= self.eps {
+                self.rec.record(to, &self.y, model, &mut self.ws)?;
+            } else {
+                integ.interpolate(to.max(t0), &mut self.buf);
+                self.rec.record(to, &self.buf, model, &mut self.ws)?;
+            }
+            self.diag_time += d0.elapsed().as_secs_f64();
+        }
+        Ok(())
+    }
+
+    /// Samples due at the current time (fixed steps land on the output times).
+    fn record_at_step_end(&mut self) -> Result<(), CoreError> {
+        while self
+            .rec
+            .next_time()
+            .is_some_and(|to| to <= self.t + self.eps)
+        {
+            let d0 = Instant::now();
+            self.rec
+                .record(self.t, &self.y, &self.sim.model, &mut self.ws)?;
+            self.diag_time += d0.elapsed().as_secs_f64();
+        }
+        Ok(())
+    }
+
+    /// The result of the run.
+    fn finish(mut self, wall_time_s: f64) -> SimulationResult {
+        let model = &self.sim.model;
+        self.stats.rhs_evals = self.ws.rhs_evals;
+        SimulationResult {
+            t_end: self.t,
+            steps: self.stats.steps,
+            rejected_steps: self.stats.rejected_steps,
+            rhs_evals: self.stats.rhs_evals,
+            final_nodes: model.nodes_of(&self.y),
+            final_velocities: model.velocities_of(&self.y),
+            energy_drift: self.monitor.energy_drift(),
+            bar_length_drift: self.monitor.bar_length_drift,
+            constraint_drift: self.monitor.constraint_drift,
+            final_state: self.y,
             wall_time_s,
-            samples: rec.samples,
-            events,
-        })
+            samples: self.rec.samples,
+            events: self.events.hits,
+        }
     }
 }

@@ -143,11 +143,11 @@ impl StaticsSettings {
     /// ```
     pub fn rank_tolerance(mut self, rel: f64) -> Result<Self> {
         if !(rel > 0.0 && rel < 1.0) {
-            return Err(crate::CoreError::InvalidParameter {
-                name: "rank_tolerance",
-                value: rel,
-                reason: "a relative tolerance must lie strictly between 0 and 1",
-            });
+            return Err(crate::CoreError::invalid_parameter(
+                "rank_tolerance",
+                rel,
+                "a relative tolerance must lie strictly between 0 and 1",
+            ));
         }
         self.rank_tolerance = Some(rel);
         Ok(self)

@@ -1,0 +1,176 @@
+//! The [`Integrator`] trait: one step of a time integrator of y' = f(t, y), driven by
+//! [`Simulation::run`](super::Simulation::run).
+//!
+//! The state y holds the class-1 positions then velocities; f is [`Model::rhs`] (or, for
+//! RATTLE, the applied forces with the constraint multipliers). One trait covers
+//!
+//! * fixed-step methods ([`Rk4`], [`Rattle`]): every step is accepted and the driver places
+//!   the steps on the grid t_k = k·dt, shortened to land on output times;
+//! * adaptive methods ([`Dopri5`]): a step may be rejected, and every outcome carries the
+//!   step the method proposes next; the driver caps it at the maximum step and the end time;
+//! * constraint-preserving methods ([`Rattle`]): they keep ‖b_k‖ = l_k and N P = D
+//!   themselves, so the driver does not project their states;
+//! * dense output: a method that can evaluate its solution inside the last accepted step
+//!   ([`Integrator::interpolate`]) gets output samples and events located through it; without
+//!   it the driver lands on output times and the event module interpolates linearly.
+//!
+//! The counters (accepted and rejected steps, right-hand-side evaluations) are kept by the
+//! driver and the [`Workspace`]; see [`IntegratorStats`]. An implicit (L-stable) method fits
+//! the same trait: its Newton failures become rejected steps with a smaller proposal.
+
+use super::model::{Model, Workspace};
+use super::rattle::Rattle;
+use super::rk4::Rk4;
+use super::rk45::Dopri5;
+use crate::error::CoreError;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// The time integrators known to [`Simulation`](super::Simulation) and the scene files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorKind {
+    /// Classic fixed-step RK4 (MOTES parity).
+    #[default]
+    Rk4,
+    /// Adaptive Dormand–Prince 5(4) with dense output and event location.
+    Rk45,
+    /// Fixed-step constraint-preserving RATTLE (2nd order, symplectic).
+    Rattle,
+}
+
+impl IntegratorKind {
+    /// Every integrator, in a fixed order (for studies and tests).
+    pub const ALL: [IntegratorKind; 3] = [Self::Rk4, Self::Rk45, Self::Rattle];
+
+    /// A fresh integrator of this kind for `model`; `rtol` and `atol` are used by the
+    /// adaptive ones only.
+    pub fn build(
+        self,
+        model: &Model,
+        rtol: f64,
+        atol: f64,
+    ) -> Result<Box<dyn Integrator>, CoreError> {
+        let n = model.state_len();
+        Ok(match self {
+            Self::Rk4 => Box::new(Rk4::new(n)),
+            Self::Rk45 => Box::new(Dopri5::new(n, rtol, atol)),
+            Self::Rattle => Box::new(Rattle::new(model)?),
+        })
+    }
+}
+
+impl fmt::Display for IntegratorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::Rk45 => "rk45",
+            IntegratorKind::Rattle => "rattle",
+        })
+    }
+}
+
+impl FromStr for IntegratorKind {
+    type Err = String;
+    /// Parses `rk4`, `rk45` (or `dopri5`) or `rattle` (case-insensitive).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "rk4" => Ok(Self::Rk4),
+            "rk45" | "dopri5" => Ok(Self::Rk45),
+            "rattle" => Ok(Self::Rattle),
+            other => Err(format!(
+                "unknown integrator \"{other}\" (expected rk4, rk45 or rattle)"
+            )),
+        }
+    }
+}
+
+/// What one attempted step did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepOutcome {
+    /// The step was accepted: the state now holds y(t + h). A rejected step leaves the state
+    /// untouched.
+    pub accepted: bool,
+    /// The step size the method proposes next (after a rejection: the size to retry with).
+    /// Fixed-step methods return the step they were given.
+    pub h_next: f64,
+}
+
+impl StepOutcome {
+    /// An accepted step of a fixed-step method.
+    pub fn fixed(h: f64) -> Self {
+        Self {
+            accepted: true,
+            h_next: h,
+        }
+    }
+}
+
+/// Work counters of one run: the numbers a performance regression changes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct IntegratorStats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps (adaptive methods).
+    pub rejected_steps: u64,
+    /// Right-hand-side (force) evaluations.
+    pub rhs_evals: u64,
+}
+
+/// One time integrator of the rigid-bar dynamics.
+///
+/// The driver calls [`start`](Self::start) once at the initial state, then
+/// [`step`](Self::step) until the end time; after it modified an accepted state itself (a
+/// projection onto the constraints) it calls [`invalidate`](Self::invalidate).
+pub trait Integrator: fmt::Debug {
+    /// Which integrator this is.
+    fn kind(&self) -> IntegratorKind;
+
+    /// Whether the method chooses its own steps (and may reject them).
+    fn is_adaptive(&self) -> bool {
+        false
+    }
+
+    /// Whether the method keeps bar lengths and N P = D itself (no projection needed).
+    fn preserves_constraints(&self) -> bool {
+        false
+    }
+
+    /// Whether [`interpolate`](Self::interpolate) is available.
+    fn has_dense_output(&self) -> bool {
+        false
+    }
+
+    /// Prepares a run from (t, y) and returns the first step to try (at most `h_max`).
+    fn start(
+        &mut self,
+        _model: &Model,
+        _ws: &mut Workspace,
+        _t: f64,
+        _y: &[f64],
+        h_max: f64,
+    ) -> Result<f64, CoreError> {
+        Ok(h_max)
+    }
+
+    /// Attempts one step of size `h` from (t, y), advancing `y` in place when accepted.
+    fn step(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<StepOutcome, CoreError>;
+
+    /// Dense output: writes the solution at time `t` inside the last accepted step into
+    /// `out` and returns `true`, or returns `false` (leaving `out` alone) when the method has
+    /// none.
+    fn interpolate(&self, _t: f64, _out: &mut [f64]) -> bool {
+        false
+    }
+
+    /// Forgets cached stages (the state was changed outside the integrator).
+    fn invalidate(&mut self) {}
+}

@@ -1,0 +1,133 @@
+//! Snapshot tests of the work counters (accepted steps, rejected steps, right-hand-side
+//! evaluations) of every integrator on the test models, so that a silent performance
+//! regression (more steps or force evaluations for the same answer) fails.
+//!
+//! The snapshots hold counts only (no timings), so they are the same on every machine. After
+//! an intended change, review with `cargo insta review` (or rerun with `INSTA_UPDATE=always`)
+//! and commit the new `.snap` files under `tests/snapshots/`.
+
+use std::fmt::Write as _;
+use tensegrity_core::dynamics::{IntegratorKind, Simulation, SimulationSettings};
+use tensegrity_core::test_models;
+use tensegrity_core::Structure;
+
+/// Runs `structure` with every integrator (dt for the fixed-step ones, rtol for rk45 with
+/// atol = rtol/100 and maximum step t_end) and tabulates the counters.
+fn table(
+    structure: &Structure,
+    ground: Option<tensegrity_core::dynamics::Ground>,
+    t_end: f64,
+    dt: f64,
+    rtol: f64,
+) -> String {
+    let mut out = String::from("integrator  steps  rejected  rhs_evals\n");
+    for integrator in IntegratorKind::ALL {
+        let adaptive = integrator == IntegratorKind::Rk45;
+        let settings = SimulationSettings {
+            t_end,
+            integrator,
+            dt: if adaptive { t_end } else { dt },
+            rtol,
+            atol: rtol * 1e-2,
+            ..Default::default()
+        };
+        let mut sim = Simulation::new(structure, settings).unwrap();
+        if let Some(g) = &ground {
+            sim.model.set_ground(g.clone()).unwrap();
+        }
+        let s = sim.run().unwrap().stats();
+        writeln!(
+            out,
+            "{:<10}  {:>5}  {:>8}  {:>9}",
+            integrator.to_string(),
+            s.steps,
+            s.rejected_steps,
+            s.rhs_evals
+        )
+        .unwrap();
+    }
+    out
+}
+
+#[test]
+fn stats_dbar() {
+    let s = test_models::dbar(2.0, 0.5, 1.0, 1000.0, 0.05).unwrap();
+    insta::assert_snapshot!(table(&s, None, 0.5, 1e-3, 1e-8));
+}
+
+#[test]
+fn stats_snelson_prism_oscillating() {
+    let s = test_models::oscillating_prism().unwrap();
+    insta::assert_snapshot!(table(&s, None, 0.5, 1e-3, 1e-8));
+}
+
+#[test]
+fn stats_double_pendulum() {
+    let s = test_models::double_pendulum(std::f64::consts::FRAC_PI_4).unwrap();
+    insta::assert_snapshot!(table(&s, None, 2.0, 1e-3, 1e-8));
+}
+
+#[test]
+fn stats_motes_dbar() {
+    let s = test_models::motes_dbar(1.0).unwrap();
+    let t_end = test_models::MOTES_DBAR_STEPS as f64 * test_models::MOTES_DBAR_DT;
+    insta::assert_snapshot!(table(&s, None, t_end, test_models::MOTES_DBAR_DT, 1e-8));
+}
+
+#[test]
+fn stats_dropped_prism() {
+    let s = test_models::dropped_prism(0.02, 50.0).unwrap();
+    let ground = test_models::dropped_prism_ground(1e4, 100.0);
+    insta::assert_snapshot!(table(&s, Some(ground), 0.3, 5e-4, 1e-6));
+}
+
+/// The MOTES D-bar keeps its reference invariants: N P = D (joints and pin) to round-off
+/// over the full 5000-step RK4 run, and the pinned node stays put.
+#[test]
+fn motes_dbar_keeps_its_invariants() {
+    let s = test_models::motes_dbar(1.0).unwrap();
+    assert_eq!(s.class(), 2);
+    let settings = SimulationSettings {
+        t_end: test_models::MOTES_DBAR_STEPS as f64 * test_models::MOTES_DBAR_DT,
+        dt: test_models::MOTES_DBAR_DT,
+        ..Default::default()
+    };
+    let r = Simulation::new(&s, settings).unwrap().run().unwrap();
+    assert_eq!(r.steps, test_models::MOTES_DBAR_STEPS);
+    assert!(
+        r.constraint_drift <= 1e-12,
+        "‖NP − D‖ = {:e}",
+        r.constraint_drift
+    );
+    assert!(r.final_nodes[0].norm() <= 1e-12, "the pin moved");
+    assert!(
+        r.bar_length_drift <= 1e-8,
+        "bar drift {:e}",
+        r.bar_length_drift
+    );
+    assert!(r.energy_drift <= 1e-5, "energy drift {:e}", r.energy_drift);
+    let moved = (r.final_nodes[3] - s.nodes()[3]).norm();
+    assert!(
+        moved > 1e-3,
+        "the strings should move the D-bar, moved {moved:e}"
+    );
+}
+
+/// A step budget that is too small is reported as such, with the time reached.
+#[test]
+fn step_budget_is_reported_as_max_steps_exceeded() {
+    let s = test_models::double_pendulum(1.0).unwrap();
+    let settings = SimulationSettings {
+        t_end: 1.0,
+        max_steps: 10,
+        ..Default::default()
+    };
+    let e = Simulation::new(&s, settings).unwrap().run().unwrap_err();
+    match e {
+        tensegrity_core::CoreError::MaxStepsExceeded { t, max_steps } => {
+            assert_eq!(max_steps, 10);
+            assert!((t - 0.011).abs() < 1e-12, "t = {t}");
+        }
+        other => panic!("unexpected {other}"),
+    }
+}
