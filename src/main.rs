@@ -77,7 +77,7 @@ fn main() {
 }
 
 fn simulate(args: &cli::simulate::SimulateArgs) -> anyhow::Result<()> {
-    let scene = tensegrity_core::scene::Scene::from_path(&args.scene)?;
+    let scene = tensegrity_io::scene::Scene::from_path(&args.scene)?;
     cli::simulate::run(
         args,
         &scene.structure,

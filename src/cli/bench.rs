@@ -11,10 +11,9 @@ use anyhow::{Context, Result};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use tensegrity_core::dynamics::examples::{double_pendulum, snelson_prism, PrismParams};
-use tensegrity_core::dynamics::{
-    build_simulation, GroundModelKind, GroundSpec, IntegratorKind, Simulation,
-};
+use tensegrity_core::dynamics::{IntegratorKind, Simulation};
 use tensegrity_core::Structure;
+use tensegrity_io::scene::{build_simulation, GroundModelKind, GroundSpec};
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]

@@ -260,15 +260,9 @@ pub fn text_report(r: &MichellReport) -> String {
     s
 }
 
-fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>> {
-    Ok(std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    ))
-}
-
 /// Writes the sign-map and γ-sweep CSV files asked for.
 fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
-    use michell3d::signmap::{sign_maps, write_sign_maps_csv, AngleGrid};
+    use michell3d::signmap::{sign_map_rows, sign_maps, AngleGrid};
     let truss = michell3d::MichellTruss::new(request.params)?;
     if let Some(path) = &args.sign_map {
         let n_members = truss.members().len();
@@ -284,7 +278,9 @@ fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
             AngleGrid::new(0.0, std::f64::consts::PI, np),
             request.method,
         )?;
-        write_sign_maps_csv(&truss, &maps, create(path)?)?;
+        tensegrity_io::write_file(path, |w| {
+            tensegrity_io::csv::write_sign_maps(w, sign_map_rows(&truss, &maps))
+        })?;
         if !args.json {
             for m in &maps {
                 println!(
@@ -297,7 +293,7 @@ fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
         }
     }
     if let (Some(path), Some(prestress)) = (&args.gamma_sweep, args.extra_strings) {
-        use michell3d::extra_strings::{gamma_sweep, write_gamma_sweep_csv, ExtraStrings};
+        use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
         let strings = ExtraStrings::new(&truss)?;
         let sweep = gamma_sweep(
             &truss,
@@ -308,7 +304,9 @@ fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
             prestress,
             request.method,
         )?;
-        write_gamma_sweep_csv(&sweep, create(path)?)?;
+        tensegrity_io::write_file(path, |w| {
+            tensegrity_io::csv::write_gamma_sweep(w, sweep.rows())
+        })?;
         if !args.json {
             let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
                 .filter(|&j| !sweep.base_keeps_sign[j])
@@ -326,7 +324,8 @@ fn write_sweeps(args: &MichellArgs, request: &AnalysisRequest) -> Result<()> {
 
 /// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity).
 pub fn run_table(args: &MichellTableArgs) -> Result<()> {
-    use michell3d::complexity::{mass_vs_complexity, write_mass_table_csv, FIG_4_18_DELTAS};
+    use michell3d::complexity::{mass_vs_complexity, FIG_4_18_DELTAS};
+    use tensegrity_io::csv::write_mass_table;
     if args.max_complexity < 2 {
         anyhow::bail!(
             "--max-complexity must be at least 2, got {}",
@@ -339,10 +338,12 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
     match &args.out {
         Some(path) => {
-            write_mass_table_csv(&rows, create(path)?)?;
+            tensegrity_io::write_file(path, |w| write_mass_table(w, &rows))?;
             println!("wrote {} rows to {}", rows.len(), path.display());
         }
-        None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
+        None => {
+            write_mass_table(std::io::stdout().lock(), &rows)?;
+        }
     }
     if let Some(path) = &args.svg {
         use super::plot::{Panel, Series};

@@ -12,10 +12,9 @@ use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::{
-    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, SimulationResult, SimulationSpec,
-};
+use tensegrity_core::dynamics::{IntegratorKind, SimulationResult};
 use tensegrity_core::Structure;
+use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, SimulationSpec};
 
 /// Integrator choice on the command line.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

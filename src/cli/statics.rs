@@ -3,8 +3,8 @@
 use anyhow::Result;
 use serde::Serialize;
 use std::path::PathBuf;
-use tensegrity_core::scene::Scene;
 use tensegrity_core::{sizing, Statics, StaticsSettings, Structure};
+use tensegrity_io::scene::Scene;
 
 /// Arguments of `tensegrity statics`.
 #[derive(clap::Args, Debug)]

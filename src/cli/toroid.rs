@@ -128,7 +128,7 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
             (Some(_), None) => anyhow::bail!("--string-stiffness needs a prestressable toroid"),
             (None, _) => t.structure.clone(),
         };
-        std::fs::write(path, tensegrity_core::scene::to_toml(&structure))
+        std::fs::write(path, tensegrity_io::scene::to_toml(&structure))
             .with_context(|| format!("cannot write {}", path.display()))?;
         if !args.json {
             println!("wrote {}", path.display());

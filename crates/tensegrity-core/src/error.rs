@@ -181,7 +181,4 @@ pub enum CoreError {
         /// Why it is invalid.
         reason: &'static str,
     },
-    /// A scene file could not be read or parsed.
-    #[error("{0}")]
-    Scene(String),
 }

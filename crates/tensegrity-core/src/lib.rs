@@ -11,7 +11,6 @@
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
-//! - [`scene`]: the TOML scene format;
 //! - [`linalg`]: the thin layer over faer.
 //!
 //! Sign conventions: force densities q are tension positive; the member vector is
@@ -24,7 +23,6 @@ pub mod dynamics;
 pub mod error;
 pub mod linalg;
 pub mod material;
-pub mod scene;
 pub mod sizing;
 pub mod statics;
 pub mod stiffness;

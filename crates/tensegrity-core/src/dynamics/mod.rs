@@ -54,7 +54,6 @@ pub mod rattle;
 pub mod recorder;
 pub mod rk4;
 pub mod rk45;
-pub mod scene;
 pub mod simulation;
 mod sparse_chol;
 pub mod strings;
@@ -67,9 +66,6 @@ pub use rattle::{ConstraintSet, Rattle};
 pub use recorder::{Quantities, Recorder, Sample};
 pub use rk4::Rk4;
 pub use rk45::Dopri5;
-pub use scene::{
-    build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
-};
 pub use simulation::{
     Event, EventFn, EventHit, IntegratorKind, Simulation, SimulationResult, SimulationSettings,
     StateView,
