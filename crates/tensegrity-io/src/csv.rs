@@ -3,8 +3,8 @@
 //!
 //! The generic [`write_rows`] writes any `Serialize` row type, its field names (or serde
 //! renames) being the header; numbers are written as the shortest decimal text that reads back
-//! to the same `f64`. Columns that must keep a fixed scientific layout use [`Sci17`]
-//! (`{:.17e}`, also exact). The specific writers below produce the files of the command-line
+//! to the same `f64`. The specific writers keep the number layout the command-line tool has
+//! always written (`{}`, `{:e}`, or [`Sci17`] = `{:.17e}`); all of them read back exactly. The specific writers below produce the files of the command-line
 //! tool, each a single call, usually inside [`crate::write_file`]:
 //!
 //! ```
@@ -35,6 +35,16 @@ impl Serialize for Sci17 {
     fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
         serializer.collect_str(&format_args!("{:.17e}", self.0))
     }
+}
+
+/// Serializes an `f64` with `{}` (Rust's shortest round-trip decimal, never an exponent).
+fn plain<S: Serializer>(v: &f64, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+    serializer.collect_str(v)
+}
+
+/// Serializes an `f64` with `{:e}` (shortest round-trip mantissa and an exponent).
+fn exponent<S: Serializer>(v: &f64, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+    serializer.collect_str(&format_args!("{v:e}"))
 }
 
 fn csv_error(what: &'static str) -> impl Fn(::csv::Error) -> IoError {
@@ -137,25 +147,31 @@ pub fn write_trajectory<W: Write>(out: W, result: &SimulationResult) -> Result<u
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RollingRow {
     /// Time (s).
+    #[serde(serialize_with = "plain")]
     pub t_s: f64,
     /// Axle position along the slope (m).
+    #[serde(serialize_with = "plain")]
     pub axle_s_m: f64,
     /// Axle height above the slope (m).
+    #[serde(serialize_with = "plain")]
     pub axle_h_m: f64,
     /// Position of the pivoting contact pair (m).
+    #[serde(serialize_with = "plain")]
     pub pivot_m: f64,
     /// Angular velocity about the axle (rad/s).
+    #[serde(serialize_with = "plain")]
     pub omega_rad_s: f64,
     /// Normal contact force (N).
-    #[serde(rename = "normal_N")]
+    #[serde(rename = "normal_N", serialize_with = "plain")]
     pub normal_n: f64,
     /// Tangential contact force (N).
-    #[serde(rename = "tangential_N")]
+    #[serde(rename = "tangential_N", serialize_with = "plain")]
     pub tangential_n: f64,
     /// Kinetic plus gravitational energy (J).
-    #[serde(rename = "energy_J")]
+    #[serde(rename = "energy_J", serialize_with = "plain")]
     pub energy_j: f64,
     /// Mean slip speed of the loaded contact nodes (m/s).
+    #[serde(serialize_with = "plain")]
     pub slip_m_s: f64,
 }
 
@@ -190,8 +206,11 @@ pub fn write_rolling_history<W: Write>(out: W, samples: &[RollingSample]) -> Res
 pub fn write_friction_grid<W: Write>(out: W, rows: &[(f64, f64, f64)]) -> Result<usize> {
     #[derive(Serialize)]
     struct Row {
+        #[serde(serialize_with = "plain")]
         sigma: f64,
+        #[serde(serialize_with = "plain")]
         epsilon: f64,
+        #[serde(serialize_with = "plain")]
         normalized_friction: f64,
     }
     let rows = rows
@@ -212,17 +231,17 @@ pub struct WorkPrecisionRow {
     /// Integrator name.
     pub integrator: String,
     /// dt (s, fixed-step integrators) or rtol (adaptive).
-    #[serde(rename = "parameter (dt [s] or rtol)")]
+    #[serde(rename = "parameter (dt [s] or rtol)", serialize_with = "exponent")]
     pub parameter: f64,
     /// Accepted steps.
     pub steps: u64,
     /// Force evaluations.
     pub rhs_evals: u64,
     /// Max node-position error at the end time (m).
-    #[serde(rename = "error [m]")]
+    #[serde(rename = "error [m]", serialize_with = "exponent")]
     pub error_m: f64,
     /// Integration wall time (s).
-    #[serde(rename = "wall_time [s]")]
+    #[serde(rename = "wall_time [s]", serialize_with = "exponent")]
     pub wall_time_s: f64,
 }
 
@@ -287,6 +306,28 @@ pub fn write_gamma_sweep<W: Write>(
 
 /// The Michell mass–complexity table of Fig. 4.18: `complexity,delta,normalized_yield_mass,
 /// yield_mass_kg,yield_buckling_mass_kg,sign_changes_vs_planar`.
+/// Numbers with `{}` (exact; today's layout wrote the masses with 13 digits only).
 pub fn write_mass_table<W: Write>(out: W, rows: &[MassRow]) -> Result<usize> {
+    #[derive(Serialize)]
+    struct Row {
+        complexity: usize,
+        #[serde(serialize_with = "plain")]
+        delta: f64,
+        #[serde(serialize_with = "plain")]
+        normalized_yield_mass: f64,
+        #[serde(serialize_with = "plain")]
+        yield_mass_kg: f64,
+        #[serde(serialize_with = "plain")]
+        yield_buckling_mass_kg: f64,
+        sign_changes_vs_planar: usize,
+    }
+    let rows = rows.iter().map(|r| Row {
+        complexity: r.complexity,
+        delta: r.delta,
+        normalized_yield_mass: r.normalized_yield_mass,
+        yield_mass_kg: r.yield_mass_kg,
+        yield_buckling_mass_kg: r.yield_buckling_mass_kg,
+        sign_changes_vs_planar: r.sign_changes_vs_planar,
+    });
     write_rows(out, "mass table CSV", rows)
 }

@@ -71,7 +71,7 @@ fn rows_with_units_in_their_names_round_trip() {
         Some("scene,integrator,parameter (dt [s] or rtol),steps,rhs_evals,error [m],wall_time [s]")
     );
     let first: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(first[..2], ["prism", "rk4"]);
+    assert_eq!(first[..5], ["prism", "rk4", "1e-3", "1000", "4000"]); // `{:e}` as before
     assert_eq!(first[5].parse::<f64>().unwrap(), 1.0 / 3.0 * 1e-9);
     assert_eq!(first[6].parse::<f64>().unwrap(), 0.1 + 0.2);
 
@@ -79,6 +79,7 @@ fn rows_with_units_in_their_names_round_trip() {
     let (_, text) = written(|w| csv::write_friction_grid(w, &grid));
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("sigma,epsilon,normalized_friction"));
+    assert_eq!(text.lines().nth(2), Some("0.0000001,2,-0")); // `{}` as before
     for (line, &(s, e, v)) in lines.zip(&grid) {
         assert_eq!(parse(line), vec![s, e, v]);
     }
@@ -176,6 +177,7 @@ fn the_mass_table_round_trips() {
     let (n, text) = written(|w| csv::write_mass_table(w, &rows));
     assert_eq!(text.lines().count(), n + 1);
     assert!(text.starts_with("complexity,delta,normalized_yield_mass,yield_mass_kg,yield_buckling_mass_kg,sign_changes_vs_planar\n"));
+    assert!(text.lines().nth(1).unwrap().starts_with("2,0,")); // the planar δ as `{}`
     for (line, r) in text.lines().skip(1).zip(&rows) {
         let v = parse(line);
         assert_eq!(v[0] as usize, r.complexity);
