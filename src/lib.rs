@@ -21,6 +21,7 @@
 
 pub use michell3d;
 pub use tensegrity_core as core;
+pub use tensegrity_io as io;
 pub use toroid;
 
 /// The example scenes shipped with the toolkit, as `(file name, TOML text)`.

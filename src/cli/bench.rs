@@ -1,13 +1,14 @@
 //! `tensegrity bench work-precision [--out DIR] [--quick]`: error against wall time for every
 //! integrator on three scenes (the study is
-//! [`tensegrity_core::dynamics::work_precision`]), written as CSV and an SVG plot (log–log,
+//! [`tensegrity_core::dynamics::work_precision`]), written as CSV and a figure (log–log,
 //! one curve per integrator, one panel per scene).
 
 use anyhow::{Context, Result};
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use tensegrity_core::dynamics::work_precision::{self, Point};
 use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_io::csv::{write_work_precision, WorkPrecisionRow};
+use tensegrity_io::figure::{Figure, Panel, Series};
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]
@@ -47,19 +48,12 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let csv_path = args.out.join("work_precision.csv");
-    let mut csv = String::from(
-        "scene,integrator,parameter (dt [s] or rtol),steps,rhs_evals,error [m],wall_time [s]\n",
-    );
-    for p in &points {
-        writeln!(
-            csv,
-            "{},{},{:e},{},{},{:e},{:e}",
-            p.scene, p.integrator, p.parameter, p.steps, p.rhs_evals, p.error, p.wall_time_s
-        )?;
-    }
-    std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
+    let rows: Vec<WorkPrecisionRow> = points.iter().map(row).collect();
+    tensegrity_io::write_file(&csv_path, |w| write_work_precision(w, &rows))
+        .with_context(|| format!("writing {}", csv_path.display()))?;
     let svg_path = args.out.join("work_precision.svg");
-    std::fs::write(&svg_path, svg(&points))
+    figure(&points)
+        .save(&svg_path)
         .with_context(|| format!("writing {}", svg_path.display()))?;
     println!(
         "{} points written to {} and {}",
@@ -70,126 +64,38 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
     Ok(())
 }
 
-/// A hand-written SVG: one log–log panel per scene, error (m) against wall time (s).
-pub fn svg(points: &[Point]) -> String {
+fn row(p: &Point) -> WorkPrecisionRow {
+    WorkPrecisionRow {
+        scene: p.scene.to_string(),
+        integrator: p.integrator.to_string(),
+        parameter: p.parameter,
+        steps: p.steps,
+        rhs_evals: p.rhs_evals,
+        error_m: p.error,
+        wall_time_s: p.wall_time_s,
+    }
+}
+
+/// One log–log panel per scene: error (m) against wall time (s), one curve per integrator.
+pub fn figure(points: &[Point]) -> Figure {
     let mut scenes: Vec<&str> = points.iter().map(|p| p.scene).collect();
     scenes.dedup();
-    let (pw, ph, margin) = (420.0, 320.0, 60.0);
-    let width = scenes.len() as f64 * (pw + margin) + margin;
-    let height = ph + 2.0 * margin + 30.0;
-    let colors = [
-        (IntegratorKind::Rk4, "#1f77b4"),
-        (IntegratorKind::Rk45, "#d62728"),
-        (IntegratorKind::Rattle, "#2ca02c"),
-    ];
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    for (si, scene) in scenes.iter().enumerate() {
-        // Diverged runs (error above 10 cm) stay in the CSV but are not drawn.
-        let pts: Vec<&Point> = points
-            .iter()
-            .filter(|p| p.scene == *scene && p.error < 0.1)
-            .collect();
-        let lx = |v: f64| v.log10();
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for p in &pts {
-            x0 = x0.min(lx(p.wall_time_s));
-            x1 = x1.max(lx(p.wall_time_s));
-            y0 = y0.min(lx(p.error));
-            y1 = y1.max(lx(p.error));
-        }
-        let (x0, x1, y0, y1) = (x0.floor(), x1.ceil(), y0.floor(), y1.ceil());
-        let (x1, y1) = (x1.max(x0 + 1.0), y1.max(y0 + 1.0));
-        let ox = margin + si as f64 * (pw + margin);
-        let oy = margin;
-        let px = |v: f64| ox + (lx(v) - x0) / (x1 - x0) * pw;
-        let py = |v: f64| oy + ph - (lx(v) - y0) / (y1 - y0) * ph;
-        let _ = writeln!(
-            s,
-            r#"<rect x="{ox}" y="{oy}" width="{pw}" height="{ph}" fill="none" stroke="black"/>"#
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle" font-size="14">{scene}</text>"#,
-            ox + pw / 2.0,
-            oy - 10.0
-        );
-        let mut e = x0 as i32;
-        while e as f64 <= x1 {
-            let x = ox + (e as f64 - x0) / (x1 - x0) * pw;
-            let _ = writeln!(
-                s,
-                r##"<line x1="{x}" y1="{oy}" x2="{x}" y2="{}" stroke="#ddd"/><text x="{x}" y="{}" text-anchor="middle">1e{e}</text>"##,
-                oy + ph,
-                oy + ph + 15.0
-            );
-            e += 1;
-        }
-        let mut e = y0 as i32;
-        while e as f64 <= y1 {
-            let y = oy + ph - (e as f64 - y0) / (y1 - y0) * ph;
-            let _ = writeln!(
-                s,
-                r##"<line x1="{ox}" y1="{y}" x2="{}" y2="{y}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end">1e{e}</text>"##,
-                ox + pw,
-                ox - 5.0,
-                y + 4.0
-            );
-            e += 1;
-        }
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle">integration wall time [s]</text>"#,
-            ox + pw / 2.0,
-            oy + ph + 35.0
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle" transform="rotate(-90 {} {})">max node error [m]</text>"#,
-            ox - 45.0,
-            oy + ph / 2.0,
-            ox - 45.0,
-            oy + ph / 2.0
-        );
-        for (ci, (integrator, color)) in colors.iter().enumerate() {
-            let mut curve: Vec<&&Point> =
-                pts.iter().filter(|p| p.integrator == *integrator).collect();
-            curve.sort_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s));
-            if curve.is_empty() {
-                continue;
+    let panels = scenes
+        .iter()
+        .map(|&scene| {
+            let mut panel = Panel::new(scene, "wall time [s]", "max node error [m]").log_log();
+            for kind in IntegratorKind::ALL {
+                let curve: Vec<(f64, f64)> = points
+                    .iter()
+                    .filter(|p| p.scene == scene && p.integrator == kind && p.error > 0.0)
+                    .map(|p| (p.wall_time_s, p.error))
+                    .collect();
+                if !curve.is_empty() {
+                    panel = panel.series(Series::new(kind.to_string(), curve).with_markers());
+                }
             }
-            let path: Vec<String> = curve
-                .iter()
-                .map(|p| format!("{:.2},{:.2}", px(p.wall_time_s), py(p.error)))
-                .collect();
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{}" fill="none" stroke="{color}" stroke-width="2"/>"#,
-                path.join(" ")
-            );
-            for p in &curve {
-                let _ = writeln!(
-                    s,
-                    r#"<circle cx="{:.2}" cy="{:.2}" r="3" fill="{color}"/>"#,
-                    px(p.wall_time_s),
-                    py(p.error)
-                );
-            }
-            let ly = oy + 15.0 + 16.0 * ci as f64;
-            let _ = writeln!(
-                s,
-                r#"<line x1="{}" y1="{ly}" x2="{}" y2="{ly}" stroke="{color}" stroke-width="2"/><text x="{}" y="{}">{integrator}</text>"#,
-                ox + pw - 80.0,
-                ox + pw - 60.0,
-                ox + pw - 55.0,
-                ly + 4.0
-            );
-        }
-    }
-    let _ = writeln!(s, "</svg>");
-    s
+            panel
+        })
+        .collect();
+    Figure::new(panels)
 }

@@ -3,8 +3,8 @@
 
 use anyhow::Result;
 use tensegrity::EXAMPLE_SCENES;
-use tensegrity_core::scene::Scene;
 use tensegrity_core::{statics_report, StaticsRequest};
+use tensegrity_io::scene::Scene;
 use toroid::{FidelityChoice, RollRequest, ToroidRequest, WheelSpec};
 
 /// Runs the demo.

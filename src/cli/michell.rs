@@ -16,6 +16,7 @@ use michell3d::{
     MichellTruss,
 };
 use std::path::{Path, PathBuf};
+use tensegrity_io::figure::{Figure, Panel, Series};
 
 /// Force propagation method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -272,12 +273,6 @@ fn text_header(r: &MichellReport) -> String {
     s
 }
 
-fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>> {
-    Ok(std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    ))
-}
-
 /// Computes the sign maps of `--map-members` on the analysed truss and writes their CSV.
 fn write_sign_maps(
     args: &MichellArgs,
@@ -285,7 +280,7 @@ fn write_sign_maps(
     truss: &MichellTruss,
     path: &Path,
 ) -> Result<()> {
-    use michell3d::signmap::{sign_maps, write_sign_maps_csv};
+    use michell3d::signmap::{sign_map_rows, sign_maps};
     let n_members = truss.members().len();
     if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
         anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
@@ -299,7 +294,9 @@ fn write_sign_maps(
         AngleGrid::new(0.0, std::f64::consts::PI, np),
         request.method,
     )?;
-    write_sign_maps_csv(truss, &maps, create(path)?)?;
+    tensegrity_io::write_file(path, |w| {
+        tensegrity_io::csv::write_sign_maps(w, sign_map_rows(truss, &maps))
+    })?;
     if !args.json {
         for m in &maps {
             println!(
@@ -322,7 +319,7 @@ fn write_gamma_sweep(
     prestress: f64,
     path: &Path,
 ) -> Result<()> {
-    use michell3d::extra_strings::{gamma_sweep, write_gamma_sweep_csv, ExtraStrings};
+    use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
     let strings = ExtraStrings::new(truss)?;
     let sweep = gamma_sweep(
         truss,
@@ -333,7 +330,9 @@ fn write_gamma_sweep(
         prestress,
         request.method,
     )?;
-    write_gamma_sweep_csv(&sweep, create(path)?)?;
+    tensegrity_io::write_file(path, |w| {
+        tensegrity_io::csv::write_gamma_sweep(w, sweep.rows())
+    })?;
     if !args.json {
         let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
             .filter(|&j| !sweep.base_keeps_sign[j])
@@ -350,7 +349,8 @@ fn write_gamma_sweep(
 
 /// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity).
 pub fn run_table(args: &MichellTableArgs) -> Result<()> {
-    use michell3d::complexity::{mass_vs_complexity, write_mass_table_csv, FIG_4_18_DELTAS};
+    use michell3d::complexity::{mass_vs_complexity, FIG_4_18_DELTAS};
+    use tensegrity_io::csv::write_mass_table;
     if args.max_complexity < 2 {
         anyhow::bail!(
             "--max-complexity must be at least 2, got {}",
@@ -363,28 +363,30 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
     match &args.out {
         Some(path) => {
-            write_mass_table_csv(&rows, create(path)?)?;
+            tensegrity_io::write_file(path, |w| write_mass_table(w, &rows))?;
             println!("wrote {} rows to {}", rows.len(), path.display());
         }
-        None => write_mass_table_csv(&rows, std::io::stdout().lock())?,
+        None => {
+            write_mass_table(std::io::stdout().lock(), &rows)?;
+        }
     }
     if let Some(path) = &args.svg {
-        std::fs::write(path, super::plot::svg(&[mass_panel(args, &rows)]))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        Figure::new(vec![mass_panel(args, &rows)])
+            .save(path)
+            .with_context(|| format!("writing the figure {}", path.display()))?;
     }
     Ok(())
 }
 
 /// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
-fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> super::plot::Panel {
-    use super::plot::{Panel, Series};
-    let series = |delta: f64, label: String| Series {
-        label,
-        points: rows
+fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> Panel {
+    let series = |delta: f64, label: String| {
+        let points = rows
             .iter()
             .filter(|r| r.delta == delta)
             .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
-            .collect(),
+            .collect();
+        Series::new(label, points)
     };
     let mut all = vec![series(0.0, "planar".into())];
     all.extend(
@@ -392,15 +394,16 @@ fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> super::pl
             .iter()
             .map(|&d| series(d, format!("δ = {d}"))),
     );
-    Panel {
-        title: format!(
+    let mut panel = Panel::new(
+        format!(
             "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
             args.material, args.load
         ),
-        x_label: "complexity q".into(),
-        y_label: "mass [kg]".into(),
-        series: all,
-    }
+        "complexity q",
+        "mass [kg]",
+    );
+    panel.series = all;
+    panel
 }
 
 #[cfg(test)]

@@ -4,8 +4,6 @@ pub mod angle;
 pub mod bench;
 pub mod demo;
 pub mod michell;
-pub mod plot;
 pub mod simulate;
 pub mod statics;
 pub mod toroid;
-pub mod vtk;

@@ -10,13 +10,10 @@
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
-use std::io::Write;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::{
-    build_simulation, ActuationSpec, GroundSpec, IntegratorKind, SimulationResult,
-    SimulationSettings, SimulationSpec,
-};
+use tensegrity_core::dynamics::{IntegratorKind, SimulationResult, SimulationSettings};
 use tensegrity_core::Structure;
+use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, Scene, SimulationSpec};
 
 /// Integrator choice on the command line.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -114,7 +111,7 @@ impl From<&SimulationResult> for SimulateReport {
 
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let scene = tensegrity_core::scene::Scene::from_path(&args.scene)?;
+    let scene = Scene::from_path(&args.scene)?;
     run_scene(
         args,
         &scene.structure,
@@ -143,7 +140,7 @@ pub fn run_scene(
         .run()
         .with_context(|| format!("simulating {}", args.scene.display()))?;
     if let Some(path) = &args.out {
-        write_csv(path, &result)
+        tensegrity_io::write_file(path, |w| tensegrity_io::csv::write_trajectory(w, &result))
             .with_context(|| format!("writing the trajectory to {}", path.display()))?;
     }
     if let Some(dir) = &args.vtk {
@@ -211,7 +208,7 @@ fn write_vtk(
         .samples
         .iter()
         .filter_map(|smp| smp.nodes.as_deref().map(|n| (smp.t, n)));
-    super::vtk::write_series(dir, structure, frames)
+    Ok(tensegrity_io::vtk::write_series(dir, structure, frames)?)
 }
 
 fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &SimulateReport) {
@@ -239,27 +236,4 @@ fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &Simula
     if let Some(p) = &args.out {
         println!("trajectory written to {}", p.display());
     }
-}
-
-/// Writes `t [s]` and `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]` columns, one row per sample.
-fn write_csv(path: &std::path::Path, result: &SimulationResult) -> Result<()> {
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let n = result.final_nodes.len();
-    let mut header = String::from("t [s]");
-    for i in 0..n {
-        for axis in ["x", "y", "z"] {
-            header.push_str(&format!(",n{i}_{axis} [m]"));
-        }
-    }
-    writeln!(f, "{header}")?;
-    for s in &result.samples {
-        let Some(nodes) = &s.nodes else { continue };
-        write!(f, "{:.17e}", s.t)?;
-        for p in nodes {
-            write!(f, ",{:.17e},{:.17e},{:.17e}", p.x, p.y, p.z)?;
-        }
-        writeln!(f)?;
-    }
-    f.flush()?;
-    Ok(())
 }

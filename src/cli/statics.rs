@@ -3,9 +3,9 @@
 
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_core::scene::Scene;
 use tensegrity_core::stiffness::MassModel;
 use tensegrity_core::{statics_report, StaticsReport, StaticsRequest, StaticsSettings, Structure};
+use tensegrity_io::scene::Scene;
 
 /// Arguments of `tensegrity statics`.
 #[derive(clap::Args, Debug)]

@@ -3,10 +3,9 @@
 //! [`toroid::roll`], [`toroid::rolling_series`], [`toroid::tipover_report`]) and prints the
 //! report. The defaults are the library's ([`toroid::defaults`]).
 
-use super::plot::{Panel, Series};
 use anyhow::{Context, Result};
-use std::io::Write;
 use std::path::{Path, PathBuf};
+use tensegrity_io::figure::{Figure, Panel, Series};
 use toroid::defaults;
 use toroid::rolling::RollingSample;
 use toroid::{
@@ -125,8 +124,8 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
 
 /// Writes a structure as a TOML scene.
 fn write_scene(path: &Path, structure: &tensegrity_core::Structure) -> Result<()> {
-    std::fs::write(path, tensegrity_core::scene::to_toml(structure))
-        .with_context(|| format!("cannot write {}", path.display()))
+    tensegrity_io::write_text(path, "scene", &tensegrity_io::scene::to_toml(structure))
+        .with_context(|| format!("writing the scene {}", path.display()))
 }
 
 fn print_toroid(args: &ToroidArgs, r: &ToroidReport) {
@@ -281,7 +280,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     let report = toroid::roll(&args.request())?;
     if let Some(path) = &args.svg {
         let runs = [(format!("n = {}", report.sides), report.samples.as_slice())];
-        write_svg(path, &[axle_panel(&runs), reaction_panel(&runs)])?;
+        write_figure(path, &[axle_panel(&runs), reaction_panel(&runs)])?;
     }
     if let Some(path) = &args.out {
         write_history_csv(path, &report.samples)?;
@@ -296,20 +295,10 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
 
 /// Writes the sampled rolling history as CSV.
 fn write_history_csv(path: &Path, samples: &[RollingSample]) -> Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    writeln!(
-        f,
-        "t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J,slip_m_s"
-    )?;
-    for s in samples {
-        writeln!(
-            f,
-            "{},{},{},{},{},{},{},{},{}",
-            s.t, s.s, s.h, s.pivot, s.omega, s.normal, s.tangential, s.energy, s.slip
-        )?;
-    }
+    tensegrity_io::write_file(path, |w| {
+        tensegrity_io::csv::write_rolling_history(w, samples)
+    })
+    .with_context(|| format!("writing the rolling history {}", path.display()))?;
     Ok(())
 }
 
@@ -394,13 +383,8 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
 
 /// Writes the (σ, ε, F_f/F_e) grid as CSV.
 fn write_friction_csv(path: &Path, rows: &[(f64, f64, f64)]) -> Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    writeln!(f, "sigma,epsilon,normalized_friction")?;
-    for (s, e, v) in rows {
-        writeln!(f, "{s},{e},{v}")?;
-    }
+    tensegrity_io::write_file(path, |w| tensegrity_io::csv::write_friction_grid(w, rows))
+        .with_context(|| format!("writing the friction map {}", path.display()))?;
     Ok(())
 }
 
@@ -423,43 +407,48 @@ fn print_tipover(r: &TipoverReport) {
     );
 }
 
-/// Writes figure panels as one SVG.
-fn write_svg(path: &Path, panels: &[Panel]) -> Result<()> {
-    std::fs::write(path, super::plot::svg(panels))
-        .with_context(|| format!("cannot write {}", path.display()))
+/// Writes figure panels side by side (SVG or PNG by the extension).
+fn write_figure(path: &Path, panels: &[Panel]) -> Result<()> {
+    Figure::new(panels.to_vec())
+        .save(path)
+        .with_context(|| format!("writing the figure {}", path.display()))
 }
 
 fn axle_panel(runs: &[(String, &[RollingSample])]) -> Panel {
-    Panel {
-        title: "axle height above the incline (Fig. 3.10)".into(),
-        x_label: "time [s]".into(),
-        y_label: "axle height − mean [m]".into(),
-        series: runs
-            .iter()
-            .map(|(label, samples)| {
-                let mean = samples.iter().map(|s| s.h).sum::<f64>() / samples.len() as f64;
-                Series {
-                    label: label.clone(),
-                    points: samples.iter().map(|s| (s.t, s.h - mean)).collect(),
-                }
-            })
-            .collect(),
-    }
+    let mut panel = Panel::new(
+        "axle height above the incline (Fig. 3.10)",
+        "time [s]",
+        "axle height − mean [m]",
+    );
+    panel.series = runs
+        .iter()
+        .map(|(label, samples)| {
+            let mean = samples.iter().map(|s| s.h).sum::<f64>() / samples.len() as f64;
+            Series::new(
+                label.clone(),
+                samples.iter().map(|s| (s.t, s.h - mean)).collect(),
+            )
+        })
+        .collect();
+    panel
 }
 
 fn reaction_panel(runs: &[(String, &[RollingSample])]) -> Panel {
-    Panel {
-        title: "contact reaction (Fig. 3.11)".into(),
-        x_label: "time [s]".into(),
-        y_label: "normal force [N]".into(),
-        series: runs
-            .iter()
-            .map(|(label, samples)| Series {
-                label: label.clone(),
-                points: samples.iter().map(|s| (s.t, s.normal)).collect(),
-            })
-            .collect(),
-    }
+    let mut panel = Panel::new(
+        "contact reaction (Fig. 3.11)",
+        "time [s]",
+        "normal force [N]",
+    );
+    panel.series = runs
+        .iter()
+        .map(|(label, samples)| {
+            Series::new(
+                label.clone(),
+                samples.iter().map(|s| (s.t, s.normal)).collect(),
+            )
+        })
+        .collect();
+    panel
 }
 
 /// Arguments of `tensegrity fig-rolling`.
@@ -501,7 +490,7 @@ pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
         .collect();
     // Fig. 3.11 shows the reactions of n = 8 and 16 only
     let some = [labelled[0].clone(), labelled[2].clone()];
-    write_svg(&args.out, &[axle_panel(&labelled), reaction_panel(&some)])?;
+    write_figure(&args.out, &[axle_panel(&labelled), reaction_panel(&some)])?;
     println!("wrote {}", args.out.display());
     Ok(())
 }

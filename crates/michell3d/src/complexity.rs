@@ -17,7 +17,6 @@ use crate::truss::MichellTruss;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_6, PI};
-use std::io::Write;
 use tensegrity_core::Material;
 
 /// The δ values of Fig. 4.18.
@@ -143,31 +142,4 @@ fn row(
         yield_buckling_mass_kg: sizing.yield_buckling_mass,
         sign_changes_vs_planar: changes,
     }
-}
-
-/// Writes the table as CSV with a header row (units in the column names).
-pub fn write_mass_table_csv<W: Write>(rows: &[MassRow], mut out: W) -> Result<()> {
-    let io = |source| MichellError::Io {
-        what: "mass table CSV",
-        source,
-    };
-    writeln!(
-        out,
-        "complexity,delta,normalized_yield_mass,yield_mass_kg,yield_buckling_mass_kg,sign_changes_vs_planar"
-    )
-    .map_err(io)?;
-    for r in rows {
-        writeln!(
-            out,
-            "{},{},{:.12e},{:.12e},{:.12e},{}",
-            r.complexity,
-            r.delta,
-            r.normalized_yield_mass,
-            r.yield_mass_kg,
-            r.yield_buckling_mass_kg,
-            r.sign_changes_vs_planar
-        )
-        .map_err(io)?;
-    }
-    Ok(())
 }

@@ -18,6 +18,7 @@ use crate::propagation::{propagate, unit_tip_responses, ForceSolution, Method};
 use crate::signmap::AngleGrid;
 use crate::sizing::ZERO_FORCE_RTOL;
 use crate::truss::MichellTruss;
+use serde::Serialize;
 use std::collections::BTreeSet;
 use tensegrity_core::{Bar, StringMember, Structure, Support};
 
@@ -252,21 +253,49 @@ pub fn gamma_sweep(
     })
 }
 
-/// Writes a γ sweep as CSV: `polar_rad,member,kind,force_N` with `kind` = `base` or `extra`
-/// and `member` the index among base members or extra strings.
-pub fn write_gamma_sweep_csv<W: std::io::Write>(sweep: &GammaSweep, mut out: W) -> Result<()> {
-    let io = |source| MichellError::Io {
-        what: "gamma sweep CSV",
-        source,
-    };
-    writeln!(out, "polar_rad,member,kind,force_N").map_err(io)?;
-    for (i, g) in sweep.polar.iter().enumerate() {
-        for (j, f) in sweep.base_force[i].iter().enumerate() {
-            writeln!(out, "{g:.17e},{j},base,{f:.17e}").map_err(io)?;
-        }
-        for (j, f) in sweep.extra_force[i].iter().enumerate() {
-            writeln!(out, "{g:.17e},{j},extra,{f:.17e}").map_err(io)?;
-        }
+/// Which kind of member a γ-sweep row holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SweepMember {
+    /// A member of the base truss.
+    Base,
+    /// An extra string.
+    Extra,
+}
+
+/// One row of a γ sweep: the force of one member at one polar angle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GammaSweepRow {
+    /// Polar angle γ of the load (rad).
+    pub polar_rad: f64,
+    /// Index among the base members or among the extra strings (see `kind`).
+    pub member: usize,
+    /// Base member or extra string.
+    pub kind: SweepMember,
+    /// Axial force (N, tension positive).
+    #[serde(rename = "force_N")]
+    pub force_n: f64,
+}
+
+impl GammaSweep {
+    /// The table rows: for every γ, the base members, then the extra strings.
+    pub fn rows(&self) -> impl Iterator<Item = GammaSweepRow> + '_ {
+        self.polar.iter().enumerate().flat_map(move |(i, &g)| {
+            let row = move |kind, (member, &force_n): (usize, &f64)| GammaSweepRow {
+                polar_rad: g,
+                member,
+                kind,
+                force_n,
+            };
+            let base = self.base_force[i]
+                .iter()
+                .enumerate()
+                .map(move |m| row(SweepMember::Base, m));
+            let extra = self.extra_force[i]
+                .iter()
+                .enumerate()
+                .map(move |m| row(SweepMember::Extra, m));
+            base.chain(extra)
+        })
     }
-    Ok(())
 }

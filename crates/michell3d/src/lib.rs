@@ -57,16 +57,16 @@ pub mod sizing;
 pub mod solution;
 pub mod truss;
 
-pub use complexity::{mass_vs_complexity, write_mass_table_csv, MassRow};
+pub use complexity::{mass_vs_complexity, MassRow};
 pub use error::{MichellError, Result};
 pub use extra_strings::{
-    gamma_sweep, solve_prestressed, write_gamma_sweep_csv, ExtraStrings, GammaSweep,
+    gamma_sweep, solve_prestressed, ExtraStrings, GammaSweep, GammaSweepRow, SweepMember,
 };
 pub use loads::{in_plane_load, tip_load, NodalLoads};
 pub use nodes::NodeTuple;
 pub use params::{Geometry, MichellParams};
 pub use propagation::{propagate, propagate_recursive, ForceSolution, Method};
 pub use report::{analyse, AnalysisRequest, MichellAnalysis, MichellReport};
-pub use signmap::{sign_maps, write_sign_maps_csv, AngleGrid, SignMap};
+pub use signmap::{sign_map_rows, sign_maps, AngleGrid, SignMap, SignMapRow};
 pub use sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 pub use truss::{Branch, Member, MichellTruss, Node};

@@ -14,7 +14,7 @@ use crate::propagation::{unit_tip_responses, Method};
 use crate::sizing::ZERO_FORCE_RTOL;
 use crate::truss::MichellTruss;
 use rayon::prelude::*;
-use std::io::Write;
+use serde::Serialize;
 
 /// `n` evenly spaced angles from `start` to `end`, both included (n ≥ 2), or just `start`
 /// (n = 1).
@@ -159,18 +159,33 @@ pub fn sign_maps(
         .collect())
 }
 
-/// Writes sign maps as CSV: `member,parent,child,azimuth_rad,polar_rad,force_density_N_per_m,sign`
-/// (parent/child as `U-D-L-R` tuples).
-pub fn write_sign_maps_csv<W: Write>(
-    truss: &MichellTruss,
-    maps: &[SignMap],
-    mut out: W,
-) -> Result<()> {
-    let io = |source| MichellError::Io {
-        what: "sign map CSV",
-        source,
-    };
-    let tuple = |n: usize| {
+/// One row of a sign-map table: a member at one (azimuth, polar) load direction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignMapRow {
+    /// Member index.
+    pub member: usize,
+    /// Parent node tuple as `U-D-L-R`.
+    pub parent: String,
+    /// Child node tuple as `U-D-L-R`.
+    pub child: String,
+    /// Azimuth φ of the load (rad).
+    pub azimuth_rad: f64,
+    /// Polar angle γ of the load (rad).
+    pub polar_rad: f64,
+    /// Force density q (N/m, tension positive).
+    #[serde(rename = "force_density_N_per_m")]
+    pub force_density_n_per_m: f64,
+    /// Sign: +1 tension, −1 compression, 0 zero.
+    pub sign: i8,
+}
+
+/// The rows of `maps`, member by member, polar angle outer, azimuth inner (streamed: a large
+/// grid is never held in memory as rows).
+pub fn sign_map_rows<'a>(
+    truss: &'a MichellTruss,
+    maps: &'a [SignMap],
+) -> impl Iterator<Item = SignMapRow> + 'a {
+    let tuple = move |n: usize| {
         truss
             .label(n)
             .iter()
@@ -178,31 +193,22 @@ pub fn write_sign_maps_csv<W: Write>(
             .collect::<Vec<_>>()
             .join("-")
     };
-    writeln!(
-        out,
-        "member,parent,child,azimuth_rad,polar_rad,force_density_N_per_m,sign"
-    )
-    .map_err(io)?;
-    for map in maps {
+    maps.iter().flat_map(move |map| {
         let m = &truss.members()[map.member];
-        let (p, c) = (tuple(m.parent), tuple(m.child));
-        for ip in 0..map.polar.n {
-            let g = map.polar.at(ip);
-            for ia in 0..map.azimuth.n {
-                writeln!(
-                    out,
-                    "{},{p},{c},{:.17e},{:.17e},{:.17e},{}",
-                    map.member,
-                    map.azimuth.at(ia),
-                    g,
-                    map.value(ip, ia),
-                    map.sign(ip, ia)
-                )
-                .map_err(io)?;
-            }
-        }
-    }
-    Ok(())
+        let (parent, child) = (tuple(m.parent), tuple(m.child));
+        (0..map.polar.n).flat_map(move |ip| {
+            let (parent, child) = (parent.clone(), child.clone());
+            (0..map.azimuth.n).map(move |ia| SignMapRow {
+                member: map.member,
+                parent: parent.clone(),
+                child: child.clone(),
+                azimuth_rad: map.azimuth.at(ia),
+                polar_rad: map.polar.at(ip),
+                force_density_n_per_m: map.value(ip, ia),
+                sign: map.sign(ip, ia),
+            })
+        })
+    })
 }
 
 #[cfg(test)]
@@ -232,14 +238,17 @@ mod tests {
                 }
             }
         }
-        let mut csv = Vec::new();
-        write_sign_maps_csv(&t, &maps, &mut csv).unwrap();
-        let text = String::from_utf8(csv).unwrap();
-        assert_eq!(text.lines().count(), 1 + members.len() * az.n * po.n);
-        assert!(text
-            .lines()
-            .nth(1)
-            .unwrap()
-            .starts_with("0,0-0-0-0,1-0-1-0,"));
+        let rows: Vec<SignMapRow> = sign_map_rows(&t, &maps).collect();
+        assert_eq!(rows.len(), members.len() * az.n * po.n);
+        assert_eq!(
+            (
+                rows[0].member,
+                rows[0].parent.as_str(),
+                rows[0].child.as_str()
+            ),
+            (0, "0-0-0-0", "1-0-1-0")
+        );
+        assert_eq!(rows[1].azimuth_rad, az.at(1));
+        assert_eq!(rows[az.n].polar_rad, po.at(1));
     }
 }

@@ -255,17 +255,29 @@ pub enum CoreError {
         /// Remaining constraint residual.
         residual: f64,
     },
-    /// Dynamics: an invalid scene specification (ground, actuation table, ...).
-    #[error("{item}: {reason}")]
-    InvalidSpec {
-        /// The offending item, e.g. `actuation 2`.
-        item: String,
-        /// What is wrong.
-        reason: String,
+    /// Dynamics: rigid-bar dynamics needs at least one bar (all the mass is in the bars).
+    #[error("structure: rigid-bar dynamics needs at least one bar (all mass is in the bars)")]
+    NoBars,
+    /// Dynamics: a ground contact candidate names a node that does not exist.
+    #[error("ground node {index}: node {node} does not exist ({n_nodes} nodes)")]
+    GroundNodeOutOfRange {
+        /// Position in the list of contact candidates.
+        index: usize,
+        /// The node named.
+        node: usize,
+        /// Number of nodes of the structure.
+        n_nodes: usize,
     },
-    /// A scene file could not be read or parsed.
-    #[error("{0}")]
-    Scene(String),
+    /// Dynamics: the ground's normal is zero or not finite.
+    #[error("ground: normal must be a finite non-zero vector, got [{x}, {y}, {z}]")]
+    InvalidGroundNormal {
+        /// x component.
+        x: f64,
+        /// y component.
+        y: f64,
+        /// z component.
+        z: f64,
+    },
     /// A dense or sparse factorisation of [`crate::linalg`] failed.
     #[error("{operation} failed: {reason}")]
     Factorization {

@@ -11,7 +11,6 @@
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
-//! - [`scene`]: the TOML scene format;
 //! - [`linalg`]: dense (SVD, symmetric eigen, small Cholesky) and sparse (ordering, Cholesky
 //!   with symbolic reuse, LU) factorisations, the only module that touches the factorisation
 //!   backend;
@@ -28,7 +27,6 @@ pub mod error;
 pub mod linalg;
 pub mod material;
 pub mod member_id;
-pub mod scene;
 pub mod sizing;
 pub mod statics;
 pub mod stiffness;

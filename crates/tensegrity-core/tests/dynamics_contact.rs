@@ -4,8 +4,7 @@
 
 use nalgebra::Vector3;
 use tensegrity_core::dynamics::{
-    build_simulation, Event, GroundModelKind, GroundSpec, IntegratorKind, Quantities,
-    SimulationSettings,
+    Event, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 use tensegrity_core::test_models::{self, DROPPED_PRISM_G};
 
@@ -16,29 +15,34 @@ fn dropped_prism(z0: f64, damping: f64) -> tensegrity_core::Structure {
     test_models::dropped_prism(z0, damping).unwrap()
 }
 
-fn penalty_ground(k: f64) -> GroundSpec {
-    GroundSpec {
-        point: [0.0; 3],
-        normal: [0.0, 0.0, 1.0],
-        model: GroundModelKind::Penalty,
-        stiffness: Some(k),
-        damping: Some(100.0),
-        mu_static: Some(0.6),
-        mu_kinetic: Some(0.5),
+fn penalty_ground(k: f64) -> Ground {
+    let model = GroundModel::Penalty {
+        stiffness: k,
+        damping: 100.0,
+        mu_static: 0.6,
+        mu_kinetic: 0.5,
         // A soft regularisation: the feet creep out of the tangential prestress quickly
         // (viscous slope μ f_n / v_reg ≈ 50 N·s/m), so the prism really comes to rest.
-        regularization_velocity: Some(0.1),
-        stribeck_velocity: Some(0.2),
-        tolerance: None,
-        nodes: None,
+        regularization_velocity: 0.1,
+        stribeck_velocity: 0.2,
+    };
+    Ground::new(Vector3::zeros(), Vector3::z(), model)
+}
+
+/// A simulation of `s` with default settings, on `ground` if given.
+fn simulation(s: &tensegrity_core::Structure, ground: Option<Ground>) -> Simulation {
+    let mut sim = Simulation::new(s, SimulationSettings::default()).unwrap();
+    if let Some(g) = ground {
+        sim.model.set_ground(g).unwrap();
     }
+    sim
 }
 
 #[test]
 fn dropped_prism_rests_with_static_penetration() {
     let k = 1e4;
     let s = dropped_prism(0.02, 50.0);
-    let mut sim = build_simulation(&s, None, Some(&penalty_ground(k)), &[]).unwrap();
+    let mut sim = simulation(&s, Some(penalty_ground(k)));
     sim.settings = SimulationSettings {
         t_end: 8.0,
         integrator: IntegratorKind::Rk45,
@@ -96,14 +100,15 @@ fn thesis_ground_supports_and_damps() {
         .gravity([0.0, 0.0, -G])
         .build()
         .unwrap();
-    let ground = GroundSpec {
-        model: GroundModelKind::Thesis,
-        stiffness: None,
-        damping: Some(c),
-        tolerance: Some(1e-6),
-        ..penalty_ground(1.0)
-    };
-    let mut sim = build_simulation(&s, None, Some(&ground), &[]).unwrap();
+    let ground = Ground::new(
+        Vector3::zeros(),
+        Vector3::z(),
+        GroundModel::Thesis {
+            damping: c,
+            tolerance: 1e-6,
+        },
+    );
+    let mut sim = simulation(&s, Some(ground));
     sim.settings = SimulationSettings {
         t_end,
         integrator: IntegratorKind::Rk4,
@@ -121,7 +126,7 @@ fn thesis_ground_supports_and_damps() {
     );
     assert!(r.final_nodes[0].z.abs() < 1e-12 && r.final_nodes[1].z.abs() < 1e-12);
     // without the ground it falls freely: ½ g t² = 1.226 m
-    let mut free = build_simulation(&s, None, None, &[]).unwrap();
+    let mut free = simulation(&s, None);
     free.settings = sim.settings.clone();
     let rf = free.run().unwrap();
     assert!((rf.final_nodes[0].z + 0.5 * G * t_end * t_end).abs() < 1e-9);
@@ -131,7 +136,7 @@ fn thesis_ground_supports_and_damps() {
 fn rk45_locates_touchdown_event() {
     let z0 = 0.3;
     let s = dropped_prism(z0, 0.0);
-    let mut sim = build_simulation(&s, None, None, &[]).unwrap();
+    let mut sim = simulation(&s, None);
     sim.settings = SimulationSettings {
         t_end: 1.0,
         integrator: IntegratorKind::Rk45,

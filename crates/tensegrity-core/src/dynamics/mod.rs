@@ -58,7 +58,6 @@ pub mod rattle;
 pub mod recorder;
 pub mod rk4;
 pub mod rk45;
-pub mod scene;
 pub mod simulation;
 pub mod strings;
 #[cfg(any(test, feature = "test-models"))]
@@ -73,8 +72,5 @@ pub use rattle::{ConstraintSet, Rattle};
 pub use recorder::{Quantities, Recorder, Sample};
 pub use rk4::Rk4;
 pub use rk45::Dopri5;
-pub use scene::{
-    build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
-};
 pub use simulation::{Simulation, SimulationResult, SimulationSettings};
 pub use strings::StringLaw;

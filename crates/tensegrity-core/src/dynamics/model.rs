@@ -166,11 +166,7 @@ impl Model {
         let n_nodes = structure.n_nodes();
         let nb = structure.n_bars();
         if nb == 0 {
-            return Err(CoreError::InvalidSpec {
-                item: "structure".into(),
-                reason: "rigid-bar dynamics needs at least one bar (all mass is in the bars)"
-                    .into(),
-            });
+            return Err(CoreError::NoBars);
         }
         let n1 = 2 * nb;
         let nodes = structure.nodes();
@@ -323,9 +319,10 @@ impl Model {
         let mut contact = Vec::new();
         for (k, &i) in candidates.iter().enumerate() {
             if i >= self.n_nodes {
-                return Err(CoreError::InvalidSpec {
-                    item: format!("ground node {k}"),
-                    reason: format!("node {i} does not exist ({} nodes)", self.n_nodes),
+                return Err(CoreError::GroundNodeOutOfRange {
+                    index: k,
+                    node: i,
+                    n_nodes: self.n_nodes,
                 });
             }
             if let NodeRef::Free(c) = self.node_map[i] {
@@ -333,9 +330,10 @@ impl Model {
             }
         }
         if !(ground.normal.iter().all(|v| v.is_finite()) && ground.normal.norm() > 0.0) {
-            return Err(CoreError::InvalidSpec {
-                item: "ground".into(),
-                reason: "normal must be a finite non-zero vector".into(),
+            return Err(CoreError::InvalidGroundNormal {
+                x: ground.normal.x,
+                y: ground.normal.y,
+                z: ground.normal.z,
             });
         }
         self.contact = contact;

@@ -15,8 +15,8 @@ mod dense_lp;
 mod flexes;
 mod load;
 mod prestress;
-mod stability;
 pub mod report;
+mod stability;
 
 pub use flexes::Flexes;
 pub use load::LoadSolution;

@@ -1,5 +1,10 @@
 //! Scene-file tables of the dynamics (serde, `deny_unknown_fields`), and the function that
-//! turns a [`Structure`] plus these tables into a runnable [`Simulation`].
+//! turns a [`Structure`] plus these tables into a runnable [`Simulation`] through the core's
+//! own API ([`Simulation::new`], [`Ground::new`], [`Model::set_ground`] and the rest-length and
+//! load schedules of [`Model`]).
+//!
+//! Actuation tables are piecewise linear in time and constant outside their range:
+//! v(t) = v_i (1 − w) + v_{i+1} w with w = (t − t_i)/(t_{i+1} − t_i) for t_i ≤ t < t_{i+1}.
 //!
 //! ```toml
 //! [simulation]
@@ -35,14 +40,13 @@
 //! forces = [[0, 0, 0], [0, 0, -10]]
 //! ```
 
-use super::forces::{Ground, GroundModel};
-use super::model::Model;
-use super::recorder::Quantities;
-use super::simulation::{IntegratorKind, Simulation, SimulationSettings};
-use crate::error::CoreError;
-use crate::structure::Structure;
+use crate::error::{IoError, Result};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
+use tensegrity_core::dynamics::{
+    Ground, GroundModel, IntegratorKind, Model, Quantities, Simulation, SimulationSettings,
+};
+use tensegrity_core::Structure;
 
 /// The `[simulation]` table.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -165,39 +169,40 @@ fn interp(times: &[f64], t: f64) -> (usize, usize, f64) {
     (i, j, (t - times[i]) / (times[j] - times[i]))
 }
 
-fn invalid(item: String, reason: &str) -> CoreError {
-    CoreError::InvalidSpec {
-        item,
-        reason: reason.to_string(),
+fn invalid(table: impl Into<String>, reason: &'static str) -> IoError {
+    IoError::InvalidTable {
+        table: table.into(),
+        reason,
     }
 }
 
-fn nonneg(item: &str, name: &str, v: f64) -> Result<f64, CoreError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
+fn nonneg(table: &str, name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
     } else {
-        Err(invalid(
-            item.into(),
-            &format!("{name} must be non-negative and finite, got {v}"),
-        ))
+        Err(IoError::NegativeValue {
+            table: table.into(),
+            name,
+            value,
+        })
     }
 }
 
 impl GroundSpec {
     /// The [`Ground`] this table describes.
-    pub fn to_ground(&self) -> Result<Ground, CoreError> {
+    pub fn to_ground(&self) -> Result<Ground> {
         let n = Vector3::from(self.normal);
         if !(n.iter().all(|v| v.is_finite()) && n.norm() > 0.0) {
-            return Err(invalid("ground".into(), "normal must be a non-zero vector"));
+            return Err(invalid("ground", "normal must be a non-zero vector"));
         }
         let damping = nonneg("ground", "damping", self.damping.unwrap_or(0.0))?;
         let model = match self.model {
             GroundModelKind::Penalty => {
-                let stiffness = self.stiffness.ok_or_else(|| {
-                    invalid("ground".into(), "the penalty model needs a stiffness")
-                })?;
+                let stiffness = self
+                    .stiffness
+                    .ok_or_else(|| invalid("ground", "the penalty model needs a stiffness"))?;
                 if !(stiffness.is_finite() && stiffness > 0.0) {
-                    return Err(invalid("ground".into(), "stiffness must be positive"));
+                    return Err(invalid("ground", "stiffness must be positive"));
                 }
                 let mu_static = nonneg("ground", "mu_static", self.mu_static.unwrap_or(0.0))?;
                 let mu_kinetic =
@@ -206,7 +211,7 @@ impl GroundSpec {
                 let v_s = self.stribeck_velocity.unwrap_or(1e-2);
                 if !(v_reg > 0.0 && v_s > 0.0 && v_reg.is_finite() && v_s.is_finite()) {
                     return Err(invalid(
-                        "ground".into(),
+                        "ground",
                         "regularization_velocity and stribeck_velocity must be positive",
                     ));
                 }
@@ -263,68 +268,117 @@ impl SimulationSpec {
     }
 }
 
+/// One validated actuation table: the string or node it drives, its times and values.
+type Table<T> = (usize, Vec<f64>, Vec<T>);
+
 /// Turns a structure plus the optional `[simulation]`, `[ground]` and `[[actuation]]` tables
 /// into a runnable [`Simulation`] (settings default to [`SimulationSettings::default`] when
 /// `sim` is `None`; a caller may still override `simulation.settings`).
+///
+/// ```
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_io::scene::{build_simulation, GroundSpec};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.1], [1.0, 0.0, 0.1]])
+///     .bar(Bar::new(0, 1).mass(1.0))
+///     .build()
+///     .unwrap();
+/// let ground: GroundSpec = toml::from_str("stiffness = 1e4").unwrap();
+/// let sim = build_simulation(&s, None, Some(&ground), &[]).unwrap();
+/// assert!(sim.model.ground().is_some());
+/// ```
 pub fn build_simulation(
     structure: &Structure,
     sim: Option<&SimulationSpec>,
     ground: Option<&GroundSpec>,
     actuation: &[ActuationSpec],
-) -> Result<Simulation, CoreError> {
+) -> Result<Simulation> {
     let ground = ground.map(GroundSpec::to_ground).transpose()?;
-    let mut model = Model::new(structure, ground)?;
-    let y0 = model.initial_state(structure)?;
-    let mut rest_tables: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
-    let mut load_tables: Vec<(usize, Vec<f64>, Vec<Vector3<f64>>)> = Vec::new();
+    let settings = sim.map(SimulationSpec::to_settings).unwrap_or_default();
+    let mut simulation = Simulation::new(structure, settings)?;
+    if let Some(g) = ground {
+        simulation.model.set_ground(g)?;
+    }
+    let mut rest_tables: Vec<Table<f64>> = Vec::new();
+    let mut load_tables: Vec<Table<Vector3<f64>>> = Vec::new();
     for (k, a) in actuation.iter().enumerate() {
-        let item = format!("actuation {k}");
-        if a.times.is_empty()
-            || a.times
-                .windows(2)
-                .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-        {
+        match a.validate(&format!("actuation {k}"), structure)? {
+            Actuation::RestLength(t) => rest_tables.push(t),
+            Actuation::Load(t) => load_tables.push(t),
+        }
+    }
+    set_schedules(&mut simulation.model, rest_tables, load_tables);
+    Ok(simulation)
+}
+
+/// A validated actuation table.
+enum Actuation {
+    RestLength(Table<f64>),
+    Load(Table<Vector3<f64>>),
+}
+
+impl ActuationSpec {
+    /// Checks the table against the structure; `table` names it in errors.
+    fn validate(&self, table: &str, structure: &Structure) -> Result<Actuation> {
+        let increasing = self
+            .times
+            .windows(2)
+            .all(|w| w[1].partial_cmp(&w[0]) == Some(std::cmp::Ordering::Greater));
+        if self.times.is_empty() || !increasing {
             return Err(invalid(
-                item,
+                table,
                 "times must be non-empty and strictly increasing",
             ));
         }
-        if a.times.iter().any(|t| !t.is_finite()) {
-            return Err(invalid(item, "times must be finite"));
+        if self.times.iter().any(|t| !t.is_finite()) {
+            return Err(invalid(table, "times must be finite"));
         }
-        match (a.string, a.node, &a.rest_lengths, &a.forces) {
+        let unknown = |kind, index, count| IoError::UnknownIndex {
+            table: table.into(),
+            kind,
+            index,
+            count,
+        };
+        match (self.string, self.node, &self.rest_lengths, &self.forces) {
             (Some(s), None, Some(r), None) => {
                 if s >= structure.n_strings() {
-                    return Err(invalid(item, &format!("string {s} does not exist")));
+                    return Err(unknown("string", s, structure.n_strings()));
                 }
-                if r.len() != a.times.len() {
-                    return Err(invalid(item, "rest_lengths and times differ in length"));
+                if r.len() != self.times.len() {
+                    return Err(invalid(table, "rest_lengths and times differ in length"));
                 }
                 if r.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-                    return Err(invalid(item, "rest lengths must be positive"));
+                    return Err(invalid(table, "rest lengths must be positive"));
                 }
-                rest_tables.push((s, a.times.clone(), r.clone()));
+                Ok(Actuation::RestLength((s, self.times.clone(), r.clone())))
             }
             (None, Some(n), None, Some(f)) => {
                 if n >= structure.n_nodes() {
-                    return Err(invalid(item, &format!("node {n} does not exist")));
+                    return Err(unknown("node", n, structure.n_nodes()));
                 }
-                if f.len() != a.times.len() {
-                    return Err(invalid(item, "forces and times differ in length"));
+                if f.len() != self.times.len() {
+                    return Err(invalid(table, "forces and times differ in length"));
                 }
                 if f.iter().flatten().any(|v| !v.is_finite()) {
-                    return Err(invalid(item, "forces must be finite"));
+                    return Err(invalid(table, "forces must be finite"));
                 }
-                load_tables.push((n, a.times.clone(), f.iter().map(|&v| v.into()).collect()));
+                let forces = f.iter().map(|&v| v.into()).collect();
+                Ok(Actuation::Load((n, self.times.clone(), forces)))
             }
-            _ => {
-                return Err(invalid(
-                    item,
-                    "give either `string` with `rest_lengths` or `node` with `forces`",
-                ))
-            }
+            _ => Err(invalid(
+                table,
+                "give either `string` with `rest_lengths` or `node` with `forces`",
+            )),
         }
     }
+}
+
+/// Installs the interpolated tables as the model's rest-length and load schedules.
+fn set_schedules(
+    model: &mut Model,
+    rest_tables: Vec<Table<f64>>,
+    load_tables: Vec<Table<Vector3<f64>>>,
+) {
     if !rest_tables.is_empty() {
         model.set_rest_length_schedule(Box::new(move |t, rest| {
             for (s, times, values) in &rest_tables {
@@ -341,11 +395,4 @@ pub fn build_simulation(
             }
         }));
     }
-    let settings = sim.map(SimulationSpec::to_settings).unwrap_or_default();
-    Ok(Simulation {
-        model,
-        y0,
-        settings,
-        events: Vec::new(),
-    })
 }

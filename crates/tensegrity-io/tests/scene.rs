@@ -1,8 +1,8 @@
 //! Scene files: the bundled examples parse, and bad files give errors with the item and line.
 
 use std::path::Path;
-use tensegrity_core::scene::Scene;
 use tensegrity_core::Statics;
+use tensegrity_io::scene::Scene;
 
 fn examples() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")

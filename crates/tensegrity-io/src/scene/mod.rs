@@ -1,4 +1,9 @@
-//! TOML scene files: nodes, materials, bars, strings, supports, loads and gravity.
+//! TOML scene files: nodes, materials, bars, strings, supports, loads and gravity, plus the
+//! dynamics tables of [`dynamics`].
+//!
+//! The file schema ([`SceneFile`] and its `*Spec` tables) is mapped onto the core's builders
+//! ([`Structure::builder`], [`tensegrity_core::dynamics::Simulation::new`],
+//! [`tensegrity_core::dynamics::Ground::new`]); the core itself knows no file format.
 //!
 //! Node indices are 0-based. Unknown keys are rejected, and every error names the offending
 //! item and its line:
@@ -31,12 +36,18 @@
 //! acceleration = [0.0, 0.0, -9.81]
 //! ```
 
-use crate::error::{CoreError, Result};
-use crate::material::Material;
-use crate::structure::{Bar, StringMember, Structure, Support};
+pub mod dynamics;
+
+pub use dynamics::{
+    build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
+};
+
+use crate::error::{IoError, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+use tensegrity_core::dynamics::Simulation;
+use tensegrity_core::{Bar, CoreError, Material, StringMember, Structure, Support};
 use toml::Spanned;
 
 /// The raw contents of a scene file.
@@ -68,13 +79,13 @@ pub struct SceneFile {
     pub gravity: Option<GravitySpec>,
     /// `[simulation]`: integrator, end time, tolerances, output times.
     #[serde(default)]
-    pub simulation: Option<crate::dynamics::SimulationSpec>,
+    pub simulation: Option<SimulationSpec>,
     /// `[ground]`: a plane, its contact model and the nodes that can touch it.
     #[serde(default)]
-    pub ground: Option<crate::dynamics::GroundSpec>,
+    pub ground: Option<GroundSpec>,
     /// `[[actuation]]`: time tables of string rest lengths or nodal loads.
     #[serde(default)]
-    pub actuation: Vec<crate::dynamics::ActuationSpec>,
+    pub actuation: Vec<ActuationSpec>,
 }
 
 /// A `[materials.NAME]` table.
@@ -173,36 +184,66 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file; errors name the file, the item and its line.
     pub fn from_path(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| CoreError::Scene(format!("{}: cannot read: {e}", path.display())))?;
+        let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
         Self::from_str_named(&text, &path.display().to_string())
     }
 
     /// Parses and validates scene text; `name` labels error messages.
     ///
     /// ```
-    /// use tensegrity_core::scene::Scene;
+    /// use tensegrity_io::scene::Scene;
     /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 7]\n";
     /// let err = Scene::from_str_named(text, "demo.toml").unwrap_err().to_string();
     /// assert!(err.contains("line 2") && err.contains("bar 0") && err.contains("7"), "{err}");
     /// ```
     pub fn from_str_named(text: &str, name: &str) -> Result<Scene> {
-        let file: SceneFile = toml::from_str(text)
-            .map_err(|e| CoreError::Scene(format!("{name}: {}", e.to_string().trim_end())))?;
-        let structure = file.to_structure().map_err(|e| {
-            let line = file
-                .line_of(&error_item(&e))
-                .map(|span_start| format!(" (line {})", line_number(text, span_start)))
-                .unwrap_or_default();
-            CoreError::Scene(format!("{name}{line}: {e}"))
+        let file: SceneFile = toml::from_str(text).map_err(|e| {
+            let offset = e.span().map_or(0, |s| s.start);
+            let (line, column) = line_column(text, offset);
+            IoError::Parse {
+                file: name.to_string(),
+                line,
+                column,
+                message: e.message().trim_end().to_string(),
+            }
         })?;
+        let structure = file.build_structure(text, name)?;
         Ok(Scene { structure, file })
+    }
+
+    /// The runnable simulation of this scene: its structure with the `[simulation]`,
+    /// `[ground]` and `[[actuation]]` tables (see [`build_simulation`]).
+    pub fn simulation(&self) -> Result<Simulation> {
+        build_simulation(
+            &self.structure,
+            self.file.simulation.as_ref(),
+            self.file.ground.as_ref(),
+            &self.file.actuation,
+        )
     }
 }
 
 impl SceneFile {
-    /// Builds and validates the structure.
-    pub fn to_structure(&self) -> Result<Structure> {
+    /// Builds and validates the structure; errors carry the line of the item they name
+    /// (`text` is the scene text these tables were parsed from, `name` labels the errors).
+    pub fn build_structure(&self, text: &str, name: &str) -> Result<Structure> {
+        self.to_builder(text, name)?.build().map_err(|source| {
+            let line = self
+                .line_of(&error_item(&source))
+                .map(|start| line_column(text, start).0);
+            IoError::InvalidStructure {
+                file: name.to_string(),
+                line,
+                source,
+            }
+        })
+    }
+
+    /// The core builder holding every table of the file (not yet validated).
+    fn to_builder(&self, text: &str, name: &str) -> Result<tensegrity_core::StructureBuilder> {
         let mut b = Structure::builder().nodes(self.nodes.iter().map(|n| *n.get_ref()));
         if let Some(v) = &self.velocities {
             b = b.velocities(v.iter().copied());
@@ -236,9 +277,11 @@ impl SceneFile {
             let s = sup.get_ref();
             let fixed = match (&s.directions, s.fixed) {
                 (Some(_), Some(_)) => {
-                    return Err(CoreError::Scene(format!(
-                        "support {i}: give either `directions` or `fixed`, not both"
-                    )))
+                    return Err(IoError::ConflictingSupport {
+                        file: name.to_string(),
+                        line: line_column(text, sup.span().start).0,
+                        support: i,
+                    })
                 }
                 (Some(dirs), None) => [Axis::X, Axis::Y, Axis::Z].map(|a| dirs.contains(&a)),
                 (None, Some(flags)) => flags,
@@ -253,7 +296,7 @@ impl SceneFile {
         if let Some(g) = &self.gravity {
             b = b.gravity(g.acceleration);
         }
-        b.build()
+        Ok(b)
     }
 
     /// Byte offset where the item named like `bar 3`, `string 0`, `support 1`, `load 2` or
@@ -295,15 +338,25 @@ fn error_item(e: &CoreError) -> Option<(String, usize)> {
     Some((kind, index))
 }
 
-fn line_number(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
+/// 1-based line and column (in characters) of a byte offset.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    (
+        before.matches('\n').count() + 1,
+        before[line_start..].chars().count() + 1,
+    )
 }
 
 /// Writes a structure as scene TOML that [`Scene::from_str_named`] reads back exactly
 /// (shortest round-trip number formatting; user materials are written out in full).
 ///
 /// ```
-/// use tensegrity_core::scene::{to_toml, Scene};
+/// use tensegrity_io::scene::{to_toml, Scene};
 /// use tensegrity_core::{Bar, StringMember, Structure, Support};
 /// let s = Structure::builder()
 ///     .nodes([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3], [1.0 / 3.0, 0.0, 1.0]])

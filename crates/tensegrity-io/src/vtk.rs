@@ -1,15 +1,29 @@
 //! VTK export for ParaView: one ASCII `.vtu` (UnstructuredGrid of line cells, one per member)
 //! per frame and a `.pvd` collection that indexes the frames by time.
 //!
-//! Cell data: `member_kind` (0 bar, 1 string) and `member_index` (its index among its kind).
+//! Points are the node positions (m, file numbering), cells are VTK_LINE (type 3) from start to
+//! end node of every member (bars first, then strings), cell data `member_kind` (0 bar,
+//! 1 string) and `member_index` (its index among its kind). Numbers are written with `{:e}`,
+//! the shortest text that reads back to the same f64.
 
-use anyhow::{Context, Result};
+use crate::error::{IoError, Result};
 use nalgebra::Vector3;
 use std::fmt::Write as _;
 use std::path::Path;
 use tensegrity_core::Structure;
 
-/// The XML text of one frame.
+/// The XML text of one frame: the members of `structure` at node positions `nodes`.
+///
+/// ```
+/// use tensegrity_core::{Bar, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1))
+///     .build()
+///     .unwrap();
+/// let xml = tensegrity_io::vtk::vtu(&s, &s.nodes());
+/// assert!(xml.contains(r#"NumberOfPoints="2" NumberOfCells="1""#));
+/// ```
 pub fn vtu(structure: &Structure, nodes: &[Vector3<f64>]) -> String {
     let members = structure.member_nodes();
     let nb = structure.n_bars();
@@ -78,13 +92,33 @@ pub fn vtu(structure: &Structure, nodes: &[Vector3<f64>]) -> String {
     s
 }
 
-/// Writes `frame_NNNNN.vtu` for every `(time, nodes)` and `series.pvd` into `dir`.
+/// Writes `frame_NNNNN.vtu` for every `(time, nodes)` and `series.pvd` into `dir` (created if
+/// missing); returns the number of frames. Each file is written whole, then renamed into place.
+///
+/// ```
+/// use tensegrity_core::{Bar, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1))
+///     .build()
+///     .unwrap();
+/// let dir = std::env::temp_dir().join(format!("tensegrity-io-vtk-doc-{}", std::process::id()));
+/// let nodes = s.nodes();
+/// let n = tensegrity_io::vtk::write_series(&dir, &s, [(0.0, &nodes[..]), (0.5, &nodes[..])])?;
+/// assert_eq!(n, 2);
+/// assert!(dir.join("series.pvd").exists() && dir.join("frame_00001.vtu").exists());
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
 pub fn write_series<'a>(
     dir: &Path,
     structure: &Structure,
     frames: impl IntoIterator<Item = (f64, &'a [Vector3<f64>])>,
 ) -> Result<usize> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
     );
@@ -92,13 +126,18 @@ pub fn write_series<'a>(
     for (k, (t, nodes)) in frames.into_iter().enumerate() {
         let name = format!("frame_{k:05}.vtu");
         let path = dir.join(&name);
-        std::fs::write(&path, vtu(structure, nodes))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_file(&path, |w| {
+            w.write_all(vtu(structure, nodes).as_bytes())
+                .map_err(IoError::stream("VTK frame"))
+        })?;
         let _ = writeln!(pvd, r#"<DataSet timestep="{t:e}" part="0" file="{name}"/>"#);
         count += 1;
     }
     pvd.push_str("</Collection>\n</VTKFile>\n");
     let path = dir.join("series.pvd");
-    std::fs::write(&path, pvd).with_context(|| format!("cannot write {}", path.display()))?;
+    crate::write_file(&path, |w| {
+        w.write_all(pvd.as_bytes())
+            .map_err(IoError::stream("VTK collection"))
+    })?;
     Ok(count)
 }

@@ -1,0 +1,333 @@
+//! CSV tables through the `csv` crate: one header row whose column names carry the units
+//! (`t [s]`, `azimuth_rad`, `force_N`), then one record per row.
+//!
+//! The generic [`write_rows`] writes any `Serialize` row type, its field names (or serde
+//! renames) being the header; numbers are written as the shortest decimal text that reads back
+//! to the same `f64`. The specific writers keep the number layout the command-line tool has
+//! always written (`{}`, `{:e}`, or [`Sci17`] = `{:.17e}`); all of them read back exactly. The specific writers below produce the files of the command-line
+//! tool, each a single call, usually inside [`crate::write_file`]:
+//!
+//! ```
+//! use tensegrity_io::{csv, write_file};
+//! let path = std::env::temp_dir().join(format!("tensegrity-io-grid-{}.csv", std::process::id()));
+//! let n = write_file(&path, |w| csv::write_friction_grid(w, &[(0.5, 0.1, 0.25)]))?;
+//! assert_eq!(n, 1);
+//! let text = std::fs::read_to_string(&path).unwrap();
+//! assert_eq!(text, "sigma,epsilon,normalized_friction\n0.5,0.1,0.25\n");
+//! # std::fs::remove_file(&path).unwrap();
+//! # Ok::<(), tensegrity_io::IoError>(())
+//! ```
+
+use crate::error::{IoError, Result};
+use michell3d::complexity::MassRow;
+use michell3d::extra_strings::GammaSweepRow;
+use michell3d::signmap::SignMapRow;
+use serde::{Serialize, Serializer};
+use std::io::Write;
+use tensegrity_core::dynamics::SimulationResult;
+use toroid::rolling::RollingSample;
+
+/// An `f64` written as `{:.17e}` (17 digits after the point: exact, fixed layout).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sci17(pub f64);
+
+impl Serialize for Sci17 {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        serializer.collect_str(&format_args!("{:.17e}", self.0))
+    }
+}
+
+/// Serializes an `f64` with `{}` (Rust's shortest round-trip decimal, never an exponent).
+fn plain<S: Serializer>(v: &f64, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+    serializer.collect_str(v)
+}
+
+/// Serializes an `f64` with `{:e}` (shortest round-trip mantissa and an exponent).
+fn exponent<S: Serializer>(v: &f64, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+    serializer.collect_str(&format_args!("{v:e}"))
+}
+
+fn csv_error(what: &'static str) -> impl Fn(::csv::Error) -> IoError {
+    move |e| IoError::Stream {
+        what,
+        source: e.into(),
+    }
+}
+
+/// Writes `rows` with a header row taken from the field names of `R` (written before the
+/// first row: no rows, no header); returns the number of rows.
+///
+/// ```
+/// #[derive(serde::Serialize)]
+/// struct Row {
+///     azimuth_rad: f64,
+///     #[serde(rename = "force_N")]
+///     force: f64,
+/// }
+/// let mut out = Vec::new();
+/// let n = tensegrity_io::csv::write_rows(&mut out, "forces", [Row { azimuth_rad: 0.5, force: -2.0 }])?;
+/// assert_eq!((n, String::from_utf8(out).unwrap()), (1, "azimuth_rad,force_N\n0.5,-2.0\n".into()));
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn write_rows<W: Write, R: Serialize>(
+    out: W,
+    what: &'static str,
+    rows: impl IntoIterator<Item = R>,
+) -> Result<usize> {
+    let mut w = ::csv::Writer::from_writer(out);
+    let mut n = 0;
+    for row in rows {
+        w.serialize(row).map_err(csv_error(what))?;
+        n += 1;
+    }
+    w.flush().map_err(IoError::stream(what))?;
+    Ok(n)
+}
+
+/// Writes an explicit header and rows of text fields; returns the number of rows.
+///
+/// ```
+/// let mut out = Vec::new();
+/// tensegrity_io::csv::write_table(&mut out, "table", &["t [s]", "x [m]"], [vec!["0".to_string(), "1.5".into()]])?;
+/// assert_eq!(String::from_utf8(out).unwrap(), "t [s],x [m]\n0,1.5\n");
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn write_table<W: Write, H: AsRef<[u8]>, F: AsRef<[u8]>>(
+    out: W,
+    what: &'static str,
+    header: &[H],
+    rows: impl IntoIterator<Item = Vec<F>>,
+) -> Result<usize> {
+    let mut w = ::csv::Writer::from_writer(out);
+    w.write_record(header).map_err(csv_error(what))?;
+    let mut n = 0;
+    for row in rows {
+        w.write_record(&row).map_err(csv_error(what))?;
+        n += 1;
+    }
+    w.flush().map_err(IoError::stream(what))?;
+    Ok(n)
+}
+
+/// The node trajectory of a simulation: `t [s]`, then `n{i}_x [m]`, `n{i}_y [m]`,
+/// `n{i}_z [m]` for every node, one row per sample holding node positions, all `{:.17e}`.
+///
+/// ```
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_core::dynamics::{Simulation, SimulationSettings};
+/// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1).mass(1.0)).build().unwrap();
+/// let mut settings = SimulationSettings { t_end: 0.1, output_interval: Some(0.05), ..Default::default() };
+/// settings.quantities.nodes = true;
+/// let r = Simulation::new(&s, settings).unwrap().run().unwrap();
+/// let mut out = Vec::new();
+/// assert_eq!(tensegrity_io::csv::write_trajectory(&mut out, &r)?, 3);
+/// assert!(String::from_utf8(out).unwrap().starts_with("t [s],n0_x [m],n0_y [m],n0_z [m],n1_x [m]"));
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn write_trajectory<W: Write>(out: W, result: &SimulationResult) -> Result<usize> {
+    let mut header = vec!["t [s]".to_string()];
+    for i in 0..result.final_nodes.len() {
+        for axis in ["x", "y", "z"] {
+            header.push(format!("n{i}_{axis} [m]"));
+        }
+    }
+    let rows = result.samples.iter().filter_map(|s| {
+        let nodes = s.nodes.as_ref()?;
+        let mut row = vec![format!("{:.17e}", s.t)];
+        for p in nodes {
+            row.extend([p.x, p.y, p.z].map(|v| format!("{v:.17e}")));
+        }
+        Some(row)
+    });
+    write_table(out, "trajectory CSV", &header, rows)
+}
+
+/// One row of a rolling history (column names with units).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RollingRow {
+    /// Time (s).
+    #[serde(serialize_with = "plain")]
+    pub t_s: f64,
+    /// Axle position along the slope (m).
+    #[serde(serialize_with = "plain")]
+    pub axle_s_m: f64,
+    /// Axle height above the slope (m).
+    #[serde(serialize_with = "plain")]
+    pub axle_h_m: f64,
+    /// Position of the pivoting contact pair (m).
+    #[serde(serialize_with = "plain")]
+    pub pivot_m: f64,
+    /// Angular velocity about the axle (rad/s).
+    #[serde(serialize_with = "plain")]
+    pub omega_rad_s: f64,
+    /// Normal contact force (N).
+    #[serde(rename = "normal_N", serialize_with = "plain")]
+    pub normal_n: f64,
+    /// Tangential contact force (N).
+    #[serde(rename = "tangential_N", serialize_with = "plain")]
+    pub tangential_n: f64,
+    /// Kinetic plus gravitational energy (J).
+    #[serde(rename = "energy_J", serialize_with = "plain")]
+    pub energy_j: f64,
+    /// Mean slip speed of the loaded contact nodes (m/s).
+    #[serde(serialize_with = "plain")]
+    pub slip_m_s: f64,
+}
+
+impl From<&RollingSample> for RollingRow {
+    fn from(s: &RollingSample) -> Self {
+        Self {
+            t_s: s.t,
+            axle_s_m: s.s,
+            axle_h_m: s.h,
+            pivot_m: s.pivot,
+            omega_rad_s: s.omega,
+            normal_n: s.normal,
+            tangential_n: s.tangential,
+            energy_j: s.energy,
+            slip_m_s: s.slip,
+        }
+    }
+}
+
+/// The rolling history of a wheel:
+/// `t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J,slip_m_s`.
+pub fn write_rolling_history<W: Write>(out: W, samples: &[RollingSample]) -> Result<usize> {
+    write_rows(
+        out,
+        "rolling history CSV",
+        samples.iter().map(RollingRow::from),
+    )
+}
+
+/// The tip-over friction grid of Fig. 3.13: `sigma,epsilon,normalized_friction` from
+/// `(σ, ε, F_f/F_e)` triples (all dimensionless).
+pub fn write_friction_grid<W: Write>(out: W, rows: &[(f64, f64, f64)]) -> Result<usize> {
+    #[derive(Serialize)]
+    struct Row {
+        #[serde(serialize_with = "plain")]
+        sigma: f64,
+        #[serde(serialize_with = "plain")]
+        epsilon: f64,
+        #[serde(serialize_with = "plain")]
+        normalized_friction: f64,
+    }
+    let rows = rows
+        .iter()
+        .map(|&(sigma, epsilon, normalized_friction)| Row {
+            sigma,
+            epsilon,
+            normalized_friction,
+        });
+    write_rows(out, "friction grid CSV", rows)
+}
+
+/// One point of the work–precision study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorkPrecisionRow {
+    /// Scene name.
+    pub scene: String,
+    /// Integrator name.
+    pub integrator: String,
+    /// dt (s, fixed-step integrators) or rtol (adaptive).
+    #[serde(rename = "parameter (dt [s] or rtol)", serialize_with = "exponent")]
+    pub parameter: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Force evaluations.
+    pub rhs_evals: u64,
+    /// Max node-position error at the end time (m).
+    #[serde(rename = "error [m]", serialize_with = "exponent")]
+    pub error_m: f64,
+    /// Integration wall time (s).
+    #[serde(rename = "wall_time [s]", serialize_with = "exponent")]
+    pub wall_time_s: f64,
+}
+
+/// The work–precision points:
+/// `scene,integrator,parameter (dt [s] or rtol),steps,rhs_evals,error [m],wall_time [s]`.
+pub fn write_work_precision<W: Write>(out: W, rows: &[WorkPrecisionRow]) -> Result<usize> {
+    write_rows(out, "work-precision CSV", rows)
+}
+
+/// Michell sign maps:
+/// `member,parent,child,azimuth_rad,polar_rad,force_density_N_per_m,sign`, angles and force
+/// densities `{:.17e}` (from [`michell3d::signmap::sign_map_rows`]).
+pub fn write_sign_maps<W: Write>(
+    out: W,
+    rows: impl IntoIterator<Item = SignMapRow>,
+) -> Result<usize> {
+    #[derive(Serialize)]
+    struct Row {
+        member: usize,
+        parent: String,
+        child: String,
+        azimuth_rad: Sci17,
+        polar_rad: Sci17,
+        #[serde(rename = "force_density_N_per_m")]
+        force_density: Sci17,
+        sign: i8,
+    }
+    let rows = rows.into_iter().map(|r| Row {
+        member: r.member,
+        parent: r.parent,
+        child: r.child,
+        azimuth_rad: Sci17(r.azimuth_rad),
+        polar_rad: Sci17(r.polar_rad),
+        force_density: Sci17(r.force_density_n_per_m),
+        sign: r.sign,
+    });
+    write_rows(out, "sign map CSV", rows)
+}
+
+/// A Michell γ sweep: `polar_rad,member,kind,force_N` (`kind` = `base` or `extra`), numbers
+/// `{:.17e}` (from [`michell3d::extra_strings::GammaSweep::rows`]).
+pub fn write_gamma_sweep<W: Write>(
+    out: W,
+    rows: impl IntoIterator<Item = GammaSweepRow>,
+) -> Result<usize> {
+    #[derive(Serialize)]
+    struct Row {
+        polar_rad: Sci17,
+        member: usize,
+        kind: michell3d::extra_strings::SweepMember,
+        #[serde(rename = "force_N")]
+        force: Sci17,
+    }
+    let rows = rows.into_iter().map(|r| Row {
+        polar_rad: Sci17(r.polar_rad),
+        member: r.member,
+        kind: r.kind,
+        force: Sci17(r.force_n),
+    });
+    write_rows(out, "gamma sweep CSV", rows)
+}
+
+/// The Michell mass–complexity table of Fig. 4.18: `complexity,delta,normalized_yield_mass,
+/// yield_mass_kg,yield_buckling_mass_kg,sign_changes_vs_planar`.
+/// Numbers with `{}` (exact; today's layout wrote the masses with 13 digits only).
+pub fn write_mass_table<W: Write>(out: W, rows: &[MassRow]) -> Result<usize> {
+    #[derive(Serialize)]
+    struct Row {
+        complexity: usize,
+        #[serde(serialize_with = "plain")]
+        delta: f64,
+        #[serde(serialize_with = "plain")]
+        normalized_yield_mass: f64,
+        #[serde(serialize_with = "plain")]
+        yield_mass_kg: f64,
+        #[serde(serialize_with = "plain")]
+        yield_buckling_mass_kg: f64,
+        sign_changes_vs_planar: usize,
+    }
+    let rows = rows.iter().map(|r| Row {
+        complexity: r.complexity,
+        delta: r.delta,
+        normalized_yield_mass: r.normalized_yield_mass,
+        yield_mass_kg: r.yield_mass_kg,
+        yield_buckling_mass_kg: r.yield_buckling_mass_kg,
+        sign_changes_vs_planar: r.sign_changes_vs_planar,
+    });
+    write_rows(out, "mass table CSV", rows)
+}

@@ -1,0 +1,102 @@
+//! # tensegrity-io
+//!
+//! File formats and pictures of the tensegrity toolkit: the only crate of the workspace that
+//! knows TOML, CSV, VTK or plotting. The core and the topology crates return plain results and
+//! `Serialize` reports; this crate reads scenes into the core's types and writes reports out.
+//!
+//! - [`scene`]: the TOML scene schema (nodes, materials, bars, strings, supports, loads,
+//!   gravity, `[simulation]`, `[ground]`, `[[actuation]]`), parsed with line-numbered errors
+//!   and mapped onto the core's builders; [`scene::to_toml`] writes a structure back;
+//! - [`csv`]: tables through the `csv` crate, with a header row whose column names carry the
+//!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
+//! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
+//! - [`figure`]: line plots of one or more panels (linear or log axes, legends) on `plotters`,
+//!   written as SVG or PNG (with an embedded font) by file extension.
+//!
+//! Files are written whole to a temporary file beside the target and renamed into place
+//! ([`write_file`]), so a failed run never leaves a truncated output behind.
+//!
+//! ```
+//! use tensegrity_io::scene::Scene;
+//! let text = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\n";
+//! let scene = Scene::from_str_named(text, "two-nodes.toml")?;
+//! assert_eq!(scene.structure.n_bars(), 1);
+//! # Ok::<(), tensegrity_io::IoError>(())
+//! ```
+#![warn(missing_docs)]
+
+pub mod csv;
+pub mod error;
+pub mod figure;
+pub mod scene;
+pub mod vtk;
+
+pub use error::{IoError, Result};
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Writes `text` to `path` atomically (see [`write_file`]); `what` names the content in errors.
+///
+/// ```
+/// let path = std::env::temp_dir().join(format!("tensegrity-io-text-{}.toml", std::process::id()));
+/// tensegrity_io::write_text(&path, "scene", "nodes = []\n")?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "nodes = []\n");
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn write_text(path: &Path, what: &'static str, text: &str) -> Result<()> {
+    write_file(path, |w| {
+        w.write_all(text.as_bytes()).map_err(IoError::stream(what))
+    })
+}
+
+/// Writes a file through `fill`: the bytes go to a temporary file beside `path`, which is
+/// renamed to `path` once `fill` and the flush succeed (and removed otherwise). Stream errors
+/// of `fill` come back as [`IoError::Write`] naming `path`.
+///
+/// ```
+/// use std::io::Write;
+/// use tensegrity_io::{write_file, IoError};
+/// let path = std::env::temp_dir().join(format!("tensegrity-io-doc-{}.txt", std::process::id()));
+/// write_file(&path, |w| w.write_all(b"hello\n").map_err(|source| IoError::Stream {
+///     what: "greeting",
+///     source,
+/// }))?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "hello\n");
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), IoError>(())
+/// ```
+pub fn write_file<T>(path: &Path, fill: impl FnOnce(&mut dyn Write) -> Result<T>) -> Result<T> {
+    let tmp = temporary_path(path);
+    let write_err = |source| IoError::Write {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(&tmp).map_err(write_err)?;
+    let mut w = std::io::BufWriter::new(file);
+    let result = fill(&mut w)
+        .map_err(|e| e.at(path))
+        .and_then(|value| w.flush().map(|()| value).map_err(write_err));
+    drop(w);
+    match result {
+        Ok(value) => {
+            std::fs::rename(&tmp, path).map_err(write_err)?;
+            Ok(value)
+        }
+        Err(e) => {
+            // best effort: the temporary file is garbage either way
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// `dir/.name.tmp` beside `path`.
+fn temporary_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    path.with_file_name(format!(".{name}.tmp"))
+}
