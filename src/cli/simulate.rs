@@ -9,9 +9,10 @@
 //! `wall_time_s` (the integration alone, without parsing and output).
 
 use anyhow::{bail, Context, Result};
-use serde::Serialize;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::{IntegratorKind, SimulationResult, SimulationSettings};
+use tensegrity_core::dynamics::{
+    IntegratorKind, SimulationReport, SimulationResult, SimulationSettings,
+};
 use tensegrity_core::Structure;
 use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, Scene, SimulationSpec};
 
@@ -70,45 +71,6 @@ pub struct SimulateArgs {
     pub json: bool,
 }
 
-/// The JSON report of `tensegrity simulate`.
-#[derive(Debug, Serialize, PartialEq)]
-pub struct SimulateReport {
-    /// Final time reached (s).
-    pub t_end: f64,
-    /// Accepted steps.
-    pub steps: u64,
-    /// Right-hand-side (force) evaluations.
-    pub rhs_evals: u64,
-    /// Final node positions (m), file numbering.
-    pub final_nodes: Vec<[f64; 3]>,
-    /// Final node velocities (m/s), file numbering.
-    pub final_velocities: Vec<[f64; 3]>,
-    /// Max relative total-energy drift.
-    pub energy_drift: f64,
-    /// Max absolute bar-length error (m).
-    pub bar_length_drift: f64,
-    /// Max absolute ‖N P − D‖ component (m).
-    pub constraint_drift: f64,
-    /// Wall time of the integration alone (s).
-    pub wall_time_s: f64,
-}
-
-impl From<&SimulationResult> for SimulateReport {
-    fn from(r: &SimulationResult) -> Self {
-        Self {
-            t_end: r.t_end,
-            steps: r.steps,
-            rhs_evals: r.rhs_evals,
-            final_nodes: r.final_nodes.iter().map(|v| [v.x, v.y, v.z]).collect(),
-            final_velocities: r.final_velocities.iter().map(|v| [v.x, v.y, v.z]).collect(),
-            energy_drift: r.energy_drift,
-            bar_length_drift: r.bar_length_drift,
-            constraint_drift: r.constraint_drift,
-            wall_time_s: r.wall_time_s,
-        }
-    }
-}
-
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let scene = Scene::from_path(&args.scene)?;
@@ -149,7 +111,7 @@ pub fn run_scene(
             println!("{n} VTK frames and series.pvd written to {}", dir.display());
         }
     }
-    let report = SimulateReport::from(&result);
+    let report = SimulationReport::from(&result);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -211,7 +173,7 @@ fn write_vtk(
     Ok(tensegrity_io::vtk::write_series(dir, structure, frames)?)
 }
 
-fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &SimulateReport) {
+fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &SimulationReport) {
     println!(
         "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
         report.t_end,

@@ -54,11 +54,12 @@ pub enum MichellError {
         /// The node tuple whose child members overflowed.
         node: Vec<usize>,
     },
-    /// The assembled global equilibrium system could not be solved.
-    #[error("global equilibrium solve failed: {reason}")]
+    /// The assembled global equilibrium system factorised, but its solution fails the
+    /// residual check: the matrix is numerically singular.
+    #[error("global equilibrium solve failed: relative residual {relative_residual:.3e} (matrix numerically singular)")]
     SingularSystem {
-        /// What failed (factorisation error or residual check).
-        reason: String,
+        /// ‖A q − w‖₁ / (max|A| ‖q‖₁ + ‖w‖₁).
+        relative_residual: f64,
     },
     /// A member index is out of range.
     #[error("member {index} does not exist (the truss has {count} members)")]
@@ -79,15 +80,6 @@ pub enum MichellError {
     /// An error from the core crate (e.g. an unknown material name).
     #[error(transparent)]
     Core(#[from] tensegrity_core::CoreError),
-    /// Writing a table failed.
-    #[error("writing {what}: {source}")]
-    Io {
-        /// What was being written.
-        what: &'static str,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
-    },
 }
 
 /// Shorthand for [`MichellError::InvalidParameter`].

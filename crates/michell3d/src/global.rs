@@ -67,10 +67,7 @@ pub fn solve_global(truss: &MichellTruss, loads: &NodalLoads) -> Result<ForceSol
     let scale = a_max * q_norm + w_norm;
     if !(q_norm.is_finite() && res <= RESIDUAL_RTOL * scale.max(f64::MIN_POSITIVE)) {
         return Err(MichellError::SingularSystem {
-            reason: format!(
-                "relative residual {:.3e} (matrix numerically singular)",
-                res / scale
-            ),
+            relative_residual: res / scale,
         });
     }
 

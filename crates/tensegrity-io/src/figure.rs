@@ -184,7 +184,9 @@ fn axis_range(values: impl Iterator<Item = f64>, scale: Scale, pad: f64) -> (f64
 }
 
 /// Tick text: `1e-3` style on log axes (decades), short decimals on linear ones.
-fn tick_label(v: f64, scale: Scale) -> String {
+fn tick_label(v: f64, scale: Scale, span: f64) -> String {
+    // a tick computed as lo + k·step lands on 0 only up to round-off
+    let v = if scale == Scale::Linear && v.abs() < 1e-9 * span { 0.0 } else { v };
     match scale {
         Scale::Log if (v - v.round()).abs() < 1e-9 => format!("1e{}", v.round() as i64),
         Scale::Log => format!("{:.1e}", 10f64.powf(v)),
@@ -337,8 +339,9 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(drawing_error)?;
-    let x_fmt = move |v: &f64| tick_label(*v, xs);
-    let y_fmt = move |v: &f64| tick_label(*v, ys);
+    let (x_span, y_span) = ((x.1 - x.0).abs(), (y.1 - y.0).abs());
+    let x_fmt = move |v: &f64| tick_label(*v, xs, x_span);
+    let y_fmt = move |v: &f64| tick_label(*v, ys, y_span);
     // a log axis is labelled at its decades only
     let labels = |scale: Scale, (lo, hi): (f64, f64)| match scale {
         Scale::Log => ((hi - lo).round() as usize + 1).min(12),
@@ -421,9 +424,11 @@ mod tests {
     fn log_axes_span_whole_decades_and_label_them() {
         let (lo, hi) = axis_range([-3.2, -1.5].into_iter(), Scale::Log, 0.0);
         assert_eq!((lo, hi), (-4.0, -1.0));
-        assert_eq!(tick_label(-3.0, Scale::Log), "1e-3");
-        assert_eq!(tick_label(0.25, Scale::Linear), "0.25");
-        assert_eq!(tick_label(2.0e-5, Scale::Linear), "2.0e-5");
+        assert_eq!(tick_label(-3.0, Scale::Log, 4.0), "1e-3");
+        assert_eq!(tick_label(0.25, Scale::Linear, 1.0), "0.25");
+        assert_eq!(tick_label(2.0e-5, Scale::Linear, 1e-4), "2.0e-5");
+        // round-off of lo + k·step near zero is labelled 0
+        assert_eq!(tick_label(6.9e-18, Scale::Linear, 0.08), "0");
         let (lo, hi) = axis_range([0.0, 10.0].into_iter(), Scale::Linear, 0.05);
         assert!((lo + 0.5).abs() < 1e-12 && (hi - 10.5).abs() < 1e-12);
     }
