@@ -35,3 +35,8 @@ pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
     ("tbar.toml", include_str!("../examples/tbar.toml")),
     ("tower.toml", include_str!("../examples/tower.toml")),
 ];
+
+/// The README's Rust examples, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -42,3 +42,8 @@ pub use member_id::MemberId;
 pub use statics::report::{statics_report, StaticsReport, StaticsRequest};
 pub use statics::{LoadSolution, Prestressability, Statics, StaticsSettings};
 pub use structure::{Bar, Load, StringMember, Structure, StructureBuilder, Support};
+
+/// The README's examples, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

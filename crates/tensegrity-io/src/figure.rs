@@ -186,7 +186,11 @@ fn axis_range(values: impl Iterator<Item = f64>, scale: Scale, pad: f64) -> (f64
 /// Tick text: `1e-3` style on log axes (decades), short decimals on linear ones.
 fn tick_label(v: f64, scale: Scale, span: f64) -> String {
     // a tick computed as lo + k·step lands on 0 only up to round-off
-    let v = if scale == Scale::Linear && v.abs() < 1e-9 * span { 0.0 } else { v };
+    let v = if scale == Scale::Linear && v.abs() < 1e-9 * span {
+        0.0
+    } else {
+        v
+    };
     match scale {
         Scale::Log if (v - v.round()).abs() < 1e-9 => format!("1e{}", v.round() as i64),
         Scale::Log => format!("{:.1e}", 10f64.powf(v)),
