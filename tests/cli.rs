@@ -466,3 +466,54 @@ fn simulate_writes_a_vtk_series() {
         "{frame}"
     );
 }
+
+/// A three-bar linkage between two pins, pushed sideways at a knee: a mechanism for that load.
+const PUSHED_LINKAGE: &str = r#"
+nodes = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
+[materials.alu]
+density = 2700.0
+youngs_modulus = 60e9
+yield_strength = 110e6
+[[bars]]
+nodes = [0, 1]
+material = "alu"
+[[bars]]
+nodes = [1, 2]
+material = "alu"
+[[bars]]
+nodes = [2, 3]
+material = "alu"
+[[supports]]
+node = 0
+[[supports]]
+node = 3
+[[loads]]
+node = 1
+force = [1000.0, 0.0, 0.0]
+"#;
+
+#[test]
+fn a_load_a_mechanism_cannot_carry_fails_unless_least_squares_is_asked_for() {
+    let dir = scratch("linkage");
+    let scene = dir.join("linkage.toml");
+    std::fs::write(&scene, PUSHED_LINKAGE).unwrap();
+    let scene = scene.to_str().unwrap();
+    let out = run(&["statics", scene]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cannot be carried") && err.contains("7.071068e2") && err.contains("[1, 2]"),
+        "{err}"
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "no mass printed for a load that is not carried"
+    );
+    let out = run(&["statics", scene, "--least-squares", "--json"]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["load_carried"], false);
+    assert_eq!(v["unbalanced_nodes"], serde_json::json!([1, 2]));
+    assert!(v.get("mass_kg").is_none());
+    assert!((v["residual"].as_f64().unwrap() - 500.0 * 2f64.sqrt()).abs() < 1e-6);
+}

@@ -26,6 +26,11 @@ pub struct StaticsArgs {
     /// rigid-bar mass matrix of the dynamics).
     #[arg(long, value_enum, default_value_t = MassArg::Lumped)]
     pub mass: MassArg,
+    /// When the loads cannot be carried (the structure is a mechanism for them), report the
+    /// least-squares force densities marked `load_carried: false`, without sizing, instead of
+    /// failing.
+    #[arg(long)]
+    pub least_squares: bool,
 }
 
 /// `--mass` values.
@@ -57,6 +62,7 @@ impl StaticsArgs {
             settings,
             modes: self.modes,
             mass: self.mass.into(),
+            least_squares: self.least_squares,
         })
     }
 }
@@ -65,6 +71,13 @@ impl StaticsArgs {
 pub fn run(args: &StaticsArgs) -> Result<()> {
     let scene = Scene::from_path(&args.scene)?;
     let report = statics_report(&scene.structure, &args.request()?)?;
+    if report.load_carried == Some(false) {
+        eprintln!(
+            "warning: the loads are not carried (residual {:.6e} N at nodes {:?}): least-squares force densities, no sizing",
+            report.residual.unwrap_or(f64::NAN),
+            report.unbalanced_nodes.as_deref().unwrap_or(&[])
+        );
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -159,6 +159,17 @@ pub enum CoreError {
         /// The node.
         node: usize,
     },
+    /// The structure cannot carry its loads: the least-squares force densities leave an
+    /// equilibrium residual (the loads drive a mechanism).
+    #[error("the loads cannot be carried: equilibrium residual {residual:.6e} N ({relative_residual:.3e} of the load) at nodes {nodes:?}; the structure is a mechanism for these loads (add members or supports, or ask for the least-squares answer)")]
+    LoadNotCarried {
+        /// ‖A q − w‖₂ (N).
+        residual: f64,
+        /// The residual relative to ‖w‖₂.
+        relative_residual: f64,
+        /// The unbalanced nodes.
+        nodes: Vec<usize>,
+    },
     /// A numerical kernel failed to converge.
     #[error("{operation} did not converge")]
     NoConvergence {

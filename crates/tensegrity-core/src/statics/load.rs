@@ -5,10 +5,16 @@
 //! The reaction at a fixed degree of freedom is whatever the support must supply so that the
 //! node balances: r = (A_full q − w) at that row. When w is not in the range of A (the load
 //! drives a mechanism), the least-squares q is returned and the residual ‖A q − w‖ says by how
-//! much equilibrium fails.
+//! much equilibrium fails. A load counts as carried when ‖A q − w‖₂ ≤
+//! [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂; otherwise [`LoadSolution::unbalanced`] names the nodes whose
+//! residual force exceeds that tolerance.
 
 use super::Statics;
 use nalgebra::{DVector, Vector3};
+
+/// Relative equilibrium residual ‖A q − w‖₂ / ‖w‖₂ above which a load is not carried (the
+/// minimal-norm solve of a consistent system leaves round-off of order κ(A)·ε).
+pub const LOAD_RESIDUAL_TOLERANCE: f64 = 1e-8;
 
 /// The solution of a load problem.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +30,17 @@ pub struct LoadSolution {
     pub residual: f64,
     /// The residual relative to ‖w‖₂ (0 when w = 0).
     pub relative_residual: f64,
+    /// `(node, residual force)` of every node whose unbalanced force A q − w exceeds
+    /// [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂ (empty when the load is carried).
+    pub unbalanced: Vec<(usize, Vector3<f64>)>,
+}
+
+impl LoadSolution {
+    /// Whether the structure carries the load: relative residual within
+    /// [`LOAD_RESIDUAL_TOLERANCE`].
+    pub fn load_carried(&self) -> bool {
+        self.relative_residual <= LOAD_RESIDUAL_TOLERANCE
+    }
 }
 
 impl Statics<'_> {
@@ -40,9 +57,11 @@ impl Statics<'_> {
         let lengths = structure.member_lengths();
         let member_force =
             DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
-        let residual = (self.matrix() * &q - &w).norm();
+        let r = self.matrix() * &q - &w;
+        let residual = r.norm();
         let w_norm = w.norm();
         let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
+        let unbalanced = self.unbalanced_nodes(&r, LOAD_RESIDUAL_TOLERANCE * w_norm);
 
         // (A_full q) node by node, one member at a time: −q m at the start, +q m at the end
         let mut internal = vec![Vector3::zeros(); structure.n_nodes()];
@@ -70,6 +89,20 @@ impl Statics<'_> {
             reactions,
             residual,
             relative_residual,
+            unbalanced,
         }
+    }
+
+    /// Nodes whose residual force (free directions of `r`, node by node) exceeds `tol`.
+    fn unbalanced_nodes(&self, r: &DVector<f64>, tol: f64) -> Vec<(usize, Vector3<f64>)> {
+        let mut per_node = vec![Vector3::zeros(); self.structure().n_nodes()];
+        for (row, &(node, d)) in self.dofs().free.iter().enumerate() {
+            per_node[node][d] = r[row];
+        }
+        per_node
+            .into_iter()
+            .enumerate()
+            .filter(|(_, f)| f.norm() > tol)
+            .collect()
     }
 }

@@ -19,7 +19,7 @@ pub mod report;
 mod stability;
 
 pub use flexes::Flexes;
-pub use load::LoadSolution;
+pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{Prestressability, PRESTRESS_TOLERANCE};
 pub use stability::PrestressStability;
 

@@ -10,7 +10,12 @@
 //! 3. when the structure is loaded: the minimal-norm load solve (force densities, member
 //!    forces f = q l, support reactions, residual ‖A q − w‖₂) and, when members have
 //!    materials, minimum-mass sizing for those forces (strings for yield, bars for yield and
-//!    Euler buckling), with a warning when a string ends up in compression;
+//!    Euler buckling), with a warning when a string ends up in compression. A load the
+//!    structure cannot carry (relative residual above
+//!    [`LOAD_RESIDUAL_TOLERANCE`](super::load::LOAD_RESIDUAL_TOLERANCE)) is the error
+//!    [`CoreError::LoadNotCarried`](crate::CoreError::LoadNotCarried) naming the residual and
+//!    the unbalanced nodes, unless [`StaticsRequest::least_squares`] asks for the
+//!    least-squares answer, which is then reported with `load_carried: false` and no sizing;
 //! 4. with [`StaticsRequest::modes`] = Some(k): the k lowest natural frequencies about the
 //!    current state, K φ = ω² M φ with the tangent stiffness and the chosen mass model.
 //!
@@ -18,7 +23,7 @@
 //! in its `sizing_error` and `modal_error` fields.
 
 use super::{Statics, StaticsSettings};
-use crate::error::Result;
+use crate::error::{CoreError, Result};
 use crate::sizing::{self, Governing, SizingReport};
 use crate::stiffness::{self, MassModel};
 use crate::structure::{MemberId, Structure};
@@ -34,6 +39,9 @@ pub struct StaticsRequest {
     pub modes: Option<usize>,
     /// The mass matrix of the modal analysis.
     pub mass: MassModel,
+    /// Report the least-squares solution of a load the structure cannot carry (marked
+    /// `load_carried: false`, without sizing) instead of failing.
+    pub least_squares: bool,
 }
 
 /// A support reaction.
@@ -91,6 +99,13 @@ pub struct StaticsReport {
     /// ‖A q − w‖₂ (N).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub residual: Option<f64>,
+    /// Whether the loads are carried (relative residual within the tolerance); false only
+    /// with [`StaticsRequest::least_squares`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load_carried: Option<bool>,
+    /// Nodes left unbalanced by a load that is not carried.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unbalanced_nodes: Option<Vec<usize>>,
     /// Total minimum mass for the loads (kg), when members have materials.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mass_kg: Option<f64>,
@@ -137,7 +152,7 @@ pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result
     let statics = Statics::with_settings(structure, request.settings)?;
     let mut report = base_report(structure, &statics)?;
     if structure.is_loaded() {
-        add_load_solve(structure, &statics, &mut report);
+        add_load_solve(structure, &statics, request.least_squares, &mut report)?;
     }
     if let Some(k) = request.modes {
         add_modes(structure, k, request.mass, &mut report);
@@ -179,6 +194,8 @@ fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsRe
         member_force: None,
         reactions: None,
         residual: None,
+        load_carried: None,
+        unbalanced_nodes: None,
         mass_kg: None,
         member_radius_m: None,
         member_mass_kg: None,
@@ -190,12 +207,30 @@ fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsRe
     })
 }
 
-/// The minimal-norm load solve and, when members have materials, the sizing for it.
-fn add_load_solve(structure: &Structure, statics: &Statics<'_>, report: &mut StaticsReport) {
+/// The minimal-norm load solve and, when members have materials and the load is carried, the
+/// sizing for it.
+fn add_load_solve(
+    structure: &Structure,
+    statics: &Statics<'_>,
+    least_squares: bool,
+    report: &mut StaticsReport,
+) -> Result<()> {
     let sol = statics.solve_loads();
+    let carried = sol.load_carried();
+    if !carried && !least_squares {
+        return Err(CoreError::LoadNotCarried {
+            residual: sol.residual,
+            relative_residual: sol.relative_residual,
+            nodes: sol.unbalanced.iter().map(|(n, _)| *n).collect(),
+        });
+    }
+    report.load_carried = Some(carried);
+    if !carried {
+        report.unbalanced_nodes = Some(sol.unbalanced.iter().map(|(n, _)| *n).collect());
+    }
     let has_materials = (0..structure.n_members())
         .any(|k| structure.member_material(structure.member_id(k)).is_some());
-    if has_materials {
+    if has_materials && carried {
         match sizing::size_structure_lenient(structure, &sol.member_force) {
             Ok((s, compressed)) => add_sizing(&s, &compressed, report),
             Err(e) => report.sizing_error = Some(e.to_string()),
@@ -213,6 +248,7 @@ fn add_load_solve(structure: &Structure, statics: &Statics<'_>, report: &mut Sta
             .collect(),
     );
     report.residual = Some(sol.residual);
+    Ok(())
 }
 
 /// The name of a governing failure mode in the report.
@@ -284,6 +320,52 @@ mod tests {
             .unwrap()
     }
 
+    /// A planar four-bar linkage (three bars between two pinned ground points), aluminium,
+    /// pushed sideways by 1 kN at a knee: a mechanism for that load.
+    fn pushed_linkage() -> Structure {
+        Structure::builder()
+            .material("alu", Material::new(2700.0, 60e9, 110e6))
+            .nodes([
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 0.0, 0.0],
+            ])
+            .bar(Bar::new(0, 1).material("alu"))
+            .bar(Bar::new(1, 2).material("alu"))
+            .bar(Bar::new(2, 3).material("alu"))
+            .support(Support::pinned(0))
+            .support(Support::pinned(3))
+            .load(1, [1000.0, 0.0, 0.0])
+            .build()
+            .unwrap()
+    }
+
+    #[test]
+    fn a_load_the_mechanism_cannot_carry_is_an_error_naming_residual_and_nodes() {
+        // least squares: the top bar takes f = 500 N, leaving 500 N unbalanced at both knees,
+        // residual √2 · 500 N
+        let err = statics_report(&pushed_linkage(), &StaticsRequest::default()).unwrap_err();
+        match err {
+            CoreError::LoadNotCarried {
+                residual, nodes, ..
+            } => {
+                assert!((residual - 500.0 * 2f64.sqrt()).abs() < 1e-6, "{residual}");
+                assert_eq!(nodes, vec![1, 2]);
+            }
+            other => panic!("{other}"),
+        }
+        let request = StaticsRequest {
+            least_squares: true,
+            ..Default::default()
+        };
+        let r = statics_report(&pushed_linkage(), &request).unwrap();
+        assert_eq!(r.load_carried, Some(false));
+        assert_eq!(r.unbalanced_nodes, Some(vec![1, 2]));
+        assert!((r.member_force.as_ref().unwrap()[1] + 500.0).abs() < 1e-6);
+        assert!(r.mass_kg.is_none() && r.governing.is_none(), "no sizing");
+    }
+
     #[test]
     fn the_loaded_dbar_report_has_forces_reactions_and_sizing() {
         let r = statics_report(&loaded_dbar(), &StaticsRequest::default()).unwrap();
@@ -295,6 +377,10 @@ mod tests {
         assert_eq!(rc.node, 0);
         assert!((rc.force[0] - 1e4).abs() < 1e-6);
         assert!(r.residual.unwrap() < 1e-8);
+        assert_eq!(
+            (r.load_carried, r.unbalanced_nodes.as_ref()),
+            (Some(true), None)
+        );
         let gov = r.governing.as_ref().unwrap();
         assert_eq!((gov[0], gov[4]), ("buckling", "yield"));
         let mass = r.mass_kg.unwrap();
