@@ -37,20 +37,8 @@ enum Command {
 }
 
 fn main() {
-    // `tensegrity ... | head` closes stdout early: end quietly instead of panicking
-    let default_hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(move |info| {
-        let message = info
-            .payload()
-            .downcast_ref::<String>()
-            .map(String::as_str)
-            .unwrap_or("");
-        if message.contains("Broken pipe") {
-            std::process::exit(0);
-        }
-        default_hook(info);
-    }));
-    let cli = Cli::parse();
+    quiet_on_broken_pipe();
+    let cli = parse();
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),
@@ -64,14 +52,35 @@ fn main() {
         Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
     };
     if let Err(e) = result {
-        let broken_pipe = e.chain().any(|c| {
-            c.downcast_ref::<std::io::Error>()
-                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
-        });
-        if broken_pipe {
+        let code = cli::exit::code(&e);
+        if code != 0 {
+            eprintln!("error: {}", cli::exit::message(&e));
+        }
+        std::process::exit(code);
+    }
+}
+
+/// Parses the command line; every subcommand takes negative numbers as values
+/// (`--outer-radius -1` is a bad value, not an unknown flag).
+fn parse() -> Cli {
+    use clap::{CommandFactory, FromArgMatches};
+    let command = Cli::command().mut_subcommands(|c| c.allow_negative_numbers(true));
+    let matches = command.get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
+/// `tensegrity ... | head` closes stdout early: end quietly instead of panicking.
+fn quiet_on_broken_pipe() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .unwrap_or("");
+        if message.contains("Broken pipe") {
             std::process::exit(0);
         }
-        eprintln!("error: {e:#}");
-        std::process::exit(1);
-    }
+        default_hook(info);
+    }));
 }

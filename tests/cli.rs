@@ -517,3 +517,38 @@ fn a_load_a_mechanism_cannot_carry_fails_unless_least_squares_is_asked_for() {
     assert!(v.get("mass_kg").is_none());
     assert!((v["residual"].as_f64().unwrap() - 500.0 * 2f64.sqrt()).abs() < 1e-6);
 }
+
+#[test]
+fn bad_flags_are_usage_errors_naming_the_flag() {
+    for (args, flag) in [
+        (
+            &["roll", "--ground-stiffness", "0"][..],
+            "--ground-stiffness",
+        ),
+        (&["roll", "--mu=-1"][..], "--mu"),
+        (&["roll", "--ground-damping=-5"][..], "--ground-damping"),
+        (
+            &["tipover", "--grid", "never.csv", "--grid-points", "0"][..],
+            "--grid-points",
+        ),
+        (&["toroid", "--outer-radius", "-1"][..], "--outer-radius"),
+        (
+            &["simulate", "examples/prism.toml", "--dt", "nan"][..],
+            "--dt",
+        ),
+    ] {
+        let out = run(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(flag) && err.contains("must be"),
+            "{args:?}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    assert!(!std::path::Path::new("never.csv").exists());
+    // a value the flag parser cannot judge alone is named by the library, still exit 2
+    let out = run(&["toroid", "--inner-radius", "1.5"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("inner_radius = 1.5"));
+}

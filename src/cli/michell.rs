@@ -42,7 +42,7 @@ pub struct MichellArgs {
     #[arg(long)]
     pub planar: bool,
     /// 3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11).
-    #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
+    #[arg(long, value_name = "DELTA", allow_hyphen_values = true, value_parser = super::values::finite)]
     pub cylindrical: Option<f64>,
     /// 3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24`.
     #[arg(long, value_name = "EPS", value_parser = parse_angle, allow_hyphen_values = true)]
@@ -54,10 +54,10 @@ pub struct MichellArgs {
     #[arg(long, value_name = "P", value_parser = parse_angle)]
     pub phi: f64,
     /// Initial radius r₀ (m).
-    #[arg(long, value_name = "R", default_value_t = 1.0)]
+    #[arg(long, value_name = "R", default_value_t = 1.0, value_parser = super::values::positive)]
     pub r0: f64,
     /// Tip load magnitude w₀ (N).
-    #[arg(long, value_name = "W0", default_value_t = 1000.0)]
+    #[arg(long, value_name = "W0", default_value_t = 1000.0, value_parser = super::values::positive)]
     pub load: f64,
     /// Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃.
     #[arg(long, value_name = "A", value_parser = parse_angle, default_value = "0", allow_hyphen_values = true)]
@@ -69,7 +69,7 @@ pub struct MichellArgs {
     #[arg(long, value_name = "NAME", default_value = "steel")]
     pub material: String,
     /// Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to PRESTRESS newtons.
-    #[arg(long = "extra-strings", value_name = "PRESTRESS")]
+    #[arg(long = "extra-strings", value_name = "PRESTRESS", value_parser = super::values::non_negative)]
     pub extra_strings: Option<f64>,
     /// Force propagation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Recursive)]
@@ -115,7 +115,7 @@ pub struct MichellTableArgs {
     #[arg(long, value_name = "Q", default_value_t = 35)]
     pub max_complexity: usize,
     /// Tip load w₀ (N), along −ι̂₃.
-    #[arg(long, value_name = "W0", default_value_t = 1000.0)]
+    #[arg(long, value_name = "W0", default_value_t = 1000.0, value_parser = super::values::positive)]
     pub load: f64,
     /// Material of bars and strings.
     #[arg(long, value_name = "NAME", default_value = "steel")]

@@ -3,7 +3,9 @@
 pub mod angle;
 pub mod bench;
 pub mod demo;
+pub mod exit;
 pub mod michell;
 pub mod simulate;
 pub mod statics;
 pub mod toroid;
+pub mod values;

@@ -43,25 +43,25 @@ pub struct SimulateArgs {
     /// The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`.
     pub scene: PathBuf,
     /// End time (s); overrides `[simulation] t_end`.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", value_parser = super::values::positive)]
     pub t_end: Option<f64>,
     /// Integrator; overrides `[simulation] integrator` (default rk4).
     #[arg(long, value_enum)]
     pub integrator: Option<IntegratorArg>,
     /// Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45; default t_end), s.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", value_parser = super::values::positive)]
     pub dt: Option<f64>,
     /// Relative tolerance (rk45).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", value_parser = super::values::positive)]
     pub rtol: Option<f64>,
     /// Absolute tolerance (rk45).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", value_parser = super::values::positive)]
     pub atol: Option<f64>,
     /// Write the node trajectories to this CSV file.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
     /// Sampling interval of the CSV (s); default: the scene's output times, else t_end/200.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", value_parser = super::values::positive)]
     pub output_interval: Option<f64>,
     /// Write the trajectory for ParaView: one `.vtu` per output time plus `series.pvd`.
     #[arg(long, value_name = "DIR")]

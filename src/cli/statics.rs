@@ -16,7 +16,7 @@ pub struct StaticsArgs {
     #[arg(long)]
     pub json: bool,
     /// Relative rank tolerance of the SVD (default: max(rows, cols) · machine epsilon).
-    #[arg(long, value_name = "REL")]
+    #[arg(long, value_name = "REL", value_parser = super::values::positive)]
     pub rank_tol: Option<f64>,
     /// Also report the K lowest natural frequencies about the current state (strings need
     /// stiffness and rest length, bars mass, material and radius).

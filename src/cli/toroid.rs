@@ -3,6 +3,7 @@
 //! [`toroid::roll`], [`toroid::rolling_series`], [`toroid::tipover_report`]) and prints the
 //! report. The defaults are the library's ([`toroid::defaults`]).
 
+use super::values;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use tensegrity_io::figure::{Figure, Panel, Series};
@@ -22,28 +23,28 @@ pub struct GeometryArgs {
     #[arg(long, default_value_t = REF.sides)]
     pub sides: usize,
     /// Outer tread width T (m).
-    #[arg(long, default_value_t = REF.outer_tread)]
+    #[arg(long, default_value_t = REF.outer_tread, value_parser = values::positive)]
     pub outer_tread: f64,
     /// Inner tread width t (m).
-    #[arg(long, default_value_t = REF.inner_tread)]
+    #[arg(long, default_value_t = REF.inner_tread, value_parser = values::positive)]
     pub inner_tread: f64,
     /// Tread offset D (m).
-    #[arg(long, default_value_t = REF.offset)]
+    #[arg(long, default_value_t = REF.offset, value_parser = values::non_negative)]
     pub offset: f64,
     /// Outer radius R_o (m).
-    #[arg(long, default_value_t = REF.outer_radius)]
+    #[arg(long, default_value_t = REF.outer_radius, value_parser = values::positive)]
     pub outer_radius: f64,
     /// Inner radius R_i (m).
-    #[arg(long, default_value_t = REF.inner_radius)]
+    #[arg(long, default_value_t = REF.inner_radius, value_parser = values::positive)]
     pub inner_radius: f64,
     /// Rim radius R_m (m).
-    #[arg(long, default_value_t = REF.rim_radius)]
+    #[arg(long, default_value_t = REF.rim_radius, value_parser = values::positive)]
     pub rim_radius: f64,
     /// Stabilising strings: any of spokes, inner, outer (comma-separated), or none.
     #[arg(long, default_value_t = Stabilize::SPOKES_INNER)]
     pub stabilize: Stabilize,
     /// Bar mass per length (kg/m); strings are massless.
-    #[arg(long, default_value_t = defaults::BAR_DENSITY, value_name = "KG_PER_M")]
+    #[arg(long, default_value_t = defaults::BAR_DENSITY, value_parser = values::positive, value_name = "KG_PER_M")]
     pub bar_density: f64,
 }
 
@@ -75,7 +76,7 @@ pub struct ToroidArgs {
     #[arg(long)]
     prism_only: bool,
     /// Minimum string tension of the prestress design (N).
-    #[arg(long, default_value_t = defaults::DESIGN_MIN_TENSION)]
+    #[arg(long, default_value_t = defaults::DESIGN_MIN_TENSION, value_parser = values::positive)]
     min_tension: f64,
     /// Also search the rim radii R_m for which a single prism is prestressable.
     #[arg(long)]
@@ -217,10 +218,10 @@ pub struct RollArgs {
     #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
     incline: f64,
     /// Simulated time (s).
-    #[arg(long, default_value_t = defaults::ROLL_T_END)]
+    #[arg(long, default_value_t = defaults::ROLL_T_END, value_parser = values::positive)]
     t_end: f64,
     /// Integration step (s).
-    #[arg(long, default_value_t = defaults::ROLL_DT)]
+    #[arg(long, default_value_t = defaults::ROLL_DT, value_parser = values::positive)]
     dt: f64,
     /// Model: the reduced rigid polygon, the full tensegrity dynamics, or auto (rigid when
     /// m g / (k R_o) < 1e-3, i.e. the strings barely stretch under the wheel's weight).
@@ -230,19 +231,19 @@ pub struct RollArgs {
     #[arg(long, value_enum, default_value_t = ContactArg::Thesis)]
     contact: ContactArg,
     /// Ground damping (N·s/m): contact-velocity damping (thesis) or normal damping (penalty).
-    #[arg(long, default_value_t = defaults::GROUND_DAMPING)]
+    #[arg(long, default_value_t = defaults::GROUND_DAMPING, value_parser = values::non_negative)]
     ground_damping: f64,
     /// Penalty ground stiffness (N/m).
-    #[arg(long, default_value_t = defaults::GROUND_STIFFNESS)]
+    #[arg(long, default_value_t = defaults::GROUND_STIFFNESS, value_parser = values::positive)]
     ground_stiffness: f64,
     /// Static friction coefficient of the penalty ground (kinetic = 0.75 of it).
-    #[arg(long, default_value_t = defaults::STATIC_FRICTION)]
+    #[arg(long, default_value_t = defaults::STATIC_FRICTION, value_parser = values::non_negative)]
     mu: f64,
     /// String stiffness of the full model (N/m).
-    #[arg(long, default_value_t = defaults::STRING_STIFFNESS)]
+    #[arg(long, default_value_t = defaults::STRING_STIFFNESS, value_parser = values::positive)]
     string_stiffness: f64,
     /// Smallest string tension of the full model's prestress (N).
-    #[arg(long, default_value_t = defaults::ROLL_MIN_TENSION)]
+    #[arg(long, default_value_t = defaults::ROLL_MIN_TENSION, value_parser = values::positive)]
     min_tension: f64,
     /// Write the sampled history (1 ms) to this CSV file.
     #[arg(long)]
@@ -344,16 +345,16 @@ pub struct TipoverArgs {
     #[command(flatten)]
     geometry: GeometryArgs,
     /// Gravity (m/s²).
-    #[arg(long, default_value_t = defaults::GRAVITY)]
+    #[arg(long, default_value_t = defaults::GRAVITY, value_parser = values::positive)]
     gravity: f64,
     /// Instead of one wheel, write F_f/F_e over a σ × ε grid (Fig. 3.13) to this CSV.
     #[arg(long)]
     grid: Option<PathBuf>,
     /// Grid points per axis.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = values::at_least_two)]
     grid_points: usize,
     /// Largest ε of the grid.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = values::positive)]
     eps_max: f64,
     /// Print JSON.
     #[arg(long)]
@@ -464,7 +465,7 @@ pub struct FigRollingArgs {
     #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
     incline: f64,
     /// Simulated time (s).
-    #[arg(long, default_value_t = defaults::ROLL_T_END)]
+    #[arg(long, default_value_t = defaults::ROLL_T_END, value_parser = values::positive)]
     t_end: f64,
 }
 

@@ -8,6 +8,7 @@
 //! - [`statics`]: equilibrium matrix A q = w, SVD rank, self-stress, mechanisms,
 //!   prestressability (LP), minimal-norm load solve with reactions;
 //! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
+//! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
@@ -33,6 +34,7 @@ pub mod stiffness;
 pub mod structure;
 #[cfg(any(test, feature = "test-models"))]
 pub mod test_models;
+pub mod validate;
 
 pub use connectivity::{Connectivity, Incidence};
 pub use dynamics::{IntegratorKind, Simulation, SimulationResult, SimulationSettings};

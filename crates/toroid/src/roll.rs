@@ -114,6 +114,42 @@ impl RollRequest {
         }
     }
 
+    /// Checks every scalar of the request with the core's shared rules (named as the flags
+    /// of `tensegrity roll`, with `_` for `-`): positive times, step, gravity, stiffnesses
+    /// and tension; non-negative damping and friction; an incline in [0, π/2).
+    ///
+    /// ```
+    /// use toroid::RollRequest;
+    /// assert!(RollRequest::default().validate().is_ok());
+    /// let bad = RollRequest { ground_damping: -5.0, ..RollRequest::default() };
+    /// assert!(bad.validate().unwrap_err().to_string().contains("ground_damping = -5"));
+    /// let bad = RollRequest { mu: -1.0, ..RollRequest::default() };
+    /// assert!(bad.validate().unwrap_err().to_string().contains("mu = -1"));
+    /// let bad = RollRequest { ground_stiffness: 0.0, ..RollRequest::default() };
+    /// assert!(bad.validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        use tensegrity_core::validate::{non_negative, positive};
+        positive("t_end", self.t_end)?;
+        positive("dt", self.dt)?;
+        positive("gravity", self.gravity)?;
+        positive("ground_stiffness", self.ground_stiffness)?;
+        positive("string_stiffness", self.string_stiffness)?;
+        positive("min_tension", self.min_tension)?;
+        non_negative("ground_damping", self.ground_damping)?;
+        non_negative("mu", self.mu)?;
+        if !(self.incline.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&self.incline))
+        {
+            return Err(tensegrity_core::CoreError::invalid_parameter(
+                "incline",
+                self.incline,
+                "must lie in [0, π/2) rad",
+            )
+            .into());
+        }
+        self.wheel.params.validate()
+    }
+
     /// The contact model of the full run.
     pub fn contact_model(&self) -> ContactModel {
         match self.contact {
@@ -178,6 +214,7 @@ pub struct RollReport {
 /// assert!(r.mean_speed > 0.0 && r.impacts > 0);
 /// ```
 pub fn roll(request: &RollRequest) -> Result<RollReport> {
+    request.validate()?;
     let t = request.wheel.build()?;
     let a = analyse(&t)?;
     let fidelity = request.fidelity_for(a.mass_kg, t.params.outer_radius);

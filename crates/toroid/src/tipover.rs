@@ -93,6 +93,8 @@ pub fn tipover(p: &ToroidParams, mass: f64, gravity: f64) -> Result<TipOver> {
 /// F_f' over a σ × ε grid (Fig. 3.13): rows `(σ, ε, F_f')`, σ and ε each on `n` points of
 /// the open intervals (0, 1) and (0, `eps_max`].
 pub fn friction_grid(n: usize, eps_max: f64) -> Result<Vec<(f64, f64, f64)>> {
+    tensegrity_core::validate::count_at_least("grid_points", n, 2)?;
+    tensegrity_core::validate::positive("eps_max", eps_max)?;
     let mut out = Vec::with_capacity(n * n);
     for i in 1..=n {
         let sigma = i as f64 / (n + 1) as f64;

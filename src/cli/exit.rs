@@ -1,0 +1,65 @@
+//! Exit codes (DESIGN.md, Outputs): 0 success, 1 failure of the computation, 2 bad input or
+//! usage (clap's own errors exit 2 as well).
+
+use michell3d::MichellError;
+use tensegrity_core::CoreError;
+use tensegrity_io::IoError;
+use toroid::ToroidError;
+
+/// Success.
+pub const OK: i32 = 0;
+/// The computation failed (not prestressable, diverged, load not carried, …).
+pub const FAILURE: i32 = 1;
+/// Bad input: a parameter out of range, an unreadable or invalid file.
+pub const BAD_INPUT: i32 = 2;
+
+/// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), [`BAD_INPUT`]
+/// when any error in the chain is about the input, else [`FAILURE`].
+pub fn code(e: &anyhow::Error) -> i32 {
+    let broken_pipe = e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    });
+    if broken_pipe {
+        OK
+    } else if e.chain().any(is_bad_input) {
+        BAD_INPUT
+    } else {
+        FAILURE
+    }
+}
+
+fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
+    if let Some(e) = e.downcast_ref::<CoreError>() {
+        return matches!(e, CoreError::InvalidParameter { .. });
+    }
+    if let Some(e) = e.downcast_ref::<ToroidError>() {
+        return matches!(
+            e,
+            ToroidError::InvalidParameter { .. } | ToroidError::UnknownStabilizeOption { .. }
+        ) || matches!(e, ToroidError::Core(CoreError::InvalidParameter { .. }));
+    }
+    if let Some(e) = e.downcast_ref::<MichellError>() {
+        return matches!(
+            e,
+            MichellError::InvalidParameter { .. }
+                | MichellError::Core(CoreError::InvalidParameter { .. })
+        );
+    }
+    e.downcast_ref::<IoError>().is_some_and(
+        |e| !matches!(e, IoError::Core(c) if !matches!(c, CoreError::InvalidParameter { .. })),
+    )
+}
+
+/// The error and its causes joined by `: `, leaving out a cause its parent's message
+/// already quotes (many errors print their source).
+pub fn message(e: &anyhow::Error) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if !parts.last().is_some_and(|p| p.contains(&text)) {
+            parts.push(text);
+        }
+    }
+    parts.join(": ")
+}
