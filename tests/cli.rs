@@ -552,3 +552,33 @@ fn bad_flags_are_usage_errors_naming_the_flag() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("inner_radius = 1.5"));
 }
+
+#[test]
+fn a_drifted_simulation_warns_and_fails_under_strict() {
+    let args = [
+        "simulate",
+        "examples/prism_drop.toml",
+        "--integrator",
+        "rk4",
+        "--dt",
+        "0.05",
+        "--json",
+    ];
+    let out = run(&args);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warnings = v["warnings"].as_array().expect("warnings in the JSON");
+    assert!(warnings[0]
+        .as_str()
+        .unwrap()
+        .contains("bar lengths drifted"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("warning: bar lengths drifted"));
+    let mut strict = args.to_vec();
+    strict.push("--strict");
+    assert_eq!(run(&strict).status.code(), Some(1));
+    // the scene's own settings (rk45) stay within the limits: no warnings key at all
+    let out = run(&["simulate", "examples/prism_drop.toml", "--json", "--strict"]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v.get("warnings").is_none());
+}

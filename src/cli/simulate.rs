@@ -69,6 +69,9 @@ pub struct SimulateArgs {
     /// Print the JSON report.
     #[arg(long)]
     pub json: bool,
+    /// Fail (exit 1, after writing the outputs) when the run has a drift warning.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
@@ -116,6 +119,15 @@ pub fn run_scene(
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print_report(args, simulation.settings.integrator, &report);
+    }
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    if args.strict && !report.warnings.is_empty() {
+        anyhow::bail!(
+            "--strict: {} drift warning(s) (see above)",
+            report.warnings.len()
+        );
     }
     Ok(())
 }

@@ -48,6 +48,7 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
+pub mod drift;
 pub mod events;
 pub mod forces;
 pub mod integrator;
@@ -64,6 +65,7 @@ pub mod strings;
 #[cfg(any(test, feature = "test-models"))]
 pub mod work_precision;
 
+pub use drift::{DriftLimits, DriftQuantity, DriftWarning};
 pub use events::{Event, EventFn, EventHit, StateView};
 pub use forces::{Ground, GroundModel};
 pub use integrator::{Integrator, IntegratorKind, IntegratorStats, StepOutcome};

@@ -19,6 +19,7 @@ use serde::Serialize;
 /// let report = SimulationReport::from(&r);
 /// assert_eq!(report.steps, 10);
 /// assert_eq!(report.final_nodes[1], [1.0, 0.0, 0.0]); // no force, no motion
+/// assert!(report.warnings.is_empty());
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SimulationReport {
@@ -40,6 +41,10 @@ pub struct SimulationReport {
     pub constraint_drift: f64,
     /// Wall time of the integration alone (s).
     pub wall_time_s: f64,
+    /// The invariants that drifted past their limits, each with its remedy (absent when the
+    /// run is within them).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 impl From<&SimulationResult> for SimulationReport {
@@ -54,6 +59,7 @@ impl From<&SimulationResult> for SimulationReport {
             bar_length_drift: r.bar_length_drift,
             constraint_drift: r.constraint_drift,
             wall_time_s: r.wall_time_s,
+            warnings: r.warnings.iter().map(ToString::to_string).collect(),
         }
     }
 }

@@ -8,6 +8,7 @@
 //! dense output where the integrator has one), projects non-conserving methods back onto the
 //! constraints if asked, and updates the monitors.
 
+use super::drift::{self, DriftLimits, DriftWarning};
 use super::events::EventTracker;
 pub use super::events::{Event, EventFn, EventHit, StateView};
 pub use super::integrator::IntegratorKind;
@@ -49,6 +50,8 @@ pub struct SimulationSettings {
     pub project: bool,
     /// Blow-up distance (m); `None` = [`Model::default_blowup_limit`].
     pub blowup_distance: Option<f64>,
+    /// Limits of the invariants' drift past which the result carries a warning.
+    pub drift_limits: DriftLimits,
 }
 
 impl Default for SimulationSettings {
@@ -66,6 +69,7 @@ impl Default for SimulationSettings {
             quantities: Quantities::default(),
             project: false,
             blowup_distance: None,
+            drift_limits: DriftLimits::default(),
         }
     }
 }
@@ -99,6 +103,9 @@ pub struct SimulationResult {
     pub samples: Vec<Sample>,
     /// Located events.
     pub events: Vec<EventHit>,
+    /// The invariants past their limits ([`SimulationSettings::drift_limits`]): a run with
+    /// warnings integrated its equations too loosely to be trusted.
+    pub warnings: Vec<DriftWarning>,
 }
 
 impl SimulationResult {
@@ -454,7 +461,16 @@ impl<'a> Driver<'a> {
     fn finish(mut self, wall_time_s: f64) -> SimulationResult {
         let model = &self.sim.model;
         self.stats.rhs_evals = self.ws.rhs_evals;
+        let warnings = drift::check(
+            model,
+            self.sim.settings.integrator,
+            &self.sim.settings.drift_limits,
+            self.monitor.energy_drift(),
+            self.monitor.bar_length_drift,
+            self.monitor.constraint_drift,
+        );
         SimulationResult {
+            warnings,
             t_end: self.t,
             steps: self.stats.steps,
             rejected_steps: self.stats.rejected_steps,

@@ -1,0 +1,162 @@
+//! Validity of a finished run: the invariants the equations conserve, checked against
+//! documented limits, so a drifted trajectory never comes back without a word.
+//!
+//! * Bar lengths: rigid bars keep their length exactly; the largest error relative to the
+//!   shortest bar must stay below [`DriftLimits::bar_length`] (default 10⁻⁶).
+//! * Linear constraints N P = D (class-k joints, supports): the largest ‖N P − D‖ component
+//!   relative to the shortest bar must stay below [`DriftLimits::constraint`] (10⁻⁶).
+//! * Energy, only when the model is conservative ([`Model::is_conservative`]: no string or
+//!   ground damping, no friction, no thesis ground, no actuation): the relative drift
+//!   max|E − E₀| / max(|E₀|, max kinetic energy) must stay below [`DriftLimits::energy`]
+//!   (10⁻³).
+//!
+//! Each breach is a [`DriftWarning`] whose message names the remedy: a smaller step, the
+//! adaptive `rk45`, the constraint-preserving `rattle`, or projection.
+
+use super::forces::{Ground, GroundModel};
+use super::integrator::IntegratorKind;
+use super::model::Model;
+use std::fmt;
+
+/// Limits of the invariants' drift (relative; see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriftLimits {
+    /// Relative energy drift of a conservative model.
+    pub energy: f64,
+    /// Bar-length error relative to the shortest bar.
+    pub bar_length: f64,
+    /// ‖N P − D‖ relative to the shortest bar.
+    pub constraint: f64,
+}
+
+impl Default for DriftLimits {
+    fn default() -> Self {
+        Self {
+            energy: 1e-3,
+            bar_length: 1e-6,
+            constraint: 1e-6,
+        }
+    }
+}
+
+/// The invariant a warning is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum DriftQuantity {
+    /// Total energy of a conservative model.
+    Energy,
+    /// Rigid bar lengths.
+    BarLength,
+    /// The linear constraints N P = D.
+    Constraint,
+}
+
+/// One invariant past its limit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriftWarning {
+    /// Which invariant.
+    pub quantity: DriftQuantity,
+    /// The measured relative drift.
+    pub value: f64,
+    /// The limit it passed.
+    pub limit: f64,
+    /// The integrator that ran (the remedy depends on it).
+    pub integrator: IntegratorKind,
+}
+
+impl fmt::Display for DriftWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let what = match self.quantity {
+            DriftQuantity::Energy => "energy of this conservative model drifted",
+            DriftQuantity::BarLength => "bar lengths drifted",
+            DriftQuantity::Constraint => "joint and support constraints (N P = D) drifted",
+        };
+        let remedy = match (self.quantity, self.integrator) {
+            (_, IntegratorKind::Rattle) => "use a smaller --dt",
+            (DriftQuantity::Energy, IntegratorKind::Rk45) => {
+                "tighten --rtol/--atol, or use --integrator rattle (symplectic)"
+            }
+            (DriftQuantity::Energy, _) => {
+                "use a smaller --dt, --integrator rk45, or --integrator rattle (symplectic, no secular drift)"
+            }
+            _ => "use a smaller --dt, --integrator rattle (keeps lengths and joints exactly), or projection ([simulation] project = true)",
+        };
+        write!(
+            f,
+            "{what}: {:.3e} relative, above the limit {:.1e}; the trajectory is not trustworthy: {remedy}",
+            self.value, self.limit
+        )
+    }
+}
+
+/// The warnings of a run with the given drifts (`bar_length` and `constraint` in metres).
+pub fn check(
+    model: &Model,
+    integrator: IntegratorKind,
+    limits: &DriftLimits,
+    energy: f64,
+    bar_length: f64,
+    constraint: f64,
+) -> Vec<DriftWarning> {
+    let l_min = model.shortest_bar();
+    let mut out = Vec::new();
+    let mut push = |quantity, value: f64, limit: f64| {
+        // NaN drifts count as breaches
+        if value.is_nan() || value > limit {
+            out.push(DriftWarning {
+                quantity,
+                value,
+                limit,
+                integrator,
+            });
+        }
+    };
+    if model.is_conservative() {
+        push(DriftQuantity::Energy, energy, limits.energy);
+    }
+    push(
+        DriftQuantity::BarLength,
+        bar_length / l_min,
+        limits.bar_length,
+    );
+    push(
+        DriftQuantity::Constraint,
+        constraint / l_min,
+        limits.constraint,
+    );
+    out
+}
+
+impl Model {
+    /// Whether total energy is conserved by the equations: no string damping, no damping or
+    /// friction at a penalty ground, no thesis ground, no rest-length or load schedules.
+    pub fn is_conservative(&self) -> bool {
+        self.strings.iter().all(|s| s.law.damping == 0.0)
+            && self.rest_fn.is_none()
+            && self.load_fn.is_none()
+            && self.ground.as_ref().is_none_or(ground_is_conservative)
+    }
+
+    /// The shortest bar's length (m) of the initial state (1/ε when there is no bar).
+    pub fn shortest_bar(&self) -> f64 {
+        self.bars
+            .iter()
+            .map(|b| b.length0)
+            .fold(f64::INFINITY, f64::min)
+            .min(1.0 / f64::EPSILON)
+            .max(f64::MIN_POSITIVE)
+    }
+}
+
+/// A ground stores energy without losing it only as an undamped, frictionless penalty spring.
+fn ground_is_conservative(g: &Ground) -> bool {
+    match g.model {
+        GroundModel::Penalty {
+            damping,
+            mu_static,
+            mu_kinetic,
+            ..
+        } => damping == 0.0 && mu_static == 0.0 && mu_kinetic == 0.0,
+        _ => false,
+    }
+}
