@@ -143,8 +143,7 @@ impl Model {
             .iter()
             .map(|b| b.length0)
             .fold(f64::INFINITY, f64::min)
-            .min(1.0 / f64::EPSILON)
-            .max(f64::MIN_POSITIVE)
+            .clamp(f64::MIN_POSITIVE, 1.0 / f64::EPSILON)
     }
 }
 
