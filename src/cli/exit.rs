@@ -12,6 +12,18 @@ pub const OK: i32 = 0;
 pub const FAILURE: i32 = 1;
 /// Bad input: a parameter out of range, an unreadable or invalid file.
 pub const BAD_INPUT: i32 = 2;
+/// Interrupted by SIGINT/SIGTERM (128 + 2, the shell's convention for Ctrl-C).
+pub const INTERRUPTED: i32 = 130;
+
+/// A run stopped by a signal; the outputs so far were kept, marked incomplete.
+#[derive(Debug, thiserror::Error)]
+#[error("interrupted at t = {t} s; {rows} rows kept, marked incomplete")]
+pub struct Interrupted {
+    /// Time of the last sample written (s).
+    pub t: f64,
+    /// Trajectory rows written.
+    pub rows: usize,
+}
 
 /// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), [`BAD_INPUT`]
 /// when any error in the chain is about the input, else [`FAILURE`].
@@ -22,6 +34,8 @@ pub fn code(e: &anyhow::Error) -> i32 {
     });
     if broken_pipe {
         OK
+    } else if e.downcast_ref::<Interrupted>().is_some() {
+        INTERRUPTED
     } else if e.chain().any(is_bad_input) {
         BAD_INPUT
     } else {

@@ -7,5 +7,6 @@ pub mod exit;
 pub mod michell;
 pub mod simulate;
 pub mod statics;
+pub mod stream;
 pub mod toroid;
 pub mod values;

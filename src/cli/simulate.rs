@@ -8,11 +8,12 @@
 //! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
 //! `wall_time_s` (the integration alone, without parsing and output).
 
+use super::exit::Interrupted;
+use super::stream::{stop_on_signals, Outputs};
 use anyhow::{bail, Context, Result};
 use std::path::PathBuf;
-use tensegrity_core::dynamics::{
-    IntegratorKind, SimulationReport, SimulationResult, SimulationSettings,
-};
+use tensegrity_core::dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
+use tensegrity_core::CoreError;
 use tensegrity_core::Structure;
 use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, Scene, SimulationSpec};
 
@@ -101,24 +102,30 @@ pub fn run_scene(
     let mut simulation = build_simulation(structure, sim, ground, actuation)
         .with_context(|| format!("setting up the simulation of {}", args.scene.display()))?;
     apply_overrides(args, &mut simulation.settings, sim)?;
-    let result = simulation
-        .run()
-        .with_context(|| format!("simulating {}", args.scene.display()))?;
-    if let Some(path) = &args.out {
-        tensegrity_io::write_file(path, |w| tensegrity_io::csv::write_trajectory(w, &result))
-            .with_context(|| format!("writing the trajectory to {}", path.display()))?;
-    }
-    if let Some(dir) = &args.vtk {
-        let n = write_vtk(dir, structure, &result)?;
-        if !args.json {
-            println!("{n} VTK frames and series.pvd written to {}", dir.display());
+    let mut outputs = Outputs::open(args.out.as_deref(), args.vtk.as_deref(), structure)?;
+    stop_on_signals();
+    let run = simulation.run_streaming(&mut outputs);
+    let (rows, frames) = outputs.finish(run.as_ref().err())?;
+    let result = match run {
+        Err(CoreError::Interrupted { t }) => return Err(Interrupted { t, rows }.into()),
+        other => other.with_context(|| format!("simulating {}", args.scene.display()))?,
+    };
+    if !args.json {
+        if let Some(p) = &args.out {
+            println!("{rows} rows written to {}", p.display());
+        }
+        if let Some(dir) = &args.vtk {
+            println!(
+                "{frames} VTK frames and series.pvd written to {}",
+                dir.display()
+            );
         }
     }
     let report = SimulationReport::from(&result);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_report(args, simulation.settings.integrator, &report);
+        print_report(simulation.settings.integrator, &report);
     }
     for w in &report.warnings {
         eprintln!("warning: {w}");
@@ -172,20 +179,7 @@ fn apply_overrides(
     Ok(())
 }
 
-/// Writes the sampled node positions as a ParaView series; returns the frame count.
-fn write_vtk(
-    dir: &std::path::Path,
-    structure: &Structure,
-    result: &SimulationResult,
-) -> Result<usize> {
-    let frames = result
-        .samples
-        .iter()
-        .filter_map(|smp| smp.nodes.as_deref().map(|n| (smp.t, n)));
-    Ok(tensegrity_io::vtk::write_series(dir, structure, frames)?)
-}
-
-fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &SimulationReport) {
+fn print_report(integrator: IntegratorKind, report: &SimulationReport) {
     println!(
         "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
         report.t_end,
@@ -206,8 +200,5 @@ fn print_report(args: &SimulateArgs, integrator: IntegratorKind, report: &Simula
     println!("final nodes (m):");
     for (i, n) in report.final_nodes.iter().enumerate() {
         println!("  {i:4}  {:+.9e} {:+.9e} {:+.9e}", n[0], n[1], n[2]);
-    }
-    if let Some(p) = &args.out {
-        println!("trajectory written to {}", p.display());
     }
 }

@@ -170,6 +170,12 @@ pub enum CoreError {
         /// The unbalanced nodes.
         nodes: Vec<usize>,
     },
+    /// The run was interrupted (a sample sink asked to stop, e.g. on Ctrl-C).
+    #[error("interrupted at t = {t} s")]
+    Interrupted {
+        /// Time of the last sample handed out (s).
+        t: f64,
+    },
     /// A numerical kernel failed to converge.
     #[error("{operation} did not converge")]
     NoConvergence {

@@ -29,6 +29,7 @@ pub mod csv;
 pub mod error;
 pub mod figure;
 pub mod scene;
+pub mod trajectory;
 pub mod vtk;
 
 pub use error::{IoError, Result};
@@ -93,7 +94,7 @@ pub fn write_file<T>(path: &Path, fill: impl FnOnce(&mut dyn Write) -> Result<T>
 }
 
 /// `dir/.name.tmp` beside `path`.
-fn temporary_path(path: &Path) -> PathBuf {
+pub(crate) fn temporary_path(path: &Path) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())

@@ -141,3 +141,74 @@ pub fn write_series<'a>(
     })?;
     Ok(count)
 }
+
+/// A ParaView series written frame by frame as a run produces it (bounded memory): each
+/// `.vtu` is written whole when its frame arrives, the `.pvd` collection at [`finish`].
+///
+/// ```
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_io::vtk::SeriesWriter;
+/// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1)).build().unwrap();
+/// let dir = std::env::temp_dir().join(format!("tensegrity-io-vtk-stream-{}", std::process::id()));
+/// let mut w = SeriesWriter::create(&dir, &s)?; // the directory exists from here on
+/// w.frame(0.0, &s.nodes())?;
+/// w.frame(0.5, &s.nodes())?;
+/// assert_eq!(w.finish()?, 2);
+/// assert!(dir.join("series.pvd").exists() && dir.join("frame_00001.vtu").exists());
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+///
+/// [`finish`]: SeriesWriter::finish
+#[derive(Debug)]
+pub struct SeriesWriter<'a> {
+    dir: std::path::PathBuf,
+    structure: &'a Structure,
+    pvd: String,
+    count: usize,
+}
+
+impl<'a> SeriesWriter<'a> {
+    /// Creates `dir` (and its parents) now, so a bad path fails before the run.
+    pub fn create(dir: &Path, structure: &'a Structure) -> Result<Self> {
+        std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            structure,
+            pvd: String::from(
+                "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
+            ),
+            count: 0,
+        })
+    }
+
+    /// Writes the frame of time `t` with node positions `nodes` (file numbering).
+    pub fn frame(&mut self, t: f64, nodes: &[Vector3<f64>]) -> Result<()> {
+        let name = format!("frame_{:05}.vtu", self.count);
+        crate::write_file(&self.dir.join(&name), |w| {
+            w.write_all(vtu(self.structure, nodes).as_bytes())
+                .map_err(IoError::stream("VTK frame"))
+        })?;
+        let _ = writeln!(
+            self.pvd,
+            r#"<DataSet timestep="{t:e}" part="0" file="{name}"/>"#
+        );
+        self.count += 1;
+        Ok(())
+    }
+
+    /// Writes `series.pvd` over the frames so far; returns their number.
+    pub fn finish(mut self) -> Result<usize> {
+        self.pvd.push_str("</Collection>\n</VTKFile>\n");
+        let pvd = std::mem::take(&mut self.pvd);
+        crate::write_file(&self.dir.join("series.pvd"), |w| {
+            w.write_all(pvd.as_bytes())
+                .map_err(IoError::stream("VTK collection"))
+        })?;
+        Ok(self.count)
+    }
+}

@@ -72,7 +72,7 @@ pub use integrator::{Integrator, IntegratorKind, IntegratorStats, StepOutcome};
 pub use model::{LoadFn, Model, NodeRef, RestLengthFn, Workspace};
 pub use monitors::Monitor;
 pub use rattle::{ConstraintSet, Rattle};
-pub use recorder::{Quantities, Recorder, Sample};
+pub use recorder::{Quantities, Recorder, Sample, SampleSink};
 pub use report::SimulationReport;
 pub use rk4::Rk4;
 pub use rk45::Dopri5;

@@ -57,13 +57,46 @@ pub struct Sample {
     pub contact_forces: Option<Vec<(usize, Vector3<f64>)>>,
 }
 
-/// Collects samples at the requested times.
+/// Where the samples of a streamed run go ([`Simulation::run_streaming`]), one at a time, in
+/// time order.
+///
+/// [`Simulation::run_streaming`]: super::Simulation::run_streaming
+pub trait SampleSink {
+    /// Takes one sample; an error stops the run with that error.
+    fn accept(&mut self, sample: Sample) -> Result<(), CoreError>;
+}
+
+impl SampleSink for Vec<Sample> {
+    fn accept(&mut self, sample: Sample) -> Result<(), CoreError> {
+        self.push(sample);
+        Ok(())
+    }
+}
+
+/// Regular output times k·dt, k = 0..=n, generated one at a time (a run of 10⁹ steps with
+/// an output every step must not hold 10⁹ times in memory).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Grid {
+    dt: f64,
+    t_end: f64,
+    n: u64,
+    k: u64,
+}
+
+impl Grid {
+    fn next_time(&self) -> Option<f64> {
+        (self.k <= self.n).then(|| (self.k as f64 * self.dt).min(self.t_end))
+    }
+}
+
+/// Collects samples at the requested times: explicit times merged with a regular grid.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Recorder {
     times: Vec<f64>,
     next: usize,
+    grid: Option<Grid>,
     quantities: Quantities,
-    /// The samples taken so far.
+    /// The samples taken so far (handed out and cleared by a streamed run).
     pub samples: Vec<Sample>,
 }
 
@@ -74,21 +107,53 @@ impl Recorder {
         times.sort_by(f64::total_cmp);
         times.dedup();
         Self {
-            samples: Vec::with_capacity(times.len()),
+            samples: Vec::new(),
             times,
             next: 0,
+            grid: None,
             quantities,
         }
     }
 
-    /// The next output time not yet sampled.
-    pub fn next_time(&self) -> Option<f64> {
-        self.times.get(self.next).copied()
+    /// Adds the regular output times k·`dt` for k·dt ≤ `t_end` (the last one clamped to
+    /// `t_end`), generated lazily.
+    pub fn with_interval(mut self, dt: f64, t_end: f64) -> Self {
+        let n = (t_end / dt * (1.0 + 1e-12)).floor();
+        if dt > 0.0 && n.is_finite() && n >= 0.0 {
+            self.grid = Some(Grid {
+                dt,
+                t_end,
+                n: n as u64,
+                k: 0,
+            });
+        }
+        self
     }
 
-    /// The requested output times.
+    /// The next output time not yet sampled.
+    pub fn next_time(&self) -> Option<f64> {
+        let explicit = self.times.get(self.next).copied();
+        match (explicit, self.grid.and_then(|g| g.next_time())) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// The explicit output times (the regular grid of [`Recorder::with_interval`] aside).
     pub fn times(&self) -> &[f64] {
         &self.times
+    }
+
+    /// Moves past the output time `due` (both lists, when they share it).
+    fn advance(&mut self, due: Option<f64>) {
+        if self.times.get(self.next).copied() == due {
+            self.next += 1;
+        }
+        if let Some(g) = self.grid.as_mut() {
+            if g.next_time() == due {
+                g.k += 1;
+            }
+        }
     }
 
     /// Records the state `y` at the next output time `t` and advances.
@@ -115,7 +180,8 @@ impl Recorder {
         };
         ws.rhs_evals = evals; // diagnostics do not count as integration work
         self.samples.push(sample);
-        self.next += 1;
+        let due = self.next_time();
+        self.advance(due);
         Ok(())
     }
 }

@@ -16,7 +16,7 @@ use super::integrator::{Integrator, IntegratorStats, StepOutcome};
 use super::model::{Model, Workspace};
 use super::monitors::Monitor;
 use super::rattle::ConstraintSet;
-use super::recorder::{Quantities, Recorder, Sample};
+use super::recorder::{Quantities, Recorder, Sample, SampleSink};
 use crate::error::CoreError;
 use crate::structure::Structure;
 use nalgebra::Vector3;
@@ -183,10 +183,25 @@ impl Simulation {
 
     /// Runs the simulation from t = 0 to `settings.t_end` (or to a terminal event).
     pub fn run(&self) -> Result<SimulationResult, CoreError> {
+        self.run_inner(None)
+    }
+
+    /// Runs the simulation handing every recorded sample to `sink` as soon as it is taken
+    /// (bounded memory: [`SimulationResult::samples`] stays empty). A sink that returns an
+    /// error (e.g. [`CoreError::Interrupted`]) stops the run there with that error; the
+    /// samples it accepted so far are complete.
+    pub fn run_streaming(&self, sink: &mut dyn SampleSink) -> Result<SimulationResult, CoreError> {
+        self.run_inner(Some(sink))
+    }
+
+    fn run_inner<'a>(
+        &'a self,
+        sink: Option<&'a mut dyn SampleSink>,
+    ) -> Result<SimulationResult, CoreError> {
         self.validate()?;
         let s = &self.settings;
         let mut integrator = s.integrator.build(&self.model, s.rtol, s.atol)?;
-        let mut driver = Driver::new(self, integrator.as_ref())?;
+        let mut driver = Driver::new(self, integrator.as_ref(), sink)?;
         let start = Instant::now();
         let h0 = integrator.start(&self.model, &mut driver.ws, 0.0, &driver.y, s.dt)?;
         let mut control = if integrator.is_adaptive() {
@@ -221,17 +236,17 @@ impl Simulation {
         Ok(())
     }
 
-    /// The sorted output times: the explicit ones plus the `output_interval` grid, within
-    /// [0, t_end].
-    fn output_times(&self) -> Vec<f64> {
+    /// The recorder of the output times: the explicit ones within [0, t_end] merged with the
+    /// `output_interval` grid, which is generated lazily.
+    fn recorder(&self) -> Recorder {
         let s = &self.settings;
         let mut times: Vec<f64> = s.output_times.clone();
-        if let Some(dt_out) = s.output_interval {
-            let n = (s.t_end / dt_out * (1.0 + 1e-12)).floor() as usize;
-            times.extend((0..=n).map(|i| (i as f64 * dt_out).min(s.t_end)));
-        }
         times.retain(|&t| t >= 0.0 && t <= s.t_end * (1.0 + 1e-12));
-        times
+        let rec = Recorder::new(times, s.quantities);
+        match s.output_interval {
+            Some(dt_out) => rec.with_interval(dt_out, s.t_end),
+            None => rec,
+        }
     }
 }
 
@@ -305,18 +320,24 @@ struct Driver<'a> {
     stats: IntegratorStats,
     /// Time spent recording (excluded from the reported wall time).
     diag_time: f64,
+    /// Where samples go as they are taken (else they are kept in the recorder).
+    sink: Option<&'a mut dyn SampleSink>,
 }
 
 impl<'a> Driver<'a> {
     /// Workspace, recorder, monitors and projector at t = 0 (samples due at 0 are taken).
-    fn new(sim: &'a Simulation, integ: &dyn Integrator) -> Result<Self, CoreError> {
+    fn new(
+        sim: &'a Simulation,
+        integ: &dyn Integrator,
+        sink: Option<&'a mut dyn SampleSink>,
+    ) -> Result<Self, CoreError> {
         let (model, s) = (&sim.model, &sim.settings);
         let mut ws = model.workspace()?;
         let y = sim.y0.clone();
         let blowup_limit = s
             .blowup_distance
             .unwrap_or_else(|| model.default_blowup_limit());
-        let mut rec = Recorder::new(sim.output_times(), s.quantities);
+        let mut rec = sim.recorder();
         let monitor = Monitor::new(model, &y);
         model.check_state(0.0, &y, blowup_limit)?;
         let eps = 1e-12 * s.t_end.max(1.0);
@@ -335,7 +356,7 @@ impl<'a> Driver<'a> {
                 .map(|b| b.length0 * b.length0)
                 .fold(1.0, f64::max);
         let dense = integ.has_dense_output();
-        Ok(Self {
+        let mut driver = Self {
             sim,
             events: EventTracker::new(&sim.events, model, 0.0, &y, dense),
             buf: vec![0.0; y.len()],
@@ -350,7 +371,20 @@ impl<'a> Driver<'a> {
             proj_tol,
             stats: IntegratorStats::default(),
             diag_time: 0.0,
-        })
+            sink,
+        };
+        driver.drain()?;
+        Ok(driver)
+    }
+
+    /// Hands the samples taken so far to the sink, if there is one.
+    fn drain(&mut self) -> Result<(), CoreError> {
+        if let Some(sink) = self.sink.as_mut() {
+            for sample in self.rec.samples.drain(..) {
+                sink.accept(sample)?;
+            }
+        }
+        Ok(())
     }
 
     /// The driver loop: attempt, accept or reject, and post-process accepted steps.
@@ -439,7 +473,7 @@ impl<'a> Driver<'a> {
             }
             self.diag_time += d0.elapsed().as_secs_f64();
         }
-        Ok(())
+        self.drain()
     }
 
     /// Samples due at the current time (fixed steps land on the output times).
@@ -454,7 +488,7 @@ impl<'a> Driver<'a> {
                 .record(self.t, &self.y, &self.sim.model, &mut self.ws)?;
             self.diag_time += d0.elapsed().as_secs_f64();
         }
-        Ok(())
+        self.drain()
     }
 
     /// The result of the run.
