@@ -39,7 +39,9 @@
 //! some string force is < 0 or some bar force > 0 for a load on some tip. Above the minimum
 //! no direction slackens; below it the critical direction does (and nearby sampled ones).
 //! The thesis's claims are checked on the same sample: the bar stays in compression, and
-//! every load direction tightens (raises the tension of) at least two strings.
+//! every load direction is carried by the bar and at least two strings (their forces change).
+//! Note that a load need not *tighten* two strings: a radial load towards the hub unloads all
+//! four strings of a q = 1 tread and is carried by the prestress drop and the bar.
 
 use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
@@ -77,7 +79,11 @@ impl LoadResponse {
     /// each tip. Fails with [`TbarError::Mechanism`] when K is singular.
     pub fn new(statics: &Statics<'_>, tips: &[usize], ea: f64, what: &'static str) -> Result<Self> {
         if !(ea.is_finite() && ea > 0.0) {
-            return Err(invalid("ea", ea, "the axial stiffness must be finite and > 0"));
+            return Err(invalid(
+                "ea",
+                ea,
+                "the axial stiffness must be finite and > 0",
+            ));
         }
         let s = statics.structure();
         let lengths = s.member_lengths();
@@ -287,7 +293,9 @@ fn certify(
             }
         })
         .collect();
-    let best = (0..m).min_by(|&a, &b| slack[a].total_cmp(&slack[b]))?;
+    let least = slack.iter().copied().fold(f64::INFINITY, f64::min);
+    // ties (symmetric members bind together): the lowest index
+    let best = (0..m).find(|&k| slack[k] <= least + 1e-9)?;
     let active = (0..m).filter(|&k| slack[k] <= 1e-7).collect();
     let critical = critical_member(response, gains, best, labels);
     Some(EnvelopeSolution {
@@ -380,9 +388,12 @@ pub struct SlackMap {
     pub slack_fraction: f64,
     /// Whether every bar stays in compression for every sampled direction and tip.
     pub bar_always_compressed: bool,
-    /// The fewest strings whose tension a load raises, over the sampled directions and tips
-    /// (the thesis: a load is carried by the bar and at least two strings).
-    pub min_strings_tightened: usize,
+    /// The fewest strings whose force a load changes (|Δt| above 1e-9 of the largest change),
+    /// over the sampled directions and tips (the thesis: a load is carried by the bar and at
+    /// least two strings).
+    pub min_strings_carrying: usize,
+    /// Whether the bar's force changes for every sampled direction (it carries every load).
+    pub bar_always_carries: bool,
     /// Every sampled direction.
     pub points: Vec<SlackPoint>,
 }
@@ -415,6 +426,7 @@ pub fn slack_map(
     let mut points = Vec::with_capacity(dirs.len());
     let mut bar_ok = true;
     let mut min_tight = usize::MAX;
+    let mut bar_carries = true;
     for d in dirs {
         let mut margin = f64::INFINITY;
         for t in 0..response.tips.len() {
@@ -423,12 +435,13 @@ pub fn slack_map(
                 margin = margin.min(if k < nb { -v } else { *v });
                 bar_ok &= k >= nb || *v <= 0.0;
             }
-            let scale = response.g[t].iter().fold(0.0f64, |m, g| m.max(g.norm()));
-            let tight = response.g[t][nb..]
+            let scale = response.g[t]
                 .iter()
-                .filter(|g| g.dot(d) > 1e-9 * scale)
-                .count();
+                .fold(0.0f64, |m, g| m.max(g.dot(d).abs()));
+            let carrying = |g: &Vector3<f64>| g.dot(d).abs() > 1e-9 * scale;
+            let tight = response.g[t][nb..].iter().filter(|g| carrying(g)).count();
             min_tight = min_tight.min(tight);
+            bar_carries &= response.g[t][..nb].iter().any(carrying);
         }
         let (azimuth, polar) = angles(d);
         points.push(SlackPoint {
@@ -447,7 +460,12 @@ pub fn slack_map(
             slack as f64 / dirs.len() as f64
         },
         bar_always_compressed: bar_ok,
-        min_strings_tightened: if min_tight == usize::MAX { 0 } else { min_tight },
+        min_strings_carrying: if min_tight == usize::MAX {
+            0
+        } else {
+            min_tight
+        },
+        bar_always_carries: bar_carries,
         points,
     }
 }

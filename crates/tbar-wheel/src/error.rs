@@ -20,7 +20,9 @@ pub enum TbarError {
         reason: String,
     },
     /// The structure is too large for the dense analyses.
-    #[error("{what}: {size} exceeds the limit {limit}; reduce the complexity or the number of treads")]
+    #[error(
+        "{what}: {size} exceeds the limit {limit}; reduce the complexity or the number of treads"
+    )]
     TooLarge {
         /// What was counted (e.g. `free degrees of freedom`).
         what: &'static str,

@@ -249,7 +249,9 @@ impl TbarGeometry {
             bars: Vec::new(),
             strings: Vec::new(),
             tips: Vec::new(),
-            level_sizes: (0..=params.complexity()).map(|l| (l + 1) * (l + 1)).collect(),
+            level_sizes: (0..=params.complexity())
+                .map(|l| (l + 1) * (l + 1))
+                .collect(),
         };
         for copy in 0..params.copies() {
             let mut merger = Merger::new(params.michell.r0);

@@ -13,18 +13,24 @@
 //!   self-stress space, critical member and direction, slack map);
 //! - [`brute`]: an independent brute-force check of the minimum prestress;
 //! - [`mass`]: minimum-mass sizing for the envelope against the 3-D Michell truss;
+//! - [`drawing`]: polylines of Figs. 5.1–5.3 (side and top views) for the io figure module;
 //! - [`report`]: one complete analysis for the CLI ([`tbar_report`]).
 //!
 //! Not implemented yet: the free rim body (a ring of bars with a hub, class-k joints) and the
 //! tip-over and rolling of the extended wheel (issue items 1 "rim body", 2 "single loop" and 5).
 #![warn(missing_docs)]
 
+pub mod brute;
+pub mod drawing;
 pub mod envelope;
 pub mod error;
 pub mod geometry;
+pub mod mass;
 pub mod params;
+pub mod report;
 pub mod statics;
 
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
 pub use params::{BarBase, Layout, TbarParams};
+pub use report::{tbar_report, TbarReport, TbarRequest};

@@ -110,7 +110,10 @@ fn non_integer_tread_count_is_a_clear_error() {
     let e = cyl(1, PI / 8.0, 0.25).with_layout(Layout::Extended { offset: 0.0 });
     assert!(matches!(
         TbarGeometry::new(e),
-        Err(TbarError::InvalidParameter { name: "extended", .. })
+        Err(TbarError::InvalidParameter {
+            name: "extended",
+            ..
+        })
     ));
     assert!(TbarGeometry::new(cyl(1, PI / 8.0, 0.0)).is_err());
 }
