@@ -34,6 +34,8 @@ enum Command {
     FigRolling(cli::toroid::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
     Tipover(cli::toroid::TipoverArgs),
+    /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass.
+    Tbar(cli::tbar::TbarArgs),
 }
 
 fn main() {
@@ -50,6 +52,7 @@ fn main() {
         Command::Roll(args) => cli::toroid::run_roll(args),
         Command::Tipover(args) => cli::toroid::run_tipover(args),
         Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
+        Command::Tbar(args) => cli::tbar::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

@@ -8,5 +8,6 @@ pub mod michell;
 pub mod simulate;
 pub mod statics;
 pub mod stream;
+pub mod tbar;
 pub mod toroid;
 pub mod values;

@@ -20,7 +20,7 @@ mod stability;
 
 pub use flexes::Flexes;
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
-pub use prestress::{Prestressability, PRESTRESS_TOLERANCE};
+pub use prestress::{solve_lp, Prestressability, PRESTRESS_TOLERANCE};
 pub use stability::PrestressStability;
 
 use crate::error::Result;

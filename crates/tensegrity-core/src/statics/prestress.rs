@@ -69,7 +69,7 @@ impl Statics<'_> {
         };
         let z = match dense {
             Some(z) => z,
-            None => solve_clarabel(&g, &h, &c)?,
+            None => solve_clarabel(&g, &h, &c, "prestressability LP")?,
         };
         let x = z.rows(0, d).into_owned();
         let mut q = &basis * x;
@@ -94,8 +94,38 @@ impl Statics<'_> {
     }
 }
 
+/// Solves a small dense linear programme `min cᵀz  s.t.  G z ≤ h` (G: rows × p, rows ≥ p):
+/// the dense interior-point method of the prestressability LP first, Clarabel when it fails.
+/// `problem` names the LP in the error ([`CoreError::SolverFailed`]) when both fail, e.g.
+/// because the programme is infeasible or unbounded.
+///
+/// ```
+/// use nalgebra::{dmatrix, dvector};
+/// // min −x − y  s.t.  x ≤ 1, y ≤ 2, x + y ≤ 2.5, −x ≤ 0, −y ≤ 0  →  optimum −2.5
+/// let g = dmatrix![1.0, 0.0; 0.0, 1.0; 1.0, 1.0; -1.0, 0.0; 0.0, -1.0];
+/// let h = dvector![1.0, 2.0, 2.5, 0.0, 0.0];
+/// let z = tensegrity_core::statics::solve_lp(&g, &h, &dvector![-1.0, -1.0], "example").unwrap();
+/// assert!((z[0] + z[1] - 2.5).abs() < 1e-8);
+/// ```
+pub fn solve_lp(
+    g: &DMatrix<f64>,
+    h: &DVector<f64>,
+    c: &DVector<f64>,
+    problem: &'static str,
+) -> Result<DVector<f64>> {
+    match dense_lp::solve(g, h, c, 1e-10) {
+        Ok(z) => Ok(z),
+        Err(_) => solve_clarabel(g, h, c, problem),
+    }
+}
+
 /// Solves min cᵀz s.t. G z ≤ h with Clarabel.
-fn solve_clarabel(g: &DMatrix<f64>, h: &DVector<f64>, c: &DVector<f64>) -> Result<DVector<f64>> {
+fn solve_clarabel(
+    g: &DMatrix<f64>,
+    h: &DVector<f64>,
+    c: &DVector<f64>,
+    problem: &'static str,
+) -> Result<DVector<f64>> {
     let (rows, cols) = g.shape();
     let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
     for j in 0..cols {
@@ -110,10 +140,7 @@ fn solve_clarabel(g: &DMatrix<f64>, h: &DVector<f64>, c: &DVector<f64>) -> Resul
     let a = CscMatrix::new_from_triplets(rows, cols, ii, jj, vv);
     let p = CscMatrix::zeros((cols, cols));
     let cones = [SupportedConeT::NonnegativeConeT(rows)];
-    let failed = |status: String| CoreError::SolverFailed {
-        problem: "prestressability LP",
-        status,
-    };
+    let failed = |status: String| CoreError::SolverFailed { problem, status };
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
         .tol_gap_abs(1e-10)

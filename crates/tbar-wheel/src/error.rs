@@ -1,0 +1,71 @@
+//! The error type of the crate: every failure names the offending parameter or item.
+
+use thiserror::Error;
+
+/// Result alias of the crate.
+pub type Result<T> = std::result::Result<T, TbarError>;
+
+/// Everything that can go wrong when building or analysing a T-bar tread or wheel.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum TbarError {
+    /// A user parameter is outside its valid range.
+    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        /// Parameter name as the user knows it (e.g. `phi`, `extended`, `load`).
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// The structure is too large for the dense analyses.
+    #[error(
+        "{what}: {size} exceeds the limit {limit}; reduce the complexity or the number of treads"
+    )]
+    TooLarge {
+        /// What was counted (e.g. `free degrees of freedom`).
+        what: &'static str,
+        /// The count.
+        size: usize,
+        /// The largest accepted count.
+        limit: usize,
+    },
+    /// The linear elastic stiffness is singular: the load response is not defined.
+    #[error("the elastic stiffness of the {structure} is singular ({mechanisms} internal mechanism(s)): the small-displacement load response needs a first-order rigid structure")]
+    Mechanism {
+        /// `tread`, `wheel` or `extended wheel`.
+        structure: &'static str,
+        /// Number of internal first-order mechanisms.
+        mechanisms: usize,
+    },
+    /// No self-stress keeps every string in tension and every bar in compression.
+    #[error("the {structure} is not prestressable (self-stress dimension {self_stress_dim}): no prestress can carry a load from every direction")]
+    NotPrestressable {
+        /// `tread`, `wheel` or `extended wheel`.
+        structure: &'static str,
+        /// Dimension of its self-stress space.
+        self_stress_dim: usize,
+    },
+    /// The brute-force check supports a narrower class of structures than the LP.
+    #[error("brute-force check: {reason}")]
+    BruteForceUnsupported {
+        /// Why.
+        reason: String,
+    },
+    /// An error of the Michell parameterisation (e.g. an invalid β, δ or ε).
+    #[error(transparent)]
+    Michell(#[from] michell3d::MichellError),
+    /// An error of the core (statics, LP, sizing, materials).
+    #[error(transparent)]
+    Core(#[from] tensegrity_core::CoreError),
+}
+
+/// Shorthand for [`TbarError::InvalidParameter`].
+pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>) -> TbarError {
+    TbarError::InvalidParameter {
+        name,
+        value,
+        reason: reason.into(),
+    }
+}

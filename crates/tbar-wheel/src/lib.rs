@@ -1,0 +1,36 @@
+//! # tbar-wheel
+//!
+//! The T-bar tread and wheel of thesis chapter 5, built on the 3-D Michell parameters of
+//! chapter 4 (implemented with the corrections of ERRATA 4.x and 5.x):
+//!
+//! - [`params`]: [`TbarParams`] (Michell q, r₀, β, φ, δ/ε; [`BarBase`]; [`Layout`]: tread,
+//!   wheel of π/φ treads, extended wheel) and their validation;
+//! - [`geometry`]: the four-offspring lattice with merged tuples, the radial bar, the rigid rim
+//!   supports, the wheel and extended wheel ([`TbarGeometry`]);
+//! - [`statics`]: rank, self-stress dimension, mechanisms and prestressability margin through
+//!   the core's [`tensegrity_core::Statics`];
+//! - [`envelope`]: the omnidirectional load envelope (minimum prestress by an LP over the
+//!   self-stress space, critical member and direction, slack map);
+//! - [`brute`]: an independent brute-force check of the minimum prestress;
+//! - [`mass`]: minimum-mass sizing for the envelope against the 3-D Michell truss;
+//! - [`drawing`]: polylines of Figs. 5.1–5.3 (side and top views) for the io figure module;
+//! - [`report`]: one complete analysis for the CLI ([`tbar_report`]).
+//!
+//! Not implemented yet: the free rim body (a ring of bars with a hub, class-k joints) and the
+//! tip-over and rolling of the extended wheel (issue items 1 "rim body", 2 "single loop" and 5).
+#![warn(missing_docs)]
+
+pub mod brute;
+pub mod drawing;
+pub mod envelope;
+pub mod error;
+pub mod geometry;
+pub mod mass;
+pub mod params;
+pub mod report;
+pub mod statics;
+
+pub use error::{Result, TbarError};
+pub use geometry::TbarGeometry;
+pub use params::{BarBase, Layout, TbarParams};
+pub use report::{tbar_report, TbarReport, TbarRequest};

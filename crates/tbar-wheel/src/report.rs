@@ -1,0 +1,250 @@
+//! One complete analysis of a T-bar tread or wheel, as the CLI prints it (text or JSON):
+//! geometry → statics → load envelope (minimum prestress, critical member; slack map for a
+//! given prestress) → mass against the Michell truss.
+//!
+//! When the envelope does not exist (the elastic stiffness has a mechanism, or no prestress
+//! is admissible) its fields are `null` and the reason is in `warnings`; the geometry and the
+//! statics are still reported.
+
+use crate::envelope::{
+    self, min_prestress, scaled_state, slack_map, CriticalMember, LoadResponse, SlackPoint,
+};
+use crate::error::{invalid, Result};
+use crate::geometry::TbarGeometry;
+use crate::mass::{self, MassComparison};
+use crate::params::TbarParams;
+use crate::statics::{check_size, summarise};
+use serde::Serialize;
+use tensegrity_core::{Statics, Structure};
+
+/// Everything one analysis needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TbarRequest {
+    /// Geometry.
+    pub params: TbarParams,
+    /// Tip load magnitude w₀ (N).
+    pub load: f64,
+    /// Axial stiffness EA of every member (N).
+    pub ea: f64,
+    /// Bar compression of the slack map (N), if any.
+    pub prestress: Option<f64>,
+    /// Directions of the slack map (quasi-uniform sphere).
+    pub directions: usize,
+    /// Material of the sizing (core table name).
+    pub material: String,
+}
+
+impl TbarRequest {
+    /// A request with the defaults: w₀ = 1 N, EA = 1 MN, no slack map, 2000 directions, steel.
+    pub fn new(params: TbarParams) -> Self {
+        Self {
+            params,
+            load: envelope::DEFAULT_LOAD,
+            ea: envelope::DEFAULT_EA,
+            prestress: None,
+            directions: envelope::DEFAULT_DIRECTIONS,
+            material: mass::DEFAULT_MATERIAL.to_string(),
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        if !(self.load.is_finite() && self.load > 0.0) {
+            return Err(invalid("load", self.load, "must be finite and > 0"));
+        }
+        if !(self.ea.is_finite() && self.ea > 0.0) {
+            return Err(invalid("ea", self.ea, "must be finite and > 0"));
+        }
+        if let Some(p) = self.prestress {
+            if !(p.is_finite() && p > 0.0) {
+                return Err(invalid("prestress", p, "must be finite and > 0"));
+            }
+        }
+        if self.directions == 0 || self.directions > envelope::MAX_DIRECTIONS {
+            return Err(invalid(
+                "directions",
+                self.directions as f64,
+                format!("must lie in 1..={}", envelope::MAX_DIRECTIONS),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The report of one analysis (the JSON contract of `tensegrity tbar --json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TbarReport {
+    /// The parameters.
+    pub params: TbarParams,
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Number of bars.
+    pub bars: usize,
+    /// Number of strings.
+    pub strings: usize,
+    /// Number of treads (both wheels of an extended wheel).
+    pub treads: usize,
+    /// Lattice nodes per level of one tread, (l+1)².
+    pub level_sizes: Vec<usize>,
+    /// Node labels (tread 0: `tip`, `bar_base`, tuples such as `1010`).
+    pub node_labels: Vec<String>,
+    /// Node coordinates (m), same order as the labels.
+    pub node_coordinates: Vec<[f64; 3]>,
+    /// Whether each node is a rim support.
+    pub supported: Vec<bool>,
+    /// Bars as [base, tip] node indices.
+    pub bar_nodes: Vec<[usize; 2]>,
+    /// Strings as [parent, child] node indices.
+    pub string_nodes: Vec<[usize; 2]>,
+    /// Rank of the equilibrium matrix.
+    pub rank: usize,
+    /// Self-stress dimension.
+    pub self_stress_dim: usize,
+    /// First-order mechanisms.
+    pub mechanisms: usize,
+    /// Internal mechanisms (beyond the rigid-body motions the supports allow).
+    pub internal_mechanisms: usize,
+    /// Whether a self-stress with taut strings and compressed bars exists.
+    pub prestressable: bool,
+    /// The core's prestressability margin.
+    pub prestress_margin: f64,
+    /// Tip load w₀ (N).
+    pub load: f64,
+    /// Axial stiffness EA (N).
+    pub ea: f64,
+    /// Minimum bar compression (N) carrying w₀ from every direction.
+    pub min_prestress: Option<f64>,
+    /// The binding member and its worst direction.
+    pub critical_member: Option<CriticalMember>,
+    /// Every binding member (indices, bars first).
+    pub active_members: Vec<usize>,
+    /// Member forces (N, bars first) of the minimum-prestress state.
+    pub prestress_force: Option<Vec<f64>>,
+    /// The bar compression of the slack map (N).
+    pub prestress: Option<f64>,
+    /// Fraction of the sampled directions that slacken a string or put a bar in tension.
+    pub slack_fraction: Option<f64>,
+    /// Whether the bar stays in compression for every sampled direction.
+    pub bar_always_compressed: Option<bool>,
+    /// Fewest strings whose force a sampled load changes.
+    pub min_strings_carrying: Option<usize>,
+    /// Whether the bar's force changes for every sampled load.
+    pub bar_always_carries: Option<bool>,
+    /// The slack map over (azimuth, polar).
+    pub slack_map: Option<Vec<SlackPoint>>,
+    /// Mass of the T-bar structure sized for the envelope (kg).
+    pub mass_kg: Option<f64>,
+    /// Masses against the Michell truss.
+    pub mass: Option<MassComparison>,
+    /// Everything the analysis could not do, and why.
+    pub warnings: Vec<String>,
+}
+
+/// Runs one analysis.
+///
+/// ```
+/// use michell3d::MichellParams;
+/// use tbar_wheel::{tbar_report, TbarParams, TbarRequest};
+/// let m = MichellParams::cylindrical(1, 1.0, 0.5, std::f64::consts::PI / 8.0, 0.25);
+/// let r = tbar_report(&TbarRequest::new(TbarParams::tread(m))).unwrap();
+/// assert_eq!((r.nodes, r.self_stress_dim), (6, 2));
+/// assert!(r.min_prestress.unwrap() > 0.0);
+/// ```
+pub fn tbar_report(req: &TbarRequest) -> Result<TbarReport> {
+    req.validate()?;
+    let geometry = TbarGeometry::new(req.params)?;
+    let structure = geometry.structure()?;
+    check_size(&structure)?;
+    let statics = Statics::new(&structure)?;
+    let summary = summarise(&statics)?;
+    let mut report = base_report(req, &geometry, &structure);
+    report.rank = summary.rank;
+    report.self_stress_dim = summary.self_stress_dim;
+    report.mechanisms = summary.mechanisms;
+    report.internal_mechanisms = summary.internal_mechanisms;
+    report.prestressable = summary.prestressable;
+    report.prestress_margin = summary.prestress_margin;
+    if let Err(e) = add_envelope(req, &geometry, &statics, &mut report) {
+        report.warnings.push(format!("no load envelope: {e}"));
+    }
+    Ok(report)
+}
+
+fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport {
+    TbarReport {
+        params: req.params,
+        nodes: s.n_nodes(),
+        bars: s.n_bars(),
+        strings: s.n_strings(),
+        treads: g.treads(),
+        level_sizes: g.level_sizes.clone(),
+        node_labels: g.labels.clone(),
+        node_coordinates: g.nodes.iter().map(|p| [p.x, p.y, p.z]).collect(),
+        supported: g.supported.clone(),
+        bar_nodes: g.bars.clone(),
+        string_nodes: g.strings.clone(),
+        rank: 0,
+        self_stress_dim: 0,
+        mechanisms: 0,
+        internal_mechanisms: 0,
+        prestressable: false,
+        prestress_margin: 0.0,
+        load: req.load,
+        ea: req.ea,
+        min_prestress: None,
+        critical_member: None,
+        active_members: Vec::new(),
+        prestress_force: None,
+        prestress: req.prestress,
+        slack_fraction: None,
+        bar_always_compressed: None,
+        min_strings_carrying: None,
+        bar_always_carries: None,
+        slack_map: None,
+        mass_kg: None,
+        mass: None,
+        warnings: Vec::new(),
+    }
+}
+
+/// Minimum prestress, slack map and mass.
+fn add_envelope(
+    req: &TbarRequest,
+    g: &TbarGeometry,
+    statics: &Statics<'_>,
+    report: &mut TbarReport,
+) -> Result<()> {
+    let what = req.params.layout.name();
+    let response = LoadResponse::new(statics, &g.tips, req.ea, what)?;
+    let sol = min_prestress(statics, &response, req.load, &g.labels, what)?;
+    let state = match req.prestress {
+        Some(p) => {
+            let state = scaled_state(&sol, p)?;
+            let dirs = envelope::sphere_directions(req.directions);
+            let map = slack_map(&response, &state, req.load, &dirs);
+            report.slack_fraction = Some(map.slack_fraction);
+            report.bar_always_compressed = Some(map.bar_always_compressed);
+            report.min_strings_carrying = Some(map.min_strings_carrying);
+            report.bar_always_carries = Some(map.bar_always_carries);
+            report.slack_map = Some(map.points);
+            state
+        }
+        None => sol.prestress_force.clone(),
+    };
+    report.min_prestress = Some(sol.min_prestress);
+    report.critical_member = Some(sol.critical_member.clone());
+    report.active_members = sol.active_members.clone();
+    report.prestress_force = Some(sol.prestress_force.clone());
+    let forces = mass::design_forces(&response, &state, req.load);
+    let m = mass::compare(
+        &req.params,
+        g.treads(),
+        &response.lengths,
+        response.n_bars,
+        &forces,
+        req.load,
+        &req.material,
+    )?;
+    report.mass_kg = Some(m.mass_kg);
+    report.mass = Some(m);
+    Ok(())
+}

@@ -1,0 +1,220 @@
+//! `tensegrity tbar`: the T-bar tread, wheel or extended wheel of thesis chapter 5. Parses the
+//! arguments into a [`tbar_wheel::TbarRequest`], makes one library call
+//! ([`tbar_wheel::tbar_report`]) and prints the report (text or JSON); `--export-scene`,
+//! `--vtk` and `--svg` hand the structure or the drawing to tensegrity-io.
+
+use crate::cli::angle::parse_angle;
+use anyhow::{Context, Result};
+use michell3d::MichellParams;
+use std::path::{Path, PathBuf};
+use tbar_wheel::drawing::{polylines, View};
+use tbar_wheel::envelope::{DEFAULT_DIRECTIONS, DEFAULT_EA, DEFAULT_LOAD};
+use tbar_wheel::mass::DEFAULT_MATERIAL;
+use tbar_wheel::{BarBase, Layout, TbarGeometry, TbarParams, TbarReport, TbarRequest};
+use tensegrity_io::figure::{Figure, Panel, Series};
+
+/// `--bar-base` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BarBaseArg {
+    /// The rim point [0, r_q, 0].
+    Rim,
+    /// The chord point [0, r_q cos φ, 0].
+    Chord,
+}
+
+/// Arguments of `tensegrity tbar`.
+#[derive(clap::Args, Debug)]
+pub struct TbarArgs {
+    /// Complexity q (lattice levels; level q lies on the rim).
+    #[arg(long, default_value_t = 1)]
+    complexity: usize,
+    /// Departure angle β (e.g. `pi/6`, `30deg`).
+    #[arg(long, value_parser = parse_angle)]
+    beta: f64,
+    /// Segmentation angle φ; a wheel needs π/φ integer.
+    #[arg(long, value_parser = parse_angle)]
+    phi: f64,
+    /// Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11).
+    #[arg(
+        long,
+        value_name = "D",
+        allow_hyphen_values = true,
+        conflicts_with = "spherical",
+        required_unless_present = "spherical"
+    )]
+    cylindrical: Option<f64>,
+    /// Spherical parameterisation with angle ε (eq. 4.12).
+    #[arg(long, value_name = "E", value_parser = parse_angle)]
+    spherical: Option<f64>,
+    /// Tip radius r₀ (m).
+    #[arg(long, default_value_t = 1.0)]
+    r0: f64,
+    /// Build the wheel: π/φ treads every 2φ about ι̂₁.
+    #[arg(long)]
+    wheel: bool,
+    /// Build the extended wheel: the wheel and a copy translated by OFFSET (m) along ι̂₁.
+    #[arg(long, value_name = "OFFSET", allow_hyphen_values = true)]
+    extended: Option<f64>,
+    /// Base of the radial bar.
+    #[arg(long, value_enum, default_value_t = BarBaseArg::Rim)]
+    bar_base: BarBaseArg,
+    /// Tip load magnitude w₀ (N) of the load envelope.
+    #[arg(long, default_value_t = DEFAULT_LOAD)]
+    load: f64,
+    /// Axial stiffness EA of every member (N).
+    #[arg(long, default_value_t = DEFAULT_EA)]
+    ea: f64,
+    /// Bar compression P (N) of the slack map.
+    #[arg(long)]
+    prestress: Option<f64>,
+    /// Directions of the slack map (quasi-uniform sphere).
+    #[arg(long, default_value_t = DEFAULT_DIRECTIONS)]
+    directions: usize,
+    /// Material of the sizing (built-in table).
+    #[arg(long, default_value = DEFAULT_MATERIAL)]
+    material: String,
+    /// Write the structure as a scene file.
+    #[arg(long, value_name = "FILE")]
+    export_scene: Option<PathBuf>,
+    /// Write the structure as a VTK `.vtu` file.
+    #[arg(long, value_name = "FILE")]
+    vtk: Option<PathBuf>,
+    /// Draw the side and top views (SVG or PNG by the extension).
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+impl TbarArgs {
+    /// The library request the arguments describe.
+    pub fn request(&self) -> TbarRequest {
+        let m = match (self.cylindrical, self.spherical) {
+            (_, Some(e)) => {
+                MichellParams::spherical(self.complexity, self.r0, self.beta, self.phi, e)
+            }
+            (d, None) => MichellParams::cylindrical(
+                self.complexity,
+                self.r0,
+                self.beta,
+                self.phi,
+                d.unwrap_or(0.0),
+            ),
+        };
+        let layout = match (self.extended, self.wheel) {
+            (Some(offset), _) => Layout::Extended { offset },
+            (None, true) => Layout::Wheel,
+            (None, false) => Layout::Tread,
+        };
+        let base = match self.bar_base {
+            BarBaseArg::Rim => BarBase::Rim,
+            BarBaseArg::Chord => BarBase::Chord,
+        };
+        let mut req =
+            TbarRequest::new(TbarParams::tread(m).with_layout(layout).with_bar_base(base));
+        req.load = self.load;
+        req.ea = self.ea;
+        req.prestress = self.prestress;
+        req.directions = self.directions;
+        req.material = self.material.clone();
+        req
+    }
+}
+
+/// Entry point of `tensegrity tbar`.
+pub fn run(args: &TbarArgs) -> Result<()> {
+    let req = args.request();
+    let report = tbar_wheel::tbar_report(&req)?;
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    write_outputs(args, &req)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_report(&report);
+    }
+    Ok(())
+}
+
+/// `--export-scene`, `--vtk` and `--svg`.
+fn write_outputs(args: &TbarArgs, req: &TbarRequest) -> Result<()> {
+    if args.export_scene.is_none() && args.vtk.is_none() && args.svg.is_none() {
+        return Ok(());
+    }
+    let g = TbarGeometry::new(req.params)?;
+    let s = g.structure()?;
+    if let Some(path) = &args.export_scene {
+        tensegrity_io::write_text(path, "scene", &tensegrity_io::scene::to_toml(&s))
+            .with_context(|| format!("writing the scene {}", path.display()))?;
+    }
+    if let Some(path) = &args.vtk {
+        tensegrity_io::write_text(path, "VTK", &tensegrity_io::vtk::vtu(&s, s.nodes()))
+            .with_context(|| format!("writing the VTK file {}", path.display()))?;
+    }
+    if let Some(path) = &args.svg {
+        write_drawing(path, &g)?;
+    }
+    Ok(())
+}
+
+/// The side and top views through the io figure module.
+fn write_drawing(path: &Path, g: &TbarGeometry) -> Result<()> {
+    let panel = |view: View, title: &str, y: &str| {
+        polylines(g, view)
+            .into_iter()
+            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
+                p.series(Series::new(l.label, l.points))
+            })
+    };
+    let figure = Figure::new(vec![
+        panel(View::Side, "T-bar, side view", "ι3 [m]"),
+        panel(View::Top, "T-bar, top view", "ι1 [m]"),
+    ]);
+    figure
+        .save(path)
+        .with_context(|| format!("writing the figure {}", path.display()))
+}
+
+fn print_report(r: &TbarReport) {
+    println!(
+        "T-bar {} q = {} (bar base {}): {} treads, {} nodes, {} bars, {} strings",
+        r.params.layout.name(),
+        r.params.michell.complexity,
+        r.params.bar_base.as_str(),
+        r.treads,
+        r.nodes,
+        r.bars,
+        r.strings
+    );
+    println!("level sizes {:?}", r.level_sizes);
+    println!(
+        "rank {}  self-stress states {}  mechanisms {}  internal mechanisms {}",
+        r.rank, r.self_stress_dim, r.mechanisms, r.internal_mechanisms
+    );
+    if r.prestressable {
+        println!("prestressable: yes, margin {:.6}", r.prestress_margin);
+    } else {
+        println!("prestressable: no");
+    }
+    if let (Some(p), Some(c)) = (r.min_prestress, &r.critical_member) {
+        println!(
+            "min prestress {p:.9e} N for w0 = {} N from every direction",
+            r.load
+        );
+        println!(
+            "critical member: {} {} ({}–{}), worst direction [{:.6}, {:.6}, {:.6}]",
+            c.kind, c.index, c.nodes[0], c.nodes[1], c.direction[0], c.direction[1], c.direction[2]
+        );
+    }
+    if let (Some(p), Some(f)) = (r.prestress, r.slack_fraction) {
+        println!("at prestress {p} N: slack fraction {f:.6}");
+    }
+    if let Some(m) = &r.mass {
+        println!(
+            "mass {:.6e} kg ({}), Michell truss {:.6e} kg, ratio per tread {:.4}",
+            m.mass_kg, m.material, m.michell_mass_kg, m.mass_ratio
+        );
+    }
+}
