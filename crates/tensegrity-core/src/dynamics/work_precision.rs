@@ -4,7 +4,7 @@
 //! string 1 % short, 1 s), the compound double pendulum (class-2 joint, pinned support, 2 s),
 //! a prism dropped on a penalty ground (contact and friction, no normal damping, 0.5 s), and
 //! two stiff scenes: the prism with 10⁸ N/m strings (1000 N·s/m string damping) spinning at
-//! one revolution per second (0.25 s), and the dropped prism on a 10⁵ N/m ground with
+//! one revolution per second (0.25 s), and the prism released on a 10⁵ N/m ground with
 //! 3000 N·s/m normal damping (0.5 s). The error of a run is the largest node-position
 //! difference at the end time against a tight RK45 reference (rtol = 1e-13, atol = 1e-15);
 //! the fixed-step methods sweep dt, the adaptive ones (RK45, SDIRK) sweep rtol
@@ -98,9 +98,12 @@ fn stiff_strings() -> Result<Simulation, CoreError> {
     Simulation::new(&s, SimulationSettings::default())
 }
 
-/// The dropped prism on a 10⁵ N/m penalty ground with 3000 N·s/m normal damping.
+/// The prism released with its feet on a 10⁵ N/m penalty ground with 3000 N·s/m normal
+/// damping: it sinks to its rest penetration and its feet creep out of the tangential
+/// prestress. (Released from above, the damper force would jump by c·v_n at touchdown, which
+/// no 1e-13 reference resolves.)
 fn damped_ground() -> Result<Simulation, CoreError> {
-    let s = test_models::dropped_prism(0.02, 50.0)?;
+    let s = test_models::dropped_prism(0.0, 50.0)?;
     let mut sim = Simulation::new(&s, SimulationSettings::default())?;
     sim.model
         .set_ground(test_models::dropped_prism_ground(1e5, 3000.0))?;
