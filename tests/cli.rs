@@ -255,6 +255,48 @@ fn simulate_reproduces_the_published_double_pendulum() {
     assert_eq!(v["t_end"], 0.5);
 }
 
+/// `--integrator sdirk` (and the scene value `integrator = "sdirk"`) run the implicit method:
+/// the double pendulum's published tip at t = 5 s to 1e-6 with the default rtol 1e-8.
+#[test]
+fn simulate_with_sdirk_reproduces_the_double_pendulum() {
+    let out = run(&[
+        "simulate",
+        "examples/double_pendulum.toml",
+        "--integrator",
+        "sdirk",
+        "--json",
+    ]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let tip = &v["final_nodes"][2];
+    let (x, y) = (tip[0].as_f64().unwrap(), tip[1].as_f64().unwrap());
+    assert!(
+        (x - 1.3403149308).abs() < 1e-6 && (y + 1.4793519015).abs() < 1e-6,
+        "({x}, {y})"
+    );
+    assert!(v["bar_length_drift"].as_f64().unwrap() < 1e-10);
+    let scene = std::fs::read_to_string("examples/double_pendulum.toml").unwrap();
+    assert!(
+        scene.contains("integrator = \""),
+        "the example names its integrator"
+    );
+    let path = scratch("sdirk").join("double_pendulum.toml");
+    let mut patched = String::new();
+    for line in scene.lines() {
+        if line.trim_start().starts_with("integrator =") {
+            patched.push_str("integrator = \"sdirk\"\n");
+        } else {
+            patched.push_str(line);
+            patched.push('\n');
+        }
+    }
+    std::fs::write(&path, patched).unwrap();
+    let out = run(&["simulate", path.to_str().unwrap(), "--json"]);
+    assert_ok(&out);
+    let w: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(w["final_nodes"], v["final_nodes"]);
+}
+
 #[test]
 fn output_piped_into_a_closed_reader_does_not_panic() {
     use std::io::Read;

@@ -1,5 +1,5 @@
 //! `tensegrity bench work-precision [--out DIR] [--quick]`: error against wall time for every
-//! integrator on three scenes (the study is
+//! integrator on five scenes, two of them stiff (the study is
 //! [`tensegrity_core::dynamics::work_precision`]), written as CSV and a figure (log–log,
 //! one curve per integrator, one panel per scene).
 
@@ -21,7 +21,7 @@ pub struct BenchArgs {
 /// Benchmarks.
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchCommand {
-    /// Error against wall time for rk4, rk45 and rattle on three scenes.
+    /// Error against wall time for rk4, rk45, rattle and sdirk on five scenes.
     WorkPrecision(WorkPrecisionArgs),
 }
 

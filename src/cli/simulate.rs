@@ -1,4 +1,4 @@
-//! `tensegrity simulate SCENE.toml [--t-end S] [--integrator rk4|rk45|rattle] [--dt S]
+//! `tensegrity simulate SCENE.toml [--t-end S] [--integrator rk4|rk45|rattle|sdirk] [--dt S]
 //! [--rtol X] [--atol X] [--out traj.csv] [--output-interval S] [--json]`.
 //!
 //! The scene's `[simulation]`, `[ground]` and `[[actuation]]` tables configure the run;
@@ -26,6 +26,8 @@ pub enum IntegratorArg {
     Rk45,
     /// Constraint-preserving RATTLE (fixed step, 2nd order).
     Rattle,
+    /// Adaptive L-stable SDIRK 3(2) (stiff strings and contact).
+    Sdirk,
 }
 
 impl From<IntegratorArg> for IntegratorKind {
@@ -34,6 +36,7 @@ impl From<IntegratorArg> for IntegratorKind {
             IntegratorArg::Rk4 => IntegratorKind::Rk4,
             IntegratorArg::Rk45 => IntegratorKind::Rk45,
             IntegratorArg::Rattle => IntegratorKind::Rattle,
+            IntegratorArg::Sdirk => IntegratorKind::Sdirk,
         }
     }
 }
@@ -49,13 +52,13 @@ pub struct SimulateArgs {
     /// Integrator; overrides `[simulation] integrator` (default rk4).
     #[arg(long, value_enum)]
     pub integrator: Option<IntegratorArg>,
-    /// Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45; default t_end), s.
+    /// Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end), s.
     #[arg(long, value_name = "S", value_parser = super::values::positive)]
     pub dt: Option<f64>,
-    /// Relative tolerance (rk45).
+    /// Relative tolerance (rk45, sdirk).
     #[arg(long, value_name = "X", value_parser = super::values::positive)]
     pub rtol: Option<f64>,
-    /// Absolute tolerance (rk45).
+    /// Absolute tolerance (rk45, sdirk).
     #[arg(long, value_name = "X", value_parser = super::values::positive)]
     pub atol: Option<f64>,
     /// Write the node trajectories to this CSV file.
@@ -158,8 +161,8 @@ fn apply_overrides(
     }
     if let Some(dt) = args.dt {
         s.dt = dt;
-    } else if s.integrator == IntegratorKind::Rk45 && sim.and_then(|x| x.dt).is_none() {
-        // no step given anywhere: rk45 chooses its own, unbounded below t_end
+    } else if s.integrator.is_adaptive() && sim.and_then(|x| x.dt).is_none() {
+        // no step given anywhere: rk45/sdirk choose their own, unbounded below t_end
         s.dt = s.t_end;
     }
     if let Some(r) = args.rtol {

@@ -245,6 +245,10 @@ pub struct RollArgs {
     /// Smallest string tension of the full model's prestress (N).
     #[arg(long, default_value_t = defaults::ROLL_MIN_TENSION, value_parser = values::positive)]
     min_tension: f64,
+    /// Integrator of the full model (default rk4 at --dt; rk45 and sdirk take --dt as their
+    /// largest step, rtol 1e-6; sdirk for stiff strings or ground damping).
+    #[arg(long, value_enum)]
+    integrator: Option<super::simulate::IntegratorArg>,
     /// Write the sampled history (1 ms) to this CSV file.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -271,6 +275,9 @@ impl RollArgs {
             mu: self.mu,
             string_stiffness: self.string_stiffness,
             min_tension: self.min_tension,
+            integrator: self
+                .integrator
+                .map_or(RollRequest::default().integrator, Into::into),
             ..RollRequest::default()
         }
     }

@@ -11,8 +11,15 @@ use tensegrity_core::dynamics::{IntegratorKind, Simulation, SimulationSettings};
 use tensegrity_core::test_models;
 use tensegrity_core::Structure;
 
-/// Runs `structure` with every integrator (dt for the fixed-step ones, rtol for rk45 with
-/// atol = rtol/100 and maximum step t_end) and tabulates the counters.
+/// The integrators of the original snapshots (their files must not change).
+const EXPLICIT: [IntegratorKind; 3] = [
+    IntegratorKind::Rk4,
+    IntegratorKind::Rk45,
+    IntegratorKind::Rattle,
+];
+
+/// Runs `structure` with the explicit integrators (dt for the fixed-step ones, rtol for rk45
+/// with atol = rtol/100 and maximum step t_end) and tabulates the counters.
 fn table(
     structure: &Structure,
     ground: Option<tensegrity_core::dynamics::Ground>,
@@ -20,8 +27,21 @@ fn table(
     dt: f64,
     rtol: f64,
 ) -> String {
+    table_of(&EXPLICIT, structure, ground, t_end, dt, rtol)
+}
+
+/// The table for `kinds` (adaptive ones: rtol, atol = rtol/100, maximum step `dt` for sdirk
+/// and t_end for rk45).
+fn table_of(
+    kinds: &[IntegratorKind],
+    structure: &Structure,
+    ground: Option<tensegrity_core::dynamics::Ground>,
+    t_end: f64,
+    dt: f64,
+    rtol: f64,
+) -> String {
     let mut out = String::from("integrator  steps  rejected  rhs_evals\n");
-    for integrator in IntegratorKind::ALL {
+    for &integrator in kinds {
         let adaptive = integrator == IntegratorKind::Rk45;
         let settings = SimulationSettings {
             t_end,
@@ -47,6 +67,41 @@ fn table(
         .unwrap();
     }
     out
+}
+
+/// SDIRK rows (maximum step 10 ms, rtol 1e-6): the smooth test models and the two stiff
+/// scenes of the work–precision study.
+#[test]
+fn stats_sdirk() {
+    let sd = [IntegratorKind::Sdirk];
+    let mut out = String::new();
+    let pendulum = test_models::double_pendulum(std::f64::consts::FRAC_PI_4).unwrap();
+    let prism = test_models::oscillating_prism().unwrap();
+    let dropped = test_models::dropped_prism(0.02, 50.0).unwrap();
+    let ground = test_models::dropped_prism_ground(1e4, 100.0);
+    let damped_ground = test_models::dropped_prism_ground(1e5, 3000.0);
+    let rows = [
+        (
+            "double pendulum, 2 s",
+            table_of(&sd, &pendulum, None, 2.0, 0.01, 1e-6),
+        ),
+        (
+            "oscillating prism, 0.5 s",
+            table_of(&sd, &prism, None, 0.5, 0.01, 1e-6),
+        ),
+        (
+            "dropped prism, 0.3 s",
+            table_of(&sd, &dropped, Some(ground), 0.3, 0.01, 1e-6),
+        ),
+        (
+            "dropped prism, ground 3000 N s/m, 0.5 s",
+            table_of(&sd, &dropped, Some(damped_ground), 0.5, 0.01, 1e-6),
+        ),
+    ];
+    for (name, t) in rows {
+        writeln!(out, "{name}\n{t}").unwrap();
+    }
+    insta::assert_snapshot!(out);
 }
 
 #[test]

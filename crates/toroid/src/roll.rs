@@ -16,6 +16,7 @@ use crate::rolling::{RigidRolling, RollingResult, RollingSample};
 use crate::rolling_full::RIGID_THRESHOLD;
 use crate::rolling_full::{auto_fidelity, ContactModel, Fidelity, FullRolling};
 use serde::Serialize;
+use tensegrity_core::dynamics::IntegratorKind;
 
 /// The model a rolling request asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -67,11 +68,14 @@ pub struct RollRequest {
     pub string_stiffness: f64,
     /// Smallest string tension of the full model's prestress (N).
     pub min_tension: f64,
+    /// Integrator of the full model (`dt` is its step, or its largest step when adaptive).
+    pub integrator: IntegratorKind,
 }
 
 impl Default for RollRequest {
-    /// The reference wheel down 50° for 10 s at a 0.1 ms step, `auto` fidelity, thesis
-    /// contact, and the contact and string defaults of [`crate::defaults`].
+    /// The reference wheel down 50° for 10 s at a 0.1 ms step (RK4 for the full model),
+    /// `auto` fidelity, thesis contact, and the contact and string defaults of
+    /// [`crate::defaults`].
     fn default() -> Self {
         Self {
             wheel: WheelSpec::default(),
@@ -86,6 +90,7 @@ impl Default for RollRequest {
             mu: defaults::STATIC_FRICTION,
             string_stiffness: defaults::STRING_STIFFNESS,
             min_tension: defaults::ROLL_MIN_TENSION,
+            integrator: IntegratorKind::Rk4,
         }
     }
 }
@@ -232,6 +237,7 @@ pub fn roll(request: &RollRequest) -> Result<RollReport> {
             string_stiffness: request.string_stiffness,
             min_string_tension: request.min_tension,
             dt: request.dt,
+            integrator: request.integrator,
             ..FullRolling::default()
         }
         .run(&t, request.t_end)?,

@@ -73,7 +73,7 @@ impl fmt::Display for DriftWarning {
         };
         let remedy = match (self.quantity, self.integrator) {
             (_, IntegratorKind::Rattle) => "use a smaller --dt",
-            (DriftQuantity::Energy, IntegratorKind::Rk45) => {
+            (DriftQuantity::Energy, IntegratorKind::Rk45 | IntegratorKind::Sdirk) => {
                 "tighten --rtol/--atol, or use --integrator rattle (symplectic)"
             }
             (DriftQuantity::Energy, _) => {

@@ -15,13 +15,14 @@
 //!   it the driver lands on output times and the event module interpolates linearly.
 //!
 //! The counters (accepted and rejected steps, right-hand-side evaluations) are kept by the
-//! driver and the [`Workspace`]; see [`IntegratorStats`]. An implicit (L-stable) method fits
-//! the same trait: its Newton failures become rejected steps with a smaller proposal.
+//! driver and the [`Workspace`]; see [`IntegratorStats`]. The implicit, L-stable [`Sdirk`]
+//! fits the same trait: its Newton failures become rejected steps with a smaller proposal.
 
 use super::model::{Model, Workspace};
 use super::rattle::Rattle;
 use super::rk4::Rk4;
 use super::rk45::Dopri5;
+use super::sdirk::Sdirk;
 use crate::error::CoreError;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -38,11 +39,19 @@ pub enum IntegratorKind {
     Rk45,
     /// Fixed-step constraint-preserving RATTLE (2nd order, symplectic).
     Rattle,
+    /// Adaptive L-stable SDIRK 3(2) with Newton iterations (stiff strings and contact).
+    Sdirk,
 }
 
 impl IntegratorKind {
     /// Every integrator, in a fixed order (for studies and tests).
-    pub const ALL: [IntegratorKind; 3] = [Self::Rk4, Self::Rk45, Self::Rattle];
+    pub const ALL: [IntegratorKind; 4] = [Self::Rk4, Self::Rk45, Self::Rattle, Self::Sdirk];
+
+    /// Whether the integrator chooses its own steps (`dt` is then the largest step, and
+    /// `rtol`/`atol` apply).
+    pub fn is_adaptive(self) -> bool {
+        matches!(self, Self::Rk45 | Self::Sdirk)
+    }
 
     /// A fresh integrator of this kind for `model`; `rtol` and `atol` are used by the
     /// adaptive ones only.
@@ -57,6 +66,7 @@ impl IntegratorKind {
             Self::Rk4 => Box::new(Rk4::new(n)),
             Self::Rk45 => Box::new(Dopri5::new(n, rtol, atol)),
             Self::Rattle => Box::new(Rattle::new(model)?),
+            Self::Sdirk => Box::new(Sdirk::new(model, rtol, atol)?),
         })
     }
 }
@@ -67,20 +77,22 @@ impl fmt::Display for IntegratorKind {
             IntegratorKind::Rk4 => "rk4",
             IntegratorKind::Rk45 => "rk45",
             IntegratorKind::Rattle => "rattle",
+            IntegratorKind::Sdirk => "sdirk",
         })
     }
 }
 
 impl FromStr for IntegratorKind {
     type Err = String;
-    /// Parses `rk4`, `rk45` (or `dopri5`) or `rattle` (case-insensitive).
+    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle` or `sdirk` (case-insensitive).
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
             "rk4" => Ok(Self::Rk4),
             "rk45" | "dopri5" => Ok(Self::Rk45),
             "rattle" => Ok(Self::Rattle),
+            "sdirk" => Ok(Self::Sdirk),
             other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45 or rattle)"
+                "unknown integrator \"{other}\" (expected rk4, rk45, rattle or sdirk)"
             )),
         }
     }

@@ -18,7 +18,9 @@
 //! # Integrators
 //!
 //! [`Rk4`] (fixed step, MOTES parity), [`Dopri5`] (adaptive 5(4), dense output, events),
-//! [`Rattle`] (constraint-preserving, symplectic, 2nd order), all behind the [`Integrator`]
+//! [`Rattle`] (constraint-preserving, symplectic, 2nd order) and [`Sdirk`] (adaptive,
+//! L-stable, 3rd order, Newton with a finite-difference Jacobian: stiff strings and stiff or
+//! dissipative contact at the step the rigid-body motion needs), all behind the [`Integrator`]
 //! trait ([`integrator`]) that the one driver loop of [`Simulation::run`] steps; sign changes
 //! of event functions are located by [`events`]; RK states can be projected back onto the
 //! constraints ([`SimulationSettings::project`]). Every run reports its work counters
@@ -60,6 +62,7 @@ pub mod recorder;
 pub mod report;
 pub mod rk4;
 pub mod rk45;
+pub mod sdirk;
 pub mod simulation;
 pub mod strings;
 #[cfg(any(test, feature = "test-models"))]
@@ -76,5 +79,6 @@ pub use recorder::{Quantities, Recorder, Sample, SampleSink};
 pub use report::SimulationReport;
 pub use rk4::Rk4;
 pub use rk45::Dopri5;
+pub use sdirk::{Sdirk, SdirkStats};
 pub use simulation::{Simulation, SimulationResult, SimulationSettings};
 pub use strings::StringLaw;

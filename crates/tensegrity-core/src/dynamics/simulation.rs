@@ -30,13 +30,13 @@ pub struct SimulationSettings {
     pub t_end: f64,
     /// Integrator.
     pub integrator: IntegratorKind,
-    /// Step (s) of the fixed-step integrators; maximum step of RK45.
+    /// Step (s) of the fixed-step integrators; maximum step of RK45 and SDIRK.
     pub dt: f64,
-    /// Relative tolerance of RK45.
+    /// Relative tolerance of RK45 and SDIRK.
     pub rtol: f64,
-    /// Absolute tolerance of RK45.
+    /// Absolute tolerance of RK45 and SDIRK.
     pub atol: f64,
-    /// Smallest RK45 step before giving up (s).
+    /// Smallest RK45/SDIRK step before giving up (s).
     pub h_min: f64,
     /// Maximum number of accepted steps.
     pub max_steps: u64,
@@ -224,7 +224,7 @@ impl Simulation {
         positive("t_end", s.t_end)?;
         match s.integrator {
             IntegratorKind::Rk4 | IntegratorKind::Rattle => positive("dt", s.dt)?,
-            IntegratorKind::Rk45 => {
+            IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
                 positive("rtol", s.rtol)?;
                 positive("atol", s.atol)?;
                 positive("dt", s.dt)?;

@@ -11,7 +11,9 @@
 //!
 //! - [`dense`]: the SVD A = U Σ Vᵀ ([`svd()`], [`orthonormal_basis`]), the symmetric
 //!   eigendecomposition A = Q Λ Qᵀ ([`symmetric_eigen`]) and an in-place dense Cholesky
-//!   A = L Lᵀ for small SPD systems given in sparse form ([`DenseCholesky`]);
+//!   A = L Lᵀ for small SPD systems given in sparse form ([`DenseCholesky`]) and an in-place
+//!   dense LU P A = L U with partial pivoting ([`DenseLu`], the implicit integrator's Newton
+//!   matrix);
 //! - [`sparse`]: compressed-column storage ([`CscPattern`], [`CscMatrix`]), the fill-reducing
 //!   ordering ([`amd_ordering`]), sparse Cholesky A = L Lᵀ with symbolic reuse (the in-house
 //!   [`StaticCholesky`] with a precomputed schedule, and the general [`SparseCholesky`]) and
@@ -39,7 +41,9 @@ pub mod dense;
 pub mod sparse;
 
 pub use crate::error::FactorizationFailure;
-pub use dense::{orthonormal_basis, rank_tolerance, svd, symmetric_eigen, DenseCholesky, Svd};
+pub use dense::{
+    orthonormal_basis, rank_tolerance, svd, symmetric_eigen, DenseCholesky, DenseLu, Svd,
+};
 pub use sparse::{
     amd_ordering, cholesky_solve, lu_solve, CscMatrix, CscPattern, SparseCholesky, SparseLu,
     StaticCholesky,

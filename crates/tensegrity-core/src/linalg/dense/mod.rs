@@ -1,12 +1,15 @@
 //! Dense factorisations on nalgebra matrices: SVD ([`svd()`]), symmetric eigendecomposition
-//! ([`eigen`]) and an in-place Cholesky for small SPD systems ([`cholesky`]).
+//! ([`eigen`]), an in-place Cholesky for small SPD systems ([`cholesky`]) and an in-place LU
+//! with partial pivoting for small general systems ([`lu`]).
 
 pub mod cholesky;
 pub mod eigen;
+pub mod lu;
 pub mod svd;
 
 pub use cholesky::DenseCholesky;
 pub use eigen::symmetric_eigen;
+pub use lu::DenseLu;
 pub use svd::{orthonormal_basis, rank_tolerance, svd, Svd};
 
 use faer::Mat;
