@@ -624,3 +624,25 @@ fn a_drifted_simulation_warns_and_fails_under_strict() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v.get("warnings").is_none());
 }
+
+#[test]
+fn a_run_away_step_is_reported_as_divergence_with_the_remedy_not_as_singular_constraints() {
+    let out = run(&[
+        "simulate",
+        "examples/prism.toml",
+        "--integrator",
+        "rattle",
+        "--dt",
+        "0.05",
+        "--t-end",
+        "5",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("diverged at t = ")
+            && err.contains("smaller --dt")
+            && !err.contains("fixed at both ends"),
+        "{err}"
+    );
+}

@@ -264,6 +264,16 @@ pub enum CoreError {
         /// The size of the system.
         expected: usize,
     },
+    /// Dynamics: the state ran away during the run (a constraint system that factored at the
+    /// start became singular, or the RATTLE iteration failed): the step is too large for the
+    /// stiffness.
+    #[error("the integration diverged at t = {t} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller --dt, the adaptive rk45, or the implicit sdirk for stiff strings and contact")]
+    Diverged {
+        /// Time of the last accepted state (s).
+        t: f64,
+        /// What failed.
+        what: &'static str,
+    },
     /// Dynamics: the RATTLE position solve did not converge.
     #[error("RATTLE constraint iteration did not converge at t = {t} s (residual {residual:e})")]
     ConstraintNotConverged {

@@ -213,7 +213,9 @@ impl Simulation {
         } else {
             StepControl::Grid { dt: s.dt, k: 0 }
         };
-        driver.integrate(integrator.as_mut(), &mut control)?;
+        if let Err(e) = driver.integrate(integrator.as_mut(), &mut control) {
+            return Err(diverged(e, driver.t));
+        }
         let wall_time_s = (start.elapsed().as_secs_f64() - driver.diag_time).max(0.0);
         Ok(driver.finish(wall_time_s))
     }
@@ -247,6 +249,22 @@ impl Simulation {
             Some(dt_out) => rec.with_interval(dt_out, s.t_end),
             None => rec,
         }
+    }
+}
+
+/// A constraint system that factored at t = 0 and fails later fails because the state ran
+/// away (a step too large for the stiffness), not because the constraints are redundant:
+/// say so.
+fn diverged(e: CoreError, t: f64) -> CoreError {
+    let what = match e {
+        CoreError::SingularConstraint { .. } => "the constraint system became singular",
+        CoreError::ConstraintNotConverged { .. } => "the RATTLE constraint iteration failed",
+        other => return other,
+    };
+    if t > 0.0 {
+        CoreError::Diverged { t, what }
+    } else {
+        e
     }
 }
 
