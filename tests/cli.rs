@@ -646,3 +646,22 @@ fn a_run_away_step_is_reported_as_divergence_with_the_remedy_not_as_singular_con
         "{err}"
     );
 }
+
+#[test]
+fn a_structure_too_large_for_memory_is_refused_before_allocating() {
+    // n = 2000: A is 30006 × 38001 (5n + 2 nodes with the axle, 19n + 1 members); its dense
+    // SVD would need ~52 GiB
+    let out = run(&["toroid", "--sides", "2000"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("30006 × 38001") && err.contains("GiB") && err.contains("--sides"),
+        "{err}"
+    );
+    let out = run(&["toroid", "--sides", "100000"]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "no allocation failure, no backtrace"
+    );
+}

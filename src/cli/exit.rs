@@ -45,13 +45,19 @@ pub fn code(e: &anyhow::Error) -> i32 {
 
 fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
     if let Some(e) = e.downcast_ref::<CoreError>() {
-        return matches!(e, CoreError::InvalidParameter { .. });
+        return matches!(
+            e,
+            CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. }
+        );
     }
     if let Some(e) = e.downcast_ref::<ToroidError>() {
         return matches!(
             e,
             ToroidError::InvalidParameter { .. } | ToroidError::UnknownStabilizeOption { .. }
-        ) || matches!(e, ToroidError::Core(CoreError::InvalidParameter { .. }));
+        ) || matches!(
+            e,
+            ToroidError::Core(CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. })
+        );
     }
     if let Some(e) = e.downcast_ref::<MichellError>() {
         return matches!(

@@ -176,6 +176,20 @@ pub enum CoreError {
         /// Time of the last sample handed out (s).
         t: f64,
     },
+    /// A problem too large for the memory budget, refused before allocating.
+    #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer --sides or a lower --complexity)", bytes / 1073741824.0, limit / 1073741824.0)]
+    TooLarge {
+        /// The computation refused.
+        what: &'static str,
+        /// Rows of the matrix.
+        rows: usize,
+        /// Columns of the matrix.
+        cols: usize,
+        /// Estimated peak memory (bytes).
+        bytes: f64,
+        /// The budget (bytes).
+        limit: f64,
+    },
     /// A numerical kernel failed to converge.
     #[error("{operation} did not converge")]
     NoConvergence {

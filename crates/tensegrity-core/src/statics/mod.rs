@@ -131,6 +131,20 @@ pub struct StaticsSettings {
     pub rank_tolerance: Option<f64>,
     /// The LP solver for prestressability.
     pub lp_solver: LpSolver,
+    /// Memory the dense factorisation may use (bytes); `None` uses
+    /// [`DEFAULT_MEMORY_LIMIT`]. A structure needing more is refused before anything is
+    /// allocated ([`CoreError::TooLarge`](crate::CoreError::TooLarge)).
+    pub memory_limit: Option<f64>,
+}
+
+/// Default memory budget of the dense statics: 8 GiB.
+pub const DEFAULT_MEMORY_LIMIT: f64 = 8.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// Bytes the dense statics of an m × n equilibrium matrix holds at its peak: A and the
+/// backend's copy (2mn), U and V in the backend and at the API (2m² + 2n²), in f64.
+pub fn dense_statics_bytes(m: usize, n: usize) -> f64 {
+    let (m, n) = (m as f64, n as f64);
+    8.0 * (2.0 * m * n + 2.0 * m * m + 2.0 * n * n)
 }
 
 impl StaticsSettings {
@@ -188,6 +202,18 @@ impl<'a> Statics<'a> {
     /// Factors the equilibrium matrix of `structure`.
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
         let dofs = DofMap::of(structure);
+        let (m, n) = (dofs.len(), structure.n_members());
+        let bytes = dense_statics_bytes(m, n);
+        let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
+        if bytes > limit {
+            return Err(crate::CoreError::TooLarge {
+                what: "the dense SVD of the equilibrium matrix",
+                rows: m,
+                cols: n,
+                bytes,
+                limit,
+            });
+        }
         let a = equilibrium_matrix(structure, &dofs);
         let svd = linalg::svd(&a)?;
         let s_max = svd.s.first().copied().unwrap_or(0.0);
