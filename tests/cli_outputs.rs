@@ -94,6 +94,7 @@ fn every_recorded_quantity_is_in_the_csv_with_its_closed_form() {
     assert!((last[col("n1_z [m]")] + 5.0 * t * t).abs() < 1e-9);
     assert!((last[col("v1_z [m/s]")] + 10.0 * t).abs() < 1e-9);
     assert!(last[col("bar0_force [N]")].abs() < 1e-9);
+    assert!(last[col("bar0_force_density [N/m]")].abs() < 1e-9);
     assert!((last[col("kinetic_energy [J]")] - 0.5 * 1.0 * (10.0 * t).powi(2)).abs() < 1e-8);
     assert!((last[col("total_energy [J]")] - rows[0][col("total_energy [J]")]).abs() < 1e-8);
 }

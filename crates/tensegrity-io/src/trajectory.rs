@@ -5,7 +5,8 @@
 //! Columns (all numbers `{:.17e}`, exact round trip), each group present when recorded:
 //! `t [s]`; positions `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]`; velocities `v{i}_x [m/s]`…;
 //! axial member forces, tension positive, `{member}_force [N]` with members named
-//! `bar{k}` / `string{k}`; `kinetic_energy [J]`, `total_energy [J]`; ground contact forces
+//! `bar{k}` / `string{k}`, and with positions their force densities
+//! `{member}_force_density [N/m]` (force over current length); `kinetic_energy [J]`, `total_energy [J]`; ground contact forces
 //! `c{node}_x [N]`… of every contact node. With positions only, the file is exactly the one
 //! [`crate::csv::write_trajectory`] writes.
 //!
@@ -51,6 +52,7 @@ pub struct TrajectoryWriter {
     tmp: PathBuf,
     out: Option<BufWriter<File>>,
     members: Vec<String>,
+    ends: Vec<[usize; 2]>,
     header_written: bool,
     rows: usize,
 }
@@ -75,6 +77,7 @@ impl TrajectoryWriter {
             tmp,
             out: Some(BufWriter::new(file)),
             members,
+            ends: structure.member_nodes(),
             header_written: false,
             rows: 0,
         })
@@ -87,7 +90,7 @@ impl TrajectoryWriter {
             self.line(&header)?;
             self.header_written = true;
         }
-        let row = row(s).join(",");
+        let row = row(s, &self.ends).join(",");
         self.line(&row)?;
         self.rows += 1;
         Ok(())
@@ -147,6 +150,13 @@ impl TrajectoryWriter {
         }
         if s.member_forces.is_some() {
             h.extend(self.members.iter().map(|m| format!("{m}_force [N]")));
+            if s.nodes.is_some() {
+                h.extend(
+                    self.members
+                        .iter()
+                        .map(|m| format!("{m}_force_density [N/m]")),
+                );
+            }
         }
         if s.energy.is_some() {
             h.extend(["kinetic_energy [J]".into(), "total_energy [J]".into()]);
@@ -169,13 +179,22 @@ impl Drop for TrajectoryWriter {
     }
 }
 
-fn row(s: &Sample) -> Vec<String> {
+fn row(s: &Sample, ends: &[[usize; 2]]) -> Vec<String> {
     let f = |v: f64| format!("{v:.17e}");
     let mut r = vec![f(s.t)];
     for p in s.nodes.iter().chain(&s.velocities).flatten() {
         r.extend([p.x, p.y, p.z].map(f));
     }
     r.extend(s.member_forces.iter().flatten().map(|&v| f(v)));
+    if let (Some(forces), Some(nodes)) = (&s.member_forces, &s.nodes) {
+        // q = force / current length (tension positive)
+        r.extend(
+            forces
+                .iter()
+                .zip(ends)
+                .map(|(&force, &[i, j])| f(force / (nodes[j] - nodes[i]).norm())),
+        );
+    }
     if let Some((k, e)) = s.energy {
         r.extend([f(k), f(e)]);
     }
