@@ -97,6 +97,9 @@ fn every_recorded_quantity_is_in_the_csv_with_its_closed_form() {
     assert!(last[col("bar0_force_density [N/m]")].abs() < 1e-9);
     assert!((last[col("kinetic_energy [J]")] - 0.5 * 1.0 * (10.0 * t).powi(2)).abs() < 1e-8);
     assert!((last[col("total_energy [J]")] - rows[0][col("total_energy [J]")]).abs() < 1e-8);
+    // the VTK frames carry the recorded velocities (point data) and forces (cell data)
+    let frame = std::fs::read_to_string(vtk.join("frame_00002.vtu")).unwrap();
+    assert!(frame.contains(r#"Name="velocity""#) && frame.contains(r#"Name="force""#));
 }
 
 /// Starts a run that would take hours and waits until its CSV has rows.

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::{CoreError, Structure};
 use tensegrity_io::trajectory::TrajectoryWriter;
-use tensegrity_io::vtk::SeriesWriter;
+use tensegrity_io::vtk::{FrameData, SeriesWriter};
 use tensegrity_io::IoError;
 
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -53,7 +53,11 @@ impl<'a> Outputs<'a> {
             w.write(s)?;
         }
         if let (Some(w), Some(nodes)) = (self.vtk.as_mut(), s.nodes.as_deref()) {
-            w.frame(s.t, nodes)?;
+            let data = FrameData {
+                velocities: s.velocities.as_deref(),
+                member_forces: s.member_forces.as_deref(),
+            };
+            w.frame_with(s.t, nodes, &data)?;
         }
         Ok(())
     }

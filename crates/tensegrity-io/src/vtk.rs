@@ -25,6 +25,34 @@ use tensegrity_core::Structure;
 /// assert!(xml.contains(r#"NumberOfPoints="2" NumberOfCells="1""#));
 /// ```
 pub fn vtu(structure: &Structure, nodes: &[Vector3<f64>]) -> String {
+    vtu_with(structure, nodes, &FrameData::default())
+}
+
+/// Recorded quantities written with a frame: node velocities as point data `velocity`
+/// (m/s) and axial member forces, tension positive, as cell data `force` (N).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameData<'a> {
+    /// Node velocities (file numbering).
+    pub velocities: Option<&'a [Vector3<f64>]>,
+    /// Member forces, bars then strings.
+    pub member_forces: Option<&'a [f64]>,
+}
+
+/// [`vtu`] with the recorded quantities of `data`.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_io::vtk::{vtu_with, FrameData};
+/// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1)).build().unwrap();
+/// let v = [Vector3::new(0.0, 0.0, -1.0); 2];
+/// let data = FrameData { velocities: Some(&v), member_forces: Some(&[-5.0]) };
+/// let xml = vtu_with(&s, &s.nodes(), &data);
+/// assert!(xml.contains(r#"Name="velocity""#) && xml.contains(r#"Name="force""#));
+/// assert!(xml.contains("0e0 0e0 -1e0") && xml.contains("-5e0"));
+/// ```
+pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<'_>) -> String {
     let members = structure.member_nodes();
     let nb = structure.n_bars();
     let mut s = String::new();
@@ -87,7 +115,28 @@ pub fn vtu(structure: &Structure, nodes: &[Vector3<f64>]) -> String {
         .collect();
     let _ = writeln!(s, "{}", index.join(" "));
     let _ = writeln!(s, "</DataArray>");
+    if let Some(f) = data.member_forces {
+        let _ = writeln!(
+            s,
+            r#"<DataArray type="Float64" Name="force" format="ascii">"#
+        );
+        let text: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
+        let _ = writeln!(s, "{}", text.join(" "));
+        let _ = writeln!(s, "</DataArray>");
+    }
     let _ = writeln!(s, "</CellData>");
+    if let Some(v) = data.velocities {
+        let _ = writeln!(s, r#"<PointData Vectors="velocity">"#);
+        let _ = writeln!(
+            s,
+            r#"<DataArray type="Float64" Name="velocity" NumberOfComponents="3" format="ascii">"#
+        );
+        for p in v {
+            let _ = writeln!(s, "{:e} {:e} {:e}", p.x, p.y, p.z);
+        }
+        let _ = writeln!(s, "</DataArray>");
+        let _ = writeln!(s, "</PointData>");
+    }
     let _ = writeln!(s, "</Piece>\n</UnstructuredGrid>\n</VTKFile>");
     s
 }
@@ -188,9 +237,19 @@ impl<'a> SeriesWriter<'a> {
 
     /// Writes the frame of time `t` with node positions `nodes` (file numbering).
     pub fn frame(&mut self, t: f64, nodes: &[Vector3<f64>]) -> Result<()> {
+        self.frame_with(t, nodes, &FrameData::default())
+    }
+
+    /// Writes a frame with recorded quantities (see [`FrameData`]).
+    pub fn frame_with(
+        &mut self,
+        t: f64,
+        nodes: &[Vector3<f64>],
+        data: &FrameData<'_>,
+    ) -> Result<()> {
         let name = format!("frame_{:05}.vtu", self.count);
         crate::write_file(&self.dir.join(&name), |w| {
-            w.write_all(vtu(self.structure, nodes).as_bytes())
+            w.write_all(vtu_with(self.structure, nodes, data).as_bytes())
                 .map_err(IoError::stream("VTK frame"))
         })?;
         let _ = writeln!(
