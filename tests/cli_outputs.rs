@@ -60,12 +60,15 @@ fn every_recorded_quantity_is_in_the_csv_with_its_closed_form() {
     let scene = dir.join("bar.toml");
     std::fs::write(&scene, FALLING_BAR).unwrap();
     let csv = dir.join("traj.csv");
+    let vtk = dir.join("vtk");
     let out = bin()
         .args([
             "simulate",
             scene.to_str().unwrap(),
             "--out",
             csv.to_str().unwrap(),
+            "--vtk",
+            vtk.to_str().unwrap(),
         ])
         .output()
         .unwrap();
