@@ -665,3 +665,21 @@ fn a_structure_too_large_for_memory_is_refused_before_allocating() {
         "no allocation failure, no backtrace"
     );
 }
+
+#[test]
+fn a_fixed_step_run_that_cannot_finish_is_refused_before_it_starts() {
+    let out = run(&[
+        "simulate",
+        "examples/prism.toml",
+        "--t-end",
+        "1e300",
+        "--dt",
+        "1e-300",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("dt = 1e-300") && err.contains("max_steps"),
+        "{err}"
+    );
+}

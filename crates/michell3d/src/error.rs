@@ -10,7 +10,7 @@ pub type Result<T> = std::result::Result<T, MichellError>;
 #[non_exhaustive]
 pub enum MichellError {
     /// A user parameter is outside its valid range.
-    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    #[error("invalid parameter `{name}` = {}: {reason}", tensegrity_core::error::short_number(*value))]
     InvalidParameter {
         /// Parameter name as the user knows it (e.g. `beta`, `delta`, `complexity`).
         name: &'static str,

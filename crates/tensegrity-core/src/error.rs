@@ -171,7 +171,7 @@ pub enum CoreError {
         nodes: Vec<usize>,
     },
     /// The run was interrupted (a sample sink asked to stop, e.g. on Ctrl-C).
-    #[error("interrupted at t = {t} s")]
+    #[error("interrupted at t = {t:?} s")]
     Interrupted {
         /// Time of the last sample handed out (s).
         t: f64,
@@ -205,7 +205,7 @@ pub enum CoreError {
         status: String,
     },
     /// An invalid analysis parameter.
-    #[error("{name} = {value}: {reason}")]
+    #[error("{name} = {}: {reason}", short_number(*value))]
     InvalidParameter {
         /// The parameter's name.
         name: &'static str,
@@ -234,7 +234,7 @@ pub enum CoreError {
         residual: f64,
     },
     /// Dynamics: the adaptive integrator needed a step smaller than its minimum.
-    #[error("step size fell below the minimum {h_min:e} s at t = {t} s")]
+    #[error("step size fell below the minimum {h_min:e} s at t = {t:?} s")]
     StepSizeTooSmall {
         /// Time at which the step was rejected.
         t: f64,
@@ -242,7 +242,7 @@ pub enum CoreError {
         h_min: f64,
     },
     /// Dynamics: the run needed more accepted steps than allowed.
-    #[error("more than {max_steps} steps needed: stopped at t = {t} s")]
+    #[error("more than {max_steps} steps needed: stopped at t = {t:?} s")]
     MaxStepsExceeded {
         /// Time reached when the limit was hit.
         t: f64,
@@ -250,7 +250,7 @@ pub enum CoreError {
         max_steps: u64,
     },
     /// Dynamics: a NaN or infinity appeared in the state or the forces.
-    #[error("non-finite state at t = {t} s in {member}")]
+    #[error("non-finite state at t = {t:?} s in {member}")]
     NonFiniteState {
         /// Time of the step that produced it.
         t: f64,
@@ -258,7 +258,7 @@ pub enum CoreError {
         member: MemberId,
     },
     /// Dynamics: a node moved implausibly far (the run diverged).
-    #[error("blow-up at t = {t} s: {member} moved {distance:e} m (limit {limit:e} m)")]
+    #[error("blow-up at t = {t:?} s: {member} moved {distance:e} m (limit {limit:e} m)")]
     BlowUp {
         /// Time of detection.
         t: f64,
@@ -281,7 +281,7 @@ pub enum CoreError {
     /// Dynamics: the state ran away during the run (a constraint system that factored at the
     /// start became singular, or the RATTLE iteration failed): the step is too large for the
     /// stiffness.
-    #[error("the integration diverged at t = {t} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller --dt, the adaptive rk45, or the implicit sdirk for stiff strings and contact")]
+    #[error("the integration diverged at t = {t:?} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller --dt, the adaptive rk45, or the implicit sdirk for stiff strings and contact")]
     Diverged {
         /// Time of the last accepted state (s).
         t: f64,
@@ -289,7 +289,7 @@ pub enum CoreError {
         what: &'static str,
     },
     /// Dynamics: the RATTLE position solve did not converge.
-    #[error("RATTLE constraint iteration did not converge at t = {t} s (residual {residual:e})")]
+    #[error("RATTLE constraint iteration did not converge at t = {t:?} s (residual {residual:e})")]
     ConstraintNotConverged {
         /// Time of the step.
         t: f64,
@@ -386,6 +386,24 @@ pub enum FactorizationFailure {
     /// A sparse index overflowed the index type.
     #[error("sparse index overflow")]
     IndexOverflow,
+}
+
+/// A number as a person reads it: plain decimals for ordinary magnitudes, scientific
+/// notation for tiny or huge ones (`1e-300`, not three hundred zeros).
+///
+/// ```
+/// use tensegrity_core::error::short_number;
+/// assert_eq!(short_number(-5.0), "-5");
+/// assert_eq!(short_number(1.5), "1.5");
+/// assert_eq!(short_number(1e-300), "1e-300");
+/// assert_eq!(short_number(f64::NAN), "NaN");
+/// ```
+pub fn short_number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 impl CoreError {

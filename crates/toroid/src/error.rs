@@ -12,7 +12,7 @@ pub type Result<T, E = ToroidError> = std::result::Result<T, E>;
 #[non_exhaustive]
 pub enum ToroidError {
     /// A geometric or physical parameter is out of its valid range.
-    #[error("invalid parameter {name} = {value}: {reason}")]
+    #[error("invalid parameter {name} = {}: {reason}", tensegrity_core::error::short_number(*value))]
     InvalidParameter {
         /// The parameter's name as on the command line, e.g. `inner_radius`.
         name: &'static str,

@@ -235,6 +235,19 @@ impl Simulation {
         if let Some(dt_out) = s.output_interval {
             positive("output_interval", dt_out)?;
         }
+        // a fixed-step run that cannot finish is refused before it starts, not after
+        // max_steps steps of work
+        let steps = (s.t_end / s.dt).ceil();
+        if !s.integrator.is_adaptive() && steps > s.max_steps as f64 {
+            return Err(CoreError::invalid_parameter(
+                "dt",
+                s.dt,
+                format!(
+                    "t_end / dt = {steps:e} fixed steps, more than max_steps = {}",
+                    s.max_steps
+                ),
+            ));
+        }
         Ok(())
     }
 
