@@ -34,6 +34,9 @@ enum Command {
     FigRolling(cli::toroid::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
     Tipover(cli::toroid::TipoverArgs),
+    /// Parameter sweeps from a TOML spec to CSV (parallel, resumable, shardable), and
+    /// `sweep merge` of shard files.
+    Sweep(cli::sweep::SweepArgs),
 }
 
 fn main() {
@@ -62,6 +65,7 @@ fn main() {
         Command::Roll(args) => cli::toroid::run_roll(args),
         Command::Tipover(args) => cli::toroid::run_tipover(args),
         Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
+        Command::Sweep(args) => cli::sweep::run(args),
     };
     if let Err(e) = result {
         let broken_pipe = e.chain().any(|c| {
@@ -72,6 +76,11 @@ fn main() {
             std::process::exit(0);
         }
         eprintln!("error: {e:#}");
-        std::process::exit(1);
+        // DESIGN.md: 2 for bad input (a sweep spec, shard or file that does not fit)
+        let bad_input = e.chain().any(|c| {
+            c.downcast_ref::<sweeps::SweepError>()
+                .is_some_and(sweeps::SweepError::is_input_error)
+        });
+        std::process::exit(if bad_input { 2 } else { 1 });
     }
 }

@@ -6,4 +6,5 @@ pub mod demo;
 pub mod michell;
 pub mod simulate;
 pub mod statics;
+pub mod sweep;
 pub mod toroid;
