@@ -16,7 +16,8 @@
 //! ```
 //!
 //! Axes: a list of values, or `{ from, to, steps }` (`steps` points from `from` to `to`, both
-//! included; `log = true` spaces them geometrically, `from`, `to` > 0), or
+//! included, the inner ones rounded to 15 significant digits; `log = true` spaces them
+//! geometrically, `from`, `to` > 0), or
 //! `{ from, to, step }` (`from`, `from + step`, … up to `to`, rounded to the decimals of
 //! `from` and `step`). Integer `from`, `to` (and `step`) give integer values when every
 //! value is whole.
@@ -393,12 +394,14 @@ fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
                 return Err(axis_err(name, "a log range needs from, to > 0".into()));
             }
             let n = n as usize;
+            // interior points rounded to 15 significant digits: 1e-5, not 1.0000000000000003e-5
+            let round = |x: f64| format!("{x:.14e}").parse().unwrap_or(x);
             (0..n)
                 .map(|i| match (i, n) {
                     (0, _) => from,
                     (i, n) if i == n - 1 => to,
-                    _ if r.log => from * (to / from).powf(i as f64 / (n - 1) as f64),
-                    _ => from + (to - from) * i as f64 / (n - 1) as f64,
+                    _ if r.log => round(from * (to / from).powf(i as f64 / (n - 1) as f64)),
+                    _ => round(from + (to - from) * i as f64 / (n - 1) as f64),
                 })
                 .collect()
         }

@@ -52,6 +52,7 @@ fn ranges() {
         sides = { from = 3, to = 9, step = 2 }
         sigma = { from = 0.1, to = 0.5, step = 0.1 }
         gravity = { from = 1, to = 100, steps = 3, log = true }
+        bar_density = { from = 1e-4, to = 1e-11, steps = 8, log = true }
         offset = { from = 0, to = 1, steps = 5 }
         "#,
     )
@@ -61,8 +62,12 @@ fn ranges() {
     assert_eq!(s.axes[0].values[0].value, Value::Integer(3));
     assert_eq!(t(1), ["0.1", "0.2", "0.3", "0.4", "0.5"]);
     assert_eq!(t(2), ["1", "10", "100"]);
-    assert_eq!(t(3), ["0", "0.25", "0.5", "0.75", "1"]);
-    assert_eq!(s.case_count().unwrap(), 4 * 5 * 3 * 5);
+    assert_eq!(t(3)[0], "0.0001");
+    assert_eq!(t(3)[7], "0.00000000001");
+    let x: Vec<f64> = s.axes[3].values.iter().map(|v| v.text.parse().unwrap()).collect();
+    assert_eq!(x[1..7], [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]);
+    assert_eq!(t(4), ["0", "0.25", "0.5", "0.75", "1"]);
+    assert_eq!(s.case_count().unwrap(), 4 * 5 * 3 * 8 * 5);
     for bad in [
         "{ from = 1, to = 2 }",
         "{ from = 1, to = 2, steps = 2, step = 1 }",

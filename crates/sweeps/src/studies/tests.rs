@@ -142,3 +142,24 @@ fn a_failing_case_is_an_error_message() {
         .unwrap_err();
     assert!(e.contains("double-pendulum"), "{e}");
 }
+
+#[test]
+fn an_integrators_point_converges_at_fourth_order() {
+    // RK4 on the oscillating prism: halving dt divides the error against the shared RK45
+    // reference by about 2⁴
+    let ctx = Context::default();
+    let point = |dt: f64| {
+        let p = params(&[
+            ("scene", Value::Text("prism-oscillating".into())),
+            ("integrator", Value::Text("rk4".into())),
+            ("parameter", Value::Float(dt)),
+        ]);
+        Study::Integrators.report(&p, &ctx).unwrap()
+    };
+    let (a, b) = (point(4e-3), point(2e-3));
+    assert_eq!(a["scene"], "prism-oscillating");
+    assert_eq!(a["integrator"], "rk4");
+    assert_eq!(a["steps"], 250);
+    let ratio = a["error"].as_f64().unwrap() / b["error"].as_f64().unwrap();
+    assert!((10.0..24.0).contains(&ratio), "{ratio}");
+}
