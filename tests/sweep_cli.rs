@@ -15,7 +15,11 @@ fn run(args: &[&str]) -> Output {
 }
 
 fn assert_ok(out: &Output) {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -51,10 +55,18 @@ fn assert_row_is_json(header: &[String], row: &[String], first_result: usize, ar
     for k in first_result..header.len() - 2 {
         // a key the JSON leaves out (the δ of a spherical truss) is an empty field
         let null = serde_json::Value::Null;
-        let want = header[k].split('.').try_fold(&json, |v, key| v.get(key)).unwrap_or(&null);
+        let want = header[k]
+            .split('.')
+            .try_fold(&json, |v, key| v.get(key))
+            .unwrap_or(&null);
         match want {
             serde_json::Value::Number(n) => {
-                assert_eq!(row[k].parse::<f64>().unwrap(), n.as_f64().unwrap(), "{}", header[k])
+                assert_eq!(
+                    row[k].parse::<f64>().unwrap(),
+                    n.as_f64().unwrap(),
+                    "{}",
+                    header[k]
+                )
             }
             serde_json::Value::String(s) => assert_eq!(&row[k], s, "{}", header[k]),
             serde_json::Value::Bool(b) => assert_eq!(row[k], b.to_string(), "{}", header[k]),
@@ -73,11 +85,30 @@ fn rows_equal_the_single_point_json() {
         "study = \"roll\"\n[fixed]\nfidelity = \"rigid\"\nt_end = 0.5\n[axes]\nsides = [8, 12]\nincline = [\"30deg\", \"pi/4\"]\n",
     );
     let out = dir.join("roll.csv").to_string_lossy().into_owned();
-    assert_ok(&run(&["sweep", &spec, "--out", &out, "--threads", "2", "--quiet"]));
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        &out,
+        "--threads",
+        "2",
+        "--quiet",
+    ]));
     let (header, rows) = table(&out);
     assert_eq!(rows.len(), 4);
     for row in &rows {
-        let args = ["roll", "--fidelity", "rigid", "--t-end", "0.5", "--sides", &row[1], "--incline", &row[2], "--json"];
+        let args = [
+            "roll",
+            "--fidelity",
+            "rigid",
+            "--t-end",
+            "0.5",
+            "--sides",
+            &row[1],
+            "--incline",
+            &row[2],
+            "--json",
+        ];
         assert_row_is_json(&header, row, 3, &args);
     }
     let spec = write(
@@ -90,7 +121,18 @@ fn rows_equal_the_single_point_json() {
     let (header, rows) = table(&out);
     assert!(header.contains(&"mass_kg.yield_buckling".to_string()));
     for row in [&rows[0], &rows[3]] {
-        let args = ["michell", "--complexity", &row[1], "--spherical", &row[2], "--beta", "pi/6", "--phi", "pi/12", "--json"];
+        let args = [
+            "michell",
+            "--complexity",
+            &row[1],
+            "--spherical",
+            &row[2],
+            "--beta",
+            "pi/6",
+            "--phi",
+            "pi/12",
+            "--json",
+        ];
         assert_row_is_json(&header, row, 3, &args);
     }
 }
@@ -98,15 +140,37 @@ fn rows_equal_the_single_point_json() {
 #[test]
 fn shards_merge_into_the_single_run() {
     let dir = scratch("shards");
-    let spec = write(&dir, "t.toml", "study = \"toroid\"\n[axes]\nsides = [6, 8, 10, 12, 14]\n");
+    let spec = write(
+        &dir,
+        "t.toml",
+        "study = \"toroid\"\n[axes]\nsides = [6, 8, 10, 12, 14]\n",
+    );
     let path = |n: &str| dir.join(n).to_string_lossy().into_owned();
-    assert_ok(&run(&["sweep", &spec, "--out", &path("all.csv"), "--quiet"]));
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        &path("all.csv"),
+        "--quiet",
+    ]));
     for k in ["1/2", "2/2"] {
         let out = path(&format!("part{}.csv", &k[..1]));
-        assert_ok(&run(&["sweep", &spec, "--out", &out, "--shard", k, "--quiet"]));
+        assert_ok(&run(&[
+            "sweep", &spec, "--out", &out, "--shard", k, "--quiet",
+        ]));
     }
-    assert_ok(&run(&["sweep", "merge", &path("part2.csv"), &path("part1.csv"), "--out", &path("merged.csv")]));
-    assert_eq!(std::fs::read(path("merged.csv")).unwrap(), std::fs::read(path("all.csv")).unwrap());
+    assert_ok(&run(&[
+        "sweep",
+        "merge",
+        &path("part2.csv"),
+        &path("part1.csv"),
+        "--out",
+        &path("merged.csv"),
+    ]));
+    assert_eq!(
+        std::fs::read(path("merged.csv")).unwrap(),
+        std::fs::read(path("all.csv")).unwrap()
+    );
 }
 
 #[test]
@@ -120,7 +184,15 @@ fn kill_9_then_resume_gives_the_single_run() {
     );
     let path = |n: &str| dir.join(n).to_string_lossy().into_owned();
     let (single, cut) = (path("single.csv"), path("cut.csv"));
-    assert_ok(&run(&["sweep", &spec, "--out", &single, "--threads", "1", "--quiet"]));
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        &single,
+        "--threads",
+        "1",
+        "--quiet",
+    ]));
     let mut child = bin()
         .args(["sweep", &spec, "--out", &cut, "--threads", "1", "--quiet"])
         .spawn()
@@ -141,7 +213,16 @@ fn kill_9_then_resume_gives_the_single_run() {
     let rows_before_kill = partial.iter().filter(|&&c| c == b'\n').count() - 1;
     assert!(rows_before_kill < 24, "the sweep ended before the kill");
     assert!(want.starts_with(&partial[..partial.iter().rposition(|&c| c == b'\n').unwrap() + 1]));
-    assert_ok(&run(&["sweep", &spec, "--out", &cut, "--threads", "2", "--resume", "--quiet"]));
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        &cut,
+        "--threads",
+        "2",
+        "--resume",
+        "--quiet",
+    ]));
     assert_eq!(std::fs::read(&cut).unwrap(), want);
 }
 
@@ -150,14 +231,20 @@ fn bad_specs_are_usage_errors_before_any_case() {
     let dir = scratch("bad");
     let out = dir.join("never.csv").to_string_lossy().into_owned();
     for (text, needle) in [
-        ("study = \"toroid\"\n[axes]\nsidez = [8]\n", "unknown parameter `sidez`"),
+        (
+            "study = \"toroid\"\n[axes]\nsidez = [8]\n",
+            "unknown parameter `sidez`",
+        ),
         ("study = \"toroid\"\nbogus = 1\n", "bogus"),
         ("study = \"wheel\"\n", "unknown study"),
     ] {
         let spec = write(&dir, "bad.toml", text);
         let o = run(&["sweep", &spec, "--out", &out]);
         assert_eq!(o.status.code(), Some(2), "{text}");
-        assert!(String::from_utf8_lossy(&o.stderr).contains(needle), "{text}");
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains(needle),
+            "{text}"
+        );
         assert!(!Path::new(&out).exists());
     }
     let spec = write(&dir, "ok.toml", "study = \"tipover\"\n");

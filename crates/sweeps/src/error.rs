@@ -82,7 +82,9 @@ pub enum SweepError {
         known: String,
     },
     /// More cases than the sweep accepts.
-    #[error("the sweep has {cases} cases, more than the limit of {limit}: split it into several specs")]
+    #[error(
+        "the sweep has {cases} cases, more than the limit of {limit}: split it into several specs"
+    )]
     TooManyCases {
         /// Product of the axis lengths (saturating).
         cases: u128,
@@ -142,7 +144,10 @@ impl SweepError {
         !matches!(self, SweepError::Io { .. })
     }
 
-    pub(crate) fn io(what: &'static str, path: &std::path::Path) -> impl FnOnce(std::io::Error) -> Self {
+    pub(crate) fn io(
+        what: &'static str,
+        path: &std::path::Path,
+    ) -> impl FnOnce(std::io::Error) -> Self {
         let path = path.to_path_buf();
         move |source| SweepError::Io { what, path, source }
     }

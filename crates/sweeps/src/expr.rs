@@ -183,7 +183,11 @@ impl Parser {
         let base = self.atom()?;
         if let Some(Token::Op('^')) = self.peek() {
             self.at += 1;
-            return Ok(Expr::Binary(Op::Pow, Box::new(base), Box::new(self.unary()?)));
+            return Ok(Expr::Binary(
+                Op::Pow,
+                Box::new(base),
+                Box::new(self.unary()?),
+            ));
         }
         Ok(base)
     }
@@ -191,7 +195,9 @@ impl Parser {
     fn atom(&mut self) -> Result<Expr, String> {
         match self.next() {
             Some(Token::Number(x)) => Ok(Expr::Number(x)),
-            Some(Token::Name(n)) if n == "pi" || n == "π" => Ok(Expr::Number(std::f64::consts::PI)),
+            Some(Token::Name(n)) if n == "pi" || n == "π" => {
+                Ok(Expr::Number(std::f64::consts::PI))
+            }
             Some(Token::Name(n)) => Ok(Expr::Name(n)),
             Some(Token::Open) => {
                 let e = self.expr()?;
@@ -251,7 +257,10 @@ impl Expr {
     }
 
     /// Evaluates the expression; `lookup` gives a name's value (`None`: unknown name).
-    pub fn eval(&self, lookup: &dyn Fn(&str) -> Option<Result<f64, String>>) -> Result<f64, String> {
+    pub fn eval(
+        &self,
+        lookup: &dyn Fn(&str) -> Option<Result<f64, String>>,
+    ) -> Result<f64, String> {
         let v = match self {
             Expr::Number(x) => *x,
             Expr::Name(n) => lookup(n).ok_or_else(|| format!("unknown name `{n}`"))??,
@@ -307,7 +316,9 @@ mod tests {
 
     #[test]
     fn errors_name_the_problem() {
-        assert!(eval("1 / (q - 8)").unwrap_err().contains("division by zero"));
+        assert!(eval("1 / (q - 8)")
+            .unwrap_err()
+            .contains("division by zero"));
         assert!(eval("x + 1").unwrap_err().contains("`x`"));
         assert!(eval("1 +").unwrap_err().contains("end"));
         assert!(eval("(1").unwrap_err().contains(")"));

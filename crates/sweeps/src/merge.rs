@@ -35,7 +35,9 @@ fn read_input(path: &Path) -> Result<Input> {
     };
     let bytes = std::fs::read(path).map_err(SweepError::io("reading", path))?;
     if bytes.last() != Some(&b'\n') {
-        return Err(bad("it is empty or its last row is incomplete (finish it with --resume)".into()));
+        return Err(bad(
+            "it is empty or its last row is incomplete (finish it with --resume)".into(),
+        ));
     }
     let mut lines = bytes.split_inclusive(|&b| b == b'\n');
     let mut preamble = Vec::new();
@@ -47,7 +49,9 @@ fn read_input(path: &Path) -> Result<Input> {
         }
     };
     if !(header.starts_with(b"case,") && header.ends_with(b",status,message\n")) {
-        return Err(bad("it is not a sweep file (no `case,…,status,message` header)".into()));
+        return Err(bad(
+            "it is not a sweep file (no `case,…,status,message` header)".into(),
+        ));
     }
     let rows = lines
         .map(|line| {
@@ -56,7 +60,12 @@ fn read_input(path: &Path) -> Result<Input> {
                 .next()
                 .and_then(|f| std::str::from_utf8(f).ok())
                 .and_then(|f| f.parse::<usize>().ok())
-                .ok_or_else(|| bad(format!("a row without a case id: {}", String::from_utf8_lossy(line).trim_end())))?;
+                .ok_or_else(|| {
+                    bad(format!(
+                        "a row without a case id: {}",
+                        String::from_utf8_lossy(line).trim_end()
+                    ))
+                })?;
             Ok((id, line.to_vec()))
         })
         .collect::<Result<Vec<_>>>()?;
@@ -80,14 +89,19 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
         match &preamble {
             None => preamble = Some(input.preamble),
             Some(p) if *p != input.preamble => {
-                return Err(bad(format!("its header differs from that of {}", first.display())))
+                return Err(bad(format!(
+                    "its header differs from that of {}",
+                    first.display()
+                )))
             }
             Some(_) => {}
         }
         for (id, row) in input.rows {
             match rows.get(&id) {
                 Some(other) if *other != row => {
-                    return Err(bad(format!("case {id} is also in another file, with another row")))
+                    return Err(bad(format!(
+                        "case {id} is also in another file, with another row"
+                    )))
                 }
                 Some(_) => {}
                 None => {
@@ -96,10 +110,17 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
             }
         }
     }
-    if let Some(missing) = rows.keys().enumerate().find(|&(i, &id)| i != id).map(|(i, _)| i) {
+    if let Some(missing) = rows
+        .keys()
+        .enumerate()
+        .find(|&(i, &id)| i != id)
+        .map(|(i, _)| i)
+    {
         return Err(SweepError::Merge {
             path: out.to_path_buf(),
-            reason: format!("case {missing} is in none of the files (a shard is missing or unfinished)"),
+            reason: format!(
+                "case {missing} is in none of the files (a shard is missing or unfinished)"
+            ),
         });
     }
     let mut bytes = preamble.unwrap_or_default();

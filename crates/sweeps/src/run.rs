@@ -74,9 +74,17 @@ impl FromStr for Shard {
             shard: s.to_string(),
             reason: reason.to_string(),
         };
-        let (k, n) = s.split_once('/').ok_or_else(|| bad("expected K/N, e.g. 2/4"))?;
-        let k: usize = k.trim().parse().map_err(|_| bad("K is not a whole number"))?;
-        let n: usize = n.trim().parse().map_err(|_| bad("N is not a whole number"))?;
+        let (k, n) = s
+            .split_once('/')
+            .ok_or_else(|| bad("expected K/N, e.g. 2/4"))?;
+        let k: usize = k
+            .trim()
+            .parse()
+            .map_err(|_| bad("K is not a whole number"))?;
+        let n: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| bad("N is not a whole number"))?;
         if n == 0 || k == 0 || k > n {
             return Err(bad("need 1 ≤ K ≤ N"));
         }
@@ -147,7 +155,12 @@ pub struct Summary {
 }
 
 /// Runs the sweep, writing its rows to `out` (see the module docs).
-pub fn run(spec: &Spec, out: &Path, opts: &RunOptions, progress: &mut dyn Progress) -> Result<Summary> {
+pub fn run(
+    spec: &Spec,
+    out: &Path,
+    opts: &RunOptions,
+    progress: &mut dyn Progress,
+) -> Result<Summary> {
     let total = spec.case_count()?;
     let shard_cases = opts.shard.len(total);
     let preamble = table::preamble(spec, opts.units);
@@ -155,7 +168,8 @@ pub fn run(spec: &Spec, out: &Path, opts: &RunOptions, progress: &mut dyn Progre
         resume(spec, out, &preamble, opts.shard)?
     } else {
         let mut f = File::create(out).map_err(SweepError::io("creating", out))?;
-        f.write_all(&preamble).map_err(SweepError::io("writing", out))?;
+        f.write_all(&preamble)
+            .map_err(SweepError::io("writing", out))?;
         (f, 0)
     };
     progress.start(shard_cases, resumed);
@@ -164,7 +178,15 @@ pub fn run(spec: &Spec, out: &Path, opts: &RunOptions, progress: &mut dyn Progre
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
         .max(1);
     let (written, errors) = if resumed < shard_cases {
-        execute(spec, opts.shard, resumed..shard_cases, threads, file, out, progress)?
+        execute(
+            spec,
+            opts.shard,
+            resumed..shard_cases,
+            threads,
+            file,
+            out,
+            progress,
+        )?
     } else {
         (0, 0)
     };
@@ -199,11 +221,14 @@ fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(Fil
         // killed while the header was written: start anew
         file.set_len(0).map_err(SweepError::io("truncating", out))?;
         file.rewind().map_err(SweepError::io("writing", out))?;
-        file.write_all(preamble).map_err(SweepError::io("writing", out))?;
+        file.write_all(preamble)
+            .map_err(SweepError::io("writing", out))?;
         return Ok((file, 0));
     }
     if head != preamble {
-        return Err(bad("its header is not the one this spec writes (another spec, or --units differs)".into()));
+        return Err(bad(
+            "its header is not the one this spec writes (another spec, or --units differs)".into(),
+        ));
     }
     let mut reader = BufReader::new(&file);
     let (mut end, mut rows, mut line) = (preamble.len() as u64, 0usize, Vec::new());
@@ -218,15 +243,20 @@ fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(Fil
             break; // end of file, or a partial last line: redone
         }
         if rows >= shard.len(total) {
-            return Err(bad(format!("it has more rows than the {} cases of this shard", shard.len(total))));
+            return Err(bad(format!(
+                "it has more rows than the {} cases of this shard",
+                shard.len(total)
+            )));
         }
         let id = shard.id(rows);
-        check_row(spec, &line, id, width).map_err(|reason| bad(format!("row of case {id}: {reason}")))?;
+        check_row(spec, &line, id, width)
+            .map_err(|reason| bad(format!("row of case {id}: {reason}")))?;
         end += n as u64;
         rows += 1;
     }
     drop(reader);
-    file.set_len(end).map_err(SweepError::io("truncating", out))?;
+    file.set_len(end)
+        .map_err(SweepError::io("truncating", out))?;
     file.seek(std::io::SeekFrom::End(0))
         .map_err(SweepError::io("writing", out))?;
     Ok((file, rows))
@@ -249,7 +279,12 @@ fn check_row(spec: &Spec, line: &[u8], id: usize, width: usize) -> std::result::
         return Err(format!("found case `{}`", rec.get(0).unwrap_or("")));
     }
     let texts = spec.axis_texts(id);
-    if rec.iter().skip(1).take(texts.len()).ne(texts.iter().map(String::as_str)) {
+    if rec
+        .iter()
+        .skip(1)
+        .take(texts.len())
+        .ne(texts.iter().map(String::as_str))
+    {
         return Err("its axis values are not this spec's".into());
     }
     Ok(())
@@ -305,7 +340,10 @@ impl Shared<'_> {
                 Err(format!("the analysis panicked: {msg}"))
             })
         });
-        (table::row(self.spec, id, &case.axis_texts, &result), result.is_err())
+        (
+            table::row(self.spec, id, &case.axis_texts, &result),
+            result.is_err(),
+        )
     }
 
     fn advance(&self, to: usize) {
@@ -385,7 +423,8 @@ fn write_in_order(
         if batch.is_empty() {
             continue;
         }
-        file.write_all(&batch).map_err(SweepError::io("writing", out))?;
+        file.write_all(&batch)
+            .map_err(SweepError::io("writing", out))?;
         shared.advance(next);
         for failed in flags {
             errors += usize::from(failed);

@@ -270,8 +270,7 @@ fn fixed_values(study: Study, table: &toml::Table) -> Result<BTreeMap<String, Va
         let value = Value::from_toml(v).ok_or_else(|| SweepError::InvalidValue {
             name: name.clone(),
             value: v.to_string(),
-            reason: "a fixed value is a number, a string or a boolean (lists go in [axes])"
-                .into(),
+            reason: "a fixed value is a number, a string or a boolean (lists go in [axes])".into(),
         })?;
         out.insert(name.clone(), value);
     }
@@ -291,7 +290,10 @@ fn axes(study: Study, text: &str, table: &toml::Table) -> Result<Vec<Axis>> {
             toml::Value::Array(items) => list_values(&name, items, &item_spans, text)?,
             toml::Value::Table(t) => {
                 let r: RawRange = t.clone().try_into().map_err(|e: toml::de::Error| {
-                    axis_err(&name, format!("a range is {{ from, to, steps | step, log }}: {e}"))
+                    axis_err(
+                        &name,
+                        format!("a range is {{ from, to, steps | step, log }}: {e}"),
+                    )
                 })?;
                 range_values(&name, &r)?
             }
@@ -350,7 +352,10 @@ fn list_values(
         .enumerate()
         .map(|(i, item)| {
             let value = Value::from_toml(item).ok_or_else(|| {
-                axis_err(name, format!("item {} is not a number, string or boolean", i + 1))
+                axis_err(
+                    name,
+                    format!("item {} is not a number, string or boolean", i + 1),
+                )
             })?;
             let text = match (&value, spans.get(i)) {
                 (Value::Text(s), _) => s.clone(),
@@ -388,7 +393,10 @@ fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
     let xs: Vec<f64> = match (r.steps, &r.step) {
         (Some(n), None) => {
             if n < 1 || n as u64 > MAX_CASES {
-                return Err(axis_err(name, format!("`steps` must be in 1..={MAX_CASES}")));
+                return Err(axis_err(
+                    name,
+                    format!("`steps` must be in 1..={MAX_CASES}"),
+                ));
             }
             if r.log && !(from > 0.0 && to > 0.0) {
                 return Err(axis_err(name, "a log range needs from, to > 0".into()));
@@ -409,7 +417,10 @@ fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
             let h = number(name, "step", step)?;
             let count = (to - from) / h;
             if h == 0.0 || count < -1e-9 {
-                return Err(axis_err(name, "`step` must be non-zero and point from `from` to `to`".into()));
+                return Err(axis_err(
+                    name,
+                    "`step` must be non-zero and point from `from` to `to`".into(),
+                ));
             }
             let count = (count + 1e-9).floor() + 1.0;
             if count > MAX_CASES as f64 {
@@ -423,12 +434,24 @@ fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
                 })
                 .collect()
         }
-        (None, Some(_)) => return Err(axis_err(name, "a log range takes `steps`, not `step`".into())),
-        _ => return Err(axis_err(name, "give exactly one of `steps` and `step`".into())),
+        (None, Some(_)) => {
+            return Err(axis_err(
+                name,
+                "a log range takes `steps`, not `step`".into(),
+            ))
+        }
+        _ => {
+            return Err(axis_err(
+                name,
+                "give exactly one of `steps` and `step`".into(),
+            ))
+        }
     };
     let integers = matches!(r.from, toml::Value::Integer(_))
         && matches!(r.to, toml::Value::Integer(_))
-        && r.step.as_ref().is_none_or(|s| matches!(s, toml::Value::Integer(_)))
+        && r.step
+            .as_ref()
+            .is_none_or(|s| matches!(s, toml::Value::Integer(_)))
         && xs.iter().all(|x| x.fract() == 0.0 && x.abs() < 9e15);
     Ok(xs
         .into_iter()
@@ -474,7 +497,11 @@ fn derived_rules(
             toml::Value::String(s) => Expr::parse(s).map_err(bad)?,
             toml::Value::Integer(i) => Expr::Number(*i as f64),
             toml::Value::Float(x) => Expr::Number(*x),
-            _ => return Err(bad("expected an expression string such as \"pi / complexity\"".into())),
+            _ => {
+                return Err(bad(
+                    "expected an expression string such as \"pi / complexity\"".into(),
+                ))
+            }
         };
         for n in e.names() {
             let known = study.param(&n).is_some_and(|p| p.kind.is_numeric());

@@ -28,7 +28,13 @@ pub fn header(spec: &Spec) -> Vec<String> {
 
 /// The `# units: …` line's fields, aligned with [`header`].
 pub fn units(spec: &Spec) -> Vec<String> {
-    let unit = |u: &str| if u.is_empty() { "-".to_string() } else { u.to_string() };
+    let unit = |u: &str| {
+        if u.is_empty() {
+            "-".to_string()
+        } else {
+            u.to_string()
+        }
+    };
     let mut h = vec!["-".to_string()];
     h.extend(
         spec.axes
@@ -97,11 +103,11 @@ pub fn row(
     fields.extend(axis_texts.iter().cloned());
     match result {
         Ok(report) => {
-            fields.extend(spec.columns.iter().map(|c| {
-                lookup(report, c.name)
-                    .and_then(scalar)
-                    .unwrap_or_default()
-            }));
+            fields.extend(
+                spec.columns
+                    .iter()
+                    .map(|c| lookup(report, c.name).and_then(scalar).unwrap_or_default()),
+            );
             fields.push("ok".into());
             fields.push(String::new());
         }
@@ -141,7 +147,10 @@ mod tests {
             let s = scalar(&json!(x)).unwrap();
             assert_eq!(s.parse::<f64>().unwrap(), x, "{s}");
         }
-        assert_eq!(record(&["a", "spokes,inner", "x\"y"]), b"a,\"spokes,inner\",\"x\"\"y\"\n");
+        assert_eq!(
+            record(&["a", "spokes,inner", "x\"y"]),
+            b"a,\"spokes,inner\",\"x\"\"y\"\n"
+        );
         assert_eq!(one_line("a\nb\r\nc"), "a b c");
         let v = json!({"mass_kg": {"yield": 2.5}, "n": 3});
         assert_eq!(lookup(&v, "mass_kg.yield"), Some(&json!(2.5)));

@@ -22,7 +22,8 @@ fn every_example_spec_parses() {
 #[test]
 fn the_fig_4_18_sweep_is_the_mass_table() {
     let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sweeps/michell_fig_4_18.toml"),
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/sweeps/michell_fig_4_18.toml"),
     )
     .unwrap()
     .replace("to = 35", "to = 7");
@@ -30,7 +31,9 @@ fn the_fig_4_18_sweep_is_the_mass_table() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fig.csv");
     run(&spec, &out, &RunOptions::default(), &mut Silent).unwrap();
-    let steel = *tensegrity_core::MaterialTable::builtin().lookup("steel", "material").unwrap();
+    let steel = *tensegrity_core::MaterialTable::builtin()
+        .lookup("steel", "material")
+        .unwrap();
     let qs: Vec<usize> = (2..=7).collect();
     let table = michell3d::mass_vs_complexity(&qs, &[0.1, 0.25, 0.5], 1000.0, &steel).unwrap();
     let mut r = csv::Reader::from_path(&out).unwrap();
@@ -38,9 +41,15 @@ fn the_fig_4_18_sweep_is_the_mass_table() {
     for rec in r.records() {
         let rec = rec.unwrap();
         let (delta, q): (f64, usize) = (rec[1].parse().unwrap(), rec[2].parse().unwrap());
-        let want = table.iter().find(|m| m.delta == delta && m.complexity == q).unwrap();
+        let want = table
+            .iter()
+            .find(|m| m.delta == delta && m.complexity == q)
+            .unwrap();
         let got = |k: usize| rec[k].parse::<f64>().unwrap();
-        assert!((got(3) - want.yield_mass_kg).abs() <= 1e-9 * want.yield_mass_kg, "{q} {delta}");
+        assert!(
+            (got(3) - want.yield_mass_kg).abs() <= 1e-9 * want.yield_mass_kg,
+            "{q} {delta}"
+        );
         assert!((got(4) - want.yield_buckling_mass_kg).abs() <= 1e-9 * want.yield_buckling_mass_kg);
         assert!((got(5) - want.normalized_yield_mass).abs() <= 1e-9 * want.normalized_yield_mass);
         rows += 1;

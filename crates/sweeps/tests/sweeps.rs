@@ -100,7 +100,11 @@ fn every_row_is_the_single_point_report() {
 fn one_and_two_threads_write_the_same_bytes() {
     let dir = tmp();
     let spec = Spec::parse(TOROID).unwrap();
-    let (a, b, c) = (dir.path().join("1.csv"), dir.path().join("2.csv"), dir.path().join("5.csv"));
+    let (a, b, c) = (
+        dir.path().join("1.csv"),
+        dir.path().join("2.csv"),
+        dir.path().join("5.csv"),
+    );
     sweep(&spec, &a, threads(1));
     sweep(&spec, &b, threads(2));
     sweep(&spec, &c, threads(5));
@@ -170,8 +174,13 @@ fn resume_refuses_a_file_of_another_sweep() {
         resume: true,
         ..threads(1)
     };
-    let e = run(&other, &out, &opts, &mut Silent).unwrap_err().to_string();
-    assert!(e.contains("cannot resume") && e.contains("axis values"), "{e}");
+    let e = run(&other, &out, &opts, &mut Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("cannot resume") && e.contains("axis values"),
+        "{e}"
+    );
     let e = run(&Spec::parse(TOROID).unwrap(), &out, &opts, &mut Silent).unwrap_err();
     assert!(e.to_string().contains("header"), "{e}");
 }
@@ -197,9 +206,16 @@ fn an_invalid_case_is_one_error_row() {
     let table = rows(&out);
     for row in &table[1..] {
         let failed = row[2] == "pi/0";
-        assert_eq!(row[row.len() - 2], if failed { "error" } else { "ok" }, "{row:?}");
+        assert_eq!(
+            row[row.len() - 2],
+            if failed { "error" } else { "ok" },
+            "{row:?}"
+        );
         if failed {
-            assert!(row[row.len() - 1].contains("`phi`") && row[row.len() - 1].contains("division by zero"));
+            assert!(
+                row[row.len() - 1].contains("`phi`")
+                    && row[row.len() - 1].contains("division by zero")
+            );
         }
     }
     // the two spellings of π/8 give the same truss
@@ -213,7 +229,16 @@ fn an_invalid_case_is_one_error_row() {
     .unwrap();
     sweep(&spec, &out, threads(1));
     let table = rows(&out);
-    assert_eq!(table[0], ["case", "complexity", "normalized_yield_mass", "status", "message"]);
+    assert_eq!(
+        table[0],
+        [
+            "case",
+            "complexity",
+            "normalized_yield_mass",
+            "status",
+            "message"
+        ]
+    );
     let m: f64 = table[1][2].parse().unwrap();
     assert!((m - 4.618802153517).abs() < 1e-9, "{m}");
 }
@@ -231,9 +256,12 @@ fn units_go_in_a_leading_comment_line() {
     let text = std::fs::read_to_string(&out).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next().unwrap(), "# units: -,m,kg,N,-,-");
-    assert_eq!(lines.next().unwrap(), "case,outer_radius,mass_kg,critical_lateral_force,status,message");
+    assert_eq!(
+        lines.next().unwrap(),
+        "case,outer_radius,mass_kg,critical_lateral_force,status,message"
+    );
     // a merge keeps the units line
     let merged = dir.path().join("m.csv");
-    merge(&[out.clone()], &merged).unwrap();
+    merge(std::slice::from_ref(&out), &merged).unwrap();
     assert_eq!(std::fs::read_to_string(&merged).unwrap(), text);
 }

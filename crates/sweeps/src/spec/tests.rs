@@ -64,7 +64,11 @@ fn ranges() {
     assert_eq!(t(2), ["1", "10", "100"]);
     assert_eq!(t(3)[0], "0.0001");
     assert_eq!(t(3)[7], "0.00000000001");
-    let x: Vec<f64> = s.axes[3].values.iter().map(|v| v.text.parse().unwrap()).collect();
+    let x: Vec<f64> = s.axes[3]
+        .values
+        .iter()
+        .map(|v| v.text.parse().unwrap())
+        .collect();
     assert_eq!(x[1..7], [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]);
     assert_eq!(t(4), ["0", "0.25", "0.5", "0.75", "1"]);
     assert_eq!(s.case_count().unwrap(), 4 * 5 * 3 * 8 * 5);
@@ -111,7 +115,9 @@ fn derived_rules_follow_their_parameters() {
 fn spec_errors_come_before_any_case() {
     let base = "study = \"toroid\"\n";
     assert!(err("study = \"wheel\"").contains("unknown study `wheel`"));
-    assert!(err(&format!("{base}[fixed]\nsidez = 8")).contains("unknown parameter `sidez` in [fixed]"));
+    assert!(
+        err(&format!("{base}[fixed]\nsidez = 8")).contains("unknown parameter `sidez` in [fixed]")
+    );
     assert!(err(&format!("{base}[axes]\nsidez = [8]")).contains("`sidez` in [axes]"));
     assert!(err(&format!("{base}[derived]\nsidez = \"8\"")).contains("`sidez` in [derived]"));
     assert!(err(&format!("{base}[fixed]\nsides = 8\n[axes]\nsides = [8]")).contains("both"));
@@ -121,8 +127,12 @@ fn spec_errors_come_before_any_case() {
     assert!(err(&format!("{base}[derived]\noffset = \"1 / n\"")).contains("`n`"));
     assert!(err(&format!("{base}[derived]\noffset = \"(1\"")).contains("offset"));
     assert!(err(&format!("{base}[derived]\nstabilize = \"1\"")).contains("numeric"));
-    assert!(err(&format!("{base}[derived]\noffset = \"rim_radius\"\nrim_radius = \"offset\"")).contains("cycle"));
-    assert!(err("study = \"michell\"\n[fixed]\nbeta = 1\nphi = 1").contains("needs the parameter `complexity`"));
+    assert!(err(&format!(
+        "{base}[derived]\noffset = \"rim_radius\"\nrim_radius = \"offset\""
+    ))
+    .contains("cycle"));
+    assert!(err("study = \"michell\"\n[fixed]\nbeta = 1\nphi = 1")
+        .contains("needs the parameter `complexity`"));
     let big = format!("{base}[axes]\nsides = {{ from = 1, to = 100000, step = 1 }}\noffset = {{ from = 1, to = 100000, step = 1 }}");
     assert!(err(&big).contains("more than the limit"));
 }
@@ -140,5 +150,8 @@ fn a_failing_derived_rule_fails_its_case_only() {
     )
     .unwrap();
     assert!(s.case(0).params.unwrap_err().contains("division by zero"));
-    assert_eq!(s.case(1).params.unwrap().number("offset").unwrap(), Some(0.1));
+    assert_eq!(
+        s.case(1).params.unwrap().number("offset").unwrap(),
+        Some(0.1)
+    );
 }

@@ -46,7 +46,11 @@ pub struct Context {
 }
 
 impl Context {
-    fn reference(&self, index: usize, scene: &Scene) -> std::result::Result<&SimulationResult, String> {
+    fn reference(
+        &self,
+        index: usize,
+        scene: &Scene,
+    ) -> std::result::Result<&SimulationResult, String> {
         self.references[index]
             .get_or_init(|| {
                 run_one(scene, IntegratorKind::Rk45, REFERENCE_RTOL, 1)
@@ -80,7 +84,11 @@ pub fn point(p: &Params, ctx: &Context) -> std::result::Result<Point, String> {
     let name = text(p, "scene")?;
     let index = scenes.iter().position(|s| s.name == name).ok_or_else(|| {
         let known: Vec<&str> = scenes.iter().map(|s| s.name).collect();
-        invalid("scene", name.clone(), format!("expected one of {}", known.join(", ")))
+        invalid(
+            "scene",
+            name.clone(),
+            format!("expected one of {}", known.join(", ")),
+        )
     })?;
     let integrator: IntegratorKind = p
         .parsed("integrator", str::parse::<IntegratorKind>)?

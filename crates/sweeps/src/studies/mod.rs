@@ -132,7 +132,9 @@ impl From<SweepError> for String {
     }
 }
 
-fn json<T: Serialize, E: std::fmt::Display>(r: std::result::Result<T, E>) -> Result<serde_json::Value, String> {
+fn json<T: Serialize, E: std::fmt::Display>(
+    r: std::result::Result<T, E>,
+) -> Result<serde_json::Value, String> {
     let report = r.map_err(|e| e.to_string())?;
     serde_json::to_value(&report).map_err(|e| format!("the report does not serialise: {e}"))
 }

@@ -16,7 +16,11 @@ fn leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
     match v {
         serde_json::Value::Object(m) => {
             for (k, v) in m {
-                let p = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                let p = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
                 leaves(v, &p, out);
             }
         }
@@ -58,7 +62,10 @@ fn columns_are_the_scalars_of_the_reports() {
     })
     .unwrap();
     check_columns(Study::Roll, &[r]);
-    check_columns(Study::Tipover, &[toroid::tipover_report(&Default::default()).unwrap()]);
+    check_columns(
+        Study::Tipover,
+        &[toroid::tipover_report(&Default::default()).unwrap()],
+    );
     use michell3d::{analyse, AnalysisRequest, MichellParams};
     let (b, f) = (std::f64::consts::FRAC_PI_6, std::f64::consts::FRAC_PI_4);
     let cyl = analyse(&AnalysisRequest {
@@ -66,16 +73,32 @@ fn columns_are_the_scalars_of_the_reports() {
         ..AnalysisRequest::new(MichellParams::cylindrical(2, 1.0, b, f, 0.25))
     })
     .unwrap();
-    let sph = analyse(&AnalysisRequest::new(MichellParams::spherical(2, 1.0, b, f / 2.0, 0.1))).unwrap();
+    let sph = analyse(&AnalysisRequest::new(MichellParams::spherical(
+        2,
+        1.0,
+        b,
+        f / 2.0,
+        0.1,
+    )))
+    .unwrap();
     check_columns(Study::Michell, &[cyl, sph]);
 }
 
 #[test]
 fn empty_params_are_the_cli_defaults() {
     let p = Params::default();
-    assert_eq!(wheel::toroid_request(&p).unwrap(), toroid::ToroidRequest::default());
-    assert_eq!(wheel::roll_request(&p).unwrap(), toroid::RollRequest::default());
-    assert_eq!(wheel::tipover_request(&p).unwrap(), toroid::TipoverRequest::default());
+    assert_eq!(
+        wheel::toroid_request(&p).unwrap(),
+        toroid::ToroidRequest::default()
+    );
+    assert_eq!(
+        wheel::roll_request(&p).unwrap(),
+        toroid::RollRequest::default()
+    );
+    assert_eq!(
+        wheel::tipover_request(&p).unwrap(),
+        toroid::TipoverRequest::default()
+    );
 }
 
 #[test]
@@ -92,23 +115,46 @@ fn flags_map_onto_the_requests() {
     assert_eq!(r.wheel.params.sides, 12);
     assert!(r.wheel.stabilize.outer && !r.wheel.stabilize.inner);
     assert_eq!(r.incline, 30f64.to_radians());
-    assert_eq!((r.fidelity, r.contact, r.mu), (toroid::FidelityChoice::Rigid, toroid::ContactKind::Penalty, 0.5));
+    assert_eq!(
+        (r.fidelity, r.contact, r.mu),
+        (
+            toroid::FidelityChoice::Rigid,
+            toroid::ContactKind::Penalty,
+            0.5
+        )
+    );
     let bad = params(&[("fidelity", Value::Text("exact".into()))]);
     let e = wheel::roll_request(&bad).unwrap_err().to_string();
-    assert!(e.contains("`fidelity`") && e.contains("rigid, full, auto"), "{e}");
+    assert!(
+        e.contains("`fidelity`") && e.contains("rigid, full, auto"),
+        "{e}"
+    );
 }
 
 #[test]
 fn sigma_and_epsilon_set_the_inner_radius_and_tread() {
-    let p = params(&[("sigma", Value::Float(0.5)), ("epsilon", Value::Float(0.25)), ("outer_radius", Value::Float(2.0))]);
+    let p = params(&[
+        ("sigma", Value::Float(0.5)),
+        ("epsilon", Value::Float(0.25)),
+        ("outer_radius", Value::Float(2.0)),
+    ]);
     let r = wheel::tipover_request(&p).unwrap();
-    assert_eq!((r.wheel.params.inner_radius, r.wheel.params.inner_tread), (1.0, 0.25 * 0.4));
+    assert_eq!(
+        (r.wheel.params.inner_radius, r.wheel.params.inner_tread),
+        (1.0, 0.25 * 0.4)
+    );
     let report = toroid::tipover_report(&r).unwrap();
     assert_eq!((report.sigma, report.epsilon), (0.5, 0.25));
     // eq. 3.29: F_f' = −(σ + ε)/(1 − σ)
     assert!((report.normalized_friction + 0.75 / 0.5).abs() < 1e-12);
-    let both = params(&[("sigma", Value::Float(0.5)), ("inner_radius", Value::Float(0.5))]);
-    assert!(wheel::tipover_request(&both).unwrap_err().to_string().contains("not both"));
+    let both = params(&[
+        ("sigma", Value::Float(0.5)),
+        ("inner_radius", Value::Float(0.5)),
+    ]);
+    assert!(wheel::tipover_request(&both)
+        .unwrap_err()
+        .to_string()
+        .contains("not both"));
 }
 
 #[test]
@@ -124,10 +170,26 @@ fn michell_needs_exactly_one_geometry() {
         michell::request(&params(&all))
     };
     assert!(with(&[]).unwrap_err().to_string().contains("exactly one"));
-    let two = with(&[("planar", Value::Bool(true)), ("cylindrical", Value::Float(0.1))]);
+    let two = with(&[
+        ("planar", Value::Bool(true)),
+        ("cylindrical", Value::Float(0.1)),
+    ]);
     assert!(two.is_err());
-    let r = with(&[("spherical", Value::Text("pi/24".into())), ("method", Value::Text("global".into()))]).unwrap();
-    assert_eq!(r.params, michell3d::MichellParams::spherical(3, 1.0, std::f64::consts::PI / 6.0, std::f64::consts::PI / 8.0, std::f64::consts::PI / 24.0));
+    let r = with(&[
+        ("spherical", Value::Text("pi/24".into())),
+        ("method", Value::Text("global".into())),
+    ])
+    .unwrap();
+    assert_eq!(
+        r.params,
+        michell3d::MichellParams::spherical(
+            3,
+            1.0,
+            std::f64::consts::PI / 6.0,
+            std::f64::consts::PI / 8.0,
+            std::f64::consts::PI / 24.0
+        )
+    );
     assert_eq!(r.method, michell3d::Method::Global);
     assert_eq!((r.load, r.material.as_str()), (1000.0, "steel"));
 }
@@ -135,10 +197,19 @@ fn michell_needs_exactly_one_geometry() {
 #[test]
 fn a_failing_case_is_an_error_message() {
     let ctx = Context::default();
-    let e = Study::Toroid.report(&params(&[("sides", Value::Integer(1))]), &ctx).unwrap_err();
+    let e = Study::Toroid
+        .report(&params(&[("sides", Value::Integer(1))]), &ctx)
+        .unwrap_err();
     assert!(!e.is_empty());
     let e = Study::Integrators
-        .report(&params(&[("scene", Value::Text("pendulum".into())), ("integrator", Value::Text("rk4".into())), ("parameter", Value::Float(1e-3))]), &ctx)
+        .report(
+            &params(&[
+                ("scene", Value::Text("pendulum".into())),
+                ("integrator", Value::Text("rk4".into())),
+                ("parameter", Value::Float(1e-3)),
+            ]),
+            &ctx,
+        )
         .unwrap_err();
     assert!(e.contains("double-pendulum"), "{e}");
 }

@@ -135,7 +135,9 @@ pub fn toroid_request(p: &Params) -> Result<ToroidRequest> {
     })
 }
 
-fn choice<T: Copy>(options: &'static [(&'static str, T)]) -> impl Fn(&str) -> std::result::Result<T, String> {
+fn choice<T: Copy>(
+    options: &'static [(&'static str, T)],
+) -> impl Fn(&str) -> std::result::Result<T, String> {
     move |s| {
         options
             .iter()
@@ -154,8 +156,10 @@ const FIDELITY: [(&str, FidelityChoice); 3] = [
     ("auto", FidelityChoice::Auto),
 ];
 
-const CONTACT: [(&str, ContactKind); 2] =
-    [("thesis", ContactKind::Thesis), ("penalty", ContactKind::Penalty)];
+const CONTACT: [(&str, ContactKind); 2] = [
+    ("thesis", ContactKind::Thesis),
+    ("penalty", ContactKind::Penalty),
+];
 
 /// The request of `tensegrity roll`.
 pub fn roll_request(p: &Params) -> Result<RollRequest> {
@@ -165,7 +169,9 @@ pub fn roll_request(p: &Params) -> Result<RollRequest> {
         incline: p.angle("incline")?.unwrap_or(d.incline),
         t_end: p.number("t_end")?.unwrap_or(d.t_end),
         dt: p.number("dt")?.unwrap_or(d.dt),
-        fidelity: p.parsed("fidelity", choice(&FIDELITY))?.unwrap_or(d.fidelity),
+        fidelity: p
+            .parsed("fidelity", choice(&FIDELITY))?
+            .unwrap_or(d.fidelity),
         contact: p.parsed("contact", choice(&CONTACT))?.unwrap_or(d.contact),
         ground_damping: p.number("ground_damping")?.unwrap_or(d.ground_damping),
         ground_stiffness: p.number("ground_stiffness")?.unwrap_or(d.ground_stiffness),
