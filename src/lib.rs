@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub use michell3d;
+pub use sweeps;
 pub use tbar_wheel;
 pub use tensegrity_core as core;
 pub use tensegrity_io as io;

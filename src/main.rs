@@ -36,6 +36,9 @@ enum Command {
     Tipover(cli::toroid::TipoverArgs),
     /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass.
     Tbar(cli::tbar::TbarArgs),
+    /// Parameter sweeps from a TOML spec to CSV (parallel, resumable, shardable), and
+    /// `sweep merge` of shard files.
+    Sweep(cli::sweep::SweepArgs),
 }
 
 fn main() {
@@ -53,6 +56,7 @@ fn main() {
         Command::Tipover(args) => cli::toroid::run_tipover(args),
         Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
         Command::Tbar(args) => cli::tbar::run(args),
+        Command::Sweep(args) => cli::sweep::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

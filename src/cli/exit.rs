@@ -66,6 +66,9 @@ fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
                 | MichellError::Core(CoreError::InvalidParameter { .. })
         );
     }
+    if let Some(e) = e.downcast_ref::<sweeps::SweepError>() {
+        return e.is_input_error();
+    }
     e.downcast_ref::<IoError>().is_some_and(
         |e| !matches!(e, IoError::Core(c) if !matches!(c, CoreError::InvalidParameter { .. })),
     )

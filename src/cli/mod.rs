@@ -8,6 +8,7 @@ pub mod michell;
 pub mod simulate;
 pub mod statics;
 pub mod stream;
+pub mod sweep;
 pub mod tbar;
 pub mod toroid;
 pub mod values;

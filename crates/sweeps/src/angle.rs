@@ -1,0 +1,102 @@
+//! Angles as the command line and the sweep specs write them (DESIGN.md): `22.5deg`, `pi/8`,
+//! `3pi/4`, `-pi/4`, `pi`, `2*pi/3`, or a bare number in radians (`0.5`). The `tensegrity`
+//! binary's angle flags use this parser too, so a spec value means what the flag means.
+
+use std::f64::consts::PI;
+
+/// Parses an angle and returns it in radians.
+///
+/// Accepted forms: `<x>deg` (degrees), `[<k>][*]pi[/<d>]` with an optional sign (k·π/d), and
+/// a bare number (radians). Non-finite values and zero denominators are rejected.
+pub fn parse_angle(s: &str) -> Result<f64, String> {
+    let bad = || {
+        format!("invalid angle \"{s}\": expected e.g. `22.5deg`, `pi/8`, `3pi/4`, `-pi/4` or radians `0.5`")
+    };
+    let number = |t: &str| -> Result<f64, String> {
+        let t = t.trim();
+        // Rust parses "inf"/"nan"; an angle must be a plain finite number.
+        if t.is_empty()
+            || t.chars()
+                .any(|c| c.is_ascii_alphabetic() && c != 'e' && c != 'E')
+        {
+            return Err(bad());
+        }
+        t.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(bad)
+    };
+    let t = s.trim().to_ascii_lowercase();
+    if t.is_empty() {
+        return Err(bad());
+    }
+    let value = if let Some(deg) = t.strip_suffix("deg") {
+        number(deg)?.to_radians()
+    } else if let Some(at) = t.find("pi") {
+        let coef = t[..at].trim().trim_end_matches('*').trim();
+        let k = match coef {
+            "" | "+" => 1.0,
+            "-" => -1.0,
+            c => number(c)?,
+        };
+        let rest = t[at + 2..].trim();
+        let d = if rest.is_empty() {
+            1.0
+        } else {
+            let d = number(rest.strip_prefix('/').ok_or_else(bad)?)?;
+            if d == 0.0 {
+                return Err(format!("invalid angle \"{s}\": division by zero"));
+            }
+            d
+        };
+        k * PI / d
+    } else {
+        number(&t)?
+    };
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(bad())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_angle;
+    use std::f64::consts::PI;
+
+    fn close(s: &str, want: f64) {
+        let got = parse_angle(s).unwrap_or_else(|e| panic!("{s}: {e}"));
+        assert!((got - want).abs() < 1e-15, "{s}: {got} vs {want}");
+    }
+
+    #[test]
+    fn accepted_forms() {
+        close("22.5deg", PI / 8.0);
+        close("-45deg", -PI / 4.0);
+        close(" 90 deg ", PI / 2.0);
+        close("pi", PI);
+        close("-pi", -PI);
+        close("pi/8", PI / 8.0);
+        close("3pi/4", 3.0 * PI / 4.0);
+        close("-pi/4", -PI / 4.0);
+        close("2*pi/3", 2.0 * PI / 3.0);
+        close("0.5pi", PI / 2.0);
+        close("PI/2", PI / 2.0);
+        close("0.5", 0.5);
+        close("-1.25", -1.25);
+        close("1e-1", 0.1);
+        close("0", 0.0);
+    }
+
+    #[test]
+    fn rejected_forms() {
+        for s in [
+            "", "deg", "abc", "pi/0", "pi/", "pi*2", "3pi4", "inf", "nan", "-inf", "1e999",
+            "22.5rad", "pi/x", "1/2",
+        ] {
+            let e = parse_angle(s).expect_err(s);
+            assert!(e.contains("invalid angle"), "{s}: {e}");
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! # sweeps
+//!
+//! Parameter studies over the library crates of the tensegrity toolkit: a TOML spec names a
+//! study (`toroid`, `roll`, `tipover`, `michell`, `integrators`), fixed values, axes (lists,
+//! linear or logarithmic ranges) and derived rules ([`spec`], [`expr`]); the cases — the
+//! Cartesian product of the axes, last axis fastest, ids stable — run in parallel on a rayon
+//! pool, each building the same library request as its single-point command
+//! ([`studies`]), and their rows stream to a CSV in case order ([`run`], [`table`]), so the
+//! file is the same byte for byte for any thread count, any split into shards
+//! ([`Shard`], [`merge()`]) and any interruption finished with `resume`.
+//!
+//! Each row holds the scalars of the single-point report (`tensegrity toroid --json`, …) for
+//! that case, numbers in their shortest round-trip form; a failing case is an `error` row
+//! with its message and never stops the sweep.
+//!
+//! ```
+//! use sweeps::{run, RunOptions, Silent, Spec};
+//! let spec = Spec::parse(r#"
+//!     study = "tipover"
+//!     [axes]
+//!     sigma = [0.3, 0.6]
+//!     epsilon = { from = 0.25, to = 0.75, step = 0.25 }
+//! "#)?;
+//! assert_eq!(spec.case_count()?, 6);
+//! let out = std::env::temp_dir().join(format!("sweeps-doc-{}.csv", std::process::id()));
+//! let summary = run(&spec, &out, &RunOptions::default(), &mut Silent)?;
+//! assert_eq!((summary.written, summary.errors), (6, 0));
+//! let text = std::fs::read_to_string(&out).unwrap();
+//! assert!(text.starts_with("case,sigma,epsilon,mass_kg,rho,epsilon,sigma,"));
+//! assert!(text.lines().nth(2).unwrap().starts_with("1,0.3,0.5,"));
+//! # std::fs::remove_file(&out).unwrap();
+//! # Ok::<(), sweeps::SweepError>(())
+//! ```
+#![warn(missing_docs)]
+
+pub mod angle;
+pub mod error;
+pub mod expr;
+pub mod merge;
+pub mod params;
+pub mod run;
+pub mod spec;
+pub mod studies;
+pub mod table;
+
+pub use error::{Result, SweepError};
+pub use merge::{merge, MergeSummary};
+pub use run::{run, Progress, RunOptions, Shard, Silent, Summary};
+pub use spec::{Spec, MAX_CASES};
+pub use studies::Study;

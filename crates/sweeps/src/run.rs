@@ -1,0 +1,436 @@
+//! Running a sweep: the cases of one shard fanned out over a local rayon pool, their rows
+//! streamed to the CSV in case order.
+//!
+//! Workers take case numbers from a shared counter, in order, and never run more than a
+//! window of `8 × threads + 8` cases ahead of the last row written; the writer keeps the
+//! finished rows that arrive early in a reorder buffer (at most a window of rows) and appends
+//! each run of consecutive rows to the file with one write, so the file always holds whole
+//! rows in case order, whatever the thread count: the bytes do not depend on it.
+//!
+//! `--resume` reads the file back: the preamble must be the one this spec writes, every
+//! complete row must be the next case of the shard (its id and axis values), and a partial
+//! last line (a write cut by a kill) is cut off; the sweep then continues after the last
+//! complete row. A case whose study fails, or panics, is an `error` row; it never stops the
+//! sweep.
+
+use crate::error::{Result, SweepError};
+use crate::spec::Spec;
+use crate::studies::Context;
+use crate::table;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufRead, BufReader, Read, Seek, Write};
+use std::path::Path;
+use std::str::FromStr;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{mpsc, Condvar, Mutex};
+
+/// The cases one process runs: ids ≡ `index` (mod `count`), i.e. `--shard K/N` with
+/// `index` = K − 1 and `count` = N.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// K − 1.
+    pub index: usize,
+    /// N.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Every case (`1/1`).
+    pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// How many of `total` cases the shard runs.
+    pub fn len(self, total: usize) -> usize {
+        if self.index >= total {
+            0
+        } else {
+            (total - self.index).div_ceil(self.count)
+        }
+    }
+
+    /// Whether the shard runs no case of `total`.
+    pub fn is_empty(self, total: usize) -> bool {
+        self.len(total) == 0
+    }
+
+    /// The id of the shard's `j`-th case.
+    pub fn id(self, j: usize) -> usize {
+        self.index + j * self.count
+    }
+}
+
+impl FromStr for Shard {
+    type Err = SweepError;
+
+    /// Parses `K/N` with 1 ≤ K ≤ N.
+    ///
+    /// ```
+    /// use sweeps::Shard;
+    /// assert_eq!("2/3".parse::<Shard>().unwrap(), Shard { index: 1, count: 3 });
+    /// assert!("0/3".parse::<Shard>().is_err() && "4/3".parse::<Shard>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Shard> {
+        let bad = |reason: &str| SweepError::InvalidShard {
+            shard: s.to_string(),
+            reason: reason.to_string(),
+        };
+        let (k, n) = s
+            .split_once('/')
+            .ok_or_else(|| bad("expected K/N, e.g. 2/4"))?;
+        let k: usize = k
+            .trim()
+            .parse()
+            .map_err(|_| bad("K is not a whole number"))?;
+        let n: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| bad("N is not a whole number"))?;
+        if n == 0 || k == 0 || k > n {
+            return Err(bad("need 1 ≤ K ≤ N"));
+        }
+        Ok(Shard {
+            index: k - 1,
+            count: n,
+        })
+    }
+}
+
+/// How to run a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunOptions {
+    /// Worker threads (`None`: one per core).
+    pub threads: Option<usize>,
+    /// The shard to run.
+    pub shard: Shard,
+    /// Continue an existing output file instead of starting it anew.
+    pub resume: bool,
+    /// Write the `# units: …` line before the header.
+    pub units: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self {
+            threads: None,
+            shard: Shard::ALL,
+            resume: false,
+            units: false,
+        }
+    }
+}
+
+/// Progress of a sweep (the CLI draws a bar; the default does nothing).
+pub trait Progress {
+    /// `total` cases in this shard, `done` of them already in the file (resume).
+    fn start(&mut self, total: usize, done: usize) {
+        let _ = (total, done);
+    }
+    /// One more row written (`error`: it is an error row).
+    fn row(&mut self, error: bool) {
+        let _ = error;
+    }
+    /// The sweep is over.
+    fn finish(&mut self) {}
+}
+
+/// No progress report.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Silent;
+
+impl Progress for Silent {}
+
+/// What a sweep did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Summary {
+    /// Cases in the full product.
+    pub total_cases: usize,
+    /// Cases of this shard.
+    pub shard_cases: usize,
+    /// Rows found complete in the file (resume).
+    pub resumed: usize,
+    /// Rows written by this run.
+    pub written: usize,
+    /// Error rows among them.
+    pub errors: usize,
+}
+
+/// Runs the sweep, writing its rows to `out` (see the module docs).
+pub fn run(
+    spec: &Spec,
+    out: &Path,
+    opts: &RunOptions,
+    progress: &mut dyn Progress,
+) -> Result<Summary> {
+    let total = spec.case_count()?;
+    let shard_cases = opts.shard.len(total);
+    let preamble = table::preamble(spec, opts.units);
+    let (file, resumed) = if opts.resume && out.exists() {
+        resume(spec, out, &preamble, opts.shard)?
+    } else {
+        let mut f = File::create(out).map_err(SweepError::io("creating", out))?;
+        f.write_all(&preamble)
+            .map_err(SweepError::io("writing", out))?;
+        (f, 0)
+    };
+    progress.start(shard_cases, resumed);
+    let threads = opts
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    let (written, errors) = if resumed < shard_cases {
+        execute(
+            spec,
+            opts.shard,
+            resumed..shard_cases,
+            threads,
+            file,
+            out,
+            progress,
+        )?
+    } else {
+        (0, 0)
+    };
+    progress.finish();
+    Ok(Summary {
+        total_cases: total,
+        shard_cases,
+        resumed,
+        written,
+        errors,
+    })
+}
+
+/// Checks an existing file against the spec and returns it, cut after its last complete
+/// row and opened for appending, with the number of complete rows.
+fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(File, usize)> {
+    let bad = |reason: String| SweepError::Resume {
+        path: out.to_path_buf(),
+        reason,
+    };
+    let mut file = File::options()
+        .read(true)
+        .write(true)
+        .open(out)
+        .map_err(SweepError::io("opening", out))?;
+    let mut head = Vec::new();
+    (&mut file)
+        .take(preamble.len() as u64)
+        .read_to_end(&mut head)
+        .map_err(SweepError::io("reading", out))?;
+    if head.len() < preamble.len() && preamble.starts_with(&head) {
+        // killed while the header was written: start anew
+        file.set_len(0).map_err(SweepError::io("truncating", out))?;
+        file.rewind().map_err(SweepError::io("writing", out))?;
+        file.write_all(preamble)
+            .map_err(SweepError::io("writing", out))?;
+        return Ok((file, 0));
+    }
+    if head != preamble {
+        return Err(bad(
+            "its header is not the one this spec writes (another spec, or --units differs)".into(),
+        ));
+    }
+    let mut reader = BufReader::new(&file);
+    let (mut end, mut rows, mut line) = (preamble.len() as u64, 0usize, Vec::new());
+    let total = spec.case_count()?;
+    let width = table::header(spec).len();
+    loop {
+        line.clear();
+        let n = reader
+            .read_until(b'\n', &mut line)
+            .map_err(SweepError::io("reading", out))?;
+        if n == 0 || line.last() != Some(&b'\n') {
+            break; // end of file, or a partial last line: redone
+        }
+        if rows >= shard.len(total) {
+            return Err(bad(format!(
+                "it has more rows than the {} cases of this shard",
+                shard.len(total)
+            )));
+        }
+        let id = shard.id(rows);
+        check_row(spec, &line, id, width)
+            .map_err(|reason| bad(format!("row of case {id}: {reason}")))?;
+        end += n as u64;
+        rows += 1;
+    }
+    drop(reader);
+    file.set_len(end)
+        .map_err(SweepError::io("truncating", out))?;
+    file.seek(std::io::SeekFrom::End(0))
+        .map_err(SweepError::io("writing", out))?;
+    Ok((file, rows))
+}
+
+/// Checks that a complete line is the row of case `id`: its id, axis values and width.
+fn check_row(spec: &Spec, line: &[u8], id: usize, width: usize) -> std::result::Result<(), String> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(line);
+    let mut rec = csv::StringRecord::new();
+    match reader.read_record(&mut rec) {
+        Ok(true) => {}
+        _ => return Err("not a CSV record".into()),
+    }
+    if rec.len() != width {
+        return Err(format!("{} fields, the header has {width}", rec.len()));
+    }
+    if rec.get(0) != Some(id.to_string().as_str()) {
+        return Err(format!("found case `{}`", rec.get(0).unwrap_or("")));
+    }
+    let texts = spec.axis_texts(id);
+    if rec
+        .iter()
+        .skip(1)
+        .take(texts.len())
+        .ne(texts.iter().map(String::as_str))
+    {
+        return Err("its axis values are not this spec's".into());
+    }
+    Ok(())
+}
+
+/// The state shared by the workers and the writer.
+struct Shared<'a> {
+    spec: &'a Spec,
+    ctx: Context,
+    shard: Shard,
+    next: AtomicUsize,
+    end: usize,
+    window: usize,
+    written: Mutex<usize>,
+    moved: Condvar,
+    stop: AtomicBool,
+}
+
+impl Shared<'_> {
+    /// Runs cases until none are left (or the writer stopped), sending their rows.
+    fn work(&self, tx: mpsc::Sender<(usize, Vec<u8>, bool)>) {
+        while !self.stop.load(Ordering::Relaxed) {
+            let j = self.next.fetch_add(1, Ordering::Relaxed);
+            if j >= self.end {
+                break;
+            }
+            {
+                let mut w = self.written.lock().unwrap_or_else(|e| e.into_inner());
+                while j >= *w + self.window && !self.stop.load(Ordering::Relaxed) {
+                    w = self.moved.wait(w).unwrap_or_else(|e| e.into_inner());
+                }
+            }
+            let (row, failed) = self.row(self.shard.id(j));
+            if tx.send((j, row, failed)).is_err() {
+                break;
+            }
+        }
+    }
+
+    /// The row of case `id` (an `error` row when the study fails or panics).
+    fn row(&self, id: usize) -> (Vec<u8>, bool) {
+        let case = self.spec.case(id);
+        let result = case.params.and_then(|p| {
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                self.spec.study.report(&p, &self.ctx)
+            }))
+            .unwrap_or_else(|panic| {
+                let msg = panic
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                Err(format!("the analysis panicked: {msg}"))
+            })
+        });
+        (
+            table::row(self.spec, id, &case.axis_texts, &result),
+            result.is_err(),
+        )
+    }
+
+    fn advance(&self, to: usize) {
+        *self.written.lock().unwrap_or_else(|e| e.into_inner()) = to;
+        self.moved.notify_all();
+    }
+}
+
+/// Runs the shard's cases `range` on `threads` workers and appends their rows in order.
+fn execute(
+    spec: &Spec,
+    shard: Shard,
+    range: std::ops::Range<usize>,
+    threads: usize,
+    mut file: File,
+    out: &Path,
+    progress: &mut dyn Progress,
+) -> Result<(usize, usize)> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("sweep-{i}"))
+        .build()
+        .map_err(|e| SweepError::Io {
+            what: "starting the worker threads for",
+            path: out.to_path_buf(),
+            source: std::io::Error::other(e.to_string()),
+        })?;
+    let shared = Shared {
+        spec,
+        ctx: Context::default(),
+        shard,
+        next: AtomicUsize::new(range.start),
+        end: range.end,
+        window: 8 * threads + 8,
+        written: Mutex::new(range.start),
+        moved: Condvar::new(),
+        stop: AtomicBool::new(false),
+    };
+    let (tx, rx) = mpsc::channel();
+    let mut outcome = Ok((0, 0));
+    pool.in_place_scope(|s| {
+        for _ in 0..threads {
+            let tx = tx.clone();
+            let shared = &shared;
+            s.spawn(move |_| shared.work(tx));
+        }
+        drop(tx);
+        outcome = write_in_order(&shared, rx, range.start, &mut file, out, progress);
+        if outcome.is_err() {
+            shared.stop.store(true, Ordering::Relaxed);
+            shared.moved.notify_all();
+        }
+    });
+    outcome
+}
+
+/// The writer: rows in case order through the reorder buffer.
+fn write_in_order(
+    shared: &Shared<'_>,
+    rx: mpsc::Receiver<(usize, Vec<u8>, bool)>,
+    start: usize,
+    file: &mut File,
+    out: &Path,
+    progress: &mut dyn Progress,
+) -> Result<(usize, usize)> {
+    let mut pending: BTreeMap<usize, (Vec<u8>, bool)> = BTreeMap::new();
+    let (mut next, mut errors) = (start, 0);
+    for (j, row, failed) in rx {
+        pending.insert(j, (row, failed));
+        let mut batch = Vec::new();
+        let mut flags = Vec::new();
+        while let Some((row, failed)) = pending.remove(&next) {
+            batch.extend_from_slice(&row);
+            flags.push(failed);
+            next += 1;
+        }
+        if batch.is_empty() {
+            continue;
+        }
+        file.write_all(&batch)
+            .map_err(SweepError::io("writing", out))?;
+        shared.advance(next);
+        for failed in flags {
+            errors += usize::from(failed);
+            progress.row(failed);
+        }
+    }
+    file.flush().map_err(SweepError::io("writing", out))?;
+    Ok((next - start, errors))
+}

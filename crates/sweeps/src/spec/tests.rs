@@ -1,0 +1,157 @@
+use super::*;
+
+fn err(text: &str) -> String {
+    Spec::parse(text).unwrap_err().to_string()
+}
+
+#[test]
+fn axes_keep_the_spec_order_and_the_last_varies_fastest() {
+    let s = Spec::parse(
+        r#"
+        study = "toroid"
+        [axes]
+        stabilize = ["spokes,inner", "spokes,outer"]
+        sides = [8, 12, 16]
+        "#,
+    )
+    .unwrap();
+    let names: Vec<&str> = s.axes.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names, ["stabilize", "sides"]);
+    assert_eq!(s.case_count().unwrap(), 6);
+    let texts: Vec<Vec<String>> = (0..6).map(|i| s.axis_texts(i)).collect();
+    assert_eq!(texts[0], ["spokes,inner", "8"]);
+    assert_eq!(texts[1], ["spokes,inner", "12"]);
+    assert_eq!(texts[3], ["spokes,outer", "8"]);
+    assert_eq!(texts[5], ["spokes,outer", "16"]);
+    assert_eq!(s.digits(4), [1, 1]);
+}
+
+#[test]
+fn list_values_keep_their_text() {
+    let s = Spec::parse(
+        r#"
+        study = "roll"
+        [axes]
+        outer_tread = [0.40, 1e-1, 3]
+        incline = ["pi/8", "30deg", 0.5]
+        "#,
+    )
+    .unwrap();
+    let t = |k: usize| -> Vec<&str> { s.axes[k].values.iter().map(|v| v.text.as_str()).collect() };
+    assert_eq!(t(0), ["0.40", "1e-1", "3"]);
+    assert_eq!(t(1), ["pi/8", "30deg", "0.5"]);
+    assert_eq!(s.axes[0].values[1].value, Value::Float(0.1));
+}
+
+#[test]
+fn ranges() {
+    let s = Spec::parse(
+        r#"
+        study = "tipover"
+        [axes]
+        sides = { from = 3, to = 9, step = 2 }
+        sigma = { from = 0.1, to = 0.5, step = 0.1 }
+        gravity = { from = 1, to = 100, steps = 3, log = true }
+        bar_density = { from = 1e-4, to = 1e-11, steps = 8, log = true }
+        offset = { from = 0, to = 1, steps = 5 }
+        "#,
+    )
+    .unwrap();
+    let t = |k: usize| -> Vec<&str> { s.axes[k].values.iter().map(|v| v.text.as_str()).collect() };
+    assert_eq!(t(0), ["3", "5", "7", "9"]);
+    assert_eq!(s.axes[0].values[0].value, Value::Integer(3));
+    assert_eq!(t(1), ["0.1", "0.2", "0.3", "0.4", "0.5"]);
+    assert_eq!(t(2), ["1", "10", "100"]);
+    assert_eq!(t(3)[0], "0.0001");
+    assert_eq!(t(3)[7], "0.00000000001");
+    let x: Vec<f64> = s.axes[3]
+        .values
+        .iter()
+        .map(|v| v.text.parse().unwrap())
+        .collect();
+    assert_eq!(x[1..7], [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]);
+    assert_eq!(t(4), ["0", "0.25", "0.5", "0.75", "1"]);
+    assert_eq!(s.case_count().unwrap(), 4 * 5 * 3 * 8 * 5);
+    for bad in [
+        "{ from = 1, to = 2 }",
+        "{ from = 1, to = 2, steps = 2, step = 1 }",
+        "{ from = 1, to = 2, step = -1 }",
+        "{ from = 1, to = 2, step = 0 }",
+        "{ from = 0, to = 2, steps = 3, log = true }",
+        "{ from = 1, to = 2, steps = 0 }",
+        "{ from = 1, to = 2, steps = 3, by = 2 }",
+        "[]",
+        "3",
+    ] {
+        let e = err(&format!("study = \"tipover\"\n[axes]\nsigma = {bad}\n"));
+        assert!(e.contains("sigma"), "{bad}: {e}");
+    }
+}
+
+#[test]
+fn derived_rules_follow_their_parameters() {
+    let s = Spec::parse(
+        r#"
+        study = "michell"
+        [fixed]
+        planar = true
+        beta = "pi/6"
+        [axes]
+        complexity = [2, 4]
+        [derived]
+        r0 = "2 * phi"
+        phi = "pi / complexity"
+        "#,
+    )
+    .unwrap();
+    assert_eq!(s.derived[0].0, "phi");
+    let p = s.case(1).params.unwrap();
+    assert_eq!(p.angle("phi").unwrap(), Some(std::f64::consts::PI / 4.0));
+    assert_eq!(p.number("r0").unwrap(), Some(std::f64::consts::PI / 2.0));
+    assert_eq!(p.angle("beta").unwrap(), Some(std::f64::consts::PI / 6.0));
+}
+
+#[test]
+fn spec_errors_come_before_any_case() {
+    let base = "study = \"toroid\"\n";
+    assert!(err("study = \"wheel\"").contains("unknown study `wheel`"));
+    assert!(
+        err(&format!("{base}[fixed]\nsidez = 8")).contains("unknown parameter `sidez` in [fixed]")
+    );
+    assert!(err(&format!("{base}[axes]\nsidez = [8]")).contains("`sidez` in [axes]"));
+    assert!(err(&format!("{base}[derived]\nsidez = \"8\"")).contains("`sidez` in [derived]"));
+    assert!(err(&format!("{base}[fixed]\nsides = 8\n[axes]\nsides = [8]")).contains("both"));
+    assert!(err(&format!("{base}extra = 1")).contains("extra"));
+    assert!(err(&format!("{base}[output]\ncolumns = [\"mass\"]")).contains("`mass`"));
+    assert!(err(&format!("{base}[output]\nformat = \"csv\"")).contains("format"));
+    assert!(err(&format!("{base}[derived]\noffset = \"1 / n\"")).contains("`n`"));
+    assert!(err(&format!("{base}[derived]\noffset = \"(1\"")).contains("offset"));
+    assert!(err(&format!("{base}[derived]\nstabilize = \"1\"")).contains("numeric"));
+    assert!(err(&format!(
+        "{base}[derived]\noffset = \"rim_radius\"\nrim_radius = \"offset\""
+    ))
+    .contains("cycle"));
+    assert!(err("study = \"michell\"\n[fixed]\nbeta = 1\nphi = 1")
+        .contains("needs the parameter `complexity`"));
+    let big = format!("{base}[axes]\nsides = {{ from = 1, to = 100000, step = 1 }}\noffset = {{ from = 1, to = 100000, step = 1 }}");
+    assert!(err(&big).contains("more than the limit"));
+}
+
+#[test]
+fn a_failing_derived_rule_fails_its_case_only() {
+    let s = Spec::parse(
+        r#"
+        study = "toroid"
+        [axes]
+        sides = [0, 8]
+        [derived]
+        offset = "0.8 / sides"
+        "#,
+    )
+    .unwrap();
+    assert!(s.case(0).params.unwrap_err().contains("division by zero"));
+    assert_eq!(
+        s.case(1).params.unwrap().number("offset").unwrap(),
+        Some(0.1)
+    );
+}
