@@ -113,7 +113,7 @@ fn long_run(dir: &Path) -> (std::process::Child, PathBuf) {
             "simulate",
             "examples/double_pendulum.toml",
             "--t-end",
-            "1e7",
+            "5e4",
         ])
         .args([
             "--integrator",

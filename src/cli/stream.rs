@@ -71,6 +71,8 @@ impl<'a> Outputs<'a> {
         }
         let rows = match (self.csv.take(), outcome) {
             (Some(w), None) => w.finish()?,
+            // nothing computed: leave no file behind (dropping removes the temporary one)
+            (Some(w), Some(_)) if w.rows() == 0 => 0,
             (Some(w), Some(e)) => w.finish_incomplete(&e.to_string())?,
             (None, _) => 0,
         };
