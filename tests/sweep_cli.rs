@@ -251,3 +251,48 @@ fn bad_specs_are_usage_errors_before_any_case() {
     let o = run(&["sweep", &spec, "--out", &out, "--shard", "3/2"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn sweep_plot_draws_one_curve_per_group_and_names_a_missing_column() {
+    let dir = scratch("plot");
+    let spec = write(
+        &dir,
+        "spec.toml",
+        "study = \"tipover\"\n[axes]\nsides = [8, 16]\nouter_tread = [0.3, 0.4, 0.5]\n",
+    );
+    let csv = dir.join("r.csv");
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        csv.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let svg = dir.join("fig.svg");
+    let args = [
+        "sweep",
+        "plot",
+        csv.to_str().unwrap(),
+        "--x",
+        "outer_tread",
+        "--y",
+        "critical_lateral_force",
+        "--group",
+        "sides",
+        "--out",
+        svg.to_str().unwrap(),
+    ];
+    assert_ok(&run(&args));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(
+        text.matches("<polyline").count(),
+        2,
+        "one curve per number of sides"
+    );
+    assert!(text.contains("sides = 8") && text.contains("sides = 16"));
+    let mut bad = args.to_vec();
+    bad[6] = "no_such_column";
+    let out = run(&bad);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no column `no_such_column`"));
+}

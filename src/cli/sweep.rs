@@ -1,5 +1,7 @@
 //! `tensegrity sweep SPEC.toml --out results.csv [--threads N] [--shard K/N] [--resume]
-//! [--quiet] [--units]` and `tensegrity sweep merge A.csv B.csv … --out all.csv`: parse the
+//! [--quiet] [--units]`, `tensegrity sweep merge A.csv B.csv … --out all.csv` and
+//! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--log-x] [--log-y]
+//! --out fig.svg`: parse the
 //! flags, make one call into the sweeps crate ([`sweeps::run`], [`sweeps::merge`]) and draw
 //! its progress (an indicatif bar with ETA on a terminal; nothing when stderr is piped or
 //! with `--quiet`).
@@ -45,6 +47,70 @@ pub struct SweepArgs {
 pub enum SweepCommand {
     /// Combine the files of the shards of one sweep into the single-run file.
     Merge(MergeArgs),
+    /// Plot one result column against another, one curve per value of a group column.
+    Plot(PlotArgs),
+}
+
+/// Arguments of `tensegrity sweep plot`.
+#[derive(clap::Args, Debug)]
+pub struct PlotArgs {
+    /// The results (a sweep's CSV; error rows are left out).
+    #[arg(value_name = "RESULTS.csv")]
+    pub results: PathBuf,
+    /// Column on the x axis.
+    #[arg(long, value_name = "COL")]
+    pub x: String,
+    /// Column on the y axis.
+    #[arg(long, value_name = "COL")]
+    pub y: String,
+    /// One curve per value of this column.
+    #[arg(long, value_name = "COL")]
+    pub group: Option<String>,
+    /// Logarithmic x axis.
+    #[arg(long)]
+    pub log_x: bool,
+    /// Logarithmic y axis.
+    #[arg(long)]
+    pub log_y: bool,
+    /// The figure: SVG, or PNG by the extension.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+}
+
+/// `tensegrity sweep plot`: one panel through the io crate's figure module.
+fn plot(args: &PlotArgs) -> Result<()> {
+    use tensegrity_io::figure::{Figure, Panel, Scale, Series};
+    let curves =
+        tensegrity_io::csv::read_series(&args.results, &args.x, &args.y, args.group.as_deref())?;
+    if curves.is_empty() {
+        anyhow::bail!(
+            "{}: no ok row with numbers in `{}` and `{}`",
+            args.results.display(),
+            args.x,
+            args.y
+        );
+    }
+    let title = args
+        .results
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    let mut panel = Panel::new(title, args.x.as_str(), args.y.as_str());
+    let scale = |log: bool| if log { Scale::Log } else { Scale::Linear };
+    (panel.x_scale, panel.y_scale) = (scale(args.log_x), scale(args.log_y));
+    let group = args.group.as_deref().unwrap_or("");
+    for (label, points) in curves {
+        let label = if group.is_empty() {
+            label
+        } else {
+            format!("{group} = {label}")
+        };
+        panel = panel.series(Series::new(label, points).with_markers());
+    }
+    Figure::new(vec![panel])
+        .save(&args.out)
+        .with_context(|| format!("writing the figure {}", args.out.display()))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
 }
 
 /// Arguments of `tensegrity sweep merge`.
@@ -104,8 +170,10 @@ fn bar(quiet: bool) -> Bar {
 
 /// Runs `tensegrity sweep`.
 pub fn run(args: &SweepArgs) -> Result<()> {
-    if let Some(SweepCommand::Merge(m)) = &args.command {
-        return merge(m);
+    match &args.command {
+        Some(SweepCommand::Merge(m)) => return merge(m),
+        Some(SweepCommand::Plot(p)) => return plot(p),
+        None => {}
     }
     let (Some(spec_path), Some(out)) = (&args.spec, &args.out) else {
         anyhow::bail!("usage: tensegrity sweep SPEC.toml --out results.csv");

@@ -331,3 +331,68 @@ pub fn write_mass_table<W: Write>(out: W, rows: &[MassRow]) -> Result<usize> {
     });
     write_rows(out, "mass table CSV", rows)
 }
+
+/// Reads columns `x` and `y` of a CSV table (a sweep's results, a trajectory…) as curves, one
+/// per distinct value of column `group` (in order of first appearance; one unnamed curve
+/// without `group`). Lines starting with `#` are comments; rows whose `status` column (if any)
+/// is not `ok`, or whose x or y is not a finite number, are left out.
+///
+/// ```
+/// let path = std::env::temp_dir().join(format!("series-doc-{}.csv", std::process::id()));
+/// std::fs::write(&path, "# units: …\ncase,n,mass,status\n0,8,1.5,ok\n1,12,2.5,ok\n2,16,,error\n").unwrap();
+/// let curves = tensegrity_io::csv::read_series(&path, "n", "mass", None)?;
+/// assert_eq!(curves, vec![(String::new(), vec![(8.0, 1.5), (12.0, 2.5)])]);
+/// assert!(tensegrity_io::csv::read_series(&path, "n", "volume", None).is_err());
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn read_series(
+    path: &std::path::Path,
+    x: &str,
+    y: &str,
+    group: Option<&str>,
+) -> Result<Vec<(String, Vec<(f64, f64)>)>> {
+    let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let body: String = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut reader = ::csv::Reader::from_reader(body.as_bytes());
+    let header = reader.headers().map_err(csv_error("CSV header"))?.clone();
+    let column = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| IoError::MissingColumn {
+                path: path.to_path_buf(),
+                column: name.to_string(),
+            })
+    };
+    let (xi, yi) = (column(x)?, column(y)?);
+    let gi = group.map(column).transpose()?;
+    let status = header.iter().position(|h| h == "status");
+    let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(csv_error("CSV row"))?;
+        if status.is_some_and(|s| record.get(s) != Some("ok")) {
+            continue;
+        }
+        let num = |i: usize| record.get(i).and_then(|v| v.parse::<f64>().ok());
+        let (Some(xv), Some(yv)) = (num(xi), num(yi)) else {
+            continue;
+        };
+        if !(xv.is_finite() && yv.is_finite()) {
+            continue;
+        }
+        let label = gi.and_then(|g| record.get(g)).unwrap_or("").to_string();
+        match curves.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, points)) => points.push((xv, yv)),
+            None => curves.push((label, vec![(xv, yv)])),
+        }
+    }
+    Ok(curves)
+}

@@ -78,6 +78,14 @@ pub enum IoError {
         /// Index of the support.
         support: usize,
     },
+    /// A table lacks a column asked for.
+    #[error("{}: no column `{column}`", path.display())]
+    MissingColumn {
+        /// The table.
+        path: PathBuf,
+        /// The column asked for.
+        column: String,
+    },
     /// A dynamics table (`[ground]`, `[[actuation]]`) holds an invalid value.
     #[error("{table}: {reason}")]
     InvalidTable {
