@@ -332,6 +332,9 @@ pub fn write_mass_table<W: Write>(out: W, rows: &[MassRow]) -> Result<usize> {
     write_rows(out, "mass table CSV", rows)
 }
 
+/// A labelled curve: (group value, (x, y) points).
+pub type Curve = (String, Vec<(f64, f64)>);
+
 /// Reads columns `x` and `y` of a CSV table (a sweep's results, a trajectory…) as curves, one
 /// per distinct value of column `group` (in order of first appearance; one unnamed curve
 /// without `group`). Lines starting with `#` are comments; rows whose `status` column (if any)
@@ -351,7 +354,7 @@ pub fn read_series(
     x: &str,
     y: &str,
     group: Option<&str>,
-) -> Result<Vec<(String, Vec<(f64, f64)>)>> {
+) -> Result<Vec<Curve>> {
     let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
@@ -375,7 +378,7 @@ pub fn read_series(
     let (xi, yi) = (column(x)?, column(y)?);
     let gi = group.map(column).transpose()?;
     let status = header.iter().position(|h| h == "status");
-    let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut curves: Vec<Curve> = Vec::new();
     for record in reader.records() {
         let record = record.map_err(csv_error("CSV row"))?;
         if status.is_some_and(|s| record.get(s) != Some("ok")) {
