@@ -177,3 +177,30 @@ fn kill_9_never_leaves_a_partial_file_at_the_requested_path() {
     child.wait().unwrap();
     assert!(!csv.exists(), "the requested path holds no partial file");
 }
+
+#[cfg(unix)]
+#[test]
+fn sigint_stops_a_run_between_samples_too() {
+    let child = bin()
+        .args([
+            "simulate",
+            "examples/double_pendulum.toml",
+            "--t-end",
+            "5e4",
+        ])
+        .args(["--integrator", "rk4", "--dt", "1e-3"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(500));
+    let start = Instant::now();
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("interrupted at t = "));
+    assert!(start.elapsed() < Duration::from_secs(10), "stopped at once");
+}

@@ -17,12 +17,12 @@ pub const INTERRUPTED: i32 = 130;
 
 /// A run stopped by a signal; the outputs so far were kept, marked incomplete.
 #[derive(Debug, thiserror::Error)]
-#[error("interrupted at t = {t} s; {rows} rows kept, marked incomplete")]
+#[error("interrupted at t = {t} s{}", kept.map_or(String::new(), |n| format!("; {n} trajectory rows kept, marked incomplete")))]
 pub struct Interrupted {
-    /// Time of the last sample written (s).
+    /// Time reached (s).
     pub t: f64,
-    /// Trajectory rows written.
-    pub rows: usize,
+    /// Trajectory rows kept, when a trajectory was being written.
+    pub kept: Option<usize>,
 }
 
 /// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), [`BAD_INPUT`]

@@ -110,7 +110,10 @@ pub fn run_scene(
     let run = simulation.run_streaming(&mut outputs);
     let (rows, frames) = outputs.finish(run.as_ref().err())?;
     let result = match run {
-        Err(CoreError::Interrupted { t }) => return Err(Interrupted { t, rows }.into()),
+        Err(CoreError::Interrupted { t }) => {
+            let kept = args.out.is_some().then_some(rows);
+            return Err(Interrupted { t, kept }.into());
+        }
         other => other.with_context(|| format!("simulating {}", args.scene.display()))?,
     };
     if !args.json {

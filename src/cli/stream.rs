@@ -96,4 +96,8 @@ impl SampleSink for Outputs<'_> {
         self.last_t = sample.t;
         Ok(())
     }
+
+    fn keep_going(&mut self) -> bool {
+        !STOP.load(Ordering::SeqCst)
+    }
 }

@@ -64,6 +64,12 @@ pub struct Sample {
 pub trait SampleSink {
     /// Takes one sample; an error stops the run with that error.
     fn accept(&mut self, sample: Sample) -> Result<(), CoreError>;
+
+    /// Asked after every accepted step: `false` stops the run with
+    /// [`CoreError::Interrupted`] (e.g. on Ctrl-C), even between samples.
+    fn keep_going(&mut self) -> bool {
+        true
+    }
 }
 
 impl SampleSink for Vec<Sample> {

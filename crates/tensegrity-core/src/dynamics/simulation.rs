@@ -442,6 +442,9 @@ impl<'a> Driver<'a> {
                 });
             }
             model.check_state(t_new, &self.y, self.blowup_limit)?;
+            if self.sink.as_mut().is_some_and(|sink| !sink.keep_going()) {
+                return Err(CoreError::Interrupted { t: self.t });
+            }
             if self.after_step(integ, t_new)? {
                 break;
             }
