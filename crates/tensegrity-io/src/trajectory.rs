@@ -15,7 +15,7 @@
 
 use crate::error::{IoError, Result};
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use tensegrity_core::dynamics::Sample;
 use tensegrity_core::{MemberId, Structure};
@@ -50,7 +50,7 @@ use tensegrity_core::{MemberId, Structure};
 pub struct TrajectoryWriter {
     path: PathBuf,
     tmp: PathBuf,
-    out: Option<BufWriter<File>>,
+    out: Option<::csv::Writer<File>>,
     members: Vec<String>,
     ends: Vec<[usize; 2]>,
     header_written: bool,
@@ -75,7 +75,7 @@ impl TrajectoryWriter {
         Ok(Self {
             path: path.to_path_buf(),
             tmp,
-            out: Some(BufWriter::new(file)),
+            out: Some(::csv::Writer::from_writer(file)),
             members,
             ends: structure.member_nodes(),
             header_written: false,
@@ -86,12 +86,12 @@ impl TrajectoryWriter {
     /// Appends one sample (the header is written from the first sample's recorded groups).
     pub fn write(&mut self, s: &Sample) -> Result<()> {
         if !self.header_written {
-            let header = self.header(s).join(",");
-            self.line(&header)?;
+            let header = self.header(s);
+            self.record(&header)?;
             self.header_written = true;
         }
-        let row = row(s, &self.ends).join(",");
-        self.line(&row)?;
+        let row = row(s, &self.ends);
+        self.record(&row)?;
         self.rows += 1;
         Ok(())
     }
@@ -109,7 +109,17 @@ impl TrajectoryWriter {
     /// Ends an interrupted run: the rows so far, then `# incomplete: {note}`, renamed into
     /// place as a complete, valid file.
     pub fn finish_incomplete(mut self, note: &str) -> Result<usize> {
-        self.line(&format!("# incomplete: {note}"))?;
+        let path = &self.path;
+        let write_err = |source| IoError::Write {
+            path: path.clone(),
+            source,
+        };
+        let out = self.out.take().expect("open until finished");
+        // a comment line, outside the CSV grammar: written past the csv writer
+        let mut file = out.into_inner().map_err(|e| write_err(e.into_error()))?;
+        let note = note.replace('\n', " ");
+        writeln!(file, "# incomplete: {note}").map_err(write_err)?;
+        drop(file);
         self.close()
     }
 
@@ -125,11 +135,11 @@ impl TrajectoryWriter {
         Ok(self.rows)
     }
 
-    fn line(&mut self, text: &str) -> Result<()> {
+    fn record(&mut self, fields: &[String]) -> Result<()> {
         let out = self.out.as_mut().expect("open until finished");
-        writeln!(out, "{text}").map_err(|source| IoError::Write {
+        out.write_record(fields).map_err(|e| IoError::Write {
             path: self.path.clone(),
-            source,
+            source: e.into(),
         })
     }
 
