@@ -186,3 +186,16 @@ pub trait Integrator: fmt::Debug {
     /// Forgets cached stages (the state was changed outside the integrator).
     fn invalidate(&mut self) {}
 }
+
+/// The last stage of the standard starting-step heuristic (Hairer, Nørsett & Wanner, §II.4):
+/// from the trial step `h0` and the scaled derivative norms `d1` (of f) and `d2` (of its
+/// change over h0), h1 = (0.01 / max(d1, d2))^exponent with exponent = 1/(order + 1); the
+/// start is min(100 h0, h1, h_max).
+pub(crate) fn starting_step(h0: f64, d1: f64, d2: f64, exponent: f64, h_max: f64) -> f64 {
+    let h1 = if d1.max(d2) <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d1.max(d2)).powf(exponent)
+    };
+    (100.0 * h0).min(h1).min(h_max)
+}

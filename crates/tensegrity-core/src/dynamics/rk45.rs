@@ -145,12 +145,7 @@ impl Integrator for Dopri5 {
         }
         model.rhs(t + h0, &self.tmp, &mut self.k[1], ws)?;
         let d2 = norm(&|i| (self.k[1][i] - self.k[0][i]) / h0);
-        let h1 = if d1.max(d2) <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / d1.max(d2)).powf(0.2)
-        };
-        Ok((100.0 * h0).min(h1).min(h_max))
+        Ok(super::integrator::starting_step(h0, d1, d2, 0.2, h_max))
     }
 
     /// Attempts one step of size `h` from (t, y). On success (error ≤ 1) `y` is advanced and

@@ -539,12 +539,7 @@ impl Integrator for Sdirk {
         }
         let d2 = self.norm(&diff);
         self.r = diff;
-        let h1 = if d1.max(d2) <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / d1.max(d2)).powf(0.25)
-        };
-        Ok((100.0 * h0).min(h1).min(h_max))
+        Ok(super::integrator::starting_step(h0, d1, d2, 0.25, h_max))
     }
 
     /// One step of size h from (t, y): Newton failures refresh an old Jacobian and retry, then
