@@ -93,11 +93,24 @@ fn rolling() -> Result<()> {
         t_end: 5.0,
         ..RollRequest::default()
     };
-    for r in toroid::rolling_series(&request, &toroid::defaults::FIG_3_10_SIDES)? {
+    let runs = toroid::rolling_series(&request, &toroid::defaults::FIG_3_10_SIDES)?;
+    for r in &runs {
         println!(
-            "  n = {:>2}: mass {:>7.3} kg, I1 {:>7.3} kg m^2, axle oscillation {:.5} m, mean speed {:.3} m/s",
-            r.sides, r.mass_kg, r.i1, r.axle_height_oscillation, r.mean_speed
+            "  n = {:>2}: mass {:>7.3} kg, I1 {:>7.3} kg m^2, axle oscillation {:.5} m, mean speed {:.3} m/s{}",
+            r.sides,
+            r.mass_kg,
+            r.i1,
+            r.axle_height_oscillation,
+            r.mean_speed,
+            if r.min_normal_force < 0.0 { " *" } else { "" }
         );
+    }
+    if let Some(worst) = runs.iter().map(|r| r.min_normal_force).reduce(f64::min) {
+        if worst < 0.0 {
+            println!(
+                "  * not physical as is: this reduced model keeps the wheel on the slope with a normal force down to {worst:.1} N (a ground that pulls); the wheel would leave the slope there"
+            );
+        }
     }
     Ok(())
 }
