@@ -8,14 +8,16 @@
 //! | `tipover` | `tensegrity tipover --json` | [`toroid::tipover_report`] |
 //! | `michell` | `tensegrity michell --json` | [`michell3d::analyse`] |
 //! | `integrators` | `tensegrity bench work-precision` (one point) | [`tensegrity_core::dynamics::work_precision::run_one`] |
+//! | `tbar` | `tensegrity tbar --json` | [`tbar_wheel::tbar_report`] |
 //!
 //! A parameter left out of a spec takes the library's default (the CLI's default too):
 //! [`toroid::WheelSpec::default`], [`toroid::ToroidRequest::default`],
 //! [`toroid::RollRequest::default`], [`toroid::TipoverRequest::default`],
-//! [`michell3d::AnalysisRequest::new`].
+//! [`michell3d::AnalysisRequest::new`], [`tbar_wheel::TbarRequest::new`].
 
 mod integrators;
 mod michell;
+mod tbar;
 mod wheel;
 
 use crate::error::{Result, SweepError};
@@ -52,16 +54,19 @@ pub enum Study {
     Michell,
     /// One point of the integrators' work–precision study.
     Integrators,
+    /// The T-bar tread or wheel: statics, load envelope, mass.
+    Tbar,
 }
 
 impl Study {
     /// Every study.
-    pub const ALL: [Study; 5] = [
+    pub const ALL: [Study; 6] = [
         Study::Toroid,
         Study::Roll,
         Study::Tipover,
         Study::Michell,
         Study::Integrators,
+        Study::Tbar,
     ];
 
     /// The name a spec's `study` gives.
@@ -72,6 +77,7 @@ impl Study {
             Study::Tipover => "tipover",
             Study::Michell => "michell",
             Study::Integrators => "integrators",
+            Study::Tbar => "tbar",
         }
     }
 
@@ -94,6 +100,7 @@ impl Study {
             Study::Tipover => &wheel::TIPOVER_PARAMS,
             Study::Michell => &michell::PARAMS,
             Study::Integrators => &integrators::PARAMS,
+            Study::Tbar => &tbar::PARAMS,
         }
     }
 
@@ -110,6 +117,7 @@ impl Study {
             Study::Tipover => &wheel::TIPOVER_COLUMNS,
             Study::Michell => &michell::COLUMNS,
             Study::Integrators => &integrators::COLUMNS,
+            Study::Tbar => &tbar::COLUMNS,
         }
     }
 
@@ -122,6 +130,7 @@ impl Study {
             Study::Tipover => json(toroid::tipover_report(&wheel::tipover_request(p)?)),
             Study::Michell => json(michell3d::analyse(&michell::request(p)?)),
             Study::Integrators => json(integrators::point(p, ctx)),
+            Study::Tbar => json(tbar_wheel::tbar_report(&tbar::request(p)?)),
         }
     }
 }

@@ -234,3 +234,69 @@ fn an_integrators_point_converges_at_fourth_order() {
     let ratio = a["error"].as_f64().unwrap() / b["error"].as_f64().unwrap();
     assert!((10.0..24.0).contains(&ratio), "{ratio}");
 }
+
+/// Non-null scalar leaves of a JSON value.
+fn non_null_leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, v) in m {
+                let p = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                non_null_leaves(v, &p, out);
+            }
+        }
+        serde_json::Value::Array(_) | serde_json::Value::Null => {}
+        _ => out.push(prefix.to_string()),
+    }
+}
+
+#[test]
+fn tbar_columns_are_the_scalars_of_its_reports_and_rows_equal_the_library_report() {
+    use crate::params::Value;
+    let text = |s: &str| Value::Text(s.to_string());
+    let cases = [
+        params(&[
+            ("beta", text("pi/6")),
+            ("phi", text("pi/8")),
+            ("cylindrical", Value::Float(0.25)),
+            ("prestress", Value::Float(5.0)),
+            ("directions", Value::Integer(50)),
+        ]),
+        params(&[
+            ("beta", text("pi/6")),
+            ("phi", text("pi/8")),
+            ("spherical", text("pi/12")),
+            ("wheel", Value::Bool(true)),
+        ]),
+        params(&[
+            ("beta", text("pi/6")),
+            ("phi", text("pi/8")),
+            ("spherical", text("pi/12")),
+            ("extended", Value::Float(0.5)),
+            ("bar_base", text("chord")),
+        ]),
+    ];
+    let mut seen = Vec::new();
+    let cols: Vec<&str> = Study::Tbar.columns().iter().map(|c| c.name).collect();
+    for p in &cases {
+        let req = tbar::request(p).unwrap();
+        let direct = serde_json::to_value(tbar_wheel::tbar_report(&req).unwrap()).unwrap();
+        let via_study = Study::Tbar.report(p, &Context::default()).unwrap();
+        assert_eq!(direct, via_study);
+        let mut leaves = Vec::new();
+        non_null_leaves(&direct, "", &mut leaves);
+        for l in &leaves {
+            assert!(cols.contains(&l.as_str()), "{l} is not a column");
+        }
+        seen.extend(leaves);
+    }
+    for c in &cols {
+        assert!(seen.iter().any(|s| s == c), "column {c} never filled");
+    }
+    // the first case is the q = 1 tread of the tbar-wheel tests: min_prestress = 3.2357686 w0
+    let r = tbar_wheel::tbar_report(&tbar::request(&cases[0]).unwrap()).unwrap();
+    assert!((r.min_prestress.unwrap() - 3.235768601).abs() < 1e-8);
+}
