@@ -593,6 +593,19 @@ fn bad_flags_are_usage_errors_naming_the_flag() {
     let out = run(&["toroid", "--inner-radius", "1.5"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("inner_radius = 1.5"));
+    // the same for the T-bar: a wheel needs π/φ integer
+    let out = run(&[
+        "tbar",
+        "--beta",
+        "pi/6",
+        "--phi",
+        "0.7",
+        "--cylindrical",
+        "0.25",
+        "--wheel",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("`phi` = 0.7"));
 }
 
 #[test]

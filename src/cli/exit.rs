@@ -66,6 +66,16 @@ fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
                 | MichellError::Core(CoreError::InvalidParameter { .. })
         );
     }
+    if let Some(e) = e.downcast_ref::<tbar_wheel::TbarError>() {
+        use tbar_wheel::TbarError as T;
+        return matches!(
+            e,
+            T::InvalidParameter { .. }
+                | T::TooLarge { .. }
+                | T::Michell(MichellError::InvalidParameter { .. })
+                | T::Core(CoreError::InvalidParameter { .. })
+        );
+    }
     if let Some(e) = e.downcast_ref::<sweeps::SweepError>() {
         return e.is_input_error();
     }

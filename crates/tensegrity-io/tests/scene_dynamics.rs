@@ -48,17 +48,15 @@ fn recorder_samples_only_requested_times_and_quantities() {
     )
     .unwrap();
     let sim = build_simulation(&s, Some(&spec), None, &[]).unwrap();
+    // the table maps onto the core's settings; what the recorder does with them is tested in
+    // the core (`dynamics_features.rs`, the same run built without a file)
+    let set = &sim.settings;
+    assert_eq!((set.t_end, set.dt), (1.0, 0.01));
+    assert_eq!(set.output_times, vec![0.333, 0.5, 2.0]);
+    assert!(set.quantities.member_forces && !set.quantities.nodes && !set.quantities.energy);
     let r = sim.run().unwrap();
     // 2.0 is after t_end: dropped
     assert_eq!(r.samples.len(), 2);
-    assert!((r.samples[0].t - 0.333).abs() < 1e-15);
-    assert!(r.samples[0].nodes.is_none() && r.samples[0].energy.is_none());
-    let f = r.samples[0].member_forces.as_ref().unwrap();
-    assert_eq!(f.len(), 2);
-    // the upper rod carries more than the lower one, both in tension while hanging
-    assert!(f[0] > f[1] && f[1] > 0.0, "{f:?}");
-    // the fixed grid is kept: 100 grid steps + 1 extra step to hit t = 0.333
-    assert_eq!(r.steps, 101);
 }
 
 #[test]

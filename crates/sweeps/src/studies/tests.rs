@@ -13,6 +13,11 @@ fn params(pairs: &[(&str, Value)]) -> Params {
 
 /// Scalar leaves of a JSON value, as `.`-joined paths (sorted).
 fn leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
+    scalar_leaves(v, prefix, true, out);
+}
+
+/// Scalar leaves, nulls included or not.
+fn scalar_leaves(v: &serde_json::Value, prefix: &str, nulls: bool, out: &mut Vec<String>) {
     match v {
         serde_json::Value::Object(m) => {
             for (k, v) in m {
@@ -21,10 +26,11 @@ fn leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
                 } else {
                     format!("{prefix}.{k}")
                 };
-                leaves(v, &p, out);
+                scalar_leaves(v, &p, nulls, out);
             }
         }
         serde_json::Value::Array(_) => {}
+        serde_json::Value::Null if !nulls => {}
         _ => out.push(prefix.to_string()),
     }
 }
@@ -235,24 +241,6 @@ fn an_integrators_point_converges_at_fourth_order() {
     assert!((10.0..24.0).contains(&ratio), "{ratio}");
 }
 
-/// Non-null scalar leaves of a JSON value.
-fn non_null_leaves(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
-    match v {
-        serde_json::Value::Object(m) => {
-            for (k, v) in m {
-                let p = if prefix.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{prefix}.{k}")
-                };
-                non_null_leaves(v, &p, out);
-            }
-        }
-        serde_json::Value::Array(_) | serde_json::Value::Null => {}
-        _ => out.push(prefix.to_string()),
-    }
-}
-
 #[test]
 fn tbar_columns_are_the_scalars_of_its_reports_and_rows_equal_the_library_report() {
     use crate::params::Value;
@@ -287,7 +275,7 @@ fn tbar_columns_are_the_scalars_of_its_reports_and_rows_equal_the_library_report
         let via_study = Study::Tbar.report(p, &Context::default()).unwrap();
         assert_eq!(direct, via_study);
         let mut leaves = Vec::new();
-        non_null_leaves(&direct, "", &mut leaves);
+        scalar_leaves(&direct, "", false, &mut leaves);
         for l in &leaves {
             assert!(cols.contains(&l.as_str()), "{l} is not a column");
         }
