@@ -28,6 +28,7 @@ mod roll;
 pub mod rolling;
 pub mod rolling_full;
 mod tipover;
+pub mod validity;
 
 pub use analysis::{
     analyse, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
@@ -43,3 +44,4 @@ pub use report::{
 };
 pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
+pub use validity::{ImpactRecord, RollValidity};

@@ -87,6 +87,12 @@ pub struct RollingResult {
     pub required_friction: f64,
     /// Mean over the samples with contact of the contact nodes' sliding speed (m/s).
     pub mean_slip_speed: f64,
+    /// Downhill speed of the axle at the end of the run (m/s).
+    pub final_speed: f64,
+    /// Every impact of a new contact pair, in time order.
+    pub impact_log: Vec<crate::validity::ImpactRecord>,
+    /// Admissibility of the run.
+    pub validity: crate::validity::RollValidity,
 }
 
 impl RigidRolling {
@@ -269,7 +275,14 @@ pub(crate) fn summarise(
     } else {
         with_contact.iter().sum::<f64>() / with_contact.len() as f64
     };
+    let final_speed = match samples.len() {
+        0 | 1 => 0.0,
+        n => (samples[n - 1].s - samples[n - 2].s) / (samples[n - 1].t - samples[n - 2].t),
+    };
     RollingResult {
+        final_speed,
+        impact_log: Vec::new(),
+        validity: crate::validity::RollValidity::default(),
         mean_slip_speed,
         impacts,
         axle_height_oscillation: rms,
