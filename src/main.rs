@@ -29,11 +29,11 @@ enum Command {
     /// Build and analyse the 3-bar-prism tensegrity toroid (counts, prestress, flexes, inertia).
     Toroid(cli::toroid::ToroidArgs),
     /// Roll the toroid wheel down an incline (reduced rigid model).
-    Roll(cli::toroid::RollArgs),
+    Roll(cli::roll::RollArgs),
     /// Thesis Figs. 3.10 and 3.11: axle height and reactions of wheels rolling down 50° (SVG).
-    FigRolling(cli::toroid::FigRollingArgs),
+    FigRolling(cli::roll::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
-    Tipover(cli::toroid::TipoverArgs),
+    Tipover(cli::tipover::TipoverArgs),
     /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass.
     Tbar(cli::tbar::TbarArgs),
     /// Parameter sweeps from a TOML spec to CSV (parallel, resumable, shardable), and
@@ -52,9 +52,9 @@ fn main() {
         Command::Michell(args) => cli::michell::run(args),
         Command::MichellTable(args) => cli::michell::run_table(args),
         Command::Toroid(args) => cli::toroid::run_toroid(args),
-        Command::Roll(args) => cli::toroid::run_roll(args),
-        Command::Tipover(args) => cli::toroid::run_tipover(args),
-        Command::FigRolling(args) => cli::toroid::run_fig_rolling(args),
+        Command::Roll(args) => cli::roll::run_roll(args),
+        Command::Tipover(args) => cli::tipover::run_tipover(args),
+        Command::FigRolling(args) => cli::roll::run_fig_rolling(args),
         Command::Tbar(args) => cli::tbar::run(args),
         Command::Sweep(args) => cli::sweep::run(args),
     };

@@ -32,6 +32,9 @@ pub const GROUND_STIFFNESS: f64 = 1e5;
 /// Static friction coefficient μ_s of the penalty ground.
 pub const STATIC_FRICTION: f64 = 0.8;
 
+/// Normal coefficient of restitution of a contact impact (0 = plastic, as in the thesis).
+pub const RESTITUTION: f64 = 0.0;
+
 /// Kinetic over static friction, μ_k = [`KINETIC_FRICTION_RATIO`] · μ_s.
 pub const KINETIC_FRICTION_RATIO: f64 = 0.75;
 

@@ -40,6 +40,12 @@ pub struct RigidRolling {
     pub dt: f64,
     /// Output interval (s).
     pub output_dt: f64,
+    /// Static friction coefficient μ_s of the slope.
+    pub mu_static: f64,
+    /// Kinetic friction coefficient μ_k of the slope.
+    pub mu_kinetic: f64,
+    /// Normal coefficient of restitution e of an impact (0 = plastic).
+    pub restitution: f64,
 }
 
 /// One recorded sample.
@@ -116,6 +122,9 @@ impl RigidRolling {
             gravity: crate::defaults::GRAVITY,
             dt: crate::defaults::ROLL_DT,
             output_dt: crate::defaults::ROLL_OUTPUT_DT,
+            mu_static: crate::defaults::STATIC_FRICTION,
+            mu_kinetic: crate::defaults::KINETIC_FRICTION_RATIO * crate::defaults::STATIC_FRICTION,
+            restitution: crate::defaults::RESTITUTION,
         }
     }
 
@@ -180,6 +189,7 @@ impl RigidRolling {
     /// let run = RigidRolling {
     ///     sides: 8, outer_radius: 1.0, mass: 10.0, i1: 6.0, incline: 0.1,
     ///     gravity: 9.81, dt: 1e-3, output_dt: 0.01,
+    ///     mu_static: 0.8, mu_kinetic: 0.6, restitution: 0.0,
     /// };
     /// // 0.1 rad < π/8: the wheel stays on its edge
     /// let r = run.run(2.0).unwrap();

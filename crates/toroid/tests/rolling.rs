@@ -15,6 +15,9 @@ fn octagon(incline_deg: f64) -> RigidRolling {
         gravity: 9.81,
         dt: 1e-4,
         output_dt: 1e-3,
+        mu_static: 0.8,
+        mu_kinetic: 0.6,
+        restitution: 0.0,
     }
 }
 
