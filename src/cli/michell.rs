@@ -34,10 +34,14 @@ pub enum MethodArg {
         .required(true)
         .args(["planar", "cylindrical", "spherical"])
 ))]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct MichellArgs {
+    /// `optimize`: the mass-optimal β, φ (and q) for a given radius ratio.
+    #[command(subcommand)]
+    pub action: Option<MichellAction>,
     /// Complexity q (number of member levels; level-q nodes are supports).
-    #[arg(long, value_name = "Q")]
-    pub complexity: usize,
+    #[arg(long, value_name = "Q", required = true)]
+    pub complexity: Option<usize>,
     /// Skelton's planar truss in the y–z plane (two-index nodes n_ik).
     #[arg(long)]
     pub planar: bool,
@@ -48,11 +52,11 @@ pub struct MichellArgs {
     #[arg(long, value_name = "EPS", value_parser = parse_angle, allow_hyphen_values = true)]
     pub spherical: Option<f64>,
     /// Departure angle β, e.g. `pi/6` or `30deg`.
-    #[arg(long, value_name = "B", value_parser = parse_angle)]
-    pub beta: f64,
+    #[arg(long, value_name = "B", value_parser = parse_angle, required = true)]
+    pub beta: Option<f64>,
     /// Segmentation angle φ, e.g. `pi/8`.
-    #[arg(long, value_name = "P", value_parser = parse_angle)]
-    pub phi: f64,
+    #[arg(long, value_name = "P", value_parser = parse_angle, required = true)]
+    pub phi: Option<f64>,
     /// Initial radius r₀ (m).
     #[arg(long, value_name = "R", default_value_t = 1.0, value_parser = super::values::positive)]
     pub r0: f64,
@@ -108,6 +112,13 @@ fn parse_grid(s: &str) -> Result<(usize, usize), String> {
     Ok((a, b))
 }
 
+/// Subcommands of `tensegrity michell`.
+#[derive(clap::Subcommand, Debug)]
+pub enum MichellAction {
+    /// Mass-optimal design for a given radius ratio ρ = r_q/r₀ (Skelton's setting).
+    Optimize(super::michell_optimize::OptimizeArgs),
+}
+
 /// Arguments of `tensegrity michell-table`.
 #[derive(clap::Args, Debug)]
 pub struct MichellTableArgs {
@@ -131,11 +142,16 @@ pub struct MichellTableArgs {
 impl MichellArgs {
     /// The analysis the arguments describe.
     pub fn request(&self) -> AnalysisRequest {
-        let q = self.complexity;
+        // clap requires these without a subcommand; NaN and q = 0 are rejected by validation
+        let (q, beta, phi) = (
+            self.complexity.unwrap_or(0),
+            self.beta.unwrap_or(f64::NAN),
+            self.phi.unwrap_or(f64::NAN),
+        );
         let params = match (self.cylindrical, self.spherical) {
-            (Some(delta), _) => MichellParams::cylindrical(q, self.r0, self.beta, self.phi, delta),
-            (None, Some(eps)) => MichellParams::spherical(q, self.r0, self.beta, self.phi, eps),
-            (None, None) => MichellParams::planar(q, self.r0, self.beta, self.phi),
+            (Some(delta), _) => MichellParams::cylindrical(q, self.r0, beta, phi, delta),
+            (None, Some(eps)) => MichellParams::spherical(q, self.r0, beta, phi, eps),
+            (None, None) => MichellParams::planar(q, self.r0, beta, phi),
         };
         AnalysisRequest {
             params,
@@ -155,6 +171,9 @@ impl MichellArgs {
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
 /// maps and the γ sweep).
 pub fn run(args: &MichellArgs) -> Result<()> {
+    if let Some(MichellAction::Optimize(opt)) = &args.action {
+        return super::michell_optimize::run(opt);
+    }
     let request = args.request();
     let analysis = MichellAnalysis::run(&request).context("michell truss analysis failed")?;
     if args.json {
@@ -443,9 +462,9 @@ mod tests {
             "--json",
         ])
         .unwrap();
-        assert_eq!(a.complexity, 4);
+        assert_eq!(a.complexity, Some(4));
         assert_eq!(a.cylindrical, Some(0.25));
-        assert!((a.phi - std::f64::consts::PI / 8.0).abs() < 1e-15);
+        assert!((a.phi.unwrap() - std::f64::consts::PI / 8.0).abs() < 1e-15);
         assert!((a.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
         assert_eq!((a.r0, a.load, a.material.as_str()), (1.0, 1000.0, "steel"));
         assert_eq!(a.method, MethodArg::Global);
