@@ -72,9 +72,11 @@ pub struct MichellArgs {
     /// Material of bars and strings (aluminium, steel, titanium, carbon_fibre, nylon, uhmwpe).
     #[arg(long, value_name = "NAME", default_value = "steel")]
     pub material: String,
-    /// Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to PRESTRESS newtons.
-    #[arg(long = "extra-strings", value_name = "PRESTRESS", value_parser = super::values::non_negative)]
-    pub extra_strings: Option<f64>,
+    /// Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to PRESTRESS newtons, or
+    /// `auto`: to the smallest prestress above which no member but the tip members changes
+    /// sign over the nominal load region of complexity 1 (reported as min_extra_prestress).
+    #[arg(long = "extra-strings", value_name = "PRESTRESS|auto", value_parser = super::michell_extra::parse)]
+    pub extra_strings: Option<super::michell_extra::ExtraStringsArg>,
     /// Force propagation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Recursive)]
     pub method: MethodArg,
@@ -159,7 +161,10 @@ impl MichellArgs {
             azimuth: self.azimuth,
             polar: self.polar,
             material: self.material.clone(),
-            extra_strings: self.extra_strings,
+            extra_strings: match self.extra_strings {
+                Some(super::michell_extra::ExtraStringsArg::Prestress(p)) => Some(p),
+                _ => None,
+            },
             method: match self.method {
                 MethodArg::Recursive => Method::Recursive,
                 MethodArg::Global => Method::Global,
@@ -174,17 +179,28 @@ pub fn run(args: &MichellArgs) -> Result<()> {
     if let Some(MichellAction::Optimize(opt)) = &args.action {
         return super::michell_optimize::run(opt);
     }
-    let request = args.request();
+    let (request, check) = match args.extra_strings {
+        Some(arg) => {
+            let (r, c) = super::michell_extra::resolve(arg, &args.request())?;
+            (r, Some(c))
+        }
+        None => (args.request(), None),
+    };
     let analysis = MichellAnalysis::run(&request).context("michell truss analysis failed")?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&analysis.report)?);
-    } else {
-        print!("{}", text_report(&analysis.report));
+    match (&check, args.json) {
+        (Some(c), true) => println!("{}", super::michell_extra::json_with(&analysis.report, c)?),
+        (None, true) => println!("{}", serde_json::to_string_pretty(&analysis.report)?),
+        (Some(c), false) => print!(
+            "{}{}",
+            text_report(&analysis.report),
+            super::michell_extra::text(c)
+        ),
+        (None, false) => print!("{}", text_report(&analysis.report)),
     }
     if let Some(path) = &args.sign_map {
         write_sign_maps(args, &request, &analysis.truss, path)?;
     }
-    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, args.extra_strings) {
+    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, request.extra_strings) {
         write_gamma_sweep(args, &request, &analysis.truss, prestress, path)?;
     }
     Ok(())

@@ -47,6 +47,7 @@ pub mod extra_strings;
 pub mod global;
 pub mod loads;
 pub mod nodes;
+pub mod nominal_region;
 pub mod optimize;
 pub mod params;
 pub mod planar;
