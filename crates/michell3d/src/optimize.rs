@@ -333,7 +333,8 @@ fn minimise_over_phi(req: &OptimizeRequest, q: usize, a: f64) -> Result<Design> 
             invalid(
                 "complexity",
                 q as f64,
-                format!("no segmentation angle in (0, π) gives a valid truss at this complexity"),
+                "no segmentation angle in (0, π) gives a valid truss at this complexity"
+                    .to_string(),
             )
         })?;
     let mass = |phi: f64| {
