@@ -14,5 +14,6 @@ pub mod stream;
 pub mod sweep;
 pub mod tbar;
 pub mod tipover;
+pub mod tipover_dynamic;
 pub mod toroid;
 pub mod values;

@@ -29,10 +29,20 @@ pub struct TipoverArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    dynamic: super::tipover_dynamic::DynamicArgs,
 }
 
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
+    if args.dynamic.dynamic {
+        return super::tipover_dynamic::run(
+            &args.dynamic,
+            &args.geometry.wheel(),
+            args.gravity,
+            args.json,
+        );
+    }
     if let Some(path) = &args.grid {
         let rows = toroid::friction_grid(args.grid_points, args.eps_max)?;
         write_friction_csv(path, &rows)?;

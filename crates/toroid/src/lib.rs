@@ -28,6 +28,7 @@ mod roll;
 pub mod rolling;
 pub mod rolling_full;
 mod tipover;
+pub mod tipover_dynamic;
 pub mod validity;
 
 pub use analysis::{

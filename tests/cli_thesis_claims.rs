@@ -1,5 +1,5 @@
-//! `michell optimize` and `michell --extra-strings auto|P` from the command line: the JSON
-//! keys of the contract and their values against closed forms and each other.
+//! `michell optimize`, `michell --extra-strings auto|P` and `tipover --dynamic` from the
+//! command line: the JSON keys of the contract and their values against closed forms and each other.
 
 use std::process::Command;
 
@@ -88,4 +88,17 @@ fn auto_extra_strings_hold_every_sign_and_less_prestress_does_not() {
     assert_eq!(v["min_extra_prestress"].as_f64().unwrap(), t);
     let changes = v["sign_changes"].as_array().unwrap();
     assert!(changes.contains(&critical), "{changes:?} lacks {critical}");
+}
+
+#[test]
+fn dynamic_tipover_reports_both_thresholds() {
+    let v = json(&["tipover", "--dynamic", "--json"]);
+    let s = v["static_threshold"].as_f64().unwrap();
+    let d = v["dynamic_threshold"].as_f64().unwrap();
+    // (m g/2)(T/h) with h = R_o cos(π/8) for the reference wheel resting on a side
+    let m = v["mass_kg"].as_f64().unwrap();
+    let h = (std::f64::consts::PI / 8.0).cos();
+    assert!((s - 0.5 * m * 9.81 * 0.4 / h).abs() < 1e-9 * s);
+    assert!((d / s - 1.0).abs() < 0.05, "{d} vs {s}");
+    assert_eq!(v["tipped"], true);
 }

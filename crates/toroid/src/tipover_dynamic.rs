@@ -1,0 +1,318 @@
+//! Dynamic tip-over (thesis §3.3.2 checked with the full 3-D dynamics).
+//!
+//! The prestressed wheel stands on level ground resting on a side of its polygon (the outer
+//! tread pairs of prisms 0 and n−1 touching, the hub at height h = R_o cos(π/n)), on a stiff
+//! penalty ground with friction high enough that it tips before it slides. After a settling
+//! time a lateral force F(t) along +ι̂₁ is ramped at the hub (half on each axle end with spokes,
+//! else shared by the rim nodes, whose centroid is the hub), F = F_rate (t − t_settle).
+//!
+//! **Static threshold** for this pose: the wheel tips about the far tread edge (x = +T/2) when
+//! the moment of F about it exceeds that of the weight, F h > m g T/2, i.e.
+//!
+//! > F_static = (m g / 2) (T / h),  h = R_o cos(π/n)
+//!
+//! (the thesis's (m g/2)(T/R_o) with the hub height of a wheel standing on a vertex).
+//!
+//! **Dynamic threshold**: the force at which the near tread edge (x = −T/2) unloads, i.e. its
+//! summed normal contact force first reaches zero, located by linear interpolation between
+//! output samples. For a quasi-static ramp it equals the static threshold up to the wheel's
+//! elastic deformation and the ramp's inertia. The lean angle (the tilt of the wheel's axis,
+//! the normal of the rim polygon, out of the horizontal plane, positive towards +ι̂₁ at the top)
+//! is recorded at every sample.
+//!
+//! **Limits, measured** (reference wheel, n = 8, defaults): the ramp's threshold is 3.4 %
+//! below the static one (the wheel's elastic lean moves the hub outwards before the edge
+//! lifts). A force *held* below the threshold does not stay safe: with the regularised
+//! Coulomb law (the friction force is μN tanh(v/v_reg), so any tangential load makes the feet
+//! creep) the near edge unloads within 1.5 s even at 0.8 F_static. Whether a real (sticking)
+//! contact settles there needs a non-regularised contact, which the core does not have; the
+//! regularisation cannot be made much smaller at this step, because its damping-like slope
+//! μN/v_reg must stay within RK4's stability (μ = 4 with v_reg = 10⁻² m/s blows up at
+//! dt = 10⁻⁴ s).
+
+use crate::analysis::{analyse, prestress_design, prestressed_structure};
+use crate::builder::Toroid;
+use crate::error::Result;
+use nalgebra::{Rotation3, Vector3};
+use serde::Serialize;
+use std::f64::consts::PI;
+use tensegrity_core::dynamics::{
+    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
+};
+
+/// Settings of a dynamic tip-over run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicTipover {
+    /// Gravity (m/s²).
+    pub gravity: f64,
+    /// String stiffness of the prestressed wheel (N/m).
+    pub string_stiffness: f64,
+    /// Smallest string tension of the prestress (N).
+    pub min_tension: f64,
+    /// Axial damping of every string (N·s/m), so that the ramp's ringing dies out.
+    pub string_damping: f64,
+    /// Penalty ground stiffness (N/m).
+    pub ground_stiffness: f64,
+    /// Penalty ground damping (N·s/m).
+    pub ground_damping: f64,
+    /// Static friction coefficient (kinetic = 0.75 of it).
+    pub mu: f64,
+    /// Regularisation velocity of the friction law (m/s). Its damping-like slope μN/v_reg
+    /// must stay within RK4's stability at `dt` (μ N dt / (v_reg m) ≲ 2.8), else the contact
+    /// chatters.
+    pub friction_regularization: f64,
+    /// Time at rest before the ramp starts (s).
+    pub settle: f64,
+    /// Duration of the ramp from 0 to `ramp_to` × the static threshold (s).
+    pub ramp_time: f64,
+    /// Largest force of the ramp as a multiple of the static threshold.
+    pub ramp_to: f64,
+    /// Time the force is held at its largest value after the ramp (s).
+    pub hold: f64,
+    /// RK4 step (s).
+    pub dt: f64,
+    /// Output interval (s).
+    pub output_dt: f64,
+}
+
+impl Default for DynamicTipover {
+    /// A quasi-static ramp: 0.5 s settling, then 0 → 1.3 F_static over 4 s, stiff strings
+    /// (2·10⁶ N/m) and ground (10⁶ N/m), μ_s = 1.
+    fn default() -> Self {
+        Self {
+            gravity: crate::defaults::GRAVITY,
+            string_stiffness: 2e6,
+            min_tension: 2000.0,
+            string_damping: 200.0,
+            ground_stiffness: 1e6,
+            ground_damping: 2e3,
+            mu: 1.0,
+            friction_regularization: 1e-2,
+            settle: 0.5,
+            ramp_time: 4.0,
+            ramp_to: 1.3,
+            hold: 0.0,
+            dt: 1e-4,
+            output_dt: 2e-3,
+        }
+    }
+}
+
+/// One recorded sample of a dynamic tip-over run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LeanSample {
+    /// Time (s).
+    pub t: f64,
+    /// Lateral force at the hub (N).
+    pub force: f64,
+    /// Lean angle of the wheel (rad, positive towards +ι̂₁ at the top).
+    pub lean: f64,
+    /// Summed normal contact force on the near tread edge, x < 0 (N).
+    pub near_normal: f64,
+    /// Summed normal contact force on the far tread edge, x > 0 (N).
+    pub far_normal: f64,
+}
+
+/// The result of [`DynamicTipover::run`]; serialises to the JSON of `tipover --dynamic`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DynamicTipoverReport {
+    /// Number of sides n.
+    pub sides: usize,
+    /// Outer tread width T (m).
+    pub outer_tread: f64,
+    /// Wheel mass (kg).
+    pub mass_kg: f64,
+    /// Hub height of the starting pose, R_o cos(π/n) (m).
+    pub hub_height: f64,
+    /// (m g / 2)(T / h) (N).
+    pub static_threshold: f64,
+    /// Lateral force at which the near tread edge unloads (N); `None` if it never does.
+    pub dynamic_threshold: Option<f64>,
+    /// dynamic / static − 1.
+    pub relative_difference: Option<f64>,
+    /// Largest lean angle reached (rad).
+    pub max_lean: f64,
+    /// Lean at the end of the run (rad).
+    pub final_lean: f64,
+    /// Whether the wheel tipped: its lean exceeded [`TIPPED_LEAN`].
+    pub tipped: bool,
+    /// The history (not serialised; `--out` writes it as CSV).
+    #[serde(skip)]
+    pub samples: Vec<LeanSample>,
+}
+
+/// A lean beyond this (rad, about 6°) counts as tipped over.
+pub const TIPPED_LEAN: f64 = 0.1;
+
+impl DynamicTipover {
+    /// Runs the ramp on `toroid` (see the module docs).
+    pub fn run(&self, toroid: &Toroid) -> Result<DynamicTipoverReport> {
+        self.validate()?;
+        let p = &toroid.params;
+        let n = p.sides;
+        let mass = analyse(toroid)?.mass_kg;
+        let hub_height = p.outer_radius * (PI / n as f64).cos();
+        let static_threshold = 0.5 * mass * self.gravity * p.outer_tread / hub_height;
+        let design = prestress_design(toroid, self.min_tension)?;
+        let spin = Rotation3::from_axis_angle(&Vector3::x_axis(), PI / n as f64);
+        let structure = prestressed_structure(toroid, &design, self.string_stiffness)?;
+        let nodes: Vec<Vector3<f64>> = structure.nodes().iter().map(|x| spin * x).collect();
+        let mut builder = structure.to_builder_without_strings();
+        for s in structure.strings() {
+            builder = builder.string(s.clone().damping(self.string_damping));
+        }
+        let structure = builder
+            .build()?
+            .with_nodes(nodes)?
+            .to_builder()
+            .gravity([0.0, 0.0, -self.gravity])
+            .build()?;
+        let hubs = hub_nodes(toroid);
+        let t_end = self.settle + self.ramp_time + self.hold;
+        let mut sim = Simulation::new(&structure, self.settings(t_end))?;
+        let mut ground = Ground::new(
+            Vector3::new(0.0, 0.0, -hub_height),
+            Vector3::z(),
+            GroundModel::Penalty {
+                stiffness: self.ground_stiffness,
+                damping: self.ground_damping,
+                mu_static: self.mu,
+                mu_kinetic: crate::defaults::KINETIC_FRICTION_RATIO * self.mu,
+                regularization_velocity: self.friction_regularization,
+                stribeck_velocity: 3.0 * self.friction_regularization,
+            },
+        );
+        ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
+        sim.model.set_ground(ground)?;
+        let ramp = *self;
+        let rate = self.ramp_to * static_threshold / self.ramp_time;
+        let share = hubs.clone();
+        sim.model.set_load_schedule(Box::new(move |t, f| {
+            let force = ramp.force_at(t, rate);
+            for &i in &share {
+                f[i] = Vector3::new(force / share.len() as f64, 0.0, 0.0);
+            }
+        }));
+        let result = sim.run()?;
+        let samples = lean_history(toroid, &result.samples, |t| self.force_at(t, rate));
+        Ok(report(toroid, mass, hub_height, static_threshold, samples))
+    }
+
+    /// F(t): zero while settling, then the ramp, then held.
+    fn force_at(&self, t: f64, rate: f64) -> f64 {
+        rate * (t - self.settle).clamp(0.0, self.ramp_time)
+    }
+
+    fn settings(&self, t_end: f64) -> SimulationSettings {
+        SimulationSettings {
+            t_end,
+            integrator: IntegratorKind::Rk4,
+            dt: self.dt,
+            output_interval: Some(self.output_dt),
+            quantities: Quantities {
+                nodes: true,
+                velocities: false,
+                contact_forces: true,
+                energy: false,
+                member_forces: false,
+            },
+            ..SimulationSettings::default()
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        use tensegrity_core::validate::{non_negative, positive};
+        positive("gravity", self.gravity)?;
+        positive("string_stiffness", self.string_stiffness)?;
+        positive("min_tension", self.min_tension)?;
+        positive("ground_stiffness", self.ground_stiffness)?;
+        non_negative("ground_damping", self.ground_damping)?;
+        non_negative("string_damping", self.string_damping)?;
+        positive("mu", self.mu)?;
+        positive("friction_regularization", self.friction_regularization)?;
+        non_negative("settle", self.settle)?;
+        positive("ramp_time", self.ramp_time)?;
+        positive("ramp_to", self.ramp_to)?;
+        non_negative("hold", self.hold)?;
+        positive("dt", self.dt)?;
+        positive("output_dt", self.output_dt)?;
+        Ok(())
+    }
+}
+
+/// Where the hub force goes: the axle ends with spokes, else the rim nodes (centroid = hub).
+fn hub_nodes(toroid: &Toroid) -> Vec<usize> {
+    match toroid.axle {
+        Some([a, b]) => vec![a, b],
+        None => (0..toroid.params.sides).map(|k| 5 * k + 2).collect(),
+    }
+}
+
+/// Lean angle and edge loads of every sample.
+fn lean_history(
+    toroid: &Toroid,
+    samples: &[tensegrity_core::dynamics::Sample],
+    force_at: impl Fn(f64) -> f64,
+) -> Vec<LeanSample> {
+    let n = toroid.params.sides;
+    let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
+    samples
+        .iter()
+        .filter_map(|s| {
+            let x = s.nodes.as_ref()?;
+            let c = rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64;
+            // the rim polygon's area vector: the wheel's axis, +ι̂₁ when upright
+            let axis: Vector3<f64> = (0..n)
+                .map(|k| (x[rim[k]] - c).cross(&(x[rim[(k + 1) % n]] - c)))
+                .sum();
+            let axis = if axis.x < 0.0 { -axis } else { axis };
+            let (mut near, mut far) = (0.0, 0.0);
+            for (node, f) in s.contact_forces.iter().flatten() {
+                if x[*node].x < c.x {
+                    near += f.z;
+                } else {
+                    far += f.z;
+                }
+            }
+            Some(LeanSample {
+                t: s.t,
+                force: force_at(s.t),
+                lean: (-axis.z).atan2(axis.x),
+                near_normal: near,
+                far_normal: far,
+            })
+        })
+        .collect()
+}
+
+fn report(
+    toroid: &Toroid,
+    mass_kg: f64,
+    hub_height: f64,
+    static_threshold: f64,
+    samples: Vec<LeanSample>,
+) -> DynamicTipoverReport {
+    // the first unloading of the near edge while the force rises
+    let dynamic_threshold = samples.windows(2).find_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        (a.force > 0.0 && a.near_normal > 0.0 && b.near_normal <= 0.0).then(|| {
+            let s = a.near_normal / (a.near_normal - b.near_normal);
+            a.force + s * (b.force - a.force)
+        })
+    });
+    let max_lean = samples.iter().map(|s| s.lean).fold(f64::MIN, f64::max);
+    let final_lean = samples.last().map_or(0.0, |s| s.lean);
+    DynamicTipoverReport {
+        sides: toroid.params.sides,
+        outer_tread: toroid.params.outer_tread,
+        mass_kg,
+        hub_height,
+        static_threshold,
+        dynamic_threshold,
+        relative_difference: dynamic_threshold.map(|d| d / static_threshold - 1.0),
+        max_lean,
+        final_lean,
+        tipped: max_lean > TIPPED_LEAN,
+        samples,
+    }
+}

@@ -1,0 +1,102 @@
+//! `tensegrity tipover --dynamic [geometry flags] [--ramp-time S] [--ramp-to X] [--hold S]
+//! [--mu MU] [--out lean.csv] [--json]`: the static tip-over threshold checked by the full 3-D
+//! dynamics (one call to [`toroid::tipover_dynamic::DynamicTipover::run`]).
+
+use super::values;
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+use toroid::tipover_dynamic::{DynamicTipover, DynamicTipoverReport, LeanSample};
+use toroid::WheelSpec;
+
+/// The flags of the dynamic run (flattened into `tipover`).
+#[derive(clap::Args, Debug, Clone)]
+pub struct DynamicArgs {
+    /// Check the threshold with the full 3-D dynamics: the wheel at rest on a side on level
+    /// ground, a lateral force ramped at the hub.
+    #[arg(long)]
+    pub dynamic: bool,
+    /// Ramp duration (s), from 0 to --ramp-to × the static threshold.
+    #[arg(long, default_value_t = 4.0, value_parser = values::positive, requires = "dynamic")]
+    pub ramp_time: f64,
+    /// Largest force of the ramp, as a multiple of the static threshold.
+    #[arg(long, default_value_t = 1.3, value_parser = values::positive, requires = "dynamic")]
+    pub ramp_to: f64,
+    /// Time the largest force is held after the ramp (s).
+    #[arg(long, default_value_t = 0.0, value_parser = values::non_negative, requires = "dynamic")]
+    pub hold: f64,
+    /// Static friction coefficient of the ground (kinetic = 0.75 μ).
+    #[arg(long, default_value_t = 1.0, value_parser = values::positive, requires = "dynamic")]
+    pub mu: f64,
+    /// String stiffness of the wheel (N/m): the threshold is the rigid one only for a stiff
+    /// wheel (a soft one deforms and tips early).
+    #[arg(long, default_value_t = 2e6, value_parser = values::positive, requires = "dynamic")]
+    pub string_stiffness: f64,
+    /// RK4 step (s); stiffer strings need a smaller one.
+    #[arg(long, default_value_t = 1e-4, value_parser = values::positive, requires = "dynamic")]
+    pub dt: f64,
+    /// Write the history (t, force, lean, near_normal, far_normal) to this CSV.
+    #[arg(long, value_name = "FILE", requires = "dynamic")]
+    pub out: Option<PathBuf>,
+}
+
+/// Runs the dynamic check and prints its report.
+pub fn run(args: &DynamicArgs, wheel: &WheelSpec, gravity: f64, json: bool) -> Result<()> {
+    let toroid = wheel.build()?;
+    let settings = DynamicTipover {
+        gravity,
+        ramp_time: args.ramp_time,
+        ramp_to: args.ramp_to,
+        hold: args.hold,
+        mu: args.mu,
+        string_stiffness: args.string_stiffness,
+        dt: args.dt,
+        ..DynamicTipover::default()
+    };
+    let report = settings
+        .run(&toroid)
+        .context("dynamic tip-over run failed")?;
+    if let Some(path) = &args.out {
+        write_history(path, &report.samples)?;
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print(&report);
+    }
+    Ok(())
+}
+
+fn write_history(path: &Path, samples: &[LeanSample]) -> Result<()> {
+    use std::fmt::Write;
+    let mut text = String::from("t,force,lean,near_normal,far_normal\n");
+    for s in samples {
+        let _ = writeln!(
+            text,
+            "{},{},{},{},{}",
+            s.t, s.force, s.lean, s.near_normal, s.far_normal
+        );
+    }
+    tensegrity_io::write_text(path, "lean history", &text)
+        .with_context(|| format!("writing the lean history {}", path.display()))
+}
+
+fn print(r: &DynamicTipoverReport) {
+    println!(
+        "n = {}, T = {} m, mass {:.4} kg, resting on a side (hub height {:.4} m)",
+        r.sides, r.outer_tread, r.mass_kg, r.hub_height
+    );
+    println!("static threshold (m g/2)(T/h): {:.4} N", r.static_threshold);
+    match (r.dynamic_threshold, r.relative_difference) {
+        (Some(d), Some(rel)) => println!(
+            "dynamic threshold (near tread edge unloads): {d:.4} N ({:+.2} %)",
+            100.0 * rel
+        ),
+        _ => println!("the near tread edge never unloaded: the wheel did not tip"),
+    }
+    println!(
+        "largest lean {:.4} rad, final {:.4} rad: {}",
+        r.max_lean,
+        r.final_lean,
+        if r.tipped { "tipped over" } else { "upright" }
+    );
+}
