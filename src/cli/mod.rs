@@ -11,6 +11,7 @@ pub mod statics;
 pub mod stream;
 pub mod sweep;
 pub mod tbar;
+pub mod tbar_mass;
 pub mod tbar_roll;
 pub mod tipover;
 pub mod toroid;

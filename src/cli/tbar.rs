@@ -97,6 +97,16 @@ pub struct TbarArgs {
     /// `--extended`, default 0.5 r₀) with a free rim body, free and standing on the ground.
     #[arg(long)]
     loop_study: bool,
+    /// Instead of one analysis: the mass price against the Michell truss of single treads
+    /// over `--sweep-complexities` × `--sweep-deltas` (δ, or ε with `--spherical`).
+    #[arg(long)]
+    mass_sweep: bool,
+    /// Complexities q of `--mass-sweep`.
+    #[arg(long, value_delimiter = ',', default_values_t = [1usize, 2, 3])]
+    sweep_complexities: Vec<usize>,
+    /// Offsets δ (or angles ε, radians) of `--mass-sweep`.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.05, 0.1, 0.25, 0.5, 1.0])]
+    sweep_deltas: Vec<f64>,
     /// Tip load magnitude w₀ (N) of the load envelope.
     #[arg(long, default_value_t = DEFAULT_LOAD)]
     load: f64,
@@ -168,6 +178,14 @@ pub fn run(args: &TbarArgs) -> Result<()> {
     let req = args.request();
     if args.loop_study {
         return run_loop_study(args, &req);
+    }
+    if args.mass_sweep {
+        return super::tbar_mass::run(
+            &req,
+            &args.sweep_complexities,
+            &args.sweep_deltas,
+            args.json,
+        );
     }
     let report = tbar_wheel::tbar_report(&req)?;
     for w in &report.warnings {
