@@ -47,7 +47,7 @@ impl From<RimArg> for RimMode {
 pub enum TbarCommand {
     /// Roll the T-bar wheel down an incline (reduced rigid model) against the toroid of
     /// equal outer radius, over the number of treads π/φ; tip-over of the extended wheel.
-    Roll(super::tbar_roll::TbarRollArgs),
+    Roll(Box<super::tbar_roll::TbarRollArgs>),
 }
 
 /// Arguments of `tensegrity tbar`.

@@ -342,6 +342,9 @@ fn print_roll(r: &TbarRollReport) {
                 "     tips over above a lateral axle force of {:.4} N (on an edge {:.4} N), μ_s > {:.4}",
                 t.critical_lateral_force, t.critical_lateral_force_edge, t.min_friction_to_tip
             );
+            for w in &t.warnings {
+                println!("     note: {w}");
+            }
         }
     }
 }

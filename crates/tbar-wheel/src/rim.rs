@@ -13,8 +13,9 @@
 //! - **ring**: the rim points grouped by their angle about ι̂₁ (all lie at multiples of φ),
 //!   every point of a group joined to every point of the next group (Σ_g |G_g||G_{g+1}|
 //!   bars); the chain is closed around the wheel, open for a single tread. The ring ties the
-//!   tangential motions of consecutive groups, so the rim body alone is rigid: its only
-//!   first-order motions are the six rigid-body ones.
+//!   tangential motions of consecutive groups, so the rim body is rigid: with it the q = 1
+//!   and q = 2 wheels and extended wheels have exactly six first-order mechanisms, the
+//!   rigid-body motions (tests/rim.rs, [`crate::standing`]).
 //!
 //! Counts, with n = π/φ treads per wheel and c copies: a q = 1 wheel has |R| = 3nc rim
 //! points in 2n angle groups of 2c (lattice) and c (bar bases) points, hence
