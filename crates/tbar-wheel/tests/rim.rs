@@ -138,6 +138,17 @@ fn the_copy_removes_the_out_of_plane_mechanism_of_the_loop() {
 }
 
 #[test]
+fn the_q2_loop_has_the_same_mechanisms_and_no_prestress() {
+    let rows = loop_study(&tread(2, PI / 8.0), 0.5).unwrap();
+    let mech: Vec<usize> = rows.iter().map(|r| r.mechanisms).collect();
+    assert_eq!(mech, [6, 3, 1, 6, 1, 0]);
+    let edge = row(&rows, "wheel", Stance::Edge);
+    assert!((edge.out_of_plane - 1.0).abs() < 1e-9 && edge.internal.abs() < 1e-9);
+    // q = 2 treads are not prestressable (README finding), with a rim body too
+    assert!(rows.iter().all(|r| r.prestress_margin < 1e-8));
+}
+
+#[test]
 fn mass_and_inertia_equal_a_hand_sum() {
     // rigid rim, q = 1: n radial bars from r₁ to r₀, I₁ = n ρ (r₀ − r₁)(r₁² + r₁r₀ + r₀²)/3
     let (n, rho) = (12usize, 2.5);
