@@ -55,8 +55,9 @@ pub struct TbarRollArgs {
     /// Base of the radial bar.
     #[arg(long, value_enum, default_value_t = BarBaseArg::Rim)]
     bar_base: BarBaseArg,
-    /// Rim mass: the rim body's bars (`body`) or none (`fixed`: a massless rigid rim).
-    #[arg(long, value_enum, default_value_t = RimArg::Body)]
+    /// Rim mass: none (`fixed`: a massless rigid rim, the treads' bars only) or the rim
+    /// body's bars (`body`).
+    #[arg(long, value_enum, default_value_t = RimArg::Fixed)]
     rim: RimArg,
     /// Numbers of treads n = π/φ to roll (comma separated).
     #[arg(long, value_delimiter = ',', default_values_t = defaults::FIG_3_10_SIDES)]
