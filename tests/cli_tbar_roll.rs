@@ -26,7 +26,7 @@ const BASE: [&str; 7] = [
     "0.25",
 ];
 
-fn with(extra: &[&'static str]) -> Vec<&'static str> {
+fn with<'a>(extra: &[&'a str]) -> Vec<&'a str> {
     let mut v = BASE.to_vec();
     v.extend_from_slice(extra);
     v
@@ -45,6 +45,23 @@ fn rim_body_json_reports_the_rim_and_the_free_body_counts() {
         (&6.into(), &0.into())
     );
     assert!(v["min_prestress"].is_null());
+    // the exported rim-body scene, read back by `tensegrity statics` (the io path)
+    let scene = std::env::temp_dir().join(format!("tbar-rim-body-{}.toml", std::process::id()));
+    let path = scene.to_str().unwrap();
+    json(&with(&[
+        "--extended",
+        "0.5",
+        "--rim",
+        "body",
+        "--export-scene",
+        path,
+        "--json",
+    ]));
+    let st = json(&["statics", path, "--json"]);
+    assert_eq!(
+        (&st["self_stress_dim"], &st["mechanisms"]),
+        (&113.into(), &6.into())
+    );
     let f = json(&with(&["--wheel", "--json"]));
     assert_eq!((&f["rim"], &f["rim_bars"]), (&"fixed".into(), &0.into()));
 }

@@ -407,6 +407,18 @@ mod tests {
         }
         let osc = |i: usize| r.rows[i].tbar.as_ref().unwrap().axle_height_oscillation;
         assert!(osc(1) < osc(0));
+        // the toroid column is `toroid::roll` with the rigid fidelity (the reference wheel, R_o = 1)
+        let direct = toroid::roll(&toroid::RollRequest {
+            wheel: toroid::WheelSpec::with_sides(8),
+            fidelity: toroid::FidelityChoice::Rigid,
+            t_end: 2.0,
+            ..Default::default()
+        })
+        .unwrap();
+        let ours = r.rows[0].toroid.as_ref().unwrap();
+        assert_eq!((ours.mass_kg, ours.i1), (direct.mass_kg, direct.i1));
+        assert_eq!(ours.axle_height_oscillation, direct.axle_height_oscillation);
+        assert_eq!(ours.impacts, direct.impacts);
         let j = serde_json::to_value(&r).unwrap();
         for key in ["valid", "warnings", "min_normal_force", "airborne_fraction"] {
             assert!(j["rows"][0]["tbar"].get(key).is_some(), "{key}");
