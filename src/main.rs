@@ -34,7 +34,8 @@ enum Command {
     FigRolling(cli::roll::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
     Tipover(cli::tipover::TipoverArgs),
-    /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass.
+    /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope,
+    /// mass; `tbar roll`: rolling and tip-over.
     Tbar(cli::tbar::TbarArgs),
     /// Parameter sweeps from a TOML spec to CSV (parallel, resumable, shardable), and
     /// `sweep merge` of shard files.

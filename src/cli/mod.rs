@@ -13,6 +13,8 @@ pub mod statics;
 pub mod stream;
 pub mod sweep;
 pub mod tbar;
+pub mod tbar_mass;
+pub mod tbar_roll;
 pub mod tipover;
 pub mod tipover_dynamic;
 pub mod toroid;

@@ -1,7 +1,9 @@
 //! `tensegrity tbar`: the T-bar tread, wheel or extended wheel of thesis chapter 5. Parses the
 //! arguments into a [`tbar_wheel::TbarRequest`], makes one library call
 //! ([`tbar_wheel::tbar_report`]) and prints the report (text or JSON); `--export-scene`,
-//! `--vtk` and `--svg` hand the structure or the drawing to tensegrity-io.
+//! `--vtk` and `--svg` hand the structure or the drawing to tensegrity-io. `--loop-study`
+//! prints the single loop against the extended wheel ([`tbar_wheel::standing`]);
+//! `tensegrity tbar roll` rolls the wheel ([`super::tbar_roll`]).
 
 use crate::cli::angle::parse_angle;
 use anyhow::{Context, Result};
@@ -10,7 +12,7 @@ use std::path::{Path, PathBuf};
 use tbar_wheel::drawing::{polylines, View};
 use tbar_wheel::envelope::{DEFAULT_DIRECTIONS, DEFAULT_EA, DEFAULT_LOAD};
 use tbar_wheel::mass::DEFAULT_MATERIAL;
-use tbar_wheel::{BarBase, Layout, TbarGeometry, TbarParams, TbarReport, TbarRequest};
+use tbar_wheel::{BarBase, Layout, RimMode, TbarGeometry, TbarParams, TbarReport, TbarRequest};
 use tensegrity_io::figure::{Figure, Panel, Series};
 
 /// `--bar-base` values.
@@ -22,18 +24,48 @@ pub enum BarBaseArg {
     Chord,
 }
 
+/// `--rim` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RimArg {
+    /// Rigid rim: every rim node and bar base pinned.
+    Fixed,
+    /// A free rim body of bars (ring, spokes, hub and axle).
+    Body,
+}
+
+impl From<RimArg> for RimMode {
+    fn from(r: RimArg) -> Self {
+        match r {
+            RimArg::Fixed => RimMode::Fixed,
+            RimArg::Body => RimMode::Body,
+        }
+    }
+}
+
+/// Subcommands of `tensegrity tbar`.
+#[derive(clap::Subcommand, Debug)]
+pub enum TbarCommand {
+    /// Roll the T-bar wheel down an incline (reduced rigid model) against the toroid of
+    /// equal outer radius, over the number of treads π/φ; tip-over of the extended wheel.
+    Roll(Box<super::tbar_roll::TbarRollArgs>),
+}
+
 /// Arguments of `tensegrity tbar`.
 #[derive(clap::Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TbarArgs {
+    /// `roll`: rolling and tip-over.
+    #[command(subcommand)]
+    command: Option<TbarCommand>,
     /// Complexity q (lattice levels; level q lies on the rim).
     #[arg(long, default_value_t = 1)]
     complexity: usize,
     /// Departure angle β (e.g. `pi/6`, `30deg`).
-    #[arg(long, value_parser = parse_angle)]
-    beta: f64,
+    #[arg(long, value_parser = parse_angle, required = true)]
+    beta: Option<f64>,
     /// Segmentation angle φ; a wheel needs π/φ integer.
-    #[arg(long, value_parser = parse_angle)]
-    phi: f64,
+    #[arg(long, value_parser = parse_angle, required = true)]
+    phi: Option<f64>,
     /// Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11).
     #[arg(
         long,
@@ -58,6 +90,23 @@ pub struct TbarArgs {
     /// Base of the radial bar.
     #[arg(long, value_enum, default_value_t = BarBaseArg::Rim)]
     bar_base: BarBaseArg,
+    /// Rim: rigid supports (`fixed`) or a free rim body of bars with a hub (`body`).
+    #[arg(long, value_enum, default_value_t = RimArg::Fixed)]
+    rim: RimArg,
+    /// Instead of one analysis: the single loop against the extended wheel (copy at
+    /// `--extended`, default 0.5 r₀) with a free rim body, free and standing on the ground.
+    #[arg(long)]
+    loop_study: bool,
+    /// Instead of one analysis: the mass price against the Michell truss of single treads
+    /// over `--sweep-complexities` × `--sweep-deltas` (δ, or ε with `--spherical`).
+    #[arg(long)]
+    mass_sweep: bool,
+    /// Complexities q of `--mass-sweep`.
+    #[arg(long, value_delimiter = ',', default_values_t = [1usize, 2, 3])]
+    sweep_complexities: Vec<usize>,
+    /// Offsets δ (or angles ε, radians) of `--mass-sweep`.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.05, 0.1, 0.25, 0.5, 1.0])]
+    sweep_deltas: Vec<f64>,
     /// Tip load magnitude w₀ (N) of the load envelope.
     #[arg(long, default_value_t = DEFAULT_LOAD)]
     load: f64,
@@ -90,17 +139,12 @@ pub struct TbarArgs {
 impl TbarArgs {
     /// The library request the arguments describe.
     pub fn request(&self) -> TbarRequest {
+        let (beta, phi) = (self.beta.unwrap_or(f64::NAN), self.phi.unwrap_or(f64::NAN));
         let m = match (self.cylindrical, self.spherical) {
-            (_, Some(e)) => {
-                MichellParams::spherical(self.complexity, self.r0, self.beta, self.phi, e)
+            (_, Some(e)) => MichellParams::spherical(self.complexity, self.r0, beta, phi, e),
+            (d, None) => {
+                MichellParams::cylindrical(self.complexity, self.r0, beta, phi, d.unwrap_or(0.0))
             }
-            (d, None) => MichellParams::cylindrical(
-                self.complexity,
-                self.r0,
-                self.beta,
-                self.phi,
-                d.unwrap_or(0.0),
-            ),
         };
         let layout = match (self.extended, self.wheel) {
             (Some(offset), _) => Layout::Extended { offset },
@@ -111,8 +155,12 @@ impl TbarArgs {
             BarBaseArg::Rim => BarBase::Rim,
             BarBaseArg::Chord => BarBase::Chord,
         };
-        let mut req =
-            TbarRequest::new(TbarParams::tread(m).with_layout(layout).with_bar_base(base));
+        let mut req = TbarRequest::new(
+            TbarParams::tread(m)
+                .with_layout(layout)
+                .with_bar_base(base)
+                .with_rim(self.rim.into()),
+        );
         req.load = self.load;
         req.ea = self.ea;
         req.prestress = self.prestress;
@@ -124,7 +172,21 @@ impl TbarArgs {
 
 /// Entry point of `tensegrity tbar`.
 pub fn run(args: &TbarArgs) -> Result<()> {
+    if let Some(TbarCommand::Roll(roll)) = &args.command {
+        return super::tbar_roll::run(roll);
+    }
     let req = args.request();
+    if args.loop_study {
+        return run_loop_study(args, &req);
+    }
+    if args.mass_sweep {
+        return super::tbar_mass::run(
+            &req,
+            &args.sweep_complexities,
+            &args.sweep_deltas,
+            args.json,
+        );
+    }
     let report = tbar_wheel::tbar_report(&req)?;
     for w in &report.warnings {
         eprintln!("warning: {w}");
@@ -177,12 +239,40 @@ fn write_drawing(path: &Path, g: &TbarGeometry) -> Result<()> {
         .with_context(|| format!("writing the figure {}", path.display()))
 }
 
+/// `--loop-study`: the six cases of [`tbar_wheel::standing::loop_study`].
+fn run_loop_study(args: &TbarArgs, req: &TbarRequest) -> Result<()> {
+    let offset = args.extended.unwrap_or(0.5 * args.r0);
+    let rows = tbar_wheel::standing::loop_study(&req.params, offset)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+        return Ok(());
+    }
+    println!("structure       stance  contacts  rank  self-stress  mechanisms  in-plane  out-of-plane  internal  margin");
+    for r in &rows {
+        println!(
+            "{:<15} {:<7} {:>8} {:>5} {:>12} {:>11} {:>9.3} {:>13.3} {:>9.3} {:>7.4}",
+            r.structure,
+            r.stance.as_str(),
+            r.contacts,
+            r.rank,
+            r.self_stress_dim,
+            r.mechanisms,
+            r.in_plane,
+            r.out_of_plane,
+            r.internal,
+            r.prestress_margin
+        );
+    }
+    Ok(())
+}
+
 fn print_report(r: &TbarReport) {
     println!(
-        "T-bar {} q = {} (bar base {}): {} treads, {} nodes, {} bars, {} strings",
+        "T-bar {} q = {} (bar base {}, rim {}): {} treads, {} nodes, {} bars, {} strings",
         r.params.layout.name(),
         r.params.michell.complexity,
         r.params.bar_base.as_str(),
+        r.rim.as_str(),
         r.treads,
         r.nodes,
         r.bars,

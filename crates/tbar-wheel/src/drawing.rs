@@ -71,8 +71,9 @@ pub fn walks(n_nodes: usize, edges: &[[usize; 2]]) -> Vec<Vec<usize>> {
     out
 }
 
-/// The polylines of a view: strings, then the bars with the rim polygon through the bar
-/// bases. In the side view only the first wheel is drawn (the copy projects onto it).
+/// The polylines of a view: strings, the rim body's bars (if any), then the bars with the rim
+/// polygon through the bar bases. In the side view only the first wheel's strings are drawn
+/// (the copy projects onto them).
 pub fn polylines(g: &TbarGeometry, view: View) -> Vec<Polyline> {
     let copies = g.params.copies();
     let per_wheel = g.tips.len() / copies.max(1);
@@ -116,6 +117,18 @@ pub fn polylines(g: &TbarGeometry, view: View) -> Vec<Polyline> {
         }
         if !pts.is_empty() {
             bars.push(pts);
+        }
+    }
+    if let Some(rim) = &g.rim {
+        for (i, w) in walks(g.nodes.len(), &rim.bars).into_iter().enumerate() {
+            out.push(Polyline {
+                label: if i == 0 {
+                    "rim body".into()
+                } else {
+                    String::new()
+                },
+                points: w.iter().map(|&n| view.project(&g.nodes[n])).collect(),
+            });
         }
     }
     for (i, pts) in bars.into_iter().enumerate() {

@@ -30,6 +30,9 @@
 //! strings. The **extended wheel** adds a copy of the wheel translated by the offset along
 //! ι̂₁; the two copies share nothing (64 nodes, 16 bars, 64 strings for q = 1, φ = π/8).
 //!
+//! **Rim body.** With [`RimMode::Body`] the supports are replaced by a rim body of bars (two
+//! hub nodes `hub_left`, `hub_right` appended last, spokes and a ring; see [`crate::rim`]).
+//!
 //! **Labels.** Tread 0 of the first wheel: `tip`, `bar_base`, then its lattice tuples level by
 //! level as `UDLR` (e.g. `1010`; `U_D_L_R` when an index exceeds 9), inside a level by D
 //! ascending then L descending. Nodes first met in tread k > 0 are prefixed `t{k}.`, and in the
@@ -37,7 +40,8 @@
 //! tread by tread in that order, each tread tip, bar base, lattice.
 
 use crate::error::Result;
-use crate::params::{BarBase, Layout, TbarParams};
+use crate::params::{BarBase, Layout, RimMode, TbarParams};
+use crate::rim::RimBody;
 use michell3d::nodes::{position, NodeTuple};
 use nalgebra::{Rotation3, Vector3};
 use std::collections::HashMap;
@@ -211,7 +215,7 @@ pub struct TbarGeometry {
     pub labels: Vec<String>,
     /// Whether each node is a rim support (pinned).
     pub supported: Vec<bool>,
-    /// Bars as [base, tip].
+    /// The treads' bars as [base, tip] (the rim body's bars are in `rim`).
     pub bars: Vec<[usize; 2]>,
     /// Strings as [parent, child].
     pub strings: Vec<[usize; 2]>,
@@ -219,6 +223,9 @@ pub struct TbarGeometry {
     pub tips: Vec<usize>,
     /// Lattice nodes per level of one tread, levels 0..=q: (l+1)².
     pub level_sizes: Vec<usize>,
+    /// The rim body ([`RimMode::Body`]): hub nodes (appended after the treads' nodes) and
+    /// bars; `None` with the rigid rim.
+    pub rim: Option<RimBody>,
 }
 
 impl TbarGeometry {
@@ -252,6 +259,7 @@ impl TbarGeometry {
             level_sizes: (0..=params.complexity())
                 .map(|l| (l + 1) * (l + 1))
                 .collect(),
+            rim: None,
         };
         for copy in 0..params.copies() {
             let mut merger = Merger::new(params.michell.r0);
@@ -292,7 +300,19 @@ impl TbarGeometry {
                 }
             }
         }
+        if params.rim == RimMode::Body {
+            crate::rim::attach(&mut g);
+        }
         Ok(g)
+    }
+
+    /// Every bar of the structure: the treads' bars, then the rim body's.
+    pub fn all_bars(&self) -> Vec<[usize; 2]> {
+        let mut out = self.bars.clone();
+        if let Some(r) = &self.rim {
+            out.extend_from_slice(&r.bars);
+        }
+        out
     }
 
     /// Number of treads (both wheels of an extended wheel).
@@ -300,11 +320,12 @@ impl TbarGeometry {
         self.tips.len()
     }
 
-    /// The core structure: bars (base → tip) first, then strings (parent → child), every rim
-    /// node and bar base pinned.
+    /// The core structure: the treads' bars (base → tip) first, then the rim body's bars (if
+    /// any), then strings (parent → child); with the rigid rim every rim node and bar base is
+    /// pinned, with the rim body nothing is (a free body).
     pub fn structure(&self) -> Result<Structure> {
         let mut b = Structure::builder().nodes(self.nodes.iter().map(|p| [p.x, p.y, p.z]));
-        for &[s, e] in &self.bars {
+        for [s, e] in self.all_bars() {
             b = b.bar(Bar::new(s, e));
         }
         for &[s, e] in &self.strings {

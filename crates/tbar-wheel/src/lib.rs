@@ -16,8 +16,12 @@
 //! - [`drawing`]: polylines of Figs. 5.1–5.3 (side and top views) for the io figure module;
 //! - [`report`]: one complete analysis for the CLI ([`tbar_report`]).
 //!
-//! Not implemented yet: the free rim body (a ring of bars with a hub, class-k joints) and the
-//! tip-over and rolling of the extended wheel (issue items 1 "rim body", 2 "single loop" and 5).
+//! - [`rim`]: the rim body (a ring of bars with a hub, class-k joints) replacing the rigid
+//!   rim's supports, and its prestressability LP;
+//! - [`standing`]: the single loop against the extended wheel with a free rim body, free and
+//!   standing on the ground (the thesis's "unstable in the ι̂₂ι̂₃ plane");
+//! - [`rolling`]: mass properties, out-of-plane tip-over, and the rolling polygon for the
+//!   toroid crate's reduced rigid model (composed by `tensegrity tbar roll`).
 #![warn(missing_docs)]
 
 pub mod brute;
@@ -28,9 +32,12 @@ pub mod geometry;
 pub mod mass;
 pub mod params;
 pub mod report;
+pub mod rim;
+pub mod rolling;
+pub mod standing;
 pub mod statics;
 
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
-pub use params::{BarBase, Layout, TbarParams};
+pub use params::{BarBase, Layout, RimMode, TbarParams};
 pub use report::{tbar_report, TbarReport, TbarRequest};

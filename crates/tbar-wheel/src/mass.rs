@@ -11,7 +11,7 @@
 
 use crate::envelope::LoadResponse;
 use crate::error::Result;
-use crate::params::{Layout, TbarParams};
+use crate::params::{Layout, RimMode, TbarParams};
 use michell3d::{analyse, AnalysisRequest};
 use serde::Serialize;
 use tensegrity_core::sizing::{size_bar, size_string};
@@ -105,8 +105,8 @@ pub struct MassRow {
     pub note: Option<String>,
 }
 
-/// The mass price of the envelope over complexities and δ (single treads, cylindrical with δ,
-/// or spherical with ε when `base` is spherical).
+/// The mass price of the envelope over complexities and δ (single treads with the rigid rim,
+/// cylindrical with δ, or spherical with ε when `base` is spherical).
 pub fn mass_sweep(
     base: &TbarParams,
     complexities: &[usize],
@@ -128,6 +128,7 @@ pub fn mass_sweep(
             let params = TbarParams {
                 michell,
                 layout: Layout::Tread,
+                rim: RimMode::Fixed,
                 ..*base
             };
             let mut req = crate::report::TbarRequest::new(params);

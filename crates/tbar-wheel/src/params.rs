@@ -9,8 +9,9 @@
 //! - the layout ([`Layout`]): one tread, the wheel of π/φ treads every 2φ about ι̂₁ (π/φ must
 //!   be an integer), or the extended wheel (a second wheel translated along ι̂₁ by an offset).
 //!
-//! The rim is rigid: every rim node (level q) and every bar base is a pinned support. The
-//! free rim body of the issue (a ring of bars with a hub) is not implemented yet.
+//! - the rim ([`RimMode`]): rigid (every rim node (level q) and every bar base a pinned
+//!   support, the default) or a free rim body of bars (a ring and a hub, see
+//!   [`crate::rim`]) for free-body analysis and dynamics.
 
 use crate::error::{invalid, Result, TbarError};
 use michell3d::MichellParams;
@@ -43,6 +44,27 @@ impl BarBase {
         match self {
             BarBase::Rim => "rim",
             BarBase::Chord => "chord",
+        }
+    }
+}
+
+/// How the rim is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RimMode {
+    /// A rigid rim: every rim node and bar base is a pinned support (the default).
+    #[default]
+    Fixed,
+    /// A rim body of bars with a hub and no support (free body, see [`crate::rim`]).
+    Body,
+}
+
+impl RimMode {
+    /// `"fixed"` or `"body"`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            RimMode::Fixed => "fixed",
+            RimMode::Body => "body",
         }
     }
 }
@@ -83,6 +105,8 @@ pub struct TbarParams {
     pub bar_base: BarBase,
     /// Tread, wheel or extended wheel.
     pub layout: Layout,
+    /// Rigid rim (supports) or rim body.
+    pub rim: RimMode,
 }
 
 impl TbarParams {
@@ -92,7 +116,13 @@ impl TbarParams {
             michell,
             bar_base: BarBase::Rim,
             layout: Layout::Tread,
+            rim: RimMode::Fixed,
         }
+    }
+
+    /// The same parameters with another rim model.
+    pub fn with_rim(self, rim: RimMode) -> Self {
+        Self { rim, ..self }
     }
 
     /// The same parameters with another layout.

@@ -12,7 +12,7 @@ use crate::envelope::{
 use crate::error::{invalid, Result};
 use crate::geometry::TbarGeometry;
 use crate::mass::{self, MassComparison};
-use crate::params::TbarParams;
+use crate::params::{RimMode, TbarParams};
 use crate::statics::{check_size, summarise};
 use serde::Serialize;
 use tensegrity_core::{Statics, Structure};
@@ -77,8 +77,12 @@ pub struct TbarReport {
     pub params: TbarParams,
     /// Number of nodes.
     pub nodes: usize,
-    /// Number of bars.
+    /// Number of bars (the treads' and, with a rim body, the rim body's).
     pub bars: usize,
+    /// The rim model: `fixed` (rigid rim, supports) or `body` (free rim body of bars).
+    pub rim: RimMode,
+    /// Bars of the rim body (0 with the rigid rim).
+    pub rim_bars: usize,
     /// Number of strings.
     pub strings: usize,
     /// Number of treads (both wheels of an extended wheel).
@@ -91,7 +95,7 @@ pub struct TbarReport {
     pub node_coordinates: Vec<[f64; 3]>,
     /// Whether each node is a rim support.
     pub supported: Vec<bool>,
-    /// Bars as [base, tip] node indices.
+    /// Bars as [start, end] node indices: the treads' [base, tip], then the rim body's.
     pub bar_nodes: Vec<[usize; 2]>,
     /// Strings as [parent, child] node indices.
     pub string_nodes: Vec<[usize; 2]>,
@@ -163,6 +167,18 @@ pub fn tbar_report(req: &TbarRequest) -> Result<TbarReport> {
     report.internal_mechanisms = summary.internal_mechanisms;
     report.prestressable = summary.prestressable;
     report.prestress_margin = summary.prestress_margin;
+    if let Some(rim) = &geometry.rim {
+        // rim-body bars carry either sign: only the treads' members need the right one
+        let margin = crate::rim::prestressability(&statics, geometry.bars.len(), rim.bars.len());
+        report.prestress_margin = margin;
+        report.prestressable = margin > tensegrity_core::statics::PRESTRESS_TOLERANCE;
+        report.warnings.push(
+            "rim body: free-body statics (six rigid-body motions, no supports); the load \
+             envelope, minimum prestress and mass are computed with the rigid rim (--rim fixed)"
+                .into(),
+        );
+        return Ok(report);
+    }
     if let Err(e) = add_envelope(req, &geometry, &statics, &mut report) {
         report.warnings.push(format!("no load envelope: {e}"));
     }
@@ -174,13 +190,15 @@ fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport
         params: req.params,
         nodes: s.n_nodes(),
         bars: s.n_bars(),
+        rim: req.params.rim,
+        rim_bars: g.rim.as_ref().map_or(0, |r| r.bars.len()),
         strings: s.n_strings(),
         treads: g.treads(),
         level_sizes: g.level_sizes.clone(),
         node_labels: g.labels.clone(),
         node_coordinates: g.nodes.iter().map(|p| [p.x, p.y, p.z]).collect(),
         supported: g.supported.clone(),
-        bar_nodes: g.bars.clone(),
+        bar_nodes: g.all_bars(),
         string_nodes: g.strings.clone(),
         rank: 0,
         self_stress_dim: 0,

@@ -1,16 +1,16 @@
 //! The `tbar` study: the flags of `tensegrity tbar` (src/cli/tbar.rs) mapped onto
 //! [`tbar_wheel::TbarRequest`]. `cylindrical` (δ) or `spherical` (ε, an angle) chooses the
 //! parameterisation; `wheel = true` or `extended = OFFSET` the layout; `bar_base` is `rim`
-//! (default) or `chord`.
+//! (default) or `chord`; `rim` is `fixed` (default) or `body`.
 
 use super::{col, Column};
 use crate::error::{Result, SweepError};
 use crate::params::{param, required, Kind, ParamDef, Params};
 use michell3d::MichellParams;
-use tbar_wheel::{BarBase, Layout, TbarParams, TbarRequest};
+use tbar_wheel::{BarBase, Layout, RimMode, TbarParams, TbarRequest};
 
 /// Parameters of `tbar`.
-pub const PARAMS: [ParamDef; 14] = [
+pub const PARAMS: [ParamDef; 15] = [
     param("complexity", Kind::Count, ""),
     required("beta", Kind::Angle, "rad"),
     required("phi", Kind::Angle, "rad"),
@@ -20,6 +20,7 @@ pub const PARAMS: [ParamDef; 14] = [
     param("wheel", Kind::Flag, ""),
     param("extended", Kind::Number, "m"),
     param("bar_base", Kind::Text, ""),
+    param("rim", Kind::Text, ""),
     param("load", Kind::Number, "N"),
     param("ea", Kind::Number, "N"),
     param("prestress", Kind::Number, "N"),
@@ -29,7 +30,7 @@ pub const PARAMS: [ParamDef; 14] = [
 
 /// The scalars of [`tbar_wheel::TbarReport`] (nested objects flattened with `.`; the keys
 /// of every layout and parameterisation).
-pub const COLUMNS: [Column; 40] = [
+pub const COLUMNS: [Column; 43] = [
     col("params.michell.complexity", ""),
     col("params.michell.r0", "m"),
     col("params.michell.beta", "rad"),
@@ -40,8 +41,11 @@ pub const COLUMNS: [Column; 40] = [
     col("params.bar_base", ""),
     col("params.layout.kind", ""),
     col("params.layout.offset", "m"),
+    col("params.rim", ""),
     col("nodes", ""),
     col("bars", ""),
+    col("rim", ""),
+    col("rim_bars", ""),
     col("strings", ""),
     col("treads", ""),
     col("rank", ""),
@@ -90,6 +94,14 @@ fn bar_base(s: &str) -> std::result::Result<BarBase, &'static str> {
     }
 }
 
+fn rim(s: &str) -> std::result::Result<RimMode, &'static str> {
+    match s {
+        "fixed" => Ok(RimMode::Fixed),
+        "body" => Ok(RimMode::Body),
+        _ => Err("expected fixed or body"),
+    }
+}
+
 fn michell(p: &Params) -> Result<MichellParams> {
     let q = p.count("complexity")?.unwrap_or(1);
     let beta = need(p.angle("beta")?, "beta")?;
@@ -114,10 +126,12 @@ pub fn request(p: &Params) -> Result<TbarRequest> {
         (None, false) => Layout::Tread,
     };
     let base = p.parsed("bar_base", bar_base)?.unwrap_or(BarBase::Rim);
+    let rim = p.parsed("rim", rim)?.unwrap_or(RimMode::Fixed);
     let d = TbarRequest::new(
         TbarParams::tread(michell(p)?)
             .with_layout(layout)
-            .with_bar_base(base),
+            .with_bar_base(base)
+            .with_rim(rim),
     );
     Ok(TbarRequest {
         load: p.number("load")?.unwrap_or(d.load),
