@@ -47,9 +47,11 @@
 //!
 //! The result's validity: `min_normal_force` (the smallest N met at any step or event, ≥ 0 by
 //! construction), the airborne and slip fractions of the run, `max_penetration` (the deepest
-//! vertex below the slope over the samples, round-off), the energy error, and warnings when the
+//! vertex below the slope over the samples beyond the contact tolerance 10⁻¹⁰ R_o, so 0), the
+//! energy error, and warnings when the
 //! run had to stop (event cap, chattering without time advancing), an impact's sequential
-//! impulses did not converge or the energy budget did not close to 10⁻⁶.
+//! impulses did not converge, an impact created energy, or the energy budget did not close to
+//! 10⁻⁶.
 
 mod hybrid;
 mod impact;
@@ -339,8 +341,11 @@ impl RigidRolling {
         let energy = kinetic + potential - budget.start(potential);
         let losses = sim.impact_loss + sim.impulse_friction_loss + sim.work();
         budget.record(kinetic, energy - kinetic, losses, energy + losses);
+        // a vertex within the contact tolerance of the slope touches it: round-off, not depth
         let deepest = (0..w.n).map(|j| -w.gap(&b, j)).fold(0.0, f64::max);
-        budget.max_penetration = budget.max_penetration.max(deepest);
+        if deepest > hybrid::GAP_TOL * w.r {
+            budget.max_penetration = budget.max_penetration.max(deepest);
+        }
         RollingSample {
             t,
             s: b.s,

@@ -156,7 +156,7 @@ fn assert_admissible(r: &RollingResult, mu_static: f64) {
         .all(|s| s.tangential.abs() <= mu_static * s.normal * (1.0 + 1e-12) + 1e-9));
     assert!(r.impact_log.iter().all(|p| p.normal_impulse >= 0.0
         && p.tangential_impulse.abs() <= mu_static * p.normal_impulse * (1.0 + 1e-12)));
-    assert!(r.validity.max_penetration < 1e-12);
+    assert_eq!(r.validity.max_penetration, 0.0);
     assert!(r.validity.warnings.is_empty(), "{:?}", r.validity.warnings);
 }
 

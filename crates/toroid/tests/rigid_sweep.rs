@@ -40,8 +40,14 @@ fn every_run_of_the_grid_is_admissible_and_closes_its_energy_budget() {
                         assert!(r.validity.max_penetration < 1e-9, "{tag}");
                         assert!(r.validity.energy_balance_error < 1e-8, "{tag}");
                         assert!(r.samples.len() == 3001, "{tag}");
-                        assert!(r.samples.iter().all(|s| s.h.is_finite() && s.h > 0.0), "{tag}");
-                        assert!(r.samples.iter().all(|s| s.h >= (PI / n as f64).cos() - 1e-9));
+                        assert!(
+                            r.samples.iter().all(|s| s.h.is_finite() && s.h > 0.0),
+                            "{tag}"
+                        );
+                        assert!(r
+                            .samples
+                            .iter()
+                            .all(|s| s.h >= (PI / n as f64).cos() - 1e-9));
                         worst = worst.max(r.validity.energy_balance_error);
                     }
                 }

@@ -13,7 +13,7 @@ use super::wheel::{Body, ContactState, Wheel};
 use crate::validity::ImpactRecord;
 
 /// Gap below which a vertex counts as touching, as a fraction of R.
-const GAP_TOL: f64 = 1e-10;
+pub(crate) const GAP_TOL: f64 = 1e-10;
 /// Normal velocity below which a touching vertex stays in contact, as a fraction of √(g R).
 const VEL_TOL: f64 = 1e-9;
 /// Approach speed below which an impact is taken as plastic (ends Zeno-like bouncing), as a
@@ -479,6 +479,7 @@ impl Hybrid {
         let (w, vtol) = (self.w, self.vel_tol());
         self.friction_work = work;
         let omega_before = b.omega;
+        let kinetic_before = w.energies(&b).0;
         let approach = -w.vertex_velocity(&b, new).1;
         let e = if approach < ZENO_TOL * (w.gn.hypot(w.gs) * w.r).sqrt() {
             self.zeno_truncations += usize::from(w.e > 0.0);
@@ -513,6 +514,14 @@ impl Hybrid {
         if !converged {
             self.warnings.push(format!(
                 "the simultaneous impact at t = {at:.6} s did not converge in {MAX_SWEEPS} sweeps"
+            ));
+        }
+        let dissipated = total.normal_loss + total.friction_loss;
+        if dissipated < -1e-9 * kinetic_before {
+            self.warnings.push(format!(
+                "the impact at t = {at:.6} s created {:.3e} J (Newton restitution with friction \
+                 is not energy-consistent there)",
+                -dissipated
             ));
         }
         self.impact_loss += total.normal_loss;
