@@ -297,3 +297,22 @@ fn gentle_slopes_leave_the_wheel_at_rest_and_valid() {
         assert_relative_eq!(s.tangential, -weight * model.incline.sin());
     }
 }
+
+#[test]
+fn events_and_impacts_are_converged_in_the_step() {
+    // events are located to round-off on the RK4 solution, so halving the step changes the
+    // first impacts of the hopping reference wheel only by RK4's own error (≈ 10⁻¹² here)
+    let coarse = reference(50.0).run(2.0).unwrap();
+    let fine = RigidRolling {
+        dt: 5e-5,
+        ..reference(50.0)
+    }
+    .run(2.0)
+    .unwrap();
+    assert_eq!(coarse.impacts, fine.impacts);
+    for (a, b) in coarse.impact_log.iter().zip(&fine.impact_log) {
+        assert_relative_eq!(a.t, b.t, max_relative = 1e-9);
+        assert_relative_eq!(a.omega_after, b.omega_after, max_relative = 1e-9);
+        assert_relative_eq!(a.normal_impulse, b.normal_impulse, max_relative = 1e-8);
+    }
+}
