@@ -23,7 +23,7 @@ const ZENO_TOL: f64 = 1e-6;
 const MAX_SWEEPS: usize = 100;
 /// Largest number of events of a run.
 pub(crate) const MAX_EVENTS: usize = 2_000_000;
-/// Largest number of consecutive events without the time advancing.
+/// Largest number of consecutive events that advance the time by less than 10⁻⁹ dt.
 const MAX_STALLED: usize = 10_000;
 
 /// The current mode and its state.
@@ -168,7 +168,9 @@ impl Hybrid {
         while self.t < t_out {
             if self.events >= MAX_EVENTS || self.stalled >= MAX_STALLED {
                 let why = if self.stalled >= MAX_STALLED {
-                    format!("{MAX_STALLED} events without the time advancing (chattering)")
+                    format!(
+                        "{MAX_STALLED} events without the time advancing by 1e-9 dt (chattering)"
+                    )
                 } else {
                     format!("the event count reached its cap of {MAX_EVENTS}")
                 };
@@ -182,7 +184,7 @@ impl Hybrid {
             let (tau, event) = self.step(h);
             if event {
                 self.events += 1;
-                self.stalled = if tau > 0.0 { 0 } else { self.stalled + 1 };
+                self.stalled = if tau > 1e-9 * dt { 0 } else { self.stalled + 1 };
             }
             self.t = if tau >= h && h == t_out - self.t {
                 t_out
