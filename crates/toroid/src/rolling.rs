@@ -38,6 +38,8 @@
 //! Smooth contact phases use classical RK4 with the step `dt`, the friction work ∫ −F_t w dt
 //! integrated alongside. An impact whose approach speed is below 10⁻⁶ √(g R_o) is taken as
 //! plastic (this ends Zeno bouncing when e > 0; the energy it drops is counted as impact loss).
+//! Where Newton restitution with friction would create energy (e near 1 with a strongly
+//! coupled impulse), the impact uses the largest e' ≤ e whose impulse dissipates.
 //!
 //! **Energy budget**: E(t) − E(0) = −(normal impulse losses) − (friction impulse losses) −
 //! (friction work in slip and side slides), with E the kinetic plus gravitational energy and an

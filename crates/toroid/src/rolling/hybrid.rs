@@ -92,6 +92,8 @@ pub(crate) struct Hybrid {
     pub stalled: usize,
     /// Impacts taken as plastic because their approach speed was below the Zeno tolerance.
     pub zeno_truncations: usize,
+    /// Impacts whose restitution was lowered so as not to create energy.
+    pub restitution_lowered: usize,
     /// Problems met.
     pub warnings: Vec<String>,
 }
@@ -137,6 +139,7 @@ impl Hybrid {
             events: 0,
             stalled: 0,
             zeno_truncations: 0,
+            restitution_lowered: 0,
             warnings: Vec::new(),
         };
         sim.mode = sim.on_side(b, 0, w.n - 1);
@@ -489,7 +492,8 @@ impl Hybrid {
         } else {
             w.e
         };
-        let mut total = w.impulse(&mut b, new, e);
+        let (mut total, used) = w.dissipative_impulse(&mut b, new, e);
+        self.restitution_lowered += usize::from(used < e);
         let contacts: Vec<usize> = (0..w.n)
             .filter(|&j| j == new || w.gap(&b, j) <= GAP_TOL * w.r)
             .collect();
