@@ -48,6 +48,10 @@ fn every_run_of_the_grid_is_admissible_and_closes_its_energy_budget() {
                             .samples
                             .iter()
                             .all(|s| s.h >= (PI / n as f64).cos() - 1e-9));
+                        // every term of the budget dissipates: the energy never rises
+                        for w in r.samples.windows(2) {
+                            assert!(w[1].energy <= w[0].energy + 1e-9, "{tag} t = {}", w[1].t);
+                        }
                         worst = worst.max(r.validity.energy_balance_error);
                     }
                 }
