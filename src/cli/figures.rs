@@ -1,4 +1,4 @@
-//! `tensegrity figures --out DIR [--quick] [--only LIST] [--threads N]`: regenerates every
+//! `tensegrity figures --out DIR [--quick] [--only LIST] [--png] [--threads N]`: regenerates every
 //! figure of the thesis the project computes, one SVG each (`fig_3_10.svg`, …), in parallel.
 //!
 //! Each figure is one library call (or one sweep) and one drawing through the io crate's
@@ -35,6 +35,9 @@ pub struct FiguresArgs {
     /// Only these figures, e.g. `3.10,4.18` (default: all).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub only: Vec<String>,
+    /// Write PNG images (embedded font, no system library) instead of SVG.
+    #[arg(long)]
+    pub png: bool,
     /// Figures drawn at once (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
@@ -46,6 +49,8 @@ pub struct Ctx {
     pub quick: bool,
     /// Where the sweeps write their CSVs.
     pub data: PathBuf,
+    /// The figures' file extension, `svg` or `png`.
+    pub ext: &'static str,
 }
 
 impl Ctx {
@@ -109,14 +114,14 @@ pub const FIGURES: [(&str, &str, Builder); 24] = [
     ("5.3", "extended T-bar wheel", tbar::fig_5_3),
 ];
 
-/// `fig_3_10.svg` for `3.10`.
-pub fn file_name(number: &str) -> String {
-    format!("fig_{}.svg", number.replace('.', "_"))
+/// `fig_3_10.svg` for `3.10` (`ext` = `svg` or `png`).
+pub fn file_name(number: &str, ext: &str) -> String {
+    format!("fig_{}.{ext}", number.replace('.', "_"))
 }
 
 /// Builds and saves one figure.
 fn make(ctx: &Ctx, dir: &Path, number: &str, build: Builder) -> Result<PathBuf> {
-    let path = dir.join(file_name(number));
+    let path = dir.join(file_name(number, ctx.ext));
     let figure = build(ctx)?;
     figure
         .save(&path)
@@ -147,6 +152,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     let ctx = Ctx {
         quick: args.quick,
         data: args.out.join("data"),
+        ext: if args.png { "png" } else { "svg" },
     };
     std::fs::create_dir_all(&ctx.data)
         .with_context(|| format!("creating {}", ctx.data.display()))?;
@@ -162,7 +168,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
             Ok(path) => println!("wrote {}  (Fig. {number}: {caption})", path.display()),
             Err(e) => {
                 eprintln!("Fig. {number} failed: {e:#}");
-                failed.push(file_name(number));
+                failed.push(file_name(number, ctx.ext));
             }
         }
     }

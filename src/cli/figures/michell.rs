@@ -146,6 +146,7 @@ fn sign_map_panel(map: &SignMap, name: &str) -> Panel {
         "load polar angle γ [rad]",
     );
     let mut labelled = [false; 2];
+    let half = 0.5 * (map.polar.end - map.polar.start) / (map.polar.n.max(2) - 1) as f64;
     for ia in 0..map.azimuth.n {
         let x = map.azimuth.at(ia);
         let mut ip = 0;
@@ -158,7 +159,11 @@ fn sign_map_panel(map: &SignMap, name: &str) -> Panel {
             if sign == 0 {
                 continue;
             }
-            let (lo, hi) = (map.polar.at(start), map.polar.at(ip - 1));
+            // each grid point stands for half a cell either side
+            let (lo, hi) = (
+                (map.polar.at(start) - half).max(map.polar.start),
+                (map.polar.at(ip - 1) + half).min(map.polar.end),
+            );
             let slot = usize::from(sign < 0);
             let label = match (labelled[slot], sign > 0) {
                 (true, _) => "",
