@@ -51,6 +51,8 @@ pub struct Ctx {
     pub data: PathBuf,
     /// The figures' file extension, `svg` or `png`.
     pub ext: &'static str,
+    /// The rolling runs shared by Figs. 3.10 and 3.11 (computed once).
+    pub rolling: std::sync::OnceLock<std::result::Result<Vec<toroid::RollReport>, String>>,
 }
 
 impl Ctx {
@@ -153,6 +155,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         quick: args.quick,
         data: args.out.join("data"),
         ext: if args.png { "png" } else { "svg" },
+        rolling: std::sync::OnceLock::new(),
     };
     std::fs::create_dir_all(&ctx.data)
         .with_context(|| format!("creating {}", ctx.data.display()))?;

@@ -128,13 +128,14 @@ fn fidelity(r: &RollReport) -> &'static str {
 }
 
 /// The four wheels of Fig. 3.10 (n = 8, 12, 16, 24), 50°, default request (2 s, rigid model
-/// with `--quick`).
-fn rolling_runs(ctx: &Ctx) -> Result<Vec<RollReport>> {
-    let req = rolling_request(ctx, 2.0);
-    Ok(toroid::rolling_series(
-        &req,
-        &toroid::defaults::FIG_3_10_SIDES,
-    )?)
+/// with `--quick`), run once for Figs. 3.10 and 3.11.
+fn rolling_runs(ctx: &Ctx) -> Result<&[RollReport]> {
+    let runs = ctx.rolling.get_or_init(|| {
+        let req = rolling_request(ctx, 2.0);
+        toroid::rolling_series(&req, &toroid::defaults::FIG_3_10_SIDES)
+            .map_err(|e| format!("{e:#}"))
+    });
+    runs.as_deref().map_err(|e| anyhow::anyhow!("{e}"))
 }
 
 /// Fig. 3.10: the axle's height above the incline, less its mean, against time.
@@ -145,7 +146,7 @@ pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
         "time [s]",
         "axle height − mean [m]",
     );
-    for r in &runs {
+    for r in runs {
         let mean = r.samples.iter().map(|s| s.h).sum::<f64>() / r.samples.len() as f64;
         let pts = r.samples.iter().map(|s| (s.t, s.h - mean)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
@@ -155,14 +156,14 @@ pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
 
 /// Fig. 3.11: the normal contact force of the n = 8 and n = 16 wheels against time.
 pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
-    let req = rolling_request(ctx, 2.0);
-    let runs = toroid::rolling_series(&req, &[8, 16])?;
+    let all = rolling_runs(ctx)?;
+    let runs: Vec<&RollReport> = all.iter().filter(|r| [8, 16].contains(&r.sides)).collect();
     let mut panel = Panel::new(
         format!("contact reaction, 50° incline ({})", fidelity(&runs[0])),
         "time [s]",
         "normal force [N]",
     );
-    for r in &runs {
+    for r in runs {
         let pts = r.samples.iter().map(|s| (s.t, s.normal)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
     }
