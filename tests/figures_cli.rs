@@ -41,7 +41,14 @@ fn column(header: &[String], row: &[String], name: &str) -> f64 {
 }
 
 fn members_of_wheel(sides: &str, stabilize: &str) -> usize {
-    let out = run(&["toroid", "--sides", sides, "--stabilize", stabilize, "--json"]);
+    let out = run(&[
+        "toroid",
+        "--sides",
+        sides,
+        "--stabilize",
+        stabilize,
+        "--json",
+    ]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     (v["bars"].as_u64().unwrap() + v["strings"].as_u64().unwrap()) as usize
@@ -52,17 +59,33 @@ fn quick_figures_are_all_written_with_their_data() {
     let dir = scratch("all");
     let out = run(&["figures", "--out", dir.to_str().unwrap(), "--quick"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for name in EXPECTED {
         let path = dir.join(format!("fig_{name}.svg"));
-        assert!(stdout.contains(&format!("fig_{name}.svg")), "{name} not listed");
+        assert!(
+            stdout.contains(&format!("fig_{name}.svg")),
+            "{name} not listed"
+        );
         let svg = std::fs::read_to_string(&path).unwrap_or_else(|_| panic!("{name} missing"));
-        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name}");
+        assert!(
+            svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"),
+            "{name}"
+        );
         let lines = svg.matches("<polyline").count();
         assert!(lines >= 1, "{name} has no data");
         // every polyline has at least two finite points
         for pl in svg.split("<polyline").skip(1) {
-            let points = pl.split("points=\"").nth(1).unwrap().split('"').next().unwrap();
+            let points = pl
+                .split("points=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap();
             let pts: Vec<&str> = points.split_whitespace().collect();
             assert!(pts.len() >= 2, "{name}: {points}");
             assert!(!points.contains("NaN") && !points.contains("inf"), "{name}");

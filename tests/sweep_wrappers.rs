@@ -43,7 +43,9 @@ fn rows(path: &Path) -> Vec<HashMap<String, String>> {
 }
 
 fn num(row: &HashMap<String, String>, key: &str) -> f64 {
-    row[key].parse().unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
+    row[key]
+        .parse()
+        .unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
 }
 
 fn close(a: f64, b: f64) -> bool {
@@ -52,7 +54,10 @@ fn close(a: f64, b: f64) -> bool {
 
 /// Runs a sweep of `spec` and returns its rows.
 fn sweep(dir: &Path, name: &str, spec: &str) -> Vec<HashMap<String, String>> {
-    let (spec_path, out) = (dir.join(format!("{name}.toml")), dir.join(format!("{name}.csv")));
+    let (spec_path, out) = (
+        dir.join(format!("{name}.toml")),
+        dir.join(format!("{name}.csv")),
+    );
     std::fs::write(&spec_path, spec).unwrap();
     run(&[
         "sweep",
@@ -68,7 +73,13 @@ fn sweep(dir: &Path, name: &str, spec: &str) -> Vec<HashMap<String, String>> {
 fn michell_table_is_the_michell_sweep() {
     let dir = scratch("table");
     let table = dir.join("table.csv");
-    run(&["michell-table", "--max-complexity", "6", "--out", table.to_str().unwrap()]);
+    run(&[
+        "michell-table",
+        "--max-complexity",
+        "6",
+        "--out",
+        table.to_str().unwrap(),
+    ]);
     let table = rows(&table);
     assert_eq!(table.len(), 5 * 4);
     let common = "study = \"michell\"\n[derived]\nphi = \"pi / complexity\"\n";
@@ -98,7 +109,12 @@ fn michell_table_is_the_michell_sweep() {
             ("yield_mass_kg", "mass_kg.yield"),
             ("yield_buckling_mass_kg", "mass_kg.yield_buckling"),
         ] {
-            assert!(close(num(t, a), num(s, b)), "q {q} δ {delta} {a}: {} vs {}", t[a], s[b]);
+            assert!(
+                close(num(t, a), num(s, b)),
+                "q {q} δ {delta} {a}: {} vs {}",
+                t[a],
+                s[b]
+            );
         }
     }
 }
@@ -107,7 +123,13 @@ fn michell_table_is_the_michell_sweep() {
 fn tipover_grid_is_the_tipover_sweep() {
     let dir = scratch("tipover");
     let grid = dir.join("grid.csv");
-    run(&["tipover", "--grid", grid.to_str().unwrap(), "--grid-points", "4"]);
+    run(&[
+        "tipover",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--grid-points",
+        "4",
+    ]);
     let grid = rows(&grid);
     assert_eq!(grid.len(), 16);
     let swept = sweep(
@@ -134,10 +156,25 @@ fn tipover_grid_is_the_tipover_sweep() {
 fn sign_map_rows_are_single_point_force_densities() {
     let dir = scratch("signmap");
     let map = dir.join("map.csv");
-    let truss = ["--complexity", "2", "--cylindrical", "0.25", "--beta", "pi/6", "--phi", "pi/8"];
+    let truss = [
+        "--complexity",
+        "2",
+        "--cylindrical",
+        "0.25",
+        "--beta",
+        "pi/6",
+        "--phi",
+        "pi/8",
+    ];
     let mut args = vec!["michell"];
     args.extend(truss);
-    args.extend(["--sign-map", map.to_str().unwrap(), "--map-grid", "5x3", "--json"]);
+    args.extend([
+        "--sign-map",
+        map.to_str().unwrap(),
+        "--map-grid",
+        "5x3",
+        "--json",
+    ]);
     run(&args);
     let map = rows(&map);
     assert_eq!(map.len(), 3 * 5 * 3);
@@ -150,6 +187,9 @@ fn sign_map_rows_are_single_point_force_densities() {
         let j: usize = r["member"].parse().unwrap();
         let want = v["members"][j]["force_density"].as_f64().unwrap();
         let got = num(r, "force_density_N_per_m");
-        assert!((got - want).abs() < 1e-9 * want.abs().max(1.0), "{r:?}: {want}");
+        assert!(
+            (got - want).abs() < 1e-9 * want.abs().max(1.0),
+            "{r:?}: {want}"
+        );
     }
 }

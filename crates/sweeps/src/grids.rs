@@ -11,7 +11,7 @@
 //!   --grid`), one σ per task.
 //!
 //! Each runs on rayon's global pool (one thread per core unless `RAYON_NUM_THREADS` says
-//! otherwise); faer stays sequential inside.
+//! otherwise); the linear algebra inside each row stays sequential.
 
 use michell3d::signmap::{AngleGrid, SignMap, SignMapBasis};
 use michell3d::{MassRow, Method, MichellTruss};
@@ -92,13 +92,9 @@ mod tests {
     #[test]
     fn the_threaded_grids_are_the_sequential_ones_bit_for_bit() {
         let t = MichellTruss::new(MichellParams::cylindrical(3, 1.0, 0.5, 0.4, 0.25)).unwrap();
-        let (az, po) = (
-            AngleGrid::new(0.0, 6.2, 37),
-            AngleGrid::new(0.0, 3.1, 19),
-        );
+        let (az, po) = (AngleGrid::new(0.0, 6.2, 37), AngleGrid::new(0.0, 3.1, 19));
         let a = sign_maps(&t, &[0, 1, 2, 5], 1000.0, az, po, Method::Recursive).unwrap();
-        let b = michell3d::sign_maps(&t, &[0, 1, 2, 5], 1000.0, az, po, Method::Recursive)
-            .unwrap();
+        let b = michell3d::sign_maps(&t, &[0, 1, 2, 5], 1000.0, az, po, Method::Recursive).unwrap();
         assert_eq!(a, b);
         let steel = *tensegrity_core::MaterialTable::builtin()
             .lookup("steel", "material")
@@ -108,7 +104,10 @@ mod tests {
         let b = michell3d::mass_vs_complexity(&qs, &[0.1, 0.5], 1000.0, &steel).unwrap();
         assert_eq!(a, b);
         assert_eq!(a.len(), 15);
-        assert_eq!(friction_grid(7, 1.0).unwrap(), toroid::friction_grid(7, 1.0).unwrap());
+        assert_eq!(
+            friction_grid(7, 1.0).unwrap(),
+            toroid::friction_grid(7, 1.0).unwrap()
+        );
     }
 
     #[test]

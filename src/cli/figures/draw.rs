@@ -86,7 +86,11 @@ pub fn structure_panel(
     let mut panel = Panel::new(title, x, y);
     for g in groups {
         for (i, &[a, b]) in g.edges.iter().enumerate() {
-            let label = if i == 0 { g.label.clone() } else { String::new() };
+            let label = if i == 0 {
+                g.label.clone()
+            } else {
+                String::new()
+            };
             let points = vec![projected[a], projected[b]];
             panel = panel.series(Series::new(label, points).with_color(g.color));
         }
@@ -137,7 +141,10 @@ mod tests {
         assert_eq!(p.series.len(), 5);
         assert_eq!(p.series[1].points, vec![(1.0, 0.0), (1.0, 1.0)]);
         assert_eq!(p.series[4].points, vec![(0.0, 0.0), (1.0, 1.0)]);
-        assert_eq!((p.series[4].color, p.series[4].label.as_str()), (Some(BLUE), "bars"));
+        assert_eq!(
+            (p.series[4].color, p.series[4].label.as_str()),
+            (Some(BLUE), "bars")
+        );
         assert_eq!(p.series[1].label, "");
         assert_eq!(drawing_figure(vec![p]).panel_size, (420, 420));
         // isometric: ι3 straight up, ι1 and ι2 at ∓30° below the horizontal

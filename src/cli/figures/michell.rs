@@ -61,7 +61,12 @@ pub fn fig_4_2(_: &Ctx) -> Result<Figure> {
         .map(|q| {
             let a = analysed(MichellParams::planar(q, 1.0, BETA, PI / 8.0))?;
             let title = format!("q = {q}");
-            Ok(structure_panel(title, View::Side, &positions(&a), &force_groups(&a)))
+            Ok(structure_panel(
+                title,
+                View::Side,
+                &positions(&a),
+                &force_groups(&a),
+            ))
         })
         .collect::<Result<Vec<Panel>>>()?;
     Ok(drawing_figure(panels))
@@ -88,7 +93,13 @@ pub fn fig_4_7(_: &Ctx) -> Result<Figure> {
 /// Fig. 4.8: the segmentation angle ε on the spherical truss of complexity 1 (ε = π/12).
 pub fn fig_4_8(_: &Ctx) -> Result<Figure> {
     let p = MichellParams::spherical(1, 1.0, BETA, PI / 16.0, PI / 12.0);
-    truss_figure(p, &[(View::Xy, "q = 1, ε = π/12 (x–y)"), (View::Iso, "isometric")])
+    truss_figure(
+        p,
+        &[
+            (View::Xy, "q = 1, ε = π/12 (x–y)"),
+            (View::Iso, "isometric"),
+        ],
+    )
 }
 
 /// Fig. 4.9: x–y view of the spherical truss of complexity 2, φ = π/16, ε = π/12.
@@ -118,13 +129,8 @@ pub fn fig_4_12(_: &Ctx) -> Result<Figure> {
 /// The q = 1 cylindrical truss of §4.4.1 (δ = 0.25, φ = π/8) whose tip members m₁₀₁₀,
 /// m₁₀₀₁, m₀₁₀₀ (members 0, 1, 2) are mapped.
 fn sign_map(ctx: &Ctx, member: usize) -> Result<SignMap> {
-    let truss = michell3d::MichellTruss::new(MichellParams::cylindrical(
-        1,
-        1.0,
-        BETA,
-        PI / 8.0,
-        0.25,
-    ))?;
+    let truss =
+        michell3d::MichellTruss::new(MichellParams::cylindrical(1, 1.0, BETA, PI / 8.0, 0.25))?;
     let (na, np) = if ctx.quick { (73, 37) } else { (361, 181) };
     let maps = sweeps::grids::sign_maps(
         &truss,
@@ -180,17 +186,26 @@ fn sign_map_panel(map: &SignMap, name: &str) -> Panel {
 
 /// Figs. 4.14–4.16: the sign of λ₁₀₁₀, λ₁₀₀₁, λ₀₁₀₀ over the load direction.
 pub fn fig_4_14(ctx: &Ctx) -> Result<Figure> {
-    Ok(Figure::new(vec![sign_map_panel(&sign_map(ctx, 0)?, "1010")]))
+    Ok(Figure::new(vec![sign_map_panel(
+        &sign_map(ctx, 0)?,
+        "1010",
+    )]))
 }
 
 /// Fig. 4.15: λ₁₀₀₁.
 pub fn fig_4_15(ctx: &Ctx) -> Result<Figure> {
-    Ok(Figure::new(vec![sign_map_panel(&sign_map(ctx, 1)?, "1001")]))
+    Ok(Figure::new(vec![sign_map_panel(
+        &sign_map(ctx, 1)?,
+        "1001",
+    )]))
 }
 
 /// Fig. 4.16: λ₀₁₀₀.
 pub fn fig_4_16(ctx: &Ctx) -> Result<Figure> {
-    Ok(Figure::new(vec![sign_map_panel(&sign_map(ctx, 2)?, "0100")]))
+    Ok(Figure::new(vec![sign_map_panel(
+        &sign_map(ctx, 2)?,
+        "0100",
+    )]))
 }
 
 /// Fig. 4.18: yield + buckling mass against complexity, planar and δ = 0.1, 0.25, 0.5 — two
@@ -203,9 +218,8 @@ pub fn fig_4_18(ctx: &Ctx) -> Result<Figure> {
     );
     let axis = format!("complexity = {{ from = 2, to = {max_q}, step = 1 }}\n");
     let planar = format!("{common}[fixed]\nbeta = \"pi/6\"\nplanar = true\n[axes]\n{axis}");
-    let cyl = format!(
-        "{common}[fixed]\nbeta = \"pi/6\"\n[axes]\ncylindrical = [0.1, 0.25, 0.5]\n{axis}"
-    );
+    let cyl =
+        format!("{common}[fixed]\nbeta = \"pi/6\"\n[axes]\ncylindrical = [0.1, 0.25, 0.5]\n{axis}");
     let y = "mass_kg.yield_buckling";
     let mut curves = ctx.sweep("fig_4_18_planar", &planar, "complexity", y, "")?;
     curves.extend(ctx.sweep("fig_4_18", &cyl, "complexity", y, "cylindrical")?);
@@ -230,16 +244,30 @@ pub fn fig_4_19(_: &Ctx) -> Result<Figure> {
     let panels = [2, 3]
         .iter()
         .map(|&q| {
-            let truss =
-                michell3d::MichellTruss::new(MichellParams::cylindrical(q, 1.0, BETA, PI / 8.0, 0.25))?;
+            let truss = michell3d::MichellTruss::new(MichellParams::cylindrical(
+                q,
+                1.0,
+                BETA,
+                PI / 8.0,
+                0.25,
+            ))?;
             let extra = ExtraStrings::new(&truss)?;
             let nodes: Vec<Vector3<f64>> = truss.nodes().iter().map(|n| n.position).collect();
-            let members = truss.members().iter().map(|m| [m.parent, m.child]).collect();
+            let members = truss
+                .members()
+                .iter()
+                .map(|m| [m.parent, m.child])
+                .collect();
             let groups = [
                 Group::new("truss members", BLUE, members),
                 Group::new("extra strings", RED, extra.pairs().to_vec()),
             ];
-            Ok(structure_panel(format!("q = {q}"), View::Iso, &nodes, &groups))
+            Ok(structure_panel(
+                format!("q = {q}"),
+                View::Iso,
+                &nodes,
+                &groups,
+            ))
         })
         .collect::<Result<Vec<Panel>>>()?;
     Ok(drawing_figure(panels))
@@ -255,19 +283,35 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Figure> {
     let mut panels = Vec::new();
     for (prestress, name) in [(10.0, "low"), (5000.0, "high")] {
         let grid = AngleGrid::new(0.0, 2.0 * PI, n);
-        let sweep = gamma_sweep(&truss, &extra, 1000.0, 0.0, grid, prestress, Method::Recursive)?;
+        let sweep = gamma_sweep(
+            &truss,
+            &extra,
+            1000.0,
+            0.0,
+            grid,
+            prestress,
+            Method::Recursive,
+        )?;
         let mut panel = Panel::new(
             format!("{name} prestress: {prestress} N per extra string"),
             "load polar angle γ [rad]",
             "member force [N]",
         );
         for j in 0..sweep.base_keeps_sign.len() {
-            let pts = sweep.polar.iter().zip(&sweep.base_force).map(|(&g, f)| (g, f[j]));
+            let pts = sweep
+                .polar
+                .iter()
+                .zip(&sweep.base_force)
+                .map(|(&g, f)| (g, f[j]));
             let label = if j == 0 { "truss members" } else { "" };
             panel = panel.series(Series::new(label, pts.collect()));
         }
         for j in 0..sweep.extra_keeps_sign.len() {
-            let pts = sweep.polar.iter().zip(&sweep.extra_force).map(|(&g, f)| (g, f[j]));
+            let pts = sweep
+                .polar
+                .iter()
+                .zip(&sweep.extra_force)
+                .map(|(&g, f)| (g, f[j]));
             let label = if j == 0 { "extra strings" } else { "" };
             panel = panel.series(Series::new(label, pts.collect()).with_color(GREY));
         }

@@ -52,6 +52,9 @@ pub fn fig_5_2(_: &Ctx) -> Result<Figure> {
 pub fn fig_5_3(_: &Ctx) -> Result<Figure> {
     figure(
         Layout::Extended { offset: 0.5 },
-        &[(View::Side, "extended T-bar wheel, side"), (View::Top, "top")],
+        &[
+            (View::Side, "extended T-bar wheel, side"),
+            (View::Top, "top"),
+        ],
     )
 }

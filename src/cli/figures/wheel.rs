@@ -16,7 +16,11 @@ fn wheel_groups(t: &Toroid) -> [Group; 2] {
     let s = &t.structure;
     [
         Group::new("bars", BLUE, s.bars().iter().map(|b| b.nodes).collect()),
-        Group::new("strings", RED, s.strings().iter().map(|m| m.nodes).collect()),
+        Group::new(
+            "strings",
+            RED,
+            s.strings().iter().map(|m| m.nodes).collect(),
+        ),
     ]
 }
 
@@ -35,7 +39,12 @@ pub fn fig_3_3(_: &Ctx) -> Result<Figure> {
         .map(|o| {
             let t = wheel(8, o.parse()?)?;
             let nodes = t.structure.nodes();
-            Ok(structure_panel(o.to_string(), View::Iso, nodes, &wheel_groups(&t)))
+            Ok(structure_panel(
+                o.to_string(),
+                View::Iso,
+                nodes,
+                &wheel_groups(&t),
+            ))
         })
         .collect::<Result<Vec<Panel>>>()?;
     Ok(drawing_figure(panels))
@@ -48,7 +57,12 @@ pub fn fig_3_9(_: &Ctx) -> Result<Figure> {
         .map(|&n| {
             let t = wheel(n, Stabilize::SPOKES_INNER)?;
             let title = format!("n = {n}");
-            Ok(structure_panel(title, View::Side, t.structure.nodes(), &wheel_groups(&t)))
+            Ok(structure_panel(
+                title,
+                View::Side,
+                t.structure.nodes(),
+                &wheel_groups(&t),
+            ))
         })
         .collect::<Result<Vec<Panel>>>()?;
     Ok(drawing_figure(panels))
@@ -112,10 +126,12 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
         let title = format!("t = {:.2} s ({})", s.t, fidelity(&report));
         let panel = structure_panel(title, View::Side, &moved, &wheel_groups(&t));
         let r = t.params.outer_radius;
-        panels.push(panel.series(
-            Series::new("incline", vec![(s.s - 1.3 * r, 0.0), (s.s + 1.3 * r, 0.0)])
-                .with_color(GREY),
-        ));
+        panels.push(
+            panel.series(
+                Series::new("incline", vec![(s.s - 1.3 * r, 0.0), (s.s + 1.3 * r, 0.0)])
+                    .with_color(GREY),
+            ),
+        );
     }
     Ok(drawing_figure(panels))
 }
