@@ -212,10 +212,8 @@ pub fn fig_4_16(ctx: &Ctx) -> Result<Figure> {
 /// `michell` sweeps (r₀ = 1, β = π/6, φ = π/q, 1 kN along −ι̂₃, steel), CSVs kept.
 pub fn fig_4_18(ctx: &Ctx) -> Result<Figure> {
     let max_q = if ctx.quick { 8 } else { 35 };
-    let common = format!(
-        "study = \"michell\"\n[derived]\nphi = \"pi / complexity\"\n\
-         [output]\ncolumns = [\"mass_kg.yield_buckling\", \"normalized_yield_mass\"]\n"
-    );
+    let common = "study = \"michell\"\n[derived]\nphi = \"pi / complexity\"\n\
+         [output]\ncolumns = [\"mass_kg.yield_buckling\", \"normalized_yield_mass\"]\n";
     let axis = format!("complexity = {{ from = 2, to = {max_q}, step = 1 }}\n");
     let planar = format!("{common}[fixed]\nbeta = \"pi/6\"\nplanar = true\n[axes]\n{axis}");
     let cyl =

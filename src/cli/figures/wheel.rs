@@ -175,7 +175,7 @@ pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
     let all = rolling_runs(ctx)?;
     let runs: Vec<&RollReport> = all.iter().filter(|r| [8, 16].contains(&r.sides)).collect();
     let mut panel = Panel::new(
-        format!("contact reaction, 50° incline ({})", fidelity(&runs[0])),
+        format!("contact reaction, 50° incline ({})", fidelity(&all[0])),
         "time [s]",
         "normal force [N]",
     );
