@@ -99,6 +99,27 @@ fn quick_figures_are_all_written_with_their_data() {
         .sum();
     assert_eq!(fig33.matches("<polyline").count(), members);
 
+    // the rolling figures flag a run outside its model's assumptions exactly when the
+    // single-point `roll` says its net normal force goes negative
+    let roll = run(&[
+        "roll",
+        "--fidelity",
+        "rigid",
+        "--t-end",
+        "2",
+        "--sides",
+        "8",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&roll.stdout).unwrap();
+    let lifts = v["min_normal_force"].as_f64().unwrap() < 0.0;
+    assert_eq!(
+        stdout.contains("warning: Fig. 3.10") && stdout.contains("n = 8 ("),
+        lifts
+    );
+    let fig310 = std::fs::read_to_string(dir.join("fig_3_10.svg")).unwrap();
+    assert_eq!(fig310.contains("lifts off"), lifts);
+
     // Fig. 3.13, a tipover sweep over real wheels: F_f/F_e = −(σ + ε)/(1 − σ) (eq. 3.29)
     let (h, rows) = table(&dir.join("data/fig_3_13.csv"));
     assert_eq!(rows.len(), 4 * 9);

@@ -193,3 +193,54 @@ fn sign_map_rows_are_single_point_force_densities() {
         );
     }
 }
+
+#[test]
+fn work_precision_points_are_the_integrators_sweep() {
+    // the benchmark stays serial (its points are timings); its deterministic fields equal
+    // the `integrators` sweep's for the same scene, integrator and parameter
+    let dir = scratch("bench");
+    let bench_dir = dir.join("wp");
+    run(&[
+        "bench",
+        "work-precision",
+        "--quick",
+        "--out",
+        bench_dir.to_str().unwrap(),
+    ]);
+    let bench = rows(&bench_dir.join("work_precision.csv"));
+    assert!(bench.len() >= 20, "{}", bench.len());
+    let scenes = "[\"prism-oscillating\", \"double-pendulum\", \"prism-dropped\", \
+                  \"prism-stiff-strings\", \"prism-damped-ground\"]";
+    let mut swept = Vec::new();
+    for (name, integrators, parameters) in [
+        ("fixed", "[\"rk4\", \"rattle\"]", "[4e-3, 1e-3]"),
+        ("rk45", "[\"rk45\"]", "[1e-5, 1e-8]"),
+        ("sdirk", "[\"sdirk\"]", "[1e-4, 1e-6]"),
+    ] {
+        let spec = format!(
+            "study = \"integrators\"\n[axes]\nscene = {scenes}\nintegrator = {integrators}\n\
+             parameter = {parameters}\n[output]\ncolumns = [\"steps\", \"rhs_evals\", \"error\"]\n"
+        );
+        swept.extend(sweep(&dir, name, &spec));
+    }
+    // every bench point is an ok sweep row with the same counts and error; the sweep's other
+    // rows are the runs the bench leaves out (explicit methods failing on stiff scenes)
+    for b in &bench {
+        let p = num(b, "parameter (dt [s] or rtol)");
+        let s = swept
+            .iter()
+            .find(|s| {
+                s["scene"] == b["scene"]
+                    && s["integrator"] == b["integrator"]
+                    && num(s, "parameter") == p
+            })
+            .unwrap_or_else(|| panic!("no sweep row for {b:?}"));
+        assert_eq!(s["status"], "ok", "{s:?}");
+        assert_eq!(s["steps"], b["steps"], "{b:?}");
+        assert_eq!(s["rhs_evals"], b["rhs_evals"], "{b:?}");
+        let (e1, e2) = (num(b, "error [m]"), num(s, "error"));
+        assert!((e1 - e2).abs() <= 1e-3 * e1.max(e2), "{b:?}: {e2}");
+    }
+    let ok = swept.iter().filter(|s| s["status"] == "ok").count();
+    assert_eq!(ok, bench.len());
+}

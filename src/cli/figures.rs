@@ -53,9 +53,17 @@ pub struct Ctx {
     pub ext: &'static str,
     /// The rolling runs shared by Figs. 3.10 and 3.11 (computed once).
     pub rolling: std::sync::OnceLock<std::result::Result<Vec<toroid::RollReport>, String>>,
+    /// Warnings of figures drawn from a model used outside its assumptions.
+    pub warnings: Mutex<Vec<String>>,
 }
 
 impl Ctx {
+    /// Records a warning for figure `number`, printed with the list of files.
+    pub fn warn(&self, number: &str, message: String) {
+        let mut w = self.warnings.lock().unwrap_or_else(|e| e.into_inner());
+        w.push(format!("warning: Fig. {number}: {message}"));
+    }
+
     /// Runs the sweep `spec` (TOML text) to `data/NAME.csv` and reads columns `x` and `y`
     /// back as curves, one per value of `group` (`""`: one curve).
     pub fn sweep(
@@ -200,6 +208,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         data: args.out.join("data"),
         ext: if args.png { "png" } else { "svg" },
         rolling: std::sync::OnceLock::new(),
+        warnings: Mutex::new(Vec::new()),
     };
     std::fs::create_dir_all(&ctx.data)
         .with_context(|| format!("creating {}", ctx.data.display()))?;
@@ -218,6 +227,10 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
                 failed.push(file_name(number, ctx.ext));
             }
         }
+    }
+    let warnings = ctx.warnings.into_inner().unwrap_or_else(|e| e.into_inner());
+    for w in warnings {
+        println!("{w}");
     }
     if !failed.is_empty() {
         anyhow::bail!("{} figure(s) failed: {}", failed.len(), failed.join(", "));

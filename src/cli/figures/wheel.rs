@@ -103,6 +103,7 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
     let mut req = rolling_request(ctx, times[2]);
     req.wheel.params.sides = 8;
     let report = toroid::roll(&req)?;
+    let flagged = flag_lift_off(ctx, "3.8", &[&report]);
     let t = req.wheel.build()?;
     let theta = angles(&report.samples);
     let mut panels = Vec::new();
@@ -123,7 +124,7 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
                 Vector3::new(p.x, s.s + y, s.h + z)
             })
             .collect();
-        let title = format!("t = {:.2} s ({})", s.t, fidelity(&report));
+        let title = format!("t = {:.2} s ({}){}", s.t, fidelity(&report), note(flagged));
         let panel = structure_panel(title, View::Side, &moved, &wheel_groups(&t));
         let r = t.params.outer_radius;
         panels.push(
@@ -134,6 +135,37 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
         );
     }
     Ok(drawing_figure(panels))
+}
+
+/// Flags the runs whose net normal force went negative: the model keeps the wheel on the
+/// slope where the real one would leave it, so the curves there are outside its assumptions.
+fn flag_lift_off(ctx: &Ctx, number: &str, runs: &[&RollReport]) -> bool {
+    let lifted: Vec<String> = runs
+        .iter()
+        .filter(|r| r.min_normal_force < 0.0)
+        .map(|r| format!("n = {} (min {:.1} N)", r.sides, r.min_normal_force))
+        .collect();
+    if !lifted.is_empty() {
+        ctx.warn(
+            number,
+            format!(
+                "the {} net normal force goes negative for {}: the wheel would leave the \
+                 slope there, outside the model's assumptions",
+                fidelity(runs[0]),
+                lifted.join(", ")
+            ),
+        );
+    }
+    !lifted.is_empty()
+}
+
+/// The title's note when a run is outside its model's assumptions.
+fn note(flagged: bool) -> &'static str {
+    if flagged {
+        " — lifts off: see warning"
+    } else {
+        ""
+    }
 }
 
 fn fidelity(r: &RollReport) -> &'static str {
@@ -157,8 +189,9 @@ fn rolling_runs(ctx: &Ctx) -> Result<&[RollReport]> {
 /// Fig. 3.10: the axle's height above the incline, less its mean, against time.
 pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
     let runs = rolling_runs(ctx)?;
+    let flagged = flag_lift_off(ctx, "3.10", &runs.iter().collect::<Vec<_>>());
     let mut panel = Panel::new(
-        format!("axle height, 50° incline ({})", fidelity(&runs[0])),
+        format!("axle height, 50° ({}){}", fidelity(&runs[0]), note(flagged)),
         "time [s]",
         "axle height − mean [m]",
     );
@@ -174,8 +207,13 @@ pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
 pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
     let all = rolling_runs(ctx)?;
     let runs: Vec<&RollReport> = all.iter().filter(|r| [8, 16].contains(&r.sides)).collect();
+    let flagged = flag_lift_off(ctx, "3.11", &runs);
     let mut panel = Panel::new(
-        format!("contact reaction, 50° incline ({})", fidelity(&all[0])),
+        format!(
+            "contact reaction, 50° ({}){}",
+            fidelity(&all[0]),
+            note(flagged)
+        ),
         "time [s]",
         "normal force [N]",
     );
