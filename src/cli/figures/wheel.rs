@@ -149,7 +149,7 @@ fn flag_lift_off(ctx: &Ctx, number: &str, runs: &[&RollReport]) -> bool {
         ctx.warn(
             number,
             format!(
-                "the {} net normal force goes negative for {}: the wheel would leave the \
+                "the {}'s net normal force goes negative for {}: the wheel would leave the \
                  slope there, outside the model's assumptions",
                 fidelity(runs[0]),
                 lifted.join(", ")
