@@ -1,7 +1,9 @@
-//! The grid commands kept as thin wrappers over the sweeps crate give the sweep's numbers:
-//! `michell-table` against two `michell` sweeps (planar, and δ × q), `tipover --grid`
-//! against a `tipover` sweep over σ × ε on real wheels, and `michell --sign-map` against the
-//! single-point `michell --json` at the same load directions.
+//! The grid commands kept as thin wrappers give the sweeps' numbers: `michell-table` against
+//! two `michell` sweeps (planar, and δ × q), `tipover --grid` against a `tipover` sweep over
+//! σ × ε on real wheels, `bench work-precision` against `integrators` sweeps (steps, RHS
+//! evaluations, error), and `michell --sign-map` / `--gamma-sweep` against the single-point
+//! `michell --json` at the same load directions (their rows are member forces, which a
+//! sweep row of scalars does not hold).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -243,4 +245,48 @@ fn work_precision_points_are_the_integrators_sweep() {
     }
     let ok = swept.iter().filter(|s| s["status"] == "ok").count();
     assert_eq!(ok, bench.len());
+}
+
+#[test]
+fn gamma_sweep_rows_are_single_point_forces_with_extra_strings() {
+    let dir = scratch("gamma");
+    let path = dir.join("gamma.csv");
+    let truss = [
+        "--complexity",
+        "2",
+        "--cylindrical",
+        "0.25",
+        "--beta",
+        "pi/6",
+        "--phi",
+        "pi/8",
+        "--extra-strings",
+        "500",
+    ];
+    let mut args = vec!["michell"];
+    args.extend(truss);
+    args.extend(["--gamma-sweep", path.to_str().unwrap(), "--json"]);
+    run(&args);
+    let rows = rows(&path);
+    assert_eq!(rows.len(), 721 * 15);
+    // three load directions of the sweep: every base member and extra string of the row
+    for i in [0usize, 200, 500] {
+        let gamma = rows[i * 15]["polar_rad"].clone();
+        let mut single = vec!["michell"];
+        single.extend(truss);
+        single.extend(["--polar", &gamma, "--json"]);
+        let v: serde_json::Value = serde_json::from_slice(&run(&single).stdout).unwrap();
+        for r in &rows[i * 15..(i + 1) * 15] {
+            assert_eq!(r["polar_rad"], gamma);
+            let j: usize = r["member"].parse().unwrap();
+            let list = if r["kind"] == "base" {
+                "members"
+            } else {
+                "extra_strings"
+            };
+            let want = v[list][j]["force"].as_f64().unwrap();
+            let got = num(r, "force_N");
+            assert!((got - want).abs() < 1e-9 * 1000.0, "{r:?}: {want}");
+        }
+    }
 }
