@@ -40,6 +40,8 @@ enum Command {
     /// Parameter sweeps from a TOML spec to CSV (parallel, resumable, shardable), and
     /// `sweep merge` of shard files.
     Sweep(cli::sweep::SweepArgs),
+    /// Regenerate every figure of the thesis the project computes (SVG, one per figure).
+    Figures(cli::figures::FiguresArgs),
 }
 
 fn main() {
@@ -58,6 +60,7 @@ fn main() {
         Command::FigRolling(args) => cli::roll::run_fig_rolling(args),
         Command::Tbar(args) => cli::tbar::run(args),
         Command::Sweep(args) => cli::sweep::run(args),
+        Command::Figures(args) => cli::figures::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

@@ -290,6 +290,13 @@ fn sweep_plot_draws_one_curve_per_group_and_names_a_missing_column() {
         "one curve per number of sides"
     );
     assert!(text.contains("sides = 8") && text.contains("sides = 16"));
+    // --where keeps the rows of one value: n = 16 alone, a single curve of three points
+    let mut one = args.to_vec();
+    one.extend(["--where", "sides=16"]);
+    assert_ok(&run(&one));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(text.matches("<polyline").count(), 1);
+    assert!(text.contains("sides = 16") && !text.contains("sides = 8"));
     let mut bad = args.to_vec();
     bad[6] = "no_such_column";
     let out = run(&bad);

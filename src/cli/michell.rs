@@ -308,14 +308,16 @@ fn text_header(r: &MichellReport) -> String {
     s
 }
 
-/// Computes the sign maps of `--map-members` on the analysed truss and writes their CSV.
+/// Computes the sign maps of `--map-members` on the analysed truss (rows on threads through
+/// [`sweeps::grids::sign_maps`]) and writes their CSV.
 fn write_sign_maps(
     args: &MichellArgs,
     request: &AnalysisRequest,
     truss: &MichellTruss,
     path: &Path,
 ) -> Result<()> {
-    use michell3d::signmap::{sign_map_rows, sign_maps};
+    use michell3d::signmap::sign_map_rows;
+    use sweeps::grids::sign_maps;
     let n_members = truss.members().len();
     if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
         anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
@@ -382,9 +384,11 @@ fn write_gamma_sweep(
     Ok(())
 }
 
-/// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity).
+/// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity), a thin wrapper over
+/// [`sweeps::grids::mass_vs_complexity`].
 pub fn run_table(args: &MichellTableArgs) -> Result<()> {
-    use michell3d::complexity::{mass_vs_complexity, FIG_4_18_DELTAS};
+    use michell3d::complexity::FIG_4_18_DELTAS;
+    use sweeps::grids::mass_vs_complexity;
     use tensegrity_io::csv::write_mass_table;
     if args.max_complexity < 2 {
         anyhow::bail!(

@@ -4,6 +4,7 @@ pub mod angle;
 pub mod bench;
 pub mod demo;
 pub mod exit;
+pub mod figures;
 pub mod michell;
 pub mod michell_extra;
 pub mod michell_optimize;

@@ -1,7 +1,7 @@
 //! `tensegrity sweep SPEC.toml --out results.csv [--threads N] [--shard K/N] [--resume]
 //! [--quiet] [--units]`, `tensegrity sweep merge A.csv B.csv … --out all.csv` and
-//! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--log-x] [--log-y]
-//! --out fig.svg`: parse the
+//! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--where COL=VALUE]…
+//! [--log-x] [--log-y] --out fig.svg`: parse the
 //! flags, make one call into the sweeps crate ([`sweeps::run`], [`sweeps::merge`]) and draw
 //! its progress (an indicatif bar with ETA on a terminal; nothing when stderr is piped or
 //! with `--quiet`).
@@ -66,6 +66,10 @@ pub struct PlotArgs {
     /// One curve per value of this column.
     #[arg(long, value_name = "COL")]
     pub group: Option<String>,
+    /// Only the rows whose column COL holds exactly VALUE (as written in the file); repeat
+    /// for several columns.
+    #[arg(long = "where", value_name = "COL=VALUE", value_parser = parse_where)]
+    pub filter: Vec<(String, String)>,
     /// Logarithmic x axis.
     #[arg(long)]
     pub log_x: bool,
@@ -80,8 +84,18 @@ pub struct PlotArgs {
 /// `tensegrity sweep plot`: one panel through the io crate's figure module.
 fn plot(args: &PlotArgs) -> Result<()> {
     use tensegrity_io::figure::{Figure, Panel, Scale, Series};
-    let curves =
-        tensegrity_io::csv::read_series(&args.results, &args.x, &args.y, args.group.as_deref())?;
+    let filter: Vec<(&str, &str)> = args
+        .filter
+        .iter()
+        .map(|(c, v)| (c.as_str(), v.as_str()))
+        .collect();
+    let curves = tensegrity_io::csv::read_series_where(
+        &args.results,
+        &args.x,
+        &args.y,
+        args.group.as_deref(),
+        &filter,
+    )?;
     if curves.is_empty() {
         anyhow::bail!(
             "{}: no ok row with numbers in `{}` and `{}`",
@@ -125,6 +139,13 @@ pub struct MergeArgs {
     /// No summary.
     #[arg(long)]
     pub quiet: bool,
+}
+
+fn parse_where(s: &str) -> Result<(String, String), String> {
+    s.split_once('=')
+        .map(|(c, v)| (c.trim().to_string(), v.to_string()))
+        .filter(|(c, _)| !c.is_empty())
+        .ok_or_else(|| format!("expected COL=VALUE, got `{s}`"))
 }
 
 fn parse_shard(s: &str) -> Result<Shard, String> {

@@ -44,7 +44,7 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
         );
     }
     if let Some(path) = &args.grid {
-        let rows = toroid::friction_grid(args.grid_points, args.eps_max)?;
+        let rows = sweeps::grids::friction_grid(args.grid_points, args.eps_max)?;
         write_friction_csv(path, &rows)?;
         println!("wrote {}", path.display());
         return Ok(());

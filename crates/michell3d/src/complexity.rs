@@ -7,14 +7,13 @@
 //! to their planar counterpart (member (U,D,L,R) → child projected to n_UD → n_(U+1)D or
 //! n_U(D+1)). For loads with w_x = 0 the 3-D force densities do not depend on δ (ERRATA 4.24).
 
-use crate::error::{invalid, MichellError, Result};
+use crate::error::{invalid, Result};
 use crate::loads::{tip_load, NodalLoads};
 use crate::nodes::NodeTuple;
 use crate::params::{Geometry, MichellParams};
 use crate::propagation::{propagate, ForceSolution, Method};
 use crate::sizing::{normalized_yield_mass, size_members, MemberKind};
 use crate::truss::MichellTruss;
-use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_6, PI};
 use tensegrity_core::Material;
@@ -91,35 +90,36 @@ pub fn sign_changes_vs_planar(
 }
 
 /// The Fig. 4.18 table for complexities `qs`, planar plus each δ in `deltas`, load w₀ (N) along
-/// −ι̂₃, bars and strings of `material`. Rows are ordered by q, planar first.
+/// −ι̂₃, bars and strings of `material`. Rows are ordered by q, planar first. Sequential: the
+/// sweeps crate fans the complexities out over threads (`sweeps::grids::mass_vs_complexity`),
+/// one [`mass_rows`] call each.
 pub fn mass_vs_complexity(
     qs: &[usize],
     deltas: &[f64],
     w0: f64,
     material: &Material,
 ) -> Result<Vec<MassRow>> {
-    let w = tip_load(w0, 0.0, PI)?;
-    let rows: Vec<Result<Vec<MassRow>>> = qs
-        .par_iter()
-        .map(|&q| {
-            let planar = MichellTruss::new(fig_4_18_params(q, None))?;
-            let loads = NodalLoads::tip(w);
-            let sol2 = propagate(&planar, &loads, Method::Recursive)?;
-            let mut out = vec![row(&planar, &sol2, w0, material, 0)];
-            for &d in deltas {
-                let t = MichellTruss::new(fig_4_18_params(q, Some(d)))?;
-                let s = propagate(&t, &loads, Method::Recursive)?;
-                let changes = sign_changes_vs_planar(&t, &s, &planar, &sol2)?;
-                out.push(row(&t, &s, w0, material, changes));
-            }
-            Ok::<_, MichellError>(out)
-        })
-        .collect();
     let mut all = Vec::new();
-    for r in rows {
-        all.extend(r?);
+    for &q in qs {
+        all.extend(mass_rows(q, deltas, w0, material)?);
     }
     Ok(all)
+}
+
+/// The rows of one complexity q: planar first, then one per δ in `deltas`.
+pub fn mass_rows(q: usize, deltas: &[f64], w0: f64, material: &Material) -> Result<Vec<MassRow>> {
+    let w = tip_load(w0, 0.0, PI)?;
+    let planar = MichellTruss::new(fig_4_18_params(q, None))?;
+    let loads = NodalLoads::tip(w);
+    let sol2 = propagate(&planar, &loads, Method::Recursive)?;
+    let mut out = vec![row(&planar, &sol2, w0, material, 0)];
+    for &d in deltas {
+        let t = MichellTruss::new(fig_4_18_params(q, Some(d)))?;
+        let s = propagate(&t, &loads, Method::Recursive)?;
+        let changes = sign_changes_vs_planar(&t, &s, &planar, &sol2)?;
+        out.push(row(&t, &s, w0, material, changes));
+    }
+    Ok(out)
 }
 
 fn row(

@@ -59,7 +59,7 @@ pub mod sizing;
 pub mod solution;
 pub mod truss;
 
-pub use complexity::{mass_vs_complexity, MassRow};
+pub use complexity::{mass_rows, mass_vs_complexity, MassRow};
 pub use error::{MichellError, Result};
 pub use extra_strings::{
     gamma_sweep, solve_prestressed, ExtraStrings, GammaSweep, GammaSweepRow, SweepMember,
@@ -69,6 +69,6 @@ pub use nodes::NodeTuple;
 pub use params::{Geometry, MichellParams};
 pub use propagation::{propagate, propagate_recursive, ForceSolution, Method};
 pub use report::{analyse, AnalysisRequest, MichellAnalysis, MichellReport};
-pub use signmap::{sign_map_rows, sign_maps, AngleGrid, SignMap, SignMapRow};
+pub use signmap::{sign_map_rows, sign_maps, AngleGrid, SignMap, SignMapBasis, SignMapRow};
 pub use sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 pub use truss::{Branch, Member, MichellTruss, Node};

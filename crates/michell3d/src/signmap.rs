@@ -3,7 +3,9 @@
 //! The truss is linear, so for a tip load w = w₀[cos φ sin γ, sin φ sin γ, cos γ] (eq. 4.13)
 //! every force density is q_j(φ, γ) = w₀ (q_j^x cos φ sin γ + q_j^y sin φ sin γ + q_j^z cos γ),
 //! with q^x, q^y, q^z the responses to unit tip loads (three propagations). The grid is then
-//! filled in parallel (rayon) row by row. A value counts as zero (sign 0) when
+//! filled row by row ([`SignMapBasis::fill_row`]), sequentially here; the sweeps crate fans
+//! the rows out over threads (`sweeps::grids::sign_maps`) with the same arithmetic, so both
+//! give the same bits. A value counts as zero (sign 0) when
 //! |q_j| ≤ [`ZERO_FORCE_RTOL`]·w₀‖(q_j^x, q_j^y, q_j^z)‖, the largest |q_j| over all directions.
 //!
 //! For q = 1 the signs reproduce eq. 4.21–4.22 and the corrected eq. 4.23 (ERRATA 4.13).
@@ -13,7 +15,6 @@ use crate::error::{invalid, MichellError, Result};
 use crate::propagation::{unit_tip_responses, Method};
 use crate::sizing::ZERO_FORCE_RTOL;
 use crate::truss::MichellTruss;
-use rayon::prelude::*;
 use serde::Serialize;
 
 /// `n` evenly spaced angles from `start` to `end`, both included (n ≥ 2), or just `start`
@@ -103,7 +104,88 @@ impl SignMap {
     }
 }
 
-/// Sign maps of `members` for a tip load of magnitude `w0` over the grids (3-D trusses only).
+/// What a sign map needs before its grid is filled: the validated grids and, per member,
+/// w₀ times its responses to unit tip loads along ι̂₁, ι̂₂, ι̂₃.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SignMapBasis {
+    /// The members, in the order asked for.
+    pub members: Vec<usize>,
+    /// w₀ (q_j^x, q_j^y, q_j^z) per member (N/m).
+    pub coefficients: Vec<[f64; 3]>,
+    /// Azimuth grid (φ).
+    pub azimuth: AngleGrid,
+    /// Polar grid (γ).
+    pub polar: AngleGrid,
+    /// (sin, cos) of every azimuth.
+    azimuth_sin_cos: Vec<(f64, f64)>,
+}
+
+impl SignMapBasis {
+    /// Validates the request and propagates the three unit tip loads (3-D trusses only).
+    pub fn new(
+        truss: &MichellTruss,
+        members: &[usize],
+        w0: f64,
+        azimuth: AngleGrid,
+        polar: AngleGrid,
+        method: Method,
+    ) -> Result<Self> {
+        if truss.is_planar() {
+            // a planar truss: see planar::force_regions instead
+            return Err(MichellError::NeedsThreeD {
+                what: "sign maps over (azimuth, polar)",
+            });
+        }
+        if !(w0.is_finite() && w0 > 0.0) {
+            return Err(invalid(
+                "load",
+                w0,
+                "the load magnitude w0 must be finite and > 0",
+            ));
+        }
+        azimuth.validate("azimuth")?;
+        polar.validate("polar")?;
+        let count = truss.members().len();
+        if let Some(&bad) = members.iter().find(|&&j| j >= count) {
+            return Err(MichellError::UnknownMember { index: bad, count });
+        }
+        let [qx, qy, qz] = unit_tip_responses(truss, method)?;
+        Ok(Self {
+            members: members.to_vec(),
+            coefficients: members
+                .iter()
+                .map(|&j| [w0 * qx[j], w0 * qy[j], w0 * qz[j]])
+                .collect(),
+            azimuth,
+            polar,
+            azimuth_sin_cos: azimuth.values().iter().map(|a| a.sin_cos()).collect(),
+        })
+    }
+
+    /// Fills `row` (length `azimuth.n`) with q of the `slot`-th member at polar index `ip`.
+    pub fn fill_row(&self, slot: usize, ip: usize, row: &mut [f64]) {
+        let [bx, by, bz] = self.coefficients[slot];
+        let (sg, cg) = self.polar.at(ip).sin_cos();
+        for (v, &(sa, ca)) in row.iter_mut().zip(&self.azimuth_sin_cos) {
+            *v = bx * ca * sg + by * sa * sg + bz * cg;
+        }
+    }
+
+    /// The map of the `slot`-th member from its filled values (row-major, polar outer).
+    pub fn map(&self, slot: usize, force_density: Vec<f64>) -> SignMap {
+        let [bx, by, bz] = self.coefficients[slot];
+        SignMap {
+            member: self.members[slot],
+            azimuth: self.azimuth,
+            polar: self.polar,
+            force_density,
+            zero_threshold: ZERO_FORCE_RTOL * (bx * bx + by * by + bz * bz).sqrt(),
+        }
+    }
+}
+
+/// Sign maps of `members` for a tip load of magnitude `w0` over the grids (3-D trusses only),
+/// filled sequentially.
 pub fn sign_maps(
     truss: &MichellTruss,
     members: &[usize],
@@ -112,49 +194,14 @@ pub fn sign_maps(
     polar: AngleGrid,
     method: Method,
 ) -> Result<Vec<SignMap>> {
-    if truss.is_planar() {
-        // a planar truss: see planar::force_regions instead
-        return Err(MichellError::NeedsThreeD {
-            what: "sign maps over (azimuth, polar)",
-        });
-    }
-    if !(w0.is_finite() && w0 > 0.0) {
-        return Err(invalid(
-            "load",
-            w0,
-            "the load magnitude w0 must be finite and > 0",
-        ));
-    }
-    azimuth.validate("azimuth")?;
-    polar.validate("polar")?;
-    let count = truss.members().len();
-    if let Some(&bad) = members.iter().find(|&&j| j >= count) {
-        return Err(MichellError::UnknownMember { index: bad, count });
-    }
-    let [qx, qy, qz] = unit_tip_responses(truss, method)?;
-    // Trigonometric tables shared by every member.
-    let az: Vec<(f64, f64)> = azimuth.values().iter().map(|a| a.sin_cos()).collect();
-    let po: Vec<(f64, f64)> = polar.values().iter().map(|g| g.sin_cos()).collect();
-    Ok(members
-        .iter()
-        .map(|&j| {
-            let (bx, by, bz) = (w0 * qx[j], w0 * qy[j], w0 * qz[j]);
+    let basis = SignMapBasis::new(truss, members, w0, azimuth, polar, method)?;
+    Ok((0..members.len())
+        .map(|slot| {
             let mut values = vec![0.0; azimuth.n * polar.n];
-            values
-                .par_chunks_mut(azimuth.n)
-                .zip(po.par_iter())
-                .for_each(|(row, &(sg, cg))| {
-                    for (v, &(sa, ca)) in row.iter_mut().zip(&az) {
-                        *v = bx * ca * sg + by * sa * sg + bz * cg;
-                    }
-                });
-            SignMap {
-                member: j,
-                azimuth,
-                polar,
-                force_density: values,
-                zero_threshold: ZERO_FORCE_RTOL * (bx * bx + by * by + bz * bz).sqrt(),
+            for (ip, row) in values.chunks_mut(azimuth.n).enumerate() {
+                basis.fill_row(slot, ip, row);
             }
+            basis.map(slot, values)
         })
         .collect())
 }

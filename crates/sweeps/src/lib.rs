@@ -13,6 +13,9 @@
 //! that case, numbers in their shortest round-trip form; a failing case is an `error` row
 //! with its message and never stops the sweep.
 //!
+//! [`grids`] fans out the grid studies whose points are rows rather than whole reports (sign
+//! maps, the Fig. 4.18 table, the Fig. 3.13 friction map) over the same rayon machinery.
+//!
 //! ```
 //! use sweeps::{run, RunOptions, Silent, Spec};
 //! let spec = Spec::parse(r#"
@@ -36,6 +39,7 @@
 pub mod angle;
 pub mod error;
 pub mod expr;
+pub mod grids;
 pub mod merge;
 pub mod params;
 pub mod run;

@@ -355,6 +355,27 @@ pub fn read_series(
     y: &str,
     group: Option<&str>,
 ) -> Result<Vec<Curve>> {
+    read_series_where(path, x, y, group, &[])
+}
+
+/// [`read_series`] of the rows whose columns hold exactly the given texts (`filter`: pairs
+/// column, value), e.g. one tread width of a sweep over several:
+///
+/// ```
+/// let path = std::env::temp_dir().join(format!("series-where-{}.csv", std::process::id()));
+/// std::fs::write(&path, "case,n,T,mass,status\n0,8,0.4,1.5,ok\n1,8,0.5,2.5,ok\n").unwrap();
+/// let curves = tensegrity_io::csv::read_series_where(&path, "n", "mass", None, &[("T", "0.5")])?;
+/// assert_eq!(curves, vec![(String::new(), vec![(8.0, 2.5)])]);
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+pub fn read_series_where(
+    path: &std::path::Path,
+    x: &str,
+    y: &str,
+    group: Option<&str>,
+    filter: &[(&str, &str)],
+) -> Result<Vec<Curve>> {
     let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
@@ -377,11 +398,18 @@ pub fn read_series(
     };
     let (xi, yi) = (column(x)?, column(y)?);
     let gi = group.map(column).transpose()?;
+    let wanted = filter
+        .iter()
+        .map(|&(c, v)| Ok((column(c)?, v)))
+        .collect::<Result<Vec<_>>>()?;
     let status = header.iter().position(|h| h == "status");
     let mut curves: Vec<Curve> = Vec::new();
     for record in reader.records() {
         let record = record.map_err(csv_error("CSV row"))?;
         if status.is_some_and(|s| record.get(s) != Some("ok")) {
+            continue;
+        }
+        if wanted.iter().any(|&(i, v)| record.get(i) != Some(v)) {
             continue;
         }
         let num = |i: usize| record.get(i).and_then(|v| v.parse::<f64>().ok());

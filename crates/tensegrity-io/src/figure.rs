@@ -72,6 +72,8 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Draw a circle at every point too.
     pub markers: bool,
+    /// An RGB colour of its own (`None`: the next colour of the palette, by position).
+    pub color: Option<(u8, u8, u8)>,
 }
 
 impl Series {
@@ -81,7 +83,15 @@ impl Series {
             label: label.into(),
             points,
             markers: false,
+            color: None,
         }
+    }
+
+    /// The same curve in an RGB colour of its own (e.g. red for tension, blue for
+    /// compression in a structure drawing), whatever its position in the panel.
+    pub fn with_color(mut self, rgb: (u8, u8, u8)) -> Self {
+        self.color = Some(rgb);
+        self
     }
 
     /// The same curve with a circle at every point.
@@ -375,7 +385,9 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         )))
         .map_err(drawing_error)?;
     for (k, (series, pts)) in panel.series.iter().zip(&points).enumerate() {
-        let color = COLORS[k % COLORS.len()];
+        let color = series
+            .color
+            .map_or(COLORS[k % COLORS.len()], |(r, g, b)| RGBColor(r, g, b));
         let drawn = chart
             .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
             .map_err(drawing_error)?;

@@ -1,7 +1,8 @@
 //! The `integrators` study: one point of the work–precision study of
-//! [`tensegrity_core::dynamics::work_precision`] per case — a scene (`prism-oscillating`,
-//! `double-pendulum`, `prism-dropped`), an integrator (`rk4`, `rk45`, `rattle`), its
-//! `parameter` (dt in s, or rtol for rk45) and the timing `repeats` (default 1) — with the
+//! [`tensegrity_core::dynamics::work_precision`] per case — a scene (any of
+//! [`work_precision::scenes`]: `prism-oscillating`, `double-pendulum`, `prism-dropped` and
+//! the stiff ones), an integrator (`rk4`, `rk45`, `rattle`, `sdirk`), its `parameter` (dt in
+//! s, or rtol for the adaptive ones) and the timing `repeats` (default 1) — with the
 //! same error measure as `tensegrity bench work-precision`: the largest final node distance
 //! to a tight RK45 reference of the scene, computed once per sweep ([`Context`]).
 //!
@@ -40,9 +41,21 @@ const REFERENCE_RTOL: f64 = 1e-13;
 
 /// What the cases of one sweep share: the reference run of each scene, computed once, by
 /// the first case that needs it.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Context {
-    references: [OnceLock<std::result::Result<SimulationResult, String>>; 3],
+    /// One slot per scene of [`work_precision::scenes`].
+    references: Vec<OnceLock<std::result::Result<SimulationResult, String>>>,
+}
+
+impl Default for Context {
+    fn default() -> Self {
+        Self {
+            references: work_precision::scenes()
+                .iter()
+                .map(|_| OnceLock::new())
+                .collect(),
+        }
+    }
 }
 
 impl Context {
