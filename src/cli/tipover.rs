@@ -35,6 +35,14 @@ pub struct TipoverArgs {
 
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
+    if args.dynamic.rolling {
+        return super::tipover_dynamic::run_rolling(
+            &args.dynamic,
+            &args.geometry.wheel(),
+            args.gravity,
+            args.json,
+        );
+    }
     if args.dynamic.dynamic {
         return super::tipover_dynamic::run(
             &args.dynamic,

@@ -5,6 +5,7 @@
 use super::values;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use toroid::rolling_lean::LeanRolling;
 use toroid::tipover_dynamic::{DynamicTipover, DynamicTipoverReport, LeanSample};
 use toroid::WheelSpec;
 
@@ -15,6 +16,19 @@ pub struct DynamicArgs {
     /// ground, a lateral force ramped at the hub.
     #[arg(long)]
     pub dynamic: bool,
+    /// Instead, roll the wheel down a plane with a side slope and report its lean (the
+    /// conclusion's stability claim); with --incline, --side-slope, --t-end.
+    #[arg(long, conflicts_with = "dynamic")]
+    pub rolling: bool,
+    /// Incline downhill of the --rolling plane, e.g. `30deg`.
+    #[arg(long, default_value = "30deg", value_parser = crate::cli::angle::parse_angle, requires = "rolling")]
+    pub incline: f64,
+    /// Side slope of the --rolling plane, e.g. `5deg`.
+    #[arg(long, default_value = "5deg", value_parser = crate::cli::angle::parse_angle, allow_hyphen_values = true, requires = "rolling")]
+    pub side_slope: f64,
+    /// Simulated time of the --rolling run (s).
+    #[arg(long, default_value_t = 3.0, value_parser = values::positive, requires = "rolling")]
+    pub t_end: f64,
     /// Ramp duration (s), from 0 to --ramp-to × the static threshold.
     #[arg(long, default_value_t = 4.0, value_parser = values::positive, requires = "dynamic")]
     pub ramp_time: f64,
@@ -25,18 +39,68 @@ pub struct DynamicArgs {
     #[arg(long, default_value_t = 0.0, value_parser = values::non_negative, requires = "dynamic")]
     pub hold: f64,
     /// Static friction coefficient of the ground (kinetic = 0.75 μ).
-    #[arg(long, default_value_t = 1.0, value_parser = values::positive, requires = "dynamic")]
+    #[arg(long, default_value_t = 1.0, value_parser = values::positive, required = false)]
     pub mu: f64,
     /// String stiffness of the wheel (N/m): the threshold is the rigid one only for a stiff
     /// wheel (a soft one deforms and tips early).
-    #[arg(long, default_value_t = 2e6, value_parser = values::positive, requires = "dynamic")]
+    #[arg(long, default_value_t = 2e6, value_parser = values::positive, required = false)]
     pub string_stiffness: f64,
     /// RK4 step (s); stiffer strings need a smaller one.
-    #[arg(long, default_value_t = 1e-4, value_parser = values::positive, requires = "dynamic")]
+    #[arg(long, default_value_t = 1e-4, value_parser = values::positive, required = false)]
     pub dt: f64,
     /// Write the history (t, force, lean, near_normal, far_normal) to this CSV.
-    #[arg(long, value_name = "FILE", requires = "dynamic")]
+    #[arg(long, value_name = "FILE", required = false)]
     pub out: Option<PathBuf>,
+}
+
+/// Runs the lean-while-rolling study and prints its report.
+pub fn run_rolling(args: &DynamicArgs, wheel: &WheelSpec, gravity: f64, json: bool) -> Result<()> {
+    let toroid = wheel.build()?;
+    let run = LeanRolling {
+        incline: args.incline,
+        side_slope: args.side_slope,
+        t_end: args.t_end,
+        wheel: DynamicTipover {
+            gravity,
+            mu: args.mu,
+            string_stiffness: args.string_stiffness,
+            dt: args.dt,
+            ..DynamicTipover::default()
+        },
+    };
+    let r = run.run(&toroid).context("rolling lean run failed")?;
+    if let Some(path) = &args.out {
+        use std::fmt::Write;
+        let mut text = String::from("t,lean,downhill,across\n");
+        for s in &r.samples {
+            let _ = writeln!(text, "{},{},{},{}", s.t, s.lean, s.downhill, s.across);
+        }
+        tensegrity_io::write_text(path, "lean history", &text)
+            .with_context(|| format!("writing the lean history {}", path.display()))?;
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        println!(
+            "n = {}, T = {} m rolling {:.2}° down with a {:.2}° side slope (static limit {:.2}°)",
+            r.sides,
+            r.outer_tread,
+            r.incline.to_degrees(),
+            r.side_slope.to_degrees(),
+            r.static_critical_side_slope.to_degrees()
+        );
+        println!(
+            "largest lean {:.4} rad, final {:.4} rad, {} m downhill: {}",
+            r.max_lean,
+            r.final_lean,
+            r.downhill,
+            match r.fall_time {
+                Some(t) => format!("fell at t = {t:.3} s"),
+                None => "stayed up".to_string(),
+            }
+        );
+    }
+    Ok(())
 }
 
 /// Runs the dynamic check and prints its report.

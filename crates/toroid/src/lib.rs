@@ -27,6 +27,7 @@ pub mod report;
 mod roll;
 pub mod rolling;
 pub mod rolling_full;
+pub mod rolling_lean;
 mod tipover;
 pub mod tipover_dynamic;
 pub mod validity;

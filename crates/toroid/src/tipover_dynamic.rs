@@ -153,36 +153,10 @@ impl DynamicTipover {
         let mass = analyse(toroid)?.mass_kg;
         let hub_height = p.outer_radius * (PI / n as f64).cos();
         let static_threshold = 0.5 * mass * self.gravity * p.outer_tread / hub_height;
-        let design = prestress_design(toroid, self.min_tension)?;
-        let spin = Rotation3::from_axis_angle(&Vector3::x_axis(), PI / n as f64);
-        let structure = prestressed_structure(toroid, &design, self.string_stiffness)?;
-        let nodes: Vec<Vector3<f64>> = structure.nodes().iter().map(|x| spin * x).collect();
-        let mut builder = structure.to_builder_without_strings();
-        for s in structure.strings() {
-            builder = builder.string(s.clone().damping(self.string_damping));
-        }
-        let structure = builder
-            .build()?
-            .with_nodes(nodes)?
-            .to_builder()
-            .gravity([0.0, 0.0, -self.gravity])
-            .build()?;
+        let (structure, ground) = self.standing_model(toroid, [0.0, 0.0, -self.gravity])?;
         let hubs = hub_nodes(toroid);
         let t_end = self.settle + self.ramp_time + self.hold;
         let mut sim = Simulation::new(&structure, self.settings(t_end))?;
-        let mut ground = Ground::new(
-            Vector3::new(0.0, 0.0, -hub_height),
-            Vector3::z(),
-            GroundModel::Penalty {
-                stiffness: self.ground_stiffness,
-                damping: self.ground_damping,
-                mu_static: self.mu,
-                mu_kinetic: crate::defaults::KINETIC_FRICTION_RATIO * self.mu,
-                regularization_velocity: self.friction_regularization,
-                stribeck_velocity: 3.0 * self.friction_regularization,
-            },
-        );
-        ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
         sim.model.set_ground(ground)?;
         let ramp = *self;
         let rate = self.ramp_to * static_threshold / self.ramp_time;
@@ -196,6 +170,45 @@ impl DynamicTipover {
         let result = sim.run()?;
         let samples = lean_history(toroid, &result.samples, |t| self.force_at(t, rate));
         Ok(report(toroid, mass, hub_height, static_threshold, samples))
+    }
+
+    /// The prestressed, damped wheel resting on a side of its polygon on the plane z = −h,
+    /// h = R_o cos(π/n), under `gravity`, and its penalty ground (outer tread pairs only).
+    pub(crate) fn standing_model(
+        &self,
+        toroid: &Toroid,
+        gravity: [f64; 3],
+    ) -> Result<(tensegrity_core::Structure, Ground)> {
+        let n = toroid.params.sides;
+        let hub_height = toroid.params.outer_radius * (PI / n as f64).cos();
+        let design = prestress_design(toroid, self.min_tension)?;
+        let spin = Rotation3::from_axis_angle(&Vector3::x_axis(), PI / n as f64);
+        let structure = prestressed_structure(toroid, &design, self.string_stiffness)?;
+        let nodes: Vec<Vector3<f64>> = structure.nodes().iter().map(|x| spin * x).collect();
+        let mut builder = structure.to_builder_without_strings();
+        for s in structure.strings() {
+            builder = builder.string(s.clone().damping(self.string_damping));
+        }
+        let structure = builder
+            .build()?
+            .with_nodes(nodes)?
+            .to_builder()
+            .gravity(gravity)
+            .build()?;
+        let mut ground = Ground::new(
+            Vector3::new(0.0, 0.0, -hub_height),
+            Vector3::z(),
+            GroundModel::Penalty {
+                stiffness: self.ground_stiffness,
+                damping: self.ground_damping,
+                mu_static: self.mu,
+                mu_kinetic: crate::defaults::KINETIC_FRICTION_RATIO * self.mu,
+                regularization_velocity: self.friction_regularization,
+                stribeck_velocity: 3.0 * self.friction_regularization,
+            },
+        );
+        ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
+        Ok((structure, ground))
     }
 
     /// F(t): zero while settling, then the ramp, then held.
@@ -220,7 +233,7 @@ impl DynamicTipover {
         }
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         use tensegrity_core::validate::{non_negative, positive};
         positive("gravity", self.gravity)?;
         positive("string_stiffness", self.string_stiffness)?;
@@ -248,8 +261,20 @@ fn hub_nodes(toroid: &Toroid) -> Vec<usize> {
     }
 }
 
+/// The lean angle of the wheel (the tilt of its axis, the rim polygon's area vector, out of
+/// the ground plane z, positive when the top moves towards +ι̂₁) and the hub (rim centroid).
+pub(crate) fn lean_and_hub(x: &[Vector3<f64>], rim: &[usize]) -> (f64, Vector3<f64>) {
+    let n = rim.len();
+    let c = rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64;
+    let axis: Vector3<f64> = (0..n)
+        .map(|k| (x[rim[k]] - c).cross(&(x[rim[(k + 1) % n]] - c)))
+        .sum();
+    let axis = if axis.x < 0.0 { -axis } else { axis };
+    ((-axis.z).atan2(axis.x), c)
+}
+
 /// Lean angle and edge loads of every sample.
-fn lean_history(
+pub(crate) fn lean_history(
     toroid: &Toroid,
     samples: &[tensegrity_core::dynamics::Sample],
     force_at: impl Fn(f64) -> f64,
@@ -260,12 +285,7 @@ fn lean_history(
         .iter()
         .filter_map(|s| {
             let x = s.nodes.as_ref()?;
-            let c = rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64;
-            // the rim polygon's area vector: the wheel's axis, +ι̂₁ when upright
-            let axis: Vector3<f64> = (0..n)
-                .map(|k| (x[rim[k]] - c).cross(&(x[rim[(k + 1) % n]] - c)))
-                .sum();
-            let axis = if axis.x < 0.0 { -axis } else { axis };
+            let (lean, c) = lean_and_hub(x, &rim);
             let (mut near, mut far) = (0.0, 0.0);
             for (node, f) in s.contact_forces.iter().flatten() {
                 if x[*node].x < c.x {
@@ -277,7 +297,7 @@ fn lean_history(
             Some(LeanSample {
                 t: s.t,
                 force: force_at(s.t),
-                lean: (-axis.z).atan2(axis.x),
+                lean,
                 near_normal: near,
                 far_normal: far,
             })

@@ -9,6 +9,7 @@
 //! | `michell` | `tensegrity michell --json` | [`michell3d::analyse`] |
 //! | `integrators` | `tensegrity bench work-precision` (one point) | [`tensegrity_core::dynamics::work_precision::run_one`] |
 //! | `tbar` | `tensegrity tbar --json` | [`tbar_wheel::tbar_report`] |
+//! | `lean` | `tensegrity tipover --rolling --json` | [`toroid::rolling_lean::LeanRolling::run`] |
 //!
 //! A parameter left out of a spec takes the library's default (the CLI's default too):
 //! [`toroid::WheelSpec::default`], [`toroid::ToroidRequest::default`],
@@ -56,17 +57,20 @@ pub enum Study {
     Integrators,
     /// The T-bar tread or wheel: statics, load envelope, mass.
     Tbar,
+    /// Lean of the toroid rolling down a cross-sloped plane (`tipover --rolling`).
+    Lean,
 }
 
 impl Study {
     /// Every study.
-    pub const ALL: [Study; 6] = [
+    pub const ALL: [Study; 7] = [
         Study::Toroid,
         Study::Roll,
         Study::Tipover,
         Study::Michell,
         Study::Integrators,
         Study::Tbar,
+        Study::Lean,
     ];
 
     /// The name a spec's `study` gives.
@@ -78,6 +82,7 @@ impl Study {
             Study::Michell => "michell",
             Study::Integrators => "integrators",
             Study::Tbar => "tbar",
+            Study::Lean => "lean",
         }
     }
 
@@ -101,6 +106,7 @@ impl Study {
             Study::Michell => &michell::PARAMS,
             Study::Integrators => &integrators::PARAMS,
             Study::Tbar => &tbar::PARAMS,
+            Study::Lean => &wheel::LEAN_PARAMS,
         }
     }
 
@@ -118,6 +124,7 @@ impl Study {
             Study::Michell => &michell::COLUMNS,
             Study::Integrators => &integrators::COLUMNS,
             Study::Tbar => &tbar::COLUMNS,
+            Study::Lean => &wheel::LEAN_COLUMNS,
         }
     }
 
@@ -131,6 +138,7 @@ impl Study {
             Study::Michell => json(michell3d::analyse(&michell::request(p)?)),
             Study::Integrators => json(integrators::point(p, ctx)),
             Study::Tbar => json(tbar_wheel::tbar_report(&tbar::request(p)?)),
+            Study::Lean => json(wheel::lean_report(p)),
         }
     }
 }

@@ -92,6 +92,46 @@ pub const ROLL_COLUMNS: [Column; 14] = [
     col("mean_slip_speed", "m/s"),
 ];
 
+/// Parameters of `lean` (`tensegrity tipover --rolling`).
+pub const LEAN_PARAMS: [ParamDef; 12] = geometry_then![
+    param("incline", Kind::Angle, "rad"),
+    param("side_slope", Kind::Angle, "rad"),
+    param("t_end", Kind::Number, "s"),
+];
+
+/// The result scalars of [`toroid::rolling_lean::LeanRollingReport`] (its echo of the inputs
+/// `sides`, `outer_tread`, `incline`, `side_slope` left out: they are axis or fixed values).
+pub const LEAN_COLUMNS: [Column; 7] = [
+    col("mass_kg", "kg"),
+    col("static_critical_side_slope", "rad"),
+    col("max_lean", "rad"),
+    col("final_lean", "rad"),
+    col("fell", ""),
+    col("fall_time", "s"),
+    col("downhill", "m"),
+];
+
+/// The run of `tensegrity tipover --rolling`: the wheel and the cross-sloped plane.
+pub fn lean_request(p: &Params) -> Result<(WheelSpec, toroid::rolling_lean::LeanRolling)> {
+    let d = toroid::rolling_lean::LeanRolling::default();
+    Ok((
+        wheel(p)?,
+        toroid::rolling_lean::LeanRolling {
+            incline: p.angle("incline")?.unwrap_or(d.incline),
+            side_slope: p.angle("side_slope")?.unwrap_or(d.side_slope),
+            t_end: p.number("t_end")?.unwrap_or(d.t_end),
+            ..d
+        },
+    ))
+}
+
+/// Runs one `lean` case.
+pub fn lean_report(p: &Params) -> Result<toroid::rolling_lean::LeanRollingReport, String> {
+    let (spec, run) = lean_request(p)?;
+    let wheel = spec.build().map_err(|e| e.to_string())?;
+    run.run(&wheel).map_err(|e| e.to_string())
+}
+
 /// The scalars of [`toroid::TipoverReport`].
 pub const TIPOVER_COLUMNS: [Column; 8] = [
     col("mass_kg", "kg"),
