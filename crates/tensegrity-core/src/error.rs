@@ -176,6 +176,9 @@ pub enum CoreError {
         /// Time of the last sample handed out (s).
         t: f64,
     },
+    /// A cyclic-symmetry descriptor that does not describe the structure.
+    #[error(transparent)]
+    Symmetry(#[from] crate::statics::symmetry::SymmetryError),
     /// A problem too large for the memory budget, refused before allocating.
     #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer --sides or a lower --complexity)", bytes / 1073741824.0, limit / 1073741824.0)]
     TooLarge {

@@ -27,11 +27,12 @@ pub mod report;
 mod roll;
 pub mod rolling;
 pub mod rolling_full;
+mod symmetry;
 mod tipover;
 pub mod validity;
 
 pub use analysis::{
-    analyse, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
+    analyse, analyse_dense, design_from, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
     PrestressDesign, ToroidAnalysis,
 };
 pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};
@@ -43,5 +44,6 @@ pub use report::{
     WheelSpec,
 };
 pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
+pub use symmetry::toroid_symmetry;
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
 pub use validity::{ImpactRecord, RollValidity};

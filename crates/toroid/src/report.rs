@@ -7,7 +7,7 @@
 //! come from [`crate::analyse`], [`crate::prestress_design`], [`crate::rim_radius_window`] and
 //! [`crate::tipover`].
 
-use crate::analysis::{analyse, prestress_design, prestressed_structure, rim_radius_window};
+use crate::analysis::{analyse, design_from, prestressed_structure, rim_radius_window};
 use crate::builder::{build, build_prism, Toroid};
 use crate::defaults;
 use crate::error::Result;
@@ -145,7 +145,7 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
     let a = analyse(&t)?;
     // with a string stiffness, a toroid that is not prestressable fails here (no design)
     let design = if a.prestressable || request.string_stiffness.is_some() {
-        Some(prestress_design(&t, request.min_tension)?)
+        Some(design_from(&t, &a, request.min_tension)?)
     } else {
         None
     };
