@@ -44,6 +44,6 @@ pub use report::{
     WheelSpec,
 };
 pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
-pub use symmetry::toroid_symmetry;
+pub use symmetry::{toroid_symmetry, SymmetryCounts};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
 pub use validity::{ImpactRecord, RollValidity};

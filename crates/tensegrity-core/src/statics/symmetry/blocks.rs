@@ -92,10 +92,44 @@ pub(crate) fn roots_of_unity(n: usize) -> Vec<Complex<f64>> {
         .collect()
 }
 
-/// The rows and columns of block k.
-pub fn block_layout(structure: &Structure, sym: &CyclicSymmetry, k: usize) -> BlockLayout {
-    let fixed = structure.fixed_dofs();
-    let eigs = axis_eigenvectors(sym);
+/// What every block needs from the structure, gathered once (O(nodes + members)) so that
+/// each block costs only O(orbits).
+#[derive(Debug, Clone)]
+pub struct BlockContext<'a> {
+    structure: &'a Structure,
+    sym: &'a CyclicSymmetry,
+    fixed: Vec<[bool; 3]>,
+    ends: Vec<[usize; 2]>,
+    roots: Vec<Complex<f64>>,
+    eigs: [(Vector3<Complex<f64>>, usize); 3],
+}
+
+impl<'a> BlockContext<'a> {
+    /// Gathers the supports, member ends, roots of unity and axis eigenvectors.
+    pub fn new(structure: &'a Structure, sym: &'a CyclicSymmetry) -> Self {
+        Self {
+            structure,
+            sym,
+            fixed: structure.fixed_dofs(),
+            ends: structure.member_nodes(),
+            roots: roots_of_unity(sym.order()),
+            eigs: axis_eigenvectors(sym),
+        }
+    }
+
+    /// The rows and columns of block k.
+    pub fn layout(&self, k: usize) -> BlockLayout {
+        block_layout(self, k)
+    }
+
+    /// Block k on the free rows of `layout` (see the module docs).
+    pub fn assemble(&self, layout: &BlockLayout) -> DMatrix<Complex<f64>> {
+        assemble_block(self, layout)
+    }
+}
+
+fn block_layout(ctx: &BlockContext<'_>, k: usize) -> BlockLayout {
+    let (sym, fixed, eigs) = (ctx.sym, &ctx.fixed, &ctx.eigs);
     let mut rows = Vec::new();
     for (o, orbit) in sym.node_orbits().iter().enumerate() {
         let f = fixed[orbit.rep];
@@ -129,14 +163,8 @@ fn rotate_back(a: &Vector3<f64>, roots: &[Complex<f64>], p: usize, v: &Vector3<f
     v * c + a.cross(v) * s + a * (a.dot(v) * (1.0 - c))
 }
 
-/// Block k of the equilibrium matrix on the free rows of `layout` (see the module docs);
-/// `roots` from [`roots_of_unity`].
-pub fn assemble_block(
-    structure: &Structure,
-    sym: &CyclicSymmetry,
-    layout: &BlockLayout,
-    roots: &[Complex<f64>],
-) -> DMatrix<Complex<f64>> {
+fn assemble_block(ctx: &BlockContext<'_>, layout: &BlockLayout) -> DMatrix<Complex<f64>> {
+    let (sym, roots, eigs) = (ctx.sym, &ctx.roots, &ctx.eigs);
     let n = sym.order();
     let k = layout.k;
     // row index of (node orbit, dir) or (axis node, eig) among the free rows
@@ -152,10 +180,9 @@ pub fn assemble_block(
         }
         free += 1;
     }
-    let eigs = axis_eigenvectors(sym);
     let a = sym.axis();
-    let x = structure.nodes();
-    let ends = structure.member_nodes();
+    let x = ctx.structure.nodes();
+    let ends = &ctx.ends;
     let mut block = DMatrix::zeros(free, layout.cols.len());
     let sqrt_n = (n as f64).sqrt();
     for (c, &e) in layout.cols.iter().enumerate() {

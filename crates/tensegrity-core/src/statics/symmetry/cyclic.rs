@@ -11,9 +11,7 @@
 //! axis) and k = 1, n − 1 (the transverse plane), two per block; those the supports allow are
 //! counted per block as in the dense path.
 
-use super::blocks::{
-    assemble_block, axis_eigenvectors, block_layout, roots_of_unity, BlockLayout, BlockRow,
-};
+use super::blocks::{axis_eigenvectors, BlockContext, BlockLayout, BlockRow};
 use super::descriptor::CyclicSymmetry;
 use crate::error::Result;
 use crate::linalg;
@@ -77,12 +75,12 @@ impl<'a> CyclicStatics<'a> {
         settings: StaticsSettings,
     ) -> Result<Self> {
         let n = symmetry.order();
-        let roots = roots_of_unity(n);
+        let ctx = BlockContext::new(structure, symmetry);
         let mut factored = Vec::with_capacity(n / 2 + 1);
         let mut v0 = DMatrix::zeros(0, 0);
         for k in 0..=n / 2 {
-            let layout = block_layout(structure, symmetry, k);
-            let block = assemble_block(structure, symmetry, &layout, &roots);
+            let layout = ctx.layout(k);
+            let block = ctx.assemble(&layout);
             let s = if k == 0 {
                 let real = block.map(|z| z.re);
                 let svd = linalg::svd(&real)?;

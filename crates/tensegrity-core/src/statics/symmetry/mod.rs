@@ -22,7 +22,7 @@ pub mod cyclic;
 pub mod descriptor;
 pub mod prestress;
 
-pub use blocks::{assemble_block, block_layout, BlockLayout, BlockRow};
+pub use blocks::{BlockContext, BlockLayout, BlockRow};
 pub use cyclic::{CyclicStatics, RepCounts};
 pub use descriptor::{
     CyclicSymmetry, MemberOrbit, NodeOrbit, Place, SymmetryError, SYMMETRY_TOLERANCE,
