@@ -106,3 +106,4 @@ fn spokes_and_inner_carry_4n_plus_1_self_stresses() {
     }
 }
 
+
