@@ -31,7 +31,9 @@ use tensegrity_core::Structure;
 pub fn wheel_symmetry(geometry: &TbarGeometry, structure: &Structure) -> Result<CyclicSymmetry> {
     let n = match geometry.params.layout {
         Layout::Tread => {
-            return Err(tensegrity_core::CoreError::from(SymmetryError::TooFewSides { n: 1 }).into())
+            return Err(
+                tensegrity_core::CoreError::from(SymmetryError::TooFewSides { n: 1 }).into(),
+            )
         }
         _ => geometry.params.treads_per_wheel()?,
     };

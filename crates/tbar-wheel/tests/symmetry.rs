@@ -12,9 +12,15 @@ fn symmetric_statics_equal_dense_statics() {
     let mut nontrivial = false;
     for q in [1, 2] {
         for (michell, n) in [
-            (MichellParams::cylindrical(q, 1.0, FRAC_PI_6, PI / 8.0, 0.25), 8),
+            (
+                MichellParams::cylindrical(q, 1.0, FRAC_PI_6, PI / 8.0, 0.25),
+                8,
+            ),
             (MichellParams::cylindrical(q, 1.3, 0.4, PI / 6.0, 0.6), 6),
-            (MichellParams::spherical(q, 1.0, FRAC_PI_6, PI / 8.0, 0.3), 8),
+            (
+                MichellParams::spherical(q, 1.0, FRAC_PI_6, PI / 8.0, 0.3),
+                8,
+            ),
         ] {
             for base in [BarBase::Rim, BarBase::Chord] {
                 for layout in [Layout::Wheel, Layout::Extended { offset: 0.7 }] {
@@ -45,7 +51,10 @@ fn symmetric_statics_equal_dense_statics() {
             }
         }
     }
-    assert!(nontrivial, "some wheel is prestressable with several self-stresses");
+    assert!(
+        nontrivial,
+        "some wheel is prestressable with several self-stresses"
+    );
 }
 
 #[test]

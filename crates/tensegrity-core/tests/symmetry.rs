@@ -16,12 +16,20 @@ fn compare(s: &Structure, sym: &CyclicSymmetry, what: &str) -> f64 {
     let c = CyclicStatics::new(s, sym).unwrap();
     let d = Statics::new(s).unwrap();
     assert_eq!(c.rank(), d.rank(), "rank, {what}");
-    assert_eq!(c.self_stress_dim(), d.self_stress_dim(), "self-stress, {what}");
+    assert_eq!(
+        c.self_stress_dim(),
+        d.self_stress_dim(),
+        "self-stress, {what}"
+    );
     assert_eq!(c.mechanisms(), d.mechanisms(), "mechanisms, {what}");
     assert_eq!(c.free_dofs(), d.dofs().len(), "{what}");
     let f = d.flexes().unwrap();
     assert_eq!(c.rigid_body(), f.rigid_body, "rigid-body motions, {what}");
-    assert_eq!(c.internal_mechanisms(), f.internal.ncols(), "internal, {what}");
+    assert_eq!(
+        c.internal_mechanisms(),
+        f.internal.ncols(),
+        "internal, {what}"
+    );
     assert!((c.sigma_max() - d.singular_values()[0]).abs() < 1e-12 * c.sigma_max());
     let reps = c.representations();
     assert_eq!(reps.len(), sym.order());
@@ -30,7 +38,10 @@ fn compare(s: &Structure, sym: &CyclicSymmetry, what: &str) -> f64 {
     // blocks k and n − k are conjugate: equal counts
     for r in reps {
         let m = reps[(sym.order() - r.k) % sym.order()];
-        assert_eq!((r.rank, r.self_stress, r.mechanisms), (m.rank, m.self_stress, m.mechanisms));
+        assert_eq!(
+            (r.rank, r.self_stress, r.mechanisms),
+            (m.rank, m.self_stress, m.mechanisms)
+        );
     }
     let (ps, pd) = (c.prestressability().unwrap(), d.prestressability().unwrap());
     assert!(
@@ -85,7 +96,9 @@ fn bicycle(n: usize, cross: bool) -> tensegrity_core::StructureBuilder {
         b = b.bar(Bar::new(k, (k + 1) % n));
     }
     for k in 0..n {
-        b = b.string(StringMember::new(k, n)).string(StringMember::new(k, n + 1));
+        b = b
+            .string(StringMember::new(k, n))
+            .string(StringMember::new(k, n + 1));
     }
     if cross {
         for k in 0..n / 2 {
@@ -149,7 +162,12 @@ impl Lcg {
 /// a motif of `m` off-axis nodes rotated n times, two axis nodes, member families joining
 /// motif node i of copy k to motif node j of copy k + shift (all k), spokes to the axis nodes
 /// and the axial member.
-fn random_cyclic(n: usize, m: usize, families: usize, seed: u64) -> (Structure, Vector3<f64>, Vector3<f64>) {
+fn random_cyclic(
+    n: usize,
+    m: usize,
+    families: usize,
+    seed: u64,
+) -> (Structure, Vector3<f64>, Vector3<f64>) {
     let mut rng = Lcg(seed);
     let axis = Vector3::new(1.0, 1.0, 1.0).normalize();
     let centre = Vector3::new(0.5, -0.2, 0.1);
@@ -222,7 +240,10 @@ fn random_cyclic_structures_match_the_dense_path() {
         }
     }
     // the sample exercises every kind of orbit and non-trivial representations
-    assert!([1, 2, 3, 4, 5, 8].iter().all(|d| orbit_sizes.contains(d)), "{orbit_sizes:?}");
+    assert!(
+        [1, 2, 3, 4, 5, 8].iter().all(|d| orbit_sizes.contains(d)),
+        "{orbit_sizes:?}"
+    );
     assert!(stress_off_zero && internal_off_zero);
 }
 
@@ -243,27 +264,70 @@ fn invalid_descriptors_name_what_fails() {
         .chain((0..n).map(|k| 1 + (k + 1) % n))
         .chain((0..2 * n).map(|e| n + 1 + (2 * (e / 2 + 1) + e % 2) % (2 * n)))
         .collect();
-    let ok = CyclicSymmetry::new(&s, n, Vector3::x(), Vector3::zeros(), nodes.clone(), members.clone());
+    let ok = CyclicSymmetry::new(
+        &s,
+        n,
+        Vector3::x(),
+        Vector3::zeros(),
+        nodes.clone(),
+        members.clone(),
+    );
     assert!(ok.is_ok(), "{:?}", ok.err());
     let new = |n: usize, axis: Vector3<f64>, nodes: Vec<usize>, members: Vec<usize>| {
-        symmetry_error(CyclicSymmetry::new(&s, n, axis, Vector3::zeros(), nodes, members).unwrap_err())
+        symmetry_error(
+            CyclicSymmetry::new(&s, n, axis, Vector3::zeros(), nodes, members).unwrap_err(),
+        )
     };
     // the rotation by 2π/5 about −x carries rim node 0 to rim node 4, not 1
     let e = new(n, -Vector3::x(), nodes.clone(), members.clone());
-    assert!(matches!(e, SymmetryError::NodeNotMapped { node: 0, image: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SymmetryError::NodeNotMapped {
+                node: 0,
+                image: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("node 0"), "{e}");
     // a wrong order
     let e = new(4, Vector3::x(), nodes.clone(), members.clone());
     assert!(matches!(e, SymmetryError::NodeNotMapped { .. }), "{e}");
-    assert!(matches!(new(2, Vector3::x(), nodes.clone(), members.clone()), SymmetryError::TooFewSides { n: 2 }));
+    assert!(matches!(
+        new(2, Vector3::x(), nodes.clone(), members.clone()),
+        SymmetryError::TooFewSides { n: 2 }
+    ));
     // not a permutation: two nodes onto one
     let mut dup = nodes.clone();
     dup[1] = dup[0];
     let e = new(n, Vector3::x(), dup, members.clone());
-    assert!(matches!(e, SymmetryError::NotAPermutation { which: "node", item: 1, image: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SymmetryError::NotAPermutation {
+                which: "node",
+                item: 1,
+                image: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // wrong length
     let e = new(n, Vector3::x(), nodes[..3].to_vec(), members.clone());
-    assert!(matches!(e, SymmetryError::PermutationLength { which: "node", expected: 7, found: 3 }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SymmetryError::PermutationLength {
+                which: "node",
+                expected: 7,
+                found: 3
+            }
+        ),
+        "{e}"
+    );
     // a member mapped to the wrong member: rim bar 1 (member 1) onto rim bar 3
     let mut wrong = members.clone();
     wrong.swap(1, 3);
@@ -272,13 +336,37 @@ fn invalid_descriptors_name_what_fails() {
     assert!(e.to_string().contains("bar 1"), "{e}");
     // a zero axis
     let e = new(n, Vector3::zeros(), nodes.clone(), members.clone());
-    assert!(matches!(e, SymmetryError::BadAxis { what: "axis", .. }), "{e}");
-    // an asymmetric support
-    let s2 = bicycle(n, false).support(Support::pinned(0)).build().unwrap();
-    let e = symmetry_error(
-        CyclicSymmetry::new(&s2, n, Vector3::x(), Vector3::zeros(), nodes.clone(), members).unwrap_err(),
+    assert!(
+        matches!(e, SymmetryError::BadAxis { what: "axis", .. }),
+        "{e}"
     );
-    assert!(matches!(e, SymmetryError::SupportNotSymmetric { node: 0, image: 1, .. }), "{e}");
+    // an asymmetric support
+    let s2 = bicycle(n, false)
+        .support(Support::pinned(0))
+        .build()
+        .unwrap();
+    let e = symmetry_error(
+        CyclicSymmetry::new(
+            &s2,
+            n,
+            Vector3::x(),
+            Vector3::zeros(),
+            nodes.clone(),
+            members,
+        )
+        .unwrap_err(),
+    );
+    assert!(
+        matches!(
+            e,
+            SymmetryError::SupportNotSymmetric {
+                node: 0,
+                image: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // from positions: a structure that is not symmetric
     let mut moved = bicycle(n, false).build().unwrap().nodes().to_vec();
     moved[2].y += 0.1;
@@ -286,5 +374,8 @@ fn invalid_descriptors_name_what_fails() {
     let e = symmetry_error(
         CyclicSymmetry::from_positions(&s3, n, Vector3::x(), Vector3::zeros()).unwrap_err(),
     );
-    assert!(matches!(e, SymmetryError::NoImageNode { node: 1, .. }), "{e}");
+    assert!(
+        matches!(e, SymmetryError::NoImageNode { node: 1, .. }),
+        "{e}"
+    );
 }

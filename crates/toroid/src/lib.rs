@@ -32,8 +32,8 @@ mod tipover;
 pub mod validity;
 
 pub use analysis::{
-    analyse, analyse_dense, design_from, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
-    PrestressDesign, ToroidAnalysis,
+    analyse, analyse_dense, design_from, prestress_design, prestressed_structure,
+    prism_prestressable, rim_radius_window, PrestressDesign, ToroidAnalysis,
 };
 pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};
 pub use error::{Result, ToroidError};

@@ -24,7 +24,10 @@ fn compare(n: usize, o: &str) {
     let dense = analyse_dense(&t).unwrap();
     let what = format!("n = {n}, {o}");
     assert_eq!(sym.rank, dense.rank, "rank, {what}");
-    assert_eq!(sym.self_stress_dim, dense.self_stress_dim, "self-stress, {what}");
+    assert_eq!(
+        sym.self_stress_dim, dense.self_stress_dim,
+        "self-stress, {what}"
+    );
     assert_eq!(
         sym.internal_mechanisms, dense.internal_mechanisms,
         "mechanisms, {what}"
@@ -105,5 +108,3 @@ fn spokes_and_inner_carry_4n_plus_1_self_stresses() {
         assert_eq!(a.prestressable, n < 30, "n = {n}");
     }
 }
-
-

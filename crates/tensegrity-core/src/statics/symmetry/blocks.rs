@@ -158,7 +158,12 @@ fn block_layout(ctx: &BlockContext<'_>, k: usize) -> BlockLayout {
 }
 
 /// R^{−p} v by Rodrigues' formula (angle −2πp/n about the axis), from the root table.
-fn rotate_back(a: &Vector3<f64>, roots: &[Complex<f64>], p: usize, v: &Vector3<f64>) -> Vector3<f64> {
+fn rotate_back(
+    a: &Vector3<f64>,
+    roots: &[Complex<f64>],
+    p: usize,
+    v: &Vector3<f64>,
+) -> Vector3<f64> {
     let (c, s) = (roots[p].re, -roots[p].im);
     v * c + a.cross(v) * s + a * (a.dot(v) * (1.0 - c))
 }

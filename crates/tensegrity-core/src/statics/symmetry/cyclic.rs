@@ -95,7 +95,9 @@ impl<'a> CyclicStatics<'a> {
             .iter()
             .filter_map(|f| f.s.first().copied())
             .fold(0.0, f64::max);
-        let rows: usize = (0..n).map(|k| factored[k.min(n - k)].layout.free_rows()).sum();
+        let rows: usize = (0..n)
+            .map(|k| factored[k.min(n - k)].layout.free_rows())
+            .sum();
         let tolerance = linalg::rank_tolerance(
             rows,
             structure.n_members(),

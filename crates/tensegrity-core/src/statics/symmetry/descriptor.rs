@@ -503,7 +503,8 @@ fn node_permutation(
 ) -> SymResult<Vec<usize>> {
     let tol = SYMMETRY_TOLERANCE * scale(structure);
     let cell = 1e4 * tol;
-    let key = |p: &Vector3<f64>| -> [i64; 3] { std::array::from_fn(|d| (p[d] / cell).floor() as i64) };
+    let key =
+        |p: &Vector3<f64>| -> [i64; 3] { std::array::from_fn(|d| (p[d] / cell).floor() as i64) };
     let x = structure.nodes();
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
     for (i, p) in x.iter().enumerate() {
