@@ -249,7 +249,7 @@ fn random_cyclic_structures_match_the_dense_path() {
 
 fn symmetry_error(e: CoreError) -> SymmetryError {
     match e {
-        CoreError::Symmetry(s) => s,
+        CoreError::Symmetry(s) => *s,
         other => panic!("expected a symmetry error, got {other}"),
     }
 }
