@@ -48,11 +48,10 @@ pub fn toroid_symmetry(toroid: &Toroid) -> Result<CyclicSymmetry> {
 
 /// The self-stress states and internal mechanisms each irreducible representation k of Cₙ
 /// carries (k = 0..n−1; representation k has character e^{2πik/n}, k = 0 the fully symmetric
-/// states); serialised as the `symmetry` object of `tensegrity toroid --json`.
+/// states); serialised as the `symmetry` object of `tensegrity toroid --json` (arrays only,
+/// so the sweep studies' scalar columns stay the report's scalars; n is their length).
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct SymmetryCounts {
-    /// The group order n (the number of prisms).
-    pub order: usize,
     /// Self-stress states per representation k.
     pub self_stress_by_representation: Vec<usize>,
     /// Internal mechanisms (first-order, rigid-body motions removed) per representation k.
@@ -63,7 +62,6 @@ impl SymmetryCounts {
     /// The counts of a symmetric analysis; `None` when `reps` is empty (the dense path).
     pub fn of(reps: &[tensegrity_core::statics::symmetry::RepCounts]) -> Option<Self> {
         (!reps.is_empty()).then(|| Self {
-            order: reps.len(),
             self_stress_by_representation: reps.iter().map(|r| r.self_stress).collect(),
             internal_mechanisms_by_representation: reps
                 .iter()
