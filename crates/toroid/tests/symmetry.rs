@@ -108,3 +108,46 @@ fn spokes_and_inner_carry_4n_plus_1_self_stresses() {
         assert_eq!(a.prestressable, n < 30, "n = {n}");
     }
 }
+
+#[test]
+fn symmetric_equals_dense_off_the_reference_geometry() {
+    let geometries = [
+        // no tread offset (a more degenerate wheel), a wide inner tread, a rim near the window
+        ToroidParams::default().offset(0.0),
+        ToroidParams {
+            inner_tread: 0.5,
+            inner_radius: 0.4,
+            ..ToroidParams::default()
+        },
+        ToroidParams::default().rim_radius(0.69),
+    ];
+    for p in geometries {
+        for n in [6, 7] {
+            for o in OPTION_SETS {
+                let p = p.sides(n);
+                let t = build(&p, o.parse().unwrap(), 1.0).unwrap();
+                let (a, b) = (analyse(&t).unwrap(), analyse_dense(&t).unwrap());
+                let what = format!("{p:?}, {o}");
+                assert_eq!(
+                    (
+                        a.rank,
+                        a.self_stress_dim,
+                        a.internal_mechanisms,
+                        a.prestressable
+                    ),
+                    (
+                        b.rank,
+                        b.self_stress_dim,
+                        b.internal_mechanisms,
+                        b.prestressable
+                    ),
+                    "{what}"
+                );
+                assert!(
+                    (a.prestress_margin - b.prestress_margin).abs() < 1e-9,
+                    "{what}"
+                );
+            }
+        }
+    }
+}
