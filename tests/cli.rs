@@ -224,7 +224,9 @@ fn an_exported_toroid_scene_gives_the_same_statics() {
         toroid["prestress_margin"].as_f64().unwrap(),
         statics["prestress_margin"].as_f64().unwrap(),
     );
-    assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+    // the toroid's margin comes from the symmetric LP, the scene's from the dense LP: the
+    // same optimum, each solved to the LP tolerance (1e-10)
+    assert!((a - b).abs() < 1e-9, "{a} vs {b}");
 }
 
 #[test]
@@ -661,22 +663,23 @@ fn a_run_away_step_is_reported_as_divergence_with_the_remedy_not_as_singular_con
 }
 
 #[test]
-fn a_structure_too_large_for_memory_is_refused_before_allocating() {
-    // n = 2000: A is 30006 × 38001 (5n + 2 nodes with the axle, 19n + 1 members); its dense
-    // SVD would need ~52 GiB
-    let out = run(&["toroid", "--sides", "2000"]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("30006 × 38001") && err.contains("GiB") && err.contains("--sides"),
-        "{err}"
-    );
-    let out = run(&["toroid", "--sides", "100000"]);
+fn a_large_wheel_is_analysed_through_its_symmetry() {
+    // n = 2000: A is 30006 × 38001; its dense SVD would need ~52 GiB and was refused. The
+    // symmetry-adapted path (2000 blocks of 17 × 20) analyses it in milliseconds: rank
+    // 15n = 30000, self-stress 4n + 1 = 8001, no internal mechanism.
+    let out = run(&["toroid", "--sides", "2000", "--json"]);
+    assert_ok(&out);
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(
-        out.status.code(),
-        Some(2),
-        "no allocation failure, no backtrace"
+        (&r["rank"], &r["self_stress_dim"], &r["internal_mechanisms"]),
+        (&30000.into(), &8001.into(), &0.into())
     );
+    let by_rep = r["symmetry"]["self_stress_by_representation"]
+        .as_array()
+        .unwrap();
+    assert_eq!(by_rep.len(), 2000);
+    let total: u64 = by_rep.iter().map(|v| v.as_u64().unwrap()).sum();
+    assert_eq!(total, 8001);
 }
 
 #[test]

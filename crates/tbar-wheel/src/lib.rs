@@ -14,7 +14,9 @@
 //! - [`brute`]: an independent brute-force check of the minimum prestress;
 //! - [`mass`]: minimum-mass sizing for the envelope against the 3-D Michell truss;
 //! - [`drawing`]: polylines of Figs. 5.1–5.3 (side and top views) for the io figure module;
-//! - [`report`]: one complete analysis for the CLI ([`tbar_report`]).
+//! - [`report`]: one complete analysis for the CLI ([`tbar_report`]);
+//! - [`symmetry`]: the Cₙ descriptor of the wheel (n = π/φ treads about ι̂₁) and the statics
+//!   summary through the core's symmetry-adapted blocks.
 //!
 //! - [`rim`]: the rim body (a ring of bars with a hub, class-k joints) replacing the rigid
 //!   rim's supports, and its prestressability LP;
@@ -36,6 +38,7 @@ pub mod rim;
 pub mod rolling;
 pub mod standing;
 pub mod statics;
+pub mod symmetry;
 
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;

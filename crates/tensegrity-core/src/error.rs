@@ -176,6 +176,10 @@ pub enum CoreError {
         /// Time of the last sample handed out (s).
         t: f64,
     },
+    /// A cyclic-symmetry descriptor that does not describe the structure (boxed: the
+    /// variant names nodes, members and positions).
+    #[error(transparent)]
+    Symmetry(Box<crate::statics::symmetry::SymmetryError>),
     /// A problem too large for the memory budget, refused before allocating.
     #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer --sides or a lower --complexity)", bytes / 1073741824.0, limit / 1073741824.0)]
     TooLarge {
@@ -420,5 +424,11 @@ impl CoreError {
             value,
             reason: reason.into(),
         }
+    }
+}
+
+impl From<crate::statics::symmetry::SymmetryError> for CoreError {
+    fn from(e: crate::statics::symmetry::SymmetryError) -> Self {
+        CoreError::Symmetry(Box::new(e))
     }
 }

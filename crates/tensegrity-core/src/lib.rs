@@ -6,7 +6,8 @@
 //!   builder;
 //! - [`connectivity`]: C_b, C_s, C_r and B = N C_bᵀ, S = N C_sᵀ, R = N C_rᵀ;
 //! - [`statics`]: equilibrium matrix A q = w, SVD rank, self-stress, mechanisms,
-//!   prestressability (LP), minimal-norm load solve with reactions;
+//!   prestressability (LP), minimal-norm load solve with reactions; `statics::symmetry` the
+//!   same for cyclically symmetric structures in O(n) (Fourier blocks per representation);
 //! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
 //! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);

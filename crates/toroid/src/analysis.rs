@@ -1,13 +1,24 @@
 //! Statics of the toroid with the core definitions: self-stress, prestressability margin,
 //! internal mechanisms (first-order flexes beyond the six rigid-body motions), a prestress
 //! design, mass and inertia; and the rim-radius window of single-prism prestressability.
+//!
+//! A wheel is analysed in the symmetry-adapted basis of its Cₙ symmetry about ι₁
+//! ([`crate::toroid_symmetry`], `tensegrity_core::statics::symmetry`): n blocks of at most
+//! 17 rows and 21 columns instead of one SVD of 15n × 17n, so rank, self-stress dimension,
+//! mechanisms (each per representation k) and the prestress margin (an LP over the fully
+//! symmetric self-stresses) cost O(n); mass and inertia are sums over bars, O(n).
+//! [`analyse_dense`] keeps the dense path for cross-checks. The max-margin self-stress of the
+//! symmetric LP is constant on member orbits (every prism carries the same forces); when the
+//! optimum is not unique it may differ from the dense LP's, with the same margin.
 
 use crate::builder::{build_prism, Toroid};
 use crate::error::{Result, ToroidError};
 use crate::inertia::{wheel_inertia, wheel_mass};
 use crate::params::ToroidParams;
+use crate::symmetry::toroid_symmetry;
 use nalgebra::{DVector, Matrix3};
-use tensegrity_core::Statics;
+use tensegrity_core::statics::symmetry::{CyclicStatics, RepCounts};
+use tensegrity_core::{Prestressability, Statics};
 
 /// The analysis of a toroid (or a single prism).
 #[derive(Debug, Clone, PartialEq)]
@@ -36,36 +47,103 @@ pub struct ToroidAnalysis {
     pub i1: f64,
     /// The max-margin self-stress (max|q| = 1), when prestressable.
     pub prestress: Option<DVector<f64>>,
+    /// Rank, self-stress states and mechanisms per representation k = 0..n−1 of Cₙ (the
+    /// symmetry-adapted path); empty from the dense path.
+    pub representations: Vec<RepCounts>,
 }
 
-/// Runs the statics, flex count, mass and inertia of a built toroid.
+/// Runs the statics, flex count, mass and inertia of a built toroid: a wheel (n ≥ 3 prisms)
+/// through the symmetry-adapted path ([`CyclicStatics`], O(n)), a single prism through the
+/// dense one ([`analyse_dense`]).
 ///
 /// ```
 /// use toroid::{analyse, build, ToroidParams};
 /// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
 /// let a = analyse(&t).unwrap();
 /// assert_eq!(a.internal_mechanisms, 0); // ERRATA 3.4: spokes + inner is first-order rigid
+/// assert_eq!(a.self_stress_dim, 4 * 8 + 1);
 /// ```
 pub fn analyse(toroid: &Toroid) -> Result<ToroidAnalysis> {
+    if is_prism(toroid) {
+        return analyse_dense(toroid);
+    }
+    let s = &toroid.structure;
+    let sym = toroid_symmetry(toroid)?;
+    let statics = CyclicStatics::new(s, &sym)?;
+    let pre = statics.prestressability()?;
+    Ok(assemble(
+        toroid,
+        Counts {
+            rank: statics.rank(),
+            self_stress_dim: statics.self_stress_dim(),
+            internal_mechanisms: statics.internal_mechanisms(),
+        },
+        pre,
+        statics.representations().to_vec(),
+    ))
+}
+
+/// [`analyse`] through the dense SVD of the whole equilibrium matrix (O(n³)): the
+/// cross-check of the symmetric path, and the path of a single prism.
+///
+/// ```
+/// use toroid::{analyse, analyse_dense, build, ToroidParams};
+/// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
+/// let (a, b) = (analyse(&t).unwrap(), analyse_dense(&t).unwrap());
+/// assert_eq!((a.rank, a.internal_mechanisms), (b.rank, b.internal_mechanisms));
+/// assert!((a.prestress_margin - b.prestress_margin).abs() < 1e-9);
+/// ```
+pub fn analyse_dense(toroid: &Toroid) -> Result<ToroidAnalysis> {
     let s = &toroid.structure;
     let statics = Statics::new(s)?;
     let pre = statics.prestressability()?;
     let flexes = statics.flexes()?;
+    Ok(assemble(
+        toroid,
+        Counts {
+            rank: statics.rank(),
+            self_stress_dim: statics.self_stress_dim(),
+            internal_mechanisms: flexes.internal.ncols(),
+        },
+        pre,
+        Vec::new(),
+    ))
+}
+
+/// Whether the toroid is a single prism (built by [`build_prism`]) rather than a wheel.
+fn is_prism(toroid: &Toroid) -> bool {
+    toroid.structure.n_nodes() < 5 * toroid.params.sides
+}
+
+struct Counts {
+    rank: usize,
+    self_stress_dim: usize,
+    internal_mechanisms: usize,
+}
+
+fn assemble(
+    toroid: &Toroid,
+    counts: Counts,
+    pre: Prestressability,
+    representations: Vec<RepCounts>,
+) -> ToroidAnalysis {
+    let s = &toroid.structure;
     let inertia = wheel_inertia(s);
-    Ok(ToroidAnalysis {
+    ToroidAnalysis {
         nodes: s.n_nodes(),
         bars: s.n_bars(),
         strings: s.n_strings(),
-        rank: statics.rank(),
-        self_stress_dim: statics.self_stress_dim(),
+        rank: counts.rank,
+        self_stress_dim: counts.self_stress_dim,
         prestressable: pre.prestressable,
         prestress_margin: pre.margin,
-        internal_mechanisms: flexes.internal.ncols(),
+        internal_mechanisms: counts.internal_mechanisms,
         mass_kg: wheel_mass(s),
         i1: inertia[(0, 0)],
         inertia,
         prestress: pre.prestressable.then_some(pre.stress),
-    })
+        representations,
+    }
 }
 
 /// A prestress: the max-margin self-stress scaled so the least-tensioned string carries
@@ -80,7 +158,8 @@ pub struct PrestressDesign {
     pub scale: f64,
 }
 
-/// Designs a prestress with the given minimum string tension (N).
+/// Designs a prestress with the given minimum string tension (N), from the max-margin
+/// self-stress of [`analyse`] (fully symmetric for a wheel).
 ///
 /// ```
 /// use toroid::{build, prestress_design, ToroidParams};
@@ -91,6 +170,12 @@ pub struct PrestressDesign {
 /// assert!((min - 10.0).abs() < 1e-9);
 /// ```
 pub fn prestress_design(toroid: &Toroid, min_string_tension: f64) -> Result<PrestressDesign> {
+    check_tension(min_string_tension)?;
+    let a = analyse(toroid)?;
+    design_from(toroid, &a, min_string_tension)
+}
+
+fn check_tension(min_string_tension: f64) -> Result<()> {
     if !(min_string_tension.is_finite() && min_string_tension > 0.0) {
         return Err(ToroidError::InvalidParameter {
             name: "min_string_tension",
@@ -98,19 +183,29 @@ pub fn prestress_design(toroid: &Toroid, min_string_tension: f64) -> Result<Pres
             reason: "must be a positive force (N)".into(),
         });
     }
+    Ok(())
+}
+
+/// [`prestress_design`] from an analysis already run on `toroid`.
+pub fn design_from(
+    toroid: &Toroid,
+    analysis: &ToroidAnalysis,
+    min_string_tension: f64,
+) -> Result<PrestressDesign> {
+    check_tension(min_string_tension)?;
+    let Some(stress) = analysis.prestress.as_ref() else {
+        return Err(ToroidError::NotPrestressable {
+            margin: analysis.prestress_margin,
+        });
+    };
     let s = &toroid.structure;
-    let statics = Statics::new(s)?;
-    let pre = statics.prestressability()?;
-    if !pre.prestressable {
-        return Err(ToroidError::NotPrestressable { margin: pre.margin });
-    }
     let lengths = s.member_lengths();
     let nb = s.n_bars();
     let min_unit = (nb..s.n_members())
-        .map(|k| pre.stress[k] * lengths[k])
+        .map(|k| stress[k] * lengths[k])
         .fold(f64::INFINITY, f64::min);
     let scale = min_string_tension / min_unit;
-    let force_density = pre.stress * scale;
+    let force_density = stress * scale;
     let member_force = DVector::from_iterator(
         lengths.len(),
         force_density.iter().zip(&lengths).map(|(q, l)| q * l),

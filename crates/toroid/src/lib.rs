@@ -28,13 +28,14 @@ mod roll;
 pub mod rolling;
 pub mod rolling_full;
 pub mod rolling_lean;
+mod symmetry;
 mod tipover;
 pub mod tipover_dynamic;
 pub mod validity;
 
 pub use analysis::{
-    analyse, prestress_design, prestressed_structure, prism_prestressable, rim_radius_window,
-    PrestressDesign, ToroidAnalysis,
+    analyse, analyse_dense, design_from, prestress_design, prestressed_structure,
+    prism_prestressable, rim_radius_window, PrestressDesign, ToroidAnalysis,
 };
 pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};
 pub use error::{Result, ToroidError};
@@ -45,5 +46,6 @@ pub use report::{
     WheelSpec,
 };
 pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
+pub use symmetry::{toroid_symmetry, SymmetryCounts};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
 pub use validity::{ImpactRecord, RollValidity};

@@ -7,12 +7,13 @@
 //! come from [`crate::analyse`], [`crate::prestress_design`], [`crate::rim_radius_window`] and
 //! [`crate::tipover`].
 
-use crate::analysis::{analyse, prestress_design, prestressed_structure, rim_radius_window};
+use crate::analysis::{analyse, design_from, prestressed_structure, rim_radius_window};
 use crate::builder::{build, build_prism, Toroid};
 use crate::defaults;
 use crate::error::Result;
 use crate::inertia::wheel_mass;
 use crate::params::{Stabilize, ToroidParams};
+use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::Serialize;
 use tensegrity_core::Structure;
@@ -118,6 +119,10 @@ pub struct ToroidReport {
     /// and found.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rim_radius_window: Option<[f64; 2]>,
+    /// Self-stress states and internal mechanisms per representation of the wheel's Cₙ
+    /// symmetry (the symmetry-adapted analysis); absent for a single prism.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub symmetry: Option<SymmetryCounts>,
     /// The analysed structure (with stiff, prestressed strings when the request gives a
     /// string stiffness), for export; not serialised.
     #[serde(skip)]
@@ -145,7 +150,7 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
     let a = analyse(&t)?;
     // with a string stiffness, a toroid that is not prestressable fails here (no design)
     let design = if a.prestressable || request.string_stiffness.is_some() {
-        Some(prestress_design(&t, request.min_tension)?)
+        Some(design_from(&t, &a, request.min_tension)?)
     } else {
         None
     };
@@ -183,6 +188,7 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
         i1: a.i1,
         prestress_member_force: design.map(|d| d.member_force.iter().copied().collect()),
         rim_radius_window: window.map(|(lo, hi)| [lo, hi]),
+        symmetry: SymmetryCounts::of(&a.representations),
         structure,
     })
 }

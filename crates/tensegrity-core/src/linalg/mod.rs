@@ -17,7 +17,9 @@
 //! - [`sparse`]: compressed-column storage ([`CscPattern`], [`CscMatrix`]), the fill-reducing
 //!   ordering ([`amd_ordering`]), sparse Cholesky A = L Lᵀ with symbolic reuse (the in-house
 //!   [`StaticCholesky`] with a precomputed schedule, and the general [`SparseCholesky`]) and
-//!   sparse LU with partial pivoting P A Q = L U ([`SparseLu`], [`lu_solve`]).
+//!   sparse LU with partial pivoting P A Q = L U ([`SparseLu`], [`lu_solve`]);
+//! - [`complex`]: the complex SVD A = U Σ Vᴴ of the small per-representation blocks of the
+//!   symmetry-adapted statics ([`complex_svd`], [`complex_singular_values`]).
 //!
 //! Where a factorisation is repeated with a fixed pattern (the Ω system of the dynamics is
 //! refactored every step), the symbolic analysis is done once by a constructor and the numeric
@@ -37,10 +39,12 @@
 //! faer runs sequentially (`Par::Seq`, and its `rayon` feature is off): parallelism belongs to
 //! the parameter sweeps that call these kernels.
 
+pub mod complex;
 pub mod dense;
 pub mod sparse;
 
 pub use crate::error::FactorizationFailure;
+pub use complex::{complex_singular_values, complex_svd, ComplexSvd};
 pub use dense::{
     orthonormal_basis, rank_tolerance, svd, symmetric_eigen, DenseCholesky, DenseLu, Svd,
 };

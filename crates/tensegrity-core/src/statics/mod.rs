@@ -17,6 +17,7 @@ mod load;
 mod prestress;
 pub mod report;
 mod stability;
+pub mod symmetry;
 
 pub use flexes::Flexes;
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};

@@ -1,0 +1,74 @@
+//! The cyclic symmetry of the T-bar wheel: tread k is tread 0 rotated by 2kφ about ι̂₁ (the x
+//! axis), so the wheel of n = π/φ treads (and the extended wheel, both copies alike) is
+//! invariant under the rotation by 2π/n = 2φ about ι̂₁ through the origin. The node
+//! permutation is found by position (nodes are merged by position when the wheel is built)
+//! and the member permutation from it; the core validates both
+//! ([`CyclicSymmetry::from_positions`]). The rim supports are pinned nodes, carried onto
+//! pinned nodes.
+//!
+//! [`symmetric_statics_summary`] gives [`crate::statics::statics_summary`]'s numbers from the
+//! symmetry-adapted blocks, without the dense SVD (and without its size limit).
+
+use crate::error::Result;
+use crate::geometry::TbarGeometry;
+use crate::params::Layout;
+use crate::statics::StaticsSummary;
+use nalgebra::Vector3;
+use tensegrity_core::statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
+use tensegrity_core::Structure;
+
+/// The Cₙ descriptor (n = π/φ) of a wheel or extended wheel and its structure; a single tread
+/// has no rotational symmetry (`SymmetryError::TooFewSides` with n = 1).
+///
+/// ```
+/// use michell3d::MichellParams;
+/// use tbar_wheel::{symmetry::wheel_symmetry, Layout, TbarGeometry, TbarParams};
+/// let m = MichellParams::cylindrical(1, 1.0, 0.5, std::f64::consts::PI / 8.0, 0.25);
+/// let g = TbarGeometry::new(TbarParams::tread(m).with_layout(Layout::Wheel)).unwrap();
+/// let sym = wheel_symmetry(&g, &g.structure().unwrap()).unwrap();
+/// assert_eq!(sym.order(), 8);
+/// ```
+pub fn wheel_symmetry(geometry: &TbarGeometry, structure: &Structure) -> Result<CyclicSymmetry> {
+    let n = match geometry.params.layout {
+        Layout::Tread => {
+            return Err(
+                tensegrity_core::CoreError::from(SymmetryError::TooFewSides { n: 1 }).into(),
+            )
+        }
+        _ => geometry.params.treads_per_wheel()?,
+    };
+    Ok(CyclicSymmetry::from_positions(
+        structure,
+        n,
+        Vector3::x(),
+        Vector3::zeros(),
+    )?)
+}
+
+/// The statics summary of a wheel or extended wheel through the symmetry-adapted path.
+///
+/// ```
+/// use michell3d::MichellParams;
+/// use tbar_wheel::{statics::statics_summary, symmetry::symmetric_statics_summary};
+/// use tbar_wheel::{Layout, TbarGeometry, TbarParams};
+/// let m = MichellParams::cylindrical(1, 1.0, 0.5, std::f64::consts::PI / 8.0, 0.25);
+/// let g = TbarGeometry::new(TbarParams::tread(m).with_layout(Layout::Wheel)).unwrap();
+/// let sym = symmetric_statics_summary(&g).unwrap();
+/// let dense = statics_summary(&g.structure().unwrap()).unwrap();
+/// assert_eq!((sym.rank, sym.self_stress_dim), (dense.rank, dense.self_stress_dim));
+/// ```
+pub fn symmetric_statics_summary(geometry: &TbarGeometry) -> Result<StaticsSummary> {
+    let structure = geometry.structure()?;
+    let sym = wheel_symmetry(geometry, &structure)?;
+    let statics = CyclicStatics::new(&structure, &sym)?;
+    let pre = statics.prestressability()?;
+    Ok(StaticsSummary {
+        free_dofs: statics.free_dofs(),
+        rank: statics.rank(),
+        self_stress_dim: statics.self_stress_dim(),
+        mechanisms: statics.mechanisms(),
+        internal_mechanisms: statics.internal_mechanisms(),
+        prestressable: pre.prestressable,
+        prestress_margin: pre.margin,
+    })
+}
