@@ -6,6 +6,7 @@ pub mod demo;
 pub mod exit;
 pub mod michell;
 pub mod roll;
+pub mod roll_series;
 pub mod simulate;
 pub mod statics;
 pub mod stream;

