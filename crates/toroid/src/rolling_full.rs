@@ -43,7 +43,9 @@
 //! pairs still carry the wheel (a graze, which takes nothing over). Its record holds the touch-down time, ω (about the axle: the mean
 //! over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², positive rolling downhill)
 //! just before, ω at the end of the contact transient (when the previously loaded pairs have
-//! left the slope, at most [`defaults::IMPACT_WINDOW`] later), and the integral of the new
+//! left the slope and the new pair's spring has had half a period π √(m_eff / 2k) to take the
+//! wheel over, or when the new pair bounces off; at most [`defaults::IMPACT_WINDOW`] after
+//! the touch-down), and the integral of the new
 //! pair's contact force over that transient (normal and tangential impulse).
 
 mod monitor;

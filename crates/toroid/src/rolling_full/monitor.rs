@@ -28,6 +28,9 @@ pub(super) struct Geometry {
     plane_z: f64,
     /// Penalty stiffness per node (0 for the thesis contact).
     stiffness: f64,
+    /// Contact transient of an impact (s): half a period of a pair's spring under the
+    /// effective mass, π √(m_eff / 2k), at most [`defaults::IMPACT_WINDOW`].
+    landing: f64,
 }
 
 impl Geometry {
@@ -43,6 +46,14 @@ impl Geometry {
             s_offset: r_o * half.sin(),
             plane_z: -r_o * half.cos(),
             stiffness,
+            landing: if stiffness > 0.0 {
+                let s = &toroid.structure;
+                let (m, i1) = (crate::wheel_mass(s), crate::wheel_inertia(s)[(0, 0)]);
+                let m_eff = super::contact_effective_mass(m, i1, r_o, n);
+                (PI * (m_eff / (2.0 * stiffness)).sqrt()).min(defaults::IMPACT_WINDOW)
+            } else {
+                defaults::IMPACT_WINDOW
+            },
         }
     }
 
@@ -115,11 +126,14 @@ impl StepContact {
         let (mut count, mut strongest) = (0usize, 0.0);
         for &(node, f) in smp.contact_forces.iter().flatten() {
             let delta = (g.plane_z - x[node].z).max(0.0);
+            let (vel, pair) = (v[node], node / 5);
             c.penetration = c.penetration.max(delta);
+            // the ground spring's energy ½kδ² is in E even where the clipped damper
+            // cancels the force: its power −kδ v_n belongs to the non-conservative work
+            c.p_damp += (f.z - g.stiffness * delta) * vel.z;
             if f == Vector3::zeros() {
                 continue;
             }
-            let (vel, pair) = (v[node], node / 5);
             c.pair_force[pair] += f;
             c.loaded[pair] = true;
             c.force += f;
@@ -128,7 +142,6 @@ impl StepContact {
             c.slip_speed += speed;
             c.slipping |= speed > defaults::STRIBECK_VELOCITY;
             count += 1;
-            c.p_damp += (f.z - g.stiffness * delta) * vel.z;
             c.p_fric += f.xy().dot(&vel.xy());
             if f.z > strongest {
                 strongest = f.z;
@@ -248,11 +261,16 @@ impl Monitor {
     fn track_impacts(&mut self, t: f64, omega: f64, c: &StepContact) {
         if let Some(open) = &self.open {
             let released = open.others.iter().all(|&k| !c.loaded[k]);
+            let age = t - open.t;
             if !c.loaded[open.pair] && !released {
                 // a graze: the new pair left again while the old pivot still carried the
                 // wheel, so it took nothing over
                 self.open = None;
-            } else if released || t - open.t >= defaults::IMPACT_WINDOW {
+            } else if !c.loaded[open.pair]
+                || (released && age >= self.g.landing)
+                || age >= defaults::IMPACT_WINDOW
+            {
+                // the new pair's spring has taken the wheel over (or bounced off)
                 self.close_impact(omega);
             }
         }
