@@ -31,10 +31,12 @@ pub(super) struct Geometry {
     /// Contact transient of an impact (s): half a period of a pair's spring under the
     /// effective mass, π √(m_eff / 2k), at most [`defaults::IMPACT_WINDOW`].
     landing: f64,
+    /// The wheel's energy scale m g R_o (J): the smallest scale of the energy budget.
+    energy_scale: f64,
 }
 
 impl Geometry {
-    pub(super) fn of(toroid: &Toroid, stiffness: f64) -> Self {
+    pub(super) fn of(toroid: &Toroid, stiffness: f64, gravity: f64) -> Self {
         let n = toroid.params.sides;
         let r_o = toroid.params.outer_radius;
         let half = PI / n as f64;
@@ -46,6 +48,7 @@ impl Geometry {
             s_offset: r_o * half.sin(),
             plane_z: -r_o * half.cos(),
             stiffness,
+            energy_scale: crate::wheel_mass(&toroid.structure) * gravity * r_o,
             landing: if stiffness > 0.0 {
                 let s = &toroid.structure;
                 let (m, i1) = (crate::wheel_mass(s), crate::wheel_inertia(s)[(0, 0)]);
@@ -366,11 +369,7 @@ impl Monitor {
         } else {
             0.0
         };
-        let energy_balance_error = if self.scale > 0.0 {
-            self.residual / self.scale
-        } else {
-            0.0
-        };
+        let energy_balance_error = self.residual / self.scale.max(self.g.energy_scale);
         let tolerance = defaults::PENETRATION_TOLERANCE * self.g.r_o;
         let mut warnings = Vec::new();
         if self.max_penetration > tolerance {
