@@ -349,6 +349,12 @@ pub struct FigRollingArgs {
     /// Simulated time (s).
     #[arg(long, default_value_t = defaults::ROLL_T_END, value_parser = values::positive)]
     t_end: f64,
+    /// Static friction coefficient μ_s (μ_k = 0.75 μ_s).
+    #[arg(long, default_value_t = defaults::STATIC_FRICTION, value_parser = values::non_negative)]
+    mu: f64,
+    /// Normal coefficient of restitution e.
+    #[arg(long, default_value_t = defaults::RESTITUTION)]
+    restitution: f64,
 }
 
 /// Entry point of `tensegrity fig-rolling`: thesis Figs. 3.10 (n = 8, 12, 16, 24) and 3.11
@@ -360,6 +366,8 @@ pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
         contact: args.contact.into(),
         incline: args.incline,
         t_end: args.t_end,
+        mu: args.mu,
+        restitution: args.restitution,
         ..RollRequest::default()
     };
     let runs = super::roll_series::parallel_series(&request, &defaults::FIG_3_10_SIDES)?;

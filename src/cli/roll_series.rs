@@ -65,14 +65,19 @@ pub fn print_series(runs: &[RollReport]) {
     }
     println!("\nimpact impulse per new contact (§3.3.1), means over each run's impacts:");
     println!(
-        "{:>4} {:>8} {:>18} {:>22} {:>14}",
-        "n", "impacts", "normal [N s]", "tangential [N s]", "omega+/omega-"
+        "{:>4} {:>8} {:>14} {:>18} {:>16} {:>14}",
+        "n", "impacts", "normal [N s]", "tangential [N s]", "normal/m [m/s]", "omega+/omega-"
     );
     for r in runs {
         let (normal, tangential, ratio) = impact_means(r);
         println!(
-            "{:>4} {:>8} {:>18.5} {:>22.5} {:>14.5}",
-            r.sides, r.impacts, normal, tangential, ratio
+            "{:>4} {:>8} {:>14.5} {:>18.5} {:>16.5} {:>14.5}",
+            r.sides,
+            r.impacts,
+            normal,
+            tangential,
+            normal / r.mass_kg,
+            ratio
         );
     }
 }
