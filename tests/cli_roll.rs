@@ -42,10 +42,7 @@ fn the_csv_has_the_contract_columns_for_both_fidelities() {
         assert_ok(&out);
         let text = std::fs::read_to_string(&path).unwrap();
         let mut lines = text.lines();
-        assert!(lines
-            .next()
-            .unwrap()
-            .starts_with("t,axle_s,axle_h,omega,"));
+        assert!(lines.next().unwrap().starts_with("t,axle_s,axle_h,omega,"));
         // the start on a side: the axle at s = −R_o sin(π/8), h = R_o cos(π/8)
         let first: Vec<f64> = lines
             .next()
@@ -58,7 +55,11 @@ fn the_csv_has_the_contract_columns_for_both_fidelities() {
         assert_eq!(first[0], 0.0);
         assert!((first[1] + half.sin()).abs() < 1e-12, "{fidelity}");
         assert!((first[2] - half.cos()).abs() < 1e-12, "{fidelity}");
-        assert_eq!(text.lines().count(), 102, "{fidelity}: 101 samples and a header");
+        assert_eq!(
+            text.lines().count(),
+            102,
+            "{fidelity}: 101 samples and a header"
+        );
     }
 }
 
@@ -116,7 +117,10 @@ fn thesis_contact_warnings_reach_stderr_and_the_json() {
     assert_eq!(v["contact"], "thesis");
     assert!(v["min_normal_force"].as_f64().unwrap() < 0.0);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("warning: ") && stderr.contains("pulled"), "{stderr}");
+    assert!(
+        stderr.contains("warning: ") && stderr.contains("pulled"),
+        "{stderr}"
+    );
     let out = run(&["roll", "--restitution", "1.5"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("restitution"));
@@ -140,7 +144,10 @@ fn auto_reports_its_reason_and_the_help_names_the_kinetic_friction() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     // stiff strings and a valid rigid run: the cheap model
     assert_eq!(v["fidelity"], "rigid");
-    assert!(v["fidelity_reason"].as_str().unwrap().contains("rigid run is valid"));
+    assert!(v["fidelity_reason"]
+        .as_str()
+        .unwrap()
+        .contains("rigid run is valid"));
     let first = &v["first_impact"];
     assert!(first["omega_after"].as_f64().unwrap() < first["omega_before"].as_f64().unwrap());
     let help = run(&["roll", "--help"]);
@@ -172,7 +179,10 @@ fn fig_rolling_prints_the_impulse_table() {
         .take(4)
         .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
         .collect();
-    assert_eq!(rows.iter().map(|r| r[0]).collect::<Vec<_>>(), [8.0, 12.0, 16.0, 24.0]);
+    assert_eq!(
+        rows.iter().map(|r| r[0]).collect::<Vec<_>>(),
+        [8.0, 12.0, 16.0, 24.0]
+    );
     // §3.3.1: the impulse per new contact, per unit of wheel mass, falls with n
     assert!(rows.windows(2).all(|w| w[1][4] < w[0][4]), "{rows:?}");
     let svg = std::fs::read_to_string(&svg).unwrap();

@@ -158,8 +158,16 @@ impl RollArgs {
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
     let request = args.request();
-    if let Some(t) = args.frames.iter().flatten().find(|t| !(0.0..=args.t_end).contains(*t)) {
-        anyhow::bail!("--frames: time {t} s lies outside the run [0, {}] s", args.t_end);
+    if let Some(t) = args
+        .frames
+        .iter()
+        .flatten()
+        .find(|t| !(0.0..=args.t_end).contains(*t))
+    {
+        anyhow::bail!(
+            "--frames: time {t} s lies outside the run [0, {}] s",
+            args.t_end
+        );
     }
     let report = toroid::roll_with_frames(&request, &args.frame_times())?;
     for w in &report.warnings {
@@ -214,7 +222,9 @@ fn frame_panel(frame: &WheelFrame, members: &[[usize; 2]]) -> Panel {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
             (lo.min(p.y), hi.max(p.y))
         });
-    panel.series.push(Series::new("slope", vec![(lo, 0.0), (hi, 0.0)]));
+    panel
+        .series
+        .push(Series::new("slope", vec![(lo, 0.0), (hi, 0.0)]));
     panel.series.extend(members.iter().map(|&[a, b]| {
         let (p, q) = (frame.nodes[a], frame.nodes[b]);
         Series::new("", vec![(p.y, p.z), (q.y, q.z)])

@@ -340,7 +340,7 @@ pub fn roll_with_frames(request: &RollRequest, frame_times: &[f64]) -> Result<Ro
     let a = analyse(&t)?;
     let outer = t.params.outer_radius;
     let strain = deformation_measure(a.mass_kg, request.gravity, request.string_stiffness, outer);
-    let run_rigid = || -> Result<(RollingResult, f64)> {
+    let run_rigid = || -> Result<TimedRun> {
         let start = std::time::Instant::now();
         let r = request.rigid_model(&t, &a).run(request.t_end)?;
         Ok((r, start.elapsed().as_secs_f64()))
@@ -373,12 +373,18 @@ pub fn roll_with_frames(request: &RollRequest, frame_times: &[f64]) -> Result<Ro
     }
 }
 
-/// The `auto` policy: (model, reason, the rigid run if one was made).
+/// A rigid run and its wall-clock time (s).
+type TimedRun = (RollingResult, f64);
+
+/// The model chosen, why, and the rigid run if one was made.
+type Choice = (Fidelity, String, Option<TimedRun>);
+
+/// The `auto` policy.
 fn auto_choice(
     request: &RollRequest,
     strain: f64,
-    run_rigid: impl Fn() -> Result<(RollingResult, f64)>,
-) -> Result<(Fidelity, String, Option<(RollingResult, f64)>)> {
+    run_rigid: impl Fn() -> Result<TimedRun>,
+) -> Result<Choice> {
     let k = request.string_stiffness;
     if strain >= crate::rolling_full::RIGID_THRESHOLD {
         let reason = format!(

@@ -89,11 +89,14 @@ fn cross_validation_table() {
                 omega_before: f64::NAN,
                 omega_after: f64::NAN,
             };
-            let (ri, fi) = (r.first_impact.unwrap_or(none), f.first_impact.unwrap_or(none));
+            let (ri, fi) = (
+                r.first_impact.unwrap_or(none),
+                f.first_impact.unwrap_or(none),
+            );
             let first = if ri.t.is_finite() { ri.t } else { 2.0 };
             let third = r.impact_log.get(2).map_or(2.0, |i| i.t);
             println!(
-                "| {phi}° | {n} | {} | {} | {} | {:.4} | {:.4} | {} | {} | {} / {} | {} |",
+                "| {phi}° | {n} | {} | {} | {} | {:.4} | {:.4} | {} | {} | {} / {} | {:.4} / {:.2} |",
                 cell(ri.t, fi.t),
                 cell(ri.omega_before, fi.omega_before),
                 cell(ri.omega_after, fi.omega_after),
@@ -103,7 +106,8 @@ fn cross_validation_table() {
                 cell(r.airborne_fraction, f.airborne_fraction),
                 r.valid,
                 f.valid,
-                format!("{:.4} / {:.2}", r.wall_time_s, f.wall_time_s),
+                r.wall_time_s,
+                f.wall_time_s,
             );
         }
     }

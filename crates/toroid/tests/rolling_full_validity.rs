@@ -79,7 +79,12 @@ fn the_reference_case_is_converged_in_dt_and_ground_stiffness() {
     for other in [half_dt, stiff] {
         for k in 0..4 {
             let rel = (other[k] - base[k]).abs() / base[k].abs();
-            assert!(rel < tolerance[k], "figure {k}: {} vs {}", other[k], base[k]);
+            assert!(
+                rel < tolerance[k],
+                "figure {k}: {} vs {}",
+                other[k],
+                base[k]
+            );
         }
     }
 }
