@@ -308,7 +308,9 @@ pub struct RollReport {
     pub required_friction: f64,
     /// Mean sliding speed of the loaded contact nodes (m/s).
     pub mean_slip_speed: f64,
-    /// Wall-clock time of the run (s).
+    /// Wall-clock time of the run (s); not serialised, so that the JSON (and a sweep's rows)
+    /// depend on the mechanics only.
+    #[serde(skip)]
     pub wall_time_s: f64,
     /// The sampled history (1 ms), for CSV and figures; not serialised.
     #[serde(skip)]

@@ -27,7 +27,7 @@ pub const ROLL_PARAMS: [ParamDef; 20] = geometry_then![
 ];
 
 /// The scalars of [`toroid::RollReport`], in its key order.
-pub const ROLL_COLUMNS: [Column; 30] = [
+pub const ROLL_COLUMNS: [Column; 29] = [
     col("fidelity", ""),
     col("fidelity_reason", ""),
     col("contact", ""),
@@ -57,7 +57,6 @@ pub const ROLL_COLUMNS: [Column; 30] = [
     col("lift_off_time", "s"),
     col("required_friction", ""),
     col("mean_slip_speed", "m/s"),
-    col("wall_time_s", "s"),
 ];
 
 const FIDELITY: [(&str, FidelityChoice); 3] = [
