@@ -306,13 +306,19 @@ fn write_figure(path: &Path, panels: &[Panel]) -> Result<()> {
         .with_context(|| format!("writing the figure {}", path.display()))
 }
 
+/// The empty band above the data that a legend of `entries` lines needs (fraction of the
+/// data's span).
+fn legend_band(entries: usize) -> f64 {
+    0.1 + 0.1 * entries as f64
+}
+
 fn axle_panel(runs: &[(String, &[RollingSample])]) -> Panel {
     let mut panel = Panel::new(
         "axle height above the incline (Fig. 3.10)",
         "time [s]",
         "axle height above the slope [m]",
     )
-    .legend_above(0.3);
+    .legend_above(legend_band(runs.len()));
     panel.series = runs
         .iter()
         .map(|(label, samples)| {
@@ -328,7 +334,7 @@ fn reaction_panel(runs: &[(String, &[RollingSample])]) -> Panel {
         "time [s]",
         "normal force [N]",
     )
-    .legend_above(0.3);
+    .legend_above(legend_band(runs.len()));
     panel.series = runs
         .iter()
         .map(|(label, samples)| {
