@@ -15,9 +15,11 @@
 //!   m s̈ = F_t + m g sin φ with the vertex on the slope (h = R_o cos θ); solved for θ̈, N and ẇ
 //!   in closed form (see the `wheel` submodule);
 //! - **flight**: s̈ = g sin φ, ḧ = −g cos φ, ω constant, solved exactly;
-//! - **side**: two vertices on the slope, ω = 0, at rest while tan φ ≤ μ_s, else sliding as a
-//!   block with s̈ = g (sin φ ∓ μ_k cos φ); the start state (θ = −π/n, at rest on the side of
-//!   the downhill and the uphill pair) begins here and pivots at once when φ > π/n;
+//! - **side**: two vertices on the slope, ω = 0, at rest while tan φ ≤ μ_s (and φ ≤ π/n),
+//!   else sliding as a block with s̈ = g (sin φ ∓ μ_k cos φ) as long as the moment balance
+//!   keeps both normal forces ≥ 0 (μ_k ≤ tan(π/n)); otherwise it pivots or slips about one
+//!   vertex. The start state (θ = −π/n, at rest on the side of the downhill and the uphill
+//!   pair) begins here: it pivots (or slips) about the downhill vertex at once when φ > π/n;
 //! - **impacts** when a vertex reaches the slope: Newton restitution e on the vertex's normal
 //!   velocity and Coulomb friction on the impulse (sticking impulse when |P_t| ≤ μ_s P_n, else
 //!   a sliding one with μ_k, see the `impact` submodule); any other touching vertex that still
@@ -38,6 +40,8 @@
 //! Smooth contact phases use classical RK4 with the step `dt`, the friction work ∫ −F_t w dt
 //! integrated alongside. An impact whose approach speed is below 10⁻⁶ √(g R_o) is taken as
 //! plastic (this ends Zeno bouncing when e > 0; the energy it drops is counted as impact loss).
+//! Where Newton restitution with friction would create energy (e near 1 with a strongly
+//! coupled impulse), the impact uses the largest e' ≤ e whose impulse dissipates.
 //!
 //! **Energy budget**: E(t) − E(0) = −(normal impulse losses) − (friction impulse losses) −
 //! (friction work in slip and side slides), with E the kinetic plus gravitational energy and an
@@ -48,10 +52,11 @@
 //! The result's validity: `min_normal_force` (the smallest N met at any step or event, ≥ 0 by
 //! construction), the airborne and slip fractions of the run, `max_penetration` (the deepest
 //! vertex below the slope over the samples beyond the contact tolerance 10⁻¹⁰ R_o, so 0), the
-//! energy error, and warnings when the
-//! run had to stop (event cap, chattering without time advancing), an impact's sequential
-//! impulses did not converge, an impact created energy, or the energy budget did not close to
-//! 10⁻⁶.
+//! energy error, and warnings when the run had to stop (event cap, chattering without time
+//! advancing), an impact's sequential impulses did not converge, an impact created energy, or
+//! the energy budget did not close to 10⁻⁶. Parameters for which sliding friction has no
+//! solution (I₁ + m R_o² sin θ (sin θ ± μ_k cos θ) ≤ 0 for some |θ| ≤ π/n: Painlevé) are
+//! rejected with an error naming `mu_kinetic`.
 
 mod hybrid;
 mod impact;

@@ -23,7 +23,7 @@ const ZENO_TOL: f64 = 1e-6;
 const MAX_SWEEPS: usize = 100;
 /// Largest number of events of a run.
 pub(crate) const MAX_EVENTS: usize = 2_000_000;
-/// Largest number of consecutive events without the time advancing.
+/// Largest number of consecutive events that advance the time by less than 10⁻⁹ dt.
 const MAX_STALLED: usize = 10_000;
 
 /// The current mode and its state.
@@ -92,6 +92,8 @@ pub(crate) struct Hybrid {
     pub stalled: usize,
     /// Impacts taken as plastic because their approach speed was below the Zeno tolerance.
     pub zeno_truncations: usize,
+    /// Impacts whose restitution was lowered so as not to create energy.
+    pub restitution_lowered: usize,
     /// Problems met.
     pub warnings: Vec<String>,
 }
@@ -137,6 +139,7 @@ impl Hybrid {
             events: 0,
             stalled: 0,
             zeno_truncations: 0,
+            restitution_lowered: 0,
             warnings: Vec::new(),
         };
         sim.mode = sim.on_side(b, 0, w.n - 1);
@@ -168,7 +171,9 @@ impl Hybrid {
         while self.t < t_out {
             if self.events >= MAX_EVENTS || self.stalled >= MAX_STALLED {
                 let why = if self.stalled >= MAX_STALLED {
-                    format!("{MAX_STALLED} events without the time advancing (chattering)")
+                    format!(
+                        "{MAX_STALLED} events without the time advancing by 1e-9 dt (chattering)"
+                    )
                 } else {
                     format!("the event count reached its cap of {MAX_EVENTS}")
                 };
@@ -182,7 +187,7 @@ impl Hybrid {
             let (tau, event) = self.step(h);
             if event {
                 self.events += 1;
-                self.stalled = if tau > 0.0 { 0 } else { self.stalled + 1 };
+                self.stalled = if tau > 1e-9 * dt { 0 } else { self.stalled + 1 };
             }
             self.t = if tau >= h && h == t_out - self.t {
                 t_out
@@ -487,7 +492,8 @@ impl Hybrid {
         } else {
             w.e
         };
-        let mut total = w.impulse(&mut b, new, e);
+        let (mut total, used) = w.dissipative_impulse(&mut b, new, e);
+        self.restitution_lowered += usize::from(used < e);
         let contacts: Vec<usize> = (0..w.n)
             .filter(|&j| j == new || w.gap(&b, j) <= GAP_TOL * w.r)
             .collect();

@@ -10,6 +10,11 @@
 //! sticking solution) and P_n = −(1 + e) c_n / (W_nn + σ W_nt), whose denominator is the slip
 //! denominator D/(m I₁) of [`super::wheel`]. The work of the impulse is exactly
 //! P · (c⁻ + c⁺)/2, split into its normal (restitution) and tangential (friction) parts.
+//!
+//! Newton restitution with friction can create energy when the tangential and normal
+//! responses couple (W_nt ≠ 0, e near 1). [`Wheel::dissipative_impulse`] then lowers the
+//! restitution to the largest e' ≤ e whose impulse does not create energy (bisection; e' = 0,
+//! the plastic impulse, always dissipates).
 
 use super::wheel::{Body, Wheel};
 
@@ -61,5 +66,26 @@ impl Wheel {
             normal_loss: -pn * 0.5 * (cn + cn2),
             friction_loss: -pt * 0.5 * (ct + ct2),
         }
+    }
+
+    /// [`Wheel::impulse`] with the restitution lowered, if needed, to the largest e' ≤ e whose
+    /// impulse dissipates energy; also returns e'.
+    pub fn dissipative_impulse(&self, b: &mut Body, j: usize, e: f64) -> (Impulse, f64) {
+        // round-off of an energy-conserving impulse (e = 1 without friction) is no gain
+        let slack = -1e-12 * self.energies(b).0;
+        let trial = |e: f64| {
+            let mut after = *b;
+            let p = self.impulse(&mut after, j, e);
+            (after, p, p.normal_loss + p.friction_loss >= slack)
+        };
+        let (after, p, ok) = trial(e);
+        if ok || e == 0.0 {
+            *b = after;
+            return (p, e);
+        }
+        let (lo, _) = super::hybrid::bisect(0.0, e, |x| !trial(x).2);
+        let (after, p, _) = trial(lo);
+        *b = after;
+        (p, lo)
     }
 }
