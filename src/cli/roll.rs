@@ -272,8 +272,14 @@ fn print_roll(r: &RollReport) {
     );
     println!("model: {} ({})", fidelity_name(r), r.fidelity_reason);
     println!(
-        "axle height above the slope: mean {:.4} m, RMS oscillation {:.6} m (after 1 s)",
-        r.mean_axle_height, r.axle_height_oscillation
+        "axle height above the slope: mean {:.4} m, RMS oscillation {:.6} m ({})",
+        r.mean_axle_height,
+        r.axle_height_oscillation,
+        if r.t_end > 1.0 {
+            "after 1 s"
+        } else {
+            "whole run"
+        }
     );
     println!(
         "mean speed {:.4} m/s   final speed {:.4} m/s   max reaction {:.3} N",
