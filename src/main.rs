@@ -28,7 +28,7 @@ enum Command {
     MichellTable(cli::michell::MichellTableArgs),
     /// Build and analyse the 3-bar-prism tensegrity toroid (counts, prestress, flexes, inertia).
     Toroid(cli::toroid::ToroidArgs),
-    /// Roll the toroid wheel down an incline (reduced rigid model).
+    /// Roll the toroid wheel down an incline (rigid or full model, with validity).
     Roll(cli::roll::RollArgs),
     /// Thesis Figs. 3.10 and 3.11: axle height and reactions of wheels rolling down 50° (SVG).
     FigRolling(cli::roll::FigRollingArgs),

@@ -87,30 +87,36 @@ fn wheels() -> Result<()> {
 }
 
 fn rolling() -> Result<()> {
-    println!("\nrigid rolling down 50 deg for 5 s (the bumps shrink with n, thesis Fig. 3.10):");
-    let request = RollRequest {
+    println!("\nrolling down 50 deg from rest on a side (thesis Fig. 3.10; * = not valid, see `tensegrity roll`):");
+    let rigid = RollRequest {
         fidelity: FidelityChoice::Rigid,
         t_end: 5.0,
         ..RollRequest::default()
     };
-    let runs = toroid::rolling_series(&request, &toroid::defaults::FIG_3_10_SIDES)?;
+    let mut runs = toroid::rolling_series(&rigid, &toroid::defaults::FIG_3_10_SIDES)?;
+    // the full model is slower: the reference wheel only, for 2 s
+    let full = RollRequest {
+        fidelity: FidelityChoice::Full,
+        t_end: 2.0,
+        ..RollRequest::default()
+    };
+    runs.push(toroid::roll(&full)?);
     for r in &runs {
         println!(
-            "  n = {:>2}: mass {:>7.3} kg, I1 {:>7.3} kg m^2, axle oscillation {:.5} m, mean speed {:.3} m/s{}",
+            "  {:<5} n = {:>2}, {} s: mass {:>7.3} kg, I1 {:>7.3} kg m^2, mean axle height {:.4} m, mean speed {:.3} m/s, airborne {:>5.1} %{}",
+            format!("{:?}", r.fidelity).to_lowercase(),
             r.sides,
+            r.t_end,
             r.mass_kg,
             r.i1,
-            r.axle_height_oscillation,
+            r.mean_axle_height,
             r.mean_speed,
-            if r.min_normal_force < 0.0 { " *" } else { "" }
+            100.0 * r.airborne_fraction,
+            if r.valid { "" } else { " *" }
         );
     }
-    if let Some(worst) = runs.iter().map(|r| r.min_normal_force).reduce(f64::min) {
-        if worst < 0.0 {
-            println!(
-                "  * not physical as is: this reduced model keeps the wheel on the slope with a normal force down to {worst:.1} N (a ground that pulls); the wheel would leave the slope there"
-            );
-        }
+    for r in runs.iter().filter(|r| !r.valid) {
+        println!("  * n = {}: {}", r.sides, r.warnings.join("; "));
     }
     Ok(())
 }

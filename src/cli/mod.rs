@@ -9,6 +9,7 @@ pub mod michell;
 pub mod michell_extra;
 pub mod michell_optimize;
 pub mod roll;
+pub mod roll_series;
 pub mod simulate;
 pub mod statics;
 pub mod stream;

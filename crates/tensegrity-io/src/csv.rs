@@ -147,20 +147,20 @@ pub fn write_trajectory<W: Write>(out: W, result: &SimulationResult) -> Result<u
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RollingRow {
     /// Time (s).
-    #[serde(serialize_with = "plain")]
+    #[serde(rename = "t", serialize_with = "plain")]
     pub t_s: f64,
-    /// Axle position along the slope (m).
-    #[serde(serialize_with = "plain")]
+    /// Axle position along the slope, downhill (m).
+    #[serde(rename = "axle_s", serialize_with = "plain")]
     pub axle_s_m: f64,
     /// Axle height above the slope (m).
-    #[serde(serialize_with = "plain")]
+    #[serde(rename = "axle_h", serialize_with = "plain")]
     pub axle_h_m: f64,
+    /// Angular velocity about the axle (rad/s, positive rolling downhill).
+    #[serde(rename = "omega", serialize_with = "plain")]
+    pub omega_rad_s: f64,
     /// Position of the pivoting contact pair (m).
     #[serde(serialize_with = "plain")]
     pub pivot_m: f64,
-    /// Angular velocity about the axle (rad/s).
-    #[serde(serialize_with = "plain")]
-    pub omega_rad_s: f64,
     /// Normal contact force (N).
     #[serde(rename = "normal_N", serialize_with = "plain")]
     pub normal_n: f64,
@@ -192,7 +192,8 @@ impl From<&RollingSample> for RollingRow {
 }
 
 /// The rolling history of a wheel:
-/// `t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J,slip_m_s`.
+/// `t,axle_s,axle_h,omega,pivot_m,normal_N,tangential_N,energy_J,slip_m_s` (s, m, m, rad/s, …;
+/// the first four are the `tensegrity roll --out` contract).
 pub fn write_rolling_history<W: Write>(out: W, samples: &[RollingSample]) -> Result<usize> {
     write_rows(
         out,

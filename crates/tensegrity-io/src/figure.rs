@@ -116,6 +116,9 @@ pub struct Panel {
     pub y_scale: Scale,
     /// The curves.
     pub series: Vec<Series>,
+    /// Empty band above the data, as a fraction of the data's y span, where the legend sits
+    /// (0: the legend may cover the data).
+    pub legend_headroom: f64,
 }
 
 impl Panel {
@@ -132,7 +135,15 @@ impl Panel {
             x_scale: Scale::Linear,
             y_scale: Scale::Linear,
             series: Vec::new(),
+            legend_headroom: 0.0,
         }
+    }
+
+    /// Keeps an empty band of `fraction` of the y span above the data for the legend, so
+    /// that it covers no curve (linear y axes).
+    pub fn legend_above(mut self, fraction: f64) -> Self {
+        self.legend_headroom = fraction.max(0.0);
+        self
     }
 
     /// Logarithmic x and y axes.
@@ -345,7 +356,10 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
     let all = || points.iter().flatten();
     let (xs, ys) = (panel.x_scale, panel.y_scale);
     let x = axis_range(all().map(|p| p.0), panel.x_scale, 0.0);
-    let y = axis_range(all().map(|p| p.1), panel.y_scale, 0.05);
+    let mut y = axis_range(all().map(|p| p.1), panel.y_scale, 0.05);
+    if panel.y_scale == Scale::Linear {
+        y.1 += panel.legend_headroom * (y.1 - y.0) / 1.1;
+    }
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, ("sans-serif", 17))
         .margin(12)

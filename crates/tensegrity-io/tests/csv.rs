@@ -103,12 +103,12 @@ fn the_rolling_history_has_the_cli_columns() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("t_s,axle_s_m,axle_h_m,pivot_m,omega_rad_s,normal_N,tangential_N,energy_J,slip_m_s")
+        Some("t,axle_s,axle_h,omega,pivot_m,normal_N,tangential_N,energy_J,slip_m_s")
     );
     let v = parse(lines.next().unwrap());
     assert_eq!(
         v,
-        vec![0.001, 1.0 / 3.0, 0.5, 0.0, -2.5, 9.81, 1e-300, -0.125, 0.0]
+        vec![0.001, 1.0 / 3.0, 0.5, -2.5, 0.0, 9.81, 1e-300, -0.125, 0.0]
     );
 }
 

@@ -62,3 +62,32 @@ pub const RIM_WINDOW_SAMPLES: usize = 75;
 
 /// Bisection tolerance of the rim-radius window (m).
 pub const RIM_WINDOW_TOL: f64 = 1e-6;
+
+/// Penetration tolerance of the full model's contact, as a fraction of R_o: a contact node
+/// deeper than this below the slope flags the run (the wheel sank into the ground).
+pub const PENETRATION_TOLERANCE: f64 = 0.01;
+
+/// Friction regularisation velocity of the penalty ground (m/s): below it the tanh law
+/// behaves as a stiff viscous stick.
+pub const FRICTION_REGULARIZATION_VELOCITY: f64 = 1e-3;
+
+/// Stribeck velocity of the penalty ground (m/s): the static → kinetic transition; a loaded
+/// contact node faster than this along the slope counts as slipping.
+pub const STRIBECK_VELOCITY: f64 = 1e-2;
+
+/// Largest relative residual of the full model's energy budget that still counts as closed
+/// (the budget is integrated by the trapezoidal rule at every integration step; the
+/// reference wheel at the default 0.1 ms RK4 step misses by 2·10⁻³ after 2 s and 6·10⁻³
+/// after 10 s of bouncing, falling with the step).
+pub const ENERGY_BALANCE_TOLERANCE: f64 = 1e-2;
+
+/// A contact pair counts as a new contact (an impact) when it loads after being off the
+/// ground for at least this long (s); shorter gaps are chatter of the same contact.
+pub const CONTACT_REARM_TIME: f64 = 2e-3;
+
+/// Longest contact transient of an impact of the full model (s): the impulse is integrated
+/// from touch-down until the previously loaded pairs have left the ground, at most this long.
+pub const IMPACT_WINDOW: f64 = 0.05;
+
+/// Interval of the node frames written by `tensegrity roll --vtk` (s).
+pub const ROLL_FRAME_DT: f64 = 0.01;

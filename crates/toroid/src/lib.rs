@@ -24,7 +24,7 @@ mod error;
 mod inertia;
 mod params;
 pub mod report;
-mod roll;
+pub mod roll;
 pub mod rolling;
 pub mod rolling_full;
 pub mod rolling_lean;
@@ -45,7 +45,10 @@ pub use report::{
     tipover_report, toroid_report, TipoverReport, TipoverRequest, ToroidReport, ToroidRequest,
     WheelSpec,
 };
-pub use roll::{roll, rolling_series, ContactKind, FidelityChoice, RollReport, RollRequest};
+pub use roll::{
+    roll, roll_with_frames, rolling_series, ContactKind, FidelityChoice, FirstImpact, RollReport,
+    RollRequest,
+};
 pub use symmetry::{toroid_symmetry, SymmetryCounts};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
 pub use validity::{ImpactRecord, RollValidity};

@@ -3,27 +3,65 @@
 //! The prestressed toroid (bars rigid with mass = bar density × length, strings linear elastic
 //! with the rest lengths that realise a prestress design) is integrated with the core's
 //! rigid-bar dynamics N̈M + NK = W + ΩPᵀ (class-2 rim joints as constrained class-1 copies).
-//! In the wheel frame the incline is the plane z = −R_o under the starting contact pair, and
-//! gravity is tilted by the slope angle φ: g = g₀ (0, sin φ, −cos φ), so the wheel rolls
-//! towards +y about the x axis. Only the outer tread nodes (n1, n2 of every prism) can touch
-//! the ground, through either the thesis contact model (weight-based normal reaction plus
-//! velocity damping, §3.2.2) or a penalty spring–damper with regularised Coulomb friction.
+//! In the wheel frame the wheel turns about the x axis and gravity is tilted by the slope
+//! angle φ: g = g₀ (0, sin φ, −cos φ), so the wheel rolls towards +y. Only the outer tread
+//! nodes (n1, n2 of every prism) can touch the slope.
 //!
-//! Recorded per sample: the axle (hub: the midpoint of the axle bar with spokes, else the
-//! centroid of the rim joints) along the slope s = y and above it h = z + R_o, the spin
-//! ω = mean over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², the summed contact
-//! force (normal = z, tangential = y components) and the slip, the mean in-plane speed of the
-//! contact nodes that carry load.
+//! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
+//! prism 0 (uphill) and prism 1 (downhill) on the slope, i.e. the wheel is turned by −π/n
+//! about x and the slope is the plane z = −R_o cos(π/n). The contact nodes start at zero
+//! penetration (not at the static penetration m g cos φ / (4 k), a fraction of a millimetre
+//! for the defaults); the wheel then pivots about the downhill pair. Recorded coordinates
+//! are those of the rigid model: s = y − R_o sin(π/n) along the slope (0 at the downhill
+//! pair), h = z + R_o cos(π/n) above it.
+//!
+//! **Contact.** [`ContactModel::Penalty`] (the default): per node, for penetration δ > 0,
+//! N = max(0, k δ − c δ̇ₙ) (never negative: a damper that would pull is clipped) and
+//! regularised Coulomb friction F_t = −μ(v) N tanh(v/v_reg) v̂ with a Stribeck transition
+//! from μ_s to μ_k (see `tensegrity_core::dynamics::Ground`). The normal damping follows
+//! from a coefficient of restitution e ([`penalty_damping`]): a linear spring–damper of
+//! damping ratio ζ rebounds with e = exp(−ζπ/√(1−ζ²)), so ζ = −ln e / √(π² + ln² e) (ζ = 1
+//! for e = 0), and c = ζ √(2 k m_eff) per node for a pair of nodes landing on a rigid wheel
+//! of effective mass m_eff = 1 / (1/m + R_o² sin²(π/n) / I₁) at the landing pair.
+//! [`ContactModel::Thesis`] reproduces §3.2.2 (weight-based normal reaction plus velocity
+//! damping); it can pull and sink, and its runs say so.
+//!
+//! **Validity** ([`crate::validity::RollValidity`]), from every integration step:
+//! the smallest normal force of any loaded contact node, the fraction of time with no node
+//! loaded (airborne), the fraction with a loaded node sliding faster than the Stribeck
+//! velocity (slip), the deepest penetration, and the energy budget. The budget is
+//! E(t) − E(0) = W_nc(t), with E = kinetic + string elastic + gravity + ground-spring
+//! (½ k δ²) energy and W_nc = ∫ Σ_contact (F·v − k δ v_n) dt the work of the ground's damping
+//! (normal) and friction (tangential); W_nc is integrated by the trapezoidal rule at every
+//! step, so the residual max|E − E(0) − W_nc| over the largest energy term (kinetic energy,
+//! |E − E(0)|, |W_nc|, and at least the wheel's scale m g R_o) measures the integrator's
+//! accuracy. Explicit steps resolve the regularised friction's stick (stiffness
+//! μ N / v_reg on a light node) only coarsely: that, not the physics, dominates the residual. A run is flagged when a node sinks deeper than
+//! [`defaults::PENETRATION_TOLERANCE`] R_o, the ground pulls, or the budget misses by more
+//! than [`defaults::ENERGY_BALANCE_TOLERANCE`].
+//!
+//! **Impacts**: a contact pair that loads after [`defaults::CONTACT_REARM_TIME`] off the
+//! ground is a new contact, unless it leaves the ground again while the previously loaded
+//! pairs still carry the wheel (a graze, which takes nothing over). Its record holds the touch-down time, ω (about the axle: the mean
+//! over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², positive rolling downhill)
+//! just before, ω at the end of the contact transient (when the previously loaded pairs have
+//! left the slope and the new pair's spring has had half a period π √(m_eff / 2k) to take the
+//! wheel over, or when the new pair bounces off; at most [`defaults::IMPACT_WINDOW`] after
+//! the touch-down), and the integral of the new
+//! pair's contact force over that transient (normal and tangential impulse).
+
+mod monitor;
 
 use crate::analysis::{prestress_design, prestressed_structure};
 use crate::builder::Toroid;
 use crate::defaults;
 use crate::error::{Result, ToroidError};
-use crate::rolling::{summarise, RollingResult, RollingSample};
-use nalgebra::Vector3;
+use crate::rolling::RollingResult;
+use monitor::{Geometry, Monitor};
+use nalgebra::{Rotation3, Vector3};
+use std::f64::consts::PI;
 use tensegrity_core::dynamics::{
-    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationResult,
-    SimulationSettings,
+    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 use tensegrity_core::Structure;
 
@@ -37,9 +75,9 @@ pub enum ContactModel {
     },
     /// Penalty normal spring–damper with regularised Coulomb friction.
     Penalty {
-        /// Normal stiffness (N/m).
+        /// Normal stiffness per node (N/m).
         stiffness: f64,
-        /// Normal damping (N·s/m).
+        /// Normal damping per node (N·s/m).
         damping: f64,
         /// Static friction coefficient.
         mu_static: f64,
@@ -73,6 +111,8 @@ pub struct FullRolling {
     pub dt: f64,
     /// Output interval (s).
     pub output_dt: f64,
+    /// Times (s) at which to keep the node positions (see [`FullRun::frames`]).
+    pub frame_times: Vec<f64>,
 }
 
 impl ContactModel {
@@ -82,13 +122,52 @@ impl ContactModel {
     };
 
     /// The penalty ground with the defaults of [`crate::defaults`]: stiffness 10⁵ N/m,
-    /// damping 200 N·s/m, μ_s = 0.8 and μ_k = 0.75 μ_s = 0.6.
+    /// damping 200 N·s/m, μ_s = 0.8 and μ_k = 0.75 μ_s = 0.6 (the request-level default,
+    /// [`crate::RollRequest`], derives the damping from e = 0 instead).
     pub const PENALTY: ContactModel = ContactModel::Penalty {
         stiffness: defaults::GROUND_STIFFNESS,
         damping: defaults::GROUND_DAMPING,
         mu_static: defaults::STATIC_FRICTION,
         mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
     };
+}
+
+/// The damping ratio ζ of a linear spring–damper that rebounds with restitution `e`
+/// (e = exp(−ζπ/√(1−ζ²)) inverted; ζ = 1 for e = 0, the clipped critical damper).
+///
+/// ```
+/// use toroid::rolling_full::damping_ratio;
+/// let z = damping_ratio(0.5);
+/// let e = (-z * std::f64::consts::PI / (1.0 - z * z).sqrt()).exp();
+/// assert!((e - 0.5).abs() < 1e-12);
+/// assert_eq!(damping_ratio(0.0), 1.0);
+/// ```
+pub fn damping_ratio(e: f64) -> f64 {
+    if e <= 0.0 {
+        return 1.0;
+    }
+    let l = e.min(1.0).ln();
+    -l / (PI * PI + l * l).sqrt()
+}
+
+/// Effective mass (kg) of a rigid wheel (mass m, I₁ about its axle, n contact pairs on radius
+/// R_o) at a landing pair: 1 / (1/m + R_o² sin²(π/n) / I₁).
+pub fn contact_effective_mass(mass: f64, i1: f64, outer_radius: f64, sides: usize) -> f64 {
+    let arm = outer_radius * (PI / sides as f64).sin();
+    1.0 / (1.0 / mass + arm * arm / i1)
+}
+
+/// Per-node normal damping (N·s/m) of the penalty ground that gives restitution `e` to a pair
+/// of nodes of stiffness `stiffness` each landing with effective mass `effective_mass`:
+/// c = ζ(e) √(2 k m_eff).
+///
+/// ```
+/// use toroid::rolling_full::penalty_damping;
+/// // e = 0: critical damping of the pair, 2c = 2√(2k m)
+/// assert!((penalty_damping(0.0, 1e5, 10.0) - (2e6f64).sqrt()).abs() < 1e-9);
+/// ```
+pub fn penalty_damping(e: f64, stiffness: f64, effective_mass: f64) -> f64 {
+    damping_ratio(e) * (2.0 * stiffness * effective_mass).sqrt()
 }
 
 impl Default for FullRolling {
@@ -104,31 +183,56 @@ impl Default for FullRolling {
             integrator: IntegratorKind::Rk4,
             dt: defaults::ROLL_DT,
             output_dt: defaults::ROLL_OUTPUT_DT,
+            frame_times: Vec::new(),
         }
     }
 }
 
+/// A snapshot of the wheel's nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WheelFrame {
+    /// Time (s).
+    pub t: f64,
+    /// Node positions (file numbering of the toroid) in slope coordinates: x along the axle,
+    /// y = s along the slope (downhill, 0 at the starting downhill pair), z = h above it (m).
+    pub nodes: Vec<Vector3<f64>>,
+}
+
+/// A full-model run: the rolling result plus what only this model measures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FullRun {
+    /// Samples, summary, impacts and validity.
+    pub result: RollingResult,
+    /// Node frames at the requested [`FullRolling::frame_times`] (the nearest step).
+    pub frames: Vec<WheelFrame>,
+    /// Work of the ground's normal damping (J, ≤ 0 when it dissipates).
+    pub damping_work: f64,
+    /// Work of the ground's friction (J).
+    pub friction_work: f64,
+    /// Wall-clock time of the integration (s).
+    pub wall_time_s: f64,
+}
+
 impl FullRolling {
-    /// Rolls `toroid` for `t_end` seconds from rest on its prism-0 contact pair.
+    /// Rolls `toroid` for `t_end` seconds from rest on a side (see the module docs).
     pub fn run(&self, toroid: &Toroid, t_end: f64) -> Result<RollingResult> {
+        Ok(self.run_full(toroid, t_end)?.result)
+    }
+
+    /// As [`FullRolling::run`], with frames and the ground's work.
+    pub fn run_full(&self, toroid: &Toroid, t_end: f64) -> Result<FullRun> {
         self.validate(t_end)?;
         let (structure, ground) = self.model(toroid)?;
         let d = SimulationSettings::default();
+        let adaptive = self.integrator.is_adaptive();
         let settings = SimulationSettings {
             t_end,
             integrator: self.integrator,
             dt: self.dt,
-            rtol: if self.integrator.is_adaptive() {
-                ADAPTIVE_RTOL
-            } else {
-                d.rtol
-            },
-            atol: if self.integrator.is_adaptive() {
-                ADAPTIVE_ATOL
-            } else {
-                d.atol
-            },
-            output_interval: Some(self.output_dt),
+            rtol: if adaptive { ADAPTIVE_RTOL } else { d.rtol },
+            atol: if adaptive { ADAPTIVE_ATOL } else { d.atol },
+            // every step is seen by the monitor (energy budget, validity, impacts)
+            output_interval: Some(self.dt.min(self.output_dt)),
             quantities: Quantities {
                 nodes: true,
                 velocities: true,
@@ -138,22 +242,21 @@ impl FullRolling {
             },
             ..d
         };
+        let stiffness = match self.contact {
+            ContactModel::Penalty { stiffness, .. } => stiffness,
+            ContactModel::Thesis { .. } => 0.0,
+        };
         let mut sim = Simulation::new(&structure, settings)?;
         sim.model.set_ground(ground)?;
-        let result = sim.run()?;
-
-        let (samples, impacts) = wheel_samples(toroid, &result);
-        if samples.is_empty() {
+        let geometry = Geometry::of(toroid, stiffness, self.gravity);
+        let mut monitor = Monitor::new(geometry, self.output_dt, &self.frame_times);
+        let stats = sim.run_streaming(&mut monitor)?;
+        if monitor.samples.is_empty() {
             return Err(ToroidError::NoSamples {
                 output_dt: self.output_dt,
             });
         }
-        // the first sample's pair counts as the starting contact, not an impact
-        Ok(summarise(
-            samples,
-            impacts.saturating_sub(1),
-            self.output_dt,
-        ))
+        Ok(monitor.finish(self.output_dt, stats.wall_time_s))
     }
 
     fn validate(&self, t_end: f64) -> Result<()> {
@@ -181,16 +284,20 @@ impl FullRolling {
         Ok(())
     }
 
-    /// The prestressed structure under the tilted gravity, and the ground under prism 0.
+    /// The prestressed structure turned onto a side under the tilted gravity, and the slope.
     fn model(&self, toroid: &Toroid) -> Result<(Structure, Ground)> {
         let design = prestress_design(toroid, self.min_string_tension)?;
         let (sin, cos) = self.incline.sin_cos();
-        let structure = prestressed_structure(toroid, &design, self.string_stiffness)?
+        let n = toroid.params.sides;
+        let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), -PI / n as f64);
+        let prestressed = prestressed_structure(toroid, &design, self.string_stiffness)?;
+        let nodes = prestressed.nodes().iter().map(|p| turn * p).collect();
+        let structure = prestressed
+            .with_nodes(nodes)?
             .to_builder()
             .gravity([0.0, self.gravity * sin, -self.gravity * cos])
             .build()?;
         let r_o = toroid.params.outer_radius;
-        let n = toroid.params.sides;
         let model = match self.contact {
             ContactModel::Thesis { damping } => GroundModel::Thesis {
                 damping,
@@ -206,112 +313,14 @@ impl FullRolling {
                 damping,
                 mu_static,
                 mu_kinetic,
-                regularization_velocity: 1e-3,
-                stribeck_velocity: 1e-2,
+                regularization_velocity: defaults::FRICTION_REGULARIZATION_VELOCITY,
+                stribeck_velocity: defaults::STRIBECK_VELOCITY,
             },
         };
-        let mut ground = Ground::new(Vector3::new(0.0, 0.0, -r_o), Vector3::z(), model);
+        let plane = Vector3::new(0.0, 0.0, -r_o * (PI / n as f64).cos());
+        let mut ground = Ground::new(plane, Vector3::z(), model);
         ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
         Ok((structure, ground))
-    }
-}
-
-/// The wheel's samples of a simulation (hub, spin, summed contact force, slip) and the number
-/// of contact-pair touch-downs (the first sample's pair included).
-fn wheel_samples(toroid: &Toroid, result: &SimulationResult) -> (Vec<RollingSample>, usize) {
-    let n = toroid.params.sides;
-    let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
-    let hub_of = |x: &[Vector3<f64>]| match toroid.axle {
-        Some([a, b]) => 0.5 * (x[a] + x[b]),
-        None => rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / n as f64,
-    };
-    let mut samples = Vec::with_capacity(result.samples.len());
-    let mut in_contact = vec![false; n];
-    let mut impacts = 0;
-    for smp in &result.samples {
-        let (Some(x), Some(v)) = (&smp.nodes, &smp.velocities) else {
-            continue;
-        };
-        let (hub, v_hub) = (hub_of(x), hub_of(v));
-        let omega = rim
-            .iter()
-            .map(|&i| {
-                let r = x[i] - hub;
-                let w = v[i] - v_hub;
-                (r.y * w.z - r.z * w.y) / (r.y * r.y + r.z * r.z)
-            })
-            .sum::<f64>()
-            / n as f64;
-        let c = contact_of(smp.contact_forces.iter().flatten(), x, v, n);
-        impacts += c
-            .touching
-            .iter()
-            .zip(&in_contact)
-            .filter(|(now, before)| **now && !**before)
-            .count();
-        in_contact = c.touching;
-        samples.push(RollingSample {
-            t: smp.t,
-            s: hub.y,
-            h: hub.z + toroid.params.outer_radius,
-            pivot: c.pivot,
-            // the wheel rolls towards +y, i.e. with a negative x spin
-            omega: -omega,
-            normal: c.force.z,
-            tangential: c.force.y,
-            energy: smp.energy.map_or(f64::NAN, |(_, total)| total),
-            slip: c.slip,
-        });
-    }
-    (samples, impacts)
-}
-
-/// The contact of one sample.
-struct Contact {
-    /// Summed contact force (N).
-    force: Vector3<f64>,
-    /// Slope coordinate y of the most loaded contact node (NaN without contact).
-    pivot: f64,
-    /// Which prisms touch the ground.
-    touching: Vec<bool>,
-    /// Mean in-plane speed of the loaded contact nodes (m/s).
-    slip: f64,
-}
-
-fn contact_of<'a>(
-    forces: impl Iterator<Item = &'a (usize, Vector3<f64>)>,
-    x: &[Vector3<f64>],
-    v: &[Vector3<f64>],
-    n: usize,
-) -> Contact {
-    let mut force = Vector3::zeros();
-    let mut pivot = f64::NAN;
-    let mut strongest = 0.0;
-    let mut touching = vec![false; n];
-    let (mut slip_sum, mut slip_count) = (0.0, 0usize);
-    for (node, f) in forces {
-        force += f;
-        if f.z > 0.0 {
-            // sliding speed in the slope plane (z is the slope normal)
-            slip_sum += v[*node].xy().norm();
-            slip_count += 1;
-            touching[node / 5] = true;
-        }
-        if f.z > strongest {
-            strongest = f.z;
-            pivot = x[*node].y;
-        }
-    }
-    let slip = if slip_count > 0 {
-        slip_sum / slip_count as f64
-    } else {
-        0.0
-    };
-    Contact {
-        force,
-        pivot,
-        touching,
-        slip,
     }
 }
 
@@ -336,10 +345,11 @@ pub fn deformation_measure(
     mass * gravity / (string_stiffness * outer_radius)
 }
 
-/// Below this [`deformation_measure`] the `auto` fidelity picks the rigid model.
+/// Below this [`deformation_measure`] the `auto` fidelity considers the rigid model.
 pub const RIGID_THRESHOLD: f64 = 1e-3;
 
-/// The fidelity `auto` picks: rigid when [`deformation_measure`] < [`RIGID_THRESHOLD`].
+/// The fidelity the stiffness alone allows: rigid when [`deformation_measure`] <
+/// [`RIGID_THRESHOLD`] (`auto` also needs the rigid run to be valid, see [`crate::roll`]).
 ///
 /// ```
 /// use toroid::rolling_full::{auto_fidelity, Fidelity};

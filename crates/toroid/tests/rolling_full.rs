@@ -48,10 +48,14 @@ fn on_level_ground_the_contact_carries_the_weight_on_average() {
         (mean_normal - weight).abs() < 0.01 * weight,
         "{mean_normal} vs {weight}"
     );
+    // it starts on a side, hub at s = −R_o sin(π/n) from the downhill pair, and stays there
+    let s0 = -(std::f64::consts::PI / 8.0).sin();
     assert!(
-        r.samples.iter().all(|s| s.s.abs() < 1e-2),
+        r.samples.iter().all(|s| (s.s - s0).abs() < 1e-2),
         "no slope, no rolling"
     );
+    assert!(r.validity.valid(), "{:?}", r.validity.warnings);
+    assert!(r.validity.airborne_fraction < 0.01);
 }
 
 #[test]

@@ -19,7 +19,9 @@
 mod integrators;
 mod michell;
 mod tbar;
+#[macro_use]
 mod wheel;
+mod roll;
 
 use crate::error::{Result, SweepError};
 use crate::params::{ParamDef, Params};
@@ -101,7 +103,7 @@ impl Study {
     pub fn params(self) -> &'static [ParamDef] {
         match self {
             Study::Toroid => &wheel::TOROID_PARAMS,
-            Study::Roll => &wheel::ROLL_PARAMS,
+            Study::Roll => &roll::ROLL_PARAMS,
             Study::Tipover => &wheel::TIPOVER_PARAMS,
             Study::Michell => &michell::PARAMS,
             Study::Integrators => &integrators::PARAMS,
@@ -119,7 +121,7 @@ impl Study {
     pub fn columns(self) -> &'static [Column] {
         match self {
             Study::Toroid => &wheel::TOROID_COLUMNS,
-            Study::Roll => &wheel::ROLL_COLUMNS,
+            Study::Roll => &roll::ROLL_COLUMNS,
             Study::Tipover => &wheel::TIPOVER_COLUMNS,
             Study::Michell => &michell::COLUMNS,
             Study::Integrators => &integrators::COLUMNS,
@@ -133,7 +135,7 @@ impl Study {
     pub fn report(self, p: &Params, ctx: &Context) -> Result<serde_json::Value, String> {
         match self {
             Study::Toroid => json(toroid::toroid_report(&wheel::toroid_request(p)?)),
-            Study::Roll => json(toroid::roll(&wheel::roll_request(p)?)),
+            Study::Roll => json(toroid::roll(&roll::roll_request(p)?)),
             Study::Tipover => json(toroid::tipover_report(&wheel::tipover_request(p)?)),
             Study::Michell => json(michell3d::analyse(&michell::request(p)?)),
             Study::Integrators => json(integrators::point(p, ctx)),

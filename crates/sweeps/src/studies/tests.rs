@@ -61,12 +61,19 @@ fn check_columns<T: Serialize>(study: Study, reports: &[T]) {
 fn columns_are_the_scalars_of_the_reports() {
     let t = toroid::toroid_report(&toroid::ToroidRequest::default()).unwrap();
     check_columns(Study::Toroid, &[t]);
-    let r = toroid::roll(&toroid::RollRequest {
+    let mut r = toroid::roll(&toroid::RollRequest {
         fidelity: toroid::FidelityChoice::Rigid,
         t_end: 0.2,
         ..Default::default()
     })
     .unwrap();
+    // the optional keys as a run with an impact and a penalty ground has them
+    r.first_impact = Some(toroid::FirstImpact {
+        t: 0.5,
+        omega_before: 2.0,
+        omega_after: 1.5,
+    });
+    r.ground_damping = Some(100.0);
     check_columns(Study::Roll, &[r]);
     check_columns(
         Study::Tipover,
@@ -98,7 +105,7 @@ fn empty_params_are_the_cli_defaults() {
         toroid::ToroidRequest::default()
     );
     assert_eq!(
-        wheel::roll_request(&p).unwrap(),
+        roll::roll_request(&p).unwrap(),
         toroid::RollRequest::default()
     );
     assert_eq!(
@@ -117,7 +124,7 @@ fn flags_map_onto_the_requests() {
         ("contact", Value::Text("penalty".into())),
         ("mu", Value::Float(0.5)),
     ]);
-    let r = wheel::roll_request(&p).unwrap();
+    let r = roll::roll_request(&p).unwrap();
     assert_eq!(r.wheel.params.sides, 12);
     assert!(r.wheel.stabilize.outer && !r.wheel.stabilize.inner);
     assert_eq!(r.incline, 30f64.to_radians());
@@ -130,7 +137,7 @@ fn flags_map_onto_the_requests() {
         )
     );
     let bad = params(&[("fidelity", Value::Text("exact".into()))]);
-    let e = wheel::roll_request(&bad).unwrap_err().to_string();
+    let e = roll::roll_request(&bad).unwrap_err().to_string();
     assert!(
         e.contains("`fidelity`") && e.contains("rigid, full, auto"),
         "{e}"

@@ -1,5 +1,6 @@
-//! The toroid-wheel studies `toroid`, `roll` and `tipover`: the flags of `tensegrity toroid`,
-//! `roll` and `tipover` (src/cli/toroid.rs) mapped onto the same library requests.
+//! The toroid-wheel studies `toroid` and `tipover` (and the wheel flags `roll` shares, see
+//! [`super::roll`]): the flags of `tensegrity toroid` and `tipover` (src/cli/toroid.rs)
+//! mapped onto the same library requests.
 //!
 //! `tipover` also takes σ = R_i/R_o and ε = t/T (thesis §3.3.2, Fig. 3.13) as `sigma` and
 //! `epsilon`: they set the geometry as the tip-over analysis reads it back, R_i = σ R_o and
@@ -9,9 +10,7 @@
 use super::{col, Column};
 use crate::error::{Result, SweepError};
 use crate::params::{param, Kind, ParamDef, Params};
-use toroid::{
-    ContactKind, FidelityChoice, RollRequest, Stabilize, TipoverRequest, ToroidRequest, WheelSpec,
-};
+use toroid::{Stabilize, TipoverRequest, ToroidRequest, WheelSpec};
 
 macro_rules! geometry_then {
     ($($extra:expr),* $(,)?) => {
@@ -38,20 +37,6 @@ pub const TOROID_PARAMS: [ParamDef; 13] = geometry_then![
     param("string_stiffness", Kind::Number, "N/m"),
 ];
 
-/// Parameters of `roll`.
-pub const ROLL_PARAMS: [ParamDef; 19] = geometry_then![
-    param("incline", Kind::Angle, "rad"),
-    param("t_end", Kind::Number, "s"),
-    param("dt", Kind::Number, "s"),
-    param("fidelity", Kind::Text, ""),
-    param("contact", Kind::Text, ""),
-    param("ground_damping", Kind::Number, "N s/m"),
-    param("ground_stiffness", Kind::Number, "N/m"),
-    param("mu", Kind::Number, ""),
-    param("string_stiffness", Kind::Number, "N/m"),
-    param("min_tension", Kind::Number, "N"),
-];
-
 /// Parameters of `tipover`.
 pub const TIPOVER_PARAMS: [ParamDef; 12] = geometry_then![
     param("gravity", Kind::Number, "m/s^2"),
@@ -72,24 +57,6 @@ pub const TOROID_COLUMNS: [Column; 11] = [
     col("internal_mechanisms", ""),
     col("mass_kg", "kg"),
     col("I1", "kg m^2"),
-];
-
-/// The scalars of [`toroid::RollReport`].
-pub const ROLL_COLUMNS: [Column; 14] = [
-    col("fidelity", ""),
-    col("sides", ""),
-    col("incline_rad", "rad"),
-    col("t_end", "s"),
-    col("mass_kg", "kg"),
-    col("I1", "kg m^2"),
-    col("impacts", ""),
-    col("axle_height_oscillation", "m"),
-    col("mean_speed", "m/s"),
-    col("max_reaction", "N"),
-    col("min_normal_force", "N"),
-    col("lift_off_time", "s"),
-    col("required_friction", ""),
-    col("mean_slip_speed", "m/s"),
 ];
 
 /// Parameters of `lean` (`tensegrity tipover --rolling`).
@@ -145,7 +112,7 @@ pub const TIPOVER_COLUMNS: [Column; 8] = [
 ];
 
 /// The wheel of `tensegrity toroid/roll/tipover`'s geometry flags.
-fn wheel(p: &Params) -> Result<WheelSpec> {
+pub(super) fn wheel(p: &Params) -> Result<WheelSpec> {
     let d = WheelSpec::default();
     let g = d.params;
     let mut w = d;
@@ -175,7 +142,7 @@ pub fn toroid_request(p: &Params) -> Result<ToroidRequest> {
     })
 }
 
-fn choice<T: Copy>(
+pub(super) fn choice<T: Copy>(
     options: &'static [(&'static str, T)],
 ) -> impl Fn(&str) -> std::result::Result<T, String> {
     move |s| {
@@ -188,38 +155,6 @@ fn choice<T: Copy>(
                 format!("expected one of {}", names.join(", "))
             })
     }
-}
-
-const FIDELITY: [(&str, FidelityChoice); 3] = [
-    ("rigid", FidelityChoice::Rigid),
-    ("full", FidelityChoice::Full),
-    ("auto", FidelityChoice::Auto),
-];
-
-const CONTACT: [(&str, ContactKind); 2] = [
-    ("thesis", ContactKind::Thesis),
-    ("penalty", ContactKind::Penalty),
-];
-
-/// The request of `tensegrity roll`.
-pub fn roll_request(p: &Params) -> Result<RollRequest> {
-    let d = RollRequest::default();
-    Ok(RollRequest {
-        wheel: wheel(p)?,
-        incline: p.angle("incline")?.unwrap_or(d.incline),
-        t_end: p.number("t_end")?.unwrap_or(d.t_end),
-        dt: p.number("dt")?.unwrap_or(d.dt),
-        fidelity: p
-            .parsed("fidelity", choice(&FIDELITY))?
-            .unwrap_or(d.fidelity),
-        contact: p.parsed("contact", choice(&CONTACT))?.unwrap_or(d.contact),
-        ground_damping: p.number("ground_damping")?.unwrap_or(d.ground_damping),
-        ground_stiffness: p.number("ground_stiffness")?.unwrap_or(d.ground_stiffness),
-        mu: p.number("mu")?.unwrap_or(d.mu),
-        string_stiffness: p.number("string_stiffness")?.unwrap_or(d.string_stiffness),
-        min_tension: p.number("min_tension")?.unwrap_or(d.min_tension),
-        ..d
-    })
 }
 
 /// The request of `tensegrity tipover`, with σ and ε mapped onto R_i and t.

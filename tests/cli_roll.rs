@@ -1,0 +1,190 @@
+//! `tensegrity roll` and `fig-rolling` outputs: the CSV contract, the frame drawings, the VTK
+//! series, warnings on stderr, and the impulse table.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("binary runs")
+}
+
+fn assert_ok(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("tensegrity-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn the_csv_has_the_contract_columns_for_both_fidelities() {
+    let dir = scratch("roll-csv");
+    for fidelity in ["rigid", "full"] {
+        let path = dir.join(format!("{fidelity}.csv"));
+        let out = run(&[
+            "roll",
+            "--fidelity",
+            fidelity,
+            "--t-end",
+            "0.1",
+            "--out",
+            path.to_str().unwrap(),
+        ]);
+        assert_ok(&out);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut lines = text.lines();
+        assert!(lines.next().unwrap().starts_with("t,axle_s,axle_h,omega,"));
+        // the start on a side: the axle at s = −R_o sin(π/8), h = R_o cos(π/8)
+        let first: Vec<f64> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .take(3)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let half = std::f64::consts::PI / 8.0;
+        assert_eq!(first[0], 0.0);
+        assert!((first[1] + half.sin()).abs() < 1e-12, "{fidelity}");
+        assert!((first[2] - half.cos()).abs() < 1e-12, "{fidelity}");
+        assert_eq!(
+            text.lines().count(),
+            102,
+            "{fidelity}: 101 samples and a header"
+        );
+    }
+}
+
+#[test]
+fn frames_draw_the_members_and_vtk_writes_a_series() {
+    let dir = scratch("roll-frames");
+    let svg = dir.join("frames.svg");
+    let vtk = dir.join("vtk");
+    let out = run(&[
+        "roll",
+        "--fidelity",
+        "rigid",
+        "--t-end",
+        "1",
+        "--frames",
+        "0,0.5,1",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--vtk",
+        vtk.to_str().unwrap(),
+    ]);
+    assert_ok(&out);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    for t in ["t = 0.000 s", "t = 0.500 s", "t = 1.000 s"] {
+        assert!(text.contains(t), "{t}");
+    }
+    // n = 8 with spokes + inner rings: 25 bars, 128 strings; one polyline per member and
+    // the slope line, in each of the three frames
+    let members = 8 * 3 + 1 + 8 * 12 + 8 * 2 + 8 * 2;
+    assert_eq!(text.matches("<polyline").count(), 3 * (members + 1));
+    let pvd = std::fs::read_to_string(vtk.join("series.pvd")).unwrap();
+    // every 10 ms over 1 s, plus the three --frames
+    assert_eq!(pvd.matches("<DataSet").count(), 101 + 3);
+    assert!(vtk.join("frame_00000.vtu").exists());
+    let out = run(&["roll", "--t-end", "1", "--frames", "2", "--svg", "x.svg"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--frames"));
+}
+
+#[test]
+fn thesis_contact_warnings_reach_stderr_and_the_json() {
+    let out = run(&[
+        "roll",
+        "--fidelity",
+        "full",
+        "--contact",
+        "thesis",
+        "--t-end",
+        "1.5",
+        "--json",
+    ]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["valid"], false);
+    assert_eq!(v["contact"], "thesis");
+    assert!(v["min_normal_force"].as_f64().unwrap() < 0.0);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("warning: ") && stderr.contains("pulled"),
+        "{stderr}"
+    );
+    let out = run(&["roll", "--restitution", "1.5"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("restitution"));
+}
+
+#[test]
+fn auto_reports_its_reason_and_the_help_names_the_kinetic_friction() {
+    let out = run(&[
+        "roll",
+        "--string-stiffness",
+        "2e6",
+        "--incline",
+        "30deg",
+        "--mu",
+        "1.2",
+        "--t-end",
+        "2",
+        "--json",
+    ]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // stiff strings and a valid rigid run: the cheap model
+    assert_eq!(v["fidelity"], "rigid");
+    assert!(v["fidelity_reason"]
+        .as_str()
+        .unwrap()
+        .contains("rigid run is valid"));
+    let first = &v["first_impact"];
+    assert!(first["omega_after"].as_f64().unwrap() < first["omega_before"].as_f64().unwrap());
+    let help = run(&["roll", "--help"]);
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(text.contains("0.75"), "{text}");
+    assert!(text.contains("--restitution") && text.contains("--ground-damping"));
+}
+
+#[test]
+fn fig_rolling_prints_the_impulse_table() {
+    let dir = scratch("fig-rolling-table");
+    let svg = dir.join("rolling.svg");
+    let out = run(&[
+        "fig-rolling",
+        "--fidelity",
+        "rigid",
+        "--t-end",
+        "2",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    assert_ok(&out);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("impact impulse per new contact"));
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip_while(|l| !l.contains("omega+/omega-"))
+        .skip(1)
+        .take(4)
+        .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        rows.iter().map(|r| r[0]).collect::<Vec<_>>(),
+        [8.0, 12.0, 16.0, 24.0]
+    );
+    // §3.3.1: the impulse per new contact, per unit of wheel mass, falls with n
+    assert!(rows.windows(2).all(|w| w[1][4] < w[0][4]), "{rows:?}");
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg.contains("axle height above the slope [m]"));
+}
