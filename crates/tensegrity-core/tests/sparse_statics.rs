@@ -174,6 +174,8 @@ fn random_structures_match_the_dense_path() {
         (40, 6, 2, false), // dense graph: many self-stresses
         (60, 5, 3, true),
         (80, 4, 4, true),
+        (70, 7, 5, false),
+        (90, 5, 6, true),
     ] {
         let s = random_structure(n, nb, salt, supported);
         let what = format!("random n = {n}, {nb} neighbours");

@@ -61,6 +61,9 @@ const POWER_STEPS: usize = 40;
 const INVERSE_STEPS: usize = 12;
 /// The σ_min(R_acc) estimate must exceed this multiple of max(τ, ‖E‖_F) for a certified rank.
 const CERTIFY_FACTOR: f64 = 100.0;
+/// A member whose acceptance would drop the condition estimate of R_acc below this fraction
+/// of σ_max is deferred to the end of the factorisation.
+const DEFER_BELOW: f64 = 1e-3;
 /// Columns are rejected when their residual is at most this multiple of τ: the residual of
 /// an exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the
 /// SVD's ε·‖A‖, so τ itself would accept some dependent columns of ill-conditioned
@@ -224,10 +227,16 @@ impl<'a> SparseStatics<'a> {
             });
         }
         let (m, n) = (dofs.len(), structure.n_members());
-        let tolerance = linalg::rank_tolerance(m, n, sigma_max(&a), settings.rank_tolerance);
-        let qr = RankRevealingQr::new(&a, &row_order, REJECT_FACTOR * tolerance)?;
+        let sigma = sigma_max(&a);
+        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let qr = RankRevealingQr::with_deferral(
+            &a,
+            &row_order,
+            REJECT_FACTOR * tolerance,
+            DEFER_BELOW * sigma,
+        )?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
-        let self_stress = orient(orthonormal_columns(&qr.null_vectors()), structure.n_bars());
+        let self_stress = orient(qr.orthonormal_null_space(), structure.n_bars());
         Ok(Self {
             structure,
             dofs,
@@ -308,14 +317,6 @@ impl<'a> SparseStatics<'a> {
     }
 }
 
-/// An orthonormal basis of the span of the columns of `n` (full column rank) by a thin QR.
-fn orthonormal_columns(n: &DMatrix<f64>) -> DMatrix<f64> {
-    if n.ncols() == 0 {
-        return n.clone();
-    }
-    n.clone().qr().q()
-}
-
 /// Orients every column so that its strings sum to a positive value (else its first entry
 /// above 1e-9 is positive), the dense path's convention.
 fn orient(mut basis: DMatrix<f64>, nb: usize) -> DMatrix<f64> {
@@ -384,10 +385,10 @@ impl SparseStatics<'_> {
         let gram = (&gram + gram.transpose()) * 0.5;
         let (w, v) = linalg::symmetric_eigen(&gram)?;
         // the largest `internal_dim` eigenvalues (ascending order: the last ones), ≈ 1
-        let mut phi = DMatrix::zeros(motions.nrows(), internal_dim);
+        let mut phi = &projected * v.columns(d - internal_dim, internal_dim);
         for (c, k) in (d - internal_dim..d).enumerate() {
-            let col = &projected * v.column(k) / w[k].max(f64::MIN_POSITIVE).sqrt();
-            phi.set_column(c, &col);
+            phi.column_mut(c)
+                .scale_mut(1.0 / w[k].max(f64::MIN_POSITIVE).sqrt());
         }
         Ok((phi, n_rigid))
     }
@@ -395,6 +396,16 @@ impl SparseStatics<'_> {
     /// Prestress stability with force densities `q` (the dense path's test and tolerance).
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         let (phi, _) = self.internal_mechanisms()?;
+        self.prestress_stability_on(&phi, q)
+    }
+
+    /// Prestress stability with force densities `q` on a given orthonormal basis `phi` of the
+    /// internal mechanisms ([`internal_mechanisms`](Self::internal_mechanisms)).
+    pub fn prestress_stability_on(
+        &self,
+        phi: &DMatrix<f64>,
+        q: &DVector<f64>,
+    ) -> Result<PrestressStability> {
         let m = phi.ncols();
         if m == 0 {
             return Ok(PrestressStability {
@@ -403,7 +414,7 @@ impl SparseStatics<'_> {
                 stable: true,
             });
         }
-        let omega_phi = self.stress_matrix_times(q, &phi);
+        let omega_phi = self.stress_matrix_times(q, phi);
         let projected = phi.transpose() * omega_phi;
         let sym = (&projected + projected.transpose()) * 0.5;
         let (w, _) = linalg::symmetric_eigen(&sym)?;
@@ -419,19 +430,24 @@ impl SparseStatics<'_> {
     /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C.
     fn stress_matrix_times(&self, q: &DVector<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
         let mut y = DMatrix::zeros(x.nrows(), x.ncols());
-        for (k, [i, j]) in self.structure.member_nodes().into_iter().enumerate() {
-            for d in 0..3 {
-                let (ri, rj) = (self.dofs.row[i][d], self.dofs.row[j][d]);
-                for c in 0..x.ncols() {
-                    let xi = ri.map_or(0.0, |r| x[(r, c)]);
-                    let xj = rj.map_or(0.0, |r| x[(r, c)]);
-                    let f = q[k] * (xi - xj);
-                    if let Some(r) = ri {
-                        y[(r, c)] += f;
-                    }
-                    if let Some(r) = rj {
-                        y[(r, c)] -= f;
-                    }
+        let pairs: Vec<(f64, Option<usize>, Option<usize>)> = self
+            .structure
+            .member_nodes()
+            .into_iter()
+            .enumerate()
+            .flat_map(|(k, [i, j])| (0..3).map(move |d| (k, i, j, d)))
+            .map(|(k, i, j, d)| (q[k], self.dofs.row[i][d], self.dofs.row[j][d]))
+            .collect();
+        for (xc, mut yc) in x.column_iter().zip(y.column_iter_mut()) {
+            for &(qk, ri, rj) in &pairs {
+                let xi = ri.map_or(0.0, |r| xc[r]);
+                let xj = rj.map_or(0.0, |r| xc[r]);
+                let f = qk * (xi - xj);
+                if let Some(r) = ri {
+                    yc[r] += f;
+                }
+                if let Some(r) = rj {
+                    yc[r] -= f;
                 }
             }
         }

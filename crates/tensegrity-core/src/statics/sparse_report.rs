@@ -66,7 +66,7 @@ fn base(structure: &Structure, st: &SparseStatics<'_>) -> Result<StaticsReport> 
     let pre = st.prestressability()?;
     let (internal, _) = st.internal_mechanisms()?;
     let prestress_stable = if pre.prestressable {
-        Some(st.prestress_stability(&pre.stress)?.stable)
+        Some(st.prestress_stability_on(&internal, &pre.stress)?.stable)
     } else {
         None
     };

@@ -20,10 +20,16 @@
 //! - otherwise a reflector maps the residual onto position p (the diagonal entry r_pp = ∓ its
 //!   norm) and p advances.
 //!
-//! - A column whose residual lies above τ but below 10⁻³ of its norm is nearly dependent on
-//!   the accepted columns: accepting it would make R_acc ill-conditioned (and the residuals of
-//!   later dependent columns noisy). It is deferred and processed after all the others, on
-//!   the window of the reflectors applied before it (restricted pivoting).
+//! - Greedy selection in a fixed order can accept a set of columns that is much worse
+//!   conditioned than A itself (a near-dependency among accepted columns that later columns
+//!   would have resolved); the residuals of later dependent columns then carry rounding of
+//!   order κ(R_acc)·ε‖A‖ and the rank decision fails. An incremental condition estimate
+//!   (Bischof's ICE: a unit vector x with ‖xᵀR_acc‖ ≈ σ_min(R_acc), updated in O(window) per
+//!   accepted column from a 2 × 2 eigenproblem) watches σ_min(R_acc): a column whose
+//!   acceptance would drop the estimate below the caller's `defer_below` is deferred and
+//!   processed after all the others, on the window of the reflectors applied before it
+//!   (restricted pivoting). By then the columns that span its direction are in, and it is
+//!   rejected as dependent or accepted with its true residual.
 //!
 //! The result is A Pc = Q [R_acc R_dep; 0 0] + E with R_acc (r × r) upper triangular and
 //! nonsingular, r the rank and E the rejected residuals. Q's last m − r columns span the left
@@ -48,10 +54,6 @@ use super::CscMatrix;
 use crate::error::{FactorizationFailure, Result};
 use crate::linalg::failure;
 use nalgebra::{DMatrix, DVector};
-
-/// A column whose residual is below this fraction of its norm (but above τ) is deferred to the
-/// end of the factorisation.
-const DEFER_RATIO: f64 = 1e-3;
 
 /// One Householder reflector H = I − β v vᵀ acting on positions `start..start + v.len()`.
 #[derive(Debug, Clone)]
@@ -106,6 +108,71 @@ pub struct RankRevealingQr {
     /// Rejected columns, in processing order, with the pivot count when they were rejected.
     dependent: Vec<(usize, usize)>,
     rejected_sq: f64,
+    /// Deferral level of the condition estimate (0: never defer).
+    defer_below: f64,
+    /// The incremental condition estimate.
+    ice: Ice,
+}
+
+/// Incremental condition estimation of an upper triangular matrix growing by columns: x (unit,
+/// stored as `scale · raw`) with ‖xᵀR‖ = `delta` ≈ σ_min(R).
+#[derive(Debug, Clone)]
+struct Ice {
+    raw: Vec<f64>,
+    scale: f64,
+    delta: f64,
+}
+
+impl Ice {
+    /// The estimate after appending the column with entries `v` (positions `start..`, above
+    /// the diagonal) and diagonal `gamma`, with the rotation (s, c) that achieves it.
+    fn trial(&self, start: usize, v: &[f64], gamma: f64) -> (f64, f64, f64) {
+        if self.raw.is_empty() {
+            return (gamma.abs(), 0.0, 1.0);
+        }
+        let alpha = self.scale
+            * v.iter()
+                .zip(&self.raw[start..])
+                .map(|(a, b)| a * b)
+                .sum::<f64>();
+        let (a11, a12, a22) = (
+            self.delta * self.delta + alpha * alpha,
+            alpha * gamma,
+            gamma * gamma,
+        );
+        let tr = a11 + a22;
+        let disc = ((a11 - a22) * (a11 - a22) + 4.0 * a12 * a12).sqrt();
+        let lambda = (0.5 * (tr - disc)).max(0.0);
+        // eigenvector of [[a11, a12], [a12, a22]] for lambda, from the better-conditioned row
+        let (s, c) = if (a11 - lambda).abs() > (a22 - lambda).abs() {
+            (-a12, a11 - lambda)
+        } else {
+            (a22 - lambda, -a12)
+        };
+        let norm = (s * s + c * c).sqrt();
+        if norm == 0.0 || !norm.is_finite() {
+            return if a11 <= a22 {
+                (a11.sqrt(), 1.0, 0.0)
+            } else {
+                (gamma.abs(), 0.0, 1.0)
+            };
+        }
+        (lambda.sqrt(), s / norm, c / norm)
+    }
+
+    /// Accepts a trial: x ← [s·x; c].
+    fn accept(&mut self, (delta, s, c): (f64, f64, f64)) {
+        let new_scale = self.scale * s;
+        if new_scale.abs() < 1e-100 {
+            let k = self.scale * s;
+            self.raw.iter_mut().for_each(|x| *x *= k);
+            self.scale = 1.0;
+        } else {
+            self.scale = new_scale;
+        }
+        self.raw.push(c / self.scale);
+        self.delta = delta;
+    }
 }
 
 impl RankRevealingQr {
@@ -126,6 +193,17 @@ impl RankRevealingQr {
     /// assert!(an.iter().all(|x| x.abs() < 1e-14));
     /// ```
     pub fn new(a: &CscMatrix, row_order: &[usize], tol: f64) -> Result<Self> {
+        Self::with_deferral(a, row_order, tol, 0.0)
+    }
+
+    /// As [`new`](Self::new), deferring a column whose acceptance would drop the condition
+    /// estimate of R_acc below `defer_below` (see the module documentation).
+    pub fn with_deferral(
+        a: &CscMatrix,
+        row_order: &[usize],
+        tol: f64,
+        defer_below: f64,
+    ) -> Result<Self> {
         let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
         let pos_of = inverse_permutation(row_order, m)?;
         let (cp, ri, vals) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
@@ -147,6 +225,12 @@ impl RankRevealingQr {
             r_cols: vec![RColumn::default(); n],
             dependent: Vec::new(),
             rejected_sq: 0.0,
+            defer_below,
+            ice: Ice {
+                raw: Vec::new(),
+                scale: 1.0,
+                delta: f64::INFINITY,
+            },
         };
         let mut ends: Vec<usize> = Vec::new();
         let mut deferred = Vec::new();
@@ -168,9 +252,8 @@ impl RankRevealingQr {
     }
 
     /// Processes original column `k` with nonzeros `(position, value)`. With `may_defer`, a
-    /// column whose residual is above τ but below [`DEFER_RATIO`] times its norm (nearly
-    /// dependent on the accepted columns: accepting it would make R_acc ill-conditioned) is
-    /// left untouched and `false` returned; it is processed again after all the others.
+    /// column whose acceptance would drop the condition estimate below `defer_below` is left
+    /// untouched and `false` returned; it is processed again after all the others.
     fn process(
         &mut self,
         k: usize,
@@ -216,12 +299,13 @@ impl RankRevealingQr {
             self.dependent.push((k, p));
             return true;
         }
-        let norm = nonzero.iter().map(|e| e.1 * e.1).sum::<f64>().sqrt();
-        if may_defer && residual < DEFER_RATIO * norm {
-            return false;
-        }
         let mut v = buf.split_off(top);
         let alpha = if v[0] > 0.0 { -residual } else { residual };
+        let trial = self.ice.trial(lo, &buf, alpha);
+        if may_defer && trial.0 < self.defer_below {
+            return false;
+        }
+        self.ice.accept(trial);
         v[0] -= alpha;
         let vv: f64 = v.iter().map(|x| x * x).sum();
         buf.push(alpha);
@@ -316,6 +400,18 @@ impl RankRevealingQr {
         out
     }
 
+    /// An orthonormal basis of the null space: [`null_vectors`](Self::null_vectors)
+    /// orthonormalised by a thin (blocked) Householder QR, O(n·s²).
+    pub fn orthonormal_null_space(&self) -> DMatrix<f64> {
+        let basic = self.null_vectors();
+        if basic.ncols() == 0 {
+            return basic;
+        }
+        let f = faer::Mat::from_fn(basic.nrows(), basic.ncols(), |i, j| basic[(i, j)]);
+        let q = f.qr().compute_thin_Q();
+        DMatrix::from_fn(q.nrows(), q.ncols(), |i, j| q[(i, j)])
+    }
+
     /// Qᵀ b for `b` in original row order; the result is in position order (its first r
     /// entries pair with R, the rest is the part of b outside the range of A).
     pub fn apply_qt(&self, b: &[f64]) -> Vec<f64> {
@@ -330,21 +426,24 @@ impl RankRevealingQr {
     /// original row order.
     pub fn left_null_vectors(&self) -> DMatrix<f64> {
         let (m, r) = (self.nrows, self.rank());
-        let mut out = DMatrix::zeros(m, m - r);
-        let mut y = vec![0.0; m];
-        for p in r..m {
-            y.iter_mut().for_each(|x| *x = 0.0);
-            y[p] = 1.0;
-            let mut low = p;
-            for h in self.reflectors.iter().rev() {
-                if h.end() >= low {
-                    h.apply(&mut y, 0);
-                    low = low.min(h.start);
+        // Q e_p = H_0 ⋯ H_{r−1} e_p for every p ≥ r, in position order; a column is touched
+        // only once a reflector reaches its lowest nonzero position
+        let mut y = DMatrix::zeros(m, m - r);
+        let mut low: Vec<usize> = (r..m).collect();
+        for (c, p) in (r..m).enumerate() {
+            y[(p, c)] = 1.0;
+        }
+        for h in self.reflectors.iter().rev() {
+            for (c, mut col) in y.column_iter_mut().enumerate() {
+                if h.end() >= low[c] {
+                    h.apply(col.as_mut_slice(), 0);
+                    low[c] = low[c].min(h.start);
                 }
             }
-            for (pos, &val) in y.iter().enumerate() {
-                out[(self.row_at[pos], p - r)] = val;
-            }
+        }
+        let mut out = DMatrix::zeros(m, m - r);
+        for (pos, &row) in self.row_at.iter().enumerate() {
+            out.row_mut(row).copy_from(&y.row(pos));
         }
         out
     }
