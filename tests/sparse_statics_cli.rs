@@ -11,7 +11,11 @@ fn statics(scene: &str, method: &str) -> Value {
         .args(["statics", scene, "--json", "--method", method])
         .output()
         .expect("the binary runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("JSON report")
 }
 
@@ -19,9 +23,16 @@ fn statics(scene: &str, method: &str) -> Value {
 fn the_200_prism_tower_is_analysed_by_the_sparse_path() {
     let r = statics("examples/tower200.toml", "auto");
     assert_eq!(r["statics_method"], "sparse_qr");
-    assert!(r.get("statics_warning").is_none(), "{}", r["statics_warning"]);
+    assert!(
+        r.get("statics_warning").is_none(),
+        "{}",
+        r["statics_warning"]
+    );
     assert_eq!(r["nodes"], 603);
-    assert_eq!((r["bars"].as_u64(), r["strings"].as_u64()), (Some(600), Some(1203)));
+    assert_eq!(
+        (r["bars"].as_u64(), r["strings"].as_u64()),
+        (Some(600), Some(1203))
+    );
     // the dense SVD path (release, 8 s): rank 1603, 200 self-stresses, 206 mechanisms, margin
     // 0.5773502691896059 = 1/√3 to 1e-14
     assert_eq!(r["rank"], 1603);
@@ -41,7 +52,13 @@ fn the_two_prism_tower_gives_the_same_report_through_both_paths() {
     let sparse = statics("examples/tower.toml", "sparse");
     assert!(dense.get("statics_method").is_none());
     assert_eq!(sparse["statics_method"], "sparse_qr");
-    for key in ["rank", "self_stress_dim", "mechanisms", "internal_mechanisms", "prestressable"] {
+    for key in [
+        "rank",
+        "self_stress_dim",
+        "mechanisms",
+        "internal_mechanisms",
+        "prestressable",
+    ] {
         assert_eq!(dense[key], sparse[key], "{key}");
     }
     assert_eq!(dense["self_stress_dim"], 2);

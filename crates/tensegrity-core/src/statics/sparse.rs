@@ -5,14 +5,16 @@
 //!
 //! The dense path ([`Statics`](super::Statics)) takes the full SVD A = U Σ Vᵀ: O(n³) flops and
 //! O(n²) memory even when only the rank, a null space of small dimension and a few solves are
-//! needed. faer has no column-pivoted sparse QR, and the normal equations AᵀA or AAᵀ square the
-//! condition number, so a rank decision at max(m, n)·ε·σ_max is impossible there. Structures
-//! are meshes: after a reverse Cuthill–McKee ordering of the nodes, A is banded. The
-//! factorisation is therefore a Householder QR confined to A's profile
+//! needed. The factorisation backend has no column-pivoted sparse QR, and the normal equations
+//! AᵀA or AAᵀ square the condition number, so a rank decision at max(m, n)·ε·σ_max is
+//! impossible there. Structures are meshes: after a reverse Cuthill–McKee ordering of the
+//! nodes, A is banded. The factorisation is therefore a Householder QR confined to A's profile
 //! ([`RankRevealingQr`](crate::linalg::RankRevealingQr)): the members are processed along the
-//! band and a member whose column lies within the tolerance τ of the span of the members
-//! accepted before it is rejected (it carries a self-stress). Householder QR is backward
-//! stable, so the residual of an exactly dependent column is O(ε‖A‖), far below τ.
+//! band and a member whose column lies within the rejection tolerance of the span of the
+//! members accepted before it is rejected (it carries a self-stress). A member whose
+//! acceptance would drop the incremental condition estimate of the accepted set below
+//! 10⁻³·σ_max is deferred to the end (restricted pivoting), which keeps the accepted set about
+//! as well conditioned as A.
 //!
 //! Tolerance: τ = max(m, n)·ε·σ_max (or the relative tolerance of the settings times σ_max),
 //! the dense path's convention, with σ_max from 40 steps of the power method on AᵀA. A member
@@ -20,11 +22,13 @@
 //! column carries rounding of order κ(A_acc)·ε·‖A‖ (its coefficients on the accepted columns
 //! grow with their conditioning), more than the SVD's ε·‖A‖.
 //!
-//! The rank decision is **certified** when it sits in a clear gap of the spectrum: the Frobenius norm ‖E‖_F bounds σ_{r+1}(A) from above,
-//! while σ_min(R_acc) ≤ σ_r(A) bounds σ_r from below; the estimate of σ_min(R_acc) must exceed
+//! The rank decision is **certified** when it sits in a clear gap of the spectrum: the
+//! Frobenius norm ‖E‖_F of the rejected residuals bounds σ_{r+1}(A) from above, and
+//! σ_min(R_acc) ≤ σ_r(A) bounds σ_r from below; the estimate of σ_min(R_acc) must exceed
 //! 100 · max(τ, ‖E‖_F). A certified rank is the SVD's at τ unless A has a singular value
-//! between τ and ‖E‖_F ≤ √s·1000·τ (s the self-stress dimension). An uncertified decision falls back to the dense SVD when it fits the
-//! memory budget (see [`report`](super::report)).
+//! between τ and ‖E‖_F. An uncertified decision falls back to the dense SVD when it fits the
+//! memory budget and the method is automatic, and is flagged in the report otherwise (see
+//! [`report`](super::report)).
 //!
 //! # What is computed
 //!
@@ -143,9 +147,10 @@ fn bfs(adj: &[Vec<usize>], start: usize, excluded: &[bool]) -> Vec<usize> {
     out
 }
 
-/// The bytes the sparse factorisation may hold at most: the profile of A in the ordering (each
-/// column stored from row 0 to its last row, twice) plus the dense bases, bounded by
-/// members × (members + dofs) when every member were dependent.
+/// A bound of the bytes the sparse factorisation holds: the profile of A in the ordering (each
+/// column stored from row 0 to its last row, reflector and R entries). The dense output bases
+/// (members × self-stress dimension, dofs × mechanisms) come on top; they are the size of the
+/// report itself.
 fn sparse_bytes_bound(a: &CscMatrix, pos_of_row: &[usize]) -> f64 {
     let (cp, ri) = (a.pattern().col_ptr(), a.pattern().row_idx());
     let profile: f64 = (0..a.pattern().ncols())
