@@ -3,6 +3,7 @@
 
 use anyhow::Result;
 use std::path::PathBuf;
+use tensegrity_core::statics::StaticsMethod;
 use tensegrity_core::stiffness::MassModel;
 use tensegrity_core::{statics_report, StaticsReport, StaticsRequest, StaticsSettings, Structure};
 use tensegrity_io::scene::Scene;
@@ -31,6 +32,21 @@ pub struct StaticsArgs {
     /// failing.
     #[arg(long)]
     pub least_squares: bool,
+    /// Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR
+    /// from 300 dofs and members on), dense or sparse.
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    pub method: MethodArg,
+}
+
+/// `--method` values.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodArg {
+    /// By size, with the SVD as fallback.
+    Auto,
+    /// The dense SVD.
+    Dense,
+    /// The sparse rank-revealing QR.
+    Sparse,
 }
 
 /// `--mass` values.
@@ -54,7 +70,11 @@ impl From<MassArg> for MassModel {
 impl StaticsArgs {
     /// The library request the arguments describe.
     pub fn request(&self) -> Result<StaticsRequest> {
-        let mut settings = StaticsSettings::default();
+        let mut settings = StaticsSettings::default().method(match self.method {
+            MethodArg::Auto => StaticsMethod::Auto,
+            MethodArg::Dense => StaticsMethod::Dense,
+            MethodArg::Sparse => StaticsMethod::Sparse,
+        });
         if let Some(tol) = self.rank_tol {
             settings = settings.rank_tolerance(tol)?;
         }
@@ -186,5 +206,12 @@ fn print_notes(r: &StaticsReport) {
     }
     if let Some(e) = &r.sizing_error {
         println!("sizing not possible: {e}");
+    }
+    if r.statics_method.is_some() {
+        println!("factorisation: sparse rank-revealing QR (smallest singular value estimated)");
+    }
+    if let Some(w) = &r.statics_warning {
+        println!("warning: {w}");
+        eprintln!("warning: {w}");
     }
 }

@@ -10,7 +10,8 @@
 //!   supports);
 //! - force propagation ([`propagate`], dispatching on [`Method`]) by the recursive method of
 //!   joints ([`propagate_recursive`], one fixed-size solve per node) and, independently, by a
-//!   global sparse LU ([`global::solve_global`]); tension-positive force densities
+//!   global solve of the assembled equilibrium, eliminated level by level with sparse LUs
+//!   ([`global::solve_global`]); tension-positive force densities
 //!   ([`ForceSolution`]);
 //! - tip loads w₀[cos φ sin γ, sin φ sin γ, cos γ] ([`tip_load`]) and sign maps over (φ, γ)
 //!   ([`signmap`]);

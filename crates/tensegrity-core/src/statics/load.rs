@@ -9,7 +9,8 @@
 //! [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂; otherwise [`LoadSolution::unbalanced`] names the nodes whose
 //! residual force exceeds that tolerance.
 
-use super::Statics;
+use super::{DofMap, Statics};
+use crate::structure::Structure;
 use nalgebra::{DVector, Vector3};
 
 /// Relative equilibrium residual ‖A q − w‖₂ / ‖w‖₂ above which a load is not carried (the
@@ -51,58 +52,73 @@ impl Statics<'_> {
 
     /// Solves A q = w for an arbitrary 3×n nodal force matrix `w_nodes`.
     pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
-        let structure = self.structure();
         let w = self.dofs().gather(w_nodes);
         let q = self.solve_min_norm(&w);
-        let lengths = structure.member_lengths();
-        let member_force =
-            DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
         let r = self.matrix() * &q - &w;
-        let residual = r.norm();
-        let w_norm = w.norm();
-        let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
-        let unbalanced = self.unbalanced_nodes(&r, LOAD_RESIDUAL_TOLERANCE * w_norm);
+        assemble_solution(self.structure(), self.dofs(), w_nodes, q, r)
+    }
+}
 
-        // (A_full q) node by node, one member at a time: −q m at the start, +q m at the end
-        let mut internal = vec![Vector3::zeros(); structure.n_nodes()];
-        for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
-            let t = structure.member_vector(k) * q[k];
-            internal[i] -= t;
-            internal[j] += t;
-        }
-        let reactions = structure
-            .supports()
-            .iter()
-            .map(|s| {
-                let mut r = Vector3::zeros();
-                for d in 0..3 {
-                    if s.fixed[d] {
-                        r[d] = internal[s.node][d] - w_nodes[(d, s.node)];
-                    }
+/// The load solution for force densities `q` with equilibrium residual `r` = A q − w on the
+/// free rows: member forces, reactions, residual norms and unbalanced nodes.
+pub(super) fn assemble_solution(
+    structure: &Structure,
+    dofs: &DofMap,
+    w_nodes: &nalgebra::Matrix3xX<f64>,
+    q: DVector<f64>,
+    r: DVector<f64>,
+) -> LoadSolution {
+    let w_norm = dofs.gather(w_nodes).norm();
+    let lengths = structure.member_lengths();
+    let member_force = DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
+    let residual = r.norm();
+    let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
+    let unbalanced = unbalanced_nodes(structure, dofs, &r, LOAD_RESIDUAL_TOLERANCE * w_norm);
+
+    // (A_full q) node by node, one member at a time: −q m at the start, +q m at the end
+    let mut internal = vec![Vector3::zeros(); structure.n_nodes()];
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let t = structure.member_vector(k) * q[k];
+        internal[i] -= t;
+        internal[j] += t;
+    }
+    let reactions = structure
+        .supports()
+        .iter()
+        .map(|s| {
+            let mut r = Vector3::zeros();
+            for d in 0..3 {
+                if s.fixed[d] {
+                    r[d] = internal[s.node][d] - w_nodes[(d, s.node)];
                 }
-                (s.node, r)
-            })
-            .collect();
-        LoadSolution {
-            force_density: q,
-            member_force,
-            reactions,
-            residual,
-            relative_residual,
-            unbalanced,
-        }
+            }
+            (s.node, r)
+        })
+        .collect();
+    LoadSolution {
+        force_density: q,
+        member_force,
+        reactions,
+        residual,
+        relative_residual,
+        unbalanced,
     }
+}
 
-    /// Nodes whose residual force (free directions of `r`, node by node) exceeds `tol`.
-    fn unbalanced_nodes(&self, r: &DVector<f64>, tol: f64) -> Vec<(usize, Vector3<f64>)> {
-        let mut per_node = vec![Vector3::zeros(); self.structure().n_nodes()];
-        for (row, &(node, d)) in self.dofs().free.iter().enumerate() {
-            per_node[node][d] = r[row];
-        }
-        per_node
-            .into_iter()
-            .enumerate()
-            .filter(|(_, f)| f.norm() > tol)
-            .collect()
+/// Nodes whose residual force (free directions of `r`, node by node) exceeds `tol`.
+fn unbalanced_nodes(
+    structure: &Structure,
+    dofs: &DofMap,
+    r: &DVector<f64>,
+    tol: f64,
+) -> Vec<(usize, Vector3<f64>)> {
+    let mut per_node = vec![Vector3::zeros(); structure.n_nodes()];
+    for (row, &(node, d)) in dofs.free.iter().enumerate() {
+        per_node[node][d] = r[row];
     }
+    per_node
+        .into_iter()
+        .enumerate()
+        .filter(|(_, f)| f.norm() > tol)
+        .collect()
 }

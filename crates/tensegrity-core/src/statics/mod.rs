@@ -16,12 +16,15 @@ mod flexes;
 mod load;
 mod prestress;
 pub mod report;
+pub mod sparse;
+mod sparse_report;
 mod stability;
 pub mod symmetry;
 
 pub use flexes::Flexes;
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{solve_lp, Prestressability, PRESTRESS_TOLERANCE};
+pub use sparse::SparseStatics;
 pub use stability::PrestressStability;
 
 use crate::error::Result;
@@ -124,9 +127,31 @@ pub enum LpSolver {
     Clarabel,
 }
 
+/// Which factorisation answers [`report::statics_report`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StaticsMethod {
+    /// The dense SVD below [`SPARSE_MIN_SIZE`] free dofs or members, the sparse
+    /// rank-revealing QR ([`SparseStatics`]) from there on, falling back to the SVD when the
+    /// sparse rank decision is not certified and the SVD fits the memory budget.
+    #[default]
+    Auto,
+    /// Always the dense SVD ([`Statics`]).
+    Dense,
+    /// Always the sparse rank-revealing QR ([`SparseStatics`]), flagged in the report when
+    /// its rank decision is not certified.
+    Sparse,
+}
+
+/// [`StaticsMethod::Auto`] uses the sparse path when both the free dofs and the members
+/// number at least this many.
+pub const SPARSE_MIN_SIZE: usize = 300;
+
 /// Settings of a statics analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StaticsSettings {
+    /// Dense SVD, sparse QR or automatic choice by size (used by
+    /// [`report::statics_report`]; [`Statics`] is always dense).
+    pub method: StaticsMethod,
     /// Relative rank tolerance (σ counts as zero when σ ≤ tol · σ_max); `None` uses
     /// max(m, n)·ε.
     pub rank_tolerance: Option<f64>,
@@ -177,6 +202,18 @@ impl StaticsSettings {
     /// ```
     pub fn lp_solver(mut self, solver: LpSolver) -> Self {
         self.lp_solver = solver;
+        self
+    }
+
+    /// Chooses the factorisation of [`report::statics_report`].
+    ///
+    /// ```
+    /// use tensegrity_core::statics::{StaticsMethod, StaticsSettings};
+    /// let s = StaticsSettings::default().method(StaticsMethod::Sparse);
+    /// assert_eq!(s.method, StaticsMethod::Sparse);
+    /// ```
+    pub fn method(mut self, method: StaticsMethod) -> Self {
+        self.method = method;
         self
     }
 }

@@ -119,6 +119,66 @@ pub fn solve_lp(
     }
 }
 
+/// The margin LP over the member force densities of a structure with `nb` bars (bars first),
+/// the self-stress space given by the r × n equations `r_eq` q = 0 of full row rank:
+/// `max t  s.t.  r_eq q = 0, q_s ≥ t, q_b ≤ −t, |q| ≤ 1, t ≥ 0`, by Clarabel (sparse). Returns
+/// z = [q, t].
+pub(super) fn solve_member_lp(r_eq: &crate::linalg::CscMatrix, nb: usize) -> Result<Vec<f64>> {
+    let problem = "prestressability LP (sparse)";
+    let (r, n) = (r_eq.pattern().nrows(), r_eq.pattern().ncols());
+    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    let (cp, ri, vals) = (
+        r_eq.pattern().col_ptr(),
+        r_eq.pattern().row_idx(),
+        r_eq.values(),
+    );
+    for k in 0..n {
+        for s in cp[k]..cp[k + 1] {
+            ii.push(ri[s]);
+            jj.push(k);
+            vv.push(vals[s]);
+        }
+    }
+    // inequalities A z + s = b, s ≥ 0 (same rows as the dense LP)
+    let mut b = vec![0.0; r + 2 * n + 1];
+    for k in 0..n {
+        let sign = if k < nb { 1.0 } else { -1.0 };
+        let row = r + 2 * k;
+        ii.extend([row, row, row + 1]);
+        jj.extend([k, n, k]);
+        vv.extend([sign, 1.0, -sign]);
+        b[row + 1] = 1.0;
+    }
+    ii.push(r + 2 * n);
+    jj.push(n);
+    vv.push(-1.0);
+    let a = CscMatrix::new_from_triplets(r + 2 * n + 1, n + 1, ii, jj, vv);
+    let p = CscMatrix::zeros((n + 1, n + 1));
+    let mut c = vec![0.0; n + 1];
+    c[n] = -1.0;
+    let cones = [
+        SupportedConeT::ZeroConeT(r),
+        SupportedConeT::NonnegativeConeT(2 * n + 1),
+    ];
+    let failed = |status: String| CoreError::SolverFailed { problem, status };
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(1e-10)
+        .tol_gap_rel(1e-10)
+        .tol_feas(1e-10)
+        .max_iter(500)
+        .build()
+        .map_err(|e| failed(e.to_string()))?;
+    let mut solver =
+        DefaultSolver::new(&p, &c, &a, &b, &cones, settings).map_err(|e| failed(e.to_string()))?;
+    solver.solve();
+    let status = solver.solution.status;
+    if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
+        return Err(failed(format!("{status:?}")));
+    }
+    Ok(solver.solution.x.clone())
+}
+
 /// Solves min cᵀz s.t. G z ≤ h with Clarabel.
 fn solve_clarabel(
     g: &DMatrix<f64>,

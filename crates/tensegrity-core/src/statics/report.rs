@@ -131,6 +131,15 @@ pub struct StaticsReport {
     /// Why the mass could not be computed, when members have materials but sizing failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_error: Option<String>,
+    /// Set when the sparse rank-revealing QR answered instead of the dense SVD:
+    /// `"sparse_qr"`. `smallest_singular_value` is then an estimate (an upper bound ≤
+    /// `rank_tolerance` when A is rank deficient, an inverse-iteration estimate otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub statics_method: Option<&'static str>,
+    /// Set when the sparse rank decision could not be certified (see
+    /// [`SparseStatics`](super::SparseStatics)).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub statics_warning: Option<String>,
 }
 
 /// Runs every statics analysis of one structure (see the module documentation).
@@ -149,10 +158,16 @@ pub struct StaticsReport {
 /// assert!(r.force_density.is_none()); // no loads, no load solve
 /// ```
 pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result<StaticsReport> {
+    if super::sparse_report::wants_sparse(structure, &request.settings) {
+        if let Some(report) = super::sparse_report::sparse_statics_report(structure, request)? {
+            return Ok(report);
+        }
+    }
     let statics = Statics::with_settings(structure, request.settings)?;
     let mut report = base_report(structure, &statics)?;
     if structure.is_loaded() {
-        add_load_solve(structure, &statics, request.least_squares, &mut report)?;
+        let sol = statics.solve_loads();
+        add_load_solve(structure, sol, request.least_squares, &mut report)?;
     }
     if let Some(k) = request.modes {
         add_modes(structure, k, request.mass, &mut report);
@@ -204,18 +219,19 @@ fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsRe
         natural_frequencies_hz: None,
         modal_error: None,
         sizing_error: None,
+        statics_method: None,
+        statics_warning: None,
     })
 }
 
 /// The minimal-norm load solve and, when members have materials and the load is carried, the
 /// sizing for it.
-fn add_load_solve(
+pub(super) fn add_load_solve(
     structure: &Structure,
-    statics: &Statics<'_>,
+    sol: super::LoadSolution,
     least_squares: bool,
     report: &mut StaticsReport,
 ) -> Result<()> {
-    let sol = statics.solve_loads();
     let carried = sol.load_carried();
     if !carried && !least_squares {
         return Err(CoreError::LoadNotCarried {
@@ -281,7 +297,12 @@ fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsRep
 }
 
 /// The `k` lowest natural frequencies about the equilibrium force densities.
-fn add_modes(structure: &Structure, k: usize, mass: MassModel, report: &mut StaticsReport) {
+pub(super) fn add_modes(
+    structure: &Structure,
+    k: usize,
+    mass: MassModel,
+    report: &mut StaticsReport,
+) {
     let modes = stiffness::equilibrium_force_densities(structure)
         .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
     match modes {

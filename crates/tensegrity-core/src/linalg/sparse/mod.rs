@@ -8,15 +8,20 @@
 //! - [`cholesky`]: A = L Lᵀ for SPD matrices with a fixed pattern, symbolic analysis once and a
 //!   numeric refactorisation per call (the in-house [`StaticCholesky`] and the general
 //!   [`SparseCholesky`]);
-//! - [`lu`]: P A Q = L U with partial pivoting for general square matrices.
+//! - [`lu`]: P A Q = L U with partial pivoting for general square matrices;
+//! - [`rrqr`]: a rank-revealing staircase Householder QR of a banded rectangular matrix that
+//!   rejects dependent columns (rank, null spaces and least squares of the equilibrium matrix
+//!   of large structures without the SVD's full U and V).
 
 pub mod cholesky;
 pub mod lu;
 pub mod ordering;
+pub mod rrqr;
 
 pub use cholesky::{cholesky_solve, SparseCholesky, StaticCholesky};
 pub use lu::{lu_solve, SparseLu};
 pub use ordering::amd_ordering;
+pub use rrqr::RankRevealingQr;
 
 use super::failure;
 use crate::error::{FactorizationFailure, Result};

@@ -1,0 +1,101 @@
+//! Criterion benches of the sparse statics against the dense SVD path: the full statics
+//! report (rank, self-stress basis, margin LP, flexes, prestress stability) of towers of
+//! stacked Snelson prisms sharing their triangles (banded) and of random banded structures.
+//!
+//! `cargo bench -p tensegrity-core --bench sparse_statics`
+#![allow(missing_docs)]
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::f64::consts::PI;
+use std::hint::black_box;
+use tensegrity_core::statics::report::{statics_report, StaticsRequest};
+use tensegrity_core::statics::{StaticsMethod, StaticsSettings};
+use tensegrity_core::{Bar, StringMember, Structure};
+
+/// `stages` Snelson prisms (twist 30°) sharing their triangles: 9·stages + 3 members.
+fn tower(stages: usize) -> Structure {
+    let mut b = Structure::builder();
+    for ring in 0..=stages {
+        for i in 0..3 {
+            let a = 2.0 * PI * i as f64 / 3.0 + ring as f64 * PI / 6.0;
+            b = b.node([a.cos(), a.sin(), ring as f64]);
+        }
+    }
+    for s in 0..stages {
+        for i in 0..3 {
+            b = b.bar(Bar::new(3 * s + i, 3 * s + 3 + (i + 1) % 3));
+            b = b.string(StringMember::new(3 * s + i, 3 * s + 3 + i));
+        }
+    }
+    for ring in 0..=stages {
+        for i in 0..3 {
+            b = b.string(StringMember::new(3 * ring + i, 3 * ring + (i + 1) % 3));
+        }
+    }
+    b.build().expect("valid tower")
+}
+
+/// A deterministic value in [0, 1).
+fn hash(i: usize, salt: usize) -> f64 {
+    let x = ((i * 7919 + salt * 104_729 + 13) as f64 * 0.618_033_988_7).sin() * 43_758.545_3;
+    x - x.floor()
+}
+
+/// `n` random nodes along a box, each joined to its 5 next neighbours: about 4n members.
+fn random_banded(n: usize) -> Structure {
+    let mut b = Structure::builder();
+    for i in 0..n {
+        b = b.node([hash(i, 1), hash(i, 2), i as f64 * 0.3 + hash(i, 3)]);
+    }
+    let mut k = 0;
+    for i in 0..n {
+        for j in i + 1..(i + 6).min(n) {
+            if hash(k, 4) < 0.8 {
+                b = if k % 3 == 0 {
+                    b.bar(Bar::new(i, j))
+                } else {
+                    b.string(StringMember::new(i, j))
+                };
+            }
+            k += 1;
+        }
+    }
+    b.build().expect("valid structure")
+}
+
+fn request(method: StaticsMethod) -> StaticsRequest {
+    StaticsRequest {
+        settings: StaticsSettings::default().method(method),
+        ..Default::default()
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("statics_report");
+    group.sample_size(10);
+    let cases = [
+        ("tower", 25, tower(25)),
+        ("tower", 50, tower(50)),
+        ("tower", 100, tower(100)),
+        ("tower", 200, tower(200)),
+        ("tower", 400, tower(400)),
+        ("random", 150, random_banded(150)),
+        ("random", 500, random_banded(500)),
+    ];
+    for (name, size, s) in &cases {
+        let members = s.n_members();
+        let id = format!("{name}{size}_{members}members");
+        group.bench_function(BenchmarkId::new("sparse_qr", &id), |b| {
+            b.iter(|| statics_report(black_box(s), &request(StaticsMethod::Sparse)).unwrap())
+        });
+        if members <= 1000 {
+            group.bench_function(BenchmarkId::new("dense_svd", &id), |b| {
+                b.iter(|| statics_report(black_box(s), &request(StaticsMethod::Dense)).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,520 @@
+//! Sparse statics for large general structures: rank, self-stress, mechanisms and load solves
+//! of the equilibrium matrix A (A q = w, free dofs × members) without the SVD's full U and V.
+//!
+//! # Why this factorisation
+//!
+//! The dense path ([`Statics`](super::Statics)) takes the full SVD A = U Σ Vᵀ: O(n³) flops and
+//! O(n²) memory even when only the rank, a null space of small dimension and a few solves are
+//! needed. The factorisation backend has no column-pivoted sparse QR, and the normal equations
+//! AᵀA or AAᵀ square the condition number, so a rank decision at max(m, n)·ε·σ_max is
+//! impossible there. Structures are meshes: after a reverse Cuthill–McKee ordering of the
+//! nodes, A is banded. The factorisation is therefore a Householder QR confined to A's profile
+//! ([`RankRevealingQr`](crate::linalg::RankRevealingQr)): the members are processed along the
+//! band and a member whose column lies within the rejection tolerance of the span of the
+//! members accepted before it is rejected (it carries a self-stress). A member whose
+//! acceptance would drop the incremental condition estimate of the accepted set below
+//! 10⁻³·σ_max is deferred to the end (restricted pivoting), which keeps the accepted set about
+//! as well conditioned as A.
+//!
+//! Tolerance: τ = max(m, n)·ε·σ_max (or the relative tolerance of the settings times σ_max),
+//! the dense path's convention, with σ_max from 40 steps of the power method on AᵀA. A member
+//! is rejected when its residual is at most 1000·τ: the residual of an exactly dependent
+//! column carries rounding of order κ(A_acc)·ε·‖A‖ (its coefficients on the accepted columns
+//! grow with their conditioning), more than the SVD's ε·‖A‖.
+//!
+//! The rank decision is **certified** when it sits in a clear gap of the spectrum: the
+//! Frobenius norm ‖E‖_F of the rejected residuals bounds σ_{r+1}(A) from above, and
+//! σ_min(R_acc) ≤ σ_r(A) bounds σ_r from below; the estimate of σ_min(R_acc) must exceed
+//! 100 · max(τ, ‖E‖_F). A certified rank is the SVD's at τ unless A has a singular value
+//! between τ and ‖E‖_F. An uncertified decision falls back to the dense SVD when it fits the
+//! memory budget and the method is automatic, and is flagged in the report otherwise (see
+//! [`report`](super::report)).
+//!
+//! # What is computed
+//!
+//! - rank r, self-stress dimension members − r, mechanisms dofs − r;
+//! - the self-stress basis: the null vectors e_k − Σ x_j e_{acc(j)} of the rejected members,
+//!   orthonormalised by a thin QR (n × s, O(n·s²)) and oriented like the dense path's
+//!   (strings summing positive);
+//! - first-order flexes: Q's last m − r columns (orthonormal); the rigid-body motions the
+//!   supports allow are projected out and the internal mechanisms taken from the projected
+//!   Gram matrix (its eigenvalues are 1 or 0);
+//! - prestressability: the margin LP written in the member force densities,
+//!   `max t  s.t.  R q = 0, q_s ≥ t, q_b ≤ −t, |q| ≤ 1`, with the r × n factor R = QᵀA (full
+//!   row rank, as sparse as A's profile), solved by Clarabel's sparse interior point: its
+//!   size grows with the number of members, not with (members × self-stress dimension) as
+//!   the dense LP over a basis does. The returned stress is projected on the null space,
+//!   scaled to max|q| = 1 and its margin recomputed, as on the dense path;
+//! - prestress stability: the stress matrix applied member by member to the internal
+//!   mechanisms, then a small symmetric eigenproblem;
+//! - the minimal-norm load solve: the basic solution R_acc x = (Qᵀw)_{1..r} minus its
+//!   projection on the self-stress space.
+
+use super::load::LoadSolution;
+use super::prestress::Prestressability;
+use super::stability::PrestressStability;
+use super::{DofMap, StaticsSettings, PRESTRESS_TOLERANCE};
+use crate::error::{CoreError, Result};
+use crate::linalg::{self, CscMatrix, RankRevealingQr};
+use crate::structure::Structure;
+use nalgebra::{DMatrix, DVector, Vector3};
+
+/// Power-method steps for σ_max of the equilibrium matrix.
+const POWER_STEPS: usize = 40;
+/// Inverse-iteration steps for the σ_min(R_acc) estimate.
+const INVERSE_STEPS: usize = 12;
+/// The σ_min(R_acc) estimate must exceed this multiple of max(τ, ‖E‖_F) for a certified rank.
+const CERTIFY_FACTOR: f64 = 100.0;
+/// A member whose acceptance would drop the condition estimate of R_acc below this fraction
+/// of σ_max is deferred to the end of the factorisation.
+const DEFER_BELOW: f64 = 1e-3;
+/// Columns are rejected when their residual is at most this multiple of τ: the residual of
+/// an exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the
+/// SVD's ε·‖A‖, so τ itself would accept some dependent columns of ill-conditioned
+/// structures.
+const REJECT_FACTOR: f64 = 1e3;
+
+/// The sparse equilibrium matrix A (free dofs × members), rows as [`DofMap`] numbers them.
+pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result<CscMatrix> {
+    let mut t = Vec::with_capacity(6 * structure.n_members());
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let m = structure.nodes()[j] - structure.nodes()[i];
+        for d in 0..3 {
+            if let Some(r) = dofs.row[i][d] {
+                t.push((r, k, -m[d]));
+            }
+            if let Some(r) = dofs.row[j][d] {
+                t.push((r, k, m[d]));
+            }
+        }
+    }
+    CscMatrix::from_triplets(dofs.len(), structure.n_members(), &t)
+}
+
+/// A reverse Cuthill–McKee order of the nodes (by the member graph): breadth-first from a
+/// pseudo-peripheral node of each connected part, neighbours by increasing degree, reversed.
+/// It makes the equilibrium matrix banded.
+pub fn node_order_rcm(structure: &Structure) -> Vec<usize> {
+    let n = structure.n_nodes();
+    let mut adj = vec![Vec::new(); n];
+    for [i, j] in structure.member_nodes() {
+        adj[i].push(j);
+        adj[j].push(i);
+    }
+    for a in &mut adj {
+        a.sort_unstable();
+        a.dedup();
+    }
+    let degree: Vec<usize> = adj.iter().map(Vec::len).collect();
+    for a in &mut adj {
+        a.sort_by_key(|&v| (degree[v], v));
+    }
+    let mut order = Vec::with_capacity(n);
+    let mut seen = vec![false; n];
+    while order.len() < n {
+        let start = (0..n).filter(|&v| !seen[v]).min_by_key(|&v| (degree[v], v));
+        let Some(mut start) = start else { break };
+        // two sweeps towards a pseudo-peripheral node
+        for _ in 0..2 {
+            let level = bfs(&adj, start, &seen);
+            start = *level.last().expect("the start is reached");
+        }
+        for v in bfs(&adj, start, &seen) {
+            seen[v] = true;
+            order.push(v);
+        }
+    }
+    order.reverse();
+    order
+}
+
+/// Breadth-first order from `start` over the nodes not `excluded`.
+fn bfs(adj: &[Vec<usize>], start: usize, excluded: &[bool]) -> Vec<usize> {
+    let mut mark = excluded.to_vec();
+    mark[start] = true;
+    let mut out = vec![start];
+    let mut head = 0;
+    while head < out.len() {
+        let v = out[head];
+        head += 1;
+        for &w in &adj[v] {
+            if !mark[w] {
+                mark[w] = true;
+                out.push(w);
+            }
+        }
+    }
+    out
+}
+
+/// A bound of the bytes the sparse factorisation holds: the profile of A in the ordering (each
+/// column stored from row 0 to its last row, reflector and R entries). The dense output bases
+/// (members × self-stress dimension, dofs × mechanisms) come on top; they are the size of the
+/// report itself.
+fn sparse_bytes_bound(a: &CscMatrix, pos_of_row: &[usize]) -> f64 {
+    let (cp, ri) = (a.pattern().col_ptr(), a.pattern().row_idx());
+    let profile: f64 = (0..a.pattern().ncols())
+        .map(|k| {
+            ri[cp[k]..cp[k + 1]]
+                .iter()
+                .map(|&r| pos_of_row[r] + 1)
+                .max()
+                .unwrap_or(0) as f64
+        })
+        .sum();
+    8.0 * 2.0 * profile
+}
+
+/// σ_max of A by the power method on AᵀA (a lower estimate, accurate to a few digits).
+fn sigma_max(a: &CscMatrix) -> f64 {
+    let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
+    if m == 0 || n == 0 {
+        return 0.0;
+    }
+    let mut x: Vec<f64> = (0..n).map(|k| 1.0 + ((k * 37) % 11) as f64 * 0.1).collect();
+    let mut sigma = 0.0;
+    for _ in 0..POWER_STEPS {
+        let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            return 0.0;
+        }
+        x.iter_mut().for_each(|v| *v /= norm);
+        let y = a.mul_vec(&x);
+        sigma = y.iter().map(|v| v * v).sum::<f64>().sqrt();
+        x = transpose_mul(a, &y);
+    }
+    sigma
+}
+
+/// Aᵀ y for a CSC matrix.
+fn transpose_mul(a: &CscMatrix, y: &[f64]) -> Vec<f64> {
+    let (cp, ri, v) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+    (0..a.pattern().ncols())
+        .map(|k| (cp[k]..cp[k + 1]).map(|s| v[s] * y[ri[s]]).sum())
+        .collect()
+}
+
+/// The factored equilibrium problem of a large structure (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct SparseStatics<'a> {
+    structure: &'a Structure,
+    dofs: DofMap,
+    a: CscMatrix,
+    qr: RankRevealingQr,
+    tolerance: f64,
+    sigma_min_estimate: f64,
+    self_stress: DMatrix<f64>,
+}
+
+impl<'a> SparseStatics<'a> {
+    /// Orders, bounds the memory against the budget of `settings`, factors and builds the
+    /// orthonormal self-stress basis.
+    pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
+        let dofs = DofMap::of(structure);
+        let a = equilibrium_matrix_sparse(structure, &dofs)?;
+        let row_order: Vec<usize> = node_order_rcm(structure)
+            .into_iter()
+            .flat_map(|i| dofs.row[i].into_iter().flatten())
+            .collect();
+        let mut pos_of_row = vec![0; dofs.len()];
+        for (p, &r) in row_order.iter().enumerate() {
+            pos_of_row[r] = p;
+        }
+        let bytes = sparse_bytes_bound(&a, &pos_of_row);
+        let limit = settings.memory_limit.unwrap_or(super::DEFAULT_MEMORY_LIMIT);
+        if bytes > limit {
+            return Err(CoreError::TooLarge {
+                what: "the sparse QR of the equilibrium matrix",
+                rows: dofs.len(),
+                cols: structure.n_members(),
+                bytes,
+                limit,
+            });
+        }
+        let (m, n) = (dofs.len(), structure.n_members());
+        let sigma = sigma_max(&a);
+        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let qr = RankRevealingQr::with_deferral(
+            &a,
+            &row_order,
+            REJECT_FACTOR * tolerance,
+            DEFER_BELOW * sigma,
+        )?;
+        let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
+        let self_stress = orient(qr.orthonormal_null_space(), structure.n_bars());
+        Ok(Self {
+            structure,
+            dofs,
+            a,
+            qr,
+            tolerance,
+            sigma_min_estimate,
+            self_stress,
+        })
+    }
+
+    /// The analysed structure.
+    pub fn structure(&self) -> &Structure {
+        self.structure
+    }
+
+    /// The free degrees of freedom (rows of A).
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The sparse equilibrium matrix.
+    pub fn matrix(&self) -> &CscMatrix {
+        &self.a
+    }
+
+    /// The factorisation.
+    pub fn factorization(&self) -> &RankRevealingQr {
+        &self.qr
+    }
+
+    /// The absolute rank tolerance τ.
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Rank of A.
+    pub fn rank(&self) -> usize {
+        self.qr.rank()
+    }
+
+    /// Dimension of the self-stress space.
+    pub fn self_stress_dim(&self) -> usize {
+        self.structure.n_members() - self.rank()
+    }
+
+    /// First-order mechanisms, rigid-body motions included.
+    pub fn mechanisms(&self) -> usize {
+        self.dofs.len() - self.rank()
+    }
+
+    /// Whether the rank decision is certified (see the module documentation).
+    pub fn is_certified(&self) -> bool {
+        let noise = self.qr.rejected_residual().max(self.tolerance);
+        self.sigma_min_estimate > CERTIFY_FACTOR * noise
+    }
+
+    /// The estimate of σ_min(R_acc), a lower bound of σ_r(A) (+∞ at rank 0).
+    pub fn sigma_min_r_estimate(&self) -> f64 {
+        self.sigma_min_estimate
+    }
+
+    /// An estimate of the smallest singular value of A: the rejected residual norm (an upper
+    /// bound, ≤ τ) when A is rank deficient, else the σ_min(R_acc) estimate.
+    pub fn smallest_singular_value_estimate(&self) -> f64 {
+        let (m, n) = (self.dofs.len(), self.structure.n_members());
+        if self.rank() < m.min(n) {
+            self.qr.rejected_residual()
+        } else {
+            self.sigma_min_estimate
+        }
+    }
+
+    /// The orthonormal self-stress basis (members × dimension), oriented like the dense
+    /// path's.
+    pub fn self_stress_basis(&self) -> &DMatrix<f64> {
+        &self.self_stress
+    }
+}
+
+/// Orients every column so that its strings sum to a positive value (else its first entry
+/// above 1e-9 is positive), the dense path's convention.
+fn orient(mut basis: DMatrix<f64>, nb: usize) -> DMatrix<f64> {
+    let m = basis.nrows();
+    for mut col in basis.column_iter_mut() {
+        let string_sum: f64 = col.rows(nb, m - nb).sum();
+        let sign = if string_sum.abs() > 1e-9 {
+            string_sum.signum()
+        } else {
+            col.iter()
+                .find(|x| x.abs() > 1e-9)
+                .map_or(1.0, |x| x.signum())
+        };
+        col *= sign;
+    }
+    basis
+}
+
+impl SparseStatics<'_> {
+    /// The prestressability LP over the member force densities (see the module
+    /// documentation).
+    pub fn prestressability(&self) -> Result<Prestressability> {
+        let n = self.structure.n_members();
+        let nb = self.structure.n_bars();
+        let zero = || Prestressability {
+            margin: 0.0,
+            prestressable: false,
+            stress: DVector::zeros(n),
+        };
+        if self.self_stress_dim() == 0 {
+            return Ok(zero());
+        }
+        let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, nb)?;
+        let raw = DVector::from_column_slice(&z[..n]);
+        let basis = &self.self_stress;
+        let mut q = basis * (basis.transpose() * raw);
+        let scale = q.amax();
+        if scale <= 0.0 {
+            return Ok(zero());
+        }
+        q /= scale;
+        let margin = (0..n)
+            .map(|k| if k < nb { -q[k] } else { q[k] })
+            .fold(f64::INFINITY, f64::min)
+            .max(0.0);
+        Ok(Prestressability {
+            margin,
+            prestressable: margin > PRESTRESS_TOLERANCE,
+            stress: q,
+        })
+    }
+
+    /// An orthonormal basis of the internal mechanisms (free dofs × count): the flexes with
+    /// the rigid-body motions the supports allow projected out; and the rigid-body count.
+    pub fn internal_mechanisms(&self) -> Result<(DMatrix<f64>, usize)> {
+        let motions = self.qr.left_null_vectors();
+        let rigid = rigid_motions(self.structure, &self.dofs)?;
+        let n_rigid = rigid.ncols();
+        let d = motions.ncols();
+        let internal_dim = d.saturating_sub(n_rigid);
+        if internal_dim == 0 {
+            return Ok((DMatrix::zeros(motions.nrows(), 0), n_rigid));
+        }
+        let projected = &motions - &rigid * (rigid.transpose() * &motions);
+        let gram = projected.transpose() * &projected;
+        let gram = (&gram + gram.transpose()) * 0.5;
+        let (w, v) = linalg::symmetric_eigen(&gram)?;
+        // the largest `internal_dim` eigenvalues (ascending order: the last ones), ≈ 1
+        let mut phi = &projected * v.columns(d - internal_dim, internal_dim);
+        for (c, k) in (d - internal_dim..d).enumerate() {
+            phi.column_mut(c)
+                .scale_mut(1.0 / w[k].max(f64::MIN_POSITIVE).sqrt());
+        }
+        Ok((phi, n_rigid))
+    }
+
+    /// Prestress stability with force densities `q` (the dense path's test and tolerance).
+    pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
+        let (phi, _) = self.internal_mechanisms()?;
+        self.prestress_stability_on(&phi, q)
+    }
+
+    /// Prestress stability with force densities `q` on a given orthonormal basis `phi` of the
+    /// internal mechanisms ([`internal_mechanisms`](Self::internal_mechanisms)).
+    pub fn prestress_stability_on(
+        &self,
+        phi: &DMatrix<f64>,
+        q: &DVector<f64>,
+    ) -> Result<PrestressStability> {
+        let m = phi.ncols();
+        if m == 0 {
+            return Ok(PrestressStability {
+                internal_mechanisms: 0,
+                eigenvalues: Vec::new(),
+                stable: true,
+            });
+        }
+        let omega_phi = self.stress_matrix_times(q, phi);
+        let projected = phi.transpose() * omega_phi;
+        let sym = (&projected + projected.transpose()) * 0.5;
+        let (w, _) = linalg::symmetric_eigen(&sym)?;
+        let tol = 1e-9 * q.amax();
+        let stable = w.first().is_some_and(|&w0| w0 > tol);
+        Ok(PrestressStability {
+            internal_mechanisms: m,
+            eigenvalues: w,
+            stable,
+        })
+    }
+
+    /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C.
+    fn stress_matrix_times(&self, q: &DVector<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
+        let mut y = DMatrix::zeros(x.nrows(), x.ncols());
+        let pairs: Vec<(f64, Option<usize>, Option<usize>)> = self
+            .structure
+            .member_nodes()
+            .into_iter()
+            .enumerate()
+            .flat_map(|(k, [i, j])| (0..3).map(move |d| (k, i, j, d)))
+            .map(|(k, i, j, d)| (q[k], self.dofs.row[i][d], self.dofs.row[j][d]))
+            .collect();
+        for (xc, mut yc) in x.column_iter().zip(y.column_iter_mut()) {
+            for &(qk, ri, rj) in &pairs {
+                let xi = ri.map_or(0.0, |r| xc[r]);
+                let xj = rj.map_or(0.0, |r| xc[r]);
+                let f = qk * (xi - xj);
+                if let Some(r) = ri {
+                    yc[r] += f;
+                }
+                if let Some(r) = rj {
+                    yc[r] -= f;
+                }
+            }
+        }
+        y
+    }
+
+    /// Solves for the structure's own loads (nodal loads plus gravity on bar masses).
+    pub fn solve_loads(&self) -> LoadSolution {
+        self.solve_nodal_forces(&self.structure.W())
+    }
+
+    /// The minimal-norm solution of A q = w for a 3×n nodal force matrix.
+    pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
+        let w = self.dofs.gather(w_nodes);
+        let (basic, _) = self.qr.solve_basic(w.as_slice());
+        let basis = &self.self_stress;
+        let q = &basic - basis * (basis.transpose() * &basic);
+        let aq = DVector::from_vec(self.a.mul_vec(q.as_slice()));
+        super::load::assemble_solution(self.structure, &self.dofs, w_nodes, q, &aq - &w)
+    }
+}
+
+/// Rigid-body motions on the free dofs that the supports allow, orthonormal (free dofs ×
+/// count), from 6×6 Gram matrices (no m × m factor).
+fn rigid_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatrix<f64>> {
+    let n = structure.n_nodes();
+    let centre = structure.nodes().iter().sum::<Vector3<f64>>() / n.max(1) as f64;
+    let mut t_free = DMatrix::zeros(dofs.len(), 6);
+    let mut g_fixed = DMatrix::<f64>::zeros(6, 6);
+    for (i, p) in structure.nodes().iter().enumerate() {
+        let r = p - centre;
+        for c in 0..3 {
+            // row (i, c) of T: translation c, rotations (e_d × r)_c
+            let mut row = [0.0; 6];
+            row[c] = 1.0;
+            for d in 0..3 {
+                row[3 + d] = Vector3::ith(d, 1.0).cross(&r)[c];
+            }
+            match dofs.row[i][c] {
+                Some(fr) => (0..6).for_each(|j| t_free[(fr, j)] = row[j]),
+                None => {
+                    for a in 0..6 {
+                        for b in 0..6 {
+                            g_fixed[(a, b)] += row[a] * row[b];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // motions the supports allow: the null space of T_fixed, from its Gram matrix
+    let (w, v) = linalg::symmetric_eigen(&g_fixed)?;
+    let w_max = w.last().copied().unwrap_or(0.0);
+    let allowed: Vec<usize> = (0..6).filter(|&k| w[k] <= 1e-12 * w_max.max(0.0)).collect();
+    let t = &t_free * v.select_columns(allowed.iter());
+    let g = t.transpose() * &t;
+    let (w, v) = linalg::symmetric_eigen(&((&g + g.transpose()) * 0.5))?;
+    let w_max = w.last().copied().unwrap_or(0.0);
+    let keep: Vec<usize> = (0..w.len()).filter(|&k| w[k] > 1e-12 * w_max).collect();
+    let mut basis = &t * v.select_columns(keep.iter());
+    for (c, &k) in keep.iter().enumerate() {
+        basis.column_mut(c).scale_mut(1.0 / w[k].sqrt());
+    }
+    Ok(basis)
+}
