@@ -4,6 +4,7 @@ pub mod angle;
 pub mod bench;
 pub mod demo;
 pub mod exit;
+pub mod guard;
 pub mod michell;
 pub mod roll;
 pub mod simulate;

@@ -127,6 +127,7 @@ impl RollArgs {
 
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
+    let _progress = super::guard::roll(&args.request())?;
     let report = toroid::roll(&args.request())?;
     if let Some(path) = &args.svg {
         let runs = [(format!("n = {}", report.sides), report.samples.as_slice())];
@@ -258,6 +259,7 @@ pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
         t_end: args.t_end,
         ..RollRequest::default()
     };
+    let _progress = super::guard::rolling_series(&request, &defaults::FIG_3_10_SIDES)?;
     let runs = toroid::rolling_series(&request, &defaults::FIG_3_10_SIDES)?;
     for r in &runs {
         println!(

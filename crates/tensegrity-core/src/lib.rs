@@ -8,6 +8,8 @@
 //! - [`statics`]: equilibrium matrix A q = w, SVD rank, self-stress, mechanisms,
 //!   prestressability (LP), minimal-norm load solve with reactions;
 //! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
+//! - [`budget`]: memory, work and output estimated from a request's sizes, and the limits
+//!   that refuse oversized requests before anything is allocated;
 //! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
@@ -22,6 +24,7 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+pub mod budget;
 pub mod connectivity;
 pub mod dynamics;
 pub mod error;

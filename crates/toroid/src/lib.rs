@@ -19,6 +19,7 @@
 
 mod analysis;
 mod builder;
+pub mod budget;
 pub mod defaults;
 mod error;
 mod inertia;
