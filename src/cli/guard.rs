@@ -254,9 +254,13 @@ pub fn sign_map(grid: (usize, usize), members: usize, requested: bool) -> Result
 
 /// `tensegrity sweep`: one CSV row per case (~200 bytes).
 pub fn sweep(cases: usize) -> Result<Progress> {
-    let e = budget::table(cases as f64, 200.0, false, format!("{cases} sweep cases"))
-        .then(Estimate::new("the sweep", format!("{cases} sweep cases")));
-    check(e)
+    // work is not estimated: a sweep shows its own progress bar and can be resumed
+    check(budget::table(
+        cases as f64,
+        200.0,
+        false,
+        format!("{cases} sweep cases"),
+    ))
 }
 
 #[cfg(test)]

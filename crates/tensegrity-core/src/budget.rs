@@ -82,19 +82,15 @@ impl Estimate {
         self
     }
 
-    /// The larger of two estimates in each resource, under the name of the one with more
-    /// work (used for commands made of several steps that run one after the other: work adds).
+    /// Two computations that run one after the other: work and output add, memory is the
+    /// larger peak; the description names both, the parameter is the first one's.
     pub fn then(self, other: Estimate) -> Estimate {
-        let (main, side) = if other.work_s > self.work_s {
-            (other, self)
-        } else {
-            (self, other)
-        };
         Estimate {
-            memory_bytes: main.memory_bytes.max(side.memory_bytes),
-            work_s: main.work_s + side.work_s,
-            output_bytes: main.output_bytes + side.output_bytes,
-            ..main
+            what: format!("{}, then {}", self.what, other.what),
+            memory_bytes: self.memory_bytes.max(other.memory_bytes),
+            work_s: self.work_s + other.work_s,
+            output_bytes: self.output_bytes + other.output_bytes,
+            parameter: self.parameter,
         }
     }
 }
@@ -382,7 +378,7 @@ mod tests {
         let b = Estimate::new("b", "q").memory(4.0).work(3.0).output(1.0);
         let c = a.then(b);
         assert_eq!((c.memory_bytes, c.work_s, c.output_bytes), (10.0, 4.0, 6.0));
-        assert_eq!(c.what, "b");
+        assert_eq!((c.what.as_str(), c.parameter.as_str()), ("a, then b", "p"));
     }
 
     #[test]

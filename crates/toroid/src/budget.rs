@@ -133,8 +133,11 @@ pub fn roll(request: &RollRequest) -> Estimate {
             )
         }
     };
-    let kept = budget::table(samples, sample_bytes, true, parameter);
-    statics.then(run).then(kept)
+    let kept = budget::table(samples, sample_bytes, true, parameter.clone());
+    Estimate {
+        parameter,
+        ..statics.then(run).then(kept)
+    }
 }
 
 #[cfg(test)]
