@@ -119,7 +119,7 @@ fn a_ten_million_case_sweep_is_refused_for_its_output() {
     let spec = dir.join("huge.toml");
     std::fs::write(
         &spec,
-        "study = \"toroid\"\n[axes]\nsides = { from = 3, to = 10000002, step = 1 }\n",
+        "study = \"toroid\"\n[axes]\nsides = { from = 3, to = 10002, step = 1 }\nouter_radius = { from = 1.0, to = 2.0, steps = 1000 }\n",
     )
     .unwrap();
     let out = dir.join("out.csv");
