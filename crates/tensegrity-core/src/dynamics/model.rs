@@ -137,10 +137,11 @@ pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
     y[3 * i + 2] = v.z;
 }
 
-/// Accelerations of the two ends of a rigid bar of mass `m` under end forces `fa`, `fb`.
+/// Accelerations of the two ends of a rigid bar of inverse mass `inv_m` under end forces
+/// `fa`, `fb` (one division, by ‖b‖²: the right-hand side's inner loop).
 #[inline]
 pub(crate) fn bar_accel(
-    m: f64,
+    inv_m: f64,
     xa: &Vector3<f64>,
     xb: &Vector3<f64>,
     va: &Vector3<f64>,
@@ -150,11 +151,12 @@ pub(crate) fn bar_accel(
 ) -> (Vector3<f64>, Vector3<f64>) {
     let b = xb - xa;
     let bd = vb - va;
-    let l2 = b.norm_squared();
+    let inv_l2 = 1.0 / b.norm_squared();
     let fd = fb - fa;
-    let inv_j = 12.0 / m;
-    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
-    let rdd = (fa + fb) / m;
+    let inv_j = 12.0 * inv_m;
+    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) * inv_l2)) * inv_j
+        - b * (bd.norm_squared() * inv_l2);
+    let rdd = (fa + fb) * inv_m;
     (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
 }
 
@@ -538,7 +540,8 @@ impl Model {
         self.bar_accelerations(x, v, &ws.f, dv, None);
         if let Some(om) = ws.omega.as_mut() {
             for (k, bh) in ws.bhat.iter_mut().enumerate() {
-                *bh = (vec3(x, 2 * k + 1) - vec3(x, 2 * k)).normalize();
+                let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
+                *bh = b * (1.0 / b.norm());
             }
             if let Err(e) = om.assemble_and_factor(&ws.bhat, &self.inv_mass) {
                 // A NaN/∞ in the state or the forces shows up as a failed factorisation:
@@ -589,7 +592,7 @@ impl Model {
         let mut one = |k: usize| {
             let (a, b) = (2 * k, 2 * k + 1);
             let (aa, ab) = bar_accel(
-                self.bars[k].mass,
+                self.bars[k].inv_mass,
                 &vec3(x, a),
                 &vec3(x, b),
                 &vec3(v, a),

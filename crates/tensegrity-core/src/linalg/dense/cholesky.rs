@@ -19,6 +19,8 @@ pub struct DenseCholesky {
     /// Lower-triangular factor, row-major n×n; the strict upper part holds Lᵀ (row j: column
     /// j of L below the diagonal).
     l: Vec<f64>,
+    /// 1 / L_jj (the solves multiply instead of dividing).
+    inv_diag: Vec<f64>,
 }
 
 impl DenseCholesky {
@@ -27,6 +29,7 @@ impl DenseCholesky {
         Self {
             n,
             l: vec![0.0; n * n],
+            inv_diag: vec![0.0; n],
         }
     }
 
@@ -59,6 +62,7 @@ impl DenseCholesky {
             return Err(failure(OPERATION, reason));
         }
         let a = &mut self.l;
+        let inv_diag = &mut self.inv_diag;
         a.iter_mut().for_each(|v| *v = 0.0);
         let (col_ptr, row_idx) = (lower.col_ptr(), lower.row_idx());
         for j in 0..n {
@@ -84,8 +88,10 @@ impl DenseCholesky {
             }
             let d = d.sqrt();
             row_j[j] = d;
+            let inv_d = 1.0 / d;
+            inv_diag[j] = inv_d;
             for (i, row_i) in (j + 1..n).zip(tail.chunks_exact_mut(n)) {
-                let l = row_i[j] / d;
+                let l = row_i[j] * inv_d;
                 row_i[j] = l;
                 row_j[i] = l;
             }
@@ -116,7 +122,7 @@ impl DenseCholesky {
         // forward L y = b by columns (column j of L is the upper part of row j), backward
         // Lᵀ x = y by rows of L: both are contiguous axpy updates
         for (j, row) in a.chunks_exact(n).enumerate() {
-            let y = b[j] / row[j];
+            let y = b[j] * self.inv_diag[j];
             b[j] = y;
             if y != 0.0 {
                 for (x, l) in b[j + 1..].iter_mut().zip(&row[j + 1..]) {
@@ -125,7 +131,7 @@ impl DenseCholesky {
             }
         }
         for (i, row) in a.chunks_exact(n).enumerate().rev() {
-            let x = b[i] / row[i];
+            let x = b[i] * self.inv_diag[i];
             b[i] = x;
             if x != 0.0 {
                 for (v, l) in b[..i].iter_mut().zip(&row[..i]) {
