@@ -41,10 +41,10 @@ fn assert_refused(args: &[&str], needles: &[&str]) -> String {
 
 #[test]
 fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag() {
-    // dense path: 62 TB; a symmetry-adapted path: a few GB, still above 1 GB
+    // dense path: 127 TiB; a symmetry-adapted path: a few GiB, still above 1 GiB
     assert_refused(
-        &["toroid", "--sides", "100000", "--max-memory", "1G"],
-        &["--sides 100000", "memory", "above the limit of 1.000 GB", "--max-memory"],
+        &["toroid", "--sides", "100000", "--max-memory", "1Gi"],
+        &["--sides 100000", "memory", "above the limit of 1.000 GiB", "--max-memory"],
     );
     // a hundred million sides is refused under the default limits whatever the path
     assert_refused(
@@ -130,7 +130,7 @@ fn a_ten_million_case_sweep_is_refused_for_its_output() {
             "--out",
             out.to_str().unwrap(),
         ],
-        &["10000000 sweep cases", "2.000 GB of output", "--max-output"],
+        &["10000000 sweep cases", "1.863 GiB of output", "--max-output"],
     );
     assert!(!out.exists());
 }
@@ -149,10 +149,10 @@ fn the_flags_move_the_limits_both_ways() {
         "--output-interval",
         "1e-4",
     ];
-    // 101 rows of 13 numbers ≈ 33 kB: refused under 1K, accepted by default
+    // 101 rows of 13 numbers ≈ 33 kB: refused under 1Ki, accepted by default
     let mut small = base.to_vec();
-    small.extend(["--max-output", "1K"]);
-    assert_refused(&small, &["--max-output", "above the limit of 1.000 kB"]);
+    small.extend(["--max-output", "1Ki"]);
+    assert_refused(&small, &["--max-output", "above the limit of 1.000 KiB"]);
     let (out, _) = run(&base);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let rows = std::fs::read_to_string(&csv).unwrap().lines().count();

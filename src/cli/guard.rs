@@ -6,7 +6,7 @@
 //! The limits are global flags of the binary: `--max-memory` (default: the smaller of 8 GiB
 //! and 3/4 of the memory this process may use — cgroup limit, address-space limit, available
 //! memory), `--max-work` (estimated seconds, default 60) and `--max-output` (bytes written,
-//! default 1 GB). Work estimated above a few seconds shows an elapsed-time spinner on stderr
+//! default 1 GiB). Work estimated above a few seconds shows an elapsed-time spinner on stderr
 //! when it is a terminal.
 
 use anyhow::Result;
@@ -24,14 +24,14 @@ const SPINNER_AFTER_S: f64 = 2.0;
 /// The global limit flags.
 #[derive(clap::Args, Debug, Clone)]
 pub struct LimitArgs {
-    /// Refuse a command whose estimated peak memory exceeds SIZE (e.g. 500M, 16G, 2T; default:
+    /// Refuse a command whose estimated peak memory exceeds SIZE (e.g. 500M, 16Gi, 2T; default:
     /// the smaller of 8 GiB and 3/4 of the memory available to this process).
     #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size)]
     pub max_memory: Option<f64>,
     /// Refuse a command whose estimated work exceeds SECONDS (default 60).
     #[arg(long, global = true, value_name = "SECONDS", value_parser = super::values::positive)]
     pub max_work: Option<f64>,
-    /// Refuse a command whose estimated output (files written) exceeds SIZE (default 1G).
+    /// Refuse a command whose estimated output (files written) exceeds SIZE (default 1Gi).
     #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size)]
     pub max_output: Option<f64>,
 }
@@ -114,11 +114,12 @@ fn progress(estimate: &Estimate) -> Progress {
     Progress(Some(bar))
 }
 
-/// A `--max-memory`/`--max-output` value a little above `bytes` (`12G`, `3T`).
+/// A `--max-memory`/`--max-output` value a little above `bytes` (`12Gi`, `3Ti`).
 fn size_flag(bytes: f64) -> String {
-    let units = [(1e12, "T"), (1e9, "G"), (1e6, "M"), (1e3, "K")];
-    for (scale, unit) in units {
-        if bytes >= scale || unit == "K" {
+    let units = ["Ti", "Gi", "Mi", "Ki"];
+    for (k, unit) in units.iter().enumerate() {
+        let scale = 1024f64.powi(4 - k as i32);
+        if bytes >= scale || *unit == "Ki" {
             let v = (bytes / scale * 1.1).ceil();
             return if v.is_finite() && v < 1e15 {
                 format!("{v:.0}{unit}")
@@ -218,6 +219,8 @@ pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<
 /// `tensegrity simulate`: the run with its outputs (CSV numbers ~25 bytes, VTK ~40), named by
 /// the settings that drive its size (from the scene or the flags).
 pub fn simulation(sim: &tensegrity_core::Simulation, csv: bool, vtk: bool) -> Result<Progress> {
+    // settings the core refuses anyway (a step that cannot finish, a bad value) get its error
+    sim.validate()?;
     let s = &sim.settings;
     let mut parameter = format!("t_end = {} s, dt = {} s", s.t_end, s.dt);
     if let Some(dt_out) = s.output_interval {
@@ -280,8 +283,9 @@ mod tests {
 
     #[test]
     fn the_suggested_flag_value_admits_the_estimate() {
-        assert_eq!(size_flag(6.208e13), "69T");
-        assert_eq!(size_flag(1.5e9), "2G");
-        assert_eq!(parse_size(&size_flag(3.3e10)).unwrap(), 37e9);
+        // 6.208e13 B = 56.46 TiB, +10 %: 63Ti
+        assert_eq!(size_flag(6.208e13), "63Ti");
+        assert_eq!(size_flag(1.5e9), "2Gi");
+        assert!(parse_size(&size_flag(3.3e10)).unwrap() > 3.3e10);
     }
 }

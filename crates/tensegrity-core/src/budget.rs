@@ -24,8 +24,8 @@ use serde::Serialize;
 
 /// Default limit on estimated work: one minute.
 pub const DEFAULT_MAX_WORK_S: f64 = 60.0;
-/// Default limit on estimated output: 1 GB.
-pub const DEFAULT_MAX_OUTPUT_BYTES: f64 = 1e9;
+/// Default limit on estimated output: 1 GiB.
+pub const DEFAULT_MAX_OUTPUT_BYTES: f64 = 1024.0 * 1024.0 * 1024.0;
 /// Default limit on estimated peak memory: 8 GiB (callers lower it to what the machine has).
 pub const DEFAULT_MAX_MEMORY_BYTES: f64 = 8.0 * 1024.0 * 1024.0 * 1024.0;
 
@@ -152,7 +152,7 @@ pub struct OverBudget {
     pub limit: f64,
 }
 
-/// `amount` of `resource` for people: bytes in kB … TB, seconds in s, min, h, days, years.
+/// `amount` of `resource` for people: bytes in KiB … PiB, seconds in s, min, h, days, years.
 pub fn human(resource: Resource, amount: f64) -> String {
     match resource {
         Resource::Memory | Resource::Output => human_bytes(amount),
@@ -160,10 +160,11 @@ pub fn human(resource: Resource, amount: f64) -> String {
     }
 }
 
-/// Bytes with a decimal unit (`1.5 GB`).
+/// Bytes with a binary unit (`1.500 GiB`).
 pub fn human_bytes(b: f64) -> String {
-    let units = [(1e15, "PB"), (1e12, "TB"), (1e9, "GB"), (1e6, "MB"), (1e3, "kB")];
-    for (scale, unit) in units {
+    let units = ["PiB", "TiB", "GiB", "MiB", "KiB"];
+    for (k, unit) in units.iter().enumerate() {
+        let scale = 1024f64.powi(5 - k as i32);
         if b >= scale {
             return format!("{:.3} {unit}", b / scale);
         }
@@ -233,7 +234,7 @@ pub fn svd_flops(m: usize, n: usize) -> f64 {
 /// use tensegrity_core::budget::dense_statics;
 /// let e = dense_statics(1800, 1200, "--sides 100");
 /// assert!(e.work_s > 1.0 && e.work_s < 100.0); // seconds, not hours
-/// assert!(e.memory_bytes < 1e8);
+/// assert!(e.memory_bytes < 2e8); // 109 MB
 /// ```
 pub fn dense_statics(m: usize, n: usize, parameter: impl Into<String>) -> Estimate {
     Estimate::new(
@@ -345,12 +346,12 @@ mod tests {
         let e = dense_statics(600_000, 1_600_000, "--sides 100000");
         let err = Limits::default().check(&e).unwrap_err();
         assert_eq!(err.resource, Resource::Memory);
-        // 8 (2 m n + 2 m² + 2 n²) = 8 · 2 · (0.96 + 0.36 + 2.56) e12 = 62.08 TB
+        // 8 (2 m n + 2 m² + 2 n²) = 8 · 2 · (0.96 + 0.36 + 2.56) e12 = 6.208e13 B = 56.461 TiB
         assert!((err.estimated - 6.208e13).abs() < 1e9, "{}", err.estimated);
         let text = err.to_string();
         assert!(text.contains("--sides 100000"), "{text}");
-        assert!(text.contains("62.080 TB"), "{text}");
-        assert!(text.contains("8.590 GB"), "{text}");
+        assert!(text.contains("56.461 TiB"), "{text}");
+        assert!(text.contains("8.000 GiB"), "{text}");
     }
 
     #[test]
@@ -383,7 +384,7 @@ mod tests {
 
     #[test]
     fn human_units() {
-        assert_eq!(human_bytes(1.5e9), "1.500 GB");
+        assert_eq!(human_bytes(1.5 * 1024f64.powi(3)), "1.500 GiB");
         assert_eq!(human_bytes(512.0), "512 B");
         assert_eq!(human_seconds(90.0), "1.500 min");
         assert_eq!(human_seconds(2.0), "2.000 s");

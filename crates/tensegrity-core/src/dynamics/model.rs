@@ -49,6 +49,8 @@ pub enum NodeRef {
 pub(crate) struct BarData {
     pub mass: f64,
     pub inv_mass: f64,
+    /// 12 / m (J⁻¹ for a unit length), computed once.
+    pub inv_j: f64,
     pub length0: f64,
 }
 
@@ -137,11 +139,12 @@ pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
     y[3 * i + 2] = v.z;
 }
 
-/// Accelerations of the two ends of a rigid bar of inverse mass `inv_m` under end forces
-/// `fa`, `fb` (one division, by ‖b‖²: the right-hand side's inner loop).
+/// Accelerations of the two ends of a rigid bar of mass `m` (with `inv_j` = 12/m precomputed)
+/// under end forces `fa`, `fb`.
 #[inline]
 pub(crate) fn bar_accel(
-    inv_m: f64,
+    m: f64,
+    inv_j: f64,
     xa: &Vector3<f64>,
     xb: &Vector3<f64>,
     va: &Vector3<f64>,
@@ -151,12 +154,10 @@ pub(crate) fn bar_accel(
 ) -> (Vector3<f64>, Vector3<f64>) {
     let b = xb - xa;
     let bd = vb - va;
-    let inv_l2 = 1.0 / b.norm_squared();
+    let l2 = b.norm_squared();
     let fd = fb - fa;
-    let inv_j = 12.0 * inv_m;
-    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) * inv_l2)) * inv_j
-        - b * (bd.norm_squared() * inv_l2);
-    let rdd = (fa + fb) * inv_m;
+    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
+    let rdd = (fa + fb) / m;
     (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
 }
 
@@ -200,6 +201,7 @@ impl Model {
             bars.push(BarData {
                 mass,
                 inv_mass: 1.0 / mass,
+                inv_j: 12.0 / mass,
                 length0: (nodes[b] - nodes[a]).norm(),
             });
         }
@@ -592,7 +594,8 @@ impl Model {
         let mut one = |k: usize| {
             let (a, b) = (2 * k, 2 * k + 1);
             let (aa, ab) = bar_accel(
-                self.bars[k].inv_mass,
+                self.bars[k].mass,
+                self.bars[k].inv_j,
                 &vec3(x, a),
                 &vec3(x, b),
                 &vec3(v, a),
