@@ -155,7 +155,11 @@ impl Reference {
 
 /// `tensegrity simulate SCENE --json [--dt DT]`: the final nodes and the step count.
 fn simulate(scene: &str, dt: Option<f64>) -> (Vec<Vector3<f64>>, u64) {
-    let mut args = vec!["simulate".to_string(), scene.to_string(), "--json".to_string()];
+    let mut args = vec![
+        "simulate".to_string(),
+        scene.to_string(),
+        "--json".to_string(),
+    ];
     if let Some(dt) = dt {
         args.extend(["--dt".to_string(), dt.to_string()]);
     }
@@ -174,19 +178,30 @@ fn simulate(scene: &str, dt: Option<f64>) -> (Vec<Vector3<f64>>, u64) {
         .as_array()
         .unwrap()
         .iter()
-        .map(|p| Vector3::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap()))
+        .map(|p| {
+            Vector3::new(
+                p[0].as_f64().unwrap(),
+                p[1].as_f64().unwrap(),
+                p[2].as_f64().unwrap(),
+            )
+        })
         .collect();
     (nodes, v["steps"].as_u64().unwrap())
 }
 
 fn scene(path: &str) -> Structure {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
-    tensegrity_io::scene::Scene::from_path(&p).unwrap().structure
+    tensegrity_io::scene::Scene::from_path(&p)
+        .unwrap()
+        .structure
 }
 
 fn max_diff(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(p, q)| (p - q).amax()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (p - q).amax())
+        .fold(0.0, f64::max)
 }
 
 fn vectors(rows: &[[f64; 3]]) -> Vec<Vector3<f64>> {
@@ -203,13 +218,19 @@ fn check_anchor(path: &str, dt: f64, steps: u64, tol: f64, reference: &[[f64; 3]
     assert_eq!(n, steps, "{path}: steps");
     let independent = Reference::new(&scene(path)).run(dt / 10.0, 10 * steps as usize);
     let d = max_diff(&ours, &independent);
-    assert!(d < tol, "{path}: ours vs independent {d:e}\n{independent:?}");
+    assert!(
+        d < tol,
+        "{path}: ours vs independent {d:e}\n{independent:?}"
+    );
     let (fine, n) = simulate(path, Some(dt / 10.0));
     assert_eq!(n, 10 * steps);
     let d = max_diff(&fine, &independent);
     assert!(d < 1e-9, "{path}: ours at dt/10 vs independent {d:e}");
     let pinned = max_diff(&independent, &vectors(reference));
-    assert!(pinned < 1e-9, "{path}: independent vs pinned {pinned:e}\n{independent:?}");
+    assert!(
+        pinned < 1e-9,
+        "{path}: independent vs pinned {pinned:e}\n{independent:?}"
+    );
 }
 
 /// Final nodes of the MOTES D-bar at t = 5 s (independent integrator, RK4 at 1e-4; the run at
@@ -222,12 +243,28 @@ const REFERENCE_MOTES_DBAR: [[f64; 3]; 4] = [
 ];
 /// Final nodes of the prism at t = 5 s.
 const REFERENCE_MOTES_PRISM: [[f64; 3]; 6] = [
-    [0.9963498821440334, -0.0070183114385637905, -0.001648209363452766],
-    [-0.49209690507454135, 0.8663734647136662, -0.001648209363428303],
-    [-0.5042529770694993, -0.8593551532750594, -0.001648209363423855],
+    [
+        0.9963498821440334,
+        -0.0070183114385637905,
+        -0.001648209363452766,
+    ],
+    [
+        -0.49209690507454135,
+        0.8663734647136662,
+        -0.001648209363428303,
+    ],
+    [
+        -0.5042529770694993,
+        -0.8593551532750594,
+        -0.001648209363423855,
+    ],
     [0.8593551532750725, 0.5042529770695015, 2.0016482093633945],
     [-0.8663734647136557, 0.4920969050745413, 2.0016482093634127],
-    [0.007018311438577982, -0.9963498821440276, 2.0016482093634207],
+    [
+        0.007018311438577982,
+        -0.9963498821440276,
+        2.0016482093634207,
+    ],
 ];
 /// Final nodes of the T-bar at t = 2 s.
 const REFERENCE_TSGFEM_TBAR: [[f64; 3]; 5] = [
@@ -308,10 +345,20 @@ fn the_reference_integrator_reproduces_the_published_double_pendulum() {
         let b1 = -0.5 * s * w2 * w2 - 1.5 * g * t1.sin();
         let b2 = 0.5 * s * w1 * w1 - 0.5 * g * t2.sin();
         let det = a11 * a22 - a12 * a12;
-        [w1, w2, (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det]
+        [
+            w1,
+            w2,
+            (a22 * b1 - a12 * b2) / det,
+            (a11 * b2 - a12 * b1) / det,
+        ]
     };
     let add = |y: [f64; 4], k: [f64; 4], h: f64| std::array::from_fn(|i| y[i] + h * k[i]);
-    let mut y = [std::f64::consts::FRAC_PI_4, std::f64::consts::FRAC_PI_4, 0.0, 0.0];
+    let mut y = [
+        std::f64::consts::FRAC_PI_4,
+        std::f64::consts::FRAC_PI_4,
+        0.0,
+        0.0,
+    ];
     let dt = 1e-4;
     for _ in 0..50_000 {
         let k1 = f(y);
@@ -324,6 +371,7 @@ fn the_reference_integrator_reproduces_the_published_double_pendulum() {
     let published = [1.3403149308, -1.4793519015];
     assert!((tip[0] - published[0]).abs() < 1e-9, "{tip:?}");
     assert!((tip[1] - published[1]).abs() < 1e-9, "{tip:?}");
-    let nodes = Reference::new(&scene("examples/anchors/double_pendulum_rk4.toml")).run(1e-4, 50_000);
+    let nodes =
+        Reference::new(&scene("examples/anchors/double_pendulum_rk4.toml")).run(1e-4, 50_000);
     assert!((nodes[2].x - tip[0]).abs() < 1e-9 && (nodes[2].y - tip[1]).abs() < 1e-9);
 }

@@ -44,7 +44,12 @@ fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag()
     // dense path: 127 TiB; a symmetry-adapted path: a few GiB, still above 1 GiB
     assert_refused(
         &["toroid", "--sides", "100000", "--max-memory", "1Gi"],
-        &["--sides 100000", "memory", "above the limit of 1.000 GiB", "--max-memory"],
+        &[
+            "--sides 100000",
+            "memory",
+            "above the limit of 1.000 GiB",
+            "--max-memory",
+        ],
     );
     // a hundred million sides is refused under the default limits whatever the path
     assert_refused(
@@ -60,7 +65,13 @@ fn a_billion_seconds_of_rolling_is_refused() {
         &["--t-end 1000000000", "raise the limit with --max-"],
     );
     assert_refused(
-        &["fig-rolling", "--t-end", "1e9", "--out", "/nonexistent/x.svg"],
+        &[
+            "fig-rolling",
+            "--t-end",
+            "1e9",
+            "--out",
+            "/nonexistent/x.svg",
+        ],
         &["--t-end 1000000000"],
     );
 }
@@ -89,7 +100,11 @@ fn a_ten_billion_point_sign_map_is_refused_before_the_file_is_created() {
     assert!(!csv.exists());
     // without --sign-map the grid is not computed, so it is not refused
     let (out, _) = run(&args[..9]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -130,7 +145,11 @@ fn a_ten_million_case_sweep_is_refused_for_its_output() {
             "--out",
             out.to_str().unwrap(),
         ],
-        &["10000000 sweep cases", "1.863 GiB of output", "--max-output"],
+        &[
+            "10000000 sweep cases",
+            "1.863 GiB of output",
+            "--max-output",
+        ],
     );
     assert!(!out.exists());
 }
@@ -154,7 +173,11 @@ fn the_flags_move_the_limits_both_ways() {
     small.extend(["--max-output", "1Ki"]);
     assert_refused(&small, &["--max-output", "above the limit of 1.000 KiB"]);
     let (out, _) = run(&base);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let rows = std::fs::read_to_string(&csv).unwrap().lines().count();
     assert_eq!(rows, 102, "header + 101 samples");
     // work: the default toroid is a few ms of estimated work
@@ -167,13 +190,25 @@ fn the_flags_move_the_limits_both_ways() {
 #[test]
 fn normal_runs_are_unaffected() {
     let (out, _) = run(&["simulate", "examples/anchors/motes_dbar.toml", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["steps"], 5000);
     let (out, _) = run(&["toroid", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let (out, _) = run(&["roll", "--t-end", "0.5", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 /// Under an address-space limit (`ulimit -v`, 2 GB) the default memory limit follows it: a
@@ -188,7 +223,9 @@ fn under_an_address_space_limit_the_default_memory_limit_follows_it() {
     let t0 = Instant::now();
     let out = Command::new("sh")
         .arg("-c")
-        .arg(format!("ulimit -v 2000000 && exec {exe} toroid --sides 2000"))
+        .arg(format!(
+            "ulimit -v 2000000 && exec {exe} toroid --sides 2000"
+        ))
         .output()
         .expect("sh runs");
     let err = String::from_utf8_lossy(&out.stderr);
@@ -196,7 +233,10 @@ fn under_an_address_space_limit_the_default_memory_limit_follows_it() {
         Some(0) => assert!(t0.elapsed() < Duration::from_secs(60)),
         Some(2) => {
             assert!(t0.elapsed() < Duration::from_secs(5));
-            assert!(err.contains("--sides 2000") && err.contains("--max-"), "{err}");
+            assert!(
+                err.contains("--sides 2000") && err.contains("--max-"),
+                "{err}"
+            );
         }
         other => panic!("exit {other:?}: {err}"),
     }

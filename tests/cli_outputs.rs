@@ -47,7 +47,14 @@ fn an_unwritable_output_fails_before_the_run() {
         ])
         .args(["--out", "no/such/dir/traj.csv"])
         // past the resource guard: the point is that the path is checked before the work
-        .args(["--max-work", "1e12", "--max-output", "1000Ti", "--max-memory", "1000Ti"])
+        .args([
+            "--max-work",
+            "1e12",
+            "--max-output",
+            "1000Ti",
+            "--max-memory",
+            "1000Ti",
+        ])
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));

@@ -56,7 +56,9 @@ pub fn limits() -> Limits {
 
 /// A refused estimate, with the flag that raises the limit.
 #[derive(Debug, thiserror::Error)]
-#[error("{over}; raise the limit with {flag} (e.g. {flag} {suggested}) or make the request smaller")]
+#[error(
+    "{over}; raise the limit with {flag} (e.g. {flag} {suggested}) or make the request smaller"
+)]
 pub struct Refused {
     /// The estimate over its limit.
     #[source]

@@ -315,7 +315,11 @@ pub fn simulation(
         K::Rk45 => 6.0,
         K::Sdirk => 12.0,
     };
-    let flops = rhs_flops(model.bars.len(), model.strings.len(), model.n_constraint_rows());
+    let flops = rhs_flops(
+        model.bars.len(),
+        model.strings.len(),
+        model.n_constraint_rows(),
+    );
     let q = &s.quantities;
     let nodes = model.node_map.len() as f64;
     let numbers = 1.0

@@ -177,8 +177,6 @@ mod tests {
             .is_err());
         // the default run is well inside the limits
         let e = roll(&RollRequest::default());
-        assert!(tensegrity_core::budget::Limits::default()
-            .check(&e)
-            .is_ok());
+        assert!(tensegrity_core::budget::Limits::default().check(&e).is_ok());
     }
 }

@@ -18,8 +18,8 @@
 #![allow(non_snake_case)]
 
 mod analysis;
-mod builder;
 pub mod budget;
+mod builder;
 pub mod defaults;
 mod error;
 mod inertia;

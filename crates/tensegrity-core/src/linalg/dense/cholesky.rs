@@ -61,15 +61,34 @@ impl DenseCholesky {
             };
             return Err(failure(OPERATION, reason));
         }
-        let a = &mut self.l;
-        let inv_diag = &mut self.inv_diag;
-        a.iter_mut().for_each(|v| *v = 0.0);
+        let a = self.zeroed();
         let (col_ptr, row_idx) = (lower.col_ptr(), lower.row_idx());
         for j in 0..n {
             for p in col_ptr[j]..col_ptr[j + 1] {
                 a[row_idx[p] * n + j] = values[p];
             }
         }
+        self.factor_filled()
+    }
+
+    /// The storage zeroed, for filling the lower triangle of A directly (row-major, entry
+    /// (i, j), i ≥ j, at `i·n + j`) before [`factor_filled`](Self::factor_filled).
+    pub(crate) fn zeroed(&mut self) -> &mut [f64] {
+        // the lower triangle only: the strict upper part is written before it is read
+        let n = self.n;
+        for (i, row) in self.l.chunks_exact_mut(n.max(1)).enumerate() {
+            row[..=i].iter_mut().for_each(|v| *v = 0.0);
+        }
+        &mut self.l
+    }
+
+    /// Factorises the matrix whose lower triangle was filled into [`zeroed`](Self::zeroed)
+    /// storage. Allocation-free.
+    pub(crate) fn factor_filled(&mut self) -> Result<()> {
+        const OPERATION: &str = "dense Cholesky";
+        let n = self.n;
+        let a = &mut self.l;
+        let inv_diag = &mut self.inv_diag;
         let dmax = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
         let tol = f64::EPSILON * n as f64 * dmax;
         // Right-looking (outer-product) form: after step j the trailing rows hold
