@@ -215,7 +215,10 @@ pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<
             None => e,
         })
     });
-    total.map_or(Ok(Progress(None)), check)
+    let what = format!(
+        "rolling the wheels n = {sides:?} one after the other (statics, time steps, samples)"
+    );
+    total.map_or(Ok(Progress(None)), |e| check(Estimate { what, ..e }))
 }
 
 /// `tensegrity simulate`: the run with its outputs (CSV numbers ~25 bytes, VTK ~40), named by
