@@ -200,6 +200,8 @@ fn sigint_stops_a_run_between_samples_too() {
             "5e4",
         ])
         .args(["--integrator", "rk4", "--dt", "1e-3"])
+        // minutes of work on purpose: past the resource guard
+        .args(["--max-work", "1e12"])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()

@@ -242,6 +242,16 @@ pub fn simulation(sim: &tensegrity_core::Simulation, csv: bool, vtk: bool) -> Re
     ))
 }
 
+/// `tensegrity michell`: the sign maps, if asked for (the truss itself is bounded by the
+/// library's complexity limit).
+pub fn michell(args: &super::michell::MichellArgs) -> Result<Progress> {
+    sign_map(
+        args.map_grid,
+        args.map_members.len(),
+        args.sign_map.is_some(),
+    )
+}
+
 /// `tensegrity michell --sign-map`: azimuth × polar points × mapped members, kept in memory
 /// (8 bytes a value) and written (~80 bytes a row); nothing without `--sign-map`.
 pub fn sign_map(grid: (usize, usize), members: usize, requested: bool) -> Result<Progress> {

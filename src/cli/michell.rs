@@ -155,11 +155,7 @@ impl MichellArgs {
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
 /// maps and the γ sweep).
 pub fn run(args: &MichellArgs) -> Result<()> {
-    let _progress = super::guard::sign_map(
-        args.map_grid,
-        args.map_members.len(),
-        args.sign_map.is_some(),
-    )?;
+    let _progress = super::guard::michell(args)?;
     let request = args.request();
     let analysis = MichellAnalysis::run(&request).context("michell truss analysis failed")?;
     if args.json {
