@@ -542,7 +542,8 @@ impl Model {
         self.bar_accelerations(x, v, &ws.f, dv, None);
         if let Some(om) = ws.omega.as_mut() {
             for (k, bh) in ws.bhat.iter_mut().enumerate() {
-                *bh = (vec3(x, 2 * k + 1) - vec3(x, 2 * k)).normalize();
+                let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
+                *bh = b * (1.0 / b.norm());
             }
             if let Err(e) = om.assemble_and_factor(&ws.bhat, &self.inv_mass) {
                 // A NaN/∞ in the state or the forces shows up as a failed factorisation:

@@ -16,8 +16,11 @@ use crate::linalg::sparse::CscPattern;
 #[derive(Debug, Clone)]
 pub struct DenseCholesky {
     n: usize,
-    /// Lower-triangular factor, row-major n×n (the strict upper part is scratch).
+    /// Lower-triangular factor, row-major n×n; the strict upper part holds Lᵀ (row j: column
+    /// j of L below the diagonal).
     l: Vec<f64>,
+    /// 1 / L_jj (the solves multiply instead of dividing).
+    inv_diag: Vec<f64>,
 }
 
 impl DenseCholesky {
@@ -26,6 +29,7 @@ impl DenseCholesky {
         Self {
             n,
             l: vec![0.0; n * n],
+            inv_diag: vec![0.0; n],
         }
     }
 
@@ -70,7 +74,7 @@ impl DenseCholesky {
     /// The storage zeroed, for filling the lower triangle of A directly (row-major, entry
     /// (i, j), i ≥ j, at `i·n + j`) before [`factor_filled`](Self::factor_filled).
     pub(crate) fn zeroed(&mut self) -> &mut [f64] {
-        // the lower triangle only: the strict upper part is never read
+        // the lower triangle only: the strict upper part is written before it is read
         let n = self.n;
         for (i, row) in self.l.chunks_exact_mut(n.max(1)).enumerate() {
             row[..=i].iter_mut().for_each(|v| *v = 0.0);
@@ -84,49 +88,38 @@ impl DenseCholesky {
         const OPERATION: &str = "dense Cholesky";
         let n = self.n;
         let a = &mut self.l;
+        let inv_diag = &mut self.inv_diag;
         let dmax = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
         let tol = f64::EPSILON * n as f64 * dmax;
-        // Left-looking: L_ij = (A_ij − Σ_{k<j} L_ik L_jk) / L_jj, each sum taken in order k =
-        // 0, 1, … (the results are bit-identical to the plain loop). A sum is one dependency
-        // chain of adds; four rows at a time run four independent chains side by side.
+        // Right-looking (outer-product) form: after step j the trailing rows hold
+        // A_ik − Σ_{p≤j} l_ip l_kp. Column j of L is kept twice: in the lower triangle (the
+        // factor) and in the strict upper part of row j (contiguous, for the rank-1 update of
+        // the trailing rows and the forward solve). The update loops carry no dependency
+        // chain, so they pipeline and vectorise; zero multipliers (structural zeros of the
+        // constraint systems) skip their row.
         for j in 0..n {
             let (head, tail) = a.split_at_mut((j + 1) * n);
             let row_j = &mut head[j * n..];
-            let d = row_j[j] - row_j[..j].iter().map(|v| v * v).sum::<f64>();
+            let d = row_j[j];
             if d.is_nan() || d <= tol {
                 let reason = FactorizationFailure::NonPositivePivot { pivot: j, dim: n };
                 return Err(failure(OPERATION, reason));
             }
             let d = d.sqrt();
             row_j[j] = d;
-            let row_j = &head[j * n..j * n + j];
-            let mut rows = tail.chunks_exact_mut(n);
-            loop {
-                match (rows.next(), rows.next(), rows.next(), rows.next()) {
-                    (Some(r0), Some(r1), Some(r2), Some(r3)) => {
-                        let (mut s0, mut s1, mut s2, mut s3) = (-0.0, -0.0, -0.0, -0.0);
-                        for (k, y) in row_j.iter().enumerate() {
-                            s0 += r0[k] * y;
-                            s1 += r1[k] * y;
-                            s2 += r2[k] * y;
-                            s3 += r3[k] * y;
-                        }
-                        r0[j] = (r0[j] - s0) / d;
-                        r1[j] = (r1[j] - s1) / d;
-                        r2[j] = (r2[j] - s2) / d;
-                        r3[j] = (r3[j] - s3) / d;
-                    }
-                    (r0, r1, r2, _) => {
-                        for row_i in [r0, r1, r2].into_iter().flatten() {
-                            let v = row_i[j]
-                                - row_i[..j]
-                                    .iter()
-                                    .zip(row_j)
-                                    .map(|(x, y)| x * y)
-                                    .sum::<f64>();
-                            row_i[j] = v / d;
-                        }
-                        break;
+            let inv_d = 1.0 / d;
+            inv_diag[j] = inv_d;
+            for (i, row_i) in (j + 1..n).zip(tail.chunks_exact_mut(n)) {
+                let l = row_i[j] * inv_d;
+                row_i[j] = l;
+                row_j[i] = l;
+            }
+            let col_j = &row_j[..];
+            for (i, row_i) in (j + 1..n).zip(tail.chunks_exact_mut(n)) {
+                let l = col_j[i];
+                if l != 0.0 {
+                    for (x, c) in row_i[j + 1..=i].iter_mut().zip(&col_j[j + 1..=i]) {
+                        *x -= l * c;
                     }
                 }
             }
@@ -145,21 +138,25 @@ impl DenseCholesky {
             return;
         }
         let a = &self.l;
-        for (i, row) in a.chunks_exact(n).enumerate() {
-            let v = b[i]
-                - row[..i]
-                    .iter()
-                    .zip(&b[..i])
-                    .map(|(x, y)| x * y)
-                    .sum::<f64>();
-            b[i] = v / row[i];
-        }
-        for i in (0..n).rev() {
-            let mut v = b[i];
-            for k in i + 1..n {
-                v -= a[k * n + i] * b[k];
+        // forward L y = b by columns (column j of L is the upper part of row j), backward
+        // Lᵀ x = y by rows of L: both are contiguous axpy updates
+        for (j, row) in a.chunks_exact(n).enumerate() {
+            let y = b[j] * self.inv_diag[j];
+            b[j] = y;
+            if y != 0.0 {
+                for (x, l) in b[j + 1..].iter_mut().zip(&row[j + 1..]) {
+                    *x -= l * y;
+                }
             }
-            b[i] = v / a[i * n + i];
+        }
+        for (i, row) in a.chunks_exact(n).enumerate().rev() {
+            let x = b[i] * self.inv_diag[i];
+            b[i] = x;
+            if x != 0.0 {
+                for (v, l) in b[..i].iter_mut().zip(&row[..i]) {
+                    *v -= l * x;
+                }
+            }
         }
     }
 }
