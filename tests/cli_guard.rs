@@ -129,6 +129,21 @@ fn a_nanosecond_output_interval_is_refused_before_the_outputs_are_opened() {
 }
 
 #[test]
+fn a_ten_billion_point_friction_map_is_refused() {
+    // used to abort allocating 10¹⁰ rows
+    assert_refused(
+        &[
+            "tipover",
+            "--grid-points",
+            "100000",
+            "--grid",
+            "/nonexistent/f.csv",
+        ],
+        &["--grid-points 100000", "--max-"],
+    );
+}
+
+#[test]
 fn a_ten_million_case_sweep_is_refused_for_its_output() {
     let dir = scratch("sweep");
     let spec = dir.join("huge.toml");

@@ -270,6 +270,18 @@ pub fn sign_map(grid: (usize, usize), members: usize, requested: bool) -> Result
     check(e)
 }
 
+/// `tensegrity tipover --grid`: n × n rows of (σ, ε, F_f/F_e), kept in memory (24 bytes) and
+/// written (~75 bytes).
+pub fn friction_grid(n: usize) -> Result<Progress> {
+    let rows = n as f64 * n as f64;
+    let e = budget::table(rows, 24.0, true, format!("--grid-points {n}"));
+    check(Estimate {
+        output_bytes: 75.0 * rows,
+        work_s: 200.0 * rows / budget::SCALAR_FLOP_RATE,
+        ..e
+    })
+}
+
 /// `tensegrity sweep`: one CSV row per case (~200 bytes).
 pub fn sweep(cases: usize) -> Result<Progress> {
     // work is not estimated: a sweep shows its own progress bar and can be resumed

@@ -34,6 +34,7 @@ pub struct TipoverArgs {
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     if let Some(path) = &args.grid {
+        let _progress = super::guard::friction_grid(args.grid_points)?;
         let rows = toroid::friction_grid(args.grid_points, args.eps_max)?;
         write_friction_csv(path, &rows)?;
         println!("wrote {}", path.display());
