@@ -83,6 +83,12 @@ impl Drop for Progress {
 
 /// Checks `estimate` against the limits; returns the progress indicator of the work.
 pub fn check(estimate: Estimate) -> Result<Progress> {
+    check_with(estimate, false)
+}
+
+/// [`check`], with the spinner shown on a terminal whatever the estimate when
+/// `work_unknown` (an adaptive integration's steps are not known in advance).
+fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
     if let Err(over) = limits().check(&estimate) {
         let (flag, suggested) = match over.resource {
             Resource::Memory => ("--max-memory", size_flag(over.estimated)),
@@ -96,11 +102,11 @@ pub fn check(estimate: Estimate) -> Result<Progress> {
         }
         .into());
     }
-    Ok(progress(&estimate))
+    Ok(progress(&estimate, work_unknown))
 }
 
-fn progress(estimate: &Estimate) -> Progress {
-    if estimate.work_s < SPINNER_AFTER_S || !std::io::stderr().is_terminal() {
+fn progress(estimate: &Estimate, work_unknown: bool) -> Progress {
+    if (estimate.work_s < SPINNER_AFTER_S && !work_unknown) || !std::io::stderr().is_terminal() {
         return Progress(None);
     }
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -233,13 +239,12 @@ pub fn simulation(sim: &tensegrity_core::Simulation, csv: bool, vtk: bool) -> Re
     }
     let bytes_per_number = 25.0 * f64::from(u8::from(csv)) + 40.0 * f64::from(u8::from(vtk));
     let written = csv || vtk;
-    check(budget::simulation(
-        sim,
-        true,
-        written,
-        bytes_per_number,
-        parameter,
-    ))
+    // an adaptive run's steps are at least t_end / dt; how many more is not known up front
+    let adaptive = s.integrator.is_adaptive();
+    check_with(
+        budget::simulation(sim, true, written, bytes_per_number, parameter),
+        adaptive,
+    )
 }
 
 /// `tensegrity michell`: the sign maps, if asked for (the truss itself is bounded by the
