@@ -10,6 +10,9 @@ use clap::{Parser, Subcommand};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Resource limits of every command (estimated before any work).
+    #[command(flatten)]
+    limits: cli::guard::LimitArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -47,6 +50,7 @@ enum Command {
 fn main() {
     quiet_on_broken_pipe();
     let cli = parse();
+    cli::guard::init(&cli.limits);
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),

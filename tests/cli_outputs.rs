@@ -46,6 +46,15 @@ fn an_unwritable_output_fails_before_the_run() {
             "1e6",
         ])
         .args(["--out", "no/such/dir/traj.csv"])
+        // past the resource guard: the point is that the path is checked before the work
+        .args([
+            "--max-work",
+            "1e12",
+            "--max-output",
+            "1000Ti",
+            "--max-memory",
+            "1000Ti",
+        ])
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
@@ -124,6 +133,8 @@ fn long_run(dir: &Path) -> (std::process::Child, PathBuf) {
             "1e-3",
         ])
         .args(["--out", csv.to_str().unwrap()])
+        // hours of work and 10 GB of CSV on purpose: past the resource guard
+        .args(["--max-work", "1e12", "--max-output", "1000Ti"])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -189,6 +200,8 @@ fn sigint_stops_a_run_between_samples_too() {
             "5e4",
         ])
         .args(["--integrator", "rk4", "--dt", "1e-3"])
+        // minutes of work on purpose: past the resource guard
+        .args(["--max-work", "1e12"])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()

@@ -44,6 +44,10 @@ pub fn code(e: &anyhow::Error) -> i32 {
 }
 
 fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
+    // a request over the resource limits is refused like a bad value
+    if e.is::<super::guard::Refused>() || e.is::<tensegrity_core::budget::OverBudget>() {
+        return true;
+    }
     if let Some(e) = e.downcast_ref::<CoreError>() {
         return matches!(
             e,

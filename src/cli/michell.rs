@@ -179,6 +179,7 @@ pub fn run(args: &MichellArgs) -> Result<()> {
     if let Some(MichellAction::Optimize(opt)) = &args.action {
         return super::michell_optimize::run(opt);
     }
+    let _progress = super::guard::michell(args)?;
     let (request, check) = match args.extra_strings {
         Some(arg) => {
             let (r, c) = super::michell_extra::resolve(arg, &args.request())?;

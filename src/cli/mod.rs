@@ -5,6 +5,7 @@ pub mod bench;
 pub mod demo;
 pub mod exit;
 pub mod figures;
+pub mod guard;
 pub mod michell;
 pub mod michell_extra;
 pub mod michell_optimize;

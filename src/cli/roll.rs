@@ -158,6 +158,7 @@ impl RollArgs {
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
     let request = args.request();
+    let _progress = super::guard::roll(&request)?;
     if let Some(t) = args
         .frames
         .iter()
@@ -392,6 +393,7 @@ pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
         restitution: args.restitution,
         ..RollRequest::default()
     };
+    let _progress = super::guard::rolling_series(&request, &defaults::FIG_3_10_SIDES)?;
     let runs = super::roll_series::parallel_series(&request, &defaults::FIG_3_10_SIDES)?;
     super::roll_series::print_series(&runs);
     let labelled: Vec<(String, &[RollingSample])> = runs

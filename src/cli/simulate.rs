@@ -105,6 +105,7 @@ pub fn run_scene(
     let mut simulation = build_simulation(structure, sim, ground, actuation)
         .with_context(|| format!("setting up the simulation of {}", args.scene.display()))?;
     apply_overrides(args, &mut simulation.settings, sim)?;
+    let _progress = super::guard::simulation(&simulation, args.out.is_some(), args.vtk.is_some())?;
     let mut outputs = Outputs::open(args.out.as_deref(), args.vtk.as_deref(), structure)?;
     stop_on_signals();
     let run = simulation.run_streaming(&mut outputs);

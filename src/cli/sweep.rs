@@ -200,6 +200,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         anyhow::bail!("usage: tensegrity sweep SPEC.toml --out results.csv");
     };
     let spec = Spec::read(spec_path)?;
+    let _guard = super::guard::sweep(spec.case_count()?)?;
     let opts = RunOptions {
         threads: args.threads.map(usize::from),
         shard: args.shard.unwrap_or(Shard::ALL),

@@ -52,6 +52,7 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
         );
     }
     if let Some(path) = &args.grid {
+        let _progress = super::guard::friction_grid(args.grid_points)?;
         let rows = sweeps::grids::friction_grid(args.grid_points, args.eps_max)?;
         write_friction_csv(path, &rows)?;
         println!("wrote {}", path.display());

@@ -103,6 +103,7 @@ impl ToroidArgs {
 
 /// Entry point of `tensegrity toroid`.
 pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
+    let _progress = super::guard::toroid(&args.request())?;
     let report = toroid::toroid_report(&args.request())?;
     if let Some(path) = &args.export_scene {
         write_scene(path, &report.structure)?;

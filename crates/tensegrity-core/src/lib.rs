@@ -9,6 +9,8 @@
 //!   prestressability (LP), minimal-norm load solve with reactions; `statics::symmetry` the
 //!   same for cyclically symmetric structures in O(n) (Fourier blocks per representation);
 //! - [`stiffness`]: tangent stiffness, first-order flexes, prestress stability, modes;
+//! - [`budget`]: memory, work and output estimated from a request's sizes, and the limits
+//!   that refuse oversized requests before anything is allocated;
 //! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
@@ -23,6 +25,7 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+pub mod budget;
 pub mod connectivity;
 pub mod dynamics;
 pub mod error;

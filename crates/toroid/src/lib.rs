@@ -18,6 +18,7 @@
 #![allow(non_snake_case)]
 
 mod analysis;
+pub mod budget;
 mod builder;
 pub mod defaults;
 mod error;

@@ -49,6 +49,8 @@ pub enum NodeRef {
 pub(crate) struct BarData {
     pub mass: f64,
     pub inv_mass: f64,
+    /// 12 / m (J⁻¹ for a unit length), computed once.
+    pub inv_j: f64,
     pub length0: f64,
 }
 
@@ -137,10 +139,12 @@ pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
     y[3 * i + 2] = v.z;
 }
 
-/// Accelerations of the two ends of a rigid bar of mass `m` under end forces `fa`, `fb`.
+/// Accelerations of the two ends of a rigid bar of mass `m` (with `inv_j` = 12/m precomputed)
+/// under end forces `fa`, `fb`.
 #[inline]
 pub(crate) fn bar_accel(
     m: f64,
+    inv_j: f64,
     xa: &Vector3<f64>,
     xb: &Vector3<f64>,
     va: &Vector3<f64>,
@@ -152,7 +156,6 @@ pub(crate) fn bar_accel(
     let bd = vb - va;
     let l2 = b.norm_squared();
     let fd = fb - fa;
-    let inv_j = 12.0 / m;
     let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
     let rdd = (fa + fb) / m;
     (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
@@ -198,6 +201,7 @@ impl Model {
             bars.push(BarData {
                 mass,
                 inv_mass: 1.0 / mass,
+                inv_j: 12.0 / mass,
                 length0: (nodes[b] - nodes[a]).norm(),
             });
         }
@@ -538,7 +542,8 @@ impl Model {
         self.bar_accelerations(x, v, &ws.f, dv, None);
         if let Some(om) = ws.omega.as_mut() {
             for (k, bh) in ws.bhat.iter_mut().enumerate() {
-                *bh = (vec3(x, 2 * k + 1) - vec3(x, 2 * k)).normalize();
+                let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
+                *bh = b * (1.0 / b.norm());
             }
             if let Err(e) = om.assemble_and_factor(&ws.bhat, &self.inv_mass) {
                 // A NaN/∞ in the state or the forces shows up as a failed factorisation:
@@ -590,6 +595,7 @@ impl Model {
             let (a, b) = (2 * k, 2 * k + 1);
             let (aa, ab) = bar_accel(
                 self.bars[k].mass,
+                self.bars[k].inv_j,
                 &vec3(x, a),
                 &vec3(x, b),
                 &vec3(v, a),

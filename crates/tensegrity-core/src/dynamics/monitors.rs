@@ -93,6 +93,8 @@ impl Model {
     /// node that moved farthest).
     pub fn check_state(&self, t: f64, y: &[f64], limit: f64) -> Result<(), CoreError> {
         let v = &y[3 * self.n1..];
+        // squared distances: no square root per node and step
+        let limit2 = limit * limit;
         let mut worst: Option<(usize, f64)> = None;
         for i in 0..self.n1 {
             let x = vec3(y, i);
@@ -102,16 +104,16 @@ impl Model {
                     member: MemberId::Bar(i / 2),
                 });
             }
-            let distance = (x - vec3(&self.x0, i)).norm();
-            if distance > limit && worst.is_none_or(|(_, d)| distance > d) {
-                worst = Some((i, distance));
+            let d2 = (x - vec3(&self.x0, i)).norm_squared();
+            if d2 > limit2 && worst.is_none_or(|(_, d)| d2 > d) {
+                worst = Some((i, d2));
             }
         }
         match worst {
-            Some((i, distance)) => Err(CoreError::BlowUp {
+            Some((i, d2)) => Err(CoreError::BlowUp {
                 t,
                 member: MemberId::Bar(i / 2),
-                distance,
+                distance: d2.sqrt(),
                 limit,
             }),
             None => Ok(()),

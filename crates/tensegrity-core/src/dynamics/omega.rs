@@ -57,6 +57,8 @@ struct Contribution {
 #[derive(Debug, Clone, Copy)]
 struct AxisContribution {
     slot: usize,
+    /// Position of the slot in the dense row-major storage (row·n + column).
+    dense: usize,
     bar: usize,
     d: usize,
     d2: usize,
@@ -225,6 +227,7 @@ impl ConstraintMatrix {
                 let s = su * sw;
                 Some(AxisContribution {
                     slot: c.slot,
+                    dense: c.row_x * rows.len() + c.row_y,
                     bar: c.bar,
                     d,
                     d2,
@@ -242,6 +245,18 @@ impl ConstraintMatrix {
         bhat: &[Vector3<f64>],
         inv_mass: &[f64],
     ) -> Result<(), CoreError> {
+        if let (false, Factor::Dense(chol)) = (self.axis.is_empty(), &mut self.factor) {
+            // straight into the dense factor's storage: no CSC values, no scatter
+            let a = chol.zeroed();
+            for c in &self.axis {
+                let b = &bhat[c.bar];
+                a[c.dense] += inv_mass[c.bar] * (c.c0 + c.c1 * b[c.d] * b[c.d2]);
+            }
+            self.factored = false;
+            chol.factor_filled().map_err(constraint_error)?;
+            self.factored = true;
+            return Ok(());
+        }
         self.values.iter_mut().for_each(|v| *v = 0.0);
         if !self.axis.is_empty() {
             for c in &self.axis {

@@ -220,8 +220,10 @@ impl Simulation {
         Ok(driver.finish(wall_time_s))
     }
 
-    /// Checks the numerical settings of the chosen integrator.
-    fn validate(&self) -> Result<(), CoreError> {
+    /// Checks the numerical settings of the chosen integrator (also done by
+    /// [`run`](Self::run)): positive finite times, steps and tolerances, and a fixed-step run
+    /// that fits in `max_steps`.
+    pub fn validate(&self) -> Result<(), CoreError> {
         let s = &self.settings;
         positive("t_end", s.t_end)?;
         match s.integrator {

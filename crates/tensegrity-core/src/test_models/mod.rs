@@ -29,6 +29,6 @@ pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TI
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,
 };
-pub use motes_dbar::{motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
+pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
 pub use snelson::{oscillating_prism, snelson, snelson_prism, snelson_twist, PrismParams};
 pub use spinning_bar::{spinning_bar, spinning_bar_exact};

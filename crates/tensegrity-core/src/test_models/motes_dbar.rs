@@ -24,3 +24,27 @@ pub fn motes_dbar(span: f64) -> Result<Structure> {
         .support(Support::pinned(0))
         .build()
 }
+
+/// The MOTES anchor D-bar exactly as the MOTES reference code runs it (the scene
+/// `examples/anchors/motes_dbar.toml`): nodes (−1,0,0), (0,−1,0), (1,0,0), (0,1,0); bars 3–0,
+/// 0–1, 1–2, 2–3 of 1 kg; strings 1–3 (rest length 1) and 0–2 (rest length 0.5) with
+/// k = 100 N/m; node 0 pinned; no gravity. Run it for [`MOTES_DBAR_STEPS`] RK4 steps of
+/// [`MOTES_DBAR_DT`].
+pub fn motes_anchor_dbar() -> Result<Structure> {
+    use crate::structure::{Bar, StringMember};
+    Structure::builder()
+        .nodes([
+            [-1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ])
+        .bar(Bar::new(3, 0).mass(1.0))
+        .bar(Bar::new(0, 1).mass(1.0))
+        .bar(Bar::new(1, 2).mass(1.0))
+        .bar(Bar::new(2, 3).mass(1.0))
+        .string(StringMember::new(1, 3).stiffness(100.0).rest_length(1.0))
+        .string(StringMember::new(0, 2).stiffness(100.0).rest_length(0.5))
+        .support(Support::pinned(0))
+        .build()
+}

@@ -16,8 +16,11 @@ use crate::linalg::sparse::CscPattern;
 #[derive(Debug, Clone)]
 pub struct DenseCholesky {
     n: usize,
-    /// Lower-triangular factor, row-major n×n (the strict upper part is scratch).
+    /// Lower-triangular factor, row-major n×n; the strict upper part holds Lᵀ (row j: column
+    /// j of L below the diagonal).
     l: Vec<f64>,
+    /// 1 / L_jj (the solves multiply instead of dividing).
+    inv_diag: Vec<f64>,
 }
 
 impl DenseCholesky {
@@ -26,6 +29,7 @@ impl DenseCholesky {
         Self {
             n,
             l: vec![0.0; n * n],
+            inv_diag: vec![0.0; n],
         }
     }
 
@@ -57,35 +61,67 @@ impl DenseCholesky {
             };
             return Err(failure(OPERATION, reason));
         }
-        let a = &mut self.l;
-        a.iter_mut().for_each(|v| *v = 0.0);
+        let a = self.zeroed();
         let (col_ptr, row_idx) = (lower.col_ptr(), lower.row_idx());
         for j in 0..n {
             for p in col_ptr[j]..col_ptr[j + 1] {
                 a[row_idx[p] * n + j] = values[p];
             }
         }
+        self.factor_filled()
+    }
+
+    /// The storage zeroed, for filling the lower triangle of A directly (row-major, entry
+    /// (i, j), i ≥ j, at `i·n + j`) before [`factor_filled`](Self::factor_filled).
+    pub(crate) fn zeroed(&mut self) -> &mut [f64] {
+        // the lower triangle only: the strict upper part is written before it is read
+        let n = self.n;
+        for (i, row) in self.l.chunks_exact_mut(n.max(1)).enumerate() {
+            row[..=i].iter_mut().for_each(|v| *v = 0.0);
+        }
+        &mut self.l
+    }
+
+    /// Factorises the matrix whose lower triangle was filled into [`zeroed`](Self::zeroed)
+    /// storage. Allocation-free.
+    pub(crate) fn factor_filled(&mut self) -> Result<()> {
+        const OPERATION: &str = "dense Cholesky";
+        let n = self.n;
+        let a = &mut self.l;
+        let inv_diag = &mut self.inv_diag;
         let dmax = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
         let tol = f64::EPSILON * n as f64 * dmax;
+        // Right-looking (outer-product) form: after step j the trailing rows hold
+        // A_ik − Σ_{p≤j} l_ip l_kp. Column j of L is kept twice: in the lower triangle (the
+        // factor) and in the strict upper part of row j (contiguous, for the rank-1 update of
+        // the trailing rows and the forward solve). The update loops carry no dependency
+        // chain, so they pipeline and vectorise; zero multipliers (structural zeros of the
+        // constraint systems) skip their row.
         for j in 0..n {
             let (head, tail) = a.split_at_mut((j + 1) * n);
             let row_j = &mut head[j * n..];
-            let d = row_j[j] - row_j[..j].iter().map(|v| v * v).sum::<f64>();
+            let d = row_j[j];
             if d.is_nan() || d <= tol {
                 let reason = FactorizationFailure::NonPositivePivot { pivot: j, dim: n };
                 return Err(failure(OPERATION, reason));
             }
             let d = d.sqrt();
             row_j[j] = d;
-            let row_j = &head[j * n..j * n + j];
-            for row_i in tail.chunks_exact_mut(n) {
-                let v = row_i[j]
-                    - row_i[..j]
-                        .iter()
-                        .zip(row_j)
-                        .map(|(x, y)| x * y)
-                        .sum::<f64>();
-                row_i[j] = v / d;
+            let inv_d = 1.0 / d;
+            inv_diag[j] = inv_d;
+            for (i, row_i) in (j + 1..n).zip(tail.chunks_exact_mut(n)) {
+                let l = row_i[j] * inv_d;
+                row_i[j] = l;
+                row_j[i] = l;
+            }
+            let col_j = &row_j[..];
+            for (i, row_i) in (j + 1..n).zip(tail.chunks_exact_mut(n)) {
+                let l = col_j[i];
+                if l != 0.0 {
+                    for (x, c) in row_i[j + 1..=i].iter_mut().zip(&col_j[j + 1..=i]) {
+                        *x -= l * c;
+                    }
+                }
             }
         }
         Ok(())
@@ -102,21 +138,25 @@ impl DenseCholesky {
             return;
         }
         let a = &self.l;
-        for (i, row) in a.chunks_exact(n).enumerate() {
-            let v = b[i]
-                - row[..i]
-                    .iter()
-                    .zip(&b[..i])
-                    .map(|(x, y)| x * y)
-                    .sum::<f64>();
-            b[i] = v / row[i];
-        }
-        for i in (0..n).rev() {
-            let mut v = b[i];
-            for k in i + 1..n {
-                v -= a[k * n + i] * b[k];
+        // forward L y = b by columns (column j of L is the upper part of row j), backward
+        // Lᵀ x = y by rows of L: both are contiguous axpy updates
+        for (j, row) in a.chunks_exact(n).enumerate() {
+            let y = b[j] * self.inv_diag[j];
+            b[j] = y;
+            if y != 0.0 {
+                for (x, l) in b[j + 1..].iter_mut().zip(&row[j + 1..]) {
+                    *x -= l * y;
+                }
             }
-            b[i] = v / a[i * n + i];
+        }
+        for (i, row) in a.chunks_exact(n).enumerate().rev() {
+            let x = b[i] * self.inv_diag[i];
+            b[i] = x;
+            if x != 0.0 {
+                for (v, l) in b[..i].iter_mut().zip(&row[..i]) {
+                    *v -= l * x;
+                }
+            }
         }
     }
 }

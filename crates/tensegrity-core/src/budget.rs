@@ -1,0 +1,396 @@
+//! Resource budget: memory, work and output estimated from a request's *sizes*, before
+//! anything is allocated, and the check against limits.
+//!
+//! An [`Estimate`] holds three numbers for one computation: peak memory (bytes), work
+//! (seconds, from a flop count over an assumed sustained rate) and output written (bytes).
+//! [`Limits::check`] refuses an estimate above any limit with an [`OverBudget`] error naming
+//! the parameter that drives the size, the estimate and the limit. The estimates are
+//! deliberately simple closed forms:
+//!
+//! * dense statics of an m × n equilibrium matrix (SVD with full U and V, the prestress LP and
+//!   the flexes on top): memory [`dense_statics_bytes`], work ≈ (4 a² b + 22 b³) flops with
+//!   a = max(m, n), b = min(m, n) (Golub–Van Loan's R-SVD count with U and V), times
+//!   [`DENSE_OVERHEAD`] for the LP and the flexes, at [`DENSE_FLOP_RATE`];
+//! * a fixed-step time integration: steps × right-hand sides per step × flops per right-hand
+//!   side ([`rhs_flops`]: bars and strings linear, the Ω system r³/3 dense or ~60 r sparse),
+//!   at [`SCALAR_FLOP_RATE`];
+//! * output: rows × row bytes.
+//!
+//! The rates are conservative single-core figures: estimates are meant to be right within a
+//! factor of a few, enough to tell a second from an hour. Topology crates refine the estimate
+//! of what they actually run (e.g. `toroid::budget`).
+
+use serde::Serialize;
+
+/// Default limit on estimated work: one minute.
+pub const DEFAULT_MAX_WORK_S: f64 = 60.0;
+/// Default limit on estimated output: 1 GiB.
+pub const DEFAULT_MAX_OUTPUT_BYTES: f64 = 1024.0 * 1024.0 * 1024.0;
+/// Default limit on estimated peak memory: 8 GiB (callers lower it to what the machine has).
+pub const DEFAULT_MAX_MEMORY_BYTES: f64 = 8.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// Sustained rate assumed for dense factorisations (flop/s, one core).
+pub const DENSE_FLOP_RATE: f64 = 5e9;
+/// Sustained rate assumed for the small, irregular kernels of one dynamics right-hand side
+/// (flop/s, one core).
+pub const SCALAR_FLOP_RATE: f64 = 1e9;
+/// Factor on the SVD's work for the prestress LP and the flexes that follow it.
+pub const DENSE_OVERHEAD: f64 = 1.5;
+
+/// The estimated cost of one computation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Estimate {
+    /// The computation, e.g. `the dense statics (SVD of the 18000 × 12000 equilibrium matrix)`.
+    pub what: String,
+    /// The input that drives the size, as the user wrote it (e.g. `--sides 100000`).
+    pub parameter: String,
+    /// Peak memory (bytes).
+    pub memory_bytes: f64,
+    /// Work (s).
+    pub work_s: f64,
+    /// Output written (bytes).
+    pub output_bytes: f64,
+}
+
+impl Estimate {
+    /// An estimate with no memory, work or output yet.
+    pub fn new(what: impl Into<String>, parameter: impl Into<String>) -> Self {
+        Self {
+            what: what.into(),
+            parameter: parameter.into(),
+            memory_bytes: 0.0,
+            work_s: 0.0,
+            output_bytes: 0.0,
+        }
+    }
+
+    /// Sets the peak memory (bytes).
+    pub fn memory(mut self, bytes: f64) -> Self {
+        self.memory_bytes = bytes;
+        self
+    }
+
+    /// Sets the work (s).
+    pub fn work(mut self, seconds: f64) -> Self {
+        self.work_s = seconds;
+        self
+    }
+
+    /// Sets the output (bytes).
+    pub fn output(mut self, bytes: f64) -> Self {
+        self.output_bytes = bytes;
+        self
+    }
+
+    /// Two computations that run one after the other: work and output add, memory is the
+    /// larger peak; the description names both, the parameter is the first one's.
+    pub fn then(self, other: Estimate) -> Estimate {
+        Estimate {
+            what: format!("{}, then {}", self.what, other.what),
+            memory_bytes: self.memory_bytes.max(other.memory_bytes),
+            work_s: self.work_s + other.work_s,
+            output_bytes: self.output_bytes + other.output_bytes,
+            parameter: self.parameter,
+        }
+    }
+}
+
+/// The resource an estimate exceeds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Resource {
+    /// Peak memory.
+    Memory,
+    /// Work (wall time).
+    Work,
+    /// Output written.
+    Output,
+}
+
+impl std::fmt::Display for Resource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Resource::Memory => "memory",
+            Resource::Work => "work",
+            Resource::Output => "output",
+        })
+    }
+}
+
+/// Limits of one run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Limits {
+    /// Largest estimated peak memory (bytes).
+    pub memory_bytes: f64,
+    /// Largest estimated work (s).
+    pub work_s: f64,
+    /// Largest estimated output (bytes).
+    pub output_bytes: f64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            memory_bytes: DEFAULT_MAX_MEMORY_BYTES,
+            work_s: DEFAULT_MAX_WORK_S,
+            output_bytes: DEFAULT_MAX_OUTPUT_BYTES,
+        }
+    }
+}
+
+/// An estimate above a limit, refused before anything was allocated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}: {} needs an estimated {} of {resource}, above the limit of {}", estimate.parameter, estimate.what, human(*resource, *estimated), human(*resource, *limit))]
+pub struct OverBudget {
+    /// The refused estimate.
+    pub estimate: Estimate,
+    /// The resource over its limit.
+    pub resource: Resource,
+    /// The estimated amount (bytes or s).
+    pub estimated: f64,
+    /// The limit (bytes or s).
+    pub limit: f64,
+}
+
+/// `amount` of `resource` for people: bytes in KiB … PiB, seconds in s, min, h, days, years.
+pub fn human(resource: Resource, amount: f64) -> String {
+    match resource {
+        Resource::Memory | Resource::Output => human_bytes(amount),
+        Resource::Work => human_seconds(amount),
+    }
+}
+
+/// Bytes with a binary unit (`1.500 GiB`).
+pub fn human_bytes(b: f64) -> String {
+    let units = ["PiB", "TiB", "GiB", "MiB", "KiB"];
+    for (k, unit) in units.iter().enumerate() {
+        let scale = 1024f64.powi(5 - k as i32);
+        if b >= scale {
+            return format!("{:.3} {unit}", b / scale);
+        }
+    }
+    format!("{b:.0} B")
+}
+
+/// Seconds as s, min, h, days or years.
+pub fn human_seconds(s: f64) -> String {
+    let units = [
+        (365.25 * 86400.0, "years"),
+        (86400.0, "days"),
+        (3600.0, "h"),
+        (60.0, "min"),
+    ];
+    for (scale, unit) in units {
+        if s >= scale {
+            return format!("{:.3} {unit}", s / scale);
+        }
+    }
+    format!("{s:.3} s")
+}
+
+impl Limits {
+    /// Refuses `estimate` if it exceeds a limit (memory first, then output, then work). A
+    /// non-finite estimate (an overflowing size) is always refused.
+    ///
+    /// ```
+    /// use tensegrity_core::budget::{Estimate, Limits, Resource};
+    /// let e = Estimate::new("a run", "--t-end 1e9").work(1e9);
+    /// let err = Limits::default().check(&e).unwrap_err();
+    /// assert_eq!(err.resource, Resource::Work);
+    /// assert!(err.to_string().contains("--t-end 1e9"));
+    /// assert!(Limits::default().check(&Estimate::new("a run", "--t-end 1").work(0.1)).is_ok());
+    /// ```
+    pub fn check(&self, estimate: &Estimate) -> Result<(), OverBudget> {
+        let checks = [
+            (Resource::Memory, estimate.memory_bytes, self.memory_bytes),
+            (Resource::Output, estimate.output_bytes, self.output_bytes),
+            (Resource::Work, estimate.work_s, self.work_s),
+        ];
+        for (resource, estimated, limit) in checks {
+            if estimated.is_nan() || estimated > limit {
+                return Err(OverBudget {
+                    estimate: estimate.clone(),
+                    resource,
+                    estimated,
+                    limit,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+pub use crate::statics::dense_statics_bytes;
+
+/// Flops of the SVD of an m × n matrix with full U and V (Golub–Van Loan's R-SVD count).
+pub fn svd_flops(m: usize, n: usize) -> f64 {
+    let (a, b) = (m.max(n) as f64, m.min(n) as f64);
+    4.0 * a * a * b + 22.0 * b * b * b
+}
+
+/// Estimate of the dense statics (SVD, prestress LP, flexes) of an m × n equilibrium matrix.
+///
+/// ```
+/// use tensegrity_core::budget::dense_statics;
+/// let e = dense_statics(1800, 1200, "--sides 100");
+/// assert!(e.work_s > 1.0 && e.work_s < 100.0); // seconds, not hours
+/// assert!(e.memory_bytes < 2e8); // 109 MB
+/// ```
+pub fn dense_statics(m: usize, n: usize, parameter: impl Into<String>) -> Estimate {
+    Estimate::new(
+        format!("the dense statics (SVD of the {m} × {n} equilibrium matrix)"),
+        parameter,
+    )
+    .memory(dense_statics_bytes(m, n))
+    .work(DENSE_OVERHEAD * svd_flops(m, n) / DENSE_FLOP_RATE)
+}
+
+/// Flops of one dynamics right-hand side with `bars` bars, `strings` strings and
+/// `constraint_rows` rows of N P = D: ~120 per bar (two passes of the bar accelerations),
+/// ~30 per string, and the Ω system — dense Cholesky r³/3 + 2r² up to 48 rows, else a banded
+/// sparse factorisation of ~60 flops a row.
+pub fn rhs_flops(bars: usize, strings: usize, constraint_rows: usize) -> f64 {
+    let r = constraint_rows as f64;
+    let omega = if constraint_rows == 0 {
+        0.0
+    } else if constraint_rows <= 48 {
+        r * r * r / 3.0 + 2.0 * r * r + 20.0 * r
+    } else {
+        60.0 * r
+    };
+    120.0 * bars as f64 + 30.0 * strings as f64 + omega
+}
+
+/// Estimate of a time integration of `steps` steps with `rhs_per_step` right-hand sides of
+/// `flops_per_rhs` each, holding a state of `state_len` numbers.
+pub fn integration(
+    steps: f64,
+    rhs_per_step: f64,
+    flops_per_rhs: f64,
+    state_len: usize,
+    parameter: impl Into<String>,
+) -> Estimate {
+    Estimate::new(
+        format!("{steps:.3e} time steps of a {state_len}-number state"),
+        parameter,
+    )
+    .memory(64.0 * state_len as f64)
+    .work(steps * rhs_per_step * (flops_per_rhs + 20.0 * state_len as f64) / SCALAR_FLOP_RATE)
+}
+
+/// Estimate of `rows` output rows of `row_bytes` bytes each, kept in memory (`in_memory`)
+/// or streamed to a file.
+pub fn table(rows: f64, row_bytes: f64, in_memory: bool, parameter: impl Into<String>) -> Estimate {
+    let bytes = rows * row_bytes;
+    Estimate::new(format!("{rows:.3e} output rows"), parameter)
+        .output(bytes)
+        .memory(if in_memory { bytes } else { 0.0 })
+}
+
+/// Estimate of a [`Simulation`](crate::dynamics::Simulation) run from its settings and model
+/// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
+/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4,
+/// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
+/// memory unless `streamed`, and written at `bytes_per_number` when `written`.
+pub fn simulation(
+    sim: &crate::dynamics::Simulation,
+    streamed: bool,
+    written: bool,
+    bytes_per_number: f64,
+    parameter: impl Into<String>,
+) -> Estimate {
+    use crate::dynamics::IntegratorKind as K;
+    let (s, model) = (&sim.settings, &sim.model);
+    let samples = s.output_times.len() as f64
+        + s.output_interval
+            .map_or(0.0, |dt_out| (s.t_end / dt_out).floor() + 1.0);
+    let step = match (s.integrator.is_adaptive(), s.output_interval) {
+        (false, Some(dt_out)) => s.dt.min(dt_out),
+        _ => s.dt,
+    };
+    let steps = (s.t_end / step).ceil();
+    let rhs_per_step = match s.integrator {
+        K::Rk4 => 4.0,
+        K::Rattle => 2.0,
+        K::Rk45 => 6.0,
+        K::Sdirk => 12.0,
+    };
+    let flops = rhs_flops(
+        model.bars.len(),
+        model.strings.len(),
+        model.n_constraint_rows(),
+    );
+    let q = &s.quantities;
+    let nodes = model.node_map.len() as f64;
+    let numbers = 1.0
+        + 3.0 * nodes * (f64::from(u8::from(q.nodes)) + f64::from(u8::from(q.velocities)))
+        + (model.bars.len() + model.strings.len()) as f64 * f64::from(u8::from(q.member_forces))
+        + 3.0 * f64::from(u8::from(q.energy))
+        + 4.0 * model.contact.len() as f64 * f64::from(u8::from(q.contact_forces));
+    let run = integration(steps, rhs_per_step, flops, model.state_len(), parameter);
+    let sample_bytes = numbers * if streamed { 0.0 } else { 8.0 };
+    Estimate {
+        memory_bytes: run.memory_bytes + samples * sample_bytes,
+        output_bytes: if written {
+            samples * numbers * bytes_per_number
+        } else {
+            0.0
+        },
+        what: format!("{} and {samples:.3e} output samples", run.what),
+        ..run
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn over_budget_names_the_parameter_the_estimate_and_the_limit() {
+        let e = dense_statics(600_000, 1_600_000, "--sides 100000");
+        let err = Limits::default().check(&e).unwrap_err();
+        assert_eq!(err.resource, Resource::Memory);
+        // 8 (2 m n + 2 m² + 2 n²) = 8 · 2 · (0.96 + 0.36 + 2.56) e12 = 6.208e13 B = 56.461 TiB
+        assert!((err.estimated - 6.208e13).abs() < 1e9, "{}", err.estimated);
+        let text = err.to_string();
+        assert!(text.contains("--sides 100000"), "{text}");
+        assert!(text.contains("56.461 TiB"), "{text}");
+        assert!(text.contains("8.000 GiB"), "{text}");
+    }
+
+    #[test]
+    fn the_svd_count_is_golub_van_loan() {
+        // square n: 4 n³ + 22 n³ = 26 n³
+        assert_eq!(svd_flops(10, 10), 26_000.0);
+        assert_eq!(svd_flops(20, 10), svd_flops(10, 20));
+        assert_eq!(svd_flops(20, 10), 4.0 * 400.0 * 10.0 + 22_000.0);
+    }
+
+    #[test]
+    fn nan_and_infinite_estimates_are_refused() {
+        let e = Estimate::new("x", "--n").work(f64::NAN);
+        assert!(Limits::default().check(&e).is_err());
+        let e = Estimate::new("x", "--n").output(f64::INFINITY);
+        assert_eq!(
+            Limits::default().check(&e).unwrap_err().resource,
+            Resource::Output
+        );
+    }
+
+    #[test]
+    fn sequential_steps_add_work_and_keep_the_peak_memory() {
+        let a = Estimate::new("a", "p").memory(10.0).work(1.0).output(5.0);
+        let b = Estimate::new("b", "q").memory(4.0).work(3.0).output(1.0);
+        let c = a.then(b);
+        assert_eq!((c.memory_bytes, c.work_s, c.output_bytes), (10.0, 4.0, 6.0));
+        assert_eq!((c.what.as_str(), c.parameter.as_str()), ("a, then b", "p"));
+    }
+
+    #[test]
+    fn human_units() {
+        assert_eq!(human_bytes(1.5 * 1024f64.powi(3)), "1.500 GiB");
+        assert_eq!(human_bytes(512.0), "512 B");
+        assert_eq!(human_seconds(90.0), "1.500 min");
+        assert_eq!(human_seconds(2.0), "2.000 s");
+    }
+}
