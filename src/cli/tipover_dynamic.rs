@@ -90,7 +90,7 @@ pub fn run_rolling(args: &DynamicArgs, wheel: &WheelSpec, gravity: f64, json: bo
             r.static_critical_side_slope.to_degrees()
         );
         println!(
-            "largest lean {:.4} rad, final {:.4} rad, {} m downhill: {}",
+            "largest lean {:.4} rad, final {:.4} rad, {:.3} m downhill: {}",
             r.max_lean,
             r.final_lean,
             r.downhill,
