@@ -11,6 +11,7 @@ use toroid::WheelSpec;
 
 /// The flags of the dynamic run (flattened into `tipover`).
 #[derive(clap::Args, Debug, Clone)]
+#[command(group(clap::ArgGroup::new("time_run").args(["dynamic", "rolling"]).multiple(false)))]
 pub struct DynamicArgs {
     /// Check the threshold with the full 3-D dynamics: the wheel at rest on a side on level
     /// ground, a lateral force ramped at the hub.
@@ -39,17 +40,17 @@ pub struct DynamicArgs {
     #[arg(long, default_value_t = 0.0, value_parser = values::non_negative, requires = "dynamic")]
     pub hold: f64,
     /// Static friction coefficient of the ground (kinetic = 0.75 μ).
-    #[arg(long, default_value_t = 1.0, value_parser = values::positive, required = false)]
+    #[arg(long, default_value_t = 1.0, value_parser = values::positive, requires = "time_run")]
     pub mu: f64,
     /// String stiffness of the wheel (N/m): the threshold is the rigid one only for a stiff
     /// wheel (a soft one deforms and tips early).
-    #[arg(long, default_value_t = 2e6, value_parser = values::positive, required = false)]
+    #[arg(long, default_value_t = 2e6, value_parser = values::positive, requires = "time_run")]
     pub string_stiffness: f64,
     /// RK4 step (s); stiffer strings need a smaller one.
-    #[arg(long, default_value_t = 1e-4, value_parser = values::positive, required = false)]
+    #[arg(long, default_value_t = 1e-4, value_parser = values::positive, requires = "time_run")]
     pub dt: f64,
     /// Write the history (t, force, lean, near_normal, far_normal) to this CSV.
-    #[arg(long, value_name = "FILE", required = false)]
+    #[arg(long, value_name = "FILE", requires = "time_run")]
     pub out: Option<PathBuf>,
 }
 
