@@ -102,3 +102,17 @@ fn dynamic_tipover_reports_both_thresholds() {
     assert!((d / s - 1.0).abs() < 0.05, "{d} vs {s}");
     assert_eq!(v["tipped"], true);
 }
+
+#[test]
+fn a_history_file_without_a_timed_tipover_run_is_a_usage_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(["tipover", "--out", "lean.csv"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--dynamic") && err.contains("--rolling"),
+        "{err}"
+    );
+}
