@@ -124,19 +124,17 @@ fn progress(estimate: &Estimate, work_unknown: bool) -> Progress {
 
 /// A `--max-memory`/`--max-output` value a little above `bytes` (`12Gi`, `3Ti`).
 fn size_flag(bytes: f64) -> String {
-    let units = ["Ti", "Gi", "Mi", "Ki"];
-    for (k, unit) in units.iter().enumerate() {
-        let scale = 1024f64.powi(4 - k as i32);
-        if bytes >= scale || *unit == "Ki" {
-            let v = (bytes / scale * 1.1).ceil();
-            return if v.is_finite() && v < 1e15 {
-                format!("{v:.0}{unit}")
-            } else {
-                "<more than is available>".into()
-            };
-        }
+    let (scale, unit) = [(4, "Ti"), (3, "Gi"), (2, "Mi")]
+        .into_iter()
+        .map(|(power, unit)| (1024f64.powi(power), unit))
+        .find(|&(scale, _)| bytes >= scale)
+        .unwrap_or((1024.0, "Ki"));
+    let v = (bytes / scale * 1.1).ceil();
+    if v.is_finite() && v < 1e15 {
+        format!("{v:.0}{unit}")
+    } else {
+        "<more than is available>".into()
     }
-    unreachable!()
 }
 
 /// Parses a size: a number with an optional unit K, M, G, T (powers of 1000, or Ki, Mi, Gi,

@@ -6,33 +6,14 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use std::f64::consts::PI;
 use std::hint::black_box;
 use tensegrity_core::statics::report::{statics_report, StaticsRequest};
 use tensegrity_core::statics::{StaticsMethod, StaticsSettings};
-use tensegrity_core::{Bar, StringMember, Structure};
+use tensegrity_core::{test_models, Bar, StringMember, Structure};
 
-/// `stages` Snelson prisms (twist 30°) sharing their triangles: 9·stages + 3 members.
+/// The free Snelson tower of [`test_models::snelson_tower_free`]: 9·stages + 3 members.
 fn tower(stages: usize) -> Structure {
-    let mut b = Structure::builder();
-    for ring in 0..=stages {
-        for i in 0..3 {
-            let a = 2.0 * PI * i as f64 / 3.0 + ring as f64 * PI / 6.0;
-            b = b.node([a.cos(), a.sin(), ring as f64]);
-        }
-    }
-    for s in 0..stages {
-        for i in 0..3 {
-            b = b.bar(Bar::new(3 * s + i, 3 * s + 3 + (i + 1) % 3));
-            b = b.string(StringMember::new(3 * s + i, 3 * s + 3 + i));
-        }
-    }
-    for ring in 0..=stages {
-        for i in 0..3 {
-            b = b.string(StringMember::new(3 * ring + i, 3 * ring + (i + 1) % 3));
-        }
-    }
-    b.build().expect("valid tower")
+    test_models::snelson_tower_free(stages).expect("valid tower")
 }
 
 /// A deterministic value in [0, 1).

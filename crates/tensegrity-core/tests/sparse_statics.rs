@@ -7,35 +7,6 @@ use tensegrity_core::statics::report::{statics_report, StaticsReport, StaticsReq
 use tensegrity_core::statics::{SparseStatics, StaticsMethod, StaticsSettings};
 use tensegrity_core::{test_models, Bar, Statics, StringMember, Structure, Support};
 
-/// A tower of `stages` Snelson prisms (twist 30°) sharing their triangles, as
-/// `examples/tower.toml` (unsupported, unloaded): 3(N+1) nodes, 9N + 3 members.
-fn tower(stages: usize) -> Structure {
-    let mut b = Structure::builder();
-    for ring in 0..=stages {
-        for i in 0..3 {
-            let a = 2.0 * std::f64::consts::PI * i as f64 / 3.0
-                + ring as f64 * std::f64::consts::PI / 6.0;
-            b = b.node([a.cos(), a.sin(), ring as f64]);
-        }
-    }
-    for s in 0..stages {
-        for i in 0..3 {
-            b = b.bar(Bar::new(3 * s + i, 3 * s + 3 + (i + 1) % 3));
-        }
-    }
-    for ring in 0..=stages {
-        for i in 0..3 {
-            b = b.string(StringMember::new(3 * ring + i, 3 * ring + (i + 1) % 3));
-        }
-    }
-    for s in 0..stages {
-        for i in 0..3 {
-            b = b.string(StringMember::new(3 * s + i, 3 * s + 3 + i));
-        }
-    }
-    b.build().unwrap()
-}
-
 fn report(s: &Structure, method: StaticsMethod) -> StaticsReport {
     let request = StaticsRequest {
         settings: StaticsSettings::default().method(method),
@@ -98,7 +69,7 @@ fn assert_same(dense: &StaticsReport, sparse: &StaticsReport, what: &str) {
 #[test]
 fn towers_match_the_dense_path() {
     for stages in [1, 2, 5, 12, 30] {
-        let s = tower(stages);
+        let s = test_models::snelson_tower_free(stages).unwrap();
         let dense = report(&s, StaticsMethod::Dense);
         let sparse = report(&s, StaticsMethod::Sparse);
         assert_same(&dense, &sparse, &format!("tower of {stages}"));
@@ -222,7 +193,7 @@ fn a_planar_truss_in_space_has_its_out_of_plane_mechanisms() {
 
 #[test]
 fn the_sparse_statics_api_answers_like_the_dense_one() {
-    let s = tower(8);
+    let s = test_models::snelson_tower_free(8).unwrap();
     let dense = Statics::new(&s).unwrap();
     let sparse = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
     assert!(sparse.is_certified());

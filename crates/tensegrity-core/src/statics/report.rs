@@ -54,7 +54,7 @@ pub struct Reaction {
 }
 
 /// Everything `tensegrity statics` reports; serialises to its JSON.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct StaticsReport {
     /// Number of nodes.
     pub nodes: usize,
@@ -205,22 +205,8 @@ fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsRe
             .then(|| pre.stress.iter().copied().collect()),
         smallest_singular_value: statics.singular_values().last().copied().unwrap_or(0.0),
         rank_tolerance: statics.tolerance(),
-        force_density: None,
-        member_force: None,
-        reactions: None,
-        residual: None,
-        load_carried: None,
-        unbalanced_nodes: None,
-        mass_kg: None,
-        member_radius_m: None,
-        member_mass_kg: None,
-        governing: None,
-        sizing_warning: None,
-        natural_frequencies_hz: None,
-        modal_error: None,
-        sizing_error: None,
-        statics_method: None,
-        statics_warning: None,
+        // the load solve, sizing and modes are added by their own steps
+        ..StaticsReport::default()
     })
 }
 

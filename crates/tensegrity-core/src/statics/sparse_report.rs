@@ -91,21 +91,8 @@ fn base(structure: &Structure, st: &SparseStatics<'_>) -> Result<StaticsReport> 
             .then(|| pre.stress.iter().copied().collect()),
         smallest_singular_value: st.smallest_singular_value_estimate(),
         rank_tolerance: st.tolerance(),
-        force_density: None,
-        member_force: None,
-        reactions: None,
-        residual: None,
-        load_carried: None,
-        unbalanced_nodes: None,
-        mass_kg: None,
-        member_radius_m: None,
-        member_mass_kg: None,
-        governing: None,
-        sizing_warning: None,
-        natural_frequencies_hz: None,
-        modal_error: None,
-        sizing_error: None,
         statics_method: Some("sparse_qr"),
-        statics_warning: None,
+        // the load solve, sizing and warnings are added by their own steps
+        ..StaticsReport::default()
     })
 }

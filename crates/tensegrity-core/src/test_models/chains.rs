@@ -75,11 +75,26 @@ pub fn prism_stack(n: usize) -> Result<Structure> {
     b.build()
 }
 
+/// The free tower of [`snelson_tower`] (no supports, no load), as `examples/tower.toml`:
+/// 3(N+1) nodes, 3N bars, 6N + 3 strings.
+pub fn snelson_tower_free(stages: usize) -> Result<Structure> {
+    tower_builder(stages).build()
+}
+
 /// A statics tower of `stages` stacked Snelson stages: `stages + 1` rings of 3 nodes (each
 /// twisted π/6 from the one below, 1 m apart), per stage 3 bars and 3 vertical strings, a ring
 /// of strings at every level; the bottom ring pinned and a load (100, 0, −50) N on the first
 /// top node. With 33 stages: 102 nodes, a 306 × 264 equilibrium matrix.
 pub fn snelson_tower(stages: usize) -> Result<Structure> {
+    tower_builder(stages)
+        .support(Support::pinned(0))
+        .support(Support::pinned(1))
+        .support(Support::pinned(2))
+        .load(3 * stages, [100.0, 0.0, -50.0])
+        .build()
+}
+
+fn tower_builder(stages: usize) -> crate::structure::StructureBuilder {
     let mut b = Structure::builder();
     for ring in 0..=stages {
         for i in 0..3 {
@@ -98,10 +113,5 @@ pub fn snelson_tower(stages: usize) -> Result<Structure> {
             b = b.string(StringMember::new(3 * ring + i, 3 * ring + (i + 1) % 3));
         }
     }
-    let top = 3 * stages;
-    b.support(Support::pinned(0))
-        .support(Support::pinned(1))
-        .support(Support::pinned(2))
-        .load(top, [100.0, 0.0, -50.0])
-        .build()
+    b
 }

@@ -13,7 +13,7 @@
 //! | MOTES D-bar | [`motes_dbar`] | N P = D and bar lengths kept over 5000 RK4 steps |
 //! | dropped prism | [`dropped_prism`], [`dropped_prism_ground`] | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
 //! | spinning bar | [`spinning_bar`] | exact rotation ([`spinning_bar_exact`]) |
-//! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`] | size scaling for benches |
+//! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`], [`snelson_tower_free`] | size scaling for benches |
 
 mod chains;
 mod dbar;
@@ -23,7 +23,7 @@ mod motes_dbar;
 mod snelson;
 mod spinning_bar;
 
-pub use chains::{dbar_chain, prism_stack, snelson_tower};
+pub use chains::{dbar_chain, prism_stack, snelson_tower, snelson_tower_free};
 pub use dbar::{alu, dbar, dbar_frame, loaded_dbar};
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
 pub use dropped_prism::{
