@@ -70,6 +70,9 @@ pub fn run_rolling(args: &DynamicArgs, wheel: &WheelSpec, gravity: f64, json: bo
         },
     };
     let r = run.run(&toroid).context("rolling lean run failed")?;
+    for w in &r.warnings {
+        eprintln!("warning: {w}");
+    }
     if let Some(path) = &args.out {
         use std::fmt::Write;
         let mut text = String::from("t,lean,downhill,across\n");
@@ -100,6 +103,7 @@ pub fn run_rolling(args: &DynamicArgs, wheel: &WheelSpec, gravity: f64, json: bo
                 None => "stayed up".to_string(),
             }
         );
+        println!("{}", validity_line(r.valid, r.max_penetration));
     }
     Ok(())
 }
@@ -164,4 +168,16 @@ fn print(r: &DynamicTipoverReport) {
         r.final_lean,
         if r.tipped { "tipped over" } else { "upright" }
     );
+    println!("{}", validity_line(r.valid, r.max_penetration));
+}
+
+fn validity_line(valid: bool, max_penetration: f64) -> String {
+    format!(
+        "validity: {}; max penetration {max_penetration:.3e} m",
+        if valid {
+            "valid"
+        } else {
+            "NOT valid (see the warnings)"
+        }
+    )
 }

@@ -17,7 +17,7 @@
 use crate::analysis::analyse;
 use crate::builder::Toroid;
 use crate::error::Result;
-use crate::tipover_dynamic::{lean_and_hub, DynamicTipover, TIPPED_LEAN};
+use crate::tipover_dynamic::{lean_and_hub, DynamicTipover, RunValidity, TIPPED_LEAN};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::dynamics::{IntegratorKind, Quantities, Simulation, SimulationSettings};
@@ -85,6 +85,12 @@ pub struct LeanRollingReport {
     pub fall_time: Option<f64>,
     /// Hub travel downhill at the end (m).
     pub downhill: f64,
+    /// Deepest contact node below the plane (m).
+    pub max_penetration: f64,
+    /// No warning: the run stayed inside its model.
+    pub valid: bool,
+    /// What the run violated (penetration past 1 % of R_o, integrator drift).
+    pub warnings: Vec<String>,
     /// The history (not serialised).
     #[serde(skip)]
     pub samples: Vec<RollingLeanSample>,
@@ -117,6 +123,8 @@ impl LeanRolling {
             integrator: IntegratorKind::Rk4,
             dt: self.wheel.dt,
             output_interval: Some(self.wheel.output_dt),
+            // keep the bar lengths and joints exact (RK4 alone drifts on this stiff wheel)
+            project: true,
             quantities: Quantities {
                 nodes: true,
                 velocities: false,
@@ -129,6 +137,8 @@ impl LeanRolling {
         let mut sim = Simulation::new(&structure, settings)?;
         sim.model.set_ground(ground)?;
         let result = sim.run()?;
+        let h = toroid.params.outer_radius * (PI / toroid.params.sides as f64).cos();
+        let validity = RunValidity::of(toroid, &result, h);
         let n = toroid.params.sides;
         let rim: Vec<usize> = (0..n).map(|k| 5 * k + 2).collect();
         let mut start = None;
@@ -146,7 +156,6 @@ impl LeanRolling {
                 })
             })
             .collect();
-        let h = toroid.params.outer_radius * (PI / n as f64).cos();
         let last = samples.last().copied();
         let max_lean = samples.iter().map(|s| s.lean.abs()).fold(0.0, f64::max);
         Ok(LeanRollingReport {
@@ -164,6 +173,9 @@ impl LeanRolling {
                 .find(|s| s.lean.abs() > TIPPED_LEAN)
                 .map(|s| s.t),
             downhill: last.map_or(0.0, |s| s.downhill),
+            max_penetration: validity.max_penetration,
+            valid: validity.warnings.is_empty(),
+            warnings: validity.warnings,
             samples,
         })
     }

@@ -30,9 +30,7 @@ fn a_quasi_static_ramp_tips_the_wheel_within_five_percent_of_the_static_threshol
     assert!((rest.near_normal - rest.far_normal).abs() < 1e-2 * m * 9.81);
 }
 
-/// Below the threshold the near edge stays loaded and the lean stays elastic (small). A force
-/// *held* there is another matter: the regularised friction lets the feet creep and the wheel
-/// leans over within seconds even at 0.8× (see the module docs), so the test stops the ramp.
+/// Below the threshold the near edge stays loaded and the lean stays elastic (small).
 #[test]
 fn a_ramp_that_stops_below_the_threshold_keeps_both_edges_loaded() {
     let wheel = WheelSpec::default().build().unwrap();
@@ -56,6 +54,32 @@ fn a_ramp_that_stops_below_the_threshold_keeps_both_edges_loaded() {
         (last.near_normal - rigid).abs() < 0.1 * m_g,
         "{} vs {rigid}",
         last.near_normal
+    );
+}
+
+/// A force held just below the threshold leaves the wheel standing; just above, it tips.
+#[test]
+fn a_held_force_below_the_threshold_is_carried_and_above_it_tips_the_wheel() {
+    let wheel = WheelSpec::default().build().unwrap();
+    let hold = |ramp_to: f64| {
+        DynamicTipover {
+            ramp_to,
+            hold: 1.5,
+            ..Default::default()
+        }
+        .run(&wheel)
+        .unwrap()
+    };
+    let below = hold(0.9);
+    assert!(below.valid, "{:?}", below.warnings);
+    assert!(below.dynamic_threshold.is_none() && !below.tipped);
+    assert!(below.max_lean < 0.1 * TIPPED_LEAN, "{}", below.max_lean);
+    let above = hold(1.1);
+    assert!(above.valid, "{:?}", above.warnings);
+    assert!(
+        above.tipped && above.final_lean > TIPPED_LEAN,
+        "{}",
+        above.final_lean
     );
 }
 

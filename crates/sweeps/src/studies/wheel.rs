@@ -68,7 +68,7 @@ pub const LEAN_PARAMS: [ParamDef; 12] = geometry_then![
 
 /// The result scalars of [`toroid::rolling_lean::LeanRollingReport`] (its echo of the inputs
 /// `sides`, `outer_tread`, `incline`, `side_slope` left out: they are axis or fixed values).
-pub const LEAN_COLUMNS: [Column; 7] = [
+pub const LEAN_COLUMNS: [Column; 9] = [
     col("mass_kg", "kg"),
     col("static_critical_side_slope", "rad"),
     col("max_lean", "rad"),
@@ -76,6 +76,8 @@ pub const LEAN_COLUMNS: [Column; 7] = [
     col("fell", ""),
     col("fall_time", "s"),
     col("downhill", "m"),
+    col("max_penetration", "m"),
+    col("valid", ""),
 ];
 
 /// The run of `tensegrity tipover --rolling`: the wheel and the cross-sloped plane.
