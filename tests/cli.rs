@@ -1,30 +1,9 @@
 //! The `tensegrity` binary end to end: `statics --json` on the bundled scenes and on bad input.
 
+mod common;
+use common::{assert_ok, run};
+
 use std::process::Command;
-
-fn run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_tensegrity"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("binary runs")
-}
-
-/// Asserts that a run succeeded, showing its stderr otherwise.
-fn assert_ok(out: &std::process::Output) {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-/// A fresh scratch directory for one test.
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("tensegrity-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn json(scene: &str) -> serde_json::Value {
     let out = run(&["statics", scene, "--json"]);
@@ -104,7 +83,7 @@ fn demo_runs_on_built_in_scenes() {
 
 #[test]
 fn bad_scene_fails_with_a_clear_message_and_exit_code() {
-    let dir = scratch("cli-test");
+    let dir = common::scratch("cli", "cli-test");
     let path = dir.join("bad.toml");
     std::fs::write(
         &path,
@@ -194,7 +173,7 @@ fn roll_and_tipover_run_from_the_command_line() {
 
 #[test]
 fn an_exported_toroid_scene_gives_the_same_statics() {
-    let dir = scratch("export");
+    let dir = common::scratch("cli", "export");
     let path = dir.join("toroid.toml");
     let p = path.to_str().unwrap();
     let out = run(&[
@@ -282,7 +261,7 @@ fn simulate_with_sdirk_reproduces_the_double_pendulum() {
         scene.contains("integrator = \""),
         "the example names its integrator"
     );
-    let path = scratch("sdirk").join("double_pendulum.toml");
+    let path = common::scratch("cli", "sdirk").join("double_pendulum.toml");
     let mut patched = String::new();
     for line in scene.lines() {
         if line.trim_start().starts_with("integrator =") {
@@ -327,7 +306,7 @@ fn output_piped_into_a_closed_reader_does_not_panic() {
 fn a_compressed_string_is_sized_with_a_warning() {
     // the thesis D-bar (two strings, one self-stress) under end compression: the minimal-norm
     // solution compresses the long string (q = −4166.67 N/m, from the normal equations)
-    let dir = scratch("warn");
+    let dir = common::scratch("cli", "warn");
     let path = dir.join("dbar2.toml");
     let mut text = String::from(
         "nodes = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [2.0, 0.0, 0.0]]\n",
@@ -365,7 +344,7 @@ fn a_compressed_string_is_sized_with_a_warning() {
 
 #[test]
 fn michell_writes_sign_maps_gamma_sweeps_and_the_mass_table() {
-    let dir = scratch("michell");
+    let dir = common::scratch("cli", "michell");
     let (map, sweep) = (dir.join("map.csv"), dir.join("sweep.csv"));
     let out = run(&[
         "michell",
@@ -451,7 +430,7 @@ fn statics_reports_natural_frequencies_with_six_rigid_body_modes() {
 
 #[test]
 fn figures_are_written_as_svg() {
-    let dir = scratch("fig");
+    let dir = common::scratch("cli", "fig");
     let roll = dir.join("rolling.svg");
     let out = run(&[
         "fig-rolling",
@@ -484,7 +463,7 @@ fn figures_are_written_as_svg() {
 
 #[test]
 fn simulate_writes_a_vtk_series() {
-    let dir = scratch("vtk");
+    let dir = common::scratch("cli", "vtk");
     let out = run(&[
         "simulate",
         "examples/double_pendulum.toml",
@@ -538,7 +517,7 @@ force = [1000.0, 0.0, 0.0]
 
 #[test]
 fn a_load_a_mechanism_cannot_carry_fails_unless_least_squares_is_asked_for() {
-    let dir = scratch("linkage");
+    let dir = common::scratch("cli", "linkage");
     let scene = dir.join("linkage.toml");
     std::fs::write(&scene, PUSHED_LINKAGE).unwrap();
     let scene = scene.to_str().unwrap();

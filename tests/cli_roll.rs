@@ -1,33 +1,12 @@
 //! `tensegrity roll` and `fig-rolling` outputs: the CSV contract, the frame drawings, the VTK
 //! series, warnings on stderr, and the impulse table.
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_tensegrity"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("binary runs")
-}
-
-fn assert_ok(out: &std::process::Output) {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("tensegrity-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod common;
+use common::{assert_ok, run};
 
 #[test]
 fn the_csv_has_the_contract_columns_for_both_fidelities() {
-    let dir = scratch("roll-csv");
+    let dir = common::scratch("roll", "roll-csv");
     for fidelity in ["rigid", "full"] {
         let path = dir.join(format!("{fidelity}.csv"));
         let out = run(&[
@@ -65,7 +44,7 @@ fn the_csv_has_the_contract_columns_for_both_fidelities() {
 
 #[test]
 fn frames_draw_the_members_and_vtk_writes_a_series() {
-    let dir = scratch("roll-frames");
+    let dir = common::scratch("roll", "roll-frames");
     let svg = dir.join("frames.svg");
     let vtk = dir.join("vtk");
     let out = run(&[
@@ -158,7 +137,7 @@ fn auto_reports_its_reason_and_the_help_names_the_kinetic_friction() {
 
 #[test]
 fn fig_rolling_prints_the_impulse_table() {
-    let dir = scratch("fig-rolling-table");
+    let dir = common::scratch("roll", "fig-rolling-table");
     let svg = dir.join("rolling.svg");
     let out = run(&[
         "fig-rolling",
