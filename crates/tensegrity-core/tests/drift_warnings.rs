@@ -69,3 +69,40 @@ fn energy_is_not_judged_when_the_model_dissipates() {
     assert!(r.energy_drift > 1e-3, "{}", r.energy_drift);
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
 }
+
+#[test]
+fn projection_and_rattle_converge_far_from_the_origin() {
+    // the double pendulum hung 1 km from the origin: b = x_b − x_a carries an absolute
+    // round-off of ~ε·10³ m, so a fixed tolerance of 10⁻¹⁴ l² on ½(‖b‖² − l²) could never be
+    // met and the constraint iteration failed on converged states (a wheel 100 m down a
+    // slope did); the tolerance now has the round-off floor ε·max|x|·ℓ
+    let s = double_pendulum(std::f64::consts::FRAC_PI_4).unwrap();
+    let far: Vec<_> = s
+        .nodes()
+        .iter()
+        .map(|p| p + nalgebra::Vector3::new(1e3, -2e3, 5e2))
+        .collect();
+    let s = s.with_nodes(far).unwrap();
+    for (integrator, project) in [(IntegratorKind::Rk4, true), (IntegratorKind::Rattle, false)] {
+        let settings = SimulationSettings {
+            t_end: 2.0,
+            dt: 1e-3,
+            integrator,
+            project,
+            ..Default::default()
+        };
+        let r = Simulation::new(&s, settings).unwrap().run().unwrap();
+        // the floor is ~10⁻¹¹ here: far below the drift limit 10⁻⁶
+        assert!(
+            r.bar_length_drift < 1e-10,
+            "{integrator:?}: {}",
+            r.bar_length_drift
+        );
+        assert!(
+            r.constraint_drift < 1e-10,
+            "{integrator:?}: {}",
+            r.constraint_drift
+        );
+        assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    }
+}

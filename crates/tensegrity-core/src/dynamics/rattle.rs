@@ -30,7 +30,16 @@ pub struct ConstraintSet {
     r: Vec<f64>,
     cf: Vec<Vector3<f64>>,
     length2: Vec<f64>,
+    /// max(longest bar, 1 m): the length scale of the residuals' round-off.
+    length_scale: f64,
 }
+
+/// Multiple of ε·max|x|·ℓ below which a constraint residual is round-off: b = x_b − x_a
+/// carries an absolute error ~ε max|x| however short the bar, so ½(‖b‖² − l²) cannot be
+/// driven below ~√3 ε max|x| l (and N P − D below ~ε max|x| per entry). Far from the origin
+/// (a wheel 100 m down a slope) this floor exceeds a fixed tolerance of 10⁻¹⁴ l², which
+/// made the iteration fail on a converged state.
+const ROUNDOFF_FLOOR: f64 = 16.0 * f64::EPSILON;
 
 impl ConstraintSet {
     /// Builds the constraint rows of `model` (bars first, then N P = D).
@@ -65,6 +74,7 @@ impl ConstraintSet {
             r: vec![0.0; n],
             cf: vec![Vector3::zeros(); model.n1],
             length2: model.bars.iter().map(|b| b.length0 * b.length0).collect(),
+            length_scale: model.bars.iter().map(|b| b.length0).fold(1.0, f64::max),
         })
     }
 
@@ -157,6 +167,8 @@ impl ConstraintSet {
         tol: f64,
         t: f64,
     ) -> Result<(), CoreError> {
+        let reach = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let tol = tol.max(ROUNDOFF_FLOOR * reach * self.length_scale);
         let mut res = f64::INFINITY;
         for _ in 0..100 {
             res = self.residual(x);
@@ -203,7 +215,8 @@ pub struct Rattle {
     f_cache: Vec<Vector3<f64>>,
     cache_valid: bool,
     velocity_dependent: bool,
-    /// Position tolerance of the constraint solve (absolute, on ½(‖b‖² − l²) and N P − D).
+    /// Position tolerance of the constraint solve (absolute, on ½(‖b‖² − l²) and N P − D;
+    /// raised to the round-off floor ε·max|x|·ℓ far from the origin).
     pub tol: f64,
 }
 
