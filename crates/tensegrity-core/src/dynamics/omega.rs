@@ -74,7 +74,7 @@ struct AxisContribution {
 }
 
 /// The axis and sign of a gradient that is ±e_d, if it is one.
-fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
+pub(crate) fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
     let nz: Vec<usize> = (0..3).filter(|&d| g[d] != 0.0).collect();
     match nz.as_slice() {
         [d] if g[*d].abs() == 1.0 => Some((*d, g[*d])),

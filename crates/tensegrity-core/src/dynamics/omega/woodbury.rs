@@ -69,6 +69,11 @@ struct Block {
 /// with the accumulators in registers.
 #[inline]
 fn block_product(m: &[f64], blk: &Block, x: &[f64], out: &mut [f64]) {
+    if x.iter().all(|v| *v == 0.0) {
+        // a planar structure's out-of-plane block
+        out.fill(0.0);
+        return;
+    }
     for (c, o) in out.chunks_exact_mut(W).enumerate() {
         let mut acc = [0.0; W];
         for (xj, row) in x.iter().zip(m.chunks_exact(blk.lp)).take(blk.len) {
@@ -118,6 +123,8 @@ pub(super) struct LowRank {
     dinv: Vec<f64>,
     /// b̂ of the constrained bars at the last factorisation (3β).
     bh: Vec<f64>,
+    /// Whether some b̂_k[d] ≠ 0, per axis d (else the block is A₀'s alone).
+    coupled: [bool; 3],
     /// Scratch (internal order): the solution.
     x: Vec<f64>,
     /// Scratch: the right-hand side, then the residual and the correction.
@@ -226,6 +233,7 @@ impl LowRank {
             dval: vec![0.0; nb],
             dinv: vec![0.0; nb],
             bh: vec![0.0; 3 * nb],
+            coupled: [true; 3],
             x: vec![0.0; np],
             r0: vec![0.0; np],
             z: vec![0.0; np],
@@ -305,8 +313,12 @@ impl LowRank {
         if !self.ready {
             return false;
         }
+        self.coupled = [false; 3];
         for (b, &bar) in self.bh.chunks_exact_mut(3).zip(&self.bars) {
             b.copy_from_slice(bhat[bar].as_slice());
+            for (c, v) in self.coupled.iter_mut().zip(b.iter()) {
+                *c |= *v != 0.0;
+            }
         }
         let nb = self.bars.len();
         // S_kl = δ_kl m_k/3 − Σ_d b̂_k[d] b̂_l[d] T_{kl,d} (lower triangle)
@@ -328,8 +340,7 @@ impl LowRank {
                     sum -= self.s[i * nb + p] * self.s[j * nb + p] * self.dval[p];
                 }
                 if i == j {
-                    // NaN fails too
-                    if !(sum > MIN_PIVOT_RATIO * self.cinv[j]) {
+                    if sum.is_nan() || sum <= MIN_PIVOT_RATIO * self.cinv[j] {
                         return false;
                     }
                     self.dval[j] = sum;
@@ -411,6 +422,12 @@ impl LowRank {
         }
         // x = z + Σ_{k,d} y_k b̂_k[d] V_{k,d}, block by block in register accumulators
         for (d, blk) in self.blocks.iter().enumerate().filter(|(_, b)| b.len > 0) {
+            if !self.coupled[d] {
+                // x = z on this block
+                b[blk.start..blk.start + blk.lp]
+                    .copy_from_slice(&self.z[blk.start..blk.start + blk.lp]);
+                continue;
+            }
             let span = blk.start..blk.start + blk.lp;
             for (c, (o, z)) in b[span.clone()]
                 .chunks_exact_mut(W)
