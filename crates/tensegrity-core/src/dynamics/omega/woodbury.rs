@@ -19,8 +19,9 @@
 //! once per set of masses; an evaluation forms `S_kl = δ_kl m_k/3 − Σ_d b̂_k[d] b̂_l[d] T_{kl,d}`
 //! and its LDLᵀ factorisation (β³/3), and a solve is `z = A₀⁻¹ r` (block by block),
 //! `g = Uᵀ z`, `S y = g`, `x = z + Σ_{k,d} y_k b̂_k[d] V_{k,d}`: about 2n²/3 + 4βn/3 + 2β²
-//! flops for n rows and β bars, against n³/3 + 2n² for a Cholesky of the assembled A (the MOTES
-//! D-bar: n = 15, β = 4, ≈ 0.3 k against ≈ 1.6 k, plus the assembly of A).
+//! flops for n rows and β bars (twice, with the refinement below), against n³/3 + 2n² for a
+//! Cholesky of the assembled A (the MOTES D-bar: n = 15, β = 4, ≈ 1.1 k with the refinement and
+//! the padding against ≈ 2 k with the assembly of A).
 //!
 //! Accuracy: every solve is refined once, x += A⁻¹(r − A x) with A x = A₀ x − Σ_k (3/m_k) u_k
 //! (u_kᵀ x) (without it the D-bar's ‖N P − D‖ drifted ten times faster than with the direct
