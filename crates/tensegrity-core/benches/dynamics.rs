@@ -1,6 +1,7 @@
 //! Criterion benches of the dynamics: one right-hand-side evaluation against the member count
-//! (class-1 prism chains and class-2 D-bar chains), and full runs (the MOTES comparison:
-//! 5000 RK4 steps of the 4-bar class-2 D-bar).
+//! (class-1 prism chains and class-2 D-bar chains), and full runs (5000 RK4 steps of the
+//! 4-bar class-2 D-bar; the MOTES anchor `examples/anchors/motes_dbar.toml`: its right-hand
+//! side and its 5000 RK4 steps, `anchor/…`).
 //! The structures come from `tensegrity_core::test_models`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
@@ -78,5 +79,36 @@ fn full_run(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, rhs, full_run);
+/// The MOTES anchor D-bar (square, k = 100, node 0 pinned; 15 Ω rows, Woodbury path).
+fn anchor(c: &mut Criterion) {
+    let mut g = c.benchmark_group("anchor");
+    let s = test_models::motes_anchor_dbar().unwrap();
+    let model = Model::new(&s, None).unwrap();
+    let y = model.initial_state(&s).unwrap();
+    let mut ws = model.workspace().unwrap();
+    let mut dy = vec![0.0; y.len()];
+    g.bench_function("motes-dbar-rhs", |b| {
+        b.iter(|| {
+            model.rhs(0.0, black_box(&y), &mut dy, &mut ws).unwrap();
+            black_box(dy[0])
+        })
+    });
+    g.sample_size(20);
+    let sim = Simulation::new(
+        &s,
+        SimulationSettings {
+            t_end: 5.0,
+            dt: 1e-3,
+            integrator: IntegratorKind::Rk4,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    g.bench_function("motes-dbar-5000-steps-rk4", |b| {
+        b.iter(|| black_box(sim.run().unwrap().steps))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, rhs, full_run, anchor);
 criterion_main!(benches);

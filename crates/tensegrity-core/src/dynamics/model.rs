@@ -23,7 +23,7 @@
 //! velocities satisfy Ṅ P = 0.
 
 use super::forces::{Ground, GroundModel};
-use super::omega::{ConstraintMatrix, Row, RowEntry};
+use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
 use crate::error::CoreError;
 use crate::structure::{MemberId, Structure};
@@ -83,6 +83,10 @@ pub struct Model {
     pub(crate) rest_fn: Option<RestLengthFn>,
     pub(crate) load_fn: Option<LoadFn>,
     pub(crate) constrained_bars: Vec<usize>,
+    /// The entries of N P = D as (row, class-1 node, axis d, sign s) when every gradient is
+    /// s·e_d (always, for the rows built here): the Ω right-hand side and the constraint forces
+    /// then take one multiply per entry instead of a 3-vector product.
+    pub(crate) axis_entries: Option<Vec<(usize, usize, usize, f64)>>,
     pub(crate) x0: Vec<f64>,
 }
 
@@ -291,6 +295,17 @@ impl Model {
         constrained_bars.sort_unstable();
         constrained_bars.dedup();
         let inv_mass = bars.iter().map(|b| b.inv_mass).collect();
+        let axis_entries = linear_rows
+            .iter()
+            .enumerate()
+            .flat_map(|(r, row)| {
+                row.row
+                    .entries
+                    .iter()
+                    .flatten()
+                    .map(move |e| axis_of(&e.grad).map(|(d, s)| (r, e.node, d, s)))
+            })
+            .collect();
         let mut model = Self {
             n_nodes,
             n1,
@@ -306,6 +321,7 @@ impl Model {
             rest_fn: None,
             load_fn: None,
             constrained_bars,
+            axis_entries,
             x0,
         };
         if let Some(g) = ground {
@@ -561,24 +577,47 @@ impl Model {
                     None => e,
                 });
             }
-            for (r, row) in ws.omega_rhs.iter_mut().zip(&self.linear_rows) {
-                *r = -row
-                    .row
-                    .entries
-                    .iter()
-                    .flatten()
-                    .map(|e| e.grad.dot(&vec3(dv, e.node)))
-                    .sum::<f64>();
-            }
+            self.constraint_rhs(dv, &mut ws.omega_rhs);
             om.solve_in_place(&mut ws.omega_rhs);
-            for (w, row) in ws.omega_rhs.iter().zip(&self.linear_rows) {
-                for e in row.row.entries.iter().flatten() {
-                    ws.f[e.node] += e.grad * *w;
-                }
-            }
+            self.add_constraint_forces(&ws.omega_rhs, &mut ws.f);
             self.bar_accelerations(x, v, &ws.f, dv, Some(&self.constrained_bars));
         }
         Ok(())
+    }
+
+    /// The Ω right-hand side −G a of the unconstrained accelerations `dv`.
+    fn constraint_rhs(&self, dv: &[f64], out: &mut [f64]) {
+        if let Some(axis) = &self.axis_entries {
+            out.fill(0.0);
+            for &(r, node, d, s) in axis {
+                out[r] -= s * dv[3 * node + d];
+            }
+            return;
+        }
+        for (r, row) in out.iter_mut().zip(&self.linear_rows) {
+            *r = -row
+                .row
+                .entries
+                .iter()
+                .flatten()
+                .map(|e| e.grad.dot(&vec3(dv, e.node)))
+                .sum::<f64>();
+        }
+    }
+
+    /// Adds the constraint forces Gᵀ ω to `f`.
+    fn add_constraint_forces(&self, omega: &[f64], f: &mut [Vector3<f64>]) {
+        if let Some(axis) = &self.axis_entries {
+            for &(r, node, d, s) in axis {
+                f[node][d] += s * omega[r];
+            }
+            return;
+        }
+        for (w, row) in omega.iter().zip(&self.linear_rows) {
+            for e in row.row.entries.iter().flatten() {
+                f[e.node] += e.grad * *w;
+            }
+        }
     }
 
     /// Writes the accelerations of the bars (all, or the listed ones) into `dv`.

@@ -20,6 +20,13 @@
 //! use the AMD-ordered static-schedule [`StaticCholesky`](crate::linalg::StaticCholesky) (the
 //! general [`SparseCholesky`](crate::linalg::SparseCholesky) is cross-checked against it in the
 //! tests).
+//!
+//! Small Ω systems with axis-aligned gradients (all of N P = D) are not factored at all: they
+//! are a constant matrix minus one rank-one term per constrained bar, solved by the Woodbury
+//! identity in the submodule `woodbury` (see there), with the dense Cholesky of the assembled
+//! system as the fallback near singular configurations.
+
+mod woodbury;
 
 use crate::error::{CoreError, FactorizationFailure};
 use crate::linalg::{CscPattern, DenseCholesky, StaticCholesky};
@@ -67,7 +74,7 @@ struct AxisContribution {
 }
 
 /// The axis and sign of a gradient that is ±e_d, if it is one.
-fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
+pub(crate) fn axis_of(g: &Vector3<f64>) -> Option<(usize, f64)> {
     let nz: Vec<usize> = (0..3).filter(|&d| g[d] != 0.0).collect();
     match nz.as_slice() {
         [d] if g[*d].abs() == 1.0 => Some((*d, g[*d])),
@@ -116,6 +123,10 @@ pub(crate) struct ConstraintMatrix {
     rigid: bool,
     factored: bool,
     factor: Factor,
+    /// The Woodbury form of a small Ω system (None: always factor the assembled system).
+    low_rank: Option<Box<woodbury::LowRank>>,
+    /// Whether the last factorisation was the Woodbury one.
+    low_rank_active: bool,
 }
 
 impl std::fmt::Debug for ConstraintMatrix {
@@ -197,6 +208,14 @@ impl ConstraintMatrix {
                 StaticCholesky::new(&pattern).map_err(constraint_error)?,
             ))
         };
+        // the Woodbury form pays when the bars are few against the rows (β ≤ n/2)
+        let low_rank = if matches!(factor, Factor::Dense(_)) && !axis.is_empty() {
+            woodbury::LowRank::new(&rows, &axis)
+                .filter(|lr| 2 * lr.rank() <= n)
+                .map(Box::new)
+        } else {
+            None
+        };
         Ok(Self {
             rows,
             pattern,
@@ -206,6 +225,8 @@ impl ConstraintMatrix {
             rigid,
             factored: false,
             factor,
+            low_rank,
+            low_rank_active: false,
         })
     }
 
@@ -245,6 +266,15 @@ impl ConstraintMatrix {
         bhat: &[Vector3<f64>],
         inv_mass: &[f64],
     ) -> Result<(), CoreError> {
+        self.factored = false;
+        self.low_rank_active = false;
+        if let Some(lr) = self.low_rank.as_mut() {
+            if lr.factor(bhat, inv_mass) {
+                self.low_rank_active = true;
+                self.factored = true;
+                return Ok(());
+            }
+        }
         if let (false, Factor::Dense(chol)) = (self.axis.is_empty(), &mut self.factor) {
             // straight into the dense factor's storage: no CSC values, no scatter
             let a = chol.zeroed();
@@ -301,6 +331,12 @@ impl ConstraintMatrix {
     /// Solves A x = rhs in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         debug_assert!(self.factored);
+        if self.low_rank_active {
+            if let Some(lr) = self.low_rank.as_mut() {
+                lr.solve_in_place(rhs);
+                return;
+            }
+        }
         match &mut self.factor {
             Factor::Dense(c) => c.solve_in_place(rhs),
             Factor::Static(c) => c.solve_in_place(rhs),
