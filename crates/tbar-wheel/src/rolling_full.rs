@@ -1,0 +1,341 @@
+//! The T-bar wheel as a free, prestressed, massive structure for the full tensegrity rolling
+//! model (issue item 5, "rolling … with the rolling models (rigid unilateral and full)").
+//!
+//! This module builds the structure and names its parts; it knows no rolling model (the
+//! toroid crate's full model integrates it, composed by `tensegrity tbar roll --fidelity
+//! full`, so the two topology crates stay independent). [`full_wheel`] returns:
+//!
+//! - **the structure**: the wheel (or extended wheel) with its rim body ([`crate::rim`]: hub,
+//!   spokes, ring; class-k joints, no support, so a free body); every bar is a uniform rigid
+//!   rod of mass ρL (treads' bars at the bar density ρ_b, rim-body bars at the rim density
+//!   ρ_r); every string is linear elastic, t = k (L − L₀) for L > L₀ (slack below), with the
+//!   rest length L₀ = L − t₀/k that realises the prestress t₀ at the built length L;
+//! - **the prestress**: every tread carries the load envelope's optimal self-stress
+//!   ([`crate::envelope::min_prestress`] of the rim-supported tread for a unit tip load:
+//!   treads' bar −P*, strings s_k ≥ ‖g_k‖), scaled by λ so that the smallest string tension is
+//!   t_min. The scaled state keeps every string taut and the bar compressed under a tip load
+//!   of magnitude up to w = λ · 1 N from any direction (small displacements, one EA): the
+//!   **tip-load capacity** (see [`FullWheel::warnings`]). The treads' members forces sum to a
+//!   self-equilibrated set on the rim points, which the rim body (rigid: its only first-order
+//!   mechanisms are the six rigid-body motions) balances with bar forces: the built shape is
+//!   an equilibrium, and the rigid bars' forces are the dynamics' constraint forces;
+//! - **the starting pose**: turned about ι̂₁ by −π/2 − π/n, so that the tips of treads 0 and 1
+//!   (at angles 2kφ from ι̂₂ in the built frame) lie at (∓r₀ sin(π/n), −r₀ cos(π/n)): the
+//!   contact polygon (n = π/φ sides, circumradius r₀) standing on its side 0–1, tread 1
+//!   downhill (+y);
+//! - **contact groups**: group k = the tips of tread k of every copy (one node for the single
+//!   loop, two for the extended wheel): the nodes that can touch the slope, in rolling order;
+//! - **rim points and hubs**: ω is their mean spin about the hub (the hubs' midpoint);
+//! - **mass properties** ([`crate::rolling::MassProperties`]): every bar, rim body included.
+
+use crate::envelope::{min_prestress, LoadResponse};
+use crate::error::{invalid, Result, TbarError};
+use crate::geometry::TbarGeometry;
+use crate::params::{Layout, RimMode, TbarParams};
+use crate::rolling::{mass_properties_with, MassProperties};
+use nalgebra::{Rotation3, Vector3};
+use serde::Serialize;
+use std::f64::consts::PI;
+use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::{Bar, Statics, StringMember, Structure};
+
+/// What the full model's structure is built with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FullWheelRequest {
+    /// Linear density of the treads' bars ρ_b (kg/m).
+    pub bar_density: f64,
+    /// Linear density of the rim body's bars ρ_r (kg/m).
+    pub rim_density: f64,
+    /// Stiffness of every string k (N/m).
+    pub string_stiffness: f64,
+    /// Smallest string tension of the prestress t_min (N).
+    pub min_string_tension: f64,
+}
+
+impl Default for FullWheelRequest {
+    /// Bars and rim at 1 kg/m, strings 2·10⁴ N/m with a 20 N minimum tension (the toroid
+    /// crate's rolling defaults, so the two wheels compare at equal settings).
+    fn default() -> Self {
+        Self {
+            bar_density: crate::rolling::DEFAULT_BAR_DENSITY,
+            rim_density: crate::rolling::DEFAULT_BAR_DENSITY,
+            string_stiffness: 2e4,
+            min_string_tension: 20.0,
+        }
+    }
+}
+
+/// The prestress the structure is built with.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FullPrestress {
+    /// Compression of every tread's bar (N).
+    pub bar_compression: f64,
+    /// Smallest string tension (N): t_min.
+    pub min_string_tension: f64,
+    /// Largest string tension (N).
+    pub max_string_tension: f64,
+    /// Tip load (N) the state carries from every direction with every string taut and the
+    /// bar compressed (the envelope: small displacements, one EA, rigid rim).
+    pub tip_load_capacity: f64,
+    /// Smallest rest length over the string's length, L₀/L.
+    pub min_rest_ratio: f64,
+}
+
+/// The T-bar wheel ready for the full rolling model.
+#[derive(Debug, Clone)]
+pub struct FullWheel {
+    /// The geometry with its rim body, in the built frame.
+    pub geometry: TbarGeometry,
+    /// The prestressed structure in the starting pose (no gravity, no support).
+    pub structure: Structure,
+    /// Contact groups in rolling order: the tips of tread k of every copy.
+    pub contact_groups: Vec<Vec<usize>>,
+    /// The rim points (ω is their mean spin about the hub).
+    pub rim_points: Vec<usize>,
+    /// The two hub nodes on the axle.
+    pub hubs: [usize; 2],
+    /// Circumradius of the contact polygon r₀ (m).
+    pub outer_radius: f64,
+    /// Mass and I₁ of every bar (rim body included).
+    pub mass: MassProperties,
+    /// The prestress.
+    pub prestress: FullPrestress,
+}
+
+impl FullWheel {
+    /// The assumptions a run of this structure under gravity `gravity` leaves: a tip load
+    /// beyond the prestress's capacity (the wheel's weight m g on one tip, as when it lands on
+    /// a single contact group) may slacken strings, which the model allows but the envelope
+    /// does not cover.
+    pub fn warnings(&self, gravity: f64) -> Vec<String> {
+        let weight = self.mass.mass * gravity;
+        let tips = self.contact_groups.first().map_or(1, Vec::len).max(1);
+        let per_tip = weight / tips as f64;
+        let mut out = Vec::new();
+        if per_tip > self.prestress.tip_load_capacity {
+            out.push(format!(
+                "the prestress (smallest string tension {:.3} N) keeps every string taut only for tip loads up to {:.3} N, less than the wheel's weight per landing tip m g / {tips} = {per_tip:.3} N: strings may go slack in contact (raise --min-tension to about {:.3} N)",
+                self.prestress.min_string_tension,
+                self.prestress.tip_load_capacity,
+                self.prestress.min_string_tension * per_tip / self.prestress.tip_load_capacity
+            ));
+        }
+        out
+    }
+}
+
+/// Builds the T-bar wheel of `params` (a wheel or an extended wheel; its rim is replaced by
+/// the rim body) for the full model (see the module docs).
+///
+/// ```
+/// use michell3d::MichellParams;
+/// use tbar_wheel::rolling_full::{full_wheel, FullWheelRequest};
+/// use tbar_wheel::{Layout, TbarParams};
+/// use std::f64::consts::{FRAC_PI_4, FRAC_PI_6};
+/// let m = MichellParams::cylindrical(1, 1.0, FRAC_PI_6, FRAC_PI_4, 0.25);
+/// let p = TbarParams::tread(m).with_layout(Layout::Wheel);
+/// let w = full_wheel(&p, &FullWheelRequest::default()).unwrap();
+/// // 4 treads: the polygon stands on the tips of treads 0 and 1
+/// assert_eq!(w.contact_groups.len(), 4);
+/// let z = -(std::f64::consts::PI / 4.0).cos();
+/// assert!((w.structure.nodes()[w.contact_groups[1][0]].z - z).abs() < 1e-12);
+/// assert!((w.prestress.min_string_tension - 20.0).abs() < 1e-9);
+/// ```
+pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWheel> {
+    check_request(req)?;
+    if params.layout == Layout::Tread {
+        return Err(invalid(
+            "layout",
+            1.0,
+            "a single tread does not roll: use a wheel or an extended wheel",
+        ));
+    }
+    let tread = tread_state(params)?;
+    let g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
+    let n = g.params.treads_per_wheel()?;
+    let forces = wheel_forces(&g, &tread)?;
+    let lambda = req.min_string_tension / tread.min_string;
+    let structure = build_structure(&g, req, &forces, lambda, n)?;
+    let rim = g.rim.as_ref().ok_or_else(|| {
+        invalid("rim", 0.0, "the rim body was not attached")
+    })?;
+    let (rim_points, hubs) = (rim.rim_points.clone(), rim.hubs);
+    let mass = mass_properties_with(&g, req.bar_density, req.rim_density)?;
+    let copies = g.params.copies();
+    let contact_groups = (0..n)
+        .map(|k| (0..copies).map(|c| g.tips[c * n + k]).collect())
+        .collect();
+    let strings = &forces[g.bars.len()..];
+    let min_rest_ratio = strings
+        .iter()
+        .zip(&g.strings)
+        .map(|(t, &[a, b])| {
+            let l = (g.nodes[b] - g.nodes[a]).norm();
+            1.0 - lambda * t / (req.string_stiffness * l)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let prestress = FullPrestress {
+        bar_compression: -lambda * tread.bar_force,
+        min_string_tension: req.min_string_tension,
+        max_string_tension: lambda * strings.iter().copied().fold(0.0, f64::max),
+        tip_load_capacity: lambda,
+        min_rest_ratio,
+    };
+    Ok(FullWheel {
+        outer_radius: g.params.michell.r0,
+        geometry: g,
+        structure,
+        contact_groups,
+        rim_points,
+        hubs,
+        mass,
+        prestress,
+    })
+}
+
+fn check_request(req: &FullWheelRequest) -> Result<()> {
+    for (name, v) in [
+        ("bar_density", req.bar_density),
+        ("rim_density", req.rim_density),
+        ("string_stiffness", req.string_stiffness),
+        ("min_tension", req.min_string_tension),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(invalid(name, v, "must be finite and > 0"));
+        }
+    }
+    Ok(())
+}
+
+/// One rim-supported tread's optimal envelope state for a unit tip load.
+struct TreadState {
+    /// Member forces (N), the bar first, then the strings in the tread's order.
+    forces: Vec<f64>,
+    /// Force of the bar (N, negative).
+    bar_force: f64,
+    /// Smallest string tension (N).
+    min_string: f64,
+    /// String lengths (m), to match the wheel's strings.
+    lengths: Vec<f64>,
+}
+
+fn tread_state(params: &TbarParams) -> Result<TreadState> {
+    let tread = TbarGeometry::new(
+        params
+            .with_layout(Layout::Tread)
+            .with_rim(RimMode::Fixed),
+    )?;
+    let s = tread.structure()?;
+    let statics = Statics::new(&s)?;
+    let response = LoadResponse::new(&statics, &tread.tips, 1.0, "tread")?;
+    let sol = min_prestress(&statics, &response, 1.0, &tread.labels, "tread")?;
+    let nb = tread.bars.len();
+    let min_string = sol.prestress_force[nb..]
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    if nb != 1 || !(min_string > 0.0) {
+        return Err(TbarError::NotPrestressable {
+            structure: "tread",
+            self_stress_dim: statics.self_stress_dim(),
+        });
+    }
+    let lengths = s.member_lengths()[nb..].to_vec();
+    Ok(TreadState {
+        bar_force: sol.prestress_force[0],
+        forces: sol.prestress_force,
+        min_string,
+        lengths,
+    })
+}
+
+/// The tread state on every tread of the wheel: member forces (N, unit tip load) in the
+/// wheel's order, the treads' bars first, then the strings (the rim body's bars carry none
+/// of the prescribed prestress: theirs are constraint forces).
+fn wheel_forces(g: &TbarGeometry, tread: &TreadState) -> Result<Vec<f64>> {
+    let per = tread.lengths.len();
+    let treads = g.tips.len();
+    if g.strings.len() != treads * per || g.bars.len() != treads {
+        return Err(invalid(
+            "complexity",
+            g.params.complexity() as f64,
+            format!(
+                "neighbouring treads share strings ({} strings for {treads} treads of {per}): the per-tread prestress does not apply",
+                g.strings.len()
+            ),
+        ));
+    }
+    let mut out = vec![tread.bar_force; treads];
+    for (i, &[a, b]) in g.strings.iter().enumerate() {
+        let j = i % per;
+        let l = (g.nodes[b] - g.nodes[a]).norm();
+        if (l - tread.lengths[j]).abs() > 1e-9 * l.max(1.0) {
+            return Err(invalid(
+                "string",
+                i as f64,
+                format!(
+                    "string {i} ({l} m) does not match the tread's string {j} ({} m)",
+                    tread.lengths[j]
+                ),
+            ));
+        }
+        out.push(tread.forces[1 + j]);
+    }
+    Ok(out)
+}
+
+/// Bars with mass, strings with rest lengths, nodes turned onto the starting side.
+fn build_structure(
+    g: &TbarGeometry,
+    req: &FullWheelRequest,
+    forces: &[f64],
+    lambda: f64,
+    n: usize,
+) -> Result<Structure> {
+    let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), -0.5 * PI - PI / n as f64);
+    let nodes = g.nodes.iter().map(|p| turn * p);
+    let mut b = Structure::builder().nodes(nodes.map(|p| [p.x, p.y, p.z]));
+    let length = |[s, e]: [usize; 2]| (g.nodes[e] - g.nodes[s]).norm();
+    for &bar in &g.bars {
+        b = b.bar(Bar::new(bar[0], bar[1]).mass(req.bar_density * length(bar)));
+    }
+    for &bar in g.rim.iter().flat_map(|r| &r.bars) {
+        b = b.bar(Bar::new(bar[0], bar[1]).mass(req.rim_density * length(bar)));
+    }
+    let k = req.string_stiffness;
+    for (i, &s) in g.strings.iter().enumerate() {
+        let (l, t) = (length(s), lambda * forces[g.bars.len() + i]);
+        if t >= k * l {
+            return Err(invalid(
+                "string_stiffness",
+                k,
+                format!(
+                    "string {i} needs a tension of {t:.6} N, which a stiffness of {k} N/m cannot give at its length {l:.6} m (rest length ≤ 0)"
+                ),
+            ));
+        }
+        b = b.string(StringMember::new(s[0], s[1]).stiffness(k).rest_length(l - t / k));
+    }
+    Ok(b.build()?)
+}
+
+/// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
+/// projection onto the bar lengths and joints after every step), from the structure's sizes:
+/// the class-1 model has two nodes per bar and 3 (copies − 1) coincidence rows per node of
+/// the structure; a step is four right-hand sides and one projection (counted as two more);
+/// one 1 ms sample is kept per millisecond.
+pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
+    let g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
+    let bars = g.all_bars().len();
+    let strings = g.strings.len();
+    let rows = 3 * (2 * bars).saturating_sub(g.nodes.len());
+    let steps = (t_end / dt).ceil();
+    let flops = budget::rhs_flops(bars, strings, rows);
+    let parameter = format!(
+        "--t-end {t_end} --dt {dt} --treads {} ({bars} bars with the rim body)",
+        g.params.treads_per_wheel()?
+    );
+    let run = budget::integration(steps, 6.0, flops, 12 * bars, parameter.clone());
+    let kept = budget::table((t_end / 1e-3).floor() + 2.0, 96.0, true, parameter);
+    Ok(run.then(kept))
+}
