@@ -12,13 +12,23 @@
 //!   rest length L₀ = L − t₀/k that realises the prestress t₀ at the built length L;
 //! - **the prestress**: every tread carries the load envelope's optimal self-stress
 //!   ([`crate::envelope::min_prestress`] of the rim-supported tread for a unit tip load:
-//!   treads' bar −P*, strings s_k ≥ ‖g_k‖), scaled by λ so that the smallest string tension is
-//!   t_min. The scaled state keeps every string taut and the bar compressed under a tip load
-//!   of magnitude up to w = λ · 1 N from any direction (small displacements, one EA): the
-//!   **tip-load capacity** (see [`FullWheel::warnings`]). The treads' members forces sum to a
+//!   treads' bar −P*, strings s_k ≥ ‖g_k‖), scaled by λ. The scaled state keeps every string
+//!   taut and the bar compressed under a tip load of magnitude up to w = λ · 1 N from any
+//!   direction (small displacements, one EA): the **tip-load capacity**. [`PrestressLevel`]
+//!   sets λ: from the smallest string tension t_min (λ = t_min / s_min), or (the default) a
+//!   capacity of twice the wheel's weight per tip of a contact group, λ = 2 m g / c (see
+//!   [`FullWheel::warnings`] for a capacity below the weight). The treads' members forces sum to a
 //!   self-equilibrated set on the rim points, which the rim body (rigid: its only first-order
 //!   mechanisms are the six rigid-body motions) balances with bar forces: the built shape is
 //!   an equilibrium, and the rigid bars' forces are the dynamics' constraint forces;
+//! - **an isostatic rim body**: the dynamics' bars are rigid, so a set of bars with a
+//!   bar-only self-stress (a statically indeterminate rim) leaves its constraint forces
+//!   undetermined — the core refuses the singular constraint system. The rim body keeps a
+//!   maximal independent subset of its bars ([`independent_bars`]: greedy in the order axle,
+//!   spokes, ring, a bar kept when its row of the bar-only rigidity matrix is independent of
+//!   the rows kept), which has the same rank, hence the same first-order motions (the six
+//!   rigid ones): the rim is as rigid as before, only its mass is that of the bars kept
+//!   (axle, every spoke and |R| − 1 ring bars: 3|R| = 3(|R| + 2) − 6 bars on |R| + 2 nodes);
 //! - **the starting pose**: turned about ι̂₁ by −π/2 − π/n, so that the tips of treads 0 and 1
 //!   (at angles 2kφ from ι̂₂ in the built frame) lie at (∓r₀ sin(π/n), −r₀ cos(π/n)): the
 //!   contact polygon (n = π/φ sides, circumradius r₀) standing on its side 0–1, tread 1
@@ -48,19 +58,41 @@ pub struct FullWheelRequest {
     pub rim_density: f64,
     /// Stiffness of every string k (N/m).
     pub string_stiffness: f64,
-    /// Smallest string tension of the prestress t_min (N).
-    pub min_string_tension: f64,
+    /// The level of the prestress.
+    pub prestress: PrestressLevel,
 }
 
+/// How large the prestress is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PrestressLevel {
+    /// The smallest string tension t_min (N).
+    MinTension(f64),
+    /// A tip-load capacity of `factor` × the wheel's weight per tip of a contact group,
+    /// m g / c (c = 1 for the single loop, 2 for the extended wheel): the whole weight landing
+    /// on one group, with a margin for the dynamic loads.
+    Weight {
+        /// The factor on m g / c.
+        factor: f64,
+        /// g (m/s²).
+        gravity: f64,
+    },
+}
+
+/// Default factor of [`PrestressLevel::Weight`].
+pub const DEFAULT_CAPACITY_FACTOR: f64 = 2.0;
+
 impl Default for FullWheelRequest {
-    /// Bars and rim at 1 kg/m, strings 2·10⁴ N/m with a 20 N minimum tension (the toroid
-    /// crate's rolling defaults, so the two wheels compare at equal settings).
+    /// Bars and rim at 1 kg/m (the toroid crate's bar density), strings 2·10⁴ N/m (its
+    /// rolling default), prestress of twice the weight per landing tip under g = 9.81 m/s².
     fn default() -> Self {
         Self {
             bar_density: crate::rolling::DEFAULT_BAR_DENSITY,
             rim_density: crate::rolling::DEFAULT_BAR_DENSITY,
             string_stiffness: 2e4,
-            min_string_tension: 20.0,
+            prestress: PrestressLevel::Weight {
+                factor: DEFAULT_CAPACITY_FACTOR,
+                gravity: 9.81,
+            },
         }
     }
 }
@@ -100,6 +132,8 @@ pub struct FullWheel {
     pub mass: MassProperties,
     /// The prestress.
     pub prestress: FullPrestress,
+    /// Rim-body bars left out to make the rim isostatic (see the module docs).
+    pub redundant_rim_bars: usize,
 }
 
 impl FullWheel {
@@ -139,7 +173,8 @@ impl FullWheel {
 /// assert_eq!(w.contact_groups.len(), 4);
 /// let z = -(std::f64::consts::PI / 4.0).cos();
 /// assert!((w.structure.nodes()[w.contact_groups[1][0]].z - z).abs() < 1e-12);
-/// assert!((w.prestress.min_string_tension - 20.0).abs() < 1e-9);
+/// // the default prestress carries twice the weight on one tip from every direction
+/// assert!((w.prestress.tip_load_capacity - 2.0 * w.mass.mass * 9.81).abs() < 1e-9);
 /// ```
 pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWheel> {
     check_request(req)?;
@@ -151,17 +186,24 @@ pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWhe
         ));
     }
     let tread = tread_state(params)?;
-    let g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
+    let mut g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
+    let redundant_rim_bars = make_isostatic(&mut g);
     let n = g.params.treads_per_wheel()?;
     let forces = wheel_forces(&g, &tread)?;
-    let lambda = req.min_string_tension / tread.min_string;
+    let mass = mass_properties_with(&g, req.bar_density, req.rim_density)?;
+    let copies = g.params.copies();
+    // the state carries a tip load of λ · 1 N; its smallest string tension is λ s_min
+    let lambda = match req.prestress {
+        PrestressLevel::MinTension(t) => t / tread.min_string,
+        PrestressLevel::Weight { factor, gravity } => {
+            factor * mass.mass * gravity / copies as f64
+        }
+    };
     let structure = build_structure(&g, req, &forces, lambda, n)?;
     let rim = g.rim.as_ref().ok_or_else(|| {
         invalid("rim", 0.0, "the rim body was not attached")
     })?;
     let (rim_points, hubs) = (rim.rim_points.clone(), rim.hubs);
-    let mass = mass_properties_with(&g, req.bar_density, req.rim_density)?;
-    let copies = g.params.copies();
     let contact_groups = (0..n)
         .map(|k| (0..copies).map(|c| g.tips[c * n + k]).collect())
         .collect();
@@ -176,12 +218,13 @@ pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWhe
         .fold(f64::INFINITY, f64::min);
     let prestress = FullPrestress {
         bar_compression: -lambda * tread.bar_force,
-        min_string_tension: req.min_string_tension,
+        min_string_tension: lambda * tread.min_string,
         max_string_tension: lambda * strings.iter().copied().fold(0.0, f64::max),
         tip_load_capacity: lambda,
         min_rest_ratio,
     };
     Ok(FullWheel {
+        redundant_rim_bars,
         outer_radius: g.params.michell.r0,
         geometry: g,
         structure,
@@ -193,12 +236,76 @@ pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWhe
     })
 }
 
+/// Keeps a maximal independent subset of the rim body's bars (in `g.rim`); returns how many
+/// were left out.
+fn make_isostatic(g: &mut TbarGeometry) -> usize {
+    let Some(rim) = g.rim.as_mut() else {
+        return 0;
+    };
+    let keep = independent_bars(&g.nodes, &rim.bars);
+    let spokes = keep.iter().filter(|&&k| (1..=rim.spokes).contains(&k)).count();
+    let before = rim.bars.len();
+    rim.bars = keep.iter().map(|&k| rim.bars[k]).collect();
+    rim.ring = rim.bars.len() - spokes - 1;
+    rim.spokes = spokes;
+    before - rim.bars.len()
+}
+
+/// Indices of a maximal independent subset of `bars` (rows of the rigidity matrix, unit
+/// direction ∓d at the two ends), chosen greedily in order: a bar is kept when its row keeps
+/// more than 10⁻⁸ of its norm after the projection out of the rows kept (modified
+/// Gram–Schmidt, applied twice).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use tbar_wheel::rolling_full::independent_bars;
+/// // a triangle with a doubled side: the repeat is dependent
+/// let x = [Vector3::zeros(), Vector3::x(), Vector3::y()];
+/// assert_eq!(independent_bars(&x, &[[0, 1], [1, 2], [2, 0], [1, 0]]), [0, 1, 2]);
+/// ```
+pub fn independent_bars(nodes: &[Vector3<f64>], bars: &[[usize; 2]]) -> Vec<usize> {
+    let dim = 3 * nodes.len();
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut keep = Vec::new();
+    for (k, &[a, b]) in bars.iter().enumerate() {
+        let d = (nodes[b] - nodes[a]).normalize();
+        let mut row = vec![0.0; dim];
+        for i in 0..3 {
+            row[3 * a + i] = -d[i];
+            row[3 * b + i] = d[i];
+        }
+        for _ in 0..2 {
+            for q in &basis {
+                let c: f64 = q.iter().zip(&row).map(|(x, y)| x * y).sum();
+                row.iter_mut().zip(q).for_each(|(r, x)| *r -= c * x);
+            }
+        }
+        // the row's norm before the projection is √2
+        let norm = row.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if norm > 1e-8 * 2f64.sqrt() {
+            row.iter_mut().for_each(|v| *v /= norm);
+            basis.push(row);
+            keep.push(k);
+        }
+    }
+    keep
+}
+
 fn check_request(req: &FullWheelRequest) -> Result<()> {
+    let (level_name, level) = match req.prestress {
+        PrestressLevel::MinTension(t) => ("min_tension", t),
+        PrestressLevel::Weight { factor, gravity } => {
+            if !(gravity.is_finite() && gravity > 0.0) {
+                return Err(invalid("gravity", gravity, "must be finite and > 0"));
+            }
+            ("prestress_factor", factor)
+        }
+    };
     for (name, v) in [
         ("bar_density", req.bar_density),
         ("rim_density", req.rim_density),
         ("string_stiffness", req.string_stiffness),
-        ("min_tension", req.min_string_tension),
+        (level_name, level),
     ] {
         if !(v.is_finite() && v > 0.0) {
             return Err(invalid(name, v, "must be finite and > 0"));

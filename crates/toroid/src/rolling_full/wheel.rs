@@ -13,7 +13,8 @@
 //!   **starting pose**: the axle along x through the origin, the contact polygon (n sides,
 //!   circumradius R_o about the axle) standing on the side of groups 0 and 1, i.e. every node
 //!   of those two groups on the slope z = −R_o cos(π/n), group 0 uphill (y < 0), group 1
-//!   downhill (y > 0), every other node above the slope;
+//!   downhill (y > 0), every other contact node above the slope (only contact nodes meet
+//!   the ground);
 //! - `contact_groups[k]` are the nodes of side k of the polygon that can touch the slope (the
 //!   toroid: a prism's two outer tread nodes; the extended T-bar wheel: tread k's tip in each
 //!   copy), numbered in the rolling order (rolling towards +y brings group k + 1 down after
@@ -79,7 +80,7 @@ impl WheelScene {
 
     /// Checks the contract of the module docs: sizes and indices, positive R_o, mass and I₁,
     /// and the starting pose (groups 0 and 1 on the slope to 10⁻⁹ R_o, uphill and downhill,
-    /// every other node above it).
+    /// every other contact node above it).
     pub fn validate(&self) -> Result<()> {
         let bad = |name: &'static str, value: f64, reason: String| {
             Err(ToroidError::InvalidParameter {
@@ -121,7 +122,7 @@ impl WheelScene {
         self.check_pose()
     }
 
-    /// Groups 0 and 1 on the slope (uphill, downhill), every other node above it.
+    /// Groups 0 and 1 on the slope (uphill, downhill), every other contact node above it.
     fn check_pose(&self) -> Result<()> {
         let nodes = self.structure.nodes();
         let (z0, tol) = (self.plane_z(), 1e-9 * self.outer_radius);
@@ -142,12 +143,13 @@ impl WheelScene {
                 }
             }
         }
-        if let Some(i) = (0..nodes.len()).find(|&i| nodes[i].z < z0 - tol) {
+        let below = self.contact_groups.iter().flatten().find(|&&i| nodes[i].z < z0 - tol);
+        if let Some(&i) = below {
             return Err(ToroidError::InvalidParameter {
-                name: "node",
+                name: "contact_groups",
                 value: i as f64,
                 reason: format!(
-                    "node {i} starts {:.3e} m below the slope",
+                    "contact node {i} starts {:.3e} m below the slope",
                     z0 - nodes[i].z
                 ),
             });
