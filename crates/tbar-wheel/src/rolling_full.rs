@@ -195,14 +195,13 @@ pub fn full_wheel(params: &TbarParams, req: &FullWheelRequest) -> Result<FullWhe
     // the state carries a tip load of λ · 1 N; its smallest string tension is λ s_min
     let lambda = match req.prestress {
         PrestressLevel::MinTension(t) => t / tread.min_string,
-        PrestressLevel::Weight { factor, gravity } => {
-            factor * mass.mass * gravity / copies as f64
-        }
+        PrestressLevel::Weight { factor, gravity } => factor * mass.mass * gravity / copies as f64,
     };
     let structure = build_structure(&g, req, &forces, lambda, n)?;
-    let rim = g.rim.as_ref().ok_or_else(|| {
-        invalid("rim", 0.0, "the rim body was not attached")
-    })?;
+    let rim = g
+        .rim
+        .as_ref()
+        .ok_or_else(|| invalid("rim", 0.0, "the rim body was not attached"))?;
     let (rim_points, hubs) = (rim.rim_points.clone(), rim.hubs);
     let contact_groups = (0..n)
         .map(|k| (0..copies).map(|c| g.tips[c * n + k]).collect())
@@ -243,7 +242,10 @@ fn make_isostatic(g: &mut TbarGeometry) -> usize {
         return 0;
     };
     let keep = independent_bars(&g.nodes, &rim.bars);
-    let spokes = keep.iter().filter(|&&k| (1..=rim.spokes).contains(&k)).count();
+    let spokes = keep
+        .iter()
+        .filter(|&&k| (1..=rim.spokes).contains(&k))
+        .count();
     let before = rim.bars.len();
     rim.bars = keep.iter().map(|&k| rim.bars[k]).collect();
     rim.ring = rim.bars.len() - spokes - 1;
@@ -327,11 +329,7 @@ struct TreadState {
 }
 
 fn tread_state(params: &TbarParams) -> Result<TreadState> {
-    let tread = TbarGeometry::new(
-        params
-            .with_layout(Layout::Tread)
-            .with_rim(RimMode::Fixed),
-    )?;
+    let tread = TbarGeometry::new(params.with_layout(Layout::Tread).with_rim(RimMode::Fixed))?;
     let s = tread.structure()?;
     let statics = Statics::new(&s)?;
     let response = LoadResponse::new(&statics, &tread.tips, 1.0, "tread")?;
@@ -421,7 +419,11 @@ fn build_structure(
                 ),
             ));
         }
-        b = b.string(StringMember::new(s[0], s[1]).stiffness(k).rest_length(l - t / k));
+        b = b.string(
+            StringMember::new(s[0], s[1])
+                .stiffness(k)
+                .rest_length(l - t / k),
+        );
     }
     Ok(b.build()?)
 }

@@ -49,11 +49,16 @@ fn the_built_shape_is_an_equilibrium_with_determined_bar_forces() {
         for k in 0..w.geometry.bars.len() {
             let f = q_b[k] * lengths[k];
             let want = -w.prestress.bar_compression;
-            assert!((f - want).abs() < 1e-8 * want.abs(), "bar {k}: {f} vs {want}");
+            assert!(
+                (f - want).abs() < 1e-8 * want.abs(),
+                "bar {k}: {f} vs {want}"
+            );
         }
         // and every string is taut at the built length
         assert!(q_s.iter().all(|&q| q > 0.0));
-        let min_t = (0..ns).map(|i| q_s[i] * lengths[nb + i]).fold(f64::INFINITY, f64::min);
+        let min_t = (0..ns)
+            .map(|i| q_s[i] * lengths[nb + i])
+            .fold(f64::INFINITY, f64::min);
         assert!((min_t - w.prestress.min_string_tension).abs() < 1e-9 * min_t);
     }
 }
@@ -61,7 +66,10 @@ fn the_built_shape_is_an_equilibrium_with_determined_bar_forces() {
 #[test]
 fn the_isostatic_rim_keeps_only_the_six_rigid_motions() {
     // q = 1: |R| = 3nc rim points, 1 + 6nc + 4nc² rim bars, 3|R| kept
-    for (n, layout, c) in [(6, Layout::Wheel, 1), (4, Layout::Extended { offset: 0.5 }, 2)] {
+    for (n, layout, c) in [
+        (6, Layout::Wheel, 1),
+        (4, Layout::Extended { offset: 0.5 }, 2),
+    ] {
         let w = wheel(n, layout);
         let r = 3 * n * c;
         let rim = w.geometry.rim.as_ref().unwrap();
@@ -131,7 +139,10 @@ fn bad_requests_name_what_is_wrong() {
     let err = |p: &TbarParams, r: &FullWheelRequest| full_wheel(p, r).unwrap_err();
     let d = FullWheelRequest::default();
     let e = err(&params(6, Layout::Tread), &d);
-    assert!(matches!(e, TbarError::InvalidParameter { name: "layout", .. }), "{e}");
+    assert!(
+        matches!(e, TbarError::InvalidParameter { name: "layout", .. }),
+        "{e}"
+    );
     let soft = FullWheelRequest {
         string_stiffness: 1.0,
         ..d

@@ -29,9 +29,7 @@ use crate::defaults;
 use crate::error::{Result, ToroidError};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{
-    Ground, GroundModel, Quantities, Simulation, SimulationSettings,
-};
+use tensegrity_core::dynamics::{Ground, GroundModel, Quantities, Simulation, SimulationSettings};
 use tensegrity_core::Structure;
 
 /// A prestressed wheel in its starting pose, with what the monitor needs of it.
@@ -143,7 +141,11 @@ impl WheelScene {
                 }
             }
         }
-        let below = self.contact_groups.iter().flatten().find(|&&i| nodes[i].z < z0 - tol);
+        let below = self
+            .contact_groups
+            .iter()
+            .flatten()
+            .find(|&&i| nodes[i].z < z0 - tol);
         if let Some(&i) = below {
             return Err(ToroidError::InvalidParameter {
                 name: "contact_groups",
