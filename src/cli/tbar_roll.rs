@@ -74,9 +74,10 @@ pub struct TbarRollArgs {
     /// prestressed wheel with its rim body).
     #[arg(long, value_enum, default_value_t = FidelityArg::Rigid)]
     fidelity: FidelityArg,
-    /// Numbers of treads n = π/φ to roll (comma separated).
-    #[arg(long, value_delimiter = ',', default_values_t = defaults::FIG_3_10_SIDES)]
-    treads: Vec<usize>,
+    /// Numbers of treads n = π/φ to roll (comma separated); default 8, 12, 16, 24 for the
+    /// rigid model, 8 for the full model (its cost grows as n³, see the guard).
+    #[arg(long, value_delimiter = ',')]
+    treads: Option<Vec<usize>>,
     /// Slope angle.
     #[arg(long, value_parser = parse_angle, default_value = "50deg")]
     incline: f64,
@@ -151,6 +152,14 @@ impl TbarRollArgs {
             (FidelityArg::Full, _) => Ok(RimMode::Body),
             (FidelityArg::Rigid, r) => Ok(r.map_or(RimMode::Fixed, RimMode::from)),
         }
+    }
+
+    /// The numbers of treads: `--treads`, else 8, 12, 16, 24 (rigid) or 8 (full).
+    pub fn treads(&self) -> Vec<usize> {
+        self.treads.clone().unwrap_or_else(|| match self.fidelity {
+            FidelityArg::Rigid => defaults::FIG_3_10_SIDES.to_vec(),
+            FidelityArg::Full => vec![8],
+        })
     }
 
     fn rim_density(&self) -> f64 {
@@ -290,7 +299,7 @@ fn guard(args: &TbarRollArgs, rim: RimMode) -> Result<Option<super::guard::Progr
         return Ok(None);
     }
     let mut total: Option<tensegrity_core::budget::Estimate> = None;
-    for &n in &args.treads {
+    for n in args.treads() {
         let p = params(args, layout(args), n, rim);
         let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, args.t_end(), args.dt)?;
         if let Ok(req) = toroid_request(args, n) {
@@ -304,7 +313,7 @@ fn guard(args: &TbarRollArgs, rim: RimMode) -> Result<Option<super::guard::Progr
     total
         .map(|e| {
             super::guard::check(tensegrity_core::budget::Estimate {
-                what: format!("the full rolling runs of n = {:?}", args.treads),
+                what: format!("the full rolling runs of n = {:?}", args.treads()),
                 ..e
             })
         })
@@ -330,9 +339,9 @@ pub fn roll_report(args: &TbarRollArgs, rim: RimMode) -> TbarRollReport {
         incline_rad: args.incline,
         t_end: args.t_end(),
         rows: args
-            .treads
-            .iter()
-            .map(|&n| row(args, layout, rim, n))
+            .treads()
+            .into_iter()
+            .map(|n| row(args, layout, rim, n))
             .collect(),
     }
 }
