@@ -7,6 +7,12 @@
 //! angle φ: g = g₀ (0, sin φ, −cos φ), so the wheel rolls towards +y. Only the outer tread
 //! nodes (n1, n2 of every prism) can touch the slope.
 //!
+//! The model does not depend on the toroid: [`wheel::WheelScene`] carries any prestressed
+//! wheel in its starting pose with its contact groups, and [`FullRolling::run_scene`] runs it
+//! (the toroid's [`FullRolling::run_full`] builds its scene with [`FullRolling::scene`]; the
+//! T-bar wheel enters the same way). Every step projects the bar lengths and joints back onto
+//! their constraints, and the integrator's drift warnings join the run's validity warnings.
+//!
 //! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
 //! prism 0 (uphill) and prism 1 (downhill) on the slope, i.e. the wheel is turned by −π/n
 //! about x and the slope is the plane z = −R_o cos(π/n). The contact nodes start at zero
