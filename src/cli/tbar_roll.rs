@@ -75,7 +75,7 @@ pub struct TbarRollArgs {
     #[arg(long, value_enum, default_value_t = FidelityArg::Rigid)]
     fidelity: FidelityArg,
     /// Numbers of treads n = π/φ to roll (comma separated); default 8, 12, 16, 24 for the
-    /// rigid model, 8 for the full model (its cost grows as n³, see the guard).
+    /// rigid model, 8 for the full model (its cost grows steeply with n, see the guard).
     #[arg(long, value_delimiter = ',')]
     treads: Option<Vec<usize>>,
     /// Slope angle.
@@ -224,6 +224,8 @@ pub struct FullDetails {
     pub strings: usize,
     /// Rim-body bars kept (the isostatic rim).
     pub rim_bars: usize,
+    /// Of these, spokes (to the two hubs).
+    pub rim_spokes: usize,
     /// Rim-body bars left out as redundant (a rigid bar-only self-stress).
     pub redundant_rim_bars: usize,
     /// The prestress it was built with.
@@ -618,6 +620,7 @@ pub fn run_full_tbar(
         bars: w.structure.n_bars(),
         strings: w.structure.n_strings(),
         rim_bars: w.geometry.rim.as_ref().map_or(0, |r| r.bars.len()),
+        rim_spokes: w.geometry.rim.as_ref().map_or(0, |r| r.spokes),
         redundant_rim_bars: w.redundant_rim_bars,
         prestress: w.prestress,
         ground_damping,
@@ -812,9 +815,8 @@ mod tests {
         // pivots about its downhill tip like the rigid polygon of the same mass and I₁. Both
         // slide a little at the end of the pivot (the pivot unloads), so ω⁻ stays below the
         // no-slip energy bound ½(I₁ + m r₀²) ω⁻² = 2 m g r₀ sin φ sin(π/n) (≈ 12 % below).
-        // Measured (RK4 at 0.1 ms): t 1.0176 / 1.0218 s (0.4 %), ω⁻ 2.6132 / 2.6099 rad/s
-        // (0.1 %); at 0.05 ms 1.0170 s and 2.6128 rad/s. About 15 s: the Ω factorisation of
-        // the rim body's hub joints dominates.
+        // Measured (RK4 at 0.1 ms): t 1.0301 / 1.0302 s, ω⁻ 2.6015 / 2.5967 rad/s (0.2 %); at
+        // 0.05 ms 1.02955 s and 2.6011 rad/s. About 10 s.
         let a = Wrap::parse_from([
             "x",
             "--beta",
@@ -852,6 +854,7 @@ mod tests {
         assert!((f.omega_before - r.omega_before).abs() < 0.01 * r.omega_before);
         assert!(full.max_penetration < 0.01 && full.min_normal_force >= 0.0);
         assert_eq!((details.rim_bars, details.redundant_rim_bars), (54, 7));
+        assert_eq!(details.rim_spokes, 30);
         assert_eq!((details.nodes, details.bars, details.strings), (26, 60, 24));
     }
 }

@@ -24,11 +24,15 @@
 //! - **an isostatic rim body**: the dynamics' bars are rigid, so a set of bars with a
 //!   bar-only self-stress (a statically indeterminate rim) leaves its constraint forces
 //!   undetermined — the core refuses the singular constraint system. The rim body keeps a
-//!   maximal independent subset of its bars ([`independent_bars`]: greedy in the order axle,
-//!   spokes, ring, a bar kept when its row of the bar-only rigidity matrix is independent of
+//!   maximal independent subset of its bars ([`independent_bars`]: greedy in the order ring,
+//!   spokes, axle, a bar kept when its row of the bar-only rigidity matrix is independent of
 //!   the rows kept), which has the same rank, hence the same first-order motions (the six
 //!   rigid ones): the rim is as rigid as before, only its mass is that of the bars kept
-//!   (axle, every spoke and |R| − 1 ring bars: 3|R| = 3(|R| + 2) − 6 bars on |R| + 2 nodes);
+//!   (3|R| = 3(|R| + 2) − 6 bars on |R| + 2 nodes). The ring goes first because the core ties
+//!   every bar end at a joint to the joint's first one, so a hub with many spokes couples all
+//!   their constraint rows densely: keeping the ring and as few spokes as the rank needs cut
+//!   the cost of a step of the n = 8 extended wheel eightfold (96 → 33 spokes; the single loop
+//!   keeps every ring bar, 5|R|/3 spokes and no axle bar);
 //! - **the starting pose**: turned about ι̂₁ by −π/2 − π/n, so that the tips of treads 0 and 1
 //!   (at angles 2kφ from ι̂₂ in the built frame) lie at (∓r₀ sin(π/n), −r₀ cos(π/n)): the
 //!   contact polygon (n = π/φ sides, circumradius r₀) standing on its side 0–1, tread 1
@@ -241,15 +245,26 @@ fn make_isostatic(g: &mut TbarGeometry) -> usize {
     let Some(rim) = g.rim.as_mut() else {
         return 0;
     };
-    let keep = independent_bars(&g.nodes, &rim.bars);
+    // ring first, then spokes, then the axle: the fewer spokes, the smaller the hub joints
+    let first_ring = 1 + rim.spokes;
+    let order: Vec<usize> = (first_ring..rim.bars.len())
+        .chain(1..first_ring)
+        .chain(std::iter::once(0))
+        .collect();
+    let ordered: Vec<[usize; 2]> = order.iter().map(|&k| rim.bars[k]).collect();
+    let mut keep: Vec<usize> = independent_bars(&g.nodes, &ordered)
+        .into_iter()
+        .map(|i| order[i])
+        .collect();
+    keep.sort_unstable();
     let spokes = keep
         .iter()
-        .filter(|&&k| (1..=rim.spokes).contains(&k))
+        .filter(|&&k| (1..first_ring).contains(&k))
         .count();
+    let ring = keep.iter().filter(|&&k| k >= first_ring).count();
     let before = rim.bars.len();
     rim.bars = keep.iter().map(|&k| rim.bars[k]).collect();
-    rim.ring = rim.bars.len() - spokes - 1;
-    rim.spokes = spokes;
+    (rim.spokes, rim.ring) = (spokes, ring);
     before - rim.bars.len()
 }
 
@@ -429,26 +444,27 @@ fn build_structure(
 }
 
 /// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
-/// projection onto the bar lengths and joints after every step), from the structure's sizes.
-/// The class-1 model has two nodes per bar and 3 (copies − 1) coincidence rows per node; the
-/// two hub joints of the rim body (|R| + 1 bar ends each, |R| rim points) couple their rows
-/// and, through the spokes, the rim points' rows into a dense block of about 6|R| rows, whose
-/// Cholesky factorisation ((6|R|)³/3 flops) dominates every right-hand side; a step is four
-/// right-hand sides and a projection (counted as two more). Measured on one core of a shared
-/// 2-core machine: 39 ms a step for n = 8, extended (|R| = 48), against 48 ms estimated at
-/// 10⁹ flop/s. One 1 ms sample is kept per millisecond.
+/// projection onto the bar lengths and joints after every step), from the isostatic
+/// structure's sizes. The class-1 model has two nodes per bar and 3 (copies − 1) coincidence
+/// rows per node; the hub joints couple the rows of their s spokes' ends densely, whose
+/// Cholesky factorisation costs about (3s)³/6 flops a right-hand side, on top of ~4000 flops
+/// a bar (the rim points' joints) and the core's per-member cost; a step is four right-hand
+/// sides and a projection (counted as two more). Fitted to runs of 0.02 s on a shared 2-core
+/// machine (n = 4…24, loop and extended): conservative by up to 3×. One 1 ms sample is kept per
+/// millisecond.
 pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
-    let g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
-    let rim_points = g.rim.as_ref().map_or(0, |r| r.rim_points.len());
-    // the isostatic rim: 3|R| bars
-    let bars = g.bars.len() + 3 * rim_points;
+    let mut g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
+    make_isostatic(&mut g);
+    let spokes = g.rim.as_ref().map_or(0, |r| r.spokes);
+    let bars = g.all_bars().len();
     let strings = g.strings.len();
     let rows = 3 * (2 * bars).saturating_sub(g.nodes.len());
     let steps = (t_end / dt).ceil();
-    let dense = 6.0 * rim_points as f64;
-    let flops = budget::rhs_flops(bars, strings, rows) + dense * dense * dense / 3.0;
+    let hub = 3.0 * spokes as f64;
+    let flops =
+        budget::rhs_flops(bars, strings, rows) + 4000.0 * bars as f64 + hub * hub * hub / 6.0;
     let parameter = format!(
-        "--t-end {t_end} --dt {dt} --treads {} ({bars} bars with the rim body)",
+        "--t-end {t_end} --dt {dt} --treads {} ({bars} bars with the isostatic rim body)",
         g.params.treads_per_wheel()?
     );
     let run = budget::integration(steps, 6.0, flops, 12 * bars, parameter.clone());
