@@ -23,7 +23,10 @@
 //! - [`standing`]: the single loop against the extended wheel with a free rim body, free and
 //!   standing on the ground (the thesis's "unstable in the ι̂₂ι̂₃ plane");
 //! - [`rolling`]: mass properties, out-of-plane tip-over, and the rolling polygon for the
-//!   toroid crate's reduced rigid model (composed by `tensegrity tbar roll`).
+//!   toroid crate's reduced rigid model (composed by `tensegrity tbar roll`);
+//! - [`rolling_full`]: the wheel as a free, prestressed, massive structure with its contact
+//!   nodes and starting pose, for the toroid crate's full tensegrity model (`tensegrity tbar
+//!   roll --fidelity full`).
 #![warn(missing_docs)]
 
 pub mod brute;
@@ -36,6 +39,7 @@ pub mod params;
 pub mod report;
 pub mod rim;
 pub mod rolling;
+pub mod rolling_full;
 pub mod standing;
 pub mod statics;
 pub mod symmetry;

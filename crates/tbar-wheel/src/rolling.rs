@@ -38,6 +38,8 @@ pub const DEFAULT_BAR_DENSITY: f64 = 1.0;
 pub struct MassProperties {
     /// Bar density ρ_b (kg/m).
     pub bar_density: f64,
+    /// Density of the rim body's bars ρ_r (kg/m; ρ_b unless set apart for the full model).
+    pub rim_density: f64,
     /// Mass of the treads' bars (kg).
     pub tread_mass: f64,
     /// Mass of the rim body's bars (kg), 0 with the rigid rim.
@@ -60,27 +62,39 @@ pub fn rod_i1(m: f64, a: &nalgebra::Vector3<f64>, b: &nalgebra::Vector3<f64>) ->
 
 /// Mass and I₁ of `g` with bars of density `bar_density` (strings massless).
 pub fn mass_properties(g: &TbarGeometry, bar_density: f64) -> Result<MassProperties> {
-    if !(bar_density.is_finite() && bar_density > 0.0) {
-        return Err(invalid(
-            "bar_density",
-            bar_density,
-            "must be finite and > 0",
-        ));
+    mass_properties_with(g, bar_density, bar_density)
+}
+
+/// Mass and I₁ of `g` with treads' bars of density `bar_density` and rim-body bars of
+/// density `rim_density` (strings massless).
+pub fn mass_properties_with(
+    g: &TbarGeometry,
+    bar_density: f64,
+    rim_density: f64,
+) -> Result<MassProperties> {
+    for (name, v) in [("bar_density", bar_density), ("rim_density", rim_density)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(invalid(name, v, "must be finite and > 0"));
+        }
     }
-    let rod = |[s, e]: [usize; 2]| {
+    let rod = |[s, e]: [usize; 2], density: f64| {
         let (a, b) = (g.nodes[s], g.nodes[e]);
-        let m = bar_density * (b - a).norm();
+        let m = density * (b - a).norm();
         (m, rod_i1(m, &a, &b))
     };
-    let sum = |bars: &[[usize; 2]]| {
+    let sum = |bars: &[[usize; 2]], density: f64| {
         bars.iter()
-            .map(|&b| rod(b))
+            .map(|&b| rod(b, density))
             .fold((0.0, 0.0), |acc, x| (acc.0 + x.0, acc.1 + x.1))
     };
-    let (tread_mass, tread_i1) = sum(&g.bars);
-    let (rim_mass, rim_i1) = g.rim.as_ref().map_or((0.0, 0.0), |r| sum(&r.bars));
+    let (tread_mass, tread_i1) = sum(&g.bars, bar_density);
+    let (rim_mass, rim_i1) = g
+        .rim
+        .as_ref()
+        .map_or((0.0, 0.0), |r| sum(&r.bars, rim_density));
     Ok(MassProperties {
         bar_density,
+        rim_density,
         tread_mass,
         rim_mass,
         mass: tread_mass + rim_mass,

@@ -12,6 +12,11 @@
 //! (`SimulationSettings::project`), and the integrator's drift warnings (bar lengths,
 //! N P = D) are part of the run's [`crate::validity::RollValidity::warnings`].
 //!
+//! The model does not depend on the toroid: [`wheel::WheelScene`] carries any prestressed
+//! wheel in its starting pose with its contact groups, and [`FullRolling::run_scene`] runs it
+//! (the toroid's [`FullRolling::run_full`] builds its scene with [`FullRolling::scene`]; the
+//! T-bar wheel enters the same way).
+//!
 //! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
 //! prism 0 (uphill) and prism 1 (downhill) on the slope, i.e. the wheel is turned by −π/n
 //! about x and the slope is the plane z = −R_o cos(π/n). The contact nodes start at zero
@@ -56,19 +61,17 @@
 //! pair's contact force over that transient (normal and tangential impulse).
 
 mod monitor;
+pub mod wheel;
 
 use crate::analysis::{prestress_design, prestressed_structure};
 use crate::builder::Toroid;
 use crate::defaults;
 use crate::error::{Result, ToroidError};
 use crate::rolling::RollingResult;
-use monitor::{Geometry, Monitor};
 use nalgebra::{Rotation3, Vector3};
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{
-    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
-};
-use tensegrity_core::Structure;
+use tensegrity_core::dynamics::IntegratorKind;
+pub use wheel::WheelScene;
 
 /// The ground contact of the full model.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -224,50 +227,12 @@ impl FullRolling {
         Ok(self.run_full(toroid, t_end)?.result)
     }
 
-    /// As [`FullRolling::run`], with frames and the ground's work.
+    /// As [`FullRolling::run`], with frames and the ground's work: the toroid's
+    /// [`WheelScene`] ([`FullRolling::scene`]) run by [`FullRolling::run_scene`].
     pub fn run_full(&self, toroid: &Toroid, t_end: f64) -> Result<FullRun> {
         self.validate(t_end)?;
-        let (structure, ground) = self.model(toroid)?;
-        let d = SimulationSettings::default();
-        let adaptive = self.integrator.is_adaptive();
-        let settings = SimulationSettings {
-            t_end,
-            integrator: self.integrator,
-            dt: self.dt,
-            rtol: if adaptive { ADAPTIVE_RTOL } else { d.rtol },
-            atol: if adaptive { ADAPTIVE_ATOL } else { d.atol },
-            // every step is seen by the monitor (energy budget, validity, impacts)
-            output_interval: Some(self.dt.min(self.output_dt)),
-            // RK4 alone lets bar lengths drift (5·10⁻³ relative in a 3 s roll): project the
-            // state back onto the bar lengths and joints after every step
-            project: true,
-            quantities: Quantities {
-                nodes: true,
-                velocities: true,
-                contact_forces: true,
-                energy: true,
-                member_forces: false,
-            },
-            ..d
-        };
-        let stiffness = match self.contact {
-            ContactModel::Penalty { stiffness, .. } => stiffness,
-            ContactModel::Thesis { .. } => 0.0,
-        };
-        let mut sim = Simulation::new(&structure, settings)?;
-        sim.model.set_ground(ground)?;
-        let geometry = Geometry::of(toroid, stiffness, self.gravity);
-        let mut monitor = Monitor::new(geometry, self.output_dt, &self.frame_times);
-        let stats = sim.run_streaming(&mut monitor)?;
-        if monitor.samples.is_empty() {
-            return Err(ToroidError::NoSamples {
-                output_dt: self.output_dt,
-            });
-        }
-        let mut run = monitor.finish(self.output_dt, stats.wall_time_s);
-        let warnings = &mut run.result.validity.warnings;
-        warnings.extend(stats.warnings.iter().map(|w| w.to_string()));
-        Ok(run)
+        let scene = self.scene(toroid)?;
+        self.run_scene(&scene, t_end)
     }
 
     fn validate(&self, t_end: f64) -> Result<()> {
@@ -295,43 +260,26 @@ impl FullRolling {
         Ok(())
     }
 
-    /// The prestressed structure turned onto a side under the tilted gravity, and the slope.
-    fn model(&self, toroid: &Toroid) -> Result<(Structure, Ground)> {
+    /// The toroid as a [`WheelScene`]: the prestressed structure (prestress design with
+    /// [`FullRolling::min_string_tension`], strings of [`FullRolling::string_stiffness`])
+    /// turned by −π/n about x onto the side of prisms 0 and 1; contact group k = the outer
+    /// tread nodes n1, n2 of prism k; ω from the rim joints n3; the axle ends as the hub.
+    pub fn scene(&self, toroid: &Toroid) -> Result<WheelScene> {
         let design = prestress_design(toroid, self.min_string_tension)?;
-        let (sin, cos) = self.incline.sin_cos();
         let n = toroid.params.sides;
         let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), -PI / n as f64);
         let prestressed = prestressed_structure(toroid, &design, self.string_stiffness)?;
         let nodes = prestressed.nodes().iter().map(|p| turn * p).collect();
-        let structure = prestressed
-            .with_nodes(nodes)?
-            .to_builder()
-            .gravity([0.0, self.gravity * sin, -self.gravity * cos])
-            .build()?;
-        let r_o = toroid.params.outer_radius;
-        let model = match self.contact {
-            ContactModel::Thesis { damping } => GroundModel::Thesis {
-                damping,
-                tolerance: 1e-6 * r_o,
-            },
-            ContactModel::Penalty {
-                stiffness,
-                damping,
-                mu_static,
-                mu_kinetic,
-            } => GroundModel::Penalty {
-                stiffness,
-                damping,
-                mu_static,
-                mu_kinetic,
-                regularization_velocity: defaults::FRICTION_REGULARIZATION_VELOCITY,
-                stribeck_velocity: defaults::STRIBECK_VELOCITY,
-            },
-        };
-        let plane = Vector3::new(0.0, 0.0, -r_o * (PI / n as f64).cos());
-        let mut ground = Ground::new(plane, Vector3::z(), model);
-        ground.nodes = Some((0..n).flat_map(|k| [5 * k, 5 * k + 1]).collect());
-        Ok((structure, ground))
+        let s = &toroid.structure;
+        Ok(WheelScene {
+            structure: prestressed.with_nodes(nodes)?,
+            contact_groups: (0..n).map(|k| vec![5 * k, 5 * k + 1]).collect(),
+            rim: (0..n).map(|k| 5 * k + 2).collect(),
+            axle: toroid.axle,
+            outer_radius: toroid.params.outer_radius,
+            mass: crate::wheel_mass(s),
+            i1: crate::wheel_inertia(s)[(0, 0)],
+        })
     }
 }
 

@@ -2,8 +2,7 @@
 //! streaming [`SampleSink`]) and keeps the 1 ms samples, the requested node frames, the
 //! validity figures, the energy budget and the impact log (equations in the parent module).
 
-use super::{FullRun, WheelFrame};
-use crate::builder::Toroid;
+use super::{FullRun, WheelFrame, WheelScene};
 use crate::defaults;
 use crate::rolling::{summarise, RollingSample};
 use crate::validity::{ImpactRecord, RollValidity};
@@ -14,14 +13,16 @@ use tensegrity_core::CoreError;
 
 /// What the monitor needs of the wheel and the slope.
 pub(super) struct Geometry {
-    /// Number of prisms (contact pairs).
+    /// Number of contact groups (sides of the contact polygon).
     n: usize,
     /// Outer radius R_o (m).
     r_o: f64,
-    /// Rim joints n3 of every prism.
+    /// The nodes whose mean spin about the hub is ω (the toroid: the rim joints n3).
     rim: Vec<usize>,
     /// Axle end nodes, if any.
     axle: Option<[usize; 2]>,
+    /// The contact group of every node (None: it cannot touch the slope).
+    group: Vec<Option<usize>>,
     /// y of the starting downhill pair, R_o sin(π/n) (m).
     s_offset: f64,
     /// z of the slope, −R_o cos(π/n) (m).
@@ -36,23 +37,23 @@ pub(super) struct Geometry {
 }
 
 impl Geometry {
-    pub(super) fn of(toroid: &Toroid, stiffness: f64, gravity: f64) -> Self {
-        let n = toroid.params.sides;
-        let r_o = toroid.params.outer_radius;
+    /// The monitor's view of a wheel scene (generic data: any topology).
+    pub(super) fn of(scene: &WheelScene, stiffness: f64, gravity: f64) -> Self {
+        let n = scene.sides();
+        let r_o = scene.outer_radius;
         let half = PI / n as f64;
         Self {
             n,
             r_o,
-            rim: (0..n).map(|k| 5 * k + 2).collect(),
-            axle: toroid.axle,
+            rim: scene.rim.clone(),
+            axle: scene.axle,
+            group: scene.group_of(),
             s_offset: r_o * half.sin(),
-            plane_z: -r_o * half.cos(),
+            plane_z: scene.plane_z(),
             stiffness,
-            energy_scale: crate::wheel_mass(&toroid.structure) * gravity * r_o,
+            energy_scale: scene.mass * gravity * r_o,
             landing: if stiffness > 0.0 {
-                let s = &toroid.structure;
-                let (m, i1) = (crate::wheel_mass(s), crate::wheel_inertia(s)[(0, 0)]);
-                let m_eff = super::contact_effective_mass(m, i1, r_o, n);
+                let m_eff = super::contact_effective_mass(scene.mass, scene.i1, r_o, n);
                 (PI * (m_eff / (2.0 * stiffness)).sqrt()).min(defaults::IMPACT_WINDOW)
             } else {
                 defaults::IMPACT_WINDOW
@@ -63,7 +64,7 @@ impl Geometry {
     fn hub(&self, x: &[Vector3<f64>]) -> Vector3<f64> {
         match self.axle {
             Some([a, b]) => 0.5 * (x[a] + x[b]),
-            None => self.rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / self.n as f64,
+            None => self.rim.iter().map(|&i| x[i]).sum::<Vector3<f64>>() / self.rim.len() as f64,
         }
     }
 
@@ -79,7 +80,7 @@ impl Geometry {
                 (r.y * w.z - r.z * w.y) / (r.y * r.y + r.z * r.z)
             })
             .sum();
-        -sum / self.n as f64
+        -sum / self.rim.len() as f64
     }
 
     /// Wheel-frame point → slope coordinates (x, s, h).
@@ -129,7 +130,10 @@ impl StepContact {
         let (mut count, mut strongest) = (0usize, 0.0);
         for &(node, f) in smp.contact_forces.iter().flatten() {
             let delta = (g.plane_z - x[node].z).max(0.0);
-            let (vel, pair) = (v[node], node / 5);
+            let Some(pair) = g.group.get(node).copied().flatten() else {
+                continue;
+            };
+            let vel = v[node];
             c.penetration = c.penetration.max(delta);
             // the ground spring's energy ½kδ² is in E even where the clipped damper
             // cancels the force: its power −kδ v_n belongs to the non-conservative work
