@@ -28,11 +28,11 @@
 //!   spokes, axle, a bar kept when its row of the bar-only rigidity matrix is independent of
 //!   the rows kept), which has the same rank, hence the same first-order motions (the six
 //!   rigid ones): the rim is as rigid as before, only its mass is that of the bars kept
-//!   (3|R| = 3(|R| + 2) − 6 bars on |R| + 2 nodes). The ring goes first because the core ties
-//!   every bar end at a joint to the joint's first one, so a hub with many spokes couples all
-//!   their constraint rows densely: keeping the ring and as few spokes as the rank needs cut
-//!   the cost of a step of the n = 8 extended wheel eightfold (96 → 33 spokes; the single loop
-//!   keeps every ring bar, 5|R|/3 spokes and no axle bar);
+//!   (3|R| = 3(|R| + 2) − 6 bars on |R| + 2 nodes). The ring goes first because every spoke adds
+//!   coincidence rows at a hub: keeping the ring and as few spokes as the rank needs cut the
+//!   cost of a step of the n = 8 extended wheel eightfold (96 → 33 spokes, when the core still
+//!   tied every copy at a joint to the first one; the single loop keeps every ring bar, 5|R|/3
+//!   spokes and no axle bar);
 //! - **the starting pose**: turned about ι̂₁ by −π/2 − π/n, so that the tips of treads 0 and 1
 //!   (at angles 2kφ from ι̂₂ in the built frame) lie at (∓r₀ sin(π/n), −r₀ cos(π/n)): the
 //!   contact polygon (n = π/φ sides, circumradius r₀) standing on its side 0–1, tread 1
@@ -446,23 +446,19 @@ fn build_structure(
 /// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
 /// projection onto the bar lengths and joints after every step), from the isostatic
 /// structure's sizes. The class-1 model has two nodes per bar and 3 (copies − 1) coincidence
-/// rows per node; the hub joints couple the rows of their s spokes' ends densely, whose
-/// Cholesky factorisation costs about (3s)³/6 flops a right-hand side, on top of ~4000 flops
-/// a bar (the rim points' joints) and the core's per-member cost; a step is four right-hand
-/// sides and a projection (counted as two more). Fitted to runs of 0.02 s on a shared 2-core
-/// machine (n = 4…24, loop and extended): conservative by up to 3×. One 1 ms sample is kept per
-/// millisecond.
+/// rows per node, tied in a chain (so a hub's rows form a banded block of the sparse Ω
+/// system): ~4000 flops a bar on top of the core's per-member cost; a step is four
+/// right-hand sides and a projection (counted as two more). Checked against runs of 0.05 s on
+/// a shared 2-core machine (n = 6…24, loop and extended): conservative by 3–6×. One 1 ms
+/// sample is kept per millisecond.
 pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
     let mut g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
     make_isostatic(&mut g);
-    let spokes = g.rim.as_ref().map_or(0, |r| r.spokes);
     let bars = g.all_bars().len();
     let strings = g.strings.len();
     let rows = 3 * (2 * bars).saturating_sub(g.nodes.len());
     let steps = (t_end / dt).ceil();
-    let hub = 3.0 * spokes as f64;
-    let flops =
-        budget::rhs_flops(bars, strings, rows) + 4000.0 * bars as f64 + hub * hub * hub / 6.0;
+    let flops = budget::rhs_flops(bars, strings, rows) + 4000.0 * bars as f64;
     let parameter = format!(
         "--t-end {t_end} --dt {dt} --treads {} ({bars} bars with the isostatic rim body)",
         g.params.treads_per_wheel()?

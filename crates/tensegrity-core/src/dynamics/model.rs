@@ -2,10 +2,12 @@
 //!
 //! Every bar k owns two class-1 nodes, 2k (start) and 2k+1 (end). A node of the structure file
 //! shared by several bars becomes one copy per bar; the first copy (lowest bar index) is its
-//! representative and carries its strings, loads and ground contact, the others are tied to it
-//! by coincidence constraints n_rep − n_copy = 0. A supported node adds n_rep·e_d = d for every
-//! fixed direction d. Together these are the columns of N P = D (with D constant). Nodes on no
-//! bar must be fixed in all three directions: they become anchors (fixed points for strings).
+//! representative and carries its strings, loads and ground contact; the copies are tied in a
+//! chain by coincidence constraints n_{copy j−1} − n_{copy j} = 0 (a chain keeps the Ω system
+//! of a many-bar joint banded, where ties to the representative would make it dense). A
+//! supported node adds n_rep·e_d = d for every fixed direction d. Together these are the
+//! columns of N P = D (with D constant). Nodes on no bar must be fixed in all three
+//! directions: they become anchors (fixed points for strings).
 //!
 //! Per bar (thesis eq. 2.1–2.2 with J = m/12, ERRATA 2.3/2.5), with end forces f₁, f₂:
 //!
@@ -228,14 +230,21 @@ impl Model {
             }
             let rep = copies[i][0];
             node_map.push(NodeRef::Free(rep));
-            for &c in &copies[i][1..] {
+            // a chain of ties (copy j to copy j − 1), not a star on the representative: two
+            // ties interact only through a shared copy, so a hub of k bars gives a banded
+            // block of Ω instead of a dense k × k one
+            for pair in copies[i].windows(2) {
+                let (prev, c) = (pair[0], pair[1]);
                 for d in 0..3 {
                     let mut e = Vector3::zeros();
                     e[d] = 1.0;
                     linear_rows.push(LinearRow {
                         row: Row {
                             entries: [
-                                Some(RowEntry { node: rep, grad: e }),
+                                Some(RowEntry {
+                                    node: prev,
+                                    grad: e,
+                                }),
                                 Some(RowEntry { node: c, grad: -e }),
                             ],
                         },
@@ -718,5 +727,56 @@ impl Model {
             .zip(&ws.contact_f)
             .map(|(&(i, _), f)| (i, *f))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::structure::Bar;
+
+    #[test]
+    fn the_copies_of_a_many_bar_joint_are_tied_in_a_chain() {
+        // a hub (node 0) with five spokes: 3·4 coincidence rows, each copy of the hub in at
+        // most two of them per axis (a chain: a banded block of Ω), not the representative in
+        // all four (a star: a dense one)
+        let tips = [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-1.0, 0.0, 0.2],
+            [0.0, -1.0, 0.0],
+        ];
+        let mut b = Structure::builder()
+            .nodes([[0.0, 0.0, 0.0]])
+            .nodes(tips)
+            .nodes([[0.3, 0.3, 1.0]]);
+        for k in 1..=5 {
+            b = b.bar(Bar::new(0, k).mass(1.0));
+        }
+        let model = Model::new(&b.build().unwrap(), None).unwrap();
+        assert_eq!(model.linear_rows.len(), 12);
+        let hub_copies: Vec<usize> = (0..5).map(|k| 2 * k).collect();
+        for &c in &hub_copies {
+            let rows = model
+                .linear_rows
+                .iter()
+                .filter(|r| r.row.entries.iter().flatten().any(|e| e.node == c))
+                .count();
+            assert!(rows <= 6, "copy {c} is in {rows} rows");
+        }
+        // and the chain still makes every copy coincide: the rows' graph is connected
+        let mut reached = vec![hub_copies[0]];
+        while let Some(next) = model.linear_rows.iter().find_map(|r| {
+            let nodes: Vec<usize> = r.row.entries.iter().flatten().map(|e| e.node).collect();
+            match nodes[..] {
+                [a, b] if reached.contains(&a) && !reached.contains(&b) => Some(b),
+                [a, b] if reached.contains(&b) && !reached.contains(&a) => Some(a),
+                _ => None,
+            }
+        }) {
+            reached.push(next);
+        }
+        reached.sort_unstable();
+        assert_eq!(reached, hub_copies);
     }
 }
