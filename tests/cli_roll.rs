@@ -167,3 +167,33 @@ fn fig_rolling_prints_the_impulse_table() {
     let svg = std::fs::read_to_string(&svg).unwrap();
     assert!(svg.contains("axle height above the slope [m]"));
 }
+
+#[test]
+fn a_diverged_roll_writes_what_it_computed_and_exits_with_an_error() {
+    let dir = common::scratch("roll", "roll-diverged");
+    let path = dir.join("partial.csv");
+    let out = run(&[
+        "roll",
+        "--fidelity",
+        "full",
+        "--string-stiffness",
+        "1e9",
+        "--t-end",
+        "0.01",
+        "--out",
+        path.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("stopped at t = "), "{stderr}");
+    assert!(stderr.contains("use a smaller --dt"), "{stderr}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["valid"], false);
+    let t = json["stopped_at"].as_f64().unwrap();
+    assert!((0.0..0.01).contains(&t), "{t}");
+    // the CSV holds the samples up to the stop
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("t,axle_s,axle_h,omega,"));
+    assert!(text.lines().count() >= 2);
+}

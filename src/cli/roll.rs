@@ -188,7 +188,13 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     } else {
         print_roll(&report);
     }
-    Ok(())
+    match report.stopped_at {
+        Some(t) => anyhow::bail!(
+            "the integration stopped at t = {t} s of --t-end {} s: the results above cover [0, {t}] s only (see the warnings)",
+            args.t_end
+        ),
+        None => Ok(()),
+    }
 }
 
 fn write_svg(args: &RollArgs, path: &Path, request: &RollRequest, r: &RollReport) -> Result<()> {

@@ -259,6 +259,10 @@ pub struct RollReport {
     pub valid: bool,
     /// What the run violated, one sentence each.
     pub warnings: Vec<String>,
+    /// Set when the integration failed before `t_end`: the time (s) of the last state kept;
+    /// every figure covers [0, stopped_at] only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<f64>,
     /// Number of sides n.
     pub sides: usize,
     /// Slope angle (rad).
@@ -445,6 +449,7 @@ fn report_of(
         contact,
         valid: v.valid(),
         warnings: v.warnings.clone(),
+        stopped_at: v.stopped_at,
         sides: request.wheel.params.sides,
         incline_rad: request.incline,
         t_end: request.t_end,

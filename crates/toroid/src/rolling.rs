@@ -321,6 +321,7 @@ impl RigidRolling {
             max_penetration: budget.max_penetration,
             energy_balance_error,
             warnings,
+            stopped_at: None,
         }
     }
 

@@ -38,6 +38,10 @@ pub struct RollValidity {
     pub energy_balance_error: f64,
     /// What the run violated, one sentence each; empty when the run is valid.
     pub warnings: Vec<String>,
+    /// When the integration failed before the end time: the time (s) of the last state
+    /// kept. The figures cover [0, stopped_at] only, and a warning says why it stopped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<f64>,
 }
 
 impl RollValidity {

@@ -150,3 +150,30 @@ fn the_full_model_keeps_its_bar_lengths_through_impacts() {
     }
     assert!(worst < 1e-10, "bar lengths drifted by {worst:e}");
 }
+
+#[test]
+fn a_run_that_fails_midway_keeps_what_it_computed_and_says_so() {
+    // strings of 10⁹ N/m are far too stiff for RK4 at 0.1 ms: the integration diverges at
+    // t = 0.3 ms; the run returns the states before the failure, flagged, instead of an error
+    // that would lose them
+    let roll = FullRolling {
+        string_stiffness: 1e9,
+        ..FullRolling::default()
+    };
+    let r = roll.run(&wheel(8), 0.01).unwrap();
+    let t = r.validity.stopped_at.expect("the run stopped early");
+    assert!((0.0..0.01).contains(&t), "{t}");
+    assert!(!r.validity.valid());
+    assert!(
+        r.validity
+            .warnings
+            .iter()
+            .any(|w| w.contains("stopped before t_end") && w.contains("--dt")),
+        "{:?}",
+        r.validity.warnings
+    );
+    assert!(r.samples.last().is_some_and(|s| s.t <= t + 1e-12));
+    // a run that completes has no stop time
+    let ok = FullRolling::default().run(&wheel(8), 0.01).unwrap();
+    assert_eq!(ok.validity.stopped_at, None);
+}

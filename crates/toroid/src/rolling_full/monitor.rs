@@ -402,6 +402,7 @@ impl Monitor {
             max_penetration: self.max_penetration,
             energy_balance_error,
             warnings,
+            stopped_at: None,
         }
     }
 }

@@ -196,17 +196,31 @@ impl FullRolling {
         sim.model.set_ground(ground)?;
         let geometry = Geometry::of(scene, stiffness, self.gravity);
         let mut monitor = Monitor::new(geometry, self.output_dt, &self.frame_times);
-        let stats = sim.run_streaming(&mut monitor)?;
+        let start = std::time::Instant::now();
+        let outcome = sim.run_streaming(&mut monitor);
         if monitor.samples.is_empty() {
+            outcome?;
             return Err(ToroidError::NoSamples {
                 output_dt: self.output_dt,
             });
         }
-        let mut run = monitor.finish(self.output_dt, stats.wall_time_s);
-        run.result
-            .validity
+        let (wall_time_s, drift, failure) = match outcome {
+            Ok(stats) => (stats.wall_time_s, stats.warnings, None),
+            // keep what was computed: the run up to the failure, flagged
+            Err(e) => (start.elapsed().as_secs_f64(), Vec::new(), Some(e)),
+        };
+        let mut run = monitor.finish(self.output_dt, wall_time_s);
+        let validity = &mut run.result.validity;
+        validity
             .warnings
-            .extend(stats.warnings.iter().map(|w| w.to_string()));
+            .extend(drift.iter().map(|w| w.to_string()));
+        if let Some(e) = failure {
+            let t = run.result.samples.last().map_or(0.0, |s| s.t);
+            validity.stopped_at = Some(t);
+            validity.warnings.push(format!(
+                "the integration stopped before t_end = {t_end} s ({e}); every figure covers only [0, {t}] s"
+            ));
+        }
         Ok(run)
     }
 
