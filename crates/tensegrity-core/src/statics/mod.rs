@@ -318,19 +318,10 @@ impl<'a> Statics<'a> {
     pub fn self_stress_basis(&self) -> DMatrix<f64> {
         let m = self.a.ncols();
         let nb = self.structure.n_bars();
-        let mut basis = self.svd.v.columns(self.rank, m - self.rank).into_owned();
-        for mut col in basis.column_iter_mut() {
-            let string_sum: f64 = col.rows(nb, m - nb).sum();
-            let sign = if string_sum.abs() > 1e-9 {
-                string_sum.signum()
-            } else {
-                col.iter()
-                    .find(|x| x.abs() > 1e-9)
-                    .map_or(1.0, |x| x.signum())
-            };
-            col *= sign;
-        }
-        basis
+        orient_self_stress(
+            self.svd.v.columns(self.rank, m - self.rank).into_owned(),
+            nb,
+        )
     }
 
     /// An orthonormal basis of the first-order motions δn of the free dofs that keep every
@@ -344,4 +335,23 @@ impl<'a> Statics<'a> {
     pub fn solve_min_norm(&self, w: &DVector<f64>) -> DVector<f64> {
         self.svd.solve_min_norm(w, self.rank)
     }
+}
+
+/// Orients every self-stress column so that its strings (rows `nb..`) sum to a positive value
+/// (when they sum to zero, its first entry above 1e-9 is positive): the convention shared by
+/// the dense and the sparse path, which makes a one-dimensional basis unique.
+pub(crate) fn orient_self_stress(mut basis: DMatrix<f64>, nb: usize) -> DMatrix<f64> {
+    let m = basis.nrows();
+    for mut col in basis.column_iter_mut() {
+        let string_sum: f64 = col.rows(nb, m - nb).sum();
+        let sign = if string_sum.abs() > 1e-9 {
+            string_sum.signum()
+        } else {
+            col.iter()
+                .find(|x| x.abs() > 1e-9)
+                .map_or(1.0, |x| x.signum())
+        };
+        col *= sign;
+    }
+    basis
 }

@@ -31,6 +31,38 @@ pub struct Prestressability {
     pub stress: DVector<f64>,
 }
 
+impl Prestressability {
+    /// No prestress: margin 0 and a zero stress of `members` entries.
+    pub(crate) fn none(members: usize) -> Self {
+        Self {
+            margin: 0.0,
+            prestressable: false,
+            stress: DVector::zeros(members),
+        }
+    }
+
+    /// From the LP's self-stress q (bars first, `nb` of them): scaled to max|q| = 1, margin
+    /// min(−q_bars, q_strings) clipped at 0 (none when q = 0).
+    pub(crate) fn from_stress(mut q: DVector<f64>, nb: usize) -> Self {
+        let scale = q.amax();
+        if scale <= 0.0 {
+            return Self::none(q.len());
+        }
+        q /= scale;
+        let margin = q
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| if k < nb { -v } else { v })
+            .fold(f64::INFINITY, f64::min)
+            .max(0.0);
+        Self {
+            margin,
+            prestressable: margin > PRESTRESS_TOLERANCE,
+            stress: q,
+        }
+    }
+}
+
 impl Statics<'_> {
     /// Solves the prestressability LP over the self-stress space.
     pub fn prestressability(&self) -> Result<Prestressability> {
@@ -39,11 +71,7 @@ impl Statics<'_> {
         let d = basis.ncols();
         let nb = self.structure().n_bars();
         if d == 0 {
-            return Ok(Prestressability {
-                margin: 0.0,
-                prestressable: false,
-                stress: DVector::zeros(m),
-            });
+            return Ok(Prestressability::none(m));
         }
         // Variables z = [x (d), t]; constraints G z ≤ h. t ≥ 0 (x = 0 achieves it), so
         // q_s ≥ t already bounds strings below by −1 and q_b ≤ −t bounds bars above by 1: two
@@ -72,25 +100,7 @@ impl Statics<'_> {
             None => solve_clarabel(&g, &h, &c, "prestressability LP")?,
         };
         let x = z.rows(0, d).into_owned();
-        let mut q = &basis * x;
-        let scale = q.amax();
-        if scale <= 0.0 {
-            return Ok(Prestressability {
-                margin: 0.0,
-                prestressable: false,
-                stress: DVector::zeros(m),
-            });
-        }
-        q /= scale;
-        let margin = (0..m)
-            .map(|k| if k < nb { -q[k] } else { q[k] })
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0);
-        Ok(Prestressability {
-            margin,
-            prestressable: margin > PRESTRESS_TOLERANCE,
-            stress: q,
-        })
+        Ok(Prestressability::from_stress(&basis * x, nb))
     }
 }
 
@@ -153,30 +163,13 @@ pub(super) fn solve_member_lp(r_eq: &crate::linalg::CscMatrix, nb: usize) -> Res
     jj.push(n);
     vv.push(-1.0);
     let a = CscMatrix::new_from_triplets(r + 2 * n + 1, n + 1, ii, jj, vv);
-    let p = CscMatrix::zeros((n + 1, n + 1));
     let mut c = vec![0.0; n + 1];
     c[n] = -1.0;
     let cones = [
         SupportedConeT::ZeroConeT(r),
         SupportedConeT::NonnegativeConeT(2 * n + 1),
     ];
-    let failed = |status: String| CoreError::SolverFailed { problem, status };
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(1e-10)
-        .tol_gap_rel(1e-10)
-        .tol_feas(1e-10)
-        .max_iter(500)
-        .build()
-        .map_err(|e| failed(e.to_string()))?;
-    let mut solver =
-        DefaultSolver::new(&p, &c, &a, &b, &cones, settings).map_err(|e| failed(e.to_string()))?;
-    solver.solve();
-    let status = solver.solution.status;
-    if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
-        return Err(failed(format!("{status:?}")));
-    }
-    Ok(solver.solution.x.clone())
+    run_clarabel(&a, &c, &b, &cones, problem)
 }
 
 /// Solves min cᵀz s.t. G z ≤ h with Clarabel.
@@ -198,8 +191,20 @@ fn solve_clarabel(
         }
     }
     let a = CscMatrix::new_from_triplets(rows, cols, ii, jj, vv);
-    let p = CscMatrix::zeros((cols, cols));
     let cones = [SupportedConeT::NonnegativeConeT(rows)];
+    let x = run_clarabel(&a, c.as_slice(), h.as_slice(), &cones, problem)?;
+    Ok(DVector::from_column_slice(&x))
+}
+
+/// min cᵀz s.t. A z + s = b, s ∈ `cones` (no quadratic term) with Clarabel at the tolerances
+/// of both LPs (10⁻¹⁰ on gap and feasibility, at most 500 iterations).
+fn run_clarabel(
+    a: &CscMatrix<f64>,
+    c: &[f64],
+    b: &[f64],
+    cones: &[SupportedConeT<f64>],
+    problem: &'static str,
+) -> Result<Vec<f64>> {
     let failed = |status: String| CoreError::SolverFailed { problem, status };
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
@@ -209,12 +214,13 @@ fn solve_clarabel(
         .max_iter(500)
         .build()
         .map_err(|e| failed(e.to_string()))?;
-    let mut solver = DefaultSolver::new(&p, c.as_slice(), &a, h.as_slice(), &cones, settings)
-        .map_err(|e| failed(e.to_string()))?;
+    let p = CscMatrix::zeros((c.len(), c.len()));
+    let mut solver =
+        DefaultSolver::new(&p, c, a, b, cones, settings).map_err(|e| failed(e.to_string()))?;
     solver.solve();
     let status = solver.solution.status;
     if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
         return Err(failed(format!("{status:?}")));
     }
-    Ok(DVector::from_column_slice(&solver.solution.x))
+    Ok(solver.solution.x.clone())
 }

@@ -53,7 +53,7 @@
 use super::load::LoadSolution;
 use super::prestress::Prestressability;
 use super::stability::PrestressStability;
-use super::{DofMap, StaticsSettings, PRESTRESS_TOLERANCE};
+use super::{orient_self_stress, DofMap, StaticsSettings};
 use crate::error::{CoreError, Result};
 use crate::linalg::{self, CscMatrix, RankRevealingQr};
 use crate::structure::Structure;
@@ -241,7 +241,7 @@ impl<'a> SparseStatics<'a> {
             DEFER_BELOW * sigma,
         )?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
-        let self_stress = orient(qr.orthonormal_null_space(), structure.n_bars());
+        let self_stress = orient_self_stress(qr.orthonormal_null_space(), structure.n_bars());
         Ok(Self {
             structure,
             dofs,
@@ -322,56 +322,22 @@ impl<'a> SparseStatics<'a> {
     }
 }
 
-/// Orients every column so that its strings sum to a positive value (else its first entry
-/// above 1e-9 is positive), the dense path's convention.
-fn orient(mut basis: DMatrix<f64>, nb: usize) -> DMatrix<f64> {
-    let m = basis.nrows();
-    for mut col in basis.column_iter_mut() {
-        let string_sum: f64 = col.rows(nb, m - nb).sum();
-        let sign = if string_sum.abs() > 1e-9 {
-            string_sum.signum()
-        } else {
-            col.iter()
-                .find(|x| x.abs() > 1e-9)
-                .map_or(1.0, |x| x.signum())
-        };
-        col *= sign;
-    }
-    basis
-}
-
 impl SparseStatics<'_> {
     /// The prestressability LP over the member force densities (see the module
     /// documentation).
     pub fn prestressability(&self) -> Result<Prestressability> {
         let n = self.structure.n_members();
         let nb = self.structure.n_bars();
-        let zero = || Prestressability {
-            margin: 0.0,
-            prestressable: false,
-            stress: DVector::zeros(n),
-        };
         if self.self_stress_dim() == 0 {
-            return Ok(zero());
+            return Ok(Prestressability::none(n));
         }
         let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, nb)?;
         let raw = DVector::from_column_slice(&z[..n]);
         let basis = &self.self_stress;
-        let mut q = basis * (basis.transpose() * raw);
-        let scale = q.amax();
-        if scale <= 0.0 {
-            return Ok(zero());
-        }
-        q /= scale;
-        let margin = (0..n)
-            .map(|k| if k < nb { -q[k] } else { q[k] })
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0);
-        Ok(Prestressability {
-            margin,
-            prestressable: margin > PRESTRESS_TOLERANCE,
-            stress: q,
-        })
+        Ok(Prestressability::from_stress(
+            basis * (basis.transpose() * raw),
+            nb,
+        ))
     }
 
     /// An orthonormal basis of the internal mechanisms (free dofs × count): the flexes with
@@ -411,25 +377,11 @@ impl SparseStatics<'_> {
         phi: &DMatrix<f64>,
         q: &DVector<f64>,
     ) -> Result<PrestressStability> {
-        let m = phi.ncols();
-        if m == 0 {
-            return Ok(PrestressStability {
-                internal_mechanisms: 0,
-                eigenvalues: Vec::new(),
-                stable: true,
-            });
+        if phi.ncols() == 0 {
+            return Ok(PrestressStability::rigid());
         }
         let omega_phi = self.stress_matrix_times(q, phi);
-        let projected = phi.transpose() * omega_phi;
-        let sym = (&projected + projected.transpose()) * 0.5;
-        let (w, _) = linalg::symmetric_eigen(&sym)?;
-        let tol = 1e-9 * q.amax();
-        let stable = w.first().is_some_and(|&w0| w0 > tol);
-        Ok(PrestressStability {
-            internal_mechanisms: m,
-            eigenvalues: w,
-            stable,
-        })
+        PrestressStability::from_projected(&(phi.transpose() * omega_phi), q.amax())
     }
 
     /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C.

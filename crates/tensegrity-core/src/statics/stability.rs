@@ -10,7 +10,7 @@ use super::Statics;
 use crate::error::Result;
 use crate::linalg;
 use crate::stiffness;
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 /// Result of the prestress-stability test.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +24,30 @@ pub struct PrestressStability {
     pub stable: bool,
 }
 
+impl PrestressStability {
+    /// No internal mechanism: first-order rigid, hence stable.
+    pub(crate) fn rigid() -> Self {
+        Self {
+            internal_mechanisms: 0,
+            eigenvalues: Vec::new(),
+            stable: true,
+        }
+    }
+
+    /// The test on Φᵀ (Ω ⊗ I₃) Φ for an orthonormal basis Φ of the internal mechanisms: its
+    /// (symmetrised) eigenvalues must exceed 1e-9 · `q_max`.
+    pub(crate) fn from_projected(projected: &DMatrix<f64>, q_max: f64) -> Result<Self> {
+        let sym = (projected + projected.transpose()) * 0.5;
+        let (w, _) = linalg::symmetric_eigen(&sym)?;
+        let stable = w.first().is_some_and(|&w0| w0 > 1e-9 * q_max);
+        Ok(Self {
+            internal_mechanisms: projected.ncols(),
+            eigenvalues: w,
+            stable,
+        })
+    }
+}
+
 impl Statics<'_> {
     /// Tests prestress stability with force densities `q` (normally a self-stress).
     ///
@@ -32,24 +56,10 @@ impl Statics<'_> {
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         let flexes = self.flexes()?;
         let phi = &flexes.internal;
-        let m = phi.ncols();
-        if m == 0 {
-            return Ok(PrestressStability {
-                internal_mechanisms: 0,
-                eigenvalues: Vec::new(),
-                stable: true,
-            });
+        if phi.ncols() == 0 {
+            return Ok(PrestressStability::rigid());
         }
         let omega = stiffness::stress_matrix(self.structure(), self.dofs(), q);
-        let projected = phi.transpose() * omega * phi;
-        let sym = (&projected + projected.transpose()) * 0.5;
-        let (w, _) = linalg::symmetric_eigen(&sym)?;
-        let tol = 1e-9 * q.amax();
-        let stable = w.first().is_some_and(|&w0| w0 > tol);
-        Ok(PrestressStability {
-            internal_mechanisms: m,
-            eigenvalues: w,
-            stable,
-        })
+        PrestressStability::from_projected(&(phi.transpose() * omega * phi), q.amax())
     }
 }
