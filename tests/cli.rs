@@ -586,7 +586,7 @@ fn bad_flags_are_usage_errors_naming_the_flag() {
         "--wheel",
     ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("`phi` = 0.7"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("phi = 0.7"));
 }
 
 #[test]

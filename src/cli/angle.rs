@@ -1,4 +1,4 @@
-//! Angles on the command line (DESIGN.md): the parser lives in the sweeps crate
-//! ([`sweeps::angle::parse_angle`]) so that sweep specs and flags read angles the same way.
+//! Angles on the command line (DESIGN.md): the parser of every front end
+//! ([`tensegrity_core::angle::parse_angle`]).
 
-pub use sweeps::angle::parse_angle;
+pub use tensegrity_core::angle::parse_angle;

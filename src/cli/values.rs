@@ -13,7 +13,7 @@ fn number(s: &str) -> Result<f64, String> {
 fn rule(r: tensegrity_core::Result<f64>) -> Result<f64, String> {
     // the flag is named by clap; keep only the rule
     r.map_err(|e| match e {
-        tensegrity_core::CoreError::InvalidParameter { reason, .. } => reason,
+        tensegrity_core::CoreError::InvalidParameter(p) => p.reason,
         other => other.to_string(),
     })
 }

@@ -10,15 +10,8 @@ pub type Result<T> = std::result::Result<T, MichellError>;
 #[non_exhaustive]
 pub enum MichellError {
     /// A user parameter is outside its valid range.
-    #[error("invalid parameter `{name}` = {}: {reason}", tensegrity_core::error::short_number(*value))]
-    InvalidParameter {
-        /// Parameter name as the user knows it (e.g. `beta`, `delta`, `complexity`).
-        name: &'static str,
-        /// The offending value.
-        value: f64,
-        /// Why it is rejected.
-        reason: String,
-    },
+    #[error("{0}")]
+    InvalidParameter(#[from] tensegrity_core::request::InvalidParameter),
     /// The three (or, in the plane, two) child members of a node are (nearly) linearly
     /// dependent, so the node equilibrium has no unique solution.
     #[error("node {node:?} is singular: its child members are linearly dependent (relative determinant {relative_det:.3e})")]
@@ -84,9 +77,7 @@ pub enum MichellError {
 
 /// Shorthand for [`MichellError::InvalidParameter`].
 pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>) -> MichellError {
-    MichellError::InvalidParameter {
-        name,
-        value,
-        reason: reason.into(),
-    }
+    MichellError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
+        name, value, reason,
+    ))
 }

@@ -36,7 +36,8 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod angle;
+/// The angle parser of every front end ([`tensegrity_core::angle`]).
+pub use tensegrity_core::angle;
 pub mod error;
 pub mod expr;
 pub mod grids;

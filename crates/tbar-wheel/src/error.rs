@@ -10,15 +10,8 @@ pub type Result<T> = std::result::Result<T, TbarError>;
 #[non_exhaustive]
 pub enum TbarError {
     /// A user parameter is outside its valid range.
-    #[error("invalid parameter `{name}` = {}: {reason}", tensegrity_core::error::short_number(*value))]
-    InvalidParameter {
-        /// Parameter name as the user knows it (e.g. `phi`, `extended`, `load`).
-        name: &'static str,
-        /// The offending value.
-        value: f64,
-        /// Why it is rejected.
-        reason: String,
-    },
+    #[error("{0}")]
+    InvalidParameter(#[from] tensegrity_core::request::InvalidParameter),
     /// The structure is too large for the dense analyses.
     #[error(
         "{what}: {size} exceeds the limit {limit}; reduce the complexity or the number of treads"
@@ -63,9 +56,7 @@ pub enum TbarError {
 
 /// Shorthand for [`TbarError::InvalidParameter`].
 pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>) -> TbarError {
-    TbarError::InvalidParameter {
-        name,
-        value,
-        reason: reason.into(),
-    }
+    TbarError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
+        name, value, reason,
+    ))
 }

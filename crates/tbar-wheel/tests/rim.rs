@@ -202,6 +202,6 @@ fn tipover_threshold_is_the_closed_form_with_the_offset_track() {
     assert_eq!(s.warnings.len(), 1);
     assert!(matches!(
         tipover(&g, 0.0, grav),
-        Err(TbarError::InvalidParameter { name: "mass", .. })
+        Err(TbarError::InvalidParameter(p)) if p.name == "mass"
     ));
 }

@@ -143,7 +143,7 @@ fn bad_requests_name_what_is_wrong() {
     let d = FullWheelRequest::default();
     let e = err(&params(6, Layout::Tread), &d);
     assert!(
-        matches!(e, TbarError::InvalidParameter { name: "layout", .. }),
+        matches!(&e, TbarError::InvalidParameter(p) if p.name == "layout"),
         "{e}"
     );
     let soft = FullWheelRequest {

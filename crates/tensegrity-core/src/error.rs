@@ -209,15 +209,8 @@ pub enum CoreError {
         status: String,
     },
     /// An invalid analysis parameter.
-    #[error("{name} = {}: {reason}", short_number(*value))]
-    InvalidParameter {
-        /// The parameter's name.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// Why it is invalid.
-        reason: String,
-    },
+    #[error("{0}")]
+    InvalidParameter(#[from] crate::request::InvalidParameter),
     /// Dynamics: a node that no bar touches and that is not fixed in all three directions. It
     /// would be a massless free point (all mass is in the bars), which rigid-bar dynamics
     /// cannot integrate.
@@ -419,11 +412,7 @@ impl CoreError {
     /// assert_eq!(e.to_string(), "dt = -1: must be positive and finite");
     /// ```
     pub fn invalid_parameter(name: &'static str, value: f64, reason: impl Into<String>) -> Self {
-        Self::InvalidParameter {
-            name,
-            value,
-            reason: reason.into(),
-        }
+        Self::InvalidParameter(crate::request::InvalidParameter::new(name, value, reason))
     }
 }
 

@@ -12,6 +12,9 @@
 //! - [`budget`]: memory, work and output estimated from a request's sizes, and the limits
 //!   that refuse oversized requests before anything is allocated;
 //! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
+//! - [`request`]: requests as data ([`request::Request`], one [`request::Param`] per field),
+//!   the shared [`request::InvalidParameter`] and the error [`request::Category`];
+//! - [`angle`]: the angle forms of every front end (`30deg`, `pi/8`, radians);
 //! - [`sizing`]: minimum mass of strings (yield) and bars (yield and Euler buckling);
 //! - [`dynamics`]: rigid-bar dynamics N̈M + NK = W + ΩPᵀ with class-k joints, strings, gravity,
 //!   ground contact, RK4 / adaptive RK45 / RATTLE integrators, monitors and a recorder;
@@ -25,6 +28,7 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+pub mod angle;
 pub mod budget;
 pub mod connectivity;
 pub mod dynamics;
@@ -32,6 +36,7 @@ pub mod error;
 pub mod linalg;
 pub mod material;
 pub mod member_id;
+pub mod request;
 pub mod sizing;
 pub mod statics;
 pub mod stiffness;

@@ -189,7 +189,7 @@ fn errors_name_the_member_and_time() {
     };
     assert!(matches!(
         Simulation::new(&s, set).unwrap().run().unwrap_err(),
-        CoreError::InvalidParameter { name: "dt", .. }
+        CoreError::InvalidParameter(p) if p.name == "dt"
     ));
 }
 

@@ -183,9 +183,9 @@ fn step_budget_is_reported_as_max_steps_exceeded() {
         .run()
         .unwrap_err();
     match e {
-        tensegrity_core::CoreError::InvalidParameter { name, reason, .. } => {
-            assert_eq!(name, "dt");
-            assert!(reason.contains("1e3 fixed steps"), "{reason}");
+        tensegrity_core::CoreError::InvalidParameter(p) => {
+            assert_eq!(p.name, "dt");
+            assert!(p.reason.contains("1e3 fixed steps"), "{}", p.reason);
         }
         other => panic!("unexpected {other}"),
     }

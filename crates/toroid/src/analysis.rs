@@ -177,11 +177,13 @@ pub fn prestress_design(toroid: &Toroid, min_string_tension: f64) -> Result<Pres
 
 fn check_tension(min_string_tension: f64) -> Result<()> {
     if !(min_string_tension.is_finite() && min_string_tension > 0.0) {
-        return Err(ToroidError::InvalidParameter {
-            name: "min_string_tension",
-            value: min_string_tension,
-            reason: "must be a positive force (N)".into(),
-        });
+        return Err(ToroidError::InvalidParameter(
+            tensegrity_core::request::InvalidParameter::new(
+                "min_string_tension",
+                min_string_tension,
+                "must be a positive force (N)",
+            ),
+        ));
     }
     Ok(())
 }
@@ -302,11 +304,13 @@ pub fn prestressed_structure(
     k: f64,
 ) -> Result<tensegrity_core::Structure> {
     if !(k.is_finite() && k > 0.0) {
-        return Err(ToroidError::InvalidParameter {
-            name: "string_stiffness",
-            value: k,
-            reason: "must be a positive stiffness (N/m)".into(),
-        });
+        return Err(ToroidError::InvalidParameter(
+            tensegrity_core::request::InvalidParameter::new(
+                "string_stiffness",
+                k,
+                "must be a positive stiffness (N/m)",
+            ),
+        ));
     }
     let s = &toroid.structure;
     let nb = s.n_bars();
@@ -315,13 +319,13 @@ pub fn prestressed_structure(
     for (i, st) in s.strings().iter().enumerate() {
         let q = design.force_density[nb + i];
         if q >= k {
-            return Err(ToroidError::InvalidParameter {
-                name: "string_stiffness",
-                value: k,
-                reason: format!(
+            return Err(ToroidError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
+                "string_stiffness",
+                k,
+                format!(
                     "string {i} needs force density {q:.6} N/m, which a stiffness of {k} N/m cannot give (rest length ≤ 0)"
                 ),
-            });
+            )));
         }
         b = b.string(
             tensegrity_core::StringMember::new(st.nodes[0], st.nodes[1])

@@ -221,11 +221,13 @@ fn label(k: usize, role: Role) -> MemberLabel {
 
 fn check_density(bar_density: f64) -> Result<()> {
     if !(bar_density.is_finite() && bar_density > 0.0) {
-        return Err(crate::ToroidError::InvalidParameter {
-            name: "bar_density",
-            value: bar_density,
-            reason: "must be a positive mass per length (kg/m)".into(),
-        });
+        return Err(crate::ToroidError::InvalidParameter(
+            tensegrity_core::request::InvalidParameter::new(
+                "bar_density",
+                bar_density,
+                "must be a positive mass per length (kg/m)",
+            ),
+        ));
     }
     Ok(())
 }

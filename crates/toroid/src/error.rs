@@ -12,15 +12,8 @@ pub type Result<T, E = ToroidError> = std::result::Result<T, E>;
 #[non_exhaustive]
 pub enum ToroidError {
     /// A geometric or physical parameter is out of its valid range.
-    #[error("invalid parameter {name} = {}: {reason}", tensegrity_core::error::short_number(*value))]
-    InvalidParameter {
-        /// The parameter's name as on the command line, e.g. `inner_radius`.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must satisfy.
-        reason: String,
-    },
+    #[error("{0}")]
+    InvalidParameter(#[from] tensegrity_core::request::InvalidParameter),
     /// An unknown stabilising option.
     #[error("unknown stabilising option \"{option}\" (use spokes, inner, outer or none)")]
     UnknownStabilizeOption {

@@ -83,11 +83,13 @@ impl ToroidParams {
     /// ```
     pub fn validate(&self) -> Result<()> {
         if self.sides < 3 {
-            return Err(ToroidError::InvalidParameter {
-                name: "sides",
-                value: self.sides as f64,
-                reason: "a toroid needs at least 3 sides".into(),
-            });
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "sides",
+                    self.sides as f64,
+                    "a toroid needs at least 3 sides",
+                ),
+            ));
         }
         for (name, value) in [
             ("outer_tread", self.outer_tread),
@@ -97,26 +99,32 @@ impl ToroidParams {
             ("rim_radius", self.rim_radius),
         ] {
             if !(value.is_finite() && value > 0.0) {
-                return Err(ToroidError::InvalidParameter {
-                    name,
-                    value,
-                    reason: "must be a positive length".into(),
-                });
+                return Err(ToroidError::InvalidParameter(
+                    tensegrity_core::request::InvalidParameter::new(
+                        name,
+                        value,
+                        "must be a positive length",
+                    ),
+                ));
             }
         }
         if !(self.offset.is_finite() && self.offset >= 0.0) {
-            return Err(ToroidError::InvalidParameter {
-                name: "offset",
-                value: self.offset,
-                reason: "must be a non-negative length".into(),
-            });
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "offset",
+                    self.offset,
+                    "must be a non-negative length",
+                ),
+            ));
         }
         if self.inner_radius >= self.outer_radius {
-            return Err(ToroidError::InvalidParameter {
-                name: "inner_radius",
-                value: self.inner_radius,
-                reason: format!("must be smaller than outer_radius = {}", self.outer_radius),
-            });
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "inner_radius",
+                    self.inner_radius,
+                    format!("must be smaller than outer_radius = {}", self.outer_radius),
+                ),
+            ));
         }
         Ok(())
     }

@@ -183,11 +183,9 @@ impl RigidRolling {
 
     fn validate(&self, t_end: f64) -> Result<()> {
         let bad = |name, value: f64, reason: &str| {
-            Err(ToroidError::InvalidParameter {
-                name,
-                value,
-                reason: reason.to_string(),
-            })
+            Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(name, value, reason),
+            ))
         };
         if self.sides < 3 {
             return bad("sides", self.sides as f64, "at least 3");
@@ -234,15 +232,17 @@ impl RigidRolling {
             })
             .fold(f64::INFINITY, f64::min);
         if worst <= 1e-3 * self.i1 {
-            return Err(ToroidError::InvalidParameter {
-                name: "mu_kinetic",
-                value: self.mu_kinetic,
-                reason: format!(
-                    "with I1 = {} and n = {} sliding friction has no solution (Painlevé \
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "mu_kinetic",
+                    self.mu_kinetic,
+                    format!(
+                        "with I1 = {} and n = {} sliding friction has no solution (Painlevé \
                      paradox): lower mu_kinetic",
-                    self.i1, self.sides
+                        self.i1, self.sides
+                    ),
                 ),
-            });
+            ));
         }
         Ok(())
     }

@@ -243,19 +243,19 @@ impl FullRolling {
             ("t_end", t_end),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ToroidError::InvalidParameter {
-                    name,
-                    value: v,
-                    reason: "must be positive".into(),
-                });
+                return Err(ToroidError::InvalidParameter(
+                    tensegrity_core::request::InvalidParameter::new(name, v, "must be positive"),
+                ));
             }
         }
         if !(self.incline.is_finite() && self.incline.abs() < std::f64::consts::FRAC_PI_2) {
-            return Err(ToroidError::InvalidParameter {
-                name: "incline",
-                value: self.incline,
-                reason: "must lie in (−π/2, π/2)".into(),
-            });
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "incline",
+                    self.incline,
+                    "must lie in (−π/2, π/2)",
+                ),
+            ));
         }
         Ok(())
     }

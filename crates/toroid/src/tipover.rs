@@ -41,18 +41,22 @@ pub struct TipOver {
 /// ```
 pub fn normalized_friction(sigma: f64, epsilon: f64) -> Result<f64> {
     if !(sigma.is_finite() && sigma > 0.0 && sigma < 1.0) {
-        return Err(ToroidError::InvalidParameter {
-            name: "sigma",
-            value: sigma,
-            reason: "σ = R_i/R_o must lie in (0, 1)".into(),
-        });
+        return Err(ToroidError::InvalidParameter(
+            tensegrity_core::request::InvalidParameter::new(
+                "sigma",
+                sigma,
+                "σ = R_i/R_o must lie in (0, 1)",
+            ),
+        ));
     }
     if !(epsilon.is_finite() && epsilon > 0.0) {
-        return Err(ToroidError::InvalidParameter {
-            name: "epsilon",
-            value: epsilon,
-            reason: "ε = t/T must be positive".into(),
-        });
+        return Err(ToroidError::InvalidParameter(
+            tensegrity_core::request::InvalidParameter::new(
+                "epsilon",
+                epsilon,
+                "ε = t/T must be positive",
+            ),
+        ));
     }
     Ok(1.0 - (1.0 + epsilon) / (1.0 - sigma))
 }
@@ -69,11 +73,9 @@ pub fn tipover(p: &ToroidParams, mass: f64, gravity: f64) -> Result<TipOver> {
     p.validate()?;
     for (name, value) in [("mass", mass), ("gravity", gravity)] {
         if !(value.is_finite() && value > 0.0) {
-            return Err(ToroidError::InvalidParameter {
-                name,
-                value,
-                reason: "must be positive".into(),
-            });
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(name, value, "must be positive"),
+            ));
         }
     }
     let rho = p.outer_tread / p.outer_radius;

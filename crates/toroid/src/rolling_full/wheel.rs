@@ -81,11 +81,9 @@ impl WheelScene {
     /// every other contact node above it).
     pub fn validate(&self) -> Result<()> {
         let bad = |name: &'static str, value: f64, reason: String| {
-            Err(ToroidError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
+            Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(name, value, reason),
+            ))
         };
         let n = self.sides();
         for (name, v) in [
@@ -128,16 +126,16 @@ impl WheelScene {
             for &i in &self.contact_groups[k] {
                 let p = nodes[i];
                 if (p.z - z0).abs() > tol || side * p.y <= 0.0 {
-                    return Err(ToroidError::InvalidParameter {
-                        name: "contact_groups",
-                        value: i as f64,
-                        reason: format!(
+                    return Err(ToroidError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
+                        "contact_groups",
+                        i as f64,
+                        format!(
                             "node {i} of group {k} is not on the starting side: ({:.6}, {:.6}) against the slope z = {z0:.6} and {} y",
                             p.y,
                             p.z,
                             if k == 0 { "negative" } else { "positive" }
                         ),
-                    });
+                    )));
                 }
             }
         }
@@ -147,14 +145,16 @@ impl WheelScene {
             .flatten()
             .find(|&&i| nodes[i].z < z0 - tol);
         if let Some(&i) = below {
-            return Err(ToroidError::InvalidParameter {
-                name: "contact_groups",
-                value: i as f64,
-                reason: format!(
-                    "contact node {i} starts {:.3e} m below the slope",
-                    z0 - nodes[i].z
+            return Err(ToroidError::InvalidParameter(
+                tensegrity_core::request::InvalidParameter::new(
+                    "contact_groups",
+                    i as f64,
+                    format!(
+                        "contact node {i} starts {:.3e} m below the slope",
+                        z0 - nodes[i].z
+                    ),
                 ),
-            });
+            ));
         }
         Ok(())
     }

@@ -1,6 +1,10 @@
-//! Angles as the command line and the sweep specs write them (DESIGN.md): `22.5deg`, `pi/8`,
-//! `3pi/4`, `-pi/4`, `pi`, `2*pi/3`, or a bare number in radians (`0.5`). The `tensegrity`
-//! binary's angle flags use this parser too, so a spec value means what the flag means.
+//! Angles as every front end writes them (DESIGN.md): `22.5deg`, `pi/8`, `3pi/4`, `-pi/4`,
+//! `pi`, `2*pi/3`, or a bare number in radians (`0.5`). The command-line flags, the sweep
+//! specs, the Python keywords and the requests' serde form all read angles here, so a value
+//! means the same wherever it is written.
+//!
+//! [`serde_angle`] and [`serde_angle_option`] deserialise an angle field from a number
+//! (radians) or a string in these forms; it serialises as the number in radians.
 
 use std::f64::consts::PI;
 
@@ -58,6 +62,68 @@ pub fn parse_angle(s: &str) -> Result<f64, String> {
     } else {
         Err(bad())
     }
+}
+
+/// `#[serde(with = "tensegrity_core::angle::serde_angle")]`: an `f64` angle read from radians or
+/// from any form [`parse_angle`] accepts, written in radians.
+///
+/// ```
+/// #[derive(serde::Deserialize)]
+/// struct Slope {
+///     #[serde(with = "tensegrity_core::angle::serde_angle")]
+///     incline: f64,
+/// }
+/// let s: Slope = serde_json::from_str(r#"{"incline": "30deg"}"#).unwrap();
+/// assert!((s.incline - 30f64.to_radians()).abs() < 1e-15);
+/// let s: Slope = serde_json::from_str(r#"{"incline": 0.5}"#).unwrap();
+/// assert_eq!(s.incline, 0.5);
+/// ```
+pub mod serde_angle {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// Writes the angle in radians.
+    pub fn serialize<S: Serializer>(value: &f64, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_f64(*value)
+    }
+
+    /// Reads radians or an angle string.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        match super::AngleValue::deserialize(d)? {
+            super::AngleValue::Number(x) => Ok(x),
+            super::AngleValue::Text(t) => super::parse_angle(&t).map_err(serde::de::Error::custom),
+        }
+    }
+}
+
+/// As [`serde_angle`], for an optional angle (`null` or absent is `None`).
+pub mod serde_angle_option {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// Writes the angle in radians, or `null`.
+    pub fn serialize<S: Serializer>(value: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+        match value {
+            Some(x) => s.serialize_some(x),
+            None => s.serialize_none(),
+        }
+    }
+
+    /// Reads `null`, radians or an angle string.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        match Option::<super::AngleValue>::deserialize(d)? {
+            None => Ok(None),
+            Some(super::AngleValue::Number(x)) => Ok(Some(x)),
+            Some(super::AngleValue::Text(t)) => super::parse_angle(&t)
+                .map(Some)
+                .map_err(serde::de::Error::custom),
+        }
+    }
+}
+
+#[derive(serde::Deserialize)]
+#[serde(untagged)]
+enum AngleValue {
+    Number(f64),
+    Text(String),
 }
 
 #[cfg(test)]
