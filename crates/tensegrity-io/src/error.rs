@@ -188,7 +188,7 @@ impl IoError {
     }
 
     /// A stream error while writing `what`.
-    pub(crate) fn stream(what: &'static str) -> impl Fn(std::io::Error) -> IoError {
+    pub fn stream(what: &'static str) -> impl Fn(std::io::Error) -> IoError {
         move |source| IoError::Stream { what, source }
     }
 }
