@@ -7,6 +7,7 @@
 //!     [--extra-strings PRESTRESS] [--method recursive|global] [--json]
 //! ```
 
+use super::output;
 use crate::cli::angle::parse_angle;
 use anyhow::{Context, Result};
 use clap::{ArgGroup, ValueEnum};
@@ -15,8 +16,9 @@ use michell3d::{
     AnalysisRequest, MemberKind, Method, MichellAnalysis, MichellParams, MichellReport,
     MichellTruss,
 };
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::sink::{FigureSink, FileSink};
 
 /// Force propagation method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -180,6 +182,7 @@ pub fn run(args: &MichellArgs) -> Result<()> {
         return super::michell_optimize::run(opt);
     }
     let _progress = super::guard::michell(args)?;
+    let (sign_map, gamma_sweep) = open_outputs(args)?;
     let (request, check) = match args.extra_strings {
         Some(arg) => {
             let (r, c) = super::michell_extra::resolve(arg, &args.request())?;
@@ -198,13 +201,21 @@ pub fn run(args: &MichellArgs) -> Result<()> {
         ),
         (None, false) => print!("{}", text_report(&analysis.report)),
     }
-    if let Some(path) = &args.sign_map {
-        write_sign_maps(args, &request, &analysis.truss, path)?;
+    if let Some(sink) = sign_map {
+        write_sign_maps(args, &request, &analysis.truss, sink)?;
     }
-    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, request.extra_strings) {
-        write_gamma_sweep(args, &request, &analysis.truss, prestress, path)?;
+    if let (Some(sink), Some(prestress)) = (gamma_sweep, request.extra_strings) {
+        write_gamma_sweep(args, &request, &analysis.truss, prestress, sink)?;
     }
     Ok(())
+}
+
+/// `--sign-map` and `--gamma-sweep`, opened before the analysis.
+fn open_outputs(args: &MichellArgs) -> Result<(Option<FileSink>, Option<FileSink>)> {
+    Ok((
+        output::open("--sign-map", args.sign_map.as_deref(), FileSink::open)?,
+        output::open("--gamma-sweep", args.gamma_sweep.as_deref(), FileSink::open)?,
+    ))
 }
 
 fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
@@ -315,7 +326,7 @@ fn write_sign_maps(
     args: &MichellArgs,
     request: &AnalysisRequest,
     truss: &MichellTruss,
-    path: &Path,
+    mut sink: FileSink,
 ) -> Result<()> {
     use michell3d::signmap::sign_map_rows;
     use sweeps::grids::sign_maps;
@@ -332,9 +343,9 @@ fn write_sign_maps(
         AngleGrid::new(0.0, std::f64::consts::PI, np),
         request.method,
     )?;
-    tensegrity_io::write_file(path, |w| {
-        tensegrity_io::csv::write_sign_maps(w, sign_map_rows(truss, &maps))
-    })?;
+    sink.write_with(|w| tensegrity_io::csv::write_sign_maps(w, sign_map_rows(truss, &maps)))?;
+    let path = sink.path().to_path_buf();
+    sink.finish()?;
     if !args.json {
         for m in &maps {
             println!(
@@ -355,7 +366,7 @@ fn write_gamma_sweep(
     request: &AnalysisRequest,
     truss: &MichellTruss,
     prestress: f64,
-    path: &Path,
+    mut sink: FileSink,
 ) -> Result<()> {
     use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
     let strings = ExtraStrings::new(truss)?;
@@ -368,9 +379,9 @@ fn write_gamma_sweep(
         prestress,
         request.method,
     )?;
-    tensegrity_io::write_file(path, |w| {
-        tensegrity_io::csv::write_gamma_sweep(w, sweep.rows())
-    })?;
+    sink.write_with(|w| tensegrity_io::csv::write_gamma_sweep(w, sweep.rows()))?;
+    let path = sink.path().to_path_buf();
+    sink.finish()?;
     if !args.json {
         let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
             .filter(|&j| !sweep.base_keeps_sign[j])
@@ -399,21 +410,23 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     }
     let material =
         *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
+    let out = output::open("--out", args.out.as_deref(), FileSink::open)?;
+    let svg = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
     let qs: Vec<usize> = (2..=args.max_complexity).collect();
     let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
-    match &args.out {
-        Some(path) => {
-            tensegrity_io::write_file(path, |w| write_mass_table(w, &rows))?;
+    match out {
+        Some(mut sink) => {
+            sink.write_with(|w| write_mass_table(w, &rows))?;
+            let path = sink.path().to_path_buf();
+            sink.finish()?;
             println!("wrote {} rows to {}", rows.len(), path.display());
         }
         None => {
             write_mass_table(std::io::stdout().lock(), &rows)?;
         }
     }
-    if let Some(path) = &args.svg {
-        Figure::new(vec![mass_panel(args, &rows)])
-            .save(path)
-            .with_context(|| format!("writing the figure {}", path.display()))?;
+    if let Some(sink) = svg {
+        sink.finish(&Figure::new(vec![mass_panel(args, &rows)]))?;
     }
     Ok(())
 }

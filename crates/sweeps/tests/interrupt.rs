@@ -80,7 +80,7 @@ fn an_interrupted_sweep_is_marked_incomplete_and_resumes_to_the_single_run() {
         "whole rows, in case order"
     );
     assert_eq!(body.lines().count(), done + 1);
-    let e = merge(&[cut.clone()], &dir.path().join("merged.csv")).unwrap_err();
+    let e = merge(std::slice::from_ref(&cut), &dir.path().join("merged.csv")).unwrap_err();
     assert!(e.to_string().contains("interrupted"), "{e}");
 
     interrupt::clear();

@@ -31,7 +31,7 @@ fn the_handler_finishes_every_open_sink_as_incomplete() {
     csv.record(["0", "1"]).unwrap();
     csv.record(["0.001", "1.5"]).unwrap();
     let mut series = VtkSeriesSink::open(&dir.join("vtk"), &s).unwrap();
-    series.frame(0.0, &s.nodes()).unwrap();
+    series.frame(0.0, s.nodes()).unwrap();
     let figure = FigureSink::open(&dir.join("f.svg")).unwrap();
     let empty_dir = OutputDir::create(&dir.join("empty")).unwrap();
     let nothing = CsvSink::open(&dir.join("never.csv"), "table").unwrap();
@@ -55,7 +55,7 @@ fn the_handler_finishes_every_open_sink_as_incomplete() {
         Err(IoError::Closed { .. })
     ));
     assert!(matches!(
-        series.frame(0.1, &s.nodes()),
+        series.frame(0.1, s.nodes()),
         Err(IoError::Closed { .. })
     ));
     assert!(csv.finish().is_err());

@@ -31,6 +31,8 @@ impl Interruptible for Shared {
 /// assert!(!path.exists()); // not there until finished
 /// sink.finish()?;
 /// assert_eq!(std::fs::read_to_string(&path).unwrap(), "nodes = []\n");
+/// FileSink::open(&path)?.finish_with("nodes = [[0.0, 0.0, 0.0]]\n")?;
+/// assert!(std::fs::read_to_string(&path).unwrap().contains("0.0"));
 /// # std::fs::remove_file(&path).unwrap();
 /// # Ok::<(), tensegrity_io::IoError>(())
 /// ```
@@ -62,6 +64,15 @@ impl FileSink {
         let mut staged = self.state.lock().unwrap_or_else(|e| e.into_inner());
         let out = staged.out()?;
         fill(out).map_err(|e| e.at(&self.path))
+    }
+
+    /// Writes `bytes`, then finishes (a file whose whole text is known at the end).
+    pub fn finish_with(mut self, bytes: impl AsRef<[u8]>) -> Result<()> {
+        self.write_with(|w| {
+            w.write_all(bytes.as_ref())
+                .map_err(IoError::stream("output file"))
+        })?;
+        self.finish()
     }
 
     /// Flushes the file and renames it onto the target.

@@ -169,7 +169,7 @@ fn vtk_series_finish_lists_every_frame() {
     let out = dir.join("vtk");
     let mut series = VtkSeriesSink::open(&out, &s).unwrap();
     for k in 0..3 {
-        series.frame(0.5 * k as f64, &s.nodes()).unwrap();
+        series.frame(0.5 * k as f64, s.nodes()).unwrap();
     }
     // the first frame wrote a readable collection already (marked as still being written)
     let pvd = std::fs::read_to_string(out.join("series.pvd")).unwrap();
@@ -196,8 +196,8 @@ fn vtk_series_incomplete_and_dropped_keep_their_frames_under_a_marked_collection
     for (name, finish) in [("a", true), ("b", false)] {
         let out = dir.join(name);
         let mut series = VtkSeriesSink::open(&out, &s).unwrap();
-        series.frame(0.0, &s.nodes()).unwrap();
-        series.frame(0.1, &s.nodes()).unwrap();
+        series.frame(0.0, s.nodes()).unwrap();
+        series.frame(0.1, s.nodes()).unwrap();
         if finish {
             assert_eq!(
                 series

@@ -107,8 +107,8 @@ impl Interruptible for Mutex<Series> {
 /// let dir = std::env::temp_dir().join(format!("vtk-sink-doc-{}", std::process::id()));
 /// # let _ = std::fs::remove_dir_all(&dir);
 /// let mut series = VtkSeriesSink::open(&dir, &s)?; // the directory exists from here on
-/// series.frame(0.0, &s.nodes())?;
-/// series.frame(0.5, &s.nodes())?;
+/// series.frame(0.0, s.nodes())?;
+/// series.frame(0.5, s.nodes())?;
 /// assert_eq!(series.finish()?, 2);
 /// assert!(dir.join("series.pvd").exists() && dir.join("frame_00001.vtu").exists());
 /// # std::fs::remove_dir_all(&dir).unwrap();
