@@ -8,7 +8,8 @@
 //! 2. if the running command declared that it polls the flag ([`polled`]), that is all: the
 //!    command stops at its next check, finishes its sinks as incomplete and exits with the
 //!    interrupted category (exit code 130 on the command line);
-//! 3. otherwise — or on a second signal, when the polling command is slow to stop — every sink
+//! 3. otherwise — or on a second signal (more than [`REPEAT_DEBOUNCE`] after the first), when
+//!    the polling command is slow to stop — every sink
 //!    still open is finished at once from the handler's thread ([`finish_open_sinks`]): a CSV
 //!    keeps its rows so far with a `# incomplete: interrupted` trailer, a VTK series its
 //!    complete frames and a `series.pvd` that lists them, whole-file outputs (figures, JSON,
@@ -31,15 +32,22 @@
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, Weak};
+use std::time::{Duration, Instant};
 
 /// The stop flag.
 static STOP: AtomicBool = AtomicBool::new(false);
-/// Signals received so far.
-static SIGNALS: AtomicUsize = AtomicUsize::new(0);
 /// Live [`Polled`] guards.
 static POLLED: AtomicUsize = AtomicUsize::new(0);
 /// The sinks opened so far (weak: a finished sink is gone).
 static OPEN: Mutex<Vec<Weak<dyn Interruptible>>> = Mutex::new(Vec::new());
+/// The lock files held now (removed when the handler ends the process).
+static LOCKS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// When the first signal arrived.
+static FIRST: Mutex<Option<Instant>> = Mutex::new(None);
+
+/// A second signal within this time of the first is the same request (e.g. `timeout` signals
+/// the command and its process group), not a demand to stop at once.
+pub const REPEAT_DEBOUNCE: Duration = Duration::from_millis(500);
 
 /// The exit code of an interrupted run (128 + 2, the shell's convention for Ctrl-C).
 pub const EXIT_CODE: i32 = 130;
@@ -57,6 +65,22 @@ pub(crate) fn register<T: Interruptible + 'static>(sink: &Arc<T>) {
     let mut open = OPEN.lock().unwrap_or_else(|e| e.into_inner());
     open.retain(|w| w.strong_count() > 0);
     open.push(weak);
+}
+
+/// Records a lock file held by this process.
+pub(crate) fn hold_lock(path: &std::path::Path) {
+    LOCKS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(path.to_path_buf());
+}
+
+/// Forgets a lock file released.
+pub(crate) fn release_lock(path: &std::path::Path) {
+    let mut locks = LOCKS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(k) = locks.iter().position(|p| p == path) {
+        locks.swap_remove(k);
+    }
 }
 
 /// Whether a stop was requested (a signal arrived, or [`request`] was called).
@@ -80,7 +104,7 @@ pub fn request() {
 /// Python session, clears it before the next one).
 pub fn clear() {
     STOP.store(false, Ordering::SeqCst);
-    SIGNALS.store(0, Ordering::SeqCst);
+    *FIRST.lock().unwrap_or_else(|e| e.into_inner()) = None;
 }
 
 /// While alive, the first signal only sets the flag: the current command polls
@@ -117,6 +141,18 @@ pub fn finish_open_sinks(reason: &str) -> Vec<PathBuf> {
         .collect()
 }
 
+/// What the handler does when it ends the process: the open sinks finished as incomplete,
+/// the lock files still held (e.g. a sweep's, whose file stays for resume) removed.
+fn end_process(report: fn(&[PathBuf])) -> ! {
+    let kept = finish_open_sinks("interrupted");
+    for path in std::mem::take(&mut *LOCKS.lock().unwrap_or_else(|e| e.into_inner())) {
+        // still locked by this process until it exits: removing it is safe (see `PathLock`)
+        let _ = std::fs::remove_file(path);
+    }
+    report(&kept);
+    std::process::exit(EXIT_CODE);
+}
+
 /// Installs the SIGINT / SIGTERM (and SIGHUP) handler once per process; later calls, or a
 /// handler set elsewhere, keep the first. `report` is called with the paths kept just before
 /// the process exits with [`EXIT_CODE`] (when no command polls the flag, or on a second
@@ -126,13 +162,14 @@ pub fn install(report: fn(&[PathBuf])) {
     // write files and exit
     let _ = ctrlc::set_handler(move || {
         STOP.store(true, Ordering::SeqCst);
-        let first = SIGNALS.fetch_add(1, Ordering::SeqCst) == 0;
-        if first && is_polled() {
-            return;
+        let first = *FIRST
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get_or_insert_with(Instant::now);
+        if is_polled() && first.elapsed() < REPEAT_DEBOUNCE {
+            return; // the first request (or its echo): the command stops by itself
         }
-        let kept = finish_open_sinks("interrupted");
-        report(&kept);
-        std::process::exit(EXIT_CODE);
+        end_process(report);
     });
 }
 

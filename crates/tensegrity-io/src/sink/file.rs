@@ -11,11 +11,32 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-type Shared = Mutex<Staged<BufWriter<File>>>;
+/// The state shared with the interrupt handler: the file, and its paths outside the mutex.
+#[derive(Debug)]
+struct Shared {
+    staged: Mutex<Staged<BufWriter<File>>>,
+    tmp: PathBuf,
+    lock: PathBuf,
+}
+
+impl Shared {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Staged<BufWriter<File>>> {
+        self.staged.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
 
 impl Interruptible for Shared {
     fn interrupt(&self, _reason: &str) -> Option<PathBuf> {
-        self.lock().unwrap_or_else(|e| e.into_inner()).discard();
+        match self.staged.try_lock() {
+            Ok(mut staged) => staged.discard(),
+            Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner().discard(),
+            // the command is filling the file (a long table written at once): remove it
+            // under its feet, the process is about to exit
+            Err(std::sync::TryLockError::WouldBlock) => {
+                let _ = std::fs::remove_file(&self.tmp);
+                let _ = std::fs::remove_file(&self.lock);
+            }
+        }
         None
     }
 }
@@ -45,7 +66,11 @@ pub struct FileSink {
 impl FileSink {
     /// Locks `path` and creates its temporary file.
     pub fn open(path: &Path) -> Result<Self> {
-        let state = Arc::new(Mutex::new(Staged::open(path, BufWriter::new)?));
+        let state = Arc::new(Shared {
+            staged: Mutex::new(Staged::open(path, BufWriter::new)?),
+            tmp: super::staged::temporary_path(path),
+            lock: super::lock::lock_path(path),
+        });
         interrupt::register(&state);
         Ok(Self {
             state,
@@ -61,7 +86,7 @@ impl FileSink {
     /// Writes through `fill` (e.g. one of the [`crate::csv`] writers); its stream errors come
     /// back as [`IoError::Write`] naming the target.
     pub fn write_with<T>(&mut self, fill: impl FnOnce(&mut dyn Write) -> Result<T>) -> Result<T> {
-        let mut staged = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let mut staged = self.state.lock();
         let out = staged.out()?;
         fill(out).map_err(|e| e.at(&self.path))
     }
@@ -77,19 +102,19 @@ impl FileSink {
 
     /// Flushes the file and renames it onto the target.
     pub fn finish(self) -> Result<()> {
-        let mut staged = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let mut staged = self.state.lock();
         staged.commit(|w| w.into_inner().map_err(|e| e.into_error()), None)
     }
 }
 
 impl Write for FileSink {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let mut staged = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let mut staged = self.state.lock();
         staged.out().map_err(std::io::Error::other)?.write(buf)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        let mut staged = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let mut staged = self.state.lock();
         staged.out().map_err(std::io::Error::other)?.flush()
     }
 }

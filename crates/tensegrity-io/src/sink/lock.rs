@@ -69,6 +69,7 @@ impl PathLock {
             // who holds it, for the message of a refused writer (best effort)
             let _ = file.set_len(0);
             let _ = writeln!(file, "pid {}", std::process::id());
+            crate::interrupt::hold_lock(&path);
             return Ok(Self {
                 file: Some(file),
                 path,
@@ -86,6 +87,7 @@ impl Drop for PathLock {
     fn drop(&mut self) {
         // removed while still held, then unlocked by closing
         let _ = std::fs::remove_file(&self.path);
+        crate::interrupt::release_lock(&self.path);
         drop(self.file.take());
     }
 }
