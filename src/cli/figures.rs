@@ -184,21 +184,19 @@ fn make(ctx: &Ctx, sink: FigureSink, build: Builder) -> Result<PathBuf> {
     Ok(path)
 }
 
-/// The directory, its `data/` and one figure sink per chosen figure, opened before any work.
+/// The directory and its `data/` (a bad `--out` fails here), and one figure sink per chosen
+/// figure, all opened before any work; a figure whose file cannot be opened fails alone.
 fn open_outputs(args: &FiguresArgs, chosen: &[usize], ext: &str) -> Result<Outputs> {
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
     let sinks = chosen
         .iter()
-        .map(|&i| {
-            let path = dir.join(file_name(FIGURES[i].0, ext));
-            output::open_required("--out", &path, FigureSink::open)
-        })
-        .collect::<Result<Vec<_>>>()?;
+        .map(|&i| Ok(FigureSink::open(&dir.join(file_name(FIGURES[i].0, ext)))?))
+        .collect();
     Ok((dir, data, sinks))
 }
 
-type Outputs = (OutputDir, OutputDir, Vec<FigureSink>);
+type Outputs = (OutputDir, OutputDir, Vec<Result<FigureSink>>);
 
 /// The figures `--only` selects, checked against the list.
 fn selected(args: &FiguresArgs) -> Result<Vec<usize>> {
@@ -265,12 +263,13 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
 /// Builds the `chosen` figures on `threads` workers; outcomes in the order of `chosen`.
 fn build_all(
     ctx: &Ctx,
-    sinks: Vec<FigureSink>,
+    sinks: Vec<Result<FigureSink>>,
     chosen: &[usize],
     threads: usize,
 ) -> Vec<Result<PathBuf>> {
     let next = AtomicUsize::new(0);
-    let sinks: Mutex<Vec<Option<FigureSink>>> = Mutex::new(sinks.into_iter().map(Some).collect());
+    let sinks: Mutex<Vec<Option<Result<FigureSink>>>> =
+        Mutex::new(sinks.into_iter().map(Some).collect());
     let slots: Mutex<Vec<Option<Result<PathBuf>>>> =
         Mutex::new((0..chosen.len()).map(|_| None).collect());
     std::thread::scope(|s| {
@@ -280,9 +279,12 @@ fn build_all(
                 let Some(&i) = chosen.get(k) else { break };
                 let (_, _, build) = FIGURES[i];
                 let sink = sinks.lock().unwrap_or_else(|e| e.into_inner())[k].take();
-                let Some(sink) = sink else { break };
-                let outcome = std::panic::catch_unwind(|| make(ctx, sink, build))
-                    .unwrap_or_else(|_| Err(anyhow::anyhow!("the figure's code panicked")));
+                let outcome = match sink {
+                    Some(Ok(sink)) => std::panic::catch_unwind(|| make(ctx, sink, build))
+                        .unwrap_or_else(|_| Err(anyhow::anyhow!("the figure's code panicked"))),
+                    Some(Err(e)) => Err(e),
+                    None => break,
+                };
                 slots.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(outcome);
             });
         }

@@ -270,3 +270,37 @@ fn json_and_figure_sinks_write_whole_files() {
         .is_err());
     assert_eq!(listing(&dir), ["f.PNG", "r.json"]);
 }
+
+#[test]
+fn a_rolling_history_streamed_through_a_csv_sink_is_the_file_of_write_rolling_history() {
+    use toroid::rolling::RollingSample;
+    let dir = scratch("rolling");
+    let samples: Vec<RollingSample> = (0..4)
+        .map(|k| {
+            let t = 1e-3 * k as f64;
+            RollingSample {
+                t,
+                s: 0.1 * t,
+                h: 0.9,
+                pivot: 0.0,
+                omega: -2.0 * t,
+                normal: 12.5,
+                tangential: -0.25,
+                energy: 3.0,
+                slip: 0.0,
+            }
+        })
+        .collect();
+    let path = dir.join("r.csv");
+    let mut sink = CsvSink::open(&path, "rolling history CSV").unwrap();
+    for s in &samples {
+        sink.serialize(&crate::csv::RollingRow::from(s)).unwrap();
+    }
+    sink.finish().unwrap();
+    let mut want = Vec::new();
+    crate::csv::write_rolling_history(&mut want, &samples).unwrap();
+    assert_eq!(std::fs::read(&path).unwrap(), want);
+    assert!(String::from_utf8(want)
+        .unwrap()
+        .starts_with("t,axle_s,axle_h,omega,pivot_m,normal_N,tangential_N,energy_J,slip_m_s\n"));
+}
