@@ -51,6 +51,7 @@ fn main() {
     quiet_on_broken_pipe();
     let cli = parse();
     cli::guard::init(&cli.limits);
+    cli::exit::install_interrupt_handler();
     let result = match &cli.command {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),

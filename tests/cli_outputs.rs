@@ -217,3 +217,334 @@ fn sigint_stops_a_run_between_samples_too() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("interrupted at t = "));
     assert!(start.elapsed() < Duration::from_secs(10), "stopped at once");
 }
+
+/// Resource limits far above any request: the point of the bad-path tests is that the path is
+/// checked before the (deliberately huge) work, not that the guard refuses the work.
+const NO_LIMITS: [&str; 6] = [
+    "--max-work",
+    "1e12",
+    "--max-memory",
+    "1000Ti",
+    "--max-output",
+    "1000Ti",
+];
+
+/// Every output flag of every command whose outputs are io sinks, with a command line whose
+/// work takes minutes to hours (`{}` stands for the output path) and whether the output is a
+/// directory.
+fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
+    let spec = dir.join("big.toml");
+    std::fs::write(
+        &spec,
+        "study = \"toroid\"\n[axes]\nsides = { from = 8, to = 5007, step = 1 }\n",
+    )
+    .unwrap();
+    let spec = spec.to_string_lossy().into_owned();
+    let sim = "simulate examples/double_pendulum.toml --t-end 1e6 --dt 1e-4";
+    let michell = "michell --complexity 6 --cylindrical 0.25 --beta pi/6 --phi pi/8";
+    let tbar = "tbar --complexity 3 --beta pi/6 --phi pi/16 --cylindrical 0.1 --wheel --rim body";
+    let rows: Vec<(&str, String, bool)> = vec![
+        ("simulate --out", format!("{sim} --out {{}}"), false),
+        ("simulate --vtk", format!("{sim} --vtk {{}}"), true),
+        (
+            "bench work-precision --out",
+            "bench work-precision --out {}".into(),
+            true,
+        ),
+        ("sweep --out", format!("sweep {spec} --out {{}}"), false),
+        (
+            "sweep merge --out",
+            format!("sweep merge {spec} --out {{}}"),
+            false,
+        ),
+        (
+            "sweep plot --out",
+            format!("sweep plot {spec} --x a --y b --out {{}}"),
+            false,
+        ),
+        (
+            "michell --sign-map",
+            format!("{michell} --map-grid 4000x2000 --sign-map {{}}"),
+            false,
+        ),
+        (
+            "michell --gamma-sweep",
+            format!("{michell} --extra-strings 100 --gamma-sweep {{}}"),
+            false,
+        ),
+        (
+            "michell-table --out",
+            "michell-table --max-complexity 60 --out {}".into(),
+            false,
+        ),
+        (
+            "michell-table --svg",
+            "michell-table --max-complexity 60 --svg {}".into(),
+            false,
+        ),
+        (
+            "tipover --grid",
+            "tipover --grid-points 3000 --grid {}".into(),
+            false,
+        ),
+        (
+            "toroid --export-scene",
+            "toroid --sides 4000 --export-scene {}".into(),
+            false,
+        ),
+        (
+            "tbar --export-scene",
+            format!("{tbar} --export-scene {{}}"),
+            false,
+        ),
+        ("tbar --vtk", format!("{tbar} --vtk {{}}"), false),
+        ("tbar --svg", format!("{tbar} --svg {{}}"), false),
+        ("figures --out", "figures --out {}".into(), true),
+    ];
+    rows.into_iter()
+        .map(|(name, line, is_dir)| {
+            let args = line.split(' ').map(str::to_string).collect();
+            (name, args, is_dir)
+        })
+        .collect()
+}
+
+/// The names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// Unwritable places: a missing directory, a path through a regular file, and (unless this
+/// process can write anywhere, as root can) a read-only directory.
+#[cfg(unix)]
+fn unwritable_parents(dir: &Path) -> Vec<PathBuf> {
+    use std::os::unix::fs::PermissionsExt;
+    let blocker = dir.join("blocker");
+    std::fs::write(&blocker, "a file, not a directory\n").unwrap();
+    let ro = dir.join("read-only");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let mut parents = vec![PathBuf::from("/nonexistent-dir"), blocker];
+    if std::fs::write(ro.join("probe"), "").is_err() {
+        parents.push(ro);
+    } else {
+        let _ = std::fs::remove_file(ro.join("probe"));
+        eprintln!("note: this process writes into read-only directories (root): case skipped");
+    }
+    parents
+}
+
+#[cfg(unix)]
+#[test]
+fn every_output_flag_refuses_an_unwritable_path_before_any_work() {
+    let dir = scratch("unwritable");
+    let flags = output_flags(&dir);
+    let parents = unwritable_parents(&dir);
+    let before = listing(&dir);
+    for (name, args, is_dir) in &flags {
+        for parent in &parents {
+            let bad = parent.join(if *is_dir { "out-dir" } else { "x.svg" });
+            let bad = if !is_dir && !name.ends_with("--svg") && !name.contains("plot") {
+                bad.with_extension("csv")
+            } else {
+                bad
+            };
+            let bad_text = bad.to_string_lossy().into_owned();
+            let args: Vec<&str> = args
+                .iter()
+                .map(|a| {
+                    if a == "{}" {
+                        bad_text.as_str()
+                    } else {
+                        a.as_str()
+                    }
+                })
+                .collect();
+            let start = Instant::now();
+            let out = bin().args(&args).args(NO_LIMITS).output().unwrap();
+            let elapsed = start.elapsed();
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            // a diagnostic, not the pass condition: the work behind each line takes minutes
+            eprintln!(
+                "{name} {bad_text}: exit {:?} after {elapsed:.2?}",
+                out.status.code()
+            );
+            assert_eq!(out.status.code(), Some(2), "{name} {bad_text}: {stderr}");
+            assert!(
+                stderr.contains(&bad_text),
+                "{name}: the message names the path: {stderr}"
+            );
+            assert!(!bad.exists(), "{name}: nothing at {bad_text}");
+            assert_eq!(
+                listing(&dir),
+                before,
+                "{name}: no output, temporary or lock file left"
+            );
+        }
+    }
+    assert!(!Path::new("/nonexistent-dir").exists());
+}
+
+/// `simulate --out CSV --vtk DIR` started on a run of hours; returns once the CSV has rows
+/// and the series its first `series.pvd`.
+fn long_run_with_vtk(dir: &Path, csv: &Path, vtk: &Path) -> std::process::Child {
+    let child = bin()
+        .args([
+            "simulate",
+            "examples/double_pendulum.toml",
+            "--t-end",
+            "5e4",
+            "--integrator",
+            "rk4",
+            "--dt",
+            "1e-3",
+            "--output-interval",
+            "1e-2",
+        ])
+        .args([
+            "--out",
+            csv.to_str().unwrap(),
+            "--vtk",
+            vtk.to_str().unwrap(),
+        ])
+        .args(NO_LIMITS)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let tmp = dir.join(".traj.csv.tmp");
+    let start = Instant::now();
+    while std::fs::metadata(&tmp).map_or(0, |m| m.len()) < 20_000
+        || !vtk.join("series.pvd").exists()
+    {
+        assert!(start.elapsed() < Duration::from_secs(60), "no progress");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child
+}
+
+#[cfg(unix)]
+#[test]
+fn sigint_during_simulate_keeps_a_complete_csv_and_a_readable_series() {
+    let dir = scratch("sigint-vtk");
+    let (csv, vtk) = (dir.join("traj.csv"), dir.join("vtk"));
+    let child = long_run_with_vtk(&dir, &csv, &vtk);
+    let pid = child.id().to_string();
+    assert!(Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines
+        .last()
+        .unwrap()
+        .starts_with("# incomplete: interrupted at t = "));
+    let width = lines[0].split(',').count();
+    assert!(lines[1..lines.len() - 1]
+        .iter()
+        .all(|l| l.split(',').count() == width));
+    // the series: every frame named by series.pvd exists and is whole
+    let pvd = std::fs::read_to_string(vtk.join("series.pvd")).unwrap();
+    assert!(pvd.trim_end().ends_with("</VTKFile>") && pvd.contains("<!-- incomplete: "));
+    let frames: Vec<&str> = pvd
+        .split("file=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    assert!(frames.len() > 1);
+    for f in &frames {
+        let frame = std::fs::read_to_string(vtk.join(f)).unwrap();
+        assert!(frame.trim_end().ends_with("</VTKFile>"), "{f} is whole");
+    }
+    assert_eq!(
+        listing(&vtk).len(),
+        frames.len() + 1,
+        "series.pvd and its frames only"
+    );
+    assert_eq!(
+        listing(&dir),
+        ["traj.csv", "vtk"],
+        "no temporary or lock file left"
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_second_run_writing_the_same_output_is_refused() {
+    let dir = scratch("two-writers");
+    let (csv, vtk) = (dir.join("traj.csv"), dir.join("vtk"));
+    let first = long_run_with_vtk(&dir, &csv, &vtk);
+    let pid = first.id().to_string();
+    for flag in ["--out", "--vtk"] {
+        let path = if flag == "--out" { &csv } else { &vtk };
+        let second = bin()
+            .args(["simulate", "examples/double_pendulum.toml", "--t-end", "1"])
+            .args([flag, path.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&second.stderr);
+        assert_eq!(second.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains("another run") && stderr.contains(&format!("pid {pid}")),
+            "{stderr}"
+        );
+        assert!(
+            stderr.contains(flag) && stderr.contains(path.to_str().unwrap()),
+            "{stderr}"
+        );
+    }
+    Command::new("kill").args(["-INT", &pid]).status().unwrap();
+    let out = first.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130));
+    // the first run's rows, under its own (interrupted) message
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.lines().last().unwrap().starts_with("# incomplete: "));
+}
+
+#[cfg(unix)]
+#[test]
+fn sigint_during_a_command_that_does_not_poll_leaves_no_partial_output() {
+    let dir = scratch("sigint-bench");
+    let out_dir = dir.join("wp");
+    let child = bin()
+        .args([
+            "bench",
+            "work-precision",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ])
+        .args(NO_LIMITS)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !out_dir.join(".work_precision.svg.tmp").exists() {
+        assert!(start.elapsed() < Duration::from_secs(60), "no progress");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("interrupted"));
+    // the directory this run created, its temporary and lock files: all gone
+    assert!(listing(&dir).is_empty(), "{:?}", listing(&dir));
+}

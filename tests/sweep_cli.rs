@@ -226,6 +226,64 @@ fn kill_9_then_resume_gives_the_single_run() {
     assert_eq!(std::fs::read(&cut).unwrap(), want);
 }
 
+#[cfg(unix)]
+#[test]
+fn sigint_marks_the_file_incomplete_exits_130_and_resume_finishes_it() {
+    let dir = scratch("sigint");
+    // 40 rigid rolls of a few tens of milliseconds each, on one thread
+    let spec = write(
+        &dir,
+        "roll.toml",
+        "study = \"roll\"\n[fixed]\nfidelity = \"rigid\"\nt_end = 0.6\n[axes]\nsides = { from = 6, to = 45, step = 1 }\n",
+    );
+    let path = |n: &str| dir.join(n).to_string_lossy().into_owned();
+    let (single, cut) = (path("single.csv"), path("cut.csv"));
+    assert_ok(&run(&[
+        "sweep",
+        &spec,
+        "--out",
+        &single,
+        "--threads",
+        "1",
+        "--quiet",
+    ]));
+    let child = bin()
+        .args(["sweep", &spec, "--out", &cut, "--threads", "1", "--quiet"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while std::fs::read(&cut).map_or(0, |b| b.iter().filter(|&&c| c == b'\n').count()) < 4 {
+        assert!(start.elapsed().as_secs() < 60, "no progress");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    // a second sweep of the same file is refused while the first runs
+    let second = run(&["sweep", &spec, "--out", &cut, "--quiet"]);
+    assert_eq!(second.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&second.stderr).contains("another run"));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted after"), "{stderr}");
+    let text = std::fs::read_to_string(&cut).unwrap();
+    let (body, last) = text.trim_end().rsplit_once('\n').unwrap();
+    assert!(
+        last.starts_with("# incomplete: interrupted after "),
+        "{last}"
+    );
+    let want = std::fs::read_to_string(&single).unwrap();
+    assert!(want.starts_with(&format!("{body}\n")));
+    assert_ok(&run(&[
+        "sweep", &spec, "--out", &cut, "--resume", "--quiet",
+    ]));
+    assert_eq!(std::fs::read_to_string(&cut).unwrap(), want);
+    assert!(!dir.join(".cut.csv.lock").exists());
+}
+
 #[test]
 fn bad_specs_are_usage_errors_before_any_case() {
     let dir = scratch("bad");

@@ -3,12 +3,14 @@
 //! [`tensegrity_core::dynamics::work_precision`]), written as CSV and a figure (log–log,
 //! one curve per integrator, one panel per scene).
 
-use anyhow::{Context, Result};
+use super::output;
+use anyhow::Result;
 use std::path::PathBuf;
 use tensegrity_core::dynamics::work_precision::{self, Point};
 use tensegrity_core::dynamics::IntegratorKind;
-use tensegrity_io::csv::{write_work_precision, WorkPrecisionRow};
+use tensegrity_io::csv::WorkPrecisionRow;
 use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]
@@ -28,7 +30,8 @@ pub enum BenchCommand {
 /// Arguments of `tensegrity bench work-precision`.
 #[derive(clap::Args, Debug)]
 pub struct WorkPrecisionArgs {
-    /// Output directory for work_precision.csv and work_precision.svg.
+    /// Output directory for work_precision.csv and work_precision.svg (created if missing;
+    /// its parent must exist).
     #[arg(long, value_name = "DIR", default_value = "work-precision")]
     pub out: PathBuf,
     /// Fewer points and a single timing repetition (for a smoke test).
@@ -44,17 +47,19 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
+    // the directory and both files are opened before the (long) measurement
+    let dir = output::open_required("--out", &args.out, OutputDir::create)?;
+    let csv_path = dir.join("work_precision.csv");
+    let mut csv = output::open_required("--out", &csv_path, |p| {
+        CsvSink::open(p, "work-precision CSV")
+    })?;
+    let svg_path = dir.join("work_precision.svg");
+    let svg = output::open_required("--out", &svg_path, FigureSink::open)?;
     let points = work_precision::measure(args.quick)?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
-    let csv_path = args.out.join("work_precision.csv");
-    let rows: Vec<WorkPrecisionRow> = points.iter().map(row).collect();
-    tensegrity_io::write_file(&csv_path, |w| write_work_precision(w, &rows))
-        .with_context(|| format!("writing {}", csv_path.display()))?;
-    let svg_path = args.out.join("work_precision.svg");
-    figure(&points)
-        .save(&svg_path)
-        .with_context(|| format!("writing {}", svg_path.display()))?;
+    csv.extend(points.iter().map(row))?;
+    csv.finish()?;
+    svg.finish(&figure(&points))?;
+    dir.keep();
     println!(
         "{} points written to {} and {}",
         points.len(),

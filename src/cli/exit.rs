@@ -2,7 +2,9 @@
 //! usage (clap's own errors exit 2 as well).
 
 use michell3d::MichellError;
+use tensegrity_core::request::{Categorized, Category};
 use tensegrity_core::CoreError;
+use tensegrity_io::interrupt::Interrupted;
 use tensegrity_io::IoError;
 use toroid::ToroidError;
 
@@ -15,14 +17,21 @@ pub const BAD_INPUT: i32 = 2;
 /// Interrupted by SIGINT/SIGTERM (128 + 2, the shell's convention for Ctrl-C).
 pub const INTERRUPTED: i32 = 130;
 
-/// A run stopped by a signal; the outputs so far were kept, marked incomplete.
-#[derive(Debug, thiserror::Error)]
-#[error("interrupted at t = {t} s{}", kept.map_or(String::new(), |n| format!("; {n} trajectory rows kept, marked incomplete")))]
-pub struct Interrupted {
-    /// Time reached (s).
-    pub t: f64,
-    /// Trajectory rows kept, when a trajectory was being written.
-    pub kept: Option<usize>,
+/// Installs the SIGINT/SIGTERM handler of [`tensegrity_io::interrupt`]: a command that polls
+/// the stop flag finishes its outputs as incomplete and exits [`INTERRUPTED`]; any other is
+/// ended by the handler, which keeps the rows so far of its open sinks.
+pub fn install_interrupt_handler() {
+    tensegrity_io::interrupt::install(|kept| {
+        let kept: Vec<String> = kept.iter().map(|p| p.display().to_string()).collect();
+        if kept.is_empty() {
+            eprintln!("error: interrupted");
+        } else {
+            eprintln!(
+                "error: interrupted; kept, marked incomplete: {}",
+                kept.join(", ")
+            );
+        }
+    });
 }
 
 /// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), [`BAD_INPUT`]
@@ -34,13 +43,19 @@ pub fn code(e: &anyhow::Error) -> i32 {
     });
     if broken_pipe {
         OK
-    } else if e.downcast_ref::<Interrupted>().is_some() {
+    } else if e.chain().any(is_interrupted) {
         INTERRUPTED
     } else if e.chain().any(is_bad_input) {
         BAD_INPUT
     } else {
         FAILURE
     }
+}
+
+fn is_interrupted(e: &(dyn std::error::Error + 'static)) -> bool {
+    e.is::<Interrupted>()
+        || e.downcast_ref::<sweeps::SweepError>()
+            .is_some_and(|s| s.is_interrupted())
 }
 
 fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
@@ -83,9 +98,8 @@ fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
     if let Some(e) = e.downcast_ref::<sweeps::SweepError>() {
         return e.is_input_error();
     }
-    e.downcast_ref::<IoError>().is_some_and(
-        |e| !matches!(e, IoError::Core(c) if !matches!(c, CoreError::InvalidParameter { .. })),
-    )
+    e.downcast_ref::<IoError>()
+        .is_some_and(|e| e.category() == Category::Input)
 }
 
 /// The error and its causes joined by `: `, leaving out a cause its parent's message

@@ -16,17 +16,20 @@ mod michell;
 mod tbar;
 mod wheel;
 
+use super::output;
 use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use sweeps::{RunOptions, Silent, Spec};
 use tensegrity_io::figure::Figure;
+use tensegrity_io::sink::{FigureSink, OutputDir};
 
 /// Arguments of `tensegrity figures`.
 #[derive(clap::Args, Debug)]
 pub struct FiguresArgs {
-    /// Output directory (created if missing); the sweeps' CSVs go to DIR/data/.
+    /// Output directory (created if missing; its parent must exist); the sweeps' CSVs go to
+    /// DIR/data/.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Coarser grids and shorter runs (reduced rigid rolling model) for a quick check.
@@ -173,22 +176,35 @@ pub fn file_name(number: &str, ext: &str) -> String {
     format!("fig_{}.{ext}", number.replace('.', "_"))
 }
 
-/// Builds and saves one figure.
-fn make(ctx: &Ctx, dir: &Path, number: &str, build: Builder) -> Result<PathBuf> {
-    let path = dir.join(file_name(number, ctx.ext));
+/// Builds one figure and writes it into its sink (opened before any work).
+fn make(ctx: &Ctx, sink: FigureSink, build: Builder) -> Result<PathBuf> {
     let figure = build(ctx)?;
-    figure
-        .save(&path)
-        .with_context(|| format!("writing {}", path.display()))?;
+    let path = sink.path().to_path_buf();
+    sink.finish(&figure)?;
     Ok(path)
 }
+
+/// The directory and its `data/` (a bad `--out` fails here), and one figure sink per chosen
+/// figure, all opened before any work; a figure whose file cannot be opened fails alone.
+fn open_outputs(args: &FiguresArgs, chosen: &[usize], ext: &str) -> Result<Outputs> {
+    let dir = output::open_required("--out", &args.out, OutputDir::create)?;
+    let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
+    let sinks = chosen
+        .iter()
+        .map(|&i| Ok(FigureSink::open(&dir.join(file_name(FIGURES[i].0, ext)))?))
+        .collect();
+    Ok((dir, data, sinks))
+}
+
+type Outputs = (OutputDir, OutputDir, Vec<Result<FigureSink>>);
 
 /// The figures `--only` selects, checked against the list.
 fn selected(args: &FiguresArgs) -> Result<Vec<usize>> {
     if args.only.is_empty() {
         return Ok((0..FIGURES.len()).collect());
     }
-    args.only
+    let mut chosen = args
+        .only
         .iter()
         .map(|n| {
             let n = n.trim().trim_start_matches("fig_").replace('_', ".");
@@ -197,26 +213,32 @@ fn selected(args: &FiguresArgs) -> Result<Vec<usize>> {
                 anyhow::anyhow!("--only: no figure {n} (known: {})", all.join(", "))
             })
         })
-        .collect()
+        .collect::<Result<Vec<_>>>()?;
+    // one sink per file: a figure named twice is drawn once
+    chosen.sort_unstable();
+    chosen.dedup();
+    Ok(chosen)
 }
 
 /// Runs `tensegrity figures`.
 pub fn run(args: &FiguresArgs) -> Result<()> {
     let chosen = selected(args)?;
+    let ext = if args.png { "png" } else { "svg" };
+    let (dir, data, sinks) = open_outputs(args, &chosen, ext)?;
     let ctx = Ctx {
         quick: args.quick,
-        data: args.out.join("data"),
-        ext: if args.png { "png" } else { "svg" },
+        data: data.path().to_path_buf(),
+        ext,
         rolling: std::sync::OnceLock::new(),
         warnings: Mutex::new(Vec::new()),
     };
-    std::fs::create_dir_all(&ctx.data)
-        .with_context(|| format!("creating {}", ctx.data.display()))?;
     let threads = args.threads.map_or_else(
         || std::thread::available_parallelism().map_or(1, |n| n.get()),
         usize::from,
     );
-    let outcomes = build_all(&ctx, &args.out, &chosen, threads);
+    let outcomes = build_all(&ctx, sinks, &chosen, threads);
+    dir.keep();
+    data.keep();
     let mut failed = Vec::new();
     for (&i, outcome) in chosen.iter().zip(outcomes) {
         let (number, caption, _) = FIGURES[i];
@@ -239,8 +261,15 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
 }
 
 /// Builds the `chosen` figures on `threads` workers; outcomes in the order of `chosen`.
-fn build_all(ctx: &Ctx, dir: &Path, chosen: &[usize], threads: usize) -> Vec<Result<PathBuf>> {
+fn build_all(
+    ctx: &Ctx,
+    sinks: Vec<Result<FigureSink>>,
+    chosen: &[usize],
+    threads: usize,
+) -> Vec<Result<PathBuf>> {
     let next = AtomicUsize::new(0);
+    let sinks: Mutex<Vec<Option<Result<FigureSink>>>> =
+        Mutex::new(sinks.into_iter().map(Some).collect());
     let slots: Mutex<Vec<Option<Result<PathBuf>>>> =
         Mutex::new((0..chosen.len()).map(|_| None).collect());
     std::thread::scope(|s| {
@@ -248,9 +277,14 @@ fn build_all(ctx: &Ctx, dir: &Path, chosen: &[usize], threads: usize) -> Vec<Res
             s.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
                 let Some(&i) = chosen.get(k) else { break };
-                let (number, _, build) = FIGURES[i];
-                let outcome = std::panic::catch_unwind(|| make(ctx, dir, number, build))
-                    .unwrap_or_else(|_| Err(anyhow::anyhow!("the figure's code panicked")));
+                let (_, _, build) = FIGURES[i];
+                let sink = sinks.lock().unwrap_or_else(|e| e.into_inner())[k].take();
+                let outcome = match sink {
+                    Some(Ok(sink)) => std::panic::catch_unwind(|| make(ctx, sink, build))
+                        .unwrap_or_else(|_| Err(anyhow::anyhow!("the figure's code panicked"))),
+                    Some(Err(e)) => Err(e),
+                    None => break,
+                };
                 slots.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(outcome);
             });
         }

@@ -10,13 +10,14 @@
 use crate::cli::angle::parse_angle;
 use anyhow::{Context, Result};
 use clap::{ArgGroup, ValueEnum};
-use michell3d::signmap::AngleGrid;
-use michell3d::{
-    AnalysisRequest, MemberKind, Method, MichellAnalysis, MichellParams, MichellReport,
-    MichellTruss,
-};
-use std::path::{Path, PathBuf};
-use tensegrity_io::figure::{Figure, Panel, Series};
+use michell3d::{AnalysisRequest, Method, MichellAnalysis, MichellParams};
+use std::path::PathBuf;
+
+mod grids;
+mod text;
+pub use grids::run_table;
+use grids::{open_outputs, write_gamma_sweep, write_sign_maps};
+pub use text::text_report;
 
 /// Force propagation method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -180,6 +181,7 @@ pub fn run(args: &MichellArgs) -> Result<()> {
         return super::michell_optimize::run(opt);
     }
     let _progress = super::guard::michell(args)?;
+    let (sign_map, gamma_sweep) = open_outputs(args)?;
     let (request, check) = match args.extra_strings {
         Some(arg) => {
             let (r, c) = super::michell_extra::resolve(arg, &args.request())?;
@@ -198,252 +200,13 @@ pub fn run(args: &MichellArgs) -> Result<()> {
         ),
         (None, false) => print!("{}", text_report(&analysis.report)),
     }
-    if let Some(path) = &args.sign_map {
-        write_sign_maps(args, &request, &analysis.truss, path)?;
+    if let Some(sink) = sign_map {
+        write_sign_maps(args, &request, &analysis.truss, sink)?;
     }
-    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, request.extra_strings) {
-        write_gamma_sweep(args, &request, &analysis.truss, prestress, path)?;
-    }
-    Ok(())
-}
-
-fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
-    use std::fmt::Write;
-    let _ = writeln!(
-        s,
-        "{:>16} {:>16} {:>12.6} {:>16.6e} {:>14.6e} {:>6} {:>9}",
-        tuple(&m.parent),
-        tuple(&m.child),
-        m.length,
-        m.force_density,
-        m.force,
-        m.kind.as_str(),
-        m.governing
-    );
-}
-
-fn tuple(t: &[usize]) -> String {
-    let parts: Vec<String> = t.iter().map(|v| v.to_string()).collect();
-    format!("({})", parts.join(","))
-}
-
-/// The readable report.
-pub fn text_report(r: &MichellReport) -> String {
-    use std::fmt::Write;
-    let mut s = text_header(r);
-    let _ = writeln!(
-        s,
-        "\n{:>16} {:>16} {:>12} {:>16} {:>14} {:>6} {:>9}",
-        "parent", "child", "length [m]", "q [N/m]", "force [N]", "kind", "governs"
-    );
-    for m in &r.members {
-        member_row(&mut s, m);
-    }
-    if let Some(t) = r.prestress {
-        let _ = writeln!(s, "\nExtra strings (prestress {t} N each):");
-        for m in &r.extra_strings {
-            member_row(&mut s, m);
-        }
-    }
-    let _ = writeln!(
-        s,
-        "\nMass: yield {:.6e} kg, yield + buckling {:.6e} kg",
-        r.mass_kg.yield_only, r.mass_kg.yield_buckling
-    );
-    let _ = writeln!(
-        s,
-        "Normalised yield mass Σ|q|l²/(w0 r0) = {:.9}",
-        r.normalized_yield_mass
-    );
-    let _ = writeln!(s, "Buckling-governed bars: {}", r.buckling_governed.len());
-    s
-}
-
-/// Geometry, load and counts: the first lines of the readable report.
-fn text_header(r: &MichellReport) -> String {
-    use std::fmt::Write;
-    let p = &r.params;
-    let mut s = String::new();
-    let geometry = match p.geometry {
-        michell3d::Geometry::Planar => "planar (Skelton)".to_string(),
-        michell3d::Geometry::Cylindrical { delta } => format!("3-D cylindrical, δ = {delta}"),
-        michell3d::Geometry::Spherical { epsilon } => format!("3-D spherical, ε = {epsilon} rad"),
-    };
-    let _ = writeln!(
-        s,
-        "Michell truss: {geometry}, complexity q = {}",
-        p.complexity
-    );
-    let _ = writeln!(
-        s,
-        "  r0 = {} m, β = {:.6} rad ({:.4}°), φ = {:.6} rad ({:.4}°), a = {:.6}, c = {:.6}",
-        p.r0,
-        p.beta,
-        p.beta.to_degrees(),
-        p.phi,
-        p.phi.to_degrees(),
-        p.a(),
-        p.c()
-    );
-    let method = match r.method {
-        Method::Recursive => "recursive",
-        Method::Global => "global",
-    };
-    let _ = writeln!(
-        s,
-        "  tip load w = [{:.6}, {:.6}, {:.6}] N; method {method}; material {}",
-        r.load[0], r.load[1], r.load[2], r.material
-    );
-    let count = |k: MemberKind| r.members.iter().filter(|m| m.kind == k).count();
-    let supports = r.nodes.iter().filter(|n| n.support).count();
-    let _ = writeln!(
-        s,
-        "  {} nodes ({} supports), {} members: {} strings, {} bars, {} none",
-        r.nodes.len(),
-        supports,
-        r.members.len(),
-        count(MemberKind::String),
-        count(MemberKind::Bar),
-        count(MemberKind::None)
-    );
-    s
-}
-
-/// Computes the sign maps of `--map-members` on the analysed truss (rows on threads through
-/// [`sweeps::grids::sign_maps`]) and writes their CSV.
-fn write_sign_maps(
-    args: &MichellArgs,
-    request: &AnalysisRequest,
-    truss: &MichellTruss,
-    path: &Path,
-) -> Result<()> {
-    use michell3d::signmap::sign_map_rows;
-    use sweeps::grids::sign_maps;
-    let n_members = truss.members().len();
-    if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
-        anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
-    }
-    let (na, np) = args.map_grid;
-    let maps = sign_maps(
-        truss,
-        &args.map_members,
-        args.load,
-        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
-        AngleGrid::new(0.0, std::f64::consts::PI, np),
-        request.method,
-    )?;
-    tensegrity_io::write_file(path, |w| {
-        tensegrity_io::csv::write_sign_maps(w, sign_map_rows(truss, &maps))
-    })?;
-    if !args.json {
-        for m in &maps {
-            println!(
-                "sign map of member {}: in tension for {:.1} % of the load directions",
-                m.member,
-                100.0 * m.tension_fraction()
-            );
-        }
-        println!("wrote {}", path.display());
+    if let (Some(sink), Some(prestress)) = (gamma_sweep, request.extra_strings) {
+        write_gamma_sweep(args, &request, &analysis.truss, prestress, sink)?;
     }
     Ok(())
-}
-
-/// Sweeps the load polar angle γ over [0, 2π] with prestressed extra strings (Fig. 4.20)
-/// on the analysed truss and writes the CSV.
-fn write_gamma_sweep(
-    args: &MichellArgs,
-    request: &AnalysisRequest,
-    truss: &MichellTruss,
-    prestress: f64,
-    path: &Path,
-) -> Result<()> {
-    use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
-    let strings = ExtraStrings::new(truss)?;
-    let sweep = gamma_sweep(
-        truss,
-        &strings,
-        args.load,
-        args.azimuth,
-        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
-        prestress,
-        request.method,
-    )?;
-    tensegrity_io::write_file(path, |w| {
-        tensegrity_io::csv::write_gamma_sweep(w, sweep.rows())
-    })?;
-    if !args.json {
-        let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
-            .filter(|&j| !sweep.base_keeps_sign[j])
-            .collect();
-        println!(
-            "over γ ∈ [0, 2π] with {prestress} N in the extra strings, members changing sign: {changers:?}; extra strings keeping their sign: {}/{}",
-            sweep.extra_keeps_sign.iter().filter(|&&k| k).count(),
-            sweep.extra_keeps_sign.len()
-        );
-        println!("wrote {}", path.display());
-    }
-    Ok(())
-}
-
-/// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity), a thin wrapper over
-/// [`sweeps::grids::mass_vs_complexity`].
-pub fn run_table(args: &MichellTableArgs) -> Result<()> {
-    use michell3d::complexity::FIG_4_18_DELTAS;
-    use sweeps::grids::mass_vs_complexity;
-    use tensegrity_io::csv::write_mass_table;
-    if args.max_complexity < 2 {
-        anyhow::bail!(
-            "--max-complexity must be at least 2, got {}",
-            args.max_complexity
-        );
-    }
-    let material =
-        *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
-    let qs: Vec<usize> = (2..=args.max_complexity).collect();
-    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
-    match &args.out {
-        Some(path) => {
-            tensegrity_io::write_file(path, |w| write_mass_table(w, &rows))?;
-            println!("wrote {} rows to {}", rows.len(), path.display());
-        }
-        None => {
-            write_mass_table(std::io::stdout().lock(), &rows)?;
-        }
-    }
-    if let Some(path) = &args.svg {
-        Figure::new(vec![mass_panel(args, &rows)])
-            .save(path)
-            .with_context(|| format!("writing the figure {}", path.display()))?;
-    }
-    Ok(())
-}
-
-/// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
-fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> Panel {
-    let series = |delta: f64, label: String| {
-        let points = rows
-            .iter()
-            .filter(|r| r.delta == delta)
-            .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
-            .collect();
-        Series::new(label, points)
-    };
-    let mut all = vec![series(0.0, "planar".into())];
-    all.extend(
-        michell3d::complexity::FIG_4_18_DELTAS
-            .iter()
-            .map(|&d| series(d, format!("δ = {d}"))),
-    );
-    let mut panel = Panel::new(
-        format!(
-            "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
-            args.material, args.load
-        ),
-        "complexity q",
-        "mass [kg]",
-    );
-    panel.series = all;
-    panel
 }
 
 #[cfg(test)]

@@ -8,14 +8,16 @@
 //! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
 //! `wall_time_s` (the integration alone, without parsing and output).
 
-use super::exit::Interrupted;
-use super::stream::{stop_on_signals, Outputs};
+use super::output;
 use anyhow::{bail, Context, Result};
 use std::path::PathBuf;
 use tensegrity_core::dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
 use tensegrity_core::CoreError;
 use tensegrity_core::Structure;
+use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, Scene, SimulationSpec};
+use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
+use tensegrity_io::trajectory::TrajectoryWriter;
 
 /// Integrator choice on the command line.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -106,14 +108,24 @@ pub fn run_scene(
         .with_context(|| format!("setting up the simulation of {}", args.scene.display()))?;
     apply_overrides(args, &mut simulation.settings, sim)?;
     let _progress = super::guard::simulation(&simulation, args.out.is_some(), args.vtk.is_some())?;
-    let mut outputs = Outputs::open(args.out.as_deref(), args.vtk.as_deref(), structure)?;
-    stop_on_signals();
+    let csv = output::open("--out", args.out.as_deref(), |p| {
+        TrajectoryWriter::create(p, structure)
+    })?;
+    let vtk = output::open("--vtk", args.vtk.as_deref(), |d| {
+        VtkSeriesSink::open(d, structure)
+    })?;
+    let mut outputs = SimulationOutputs::new(csv, vtk);
+    let _polled = interrupt::polled();
     let run = simulation.run_streaming(&mut outputs);
-    let (rows, frames) = outputs.finish(run.as_ref().err())?;
+    let written = outputs.finish(run.as_ref().err())?;
+    let (rows, frames) = (written.rows, written.frames);
     let result = match run {
         Err(CoreError::Interrupted { t }) => {
-            let kept = args.out.is_some().then_some(rows);
-            return Err(Interrupted { t, kept }.into());
+            let note = args
+                .out
+                .is_some()
+                .then(|| format!("{rows} trajectory rows kept, marked incomplete"));
+            return Err(Interrupted { t: Some(t), note }.into());
         }
         other => other.with_context(|| format!("simulating {}", args.scene.display()))?,
     };

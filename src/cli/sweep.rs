@@ -11,6 +11,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use sweeps::{RunOptions, Shard, Spec};
+use tensegrity_io::sink::FigureSink;
 
 /// Arguments of `tensegrity sweep`.
 #[derive(clap::Args, Debug)]
@@ -84,6 +85,7 @@ pub struct PlotArgs {
 /// `tensegrity sweep plot`: one panel through the io crate's figure module.
 fn plot(args: &PlotArgs) -> Result<()> {
     use tensegrity_io::figure::{Figure, Panel, Scale, Series};
+    let sink = super::output::open_required("--out", &args.out, FigureSink::open)?;
     let filter: Vec<(&str, &str)> = args
         .filter
         .iter()
@@ -120,9 +122,7 @@ fn plot(args: &PlotArgs) -> Result<()> {
         };
         panel = panel.series(Series::new(label, points).with_markers());
     }
-    Figure::new(vec![panel])
-        .save(&args.out)
-        .with_context(|| format!("writing the figure {}", args.out.display()))?;
+    sink.finish(&Figure::new(vec![panel]))?;
     println!("wrote {}", args.out.display());
     Ok(())
 }
@@ -201,6 +201,8 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     };
     let spec = Spec::read(spec_path)?;
     let _guard = super::guard::sweep(spec.case_count()?)?;
+    // the workers stop at a signal; the file keeps its rows, marked incomplete (exit 130)
+    let _polled = tensegrity_io::interrupt::polled();
     let opts = RunOptions {
         threads: args.threads.map(usize::from),
         shard: args.shard.unwrap_or(Shard::ALL),

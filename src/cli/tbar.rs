@@ -6,14 +6,14 @@
 //! `tensegrity tbar roll` rolls the wheel ([`super::tbar_roll`]).
 
 use crate::cli::angle::parse_angle;
-use anyhow::{Context, Result};
+mod outputs;
+
+use anyhow::Result;
 use michell3d::MichellParams;
-use std::path::{Path, PathBuf};
-use tbar_wheel::drawing::{polylines, View};
+use std::path::PathBuf;
 use tbar_wheel::envelope::{DEFAULT_DIRECTIONS, DEFAULT_EA, DEFAULT_LOAD};
 use tbar_wheel::mass::DEFAULT_MATERIAL;
-use tbar_wheel::{BarBase, Layout, RimMode, TbarGeometry, TbarParams, TbarReport, TbarRequest};
-use tensegrity_io::figure::{Figure, Panel, Series};
+use tbar_wheel::{BarBase, Layout, RimMode, TbarParams, TbarReport, TbarRequest};
 
 /// `--bar-base` values.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
@@ -187,56 +187,18 @@ pub fn run(args: &TbarArgs) -> Result<()> {
             args.json,
         );
     }
+    let outputs = outputs::open(args)?;
     let report = tbar_wheel::tbar_report(&req)?;
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }
-    write_outputs(args, &req)?;
+    outputs.write(&req)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print_report(&report);
     }
     Ok(())
-}
-
-/// `--export-scene`, `--vtk` and `--svg`.
-fn write_outputs(args: &TbarArgs, req: &TbarRequest) -> Result<()> {
-    if args.export_scene.is_none() && args.vtk.is_none() && args.svg.is_none() {
-        return Ok(());
-    }
-    let g = TbarGeometry::new(req.params)?;
-    let s = g.structure()?;
-    if let Some(path) = &args.export_scene {
-        tensegrity_io::write_text(path, "scene", &tensegrity_io::scene::to_toml(&s))
-            .with_context(|| format!("writing the scene {}", path.display()))?;
-    }
-    if let Some(path) = &args.vtk {
-        tensegrity_io::write_text(path, "VTK", &tensegrity_io::vtk::vtu(&s, s.nodes()))
-            .with_context(|| format!("writing the VTK file {}", path.display()))?;
-    }
-    if let Some(path) = &args.svg {
-        write_drawing(path, &g)?;
-    }
-    Ok(())
-}
-
-/// The side and top views through the io figure module.
-fn write_drawing(path: &Path, g: &TbarGeometry) -> Result<()> {
-    let panel = |view: View, title: &str, y: &str| {
-        polylines(g, view)
-            .into_iter()
-            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
-                p.series(Series::new(l.label, l.points))
-            })
-    };
-    let figure = Figure::new(vec![
-        panel(View::Side, "T-bar, side view", "ι3 [m]"),
-        panel(View::Top, "T-bar, top view", "ι1 [m]"),
-    ]);
-    figure
-        .save(path)
-        .with_context(|| format!("writing the figure {}", path.display()))
 }
 
 /// `--loop-study`: the six cases of [`tbar_wheel::standing::loop_study`].

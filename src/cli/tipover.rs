@@ -2,8 +2,9 @@
 //! library call ([`toroid::tipover_report`]) and prints the report.
 
 use super::values;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::{Path, PathBuf};
+use tensegrity_io::sink::FileSink;
 use toroid::defaults;
 use toroid::{TipoverReport, TipoverRequest};
 
@@ -52,11 +53,7 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
         );
     }
     if let Some(path) = &args.grid {
-        let _progress = super::guard::friction_grid(args.grid_points)?;
-        let rows = sweeps::grids::friction_grid(args.grid_points, args.eps_max)?;
-        write_friction_csv(path, &rows)?;
-        println!("wrote {}", path.display());
-        return Ok(());
+        return run_grid(args, path);
     }
     let request = TipoverRequest {
         wheel: args.geometry.wheel(),
@@ -71,10 +68,14 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     Ok(())
 }
 
-/// Writes the (σ, ε, F_f/F_e) grid as CSV.
-fn write_friction_csv(path: &Path, rows: &[(f64, f64, f64)]) -> Result<()> {
-    tensegrity_io::write_file(path, |w| tensegrity_io::csv::write_friction_grid(w, rows))
-        .with_context(|| format!("writing the friction map {}", path.display()))?;
+/// `--grid`: the (σ, ε, F_f/F_e) grid as CSV, its file opened before the grid is computed.
+fn run_grid(args: &TipoverArgs, path: &Path) -> Result<()> {
+    let _progress = super::guard::friction_grid(args.grid_points)?;
+    let mut sink = super::output::open_required("--grid", path, FileSink::open)?;
+    let rows = sweeps::grids::friction_grid(args.grid_points, args.eps_max)?;
+    sink.write_with(|w| tensegrity_io::csv::write_friction_grid(w, &rows))?;
+    sink.finish()?;
+    println!("wrote {}", path.display());
     Ok(())
 }
 

@@ -4,8 +4,9 @@
 //! report. The defaults are the library's ([`toroid::defaults`]).
 
 use super::values;
-use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
+use anyhow::Result;
+use std::path::PathBuf;
+use tensegrity_io::sink::FileSink;
 use toroid::defaults;
 use toroid::{Stabilize, ToroidParams, ToroidReport, ToroidRequest, WheelSpec};
 
@@ -104,12 +105,17 @@ impl ToroidArgs {
 /// Entry point of `tensegrity toroid`.
 pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
     let _progress = super::guard::toroid(&args.request())?;
+    let scene = super::output::open(
+        "--export-scene",
+        args.export_scene.as_deref(),
+        FileSink::open,
+    )?;
     let report = toroid::toroid_report(&args.request())?;
-    if let Some(path) = &args.export_scene {
-        write_scene(path, &report.structure)?;
-        if !args.json {
-            println!("wrote {}", path.display());
-        }
+    if let Some(sink) = scene {
+        sink.finish_with(tensegrity_io::scene::to_toml(&report.structure))?;
+    }
+    if let (Some(path), false) = (&args.export_scene, args.json) {
+        println!("wrote {}", path.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -117,12 +123,6 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
         print_toroid(args, &report);
     }
     Ok(())
-}
-
-/// Writes a structure as a TOML scene.
-fn write_scene(path: &Path, structure: &tensegrity_core::Structure) -> Result<()> {
-    tensegrity_io::write_text(path, "scene", &tensegrity_io::scene::to_toml(structure))
-        .with_context(|| format!("writing the scene {}", path.display()))
 }
 
 fn print_toroid(args: &ToroidArgs, r: &ToroidReport) {

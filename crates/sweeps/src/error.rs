@@ -125,6 +125,20 @@ pub enum SweepError {
         /// What is wrong.
         reason: String,
     },
+    /// An output that cannot be opened: an unwritable path, or another run writing it.
+    #[error(transparent)]
+    Output(#[from] tensegrity_io::IoError),
+    /// Stopped by an interrupt: the rows so far are in the file, which ends with an
+    /// `# incomplete` line and continues with `resume`.
+    #[error("interrupted after {done} of {total} cases: the rows so far are in {}, marked incomplete (run the sweep again with resume to continue it)", path.display())]
+    Interrupted {
+        /// The output file.
+        path: PathBuf,
+        /// Cases whose rows are in the file.
+        done: usize,
+        /// Cases of the shard.
+        total: usize,
+    },
     /// Reading or writing a file failed.
     #[error("{what} {path}: {source}")]
     Io {
@@ -141,7 +155,12 @@ impl SweepError {
     /// True for errors of the user's input (spec, shard, files that do not resume or merge),
     /// as opposed to failures to read or write.
     pub fn is_input_error(&self) -> bool {
-        !matches!(self, SweepError::Io { .. })
+        !matches!(self, SweepError::Io { .. } | SweepError::Interrupted { .. })
+    }
+
+    /// True when the sweep was stopped by an interrupt.
+    pub fn is_interrupted(&self) -> bool {
+        matches!(self, SweepError::Interrupted { .. })
     }
 
     pub(crate) fn io(

@@ -10,7 +10,6 @@
 
 use crate::error::{Result, SweepError};
 use std::collections::BTreeMap;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// What a merge wrote.
@@ -36,7 +35,7 @@ fn read_input(path: &Path) -> Result<Input> {
     let bytes = std::fs::read(path).map_err(SweepError::io("reading", path))?;
     if bytes.last() != Some(&b'\n') {
         return Err(bad(
-            "it is empty or its last row is incomplete (finish it with --resume)".into(),
+            "it is empty or its last row is incomplete (finish it with resume)".into(),
         ));
     }
     let mut lines = bytes.split_inclusive(|&b| b == b'\n');
@@ -55,6 +54,11 @@ fn read_input(path: &Path) -> Result<Input> {
     }
     let rows = lines
         .map(|line| {
+            if line.starts_with(crate::run::INCOMPLETE.as_bytes()) {
+                return Err(bad(
+                    "it is the file of an interrupted sweep (finish it with resume)".into(),
+                ));
+            }
             let id = line
                 .split(|&b| b == b',')
                 .next()
@@ -72,8 +76,11 @@ fn read_input(path: &Path) -> Result<Input> {
     Ok(Input { preamble, rows })
 }
 
-/// Merges `inputs` into `out` (written through a temporary file, renamed at the end).
+/// Merges `inputs` into `out` (a [`tensegrity_io::sink::FileSink`]: locked and opened before
+/// the inputs are read, renamed into place at the end).
 pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
+    // opened first: an unwritable or busy output fails before the inputs are read
+    let mut sink = tensegrity_io::sink::FileSink::open(out)?;
     let first = inputs.first().ok_or_else(|| SweepError::Merge {
         path: out.to_path_buf(),
         reason: "no input files".into(),
@@ -127,21 +134,11 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
     for row in rows.values() {
         bytes.extend_from_slice(row);
     }
-    let tmp = out.with_extension("csv.merging");
-    let write = || -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(&bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, out)
-    };
-    write().map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        SweepError::Io {
-            what: "writing",
-            path: out.to_path_buf(),
-            source: e,
-        }
+    sink.write_with(|w| {
+        w.write_all(&bytes)
+            .map_err(tensegrity_io::IoError::stream("merged CSV"))
     })?;
+    sink.finish()?;
     Ok(MergeSummary {
         files: inputs.len(),
         rows: rows.len(),

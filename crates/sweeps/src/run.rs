@@ -7,11 +7,17 @@
 //! each run of consecutive rows to the file with one write, so the file always holds whole
 //! rows in case order, whatever the thread count: the bytes do not depend on it.
 //!
-//! `--resume` reads the file back: the preamble must be the one this spec writes, every
+//! With [`RunOptions::resume`] the run reads the file back: the preamble must be the one this spec writes, every
 //! complete row must be the next case of the shard (its id and axis values), and a partial
 //! last line (a write cut by a kill) is cut off; the sweep then continues after the last
 //! complete row. A case whose study fails, or panics, is an `error` row; it never stops the
 //! sweep.
+//!
+//! The file is the sweep's journal, written in place (not renamed at the end) so that a killed
+//! sweep can be resumed; it is locked while a sweep writes it ([`PathLock`]: a second sweep of
+//! the same file is refused at once). On an interrupt ([`tensegrity_io::interrupt`]) the workers
+//! take no new case, the rows finished in order are written, and the file ends with an
+//! `# incomplete: interrupted after N of M cases …` line, which `resume` cuts off.
 
 use crate::error::{Result, SweepError};
 use crate::spec::Spec;
@@ -24,6 +30,8 @@ use std::path::Path;
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Condvar, Mutex};
+use tensegrity_io::interrupt;
+use tensegrity_io::sink::PathLock;
 
 /// The cases one process runs: ids ≡ `index` (mod `count`), i.e. `--shard K/N` with
 /// `index` = K − 1 and `count` = N.
@@ -164,7 +172,10 @@ pub fn run(
     let total = spec.case_count()?;
     let shard_cases = opts.shard.len(total);
     let preamble = table::preamble(spec, opts.units);
-    let (file, resumed) = if opts.resume && out.exists() {
+    // one sweep per file: another run writing `out`, or an unwritable directory, is refused
+    // here, before any case
+    let _lock = PathLock::acquire(out)?;
+    let (mut file, resumed) = if opts.resume && out.exists() {
         resume(spec, out, &preamble, opts.shard)?
     } else {
         let mut f = File::create(out).map_err(SweepError::io("creating", out))?;
@@ -183,7 +194,7 @@ pub fn run(
             opts.shard,
             resumed..shard_cases,
             threads,
-            file,
+            &mut file,
             out,
             progress,
         )?
@@ -191,6 +202,9 @@ pub fn run(
         (0, 0)
     };
     progress.finish();
+    if resumed + written < shard_cases && interrupt::requested() {
+        return Err(interrupted(&mut file, out, resumed + written, shard_cases));
+    }
     Ok(Summary {
         total_cases: total,
         shard_cases,
@@ -199,6 +213,24 @@ pub fn run(
         errors,
     })
 }
+
+/// Ends the file of an interrupted sweep with its `# incomplete` line (cut off by `resume`).
+fn interrupted(file: &mut File, out: &Path, done: usize, total: usize) -> SweepError {
+    let trailer = format!(
+        "{INCOMPLETE} interrupted after {done} of {total} cases; run the sweep again with resume to continue\n"
+    );
+    if let Err(e) = file.write_all(trailer.as_bytes()) {
+        return SweepError::io("writing", out)(e);
+    }
+    SweepError::Interrupted {
+        path: out.to_path_buf(),
+        done,
+        total,
+    }
+}
+
+/// The start of the last line of an interrupted sweep's file.
+pub const INCOMPLETE: &str = "# incomplete:";
 
 /// Checks an existing file against the spec and returns it, cut after its last complete
 /// row and opened for appending, with the number of complete rows.
@@ -227,7 +259,7 @@ fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(Fil
     }
     if head != preamble {
         return Err(bad(
-            "its header is not the one this spec writes (another spec, or --units differs)".into(),
+            "its header is not the one this spec writes (another spec, or `units` differs)".into(),
         ));
     }
     let mut reader = BufReader::new(&file);
@@ -239,8 +271,8 @@ fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(Fil
         let n = reader
             .read_until(b'\n', &mut line)
             .map_err(SweepError::io("reading", out))?;
-        if n == 0 || line.last() != Some(&b'\n') {
-            break; // end of file, or a partial last line: redone
+        if n == 0 || line.last() != Some(&b'\n') || line.starts_with(INCOMPLETE.as_bytes()) {
+            break; // end of file, a partial last line, or an interrupted run's trailer: redone
         }
         if rows >= shard.len(total) {
             return Err(bad(format!(
@@ -304,24 +336,41 @@ struct Shared<'a> {
 }
 
 impl Shared<'_> {
-    /// Runs cases until none are left (or the writer stopped), sending their rows.
+    /// Runs cases until none are left (or the writer stopped, or an interrupt came), sending
+    /// their rows.
     fn work(&self, tx: mpsc::Sender<(usize, Vec<u8>, bool)>) {
-        while !self.stop.load(Ordering::Relaxed) {
+        while !self.halted() {
             let j = self.next.fetch_add(1, Ordering::Relaxed);
-            if j >= self.end {
+            if j >= self.end || !self.wait_for_window(j) {
                 break;
-            }
-            {
-                let mut w = self.written.lock().unwrap_or_else(|e| e.into_inner());
-                while j >= *w + self.window && !self.stop.load(Ordering::Relaxed) {
-                    w = self.moved.wait(w).unwrap_or_else(|e| e.into_inner());
-                }
             }
             let (row, failed) = self.row(self.shard.id(j));
             if tx.send((j, row, failed)).is_err() {
                 break;
             }
         }
+    }
+
+    /// Whether the workers stop: the writer failed, or an interrupt was requested.
+    fn halted(&self) -> bool {
+        self.stop.load(Ordering::Relaxed) || interrupt::requested()
+    }
+
+    /// Waits until case `j` lies within the window after the last row written; false when
+    /// the workers stop meanwhile (polled, so that an interrupt is seen while waiting).
+    fn wait_for_window(&self, j: usize) -> bool {
+        let mut w = self.written.lock().unwrap_or_else(|e| e.into_inner());
+        while j >= *w + self.window {
+            if self.halted() {
+                return false;
+            }
+            w = self
+                .moved
+                .wait_timeout(w, std::time::Duration::from_millis(50))
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+        }
+        true
     }
 
     /// The row of case `id` (an `error` row when the study fails or panics).
@@ -358,7 +407,7 @@ fn execute(
     shard: Shard,
     range: std::ops::Range<usize>,
     threads: usize,
-    mut file: File,
+    file: &mut File,
     out: &Path,
     progress: &mut dyn Progress,
 ) -> Result<(usize, usize)> {
@@ -391,7 +440,7 @@ fn execute(
             s.spawn(move |_| shared.work(tx));
         }
         drop(tx);
-        outcome = write_in_order(&shared, rx, range.start, &mut file, out, progress);
+        outcome = write_in_order(&shared, rx, range.start, file, out, progress);
         if outcome.is_err() {
             shared.stop.store(true, Ordering::Relaxed);
             shared.moved.notify_all();

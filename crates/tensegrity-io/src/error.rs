@@ -33,6 +33,20 @@ pub enum IoError {
         #[source]
         source: std::io::Error,
     },
+    /// Another run holds the lock of an output path.
+    #[error("{}: another run ({holder}) is writing this output; wait for it to end or choose another path", path.display())]
+    Busy {
+        /// The output path.
+        path: PathBuf,
+        /// Who holds it, as its lock file says (`pid 1234`).
+        holder: String,
+    },
+    /// A write to an output that was already finished (by an interrupt).
+    #[error("{}: the output was already closed (interrupted)", path.display())]
+    Closed {
+        /// The output path.
+        path: PathBuf,
+    },
     /// Writing a table or picture to a stream (not yet tied to a file) failed.
     #[error("writing {what}: {source}")]
     Stream {
@@ -145,6 +159,22 @@ fn line_suffix(line: Option<usize>) -> String {
     line.map(|l| format!(" (line {l})")).unwrap_or_default()
 }
 
+impl tensegrity_core::request::Categorized for IoError {
+    /// Every io error is about the input (a file, a path, a format) except an error of the
+    /// core model that is not an invalid parameter, and a write cut short by an interrupt.
+    fn category(&self) -> tensegrity_core::request::Category {
+        use tensegrity_core::request::Category;
+        match self {
+            IoError::Core(CoreError::InvalidParameter { .. }) => Category::Input,
+            IoError::Core(CoreError::Interrupted { .. }) | IoError::Closed { .. } => {
+                Category::Interrupted
+            }
+            IoError::Core(_) => Category::Numerical,
+            _ => Category::Input,
+        }
+    }
+}
+
 impl IoError {
     /// Ties a [`IoError::Stream`] error to the file being written.
     pub(crate) fn at(self, path: &std::path::Path) -> Self {
@@ -158,7 +188,7 @@ impl IoError {
     }
 
     /// A stream error while writing `what`.
-    pub(crate) fn stream(what: &'static str) -> impl Fn(std::io::Error) -> IoError {
+    pub fn stream(what: &'static str) -> impl Fn(std::io::Error) -> IoError {
         move |source| IoError::Stream { what, source }
     }
 }

@@ -301,7 +301,8 @@ impl Figure {
         Ok((buffer, (w, h)))
     }
 
-    /// Writes the figure to `path`: SVG for `.svg`, PNG for `.png` (case-insensitive).
+    /// Writes the figure to `path`: SVG for `.svg`, PNG for `.png` (case-insensitive), through
+    /// a [`crate::sink::FigureSink`] (a command opens the sink before its work instead).
     ///
     /// ```
     /// use tensegrity_io::figure::{Figure, Panel, Series};
@@ -317,27 +318,7 @@ impl Figure {
     /// # Ok::<(), tensegrity_io::IoError>(())
     /// ```
     pub fn save(&self, path: &Path) -> Result<()> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("svg") => {
-                let svg = self.to_svg()?;
-                crate::write_file(path, |w| {
-                    w.write_all(svg.as_bytes())
-                        .map_err(IoError::stream("SVG figure"))
-                })
-            }
-            Some("png") => {
-                let (rgb, size) = self.to_rgb()?;
-                crate::write_file(path, |w| encode_png(w, &rgb, size))
-            }
-            _ => Err(IoError::UnsupportedFormat {
-                path: path.to_path_buf(),
-                expected: "svg, png",
-            }),
-        }
+        crate::sink::FigureSink::open(path)?.finish(self)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
@@ -430,7 +411,11 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
 }
 
 /// Encodes an RGB buffer as PNG.
-fn encode_png(w: &mut dyn std::io::Write, rgb: &[u8], (width, height): (u32, u32)) -> Result<()> {
+pub(crate) fn encode_png(
+    w: &mut dyn std::io::Write,
+    rgb: &[u8],
+    (width, height): (u32, u32),
+) -> Result<()> {
     let mut encoder = png::Encoder::new(w, width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);

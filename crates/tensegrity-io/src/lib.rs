@@ -11,10 +11,16 @@
 //!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
 //! - [`figure`]: line plots of one or more panels (linear or log axes, legends) on `plotters`,
-//!   written as SVG or PNG (with an embedded font) by file extension.
+//!   written as SVG or PNG (with an embedded font) by file extension;
+//! - [`sink`]: the outputs of a command — CSV tables, VTK series, whole files, figures, JSON —
+//!   opened (locked, temporary file created) before any work, streamed, renamed into place on
+//!   success, kept with an `# incomplete` trailer when the run is interrupted or fails;
+//! - [`interrupt`]: the SIGINT / SIGTERM stop flag that long computations poll, and the open
+//!   sinks finished as incomplete when the process is interrupted.
 //!
-//! Files are written whole to a temporary file beside the target and renamed into place
-//! ([`write_file`]), so a failed run never leaves a truncated output behind.
+//! Files are written to a temporary file beside the target and renamed into place (the
+//! [`sink`]s; [`write_file`] for a file written at once), so a failed or killed run never
+//! leaves a truncated output behind.
 //!
 //! ```
 //! use tensegrity_io::scene::Scene;
@@ -28,14 +34,16 @@
 pub mod csv;
 pub mod error;
 pub mod figure;
+pub mod interrupt;
 pub mod scene;
+pub mod sink;
 pub mod trajectory;
 pub mod vtk;
 
 pub use error::{IoError, Result};
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Writes `text` to `path` atomically (see [`write_file`]); `what` names the content in errors.
 ///
@@ -52,9 +60,10 @@ pub fn write_text(path: &Path, what: &'static str, text: &str) -> Result<()> {
     })
 }
 
-/// Writes a file through `fill`: the bytes go to a temporary file beside `path`, which is
-/// renamed to `path` once `fill` and the flush succeed (and removed otherwise). Stream errors
-/// of `fill` come back as [`IoError::Write`] naming `path`.
+/// Writes a file through `fill` at once: a [`sink::FileSink`] opened, filled and finished (the
+/// bytes go to a temporary file beside `path`, renamed to `path` once `fill` and the flush
+/// succeed, removed otherwise). Stream errors of `fill` come back as [`IoError::Write`]
+/// naming `path`. A command that computes before it writes opens the sink first instead.
 ///
 /// ```
 /// use std::io::Write;
@@ -69,35 +78,8 @@ pub fn write_text(path: &Path, what: &'static str, text: &str) -> Result<()> {
 /// # Ok::<(), IoError>(())
 /// ```
 pub fn write_file<T>(path: &Path, fill: impl FnOnce(&mut dyn Write) -> Result<T>) -> Result<T> {
-    let tmp = temporary_path(path);
-    let write_err = |source| IoError::Write {
-        path: path.to_path_buf(),
-        source,
-    };
-    let file = std::fs::File::create(&tmp).map_err(write_err)?;
-    let mut w = std::io::BufWriter::new(file);
-    let result = fill(&mut w)
-        .map_err(|e| e.at(path))
-        .and_then(|value| w.flush().map(|()| value).map_err(write_err));
-    drop(w);
-    match result {
-        Ok(value) => {
-            std::fs::rename(&tmp, path).map_err(write_err)?;
-            Ok(value)
-        }
-        Err(e) => {
-            // best effort: the temporary file is garbage either way
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
-        }
-    }
-}
-
-/// `dir/.name.tmp` beside `path`.
-pub(crate) fn temporary_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "output".into());
-    path.with_file_name(format!(".{name}.tmp"))
+    let mut sink = sink::FileSink::open(path)?;
+    let value = sink.write_with(fill)?;
+    sink.finish()?;
+    Ok(value)
 }

@@ -1,6 +1,7 @@
 //! Streamed trajectory CSV: one row per recorded sample, written as the run produces it
-//! (bounded memory), into a temporary file beside the target that is renamed into place when
-//! the run ends — so a killed process never leaves a truncated file at the requested path.
+//! (bounded memory) through a [`CsvSink`] — locked, into a temporary file beside the target
+//! that is renamed into place when the run ends — so a killed process never leaves a
+//! truncated file at the requested path.
 //!
 //! Columns (all numbers `{:.17e}`, exact round trip), each group present when recorded:
 //! `t [s]`; positions `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]`; velocities `v{i}_x [m/s]`…;
@@ -13,10 +14,9 @@
 //! An interrupted run ends with [`TrajectoryWriter::finish_incomplete`]: the rows so far, then a
 //! trailer line starting with `#` that says why the file is incomplete.
 
-use crate::error::{IoError, Result};
-use std::fs::File;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use crate::error::Result;
+use crate::sink::CsvSink;
+use std::path::Path;
 use tensegrity_core::dynamics::Sample;
 use tensegrity_core::{MemberId, Structure};
 
@@ -48,24 +48,17 @@ use tensegrity_core::{MemberId, Structure};
 /// ```
 #[derive(Debug)]
 pub struct TrajectoryWriter {
-    path: PathBuf,
-    tmp: PathBuf,
-    out: Option<::csv::Writer<File>>,
+    sink: CsvSink,
     members: Vec<String>,
     ends: Vec<[usize; 2]>,
     header_written: bool,
-    rows: usize,
 }
 
 impl TrajectoryWriter {
-    /// Opens the temporary file beside `path` now, so a missing directory or an unwritable
-    /// path fails before the run starts.
+    /// Opens the output now (a [`CsvSink`]: locked, temporary file beside `path`), so a
+    /// missing directory, an unwritable path or another writer fails before the run starts.
     pub fn create(path: &Path, structure: &Structure) -> Result<Self> {
-        let tmp = crate::temporary_path(path);
-        let file = File::create(&tmp).map_err(|source| IoError::Write {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let sink = CsvSink::open_records(path, "trajectory CSV")?;
         let members = (0..structure.n_members())
             .map(|k| match structure.member_id(k) {
                 MemberId::Bar(i) => format!("bar{i}"),
@@ -73,13 +66,10 @@ impl TrajectoryWriter {
             })
             .collect();
         Ok(Self {
-            path: path.to_path_buf(),
-            tmp,
-            out: Some(::csv::Writer::from_writer(file)),
+            sink,
             members,
             ends: structure.member_nodes(),
             header_written: false,
-            rows: 0,
         })
     }
 
@@ -87,60 +77,37 @@ impl TrajectoryWriter {
     pub fn write(&mut self, s: &Sample) -> Result<()> {
         if !self.header_written {
             let header = self.header(s);
-            self.record(&header)?;
+            self.sink.record(&header)?;
             self.header_written = true;
         }
-        let row = row(s, &self.ends);
-        self.record(&row)?;
-        self.rows += 1;
-        Ok(())
+        self.sink.record(row(s, &self.ends))
     }
 
-    /// Rows written so far.
+    /// Rows written so far (the header not counted).
     pub fn rows(&self) -> usize {
-        self.rows
+        self.sink
+            .rows()
+            .saturating_sub(usize::from(self.header_written))
+    }
+
+    /// The target path.
+    pub fn path(&self) -> &Path {
+        self.sink.path()
     }
 
     /// Flushes and renames the file into place; returns the number of rows.
-    pub fn finish(mut self) -> Result<usize> {
-        self.close()
+    pub fn finish(self) -> Result<usize> {
+        let rows = self.rows();
+        self.sink.finish()?;
+        Ok(rows)
     }
 
     /// Ends an interrupted run: the rows so far, then `# incomplete: {note}`, renamed into
-    /// place as a complete, valid file.
-    pub fn finish_incomplete(mut self, note: &str) -> Result<usize> {
-        let path = &self.path;
-        let write_err = |source| IoError::Write {
-            path: path.clone(),
-            source,
-        };
-        let out = self.out.take().expect("open until finished");
-        // a comment line, outside the CSV grammar: written past the csv writer
-        let mut file = out.into_inner().map_err(|e| write_err(e.into_error()))?;
-        let note = note.replace('\n', " ");
-        writeln!(file, "# incomplete: {note}").map_err(write_err)?;
-        drop(file);
-        self.close()
-    }
-
-    fn close(&mut self) -> Result<usize> {
-        let write_err = |source| IoError::Write {
-            path: self.path.clone(),
-            source,
-        };
-        if let Some(mut out) = self.out.take() {
-            out.flush().map_err(write_err)?;
-        }
-        std::fs::rename(&self.tmp, &self.path).map_err(write_err)?;
-        Ok(self.rows)
-    }
-
-    fn record(&mut self, fields: &[String]) -> Result<()> {
-        let out = self.out.as_mut().expect("open until finished");
-        out.write_record(fields).map_err(|e| IoError::Write {
-            path: self.path.clone(),
-            source: e.into(),
-        })
+    /// place as a complete, valid file (nothing written yet: no file). Returns the rows kept.
+    pub fn finish_incomplete(self, note: &str) -> Result<usize> {
+        let rows = self.rows();
+        self.sink.finish_incomplete(note)?;
+        Ok(rows)
     }
 
     fn header(&self, s: &Sample) -> Vec<String> {
@@ -177,15 +144,6 @@ impl TrajectoryWriter {
             }
         }
         h
-    }
-}
-
-impl Drop for TrajectoryWriter {
-    /// A writer dropped without `finish` (an error elsewhere) removes its temporary file.
-    fn drop(&mut self) {
-        if self.out.take().is_some() {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
     }
 }
 

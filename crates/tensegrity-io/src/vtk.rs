@@ -4,9 +4,11 @@
 //! Points are the node positions (m, file numbering), cells are VTK_LINE (type 3) from start to
 //! end node of every member (bars first, then strings), cell data `member_kind` (0 bar,
 //! 1 string) and `member_index` (its index among its kind). Numbers are written with `{:e}`,
-//! the shortest text that reads back to the same f64.
+//! the shortest text that reads back to the same f64. Series are written through the
+//! [`VtkSeriesSink`] (frames renamed into place one by one, `series.pvd` rewritten atomically).
 
-use crate::error::{IoError, Result};
+use crate::error::Result;
+pub use crate::sink::VtkSeriesSink;
 use nalgebra::Vector3;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -142,7 +144,7 @@ pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<
 }
 
 /// Writes `frame_NNNNN.vtu` for every `(time, nodes)` and `series.pvd` into `dir` (created if
-/// missing); returns the number of frames. Each file is written whole, then renamed into place.
+/// missing, its parent must exist) through a [`VtkSeriesSink`]; returns the number of frames.
 ///
 /// ```
 /// use tensegrity_core::{Bar, Structure};
@@ -164,110 +166,12 @@ pub fn write_series<'a>(
     structure: &Structure,
     frames: impl IntoIterator<Item = (f64, &'a [Vector3<f64>])>,
 ) -> Result<usize> {
-    std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut pvd = String::from(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
-    );
-    let mut count = 0;
-    for (k, (t, nodes)) in frames.into_iter().enumerate() {
-        let name = format!("frame_{k:05}.vtu");
-        let path = dir.join(&name);
-        crate::write_file(&path, |w| {
-            w.write_all(vtu(structure, nodes).as_bytes())
-                .map_err(IoError::stream("VTK frame"))
-        })?;
-        let _ = writeln!(pvd, r#"<DataSet timestep="{t:e}" part="0" file="{name}"/>"#);
-        count += 1;
+    let mut series = VtkSeriesSink::open(dir, structure)?;
+    for (t, nodes) in frames {
+        series.frame(t, nodes)?;
     }
-    pvd.push_str("</Collection>\n</VTKFile>\n");
-    let path = dir.join("series.pvd");
-    crate::write_file(&path, |w| {
-        w.write_all(pvd.as_bytes())
-            .map_err(IoError::stream("VTK collection"))
-    })?;
-    Ok(count)
+    series.finish()
 }
 
-/// A ParaView series written frame by frame as a run produces it (bounded memory): each
-/// `.vtu` is written whole when its frame arrives, the `.pvd` collection at [`finish`].
-///
-/// ```
-/// use tensegrity_core::{Bar, Structure};
-/// use tensegrity_io::vtk::SeriesWriter;
-/// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
-///     .bar(Bar::new(0, 1)).build().unwrap();
-/// let dir = std::env::temp_dir().join(format!("tensegrity-io-vtk-stream-{}", std::process::id()));
-/// let mut w = SeriesWriter::create(&dir, &s)?; // the directory exists from here on
-/// w.frame(0.0, &s.nodes())?;
-/// w.frame(0.5, &s.nodes())?;
-/// assert_eq!(w.finish()?, 2);
-/// assert!(dir.join("series.pvd").exists() && dir.join("frame_00001.vtu").exists());
-/// # std::fs::remove_dir_all(&dir).unwrap();
-/// # Ok::<(), tensegrity_io::IoError>(())
-/// ```
-///
-/// [`finish`]: SeriesWriter::finish
-#[derive(Debug)]
-pub struct SeriesWriter<'a> {
-    dir: std::path::PathBuf,
-    structure: &'a Structure,
-    pvd: String,
-    count: usize,
-}
-
-impl<'a> SeriesWriter<'a> {
-    /// Creates `dir` (and its parents) now, so a bad path fails before the run.
-    pub fn create(dir: &Path, structure: &'a Structure) -> Result<Self> {
-        std::fs::create_dir_all(dir).map_err(|source| IoError::Write {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-        Ok(Self {
-            dir: dir.to_path_buf(),
-            structure,
-            pvd: String::from(
-                "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
-            ),
-            count: 0,
-        })
-    }
-
-    /// Writes the frame of time `t` with node positions `nodes` (file numbering).
-    pub fn frame(&mut self, t: f64, nodes: &[Vector3<f64>]) -> Result<()> {
-        self.frame_with(t, nodes, &FrameData::default())
-    }
-
-    /// Writes a frame with recorded quantities (see [`FrameData`]).
-    pub fn frame_with(
-        &mut self,
-        t: f64,
-        nodes: &[Vector3<f64>],
-        data: &FrameData<'_>,
-    ) -> Result<()> {
-        let name = format!("frame_{:05}.vtu", self.count);
-        crate::write_file(&self.dir.join(&name), |w| {
-            w.write_all(vtu_with(self.structure, nodes, data).as_bytes())
-                .map_err(IoError::stream("VTK frame"))
-        })?;
-        let _ = writeln!(
-            self.pvd,
-            r#"<DataSet timestep="{t:e}" part="0" file="{name}"/>"#
-        );
-        self.count += 1;
-        Ok(())
-    }
-
-    /// Writes `series.pvd` over the frames so far; returns their number.
-    pub fn finish(mut self) -> Result<usize> {
-        self.pvd.push_str("</Collection>\n</VTKFile>\n");
-        let pvd = std::mem::take(&mut self.pvd);
-        crate::write_file(&self.dir.join("series.pvd"), |w| {
-            w.write_all(pvd.as_bytes())
-                .map_err(IoError::stream("VTK collection"))
-        })?;
-        Ok(self.count)
-    }
-}
+/// The former name of [`VtkSeriesSink`] (its `create` is [`VtkSeriesSink::open`]).
+pub type SeriesWriter<'a> = VtkSeriesSink<'a>;

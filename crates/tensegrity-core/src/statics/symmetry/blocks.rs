@@ -152,7 +152,7 @@ fn block_layout(ctx: &BlockContext<'_>, k: usize) -> BlockLayout {
     }
     let n = sym.order();
     let cols = (0..sym.member_orbits().len())
-        .filter(|&e| (k * sym.member_orbits()[e].size) % n == 0)
+        .filter(|&e| (k * sym.member_orbits()[e].size).is_multiple_of(n))
         .collect();
     BlockLayout { k, rows, cols }
 }

@@ -337,7 +337,7 @@ impl CyclicSymmetry {
         let nb = structure.n_bars();
         let mut member_orbits = Vec::with_capacity(raw.len());
         for (rep, size) in raw {
-            if n % size != 0 {
+            if !n.is_multiple_of(size) {
                 return Err(SymmetryError::BadMemberOrbit {
                     member: structure.member_id(rep),
                     length: size,

@@ -1,0 +1,117 @@
+//! The outputs of a simulation as the core's [`SampleSink`]: every recorded sample goes to the
+//! trajectory CSV and the VTK series while the run goes on, and the run stops at its next
+//! sample (or step) once an interrupt is [requested](crate::interrupt::requested).
+
+use crate::error::{IoError, Result};
+use crate::sink::VtkSeriesSink;
+use crate::trajectory::TrajectoryWriter;
+use crate::vtk::FrameData;
+use tensegrity_core::dynamics::{Sample, SampleSink};
+use tensegrity_core::CoreError;
+
+/// What a finished run wrote.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Written {
+    /// Trajectory rows (0 without a CSV).
+    pub rows: usize,
+    /// VTK frames (0 without a series).
+    pub frames: usize,
+}
+
+/// The open outputs of one simulation (either may be absent).
+///
+/// ```
+/// use tensegrity_core::dynamics::{Simulation, SimulationSettings};
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
+/// use tensegrity_io::trajectory::TrajectoryWriter;
+/// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1).mass(1.0)).build().unwrap();
+/// let mut settings = SimulationSettings { t_end: 0.1, output_interval: Some(0.05), ..Default::default() };
+/// settings.quantities.nodes = true;
+/// let dir = std::env::temp_dir().join(format!("sim-outputs-doc-{}", std::process::id()));
+/// # let _ = std::fs::remove_dir_all(&dir);
+/// std::fs::create_dir(&dir).unwrap();
+/// let csv = TrajectoryWriter::create(&dir.join("traj.csv"), &s)?;   // opened before the run
+/// let vtk = VtkSeriesSink::open(&dir.join("vtk"), &s)?;
+/// let mut outputs = SimulationOutputs::new(Some(csv), Some(vtk));
+/// let run = Simulation::new(&s, settings).unwrap().run_streaming(&mut outputs);
+/// let written = outputs.finish(run.as_ref().err())?;
+/// assert_eq!((written.rows, written.frames), (3, 3));
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), tensegrity_io::IoError>(())
+/// ```
+#[derive(Debug)]
+pub struct SimulationOutputs<'a> {
+    csv: Option<TrajectoryWriter>,
+    vtk: Option<VtkSeriesSink<'a>>,
+    /// An output error that stopped the run.
+    failed: Option<IoError>,
+    last_t: f64,
+}
+
+impl<'a> SimulationOutputs<'a> {
+    /// The outputs, opened by the caller before the run (so each error names its own path).
+    pub fn new(csv: Option<TrajectoryWriter>, vtk: Option<VtkSeriesSink<'a>>) -> Self {
+        Self {
+            csv,
+            vtk,
+            failed: None,
+            last_t: 0.0,
+        }
+    }
+
+    fn write(&mut self, s: &Sample) -> Result<()> {
+        if let Some(w) = self.csv.as_mut() {
+            w.write(s)?;
+        }
+        if let (Some(w), Some(nodes)) = (self.vtk.as_mut(), s.nodes.as_deref()) {
+            let data = FrameData {
+                velocities: s.velocities.as_deref(),
+                member_forces: s.member_forces.as_deref(),
+            };
+            w.frame_with(s.t, nodes, &data)?;
+        }
+        Ok(())
+    }
+
+    /// Closes the outputs after the run ended with `outcome`: renamed into place on success;
+    /// after an error (an interrupt included) the rows and frames so far are kept, marked
+    /// incomplete with the error's message (a run stopped before its first sample leaves no
+    /// CSV). An output error that stopped the run is returned first.
+    pub fn finish(mut self, outcome: Option<&CoreError>) -> Result<Written> {
+        if let Some(e) = self.failed.take() {
+            return Err(e);
+        }
+        let reason = outcome.map(ToString::to_string);
+        let rows = match (self.csv.take(), &reason) {
+            (Some(w), None) => w.finish()?,
+            (Some(w), Some(r)) => w.finish_incomplete(r)?,
+            (None, _) => 0,
+        };
+        let frames = match (self.vtk.take(), &reason) {
+            (Some(w), None) => w.finish()?,
+            (Some(w), Some(r)) => w.finish_incomplete(r)?,
+            (None, _) => 0,
+        };
+        Ok(Written { rows, frames })
+    }
+}
+
+impl SampleSink for SimulationOutputs<'_> {
+    fn accept(&mut self, sample: Sample) -> std::result::Result<(), CoreError> {
+        if crate::interrupt::requested() {
+            return Err(CoreError::Interrupted { t: self.last_t });
+        }
+        if let Err(e) = self.write(&sample) {
+            self.failed = Some(e);
+            return Err(CoreError::Interrupted { t: self.last_t });
+        }
+        self.last_t = sample.t;
+        Ok(())
+    }
+
+    fn keep_going(&mut self) -> bool {
+        !crate::interrupt::requested()
+    }
+}

@@ -1,0 +1,157 @@
+//! `michell --sign-map`, `--gamma-sweep` and `michell-table`: the grids of Figs. 4.14–4.16,
+//! 4.20 and 4.18, their output files opened (io sinks) before the grids are computed.
+
+use super::{MichellArgs, MichellTableArgs};
+use crate::cli::output;
+use anyhow::Result;
+use michell3d::signmap::AngleGrid;
+use michell3d::{AnalysisRequest, MichellTruss};
+use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::sink::{FigureSink, FileSink};
+
+/// `--sign-map` and `--gamma-sweep`, opened before the analysis.
+pub fn open_outputs(args: &MichellArgs) -> Result<(Option<FileSink>, Option<FileSink>)> {
+    Ok((
+        output::open("--sign-map", args.sign_map.as_deref(), FileSink::open)?,
+        output::open("--gamma-sweep", args.gamma_sweep.as_deref(), FileSink::open)?,
+    ))
+}
+
+/// Computes the sign maps of `--map-members` on the analysed truss (rows on threads through
+/// [`sweeps::grids::sign_maps`]) and writes their CSV.
+pub fn write_sign_maps(
+    args: &MichellArgs,
+    request: &AnalysisRequest,
+    truss: &MichellTruss,
+    mut sink: FileSink,
+) -> Result<()> {
+    use michell3d::signmap::sign_map_rows;
+    use sweeps::grids::sign_maps;
+    let n_members = truss.members().len();
+    if let Some(&bad) = args.map_members.iter().find(|&&m| m >= n_members) {
+        anyhow::bail!("--map-members: member {bad} does not exist (the truss has {n_members})");
+    }
+    let (na, np) = args.map_grid;
+    let maps = sign_maps(
+        truss,
+        &args.map_members,
+        args.load,
+        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
+        AngleGrid::new(0.0, std::f64::consts::PI, np),
+        request.method,
+    )?;
+    sink.write_with(|w| tensegrity_io::csv::write_sign_maps(w, sign_map_rows(truss, &maps)))?;
+    let path = sink.path().to_path_buf();
+    sink.finish()?;
+    if !args.json {
+        for m in &maps {
+            println!(
+                "sign map of member {}: in tension for {:.1} % of the load directions",
+                m.member,
+                100.0 * m.tension_fraction()
+            );
+        }
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Sweeps the load polar angle γ over [0, 2π] with prestressed extra strings (Fig. 4.20)
+/// on the analysed truss and writes the CSV.
+pub fn write_gamma_sweep(
+    args: &MichellArgs,
+    request: &AnalysisRequest,
+    truss: &MichellTruss,
+    prestress: f64,
+    mut sink: FileSink,
+) -> Result<()> {
+    use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
+    let strings = ExtraStrings::new(truss)?;
+    let sweep = gamma_sweep(
+        truss,
+        &strings,
+        args.load,
+        args.azimuth,
+        AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
+        prestress,
+        request.method,
+    )?;
+    sink.write_with(|w| tensegrity_io::csv::write_gamma_sweep(w, sweep.rows()))?;
+    let path = sink.path().to_path_buf();
+    sink.finish()?;
+    if !args.json {
+        let changers: Vec<usize> = (0..sweep.base_keeps_sign.len())
+            .filter(|&j| !sweep.base_keeps_sign[j])
+            .collect();
+        println!(
+            "over γ ∈ [0, 2π] with {prestress} N in the extra strings, members changing sign: {changers:?}; extra strings keeping their sign: {}/{}",
+            sweep.extra_keeps_sign.iter().filter(|&&k| k).count(),
+            sweep.extra_keeps_sign.len()
+        );
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Runs `tensegrity michell-table` (Fig. 4.18: mass against complexity), a thin wrapper over
+/// [`sweeps::grids::mass_vs_complexity`].
+pub fn run_table(args: &MichellTableArgs) -> Result<()> {
+    use michell3d::complexity::FIG_4_18_DELTAS;
+    use sweeps::grids::mass_vs_complexity;
+    use tensegrity_io::csv::write_mass_table;
+    if args.max_complexity < 2 {
+        anyhow::bail!(
+            "--max-complexity must be at least 2, got {}",
+            args.max_complexity
+        );
+    }
+    let material =
+        *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
+    let out = output::open("--out", args.out.as_deref(), FileSink::open)?;
+    let svg = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let qs: Vec<usize> = (2..=args.max_complexity).collect();
+    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
+    match out {
+        Some(mut sink) => {
+            sink.write_with(|w| write_mass_table(w, &rows))?;
+            let path = sink.path().to_path_buf();
+            sink.finish()?;
+            println!("wrote {} rows to {}", rows.len(), path.display());
+        }
+        None => {
+            write_mass_table(std::io::stdout().lock(), &rows)?;
+        }
+    }
+    if let Some(sink) = svg {
+        sink.finish(&Figure::new(vec![mass_panel(args, &rows)]))?;
+    }
+    Ok(())
+}
+
+/// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
+fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> Panel {
+    let series = |delta: f64, label: String| {
+        let points = rows
+            .iter()
+            .filter(|r| r.delta == delta)
+            .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
+            .collect();
+        Series::new(label, points)
+    };
+    let mut all = vec![series(0.0, "planar".into())];
+    all.extend(
+        michell3d::complexity::FIG_4_18_DELTAS
+            .iter()
+            .map(|&d| series(d, format!("δ = {d}"))),
+    );
+    let mut panel = Panel::new(
+        format!(
+            "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
+            args.material, args.load
+        ),
+        "complexity q",
+        "mass [kg]",
+    );
+    panel.series = all;
+    panel
+}

@@ -1,0 +1,66 @@
+//! `tbar --export-scene`, `--vtk` and `--svg`: their sinks are opened before the analysis and
+//! filled with the structure and its drawing afterwards.
+
+use super::TbarArgs;
+use crate::cli::output;
+use anyhow::Result;
+use tbar_wheel::drawing::{polylines, View};
+use tbar_wheel::{TbarGeometry, TbarRequest};
+use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::sink::{FigureSink, FileSink};
+
+/// The sinks of `--export-scene`, `--vtk` and `--svg`.
+pub struct Outputs {
+    scene: Option<FileSink>,
+    vtk: Option<FileSink>,
+    svg: Option<FigureSink>,
+}
+
+/// Opens the output flags given, before any work.
+pub fn open(args: &TbarArgs) -> Result<Outputs> {
+    Ok(Outputs {
+        scene: output::open(
+            "--export-scene",
+            args.export_scene.as_deref(),
+            FileSink::open,
+        )?,
+        vtk: output::open("--vtk", args.vtk.as_deref(), FileSink::open)?,
+        svg: output::open("--svg", args.svg.as_deref(), FigureSink::open)?,
+    })
+}
+
+impl Outputs {
+    /// Writes the structure (scene, VTK) and the drawing of `req` into the opened sinks.
+    pub fn write(self, req: &TbarRequest) -> Result<()> {
+        if self.scene.is_none() && self.vtk.is_none() && self.svg.is_none() {
+            return Ok(());
+        }
+        let g = TbarGeometry::new(req.params)?;
+        let s = g.structure()?;
+        if let Some(sink) = self.scene {
+            sink.finish_with(tensegrity_io::scene::to_toml(&s))?;
+        }
+        if let Some(sink) = self.vtk {
+            sink.finish_with(tensegrity_io::vtk::vtu(&s, s.nodes()))?;
+        }
+        if let Some(sink) = self.svg {
+            sink.finish(&drawing(&g))?;
+        }
+        Ok(())
+    }
+}
+
+/// The side and top views through the io figure module.
+fn drawing(g: &TbarGeometry) -> Figure {
+    let panel = |view: View, title: &str, y: &str| {
+        polylines(g, view)
+            .into_iter()
+            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
+                p.series(Series::new(l.label, l.points))
+            })
+    };
+    Figure::new(vec![
+        panel(View::Side, "T-bar, side view", "ι3 [m]"),
+        panel(View::Top, "T-bar, top view", "ι1 [m]"),
+    ])
+}
