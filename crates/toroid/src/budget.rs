@@ -5,15 +5,15 @@
 //! 12n prism strings + 2n spokes + 2n inner + 2n outer ring strings; no supports, so the
 //! equilibrium matrix is 3·nodes × members. [`statics`] estimates what [`crate::analyse`]
 //! runs: [`dense_statics`] (O(n³) work, O(n²) memory) or, for the symmetry-adapted path,
-//! [`cyclic_statics`] (O(n) work and memory). [`roll`] adds the time integration of the model the
-//! fidelity policy picks ([`RollRequest::fidelity_for`]) and its samples.
+//! [`cyclic_statics`] (O(n) work and memory). [`roll`] adds what the fidelity decision's plan
+//! may run ([`RollRequest::decision`], the one the run follows), estimated by wheel-rolling
+//! from the wheel's sizes ([`full_sizes`]).
 
 use crate::params::ToroidParams;
 use crate::report::{ToroidRequest, WheelSpec};
 use crate::roll::RollRequest;
-use crate::rolling::RollingSample;
-use crate::rolling_full::Fidelity;
 use tensegrity_core::budget::{self, Estimate};
+use wheel_rolling::estimate::{FullSizes, RunSize};
 
 /// Node, bar and string counts of the wheel (or of the single prism).
 pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
@@ -102,43 +102,39 @@ pub fn wheel_mass(wheel: &WheelSpec) -> f64 {
     wheel.bar_density * (p.sides as f64 * prism + axle)
 }
 
-/// Estimate of `tensegrity roll`: the wheel's statics, then the time integration of the model
-/// the fidelity policy picks (rigid: one degree of freedom; full: the class-1 model with its
-/// rim-joint constraints, 4 right-hand sides a step) and the samples kept in memory
-/// (one per [`crate::defaults::ROLL_OUTPUT_DT`]).
+/// The sizes of the wheel's full rolling model: the class-1 model of its bars and strings,
+/// one constraint row per rim joint and direction, RK4's four right-hand sides a step.
+pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
+    let (nodes, bars, strings) = counts(wheel, false);
+    FullSizes {
+        nodes,
+        bars,
+        strings,
+        constraint_rows: 3 * wheel.params.sides,
+        rhs_per_step: 4.0,
+        extra_flops: 0.0,
+    }
+}
+
+/// Estimate of `roll`: the wheel's statics, then what the plan of the fidelity decision
+/// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
+/// model, or both — with their samples kept in memory (one per
+/// [`crate::defaults::ROLL_OUTPUT_DT`]); named `t_end = …, dt = …, sides = …`.
 pub fn roll(request: &RollRequest) -> Estimate {
     let wheel = &request.wheel;
     let statics = statics(&ToroidRequest {
         wheel: *wheel,
         ..ToroidRequest::default()
     });
-    let parameter = format!(
-        "--t-end {} --dt {} --sides {}",
-        request.t_end, request.dt, wheel.params.sides
+    let size = RunSize::new(
+        request.t_end,
+        request.settings.dt,
+        wheel.params.sides,
     );
-    let steps = (request.t_end / request.dt).ceil();
-    let samples = (request.t_end / crate::defaults::ROLL_OUTPUT_DT).floor() + 2.0;
-    let (nodes, bars, strings) = counts(wheel, false);
-    let fidelity = request.fidelity_for(wheel_mass(wheel), wheel.params.outer_radius);
-    let (run, sample_bytes) = match fidelity {
-        Fidelity::Rigid => (
-            budget::integration(steps, 1.0, 200.0, 3, parameter.clone()),
-            std::mem::size_of::<RollingSample>() as f64,
-        ),
-        Fidelity::Full => {
-            // one constraint row per rim joint and direction
-            let rows = 3 * wheel.params.sides;
-            let flops = budget::rhs_flops(bars, strings, rows);
-            (
-                budget::integration(steps, 4.0, flops, 12 * bars, parameter.clone()),
-                std::mem::size_of::<RollingSample>() as f64 + 48.0 * nodes as f64,
-            )
-        }
-    };
-    let kept = budget::table(samples, sample_bytes, true, parameter.clone());
+    let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
     Estimate {
-        parameter,
-        ..statics.then(run).then(kept)
+        parameter: size.parameter,
+        ..statics.then(run)
     }
 }
 
@@ -170,6 +166,7 @@ mod tests {
             t_end: 1e9,
             ..RollRequest::default()
         };
+        assert_eq!(roll(&r).parameter, "t_end = 1000000000, dt = 0.0001, sides = 8");
         let e = roll(&r);
         // 1e12 samples kept in memory
         assert!(e.memory_bytes > 1e13, "{}", e.memory_bytes);

@@ -15,13 +15,18 @@ use crate::inertia::wheel_mass;
 use crate::params::{Stabilize, ToroidParams};
 use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+use tensegrity_core::request::Param;
 use tensegrity_core::Structure;
 
-/// One wheel: geometry, stabilising strings and bar mass per length.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
+/// seven parameters, `stabilize` as `"spokes,inner"`, `bar_density`), so a request that
+/// `#[serde(flatten)]`s it reads `{"sides": 12, "stabilize": "spokes,outer", ...}`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct WheelSpec {
     /// The seven geometric parameters.
+    #[serde(flatten)]
     pub params: ToroidParams,
     /// The stabilising string sets.
     pub stabilize: Stabilize,
@@ -51,6 +56,18 @@ impl WheelSpec {
     /// Builds the toroid.
     pub fn build(&self) -> Result<Toroid> {
         build(&self.params, self.stabilize, self.bar_density)
+    }
+
+    /// One [`Param`] per field: the seven parameters of [`ToroidParams::params`], then
+    /// `stabilize` and `bar_density`.
+    pub fn params() -> Vec<Param> {
+        let mut out = ToroidParams::params();
+        out.push(Param::text(
+            "stabilize",
+            "Stabilising strings: comma-separated spokes, inner, outer, or none",
+        ));
+        out.push(Param::number("bar_density", "kg/m", "Bar mass per length").positive());
+        out
     }
 }
 

@@ -1,12 +1,12 @@
 //! The generic entry of the full rolling model: the toroid's own scene satisfies the
 //! contract, and a scene off its starting side is refused with the node named.
 
-use toroid::rolling_full::{FullRolling, WheelScene};
-use toroid::{ToroidError, WheelSpec};
+use toroid::WheelSpec;
+use wheel_rolling::{FullRolling, RollingError, WheelScene};
 
 fn scene() -> WheelScene {
     let t = WheelSpec::with_sides(8).build().unwrap();
-    FullRolling::default().scene(&t).unwrap()
+    toroid::roll::scene(&t, 2e4, 20.0).unwrap()
 }
 
 #[test]
@@ -32,7 +32,7 @@ fn a_scene_off_its_starting_side_is_refused() {
     assert!(
         matches!(
             &e,
-            ToroidError::InvalidParameter(p) if p.name == "contact_groups"
+            RollingError::InvalidParameter(p) if p.name == "contact_groups"
         ),
         "{e}"
     );

@@ -1,0 +1,134 @@
+//! Resource estimates of rolling runs, from sizes alone (nothing is built or integrated), for
+//! the guard of [`tensegrity_core::budget`].
+//!
+//! - **rigid** ([`rigid`]): t_end / dt steps of a one-degree-of-freedom hybrid model (one
+//!   right-hand side of ~200 flops a step), and one [`RollingSample`] kept per output
+//!   interval;
+//! - **full** ([`full`]): t_end / dt steps of the core's class-1 model, `rhs_per_step`
+//!   right-hand sides of [`budget::rhs_flops`] (bars, strings, constraint rows) plus the
+//!   wheel's own extra flops each, a state of 12 numbers a bar; one sample and its node
+//!   positions (48 bytes a node) kept per output interval;
+//! - a **plan** ([`plan`]): what the [`Plan`] may run — the rigid run, the full run, or the
+//!   rigid run and then the full one ([`Plan::RigidThenFullIfInvalid`]) — so the estimate and
+//!   the run follow the one decision of [`crate::fidelity`].
+//!
+//! Every estimate names the parameters that drive it as the request spells them
+//! (`t_end = 10, dt = 0.0001, sides = 8`).
+
+use crate::defaults;
+use crate::fidelity::Plan;
+use crate::sample::RollingSample;
+use tensegrity_core::budget::{self, Estimate};
+
+/// What the cost of a full run depends on: the sizes of the wheel's class-1 model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FullSizes {
+    /// Nodes of the structure.
+    pub nodes: usize,
+    /// Bars (rigid, with mass).
+    pub bars: usize,
+    /// Strings.
+    pub strings: usize,
+    /// Rows of the joint constraints N P = D.
+    pub constraint_rows: usize,
+    /// Right-hand sides per step: 4 for RK4, 6 counting the projection onto the bar
+    /// lengths and joints as two more.
+    pub rhs_per_step: f64,
+    /// Flops per right-hand side beyond the core's per-member cost (e.g. a hub's banded
+    /// block of the Ω system).
+    pub extra_flops: f64,
+}
+
+/// The sizes of a run: its time and step, and the parameter text the estimate names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSize {
+    /// Simulated time (s).
+    pub t_end: f64,
+    /// Step (s).
+    pub dt: f64,
+    /// The parameters that drive the size, as the request names them.
+    pub parameter: String,
+}
+
+impl RunSize {
+    /// A run of `t_end` s at `dt` for a wheel of `sides` sides: the parameter text
+    /// `t_end = …, dt = …, sides = …`.
+    ///
+    /// ```
+    /// use wheel_rolling::estimate::RunSize;
+    /// assert_eq!(RunSize::new(10.0, 1e-4, 8).parameter, "t_end = 10, dt = 0.0001, sides = 8");
+    /// ```
+    pub fn new(t_end: f64, dt: f64, sides: usize) -> Self {
+        Self {
+            t_end,
+            dt,
+            parameter: format!("t_end = {t_end}, dt = {dt}, sides = {sides}"),
+        }
+    }
+
+    fn steps(&self) -> f64 {
+        (self.t_end / self.dt).ceil()
+    }
+
+    fn samples(&self) -> f64 {
+        (self.t_end / defaults::ROLL_OUTPUT_DT).floor() + 2.0
+    }
+}
+
+/// A rigid run (module docs).
+///
+/// ```
+/// use wheel_rolling::estimate::{rigid, RunSize};
+/// let e = rigid(&RunSize::new(10.0, 1e-4, 8));
+/// assert!(e.work_s < 0.1 && e.memory_bytes < 1e6);
+/// ```
+pub fn rigid(size: &RunSize) -> Estimate {
+    let run = budget::integration(size.steps(), 1.0, 200.0, 3, size.parameter.clone());
+    let sample = std::mem::size_of::<RollingSample>() as f64;
+    run.then(budget::table(
+        size.samples(),
+        sample,
+        true,
+        size.parameter.clone(),
+    ))
+}
+
+/// A full run (module docs).
+pub fn full(size: &RunSize, sizes: &FullSizes) -> Estimate {
+    let flops =
+        budget::rhs_flops(sizes.bars, sizes.strings, sizes.constraint_rows) + sizes.extra_flops;
+    let run = budget::integration(
+        size.steps(),
+        sizes.rhs_per_step,
+        flops,
+        12 * sizes.bars,
+        size.parameter.clone(),
+    );
+    let sample = std::mem::size_of::<RollingSample>() as f64 + 48.0 * sizes.nodes as f64;
+    run.then(budget::table(
+        size.samples(),
+        sample,
+        true,
+        size.parameter.clone(),
+    ))
+}
+
+/// What `plan` may run: the rigid run, the full run, or both one after the other.
+///
+/// ```
+/// use wheel_rolling::estimate::{full, plan, rigid, FullSizes, RunSize};
+/// use wheel_rolling::fidelity::Plan;
+/// let size = RunSize::new(2.0, 1e-4, 8);
+/// let sizes = FullSizes { nodes: 42, bars: 25, strings: 128, constraint_rows: 24,
+///     rhs_per_step: 4.0, extra_flops: 0.0 };
+/// let both = plan(Plan::RigidThenFullIfInvalid, &size, &sizes);
+/// assert!(both.work_s >= full(&size, &sizes).work_s + rigid(&size).work_s - 1e-12);
+/// assert_eq!(plan(Plan::Full, &size, &sizes), full(&size, &sizes));
+/// ```
+pub fn plan(plan: Plan, size: &RunSize, sizes: &FullSizes) -> Estimate {
+    match plan {
+        Plan::Rigid => rigid(size),
+        Plan::Full => full(size, sizes),
+        Plan::RigidThenFullIfInvalid => rigid(size).then(full(size, sizes)),
+    }
+}
