@@ -23,15 +23,71 @@ use tensegrity_core::Structure;
 /// seven parameters, `stabilize` as `"spokes,inner"`, `bar_density`), so a request that
 /// `#[serde(flatten)]`s it reads `{"sides": 12, "stabilize": "spokes,outer", ...}`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(from = "WheelFields", into = "WheelFields")]
 pub struct WheelSpec {
     /// The seven geometric parameters.
-    #[serde(flatten)]
     pub params: ToroidParams,
     /// The stabilising string sets.
     pub stabilize: Stabilize,
     /// Bar mass per length (kg/m); strings are massless.
     pub bar_density: f64,
+}
+
+/// The flat serde form of [`WheelSpec`]: one plain struct (no nested flatten), so that a
+/// request flattening it keeps `deny_unknown_fields` working.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct WheelFields {
+    sides: usize,
+    outer_tread: f64,
+    inner_tread: f64,
+    offset: f64,
+    outer_radius: f64,
+    inner_radius: f64,
+    rim_radius: f64,
+    stabilize: Stabilize,
+    bar_density: f64,
+}
+
+impl Default for WheelFields {
+    fn default() -> Self {
+        WheelSpec::default().into()
+    }
+}
+
+impl From<WheelFields> for WheelSpec {
+    fn from(f: WheelFields) -> Self {
+        Self {
+            params: ToroidParams {
+                sides: f.sides,
+                outer_tread: f.outer_tread,
+                inner_tread: f.inner_tread,
+                offset: f.offset,
+                outer_radius: f.outer_radius,
+                inner_radius: f.inner_radius,
+                rim_radius: f.rim_radius,
+            },
+            stabilize: f.stabilize,
+            bar_density: f.bar_density,
+        }
+    }
+}
+
+impl From<WheelSpec> for WheelFields {
+    fn from(w: WheelSpec) -> Self {
+        let p = w.params;
+        Self {
+            sides: p.sides,
+            outer_tread: p.outer_tread,
+            inner_tread: p.inner_tread,
+            offset: p.offset,
+            outer_radius: p.outer_radius,
+            inner_radius: p.inner_radius,
+            rim_radius: p.rim_radius,
+            stabilize: w.stabilize,
+            bar_density: w.bar_density,
+        }
+    }
 }
 
 impl Default for WheelSpec {
