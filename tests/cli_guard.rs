@@ -62,7 +62,7 @@ fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag()
 fn a_billion_seconds_of_rolling_is_refused() {
     assert_refused(
         &["roll", "--t-end", "1e9"],
-        &["--t-end 1000000000", "raise the limit with --max-"],
+        &["t_end = 1000000000", "raise the limit with --max-"],
     );
     assert_refused(
         &[
@@ -72,7 +72,7 @@ fn a_billion_seconds_of_rolling_is_refused() {
             "--out",
             "/nonexistent/x.svg",
         ],
-        &["--t-end 1000000000"],
+        &["t_end = 1000000000"],
     );
 }
 

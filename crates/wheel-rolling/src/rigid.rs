@@ -302,6 +302,7 @@ impl RigidRolling {
         let n_out = (t_end / self.output_dt).floor() as usize;
         let mut samples = Vec::with_capacity(n_out + 2);
         let mut stopped = false;
+        let mut frames = Vec::new();
         for i in 0..=n_out {
             let t_out = i as f64 * self.output_dt;
             if i > 0 && !sim.advance_to(t_out, self.dt) {
@@ -309,21 +310,28 @@ impl RigidRolling {
             }
             let sample = self.sample(&sim, t_out, &mut budget);
             samples.push(sample);
-            let frames = placer.push(&sample);
+            let new_frames = placer.push(&sample);
             if let Some(obs) = observer.as_deref_mut() {
                 let mut flow = obs.sample(&sample);
-                for f in &frames {
+                for f in &new_frames {
                     if obs.frame(f) == Flow::Stop {
                         flow = Flow::Stop;
                     }
                 }
-                if flow == Flow::Stop || !obs.keep_going() {
-                    stopped = true;
-                    break;
-                }
+                stopped = flow == Flow::Stop || !obs.keep_going();
+            }
+            frames.extend(new_frames);
+            if stopped {
+                break;
             }
         }
-        let frames = placer.finish(!stopped);
+        let last_frames = placer.finish(!stopped);
+        if let Some(obs) = observer.as_deref_mut() {
+            for f in &last_frames {
+                obs.frame(f);
+            }
+        }
+        frames.extend(last_frames);
         let run_time = samples.last().map_or(0.0, |s| s.t);
         let mut r = summarise(samples, sim.impacts.len(), self.output_dt);
         r.validity = self.validity(&sim, &budget, run_time);
