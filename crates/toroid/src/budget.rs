@@ -178,4 +178,43 @@ mod tests {
         let e = roll(&RollRequest::default());
         assert!(tensegrity_core::budget::Limits::default().check(&e).is_ok());
     }
+
+    #[test]
+    fn the_estimate_budgets_exactly_what_the_run_may_do() {
+        use wheel_rolling::{Fidelity, FidelityChoice, Plan};
+        let with = |fidelity, string_stiffness: f64| {
+            let mut r = RollRequest {
+                fidelity,
+                t_end: 0.2,
+                ..RollRequest::default()
+            };
+            r.settings.string_stiffness = string_stiffness;
+            r
+        };
+        // soft strings (the default 2·10⁴ N/m): auto is the full model, and so is the estimate
+        let soft = with(FidelityChoice::Auto, 2e4);
+        assert_eq!(soft.decision().plan, Plan::Full);
+        assert_eq!(roll(&soft), roll(&with(FidelityChoice::Full, 2e4)));
+        assert_eq!(crate::roll::roll(&soft).unwrap().fidelity, Fidelity::Full);
+        // stiff strings: the rigid run may be invalid, so the estimate covers the rigid run
+        // and then the full one, though this rigid run is valid and alone runs
+        let stiff = with(FidelityChoice::Auto, 2e6);
+        assert_eq!(stiff.decision().plan, Plan::RigidThenFullIfInvalid);
+        let (both, full, rigid) = (
+            roll(&stiff),
+            roll(&with(FidelityChoice::Full, 2e6)),
+            roll(&with(FidelityChoice::Rigid, 2e6)),
+        );
+        assert!(both.work_s >= full.work_s && both.work_s >= rigid.work_s);
+        assert!((both.work_s - full.work_s - rigid.work_s + statics_work()).abs() < 1e-9);
+        let ran = crate::roll::roll(&stiff).unwrap();
+        assert_eq!(ran.fidelity, Fidelity::Rigid);
+        // the run's decision is the estimate's: the same plan from the same mass
+        assert!(ran.fidelity_reason.contains("rigid run is valid"));
+    }
+
+    /// The statics part of every roll estimate of the reference wheel (counted once).
+    fn statics_work() -> f64 {
+        statics(&ToroidRequest::default()).work_s
+    }
 }
