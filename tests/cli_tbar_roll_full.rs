@@ -101,5 +101,8 @@ fn the_full_model_refuses_the_fixed_rim() {
     // a bad value (exit 2), named by the request's parameter
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("rim = \"fixed\"") && err.contains("rim body"), "{err}");
+    assert!(
+        err.contains("rim = \"fixed\"") && err.contains("rim body"),
+        "{err}"
+    );
 }

@@ -252,7 +252,11 @@ fn print_roll(r: &RollReport) {
         s.impacts
     );
     println!("model: {model} ({})", r.fidelity_reason);
-    let span = if r.t_end > 1.0 { "after 1 s" } else { "whole run" };
+    let span = if r.t_end > 1.0 {
+        "after 1 s"
+    } else {
+        "whole run"
+    };
     println!(
         "axle height above the slope: mean {:.4} m, RMS oscillation {:.6} m ({span})",
         s.mean_axle_height, s.axle_height_oscillation

@@ -323,7 +323,12 @@ impl TbarRollRequest {
     /// The rigid run of `polygon` in the settings of this request.
     pub fn rigid_run(&self, polygon: &wheel_rolling::Polygon) -> Result<WheelRun> {
         let r = roll_wheel(polygon, &self.spec(Fidelity::Rigid), &[], None)?;
-        Ok(WheelRun::of(Fidelity::Rigid, polygon, &r.result, self.t_end()))
+        Ok(WheelRun::of(
+            Fidelity::Rigid,
+            polygon,
+            &r.result,
+            self.t_end(),
+        ))
     }
 
     /// The T-bar columns of the row of `n` treads (module docs): mass properties, the run of

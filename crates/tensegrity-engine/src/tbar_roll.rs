@@ -86,7 +86,10 @@ fn toroid_wheel(request: &TbarRollRequest, n: usize) -> WheelSpec {
 /// The toroid's full-model request in the settings of `request` (n sides). The toroid's
 /// model takes μ_k = 0.75 μ_s: a different `mu_kinetic` applies to the T-bar only, and the
 /// toroid column is refused.
-pub fn toroid_request(request: &TbarRollRequest, n: usize) -> Result<RollRequest, InvalidParameter> {
+pub fn toroid_request(
+    request: &TbarRollRequest,
+    n: usize,
+) -> Result<RollRequest, InvalidParameter> {
     let ratio = request.mu_kinetic() / request.mu_static.max(f64::MIN_POSITIVE);
     if request.mu_kinetic.is_some() && (ratio - defaults::KINETIC_FRICTION_RATIO).abs() > 1e-12 {
         return Err(InvalidParameter::new(
@@ -111,7 +114,10 @@ pub fn toroid_request(request: &TbarRollRequest, n: usize) -> Result<RollRequest
 }
 
 /// The toroid column of the row of `n` treads.
-fn toroid_column(request: &TbarRollRequest, n: usize) -> Result<WheelRun, Box<dyn std::error::Error>> {
+fn toroid_column(
+    request: &TbarRollRequest,
+    n: usize,
+) -> Result<WheelRun, Box<dyn std::error::Error>> {
     match request.fidelity {
         Fidelity::Rigid => {
             let t = toroid_wheel(request, n).build()?;
@@ -185,7 +191,10 @@ mod tests {
             ..TbarRollRequest::default()
         })
         .unwrap();
-        assert_eq!((r.model, r.full_tensegrity_rolling), (Fidelity::Rigid, false));
+        assert_eq!(
+            (r.model, r.full_tensegrity_rolling),
+            (Fidelity::Rigid, false)
+        );
         assert_eq!(r.rows.len(), 2);
         for row in &r.rows {
             assert!(row.errors.is_empty(), "{:?}", row.errors);
@@ -196,7 +205,14 @@ mod tests {
             let mg = row.mass_properties.unwrap().mass * 9.81;
             assert!((tip.critical_lateral_force - 0.5 * mg * 0.4).abs() < 1e-12);
         }
-        let osc = |i: usize| r.rows[i].tbar.as_ref().unwrap().summary.axle_height_oscillation;
+        let osc = |i: usize| {
+            r.rows[i]
+                .tbar
+                .as_ref()
+                .unwrap()
+                .summary
+                .axle_height_oscillation
+        };
         assert!(osc(1) < osc(0));
         // the toroid column is `toroid::roll` with the rigid fidelity (the reference wheel,
         // R_o = 1)
@@ -211,7 +227,14 @@ mod tests {
         assert_eq!(ours.summary, direct.summary);
         let j = serde_json::to_value(&r).unwrap();
         assert_eq!((&j["model"], &j["rim"]), (&"rigid".into(), &"fixed".into()));
-        for key in ["valid", "warnings", "min_normal_force", "airborne_fraction", "model", "I1"] {
+        for key in [
+            "valid",
+            "warnings",
+            "min_normal_force",
+            "airborne_fraction",
+            "model",
+            "I1",
+        ] {
             assert!(j["rows"][0]["tbar"].get(key).is_some(), "{key}");
             assert!(j["rows"][0]["toroid"].get(key).is_some(), "{key}");
         }

@@ -41,7 +41,7 @@ pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
 /// assert!(budget::statics(&r).work_s < 1.0);
 /// r.wheel.params.sides = 100_000;
 /// let e = budget::statics(&r);
-/// assert!(e.memory_bytes < 8e9 && e.parameter == "--sides 100000");
+/// assert!(e.memory_bytes < 8e9 && e.parameter == "sides = 100000");
 /// r.wheel.params.sides = 100_000_000;
 /// assert!(budget::statics(&r).memory_bytes > 1e11);
 /// ```
@@ -51,9 +51,9 @@ pub fn statics(request: &ToroidRequest) -> Estimate {
 
 fn parameter(request: &ToroidRequest) -> String {
     if request.prism_only {
-        "--prism-only".to_string()
+        "prism_only = true".to_string()
     } else {
-        format!("--sides {}", request.wheel.params.sides)
+        format!("sides = {}", request.wheel.params.sides)
     }
 }
 
@@ -126,11 +126,7 @@ pub fn roll(request: &RollRequest) -> Estimate {
         wheel: *wheel,
         ..ToroidRequest::default()
     });
-    let size = RunSize::new(
-        request.t_end,
-        request.settings.dt,
-        wheel.params.sides,
-    );
+    let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
     let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
     Estimate {
         parameter: size.parameter,
@@ -166,7 +162,10 @@ mod tests {
             t_end: 1e9,
             ..RollRequest::default()
         };
-        assert_eq!(roll(&r).parameter, "t_end = 1000000000, dt = 0.0001, sides = 8");
+        assert_eq!(
+            roll(&r).parameter,
+            "t_end = 1000000000, dt = 0.0001, sides = 8"
+        );
         let e = roll(&r);
         // 1e12 samples kept in memory
         assert!(e.memory_bytes > 1e13, "{}", e.memory_bytes);

@@ -3,7 +3,7 @@
 //! The 3-bar-prism tensegrity toroid of the thesis (chapter 3), used as a wheel: geometry from
 //! seven parameters, stabilising string options, statics (self-stress, prestressability,
 //! internal mechanisms, prestress design), mass and inertia, tip-over, and rolling down an
-//! incline (with the models of the wheel-rolling crate); and the reports of these studies ([`toroid_report`], [`roll`],
+//! incline (with the models of the wheel-rolling crate); and the reports of these studies ([`toroid_report`], [`roll()`],
 //! [`tipover_report`], [`rolling_series`]) built from request structs whose defaults are the
 //! named constants of [`defaults`].
 //!
@@ -48,6 +48,8 @@ pub use roll::{
 };
 pub use symmetry::{toroid_symmetry, SymmetryCounts};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
-/// The rolling models the toroid's [`roll`] runs (re-exported: the request's enums and the
+/// The rolling models the toroid's [`roll()`] runs (re-exported: the request's enums and the
 /// report's parts are wheel-rolling's).
-pub use wheel_rolling::{self, ContactKind, FidelityChoice, FirstImpact, ImpactRecord, RollValidity};
+pub use wheel_rolling::{
+    self, ContactKind, FidelityChoice, FirstImpact, ImpactRecord, RollValidity,
+};

@@ -1,6 +1,6 @@
 //! Reports of the toroid studies, as the CLI prints them (text or JSON): the statics and
 //! inertia of one wheel ([`toroid_report`]) and its tip-over figures ([`tipover_report`]).
-//! The rolling report is in [`crate::roll`].
+//! The rolling report is in [`crate::roll`](mod@crate::roll).
 //!
 //! Every study starts from a [`WheelSpec`] (the seven parameters, the stabilising options and
 //! the bar density) and a request struct whose [`Default`] is the CLI's default; the numbers

@@ -98,7 +98,11 @@ impl Request for RollRequest {
                 FidelityChoice::NAMES,
                 "Model: rigid polygon, full tensegrity, or auto (the cheapest valid one)",
             ),
-            Param::choice("contact", ContactKind::NAMES, "Ground contact of the full model"),
+            Param::choice(
+                "contact",
+                ContactKind::NAMES,
+                "Ground contact of the full model",
+            ),
             setting("ground_damping"),
             setting("ground_stiffness"),
             Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
@@ -127,7 +131,11 @@ impl Request for RollRequest {
         match self.wheel.params.validate() {
             Ok(()) => Ok(()),
             Err(ToroidError::InvalidParameter(p)) => Err(p),
-            Err(e) => Err(InvalidParameter::raw("sides", self.wheel.params.sides, e.to_string())),
+            Err(e) => Err(InvalidParameter::raw(
+                "sides",
+                self.wheel.params.sides,
+                e.to_string(),
+            )),
         }
     }
 }
@@ -250,7 +258,14 @@ mod tests {
         tensegrity_core::request::check_description::<RollRequest>().unwrap();
         let names: Vec<&str> = RollRequest::params().iter().map(|p| p.name).collect();
         assert_eq!(names.len(), 22);
-        for flag in ["sides", "stabilize", "incline", "mu", "integrator", "gravity"] {
+        for flag in [
+            "sides",
+            "stabilize",
+            "incline",
+            "mu",
+            "integrator",
+            "gravity",
+        ] {
             assert!(names.contains(&flag), "{flag}");
         }
     }

@@ -60,7 +60,10 @@ fn rigid_and_full_agree_through_the_first_pivot_on_30_degrees() {
     // to the first impact (measured: 1.4 %, 0.14 %, 3.3 cm).
     let (rigid, full) = pair(8, 30.0, 1.2, 1.15);
     assert!(rigid.summary.valid && full.summary.max_penetration < 0.01);
-    let (r, f) = (rigid.summary.first_impact.unwrap(), full.summary.first_impact.unwrap());
+    let (r, f) = (
+        rigid.summary.first_impact.unwrap(),
+        full.summary.first_impact.unwrap(),
+    );
     let (m, i1, g, phi) = (rigid.mass_kg, rigid.i1, 9.81, 30f64.to_radians());
     let omega = (4.0 * m * g * phi.sin() * (PI / 8.0).sin() / (i1 + m)).sqrt();
     assert!((r.omega_before - omega).abs() < 1e-6 * omega);

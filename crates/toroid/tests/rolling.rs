@@ -41,7 +41,12 @@ fn axle_height_oscillation_decreases_with_the_number_of_sides_on_fifty_degrees()
 fn the_reference_polygon_of_the_wheel_rolling_tests_is_the_reference_toroid() {
     // crates/wheel-rolling/tests/rigid_closed_forms.rs rolls this polygon as "the reference
     // wheel": keep it the toroid's
-    let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
+    let t = build(
+        &ToroidParams::default(),
+        "spokes,inner".parse().unwrap(),
+        1.0,
+    )
+    .unwrap();
     let a = analyse(&t).unwrap();
     let p = ToroidWheel {
         toroid: &t,

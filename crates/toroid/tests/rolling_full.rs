@@ -17,7 +17,8 @@ fn wheel(n: usize) -> toroid::Toroid {
 
 /// The toroid's full run with the default strings (2·10⁴ N/m, 20 N minimum prestress).
 fn full(roll: &FullRolling, t: &toroid::Toroid, t_end: f64) -> FullRun {
-    roll.run_scene(&scene(t, 2e4, 20.0).unwrap(), t_end).unwrap()
+    roll.run_scene(&scene(t, 2e4, 20.0).unwrap(), t_end)
+        .unwrap()
 }
 
 #[test]
@@ -115,8 +116,7 @@ fn a_slippery_penalty_ground_makes_the_wheel_slide() {
         rubber.mean_slip_speed
     );
     // on ice the wheel slides down with little rolling: more distance per turn
-    let turns =
-        |r: &RollingResult| r.samples.iter().map(|s| s.omega).sum::<f64>() * 1e-3;
+    let turns = |r: &RollingResult| r.samples.iter().map(|s| s.omega).sum::<f64>() * 1e-3;
     let last = |r: &RollingResult| r.samples.last().unwrap().s;
     assert!(
         last(&ice) / turns(&ice).abs().max(1e-9) > last(&rubber) / turns(&rubber).abs().max(1e-9)

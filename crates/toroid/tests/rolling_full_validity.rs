@@ -2,8 +2,8 @@
 //! is flagged, the reference case is converged in the step and the ground stiffness, and the
 //! validity record is consistent with the samples.
 
-use wheel_rolling::{Fidelity, GroundContact, RollSettings};
 use toroid::{roll, ContactKind, FidelityChoice, RollReport, RollRequest};
+use wheel_rolling::{Fidelity, GroundContact, RollSettings};
 
 fn full(t_end: f64) -> RollRequest {
     RollRequest {
@@ -21,8 +21,15 @@ fn the_default_penalty_run_is_valid_and_never_sinks_past_the_tolerance() {
     assert_eq!(r.contact, GroundContact::Penalty);
     assert!(r.summary.valid, "{:?}", r.summary.warnings);
     // tolerance 1 % of R_o = 1 cm; the static penetration is m g cos φ / (4k) ≈ 0.2 mm
-    assert!(r.summary.max_penetration < 0.01, "{}", r.summary.max_penetration);
-    assert!(r.summary.max_penetration > 1e-4, "the wheel does load the ground");
+    assert!(
+        r.summary.max_penetration < 0.01,
+        "{}",
+        r.summary.max_penetration
+    );
+    assert!(
+        r.summary.max_penetration > 1e-4,
+        "the wheel does load the ground"
+    );
     // the normal force is clipped, never negative
     assert!(r.summary.min_normal_force >= 0.0);
     assert!(r.samples.iter().all(|s| s.normal >= 0.0));
@@ -43,15 +50,28 @@ fn thesis_contact_runs_are_flagged() {
     .unwrap();
     assert_eq!(r.contact, GroundContact::Thesis);
     assert!(!r.summary.valid);
-    assert!(r.summary.min_normal_force < 0.0, "{}", r.summary.min_normal_force);
-    assert!(r.summary.max_penetration > 0.01, "{}", r.summary.max_penetration);
+    assert!(
+        r.summary.min_normal_force < 0.0,
+        "{}",
+        r.summary.min_normal_force
+    );
+    assert!(
+        r.summary.max_penetration > 0.01,
+        "{}",
+        r.summary.max_penetration
+    );
     assert!(r.summary.warnings.iter().any(|w| w.contains("pulled")));
     assert!(r.summary.warnings.iter().any(|w| w.contains("sank")));
 }
 
 fn figures(r: &RollReport) -> [f64; 4] {
     let i = r.summary.first_impact.expect("an impact within 1 s");
-    [r.summary.mean_speed, r.summary.mean_axle_height, i.t, i.omega_before]
+    [
+        r.summary.mean_speed,
+        r.summary.mean_axle_height,
+        i.t,
+        i.omega_before,
+    ]
 }
 
 #[test]

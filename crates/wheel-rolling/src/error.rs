@@ -22,7 +22,9 @@ pub enum RollingError {
         output_dt: f64,
     },
     /// The full model was asked of a wheel description that has none (a bare polygon).
-    #[error("the wheel `{wheel}` has no full model (no prestressed structure): use the rigid fidelity")]
+    #[error(
+        "the wheel `{wheel}` has no full model (no prestressed structure): use the rigid fidelity"
+    )]
     NoFullModel {
         /// What the wheel is.
         wheel: String,

@@ -70,8 +70,8 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::settings::RunSpec;
 use nalgebra::Vector3;
-use tensegrity_core::dynamics::IntegratorKind;
 pub use scene::WheelScene;
+use tensegrity_core::dynamics::IntegratorKind;
 
 /// Settings of a full-model rolling run.
 #[derive(Debug, Clone, PartialEq)]

@@ -154,7 +154,7 @@ impl RigidRolling {
     /// let p = Polygon { sides: 8, outer_radius: 1.0, mass: 14.4, i1: 9.3 };
     /// let model = RigidRolling::new(&p, &RunSpec::default());
     /// assert_eq!((model.sides, model.i1, model.mu_static), (8, 9.3, 0.8));
-/// assert!((model.mu_kinetic - 0.6).abs() < 1e-15);
+    /// assert!((model.mu_kinetic - 0.6).abs() < 1e-15);
     /// ```
     pub fn new(polygon: &Polygon, spec: &RunSpec) -> Self {
         Self {
@@ -326,7 +326,7 @@ impl RigidRolling {
             }
         }
         let last_frames = placer.finish(!stopped);
-        if let Some(obs) = observer.as_deref_mut() {
+        if let Some(obs) = observer {
             for f in &last_frames {
                 obs.frame(f);
             }

@@ -120,14 +120,26 @@ pub fn roll_decided<W: Wheel>(
     // the rigid run (if the plan makes one), whether it is the result, and the probe's
     // validity that `auto` decided on
     let (rigid_done, rigid_is_result, probe) = match decision.plan {
-        Plan::Rigid => (Some(timed_rigid(&rigid, spec.t_end, &pose, frame_times, reborrow(&mut observer))?), true, None),
+        Plan::Rigid => (
+            Some(timed_rigid(
+                &rigid,
+                spec.t_end,
+                &pose,
+                frame_times,
+                reborrow(&mut observer),
+            )?),
+            true,
+            None,
+        ),
         Plan::Full => (None, false, None),
         Plan::RigidThenFullIfInvalid => {
             let probe = timed_rigid(&rigid, spec.t_end, &pose, frame_times, None)?;
             let validity = probe.0.result.validity.clone();
             let valid = validity.valid();
             let run = match (valid, reborrow(&mut observer)) {
-                (true, Some(obs)) => timed_rigid(&rigid, spec.t_end, &pose, frame_times, Some(obs))?,
+                (true, Some(obs)) => {
+                    timed_rigid(&rigid, spec.t_end, &pose, frame_times, Some(obs))?
+                }
                 _ => probe,
             };
             (Some(run), valid, Some(validity))
@@ -184,4 +196,3 @@ fn timed_rigid(
     let run = rigid.run_observed(t_end, pose, frame_times, observer)?;
     Ok((run, start.elapsed().as_secs_f64()))
 }
-

@@ -62,11 +62,8 @@ impl RollSettings {
     /// One [`Param`] per field, in the field order.
     pub fn params() -> Vec<Param> {
         vec![
-            Param::angle(
-                "incline",
-                "Slope angle (e.g. `50deg`, `pi/4`, radians)",
-            )
-            .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
+            Param::angle("incline", "Slope angle (e.g. `50deg`, `pi/4`, radians)")
+                .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
             Param::number("dt", "s", "Integration step").positive(),
             Param::number("gravity", "m/s^2", "Gravity").positive(),
             Param::number(
@@ -75,8 +72,12 @@ impl RollSettings {
                 "Normal coefficient of restitution e of an impact, in [0, 1]",
             )
             .rule(Rule::Closed(0.0, 1.0)),
-            Param::number("string_stiffness", "N/m", "String stiffness of the full model")
-                .positive(),
+            Param::number(
+                "string_stiffness",
+                "N/m",
+                "String stiffness of the full model",
+            )
+            .positive(),
             Param::number(
                 "ground_stiffness",
                 "N/m",

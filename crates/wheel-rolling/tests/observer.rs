@@ -95,7 +95,11 @@ fn an_observer_that_never_stops_sees_the_whole_run() {
     assert_eq!(r.fidelity, Fidelity::Rigid);
     assert_eq!(obs.samples, r.result.samples);
     assert_eq!(obs.samples.len(), 1001);
-    assert!(r.result.validity.valid(), "{:?}", r.result.validity.warnings);
+    assert!(
+        r.result.validity.valid(),
+        "{:?}",
+        r.result.validity.warnings
+    );
 }
 
 #[test]

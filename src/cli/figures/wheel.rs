@@ -8,8 +8,8 @@ use super::Ctx;
 use anyhow::Result;
 use nalgebra::Vector3;
 use tensegrity_io::figure::{Figure, Panel, Series};
-use wheel_rolling::RollingSample;
 use toroid::{FidelityChoice, RollReport, RollRequest, Stabilize, Toroid, WheelSpec};
+use wheel_rolling::RollingSample;
 
 /// Bars blue, strings red.
 fn wheel_groups(t: &Toroid) -> [Group; 2] {

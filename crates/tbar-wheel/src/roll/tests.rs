@@ -100,7 +100,14 @@ fn rigid_rows_roll_the_polygon_and_report_the_tipover() {
         assert!((tip.critical_lateral_force - 0.5 * mg * 0.4).abs() < 1e-12);
     }
     // more treads, smaller oscillation
-    let osc = |i: usize| rows[i].tbar.as_ref().unwrap().summary.axle_height_oscillation;
+    let osc = |i: usize| {
+        rows[i]
+            .tbar
+            .as_ref()
+            .unwrap()
+            .summary
+            .axle_height_oscillation
+    };
     assert!(osc(1) < osc(0));
 }
 

@@ -182,8 +182,16 @@ pub(super) fn run(
         t_end,
         integrator: model.integrator,
         dt: model.dt,
-        rtol: if adaptive { defaults::ADAPTIVE_RTOL } else { d.rtol },
-        atol: if adaptive { defaults::ADAPTIVE_ATOL } else { d.atol },
+        rtol: if adaptive {
+            defaults::ADAPTIVE_RTOL
+        } else {
+            d.rtol
+        },
+        atol: if adaptive {
+            defaults::ADAPTIVE_ATOL
+        } else {
+            d.atol
+        },
         // every step is seen by the monitor (energy budget, validity, impacts)
         output_interval: Some(model.dt.min(model.output_dt)),
         quantities: Quantities {
