@@ -134,6 +134,25 @@ pub fn roll(request: &RollRequest) -> Estimate {
     }
 }
 
+/// Estimate of `fig-rolling`: one [`roll`] per wheel size in `sides`, the wheels rolled at
+/// once on `cores` threads (at most one per wheel): see [`wheel_rolling::estimate::parallel`].
+/// `None` for no wheel.
+pub fn rolling_series(request: &RollRequest, sides: &[usize], cores: usize) -> Option<Estimate> {
+    let wheels: Vec<Estimate> = sides
+        .iter()
+        .map(|&n| {
+            let mut r = *request;
+            r.wheel.params.sides = n;
+            roll(&r)
+        })
+        .collect();
+    let workers = cores.min(wheels.len()).max(1);
+    let what = format!(
+        "rolling the wheels n = {sides:?} at once on {workers} core(s) (statics, time steps, samples)"
+    );
+    wheel_rolling::estimate::parallel(&wheels, workers, what)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

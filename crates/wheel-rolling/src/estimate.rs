@@ -132,3 +132,34 @@ pub fn plan(plan: Plan, size: &RunSize, sizes: &FullSizes) -> Estimate {
         Plan::RigidThenFullIfInvalid => rigid(size).then(full(size, sizes)),
     }
 }
+
+/// Independent runs on `workers` threads at once (e.g. the wheels of a figure): memory and
+/// output add, the wall time is the total work shared by the workers but never less than the
+/// longest run; named by the first run's parameter.
+///
+/// ```
+/// use tensegrity_core::budget::Estimate;
+/// use wheel_rolling::estimate::parallel;
+/// // the fig-rolling wheels: 7.6 + 15.2 + 27.1 + 16.9 s
+/// let runs: Vec<Estimate> = [7.6, 15.2, 27.1, 16.9]
+///     .iter()
+///     .map(|&w| Estimate::new("a wheel", "sides = 8").work(w))
+///     .collect();
+/// assert!((parallel(&runs, 1, "four wheels").unwrap().work_s - 66.8).abs() < 1e-12);
+/// assert!((parallel(&runs, 2, "four wheels").unwrap().work_s - 33.4).abs() < 1e-12);
+/// assert_eq!(parallel(&runs, 4, "four wheels").unwrap().work_s, 27.1);
+/// assert!((parallel(&runs, 0, "four wheels").unwrap().work_s - 66.8).abs() < 1e-12);
+/// assert!(parallel(&[], 2, "nothing").is_none());
+/// ```
+pub fn parallel(runs: &[Estimate], workers: usize, what: impl Into<String>) -> Option<Estimate> {
+    let first = runs.first()?;
+    let total: f64 = runs.iter().map(|e| e.work_s).sum();
+    let longest = runs.iter().map(|e| e.work_s).fold(0.0, f64::max);
+    Some(Estimate {
+        what: what.into(),
+        parameter: first.parameter.clone(),
+        memory_bytes: runs.iter().map(|e| e.memory_bytes).sum(),
+        work_s: (total / workers.max(1) as f64).max(longest),
+        output_bytes: runs.iter().map(|e| e.output_bytes).sum(),
+    })
+}
