@@ -192,8 +192,23 @@ impl Request for TbarRollRequest {
         ]
     }
 
-    /// The full model needs the rim body; one parameterisation; the treads given.
+    /// Finite numbers; the full model needs the rim body; one parameterisation; the treads
+    /// given.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.settings.check_finite()?;
+        wheel_rolling::settings::finite(&[
+            ("beta", self.beta),
+            ("cylindrical", self.cylindrical.unwrap_or(0.0)),
+            ("spherical", self.spherical.unwrap_or(0.0)),
+            ("r0", self.r0),
+            ("extended", self.extended.unwrap_or(0.0)),
+            ("t_end", self.t_end.unwrap_or(1.0)),
+            ("bar_density", self.bar_density),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic.unwrap_or(0.0)),
+            ("rim_density", self.rim_density.unwrap_or(1.0)),
+            ("min_tension", self.min_tension.unwrap_or(1.0)),
+        ])?;
         self.rim()?;
         if self.cylindrical.is_some() && self.spherical.is_some() {
             return Err(InvalidParameter::raw(

@@ -126,8 +126,16 @@ impl Request for RollRequest {
         out
     }
 
-    /// The wheel's geometry rules across its parameters (R_i < R_o).
+    /// Finite numbers (which the per-field rules cannot see otherwise), and the wheel's
+    /// geometry rules across its parameters (R_i < R_o).
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.settings.check_finite()?;
+        wheel_rolling::settings::finite(&[
+            ("t_end", self.t_end),
+            ("mu", self.mu),
+            ("min_tension", self.min_tension),
+            ("bar_density", self.wheel.bar_density),
+        ])?;
         match self.wheel.params.validate() {
             Ok(()) => Ok(()),
             Err(ToroidError::InvalidParameter(p)) => Err(p),
@@ -305,6 +313,12 @@ mod tests {
         assert_eq!(e.name, "mu");
         let e = RollRequest::from_values([("inner_radius", serde_json::json!(1.5))]).unwrap_err();
         assert_eq!(e.name, "inner_radius");
+        // a NaN set in code (it serialises as null) is refused by name too
+        let nan = RollRequest {
+            mu: f64::NAN,
+            ..RollRequest::default()
+        };
+        assert_eq!(nan.validate().unwrap_err().name, "mu");
     }
 
     #[test]

@@ -13,7 +13,21 @@ use crate::defaults;
 use crate::fidelity::FidelityChoice;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::dynamics::IntegratorKind;
-use tensegrity_core::request::{Param, Rule};
+use tensegrity_core::request::{InvalidParameter, Param, Rule};
+
+/// The first of `values` that is not finite, as an [`InvalidParameter`] of its name.
+///
+/// ```
+/// use wheel_rolling::settings::finite;
+/// assert!(finite(&[("t_end", 1.0), ("mu", 0.8)]).is_ok());
+/// assert_eq!(finite(&[("t_end", 1.0), ("mu", f64::NAN)]).unwrap_err().name, "mu");
+/// ```
+pub fn finite(values: &[(&'static str, f64)]) -> Result<(), InvalidParameter> {
+    match values.iter().find(|(_, v)| !v.is_finite()) {
+        Some(&(name, v)) => Err(InvalidParameter::new(name, v, "must be finite")),
+        None => Ok(()),
+    }
+}
 
 /// The run settings every rolling request shares (module docs); serialised flat inside the
 /// request.
@@ -59,6 +73,20 @@ impl Default for RollSettings {
 }
 
 impl RollSettings {
+    /// Checks that every number is finite (a non-finite number serialises as `null`, which
+    /// the per-field rules of a request do not see): the first one that is not, by name.
+    pub fn check_finite(&self) -> Result<(), InvalidParameter> {
+        finite(&[
+            ("incline", self.incline),
+            ("dt", self.dt),
+            ("gravity", self.gravity),
+            ("restitution", self.restitution),
+            ("string_stiffness", self.string_stiffness),
+            ("ground_stiffness", self.ground_stiffness),
+            ("ground_damping", self.ground_damping.unwrap_or(0.0)),
+        ])
+    }
+
     /// One [`Param`] per field, in the field order.
     pub fn params() -> Vec<Param> {
         vec![

@@ -49,6 +49,11 @@ fn what_the_command_line_refuses_is_refused_by_name() {
     assert_eq!(refused(&[("treads", json!("8,1"))]), "treads");
     assert_eq!(refused(&[("r0", json!(0))]), "r0");
     assert_eq!(refused(&[("spherical", json!("pi/8"))]), "spherical");
+    let nan = TbarRollRequest {
+        r0: f64::NAN,
+        ..TbarRollRequest::default()
+    };
+    assert_eq!(nan.validate().unwrap_err().name, "r0");
     let ok = TbarRollRequest::from_values([
         ("spherical".to_string(), json!("pi/8")),
         ("cylindrical".to_string(), serde_json::Value::Null),
