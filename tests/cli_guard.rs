@@ -45,7 +45,7 @@ fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag()
     assert_refused(
         &["toroid", "--sides", "100000", "--max-memory", "1Gi"],
         &[
-            "--sides 100000",
+            "sides = 100000",
             "memory",
             "above the limit of 1.000 GiB",
             "--max-memory",
@@ -54,7 +54,7 @@ fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag()
     // a hundred million sides is refused under the default limits whatever the path
     assert_refused(
         &["toroid", "--sides", "100000000"],
-        &["--sides 100000000", "raise the limit with --max-"],
+        &["sides = 100000000", "raise the limit with --max-"],
     );
 }
 
@@ -62,7 +62,7 @@ fn a_hundred_thousand_sided_toroid_is_refused_naming_sides_memory_and_the_flag()
 fn a_billion_seconds_of_rolling_is_refused() {
     assert_refused(
         &["roll", "--t-end", "1e9"],
-        &["--t-end 1000000000", "raise the limit with --max-"],
+        &["t_end = 1000000000", "raise the limit with --max-"],
     );
     assert_refused(
         &[
@@ -72,7 +72,7 @@ fn a_billion_seconds_of_rolling_is_refused() {
             "--out",
             "/nonexistent/x.svg",
         ],
-        &["--t-end 1000000000"],
+        &["t_end = 1000000000"],
     );
 }
 
@@ -198,7 +198,7 @@ fn the_flags_move_the_limits_both_ways() {
     // work: the default toroid is a few ms of estimated work
     assert_refused(
         &["toroid", "--max-work", "1e-9"],
-        &["--sides 8", "work", "--max-work"],
+        &["sides = 8", "work", "--max-work"],
     );
 }
 
@@ -249,7 +249,7 @@ fn under_an_address_space_limit_the_default_memory_limit_follows_it() {
         Some(2) => {
             assert!(t0.elapsed() < Duration::from_secs(5));
             assert!(
-                err.contains("--sides 2000") && err.contains("--max-"),
+                err.contains("sides = 2000") && err.contains("--max-"),
                 "{err}"
             );
         }

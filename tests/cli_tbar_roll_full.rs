@@ -98,7 +98,11 @@ fn a_short_full_run_reports_the_full_models_figures() {
 #[test]
 fn the_full_model_refuses_the_fixed_rim() {
     let out = run(&["--fidelity", "full", "--rim", "fixed", "--t-end", "0.01"]);
-    assert!(!out.status.success());
+    // a bad value (exit 2), named by the request's parameter
+    assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--rim body"), "{err}");
+    assert!(
+        err.contains("rim = \"fixed\"") && err.contains("rim body"),
+        "{err}"
+    );
 }

@@ -109,14 +109,14 @@ fn rolling() -> Result<()> {
             r.t_end,
             r.mass_kg,
             r.i1,
-            r.mean_axle_height,
-            r.mean_speed,
-            100.0 * r.airborne_fraction,
-            if r.valid { "" } else { " *" }
+            r.summary.mean_axle_height,
+            r.summary.mean_speed,
+            100.0 * r.summary.airborne_fraction,
+            if r.summary.valid { "" } else { " *" }
         );
     }
-    for r in runs.iter().filter(|r| !r.valid) {
-        println!("  * n = {}: {}", r.sides, r.warnings.join("; "));
+    for r in runs.iter().filter(|r| !r.summary.valid) {
+        println!("  * n = {}: {}", r.sides, r.summary.warnings.join("; "));
     }
     Ok(())
 }

@@ -209,40 +209,13 @@ pub fn roll(request: &toroid::RollRequest) -> Result<Progress> {
 }
 
 /// `tensegrity fig-rolling`: the wheels roll at once, one thread each
-/// ([`super::roll_series::parallel_series`]): the wall time is their total work shared by the
-/// cores (at least the longest wheel), memory and output add.
+/// ([`super::roll_series::parallel_series`]), estimated by the library.
 pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<Progress> {
-    let wheels: Vec<Estimate> = sides
-        .iter()
-        .map(|&n| {
-            let mut r = *request;
-            r.wheel.params.sides = n;
-            toroid::budget::roll(&r)
-        })
-        .collect();
-    let Some(first) = wheels.first() else {
-        return Ok(Progress(None));
-    };
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
-    let total: f64 = wheels.iter().map(|e| e.work_s).sum();
-    let longest = wheels.iter().map(|e| e.work_s).fold(0.0, f64::max);
-    let what = format!(
-        "rolling the wheels n = {sides:?} at once on {} core(s) (statics, time steps, samples)",
-        cores.min(wheels.len())
-    );
-    check(Estimate {
-        what,
-        parameter: first.parameter.clone(),
-        memory_bytes: wheels.iter().map(|e| e.memory_bytes).sum(),
-        work_s: parallel_wall_time(total, longest, cores.min(wheels.len())),
-        output_bytes: wheels.iter().map(|e| e.output_bytes).sum(),
-    })
-}
-
-/// Wall time of independent jobs of total work `total` (the longest `longest`) on `workers`
-/// threads: the work shared evenly, but never less than the longest job.
-fn parallel_wall_time(total: f64, longest: f64, workers: usize) -> f64 {
-    (total / workers.max(1) as f64).max(longest)
+    match toroid::budget::rolling_series(request, sides, cores) {
+        Some(e) => check(e),
+        None => Ok(Progress(None)),
+    }
 }
 
 /// `tensegrity simulate`: the run with its outputs (CSV numbers ~25 bytes, VTK ~40), named by
@@ -337,15 +310,5 @@ mod tests {
         assert_eq!(size_flag(6.208e13), "63Ti");
         assert_eq!(size_flag(1.5e9), "2Gi");
         assert!(parse_size(&size_flag(3.3e10)).unwrap() > 3.3e10);
-    }
-
-    #[test]
-    fn parallel_wheels_share_the_cores_but_wait_for_the_longest() {
-        // the fig-rolling wheels: 7.6 + 15.2 + 27.1 + 16.9 s
-        let (total, longest) = (66.8, 27.1);
-        assert_eq!(parallel_wall_time(total, longest, 1), 66.8);
-        assert!((parallel_wall_time(total, longest, 2) - 33.4).abs() < 1e-12);
-        assert_eq!(parallel_wall_time(total, longest, 4), 27.1);
-        assert_eq!(parallel_wall_time(total, longest, 0), 66.8);
     }
 }

@@ -1,16 +1,17 @@
-//! `tensegrity roll` and `fig-rolling`: parse the arguments into a [`toroid::RollRequest`],
-//! make one library call ([`toroid::roll_with_frames`]) per wheel and print or plot the
-//! report; warnings go to stderr as well.
+//! `tensegrity roll`: parses the arguments into a [`toroid::RollRequest`], makes one library
+//! call ([`toroid::roll_with_frames`]) and prints or plots the report; warnings go to stderr
+//! as well. `fig-rolling` and the figure panels are in [`super::roll_series`].
 
 use super::values;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
-use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::figure::Panel;
 use toroid::defaults;
-use toroid::rolling::RollingSample;
-use toroid::rolling_full::WheelFrame;
-use toroid::{ContactKind, FidelityChoice, RollReport, RollRequest};
+use toroid::{RollReport, RollRequest};
+use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
 
+use super::roll_series::{axle_panel, frame_panel, reaction_panel, write_figure};
+pub use super::roll_series::{run_fig_rolling, FigRollingArgs};
 use super::toroid::GeometryArgs;
 
 /// `--fidelity` values.
@@ -126,21 +127,23 @@ impl RollArgs {
     pub fn request(&self) -> RollRequest {
         RollRequest {
             wheel: self.geometry.wheel(),
-            incline: self.incline,
+            settings: RollSettings {
+                incline: self.incline,
+                dt: self.dt,
+                ground_damping: self.ground_damping,
+                ground_stiffness: self.ground_stiffness,
+                restitution: self.restitution,
+                string_stiffness: self.string_stiffness,
+                ..RollSettings::default()
+            },
             t_end: self.t_end,
-            dt: self.dt,
             fidelity: self.fidelity.into(),
             contact: self.contact.into(),
-            ground_damping: self.ground_damping,
-            ground_stiffness: self.ground_stiffness,
             mu: self.mu,
-            restitution: self.restitution,
-            string_stiffness: self.string_stiffness,
             min_tension: self.min_tension,
             integrator: self
                 .integrator
                 .map_or(RollRequest::default().integrator, Into::into),
-            ..RollRequest::default()
         }
     }
 
@@ -171,7 +174,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         );
     }
     let report = toroid::roll_with_frames(&request, &args.frame_times())?;
-    for w in &report.warnings {
+    for w in &report.summary.warnings {
         eprintln!("warning: {w}");
     }
     if let Some(path) = &args.svg {
@@ -188,7 +191,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     } else {
         print_roll(&report);
     }
-    match report.stopped_at {
+    match report.summary.stopped_at {
         Some(t) => anyhow::bail!(
             "the integration stopped at t = {t} s of --t-end {} s: the results above cover [0, {t}] s only (see the warnings)",
             args.t_end
@@ -216,29 +219,6 @@ fn write_svg(args: &RollArgs, path: &Path, request: &RollRequest, r: &RollReport
     }
 }
 
-/// The wheel's members in the rolling plane (s, h) at one time (thesis Fig. 3.8).
-fn frame_panel(frame: &WheelFrame, members: &[[usize; 2]]) -> Panel {
-    let mut panel = Panel::new(
-        format!("t = {:.3} s", frame.t),
-        "along the slope s [m]",
-        "above the slope h [m]",
-    );
-    let (lo, hi) = frame
-        .nodes
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.y), hi.max(p.y))
-        });
-    panel
-        .series
-        .push(Series::new("slope", vec![(lo, 0.0), (hi, 0.0)]));
-    panel.series.extend(members.iter().map(|&[a, b]| {
-        let (p, q) = (frame.nodes[a], frame.nodes[b]);
-        Series::new("", vec![(p.y, p.z), (q.y, q.z)])
-    }));
-    panel
-}
-
 fn write_vtk(dir: &Path, request: &RollRequest, frames: &[WheelFrame]) -> Result<()> {
     let toroid = request.wheel.build()?;
     let mut series = tensegrity_io::vtk::SeriesWriter::create(dir, &toroid.structure)
@@ -260,39 +240,32 @@ fn write_history_csv(path: &Path, samples: &[RollingSample]) -> Result<()> {
     Ok(())
 }
 
-fn fidelity_name(r: &RollReport) -> &'static str {
-    match r.fidelity {
-        toroid::rolling_full::Fidelity::Rigid => "rigid",
-        toroid::rolling_full::Fidelity::Full => "full",
-    }
-}
-
 fn print_roll(r: &RollReport) {
+    let s = &r.summary;
+    let model = r.fidelity.name();
     println!(
-        "{} rolling ({} contact), n = {}, incline {:.3} deg, {} s: {} impacts",
-        fidelity_name(r),
+        "{model} rolling ({} contact), n = {}, incline {:.3} deg, {} s: {} impacts",
         r.contact,
         r.sides,
         r.incline_rad.to_degrees(),
         r.t_end,
-        r.impacts
+        s.impacts
     );
-    println!("model: {} ({})", fidelity_name(r), r.fidelity_reason);
+    println!("model: {model} ({})", r.fidelity_reason);
+    let span = if r.t_end > 1.0 {
+        "after 1 s"
+    } else {
+        "whole run"
+    };
     println!(
-        "axle height above the slope: mean {:.4} m, RMS oscillation {:.6} m ({})",
-        r.mean_axle_height,
-        r.axle_height_oscillation,
-        if r.t_end > 1.0 {
-            "after 1 s"
-        } else {
-            "whole run"
-        }
+        "axle height above the slope: mean {:.4} m, RMS oscillation {:.6} m ({span})",
+        s.mean_axle_height, s.axle_height_oscillation
     );
     println!(
         "mean speed {:.4} m/s   final speed {:.4} m/s   max reaction {:.3} N",
-        r.mean_speed, r.final_speed, r.max_reaction
+        s.mean_speed, s.final_speed, s.max_reaction
     );
-    if let Some(i) = r.first_impact {
+    if let Some(i) = s.first_impact {
         println!(
             "first impact at t = {:.6} s: omega {:.6} -> {:.6} rad/s",
             i.t, i.omega_before, i.omega_after
@@ -300,119 +273,14 @@ fn print_roll(r: &RollReport) {
     }
     println!(
         "validity: {}; min normal force {:.4} N, airborne {:.2} %, slipping {:.2} %, max penetration {:.3e} m, energy budget residual {:.2e}",
-        if r.valid { "valid" } else { "NOT VALID" },
-        r.min_normal_force,
-        100.0 * r.airborne_fraction,
-        100.0 * r.slip_fraction,
-        r.max_penetration,
-        r.energy_balance_error
+        if s.valid { "valid" } else { "NOT VALID" },
+        s.min_normal_force,
+        100.0 * s.airborne_fraction,
+        100.0 * s.slip_fraction,
+        s.max_penetration,
+        s.energy_balance_error
     );
-    for w in &r.warnings {
+    for w in &s.warnings {
         println!("warning: {w}");
     }
-}
-
-/// Writes figure panels side by side (SVG or PNG by the extension).
-fn write_figure(path: &Path, panels: &[Panel]) -> Result<()> {
-    Figure::new(panels.to_vec())
-        .save(path)
-        .with_context(|| format!("writing the figure {}", path.display()))
-}
-
-/// The empty band above the data that a legend of `entries` lines needs (fraction of the
-/// data's span).
-fn legend_band(entries: usize) -> f64 {
-    0.1 + 0.1 * entries as f64
-}
-
-fn axle_panel(runs: &[(String, &[RollingSample])]) -> Panel {
-    let mut panel = Panel::new(
-        "axle height above the incline (Fig. 3.10)",
-        "time [s]",
-        "axle height above the slope [m]",
-    )
-    .legend_above(legend_band(runs.len()));
-    panel.series = runs
-        .iter()
-        .map(|(label, samples)| {
-            Series::new(label.clone(), samples.iter().map(|s| (s.t, s.h)).collect())
-        })
-        .collect();
-    panel
-}
-
-fn reaction_panel(runs: &[(String, &[RollingSample])]) -> Panel {
-    let mut panel = Panel::new(
-        "contact reaction (Fig. 3.11)",
-        "time [s]",
-        "normal force [N]",
-    )
-    .legend_above(legend_band(runs.len()));
-    panel.series = runs
-        .iter()
-        .map(|(label, samples)| {
-            Series::new(
-                label.clone(),
-                samples.iter().map(|s| (s.t, s.normal)).collect(),
-            )
-        })
-        .collect();
-    panel
-}
-
-/// Arguments of `tensegrity fig-rolling`.
-#[derive(clap::Args, Debug)]
-pub struct FigRollingArgs {
-    /// Output SVG file.
-    #[arg(long, value_name = "FILE", default_value = "rolling.svg")]
-    out: PathBuf,
-    /// Model (auto: the cheapest valid one per wheel; with the default strings, full).
-    #[arg(long, value_enum, default_value_t = FidelityArg::Auto)]
-    fidelity: FidelityArg,
-    /// Ground contact of the full model.
-    #[arg(long, value_enum, default_value_t = ContactArg::Penalty)]
-    contact: ContactArg,
-    /// Slope angle.
-    #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
-    incline: f64,
-    /// Simulated time (s).
-    #[arg(long, default_value_t = defaults::ROLL_T_END, value_parser = values::positive)]
-    t_end: f64,
-    /// Static friction coefficient μ_s (μ_k = 0.75 μ_s).
-    #[arg(long, default_value_t = defaults::STATIC_FRICTION, value_parser = values::non_negative)]
-    mu: f64,
-    /// Normal coefficient of restitution e.
-    #[arg(long, default_value_t = defaults::RESTITUTION)]
-    restitution: f64,
-}
-
-/// Entry point of `tensegrity fig-rolling`: thesis Figs. 3.10 (n = 8, 12, 16, 24) and 3.11
-/// (n = 8, 16) for the reference wheel with spokes + inner rings, the wheels rolled in
-/// parallel, and the impact impulse per new contact against n (§3.3.1).
-pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
-    let request = RollRequest {
-        fidelity: args.fidelity.into(),
-        contact: args.contact.into(),
-        incline: args.incline,
-        t_end: args.t_end,
-        mu: args.mu,
-        restitution: args.restitution,
-        ..RollRequest::default()
-    };
-    let _progress = super::guard::rolling_series(&request, &defaults::FIG_3_10_SIDES)?;
-    let runs = super::roll_series::parallel_series(&request, &defaults::FIG_3_10_SIDES)?;
-    super::roll_series::print_series(&runs);
-    let labelled: Vec<(String, &[RollingSample])> = runs
-        .iter()
-        .map(|r| {
-            let mark = if r.valid { "" } else { " (NOT VALID)" };
-            let label = format!("n = {} {}{mark}", r.sides, fidelity_name(r));
-            (label, r.samples.as_slice())
-        })
-        .collect();
-    // Fig. 3.11 shows the reactions of n = 8 and 16 only
-    let some = [labelled[0].clone(), labelled[2].clone()];
-    write_figure(&args.out, &[axle_panel(&labelled), reaction_panel(&some)])?;
-    println!("wrote {}", args.out.display());
-    Ok(())
 }

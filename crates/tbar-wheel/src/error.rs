@@ -52,6 +52,21 @@ pub enum TbarError {
     /// An error of the core (statics, LP, sizing, materials).
     #[error(transparent)]
     Core(#[from] tensegrity_core::CoreError),
+    /// An error of the rolling models that is neither a parameter nor a core error.
+    #[error(transparent)]
+    Rolling(wheel_rolling::RollingError),
+}
+
+impl From<wheel_rolling::RollingError> for TbarError {
+    /// A bad parameter stays a bad parameter and a core error a core error.
+    fn from(e: wheel_rolling::RollingError) -> Self {
+        use wheel_rolling::RollingError as R;
+        match e {
+            R::InvalidParameter(p) => Self::InvalidParameter(p),
+            R::Core(c) => Self::Core(c),
+            other => Self::Rolling(other),
+        }
+    }
 }
 
 /// Shorthand for [`TbarError::InvalidParameter`].

@@ -22,11 +22,13 @@
 //!   rim's supports, and its prestressability LP;
 //! - [`standing`]: the single loop against the extended wheel with a free rim body, free and
 //!   standing on the ground (the thesis's "unstable in the ι̂₂ι̂₃ plane");
-//! - [`rolling`]: mass properties, out-of-plane tip-over, and the rolling polygon for the
-//!   toroid crate's reduced rigid model (composed by `tensegrity tbar roll`);
+//! - [`rolling`]: mass properties, out-of-plane tip-over, and the rolling polygon for
+//!   wheel-rolling's reduced rigid model;
 //! - [`rolling_full`]: the wheel as a free, prestressed, massive structure with its contact
-//!   nodes and starting pose, for the toroid crate's full tensegrity model (`tensegrity tbar
-//!   roll --fidelity full`).
+//!   nodes and starting pose ([`rolling_full::FullWheel`], a [`wheel_rolling::Wheel`]) for
+//!   wheel-rolling's full tensegrity model;
+//! - [`roll`]: the T-bar side of `tbar roll` ([`TbarRollRequest`], the rows' T-bar columns
+//!   and the report types; the engine crate adds the toroid column).
 #![warn(missing_docs)]
 
 pub mod brute;
@@ -38,6 +40,7 @@ pub mod mass;
 pub mod params;
 pub mod report;
 pub mod rim;
+pub mod roll;
 pub mod rolling;
 pub mod rolling_full;
 pub mod standing;
@@ -48,3 +51,4 @@ pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
 pub use params::{BarBase, Layout, RimMode, TbarParams};
 pub use report::{tbar_report, TbarReport, TbarRequest};
+pub use roll::{TbarRollReport, TbarRollRequest, TbarRollRow};

@@ -1,6 +1,6 @@
-//! Mass properties, out-of-plane tip-over and the reduced rolling parameters of the T-bar
-//! wheel (issue item 5). The rolling itself is the toroid crate's reduced rigid model; this
-//! crate stays free of a toroid dependency, and `tensegrity tbar roll` composes the two.
+//! Mass properties, out-of-plane tip-over and the rolling polygon of the T-bar wheel (issue
+//! item 5). The rolling itself is wheel-rolling's reduced rigid model on this polygon
+//! ([`MassProperties::polygon`]); [`crate::roll`] is the T-bar side of `tbar roll`.
 //!
 //! **Mass properties.** Bars are uniform rods of linear density ρ_b (kg/m), strings are
 //! massless (the toroid crate's convention, so the two wheels compare at equal density).
@@ -12,7 +12,7 @@
 //!
 //! **Rolling polygon.** Standing on its tips, the wheel is a regular polygon of n = π/φ
 //! sides and circumradius r₀ (the tips): the reduced rigid model's `sides` and
-//! `outer_radius`. A plastic pivot-to-pivot impact keeps ω⁺/ω⁻ = (I₁ + m r₀² cos(2π/n)) /
+//! `outer_radius` ([`MassProperties::polygon`]). A plastic pivot-to-pivot impact keeps ω⁺/ω⁻ = (I₁ + m r₀² cos(2π/n)) /
 //! (I₁ + m r₀²) ([`impact_ratio`]).
 //!
 //! **Tip-over** (thesis §3.3.2, eq. 3.25–3.26 with ERRATA 3.12–3.15). A lateral force F_e on
@@ -52,6 +52,18 @@ pub struct MassProperties {
     pub sides: usize,
     /// Tip radius r₀ (m): the polygon's circumradius.
     pub outer_radius: f64,
+}
+
+impl MassProperties {
+    /// The rolling polygon: n = π/φ sides on the tip radius r₀, with this mass and I₁.
+    pub fn polygon(&self) -> wheel_rolling::Polygon {
+        wheel_rolling::Polygon {
+            sides: self.sides,
+            outer_radius: self.outer_radius,
+            mass: self.mass,
+            i1: self.i1,
+        }
+    }
 }
 
 /// I about ι̂₁ of a uniform rod of mass `m` from `a` to `b`.
@@ -147,7 +159,8 @@ pub fn tipover(g: &TbarGeometry, mass: f64, gravity: f64) -> Result<TipOver> {
         Layout::Tread | Layout::Wheel => {
             warnings.push(
                 "a single loop stands on tips in one plane (track 0): it tips under any \
-                 lateral force; the extended wheel (--extended OFFSET) gives the track"
+                 lateral force; the extended wheel (a copy at an offset along the axle) gives \
+                 the track"
                     .to_string(),
             );
             0.0

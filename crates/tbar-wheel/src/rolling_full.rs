@@ -1,9 +1,9 @@
 //! The T-bar wheel as a free, prestressed, massive structure for the full tensegrity rolling
 //! model (issue item 5, "rolling … with the rolling models (rigid unilateral and full)").
 //!
-//! This module builds the structure and names its parts; it knows no rolling model (the
-//! toroid crate's full model integrates it, composed by `tensegrity tbar roll --fidelity
-//! full`, so the two topology crates stay independent). [`full_wheel`] returns:
+//! This module builds the structure and names its parts; wheel-rolling's full model
+//! integrates it ([`FullWheel`] is a [`wheel_rolling::Wheel`]: its polygon and its
+//! [`WheelScene`]). [`full_wheel`] returns:
 //!
 //! - **the structure**: the wheel (or extended wheel) with its rim body ([`crate::rim`]: hub,
 //!   spokes, ring; class-k joints, no support, so a free body); every bar is a uniform rigid
@@ -50,8 +50,10 @@ use crate::rolling::{mass_properties_with, MassProperties};
 use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::budget::Estimate;
 use tensegrity_core::{Bar, Statics, StringMember, Structure};
+use wheel_rolling::estimate::{FullSizes, RunSize};
+use wheel_rolling::{Polygon, WheelScene};
 
 /// What the full model's structure is built with.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -152,13 +154,41 @@ impl FullWheel {
         let mut out = Vec::new();
         if per_tip > self.prestress.tip_load_capacity {
             out.push(format!(
-                "the prestress (smallest string tension {:.3} N) keeps every string taut only for tip loads up to {:.3} N, less than the wheel's weight per landing tip m g / {tips} = {per_tip:.3} N: strings may go slack in contact (raise --min-tension to about {:.3} N)",
+                "the prestress (smallest string tension {:.3} N) keeps every string taut only for tip loads up to {:.3} N, less than the wheel's weight per landing tip m g / {tips} = {per_tip:.3} N: strings may go slack in contact (raise min_tension to about {:.3} N)",
                 self.prestress.min_string_tension,
                 self.prestress.tip_load_capacity,
                 self.prestress.min_string_tension * per_tip / self.prestress.tip_load_capacity
             ));
         }
         out
+    }
+}
+
+impl FullWheel {
+    /// The wheel as the full model runs it: the prestressed structure in its starting pose,
+    /// the tip groups, ω from the rim points about the hubs, r₀, m and I₁.
+    pub fn scene(&self) -> WheelScene {
+        WheelScene {
+            structure: self.structure.clone(),
+            contact_groups: self.contact_groups.clone(),
+            rim: self.rim_points.clone(),
+            axle: Some(self.hubs),
+            outer_radius: self.outer_radius,
+            mass: self.mass.mass,
+            i1: self.mass.i1,
+        }
+    }
+}
+
+impl wheel_rolling::Wheel for FullWheel {
+    type Error = TbarError;
+
+    fn polygon(&self) -> Polygon {
+        self.mass.polygon()
+    }
+
+    fn scene(&self) -> Result<WheelScene> {
+        Ok(FullWheel::scene(self))
     }
 }
 
@@ -443,27 +473,37 @@ fn build_structure(
     Ok(b.build()?)
 }
 
-/// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
-/// projection onto the bar lengths and joints after every step), from the isostatic
-/// structure's sizes. The class-1 model has two nodes per bar and 3 (copies − 1) coincidence
-/// rows per node, tied in a chain (so a hub's rows form a banded block of the sparse Ω
-/// system): ~4000 flops a bar on top of the core's per-member cost; a step is four
-/// right-hand sides and a projection (counted as two more). Checked against runs of 0.05 s on
-/// a shared 2-core machine (n = 6…24, loop and extended): conservative by 3–6×. One 1 ms
-/// sample is kept per millisecond.
-pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
+/// The sizes of the full model of `params` (the isostatic structure): the class-1 model has
+/// two nodes per bar and 3 (copies − 1) coincidence rows per node, tied in a chain (so a
+/// hub's rows form a banded block of the sparse Ω system): ~4000 flops a bar on top of the
+/// core's per-member cost; a step is four right-hand sides and a projection (counted as two
+/// more).
+pub fn full_sizes(params: &TbarParams) -> Result<FullSizes> {
     let mut g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
     make_isostatic(&mut g);
     let bars = g.all_bars().len();
-    let strings = g.strings.len();
-    let rows = 3 * (2 * bars).saturating_sub(g.nodes.len());
-    let steps = (t_end / dt).ceil();
-    let flops = budget::rhs_flops(bars, strings, rows) + 4000.0 * bars as f64;
-    let parameter = format!(
-        "--t-end {t_end} --dt {dt} --treads {} ({bars} bars with the isostatic rim body)",
-        g.params.treads_per_wheel()?
+    Ok(FullSizes {
+        nodes: g.nodes.len(),
+        bars,
+        strings: g.strings.len(),
+        constraint_rows: 3 * (2 * bars).saturating_sub(g.nodes.len()),
+        rhs_per_step: 6.0,
+        extra_flops: 4000.0 * bars as f64,
+    })
+}
+
+/// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
+/// projection onto the bar lengths and joints after every step), from the isostatic
+/// structure's sizes ([`full_sizes`], estimated by [`wheel_rolling::estimate::full`]).
+/// Checked against runs of 0.05 s on a shared 2-core machine (n = 6…24, loop and extended):
+/// conservative by 3–6×. One 1 ms sample is kept per millisecond.
+pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
+    let sizes = full_sizes(params)?;
+    let n = params.treads_per_wheel()?;
+    let mut size = RunSize::new(t_end, dt, n);
+    size.parameter = format!(
+        "t_end = {t_end}, dt = {dt}, treads = {n} ({} bars with the isostatic rim body)",
+        sizes.bars
     );
-    let run = budget::integration(steps, 6.0, flops, 12 * bars, parameter.clone());
-    let kept = budget::table((t_end / 1e-3).floor() + 2.0, 96.0, true, parameter);
-    Ok(run.then(kept))
+    Ok(wheel_rolling::estimate::full(&size, &sizes))
 }

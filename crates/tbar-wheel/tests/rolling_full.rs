@@ -134,7 +134,11 @@ fn the_prestress_level_is_the_envelopes() {
     assert!((low.prestress.min_string_tension - 1.0).abs() < 1e-12);
     let w = low.warnings(9.81);
     assert_eq!(w.len(), 1);
-    assert!(w[0].contains("--min-tension"), "{}", w[0]);
+    assert!(
+        w[0].contains("raise min_tension") && !w[0].contains("--"),
+        "{}",
+        w[0]
+    );
 }
 
 #[test]

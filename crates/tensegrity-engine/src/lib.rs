@@ -7,3 +7,5 @@
 //! wheel rolling beside the toroid of the same size) are composed here, since topology
 //! crates never depend on each other.
 #![warn(missing_docs)]
+
+pub mod tbar_roll;

@@ -25,7 +25,7 @@ use michell3d::signmap::SignMapRow;
 use serde::{Serialize, Serializer};
 use std::io::Write;
 use tensegrity_core::dynamics::SimulationResult;
-use toroid::rolling::RollingSample;
+use wheel_rolling::RollingSample;
 
 /// An `f64` written as `{:.17e}` (17 digits after the point: exact, fixed layout).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -87,7 +87,7 @@ fn rows_with_units_in_their_names_round_trip() {
 
 #[test]
 fn the_rolling_history_has_the_cli_columns() {
-    let sample = toroid::rolling::RollingSample {
+    let sample = wheel_rolling::RollingSample {
         t: 0.001,
         s: 1.0 / 3.0,
         h: 0.5,

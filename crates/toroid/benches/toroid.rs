@@ -4,9 +4,8 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use toroid::rolling::RigidRolling;
-use toroid::rolling_full::FullRolling;
-use toroid::{analyse, build, Stabilize, ToroidParams};
+use toroid::{analyse, build, Stabilize, ToroidParams, ToroidWheel};
+use wheel_rolling::{FullRolling, RigidRolling, RunSpec, Wheel};
 
 fn options() -> Stabilize {
     Stabilize {
@@ -38,13 +37,20 @@ fn bench_rolling(c: &mut Criterion) {
     for n in [8usize, 24] {
         let t = build(&ToroidParams::default().sides(n), options(), 1.0).unwrap();
         let a = analyse(&t).unwrap();
-        let model = RigidRolling::of(&t, &a, 50f64.to_radians());
+        let wheel = ToroidWheel {
+            toroid: &t,
+            analysis: &a,
+            string_stiffness: 2e4,
+            min_tension: 20.0,
+        };
+        let model = RigidRolling::new(&wheel.polygon(), &RunSpec::default());
         group.bench_with_input(BenchmarkId::new("rigid", n), &model, |b, m| {
             b.iter(|| black_box(m.run(1.0).unwrap()))
         });
         let full = FullRolling::default();
-        group.bench_with_input(BenchmarkId::new("full", n), &t, |b, t| {
-            b.iter(|| black_box(full.run(t, 1.0).unwrap()))
+        let scene = wheel.scene().unwrap();
+        group.bench_with_input(BenchmarkId::new("full", n), &scene, |b, s| {
+            b.iter(|| black_box(full.run_scene(s, 1.0).unwrap()))
         });
     }
     group.finish();

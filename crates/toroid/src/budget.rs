@@ -5,15 +5,15 @@
 //! 12n prism strings + 2n spokes + 2n inner + 2n outer ring strings; no supports, so the
 //! equilibrium matrix is 3·nodes × members. [`statics`] estimates what [`crate::analyse`]
 //! runs: [`dense_statics`] (O(n³) work, O(n²) memory) or, for the symmetry-adapted path,
-//! [`cyclic_statics`] (O(n) work and memory). [`roll`] adds the time integration of the model the
-//! fidelity policy picks ([`RollRequest::fidelity_for`]) and its samples.
+//! [`cyclic_statics`] (O(n) work and memory). [`roll`] adds what the fidelity decision's plan
+//! may run ([`RollRequest::decision`], the one the run follows), estimated by wheel-rolling
+//! from the wheel's sizes ([`full_sizes`]).
 
 use crate::params::ToroidParams;
 use crate::report::{ToroidRequest, WheelSpec};
 use crate::roll::RollRequest;
-use crate::rolling::RollingSample;
-use crate::rolling_full::Fidelity;
 use tensegrity_core::budget::{self, Estimate};
+use wheel_rolling::estimate::{FullSizes, RunSize};
 
 /// Node, bar and string counts of the wheel (or of the single prism).
 pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
@@ -41,7 +41,7 @@ pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
 /// assert!(budget::statics(&r).work_s < 1.0);
 /// r.wheel.params.sides = 100_000;
 /// let e = budget::statics(&r);
-/// assert!(e.memory_bytes < 8e9 && e.parameter == "--sides 100000");
+/// assert!(e.memory_bytes < 8e9 && e.parameter == "sides = 100000");
 /// r.wheel.params.sides = 100_000_000;
 /// assert!(budget::statics(&r).memory_bytes > 1e11);
 /// ```
@@ -51,9 +51,9 @@ pub fn statics(request: &ToroidRequest) -> Estimate {
 
 fn parameter(request: &ToroidRequest) -> String {
     if request.prism_only {
-        "--prism-only".to_string()
+        "prism_only = true".to_string()
     } else {
-        format!("--sides {}", request.wheel.params.sides)
+        format!("sides = {}", request.wheel.params.sides)
     }
 }
 
@@ -102,44 +102,55 @@ pub fn wheel_mass(wheel: &WheelSpec) -> f64 {
     wheel.bar_density * (p.sides as f64 * prism + axle)
 }
 
-/// Estimate of `tensegrity roll`: the wheel's statics, then the time integration of the model
-/// the fidelity policy picks (rigid: one degree of freedom; full: the class-1 model with its
-/// rim-joint constraints, 4 right-hand sides a step) and the samples kept in memory
-/// (one per [`crate::defaults::ROLL_OUTPUT_DT`]).
+/// The sizes of the wheel's full rolling model: the class-1 model of its bars and strings,
+/// one constraint row per rim joint and direction, RK4's four right-hand sides a step.
+pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
+    let (nodes, bars, strings) = counts(wheel, false);
+    FullSizes {
+        nodes,
+        bars,
+        strings,
+        constraint_rows: 3 * wheel.params.sides,
+        rhs_per_step: 4.0,
+        extra_flops: 0.0,
+    }
+}
+
+/// Estimate of `roll`: the wheel's statics, then what the plan of the fidelity decision
+/// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
+/// model, or both — with their samples kept in memory (one per
+/// [`crate::defaults::ROLL_OUTPUT_DT`]); named `t_end = …, dt = …, sides = …`.
 pub fn roll(request: &RollRequest) -> Estimate {
     let wheel = &request.wheel;
     let statics = statics(&ToroidRequest {
         wheel: *wheel,
         ..ToroidRequest::default()
     });
-    let parameter = format!(
-        "--t-end {} --dt {} --sides {}",
-        request.t_end, request.dt, wheel.params.sides
-    );
-    let steps = (request.t_end / request.dt).ceil();
-    let samples = (request.t_end / crate::defaults::ROLL_OUTPUT_DT).floor() + 2.0;
-    let (nodes, bars, strings) = counts(wheel, false);
-    let fidelity = request.fidelity_for(wheel_mass(wheel), wheel.params.outer_radius);
-    let (run, sample_bytes) = match fidelity {
-        Fidelity::Rigid => (
-            budget::integration(steps, 1.0, 200.0, 3, parameter.clone()),
-            std::mem::size_of::<RollingSample>() as f64,
-        ),
-        Fidelity::Full => {
-            // one constraint row per rim joint and direction
-            let rows = 3 * wheel.params.sides;
-            let flops = budget::rhs_flops(bars, strings, rows);
-            (
-                budget::integration(steps, 4.0, flops, 12 * bars, parameter.clone()),
-                std::mem::size_of::<RollingSample>() as f64 + 48.0 * nodes as f64,
-            )
-        }
-    };
-    let kept = budget::table(samples, sample_bytes, true, parameter.clone());
+    let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
+    let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
     Estimate {
-        parameter,
-        ..statics.then(run).then(kept)
+        parameter: size.parameter,
+        ..statics.then(run)
     }
+}
+
+/// Estimate of `fig-rolling`: one [`roll`] per wheel size in `sides`, the wheels rolled at
+/// once on `cores` threads (at most one per wheel): see [`wheel_rolling::estimate::parallel`].
+/// `None` for no wheel.
+pub fn rolling_series(request: &RollRequest, sides: &[usize], cores: usize) -> Option<Estimate> {
+    let wheels: Vec<Estimate> = sides
+        .iter()
+        .map(|&n| {
+            let mut r = *request;
+            r.wheel.params.sides = n;
+            roll(&r)
+        })
+        .collect();
+    let workers = cores.min(wheels.len()).max(1);
+    let what = format!(
+        "rolling the wheels n = {sides:?} at once on {workers} core(s) (statics, time steps, samples)"
+    );
+    wheel_rolling::estimate::parallel(&wheels, workers, what)
 }
 
 #[cfg(test)]
@@ -170,6 +181,10 @@ mod tests {
             t_end: 1e9,
             ..RollRequest::default()
         };
+        assert_eq!(
+            roll(&r).parameter,
+            "t_end = 1000000000, dt = 0.0001, sides = 8"
+        );
         let e = roll(&r);
         // 1e12 samples kept in memory
         assert!(e.memory_bytes > 1e13, "{}", e.memory_bytes);
@@ -180,5 +195,44 @@ mod tests {
         // the default run is well inside the limits
         let e = roll(&RollRequest::default());
         assert!(tensegrity_core::budget::Limits::default().check(&e).is_ok());
+    }
+
+    #[test]
+    fn the_estimate_budgets_exactly_what_the_run_may_do() {
+        use wheel_rolling::{Fidelity, FidelityChoice, Plan};
+        let with = |fidelity, string_stiffness: f64| {
+            let mut r = RollRequest {
+                fidelity,
+                t_end: 0.2,
+                ..RollRequest::default()
+            };
+            r.settings.string_stiffness = string_stiffness;
+            r
+        };
+        // soft strings (the default 2·10⁴ N/m): auto is the full model, and so is the estimate
+        let soft = with(FidelityChoice::Auto, 2e4);
+        assert_eq!(soft.decision().plan, Plan::Full);
+        assert_eq!(roll(&soft), roll(&with(FidelityChoice::Full, 2e4)));
+        assert_eq!(crate::roll::roll(&soft).unwrap().fidelity, Fidelity::Full);
+        // stiff strings: the rigid run may be invalid, so the estimate covers the rigid run
+        // and then the full one, though this rigid run is valid and alone runs
+        let stiff = with(FidelityChoice::Auto, 2e6);
+        assert_eq!(stiff.decision().plan, Plan::RigidThenFullIfInvalid);
+        let (both, full, rigid) = (
+            roll(&stiff),
+            roll(&with(FidelityChoice::Full, 2e6)),
+            roll(&with(FidelityChoice::Rigid, 2e6)),
+        );
+        assert!(both.work_s >= full.work_s && both.work_s >= rigid.work_s);
+        assert!((both.work_s - full.work_s - rigid.work_s + statics_work()).abs() < 1e-9);
+        let ran = crate::roll::roll(&stiff).unwrap();
+        assert_eq!(ran.fidelity, Fidelity::Rigid);
+        // the run's decision is the estimate's: the same plan from the same mass
+        assert!(ran.fidelity_reason.contains("rigid run is valid"));
+    }
+
+    /// The statics part of every roll estimate of the reference wheel (counted once).
+    fn statics_work() -> f64 {
+        statics(&ToroidRequest::default()).work_s
     }
 }

@@ -1,8 +1,9 @@
-//! Errors of the toroid crate: one enum, structured fields, the core's errors wrapped with
-//! `#[from]`.
+//! Errors of the toroid crate: one enum, structured fields, the core's and the rolling
+//! models' errors wrapped with `#[from]`.
 
 use tensegrity_core::CoreError;
 use thiserror::Error;
+use wheel_rolling::RollingError;
 
 /// Result alias of the toroid crate.
 pub type Result<T, E = ToroidError> = std::result::Result<T, E>;
@@ -26,14 +27,23 @@ pub enum ToroidError {
         /// The LP margin found.
         margin: f64,
     },
-    /// A rolling run recorded no sample (the output interval exceeds the run).
-    #[error("no sample was recorded: output interval {output_dt} s is longer than the run")]
-    NoSamples {
-        /// The output interval (s).
-        output_dt: f64,
-    },
+    /// An error of the rolling models that is neither a parameter nor a core error (e.g. no
+    /// sample recorded).
+    #[error(transparent)]
+    Rolling(RollingError),
     /// An error of the core analyses or of the dynamics engine (which names the time and
     /// member where it stopped).
     #[error(transparent)]
     Core(#[from] CoreError),
+}
+
+impl From<RollingError> for ToroidError {
+    /// A bad parameter stays a bad parameter and a core error a core error.
+    fn from(e: RollingError) -> Self {
+        match e {
+            RollingError::InvalidParameter(p) => Self::InvalidParameter(p),
+            RollingError::Core(c) => Self::Core(c),
+            other => Self::Rolling(other),
+        }
+    }
 }

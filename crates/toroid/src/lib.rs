@@ -3,7 +3,7 @@
 //! The 3-bar-prism tensegrity toroid of the thesis (chapter 3), used as a wheel: geometry from
 //! seven parameters, stabilising string options, statics (self-stress, prestressability,
 //! internal mechanisms, prestress design), mass and inertia, tip-over, and rolling down an
-//! incline; and the reports of these studies ([`toroid_report`], [`roll`],
+//! incline (with the models of the wheel-rolling crate); and the reports of these studies ([`toroid_report`], [`roll()`],
 //! [`tipover_report`], [`rolling_series`]) built from request structs whose defaults are the
 //! named constants of [`defaults`].
 //!
@@ -26,13 +26,10 @@ mod inertia;
 mod params;
 pub mod report;
 pub mod roll;
-pub mod rolling;
-pub mod rolling_full;
 pub mod rolling_lean;
 mod symmetry;
 mod tipover;
 pub mod tipover_dynamic;
-pub mod validity;
 
 pub use analysis::{
     analyse, analyse_dense, design_from, prestress_design, prestressed_structure,
@@ -47,9 +44,12 @@ pub use report::{
     WheelSpec,
 };
 pub use roll::{
-    roll, roll_with_frames, rolling_series, ContactKind, FidelityChoice, FirstImpact, RollReport,
-    RollRequest,
+    roll, roll_observed, roll_with_frames, rolling_series, RollReport, RollRequest, ToroidWheel,
 };
 pub use symmetry::{toroid_symmetry, SymmetryCounts};
 pub use tipover::{friction_grid, normalized_friction, tipover, TipOver};
-pub use validity::{ImpactRecord, RollValidity};
+/// The rolling models the toroid's [`roll()`] runs (re-exported: the request's enums and the
+/// report's parts are wheel-rolling's).
+pub use wheel_rolling::{
+    self, ContactKind, FidelityChoice, FirstImpact, ImpactRecord, RollValidity,
+};

@@ -1,93 +1,54 @@
-//! The rolling study: one wheel down an incline with the model chosen by the fidelity policy
-//! ([`roll`]), and the series of wheels of thesis Fig. 3.10 ([`rolling_series`]).
+//! The rolling study of the toroid: one wheel down an incline ([`roll`]) with the models of
+//! wheel-rolling, and the series of wheels of thesis Fig. 3.10 ([`rolling_series`]).
 //!
-//! Fidelity policy (one place): `Rigid` runs the reduced polygon model
-//! ([`RigidRolling`]), `Full` the prestressed tensegrity dynamics ([`FullRolling`]), and
-//! `Auto` the cheapest model whose assumptions hold: the rigid model when the strain measure
-//! m g / (k R_o) of the wheel's weight on one string of stiffness k is below
-//! [`RIGID_THRESHOLD`] (see [`auto_fidelity`]) **and** the rigid run is valid (its
-//! [`crate::validity::RollValidity`] has no warning); otherwise the full model. The report
-//! says which model ran and why (`fidelity_reason`).
+//! The toroid supplies its wheel description ([`ToroidWheel`]: the polygon of its n prisms,
+//! its nodes in the starting pose, and for the full model the prestressed [`scene`]);
+//! wheel-rolling decides the model and runs it. The decision ([`RollRequest::decision`]) is
+//! the one the resource estimate ([`crate::budget::roll`]) budgets: `rigid` runs the reduced
+//! polygon model, `full` the prestressed tensegrity dynamics, and `auto` the cheapest model
+//! whose assumptions hold — rigid when m g / (k R_o) < 10⁻³ **and** the rigid run is valid
+//! (see [`wheel_rolling::fidelity`]). The report says which model ran and why
+//! (`fidelity_reason`).
 //!
 //! Both models start from the same state, at rest on a side of the contact polygon about to
 //! pivot about its downhill pair, and report the same coordinates (s along the slope from
 //! that pair, h above the slope), so their histories compare from t = 0.
 
-mod frames;
+mod report;
+mod wheel;
 
 use crate::analysis::analyse;
 use crate::defaults;
-use crate::error::Result;
+use crate::error::{Result, ToroidError};
 use crate::report::WheelSpec;
-use crate::rolling::{RigidRolling, RollingResult, RollingSample};
-#[cfg(doc)]
-use crate::rolling_full::RIGID_THRESHOLD;
-use crate::rolling_full::{
-    auto_fidelity, contact_effective_mass, deformation_measure, penalty_damping, ContactModel,
-    Fidelity, FullRolling, WheelFrame,
-};
-use crate::validity::ImpactRecord;
-use crate::Toroid;
-pub use frames::rigid_frames;
-use serde::Serialize;
+pub use report::RollReport;
+use serde::{Deserialize, Serialize};
 use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
+pub use wheel::{rigid_frames, scene, start_pose, ToroidWheel};
+use wheel_rolling::{ContactKind, Decision, FidelityChoice, Observer, RollSettings, RunSpec};
 
-/// The model a rolling request asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum FidelityChoice {
-    /// The reduced rigid polygon.
-    Rigid,
-    /// The full tensegrity dynamics.
-    Full,
-    /// The cheapest valid model: rigid when the strings barely stretch under the wheel's
-    /// weight and the rigid run is valid, else full.
-    #[default]
-    Auto,
-}
-
-/// The ground contact of the full model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ContactKind {
-    /// Thesis §3.2.2: weight-based normal reaction plus velocity damping (it can pull and
-    /// sink; its runs are flagged when they do).
-    Thesis,
-    /// Penalty spring–damper (never pulling) with regularised Coulomb friction.
-    #[default]
-    Penalty,
-}
-
-/// What [`roll`] runs.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What [`roll`] runs: the wheel, the shared rolling settings and the toroid's own choices.
+/// Its serde form is flat, every field named as the `roll` flag in snake_case:
+/// `{"sides": 12, "incline": "30deg", "fidelity": "rigid", ...}`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct RollRequest {
     /// The wheel.
+    #[serde(flatten)]
     pub wheel: WheelSpec,
-    /// Slope angle φ (rad).
-    pub incline: f64,
+    /// Slope, step, gravity, restitution, string and ground stiffness, ground damping.
+    #[serde(flatten)]
+    pub settings: RollSettings,
     /// Simulated time (s).
     pub t_end: f64,
-    /// Integration step (s).
-    pub dt: f64,
-    /// Gravity (m/s²).
-    pub gravity: f64,
-    /// The model.
+    /// The model: `rigid`, `full` or `auto`.
     pub fidelity: FidelityChoice,
-    /// Ground contact of the full model.
+    /// Ground contact of the full model: `penalty` or `thesis`.
     pub contact: ContactKind,
-    /// Ground damping (N·s/m): contact-velocity damping (thesis) or normal damping per node
-    /// (penalty). `None`: [`defaults::GROUND_DAMPING`] for the thesis contact, and for the
-    /// penalty contact the damping that gives [`RollRequest::restitution`]
-    /// ([`penalty_damping`]).
-    pub ground_damping: Option<f64>,
-    /// Penalty ground stiffness per node (N/m).
-    pub ground_stiffness: f64,
     /// Static friction coefficient μ_s; μ_k = 0.75 μ_s
     /// ([`defaults::KINETIC_FRICTION_RATIO`]).
     pub mu: f64,
-    /// Normal coefficient of restitution e of an impact (rigid model; the penalty damping
-    /// unless `ground_damping` is given).
-    pub restitution: f64,
-    /// String stiffness of the full model (N/m).
-    pub string_stiffness: f64,
     /// Smallest string tension of the full model's prestress (N).
     pub min_tension: f64,
     /// Integrator of the full model (`dt` is its step, or its largest step when adaptive).
@@ -101,387 +62,185 @@ impl Default for RollRequest {
     fn default() -> Self {
         Self {
             wheel: WheelSpec::default(),
-            incline: defaults::INCLINE_DEG.to_radians(),
+            settings: RollSettings::default(),
             t_end: defaults::ROLL_T_END,
-            dt: defaults::ROLL_DT,
-            gravity: defaults::GRAVITY,
             fidelity: FidelityChoice::Auto,
             contact: ContactKind::Penalty,
-            ground_damping: None,
-            ground_stiffness: defaults::GROUND_STIFFNESS,
             mu: defaults::STATIC_FRICTION,
-            restitution: defaults::RESTITUTION,
-            string_stiffness: defaults::STRING_STIFFNESS,
             min_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
         }
     }
 }
 
+/// The integrators by name.
+const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk"];
+
+impl Request for RollRequest {
+    const NAME: &'static str = "roll";
+
+    fn params() -> Vec<Param> {
+        let shared = RollSettings::params();
+        let setting = |name: &str| {
+            shared
+                .iter()
+                .copied()
+                .find(|p| p.name == name)
+                .expect("a shared rolling setting")
+        };
+        let mut out = WheelSpec::params();
+        out.extend([
+            setting("incline"),
+            Param::number("t_end", "s", "Simulated time").positive(),
+            setting("dt"),
+            Param::choice(
+                "fidelity",
+                FidelityChoice::NAMES,
+                "Model: rigid polygon, full tensegrity, or auto (the cheapest valid one)",
+            ),
+            Param::choice(
+                "contact",
+                ContactKind::NAMES,
+                "Ground contact of the full model",
+            ),
+            setting("ground_damping"),
+            setting("ground_stiffness"),
+            Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
+                .non_negative(),
+            setting("restitution"),
+            setting("string_stiffness"),
+            Param::number(
+                "min_tension",
+                "N",
+                "Smallest string tension of the full model's prestress",
+            )
+            .positive(),
+            Param::new(
+                "integrator",
+                Kind::Choice(INTEGRATORS),
+                "",
+                "Integrator of the full model",
+            ),
+            setting("gravity"),
+        ]);
+        out
+    }
+
+    /// Finite numbers (which the per-field rules cannot see otherwise), and the wheel's
+    /// geometry rules across its parameters (R_i < R_o).
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.settings.check_finite()?;
+        wheel_rolling::settings::finite(&[
+            ("t_end", self.t_end),
+            ("mu", self.mu),
+            ("min_tension", self.min_tension),
+            ("bar_density", self.wheel.bar_density),
+        ])?;
+        match self.wheel.params.validate() {
+            Ok(()) => Ok(()),
+            Err(ToroidError::InvalidParameter(p)) => Err(p),
+            Err(e) => Err(InvalidParameter::raw(
+                "sides",
+                self.wheel.params.sides,
+                e.to_string(),
+            )),
+        }
+    }
+}
+
 impl RollRequest {
-    /// The model the stiffness allows for a wheel of `mass` (kg) and outer radius R_o (m)
-    /// (`auto` also needs a valid rigid run, see [`roll`]).
-    ///
-    /// ```
-    /// use toroid::rolling_full::Fidelity;
-    /// use toroid::{FidelityChoice, RollRequest};
-    /// let auto = RollRequest::default();
-    /// // 14.4 kg on 2·10⁴ N/m strings: m g / (k R_o) ≈ 7·10⁻³ > 10⁻³, the wheel deforms
-    /// assert_eq!(auto.fidelity_for(14.4, 1.0), Fidelity::Full);
-    /// let stiff = RollRequest { string_stiffness: 2e6, ..auto };
-    /// assert_eq!(stiff.fidelity_for(14.4, 1.0), Fidelity::Rigid);
-    /// let full = RollRequest { fidelity: FidelityChoice::Full, ..stiff };
-    /// assert_eq!(full.fidelity_for(14.4, 1.0), Fidelity::Full);
-    /// ```
-    pub fn fidelity_for(&self, mass: f64, outer_radius: f64) -> Fidelity {
-        match self.fidelity {
-            FidelityChoice::Rigid => Fidelity::Rigid,
-            FidelityChoice::Full => Fidelity::Full,
-            FidelityChoice::Auto => {
-                auto_fidelity(mass, self.gravity, self.string_stiffness, outer_radius)
-            }
+    /// The reference wheel with `n` sides and the default settings.
+    pub fn with_sides(n: usize) -> Self {
+        Self {
+            wheel: WheelSpec::with_sides(n),
+            ..Self::default()
         }
     }
 
-    /// Checks every scalar of the request with the core's shared rules (named as the flags
-    /// of `tensegrity roll`, with `_` for `-`): positive times, step, gravity, stiffnesses
-    /// and tension; non-negative damping and friction; restitution in [0, 1]; an incline in
-    /// [0, π/2).
+    /// The run both models read: μ_k = 0.75 μ = [`defaults::KINETIC_FRICTION_RATIO`] μ, 1 ms
+    /// samples.
+    pub fn spec(&self) -> RunSpec {
+        RunSpec {
+            settings: self.settings,
+            t_end: self.t_end,
+            fidelity: self.fidelity,
+            contact: self.contact,
+            mu_static: self.mu,
+            mu_kinetic: defaults::KINETIC_FRICTION_RATIO * self.mu,
+            integrator: self.integrator,
+            output_dt: defaults::ROLL_OUTPUT_DT,
+        }
+    }
+
+    /// The fidelity decision of this request: from the wheel's mass computed from its
+    /// parameters ([`crate::budget::wheel_mass`], nothing built), so the resource estimate
+    /// ([`crate::budget::roll`]) and the run ([`roll`]) follow the same plan.
     ///
     /// ```
     /// use toroid::RollRequest;
-    /// assert!(RollRequest::default().validate().is_ok());
-    /// let bad = RollRequest { ground_damping: Some(-5.0), ..RollRequest::default() };
-    /// assert!(bad.validate().unwrap_err().to_string().contains("ground_damping = -5"));
-    /// let bad = RollRequest { mu: -1.0, ..RollRequest::default() };
-    /// assert!(bad.validate().unwrap_err().to_string().contains("mu = -1"));
-    /// let bad = RollRequest { restitution: 1.5, ..RollRequest::default() };
-    /// assert!(bad.validate().unwrap_err().to_string().contains("restitution"));
-    /// let bad = RollRequest { ground_stiffness: 0.0, ..RollRequest::default() };
-    /// assert!(bad.validate().is_err());
+    /// use wheel_rolling::{FidelityChoice, Plan, RollSettings};
+    /// let auto = RollRequest::default();
+    /// // 14.4 kg on 2·10⁴ N/m strings: m g / (k R_o) ≈ 7·10⁻³ > 10⁻³, the wheel deforms
+    /// assert_eq!(auto.decision().plan, Plan::Full);
+    /// let settings = RollSettings { string_stiffness: 2e6, ..auto.settings };
+    /// let stiff = RollRequest { settings, ..auto };
+    /// assert_eq!(stiff.decision().plan, Plan::RigidThenFullIfInvalid);
+    /// let rigid = RollRequest { fidelity: FidelityChoice::Rigid, ..stiff };
+    /// assert_eq!(rigid.decision().plan, Plan::Rigid);
     /// ```
-    pub fn validate(&self) -> Result<()> {
-        use tensegrity_core::validate::{non_negative, positive};
-        positive("t_end", self.t_end)?;
-        positive("dt", self.dt)?;
-        positive("gravity", self.gravity)?;
-        positive("ground_stiffness", self.ground_stiffness)?;
-        positive("string_stiffness", self.string_stiffness)?;
-        positive("min_tension", self.min_tension)?;
-        if let Some(c) = self.ground_damping {
-            non_negative("ground_damping", c)?;
-        }
-        non_negative("mu", self.mu)?;
-        let bad = |name, value, reason| {
-            Err(tensegrity_core::CoreError::invalid_parameter(name, value, reason).into())
-        };
-        if !(self.restitution.is_finite() && (0.0..=1.0).contains(&self.restitution)) {
-            return bad("restitution", self.restitution, "must lie in [0, 1]");
-        }
-        if !(self.incline.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&self.incline))
-        {
-            return bad("incline", self.incline, "must lie in [0, π/2) rad");
-        }
-        self.wheel.params.validate()
-    }
-
-    /// The contact model of the full run for a wheel of `mass` (kg), I₁ (kg m²): the penalty
-    /// damping follows from the restitution unless `ground_damping` is given.
-    pub fn contact_model(&self, mass: f64, i1: f64) -> ContactModel {
-        match self.contact {
-            ContactKind::Thesis => ContactModel::Thesis {
-                damping: self.ground_damping.unwrap_or(defaults::GROUND_DAMPING),
-            },
-            ContactKind::Penalty => {
-                let p = &self.wheel.params;
-                let m_eff = contact_effective_mass(mass, i1, p.outer_radius, p.sides);
-                ContactModel::Penalty {
-                    stiffness: self.ground_stiffness,
-                    damping: self.ground_damping.unwrap_or_else(|| {
-                        penalty_damping(self.restitution, self.ground_stiffness, m_eff)
-                    }),
-                    mu_static: self.mu,
-                    mu_kinetic: defaults::KINETIC_FRICTION_RATIO * self.mu,
-                }
-            }
-        }
-    }
-
-    /// The rigid model of this request for a built wheel.
-    pub fn rigid_model(&self, toroid: &Toroid, analysis: &crate::ToroidAnalysis) -> RigidRolling {
-        RigidRolling {
-            gravity: self.gravity,
-            dt: self.dt,
-            mu_static: self.mu,
-            mu_kinetic: defaults::KINETIC_FRICTION_RATIO * self.mu,
-            restitution: self.restitution,
-            ..RigidRolling::of(toroid, analysis, self.incline)
-        }
-    }
-
-    /// The full model of this request for a built wheel.
-    pub fn full_model(&self, mass: f64, i1: f64) -> FullRolling {
-        FullRolling {
-            incline: self.incline,
-            gravity: self.gravity,
-            contact: self.contact_model(mass, i1),
-            string_stiffness: self.string_stiffness,
-            min_string_tension: self.min_tension,
-            dt: self.dt,
-            integrator: self.integrator,
-            ..FullRolling::default()
-        }
+    pub fn decision(&self) -> Decision {
+        let s = &self.settings;
+        Decision::new(
+            self.fidelity,
+            crate::budget::wheel_mass(&self.wheel),
+            s.gravity,
+            s.string_stiffness,
+            self.wheel.params.outer_radius,
+        )
     }
 }
 
-/// The first impact of a run (the JSON's `first_impact`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct FirstImpact {
-    /// Time (s).
-    pub t: f64,
-    /// Angular velocity about the axle before the impact (rad/s).
-    pub omega_before: f64,
-    /// Angular velocity about the axle after it (rad/s).
-    pub omega_after: f64,
-}
-
-/// The summary of one rolling run; serialises to the JSON of `tensegrity roll`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RollReport {
-    /// The model that ran.
-    pub fidelity: Fidelity,
-    /// Why that model (the `auto` policy's reasoning, or "requested").
-    pub fidelity_reason: String,
-    /// The ground contact of the full model (`penalty` or `thesis`; `rigid` for the rigid
-    /// model's unilateral impacts).
-    pub contact: &'static str,
-    /// Whether the run stayed inside its model's assumptions (no warning).
-    pub valid: bool,
-    /// What the run violated, one sentence each.
-    pub warnings: Vec<String>,
-    /// Set when the integration failed before `t_end`: the time (s) of the last state kept;
-    /// every figure covers [0, stopped_at] only.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stopped_at: Option<f64>,
-    /// Number of sides n.
-    pub sides: usize,
-    /// Slope angle (rad).
-    pub incline_rad: f64,
-    /// Simulated time (s).
-    pub t_end: f64,
-    /// Wheel mass (kg).
-    pub mass_kg: f64,
-    /// I₁ about the rolling axis (kg m²).
-    #[serde(rename = "I1")]
-    pub i1: f64,
-    /// Static friction coefficient μ_s (μ_k = 0.75 μ_s).
-    pub mu: f64,
-    /// Normal coefficient of restitution.
-    pub restitution: f64,
-    /// Normal ground damping per node of the full model (N·s/m; null for the rigid model).
-    pub ground_damping: Option<f64>,
-    /// Number of contact-pair impacts.
-    pub impacts: usize,
-    /// The first impact (null if none).
-    pub first_impact: Option<FirstImpact>,
-    /// Every impact: t, ω before and after, normal and tangential impulse (N·s).
-    pub impact_log: Vec<ImpactRecord>,
-    /// RMS deviation of the axle height about its mean, after the first second (m).
-    pub axle_height_oscillation: f64,
-    /// Mean axle height above the slope after the first second (m).
-    pub mean_axle_height: f64,
-    /// Mean downhill speed of the axle after the first second (m/s).
-    pub mean_speed: f64,
-    /// Downhill speed of the axle at the end (m/s).
-    pub final_speed: f64,
-    /// Largest contact force magnitude (N).
-    pub max_reaction: f64,
-    /// Smallest normal force (N); negative means the ground pulled.
-    pub min_normal_force: f64,
-    /// Fraction of the time with no contact.
-    pub airborne_fraction: f64,
-    /// Fraction of the time in contact and sliding.
-    pub slip_fraction: f64,
-    /// Deepest penetration of a contact node below the slope (m).
-    pub max_penetration: f64,
-    /// Energy-budget residual over the budget's largest term (dimensionless).
-    pub energy_balance_error: f64,
-    /// Sampled time with a negative normal force (s).
-    pub lift_off_time: f64,
-    /// Largest |F_t|/N: the friction coefficient rolling without slip needs.
-    pub required_friction: f64,
-    /// Mean sliding speed of the loaded contact nodes (m/s).
-    pub mean_slip_speed: f64,
-    /// Wall-clock time of the run (s); not serialised, so that the JSON (and a sweep's rows)
-    /// depend on the mechanics only.
-    #[serde(skip)]
-    pub wall_time_s: f64,
-    /// The sampled history (1 ms), for CSV and figures; not serialised.
-    #[serde(skip)]
-    pub samples: Vec<RollingSample>,
-    /// Node frames at the requested times (slope coordinates); not serialised.
-    #[serde(skip)]
-    pub frames: Vec<WheelFrame>,
-}
-
-/// Builds the wheel, chooses the model (the `auto` policy of the module docs) and rolls it.
+/// Builds the wheel, decides the model (module docs) and rolls it.
 ///
 /// ```
-/// use toroid::rolling_full::Fidelity;
-/// use toroid::{roll, FidelityChoice, RollRequest};
+/// use toroid::{roll, RollRequest};
+/// use wheel_rolling::{Fidelity, FidelityChoice};
 /// let request = RollRequest { fidelity: FidelityChoice::Rigid, t_end: 2.0, ..Default::default() };
 /// let r = roll(&request).unwrap();
 /// assert_eq!(r.fidelity, Fidelity::Rigid);
-/// assert!(r.mean_speed > 0.0 && r.impacts > 0);
+/// assert!(r.summary.mean_speed > 0.0 && r.summary.impacts > 0);
 /// ```
 pub fn roll(request: &RollRequest) -> Result<RollReport> {
-    roll_with_frames(request, &[])
+    roll_observed(request, &[], None)
 }
 
 /// As [`roll`], keeping the wheel's nodes at `frame_times` (s) in [`RollReport::frames`]
 /// (the rigid model places the rigid wheel by its pose, see [`rigid_frames`]).
 pub fn roll_with_frames(request: &RollRequest, frame_times: &[f64]) -> Result<RollReport> {
+    roll_observed(request, frame_times, None)
+}
+
+/// As [`roll_with_frames`], handing every sample and frame to `observer` as the run makes it;
+/// an observer that stops the run gets the report of what was computed, with `stopped_at`
+/// and a warning (see [`wheel_rolling::observer`]).
+pub fn roll_observed(
+    request: &RollRequest,
+    frame_times: &[f64],
+    observer: Option<&mut dyn Observer>,
+) -> Result<RollReport> {
     request.validate()?;
     let t = request.wheel.build()?;
     let a = analyse(&t)?;
-    let outer = t.params.outer_radius;
-    let strain = deformation_measure(a.mass_kg, request.gravity, request.string_stiffness, outer);
-    let run_rigid = || -> Result<TimedRun> {
-        let start = std::time::Instant::now();
-        let r = request.rigid_model(&t, &a).run(request.t_end)?;
-        Ok((r, start.elapsed().as_secs_f64()))
+    let wheel = ToroidWheel {
+        toroid: &t,
+        analysis: &a,
+        string_stiffness: request.settings.string_stiffness,
+        min_tension: request.min_tension,
     };
-    let (fidelity, reason, rigid) = match request.fidelity {
-        FidelityChoice::Rigid => (Fidelity::Rigid, "requested".to_string(), Some(run_rigid()?)),
-        FidelityChoice::Full => (Fidelity::Full, "requested".to_string(), None),
-        FidelityChoice::Auto => auto_choice(request, strain, run_rigid)?,
-    };
-    let model = Ran {
-        fidelity,
-        reason,
-        mass: a.mass_kg,
-        i1: a.i1,
-    };
-    match rigid {
-        Some((r, wall)) if fidelity == Fidelity::Rigid => {
-            let frames = rigid_frames(&t, &r.samples, frame_times);
-            Ok(report_of(request, model, r, frames, wall))
-        }
-        _ => {
-            let full = FullRolling {
-                frame_times: frame_times.to_vec(),
-                ..request.full_model(a.mass_kg, a.i1)
-            }
-            .run_full(&t, request.t_end)?;
-            let wall = full.wall_time_s;
-            Ok(report_of(request, model, full.result, full.frames, wall))
-        }
-    }
-}
-
-/// A rigid run and its wall-clock time (s).
-type TimedRun = (RollingResult, f64);
-
-/// The model chosen, why, and the rigid run if one was made.
-type Choice = (Fidelity, String, Option<TimedRun>);
-
-/// The `auto` policy.
-fn auto_choice(
-    request: &RollRequest,
-    strain: f64,
-    run_rigid: impl Fn() -> Result<TimedRun>,
-) -> Result<Choice> {
-    let k = request.string_stiffness;
-    if strain >= crate::rolling_full::RIGID_THRESHOLD {
-        let reason = format!(
-            "the strings stretch: m g / (k R_o) = {strain:.2e} ≥ {:.0e} with k = {k} N/m",
-            crate::rolling_full::RIGID_THRESHOLD
-        );
-        return Ok((Fidelity::Full, reason, None));
-    }
-    let rigid = run_rigid()?;
-    if rigid.0.validity.valid() {
-        let reason = format!(
-            "the wheel is stiff (m g / (k R_o) = {strain:.2e} < {:.0e}) and the rigid run is valid",
-            crate::rolling_full::RIGID_THRESHOLD
-        );
-        Ok((Fidelity::Rigid, reason, Some(rigid)))
-    } else {
-        let reason = format!(
-            "the wheel is stiff (m g / (k R_o) = {strain:.2e}) but the rigid run is not valid: {}",
-            rigid.0.validity.warnings.join("; ")
-        );
-        Ok((Fidelity::Full, reason, Some(rigid)))
-    }
-}
-
-/// The model that ran and the wheel it ran for.
-struct Ran {
-    fidelity: Fidelity,
-    reason: String,
-    mass: f64,
-    i1: f64,
-}
-
-fn report_of(
-    request: &RollRequest,
-    ran: Ran,
-    r: RollingResult,
-    frames: Vec<WheelFrame>,
-    wall_time_s: f64,
-) -> RollReport {
-    let v = &r.validity;
-    let (contact, ground_damping) = match (ran.fidelity, request.contact_model(ran.mass, ran.i1)) {
-        (Fidelity::Rigid, _) => ("rigid", None),
-        (Fidelity::Full, ContactModel::Penalty { damping, .. }) => ("penalty", Some(damping)),
-        (Fidelity::Full, ContactModel::Thesis { damping }) => ("thesis", Some(damping)),
-    };
-    let skip = if request.t_end > 1.0 { 1.0 } else { 0.0 };
-    let tail: Vec<f64> = r
-        .samples
-        .iter()
-        .filter(|s| s.t >= skip - 1e-12)
-        .map(|s| s.h)
-        .collect();
-    RollReport {
-        fidelity: ran.fidelity,
-        fidelity_reason: ran.reason,
-        contact,
-        valid: v.valid(),
-        warnings: v.warnings.clone(),
-        stopped_at: v.stopped_at,
-        sides: request.wheel.params.sides,
-        incline_rad: request.incline,
-        t_end: request.t_end,
-        mass_kg: ran.mass,
-        i1: ran.i1,
-        mu: request.mu,
-        restitution: request.restitution,
-        ground_damping,
-        impacts: r.impacts,
-        first_impact: r.impact_log.first().map(|i| FirstImpact {
-            t: i.t,
-            omega_before: i.omega_before,
-            omega_after: i.omega_after,
-        }),
-        impact_log: r.impact_log.clone(),
-        axle_height_oscillation: r.axle_height_oscillation,
-        mean_axle_height: tail.iter().sum::<f64>() / tail.len().max(1) as f64,
-        mean_speed: r.mean_speed,
-        final_speed: r.final_speed,
-        max_reaction: r.max_reaction,
-        min_normal_force: v.min_normal_force,
-        airborne_fraction: v.airborne_fraction,
-        slip_fraction: v.slip_fraction,
-        max_penetration: v.max_penetration,
-        energy_balance_error: v.energy_balance_error,
-        lift_off_time: r.lift_off_time,
-        required_friction: r.required_friction,
-        mean_slip_speed: r.mean_slip_speed,
-        wall_time_s,
-        samples: r.samples,
-        frames,
-    }
+    let spec = request.spec();
+    let rolled =
+        wheel_rolling::roll_decided(&wheel, &spec, &request.decision(), frame_times, observer)?;
+    Ok(RollReport::of(request, rolled))
 }
 
 /// Rolls `request` once per wheel size in `sides` (the rest of the request unchanged), e.g.
@@ -500,37 +259,100 @@ pub fn rolling_series(request: &RollRequest, sides: &[usize]) -> Result<Vec<Roll
 #[cfg(test)]
 mod tests {
     use super::*;
+    use wheel_rolling::{ContactModel, Fidelity, Plan};
+
+    #[test]
+    fn the_request_describes_every_field() {
+        tensegrity_core::request::check_description::<RollRequest>().unwrap();
+        let names: Vec<&str> = RollRequest::params().iter().map(|p| p.name).collect();
+        assert_eq!(names.len(), 22);
+        for flag in [
+            "sides",
+            "stabilize",
+            "incline",
+            "mu",
+            "integrator",
+            "gravity",
+        ] {
+            assert!(names.contains(&flag), "{flag}");
+        }
+    }
+
+    #[test]
+    fn the_request_reads_and_writes_its_flat_serde_form() {
+        let r = RollRequest::from_values([
+            ("sides", serde_json::json!(12)),
+            ("stabilize", serde_json::json!("spokes,outer")),
+            ("incline", serde_json::json!("30deg")),
+            ("fidelity", serde_json::json!("rigid")),
+            ("contact", serde_json::json!("thesis")),
+            ("integrator", serde_json::json!("sdirk")),
+            ("ground_damping", serde_json::json!(300)),
+        ])
+        .unwrap();
+        assert_eq!(r.wheel.params.sides, 12);
+        assert!(r.wheel.stabilize.outer && !r.wheel.stabilize.inner);
+        assert!((r.settings.incline - 30f64.to_radians()).abs() < 1e-15);
+        assert_eq!(
+            (r.fidelity, r.contact, r.integrator),
+            (
+                FidelityChoice::Rigid,
+                ContactKind::Thesis,
+                IntegratorKind::Sdirk
+            )
+        );
+        assert_eq!(r.settings.ground_damping, Some(300.0));
+        let json = serde_json::to_value(r).unwrap();
+        assert_eq!(json["stabilize"], "spokes,outer");
+        assert_eq!(json["fidelity"], "rigid");
+        let back: RollRequest = serde_json::from_value(json).unwrap();
+        assert_eq!(back, r);
+        // unknown names and bad values are refused, naming the field
+        assert!(serde_json::from_str::<RollRequest>(r#"{"sidez": 8}"#).is_err());
+        let e = RollRequest::from_values([("mu", serde_json::json!(-1))]).unwrap_err();
+        assert_eq!(e.name, "mu");
+        let e = RollRequest::from_values([("inner_radius", serde_json::json!(1.5))]).unwrap_err();
+        assert_eq!(e.name, "inner_radius");
+        // a NaN set in code (it serialises as null) is refused by name too
+        let nan = RollRequest {
+            mu: f64::NAN,
+            ..RollRequest::default()
+        };
+        assert_eq!(nan.validate().unwrap_err().name, "mu");
+    }
 
     #[test]
     fn auto_fidelity_follows_the_documented_threshold() {
         // m g / (k R_o) of the reference wheel (≈ 14 kg) at 2·10⁴ N/m is ≈ 7·10⁻³: full;
         // 100 times stiffer strings bring it below 10⁻³: rigid if the rigid run is valid
-        let t = WheelSpec::default().build().unwrap();
-        let m = analyse(&t).unwrap().mass_kg;
         let req = RollRequest::default();
-        let strain = m * req.gravity / (req.string_stiffness * t.params.outer_radius);
-        assert!(strain > crate::rolling_full::RIGID_THRESHOLD, "{strain}");
-        assert_eq!(req.fidelity_for(m, 1.0), Fidelity::Full);
-        let stiff = RollRequest {
-            string_stiffness: 100.0 * req.string_stiffness,
-            ..req
-        };
-        assert_eq!(stiff.fidelity_for(m, 1.0), Fidelity::Rigid);
+        let d = req.decision();
+        assert!(d.strain > defaults::RIGID_THRESHOLD, "{}", d.strain);
+        assert_eq!(d.plan, Plan::Full);
+        let mut stiff = req;
+        stiff.settings.string_stiffness *= 100.0;
+        assert_eq!(stiff.decision().plan, Plan::RigidThenFullIfInvalid);
     }
 
     #[test]
     fn the_penalty_contact_uses_three_quarters_of_mu_as_kinetic_friction() {
-        let req = RollRequest {
+        let mut req = RollRequest {
             mu: 0.5,
-            ground_damping: Some(300.0),
             ..Default::default()
+        };
+        req.settings.ground_damping = Some(300.0);
+        let polygon = wheel_rolling::Polygon {
+            sides: 8,
+            outer_radius: 1.0,
+            mass: 10.0,
+            i1: 5.0,
         };
         let ContactModel::Penalty {
             mu_static,
             mu_kinetic,
             stiffness,
             damping,
-        } = req.contact_model(10.0, 5.0)
+        } = ContactModel::of(&req.spec(), &polygon)
         else {
             panic!("penalty expected");
         };
@@ -538,19 +360,6 @@ mod tests {
             (mu_static, mu_kinetic, stiffness, damping),
             (0.5, 0.375, 1e5, 300.0)
         );
-    }
-
-    #[test]
-    fn the_penalty_damping_follows_the_restitution_unless_given() {
-        // n = 8, R_o = 1: m_eff = 1/(1/m + sin²(π/8)/I₁); e = 0 gives ζ = 1
-        let (m, i1) = (10.0, 5.0);
-        let s = (std::f64::consts::PI / 8.0).sin();
-        let m_eff = 1.0 / (1.0 / m + s * s / i1);
-        let req = RollRequest::default();
-        let ContactModel::Penalty { damping, .. } = req.contact_model(m, i1) else {
-            panic!("penalty expected");
-        };
-        assert!((damping - (2.0 * 1e5 * m_eff).sqrt()).abs() < 1e-9 * damping);
     }
 
     #[test]
@@ -569,7 +378,7 @@ mod tests {
             ..req
         })
         .unwrap();
-        let same = |r: &RollReport| (r.samples.clone(), r.impacts, r.mean_speed);
+        let same = |r: &RollReport| (r.samples.clone(), r.summary.impacts, r.summary.mean_speed);
         assert_eq!(same(&runs[1]), same(&twelve));
     }
 }

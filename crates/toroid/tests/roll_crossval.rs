@@ -8,19 +8,22 @@
 //! `cargo test --release -p toroid --test roll_crossval -- --ignored --nocapture`.
 
 use std::f64::consts::PI;
-use toroid::rolling::RollingSample;
 use toroid::{roll, FidelityChoice, RollReport, RollRequest, WheelSpec};
+use wheel_rolling::{RollSettings, RollingSample};
 
 /// The stiff full model and the rigid model of one case.
 fn pair(sides: usize, incline_deg: f64, mu: f64, t_end: f64) -> (RollReport, RollReport) {
     let base = RollRequest {
         wheel: WheelSpec::with_sides(sides),
-        incline: incline_deg.to_radians(),
+        settings: RollSettings {
+            incline: incline_deg.to_radians(),
+            restitution: 0.0,
+            string_stiffness: 2e6,
+            ground_stiffness: 1e6,
+            dt: 5e-5,
+            ..RollSettings::default()
+        },
         mu,
-        restitution: 0.0,
-        string_stiffness: 2e6,
-        ground_stiffness: 1e6,
-        dt: 5e-5,
         t_end,
         ..RollRequest::default()
     };
@@ -56,8 +59,11 @@ fn rigid_and_full_agree_through_the_first_pivot_on_30_degrees() {
     // tolerances are 3 % on the impact time, 1 % on ω⁻ and 5 % of R_o on the axle track up
     // to the first impact (measured: 1.4 %, 0.14 %, 3.3 cm).
     let (rigid, full) = pair(8, 30.0, 1.2, 1.15);
-    assert!(rigid.valid && full.max_penetration < 0.01);
-    let (r, f) = (rigid.first_impact.unwrap(), full.first_impact.unwrap());
+    assert!(rigid.summary.valid && full.summary.max_penetration < 0.01);
+    let (r, f) = (
+        rigid.summary.first_impact.unwrap(),
+        full.summary.first_impact.unwrap(),
+    );
     let (m, i1, g, phi) = (rigid.mass_kg, rigid.i1, 9.81, 30f64.to_radians());
     let omega = (4.0 * m * g * phi.sin() * (PI / 8.0).sin() / (i1 + m)).sqrt();
     assert!((r.omega_before - omega).abs() < 1e-6 * omega);
@@ -90,8 +96,8 @@ fn cross_validation_table() {
                 omega_after: f64::NAN,
             };
             let (ri, fi) = (
-                r.first_impact.unwrap_or(none),
-                f.first_impact.unwrap_or(none),
+                r.summary.first_impact.unwrap_or(none),
+                f.summary.first_impact.unwrap_or(none),
             );
             let first = if ri.t.is_finite() { ri.t } else { 2.0 };
             let third = r.impact_log.get(2).map_or(2.0, |i| i.t);
@@ -102,10 +108,10 @@ fn cross_validation_table() {
                 cell(ri.omega_after, fi.omega_after),
                 track_difference(&r.samples, &f.samples, first),
                 track_difference(&r.samples, &f.samples, third),
-                cell(r.mean_speed, f.mean_speed),
-                cell(r.airborne_fraction, f.airborne_fraction),
-                r.valid,
-                f.valid,
+                cell(r.summary.mean_speed, f.summary.mean_speed),
+                cell(r.summary.airborne_fraction, f.summary.airborne_fraction),
+                r.summary.valid,
+                f.summary.valid,
                 r.wall_time_s,
                 f.wall_time_s,
             );

@@ -1,8 +1,10 @@
 //! The full tensegrity model rolling down an incline: the Fig. 3.10 trend, the start from
 //! rest, and agreement of the contact force with the weight while the wheel sits still.
 
-use toroid::rolling_full::{auto_fidelity, ContactModel, Fidelity, FullRolling};
+use toroid::roll::scene;
 use toroid::{build, ToroidParams};
+use wheel_rolling::fidelity::auto_fidelity;
+use wheel_rolling::{ContactModel, Fidelity, FullRolling, FullRun, RollingResult};
 
 fn wheel(n: usize) -> toroid::Toroid {
     build(
@@ -11,6 +13,12 @@ fn wheel(n: usize) -> toroid::Toroid {
         1.0,
     )
     .unwrap()
+}
+
+/// The toroid's full run with the default strings (2·10⁴ N/m, 20 N minimum prestress).
+fn full(roll: &FullRolling, t: &toroid::Toroid, t_end: f64) -> FullRun {
+    roll.run_scene(&scene(t, 2e4, 20.0).unwrap(), t_end)
+        .unwrap()
 }
 
 #[test]
@@ -22,7 +30,7 @@ fn axle_height_oscillation_decreases_with_n_in_the_full_model() {
     };
     let mut values = Vec::new();
     for n in [8, 12, 16, 24] {
-        let r = roll.run(&wheel(n), 2.0).unwrap();
+        let r = full(&roll, &wheel(n), 2.0).result;
         assert!(r.mean_speed > 1.0, "n = {n}: the wheel rolls downhill");
         values.push(r.axle_height_oscillation);
     }
@@ -41,7 +49,7 @@ fn on_level_ground_the_contact_carries_the_weight_on_average() {
         incline: 0.0,
         ..FullRolling::default()
     };
-    let r = roll.run(&t, 1.0).unwrap();
+    let r = full(&roll, &t, 1.0).result;
     let mean_normal = r.samples.iter().map(|s| s.normal).sum::<f64>() / r.samples.len() as f64;
     let weight = mass * 9.81;
     assert!(
@@ -73,15 +81,11 @@ fn bad_full_rolling_settings_are_named() {
         ..FullRolling::default()
     };
     assert!(bad
-        .run(&t, 1.0)
+        .run_scene(&scene(&t, 2e4, 20.0).unwrap(), 1.0)
         .unwrap_err()
         .to_string()
         .contains("incline"));
-    let bad = FullRolling {
-        string_stiffness: 1.0,
-        ..FullRolling::default()
-    };
-    let e = bad.run(&t, 0.1).unwrap_err().to_string();
+    let e = scene(&t, 1.0, 20.0).unwrap_err().to_string();
     assert!(
         e.contains("string_stiffness") && e.contains("rest length"),
         "{e}"
@@ -102,7 +106,7 @@ fn a_slippery_penalty_ground_makes_the_wheel_slide() {
             },
             ..FullRolling::default()
         };
-        roll.run(&t, 1.0).unwrap()
+        full(&roll, &t, 1.0).result
     };
     let (ice, rubber) = (on(0.05), on(1.0));
     assert!(
@@ -112,9 +116,8 @@ fn a_slippery_penalty_ground_makes_the_wheel_slide() {
         rubber.mean_slip_speed
     );
     // on ice the wheel slides down with little rolling: more distance per turn
-    let turns =
-        |r: &toroid::rolling::RollingResult| r.samples.iter().map(|s| s.omega).sum::<f64>() * 1e-3;
-    let last = |r: &toroid::rolling::RollingResult| r.samples.last().unwrap().s;
+    let turns = |r: &RollingResult| r.samples.iter().map(|s| s.omega).sum::<f64>() * 1e-3;
+    let last = |r: &RollingResult| r.samples.last().unwrap().s;
     assert!(
         last(&ice) / turns(&ice).abs().max(1e-9) > last(&rubber) / turns(&rubber).abs().max(1e-9)
     );
@@ -130,7 +133,7 @@ fn the_full_model_keeps_its_bar_lengths_through_impacts() {
         frame_times: vec![0.0, 0.75, 1.5],
         ..FullRolling::default()
     };
-    let run = roll.run_full(&w, 1.5).unwrap();
+    let run = full(&roll, &w, 1.5);
     assert!(run.result.impact_log.len() >= 2, "the run passes impacts");
     assert!(
         run.result.validity.valid(),
@@ -156,11 +159,11 @@ fn a_run_that_fails_midway_keeps_what_it_computed_and_says_so() {
     // strings of 10⁹ N/m are far too stiff for RK4 at 0.1 ms: the integration diverges at
     // t = 0.3 ms; the run returns the states before the failure, flagged, instead of an error
     // that would lose them
-    let roll = FullRolling {
-        string_stiffness: 1e9,
-        ..FullRolling::default()
-    };
-    let r = roll.run(&wheel(8), 0.01).unwrap();
+    let stiff = scene(&wheel(8), 1e9, 20.0).unwrap();
+    let r = FullRolling::default()
+        .run_scene(&stiff, 0.01)
+        .unwrap()
+        .result;
     let t = r.validity.stopped_at.expect("the run stopped early");
     assert!((0.0..0.01).contains(&t), "{t}");
     assert!(!r.validity.valid());
@@ -174,6 +177,6 @@ fn a_run_that_fails_midway_keeps_what_it_computed_and_says_so() {
     );
     assert!(r.samples.last().is_some_and(|s| s.t <= t + 1e-12));
     // a run that completes has no stop time
-    let ok = FullRolling::default().run(&wheel(8), 0.01).unwrap();
+    let ok = full(&FullRolling::default(), &wheel(8), 0.01).result;
     assert_eq!(ok.validity.stopped_at, None);
 }

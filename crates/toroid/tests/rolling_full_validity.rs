@@ -2,8 +2,8 @@
 //! is flagged, the reference case is converged in the step and the ground stiffness, and the
 //! validity record is consistent with the samples.
 
-use toroid::rolling_full::Fidelity;
 use toroid::{roll, ContactKind, FidelityChoice, RollReport, RollRequest};
+use wheel_rolling::{Fidelity, GroundContact, RollSettings};
 
 fn full(t_end: f64) -> RollRequest {
     RollRequest {
@@ -18,18 +18,25 @@ fn the_default_penalty_run_is_valid_and_never_sinks_past_the_tolerance() {
     // n = 8, 50°, strings 2·10⁴ N/m, ground 10⁵ N/m per node, e = 0, μ_s = 0.8
     let r = roll(&full(1.5)).unwrap();
     assert_eq!(r.fidelity, Fidelity::Full);
-    assert_eq!(r.contact, "penalty");
-    assert!(r.valid, "{:?}", r.warnings);
+    assert_eq!(r.contact, GroundContact::Penalty);
+    assert!(r.summary.valid, "{:?}", r.summary.warnings);
     // tolerance 1 % of R_o = 1 cm; the static penetration is m g cos φ / (4k) ≈ 0.2 mm
-    assert!(r.max_penetration < 0.01, "{}", r.max_penetration);
-    assert!(r.max_penetration > 1e-4, "the wheel does load the ground");
+    assert!(
+        r.summary.max_penetration < 0.01,
+        "{}",
+        r.summary.max_penetration
+    );
+    assert!(
+        r.summary.max_penetration > 1e-4,
+        "the wheel does load the ground"
+    );
     // the normal force is clipped, never negative
-    assert!(r.min_normal_force >= 0.0);
+    assert!(r.summary.min_normal_force >= 0.0);
     assert!(r.samples.iter().all(|s| s.normal >= 0.0));
-    assert!(r.energy_balance_error < toroid::defaults::ENERGY_BALANCE_TOLERANCE);
+    assert!(r.summary.energy_balance_error < toroid::defaults::ENERGY_BALANCE_TOLERANCE);
     // 50° is steeper than the friction angle atan(0.8) = 38.7°: the wheel slides and hops
-    assert!(r.slip_fraction > 0.0 && r.airborne_fraction > 0.0);
-    assert!(r.airborne_fraction + r.slip_fraction <= 1.0 + 1e-12);
+    assert!(r.summary.slip_fraction > 0.0 && r.summary.airborne_fraction > 0.0);
+    assert!(r.summary.airborne_fraction + r.summary.slip_fraction <= 1.0 + 1e-12);
     // the axle stays above the slope by about R_o cos(π/n) or more
     assert!(r.samples.iter().all(|s| s.h > 0.85), "the wheel sank");
 }
@@ -41,17 +48,30 @@ fn thesis_contact_runs_are_flagged() {
         ..full(1.5)
     })
     .unwrap();
-    assert_eq!(r.contact, "thesis");
-    assert!(!r.valid);
-    assert!(r.min_normal_force < 0.0, "{}", r.min_normal_force);
-    assert!(r.max_penetration > 0.01, "{}", r.max_penetration);
-    assert!(r.warnings.iter().any(|w| w.contains("pulled")));
-    assert!(r.warnings.iter().any(|w| w.contains("sank")));
+    assert_eq!(r.contact, GroundContact::Thesis);
+    assert!(!r.summary.valid);
+    assert!(
+        r.summary.min_normal_force < 0.0,
+        "{}",
+        r.summary.min_normal_force
+    );
+    assert!(
+        r.summary.max_penetration > 0.01,
+        "{}",
+        r.summary.max_penetration
+    );
+    assert!(r.summary.warnings.iter().any(|w| w.contains("pulled")));
+    assert!(r.summary.warnings.iter().any(|w| w.contains("sank")));
 }
 
 fn figures(r: &RollReport) -> [f64; 4] {
-    let i = r.first_impact.expect("an impact within 1 s");
-    [r.mean_speed, r.mean_axle_height, i.t, i.omega_before]
+    let i = r.summary.first_impact.expect("an impact within 1 s");
+    [
+        r.summary.mean_speed,
+        r.summary.mean_axle_height,
+        i.t,
+        i.omega_before,
+    ]
 }
 
 #[test]
@@ -63,14 +83,20 @@ fn the_reference_case_is_converged_in_dt_and_ground_stiffness() {
     let base = figures(&roll(&full(1.0)).unwrap());
     let half_dt = figures(
         &roll(&RollRequest {
-            dt: 5e-5,
+            settings: RollSettings {
+                dt: 5e-5,
+                ..RollSettings::default()
+            },
             ..full(1.0)
         })
         .unwrap(),
     );
     let stiff = figures(
         &roll(&RollRequest {
-            ground_stiffness: 2e5,
+            settings: RollSettings {
+                ground_stiffness: 2e5,
+                ..RollSettings::default()
+            },
             ..full(1.0)
         })
         .unwrap(),
@@ -92,8 +118,8 @@ fn the_reference_case_is_converged_in_dt_and_ground_stiffness() {
 #[test]
 fn the_impact_log_matches_the_count_and_the_first_impact() {
     let r = roll(&full(1.0)).unwrap();
-    assert_eq!(r.impact_log.len(), r.impacts);
-    let first = r.first_impact.unwrap();
+    assert_eq!(r.impact_log.len(), r.summary.impacts);
+    let first = r.summary.first_impact.unwrap();
     assert_eq!(first.t, r.impact_log[0].t);
     assert!(r.impact_log.windows(2).all(|w| w[0].t < w[1].t));
     // before the first impact the wheel pivots from rest: ω grows
@@ -127,6 +153,6 @@ fn the_default_roll_is_valid_over_the_thesis_10_seconds() {
     // measured: penetration 5.4 mm, budget 5.3·10⁻³, airborne 76 %
     let r = roll(&RollRequest::default()).unwrap();
     assert_eq!(r.fidelity, Fidelity::Full);
-    assert!(r.valid, "{:?}", r.warnings);
-    assert!(r.max_penetration < 0.01 && r.min_normal_force >= 0.0);
+    assert!(r.summary.valid, "{:?}", r.summary.warnings);
+    assert!(r.summary.max_penetration < 0.01 && r.summary.min_normal_force >= 0.0);
 }

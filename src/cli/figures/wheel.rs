@@ -8,8 +8,8 @@ use super::Ctx;
 use anyhow::Result;
 use nalgebra::Vector3;
 use tensegrity_io::figure::{Figure, Panel, Series};
-use toroid::rolling::RollingSample;
 use toroid::{FidelityChoice, RollReport, RollRequest, Stabilize, Toroid, WheelSpec};
+use wheel_rolling::RollingSample;
 
 /// Bars blue, strings red.
 fn wheel_groups(t: &Toroid) -> [Group; 2] {
@@ -142,8 +142,8 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
 fn flag_lift_off(ctx: &Ctx, number: &str, runs: &[&RollReport]) -> bool {
     let lifted: Vec<String> = runs
         .iter()
-        .filter(|r| r.min_normal_force < 0.0)
-        .map(|r| format!("n = {} (min {:.1} N)", r.sides, r.min_normal_force))
+        .filter(|r| r.summary.min_normal_force < 0.0)
+        .map(|r| format!("n = {} (min {:.1} N)", r.sides, r.summary.min_normal_force))
         .collect();
     if !lifted.is_empty() {
         ctx.warn(
@@ -170,8 +170,8 @@ fn note(flagged: bool) -> &'static str {
 
 fn fidelity(r: &RollReport) -> &'static str {
     match r.fidelity {
-        toroid::rolling_full::Fidelity::Rigid => "rigid model",
-        toroid::rolling_full::Fidelity::Full => "full model",
+        wheel_rolling::Fidelity::Rigid => "rigid model",
+        wheel_rolling::Fidelity::Full => "full model",
     }
 }
 

@@ -9,7 +9,8 @@ use super::wheel::{choice, wheel};
 use super::{col, Column};
 use crate::error::Result;
 use crate::params::{param, Kind, ParamDef, Params};
-use toroid::{ContactKind, FidelityChoice, RollRequest};
+use toroid::RollRequest;
+use wheel_rolling::{ContactKind, FidelityChoice, RollSettings};
 
 /// Parameters of `roll`.
 pub const ROLL_PARAMS: [ParamDef; 20] = geometry_then![
@@ -31,7 +32,6 @@ pub const ROLL_COLUMNS: [Column; 29] = [
     col("fidelity", ""),
     col("fidelity_reason", ""),
     col("contact", ""),
-    col("valid", ""),
     col("sides", ""),
     col("incline_rad", "rad"),
     col("t_end", "s"),
@@ -40,6 +40,7 @@ pub const ROLL_COLUMNS: [Column; 29] = [
     col("mu", ""),
     col("restitution", ""),
     col("ground_damping", "N s/m"),
+    col("valid", ""),
     col("impacts", ""),
     col("first_impact.t", "s"),
     col("first_impact.omega_before", "rad/s"),
@@ -73,20 +74,24 @@ const CONTACT: [(&str, ContactKind); 2] = [
 /// The request of `tensegrity roll`.
 pub fn roll_request(p: &Params) -> Result<RollRequest> {
     let d = RollRequest::default();
+    let ds = d.settings;
     Ok(RollRequest {
         wheel: wheel(p)?,
-        incline: p.angle("incline")?.unwrap_or(d.incline),
+        settings: RollSettings {
+            incline: p.angle("incline")?.unwrap_or(ds.incline),
+            dt: p.number("dt")?.unwrap_or(ds.dt),
+            ground_damping: p.number("ground_damping")?.or(ds.ground_damping),
+            ground_stiffness: p.number("ground_stiffness")?.unwrap_or(ds.ground_stiffness),
+            restitution: p.number("restitution")?.unwrap_or(ds.restitution),
+            string_stiffness: p.number("string_stiffness")?.unwrap_or(ds.string_stiffness),
+            ..ds
+        },
         t_end: p.number("t_end")?.unwrap_or(d.t_end),
-        dt: p.number("dt")?.unwrap_or(d.dt),
         fidelity: p
             .parsed("fidelity", choice(&FIDELITY))?
             .unwrap_or(d.fidelity),
         contact: p.parsed("contact", choice(&CONTACT))?.unwrap_or(d.contact),
-        ground_damping: p.number("ground_damping")?.or(d.ground_damping),
-        ground_stiffness: p.number("ground_stiffness")?.unwrap_or(d.ground_stiffness),
         mu: p.number("mu")?.unwrap_or(d.mu),
-        restitution: p.number("restitution")?.unwrap_or(d.restitution),
-        string_stiffness: p.number("string_stiffness")?.unwrap_or(d.string_stiffness),
         min_tension: p.number("min_tension")?.unwrap_or(d.min_tension),
         ..d
     })

@@ -68,7 +68,7 @@ fn columns_are_the_scalars_of_the_reports() {
     })
     .unwrap();
     // the optional keys as a run with an impact and a penalty ground has them
-    r.first_impact = Some(toroid::FirstImpact {
+    r.summary.first_impact = Some(toroid::FirstImpact {
         t: 0.5,
         omega_before: 2.0,
         omega_after: 1.5,
@@ -127,7 +127,7 @@ fn flags_map_onto_the_requests() {
     let r = roll::roll_request(&p).unwrap();
     assert_eq!(r.wheel.params.sides, 12);
     assert!(r.wheel.stabilize.outer && !r.wheel.stabilize.inner);
-    assert_eq!(r.incline, 30f64.to_radians());
+    assert_eq!(r.settings.incline, 30f64.to_radians());
     assert_eq!(
         (r.fidelity, r.contact, r.mu),
         (

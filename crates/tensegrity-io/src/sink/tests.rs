@@ -273,7 +273,7 @@ fn json_and_figure_sinks_write_whole_files() {
 
 #[test]
 fn a_rolling_history_streamed_through_a_csv_sink_is_the_file_of_write_rolling_history() {
-    use toroid::rolling::RollingSample;
+    use wheel_rolling::RollingSample;
     let dir = scratch("rolling");
     let samples: Vec<RollingSample> = (0..4)
         .map(|k| {

@@ -4,8 +4,7 @@
 
 use approx::assert_relative_eq;
 use std::f64::consts::PI;
-use toroid::rolling::{RigidRolling, RollingResult};
-use toroid::{analyse, build, ToroidParams};
+use wheel_rolling::{Polygon, RigidRolling, RollingResult, RunSpec};
 
 fn octagon(incline_deg: f64, mu: f64, restitution: f64) -> RigidRolling {
     RigidRolling {
@@ -23,15 +22,18 @@ fn octagon(incline_deg: f64, mu: f64, restitution: f64) -> RigidRolling {
     }
 }
 
+/// The polygon of the reference toroid (thesis errata: n = 8, R_o = 1, spokes + inner rings,
+/// 1 kg/m bars; m and I₁ as `toroid::analyse` computes them) with the default settings.
 fn reference(incline_deg: f64) -> RigidRolling {
-    let t = build(
-        &ToroidParams::default(),
-        "spokes,inner".parse().unwrap(),
-        1.0,
-    )
-    .unwrap();
-    let a = analyse(&t).unwrap();
-    RigidRolling::of(&t, &a, incline_deg.to_radians())
+    let polygon = Polygon {
+        sides: 8,
+        outer_radius: 1.0,
+        mass: 14.355256659489193,
+        i1: 9.269648818025633,
+    };
+    let mut spec = RunSpec::default();
+    spec.settings.incline = incline_deg.to_radians();
+    RigidRolling::new(&polygon, &spec)
 }
 
 /// Adaptive Simpson quadrature of f on [a, b] to `tol`.
@@ -124,7 +126,7 @@ fn elastic_impact_reverses_the_normal_velocity_by_e_and_sticks_tangentially() {
 /// Checks a run of flight samples against s = s₀ + u₀ τ + g sin φ τ²/2,
 /// h = h₀ + v₀ τ − g cos φ τ²/2 with u₀, v₀ from its first two samples; ω and the last contact
 /// stay constant. Returns the number of samples checked.
-fn check_parabola(segment: &[toroid::rolling::RollingSample], gs: f64, gn: f64) -> usize {
+fn check_parabola(segment: &[wheel_rolling::RollingSample], gs: f64, gn: f64) -> usize {
     if segment.len() < 3 {
         return 0;
     }
@@ -186,7 +188,7 @@ fn flight_between_lift_off_and_touchdown_is_the_ballistic_parabola() {
     let mut cuts: Vec<f64> = r.impact_log.iter().map(|p| p.t).collect();
     cuts.push(f64::INFINITY);
     let mut checked = 0;
-    let mut segment: Vec<toroid::rolling::RollingSample> = Vec::new();
+    let mut segment: Vec<wheel_rolling::RollingSample> = Vec::new();
     let mut next_cut = 0;
     for s in r.samples.iter().chain(std::iter::once(&r.samples[0])) {
         let crossed = s.t >= cuts[next_cut] || s.t == 0.0;

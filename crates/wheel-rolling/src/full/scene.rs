@@ -1,10 +1,9 @@
 //! A wheel the full model rolls without knowing its topology: [`WheelScene`] and
 //! [`FullRolling::run_scene`].
 //!
-//! The toroid path ([`FullRolling::run_full`]) builds its scene with [`FullRolling::scene`]
-//! and runs it here; another crate (the T-bar wheel's `tbar_wheel::rolling_full`) supplies
-//! its own structure through the same fields, so both are integrated, monitored and judged by
-//! the one code path of the parent module (equations there).
+//! The topology crates supply their wheels through these fields (the toroid's `toroid::scene`,
+//! the T-bar wheel's `tbar_wheel::rolling_full`), so every wheel is integrated, monitored and
+//! judged by the one code path of the parent module (equations there).
 //!
 //! **Contract of a scene** (checked by [`WheelScene::validate`]):
 //!
@@ -24,13 +23,15 @@
 //!   effective mass and the energy budget's scale m g R_o.
 
 use super::monitor::{Geometry, Monitor};
-use super::{ContactModel, FullRolling, FullRun, ADAPTIVE_ATOL, ADAPTIVE_RTOL};
+use super::{FullRolling, FullRun};
+use crate::contact::ContactModel;
 use crate::defaults;
-use crate::error::{Result, ToroidError};
+use crate::error::{Result, RollingError};
+use crate::observer::{interrupted_warning, Observer};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 use tensegrity_core::dynamics::{Ground, GroundModel, Quantities, Simulation, SimulationSettings};
-use tensegrity_core::Structure;
+use tensegrity_core::{CoreError, Structure};
 
 /// A prestressed wheel in its starting pose, with what the monitor needs of it.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,6 +59,16 @@ impl WheelScene {
         self.contact_groups.len()
     }
 
+    /// The rigid polygon of this wheel (n, R_o, m, I₁).
+    pub fn polygon(&self) -> crate::Polygon {
+        crate::Polygon {
+            sides: self.sides(),
+            outer_radius: self.outer_radius,
+            mass: self.mass,
+            i1: self.i1,
+        }
+    }
+
     /// z of the slope in the starting pose, −R_o cos(π/n) (m).
     pub fn plane_z(&self) -> f64 {
         -self.outer_radius * (PI / self.sides() as f64).cos()
@@ -81,9 +92,7 @@ impl WheelScene {
     /// every other contact node above it).
     pub fn validate(&self) -> Result<()> {
         let bad = |name: &'static str, value: f64, reason: String| {
-            Err(ToroidError::InvalidParameter(
-                tensegrity_core::request::InvalidParameter::new(name, value, reason),
-            ))
+            Err(RollingError::invalid(name, value, reason))
         };
         let n = self.sides();
         for (name, v) in [
@@ -126,7 +135,7 @@ impl WheelScene {
             for &i in &self.contact_groups[k] {
                 let p = nodes[i];
                 if (p.z - z0).abs() > tol || side * p.y <= 0.0 {
-                    return Err(ToroidError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
+                    return Err(RollingError::invalid(
                         "contact_groups",
                         i as f64,
                         format!(
@@ -135,7 +144,7 @@ impl WheelScene {
                             p.z,
                             if k == 0 { "negative" } else { "positive" }
                         ),
-                    )));
+                    ));
                 }
             }
         }
@@ -145,14 +154,12 @@ impl WheelScene {
             .flatten()
             .find(|&&i| nodes[i].z < z0 - tol);
         if let Some(&i) = below {
-            return Err(ToroidError::InvalidParameter(
-                tensegrity_core::request::InvalidParameter::new(
-                    "contact_groups",
-                    i as f64,
-                    format!(
-                        "contact node {i} starts {:.3e} m below the slope",
-                        z0 - nodes[i].z
-                    ),
+            return Err(RollingError::invalid(
+                "contact_groups",
+                i as f64,
+                format!(
+                    "contact node {i} starts {:.3e} m below the slope",
+                    z0 - nodes[i].z
                 ),
             ));
         }
@@ -160,100 +167,113 @@ impl WheelScene {
     }
 }
 
-impl FullRolling {
-    /// Rolls the wheel of `scene` for `t_end` seconds from rest on its starting side: the
-    /// model of the parent module for a structure this crate did not build.
-    pub fn run_scene(&self, scene: &WheelScene, t_end: f64) -> Result<FullRun> {
-        self.validate(t_end)?;
-        scene.validate()?;
-        let (structure, ground) = self.scene_model(scene)?;
-        let d = SimulationSettings::default();
-        let adaptive = self.integrator.is_adaptive();
-        let settings = SimulationSettings {
-            t_end,
-            integrator: self.integrator,
-            dt: self.dt,
-            rtol: if adaptive { ADAPTIVE_RTOL } else { d.rtol },
-            atol: if adaptive { ADAPTIVE_ATOL } else { d.atol },
-            // every step is seen by the monitor (energy budget, validity, impacts)
-            output_interval: Some(self.dt.min(self.output_dt)),
-            quantities: Quantities {
-                nodes: true,
-                velocities: true,
-                contact_forces: true,
-                energy: true,
-                member_forces: false,
-            },
-            // RK4 alone drifts the bar lengths (~10⁻³ over seconds): project every step
-            project: true,
-            ..d
-        };
-        let stiffness = match self.contact {
-            ContactModel::Penalty { stiffness, .. } => stiffness,
-            ContactModel::Thesis { .. } => 0.0,
-        };
-        let mut sim = Simulation::new(&structure, settings)?;
-        sim.model.set_ground(ground)?;
-        let geometry = Geometry::of(scene, stiffness, self.gravity);
-        let mut monitor = Monitor::new(geometry, self.output_dt, &self.frame_times);
-        let start = std::time::Instant::now();
-        let outcome = sim.run_streaming(&mut monitor);
-        if monitor.samples.is_empty() {
-            outcome?;
-            return Err(ToroidError::NoSamples {
-                output_dt: self.output_dt,
-            });
-        }
-        let (wall_time_s, drift, failure) = match outcome {
-            Ok(stats) => (stats.wall_time_s, stats.warnings, None),
-            // keep what was computed: the run up to the failure, flagged
-            Err(e) => (start.elapsed().as_secs_f64(), Vec::new(), Some(e)),
-        };
-        let mut run = monitor.finish(self.output_dt, wall_time_s);
-        let validity = &mut run.result.validity;
-        validity
-            .warnings
-            .extend(drift.iter().map(|w| w.to_string()));
-        if let Some(e) = failure {
-            let t = run.result.samples.last().map_or(0.0, |s| s.t);
-            validity.stopped_at = Some(t);
-            validity.warnings.push(format!(
-                "the integration stopped before t_end = {t_end} s ({e}); every figure covers only [0, {t}] s"
-            ));
-        }
-        Ok(run)
+/// Integrates the scene (validated) with the settings of `model`: every step through the
+/// monitor, the samples and frames handed to `observer`.
+pub(super) fn run(
+    model: &FullRolling,
+    scene: &WheelScene,
+    t_end: f64,
+    observer: Option<&mut dyn Observer>,
+) -> Result<FullRun> {
+    let (structure, ground) = scene_model(model, scene)?;
+    let d = SimulationSettings::default();
+    let adaptive = model.integrator.is_adaptive();
+    let settings = SimulationSettings {
+        t_end,
+        integrator: model.integrator,
+        dt: model.dt,
+        rtol: if adaptive {
+            defaults::ADAPTIVE_RTOL
+        } else {
+            d.rtol
+        },
+        atol: if adaptive {
+            defaults::ADAPTIVE_ATOL
+        } else {
+            d.atol
+        },
+        // every step is seen by the monitor (energy budget, validity, impacts)
+        output_interval: Some(model.dt.min(model.output_dt)),
+        quantities: Quantities {
+            nodes: true,
+            velocities: true,
+            contact_forces: true,
+            energy: true,
+            member_forces: false,
+        },
+        // RK4 alone drifts the bar lengths (~10⁻³ over seconds): project every step
+        project: true,
+        ..d
+    };
+    let mut sim = Simulation::new(&structure, settings)?;
+    sim.model.set_ground(ground)?;
+    let geometry = Geometry::of(scene, model.contact.stiffness(), model.gravity);
+    let mut monitor = Monitor::new(geometry, model.output_dt, &model.frame_times, observer);
+    let start = std::time::Instant::now();
+    let outcome = sim.run_streaming(&mut monitor);
+    if monitor.samples.is_empty() {
+        outcome?;
+        return Err(RollingError::NoSamples {
+            output_dt: model.output_dt,
+        });
     }
+    let stopped = monitor.stopped();
+    let (wall_time_s, drift, failure) = match outcome {
+        Ok(stats) => (stats.wall_time_s, stats.warnings, None),
+        // the observer asked to stop: what was computed is the result
+        Err(CoreError::Interrupted { .. }) if stopped => {
+            (start.elapsed().as_secs_f64(), Vec::new(), None)
+        }
+        // keep what was computed: the run up to the failure, flagged
+        Err(e) => (start.elapsed().as_secs_f64(), Vec::new(), Some(e)),
+    };
+    let mut run = monitor.finish(model.output_dt, wall_time_s);
+    let validity = &mut run.result.validity;
+    validity
+        .warnings
+        .extend(drift.iter().map(|w| w.to_string()));
+    let t = run.result.samples.last().map_or(0.0, |s| s.t);
+    if let Some(e) = failure {
+        validity.stopped_at = Some(t);
+        validity.warnings.push(format!(
+            "the integration stopped before t_end = {t_end} s ({e}); every figure covers only [0, {t}] s"
+        ));
+    } else if stopped {
+        validity.stopped_at = Some(t);
+        validity.warnings.push(interrupted_warning(t, t_end));
+    }
+    Ok(run)
+}
 
-    /// The scene's structure under the tilted gravity, and the slope under groups 0 and 1.
-    fn scene_model(&self, scene: &WheelScene) -> Result<(Structure, Ground)> {
-        let (sin, cos) = self.incline.sin_cos();
-        let structure = scene
-            .structure
-            .to_builder()
-            .gravity([0.0, self.gravity * sin, -self.gravity * cos])
-            .build()?;
-        let model = match self.contact {
-            ContactModel::Thesis { damping } => GroundModel::Thesis {
-                damping,
-                tolerance: 1e-6 * scene.outer_radius,
-            },
-            ContactModel::Penalty {
-                stiffness,
-                damping,
-                mu_static,
-                mu_kinetic,
-            } => GroundModel::Penalty {
-                stiffness,
-                damping,
-                mu_static,
-                mu_kinetic,
-                regularization_velocity: defaults::FRICTION_REGULARIZATION_VELOCITY,
-                stribeck_velocity: defaults::STRIBECK_VELOCITY,
-            },
-        };
-        let plane = Vector3::new(0.0, 0.0, scene.plane_z());
-        let mut ground = Ground::new(plane, Vector3::z(), model);
-        ground.nodes = Some(scene.contact_groups.iter().flatten().copied().collect());
-        Ok((structure, ground))
-    }
+/// The scene's structure under the tilted gravity, and the slope under groups 0 and 1.
+fn scene_model(model: &FullRolling, scene: &WheelScene) -> Result<(Structure, Ground)> {
+    let (sin, cos) = model.incline.sin_cos();
+    let structure = scene
+        .structure
+        .to_builder()
+        .gravity([0.0, model.gravity * sin, -model.gravity * cos])
+        .build()?;
+    let ground_model = match model.contact {
+        ContactModel::Thesis { damping } => GroundModel::Thesis {
+            damping,
+            tolerance: 1e-6 * scene.outer_radius,
+        },
+        ContactModel::Penalty {
+            stiffness,
+            damping,
+            mu_static,
+            mu_kinetic,
+        } => GroundModel::Penalty {
+            stiffness,
+            damping,
+            mu_static,
+            mu_kinetic,
+            regularization_velocity: defaults::FRICTION_REGULARIZATION_VELOCITY,
+            stribeck_velocity: defaults::STRIBECK_VELOCITY,
+        },
+    };
+    let plane = Vector3::new(0.0, 0.0, scene.plane_z());
+    let mut ground = Ground::new(plane, Vector3::z(), ground_model);
+    ground.nodes = Some(scene.contact_groups.iter().flatten().copied().collect());
+    Ok((structure, ground))
 }

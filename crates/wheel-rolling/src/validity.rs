@@ -3,12 +3,13 @@
 //! budget that closes), shared by the rigid and the full model.
 //!
 //! A run is `valid` when it has no warning. The warnings are plain sentences naming the
-//! violated assumption and its size; `tensegrity roll` prints them on stderr as well.
+//! violated assumption and its size; the front ends print them (the command line on stderr
+//! as well).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One contact impact (a new contact pair touching the slope).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ImpactRecord {
     /// Time of the impact (s).
     pub t: f64,
@@ -23,7 +24,7 @@ pub struct ImpactRecord {
 }
 
 /// The admissibility figures of a rolling run.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct RollValidity {
     /// Smallest normal contact force over the run (N); negative means the ground pulled.
     pub min_normal_force: f64,
@@ -38,8 +39,9 @@ pub struct RollValidity {
     pub energy_balance_error: f64,
     /// What the run violated, one sentence each; empty when the run is valid.
     pub warnings: Vec<String>,
-    /// When the integration failed before the end time: the time (s) of the last state
-    /// kept. The figures cover [0, stopped_at] only, and a warning says why it stopped.
+    /// When the integration failed before the end time, or the run's observer stopped it:
+    /// the time (s) of the last state kept. The figures cover [0, stopped_at] only, and a
+    /// warning says why it stopped.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped_at: Option<f64>,
 }

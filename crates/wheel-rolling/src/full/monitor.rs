@@ -1,10 +1,13 @@
 //! The full model's step monitor: it sees every integration step of a rolling run (as a
 //! streaming [`SampleSink`]) and keeps the 1 ms samples, the requested node frames, the
-//! validity figures, the energy budget and the impact log (equations in the parent module).
+//! validity figures, the energy budget and the impact log (equations in the parent module);
+//! it hands each sample and frame to the run's observer as it keeps it.
 
 use super::{FullRun, WheelFrame, WheelScene};
+use crate::contact::contact_effective_mass;
 use crate::defaults;
-use crate::rolling::{summarise, RollingSample};
+use crate::observer::{Flow, Observer};
+use crate::sample::{summarise, RollingSample};
 use crate::validity::{ImpactRecord, RollValidity};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -53,7 +56,7 @@ impl Geometry {
             stiffness,
             energy_scale: scene.mass * gravity * r_o,
             landing: if stiffness > 0.0 {
-                let m_eff = super::contact_effective_mass(scene.mass, scene.i1, r_o, n);
+                let m_eff = contact_effective_mass(scene.mass, scene.i1, r_o, n);
                 (PI * (m_eff / (2.0 * stiffness)).sqrt()).min(defaults::IMPACT_WINDOW)
             } else {
                 defaults::IMPACT_WINDOW
@@ -184,7 +187,7 @@ struct Previous {
 }
 
 /// The streaming monitor of a full rolling run.
-pub(super) struct Monitor {
+pub(super) struct Monitor<'o> {
     g: Geometry,
     output_dt: f64,
     next_output: u64,
@@ -206,10 +209,19 @@ pub(super) struct Monitor {
     off_since: Vec<Option<f64>>,
     open: Option<OpenImpact>,
     impacts: Vec<ImpactRecord>,
+    /// Who receives the samples and frames, if anyone.
+    observer: Option<&'o mut dyn Observer>,
+    /// Whether the observer asked to stop.
+    stopped: bool,
 }
 
-impl Monitor {
-    pub(super) fn new(g: Geometry, output_dt: f64, frame_times: &[f64]) -> Self {
+impl<'o> Monitor<'o> {
+    pub(super) fn new(
+        g: Geometry,
+        output_dt: f64,
+        frame_times: &[f64],
+        observer: Option<&'o mut dyn Observer>,
+    ) -> Self {
         let mut frame_times = frame_times.to_vec();
         frame_times.sort_by(f64::total_cmp);
         // the starting side (pairs 0 and 1) touches; every other pair is off the ground
@@ -237,7 +249,14 @@ impl Monitor {
             off_since,
             open: None,
             impacts: Vec::new(),
+            observer,
+            stopped: false,
         }
+    }
+
+    /// Whether the observer asked the run to stop.
+    pub(super) fn stopped(&self) -> bool {
+        self.stopped
     }
 
     /// Integrates the interval from the previous step to this one.
@@ -324,7 +343,7 @@ impl Monitor {
         if t >= self.next_output as f64 * self.output_dt - 1e-9 * self.output_dt {
             self.next_output += 1;
             let hub = self.g.slope(&self.g.hub(x));
-            self.samples.push(RollingSample {
+            let sample = RollingSample {
                 t,
                 s: hub.y,
                 h: hub.z,
@@ -334,16 +353,24 @@ impl Monitor {
                 tangential: c.force.y,
                 energy: total - self.e0,
                 slip: c.slip_speed,
-            });
+            };
+            self.samples.push(sample);
+            if let Some(obs) = self.observer.as_deref_mut() {
+                self.stopped |= obs.sample(&sample) == Flow::Stop;
+            }
         }
         while self.next_frame < self.frame_times.len()
             && t >= self.frame_times[self.next_frame] - 1e-9
         {
             self.next_frame += 1;
-            self.frames.push(WheelFrame {
+            let frame = WheelFrame {
                 t,
                 nodes: x.iter().map(|p| self.g.slope(p)).collect(),
-            });
+            };
+            if let Some(obs) = self.observer.as_deref_mut() {
+                self.stopped |= obs.frame(&frame) == Flow::Stop;
+            }
+            self.frames.push(frame);
         }
     }
 
@@ -391,7 +418,7 @@ impl Monitor {
         }
         if energy_balance_error > defaults::ENERGY_BALANCE_TOLERANCE {
             warnings.push(format!(
-                "the energy budget misses by {energy_balance_error:.2e} of its largest term (more than {:.0e}): reduce --dt",
+                "the energy budget misses by {energy_balance_error:.2e} of its largest term (more than {:.0e}): reduce dt",
                 defaults::ENERGY_BALANCE_TOLERANCE
             ));
         }
@@ -407,8 +434,11 @@ impl Monitor {
     }
 }
 
-impl SampleSink for Monitor {
+impl SampleSink for Monitor<'_> {
     fn accept(&mut self, smp: Sample) -> Result<(), CoreError> {
+        if self.stopped {
+            return Ok(());
+        }
         let (Some(x), Some(v), Some(energy)) = (&smp.nodes, &smp.velocities, smp.energy) else {
             return Ok(());
         };
@@ -425,5 +455,9 @@ impl SampleSink for Monitor {
             contact: c,
         });
         Ok(())
+    }
+
+    fn keep_going(&mut self) -> bool {
+        !self.stopped && self.observer.as_deref_mut().is_none_or(|o| o.keep_going())
     }
 }

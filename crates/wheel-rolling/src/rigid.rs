@@ -1,4 +1,4 @@
-//! Rolling down an incline: the reduced rigid model with unilateral contact.
+//! The reduced rigid model: a polygon rolling down an incline with unilateral contact.
 //!
 //! The wheel is a rigid body of mass m and moment of inertia I₁ about its axle whose contact
 //! points are the n outer tread pairs: the vertices of a regular n-gon of circumradius R_o in
@@ -57,16 +57,57 @@
 //! the energy budget did not close to 10⁻⁶. Parameters for which sliding friction has no
 //! solution (I₁ + m R_o² sin θ (sin θ ± μ_k cos θ) ≤ 0 for some |θ| ≤ π/n: Painlevé) are
 //! rejected with an error naming `mu_kinetic`.
+//!
+//! The polygon is any wheel's ([`Polygon`]: n, R_o, m, I₁); node frames of a rigid run place
+//! the wheel's nodes by its pose (see [`crate::frames`]).
 
 mod hybrid;
 mod impact;
 mod wheel;
 
-use crate::error::{Result, ToroidError};
+use crate::defaults;
+use crate::error::{Result, RollingError};
+use crate::frames::RigidFrames;
+use crate::full::WheelFrame;
+use crate::observer::{interrupted_warning, Flow, Observer};
+use crate::sample::{summarise, RollingResult, RollingSample};
+use crate::settings::RunSpec;
 use crate::validity::RollValidity;
 use hybrid::{Hybrid, Mode};
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use wheel::Wheel;
+
+/// The rigid wheel: its contact polygon (n vertices on a circle of radius R_o about the
+/// axle), its mass and its moment of inertia about the axle. Every topology reduces to this.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Polygon {
+    /// Number of contact pairs (sides) n.
+    pub sides: usize,
+    /// Outer radius R_o (m): the circumradius of the contact polygon.
+    pub outer_radius: f64,
+    /// Wheel mass m (kg).
+    pub mass: f64,
+    /// Moment of inertia about the axle I₁ (kg m²).
+    #[serde(rename = "I1")]
+    pub i1: f64,
+}
+
+impl Polygon {
+    /// ω⁺/ω⁻ at a plastic pair-to-pair impact: (I₁ + m R_o² cos(2π/n)) / (I₁ + m R_o²).
+    ///
+    /// ```
+    /// use wheel_rolling::Polygon;
+    /// // a ring (I₁ = m R²) of 4 sides: (1 + cos(π/2)) / 2
+    /// let p = Polygon { sides: 4, outer_radius: 1.0, mass: 1.0, i1: 1.0 };
+    /// assert!((p.impact_ratio() - 0.5).abs() < 1e-15);
+    /// ```
+    pub fn impact_ratio(&self) -> f64 {
+        let mr2 = self.mass * self.outer_radius.powi(2);
+        (self.i1 + mr2 * (2.0 * PI / self.sides as f64).cos()) / (self.i1 + mr2)
+    }
+}
 
 /// Settings of a rigid rolling run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,98 +136,59 @@ pub struct RigidRolling {
     pub restitution: f64,
 }
 
-/// One recorded sample.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RollingSample {
-    /// Time (s).
-    pub t: f64,
-    /// Axle position along the slope (m, downhill positive).
-    pub s: f64,
-    /// Axle height above the slope (m).
-    pub h: f64,
-    /// Position of the contact pair along the slope (m); in flight, the last contact's.
-    pub pivot: f64,
-    /// Angular velocity about the axle (rad/s, positive when rolling downhill).
-    pub omega: f64,
-    /// Normal contact force (N), 0 in flight.
-    pub normal: f64,
-    /// Tangential contact force (N, positive downhill).
-    pub tangential: f64,
-    /// Kinetic plus gravitational energy (J), zero at the start.
-    pub energy: f64,
-    /// Mean sliding speed of the loaded contact nodes along the slope (m/s); in the rigid model
-    /// the contact vertex's sliding speed |w| (0 when pivoting, resting or flying).
-    pub slip: f64,
-}
-
-/// The result of a rolling run.
+/// A rigid run: the result and the node frames asked for.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RollingResult {
-    /// Samples at the output interval.
-    pub samples: Vec<RollingSample>,
-    /// Number of contact-pair impacts.
-    pub impacts: usize,
-    /// RMS deviation of the axle height about its mean, after the first second (m).
-    pub axle_height_oscillation: f64,
-    /// Mean downhill speed of the axle after the first second (m/s).
-    pub mean_speed: f64,
-    /// Largest contact force magnitude (N).
-    pub max_reaction: f64,
-    /// Smallest normal force (N); negative means the real wheel would lift off.
-    pub min_normal: f64,
-    /// Sampled time with N < 0 (s).
-    pub lift_off_time: f64,
-    /// Largest |F_t|/N with N > 0: the friction coefficient rolling without slip needs.
-    pub required_friction: f64,
-    /// Mean over the samples with contact of the contact nodes' sliding speed (m/s).
-    pub mean_slip_speed: f64,
-    /// Downhill speed of the axle at the end of the run (m/s).
-    pub final_speed: f64,
-    /// Every impact of a new contact pair, in time order.
-    pub impact_log: Vec<crate::validity::ImpactRecord>,
-    /// Admissibility of the run.
-    pub validity: crate::validity::RollValidity,
+pub struct RigidRun {
+    /// Samples, summary, impacts and validity.
+    pub result: RollingResult,
+    /// The wheel's nodes at the requested times (the nearest sample), in time order.
+    pub frames: Vec<WheelFrame>,
 }
 
 impl RigidRolling {
-    /// The rigid model of a built toroid (its mass, I₁, sides and outer radius) on a slope,
-    /// with g = 9.81 m/s², a 0.1 ms step and 1 ms output.
+    /// The rigid model of `polygon` on the slope of `spec` (its incline, gravity, step,
+    /// output interval, friction and restitution).
     ///
     /// ```
-    /// use toroid::{analyse, build, rolling::RigidRolling, ToroidParams};
-    /// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
-    /// let a = analyse(&t).unwrap();
-    /// let model = RigidRolling::of(&t, &a, 50f64.to_radians());
-    /// assert_eq!((model.sides, model.i1), (8, a.i1));
+    /// use wheel_rolling::{Polygon, RigidRolling, RunSpec};
+    /// let p = Polygon { sides: 8, outer_radius: 1.0, mass: 14.4, i1: 9.3 };
+    /// let model = RigidRolling::new(&p, &RunSpec::default());
+    /// assert_eq!((model.sides, model.i1, model.mu_static), (8, 9.3, 0.8));
+    /// assert!((model.mu_kinetic - 0.6).abs() < 1e-15);
     /// ```
-    pub fn of(toroid: &crate::Toroid, analysis: &crate::ToroidAnalysis, incline: f64) -> Self {
+    pub fn new(polygon: &Polygon, spec: &RunSpec) -> Self {
         Self {
-            sides: toroid.params.sides,
-            outer_radius: toroid.params.outer_radius,
-            mass: analysis.mass_kg,
-            i1: analysis.i1,
-            incline,
-            gravity: crate::defaults::GRAVITY,
-            dt: crate::defaults::ROLL_DT,
-            output_dt: crate::defaults::ROLL_OUTPUT_DT,
-            mu_static: crate::defaults::STATIC_FRICTION,
-            mu_kinetic: crate::defaults::KINETIC_FRICTION_RATIO * crate::defaults::STATIC_FRICTION,
-            restitution: crate::defaults::RESTITUTION,
+            sides: polygon.sides,
+            outer_radius: polygon.outer_radius,
+            mass: polygon.mass,
+            i1: polygon.i1,
+            incline: spec.settings.incline,
+            gravity: spec.settings.gravity,
+            dt: spec.settings.dt,
+            output_dt: spec.output_dt,
+            mu_static: spec.mu_static,
+            mu_kinetic: spec.mu_kinetic,
+            restitution: spec.settings.restitution,
+        }
+    }
+
+    /// The polygon of this model.
+    pub fn polygon(&self) -> Polygon {
+        Polygon {
+            sides: self.sides,
+            outer_radius: self.outer_radius,
+            mass: self.mass,
+            i1: self.i1,
         }
     }
 
     /// ω⁺/ω⁻ at a pair-to-pair impact: (I₁ + m R_o² cos(2π/n)) / (I₁ + m R_o²).
     pub fn impact_ratio(&self) -> f64 {
-        let mr2 = self.mass * self.outer_radius.powi(2);
-        (self.i1 + mr2 * (2.0 * PI / self.sides as f64).cos()) / (self.i1 + mr2)
+        self.polygon().impact_ratio()
     }
 
     fn validate(&self, t_end: f64) -> Result<()> {
-        let bad = |name, value: f64, reason: &str| {
-            Err(ToroidError::InvalidParameter(
-                tensegrity_core::request::InvalidParameter::new(name, value, reason),
-            ))
-        };
+        let bad = |name, value: f64, reason: &str| Err(RollingError::invalid(name, value, reason));
         if self.sides < 3 {
             return bad("sides", self.sides as f64, "at least 3");
         }
@@ -232,15 +234,13 @@ impl RigidRolling {
             })
             .fold(f64::INFINITY, f64::min);
         if worst <= 1e-3 * self.i1 {
-            return Err(ToroidError::InvalidParameter(
-                tensegrity_core::request::InvalidParameter::new(
-                    "mu_kinetic",
-                    self.mu_kinetic,
-                    format!(
-                        "with I1 = {} and n = {} sliding friction has no solution (Painlevé \
+            return Err(RollingError::invalid(
+                "mu_kinetic",
+                self.mu_kinetic,
+                format!(
+                    "with I1 = {} and n = {} sliding friction has no solution (Painlevé \
                      paradox): lower mu_kinetic",
-                        self.i1, self.sides
-                    ),
+                    self.i1, self.sides
                 ),
             ));
         }
@@ -267,7 +267,7 @@ impl RigidRolling {
     /// touching, θ = −π/n).
     ///
     /// ```
-    /// use toroid::rolling::RigidRolling;
+    /// use wheel_rolling::RigidRolling;
     /// let run = RigidRolling {
     ///     sides: 8, outer_radius: 1.0, mass: 10.0, i1: 6.0, incline: 0.1,
     ///     gravity: 9.81, dt: 1e-3, output_dt: 0.01,
@@ -280,24 +280,69 @@ impl RigidRolling {
     /// assert!(r.validity.valid());
     /// ```
     pub fn run(&self, t_end: f64) -> Result<RollingResult> {
+        Ok(self.run_observed(t_end, &[], &[], None)?.result)
+    }
+
+    /// As [`RigidRolling::run`], placing the wheel's nodes (`start_pose`: in the starting
+    /// pose, hub at the origin, axle along x, see [`crate::frames`]) at `frame_times`, and
+    /// handing every sample and frame to `observer` as it is made. An observer that stops the
+    /// run ends it after the sample it stopped on: the result holds exactly the samples the
+    /// observer received, `stopped_at` and an interruption warning.
+    pub fn run_observed(
+        &self,
+        t_end: f64,
+        start_pose: &[Vector3<f64>],
+        frame_times: &[f64],
+        mut observer: Option<&mut dyn Observer>,
+    ) -> Result<RigidRun> {
         self.validate(t_end)?;
         let mut sim = Hybrid::start(self.wheel());
         let mut budget = Budget::default();
+        let mut placer = RigidFrames::new(start_pose, frame_times);
         let n_out = (t_end / self.output_dt).floor() as usize;
         let mut samples = Vec::with_capacity(n_out + 2);
-        samples.push(self.sample(&sim, 0.0, &mut budget));
-        for i in 1..=n_out {
+        let mut stopped = false;
+        let mut frames = Vec::new();
+        for i in 0..=n_out {
             let t_out = i as f64 * self.output_dt;
-            if !sim.advance_to(t_out, self.dt) {
+            if i > 0 && !sim.advance_to(t_out, self.dt) {
                 break;
             }
-            samples.push(self.sample(&sim, t_out, &mut budget));
+            let sample = self.sample(&sim, t_out, &mut budget);
+            samples.push(sample);
+            let new_frames = placer.push(&sample);
+            if let Some(obs) = observer.as_deref_mut() {
+                let mut flow = obs.sample(&sample);
+                for f in &new_frames {
+                    if obs.frame(f) == Flow::Stop {
+                        flow = Flow::Stop;
+                    }
+                }
+                stopped = flow == Flow::Stop || !obs.keep_going();
+            }
+            frames.extend(new_frames);
+            if stopped {
+                break;
+            }
         }
+        let last_frames = placer.finish(!stopped);
+        if let Some(obs) = observer {
+            for f in &last_frames {
+                obs.frame(f);
+            }
+        }
+        frames.extend(last_frames);
         let run_time = samples.last().map_or(0.0, |s| s.t);
         let mut r = summarise(samples, sim.impacts.len(), self.output_dt);
         r.validity = self.validity(&sim, &budget, run_time);
+        if stopped {
+            r.validity.stopped_at = Some(run_time);
+            r.validity
+                .warnings
+                .push(interrupted_warning(run_time, t_end));
+        }
         r.impact_log = sim.impacts;
-        Ok(r)
+        Ok(RigidRun { result: r, frames })
     }
 
     fn validity(&self, sim: &Hybrid, budget: &Budget, run_time: f64) -> RollValidity {
@@ -308,7 +353,7 @@ impl RigidRolling {
             0.0
         };
         let mut warnings = sim.warnings.clone();
-        if energy_balance_error > 1e-6 {
+        if energy_balance_error > defaults::RIGID_ENERGY_BALANCE_TOLERANCE {
             warnings.push(format!(
                 "the rigid model's energy budget closes only to {energy_balance_error:.2e} \
                  relative: reduce dt"
@@ -385,62 +430,5 @@ impl Budget {
         let term = kinetic.max(potential_change.abs()).max(losses.abs());
         self.largest_term = self.largest_term.max(term);
         self.largest_residual = self.largest_residual.max(residual.abs());
-    }
-}
-
-/// Summary figures of a sampled rolling history (shared by the rigid and the full model).
-pub(crate) fn summarise(
-    samples: Vec<RollingSample>,
-    impacts: usize,
-    output_dt: f64,
-) -> RollingResult {
-    let t_end = samples.last().map_or(0.0, |s| s.t);
-    let skip = if t_end > 1.0 { 1.0 } else { 0.0 };
-    let tail: Vec<&RollingSample> = samples.iter().filter(|s| s.t >= skip - 1e-12).collect();
-    let mean_h = tail.iter().map(|s| s.h).sum::<f64>() / tail.len() as f64;
-    let rms = (tail.iter().map(|s| (s.h - mean_h).powi(2)).sum::<f64>() / tail.len() as f64).sqrt();
-    let (first, last) = (tail[0], tail[tail.len() - 1]);
-    let mean_speed = if last.t > first.t {
-        (last.s - first.s) / (last.t - first.t)
-    } else {
-        0.0
-    };
-    let with_contact: Vec<f64> = samples
-        .iter()
-        .filter(|s| s.normal > 0.0)
-        .map(|s| s.slip)
-        .collect();
-    let mean_slip_speed = if with_contact.is_empty() {
-        0.0
-    } else {
-        with_contact.iter().sum::<f64>() / with_contact.len() as f64
-    };
-    let final_speed = match samples.len() {
-        0 | 1 => 0.0,
-        n => (samples[n - 1].s - samples[n - 2].s) / (samples[n - 1].t - samples[n - 2].t),
-    };
-    RollingResult {
-        final_speed,
-        impact_log: Vec::new(),
-        validity: crate::validity::RollValidity::default(),
-        mean_slip_speed,
-        impacts,
-        axle_height_oscillation: rms,
-        mean_speed,
-        max_reaction: samples
-            .iter()
-            .map(|s| s.normal.hypot(s.tangential))
-            .fold(0.0, f64::max),
-        min_normal: samples
-            .iter()
-            .map(|s| s.normal)
-            .fold(f64::INFINITY, f64::min),
-        lift_off_time: samples.iter().filter(|s| s.normal < 0.0).count() as f64 * output_dt,
-        required_friction: samples
-            .iter()
-            .filter(|s| s.normal > 0.0)
-            .map(|s| s.tangential.abs() / s.normal)
-            .fold(0.0, f64::max),
-        samples,
     }
 }

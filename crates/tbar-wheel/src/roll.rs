@@ -1,0 +1,421 @@
+//! The T-bar side of `tbar roll`: the request ([`TbarRollRequest`]), its documented
+//! fidelity-dependent defaults, and the T-bar columns of each row ([`TbarRollRequest::tbar_row`]).
+//!
+//! For each number of treads n = π/φ the T-bar wheel (or extended wheel) rolls down the
+//! incline with wheel-rolling's models, on its own wheel description:
+//!
+//! - **rigid** (default): the rolling polygon of the geometry ([`crate::rolling::MassProperties::polygon`]:
+//!   n sides on the tip radius r₀, m and I₁ of its bars at `bar_density` — the rim body's at
+//!   `rim_density` with `rim = body` — strings massless) in the reduced rigid model;
+//! - **full**: the prestressed wheel with its free rim body ([`crate::rolling_full::full_wheel`],
+//!   a [`wheel_rolling::Wheel`]) in the full tensegrity model with a penalty ground at the
+//!   tips; the row also carries the rigid polygon of the same m and I₁
+//!   (`tbar_rigid_reference`) for the first contact phase. The full model needs the rim body
+//!   (a free body): `rim = fixed` is refused.
+//!
+//! Each row has the structure's out-of-plane tip-over ([`crate::rolling::tipover`]). The
+//! toroid column (the reference toroid scaled to r₀ with n sides) is composed by the engine
+//! crate, since topology crates do not depend on each other.
+
+mod report;
+
+use crate::error::Result;
+use crate::geometry::TbarGeometry;
+use crate::params::{BarBase, Layout, RimMode, TbarParams};
+use crate::rolling::{mass_properties_with, tipover, MassProperties};
+use crate::rolling_full::{full_wheel, FullWheelRequest, PrestressLevel, DEFAULT_CAPACITY_FACTOR};
+use michell3d::MichellParams;
+pub use report::{FullDetails, TbarRollReport, TbarRollRow};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
+use wheel_rolling::defaults as roll_defaults;
+use wheel_rolling::{
+    roll_wheel, ContactKind, Fidelity, FidelityChoice, RollSettings, RunSpec, WheelRun,
+};
+
+/// Default simulated time of the full model (s): the full model costs far more a second.
+pub const FULL_T_END: f64 = 1.0;
+
+/// Default number of treads of the full model (its cost grows steeply with n).
+pub const FULL_TREADS: [usize; 1] = [8];
+
+/// Default departure angle β (rad): π/6, the measured cases of docs/ROLLING.md.
+pub const DEFAULT_BETA: f64 = PI / 6.0;
+
+/// Default cylindrical offset δ (m) when neither parameterisation is given.
+pub const DEFAULT_CYLINDRICAL: f64 = 0.25;
+
+/// What `tbar roll` runs; every field is named as the `tbar roll` flag in snake_case. The
+/// fields left unset (`null`) take the documented defaults of their methods, some of which
+/// depend on the fidelity ([`TbarRollRequest::t_end`], [`TbarRollRequest::treads`],
+/// [`TbarRollRequest::rim`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TbarRollRequest {
+    /// Complexity q of the treads.
+    pub complexity: usize,
+    /// Departure angle β (rad).
+    #[serde(with = "tensegrity_core::angle::serde_angle")]
+    pub beta: f64,
+    /// Cylindrical parameterisation with offset δ (m); exclusive with `spherical`.
+    pub cylindrical: Option<f64>,
+    /// Spherical parameterisation with angle ε (rad); exclusive with `cylindrical`.
+    #[serde(with = "tensegrity_core::angle::serde_angle_option")]
+    pub spherical: Option<f64>,
+    /// Tip radius r₀ (m): the rolling polygon's circumradius.
+    pub r0: f64,
+    /// Roll the extended wheel with its copy at this offset (m) along ι̂₁; unset: the single
+    /// loop.
+    pub extended: Option<f64>,
+    /// Base of the radial bar.
+    pub bar_base: BarBase,
+    /// Rim mass: `fixed` (massless rigid rim) or `body` (the rim body's bars); unset: see
+    /// [`TbarRollRequest::rim`].
+    pub rim: Option<RimMode>,
+    /// Rolling model: `rigid` or `full`.
+    pub fidelity: Fidelity,
+    /// Numbers of treads n = π/φ to roll; unset: see [`TbarRollRequest::treads`].
+    pub treads: Option<Vec<usize>>,
+    /// Slope, step, gravity, restitution, string and ground stiffness, ground damping.
+    #[serde(flatten)]
+    pub settings: RollSettings,
+    /// Simulated time (s); unset: see [`TbarRollRequest::t_end`].
+    pub t_end: Option<f64>,
+    /// Bar density of both wheels (kg/m); strings are massless.
+    pub bar_density: f64,
+    /// Static friction coefficient of the slope.
+    pub mu_static: f64,
+    /// Kinetic friction coefficient; unset: 0.75 μ_s.
+    pub mu_kinetic: Option<f64>,
+    /// Full model: density of the rim body's bars (kg/m); unset: `bar_density`.
+    pub rim_density: Option<f64>,
+    /// Full model: smallest string tension of the prestress (N); unset: the prestress that
+    /// carries twice the wheel's weight on one tip of each copy from every direction.
+    pub min_tension: Option<f64>,
+}
+
+impl Default for TbarRollRequest {
+    /// q = 1, β = π/6, cylindrical δ = 0.25, r₀ = 1, the single loop on rim bar bases, the
+    /// rigid model, the rolling defaults of wheel-rolling (50°, 0.1 ms, g = 9.81, e = 0,
+    /// strings 2·10⁴ N/m, ground 10⁵ N/m), 1 kg/m bars, μ_s = 0.8; the rest unset.
+    fn default() -> Self {
+        Self {
+            complexity: 1,
+            beta: DEFAULT_BETA,
+            cylindrical: Some(DEFAULT_CYLINDRICAL),
+            spherical: None,
+            r0: 1.0,
+            extended: None,
+            bar_base: BarBase::Rim,
+            rim: None,
+            fidelity: Fidelity::Rigid,
+            treads: None,
+            settings: RollSettings::default(),
+            t_end: None,
+            bar_density: crate::rolling::DEFAULT_BAR_DENSITY,
+            mu_static: roll_defaults::STATIC_FRICTION,
+            mu_kinetic: None,
+            rim_density: None,
+            min_tension: None,
+        }
+    }
+}
+
+impl Request for TbarRollRequest {
+    const NAME: &'static str = "tbar_roll";
+
+    fn params() -> Vec<Param> {
+        let shared = RollSettings::params();
+        let setting = |name: &str| {
+            shared
+                .iter()
+                .copied()
+                .find(|p| p.name == name)
+                .expect("a shared rolling setting")
+        };
+        vec![
+            Param::count("complexity", "Complexity q").rule(Rule::AtLeast(1.0)),
+            Param::angle("beta", "Departure angle β"),
+            Param::number("cylindrical", "m", "Cylindrical parameterisation with offset δ")
+                .optional(),
+            Param::angle("spherical", "Spherical parameterisation with angle ε").optional(),
+            Param::number("r0", "m", "Tip radius r₀: the rolling polygon's circumradius")
+                .positive(),
+            Param::number("extended", "m", "Roll the extended wheel with its copy at this offset")
+                .optional(),
+            Param::choice("bar_base", &["rim", "chord"], "Base of the radial bar"),
+            Param::choice(
+                "rim",
+                &["fixed", "body"],
+                "Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)",
+            )
+            .optional(),
+            Param::choice("fidelity", &["rigid", "full"], "Rolling model"),
+            Param::new(
+                "treads",
+                Kind::Counts,
+                "",
+                "Numbers of treads n = π/φ (default 8,12,16,24 rigid, 8 full)",
+            )
+            .rule(Rule::AtLeast(2.0))
+            .optional(),
+            setting("incline"),
+            Param::number("t_end", "s", "Simulated time (default 10 s rigid, 1 s full)")
+                .positive()
+                .optional(),
+            setting("dt"),
+            setting("gravity"),
+            Param::number("bar_density", "kg/m", "Bar density of both wheels").positive(),
+            Param::number("mu_static", "", "Static friction coefficient").non_negative(),
+            Param::number("mu_kinetic", "", "Kinetic friction coefficient (default 0.75 μ_s)")
+                .non_negative()
+                .optional(),
+            setting("restitution"),
+            Param::number(
+                "rim_density",
+                "kg/m",
+                "Full model: density of the rim body's bars (default bar_density)",
+            )
+            .positive()
+            .optional(),
+            setting("string_stiffness"),
+            Param::number(
+                "min_tension",
+                "N",
+                "Full model: smallest string tension of the prestress (default: twice the weight per tip)",
+            )
+            .positive()
+            .optional(),
+            setting("ground_stiffness"),
+            setting("ground_damping"),
+        ]
+    }
+
+    /// Finite numbers; the full model needs the rim body; one parameterisation; the treads
+    /// given.
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.settings.check_finite()?;
+        wheel_rolling::settings::finite(&[
+            ("beta", self.beta),
+            ("cylindrical", self.cylindrical.unwrap_or(0.0)),
+            ("spherical", self.spherical.unwrap_or(0.0)),
+            ("r0", self.r0),
+            ("extended", self.extended.unwrap_or(0.0)),
+            ("t_end", self.t_end.unwrap_or(1.0)),
+            ("bar_density", self.bar_density),
+            ("mu_static", self.mu_static),
+            ("mu_kinetic", self.mu_kinetic.unwrap_or(0.0)),
+            ("rim_density", self.rim_density.unwrap_or(1.0)),
+            ("min_tension", self.min_tension.unwrap_or(1.0)),
+        ])?;
+        self.rim()?;
+        if self.cylindrical.is_some() && self.spherical.is_some() {
+            return Err(InvalidParameter::raw(
+                "spherical",
+                format!("{:?}", self.spherical.unwrap_or_default()),
+                "give either cylindrical or spherical, not both",
+            ));
+        }
+        if self.treads.as_ref().is_some_and(Vec::is_empty) {
+            return Err(InvalidParameter::raw("treads", "[]", "give at least one"));
+        }
+        Ok(())
+    }
+}
+
+impl TbarRollRequest {
+    /// The simulated time: `t_end`, else 10 s for the rigid model
+    /// ([`wheel_rolling::defaults::ROLL_T_END`]) or 1 s for the full model ([`FULL_T_END`]).
+    pub fn t_end(&self) -> f64 {
+        self.t_end.unwrap_or(match self.fidelity {
+            Fidelity::Rigid => roll_defaults::ROLL_T_END,
+            Fidelity::Full => FULL_T_END,
+        })
+    }
+
+    /// The rim: `rim`, else `fixed` for the rigid model or `body` for the full model; the
+    /// full model refuses `fixed` (it needs a free body).
+    ///
+    /// ```
+    /// use tbar_wheel::roll::TbarRollRequest;
+    /// use tbar_wheel::RimMode;
+    /// use wheel_rolling::Fidelity;
+    /// let full = TbarRollRequest { fidelity: Fidelity::Full, ..Default::default() };
+    /// assert_eq!(full.rim().unwrap(), RimMode::Body);
+    /// let fixed = TbarRollRequest { rim: Some(RimMode::Fixed), ..full };
+    /// assert_eq!(fixed.rim().unwrap_err().name, "rim");
+    /// ```
+    pub fn rim(&self) -> std::result::Result<RimMode, InvalidParameter> {
+        match (self.fidelity, self.rim) {
+            (Fidelity::Full, Some(RimMode::Fixed)) => Err(InvalidParameter::text(
+                "rim",
+                "fixed",
+                "the full model needs a free body: the rim body (rim = body), not the fixed rim",
+            )),
+            (Fidelity::Full, _) => Ok(RimMode::Body),
+            (Fidelity::Rigid, r) => Ok(r.unwrap_or(RimMode::Fixed)),
+        }
+    }
+
+    /// The numbers of treads: `treads`, else 8, 12, 16, 24 for the rigid model
+    /// ([`wheel_rolling::defaults::FIG_3_10_SIDES`]) or 8 for the full model
+    /// ([`FULL_TREADS`]).
+    pub fn treads(&self) -> Vec<usize> {
+        self.treads.clone().unwrap_or_else(|| match self.fidelity {
+            Fidelity::Rigid => roll_defaults::FIG_3_10_SIDES.to_vec(),
+            Fidelity::Full => FULL_TREADS.to_vec(),
+        })
+    }
+
+    /// The rim body's bar density: `rim_density`, else `bar_density`.
+    pub fn rim_density(&self) -> f64 {
+        self.rim_density.unwrap_or(self.bar_density)
+    }
+
+    /// μ_k: `mu_kinetic`, else 0.75 μ_s ([`wheel_rolling::defaults::KINETIC_FRICTION_RATIO`]).
+    pub fn mu_kinetic(&self) -> f64 {
+        self.mu_kinetic
+            .unwrap_or(roll_defaults::KINETIC_FRICTION_RATIO * self.mu_static)
+    }
+
+    /// The single loop, or the extended wheel with its copy at `extended`.
+    pub fn layout(&self) -> Layout {
+        match self.extended {
+            Some(offset) => Layout::Extended { offset },
+            None => Layout::Wheel,
+        }
+    }
+
+    /// The T-bar parameters of the wheel with `n` treads (φ = π/n) and the rim `rim`.
+    pub fn tbar_params(&self, n: usize, rim: RimMode) -> TbarParams {
+        let phi = PI / n as f64;
+        let (q, r0, beta) = (self.complexity, self.r0, self.beta);
+        let m = match (self.cylindrical, self.spherical) {
+            (_, Some(e)) => MichellParams::spherical(q, r0, beta, phi, e),
+            (d, None) => MichellParams::cylindrical(q, r0, beta, phi, d.unwrap_or(0.0)),
+        };
+        TbarParams::tread(m)
+            .with_layout(self.layout())
+            .with_bar_base(self.bar_base)
+            .with_rim(rim)
+    }
+
+    /// The run both models read: penalty contact, μ_s and [`TbarRollRequest::mu_kinetic`],
+    /// RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model `fidelity`.
+    pub fn spec(&self, fidelity: Fidelity) -> RunSpec {
+        RunSpec {
+            settings: self.settings,
+            t_end: self.t_end(),
+            fidelity: match fidelity {
+                Fidelity::Rigid => FidelityChoice::Rigid,
+                Fidelity::Full => FidelityChoice::Full,
+            },
+            contact: ContactKind::Penalty,
+            mu_static: self.mu_static,
+            mu_kinetic: self.mu_kinetic(),
+            ..RunSpec::default()
+        }
+    }
+
+    /// What the full model's structure is built with: the densities, the string stiffness,
+    /// and the prestress from `min_tension`, else a capacity of twice the weight per tip.
+    pub fn full_wheel_request(&self) -> FullWheelRequest {
+        FullWheelRequest {
+            bar_density: self.bar_density,
+            rim_density: self.rim_density(),
+            string_stiffness: self.settings.string_stiffness,
+            prestress: match self.min_tension {
+                Some(t) => PrestressLevel::MinTension(t),
+                None => PrestressLevel::Weight {
+                    factor: DEFAULT_CAPACITY_FACTOR,
+                    gravity: self.settings.gravity,
+                },
+            },
+        }
+    }
+
+    /// The rigid run of `polygon` in the settings of this request.
+    pub fn rigid_run(&self, polygon: &wheel_rolling::Polygon) -> Result<WheelRun> {
+        let r = roll_wheel(polygon, &self.spec(Fidelity::Rigid), &[], None)?;
+        Ok(WheelRun::of(
+            Fidelity::Rigid,
+            polygon,
+            &r.result,
+            self.t_end(),
+        ))
+    }
+
+    /// The T-bar columns of the row of `n` treads (module docs): mass properties, the run of
+    /// the model asked for (and for the full model its rigid reference and structure),
+    /// tip-over. What fails is named in the row's `errors`; the toroid column is left empty.
+    pub fn tbar_row(&self, n: usize, rim: RimMode) -> TbarRollRow {
+        let mut row = TbarRollRow::new(n);
+        let p = self.tbar_params(n, rim);
+        match self.fidelity {
+            Fidelity::Rigid => self.rigid_columns(&p, &mut row),
+            Fidelity::Full => self.full_columns(&p, &mut row),
+        }
+        row
+    }
+
+    /// The rigid model: mass properties of the geometry, its run, tip-over.
+    fn rigid_columns(&self, p: &TbarParams, row: &mut TbarRollRow) {
+        let built = TbarGeometry::new(*p).and_then(|g| {
+            let mp = mass_properties_with(&g, self.bar_density, self.rim_density())?;
+            Ok((mp, g))
+        });
+        match built {
+            Ok((mp, g)) => {
+                row.mass_properties = Some(mp);
+                self.tipover(&g, &mp, row);
+                match self.rigid_run(&mp.polygon()) {
+                    Ok(s) => row.tbar = Some(s),
+                    Err(e) => row.errors.push(format!("T-bar rolling: {e}")),
+                }
+            }
+            Err(e) => row.errors.push(format!("T-bar wheel: {e}")),
+        }
+    }
+
+    /// The full model: the structure that ran (its mass properties, with the isostatic rim
+    /// body), its run, the rigid polygon of the same mass and I₁, tip-over.
+    fn full_columns(&self, p: &TbarParams, row: &mut TbarRollRow) {
+        let (run, details, w) = match self.full_run(p) {
+            Ok(r) => r,
+            Err(e) => return row.errors.push(format!("T-bar full rolling: {e}")),
+        };
+        row.mass_properties = Some(w.mass);
+        self.tipover(&w.geometry, &w.mass, row);
+        match self.rigid_run(&w.mass.polygon()) {
+            Ok(r) => row.tbar_rigid_reference = Some(r),
+            Err(e) => row.errors.push(format!("T-bar rigid reference: {e}")),
+        }
+        (row.tbar, row.full) = (Some(run), Some(details));
+    }
+
+    /// The full tensegrity rolling of the T-bar wheel of `p`: its run, its structure and
+    /// prestress, and the wheel.
+    pub fn full_run(
+        &self,
+        p: &TbarParams,
+    ) -> Result<(WheelRun, FullDetails, crate::rolling_full::FullWheel)> {
+        let w = full_wheel(p, &self.full_wheel_request())?;
+        let mut r = roll_wheel(&w, &self.spec(Fidelity::Full), &[], None)?;
+        let gravity = self.settings.gravity;
+        r.result.validity.warnings.extend(w.warnings(gravity));
+        let details = FullDetails::of(&w, r.ground_damping.unwrap_or_default());
+        let run = WheelRun::of(Fidelity::Full, &w.mass.polygon(), &r.result, self.t_end());
+        Ok((run, details, w))
+    }
+
+    fn tipover(&self, g: &TbarGeometry, mp: &MassProperties, row: &mut TbarRollRow) {
+        match tipover(g, mp.mass, self.settings.gravity) {
+            Ok(t) => row.tipover = Some(t),
+            Err(e) => row.errors.push(format!("tip-over: {e}")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,106 @@
+//! The report of `tbar roll`: one row per number of treads, the T-bar wheel's run beside the
+//! toroid's (wheel-rolling's [`WheelRun`]), the full model's structure, and tip-over.
+
+use crate::params::RimMode;
+use crate::rolling::{MassProperties, TipOver};
+use crate::rolling_full::{FullPrestress, FullWheel};
+use serde::Serialize;
+use std::f64::consts::PI;
+use wheel_rolling::{Fidelity, WheelRun};
+
+/// What only the full T-bar run has.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FullDetails {
+    /// Nodes of the structure (rim body included).
+    pub nodes: usize,
+    /// Bars (treads' and rim body's).
+    pub bars: usize,
+    /// Strings.
+    pub strings: usize,
+    /// Rim-body bars kept (the isostatic rim).
+    pub rim_bars: usize,
+    /// Of these, spokes (to the two hubs).
+    pub rim_spokes: usize,
+    /// Rim-body bars left out as redundant (a rigid bar-only self-stress).
+    pub redundant_rim_bars: usize,
+    /// The prestress it was built with.
+    pub prestress: FullPrestress,
+    /// Normal ground damping per contact node (N·s/m).
+    pub ground_damping: f64,
+}
+
+impl FullDetails {
+    /// The structure of `w`, run with `ground_damping` (N·s/m).
+    pub fn of(w: &FullWheel, ground_damping: f64) -> Self {
+        Self {
+            nodes: w.structure.n_nodes(),
+            bars: w.structure.n_bars(),
+            strings: w.structure.n_strings(),
+            rim_bars: w.geometry.rim.as_ref().map_or(0, |r| r.bars.len()),
+            rim_spokes: w.geometry.rim.as_ref().map_or(0, |r| r.spokes),
+            redundant_rim_bars: w.redundant_rim_bars,
+            prestress: w.prestress,
+            ground_damping,
+        }
+    }
+}
+
+/// One number of treads.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TbarRollRow {
+    /// Treads per wheel n = π/φ (the polygon's sides).
+    pub treads: usize,
+    /// φ = π/n (rad).
+    pub phi: f64,
+    /// The T-bar wheel's mass properties.
+    pub mass_properties: Option<MassProperties>,
+    /// The T-bar wheel's run (of the model asked for).
+    pub tbar: Option<WheelRun>,
+    /// Full model only: the rigid model of the same polygon, mass and I₁, for the first
+    /// contact phase.
+    pub tbar_rigid_reference: Option<WheelRun>,
+    /// Full model only: the structure and its prestress.
+    pub full: Option<FullDetails>,
+    /// The toroid of equal outer radius and n sides.
+    pub toroid: Option<WheelRun>,
+    /// Out-of-plane tip-over of the T-bar structure (its own weight).
+    pub tipover: Option<TipOver>,
+    /// Why a part is missing.
+    pub errors: Vec<String>,
+}
+
+impl TbarRollRow {
+    /// An empty row of `n` treads.
+    pub fn new(n: usize) -> Self {
+        Self {
+            treads: n,
+            phi: PI / n as f64,
+            mass_properties: None,
+            tbar: None,
+            tbar_rigid_reference: None,
+            full: None,
+            toroid: None,
+            tipover: None,
+            errors: Vec::new(),
+        }
+    }
+}
+
+/// The report of `tbar roll`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TbarRollReport {
+    /// The rolling model: `rigid` (reduced polygon) or `full` (tensegrity dynamics).
+    pub model: Fidelity,
+    /// Whether the full tensegrity rolling of the T-bar wheel ran (`fidelity = full`).
+    pub full_tensegrity_rolling: bool,
+    /// `wheel` or `extended wheel`.
+    pub structure: &'static str,
+    /// `body` (rim body's bars in the mass) or `fixed` (massless rigid rim).
+    pub rim: RimMode,
+    /// Slope angle (rad).
+    pub incline_rad: f64,
+    /// Simulated time (s).
+    pub t_end: f64,
+    /// One row per number of treads.
+    pub rows: Vec<TbarRollRow>,
+}

@@ -1,0 +1,277 @@
+//! `tbar roll`: the T-bar wheel (or extended wheel) rolling down an incline beside the toroid
+//! of the same outer radius and number of sides, over the number of treads n = π/φ, with the
+//! out-of-plane tip-over of the T-bar structure.
+//!
+//! The T-bar columns come from the tbar-wheel crate ([`TbarRollRequest::tbar_row`]: its
+//! wheel description in wheel-rolling's rigid or full model); the toroid column is composed
+//! here, since topology crates do not depend on each other: the reference toroid (ERRATA:
+//! T = 0.4, t = 0.3, D = 0.1, R_o = 1, R_i = 0.6, R_m = 0.8, spokes + inner rings) scaled by
+//! r₀ with n sides and the same bar density ([`toroid_params`]), rolled with the same model —
+//! the rigid polygon of its m and I₁ under the T-bar's settings, or `toroid::roll` with the
+//! full model ([`toroid_request`]).
+
+use tbar_wheel::roll::{TbarRollReport, TbarRollRequest};
+use tbar_wheel::TbarError;
+use tensegrity_core::budget::Estimate;
+use tensegrity_core::request::{InvalidParameter, Request};
+use toroid::{RollRequest, Stabilize, ToroidParams, ToroidWheel, WheelSpec};
+use wheel_rolling::{defaults, ContactKind, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
+
+/// Runs `tbar roll` (module docs): one row per number of treads; what fails in a row is named
+/// in its `errors`, a request the command refuses is an error.
+///
+/// ```
+/// use tbar_wheel::TbarRollRequest;
+/// use tensegrity_engine::tbar_roll::tbar_roll;
+/// let r = tbar_roll(&TbarRollRequest {
+///     treads: Some(vec![8]),
+///     t_end: Some(0.5),
+///     ..Default::default()
+/// })
+/// .unwrap();
+/// let row = &r.rows[0];
+/// assert!(row.errors.is_empty(), "{:?}", row.errors);
+/// assert!(row.tbar.is_some() && row.toroid.is_some());
+/// ```
+pub fn tbar_roll(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
+    request.validate()?;
+    let rim = request.rim()?;
+    let rows = request
+        .treads()
+        .into_iter()
+        .map(|n| {
+            let mut row = request.tbar_row(n, rim);
+            match toroid_column(request, n) {
+                Ok(s) => row.toroid = Some(s),
+                Err(e) => row.errors.push(format!("toroid: {e}")),
+            }
+            row
+        })
+        .collect();
+    Ok(TbarRollReport {
+        model: request.fidelity,
+        full_tensegrity_rolling: request.fidelity == Fidelity::Full,
+        structure: request.layout().name(),
+        rim,
+        incline_rad: request.settings.incline,
+        t_end: request.t_end(),
+        rows,
+    })
+}
+
+/// The reference toroid's parameters scaled to outer radius r₀, with n sides.
+pub fn toroid_params(request: &TbarRollRequest, n: usize) -> ToroidParams {
+    let r = ToroidParams::REFERENCE;
+    let k = request.r0 / r.outer_radius;
+    ToroidParams {
+        sides: n,
+        outer_tread: k * r.outer_tread,
+        inner_tread: k * r.inner_tread,
+        offset: k * r.offset,
+        outer_radius: k * r.outer_radius,
+        inner_radius: k * r.inner_radius,
+        rim_radius: k * r.rim_radius,
+    }
+}
+
+/// The toroid column's wheel: the scaled reference toroid with spokes and inner rings.
+fn toroid_wheel(request: &TbarRollRequest, n: usize) -> WheelSpec {
+    WheelSpec {
+        params: toroid_params(request, n),
+        stabilize: Stabilize::SPOKES_INNER,
+        bar_density: request.bar_density,
+    }
+}
+
+/// The toroid's full-model request in the settings of `request` (n sides). The toroid's
+/// model takes μ_k = 0.75 μ_s: a different `mu_kinetic` applies to the T-bar only, and the
+/// toroid column is refused.
+pub fn toroid_request(
+    request: &TbarRollRequest,
+    n: usize,
+) -> Result<RollRequest, InvalidParameter> {
+    let ratio = request.mu_kinetic() / request.mu_static.max(f64::MIN_POSITIVE);
+    if request.mu_kinetic.is_some() && (ratio - defaults::KINETIC_FRICTION_RATIO).abs() > 1e-12 {
+        return Err(InvalidParameter::new(
+            "mu_kinetic",
+            request.mu_kinetic(),
+            format!(
+                "the toroid's full model takes μ_k = {} μ_s; mu_kinetic applies to the T-bar only",
+                defaults::KINETIC_FRICTION_RATIO
+            ),
+        ));
+    }
+    Ok(RollRequest {
+        wheel: toroid_wheel(request, n),
+        settings: request.settings,
+        t_end: request.t_end(),
+        fidelity: FidelityChoice::Full,
+        contact: ContactKind::Penalty,
+        mu: request.mu_static,
+        min_tension: request.min_tension.unwrap_or(defaults::ROLL_MIN_TENSION),
+        integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
+    })
+}
+
+/// The toroid column of the row of `n` treads.
+fn toroid_column(
+    request: &TbarRollRequest,
+    n: usize,
+) -> Result<WheelRun, Box<dyn std::error::Error>> {
+    match request.fidelity {
+        Fidelity::Rigid => {
+            let t = toroid_wheel(request, n).build()?;
+            let a = toroid::analyse(&t)?;
+            let wheel = ToroidWheel {
+                toroid: &t,
+                analysis: &a,
+                string_stiffness: request.settings.string_stiffness,
+                min_tension: defaults::ROLL_MIN_TENSION,
+            };
+            Ok(request.rigid_run(&wheel.polygon())?)
+        }
+        Fidelity::Full => {
+            let r = toroid::roll(&toroid_request(request, n)?)?;
+            let polygon = Polygon {
+                sides: n,
+                outer_radius: request.r0,
+                mass: r.mass_kg,
+                i1: r.i1,
+            };
+            Ok(WheelRun {
+                model: r.fidelity,
+                mass_kg: r.mass_kg,
+                i1: r.i1,
+                impact_ratio: polygon.impact_ratio(),
+                summary: r.summary,
+            })
+        }
+    }
+}
+
+/// The resource estimate of `tbar roll`: nothing for the rigid model (milliseconds a row);
+/// for the full model the T-bar's and the toroid's full runs of every row, one after the
+/// other.
+pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError> {
+    if request.fidelity == Fidelity::Rigid {
+        return Ok(None);
+    }
+    let rim = request.rim()?;
+    let (t_end, dt) = (request.t_end(), request.settings.dt);
+    let mut total: Option<Estimate> = None;
+    for n in request.treads() {
+        let p = request.tbar_params(n, rim);
+        let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt)?;
+        if let Ok(req) = toroid_request(request, n) {
+            e = e.then(toroid::budget::roll(&req));
+        }
+        total = Some(match total {
+            Some(t) => t.then(e),
+            None => e,
+        });
+    }
+    Ok(total.map(|e| Estimate {
+        what: format!("the full rolling runs of n = {:?}", request.treads()),
+        ..e
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_compare_the_two_wheels_and_report_the_tipover() {
+        // moved from the CLI: `tbar roll --beta pi/6 --cylindrical 0.25 --extended 0.4
+        // --treads 8,12 --t-end 2`
+        let r = tbar_roll(&TbarRollRequest {
+            extended: Some(0.4),
+            treads: Some(vec![8, 12]),
+            t_end: Some(2.0),
+            ..TbarRollRequest::default()
+        })
+        .unwrap();
+        assert_eq!(
+            (r.model, r.full_tensegrity_rolling),
+            (Fidelity::Rigid, false)
+        );
+        assert_eq!(r.rows.len(), 2);
+        for row in &r.rows {
+            assert!(row.errors.is_empty(), "{:?}", row.errors);
+            let (t, o) = (row.tbar.as_ref().unwrap(), row.toroid.as_ref().unwrap());
+            // both roll down 50° > π/n and bump: more treads, smaller oscillation
+            assert!(t.summary.impacts > 0 && o.summary.impacts > 0);
+            let tip = row.tipover.as_ref().unwrap();
+            let mg = row.mass_properties.unwrap().mass * 9.81;
+            assert!((tip.critical_lateral_force - 0.5 * mg * 0.4).abs() < 1e-12);
+        }
+        let osc = |i: usize| {
+            r.rows[i]
+                .tbar
+                .as_ref()
+                .unwrap()
+                .summary
+                .axle_height_oscillation
+        };
+        assert!(osc(1) < osc(0));
+        // the toroid column is `toroid::roll` with the rigid fidelity (the reference wheel,
+        // R_o = 1)
+        let direct = toroid::roll(&RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 2.0,
+            ..RollRequest::with_sides(8)
+        })
+        .unwrap();
+        let ours = r.rows[0].toroid.as_ref().unwrap();
+        assert_eq!((ours.mass_kg, ours.i1), (direct.mass_kg, direct.i1));
+        assert_eq!(ours.summary, direct.summary);
+        let j = serde_json::to_value(&r).unwrap();
+        assert_eq!((&j["model"], &j["rim"]), (&"rigid".into(), &"fixed".into()));
+        for key in [
+            "valid",
+            "warnings",
+            "min_normal_force",
+            "airborne_fraction",
+            "model",
+            "I1",
+        ] {
+            assert!(j["rows"][0]["tbar"].get(key).is_some(), "{key}");
+            assert!(j["rows"][0]["toroid"].get(key).is_some(), "{key}");
+        }
+    }
+
+    #[test]
+    fn a_kinetic_friction_the_toroid_cannot_take_fails_its_column_only() {
+        let req = TbarRollRequest {
+            mu_kinetic: Some(0.3),
+            ..TbarRollRequest::default()
+        };
+        let e = toroid_request(&req, 8).unwrap_err();
+        assert_eq!(e.name, "mu_kinetic");
+        assert!(!e.to_string().contains("--"), "{e}");
+        // 0.75 μ_s given explicitly is the toroid's own
+        let same = TbarRollRequest {
+            mu_kinetic: Some(0.75 * 0.8),
+            ..TbarRollRequest::default()
+        };
+        assert!(toroid_request(&same, 8).is_ok());
+    }
+
+    #[test]
+    fn the_full_estimate_counts_both_wheels_of_every_row() {
+        let full = TbarRollRequest {
+            fidelity: Fidelity::Full,
+            treads: Some(vec![6, 8]),
+            ..TbarRollRequest::default()
+        };
+        let e = estimate(&full).unwrap().unwrap();
+        let one = |n: usize| {
+            let p = full.tbar_params(n, tbar_wheel::RimMode::Body);
+            let t = tbar_wheel::rolling_full::full_roll_estimate(&p, 1.0, 1e-4).unwrap();
+            t.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
+        };
+        assert!((e.work_s - one(6) - one(8)).abs() < 1e-9 * e.work_s);
+        assert!(!e.parameter.contains("--"), "{}", e.parameter);
+        assert!(estimate(&TbarRollRequest::default()).unwrap().is_none());
+    }
+}

@@ -1,0 +1,53 @@
+//! The observer of a run: it receives every sample and every node frame as the run produces
+//! them (a front end streams them to CSV or VTK), and may ask the run to stop (e.g. on
+//! SIGINT).
+//!
+//! A run stopped by its observer is not an error: it returns what it computed up to the stop,
+//! with [`crate::RollValidity::stopped_at`] set to the time of the last sample and a warning
+//! that says it was interrupted (so the run is not valid). Nothing already handed to the
+//! observer is lost, and the returned samples are exactly those the observer received.
+
+use crate::full::WheelFrame;
+use crate::sample::RollingSample;
+
+/// What an observer asks of the run after each item.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Flow {
+    /// Go on.
+    #[default]
+    Continue,
+    /// Stop after this item; the run returns what it has.
+    Stop,
+}
+
+/// Receives a run's samples and node frames as they are produced.
+pub trait Observer {
+    /// A new sample (every output interval). Return [`Flow::Stop`] to end the run with this
+    /// sample as its last.
+    fn sample(&mut self, sample: &RollingSample) -> Flow {
+        let _ = sample;
+        Flow::Continue
+    }
+
+    /// A new node frame (at the requested frame times).
+    fn frame(&mut self, frame: &WheelFrame) -> Flow {
+        let _ = frame;
+        Flow::Continue
+    }
+
+    /// Asked between samples (after every integration step of the full model): `false` stops
+    /// the run at once (e.g. an interrupt flag).
+    fn keep_going(&mut self) -> bool {
+        true
+    }
+}
+
+/// The observer that watches nothing.
+impl Observer for () {}
+
+/// The sentence of the warning of a run its observer stopped.
+pub(crate) fn interrupted_warning(t: f64, t_end: f64) -> String {
+    format!(
+        "the run was interrupted at t = {t} s of t_end = {t_end} s (its observer asked it to stop); every figure covers only [0, {t}] s"
+    )
+}

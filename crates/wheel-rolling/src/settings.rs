@@ -1,0 +1,162 @@
+//! The settings of a rolling run: [`RollSettings`], the serde part every wheel's rolling
+//! request shares (`#[serde(flatten)]`: the toroid's `roll` and the T-bar's `tbar_roll`),
+//! and [`RunSpec`], the resolved run both models read.
+//!
+//! [`RollSettings`] holds the fields that mean the same, under the same name, default and
+//! rule, in every rolling request: the slope, the step, gravity, the restitution and the
+//! contact and string stiffnesses. What the requests spell differently (the toroid's `mu`
+//! against the T-bar's `mu_static`/`mu_kinetic`, a fixed or fidelity-dependent `t_end`, the
+//! T-bar's optional prestress level) each request resolves into the [`RunSpec`].
+
+use crate::contact::ContactKind;
+use crate::defaults;
+use crate::fidelity::FidelityChoice;
+use serde::{Deserialize, Serialize};
+use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_core::request::{InvalidParameter, Param, Rule};
+
+/// The first of `values` that is not finite, as an [`InvalidParameter`] of its name.
+///
+/// ```
+/// use wheel_rolling::settings::finite;
+/// assert!(finite(&[("t_end", 1.0), ("mu", 0.8)]).is_ok());
+/// assert_eq!(finite(&[("t_end", 1.0), ("mu", f64::NAN)]).unwrap_err().name, "mu");
+/// ```
+pub fn finite(values: &[(&'static str, f64)]) -> Result<(), InvalidParameter> {
+    match values.iter().find(|(_, v)| !v.is_finite()) {
+        Some(&(name, v)) => Err(InvalidParameter::new(name, v, "must be finite")),
+        None => Ok(()),
+    }
+}
+
+/// The run settings every rolling request shares (module docs); serialised flat inside the
+/// request.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct RollSettings {
+    /// Slope angle φ (rad; reads `50deg`, `pi/4`, …).
+    #[serde(with = "tensegrity_core::angle::serde_angle")]
+    pub incline: f64,
+    /// Integration step (s): the fixed step of RK4 and of the rigid model, the largest step
+    /// of the adaptive integrators.
+    pub dt: f64,
+    /// Gravity g (m/s²).
+    pub gravity: f64,
+    /// Normal coefficient of restitution e of an impact, in [0, 1]: the rigid model's impact
+    /// law, and the penalty damping unless `ground_damping` is given.
+    pub restitution: f64,
+    /// String stiffness of the full model (N/m); it also decides the `auto` fidelity.
+    pub string_stiffness: f64,
+    /// Penalty ground stiffness per contact node (N/m).
+    pub ground_stiffness: f64,
+    /// Ground damping (N·s/m): normal damping per contact node (penalty) or contact-velocity
+    /// damping (thesis). Unset: the penalty damping that gives `restitution`
+    /// ([`crate::contact::penalty_damping`]), or [`defaults::GROUND_DAMPING`] for the thesis
+    /// contact.
+    pub ground_damping: Option<f64>,
+}
+
+impl Default for RollSettings {
+    /// 50°, 0.1 ms, g = 9.81 m/s², e = 0, strings 2·10⁴ N/m, ground 10⁵ N/m per node, the
+    /// damping from the restitution ([`crate::defaults`]).
+    fn default() -> Self {
+        Self {
+            incline: defaults::INCLINE_DEG.to_radians(),
+            dt: defaults::ROLL_DT,
+            gravity: defaults::GRAVITY,
+            restitution: defaults::RESTITUTION,
+            string_stiffness: defaults::STRING_STIFFNESS,
+            ground_stiffness: defaults::GROUND_STIFFNESS,
+            ground_damping: None,
+        }
+    }
+}
+
+impl RollSettings {
+    /// Checks that every number is finite (a non-finite number serialises as `null`, which
+    /// the per-field rules of a request do not see): the first one that is not, by name.
+    pub fn check_finite(&self) -> Result<(), InvalidParameter> {
+        finite(&[
+            ("incline", self.incline),
+            ("dt", self.dt),
+            ("gravity", self.gravity),
+            ("restitution", self.restitution),
+            ("string_stiffness", self.string_stiffness),
+            ("ground_stiffness", self.ground_stiffness),
+            ("ground_damping", self.ground_damping.unwrap_or(0.0)),
+        ])
+    }
+
+    /// One [`Param`] per field, in the field order.
+    pub fn params() -> Vec<Param> {
+        vec![
+            Param::angle("incline", "Slope angle (e.g. `50deg`, `pi/4`, radians)")
+                .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
+            Param::number("dt", "s", "Integration step").positive(),
+            Param::number("gravity", "m/s^2", "Gravity").positive(),
+            Param::number(
+                "restitution",
+                "",
+                "Normal coefficient of restitution e of an impact, in [0, 1]",
+            )
+            .rule(Rule::Closed(0.0, 1.0)),
+            Param::number(
+                "string_stiffness",
+                "N/m",
+                "String stiffness of the full model",
+            )
+            .positive(),
+            Param::number(
+                "ground_stiffness",
+                "N/m",
+                "Penalty ground stiffness per contact node",
+            )
+            .positive(),
+            Param::number(
+                "ground_damping",
+                "N s/m",
+                "Ground damping per contact node (unset: from the restitution)",
+            )
+            .non_negative()
+            .optional(),
+        ]
+    }
+}
+
+/// A rolling run resolved from a request: what the rigid and the full model read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSpec {
+    /// The shared settings.
+    pub settings: RollSettings,
+    /// Simulated time (s).
+    pub t_end: f64,
+    /// The model asked for.
+    pub fidelity: FidelityChoice,
+    /// The full model's ground contact.
+    pub contact: ContactKind,
+    /// Static friction coefficient μ_s.
+    pub mu_static: f64,
+    /// Kinetic friction coefficient μ_k ≤ μ_s.
+    pub mu_kinetic: f64,
+    /// Integrator of the full model (`settings.dt` is its step, or its largest step).
+    pub integrator: IntegratorKind,
+    /// Output (sampling) interval of both models (s).
+    pub output_dt: f64,
+}
+
+impl Default for RunSpec {
+    /// [`RollSettings::default`] for 10 s, `auto`, penalty contact, μ_s = 0.8, μ_k = 0.6,
+    /// RK4, 1 ms samples.
+    fn default() -> Self {
+        Self {
+            settings: RollSettings::default(),
+            t_end: defaults::ROLL_T_END,
+            fidelity: FidelityChoice::Auto,
+            contact: ContactKind::Penalty,
+            mu_static: defaults::STATIC_FRICTION,
+            mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
+            integrator: IntegratorKind::Rk4,
+            output_dt: defaults::ROLL_OUTPUT_DT,
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! The observer hook: it sees every sample and frame as the run makes them, and a stop after
+//! k samples returns exactly those k samples, `stopped_at`, an interruption warning and a run
+//! that is not valid — never an error.
+
+use wheel_rolling::{
+    roll_wheel, Fidelity, FidelityChoice, Flow, Observer, Polygon, RigidRolling, RollingSample,
+    RunSpec, WheelFrame,
+};
+
+/// Stops after `k` samples; keeps what it saw.
+struct StopAfter {
+    k: usize,
+    samples: Vec<RollingSample>,
+    frames: Vec<f64>,
+}
+
+impl Observer for StopAfter {
+    fn sample(&mut self, s: &RollingSample) -> Flow {
+        self.samples.push(*s);
+        if self.samples.len() >= self.k {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    }
+
+    fn frame(&mut self, f: &WheelFrame) -> Flow {
+        self.frames.push(f.t);
+        Flow::Continue
+    }
+}
+
+fn octagon() -> Polygon {
+    Polygon {
+        sides: 8,
+        outer_radius: 1.0,
+        mass: 12.0,
+        i1: 7.5,
+    }
+}
+
+fn rigid_spec(t_end: f64) -> RunSpec {
+    RunSpec {
+        fidelity: FidelityChoice::Rigid,
+        t_end,
+        ..RunSpec::default()
+    }
+}
+
+#[test]
+fn a_rigid_run_stopped_after_k_samples_returns_them_flagged() {
+    let mut obs = StopAfter {
+        k: 250,
+        samples: Vec::new(),
+        frames: Vec::new(),
+    };
+    let pose = [nalgebra::Vector3::new(0.0, 0.0, -1.0)];
+    let model = RigidRolling::new(&octagon(), &rigid_spec(2.0));
+    let run = model
+        .run_observed(2.0, &pose, &[0.1, 0.2, 1.5], Some(&mut obs))
+        .unwrap();
+    let r = &run.result;
+    assert_eq!(r.samples.len(), 250);
+    assert_eq!(r.samples, obs.samples);
+    // samples every 1 ms from 0: the 250th is at 0.249 s
+    let t = r.samples[249].t;
+    assert!((t - 0.249).abs() < 1e-12, "{t}");
+    assert_eq!(r.validity.stopped_at, Some(t));
+    assert!(!r.validity.valid());
+    assert!(
+        r.validity
+            .warnings
+            .iter()
+            .any(|w| w.contains("interrupted") && !w.contains("--")),
+        "{:?}",
+        r.validity.warnings
+    );
+    // the frames up to the stop were handed over and kept; none after it
+    assert_eq!(obs.frames, [0.1, 0.2]);
+    assert_eq!(run.frames.len(), 2);
+    // what was computed is the uninterrupted run's beginning, bit for bit
+    let whole = model.run(2.0).unwrap();
+    assert_eq!(&whole.samples[..250], &r.samples[..]);
+    assert_eq!(whole.validity.stopped_at, None);
+}
+
+#[test]
+fn an_observer_that_never_stops_sees_the_whole_run() {
+    let mut obs = StopAfter {
+        k: usize::MAX,
+        samples: Vec::new(),
+        frames: Vec::new(),
+    };
+    let r = roll_wheel(&octagon(), &rigid_spec(1.0), &[], Some(&mut obs)).unwrap();
+    assert_eq!(r.fidelity, Fidelity::Rigid);
+    assert_eq!(obs.samples, r.result.samples);
+    assert_eq!(obs.samples.len(), 1001);
+    assert!(
+        r.result.validity.valid(),
+        "{:?}",
+        r.result.validity.warnings
+    );
+}
+
+#[test]
+fn auto_on_a_stiff_wheel_shows_the_observer_one_model() {
+    // stiff strings (m g / (k R_o) = 5.9·10⁻⁵): the rigid run is probed unobserved, found
+    // valid, and run again for the observer; the observer sees that run only
+    let mut spec = rigid_spec(0.5);
+    spec.fidelity = FidelityChoice::Auto;
+    spec.settings.string_stiffness = 2e6;
+    let mut obs = StopAfter {
+        k: usize::MAX,
+        samples: Vec::new(),
+        frames: Vec::new(),
+    };
+    let r = roll_wheel(&octagon(), &spec, &[], Some(&mut obs)).unwrap();
+    assert_eq!(r.fidelity, Fidelity::Rigid);
+    assert!(r.reason.contains("rigid run is valid"), "{}", r.reason);
+    assert_eq!(obs.samples, r.result.samples);
+    // a bare polygon has no full model: asking for it is a named error
+    spec.fidelity = FidelityChoice::Full;
+    let e = roll_wheel(&octagon(), &spec, &[], None).unwrap_err();
+    assert!(e.to_string().contains("no full model"), "{e}");
+}
