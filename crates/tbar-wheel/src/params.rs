@@ -26,7 +26,7 @@ pub const MAX_TREADS: usize = 360;
 pub const TREAD_COUNT_TOL: f64 = 1e-9;
 
 /// Where the radial bar starts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum BarBase {
     /// The rim point [0, r_q, 0] on the rim cylinder (the choice of ERRATA 5.2). For even q
@@ -49,7 +49,7 @@ impl BarBase {
 }
 
 /// How the rim is modelled.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RimMode {
     /// A rigid rim: every rim node and bar base is a pinned support (the default).

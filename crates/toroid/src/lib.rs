@@ -25,6 +25,7 @@ mod error;
 mod inertia;
 mod params;
 pub mod report;
+pub mod request;
 pub mod roll;
 pub mod rolling;
 pub mod rolling_full;
@@ -43,9 +44,10 @@ pub use error::{Result, ToroidError};
 pub use inertia::{bar_inertia, bar_inertia_thesis, wheel_inertia, wheel_mass};
 pub use params::{Stabilize, ToroidParams};
 pub use report::{
-    tipover_report, toroid_report, TipoverReport, TipoverRequest, ToroidReport, ToroidRequest,
-    WheelSpec,
+    tipover_report, toroid_report, Stabilized, TipoverReport, TipoverRequest, ToroidReport,
+    ToroidRequest, WheelSpec,
 };
+pub use request::{wheel_params, TipoverDynamicRequest, TipoverRollingRequest};
 pub use roll::{
     roll, roll_with_frames, rolling_series, ContactKind, FidelityChoice, FirstImpact, RollReport,
     RollRequest,

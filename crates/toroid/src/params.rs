@@ -1,12 +1,15 @@
 //! The seven toroid parameters (thesis Fig. 3.2) and the stabilising options (§3.1).
 
 use crate::error::{Result, ToroidError};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
 
 /// Geometry of the toroid: n sides, outer/inner tread widths T, t, tread offset D, outer,
-/// inner and rim radii R_o, R_i, R_m (all lengths in m).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// inner and rim radii R_o, R_i, R_m (all lengths in m). Its serde form is flat, the field
+/// names as they are (it is flattened into the toroid requests).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct ToroidParams {
     /// Number of sides (prisms) n ≥ 3.
     pub sides: usize,
@@ -191,6 +194,21 @@ impl FromStr for Stabilize {
             }
         }
         Ok(out)
+    }
+}
+
+/// Serialised as its text, `"spokes,inner"` ([`fmt::Display`]).
+impl Serialize for Stabilize {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+/// Read from its text, `"spokes,inner"` or `"none"` ([`FromStr`]).
+impl<'de> Deserialize<'de> for Stabilize {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse().map_err(serde::de::Error::custom)
     }
 }
 
