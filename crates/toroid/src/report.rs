@@ -59,7 +59,9 @@ impl WheelSpec {
 
 /// What [`toroid_report`] analyses (the request of `toroid`, see [`crate::request`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
+// `Request::from_values`
+#[serde(default)]
 pub struct ToroidRequest {
     /// The wheel.
     #[serde(flatten)]
@@ -228,7 +230,9 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
 /// σ = R_i/R_o and ε = t/T (thesis §3.3.2, Fig. 3.13) may be given instead of the inner
 /// radius and tread: they set R_i = σ R_o and t = ε T of the wheel ([`Self::wheel_spec`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
+// `Request::from_values`
+#[serde(default)]
 pub struct TipoverRequest {
     /// The wheel.
     #[serde(flatten)]

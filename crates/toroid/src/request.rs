@@ -185,7 +185,9 @@ fn contact_params() -> Vec<Param> {
 /// `tipover --dynamic` (study `tipover_dynamic`): the static tip-over threshold checked by the
 /// full 3-D dynamics ([`DynamicTipover::run`]) on the wheel.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
+// `Request::from_values`
+#[serde(default)]
 pub struct TipoverDynamicRequest {
     /// The wheel.
     #[serde(flatten)]
@@ -224,7 +226,9 @@ pub const ROLLING_T_END: f64 = 3.0;
 /// with a side slope, its lean recorded ([`LeanRolling`]); the wheel, ground and integration
 /// settings are [`DynamicTipover`]'s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
+// `Request::from_values`
+#[serde(default)]
 pub struct TipoverRollingRequest {
     /// The wheel.
     #[serde(flatten)]
