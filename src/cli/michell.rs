@@ -4,82 +4,30 @@
 //! ```text
 //! tensegrity michell --complexity Q (--planar | --cylindrical DELTA | --spherical EPS)
 //!     --beta B --phi P [--r0 R] [--load W0] [--azimuth A] [--polar G] [--material NAME]
-//!     [--extra-strings PRESTRESS] [--method recursive|global] [--json]
+//!     [--extra-strings PRESTRESS|auto] [--method recursive|global] [--json]
 //! ```
+//!
+//! The flags are the fields of [`MichellRequest`] ([`RequestArgs`]); one library call
+//! ([`MichellRequest::run`]) and the report printed ([`super::michell_text`]).
 
-use crate::cli::angle::parse_angle;
+use super::request_args::RequestArgs;
 use anyhow::{Context, Result};
-use clap::{ArgGroup, ValueEnum};
 use michell3d::signmap::AngleGrid;
-use michell3d::{
-    AnalysisRequest, MemberKind, Method, MichellAnalysis, MichellParams, MichellReport,
-    MichellTruss,
-};
+use michell3d::{AnalysisRequest, MichellRequest, MichellTableRequest, MichellTruss};
 use std::path::{Path, PathBuf};
 use tensegrity_io::figure::{Figure, Panel, Series};
 
-/// Force propagation method.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MethodArg {
-    /// Level-by-level method of joints (one 3×3 solve per node).
-    Recursive,
-    /// One sparse LU solve of the whole equilibrium system.
-    Global,
-}
-
-/// Arguments of `tensegrity michell`.
+/// Arguments of `tensegrity michell`: the request's flags ([`MichellRequest`]: `--complexity`,
+/// `--beta`, `--phi` and one of `--planar`, `--cylindrical`, `--spherical` required), the
+/// outputs, and the `optimize` subcommand.
 #[derive(clap::Args, Debug)]
-#[command(group(
-    ArgGroup::new("geometry")
-        .required(true)
-        .args(["planar", "cylindrical", "spherical"])
-))]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct MichellArgs {
     /// `optimize`: the mass-optimal β, φ (and q) for a given radius ratio.
     #[command(subcommand)]
     pub action: Option<MichellAction>,
-    /// Complexity q (number of member levels; level-q nodes are supports).
-    #[arg(long, value_name = "Q", required = true)]
-    pub complexity: Option<usize>,
-    /// Skelton's planar truss in the y–z plane (two-index nodes n_ik).
-    #[arg(long)]
-    pub planar: bool,
-    /// 3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11).
-    #[arg(long, value_name = "DELTA", allow_hyphen_values = true, value_parser = super::values::finite)]
-    pub cylindrical: Option<f64>,
-    /// 3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24`.
-    #[arg(long, value_name = "EPS", value_parser = parse_angle, allow_hyphen_values = true)]
-    pub spherical: Option<f64>,
-    /// Departure angle β, e.g. `pi/6` or `30deg`.
-    #[arg(long, value_name = "B", value_parser = parse_angle, required = true)]
-    pub beta: Option<f64>,
-    /// Segmentation angle φ, e.g. `pi/8`.
-    #[arg(long, value_name = "P", value_parser = parse_angle, required = true)]
-    pub phi: Option<f64>,
-    /// Initial radius r₀ (m).
-    #[arg(long, value_name = "R", default_value_t = 1.0, value_parser = super::values::positive)]
-    pub r0: f64,
-    /// Tip load magnitude w₀ (N).
-    #[arg(long, value_name = "W0", default_value_t = 1000.0, value_parser = super::values::positive)]
-    pub load: f64,
-    /// Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃.
-    #[arg(long, value_name = "A", value_parser = parse_angle, default_value = "0", allow_hyphen_values = true)]
-    pub azimuth: f64,
-    /// Load polar angle γ from ι̂₃ (eq. 4.13).
-    #[arg(long, value_name = "G", value_parser = parse_angle, default_value = "pi", allow_hyphen_values = true)]
-    pub polar: f64,
-    /// Material of bars and strings (aluminium, steel, titanium, carbon_fibre, nylon, uhmwpe).
-    #[arg(long, value_name = "NAME", default_value = "steel")]
-    pub material: String,
-    /// Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to PRESTRESS newtons, or
-    /// `auto`: to the smallest prestress above which no member but the tip members changes
-    /// sign over the nominal load region of complexity 1 (reported as min_extra_prestress).
-    #[arg(long = "extra-strings", value_name = "PRESTRESS|auto", value_parser = super::michell_extra::parse)]
-    pub extra_strings: Option<super::michell_extra::ExtraStringsArg>,
-    /// Force propagation method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Recursive)]
-    pub method: MethodArg,
+    #[command(flatten)]
+    request: RequestArgs<MichellRequest>,
     /// Print JSON instead of a readable report.
     #[arg(long)]
     pub json: bool,
@@ -121,56 +69,18 @@ pub enum MichellAction {
     Optimize(super::michell_optimize::OptimizeArgs),
 }
 
-/// Arguments of `tensegrity michell-table`.
+/// Arguments of `tensegrity michell-table`: the request's flags ([`MichellTableRequest`]) and
+/// the outputs.
 #[derive(clap::Args, Debug)]
 pub struct MichellTableArgs {
-    /// Largest complexity (the table runs q = 2..=Q).
-    #[arg(long, value_name = "Q", default_value_t = 35)]
-    pub max_complexity: usize,
-    /// Tip load w₀ (N), along −ι̂₃.
-    #[arg(long, value_name = "W0", default_value_t = 1000.0, value_parser = super::values::positive)]
-    pub load: f64,
-    /// Material of bars and strings.
-    #[arg(long, value_name = "NAME", default_value = "steel")]
-    pub material: String,
+    #[command(flatten)]
+    request: RequestArgs<MichellTableRequest>,
     /// Write the table to this CSV (else print it).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
     /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this SVG file.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
-}
-
-impl MichellArgs {
-    /// The analysis the arguments describe.
-    pub fn request(&self) -> AnalysisRequest {
-        // clap requires these without a subcommand; NaN and q = 0 are rejected by validation
-        let (q, beta, phi) = (
-            self.complexity.unwrap_or(0),
-            self.beta.unwrap_or(f64::NAN),
-            self.phi.unwrap_or(f64::NAN),
-        );
-        let params = match (self.cylindrical, self.spherical) {
-            (Some(delta), _) => MichellParams::cylindrical(q, self.r0, beta, phi, delta),
-            (None, Some(eps)) => MichellParams::spherical(q, self.r0, beta, phi, eps),
-            (None, None) => MichellParams::planar(q, self.r0, beta, phi),
-        };
-        AnalysisRequest {
-            params,
-            load: self.load,
-            azimuth: self.azimuth,
-            polar: self.polar,
-            material: self.material.clone(),
-            extra_strings: match self.extra_strings {
-                Some(super::michell_extra::ExtraStringsArg::Prestress(p)) => Some(p),
-                _ => None,
-            },
-            method: match self.method {
-                MethodArg::Recursive => Method::Recursive,
-                MethodArg::Global => Method::Global,
-            },
-        }
-    }
 }
 
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
@@ -180,133 +90,20 @@ pub fn run(args: &MichellArgs) -> Result<()> {
         return super::michell_optimize::run(opt);
     }
     let _progress = super::guard::michell(args)?;
-    let (request, check) = match args.extra_strings {
-        Some(arg) => {
-            let (r, c) = super::michell_extra::resolve(arg, &args.request())?;
-            (r, Some(c))
-        }
-        None => (args.request(), None),
-    };
-    let analysis = MichellAnalysis::run(&request).context("michell truss analysis failed")?;
-    match (&check, args.json) {
-        (Some(c), true) => println!("{}", super::michell_extra::json_with(&analysis.report, c)?),
-        (None, true) => println!("{}", serde_json::to_string_pretty(&analysis.report)?),
-        (Some(c), false) => print!(
-            "{}{}",
-            text_report(&analysis.report),
-            super::michell_extra::text(c)
-        ),
-        (None, false) => print!("{}", text_report(&analysis.report)),
+    let request: MichellRequest = args.request.request()?;
+    let run = request.run().context("michell truss analysis failed")?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&run)?);
+    } else {
+        print!("{}", super::michell_text::report(&run));
     }
     if let Some(path) = &args.sign_map {
-        write_sign_maps(args, &request, &analysis.truss, path)?;
+        write_sign_maps(args, &run.request, &run.analysis.truss, path)?;
     }
-    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, request.extra_strings) {
-        write_gamma_sweep(args, &request, &analysis.truss, prestress, path)?;
+    if let (Some(path), Some(prestress)) = (&args.gamma_sweep, run.request.extra_strings) {
+        write_gamma_sweep(args, &run.request, &run.analysis.truss, prestress, path)?;
     }
     Ok(())
-}
-
-fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
-    use std::fmt::Write;
-    let _ = writeln!(
-        s,
-        "{:>16} {:>16} {:>12.6} {:>16.6e} {:>14.6e} {:>6} {:>9}",
-        tuple(&m.parent),
-        tuple(&m.child),
-        m.length,
-        m.force_density,
-        m.force,
-        m.kind.as_str(),
-        m.governing
-    );
-}
-
-fn tuple(t: &[usize]) -> String {
-    let parts: Vec<String> = t.iter().map(|v| v.to_string()).collect();
-    format!("({})", parts.join(","))
-}
-
-/// The readable report.
-pub fn text_report(r: &MichellReport) -> String {
-    use std::fmt::Write;
-    let mut s = text_header(r);
-    let _ = writeln!(
-        s,
-        "\n{:>16} {:>16} {:>12} {:>16} {:>14} {:>6} {:>9}",
-        "parent", "child", "length [m]", "q [N/m]", "force [N]", "kind", "governs"
-    );
-    for m in &r.members {
-        member_row(&mut s, m);
-    }
-    if let Some(t) = r.prestress {
-        let _ = writeln!(s, "\nExtra strings (prestress {t} N each):");
-        for m in &r.extra_strings {
-            member_row(&mut s, m);
-        }
-    }
-    let _ = writeln!(
-        s,
-        "\nMass: yield {:.6e} kg, yield + buckling {:.6e} kg",
-        r.mass_kg.yield_only, r.mass_kg.yield_buckling
-    );
-    let _ = writeln!(
-        s,
-        "Normalised yield mass Σ|q|l²/(w0 r0) = {:.9}",
-        r.normalized_yield_mass
-    );
-    let _ = writeln!(s, "Buckling-governed bars: {}", r.buckling_governed.len());
-    s
-}
-
-/// Geometry, load and counts: the first lines of the readable report.
-fn text_header(r: &MichellReport) -> String {
-    use std::fmt::Write;
-    let p = &r.params;
-    let mut s = String::new();
-    let geometry = match p.geometry {
-        michell3d::Geometry::Planar => "planar (Skelton)".to_string(),
-        michell3d::Geometry::Cylindrical { delta } => format!("3-D cylindrical, δ = {delta}"),
-        michell3d::Geometry::Spherical { epsilon } => format!("3-D spherical, ε = {epsilon} rad"),
-    };
-    let _ = writeln!(
-        s,
-        "Michell truss: {geometry}, complexity q = {}",
-        p.complexity
-    );
-    let _ = writeln!(
-        s,
-        "  r0 = {} m, β = {:.6} rad ({:.4}°), φ = {:.6} rad ({:.4}°), a = {:.6}, c = {:.6}",
-        p.r0,
-        p.beta,
-        p.beta.to_degrees(),
-        p.phi,
-        p.phi.to_degrees(),
-        p.a(),
-        p.c()
-    );
-    let method = match r.method {
-        Method::Recursive => "recursive",
-        Method::Global => "global",
-    };
-    let _ = writeln!(
-        s,
-        "  tip load w = [{:.6}, {:.6}, {:.6}] N; method {method}; material {}",
-        r.load[0], r.load[1], r.load[2], r.material
-    );
-    let count = |k: MemberKind| r.members.iter().filter(|m| m.kind == k).count();
-    let supports = r.nodes.iter().filter(|n| n.support).count();
-    let _ = writeln!(
-        s,
-        "  {} nodes ({} supports), {} members: {} strings, {} bars, {} none",
-        r.nodes.len(),
-        supports,
-        r.members.len(),
-        count(MemberKind::String),
-        count(MemberKind::Bar),
-        count(MemberKind::None)
-    );
-    s
 }
 
 /// Computes the sign maps of `--map-members` on the analysed truss (rows on threads through
@@ -327,7 +124,7 @@ fn write_sign_maps(
     let maps = sign_maps(
         truss,
         &args.map_members,
-        args.load,
+        request.load,
         AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
         AngleGrid::new(0.0, std::f64::consts::PI, np),
         request.method,
@@ -362,8 +159,8 @@ fn write_gamma_sweep(
     let sweep = gamma_sweep(
         truss,
         &strings,
-        args.load,
-        args.azimuth,
+        request.load,
+        request.azimuth,
         AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
         prestress,
         request.method,
@@ -391,16 +188,10 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     use michell3d::complexity::FIG_4_18_DELTAS;
     use sweeps::grids::mass_vs_complexity;
     use tensegrity_io::csv::write_mass_table;
-    if args.max_complexity < 2 {
-        anyhow::bail!(
-            "--max-complexity must be at least 2, got {}",
-            args.max_complexity
-        );
-    }
-    let material =
-        *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
-    let qs: Vec<usize> = (2..=args.max_complexity).collect();
-    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
+    let request: MichellTableRequest = args.request.request()?;
+    let material = request.material()?;
+    let qs = request.complexities();
+    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, request.load, &material)?;
     match &args.out {
         Some(path) => {
             tensegrity_io::write_file(path, |w| write_mass_table(w, &rows))?;
@@ -411,7 +202,7 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         }
     }
     if let Some(path) = &args.svg {
-        Figure::new(vec![mass_panel(args, &rows)])
+        Figure::new(vec![mass_panel(&request, &rows)])
             .save(path)
             .with_context(|| format!("writing the figure {}", path.display()))?;
     }
@@ -419,7 +210,7 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
 }
 
 /// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
-fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> Panel {
+fn mass_panel(args: &MichellTableRequest, rows: &[michell3d::MassRow]) -> Panel {
     let series = |delta: f64, label: String| {
         let points = rows
             .iter()
@@ -463,52 +254,41 @@ mod tests {
         Cli::try_parse_from(all).map(|c| c.args)
     }
 
+    fn request(argv: &[&str]) -> MichellRequest {
+        parse(argv).unwrap().request.request().unwrap()
+    }
+
     #[test]
     fn parses_the_documented_flags() {
-        let a = parse(&[
-            "--complexity",
-            "4",
-            "--cylindrical",
-            "0.25",
-            "--beta",
-            "pi/6",
-            "--phi",
-            "22.5deg",
-            "--azimuth",
-            "-pi/4",
-            "--polar",
-            "3pi/4",
-            "--method",
-            "global",
-            "--json",
-        ])
-        .unwrap();
-        assert_eq!(a.complexity, Some(4));
-        assert_eq!(a.cylindrical, Some(0.25));
-        assert!((a.phi.unwrap() - std::f64::consts::PI / 8.0).abs() < 1e-15);
-        assert!((a.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
-        assert_eq!((a.r0, a.load, a.material.as_str()), (1.0, 1000.0, "steel"));
-        assert_eq!(a.method, MethodArg::Global);
-        let req = a.request();
-        assert_eq!(req.method, Method::Global);
-        assert!(michell3d::analyse(&req).is_ok());
+        let r = request(&[
+            "--complexity", "4", "--cylindrical", "0.25", "--beta", "pi/6", "--phi", "22.5deg",
+            "--azimuth", "-pi/4", "--polar", "3pi/4", "--method", "global", "--json",
+        ]);
+        assert_eq!((r.complexity, r.cylindrical), (Some(4), Some(0.25)));
+        assert!((r.phi.unwrap() - std::f64::consts::PI / 8.0).abs() < 1e-15);
+        assert!((r.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        assert_eq!((r.r0, r.load, r.material.as_str()), (1.0, 1000.0, "steel"));
+        assert_eq!(r.method, michell3d::Method::Global);
+        assert!(michell3d::analyse(&r.analysis()).is_ok());
     }
 
     #[test]
     fn geometry_is_required_and_exclusive() {
         let base = ["--complexity", "2", "--beta", "pi/6", "--phi", "pi/8"];
-        assert!(parse(&base).is_err());
+        assert!(parse(&base).unwrap_err().to_string().contains("give one of planar"));
         let mut both = base.to_vec();
         both.extend(["--planar", "--spherical", "pi/24"]);
-        assert!(parse(&both).is_err());
+        let e = parse(&both).unwrap_err().to_string();
+        assert!(e.contains("--planar") && e.contains("spherical"), "{e}");
         let mut planar = base.to_vec();
         planar.push("--planar");
-        let r = michell3d::analyse(&parse(&planar).unwrap().request()).unwrap();
+        let r = michell3d::analyse(&request(&planar).analysis()).unwrap();
         assert_eq!(r.members.len(), 6);
-        assert!(text_report(&r).contains("planar"));
+        assert!(super::super::michell_text::report_text(&r).contains("planar"));
         let mut bad = base.to_vec();
         bad.extend(["--cylindrical", "0"]);
-        let err = michell3d::analyse(&parse(&bad).unwrap().request()).unwrap_err();
+        let err = michell3d::analyse(&request(&bad).analysis()).unwrap_err();
         assert!(err.to_string().contains("delta"));
+        assert!(parse(&["--planar", "--beta", "1", "--phi", "1"]).is_err());
     }
 }
