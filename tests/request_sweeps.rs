@@ -92,7 +92,11 @@ fn sweep_every_field<R: Request>(table: &Table) -> Vec<&'static str> {
     let mut swept = Vec::new();
     for p in R::params() {
         let values = two_values(&p, &defaults[p.name], table);
-        let dropped = table.excludes.iter().find(|(n, _)| *n == p.name).map(|e| e.1);
+        let dropped = table
+            .excludes
+            .iter()
+            .find(|(n, _)| *n == p.name)
+            .map(|e| e.1);
         let fixed: Vec<String> = table
             .base
             .iter()

@@ -261,8 +261,21 @@ mod tests {
     #[test]
     fn parses_the_documented_flags() {
         let r = request(&[
-            "--complexity", "4", "--cylindrical", "0.25", "--beta", "pi/6", "--phi", "22.5deg",
-            "--azimuth", "-pi/4", "--polar", "3pi/4", "--method", "global", "--json",
+            "--complexity",
+            "4",
+            "--cylindrical",
+            "0.25",
+            "--beta",
+            "pi/6",
+            "--phi",
+            "22.5deg",
+            "--azimuth",
+            "-pi/4",
+            "--polar",
+            "3pi/4",
+            "--method",
+            "global",
+            "--json",
         ]);
         assert_eq!((r.complexity, r.cylindrical), (Some(4), Some(0.25)));
         assert!((r.phi.unwrap() - std::f64::consts::PI / 8.0).abs() < 1e-15);
@@ -275,7 +288,10 @@ mod tests {
     #[test]
     fn geometry_is_required_and_exclusive() {
         let base = ["--complexity", "2", "--beta", "pi/6", "--phi", "pi/8"];
-        assert!(parse(&base).unwrap_err().to_string().contains("give one of planar"));
+        assert!(parse(&base)
+            .unwrap_err()
+            .to_string()
+            .contains("give one of planar"));
         let mut both = base.to_vec();
         both.extend(["--planar", "--spherical", "pi/24"]);
         let e = parse(&both).unwrap_err().to_string();

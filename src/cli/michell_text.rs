@@ -114,7 +114,6 @@ fn text_header(r: &MichellReport) -> String {
     s
 }
 
-
 /// The extra strings' check as text lines.
 fn extra_text(check: &ExtraStringsCheck) -> String {
     let t = &check.threshold;

@@ -101,11 +101,6 @@ pub struct RequestArgs<F> {
 }
 
 impl<F: Flags> RequestArgs<F> {
-    /// The values given on the command line.
-    pub fn given(&self) -> &Map<String, Value> {
-        &self.given
-    }
-
     /// The request of the given values over its defaults; a value of a flag that is not one
     /// of `R`'s (another mode's) or that `R` refuses is a usage error naming the flag.
     pub fn request<R: Request>(&self) -> anyhow::Result<R> {
@@ -231,11 +226,15 @@ mod tests {
     #[test]
     fn flags_are_the_parameters_and_only_given_values_are_kept() {
         let o = One::try_parse_from(["t", "--sides", "12", "--prism-only"]).unwrap();
-        assert_eq!(o.request.given().len(), 2);
+        assert_eq!(o.request.given.len(), 2);
         let r: ToroidRequest = o.request.request().unwrap();
         assert_eq!((r.wheel.params.sides, r.prism_only), (12, true));
         assert_eq!(
-            One::try_parse_from(["t"]).unwrap().request.request::<ToroidRequest>().unwrap(),
+            One::try_parse_from(["t"])
+                .unwrap()
+                .request
+                .request::<ToroidRequest>()
+                .unwrap(),
             ToroidRequest::default()
         );
         let e = One::try_parse_from(["t", "--outer-tread", "-1"]).unwrap_err();
@@ -243,7 +242,10 @@ mod tests {
         assert!(e.to_string().contains("--outer-tread") && e.to_string().contains("must be"));
         assert!(One::try_parse_from(["t", "--bogus", "1"]).is_err());
         let help = One::command().render_help().to_string();
-        assert!(help.contains("--rim-radius") && help.contains("[default: 0.8]"), "{help}");
+        assert!(
+            help.contains("--rim-radius") && help.contains("[default: 0.8]"),
+            "{help}"
+        );
         assert_eq!(flag_of("t_end"), "--t-end");
     }
 

@@ -165,7 +165,10 @@ mod tests {
         let Cli::Toroid(t) = Cli::try_parse_from(["t", "toroid"]).unwrap() else {
             unreachable!()
         };
-        assert_eq!(t.request.request::<ToroidRequest>().unwrap(), ToroidRequest::default());
+        assert_eq!(
+            t.request.request::<ToroidRequest>().unwrap(),
+            ToroidRequest::default()
+        );
     }
 
     #[test]
