@@ -23,11 +23,13 @@ use tensegrity_io::figure::{Figure, Panel, Series};
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct MichellArgs {
+    // before the subcommand, which parsing takes out of the matches: the request is not
+    // checked when a subcommand is given
+    #[command(flatten)]
+    request: RequestArgs<MichellRequest>,
     /// `optimize`: the mass-optimal β, φ (and q) for a given radius ratio.
     #[command(subcommand)]
     pub action: Option<MichellAction>,
-    #[command(flatten)]
-    request: RequestArgs<MichellRequest>,
     /// Print JSON instead of a readable report.
     #[arg(long)]
     pub json: bool,
@@ -260,23 +262,9 @@ mod tests {
 
     #[test]
     fn parses_the_documented_flags() {
-        let r = request(&[
-            "--complexity",
-            "4",
-            "--cylindrical",
-            "0.25",
-            "--beta",
-            "pi/6",
-            "--phi",
-            "22.5deg",
-            "--azimuth",
-            "-pi/4",
-            "--polar",
-            "3pi/4",
-            "--method",
-            "global",
-            "--json",
-        ]);
+        let argv = "--complexity 4 --cylindrical 0.25 --beta pi/6 --phi 22.5deg --azimuth -pi/4 \
+                    --polar 3pi/4 --method global --json";
+        let r = request(&argv.split_whitespace().collect::<Vec<_>>());
         assert_eq!((r.complexity, r.cylindrical), (Some(4), Some(0.25)));
         assert!((r.phi.unwrap() - std::f64::consts::PI / 8.0).abs() < 1e-15);
         assert!((r.azimuth + std::f64::consts::FRAC_PI_4).abs() < 1e-15);

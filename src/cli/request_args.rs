@@ -208,7 +208,7 @@ fn written(v: &Value) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::Parser;
+    use clap::{CommandFactory, Parser};
     use toroid::{TipoverDynamicRequest, TipoverRequest, TipoverRollingRequest, ToroidRequest};
 
     #[derive(Parser, Debug)]

@@ -54,11 +54,13 @@ pub enum TbarCommand {
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TbarArgs {
+    // before the subcommand, which parsing takes out of the matches: the request is not
+    // checked when a subcommand is given
+    #[command(flatten)]
+    request: RequestArgs<TbarStaticRequest>,
     /// `roll`: rolling and tip-over.
     #[command(subcommand)]
     command: Option<TbarCommand>,
-    #[command(flatten)]
-    request: RequestArgs<TbarStaticRequest>,
     /// Instead of one analysis: the single loop against the extended wheel (copy at
     /// `--extended`, default 0.5 r₀) with a free rim body, free and standing on the ground.
     #[arg(long)]
