@@ -12,9 +12,7 @@ use toroid::{ContactKind, FidelityChoice, RollRequest, WheelSpec};
 
 /// The `roll` study's request (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
-// `Request::from_values`
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct RollStudy {
     /// The wheel.
     #[serde(flatten)]
@@ -128,7 +126,7 @@ impl Request for RollStudy {
     const NAME: &'static str = "roll";
 
     fn params() -> Vec<Param> {
-        let mut p = toroid::wheel_params();
+        let mut p = toroid::WheelSpec::params();
         p.extend([
             Param::angle("incline", "Slope angle"),
             Param::number("t_end", "s", "Simulated time").positive(),

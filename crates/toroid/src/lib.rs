@@ -47,7 +47,7 @@ pub use report::{
     tipover_report, toroid_report, Stabilized, TipoverReport, TipoverRequest, ToroidReport,
     ToroidRequest, WheelSpec,
 };
-pub use request::{wheel_params, TipoverDynamicRequest, TipoverRollingRequest};
+pub use request::{TipoverDynamicRequest, TipoverRollingRequest};
 pub use roll::{
     roll, roll_with_frames, rolling_series, ContactKind, FidelityChoice, FirstImpact, RollReport,
     RollRequest,

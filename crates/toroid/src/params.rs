@@ -4,10 +4,12 @@ use crate::error::{Result, ToroidError};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
+use tensegrity_core::request::Param;
 
 /// Geometry of the toroid: n sides, outer/inner tread widths T, t, tread offset D, outer,
-/// inner and rim radii R_o, R_i, R_m (all lengths in m). Its serde form is flat, the field
-/// names as they are (it is flattened into the toroid requests).
+/// inner and rim radii R_o, R_i, R_m (all lengths in m). Serialised flat (inside a request:
+/// `#[serde(flatten)]`), each field under its name; missing fields take the reference
+/// wheel's value.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct ToroidParams {
@@ -46,6 +48,20 @@ impl ToroidParams {
         inner_radius: 0.6,
         rim_radius: 0.8,
     };
+
+    /// One [`Param`] per field (named as the fields; lengths in m). `sides` has no range rule
+    /// of its own: the builder refuses n < 3 in its own words.
+    pub fn params() -> Vec<Param> {
+        vec![
+            Param::count("sides", "Number of sides (prisms) n, at least 3"),
+            Param::number("outer_tread", "m", "Outer tread width T").positive(),
+            Param::number("inner_tread", "m", "Inner tread width t").positive(),
+            Param::number("offset", "m", "Tread offset D").non_negative(),
+            Param::number("outer_radius", "m", "Outer radius R_o").positive(),
+            Param::number("inner_radius", "m", "Inner radius R_i < R_o").positive(),
+            Param::number("rim_radius", "m", "Rim radius R_m").positive(),
+        ]
+    }
 
     /// Sets the number of sides.
     ///
@@ -197,15 +213,22 @@ impl FromStr for Stabilize {
     }
 }
 
-/// Serialised as its text, `"spokes,inner"` ([`fmt::Display`]).
 impl Serialize for Stabilize {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         s.collect_str(self)
     }
 }
 
-/// Read from its text, `"spokes,inner"` or `"none"` ([`FromStr`]).
 impl<'de> Deserialize<'de> for Stabilize {
+    /// From the text form (`"spokes,inner"`, `"none"`).
+    ///
+    /// ```
+    /// use toroid::Stabilize;
+    /// let s: Stabilize = serde_json::from_str("\"spokes,outer\"").unwrap();
+    /// assert!(s.spokes && s.outer && !s.inner);
+    /// assert_eq!(serde_json::to_string(&Stabilize::SPOKES_INNER).unwrap(), "\"spokes,inner\"");
+    /// assert!(serde_json::from_str::<Stabilize>("\"wheels\"").is_err());
+    /// ```
     fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
         let text = String::deserialize(d)?;
         text.parse().map_err(serde::de::Error::custom)

@@ -16,20 +16,78 @@ use crate::params::{Stabilize, ToroidParams};
 use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
+use tensegrity_core::request::Param;
 use tensegrity_core::Structure;
 
-/// One wheel: geometry, stabilising strings and bar mass per length. Its serde form is flat:
-/// `{"sides": 8, "outer_tread": 0.4, …, "stabilize": "spokes,inner", "bar_density": 1.0}`.
+/// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
+/// seven parameters, `stabilize` as `"spokes,inner"`, `bar_density`), so a request that
+/// `#[serde(flatten)]`s it reads `{"sides": 12, "stabilize": "spokes,outer", ...}`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(from = "WheelFields", into = "WheelFields")]
 pub struct WheelSpec {
     /// The seven geometric parameters.
-    #[serde(flatten)]
     pub params: ToroidParams,
     /// The stabilising string sets.
     pub stabilize: Stabilize,
     /// Bar mass per length (kg/m); strings are massless.
     pub bar_density: f64,
+}
+
+/// The flat serde form of [`WheelSpec`]: one plain struct (no nested flatten), so that a
+/// request flattening it keeps `deny_unknown_fields` working.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct WheelFields {
+    sides: usize,
+    outer_tread: f64,
+    inner_tread: f64,
+    offset: f64,
+    outer_radius: f64,
+    inner_radius: f64,
+    rim_radius: f64,
+    stabilize: Stabilize,
+    bar_density: f64,
+}
+
+impl Default for WheelFields {
+    fn default() -> Self {
+        WheelSpec::default().into()
+    }
+}
+
+impl From<WheelFields> for WheelSpec {
+    fn from(f: WheelFields) -> Self {
+        Self {
+            params: ToroidParams {
+                sides: f.sides,
+                outer_tread: f.outer_tread,
+                inner_tread: f.inner_tread,
+                offset: f.offset,
+                outer_radius: f.outer_radius,
+                inner_radius: f.inner_radius,
+                rim_radius: f.rim_radius,
+            },
+            stabilize: f.stabilize,
+            bar_density: f.bar_density,
+        }
+    }
+}
+
+impl From<WheelSpec> for WheelFields {
+    fn from(w: WheelSpec) -> Self {
+        let p = w.params;
+        Self {
+            sides: p.sides,
+            outer_tread: p.outer_tread,
+            inner_tread: p.inner_tread,
+            offset: p.offset,
+            outer_radius: p.outer_radius,
+            inner_radius: p.inner_radius,
+            rim_radius: p.rim_radius,
+            stabilize: w.stabilize,
+            bar_density: w.bar_density,
+        }
+    }
 }
 
 impl Default for WheelSpec {
@@ -55,13 +113,23 @@ impl WheelSpec {
     pub fn build(&self) -> Result<Toroid> {
         build(&self.params, self.stabilize, self.bar_density)
     }
+
+    /// One [`Param`] per field: the seven parameters of [`ToroidParams::params`], then
+    /// `stabilize` and `bar_density`.
+    pub fn params() -> Vec<Param> {
+        let mut out = ToroidParams::params();
+        out.push(Param::text(
+            "stabilize",
+            "Stabilising strings: comma-separated spokes, inner, outer, or none",
+        ));
+        out.push(Param::number("bar_density", "kg/m", "Bar mass per length").positive());
+        out
+    }
 }
 
 /// What [`toroid_report`] analyses (the request of `toroid`, see [`crate::request`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
-// `Request::from_values`
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct ToroidRequest {
     /// The wheel.
     #[serde(flatten)]
@@ -230,9 +298,7 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
 /// σ = R_i/R_o and ε = t/T (thesis §3.3.2, Fig. 3.13) may be given instead of the inner
 /// radius and tread: they set R_i = σ R_o and t = ε T of the wheel ([`Self::wheel_spec`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
-// `Request::from_values`
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct TipoverRequest {
     /// The wheel.
     #[serde(flatten)]

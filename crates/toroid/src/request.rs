@@ -9,7 +9,7 @@
 //! | [`TipoverDynamicRequest`] | `tipover --dynamic` / `tipover_dynamic` | [`TipoverDynamicRequest::run`] |
 //! | [`TipoverRollingRequest`] | `tipover --rolling` / `tipover_rolling` | [`TipoverRollingRequest::run`] |
 //!
-//! Every one starts from the wheel ([`WheelSpec`], flattened: [`wheel_params`]); the defaults
+//! Every one starts from the wheel ([`WheelSpec`], flattened: [`WheelSpec::params`]); the defaults
 //! are the named constants of [`crate::defaults`] and of [`DynamicTipover::default`].
 
 use crate::error::Result;
@@ -21,35 +21,11 @@ use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle;
 use tensegrity_core::request::{InvalidParameter, Param, Request, Rule};
 
-/// The fields of [`WheelSpec`]: the seven parameters, the stabilising options and the bar
-/// density (shared by every request of a toroid wheel).
-pub fn wheel_params() -> Vec<Param> {
-    vec![
-        Param::count("sides", "Number of sides (prisms) n, at least 3"),
-        Param::number("outer_tread", "m", "Outer tread width T").positive(),
-        Param::number("inner_tread", "m", "Inner tread width t").positive(),
-        Param::number("offset", "m", "Tread offset D").non_negative(),
-        Param::number("outer_radius", "m", "Outer radius R_o").positive(),
-        Param::number("inner_radius", "m", "Inner radius R_i < R_o").positive(),
-        Param::number("rim_radius", "m", "Rim radius R_m").positive(),
-        Param::text(
-            "stabilize",
-            "Stabilising strings: any of spokes, inner, outer (comma-separated), or none",
-        ),
-        Param::number(
-            "bar_density",
-            "kg/m",
-            "Bar mass per length; strings are massless",
-        )
-        .positive(),
-    ]
-}
-
 impl Request for ToroidRequest {
     const NAME: &'static str = "toroid";
 
     fn params() -> Vec<Param> {
-        let mut p = wheel_params();
+        let mut p = WheelSpec::params();
         p.extend([
             Param::flag(
                 "prism_only",
@@ -82,7 +58,7 @@ impl Request for TipoverRequest {
     const NAME: &'static str = "tipover";
 
     fn params() -> Vec<Param> {
-        let mut p = wheel_params();
+        let mut p = WheelSpec::params();
         p.extend([
             Param::number("gravity", "m/s^2", "Gravity").positive(),
             Param::number(
@@ -185,9 +161,7 @@ fn contact_params() -> Vec<Param> {
 /// `tipover --dynamic` (study `tipover_dynamic`): the static tip-over threshold checked by the
 /// full 3-D dynamics ([`DynamicTipover::run`]) on the wheel.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
-// `Request::from_values`
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct TipoverDynamicRequest {
     /// The wheel.
     #[serde(flatten)]
@@ -208,7 +182,7 @@ impl Request for TipoverDynamicRequest {
     const NAME: &'static str = "tipover_dynamic";
 
     fn params() -> Vec<Param> {
-        let mut p = wheel_params();
+        let mut p = WheelSpec::params();
         p.extend(contact_params());
         p.extend(ramp_params());
         p
@@ -226,9 +200,7 @@ pub const ROLLING_T_END: f64 = 3.0;
 /// with a side slope, its lean recorded ([`LeanRolling`]); the wheel, ground and integration
 /// settings are [`DynamicTipover`]'s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-// serde refuses `deny_unknown_fields` with nested `flatten`: unknown names are refused by
-// `Request::from_values`
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct TipoverRollingRequest {
     /// The wheel.
     #[serde(flatten)]
@@ -320,7 +292,7 @@ impl Request for TipoverRollingRequest {
     const NAME: &'static str = "tipover_rolling";
 
     fn params() -> Vec<Param> {
-        let mut p = wheel_params();
+        let mut p = WheelSpec::params();
         p.extend([
             Param::angle("incline", "Incline downhill, e.g. `30deg`")
                 .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
