@@ -63,6 +63,10 @@ fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
     if e.is::<super::guard::Refused>() || e.is::<tensegrity_core::budget::OverBudget>() {
         return true;
     }
+    // a flag value a request refuses
+    if e.is::<tensegrity_core::request::InvalidParameter>() {
+        return true;
+    }
     if let Some(e) = e.downcast_ref::<CoreError>() {
         return matches!(
             e,

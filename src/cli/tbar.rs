@@ -1,21 +1,19 @@
-//! `tensegrity tbar`: the T-bar tread, wheel or extended wheel of thesis chapter 5. Parses the
-//! arguments into a [`tbar_wheel::TbarRequest`], makes one library call
+//! `tensegrity tbar`: the T-bar tread, wheel or extended wheel of thesis chapter 5. Its flags
+//! are the fields of [`TbarStaticRequest`] ([`RequestArgs`]), converted to a
+//! [`tbar_wheel::TbarRequest`]; one library call
 //! ([`tbar_wheel::tbar_report`]) and prints the report (text or JSON); `--export-scene`,
 //! `--vtk` and `--svg` hand the structure or the drawing to tensegrity-io. `--loop-study`
 //! prints the single loop against the extended wheel ([`tbar_wheel::standing`]);
 //! `tensegrity tbar roll` rolls the wheel ([`super::tbar_roll`]).
 
-use crate::cli::angle::parse_angle;
 mod outputs;
 
+use super::request_args::RequestArgs;
 use anyhow::Result;
-use michell3d::MichellParams;
 use std::path::PathBuf;
-use tbar_wheel::envelope::{DEFAULT_DIRECTIONS, DEFAULT_EA, DEFAULT_LOAD};
-use tbar_wheel::mass::DEFAULT_MATERIAL;
-use tbar_wheel::{BarBase, Layout, RimMode, TbarParams, TbarReport, TbarRequest};
+use tbar_wheel::{RimMode, TbarReport, TbarRequest, TbarStaticRequest};
 
-/// `--bar-base` values.
+/// `--bar-base` values of `tbar roll` (until it takes its request's flags).
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BarBaseArg {
     /// The rim point [0, r_q, 0].
@@ -24,7 +22,7 @@ pub enum BarBaseArg {
     Chord,
 }
 
-/// `--rim` values.
+/// `--rim` values of `tbar roll`.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RimArg {
     /// Rigid rim: every rim node and bar base pinned.
@@ -50,49 +48,19 @@ pub enum TbarCommand {
     Roll(Box<super::tbar_roll::TbarRollArgs>),
 }
 
-/// Arguments of `tensegrity tbar`.
+/// Arguments of `tensegrity tbar`: the request's flags ([`TbarStaticRequest`]: `--beta`,
+/// `--phi` and one of `--cylindrical`, `--spherical` required), the other studies of the
+/// geometry, the outputs, and the `roll` subcommand.
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct TbarArgs {
+    // before the subcommand, which parsing takes out of the matches: the request is not
+    // checked when a subcommand is given
+    #[command(flatten)]
+    request: RequestArgs<TbarStaticRequest>,
     /// `roll`: rolling and tip-over.
     #[command(subcommand)]
     command: Option<TbarCommand>,
-    /// Complexity q (lattice levels; level q lies on the rim).
-    #[arg(long, default_value_t = 1)]
-    complexity: usize,
-    /// Departure angle β (e.g. `pi/6`, `30deg`).
-    #[arg(long, value_parser = parse_angle, required = true)]
-    beta: Option<f64>,
-    /// Segmentation angle φ; a wheel needs π/φ integer.
-    #[arg(long, value_parser = parse_angle, required = true)]
-    phi: Option<f64>,
-    /// Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11).
-    #[arg(
-        long,
-        value_name = "D",
-        allow_hyphen_values = true,
-        conflicts_with = "spherical",
-        required_unless_present = "spherical"
-    )]
-    cylindrical: Option<f64>,
-    /// Spherical parameterisation with angle ε (eq. 4.12).
-    #[arg(long, value_name = "E", value_parser = parse_angle)]
-    spherical: Option<f64>,
-    /// Tip radius r₀ (m).
-    #[arg(long, default_value_t = 1.0)]
-    r0: f64,
-    /// Build the wheel: π/φ treads every 2φ about ι̂₁.
-    #[arg(long)]
-    wheel: bool,
-    /// Build the extended wheel: the wheel and a copy translated by OFFSET (m) along ι̂₁.
-    #[arg(long, value_name = "OFFSET", allow_hyphen_values = true)]
-    extended: Option<f64>,
-    /// Base of the radial bar.
-    #[arg(long, value_enum, default_value_t = BarBaseArg::Rim)]
-    bar_base: BarBaseArg,
-    /// Rim: rigid supports (`fixed`) or a free rim body of bars with a hub (`body`).
-    #[arg(long, value_enum, default_value_t = RimArg::Fixed)]
-    rim: RimArg,
     /// Instead of one analysis: the single loop against the extended wheel (copy at
     /// `--extended`, default 0.5 r₀) with a free rim body, free and standing on the ground.
     #[arg(long)]
@@ -107,21 +75,6 @@ pub struct TbarArgs {
     /// Offsets δ (or angles ε, radians) of `--mass-sweep`.
     #[arg(long, value_delimiter = ',', default_values_t = [0.05, 0.1, 0.25, 0.5, 1.0])]
     sweep_deltas: Vec<f64>,
-    /// Tip load magnitude w₀ (N) of the load envelope.
-    #[arg(long, default_value_t = DEFAULT_LOAD)]
-    load: f64,
-    /// Axial stiffness EA of every member (N).
-    #[arg(long, default_value_t = DEFAULT_EA)]
-    ea: f64,
-    /// Bar compression P (N) of the slack map.
-    #[arg(long)]
-    prestress: Option<f64>,
-    /// Directions of the slack map (quasi-uniform sphere).
-    #[arg(long, default_value_t = DEFAULT_DIRECTIONS)]
-    directions: usize,
-    /// Material of the sizing (built-in table).
-    #[arg(long, default_value = DEFAULT_MATERIAL)]
-    material: String,
     /// Write the structure as a scene file.
     #[arg(long, value_name = "FILE")]
     export_scene: Option<PathBuf>,
@@ -136,48 +89,16 @@ pub struct TbarArgs {
     json: bool,
 }
 
-impl TbarArgs {
-    /// The library request the arguments describe.
-    pub fn request(&self) -> TbarRequest {
-        let (beta, phi) = (self.beta.unwrap_or(f64::NAN), self.phi.unwrap_or(f64::NAN));
-        let m = match (self.cylindrical, self.spherical) {
-            (_, Some(e)) => MichellParams::spherical(self.complexity, self.r0, beta, phi, e),
-            (d, None) => {
-                MichellParams::cylindrical(self.complexity, self.r0, beta, phi, d.unwrap_or(0.0))
-            }
-        };
-        let layout = match (self.extended, self.wheel) {
-            (Some(offset), _) => Layout::Extended { offset },
-            (None, true) => Layout::Wheel,
-            (None, false) => Layout::Tread,
-        };
-        let base = match self.bar_base {
-            BarBaseArg::Rim => BarBase::Rim,
-            BarBaseArg::Chord => BarBase::Chord,
-        };
-        let mut req = TbarRequest::new(
-            TbarParams::tread(m)
-                .with_layout(layout)
-                .with_bar_base(base)
-                .with_rim(self.rim.into()),
-        );
-        req.load = self.load;
-        req.ea = self.ea;
-        req.prestress = self.prestress;
-        req.directions = self.directions;
-        req.material = self.material.clone();
-        req
-    }
-}
-
 /// Entry point of `tensegrity tbar`.
 pub fn run(args: &TbarArgs) -> Result<()> {
     if let Some(TbarCommand::Roll(roll)) = &args.command {
         return super::tbar_roll::run(roll);
     }
-    let req = args.request();
+    let request: TbarStaticRequest = args.request.request()?;
+    let req = request.request();
     if args.loop_study {
-        return run_loop_study(args, &req);
+        let offset = request.extended.unwrap_or(0.5 * request.r0);
+        return run_loop_study(args, &req, offset);
     }
     if args.mass_sweep {
         return super::tbar_mass::run(
@@ -202,8 +123,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
 }
 
 /// `--loop-study`: the six cases of [`tbar_wheel::standing::loop_study`].
-fn run_loop_study(args: &TbarArgs, req: &TbarRequest) -> Result<()> {
-    let offset = args.extended.unwrap_or(0.5 * args.r0);
+fn run_loop_study(args: &TbarArgs, req: &TbarRequest, offset: f64) -> Result<()> {
     let rows = tbar_wheel::standing::loop_study(&req.params, offset)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&rows)?);
@@ -257,7 +177,13 @@ fn print_report(r: &TbarReport) {
         );
         println!(
             "critical member: {} {} ({}–{}), worst direction [{:.6}, {:.6}, {:.6}]",
-            c.kind, c.index, c.nodes[0], c.nodes[1], c.direction[0], c.direction[1], c.direction[2]
+            c.kind.as_str(),
+            c.index,
+            c.nodes[0],
+            c.nodes[1],
+            c.direction[0],
+            c.direction[1],
+            c.direction[2]
         );
     }
     if let (Some(p), Some(f)) = (r.prestress, r.slack_fraction) {

@@ -1,23 +1,33 @@
-//! `tensegrity tipover`: parses the arguments into a [`toroid::TipoverRequest`], makes one
-//! library call ([`toroid::tipover_report`]) and prints the report.
+//! `tensegrity tipover`: the request's flags ([`RequestArgs`]) into a [`TipoverRequest`] (or,
+//! with `--dynamic` / `--rolling`, the timed runs of [`super::tipover_dynamic`]), one library
+//! call ([`toroid::tipover_report`]) and the report printed; `--grid` the Fig. 3.13 map.
 
+use super::request_args::{Modes, RequestArgs};
 use super::values;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use tensegrity_io::sink::FileSink;
-use toroid::defaults;
-use toroid::{TipoverReport, TipoverRequest};
+use toroid::{TipoverDynamicRequest, TipoverReport, TipoverRequest, TipoverRollingRequest};
 
-use super::toroid::GeometryArgs;
+/// The flags of the three runs of `tipover`: static, `--dynamic`, `--rolling`.
+type TipoverModes = Modes<TipoverRequest, TipoverDynamicRequest, TipoverRollingRequest>;
 
-/// Arguments of `tensegrity tipover`.
+/// Arguments of `tensegrity tipover`: the flags of its three requests ([`TipoverRequest`],
+/// with `--dynamic` [`TipoverDynamicRequest`], with `--rolling` [`TipoverRollingRequest`]:
+/// each mode refuses the flags of the others), the mode and the outputs.
 #[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("time_run").args(["dynamic", "rolling"]).multiple(false)))]
 pub struct TipoverArgs {
     #[command(flatten)]
-    geometry: GeometryArgs,
-    /// Gravity (m/s²).
-    #[arg(long, default_value_t = defaults::GRAVITY, value_parser = values::positive)]
-    gravity: f64,
+    request: RequestArgs<TipoverModes>,
+    /// Check the threshold with the full 3-D dynamics: the wheel at rest on a side on level
+    /// ground, a lateral force ramped at the hub.
+    #[arg(long)]
+    dynamic: bool,
+    /// Instead, roll the wheel down a plane with a side slope and report its lean (the
+    /// conclusion's stability claim); with --incline, --side-slope, --t-end.
+    #[arg(long, conflicts_with = "dynamic")]
+    rolling: bool,
     /// Instead of one wheel, write F_f/F_e over a σ × ε grid (Fig. 3.13) to this CSV.
     #[arg(long)]
     grid: Option<PathBuf>,
@@ -27,39 +37,30 @@ pub struct TipoverArgs {
     /// Largest ε of the grid.
     #[arg(long, default_value_t = 1.0, value_parser = values::positive)]
     eps_max: f64,
+    /// Write the history of --dynamic (t, force, lean, near_normal, far_normal) or --rolling
+    /// (t, lean, downhill, across) to this CSV.
+    #[arg(long, value_name = "FILE", requires = "time_run")]
+    out: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
-    #[command(flatten)]
-    dynamic: super::tipover_dynamic::DynamicArgs,
 }
 
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
-    if args.dynamic.rolling {
-        return super::tipover_dynamic::run_rolling(
-            &args.dynamic,
-            &args.geometry.wheel(),
-            args.gravity,
-            args.json,
-        );
+    let out = args.out.as_deref();
+    if args.rolling {
+        let req = args.request.request()?;
+        return super::tipover_dynamic::run_rolling(&req, out, args.json);
     }
-    if args.dynamic.dynamic {
-        return super::tipover_dynamic::run(
-            &args.dynamic,
-            &args.geometry.wheel(),
-            args.gravity,
-            args.json,
-        );
+    if args.dynamic {
+        let req = args.request.request()?;
+        return super::tipover_dynamic::run(&req, out, args.json);
     }
     if let Some(path) = &args.grid {
         return run_grid(args, path);
     }
-    let request = TipoverRequest {
-        wheel: args.geometry.wheel(),
-        gravity: args.gravity,
-    };
-    let report = toroid::tipover_report(&request)?;
+    let report = toroid::tipover_report(&args.request.request()?)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

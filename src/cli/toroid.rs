@@ -1,8 +1,8 @@
-//! `tensegrity toroid`, `roll`, `fig-rolling` and `tipover`: each parses its arguments into a
-//! request of the toroid crate, makes one library call ([`toroid::toroid_report`],
-//! [`toroid::roll`], [`toroid::rolling_series`], [`toroid::tipover_report`]) and prints the
-//! report. The defaults are the library's ([`toroid::defaults`]).
+//! `tensegrity toroid`: its flags are the fields of [`ToroidRequest`] ([`RequestArgs`]); one
+//! library call ([`toroid::toroid_report`]) and the report printed. [`GeometryArgs`] are the
+//! wheel flags of `roll` and `fig-rolling` until they take their request's flags too.
 
+use super::request_args::RequestArgs;
 use super::values;
 use anyhow::Result;
 use std::path::PathBuf;
@@ -63,54 +63,31 @@ impl GeometryArgs {
     }
 }
 
-/// Arguments of `tensegrity toroid`.
+/// Arguments of `tensegrity toroid`: the request's flags ([`ToroidRequest`]) and the outputs.
 #[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("scene_strings").args(["string_stiffness"]).requires("export_scene")))]
 pub struct ToroidArgs {
     #[command(flatten)]
-    geometry: GeometryArgs,
-    /// Analyse a single prism (six nodes, K6) instead of the whole wheel.
-    #[arg(long)]
-    prism_only: bool,
-    /// Minimum string tension of the prestress design (N).
-    #[arg(long, default_value_t = defaults::DESIGN_MIN_TENSION, value_parser = values::positive)]
-    min_tension: f64,
-    /// Also search the rim radii R_m for which a single prism is prestressable.
-    #[arg(long)]
-    rim_window: bool,
-    /// Write the structure as a scene file (for `tensegrity statics` or `simulate`).
+    request: RequestArgs<ToroidRequest>,
+    /// Write the structure as a scene file (for `tensegrity statics` or `simulate`); with
+    /// --string-stiffness its strings are stiff and prestressed.
     #[arg(long, value_name = "FILE")]
     export_scene: Option<PathBuf>,
-    /// With --export-scene: give every string this stiffness (N/m) and the rest length that
-    /// realises the prestress design.
-    #[arg(long, value_name = "N_PER_M", requires = "export_scene")]
-    string_stiffness: Option<f64>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
 }
 
-impl ToroidArgs {
-    /// The library request the arguments describe.
-    pub fn request(&self) -> ToroidRequest {
-        ToroidRequest {
-            wheel: self.geometry.wheel(),
-            prism_only: self.prism_only,
-            min_tension: self.min_tension,
-            rim_window: self.rim_window,
-            string_stiffness: self.string_stiffness,
-        }
-    }
-}
-
 /// Entry point of `tensegrity toroid`.
 pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
-    let _progress = super::guard::toroid(&args.request())?;
+    let request: ToroidRequest = args.request.request()?;
+    let _progress = super::guard::toroid(&request)?;
     let scene = super::output::open(
         "--export-scene",
         args.export_scene.as_deref(),
         FileSink::open,
     )?;
-    let report = toroid::toroid_report(&args.request())?;
+    let report = toroid::toroid_report(&request)?;
     if let Some(sink) = scene {
         sink.finish_with(tensegrity_io::scene::to_toml(&report.structure))?;
     }
@@ -120,15 +97,15 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_toroid(args, &report);
+        print_toroid(&request, &report);
     }
     Ok(())
 }
 
-fn print_toroid(args: &ToroidArgs, r: &ToroidReport) {
+fn print_toroid(args: &ToroidRequest, r: &ToroidReport) {
     println!(
         "toroid n = {} ({}): {} nodes, {} bars, {} strings",
-        args.geometry.sides, r.stabilize, r.nodes, r.bars, r.strings
+        args.wheel.params.sides, r.stabilize, r.nodes, r.bars, r.strings
     );
     println!(
         "rank {}  self-stress states {}  internal mechanisms {}",
@@ -188,12 +165,17 @@ mod tests {
         let Cli::Toroid(t) = Cli::try_parse_from(["t", "toroid"]).unwrap() else {
             unreachable!()
         };
-        assert_eq!(t.request(), ToroidRequest::default());
+        assert_eq!(
+            t.request.request::<ToroidRequest>().unwrap(),
+            ToroidRequest::default()
+        );
     }
 
     #[test]
-    fn an_unknown_stabilising_option_is_a_usage_error() {
+    fn bad_values_are_usage_errors() {
         let err = Cli::try_parse_from(["t", "toroid", "--stabilize", "wheels"]).unwrap_err();
         assert!(err.to_string().contains("wheels"), "{err}");
+        let alone = Cli::try_parse_from(["t", "toroid", "--string-stiffness", "1e4"]);
+        assert!(alone.unwrap_err().to_string().contains("--export-scene"));
     }
 }

@@ -28,11 +28,6 @@ pub fn non_negative(s: &str) -> Result<f64, String> {
     rule(validate::non_negative("value", number(s)?))
 }
 
-/// A finite number of either sign.
-pub fn finite(s: &str) -> Result<f64, String> {
-    rule(validate::finite("value", number(s)?))
-}
-
 /// A count of at least 2 (grid points).
 pub fn at_least_two(s: &str) -> Result<usize, String> {
     let n: usize = s
@@ -53,8 +48,7 @@ mod tests {
         assert!(positive("-1").is_err() && positive("inf").is_err() && positive("nan").is_err());
         assert_eq!(non_negative("0"), Ok(0.0));
         assert!(non_negative("-5").is_err());
-        assert_eq!(finite("-3.5"), Ok(-3.5));
-        assert!(finite("abc").unwrap_err().contains("not a number"));
+        assert!(positive("abc").unwrap_err().contains("not a number"));
         assert_eq!(at_least_two("2"), Ok(2));
         assert!(at_least_two("0").is_err() && at_least_two("-1").is_err());
     }

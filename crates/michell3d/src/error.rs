@@ -70,6 +70,13 @@ pub enum MichellError {
         /// Number of nodes.
         count: usize,
     },
+    /// No prestress of the extra strings keeps these members from changing sign over the
+    /// nominal region (an `auto` prestress has no value; give one to analyse it).
+    #[error("no extra-string prestress keeps members {members:?} from changing sign over the nominal region: give the prestress (N) to analyse a chosen one")]
+    NoExtraPrestress {
+        /// The members no prestress holds (base member indices).
+        members: Vec<usize>,
+    },
     /// An error from the core crate (e.g. an unknown material name).
     #[error(transparent)]
     Core(#[from] tensegrity_core::CoreError),

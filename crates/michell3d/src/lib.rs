@@ -55,6 +55,7 @@ pub mod planar;
 pub mod propagation;
 pub mod recursive;
 pub mod report;
+pub mod request;
 pub mod signmap;
 pub mod sizing;
 pub mod solution;
@@ -70,6 +71,10 @@ pub use nodes::NodeTuple;
 pub use params::{Geometry, MichellParams};
 pub use propagation::{propagate, propagate_recursive, ForceSolution, Method};
 pub use report::{analyse, AnalysisRequest, MichellAnalysis, MichellReport};
+pub use request::{
+    ExtraStringsCheck, ExtraStringsPrestress, MichellOptimizeRequest, MichellRequest, MichellRun,
+    MichellTable, MichellTableRequest,
+};
 pub use signmap::{sign_map_rows, sign_maps, AngleGrid, SignMap, SignMapBasis, SignMapRow};
 pub use sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 pub use truss::{Branch, Member, MichellTruss, Node};

@@ -110,7 +110,7 @@ impl OptimizeRequest {
                 "joint_mass",
                 0.0,
                 "an optimal complexity needs a joint mass > 0 (without one the mass decreases \
-                 with q towards Michell's continuum): give --complexity or --joint-mass",
+                 with q towards Michell's continuum): give complexity or joint_mass",
             )),
             None if self.max_complexity == 0 => {
                 Err(invalid("max_complexity", 0.0, "must be at least 1"))

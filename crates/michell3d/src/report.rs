@@ -81,8 +81,9 @@ pub struct MemberReport {
     pub radius: f64,
     /// Sized mass (kg): yield for strings, max(yield, buckling) for bars.
     pub mass: f64,
-    /// `"yield"`, `"buckling"` or `"unloaded"`.
-    pub governing: &'static str,
+    /// What sets the size: `"yield"`, `"buckling"` or `"unloaded"`.
+    #[serde(serialize_with = "serialize_governing")]
+    pub governing: Governing,
 }
 
 /// Total masses (kg).
@@ -208,13 +209,20 @@ fn member_forces(
     Ok(out)
 }
 
-/// The name of a governing failure mode in the report.
-fn governing_name(g: Governing) -> &'static str {
+/// The name of a governing failure mode in the report: `yield`, `buckling`, `unloaded`.
+pub fn governing_name(g: Governing) -> &'static str {
     match g {
         Governing::Yield => "yield",
         Governing::Buckling => "buckling",
         Governing::Unloaded => "unloaded",
     }
+}
+
+fn serialize_governing<S: serde::Serializer>(
+    g: &Governing,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    s.serialize_str(governing_name(*g))
 }
 
 /// One report row per member of `f`, sized by `sizing`.
@@ -223,8 +231,8 @@ fn member_rows(truss: &MichellTruss, f: &MemberForces, sizing: &TrussSizing) -> 
         .map(|j| {
             let s = sizing.members[j];
             let (radius, mass, governing) = match s.size {
-                Some(sz) => (sz.radius, sz.mass, governing_name(sz.governing)),
-                None => (0.0, 0.0, "unloaded"),
+                Some(sz) => (sz.radius, sz.mass, sz.governing),
+                None => (0.0, 0.0, Governing::Unloaded),
             };
             MemberReport {
                 parent: truss.label(f.ends[j].0),

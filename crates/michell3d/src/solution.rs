@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use serde::Serialize;
 
 /// Which solver to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Level-by-level method of joints (default).

@@ -1,12 +1,15 @@
 //! # sweeps
 //!
-//! Parameter studies over the library crates of the tensegrity toolkit: a TOML spec names a
-//! study (`toroid`, `roll`, `tipover`, `michell`, `integrators`), fixed values, axes (lists,
-//! linear or logarithmic ranges) and derived rules ([`spec`], [`expr`]); the cases — the
-//! Cartesian product of the axes, last axis fastest, ids stable — run in parallel on a rayon
-//! pool, each building the same library request as its single-point command
-//! ([`studies`]), and their rows stream to a CSV in case order ([`run`], [`table`]), so the
-//! file is the same byte for byte for any thread count, any split into shards
+//! Parameter studies over any command of the engine: a TOML spec names a study — a command of
+//! [`tensegrity_engine::registry`] (`toroid`, `roll`, `tipover`, `tipover_dynamic`,
+//! `tipover_rolling` alias `lean`, `michell`, `michell_optimize`, `michell_table`, `tbar`,
+//! `integrators`) — fixed values, axes (lists, linear or logarithmic ranges) and derived rules
+//! ([`spec`], [`expr`]), every name a field of the command's request
+//! ([`tensegrity_core::request::Param`]); the cases — the Cartesian product of the axes, last
+//! axis fastest, ids stable — run in parallel on a rayon pool, each through the registry's
+//! `run` (the same request and library call as the single-point command: no per-field code
+//! here, [`values`]), and their rows stream to a CSV in case order ([`run`], [`table`]), so
+//! the file is the same byte for byte for any thread count, any split into shards
 //! ([`Shard`], [`merge()`]) and any interruption finished with `resume`.
 //!
 //! Each row holds the scalars of the single-point report (`tensegrity toroid --json`, …) for
@@ -42,14 +45,16 @@ pub mod error;
 pub mod expr;
 pub mod grids;
 pub mod merge;
-pub mod params;
 pub mod run;
 pub mod spec;
-pub mod studies;
 pub mod table;
+pub mod values;
 
 pub use error::{Result, SweepError};
 pub use merge::{merge, MergeSummary};
 pub use run::{run, Progress, RunOptions, Shard, Silent, Summary};
 pub use spec::{Spec, MAX_CASES};
-pub use studies::Study;
+pub use tensegrity_engine::{Column, Context};
+
+/// A study: the registry's command of the spec's `study` name.
+pub type Study = &'static tensegrity_engine::Command;

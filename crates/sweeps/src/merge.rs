@@ -35,7 +35,7 @@ fn read_input(path: &Path) -> Result<Input> {
     let bytes = std::fs::read(path).map_err(SweepError::io("reading", path))?;
     if bytes.last() != Some(&b'\n') {
         return Err(bad(
-            "it is empty or its last row is incomplete (finish it with resume)".into(),
+            "it is empty or its last row is incomplete (finish it by resuming its sweep)".into(),
         ));
     }
     let mut lines = bytes.split_inclusive(|&b| b == b'\n');

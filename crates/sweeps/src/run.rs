@@ -21,8 +21,8 @@
 
 use crate::error::{Result, SweepError};
 use crate::spec::Spec;
-use crate::studies::Context;
 use crate::table;
+use crate::Context;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek, Write};
@@ -378,7 +378,12 @@ impl Shared<'_> {
         let case = self.spec.case(id);
         let result = case.params.and_then(|p| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                self.spec.study.report(&p, &self.ctx)
+                self.spec.study.run(p, &self.ctx).map_err(|e| match e {
+                    tensegrity_engine::RunError::InvalidParameter(p) => {
+                        SweepError::from(p).to_string()
+                    }
+                    other => other.to_string(),
+                })
             }))
             .unwrap_or_else(|panic| {
                 let msg = panic

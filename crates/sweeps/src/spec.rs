@@ -1,7 +1,7 @@
 //! Sweep spec files (TOML, unknown keys rejected) and the cases they describe.
 //!
 //! ```toml
-//! study = "michell"                 # toroid | roll | tipover | michell | integrators
+//! study = "michell"                 # any command of the engine's registry (toroid, roll, …)
 //! [fixed]                           # one value for every case
 //! beta = "pi/6"
 //! spherical = "pi/48"
@@ -29,10 +29,12 @@
 
 use crate::error::{Result, SweepError};
 use crate::expr::Expr;
-use crate::params::{numeric, Params, Value};
-use crate::studies::{Column, Study};
+use crate::values::{self, from_toml, numeric, written};
+use crate::{Column, Study};
 use serde::Deserialize;
+use serde_json::{Map, Value};
 use std::collections::{BTreeMap, BTreeSet};
+use tensegrity_core::request::Param;
 
 /// Largest number of cases a spec may describe.
 pub const MAX_CASES: u64 = 100_000_000;
@@ -59,7 +61,7 @@ pub struct Axis {
 /// A parsed and checked spec.
 #[derive(Debug, Clone)]
 pub struct Spec {
-    /// The study.
+    /// The study: the registry's command of that name.
     pub study: Study,
     /// `[fixed]` values.
     pub fixed: BTreeMap<String, Value>,
@@ -109,8 +111,8 @@ pub struct Case {
     pub id: usize,
     /// The axis texts, one per axis.
     pub axis_texts: Vec<String>,
-    /// The case's parameters, or the message of a derived rule that failed.
-    pub params: std::result::Result<Params, String>,
+    /// The case's values by parameter name, or the message of a derived rule that failed.
+    pub params: std::result::Result<Map<String, Value>, String>,
 }
 
 impl Spec {
@@ -121,7 +123,11 @@ impl Spec {
             message: e.to_string(),
         };
         let raw: RawSpec = toml::from_str(text).map_err(spec_err)?;
-        let study = Study::from_name(&raw.study)?;
+        let study =
+            tensegrity_engine::command(&raw.study).ok_or_else(|| SweepError::UnknownStudy {
+                study: raw.study.clone(),
+                known: tensegrity_engine::registry::names(),
+            })?;
         let fixed = fixed_values(study, &raw.fixed)?;
         let axes = axes(study, text, &raw.axes)?;
         for a in &axes {
@@ -154,13 +160,13 @@ impl Spec {
     }
 
     fn check_required(&self) -> Result<()> {
-        for p in self.study.params().iter().filter(|p| p.required) {
+        for p in self.study.params().into_iter().filter(|p| p.required) {
             let given = self.fixed.contains_key(p.name)
                 || self.axes.iter().any(|a| a.name == p.name)
                 || self.derived.iter().any(|(n, _)| n == p.name);
             if !given {
                 return Err(SweepError::MissingParameter {
-                    study: self.study.name(),
+                    study: self.study.name,
                     name: p.name,
                 });
             }
@@ -207,23 +213,24 @@ impl Spec {
     /// Case `id`: fixed values, its axis values, then the derived rules.
     pub fn case(&self, id: usize) -> Case {
         let digits = self.digits(id);
-        let mut values = self.fixed.clone();
+        let mut values: Map<String, Value> = self.fixed.clone().into_iter().collect();
         for (a, &d) in self.axes.iter().zip(&digits) {
             values.insert(a.name.clone(), a.values[d].value.clone());
         }
         let axis_texts = self.axis_texts(id);
-        let mut params = Params::new(values);
         let mut failed = None;
         for (name, e) in &self.derived {
             let lookup = |n: &str| {
-                let kind = self.study.param(n)?.kind;
-                Some(params.get(n).map_or_else(
+                let p = self.study.param(n)?;
+                Some(values.get(n).map_or_else(
                     || Err(format!("`{n}` has no value")),
-                    |v| numeric(n, kind, v).map_err(|e| e.to_string()),
+                    |v| numeric(&p, v).map_err(|e| e.to_string()),
                 ))
             };
             match e.eval(&lookup) {
-                Ok(x) => params.set(name, Value::Float(x)),
+                Ok(x) => {
+                    values.insert(name.clone(), values::number(x));
+                }
                 Err(msg) => {
                     failed = Some(format!("derived `{name}`: {msg}"));
                     break;
@@ -233,7 +240,7 @@ impl Spec {
         Case {
             id,
             axis_texts,
-            params: failed.map_or(Ok(params), Err),
+            params: failed.map_or(Ok(values), Err),
         }
     }
 }
@@ -246,28 +253,28 @@ fn duplicate(name: &str, first: &'static str, second: &'static str) -> SweepErro
     }
 }
 
-fn check_name(study: Study, section: &'static str, name: &str) -> Result<()> {
-    if study.param(name).is_some() {
-        return Ok(());
-    }
-    Err(SweepError::UnknownParameter {
-        study: study.name(),
-        section,
-        name: name.to_string(),
-        known: study
-            .params()
-            .iter()
-            .map(|p| p.name)
-            .collect::<Vec<_>>()
-            .join(", "),
-    })
+/// The parameter `name` of the study, or the error naming the known ones.
+fn check_name(study: Study, section: &'static str, name: &str) -> Result<Param> {
+    study
+        .param(name)
+        .ok_or_else(|| SweepError::UnknownParameter {
+            study: study.name,
+            section,
+            name: name.to_string(),
+            known: study
+                .params()
+                .iter()
+                .map(|p| p.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
 }
 
 fn fixed_values(study: Study, table: &toml::Table) -> Result<BTreeMap<String, Value>> {
     let mut out = BTreeMap::new();
     for (name, v) in table {
-        check_name(study, "fixed", name)?;
-        let value = Value::from_toml(v).ok_or_else(|| SweepError::InvalidValue {
+        let p = check_name(study, "fixed", name)?;
+        let value = from_toml(v, p.kind.is_list()).ok_or_else(|| SweepError::InvalidValue {
             name: name.clone(),
             value: v.to_string(),
             reason: "a fixed value is a number, a string or a boolean (lists go in [axes])".into(),
@@ -282,12 +289,14 @@ fn axes(study: Study, text: &str, table: &toml::Table) -> Result<Vec<Axis>> {
     let spans = axis_spans(text)?;
     let mut out = Vec::new();
     for (name, item_spans) in spans {
-        check_name(study, "axes", &name)?;
+        let p = check_name(study, "axes", &name)?;
         let v = table.get(&name).ok_or_else(|| SweepError::Spec {
             message: format!("axis `{name}` not found"),
         })?;
         let values = match v {
-            toml::Value::Array(items) => list_values(&name, items, &item_spans, text)?,
+            toml::Value::Array(items) => {
+                list_values(&name, items, &item_spans, text, p.kind.is_list())?
+            }
             toml::Value::Table(t) => {
                 let r: RawRange = t.clone().try_into().map_err(|e: toml::de::Error| {
                     axis_err(
@@ -346,23 +355,24 @@ fn list_values(
     items: &[toml::Value],
     spans: &[std::ops::Range<usize>],
     text: &str,
+    lists: bool,
 ) -> Result<Vec<AxisValue>> {
     items
         .iter()
         .enumerate()
         .map(|(i, item)| {
-            let value = Value::from_toml(item).ok_or_else(|| {
+            let value = from_toml(item, lists).ok_or_else(|| {
                 axis_err(
                     name,
                     format!("item {} is not a number, string or boolean", i + 1),
                 )
             })?;
             let text = match (&value, spans.get(i)) {
-                (Value::Text(s), _) => s.clone(),
+                (Value::String(s), _) => s.clone(),
                 (_, Some(span)) => text
                     .get(span.clone())
-                    .map_or_else(|| value.written(), |t| t.trim().to_string()),
-                (_, None) => value.written(),
+                    .map_or_else(|| written(&value), |t| t.trim().to_string()),
+                (_, None) => written(&value),
             };
             Ok(AxisValue { value, text })
         })
@@ -457,12 +467,12 @@ fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
         .into_iter()
         .map(|x| {
             let value = if integers {
-                Value::Integer(x as i64)
+                Value::from(x as i64)
             } else {
-                Value::Float(x)
+                values::number(x)
             };
             AxisValue {
-                text: value.written(),
+                text: written(&value),
                 value,
             }
         })
@@ -479,7 +489,7 @@ fn derived_rules(
 ) -> Result<Vec<(String, Expr)>> {
     let mut rules = BTreeMap::new();
     for (name, v) in table {
-        check_name(study, "derived", name)?;
+        let param = check_name(study, "derived", name)?;
         let bad = |reason: String| SweepError::InvalidDerived {
             name: name.clone(),
             reason,
@@ -490,7 +500,7 @@ fn derived_rules(
         if axes.iter().any(|a| &a.name == name) {
             return Err(duplicate(name, "axes", "derived"));
         }
-        if !study.param(name).is_some_and(|p| p.kind.is_numeric()) {
+        if !param.kind.is_numeric() {
             return Err(bad("only numeric parameters can be derived".into()));
         }
         let e = match v {
@@ -547,7 +557,7 @@ fn order_rules(rules: BTreeMap<String, Expr>) -> Result<Vec<(String, Expr)>> {
 }
 
 fn columns(study: Study, wanted: Option<Vec<String>>) -> Result<Vec<Column>> {
-    let all = study.columns();
+    let all = study.columns;
     let Some(wanted) = wanted else {
         return Ok(all.to_vec());
     };
@@ -558,7 +568,7 @@ fn columns(study: Study, wanted: Option<Vec<String>>) -> Result<Vec<Column>> {
                 .find(|c| c.name == w)
                 .copied()
                 .ok_or_else(|| SweepError::UnknownColumn {
-                    study: study.name(),
+                    study: study.name,
                     column: w.clone(),
                     known: all.iter().map(|c| c.name).collect::<Vec<_>>().join(", "),
                 })

@@ -86,9 +86,13 @@ pub fn scalar(v: &serde_json::Value) -> Option<String> {
     })
 }
 
-/// The value at a `.`-joined key path of a JSON object.
+/// The value at a `.`-joined key path of a JSON object; a number indexes an array
+/// (`rows.0.tbar.mean_speed`: the first row's).
 pub fn lookup<'a>(v: &'a serde_json::Value, path: &str) -> Option<&'a serde_json::Value> {
-    path.split('.').try_fold(v, |v, key| v.get(key))
+    path.split('.').try_fold(v, |v, key| match v {
+        serde_json::Value::Array(items) => key.parse::<usize>().ok().and_then(|i| items.get(i)),
+        _ => v.get(key),
+    })
 }
 
 /// The row of one case: `case`, the axis texts, the results (or empty fields and the error).

@@ -166,7 +166,7 @@ pub struct CriticalMember {
     /// Member index (bars first, then strings).
     pub member: usize,
     /// `bar` or `string`.
-    pub kind: &'static str,
+    pub kind: michell3d::MemberKind,
     /// Index among the members of its kind.
     pub index: usize,
     /// Labels of its two nodes (start, end).
@@ -326,7 +326,11 @@ fn critical_member(
     let ends = member_ends(response, k, labels);
     CriticalMember {
         member: k,
-        kind: if response.is_bar(k) { "bar" } else { "string" },
+        kind: if response.is_bar(k) {
+            michell3d::MemberKind::Bar
+        } else {
+            michell3d::MemberKind::String
+        },
         index: if response.is_bar(k) {
             k
         } else {

@@ -6,6 +6,34 @@
 //! returns a `Serialize` report. Commands that compose several topology crates (the T-bar
 //! wheel rolling beside the toroid of the same size) are composed here, since topology
 //! crates never depend on each other.
+//!
+//! The [`registry`] names every command that takes a request, with its parameters, the
+//! scalar result columns of its report ([`columns`]) and a `run` from named JSON values to
+//! the report as JSON; the sweeps run any of them as a study of the same name.
+//!
+//! | command (study) | request | library call |
+//! |---|---|---|
+//! | `toroid` | [`toroid::ToroidRequest`] | [`toroid::toroid_report`] |
+//! | `roll` | [`toroid::RollRequest`] | [`toroid::roll`] |
+//! | `tipover` | [`toroid::TipoverRequest`] | [`toroid::tipover_report`] |
+//! | `tipover_dynamic` | [`toroid::TipoverDynamicRequest`] | its `run` |
+//! | `tipover_rolling` (alias `lean`) | [`toroid::TipoverRollingRequest`] | its `run` |
+//! | `michell` | [`michell3d::MichellRequest`] | its `run` (extra strings resolved) |
+//! | `michell_optimize` | [`michell3d::MichellOptimizeRequest`] | [`michell3d::optimize::optimize`] |
+//! | `michell_table` | [`michell3d::MichellTableRequest`] | [`michell3d::mass_vs_complexity`] |
+//! | `integrators` | [`integrators::IntegratorsRequest`] | [`integrators::point`] |
+//! | `tbar` | [`tbar_wheel::TbarStaticRequest`] | [`tbar_wheel::tbar_report`] |
+//! | `tbar_roll` | [`tbar_wheel::TbarRollRequest`] | [`tbar_roll::tbar_roll`] (the toroid column composed here) |
 #![warn(missing_docs)]
 
+pub mod columns;
+mod entries;
+pub mod integrators;
+pub mod registry;
 pub mod tbar_roll;
+
+pub use integrators::Context;
+pub use registry::{col, command, commands, entry, entry_in, Column, Command, RunError};
+
+#[cfg(test)]
+mod tests;

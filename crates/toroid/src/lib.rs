@@ -25,6 +25,7 @@ mod error;
 mod inertia;
 mod params;
 pub mod report;
+pub mod request;
 pub mod roll;
 pub mod rolling_lean;
 mod symmetry;
@@ -40,9 +41,10 @@ pub use error::{Result, ToroidError};
 pub use inertia::{bar_inertia, bar_inertia_thesis, wheel_inertia, wheel_mass};
 pub use params::{Stabilize, ToroidParams};
 pub use report::{
-    tipover_report, toroid_report, TipoverReport, TipoverRequest, ToroidReport, ToroidRequest,
-    WheelSpec,
+    tipover_report, toroid_report, Stabilized, TipoverReport, TipoverRequest, ToroidReport,
+    ToroidRequest, WheelSpec,
 };
+pub use request::{TipoverDynamicRequest, TipoverRollingRequest};
 pub use roll::{
     roll, roll_observed, roll_with_frames, rolling_series, RollReport, RollRequest, ToroidWheel,
 };

@@ -4,7 +4,7 @@ use crate::error::{Result, ToroidError};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
-use tensegrity_core::request::{Param, Rule};
+use tensegrity_core::request::Param;
 
 /// Geometry of the toroid: n sides, outer/inner tread widths T, t, tread offset D, outer,
 /// inner and rim radii R_o, R_i, R_m (all lengths in m). Serialised flat (inside a request:
@@ -49,10 +49,11 @@ impl ToroidParams {
         rim_radius: 0.8,
     };
 
-    /// One [`Param`] per field (named as the fields; lengths in m).
+    /// One [`Param`] per field (named as the fields; lengths in m). `sides` has no range rule
+    /// of its own: the builder refuses n < 3 in its own words.
     pub fn params() -> Vec<Param> {
         vec![
-            Param::count("sides", "Number of sides (prisms) n").rule(Rule::AtLeast(3.0)),
+            Param::count("sides", "Number of sides (prisms) n, at least 3"),
             Param::number("outer_tread", "m", "Outer tread width T").positive(),
             Param::number("inner_tread", "m", "Inner tread width t").positive(),
             Param::number("offset", "m", "Tread offset D").non_negative(),
@@ -213,24 +214,6 @@ impl FromStr for Stabilize {
     }
 }
 
-impl fmt::Display for Stabilize {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let names: Vec<&str> = [
-            (self.spokes, "spokes"),
-            (self.inner, "inner"),
-            (self.outer, "outer"),
-        ]
-        .into_iter()
-        .filter_map(|(on, name)| on.then_some(name))
-        .collect();
-        if names.is_empty() {
-            write!(f, "none")
-        } else {
-            write!(f, "{}", names.join(","))
-        }
-    }
-}
-
 impl Serialize for Stabilize {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         s.collect_str(self)
@@ -250,5 +233,23 @@ impl<'de> Deserialize<'de> for Stabilize {
     fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
         let text = String::deserialize(d)?;
         text.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+impl fmt::Display for Stabilize {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<&str> = [
+            (self.spokes, "spokes"),
+            (self.inner, "inner"),
+            (self.outer, "outer"),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect();
+        if names.is_empty() {
+            write!(f, "none")
+        } else {
+            write!(f, "{}", names.join(","))
+        }
     }
 }

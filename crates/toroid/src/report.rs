@@ -15,7 +15,7 @@ use crate::inertia::wheel_mass;
 use crate::params::{Stabilize, ToroidParams};
 use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Serialize, Serializer};
 use tensegrity_core::request::Param;
 use tensegrity_core::Structure;
 
@@ -127,10 +127,12 @@ impl WheelSpec {
     }
 }
 
-/// What [`toroid_report`] analyses.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What [`toroid_report`] analyses (the request of `toroid`, see [`crate::request`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct ToroidRequest {
     /// The wheel.
+    #[serde(flatten)]
     pub wheel: WheelSpec,
     /// Analyse a single prism (six nodes, K6) instead of the whole wheel.
     pub prism_only: bool,
@@ -156,6 +158,31 @@ impl Default for ToroidRequest {
     }
 }
 
+/// What a [`ToroidReport`] analysed: a wheel with its stabilising options, or one prism.
+/// Serialised as text: the options (`"spokes,inner"`) or `"prism"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stabilized {
+    /// The whole wheel with these stabilising string sets.
+    Wheel(Stabilize),
+    /// A single prism (six nodes, K6).
+    Prism,
+}
+
+impl std::fmt::Display for Stabilized {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Stabilized::Wheel(s) => s.fmt(f),
+            Stabilized::Prism => f.write_str("prism"),
+        }
+    }
+}
+
+impl Serialize for Stabilized {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 /// The statics, mass and inertia of one toroid; serialises to the JSON of `tensegrity toroid`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ToroidReport {
@@ -165,8 +192,8 @@ pub struct ToroidReport {
     pub bars: usize,
     /// String count.
     pub strings: usize,
-    /// The stabilising options (`"prism"` for a single prism).
-    pub stabilize: String,
+    /// The stabilising options (`"spokes,inner"`, …), or `"prism"` for a single prism.
+    pub stabilize: Stabilized,
     /// Rank of the equilibrium matrix.
     pub rank: usize,
     /// Dimension of the self-stress space.
@@ -247,9 +274,9 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
         bars: a.bars,
         strings: a.strings,
         stabilize: if request.prism_only {
-            "prism".into()
+            Stabilized::Prism
         } else {
-            t.stabilize.to_string()
+            Stabilized::Wheel(t.stabilize)
         },
         rank: a.rank,
         self_stress_dim: a.self_stress_dim,
@@ -266,22 +293,54 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
     })
 }
 
-/// What [`tipover_report`] analyses.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What [`tipover_report`] analyses (the request of `tipover`, see [`crate::request`]).
+///
+/// σ = R_i/R_o and ε = t/T (thesis §3.3.2, Fig. 3.13) may be given instead of the inner
+/// radius and tread: they set R_i = σ R_o and t = ε T of the wheel ([`Self::wheel_spec`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct TipoverRequest {
     /// The wheel.
+    #[serde(flatten)]
     pub wheel: WheelSpec,
     /// Gravity (m/s²).
     pub gravity: f64,
+    /// σ = R_i/R_o: sets the inner radius to σ R_o.
+    pub sigma: Option<f64>,
+    /// ε = t/T: sets the inner tread to ε T.
+    pub epsilon: Option<f64>,
 }
 
 impl Default for TipoverRequest {
-    /// The reference wheel under [`defaults::GRAVITY`].
+    /// The reference wheel under [`defaults::GRAVITY`], no σ or ε.
     fn default() -> Self {
         Self {
             wheel: WheelSpec::default(),
             gravity: defaults::GRAVITY,
+            sigma: None,
+            epsilon: None,
         }
+    }
+}
+
+impl TipoverRequest {
+    /// The wheel analysed: [`Self::wheel`] with R_i = σ R_o and t = ε T where σ, ε are given.
+    ///
+    /// ```
+    /// use toroid::TipoverRequest;
+    /// let r = TipoverRequest { sigma: Some(0.5), epsilon: Some(0.25), ..Default::default() };
+    /// let p = r.wheel_spec().params;
+    /// assert_eq!((p.inner_radius, p.inner_tread), (0.5, 0.1));
+    /// ```
+    pub fn wheel_spec(&self) -> WheelSpec {
+        let mut w = self.wheel;
+        if let Some(s) = self.sigma {
+            w.params.inner_radius = s * w.params.outer_radius;
+        }
+        if let Some(e) = self.epsilon {
+            w.params.inner_tread = e * w.params.outer_tread;
+        }
+        w
     }
 }
 
@@ -316,7 +375,7 @@ pub struct TipoverReport {
 /// assert!((r.critical_lateral_force - 0.5 * r.mass_kg * 9.81 * 0.4).abs() < 1e-12);
 /// ```
 pub fn tipover_report(request: &TipoverRequest) -> Result<TipoverReport> {
-    let t = request.wheel.build()?;
+    let t = request.wheel_spec().build()?;
     let mass = wheel_mass(&t.structure);
     let r = tipover(&t.params, mass, request.gravity)?;
     Ok(TipoverReport {

@@ -40,8 +40,10 @@ use tensegrity_core::dynamics::{
     Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 
-/// Settings of a dynamic tip-over run.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Settings of a dynamic tip-over run (flat serde form, flattened into
+/// [`crate::request::TipoverDynamicRequest`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct DynamicTipover {
     /// Gravity (m/s²).
     pub gravity: f64,

@@ -5,7 +5,7 @@ use super::{MichellArgs, MichellTableArgs};
 use crate::cli::output;
 use anyhow::Result;
 use michell3d::signmap::AngleGrid;
-use michell3d::{AnalysisRequest, MichellTruss};
+use michell3d::{AnalysisRequest, MichellTableRequest, MichellTruss};
 use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::sink::{FigureSink, FileSink};
 
@@ -35,7 +35,7 @@ pub fn write_sign_maps(
     let maps = sign_maps(
         truss,
         &args.map_members,
-        args.load,
+        request.load,
         AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, na),
         AngleGrid::new(0.0, std::f64::consts::PI, np),
         request.method,
@@ -70,8 +70,8 @@ pub fn write_gamma_sweep(
     let sweep = gamma_sweep(
         truss,
         &strings,
-        args.load,
-        args.azimuth,
+        request.load,
+        request.azimuth,
         AngleGrid::new(0.0, 2.0 * std::f64::consts::PI, 721),
         prestress,
         request.method,
@@ -99,18 +99,12 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     use michell3d::complexity::FIG_4_18_DELTAS;
     use sweeps::grids::mass_vs_complexity;
     use tensegrity_io::csv::write_mass_table;
-    if args.max_complexity < 2 {
-        anyhow::bail!(
-            "--max-complexity must be at least 2, got {}",
-            args.max_complexity
-        );
-    }
-    let material =
-        *tensegrity_core::MaterialTable::builtin().lookup(&args.material, "--material")?;
+    let request: MichellTableRequest = args.request.request()?;
+    let material = request.material()?;
     let out = output::open("--out", args.out.as_deref(), FileSink::open)?;
     let svg = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
-    let qs: Vec<usize> = (2..=args.max_complexity).collect();
-    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, args.load, &material)?;
+    let qs = request.complexities();
+    let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, request.load, &material)?;
     match out {
         Some(mut sink) => {
             sink.write_with(|w| write_mass_table(w, &rows))?;
@@ -123,13 +117,13 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         }
     }
     if let Some(sink) = svg {
-        sink.finish(&Figure::new(vec![mass_panel(args, &rows)]))?;
+        sink.finish(&Figure::new(vec![mass_panel(&request, &rows)]))?;
     }
     Ok(())
 }
 
 /// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
-fn mass_panel(args: &MichellTableArgs, rows: &[michell3d::MassRow]) -> Panel {
+fn mass_panel(args: &MichellTableRequest, rows: &[michell3d::MassRow]) -> Panel {
     let series = |delta: f64, label: String| {
         let points = rows
             .iter()

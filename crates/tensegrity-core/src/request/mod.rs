@@ -66,12 +66,17 @@ pub trait Request: Serialize + DeserializeOwned + Default + Clone + Send + Sync 
         Ok(())
     }
 
-    /// The per-field rules, then [`Request::check`].
+    /// The per-field rules (a [`Param::required`] field must be set), then
+    /// [`Request::check`].
     fn validate(&self) -> Result<(), InvalidParameter> {
         let values = self.values();
         for p in Self::params() {
-            if let Some(v) = values.get(p.name) {
-                p.check(v)?;
+            match values.get(p.name) {
+                Some(Value::Null) | None if p.required => {
+                    return Err(InvalidParameter::raw(p.name, "(unset)", "must be given"))
+                }
+                Some(v) => p.check(v)?,
+                None => {}
             }
         }
         self.check()
@@ -103,7 +108,8 @@ pub trait Request: Serialize + DeserializeOwned + Default + Clone + Send + Sync 
         K: AsRef<str>,
     {
         let params = Self::params();
-        let mut map = Self::defaults();
+        let defaults = Self::defaults();
+        let mut map = defaults.clone();
         for (name, value) in values {
             let name = name.as_ref();
             let Some(p) = params.iter().find(|p| p.name == name) else {
@@ -120,18 +126,38 @@ pub trait Request: Serialize + DeserializeOwned + Default + Clone + Send + Sync 
             };
             map.insert(name.to_string(), p.normalize(&value)?);
         }
-        let request: Self = serde_json::from_value(Value::Object(map)).map_err(|e| {
-            InvalidParameter::raw(Self::NAME, "(request)", format!("does not read: {e}"))
-        })?;
+        let request: Self = serde_json::from_value(Value::Object(map.clone()))
+            .map_err(|e| unreadable::<Self>(&defaults, &map, e))?;
         request.validate()?;
         Ok(request)
     }
 }
 
+/// The error of values that do not deserialise (a text field the request parses itself, such
+/// as `stabilize = "wheels"`): the first field that fails alone over the defaults, named.
+fn unreadable<R: Request>(
+    defaults: &Map<String, Value>,
+    map: &Map<String, Value>,
+    e: serde_json::Error,
+) -> InvalidParameter {
+    for (name, value) in map.iter().filter(|(k, v)| defaults.get(*k) != Some(*v)) {
+        let mut one = defaults.clone();
+        one.insert(name.clone(), value.clone());
+        if let Err(e) = serde_json::from_value::<R>(Value::Object(one)) {
+            return match value {
+                Value::String(s) => InvalidParameter::text(name.clone(), s, e.to_string()),
+                other => InvalidParameter::raw(name.clone(), other, e.to_string()),
+            };
+        }
+    }
+    InvalidParameter::raw(R::NAME, "(request)", format!("does not read: {e}"))
+}
+
 /// Checks that the description of `R` matches its fields: every serialised field has exactly
 /// one [`Param`] of the same name and every [`Param`] a field, and the defaults pass the
-/// validation. Each request's tests call it, so a field cannot be added without its
-/// description.
+/// validation (a request with [`Param::required`] fields has no complete default: then each
+/// set default passes its field's rule, and the required ones default to `null`). Each
+/// request's tests call it, so a field cannot be added without its description.
 pub fn check_description<R: Request>() -> Result<(), String> {
     let fields: Vec<String> = R::defaults().keys().cloned().collect();
     let params = R::params();
@@ -146,8 +172,9 @@ pub fn check_description<R: Request>() -> Result<(), String> {
     if let Some(n) = names.iter().find(|n| !fields.iter().any(|f| f == *n)) {
         return Err(format!("{}: `{n}` is described but is no field", R::NAME));
     }
+    let defaults = R::defaults();
     for p in &params {
-        let v = &R::defaults()[p.name];
+        let v = &defaults[p.name];
         if v.is_null() && !p.optional {
             return Err(format!(
                 "{}: `{}` defaults to null but is not optional",
@@ -155,8 +182,64 @@ pub fn check_description<R: Request>() -> Result<(), String> {
                 p.name
             ));
         }
+        if p.required && !v.is_null() {
+            return Err(format!(
+                "{}: `{}` is required but has a default",
+                R::NAME,
+                p.name
+            ));
+        }
+        p.check(v)
+            .map_err(|e| format!("{}: the default is invalid: {e}", R::NAME))?;
+    }
+    if params.iter().any(|p| p.required) {
+        return Ok(());
     }
     R::default()
         .validate()
         .map_err(|e| format!("{}: the defaults are invalid: {e}", R::NAME))
+}
+
+/// The one rule of mutually exclusive fields (`planar`, `cylindrical`, `spherical`): at most
+/// one of `given` (each field's name and, when it is set, its value as text) may be set, and
+/// with `needed` exactly one. The error names both fields set, or all when none is.
+///
+/// ```
+/// use tensegrity_core::request::exclusive;
+/// let set = |x: &str| Some(x.to_string());
+/// assert!(exclusive(&[("planar", None), ("cylindrical", set("0.25"))], true).is_ok());
+/// let e = exclusive(&[("planar", set("true")), ("cylindrical", set("0.25"))], true);
+/// assert_eq!(
+///     e.unwrap_err().to_string(),
+///     "planar = true: excludes cylindrical = 0.25 (give one of planar, cylindrical)"
+/// );
+/// let e = exclusive(&[("planar", None), ("cylindrical", None)], true).unwrap_err();
+/// assert_eq!(e.to_string(), "planar = (unset): give one of planar, cylindrical");
+/// assert!(exclusive(&[("planar", None), ("cylindrical", None)], false).is_ok());
+/// ```
+pub fn exclusive(
+    given: &[(&'static str, Option<String>)],
+    needed: bool,
+) -> Result<(), InvalidParameter> {
+    let names: Vec<&str> = given.iter().map(|(n, _)| *n).collect();
+    let set: Vec<(&'static str, &String)> = given
+        .iter()
+        .filter_map(|(n, v)| v.as_ref().map(|v| (*n, v)))
+        .collect();
+    match set.as_slice() {
+        [(first, value), (second, other), ..] => Err(InvalidParameter::raw(
+            *first,
+            value,
+            format!(
+                "excludes {second} = {other} (give one of {})",
+                names.join(", ")
+            ),
+        )),
+        [] if needed => Err(InvalidParameter::raw(
+            given.first().map_or("", |g| g.0),
+            "(unset)",
+            format!("give one of {}", names.join(", ")),
+        )),
+        _ => Ok(()),
+    }
 }

@@ -111,6 +111,10 @@ pub struct Param {
     /// Whether the field may be left unset (`null`: the library then derives it, e.g. the
     /// ground damping from the restitution).
     pub optional: bool,
+    /// Whether the field has no default: it is `null` in the request's [`Default`] and a
+    /// front end must be given it (the command line makes the flag required, a sweep spec
+    /// must set it). [`super::Request::validate`] refuses it unset.
+    pub required: bool,
 }
 
 impl Param {
@@ -128,6 +132,7 @@ impl Param {
             help,
             rule: Rule::Any,
             optional: false,
+            required: false,
         }
     }
 
@@ -186,6 +191,25 @@ impl Param {
             optional: true,
             ..self
         }
+    }
+
+    /// Has no default: `null` in the request's [`Default`], and must be given.
+    pub const fn required(self) -> Self {
+        Self {
+            optional: true,
+            required: true,
+            ..self
+        }
+    }
+
+    /// A list of counts (`8,12,16`).
+    pub const fn counts(name: &'static str, help: &'static str) -> Self {
+        Self::new(name, Kind::Counts, "", help)
+    }
+
+    /// A list of numbers (`0.1,0.25`).
+    pub const fn numbers(name: &'static str, unit: &'static str, help: &'static str) -> Self {
+        Self::new(name, Kind::Numbers, unit, help)
     }
 
     /// The value normalised to its kind: counts as integers, numbers and angles as floats

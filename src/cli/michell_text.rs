@@ -1,6 +1,16 @@
-//! The readable report of `tensegrity michell` (members, masses, the geometry and load).
+//! The readable report of `tensegrity michell`: geometry, load and counts, one row per
+//! member, masses, and the extra strings' check (§4.6–4.7).
 
-use michell3d::{MemberKind, Method, MichellReport};
+use michell3d::{ExtraStringsCheck, MemberKind, Method, MichellReport, MichellRun};
+
+/// The readable report of a run: the analysis, then the extra strings' check.
+pub fn report(run: &MichellRun) -> String {
+    let mut s = report_text(&run.analysis.report);
+    if let Some(check) = &run.extra {
+        s += &extra_text(check);
+    }
+    s
+}
 
 fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
     use std::fmt::Write;
@@ -13,7 +23,7 @@ fn member_row(s: &mut String, m: &michell3d::report::MemberReport) {
         m.force_density,
         m.force,
         m.kind.as_str(),
-        m.governing
+        michell3d::report::governing_name(m.governing)
     );
 }
 
@@ -22,8 +32,8 @@ fn tuple(t: &[usize]) -> String {
     format!("({})", parts.join(","))
 }
 
-/// The readable report.
-pub fn text_report(r: &MichellReport) -> String {
+/// The readable report of one analysis.
+pub fn report_text(r: &MichellReport) -> String {
     use std::fmt::Write;
     let mut s = text_header(r);
     let _ = writeln!(
@@ -100,6 +110,29 @@ fn text_header(r: &MichellReport) -> String {
         count(MemberKind::String),
         count(MemberKind::Bar),
         count(MemberKind::None)
+    );
+    s
+}
+
+/// The extra strings' check as text lines.
+fn extra_text(check: &ExtraStringsCheck) -> String {
+    let t = &check.threshold;
+    let mut s = match (t.min_extra_prestress, t.critical_member, t.worst_direction) {
+        (Some(p), Some(m), Some([az, polar])) => format!(
+            "extra strings: min prestress over the nominal region {p:.6} N (member {m}, load \
+             azimuth {az:.6} rad, polar {polar:.6} rad)\n"
+        ),
+        (Some(p), _, _) => {
+            format!("extra strings: min prestress over the nominal region {p:.6} N\n")
+        }
+        _ => format!(
+            "extra strings: members {:?} change sign over the nominal region at any prestress\n",
+            t.unreachable
+        ),
+    };
+    s += &format!(
+        "extra strings: members changing sign over the nominal region: {:?}\n",
+        check.sign_changes
     );
     s
 }

@@ -1,0 +1,24 @@
+//! The entries of the registry: one line per command (library call, result columns).
+
+use crate::columns as c;
+use crate::registry::{entry, entry_in, Command};
+use michell3d::{MichellOptimizeRequest, MichellRequest, MichellTableRequest};
+use tbar_wheel::TbarStaticRequest;
+use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
+
+/// Every command.
+pub(crate) fn all() -> Vec<Command> {
+    vec![
+        entry(toroid::toroid_report, &c::TOROID),
+        entry(toroid::roll, &c::ROLL),
+        entry(toroid::tipover_report, &c::TIPOVER),
+        entry(TipoverDynamicRequest::run, &c::TIPOVER_DYNAMIC),
+        entry(TipoverRollingRequest::run, &c::TIPOVER_ROLLING).alias(&["lean"]),
+        entry(MichellRequest::run, &c::MICHELL),
+        entry(MichellOptimizeRequest::run, &c::MICHELL_OPTIMIZE),
+        entry(MichellTableRequest::run, &c::MICHELL_TABLE),
+        entry_in(crate::integrators::point, &c::INTEGRATORS),
+        entry(TbarStaticRequest::run, &c::TBAR),
+        entry(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
+    ]
+}

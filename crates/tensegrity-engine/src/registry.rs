@@ -1,0 +1,163 @@
+//! The command registry: every command that takes a request, by name (the sweep study of the
+//! same name), with its parameters ([`Request::params`]), the scalar result columns of its
+//! report and a `run` from named JSON values to the report as JSON:
+//!
+//! > values → [`Request::from_values`] → the library call → `serde_json::to_value`.
+//!
+//! An entry is one line: [`entry`] takes the library call (any `fn(&R) -> Result<T, E>` with
+//! `R: Request`, `T: Serialize`), [`entry_in`] one that shares the sweep's [`Context`].
+//!
+//! ```
+//! let c = tensegrity_engine::command("tipover").unwrap();
+//! assert!(c.param("sigma").is_some());
+//! let values = serde_json::json!({"sides": 16}).as_object().unwrap().clone();
+//! let report = c.run(values, &Default::default()).unwrap();
+//! assert!(report["critical_lateral_force"].as_f64().unwrap() > 0.0);
+//! assert_eq!(tensegrity_engine::command("lean").unwrap().name, "tipover_rolling");
+//! ```
+
+use crate::integrators::Context;
+use serde::Serialize;
+use serde_json::{Map, Value};
+use std::fmt::Display;
+use std::sync::OnceLock;
+use tensegrity_core::request::{InvalidParameter, Param, Request};
+
+/// A result column: a scalar of the report, named by its JSON key (a nested key as
+/// `outer.inner`), with its SI unit (`""` when dimensionless or not a number).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Column {
+    /// The JSON key path.
+    pub name: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+}
+
+/// A column.
+pub const fn col(name: &'static str, unit: &'static str) -> Column {
+    Column { name, unit }
+}
+
+/// Why a run gave no report.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RunError {
+    /// A value the request refuses (the request was never run).
+    #[error(transparent)]
+    InvalidParameter(#[from] InvalidParameter),
+    /// The library call failed: its message.
+    #[error("{0}")]
+    Failed(String),
+}
+
+type RunFn = Box<dyn Fn(Map<String, Value>, &Context) -> Result<Value, RunError> + Send + Sync>;
+
+/// One command of the registry.
+pub struct Command {
+    /// The command's and the sweep study's name (`toroid`, `tipover_dynamic`, …).
+    pub name: &'static str,
+    /// Other names a sweep spec may give (`lean` for `tipover_rolling`).
+    pub aliases: &'static [&'static str],
+    /// The scalar result columns of the report, in its key order.
+    pub columns: &'static [Column],
+    params: fn() -> Vec<Param>,
+    defaults: fn() -> Map<String, Value>,
+    run: RunFn,
+}
+
+impl std::fmt::Debug for Command {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Command").field("name", &self.name).finish()
+    }
+}
+
+impl Command {
+    /// The request's parameters, in the order front ends list them.
+    pub fn params(&self) -> Vec<Param> {
+        (self.params)()
+    }
+
+    /// The parameter of that name.
+    pub fn param(&self, name: &str) -> Option<Param> {
+        self.params().into_iter().find(|p| p.name == name)
+    }
+
+    /// The default of every parameter (`null` where it has none).
+    pub fn defaults(&self) -> Map<String, Value> {
+        (self.defaults)()
+    }
+
+    /// Runs the command on named values (over the request's defaults): the report as JSON.
+    pub fn run(&self, values: Map<String, Value>, ctx: &Context) -> Result<Value, RunError> {
+        (self.run)(values, ctx)
+    }
+
+    /// The same command, also known by `aliases`.
+    pub fn alias(self, aliases: &'static [&'static str]) -> Self {
+        Self { aliases, ..self }
+    }
+
+    fn of<R: Request>(columns: &'static [Column], run: RunFn) -> Self {
+        Self {
+            name: R::NAME,
+            aliases: &[],
+            columns,
+            params: R::params,
+            defaults: R::defaults,
+            run,
+        }
+    }
+}
+
+fn json<T: Serialize, E: Display>(r: Result<T, E>) -> Result<Value, RunError> {
+    let report = r.map_err(|e| RunError::Failed(e.to_string()))?;
+    serde_json::to_value(&report)
+        .map_err(|e| RunError::Failed(format!("the report does not serialise: {e}")))
+}
+
+/// The entry of the library call `run` of request `R`.
+pub fn entry<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column]) -> Command
+where
+    R: Request,
+    T: Serialize + 'static,
+    E: Display + 'static,
+{
+    Command::of::<R>(
+        columns,
+        Box::new(move |values, _| json(run(&R::from_values(values)?))),
+    )
+}
+
+/// The entry of a library call that shares what the cases of a sweep share ([`Context`]).
+pub fn entry_in<R, T, E>(
+    run: fn(&R, &Context) -> Result<T, E>,
+    columns: &'static [Column],
+) -> Command
+where
+    R: Request,
+    T: Serialize + 'static,
+    E: Display + 'static,
+{
+    Command::of::<R>(
+        columns,
+        Box::new(move |values, ctx| json(run(&R::from_values(values)?, ctx))),
+    )
+}
+
+/// Every command (built once).
+pub fn commands() -> &'static [Command] {
+    static REGISTRY: OnceLock<Vec<Command>> = OnceLock::new();
+    REGISTRY.get_or_init(crate::entries::all)
+}
+
+/// The command of that name or alias.
+pub fn command(name: &str) -> Option<&'static Command> {
+    commands()
+        .iter()
+        .find(|c| c.name == name || c.aliases.contains(&name))
+}
+
+/// The names of every command, comma-separated (for messages).
+pub fn names() -> String {
+    let names: Vec<&str> = commands().iter().map(|c| c.name).collect();
+    names.join(", ")
+}

@@ -1,0 +1,200 @@
+use super::*;
+use serde::Serialize;
+use serde_json::{json, Map, Value};
+use tensegrity_core::request::{check_description, Request};
+
+fn values(v: Value) -> Map<String, Value> {
+    v.as_object().unwrap().clone()
+}
+
+/// Scalar leaves of a JSON value, as `.`-joined paths; nulls included or not.
+fn scalar_leaves(v: &Value, prefix: &str, nulls: bool, out: &mut Vec<String>) {
+    match v {
+        Value::Object(m) => {
+            for (k, v) in m {
+                let p = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                scalar_leaves(v, &p, nulls, out);
+            }
+        }
+        Value::Array(_) => {}
+        Value::Null if !nulls => {}
+        _ => out.push(prefix.to_string()),
+    }
+}
+
+/// The columns are exactly the report's scalars (`skip`: input echoes left out), in the
+/// report's key order.
+fn check_columns<T: Serialize>(name: &str, reports: &[T], skip: &[&str]) {
+    let mut all = Vec::new();
+    for r in reports {
+        scalar_leaves(&serde_json::to_value(r).unwrap(), "", true, &mut all);
+    }
+    all.retain(|c| !skip.contains(&c.as_str()));
+    all.sort();
+    all.dedup();
+    let columns = command(name).unwrap().columns;
+    let mut cols: Vec<String> = columns.iter().map(|c| c.name.to_string()).collect();
+    cols.sort();
+    assert_eq!(cols, all, "{name}");
+    let text = serde_json::to_string(&reports[0]).unwrap();
+    let mut last = 0;
+    for c in columns {
+        let key = format!("\"{}\":", c.name.split('.').next().unwrap());
+        let at = text.find(&key).unwrap_or_else(|| panic!("{key}"));
+        assert!(at >= last, "{} out of order in {text}", c.name);
+        last = at;
+    }
+}
+
+#[test]
+fn every_request_describes_its_fields() {
+    check_description::<integrators::IntegratorsRequest>().unwrap();
+    check_description::<toroid::RollRequest>().unwrap();
+    check_description::<tbar_wheel::TbarRollRequest>().unwrap();
+    for c in commands() {
+        let names: Vec<&str> = c.params().iter().map(|p| p.name).collect();
+        for n in c.defaults().keys() {
+            assert!(names.contains(&n.as_str()), "{}: {n}", c.name);
+        }
+    }
+}
+
+#[test]
+fn columns_are_the_scalars_of_the_reports() {
+    let t = toroid::toroid_report(&toroid::ToroidRequest::default()).unwrap();
+    check_columns("toroid", &[t], &[]);
+    let mut r = toroid::roll(&toroid::RollRequest {
+        fidelity: toroid::FidelityChoice::Rigid,
+        t_end: 0.2,
+        ..Default::default()
+    })
+    .unwrap();
+    // the optional keys as a run with an impact and a penalty ground has them
+    r.summary.first_impact = Some(toroid::FirstImpact {
+        t: 0.5,
+        omega_before: 2.0,
+        omega_after: 1.5,
+    });
+    r.ground_damping = Some(100.0);
+    check_columns("roll", &[r], &[]);
+    let tip = toroid::tipover_report(&Default::default()).unwrap();
+    check_columns("tipover", &[tip], &[]);
+    use michell3d::{analyse, AnalysisRequest, MichellParams};
+    let (b, f) = (std::f64::consts::FRAC_PI_6, std::f64::consts::FRAC_PI_4);
+    let cyl = analyse(&AnalysisRequest {
+        extra_strings: Some(10.0),
+        ..AnalysisRequest::new(MichellParams::cylindrical(2, 1.0, b, f, 0.25))
+    })
+    .unwrap();
+    let sph = MichellParams::spherical(2, 1.0, b, f / 2.0, 0.1);
+    let sph = analyse(&AnalysisRequest::new(sph)).unwrap();
+    check_columns("michell", &[cyl, sph], &[]);
+    let optimum = |g: &str, v: Value| {
+        let mut m = values(json!({"radius_ratio": 0.25, "complexity": 3}));
+        m.insert(g.into(), v);
+        let req = michell3d::MichellOptimizeRequest::from_values(m).unwrap();
+        req.run().unwrap()
+    };
+    let reports = [
+        optimum("planar", json!(true)),
+        optimum("cylindrical", json!(0.25)),
+        optimum("spherical", json!(0.05)),
+    ];
+    check_columns("michell_optimize", &reports, &[]);
+}
+
+#[test]
+fn a_failing_case_is_an_error_and_a_bad_value_names_its_parameter() {
+    let ctx = Context::default();
+    let toroid = command("toroid").unwrap();
+    let e = toroid.run(values(json!({"sides": 1})), &ctx).unwrap_err();
+    assert!(
+        matches!(e, RunError::Failed(ref m) if m.contains("sides = 1")),
+        "{e}"
+    );
+    let e = toroid.run(values(json!({"sides": 8.5})), &ctx).unwrap_err();
+    assert!(
+        matches!(e, RunError::InvalidParameter(ref p) if p.name == "sides"),
+        "{e}"
+    );
+    let e = command("integrators")
+        .unwrap()
+        .run(
+            values(json!({"scene": "pendulum", "integrator": "rk4", "parameter": 1e-3})),
+            &ctx,
+        )
+        .unwrap_err();
+    assert!(e.to_string().contains("double-pendulum"), "{e}");
+}
+
+#[test]
+fn an_integrators_point_converges_at_fourth_order() {
+    // RK4 on the oscillating prism: halving dt divides the error against the shared RK45
+    // reference by about 2⁴
+    let ctx = Context::default();
+    let point = |dt: f64| {
+        let v = json!({"scene": "prism-oscillating", "integrator": "rk4", "parameter": dt});
+        command("integrators")
+            .unwrap()
+            .run(values(v), &ctx)
+            .unwrap()
+    };
+    let (a, b) = (point(4e-3), point(2e-3));
+    assert_eq!(a["scene"], "prism-oscillating");
+    assert_eq!(a["integrator"], "rk4");
+    assert_eq!(a["steps"], 250);
+    let ratio = a["error"].as_f64().unwrap() / b["error"].as_f64().unwrap();
+    assert!((10.0..24.0).contains(&ratio), "{ratio}");
+}
+
+#[test]
+fn tbar_columns_are_the_scalars_of_its_reports_and_runs_equal_the_library_report() {
+    let cases = [
+        json!({"beta": "pi/6", "phi": "pi/8", "cylindrical": 0.25, "prestress": 5.0, "directions": 50}),
+        json!({"beta": "pi/6", "phi": "pi/8", "spherical": "pi/12", "wheel": true}),
+        json!({"beta": "pi/6", "phi": "pi/8", "spherical": "pi/12", "extended": 0.5, "bar_base": "chord"}),
+    ];
+    let tbar = command("tbar").unwrap();
+    let cols: Vec<&str> = tbar.columns.iter().map(|c| c.name).collect();
+    let mut seen = Vec::new();
+    for v in cases {
+        let req = tbar_wheel::TbarStaticRequest::from_values(values(v.clone())).unwrap();
+        let direct =
+            serde_json::to_value(tbar_wheel::tbar_report(&req.request()).unwrap()).unwrap();
+        assert_eq!(direct, tbar.run(values(v), &Context::default()).unwrap());
+        let mut leaves = Vec::new();
+        scalar_leaves(&direct, "", false, &mut leaves);
+        for l in &leaves {
+            assert!(cols.contains(&l.as_str()), "{l} is not a column");
+        }
+        seen.extend(leaves);
+    }
+    for c in &cols {
+        assert!(seen.iter().any(|s| s == c), "column {c} never filled");
+    }
+}
+
+#[test]
+fn the_dynamic_and_rolling_columns_are_their_reports_scalars() {
+    // short runs: only the keys matter here
+    let d = toroid::TipoverDynamicRequest::from_values(values(json!({
+        "settle": 0.01, "ramp_time": 0.02, "output_dt": 0.01
+    })))
+    .unwrap();
+    let mut report = d.run().unwrap();
+    report.dynamic_threshold = Some(1.0);
+    report.relative_difference = Some(0.0);
+    check_columns("tipover_dynamic", &[report], &[]);
+    let r = toroid::TipoverRollingRequest::from_values(values(json!({
+        "t_end": 0.02, "output_dt": 0.01
+    })))
+    .unwrap();
+    let mut lean = r.run().unwrap();
+    lean.fall_time = Some(1.0);
+    let echo = ["sides", "outer_tread", "incline", "side_slope"];
+    check_columns("tipover_rolling", &[lean], &echo);
+}
