@@ -47,4 +47,4 @@ pub mod symmetry;
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
 pub use params::{BarBase, Layout, RimMode, TbarParams};
-pub use report::{tbar_report, TbarReport, TbarRequest};
+pub use report::{tbar_report, tbar_report_dense, TbarReport, TbarRequest};

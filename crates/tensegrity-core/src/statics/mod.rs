@@ -13,17 +13,20 @@
 
 mod dense_lp;
 mod flexes;
+pub mod front;
 mod load;
 mod prestress;
 pub mod report;
+mod select;
 pub mod sparse;
-mod sparse_report;
 mod stability;
 pub mod symmetry;
 
 pub use flexes::Flexes;
+pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
-pub use prestress::{solve_lp, Prestressability, PRESTRESS_TOLERANCE};
+pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
+pub use select::{backend, cyclic_backend};
 pub use sparse::SparseStatics;
 pub use stability::PrestressStability;
 
