@@ -64,6 +64,16 @@ pub fn backend<'a>(
     structure: &'a Structure,
     symmetry: Option<&'a CyclicSymmetry>,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
+    backend_with(structure, symmetry, StaticsSettings::default())
+}
+
+/// [`backend`] with the core's statics settings (rank tolerance, LP solver); the memory
+/// limit of the dense fallback is that of [`check_size`].
+pub fn backend_with<'a>(
+    structure: &'a Structure,
+    symmetry: Option<&'a CyclicSymmetry>,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
     match symmetry {
         Some(sym) => {
             // the dense fallback of an uncertified block rank decision only within the size
@@ -75,13 +85,13 @@ pub fn backend<'a>(
             };
             let settings = StaticsSettings {
                 memory_limit: Some(limit),
-                ..StaticsSettings::default()
+                ..settings
             };
             Ok(cyclic_backend(structure, sym, settings)?)
         }
         None => {
             check_size(structure)?;
-            Ok(Box::new(Statics::new(structure)?))
+            Ok(Box::new(Statics::with_settings(structure, settings)?))
         }
     }
 }

@@ -43,7 +43,7 @@ impl Governing {
 
 impl std::fmt::Display for Governing {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
+        f.pad(self.as_str())
     }
 }
 

@@ -306,8 +306,9 @@ impl StaticsBackend for CyclicStatics<'_> {
         }
     }
     fn self_stress(&self) -> SelfStressBasis {
+        let nb = CyclicStatics::structure(self).n_bars();
         SelfStressBasis::Symmetric {
-            basis: self.symmetric_self_stress_basis(),
+            basis: super::orient_self_stress(self.symmetric_self_stress_basis(), nb),
             dim: CyclicStatics::self_stress_dim(self),
         }
     }
