@@ -42,6 +42,24 @@
 //! every load direction is carried by the bar and at least two strings (their forces change).
 //! Note that a load need not *tighten* two strings: a radial load towards the hub unloads all
 //! four strings of a q = 1 tread and is carried by the prestress drop and the bar.
+//!
+//! **Wheels through the cyclic path.** The statics back-end ([`StaticsBackend`]) of a wheel is
+//! its symmetry-adapted blocks. The response of one tip per tip orbit is solved block by
+//! block and rotated to the other tips ([`LoadResponse`]); since every tread's tip is loaded,
+//! a_k is constant on member orbits, so the LP above (and its lengths, signs and the bar cap)
+//! is invariant under the rotation. Its feasible set is convex, so the average over the group
+//! of an optimum is an optimum: the LP restricted to the fully symmetric self-stresses (the
+//! back-end's [`SelfStressBasis::Symmetric`], d₀ columns, a few per member orbit) has the same
+//! minimum P, and it is what the cyclic path solves, with one row per member orbit (a
+//! symmetric state has equal forces over an orbit): its size does not grow with n. With all
+//! orbits of n members the reduced LP's log barrier is the full one's divided by n, so both
+//! have the same central path and tend to the same point of a non-unique optimal face. The full self-stress basis (dimension 2n for a q = 1
+//! wheel) is never needed: the report prints the minimum prestress, the optimal (symmetric)
+//! state, the critical member and the mass, all from this LP. The slack map checks every
+//! tip, each from a rotated response (O(tips × members) per direction, as on the dense
+//! path).
+//!
+//! [`SelfStressBasis::Symmetric`]: tensegrity_core::statics::SelfStressBasis::Symmetric
 
 mod response;
 mod slack;
@@ -137,22 +155,33 @@ pub fn min_prestress(
         row *= response.lengths[k];
     }
     let gains = response.worst_gains();
-    let nb = response.n_bars;
-    let rows = m + nb;
+    // the members whose constraints enter: all of them, or one per member orbit on the cyclic
+    // path (a symmetric state has equal forces, lengths and gains over an orbit)
+    let members: Vec<usize> = match statics.symmetry() {
+        Some(sym) => sym.member_orbits().iter().map(|o| o.rep).collect(),
+        None => (0..m).collect(),
+    };
+    let bars: Vec<usize> = members
+        .iter()
+        .copied()
+        .filter(|&k| response.is_bar(k))
+        .collect();
+    let rows = members.len() + bars.len();
     let mut g = DMatrix::zeros(rows, dim + 1);
     let mut h = DVector::zeros(rows);
-    for k in 0..m {
+    for (r, &k) in members.iter().enumerate() {
         let sign = if response.is_bar(k) { 1.0 } else { -1.0 };
         for j in 0..dim {
-            g[(k, j)] = sign * force_basis[(k, j)];
+            g[(r, j)] = sign * force_basis[(k, j)];
         }
-        h[k] = -gains[k].0;
+        h[r] = -gains[k].0;
     }
-    for b in 0..nb {
+    for (r, &b) in bars.iter().enumerate() {
+        let r = members.len() + r;
         for j in 0..dim {
-            g[(m + b, j)] = -force_basis[(b, j)];
+            g[(r, j)] = -force_basis[(b, j)];
         }
-        g[(m + b, dim)] = -1.0;
+        g[(r, dim)] = -1.0;
     }
     let mut c = DVector::zeros(dim + 1);
     c[dim] = 1.0;

@@ -10,6 +10,11 @@
 //! - self-stress states: the last (members − r) columns of V (null space of A);
 //! - mechanisms: 3·(free dofs) − r first-order motions (the null space of Aᵀ, i.e. the last
 //!   columns of U), rigid-body motions included when the supports allow them.
+//!
+//! [`Statics`] (dense SVD), [`SparseStatics`] (sparse rank-revealing QR) and
+//! [`symmetry::CyclicStatics`] (Fourier blocks of a Cₙ-symmetric structure) are the three
+//! back-ends of one front, [`StaticsBackend`] ([`front`]); [`backend`] and [`cyclic_backend`]
+//! choose one (`select.rs`), and [`report::report_from`] builds the statics report from any.
 
 mod dense_lp;
 mod flexes;

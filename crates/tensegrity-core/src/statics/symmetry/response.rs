@@ -61,11 +61,15 @@ pub fn elastic_response(
         for (c, &e) in layout.cols.iter().enumerate() {
             let d = orbits[e].size;
             let scale = weight / (d as f64).sqrt();
-            for (p, &member) in member_at[e].iter().enumerate() {
-                let phase = roots[(n - (k * p) % n) % n];
-                for dir in 0..3 {
-                    out[(member, dir)] += scale * (t_hat[(c, dir)] * phase).re;
+            let t = [0, 1, 2].map(|dir| t_hat[(c, dir)] * scale);
+            // λ_k^{−p} by stepping the root index back by k (mod n)
+            let mut index = 0;
+            for &member in &member_at[e] {
+                let phase = roots[index];
+                for (dir, tc) in t.iter().enumerate() {
+                    out[(member, dir)] += tc.re * phase.re - tc.im * phase.im;
                 }
+                index = (index + n - k % n) % n;
             }
         }
     }
