@@ -80,11 +80,21 @@ fn a_wheel_of_360_treads_goes_through_the_cyclic_blocks() {
         "--json",
     ]);
     assert_eq!(v["statics_method"], "cyclic");
-    assert_eq!((&v["treads"], &v["self_stress_dim"]), (&360.into(), &720.into()));
-    assert_eq!((&v["mechanisms"], &v["internal_mechanisms"]), (&0.into(), &0.into()));
+    assert_eq!(
+        (&v["treads"], &v["self_stress_dim"]),
+        (&360.into(), &720.into())
+    );
+    assert_eq!(
+        (&v["mechanisms"], &v["internal_mechanisms"]),
+        (&0.into(), &0.into())
+    );
     assert!(v["min_prestress"].as_f64().unwrap() > 0.0);
     assert!(v["mass_kg"].as_f64().unwrap() > 0.0);
-    assert!(v["warnings"].as_array().unwrap().is_empty(), "{}", v["warnings"]);
+    assert!(
+        v["warnings"].as_array().unwrap().is_empty(),
+        "{}",
+        v["warnings"]
+    );
 }
 
 #[test]

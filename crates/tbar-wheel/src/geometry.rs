@@ -246,8 +246,7 @@ impl TbarGeometry {
     pub fn new(params: TbarParams) -> Result<Self> {
         params.validate()?;
         let per_wheel = params.treads_per_wheel()?;
-        let raw_nodes =
-            params.copies() * per_wheel * (lattice_node_count(params.complexity()) + 2);
+        let raw_nodes = params.copies() * per_wheel * (lattice_node_count(params.complexity()) + 2);
         if raw_nodes > MAX_NODES {
             return Err(crate::error::TbarError::TooLarge {
                 what: "nodes before merging (copies × treads × (lattice nodes + 2))",

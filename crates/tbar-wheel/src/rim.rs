@@ -27,9 +27,9 @@
 //! prestressability of a structure with a rim body asks the tread members only for the right
 //! sign ([`prestressability`]).
 
+use crate::error::Result;
 use crate::geometry::TbarGeometry;
 use crate::params::Layout;
-use crate::error::Result;
 use nalgebra::Vector3;
 use std::collections::{BTreeMap, HashSet};
 use tensegrity_core::statics::{MemberSign, StaticsBackend};

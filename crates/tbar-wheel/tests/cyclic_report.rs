@@ -20,8 +20,8 @@ use std::f64::consts::{FRAC_PI_6, PI};
 use tbar_wheel::statics::backend_with;
 use tbar_wheel::symmetry::wheel_symmetry;
 use tbar_wheel::{
-    tbar_report, tbar_report_dense, BarBase, Layout, RimMode, TbarGeometry, TbarParams,
-    TbarReport, TbarRequest,
+    tbar_report, tbar_report_dense, BarBase, Layout, RimMode, TbarGeometry, TbarParams, TbarReport,
+    TbarRequest,
 };
 use tensegrity_core::statics::{Factorization, StaticsSettings};
 use tensegrity_core::Statics;
@@ -42,8 +42,18 @@ fn compare(p: TbarParams, what: &str) -> TbarReport {
     assert_eq!(c.statics_method, Factorization::Cyclic, "{what}");
     assert_eq!(d.statics_method, Factorization::Svd, "{what}");
     assert_eq!(
-        (c.rank, c.self_stress_dim, c.mechanisms, c.internal_mechanisms),
-        (d.rank, d.self_stress_dim, d.mechanisms, d.internal_mechanisms),
+        (
+            c.rank,
+            c.self_stress_dim,
+            c.mechanisms,
+            c.internal_mechanisms
+        ),
+        (
+            d.rank,
+            d.self_stress_dim,
+            d.mechanisms,
+            d.internal_mechanisms
+        ),
         "{what}"
     );
     assert_eq!(c.prestressable, d.prestressable, "{what}");
@@ -91,7 +101,10 @@ fn fixed_rim_wheels_up_to_64_treads_match_the_dense_path() {
     for n in [3, 8] {
         let ext = Layout::Extended { offset: 0.7 };
         compare(params(1, n, ext, RimMode::Fixed), &format!("extended {n}"));
-        compare(params(2, n, Layout::Wheel, RimMode::Fixed), &format!("q = 2, {n}"));
+        compare(
+            params(2, n, Layout::Wheel, RimMode::Fixed),
+            &format!("q = 2, {n}"),
+        );
     }
     let sph = MichellParams::spherical(1, 1.0, FRAC_PI_6, PI / 6.0, 0.3);
     let chord = TbarParams::tread(sph)
@@ -171,9 +184,8 @@ fn a_wheel_without_a_valid_descriptor_takes_the_dense_path_and_says_so() {
     // cannot tell them apart
     let p = params(2, 12, Layout::Extended { offset: 0.5 }, RimMode::Fixed);
     let g = TbarGeometry::new(p).unwrap();
-    let coincident = (0..g.nodes.len()).any(|i| {
-        (0..i).any(|j| (g.nodes[i] - g.nodes[j]).norm() < 1e-9 && (i < 72) != (j < 72))
-    });
+    let coincident = (0..g.nodes.len())
+        .any(|i| (0..i).any(|j| (g.nodes[i] - g.nodes[j]).norm() < 1e-9 && (i < 72) != (j < 72)));
     assert!(coincident, "the two copies share positions");
     let r = tbar_report(&TbarRequest::new(p)).unwrap();
     assert_eq!(r.statics_method, Factorization::Svd);

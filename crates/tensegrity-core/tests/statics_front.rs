@@ -80,7 +80,10 @@ fn same_answers(s: &Structure, sym: Option<&CyclicSymmetry>, what: &str) -> f64 
         let m = b.prestressability().unwrap().margin;
         assert!((m - margin).abs() < 1e-9, "{who}: margin {m} vs {margin}");
         let f = b.prestressability_with(&free_bars).unwrap().margin;
-        assert!((f - free_margin).abs() < 1e-9, "{who}: {f} vs {free_margin}");
+        assert!(
+            (f - free_margin).abs() < 1e-9,
+            "{who}: {f} vs {free_margin}"
+        );
         // the sparse value is an estimate; the blocks' singular values are A's
         if b.kind() == Factorization::Cyclic {
             let (x, y) = (b.smallest_singular_value(), dense.smallest_singular_value());
@@ -102,7 +105,10 @@ fn every_backend_gives_the_dense_answers() {
         let t = test_models::snelson_tower(stages).unwrap();
         let sym = z_symmetry(&t);
         let m = same_answers(&t, Some(&sym), &format!("tower of {stages}"));
-        assert!((m - 1.0 / 3f64.sqrt()).abs() < 1e-9, "tower of {stages}: {m}");
+        assert!(
+            (m - 1.0 / 3f64.sqrt()).abs() < 1e-9,
+            "tower of {stages}: {m}"
+        );
     }
 }
 
@@ -152,7 +158,12 @@ fn one_report_builder_for_every_backend() {
     assert_eq!(cyclic.statics_method, Some(Factorization::Cyclic));
     for r in [&sparse, &cyclic] {
         assert_eq!(
-            (r.rank, r.self_stress_dim, r.mechanisms, r.internal_mechanisms),
+            (
+                r.rank,
+                r.self_stress_dim,
+                r.mechanisms,
+                r.internal_mechanisms
+            ),
             (
                 dense.rank,
                 dense.self_stress_dim,
@@ -194,7 +205,11 @@ fn an_uncertified_cyclic_rank_falls_back_to_the_svd_or_says_so() {
     let chosen = cyclic_backend(&t, &sym, settings).unwrap();
     assert_eq!(chosen.kind(), Factorization::Svd, "falls back");
     let looser = Statics::with_settings(&t, settings).unwrap();
-    assert_eq!(chosen.rank(), looser.rank(), "the SVD at the looser tolerance");
+    assert_eq!(
+        chosen.rank(),
+        looser.rank(),
+        "the SVD at the looser tolerance"
+    );
     assert!(looser.rank() < dense.rank());
     let no_room = StaticsSettings {
         memory_limit: Some(0.0),

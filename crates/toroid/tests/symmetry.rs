@@ -159,7 +159,11 @@ fn every_statics_backend_analyses_the_toroid_alike() {
     use tensegrity_core::statics::symmetry::CyclicStatics;
     use tensegrity_core::statics::{SparseStatics, StaticsSettings};
     use tensegrity_core::Statics;
-    for (n, o) in [(5, "spokes,inner"), (8, "inner,outer"), (6, "spokes,inner,outer")] {
+    for (n, o) in [
+        (5, "spokes,inner"),
+        (8, "inner,outer"),
+        (6, "spokes,inner,outer"),
+    ] {
         let t = build(&ToroidParams::default().sides(n), o.parse().unwrap(), 1.0).unwrap();
         let s = &t.structure;
         let sym = toroid_symmetry(&t).unwrap();

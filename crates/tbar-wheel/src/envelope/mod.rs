@@ -65,9 +65,7 @@ mod response;
 mod slack;
 
 pub use response::LoadResponse;
-pub use slack::{
-    loaded_forces, scaled_state, slack_map, sphere_directions, SlackMap, SlackPoint,
-};
+pub use slack::{loaded_forces, scaled_state, slack_map, sphere_directions, SlackMap, SlackPoint};
 
 use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
@@ -282,4 +280,3 @@ fn member_ends(response: &LoadResponse, k: usize, labels: &[String]) -> [String;
     let name = |i: usize| labels.get(i).cloned().unwrap_or_else(|| i.to_string());
     [name(a), name(b)]
 }
-

@@ -181,7 +181,12 @@ impl Statics<'_> {
         if basis.ncols() == 0 {
             return Ok(Prestressability::none(basis.nrows()));
         }
-        let x = margin_lp(&basis, signs, self.settings.lp_solver, "prestressability LP")?;
+        let x = margin_lp(
+            &basis,
+            signs,
+            self.settings.lp_solver,
+            "prestressability LP",
+        )?;
         Ok(Prestressability::from_signed(&basis * x, signs))
     }
 }

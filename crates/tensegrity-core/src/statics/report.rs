@@ -176,7 +176,10 @@ pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result
 
 /// The statics report from any back-end: counts, self-stress, prestressability and
 /// mechanisms; the load solve when the structure is loaded; the modes when asked.
-pub fn report_from(backend: &dyn StaticsBackend, request: &StaticsRequest) -> Result<StaticsReport> {
+pub fn report_from(
+    backend: &dyn StaticsBackend,
+    request: &StaticsRequest,
+) -> Result<StaticsReport> {
     let structure = backend.structure();
     let mut report = base_report(backend)?;
     if structure.is_loaded() {
@@ -305,12 +308,7 @@ fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsRep
 }
 
 /// The `k` lowest natural frequencies about the equilibrium force densities.
-fn add_modes(
-    structure: &Structure,
-    k: usize,
-    mass: MassModel,
-    report: &mut StaticsReport,
-) {
+fn add_modes(structure: &Structure, k: usize, mass: MassModel, report: &mut StaticsReport) {
     let modes = stiffness::equilibrium_force_densities(structure)
         .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
     match modes {

@@ -28,7 +28,7 @@ pub mod response;
 
 pub use blocks::{BlockContext, BlockLayout, BlockRow};
 pub use cyclic::{CyclicStatics, RepCounts};
-pub use response::{elastic_response, MemberRotations};
 pub use descriptor::{
     CyclicSymmetry, MemberOrbit, NodeOrbit, Place, SymmetryError, SYMMETRY_TOLERANCE,
 };
+pub use response::{elastic_response, MemberRotations};
