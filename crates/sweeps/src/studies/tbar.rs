@@ -30,7 +30,7 @@ pub const PARAMS: [ParamDef; 15] = [
 
 /// The scalars of [`tbar_wheel::TbarReport`] (nested objects flattened with `.`; the keys
 /// of every layout and parameterisation).
-pub const COLUMNS: [Column; 43] = [
+pub const COLUMNS: [Column; 44] = [
     col("params.michell.complexity", ""),
     col("params.michell.r0", "m"),
     col("params.michell.beta", "rad"),
@@ -52,6 +52,7 @@ pub const COLUMNS: [Column; 43] = [
     col("self_stress_dim", ""),
     col("mechanisms", ""),
     col("internal_mechanisms", ""),
+    col("statics_method", ""),
     col("prestressable", ""),
     col("prestress_margin", ""),
     col("load", "N"),

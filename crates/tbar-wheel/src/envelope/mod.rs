@@ -82,13 +82,32 @@ pub const DEFAULT_DIRECTIONS: usize = 2000;
 /// Most directions accepted for a slack map.
 pub const MAX_DIRECTIONS: usize = 1_000_000;
 
+/// Whether a member is a bar or a string (serialised as `bar`, `string`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MemberKind {
+    /// A bar.
+    Bar,
+    /// A string.
+    String,
+}
+
+impl std::fmt::Display for MemberKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(match self {
+            MemberKind::Bar => "bar",
+            MemberKind::String => "string",
+        })
+    }
+}
+
 /// The binding member of the minimum-prestress state.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CriticalMember {
     /// Member index (bars first, then strings).
     pub member: usize,
     /// `bar` or `string`.
-    pub kind: &'static str,
+    pub kind: MemberKind,
     /// Index among the members of its kind.
     pub index: usize,
     /// Labels of its two nodes (start, end).
@@ -261,7 +280,11 @@ fn critical_member(
     let ends = member_ends(response, k, labels);
     CriticalMember {
         member: k,
-        kind: if response.is_bar(k) { "bar" } else { "string" },
+        kind: if response.is_bar(k) {
+            MemberKind::Bar
+        } else {
+            MemberKind::String
+        },
         index: if response.is_bar(k) {
             k
         } else {
