@@ -67,6 +67,37 @@ fn wheel_json_contract() {
 }
 
 #[test]
+fn a_wheel_of_360_treads_goes_through_the_cyclic_blocks() {
+    let v = json(&[
+        "tbar",
+        "--beta",
+        "pi/6",
+        "--phi",
+        "pi/360",
+        "--cylindrical",
+        "0.25",
+        "--wheel",
+        "--json",
+    ]);
+    assert_eq!(v["statics_method"], "cyclic");
+    assert_eq!(
+        (&v["treads"], &v["self_stress_dim"]),
+        (&360.into(), &720.into())
+    );
+    assert_eq!(
+        (&v["mechanisms"], &v["internal_mechanisms"]),
+        (&0.into(), &0.into())
+    );
+    assert!(v["min_prestress"].as_f64().unwrap() > 0.0);
+    assert!(v["mass_kg"].as_f64().unwrap() > 0.0);
+    assert!(
+        v["warnings"].as_array().unwrap().is_empty(),
+        "{}",
+        v["warnings"]
+    );
+}
+
+#[test]
 fn exports_and_errors() {
     let dir = std::env::temp_dir().join(format!("tensegrity-tbar-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

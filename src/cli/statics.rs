@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_core::statics::StaticsMethod;
+use tensegrity_core::statics::{Factorization, StaticsMethod};
 use tensegrity_core::stiffness::MassModel;
 use tensegrity_core::{statics_report, StaticsReport, StaticsRequest, StaticsSettings, Structure};
 use tensegrity_io::scene::Scene;
@@ -207,8 +207,14 @@ fn print_notes(r: &StaticsReport) {
     if let Some(e) = &r.sizing_error {
         println!("sizing not possible: {e}");
     }
-    if r.statics_method.is_some() {
-        println!("factorisation: sparse rank-revealing QR (smallest singular value estimated)");
+    if let Some(method) = r.statics_method {
+        let estimated = method == Factorization::SparseQr;
+        let note = if estimated {
+            " (smallest singular value estimated)"
+        } else {
+            ""
+        };
+        println!("factorisation: {}{note}", method.describe());
     }
     if let Some(w) = &r.statics_warning {
         println!("warning: {w}");

@@ -177,13 +177,7 @@ fn print_report(r: &TbarReport) {
         );
         println!(
             "critical member: {} {} ({}–{}), worst direction [{:.6}, {:.6}, {:.6}]",
-            c.kind.as_str(),
-            c.index,
-            c.nodes[0],
-            c.nodes[1],
-            c.direction[0],
-            c.direction[1],
-            c.direction[2]
+            c.kind, c.index, c.nodes[0], c.nodes[1], c.direction[0], c.direction[1], c.direction[2]
         );
     }
     if let (Some(p), Some(f)) = (r.prestress, r.slack_fraction) {

@@ -50,6 +50,10 @@ use tensegrity_core::{Bar, StringMember, Structure, Support};
 /// Nodes closer than this × r₀ are one node.
 pub const MERGE_TOL: f64 = 1e-9;
 
+/// Most nodes a structure may have before merging (copies × treads × (lattice nodes + 2)),
+/// checked before anything is built: about 0.5 GB of geometry and statics blocks.
+pub const MAX_NODES: usize = 2_000_000;
+
 /// The tuples of lattice level l in label order (D ascending, then L descending): (l+1)².
 ///
 /// ```
@@ -242,6 +246,14 @@ impl TbarGeometry {
     pub fn new(params: TbarParams) -> Result<Self> {
         params.validate()?;
         let per_wheel = params.treads_per_wheel()?;
+        let raw_nodes = params.copies() * per_wheel * (lattice_node_count(params.complexity()) + 2);
+        if raw_nodes > MAX_NODES {
+            return Err(crate::error::TbarError::TooLarge {
+                what: "nodes before merging (copies × treads × (lattice nodes + 2))",
+                size: raw_nodes,
+                limit: MAX_NODES,
+            });
+        }
         let raw = raw_tread(&params);
         let phi = params.michell.phi;
         let offset = match params.layout {

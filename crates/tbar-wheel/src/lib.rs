@@ -8,15 +8,17 @@
 //! - [`geometry`]: the four-offspring lattice with merged tuples, the radial bar, the rigid rim
 //!   supports, the wheel and extended wheel ([`TbarGeometry`]);
 //! - [`statics`]: rank, self-stress dimension, mechanisms and prestressability margin through
-//!   the core's [`tensegrity_core::Statics`];
+//!   the core's statics front ([`tensegrity_core::statics::StaticsBackend`]): the cyclic
+//!   blocks for a wheel (O(n) in the treads), the dense SVD for a tread;
 //! - [`envelope`]: the omnidirectional load envelope (minimum prestress by an LP over the
 //!   self-stress space, critical member and direction, slack map);
 //! - [`brute`]: an independent brute-force check of the minimum prestress;
 //! - [`mass`]: minimum-mass sizing for the envelope against the 3-D Michell truss;
 //! - [`drawing`]: polylines of Figs. 5.1–5.3 (side and top views) for the io figure module;
 //! - [`report`]: one complete analysis for the CLI ([`tbar_report`]);
-//! - [`symmetry`]: the Cₙ descriptor of the wheel (n = π/φ treads about ι̂₁) and the statics
-//!   summary through the core's symmetry-adapted blocks.
+//! - [`symmetry`]: the Cₙ descriptor of the wheel (n = π/φ treads about ι̂₁), which sends
+//!   every wheel analysis of [`report`] (both rims, wheels and extended wheels) through the
+//!   core's symmetry-adapted blocks.
 //!
 //! - [`rim`]: the rim body (a ring of bars with a hub, class-k joints) replacing the rigid
 //!   rim's supports, and its prestressability LP;
@@ -51,6 +53,6 @@ pub mod symmetry;
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
 pub use params::{BarBase, Layout, RimMode, TbarParams};
-pub use report::{tbar_report, TbarReport, TbarRequest};
+pub use report::{tbar_report, tbar_report_dense, TbarReport, TbarRequest};
 pub use request::TbarStaticRequest;
 pub use roll::{TbarRollReport, TbarRollRequest, TbarRollRow};

@@ -20,8 +20,9 @@ use std::f64::consts::PI;
 
 /// Largest complexity accepted (a tread has (q+1)(q+2)(2q+3)/6 lattice nodes: 3 311 at q = 20).
 pub const MAX_COMPLEXITY: usize = 20;
-/// Most treads accepted around one wheel (π/φ).
-pub const MAX_TREADS: usize = 360;
+/// Most treads accepted around one wheel (π/φ); the statics of a wheel are O(treads) through
+/// its cyclic symmetry, and [`crate::geometry::MAX_NODES`] bounds the structure's size.
+pub const MAX_TREADS: usize = 3600;
 /// Relative tolerance of "π/φ is an integer".
 pub const TREAD_COUNT_TOL: f64 = 1e-9;
 

@@ -13,9 +13,10 @@ use crate::error::{invalid, Result};
 use crate::geometry::TbarGeometry;
 use crate::mass::{self, MassComparison};
 use crate::params::{RimMode, TbarParams};
-use crate::statics::{check_size, summarise};
+use crate::statics::{backend, summarise};
 use serde::Serialize;
-use tensegrity_core::{Statics, Structure};
+use tensegrity_core::statics::{Certification, Factorization, StaticsBackend};
+use tensegrity_core::Structure;
 
 /// Everything one analysis needs.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,6 +108,9 @@ pub struct TbarReport {
     pub mechanisms: usize,
     /// Internal mechanisms (beyond the rigid-body motions the supports allow).
     pub internal_mechanisms: usize,
+    /// The statics back-end that answered: `cyclic` (a wheel: the symmetry-adapted blocks)
+    /// or `svd` (a tread, or the dense fallback).
+    pub statics_method: Factorization,
     /// Whether a self-stress with taut strings and compressed bars exists.
     pub prestressable: bool,
     /// The core's prestressability margin.
@@ -154,13 +158,31 @@ pub struct TbarReport {
 /// assert!(r.min_prestress.unwrap() > 0.0);
 /// ```
 pub fn tbar_report(req: &TbarRequest) -> Result<TbarReport> {
+    report_with(req, true)
+}
+
+/// [`tbar_report`] through the dense SVD for every layout (O(n³) for a wheel of n treads):
+/// the cross-check of the cyclic path.
+pub fn tbar_report_dense(req: &TbarRequest) -> Result<TbarReport> {
+    report_with(req, false)
+}
+
+fn report_with(req: &TbarRequest, cyclic: bool) -> Result<TbarReport> {
     req.validate()?;
     let geometry = TbarGeometry::new(req.params)?;
     let structure = geometry.structure()?;
-    check_size(&structure)?;
-    let statics = Statics::new(&structure)?;
-    let summary = summarise(&statics)?;
+    let mut warnings = Vec::new();
+    let symmetry = cyclic
+        .then(|| crate::symmetry::find_symmetry(&geometry, &structure, &mut warnings))
+        .flatten();
+    let statics = backend(&structure, symmetry.as_ref())?;
+    if let Certification::NotCertified { reason } = statics.certification() {
+        warnings.push(reason);
+    }
+    let summary = summarise(statics.as_ref())?;
     let mut report = base_report(req, &geometry, &structure);
+    report.warnings = warnings;
+    report.statics_method = statics.kind();
     report.rank = summary.rank;
     report.self_stress_dim = summary.self_stress_dim;
     report.mechanisms = summary.mechanisms;
@@ -169,17 +191,18 @@ pub fn tbar_report(req: &TbarRequest) -> Result<TbarReport> {
     report.prestress_margin = summary.prestress_margin;
     if let Some(rim) = &geometry.rim {
         // rim-body bars carry either sign: only the treads' members need the right one
-        let margin = crate::rim::prestressability(&statics, geometry.bars.len(), rim.bars.len());
+        let margin =
+            crate::rim::prestressability(statics.as_ref(), geometry.bars.len(), rim.bars.len())?;
         report.prestress_margin = margin;
         report.prestressable = margin > tensegrity_core::statics::PRESTRESS_TOLERANCE;
         report.warnings.push(
             "rim body: free-body statics (six rigid-body motions, no supports); the load \
-             envelope, minimum prestress and mass are computed with the rigid rim (--rim fixed)"
+             envelope, minimum prestress and mass are computed with the rigid rim (rim = fixed)"
                 .into(),
         );
         return Ok(report);
     }
-    if let Err(e) = add_envelope(req, &geometry, &statics, &mut report) {
+    if let Err(e) = add_envelope(req, &geometry, statics.as_ref(), &mut report) {
         report.warnings.push(format!("no load envelope: {e}"));
     }
     Ok(report)
@@ -204,6 +227,7 @@ fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport
         self_stress_dim: 0,
         mechanisms: 0,
         internal_mechanisms: 0,
+        statics_method: Factorization::Svd,
         prestressable: false,
         prestress_margin: 0.0,
         load: req.load,
@@ -228,7 +252,7 @@ fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport
 fn add_envelope(
     req: &TbarRequest,
     g: &TbarGeometry,
-    statics: &Statics<'_>,
+    statics: &dyn StaticsBackend,
     report: &mut TbarReport,
 ) -> Result<()> {
     let what = req.params.layout.name();

@@ -27,12 +27,12 @@
 //! prestressability of a structure with a rim body asks the tread members only for the right
 //! sign ([`prestressability`]).
 
+use crate::error::Result;
 use crate::geometry::TbarGeometry;
 use crate::params::Layout;
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::Vector3;
 use std::collections::{BTreeMap, HashSet};
-use tensegrity_core::statics::solve_lp;
-use tensegrity_core::Statics;
+use tensegrity_core::statics::{MemberSign, StaticsBackend};
 
 /// The rim body attached to a geometry.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -121,54 +121,21 @@ fn ring_bars(g: &TbarGeometry, points: &[usize]) -> Vec<[usize; 2]> {
 
 /// The prestressability LP of a structure whose first `tread_bars` bars are tread bars and
 /// whose next `rim_bars` bars belong to the rim body (sign free): the largest t such that
-/// some self-stress with max|q| ≤ 1 has every string q ≥ t and every tread bar q ≤ −t.
-/// Returns the certified margin (0 when there is no such state).
-pub fn prestressability(statics: &Statics<'_>, tread_bars: usize, rim_bars: usize) -> f64 {
-    let basis = statics.self_stress_basis();
-    let (m, d) = (basis.nrows(), basis.ncols());
-    if d == 0 {
-        return 0.0;
-    }
-    let nb = tread_bars + rim_bars;
-    // z = [x, t]; every member: −1 ≤ q ≤ 1; signed members: t − σ q ≤ 0
-    let signed: Vec<(usize, f64)> = (0..m)
-        .filter_map(|k| match k {
-            k if k < tread_bars => Some((k, -1.0)),
-            k if k < nb => None,
-            k => Some((k, 1.0)),
+/// some self-stress with max|q| ≤ 1 has every string q ≥ t and every tread bar q ≤ −t
+/// (the core's margin LP with [`MemberSign::Free`] rim bars, through any back-end: on the
+/// cyclic one over the fully symmetric self-stresses, the LP being invariant). Returns the
+/// certified margin (0 when there is no such state).
+pub fn prestressability(
+    statics: &dyn StaticsBackend,
+    tread_bars: usize,
+    rim_bars: usize,
+) -> Result<f64> {
+    let signs: Vec<MemberSign> = (0..statics.structure().n_members())
+        .map(|k| match k {
+            k if k < tread_bars => MemberSign::Compression,
+            k if k < tread_bars + rim_bars => MemberSign::Free,
+            _ => MemberSign::Tension,
         })
         .collect();
-    let rows = 2 * m + signed.len() + 1;
-    let mut g = DMatrix::zeros(rows, d + 1);
-    let mut h = DVector::zeros(rows);
-    for k in 0..m {
-        for j in 0..d {
-            g[(2 * k, j)] = basis[(k, j)];
-            g[(2 * k + 1, j)] = -basis[(k, j)];
-        }
-        h[2 * k] = 1.0;
-        h[2 * k + 1] = 1.0;
-    }
-    for (r, &(k, sigma)) in signed.iter().enumerate() {
-        for j in 0..d {
-            g[(2 * m + r, j)] = -sigma * basis[(k, j)];
-        }
-        g[(2 * m + r, d)] = 1.0;
-    }
-    g[(rows - 1, d)] = -1.0;
-    let mut c = DVector::zeros(d + 1);
-    c[d] = -1.0;
-    let Ok(z) = solve_lp(&g, &h, &c, "rim-body prestressability LP") else {
-        return 0.0;
-    };
-    let q = &basis * z.rows(0, d);
-    let scale = q.amax();
-    if scale <= 0.0 {
-        return 0.0;
-    }
-    signed
-        .iter()
-        .map(|&(k, sigma)| sigma * q[k] / scale)
-        .fold(f64::INFINITY, f64::min)
-        .max(0.0)
+    Ok(statics.prestressability_with(&signs)?.margin)
 }

@@ -143,7 +143,7 @@ pub fn standing_row(g: &TbarGeometry, stance: Stance) -> Result<StandingRow> {
         in_plane: split[0],
         out_of_plane: split[1],
         internal: (mechanisms as f64 - split[2]).max(0.0),
-        prestress_margin: crate::rim::prestressability(&statics, g.bars.len(), rim_bars),
+        prestress_margin: crate::rim::prestressability(&statics, g.bars.len(), rim_bars)?,
     })
 }
 

@@ -6,16 +6,18 @@
 //! ([`CyclicSymmetry::from_positions`]). The rim supports are pinned nodes, carried onto
 //! pinned nodes.
 //!
-//! [`symmetric_statics_summary`] gives [`crate::statics::statics_summary`]'s numbers from the
-//! symmetry-adapted blocks, without the dense SVD (and without its size limit).
+//! [`find_symmetry`] is what [`crate::tbar_report`] uses: the descriptor of a wheel (n ≥ 3
+//! treads), nothing for a tread or a wheel of fewer treads. [`symmetric_statics_summary`]
+//! gives [`crate::statics::statics_summary`]'s numbers from the symmetry-adapted blocks,
+//! without the dense SVD (and without its size limit).
 
-use crate::error::Result;
+use crate::error::{Result, TbarError};
 use crate::geometry::TbarGeometry;
 use crate::params::Layout;
-use crate::statics::StaticsSummary;
+use crate::statics::{summarise, StaticsSummary};
 use nalgebra::Vector3;
 use tensegrity_core::statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
-use tensegrity_core::Structure;
+use tensegrity_core::{CoreError, Structure};
 
 /// The Cₙ descriptor (n = π/φ) of a wheel or extended wheel and its structure; a single tread
 /// has no rotational symmetry (`SymmetryError::TooFewSides` with n = 1).
@@ -45,6 +47,33 @@ pub fn wheel_symmetry(geometry: &TbarGeometry, structure: &Structure) -> Result<
     )?)
 }
 
+/// The Cₙ descriptor of a wheel or extended wheel with n ≥ 3 treads per wheel; `None` for a
+/// tread, a wheel of one or two treads, or (with a warning pushed on `warnings`) a wheel
+/// whose descriptor does not validate, which then takes the dense path.
+pub fn find_symmetry(
+    geometry: &TbarGeometry,
+    structure: &Structure,
+    warnings: &mut Vec<String>,
+) -> Option<CyclicSymmetry> {
+    if geometry.params.layout == Layout::Tread {
+        return None;
+    }
+    match wheel_symmetry(geometry, structure) {
+        Ok(sym) => Some(sym),
+        Err(TbarError::Core(CoreError::Symmetry(e)))
+            if matches!(*e, SymmetryError::TooFewSides { .. }) =>
+        {
+            None
+        }
+        Err(e) => {
+            warnings.push(format!(
+                "no cyclic symmetry ({e}): the statics take the dense SVD"
+            ));
+            None
+        }
+    }
+}
+
 /// The statics summary of a wheel or extended wheel through the symmetry-adapted path.
 ///
 /// ```
@@ -60,15 +89,5 @@ pub fn wheel_symmetry(geometry: &TbarGeometry, structure: &Structure) -> Result<
 pub fn symmetric_statics_summary(geometry: &TbarGeometry) -> Result<StaticsSummary> {
     let structure = geometry.structure()?;
     let sym = wheel_symmetry(geometry, &structure)?;
-    let statics = CyclicStatics::new(&structure, &sym)?;
-    let pre = statics.prestressability()?;
-    Ok(StaticsSummary {
-        free_dofs: statics.free_dofs(),
-        rank: statics.rank(),
-        self_stress_dim: statics.self_stress_dim(),
-        mechanisms: statics.mechanisms(),
-        internal_mechanisms: statics.internal_mechanisms(),
-        prestressable: pre.prestressable,
-        prestress_margin: pre.margin,
-    })
+    summarise(&CyclicStatics::new(&structure, &sym)?)
 }

@@ -180,6 +180,15 @@ pub enum CoreError {
     /// variant names nodes, members and positions).
     #[error(transparent)]
     Symmetry(Box<crate::statics::symmetry::SymmetryError>),
+    /// A statics back-end was asked for something it does not compute (e.g. the load solve of
+    /// the cyclic back-end, whose loads need not be symmetric).
+    #[error("{analysis} is not available from the {backend} statics")]
+    Unsupported {
+        /// What was asked, e.g. `the load solve`.
+        analysis: &'static str,
+        /// The back-end, e.g. `cyclic (symmetry-adapted blocks)`.
+        backend: &'static str,
+    },
     /// A problem too large for the memory budget, refused before allocating.
     #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer --sides or a lower --complexity)", bytes / 1073741824.0, limit / 1073741824.0)]
     TooLarge {

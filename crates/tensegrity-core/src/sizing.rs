@@ -18,8 +18,9 @@ use crate::structure::{MemberId, Structure};
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
-/// Which failure mode sets a member's size.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which failure mode sets a member's size (serialised as `yield`, `buckling`, `unloaded`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Governing {
     /// Material yield.
     Yield,
@@ -27,6 +28,23 @@ pub enum Governing {
     Buckling,
     /// The member carries no force (zero size).
     Unloaded,
+}
+
+impl Governing {
+    /// The name in reports: `yield`, `buckling` or `unloaded`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Governing::Yield => "yield",
+            Governing::Buckling => "buckling",
+            Governing::Unloaded => "unloaded",
+        }
+    }
+}
+
+impl std::fmt::Display for Governing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.as_str())
+    }
 }
 
 /// Yield-limited radius r_Y = √(|f| / (π σ_Y)).

@@ -28,7 +28,11 @@ fn basis(r: &StaticsReport) -> DMatrix<f64> {
 }
 
 fn assert_same(dense: &StaticsReport, sparse: &StaticsReport, what: &str) {
-    assert_eq!(sparse.statics_method, Some("sparse_qr"), "{what}");
+    assert_eq!(
+        sparse.statics_method,
+        Some(tensegrity_core::statics::Factorization::SparseQr),
+        "{what}"
+    );
     assert_eq!(dense.statics_method, None, "{what}");
     assert!(
         sparse.statics_warning.is_none(),

@@ -104,7 +104,7 @@ pub const MICHELL_TABLE: [Column; 0] = [];
 
 /// The scalars of [`tbar_wheel::TbarReport`] (nested objects flattened with `.`; the keys
 /// of every layout and parameterisation).
-pub const TBAR: [Column; 43] = [
+pub const TBAR: [Column; 44] = [
     col("params.michell.complexity", ""),
     col("params.michell.r0", "m"),
     col("params.michell.beta", "rad"),
@@ -126,6 +126,7 @@ pub const TBAR: [Column; 43] = [
     col("self_stress_dim", ""),
     col("mechanisms", ""),
     col("internal_mechanisms", ""),
+    col("statics_method", ""),
     col("prestressable", ""),
     col("prestress_margin", ""),
     col("load", "N"),

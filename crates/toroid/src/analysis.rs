@@ -18,6 +18,7 @@ use crate::params::ToroidParams;
 use crate::symmetry::toroid_symmetry;
 use nalgebra::{DVector, Matrix3};
 use tensegrity_core::statics::symmetry::{CyclicStatics, RepCounts};
+use tensegrity_core::statics::StaticsBackend;
 use tensegrity_core::{Prestressability, Statics};
 
 /// The analysis of a toroid (or a single prism).
@@ -70,17 +71,7 @@ pub fn analyse(toroid: &Toroid) -> Result<ToroidAnalysis> {
     let s = &toroid.structure;
     let sym = toroid_symmetry(toroid)?;
     let statics = CyclicStatics::new(s, &sym)?;
-    let pre = statics.prestressability()?;
-    Ok(assemble(
-        toroid,
-        Counts {
-            rank: statics.rank(),
-            self_stress_dim: statics.self_stress_dim(),
-            internal_mechanisms: statics.internal_mechanisms(),
-        },
-        pre,
-        statics.representations().to_vec(),
-    ))
+    analysis_from(toroid, &statics, statics.representations().to_vec())
 }
 
 /// [`analyse`] through the dense SVD of the whole equilibrium matrix (O(n³)): the
@@ -94,19 +85,27 @@ pub fn analyse(toroid: &Toroid) -> Result<ToroidAnalysis> {
 /// assert!((a.prestress_margin - b.prestress_margin).abs() < 1e-9);
 /// ```
 pub fn analyse_dense(toroid: &Toroid) -> Result<ToroidAnalysis> {
-    let s = &toroid.structure;
-    let statics = Statics::new(s)?;
+    analysis_from(toroid, &Statics::new(&toroid.structure)?, Vec::new())
+}
+
+/// The analysis of `toroid` from any statics back-end of its structure
+/// ([`StaticsBackend`]: the dense SVD, the sparse QR or the cyclic blocks), with the
+/// per-representation counts of the cyclic one (empty otherwise).
+pub fn analysis_from(
+    toroid: &Toroid,
+    statics: &dyn StaticsBackend,
+    representations: Vec<RepCounts>,
+) -> Result<ToroidAnalysis> {
     let pre = statics.prestressability()?;
-    let flexes = statics.flexes()?;
     Ok(assemble(
         toroid,
         Counts {
             rank: statics.rank(),
             self_stress_dim: statics.self_stress_dim(),
-            internal_mechanisms: flexes.internal.ncols(),
+            internal_mechanisms: statics.internal_mechanisms()?,
         },
         pre,
-        Vec::new(),
+        representations,
     ))
 }
 

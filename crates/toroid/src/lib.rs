@@ -33,7 +33,7 @@ mod tipover;
 pub mod tipover_dynamic;
 
 pub use analysis::{
-    analyse, analyse_dense, design_from, prestress_design, prestressed_structure,
+    analyse, analyse_dense, analysis_from, design_from, prestress_design, prestressed_structure,
     prism_prestressable, rim_radius_window, PrestressDesign, ToroidAnalysis,
 };
 pub use builder::{build, build_prism, prism_nodes, prism_rotation, MemberLabel, Role, Toroid};

@@ -151,3 +151,40 @@ fn symmetric_equals_dense_off_the_reference_geometry() {
         }
     }
 }
+
+/// The toroid through each statics back-end of the core's front (dense SVD, sparse QR,
+/// cyclic blocks): the same counts and margin.
+#[test]
+fn every_statics_backend_analyses_the_toroid_alike() {
+    use tensegrity_core::statics::symmetry::CyclicStatics;
+    use tensegrity_core::statics::{SparseStatics, StaticsSettings};
+    use tensegrity_core::Statics;
+    for (n, o) in [
+        (5, "spokes,inner"),
+        (8, "inner,outer"),
+        (6, "spokes,inner,outer"),
+    ] {
+        let t = build(&ToroidParams::default().sides(n), o.parse().unwrap(), 1.0).unwrap();
+        let s = &t.structure;
+        let sym = toroid_symmetry(&t).unwrap();
+        let dense = analysis_from(&t, &Statics::new(s).unwrap(), Vec::new()).unwrap();
+        let sparse = SparseStatics::with_settings(s, StaticsSettings::default()).unwrap();
+        let sparse = analysis_from(&t, &sparse, Vec::new()).unwrap();
+        let cyclic = analysis_from(&t, &CyclicStatics::new(s, &sym).unwrap(), Vec::new()).unwrap();
+        for (a, who) in [(&sparse, "sparse"), (&cyclic, "cyclic")] {
+            let what = format!("n = {n}, {o}, {who}");
+            assert_eq!(
+                (a.rank, a.self_stress_dim, a.internal_mechanisms),
+                (dense.rank, dense.self_stress_dim, dense.internal_mechanisms),
+                "{what}"
+            );
+            assert_eq!(a.prestressable, dense.prestressable, "{what}");
+            assert!(
+                (a.prestress_margin - dense.prestress_margin).abs() < 1e-9,
+                "{what}: {} vs {}",
+                a.prestress_margin,
+                dense.prestress_margin
+            );
+        }
+    }
+}

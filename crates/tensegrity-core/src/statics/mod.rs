@@ -10,20 +10,28 @@
 //! - self-stress states: the last (members − r) columns of V (null space of A);
 //! - mechanisms: 3·(free dofs) − r first-order motions (the null space of Aᵀ, i.e. the last
 //!   columns of U), rigid-body motions included when the supports allow them.
+//!
+//! [`Statics`] (dense SVD), [`SparseStatics`] (sparse rank-revealing QR) and
+//! [`symmetry::CyclicStatics`] (Fourier blocks of a Cₙ-symmetric structure) are the three
+//! back-ends of one front, [`StaticsBackend`] ([`front`]); [`backend`] and [`cyclic_backend`]
+//! choose one (`select.rs`), and [`report::report_from`] builds the statics report from any.
 
 mod dense_lp;
 mod flexes;
+pub mod front;
 mod load;
 mod prestress;
 pub mod report;
+mod select;
 pub mod sparse;
-mod sparse_report;
 mod stability;
 pub mod symmetry;
 
 pub use flexes::Flexes;
+pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
-pub use prestress::{solve_lp, Prestressability, PRESTRESS_TOLERANCE};
+pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
+pub use select::{backend, cyclic_backend};
 pub use sparse::SparseStatics;
 pub use stability::PrestressStability;
 

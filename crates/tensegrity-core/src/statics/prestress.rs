@@ -8,6 +8,10 @@
 //! recomputed exactly from the returned stress scaled to max|q| = 1, so it is a certified lower
 //! bound of the optimum (the two agree to the solver tolerance, 1e-10). The structure is prestressable when
 //! t > [`PRESTRESS_TOLERANCE`]. The margin is 0 when there is no self-stress.
+//!
+//! The same LP with other member signs ([`MemberSign`]: a member may also be sign-free, e.g. a
+//! bar of a rigid body, bounded only by |q| ≤ 1) is [`Statics::prestressability_with`]; the
+//! sparse and the cyclic back-ends build the same rows ([`margin_lp`]).
 
 use super::{dense_lp, LpSolver, Statics};
 use crate::error::{CoreError, Result};
@@ -40,10 +44,60 @@ impl Prestressability {
             stress: DVector::zeros(members),
         }
     }
+}
 
-    /// From the LP's self-stress q (bars first, `nb` of them): scaled to max|q| = 1, margin
-    /// min(−q_bars, q_strings) clipped at 0 (none when q = 0).
-    pub(crate) fn from_stress(mut q: DVector<f64>, nb: usize) -> Self {
+/// The sign a member's force density must take in the margin LP.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MemberSign {
+    /// q ≥ t: a string.
+    Tension,
+    /// q ≤ −t: a bar.
+    Compression,
+    /// Either sign, only |q| ≤ 1 (e.g. a bar of a rigid body, whose members carry either sign).
+    Free,
+}
+
+impl MemberSign {
+    /// σ = +1 for tension, −1 for compression; `None` when the sign is free.
+    pub fn sigma(self) -> Option<f64> {
+        match self {
+            MemberSign::Tension => Some(1.0),
+            MemberSign::Compression => Some(-1.0),
+            MemberSign::Free => None,
+        }
+    }
+
+    /// The prestressability signs of a structure: bars in compression, strings in tension.
+    ///
+    /// ```
+    /// use tensegrity_core::statics::MemberSign;
+    /// use tensegrity_core::{Bar, StringMember, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(MemberSign::standard(&s), vec![MemberSign::Compression]);
+    /// ```
+    pub fn standard(structure: &crate::structure::Structure) -> Vec<MemberSign> {
+        let nb = structure.n_bars();
+        (0..structure.n_members())
+            .map(|k| {
+                if k < nb {
+                    MemberSign::Compression
+                } else {
+                    MemberSign::Tension
+                }
+            })
+            .collect()
+    }
+}
+
+impl Prestressability {
+    /// From the LP's self-stress q with the member signs of the LP: scaled to max|q| = 1,
+    /// margin min over the signed members of σ q, clipped at 0 (none when q = 0 or no member
+    /// has a sign).
+    pub(crate) fn from_signed(mut q: DVector<f64>, signs: &[MemberSign]) -> Self {
         let scale = q.amax();
         if scale <= 0.0 {
             return Self::none(q.len());
@@ -51,10 +105,14 @@ impl Prestressability {
         q /= scale;
         let margin = q
             .iter()
-            .enumerate()
-            .map(|(k, &v)| if k < nb { -v } else { v })
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0);
+            .zip(signs)
+            .filter_map(|(&v, s)| s.sigma().map(|sigma| sigma * v))
+            .fold(f64::INFINITY, f64::min);
+        let margin = if margin.is_finite() {
+            margin.max(0.0)
+        } else {
+            0.0
+        };
         Self {
             margin,
             prestressable: margin > PRESTRESS_TOLERANCE,
@@ -63,45 +121,86 @@ impl Prestressability {
     }
 }
 
-impl Statics<'_> {
-    /// Solves the prestressability LP over the self-stress space.
-    pub fn prestressability(&self) -> Result<Prestressability> {
-        let basis = self.self_stress_basis();
-        let m = basis.nrows();
-        let d = basis.ncols();
-        let nb = self.structure().n_bars();
-        if d == 0 {
-            return Ok(Prestressability::none(m));
-        }
-        // Variables z = [x (d), t]; constraints G z ≤ h. t ≥ 0 (x = 0 achieves it), so
-        // q_s ≥ t already bounds strings below by −1 and q_b ≤ −t bounds bars above by 1: two
-        // rows per member suffice. Strings: t − q_k ≤ 0, q_k ≤ 1; bars: q_k + t ≤ 0, −q_k ≤ 1.
-        let rows = 2 * m + 1;
-        let mut g = DMatrix::zeros(rows, d + 1);
-        let mut h = DVector::zeros(rows);
-        for k in 0..m {
-            let sign = if k < nb { 1.0 } else { -1.0 };
-            for j in 0..d {
-                g[(2 * k, j)] = sign * basis[(k, j)];
-                g[(2 * k + 1, j)] = -sign * basis[(k, j)];
-            }
-            g[(2 * k, d)] = 1.0;
-            h[2 * k + 1] = 1.0;
-        }
-        g[(2 * m, d)] = -1.0;
-        let mut c = DVector::zeros(d + 1);
-        c[d] = -1.0;
-        let dense = match self.settings.lp_solver {
-            LpSolver::DenseInteriorPoint => dense_lp::solve(&g, &h, &c, 1e-10).ok(),
-            LpSolver::Clarabel => None,
+/// Solves the margin LP over the columns of `basis` (rows: members, or member orbits of a
+/// symmetric basis; columns: self-stress states) and returns the coefficients x of the
+/// maximising state q = basis · x.
+///
+/// Variables z = [x (d), t]; constraints G z ≤ h. t ≥ 0 (x = 0 achieves it), so a signed
+/// member needs two rows: t − σ q_k ≤ 0 and σ q_k ≤ 1 (σ q_k ≥ t ≥ 0 already bounds it below
+/// by −1); a free member needs q_k ≤ 1 and −q_k ≤ 1.
+pub(crate) fn margin_lp(
+    basis: &DMatrix<f64>,
+    signs: &[MemberSign],
+    solver: LpSolver,
+    problem: &'static str,
+) -> Result<DVector<f64>> {
+    let (m, d) = (basis.nrows(), basis.ncols());
+    let rows = 2 * m + 1;
+    let mut g = DMatrix::zeros(rows, d + 1);
+    let mut h = DVector::zeros(rows);
+    for k in 0..m {
+        let (first, t) = match signs[k].sigma() {
+            Some(sigma) => (-sigma, 1.0),
+            None => (1.0, 0.0),
         };
-        let z = match dense {
-            Some(z) => z,
-            None => solve_clarabel(&g, &h, &c, "prestressability LP")?,
-        };
-        let x = z.rows(0, d).into_owned();
-        Ok(Prestressability::from_stress(&basis * x, nb))
+        for j in 0..d {
+            g[(2 * k, j)] = first * basis[(k, j)];
+            g[(2 * k + 1, j)] = -first * basis[(k, j)];
+        }
+        g[(2 * k, d)] = t;
+        h[2 * k] = 1.0 - t;
+        h[2 * k + 1] = 1.0;
     }
+    g[(2 * m, d)] = -1.0;
+    let mut c = DVector::zeros(d + 1);
+    c[d] = -1.0;
+    let dense = match solver {
+        LpSolver::DenseInteriorPoint => dense_lp::solve(&g, &h, &c, 1e-10).ok(),
+        LpSolver::Clarabel => None,
+    };
+    let z = match dense {
+        Some(z) => z,
+        None => solve_clarabel(&g, &h, &c, problem)?,
+    };
+    Ok(z.rows(0, d).into_owned())
+}
+
+impl Statics<'_> {
+    /// Solves the prestressability LP over the self-stress space (bars compressed, strings
+    /// in tension).
+    pub fn prestressability(&self) -> Result<Prestressability> {
+        self.prestressability_with(&MemberSign::standard(self.structure()))
+    }
+
+    /// The margin LP over the self-stress space with the given member signs (see
+    /// [`MemberSign`]): the largest t such that some self-stress with max|q| = 1 has
+    /// σ q_k ≥ t for every signed member.
+    pub fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
+        let basis = self.self_stress_basis();
+        check_signs(signs, basis.nrows())?;
+        if basis.ncols() == 0 {
+            return Ok(Prestressability::none(basis.nrows()));
+        }
+        let x = margin_lp(
+            &basis,
+            signs,
+            self.settings.lp_solver,
+            "prestressability LP",
+        )?;
+        Ok(Prestressability::from_signed(&basis * x, signs))
+    }
+}
+
+/// Refuses a sign list whose length is not the number of members.
+pub(crate) fn check_signs(signs: &[MemberSign], members: usize) -> Result<()> {
+    if signs.len() != members {
+        return Err(CoreError::LengthMismatch {
+            what: "member signs of the margin LP".into(),
+            expected: members,
+            found: signs.len(),
+        });
+    }
+    Ok(())
 }
 
 /// Solves a small dense linear programme `min cᵀz  s.t.  G z ≤ h` (G: rows × p, rows ≥ p):
@@ -129,11 +228,14 @@ pub fn solve_lp(
     }
 }
 
-/// The margin LP over the member force densities of a structure with `nb` bars (bars first),
-/// the self-stress space given by the r × n equations `r_eq` q = 0 of full row rank:
-/// `max t  s.t.  r_eq q = 0, q_s ≥ t, q_b ≤ −t, |q| ≤ 1, t ≥ 0`, by Clarabel (sparse). Returns
-/// z = [q, t].
-pub(super) fn solve_member_lp(r_eq: &crate::linalg::CscMatrix, nb: usize) -> Result<Vec<f64>> {
+/// The margin LP over the member force densities, the self-stress space given by the r × n
+/// equations `r_eq` q = 0 of full row rank:
+/// `max t  s.t.  r_eq q = 0, σ_k q_k ≥ t (signed members), |q| ≤ 1, t ≥ 0`, by Clarabel
+/// (sparse), with the rows of [`margin_lp`]. Returns z = [q, t].
+pub(super) fn solve_member_lp(
+    r_eq: &crate::linalg::CscMatrix,
+    signs: &[MemberSign],
+) -> Result<Vec<f64>> {
     let problem = "prestressability LP (sparse)";
     let (r, n) = (r_eq.pattern().nrows(), r_eq.pattern().ncols());
     let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
@@ -152,11 +254,20 @@ pub(super) fn solve_member_lp(r_eq: &crate::linalg::CscMatrix, nb: usize) -> Res
     // inequalities A z + s = b, s ≥ 0 (same rows as the dense LP)
     let mut b = vec![0.0; r + 2 * n + 1];
     for k in 0..n {
-        let sign = if k < nb { 1.0 } else { -1.0 };
         let row = r + 2 * k;
-        ii.extend([row, row, row + 1]);
-        jj.extend([k, n, k]);
-        vv.extend([sign, 1.0, -sign]);
+        match signs[k].sigma() {
+            Some(sigma) => {
+                ii.extend([row, row, row + 1]);
+                jj.extend([k, n, k]);
+                vv.extend([-sigma, 1.0, sigma]);
+            }
+            None => {
+                ii.extend([row, row + 1]);
+                jj.extend([k, k]);
+                vv.extend([1.0, -1.0]);
+                b[row] = 1.0;
+            }
+        }
         b[row + 1] = 1.0;
     }
     ii.push(r + 2 * n);

@@ -21,8 +21,16 @@
 //!
 //! Failures of the optional parts (sizing, modes) do not fail the report: they are reported
 //! in its `sizing_error` and `modal_error` fields.
+//!
+//! The report is built in one place, [`report_from`], over any statics back-end
+//! ([`StaticsBackend`]: the dense SVD, the sparse QR, the cyclic blocks);
+//! [`statics_report`] chooses the back-end by [`StaticsSettings::method`]
+//! ([`super::select::backend`]). The dense SVD leaves `statics_method` out; another back-end
+//! names itself there ([`Factorization`]), and a rank decision it cannot certify, or what it
+//! does not compute, is said in `statics_warning`.
 
-use super::{Statics, StaticsSettings};
+use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
+use super::StaticsSettings;
 use crate::error::{CoreError, Result};
 use crate::sizing::{self, Governing, SizingReport};
 use crate::stiffness::{self, MassModel};
@@ -115,9 +123,9 @@ pub struct StaticsReport {
     /// Minimum mass of each member for the loads (kg), when sized.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub member_mass_kg: Option<Vec<f64>>,
-    /// Failure mode setting each member's size: "yield", "buckling" or "unloaded".
+    /// Failure mode setting each member's size: `yield`, `buckling` or `unloaded`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub governing: Option<Vec<&'static str>>,
+    pub governing: Option<Vec<Governing>>,
     /// Set when the mass was computed but the design is not buildable as is (strings in
     /// compression).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -131,13 +139,17 @@ pub struct StaticsReport {
     /// Why the mass could not be computed, when members have materials but sizing failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_error: Option<String>,
-    /// Set when the sparse rank-revealing QR answered instead of the dense SVD:
-    /// `"sparse_qr"`. `smallest_singular_value` is then an estimate (an upper bound ≤
-    /// `rank_tolerance` when A is rank deficient, an inverse-iteration estimate otherwise).
+    /// Set when another back-end than the dense SVD answered: `sparse_qr` (the sparse
+    /// rank-revealing QR; `smallest_singular_value` is then an estimate: an upper bound ≤
+    /// `rank_tolerance` when A is rank deficient, an inverse-iteration estimate otherwise) or
+    /// `cyclic` (the symmetry-adapted blocks).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub statics_method: Option<&'static str>,
-    /// Set when the sparse rank decision could not be certified (see
-    /// [`SparseStatics`](super::SparseStatics)).
+    pub statics_method: Option<Factorization>,
+    /// Set when the rank decision could not be certified (see
+    /// [`SparseStatics`](super::SparseStatics) and
+    /// [`CyclicStatics`](super::symmetry::CyclicStatics)), or when the back-end left
+    /// something out (the cyclic back-end: only the symmetric self-stresses, no prestress
+    /// stability).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub statics_warning: Option<String>,
 }
@@ -158,15 +170,20 @@ pub struct StaticsReport {
 /// assert!(r.force_density.is_none()); // no loads, no load solve
 /// ```
 pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result<StaticsReport> {
-    if super::sparse_report::wants_sparse(structure, &request.settings) {
-        if let Some(report) = super::sparse_report::sparse_statics_report(structure, request)? {
-            return Ok(report);
-        }
-    }
-    let statics = Statics::with_settings(structure, request.settings)?;
-    let mut report = base_report(structure, &statics)?;
+    let backend = super::select::backend(structure, request.settings)?;
+    report_from(backend.as_ref(), request)
+}
+
+/// The statics report from any back-end: counts, self-stress, prestressability and
+/// mechanisms; the load solve when the structure is loaded; the modes when asked.
+pub fn report_from(
+    backend: &dyn StaticsBackend,
+    request: &StaticsRequest,
+) -> Result<StaticsReport> {
+    let structure = backend.structure();
+    let mut report = base_report(backend)?;
     if structure.is_loaded() {
-        let sol = statics.solve_loads();
+        let sol = backend.solve_loads()?;
         add_load_solve(structure, sol, request.least_squares, &mut report)?;
     }
     if let Some(k) = request.modes {
@@ -176,35 +193,57 @@ pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result
 }
 
 /// Counts, self-stress, prestressability and mechanisms; the optional parts left empty.
-fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsReport> {
-    let pre = statics.prestressability()?;
-    let flexes = statics.flexes()?;
+fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
+    let structure = backend.structure();
+    let pre = backend.prestressability()?;
+    let internal_mechanisms = backend.internal_mechanisms()?;
+    let mut notes = Vec::new();
+    if let Certification::NotCertified { reason } = backend.certification() {
+        notes.push(reason);
+    }
     let prestress_stable = if pre.prestressable {
-        Some(statics.prestress_stability(&pre.stress)?.stable)
+        match backend.prestress_stability(&pre.stress) {
+            Ok(s) => Some(s.stable),
+            Err(e @ CoreError::Unsupported { .. }) => {
+                notes.push(format!("prestress stability not tested: {e}"));
+                None
+            }
+            Err(e) => return Err(e),
+        }
     } else {
         None
     };
+    let basis = backend.self_stress();
+    if let SelfStressBasis::Symmetric { basis, dim } = &basis {
+        notes.push(format!(
+            "self_stress lists the {} fully symmetric states of the {dim}-dimensional self-stress space",
+            basis.ncols()
+        ));
+    }
+    let kind = backend.kind();
     Ok(StaticsReport {
         nodes: structure.n_nodes(),
         bars: structure.n_bars(),
         strings: structure.n_strings(),
-        rank: statics.rank(),
-        self_stress_dim: statics.self_stress_dim(),
-        mechanisms: statics.mechanisms(),
-        internal_mechanisms: flexes.internal.ncols(),
+        rank: backend.rank(),
+        self_stress_dim: backend.self_stress_dim(),
+        mechanisms: backend.mechanisms(),
+        internal_mechanisms,
         prestressable: pre.prestressable,
         prestress_margin: pre.margin,
         prestress_stable,
-        self_stress: statics
-            .self_stress_basis()
+        self_stress: basis
+            .matrix()
             .column_iter()
             .map(|c| c.iter().copied().collect())
             .collect(),
         prestress: pre
             .prestressable
             .then(|| pre.stress.iter().copied().collect()),
-        smallest_singular_value: statics.singular_values().last().copied().unwrap_or(0.0),
-        rank_tolerance: statics.tolerance(),
+        smallest_singular_value: backend.smallest_singular_value(),
+        rank_tolerance: backend.tolerance(),
+        statics_method: (kind != Factorization::Svd).then_some(kind),
+        statics_warning: (!notes.is_empty()).then(|| notes.join("; ")),
         // the load solve, sizing and modes are added by their own steps
         ..StaticsReport::default()
     })
@@ -212,7 +251,7 @@ fn base_report(structure: &Structure, statics: &Statics<'_>) -> Result<StaticsRe
 
 /// The minimal-norm load solve and, when members have materials and the load is carried, the
 /// sizing for it.
-pub(super) fn add_load_solve(
+fn add_load_solve(
     structure: &Structure,
     sol: super::LoadSolution,
     least_squares: bool,
@@ -253,15 +292,6 @@ pub(super) fn add_load_solve(
     Ok(())
 }
 
-/// The name of a governing failure mode in the report.
-fn governing_name(g: Governing) -> &'static str {
-    match g {
-        Governing::Yield => "yield",
-        Governing::Buckling => "buckling",
-        Governing::Unloaded => "unloaded",
-    }
-}
-
 /// Copies a sizing into the report, with a warning naming the compressed strings.
 fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsReport) {
     if !compressed.is_empty() {
@@ -274,21 +304,11 @@ fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsRep
     report.mass_kg = Some(s.total_mass);
     report.member_radius_m = Some(s.members.iter().map(|m| m.radius).collect());
     report.member_mass_kg = Some(s.members.iter().map(|m| m.mass).collect());
-    report.governing = Some(
-        s.members
-            .iter()
-            .map(|m| governing_name(m.governing))
-            .collect(),
-    );
+    report.governing = Some(s.members.iter().map(|m| m.governing).collect());
 }
 
 /// The `k` lowest natural frequencies about the equilibrium force densities.
-pub(super) fn add_modes(
-    structure: &Structure,
-    k: usize,
-    mass: MassModel,
-    report: &mut StaticsReport,
-) {
+fn add_modes(structure: &Structure, k: usize, mass: MassModel, report: &mut StaticsReport) {
     let modes = stiffness::equilibrium_force_densities(structure)
         .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
     match modes {
@@ -389,7 +409,7 @@ mod tests {
             (Some(true), None)
         );
         let gov = r.governing.as_ref().unwrap();
-        assert_eq!((gov[0], gov[4]), ("buckling", "yield"));
+        assert_eq!((gov[0], gov[4]), (Governing::Buckling, Governing::Yield));
         let mass = r.mass_kg.unwrap();
         assert!((mass - 8.858023).abs() < 5e-7, "{mass}");
         let total: f64 = r.member_mass_kg.as_ref().unwrap().iter().sum();

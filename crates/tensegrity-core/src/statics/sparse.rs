@@ -51,7 +51,7 @@
 //!   projection on the self-stress space.
 
 use super::load::LoadSolution;
-use super::prestress::Prestressability;
+use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
 use super::{orient_self_stress, DofMap, StaticsSettings};
 use crate::error::{CoreError, Result};
@@ -326,17 +326,23 @@ impl SparseStatics<'_> {
     /// The prestressability LP over the member force densities (see the module
     /// documentation).
     pub fn prestressability(&self) -> Result<Prestressability> {
+        self.prestressability_with(&MemberSign::standard(self.structure))
+    }
+
+    /// The margin LP with the given member signs ([`MemberSign`]) over the member force
+    /// densities.
+    pub fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
         let n = self.structure.n_members();
-        let nb = self.structure.n_bars();
+        super::prestress::check_signs(signs, n)?;
         if self.self_stress_dim() == 0 {
             return Ok(Prestressability::none(n));
         }
-        let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, nb)?;
+        let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, signs)?;
         let raw = DVector::from_column_slice(&z[..n]);
         let basis = &self.self_stress;
-        Ok(Prestressability::from_stress(
+        Ok(Prestressability::from_signed(
             basis * (basis.transpose() * raw),
-            nb,
+            signs,
         ))
     }
 
@@ -362,6 +368,11 @@ impl SparseStatics<'_> {
                 .scale_mut(1.0 / w[k].max(f64::MIN_POSITIVE).sqrt());
         }
         Ok((phi, n_rigid))
+    }
+
+    /// The rigid-body motions the supports allow.
+    pub fn rigid_body_motions(&self) -> Result<usize> {
+        Ok(rigid_motions(self.structure, &self.dofs)?.ncols())
     }
 
     /// Prestress stability with force densities `q` (the dense path's test and tolerance).

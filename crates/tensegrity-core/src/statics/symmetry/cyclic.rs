@@ -50,6 +50,11 @@ pub struct CyclicStatics<'a> {
     reps: Vec<RepCounts>,
     tolerance: f64,
     sigma_max: f64,
+    /// The smallest singular value of A (0 when the blocks hold fewer than min(m, n)).
+    sigma_min: f64,
+    /// The singular value nearest the tolerance (by ratio) among those within
+    /// [τ / CERTIFY_BAND, τ · CERTIFY_BAND], if any: the rank decision is then not certified.
+    near_tolerance: Option<f64>,
     /// Orthonormal self-stress basis of block 0 in member-orbit coordinates (orbits × d₀),
     /// as member values (q_e = entry of e's orbit).
     symmetric_basis: DMatrix<f64>,
@@ -67,8 +72,8 @@ impl<'a> CyclicStatics<'a> {
         Self::with_settings(structure, symmetry, StaticsSettings::default())
     }
 
-    /// Analyses `structure` block by block (the LP solver setting is not used: the
-    /// symmetric LP always goes through [`crate::statics::solve_lp`]).
+    /// Analyses `structure` block by block (the rank tolerance and the LP solver of
+    /// `settings` are used; the memory limit is not: the blocks need O(n·b²)).
     pub fn with_settings(
         structure: &'a Structure,
         symmetry: &'a CyclicSymmetry,
@@ -136,6 +141,7 @@ impl<'a> CyclicStatics<'a> {
             .collect();
         let symmetric_basis =
             DMatrix::from_fn(c0, c0 - r0, |row, col| v0[(row, r0 + col)] / sizes[row]);
+        let (sigma_min, near_tolerance) = spectrum_ends(&factored, &reps, tolerance);
         Ok(Self {
             structure,
             symmetry,
@@ -143,6 +149,8 @@ impl<'a> CyclicStatics<'a> {
             reps,
             tolerance,
             sigma_max,
+            sigma_min,
+            near_tolerance,
             symmetric_basis,
         })
     }
@@ -175,6 +183,25 @@ impl<'a> CyclicStatics<'a> {
     /// The largest singular value of A.
     pub fn sigma_max(&self) -> f64 {
         self.sigma_max
+    }
+
+    /// The smallest singular value of A (the union of the blocks' singular values; 0 when
+    /// the blocks hold fewer than min(free dofs, members) of them).
+    pub fn sigma_min(&self) -> f64 {
+        self.sigma_min
+    }
+
+    /// Whether the rank decision is certified: no singular value of any block lies within a
+    /// factor [`CERTIFY_BAND`] of the tolerance, so rounding (of order ε·σ_max in the blocks as
+    /// in the dense SVD) cannot move a singular value across it and the dense SVD at the same
+    /// tolerance decides the same ranks.
+    pub fn is_certified(&self) -> bool {
+        self.near_tolerance.is_none()
+    }
+
+    /// The singular value that prevents certification (see [`is_certified`](Self::is_certified)).
+    pub fn value_near_tolerance(&self) -> Option<f64> {
+        self.near_tolerance
     }
 
     /// Free degrees of freedom (rows of A).
@@ -221,6 +248,40 @@ impl<'a> CyclicStatics<'a> {
         let b = &self.symmetric_basis;
         DMatrix::from_fn(places.len(), b.ncols(), |e, c| b[(places[e].orbit, c)])
     }
+}
+
+/// A block singular value within this factor of the rank tolerance makes the cyclic rank
+/// decision uncertified ([`CyclicStatics::is_certified`]).
+pub const CERTIFY_BAND: f64 = 10.0;
+
+/// The smallest singular value of A (0 when the n blocks hold fewer than min(m, n) values)
+/// and the singular value within [τ / CERTIFY_BAND, τ · CERTIFY_BAND] nearest τ, if any.
+fn spectrum_ends(factored: &[Factored], reps: &[RepCounts], tol: f64) -> (f64, Option<f64>) {
+    let ratio = |s: f64| {
+        if s > tol {
+            s / tol
+        } else {
+            tol / s.max(f64::MIN_POSITIVE)
+        }
+    };
+    let mut near: Option<f64> = None;
+    for &s in factored.iter().flat_map(|f| &f.s) {
+        if ratio(s) <= CERTIFY_BAND && near.is_none_or(|b| ratio(s) < ratio(b)) {
+            near = Some(s);
+        }
+    }
+    let slots: usize = reps.iter().map(|r| r.rows.min(r.columns)).sum();
+    let rows: usize = reps.iter().map(|r| r.rows).sum();
+    let cols: usize = reps.iter().map(|r| r.columns).sum();
+    let smallest = if slots < rows.min(cols) {
+        0.0
+    } else {
+        factored
+            .iter()
+            .filter_map(|f| f.s.last().copied())
+            .fold(f64::INFINITY, f64::min)
+    };
+    (if smallest.is_finite() { smallest } else { 0.0 }, near)
 }
 
 /// The rigid-body motions allowed in representation 0 and in representation 1 (= n − 1).

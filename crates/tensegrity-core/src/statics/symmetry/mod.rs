@@ -15,15 +15,20 @@
 //!
 //! Files: [`descriptor`] (the validated [`CyclicSymmetry`]), [`blocks`] (the block assembly,
 //! nodes on the axis included), [`cyclic`] ([`CyclicStatics`]: per-block SVD, totals, rigid
-//! motions), [`prestress`] (the symmetric margin LP).
+//! motions, certification of the rank decision), [`prestress`] (the symmetric margin LP),
+//! [`response`] (the elastic response to a load on one node, block by block, and the
+//! rotation of a response to the other nodes of the orbit). [`CyclicStatics`] is one of the
+//! back-ends of [`crate::statics::StaticsBackend`].
 
 pub mod blocks;
 pub mod cyclic;
 pub mod descriptor;
 pub mod prestress;
+pub mod response;
 
 pub use blocks::{BlockContext, BlockLayout, BlockRow};
 pub use cyclic::{CyclicStatics, RepCounts};
 pub use descriptor::{
     CyclicSymmetry, MemberOrbit, NodeOrbit, Place, SymmetryError, SYMMETRY_TOLERANCE,
 };
+pub use response::{elastic_response, MemberRotations};

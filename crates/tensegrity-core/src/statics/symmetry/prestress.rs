@@ -10,58 +10,47 @@
 //! in the dense path.
 
 use super::cyclic::CyclicStatics;
-use crate::error::Result;
-use crate::statics::{solve_lp, Prestressability, PRESTRESS_TOLERANCE};
-use nalgebra::{DMatrix, DVector};
+use crate::error::{CoreError, Result};
+use crate::statics::prestress::{check_signs, margin_lp};
+use crate::statics::{MemberSign, Prestressability};
 
 impl CyclicStatics<'_> {
     /// The prestressability LP solved in the fully symmetric subspace (see the module docs);
     /// `stress` is expanded to every member (bars then strings).
     pub fn prestressability(&self) -> Result<Prestressability> {
-        let basis = self.symmetric_basis();
-        let orbits = self.symmetry().member_orbits();
-        let (m, d) = (basis.nrows(), basis.ncols());
+        self.prestressability_with(&MemberSign::standard(self.structure()))
+    }
+
+    /// The margin LP with the given member signs ([`MemberSign`]) in the fully symmetric
+    /// subspace. The signs must be the same on every member of an orbit (otherwise the LP is
+    /// not invariant and its optimum need not be symmetric:
+    /// [`CoreError::InvalidParameter`] naming `signs`).
+    pub fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
         let members = self.structure().n_members();
-        let none = Prestressability {
-            margin: 0.0,
-            prestressable: false,
-            stress: DVector::zeros(members),
-        };
-        if d == 0 {
-            return Ok(none);
+        check_signs(signs, members)?;
+        let orbits = self.symmetry().member_orbits();
+        let places = self.symmetry().member_places();
+        if let Some(e) = (0..members).find(|&e| signs[e] != signs[orbits[places[e].orbit].rep]) {
+            return Err(CoreError::invalid_parameter(
+                "signs",
+                e as f64,
+                "the member signs of the symmetric margin LP must be the same on every member of an orbit",
+            ));
+        }
+        let basis = self.symmetric_basis();
+        if basis.ncols() == 0 {
+            return Ok(Prestressability::none(members));
         }
         // rows of block 0 are the orbits present in it: all of them (k·d ≡ 0 for k = 0)
-        let rows = 2 * m + 1;
-        let mut g = DMatrix::zeros(rows, d + 1);
-        let mut h = DVector::zeros(rows);
-        for e in 0..m {
-            let sign = if orbits[e].bar { 1.0 } else { -1.0 };
-            for j in 0..d {
-                g[(2 * e, j)] = sign * basis[(e, j)];
-                g[(2 * e + 1, j)] = -sign * basis[(e, j)];
-            }
-            g[(2 * e, d)] = 1.0;
-            h[2 * e + 1] = 1.0;
-        }
-        g[(2 * m, d)] = -1.0;
-        let mut c = DVector::zeros(d + 1);
-        c[d] = -1.0;
-        let z = solve_lp(&g, &h, &c, "symmetric prestressability LP")?;
-        let mut q = basis * z.rows(0, d);
-        let scale = q.amax();
-        if scale <= 0.0 {
-            return Ok(none);
-        }
-        q /= scale;
-        let margin = (0..m)
-            .map(|e| if orbits[e].bar { -q[e] } else { q[e] })
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0);
-        let places = self.symmetry().member_places();
-        Ok(Prestressability {
-            margin,
-            prestressable: margin > PRESTRESS_TOLERANCE,
-            stress: DVector::from_fn(members, |e, _| q[places[e].orbit]),
-        })
+        let orbit_signs: Vec<MemberSign> = orbits.iter().map(|o| signs[o.rep]).collect();
+        let x = margin_lp(
+            basis,
+            &orbit_signs,
+            self.settings().lp_solver,
+            "symmetric prestressability LP",
+        )?;
+        let q = basis * x;
+        let expanded = nalgebra::DVector::from_fn(members, |e, _| q[places[e].orbit]);
+        Ok(Prestressability::from_signed(expanded, signs))
     }
 }

@@ -42,13 +42,36 @@
 //! every load direction is carried by the bar and at least two strings (their forces change).
 //! Note that a load need not *tighten* two strings: a radial load towards the hub unloads all
 //! four strings of a q = 1 tread and is carried by the prestress drop and the bar.
+//!
+//! **Wheels through the cyclic path.** The statics back-end ([`StaticsBackend`]) of a wheel is
+//! its symmetry-adapted blocks. The response of one tip per tip orbit is solved block by
+//! block and rotated to the other tips ([`LoadResponse`]); since every tread's tip is loaded,
+//! a_k is constant on member orbits, so the LP above (and its lengths, signs and the bar cap)
+//! is invariant under the rotation. Its feasible set is convex, so the average over the group
+//! of an optimum is an optimum: the LP restricted to the fully symmetric self-stresses (the
+//! back-end's [`SelfStressBasis::Symmetric`], d₀ columns, a few per member orbit) has the same
+//! minimum P, and it is what the cyclic path solves, with one row per member orbit (a
+//! symmetric state has equal forces over an orbit): its size does not grow with n. With all
+//! orbits of n members the reduced LP's log barrier is the full one's divided by n, so both
+//! have the same central path and tend to the same point of a non-unique optimal face. The full self-stress basis (dimension 2n for a q = 1
+//! wheel) is never needed: the report prints the minimum prestress, the optimal (symmetric)
+//! state, the critical member and the mass, all from this LP. The slack map checks every
+//! tip, each from a rotated response (O(tips × members) per direction, as on the dense
+//! path).
+//!
+//! [`SelfStressBasis::Symmetric`]: tensegrity_core::statics::SelfStressBasis::Symmetric
+
+mod response;
+mod slack;
+
+pub use response::LoadResponse;
+pub use slack::{loaded_forces, scaled_state, slack_map, sphere_directions, SlackMap, SlackPoint};
 
 use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::statics::solve_lp;
-use tensegrity_core::Statics;
+use tensegrity_core::statics::{solve_lp, StaticsBackend};
 
 /// Default tip load magnitude w₀ (N).
 pub const DEFAULT_LOAD: f64 = 1.0;
@@ -59,104 +82,22 @@ pub const DEFAULT_DIRECTIONS: usize = 2000;
 /// Most directions accepted for a slack map.
 pub const MAX_DIRECTIONS: usize = 1_000_000;
 
-/// The linear response of every member force to a unit tip load, for every loaded tip.
-#[derive(Debug, Clone)]
-pub struct LoadResponse {
-    /// Member lengths (m), bars first.
-    pub lengths: Vec<f64>,
-    /// Number of bars (members 0..n_bars).
-    pub n_bars: usize,
-    /// The two nodes (start, end) of every member.
-    pub ends: Vec<[usize; 2]>,
-    /// The loaded tip nodes.
-    pub tips: Vec<usize>,
-    /// `g[t][k]`: force in member k (N) per newton of load on tip t, t_k = g·d.
-    pub g: Vec<Vec<Vector3<f64>>>,
+/// Whether a member is a bar or a string (serialised as `bar`, `string`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MemberKind {
+    /// A bar.
+    Bar,
+    /// A string.
+    String,
 }
 
-impl LoadResponse {
-    /// Assembles K = Â diag(EA/L) Âᵀ from the factored statics and solves for unit loads on
-    /// each tip. Fails with [`TbarError::Mechanism`] when K is singular.
-    pub fn new(statics: &Statics<'_>, tips: &[usize], ea: f64, what: &'static str) -> Result<Self> {
-        if !(ea.is_finite() && ea > 0.0) {
-            return Err(invalid(
-                "ea",
-                ea,
-                "the axial stiffness must be finite and > 0",
-            ));
-        }
-        let s = statics.structure();
-        let lengths = s.member_lengths();
-        let mut a_hat = statics.matrix().clone();
-        for (k, mut col) in a_hat.column_iter_mut().enumerate() {
-            col /= lengths[k];
-        }
-        let k_diag = DVector::from_iterator(lengths.len(), lengths.iter().map(|l| ea / l));
-        let mut weighted = a_hat.clone();
-        for (k, mut col) in weighted.column_iter_mut().enumerate() {
-            col *= k_diag[k];
-        }
-        let stiffness = &weighted * a_hat.transpose();
-        let mechanism = || -> Result<TbarError> {
-            Ok(TbarError::Mechanism {
-                structure: what,
-                mechanisms: statics.flexes()?.internal.ncols().max(1),
-            })
-        };
-        if statics.mechanisms() > 0 {
-            return Err(mechanism()?);
-        }
-        let Some(chol) = stiffness.cholesky() else {
-            return Err(mechanism()?);
-        };
-        let dofs = statics.dofs();
-        let mut g = Vec::with_capacity(tips.len());
-        for &tip in tips {
-            let mut e = DMatrix::zeros(dofs.len(), 3);
-            for d in 0..3 {
-                let row = dofs.row[tip][d].ok_or_else(|| {
-                    invalid("tip", tip as f64, "a loaded tip must be a free node")
-                })?;
-                e[(row, d)] = 1.0;
-            }
-            let u = chol.solve(&e);
-            let forces = weighted.transpose() * u;
-            g.push(
-                (0..forces.nrows())
-                    .map(|k| Vector3::new(forces[(k, 0)], forces[(k, 1)], forces[(k, 2)]))
-                    .collect(),
-            );
-        }
-        Ok(Self {
-            lengths,
-            n_bars: s.n_bars(),
-            ends: s.member_nodes(),
-            tips: tips.to_vec(),
-            g,
+impl std::fmt::Display for MemberKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(match self {
+            MemberKind::Bar => "bar",
+            MemberKind::String => "string",
         })
-    }
-
-    /// Number of members.
-    pub fn n_members(&self) -> usize {
-        self.lengths.len()
-    }
-
-    /// Whether member k is a bar.
-    pub fn is_bar(&self, k: usize) -> bool {
-        k < self.n_bars
-    }
-
-    /// a_k = max over tips of ‖g_{k,T}‖ and the tip (index into `tips`) attaining it.
-    pub fn worst_gains(&self) -> Vec<(f64, usize)> {
-        (0..self.n_members())
-            .map(|k| {
-                self.g
-                    .iter()
-                    .enumerate()
-                    .map(|(t, gt)| (gt[k].norm(), t))
-                    .fold((0.0, 0), |best, x| if x.0 > best.0 { x } else { best })
-            })
-            .collect()
     }
 }
 
@@ -166,7 +107,7 @@ pub struct CriticalMember {
     /// Member index (bars first, then strings).
     pub member: usize,
     /// `bar` or `string`.
-    pub kind: michell3d::MemberKind,
+    pub kind: MemberKind,
     /// Index among the members of its kind.
     pub index: usize,
     /// Labels of its two nodes (start, end).
@@ -205,7 +146,7 @@ pub fn angles(d: &Vector3<f64>) -> (f64, f64) {
 /// Solves the minimum-prestress LP for a tip load of magnitude `load` (see the module docs).
 /// `labels` names the nodes (for the critical member).
 pub fn min_prestress(
-    statics: &Statics<'_>,
+    statics: &dyn StaticsBackend,
     response: &LoadResponse,
     load: f64,
     labels: &[String],
@@ -214,11 +155,13 @@ pub fn min_prestress(
     if !(load.is_finite() && load > 0.0) {
         return Err(invalid("load", load, "the tip load must be finite and > 0"));
     }
-    let basis = statics.self_stress_basis();
+    // the whole self-stress space, or its fully symmetric part on the cyclic path: the LP
+    // is invariant (a_k constant on member orbits), so it has a symmetric optimum
+    let basis = statics.self_stress().matrix().clone();
     let dim = basis.ncols();
     let not_prestressable = || TbarError::NotPrestressable {
         structure: what,
-        self_stress_dim: dim,
+        self_stress_dim: statics.self_stress_dim(),
     };
     if dim == 0 {
         return Err(not_prestressable());
@@ -229,22 +172,33 @@ pub fn min_prestress(
         row *= response.lengths[k];
     }
     let gains = response.worst_gains();
-    let nb = response.n_bars;
-    let rows = m + nb;
+    // the members whose constraints enter: all of them, or one per member orbit on the cyclic
+    // path (a symmetric state has equal forces, lengths and gains over an orbit)
+    let members: Vec<usize> = match statics.symmetry() {
+        Some(sym) => sym.member_orbits().iter().map(|o| o.rep).collect(),
+        None => (0..m).collect(),
+    };
+    let bars: Vec<usize> = members
+        .iter()
+        .copied()
+        .filter(|&k| response.is_bar(k))
+        .collect();
+    let rows = members.len() + bars.len();
     let mut g = DMatrix::zeros(rows, dim + 1);
     let mut h = DVector::zeros(rows);
-    for k in 0..m {
+    for (r, &k) in members.iter().enumerate() {
         let sign = if response.is_bar(k) { 1.0 } else { -1.0 };
         for j in 0..dim {
-            g[(k, j)] = sign * force_basis[(k, j)];
+            g[(r, j)] = sign * force_basis[(k, j)];
         }
-        h[k] = -gains[k].0;
+        h[r] = -gains[k].0;
     }
-    for b in 0..nb {
+    for (r, &b) in bars.iter().enumerate() {
+        let r = members.len() + r;
         for j in 0..dim {
-            g[(m + b, j)] = -force_basis[(b, j)];
+            g[(r, j)] = -force_basis[(b, j)];
         }
-        g[(m + b, dim)] = -1.0;
+        g[(r, dim)] = -1.0;
     }
     let mut c = DVector::zeros(dim + 1);
     c[dim] = 1.0;
@@ -315,7 +269,7 @@ fn critical_member(
     labels: &[String],
 ) -> CriticalMember {
     let (norm, t) = gains[k];
-    let gk = response.g[t][k];
+    let gk = response.tip_response(t)[k];
     let sign = if response.is_bar(k) { 1.0 } else { -1.0 };
     let d = if norm > 0.0 {
         sign * gk / norm
@@ -327,9 +281,9 @@ fn critical_member(
     CriticalMember {
         member: k,
         kind: if response.is_bar(k) {
-            michell3d::MemberKind::Bar
+            MemberKind::Bar
         } else {
-            michell3d::MemberKind::String
+            MemberKind::String
         },
         index: if response.is_bar(k) {
             k
@@ -348,137 +302,4 @@ fn member_ends(response: &LoadResponse, k: usize, labels: &[String]) -> [String;
     let [a, b] = response.ends[k];
     let name = |i: usize| labels.get(i).cloned().unwrap_or_else(|| i.to_string());
     [name(a), name(b)]
-}
-
-/// `n` quasi-uniform unit vectors (Fibonacci sphere): z_i = 1 − (2i+1)/n, azimuth i·π(3 − √5).
-///
-/// ```
-/// let d = tbar_wheel::envelope::sphere_directions(500);
-/// assert_eq!(d.len(), 500);
-/// let mean: nalgebra::Vector3<f64> = d.iter().sum::<nalgebra::Vector3<f64>>() / 500.0;
-/// assert!(mean.norm() < 1e-2 && d.iter().all(|v| (v.norm() - 1.0).abs() < 1e-12));
-/// ```
-pub fn sphere_directions(n: usize) -> Vec<Vector3<f64>> {
-    let golden = PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let a = i as f64 * golden;
-            Vector3::new(r * a.cos(), r * a.sin(), z)
-        })
-        .collect()
-}
-
-/// One direction of the slack map.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SlackPoint {
-    /// Azimuth in the ι̂₁ι̂₂ plane (rad).
-    pub azimuth: f64,
-    /// Polar angle from ι̂₃ (rad).
-    pub polar: f64,
-    /// Smallest margin over members and tips (N): string tension, or bar compression.
-    pub margin: f64,
-    /// Whether some string slackens or some bar goes into tension.
-    pub slack: bool,
-}
-
-/// The slack map of one prestress level.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SlackMap {
-    /// Bar compression P of the state (N).
-    pub prestress: f64,
-    /// Fraction of the sampled directions that slacken a string or put a bar in tension.
-    pub slack_fraction: f64,
-    /// Whether every bar stays in compression for every sampled direction and tip.
-    pub bar_always_compressed: bool,
-    /// The fewest strings whose force a load changes (|Δt| above 1e-9 of the largest change),
-    /// over the sampled directions and tips (the thesis: a load is carried by the bar and at
-    /// least two strings).
-    pub min_strings_carrying: usize,
-    /// Whether the bar's force changes for every sampled direction (it carries every load).
-    pub bar_always_carries: bool,
-    /// Every sampled direction.
-    pub points: Vec<SlackPoint>,
-}
-
-/// Member forces of a state under load `load` in direction `d` on tip `t`.
-pub fn loaded_forces(
-    response: &LoadResponse,
-    state: &[f64],
-    load: f64,
-    t: usize,
-    d: &Vector3<f64>,
-) -> Vec<f64> {
-    state
-        .iter()
-        .zip(&response.g[t])
-        .map(|(s, g)| s + load * g.dot(d))
-        .collect()
-}
-
-/// Checks a prestress state (member forces, N) under `load` in every direction of `dirs`,
-/// on every tip.
-pub fn slack_map(
-    response: &LoadResponse,
-    state: &[f64],
-    load: f64,
-    dirs: &[Vector3<f64>],
-) -> SlackMap {
-    let nb = response.n_bars;
-    let prestress = (0..nb).map(|b| -state[b]).fold(0.0f64, f64::max);
-    let mut points = Vec::with_capacity(dirs.len());
-    let mut bar_ok = true;
-    let mut min_tight = usize::MAX;
-    let mut bar_carries = true;
-    for d in dirs {
-        let mut margin = f64::INFINITY;
-        for t in 0..response.tips.len() {
-            let f = loaded_forces(response, state, load, t, d);
-            for (k, v) in f.iter().enumerate() {
-                margin = margin.min(if k < nb { -v } else { *v });
-                bar_ok &= k >= nb || *v <= 0.0;
-            }
-            let scale = response.g[t]
-                .iter()
-                .fold(0.0f64, |m, g| m.max(g.dot(d).abs()));
-            let carrying = |g: &Vector3<f64>| g.dot(d).abs() > 1e-9 * scale;
-            let tight = response.g[t][nb..].iter().filter(|g| carrying(g)).count();
-            min_tight = min_tight.min(tight);
-            bar_carries &= response.g[t][..nb].iter().any(carrying);
-        }
-        let (azimuth, polar) = angles(d);
-        points.push(SlackPoint {
-            azimuth,
-            polar,
-            margin,
-            slack: margin < 0.0,
-        });
-    }
-    let slack = points.iter().filter(|p| p.slack).count();
-    SlackMap {
-        prestress,
-        slack_fraction: if dirs.is_empty() {
-            0.0
-        } else {
-            slack as f64 / dirs.len() as f64
-        },
-        bar_always_compressed: bar_ok,
-        min_strings_carrying: if min_tight == usize::MAX {
-            0
-        } else {
-            min_tight
-        },
-        bar_always_carries: bar_carries,
-        points,
-    }
-}
-
-/// The optimal state of `solution` scaled to bar compression `prestress` (N).
-pub fn scaled_state(solution: &EnvelopeSolution, prestress: f64) -> Result<Vec<f64>> {
-    if !(prestress.is_finite() && prestress > 0.0) {
-        return Err(invalid("prestress", prestress, "must be finite and > 0"));
-    }
-    let f = prestress / solution.min_prestress;
-    Ok(solution.prestress_force.iter().map(|v| v * f).collect())
 }

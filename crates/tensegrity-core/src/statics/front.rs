@@ -1,0 +1,324 @@
+//! One statics front: what every factorisation of the equilibrium matrix answers.
+//!
+//! The equilibrium matrix A (free dofs × members, A q = w, q tension-positive force
+//! densities) is factored by one of three back-ends:
+//!
+//! | back-end | factorisation | [`Factorization`] |
+//! |---|---|---|
+//! | [`Statics`] | dense SVD A = U Σ Vᵀ | `Svd` |
+//! | [`SparseStatics`] | rank-revealing sparse QR along the band | `SparseQr` |
+//! | [`CyclicStatics`] | one SVD per Fourier block of a Cₙ-symmetric structure | `Cyclic` |
+//!
+//! Each answers, through [`StaticsBackend`]: rank r, self-stress dimension members − r,
+//! mechanisms dofs − r, the rigid-body motions the supports allow and the internal mechanisms
+//! (mechanisms − rigid-body motions), the rank tolerance and the smallest singular value,
+//! whether its rank decision is certified ([`Certification`]), a self-stress basis
+//! ([`SelfStressBasis`]: the whole space, or only the fully symmetric states for the cyclic
+//! back-end), the prestressability margin LP with any member signs, the prestress-stability
+//! test and the minimal-norm load solve. What a back-end cannot compute is the typed error
+//! [`CoreError::Unsupported`] (the cyclic back-end: prestress stability and load solves, whose
+//! stresses and loads need not be symmetric), never a silent approximation.
+//!
+//! The statics report is built once over this trait ([`super::report::report_from`]); the
+//! back-end is chosen in [`super::select`].
+
+use super::load::LoadSolution;
+use super::prestress::{MemberSign, Prestressability};
+use super::stability::PrestressStability;
+use super::symmetry::{CyclicStatics, CyclicSymmetry};
+use super::{SparseStatics, Statics};
+use crate::error::{CoreError, Result};
+use crate::stiffness;
+use crate::structure::Structure;
+use nalgebra::{DMatrix, DVector, Matrix3xX};
+use serde::Serialize;
+
+/// Which factorisation answered (serialised as the report's `statics_method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Factorization {
+    /// The dense SVD ([`Statics`]).
+    #[serde(rename = "svd")]
+    Svd,
+    /// The sparse rank-revealing QR ([`SparseStatics`]).
+    #[serde(rename = "sparse_qr")]
+    SparseQr,
+    /// The symmetry-adapted blocks of a cyclic structure ([`CyclicStatics`]).
+    #[serde(rename = "cyclic")]
+    Cyclic,
+}
+
+impl Factorization {
+    /// A name for messages.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Factorization::Svd => "dense SVD",
+            Factorization::SparseQr => "sparse rank-revealing QR",
+            Factorization::Cyclic => "cyclic (symmetry-adapted blocks)",
+        }
+    }
+
+    /// The error of a back-end asked for `analysis`, which it does not compute.
+    pub fn unsupported(self, analysis: &'static str) -> CoreError {
+        CoreError::Unsupported {
+            analysis,
+            backend: self.describe(),
+        }
+    }
+}
+
+/// Whether a back-end's rank decision is certified.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Certification {
+    /// The rank decision is the dense SVD's at the same tolerance.
+    Certified,
+    /// It may differ from the dense SVD's; `reason` says why (numbers included).
+    NotCertified {
+        /// Why, for the report's `statics_warning`.
+        reason: String,
+    },
+}
+
+impl Certification {
+    /// Whether certified.
+    pub fn is_certified(&self) -> bool {
+        matches!(self, Certification::Certified)
+    }
+}
+
+/// A self-stress basis as a back-end gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SelfStressBasis {
+    /// An orthonormal basis of the whole self-stress space (members × dimension, bars
+    /// first), oriented so that a one-dimensional basis is unique.
+    Full(DMatrix<f64>),
+    /// The fully symmetric self-stresses only (members × d₀, orthonormal, constant on member
+    /// orbits) of a cyclic structure whose whole space has dimension `dim`.
+    Symmetric {
+        /// The basis, members × d₀.
+        basis: DMatrix<f64>,
+        /// The dimension of the whole self-stress space.
+        dim: usize,
+    },
+}
+
+impl SelfStressBasis {
+    /// The columns held (the whole basis, or the symmetric part).
+    pub fn matrix(&self) -> &DMatrix<f64> {
+        match self {
+            SelfStressBasis::Full(b) | SelfStressBasis::Symmetric { basis: b, .. } => b,
+        }
+    }
+}
+
+/// What every statics back-end answers (see the module documentation).
+pub trait StaticsBackend {
+    /// Which factorisation this is.
+    fn kind(&self) -> Factorization;
+
+    /// The analysed structure.
+    fn structure(&self) -> &Structure;
+
+    /// The cyclic symmetry the back-end exploits (`None` but for the cyclic back-end).
+    fn symmetry(&self) -> Option<&CyclicSymmetry> {
+        None
+    }
+
+    /// Free degrees of freedom (rows of A).
+    fn free_dofs(&self) -> usize;
+
+    /// Rank of A.
+    fn rank(&self) -> usize;
+
+    /// Dimension of the self-stress space, members − rank.
+    fn self_stress_dim(&self) -> usize {
+        self.structure().n_members() - self.rank()
+    }
+
+    /// First-order mechanisms, free dofs − rank (rigid-body motions included).
+    fn mechanisms(&self) -> usize {
+        self.free_dofs() - self.rank()
+    }
+
+    /// Rigid-body motions the supports allow.
+    fn rigid_body_motions(&self) -> Result<usize>;
+
+    /// Mechanisms beyond the rigid-body motions.
+    fn internal_mechanisms(&self) -> Result<usize> {
+        Ok(self.mechanisms().saturating_sub(self.rigid_body_motions()?))
+    }
+
+    /// The absolute rank tolerance τ (σ ≤ τ counts as zero).
+    fn tolerance(&self) -> f64;
+
+    /// The smallest singular value of A (an estimate for the sparse QR: see
+    /// [`SparseStatics::smallest_singular_value_estimate`]).
+    fn smallest_singular_value(&self) -> f64;
+
+    /// Whether the rank decision is certified.
+    fn certification(&self) -> Certification;
+
+    /// A self-stress basis (the whole space, or the symmetric part for the cyclic back-end).
+    fn self_stress(&self) -> SelfStressBasis;
+
+    /// The prestressability margin LP (bars compressed, strings in tension).
+    fn prestressability(&self) -> Result<Prestressability> {
+        self.prestressability_with(&MemberSign::standard(self.structure()))
+    }
+
+    /// The margin LP with the given member signs.
+    fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability>;
+
+    /// The prestress-stability test with force densities `q`.
+    fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability>;
+
+    /// The minimal-norm solution of A q = w for a 3 × nodes force matrix.
+    fn solve_nodal_forces(&self, w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution>;
+
+    /// The minimal-norm solution for the structure's own loads (nodal loads and bar weights).
+    fn solve_loads(&self) -> Result<LoadSolution> {
+        self.solve_nodal_forces(&self.structure().W())
+    }
+}
+
+impl StaticsBackend for Statics<'_> {
+    fn kind(&self) -> Factorization {
+        Factorization::Svd
+    }
+    fn structure(&self) -> &Structure {
+        Statics::structure(self)
+    }
+    fn free_dofs(&self) -> usize {
+        self.dofs().len()
+    }
+    fn rank(&self) -> usize {
+        Statics::rank(self)
+    }
+    fn rigid_body_motions(&self) -> Result<usize> {
+        Ok(stiffness::rigid_body_motions(Statics::structure(self), self.dofs())?.ncols())
+    }
+    fn tolerance(&self) -> f64 {
+        Statics::tolerance(self)
+    }
+    fn smallest_singular_value(&self) -> f64 {
+        self.singular_values().last().copied().unwrap_or(0.0)
+    }
+    fn certification(&self) -> Certification {
+        Certification::Certified
+    }
+    fn self_stress(&self) -> SelfStressBasis {
+        SelfStressBasis::Full(self.self_stress_basis())
+    }
+    fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
+        Statics::prestressability_with(self, signs)
+    }
+    fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
+        Statics::prestress_stability(self, q)
+    }
+    fn solve_nodal_forces(&self, w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution> {
+        Ok(Statics::solve_nodal_forces(self, w_nodes))
+    }
+}
+
+impl StaticsBackend for SparseStatics<'_> {
+    fn kind(&self) -> Factorization {
+        Factorization::SparseQr
+    }
+    fn structure(&self) -> &Structure {
+        SparseStatics::structure(self)
+    }
+    fn free_dofs(&self) -> usize {
+        self.dofs().len()
+    }
+    fn rank(&self) -> usize {
+        SparseStatics::rank(self)
+    }
+    fn rigid_body_motions(&self) -> Result<usize> {
+        SparseStatics::rigid_body_motions(self)
+    }
+    fn tolerance(&self) -> f64 {
+        SparseStatics::tolerance(self)
+    }
+    fn smallest_singular_value(&self) -> f64 {
+        self.smallest_singular_value_estimate()
+    }
+    fn certification(&self) -> Certification {
+        if self.is_certified() {
+            return Certification::Certified;
+        }
+        Certification::NotCertified {
+            reason: format!(
+                "the sparse rank decision is not certified (rejected residual {:.3e}, σ_min(R) estimate {:.3e}, tolerance {:.3e}): rank and self-stress dimension may differ from the SVD's",
+                SparseStatics::factorization(self).rejected_residual(),
+                self.sigma_min_r_estimate(),
+                SparseStatics::tolerance(self)
+            ),
+        }
+    }
+    fn self_stress(&self) -> SelfStressBasis {
+        SelfStressBasis::Full(self.self_stress_basis().clone())
+    }
+    fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
+        SparseStatics::prestressability_with(self, signs)
+    }
+    fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
+        SparseStatics::prestress_stability(self, q)
+    }
+    fn solve_nodal_forces(&self, w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution> {
+        Ok(SparseStatics::solve_nodal_forces(self, w_nodes))
+    }
+}
+
+impl StaticsBackend for CyclicStatics<'_> {
+    fn kind(&self) -> Factorization {
+        Factorization::Cyclic
+    }
+    fn structure(&self) -> &Structure {
+        CyclicStatics::structure(self)
+    }
+    fn symmetry(&self) -> Option<&CyclicSymmetry> {
+        Some(CyclicStatics::symmetry(self))
+    }
+    fn free_dofs(&self) -> usize {
+        CyclicStatics::free_dofs(self)
+    }
+    fn rank(&self) -> usize {
+        CyclicStatics::rank(self)
+    }
+    fn rigid_body_motions(&self) -> Result<usize> {
+        Ok(self.rigid_body())
+    }
+    fn tolerance(&self) -> f64 {
+        CyclicStatics::tolerance(self)
+    }
+    fn smallest_singular_value(&self) -> f64 {
+        self.sigma_min()
+    }
+    fn certification(&self) -> Certification {
+        match self.value_near_tolerance() {
+            None => Certification::Certified,
+            Some(s) => Certification::NotCertified {
+                reason: format!(
+                    "the cyclic rank decision is not certified (a block singular value {s:.3e} lies within a factor {} of the tolerance {:.3e}): rank and self-stress dimension may differ from the dense SVD's",
+                    super::symmetry::cyclic::CERTIFY_BAND,
+                    CyclicStatics::tolerance(self)
+                ),
+            },
+        }
+    }
+    fn self_stress(&self) -> SelfStressBasis {
+        let nb = CyclicStatics::structure(self).n_bars();
+        SelfStressBasis::Symmetric {
+            basis: super::orient_self_stress(self.symmetric_self_stress_basis(), nb),
+            dim: CyclicStatics::self_stress_dim(self),
+        }
+    }
+    fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
+        CyclicStatics::prestressability_with(self, signs)
+    }
+    fn prestress_stability(&self, _q: &DVector<f64>) -> Result<PrestressStability> {
+        Err(Factorization::Cyclic.unsupported("prestress stability"))
+    }
+    fn solve_nodal_forces(&self, _w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution> {
+        Err(Factorization::Cyclic.unsupported("the load solve"))
+    }
+}

@@ -1,0 +1,86 @@
+//! Which back-end answers a statics question ([`StaticsBackend`]).
+//!
+//! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
+//!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on;
+//!   an uncertified sparse rank decision falls back to the SVD when the method is automatic
+//!   and the SVD fits the memory budget, and is otherwise returned as is (its
+//!   [`Certification`](super::Certification) says so).
+//! - [`cyclic_backend`] (structures with a validated Cₙ descriptor): the symmetry-adapted
+//!   blocks ([`CyclicStatics`]); an uncertified block rank decision falls back to the dense
+//!   SVD when it fits the memory budget, and is otherwise returned as is. `method = Dense` or
+//!   `Sparse` forces that back-end.
+
+use super::symmetry::{CyclicStatics, CyclicSymmetry};
+use super::{
+    dense_statics_bytes, DofMap, SparseStatics, Statics, StaticsBackend, StaticsMethod,
+    StaticsSettings, DEFAULT_MEMORY_LIMIT, SPARSE_MIN_SIZE,
+};
+use crate::error::Result;
+use crate::structure::Structure;
+
+/// Whether the dense SVD of `structure` fits the memory budget of `settings`.
+fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
+    let m = DofMap::of(structure).len();
+    let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
+    dense_statics_bytes(m, structure.n_members()) <= limit
+}
+
+/// Whether `settings` send `structure` to the sparse QR.
+fn wants_sparse(structure: &Structure, settings: &StaticsSettings) -> bool {
+    match settings.method {
+        StaticsMethod::Dense => false,
+        StaticsMethod::Sparse => true,
+        StaticsMethod::Auto => {
+            let dofs = DofMap::of(structure).len();
+            dofs.min(structure.n_members()) >= SPARSE_MIN_SIZE
+        }
+    }
+}
+
+/// The back-end [`StaticsMethod`] chooses for a general structure (see the module docs).
+///
+/// ```
+/// use tensegrity_core::statics::{backend, Factorization, StaticsBackend, StaticsSettings};
+/// use tensegrity_core::{Bar, StringMember, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.5, 0.0], [1.0, -0.5, 0.0], [2.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1)).bar(Bar::new(0, 2)).bar(Bar::new(1, 3)).bar(Bar::new(2, 3))
+///     .string(StringMember::new(0, 3)).string(StringMember::new(1, 2))
+///     .build()
+///     .unwrap();
+/// let b = backend(&s, StaticsSettings::default()).unwrap();
+/// assert_eq!((b.kind(), b.self_stress_dim()), (Factorization::Svd, 1));
+/// ```
+pub fn backend<'a>(
+    structure: &'a Structure,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    if wants_sparse(structure, &settings) {
+        let sparse = SparseStatics::with_settings(structure, settings)?;
+        let fallback = settings.method == StaticsMethod::Auto && dense_fits(structure, &settings);
+        if sparse.is_certified() || !fallback {
+            return Ok(Box::new(sparse));
+        }
+    }
+    Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+/// The back-end of a structure with a validated cyclic symmetry (see the module docs).
+pub fn cyclic_backend<'a>(
+    structure: &'a Structure,
+    symmetry: &'a CyclicSymmetry,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    match settings.method {
+        StaticsMethod::Dense => return Ok(Box::new(Statics::with_settings(structure, settings)?)),
+        StaticsMethod::Sparse => {
+            return Ok(Box::new(SparseStatics::with_settings(structure, settings)?))
+        }
+        StaticsMethod::Auto => {}
+    }
+    let cyclic = CyclicStatics::with_settings(structure, symmetry, settings)?;
+    if cyclic.is_certified() || !dense_fits(structure, &settings) {
+        return Ok(Box::new(cyclic));
+    }
+    Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
