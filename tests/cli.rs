@@ -635,7 +635,7 @@ fn a_run_away_step_is_reported_as_divergence_with_the_remedy_not_as_singular_con
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("diverged at t = ")
-            && err.contains("smaller dt")
+            && err.contains("smaller --dt")
             && !err.contains("fixed at both ends"),
         "{err}"
     );

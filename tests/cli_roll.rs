@@ -187,7 +187,7 @@ fn a_diverged_roll_writes_what_it_computed_and_exits_with_an_error() {
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("stopped at t = "), "{stderr}");
-    assert!(stderr.contains("use a smaller dt"), "{stderr}");
+    assert!(stderr.contains("use a smaller --dt"), "{stderr}");
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["valid"], false);
     let t = json["stopped_at"].as_f64().unwrap();

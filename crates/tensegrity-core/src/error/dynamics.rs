@@ -99,7 +99,7 @@ pub enum DynamicsError {
     /// The state ran away during the run (a constraint system that factored at the start
     /// became singular, or the RATTLE iteration failed): the step is too large for the
     /// stiffness.
-    #[error("the integration diverged at t = {t:?} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller dt, integrator = rk45 (adaptive) or integrator = sdirk (implicit, for stiff strings and contact)")]
+    #[error("the integration diverged at t = {t:?} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller `dt`, `integrator = rk45` (adaptive) or `integrator = sdirk` (implicit, for stiff strings and contact)")]
     Diverged {
         /// Time of the last accepted state (s).
         t: f64,

@@ -17,8 +17,9 @@
 //! print a clear message and react programmatically; every enum is [`Categorized`], so a front
 //! end decides its reaction (the CLI's exit code) from the [`Category`] alone. The enums are
 //! `#[non_exhaustive]`: other crates match them with a wildcard arm, so that new conditions
-//! can be added without breaking them. Messages name the library's own parameters (`dt`,
-//! `integrator = rk45`), never a front end's spelling of them.
+//! can be added without breaking them. Messages name the library's own parameters, in backticks
+//! (`` `dt` ``, `` `integrator = rk45` ``), never a front end's spelling of them; a front end
+//! may rewrite them (the CLI writes `--dt`, `--integrator rk45`).
 
 mod dynamics;
 mod model;
@@ -58,7 +59,7 @@ pub enum CoreError {
     #[error("{0}")]
     InvalidParameter(#[from] InvalidParameter),
     /// A problem too large for the memory budget, refused before allocating.
-    #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer sides or a lower complexity)", bytes / 1073741824.0, limit / 1073741824.0)]
+    #[error("{what} ({rows} × {cols}) needs about {:.1} GiB, above the limit of {:.1} GiB: use a smaller structure (e.g. fewer `sides` or a lower `complexity`)", bytes / 1073741824.0, limit / 1073741824.0)]
     TooLarge {
         /// The computation refused.
         what: &'static str,
