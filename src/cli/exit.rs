@@ -105,3 +105,45 @@ pub fn message(e: &anyhow::Error) -> String {
         super::spell::flags(&text)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tensegrity_core::DynamicsError;
+
+    #[test]
+    fn the_exit_code_follows_the_category_of_the_first_categorized_error() {
+        let bad = InvalidParameter::new("dt", -1.0, "must be positive");
+        let with_context = anyhow::Error::new(bad.clone()).context("invalid value for --dt");
+        assert_eq!(code(&with_context), BAD_INPUT);
+        let diverged = CoreError::from(DynamicsError::Diverged { t: 1.0, what: "Ω" });
+        assert_eq!(
+            code(&anyhow::Error::new(ToroidError::Core(diverged))),
+            FAILURE
+        );
+        let too_large = TbarError::TooLarge {
+            what: "free degrees of freedom",
+            size: 10,
+            limit: 5,
+        };
+        assert_eq!(code(&anyhow::Error::new(too_large)), BAD_INPUT);
+        let stopped = RollingError::Core(CoreError::Interrupted { t: 0.5 });
+        assert_eq!(code(&anyhow::Error::new(stopped)), INTERRUPTED);
+        assert_eq!(code(&anyhow::anyhow!("no category")), FAILURE);
+    }
+
+    #[test]
+    fn messages_write_parameters_as_flags_except_in_sweeps() {
+        let diverged = CoreError::from(DynamicsError::Diverged { t: 1.0, what: "Ω" });
+        let text = message(&anyhow::Error::new(diverged));
+        assert!(
+            text.contains("use a smaller --dt, --integrator rk45"),
+            "{text}"
+        );
+        let sweep = SweepError::MissingParameter {
+            study: "roll",
+            name: "t_end",
+        };
+        assert!(message(&anyhow::Error::new(sweep)).contains("`t_end`"));
+    }
+}
