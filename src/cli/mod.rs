@@ -14,6 +14,7 @@ pub mod request_args;
 pub mod roll;
 pub mod roll_series;
 pub mod simulate;
+pub mod spell;
 pub mod statics;
 pub mod sweep;
 pub mod tbar;

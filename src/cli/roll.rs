@@ -175,7 +175,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     }
     let report = toroid::roll_with_frames(&request, &args.frame_times())?;
     for w in &report.summary.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(w));
     }
     if let Some(path) = &args.svg {
         write_svg(args, path, &request, &report)?;
@@ -281,6 +281,6 @@ fn print_roll(r: &RollReport) {
         s.energy_balance_error
     );
     for w in &s.warnings {
-        println!("warning: {w}");
+        println!("warning: {}", super::spell::flags(w));
     }
 }

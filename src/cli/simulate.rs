@@ -147,7 +147,7 @@ pub fn run_scene(
         print_report(simulation.settings.integrator, &report);
     }
     for w in &report.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     if args.strict && !report.warnings.is_empty() {
         anyhow::bail!(

@@ -159,7 +159,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     let report = tbar_roll::tbar_roll(&request)?;
     for row in &report.rows {
         for e in &row.errors {
-            eprintln!("warning: n = {}: {e}", row.treads);
+            eprintln!("warning: n = {}: {}", row.treads, super::spell::flags(e));
         }
     }
     if args.json {
@@ -236,6 +236,6 @@ fn print_full(row: &TbarRollRow) {
         first(row.tbar_rigid_reference.as_ref())
     );
     for w in &s.warnings {
-        println!("     warning: {w}");
+        println!("     warning: {}", super::spell::flags(w));
     }
 }

@@ -12,7 +12,7 @@ use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
 pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) -> Result<()> {
     let r = req.run().context("rolling lean run failed")?;
     for w in &r.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(w));
     }
     if let Some(path) = out {
         use std::fmt::Write;
