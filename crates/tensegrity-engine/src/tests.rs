@@ -198,3 +198,80 @@ fn the_dynamic_and_rolling_columns_are_their_reports_scalars() {
     let echo = ["sides", "outer_tread", "incline", "side_slope"];
     check_columns("tipover_rolling", &[lean], &echo);
 }
+
+#[test]
+fn the_scene_requests_describe_their_fields() {
+    check_description::<statics::StaticsCommand>().unwrap();
+    check_description::<simulate::SimulateCommand>().unwrap();
+    check_description::<bench::WorkPrecisionRequest>().unwrap();
+}
+
+#[test]
+fn statics_runs_equal_the_library_report_and_its_columns_are_its_scalars() {
+    use tensegrity_core::{statics_report, StaticsRequest};
+    let path = "../../examples/dbar_loaded.toml";
+    let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
+    let direct = statics_report(&scene.structure, &StaticsRequest::default()).unwrap();
+    let statics = command("statics").unwrap();
+    let ctx = Context::default();
+    let run = statics.run(values(json!({ "scene": path })), &ctx).unwrap();
+    assert_eq!(run, serde_json::to_value(&direct).unwrap());
+    // the published minimum mass of the D-bar: 8.858023 kg
+    assert!((run["mass_kg"].as_f64().unwrap() - 8.858023).abs() < 1e-5);
+    // the scene's text gives the same report as its file
+    let text = std::fs::read_to_string(path).unwrap();
+    let by_text = statics.run(values(json!({ "scene": text })), &ctx).unwrap();
+    assert_eq!(by_text, run);
+    // the modes and the sparse path through the request's fields
+    let v = json!({"scene": path, "method": "sparse", "modes": 2, "least_squares": true});
+    let sparse = statics.run(values(v), &ctx).unwrap();
+    assert_eq!(sparse["statics_method"], "sparse_qr");
+    assert_eq!(sparse["rank"], run["rank"]);
+    // every optional scalar set, for the key check
+    let mut full = direct;
+    full.prestress_stable = Some(true);
+    full.residual = Some(0.0);
+    full.load_carried = Some(true);
+    full.sizing_warning = Some("w".into());
+    full.modal_error = Some("m".into());
+    full.sizing_error = Some("s".into());
+    full.statics_method = Some(tensegrity_core::statics::Factorization::SparseQr);
+    full.statics_warning = Some("w".into());
+    check_columns("statics", &[full], &[]);
+}
+
+#[test]
+fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
+    use tensegrity_core::dynamics::SimulationReport;
+    let path = "../../examples/prism_drop.toml";
+    let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
+    let direct = SimulationReport::from(&scene.simulation().unwrap().run().unwrap());
+    let simulate = command("simulate").unwrap();
+    let ctx = Context::default();
+    let mut run = simulate
+        .run(values(json!({ "scene": path })), &ctx)
+        .unwrap();
+    let mut want = serde_json::to_value(&direct).unwrap();
+    // measured wall times differ; everything else is the same run
+    for v in [&mut run, &mut want] {
+        v.as_object_mut().unwrap().remove("wall_time_s");
+    }
+    assert_eq!(run, want);
+    assert_eq!(run["t_end"], 3.0);
+    check_columns("simulate", &[direct], &[]);
+    // rk4 at 0.05 s drifts (as `simulate --dt 0.05` warns): strict makes it an error
+    let drift = json!({"scene": path, "integrator": "rk4", "dt": 0.05});
+    let loose = simulate.run(values(drift.clone()), &ctx).unwrap();
+    assert!(loose["warnings"][0]
+        .as_str()
+        .unwrap()
+        .contains("bar lengths drifted"));
+    let mut strict = values(drift);
+    strict.insert("strict".into(), json!(true));
+    let e = simulate.run(strict, &ctx).unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.starts_with("strict: ") && m.contains("bar lengths drifted"),
+        "{m}"
+    );
+}
