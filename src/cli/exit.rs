@@ -102,6 +102,9 @@ fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
     if let Some(e) = e.downcast_ref::<sweeps::SweepError>() {
         return e.is_input_error();
     }
+    if let Some(e) = e.downcast_ref::<tensegrity_engine::SceneError>() {
+        return e.category() == Category::Input;
+    }
     e.downcast_ref::<IoError>()
         .is_some_and(|e| e.category() == Category::Input)
 }

@@ -14,7 +14,7 @@ use std::io::IsTerminal;
 use std::sync::OnceLock;
 use std::time::Duration;
 use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Resource};
-use tensegrity_engine::{estimate, Estimated};
+use tensegrity_engine::{estimate, limits, Estimated};
 
 static LIMITS: OnceLock<Limits> = OnceLock::new();
 
@@ -26,20 +26,20 @@ const SPINNER_AFTER_S: f64 = 2.0;
 pub struct LimitArgs {
     /// Refuse a command whose estimated peak memory exceeds SIZE (e.g. 500M, 16Gi, 2T; default:
     /// the smaller of 8 GiB and 3/4 of the memory available to this process).
-    #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size)]
+    #[arg(long, global = true, value_name = "SIZE", value_parser = limits::parse_size)]
     pub max_memory: Option<f64>,
     /// Refuse a command whose estimated work exceeds SECONDS (default 60).
     #[arg(long, global = true, value_name = "SECONDS", value_parser = super::values::positive)]
     pub max_work: Option<f64>,
     /// Refuse a command whose estimated output (files written) exceeds SIZE (default 1Gi).
-    #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size)]
+    #[arg(long, global = true, value_name = "SIZE", value_parser = limits::parse_size)]
     pub max_output: Option<f64>,
 }
 
 /// Sets the limits of this process from the flags (first call wins).
 pub fn init(args: &LimitArgs) {
     let _ = LIMITS.set(Limits {
-        memory_bytes: args.max_memory.unwrap_or_else(default_memory_limit),
+        memory_bytes: (args.max_memory).unwrap_or_else(|| limits::for_this_process().memory_bytes),
         work_s: args.max_work.unwrap_or(budget::DEFAULT_MAX_WORK_S),
         output_bytes: args.max_output.unwrap_or(budget::DEFAULT_MAX_OUTPUT_BYTES),
     });
@@ -47,10 +47,7 @@ pub fn init(args: &LimitArgs) {
 
 /// The limits in force (also every sweep case's).
 pub fn limits() -> Limits {
-    *LIMITS.get_or_init(|| Limits {
-        memory_bytes: default_memory_limit(),
-        ..Limits::default()
-    })
+    *LIMITS.get_or_init(limits::for_this_process)
 }
 
 /// A refused estimate, with the flag that raises the limit.
@@ -95,8 +92,8 @@ pub fn optional(estimate: Option<Estimate>) -> Result<Progress> {
 pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
     if let Err(over) = limits().check(&estimate) {
         let (flag, suggested) = match over.resource {
-            Resource::Memory => ("--max-memory", size_flag(over.estimated)),
-            Resource::Output => ("--max-output", size_flag(over.estimated)),
+            Resource::Memory => ("--max-memory", limits::suggest_size(over.estimated)),
+            Resource::Output => ("--max-output", limits::suggest_size(over.estimated)),
             Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
         };
         let flags = flags(&over.estimate.parameter);
@@ -128,78 +125,13 @@ pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
 }
 
 /// The flags of an estimate's parameters: `t_end = 1e9, dt = 0.001 s` → `--t-end 1e9 --dt
-/// 0.001` (the parts that are not `name = value` left out).
+/// 0.001` ([`limits::parameters`]).
 fn flags(parameter: &str) -> String {
-    let flag = |part: &str| {
-        let (name, value) = part.split_once(" = ")?;
-        let simple = name.chars().all(|c| c.is_ascii_lowercase() || c == '_');
-        let value = value.split_whitespace().next()?;
-        simple.then(|| format!("{} {value}", flag_of(name)))
-    };
-    let flags: Vec<String> = parameter.split(", ").filter_map(flag).collect();
-    flags.join(" ")
-}
-
-/// A `--max-memory`/`--max-output` value a little above `bytes` (`12Gi`, `3Ti`).
-fn size_flag(bytes: f64) -> String {
-    let (scale, unit) = [(4, "Ti"), (3, "Gi"), (2, "Mi")]
+    let flags: Vec<String> = limits::parameters(parameter)
         .into_iter()
-        .map(|(power, unit)| (1024f64.powi(power), unit))
-        .find(|&(scale, _)| bytes >= scale)
-        .unwrap_or((1024.0, "Ki"));
-    let v = (bytes / scale * 1.1).ceil();
-    if v.is_finite() && v < 1e15 {
-        format!("{v:.0}{unit}")
-    } else {
-        "<more than is available>".into()
-    }
-}
-
-/// Parses a size: a number with an optional unit K, M, G, T (powers of 1000, or Ki, Mi, Gi,
-/// Ti for powers of 1024; a trailing B is allowed).
-pub fn parse_size(s: &str) -> Result<f64, String> {
-    let t = s.trim().trim_end_matches(['B', 'b']);
-    let at = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
-    let units = ["", "K", "M", "G", "T"];
-    let (unit, binary) = match t[at..].to_ascii_uppercase() {
-        u if u.ends_with('I') => (u[..u.len() - 1].to_string(), true),
-        u => (u, false),
-    };
-    let power = units
-        .iter()
-        .position(|u| *u == unit)
-        .filter(|&p| p > 0 || !binary);
-    match (power, t[..at].trim().parse::<f64>()) {
-        (Some(p), Ok(v)) if v.is_finite() && v > 0.0 => {
-            Ok(v * if binary { 1024f64 } else { 1000f64 }.powi(p as i32))
-        }
-        _ => Err(format!("invalid size \"{s}\": use e.g. 500M, 16G, 2T")),
-    }
-}
-
-/// The default memory limit: min(8 GiB, 3/4 of what this process may use), where that is the
-/// smallest of the cgroup limit (less its usage), the address-space limit and the available
-/// memory (Linux; 8 GiB elsewhere).
-fn default_memory_limit() -> f64 {
-    let read = |p: &str| std::fs::read_to_string(p).ok();
-    let number = |t: Option<String>| t.and_then(|t| t.trim().parse::<f64>().ok());
-    let field = |file: &str, key: &str, at: usize| {
-        let text = read(file)?;
-        let line = text.lines().find(|l| l.starts_with(key))?;
-        line.split_whitespace().nth(at)?.parse::<f64>().ok()
-    };
-    let mut avail = f64::INFINITY;
-    if let Some(kb) = field("/proc/meminfo", "MemAvailable:", 1) {
-        avail = avail.min(kb * 1024.0);
-    }
-    if let Some(max) = number(read("/sys/fs/cgroup/memory.max")) {
-        let used = number(read("/sys/fs/cgroup/memory.current")).unwrap_or(0.0);
-        avail = avail.min((max - used).max(0.0));
-    }
-    if let Some(v) = field("/proc/self/limits", "Max address space", 3) {
-        avail = avail.min(v);
-    }
-    (0.75 * avail).min(budget::DEFAULT_MAX_MEMORY_BYTES)
+        .map(|(name, value)| format!("{} {value}", flag_of(name)))
+        .collect();
+    flags.join(" ")
 }
 
 /// The engine's estimate of any request (`toroid`, `roll`, `statics`, …), checked.
@@ -255,31 +187,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn sizes_parse_with_decimal_and_binary_units() {
-        assert_eq!(parse_size("500M").unwrap(), 5e8);
-        assert_eq!(parse_size("16G").unwrap(), 16e9);
-        assert_eq!(parse_size("2GiB").unwrap(), 2.0 * 1024f64.powi(3));
-        assert_eq!(parse_size("1Ki").unwrap(), 1024.0);
-        assert_eq!(parse_size("1234").unwrap(), 1234.0);
-        for bad in ["-1G", "12Q", "G", "1i", "Ki"] {
-            assert!(parse_size(bad).is_err(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn the_suggested_flag_value_admits_the_estimate() {
-        // 6.208e13 B = 56.46 TiB, +10 %: 63Ti
-        assert_eq!(size_flag(6.208e13), "63Ti");
-        assert_eq!(size_flag(1.5e9), "2Gi");
-        assert!(parse_size(&size_flag(3.3e10)).unwrap() > 3.3e10);
-    }
-
-    #[test]
     fn parameters_become_flags() {
-        let p = "t_end = 1000000000, dt = 0.0001, sides = 8";
+        let p = "t_end = 1000000000, dt = 0.0001 s, sides = 8";
         assert_eq!(flags(p), "--t-end 1000000000 --dt 0.0001 --sides 8");
-        assert_eq!(flags("t_end = 5 s, output interval 1e-9 s"), "--t-end 5");
-        assert_eq!(flags("map_grid = 100x200"), "--map-grid 100x200");
         assert_eq!(flags("10 sweep cases"), "");
     }
 }

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 use tensegrity_core::dynamics::{IntegratorKind, SimulationReport};
 use tensegrity_core::{CoreError, Simulation, Structure};
 use tensegrity_engine::simulate::SimulateCommand;
-use tensegrity_engine::SceneSource;
+use tensegrity_engine::{SceneError, SceneSource};
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
 use tensegrity_io::trajectory::TrajectoryWriter;
@@ -67,17 +67,13 @@ pub struct SimulateArgs {
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let command: SimulateCommand = args.request.request()?;
+    let (csv, vtk) = (args.out.is_some(), args.vtk.is_some());
+    let (scene, simulation) = command.prepare(csv || vtk).map_err(|e| match e {
+        SceneError::InvalidParameter(p) => usage(p),
+        e => e.into(),
+    })?;
+    let _progress = super::guard::simulation(&simulation, csv, vtk)?;
     let source = command.source()?;
-    let scene = source.load()?;
-    let mut simulation = scene
-        .simulation()
-        .with_context(|| format!("setting up the simulation of {source}"))?;
-    let written = args.out.is_some() || args.vtk.is_some();
-    let table = scene.file.simulation.as_ref();
-    command
-        .apply(&mut simulation.settings, table, written)
-        .map_err(usage)?;
-    let _progress = super::guard::simulation(&simulation, args.out.is_some(), args.vtk.is_some())?;
     let report = run_with_outputs(args, &simulation, &scene.structure, source)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

@@ -1,7 +1,7 @@
 //! `tensegrity statics SCENE.toml [--json] [--rank-tol REL] [--modes K] [--mass M]
-//! [--least-squares] [--method M]`: the engine's `statics` request ([`StaticsCommand`]), its
-//! resource estimate checked, one report ([`StaticsCommand::report`]) printed as text or
-//! JSON.
+//! [--least-squares] [--method M]`: the engine's `statics` request ([`StaticsCommand`]), one
+//! call ([`statics::admitted`]: the scene read, its estimate checked against the limits, one
+//! report) printed as text or JSON.
 
 use super::request_args::RequestArgs;
 use anyhow::Result;
@@ -23,9 +23,7 @@ pub struct StaticsArgs {
 /// Entry point of `tensegrity statics`.
 pub fn run(args: &StaticsArgs) -> Result<()> {
     let command: StaticsCommand = args.request.request()?;
-    let scene = command.source()?.load()?;
-    let _progress = super::guard::optional(statics::estimate(&scene.structure, &command))?;
-    let report = command.report(&scene.structure)?;
+    let (scene, report) = statics::admitted(&command, super::guard::optional)?;
     if report.load_carried == Some(false) {
         eprintln!(
             "warning: the loads are not carried (residual {:.6e} N at nodes {:?}): least-squares force densities, no sizing",

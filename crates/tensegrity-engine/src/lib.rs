@@ -29,7 +29,8 @@
 //! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision`] |
 //!
 //! Every command's resource estimate is here too ([`estimate`]: the [`estimate::Estimated`]
-//! requests, and the grids front ends add), so every front end refuses the same requests.
+//! requests, and the grids front ends add), so every front end refuses the same requests;
+//! the default limits and the sizes they are written in are in [`limits`].
 #![warn(missing_docs)]
 
 pub mod bench;
@@ -37,6 +38,7 @@ pub mod columns;
 mod entries;
 pub mod estimate;
 pub mod integrators;
+pub mod limits;
 pub mod registry;
 pub mod scene;
 pub mod simulate;

@@ -22,7 +22,7 @@
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::path::PathBuf;
-use tensegrity_core::request::InvalidParameter;
+use tensegrity_core::request::{Categorized, Category, InvalidParameter};
 use tensegrity_core::CoreError;
 use tensegrity_io::scene::Scene;
 use tensegrity_io::IoError;
@@ -113,4 +113,20 @@ pub enum SceneError {
         /// The warnings of the run.
         warnings: Vec<String>,
     },
+}
+
+impl Categorized for SceneError {
+    /// An invalid value or an unreadable scene is bad input; the analysis's own error keeps
+    /// its category; a `strict` run that drifted failed numerically.
+    fn category(&self) -> Category {
+        match self {
+            SceneError::InvalidParameter(_) => Category::Input,
+            SceneError::Io(e) => e.category(),
+            SceneError::Core(CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. }) => {
+                Category::Input
+            }
+            SceneError::Core(CoreError::Interrupted { .. }) => Category::Interrupted,
+            SceneError::Core(_) | SceneError::Strict { .. } => Category::Numerical,
+        }
+    }
 }

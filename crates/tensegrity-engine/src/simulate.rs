@@ -168,6 +168,14 @@ impl SimulateCommand {
         Ok(simulation)
     }
 
+    /// Reads the scene and sets up its run under the overrides (`written`: samples are
+    /// written), the scene kept (its structure labels the outputs).
+    pub fn prepare(&self, written: bool) -> Result<(Scene, Simulation), SceneError> {
+        let scene = self.source()?.load()?;
+        let simulation = self.simulation(&scene, written)?;
+        Ok((scene, simulation))
+    }
+
     /// The `strict` rule: a run with drift warnings is an error.
     pub fn strict_check(&self, report: &SimulationReport) -> Result<(), SceneError> {
         if self.strict && !report.warnings.is_empty() {
@@ -191,8 +199,7 @@ impl SampleSink for Discard {
 /// Runs `simulate` without writing samples: reads the scene, runs it, its report (an error
 /// under `strict` with drift warnings).
 pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneError> {
-    let scene = command.source()?.load()?;
-    let simulation = command.simulation(&scene, false)?;
+    let (_, simulation) = command.prepare(false)?;
     let result = simulation.run_streaming(&mut Discard)?;
     let report = SimulationReport::from(&result);
     command.strict_check(&report)?;

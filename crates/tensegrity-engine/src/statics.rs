@@ -25,6 +25,7 @@ use tensegrity_core::request::{InvalidParameter, Param, Request};
 use tensegrity_core::statics::{DofMap, StaticsMethod, StaticsSettings, SPARSE_MIN_SIZE};
 use tensegrity_core::stiffness::MassModel;
 use tensegrity_core::{statics_report, CoreError, StaticsReport, StaticsRequest, Structure};
+use tensegrity_io::scene::Scene;
 
 /// The statics of a scene, as data (defaults: the SVD's own rank tolerance, the method
 /// chosen by size, no modes, the lumped mass, a load that is not carried an error).
@@ -128,6 +129,31 @@ impl StaticsCommand {
 pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
     Ok(command.report(&scene.structure)?)
+}
+
+/// Runs `statics` under a front end's check of its estimate: reads the scene, hands the
+/// estimate ([`estimate`]) to `admit` (a front end's limits: an error refuses the run, the
+/// value it returns — a progress indicator — lives while the statics run), one report. The
+/// scene comes back with the report (its member names label a readable report).
+///
+/// ```
+/// use tensegrity_core::request::Request;
+/// use tensegrity_engine::statics::{admitted, StaticsCommand};
+/// use tensegrity_engine::SceneError;
+/// let c = StaticsCommand::from_values([("scene", serde_json::json!("../../examples/prism.toml"))])?;
+/// let (scene, r) = admitted(&c, |e| Ok::<_, SceneError>(assert!(e.unwrap().work_s < 1e-3)))?;
+/// assert_eq!((scene.structure.n_bars(), r.self_stress_dim), (3, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn admitted<G, E: From<SceneError>>(
+    command: &StaticsCommand,
+    admit: impl FnOnce(Option<Estimate>) -> Result<G, E>,
+) -> Result<(Scene, StaticsReport), E> {
+    let scene = command.source().map_err(SceneError::from)?;
+    let scene = scene.load().map_err(SceneError::from)?;
+    let _admitted = admit(estimate(&scene.structure, command))?;
+    let report = command.report(&scene.structure).map_err(SceneError::from)?;
+    Ok((scene, report))
 }
 
 /// The resource estimate of the statics of `structure` (module docs): the dense SVD when the
