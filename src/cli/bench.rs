@@ -1,13 +1,15 @@
 //! `tensegrity bench work-precision [--out DIR] [--quick]`: error against wall time for every
-//! integrator on five scenes, two of them stiff (the study is
-//! [`tensegrity_core::dynamics::work_precision`]), written as CSV and a figure (log–log,
-//! one curve per integrator, one panel per scene).
+//! integrator on five scenes, two of them stiff (the engine's `bench_work_precision` request,
+//! [`tensegrity_engine::bench`]), written as CSV and a figure (log–log, one curve per
+//! integrator, one panel per scene).
 
 use super::output;
+use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::work_precision::{self, Point};
+use tensegrity_core::dynamics::work_precision::Point;
 use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
 use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
@@ -27,16 +29,16 @@ pub enum BenchCommand {
     WorkPrecision(WorkPrecisionArgs),
 }
 
-/// Arguments of `tensegrity bench work-precision`.
+/// Arguments of `tensegrity bench work-precision`: the request's flags
+/// ([`WorkPrecisionRequest`]) and the output directory.
 #[derive(clap::Args, Debug)]
 pub struct WorkPrecisionArgs {
+    #[command(flatten)]
+    request: RequestArgs<WorkPrecisionRequest>,
     /// Output directory for work_precision.csv and work_precision.svg (created if missing;
     /// its parent must exist).
     #[arg(long, value_name = "DIR", default_value = "work-precision")]
     pub out: PathBuf,
-    /// Fewer points and a single timing repetition (for a smoke test).
-    #[arg(long)]
-    pub quick: bool,
 }
 
 /// Runs `tensegrity bench work-precision`.
@@ -47,6 +49,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
+    let request: WorkPrecisionRequest = args.request.request()?;
     // the directory and both files are opened before the (long) measurement
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let csv_path = dir.join("work_precision.csv");
@@ -55,7 +58,7 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
     })?;
     let svg_path = dir.join("work_precision.svg");
     let svg = output::open_required("--out", &svg_path, FigureSink::open)?;
-    let points = work_precision::measure(args.quick)?;
+    let points = tensegrity_engine::bench::work_precision(&request)?.points;
     csv.extend(points.iter().map(row))?;
     csv.finish()?;
     svg.finish(&figure(&points))?;

@@ -6,6 +6,9 @@
 //! usage error (exit 2) naming the flag ([`flag_of`]: the one place where a library's
 //! parameter name becomes a flag).
 //!
+//! A parameter named in [`POSITIONAL`] (the scene of `statics` and `simulate`) is the
+//! command's positional argument (`tensegrity statics SCENE.toml`) instead of a flag.
+//!
 //! A command with several modes (`tipover`, `--dynamic`, `--rolling`) takes the flags of
 //! several requests at once ([`Modes`]): each value is checked by its kind while parsing, and
 //! the chosen mode's request is built afterwards ([`RequestArgs::request`]).
@@ -17,6 +20,9 @@ use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches};
 use serde_json::{Map, Value};
 use std::marker::PhantomData;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
+
+/// The parameters taken by position rather than as a flag (first the first).
+pub const POSITIONAL: &[&str] = &["scene"];
 
 /// The flag of a library parameter: `t_end` → `--t-end`.
 pub fn flag_of(name: &str) -> String {
@@ -161,12 +167,13 @@ impl<F: Flags> Args for RequestArgs<F> {
     }
 }
 
-/// The flag of one parameter.
+/// The flag (or the positional argument, [`POSITIONAL`]) of one parameter.
 fn arg(p: &Param, default: Option<&Value>) -> Arg {
-    let a = Arg::new(p.name)
-        .long(p.name.replace('_', "-"))
-        .help(help(p, default))
-        .required(p.required);
+    let a = Arg::new(p.name).help(help(p, default)).required(p.required);
+    let a = match POSITIONAL.iter().position(|n| *n == p.name) {
+        Some(i) => a.index(i + 1),
+        None => a.long(p.name.replace('_', "-")),
+    };
     match p.kind {
         Kind::Flag => a.action(ArgAction::SetTrue),
         Kind::Choice(choices) => a

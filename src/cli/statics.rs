@@ -1,96 +1,29 @@
-//! `tensegrity statics SCENE.toml [--json] [--rank-tol REL] [--modes K] [--mass M]`: one call
-//! of [`tensegrity_core::statics_report`], printed as text or JSON.
+//! `tensegrity statics SCENE.toml [--json] [--rank-tol REL] [--modes K] [--mass M]
+//! [--least-squares] [--method M]`: the engine's `statics` request ([`StaticsCommand`]), one
+//! call ([`statics::admitted`]: the scene read, its estimate checked against the limits, one
+//! report) printed as text or JSON.
 
+use super::request_args::RequestArgs;
 use anyhow::Result;
-use std::path::PathBuf;
-use tensegrity_core::statics::{Factorization, StaticsMethod};
-use tensegrity_core::stiffness::MassModel;
-use tensegrity_core::{statics_report, StaticsReport, StaticsRequest, StaticsSettings, Structure};
-use tensegrity_io::scene::Scene;
+use tensegrity_core::statics::Factorization;
+use tensegrity_core::{StaticsReport, Structure};
+use tensegrity_engine::statics::{self, StaticsCommand};
 
-/// Arguments of `tensegrity statics`.
+/// Arguments of `tensegrity statics`: the request's flags ([`StaticsCommand`], the scene
+/// positional) and the output.
 #[derive(clap::Args, Debug)]
 pub struct StaticsArgs {
-    /// The scene file (TOML).
-    pub scene: PathBuf,
+    #[command(flatten)]
+    request: RequestArgs<StaticsCommand>,
     /// Print JSON instead of a readable report.
     #[arg(long)]
     pub json: bool,
-    /// Relative rank tolerance of the SVD (default: max(rows, cols) · machine epsilon).
-    #[arg(long, value_name = "REL", value_parser = super::values::positive)]
-    pub rank_tol: Option<f64>,
-    /// Also report the K lowest natural frequencies about the current state (strings need
-    /// stiffness and rest length, bars mass, material and radius).
-    #[arg(long, value_name = "K")]
-    pub modes: Option<usize>,
-    /// Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the
-    /// rigid-bar mass matrix of the dynamics).
-    #[arg(long, value_enum, default_value_t = MassArg::Lumped)]
-    pub mass: MassArg,
-    /// When the loads cannot be carried (the structure is a mechanism for them), report the
-    /// least-squares force densities marked `load_carried: false`, without sizing, instead of
-    /// failing.
-    #[arg(long)]
-    pub least_squares: bool,
-    /// Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR
-    /// from 300 dofs and members on), dense or sparse.
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
-    pub method: MethodArg,
-}
-
-/// `--method` values.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MethodArg {
-    /// By size, with the SVD as fallback.
-    Auto,
-    /// The dense SVD.
-    Dense,
-    /// The sparse rank-revealing QR.
-    Sparse,
-}
-
-/// `--mass` values.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MassArg {
-    /// Diagonal: m/2 at each bar end.
-    Lumped,
-    /// m [[1/3, 1/6], [1/6, 1/3]] per bar, as in the dynamics.
-    Consistent,
-}
-
-impl From<MassArg> for MassModel {
-    fn from(m: MassArg) -> Self {
-        match m {
-            MassArg::Lumped => MassModel::Lumped,
-            MassArg::Consistent => MassModel::Consistent,
-        }
-    }
-}
-
-impl StaticsArgs {
-    /// The library request the arguments describe.
-    pub fn request(&self) -> Result<StaticsRequest> {
-        let mut settings = StaticsSettings::default().method(match self.method {
-            MethodArg::Auto => StaticsMethod::Auto,
-            MethodArg::Dense => StaticsMethod::Dense,
-            MethodArg::Sparse => StaticsMethod::Sparse,
-        });
-        if let Some(tol) = self.rank_tol {
-            settings = settings.rank_tolerance(tol)?;
-        }
-        Ok(StaticsRequest {
-            settings,
-            modes: self.modes,
-            mass: self.mass.into(),
-            least_squares: self.least_squares,
-        })
-    }
 }
 
 /// Entry point of `tensegrity statics`.
 pub fn run(args: &StaticsArgs) -> Result<()> {
-    let scene = Scene::from_path(&args.scene)?;
-    let report = statics_report(&scene.structure, &args.request()?)?;
+    let command: StaticsCommand = args.request.request()?;
+    let (scene, report) = statics::admitted(&command, super::guard::optional)?;
     if report.load_carried == Some(false) {
         eprintln!(
             "warning: the loads are not carried (residual {:.6e} N at nodes {:?}): least-squares force densities, no sizing",

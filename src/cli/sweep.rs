@@ -208,6 +208,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         shard: args.shard.unwrap_or(Shard::ALL),
         resume: args.resume,
         units: args.units,
+        limits: Some(super::guard::limits()),
     };
     let summary = sweeps::run(&spec, out, &opts, &mut bar(args.quiet))
         .with_context(|| format!("sweep {}", spec_path.display()))?;

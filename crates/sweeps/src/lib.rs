@@ -14,7 +14,9 @@
 //!
 //! Each row holds the scalars of the single-point report (`tensegrity toroid --json`, …) for
 //! that case, numbers in their shortest round-trip form; a failing case is an `error` row
-//! with its message and never stops the sweep.
+//! with its message and never stops the sweep. With resource limits ([`RunOptions::limits`])
+//! a case whose estimate is over them is refused before it runs: an `error` row naming the
+//! limit ([`limits`]).
 //!
 //! [`grids`] fans out the grid studies whose points are rows rather than whole reports (sign
 //! maps, the Fig. 4.18 table, the Fig. 3.13 friction map) over the same rayon machinery.
@@ -44,6 +46,7 @@ pub use tensegrity_core::angle;
 pub mod error;
 pub mod expr;
 pub mod grids;
+pub mod limits;
 pub mod merge;
 pub mod run;
 pub mod spec;

@@ -30,6 +30,7 @@ use std::path::Path;
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Condvar, Mutex};
+use tensegrity_core::budget::Limits;
 use tensegrity_io::interrupt;
 use tensegrity_io::sink::PathLock;
 
@@ -104,7 +105,7 @@ impl FromStr for Shard {
 }
 
 /// How to run a sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
     /// Worker threads (`None`: one per core).
     pub threads: Option<usize>,
@@ -114,6 +115,9 @@ pub struct RunOptions {
     pub resume: bool,
     /// Write the `# units: …` line before the header.
     pub units: bool,
+    /// Refuse every case whose estimate is over these limits (an `error` row naming the
+    /// limit, [`crate::limits`]); `None`: no check.
+    pub limits: Option<Limits>,
 }
 
 impl Default for RunOptions {
@@ -123,6 +127,7 @@ impl Default for RunOptions {
             shard: Shard::ALL,
             resume: false,
             units: false,
+            limits: None,
         }
     }
 }
@@ -191,7 +196,7 @@ pub fn run(
     let (written, errors) = if resumed < shard_cases {
         execute(
             spec,
-            opts.shard,
+            opts,
             resumed..shard_cases,
             threads,
             &mut file,
@@ -327,6 +332,7 @@ struct Shared<'a> {
     spec: &'a Spec,
     ctx: Context,
     shard: Shard,
+    limits: Option<Limits>,
     next: AtomicUsize,
     end: usize,
     window: usize,
@@ -378,6 +384,9 @@ impl Shared<'_> {
         let case = self.spec.case(id);
         let result = case.params.and_then(|p| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                if let Some(limits) = &self.limits {
+                    crate::limits::admit(self.spec.study, &p, limits)?;
+                }
                 self.spec.study.run(p, &self.ctx).map_err(|e| match e {
                     tensegrity_engine::RunError::InvalidParameter(p) => {
                         SweepError::from(p).to_string()
@@ -409,7 +418,7 @@ impl Shared<'_> {
 /// Runs the shard's cases `range` on `threads` workers and appends their rows in order.
 fn execute(
     spec: &Spec,
-    shard: Shard,
+    opts: &RunOptions,
     range: std::ops::Range<usize>,
     threads: usize,
     file: &mut File,
@@ -428,7 +437,8 @@ fn execute(
     let shared = Shared {
         spec,
         ctx: Context::default(),
-        shard,
+        shard: opts.shard,
+        limits: opts.limits,
         next: AtomicUsize::new(range.start),
         end: range.end,
         window: 8 * threads + 8,

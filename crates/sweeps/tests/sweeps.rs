@@ -265,3 +265,43 @@ fn units_go_in_a_leading_comment_line() {
     merge(std::slice::from_ref(&out), &merged).unwrap();
     assert_eq!(std::fs::read_to_string(&merged).unwrap(), text);
 }
+
+#[test]
+fn a_case_over_the_limits_is_an_error_row_and_the_others_run() {
+    // a hundred million sides used to abort allocating its statics; under the limits it is
+    // refused before it runs, naming the parameter and the limit
+    let dir = tmp();
+    let out = dir.path().join("limits.csv");
+    let spec = Spec::parse("study = \"toroid\"\n[axes]\nsides = [6, 100000000, 8]\n").unwrap();
+    let limits = tensegrity_core::budget::Limits::default();
+    let opts = RunOptions {
+        limits: Some(limits),
+        ..threads(2)
+    };
+    let s = sweep(&spec, &out, opts);
+    assert_eq!((s.written, s.errors), (3, 1));
+    let rows = rows(&out);
+    let status = rows[0].iter().position(|h| h == "status").unwrap();
+    assert_eq!(rows[1][status], "ok");
+    assert_eq!(rows[3][status], "ok");
+    assert_eq!(rows[2][status], "error");
+    let message = &rows[2][status + 1];
+    assert!(
+        message.contains("sides = 100000000")
+            && message.contains("memory")
+            && message.contains("above the limit of 8.000 GiB"),
+        "{message}"
+    );
+    // a tighter work limit refuses every case, by name
+    let tight = tensegrity_core::budget::Limits {
+        work_s: 1e-12,
+        ..limits
+    };
+    let out = dir.path().join("tight.csv");
+    let opts = RunOptions {
+        limits: Some(tight),
+        ..threads(1)
+    };
+    let s = sweep(&spec, &out, opts);
+    assert_eq!(s.errors, 3);
+}

@@ -247,8 +247,9 @@ pub struct Modes {
     pub shapes: DMatrix<f64>,
 }
 
-/// How bar mass enters modal analysis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// How bar mass enters modal analysis (serialised `lumped`, `consistent`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum MassModel {
     /// Half of each bar's mass at each end (diagonal M).
     #[default]

@@ -231,3 +231,44 @@ pub const TBAR_ROLL: [Column; 30] = [
     col("rows.0.tipover.critical_lateral_force", "N"),
     col("rows.0.tipover.min_friction_to_tip", ""),
 ];
+
+/// The scalars of [`tensegrity_core::StaticsReport`] (the optional ones empty when the report
+/// leaves them out: no loads, no materials, no modes).
+pub const STATICS: [Column; 20] = [
+    col("nodes", ""),
+    col("bars", ""),
+    col("strings", ""),
+    col("rank", ""),
+    col("self_stress_dim", ""),
+    col("mechanisms", ""),
+    col("internal_mechanisms", ""),
+    col("prestressable", ""),
+    col("prestress_margin", ""),
+    col("prestress_stable", ""),
+    col("smallest_singular_value", ""),
+    col("rank_tolerance", ""),
+    col("residual", "N"),
+    col("load_carried", ""),
+    col("mass_kg", "kg"),
+    col("sizing_warning", ""),
+    col("modal_error", ""),
+    col("sizing_error", ""),
+    col("statics_method", ""),
+    col("statics_warning", ""),
+];
+
+/// The scalars of [`tensegrity_core::dynamics::SimulationReport`] (`wall_time_s` is measured:
+/// it differs from run to run).
+pub const SIMULATE: [Column; 7] = [
+    col("t_end", "s"),
+    col("steps", ""),
+    col("rhs_evals", ""),
+    col("energy_drift", ""),
+    col("bar_length_drift", "m"),
+    col("constraint_drift", "m"),
+    col("wall_time_s", "s"),
+];
+
+/// [`crate::bench::WorkPrecisionReport`] has no scalar: its points are the study (the
+/// `integrators` study sweeps them one by one).
+pub const BENCH_WORK_PRECISION: [Column; 0] = [];

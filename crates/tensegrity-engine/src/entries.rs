@@ -1,7 +1,7 @@
 //! The entries of the registry: one line per command (library call, result columns).
 
 use crate::columns as c;
-use crate::registry::{entry, entry_in, Command};
+use crate::registry::{entry, entry_in, estimated, Command};
 use michell3d::{MichellOptimizeRequest, MichellRequest, MichellTableRequest};
 use tbar_wheel::TbarStaticRequest;
 use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
@@ -9,8 +9,8 @@ use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
 /// Every command.
 pub(crate) fn all() -> Vec<Command> {
     vec![
-        entry(toroid::toroid_report, &c::TOROID),
-        entry(toroid::roll, &c::ROLL),
+        estimated(toroid::toroid_report, &c::TOROID),
+        estimated(toroid::roll, &c::ROLL),
         entry(toroid::tipover_report, &c::TIPOVER),
         entry(TipoverDynamicRequest::run, &c::TIPOVER_DYNAMIC),
         entry(TipoverRollingRequest::run, &c::TIPOVER_ROLLING).alias(&["lean"]),
@@ -19,6 +19,9 @@ pub(crate) fn all() -> Vec<Command> {
         entry(MichellTableRequest::run, &c::MICHELL_TABLE),
         entry_in(crate::integrators::point, &c::INTEGRATORS),
         entry(TbarStaticRequest::run, &c::TBAR),
-        entry(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
+        estimated(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
+        estimated(crate::statics::statics, &c::STATICS),
+        estimated(crate::simulate::simulate, &c::SIMULATE),
+        entry(crate::bench::work_precision, &c::BENCH_WORK_PRECISION),
     ]
 }

@@ -24,16 +24,31 @@
 //! | `integrators` | [`integrators::IntegratorsRequest`] | [`integrators::point`] |
 //! | `tbar` | [`tbar_wheel::TbarStaticRequest`] | [`tbar_wheel::tbar_report`] |
 //! | `tbar_roll` | [`tbar_wheel::TbarRollRequest`] | [`tbar_roll::tbar_roll`] (the toroid column composed here) |
+//! | `statics` | [`statics::StaticsCommand`] | [`statics::statics`] (a scene's statics report) |
+//! | `simulate` | [`simulate::SimulateCommand`] | [`simulate::simulate`] (a scene run in time) |
+//! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision`] |
+//!
+//! Every command's resource estimate is here too ([`estimate`]: the [`estimate::Estimated`]
+//! requests, and the grids front ends add), so every front end refuses the same requests;
+//! the default limits and the sizes they are written in are in [`limits`].
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod columns;
 mod entries;
+pub mod estimate;
 pub mod integrators;
+pub mod limits;
 pub mod registry;
+pub mod scene;
+pub mod simulate;
+pub mod statics;
 pub mod tbar_roll;
 
+pub use estimate::Estimated;
 pub use integrators::Context;
-pub use registry::{col, command, commands, entry, entry_in, Column, Command, RunError};
+pub use registry::{col, command, commands, entry, entry_in, estimated, Column, Command, RunError};
+pub use scene::{SceneError, SceneSource};
 
 #[cfg(test)]
 mod tests;

@@ -5,7 +5,10 @@
 //! > values → [`Request::from_values`] → the library call → `serde_json::to_value`.
 //!
 //! An entry is one line: [`entry`] takes the library call (any `fn(&R) -> Result<T, E>` with
-//! `R: Request`, `T: Serialize`), [`entry_in`] one that shares the sweep's [`Context`].
+//! `R: Request`, `T: Serialize`), [`entry_in`] one that shares the sweep's [`Context`], and
+//! [`estimated`] one whose request has a resource estimate ([`Estimated`]): the command's
+//! [`Command::estimate`] on named values, which a front end checks against its limits before
+//! the run (the sweeps before every case).
 //!
 //! ```
 //! let c = tensegrity_engine::command("tipover").unwrap();
@@ -16,11 +19,13 @@
 //! assert_eq!(tensegrity_engine::command("lean").unwrap().name, "tipover_rolling");
 //! ```
 
+use crate::estimate::Estimated;
 use crate::integrators::Context;
 use serde::Serialize;
 use serde_json::{Map, Value};
 use std::fmt::Display;
 use std::sync::OnceLock;
+use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::{InvalidParameter, Param, Request};
 
 /// A result column: a scalar of the report, named by its JSON key (a nested key as
@@ -60,6 +65,8 @@ impl tensegrity_core::request::Categorized for RunError {
 }
 
 type RunFn = Box<dyn Fn(Map<String, Value>, &Context) -> Result<Value, RunError> + Send + Sync>;
+type EstimateFn =
+    Box<dyn Fn(Map<String, Value>) -> Result<Option<Estimate>, RunError> + Send + Sync>;
 
 /// One command of the registry.
 pub struct Command {
@@ -72,6 +79,7 @@ pub struct Command {
     params: fn() -> Vec<Param>,
     defaults: fn() -> Map<String, Value>,
     run: RunFn,
+    estimate: Option<EstimateFn>,
 }
 
 impl std::fmt::Debug for Command {
@@ -101,6 +109,15 @@ impl Command {
         (self.run)(values, ctx)
     }
 
+    /// The resource estimate of a run on named values (over the request's defaults); `None`
+    /// for a command without one ([`crate::estimate`]).
+    pub fn estimate(&self, values: Map<String, Value>) -> Result<Option<Estimate>, RunError> {
+        match &self.estimate {
+            Some(estimate) => estimate(values),
+            None => Ok(None),
+        }
+    }
+
     /// The same command, also known by `aliases`.
     pub fn alias(self, aliases: &'static [&'static str]) -> Self {
         Self { aliases, ..self }
@@ -114,6 +131,7 @@ impl Command {
             params: R::params,
             defaults: R::defaults,
             run,
+            estimate: None,
         }
     }
 }
@@ -135,6 +153,19 @@ where
         columns,
         Box::new(move |values, _| json(run(&R::from_values(values)?))),
     )
+}
+
+/// The entry of the library call `run` of request `R`, with `R`'s resource estimate.
+pub fn estimated<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column]) -> Command
+where
+    R: Estimated,
+    T: Serialize + 'static,
+    E: Display + 'static,
+{
+    Command {
+        estimate: Some(Box::new(|values| R::from_values(values)?.estimate())),
+        ..entry(run, columns)
+    }
 }
 
 /// The entry of a library call that shares what the cases of a sweep share ([`Context`]).

@@ -198,3 +198,182 @@ fn the_dynamic_and_rolling_columns_are_their_reports_scalars() {
     let echo = ["sides", "outer_tread", "incline", "side_slope"];
     check_columns("tipover_rolling", &[lean], &echo);
 }
+
+#[test]
+fn the_scene_requests_describe_their_fields() {
+    check_description::<statics::StaticsCommand>().unwrap();
+    check_description::<simulate::SimulateCommand>().unwrap();
+    check_description::<bench::WorkPrecisionRequest>().unwrap();
+}
+
+/// A request through its JSON form and back, and its registry entry by name.
+fn round_trip<R: Request + std::fmt::Debug + PartialEq>(r: &R) {
+    let v = serde_json::to_value(r).unwrap();
+    assert_eq!(&serde_json::from_value::<R>(v.clone()).unwrap(), r);
+    assert_eq!(&R::from_values(values(v)).unwrap(), r);
+    let c = command(R::NAME).unwrap();
+    assert_eq!(c.name, R::NAME);
+    let params: Vec<&str> = c.params().iter().map(|p| p.name).collect();
+    let fields: Vec<&str> = R::params().iter().map(|p| p.name).collect();
+    assert_eq!(params, fields);
+}
+
+#[test]
+fn the_scene_requests_round_trip_through_json_and_the_registry() {
+    use tensegrity_core::dynamics::IntegratorKind;
+    use tensegrity_core::statics::StaticsMethod;
+    use tensegrity_core::stiffness::MassModel;
+    let s = statics::StaticsCommand {
+        scene: Some(SceneSource::parse("../../examples/prism.toml")),
+        rank_tol: Some(1e-9),
+        modes: Some(2),
+        mass: MassModel::Consistent,
+        least_squares: true,
+        method: StaticsMethod::Sparse,
+    };
+    round_trip(&s);
+    let v = serde_json::to_value(&s).unwrap();
+    assert_eq!(v["method"], "sparse");
+    assert_eq!(v["mass"], "consistent");
+    assert_eq!(v["scene"], "../../examples/prism.toml");
+    let text = std::fs::read_to_string("../../examples/prism.toml").unwrap();
+    round_trip(&statics::StaticsCommand {
+        scene: Some(SceneSource::parse(&text)),
+        ..Default::default()
+    });
+    let m = simulate::SimulateCommand {
+        scene: Some(SceneSource::parse("../../examples/double_pendulum.toml")),
+        t_end: Some(0.5),
+        integrator: Some(IntegratorKind::Sdirk),
+        dt: Some(1e-3),
+        rtol: Some(1e-7),
+        atol: Some(1e-9),
+        output_interval: Some(0.1),
+        strict: true,
+    };
+    round_trip(&m);
+    assert_eq!(serde_json::to_value(&m).unwrap()["integrator"], "sdirk");
+    round_trip(&bench::WorkPrecisionRequest { quick: true });
+    // the study reports a list of points: no scalar column
+    assert!(command("bench_work_precision").unwrap().columns.is_empty());
+}
+
+#[test]
+fn statics_by_name_gives_the_cores_rank_and_self_stress_count() {
+    use tensegrity_core::{statics_report, StaticsRequest};
+    let ctx = Context::default();
+    // the Snelson prism: 12 members, one self-stress state (rank 11)
+    for (path, self_stress) in [
+        ("../../examples/prism.toml", Some(1)),
+        ("../../examples/tower.toml", None),
+    ] {
+        let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
+        let direct = statics_report(&scene.structure, &StaticsRequest::default()).unwrap();
+        if let Some(n) = self_stress {
+            assert_eq!((direct.self_stress_dim, direct.rank), (n, 11));
+        }
+        let run = command("statics")
+            .unwrap()
+            .run(values(json!({ "scene": path })), &ctx)
+            .unwrap();
+        assert_eq!(run["rank"], direct.rank);
+        assert_eq!(run["self_stress_dim"], direct.self_stress_dim);
+        assert_eq!(run["mechanisms"], direct.mechanisms);
+        // rank–nullity of the equilibrium matrix: members = rank + self-stress states
+        let members = direct.bars + direct.strings;
+        assert_eq!(direct.rank + direct.self_stress_dim, members);
+    }
+}
+
+#[test]
+fn statics_admitted_refuses_before_the_report() {
+    let c = statics::StaticsCommand {
+        scene: Some(SceneSource::parse("../../examples/prism.toml")),
+        ..Default::default()
+    };
+    let refuse = |e: Option<tensegrity_core::budget::Estimate>| {
+        let e = e.expect("the prism takes the dense SVD");
+        let tight = tensegrity_core::budget::Limits {
+            memory_bytes: 1.0,
+            ..Default::default()
+        };
+        tight.check(&e).map_err(Box::<dyn std::error::Error>::from)
+    };
+    let e = statics::admitted(&c, refuse).unwrap_err().to_string();
+    assert!(
+        e.contains("memory") && e.starts_with("method = auto"),
+        "{e}"
+    );
+    let (scene, report) = statics::admitted(&c, |_| Ok::<_, SceneError>(())).unwrap();
+    assert_eq!(scene.structure.n_members(), report.bars + report.strings);
+}
+
+#[test]
+fn statics_runs_equal_the_library_report_and_its_columns_are_its_scalars() {
+    use tensegrity_core::{statics_report, StaticsRequest};
+    let path = "../../examples/dbar_loaded.toml";
+    let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
+    let direct = statics_report(&scene.structure, &StaticsRequest::default()).unwrap();
+    let statics = command("statics").unwrap();
+    let ctx = Context::default();
+    let run = statics.run(values(json!({ "scene": path })), &ctx).unwrap();
+    assert_eq!(run, serde_json::to_value(&direct).unwrap());
+    // the published minimum mass of the D-bar: 8.858023 kg
+    assert!((run["mass_kg"].as_f64().unwrap() - 8.858023).abs() < 1e-5);
+    // the scene's text gives the same report as its file
+    let text = std::fs::read_to_string(path).unwrap();
+    let by_text = statics.run(values(json!({ "scene": text })), &ctx).unwrap();
+    assert_eq!(by_text, run);
+    // the modes and the sparse path through the request's fields
+    let v = json!({"scene": path, "method": "sparse", "modes": 2, "least_squares": true});
+    let sparse = statics.run(values(v), &ctx).unwrap();
+    assert_eq!(sparse["statics_method"], "sparse_qr");
+    assert_eq!(sparse["rank"], run["rank"]);
+    // every optional scalar set, for the key check
+    let mut full = direct;
+    full.prestress_stable = Some(true);
+    full.residual = Some(0.0);
+    full.load_carried = Some(true);
+    full.sizing_warning = Some("w".into());
+    full.modal_error = Some("m".into());
+    full.sizing_error = Some("s".into());
+    full.statics_method = Some(tensegrity_core::statics::Factorization::SparseQr);
+    full.statics_warning = Some("w".into());
+    check_columns("statics", &[full], &[]);
+}
+
+#[test]
+fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
+    use tensegrity_core::dynamics::SimulationReport;
+    let path = "../../examples/prism_drop.toml";
+    let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
+    let direct = SimulationReport::from(&scene.simulation().unwrap().run().unwrap());
+    let simulate = command("simulate").unwrap();
+    let ctx = Context::default();
+    let mut run = simulate
+        .run(values(json!({ "scene": path })), &ctx)
+        .unwrap();
+    let mut want = serde_json::to_value(&direct).unwrap();
+    // measured wall times differ; everything else is the same run
+    for v in [&mut run, &mut want] {
+        v.as_object_mut().unwrap().remove("wall_time_s");
+    }
+    assert_eq!(run, want);
+    assert_eq!(run["t_end"], 3.0);
+    check_columns("simulate", &[direct], &[]);
+    // rk4 at 0.05 s drifts (as `simulate --dt 0.05` warns): strict makes it an error
+    let drift = json!({"scene": path, "integrator": "rk4", "dt": 0.05});
+    let loose = simulate.run(values(drift.clone()), &ctx).unwrap();
+    assert!(loose["warnings"][0]
+        .as_str()
+        .unwrap()
+        .contains("bar lengths drifted"));
+    let mut strict = values(drift);
+    strict.insert("strict".into(), json!(true));
+    let e = simulate.run(strict, &ctx).unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.starts_with("strict: ") && m.contains("bar lengths drifted"),
+        "{m}"
+    );
+}

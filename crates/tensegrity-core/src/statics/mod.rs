@@ -135,8 +135,10 @@ pub enum LpSolver {
     Clarabel,
 }
 
-/// Which factorisation answers [`report::statics_report`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// Which factorisation answers [`report::statics_report`] (serialised `auto`, `dense`,
+/// `sparse`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum StaticsMethod {
     /// The dense SVD below [`SPARSE_MIN_SIZE`] free dofs or members, the sparse
     /// rank-revealing QR ([`SparseStatics`]) from there on, falling back to the SVD when the

@@ -1,0 +1,58 @@
+//! `bench work-precision`: error against wall time of every integrator on the scenes of
+//! [`tensegrity_core::dynamics::work_precision`] ([`WorkPrecisionRequest`], a request named
+//! `bench_work_precision`) — each integrator over its step or tolerance range, the error the
+//! largest final node distance to a tight RK45 reference; the `integrators` study is one point
+//! of it ([`crate::integrators`]).
+//!
+//! The report is the list of points (no scalar: a sweep row of it has no result column);
+//! `wall_time_s` is a measured time, different from run to run.
+
+use serde::{Deserialize, Serialize};
+use tensegrity_core::dynamics::work_precision::{self, Point};
+use tensegrity_core::request::{Param, Request};
+use tensegrity_core::CoreError;
+
+/// The work–precision study, as data (default: every point, three timing repetitions).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct WorkPrecisionRequest {
+    /// Fewer points and a single timing repetition (a smoke test).
+    pub quick: bool,
+}
+
+impl Request for WorkPrecisionRequest {
+    const NAME: &'static str = "bench_work_precision";
+
+    fn params() -> Vec<Param> {
+        vec![Param::flag(
+            "quick",
+            "Fewer points and a single timing repetition (for a smoke test)",
+        )]
+    }
+}
+
+/// The points of the study, scene by scene, integrator by integrator.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorkPrecisionReport {
+    /// One point per scene, integrator and step or tolerance (failed runs left out).
+    pub points: Vec<Point>,
+}
+
+/// Runs the study ([`work_precision::measure`]).
+pub fn work_precision(request: &WorkPrecisionRequest) -> Result<WorkPrecisionReport, CoreError> {
+    Ok(WorkPrecisionReport {
+        points: work_precision::measure(request.quick)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_request_describes_its_fields() {
+        tensegrity_core::request::check_description::<WorkPrecisionRequest>().unwrap();
+        let r = WorkPrecisionRequest::from_values([("quick", serde_json::json!(true))]).unwrap();
+        assert!(r.quick);
+    }
+}

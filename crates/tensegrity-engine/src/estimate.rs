@@ -1,0 +1,201 @@
+//! Resource estimates of the commands: memory, work and output from the request alone,
+//! before anything is allocated ([`tensegrity_core::budget::Estimate`]), for a front end to
+//! check against its limits ([`tensegrity_core::budget::Limits::check`]) — the CLI before a
+//! command, the sweeps before every case.
+//!
+//! [`Estimated`] is the estimate of a request, one per command, from the libraries' estimate
+//! functions: `toroid` ([`toroid::budget::statics`]: the symmetry-adapted blocks), `roll`
+//! ([`toroid::budget::roll`]: the statics, then the runs of the fidelity decision's plan),
+//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the full runs of every row), `statics`
+//! ([`crate::statics::estimate`]: the dense SVD when the method takes it) and `simulate`
+//! ([`crate::simulate::estimate`]: steps × right-hand sides, samples); the registry's
+//! [`crate::Command::estimate`] runs it on named values. Every other command is cheap or
+//! bounded by its own parameter rules, and has none.
+//!
+//! The rest estimate outputs a front end adds to a command: [`rolling_series`] (the wheels of
+//! Figs. 3.10–3.11 rolled at once), [`sign_map`] (Michell sign maps), [`friction_grid`] (the
+//! Fig. 3.13 map). Each estimate names the parameters that drive its size as the requests
+//! name them (`sides = 100000`, `t_end = 1e9, dt = 0.0001`), which a front end maps to its
+//! own spelling.
+
+use crate::registry::RunError;
+use crate::simulate::SimulateCommand;
+use crate::statics::StaticsCommand;
+use tbar_wheel::TbarRollRequest;
+use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::request::Request;
+use toroid::{RollRequest, ToroidRequest};
+
+/// A request whose resources are estimated before it runs (module docs).
+pub trait Estimated: Request {
+    /// The estimate of running this request; `None` when it has none (a rigid `tbar_roll`:
+    /// milliseconds). Fails only when the request cannot be estimated (an unreadable scene).
+    fn estimate(&self) -> Result<Option<Estimate>, RunError>;
+}
+
+fn failed(e: impl std::fmt::Display) -> RunError {
+    RunError::Failed(e.to_string())
+}
+
+impl Estimated for ToroidRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::statics(self)))
+    }
+}
+
+impl Estimated for RollRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::roll(self)))
+    }
+}
+
+impl Estimated for TbarRollRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        crate::tbar_roll::estimate(self).map_err(failed)
+    }
+}
+
+impl Estimated for StaticsCommand {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let scene = self.source()?.load().map_err(failed)?;
+        Ok(crate::statics::estimate(&scene.structure, self))
+    }
+}
+
+impl Estimated for SimulateCommand {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let scene = self.source()?.load().map_err(failed)?;
+        let simulation = self.simulation(&scene, false).map_err(failed)?;
+        crate::simulate::estimate(&simulation, false, false)
+            .map(Some)
+            .map_err(failed)
+    }
+}
+
+/// `roll` of one wheel per number of sides in `sides`, the wheels rolled at once, one thread
+/// each on this machine's cores ([`toroid::budget::rolling_series`]); `None` for no wheel.
+pub fn rolling_series(request: &RollRequest, sides: &[usize]) -> Option<Estimate> {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    toroid::budget::rolling_series(request, sides, cores)
+}
+
+/// Michell sign maps of `members` members over an azimuth × polar `grid` of load directions:
+/// every value kept in memory (16 bytes), written (~80 bytes a row) and computed (~30 flops
+/// a value); named `map_grid = A x P`.
+///
+/// ```
+/// let e = tensegrity_engine::estimate::sign_map((100_000, 100_000), 1);
+/// assert_eq!(e.parameter, "map_grid = 100000x100000");
+/// assert_eq!(e.memory_bytes, 16e10);
+/// ```
+pub fn sign_map(grid: (usize, usize), members: usize) -> Estimate {
+    let points = grid.0 as f64 * grid.1 as f64 * members.max(1) as f64;
+    Estimate::new(
+        format!("a sign map of {points:.3e} (member, load direction) values"),
+        format!("map_grid = {}x{}", grid.0, grid.1),
+    )
+    .memory(16.0 * points)
+    .output(80.0 * points)
+    .work(30.0 * points / budget::SCALAR_FLOP_RATE)
+}
+
+/// The friction map of Fig. 3.13: n × n rows of (σ, ε, F_f/F_e), kept in memory (24 bytes),
+/// written (~75 bytes) and computed (~200 flops a row); named `grid_points = n`.
+///
+/// ```
+/// let e = tensegrity_engine::estimate::friction_grid(1000);
+/// assert_eq!((e.memory_bytes, e.output_bytes), (24e6, 75e6));
+/// assert_eq!(e.parameter, "grid_points = 1000");
+/// ```
+pub fn friction_grid(points: usize) -> Estimate {
+    let rows = points as f64 * points as f64;
+    let e = budget::table(rows, 24.0, true, format!("grid_points = {points}"));
+    Estimate {
+        output_bytes: 75.0 * rows,
+        work_s: 200.0 * rows / budget::SCALAR_FLOP_RATE,
+        ..e
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command;
+    use serde_json::{json, Map, Value};
+    use tensegrity_core::budget::{Limits, Resource};
+
+    fn values(v: Value) -> Map<String, Value> {
+        v.as_object().unwrap().clone()
+    }
+
+    #[test]
+    fn a_hundred_million_sided_toroid_is_over_the_default_memory_limit() {
+        // moved from the CLI's guard: `toroid --sides 100000000` is refused, naming `sides`
+        let c = command("toroid").unwrap();
+        let e = c.estimate(values(json!({"sides": 100_000_000}))).unwrap();
+        let over = Limits::default().check(&e.unwrap()).unwrap_err();
+        assert_eq!(over.resource, Resource::Memory);
+        assert!(
+            over.to_string().starts_with("sides = 100000000: "),
+            "{over}"
+        );
+        let small = c.estimate(values(json!({"sides": 8}))).unwrap().unwrap();
+        assert!(Limits::default().check(&small).is_ok());
+    }
+
+    #[test]
+    fn a_billion_seconds_of_rolling_is_over_the_work_limit() {
+        let e = command("roll")
+            .unwrap()
+            .estimate(values(json!({"t_end": 1e9})))
+            .unwrap()
+            .unwrap();
+        assert!(e.parameter.starts_with("t_end = 1000000000, "), "{e:?}");
+        assert!(Limits::default().check(&e).is_err());
+        // the series of Figs. 3.10–3.11: one wheel per side count, at most the sum of the runs
+        let r = RollRequest::default();
+        let one = r.estimate().unwrap().unwrap();
+        let series = rolling_series(&r, &[8, 8]).unwrap();
+        assert!(series.work_s <= 2.0 * one.work_s * (1.0 + 1e-12));
+        assert!(rolling_series(&r, &[]).is_none());
+    }
+
+    #[test]
+    fn the_scene_commands_are_estimated_from_their_scenes() {
+        let s = command("statics").unwrap();
+        let e = s
+            .estimate(values(json!({"scene": "../../examples/prism.toml"})))
+            .unwrap();
+        assert!(e.unwrap().work_s < 1e-3);
+        let sim = command("simulate").unwrap();
+        let v = json!({"scene": "../../examples/double_pendulum.toml", "t_end": 1e4, "integrator": "rk4", "dt": 1e-4});
+        let e = sim.estimate(values(v)).unwrap().unwrap();
+        assert!(e.parameter.starts_with("t_end = 10000 s, dt = 0.0001 s"));
+        assert_eq!(
+            Limits::default().check(&e).unwrap_err().resource,
+            Resource::Work
+        );
+        let missing = json!({"scene": "no/such/scene.toml"});
+        assert!(matches!(
+            s.estimate(values(missing)),
+            Err(RunError::Failed(m)) if m.contains("no/such/scene.toml")
+        ));
+        // commands without an estimate
+        assert!(command("tipover")
+            .unwrap()
+            .estimate(Map::new())
+            .unwrap()
+            .is_none());
+    }
+
+    #[test]
+    fn front_end_grids_are_estimated_by_their_size() {
+        // 10¹⁰ sign-map values: 160 GB in memory, refused; a 10⁴-point friction map is not
+        let over = Limits::default()
+            .check(&sign_map((100_000, 100_000), 1))
+            .unwrap_err();
+        assert_eq!(over.resource, Resource::Memory);
+        assert!(Limits::default().check(&friction_grid(100)).is_ok());
+        assert!(Limits::default().check(&friction_grid(100_000)).is_err());
+    }
+}

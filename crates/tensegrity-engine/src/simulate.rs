@@ -1,0 +1,314 @@
+//! `simulate`: a scene run in time ([`SimulateCommand`], a request named `simulate`) — the
+//! scene's `[simulation]`, `[ground]` and `[[actuation]]` tables
+//! ([`tensegrity_io::scene::build_simulation`]) under the request's overrides, one
+//! [`Simulation`] run, its [`SimulationReport`].
+//!
+//! The overrides ([`SimulateCommand::apply`]): `t_end`, `integrator`, `dt`, `rtol`, `atol`
+//! replace the scene's values; with no `dt` anywhere an adaptive integrator (rk45, sdirk) is
+//! unbounded below t_end (dt = t_end); when samples are written (a front end's trajectory or
+//! VTK output) the node positions are recorded every `output_interval` (default: the scene's
+//! output times, else t_end / 200). A `strict` run whose invariants drifted past their limits
+//! fails ([`SceneError::Strict`]) after its outputs are written.
+//!
+//! Its resource estimate ([`estimate`], [`budget::simulation`]): the steps t_end / dt (a
+//! fixed step lands on every output time, an adaptive run takes at least as many), the
+//! right-hand sides per step of the integrator, the samples streamed and, when written, their
+//! bytes (~25 a number in CSV, ~40 in VTK).
+//!
+//! ```
+//! use tensegrity_core::request::Request;
+//! use tensegrity_engine::simulate::{simulate, SimulateCommand};
+//! let c = SimulateCommand::from_values([
+//!     ("scene", serde_json::json!("../../examples/double_pendulum.toml")),
+//!     ("t_end", serde_json::json!(0.1)),
+//! ])?;
+//! let r = simulate(&c)?;
+//! assert_eq!(r.t_end, 0.1);
+//! assert!(r.bar_length_drift < 1e-8);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::scene::{required, SceneError, SceneSource};
+use serde::{Deserialize, Serialize};
+use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::dynamics::recorder::{Sample, SampleSink};
+use tensegrity_core::dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
+use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::{CoreError, Simulation};
+use tensegrity_io::scene::{Scene, SimulationSpec};
+
+/// Samples per run when the scene names no output times and no interval is given.
+pub const DEFAULT_SAMPLES: f64 = 200.0;
+
+/// A scene run in time, as data: every field unset keeps the scene's value.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SimulateCommand {
+    /// The scene: a TOML file, or its text (required).
+    pub scene: Option<SceneSource>,
+    /// End time (s); overrides `[simulation] t_end`.
+    pub t_end: Option<f64>,
+    /// Integrator; overrides `[simulation] integrator`.
+    pub integrator: Option<IntegratorKind>,
+    /// Fixed step (rk4, rattle) or largest step (rk45, sdirk), s.
+    pub dt: Option<f64>,
+    /// Relative tolerance (rk45, sdirk).
+    pub rtol: Option<f64>,
+    /// Absolute tolerance (rk45, sdirk).
+    pub atol: Option<f64>,
+    /// Sampling interval of the written samples (s).
+    pub output_interval: Option<f64>,
+    /// Fail when the run has a drift warning.
+    pub strict: bool,
+}
+
+impl Request for SimulateCommand {
+    const NAME: &'static str = "simulate";
+
+    fn params() -> Vec<Param> {
+        vec![
+            Param::text(
+                "scene",
+                "The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`, or the scene's TOML text",
+            )
+            .required(),
+            Param::number("t_end", "s", "End time; overrides `[simulation] t_end`")
+                .positive()
+                .optional(),
+            Param::choice(
+                "integrator",
+                &["rk4", "rk45", "rattle", "sdirk"],
+                "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact",
+            )
+            .optional(),
+            Param::number(
+                "dt",
+                "s",
+                "Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)",
+            )
+            .positive()
+            .optional(),
+            Param::number("rtol", "", "Relative tolerance (rk45, sdirk)")
+                .positive()
+                .optional(),
+            Param::number("atol", "", "Absolute tolerance (rk45, sdirk)")
+                .positive()
+                .optional(),
+            Param::number(
+                "output_interval",
+                "s",
+                "Sampling interval of the written trajectory; default: the scene's output times, else t_end/200",
+            )
+            .positive()
+            .optional(),
+            Param::flag(
+                "strict",
+                "Fail (after writing the outputs) when the run has a drift warning",
+            ),
+        ]
+    }
+}
+
+impl SimulateCommand {
+    /// The scene (required).
+    pub fn source(&self) -> Result<&SceneSource, InvalidParameter> {
+        required(&self.scene)
+    }
+
+    /// Lays the overrides over the scene's settings (module docs); `file` is the scene's
+    /// `[simulation]` table, `written` whether samples are written. A scene without `t_end`
+    /// needs the request's.
+    pub fn apply(
+        &self,
+        s: &mut SimulationSettings,
+        file: Option<&SimulationSpec>,
+        written: bool,
+    ) -> Result<(), InvalidParameter> {
+        match (self.t_end, file) {
+            (Some(t), _) => s.t_end = t,
+            (None, Some(_)) => {}
+            (None, None) => {
+                return Err(InvalidParameter::raw(
+                    "t_end",
+                    "(unset)",
+                    "the scene has no `[simulation] t_end`: give the end time",
+                ))
+            }
+        }
+        if let Some(i) = self.integrator {
+            s.integrator = i;
+        }
+        if let Some(dt) = self.dt {
+            s.dt = dt;
+        } else if s.integrator.is_adaptive() && file.and_then(|x| x.dt).is_none() {
+            // no step given anywhere: rk45/sdirk choose their own, unbounded below t_end
+            s.dt = s.t_end;
+        }
+        s.rtol = self.rtol.unwrap_or(s.rtol);
+        s.atol = self.atol.unwrap_or(s.atol);
+        if written {
+            s.quantities.nodes = true;
+            if let Some(dt_out) = self.output_interval {
+                s.output_interval = Some(dt_out);
+            } else if s.output_times.is_empty() && s.output_interval.is_none() {
+                s.output_interval = Some(s.t_end / DEFAULT_SAMPLES);
+            }
+        }
+        Ok(())
+    }
+
+    /// The runnable simulation of a scene already read, under the overrides.
+    pub fn simulation(&self, scene: &Scene, written: bool) -> Result<Simulation, SceneError> {
+        let mut simulation = scene.simulation()?;
+        self.apply(
+            &mut simulation.settings,
+            scene.file.simulation.as_ref(),
+            written,
+        )?;
+        Ok(simulation)
+    }
+
+    /// Reads the scene and sets up its run under the overrides (`written`: samples are
+    /// written), the scene kept (its structure labels the outputs).
+    pub fn prepare(&self, written: bool) -> Result<(Scene, Simulation), SceneError> {
+        let scene = self.source()?.load()?;
+        let simulation = self.simulation(&scene, written)?;
+        Ok((scene, simulation))
+    }
+
+    /// The `strict` rule: a run with drift warnings is an error.
+    pub fn strict_check(&self, report: &SimulationReport) -> Result<(), SceneError> {
+        if self.strict && !report.warnings.is_empty() {
+            return Err(SceneError::Strict {
+                warnings: report.warnings.clone(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A sink that keeps no sample (a run whose samples nobody writes).
+struct Discard;
+
+impl SampleSink for Discard {
+    fn accept(&mut self, _: Sample) -> Result<(), CoreError> {
+        Ok(())
+    }
+}
+
+/// Runs `simulate` without writing samples: reads the scene, runs it, its report (an error
+/// under `strict` with drift warnings).
+pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneError> {
+    let (_, simulation) = command.prepare(false)?;
+    let result = simulation.run_streaming(&mut Discard)?;
+    let report = SimulationReport::from(&result);
+    command.strict_check(&report)?;
+    Ok(report)
+}
+
+/// The resource estimate of a run (module docs), after the core's check of its settings (a
+/// fixed step that cannot finish is refused here); `csv`, `vtk`: the samples written. Named
+/// `t_end = …, dt = …` (and the output interval).
+pub fn estimate(simulation: &Simulation, csv: bool, vtk: bool) -> Result<Estimate, CoreError> {
+    simulation.validate()?;
+    let s = &simulation.settings;
+    let mut parameter = format!("t_end = {} s, dt = {} s", s.t_end, s.dt);
+    if let Some(dt_out) = s.output_interval {
+        parameter.push_str(&format!(", output interval {dt_out} s"));
+    }
+    let bytes_per_number = 25.0 * f64::from(u8::from(csv)) + 40.0 * f64::from(u8::from(vtk));
+    Ok(budget::simulation(
+        simulation,
+        true,
+        csv || vtk,
+        bytes_per_number,
+        parameter,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+    use tensegrity_core::request::check_description;
+
+    const SCENE: &str = "../../examples/double_pendulum.toml";
+
+    #[test]
+    fn the_request_describes_its_fields() {
+        check_description::<SimulateCommand>().unwrap();
+        let c = SimulateCommand::from_values([
+            ("scene", json!(SCENE)),
+            ("integrator", json!("sdirk")),
+            ("dt", json!("1e-3")),
+        ])
+        .unwrap();
+        assert_eq!(
+            (c.integrator, c.dt),
+            (Some(IntegratorKind::Sdirk), Some(1e-3))
+        );
+        let e = SimulateCommand::from_values([("scene", json!(SCENE)), ("dt", json!("nan"))])
+            .unwrap_err();
+        assert_eq!(e.name, "dt");
+    }
+
+    #[test]
+    fn overrides_replace_the_scene_and_outputs_sample_the_nodes() {
+        let scene = SceneSource::parse(SCENE).load().unwrap();
+        let file = scene.file.simulation.as_ref();
+        let c = SimulateCommand {
+            t_end: Some(2.0),
+            integrator: Some(IntegratorKind::Rk45),
+            ..Default::default()
+        };
+        let mut s = SimulationSettings::default();
+        c.apply(&mut s, file, true).unwrap();
+        assert_eq!((s.t_end, s.integrator), (2.0, IntegratorKind::Rk45));
+        assert!(s.quantities.nodes);
+        // no scene table at all: the end time must be given
+        let e = SimulateCommand::default()
+            .apply(&mut SimulationSettings::default(), None, false)
+            .unwrap_err();
+        assert_eq!(e.name, "t_end");
+        // an adaptive run without any dt is unbounded below t_end
+        let mut s = SimulationSettings::default();
+        let c = SimulateCommand {
+            t_end: Some(3.0),
+            integrator: Some(IntegratorKind::Rk45),
+            ..Default::default()
+        };
+        c.apply(&mut s, None, true).unwrap();
+        assert_eq!(s.dt, 3.0);
+        assert_eq!(s.output_interval, Some(3.0 / DEFAULT_SAMPLES));
+    }
+
+    #[test]
+    fn the_estimate_counts_the_steps_and_the_written_samples() {
+        let scene = SceneSource::parse(SCENE).load().unwrap();
+        let c = SimulateCommand {
+            t_end: Some(1.0),
+            dt: Some(1e-3),
+            integrator: Some(IntegratorKind::Rk4),
+            output_interval: Some(1e-2),
+            ..Default::default()
+        };
+        let sim = c.simulation(&scene, true).unwrap();
+        let quiet = estimate(&sim, false, false).unwrap();
+        let csv = estimate(&sim, true, false).unwrap();
+        assert_eq!(quiet.output_bytes, 0.0);
+        // 101 samples of t and at least the node positions, 25 bytes a number in CSV, 40 in VTK
+        let per_sample = csv.output_bytes / (101.0 * 25.0);
+        let nodes = scene.structure.n_nodes() as f64;
+        assert!(per_sample >= 1.0 + 3.0 * nodes && per_sample.fract() == 0.0);
+        let vtk = estimate(&sim, false, true).unwrap();
+        assert_eq!(vtk.output_bytes / csv.output_bytes, 40.0 / 25.0);
+        assert!(csv.parameter.starts_with("t_end = 1 s, dt = 0.001 s"));
+        // 1000 RK4 steps: work grows with t_end
+        let long = SimulateCommand {
+            t_end: Some(1e5),
+            ..c
+        };
+        let sim = long.simulation(&scene, false).unwrap();
+        assert!(estimate(&sim, false, false).unwrap().work_s > 1e4 * quiet.work_s);
+    }
+}

@@ -1,0 +1,229 @@
+//! `statics`: the statics of a scene ([`StaticsCommand`], a request named `statics`) — one
+//! call of the core's statics front ([`tensegrity_core::statics_report`]: rank, self-stress,
+//! prestressability, mechanisms, the load solve and sizing, the modes on request) on the
+//! scene's structure.
+//!
+//! Its resource estimate ([`estimate`]) is that of the dense SVD of the m × n equilibrium
+//! matrix (m free degrees of freedom, n members: O(m² + n²) memory, O(max(m,n)² min(m,n))
+//! work, [`budget::dense_statics`]) when the method takes the dense path — `dense`, or
+//! `auto` below [`SPARSE_MIN_SIZE`] — and none for the sparse QR, whose cost is linear in
+//! the band of the structure.
+//!
+//! ```
+//! use tensegrity_core::request::Request;
+//! use tensegrity_engine::statics::{statics, StaticsCommand};
+//! let c = StaticsCommand::from_values([("scene", serde_json::json!("../../examples/prism.toml"))])?;
+//! let r = statics(&c)?;
+//! assert_eq!((r.self_stress_dim, r.prestressable), (1, true));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::scene::{required, SceneError, SceneSource};
+use serde::{Deserialize, Serialize};
+use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::statics::{DofMap, StaticsMethod, StaticsSettings, SPARSE_MIN_SIZE};
+use tensegrity_core::stiffness::MassModel;
+use tensegrity_core::{statics_report, CoreError, StaticsReport, StaticsRequest, Structure};
+use tensegrity_io::scene::Scene;
+
+/// The statics of a scene, as data (defaults: the SVD's own rank tolerance, the method
+/// chosen by size, no modes, the lumped mass, a load that is not carried an error).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StaticsCommand {
+    /// The scene: a TOML file, or its text (required).
+    pub scene: Option<SceneSource>,
+    /// Relative rank tolerance of the SVD, in (0, 1) (`None`: max(rows, cols) · ε).
+    pub rank_tol: Option<f64>,
+    /// Also report the k lowest natural frequencies.
+    pub modes: Option<usize>,
+    /// The mass matrix of the modes.
+    pub mass: MassModel,
+    /// Report the least-squares force densities of a load that is not carried (marked
+    /// `load_carried: false`, without sizing) instead of failing.
+    pub least_squares: bool,
+    /// The factorisation: by size, the dense SVD or the sparse QR.
+    pub method: StaticsMethod,
+}
+
+impl Request for StaticsCommand {
+    const NAME: &'static str = "statics";
+
+    fn params() -> Vec<Param> {
+        vec![
+            Param::text(
+                "scene",
+                "The scene file (TOML), or the scene's TOML text (a value with a line break or `=`)",
+            )
+            .required(),
+            Param::number(
+                "rank_tol",
+                "",
+                "Relative rank tolerance of the SVD, in (0, 1) (default: max(rows, cols) · machine epsilon)",
+            )
+            .positive()
+            .optional(),
+            Param::count(
+                "modes",
+                "Also report the K lowest natural frequencies about the current state (strings need stiffness and rest length, bars mass, material and radius)",
+            )
+            .optional(),
+            Param::choice(
+                "mass",
+                &["lumped", "consistent"],
+                "Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the rigid-bar mass matrix of the dynamics)",
+            ),
+            Param::flag(
+                "least_squares",
+                "When the loads cannot be carried (the structure is a mechanism for them), report the least-squares force densities marked `load_carried: false`, without sizing, instead of failing",
+            ),
+            Param::choice(
+                "method",
+                &["auto", "dense", "sparse"],
+                "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 300 dofs and members on), dense or sparse",
+            ),
+        ]
+    }
+
+    /// A relative rank tolerance lies strictly between 0 and 1.
+    fn check(&self) -> Result<(), InvalidParameter> {
+        match self.rank_tol {
+            Some(tol) if tol >= 1.0 => Err(InvalidParameter::new(
+                "rank_tol",
+                tol,
+                "a relative tolerance must lie strictly between 0 and 1",
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl StaticsCommand {
+    /// The scene (required).
+    pub fn source(&self) -> Result<&SceneSource, InvalidParameter> {
+        required(&self.scene)
+    }
+
+    /// The core's request of this command.
+    pub fn request(&self) -> StaticsRequest {
+        StaticsRequest {
+            settings: StaticsSettings {
+                method: self.method,
+                rank_tolerance: self.rank_tol,
+                ..StaticsSettings::default()
+            },
+            modes: self.modes,
+            mass: self.mass,
+            least_squares: self.least_squares,
+        }
+    }
+
+    /// The report of `structure` (the scene already read).
+    pub fn report(&self, structure: &Structure) -> Result<StaticsReport, CoreError> {
+        statics_report(structure, &self.request())
+    }
+}
+
+/// Runs `statics`: reads the scene, one report.
+pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
+    let scene = command.source()?.load()?;
+    Ok(command.report(&scene.structure)?)
+}
+
+/// Runs `statics` under a front end's check of its estimate: reads the scene, hands the
+/// estimate ([`estimate`]) to `admit` (a front end's limits: an error refuses the run, the
+/// value it returns — a progress indicator — lives while the statics run), one report. The
+/// scene comes back with the report (its member names label a readable report).
+///
+/// ```
+/// use tensegrity_core::request::Request;
+/// use tensegrity_engine::statics::{admitted, StaticsCommand};
+/// use tensegrity_engine::SceneError;
+/// let c = StaticsCommand::from_values([("scene", serde_json::json!("../../examples/prism.toml"))])?;
+/// let (scene, r) = admitted(&c, |e| Ok::<_, SceneError>(assert!(e.unwrap().work_s < 1e-3)))?;
+/// assert_eq!((scene.structure.n_bars(), r.self_stress_dim), (3, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn admitted<G, E: From<SceneError>>(
+    command: &StaticsCommand,
+    admit: impl FnOnce(Option<Estimate>) -> Result<G, E>,
+) -> Result<(Scene, StaticsReport), E> {
+    let scene = command.source().map_err(SceneError::from)?;
+    let scene = scene.load().map_err(SceneError::from)?;
+    let _admitted = admit(estimate(&scene.structure, command))?;
+    let report = command.report(&scene.structure).map_err(SceneError::from)?;
+    Ok((scene, report))
+}
+
+/// The resource estimate of the statics of `structure` (module docs): the dense SVD when the
+/// method takes the dense path, else none.
+///
+/// ```
+/// use tensegrity_core::test_models::oscillating_prism;
+/// use tensegrity_engine::statics::{estimate, StaticsCommand};
+/// let e = estimate(&oscillating_prism().unwrap(), &StaticsCommand::default()).unwrap();
+/// assert!(e.work_s < 1e-3 && e.parameter.starts_with("method = auto"));
+/// ```
+pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estimate> {
+    let (dofs, members) = (DofMap::of(structure).len(), structure.n_members());
+    let dense = match command.method {
+        StaticsMethod::Dense => true,
+        StaticsMethod::Sparse => false,
+        StaticsMethod::Auto => dofs.min(members) < SPARSE_MIN_SIZE,
+    };
+    let method = serde_json::to_value(command.method).unwrap_or_default();
+    let parameter = format!(
+        "method = {} ({} nodes, {members} members)",
+        method.as_str().unwrap_or("auto"),
+        structure.n_nodes()
+    );
+    dense.then(|| budget::dense_statics(dofs, members, parameter))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+    use tensegrity_core::request::check_description;
+
+    #[test]
+    fn the_request_describes_its_fields_and_refuses_a_tolerance_of_one() {
+        check_description::<StaticsCommand>().unwrap();
+        let c = StaticsCommand::from_values([
+            ("scene", json!("a.toml")),
+            ("method", json!("sparse")),
+            ("mass", json!("consistent")),
+            ("modes", json!(3)),
+        ])
+        .unwrap();
+        assert_eq!(c.method, StaticsMethod::Sparse);
+        assert_eq!((c.mass, c.modes), (MassModel::Consistent, Some(3)));
+        assert_eq!(c.source().unwrap(), &SceneSource::Path("a.toml".into()));
+        let scene = ("scene", json!("a.toml"));
+        let e = StaticsCommand::from_values([scene.clone(), ("rank_tol", json!(1.0))]);
+        assert_eq!(e.unwrap_err().name, "rank_tol");
+        let e = StaticsCommand::from_values([scene, ("method", json!("qr"))]).unwrap_err();
+        assert_eq!(e.name, "method");
+        // the scene is required
+        assert!(StaticsCommand::default().validate().is_err());
+    }
+
+    #[test]
+    fn the_dense_estimate_follows_the_method() {
+        let s = tensegrity_core::test_models::oscillating_prism().unwrap();
+        let auto = StaticsCommand::default();
+        // the dense SVD of the free dofs × members, its memory
+        let e = estimate(&s, &auto).unwrap();
+        let m = DofMap::of(&s).len();
+        assert_eq!(
+            e.memory_bytes,
+            tensegrity_core::statics::dense_statics_bytes(m, s.n_members())
+        );
+        let sparse = StaticsCommand {
+            method: StaticsMethod::Sparse,
+            ..auto
+        };
+        assert!(estimate(&s, &sparse).is_none());
+    }
+}
