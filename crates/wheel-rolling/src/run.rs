@@ -133,7 +133,14 @@ pub fn roll_decided<W: Wheel>(
         ),
         Plan::Full => (None, false, None),
         Plan::RigidThenFullIfInvalid => {
-            let probe = timed_rigid(&rigid, spec.t_end, &pose, frame_times, None)?;
+            // the probe's frames are the result's only when nobody observes the run (else the
+            // observed run makes them again)
+            let probe_times = if observer.is_some() {
+                &[][..]
+            } else {
+                frame_times
+            };
+            let probe = timed_rigid(&rigid, spec.t_end, &pose, probe_times, None)?;
             let validity = probe.0.result.validity.clone();
             let valid = validity.valid();
             let run = match (valid, reborrow(&mut observer)) {

@@ -123,3 +123,36 @@ fn auto_on_a_stiff_wheel_shows_the_observer_one_model() {
     let e = roll_wheel(&octagon(), &spec, &[], None).unwrap_err();
     assert!(e.to_string().contains("no full model"), "{e}");
 }
+
+/// Streams the frames elsewhere: the run keeps none of them.
+struct Streams {
+    frames: Vec<WheelFrame>,
+}
+
+impl Observer for Streams {
+    fn frame(&mut self, f: &WheelFrame) -> Flow {
+        self.frames.push(f.clone());
+        Flow::Continue
+    }
+
+    fn keeps_frames(&self) -> bool {
+        false
+    }
+}
+
+#[test]
+fn an_observer_that_streams_the_frames_gets_them_all_and_the_run_keeps_none() {
+    let pose = [nalgebra::Vector3::new(0.0, 0.0, -1.0)];
+    let times: Vec<f64> = (0..=20).map(|k| 0.05 * k as f64).collect();
+    let model = RigidRolling::new(&octagon(), &rigid_spec(1.0));
+    let kept = model.run_observed(1.0, &pose, &times, None).unwrap();
+    let mut obs = Streams { frames: Vec::new() };
+    let streamed = model
+        .run_observed(1.0, &pose, &times, Some(&mut obs))
+        .unwrap();
+    assert_eq!(kept.frames.len(), 21);
+    // the same frames, bit for bit, handed over instead of kept; the same samples
+    assert_eq!(obs.frames, kept.frames);
+    assert!(streamed.frames.is_empty());
+    assert_eq!(streamed.result, kept.result);
+}
