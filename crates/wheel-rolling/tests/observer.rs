@@ -156,3 +156,41 @@ fn an_observer_that_streams_the_frames_gets_them_all_and_the_run_keeps_none() {
     assert!(streamed.frames.is_empty());
     assert_eq!(streamed.result, kept.result);
 }
+
+/// Lets the run go on for `polls` checks (an interrupt arriving then), sees nothing else.
+struct InterruptAfter {
+    polls: usize,
+    samples: usize,
+}
+
+impl Observer for InterruptAfter {
+    fn sample(&mut self, _: &RollingSample) -> Flow {
+        self.samples += 1;
+        Flow::Continue
+    }
+
+    fn keep_going(&mut self) -> bool {
+        self.polls = self.polls.saturating_sub(1);
+        self.polls > 0
+    }
+}
+
+#[test]
+fn an_interrupt_during_the_probe_of_auto_ends_the_run_with_the_probe_so_far() {
+    // the probe is unobserved, but an interrupt stops it: its 100 samples are the (rigid,
+    // stopped) result, and no second run follows (a bare polygon has no full model to try)
+    let mut spec = rigid_spec(5.0);
+    spec.fidelity = FidelityChoice::Auto;
+    spec.settings.string_stiffness = 2e6;
+    let mut obs = InterruptAfter {
+        polls: 100,
+        samples: 0,
+    };
+    let r = roll_wheel(&octagon(), &spec, &[], Some(&mut obs)).unwrap();
+    assert_eq!(r.fidelity, Fidelity::Rigid);
+    assert_eq!(obs.samples, 0, "the observer saw nothing of the probe");
+    let samples = &r.result.samples;
+    assert_eq!(samples.len(), 100);
+    assert_eq!(r.result.validity.stopped_at, Some(samples[99].t));
+    assert!(!r.result.validity.valid());
+}
