@@ -243,6 +243,7 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
     let sim = "simulate examples/double_pendulum.toml --t-end 1e6 --dt 1e-4";
     let michell = "michell --complexity 6 --cylindrical 0.25 --beta pi/6 --phi pi/8";
     let tbar = "tbar --complexity 3 --beta pi/6 --phi pi/16 --cylindrical 0.1 --wheel --rim body";
+    let roll = "roll --fidelity full --t-end 1e4";
     let rows: Vec<(&str, String, bool)> = vec![
         ("simulate --out", format!("{sim} --out {{}}"), false),
         ("simulate --vtk", format!("{sim} --vtk {{}}"), true),
@@ -300,6 +301,19 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
         ("tbar --vtk", format!("{tbar} --vtk {{}}"), false),
         ("tbar --svg", format!("{tbar} --svg {{}}"), false),
         ("figures --out", "figures --out {}".into(), true),
+        ("roll --out", format!("{roll} --out {{}}"), false),
+        ("roll --vtk", format!("{roll} --vtk {{}}"), true),
+        ("roll --svg", format!("{roll} --svg {{}}"), false),
+        (
+            "tipover --dynamic --out",
+            "tipover --dynamic --hold 1e4 --out {}".into(),
+            false,
+        ),
+        (
+            "tipover --rolling --out",
+            "tipover --rolling --t-end 1e4 --out {}".into(),
+            false,
+        ),
     ];
     rows.into_iter()
         .map(|(name, line, is_dir)| {

@@ -3,13 +3,13 @@
 //! per new contact against n: the §3.3.1 claim that more sides mean gentler impacts), and the
 //! figure panels of the rolling figures (also `roll --svg`).
 
-use super::roll::{ContactArg, FidelityArg};
+use super::request_args::choice;
 use super::values;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use tensegrity_io::figure::{Figure, Panel, Series};
 use toroid::{defaults, RollReport, RollRequest};
-use wheel_rolling::{RollSettings, RollingSample, WheelFrame};
+use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
 
 /// Rolls `request` once per entry of `sides`, in parallel; the reports in the order of
 /// `sides`.
@@ -95,11 +95,11 @@ pub struct FigRollingArgs {
     #[arg(long, value_name = "FILE", default_value = "rolling.svg")]
     out: PathBuf,
     /// Model (auto: the cheapest valid one per wheel; with the default strings, full).
-    #[arg(long, value_enum, default_value_t = FidelityArg::Auto)]
-    fidelity: FidelityArg,
+    #[arg(long, default_value = "auto", value_parser = choice::<FidelityChoice>(FidelityChoice::NAMES))]
+    fidelity: FidelityChoice,
     /// Ground contact of the full model.
-    #[arg(long, value_enum, default_value_t = ContactArg::Penalty)]
-    contact: ContactArg,
+    #[arg(long, default_value = "penalty", value_parser = choice::<ContactKind>(ContactKind::NAMES))]
+    contact: ContactKind,
     /// Slope angle.
     #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
     incline: f64,
@@ -119,8 +119,8 @@ pub struct FigRollingArgs {
 /// parallel, and the impact impulse per new contact against n (§3.3.1).
 pub fn run_fig_rolling(args: &FigRollingArgs) -> Result<()> {
     let request = RollRequest {
-        fidelity: args.fidelity.into(),
-        contact: args.contact.into(),
+        fidelity: args.fidelity,
+        contact: args.contact,
         settings: RollSettings {
             incline: args.incline,
             restitution: args.restitution,
