@@ -300,6 +300,12 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
         ("tbar --vtk", format!("{tbar} --vtk {{}}"), false),
         ("tbar --svg", format!("{tbar} --svg {{}}"), false),
         ("figures --out", "figures --out {}".into(), true),
+        // four wheels rolled for 1000 s each: hours, unless the path is checked first
+        (
+            "fig-rolling --out",
+            "fig-rolling --t-end 1000 --out {}".into(),
+            false,
+        ),
     ];
     rows.into_iter()
         .map(|(name, line, is_dir)| {
@@ -349,7 +355,8 @@ fn every_output_flag_refuses_an_unwritable_path_before_any_work() {
     for (name, args, is_dir) in &flags {
         for parent in &parents {
             let bad = parent.join(if *is_dir { "out-dir" } else { "x.svg" });
-            let bad = if !is_dir && !name.ends_with("--svg") && !name.contains("plot") {
+            let figure = name.ends_with("--svg") || name.contains("plot") || name.starts_with("fig-");
+            let bad = if !is_dir && !figure {
                 bad.with_extension("csv")
             } else {
                 bad

@@ -209,7 +209,7 @@ pub fn roll(request: &toroid::RollRequest) -> Result<Progress> {
 }
 
 /// `tensegrity fig-rolling`: the wheels roll at once, one thread each
-/// ([`super::roll_series::parallel_series`]), estimated by the library.
+/// ([`tensegrity_figures::fig_rolling`]), estimated by the library.
 pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<Progress> {
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
     match toroid::budget::rolling_series(request, sides, cores) {

@@ -1,17 +1,15 @@
 //! `tensegrity roll`: parses the arguments into a [`toroid::RollRequest`], makes one library
 //! call ([`toroid::roll_with_frames`]) and prints or plots the report; warnings go to stderr
-//! as well. `fig-rolling` and the figure panels are in [`super::roll_series`].
+//! as well. `fig-rolling` is [`super::fig_rolling`]; the figure of `--svg` is
+//! [`tensegrity_figures::roll_figure`].
 
 use super::values;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
-use tensegrity_io::figure::Panel;
 use toroid::defaults;
 use toroid::{RollReport, RollRequest};
 use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
 
-use super::roll_series::{axle_panel, frame_panel, reaction_panel, write_figure};
-pub use super::roll_series::{run_fig_rolling, FigRollingArgs};
 use super::toroid::GeometryArgs;
 
 /// `--fidelity` values.
@@ -201,22 +199,10 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
 }
 
 fn write_svg(args: &RollArgs, path: &Path, request: &RollRequest, r: &RollReport) -> Result<()> {
-    match &args.frames {
-        Some(times) => {
-            let toroid = request.wheel.build()?;
-            let members = toroid.structure.member_nodes();
-            let panels: Vec<Panel> = times
-                .iter()
-                .filter_map(|&t| r.frames.iter().find(|f| (f.t - t).abs() <= args.dt))
-                .map(|f| frame_panel(f, &members))
-                .collect();
-            write_figure(path, &panels)
-        }
-        None => {
-            let runs = [(format!("n = {}", r.sides), r.samples.as_slice())];
-            write_figure(path, &[axle_panel(&runs), reaction_panel(&runs)])
-        }
-    }
+    let figure = tensegrity_figures::roll_figure(request, r, args.frames.as_deref())?;
+    figure
+        .save(path)
+        .with_context(|| format!("writing the figure {}", path.display()))
 }
 
 fn write_vtk(dir: &Path, request: &RollRequest, frames: &[WheelFrame]) -> Result<()> {
