@@ -210,7 +210,9 @@ mod tests {
         }
         .selected()
         .unwrap_err();
-        assert!(e.to_string().starts_with("only = \"x\": no figure x (known: 3.3, 3.8,"));
+        assert!(e
+            .to_string()
+            .starts_with("only = \"x\": no figure x (known: 3.3, 3.8,"));
     }
 
     #[test]

@@ -72,12 +72,21 @@ impl Context {
 
     /// The warnings recorded, in the order they came.
     pub fn into_warnings(self) -> Vec<Warning> {
-        self.warnings.into_inner().unwrap_or_else(|e| e.into_inner())
+        self.warnings
+            .into_inner()
+            .unwrap_or_else(|e| e.into_inner())
     }
 
     /// Runs the sweep `spec` (TOML text) to `data/NAME.csv` and reads columns `x` and `y`
     /// back as curves, one per value of `group` (`""`: one curve).
-    pub fn sweep(&self, name: &str, spec: &str, x: &str, y: &str, group: &str) -> Result<Vec<Curve>> {
+    pub fn sweep(
+        &self,
+        name: &str,
+        spec: &str,
+        x: &str,
+        y: &str,
+        group: &str,
+    ) -> Result<Vec<Curve>> {
         let spec = Spec::parse(spec).map_err(|source| FigureError::SweepSpec {
             name: name.to_string(),
             source,

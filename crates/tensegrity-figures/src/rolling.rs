@@ -340,7 +340,14 @@ mod tests {
         let names: Vec<&str> = FigRollingRequest::params().iter().map(|p| p.name).collect();
         assert_eq!(
             names,
-            ["fidelity", "contact", "incline", "t_end", "mu", "restitution"]
+            [
+                "fidelity",
+                "contact",
+                "incline",
+                "t_end",
+                "mu",
+                "restitution"
+            ]
         );
         let r = FigRollingRequest::from_values([
             ("fidelity", serde_json::json!("rigid")),
@@ -353,7 +360,10 @@ mod tests {
             (FidelityChoice::Rigid, ContactKind::Thesis, 2.0)
         );
         let json = serde_json::to_value(r).unwrap();
-        assert_eq!((json["fidelity"].as_str(), json["contact"].as_str()), (Some("rigid"), Some("thesis")));
+        assert_eq!(
+            (json["fidelity"].as_str(), json["contact"].as_str()),
+            (Some("rigid"), Some("thesis"))
+        );
         assert!(serde_json::from_str::<FigRollingRequest>(r#"{"sides": 8}"#).is_err());
         // the defaults are those of `roll`
         let d = FigRollingRequest::default().roll_request(8);
@@ -394,7 +404,10 @@ mod tests {
         assert_eq!(labels(&f.panels[1]), ["n = 8 rigid", "n = 16 rigid"]);
         let first = &runs.runs[0].samples;
         assert_eq!(f.panels[0].series[0].points[0], (first[0].t, first[0].h));
-        assert_eq!(f.panels[1].series[0].points[0], (first[0].t, first[0].normal));
+        assert_eq!(
+            f.panels[1].series[0].points[0],
+            (first[0].t, first[0].normal)
+        );
     }
 
     #[test]
@@ -409,14 +422,59 @@ mod tests {
             ..RollRequest::with_sides(8)
         })
         .unwrap();
-        assert!(!rolled.impact_log.is_empty());
+        let log = &rolled.impact_log;
+        assert!(!log.is_empty());
         let m = ImpactMeans::of(&rolled);
-        let n = rolled.impact_log.len() as f64;
-        let normal: f64 = rolled.impact_log.iter().map(|i| i.normal_impulse).sum::<f64>() / n;
-        assert!((m.normal_impulse - normal).abs() <= 1e-15 * normal.abs());
-        assert!((m.normal_per_mass * rolled.mass_kg - normal).abs() <= 1e-12 * normal.abs());
-        // a rigid impact keeps ω⁺ < ω⁻
-        assert!(m.omega_ratio > 0.0 && m.omega_ratio < 1.0, "{}", m.omega_ratio);
+        assert_eq!((m.sides, m.impacts), (8, log.len()));
+        let n = log.len() as f64;
+        let mean =
+            |f: &dyn Fn(&wheel_rolling::ImpactRecord) -> f64| log.iter().map(f).sum::<f64>() / n;
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        let normal = mean(&|i| i.normal_impulse);
+        assert!(close(m.normal_impulse, normal));
+        assert!(close(m.tangential_impulse, mean(&|i| i.tangential_impulse)));
+        assert!(close(m.normal_per_mass * rolled.mass_kg, normal));
+        assert!(close(
+            m.omega_ratio,
+            mean(&|i| i.omega_after / i.omega_before)
+        ));
+        // the ground pushes: every normal impulse is positive
+        assert!(log.iter().all(|i| i.normal_impulse > 0.0), "{log:?}");
+    }
+
+    #[test]
+    fn fig_rolling_rolls_each_wheel_as_roll_does_and_more_sides_impact_gentler() {
+        let request = FigRollingRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 2.0,
+            ..FigRollingRequest::default()
+        };
+        let rolled = fig_rolling(&request).unwrap();
+        let sides: Vec<usize> = rolled.runs.iter().map(|r| r.sides).collect();
+        assert_eq!(sides, FigRollingRequest::SIDES);
+        // the parallel runs are the serial `roll` calls, sample for sample
+        for r in &rolled.runs {
+            let alone = toroid::roll(&request.roll_request(r.sides)).unwrap();
+            assert_eq!(r.samples, alone.samples, "n = {}", r.sides);
+            assert_eq!(r.impact_log, alone.impact_log, "n = {}", r.sides);
+            assert!(r.summary.valid, "n = {}: {:?}", r.sides, r.summary.warnings);
+        }
+        // §3.3.1: more sides, more and gentler impacts (normal impulse per unit mass, m/s:
+        // 1.85, 1.28, 0.84, 0.62 for n = 8, 12, 16, 24 over 2 s down 50°)
+        let m = rolled.impacts();
+        for pair in m.windows(2) {
+            assert!(pair[1].impacts > pair[0].impacts, "{m:?}");
+            assert!(pair[1].normal_per_mass < pair[0].normal_per_mass, "{m:?}");
+        }
+        assert!(m[3].normal_per_mass < 0.5 * m[0].normal_per_mass, "{m:?}");
+        // a bad request is refused before any wheel rolls
+        let bad = FigRollingRequest {
+            restitution: 2.0,
+            ..request
+        };
+        assert!(
+            matches!(fig_rolling(&bad), Err(FigureError::InvalidParameter(p)) if p.name == "restitution")
+        );
     }
 
     #[test]

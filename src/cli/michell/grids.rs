@@ -116,7 +116,9 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         }
     }
     if let Some(sink) = svg {
-        sink.finish(&tensegrity_figures::michell::mass_table_figure(&request, &rows))?;
+        sink.finish(&tensegrity_figures::michell::mass_table_figure(
+            &request, &rows,
+        ))?;
     }
     Ok(())
 }
