@@ -40,17 +40,6 @@ pub fn usage(e: InvalidParameter) -> anyhow::Error {
     anyhow::Error::new(e).context(message)
 }
 
-/// A flag's value parser for a library enum, by its serde names (e.g. `FidelityChoice::NAMES`),
-/// for a flag outside a request.
-pub fn choice<T>(names: &'static [&'static str]) -> impl clap::builder::TypedValueParser<Value = T>
-where
-    T: serde::de::DeserializeOwned + Clone + Send + Sync + 'static,
-{
-    use clap::builder::TypedValueParser;
-    PossibleValuesParser::new(names)
-        .map(|s| serde_json::from_value(Value::String(s)).expect("the names are the serde names"))
-}
-
 /// The parameters a command takes flags for: one request's, or several requests' ([`Modes`]).
 pub trait Flags {
     /// The parameters, each name once.
@@ -265,25 +254,6 @@ mod tests {
             "{help}"
         );
         assert_eq!(flag_of("t_end"), "--t-end");
-    }
-
-    #[test]
-    fn a_choice_reads_every_name_of_the_library_enum() {
-        use wheel_rolling::{ContactKind, FidelityChoice};
-        #[derive(Parser, Debug)]
-        struct C {
-            #[arg(long, value_parser = choice::<FidelityChoice>(FidelityChoice::NAMES))]
-            fidelity: FidelityChoice,
-            #[arg(long, value_parser = choice::<ContactKind>(ContactKind::NAMES))]
-            contact: Option<ContactKind>,
-        }
-        for name in FidelityChoice::NAMES {
-            let c = C::try_parse_from(["c", "--fidelity", name]).unwrap();
-            assert_eq!(serde_json::to_value(c.fidelity).unwrap(), *name);
-        }
-        let c = C::try_parse_from(["c", "--fidelity", "auto", "--contact", "thesis"]).unwrap();
-        assert_eq!(c.contact, Some(ContactKind::Thesis));
-        assert!(C::try_parse_from(["c", "--fidelity", "exact"]).is_err());
     }
 
     #[test]

@@ -6,21 +6,17 @@
 //! Every output is opened before the run (a bad path: exit 2 at once). SIGINT/SIGTERM stops
 //! the run at its next step: the CSV keeps its rows with a `# incomplete: interrupted at t = …`
 //! trailer, the series its frames and a `series.pvd` listing them, the partial run's report
-//! is printed and the exit code is 130. `fig-rolling` and the figure panels are in
-//! [`super::roll_series`].
+//! is printed and the exit code is 130. `fig-rolling` is [`super::fig_rolling`]; the figure of `--svg` is
+//! [`tensegrity_figures::roll_figure`].
 
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_io::figure::{Figure, Panel};
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs, VtkSeriesSink};
 use toroid::defaults;
 use toroid::{RollReport, RollRequest};
-
-use super::roll_series::{axle_panel, frame_panel, reaction_panel};
-pub use super::roll_series::{run_fig_rolling, FigRollingArgs};
 
 /// Arguments of `tensegrity roll`: the request's flags ([`RollRequest`]) and the outputs.
 #[derive(clap::Args, Debug)]
@@ -98,7 +94,11 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         eprintln!("warning: {}", super::spell::flags(w));
     }
     if let (Some(sink), false) = (figure, interrupted) {
-        sink.finish(&Figure::new(svg_panels(args, &request, &report)?))?;
+        sink.finish(&tensegrity_figures::roll_figure(
+            &request,
+            &report,
+            args.frames.as_deref(),
+        )?)?;
     }
     if let Some(dir) = &args.vtk {
         let n = written.frames;
@@ -150,27 +150,6 @@ fn end(args: &RollArgs, r: &RollReport, interrupted: bool, rows: usize) -> Resul
             r.t_end
         ),
         None => Ok(()),
-    }
-}
-
-/// The panels of `--svg`: the wheel at the `--frames` times, else the axle height and the
-/// normal reaction against time.
-fn svg_panels(args: &RollArgs, request: &RollRequest, r: &RollReport) -> Result<Vec<Panel>> {
-    match &args.frames {
-        Some(times) => {
-            let toroid = request.wheel.build()?;
-            let members = toroid.structure.member_nodes();
-            let dt = request.settings.dt;
-            Ok(times
-                .iter()
-                .filter_map(|&t| r.frames.iter().find(|f| (f.t - t).abs() <= dt))
-                .map(|f| frame_panel(f, &members))
-                .collect())
-        }
-        None => {
-            let runs = [(format!("n = {}", r.sides), r.samples.as_slice())];
-            Ok(vec![axle_panel(&runs), reaction_panel(&runs)])
-        }
     }
 }
 
