@@ -89,7 +89,7 @@ impl Context {
     ) -> Result<Vec<Curve>> {
         let spec = Spec::parse(spec).map_err(|source| FigureError::SweepSpec {
             name: name.to_string(),
-            source,
+            source: Box::new(source),
         })?;
         let path = self.data.join(format!("{name}.csv"));
         let opts = RunOptions {

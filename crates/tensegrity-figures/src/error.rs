@@ -29,9 +29,9 @@ pub enum FigureError {
     SweepSpec {
         /// The figure's sweep (`fig_3_13`, …).
         name: String,
-        /// Why.
+        /// Why (boxed: the other variants stay small).
         #[source]
-        source: SweepError,
+        source: Box<SweepError>,
     },
     /// Cases of a figure's sweep failed: the curves would have holes.
     #[error("{errors} of {written} cases of {} are error rows", path.display())]
@@ -46,9 +46,9 @@ pub enum FigureError {
     /// The code building the figure panicked (a bug); the other figures are still built.
     #[error("the figure's code panicked")]
     Panicked,
-    /// A sweep behind a figure failed.
+    /// A sweep behind a figure failed (boxed: the other variants stay small).
     #[error("{0}")]
-    Sweep(#[from] SweepError),
+    Sweep(#[source] Box<SweepError>),
     /// A file format or figure error (reading a sweep's CSV, drawing).
     #[error("{0}")]
     Io(#[from] IoError),
@@ -67,6 +67,12 @@ pub enum FigureError {
     /// An error of the core model.
     #[error("{0}")]
     Core(#[from] CoreError),
+}
+
+impl From<SweepError> for FigureError {
+    fn from(e: SweepError) -> Self {
+        Self::Sweep(Box::new(e))
+    }
 }
 
 impl Categorized for FigureError {
