@@ -90,7 +90,7 @@ macro_rules! ignore {
     )*};
 }
 
-impl<'a> Serializer for &'a mut Collector {
+impl Serializer for &mut Collector {
     type Ok = ();
     type Error = Never;
     type SerializeSeq = Self;
@@ -206,7 +206,7 @@ elements!(
     SerializeTupleVariant::serialize_field
 );
 
-impl<'a> ser::SerializeStruct for &'a mut Collector {
+impl ser::SerializeStruct for &mut Collector {
     type Ok = ();
     type Error = Never;
     fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> R {
@@ -217,7 +217,7 @@ impl<'a> ser::SerializeStruct for &'a mut Collector {
     }
 }
 
-impl<'a> ser::SerializeStructVariant for &'a mut Collector {
+impl ser::SerializeStructVariant for &mut Collector {
     type Ok = ();
     type Error = Never;
     fn serialize_field<T: Serialize + ?Sized>(&mut self, _: &'static str, v: &T) -> R {
@@ -228,7 +228,7 @@ impl<'a> ser::SerializeStructVariant for &'a mut Collector {
     }
 }
 
-impl<'a> ser::SerializeMap for &'a mut Collector {
+impl ser::SerializeMap for &mut Collector {
     type Ok = ();
     type Error = Never;
     /// A map's key (the fields of a flattened part arrive as map entries): its text names
