@@ -367,6 +367,11 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
             "tipover --rolling --t-end 1e4 --out {}".into(),
             false,
         ),
+        (
+            "tbar roll --out",
+            "tbar roll --fidelity full --t-end 100 --out {}".into(),
+            false,
+        ),
         // four wheels rolled for 1000 s each: hours, unless the path is checked first
         (
             "fig-rolling --out",

@@ -2,8 +2,7 @@
 //! sinks: every output path is checked before the run (a bad one: exit 2 at once, naming the
 //! flag and the path), and SIGINT during `roll --out CSV --vtk DIR` keeps the rows so far as a
 //! complete CSV with its `# incomplete` trailer and a `series.pvd` listing only frames that
-//! exist (exit 130). `tbar roll` writes no file (its report goes to stdout), so it has no
-//! output flag to check.
+//! exist (exit 130). `tbar roll --out` (one row per tread count) is opened before its runs.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -41,6 +40,10 @@ fn output_flags() -> Vec<(&'static str, Vec<&'static str>)> {
         .collect();
     rows.push(("--out", vec!["tipover", "--dynamic"]));
     rows.push(("--out", vec!["tipover", "--rolling", "--t-end", "100"]));
+    rows.push((
+        "--out",
+        vec!["tbar", "roll", "--fidelity", "full", "--t-end", "100"],
+    ));
     rows
 }
 

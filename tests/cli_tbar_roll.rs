@@ -150,3 +150,51 @@ fn roll_compares_with_the_toroid_and_reports_validity() {
     let osc = |i: usize| rows[i]["tbar"]["axle_height_oscillation"].as_f64().unwrap();
     assert!(osc(1) < 0.5 * osc(0));
 }
+
+#[test]
+fn roll_out_writes_one_csv_row_per_tread_count_equal_to_the_json() {
+    let dir = std::env::temp_dir().join(format!("tbar-roll-out-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("rows.csv");
+    let line = [
+        "tbar",
+        "roll",
+        "--treads",
+        "8,12",
+        "--t-end",
+        "0.5",
+        "--fidelity",
+        "rigid",
+        "--json",
+    ];
+    let v = json(&line);
+    let mut with_out = line.to_vec();
+    with_out.extend(["--out", csv.to_str().unwrap()]);
+    assert_eq!(json(&with_out), v, "the report does not depend on --out");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    assert_eq!(header[0], "treads");
+    let rows = v["rows"].as_array().unwrap();
+    for (line, row) in lines[1..].iter().zip(rows) {
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(fields.len(), header.len());
+        for (name, field) in header.iter().zip(&fields) {
+            let mut value = row;
+            for key in name.split('.') {
+                value = &value[key];
+            }
+            match value {
+                serde_json::Value::Number(n) => {
+                    assert_eq!(field.parse::<f64>().unwrap(), n.as_f64().unwrap(), "{name}")
+                }
+                serde_json::Value::Bool(b) => assert_eq!(*field, b.to_string(), "{name}"),
+                serde_json::Value::Null => assert_eq!(*field, "", "{name}"),
+                other => panic!("{name}: not a scalar: {other}"),
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

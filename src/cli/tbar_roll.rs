@@ -2,11 +2,16 @@
 //! one library call ([`tensegrity_engine::tbar_roll::tbar_roll`]: the T-bar wheel beside the toroid of
 //! equal outer radius, rigid or full model, with tip-over) and prints the report. The
 //! defaults are the library's (the fidelity-dependent ones resolved by the request).
+//! `--out FILE.csv` writes one row per tread count: the per-row result columns of the engine
+//! ([`tensegrity_engine::columns::TBAR_ROLL`], `rows.K.` left out), opened before the run.
 
+use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
+use std::path::PathBuf;
 use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, TbarRollRow};
 use tensegrity_engine::tbar_roll;
+use tensegrity_io::sink::CsvSink;
 use wheel_rolling::WheelRun;
 
 /// Arguments of `tensegrity tbar roll`: the request's flags ([`TbarRollRequest`]).
@@ -17,6 +22,9 @@ pub struct TbarRollArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Write one CSV row per tread count (T-bar and toroid runs, tip-over).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
 }
 
 /// Entry point of `tensegrity tbar roll`.
@@ -26,7 +34,13 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
         Some(e) => Some(super::guard::check(e)?),
         None => None,
     };
+    let csv = output::open("--out", args.out.as_deref(), |p| {
+        CsvSink::with_header(p, "tbar roll rows CSV", &row_columns().collect::<Vec<_>>())
+    })?;
     let report = tbar_roll::tbar_roll(&request)?;
+    if let Some(csv) = csv {
+        write_rows(csv, &report)?;
+    }
     for row in &report.rows {
         for e in &row.errors {
             eprintln!("warning: n = {}: {}", row.treads, super::spell::flags(e));
@@ -37,6 +51,30 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     } else {
         print_roll(&report);
     }
+    Ok(())
+}
+
+/// The per-row result columns: the engine's `rows.0.*` columns without the prefix.
+fn row_columns() -> impl Iterator<Item = &'static str> {
+    tensegrity_engine::columns::TBAR_ROLL
+        .iter()
+        .filter_map(|c| c.name.strip_prefix("rows.0."))
+}
+
+/// One CSV row per tread count, each value as the JSON report has it.
+fn write_rows(mut csv: CsvSink, report: &TbarRollReport) -> Result<()> {
+    let json = serde_json::to_value(report)?;
+    let rows = json["rows"].as_array().map_or(&[][..], Vec::as_slice);
+    for row in rows {
+        csv.record(row_columns().map(|c| {
+            sweeps::table::lookup(row, c)
+                .and_then(sweeps::table::scalar)
+                .unwrap_or_default()
+        }))?;
+    }
+    let path = csv.path().display().to_string();
+    let n = csv.finish()?;
+    eprintln!("wrote {n} rows to {path}");
     Ok(())
 }
 

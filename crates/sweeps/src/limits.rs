@@ -39,7 +39,7 @@ pub fn admit(study: Study, values: &Map<String, Value>, limits: &Limits) -> Resu
 /// ```
 /// let e = sweeps::limits::output(10_000_000);
 /// assert_eq!((e.output_bytes, e.memory_bytes), (2e9, 0.0));
-/// assert_eq!(e.parameter, "10000000 sweep cases");
+/// assert_eq!(e.parameters.to_string(), "10000000 sweep cases");
 /// ```
 pub fn output(cases: usize) -> Estimate {
     budget::table(

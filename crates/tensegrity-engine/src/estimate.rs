@@ -85,7 +85,7 @@ pub fn rolling_series(request: &RollRequest, sides: &[usize]) -> Option<Estimate
 ///
 /// ```
 /// let e = tensegrity_engine::estimate::sign_map((100_000, 100_000), 1);
-/// assert_eq!(e.parameter, "map_grid = 100000x100000");
+/// assert_eq!(e.parameters.to_string(), "map_grid = 100000x100000");
 /// assert_eq!(e.memory_bytes, 16e10);
 /// ```
 pub fn sign_map(grid: (usize, usize), members: usize) -> Estimate {
@@ -105,7 +105,7 @@ pub fn sign_map(grid: (usize, usize), members: usize) -> Estimate {
 /// ```
 /// let e = tensegrity_engine::estimate::friction_grid(1000);
 /// assert_eq!((e.memory_bytes, e.output_bytes), (24e6, 75e6));
-/// assert_eq!(e.parameter, "grid_points = 1000");
+/// assert_eq!(e.parameters.to_string(), "grid_points = 1000");
 /// ```
 pub fn friction_grid(points: usize) -> Estimate {
     let rows = points as f64 * points as f64;

@@ -163,7 +163,7 @@ pub fn admitted<G, E: From<SceneError>>(
 /// use tensegrity_core::test_models::oscillating_prism;
 /// use tensegrity_engine::statics::{estimate, StaticsCommand};
 /// let e = estimate(&oscillating_prism().unwrap(), &StaticsCommand::default()).unwrap();
-/// assert!(e.work_s < 1e-3 && e.parameter.starts_with("method = auto"));
+/// assert!(e.work_s < 1e-3 && e.parameters.to_string().starts_with("method = auto"));
 /// ```
 pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estimate> {
     let (dofs, members) = (DofMap::of(structure).len(), structure.n_members());
