@@ -1,11 +1,12 @@
-//! The resource limits of every command: the libraries estimate a command's peak memory, work
-//! and output before it allocates ([`tensegrity_engine::estimate`]); here the limits are the
-//! global flags `--max-memory` (default: the smaller of 8 GiB and 3/4 of the memory this
-//! process may use — cgroup limit, address-space limit, available memory), `--max-work`
-//! (estimated seconds, default 60) and `--max-output` (bytes written, default 1 GiB); an
-//! estimate above them is refused (exit code 2) naming the parameter, the estimate, the limit,
-//! the flag that raises it and the flags of the parameters ([`flag_of`]). Work estimated above
-//! a few seconds shows an elapsed-time spinner on stderr when it is a terminal.
+//! The resource limits of every command: the engine estimates a command's peak memory, work
+//! and output before it allocates ([`tensegrity_engine::estimate`]) and knows the default
+//! limits ([`tensegrity_engine::limits`]); here the limits are the global flags
+//! `--max-memory` (default: the smaller of 8 GiB and 3/4 of the memory this process may use),
+//! `--max-work` (estimated seconds, default 60) and `--max-output` (bytes written, default
+//! 1 GiB); an estimate above them is refused (exit code 2) naming the parameter, the
+//! estimate, the limit, the flag that raises it and the flags of the parameters
+//! ([`flag_of`]). Work estimated above a few seconds shows an elapsed-time spinner on stderr
+//! when it is a terminal.
 
 use super::request_args::flag_of;
 use anyhow::Result;
