@@ -34,7 +34,7 @@ enum Command {
     /// Roll the toroid wheel down an incline (rigid or full model, with validity).
     Roll(cli::roll::RollArgs),
     /// Thesis Figs. 3.10 and 3.11: axle height and reactions of wheels rolling down 50° (SVG).
-    FigRolling(cli::roll::FigRollingArgs),
+    FigRolling(cli::fig_rolling::FigRollingArgs),
     /// Tip-over of the toroid wheel under a lateral force, or the friction map of Fig. 3.13.
     Tipover(cli::tipover::TipoverArgs),
     /// T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope,
@@ -62,7 +62,7 @@ fn main() {
         Command::Toroid(args) => cli::toroid::run_toroid(args),
         Command::Roll(args) => cli::roll::run_roll(args),
         Command::Tipover(args) => cli::tipover::run_tipover(args),
-        Command::FigRolling(args) => cli::roll::run_fig_rolling(args),
+        Command::FigRolling(args) => cli::fig_rolling::run(args),
         Command::Tbar(args) => cli::tbar::run(args),
         Command::Sweep(args) => cli::sweep::run(args),
         Command::Figures(args) => cli::figures::run(args),

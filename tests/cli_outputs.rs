@@ -63,6 +63,59 @@ fn an_unwritable_output_fails_before_the_run() {
     assert!(start.elapsed() < Duration::from_secs(20));
 }
 
+/// Runs `args` past the resource guard with `--out` at a path under a missing directory;
+/// the exit code, stderr and the time it took.
+fn unwritable_out(args: &[&str], out: &str) -> (Option<i32>, String, Duration) {
+    let start = Instant::now();
+    let o = bin()
+        .args(args)
+        .args(["--out", out])
+        .args(NO_LIMITS)
+        .output()
+        .unwrap();
+    let elapsed = start.elapsed();
+    eprintln!(
+        "{args:?} --out {out}: exit {:?} after {elapsed:.2?}",
+        o.status.code()
+    );
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+        elapsed,
+    )
+}
+
+#[test]
+fn fig_rolling_refuses_an_unwritable_figure_before_rolling() {
+    // four wheels rolled for 1000 s each: hours, unless the path is checked first
+    let (code, stderr, elapsed) =
+        unwritable_out(&["fig-rolling", "--t-end", "1000"], "no/such/dir/x.svg");
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("no/such/dir/x.svg"), "{stderr}");
+    assert!(
+        stderr.contains("--out"),
+        "the message names the flag: {stderr}"
+    );
+    // no wheel rolled: a refusal (well under 0.2 s when the machine is idle; the bound of
+    // the other refusals allows a loaded machine)
+    assert!(elapsed < Duration::from_secs(5), "{elapsed:?}");
+    assert!(!Path::new("no/such/dir").exists());
+}
+
+#[test]
+fn bench_work_precision_refuses_an_unwritable_directory_before_measuring() {
+    // the full study (every integrator on five scenes, timed) takes minutes
+    let (code, stderr, elapsed) = unwritable_out(&["bench", "work-precision"], "no/such/dir/wp");
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("no/such/dir/wp"), "{stderr}");
+    assert!(
+        stderr.contains("--out"),
+        "the message names the flag: {stderr}"
+    );
+    assert!(elapsed < Duration::from_secs(5), "{elapsed:?}");
+    assert!(!Path::new("no/such/dir").exists());
+}
+
 #[test]
 fn every_recorded_quantity_is_in_the_csv_with_its_closed_form() {
     let dir = scratch("record");
@@ -243,6 +296,7 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
     let sim = "simulate examples/double_pendulum.toml --t-end 1e6 --dt 1e-4";
     let michell = "michell --complexity 6 --cylindrical 0.25 --beta pi/6 --phi pi/8";
     let tbar = "tbar --complexity 3 --beta pi/6 --phi pi/16 --cylindrical 0.1 --wheel --rim body";
+    let roll = "roll --fidelity full --t-end 1e4";
     let rows: Vec<(&str, String, bool)> = vec![
         ("simulate --out", format!("{sim} --out {{}}"), false),
         ("simulate --vtk", format!("{sim} --vtk {{}}"), true),
@@ -300,6 +354,25 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
         ("tbar --vtk", format!("{tbar} --vtk {{}}"), false),
         ("tbar --svg", format!("{tbar} --svg {{}}"), false),
         ("figures --out", "figures --out {}".into(), true),
+        ("roll --out", format!("{roll} --out {{}}"), false),
+        ("roll --vtk", format!("{roll} --vtk {{}}"), true),
+        ("roll --svg", format!("{roll} --svg {{}}"), false),
+        (
+            "tipover --dynamic --out",
+            "tipover --dynamic --hold 1e4 --out {}".into(),
+            false,
+        ),
+        (
+            "tipover --rolling --out",
+            "tipover --rolling --t-end 1e4 --out {}".into(),
+            false,
+        ),
+        // four wheels rolled for 1000 s each: hours, unless the path is checked first
+        (
+            "fig-rolling --out",
+            "fig-rolling --t-end 1000 --out {}".into(),
+            false,
+        ),
     ];
     rows.into_iter()
         .map(|(name, line, is_dir)| {
@@ -349,7 +422,9 @@ fn every_output_flag_refuses_an_unwritable_path_before_any_work() {
     for (name, args, is_dir) in &flags {
         for parent in &parents {
             let bad = parent.join(if *is_dir { "out-dir" } else { "x.svg" });
-            let bad = if !is_dir && !name.ends_with("--svg") && !name.contains("plot") {
+            let figure =
+                name.ends_with("--svg") || name.contains("plot") || name.starts_with("fig-");
+            let bad = if !is_dir && !figure {
                 bad.with_extension("csv")
             } else {
                 bad

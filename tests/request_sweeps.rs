@@ -1,13 +1,15 @@
-//! Requests are data (issue 20): every field of the `toroid` and `tbar` requests is a sweep
-//! axis of the study of the same name, with no per-field code in the sweeps crate. Each field
-//! (enumerated from `R::params()`) is swept over two valid values through the binary
-//! (`tensegrity sweep SPEC --out …`): two rows, the two values in the axis column, no error
-//! row.
+//! Requests are data (issue 20): every field of the `toroid`, `tbar`, `roll` and `tbar_roll`
+//! requests is a sweep axis of the study of the same name, with no per-field code in the
+//! sweeps crate. Each field (enumerated from `R::params()`) is swept over two valid values
+//! through the binary (`tensegrity sweep SPEC --out …`): two rows, the two (different) values
+//! in the axis column, no error row.
 //!
 //! The two values come from the field's description: a switch `false`, `true`; a choice its
 //! first two names; a count its default and the next; a number or an angle its default and
 //! 1.1 × it (0.1 from 0); a list one and two elements. A field without a default, a text and a
-//! value the physics refuses come from the request's small table of overrides.
+//! value the physics refuses come from the request's small table of overrides. The rolling
+//! requests run short (`t_end` fixed small, the rigid model, one tread count) so that a sweep
+//! takes a fraction of a second (the four requests' every field: a few seconds).
 
 mod common;
 
@@ -49,6 +51,36 @@ const TBAR: Table = Table {
         ("extended", ["0.5", "1.0"]),
         ("prestress", ["4.0", "5.0"]),
         ("material", ["\"steel\"", "\"aluminium\""]),
+    ],
+};
+
+const ROLL: Table = Table {
+    base: &[("t_end", "0.05"), ("fidelity", "\"rigid\"")],
+    excludes: &[],
+    overrides: &[
+        ("stabilize", ["\"spokes,inner\"", "\"inner,outer\""]),
+        ("t_end", ["0.05", "0.06"]),
+        ("ground_damping", ["100.0", "200.0"]),
+    ],
+};
+
+const TBAR_ROLL: Table = Table {
+    base: &[
+        ("t_end", "0.05"),
+        ("fidelity", "\"rigid\""),
+        ("treads", "\"8\""),
+    ],
+    excludes: &[],
+    overrides: &[
+        ("beta", ["\"pi/6\"", "\"pi/5\""]),
+        ("cylindrical", ["0.25", "0.3"]),
+        ("spherical", ["\"pi/12\"", "\"pi/16\""]),
+        ("extended", ["0.5", "1.0"]),
+        ("t_end", ["0.05", "0.06"]),
+        ("mu_kinetic", ["0.5", "0.6"]),
+        ("rim_density", ["1.0", "2.0"]),
+        ("min_tension", ["50.0", "60.0"]),
+        ("ground_damping", ["100.0", "200.0"]),
     ],
 };
 
@@ -127,6 +159,7 @@ fn sweep_every_field<R: Request>(table: &Table) -> Vec<&'static str> {
         let status = header.iter().position(|h| h == "status").unwrap();
         let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
         assert_eq!(rows.len(), 2, "{spec}");
+        assert_ne!(rows[0][1], rows[1][1], "{spec}: the swept column differs");
         for (row, value) in rows.iter().zip(&values) {
             assert_eq!(row[1], axis_text(value), "{spec}");
             assert_eq!(&row[status], "ok", "{spec}: {:?}", &row[status + 1]);
@@ -148,4 +181,19 @@ fn every_field_of_the_tbar_request_is_a_sweep_axis() {
     let swept = sweep_every_field::<tbar_wheel::TbarStaticRequest>(&TBAR);
     assert_eq!(swept.len(), tbar_wheel::TbarStaticRequest::defaults().len());
     assert!(swept.contains(&"rim") && swept.contains(&"spherical"));
+}
+
+#[test]
+fn every_field_of_the_roll_request_is_a_sweep_axis() {
+    let swept = sweep_every_field::<toroid::RollRequest>(&ROLL);
+    assert_eq!(swept.len(), toroid::RollRequest::defaults().len());
+    assert!(swept.contains(&"integrator") && swept.contains(&"restitution"));
+}
+
+#[test]
+fn every_field_of_the_tbar_roll_request_is_a_sweep_axis() {
+    use tbar_wheel::roll::TbarRollRequest;
+    let swept = sweep_every_field::<TbarRollRequest>(&TBAR_ROLL);
+    assert_eq!(swept.len(), TbarRollRequest::defaults().len());
+    assert!(swept.contains(&"restitution") && swept.contains(&"rim_density"));
 }

@@ -1,17 +1,15 @@
 //! `tensegrity bench work-precision [--out DIR] [--quick]`: error against wall time for every
 //! integrator on five scenes, two of them stiff (the engine's `bench_work_precision` request,
 //! [`tensegrity_engine::bench`]), written as CSV and a figure (log–log, one curve per
-//! integrator, one panel per scene).
+//! integrator, one panel per scene: [`tensegrity_figures::work_precision`]).
 
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
 use tensegrity_core::dynamics::work_precision::Point;
-use tensegrity_core::dynamics::IntegratorKind;
 use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
-use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
 
 /// Arguments of `tensegrity bench`.
@@ -61,7 +59,7 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
     let points = tensegrity_engine::bench::work_precision(&request)?.points;
     csv.extend(points.iter().map(row))?;
     csv.finish()?;
-    svg.finish(&figure(&points))?;
+    svg.finish(&tensegrity_figures::work_precision::figure(&points))?;
     dir.keep();
     println!(
         "{} points written to {} and {}",
@@ -82,28 +80,4 @@ fn row(p: &Point) -> WorkPrecisionRow {
         error_m: p.error,
         wall_time_s: p.wall_time_s,
     }
-}
-
-/// One log–log panel per scene: error (m) against wall time (s), one curve per integrator.
-pub fn figure(points: &[Point]) -> Figure {
-    let mut scenes: Vec<&str> = points.iter().map(|p| p.scene).collect();
-    scenes.dedup();
-    let panels = scenes
-        .iter()
-        .map(|&scene| {
-            let mut panel = Panel::new(scene, "wall time [s]", "max node error [m]").log_log();
-            for kind in IntegratorKind::ALL {
-                let curve: Vec<(f64, f64)> = points
-                    .iter()
-                    .filter(|p| p.scene == scene && p.integrator == kind && p.error > 0.0)
-                    .map(|p| (p.wall_time_s, p.error))
-                    .collect();
-                if !curve.is_empty() {
-                    panel = panel.series(Series::new(kind.to_string(), curve).with_markers());
-                }
-            }
-            panel
-        })
-        .collect();
-    Figure::new(panels)
 }

@@ -2,11 +2,16 @@
 //! usage (clap's own errors exit 2 as well).
 
 use michell3d::MichellError;
-use tensegrity_core::request::{Categorized, Category};
+use sweeps::SweepError;
+use tbar_wheel::TbarError;
+use tensegrity_core::budget::OverBudget;
+use tensegrity_core::request::{Categorized, Category, InvalidParameter};
 use tensegrity_core::CoreError;
+use tensegrity_engine::{RunError, SceneError};
 use tensegrity_io::interrupt::Interrupted;
 use tensegrity_io::IoError;
 use toroid::ToroidError;
+use wheel_rolling::RollingError;
 
 /// Success.
 pub const OK: i32 = 0;
@@ -34,83 +39,58 @@ pub fn install_interrupt_handler() {
     });
 }
 
-/// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), [`BAD_INPUT`]
-/// when any error in the chain is about the input, else [`FAILURE`].
+/// The exit code of a failed command: [`OK`] for a closed stdout (`… | head`), else by the
+/// [`Category`] of the error ([`category`]): [`INTERRUPTED`] when any error in the chain was
+/// interrupted, [`BAD_INPUT`] for input and resource refusals, [`FAILURE`] for a failed
+/// computation or an error without a category.
 pub fn code(e: &anyhow::Error) -> i32 {
     let broken_pipe = e.chain().any(|c| {
         c.downcast_ref::<std::io::Error>()
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     });
     if broken_pipe {
-        OK
-    } else if e.chain().any(is_interrupted) {
-        INTERRUPTED
-    } else if e.chain().any(is_bad_input) {
-        BAD_INPUT
-    } else {
-        FAILURE
+        return OK;
+    }
+    let categories: Vec<Category> = e.chain().filter_map(category).collect();
+    if categories.contains(&Category::Interrupted) {
+        return INTERRUPTED;
+    }
+    match categories.first() {
+        Some(Category::Input | Category::Resource) => BAD_INPUT,
+        _ => FAILURE,
     }
 }
 
-fn is_interrupted(e: &(dyn std::error::Error + 'static)) -> bool {
-    e.is::<Interrupted>()
-        || e.downcast_ref::<sweeps::SweepError>()
-            .is_some_and(|s| s.is_interrupted())
-}
-
-fn is_bad_input(e: &(dyn std::error::Error + 'static)) -> bool {
-    // a request over the resource limits is refused like a bad value
-    if e.is::<super::guard::Refused>() || e.is::<tensegrity_core::budget::OverBudget>() {
-        return true;
+/// The [`Category`] of one error of the chain, when it is a [`Categorized`] error of a
+/// library (each wraps its sources' errors and asks them for theirs), or the CLI's refusal.
+fn category(e: &(dyn std::error::Error + 'static)) -> Option<Category> {
+    macro_rules! first_of {
+        ($($t:ty),*) => {
+            None $(.or_else(|| e.downcast_ref::<$t>().map(Categorized::category)))*
+        };
     }
-    // a flag value a request refuses
-    if e.is::<tensegrity_core::request::InvalidParameter>() {
-        return true;
+    if e.is::<super::guard::Refused>() {
+        return Some(Category::Resource);
     }
-    if let Some(e) = e.downcast_ref::<CoreError>() {
-        return matches!(
-            e,
-            CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. }
-        );
-    }
-    if let Some(e) = e.downcast_ref::<ToroidError>() {
-        return matches!(
-            e,
-            ToroidError::InvalidParameter { .. } | ToroidError::UnknownStabilizeOption { .. }
-        ) || matches!(
-            e,
-            ToroidError::Core(CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. })
-        );
-    }
-    if let Some(e) = e.downcast_ref::<MichellError>() {
-        return matches!(
-            e,
-            MichellError::InvalidParameter { .. }
-                | MichellError::Core(CoreError::InvalidParameter { .. })
-        );
-    }
-    if let Some(e) = e.downcast_ref::<tbar_wheel::TbarError>() {
-        use tbar_wheel::TbarError as T;
-        return matches!(
-            e,
-            T::InvalidParameter { .. }
-                | T::TooLarge { .. }
-                | T::Michell(MichellError::InvalidParameter { .. })
-                | T::Core(CoreError::InvalidParameter { .. })
-        );
-    }
-    if let Some(e) = e.downcast_ref::<sweeps::SweepError>() {
-        return e.is_input_error();
-    }
-    if let Some(e) = e.downcast_ref::<tensegrity_engine::SceneError>() {
-        return e.category() == Category::Input;
-    }
-    e.downcast_ref::<IoError>()
-        .is_some_and(|e| e.category() == Category::Input)
+    first_of!(
+        InvalidParameter,
+        OverBudget,
+        CoreError,
+        IoError,
+        Interrupted,
+        RollingError,
+        ToroidError,
+        MichellError,
+        TbarError,
+        SweepError,
+        RunError,
+        SceneError
+    )
 }
 
 /// The error and its causes joined by `: `, leaving out a cause its parent's message
-/// already quotes (many errors print their source).
+/// already quotes (many errors print their source); the parameters it names written as flags
+/// ([`super::spell::flags`]), except in a sweep's errors, which name them as its spec does.
 pub fn message(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
@@ -119,5 +99,52 @@ pub fn message(e: &anyhow::Error) -> String {
             parts.push(text);
         }
     }
-    parts.join(": ")
+    let text = parts.join(": ");
+    if e.chain().any(|c| c.is::<SweepError>()) {
+        text
+    } else {
+        super::spell::flags(&text)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tensegrity_core::DynamicsError;
+
+    #[test]
+    fn the_exit_code_follows_the_category_of_the_first_categorized_error() {
+        let bad = InvalidParameter::new("dt", -1.0, "must be positive");
+        let with_context = anyhow::Error::new(bad.clone()).context("invalid value for --dt");
+        assert_eq!(code(&with_context), BAD_INPUT);
+        let diverged = CoreError::from(DynamicsError::Diverged { t: 1.0, what: "Ω" });
+        assert_eq!(
+            code(&anyhow::Error::new(ToroidError::Core(diverged))),
+            FAILURE
+        );
+        let too_large = TbarError::TooLarge {
+            what: "free degrees of freedom",
+            size: 10,
+            limit: 5,
+        };
+        assert_eq!(code(&anyhow::Error::new(too_large)), BAD_INPUT);
+        let stopped = RollingError::Core(CoreError::Interrupted { t: 0.5 });
+        assert_eq!(code(&anyhow::Error::new(stopped)), INTERRUPTED);
+        assert_eq!(code(&anyhow::anyhow!("no category")), FAILURE);
+    }
+
+    #[test]
+    fn messages_write_parameters_as_flags_except_in_sweeps() {
+        let diverged = CoreError::from(DynamicsError::Diverged { t: 1.0, what: "Ω" });
+        let text = message(&anyhow::Error::new(diverged));
+        assert!(
+            text.contains("use a smaller --dt, --integrator rk45"),
+            "{text}"
+        );
+        let sweep = SweepError::MissingParameter {
+            study: "roll",
+            name: "t_end",
+        };
+        assert!(message(&anyhow::Error::new(sweep)).contains("`t_end`"));
+    }
 }

@@ -14,7 +14,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::OnceLock;
 use std::time::Duration;
-use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Resource};
+use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Parameters, Resource};
 use tensegrity_engine::{estimate, limits, Estimated};
 
 static LIMITS: OnceLock<Limits> = OnceLock::new();
@@ -39,10 +39,11 @@ pub struct LimitArgs {
 
 /// Sets the limits of this process from the flags (first call wins).
 pub fn init(args: &LimitArgs) {
+    let defaults = limits::for_this_process();
     let _ = LIMITS.set(Limits {
-        memory_bytes: (args.max_memory).unwrap_or_else(|| limits::for_this_process().memory_bytes),
-        work_s: args.max_work.unwrap_or(budget::DEFAULT_MAX_WORK_S),
-        output_bytes: args.max_output.unwrap_or(budget::DEFAULT_MAX_OUTPUT_BYTES),
+        memory_bytes: args.max_memory.unwrap_or(defaults.memory_bytes),
+        work_s: args.max_work.unwrap_or(defaults.work_s),
+        output_bytes: args.max_output.unwrap_or(defaults.output_bytes),
     });
 }
 
@@ -97,7 +98,7 @@ pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
             Resource::Output => ("--max-output", limits::suggest_size(over.estimated)),
             Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
         };
-        let flags = flags(&over.estimate.parameter);
+        let flags = flags(&over.estimate.parameters);
         let flags = if flags.is_empty() {
             flags
         } else {
@@ -126,11 +127,18 @@ pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
 }
 
 /// The flags of an estimate's parameters: `t_end = 1e9, dt = 0.001 s` → `--t-end 1e9 --dt
-/// 0.001` ([`limits::parameters`]).
-fn flags(parameter: &str) -> String {
-    let flags: Vec<String> = limits::parameters(parameter)
-        .into_iter()
-        .map(|(name, value)| format!("{} {value}", flag_of(name)))
+/// 0.001` (the named ones; a note such as `10 sweep cases` has no flag).
+fn flags(parameters: &Parameters) -> String {
+    let flags: Vec<String> = parameters
+        .0
+        .iter()
+        .filter(|(name, _)| {
+            !name.is_empty() && name.chars().all(|c| c.is_ascii_lowercase() || c == '_')
+        })
+        .filter_map(|(name, value)| {
+            let value = value.split_whitespace().next()?;
+            Some(format!("{} {value}", flag_of(name)))
+        })
         .collect();
     flags.join(" ")
 }
@@ -189,8 +197,11 @@ mod tests {
 
     #[test]
     fn parameters_become_flags() {
-        let p = "t_end = 1000000000, dt = 0.0001 s, sides = 8";
-        assert_eq!(flags(p), "--t-end 1000000000 --dt 0.0001 --sides 8");
-        assert_eq!(flags("10 sweep cases"), "");
+        let p = Parameters::default()
+            .and("t_end", 1e9)
+            .and("dt", "0.0001 s")
+            .and("sides", 8)
+            .and("", "10 sweep cases");
+        assert_eq!(flags(&p), "--t-end 1000000000 --dt 0.0001 --sides 8");
     }
 }

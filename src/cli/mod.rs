@@ -1,9 +1,9 @@
 //! Subcommands of the `tensegrity` binary: argument parsing and output only, no mechanics.
 
-pub mod angle;
 pub mod bench;
 pub mod demo;
 pub mod exit;
+pub mod fig_rolling;
 pub mod figures;
 pub mod guard;
 pub mod michell;
@@ -12,8 +12,8 @@ pub mod michell_text;
 pub mod output;
 pub mod request_args;
 pub mod roll;
-pub mod roll_series;
 pub mod simulate;
+pub mod spell;
 pub mod statics;
 pub mod sweep;
 pub mod tbar;

@@ -1,107 +1,28 @@
-//! `tensegrity roll`: parses the arguments into a [`toroid::RollRequest`], makes one library
-//! call ([`toroid::roll_with_frames`]) and prints or plots the report; warnings go to stderr
-//! as well. `fig-rolling` and the figure panels are in [`super::roll_series`].
+//! `tensegrity roll`: its flags are the fields of [`RollRequest`] ([`RequestArgs`]) beside the
+//! outputs; one library call ([`toroid::roll_observed`]) whose observer is the outputs
+//! ([`RollingOutputs`]: the history rows and the VTK frames streamed while the run goes on),
+//! then the report printed or plotted; warnings go to stderr as well.
+//!
+//! Every output is opened before the run (a bad path: exit 2 at once). SIGINT/SIGTERM stops
+//! the run at its next step: the CSV keeps its rows with a `# incomplete: interrupted at t = …`
+//! trailer, the series its frames and a `series.pvd` listing them, the partial run's report
+//! is printed and the exit code is 130. `fig-rolling` is [`super::fig_rolling`]; the figure of `--svg` is
+//! [`tensegrity_figures::roll_figure`].
 
-use super::values;
-use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
-use tensegrity_io::figure::Panel;
+use super::output;
+use super::request_args::RequestArgs;
+use anyhow::Result;
+use std::path::PathBuf;
+use tensegrity_io::interrupt::{self, Interrupted};
+use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs, VtkSeriesSink};
 use toroid::defaults;
 use toroid::{RollReport, RollRequest};
-use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
 
-use super::roll_series::{axle_panel, frame_panel, reaction_panel, write_figure};
-pub use super::roll_series::{run_fig_rolling, FigRollingArgs};
-use super::toroid::GeometryArgs;
-
-/// `--fidelity` values.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FidelityArg {
-    /// Reduced rigid polygon (unilateral contact, impacts).
-    Rigid,
-    /// Full tensegrity dynamics.
-    Full,
-    /// The cheapest valid model: rigid when the strings are stiff enough and the rigid run
-    /// is valid, else full.
-    Auto,
-}
-
-impl From<FidelityArg> for FidelityChoice {
-    fn from(f: FidelityArg) -> Self {
-        match f {
-            FidelityArg::Rigid => FidelityChoice::Rigid,
-            FidelityArg::Full => FidelityChoice::Full,
-            FidelityArg::Auto => FidelityChoice::Auto,
-        }
-    }
-}
-
-/// `--contact` values.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ContactArg {
-    /// Penalty spring–damper that never pulls, with regularised Coulomb friction.
-    Penalty,
-    /// Thesis §3.2.2: weight-based normal reaction plus velocity damping (flagged when it
-    /// pulls or sinks).
-    Thesis,
-}
-
-impl From<ContactArg> for ContactKind {
-    fn from(c: ContactArg) -> Self {
-        match c {
-            ContactArg::Thesis => ContactKind::Thesis,
-            ContactArg::Penalty => ContactKind::Penalty,
-        }
-    }
-}
-
-/// Arguments of `tensegrity roll`.
+/// Arguments of `tensegrity roll`: the request's flags ([`RollRequest`]) and the outputs.
 #[derive(clap::Args, Debug)]
 pub struct RollArgs {
     #[command(flatten)]
-    geometry: GeometryArgs,
-    /// Slope angle (e.g. `50deg`, `pi/4`, radians).
-    #[arg(long, value_parser = super::angle::parse_angle, default_value = "50deg")]
-    incline: f64,
-    /// Simulated time (s).
-    #[arg(long, default_value_t = defaults::ROLL_T_END, value_parser = values::positive)]
-    t_end: f64,
-    /// Integration step (s).
-    #[arg(long, default_value_t = defaults::ROLL_DT, value_parser = values::positive)]
-    dt: f64,
-    /// Model: the reduced rigid polygon, the full tensegrity dynamics, or auto (the cheapest
-    /// valid one: rigid when m g / (k R_o) < 1e-3 and the rigid run is valid, else full).
-    #[arg(long, value_enum, default_value_t = FidelityArg::Auto)]
-    fidelity: FidelityArg,
-    /// Ground contact of the full model.
-    #[arg(long, value_enum, default_value_t = ContactArg::Penalty)]
-    contact: ContactArg,
-    /// Ground damping (N·s/m): normal damping per contact node (penalty) or contact-velocity
-    /// damping (thesis, default 200). Given, it overrides the penalty damping that
-    /// --restitution would choose.
-    #[arg(long, value_parser = values::non_negative)]
-    ground_damping: Option<f64>,
-    /// Penalty ground stiffness per contact node (N/m).
-    #[arg(long, default_value_t = defaults::GROUND_STIFFNESS, value_parser = values::positive)]
-    ground_stiffness: f64,
-    /// Static friction coefficient μ_s of the slope; the kinetic one is μ_k = 0.75 μ_s.
-    #[arg(long, default_value_t = defaults::STATIC_FRICTION, value_parser = values::non_negative)]
-    mu: f64,
-    /// Normal coefficient of restitution e of an impact, in [0, 1]: the rigid model's impact
-    /// law, and for the penalty contact the normal damping c = ζ √(2 k m_eff) with
-    /// e = exp(−ζπ/√(1−ζ²)) (ignored when --ground-damping is given).
-    #[arg(long, default_value_t = defaults::RESTITUTION)]
-    restitution: f64,
-    /// String stiffness of the full model (N/m).
-    #[arg(long, default_value_t = defaults::STRING_STIFFNESS, value_parser = values::positive)]
-    string_stiffness: f64,
-    /// Smallest string tension of the full model's prestress (N).
-    #[arg(long, default_value_t = defaults::ROLL_MIN_TENSION, value_parser = values::positive)]
-    min_tension: f64,
-    /// Integrator of the full model (default rk4 at --dt; rk45 and sdirk take --dt as their
-    /// largest step, rtol 1e-6; sdirk for stiff strings or ground damping).
-    #[arg(long, value_enum)]
-    integrator: Option<super::simulate::IntegratorArg>,
+    request: RequestArgs<RollRequest>,
     /// Write the sampled history (1 ms) to this CSV file: t, axle_s, axle_h, omega, then
     /// pivot_m, normal_N, tangential_N, energy_J, slip_m_s.
     #[arg(long)]
@@ -123,35 +44,16 @@ pub struct RollArgs {
 }
 
 impl RollArgs {
-    /// The library request the arguments describe.
-    pub fn request(&self) -> RollRequest {
-        RollRequest {
-            wheel: self.geometry.wheel(),
-            settings: RollSettings {
-                incline: self.incline,
-                dt: self.dt,
-                ground_damping: self.ground_damping,
-                ground_stiffness: self.ground_stiffness,
-                restitution: self.restitution,
-                string_stiffness: self.string_stiffness,
-                ..RollSettings::default()
-            },
-            t_end: self.t_end,
-            fidelity: self.fidelity.into(),
-            contact: self.contact.into(),
-            mu: self.mu,
-            min_tension: self.min_tension,
-            integrator: self
-                .integrator
-                .map_or(RollRequest::default().integrator, Into::into),
-        }
+    /// The library request the flags describe.
+    pub fn request(&self) -> Result<RollRequest> {
+        self.request.request()
     }
 
     /// The frame times the outputs need: --frames, and the --vtk grid.
-    fn frame_times(&self) -> Vec<f64> {
+    fn frame_times(&self, t_end: f64) -> Vec<f64> {
         let mut times = self.frames.clone().unwrap_or_default();
         if self.vtk.is_some() {
-            let n = (self.t_end / defaults::ROLL_FRAME_DT).floor() as usize;
+            let n = (t_end / defaults::ROLL_FRAME_DT).floor() as usize;
             times.extend((0..=n).map(|k| k as f64 * defaults::ROLL_FRAME_DT));
         }
         times
@@ -160,84 +62,95 @@ impl RollArgs {
 
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
-    let request = args.request();
+    let request = args.request()?;
     let _progress = super::guard::roll(&request)?;
+    let t_end = request.t_end;
     if let Some(t) = args
         .frames
         .iter()
         .flatten()
-        .find(|t| !(0.0..=args.t_end).contains(*t))
+        .find(|t| !(0.0..=t_end).contains(*t))
     {
-        anyhow::bail!(
-            "--frames: time {t} s lies outside the run [0, {}] s",
-            args.t_end
-        );
+        anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s");
     }
-    let report = toroid::roll_with_frames(&request, &args.frame_times())?;
+    // the VTK series draws the built wheel's members
+    let wheel = args
+        .vtk
+        .as_ref()
+        .map(|_| request.wheel.build())
+        .transpose()?;
+    let (figure, mut outputs) = open_outputs(args, &request, wheel.as_ref())?;
+    let _polled = interrupt::polled();
+    let times = args.frame_times(t_end);
+    let mut report = toroid::roll_observed(&request, &times, Some(&mut outputs))?;
+    report.frames = outputs.take_frames();
+    let interrupted = interrupt::requested();
+    let reason = report.summary.stopped_at.map(|t| match interrupted {
+        true => format!("interrupted at t = {t} s"),
+        false => format!("the integration stopped at t = {t} s"),
+    });
+    let written = outputs.finish(reason.as_deref())?;
     for w in &report.summary.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(w));
     }
-    if let Some(path) = &args.svg {
-        write_svg(args, path, &request, &report)?;
+    if let (Some(sink), false) = (figure, interrupted) {
+        sink.finish(&tensegrity_figures::roll_figure(
+            &request,
+            &report,
+            args.frames.as_deref(),
+        )?)?;
     }
     if let Some(dir) = &args.vtk {
-        write_vtk(dir, &request, &report.frames)?;
-    }
-    if let Some(path) = &args.out {
-        write_history_csv(path, &report.samples)?;
+        let n = written.frames;
+        eprintln!("wrote {n} VTK frames to {}/series.pvd", dir.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print_roll(&report);
     }
-    match report.summary.stopped_at {
+    end(args, &report, interrupted, written.rows)
+}
+
+/// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),
+/// each error naming its flag.
+fn open_outputs<'a>(
+    args: &RollArgs,
+    request: &RollRequest,
+    wheel: Option<&'a toroid::Toroid>,
+) -> Result<(Option<FigureSink>, RollingOutputs<'a>)> {
+    let csv = output::open("--out", args.out.as_deref(), |p| {
+        CsvSink::open(p, "rolling history CSV")
+    })?;
+    let figure = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let vtk = match (&args.vtk, wheel) {
+        (Some(dir), Some(t)) => Some(output::open_required("--vtk", dir, |d| {
+            VtkSeriesSink::open(d, &t.structure)
+        })?),
+        _ => None,
+    };
+    let keep = args.frames.as_deref().unwrap_or_default();
+    let outputs = RollingOutputs::new(csv, vtk).keeping(keep, request.settings.dt);
+    Ok((figure, outputs))
+}
+
+/// The exit of a run: interrupted (130), stopped by its integration (1), or whole.
+fn end(args: &RollArgs, r: &RollReport, interrupted: bool, rows: usize) -> Result<()> {
+    if interrupted {
+        let note = args
+            .out
+            .is_some()
+            .then(|| format!("{rows} history rows kept, marked incomplete"));
+        let t = r.summary.stopped_at;
+        return Err(Interrupted { t, note }.into());
+    }
+    match r.summary.stopped_at {
         Some(t) => anyhow::bail!(
             "the integration stopped at t = {t} s of --t-end {} s: the results above cover [0, {t}] s only (see the warnings)",
-            args.t_end
+            r.t_end
         ),
         None => Ok(()),
     }
-}
-
-fn write_svg(args: &RollArgs, path: &Path, request: &RollRequest, r: &RollReport) -> Result<()> {
-    match &args.frames {
-        Some(times) => {
-            let toroid = request.wheel.build()?;
-            let members = toroid.structure.member_nodes();
-            let panels: Vec<Panel> = times
-                .iter()
-                .filter_map(|&t| r.frames.iter().find(|f| (f.t - t).abs() <= args.dt))
-                .map(|f| frame_panel(f, &members))
-                .collect();
-            write_figure(path, &panels)
-        }
-        None => {
-            let runs = [(format!("n = {}", r.sides), r.samples.as_slice())];
-            write_figure(path, &[axle_panel(&runs), reaction_panel(&runs)])
-        }
-    }
-}
-
-fn write_vtk(dir: &Path, request: &RollRequest, frames: &[WheelFrame]) -> Result<()> {
-    let toroid = request.wheel.build()?;
-    let mut series = tensegrity_io::vtk::SeriesWriter::create(dir, &toroid.structure)
-        .with_context(|| format!("creating the VTK series {}", dir.display()))?;
-    for f in frames {
-        series.frame(f.t, &f.nodes)?;
-    }
-    let n = series.finish()?;
-    eprintln!("wrote {n} VTK frames to {}/series.pvd", dir.display());
-    Ok(())
-}
-
-/// Writes the sampled rolling history as CSV.
-fn write_history_csv(path: &Path, samples: &[RollingSample]) -> Result<()> {
-    tensegrity_io::write_file(path, |w| {
-        tensegrity_io::csv::write_rolling_history(w, samples)
-    })
-    .with_context(|| format!("writing the rolling history {}", path.display()))?;
-    Ok(())
 }
 
 fn print_roll(r: &RollReport) {
@@ -281,6 +194,6 @@ fn print_roll(r: &RollReport) {
         s.energy_balance_error
     );
     for w in &s.warnings {
-        println!("warning: {w}");
+        println!("warning: {}", super::spell::flags(w));
     }
 }

@@ -81,7 +81,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         print_report(simulation.settings.integrator, &report);
     }
     for w in &report.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     Ok(command.strict_check(&report)?)
 }

@@ -11,34 +11,7 @@ mod outputs;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tbar_wheel::{RimMode, TbarReport, TbarRequest, TbarStaticRequest};
-
-/// `--bar-base` values of `tbar roll` (until it takes its request's flags).
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BarBaseArg {
-    /// The rim point [0, r_q, 0].
-    Rim,
-    /// The chord point [0, r_q cos φ, 0].
-    Chord,
-}
-
-/// `--rim` values of `tbar roll`.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RimArg {
-    /// Rigid rim: every rim node and bar base pinned.
-    Fixed,
-    /// A free rim body of bars (ring, spokes, hub and axle).
-    Body,
-}
-
-impl From<RimArg> for RimMode {
-    fn from(r: RimArg) -> Self {
-        match r {
-            RimArg::Fixed => RimMode::Fixed,
-            RimArg::Body => RimMode::Body,
-        }
-    }
-}
+use tbar_wheel::{TbarReport, TbarRequest, TbarStaticRequest};
 
 /// Subcommands of `tensegrity tbar`.
 #[derive(clap::Subcommand, Debug)]

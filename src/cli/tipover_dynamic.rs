@@ -2,27 +2,49 @@
 //! [--json]`: the static tip-over threshold checked by the full 3-D dynamics (one call to
 //! [`TipoverDynamicRequest::run`]); `--rolling` the lean while rolling down a cross-sloped
 //! plane ([`TipoverRollingRequest::run`]).
+//!
+//! `--out` is opened before the run (a bad path: exit 2 at once) and renamed into place once
+//! its rows are written; the runs do not poll the interrupt flag, so SIGINT leaves no file.
 
 use anyhow::{Context, Result};
 use std::path::Path;
-use toroid::tipover_dynamic::{DynamicTipoverReport, LeanSample};
+use tensegrity_io::sink::CsvSink;
+use toroid::tipover_dynamic::DynamicTipoverReport;
 use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
+
+/// Opens the lean history of `--out` with `header`.
+fn open_history(out: Option<&Path>, header: &[&str]) -> Result<Option<CsvSink>> {
+    super::output::open("--out", out, |p| {
+        CsvSink::with_header(p, "lean history", header)
+    })
+}
+
+/// Writes `rows` (each a row of numbers) to the opened history and renames it into place.
+fn write_history<const N: usize>(
+    sink: Option<CsvSink>,
+    rows: impl Iterator<Item = [f64; N]>,
+) -> Result<()> {
+    if let Some(mut sink) = sink {
+        for row in rows {
+            sink.record(row.map(|x| x.to_string()))?;
+        }
+        sink.finish()?;
+    }
+    Ok(())
+}
 
 /// Runs the lean-while-rolling study and prints its report.
 pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) -> Result<()> {
+    let sink = open_history(out, &["t", "lean", "downhill", "across"])?;
     let r = req.run().context("rolling lean run failed")?;
     for w in &r.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(w));
     }
-    if let Some(path) = out {
-        use std::fmt::Write;
-        let mut text = String::from("t,lean,downhill,across\n");
-        for s in &r.samples {
-            let _ = writeln!(text, "{},{},{},{}", s.t, s.lean, s.downhill, s.across);
-        }
-        tensegrity_io::write_text(path, "lean history", &text)
-            .with_context(|| format!("writing the lean history {}", path.display()))?;
-    }
+    let rows = r
+        .samples
+        .iter()
+        .map(|s| [s.t, s.lean, s.downhill, s.across]);
+    write_history(sink, rows)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -51,30 +73,20 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
 
 /// Runs the dynamic check and prints its report.
 pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Result<()> {
+    let header = ["t", "force", "lean", "near_normal", "far_normal"];
+    let sink = open_history(out, &header)?;
     let report = req.run().context("dynamic tip-over run failed")?;
-    if let Some(path) = out {
-        write_history(path, &report.samples)?;
-    }
+    let rows = report
+        .samples
+        .iter()
+        .map(|s| [s.t, s.force, s.lean, s.near_normal, s.far_normal]);
+    write_history(sink, rows)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print(&report);
     }
     Ok(())
-}
-
-fn write_history(path: &Path, samples: &[LeanSample]) -> Result<()> {
-    use std::fmt::Write;
-    let mut text = String::from("t,force,lean,near_normal,far_normal\n");
-    for s in samples {
-        let _ = writeln!(
-            text,
-            "{},{},{},{},{}",
-            s.t, s.force, s.lean, s.near_normal, s.far_normal
-        );
-    }
-    tensegrity_io::write_text(path, "lean history", &text)
-        .with_context(|| format!("writing the lean history {}", path.display()))
 }
 
 fn print(r: &DynamicTipoverReport) {

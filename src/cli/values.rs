@@ -23,11 +23,6 @@ pub fn positive(s: &str) -> Result<f64, String> {
     rule(validate::positive("value", number(s)?))
 }
 
-/// A finite number ≥ 0 (damping, friction, offsets).
-pub fn non_negative(s: &str) -> Result<f64, String> {
-    rule(validate::non_negative("value", number(s)?))
-}
-
 /// A count of at least 2 (grid points).
 pub fn at_least_two(s: &str) -> Result<usize, String> {
     let n: usize = s
@@ -46,8 +41,6 @@ mod tests {
         assert_eq!(positive("2e4"), Ok(2e4));
         assert_eq!(positive("0").unwrap_err(), "must be finite and positive");
         assert!(positive("-1").is_err() && positive("inf").is_err() && positive("nan").is_err());
-        assert_eq!(non_negative("0"), Ok(0.0));
-        assert!(non_negative("-5").is_err());
         assert!(positive("abc").unwrap_err().contains("not a number"));
         assert_eq!(at_least_two("2"), Ok(2));
         assert!(at_least_two("0").is_err() && at_least_two("-1").is_err());

@@ -1,5 +1,6 @@
 //! The error type of the crate: every failure names the offending parameter, node or item.
 
+use tensegrity_core::request::{Categorized, Category};
 use thiserror::Error;
 
 /// Result alias of the crate.
@@ -87,4 +88,22 @@ pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>)
     MichellError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
         name, value, reason,
     ))
+}
+
+impl Categorized for MichellError {
+    /// A parameter, load, grid or index the truss does not take is bad input; a singular
+    /// node or system, an overflow or no extra-string prestress is a failed computation; a
+    /// core error keeps its own category.
+    fn category(&self) -> Category {
+        match self {
+            Self::InvalidParameter(_)
+            | Self::NeedsThreeD { .. }
+            | Self::OutOfPlaneLoad { .. }
+            | Self::EmptyGrid { .. }
+            | Self::UnknownMember { .. }
+            | Self::UnknownNode { .. } => Category::Input,
+            Self::Core(e) => e.category(),
+            _ => Category::Numerical,
+        }
+    }
 }

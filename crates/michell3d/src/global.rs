@@ -105,7 +105,7 @@ pub fn solve_global(truss: &MichellTruss, loads: &NodalLoads) -> Result<ForceSol
     let sys = assemble(truss, &w);
     debug_assert_eq!(truss.members().len(), sys.n);
     // Factorisation failures (structurally singular matrix) come back as the core's
-    // `CoreError::Factorization` inside `MichellError::Core`.
+    // `NumericsError::Factorization` inside `MichellError::Core`.
     let a = CscMatrix::from_triplets(sys.n, sys.n, &sys.triplets)?;
     let q = match solve_by_levels(&sys)? {
         Some(q) => q,

@@ -174,3 +174,18 @@ impl SweepError {
 
 /// The crate's result type.
 pub type Result<T, E = SweepError> = std::result::Result<T, E>;
+
+impl tensegrity_core::request::Categorized for SweepError {
+    /// A spec, shard or file that does not fit is bad input (an output keeps its own
+    /// category), an interrupt is interrupted, a failure to read or write a computation's
+    /// failure.
+    fn category(&self) -> tensegrity_core::request::Category {
+        use tensegrity_core::request::Category;
+        match self {
+            SweepError::Output(e) => tensegrity_core::request::Categorized::category(e),
+            SweepError::Interrupted { .. } => Category::Interrupted,
+            SweepError::Io { .. } => Category::Numerical,
+            _ => Category::Input,
+        }
+    }
+}

@@ -1,5 +1,6 @@
 //! The error type of the crate: every failure names the offending parameter or item.
 
+use tensegrity_core::request::{Categorized, Category};
 use thiserror::Error;
 
 /// Result alias of the crate.
@@ -74,4 +75,20 @@ pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>)
     TbarError::InvalidParameter(tensegrity_core::request::InvalidParameter::new(
         name, value, reason,
     ))
+}
+
+impl Categorized for TbarError {
+    /// A parameter out of range or a structure the brute-force check does not support is bad
+    /// input, a structure above the dense limits a resource refusal, a mechanism or no
+    /// prestress a failed computation; a wrapped error keeps its own category.
+    fn category(&self) -> Category {
+        match self {
+            Self::InvalidParameter(_) | Self::BruteForceUnsupported { .. } => Category::Input,
+            Self::TooLarge { .. } => Category::Resource,
+            Self::Mechanism { .. } | Self::NotPrestressable { .. } => Category::Numerical,
+            Self::Michell(e) => e.category(),
+            Self::Core(e) => e.category(),
+            Self::Rolling(e) => e.category(),
+        }
+    }
 }

@@ -58,7 +58,8 @@ pub struct TbarRollRequest {
     /// Departure angle β (rad).
     #[serde(with = "tensegrity_core::angle::serde_angle")]
     pub beta: f64,
-    /// Cylindrical parameterisation with offset δ (m); exclusive with `spherical`.
+    /// Cylindrical parameterisation with offset δ (m); exclusive with `spherical`; neither
+    /// given: δ = [`DEFAULT_CYLINDRICAL`].
     pub cylindrical: Option<f64>,
     /// Spherical parameterisation with angle ε (rad); exclusive with `cylindrical`.
     #[serde(with = "tensegrity_core::angle::serde_angle_option")]
@@ -96,14 +97,15 @@ pub struct TbarRollRequest {
 }
 
 impl Default for TbarRollRequest {
-    /// q = 1, β = π/6, cylindrical δ = 0.25, r₀ = 1, the single loop on rim bar bases, the
+    /// q = 1, β = π/6, cylindrical δ = 0.25 (unset: the default of neither parameterisation
+    /// given, so that `spherical` alone is a complete request), r₀ = 1, the single loop on rim bar bases, the
     /// rigid model, the rolling defaults of wheel-rolling (50°, 0.1 ms, g = 9.81, e = 0,
     /// strings 2·10⁴ N/m, ground 10⁵ N/m), 1 kg/m bars, μ_s = 0.8; the rest unset.
     fn default() -> Self {
         Self {
             complexity: 1,
             beta: DEFAULT_BETA,
-            cylindrical: Some(DEFAULT_CYLINDRICAL),
+            cylindrical: None,
             spherical: None,
             r0: 1.0,
             extended: None,
@@ -137,8 +139,12 @@ impl Request for TbarRollRequest {
         vec![
             Param::count("complexity", "Complexity q").rule(Rule::AtLeast(1.0)),
             Param::angle("beta", "Departure angle β"),
-            Param::number("cylindrical", "m", "Cylindrical parameterisation with offset δ")
-                .optional(),
+            Param::number(
+                "cylindrical",
+                "m",
+                "Cylindrical parameterisation with offset δ (neither given: δ = 0.25)",
+            )
+            .optional(),
             Param::angle("spherical", "Spherical parameterisation with angle ε").optional(),
             Param::number("r0", "m", "Tip radius r₀: the rolling polygon's circumradius")
                 .positive(),
@@ -293,7 +299,9 @@ impl TbarRollRequest {
         let (q, r0, beta) = (self.complexity, self.r0, self.beta);
         let m = match (self.cylindrical, self.spherical) {
             (_, Some(e)) => MichellParams::spherical(q, r0, beta, phi, e),
-            (d, None) => MichellParams::cylindrical(q, r0, beta, phi, d.unwrap_or(0.0)),
+            (d, None) => {
+                MichellParams::cylindrical(q, r0, beta, phi, d.unwrap_or(DEFAULT_CYLINDRICAL))
+            }
         };
         TbarParams::tread(m)
             .with_layout(self.layout())

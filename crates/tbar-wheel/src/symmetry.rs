@@ -17,7 +17,7 @@ use crate::params::Layout;
 use crate::statics::{summarise, StaticsSummary};
 use nalgebra::Vector3;
 use tensegrity_core::statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
-use tensegrity_core::{CoreError, Structure};
+use tensegrity_core::{CoreError, StaticsError, Structure};
 
 /// The Cₙ descriptor (n = π/φ) of a wheel or extended wheel and its structure; a single tread
 /// has no rotational symmetry (`SymmetryError::TooFewSides` with n = 1).
@@ -60,7 +60,7 @@ pub fn find_symmetry(
     }
     match wheel_symmetry(geometry, structure) {
         Ok(sym) => Some(sym),
-        Err(TbarError::Core(CoreError::Symmetry(e)))
+        Err(TbarError::Core(CoreError::Statics(StaticsError::Symmetry(e))))
             if matches!(*e, SymmetryError::TooFewSides { .. }) =>
         {
             None

@@ -4,7 +4,7 @@
 //! An [`Estimate`] holds three numbers for one computation: peak memory (bytes), work
 //! (seconds, from a flop count over an assumed sustained rate) and output written (bytes).
 //! [`Limits::check`] refuses an estimate above any limit with an [`OverBudget`] error naming
-//! the parameter that drives the size, the estimate and the limit. The estimates are
+//! the parameters that drive the size ([`Parameters`]), the estimate and the limit. The estimates are
 //! deliberately simple closed forms:
 //!
 //! * dense statics of an m × n equilibrium matrix (SVD with full U and V, the prestress LP and
@@ -20,7 +20,10 @@
 //! factor of a few, enough to tell a second from an hour. Topology crates refine the estimate
 //! of what they actually run (e.g. `toroid::budget`).
 
+use crate::request::{Categorized, Category};
 use serde::Serialize;
+use std::borrow::Cow;
+use std::fmt;
 
 /// Default limit on estimated work: one minute.
 pub const DEFAULT_MAX_WORK_S: f64 = 60.0;
@@ -37,13 +40,86 @@ pub const SCALAR_FLOP_RATE: f64 = 1e9;
 /// Factor on the SVD's work for the prestress LP and the flexes that follow it.
 pub const DENSE_OVERHEAD: f64 = 1.5;
 
+/// The request parameters that drive an estimate's size, by the library's names, with their
+/// values as written: `t_end = 10, dt = 0.0001`. A front end writes each in its own spelling
+/// ([`Parameters::write`]; the command line as `--t-end 10`). An entry without a name is a
+/// note, written as it is (`10000 sweep cases`).
+///
+/// Built field by field ([`Parameters::and`]) or read from the text `name = value, …`
+/// (`From<&str>`: each comma-separated piece of that form is a parameter, any other a note).
+///
+/// ```
+/// use tensegrity_core::budget::Parameters;
+/// let p = Parameters::default().and("t_end", 10).and("dt", 1e-4);
+/// assert_eq!(p.to_string(), "t_end = 10, dt = 0.0001");
+/// assert_eq!(Parameters::from("t_end = 10, dt = 0.0001"), p);
+/// assert_eq!(p.write(|name, value| format!("--{name} {value}")), "--t_end 10, --dt 0.0001");
+/// assert_eq!(Parameters::from("12 sweep cases").to_string(), "12 sweep cases");
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+pub struct Parameters(pub Vec<(Cow<'static, str>, String)>);
+
+impl Parameters {
+    /// With one more parameter.
+    pub fn and(mut self, name: impl Into<Cow<'static, str>>, value: impl fmt::Display) -> Self {
+        self.0.push((name.into(), value.to_string()));
+        self
+    }
+
+    /// Each parameter written by `each(name, value)` (a note as it is), joined by `, `.
+    pub fn write(&self, each: impl Fn(&str, &str) -> String) -> String {
+        let parts: Vec<String> = self
+            .0
+            .iter()
+            .map(|(name, value)| match name.as_ref() {
+                "" => value.clone(),
+                name => each(name, value),
+            })
+            .collect();
+        parts.join(", ")
+    }
+}
+
+impl fmt::Display for Parameters {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.write(|name, value| format!("{name} = {value}")))
+    }
+}
+
+impl From<&str> for Parameters {
+    fn from(text: &str) -> Self {
+        let is_name = |n: &str| {
+            n.starts_with(|c: char| c.is_ascii_lowercase())
+                && n.chars()
+                    .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        };
+        let entries = text
+            .split(", ")
+            .filter(|piece| !piece.trim().is_empty())
+            .map(|piece| match piece.split_once(" = ") {
+                Some((name, value)) if is_name(name.trim()) => (
+                    Cow::Owned(name.trim().to_string()),
+                    value.trim().to_string(),
+                ),
+                _ => (Cow::Borrowed(""), piece.trim().to_string()),
+            });
+        Parameters(entries.collect())
+    }
+}
+
+impl From<String> for Parameters {
+    fn from(text: String) -> Self {
+        Parameters::from(text.as_str())
+    }
+}
+
 /// The estimated cost of one computation.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Estimate {
     /// The computation, e.g. `the dense statics (SVD of the 18000 × 12000 equilibrium matrix)`.
     pub what: String,
-    /// The input that drives the size, as the user wrote it (e.g. `--sides 100000`).
-    pub parameter: String,
+    /// The parameters that drive the size, by the library's names (`sides = 100000`).
+    pub parameters: Parameters,
     /// Peak memory (bytes).
     pub memory_bytes: f64,
     /// Work (s).
@@ -54,10 +130,10 @@ pub struct Estimate {
 
 impl Estimate {
     /// An estimate with no memory, work or output yet.
-    pub fn new(what: impl Into<String>, parameter: impl Into<String>) -> Self {
+    pub fn new(what: impl Into<String>, parameters: impl Into<Parameters>) -> Self {
         Self {
             what: what.into(),
-            parameter: parameter.into(),
+            parameters: parameters.into(),
             memory_bytes: 0.0,
             work_s: 0.0,
             output_bytes: 0.0,
@@ -83,14 +159,14 @@ impl Estimate {
     }
 
     /// Two computations that run one after the other: work and output add, memory is the
-    /// larger peak; the description names both, the parameter is the first one's.
+    /// larger peak; the description names both, the parameters are the first one's.
     pub fn then(self, other: Estimate) -> Estimate {
         Estimate {
             what: format!("{}, then {}", self.what, other.what),
             memory_bytes: self.memory_bytes.max(other.memory_bytes),
             work_s: self.work_s + other.work_s,
             output_bytes: self.output_bytes + other.output_bytes,
-            parameter: self.parameter,
+            parameters: self.parameters,
         }
     }
 }
@@ -138,9 +214,10 @@ impl Default for Limits {
     }
 }
 
-/// An estimate above a limit, refused before anything was allocated.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}: {} needs an estimated {} of {resource}, above the limit of {}", estimate.parameter, estimate.what, human(*resource, *estimated), human(*resource, *limit))]
+/// An estimate above a limit, refused before anything was allocated. Its message names the
+/// parameters as the library does (`sides = 100000: …`); a front end writes them in its own
+/// spelling with [`OverBudget::message_with`].
+#[derive(Debug, Clone, PartialEq)]
 pub struct OverBudget {
     /// The refused estimate.
     pub estimate: Estimate,
@@ -150,6 +227,39 @@ pub struct OverBudget {
     pub estimated: f64,
     /// The limit (bytes or s).
     pub limit: f64,
+}
+
+impl OverBudget {
+    /// The message, each parameter written by `each(name, value)`.
+    pub fn message_with(&self, each: impl Fn(&str, &str) -> String) -> String {
+        let parameters = self.estimate.parameters.write(each);
+        let head = if parameters.is_empty() {
+            String::new()
+        } else {
+            format!("{parameters}: ")
+        };
+        format!(
+            "{head}{} needs an estimated {} of {}, above the limit of {}",
+            self.estimate.what,
+            human(self.resource, self.estimated),
+            self.resource,
+            human(self.resource, self.limit)
+        )
+    }
+}
+
+impl fmt::Display for OverBudget {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message_with(|name, value| format!("{name} = {value}")))
+    }
+}
+
+impl std::error::Error for OverBudget {}
+
+impl Categorized for OverBudget {
+    fn category(&self) -> Category {
+        Category::Resource
+    }
 }
 
 /// `amount` of `resource` for people: bytes in KiB … PiB, seconds in s, min, h, days, years.
@@ -194,11 +304,11 @@ impl Limits {
     ///
     /// ```
     /// use tensegrity_core::budget::{Estimate, Limits, Resource};
-    /// let e = Estimate::new("a run", "--t-end 1e9").work(1e9);
+    /// let e = Estimate::new("a run", "t_end = 1e9").work(1e9);
     /// let err = Limits::default().check(&e).unwrap_err();
     /// assert_eq!(err.resource, Resource::Work);
-    /// assert!(err.to_string().contains("--t-end 1e9"));
-    /// assert!(Limits::default().check(&Estimate::new("a run", "--t-end 1").work(0.1)).is_ok());
+    /// assert!(err.to_string().starts_with("t_end = 1e9: a run needs an estimated"));
+    /// assert!(Limits::default().check(&Estimate::new("a run", "t_end = 1").work(0.1)).is_ok());
     /// ```
     pub fn check(&self, estimate: &Estimate) -> Result<(), OverBudget> {
         let checks = [
@@ -232,14 +342,14 @@ pub fn svd_flops(m: usize, n: usize) -> f64 {
 ///
 /// ```
 /// use tensegrity_core::budget::dense_statics;
-/// let e = dense_statics(1800, 1200, "--sides 100");
+/// let e = dense_statics(1800, 1200, "sides = 100");
 /// assert!(e.work_s > 1.0 && e.work_s < 100.0); // seconds, not hours
 /// assert!(e.memory_bytes < 2e8); // 109 MB
 /// ```
-pub fn dense_statics(m: usize, n: usize, parameter: impl Into<String>) -> Estimate {
+pub fn dense_statics(m: usize, n: usize, parameters: impl Into<Parameters>) -> Estimate {
     Estimate::new(
         format!("the dense statics (SVD of the {m} × {n} equilibrium matrix)"),
-        parameter,
+        parameters,
     )
     .memory(dense_statics_bytes(m, n))
     .work(DENSE_OVERHEAD * svd_flops(m, n) / DENSE_FLOP_RATE)
@@ -268,11 +378,11 @@ pub fn integration(
     rhs_per_step: f64,
     flops_per_rhs: f64,
     state_len: usize,
-    parameter: impl Into<String>,
+    parameters: impl Into<Parameters>,
 ) -> Estimate {
     Estimate::new(
         format!("{steps:.3e} time steps of a {state_len}-number state"),
-        parameter,
+        parameters,
     )
     .memory(64.0 * state_len as f64)
     .work(steps * rhs_per_step * (flops_per_rhs + 20.0 * state_len as f64) / SCALAR_FLOP_RATE)
@@ -280,9 +390,14 @@ pub fn integration(
 
 /// Estimate of `rows` output rows of `row_bytes` bytes each, kept in memory (`in_memory`)
 /// or streamed to a file.
-pub fn table(rows: f64, row_bytes: f64, in_memory: bool, parameter: impl Into<String>) -> Estimate {
+pub fn table(
+    rows: f64,
+    row_bytes: f64,
+    in_memory: bool,
+    parameters: impl Into<Parameters>,
+) -> Estimate {
     let bytes = rows * row_bytes;
-    Estimate::new(format!("{rows:.3e} output rows"), parameter)
+    Estimate::new(format!("{rows:.3e} output rows"), parameters)
         .output(bytes)
         .memory(if in_memory { bytes } else { 0.0 })
 }
@@ -297,7 +412,7 @@ pub fn simulation(
     streamed: bool,
     written: bool,
     bytes_per_number: f64,
-    parameter: impl Into<String>,
+    parameters: impl Into<Parameters>,
 ) -> Estimate {
     use crate::dynamics::IntegratorKind as K;
     let (s, model) = (&sim.settings, &sim.model);
@@ -327,7 +442,7 @@ pub fn simulation(
         + (model.bars.len() + model.strings.len()) as f64 * f64::from(u8::from(q.member_forces))
         + 3.0 * f64::from(u8::from(q.energy))
         + 4.0 * model.contact.len() as f64 * f64::from(u8::from(q.contact_forces));
-    let run = integration(steps, rhs_per_step, flops, model.state_len(), parameter);
+    let run = integration(steps, rhs_per_step, flops, model.state_len(), parameters);
     let sample_bytes = numbers * if streamed { 0.0 } else { 8.0 };
     Estimate {
         memory_bytes: run.memory_bytes + samples * sample_bytes,
@@ -347,13 +462,25 @@ mod tests {
 
     #[test]
     fn over_budget_names_the_parameter_the_estimate_and_the_limit() {
-        let e = dense_statics(600_000, 1_600_000, "--sides 100000");
+        let e = dense_statics(
+            600_000,
+            1_600_000,
+            Parameters::default().and("sides", 100_000),
+        );
         let err = Limits::default().check(&e).unwrap_err();
         assert_eq!(err.resource, Resource::Memory);
         // 8 (2 m n + 2 m² + 2 n²) = 8 · 2 · (0.96 + 0.36 + 2.56) e12 = 6.208e13 B = 56.461 TiB
         assert!((err.estimated - 6.208e13).abs() < 1e9, "{}", err.estimated);
         let text = err.to_string();
-        assert!(text.contains("--sides 100000"), "{text}");
+        assert!(
+            text.starts_with("sides = 100000: the dense statics"),
+            "{text}"
+        );
+        let flags = err.message_with(|name, value| format!("--{name} {value}"));
+        assert!(
+            flags.starts_with("--sides 100000: the dense statics"),
+            "{flags}"
+        );
         assert!(text.contains("56.461 TiB"), "{text}");
         assert!(text.contains("8.000 GiB"), "{text}");
     }
@@ -368,9 +495,9 @@ mod tests {
 
     #[test]
     fn nan_and_infinite_estimates_are_refused() {
-        let e = Estimate::new("x", "--n").work(f64::NAN);
+        let e = Estimate::new("x", "n = 1").work(f64::NAN);
         assert!(Limits::default().check(&e).is_err());
-        let e = Estimate::new("x", "--n").output(f64::INFINITY);
+        let e = Estimate::new("x", "n = 1").output(f64::INFINITY);
         assert_eq!(
             Limits::default().check(&e).unwrap_err().resource,
             Resource::Output
@@ -383,7 +510,8 @@ mod tests {
         let b = Estimate::new("b", "q").memory(4.0).work(3.0).output(1.0);
         let c = a.then(b);
         assert_eq!((c.memory_bytes, c.work_s, c.output_bytes), (10.0, 4.0, 6.0));
-        assert_eq!((c.what.as_str(), c.parameter.as_str()), ("a, then b", "p"));
+        assert_eq!(c.what, "a, then b");
+        assert_eq!(c.parameters, Parameters::from("p"));
     }
 
     #[test]

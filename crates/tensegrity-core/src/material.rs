@@ -4,7 +4,7 @@
 //! practice; user materials (e.g. from a scene file) are added to a [`MaterialTable`] and
 //! shadow the built-in ones of the same name.
 
-use crate::error::{CoreError, Result};
+use crate::error::{CoreError, ModelError, Result};
 use std::collections::BTreeMap;
 
 /// An isotropic, linear-elastic, perfectly plastic material.
@@ -43,11 +43,12 @@ impl Material {
             ("yield_strength", self.yield_strength),
         ] {
             if !(value.is_finite() && value > 0.0) {
-                return Err(CoreError::NonPositiveConstant {
+                return Err(ModelError::NonPositiveConstant {
                     item,
                     name: field,
                     value,
-                });
+                }
+                .into());
             }
         }
         Ok(())
@@ -109,15 +110,15 @@ impl MaterialTable {
         self.materials.get(name)
     }
 
-    /// The material called `name`, or an [`CoreError::UnknownMaterial`] naming `item`.
+    /// The material called `name`, or an [`ModelError::UnknownMaterial`](crate::error::ModelError::UnknownMaterial) naming `item`.
     pub fn lookup(&self, name: &str, item: &str) -> Result<&Material> {
-        self.materials
-            .get(name)
-            .ok_or_else(|| CoreError::UnknownMaterial {
+        self.materials.get(name).ok_or_else(|| {
+            CoreError::Model(ModelError::UnknownMaterial {
                 item: item.to_string(),
                 name: name.to_string(),
                 known: self.names().join(", "),
             })
+        })
     }
 
     /// The known names, sorted.

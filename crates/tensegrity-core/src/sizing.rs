@@ -8,11 +8,11 @@
 //! - Euler buckling of a pinned–pinned solid rod in compression, |f| = π³ E r⁴ / (4 l²):
 //!   r_B = (4 |f| l² / (π³ E))^¼ and m_B = 2 ρ l² √(|f| / (π E))  (eq. 4.57, 4.59);
 //! - a bar in compression takes r = max(r_Y, r_B); a bar in tension only yields; a string must
-//!   be in tension ([`CoreError::StringInCompression`] otherwise).
+//!   be in tension ([`StaticsError::StringInCompression`](crate::error::StaticsError::StringInCompression) otherwise).
 //!
 //! Total mass is Σ ρ π r² l (eq. 4.60–4.61 times density).
 
-use crate::error::{CoreError, Result};
+use crate::error::{ModelError, Result, StaticsError};
 use crate::material::Material;
 use crate::structure::{MemberId, Structure};
 use nalgebra::DVector;
@@ -270,11 +270,12 @@ fn size_members(
                 continue;
             }
             None => {
-                return Err(CoreError::MissingProperty {
+                return Err(ModelError::MissingProperty {
                     member: id,
                     analysis: "sizing",
                     property: "material",
-                })
+                }
+                .into())
             }
         };
         let size = match id {
@@ -294,10 +295,11 @@ fn size_members(
                         }
                     }
                     None => {
-                        return Err(CoreError::StringInCompression {
+                        return Err(StaticsError::StringInCompression {
                             member: id,
                             force: f,
-                        })
+                        }
+                        .into())
                     }
                 };
                 string_mass += s.mass;

@@ -22,7 +22,7 @@
 //! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
 //! of its ends; strings are massless).
 
-use crate::error::{CoreError, Result};
+use crate::error::{CoreError, ModelError, NumericsError, Result};
 use crate::linalg;
 use crate::statics::DofMap;
 pub use crate::statics::{Flexes, PrestressStability};
@@ -97,10 +97,12 @@ pub fn axial_stiffness(structure: &Structure) -> Result<Vec<f64>> {
         .map(|k| match structure.member_id(k) {
             MemberId::Bar(i) => {
                 let bar = &structure.bars()[i];
-                let missing = |property| CoreError::MissingProperty {
-                    member: MemberId::Bar(i),
-                    analysis: "tangent stiffness",
-                    property,
+                let missing = |property| {
+                    CoreError::Model(ModelError::MissingProperty {
+                        member: MemberId::Bar(i),
+                        analysis: "tangent stiffness",
+                        property,
+                    })
                 };
                 let mat = structure
                     .member_material(MemberId::Bar(i))
@@ -110,7 +112,7 @@ pub fn axial_stiffness(structure: &Structure) -> Result<Vec<f64>> {
             }
             MemberId::String(i) => {
                 let s = &structure.strings()[i];
-                let k_s = s.stiffness.ok_or(CoreError::MissingProperty {
+                let k_s = s.stiffness.ok_or(ModelError::MissingProperty {
                     member: MemberId::String(i),
                     analysis: "tangent stiffness",
                     property: "stiffness",
@@ -129,10 +131,12 @@ pub fn string_force_densities(structure: &Structure) -> Result<DVector<f64>> {
     let nb = structure.n_bars();
     let mut q = DVector::zeros(structure.n_members());
     for (i, s) in structure.strings().iter().enumerate() {
-        let missing = |property| CoreError::MissingProperty {
-            member: MemberId::String(i),
-            analysis: "string tension",
-            property,
+        let missing = |property| {
+            CoreError::Model(ModelError::MissingProperty {
+                member: MemberId::String(i),
+                analysis: "string tension",
+                property,
+            })
         };
         let k = s.stiffness.ok_or(missing("stiffness"))?;
         let s0 = s.rest_length.ok_or(missing("rest_length"))?;
@@ -277,7 +281,7 @@ pub fn modal_analysis_with(
     let masses = lumped_masses(structure);
     for &(node, _) in &dofs.free {
         if masses[node] <= 0.0 {
-            return Err(CoreError::NoLumpedMass { node });
+            return Err(ModelError::NoLumpedMass { node }.into());
         }
     }
     let n = dofs.len();
@@ -311,13 +315,16 @@ pub fn modal_analysis_with(
     let l = m
         .clone()
         .cholesky()
-        .ok_or(CoreError::NoConvergence {
+        .ok_or(NumericsError::NoConvergence {
             operation: "Cholesky factorisation of the mass matrix",
         })?
         .unpack();
-    let l_inv = l.clone().try_inverse().ok_or(CoreError::NoConvergence {
-        operation: "inverse of the mass matrix factor",
-    })?;
+    let l_inv = l
+        .clone()
+        .try_inverse()
+        .ok_or(NumericsError::NoConvergence {
+            operation: "inverse of the mass matrix factor",
+        })?;
     let scaled = &l_inv * &k_t * l_inv.transpose();
     let sym = (&scaled + scaled.transpose()) * 0.5;
     let (w, v) = linalg::symmetric_eigen(&sym)?;

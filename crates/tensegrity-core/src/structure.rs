@@ -5,7 +5,7 @@
 //! first, then strings, both in insertion order; that order is used by every analysis
 //! (force-density vectors, self-stress bases, ...).
 
-use crate::error::{CoreError, Result};
+use crate::error::{ModelError, Result};
 use crate::material::{Material, MaterialTable};
 pub use crate::member_id::MemberId;
 use nalgebra::{Matrix3xX, Vector3};
@@ -645,18 +645,19 @@ impl StructureBuilder {
         }
         if let Some(v) = &velocities {
             if v.len() != n {
-                return Err(CoreError::LengthMismatch {
+                return Err(ModelError::LengthMismatch {
                     what: "velocities".into(),
                     expected: n,
                     found: v.len(),
-                });
+                }
+                .into());
             }
             for (i, p) in v.iter().enumerate() {
                 check_finite(&format!("velocity of node {i}"), p)?;
             }
         }
         if bars.is_empty() && strings.is_empty() {
-            return Err(CoreError::NoMembers);
+            return Err(ModelError::NoMembers.into());
         }
 
         let mut seen: HashMap<(usize, usize), MemberId> = HashMap::new();
@@ -674,45 +675,49 @@ impl StructureBuilder {
         for (id, [a, b]) in members {
             for node in [a, b] {
                 if node >= n {
-                    return Err(CoreError::NodeIndexOutOfRange {
+                    return Err(ModelError::NodeIndexOutOfRange {
                         item: id.to_string(),
                         node,
                         n_nodes: n,
-                    });
+                    }
+                    .into());
                 }
             }
             if a == b {
-                return Err(CoreError::SelfLoop {
+                return Err(ModelError::SelfLoop {
                     member: id,
                     node: a,
-                });
+                }
+                .into());
             }
             let key = (a.min(b), a.max(b));
             if let Some(&other) = seen.get(&key) {
-                return Err(CoreError::DuplicateMember {
+                return Err(ModelError::DuplicateMember {
                     member: id,
                     other,
                     a: key.0,
                     b: key.1,
-                });
+                }
+                .into());
             }
             seen.insert(key, id);
             let length = (nodes[b] - nodes[a]).norm();
             let scale = nodes[a].norm().max(nodes[b].norm()).max(1.0);
             if length <= 1e-12 * scale {
-                return Err(CoreError::ZeroLengthMember {
+                return Err(ModelError::ZeroLengthMember {
                     member: id,
                     a,
                     b,
                     length,
-                });
+                }
+                .into());
             }
             touched[a] = true;
             touched[b] = true;
         }
         if !allow_isolated {
             if let Some(node) = touched.iter().position(|&t| !t) {
-                return Err(CoreError::IsolatedNode { node });
+                return Err(ModelError::IsolatedNode { node }.into());
             }
         }
 
@@ -729,11 +734,12 @@ impl StructureBuilder {
             positive(&item, "stiffness", s.stiffness)?;
             positive(&item, "rest_length", s.rest_length)?;
             if !(s.damping.is_finite() && s.damping >= 0.0) {
-                return Err(CoreError::NegativeConstant {
+                return Err(ModelError::NegativeConstant {
                     item,
                     name: "damping",
                     value: s.damping,
-                });
+                }
+                .into());
             }
             if let Some(name) = &s.material {
                 materials.lookup(name, &item)?;
@@ -743,31 +749,34 @@ impl StructureBuilder {
         let mut supported: Vec<Option<usize>> = vec![None; n];
         for (i, s) in supports.iter().enumerate() {
             if s.node >= n {
-                return Err(CoreError::NodeIndexOutOfRange {
+                return Err(ModelError::NodeIndexOutOfRange {
                     item: format!("support {i}"),
                     node: s.node,
                     n_nodes: n,
-                });
+                }
+                .into());
             }
             if let Some(other) = supported[s.node] {
-                return Err(CoreError::DuplicateSupport {
+                return Err(ModelError::DuplicateSupport {
                     support: i,
                     other,
                     node: s.node,
-                });
+                }
+                .into());
             }
             if !s.fixed.iter().any(|&f| f) {
-                return Err(CoreError::EmptySupport { support: i });
+                return Err(ModelError::EmptySupport { support: i }.into());
             }
             supported[s.node] = Some(i);
         }
         for (i, l) in loads.iter().enumerate() {
             if l.node >= n {
-                return Err(CoreError::NodeIndexOutOfRange {
+                return Err(ModelError::NodeIndexOutOfRange {
                     item: format!("load {i}"),
                     node: l.node,
                     n_nodes: n,
-                });
+                }
+                .into());
             }
             check_finite(&format!("load {i}"), &l.force)?;
         }
@@ -791,11 +800,12 @@ impl StructureBuilder {
 fn check_finite(item: &str, v: &Vector3<f64>) -> Result<()> {
     for (axis, value) in ['x', 'y', 'z'].into_iter().zip(v.iter()) {
         if !value.is_finite() {
-            return Err(CoreError::NonFinite {
+            return Err(ModelError::NonFinite {
                 item: item.to_string(),
                 axis,
                 value: *value,
-            });
+            }
+            .into());
         }
     }
     Ok(())
@@ -803,11 +813,12 @@ fn check_finite(item: &str, v: &Vector3<f64>) -> Result<()> {
 
 fn positive(item: &str, name: &'static str, value: Option<f64>) -> Result<()> {
     match value {
-        Some(v) if !(v.is_finite() && v > 0.0) => Err(CoreError::NonPositiveConstant {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(ModelError::NonPositiveConstant {
             item: item.to_string(),
             name,
             value: v,
-        }),
+        }
+        .into()),
         _ => Ok(()),
     }
 }

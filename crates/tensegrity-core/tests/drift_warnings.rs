@@ -36,7 +36,11 @@ fn a_coarse_rk4_pendulum_warns_with_the_remedy_and_a_fine_one_does_not() {
         "{q:?}"
     );
     let text = coarse.warnings[0].to_string();
-    assert!(text.contains("rattle") && text.contains("--dt"), "{text}");
+    // the library names its own parameters (the CLI writes them as flags)
+    assert!(
+        text.contains("`integrator = rattle`") && text.contains("`dt`") && !text.contains("--"),
+        "{text}"
+    );
     let fine = run(&s, IntegratorKind::Rk4, 1e-3, 2.0);
     assert!(fine.warnings.is_empty(), "{:?}", fine.warnings);
 }

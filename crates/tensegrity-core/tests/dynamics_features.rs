@@ -3,7 +3,9 @@
 
 use tensegrity_core::dynamics::{Model, Quantities, Simulation, SimulationSettings};
 use tensegrity_core::test_models::double_pendulum;
-use tensegrity_core::{Bar, CoreError, MemberId, StringMember, Structure, Support};
+use tensegrity_core::{
+    Bar, CoreError, DynamicsError, MemberId, ModelError, StringMember, Structure, Support,
+};
 
 #[test]
 fn recorder_samples_only_requested_times_and_quantities() {
@@ -84,11 +86,11 @@ fn errors_name_the_member_and_time() {
     let e = Model::new(&s, None).unwrap_err();
     assert_eq!(
         e,
-        CoreError::MissingProperty {
+        CoreError::Model(ModelError::MissingProperty {
             member: MemberId::Bar(0),
             analysis: "dynamics",
             property: "mass"
-        }
+        })
     );
     assert_eq!(
         e.to_string(),
@@ -122,11 +124,11 @@ fn errors_name_the_member_and_time() {
         .unwrap();
     assert!(matches!(
         Model::new(&s, None).unwrap_err(),
-        CoreError::MissingProperty {
+        CoreError::Model(ModelError::MissingProperty {
             member: MemberId::String(0),
             analysis: "dynamics",
             property: "stiffness"
-        }
+        })
     ));
     // massless free node
     let s = Structure::builder()
@@ -137,7 +139,7 @@ fn errors_name_the_member_and_time() {
         .unwrap();
     assert_eq!(
         Model::new(&s, None).unwrap_err(),
-        CoreError::FreeNodeWithoutBar { node: 2 }
+        CoreError::Dynamics(DynamicsError::FreeNodeWithoutBar { node: 2 })
     );
     // a bar pinned at both ends: redundant constraints
     let s = Structure::builder()
@@ -150,7 +152,7 @@ fn errors_name_the_member_and_time() {
     let sim = Simulation::new(&s, SimulationSettings::default()).unwrap();
     assert!(matches!(
         sim.run().unwrap_err(),
-        CoreError::SingularConstraint { expected: 6, .. }
+        CoreError::Dynamics(DynamicsError::SingularConstraint { expected: 6, .. })
     ));
     // blow-up: a pendulum with a tiny blow-up distance stops with the time and the bar
     let s = double_pendulum(1.0).unwrap();
@@ -161,7 +163,7 @@ fn errors_name_the_member_and_time() {
     };
     let e = Simulation::new(&s, set).unwrap().run().unwrap_err();
     match e {
-        ref e @ CoreError::BlowUp { t, distance, .. } => {
+        ref e @ CoreError::Dynamics(DynamicsError::BlowUp { t, distance, .. }) => {
             assert!(t > 0.0 && t < 1.0);
             assert!(distance > 0.05);
             let msg = e.to_string();
@@ -203,7 +205,7 @@ fn nan_in_the_state_is_reported_with_time_and_member() {
         }
     }));
     match sim.run().unwrap_err() {
-        CoreError::NonFiniteState { t, member } => {
+        CoreError::Dynamics(DynamicsError::NonFiniteState { t, member }) => {
             assert!((0.25..0.252).contains(&t), "t = {t}");
             assert_eq!(member, MemberId::Bar(1));
         }

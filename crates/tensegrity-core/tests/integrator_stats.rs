@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use tensegrity_core::dynamics::{IntegratorKind, Simulation, SimulationSettings};
 use tensegrity_core::test_models;
-use tensegrity_core::Structure;
+use tensegrity_core::{DynamicsError, Structure};
 
 /// The integrators of the original snapshots (their files must not change).
 const EXPLICIT: [IntegratorKind; 3] = [
@@ -197,7 +197,7 @@ fn step_budget_is_reported_as_max_steps_exceeded() {
     };
     let e = Simulation::new(&s, adaptive).unwrap().run().unwrap_err();
     match e {
-        tensegrity_core::CoreError::MaxStepsExceeded { t, max_steps } => {
+        tensegrity_core::CoreError::Dynamics(DynamicsError::MaxStepsExceeded { t, max_steps }) => {
             assert_eq!(max_steps, 10);
             assert!(t > 0.0 && t < 1.0, "t = {t}");
         }

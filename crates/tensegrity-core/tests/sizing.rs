@@ -6,7 +6,9 @@ use approx::assert_relative_eq;
 use common::*;
 use nalgebra::DVector;
 use tensegrity_core::sizing::{self, Governing};
-use tensegrity_core::{Bar, CoreError, MemberId, Statics, StringMember, Structure, Support};
+use tensegrity_core::{
+    Bar, CoreError, MemberId, Statics, StaticsError, StringMember, Structure, Support,
+};
 
 #[test]
 fn one_aluminium_bar_two_metres_ten_kilonewtons() {
@@ -87,10 +89,10 @@ fn strings_in_compression_and_missing_materials_are_reported() {
     let err = sizing::size_structure(&s, &DVector::from_row_slice(&[-1.0, -2.0, 0.0])).unwrap_err();
     assert!(matches!(
         err,
-        CoreError::StringInCompression {
+        CoreError::Statics(StaticsError::StringInCompression {
             member: MemberId::String(0),
             ..
-        }
+        })
     ));
     assert!(err.to_string().contains("string 0"));
     let err = sizing::size_structure(&s, &DVector::from_row_slice(&[-1.0, 2.0, 3.0])).unwrap_err();

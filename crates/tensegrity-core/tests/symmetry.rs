@@ -8,7 +8,7 @@ use std::collections::HashSet;
 use std::f64::consts::PI;
 use tensegrity_core::statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
 use tensegrity_core::test_models::{snelson, snelson_twist};
-use tensegrity_core::{Bar, CoreError, Statics, StringMember, Structure, Support};
+use tensegrity_core::{Bar, CoreError, Statics, StaticsError, StringMember, Structure, Support};
 
 /// Symmetric and dense: rank, self-stress, mechanisms, rigid-body and internal mechanisms,
 /// the margin to 1e-9; per-representation counts add up. Returns the symmetric margin.
@@ -249,7 +249,7 @@ fn random_cyclic_structures_match_the_dense_path() {
 
 fn symmetry_error(e: CoreError) -> SymmetryError {
     match e {
-        CoreError::Symmetry(s) => *s,
+        CoreError::Statics(StaticsError::Symmetry(s)) => *s,
         other => panic!("expected a symmetry error, got {other}"),
     }
 }

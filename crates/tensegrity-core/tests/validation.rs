@@ -1,6 +1,8 @@
 //! Every validation error of the structure builder, triggered once, names its culprit.
 
-use tensegrity_core::{Bar, CoreError, Material, MemberId, StringMember, Structure, Support};
+use tensegrity_core::{
+    Bar, CoreError, Material, MemberId, ModelError, StringMember, Structure, Support,
+};
 
 fn base() -> tensegrity_core::StructureBuilder {
     Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
@@ -17,11 +19,11 @@ fn node_index_out_of_range() {
     let (e, m) = message(base().bar(Bar::new(0, 1)).string(StringMember::new(1, 5)));
     assert!(matches!(
         e,
-        CoreError::NodeIndexOutOfRange {
+        CoreError::Model(ModelError::NodeIndexOutOfRange {
             node: 5,
             n_nodes: 3,
             ..
-        }
+        })
     ));
     assert!(m.contains("string 0") && m.contains('5'), "{m}");
 }
@@ -31,10 +33,10 @@ fn member_joining_a_node_to_itself() {
     let (e, m) = message(base().bar(Bar::new(0, 1)).bar(Bar::new(2, 2)));
     assert_eq!(
         e,
-        CoreError::SelfLoop {
+        CoreError::Model(ModelError::SelfLoop {
             member: MemberId::Bar(1),
             node: 2
-        }
+        })
     );
     assert!(m.contains("bar 1"), "{m}");
 }
@@ -49,12 +51,12 @@ fn duplicate_member_in_either_direction_and_across_kinds() {
     );
     assert!(matches!(
         e,
-        CoreError::DuplicateMember {
+        CoreError::Model(ModelError::DuplicateMember {
             member: MemberId::String(0),
             other: MemberId::Bar(0),
             a: 0,
             b: 1
-        }
+        })
     ));
     assert!(m.contains("string 0") && m.contains("bar 0"), "{m}");
 }
@@ -69,10 +71,10 @@ fn zero_length_member() {
     );
     assert!(matches!(
         e,
-        CoreError::ZeroLengthMember {
+        CoreError::Model(ModelError::ZeroLengthMember {
             member: MemberId::String(0),
             ..
-        }
+        })
     ));
     assert!(m.contains("string 0") && m.contains("zero length"), "{m}");
 }
@@ -84,7 +86,10 @@ fn non_finite_coordinate() {
             .nodes([[0.0, 0.0, 0.0], [1.0, f64::NAN, 0.0]])
             .bar(Bar::new(0, 1)),
     );
-    assert!(matches!(e, CoreError::NonFinite { axis: 'y', .. }));
+    assert!(matches!(
+        e,
+        CoreError::Model(ModelError::NonFinite { axis: 'y', .. })
+    ));
     assert!(m.contains("node 1"), "{m}");
     let (_, m) = message(
         base()
@@ -100,7 +105,7 @@ fn non_positive_physical_constants() {
     let (e, m) = message(base().bar(Bar::new(0, 1).mass(-1.0)).bar(Bar::new(1, 2)));
     assert!(matches!(
         e,
-        CoreError::NonPositiveConstant { name: "mass", .. }
+        CoreError::Model(ModelError::NonPositiveConstant { name: "mass", .. })
     ));
     assert!(m.contains("bar 0") && m.contains("mass"), "{m}");
     let (_, m) = message(
@@ -139,7 +144,10 @@ fn unknown_material() {
             .bar(Bar::new(0, 1))
             .string(StringMember::new(1, 2).material("kevlar")),
     );
-    assert!(matches!(e, CoreError::UnknownMaterial { .. }));
+    assert!(matches!(
+        e,
+        CoreError::Model(ModelError::UnknownMaterial { .. })
+    ));
     assert!(
         m.contains("string 0") && m.contains("kevlar") && m.contains("steel"),
         "{m}"
@@ -149,7 +157,7 @@ fn unknown_material() {
 #[test]
 fn isolated_node() {
     let (e, m) = message(base().bar(Bar::new(0, 1)));
-    assert_eq!(e, CoreError::IsolatedNode { node: 2 });
+    assert_eq!(e, CoreError::Model(ModelError::IsolatedNode { node: 2 }));
     assert!(m.contains("node 2"), "{m}");
 }
 
@@ -183,5 +191,5 @@ fn velocities_must_match_nodes_and_structures_need_members() {
         "{m}"
     );
     let (e, _) = message(base());
-    assert_eq!(e, CoreError::NoMembers);
+    assert_eq!(e, CoreError::Model(ModelError::NoMembers));
 }

@@ -150,7 +150,10 @@ mod tests {
             .estimate(values(json!({"t_end": 1e9})))
             .unwrap()
             .unwrap();
-        assert!(e.parameter.starts_with("t_end = 1000000000, "), "{e:?}");
+        assert!(
+            e.parameters.to_string().starts_with("t_end = 1000000000, "),
+            "{e:?}"
+        );
         assert!(Limits::default().check(&e).is_err());
         // the series of Figs. 3.10–3.11: one wheel per side count, at most the sum of the runs
         let r = RollRequest::default();
@@ -170,7 +173,10 @@ mod tests {
         let sim = command("simulate").unwrap();
         let v = json!({"scene": "../../examples/double_pendulum.toml", "t_end": 1e4, "integrator": "rk4", "dt": 1e-4});
         let e = sim.estimate(values(v)).unwrap().unwrap();
-        assert!(e.parameter.starts_with("t_end = 10000 s, dt = 0.0001 s"));
+        assert!(e
+            .parameters
+            .to_string()
+            .starts_with("t_end = 10000 s, dt = 0.0001 s"));
         assert_eq!(
             Limits::default().check(&e).unwrap_err().resource,
             Resource::Work

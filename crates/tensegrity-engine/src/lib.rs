@@ -52,3 +52,8 @@ pub use scene::{SceneError, SceneSource};
 
 #[cfg(test)]
 mod tests;
+
+/// The README's example, run as a doc-test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

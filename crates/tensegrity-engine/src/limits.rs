@@ -3,8 +3,7 @@
 //! memory limit is min(8 GiB, 3/4 of the memory the process may use), the work and output
 //! limits [`budget::DEFAULT_MAX_WORK_S`] and [`budget::DEFAULT_MAX_OUTPUT_BYTES`]), sizes as
 //! people write them ([`parse_size`]: `500M`, `16Gi`), a size that admits a refused estimate
-//! ([`suggest_size`]) and the named values an estimate's parameter holds ([`parameters`]),
-//! which a front end spells its own way.
+//! ([`suggest_size`]).
 
 use tensegrity_core::budget::{self, Limits};
 
@@ -79,21 +78,6 @@ pub fn suggest_size(bytes: f64) -> String {
     }
 }
 
-/// The named values of an estimate's parameter (`t_end = 1e9, dt = 0.001 s` → `t_end`
-/// `1e9`, `dt` `0.001`): the parts that are `name = value` with a parameter name, the value
-/// without its unit.
-pub fn parameters(parameter: &str) -> Vec<(&str, &str)> {
-    parameter
-        .split(", ")
-        .filter_map(|part| {
-            let (name, value) = part.split_once(" = ")?;
-            let simple = name.chars().all(|c| c.is_ascii_lowercase() || c == '_');
-            let value = value.split_whitespace().next()?;
-            simple.then_some((name, value))
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,19 +100,6 @@ mod tests {
         assert_eq!(suggest_size(6.208e13), "63Ti");
         assert_eq!(suggest_size(1.5e9), "2Gi");
         assert!(parse_size(&suggest_size(3.3e10)).unwrap() > 3.3e10);
-    }
-
-    #[test]
-    fn an_estimates_parameter_names_its_values() {
-        let p = "t_end = 1000000000, dt = 0.0001, sides = 8";
-        let want = [("t_end", "1000000000"), ("dt", "0.0001"), ("sides", "8")];
-        assert_eq!(parameters(p), want);
-        assert_eq!(
-            parameters("t_end = 5 s, output interval 1e-9 s"),
-            [("t_end", "5")]
-        );
-        assert_eq!(parameters("map_grid = 100x200"), [("map_grid", "100x200")]);
-        assert!(parameters("10 sweep cases").is_empty());
     }
 
     #[test]

@@ -54,6 +54,16 @@ pub enum RunError {
     Failed(String),
 }
 
+impl tensegrity_core::request::Categorized for RunError {
+    /// A refused value is bad input; a failed library call a failed computation.
+    fn category(&self) -> tensegrity_core::request::Category {
+        match self {
+            Self::InvalidParameter(_) => tensegrity_core::request::Category::Input,
+            Self::Failed(_) => tensegrity_core::request::Category::Numerical,
+        }
+    }
+}
+
 type RunFn = Box<dyn Fn(Map<String, Value>, &Context) -> Result<Value, RunError> + Send + Sync>;
 type EstimateFn =
     Box<dyn Fn(Map<String, Value>) -> Result<Option<Estimate>, RunError> + Send + Sync>;

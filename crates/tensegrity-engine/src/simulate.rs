@@ -302,7 +302,10 @@ mod tests {
         assert!(per_sample >= 1.0 + 3.0 * nodes && per_sample.fract() == 0.0);
         let vtk = estimate(&sim, false, true).unwrap();
         assert_eq!(vtk.output_bytes / csv.output_bytes, 40.0 / 25.0);
-        assert!(csv.parameter.starts_with("t_end = 1 s, dt = 0.001 s"));
+        assert!(csv
+            .parameters
+            .to_string()
+            .starts_with("t_end = 1 s, dt = 0.001 s"));
         // 1000 RK4 steps: work grows with t_end
         let long = SimulateCommand {
             t_end: Some(1e5),

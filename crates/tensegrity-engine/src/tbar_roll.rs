@@ -271,7 +271,7 @@ mod tests {
             t.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
         };
         assert!((e.work_s - one(6) - one(8)).abs() < 1e-9 * e.work_s);
-        assert!(!e.parameter.contains("--"), "{}", e.parameter);
+        assert!(!e.parameters.to_string().contains("--"), "{}", e.parameters);
         assert!(estimate(&TbarRollRequest::default()).unwrap().is_none());
     }
 }

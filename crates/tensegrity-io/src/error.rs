@@ -160,16 +160,13 @@ fn line_suffix(line: Option<usize>) -> String {
 }
 
 impl tensegrity_core::request::Categorized for IoError {
-    /// Every io error is about the input (a file, a path, a format) except an error of the
-    /// core model that is not an invalid parameter, and a write cut short by an interrupt.
+    /// Every io error is about the input (a file, a path, a format) except a write cut short
+    /// by an interrupt; an error of the core keeps its own category.
     fn category(&self) -> tensegrity_core::request::Category {
         use tensegrity_core::request::Category;
         match self {
-            IoError::Core(CoreError::InvalidParameter { .. }) => Category::Input,
-            IoError::Core(CoreError::Interrupted { .. }) | IoError::Closed { .. } => {
-                Category::Interrupted
-            }
-            IoError::Core(_) => Category::Numerical,
+            IoError::Closed { .. } => Category::Interrupted,
+            IoError::Core(e) => tensegrity_core::request::Categorized::category(e),
             _ => Category::Input,
         }
     }

@@ -41,7 +41,7 @@ pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
 /// assert!(budget::statics(&r).work_s < 1.0);
 /// r.wheel.params.sides = 100_000;
 /// let e = budget::statics(&r);
-/// assert!(e.memory_bytes < 8e9 && e.parameter == "sides = 100000");
+/// assert!(e.memory_bytes < 8e9 && e.parameters.to_string() == "sides = 100000");
 /// r.wheel.params.sides = 100_000_000;
 /// assert!(budget::statics(&r).memory_bytes > 1e11);
 /// ```
@@ -129,7 +129,7 @@ pub fn roll(request: &RollRequest) -> Estimate {
     let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
     let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
     Estimate {
-        parameter: size.parameter,
+        parameters: size.parameter.into(),
         ..statics.then(run)
     }
 }
@@ -182,7 +182,7 @@ mod tests {
             ..RollRequest::default()
         };
         assert_eq!(
-            roll(&r).parameter,
+            roll(&r).parameters.to_string(),
             "t_end = 1000000000, dt = 0.0001, sides = 8"
         );
         let e = roll(&r);

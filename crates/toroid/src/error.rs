@@ -1,6 +1,7 @@
 //! Errors of the toroid crate: one enum, structured fields, the core's and the rolling
 //! models' errors wrapped with `#[from]`.
 
+use tensegrity_core::request::{Categorized, Category};
 use tensegrity_core::CoreError;
 use thiserror::Error;
 use wheel_rolling::RollingError;
@@ -44,6 +45,19 @@ impl From<RollingError> for ToroidError {
             RollingError::InvalidParameter(p) => Self::InvalidParameter(p),
             RollingError::Core(c) => Self::Core(c),
             other => Self::Rolling(other),
+        }
+    }
+}
+
+impl Categorized for ToroidError {
+    /// A parameter or option the toroid does not take is bad input, a toroid without
+    /// prestress a failed computation; a wrapped error keeps its own category.
+    fn category(&self) -> Category {
+        match self {
+            Self::InvalidParameter(_) | Self::UnknownStabilizeOption { .. } => Category::Input,
+            Self::NotPrestressable { .. } => Category::Numerical,
+            Self::Rolling(e) => e.category(),
+            Self::Core(e) => e.category(),
         }
     }
 }

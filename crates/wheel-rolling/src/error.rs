@@ -47,11 +47,7 @@ impl Categorized for RollingError {
             Self::InvalidParameter(_) | Self::NoFullModel { .. } | Self::NoSamples { .. } => {
                 Category::Input
             }
-            Self::Core(CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. }) => {
-                Category::Input
-            }
-            Self::Core(CoreError::Interrupted { .. }) => Category::Interrupted,
-            Self::Core(_) => Category::Numerical,
+            Self::Core(e) => e.category(),
         }
     }
 }

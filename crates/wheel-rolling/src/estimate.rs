@@ -157,7 +157,7 @@ pub fn parallel(runs: &[Estimate], workers: usize, what: impl Into<String>) -> O
     let longest = runs.iter().map(|e| e.work_s).fold(0.0, f64::max);
     Some(Estimate {
         what: what.into(),
-        parameter: first.parameter.clone(),
+        parameters: first.parameters.clone(),
         memory_bytes: runs.iter().map(|e| e.memory_bytes).sum(),
         work_s: (total / workers.max(1) as f64).max(longest),
         output_bytes: runs.iter().map(|e| e.output_bytes).sum(),

@@ -6,6 +6,10 @@
 //! with [`crate::RollValidity::stopped_at`] set to the time of the last sample and a warning
 //! that says it was interrupted (so the run is not valid). Nothing already handed to the
 //! observer is lost, and the returned samples are exactly those the observer received.
+//!
+//! The samples are always kept (the run's summary is computed from them: a few dozen bytes a
+//! millisecond); the node frames, a whole wheel each, are kept only while the observer wants
+//! them ([`Observer::keeps_frames`]).
 
 use crate::full::WheelFrame;
 use crate::sample::RollingSample;
@@ -38,6 +42,13 @@ pub trait Observer {
     /// Asked between samples (after every integration step of the full model): `false` stops
     /// the run at once (e.g. an interrupt flag).
     fn keep_going(&mut self) -> bool {
+        true
+    }
+
+    /// Whether the run also keeps the frames it hands to this observer in its result (the
+    /// default). An observer that streams them elsewhere (a VTK series) answers `false`: the
+    /// run then holds no frame, and its memory does not grow with the number of frames.
+    fn keeps_frames(&self) -> bool {
         true
     }
 }

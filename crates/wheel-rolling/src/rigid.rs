@@ -303,6 +303,7 @@ impl RigidRolling {
         let mut samples = Vec::with_capacity(n_out + 2);
         let mut stopped = false;
         let mut frames = Vec::new();
+        let keep_frames = observer.as_deref().is_none_or(|o| o.keeps_frames());
         for i in 0..=n_out {
             let t_out = i as f64 * self.output_dt;
             if i > 0 && !sim.advance_to(t_out, self.dt) {
@@ -320,7 +321,9 @@ impl RigidRolling {
                 }
                 stopped = flow == Flow::Stop || !obs.keep_going();
             }
-            frames.extend(new_frames);
+            if keep_frames {
+                frames.extend(new_frames);
+            }
             if stopped {
                 break;
             }
@@ -331,7 +334,9 @@ impl RigidRolling {
                 obs.frame(f);
             }
         }
-        frames.extend(last_frames);
+        if keep_frames {
+            frames.extend(last_frames);
+        }
         let run_time = samples.last().map_or(0.0, |s| s.t);
         let mut r = summarise(samples, sim.impacts.len(), self.output_dt);
         r.validity = self.validity(&sim, &budget, run_time);

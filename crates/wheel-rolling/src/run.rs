@@ -133,16 +133,28 @@ pub fn roll_decided<W: Wheel>(
         ),
         Plan::Full => (None, false, None),
         Plan::RigidThenFullIfInvalid => {
-            let probe = timed_rigid(&rigid, spec.t_end, &pose, frame_times, None)?;
+            // the probe's frames are the result's only when nobody observes the run (else the
+            // observed run makes them again)
+            let probe_times = if observer.is_some() {
+                &[][..]
+            } else {
+                frame_times
+            };
+            // the observer sees none of the probe, but may stop it (an interrupt): the probe
+            // so far is then the result
+            let mut watch = reborrow(&mut observer).map(Watch);
+            let watching = watch.as_mut().map(|w| w as &mut dyn Observer);
+            let probe = timed_rigid(&rigid, spec.t_end, &pose, probe_times, watching)?;
+            let stopped = reborrow(&mut observer).is_some_and(|o| !o.keep_going());
             let validity = probe.0.result.validity.clone();
             let valid = validity.valid();
-            let run = match (valid, reborrow(&mut observer)) {
+            let run = match (valid && !stopped, reborrow(&mut observer)) {
                 (true, Some(obs)) => {
                     timed_rigid(&rigid, spec.t_end, &pose, frame_times, Some(obs))?
                 }
                 _ => probe,
             };
-            (Some(run), valid, Some(validity))
+            (Some(run), valid || stopped, Some(validity))
         }
     };
     let reason = decision.reason(probe.as_ref());
@@ -181,6 +193,16 @@ fn reborrow<'a>(observer: &'a mut Option<&mut dyn Observer>) -> Option<&'a mut d
     match observer {
         Some(o) => Some(&mut **o),
         None => None,
+    }
+}
+
+/// Forwards only [`Observer::keep_going`]: the probe of `auto` stops when the observer says
+/// so, and shows it nothing.
+struct Watch<'a>(&'a mut dyn Observer);
+
+impl Observer for Watch<'_> {
+    fn keep_going(&mut self) -> bool {
+        self.0.keep_going()
     }
 }
 

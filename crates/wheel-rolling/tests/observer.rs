@@ -123,3 +123,74 @@ fn auto_on_a_stiff_wheel_shows_the_observer_one_model() {
     let e = roll_wheel(&octagon(), &spec, &[], None).unwrap_err();
     assert!(e.to_string().contains("no full model"), "{e}");
 }
+
+/// Streams the frames elsewhere: the run keeps none of them.
+struct Streams {
+    frames: Vec<WheelFrame>,
+}
+
+impl Observer for Streams {
+    fn frame(&mut self, f: &WheelFrame) -> Flow {
+        self.frames.push(f.clone());
+        Flow::Continue
+    }
+
+    fn keeps_frames(&self) -> bool {
+        false
+    }
+}
+
+#[test]
+fn an_observer_that_streams_the_frames_gets_them_all_and_the_run_keeps_none() {
+    let pose = [nalgebra::Vector3::new(0.0, 0.0, -1.0)];
+    let times: Vec<f64> = (0..=20).map(|k| 0.05 * k as f64).collect();
+    let model = RigidRolling::new(&octagon(), &rigid_spec(1.0));
+    let kept = model.run_observed(1.0, &pose, &times, None).unwrap();
+    let mut obs = Streams { frames: Vec::new() };
+    let streamed = model
+        .run_observed(1.0, &pose, &times, Some(&mut obs))
+        .unwrap();
+    assert_eq!(kept.frames.len(), 21);
+    // the same frames, bit for bit, handed over instead of kept; the same samples
+    assert_eq!(obs.frames, kept.frames);
+    assert!(streamed.frames.is_empty());
+    assert_eq!(streamed.result, kept.result);
+}
+
+/// Lets the run go on for `polls` checks (an interrupt arriving then), sees nothing else.
+struct InterruptAfter {
+    polls: usize,
+    samples: usize,
+}
+
+impl Observer for InterruptAfter {
+    fn sample(&mut self, _: &RollingSample) -> Flow {
+        self.samples += 1;
+        Flow::Continue
+    }
+
+    fn keep_going(&mut self) -> bool {
+        self.polls = self.polls.saturating_sub(1);
+        self.polls > 0
+    }
+}
+
+#[test]
+fn an_interrupt_during_the_probe_of_auto_ends_the_run_with_the_probe_so_far() {
+    // the probe is unobserved, but an interrupt stops it: its 100 samples are the (rigid,
+    // stopped) result, and no second run follows (a bare polygon has no full model to try)
+    let mut spec = rigid_spec(5.0);
+    spec.fidelity = FidelityChoice::Auto;
+    spec.settings.string_stiffness = 2e6;
+    let mut obs = InterruptAfter {
+        polls: 100,
+        samples: 0,
+    };
+    let r = roll_wheel(&octagon(), &spec, &[], Some(&mut obs)).unwrap();
+    assert_eq!(r.fidelity, Fidelity::Rigid);
+    assert_eq!(obs.samples, 0, "the observer saw nothing of the probe");
+    let samples = &r.result.samples;
+    assert_eq!(samples.len(), 100);
+    assert_eq!(r.result.validity.stopped_at, Some(samples[99].t));
+    assert!(!r.result.validity.valid());
+}

@@ -6,7 +6,6 @@ use crate::cli::output;
 use anyhow::Result;
 use michell3d::signmap::AngleGrid;
 use michell3d::{AnalysisRequest, MichellTableRequest, MichellTruss};
-use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::sink::{FigureSink, FileSink};
 
 /// `--sign-map` and `--gamma-sweep`, opened before the analysis.
@@ -117,35 +116,9 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
         }
     }
     if let Some(sink) = svg {
-        sink.finish(&Figure::new(vec![mass_panel(&request, &rows)]))?;
+        sink.finish(&tensegrity_figures::michell::mass_table_figure(
+            &request, &rows,
+        ))?;
     }
     Ok(())
-}
-
-/// Fig. 4.18: yield + buckling mass against complexity, planar and one line per δ.
-fn mass_panel(args: &MichellTableRequest, rows: &[michell3d::MassRow]) -> Panel {
-    let series = |delta: f64, label: String| {
-        let points = rows
-            .iter()
-            .filter(|r| r.delta == delta)
-            .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
-            .collect();
-        Series::new(label, points)
-    };
-    let mut all = vec![series(0.0, "planar".into())];
-    all.extend(
-        michell3d::complexity::FIG_4_18_DELTAS
-            .iter()
-            .map(|&d| series(d, format!("δ = {d}"))),
-    );
-    let mut panel = Panel::new(
-        format!(
-            "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
-            args.material, args.load
-        ),
-        "complexity q",
-        "mass [kg]",
-    );
-    panel.series = all;
-    panel
 }

@@ -4,9 +4,7 @@
 use super::TbarArgs;
 use crate::cli::output;
 use anyhow::Result;
-use tbar_wheel::drawing::{polylines, View};
 use tbar_wheel::{TbarGeometry, TbarRequest};
-use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::sink::{FigureSink, FileSink};
 
 /// The sinks of `--export-scene`, `--vtk` and `--svg`.
@@ -44,23 +42,8 @@ impl Outputs {
             sink.finish_with(tensegrity_io::vtk::vtu(&s, s.nodes()))?;
         }
         if let Some(sink) = self.svg {
-            sink.finish(&drawing(&g))?;
+            sink.finish(&tensegrity_figures::tbar::side_and_top(&g))?;
         }
         Ok(())
     }
-}
-
-/// The side and top views through the io figure module.
-fn drawing(g: &TbarGeometry) -> Figure {
-    let panel = |view: View, title: &str, y: &str| {
-        polylines(g, view)
-            .into_iter()
-            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
-                p.series(Series::new(l.label, l.points))
-            })
-    };
-    Figure::new(vec![
-        panel(View::Side, "T-bar, side view", "ι3 [m]"),
-        panel(View::Top, "T-bar, top view", "ι1 [m]"),
-    ])
 }

@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use std::borrow::Cow;
 use tensegrity_core::statics::symmetry::{elastic_response, CyclicSymmetry, MemberRotations};
 use tensegrity_core::statics::{equilibrium_matrix, DofMap, StaticsBackend};
-use tensegrity_core::{CoreError, Structure};
+use tensegrity_core::{CoreError, NumericsError, Structure};
 
 /// The linear response of every member force to a unit tip load, for every loaded tip.
 #[derive(Debug, Clone)]
@@ -78,7 +78,9 @@ impl LoadResponse {
             None => dense_response(s, tips, ea),
         };
         match built {
-            Err(TbarError::Core(CoreError::Factorization { .. })) => Err(mechanism()?),
+            Err(TbarError::Core(CoreError::Numerics(NumericsError::Factorization { .. }))) => {
+                Err(mechanism()?)
+            }
             other => other,
         }
     }
@@ -142,13 +144,15 @@ fn dense_response(s: &Structure, tips: &[usize], ea: f64) -> Result<LoadResponse
         col *= k_diag[k];
     }
     let stiffness = &weighted * a_hat.transpose();
-    let chol = stiffness.cholesky().ok_or(CoreError::Factorization {
-        operation: "Cholesky of the T-bar stiffness",
-        reason: tensegrity_core::error::FactorizationFailure::NonPositivePivot {
-            pivot: 0,
-            dim: dofs.len(),
-        },
-    })?;
+    let chol = stiffness
+        .cholesky()
+        .ok_or(CoreError::from(NumericsError::Factorization {
+            operation: "Cholesky of the T-bar stiffness",
+            reason: tensegrity_core::error::FactorizationFailure::NonPositivePivot {
+                pivot: 0,
+                dim: dofs.len(),
+            },
+        }))?;
     let mut g = Vec::with_capacity(tips.len());
     for &tip in tips {
         let mut e = DMatrix::zeros(dofs.len(), 3);

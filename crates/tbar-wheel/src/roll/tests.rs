@@ -48,20 +48,36 @@ fn what_the_command_line_refuses_is_refused_by_name() {
     assert_eq!(refused(&[("incline", json!("90deg"))]), "incline");
     assert_eq!(refused(&[("treads", json!("8,1"))]), "treads");
     assert_eq!(refused(&[("r0", json!(0))]), "r0");
-    assert_eq!(refused(&[("spherical", json!("pi/8"))]), "spherical");
+    let both = [("spherical", json!("pi/8")), ("cylindrical", json!(0.25))];
+    assert_eq!(refused(&both), "spherical");
     let nan = TbarRollRequest {
         r0: f64::NAN,
         ..TbarRollRequest::default()
     };
     assert_eq!(nan.validate().unwrap_err().name, "r0");
+    // the spherical parameterisation alone (the cylindrical default applies to neither given)
     let ok = TbarRollRequest::from_values([
         ("spherical".to_string(), json!("pi/8")),
-        ("cylindrical".to_string(), serde_json::Value::Null),
         ("treads".to_string(), json!("6,12")),
     ])
     .unwrap();
     assert_eq!(ok.treads(), [6, 12]);
     assert!((ok.spherical.unwrap() - PI / 8.0).abs() < 1e-15);
+    let spherical = ok.tbar_params(8, RimMode::Fixed).michell.geometry;
+    assert_eq!(
+        spherical,
+        michell3d::Geometry::Spherical {
+            epsilon: ok.spherical.unwrap()
+        }
+    );
+    // neither given: the documented δ = 0.25
+    let neither = TbarRollRequest::default().tbar_params(8, RimMode::Fixed);
+    assert_eq!(
+        neither.michell.geometry,
+        michell3d::Geometry::Cylindrical {
+            delta: DEFAULT_CYLINDRICAL
+        }
+    );
 }
 
 #[test]

@@ -72,14 +72,14 @@ impl fmt::Display for DriftWarning {
             DriftQuantity::Constraint => "joint and support constraints (N P = D) drifted",
         };
         let remedy = match (self.quantity, self.integrator) {
-            (_, IntegratorKind::Rattle) => "use a smaller --dt",
+            (_, IntegratorKind::Rattle) => "use a smaller `dt`",
             (DriftQuantity::Energy, IntegratorKind::Rk45 | IntegratorKind::Sdirk) => {
-                "tighten --rtol/--atol, or use --integrator rattle (symplectic)"
+                "tighten `rtol` and `atol`, or use `integrator = rattle` (symplectic)"
             }
             (DriftQuantity::Energy, _) => {
-                "use a smaller --dt, --integrator rk45, or --integrator rattle (symplectic, no secular drift)"
+                "use a smaller `dt`, `integrator = rk45`, or `integrator = rattle` (symplectic, no secular drift)"
             }
-            _ => "use a smaller --dt, --integrator rattle (keeps lengths and joints exactly), or projection ([simulation] project = true)",
+            _ => "use a smaller `dt`, `integrator = rattle` (keeps lengths and joints exactly), or projection ([simulation] project = true)",
         };
         write!(
             f,

@@ -27,7 +27,7 @@
 use super::forces::{Ground, GroundModel};
 use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
-use crate::error::CoreError;
+use crate::error::{CoreError, DynamicsError, ModelError};
 use crate::structure::{MemberId, Structure};
 use nalgebra::Vector3;
 
@@ -175,7 +175,7 @@ impl Model {
         let n_nodes = structure.n_nodes();
         let nb = structure.n_bars();
         if nb == 0 {
-            return Err(CoreError::NoBars);
+            return Err(DynamicsError::NoBars.into());
         }
         let n1 = 2 * nb;
         let nodes = structure.nodes();
@@ -195,7 +195,7 @@ impl Model {
                 .mass
                 .or(derived)
                 .filter(|m| m.is_finite() && *m > 0.0)
-                .ok_or(CoreError::MissingProperty {
+                .ok_or(ModelError::MissingProperty {
                     member: MemberId::Bar(k),
                     analysis: "dynamics",
                     property: "mass",
@@ -223,7 +223,7 @@ impl Model {
                 // Nodes that no member touches at all are harmless: ignore them as anchors.
                 let touched = structure.strings().iter().any(|s| s.nodes.contains(&i));
                 if touched {
-                    return Err(CoreError::FreeNodeWithoutBar { node: i });
+                    return Err(DynamicsError::FreeNodeWithoutBar { node: i }.into());
                 }
                 node_map.push(NodeRef::Anchor(nodes[i]));
                 continue;
@@ -267,7 +267,7 @@ impl Model {
         }
         let mut strings = Vec::with_capacity(structure.n_strings());
         for (k, s) in structure.strings().iter().enumerate() {
-            let stiffness = s.stiffness.ok_or(CoreError::MissingProperty {
+            let stiffness = s.stiffness.ok_or(ModelError::MissingProperty {
                 member: MemberId::String(k),
                 analysis: "dynamics",
                 property: "stiffness",
@@ -348,22 +348,24 @@ impl Model {
         let mut contact = Vec::new();
         for (k, &i) in candidates.iter().enumerate() {
             if i >= self.n_nodes {
-                return Err(CoreError::GroundNodeOutOfRange {
+                return Err(DynamicsError::GroundNodeOutOfRange {
                     index: k,
                     node: i,
                     n_nodes: self.n_nodes,
-                });
+                }
+                .into());
             }
             if let NodeRef::Free(c) = self.node_map[i] {
                 contact.push((i, c));
             }
         }
         if !(ground.normal.iter().all(|v| v.is_finite()) && ground.normal.norm() > 0.0) {
-            return Err(CoreError::InvalidGroundNormal {
+            return Err(DynamicsError::InvalidGroundNormal {
                 x: ground.normal.x,
                 y: ground.normal.y,
                 z: ground.normal.z,
-            });
+            }
+            .into());
         }
         self.contact = contact;
         self.ground = Some(ground);
@@ -421,11 +423,12 @@ impl Model {
             for (i, f) in fixed.iter().enumerate() {
                 for d in 0..3 {
                     if f[d] && vel[i][d] != 0.0 {
-                        return Err(CoreError::InconsistentVelocity {
+                        return Err(DynamicsError::InconsistentVelocity {
                             item: format!("node {i}"),
                             reason: "velocity along a fixed direction",
                             residual: vel[i][d].abs(),
-                        });
+                        }
+                        .into());
                     }
                 }
             }
@@ -434,11 +437,12 @@ impl Model {
                 let bv = structure.nodes()[b] - structure.nodes()[a];
                 let rate = bv.dot(&(vel[b] - vel[a])) / bv.norm();
                 if rate.abs() > 1e-9 * vmax.max(1.0) {
-                    return Err(CoreError::InconsistentVelocity {
+                    return Err(DynamicsError::InconsistentVelocity {
                         item: MemberId::Bar(k).to_string(),
                         reason: "the bar would change length (bᵀḃ ≠ 0)",
                         residual: rate.abs(),
-                    });
+                    }
+                    .into());
                 }
             }
         }
@@ -559,10 +563,11 @@ impl Model {
         dx.copy_from_slice(v);
         self.applied_forces(t, x, v, ws);
         if let Some(i) = ws.f.iter().position(|f| !f.iter().all(|c| c.is_finite())) {
-            return Err(CoreError::NonFiniteState {
+            return Err(DynamicsError::NonFiniteState {
                 t,
                 member: MemberId::Bar(i / 2),
-            });
+            }
+            .into());
         }
         self.bar_accelerations(x, v, &ws.f, dv, None);
         if let Some(om) = ws.omega.as_mut() {
@@ -579,10 +584,10 @@ impl Model {
                         && ws.f[i].iter().all(|c| c.is_finite()))
                 });
                 return Err(match bad {
-                    Some(i) => CoreError::NonFiniteState {
+                    Some(i) => CoreError::Dynamics(DynamicsError::NonFiniteState {
                         t,
                         member: MemberId::Bar(i / 2),
-                    },
+                    }),
                     None => e,
                 });
             }

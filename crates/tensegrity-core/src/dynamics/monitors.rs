@@ -6,7 +6,7 @@
 //! thesis ground model.
 
 use super::model::{vec3, Model, NodeRef};
-use crate::error::CoreError;
+use crate::error::{CoreError, DynamicsError};
 use crate::structure::MemberId;
 use nalgebra::Vector3;
 
@@ -99,10 +99,11 @@ impl Model {
         for i in 0..self.n1 {
             let x = vec3(y, i);
             if !(x.iter().all(|c| c.is_finite()) && vec3(v, i).iter().all(|c| c.is_finite())) {
-                return Err(CoreError::NonFiniteState {
+                return Err(DynamicsError::NonFiniteState {
                     t,
                     member: MemberId::Bar(i / 2),
-                });
+                }
+                .into());
             }
             let d2 = (x - vec3(&self.x0, i)).norm_squared();
             if d2 > limit2 && worst.is_none_or(|(_, d)| d2 > d) {
@@ -110,12 +111,13 @@ impl Model {
             }
         }
         match worst {
-            Some((i, d2)) => Err(CoreError::BlowUp {
+            Some((i, d2)) => Err(DynamicsError::BlowUp {
                 t,
                 member: MemberId::Bar(i / 2),
                 distance: d2.sqrt(),
                 limit,
-            }),
+            }
+            .into()),
             None => Ok(()),
         }
     }

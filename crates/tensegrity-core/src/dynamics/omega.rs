@@ -28,7 +28,7 @@
 
 mod woodbury;
 
-use crate::error::{CoreError, FactorizationFailure};
+use crate::error::{CoreError, DynamicsError, FactorizationFailure, NumericsError};
 use crate::linalg::{CscPattern, DenseCholesky, StaticCholesky};
 use nalgebra::Vector3;
 
@@ -98,13 +98,13 @@ enum Factor {
 /// (redundant or conflicting) constraint set.
 fn constraint_error(e: CoreError) -> CoreError {
     match e {
-        CoreError::Factorization {
+        CoreError::Numerics(NumericsError::Factorization {
             reason: FactorizationFailure::NonPositivePivot { pivot, dim },
             ..
-        } => CoreError::SingularConstraint {
+        }) => CoreError::Dynamics(DynamicsError::SingularConstraint {
             rank: pivot,
             expected: dim,
-        },
+        }),
         other => other,
     }
 }

@@ -18,7 +18,7 @@
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{set3, vec3, Model, Workspace};
 use super::omega::{ConstraintMatrix, Row, RowEntry};
-use crate::error::CoreError;
+use crate::error::{CoreError, DynamicsError};
 use nalgebra::Vector3;
 
 /// The bar-length and N P = D constraints with their sparse multiplier system.
@@ -181,7 +181,7 @@ impl ConstraintSet {
             self.add_minv_gt(model, &d, 1.0, x);
             self.r = d;
         }
-        Err(CoreError::ConstraintNotConverged { t, residual: res })
+        Err(DynamicsError::ConstraintNotConverged { t, residual: res }.into())
     }
 
     fn project_velocities(&mut self, model: &Model, v: &mut [f64]) {

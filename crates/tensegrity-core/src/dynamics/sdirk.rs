@@ -47,7 +47,7 @@
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{Model, Workspace};
 use super::rattle::ConstraintSet;
-use crate::error::CoreError;
+use crate::error::{CoreError, NumericsError};
 use crate::linalg::DenseLu;
 
 /// γ of Alexander's SDIRK3: the root in (1/6, 1/2) of x³ − 3x² + 3x/2 − 1/6.
@@ -639,9 +639,10 @@ impl Sdirk {
     /// fails instead.
     fn reject(&self, h: f64, factor: f64) -> Result<StepOutcome, CoreError> {
         if !self.error_control {
-            return Err(CoreError::NoConvergence {
+            return Err(NumericsError::NoConvergence {
                 operation: "sdirk Newton iteration (fixed step too large)",
-            });
+            }
+            .into());
         }
         Ok(StepOutcome {
             accepted: false,

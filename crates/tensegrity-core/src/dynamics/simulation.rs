@@ -17,7 +17,7 @@ use super::model::{Model, Workspace};
 use super::monitors::Monitor;
 use super::rattle::ConstraintSet;
 use super::recorder::{Quantities, Recorder, Sample, SampleSink};
-use crate::error::CoreError;
+use crate::error::{CoreError, DynamicsError};
 use crate::structure::Structure;
 use nalgebra::Vector3;
 use std::fmt;
@@ -272,12 +272,16 @@ impl Simulation {
 /// say so.
 fn diverged(e: CoreError, t: f64) -> CoreError {
     let what = match e {
-        CoreError::SingularConstraint { .. } => "the constraint system became singular",
-        CoreError::ConstraintNotConverged { .. } => "the RATTLE constraint iteration failed",
+        CoreError::Dynamics(DynamicsError::SingularConstraint { .. }) => {
+            "the constraint system became singular"
+        }
+        CoreError::Dynamics(DynamicsError::ConstraintNotConverged { .. }) => {
+            "the RATTLE constraint iteration failed"
+        }
         other => return other,
     };
     if t > 0.0 {
-        CoreError::Diverged { t, what }
+        CoreError::Dynamics(DynamicsError::Diverged { t, what })
     } else {
         e
     }
@@ -314,7 +318,7 @@ impl StepControl {
             StepControl::Adaptive { h, h_max, h_min } => {
                 let h = h.min(t_end - t).min(h_max);
                 if h < h_min {
-                    return Err(CoreError::StepSizeTooSmall { t, h_min });
+                    return Err(DynamicsError::StepSizeTooSmall { t, h_min }.into());
                 }
                 let t_new = t + h;
                 Ok((h, if t_end - t_new < eps { t_end } else { t_new }))
@@ -438,10 +442,11 @@ impl<'a> Driver<'a> {
             }
             self.stats.steps += 1;
             if self.stats.steps > s.max_steps {
-                return Err(CoreError::MaxStepsExceeded {
+                return Err(DynamicsError::MaxStepsExceeded {
                     t: t_new,
                     max_steps: s.max_steps,
-                });
+                }
+                .into());
             }
             model.check_state(t_new, &self.y, self.blowup_limit)?;
             if self.sink.as_mut().is_some_and(|sink| !sink.keep_going()) {

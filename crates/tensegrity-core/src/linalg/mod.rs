@@ -4,7 +4,7 @@
 //! faer changes its API with each minor release; it is pinned in the workspace manifest and
 //! kept behind this module, whose functions take and return nalgebra matrices, plain slices
 //! and the small sparse types of [`sparse`] (never a faer type). Its errors are converted in
-//! one place (this module's private `failed`) into [`CoreError::Factorization`] with a
+//! one place (this module's private `failed`) into [`NumericsError::Factorization`](crate::error::NumericsError::Factorization) with a
 //! [`FactorizationFailure`] reason.
 //!
 //! # Layout
@@ -53,7 +53,7 @@ pub use sparse::{
     SparseLu, StaticCholesky,
 };
 
-use crate::error::CoreError;
+use crate::error::{CoreError, NumericsError};
 
 /// A faer error that can be stated as a [`FactorizationFailure`].
 trait FaerFailure {
@@ -108,13 +108,15 @@ impl FaerFailure for faer::sparse::linalg::LuError {
 
 /// The one conversion of faer's errors: `map_err(failed("sparse LU (numeric)", n))`.
 fn failed<E: FaerFailure>(operation: &'static str, dim: usize) -> impl FnOnce(E) -> CoreError {
-    move |e| CoreError::Factorization {
-        operation,
-        reason: e.reason(dim),
+    move |e| {
+        CoreError::Numerics(NumericsError::Factorization {
+            operation,
+            reason: e.reason(dim),
+        })
     }
 }
 
 /// A failure of an in-house kernel (no faer error involved).
 fn failure(operation: &'static str, reason: FactorizationFailure) -> CoreError {
-    CoreError::Factorization { operation, reason }
+    CoreError::Numerics(NumericsError::Factorization { operation, reason })
 }

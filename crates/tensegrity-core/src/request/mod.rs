@@ -41,10 +41,12 @@
 //! ```
 
 mod category;
+mod floats;
 mod invalid;
 mod param;
 
 pub use category::{Categorized, Category};
+pub use floats::floats;
 pub use invalid::InvalidParameter;
 pub use param::{Kind, Param, Rule};
 
@@ -66,14 +68,30 @@ pub trait Request: Serialize + DeserializeOwned + Default + Clone + Send + Sync 
         Ok(())
     }
 
-    /// The per-field rules (a [`Param::required`] field must be set), then
+    /// The per-field rules (a [`Param::required`] field must be set, a field that is not
+    /// [`Param::optional`] must not be unset, and no number may be NaN or infinite), then
     /// [`Request::check`].
+    ///
+    /// The numbers are read from the request itself ([`floats`]), not from its JSON form,
+    /// where NaN and ±∞ would be `null`: a request built in Rust with `t_end = f64::NAN`, or
+    /// an optional `Some(f64::INFINITY)`, is refused naming the field.
     fn validate(&self) -> Result<(), InvalidParameter> {
         let values = self.values();
+        let numbers = floats(self);
         for p in Self::params() {
+            if let Some((_, x)) = numbers.iter().find(|(k, x)| k == p.name && !x.is_finite()) {
+                return Err(InvalidParameter::new(p.name, *x, p.rule.describe()));
+            }
             match values.get(p.name) {
                 Some(Value::Null) | None if p.required => {
                     return Err(InvalidParameter::raw(p.name, "(unset)", "must be given"))
+                }
+                Some(Value::Null) if !p.optional => {
+                    return Err(InvalidParameter::raw(
+                        p.name,
+                        "(unset)",
+                        "must be given (it has no unset state)",
+                    ))
                 }
                 Some(v) => p.check(v)?,
                 None => {}

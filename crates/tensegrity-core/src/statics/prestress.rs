@@ -14,7 +14,7 @@
 //! sparse and the cyclic back-ends build the same rows ([`margin_lp`]).
 
 use super::{dense_lp, LpSolver, Statics};
-use crate::error::{CoreError, Result};
+use crate::error::{CoreError, ModelError, NumericsError, Result};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -194,18 +194,19 @@ impl Statics<'_> {
 /// Refuses a sign list whose length is not the number of members.
 pub(crate) fn check_signs(signs: &[MemberSign], members: usize) -> Result<()> {
     if signs.len() != members {
-        return Err(CoreError::LengthMismatch {
+        return Err(ModelError::LengthMismatch {
             what: "member signs of the margin LP".into(),
             expected: members,
             found: signs.len(),
-        });
+        }
+        .into());
     }
     Ok(())
 }
 
 /// Solves a small dense linear programme `min cᵀz  s.t.  G z ≤ h` (G: rows × p, rows ≥ p):
 /// the dense interior-point method of the prestressability LP first, Clarabel when it fails.
-/// `problem` names the LP in the error ([`CoreError::SolverFailed`]) when both fail, e.g.
+/// `problem` names the LP in the error ([`NumericsError::SolverFailed`](crate::error::NumericsError::SolverFailed)) when both fail, e.g.
 /// because the programme is infeasible or unbounded.
 ///
 /// ```
@@ -316,7 +317,8 @@ fn run_clarabel(
     cones: &[SupportedConeT<f64>],
     problem: &'static str,
 ) -> Result<Vec<f64>> {
-    let failed = |status: String| CoreError::SolverFailed { problem, status };
+    let failed =
+        |status: String| CoreError::Numerics(NumericsError::SolverFailed { problem, status });
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
         .tol_gap_abs(1e-10)

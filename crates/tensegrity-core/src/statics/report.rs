@@ -13,7 +13,7 @@
 //!    Euler buckling), with a warning when a string ends up in compression. A load the
 //!    structure cannot carry (relative residual above
 //!    [`LOAD_RESIDUAL_TOLERANCE`](super::load::LOAD_RESIDUAL_TOLERANCE)) is the error
-//!    [`CoreError::LoadNotCarried`](crate::CoreError::LoadNotCarried) naming the residual and
+//!    [`StaticsError::LoadNotCarried`](crate::error::StaticsError::LoadNotCarried) naming the residual and
 //!    the unbalanced nodes, unless [`StaticsRequest::least_squares`] asks for the
 //!    least-squares answer, which is then reported with `load_carried: false` and no sizing;
 //! 4. with [`StaticsRequest::modes`] = Some(k): the k lowest natural frequencies about the
@@ -31,7 +31,7 @@
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 use super::StaticsSettings;
-use crate::error::{CoreError, Result};
+use crate::error::{CoreError, Result, StaticsError};
 use crate::sizing::{self, Governing, SizingReport};
 use crate::stiffness::{self, MassModel};
 use crate::structure::{MemberId, Structure};
@@ -259,11 +259,12 @@ fn add_load_solve(
 ) -> Result<()> {
     let carried = sol.load_carried();
     if !carried && !least_squares {
-        return Err(CoreError::LoadNotCarried {
+        return Err(StaticsError::LoadNotCarried {
             residual: sol.residual,
             relative_residual: sol.relative_residual,
             nodes: sol.unbalanced.iter().map(|(n, _)| *n).collect(),
-        });
+        }
+        .into());
     }
     report.load_carried = Some(carried);
     if !carried {
@@ -374,9 +375,9 @@ mod tests {
         // residual √2 · 500 N
         let err = statics_report(&pushed_linkage(), &StaticsRequest::default()).unwrap_err();
         match err {
-            CoreError::LoadNotCarried {
+            CoreError::Statics(StaticsError::LoadNotCarried {
                 residual, nodes, ..
-            } => {
+            }) => {
                 assert!((residual - 500.0 * 2f64.sqrt()).abs() < 1e-6, "{residual}");
                 assert_eq!(nodes, vec![1, 2]);
             }

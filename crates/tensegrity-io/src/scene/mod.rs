@@ -47,7 +47,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use tensegrity_core::dynamics::Simulation;
-use tensegrity_core::{Bar, CoreError, Material, StringMember, Structure, Support};
+use tensegrity_core::{Bar, CoreError, Material, ModelError, StringMember, Structure, Support};
 use toml::Spanned;
 
 /// The raw contents of a scene file.
@@ -318,16 +318,17 @@ impl SceneFile {
 /// The `(kind, index)` of the item an error names, when it is a numbered item.
 fn error_item(e: &CoreError) -> Option<(String, usize)> {
     let text = match e {
-        CoreError::NodeIndexOutOfRange { item, .. }
-        | CoreError::NonFinite { item, .. }
-        | CoreError::NonPositiveConstant { item, .. }
-        | CoreError::NegativeConstant { item, .. }
-        | CoreError::UnknownMaterial { item, .. } => item.clone(),
-        CoreError::SelfLoop { member, .. }
-        | CoreError::DuplicateMember { member, .. }
-        | CoreError::ZeroLengthMember { member, .. } => member.to_string(),
-        CoreError::IsolatedNode { node } => format!("node {node}"),
-        CoreError::DuplicateSupport { support, .. } | CoreError::EmptySupport { support } => {
+        CoreError::Model(ModelError::NodeIndexOutOfRange { item, .. })
+        | CoreError::Model(ModelError::NonFinite { item, .. })
+        | CoreError::Model(ModelError::NonPositiveConstant { item, .. })
+        | CoreError::Model(ModelError::NegativeConstant { item, .. })
+        | CoreError::Model(ModelError::UnknownMaterial { item, .. }) => item.clone(),
+        CoreError::Model(ModelError::SelfLoop { member, .. })
+        | CoreError::Model(ModelError::DuplicateMember { member, .. })
+        | CoreError::Model(ModelError::ZeroLengthMember { member, .. }) => member.to_string(),
+        CoreError::Model(ModelError::IsolatedNode { node }) => format!("node {node}"),
+        CoreError::Model(ModelError::DuplicateSupport { support, .. })
+        | CoreError::Model(ModelError::EmptySupport { support }) => {
             format!("support {support}")
         }
         _ => return None,

@@ -9,6 +9,10 @@
 //! | [`JsonSink`] | one JSON document | written at the end | removed |
 //! | [`OutputDir`] | a directory that outputs go into | — | removed if this run created it and it is empty |
 //!
+//! A run's outputs together: [`SimulationOutputs`] (a simulation's trajectory CSV and VTK
+//! series, the core's sample sink) and [`RollingOutputs`] (a rolling run's history CSV and VTK
+//! series, wheel-rolling's observer); each stops its run at the next step on an interrupt.
+//!
 //! ## The protocol: open → stream → finish (or finish incomplete, or drop) → rename
 //!
 //! 1. **Open, before any work.** `open` takes an exclusive lock on the target ([`PathLock`]:
@@ -61,6 +65,7 @@ mod csv;
 mod dir;
 mod file;
 mod lock;
+mod rolling;
 mod simulation;
 pub(crate) mod staged;
 mod vtk;
@@ -69,6 +74,7 @@ pub use self::csv::CsvSink;
 pub use self::dir::OutputDir;
 pub use self::file::{FigureSink, FileSink, ImageFormat, JsonSink};
 pub use self::lock::PathLock;
+pub use self::rolling::RollingOutputs;
 pub use self::simulation::{SimulationOutputs, Written};
 pub use self::vtk::{VtkSeriesSink, PVD_INTERVAL};
 

@@ -304,3 +304,62 @@ fn a_rolling_history_streamed_through_a_csv_sink_is_the_file_of_write_rolling_hi
         .unwrap()
         .starts_with("t,axle_s,axle_h,omega,pivot_m,normal_N,tangential_N,energy_J,slip_m_s\n"));
 }
+
+#[test]
+fn a_rolling_run_streamed_through_its_outputs_writes_the_files_of_its_samples_and_frames() {
+    use wheel_rolling::{roll_wheel, FidelityChoice, Polygon, RunSpec, Wheel};
+    /// An octagon whose two nodes (the bar's) are drawn.
+    struct Drawn(Polygon);
+    impl Wheel for Drawn {
+        type Error = wheel_rolling::RollingError;
+        fn polygon(&self) -> Polygon {
+            self.0
+        }
+        fn start_pose(&self) -> Vec<nalgebra::Vector3<f64>> {
+            bar().nodes().to_vec()
+        }
+        fn scene(&self) -> std::result::Result<wheel_rolling::WheelScene, Self::Error> {
+            self.0.scene()
+        }
+    }
+    let wheel = Drawn(Polygon {
+        sides: 8,
+        outer_radius: 1.0,
+        mass: 12.0,
+        i1: 7.5,
+    });
+    let spec = RunSpec {
+        fidelity: FidelityChoice::Rigid,
+        t_end: 0.2,
+        ..RunSpec::default()
+    };
+    let times: Vec<f64> = (0..=20).map(|k| 0.01 * k as f64).collect();
+    let structure = bar();
+    for incomplete in [None, Some("interrupted at t = 0.2 s")] {
+        let dir = scratch("rolling-outputs");
+        let (csv, vtk) = (dir.join("r.csv"), dir.join("vtk"));
+        let mut outputs = RollingOutputs::new(
+            Some(CsvSink::open(&csv, "rolling history CSV").unwrap()),
+            Some(VtkSeriesSink::open(&vtk, &structure).unwrap()),
+        )
+        .keeping(&[0.1], 1e-4);
+        let run = roll_wheel(&wheel, &spec, &times, Some(&mut outputs)).unwrap();
+        // the run kept no frame; the outputs kept the one asked for
+        assert!(run.frames.is_empty());
+        let kept = outputs.take_frames();
+        assert_eq!(kept.len(), 1);
+        assert!((kept[0].t - 0.1).abs() < 1e-12);
+        let written = outputs.finish(incomplete).unwrap();
+        assert_eq!((written.rows, written.frames), (201, 21));
+        let mut want = Vec::new();
+        crate::csv::write_rolling_history(&mut want, &run.result.samples).unwrap();
+        if let Some(reason) = incomplete {
+            want.extend(format!("# incomplete: {reason}\n").bytes());
+        }
+        assert_eq!(std::fs::read(&csv).unwrap(), want);
+        let pvd = std::fs::read_to_string(vtk.join("series.pvd")).unwrap();
+        assert_eq!(pvd.matches("<DataSet").count(), 21);
+        assert_eq!(pvd.contains("<!-- incomplete: "), incomplete.is_some());
+        assert_eq!(listing(&dir), ["r.csv", "vtk"]);
+    }
+}

@@ -213,6 +213,8 @@ pub(super) struct Monitor<'o> {
     observer: Option<&'o mut dyn Observer>,
     /// Whether the observer asked to stop.
     stopped: bool,
+    /// Whether the frames are kept in the result (not when the observer streams them).
+    keep_frames: bool,
 }
 
 impl<'o> Monitor<'o> {
@@ -228,6 +230,7 @@ impl<'o> Monitor<'o> {
         let off_since = (0..g.n)
             .map(|k| (k > 1).then_some(f64::NEG_INFINITY))
             .collect();
+        let keep_frames = observer.as_deref().is_none_or(|o| o.keeps_frames());
         Self {
             g,
             output_dt,
@@ -251,6 +254,7 @@ impl<'o> Monitor<'o> {
             impacts: Vec::new(),
             observer,
             stopped: false,
+            keep_frames,
         }
     }
 
@@ -370,7 +374,9 @@ impl<'o> Monitor<'o> {
             if let Some(obs) = self.observer.as_deref_mut() {
                 self.stopped |= obs.frame(&frame) == Flow::Stop;
             }
-            self.frames.push(frame);
+            if self.keep_frames {
+                self.frames.push(frame);
+            }
         }
     }
 

@@ -592,7 +592,9 @@ mod tests {
         assert!(
             matches!(
                 e,
-                crate::error::CoreError::SingularConstraint { expected: 9, .. }
+                crate::error::CoreError::Dynamics(
+                    crate::error::DynamicsError::SingularConstraint { expected: 9, .. }
+                )
             ),
             "{e:?}"
         );

@@ -434,18 +434,20 @@ mod tests {
         let e = st.factor(a.values()).unwrap_err();
         assert_eq!(
             e,
-            crate::CoreError::Factorization {
+            crate::CoreError::Numerics(crate::error::NumericsError::Factorization {
                 operation: "static sparse Cholesky",
                 reason: FactorizationFailure::NonPositivePivot { pivot: 1, dim: 2 },
-            }
+            })
         );
         let mut ge = SparseCholesky::new(a.pattern()).unwrap();
         assert!(matches!(
             ge.factor(a.values()),
-            Err(crate::CoreError::Factorization {
-                reason: FactorizationFailure::NonPositivePivot { .. },
-                ..
-            })
+            Err(crate::CoreError::Numerics(
+                crate::error::NumericsError::Factorization {
+                    reason: FactorizationFailure::NonPositivePivot { .. },
+                    ..
+                }
+            ))
         ));
         assert!(st.factor(&[1.0]).is_err()); // wrong number of values
                                              // an upper-triangular entry is not a lower pattern

@@ -21,7 +21,7 @@
 
 use super::blocks::{roots_of_unity, BlockContext, BlockRow};
 use super::descriptor::CyclicSymmetry;
-use crate::error::{CoreError, FactorizationFailure, Result};
+use crate::error::{CoreError, FactorizationFailure, ModelError, NumericsError, Result};
 use crate::structure::Structure;
 use nalgebra::{Complex, DMatrix, Vector3};
 
@@ -32,7 +32,7 @@ const ORBIT_TOLERANCE: f64 = 1e-9;
 /// elastic structure with axial stiffnesses `stiffness` (N/m per member, constant on member
 /// orbits) under a unit load on `node`, which must be free in every direction (see the
 /// module documentation). A singular block (a mechanism) is
-/// [`CoreError::Factorization`].
+/// [`NumericsError::Factorization`](crate::error::NumericsError::Factorization).
 pub fn elastic_response(
     structure: &Structure,
     symmetry: &CyclicSymmetry,
@@ -95,7 +95,7 @@ fn block_forces(
     }
     let stiffness = &b * b.adjoint();
     let dim = stiffness.nrows();
-    let chol = stiffness.cholesky().ok_or(CoreError::Factorization {
+    let chol = stiffness.cholesky().ok_or(NumericsError::Factorization {
         operation: "Cholesky of a cyclic stiffness block",
         reason: FactorizationFailure::NonPositivePivot { pivot: 0, dim },
     })?;
@@ -149,11 +149,12 @@ fn check_inputs(
     node: usize,
 ) -> Result<()> {
     if stiffness.len() != structure.n_members() {
-        return Err(CoreError::LengthMismatch {
+        return Err(ModelError::LengthMismatch {
             what: "axial stiffness of the members".into(),
             expected: structure.n_members(),
             found: stiffness.len(),
-        });
+        }
+        .into());
     }
     if let Some(&k) = stiffness.iter().find(|k| !(k.is_finite() && **k > 0.0)) {
         return Err(CoreError::invalid_parameter(

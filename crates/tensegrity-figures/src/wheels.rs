@@ -1,11 +1,24 @@
-//! The toroid-wheel figures of chapter 3: the stabilising options (Fig. 3.3), the rolling
-//! wheel (Fig. 3.8), wheels of complexity 6, 24, 100 (Fig. 3.9), the axle height and
-//! reactions of the rolling wheels (Figs. 3.10–3.11, [`toroid::rolling_series`] with the
-//! default request) and the tip-over friction map (Fig. 3.13, a `tipover` sweep).
+//! The toroid-wheel figures of chapter 3:
+//!
+//! - Fig. 3.3: the reference wheel (n = 8) with the stabilising options (1, 2), (1, 3),
+//!   (2, 3), isometric ([`toroid::WheelSpec::build`]);
+//! - Fig. 3.8: the n = 8 wheel rolling down 50° at three instants ([`toroid::roll`]), drawn in
+//!   the frame of the incline: the wheel's (y, z) rotated by −θ about its axle at (s, h),
+//!   θ(t) = ∫ω dt by the trapezoidal rule;
+//! - Fig. 3.9: wheels of complexity 6, 24, 100, side view;
+//! - Figs. 3.10–3.11: the axle height above the incline less its mean, and the normal contact
+//!   force, of the n = 8, 12, 16, 24 wheels ([`toroid::rolling_series`] with the default
+//!   request, run once for both figures);
+//! - Fig. 3.13: F_f/F_e against σ = R_i/R_o, one curve per ε (a `tipover` sweep over real
+//!   wheels; eq. 3.29 gives F_f/F_e = −(σ + ε)/(1 − σ)).
+//!
+//! With `quick` the rolling runs are shorter and use the reduced rigid model. A rolling run
+//! whose net normal force goes negative (the wheel would leave the slope: outside the
+//! model's assumptions) is flagged in the figure's title and by a [`crate::Warning`].
 
-use super::draw::{drawing_figure, structure_panel, Group, View, BLUE, GREY, RED};
-use super::Ctx;
-use anyhow::Result;
+use crate::draw::{drawing_figure, structure_panel, Group, View, BLUE, GREY, RED};
+use crate::driver::Context as Ctx;
+use crate::error::Result;
 use nalgebra::Vector3;
 use tensegrity_io::figure::{Figure, Panel, Series};
 use toroid::{FidelityChoice, RollReport, RollRequest, Stabilize, Toroid, WheelSpec};
@@ -68,10 +81,10 @@ pub fn fig_3_9(_: &Ctx) -> Result<Figure> {
     Ok(drawing_figure(panels))
 }
 
-/// The default rolling request, shorter and on the reduced rigid model with `--quick`.
+/// The default rolling request, shorter and on the reduced rigid model with `quick`.
 fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
     let d = RollRequest::default();
-    if ctx.quick {
+    if ctx.quick() {
         RollRequest {
             t_end,
             fidelity: FidelityChoice::Rigid,
@@ -92,10 +105,10 @@ fn angles(samples: &[RollingSample]) -> Vec<f64> {
     theta
 }
 
-/// Fig. 3.8: the n = 8 wheel at t = 0, 1.5 and 3 s (0, 0.25, 0.5 s with `--quick`), in the
+/// Fig. 3.8: the n = 8 wheel at t = 0, 1.5 and 3 s (0, 0.25, 0.5 s with `quick`), in the
 /// frame of the incline: the wheel's (y, z) rotated by −θ about its axle at (s, h).
 pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
-    let times = if ctx.quick {
+    let times = if ctx.quick() {
         [0.0, 0.25, 0.5]
     } else {
         [0.0, 1.5, 3.0]
@@ -139,7 +152,7 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
 
 /// Flags the runs whose net normal force went negative: the model keeps the wheel on the
 /// slope where the real one would leave it, so the curves there are outside its assumptions.
-fn flag_lift_off(ctx: &Ctx, number: &str, runs: &[&RollReport]) -> bool {
+fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> bool {
     let lifted: Vec<String> = runs
         .iter()
         .filter(|r| r.summary.min_normal_force < 0.0)
@@ -176,14 +189,12 @@ fn fidelity(r: &RollReport) -> &'static str {
 }
 
 /// The four wheels of Fig. 3.10 (n = 8, 12, 16, 24), 50°, default request (2 s, rigid model
-/// with `--quick`), run once for Figs. 3.10 and 3.11.
+/// with `quick`), run once for Figs. 3.10 and 3.11.
 fn rolling_runs(ctx: &Ctx) -> Result<&[RollReport]> {
-    let runs = ctx.rolling.get_or_init(|| {
+    ctx.rolling(|| {
         let req = rolling_request(ctx, 2.0);
         toroid::rolling_series(&req, &toroid::defaults::FIG_3_10_SIDES)
-            .map_err(|e| format!("{e:#}"))
-    });
-    runs.as_deref().map_err(|e| anyhow::anyhow!("{e}"))
+    })
 }
 
 /// Fig. 3.10: the axle's height above the incline, less its mean, against time.
@@ -227,7 +238,7 @@ pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
 /// Fig. 3.13: F_f/F_e against σ, one curve per ε — a `tipover` sweep over real wheels
 /// (R_i = σ R_o, t = ε T of the reference geometry), its CSV kept beside the figure.
 pub fn fig_3_13(ctx: &Ctx) -> Result<Figure> {
-    let (sigma_step, eps) = if ctx.quick {
+    let (sigma_step, eps) = if ctx.quick() {
         ("0.1", "[0.25, 0.5, 0.75, 1.0]")
     } else {
         ("0.025", "[0.1, 0.25, 0.5, 0.75, 1.0]")

@@ -1,10 +1,13 @@
 //! The T-bar figures of chapter 5: a single tread (Fig. 5.1), the wheel (Fig. 5.2) and the
-//! extended wheel (Fig. 5.3), drawn from [`tbar_wheel::drawing::polylines`] (the drawing of
-//! `tensegrity tbar --svg`), on the cylindrical q = 2 truss (β = π/6, φ = π/8, δ = 0.25).
+//! extended wheel (Fig. 5.3, a copy 0.5 m along ι̂₁) on the cylindrical q = 2 truss
+//! (β = π/6, φ = π/8, δ = 0.25), strings red and bars blue, and [`side_and_top`], the side
+//! and top views of any T-bar geometry (the drawing of the `tbar` command). Each is drawn
+//! from the projected line segments of [`tbar_wheel::drawing::polylines`]: side (ι̂₂, ι̂₃)
+//! and top (ι̂₂, ι̂₁).
 
-use super::draw::{drawing_figure, BLUE, RED};
-use super::Ctx;
-use anyhow::Result;
+use crate::draw::{drawing_figure, BLUE, RED};
+use crate::driver::Context as Ctx;
+use crate::error::Result;
 use michell3d::MichellParams;
 use std::f64::consts::{FRAC_PI_6, PI};
 use tbar_wheel::drawing::{polylines, View};
@@ -57,4 +60,20 @@ pub fn fig_5_3(_: &Ctx) -> Result<Figure> {
             (View::Top, "top"),
         ],
     )
+}
+
+/// The side and top views of a T-bar tread or wheel, one default-coloured series per
+/// polyline of [`polylines`].
+pub fn side_and_top(g: &TbarGeometry) -> Figure {
+    let panel = |view: View, title: &str, y: &str| {
+        polylines(g, view)
+            .into_iter()
+            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
+                p.series(Series::new(l.label, l.points))
+            })
+    };
+    Figure::new(vec![
+        panel(View::Side, "T-bar, side view", "ι3 [m]"),
+        panel(View::Top, "T-bar, top view", "ι1 [m]"),
+    ])
 }

@@ -1,12 +1,23 @@
-//! The Michell-truss figures of chapter 4: drawings of the planar and 3-D trusses (Figs. 4.2,
-//! 4.4, 4.6–4.12, 4.19), the sign maps of the tip members (Figs. 4.14–4.16,
-//! [`sweeps::grids::sign_maps`]), mass against complexity (Fig. 4.18, two `michell` sweeps)
-//! and the member forces over the load's polar angle with extra strings (Fig. 4.20,
-//! [`michell3d::extra_strings::gamma_sweep`]).
+//! The Michell-truss figures of chapter 4 (r₀ = 1, β = π/6, a 1 kN tip load along −ι̂₃,
+//! steel):
+//!
+//! - drawings of the planar and 3-D trusses, members in tension red, in compression blue,
+//!   unloaded grey ([`michell3d::MichellAnalysis::run`]): Fig. 4.2 (planar spirals q = 1…4,
+//!   φ = π/8), 4.4 (planar q = 4), 4.6–4.7 (cylindrical q = 4, δ = 0.25), 4.8–4.12
+//!   (spherical, ε = π/12), 4.19 (the extra strings of §4.6, [`ExtraStrings`]);
+//! - Figs. 4.14–4.16: the sign of the tip members' force densities λ₁₀₁₀, λ₁₀₀₁, λ₀₁₀₀ over
+//!   the load direction (azimuth φ, polar angle γ) on the q = 1 cylindrical truss
+//!   ([`sweeps::grids::sign_maps`]), drawn as vertical runs of one sign per azimuth;
+//! - Fig. 4.18: the yield + buckling mass against complexity q (φ = π/q), planar and
+//!   δ = 0.1, 0.25, 0.5: two `michell` sweeps, their CSVs kept; [`mass_table_figure`] draws
+//!   the same curves from the rows of [`michell3d::mass_vs_complexity`] (the
+//!   `michell_table` request);
+//! - Fig. 4.20: the member forces of the q = 2 cylindrical truss over γ ∈ [0, 2π] with 10 N
+//!   and 5 kN in the extra strings ([`michell3d::extra_strings::gamma_sweep`]).
 
-use super::draw::{drawing_figure, structure_panel, Group, View, BLUE, GREY, RED};
-use super::Ctx;
-use anyhow::Result;
+use crate::draw::{drawing_figure, structure_panel, Group, View, BLUE, GREY, RED};
+use crate::driver::Context as Ctx;
+use crate::error::Result;
 use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
 use michell3d::signmap::{AngleGrid, SignMap};
 use michell3d::{AnalysisRequest, MemberKind, Method, MichellAnalysis, MichellParams};
@@ -131,7 +142,7 @@ pub fn fig_4_12(_: &Ctx) -> Result<Figure> {
 fn sign_map(ctx: &Ctx, member: usize) -> Result<SignMap> {
     let truss =
         michell3d::MichellTruss::new(MichellParams::cylindrical(1, 1.0, BETA, PI / 8.0, 0.25))?;
-    let (na, np) = if ctx.quick { (73, 37) } else { (361, 181) };
+    let (na, np) = if ctx.quick() { (73, 37) } else { (361, 181) };
     let maps = sweeps::grids::sign_maps(
         &truss,
         &[member],
@@ -211,7 +222,7 @@ pub fn fig_4_16(ctx: &Ctx) -> Result<Figure> {
 /// Fig. 4.18: yield + buckling mass against complexity, planar and δ = 0.1, 0.25, 0.5 — two
 /// `michell` sweeps (r₀ = 1, β = π/6, φ = π/q, 1 kN along −ι̂₃, steel), CSVs kept.
 pub fn fig_4_18(ctx: &Ctx) -> Result<Figure> {
-    let max_q = if ctx.quick { 8 } else { 35 };
+    let max_q = if ctx.quick() { 8 } else { 35 };
     let common = "study = \"michell\"\n[derived]\nphi = \"pi / complexity\"\n\
          [output]\ncolumns = [\"mass_kg.yield_buckling\", \"normalized_yield_mass\"]\n";
     let axis = format!("complexity = {{ from = 2, to = {max_q}, step = 1 }}\n");
@@ -277,7 +288,7 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Figure> {
     let truss =
         michell3d::MichellTruss::new(MichellParams::cylindrical(2, 1.0, BETA, PI / 8.0, 0.25))?;
     let extra = ExtraStrings::new(&truss)?;
-    let n = if ctx.quick { 73 } else { 721 };
+    let n = if ctx.quick() { 73 } else { 721 };
     let mut panels = Vec::new();
     for (prestress, name) in [(10.0, "low"), (5000.0, "high")] {
         let grid = AngleGrid::new(0.0, 2.0 * PI, n);
@@ -316,4 +327,37 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Figure> {
         panels.push(panel);
     }
     Ok(Figure::new(panels))
+}
+
+/// Fig. 4.18 from the rows of the Michell mass table ([`michell3d::mass_vs_complexity`], the
+/// `michell_table` request): yield + buckling mass against complexity, planar and one curve
+/// per δ of [`michell3d::complexity::FIG_4_18_DELTAS`].
+pub fn mass_table_figure(
+    request: &michell3d::MichellTableRequest,
+    rows: &[michell3d::MassRow],
+) -> Figure {
+    let series = |delta: f64, label: String| {
+        let points = rows
+            .iter()
+            .filter(|r| r.delta == delta)
+            .map(|r| (r.complexity as f64, r.yield_buckling_mass_kg))
+            .collect();
+        Series::new(label, points)
+    };
+    let mut all = vec![series(0.0, "planar".into())];
+    all.extend(
+        michell3d::complexity::FIG_4_18_DELTAS
+            .iter()
+            .map(|&d| series(d, format!("δ = {d}"))),
+    );
+    let mut panel = Panel::new(
+        format!(
+            "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
+            request.material, request.load
+        ),
+        "complexity q",
+        "mass [kg]",
+    );
+    panel.series = all;
+    Figure::new(vec![panel])
 }

@@ -1,0 +1,132 @@
+//! [`DynamicsError`]: a rigid-bar dynamics model that cannot be set up (bad input) or a run
+//! that failed on the way (numerical: a step too small, a blow-up, a divergence).
+
+use crate::member_id::MemberId;
+use crate::request::{Categorized, Category};
+use thiserror::Error;
+
+/// Everything that can go wrong in building or integrating a dynamics model.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// A node that no bar touches and that is not fixed in all three directions. It would be
+    /// a massless free point (all mass is in the bars), which rigid-bar dynamics cannot
+    /// integrate.
+    #[error("node {node}: no bar ends at it and it is not fixed in all three directions (massless free node)")]
+    FreeNodeWithoutBar {
+        /// The node.
+        node: usize,
+    },
+    /// The initial velocities violate a constraint (a fixed direction moves, or a bar changes
+    /// length).
+    #[error("{item}: initial velocity is inconsistent with the constraints ({reason}, residual {residual:e})")]
+    InconsistentVelocity {
+        /// The offending node or bar, e.g. `node 3` or `bar 1`.
+        item: String,
+        /// What is violated.
+        reason: &'static str,
+        /// The size of the violation.
+        residual: f64,
+    },
+    /// Rigid-bar dynamics needs at least one bar (all the mass is in the bars).
+    #[error("structure: rigid-bar dynamics needs at least one bar (all mass is in the bars)")]
+    NoBars,
+    /// A ground contact candidate names a node that does not exist.
+    #[error("ground node {index}: node {node} does not exist ({n_nodes} nodes)")]
+    GroundNodeOutOfRange {
+        /// Position in the list of contact candidates.
+        index: usize,
+        /// The node named.
+        node: usize,
+        /// Number of nodes of the structure.
+        n_nodes: usize,
+    },
+    /// The ground's normal is zero or not finite.
+    #[error("ground: normal must be a finite non-zero vector, got [{x}, {y}, {z}]")]
+    InvalidGroundNormal {
+        /// x component.
+        x: f64,
+        /// y component.
+        y: f64,
+        /// z component.
+        z: f64,
+    },
+    /// The adaptive integrator needed a step smaller than its minimum.
+    #[error("step size fell below the minimum {h_min:e} s at t = {t:?} s")]
+    StepSizeTooSmall {
+        /// Time at which the step was rejected.
+        t: f64,
+        /// The minimum step size.
+        h_min: f64,
+    },
+    /// The run needed more accepted steps than allowed.
+    #[error("more than {max_steps} steps needed: stopped at t = {t:?} s")]
+    MaxStepsExceeded {
+        /// Time reached when the limit was hit.
+        t: f64,
+        /// The limit on accepted steps.
+        max_steps: u64,
+    },
+    /// A NaN or infinity appeared in the state or the forces.
+    #[error("non-finite state at t = {t:?} s in {member}")]
+    NonFiniteState {
+        /// Time of the step that produced it.
+        t: f64,
+        /// The bar owning the offending node.
+        member: MemberId,
+    },
+    /// A node moved implausibly far (the run diverged).
+    #[error("blow-up at t = {t:?} s: {member} moved {distance:e} m (limit {limit:e} m)")]
+    BlowUp {
+        /// Time of detection.
+        t: f64,
+        /// The bar owning the offending node.
+        member: MemberId,
+        /// Distance from the initial position.
+        distance: f64,
+        /// The blow-up limit.
+        limit: f64,
+    },
+    /// The constraint (Ω or RATTLE) system is singular: redundant or conflicting constraints,
+    /// e.g. a bar pinned at both ends.
+    #[error("the constraint system is singular: pivot {rank} of {expected} is not positive (redundant constraints, e.g. a bar fixed at both ends?)")]
+    SingularConstraint {
+        /// Number of pivots that succeeded (a lower bound on the numerical rank).
+        rank: usize,
+        /// The size of the system.
+        expected: usize,
+    },
+    /// The state ran away during the run (a constraint system that factored at the start
+    /// became singular, or the RATTLE iteration failed): the step is too large for the
+    /// stiffness.
+    #[error("the integration diverged at t = {t:?} s ({what}): the step is too large for the stiffness of the strings or the ground; use a smaller `dt`, `integrator = rk45` (adaptive) or `integrator = sdirk` (implicit, for stiff strings and contact)")]
+    Diverged {
+        /// Time of the last accepted state (s).
+        t: f64,
+        /// What failed.
+        what: &'static str,
+    },
+    /// The RATTLE position solve did not converge.
+    #[error("RATTLE constraint iteration did not converge at t = {t:?} s (residual {residual:e})")]
+    ConstraintNotConverged {
+        /// Time of the step.
+        t: f64,
+        /// Remaining constraint residual.
+        residual: f64,
+    },
+}
+
+impl Categorized for DynamicsError {
+    /// A model that cannot be set up (a massless free node, inconsistent initial velocities,
+    /// no bar, a bad ground) is bad input; a run that fails on the way is numerical.
+    fn category(&self) -> Category {
+        match self {
+            Self::FreeNodeWithoutBar { .. }
+            | Self::InconsistentVelocity { .. }
+            | Self::NoBars
+            | Self::GroundNodeOutOfRange { .. }
+            | Self::InvalidGroundNormal { .. } => Category::Input,
+            _ => Category::Numerical,
+        }
+    }
+}

@@ -1,0 +1,496 @@
+//! The rolling figures of the toroid wheel: the `fig_rolling` study (thesis Figs. 3.10 and
+//! 3.11 with valid models, [`fig_rolling`]) and the panels of a single `roll` run
+//! ([`roll_figure`]).
+//!
+//! [`fig_rolling`] rolls the reference wheel (spokes + inner rings) with n = 8, 12, 16 and 24
+//! sides ([`toroid::defaults::FIG_3_10_SIDES`]) down the incline of a [`FigRollingRequest`],
+//! one [`toroid::roll`] per wheel on its own thread; [`FigRolling::figure`] draws the axle
+//! height above the slope of all four (Fig. 3.10) and the normal contact reaction of n = 8 and
+//! 16 (Fig. 3.11), each curve labelled with the model that ran and `NOT VALID` when its
+//! validity checks failed; [`FigRolling::impacts`] gives the impulse per new contact (the
+//! §3.3.1 claim: more sides, gentler impacts) as means over each run's impact log.
+//!
+//! [`roll_figure`] draws one run: the wheel's members in the rolling plane (s along the slope,
+//! h above it) at chosen times (thesis Fig. 3.8, from the run's node frames), or its axle
+//! height and reaction against time.
+
+use crate::error::{FigureError, Result};
+use serde::{Deserialize, Serialize};
+use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_io::figure::{Figure, Panel, Series};
+use toroid::{defaults, RollReport, RollRequest};
+use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
+
+/// The `fig_rolling` study: how the four wheels roll. Its serde form is flat, every field
+/// named as the command's flag in snake_case: `{"fidelity": "rigid", "t_end": 2}`.
+///
+/// ```
+/// use tensegrity_core::request::Request;
+/// use tensegrity_figures::rolling::FigRollingRequest;
+/// let r = FigRollingRequest::from_values([("incline", serde_json::json!("30deg"))]).unwrap();
+/// assert!((r.roll_request(8).settings.incline - 30f64.to_radians()).abs() < 1e-15);
+/// assert_eq!(r.roll_request(12).wheel.params.sides, 12);
+/// let e = FigRollingRequest::from_values([("restitution", serde_json::json!(2))]).unwrap_err();
+/// assert_eq!(e.name, "restitution");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FigRollingRequest {
+    /// The model: `rigid`, `full` or `auto` (the cheapest valid one per wheel).
+    pub fidelity: FidelityChoice,
+    /// Ground contact of the full model: `penalty` or `thesis`.
+    pub contact: ContactKind,
+    /// Slope angle (rad; reads `50deg`, `pi/4`, …).
+    #[serde(with = "tensegrity_core::angle::serde_angle")]
+    pub incline: f64,
+    /// Simulated time (s).
+    pub t_end: f64,
+    /// Static friction coefficient μ_s; μ_k = 0.75 μ_s.
+    pub mu: f64,
+    /// Normal coefficient of restitution e of an impact, in [0, 1].
+    pub restitution: f64,
+}
+
+impl Default for FigRollingRequest {
+    /// The `roll` defaults: `auto`, penalty contact, 50°, [`defaults::ROLL_T_END`],
+    /// μ_s = [`defaults::STATIC_FRICTION`], e = [`defaults::RESTITUTION`].
+    fn default() -> Self {
+        let roll = RollRequest::default();
+        Self {
+            fidelity: roll.fidelity,
+            contact: roll.contact,
+            incline: roll.settings.incline,
+            t_end: defaults::ROLL_T_END,
+            mu: defaults::STATIC_FRICTION,
+            restitution: defaults::RESTITUTION,
+        }
+    }
+}
+
+impl Request for FigRollingRequest {
+    const NAME: &'static str = "fig_rolling";
+
+    fn params() -> Vec<Param> {
+        let shared = RollSettings::params();
+        let setting = |name: &str| {
+            shared
+                .iter()
+                .copied()
+                .find(|p| p.name == name)
+                .expect("a shared rolling setting")
+        };
+        vec![
+            Param::choice(
+                "fidelity",
+                FidelityChoice::NAMES,
+                "Model (auto: the cheapest valid one per wheel; with the default strings, full)",
+            ),
+            Param::choice(
+                "contact",
+                ContactKind::NAMES,
+                "Ground contact of the full model",
+            ),
+            setting("incline"),
+            Param::number("t_end", "s", "Simulated time").positive(),
+            Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
+                .non_negative(),
+            setting("restitution"),
+        ]
+    }
+
+    /// Finite numbers (a non-finite number set in code serialises as `null`).
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        wheel_rolling::settings::finite(&[
+            ("incline", self.incline),
+            ("t_end", self.t_end),
+            ("mu", self.mu),
+            ("restitution", self.restitution),
+        ])
+    }
+}
+
+impl FigRollingRequest {
+    /// The wheel sizes rolled: n = 8, 12, 16, 24.
+    pub const SIDES: [usize; 4] = defaults::FIG_3_10_SIDES;
+
+    /// The `roll` request of the reference wheel with `sides` sides under these settings.
+    pub fn roll_request(&self, sides: usize) -> RollRequest {
+        let mut r = RollRequest {
+            fidelity: self.fidelity,
+            contact: self.contact,
+            settings: RollSettings {
+                incline: self.incline,
+                restitution: self.restitution,
+                ..RollSettings::default()
+            },
+            t_end: self.t_end,
+            mu: self.mu,
+            ..RollRequest::default()
+        };
+        r.wheel.params.sides = sides;
+        r
+    }
+}
+
+/// The four rolled wheels of [`fig_rolling`], in the order of [`FigRollingRequest::SIDES`].
+#[derive(Debug, Clone)]
+pub struct FigRolling {
+    /// One report per wheel.
+    pub runs: Vec<RollReport>,
+}
+
+/// Means over one run's impacts (§3.3.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactMeans {
+    /// The wheel's sides n.
+    pub sides: usize,
+    /// Impacts in the run.
+    pub impacts: usize,
+    /// Mean normal impulse per impact (N s).
+    pub normal_impulse: f64,
+    /// Mean tangential impulse per impact (N s).
+    pub tangential_impulse: f64,
+    /// Mean normal impulse per unit of wheel mass (m/s).
+    pub normal_per_mass: f64,
+    /// Mean ω⁺/ω⁻ over the impacts (NaN where ω⁻ = 0).
+    pub omega_ratio: f64,
+}
+
+impl ImpactMeans {
+    /// The means of `run`'s impact log (zeros without impacts).
+    pub fn of(run: &RollReport) -> Self {
+        let n = run.impact_log.len().max(1) as f64;
+        let sum = run.impact_log.iter().fold((0.0, 0.0, 0.0), |acc, i| {
+            let ratio = if i.omega_before != 0.0 {
+                i.omega_after / i.omega_before
+            } else {
+                f64::NAN
+            };
+            (
+                acc.0 + i.normal_impulse,
+                acc.1 + i.tangential_impulse,
+                acc.2 + ratio,
+            )
+        });
+        Self {
+            sides: run.sides,
+            impacts: run.summary.impacts,
+            normal_impulse: sum.0 / n,
+            tangential_impulse: sum.1 / n,
+            normal_per_mass: sum.0 / n / run.mass_kg,
+            omega_ratio: sum.2 / n,
+        }
+    }
+}
+
+impl FigRolling {
+    /// Figs. 3.10 (axle height of every wheel) and 3.11 (reactions of n = 8 and 16) side by
+    /// side, each curve labelled `n = 8 rigid` (and `(NOT VALID)` when the run is not).
+    pub fn figure(&self) -> Figure {
+        let labelled: Vec<(String, &[RollingSample])> = self
+            .runs
+            .iter()
+            .map(|r| {
+                let mark = if r.summary.valid { "" } else { " (NOT VALID)" };
+                let label = format!("n = {} {}{mark}", r.sides, r.fidelity.name());
+                (label, r.samples.as_slice())
+            })
+            .collect();
+        // Fig. 3.11 shows the reactions of n = 8 and 16 only
+        let some: Vec<(String, &[RollingSample])> = self
+            .runs
+            .iter()
+            .zip(&labelled)
+            .filter(|(r, _)| [8, 16].contains(&r.sides))
+            .map(|(_, l)| l.clone())
+            .collect();
+        Figure::new(vec![axle_panel(&labelled), reaction_panel(&some)])
+    }
+
+    /// The impulse per new contact of every wheel.
+    pub fn impacts(&self) -> Vec<ImpactMeans> {
+        self.runs.iter().map(ImpactMeans::of).collect()
+    }
+}
+
+/// Rolls the four wheels of `request` in parallel (one thread per wheel).
+pub fn fig_rolling(request: &FigRollingRequest) -> Result<FigRolling> {
+    request.validate()?;
+    let runs = std::thread::scope(|scope| {
+        let handles: Vec<_> = FigRollingRequest::SIDES
+            .iter()
+            .map(|&n| {
+                let r = request.roll_request(n);
+                scope.spawn(move || toroid::roll(&r))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| match h.join() {
+                Ok(report) => Ok(report?),
+                Err(_) => Err(FigureError::Panicked),
+            })
+            .collect::<Result<Vec<_>>>()
+    })?;
+    Ok(FigRolling { runs })
+}
+
+/// The figure of one `roll` run: with `frame_times`, the wheel's members at those times
+/// (the report's frames within one step `dt` of each time, thesis Fig. 3.8); without, the
+/// axle height above the slope and the normal reaction against time.
+pub fn roll_figure(
+    request: &RollRequest,
+    report: &RollReport,
+    frame_times: Option<&[f64]>,
+) -> Result<Figure> {
+    let panels = match frame_times {
+        Some(times) => {
+            let toroid = request.wheel.build()?;
+            let members = toroid.structure.member_nodes();
+            let dt = request.settings.dt;
+            times
+                .iter()
+                .filter_map(|&t| report.frames.iter().find(|f| (f.t - t).abs() <= dt))
+                .map(|f| frame_panel(f, &members))
+                .collect()
+        }
+        None => {
+            let runs = [(format!("n = {}", report.sides), report.samples.as_slice())];
+            vec![axle_panel(&runs), reaction_panel(&runs)]
+        }
+    };
+    Ok(Figure::new(panels))
+}
+
+/// The wheel's members in the rolling plane (s, h) at one time (thesis Fig. 3.8), above the
+/// slope drawn under the wheel.
+pub fn frame_panel(frame: &WheelFrame, members: &[[usize; 2]]) -> Panel {
+    let mut panel = Panel::new(
+        format!("t = {:.3} s", frame.t),
+        "along the slope s [m]",
+        "above the slope h [m]",
+    );
+    let (lo, hi) = frame
+        .nodes
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    panel
+        .series
+        .push(Series::new("slope", vec![(lo, 0.0), (hi, 0.0)]));
+    panel.series.extend(members.iter().map(|&[a, b]| {
+        let (p, q) = (frame.nodes[a], frame.nodes[b]);
+        Series::new("", vec![(p.y, p.z), (q.y, q.z)])
+    }));
+    panel
+}
+
+/// The empty band above the data that a legend of `entries` lines needs (fraction of the
+/// data's span).
+fn legend_band(entries: usize) -> f64 {
+    0.1 + 0.1 * entries as f64
+}
+
+/// Axle height above the incline against time (Fig. 3.10), one curve per labelled run.
+pub fn axle_panel(runs: &[(String, &[RollingSample])]) -> Panel {
+    let mut panel = Panel::new(
+        "axle height above the incline (Fig. 3.10)",
+        "time [s]",
+        "axle height above the slope [m]",
+    )
+    .legend_above(legend_band(runs.len()));
+    panel.series = runs
+        .iter()
+        .map(|(label, samples)| {
+            Series::new(label.clone(), samples.iter().map(|s| (s.t, s.h)).collect())
+        })
+        .collect();
+    panel
+}
+
+/// Normal contact reaction against time (Fig. 3.11), one curve per labelled run.
+pub fn reaction_panel(runs: &[(String, &[RollingSample])]) -> Panel {
+    let mut panel = Panel::new(
+        "contact reaction (Fig. 3.11)",
+        "time [s]",
+        "normal force [N]",
+    )
+    .legend_above(legend_band(runs.len()));
+    panel.series = runs
+        .iter()
+        .map(|(label, samples)| {
+            Series::new(
+                label.clone(),
+                samples.iter().map(|s| (s.t, s.normal)).collect(),
+            )
+        })
+        .collect();
+    panel
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    #[test]
+    fn the_request_describes_every_field_and_reads_its_flat_form() {
+        tensegrity_core::request::check_description::<FigRollingRequest>().unwrap();
+        let names: Vec<&str> = FigRollingRequest::params().iter().map(|p| p.name).collect();
+        assert_eq!(
+            names,
+            [
+                "fidelity",
+                "contact",
+                "incline",
+                "t_end",
+                "mu",
+                "restitution"
+            ]
+        );
+        let r = FigRollingRequest::from_values([
+            ("fidelity", serde_json::json!("rigid")),
+            ("contact", serde_json::json!("thesis")),
+            ("t_end", serde_json::json!("2")),
+        ])
+        .unwrap();
+        assert_eq!(
+            (r.fidelity, r.contact, r.t_end),
+            (FidelityChoice::Rigid, ContactKind::Thesis, 2.0)
+        );
+        let json = serde_json::to_value(r).unwrap();
+        assert_eq!(
+            (json["fidelity"].as_str(), json["contact"].as_str()),
+            (Some("rigid"), Some("thesis"))
+        );
+        assert!(serde_json::from_str::<FigRollingRequest>(r#"{"sides": 8}"#).is_err());
+        // the defaults are those of `roll`
+        let d = FigRollingRequest::default().roll_request(8);
+        assert_eq!(d, RollRequest::with_sides(8));
+        let e = FigRollingRequest::from_values([("t_end", serde_json::json!(0))]).unwrap_err();
+        assert_eq!(e.name, "t_end");
+    }
+
+    /// A short rigid run of the reference wheel with `sides` sides, marked (in)valid.
+    fn run(sides: usize, valid: bool) -> RollReport {
+        let mut r = toroid::roll(&RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 0.01,
+            ..RollRequest::with_sides(sides)
+        })
+        .unwrap();
+        r.summary.valid = valid;
+        r
+    }
+
+    #[test]
+    fn fig_rolling_draws_every_axle_height_and_the_reactions_of_8_and_16() {
+        let runs = FigRolling {
+            runs: vec![run(8, true), run(12, false), run(16, true), run(24, true)],
+        };
+        let f = runs.figure();
+        assert_eq!(f.panels.len(), 2);
+        let labels = |p: &Panel| p.series.iter().map(|s| s.label.clone()).collect::<Vec<_>>();
+        assert_eq!(
+            labels(&f.panels[0]),
+            [
+                "n = 8 rigid",
+                "n = 12 rigid (NOT VALID)",
+                "n = 16 rigid",
+                "n = 24 rigid"
+            ]
+        );
+        assert_eq!(labels(&f.panels[1]), ["n = 8 rigid", "n = 16 rigid"]);
+        let first = &runs.runs[0].samples;
+        assert_eq!(f.panels[0].series[0].points[0], (first[0].t, first[0].h));
+        assert_eq!(
+            f.panels[1].series[0].points[0],
+            (first[0].t, first[0].normal)
+        );
+    }
+
+    #[test]
+    fn impact_means_are_the_means_of_the_log() {
+        let mut r = run(8, true);
+        r.impact_log.truncate(0);
+        let none = ImpactMeans::of(&r);
+        assert_eq!((none.normal_impulse, none.tangential_impulse), (0.0, 0.0));
+        let rolled = toroid::roll(&RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 2.0,
+            ..RollRequest::with_sides(8)
+        })
+        .unwrap();
+        let log = &rolled.impact_log;
+        assert!(!log.is_empty());
+        let m = ImpactMeans::of(&rolled);
+        assert_eq!((m.sides, m.impacts), (8, log.len()));
+        let n = log.len() as f64;
+        let mean =
+            |f: &dyn Fn(&wheel_rolling::ImpactRecord) -> f64| log.iter().map(f).sum::<f64>() / n;
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        let normal = mean(&|i| i.normal_impulse);
+        assert!(close(m.normal_impulse, normal));
+        assert!(close(m.tangential_impulse, mean(&|i| i.tangential_impulse)));
+        assert!(close(m.normal_per_mass * rolled.mass_kg, normal));
+        assert!(close(
+            m.omega_ratio,
+            mean(&|i| i.omega_after / i.omega_before)
+        ));
+        // the ground pushes: every normal impulse is positive
+        assert!(log.iter().all(|i| i.normal_impulse > 0.0), "{log:?}");
+    }
+
+    #[test]
+    fn fig_rolling_rolls_each_wheel_as_roll_does_and_more_sides_impact_gentler() {
+        let request = FigRollingRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 2.0,
+            ..FigRollingRequest::default()
+        };
+        let rolled = fig_rolling(&request).unwrap();
+        let sides: Vec<usize> = rolled.runs.iter().map(|r| r.sides).collect();
+        assert_eq!(sides, FigRollingRequest::SIDES);
+        // the parallel runs are the serial `roll` calls, sample for sample
+        for r in &rolled.runs {
+            let alone = toroid::roll(&request.roll_request(r.sides)).unwrap();
+            assert_eq!(r.samples, alone.samples, "n = {}", r.sides);
+            assert_eq!(r.impact_log, alone.impact_log, "n = {}", r.sides);
+            assert!(r.summary.valid, "n = {}: {:?}", r.sides, r.summary.warnings);
+        }
+        // §3.3.1: more sides, more and gentler impacts (normal impulse per unit mass, m/s:
+        // 1.85, 1.28, 0.84, 0.62 for n = 8, 12, 16, 24 over 2 s down 50°)
+        let m = rolled.impacts();
+        for pair in m.windows(2) {
+            assert!(pair[1].impacts > pair[0].impacts, "{m:?}");
+            assert!(pair[1].normal_per_mass < pair[0].normal_per_mass, "{m:?}");
+        }
+        assert!(m[3].normal_per_mass < 0.5 * m[0].normal_per_mass, "{m:?}");
+        // a bad request is refused before any wheel rolls
+        let bad = FigRollingRequest {
+            restitution: 2.0,
+            ..request
+        };
+        assert!(
+            matches!(fig_rolling(&bad), Err(FigureError::InvalidParameter(p)) if p.name == "restitution")
+        );
+    }
+
+    #[test]
+    fn a_frame_is_the_slope_and_one_segment_per_member_in_the_rolling_plane() {
+        let frame = WheelFrame {
+            t: 0.5,
+            nodes: vec![
+                Vector3::new(0.0, -1.0, 0.5),
+                Vector3::new(0.0, 1.0, 1.5),
+                Vector3::new(0.3, 0.0, 2.0),
+            ],
+        };
+        let p = frame_panel(&frame, &[[0, 1], [1, 2]]);
+        assert_eq!(p.title, "t = 0.500 s");
+        assert_eq!(p.series[0].points, [(-1.0, 0.0), (1.0, 0.0)]);
+        assert_eq!(p.series[1].points, [(-1.0, 0.5), (1.0, 1.5)]);
+        assert_eq!(p.series[2].points, [(1.0, 1.5), (0.0, 2.0)]);
+    }
+}

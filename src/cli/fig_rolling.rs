@@ -1,0 +1,71 @@
+//! `tensegrity fig-rolling`: thesis Figs. 3.10 (n = 8, 12, 16, 24) and 3.11 (n = 8, 16) for
+//! the reference wheel with spokes + inner rings. Its flags are the fields of
+//! [`FigRollingRequest`] ([`RequestArgs`]); `--out` is opened before the wheels roll
+//! ([`tensegrity_figures::fig_rolling`]: one thread per wheel); the summary of each run and
+//! the impact impulse per new contact against n (§3.3.1) are printed.
+
+use super::output;
+use super::request_args::RequestArgs;
+use anyhow::Result;
+use std::path::PathBuf;
+use tensegrity_figures::rolling::{FigRolling, FigRollingRequest};
+use tensegrity_io::sink::FigureSink;
+
+/// Arguments of `tensegrity fig-rolling`.
+#[derive(clap::Args, Debug)]
+pub struct FigRollingArgs {
+    /// Output SVG file (or PNG, by the extension).
+    #[arg(long, value_name = "FILE", default_value = "rolling.svg")]
+    out: PathBuf,
+    #[command(flatten)]
+    request: RequestArgs<FigRollingRequest>,
+}
+
+/// Entry point of `tensegrity fig-rolling`.
+pub fn run(args: &FigRollingArgs) -> Result<()> {
+    let request: FigRollingRequest = args.request.request()?;
+    let sides = FigRollingRequest::SIDES;
+    let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
+    let sink = output::open_required("--out", &args.out, FigureSink::open)?;
+    let rolled = tensegrity_figures::fig_rolling(&request)?;
+    print_series(&rolled);
+    sink.finish(&rolled.figure())?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+/// Prints one line per wheel (model, validity, axle height, speed) and the impulse table.
+fn print_series(rolled: &FigRolling) {
+    for r in &rolled.runs {
+        println!(
+            "n = {:>2} ({:?}, {}): mean axle height {:.4} m, oscillation {:.5} m, mean speed {:.3} m/s, airborne {:.1} %{}",
+            r.sides,
+            r.fidelity,
+            r.contact,
+            r.summary.mean_axle_height,
+            r.summary.axle_height_oscillation,
+            r.summary.mean_speed,
+            100.0 * r.summary.airborne_fraction,
+            if r.summary.valid { "" } else { "  NOT VALID" }
+        );
+        for w in &r.summary.warnings {
+            eprintln!("warning (n = {}): {w}", r.sides);
+        }
+    }
+    println!("\nimpact impulse per new contact (§3.3.1), means over each run's impacts:");
+    println!(
+        "{:>4} {:>8} {:>14} {:>18} {:>16} {:>14}",
+        "n", "impacts", "normal [N s]", "tangential [N s]", "normal/m [m/s]", "omega+/omega-"
+    );
+    for m in rolled.impacts() {
+        println!(
+            "{:>4} {:>8} {:>14.5} {:>18.5} {:>16.5} {:>14.5}",
+            m.sides,
+            m.impacts,
+            m.normal_impulse,
+            m.tangential_impulse,
+            m.normal_per_mass,
+            m.omega_ratio
+        );
+    }
+}
