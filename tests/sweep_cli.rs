@@ -1,5 +1,6 @@
 //! `tensegrity sweep` end to end: rows equal the single-point commands' JSON, shards merged
-//! by `sweep merge`, a real `kill -9` part-way plus `--resume`, and bad specs.
+//! by `sweep merge`, a real `kill -9` part-way plus `--resume`, bad specs, and cases over the
+//! resource limits refused by name.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -360,4 +361,54 @@ fn sweep_plot_draws_one_curve_per_group_and_names_a_missing_column() {
     let out = run(&bad);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no column `no_such_column`"));
+}
+
+#[test]
+fn a_case_over_the_limits_is_refused_by_name_and_the_others_run() {
+    // each case is estimated by the engine before it runs: under `--max-memory 1K` the dense
+    // SVD of the tower's statics is refused, naming the case's method; the sparse QR has no
+    // estimate and runs
+    let dir = scratch("limits");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tower.toml");
+    let spec = write(
+        &dir,
+        "statics.toml",
+        &format!(
+            "study = \"statics\"\n[fixed]\nscene = {:?}\n[axes]\nmethod = [\"dense\", \"sparse\"]\n",
+            scene.to_string_lossy()
+        ),
+    );
+    let out = dir.join("statics.csv").to_string_lossy().into_owned();
+    assert_ok(&run(&[
+        "--max-memory",
+        "1K",
+        "sweep",
+        &spec,
+        "--out",
+        &out,
+        "--quiet",
+    ]));
+    let (header, rows) = table(&out);
+    let status = header.iter().position(|h| h == "status").unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0][status], "error");
+    let message = &rows[0][status + 1];
+    assert!(
+        message.starts_with("refused before running: method = dense (")
+            && message.contains("memory")
+            && message.contains("above the limit of 1000 B"),
+        "{message}"
+    );
+    assert_eq!(rows[1][status], "ok");
+    // the sparse row holds the tower's statics: the same rank as `statics --json`
+    let json = run(&[
+        "statics",
+        "examples/tower.toml",
+        "--json",
+        "--method",
+        "sparse",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let rank = header.iter().position(|h| h == "rank").unwrap();
+    assert_eq!(rows[1][rank], json["rank"].to_string());
 }

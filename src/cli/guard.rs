@@ -1,11 +1,12 @@
-//! The resource limits of every command: the libraries estimate a command's peak memory, work
-//! and output before it allocates ([`tensegrity_engine::estimate`]); here the limits are the
-//! global flags `--max-memory` (default: the smaller of 8 GiB and 3/4 of the memory this
-//! process may use — cgroup limit, address-space limit, available memory), `--max-work`
-//! (estimated seconds, default 60) and `--max-output` (bytes written, default 1 GiB); an
-//! estimate above them is refused (exit code 2) naming the parameter, the estimate, the limit,
-//! the flag that raises it and the flags of the parameters ([`flag_of`]). Work estimated above
-//! a few seconds shows an elapsed-time spinner on stderr when it is a terminal.
+//! The resource limits of every command: the engine estimates a command's peak memory, work
+//! and output before it allocates ([`tensegrity_engine::estimate`]) and knows the default
+//! limits ([`tensegrity_engine::limits`]); here the limits are the global flags
+//! `--max-memory` (default: the smaller of 8 GiB and 3/4 of the memory this process may use),
+//! `--max-work` (estimated seconds, default 60) and `--max-output` (bytes written, default
+//! 1 GiB); an estimate above them is refused (exit code 2) naming the parameter, the
+//! estimate, the limit, the flag that raises it and the flags of the parameters
+//! ([`flag_of`]). Work estimated above a few seconds shows an elapsed-time spinner on stderr
+//! when it is a terminal.
 
 use super::request_args::flag_of;
 use anyhow::Result;
@@ -38,10 +39,11 @@ pub struct LimitArgs {
 
 /// Sets the limits of this process from the flags (first call wins).
 pub fn init(args: &LimitArgs) {
+    let defaults = limits::for_this_process();
     let _ = LIMITS.set(Limits {
-        memory_bytes: (args.max_memory).unwrap_or_else(|| limits::for_this_process().memory_bytes),
-        work_s: args.max_work.unwrap_or(budget::DEFAULT_MAX_WORK_S),
-        output_bytes: args.max_output.unwrap_or(budget::DEFAULT_MAX_OUTPUT_BYTES),
+        memory_bytes: args.max_memory.unwrap_or(defaults.memory_bytes),
+        work_s: args.max_work.unwrap_or(defaults.work_s),
+        output_bytes: args.max_output.unwrap_or(defaults.output_bytes),
     });
 }
 

@@ -83,13 +83,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     for w in &report.warnings {
         eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
-    if command.strict && !report.warnings.is_empty() {
-        anyhow::bail!(
-            "--strict: {} drift warning(s) (see above)",
-            report.warnings.len()
-        );
-    }
-    Ok(())
+    Ok(command.strict_check(&report)?)
 }
 
 /// The run streamed to `--out` and `--vtk` (opened before it), what was written said.

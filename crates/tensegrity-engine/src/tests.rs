@@ -377,3 +377,33 @@ fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
         "{m}"
     );
 }
+
+#[test]
+fn the_work_precision_study_by_name_shows_rk4_fourth_order() {
+    let c = command("bench_work_precision").unwrap();
+    let report = c
+        .run(values(json!({ "quick": true })), &Context::default())
+        .unwrap();
+    let points = report["points"].as_array().unwrap();
+    for integrator in ["rk4", "rk45", "rattle", "sdirk"] {
+        assert!(
+            points.iter().any(|p| p["integrator"] == integrator),
+            "{integrator}"
+        );
+    }
+    // RK4 on the oscillating prism: a step 4× smaller cuts the error about 4⁴ = 256×
+    let rk4: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p["scene"] == "prism-oscillating" && p["integrator"] == "rk4")
+        .map(|p| {
+            (
+                p["parameter"].as_f64().unwrap(),
+                p["error"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    let coarse = rk4.iter().find(|p| p.0 == 4e-3).unwrap();
+    let fine = rk4.iter().find(|p| p.0 == 1e-3).unwrap();
+    let ratio = coarse.1 / fine.1;
+    assert!((128.0..512.0).contains(&ratio), "{ratio}");
+}
