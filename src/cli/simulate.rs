@@ -22,31 +22,6 @@ use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
 use tensegrity_io::trajectory::TrajectoryWriter;
 
-/// Integrator choice on the command line (`roll --integrator`, until `roll` takes its
-/// request's flags).
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IntegratorArg {
-    /// Classic fixed-step RK4.
-    Rk4,
-    /// Adaptive Dormand–Prince 5(4).
-    Rk45,
-    /// Constraint-preserving RATTLE (fixed step, 2nd order).
-    Rattle,
-    /// Adaptive L-stable SDIRK 3(2) (stiff strings and contact).
-    Sdirk,
-}
-
-impl From<IntegratorArg> for IntegratorKind {
-    fn from(a: IntegratorArg) -> Self {
-        match a {
-            IntegratorArg::Rk4 => IntegratorKind::Rk4,
-            IntegratorArg::Rk45 => IntegratorKind::Rk45,
-            IntegratorArg::Rattle => IntegratorKind::Rattle,
-            IntegratorArg::Sdirk => IntegratorKind::Sdirk,
-        }
-    }
-}
-
 /// Arguments of `tensegrity simulate`: the request's flags ([`SimulateCommand`], the scene
 /// positional) and the outputs.
 #[derive(clap::Args, Debug)]
