@@ -279,23 +279,26 @@ impl Integrator for Rattle {
         }
         // constraint forces at q_n: solve g(q_{n+1}) = 0
         // a failure from here on is the step's, not the constraints': they factored at q_n
-        let failed = |cons: &mut ConstraintSet, x: &[f64]| -> CoreError {
-            DynamicsError::RattleStepFailed {
-                t,
-                dt: h,
-                residual: cons.residual(x),
-            }
-            .into()
+        let failed = |residual: Option<f64>| -> CoreError {
+            // the grid step shortened by round-off (0.04999999999999993) printed as 0.05
+            let dt = format!("{h:.12e}").parse().unwrap_or(h);
+            DynamicsError::RattleStepFailed { t, dt, residual }.into()
         };
-        if self.cons.solve_positions(model, x, self.tol, t).is_err() {
-            return Err(failed(&mut self.cons, x));
+        if let Err(e) = self.cons.solve_positions(model, x, self.tol, t) {
+            let residual = match e {
+                CoreError::Dynamics(DynamicsError::ConstraintNotConverged { residual, .. }) => {
+                    residual
+                }
+                _ => f64::NAN,
+            };
+            return Err(failed(Some(residual)));
         }
         for i in 0..n3 {
             self.v_half[i] = (x[i] - self.x_old[i]) / h;
         }
         // second half kick at q_{n+1}
         if self.cons.factor(model, x).is_err() {
-            return Err(failed(&mut self.cons, x));
+            return Err(failed(None));
         }
         v.copy_from_slice(&self.v_half);
         let iterations = if self.velocity_dependent { 3 } else { 1 };

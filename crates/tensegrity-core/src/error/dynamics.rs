@@ -114,14 +114,15 @@ pub enum DynamicsError {
     /// Newton iteration on their lengths (and N P = D) did not converge, or its matrix
     /// G M⁻¹ Gᵀ lost rank on the way. The constraints themselves are fine (they factored at the
     /// start): the step is too large for the motion.
-    #[error("the RATTLE constraint iteration did not converge in the step from t = {t:?} s (step {dt:?} s, constraint residual {residual:e}): the step is too large for the motion; use a smaller `dt`, `integrator = rk45` (adaptive) or `integrator = sdirk` (implicit, for stiff strings and contact)")]
+    #[error("the RATTLE step from t = {t:?} s (step {dt:?} s) failed: {}: the step is too large for the motion; use a smaller `dt`, `integrator = rk45` (adaptive) or `integrator = sdirk` (implicit, for stiff strings and contact)", rattle_cause(.residual))]
     RattleStepFailed {
         /// Time at the start of the failed step (s).
         t: f64,
-        /// The step (s).
+        /// The step (s), to 12 significant digits.
         dt: f64,
-        /// The constraint residual max |g| where the iteration stopped.
-        residual: f64,
+        /// The constraint residual max |g| where the iteration stopped; `None` when the
+        /// iteration converged but the matrix G M⁻¹ Gᵀ lost rank at the new positions.
+        residual: Option<f64>,
     },
     /// The constraint projection (positions back onto the bar lengths) did not converge.
     #[error("the constraint projection did not converge at t = {t:?} s (residual {residual:e})")]
@@ -181,5 +182,15 @@ impl std::fmt::Display for StepHint {
                 "; the adaptive step followed the motion, so the motion itself ran away: check the loads, the supports and the ground"
             ),
         }
+    }
+}
+
+/// What failed in a RATTLE step.
+fn rattle_cause(residual: &Option<f64>) -> String {
+    match residual {
+        Some(r) => format!(
+            "its constraint iteration did not converge (constraint residual {r:e} after 100 iterations)"
+        ),
+        None => "its constraint matrix G M⁻¹ Gᵀ lost rank at the new positions".into(),
     }
 }
