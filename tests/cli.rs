@@ -634,9 +634,36 @@ fn a_run_away_step_is_reported_as_divergence_with_the_remedy_not_as_singular_con
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("diverged at t = ")
-            && err.contains("smaller --dt")
+        err.starts_with("error: simulating examples/prism.toml: the RATTLE step from t = ")
+            && err.contains(" s (step 0.05 s) failed: its constraint ")
+            && err
+                .contains("use a smaller --dt, --integrator rk45 (adaptive) or --integrator sdirk")
+            && !err.contains("singular")
             && !err.contains("fixed at both ends"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_explicit_blow_up_names_the_step_and_the_remedy() {
+    let out = run(&[
+        "simulate",
+        "examples/prism.toml",
+        "--integrator",
+        "rk4",
+        "--dt",
+        "0.2",
+        "--t-end",
+        "5",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.trim_end().ends_with(
+            "; the step (0.2 s) is likely too large for the stiffness of the strings or the \
+             ground: use a smaller --dt, or --integrator sdirk (implicit, for stiff strings and \
+             contact) or --integrator rk45 (adaptive)"
+        ),
         "{err}"
     );
 }

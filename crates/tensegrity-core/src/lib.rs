@@ -47,7 +47,9 @@ pub mod validate;
 
 pub use connectivity::{Connectivity, Incidence};
 pub use dynamics::{IntegratorKind, Simulation, SimulationResult, SimulationSettings};
-pub use error::{CoreError, DynamicsError, ModelError, NumericsError, Result, StaticsError};
+pub use error::{
+    CoreError, DynamicsError, ModelError, NumericsError, Result, StaticsError, StepHint,
+};
 pub use material::{Material, MaterialTable};
 pub use member_id::MemberId;
 pub use statics::report::{statics_report, StaticsReport, StaticsRequest};

@@ -171,6 +171,11 @@ fn errors_name_the_member_and_time() {
                 msg.starts_with(&format!("blow-up at t = {t} s: bar ")),
                 "{msg}"
             );
+            // the fixed-step run names its remedy in the library's terms
+            assert!(
+                msg.ends_with("; the step (0.001 s) is likely too large for the stiffness of the strings or the ground: use a smaller `dt`, or `integrator = sdirk` (implicit, for stiff strings and contact) or `integrator = rk45` (adaptive)"),
+                "{msg}"
+            );
         }
         other => panic!("unexpected {other}"),
     }
@@ -205,7 +210,7 @@ fn nan_in_the_state_is_reported_with_time_and_member() {
         }
     }));
     match sim.run().unwrap_err() {
-        CoreError::Dynamics(DynamicsError::NonFiniteState { t, member }) => {
+        CoreError::Dynamics(DynamicsError::NonFiniteState { t, member, .. }) => {
             assert!((0.25..0.252).contains(&t), "t = {t}");
             assert_eq!(member, MemberId::Bar(1));
         }

@@ -27,7 +27,7 @@
 use super::forces::{Ground, GroundModel};
 use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
-use crate::error::{CoreError, DynamicsError, ModelError};
+use crate::error::{CoreError, DynamicsError, ModelError, StepHint};
 use crate::structure::{MemberId, Structure};
 use nalgebra::Vector3;
 
@@ -566,6 +566,7 @@ impl Model {
             return Err(DynamicsError::NonFiniteState {
                 t,
                 member: MemberId::Bar(i / 2),
+                hint: StepHint::Unknown,
             }
             .into());
         }
@@ -587,6 +588,7 @@ impl Model {
                     Some(i) => CoreError::Dynamics(DynamicsError::NonFiniteState {
                         t,
                         member: MemberId::Bar(i / 2),
+                        hint: StepHint::Unknown,
                     }),
                     None => e,
                 });

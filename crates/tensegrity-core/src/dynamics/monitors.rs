@@ -6,7 +6,7 @@
 //! thesis ground model.
 
 use super::model::{vec3, Model, NodeRef};
-use crate::error::{CoreError, DynamicsError};
+use crate::error::{CoreError, DynamicsError, StepHint};
 use crate::structure::MemberId;
 use nalgebra::Vector3;
 
@@ -102,6 +102,7 @@ impl Model {
                 return Err(DynamicsError::NonFiniteState {
                     t,
                     member: MemberId::Bar(i / 2),
+                    hint: StepHint::Unknown,
                 }
                 .into());
             }
@@ -116,6 +117,7 @@ impl Model {
                 member: MemberId::Bar(i / 2),
                 distance: d2.sqrt(),
                 limit,
+                hint: StepHint::Unknown,
             }
             .into()),
             None => Ok(()),

@@ -266,6 +266,8 @@ impl Integrator for Rattle {
             ws.rhs_evals += 1;
             model.applied_forces(t, x, v, ws);
             self.f_cache.copy_from_slice(&ws.f);
+            // the state the previous step accepted (or the initial one, where a failure is a
+            // redundant constraint set and stays one)
             self.cons.factor(model, x)?;
         }
         // half kick and drift
@@ -276,12 +278,28 @@ impl Integrator for Rattle {
             x[i] += h * self.v_half[i];
         }
         // constraint forces at q_n: solve g(q_{n+1}) = 0
-        self.cons.solve_positions(model, x, self.tol, t)?;
+        // a failure from here on is the step's, not the constraints': they factored at q_n
+        let failed = |residual: Option<f64>| -> CoreError {
+            // the grid step shortened by round-off (0.04999999999999993) printed as 0.05
+            let dt = format!("{h:.12e}").parse().unwrap_or(h);
+            DynamicsError::RattleStepFailed { t, dt, residual }.into()
+        };
+        if let Err(e) = self.cons.solve_positions(model, x, self.tol, t) {
+            let residual = match e {
+                CoreError::Dynamics(DynamicsError::ConstraintNotConverged { residual, .. }) => {
+                    residual
+                }
+                _ => f64::NAN,
+            };
+            return Err(failed(Some(residual)));
+        }
         for i in 0..n3 {
             self.v_half[i] = (x[i] - self.x_old[i]) / h;
         }
         // second half kick at q_{n+1}
-        self.cons.factor(model, x)?;
+        if self.cons.factor(model, x).is_err() {
+            return Err(failed(None));
+        }
         v.copy_from_slice(&self.v_half);
         let iterations = if self.velocity_dependent { 3 } else { 1 };
         for _ in 0..iterations {

@@ -17,7 +17,7 @@ use super::model::{Model, Workspace};
 use super::monitors::Monitor;
 use super::rattle::ConstraintSet;
 use super::recorder::{Quantities, Recorder, Sample, SampleSink};
-use crate::error::{CoreError, DynamicsError};
+use crate::error::{CoreError, DynamicsError, StepHint};
 use crate::structure::Structure;
 use nalgebra::Vector3;
 use std::fmt;
@@ -214,7 +214,7 @@ impl Simulation {
             StepControl::Grid { dt: s.dt, k: 0 }
         };
         if let Err(e) = driver.integrate(integrator.as_mut(), &mut control) {
-            return Err(diverged(e, driver.t));
+            return Err(diverged(e, driver.t, s));
         }
         let wall_time_s = (start.elapsed().as_secs_f64() - driver.diag_time).max(0.0);
         Ok(driver.finish(wall_time_s))
@@ -269,14 +269,38 @@ impl Simulation {
 
 /// A constraint system that factored at t = 0 and fails later fails because the state ran
 /// away (a step too large for the stiffness), not because the constraints are redundant:
-/// say so.
-fn diverged(e: CoreError, t: f64) -> CoreError {
+/// say so. A blow-up or a NaN names the remedy of the run's integrator.
+fn diverged(e: CoreError, t: f64, settings: &SimulationSettings) -> CoreError {
+    let hint = if settings.integrator.is_adaptive() {
+        StepHint::Adaptive
+    } else {
+        StepHint::FixedStep { dt: settings.dt }
+    };
     let what = match e {
         CoreError::Dynamics(DynamicsError::SingularConstraint { .. }) => {
-            "the constraint system became singular"
+            "the bar-direction constraint system lost rank as the state ran away"
         }
         CoreError::Dynamics(DynamicsError::ConstraintNotConverged { .. }) => {
-            "the RATTLE constraint iteration failed"
+            "the constraint projection did not converge"
+        }
+        CoreError::Dynamics(DynamicsError::BlowUp {
+            t,
+            member,
+            distance,
+            limit,
+            ..
+        }) => {
+            return DynamicsError::BlowUp {
+                t,
+                member,
+                distance,
+                limit,
+                hint,
+            }
+            .into()
+        }
+        CoreError::Dynamics(DynamicsError::NonFiniteState { t, member, .. }) => {
+            return DynamicsError::NonFiniteState { t, member, hint }.into()
         }
         other => return other,
     };

@@ -68,15 +68,17 @@ pub enum DynamicsError {
         max_steps: u64,
     },
     /// A NaN or infinity appeared in the state or the forces.
-    #[error("non-finite state at t = {t:?} s in {member}")]
+    #[error("non-finite state at t = {t:?} s in {member}{hint}")]
     NonFiniteState {
         /// Time of the step that produced it.
         t: f64,
         /// The bar owning the offending node.
         member: MemberId,
+        /// The remedy, from the run's integrator (filled in by the simulation).
+        hint: StepHint,
     },
     /// A node moved implausibly far (the run diverged).
-    #[error("blow-up at t = {t:?} s: {member} moved {distance:e} m (limit {limit:e} m)")]
+    #[error("blow-up at t = {t:?} s: {member} moved {distance:e} m (limit {limit:e} m){hint}")]
     BlowUp {
         /// Time of detection.
         t: f64,
@@ -86,6 +88,8 @@ pub enum DynamicsError {
         distance: f64,
         /// The blow-up limit.
         limit: f64,
+        /// The remedy, from the run's integrator (filled in by the simulation).
+        hint: StepHint,
     },
     /// The constraint (Ω or RATTLE) system is singular: redundant or conflicting constraints,
     /// e.g. a bar pinned at both ends.
@@ -106,8 +110,22 @@ pub enum DynamicsError {
         /// What failed.
         what: &'static str,
     },
-    /// The RATTLE position solve did not converge.
-    #[error("RATTLE constraint iteration did not converge at t = {t:?} s (residual {residual:e})")]
+    /// A RATTLE step whose constraint iteration failed: the step moved the bars so far that the
+    /// Newton iteration on their lengths (and N P = D) did not converge, or its matrix
+    /// G M⁻¹ Gᵀ lost rank on the way. The constraints themselves are fine (they factored at the
+    /// start): the step is too large for the motion.
+    #[error("the RATTLE step from t = {t:?} s (step {dt:?} s) failed: {}: the step is too large for the motion; use a smaller `dt`, `integrator = rk45` (adaptive) or `integrator = sdirk` (implicit, for stiff strings and contact)", rattle_cause(.residual))]
+    RattleStepFailed {
+        /// Time at the start of the failed step (s).
+        t: f64,
+        /// The step (s), to 12 significant digits.
+        dt: f64,
+        /// The constraint residual max |g| where the iteration stopped; `None` when the
+        /// iteration converged but the matrix G M⁻¹ Gᵀ lost rank at the new positions.
+        residual: Option<f64>,
+    },
+    /// The constraint projection (positions back onto the bar lengths) did not converge.
+    #[error("the constraint projection did not converge at t = {t:?} s (residual {residual:e})")]
     ConstraintNotConverged {
         /// Time of the step.
         t: f64,
@@ -128,5 +146,51 @@ impl Categorized for DynamicsError {
             | Self::InvalidGroundNormal { .. } => Category::Input,
             _ => Category::Numerical,
         }
+    }
+}
+
+/// The remedy a run-away state (a blow-up, a NaN) names, chosen by the run's integrator. The
+/// error is raised where the state is checked; the simulation, which knows the integrator,
+/// fills this in ([`StepHint::Unknown`] until then).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub enum StepHint {
+    /// Not known: no remedy is named.
+    #[default]
+    Unknown,
+    /// A fixed-step integrator (`rk4`, `rattle`) at step `dt` (s): the usual cause is a step
+    /// too large for the stiffness.
+    FixedStep {
+        /// The step (s).
+        dt: f64,
+    },
+    /// An adaptive integrator (`rk45`, `sdirk`): the step follows the error estimate, so the
+    /// motion itself ran away.
+    Adaptive,
+}
+
+impl std::fmt::Display for StepHint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Unknown => Ok(()),
+            Self::FixedStep { dt } => write!(
+                f,
+                "; the step ({dt:?} s) is likely too large for the stiffness of the strings or the ground: use a smaller `dt`, or `integrator = sdirk` (implicit, for stiff strings and contact) or `integrator = rk45` (adaptive)"
+            ),
+            Self::Adaptive => write!(
+                f,
+                "; the adaptive step followed the motion, so the motion itself ran away: check the loads, the supports and the ground"
+            ),
+        }
+    }
+}
+
+/// What failed in a RATTLE step.
+fn rattle_cause(residual: &Option<f64>) -> String {
+    match residual {
+        Some(r) => format!(
+            "its constraint iteration did not converge (constraint residual {r:e} after 100 iterations)"
+        ),
+        None => "its constraint matrix G M⁻¹ Gᵀ lost rank at the new positions".into(),
     }
 }

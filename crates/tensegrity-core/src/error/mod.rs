@@ -26,7 +26,7 @@ mod model;
 mod numerics;
 mod statics;
 
-pub use dynamics::DynamicsError;
+pub use dynamics::{DynamicsError, StepHint};
 pub use model::ModelError;
 pub use numerics::{FactorizationFailure, NumericsError};
 pub use statics::StaticsError;
