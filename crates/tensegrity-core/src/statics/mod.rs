@@ -32,7 +32,7 @@ pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use select::{backend, cyclic_backend};
-pub use sparse::SparseStatics;
+pub use sparse::{sparse_statics_bytes, SparseStatics};
 pub use stability::PrestressStability;
 
 use crate::error::Result;
