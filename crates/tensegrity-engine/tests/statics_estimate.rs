@@ -59,12 +59,24 @@ fn the_statics_estimate_bounds_the_measured_peak_on_both_paths() {
     let (estimated, peak, rank) = measured(600, StaticsMethod::Dense);
     eprintln!("dense: estimated {estimated:.3e} B, peak {peak:.3e} B");
     assert_eq!(rank, 2 * 600 - 3);
-    assert!(peak <= estimated, "dense: peak {peak} B above the estimate {estimated} B");
-    assert!(estimated <= 20.0 * peak, "dense: {estimated} B for a peak of {peak} B");
+    assert!(
+        peak <= estimated,
+        "dense: peak {peak} B above the estimate {estimated} B"
+    );
+    assert!(
+        estimated <= 20.0 * peak,
+        "dense: {estimated} B for a peak of {peak} B"
+    );
     // sparse: 3000 nodes, 9000 dofs × 5997 members, 3003 mechanisms
     let (estimated, peak, rank) = measured(3000, StaticsMethod::Auto);
     eprintln!("sparse: estimated {estimated:.3e} B, peak {peak:.3e} B");
     assert_eq!(rank, 2 * 3000 - 3);
-    assert!(peak <= estimated, "sparse: peak {peak} B above the estimate {estimated} B");
-    assert!(estimated <= 20.0 * peak, "sparse: {estimated} B for a peak of {peak} B");
+    assert!(
+        peak <= estimated,
+        "sparse: peak {peak} B above the estimate {estimated} B"
+    );
+    assert!(
+        estimated <= 20.0 * peak,
+        "sparse: {estimated} B for a peak of {peak} B"
+    );
 }
