@@ -114,13 +114,17 @@ impl Estimated for MichellTableRequest {
 
 impl Estimated for MichellOptimizeRequest {
     /// The complexity search up to its bound ([`michell3d::optimize::search_bound`]): every
-    /// analysis of every q by its joints.
+    /// analysis of every q by its joints; none for a request the search refuses.
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         let req = self.optimize_request();
-        let bound = michell3d::optimize::search_bound(&req).map_err(failed)?;
+        // a request the search refuses (no joint mass, a bad ratio) is the run's to report
+        let Ok(bound) = michell3d::optimize::search_bound(&req) else {
+            return Ok(None);
+        };
         let per_q = michell3d::optimize::analyses_per_complexity(req.geometry) as f64;
         let first = if req.complexity.is_some() { bound } else { 1 };
-        let joints: f64 = (first..=bound).map(joints_3d).sum();
+        let joints_of = |q| michell3d::optimize::joint_count(req.geometry, q) as f64;
+        let joints: f64 = (first..=bound).map(joints_of).sum();
         let parameters = match req.complexity {
             Some(q) => format!("complexity = {q}"),
             None => format!(
@@ -133,7 +137,7 @@ impl Estimated for MichellOptimizeRequest {
                 format!("the Michell complexity search up to q = {bound}"),
                 parameters,
             )
-            .memory(MICHELL_BYTES_PER_JOINT * joints_3d(bound))
+            .memory(MICHELL_BYTES_PER_JOINT * joints_of(bound))
             .work(MICHELL_S_PER_JOINT * per_q * joints),
         ))
     }
@@ -259,6 +263,34 @@ mod tests {
             .estimate(Map::new())
             .unwrap()
             .is_none());
+    }
+
+    #[test]
+    fn the_michell_searches_and_tables_are_estimated_before_they_run() {
+        // the 215 s search: over the minute, named by its cap and joint mass
+        let c = command("michell_optimize").unwrap();
+        let v = json!({"cylindrical": 0.25, "radius_ratio": 0.01, "joint_mass": 1e-6,
+                       "max_complexity": 100});
+        let e = c.estimate(values(v)).unwrap().unwrap();
+        assert_eq!(
+            Limits::default().check(&e).unwrap_err().resource,
+            Resource::Work
+        );
+        assert!(e.parameters.to_string().starts_with("max_complexity = 100"));
+        // a heavy joint stops the search within a few q: milliseconds
+        let v = json!({"planar": true, "radius_ratio": 0.3, "joint_mass": 0.1});
+        assert!(c.estimate(values(v)).unwrap().unwrap().work_s < 0.1);
+        // no joint mass: the run refuses it, not the estimate
+        let v = json!({"planar": true, "radius_ratio": 0.3});
+        assert!(c.estimate(values(v)).unwrap().is_none());
+        // the table: 4 families × (Q − 1) rows of output
+        let t = command("michell_table").unwrap();
+        let e = t
+            .estimate(values(json!({"max_complexity": 35})))
+            .unwrap()
+            .unwrap();
+        assert_eq!(e.output_bytes, MICHELL_TABLE_ROW_BYTES * 4.0 * 34.0);
+        assert!(Limits::default().check(&e).is_ok());
     }
 
     #[test]
