@@ -23,6 +23,7 @@ pub struct OptimizeArgs {
 /// Entry point of `tensegrity michell optimize`.
 pub fn run(args: &OptimizeArgs) -> Result<()> {
     let request: MichellOptimizeRequest = args.request.request()?;
+    let _progress = super::guard::estimated(&request)?;
     let o = request.run().context("Michell optimisation failed")?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&o)?);

@@ -225,6 +225,46 @@ pub fn optimize(req: &OptimizeRequest) -> Result<Optimum> {
     }
 }
 
+/// Analyses of one complexity in the search: the φ grid, the golden section down to its
+/// tolerance (≤ 40 steps) and the final design, twice in 3-D (the family and its planar
+/// comparison at the same q). A front end's work estimate multiplies it by the joints.
+pub fn analyses_per_complexity(geometry: Geometry) -> usize {
+    let one = PHI_GRID + 2 + 40 + 1;
+    if geometry.is_planar() {
+        one
+    } else {
+        2 * one
+    }
+}
+
+/// The largest complexity the search may analyse: `complexity` when it is given; else the
+/// first q whose joints alone weigh as much as the q = 1 optimum (the search stops there at
+/// the latest, since its best design never weighs more), at most `max_complexity`. One
+/// analysis at q = 1 (milliseconds).
+///
+/// ```
+/// use michell3d::optimize::{search_bound, OptimizeRequest};
+/// use michell3d::Geometry;
+/// let heavy = OptimizeRequest { joint_mass: 10.0, ..OptimizeRequest::new(Geometry::Planar, 0.3) };
+/// assert!(search_bound(&heavy).unwrap() < 5);
+/// let light = OptimizeRequest { joint_mass: 1e-9, max_complexity: 40, ..heavy };
+/// assert_eq!(search_bound(&light).unwrap(), 40);
+/// ```
+pub fn search_bound(req: &OptimizeRequest) -> Result<usize> {
+    req.validate()?;
+    if let Some(q) = req.complexity {
+        return Ok(q);
+    }
+    let first = optimum_at(req, 1)?.mass_kg;
+    Ok((2..=req.max_complexity)
+        .find(|&q| req.joint_mass * joint_count(req.geometry, q) as f64 >= first)
+        .unwrap_or(req.max_complexity.max(1))
+        .min(match req.geometry {
+            Geometry::Planar => crate::params::MAX_COMPLEXITY_PLANAR,
+            _ => crate::params::MAX_COMPLEXITY_3D,
+        }))
+}
+
 /// Number of joints (nodes with merged tuples, supports included) at complexity q:
 /// (q+1)(q+2)/2 in the plane, (q+1)(q+2)(q+3)/6 in 3-D.
 pub fn joint_count(geometry: Geometry, q: usize) -> usize {

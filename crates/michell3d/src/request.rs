@@ -524,9 +524,9 @@ impl Request for MichellTableRequest {
         vec![
             Param::count(
                 "max_complexity",
-                "Largest complexity (the table runs q = 2..=Q)",
+                "Largest complexity (the table runs q = 2..=Q, at most the 3-D families' 100)",
             )
-            .rule(Rule::AtLeast(2.0)),
+            .rule(Rule::Closed(2.0, crate::params::MAX_COMPLEXITY_3D as f64)),
             Param::number("load", "N", "Tip load w₀, along −ι̂₃").positive(),
             Param::text("material", "Material of bars and strings"),
         ]
@@ -613,5 +613,9 @@ mod tests {
         let t = MichellTableRequest::from_values([("max_complexity", json!(3))]).unwrap();
         assert_eq!(t.run().unwrap().rows.len(), 2 * 4);
         assert!(MichellTableRequest::from_values([("max_complexity", json!(1))]).is_err());
+        // the 3-D families end at q = 100: refused before any row is computed
+        let e = MichellTableRequest::from_values([("max_complexity", json!(10000))]).unwrap_err();
+        assert_eq!(e.name, "max_complexity");
+        assert!(MichellTableRequest::from_values([("max_complexity", json!(100))]).is_ok());
     }
 }

@@ -162,9 +162,9 @@ impl Request for TbarRollRequest {
                 "treads",
                 Kind::Counts,
                 "",
-                "Numbers of treads n = π/φ (default 8,12,16,24 rigid, 8 full)",
+                "Numbers of treads n = π/φ, each at least 3 (default 8,12,16,24 rigid, 8 full)",
             )
-            .rule(Rule::AtLeast(2.0))
+            .rule(Rule::AtLeast(3.0))
             .optional(),
             setting("incline"),
             Param::number("t_end", "s", "Simulated time (default 10 s rigid, 1 s full)")
@@ -199,7 +199,7 @@ impl Request for TbarRollRequest {
     }
 
     /// Finite numbers; the full model needs the rim body; one parameterisation; the treads
-    /// given.
+    /// given, at most [`crate::params::MAX_TREADS`].
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         self.settings.check_finite()?;
         wheel_rolling::settings::finite(&[
@@ -225,6 +225,14 @@ impl Request for TbarRollRequest {
         }
         if self.treads.as_ref().is_some_and(Vec::is_empty) {
             return Err(InvalidParameter::raw("treads", "[]", "give at least one"));
+        }
+        let max = crate::params::MAX_TREADS;
+        if let Some(&n) = self.treads().iter().find(|&&n| n > max) {
+            return Err(InvalidParameter::new(
+                "treads",
+                n as f64,
+                format!("must be at most {max} (the T-bar wheel's limit of treads per wheel)"),
+            ));
         }
         Ok(())
     }

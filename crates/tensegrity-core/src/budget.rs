@@ -344,7 +344,7 @@ pub fn svd_flops(m: usize, n: usize) -> f64 {
 /// use tensegrity_core::budget::dense_statics;
 /// let e = dense_statics(1800, 1200, "sides = 100");
 /// assert!(e.work_s > 1.0 && e.work_s < 100.0); // seconds, not hours
-/// assert!(e.memory_bytes < 2e8); // 109 MB
+/// assert!(e.memory_bytes < 2e8); // 181 MB
 /// ```
 pub fn dense_statics(m: usize, n: usize, parameters: impl Into<Parameters>) -> Estimate {
     Estimate::new(
@@ -469,8 +469,9 @@ mod tests {
         );
         let err = Limits::default().check(&e).unwrap_err();
         assert_eq!(err.resource, Resource::Memory);
-        // 8 (2 m n + 2 m² + 2 n²) = 8 · 2 · (0.96 + 0.36 + 2.56) e12 = 6.208e13 B = 56.461 TiB
-        assert!((err.estimated - 6.208e13).abs() < 1e9, "{}", err.estimated);
+        // 24 (m n + m² + n²) + 16 n (n − m) = 24 · 3.88e12 + 16 · 1.6e12 = 1.1872e14 B
+        // = 107.975 TiB
+        assert!((err.estimated - 1.1872e14).abs() < 1e9, "{}", err.estimated);
         let text = err.to_string();
         assert!(
             text.starts_with("sides = 100000: the dense statics"),
@@ -481,7 +482,7 @@ mod tests {
             flags.starts_with("--sides 100000: the dense statics"),
             "{flags}"
         );
-        assert!(text.contains("56.461 TiB"), "{text}");
+        assert!(text.contains("107.975 TiB"), "{text}");
         assert!(text.contains("8.000 GiB"), "{text}");
     }
 

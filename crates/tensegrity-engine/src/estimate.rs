@@ -6,11 +6,13 @@
 //! [`Estimated`] is the estimate of a request, one per command, from the libraries' estimate
 //! functions: `toroid` ([`toroid::budget::statics`]: the symmetry-adapted blocks), `roll`
 //! ([`toroid::budget::roll`]: the statics, then the runs of the fidelity decision's plan),
-//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the full runs of every row), `statics`
-//! ([`crate::statics::estimate`]: the dense SVD when the method takes it) and `simulate`
-//! ([`crate::simulate::estimate`]: steps × right-hand sides, samples); the registry's
-//! [`crate::Command::estimate`] runs it on named values. Every other command is cheap or
-//! bounded by its own parameter rules, and has none.
+//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `statics`
+//! ([`crate::statics::estimate`]: the dense SVD when the method takes it, else the sparse
+//! QR's memory), `simulate` ([`crate::simulate::estimate`]: steps × right-hand sides,
+//! samples), `michell_table` (rows by joints, its output) and `michell_optimize` (the
+//! complexity search up to [`michell3d::optimize::search_bound`], analyses by joints); the
+//! registry's [`crate::Command::estimate`] runs it on named values. Every other command is
+//! cheap or bounded by its own parameter rules, and has none.
 //!
 //! The rest estimate outputs a front end adds to a command: [`rolling_series`] (the wheels of
 //! Figs. 3.10–3.11 rolled at once), [`sign_map`] (Michell sign maps), [`friction_grid`] (the
@@ -21,6 +23,7 @@
 use crate::registry::RunError;
 use crate::simulate::SimulateCommand;
 use crate::statics::StaticsCommand;
+use michell3d::{MichellOptimizeRequest, MichellTableRequest};
 use tbar_wheel::TbarRollRequest;
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::request::Request;
@@ -69,6 +72,74 @@ impl Estimated for SimulateCommand {
         crate::simulate::estimate(&simulation, false, false)
             .map(Some)
             .map_err(failed)
+    }
+}
+
+/// Seconds of one Michell analysis per joint in `michell optimize` (force propagation and
+/// sizing; calibrated on the measured run of 215 s for `--cylindrical 0.25
+/// --radius-ratio 0.01 --joint-mass 1e-6 --max-complexity 100`, release build, rounded up).
+pub const MICHELL_S_PER_JOINT: f64 = 3e-7;
+/// Seconds of one `michell-table` row per joint (the sizing and the sign comparison with the
+/// planar family; 43 s measured up to q = 100, rounded up).
+pub const MICHELL_TABLE_S_PER_JOINT: f64 = 3e-6;
+/// Bytes a joint of the largest truss holds (nodes, members, forces, sizing).
+const MICHELL_BYTES_PER_JOINT: f64 = 2048.0;
+/// Bytes of one `michell-table` CSV row.
+const MICHELL_TABLE_ROW_BYTES: f64 = 120.0;
+
+/// Joints of the 3-D truss of complexity q (an upper bound of the planar one).
+fn joints_3d(q: usize) -> f64 {
+    michell3d::optimize::joint_count(michell3d::Geometry::Cylindrical { delta: 0.25 }, q) as f64
+}
+
+impl Estimated for MichellTableRequest {
+    /// The rows q = 2..=Q of the four families: work by joints, output by rows.
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let qs = self.complexities();
+        let families = 1 + michell3d::complexity::FIG_4_18_DELTAS.len();
+        let joints: f64 = qs.iter().map(|&q| joints_3d(q)).sum();
+        let rows = (qs.len() * families) as f64;
+        let largest = qs.last().copied().unwrap_or(2);
+        Ok(Some(
+            Estimate::new(
+                format!("the Michell mass table of {rows} rows"),
+                format!("max_complexity = {}", self.max_complexity),
+            )
+            .memory(MICHELL_BYTES_PER_JOINT * joints_3d(largest) * families as f64)
+            .work(MICHELL_TABLE_S_PER_JOINT * families as f64 * joints)
+            .output(MICHELL_TABLE_ROW_BYTES * rows),
+        ))
+    }
+}
+
+impl Estimated for MichellOptimizeRequest {
+    /// The complexity search up to its bound ([`michell3d::optimize::search_bound`]): every
+    /// analysis of every q by its joints; none for a request the search refuses.
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let req = self.optimize_request();
+        // a request the search refuses (no joint mass, a bad ratio) is the run's to report
+        let Ok(bound) = michell3d::optimize::search_bound(&req) else {
+            return Ok(None);
+        };
+        let per_q = michell3d::optimize::analyses_per_complexity(req.geometry) as f64;
+        let first = if req.complexity.is_some() { bound } else { 1 };
+        let joints_of = |q| michell3d::optimize::joint_count(req.geometry, q) as f64;
+        let joints: f64 = (first..=bound).map(joints_of).sum();
+        let parameters = match req.complexity {
+            Some(q) => format!("complexity = {q}"),
+            None => format!(
+                "max_complexity = {}, joint_mass = {}",
+                req.max_complexity, req.joint_mass
+            ),
+        };
+        Ok(Some(
+            Estimate::new(
+                format!("the Michell complexity search up to q = {bound}"),
+                parameters,
+            )
+            .memory(MICHELL_BYTES_PER_JOINT * joints_of(bound))
+            .work(MICHELL_S_PER_JOINT * per_q * joints),
+        ))
     }
 }
 
@@ -192,6 +263,34 @@ mod tests {
             .estimate(Map::new())
             .unwrap()
             .is_none());
+    }
+
+    #[test]
+    fn the_michell_searches_and_tables_are_estimated_before_they_run() {
+        // the 215 s search: over the minute, named by its cap and joint mass
+        let c = command("michell_optimize").unwrap();
+        let v = json!({"cylindrical": 0.25, "radius_ratio": 0.01, "joint_mass": 1e-6,
+                       "max_complexity": 100});
+        let e = c.estimate(values(v)).unwrap().unwrap();
+        assert_eq!(
+            Limits::default().check(&e).unwrap_err().resource,
+            Resource::Work
+        );
+        assert!(e.parameters.to_string().starts_with("max_complexity = 100"));
+        // a heavy joint stops the search within a few q: milliseconds
+        let v = json!({"planar": true, "radius_ratio": 0.3, "joint_mass": 0.1});
+        assert!(c.estimate(values(v)).unwrap().unwrap().work_s < 0.1);
+        // no joint mass: the run refuses it, not the estimate
+        let v = json!({"planar": true, "radius_ratio": 0.3});
+        assert!(c.estimate(values(v)).unwrap().is_none());
+        // the table: 4 families × (Q − 1) rows of output
+        let t = command("michell_table").unwrap();
+        let e = t
+            .estimate(values(json!({"max_complexity": 35})))
+            .unwrap()
+            .unwrap();
+        assert_eq!(e.output_bytes, MICHELL_TABLE_ROW_BYTES * 4.0 * 34.0);
+        assert!(Limits::default().check(&e).is_ok());
     }
 
     #[test]

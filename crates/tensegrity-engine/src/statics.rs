@@ -6,8 +6,10 @@
 //! Its resource estimate ([`estimate`]) is that of the dense SVD of the m × n equilibrium
 //! matrix (m free degrees of freedom, n members: O(m² + n²) memory, O(max(m,n)² min(m,n))
 //! work, [`budget::dense_statics`]) when the method takes the dense path — `dense`, or
-//! `auto` below [`SPARSE_MIN_SIZE`] — and none for the sparse QR, whose cost is linear in
-//! the band of the structure.
+//! `auto` below [`SPARSE_MIN_SIZE`] — and otherwise that of the sparse QR, whose cost is linear in
+//! the band of the structure: its memory is the QR's profile and the dense bases it reports
+//! (mechanisms or self-stresses, at least the difference of dofs and members), so that a
+//! structure too large for either is refused before it is read into a factorisation.
 //!
 //! ```
 //! use tensegrity_core::request::Request;
@@ -157,7 +159,7 @@ pub fn admitted<G, E: From<SceneError>>(
 }
 
 /// The resource estimate of the statics of `structure` (module docs): the dense SVD when the
-/// method takes the dense path, else none.
+/// method takes the dense path, else the sparse QR's memory.
 ///
 /// ```
 /// use tensegrity_core::test_models::oscillating_prism;
@@ -178,7 +180,22 @@ pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estim
         method.as_str().unwrap_or("auto"),
         structure.n_nodes()
     );
-    dense.then(|| budget::dense_statics(dofs, members, parameter))
+    if dense {
+        return Some(budget::dense_statics(dofs, members, parameter));
+    }
+    // the sparse QR's profile, and the dense bases it reports, at least dofs × (dofs −
+    // members) for the mechanisms or members × (members − dofs) for the self-stresses (held
+    // twice: the basis and its orthonormalised or projected copy)
+    let profile = tensegrity_core::statics::sparse_statics_bytes(structure).unwrap_or(0.0);
+    let (m, n) = (dofs as f64, members as f64);
+    let bases = 2.0 * 8.0 * (m * (m - n).max(0.0) + n * (n - m).max(0.0));
+    Some(
+        Estimate::new(
+            format!("the sparse statics (QR of the {dofs} × {members} equilibrium matrix)"),
+            parameter,
+        )
+        .memory(profile + bases),
+    )
 }
 
 #[cfg(test)]
@@ -224,6 +241,7 @@ mod tests {
             method: StaticsMethod::Sparse,
             ..auto
         };
-        assert!(estimate(&s, &sparse).is_none());
+        let e = estimate(&s, &sparse).unwrap();
+        assert!(e.memory_bytes > 0.0 && e.what.contains("sparse"), "{e:?}");
     }
 }

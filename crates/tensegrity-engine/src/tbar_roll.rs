@@ -102,14 +102,9 @@ pub fn toroid_request(
         ));
     }
     Ok(RollRequest {
-        wheel: toroid_wheel(request, n),
-        settings: request.settings,
-        t_end: request.t_end(),
         fidelity: FidelityChoice::Full,
-        contact: ContactKind::Penalty,
-        mu: request.mu_static,
         min_tension: request.min_tension.unwrap_or(defaults::ROLL_MIN_TENSION),
-        integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
+        ..rigid_toroid_request(request, n)
     })
 }
 
@@ -149,31 +144,72 @@ fn toroid_column(
     }
 }
 
-/// The resource estimate of `tbar roll`: nothing for the rigid model (milliseconds a row);
-/// for the full model the T-bar's and the toroid's full runs of every row, one after the
-/// other.
+/// The resource estimate of `tbar roll`, the runs of every row one after the other: for
+/// the rigid model the toroid column's statics and rigid run ([`toroid::budget::roll`] of
+/// the rigid model) and the T-bar's rigid run of the same size (its steps and samples grow
+/// with `t_end`, the statics with the treads); for the full model the T-bar's and the
+/// toroid's full runs. Named `treads = [..], t_end = .., dt = ..`.
+///
+/// ```
+/// use tbar_wheel::TbarRollRequest;
+/// use tensegrity_core::budget::Limits;
+/// use tensegrity_engine::tbar_roll::estimate;
+/// let r = TbarRollRequest { t_end: Some(1e9), ..Default::default() };
+/// let e = estimate(&r).unwrap().unwrap();
+/// assert!(Limits::default().check(&e).is_err());
+/// assert!(e.parameters.to_string().contains("t_end = 1000000000"));
+/// ```
 pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError> {
-    if request.fidelity == Fidelity::Rigid {
-        return Ok(None);
-    }
     let rim = request.rim()?;
     let (t_end, dt) = (request.t_end(), request.settings.dt);
     let mut total: Option<Estimate> = None;
     for n in request.treads() {
-        let p = request.tbar_params(n, rim);
-        let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt)?;
-        if let Ok(req) = toroid_request(request, n) {
-            e = e.then(toroid::budget::roll(&req));
-        }
+        let e = match request.fidelity {
+            Fidelity::Rigid => {
+                let toroid = toroid::budget::roll(&rigid_toroid_request(request, n));
+                toroid.clone().then(toroid)
+            }
+            Fidelity::Full => {
+                let p = request.tbar_params(n, rim);
+                let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt)?;
+                if let Ok(req) = toroid_request(request, n) {
+                    e = e.then(toroid::budget::roll(&req));
+                }
+                e
+            }
+        };
         total = Some(match total {
             Some(t) => t.then(e),
             None => e,
         });
     }
+    let treads = request.treads();
+    let largest = treads.iter().copied().max().unwrap_or_default();
     Ok(total.map(|e| Estimate {
-        what: format!("the full rolling runs of n = {:?}", request.treads()),
+        what: format!(
+            "the {} rolling runs of n = {treads:?}",
+            request.fidelity.name()
+        ),
+        parameters: format!("treads = {largest}, t_end = {t_end}, dt = {dt}")
+            .as_str()
+            .into(),
         ..e
     }))
+}
+
+/// The toroid's rigid-model request of the row of `n` treads (the estimate's, and the base
+/// of the full model's [`toroid_request`]).
+fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
+    RollRequest {
+        wheel: toroid_wheel(request, n),
+        settings: request.settings,
+        t_end: request.t_end(),
+        fidelity: FidelityChoice::Rigid,
+        contact: ContactKind::Penalty,
+        mu: request.mu_static,
+        min_tension: defaults::ROLL_MIN_TENSION,
+        integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
+    }
 }
 
 #[cfg(test)]
@@ -272,6 +308,6 @@ mod tests {
         };
         assert!((e.work_s - one(6) - one(8)).abs() < 1e-9 * e.work_s);
         assert!(!e.parameters.to_string().contains("--"), "{}", e.parameters);
-        assert!(estimate(&TbarRollRequest::default()).unwrap().is_none());
+        assert!(estimate(&TbarRollRequest::default()).unwrap().is_some());
     }
 }

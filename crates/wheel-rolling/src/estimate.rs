@@ -2,8 +2,9 @@
 //! the guard of [`tensegrity_core::budget`].
 //!
 //! - **rigid** ([`rigid`]): t_end / dt steps of a one-degree-of-freedom hybrid model (one
-//!   right-hand side of ~200 flops a step), and one [`RollingSample`] kept per output
-//!   interval;
+//!   right-hand side of ~200 flops a step, and ~[`RIGID_FLOPS_PER_SIDE`] a side of the
+//!   polygon for its contact search: a 3,600-sided wheel took 40 s for 10 s), and one
+//!   [`RollingSample`] kept per output interval;
 //! - **full** ([`full`]): t_end / dt steps of the core's class-1 model, `rhs_per_step`
 //!   right-hand sides of [`budget::rhs_flops`] (bars, strings, constraint rows) plus the
 //!   wheel's own extra flops each, a state of 12 numbers a bar; one sample and its node
@@ -46,6 +47,8 @@ pub struct RunSize {
     pub t_end: f64,
     /// Step (s).
     pub dt: f64,
+    /// Sides of the wheel's polygon.
+    pub sides: usize,
     /// The parameters that drive the size, as the request names them.
     pub parameter: String,
 }
@@ -62,6 +65,7 @@ impl RunSize {
         Self {
             t_end,
             dt,
+            sides,
             parameter: format!("t_end = {t_end}, dt = {dt}, sides = {sides}"),
         }
     }
@@ -75,15 +79,21 @@ impl RunSize {
     }
 }
 
+/// Flops a step of the rigid model spends per side of the polygon (its contact search).
+pub const RIGID_FLOPS_PER_SIDE: f64 = 120.0;
+
 /// A rigid run (module docs).
 ///
 /// ```
 /// use wheel_rolling::estimate::{rigid, RunSize};
 /// let e = rigid(&RunSize::new(10.0, 1e-4, 8));
-/// assert!(e.work_s < 0.1 && e.memory_bytes < 1e6);
+/// assert!(e.work_s < 0.2 && e.memory_bytes < 1e6);
+/// // a 3,600-sided polygon searches its contacts every step: tens of seconds
+/// assert!(rigid(&RunSize::new(10.0, 1e-4, 3600)).work_s > 30.0);
 /// ```
 pub fn rigid(size: &RunSize) -> Estimate {
-    let run = budget::integration(size.steps(), 1.0, 200.0, 3, size.parameter.clone());
+    let flops = 200.0 + RIGID_FLOPS_PER_SIDE * size.sides as f64;
+    let run = budget::integration(size.steps(), 1.0, flops, 3, size.parameter.clone());
     let sample = std::mem::size_of::<RollingSample>() as f64;
     run.then(budget::table(
         size.samples(),

@@ -100,6 +100,7 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     use tensegrity_io::csv::write_mass_table;
     let request: MichellTableRequest = args.request.request()?;
     let material = request.material()?;
+    let _progress = crate::cli::guard::estimated(&request)?;
     let out = output::open("--out", args.out.as_deref(), FileSink::open)?;
     let svg = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
     let qs = request.complexities();

@@ -47,6 +47,13 @@ fn what_the_command_line_refuses_is_refused_by_name() {
     assert_eq!(refused(&[("restitution", json!(1.5))]), "restitution");
     assert_eq!(refused(&[("incline", json!("90deg"))]), "incline");
     assert_eq!(refused(&[("treads", json!("8,1"))]), "treads");
+    // fewer than three treads is no polygon (`roll` refuses sides below 3 alike)
+    for t in ["0", "1", "2", "8,2"] {
+        assert_eq!(refused(&[("treads", json!(t))]), "treads", "{t}");
+    }
+    assert_eq!(refused(&[("restitution", json!(2))]), "restitution");
+    // above the T-bar wheel's limit: refused before any row is built
+    assert_eq!(refused(&[("treads", json!("8,100000"))]), "treads");
     assert_eq!(refused(&[("r0", json!(0))]), "r0");
     let both = [("spherical", json!("pi/8")), ("cylindrical", json!(0.25))];
     assert_eq!(refused(&both), "spherical");

@@ -32,7 +32,7 @@ pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use select::{backend, cyclic_backend};
-pub use sparse::SparseStatics;
+pub use sparse::{sparse_statics_bytes, SparseStatics};
 pub use stability::PrestressStability;
 
 use crate::error::Result;
@@ -142,7 +142,8 @@ pub enum LpSolver {
 pub enum StaticsMethod {
     /// The dense SVD below [`SPARSE_MIN_SIZE`] free dofs or members, the sparse
     /// rank-revealing QR ([`SparseStatics`]) from there on, falling back to the SVD when the
-    /// sparse rank decision is not certified and the SVD fits the memory budget.
+    /// sparse rank decision is not certified and the SVD fits the memory budget and a minute
+    /// of estimated work.
     #[default]
     Auto,
     /// Always the dense SVD ([`Statics`]).
@@ -176,11 +177,21 @@ pub struct StaticsSettings {
 /// Default memory budget of the dense statics: 8 GiB.
 pub const DEFAULT_MEMORY_LIMIT: f64 = 8.0 * 1024.0 * 1024.0 * 1024.0;
 
-/// Bytes the dense statics of an m × n equilibrium matrix holds at its peak: A and the
-/// backend's copy (2mn), U and V in the backend and at the API (2m² + 2n²), in f64.
+/// Bytes the dense statics of an m × n equilibrium matrix holds at its peak: A, U and V
+/// each in the backend, at the API and in a working copy (3mn + 3m² + 3n²), and the bases of
+/// the mechanisms (m × (m − n) at least) or self-stresses (n × (n − m)) held twice, in f64 —
+/// calibrated against the measured peak (`crates/tensegrity-engine/tests/statics_estimate.rs`:
+/// 155 MB resident for 1800 × 1197, estimated 181 MB).
+///
+/// ```
+/// use tensegrity_core::statics::dense_statics_bytes;
+/// // 8 · 3 (1800·1197 + 1800² + 1197²) + 16 · 1800 · 603
+/// assert_eq!(dense_statics_bytes(1800, 1197), 24.0 * 6_827_409.0 + 16.0 * 1_085_400.0);
+/// ```
 pub fn dense_statics_bytes(m: usize, n: usize) -> f64 {
     let (m, n) = (m as f64, n as f64);
-    8.0 * (2.0 * m * n + 2.0 * m * m + 2.0 * n * n)
+    let bases = m * (m - n).max(0.0) + n * (n - m).max(0.0);
+    24.0 * (m * n + m * m + n * n) + 16.0 * bases
 }
 
 impl StaticsSettings {

@@ -3,12 +3,13 @@
 //! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
 //!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on;
 //!   an uncertified sparse rank decision falls back to the SVD when the method is automatic
-//!   and the SVD fits the memory budget, and is otherwise returned as is (its
+//!   and the SVD fits the memory budget and the default work limit, and is otherwise
+//!   returned as is (its
 //!   [`Certification`](super::Certification) says so).
 //! - [`cyclic_backend`] (structures with a validated Cₙ descriptor): the symmetry-adapted
 //!   blocks ([`CyclicStatics`]); an uncertified block rank decision falls back to the dense
-//!   SVD when it fits the memory budget, and is otherwise returned as is. `method = Dense` or
-//!   `Sparse` forces that back-end.
+//!   SVD when it fits the memory budget and the work limit, and is otherwise returned as is.
+//!   `method = Dense` or `Sparse` forces that back-end.
 
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
 use super::{
@@ -18,11 +19,15 @@ use super::{
 use crate::error::Result;
 use crate::structure::Structure;
 
-/// Whether the dense SVD of `structure` fits the memory budget of `settings`.
+/// Whether the dense SVD of `structure` fits the memory budget of `settings` and its
+/// estimated work the default work limit ([`crate::budget::DEFAULT_MAX_WORK_S`]): a fallback
+/// beyond it would run for minutes unannounced, so the uncertified decision is returned
+/// (flagged) instead.
 fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
-    let m = DofMap::of(structure).len();
+    let (m, n) = (DofMap::of(structure).len(), structure.n_members());
     let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
-    dense_statics_bytes(m, structure.n_members()) <= limit
+    let work = crate::budget::dense_statics(m, n, "").work_s;
+    dense_statics_bytes(m, n) <= limit && work <= crate::budget::DEFAULT_MAX_WORK_S
 }
 
 /// Whether `settings` send `structure` to the sparse QR.

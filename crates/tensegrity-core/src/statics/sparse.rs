@@ -147,6 +147,29 @@ fn bfs(adj: &[Vec<usize>], start: usize, excluded: &[bool]) -> Vec<usize> {
     out
 }
 
+/// The rows of A in the reverse Cuthill–McKee order of the nodes, and each row's position.
+fn row_ordering(structure: &Structure, dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
+    let row_order: Vec<usize> = node_order_rcm(structure)
+        .into_iter()
+        .flat_map(|i| dofs.row[i].into_iter().flatten())
+        .collect();
+    let mut pos_of_row = vec![0; dofs.len()];
+    for (p, &r) in row_order.iter().enumerate() {
+        pos_of_row[r] = p;
+    }
+    (row_order, pos_of_row)
+}
+
+/// The bytes the sparse QR of `structure` holds (the bound [`SparseStatics::with_settings`]
+/// checks against its memory budget), computed without factoring: for a front end's
+/// estimate. The dense output bases come on top.
+pub fn sparse_statics_bytes(structure: &Structure) -> Result<f64> {
+    let dofs = DofMap::of(structure);
+    let a = equilibrium_matrix_sparse(structure, &dofs)?;
+    let (_, pos_of_row) = row_ordering(structure, &dofs);
+    Ok(sparse_bytes_bound(&a, &pos_of_row))
+}
+
 /// A bound of the bytes the sparse factorisation holds: the profile of A in the ordering (each
 /// column stored from row 0 to its last row, reflector and R entries). The dense output bases
 /// (members × self-stress dimension, dofs × mechanisms) come on top; they are the size of the
@@ -212,14 +235,7 @@ impl<'a> SparseStatics<'a> {
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
         let dofs = DofMap::of(structure);
         let a = equilibrium_matrix_sparse(structure, &dofs)?;
-        let row_order: Vec<usize> = node_order_rcm(structure)
-            .into_iter()
-            .flat_map(|i| dofs.row[i].into_iter().flatten())
-            .collect();
-        let mut pos_of_row = vec![0; dofs.len()];
-        for (p, &r) in row_order.iter().enumerate() {
-            pos_of_row[r] = p;
-        }
+        let (row_order, pos_of_row) = row_ordering(structure, &dofs);
         let bytes = sparse_bytes_bound(&a, &pos_of_row);
         let limit = settings.memory_limit.unwrap_or(super::DEFAULT_MEMORY_LIMIT);
         if bytes > limit {

@@ -1,0 +1,287 @@
+//! Issue 26, crashes and hangs: every case of "Measured" that crashed, hung or accepted what
+//! its sibling refuses, end to end. Each is refused at once (exit 2, within a few seconds,
+//! one line naming the parameter, the limit and the flag that raises it), or answers.
+
+mod common;
+
+use common::scratch;
+use std::path::Path;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+/// Runs the binary; its output and wall time.
+fn run(args: &[&str]) -> (Output, Duration) {
+    let t0 = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("binary runs");
+    (out, t0.elapsed())
+}
+
+/// Asserts a quick refusal (exit 2, < 5 s, nothing on stdout, one line) whose message holds
+/// every one of `needles`; the message.
+fn assert_refused(args: &[&str], needles: &[&str]) -> String {
+    let (out, took) = run(args);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(took < Duration::from_secs(5), "{args:?} took {took:?}");
+    assert!(out.stdout.is_empty(), "{args:?} printed a report");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: {n:?} missing from {err}");
+    }
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    err
+}
+
+/// A planar zig-zag chain of `n` nodes along x: bars between neighbours, strings between
+/// every other node (a triangulated strip: rank 2n − 3, n + 3 mechanisms out of its plane).
+fn chain(dir: &Path, n: usize) -> String {
+    let mut s = String::from("nodes = [\n");
+    for i in 0..n {
+        s += &format!("  [{i}.0, {}, 0.0],\n", 0.5 * (i % 2) as f64);
+    }
+    s += "]\n";
+    for i in 0..n - 1 {
+        s += &format!("[[bars]]\nnodes = [{i}, {}]\n", i + 1);
+    }
+    for i in 0..n - 2 {
+        s += &format!("[[strings]]\nnodes = [{i}, {}]\n", i + 2);
+    }
+    let path = dir.join(format!("chain{n}.toml"));
+    std::fs::write(&path, s).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn a_billion_seconds_of_tbar_rolling_is_refused_before_allocating() {
+    // it aborted allocating its samples (exit 134)
+    assert_refused(
+        &[
+            "tbar",
+            "roll",
+            "--beta",
+            "pi/6",
+            "--cylindrical",
+            "0.25",
+            "--t-end",
+            "1e9",
+        ],
+        &["t_end = 1000000000", "--max-", "--t-end 1000000000"],
+    );
+}
+
+#[test]
+fn a_hundred_thousand_treads_are_refused_at_once() {
+    // it ran silently for minutes: above the T-bar wheel's 3,600 treads it is refused by
+    // the request, below by the estimate of the runs (each step searches every side)
+    assert_refused(
+        &[
+            "tbar",
+            "roll",
+            "--beta",
+            "pi/6",
+            "--cylindrical",
+            "0.25",
+            "--treads",
+            "100000",
+        ],
+        &["--treads", "treads = 100000", "at most 3600"],
+    );
+    assert_refused(
+        &[
+            "tbar",
+            "roll",
+            "--beta",
+            "pi/6",
+            "--cylindrical",
+            "0.25",
+            "--treads",
+            "3600",
+        ],
+        &["treads = 3600", "--max-work", "--treads 3600"],
+    );
+}
+
+#[test]
+fn tbar_roll_takes_the_rules_of_roll() {
+    let base = ["tbar", "roll", "--beta", "pi/6", "--cylindrical", "0.25"];
+    for (flag, value, name) in [
+        ("--restitution", "2", "restitution"),
+        ("--incline", "90deg", "incline"),
+        ("--treads", "0", "treads"),
+        ("--treads", "1", "treads"),
+        ("--treads", "2", "treads"),
+    ] {
+        let mut args = base.to_vec();
+        args.extend([flag, value]);
+        let err = assert_refused(&args, &[flag, name]);
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    // three treads are a polygon: a row with both columns
+    let (out, _) = run(&[
+        "tbar",
+        "roll",
+        "--beta",
+        "pi/6",
+        "--cylindrical",
+        "0.25",
+        "--treads",
+        "3",
+        "--t-end",
+        "0.2",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["rows"][0]["treads"], 3);
+    assert!(j["rows"][0]["tbar"].is_object() && j["rows"][0]["toroid"].is_object());
+}
+
+#[test]
+fn the_michell_table_checks_its_cap_before_any_row() {
+    // it computed for 43 s, then failed at q = 101
+    assert_refused(
+        &["michell-table", "--max-complexity", "10000"],
+        &["--max-complexity", "10000", "100"],
+    );
+    // and its estimate honours --max-output
+    assert_refused(
+        &[
+            "michell-table",
+            "--max-complexity",
+            "10",
+            "--max-output",
+            "100",
+        ],
+        &[
+            "max_complexity = 10",
+            "output",
+            "--max-output",
+            "--max-complexity 10",
+        ],
+    );
+    let (out, _) = run(&["michell-table", "--max-complexity", "3"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // header and (q = 2, 3) × (planar, three δ)
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).lines().count(),
+        1 + 2 * 4
+    );
+}
+
+#[test]
+fn a_long_michell_search_is_refused_by_its_estimate() {
+    // it ran 215 s without progress: the search up to q = 100, ~10⁹ joint analyses
+    assert_refused(
+        &[
+            "michell",
+            "optimize",
+            "--cylindrical",
+            "0.25",
+            "--radius-ratio",
+            "0.01",
+            "--joint-mass",
+            "1e-6",
+            "--max-complexity",
+            "100",
+        ],
+        &["max_complexity = 100", "--max-work", "--max-complexity 100"],
+    );
+    // a heavy joint ends the search early: the default cap answers
+    let (out, took) = run(&[
+        "michell",
+        "optimize",
+        "--planar",
+        "--radius-ratio",
+        "0.3",
+        "--joint-mass",
+        "0.1",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(took < Duration::from_secs(20), "{took:?}");
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(j["complexity"].as_u64().unwrap() >= 1);
+}
+
+#[test]
+fn long_chains_answer_or_are_refused_by_their_estimate() {
+    let dir = scratch("limits", "chains");
+    // 3,000 nodes: the sparse path answers in seconds (rank 2n − 3, n + 3 mechanisms)
+    let small = chain(&dir, 3000);
+    let (out, took) = run(&["statics", &small, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(took < Duration::from_secs(60), "{took:?}");
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["rank"], 2 * 3000 - 3);
+    assert_eq!(j["self_stress_dim"], 0);
+    // 18,000 nodes: refused by the estimate (the QR's profile and the mechanisms' basis),
+    // naming the flag that raises the limit
+    let big = chain(&dir, 18000);
+    assert_refused(
+        &["statics", &big],
+        &["18000 nodes", "memory", "--max-memory"],
+    );
+}
+
+#[test]
+fn sweeps_refuse_the_big_case_by_name_and_run_the_others() {
+    let dir = scratch("limits", "sweeps");
+    for (name, spec, needle) in [
+        (
+            "toroid",
+            "study = \"toroid\"\n[axes]\nsides = [6, 100000000]\n",
+            "sides = 100000000",
+        ),
+        (
+            "roll",
+            "study = \"roll\"\n[fixed]\nfidelity = \"rigid\"\n[axes]\nt_end = [0.2, 1e9]\n",
+            "t_end = 1000000000",
+        ),
+    ] {
+        let spec_path = dir.join(format!("{name}.toml"));
+        std::fs::write(&spec_path, spec).unwrap();
+        let out = dir.join(format!("{name}.csv"));
+        let (o, took) = run(&[
+            "sweep",
+            spec_path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert!(took < Duration::from_secs(60), "{name}: {took:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!err.contains("memory allocation"), "{name}: {err}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let rows: Vec<&str> = text.lines().collect();
+        assert_eq!(rows.len(), 3, "{name}: {text}");
+        assert!(
+            rows[1].contains(",ok,") || rows[1].contains(",ok"),
+            "{name}: {}",
+            rows[1]
+        );
+        assert!(
+            rows[2].contains("error") && rows[2].contains(needle),
+            "{name}: {}",
+            rows[2]
+        );
+    }
+}
