@@ -3,6 +3,11 @@
 //! own API ([`Simulation::new`], [`Ground::new`], [`Model::set_ground`] and the rest-length and
 //! load schedules of [`Model`]).
 //!
+//! Checked against each other and the structure ([`build_simulation`], and the scene reader
+//! with the line of the item): μ_k ≤ μ_s, no node that can touch the ground starting more than
+//! [`GROUND_START_TOLERANCE`] below it, at most one rest-length table per string (load tables
+//! of one node add).
+//!
 //! Actuation tables are piecewise linear in time and constant outside their range:
 //! v(t) = v_i (1 − w) + v_{i+1} w with w = (t − t_i)/(t_{i+1} − t_i) for t_i ≤ t < t_{i+1}.
 //!
