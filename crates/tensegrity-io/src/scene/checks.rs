@@ -18,7 +18,8 @@ impl SceneFile {
         let actuation: Vec<_> = self.actuation.iter().map(|a| a.get_ref().clone()).collect();
         let ground = self.ground.as_ref();
         dynamics::check_tables(structure, ground.map(|g| g.get_ref()), &actuation).map_err(
-            |(source, culprit)| {
+            |failed| {
+                let (source, culprit) = *failed;
                 let start = match culprit {
                     Culprit::Node(i) => self.nodes.get(i).map(|n| n.span().start),
                     Culprit::Ground => ground.map(|g| g.span().start),

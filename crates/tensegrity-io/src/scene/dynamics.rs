@@ -217,9 +217,10 @@ pub(crate) fn check_tables(
     structure: &Structure,
     ground: Option<&GroundSpec>,
     actuation: &[ActuationSpec],
-) -> std::result::Result<(), (IoError, Culprit)> {
+) -> std::result::Result<(), Box<(IoError, Culprit)>> {
     if let Some(g) = ground {
-        g.check_friction().map_err(|e| (e, Culprit::Ground))?;
+        g.check_friction()
+            .map_err(|e| Box::new((e, Culprit::Ground)))?;
         if let Some((node, depth)) = g.deepest_node(structure) {
             if depth > GROUND_START_TOLERANCE {
                 let e = IoError::BelowGround {
@@ -227,7 +228,7 @@ pub(crate) fn check_tables(
                     depth,
                     tolerance: GROUND_START_TOLERANCE,
                 };
-                return Err((e, Culprit::Node(node)));
+                return Err(Box::new((e, Culprit::Node(node))));
             }
         }
     }
@@ -242,7 +243,7 @@ pub(crate) fn check_tables(
                 string: a.string.unwrap_or_default(),
                 first: format!("actuation {first}"),
             };
-            return Err((e, Culprit::Actuation(k)));
+            return Err(Box::new((e, Culprit::Actuation(k))));
         }
         *slot = Some(k);
     }
@@ -390,7 +391,7 @@ pub fn build_simulation(
     ground: Option<&GroundSpec>,
     actuation: &[ActuationSpec],
 ) -> Result<Simulation> {
-    check_tables(structure, ground, actuation).map_err(|(e, _)| e)?;
+    check_tables(structure, ground, actuation).map_err(|b| b.0)?;
     let ground = ground.map(GroundSpec::to_ground).transpose()?;
     let settings = sim.map(SimulationSpec::to_settings).unwrap_or_default();
     let mut simulation = Simulation::new(structure, settings)?;
