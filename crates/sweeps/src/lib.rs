@@ -48,6 +48,7 @@ pub mod expr;
 pub mod grids;
 pub mod limits;
 pub mod merge;
+mod resume;
 pub mod run;
 pub mod spec;
 pub mod table;

@@ -2,7 +2,10 @@
 //! file a single run writes.
 //!
 //! Every input must have the same preamble (units line and header) and end with a complete
-//! row; rows are keyed by their `case` id and written in id order, each exactly as it is in
+//! row; inputs with a `# spec: …` line (the files of shards, [`crate::table::spec_hash`])
+//! must have the same one, so shards of two specs that share a header are refused (a file
+//! without the line — a single run's, or a shard written by an older version — is checked by
+//! its header only, as before). The merged file leaves the spec line out; rows are keyed by their `case` id and written in id order, each exactly as it is in
 //! its input, so merging the shards `1/N … N/N` of a sweep gives byte for byte the file of
 //! one run. A case found twice must have identical rows; a gap in the ids (a shard missing,
 //! or one that stopped early) is an error naming the first missing case. (Cases missing
@@ -21,8 +24,9 @@ pub struct MergeSummary {
     pub rows: usize,
 }
 
-/// One input: its preamble and rows.
+/// One input: its spec line (if any), its preamble without it, and its rows.
 struct Input {
+    spec: Option<Vec<u8>>,
     preamble: Vec<u8>,
     rows: Vec<(usize, Vec<u8>)>,
 }
@@ -39,9 +43,13 @@ fn read_input(path: &Path) -> Result<Input> {
         ));
     }
     let mut lines = bytes.split_inclusive(|&b| b == b'\n');
-    let mut preamble = Vec::new();
+    let (mut preamble, mut spec) = (Vec::new(), None);
     let header = loop {
         let line = lines.next().ok_or_else(|| bad("no header row".into()))?;
+        if line.starts_with(crate::table::SPEC_LINE.as_bytes()) && spec.is_none() {
+            spec = Some(line.to_vec());
+            continue;
+        }
         preamble.extend_from_slice(line);
         if !line.starts_with(b"#") {
             break line;
@@ -73,7 +81,18 @@ fn read_input(path: &Path) -> Result<Input> {
             Ok((id, line.to_vec()))
         })
         .collect::<Result<Vec<_>>>()?;
-    Ok(Input { preamble, rows })
+    Ok(Input {
+        spec,
+        preamble,
+        rows,
+    })
+}
+
+/// The hash of a `# spec: …` line.
+fn hash_text(line: &[u8]) -> String {
+    String::from_utf8_lossy(&line[crate::table::SPEC_LINE.len()..])
+        .trim_end()
+        .to_string()
 }
 
 /// Merges `inputs` into `out` (a [`tensegrity_io::sink::FileSink`]: locked and opened before
@@ -86,6 +105,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
         reason: "no input files".into(),
     })?;
     let mut preamble: Option<Vec<u8>> = None;
+    let mut spec: Option<(Vec<u8>, &PathBuf)> = None;
     let mut rows: BTreeMap<usize, Vec<u8>> = BTreeMap::new();
     for path in inputs {
         let input = read_input(path)?;
@@ -102,6 +122,18 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeSummary> {
                 )))
             }
             Some(_) => {}
+        }
+        match (&spec, input.spec) {
+            (Some((s, from)), Some(this)) if *s != this => {
+                return Err(bad(format!(
+                    "it comes from another spec than {} (spec {} there, {} here)",
+                    from.display(),
+                    hash_text(s),
+                    hash_text(&this)
+                )))
+            }
+            (None, Some(this)) => spec = Some((this, path)),
+            _ => {}
         }
         for (id, row) in input.rows {
             match rows.get(&id) {

@@ -25,7 +25,7 @@ use crate::table;
 use crate::Context;
 use std::collections::BTreeMap;
 use std::fs::File;
-use std::io::{BufRead, BufReader, Read, Seek, Write};
+use std::io::Write;
 use std::path::Path;
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -176,12 +176,18 @@ pub fn run(
 ) -> Result<Summary> {
     let total = spec.case_count()?;
     let shard_cases = opts.shard.len(total);
-    let preamble = table::preamble(spec, opts.units);
+    // a shard's file starts with the spec's hash, which `merge` compares
+    let legacy = table::preamble(spec, opts.units);
+    let preamble = if opts.shard.count > 1 {
+        [table::spec_line(spec), legacy.clone()].concat()
+    } else {
+        legacy.clone()
+    };
     // one sweep per file: another run writing `out`, or an unwritable directory, is refused
     // here, before any case
     let _lock = PathLock::acquire(out)?;
     let (mut file, resumed) = if opts.resume && out.exists() {
-        resume(spec, out, &preamble, opts.shard)?
+        crate::resume::resume(spec, out, [&preamble, &legacy], opts.shard)?
     } else {
         let mut f = File::create(out).map_err(SweepError::io("creating", out))?;
         f.write_all(&preamble)
@@ -236,96 +242,6 @@ fn interrupted(file: &mut File, out: &Path, done: usize, total: usize) -> SweepE
 
 /// The start of the last line of an interrupted sweep's file.
 pub const INCOMPLETE: &str = "# incomplete:";
-
-/// Checks an existing file against the spec and returns it, cut after its last complete
-/// row and opened for appending, with the number of complete rows.
-fn resume(spec: &Spec, out: &Path, preamble: &[u8], shard: Shard) -> Result<(File, usize)> {
-    let bad = |reason: String| SweepError::Resume {
-        path: out.to_path_buf(),
-        reason,
-    };
-    let mut file = File::options()
-        .read(true)
-        .write(true)
-        .open(out)
-        .map_err(SweepError::io("opening", out))?;
-    let mut head = Vec::new();
-    (&mut file)
-        .take(preamble.len() as u64)
-        .read_to_end(&mut head)
-        .map_err(SweepError::io("reading", out))?;
-    if head.len() < preamble.len() && preamble.starts_with(&head) {
-        // killed while the header was written: start anew
-        file.set_len(0).map_err(SweepError::io("truncating", out))?;
-        file.rewind().map_err(SweepError::io("writing", out))?;
-        file.write_all(preamble)
-            .map_err(SweepError::io("writing", out))?;
-        return Ok((file, 0));
-    }
-    if head != preamble {
-        return Err(bad(
-            "its header is not the one this spec writes (another spec, or `units` differs)".into(),
-        ));
-    }
-    let mut reader = BufReader::new(&file);
-    let (mut end, mut rows, mut line) = (preamble.len() as u64, 0usize, Vec::new());
-    let total = spec.case_count()?;
-    let width = table::header(spec).len();
-    loop {
-        line.clear();
-        let n = reader
-            .read_until(b'\n', &mut line)
-            .map_err(SweepError::io("reading", out))?;
-        if n == 0 || line.last() != Some(&b'\n') || line.starts_with(INCOMPLETE.as_bytes()) {
-            break; // end of file, a partial last line, or an interrupted run's trailer: redone
-        }
-        if rows >= shard.len(total) {
-            return Err(bad(format!(
-                "it has more rows than the {} cases of this shard",
-                shard.len(total)
-            )));
-        }
-        let id = shard.id(rows);
-        check_row(spec, &line, id, width)
-            .map_err(|reason| bad(format!("row of case {id}: {reason}")))?;
-        end += n as u64;
-        rows += 1;
-    }
-    drop(reader);
-    file.set_len(end)
-        .map_err(SweepError::io("truncating", out))?;
-    file.seek(std::io::SeekFrom::End(0))
-        .map_err(SweepError::io("writing", out))?;
-    Ok((file, rows))
-}
-
-/// Checks that a complete line is the row of case `id`: its id, axis values and width.
-fn check_row(spec: &Spec, line: &[u8], id: usize, width: usize) -> std::result::Result<(), String> {
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .from_reader(line);
-    let mut rec = csv::StringRecord::new();
-    match reader.read_record(&mut rec) {
-        Ok(true) => {}
-        _ => return Err("not a CSV record".into()),
-    }
-    if rec.len() != width {
-        return Err(format!("{} fields, the header has {width}", rec.len()));
-    }
-    if rec.get(0) != Some(id.to_string().as_str()) {
-        return Err(format!("found case `{}`", rec.get(0).unwrap_or("")));
-    }
-    let texts = spec.axis_texts(id);
-    if rec
-        .iter()
-        .skip(1)
-        .take(texts.len())
-        .ne(texts.iter().map(String::as_str))
-    {
-        return Err("its axis values are not this spec's".into());
-    }
-    Ok(())
-}
 
 /// The state shared by the workers and the writer.
 struct Shared<'a> {

@@ -39,6 +39,10 @@ use tensegrity_core::request::Param;
 /// Largest number of cases a spec may describe.
 pub const MAX_CASES: u64 = 100_000_000;
 
+/// Largest spec file read (16 MiB; a larger file, or an endless stream, is refused before it
+/// is read in full).
+pub const MAX_SPEC_BYTES: u64 = 16 << 20;
+
 /// One value of an axis: the value and its CSV text (as the spec writes it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct AxisValue {
@@ -150,7 +154,7 @@ impl Spec {
 
     /// Reads and parses a spec file.
     pub fn read(path: &std::path::Path) -> Result<Spec> {
-        let text = std::fs::read_to_string(path).map_err(SweepError::io("reading", path))?;
+        let text = tensegrity_io::read::read_text(path, MAX_SPEC_BYTES, "a sweep spec")?;
         Spec::parse(&text).map_err(|e| match e {
             SweepError::Spec { message } => SweepError::Spec {
                 message: format!("{}: {message}", path.display()),

@@ -11,6 +11,9 @@
 //! empty field; an error row leaves every result column empty.
 //!
 //! Optionally a leading comment line `# units: …` gives one unit per column (`-` for none).
+//! The file of one shard of a sharded sweep (`shard` K/N with N > 1) starts with a line
+//! `# spec: <16 hex digits>`, the [`spec_hash`] of its spec, which `merge` compares across
+//! the shards (and leaves out of the merged file, which is byte for byte the single run's).
 //! Every row is one line (`\n`-terminated, quoted where the CSV rules need it, messages on
 //! one line), so a file cut anywhere is its complete rows plus at most one partial line.
 
@@ -57,6 +60,41 @@ pub fn preamble(spec: &Spec, with_units: bool) -> Vec<u8> {
     }
     out.extend(record(&header(spec)));
     out
+}
+
+/// The start of the spec-hash line of a shard's file.
+pub const SPEC_LINE: &str = "# spec: ";
+
+/// A 64-bit FNV-1a hash of what the spec asks for: its study, fixed values, axes (values and
+/// texts), derived rules and columns (not its formatting or comments). Two specs with the
+/// same hash give the same rows.
+pub fn spec_hash(spec: &Spec) -> u64 {
+    use std::fmt::Write;
+    let mut text = format!("study={}\n", spec.study.name);
+    for (k, v) in &spec.fixed {
+        let _ = writeln!(text, "fixed {k}={v}");
+    }
+    for a in &spec.axes {
+        let _ = write!(text, "axis {}", a.name);
+        for v in &a.values {
+            let _ = write!(text, "\x1f{}\x1e{}", v.value, v.text);
+        }
+        text.push('\n');
+    }
+    for (k, e) in &spec.derived {
+        let _ = writeln!(text, "derived {k}={e:?}");
+    }
+    for c in &spec.columns {
+        let _ = writeln!(text, "column {}", c.name);
+    }
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// The `# spec: …` line of a shard's file.
+pub fn spec_line(spec: &Spec) -> Vec<u8> {
+    format!("{SPEC_LINE}{:016x}\n", spec_hash(spec)).into_bytes()
 }
 
 /// One CSV record, `\n`-terminated, fields quoted only where needed.

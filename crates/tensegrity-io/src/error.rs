@@ -92,6 +92,72 @@ pub enum IoError {
         /// Index of the support.
         support: usize,
     },
+    /// A file over the size limit of its kind (refused before it is read in full).
+    #[error("{}: {} bytes, over the limit of {limit} bytes for {what}", path.display(), size_text(*.size, *.limit))]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size, when the file system tells it (a regular file); `None` for a stream
+        /// (a device, a pipe) that gave more than the limit.
+        size: Option<u64>,
+        /// The limit (bytes).
+        limit: u64,
+        /// What the file was read as, e.g. `a scene file`.
+        what: &'static str,
+    },
+    /// A `[[bars]]` or `[[strings]]` entry whose `nodes` does not hold exactly two indices.
+    #[error("{file} (line {line}): {member}: `nodes` must hold exactly two node indices, got {count} ({nodes:?})")]
+    NodeCount {
+        /// The file name.
+        file: String,
+        /// 1-based line of the entry.
+        line: usize,
+        /// The member, e.g. `bar 2`.
+        member: String,
+        /// How many indices were given.
+        count: usize,
+        /// The indices given.
+        nodes: Vec<usize>,
+    },
+    /// A dynamics table of a scene file is invalid; the line of the item it names.
+    #[error("{file}{}: {source}", line_suffix(*.line))]
+    InScene {
+        /// The file name.
+        file: String,
+        /// 1-based line of the offending item, where known.
+        line: Option<usize>,
+        /// What is wrong.
+        #[source]
+        source: Box<IoError>,
+    },
+    /// Two `[[actuation]]` tables drive the rest length of one string.
+    #[error("{table}: string {string} already has a rest-length table ({first}); give one table per string")]
+    DuplicateActuation {
+        /// The second table, e.g. `actuation 1`.
+        table: String,
+        /// The string both drive.
+        string: usize,
+        /// The first table, e.g. `actuation 0`.
+        first: String,
+    },
+    /// A node that can touch the ground starts below its plane by more than the tolerance.
+    #[error("ground: node {node} starts {depth} m below the ground plane (more than the tolerance of {tolerance} m); move the structure up or the plane down")]
+    BelowGround {
+        /// The node.
+        node: usize,
+        /// How far below the plane it starts (m, > 0).
+        depth: f64,
+        /// The tolerance (m).
+        tolerance: f64,
+    },
+    /// Kinetic friction above static friction.
+    #[error("ground: mu_kinetic ({mu_kinetic}) exceeds mu_static ({mu_static}); kinetic friction must not exceed static friction")]
+    FrictionOrder {
+        /// μ_s.
+        mu_static: f64,
+        /// μ_k.
+        mu_kinetic: f64,
+    },
     /// A table lacks a column asked for.
     #[error("{}: no column `{column}`", path.display())]
     MissingColumn {
@@ -155,6 +221,10 @@ pub enum IoError {
     Core(#[from] CoreError),
 }
 
+fn size_text(size: Option<u64>, limit: u64) -> String {
+    size.map_or_else(|| format!("more than {limit}"), |s| s.to_string())
+}
+
 fn line_suffix(line: Option<usize>) -> String {
     line.map(|l| format!(" (line {l})")).unwrap_or_default()
 }
@@ -167,6 +237,9 @@ impl tensegrity_core::request::Categorized for IoError {
         match self {
             IoError::Closed { .. } => Category::Interrupted,
             IoError::Core(e) => tensegrity_core::request::Categorized::category(e),
+            IoError::InScene { source, .. } => {
+                tensegrity_core::request::Categorized::category(source.as_ref())
+            }
             _ => Category::Input,
         }
     }

@@ -3,6 +3,11 @@
 //! own API ([`Simulation::new`], [`Ground::new`], [`Model::set_ground`] and the rest-length and
 //! load schedules of [`Model`]).
 //!
+//! Checked against each other and the structure ([`build_simulation`], and the scene reader
+//! with the line of the item): μ_k ≤ μ_s, no node that can touch the ground starting more than
+//! [`GROUND_START_TOLERANCE`] below it, at most one rest-length table per string (load tables
+//! of one node add).
+//!
 //! Actuation tables are piecewise linear in time and constant outside their range:
 //! v(t) = v_i (1 − w) + v_{i+1} w with w = (t − t_i)/(t_{i+1} − t_i) for t_i ≤ t < t_{i+1}.
 //!
@@ -188,9 +193,102 @@ fn nonneg(table: &str, name: &'static str, value: f64) -> Result<f64> {
     }
 }
 
+/// How far below the ground plane (m) a node that can touch it may start: a structure
+/// resting on a penalty ground sinks in by its weight over the stiffness, so a restart from a
+/// resting state is accepted, but a structure starting inside the ground is refused.
+pub const GROUND_START_TOLERANCE: f64 = 1e-3;
+
+/// The item a failed check of [`check_tables`] concerns (for the line of its error).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Culprit {
+    /// A node.
+    Node(usize),
+    /// The `[ground]` table.
+    Ground,
+    /// An `[[actuation]]` table.
+    Actuation(usize),
+}
+
+/// The checks of the dynamics tables against each other and the structure that
+/// [`build_simulation`] and the scene reader share: μ_k ≤ μ_s, no node that can touch the
+/// ground starting more than [`GROUND_START_TOLERANCE`] below it, one rest-length table per
+/// string.
+pub(crate) fn check_tables(
+    structure: &Structure,
+    ground: Option<&GroundSpec>,
+    actuation: &[ActuationSpec],
+) -> std::result::Result<(), Box<(IoError, Culprit)>> {
+    if let Some(g) = ground {
+        g.check_friction()
+            .map_err(|e| Box::new((e, Culprit::Ground)))?;
+        if let Some((node, depth)) = g.deepest_node(structure) {
+            if depth > GROUND_START_TOLERANCE {
+                let e = IoError::BelowGround {
+                    node,
+                    depth,
+                    tolerance: GROUND_START_TOLERANCE,
+                };
+                return Err(Box::new((e, Culprit::Node(node))));
+            }
+        }
+    }
+    let mut driven: Vec<Option<usize>> = vec![None; structure.n_strings()];
+    for (k, a) in actuation.iter().enumerate() {
+        let Some(slot) = a.string.and_then(|s| driven.get_mut(s)) else {
+            continue;
+        };
+        if let Some(first) = *slot {
+            let e = IoError::DuplicateActuation {
+                table: format!("actuation {k}"),
+                string: a.string.unwrap_or_default(),
+                first: format!("actuation {first}"),
+            };
+            return Err(Box::new((e, Culprit::Actuation(k))));
+        }
+        *slot = Some(k);
+    }
+    Ok(())
+}
+
 impl GroundSpec {
+    /// μ_k ≤ μ_s (μ_k defaults to μ_s).
+    fn check_friction(&self) -> Result<()> {
+        if let (Some(mu_static), Some(mu_kinetic)) = (self.mu_static, self.mu_kinetic) {
+            if mu_kinetic > mu_static {
+                return Err(IoError::FrictionOrder {
+                    mu_static,
+                    mu_kinetic,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The node (of those that can touch the ground) deepest below the plane, and its depth
+    /// (m; negative when every node is above). `None` for a degenerate normal or no node.
+    fn deepest_node(&self, structure: &Structure) -> Option<(usize, f64)> {
+        let n = Vector3::from(self.normal);
+        let n = n.try_normalize(0.0)?;
+        let p = Vector3::from(self.point);
+        let depth = |i: usize| structure.nodes().get(i).map(|x| -(x - p).dot(&n));
+        let all: Vec<usize>;
+        let nodes = match &self.nodes {
+            Some(list) => list.as_slice(),
+            None => {
+                all = (0..structure.n_nodes()).collect();
+                &all
+            }
+        };
+        nodes
+            .iter()
+            .filter_map(|&i| Some((i, depth(i)?)))
+            .filter(|(_, d)| d.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
     /// The [`Ground`] this table describes.
     pub fn to_ground(&self) -> Result<Ground> {
+        self.check_friction()?;
         let n = Vector3::from(self.normal);
         if !(n.iter().all(|v| v.is_finite()) && n.norm() > 0.0) {
             return Err(invalid("ground", "normal must be a non-zero vector"));
@@ -293,6 +391,7 @@ pub fn build_simulation(
     ground: Option<&GroundSpec>,
     actuation: &[ActuationSpec],
 ) -> Result<Simulation> {
+    check_tables(structure, ground, actuation).map_err(|b| b.0)?;
     let ground = ground.map(GroundSpec::to_ground).transpose()?;
     let settings = sim.map(SimulationSpec::to_settings).unwrap_or_default();
     let mut simulation = Simulation::new(structure, settings)?;

@@ -36,10 +36,15 @@
 //! acceleration = [0.0, 0.0, -9.81]
 //! ```
 
+mod checks;
 pub mod dynamics;
+mod write;
+
+pub use write::to_toml;
 
 pub use dynamics::{
     build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
+    GROUND_START_TOLERANCE,
 };
 
 use crate::error::{IoError, Result};
@@ -82,10 +87,10 @@ pub struct SceneFile {
     pub simulation: Option<SimulationSpec>,
     /// `[ground]`: a plane, its contact model and the nodes that can touch it.
     #[serde(default)]
-    pub ground: Option<GroundSpec>,
+    pub ground: Option<Spanned<GroundSpec>>,
     /// `[[actuation]]`: time tables of string rest lengths or nodal loads.
     #[serde(default)]
-    pub actuation: Vec<ActuationSpec>,
+    pub actuation: Vec<Spanned<ActuationSpec>>,
 }
 
 /// A `[materials.NAME]` table.
@@ -104,8 +109,8 @@ pub struct MaterialSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BarSpec {
-    /// Start and end node.
-    pub nodes: [usize; 2],
+    /// Start and end node (exactly two; checked when the structure is built).
+    pub nodes: Vec<usize>,
     /// kg.
     pub mass: Option<f64>,
     /// Material name.
@@ -118,8 +123,8 @@ pub struct BarSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StringSpec {
-    /// Start and end node.
-    pub nodes: [usize; 2],
+    /// Start and end node (exactly two; checked when the structure is built).
+    pub nodes: Vec<usize>,
     /// N/m.
     pub stiffness: Option<f64>,
     /// m.
@@ -182,12 +187,11 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads and validates a scene file; errors name the file, the item and its line.
+    /// Reads and validates a scene file; errors name the file, the item and its line. A
+    /// file over [`crate::read::MAX_SCENE_BYTES`] (or a stream giving more) is refused
+    /// before it is read in full.
     pub fn from_path(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::read::read_text(path, crate::read::MAX_SCENE_BYTES, "a scene file")?;
         Self::from_str_named(&text, &path.display().to_string())
     }
 
@@ -211,17 +215,24 @@ impl Scene {
             }
         })?;
         let structure = file.build_structure(text, name)?;
+        file.check_dynamics(&structure, text, name)?;
         Ok(Scene { structure, file })
     }
 
     /// The runnable simulation of this scene: its structure with the `[simulation]`,
     /// `[ground]` and `[[actuation]]` tables (see [`build_simulation`]).
     pub fn simulation(&self) -> Result<Simulation> {
+        let actuation: Vec<ActuationSpec> = self
+            .file
+            .actuation
+            .iter()
+            .map(|a| a.get_ref().clone())
+            .collect();
         build_simulation(
             &self.structure,
             self.file.simulation.as_ref(),
-            self.file.ground.as_ref(),
-            &self.file.actuation,
+            self.file.ground.as_ref().map(Spanned::get_ref),
+            &actuation,
         )
     }
 }
@@ -254,19 +265,33 @@ impl SceneFile {
                 Material::new(m.density, m.youngs_modulus, m.yield_strength),
             );
         }
-        for bar in &self.bars {
+        for (i, bar) in self.bars.iter().enumerate() {
             let s = bar.get_ref();
+            let nodes = two_nodes(
+                &s.nodes,
+                || format!("bar {i}"),
+                bar.span().start,
+                text,
+                name,
+            )?;
             b = b.bar(Bar {
-                nodes: s.nodes,
+                nodes,
                 mass: s.mass,
                 material: s.material.clone(),
                 radius: s.radius,
             });
         }
-        for string in &self.strings {
+        for (i, string) in self.strings.iter().enumerate() {
             let s = string.get_ref();
+            let nodes = two_nodes(
+                &s.nodes,
+                || format!("string {i}"),
+                string.span().start,
+                text,
+                name,
+            )?;
             b = b.string(StringMember {
-                nodes: s.nodes,
+                nodes,
                 stiffness: s.stiffness,
                 rest_length: s.rest_length,
                 damping: s.damping.unwrap_or(0.0),
@@ -315,6 +340,23 @@ impl SceneFile {
     }
 }
 
+/// The two node indices of a member, or the error naming it (`member`) and its line.
+fn two_nodes(
+    nodes: &[usize],
+    member: impl Fn() -> String,
+    start: usize,
+    text: &str,
+    name: &str,
+) -> Result<[usize; 2]> {
+    <[usize; 2]>::try_from(nodes).map_err(|_| IoError::NodeCount {
+        file: name.to_string(),
+        line: line_column(text, start).0,
+        member: member(),
+        count: nodes.len(),
+        nodes: nodes.to_vec(),
+    })
+}
+
 /// The `(kind, index)` of the item an error names, when it is a numbered item.
 fn error_item(e: &CoreError) -> Option<(String, usize)> {
     let text = match e {
@@ -351,119 +393,4 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
         before.matches('\n').count() + 1,
         before[line_start..].chars().count() + 1,
     )
-}
-
-/// Writes a structure as scene TOML that [`Scene::from_str_named`] reads back exactly
-/// (shortest round-trip number formatting; user materials are written out in full).
-///
-/// ```
-/// use tensegrity_io::scene::{to_toml, Scene};
-/// use tensegrity_core::{Bar, StringMember, Structure, Support};
-/// let s = Structure::builder()
-///     .nodes([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3], [1.0 / 3.0, 0.0, 1.0]])
-///     .bar(Bar::new(0, 1).mass(2.0))
-///     .string(StringMember::new(1, 2).stiffness(100.0).rest_length(0.5))
-///     .string(StringMember::new(2, 0))
-///     .support(Support::directions(0, [true, false, true]))
-///     .load(2, [0.0, 0.0, -5.0])
-///     .build()
-///     .unwrap();
-/// let back = Scene::from_str_named(&to_toml(&s), "round-trip").unwrap();
-/// assert_eq!(back.structure, s);
-/// ```
-pub fn to_toml(structure: &Structure) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let v3 = |v: &nalgebra::Vector3<f64>| format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z);
-    out.push_str("nodes = [\n");
-    for n in structure.nodes() {
-        let _ = writeln!(out, "  {},", v3(n));
-    }
-    out.push_str("]\n");
-    if let Some(vel) = structure.velocities() {
-        out.push_str("velocities = [\n");
-        for v in vel {
-            let _ = writeln!(out, "  {},", v3(v));
-        }
-        out.push_str("]\n");
-    }
-    let mut names: Vec<&str> = structure
-        .bars()
-        .iter()
-        .filter_map(|b| b.material.as_deref())
-        .chain(
-            structure
-                .strings()
-                .iter()
-                .filter_map(|s| s.material.as_deref()),
-        )
-        .collect();
-    names.sort_unstable();
-    names.dedup();
-    for name in names {
-        if let Some(m) = structure.materials().get(name) {
-            let _ = write!(
-                out,
-                "\n[materials.{name}]\ndensity = {:?}\nyoungs_modulus = {:?}\nyield_strength = {:?}\n",
-                m.density, m.youngs_modulus, m.yield_strength
-            );
-        }
-    }
-    for b in structure.bars() {
-        let _ = write!(
-            out,
-            "\n[[bars]]\nnodes = [{}, {}]\n",
-            b.nodes[0], b.nodes[1]
-        );
-        if let Some(m) = b.mass {
-            let _ = writeln!(out, "mass = {m:?}");
-        }
-        if let Some(name) = &b.material {
-            let _ = writeln!(out, "material = \"{name}\"");
-        }
-        if let Some(r) = b.radius {
-            let _ = writeln!(out, "radius = {r:?}");
-        }
-    }
-    for s in structure.strings() {
-        let _ = write!(
-            out,
-            "\n[[strings]]\nnodes = [{}, {}]\n",
-            s.nodes[0], s.nodes[1]
-        );
-        if let Some(k) = s.stiffness {
-            let _ = writeln!(out, "stiffness = {k:?}");
-        }
-        if let Some(s0) = s.rest_length {
-            let _ = writeln!(out, "rest_length = {s0:?}");
-        }
-        if s.damping != 0.0 {
-            let _ = writeln!(out, "damping = {:?}", s.damping);
-        }
-        if let Some(name) = &s.material {
-            let _ = writeln!(out, "material = \"{name}\"");
-        }
-    }
-    for s in structure.supports() {
-        let _ = write!(out, "\n[[supports]]\nnode = {}\n", s.node);
-        if s.fixed != [true; 3] {
-            let _ = writeln!(
-                out,
-                "fixed = [{}, {}, {}]",
-                s.fixed[0], s.fixed[1], s.fixed[2]
-            );
-        }
-    }
-    for l in structure.loads() {
-        let _ = write!(
-            out,
-            "\n[[loads]]\nnode = {}\nforce = {}\n",
-            l.node,
-            v3(&l.force)
-        );
-    }
-    if let Some(g) = structure.gravity() {
-        let _ = write!(out, "\n[gravity]\nacceleration = {}\n", v3(&g));
-    }
-    out
 }
