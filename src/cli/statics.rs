@@ -32,6 +32,9 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
         );
     }
     if args.json {
+        if let Some(w) = &report.statics_warning {
+            eprintln!("warning: {w}");
+        }
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print_report(&scene.structure, &report);

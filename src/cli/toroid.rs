@@ -32,6 +32,9 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
         FileSink::open,
     )?;
     let report = toroid::toroid_report(&request)?;
+    if let Some(w) = &report.statics_warning {
+        eprintln!("warning: {w}");
+    }
     if let Some(sink) = scene {
         sink.finish_with(tensegrity_io::scene::to_toml(&report.structure))?;
     }

@@ -15,7 +15,7 @@ use crate::mass::{self, MassComparison};
 use crate::params::{RimMode, TbarParams};
 use crate::statics::{backend, summarise};
 use serde::Serialize;
-use tensegrity_core::statics::{Certification, Factorization, StaticsBackend};
+use tensegrity_core::statics::{Certification, Factorization, SpectralGap, StaticsBackend};
 use tensegrity_core::Structure;
 
 /// Everything one analysis needs.
@@ -145,6 +145,12 @@ pub struct TbarReport {
     pub mass: Option<MassComparison>,
     /// Everything the analysis could not do, and why.
     pub warnings: Vec<String>,
+    /// The singular values on either side of the rank tolerance behind the counts (the
+    /// narrowest block's for a wheel).
+    pub spectral_gap: SpectralGap,
+    /// Set (else `null`) when the rank decision has no clear gap (a singular value within a
+    /// factor 10 of the tolerance); also listed in `warnings`.
+    pub statics_warning: Option<String>,
 }
 
 /// Runs one analysis.
@@ -176,12 +182,16 @@ fn report_with(req: &TbarRequest, cyclic: bool) -> Result<TbarReport> {
         .then(|| crate::symmetry::find_symmetry(&geometry, &structure, &mut warnings))
         .flatten();
     let statics = backend(&structure, symmetry.as_ref())?;
-    if let Certification::NotCertified { reason } = statics.certification() {
-        warnings.push(reason);
-    }
+    let statics_warning = match statics.certification() {
+        Certification::Certified => None,
+        Certification::NotCertified { reason } => Some(reason),
+    };
+    warnings.extend(statics_warning.clone());
     let summary = summarise(statics.as_ref())?;
     let mut report = base_report(req, &geometry, &structure);
     report.warnings = warnings;
+    report.statics_warning = statics_warning;
+    report.spectral_gap = statics.spectral_gap();
     report.statics_method = statics.kind();
     report.rank = summary.rank;
     report.self_stress_dim = summary.self_stress_dim;
@@ -245,6 +255,8 @@ fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport
         mass_kg: None,
         mass: None,
         warnings: Vec::new(),
+        spectral_gap: SpectralGap::default(),
+        statics_warning: None,
     }
 }
 

@@ -225,3 +225,53 @@ fn an_uncertified_cyclic_rank_falls_back_to_the_svd_or_says_so() {
     assert_eq!(default.kind(), Factorization::Cyclic);
     assert!(default.certification().is_certified());
 }
+
+/// Two bars from fixed ends to a free node offset `dy` from their line: A = [[1, −1],
+/// [dy, dy], [0, 0]] on the free node's rows, singular values √2 and √2·dy.
+fn kinked_pair(dy: f64) -> Structure {
+    Structure::builder()
+        .nodes([[0.0, 0.0, 0.0], [1.0, dy, 0.0], [2.0, 0.0, 0.0]])
+        .bar(tensegrity_core::Bar::new(0, 1))
+        .bar(tensegrity_core::Bar::new(1, 2))
+        .support(tensegrity_core::Support::pinned(0))
+        .support(tensegrity_core::Support::pinned(2))
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn a_dense_rank_decision_without_a_clear_gap_is_flagged() {
+    let request = StaticsRequest::default();
+    // clear: σ₂ = √2·0.1 lies 10¹⁴ above τ = 3·ε·√2
+    let clear = statics_report(&kinked_pair(0.1), &request).unwrap();
+    assert_eq!((clear.rank, clear.mechanisms), (2, 1));
+    assert!(clear.statics_warning.is_none(), "{:?}", clear.statics_warning);
+    let g = clear.spectral_gap;
+    assert!((g.sigma_above.unwrap() - 0.1 * 2f64.sqrt()).abs() < 1e-12);
+    assert_eq!((g.sigma_below, g.block), (None, None));
+    assert!((g.tolerance - 3.0 * f64::EPSILON * 2f64.sqrt()).abs() < 1e-20);
+    // near-degenerate: σ₂ = √2·2e-15 ≈ 3 τ, within the factor 10 of the gap rule
+    let near = statics_report(&kinked_pair(2e-15), &request).unwrap();
+    let w = near.statics_warning.as_deref().expect("flagged");
+    assert!(w.contains("dense SVD") && w.contains("not certified"), "{w}");
+    let s2 = near.spectral_gap.sigma_above.unwrap();
+    assert!(s2 > near.rank_tolerance && s2 < 10.0 * near.rank_tolerance);
+    let json = serde_json::to_value(&near).unwrap();
+    assert!(json["spectral_gap"]["sigma_above"].as_f64().unwrap() > 0.0);
+    assert!(json["spectral_gap"]["ratio"].is_null());
+}
+
+#[test]
+fn the_cyclic_gap_names_its_narrowest_block() {
+    let t = test_models::snelson_tower_free(6).unwrap();
+    let sym = z_symmetry(&t);
+    let cyclic = CyclicStatics::new(&t, &sym).unwrap();
+    let g = cyclic.spectral_gap();
+    assert!(g.is_clear(), "{g:?}");
+    let k = g.block.expect("a block index");
+    assert!(k <= 1, "k = {k}"); // the rigid-body motions sit in blocks 0 and 1
+    // the rigid-body zeros of the free tower lie below the block tolerance, its smallest
+    // genuine value above, both by more than the factor 10
+    assert!(g.sigma_below.unwrap() < g.tolerance / 10.0);
+    assert!(g.sigma_above.unwrap() > 10.0 * g.tolerance);
+}

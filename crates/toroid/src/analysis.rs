@@ -18,7 +18,7 @@ use crate::params::ToroidParams;
 use crate::symmetry::toroid_symmetry;
 use nalgebra::{DVector, Matrix3};
 use tensegrity_core::statics::symmetry::{CyclicStatics, RepCounts};
-use tensegrity_core::statics::StaticsBackend;
+use tensegrity_core::statics::{Certification, SpectralGap, StaticsBackend};
 use tensegrity_core::{Prestressability, Statics};
 
 /// The analysis of a toroid (or a single prism).
@@ -51,6 +51,12 @@ pub struct ToroidAnalysis {
     /// Rank, self-stress states and mechanisms per representation k = 0..n−1 of Cₙ (the
     /// symmetry-adapted path); empty from the dense path.
     pub representations: Vec<RepCounts>,
+    /// The singular values on either side of the rank tolerance (the narrowest block's on
+    /// the symmetry-adapted path).
+    pub spectral_gap: SpectralGap,
+    /// Set when the rank decision has no clear gap (a singular value within a factor 10 of
+    /// the tolerance): the counts are then not certain.
+    pub statics_warning: Option<String>,
 }
 
 /// Runs the statics, flex count, mass and inertia of a built toroid: a wheel (n ≥ 3 prisms)
@@ -103,6 +109,11 @@ pub fn analysis_from(
             rank: statics.rank(),
             self_stress_dim: statics.self_stress_dim(),
             internal_mechanisms: statics.internal_mechanisms()?,
+            spectral_gap: statics.spectral_gap(),
+            statics_warning: match statics.certification() {
+                Certification::Certified => None,
+                Certification::NotCertified { reason } => Some(reason),
+            },
         },
         pre,
         representations,
@@ -118,6 +129,8 @@ struct Counts {
     rank: usize,
     self_stress_dim: usize,
     internal_mechanisms: usize,
+    spectral_gap: SpectralGap,
+    statics_warning: Option<String>,
 }
 
 fn assemble(
@@ -142,6 +155,8 @@ fn assemble(
         inertia,
         prestress: pre.prestressable.then_some(pre.stress),
         representations,
+        spectral_gap: counts.spectral_gap,
+        statics_warning: counts.statics_warning,
     }
 }
 

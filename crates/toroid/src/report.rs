@@ -17,6 +17,7 @@ use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
 use tensegrity_core::request::Param;
+use tensegrity_core::statics::SpectralGap;
 use tensegrity_core::Structure;
 
 /// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
@@ -223,6 +224,12 @@ pub struct ToroidReport {
     /// symmetry (the symmetry-adapted analysis); absent for a single prism.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub symmetry: Option<SymmetryCounts>,
+    /// The singular values on either side of the rank tolerance behind the counts (the
+    /// narrowest block's of the symmetry-adapted analysis).
+    pub spectral_gap: SpectralGap,
+    /// Set (else `null`) when the rank decision has no clear gap: a singular value within a
+    /// factor 10 of the tolerance, so rank, self-stress dimension and mechanisms are uncertain.
+    pub statics_warning: Option<String>,
     /// The analysed structure (with stiff, prestressed strings when the request gives a
     /// string stiffness), for export; not serialised.
     #[serde(skip)]
@@ -289,6 +296,8 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
         prestress_member_force: design.map(|d| d.member_force.iter().copied().collect()),
         rim_radius_window: window.map(|(lo, hi)| [lo, hi]),
         symmetry: SymmetryCounts::of(&a.representations),
+        spectral_gap: a.spectral_gap,
+        statics_warning: a.statics_warning.clone(),
         structure,
     })
 }

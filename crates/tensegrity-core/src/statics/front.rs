@@ -26,7 +26,7 @@ use super::load::LoadSolution;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
-use super::{SparseStatics, Statics};
+use super::{SparseStatics, SpectralGap, Statics};
 use crate::error::{CoreError, Result};
 use crate::stiffness;
 use crate::structure::Structure;
@@ -154,6 +154,11 @@ pub trait StaticsBackend {
     /// [`SparseStatics::smallest_singular_value_estimate`]).
     fn smallest_singular_value(&self) -> f64;
 
+    /// The singular values on either side of the tolerance behind the rank decision (the
+    /// cyclic back-end: of the block with the narrowest gap; the sparse QR: the σ_min(R)
+    /// estimate above and the rejected residual below).
+    fn spectral_gap(&self) -> SpectralGap;
+
     /// Whether the rank decision is certified.
     fn certification(&self) -> Certification;
 
@@ -202,8 +207,17 @@ impl StaticsBackend for Statics<'_> {
     fn smallest_singular_value(&self) -> f64 {
         self.singular_values().last().copied().unwrap_or(0.0)
     }
+    fn spectral_gap(&self) -> SpectralGap {
+        Statics::spectral_gap(self)
+    }
     fn certification(&self) -> Certification {
-        Certification::Certified
+        let gap = Statics::spectral_gap(self);
+        if gap.is_clear() {
+            return Certification::Certified;
+        }
+        Certification::NotCertified {
+            reason: gap.warning("dense SVD"),
+        }
     }
     fn self_stress(&self) -> SelfStressBasis {
         SelfStressBasis::Full(self.self_stress_basis())
@@ -240,6 +254,19 @@ impl StaticsBackend for SparseStatics<'_> {
     }
     fn smallest_singular_value(&self) -> f64 {
         self.smallest_singular_value_estimate()
+    }
+    fn spectral_gap(&self) -> SpectralGap {
+        let (m, n) = (self.dofs().len(), SparseStatics::structure(self).n_members());
+        let above = self.sigma_min_r_estimate();
+        let below = SparseStatics::factorization(self).rejected_residual();
+        let below = (SparseStatics::rank(self) < m.min(n)).then_some(below);
+        let mut gap = SpectralGap::from_values(below, SparseStatics::tolerance(self), None);
+        gap.sigma_above = above.is_finite().then_some(above);
+        gap.ratio = match (gap.sigma_above, gap.sigma_below) {
+            (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+            _ => None,
+        };
+        gap
     }
     fn certification(&self) -> Certification {
         if self.is_certified() {
@@ -293,16 +320,16 @@ impl StaticsBackend for CyclicStatics<'_> {
     fn smallest_singular_value(&self) -> f64 {
         self.sigma_min()
     }
+    fn spectral_gap(&self) -> SpectralGap {
+        CyclicStatics::spectral_gap(self)
+    }
     fn certification(&self) -> Certification {
-        match self.value_near_tolerance() {
-            None => Certification::Certified,
-            Some(s) => Certification::NotCertified {
-                reason: format!(
-                    "the cyclic rank decision is not certified (a block singular value {s:.3e} lies within a factor {} of the tolerance {:.3e}): rank and self-stress dimension may differ from the dense SVD's",
-                    super::symmetry::cyclic::CERTIFY_BAND,
-                    CyclicStatics::tolerance(self)
-                ),
-            },
+        let gap = CyclicStatics::spectral_gap(self);
+        if gap.is_clear() {
+            return Certification::Certified;
+        }
+        Certification::NotCertified {
+            reason: gap.warning("cyclic (per-block)"),
         }
     }
     fn self_stress(&self) -> SelfStressBasis {

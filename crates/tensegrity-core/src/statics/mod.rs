@@ -19,6 +19,7 @@
 mod dense_lp;
 mod flexes;
 pub mod front;
+mod gap;
 mod load;
 mod prestress;
 pub mod report;
@@ -29,6 +30,7 @@ pub mod symmetry;
 
 pub use flexes::Flexes;
 pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
+pub use gap::{SpectralGap, GAP_FACTOR};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use select::{backend, cyclic_backend};
@@ -318,6 +320,11 @@ impl<'a> Statics<'a> {
     /// Rank of A.
     pub fn rank(&self) -> usize {
         self.rank
+    }
+
+    /// The singular values on either side of the tolerance ([`SpectralGap`]).
+    pub fn spectral_gap(&self) -> SpectralGap {
+        SpectralGap::from_values(self.svd.s.iter().copied(), self.tolerance, None)
     }
 
     /// Dimension of the self-stress space, members − rank.

@@ -26,11 +26,12 @@
 //! ([`StaticsBackend`]: the dense SVD, the sparse QR, the cyclic blocks);
 //! [`statics_report`] chooses the back-end by [`StaticsSettings::method`]
 //! ([`super::select::backend`]). The dense SVD leaves `statics_method` out; another back-end
-//! names itself there ([`Factorization`]), and a rank decision it cannot certify, or what it
-//! does not compute, is said in `statics_warning`.
+//! names itself there ([`Factorization`]), and a rank decision it cannot certify (every
+//! back-end, the dense SVD included: no clear [`SpectralGap`]), or what it does not compute,
+//! is said in `statics_warning`; `spectral_gap` gives the singular values behind the decision.
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
-use super::StaticsSettings;
+use super::{SpectralGap, StaticsSettings};
 use crate::error::{CoreError, Result, StaticsError};
 use crate::sizing::{self, Governing, SizingReport};
 use crate::stiffness::{self, MassModel};
@@ -152,6 +153,10 @@ pub struct StaticsReport {
     /// stability).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub statics_warning: Option<String>,
+    /// The singular values on either side of the rank tolerance behind the rank decision
+    /// ([`SpectralGap`]; the narrowest block's for the cyclic back-end). A decision without a
+    /// clear gap (a value within a factor 10 of the tolerance) is flagged in `statics_warning`.
+    pub spectral_gap: SpectralGap,
 }
 
 /// Runs every statics analysis of one structure (see the module documentation).
@@ -244,6 +249,7 @@ fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
         rank_tolerance: backend.tolerance(),
         statics_method: (kind != Factorization::Svd).then_some(kind),
         statics_warning: (!notes.is_empty()).then(|| notes.join("; ")),
+        spectral_gap: backend.spectral_gap(),
         // the load solve, sizing and modes are added by their own steps
         ..StaticsReport::default()
     })

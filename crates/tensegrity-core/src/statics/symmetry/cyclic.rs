@@ -2,9 +2,16 @@
 //! from its n Fourier blocks, each classified by representation index k.
 //!
 //! Block n − k is the complex conjugate of block k (A is real), so only k = 0..⌊n/2⌋ are
-//! factored and the others mirrored: O(n·b³) for blocks of size b instead of O(n³b³). The
-//! rank tolerance is the dense one, max(rows, members)·ε·σ_max (or the caller's relative
-//! tolerance) with σ_max the largest singular value over all blocks, which is that of A.
+//! factored and the others mirrored: O(n·b³) for blocks of size b instead of O(n³b³).
+//!
+//! Each block has its own rank tolerance, τ_k = max(rows_k, columns_k)·ε·‖A_k‖₂: the
+//! rounding of a block (its assembly and its SVD) is of that order, whatever n. The dense
+//! rule max(rows, members)·ε·σ_max over the whole matrix grows like n·√n for a wheel (the
+//! spokes of the axle scale ‖A‖ by √n) while the smallest genuine singular values of a
+//! wheel of n prisms fall like 1/n², so from about n = 3·10⁴ prisms it counted genuine
+//! values as zero (a toroid reported 7 internal mechanisms instead of 0). A caller's relative
+//! tolerance r is applied as r·σ_max(A) to every block. The decision is certified when every
+//! block has a clear gap ([`SpectralGap`]); the narrowest is reported.
 //!
 //! Rigid-body motions transform like vectors: a translation along, and a rotation about, an
 //! eigenvector of R with eigenvalue λ lie in that representation, so they occupy k = 0 (the
@@ -15,7 +22,7 @@ use super::blocks::{axis_eigenvectors, BlockContext, BlockLayout, BlockRow};
 use super::descriptor::CyclicSymmetry;
 use crate::error::Result;
 use crate::linalg;
-use crate::statics::StaticsSettings;
+use crate::statics::{SpectralGap, StaticsSettings};
 use crate::structure::Structure;
 use nalgebra::{Complex, DMatrix, Vector3};
 use serde::Serialize;
@@ -48,13 +55,13 @@ pub struct CyclicStatics<'a> {
     symmetry: &'a CyclicSymmetry,
     settings: StaticsSettings,
     reps: Vec<RepCounts>,
+    /// The largest block tolerance.
     tolerance: f64,
     sigma_max: f64,
     /// The smallest singular value of A (0 when the blocks hold fewer than min(m, n)).
     sigma_min: f64,
-    /// The singular value nearest the tolerance (by ratio) among those within
-    /// [τ / CERTIFY_BAND, τ · CERTIFY_BAND], if any: the rank decision is then not certified.
-    near_tolerance: Option<f64>,
+    /// The narrowest gap over the blocks (certified when it is clear).
+    gap: SpectralGap,
     /// Orthonormal self-stress basis of block 0 in member-orbit coordinates (orbits × d₀),
     /// as member values (q_e = entry of e's orbit).
     symmetric_basis: DMatrix<f64>,
@@ -100,20 +107,23 @@ impl<'a> CyclicStatics<'a> {
             .iter()
             .filter_map(|f| f.s.first().copied())
             .fold(0.0, f64::max);
-        let rows: usize = (0..n)
-            .map(|k| factored[k.min(n - k)].layout.free_rows())
-            .sum();
-        let tolerance = linalg::rank_tolerance(
-            rows,
-            structure.n_members(),
-            sigma_max,
-            settings.rank_tolerance,
-        );
+        let tolerances: Vec<f64> = factored
+            .iter()
+            .map(|f| block_tolerance(f, sigma_max, settings.rank_tolerance))
+            .collect();
+        let tolerance = tolerances.iter().copied().fold(0.0, f64::max);
+        let gap = factored
+            .iter()
+            .zip(&tolerances)
+            .map(|(f, &t)| SpectralGap::from_values(f.s.iter().copied(), t, Some(f.layout.k)))
+            .min_by(|a, b| a.margin().total_cmp(&b.margin()))
+            .unwrap_or_default();
         let rigid = rigid_counts(structure, symmetry, &factored)?;
         let reps = (0..n)
             .map(|k| {
                 let f = &factored[k.min(n - k)];
-                let rank = f.s.iter().take_while(|&&s| s > tolerance).count();
+                let tol = tolerances[k.min(n - k)];
+                let rank = f.s.iter().take_while(|&&s| s > tol).count();
                 let (rows, columns) = (f.layout.free_rows(), f.layout.cols.len());
                 let rigid_body = match k {
                     0 => rigid[0],
@@ -141,7 +151,7 @@ impl<'a> CyclicStatics<'a> {
             .collect();
         let symmetric_basis =
             DMatrix::from_fn(c0, c0 - r0, |row, col| v0[(row, r0 + col)] / sizes[row]);
-        let (sigma_min, near_tolerance) = spectrum_ends(&factored, &reps, tolerance);
+        let sigma_min = smallest_value(&factored, &reps);
         Ok(Self {
             structure,
             symmetry,
@@ -150,7 +160,7 @@ impl<'a> CyclicStatics<'a> {
             tolerance,
             sigma_max,
             sigma_min,
-            near_tolerance,
+            gap,
             symmetric_basis,
         })
     }
@@ -175,7 +185,7 @@ impl<'a> CyclicStatics<'a> {
         &self.reps
     }
 
-    /// The absolute rank tolerance (the dense one).
+    /// The absolute rank tolerance: the largest block tolerance (see the module docs).
     pub fn tolerance(&self) -> f64 {
         self.tolerance
     }
@@ -192,16 +202,30 @@ impl<'a> CyclicStatics<'a> {
     }
 
     /// Whether the rank decision is certified: no singular value of any block lies within a
-    /// factor [`CERTIFY_BAND`] of the tolerance, so rounding (of order ε·σ_max in the blocks as
-    /// in the dense SVD) cannot move a singular value across it and the dense SVD at the same
-    /// tolerance decides the same ranks.
+    /// factor [`CERTIFY_BAND`] of its block's tolerance ([`SpectralGap::is_clear`]), so
+    /// rounding (of order the tolerance) cannot move a singular value across it.
     pub fn is_certified(&self) -> bool {
-        self.near_tolerance.is_none()
+        self.gap.is_clear()
+    }
+
+    /// The narrowest gap over the blocks (its `block` is the representation index k).
+    pub fn spectral_gap(&self) -> SpectralGap {
+        self.gap
     }
 
     /// The singular value that prevents certification (see [`is_certified`](Self::is_certified)).
     pub fn value_near_tolerance(&self) -> Option<f64> {
-        self.near_tolerance
+        if self.is_certified() {
+            return None;
+        }
+        let g = &self.gap;
+        let up = g.sigma_above.map_or(f64::INFINITY, |a| a / g.tolerance);
+        let down = g.sigma_below.map_or(f64::INFINITY, |b| g.tolerance / b);
+        if up <= down {
+            g.sigma_above
+        } else {
+            g.sigma_below
+        }
     }
 
     /// Free degrees of freedom (rows of A).
@@ -250,38 +274,38 @@ impl<'a> CyclicStatics<'a> {
     }
 }
 
-/// A block singular value within this factor of the rank tolerance makes the cyclic rank
-/// decision uncertified ([`CyclicStatics::is_certified`]).
-pub const CERTIFY_BAND: f64 = 10.0;
+/// A block singular value within this factor of its block's rank tolerance makes the cyclic
+/// rank decision uncertified ([`CyclicStatics::is_certified`]; the gap rule of
+/// [`SpectralGap`]).
+pub const CERTIFY_BAND: f64 = crate::statics::GAP_FACTOR;
 
-/// The smallest singular value of A (0 when the n blocks hold fewer than min(m, n) values)
-/// and the singular value within [τ / CERTIFY_BAND, τ · CERTIFY_BAND] nearest τ, if any.
-fn spectrum_ends(factored: &[Factored], reps: &[RepCounts], tol: f64) -> (f64, Option<f64>) {
-    let ratio = |s: f64| {
-        if s > tol {
-            s / tol
-        } else {
-            tol / s.max(f64::MIN_POSITIVE)
-        }
-    };
-    let mut near: Option<f64> = None;
-    for &s in factored.iter().flat_map(|f| &f.s) {
-        if ratio(s) <= CERTIFY_BAND && near.is_none_or(|b| ratio(s) < ratio(b)) {
-            near = Some(s);
-        }
+/// The rank tolerance of one block (see the module docs): max(rows, columns)·ε·‖A_k‖₂, or the
+/// caller's relative tolerance times σ_max(A).
+fn block_tolerance(f: &Factored, sigma_max: f64, rel: Option<f64>) -> f64 {
+    let s_block = f.s.first().copied().unwrap_or(0.0);
+    match rel {
+        Some(r) => r * sigma_max,
+        None => linalg::rank_tolerance(f.layout.free_rows(), f.layout.cols.len(), s_block, None),
     }
+}
+
+/// The smallest singular value of A (0 when the n blocks hold fewer than min(m, n) values).
+fn smallest_value(factored: &[Factored], reps: &[RepCounts]) -> f64 {
     let slots: usize = reps.iter().map(|r| r.rows.min(r.columns)).sum();
     let rows: usize = reps.iter().map(|r| r.rows).sum();
     let cols: usize = reps.iter().map(|r| r.columns).sum();
-    let smallest = if slots < rows.min(cols) {
-        0.0
+    if slots < rows.min(cols) {
+        return 0.0;
+    }
+    let smallest = factored
+        .iter()
+        .filter_map(|f| f.s.last().copied())
+        .fold(f64::INFINITY, f64::min);
+    if smallest.is_finite() {
+        smallest
     } else {
-        factored
-            .iter()
-            .filter_map(|f| f.s.last().copied())
-            .fold(f64::INFINITY, f64::min)
-    };
-    (if smallest.is_finite() { smallest } else { 0.0 }, near)
+        0.0
+    }
 }
 
 /// The rigid-body motions allowed in representation 0 and in representation 1 (= n − 1).
