@@ -77,9 +77,19 @@ fn compare(p: TbarParams, what: &str) -> TbarReport {
     assert_eq!(c.min_strings_carrying, d.min_strings_carrying, "{what}");
     assert_eq!(c.warnings, d.warnings, "{what}");
     // both rank decisions have a clear gap; the cyclic one names its narrowest block
-    assert_eq!((&c.statics_warning, &d.statics_warning), (&None, &None), "{what}");
-    assert!(c.spectral_gap.is_clear() && d.spectral_gap.is_clear(), "{what}");
-    assert!(c.spectral_gap.block.is_some() && d.spectral_gap.block.is_none(), "{what}");
+    assert_eq!(
+        (&c.statics_warning, &d.statics_warning),
+        (&None, &None),
+        "{what}"
+    );
+    assert!(
+        c.spectral_gap.is_clear() && d.spectral_gap.is_clear(),
+        "{what}"
+    );
+    assert!(
+        c.spectral_gap.block.is_some() && d.spectral_gap.block.is_none(),
+        "{what}"
+    );
     c
 }
 

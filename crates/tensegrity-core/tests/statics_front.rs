@@ -245,7 +245,11 @@ fn a_dense_rank_decision_without_a_clear_gap_is_flagged() {
     // clear: σ₂ = √2·0.1 lies 10¹⁴ above τ = 3·ε·√2
     let clear = statics_report(&kinked_pair(0.1), &request).unwrap();
     assert_eq!((clear.rank, clear.mechanisms), (2, 1));
-    assert!(clear.statics_warning.is_none(), "{:?}", clear.statics_warning);
+    assert!(
+        clear.statics_warning.is_none(),
+        "{:?}",
+        clear.statics_warning
+    );
     let g = clear.spectral_gap;
     assert!((g.sigma_above.unwrap() - 0.1 * 2f64.sqrt()).abs() < 1e-12);
     assert_eq!((g.sigma_below, g.block), (None, None));
@@ -253,7 +257,10 @@ fn a_dense_rank_decision_without_a_clear_gap_is_flagged() {
     // near-degenerate: σ₂ = √2·2e-15 ≈ 3 τ, within the factor 10 of the gap rule
     let near = statics_report(&kinked_pair(2e-15), &request).unwrap();
     let w = near.statics_warning.as_deref().expect("flagged");
-    assert!(w.contains("dense SVD") && w.contains("not certified"), "{w}");
+    assert!(
+        w.contains("dense SVD") && w.contains("not certified"),
+        "{w}"
+    );
     let s2 = near.spectral_gap.sigma_above.unwrap();
     assert!(s2 > near.rank_tolerance && s2 < 10.0 * near.rank_tolerance);
     let json = serde_json::to_value(&near).unwrap();
@@ -270,8 +277,8 @@ fn the_cyclic_gap_names_its_narrowest_block() {
     assert!(g.is_clear(), "{g:?}");
     let k = g.block.expect("a block index");
     assert!(k <= 1, "k = {k}"); // the rigid-body motions sit in blocks 0 and 1
-    // the rigid-body zeros of the free tower lie below the block tolerance, its smallest
-    // genuine value above, both by more than the factor 10
+                                // the rigid-body zeros of the free tower lie below the block tolerance, its smallest
+                                // genuine value above, both by more than the factor 10
     assert!(g.sigma_below.unwrap() < g.tolerance / 10.0);
     assert!(g.sigma_above.unwrap() > 10.0 * g.tolerance);
 }

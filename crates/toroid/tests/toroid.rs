@@ -288,10 +288,17 @@ fn check_certified_counts(n: usize) {
         (4 * n + 1, 0),
         "n = {n}"
     );
-    assert!(a.statics_warning.is_none(), "n = {n}: {:?}", a.statics_warning);
+    assert!(
+        a.statics_warning.is_none(),
+        "n = {n}: {:?}",
+        a.statics_warning
+    );
     let g = a.spectral_gap;
     assert!(g.is_clear(), "n = {n}: {g:?}");
-    assert!(g.block.is_some(), "n = {n}: the cyclic path names its block");
+    assert!(
+        g.block.is_some(),
+        "n = {n}: the cyclic path names its block"
+    );
 }
 
 #[test]
@@ -318,6 +325,9 @@ fn the_report_carries_the_gap_and_a_null_warning() {
     let json = serde_json::to_value(&r).unwrap();
     assert!(json["statics_warning"].is_null());
     let g = &json["spectral_gap"];
-    let (above, tol) = (g["sigma_above"].as_f64().unwrap(), g["tolerance"].as_f64().unwrap());
+    let (above, tol) = (
+        g["sigma_above"].as_f64().unwrap(),
+        g["tolerance"].as_f64().unwrap(),
+    );
     assert!(above > 10.0 * tol, "{g}");
 }

@@ -256,7 +256,10 @@ impl StaticsBackend for SparseStatics<'_> {
         self.smallest_singular_value_estimate()
     }
     fn spectral_gap(&self) -> SpectralGap {
-        let (m, n) = (self.dofs().len(), SparseStatics::structure(self).n_members());
+        let (m, n) = (
+            self.dofs().len(),
+            SparseStatics::structure(self).n_members(),
+        );
         let above = self.sigma_min_r_estimate();
         let below = SparseStatics::factorization(self).rejected_residual();
         let below = (SparseStatics::rank(self) < m.min(n)).then_some(below);

@@ -88,7 +88,9 @@ impl SpectralGap {
     /// The gap in words (for warnings).
     pub fn describe(&self) -> String {
         let opt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.3e}"));
-        let block = self.block.map_or(String::new(), |k| format!(" in block k = {k}"));
+        let block = self
+            .block
+            .map_or(String::new(), |k| format!(" in block k = {k}"));
         format!(
             "singular values {} above and {} below the tolerance {:.3e}{block}",
             opt(self.sigma_above),
