@@ -365,9 +365,9 @@ fn sweep_plot_draws_one_curve_per_group_and_names_a_missing_column() {
 
 #[test]
 fn a_case_over_the_limits_is_refused_by_name_and_the_others_run() {
-    // each case is estimated by the engine before it runs: under `--max-memory 1K` the dense
-    // SVD of the tower's statics is refused, naming the case's method; the sparse QR has no
-    // estimate and runs
+    // each case is estimated by the engine before it runs: under `--max-memory 20K` the dense
+    // SVD of the tower's statics (43 KiB estimated) is refused, naming the case's method; the
+    // sparse QR (9 KiB) runs
     let dir = scratch("limits");
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tower.toml");
     let spec = write(
@@ -381,7 +381,7 @@ fn a_case_over_the_limits_is_refused_by_name_and_the_others_run() {
     let out = dir.join("statics.csv").to_string_lossy().into_owned();
     assert_ok(&run(&[
         "--max-memory",
-        "1K",
+        "20K",
         "sweep",
         &spec,
         "--out",
@@ -396,7 +396,7 @@ fn a_case_over_the_limits_is_refused_by_name_and_the_others_run() {
     assert!(
         message.starts_with("refused before running: method = dense (")
             && message.contains("memory")
-            && message.contains("above the limit of 1000 B"),
+            && message.contains("above the limit of 19.531 KiB"),
         "{message}"
     );
     assert_eq!(rows[1][status], "ok");

@@ -5,7 +5,7 @@
 use crate::registry::{col, Column};
 
 /// The scalars of [`toroid::ToroidReport`].
-pub const TOROID: [Column; 11] = [
+pub const TOROID: [Column; 17] = [
     col("nodes", ""),
     col("bars", ""),
     col("strings", ""),
@@ -17,6 +17,12 @@ pub const TOROID: [Column; 11] = [
     col("internal_mechanisms", ""),
     col("mass_kg", "kg"),
     col("I1", "kg m^2"),
+    col("spectral_gap.tolerance", ""),
+    col("spectral_gap.sigma_above", ""),
+    col("spectral_gap.sigma_below", ""),
+    col("spectral_gap.ratio", ""),
+    col("spectral_gap.block", ""),
+    col("statics_warning", ""),
 ];
 
 /// The scalars of [`toroid::TipoverReport`].
@@ -104,7 +110,7 @@ pub const MICHELL_TABLE: [Column; 0] = [];
 
 /// The scalars of [`tbar_wheel::TbarReport`] (nested objects flattened with `.`; the keys
 /// of every layout and parameterisation).
-pub const TBAR: [Column; 44] = [
+pub const TBAR: [Column; 50] = [
     col("params.michell.complexity", ""),
     col("params.michell.r0", "m"),
     col("params.michell.beta", "rad"),
@@ -149,6 +155,12 @@ pub const TBAR: [Column; 44] = [
     col("mass.yield_mass_kg", "kg"),
     col("mass.michell_mass_kg", "kg"),
     col("mass.mass_ratio", ""),
+    col("spectral_gap.tolerance", ""),
+    col("spectral_gap.sigma_above", ""),
+    col("spectral_gap.sigma_below", ""),
+    col("spectral_gap.ratio", ""),
+    col("spectral_gap.block", ""),
+    col("statics_warning", ""),
 ];
 
 /// The fields of [`tensegrity_core::dynamics::work_precision::Point`].
@@ -234,7 +246,7 @@ pub const TBAR_ROLL: [Column; 30] = [
 
 /// The scalars of [`tensegrity_core::StaticsReport`] (the optional ones empty when the report
 /// leaves them out: no loads, no materials, no modes).
-pub const STATICS: [Column; 20] = [
+pub const STATICS: [Column; 25] = [
     col("nodes", ""),
     col("bars", ""),
     col("strings", ""),
@@ -255,6 +267,11 @@ pub const STATICS: [Column; 20] = [
     col("sizing_error", ""),
     col("statics_method", ""),
     col("statics_warning", ""),
+    col("spectral_gap.tolerance", ""),
+    col("spectral_gap.sigma_above", ""),
+    col("spectral_gap.sigma_below", ""),
+    col("spectral_gap.ratio", ""),
+    col("spectral_gap.block", ""),
 ];
 
 /// The scalars of [`tensegrity_core::dynamics::SimulationReport`] (`wall_time_s` is measured:

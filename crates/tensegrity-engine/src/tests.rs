@@ -173,7 +173,14 @@ fn tbar_columns_are_the_scalars_of_its_reports_and_runs_equal_the_library_report
         }
         seen.extend(leaves);
     }
-    for c in &cols {
+    // set only for a rank decision with values on both sides of the tolerance, or without a
+    // clear gap: none of these T-bars has either
+    let rare = [
+        "spectral_gap.sigma_below",
+        "spectral_gap.ratio",
+        "statics_warning",
+    ];
+    for c in cols.iter().filter(|c| !rare.contains(c)) {
         assert!(seen.iter().any(|s| s == c), "column {c} never filled");
     }
 }
