@@ -158,6 +158,16 @@ pub enum IoError {
         /// μ_k.
         mu_kinetic: f64,
     },
+    /// A key the table's chosen model does not read (it would be ignored silently).
+    #[error("{table}: `{key}` is not read by the {model} model; remove it or choose the model that uses it")]
+    IgnoredKey {
+        /// The table.
+        table: String,
+        /// The key.
+        key: &'static str,
+        /// The model chosen.
+        model: &'static str,
+    },
     /// A table lacks a column asked for.
     #[error("{}: no column `{column}`", path.display())]
     MissingColumn {

@@ -151,3 +151,27 @@ fn an_endless_or_oversized_file_is_refused_before_it_is_read() {
     std::fs::remove_file(&path).unwrap();
     assert!(e.contains("not UTF-8 text"), "{e}");
 }
+
+#[test]
+fn a_ground_key_the_chosen_model_does_not_read_is_refused() {
+    // the thesis model has no friction and no stiffness: its mu_* would be ignored
+    let thesis = BASE.replace("stiffness = 1e4\n", "model = \"thesis\"\n");
+    let e = refused(&thesis);
+    assert!(
+        e.starts_with("bad.toml (line 17): ground: `mu_static` is not read by the thesis model"),
+        "{e}"
+    );
+    let bare = thesis
+        .replace("mu_static = 0.8\n", "")
+        .replace("mu_kinetic = 0.6\n", "");
+    Scene::from_str_named(&bare, "ok.toml")
+        .unwrap()
+        .simulation()
+        .unwrap();
+    // and the penalty model has no contact distance
+    let e = refused(&BASE.replace("[ground]\n", "[ground]\ntolerance = 1e-6\n"));
+    assert!(
+        e.contains("ground: `tolerance` is not read by the penalty model"),
+        "{e}"
+    );
+}

@@ -253,6 +253,35 @@ pub(crate) fn check_tables(
 impl GroundSpec {
     /// μ_k ≤ μ_s (μ_k defaults to μ_s).
     fn check_friction(&self) -> Result<()> {
+        // a key the chosen model does not read would be ignored silently
+        let penalty_only = [
+            ("stiffness", self.stiffness.is_some()),
+            ("mu_static", self.mu_static.is_some()),
+            ("mu_kinetic", self.mu_kinetic.is_some()),
+            (
+                "regularization_velocity",
+                self.regularization_velocity.is_some(),
+            ),
+            ("stribeck_velocity", self.stribeck_velocity.is_some()),
+        ];
+        let ignored = match self.model {
+            GroundModelKind::Thesis => penalty_only.iter().find(|(_, given)| *given),
+            GroundModelKind::Penalty => None,
+        };
+        if let Some((key, _)) = ignored {
+            return Err(IoError::IgnoredKey {
+                table: "ground".into(),
+                key,
+                model: "thesis",
+            });
+        }
+        if self.model == GroundModelKind::Penalty && self.tolerance.is_some() {
+            return Err(IoError::IgnoredKey {
+                table: "ground".into(),
+                key: "tolerance",
+                model: "penalty",
+            });
+        }
         if let (Some(mu_static), Some(mu_kinetic)) = (self.mu_static, self.mu_kinetic) {
             if mu_kinetic > mu_static {
                 return Err(IoError::FrictionOrder {
