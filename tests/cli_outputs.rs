@@ -2,15 +2,12 @@
 //! the run, every recorded quantity in the CSV, SIGINT keeping the rows so far as a complete
 //! file marked incomplete, and kill -9 never leaving a partial file at the requested path.
 
+mod common;
+
+use common::{bin, listing, NO_LIMITS};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_tensegrity"));
-    c.current_dir(env!("CARGO_MANIFEST_DIR"));
-    c
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("tensegrity-out-{name}-{}", std::process::id()));
@@ -271,17 +268,6 @@ fn sigint_stops_a_run_between_samples_too() {
     assert!(start.elapsed() < Duration::from_secs(10), "stopped at once");
 }
 
-/// Resource limits far above any request: the point of the bad-path tests is that the path is
-/// checked before the (deliberately huge) work, not that the guard refuses the work.
-const NO_LIMITS: [&str; 6] = [
-    "--max-work",
-    "1e12",
-    "--max-memory",
-    "1000Ti",
-    "--max-output",
-    "1000Ti",
-];
-
 /// Every output flag of every command whose outputs are io sinks, with a command line whose
 /// work takes minutes to hours (`{}` stands for the output path) and whether the output is a
 /// directory.
@@ -385,16 +371,6 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
             (name, args, is_dir)
         })
         .collect()
-}
-
-/// The names in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// Unwritable places: a missing directory, a path through a regular file, and (unless this

@@ -4,15 +4,12 @@
 //! complete CSV with its `# incomplete` trailer and a `series.pvd` listing only frames that
 //! exist (exit 130). `tbar roll --out` (one row per tread count) is opened before its runs.
 
+mod common;
+
+use common::{bin, listing, NO_LIMITS};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_tensegrity"));
-    c.current_dir(env!("CARGO_MANIFEST_DIR"));
-    c
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("tensegrity-roll-{name}-{}", std::process::id()));
@@ -20,16 +17,6 @@ fn scratch(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
-
-/// Past the resource guard: these command lines are long on purpose.
-const NO_LIMITS: [&str; 6] = [
-    "--max-work",
-    "1e12",
-    "--max-memory",
-    "1000Ti",
-    "--max-output",
-    "1000Ti",
-];
 
 /// Every output flag of the rolling commands, with a command line of a long run.
 fn output_flags() -> Vec<(&'static str, Vec<&'static str>)> {
@@ -73,16 +60,6 @@ fn every_output_flag_of_the_rolling_commands_refuses_a_bad_path_at_once() {
         );
     }
     assert!(!Path::new(env!("CARGO_MANIFEST_DIR")).join("no").exists());
-}
-
-/// The names in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// The files a `series.pvd` lists, checked to be a VTK collection.

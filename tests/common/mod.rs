@@ -2,7 +2,7 @@
 //! directory per test binary.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs `tensegrity ARGS` from the repository root.
@@ -30,4 +30,33 @@ pub fn scratch(prefix: &str, name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
+}
+
+/// `tensegrity` as a command run from the repository root (arguments, pipes and signals left
+/// to the caller).
+pub fn bin() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_tensegrity"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+/// Resource limits far above any request: the point of the bad-path tests is that the path is
+/// checked before the (deliberately huge) work, not that the guard refuses the work.
+pub const NO_LIMITS: [&str; 6] = [
+    "--max-work",
+    "1e12",
+    "--max-memory",
+    "1000Ti",
+    "--max-output",
+    "1000Ti",
+];
+
+/// The names in `dir`, sorted.
+pub fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
 }

@@ -128,14 +128,7 @@ impl Request for TbarRollRequest {
     const NAME: &'static str = "tbar_roll";
 
     fn params() -> Vec<Param> {
-        let shared = RollSettings::params();
-        let setting = |name: &str| {
-            shared
-                .iter()
-                .copied()
-                .find(|p| p.name == name)
-                .expect("a shared rolling setting")
-        };
+        let setting = RollSettings::param;
         vec![
             Param::count("complexity", "Complexity q").rule(Rule::AtLeast(1.0)),
             Param::angle("beta", "Departure angle β"),

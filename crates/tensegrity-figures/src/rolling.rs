@@ -71,14 +71,7 @@ impl Request for FigRollingRequest {
     const NAME: &'static str = "fig_rolling";
 
     fn params() -> Vec<Param> {
-        let shared = RollSettings::params();
-        let setting = |name: &str| {
-            shared
-                .iter()
-                .copied()
-                .find(|p| p.name == name)
-                .expect("a shared rolling setting")
-        };
+        let setting = RollSettings::param;
         vec![
             Param::choice(
                 "fidelity",

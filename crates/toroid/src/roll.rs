@@ -80,14 +80,7 @@ impl Request for RollRequest {
     const NAME: &'static str = "roll";
 
     fn params() -> Vec<Param> {
-        let shared = RollSettings::params();
-        let setting = |name: &str| {
-            shared
-                .iter()
-                .copied()
-                .find(|p| p.name == name)
-                .expect("a shared rolling setting")
-        };
+        let setting = RollSettings::param;
         let mut out = WheelSpec::params();
         out.extend([
             setting("incline"),

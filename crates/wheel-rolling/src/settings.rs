@@ -87,6 +87,23 @@ impl RollSettings {
         ])
     }
 
+    /// The shared setting of that name, for a request that flattens these settings and lists
+    /// them among its own parameters.
+    ///
+    /// ```
+    /// let p = wheel_rolling::RollSettings::param("dt");
+    /// assert_eq!((p.name, p.unit), ("dt", "s"));
+    /// ```
+    ///
+    /// # Panics
+    /// When `name` is not a field of [`RollSettings`] (a programming error of the caller).
+    pub fn param(name: &str) -> Param {
+        Self::params()
+            .into_iter()
+            .find(|p| p.name == name)
+            .unwrap_or_else(|| panic!("`{name}` is not a rolling setting"))
+    }
+
     /// One [`Param`] per field, in the field order.
     pub fn params() -> Vec<Param> {
         vec![
