@@ -1,0 +1,85 @@
+//! The form-finding methods and their settings.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// A form-finding method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Force density method with the given force densities.
+    Fdm,
+    /// Adaptive force density: force densities found from the connectivity.
+    #[default]
+    Adaptive,
+    /// Dynamic relaxation with kinetic damping from rest lengths and stiffnesses.
+    Dr,
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Method::Fdm => "fdm",
+            Method::Adaptive => "adaptive",
+            Method::Dr => "dr",
+        })
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "fdm" => Ok(Method::Fdm),
+            "adaptive" => Ok(Method::Adaptive),
+            "dr" => Ok(Method::Dr),
+            _ => Err(format!("unknown method \"{s}\" (fdm, adaptive or dr)")),
+        }
+    }
+}
+
+/// Settings of a form-finding run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// The method.
+    pub method: Method,
+    /// Convergence tolerance of the iterative methods (relative residual).
+    pub tolerance: f64,
+    /// Iteration cap of the iterative methods.
+    pub max_iterations: usize,
+    /// Default axial stiffness EA (N) of members that give none (dynamic relaxation).
+    pub stiffness: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            method: Method::default(),
+            tolerance: 1e-12,
+            max_iterations: 10_000,
+            stiffness: 1e5,
+        }
+    }
+}
+
+/// What [`crate::synthesize`] makes of a found form.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Synthesis {
+    /// Prestress level: the largest string tension (N) of the scaled self-stress.
+    pub prestress: f64,
+    /// Axial stiffness EA (N) of the strings (and bars, where they are elastic).
+    pub stiffness: f64,
+    /// Mass of each bar (kg), for the dynamics.
+    pub bar_mass: f64,
+}
+
+impl Default for Synthesis {
+    fn default() -> Self {
+        Synthesis {
+            prestress: 100.0,
+            stiffness: 1e5,
+            bar_mass: 1.0,
+        }
+    }
+}
