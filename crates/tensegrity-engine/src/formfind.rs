@@ -282,10 +282,10 @@ impl FormfindRequest {
         Ok((topology, source))
     }
 
-    /// The settings of the library's form-finding for `topology`.
-    pub fn settings(&self, topology: &Topology) -> Settings {
+    /// The settings of the library's form-finding (an unset method: [`Method::Auto`]).
+    pub fn settings(&self) -> Settings {
         Settings {
-            method: self.method.unwrap_or_else(|| default_method(topology)),
+            method: self.method.unwrap_or(Method::Auto),
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
             stiffness: self.stiffness,
@@ -309,7 +309,7 @@ impl FormfindRequest {
 
     /// Runs the form-finding and the synthesis of a topology already read.
     pub fn run_on(&self, topology: Topology, source: String) -> Result<Formfound, FormfindFailure> {
-        let found = ::formfind::form_find(&topology, &self.settings(&topology))?;
+        let found = ::formfind::form_find(&topology, &self.settings())?;
         let mut warnings = Vec::new();
         if !found.prestressable {
             warnings.push("the self-stress is not prestressable: no state with every string in tension and every bar in compression".to_string());
@@ -319,11 +319,14 @@ impl FormfindRequest {
                     .to_string(),
             );
         }
-        let structure = match ::formfind::synthesize(&topology, &found, &self.synthesis()) {
-            Ok(s) => Some(s),
+        let synthesis = self.synthesis();
+        let synthesised = ::formfind::rest_lengths(&topology, &found, &synthesis)
+            .and_then(|r| Ok((::formfind::synthesize(&topology, &found, &synthesis)?, r)));
+        let (structure, rest) = match synthesised {
+            Ok((s, r)) => (Some(s), Some(r)),
             Err(e) => {
                 warnings.push(format!("no prestressed structure: {e}"));
-                None
+                (None, None)
             }
         };
         let report = FormfindReport {
@@ -332,7 +335,7 @@ impl FormfindRequest {
             n_bars: topology.bars.len(),
             n_strings: topology.strings.len(),
             method: found.method,
-            nodes: found.nodes.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            nodes: found.node_rows(),
             force_density: found.force_density.clone(),
             self_stress_dim: found.self_stress_dim,
             prestressable: found.prestressable,
@@ -346,15 +349,8 @@ impl FormfindRequest {
                 .map(|b| (found.nodes[b.nodes[1]] - found.nodes[b.nodes[0]]).norm())
                 .fold(0.0, f64::max),
             prestress: self.prestress,
-            member_force: structure
-                .as_ref()
-                .map(|_| member_forces(&topology, &found, self.prestress)),
-            rest_length: structure.as_ref().map(|s| {
-                s.strings()
-                    .iter()
-                    .map(|m| m.rest_length.unwrap_or(f64::NAN))
-                    .collect()
-            }),
+            member_force: rest.as_ref().map(|r| r.tension.clone()),
+            rest_length: rest.map(|r| r.rest_length),
             warnings,
         };
         Ok(Formfound {
@@ -392,22 +388,6 @@ pub fn admitted<G, E: From<FormfindFailure>>(
 /// Runs `formfind`: the report (the registry's library call).
 pub fn formfind(request: &FormfindRequest) -> Result<FormfindReport, FormfindFailure> {
     Ok(request.run()?.report)
-}
-
-/// `fdm` when every member has a force density (its own or its group's), else `adaptive`.
-pub fn default_method(topology: &Topology) -> Method {
-    let given = |m: &::formfind::Member| {
-        m.force_density.is_some()
-            || m.group
-                .as_ref()
-                .and_then(|g| topology.groups.get(g))
-                .is_some_and(|g| g.force_density.is_some())
-    };
-    if topology.members().all(given) {
-        Method::Fdm
-    } else {
-        Method::Adaptive
-    }
 }
 
 /// Multiplies the force density of group `name` (the group's own and its members') by
@@ -451,26 +431,6 @@ fn extent_z(topology: &Topology, found: &FormFound) -> f64 {
         .filter(|&i| !held[i])
         .map(|i| found.nodes[i].z);
     z.clone().fold(f64::NEG_INFINITY, f64::max) - z.fold(f64::INFINITY, f64::min)
-}
-
-/// Member forces at prestress level `prestress`: f_k = s q_k l_k with s such that the largest
-/// string tension is `prestress`.
-fn member_forces(topology: &Topology, found: &FormFound, prestress: f64) -> Vec<f64> {
-    let raw: Vec<f64> = topology
-        .members()
-        .zip(&found.force_density)
-        .map(|(m, q)| q * (found.nodes[m.nodes[1]] - found.nodes[m.nodes[0]]).norm())
-        .collect();
-    let largest = raw[topology.bars.len()..]
-        .iter()
-        .copied()
-        .fold(0.0, f64::max);
-    let s = if largest > 0.0 {
-        prestress / largest
-    } else {
-        0.0
-    };
-    raw.iter().map(|f| s * f).collect()
 }
 
 /// Bytes a node and a member of a form-finding hold (positions, incidence, the sparse force
@@ -610,13 +570,13 @@ mod tests {
         let text = "[groups.v]\nforce_density = 2.0\n[[bars]]\nnodes = [0, 1]\nforce_density = -1.0\n\
                     [[strings]]\nnodes = [1, 2]\ngroup = \"v\"\n[[strings]]\nnodes = [2, 0]\nforce_density = 1.0\n";
         let mut t = tensegrity_io::topology::from_str_named(text, "t").unwrap();
-        assert_eq!(default_method(&t), Method::Fdm);
         scale_group(&mut t, "v", 1.5).unwrap();
         assert_eq!(t.groups["v"].force_density, Some(3.0));
         let e = scale_group(&mut t, "w", 1.5).unwrap_err();
         assert!(e.to_string().contains("groups: v"), "{e}");
-        t.strings[1].force_density = None;
-        assert_eq!(default_method(&t), Method::Adaptive);
+        t.groups.get_mut("v").unwrap().force_density = None;
+        let e = scale_group(&mut t, "v", 1.5).unwrap_err();
+        assert!(e.to_string().contains("no force density"), "{e}");
     }
 
     #[test]
