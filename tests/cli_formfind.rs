@@ -184,7 +184,7 @@ fn bad_topologies_exit_2_naming_the_file_line_and_item() {
         (
             "nodes = [2, 3]",
             "nodes = [2, 9]",
-            &["strings[2]", "node 9 out of range"],
+            &["strings[2]", "node 9 makes the topology 10 nodes"],
         ),
         (
             "nodes = [3, 0]",
@@ -251,4 +251,17 @@ fn a_form_over_the_limits_is_refused_before_it_is_built() {
         e.contains("builtin = grid:300") && e.contains("--max-work"),
         "{e}"
     );
+}
+
+#[test]
+fn a_free_standing_form_held_at_three_nodes_is_a_singular_system() {
+    // the simplex held at four nodes is determined; at three, its affine freedom is not:
+    // D_ff is singular, the computation fails (exit 1) saying so
+    let text = std::fs::read_to_string("examples/formfind/simplex_fixed.toml").unwrap();
+    let three = &text[..text.rfind("[[fixed]]").unwrap()];
+    let path = common::scratch("formfind", "singular").join("three.toml");
+    std::fs::write(&path, three).unwrap();
+    let out = common::run(&["formfind", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("singular"), "{}", stderr(&out));
 }

@@ -44,6 +44,14 @@ fn dot(a: P, b: P) -> f64 {
 /// `self_stress`); returns the nodes.
 fn check(file: &str, self_stress: usize) -> (Formfound, Vec<P>) {
     let f = found(file);
+    let nodes = balanced(file, &f);
+    check_statics(file, &f, self_stress);
+    (f, nodes)
+}
+
+/// Equilibrium recomputed from the outputs, the force densities' signs and the held nodes;
+/// returns the nodes.
+fn balanced(file: &str, f: &Formfound) -> Vec<P> {
     let r = &f.report;
     let nodes = r.nodes.clone();
     let members: Vec<[usize; 2]> = f.topology.members().map(|m| m.nodes).collect();
@@ -84,6 +92,12 @@ fn check(file: &str, self_stress: usize) -> (Formfound, Vec<P>) {
             x.node
         );
     }
+    nodes
+}
+
+/// Checks the self-stress dimension (against the core's statics and `self_stress`).
+fn check_statics(file: &str, f: &Formfound, self_stress: usize) {
+    let r = &f.report;
     assert_eq!(r.self_stress_dim, self_stress, "{file}");
     assert!(r.prestressable, "{file}");
     assert!(r.residual < 1e-9, "{file}: residual {}", r.residual);
@@ -94,7 +108,6 @@ fn check(file: &str, self_stress: usize) -> (Formfound, Vec<P>) {
         "{file}: the core's statics"
     );
     assert!(statics.prestressable, "{file}: the core's statics");
-    (f, nodes)
 }
 
 /// The angle of p about the z axis.
@@ -328,4 +341,45 @@ fn the_cable_net_is_mirror_symmetric() {
         .find(|p| (p[0] - 2.0).abs() < 1e-12 && (p[1] - 2.0).abs() < 1e-12)
         .unwrap();
     assert!(centre[2] < -0.1, "{centre:?}");
+}
+
+#[test]
+fn dynamic_relaxation_reaches_the_force_density_form() {
+    // prism3_dr.toml gives the rest lengths of prism3.toml's form at 100 N: dynamic
+    // relaxation must land on that form up to a rigid motion (every distance between two
+    // nodes the same, to 1e-8 of the size)
+    let dr = found("prism3_dr.toml");
+    assert_eq!(dr.report.method.to_string(), "dr");
+    let fdm = found("prism3.toml");
+    let (a, b) = (&dr.report.nodes, &fdm.report.nodes);
+    let size = norm(sub(b[0], b[4]));
+    for i in 0..6 {
+        for j in 0..6 {
+            let (da, db) = (norm(sub(a[i], a[j])), norm(sub(b[i], b[j])));
+            assert!((da - db).abs() < 1e-8 * size, "{i}-{j}: {da} vs {db}");
+        }
+    }
+    // and its force densities are the same up to the scale: q / q_vertical
+    let (qa, qb) = (&dr.report.force_density, &fdm.report.force_density);
+    for k in 0..12 {
+        let (ra, rb) = (qa[k] / qa[11], qb[k] / qb[11]);
+        assert!((ra - rb).abs() < 1e-8, "member {k}: {ra} vs {rb}");
+    }
+}
+
+#[test]
+fn every_gallery_form_is_in_equilibrium_with_the_right_signs() {
+    let mut files: Vec<String> = std::fs::read_dir("examples/formfind")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 12, "{files:?}");
+    for file in &files {
+        let f = found(file);
+        balanced(file, &f);
+        assert!(f.report.prestressable && f.report.residual < 1e-9, "{file}");
+        assert!(f.structure.is_some(), "{file}: no prestressed structure");
+    }
 }

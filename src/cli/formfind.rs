@@ -72,7 +72,7 @@ fn drawing(found: &Formfound) -> tensegrity_io::figure::Figure {
 
 fn print_report(r: &FormfindReport) {
     println!(
-        "{}: {} nodes, {} bars, {} strings; method {} ({} iterations)",
+        "{}: {} nodes, {} bars, {} strings; method {}, iterations {}",
         r.source, r.n_nodes, r.n_bars, r.n_strings, r.method, r.iterations
     );
     println!(
@@ -80,8 +80,10 @@ fn print_report(r: &FormfindReport) {
         r.self_stress_dim, r.prestressable, r.prestress_stable, r.residual
     );
     println!("nodes (m):");
+    // round-off below the printed digits shown as 0, not as -0.000000000
+    let c = |x: f64| if x.abs() < 5e-10 { 0.0 } else { x };
     for (i, p) in r.nodes.iter().enumerate() {
-        println!("  {i:4}  {:+.9} {:+.9} {:+.9}", p[0], p[1], p[2]);
+        println!("  {i:4}  {:+.9} {:+.9} {:+.9}", c(p[0]), c(p[1]), c(p[2]));
     }
     let force = r.member_force.as_deref().unwrap_or(&[]);
     println!("members: q [N/m], force at prestress {} N:", r.prestress);

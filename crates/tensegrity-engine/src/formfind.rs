@@ -580,6 +580,27 @@ mod tests {
     }
 
     #[test]
+    fn builtin_sizes_are_those_of_the_built_forms() {
+        let names = [
+            "prism:3",
+            "prism:7",
+            "octahedron",
+            "tower:3:1",
+            "tower:4:3",
+            "grid:1",
+            "grid:3",
+        ];
+        for name in names {
+            let t = ::formfind::builtin(name).unwrap();
+            assert_eq!(
+                builtin_size(name),
+                Some((t.n_nodes, t.n_members())),
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
     fn builtin_sizes_come_from_their_names() {
         assert_eq!(builtin_size("prism:5"), Some((10, 20)));
         assert_eq!(builtin_size("octahedron"), Some((12, 30)));

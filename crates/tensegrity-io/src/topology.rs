@@ -199,12 +199,7 @@ impl TopologyFile {
             ));
         }
         if let Some(node) = used.iter().position(|u| !u) {
-            let at = self.node_span(node);
-            return Err(bad(
-                at,
-                format!("nodes[{node}]"),
-                "the node is on no member",
-            ));
+            return Err(self.unused_node(node, n_nodes));
         }
         let fixed = self.fixed_nodes(n_nodes)?;
         let nodes = self
@@ -374,6 +369,29 @@ impl TopologyFile {
             });
         }
         Ok(fixed)
+    }
+
+    /// The error of a node on no member: where the count of nodes was inferred, the member
+    /// with the largest index (a typo there leaves the nodes below it unused), else the node.
+    fn unused_node(&self, node: usize, n_nodes: usize) -> Failed {
+        let inferred = self.n_nodes.is_none() && self.nodes.is_none();
+        let last = self
+            .members()
+            .find(|(_, _, m)| m.get_ref().nodes.contains(&(n_nodes - 1)));
+        match last {
+            Some((name, _, m)) if inferred => {
+                let reason = format!(
+                    "node {} makes the topology {n_nodes} nodes (the largest index + 1), and node {node} is on no member; fix the index or give `n_nodes`",
+                    n_nodes - 1
+                );
+                bad(Some(m.span().start), name, reason)
+            }
+            _ => bad(
+                self.node_span(node),
+                format!("nodes[{node}]"),
+                "the node is on no member",
+            ),
+        }
     }
 
     /// The offset of node `i`'s position, if positions are given.
