@@ -63,7 +63,7 @@ pub fn rest_lengths(
     let mut max_tension = 0.0f64;
     for k in nb..pairs.len() {
         let q = found.force_density[k];
-        if !(q > 0.0) {
+        if q.is_nan() || q <= 0.0 {
             return Err(FormFindError::NoPrestress {
                 reason: format!(
                     "{} has force density {q}: a string must be in tension",

@@ -6,7 +6,7 @@ use formfind::{
     builtin, form_find, rest_lengths, synthesize, FormFound, Method, Settings, Synthesis, Topology,
 };
 use nalgebra::{Matrix3, Vector3};
-use tensegrity_core::statics::{backend, StaticsBackend, StaticsSettings};
+use tensegrity_core::statics::{backend, StaticsSettings};
 use tensegrity_core::{Simulation, SimulationSettings};
 
 fn fdm(t: &Topology) -> FormFound {
