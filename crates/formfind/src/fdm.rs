@@ -6,7 +6,9 @@
 //! equilibrium without loads reads D X = 0 for the n × 3 coordinate matrix X = Nᵀ.
 //!
 //! **Free-standing** (no fixed nodes): X lies in the null space of D. The constant vector is
-//! always in it; a 3-D geometry needs rank deficiency ≥ d + 1 = 4. Any affine image of an
+//! always in it; a 3-D geometry needs rank deficiency ≥ d + 1 = 4 (rank deficiency 3 gives a
+//! planar form, like the X-module, in the plane z = 0 of the canonical normalisation; less
+//! is [`FormFindError::RankDeficiency`]). Any affine image of an
 //! equilibrium is again one, so the geometry is fixed by a normalisation:
 //!
 //! - with initial `nodes`, the null-space geometry closest to them in least squares:
@@ -14,7 +16,8 @@
 //!   exactly 4-dimensional this is the affine image of any equilibrium closest to X₀, which is
 //!   also what the sparse path computes (below);
 //! - without them (or when that projection is flat), the canonical form: centroid at the
-//!   origin, the three non-constant null-space directions with the largest spread, taken
+//!   origin, the three (two for a planar form) non-constant null-space directions with the
+//!   largest spread, taken
 //!   orthonormal (equal second moments), rotated to the principal axes of the bar vectors
 //!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive, and
 //!   scaled to a mean bar length of 1.
@@ -115,7 +118,7 @@ pub(crate) fn null_space(d: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     let scale = w.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let tol = NULL_SPACE_TOLERANCE * scale;
     let null: Vec<usize> = (0..w.len()).filter(|&i| w[i].abs() <= tol).collect();
-    if null.len() < 4 {
+    if null.len() < 3 {
         let mut by_size: Vec<f64> = w
             .iter()
             .map(|x| x.abs() / scale.max(f64::MIN_POSITIVE))
@@ -143,8 +146,8 @@ fn points(x: &DMatrix<f64>) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-/// Whether the points span 3-D (smallest to largest principal spread above 1e-6).
-pub(crate) fn spans_3d(p: &[Vector3<f64>]) -> bool {
+/// The number of dimensions the points span (principal spreads above 1e-6 of the largest).
+pub(crate) fn spanned_dimensions(p: &[Vector3<f64>]) -> usize {
     let c = centroid(p);
     let mut m = Matrix3::zeros();
     for x in p {
@@ -152,8 +155,11 @@ pub(crate) fn spans_3d(p: &[Vector3<f64>]) -> bool {
         m += d * d.transpose();
     }
     let e = m.symmetric_eigenvalues();
-    let (lo, hi) = (e.min(), e.max());
-    hi > 0.0 && lo > 1e-12 * hi
+    let hi = e.max();
+    if !(hi > 0.0) {
+        return 0;
+    }
+    e.iter().filter(|&&x| x > 1e-12 * hi).count()
 }
 
 /// The centroid of the points.
@@ -167,7 +173,7 @@ pub(crate) fn normalise(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<
         let x0 = DMatrix::from_fn(x0.len(), 3, |i, j| x0[i][j]);
         let x = phi * (phi.transpose() * &x0);
         let p = points(&x);
-        if spans_3d(&p) {
+        if spanned_dimensions(&p) >= (phi.ncols() - 1).min(3) {
             return p;
         }
     }
@@ -187,7 +193,9 @@ fn canonical(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<f64>> {
         Ok(s) => (s.u, s.s),
         Err(_) => return vec![Vector3::zeros(); n],
     };
-    let x = u.columns(0, 3).into_owned();
+    let dim = (phi.ncols() - 1).min(3);
+    let mut x = DMatrix::zeros(n, 3);
+    x.columns_mut(0, dim).copy_from(&u.columns(0, dim));
     let p = points(&x);
     orient_and_scale(topology, p)
 }

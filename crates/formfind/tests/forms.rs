@@ -245,3 +245,67 @@ fn large_grid_is_form_found_sparsely() {
     assert!(f.residual < 1e-10, "{}", f.residual);
     assert!(f.prestressable && f.prestress_stable);
 }
+
+#[test]
+fn the_planar_x_module_is_a_square() {
+    // Two crossing bars inside a ring of four strings: D has rank deficiency 3, a planar
+    // form; with bar q = −1 and string q = 1 the ring is a square (closed form).
+    let t = Topology {
+        n_nodes: 4,
+        bars: vec![
+            formfind::Member::new(0, 2).force_density(-1.0),
+            formfind::Member::new(1, 3).force_density(-1.0),
+        ],
+        strings: (0..4)
+            .map(|i| formfind::Member::new(i, (i + 1) % 4).force_density(1.0))
+            .collect(),
+        ..Topology::default()
+    };
+    let f = form_find(&t, &settings(Method::Fdm)).unwrap();
+    assert!(f.nodes.iter().all(|p| p.z == 0.0));
+    let side: Vec<f64> = (0..4)
+        .map(|i| (f.nodes[(i + 1) % 4] - f.nodes[i]).norm())
+        .collect();
+    let diag = (f.nodes[2] - f.nodes[0]).norm();
+    for s in &side {
+        assert!((s / side[0] - 1.0).abs() < 1e-12);
+    }
+    assert!((diag / side[0] - 2f64.sqrt()).abs() < 1e-12);
+    assert!(f.residual < 1e-12 && f.prestressable);
+    assert_eq!(f.self_stress_dim, 1);
+}
+
+#[test]
+fn the_result_serialises_with_the_contract_keys() {
+    let f = form_find(&builtin("prism:3").unwrap(), &Settings::default()).unwrap();
+    let v = serde_json::to_value(&f).unwrap();
+    for key in [
+        "method",
+        "nodes",
+        "force_density",
+        "self_stress_dim",
+        "prestressable",
+        "prestress_stable",
+        "residual",
+        "iterations",
+    ] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    assert_eq!(v["method"], "fdm");
+    assert_eq!(v["nodes"].as_array().unwrap().len(), 6);
+    assert_eq!(v["nodes"][0].as_array().unwrap().len(), 3);
+    assert_eq!(v["force_density"].as_array().unwrap().len(), 12);
+}
+
+#[test]
+fn estimates_grow_with_the_topology() {
+    let small = formfind::estimate(&builtin("prism:4").unwrap(), &Settings::default());
+    let large = formfind::estimate(&builtin("grid:27").unwrap(), &Settings::default());
+    assert!(small.work_s < large.work_s && small.memory_bytes < large.memory_bytes);
+    assert!(large.work_s < 60.0, "{large:?}");
+    let adaptive = formfind::estimate(
+        &builtin("tower:12:100").unwrap(),
+        &settings(Method::Adaptive),
+    );
+    assert!(adaptive.work_s > large.work_s, "{adaptive:?}");
+}
