@@ -156,7 +156,7 @@ pub(crate) fn spanned_dimensions(p: &[Vector3<f64>]) -> usize {
     }
     let e = m.symmetric_eigenvalues();
     let hi = e.max();
-    if !(hi > 0.0) {
+    if hi.is_nan() || hi <= 0.0 {
         return 0;
     }
     e.iter().filter(|&&x| x > 1e-12 * hi).count()
