@@ -4,7 +4,9 @@
 //! - residual: ‖A q‖ / ‖q‖ with A the equilibrium matrix at the found nodes (rows of fixed
 //!   nodes removed), i.e. the out-of-balance force of the force densities q per unit force
 //!   density (m);
-//! - self-stress dimension: members − rank A. When the form is certified (below) and A Aᵀ,
+//! - self-stress dimension: members − rank A (the rank tolerance relative to σ_max is the
+//!   core's default, or 100 × ‖A q‖/(‖q‖ · size) up to 10⁻⁶ for a form in equilibrium only to
+//!   an iteration's tolerance). When the form is certified (below) and A Aᵀ,
 //!   without the rows of the supports (or of a statically determinate support of a
 //!   free-standing form), admits a sparse Cholesky factorisation, the structure has no
 //!   first-order mechanism and rank A is that number of rows ([`rigid_rank`]); otherwise
@@ -125,7 +127,15 @@ pub(crate) fn analyse(topology: &Topology, nodes: &[Vector3<f64>], q: &[f64]) ->
         }
     }
     let structure = bare_structure(topology, nodes)?;
-    let statics = backend(&structure, StaticsSettings::default())?;
+    // A form found iteratively (dynamic relaxation) is in equilibrium to its tolerance, not
+    // to round-off: the rank decision takes a relative tolerance of 100 × its relative
+    // residual (at most 10⁻⁶) when that exceeds the default.
+    let mut settings = StaticsSettings::default();
+    let relative = residual / scale;
+    if witness && relative > 1e-14 {
+        settings = settings.rank_tolerance((100.0 * relative).min(1e-6))?;
+    }
+    let statics = backend(&structure, settings)?;
     let self_stress_dim = statics.self_stress_dim();
     let prestressable = witness || statics.prestressability()?.prestressable;
     let prestress_stable = if certified {
