@@ -94,7 +94,9 @@ pub(crate) fn size(nodes: &[Vector3<f64>]) -> f64 {
 
 /// A core structure of the topology at `nodes` (no properties; fixed nodes pinned).
 pub(crate) fn bare_structure(topology: &Topology, nodes: &[Vector3<f64>]) -> Result<Structure> {
-    let mut b = Structure::builder().nodes(nodes.iter().map(|p| [p.x, p.y, p.z]));
+    let mut b = Structure::builder()
+        .allow_isolated_nodes(!topology.fixed.is_empty())
+        .nodes(nodes.iter().map(|p| [p.x, p.y, p.z]));
     for m in &topology.bars {
         b = b.bar(Bar::new(m.nodes[0], m.nodes[1]));
     }

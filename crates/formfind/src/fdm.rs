@@ -19,8 +19,9 @@
 //!   origin, the three (two for a planar form) non-constant null-space directions with the
 //!   largest spread, taken
 //!   orthonormal (equal second moments), rotated to the principal axes of the bar vectors
-//!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive, and
-//!   scaled to a mean bar length of 1.
+//!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive,
+//!   scaled to a mean bar length of 1, and mirrored in z if needed so that the first four
+//!   affinely independent nodes (in index order) form a positively oriented tetrahedron.
 //!
 //! The null space of a topology of up to [`DENSE_MAX_NODES`] nodes comes from the symmetric
 //! eigendecomposition of D: eigenvalues |λ| ≤ [`NULL_SPACE_TOLERANCE`] · max|λ| count as zero.
@@ -197,7 +198,43 @@ fn canonical(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<f64>> {
     let mut x = DMatrix::zeros(n, 3);
     x.columns_mut(0, dim).copy_from(&u.columns(0, dim));
     let p = points(&x);
-    orient_and_scale(topology, p)
+    right_handed(orient_and_scale(topology, p))
+}
+
+/// Mirrors the last axis when the first four affinely independent nodes (in index order)
+/// form a negatively oriented tetrahedron: the canonical form's handedness convention
+/// (for `prism:N` it puts the bottom ring counter-clockwise about the axis towards the top,
+/// so the top is twisted by +(π/2 + π/N)).
+fn right_handed(mut p: Vec<Vector3<f64>>) -> Vec<Vector3<f64>> {
+    let size = p
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.amax()))
+        .max(f64::MIN_POSITIVE);
+    let Some(&p0) = p.first() else {
+        return p;
+    };
+    let e1 = p.iter().map(|x| x - p0).find(|d| d.norm() > 1e-9 * size);
+    let Some(e1) = e1 else {
+        return p;
+    };
+    let e2 = p
+        .iter()
+        .map(|x| x - p0)
+        .find(|d| e1.cross(d).norm() > 1e-9 * size * e1.norm());
+    let Some(e2) = e2 else {
+        return p;
+    };
+    let normal = e1.cross(&e2);
+    let volume = p
+        .iter()
+        .map(|x| normal.dot(&(x - p0)))
+        .find(|v| v.abs() > 1e-9 * size * normal.norm());
+    if volume.is_some_and(|v| v < 0.0) {
+        for x in p.iter_mut() {
+            x.z = -x.z;
+        }
+    }
+    p
 }
 
 /// Rotates to the principal axes of the bar vectors and scales to a mean bar length of 1.

@@ -118,7 +118,9 @@ pub fn synthesize(
     check("bar_mass", synthesis.bar_mass)?;
     let r = rest_lengths(topology, found, synthesis)?;
     let nb = topology.bars.len();
-    let mut b = Structure::builder().nodes(found.nodes.iter().map(|p| [p.x, p.y, p.z]));
+    let mut b = Structure::builder()
+        .allow_isolated_nodes(!topology.fixed.is_empty())
+        .nodes(found.nodes.iter().map(|p| [p.x, p.y, p.z]));
     for m in &topology.bars {
         b = b.bar(Bar::new(m.nodes[0], m.nodes[1]).mass(synthesis.bar_mass));
     }

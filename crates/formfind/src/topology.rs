@@ -180,8 +180,16 @@ impl Topology {
         if self.n_members() == 0 {
             return Err(bad("bars".into(), "the topology has no members".into()));
         }
+        for f in &self.fixed {
+            if let Some(t) = touched.get_mut(f.node) {
+                *t = true; // a held node may stand alone (an anchor of nothing)
+            }
+        }
         if let Some(i) = touched.iter().position(|t| !t) {
-            return Err(bad(format!("node {i}"), "no member ends at it".into()));
+            return Err(bad(
+                format!("node {i}"),
+                "no member ends at it (and it is not fixed)".into(),
+            ));
         }
         for (name, g) in &self.groups {
             if let Some(q) = g.force_density {

@@ -106,6 +106,47 @@ fn prism_twist_is_found_from_a_wrong_initial_twist() {
 }
 
 #[test]
+fn prism_canonical_form_without_nodes_is_right_handed() {
+    for n in 3..=12 {
+        let mut t = builtin(&format!("prism:{n}")).unwrap();
+        t.nodes = None;
+        let f = form_find(&t, &settings(Method::Fdm)).unwrap();
+        check_prism(n, &f);
+    }
+}
+
+#[test]
+fn fixed_nodes_may_stand_alone() {
+    // A string between two held nodes and one free node pulled by two strings: a held node
+    // on no member is an anchor of nothing, accepted.
+    let t = Topology {
+        n_nodes: 4,
+        strings: vec![
+            formfind::Member::new(0, 2).force_density(1.0),
+            formfind::Member::new(2, 1).force_density(3.0),
+        ],
+        fixed: vec![
+            formfind::FixedNode {
+                node: 0,
+                position: [0.0, 0.0, 0.0],
+            },
+            formfind::FixedNode {
+                node: 1,
+                position: [4.0, 0.0, 0.0],
+            },
+            formfind::FixedNode {
+                node: 3,
+                position: [9.0, 9.0, 9.0],
+            },
+        ],
+        ..Topology::default()
+    };
+    let f = form_find(&t, &Settings::default()).unwrap();
+    // q₁ (x − 0) = q₂ (4 − x): x = 3.
+    assert!((f.nodes[2] - Vector3::new(3.0, 0.0, 0.0)).norm() < 1e-14);
+}
+
+#[test]
 fn prism_force_densities_found_by_the_adaptive_method() {
     for n in 3..=12 {
         let t = without_force_densities(builtin(&format!("prism:{n}")).unwrap());
