@@ -45,6 +45,9 @@ pub const NULL_SPACE_TOLERANCE: f64 = 1e-9;
 /// larger ones the sparse anchored solve.
 pub const DENSE_MAX_NODES: usize = 1200;
 
+/// Largest error of the test solve D_ff y = D_ff z (|z| ≤ 1) before D_ff counts as singular.
+pub(crate) const SINGULARITY_TOLERANCE: f64 = 1e-6;
+
 /// Relative tolerance of a linear solve's residual, ‖D X‖ ≤ tol · ‖D‖ · ‖X‖.
 pub(crate) const SOLVE_TOLERANCE: f64 = 1e-8;
 
@@ -328,6 +331,20 @@ pub(crate) fn fixed_solve(
     };
     let a = CscMatrix::from_triplets(nf, nf, &t)?;
     let mut lu = SparseLu::new(&a).map_err(|e| singular(e.to_string()))?;
+    // A numerically singular D_ff factors without complaint: solve D_ff y = D_ff z for a
+    // fixed pseudo-random z and require y = z.
+    let z: Vec<f64> = (0..nf).map(|i| (0.7 + 1.3 * i as f64).sin()).collect();
+    let mut y = a.mul_vec(&z);
+    lu.solve_in_place(&mut y);
+    let dev = y
+        .iter()
+        .zip(&z)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    if !(dev <= SINGULARITY_TOLERANCE) {
+        return Err(singular(format!(
+            "a test solve is off by {dev:.1e}: D has null vectors that vanish at the held nodes"
+        )));
+    }
     let mut x = vec![Vector3::zeros(); nf];
     for axis in 0..3 {
         let mut b: Vec<f64> = rhs.iter().map(|r| r[axis]).collect();
@@ -406,7 +423,19 @@ fn anchored(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
         reason: "the initial nodes are coplanar; a 3-D guess is needed".into(),
     })?;
     let fixed: Vec<(usize, Vector3<f64>)> = a.iter().map(|&i| (i, x0[i])).collect();
-    let x = fixed_solve(topology, q, &fixed)?;
+    let x = fixed_solve(topology, q, &fixed).map_err(|e| match e {
+        FormFindError::SingularSystem { hint } => FormFindError::RankDeficiency {
+            found: 5,
+            required: 4,
+            hint: format!(
+                "with four anchor nodes held, {hint}; the sparse path of topologies over \
+                 {DENSE_MAX_NODES} nodes needs rank deficiency exactly 4 (a null space \
+                 beyond the affine maps, e.g. folds along the planar rings of stacked \
+                 stages, needs held nodes)"
+            ),
+        },
+        e => e,
+    })?;
     // The anchors' own rows must vanish too: then D X = 0 everywhere.
     let mut f = vec![Vector3::zeros(); topology.n_nodes];
     let mut qmax = 0.0f64;

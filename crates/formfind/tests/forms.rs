@@ -345,8 +345,72 @@ fn estimates_grow_with_the_topology() {
     assert!(small.work_s < large.work_s && small.memory_bytes < large.memory_bytes);
     assert!(large.work_s < 60.0, "{large:?}");
     let adaptive = formfind::estimate(
-        &builtin("tower:12:100").unwrap(),
+        &builtin("tower:12:99").unwrap(),
         &settings(Method::Adaptive),
     );
     assert!(adaptive.work_s > large.work_s, "{adaptive:?}");
+}
+
+#[test]
+fn a_large_prism_takes_the_sparse_anchored_path() {
+    // 1202 nodes, over DENSE_MAX_NODES: four anchors, sparse LU, affine fit to the guess.
+    let n = 601;
+    assert!(2 * n > formfind::DENSE_MAX_NODES);
+    let f = form_find(
+        &builtin(&format!("prism:{n}")).unwrap(),
+        &settings(Method::Fdm),
+    )
+    .unwrap();
+    check_prism(n, &f);
+}
+
+#[test]
+fn a_large_tower_with_folds_is_refused_not_garbled() {
+    // Stacked prisms sharing planar rings: D has null vectors beyond the affine maps (a fold
+    // at every inner ring), so four anchors do not fix the form. Over DENSE_MAX_NODES the
+    // sparse path must say so.
+    let (n, m) = (13, 100);
+    assert!(n * (m + 1) > formfind::DENSE_MAX_NODES);
+    assert!(builtin(&format!("tower:{n}:{m}")).is_err());
+    let small = builtin("tower:13:1").unwrap();
+    let a = prism_twist(n);
+    let mut t = Topology {
+        n_nodes: n * (m + 1),
+        groups: small.groups.clone(),
+        ..Topology::default()
+    };
+    let mut nodes = Vec::new();
+    for l in 0..=m {
+        for i in 0..n {
+            let th = 2.0 * PI * i as f64 / n as f64 + l as f64 * a;
+            nodes.push([th.cos(), th.sin(), l as f64]);
+        }
+    }
+    t.nodes = Some(nodes);
+    for s in 0..m {
+        for i in 0..n {
+            t.bars
+                .push(formfind::Member::new(s * n + i, (s + 1) * n + i).group("bars"));
+            t.strings.push(
+                formfind::Member::new(s * n + i, (s + 1) * n + (i + n - 1) % n).group("vertical"),
+            );
+        }
+    }
+    for l in 0..=m {
+        let g = if l == 0 || l == m {
+            "ring_end"
+        } else {
+            "ring_inner"
+        };
+        for i in 0..n {
+            t.strings
+                .push(formfind::Member::new(l * n + i, l * n + (i + 1) % n).group(g));
+        }
+    }
+    match form_find(&t, &settings(Method::Fdm)) {
+        Err(formfind::FormFindError::RankDeficiency { hint, .. }) => {
+            assert!(hint.contains("held nodes"), "{hint}")
+        }
+        other => panic!("{other:?}"),
+    }
 }
