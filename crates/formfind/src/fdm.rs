@@ -340,7 +340,7 @@ pub(crate) fn fixed_solve(
         .iter()
         .zip(&z)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    if !(dev <= SINGULARITY_TOLERANCE) {
+    if dev.is_nan() || dev > SINGULARITY_TOLERANCE {
         return Err(singular(format!(
             "a test solve is off by {dev:.1e}: D has null vectors that vanish at the held nodes"
         )));
