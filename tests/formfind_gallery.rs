@@ -365,6 +365,9 @@ fn dynamic_relaxation_reaches_the_force_density_form() {
         let (ra, rb) = (qa[k] / qa[11], qb[k] / qb[11]);
         assert!((ra - rb).abs() < 1e-8, "member {k}: {ra} vs {rb}");
     }
+    // the relaxed form's rank decision follows its residual: the same one self-stress
+    assert_eq!(dr.report.self_stress_dim, fdm.report.self_stress_dim);
+    assert_eq!(dr.report.self_stress_dim, 1);
 }
 
 #[test]
