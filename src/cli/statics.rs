@@ -23,7 +23,9 @@ pub struct StaticsArgs {
 /// Entry point of `tensegrity statics`.
 pub fn run(args: &StaticsArgs) -> Result<()> {
     let command: StaticsCommand = args.request.request()?;
-    let (scene, report) = statics::admitted(&command, super::guard::optional)?;
+    let limits = super::guard::limits();
+    let (scene, report) = statics::admitted(&command, Some(&limits), super::guard::optional)
+        .map_err(super::guard::refused_later)?;
     if report.load_carried == Some(false) {
         eprintln!(
             "warning: the loads are not carried (residual {:.6e} N at nodes {:?}): least-squares force densities, no sizing",

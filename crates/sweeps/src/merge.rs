@@ -103,9 +103,7 @@ impl<'a> Input<'a> {
             last: None,
         };
         let header = loop {
-            let line = input
-                .line()?
-                .ok_or_else(|| bad(path, "no header row"))?;
+            let line = input.line()?.ok_or_else(|| bad(path, "no header row"))?;
             if line.starts_with(crate::table::SPEC_LINE.as_bytes()) && input.spec.is_none() {
                 input.spec = Some(line);
                 continue;

@@ -6,8 +6,8 @@
 //! file. (The memory a merge holds: `merge_memory.rs`.)
 
 use std::path::{Path, PathBuf};
-use sweeps::merge::MAX_ROW_BYTES;
 use sweeps::merge;
+use sweeps::merge::MAX_ROW_BYTES;
 
 const HEADER: &str = "# units: case, x [m], status, message\ncase,x,status,message\n";
 
@@ -66,7 +66,10 @@ fn streaming_refusals_name_the_file() {
     let b = shard(dir.path(), 1, 2, 20);
     // rows out of case order
     let text = std::fs::read_to_string(&b).unwrap();
-    let swapped = text.replace(&row(3), "X").replace(&row(5), &row(3)).replace('X', &row(5));
+    let swapped = text
+        .replace(&row(3), "X")
+        .replace(&row(5), &row(3))
+        .replace('X', &row(5));
     let unordered = dir.path().join("unordered.csv");
     std::fs::write(&unordered, swapped).unwrap();
     let e = merge_err(&[a.clone(), unordered.clone()], &out);
@@ -100,8 +103,11 @@ fn streaming_refusals_name_the_file() {
         "{e}"
     );
     let stopped = dir.path().join("stopped.csv");
-    std::fs::write(&stopped, format!("{text}# incomplete: interrupted after 10 of 20 cases\n"))
-        .unwrap();
+    std::fs::write(
+        &stopped,
+        format!("{text}# incomplete: interrupted after 10 of 20 cases\n"),
+    )
+    .unwrap();
     let e = merge_err(&[a.clone(), stopped.clone()], &out);
     assert!(
         e.contains(&stopped.display().to_string()) && e.contains("interrupted sweep"),
@@ -114,11 +120,18 @@ fn streaming_refusals_name_the_file() {
     let e = merge_err(std::slice::from_ref(&long), &out);
     assert_eq!(
         e,
-        format!("cannot merge {}: a row is longer than 16 MiB", long.display())
+        format!(
+            "cannot merge {}: a row is longer than 16 MiB",
+            long.display()
+        )
     );
     // another spec's shard (same header)
     let spec_b = dir.path().join("spec_b.csv");
-    std::fs::write(&spec_b, text.replace("00000000000000aa", "00000000000000bb")).unwrap();
+    std::fs::write(
+        &spec_b,
+        text.replace("00000000000000aa", "00000000000000bb"),
+    )
+    .unwrap();
     let e = merge_err(&[a.clone(), spec_b.clone()], &out);
     assert!(
         e.contains("another spec") && e.contains("00000000000000aa there, 00000000000000bb here"),
