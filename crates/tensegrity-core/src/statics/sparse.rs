@@ -180,7 +180,8 @@ pub const SPARSE_FLOP_RATE: f64 = 1.5e9;
 /// stored numbers, [`RankRevealingQr::stored_entries`]) has found rank r — s = n − r
 /// self-stresses, d = m − r mechanisms: what is still to come and what is held at its peak.
 ///
-/// - memory: the factorisation (8·entries), the self-stress basis n × s about four times
+/// - memory: the factorisation (16·entries: each column's window is allocated whole, then
+///   shrunk to its entries, and the allocator keeps the tails), the self-stress basis n × s about four times
 ///   (the null vectors, their orthonormalisation's input and Q, the oriented basis) and, when
 ///   there is a self-stress (the prestressability LP over R and the stability test), the LP's
 ///   sparse R and its interior-point factor (~3 × 16·entries) and the mechanisms m × d about
@@ -194,7 +195,7 @@ pub const SPARSE_FLOP_RATE: f64 = 1.5e9;
 /// use tensegrity_core::statics::sparse_after_qr;
 /// // a chain without self-stress: the factorisation and nothing to add
 /// let e = sparse_after_qr(9000, 5997, 5997, 1_000_000);
-/// assert_eq!(e.memory_bytes, 8e6);
+/// assert_eq!(e.memory_bytes, 16e6);
 /// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 1.0);
 /// ```
 pub fn sparse_after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Estimate {
@@ -206,7 +207,7 @@ fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Esti
     let s = n.saturating_sub(r) as f64;
     let d = m.saturating_sub(r) as f64;
     let stressed = if s > 0.0 { 1.0 } else { 0.0 };
-    let memory = 8.0 * e + 32.0 * nf * s + stressed * (48.0 * e + 32.0 * mf * d);
+    let memory = 16.0 * e + 32.0 * nf * s + stressed * (48.0 * e + 32.0 * mf * d);
     let flops = s * e
         + 2.0 * nf * s * s
         + stressed * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d + 600.0 * e);
