@@ -233,12 +233,89 @@ fn long_chains_answer_or_are_refused_by_their_estimate() {
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(j["rank"], 2 * 3000 - 3);
     assert_eq!(j["self_stress_dim"], 0);
-    // 18,000 nodes: refused by the estimate (the QR's profile and the mechanisms' basis),
-    // naming the flag that raises the limit
+    // 18,000 nodes: the estimate bounds the QR's profile (7.2 GiB; ~4 GB measured): refused
+    // under a smaller limit, naming the flag that raises it
     let big = chain(&dir, 18000);
     assert_refused(
-        &["statics", &big],
+        &["statics", &big, "--max-memory", "4Gi"],
         &["18000 nodes", "memory", "--max-memory"],
+    );
+}
+
+/// A tower of `stages` stacked Snelson prisms sharing their triangles (examples/tower200.toml
+/// continued): one self-stress and one internal mechanism per prism.
+fn tower(dir: &Path, stages: usize) -> String {
+    let mut s = String::from("nodes = [\n");
+    for ring in 0..=stages {
+        for i in 0..3 {
+            let a = 2.0 * std::f64::consts::PI * i as f64 / 3.0
+                + ring as f64 * std::f64::consts::PI / 6.0;
+            s += &format!("  [{}, {}, {ring}.0],\n", a.cos(), a.sin());
+        }
+    }
+    s += "]\n";
+    for st in 0..stages {
+        for i in 0..3 {
+            s += &format!(
+                "[[bars]]\nnodes = [{}, {}]\n",
+                3 * st + i,
+                3 * st + 3 + (i + 1) % 3
+            );
+            s += &format!(
+                "[[strings]]\nnodes = [{}, {}]\n",
+                3 * st + i,
+                3 * st + 3 + i
+            );
+        }
+    }
+    for ring in 0..=stages {
+        for i in 0..3 {
+            s += &format!(
+                "[[strings]]\nnodes = [{}, {}]\n",
+                3 * ring + i,
+                3 * ring + (i + 1) % 3
+            );
+        }
+    }
+    let path = dir.join(format!("tower{stages}.toml"));
+    std::fs::write(&path, s).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn a_sparse_statics_of_minutes_is_refused_once_its_rank_is_known() {
+    // 1,500 prisms: the QR takes a second or two and finds 1,500 self-stresses and 1,506
+    // mechanisms, whose bases, LP and stability test would take minutes (the estimate before
+    // the QR, at the generic rank, cannot see them): refused over --max-work after the QR
+    // (exit 2, one line, no report; its time depends on the QR, so it is not bounded here)
+    let dir = scratch("limits", "towers");
+    let big = tower(&dir, 1500);
+    let (out, _) = run(&["statics", &big]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(out.stdout.is_empty(), "a report: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    for needle in [
+        "1500 self-stresses",
+        "1506 mechanisms",
+        "after its QR",
+        "of work",
+        "--max-work",
+    ] {
+        assert!(err.contains(needle), "{needle:?} missing from {err}");
+    }
+    // a smaller tower answers: 100 prisms, 100 self-stresses, prestressable
+    let small = tower(&dir, 100);
+    let (out, _) = run(&["statics", &small, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (j["self_stress_dim"].as_u64(), j["prestressable"].as_bool()),
+        (Some(100), Some(true))
     );
 }
 

@@ -15,7 +15,8 @@ use std::io::IsTerminal;
 use std::sync::OnceLock;
 use std::time::Duration;
 use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Parameters, Resource};
-use tensegrity_engine::{estimate, limits, Estimated};
+use tensegrity_core::CoreError;
+use tensegrity_engine::{estimate, limits, Estimated, SceneError};
 
 static LIMITS: OnceLock<Limits> = OnceLock::new();
 
@@ -93,24 +94,7 @@ pub fn optional(estimate: Option<Estimate>) -> Result<Progress> {
 /// `work_unknown` (an adaptive integration's steps are not known in advance).
 pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
     if let Err(over) = limits().check(&estimate) {
-        let (flag, suggested) = match over.resource {
-            Resource::Memory => ("--max-memory", limits::suggest_size(over.estimated)),
-            Resource::Output => ("--max-output", limits::suggest_size(over.estimated)),
-            Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
-        };
-        let flags = flags(&over.estimate.parameters);
-        let flags = if flags.is_empty() {
-            flags
-        } else {
-            format!(" ({flags})")
-        };
-        return Err(Refused {
-            over,
-            flag,
-            suggested,
-            flags,
-        }
-        .into());
+        return Err(refusal(over).into());
     }
     let quick = estimate.work_s < SPINNER_AFTER_S && !work_unknown;
     if quick || !std::io::stderr().is_terminal() {
@@ -124,6 +108,48 @@ pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
     bar.set_message(format!("{} (estimated {work})", estimate.what));
     bar.enable_steady_tick(Duration::from_millis(200));
     Ok(Progress(Some(bar)))
+}
+
+/// The refusal of an estimate over its limit: the flag that raises it, a value that would
+/// admit it, the flags of its parameters.
+fn refusal(over: OverBudget) -> Refused {
+    let (flag, suggested) = match over.resource {
+        Resource::Memory => ("--max-memory", limits::suggest_size(over.estimated)),
+        Resource::Output => ("--max-output", limits::suggest_size(over.estimated)),
+        Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
+    };
+    let flags = flags(&over.estimate.parameters);
+    let flags = if flags.is_empty() {
+        flags
+    } else {
+        format!(" ({flags})")
+    };
+    Refused {
+        over,
+        flag,
+        suggested,
+        flags,
+    }
+}
+
+/// A library's own refusal of a computation found over the limits once part of it ran (the
+/// sparse statics once its rank is known), as a refusal naming the flag; other errors as
+/// they are.
+pub fn refused_later(e: anyhow::Error) -> anyhow::Error {
+    let over = e.chain().find_map(|c| {
+        let core = c
+            .downcast_ref::<SceneError>()
+            .and_then(|s| match s {
+                SceneError::Core(core) => Some(core),
+                _ => None,
+            })
+            .or_else(|| c.downcast_ref::<CoreError>());
+        match core {
+            Some(CoreError::OverBudget(over)) => Some((**over).clone()),
+            _ => None,
+        }
+    });
+    over.map_or(e, |over| refusal(over).into())
 }
 
 /// The flags of an estimate's parameters: `t_end = 1e9, dt = 0.001 s` → `--t-end 1e9 --dt

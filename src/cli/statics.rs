@@ -5,6 +5,7 @@
 
 use super::request_args::RequestArgs;
 use anyhow::Result;
+use tensegrity_core::budget::Estimate;
 use tensegrity_core::statics::Factorization;
 use tensegrity_core::{StaticsReport, Structure};
 use tensegrity_engine::statics::{self, StaticsCommand};
@@ -23,7 +24,18 @@ pub struct StaticsArgs {
 /// Entry point of `tensegrity statics`.
 pub fn run(args: &StaticsArgs) -> Result<()> {
     let command: StaticsCommand = args.request.request()?;
-    let (scene, report) = statics::admitted(&command, super::guard::optional)?;
+    let limits = super::guard::limits();
+    // the sparse path's cost after its QR grows with the self-stresses it finds, which no
+    // estimate before the run knows: the spinner shows whatever the estimate
+    let admit = |e: Option<Estimate>| match e {
+        Some(e) => {
+            let rank_dependent = e.what.starts_with("the sparse statics");
+            super::guard::check_with(e, rank_dependent)
+        }
+        None => super::guard::optional(None),
+    };
+    let (scene, report) =
+        statics::admitted(&command, Some(&limits), admit).map_err(super::guard::refused_later)?;
     if report.load_carried == Some(false) {
         eprintln!(
             "warning: the loads are not carried (residual {:.6e} N at nodes {:?}): least-squares force densities, no sizing",

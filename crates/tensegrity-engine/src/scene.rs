@@ -125,6 +125,7 @@ impl Categorized for SceneError {
             SceneError::Core(CoreError::InvalidParameter { .. } | CoreError::TooLarge { .. }) => {
                 Category::Input
             }
+            SceneError::Core(CoreError::OverBudget(_)) => Category::Resource,
             SceneError::Core(CoreError::Interrupted { .. }) => Category::Interrupted,
             SceneError::Core(_) | SceneError::Strict { .. } => Category::Numerical,
         }

@@ -306,12 +306,12 @@ fn statics_admitted_refuses_before_the_report() {
         };
         tight.check(&e).map_err(Box::<dyn std::error::Error>::from)
     };
-    let e = statics::admitted(&c, refuse).unwrap_err().to_string();
+    let e = statics::admitted(&c, None, refuse).unwrap_err().to_string();
     assert!(
         e.contains("memory") && e.starts_with("method = auto"),
         "{e}"
     );
-    let (scene, report) = statics::admitted(&c, |_| Ok::<_, SceneError>(())).unwrap();
+    let (scene, report) = statics::admitted(&c, None, |_| Ok::<_, SceneError>(())).unwrap();
     assert_eq!(scene.structure.n_members(), report.bars + report.strings);
 }
 

@@ -72,6 +72,10 @@ pub enum CoreError {
         /// The budget (bytes).
         limit: f64,
     },
+    /// A computation whose cost, estimated once part of it ran (e.g. the sparse statics once
+    /// its rank is known), is above a limit of its settings; refused before the rest runs.
+    #[error(transparent)]
+    OverBudget(Box<crate::budget::OverBudget>),
     /// A statics back-end was asked for something it does not compute (e.g. the load solve of
     /// the cyclic back-end, whose loads need not be symmetric).
     #[error("{analysis} is not available from the {backend} statics")]
@@ -97,7 +101,7 @@ impl Categorized for CoreError {
             Self::Dynamics(e) => e.category(),
             Self::Numerics(e) => e.category(),
             Self::InvalidParameter(e) => e.category(),
-            Self::TooLarge { .. } => Category::Resource,
+            Self::TooLarge { .. } | Self::OverBudget(_) => Category::Resource,
             Self::Unsupported { .. } => Category::Input,
             Self::Interrupted { .. } => Category::Interrupted,
         }

@@ -34,7 +34,7 @@ pub use gap::{SpectralGap, GAP_FACTOR};
 pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use select::{backend, cyclic_backend};
-pub use sparse::{sparse_statics_bytes, SparseStatics};
+pub use sparse::{sparse_after_qr, sparse_statics_bytes, SparseStatics, SPARSE_FLOP_RATE};
 pub use stability::PrestressStability;
 
 use crate::error::Result;
@@ -174,6 +174,11 @@ pub struct StaticsSettings {
     /// [`DEFAULT_MEMORY_LIMIT`]. A structure needing more is refused before anything is
     /// allocated ([`CoreError::TooLarge`](crate::CoreError::TooLarge)).
     pub memory_limit: Option<f64>,
+    /// Estimated work the sparse statics may do (s), checked once its rank is known (the
+    /// bases, the prestressability LP and the stability test grow with the self-stresses and
+    /// mechanisms); `None`: no limit. A structure needing more is refused
+    /// ([`CoreError::OverBudget`](crate::CoreError::OverBudget)).
+    pub work_limit: Option<f64>,
 }
 
 /// Default memory budget of the dense statics: 8 GiB.

@@ -170,10 +170,60 @@ pub fn sparse_statics_bytes(structure: &Structure) -> Result<f64> {
     Ok(sparse_bytes_bound(&a, &pos_of_row))
 }
 
+/// Flops a second of the sparse statics' stages (the QR's column updates, the back
+/// substitutions, the small dense products and eigenproblems of the bases), calibrated on the
+/// measured runs of `crates/tensegrity-engine/tests/statics_estimate.rs` (towers and chains,
+/// 2.6·10⁹ measured in the test profile; rounded down so the estimate bounds the time).
+pub const SPARSE_FLOP_RATE: f64 = 1.5e9;
+
+/// The estimate of the sparse statics of an m × n equilibrium matrix once its QR (`entries`
+/// stored numbers, [`RankRevealingQr::stored_entries`]) has found rank r — s = n − r
+/// self-stresses, d = m − r mechanisms: what is still to come and what is held at its peak.
+///
+/// - memory: the factorisation (16·entries: each column's window is allocated whole, then
+///   shrunk to its entries, and the allocator keeps the tails), the self-stress basis n × s about four times
+///   (the null vectors, their orthonormalisation's input and Q, the oriented basis) and, when
+///   there is a self-stress (the prestressability LP over R and the stability test), the LP's
+///   sparse R and its interior-point factor (~3 × 16·entries) and the mechanisms m × d about
+///   four times (Q's last columns in position and row order, projected, the stress matrix
+///   applied to them);
+/// - work: the s back substitutions over R (s·entries), the thin QR of the basis (2ns²) and,
+///   with a self-stress, Q's last columns (d·entries), their Gram matrix (2md²), its
+///   eigenproblem (10d³) and the LP (20·entries per interior-point step, 30 steps).
+///
+/// ```
+/// use tensegrity_core::statics::sparse_after_qr;
+/// // a chain without self-stress: the factorisation and nothing to add
+/// let e = sparse_after_qr(9000, 5997, 5997, 1_000_000);
+/// assert_eq!(e.memory_bytes, 16e6);
+/// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 1.0);
+/// ```
+pub fn sparse_after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Estimate {
+    after_qr(m, n, r, entries)
+}
+
+fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Estimate {
+    let (mf, nf, e) = (m as f64, n as f64, entries as f64);
+    let s = n.saturating_sub(r) as f64;
+    let d = m.saturating_sub(r) as f64;
+    let stressed = if s > 0.0 { 1.0 } else { 0.0 };
+    let memory = 16.0 * e + 32.0 * nf * s + stressed * (48.0 * e + 32.0 * mf * d);
+    let flops = s * e
+        + 2.0 * nf * s * s
+        + stressed * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d + 600.0 * e);
+    let (s_dim, d_dim) = (n.saturating_sub(r), m.saturating_sub(r));
+    crate::budget::Estimate::new(
+        format!("the sparse statics of the {m} × {n} equilibrium matrix after its QR"),
+        format!("the scene's {s_dim} self-stresses and {d_dim} mechanisms"),
+    )
+    .memory(memory)
+    .work(flops / SPARSE_FLOP_RATE)
+}
+
 /// A bound of the bytes the sparse factorisation holds: the profile of A in the ordering (each
-/// column stored from row 0 to its last row, reflector and R entries). The dense output bases
-/// (members × self-stress dimension, dofs × mechanisms) come on top; they are the size of the
-/// report itself.
+/// column's reflector and R entries lie within its positions 0..=l, l its last row: one f64
+/// each, two allocations a column). The dense output bases (members × self-stress dimension,
+/// dofs × mechanisms) come on top; they are the size of the report itself.
 fn sparse_bytes_bound(a: &CscMatrix, pos_of_row: &[usize]) -> f64 {
     let (cp, ri) = (a.pattern().col_ptr(), a.pattern().row_idx());
     let profile: f64 = (0..a.pattern().ncols())
@@ -185,7 +235,7 @@ fn sparse_bytes_bound(a: &CscMatrix, pos_of_row: &[usize]) -> f64 {
                 .unwrap_or(0) as f64
         })
         .sum();
-    8.0 * 2.0 * profile
+    8.0 * profile + 64.0 * a.pattern().ncols() as f64
 }
 
 /// σ_max of A by the power method on AᵀA (a lower estimate, accurate to a few digits).
@@ -256,6 +306,17 @@ impl<'a> SparseStatics<'a> {
             REJECT_FACTOR * tolerance,
             DEFER_BELOW * sigma,
         )?;
+        // the rank is known: the bases, the LP and the stability test are estimated and
+        // checked before they are allocated
+        let after = after_qr(m, n, qr.rank(), qr.stored_entries());
+        let limits = crate::budget::Limits {
+            memory_bytes: limit,
+            work_s: settings.work_limit.unwrap_or(f64::INFINITY),
+            output_bytes: f64::INFINITY,
+        };
+        limits
+            .check(&after)
+            .map_err(|over| CoreError::OverBudget(Box::new(over)))?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
         let self_stress = orient_self_stress(qr.orthonormal_null_space(), structure.n_bars());
         Ok(Self {

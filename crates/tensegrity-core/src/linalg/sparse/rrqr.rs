@@ -292,6 +292,7 @@ impl RankRevealingQr {
         if residual <= self.tol || top >= buf.len() {
             self.rejected_sq += residual * residual;
             buf.truncate(top);
+            buf.shrink_to_fit();
             self.r_cols[k] = RColumn {
                 start: lo,
                 vals: buf,
@@ -309,6 +310,8 @@ impl RankRevealingQr {
         v[0] -= alpha;
         let vv: f64 = v.iter().map(|x| x * x).sum();
         buf.push(alpha);
+        // the window's tail went to the reflector: keep only the R entries
+        buf.shrink_to_fit();
         self.r_cols[k] = RColumn {
             start: lo,
             vals: buf,
