@@ -6,6 +6,8 @@
 //! [`Estimated`] is the estimate of a request, one per command, from the libraries' estimate
 //! functions: `toroid` ([`toroid::budget::statics`]: the symmetry-adapted blocks), `roll`
 //! ([`toroid::budget::roll`]: the statics, then the runs of the fidelity decision's plan),
+//! `tipover_dynamic` and `tipover_rolling` ([`toroid::budget::tipover_dynamic`],
+//! [`toroid::budget::tipover_rolling`]: the timed runs of the prestressed wheel),
 //! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `statics`
 //! ([`crate::statics::estimate`]: the dense SVD when the method takes it, else the sparse
 //! QR's memory), `simulate` ([`crate::simulate::estimate`]: steps × right-hand sides,
@@ -27,7 +29,7 @@ use michell3d::{MichellOptimizeRequest, MichellTableRequest};
 use tbar_wheel::TbarRollRequest;
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::request::Request;
-use toroid::{RollRequest, ToroidRequest};
+use toroid::{RollRequest, TipoverDynamicRequest, TipoverRollingRequest, ToroidRequest};
 
 /// A request whose resources are estimated before it runs (module docs).
 pub trait Estimated: Request {
@@ -49,6 +51,18 @@ impl Estimated for ToroidRequest {
 impl Estimated for RollRequest {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         Ok(Some(toroid::budget::roll(self)))
+    }
+}
+
+impl Estimated for TipoverDynamicRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::tipover_dynamic(self)))
+    }
+}
+
+impl Estimated for TipoverRollingRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::tipover_rolling(self)))
     }
 }
 
