@@ -18,7 +18,7 @@ pub(crate) fn all() -> Vec<Command> {
         estimated(MichellOptimizeRequest::run, &c::MICHELL_OPTIMIZE),
         estimated(MichellTableRequest::run, &c::MICHELL_TABLE),
         entry_in(crate::integrators::point, &c::INTEGRATORS),
-        entry(TbarStaticRequest::run, &c::TBAR),
+        estimated(TbarStaticRequest::run, &c::TBAR),
         estimated(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
         estimated(crate::statics::statics, &c::STATICS),
         estimated(crate::simulate::simulate, &c::SIMULATE),
