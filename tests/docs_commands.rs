@@ -607,7 +607,11 @@ impl Drop for Scratch {
 
 /// Runs one example; what is wrong with it, if anything.
 fn check(example: &Example, code: i32, scratch: &Scratch, limit: Duration) -> Option<String> {
-    if let Some(w) = words(&example.command).iter().find(|w| placeholder(w)) {
+    // `|`, `<` and `>` are the shell's here, not a synopsis's
+    let synopsis = |w: &String| {
+        w.contains(['[', ']', '…']) || (placeholder(w) && !w.contains(['|', '<', '>']))
+    };
+    if let Some(w) = words(&example.command).iter().find(|w| synopsis(w)) {
         return Some(format!("placeholder `{w}` in a checked command"));
     }
     let start = Instant::now();

@@ -33,7 +33,7 @@ fn linux() -> bool {
 /// [`HANG`]; its output and wall time.
 fn capped(cap_kib: u64, args: &[&str]) -> (Output, Duration) {
     let t0 = Instant::now();
-    let mut child = Command::new("sh")
+    let child = Command::new("sh")
         .arg("-c")
         .arg(format!("ulimit -v {cap_kib} && exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_tensegrity"))
@@ -120,7 +120,7 @@ fn chain(dir: &Path, n: usize) -> String {
 }
 
 /// One too-large request per command of the CLI, each refused under the cap naming its
-/// parameter and the limit flag.
+/// parameter and the flag that raises the limit (or, for a hard limit, the parameter's flag).
 #[test]
 fn every_command_refuses_a_request_too_large_for_the_cap() {
     if !linux() {
@@ -130,136 +130,313 @@ fn every_command_refuses_a_request_too_large_for_the_cap() {
     let out = |name: &str| dir.join(name).display().to_string();
     let (csv, svg, grid, map) = (out("o.csv"), out("o.svg"), out("g.csv"), out("m.csv"));
     let big_chain = chain(&dir, 18000);
-    let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
+    let michell = [
+        "michell",
+        "--complexity",
+        "4",
+        "--cylindrical",
+        "0.25",
+        "--beta",
+        "pi/6",
+    ];
+    let tbar = ["tbar", "--beta", "pi/6", "--cylindrical", "0.25"];
+    let tbar_roll = ["tbar", "roll", "--beta", "pi/6", "--cylindrical", "0.25"];
+    let with = |base: &[&'static str], more: &[&'static str]| -> Vec<String> {
+        base.iter().chain(more).map(|s| s.to_string()).collect()
+    };
+    let cases: Vec<(Vec<String>, Vec<&str>)> = vec![
+        // the 18,000-node chain: 29 GiB estimated
         (
-            vec!["statics", &big_chain],
+            with(&["statics"], &[])
+                .into_iter()
+                .chain([big_chain.clone()])
+                .collect(),
             vec!["18000 nodes", "--max-memory"],
         ),
         (
-            vec![
-                "simulate",
-                "examples/dbar.toml",
-                "--t-end",
-                "5",
-                "--out",
-                &csv,
-                "--output-interval",
-                "1e-9",
-            ],
+            with(
+                &[
+                    "simulate",
+                    "examples/dbar.toml",
+                    "--t-end",
+                    "5",
+                    "--output-interval",
+                    "1e-9",
+                    "--out",
+                ],
+                &[],
+            )
+            .into_iter()
+            .chain([csv.clone()])
+            .collect(),
             vec!["output interval", "--max-output"],
         ),
         (
-            vec!["simulate", "examples/dbar.toml", "--t-end", "1e9"],
-            vec!["t_end = 1000000000", "--max-"],
+            with(&["simulate", "examples/dbar.toml", "--t-end", "1e9"], &[]),
+            vec!["t_end / dt", "--dt", "--t-end"],
         ),
         (
-            vec!["toroid", "--sides", "1000000"],
+            with(&["toroid", "--sides", "1000000"], &[]),
             vec!["sides = 1000000", "--max-memory"],
         ),
+        // fits the machine (0.5 GB measured, 5.2 GiB estimated), not ¾ of the 2 GB cap
         (
-            vec!["roll", "--t-end", "1e9"],
+            with(&["toroid", "--sides", "100000"], &[]),
+            vec!["sides = 100000", "above the limit of 1.", "--max-memory"],
+        ),
+        (
+            with(&["roll", "--t-end", "1e9"], &[]),
             vec!["t_end = 1000000000", "--max-"],
         ),
         (
-            vec!["tipover", "--grid-points", "100000", "--grid", &grid],
+            with(&["tipover", "--grid-points", "100000", "--grid"], &[])
+                .into_iter()
+                .chain([grid.clone()])
+                .collect(),
             vec!["--grid-points 100000", "--max-"],
         ),
         (
-            vec!["tipover", "--dynamic", "--hold", "1e9"],
-            vec!["1000000000", "--max-"],
+            with(&["tipover", "--dynamic", "--hold", "1e9"], &[]),
+            vec!["hold = 1000000000", "--hold 1000000000", "--max-"],
         ),
         (
-            vec!["tipover", "--rolling", "--t-end", "1e9"],
-            vec!["t_end = 1000000000", "--max-"],
+            with(&["tipover", "--rolling", "--t-end", "1e9"], &[]),
+            vec!["t_end = 1000000000", "--t-end 1000000000", "--max-"],
         ),
         (
-            vec![
-                "michell",
-                "--complexity",
-                "4",
-                "--cylindrical",
-                "0.25",
-                "--beta",
-                "pi/6",
-                "--phi",
-                "pi/8",
-                "--sign-map",
-                &map,
-                "--map-grid",
-                "100000x100000",
-            ],
-            vec!["100000", "--max-"],
+            with(
+                &michell,
+                &["--phi", "pi/8", "--map-grid", "100000x100000", "--sign-map"],
+            )
+            .into_iter()
+            .chain([map.clone()])
+            .collect(),
+            vec!["100000x100000", "--max-"],
         ),
         (
-            vec![
-                "michell",
-                "optimize",
-                "--cylindrical",
-                "0.25",
-                "--radius-ratio",
-                "0.01",
-                "--joint-mass",
-                "1e-6",
-                "--max-complexity",
-                "100",
-            ],
+            with(
+                &michell[..1],
+                &[
+                    "--complexity",
+                    "10000",
+                    "--cylindrical",
+                    "0.25",
+                    "--beta",
+                    "pi/6",
+                    "--phi",
+                    "pi/8",
+                ],
+            ),
+            vec!["complexity = 10000", "at most 100"],
+        ),
+        (
+            with(
+                &[
+                    "michell",
+                    "optimize",
+                    "--cylindrical",
+                    "0.25",
+                    "--radius-ratio",
+                    "0.01",
+                    "--joint-mass",
+                    "1e-6",
+                    "--max-complexity",
+                    "100",
+                ],
+                &[],
+            ),
             vec!["max_complexity = 100", "--max-work"],
         ),
         (
-            vec!["michell-table", "--max-complexity", "10000"],
+            with(&["michell-table", "--max-complexity", "10000"], &[]),
             vec!["--max-complexity", "10000"],
         ),
         (
-            vec![
-                "tbar",
-                "--beta",
-                "pi/6",
-                "--phi",
-                "pi/100000",
-                "--cylindrical",
-                "0.25",
-                "--wheel",
-            ],
-            vec!["--phi", "--"],
+            with(&tbar, &["--complexity", "1000", "--phi", "pi/8"]),
+            vec!["complexity = 1000", "must be at most"],
         ),
         (
-            vec![
-                "tbar",
-                "roll",
-                "--beta",
-                "pi/6",
-                "--cylindrical",
-                "0.25",
-                "--t-end",
-                "1e9",
-            ],
+            with(&tbar, &["--complexity", "20", "--phi", "pi/360", "--wheel"]),
+            vec!["complexity = 20", "--max-"],
+        ),
+        (
+            with(&tbar, &["--phi", "pi/100000", "--wheel"]),
+            vec!["100000", "3600"],
+        ),
+        (
+            with(&tbar_roll, &["--t-end", "1e9"]),
             vec!["t_end = 1000000000", "--max-"],
         ),
         (
-            vec![
-                "tbar",
-                "roll",
-                "--beta",
-                "pi/6",
-                "--cylindrical",
-                "0.25",
-                "--treads",
-                "100000",
-            ],
+            with(&tbar_roll, &["--treads", "100000"]),
             vec!["treads = 100000", "--treads"],
         ),
         (
-            vec!["fig-rolling", "--t-end", "1e9", "--out", &svg],
+            with(&["fig-rolling", "--t-end", "1e9", "--out"], &[])
+                .into_iter()
+                .chain([svg.clone()])
+                .collect(),
             vec!["t_end = 1000000000", "--max-"],
         ),
     ];
     for (args, needles) in &cases {
-        refused(args, needles);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(&args, needles);
     }
     // nothing was written
+    let left: Vec<String> = common::listing(&dir)
+        .into_iter()
+        .filter(|f| !f.starts_with("chain"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}
+
+/// The sweeps whose cases were too large (`sides = 1e8` in a toroid spec,
+/// `t_end = 1e9` in a roll spec: they aborted, the cases skipping the guard), under the cap:
+/// the big case is an error row naming its parameter, the small one runs.
+#[test]
+fn sweeps_of_too_large_cases_finish_under_the_cap() {
+    if !linux() {
+        return;
+    }
+    let dir = scratch("memcap", "sweeps");
+    for (name, spec, needle) in [
+        ("toroid", "study = \"toroid\"\n[axes]\nsides = [6, 100000000]\n", "sides = 100000000"),
+        (
+            "roll",
+            "study = \"roll\"\n[fixed]\nfidelity = \"rigid\"\n[axes]\nt_end = [0.2, 1e9]\n",
+            "t_end = 1000000000",
+        ),
+        (
+            "lean",
+            "study = \"lean\"\n[axes]\nt_end = [0.01, 1e9]\n",
+            "t_end = 1000000000",
+        ),
+        (
+            "tbar",
+            "study = \"tbar\"\n[fixed]\nbeta = \"pi/6\"\ncylindrical = 0.25\nwheel = true\n[axes]\nphi = [\"pi/8\", \"pi/360\"]\ncomplexity = [1, 20]\n",
+            "complexity = 20",
+        ),
+    ] {
+        let spec_path = dir.join(format!("{name}.toml"));
+        std::fs::write(&spec_path, spec).unwrap();
+        let csv = dir.join(format!("{name}.csv"));
+        let args = ["sweep", spec_path.to_str().unwrap(), "--out", csv.to_str().unwrap(), "--quiet"];
+        let (out, took) = capped(CAP_KIB, &args);
+        let (code, err) = no_abort(&args, &out, took);
+        assert!(code == 0 || code == 1, "{name}: exit {code}: {err}");
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let rows: Vec<&str> = text.lines().skip(1).collect();
+        assert!(rows[0].contains(",ok,") || rows[0].ends_with(",ok"), "{name}: {}", rows[0]);
+        assert!(
+            rows.iter().any(|r| r.contains("error") && r.contains(needle)),
+            "{name}: {text}"
+        );
+    }
+}
+
+/// The other cases of "Measured" that allocated, under the cap: the 3,000-node chain
+/// answers (it took 68–114 s), `statics /dev/zero` is refused at once (it grew to 4.2 GB),
+/// and a second `simulate --out` to the same file is refused while the first writes (the
+/// first reported rows it did not leave).
+#[test]
+fn the_measured_cases_that_allocated_behave_under_the_cap() {
+    if !linux() {
+        return;
+    }
+    let dir = scratch("memcap", "measured");
+    let small = chain(&dir, 3000);
+    let json = completes(&["statics", &small, "--json"]);
+    let j: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(j["rank"], 2 * 3000 - 3);
+    assert_eq!(j["self_stress_dim"], 0);
+    refused(&["statics", "/dev/zero"], &["/dev/zero", "67108864 bytes"]);
+    // two writers of one file: the second is refused at open, the first keeps its rows
+    let csv = dir.join("same.csv");
+    let csv = csv.to_str().unwrap();
+    let first = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {CAP_KIB} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_tensegrity"))
+        .args([
+            "simulate",
+            "examples/prism_drop.toml",
+            "--t-end",
+            "30",
+            "--output-interval",
+            "1e-3",
+            "--out",
+            csv,
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // the first run holds the lock once its temporary file exists
+    let tmp = dir.join(".same.csv.tmp");
+    let t0 = Instant::now();
+    while !tmp.exists() && t0.elapsed() < HANG {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let second = [
+        "simulate",
+        "examples/prism_drop.toml",
+        "--t-end",
+        "1",
+        "--out",
+        csv,
+    ];
+    refused(&second, &["another run", "--out"]);
+    let out = first.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let said = String::from_utf8_lossy(&out.stdout).to_string() + &err;
+    let rows = std::fs::read_to_string(dir.join("same.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
     assert!(
-        common::listing(&dir).iter().all(|f| f.starts_with("chain")),
-        "{:?}",
-        common::listing(&dir)
+        said.contains(&format!("{rows} rows")),
+        "{rows} rows, but: {said}"
     );
+}
+
+/// Commands without a size parameter complete under the cap: `figures --quick` and
+/// `bench work-precision --quick`.
+#[test]
+fn the_quick_figures_and_bench_complete_under_the_cap() {
+    if !linux() {
+        return;
+    }
+    let dir = scratch("memcap", "quick");
+    let figs = dir.join("figs");
+    completes(&["figures", "--quick", "--out", figs.to_str().unwrap()]);
+    assert!(figs.join("fig_4_18.svg").exists());
+    let bench = dir.join("bench");
+    completes(&[
+        "bench",
+        "work-precision",
+        "--quick",
+        "--out",
+        bench.to_str().unwrap(),
+    ]);
+    assert!(bench.join("work_precision.csv").exists());
+}
+
+/// The rank case under the cap: `toroid --sides 30000` gives 4n + 1 self-stresses and
+/// no internal mechanism, certified (seconds in release, longer in the test build:
+/// `cargo test --release --test robustness_memcap -- --ignored`).
+#[test]
+#[ignore = "seconds in release: cargo test --release --test robustness_memcap -- --ignored"]
+fn thirty_thousand_sides_are_certified_under_the_cap() {
+    if !linux() {
+        return;
+    }
+    let json = completes(&["toroid", "--sides", "30000", "--json"]);
+    let j: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(j["self_stress_dim"], 4 * 30000 + 1);
+    assert_eq!(j["internal_mechanisms"], 0);
+    assert!(j["statics_warning"].is_null(), "{}", j["statics_warning"]);
 }
