@@ -318,7 +318,7 @@ impl Request for TipoverRollingRequest {
     /// (−π/2, π/2), before anything is built.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         self.wheel.check()?;
-        if !(self.side_slope.abs() < std::f64::consts::FRAC_PI_2) {
+        if self.side_slope.is_nan() || self.side_slope.abs() >= std::f64::consts::FRAC_PI_2 {
             return Err(InvalidParameter::new(
                 "side_slope",
                 self.side_slope,
