@@ -425,8 +425,9 @@ fn the_quick_figures_and_bench_complete_under_the_cap() {
     assert!(bench.join("work_precision.csv").exists());
 }
 
-/// The rank case under the cap: `toroid --sides 30000` gives 4n + 1 self-stresses and
-/// no internal mechanism, certified (seconds in release, longer in the test build:
+/// The rank case under a cap: `toroid --sides 30000` is refused cleanly under 2 GB
+/// (1.55 GiB estimated) and under 3 GB gives 4n + 1 self-stresses and no internal mechanism,
+/// certified (seconds in release, longer in the test build:
 /// `cargo test --release --test robustness_memcap -- --ignored`).
 #[test]
 #[ignore = "seconds in release: cargo test --release --test robustness_memcap -- --ignored"]
@@ -434,7 +435,17 @@ fn thirty_thousand_sides_are_certified_under_the_cap() {
     if !linux() {
         return;
     }
-    let json = completes(&["toroid", "--sides", "30000", "--json"]);
+    // its estimate (1.55 GiB) is above ¾ of the 2 GB cap, where it is refused cleanly
+    // (exit 2, `--max-memory`); under 3 GB it runs
+    refused(
+        &["toroid", "--sides", "30000"],
+        &["sides = 30000", "--max-memory"],
+    );
+    let args = ["toroid", "--sides", "30000", "--json"];
+    let (out, took) = capped(3_000_000, &args);
+    let (code, err) = no_abort(&args, &out, took);
+    assert_eq!(code, 0, "{err}");
+    let json = String::from_utf8_lossy(&out.stdout).to_string();
     let j: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(j["self_stress_dim"], 4 * 30000 + 1);
     assert_eq!(j["internal_mechanisms"], 0);
