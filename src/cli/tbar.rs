@@ -81,6 +81,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
             args.json,
         );
     }
+    let _progress = super::guard::estimated(&request)?;
     let outputs = outputs::open(args)?;
     let report = tbar_wheel::tbar_report(&req)?;
     for w in &report.warnings {

@@ -35,6 +35,7 @@ fn write_history<const N: usize>(
 
 /// Runs the lean-while-rolling study and prints its report.
 pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) -> Result<()> {
+    let _progress = super::guard::estimated(req)?;
     let sink = open_history(out, &["t", "lean", "downhill", "across"])?;
     let r = req.run().context("rolling lean run failed")?;
     for w in &r.warnings {
@@ -74,6 +75,7 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
 /// Runs the dynamic check and prints its report.
 pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Result<()> {
     let header = ["t", "force", "lean", "near_normal", "far_normal"];
+    let _progress = super::guard::estimated(req)?;
     let sink = open_history(out, &header)?;
     let report = req.run().context("dynamic tip-over run failed")?;
     let rows = report

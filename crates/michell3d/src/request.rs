@@ -193,6 +193,7 @@ impl Request for MichellRequest {
             "complexity",
             "Complexity q (number of member levels; level-q nodes are supports)",
         )
+        .rule(Rule::AtLeast(1.0))
         .required()];
         p.extend(geometry_params());
         p.extend([
@@ -435,6 +436,7 @@ impl Request for MichellOptimizeRequest {
                 "complexity",
                 "The complexity q; optimised when left out (then joint_mass is needed)",
             )
+            .rule(Rule::AtLeast(1.0))
             .optional(),
             Param::number("joint_mass", "kg", "Mass of each joint, added per node").non_negative(),
             Param::count("max_complexity", "Largest complexity the search tries"),

@@ -139,7 +139,8 @@ impl Request for TbarStaticRequest {
             Param::count(
                 "complexity",
                 "Complexity q (lattice levels; level q lies on the rim)",
-            ),
+            )
+            .rule(Rule::AtLeast(1.0)),
             Param::angle("beta", "Departure angle β (e.g. `pi/6`, `30deg`)").required(),
             Param::angle("phi", "Segmentation angle φ; a wheel needs π/φ integer").required(),
             Param::number(

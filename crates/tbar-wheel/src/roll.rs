@@ -134,7 +134,7 @@ impl Request for TbarRollRequest {
             Param::angle("beta", "Departure angle β"),
             Param::number(
                 "cylindrical",
-                "m",
+                "",
                 "Cylindrical parameterisation with offset δ (neither given: δ = 0.25)",
             )
             .optional(),

@@ -6,8 +6,11 @@
 //! [`Estimated`] is the estimate of a request, one per command, from the libraries' estimate
 //! functions: `toroid` ([`toroid::budget::statics`]: the symmetry-adapted blocks), `roll`
 //! ([`toroid::budget::roll`]: the statics, then the runs of the fidelity decision's plan),
-//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `formfind`
-//! ([`crate::formfind::estimate`]: a built-in sized from its name, before it is built), `statics`
+//! `tipover_dynamic` and `tipover_rolling` ([`toroid::budget::tipover_dynamic`],
+//! [`toroid::budget::tipover_rolling`]: the timed runs of the prestressed wheel),
+//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `tbar` (the
+//! statics of every tread by its nodes, [`TBAR_S_PER_TREAD_NODE2`]), `formfind`
+//! ([`crate::formfind::estimate`]: the topology read or built, then the library's estimate), `statics`
 //! ([`crate::statics::estimate`]: the dense SVD when the method takes it, else the sparse
 //! QR's memory), `simulate` ([`crate::simulate::estimate`]: steps × right-hand sides,
 //! samples), `michell_table` (rows by joints, its output) and `michell_optimize` (the
@@ -26,10 +29,10 @@ use crate::registry::RunError;
 use crate::simulate::SimulateCommand;
 use crate::statics::StaticsCommand;
 use michell3d::{MichellOptimizeRequest, MichellTableRequest};
-use tbar_wheel::TbarRollRequest;
+use tbar_wheel::{TbarRollRequest, TbarStaticRequest};
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::request::Request;
-use toroid::{RollRequest, ToroidRequest};
+use toroid::{RollRequest, TipoverDynamicRequest, TipoverRollingRequest, ToroidRequest};
 
 /// A request whose resources are estimated before it runs (module docs).
 pub trait Estimated: Request {
@@ -51,6 +54,58 @@ impl Estimated for ToroidRequest {
 impl Estimated for RollRequest {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         Ok(Some(toroid::budget::roll(self)))
+    }
+}
+
+impl Estimated for TipoverDynamicRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::tipover_dynamic(self)))
+    }
+}
+
+impl Estimated for TipoverRollingRequest {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        Ok(Some(toroid::budget::tipover_rolling(self)))
+    }
+}
+
+/// Seconds of the T-bar statics per tread and squared tread node (the per-block
+/// factorisations and the load envelope): calibrated on q = 20, 8 treads (3311 nodes a
+/// tread), 2.33 s of CPU, release (2.7·10⁻⁸; q = 15 with 8 and 16 treads, q = 10 with 32
+/// within 30 % of it), rounded up to 1.5×.
+pub const TBAR_S_PER_TREAD_NODE2: f64 = 4e-8;
+/// Bytes a tread node holds (its blocks, bases and envelope rows; 57 MB measured at q = 20,
+/// 8 treads: 2.1 kB a node).
+const TBAR_BYTES_PER_TREAD_NODE: f64 = 4096.0;
+
+impl Estimated for TbarStaticRequest {
+    /// Every tread of the wheel (π/φ, twice for the extended wheel; one for a single tread)
+    /// by the square of its (q+1)(q+2)(2q+3)/6 nodes; none for a request the library refuses
+    /// (complexity above [`tbar_wheel::params::MAX_COMPLEXITY`], a φ that is no wheel).
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let q = self.complexity;
+        if q > tbar_wheel::params::MAX_COMPLEXITY {
+            return Ok(None);
+        }
+        let treads = if self.wheel || self.extended.is_some() {
+            match self.phi.map(tbar_wheel::params::treads_for) {
+                Some(Ok(n)) => n * if self.extended.is_some() { 2 } else { 1 },
+                _ => return Ok(None),
+            }
+        } else {
+            1
+        };
+        let nodes = ((q + 1) * (q + 2) * (2 * q + 3) / 6) as f64;
+        let t = treads as f64;
+        let phi = self.phi.map_or(String::new(), |p| format!(", phi = {p}"));
+        Ok(Some(
+            Estimate::new(
+                format!("the statics of {treads} T-bar tread(s) of {nodes} nodes"),
+                format!("complexity = {q}{phi}"),
+            )
+            .memory(8e6 + TBAR_BYTES_PER_TREAD_NODE * t * nodes)
+            .work(TBAR_S_PER_TREAD_NODE2 * t * nodes * nodes),
+        ))
     }
 }
 

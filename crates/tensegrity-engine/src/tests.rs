@@ -111,9 +111,18 @@ fn columns_are_the_scalars_of_the_reports() {
 fn a_failing_case_is_an_error_and_a_bad_value_names_its_parameter() {
     let ctx = Context::default();
     let toroid = command("toroid").unwrap();
+    // a wheel the geometry rules refuse: by the request's check, naming the parameter
     let e = toroid.run(values(json!({"sides": 1})), &ctx).unwrap_err();
     assert!(
-        matches!(e, RunError::Failed(ref m) if m.contains("sides = 1")),
+        matches!(e, RunError::InvalidParameter(ref p) if p.name == "sides"),
+        "{e}"
+    );
+    // a case the library refuses when it runs
+    let michell = command("michell").unwrap();
+    let v = json!({"complexity": 200, "cylindrical": 0.25, "beta": "pi/6", "phi": "pi/8"});
+    let e = michell.run(values(v), &ctx).unwrap_err();
+    assert!(
+        matches!(e, RunError::Failed(ref m) if m.contains("complexity = 200")),
         "{e}"
     );
     let e = toroid.run(values(json!({"sides": 8.5})), &ctx).unwrap_err();

@@ -16,7 +16,7 @@ use crate::params::{Stabilize, ToroidParams};
 use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
-use tensegrity_core::request::Param;
+use tensegrity_core::request::{InvalidParameter, Param};
 use tensegrity_core::statics::SpectralGap;
 use tensegrity_core::Structure;
 
@@ -103,6 +103,22 @@ impl Default for WheelSpec {
 }
 
 impl WheelSpec {
+    /// The geometry rules across the wheel's parameters (n ≥ 3, R_i < R_o, …) as an
+    /// [`InvalidParameter`] naming the parameter, for the requests' `check`: every request
+    /// of the wheel (`roll`, `tipover --dynamic`, `--rolling`) refuses the same wheel the same
+    /// way, before anything is built.
+    pub fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        match self.params.validate() {
+            Ok(()) => Ok(()),
+            Err(crate::ToroidError::InvalidParameter(p)) => Err(p),
+            Err(e) => Err(InvalidParameter::raw(
+                "sides",
+                self.params.sides,
+                e.to_string(),
+            )),
+        }
+    }
+
     /// The reference wheel with `n` sides.
     pub fn with_sides(n: usize) -> Self {
         let mut w = Self::default();

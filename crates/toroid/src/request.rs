@@ -52,6 +52,11 @@ impl Request for ToroidRequest {
         ]);
         p
     }
+
+    /// The wheel's geometry rules across its parameters, as every request of the wheel.
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.wheel.check()
+    }
 }
 
 impl Request for TipoverRequest {
@@ -96,7 +101,8 @@ impl Request for TipoverRequest {
                 return Err(InvalidParameter::new(ratio, x, reason));
             }
         }
-        Ok(())
+        // the wheel analysed (σ and ε applied), by the rules of every request of the wheel
+        self.wheel_spec().check()
     }
 }
 
@@ -146,7 +152,7 @@ fn contact_params() -> Vec<Param> {
             "",
             "Static friction coefficient of the ground (kinetic = 0.75 μ)",
         )
-        .positive(),
+        .non_negative(),
         Param::number(
             "friction_regularization",
             "m/s",
@@ -186,6 +192,11 @@ impl Request for TipoverDynamicRequest {
         p.extend(contact_params());
         p.extend(ramp_params());
         p
+    }
+
+    /// The wheel's geometry rules across its parameters, as `roll` checks them.
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.wheel.check()
     }
 }
 
@@ -301,6 +312,20 @@ impl Request for TipoverRollingRequest {
         ]);
         p.extend(contact_params());
         p
+    }
+
+    /// The wheel's geometry rules (as `roll` checks them) and the side slope within
+    /// (−π/2, π/2), before anything is built.
+    fn check(&self) -> std::result::Result<(), InvalidParameter> {
+        self.wheel.check()?;
+        if self.side_slope.is_nan() || self.side_slope.abs() >= std::f64::consts::FRAC_PI_2 {
+            return Err(InvalidParameter::new(
+                "side_slope",
+                self.side_slope,
+                "must lie in (−π/2, π/2)",
+            ));
+        }
+        Ok(())
     }
 }
 

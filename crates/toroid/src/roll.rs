@@ -19,7 +19,7 @@ mod wheel;
 
 use crate::analysis::analyse;
 use crate::defaults;
-use crate::error::{Result, ToroidError};
+use crate::error::Result;
 use crate::report::WheelSpec;
 pub use report::RollReport;
 use serde::{Deserialize, Serialize};
@@ -129,15 +129,7 @@ impl Request for RollRequest {
             ("min_tension", self.min_tension),
             ("bar_density", self.wheel.bar_density),
         ])?;
-        match self.wheel.params.validate() {
-            Ok(()) => Ok(()),
-            Err(ToroidError::InvalidParameter(p)) => Err(p),
-            Err(e) => Err(InvalidParameter::raw(
-                "sides",
-                self.wheel.params.sides,
-                e.to_string(),
-            )),
-        }
+        self.wheel.check()
     }
 }
 

@@ -259,7 +259,7 @@ impl DynamicTipover {
         positive("ground_stiffness", self.ground_stiffness)?;
         non_negative("ground_damping", self.ground_damping)?;
         non_negative("string_damping", self.string_damping)?;
-        positive("mu", self.mu)?;
+        non_negative("mu", self.mu)?;
         positive("friction_regularization", self.friction_regularization)?;
         non_negative("settle", self.settle)?;
         positive("ramp_time", self.ramp_time)?;

@@ -245,7 +245,8 @@ impl Simulation {
                 "dt",
                 s.dt,
                 format!(
-                    "t_end / dt = {steps:e} fixed steps, more than max_steps = {}",
+                    "t_end / dt = {steps:e} fixed steps, more than max_steps = {}: use a \
+                     larger `dt` or a shorter `t_end`",
                     s.max_steps
                 ),
             ));
