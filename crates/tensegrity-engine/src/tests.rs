@@ -1,7 +1,7 @@
 use super::*;
 use serde::Serialize;
 use serde_json::{json, Map, Value};
-use tensegrity_core::request::{check_description, Request};
+use tensegrity_core::request::{check_description, Category, Request};
 
 fn values(v: Value) -> Map<String, Value> {
     v.as_object().unwrap().clone()
@@ -113,7 +113,7 @@ fn a_failing_case_is_an_error_and_a_bad_value_names_its_parameter() {
     let toroid = command("toroid").unwrap();
     let e = toroid.run(values(json!({"sides": 1})), &ctx).unwrap_err();
     assert!(
-        matches!(e, RunError::Failed(ref m) if m.contains("sides = 1")),
+        matches!(e, RunError::Refused { ref message, category: Category::Input } if message.contains("sides = 1")),
         "{e}"
     );
     let e = toroid.run(values(json!({"sides": 8.5})), &ctx).unwrap_err();
