@@ -84,7 +84,7 @@ fn run(py: Python<'_>, name: &str, values: &str, limits: &str, modes: Vec<String
         raise(py, commands::check_modes(c, &modes, &values))?;
     }
     raise(py, commands::admit(c, &values, &limits))?;
-    match worker::run(py, move || commands::run(c, values)) {
+    match worker::run(py, false, move || commands::run(c, values)) {
         Ok(report) => raise(py, report),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
@@ -108,7 +108,7 @@ fn simulate(
     let values = raise(py, object(values))?;
     let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
     let (command, simulation) = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
-    let outcome = worker::run(py, move || runs::simulate(command, simulation));
+    let outcome = worker::run(py, true, move || runs::simulate(command, simulation));
     let samples = |t: &runs::Trajectory| {
         (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes)
     };
@@ -138,7 +138,7 @@ fn roll(py: Python<'_>, values: &str, limits: &str) -> PyResult<String> {
     let c = raise(py, commands::find("roll"))?;
     raise(py, commands::admit(c, &values, &limits))?;
     let request = raise(py, runs::roll_request(values))?;
-    match worker::run(py, move || runs::roll(request)) {
+    match worker::run(py, true, move || runs::roll(request)) {
         Ok(o) => {
             let report = raise(py, o.report)?;
             match o.incomplete {
@@ -192,7 +192,7 @@ fn run_sweep(
     let (spec, what) = raise(py, sweep::spec(&source))?;
     let shard = raise(py, sweep::admit(&spec, &opts))?;
     let out = std::path::PathBuf::from(out);
-    match worker::run(py, move || sweep::run(&spec, &what, &out, shard, &opts)) {
+    match worker::run(py, true, move || sweep::run(&spec, &what, &out, shard, &opts)) {
         Ok(rows) => raise(py, rows),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
@@ -224,7 +224,7 @@ fn matrices(py: Python<'_>, text: &str) -> PyResult<String> {
 fn topology(py: Python<'_>, kind: &str, values: &str) -> PyResult<String> {
     let values = raise(py, object(values))?;
     let kind = kind.to_string();
-    match worker::run(py, move || structure::topology(&kind, values)) {
+    match worker::run(py, false, move || structure::topology(&kind, values)) {
         Ok(r) => raise(py, r),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }

@@ -129,7 +129,7 @@ def make(pyname, command, summary, positional=(), doc_extra=""):
     def f(*args, **kwargs):
         bound = _call(pyname, sig, args, kwargs)
         limits = _limits(bound)
-        values = _convert.dumps(_given(bound))
+        values = _convert.arguments(_given(bound))
         return _convert.report(_native.run(command, values, limits))
 
     return finish(f, pyname, sig, summary, params, doc_extra)
@@ -176,7 +176,7 @@ def make_simulate(summary, doc_extra):
         bound = _call("simulate", sig, args, kwargs)
         limits = _limits(bound)
         keep = bool(bound.pop("trajectory", True))
-        values = _convert.dumps(_given(bound))
+        values = _convert.arguments(_given(bound))
         try:
             text, t, x, n = _native.simulate(values, limits, keep)
         except Interrupted as e:
@@ -207,7 +207,7 @@ def make_roll(summary, doc_extra):
     def roll(*args, **kwargs):
         bound = _call("roll", sig, args, kwargs)
         limits = _limits(bound)
-        values = _convert.dumps(_given(bound))
+        values = _convert.arguments(_given(bound))
         try:
             return _convert.report(_native.roll(values, limits))
         except (Interrupted, TensegrityError) as e:
@@ -228,7 +228,7 @@ def make_tipover(summary, doc_extra):
         if dynamic and rolling:
             raise TypeError("tipover(): dynamic and rolling cannot be used together")
         command = modes[1] if dynamic else modes[2] if rolling else modes[0]
-        values = _convert.dumps(_given(bound))
+        values = _convert.arguments(_given(bound))
         return _convert.report(_native.run(command, values, limits, list(modes)))
 
     extra_doc = """\

@@ -82,9 +82,8 @@ def report(text):
 
 
 def value(v):
-    """A keyword value as the engine reads it: numpy scalars and arrays as Python numbers
-    and lists, paths as text, a non-finite number as its text (``nan``, ``inf``: refused
-    by the engine with the command line's message)."""
+    """A value as plain JSON: numpy scalars and arrays as Python numbers and lists, paths as
+    text, a structure as its scene TOML, a non-finite number as its text."""
     if hasattr(v, "to_toml") and callable(v.to_toml):
         return v.to_toml()
     if isinstance(v, os.PathLike):
@@ -98,6 +97,29 @@ def value(v):
     if isinstance(v, float) and not math.isfinite(v):
         return str(v)
     return v
+
+
+def text(v):
+    """A keyword value as the command line hands it to the engine: a number or a list as
+    its text (``2.5``, ``8,12``; Python's shortest round-trip form, read back exactly),
+    ``True``/``False`` as a boolean. The engine then reads, checks and refuses it exactly
+    as a flag's value, with the same message (``sides = "2.5": expected a non-negative
+    integer``)."""
+    v = value(v)
+    if isinstance(v, bool) or v is None:
+        return v
+    if isinstance(v, float):
+        return repr(v)
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, list):
+        return ",".join(str(text(x)) for x in v)
+    return v
+
+
+def arguments(values):
+    """Keyword values as the JSON text the engine reads (see :func:`text`)."""
+    return json.dumps({k: text(v) for k, v in values.items()}, allow_nan=False)
 
 
 def dumps(values):

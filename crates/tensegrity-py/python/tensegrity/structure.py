@@ -279,19 +279,19 @@ class Structure:
         """The toroid wheel of the ``toroid`` command's keywords (as ``toroid
         --export-scene`` writes it; with ``string_stiffness`` its strings are stiff and
         prestressed)."""
-        return cls.from_toml(_native.topology("toroid", _convert.dumps(kwargs)))
+        return cls.from_toml(_native.topology("toroid", _convert.arguments(kwargs)))
 
     @classmethod
     def michell(cls, **kwargs):
         """The Michell truss of the ``michell`` command's keywords: members as bars, extra
         strings (``extra_strings``) as strings, the last level pinned."""
-        return cls.from_toml(_native.topology("michell", _convert.dumps(kwargs)))
+        return cls.from_toml(_native.topology("michell", _convert.arguments(kwargs)))
 
     @classmethod
     def tbar(cls, **kwargs):
         """The T-bar tread or wheel of the ``tbar`` command's keywords (as ``tbar
         --export-scene`` writes it)."""
-        return cls.from_toml(_native.topology("tbar", _convert.dumps(kwargs)))
+        return cls.from_toml(_native.topology("tbar", _convert.arguments(kwargs)))
 
     # --- matrices ------------------------------------------------------------------------
 
