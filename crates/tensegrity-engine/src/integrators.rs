@@ -127,8 +127,8 @@ pub fn point(req: &IntegratorsRequest, ctx: &Context) -> Result<Point, crate::Ru
     let reference = ctx
         .reference(index, scene)
         .map_err(|e| crate::RunError::Failed(e.clone()))?;
-    let (r, wall) = run_one(scene, integrator, parameter, req.repeats)
-        .map_err(|e| crate::RunError::of(&e))?;
+    let (r, wall) =
+        run_one(scene, integrator, parameter, req.repeats).map_err(|e| crate::RunError::of(&e))?;
     Ok(Point {
         scene: scene.name,
         integrator,

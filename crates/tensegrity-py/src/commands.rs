@@ -75,9 +75,8 @@ pub fn find(name: &str) -> Result<&'static Command, Failure> {
 pub fn limits(given: &Map<String, Value>) -> Result<Limits, Failure> {
     let mut l = tensegrity_engine::limits::for_this_process();
     let size = |name: &str, v: &Value| -> Result<Option<f64>, Failure> {
-        let bad = |reason: String| {
-            Failure::invalid(&InvalidParameter::raw(name.to_string(), v, reason))
-        };
+        let bad =
+            |reason: String| Failure::invalid(&InvalidParameter::raw(name.to_string(), v, reason));
         match v {
             Value::Null => Ok(None),
             Value::Number(n) => match n.as_f64() {
@@ -128,7 +127,10 @@ pub fn check_modes(
         }
     }
     let own = c.params();
-    if let Some((name, v)) = values.iter().find(|(n, _)| !own.iter().any(|p| p.name == *n)) {
+    if let Some((name, v)) = values
+        .iter()
+        .find(|(n, _)| !own.iter().any(|p| p.name == *n))
+    {
         let reason = format!("does not apply to `{}`", c.name);
         return Err(Failure::invalid(&InvalidParameter::raw(
             name.clone(),

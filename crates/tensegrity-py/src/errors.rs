@@ -79,17 +79,18 @@ impl Failure {
 
     /// An estimate over its limit, with the flag that raises it (the CLI's `guard::Refused`).
     pub fn over_budget(over: &OverBudget) -> Self {
-        let (flag, suggested) = match over.resource {
+        let (limit, suggested) = match over.resource {
             Resource::Memory => (
-                "--max-memory",
+                "max_memory",
                 tensegrity_engine::limits::suggest_size(over.estimated),
             ),
             Resource::Output => (
-                "--max-output",
+                "max_output",
                 tensegrity_engine::limits::suggest_size(over.estimated),
             ),
-            Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
+            Resource::Work => ("max_work", format!("{:.0}", over.estimated.ceil())),
         };
+        let flag = flag_of(limit);
         let named = parameter_flags(&over.estimate.parameters);
         let named = if named.is_empty() {
             named

@@ -33,7 +33,10 @@ fn object(text: &str) -> Result<Map<String, Value>, Failure> {
     match serde_json::from_str(text) {
         Ok(Value::Object(m)) => Ok(m),
         Ok(_) => Err(Failure::new(Category::Input, "expected named values")),
-        Err(e) => Err(Failure::new(Category::Input, format!("unreadable values: {e}"))),
+        Err(e) => Err(Failure::new(
+            Category::Input,
+            format!("unreadable values: {e}"),
+        )),
     }
 }
 
@@ -44,7 +47,11 @@ fn raise<T>(py: Python<'_>, r: Result<T, Failure>) -> PyResult<T> {
 
 /// The exception of a run that did not finish: `Interrupted` (a `KeyboardInterrupt`) with
 /// `partial_raw` set to what the run handed back, or the signal handler's own exception.
-fn stopped<T>(py: Python<'_>, s: Stopped<T>, partial: impl FnOnce(T) -> PyResult<Py<PyAny>>) -> PyErr {
+fn stopped<T>(
+    py: Python<'_>,
+    s: Stopped<T>,
+    partial: impl FnOnce(T) -> PyResult<Py<PyAny>>,
+) -> PyErr {
     match s {
         Stopped::Panic(msg) => Failure::raw(
             Category::Numerical,
@@ -75,7 +82,13 @@ fn list_commands() -> String {
 /// offers (`tipover` and its `dynamic`, `rolling` modes), empty for one. The report as JSON.
 #[pyfunction]
 #[pyo3(signature = (name, values, limits, modes = Vec::new()))]
-fn run(py: Python<'_>, name: &str, values: &str, limits: &str, modes: Vec<String>) -> PyResult<String> {
+fn run(
+    py: Python<'_>,
+    name: &str,
+    values: &str,
+    limits: &str,
+    modes: Vec<String>,
+) -> PyResult<String> {
     let c = raise(py, commands::find(name))?;
     let values = raise(py, object(values))?;
     let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
@@ -109,9 +122,7 @@ fn simulate(
     let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
     let (command, simulation) = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
     let outcome = worker::run(py, true, move || runs::simulate(command, simulation));
-    let samples = |t: &runs::Trajectory| {
-        (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes)
-    };
+    let samples = |t: &runs::Trajectory| (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes);
     match outcome {
         Ok(o) => {
             if o.interrupted_at.is_some() {
@@ -124,7 +135,9 @@ fn simulate(
             Ok((report, t, x, n))
         }
         Err(s) => Err(stopped(py, s, |o| {
-            samples(&o.trajectory).into_pyobject(py).map(|b| b.into_any().unbind())
+            samples(&o.trajectory)
+                .into_pyobject(py)
+                .map(|b| b.into_any().unbind())
         })),
     }
 }
@@ -192,7 +205,9 @@ fn run_sweep(
     let (spec, what) = raise(py, sweep::spec(&source))?;
     let shard = raise(py, sweep::admit(&spec, &opts))?;
     let out = std::path::PathBuf::from(out);
-    match worker::run(py, true, move || sweep::run(&spec, &what, &out, shard, &opts)) {
+    match worker::run(py, true, move || {
+        sweep::run(&spec, &what, &out, shard, &opts)
+    }) {
         Ok(rows) => raise(py, rows),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }

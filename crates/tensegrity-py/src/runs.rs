@@ -33,7 +33,8 @@ impl SampleSink for Trajectory {
         if let Some(nodes) = &sample.nodes {
             self.n_nodes = nodes.len();
             self.t.push(sample.t);
-            self.nodes.extend(nodes.iter().flat_map(|n| [n.x, n.y, n.z]));
+            self.nodes
+                .extend(nodes.iter().flat_map(|n| [n.x, n.y, n.z]));
         }
         self.last_t = sample.t;
         Ok(())
@@ -75,7 +76,10 @@ pub fn prepare_simulation(
 }
 
 /// Runs a prepared simulation (on the worker thread).
-pub fn simulate(command: SimulateCommand, simulation: tensegrity_core::Simulation) -> SimulateOutcome {
+pub fn simulate(
+    command: SimulateCommand,
+    simulation: tensegrity_core::Simulation,
+) -> SimulateOutcome {
     let mut trajectory = Trajectory::default();
     let run = simulation.run_streaming(&mut trajectory);
     let source = command

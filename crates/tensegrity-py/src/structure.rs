@@ -123,7 +123,8 @@ pub fn scene_text(structure: &Structure, tables: &Map<String, Value>) -> Result<
         text.push('\n');
         text.push_str(&extra);
     }
-    Scene::from_str_named(&text, "structure").map_err(|e| Failure::new(e.category(), e.to_string()))?;
+    Scene::from_str_named(&text, "structure")
+        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     Ok(text)
 }
 
@@ -137,7 +138,8 @@ pub fn toml_text(value: &Value) -> Result<String, Failure> {
 
 /// The spec of a scene (as [`build`] takes it, in JSON) and its other tables.
 pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
-    let scene = Scene::from_str_named(text, name).map_err(|e| Failure::new(e.category(), e.to_string()))?;
+    let scene =
+        Scene::from_str_named(text, name).map_err(|e| Failure::new(e.category(), e.to_string()))?;
     let s = &scene.structure;
     let v3 = |v: &nalgebra::Vector3<f64>| json!([v.x, v.y, v.z]);
     let raw: toml::Table = toml::from_str(text).unwrap_or_default();
@@ -148,7 +150,10 @@ pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
         .flat_map(|t| t.keys())
         .filter_map(|k| {
             let m = s.materials().get(k)?;
-            Some((k.clone(), json!([m.density, m.youngs_modulus, m.yield_strength])))
+            Some((
+                k.clone(),
+                json!([m.density, m.youngs_modulus, m.yield_strength]),
+            ))
         })
         .collect();
     let tables: Map<String, Value> = TABLES
@@ -183,7 +188,8 @@ fn dense(m: &nalgebra::DMatrix<f64>) -> Value {
 /// second) and the equilibrium matrix A (free degrees of freedom × members, node-major rows,
 /// supported directions removed) with its free degrees of freedom `(node, direction)`.
 pub fn matrices(text: &str) -> Result<Value, Failure> {
-    let scene = Scene::from_str_named(text, "structure").map_err(|e| Failure::new(e.category(), e.to_string()))?;
+    let scene = Scene::from_str_named(text, "structure")
+        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     let s = &scene.structure;
     let c = Connectivity::of(s);
     let dofs = DofMap::of(s);
@@ -209,8 +215,8 @@ pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failur
                 .structure
         }
         "michell" => {
-            let r = michell3d::MichellRequest::from_values(values)
-                .map_err(|e| Failure::invalid(&e))?;
+            let r =
+                michell3d::MichellRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
             let run = r.run().map_err(|e| failed(&e, e.category()))?;
             let truss = &run.analysis.truss;
             let built = match run.request.extra_strings {

@@ -60,15 +60,24 @@ pub fn admit(spec: &Spec, opts: &Options) -> Result<Shard, Failure> {
         .map_err(|over| Failure::over_budget(&over))?;
     match opts.shard {
         None => Ok(Shard::ALL),
-        Some((k, n)) => format!("{k}/{n}")
-            .parse::<Shard>()
-            .map_err(|e| Failure::raw(Category::Input, format!("invalid value for --shard: {e}"))),
+        Some((k, n)) => format!("{k}/{n}").parse::<Shard>().map_err(|e| {
+            Failure::raw(
+                Category::Input,
+                format!("invalid value for {}: {e}", crate::errors::flag_of("shard")),
+            )
+        }),
     }
 }
 
 /// Runs the sweep into `out` (on the worker thread): the number of rows written, or the
 /// failure (an interrupted sweep keeps its rows, marked incomplete, as on the command line).
-pub fn run(spec: &Spec, what: &str, out: &Path, shard: Shard, opts: &Options) -> Result<usize, Failure> {
+pub fn run(
+    spec: &Spec,
+    what: &str,
+    out: &Path,
+    shard: Shard,
+    opts: &Options,
+) -> Result<usize, Failure> {
     let run_opts = RunOptions {
         threads: opts.threads,
         shard,

@@ -13,8 +13,8 @@
 //! releases its file) before it clears the flag and starts.
 
 use pyo3::prelude::*;
-use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::Mutex;
 use std::time::Duration;
 use tensegrity_io::interrupt;

@@ -59,6 +59,8 @@ def params_of(*names):
 def describe(p):
     """The numpydoc entry of one parameter."""
     kind = _KIND_TYPE[p["kind"]]
+    if p["name"] == "scene":
+        kind = "str, os.PathLike or Structure"
     if p["kind"] == "choice":
         kind = "{" + ", ".join(repr(c) for c in p["choices"]) + "}"
     head = "{} : {}".format(p["name"], kind)
@@ -69,7 +71,8 @@ def describe(p):
         text += " ({})".format(p["unit"])
     if p["kind"] == "angle":
         text += "; radians, or a string such as '30deg', 'pi/8', '3pi/4'"
-    if p["rule"] and p["rule"] not in ("any value",):
+    numeric = p["kind"] in ("count", "number", "angle", "counts", "numbers")
+    if numeric and p["rule"]:
         text += "; " + p["rule"]
     if p["required"]:
         text += ". Required"

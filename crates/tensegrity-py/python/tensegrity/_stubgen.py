@@ -81,7 +81,7 @@ def function(name, command_names, summary, positional=(), extra=(), extra_doc=""
     lines = ["def {}(".format(name)]
     lines += ["    {},".format(a) for a in args]
     lines.append(") -> Dict[str, Any]:")
-    lines.append('    """' + _indent(doc).lstrip() + '    """')
+    lines.append('    """' + _indent(doc).lstrip() + '\n    """')
     lines.append("    ...")
     return "\n".join(lines) + "\n"
 
