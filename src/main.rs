@@ -23,6 +23,9 @@ enum Command {
     Statics(cli::statics::StaticsArgs),
     /// Simulate a scene in time (rigid-bar dynamics; RK4, adaptive RK45 or RATTLE).
     Simulate(cli::simulate::SimulateArgs),
+    /// Form-finding: the equilibrium geometry and prestress of a topology file or a built-in
+    /// form (force density, adaptive, dynamic relaxation), written as a scene.
+    Formfind(cli::formfind::FormfindArgs),
     /// Benchmarks, e.g. the work–precision report of the integrators.
     Bench(cli::bench::BenchArgs),
     /// Discrete Michell truss (planar, cylindrical δ or spherical ε): nodes, forces, sizing.
@@ -56,6 +59,7 @@ fn main() {
         Command::Demo => cli::demo::run(),
         Command::Statics(args) => cli::statics::run(args),
         Command::Simulate(args) => cli::simulate::run(args),
+        Command::Formfind(args) => cli::formfind::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Michell(args) => cli::michell::run(args),
         Command::MichellTable(args) => cli::michell::run_table(args),

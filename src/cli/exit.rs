@@ -7,6 +7,7 @@ use tbar_wheel::TbarError;
 use tensegrity_core::budget::OverBudget;
 use tensegrity_core::request::{Categorized, Category, InvalidParameter};
 use tensegrity_core::CoreError;
+use tensegrity_engine::formfind::FormfindFailure;
 use tensegrity_engine::{RunError, SceneError};
 use tensegrity_io::interrupt::Interrupted;
 use tensegrity_io::IoError;
@@ -84,7 +85,8 @@ fn category(e: &(dyn std::error::Error + 'static)) -> Option<Category> {
         TbarError,
         SweepError,
         RunError,
-        SceneError
+        SceneError,
+        FormfindFailure
     )
 }
 

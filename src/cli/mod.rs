@@ -5,6 +5,7 @@ pub mod demo;
 pub mod exit;
 pub mod fig_rolling;
 pub mod figures;
+pub mod formfind;
 pub mod guard;
 pub mod michell;
 pub mod michell_optimize;

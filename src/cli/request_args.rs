@@ -22,7 +22,7 @@ use std::marker::PhantomData;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
 
 /// The parameters taken by position rather than as a flag (first the first).
-pub const POSITIONAL: &[&str] = &["scene"];
+pub const POSITIONAL: &[&str] = &["scene", "topology"];
 
 /// The flag of a library parameter: `t_end` → `--t-end`.
 pub fn flag_of(name: &str) -> String {
@@ -157,9 +157,14 @@ impl<F: Flags> FromArgMatches for RequestArgs<F> {
 impl<F: Flags> Args for RequestArgs<F> {
     fn augment_args(cmd: Command) -> Command {
         let defaults = F::defaults();
-        F::params()
-            .iter()
-            .fold(cmd, |c, p| c.arg(arg(p, defaults.get(p.name))))
+        let mut positional = 0;
+        F::params().iter().fold(cmd, |c, p| {
+            let index = POSITIONAL.contains(&p.name).then(|| {
+                positional += 1;
+                positional
+            });
+            c.arg(arg(p, defaults.get(p.name), index))
+        })
     }
 
     fn augment_args_for_update(cmd: Command) -> Command {
@@ -167,11 +172,11 @@ impl<F: Flags> Args for RequestArgs<F> {
     }
 }
 
-/// The flag (or the positional argument, [`POSITIONAL`]) of one parameter.
-fn arg(p: &Param, default: Option<&Value>) -> Arg {
+/// The flag (or the positional argument at `index`, [`POSITIONAL`]) of one parameter.
+fn arg(p: &Param, default: Option<&Value>, index: Option<usize>) -> Arg {
     let a = Arg::new(p.name).help(help(p, default)).required(p.required);
-    let a = match POSITIONAL.iter().position(|n| *n == p.name) {
-        Some(i) => a.index(i + 1),
+    let a = match index {
+        Some(i) => a.index(i),
         None => a.long(p.name.replace('_', "-")),
     };
     match p.kind {

@@ -42,6 +42,13 @@ pub enum FormFindError {
         /// What to change.
         hint: String,
     },
+    /// A linear system of the method is singular (fixed nodes that do not determine the free
+    /// ones, a dynamic relaxation without stiffness, …).
+    #[error("singular system: {hint}")]
+    SingularSystem {
+        /// What is singular and what to change.
+        hint: String,
+    },
     /// No prestressable (or prestress-stable) self-stress exists for this connectivity.
     #[error("no prestressable self-stress found: {reason}")]
     NoPrestress {
@@ -78,9 +85,10 @@ impl Categorized for FormFindError {
             | Self::InvalidTopology { .. }
             | Self::UnknownBuiltin { .. }
             | Self::Unsupported { .. } => Category::Input,
-            Self::RankDeficiency { .. } | Self::NoPrestress { .. } | Self::NotConverged { .. } => {
-                Category::Numerical
-            }
+            Self::RankDeficiency { .. }
+            | Self::SingularSystem { .. }
+            | Self::NoPrestress { .. }
+            | Self::NotConverged { .. } => Category::Numerical,
             Self::Core(e) => e.category(),
         }
     }

@@ -22,39 +22,104 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+mod adaptive;
+mod analysis;
 mod builtin;
+mod dr;
 mod error;
+mod estimate;
+mod fdm;
 mod method;
 mod result;
+mod synth;
 mod topology;
 
-pub use builtin::{builtin, BUILTINS};
+pub use analysis::{STABILITY_MAX_MEMBERS, WITNESS_TOLERANCE};
+pub use builtin::{builtin, prism_twist, BUILTINS, MAX_GRID, MAX_PRISM, MAX_STAGES};
 pub use error::{FormFindError, Result};
+pub use estimate::estimate;
+pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
 pub use method::{Method, Settings, Synthesis};
 pub use result::FormFound;
+pub use synth::{rest_lengths, synthesize, RestLengths};
 pub use topology::{FixedNode, Group, Member, Topology};
 
-use tensegrity_core::Structure;
+use nalgebra::Vector3;
 
 /// Finds the form of `topology` by the method and tolerances of `settings`.
+///
+/// [`Method::Auto`] takes the force density method when every member has a force density
+/// (falling back to the adaptive method, started from them, when they admit no free-standing
+/// form), dynamic relaxation when instead every member has a length and the topology has
+/// nodes, and the adaptive method otherwise. The result's `method` is the one that found it.
 pub fn form_find(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     topology.validate()?;
-    let _ = settings;
-    Err(FormFindError::Unsupported {
-        what: "form-finding (not built yet)".into(),
-    })
+    settings.validate()?;
+    match settings.method {
+        Method::Fdm => {
+            let q = topology.force_densities()?;
+            let nodes = fdm::geometry(topology, &q)?;
+            finish(topology, Method::Fdm, nodes, q, 1)
+        }
+        Method::Adaptive => {
+            let (nodes, q, it) = adaptive::run(topology, settings)?;
+            finish(topology, Method::Adaptive, nodes, q, it)
+        }
+        Method::Dr => {
+            let (nodes, q, it) = dr::run(topology, settings)?;
+            finish(topology, Method::Dr, nodes, q, it)
+        }
+        Method::Auto => auto(topology, settings),
+    }
 }
 
-/// The structure realising `found`: its geometry, its self-stress scaled to the prestress
-/// level of `synthesis`, and for each string the rest length that gives that tension at the
-/// given axial stiffness (bars carry their compression as rigid members).
-pub fn synthesize(
+/// [`Method::Auto`] (see [`form_find`]).
+fn auto(topology: &Topology, settings: &Settings) -> Result<FormFound> {
+    let with = |method| Settings {
+        method,
+        ..settings.clone()
+    };
+    let given = topology.given_force_densities();
+    if given.iter().all(Option::is_some) {
+        let q = topology.force_densities()?;
+        return match fdm::geometry(topology, &q) {
+            Ok(nodes) => finish(topology, Method::Fdm, nodes, q, 1),
+            Err(FormFindError::RankDeficiency { .. })
+                if topology.fixed.is_empty() && topology.n_nodes <= adaptive::MAX_NODES =>
+            {
+                form_find(topology, &with(Method::Adaptive))
+            }
+            Err(e) => Err(e),
+        };
+    }
+    if topology.nodes.is_some() && topology.given_lengths().iter().all(Option::is_some) {
+        return form_find(topology, &with(Method::Dr));
+    }
+    form_find(topology, &with(Method::Adaptive))
+}
+
+/// The statics of the found geometry, packed as a [`FormFound`].
+fn finish(
     topology: &Topology,
-    found: &FormFound,
-    synthesis: &Synthesis,
-) -> Result<Structure> {
-    let _ = (topology, found, synthesis);
-    Err(FormFindError::Unsupported {
-        what: "rest-length synthesis (not built yet)".into(),
+    method: Method,
+    nodes: Vec<Vector3<f64>>,
+    q: Vec<f64>,
+    iterations: usize,
+) -> Result<FormFound> {
+    if let Some(i) = nodes.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
+        return Err(FormFindError::SingularSystem {
+            hint: format!("{method}: node {i} came out non-finite"),
+        });
+    }
+    let a = analysis::analyse(topology, &nodes, &q)?;
+    Ok(FormFound {
+        method,
+        nodes,
+        force_density: q,
+        self_stress_dim: a.self_stress_dim,
+        prestressable: a.prestressable,
+        prestress_stable: a.prestress_stable,
+        residual: a.residual,
+        iterations,
     })
 }

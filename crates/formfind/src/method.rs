@@ -11,10 +11,14 @@ pub enum Method {
     /// Force density method with the given force densities.
     Fdm,
     /// Adaptive force density: force densities found from the connectivity.
-    #[default]
     Adaptive,
     /// Dynamic relaxation with kinetic damping from rest lengths and stiffnesses.
     Dr,
+    /// The force density method when every member has a force density (the adaptive method
+    /// from them when they admit no free-standing form), dynamic relaxation when every member
+    /// has a length instead, else the adaptive method ([`crate::form_find`]).
+    #[default]
+    Auto,
 }
 
 impl fmt::Display for Method {
@@ -23,6 +27,7 @@ impl fmt::Display for Method {
             Method::Fdm => "fdm",
             Method::Adaptive => "adaptive",
             Method::Dr => "dr",
+            Method::Auto => "auto",
         })
     }
 }
@@ -34,7 +39,10 @@ impl FromStr for Method {
             "fdm" => Ok(Method::Fdm),
             "adaptive" => Ok(Method::Adaptive),
             "dr" => Ok(Method::Dr),
-            _ => Err(format!("unknown method \"{s}\" (fdm, adaptive or dr)")),
+            "auto" => Ok(Method::Auto),
+            _ => Err(format!(
+                "unknown method \"{s}\" (fdm, adaptive, dr or auto)"
+            )),
         }
     }
 }
@@ -60,6 +68,33 @@ impl Default for Settings {
             max_iterations: 10_000,
             stiffness: 1e5,
         }
+    }
+}
+
+impl Settings {
+    /// Checks the tolerances and the stiffness; the error names the field.
+    pub fn validate(&self) -> crate::Result<()> {
+        use tensegrity_core::request::InvalidParameter;
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(InvalidParameter::new(
+                "tolerance",
+                self.tolerance,
+                "must lie strictly between 0 and 1",
+            )
+            .into());
+        }
+        if self.max_iterations == 0 {
+            return Err(InvalidParameter::raw("max_iterations", 0, "must be at least 1").into());
+        }
+        if !(self.stiffness.is_finite() && self.stiffness > 0.0) {
+            return Err(InvalidParameter::new(
+                "stiffness",
+                self.stiffness,
+                "must be finite and positive",
+            )
+            .into());
+        }
+        Ok(())
     }
 }
 

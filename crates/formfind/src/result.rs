@@ -9,7 +9,8 @@ use serde::Serialize;
 pub struct FormFound {
     /// The method that found it.
     pub method: Method,
-    /// One position per node (m).
+    /// One position per node (m), serialised as `[x, y, z]` rows.
+    #[serde(serialize_with = "rows")]
     pub nodes: Vec<Vector3<f64>>,
     /// Force density per member (N/m, tension-positive), bars then strings in topology order,
     /// normalised as documented by the method.
@@ -25,4 +26,26 @@ pub struct FormFound {
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
     pub iterations: usize,
+}
+
+impl FormFound {
+    /// The size of the form: the diagonal of the nodes' bounding box (m).
+    pub fn structure_size(&self) -> f64 {
+        crate::analysis::size(&self.nodes)
+    }
+
+    /// The nodes as `[x, y, z]` rows (the JSON `nodes`).
+    pub fn node_rows(&self) -> Vec<[f64; 3]> {
+        self.nodes.iter().map(|p| [p.x, p.y, p.z]).collect()
+    }
+}
+
+/// Serialises points as `[x, y, z]` rows (independent of nalgebra's serde feature).
+fn rows<S: serde::Serializer>(nodes: &[Vector3<f64>], s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeSeq;
+    let mut seq = s.serialize_seq(Some(nodes.len()))?;
+    for p in nodes {
+        seq.serialize_element(&[p.x, p.y, p.z])?;
+    }
+    seq.end()
 }

@@ -159,6 +159,59 @@ impl Topology {
                 }
             }
         }
+        let mut seen = std::collections::HashMap::new();
+        let mut touched = vec![false; self.n_nodes];
+        for (k, m) in self.members().enumerate() {
+            let key = (m.nodes[0].min(m.nodes[1]), m.nodes[0].max(m.nodes[1]));
+            if let Some(other) = seen.insert(key, k) {
+                return Err(bad(
+                    self.member_name(k),
+                    format!(
+                        "joins nodes {} and {}, as {} does",
+                        key.0,
+                        key.1,
+                        self.member_name(other)
+                    ),
+                ));
+            }
+            touched[key.0] = true;
+            touched[key.1] = true;
+        }
+        if self.n_members() == 0 {
+            return Err(bad("bars".into(), "the topology has no members".into()));
+        }
+        if let Some(i) = touched.iter().position(|t| !t) {
+            return Err(bad(format!("node {i}"), "no member ends at it".into()));
+        }
+        for (name, g) in &self.groups {
+            if let Some(q) = g.force_density {
+                if !q.is_finite() {
+                    return Err(bad(
+                        format!("groups.{name}.force_density"),
+                        format!("{q} must be finite"),
+                    ));
+                }
+            }
+            if let Some(l) = g.length {
+                if !(l.is_finite() && l > 0.0) {
+                    return Err(bad(
+                        format!("groups.{name}.length"),
+                        format!("{l} must be finite and positive"),
+                    ));
+                }
+            }
+        }
+        let mut fixed_seen = std::collections::HashMap::new();
+        for (i, f) in self.fixed.iter().enumerate() {
+            if f.node < self.n_nodes {
+                if let Some(j) = fixed_seen.insert(f.node, i) {
+                    return Err(bad(
+                        format!("fixed[{i}]"),
+                        format!("node {} is already fixed by fixed[{j}]", f.node),
+                    ));
+                }
+            }
+        }
         for (i, f) in self.fixed.iter().enumerate() {
             if f.node >= self.n_nodes {
                 return Err(bad(
@@ -171,5 +224,116 @@ impl Topology {
             }
         }
         Ok(())
+    }
+}
+
+/// Where a member's force density came from.
+pub(crate) fn member_kind_ok(is_bar: bool, q: f64) -> bool {
+    if is_bar {
+        q < 0.0
+    } else {
+        q > 0.0
+    }
+}
+
+impl Topology {
+    /// Number of members (bars then strings).
+    pub fn n_members(&self) -> usize {
+        self.bars.len() + self.strings.len()
+    }
+
+    /// The node pair of every member, bars then strings.
+    pub fn member_nodes(&self) -> Vec<[usize; 2]> {
+        self.members().map(|m| m.nodes).collect()
+    }
+
+    /// Whether member k (bars then strings) is a bar.
+    pub fn is_bar(&self, k: usize) -> bool {
+        k < self.bars.len()
+    }
+
+    /// The force density of every member, bars then strings: the member's own value, else
+    /// its group's. `None` where neither gives one.
+    pub fn given_force_densities(&self) -> Vec<Option<f64>> {
+        self.members()
+            .map(|m| {
+                m.force_density.or_else(|| {
+                    m.group
+                        .as_ref()
+                        .and_then(|g| self.groups.get(g))
+                        .and_then(|g| g.force_density)
+                })
+            })
+            .collect()
+    }
+
+    /// The force densities of the force density method: every member's (or its group's),
+    /// bars negative and strings positive; the first member without one, or with the wrong
+    /// sign, is named.
+    pub fn force_densities(&self) -> Result<Vec<f64>> {
+        self.given_force_densities()
+            .into_iter()
+            .enumerate()
+            .map(|(k, q)| {
+                let name = self.member_name(k);
+                let q = q.ok_or_else(|| FormFindError::InvalidTopology {
+                    item: format!("{name}.force_density"),
+                    reason: "no force density on the member or its group (give one, or use \
+                             the adaptive method, which finds them)"
+                        .into(),
+                })?;
+                if !member_kind_ok(self.is_bar(k), q) {
+                    let sign = if self.is_bar(k) {
+                        "negative (a bar is compressed; q is tension-positive)"
+                    } else {
+                        "positive (a string is in tension)"
+                    };
+                    return Err(FormFindError::InvalidTopology {
+                        item: format!("{name}.force_density"),
+                        reason: format!("{q} must be {sign}"),
+                    });
+                }
+                Ok(q)
+            })
+            .collect()
+    }
+
+    /// The target (rest) length of every member: its own, else its group's.
+    pub fn given_lengths(&self) -> Vec<Option<f64>> {
+        self.members()
+            .map(|m| {
+                m.length.or_else(|| {
+                    m.group
+                        .as_ref()
+                        .and_then(|g| self.groups.get(g))
+                        .and_then(|g| g.length)
+                })
+            })
+            .collect()
+    }
+
+    /// The initial nodes as vectors, if given.
+    pub fn initial_nodes(&self) -> Option<Vec<nalgebra::Vector3<f64>>> {
+        self.nodes
+            .as_ref()
+            .map(|ns| ns.iter().map(|p| nalgebra::Vector3::from(*p)).collect())
+    }
+
+    /// The same topology with `lengths` (bars then strings) as every member's target length
+    /// and `stiffness` (bars then strings, EA in N) as its axial stiffness: the input of
+    /// dynamic relaxation that reproduces a synthesized form ([`crate::rest_lengths`]).
+    pub fn with_lengths(&self, lengths: &[f64], stiffness: &[f64]) -> Topology {
+        let mut t = self.clone();
+        let nb = t.bars.len();
+        for (k, m) in t.bars.iter_mut().chain(t.strings.iter_mut()).enumerate() {
+            let _ = nb;
+            if let Some(&l) = lengths.get(k) {
+                m.length = Some(l);
+            }
+            if let Some(&e) = stiffness.get(k) {
+                m.stiffness = Some(e);
+            }
+        }
+        t
     }
 }

@@ -289,3 +289,21 @@ pub const SIMULATE: [Column; 7] = [
 /// [`crate::bench::WorkPrecisionReport`] has no scalar: its points are the study (the
 /// `integrators` study sweeps them one by one).
 pub const BENCH_WORK_PRECISION: [Column; 0] = [];
+
+/// The scalars of [`crate::formfind::FormfindReport`] (its lists — nodes, force densities,
+/// member forces, rest lengths, warnings — are not columns).
+pub const FORMFIND: [Column; 13] = [
+    col("source", ""),
+    col("n_nodes", ""),
+    col("n_bars", ""),
+    col("n_strings", ""),
+    col("method", ""),
+    col("self_stress_dim", ""),
+    col("prestressable", ""),
+    col("prestress_stable", ""),
+    col("residual", ""),
+    col("iterations", ""),
+    col("height", "m"),
+    col("max_bar_length", "m"),
+    col("prestress", "N"),
+];

@@ -23,5 +23,6 @@ pub(crate) fn all() -> Vec<Command> {
         estimated(crate::statics::statics, &c::STATICS),
         estimated(crate::simulate::simulate, &c::SIMULATE),
         entry(crate::bench::work_precision, &c::BENCH_WORK_PRECISION),
+        estimated(crate::formfind::formfind, &c::FORMFIND),
     ]
 }

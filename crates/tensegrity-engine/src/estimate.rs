@@ -6,7 +6,8 @@
 //! [`Estimated`] is the estimate of a request, one per command, from the libraries' estimate
 //! functions: `toroid` ([`toroid::budget::statics`]: the symmetry-adapted blocks), `roll`
 //! ([`toroid::budget::roll`]: the statics, then the runs of the fidelity decision's plan),
-//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `statics`
+//! `tbar_roll` ([`crate::tbar_roll::estimate`]: the runs of every row), `formfind`
+//! ([`crate::formfind::estimate`]: a built-in sized from its name, before it is built), `statics`
 //! ([`crate::statics::estimate`]: the dense SVD when the method takes it, else the sparse
 //! QR's memory), `simulate` ([`crate::simulate::estimate`]: steps × right-hand sides,
 //! samples), `michell_table` (rows by joints, its output) and `michell_optimize` (the
@@ -20,6 +21,7 @@
 //! name them (`sides = 100000`, `t_end = 1e9, dt = 0.0001`), which a front end maps to its
 //! own spelling.
 
+use crate::formfind::FormfindRequest;
 use crate::registry::RunError;
 use crate::simulate::SimulateCommand;
 use crate::statics::StaticsCommand;
@@ -72,6 +74,14 @@ impl Estimated for SimulateCommand {
         crate::simulate::estimate(&simulation, false, false)
             .map(Some)
             .map_err(failed)
+    }
+}
+
+impl Estimated for FormfindRequest {
+    /// A built-in sized from its name before it is built, a topology from its file
+    /// ([`crate::formfind::estimate`]).
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        crate::formfind::estimate(self).map_err(failed)
     }
 }
 

@@ -26,6 +26,7 @@
 //! | `tbar_roll` | [`tbar_wheel::TbarRollRequest`] | [`tbar_roll::tbar_roll`] (the toroid column composed here) |
 //! | `statics` | [`statics::StaticsCommand`] | [`statics::statics`] (a scene's statics report) |
 //! | `simulate` | [`simulate::SimulateCommand`] | [`simulate::simulate`] (a scene run in time) |
+//! | `formfind` | [`formfind::FormfindRequest`] | [`formfind::formfind`] (form-finding, then the rest lengths of the prestress) |
 //! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision`] |
 //!
 //! Every command's resource estimate is here too ([`estimate`]: the [`estimate::Estimated`]
@@ -37,6 +38,7 @@ pub mod bench;
 pub mod columns;
 mod entries;
 pub mod estimate;
+pub mod formfind;
 pub mod integrators;
 pub mod limits;
 pub mod registry;

@@ -414,3 +414,42 @@ fn the_work_precision_study_by_name_shows_rk4_fourth_order() {
     let ratio = coarse.1 / fine.1;
     assert!((128.0..512.0).contains(&ratio), "{ratio}");
 }
+
+#[test]
+fn formfind_describes_its_fields_round_trips_and_its_columns_are_its_scalars() {
+    check_description::<formfind::FormfindRequest>().unwrap();
+    round_trip(&formfind::FormfindRequest {
+        builtin: Some("prism".into()),
+        n: Some(5),
+        method: Some(::formfind::Method::Adaptive),
+        prestress: 20.0,
+        ..Default::default()
+    });
+    round_trip(&formfind::FormfindRequest {
+        topology: Some(SceneSource::parse("../../examples/formfind/cable_net.toml")),
+        group: Some("y".into()),
+        ratio: 2.0,
+        ..Default::default()
+    });
+    let report = formfind::FormfindReport {
+        source: "prism:3".into(),
+        n_nodes: 6,
+        n_bars: 3,
+        n_strings: 9,
+        method: ::formfind::Method::Fdm,
+        nodes: vec![[0.0; 3]; 6],
+        force_density: vec![1.0; 12],
+        self_stress_dim: 1,
+        prestressable: true,
+        prestress_stable: true,
+        residual: 0.0,
+        iterations: 1,
+        height: 1.0,
+        max_bar_length: 1.5,
+        prestress: 100.0,
+        member_force: Some(vec![1.0; 12]),
+        rest_length: Some(vec![1.0; 9]),
+        warnings: vec!["w".into()],
+    };
+    check_columns("formfind", &[report], &[]);
+}

@@ -121,6 +121,23 @@ pub fn drawing_figure(panels: Vec<Panel>) -> Figure {
     Figure::new(panels).with_panel_size(420, height)
 }
 
+/// A bar-and-string structure in two views, isometric and from above (x, y): bars blue,
+/// strings red, to scale (a found form of `formfind`, a scene).
+pub fn structure_figure(
+    title: &str,
+    nodes: &[Vector3<f64>],
+    bars: Vec<[usize; 2]>,
+    strings: Vec<[usize; 2]>,
+) -> Figure {
+    let groups = [
+        Group::new("bars", BLUE, bars),
+        Group::new("strings", RED, strings),
+    ];
+    let panels = [(View::Iso, "isometric"), (View::Xy, "top (x, y)")]
+        .map(|(view, name)| structure_panel(format!("{title}, {name}"), view, nodes, &groups));
+    drawing_figure(panels.into())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -80,6 +80,17 @@ pub enum IoError {
         #[source]
         source: CoreError,
     },
+    /// A topology file parsed, but the connectivity it describes is invalid.
+    #[error("{file}{}: {source}", line_suffix(*.line))]
+    InvalidTopology {
+        /// The file name.
+        file: String,
+        /// 1-based line of the offending item, when the error names one.
+        line: Option<usize>,
+        /// The form-finding crate's error (names the item).
+        #[source]
+        source: formfind::FormFindError,
+    },
     /// A `[[supports]]` entry gives both `directions` and `fixed`.
     #[error(
         "{file} (line {line}): support {support}: give either `directions` or `fixed`, not both"

@@ -15,6 +15,8 @@
 //! - [`sink`]: the outputs of a command — CSV tables, VTK series, whole files, figures, JSON —
 //!   opened (locked, temporary file created) before any work, streamed, renamed into place on
 //!   success, kept with an `# incomplete` trailer when the run is interrupted or fails;
+//! - [`topology`]: TOML topology files of form-finding (bars, strings, groups, fixed nodes)
+//!   read into a [`formfind::Topology`] with line-numbered errors, and written back;
 //! - [`read`]: input text files read under a size limit ([`read::MAX_SCENE_BYTES`]);
 //! - [`interrupt`]: the SIGINT / SIGTERM stop flag that long computations poll, and the open
 //!   sinks finished as incomplete when the process is interrupted.
@@ -39,6 +41,7 @@ pub mod interrupt;
 pub mod read;
 pub mod scene;
 pub mod sink;
+pub mod topology;
 pub mod trajectory;
 pub mod vtk;
 

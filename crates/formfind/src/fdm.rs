@@ -1,0 +1,413 @@
+//! The force density method.
+//!
+//! With force densities q (tension-positive, one per member, bars then strings) and the
+//! incidence matrix C (row k: −1 at the member's start node, +1 at its end node) the force
+//! density matrix is D = Cᵀ diag(q) C (n × n, symmetric, rows summing to zero). Nodal
+//! equilibrium without loads reads D X = 0 for the n × 3 coordinate matrix X = Nᵀ.
+//!
+//! **Free-standing** (no fixed nodes): X lies in the null space of D. The constant vector is
+//! always in it; a 3-D geometry needs rank deficiency ≥ d + 1 = 4. Any affine image of an
+//! equilibrium is again one, so the geometry is fixed by a normalisation:
+//!
+//! - with initial `nodes`, the null-space geometry closest to them in least squares:
+//!   X = Φ Φᵀ X₀ for an orthonormal null-space basis Φ (dense path). When the null space is
+//!   exactly 4-dimensional this is the affine image of any equilibrium closest to X₀, which is
+//!   also what the sparse path computes (below);
+//! - without them (or when that projection is flat), the canonical form: centroid at the
+//!   origin, the three non-constant null-space directions with the largest spread, taken
+//!   orthonormal (equal second moments), rotated to the principal axes of the bar vectors
+//!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive, and
+//!   scaled to a mean bar length of 1.
+//!
+//! The null space of a topology of up to [`DENSE_MAX_NODES`] nodes comes from the symmetric
+//! eigendecomposition of D: eigenvalues |λ| ≤ [`NULL_SPACE_TOLERANCE`] · max|λ| count as zero.
+//! Larger topologies never form D densely: four affinely independent anchor nodes are held at
+//! their initial positions, the sparse system D_ff X_f = −D_fa X_a is solved by sparse LU, the
+//! anchors' own rows of D X are checked to vanish (which proves rank deficiency ≥ 4), and the
+//! affine map closest in least squares to the initial nodes is applied.
+//!
+//! **Fixed nodes**: the free coordinates solve D_ff X_f = −D_fx X_x (sparse LU; D_ff is
+//! indefinite when bars are present).
+
+use crate::error::{FormFindError, Result};
+use crate::topology::Topology;
+use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3, Vector4};
+use tensegrity_core::linalg::{self, CscMatrix, SparseLu};
+
+/// Relative tolerance of the null space of D: |λ| ≤ tol · max|λ| counts as zero.
+pub const NULL_SPACE_TOLERANCE: f64 = 1e-9;
+
+/// Free-standing topologies up to this many nodes take the dense eigendecomposition of D;
+/// larger ones the sparse anchored solve.
+pub const DENSE_MAX_NODES: usize = 1200;
+
+/// Relative tolerance of a linear solve's residual, ‖D X‖ ≤ tol · ‖D‖ · ‖X‖.
+pub(crate) const SOLVE_TOLERANCE: f64 = 1e-8;
+
+/// The force density matrix D = Cᵀ diag(q) C of `topology` (n × n, both triangles stored),
+/// for force densities `q` (bars then strings).
+///
+/// ```
+/// use formfind::{force_density_matrix, Member, Topology};
+/// let t = Topology {
+///     n_nodes: 2,
+///     strings: vec![Member::new(0, 1)],
+///     ..Default::default()
+/// };
+/// let d = force_density_matrix(&t, &[2.0]).unwrap();
+/// assert_eq!(d.mul_vec(&[1.0, 0.0]), vec![2.0, -2.0]);
+/// ```
+pub fn force_density_matrix(topology: &Topology, q: &[f64]) -> Result<CscMatrix> {
+    if q.len() != topology.n_members() {
+        return Err(FormFindError::InvalidTopology {
+            item: "force_density".into(),
+            reason: format!(
+                "{} force densities for {} members",
+                q.len(),
+                topology.n_members()
+            ),
+        });
+    }
+    let mut t = Vec::with_capacity(4 * q.len());
+    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+        t.extend_from_slice(&[(i, i, qk), (j, j, qk), (i, j, -qk), (j, i, -qk)]);
+    }
+    Ok(CscMatrix::from_triplets(
+        topology.n_nodes,
+        topology.n_nodes,
+        &t,
+    )?)
+}
+
+/// D as a dense matrix (small topologies only).
+pub(crate) fn dense_matrix(pairs: &[[usize; 2]], q: &[f64], n: usize) -> DMatrix<f64> {
+    let mut d = DMatrix::zeros(n, n);
+    for (&[i, j], &qk) in pairs.iter().zip(q) {
+        d[(i, i)] += qk;
+        d[(j, j)] += qk;
+        d[(i, j)] -= qk;
+        d[(j, i)] -= qk;
+    }
+    d
+}
+
+/// The geometry of the force density method for force densities `q`.
+pub(crate) fn geometry(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
+    if !topology.fixed.is_empty() {
+        let fixed: Vec<(usize, Vector3<f64>)> = topology
+            .fixed
+            .iter()
+            .map(|f| (f.node, Vector3::from(f.position)))
+            .collect();
+        return fixed_solve(topology, q, &fixed);
+    }
+    if topology.n_nodes <= DENSE_MAX_NODES {
+        let d = dense_matrix(&topology.member_nodes(), q, topology.n_nodes);
+        let phi = null_space(&d)?;
+        return Ok(normalise(topology, &phi));
+    }
+    anchored(topology, q)
+}
+
+/// An orthonormal basis of the null space of D (n × k), or the rank-deficiency error.
+pub(crate) fn null_space(d: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    let (w, v) = linalg::symmetric_eigen(d)?;
+    let scale = w.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let tol = NULL_SPACE_TOLERANCE * scale;
+    let null: Vec<usize> = (0..w.len()).filter(|&i| w[i].abs() <= tol).collect();
+    if null.len() < 4 {
+        let mut by_size: Vec<f64> = w
+            .iter()
+            .map(|x| x.abs() / scale.max(f64::MIN_POSITIVE))
+            .collect();
+        by_size.sort_by(f64::total_cmp);
+        let shown: Vec<String> = by_size.iter().take(5).map(|x| format!("{x:.2e}")).collect();
+        return Err(FormFindError::RankDeficiency {
+            found: null.len(),
+            required: 4,
+            hint: format!(
+                "the smallest |eigenvalues| of D relative to the largest are [{}] (zero below \
+                 {NULL_SPACE_TOLERANCE:e}); change the force-density ratios (e.g. scale the \
+                 bars' group) or use the adaptive method, which finds admissible ones",
+                shown.join(", ")
+            ),
+        });
+    }
+    Ok(v.select_columns(&null))
+}
+
+/// Rows of an n × 3 matrix as points.
+fn points(x: &DMatrix<f64>) -> Vec<Vector3<f64>> {
+    (0..x.nrows())
+        .map(|i| Vector3::new(x[(i, 0)], x[(i, 1)], x[(i, 2)]))
+        .collect()
+}
+
+/// Whether the points span 3-D (smallest to largest principal spread above 1e-6).
+pub(crate) fn spans_3d(p: &[Vector3<f64>]) -> bool {
+    let c = centroid(p);
+    let mut m = Matrix3::zeros();
+    for x in p {
+        let d = x - c;
+        m += d * d.transpose();
+    }
+    let e = m.symmetric_eigenvalues();
+    let (lo, hi) = (e.min(), e.max());
+    hi > 0.0 && lo > 1e-12 * hi
+}
+
+/// The centroid of the points.
+pub(crate) fn centroid(p: &[Vector3<f64>]) -> Vector3<f64> {
+    p.iter().sum::<Vector3<f64>>() / p.len().max(1) as f64
+}
+
+/// The normalised geometry of a null-space basis (see the module docs).
+pub(crate) fn normalise(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<f64>> {
+    if let Some(x0) = &topology.nodes {
+        let x0 = DMatrix::from_fn(x0.len(), 3, |i, j| x0[i][j]);
+        let x = phi * (phi.transpose() * &x0);
+        let p = points(&x);
+        if spans_3d(&p) {
+            return p;
+        }
+    }
+    canonical(topology, phi)
+}
+
+/// The canonical geometry of a null-space basis (module docs).
+fn canonical(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<f64>> {
+    let n = phi.nrows();
+    let mut c = phi.clone();
+    for mut col in c.column_iter_mut() {
+        let mean = col.sum() / n as f64;
+        col.add_scalar_mut(-mean);
+    }
+    // The three directions of largest spread of the centred null space, orthonormal.
+    let (u, _) = match linalg::svd(&c) {
+        Ok(s) => (s.u, s.s),
+        Err(_) => return vec![Vector3::zeros(); n],
+    };
+    let x = u.columns(0, 3).into_owned();
+    let p = points(&x);
+    orient_and_scale(topology, p)
+}
+
+/// Rotates to the principal axes of the bar vectors and scales to a mean bar length of 1.
+pub(crate) fn orient_and_scale(topology: &Topology, mut p: Vec<Vector3<f64>>) -> Vec<Vector3<f64>> {
+    let pairs = topology.member_nodes();
+    let used: Vec<[usize; 2]> = if topology.bars.is_empty() {
+        pairs
+    } else {
+        pairs[..topology.bars.len()].to_vec()
+    };
+    let mut m = Matrix3::zeros();
+    let mut mean = 0.0;
+    for &[i, j] in &used {
+        let b = p[j] - p[i];
+        m += b * b.transpose();
+        mean += b.norm();
+    }
+    mean /= used.len().max(1) as f64;
+    let eig = m.symmetric_eigen();
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&a, &b| eig.eigenvalues[b].total_cmp(&eig.eigenvalues[a]));
+    let mut r = Matrix3::zeros();
+    for (col, &k) in order.iter().enumerate() {
+        r.set_column(col, &eig.eigenvectors.column(k));
+    }
+    let scale = if mean > 0.0 { 1.0 / mean } else { 1.0 };
+    for x in p.iter_mut() {
+        *x = r.transpose() * *x * scale;
+    }
+    let size = p.iter().fold(0.0f64, |a, x| a.max(x.amax()));
+    for axis in 0..3 {
+        let first = p.iter().map(|x| x[axis]).find(|v| v.abs() > 1e-6 * size);
+        if first.is_some_and(|v| v < 0.0) {
+            for x in p.iter_mut() {
+                x[axis] = -x[axis];
+            }
+        }
+    }
+    p
+}
+
+/// The free coordinates with `fixed` nodes held: D_ff X_f = −D_fx X_x by sparse LU.
+pub(crate) fn fixed_solve(
+    topology: &Topology,
+    q: &[f64],
+    fixed: &[(usize, Vector3<f64>)],
+) -> Result<Vec<Vector3<f64>>> {
+    let n = topology.n_nodes;
+    let mut position: Vec<Option<Vector3<f64>>> = vec![None; n];
+    for &(i, x) in fixed {
+        position[i] = Some(x);
+    }
+    let mut free_index = vec![usize::MAX; n];
+    let mut free = Vec::new();
+    for i in 0..n {
+        if position[i].is_none() {
+            free_index[i] = free.len();
+            free.push(i);
+        }
+    }
+    if free.is_empty() {
+        return Ok(position
+            .into_iter()
+            .map(|p| p.unwrap_or_default())
+            .collect());
+    }
+    let nf = free.len();
+    let mut t = Vec::new();
+    let mut rhs = vec![Vector3::zeros(); nf];
+    let mut dmax = 0.0f64;
+    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+        dmax = dmax.max(qk.abs());
+        for (a, b) in [(i, j), (j, i)] {
+            if position[a].is_some() {
+                continue;
+            }
+            let fa = free_index[a];
+            t.push((fa, fa, qk));
+            match position[b] {
+                Some(xb) => rhs[fa] += qk * xb,
+                None => t.push((fa, free_index[b], -qk)),
+            }
+        }
+    }
+    let singular = |detail: String| FormFindError::SingularSystem {
+        hint: format!(
+            "D_ff of the {nf} free nodes is singular ({detail}): the fixed nodes do not \
+             determine the free ones with these force densities; fix more nodes or change \
+             the force densities"
+        ),
+    };
+    let a = CscMatrix::from_triplets(nf, nf, &t)?;
+    let mut lu = SparseLu::new(&a).map_err(|e| singular(e.to_string()))?;
+    let mut x = vec![Vector3::zeros(); nf];
+    for axis in 0..3 {
+        let mut b: Vec<f64> = rhs.iter().map(|r| r[axis]).collect();
+        lu.solve_in_place(&mut b);
+        for (xi, bi) in x.iter_mut().zip(&b) {
+            xi[axis] = *bi;
+        }
+    }
+    // Residual of the solve.
+    let size = x
+        .iter()
+        .chain(fixed.iter().map(|(_, p)| p))
+        .fold(0.0f64, |a, p| a.max(p.amax()));
+    let mut res = 0.0f64;
+    for axis in 0..3 {
+        let xa: Vec<f64> = x.iter().map(|p| p[axis]).collect();
+        let ax = a.mul_vec(&xa);
+        for (k, v) in ax.iter().enumerate() {
+            res = res.max((v - rhs[k][axis]).abs());
+        }
+    }
+    if !size.is_finite() || !res.is_finite() || res > SOLVE_TOLERANCE * dmax * size.max(1e-300) {
+        return Err(singular(format!("solve residual {res:.2e}")));
+    }
+    for (k, &i) in free.iter().enumerate() {
+        position[i] = Some(x[k]);
+    }
+    Ok(position
+        .into_iter()
+        .map(|p| p.unwrap_or_default())
+        .collect())
+}
+
+/// Four affinely independent nodes, well spread: the farthest from the centroid, the
+/// farthest from it, the farthest from their line, the farthest from their plane.
+pub(crate) fn anchors(p: &[Vector3<f64>]) -> Option<[usize; 4]> {
+    let c = centroid(p);
+    let argmax = |f: &dyn Fn(&Vector3<f64>) -> f64| {
+        (0..p.len())
+            .max_by(|&a, &b| f(&p[a]).total_cmp(&f(&p[b])))
+            .unwrap_or(0)
+    };
+    let a0 = argmax(&|x| (x - c).norm());
+    let a1 = argmax(&|x| (x - p[a0]).norm());
+    let e = (p[a1] - p[a0]).normalize();
+    let a2 = argmax(&|x| {
+        let d = x - p[a0];
+        (d - e * e.dot(&d)).norm()
+    });
+    let nrm = (p[a1] - p[a0]).cross(&(p[a2] - p[a0]));
+    if nrm.norm() == 0.0 {
+        return None;
+    }
+    let nrm = nrm.normalize();
+    let a3 = argmax(&|x| (x - p[a0]).dot(&nrm).abs());
+    let size = (p[a1] - p[a0]).norm();
+    if (p[a3] - p[a0]).dot(&nrm).abs() <= 1e-9 * size {
+        return None;
+    }
+    Some([a0, a1, a2, a3])
+}
+
+/// The sparse free-standing path (module docs).
+fn anchored(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
+    let x0 = topology
+        .initial_nodes()
+        .ok_or_else(|| FormFindError::Unsupported {
+            what: format!(
+                "a free-standing topology of {} nodes (over {DENSE_MAX_NODES}) without initial \
+             nodes: give `nodes` as a guess, so the sparse path can anchor the affine freedom",
+                topology.n_nodes
+            ),
+        })?;
+    let a = anchors(&x0).ok_or_else(|| FormFindError::InvalidTopology {
+        item: "nodes".into(),
+        reason: "the initial nodes are coplanar; a 3-D guess is needed".into(),
+    })?;
+    let fixed: Vec<(usize, Vector3<f64>)> = a.iter().map(|&i| (i, x0[i])).collect();
+    let x = fixed_solve(topology, q, &fixed)?;
+    // The anchors' own rows must vanish too: then D X = 0 everywhere.
+    let mut f = vec![Vector3::zeros(); topology.n_nodes];
+    let mut qmax = 0.0f64;
+    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+        let m = qk * (x[j] - x[i]);
+        f[i] += m;
+        f[j] -= m;
+        qmax = qmax.max(qk.abs());
+    }
+    let size = x.iter().fold(0.0f64, |s, p| s.max(p.amax()));
+    let res = a.iter().fold(0.0f64, |s, &i| s.max(f[i].amax()));
+    if res > SOLVE_TOLERANCE * qmax * size {
+        return Err(FormFindError::RankDeficiency {
+            found: 3,
+            required: 4,
+            hint: format!(
+                "with four nodes anchored the anchors stay out of balance (residual \
+                 {:.2e} relative): the force densities admit no free-standing 3-D form; \
+                 change their ratios",
+                res / (qmax * size)
+            ),
+        });
+    }
+    Ok(affine_fit(&x, &x0))
+}
+
+/// The affine image of `x` closest to `x0` in least squares.
+pub(crate) fn affine_fit(x: &[Vector3<f64>], x0: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
+    let c = centroid(x);
+    let mut g = Matrix4::zeros();
+    let mut r = nalgebra::Matrix4x3::zeros();
+    for (p, t) in x.iter().zip(x0) {
+        let d = p - c;
+        let y = Vector4::new(d.x, d.y, d.z, 1.0);
+        g += y * y.transpose();
+        r += y * t.transpose();
+    }
+    let Some(chol) = g.cholesky() else {
+        return x.to_vec();
+    };
+    let m = chol.solve(&r);
+    x.iter()
+        .map(|p| {
+            let d = p - c;
+            let y = Vector4::new(d.x, d.y, d.z, 1.0);
+            m.transpose() * y
+        })
+        .collect()
+}

@@ -1,0 +1,724 @@
+//! TOML topology files of form-finding: a connectivity (bars, strings, optional node
+//! positions as the initial guess, groups sharing a force density, fixed nodes) read into a
+//! [`formfind::Topology`], and written back ([`to_toml`]).
+//!
+//! ```toml
+//! n_nodes = 6                    # optional: given by `nodes`, else the largest index + 1
+//! nodes = [[1.0, 0.0, 0.0], …]   # optional: initial or reference positions (m), one per node
+//! [groups.vertical]
+//! force_density = 1.0            # N/m, tension-positive (optional)
+//! length = 1.2                   # m, target length (optional)
+//! [[bars]]
+//! nodes = [0, 3]                 # exactly two node indices (0-based)
+//! force_density = -1.0           # N/m (a bar's is negative), optional
+//! group = "bars"                 # optional: takes the group's force density and length
+//! length = 1.5                   # m, optional target (rest) length
+//! stiffness = 1e5                # N, optional axial stiffness EA
+//! [[strings]]
+//! nodes = [0, 1]                 # same keys as a bar; a string's force density is positive
+//! [[fixed]]
+//! node = 0
+//! position = [0.0, 0.0, 0.0]     # m
+//! ```
+//!
+//! Members are numbered bars first, then strings, in file order (the order of the force
+//! densities a form-finding reports). The reader is strict: unknown keys, a member without
+//! exactly two indices, an index past the last node, a member joining a node to itself, two
+//! members on the same pair of nodes, an unknown or unused group, a force density of the
+//! wrong sign (a bar's q < 0, a string's q > 0, tension-positive) or given both by a member
+//! and its group, a node on no member, a node fixed twice and any non-finite number are
+//! refused; every error names the file, the line and the item (`bars[3]`, `strings[0].group`,
+//! `groups.top`, `fixed[1]`).
+//!
+//! ```
+//! use tensegrity_io::topology::{from_str_named, to_toml};
+//! let text = "[[bars]]\nnodes = [0, 2]\n[[bars]]\nnodes = [1, 3]\n\
+//!             [[strings]]\nnodes = [0, 1]\n[[strings]]\nnodes = [1, 2]\n\
+//!             [[strings]]\nnodes = [2, 3]\n[[strings]]\nnodes = [3, 0]\n";
+//! let t = from_str_named(text, "x-module.toml")?;
+//! assert_eq!((t.n_nodes, t.bars.len(), t.strings.len()), (4, 2, 4));
+//! assert_eq!(from_str_named(&to_toml(&t), "again")?, t);
+//! let bad = text.replace("nodes = [3, 0]", "nodes = [3, 0, 1]");
+//! let e = from_str_named(&bad, "x-module.toml").unwrap_err().to_string();
+//! assert!(e.contains("x-module.toml") && e.contains("line 11") && e.contains("strings[3]"), "{e}");
+//! # Ok::<(), tensegrity_io::IoError>(())
+//! ```
+
+use crate::error::{IoError, Result};
+use crate::scene::line_column;
+use formfind::{FixedNode, FormFindError, Group, Member, Topology};
+use serde::Deserialize;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use toml::Spanned;
+
+/// The raw contents of a topology file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TopologyFile {
+    /// Number of nodes (optional: from `nodes`, else the largest index + 1).
+    pub n_nodes: Option<Spanned<usize>>,
+    /// Initial or reference positions (m), one per node.
+    pub nodes: Option<Spanned<Vec<Spanned<[f64; 3]>>>>,
+    /// Bars.
+    #[serde(default)]
+    pub bars: Vec<Spanned<MemberSpec>>,
+    /// Strings.
+    #[serde(default)]
+    pub strings: Vec<Spanned<MemberSpec>>,
+    /// Groups by name.
+    #[serde(default)]
+    pub groups: BTreeMap<String, Spanned<GroupSpec>>,
+    /// Fixed nodes.
+    #[serde(default)]
+    pub fixed: Vec<Spanned<FixedSpec>>,
+}
+
+/// A `[[bars]]` or `[[strings]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MemberSpec {
+    /// Start and end node (exactly two).
+    pub nodes: Vec<usize>,
+    /// Force density (N/m, tension-positive).
+    pub force_density: Option<f64>,
+    /// Group name.
+    pub group: Option<String>,
+    /// Target length (m).
+    pub length: Option<f64>,
+    /// Axial stiffness EA (N).
+    pub stiffness: Option<f64>,
+}
+
+/// A `[groups.NAME]` table.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSpec {
+    /// Force density of every member of the group (N/m, tension-positive).
+    pub force_density: Option<f64>,
+    /// Target length of every member of the group (m).
+    pub length: Option<f64>,
+}
+
+/// A `[[fixed]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixedSpec {
+    /// The node.
+    pub node: usize,
+    /// Its coordinates (m).
+    pub position: [f64; 3],
+}
+
+/// Reads a topology file (at most [`crate::read::MAX_SCENE_BYTES`]); errors name the file,
+/// the line and the item.
+pub fn from_path(path: &Path) -> Result<Topology> {
+    let text = crate::read::read_text(path, crate::read::MAX_SCENE_BYTES, "a topology file")?;
+    from_str_named(&text, &path.display().to_string())
+}
+
+/// Parses and checks topology text; `name` labels the errors (module docs).
+pub fn from_str_named(text: &str, name: &str) -> Result<Topology> {
+    let file: TopologyFile = toml::from_str(text).map_err(|e| {
+        let (line, column) = line_column(text, e.span().map_or(0, |s| s.start));
+        IoError::Parse {
+            file: name.to_string(),
+            line,
+            column,
+            message: e.message().trim_end().to_string(),
+        }
+    })?;
+    file.topology()
+        .map_err(|(at, source)| IoError::InvalidTopology {
+            file: name.to_string(),
+            line: at.map(|start| line_column(text, start).0),
+            source,
+        })
+}
+
+/// A failed check: the byte offset of the item (where known) and the error naming it.
+type Failed = (Option<usize>, FormFindError);
+
+fn bad(at: Option<usize>, item: impl Into<String>, reason: impl Into<String>) -> Failed {
+    let (item, reason) = (item.into(), reason.into());
+    (at, FormFindError::InvalidTopology { item, reason })
+}
+
+fn finite(at: usize, item: String, x: Option<f64>, positive: bool) -> Result<(), Failed> {
+    match x {
+        Some(v) if !v.is_finite() => Err(bad(Some(at), item, format!("{v} must be finite"))),
+        Some(v) if positive && v <= 0.0 => {
+            Err(bad(Some(at), item, format!("{v} must be positive")))
+        }
+        _ => Ok(()),
+    }
+}
+
+impl TopologyFile {
+    /// The members with their names (`bars[i]`, `strings[j]`) and whether each is a bar.
+    fn members(&self) -> impl Iterator<Item = (String, bool, &Spanned<MemberSpec>)> {
+        let bars = self.bars.iter().enumerate();
+        let strings = self.strings.iter().enumerate();
+        bars.map(|(i, m)| (format!("bars[{i}]"), true, m))
+            .chain(strings.map(|(i, m)| (format!("strings[{i}]"), false, m)))
+    }
+
+    /// The checked topology, or the offset of the offending item and its error.
+    pub fn topology(&self) -> Result<Topology, Failed> {
+        self.check_groups()?;
+        let n_nodes = self.node_count()?;
+        let mut members = (Vec::new(), Vec::new());
+        let mut pairs: HashMap<[usize; 2], String> = HashMap::new();
+        let mut used = vec![false; n_nodes];
+        for (name, is_bar, spanned) in self.members() {
+            let member = self.member(&name, is_bar, spanned, n_nodes)?;
+            let [a, b] = member.nodes;
+            (used[a], used[b]) = (true, true);
+            if let Some(first) = pairs.insert([a.min(b), a.max(b)], name.clone()) {
+                let reason =
+                    format!("joins nodes {a} and {b}, as {first} does (a member listed twice)");
+                return Err(bad(Some(spanned.span().start), name, reason));
+            }
+            if is_bar {
+                &mut members.0
+            } else {
+                &mut members.1
+            }
+            .push(member);
+        }
+        if let Some(unused) = self.groups.iter().find(|(g, _)| {
+            !self
+                .members()
+                .any(|(_, _, m)| m.get_ref().group.as_deref() == Some(g.as_str()))
+        }) {
+            let reason = "no member is in this group";
+            return Err(bad(
+                Some(unused.1.span().start),
+                format!("groups.{}", unused.0),
+                reason,
+            ));
+        }
+        if let Some(node) = used.iter().position(|u| !u) {
+            return Err(self.unused_node(node, n_nodes));
+        }
+        let fixed = self.fixed_nodes(n_nodes)?;
+        let nodes = self
+            .nodes
+            .as_ref()
+            .map(|v| v.get_ref().iter().map(|p| *p.get_ref()).collect());
+        let groups = self.groups.iter().map(|(name, g)| {
+            let g = g.get_ref();
+            let group = Group {
+                force_density: g.force_density,
+                length: g.length,
+            };
+            (name.clone(), group)
+        });
+        let topology = Topology {
+            n_nodes,
+            nodes,
+            bars: members.0,
+            strings: members.1,
+            groups: groups.collect(),
+            fixed,
+        };
+        topology.validate().map_err(|e| (self.offset_of(&e), e))?;
+        Ok(topology)
+    }
+
+    /// Finite force densities and positive lengths in every group.
+    fn check_groups(&self) -> Result<(), Failed> {
+        for (name, g) in &self.groups {
+            let (at, spec) = (g.span().start, g.get_ref());
+            finite(
+                at,
+                format!("groups.{name}.force_density"),
+                spec.force_density,
+                false,
+            )?;
+            finite(at, format!("groups.{name}.length"), spec.length, true)?;
+        }
+        Ok(())
+    }
+
+    /// The number of nodes: `n_nodes`, the positions given, or the largest index + 1.
+    fn node_count(&self) -> Result<usize, Failed> {
+        let largest = self
+            .members()
+            .flat_map(|(_, _, m)| m.get_ref().nodes.iter().copied())
+            .chain(self.fixed.iter().map(|f| f.get_ref().node))
+            .max();
+        let given = self
+            .nodes
+            .as_ref()
+            .map(|n| (n.get_ref().len(), n.span().start));
+        match (&self.n_nodes, given) {
+            (Some(n), Some((len, at))) if *n.get_ref() != len => Err(bad(
+                Some(at),
+                "nodes",
+                format!("{len} positions for n_nodes = {}", n.get_ref()),
+            )),
+            (Some(n), _) => Ok(*n.get_ref()),
+            (None, Some((len, _))) => Ok(len),
+            (None, None) => match largest {
+                Some(i) => Ok(i + 1),
+                None => Err(bad(None, "bars", "the topology has no member")),
+            },
+        }
+    }
+
+    /// One member, checked: two indices in range, finite numbers, a known group, the sign of
+    /// its force density.
+    fn member(
+        &self,
+        name: &str,
+        is_bar: bool,
+        spanned: &Spanned<MemberSpec>,
+        n_nodes: usize,
+    ) -> Result<Member, Failed> {
+        let (at, m) = (spanned.span().start, spanned.get_ref());
+        let nodes: [usize; 2] = m.nodes.as_slice().try_into().map_err(|_| {
+            let reason = format!(
+                "`nodes` must hold exactly two node indices, got {} ({:?})",
+                m.nodes.len(),
+                m.nodes
+            );
+            bad(Some(at), name, reason)
+        })?;
+        if let Some(&i) = nodes.iter().find(|&&i| i >= n_nodes) {
+            let reason = format!("node {i} out of range (the topology has {n_nodes} nodes)");
+            return Err(bad(Some(at), name, reason));
+        }
+        if nodes[0] == nodes[1] {
+            return Err(bad(
+                Some(at),
+                name,
+                format!("both ends on node {}", nodes[0]),
+            ));
+        }
+        finite(at, format!("{name}.force_density"), m.force_density, false)?;
+        finite(at, format!("{name}.length"), m.length, true)?;
+        finite(at, format!("{name}.stiffness"), m.stiffness, true)?;
+        let group_q = match &m.group {
+            Some(g) => match self.groups.get(g) {
+                Some(spec) => spec.get_ref().force_density,
+                None => {
+                    let reason = format!("no group named \"{g}\" (no [groups.{g}] table)");
+                    return Err(bad(Some(at), format!("{name}.group"), reason));
+                }
+            },
+            None => None,
+        };
+        if let (Some(q), Some(g)) = (m.force_density.and(group_q), &m.group) {
+            let reason =
+                format!("{q}: the group \"{g}\" gives the force density already; give it once");
+            return Err(bad(Some(at), format!("{name}.force_density"), reason));
+        }
+        if let Some(q) = m.force_density.or(group_q) {
+            let (kind, sign) = if is_bar {
+                ("bar", "negative")
+            } else {
+                ("string", "positive")
+            };
+            if (is_bar && q >= 0.0) || (!is_bar && q <= 0.0) {
+                let from = m.group.as_ref().filter(|_| m.force_density.is_none());
+                let item = from.map_or(format!("{name}.force_density"), |g| {
+                    format!("groups.{g}.force_density")
+                });
+                let reason = format!(
+                    "{q}: a {kind}'s force density (tension-positive) must be {sign} ({name})"
+                );
+                let at = from.map_or(at, |g| self.groups[g].span().start);
+                return Err(bad(Some(at), item, reason));
+            }
+        }
+        Ok(Member {
+            nodes,
+            force_density: m.force_density,
+            group: m.group.clone(),
+            length: m.length,
+            stiffness: m.stiffness,
+        })
+    }
+
+    /// The fixed nodes, checked: in range, finite, each node once.
+    fn fixed_nodes(&self, n_nodes: usize) -> Result<Vec<FixedNode>, Failed> {
+        let mut seen: HashMap<usize, usize> = HashMap::new();
+        let mut fixed = Vec::with_capacity(self.fixed.len());
+        for (i, f) in self.fixed.iter().enumerate() {
+            let (at, spec) = (Some(f.span().start), f.get_ref());
+            let item = format!("fixed[{i}]");
+            if spec.node >= n_nodes {
+                let reason = format!(
+                    "node {} out of range (the topology has {n_nodes} nodes)",
+                    spec.node
+                );
+                return Err(bad(at, item, reason));
+            }
+            if spec.position.iter().any(|x| !x.is_finite()) {
+                let reason = format!("{:?} must be finite", spec.position);
+                return Err(bad(at, format!("{item}.position"), reason));
+            }
+            if let Some(first) = seen.insert(spec.node, i) {
+                let reason = format!("node {} is fixed already by fixed[{first}]", spec.node);
+                return Err(bad(at, item, reason));
+            }
+            fixed.push(FixedNode {
+                node: spec.node,
+                position: spec.position,
+            });
+        }
+        Ok(fixed)
+    }
+
+    /// The error of a node on no member: where the count of nodes was inferred, the member
+    /// with the largest index (a typo there leaves the nodes below it unused), else the node.
+    fn unused_node(&self, node: usize, n_nodes: usize) -> Failed {
+        let inferred = self.n_nodes.is_none() && self.nodes.is_none();
+        let last = self
+            .members()
+            .find(|(_, _, m)| m.get_ref().nodes.contains(&(n_nodes - 1)));
+        match last {
+            Some((name, _, m)) if inferred => {
+                let reason = format!(
+                    "node {} makes the topology {n_nodes} nodes (the largest index + 1), and node {node} is on no member; fix the index or give `n_nodes`",
+                    n_nodes - 1
+                );
+                bad(Some(m.span().start), name, reason)
+            }
+            _ => bad(
+                self.node_span(node),
+                format!("nodes[{node}]"),
+                "the node is on no member",
+            ),
+        }
+    }
+
+    /// The offset of node `i`'s position, if positions are given.
+    fn node_span(&self, i: usize) -> Option<usize> {
+        Some(self.nodes.as_ref()?.get_ref().get(i)?.span().start)
+    }
+
+    /// The offset of the item an error of [`Topology::validate`] names (`nodes[3]`,
+    /// `bars[2].length`, `fixed[0]`, …).
+    fn offset_of(&self, e: &FormFindError) -> Option<usize> {
+        let FormFindError::InvalidTopology { item, .. } = e else {
+            return None;
+        };
+        let head = item.split('.').next()?;
+        let (kind, index) = head.split_once('[')?;
+        let index: usize = index.strip_suffix(']')?.parse().ok()?;
+        match kind {
+            "bars" => Some(self.bars.get(index)?.span().start),
+            "strings" => Some(self.strings.get(index)?.span().start),
+            "fixed" => Some(self.fixed.get(index)?.span().start),
+            "nodes" => self.node_span(index),
+            _ => None,
+        }
+    }
+}
+
+/// Writes a topology as TOML that [`from_str_named`] reads back exactly (shortest
+/// round-trip number formatting).
+pub fn to_toml(t: &Topology) -> String {
+    use std::fmt::Write;
+    let mut out = format!("n_nodes = {}\n", t.n_nodes);
+    let v3 = |p: &[f64; 3]| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]);
+    if let Some(nodes) = &t.nodes {
+        out.push_str("nodes = [\n");
+        for p in nodes {
+            let _ = writeln!(out, "  {},", v3(p));
+        }
+        out.push_str("]\n");
+    }
+    for (name, g) in &t.groups {
+        let _ = writeln!(out, "\n[groups.{}]", toml_key(name));
+        if let Some(q) = g.force_density {
+            let _ = writeln!(out, "force_density = {q:?}");
+        }
+        if let Some(l) = g.length {
+            let _ = writeln!(out, "length = {l:?}");
+        }
+    }
+    for (table, members) in [("bars", &t.bars), ("strings", &t.strings)] {
+        for m in members {
+            let _ = write!(
+                out,
+                "\n[[{table}]]\nnodes = [{}, {}]\n",
+                m.nodes[0], m.nodes[1]
+            );
+            if let Some(q) = m.force_density {
+                let _ = writeln!(out, "force_density = {q:?}");
+            }
+            if let Some(g) = &m.group {
+                let _ = writeln!(out, "group = {}", toml_string(g));
+            }
+            if let Some(l) = m.length {
+                let _ = writeln!(out, "length = {l:?}");
+            }
+            if let Some(k) = m.stiffness {
+                let _ = writeln!(out, "stiffness = {k:?}");
+            }
+        }
+    }
+    for f in &t.fixed {
+        let _ = write!(
+            out,
+            "\n[[fixed]]\nnode = {}\nposition = {}\n",
+            f.node,
+            v3(&f.position)
+        );
+    }
+    out
+}
+
+/// A TOML string literal (quotes and backslashes escaped).
+fn toml_string(s: &str) -> String {
+    toml::Value::String(s.to_string()).to_string()
+}
+
+/// A table key: bare when it can be, else quoted.
+fn toml_key(s: &str) -> String {
+    let bare = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if bare {
+        s.to_string()
+    } else {
+        toml_string(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PRISM: &str = r#"
+nodes = [[1.0, 0.0, 0.0], [-0.5, 0.866, 0.0], [-0.5, -0.866, 0.0],
+         [1.0, 0.0, 1.0], [-0.5, 0.866, 1.0], [-0.5, -0.866, 1.0]]
+[groups.vertical]
+force_density = 1.0
+[groups.bars]
+length = 1.5
+[[bars]]
+nodes = [0, 3]
+group = "bars"
+[[bars]]
+nodes = [1, 4]
+group = "bars"
+[[bars]]
+nodes = [2, 5]
+group = "bars"
+stiffness = 2e5
+[[strings]]
+nodes = [0, 1]
+force_density = 0.577
+[[strings]]
+nodes = [1, 2]
+[[strings]]
+nodes = [2, 0]
+[[strings]]
+nodes = [3, 4]
+[[strings]]
+nodes = [4, 5]
+[[strings]]
+nodes = [5, 3]
+[[strings]]
+nodes = [0, 5]
+group = "vertical"
+[[strings]]
+nodes = [1, 3]
+group = "vertical"
+[[strings]]
+nodes = [2, 4]
+group = "vertical"
+length = 1.2
+[[fixed]]
+node = 0
+position = [1.0, 0.0, 0.0]
+"#;
+
+    fn err(text: &str) -> String {
+        from_str_named(text, "t.toml").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_prism_reads_in_file_order_and_round_trips() {
+        let t = from_str_named(PRISM, "prism.toml").unwrap();
+        assert_eq!((t.n_nodes, t.bars.len(), t.strings.len()), (6, 3, 9));
+        assert_eq!(t.bars[2].stiffness, Some(2e5));
+        assert_eq!(t.strings[0].force_density, Some(0.577));
+        assert_eq!(t.strings[8].length, Some(1.2));
+        assert_eq!(t.groups["vertical"].force_density, Some(1.0));
+        assert_eq!(t.groups["bars"].length, Some(1.5));
+        assert_eq!(
+            t.fixed,
+            vec![FixedNode {
+                node: 0,
+                position: [1.0, 0.0, 0.0]
+            }]
+        );
+        let names: Vec<String> = (0..12).map(|k| t.member_name(k)).collect();
+        assert_eq!(
+            (names[0].as_str(), names[3].as_str()),
+            ("bars[0]", "strings[0]")
+        );
+        let text = to_toml(&t);
+        assert_eq!(from_str_named(&text, "again").unwrap(), t);
+        // odd numbers and group names survive too
+        let mut odd = t.clone();
+        odd.nodes.as_mut().unwrap()[4] = [1.0 / 3.0, -1e-300, 6.02e23];
+        let g = odd.groups.remove("vertical").unwrap();
+        odd.groups.insert("vertical \"v\" strings".into(), g);
+        for s in &mut odd.strings[6..] {
+            s.group = Some("vertical \"v\" strings".into());
+        }
+        assert_eq!(from_str_named(&to_toml(&odd), "odd").unwrap(), odd);
+    }
+
+    #[test]
+    fn the_node_count_is_given_or_inferred() {
+        let body =
+            "[[bars]]\nnodes = [0, 2]\n[[strings]]\nnodes = [0, 1]\n[[strings]]\nnodes = [1, 2]\n";
+        assert_eq!(from_str_named(body, "t").unwrap().n_nodes, 3);
+        let e = err(&format!("n_nodes = 4\n{body}"));
+        assert!(e.contains("nodes[3]") && e.contains("on no member"), "{e}");
+        let e = err(&format!("n_nodes = 2\n{body}"));
+        assert!(
+            e.contains("line 2") && e.contains("bars[0]") && e.contains("node 2 out of range"),
+            "{e}"
+        );
+        let e = err(&format!("n_nodes = 3\nnodes = [[0.0, 0.0, 0.0]]\n{body}"));
+        assert!(
+            e.contains("line 2") && e.contains("1 positions for n_nodes = 3"),
+            "{e}"
+        );
+        let e = err("");
+        assert!(e.contains("no member"), "{e}");
+    }
+
+    #[test]
+    fn every_bad_item_is_named_with_its_line() {
+        let cases: &[(&str, &str, &[&str])] = &[
+            (
+                "nodes = [0, 3]\ngroup",
+                "nodes = [0, 3, 4]\ngroup",
+                &["line 8", "bars[0]", "exactly two"],
+            ),
+            (
+                "nodes = [2, 0]\n",
+                "nodes = [1, 0]\n",
+                &["line 23", "strings[2]", "as strings[0] does"],
+            ),
+            (
+                "nodes = [2, 0]\n",
+                "nodes = [3, 0]\n",
+                &["line 23", "strings[2]", "as bars[0] does"],
+            ),
+            (
+                "nodes = [5, 3]\n",
+                "nodes = [5, 5]\n",
+                &["line 29", "strings[5]", "both ends on node 5"],
+            ),
+            (
+                "group = \"vertical\"\nlength",
+                "group = \"verticals\"\nlength",
+                &["line 37", "strings[8].group", "verticals"],
+            ),
+            (
+                "force_density = 0.577",
+                "force_density = nan",
+                &["line 18", "strings[0].force_density", "finite"],
+            ),
+            (
+                "force_density = 0.577",
+                "force_density = -0.5",
+                &["line 18", "strings[0].force_density", "positive"],
+            ),
+            (
+                "force_density = 1.0",
+                "force_density = -1.0",
+                &["line 4", "groups.vertical.force_density", "strings[6]"],
+            ),
+            (
+                "length = 1.5",
+                "length = -1.5",
+                &["line 6", "groups.bars.length", "positive"],
+            ),
+            (
+                "length = 1.2",
+                "length = inf",
+                &["line 37", "strings[8].length", "finite"],
+            ),
+            (
+                "stiffness = 2e5",
+                "stiffness = 0.0",
+                &["line 14", "bars[2].stiffness", "positive"],
+            ),
+            (
+                "[[fixed]]\nnode = 0",
+                "[[fixed]]\nnode = 9",
+                &["line 41", "fixed[0]", "node 9 out of range"],
+            ),
+            (
+                "position = [1.0, 0.0, 0.0]",
+                "position = [1.0, nan, 0.0]",
+                &["line 41", "fixed[0].position"],
+            ),
+            (
+                "position = [1.0, 0.0, 0.0]",
+                "position = [1.0, 0.0, 0.0]\n[[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]",
+                &["line 44", "fixed[1]", "fixed already by fixed[0]"],
+            ),
+            (
+                "[-0.5, 0.866, 1.0]",
+                "[-0.5, inf, 1.0]",
+                &["line 3", "nodes[4]", "finite"],
+            ),
+            (
+                "stiffness = 2e5",
+                "stiffness = 2e5\nmass = 1.0",
+                &["line 18", "unknown field `mass`"],
+            ),
+            (
+                "[[fixed]]",
+                "[[fixes]]",
+                &["line 41", "unknown field `fixes`"],
+            ),
+            (
+                "nodes = [0, 1]\nforce",
+                "nodes = [0, -1]\nforce",
+                &["line 19", "expected usize"],
+            ),
+        ];
+        for (from, to, wants) in cases {
+            assert!(PRISM.contains(from), "{from}");
+            let e = err(&PRISM.replacen(from, to, 1));
+            assert!(e.starts_with("t.toml"), "{e}");
+            for w in *wants {
+                assert!(e.contains(w), "{from} → {to}: {e}");
+            }
+        }
+        // a group no member is in, a force density given twice, a bar in tension
+        let e = err(&PRISM.replace("[groups.bars]", "[groups.spare]\n[groups.bars]"));
+        assert!(e.contains("groups.spare") && e.contains("no member"), "{e}");
+        let e = err(&PRISM.replacen(
+            "nodes = [2, 4]\ngroup = \"vertical\"",
+            "nodes = [2, 4]\ngroup = \"vertical\"\nforce_density = 1.0",
+            1,
+        ));
+        assert!(
+            e.contains("strings[8].force_density") && e.contains("give it once"),
+            "{e}"
+        );
+        let e = err(&PRISM.replacen(
+            "nodes = [1, 4]\ngroup = \"bars\"",
+            "nodes = [1, 4]\nforce_density = 2.0",
+            1,
+        ));
+        assert!(
+            e.contains("line 11") && e.contains("bars[1].force_density") && e.contains("negative"),
+            "{e}"
+        );
+    }
+}

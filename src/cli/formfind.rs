@@ -1,0 +1,98 @@
+//! `tensegrity formfind (TOPOLOGY.toml | --builtin NAME) [--method fdm|adaptive|dr]
+//! [--prestress LEVEL] [--stiffness EA] [--out SCENE.toml] [--svg F] [--json]`: the engine's
+//! `formfind` request ([`FormfindRequest`], the topology positional), one call
+//! ([`formfind::admitted`]: the estimate checked against the limits, the form found and its
+//! prestress synthesised); the scene and the figure are opened before the work.
+
+use super::output;
+use super::request_args::RequestArgs;
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+use tensegrity_engine::formfind::{self, FormfindReport, FormfindRequest, Formfound};
+use tensegrity_io::sink::{FigureSink, FileSink};
+
+/// Arguments of `tensegrity formfind`: the request's flags and the outputs.
+#[derive(clap::Args, Debug)]
+pub struct FormfindArgs {
+    #[command(flatten)]
+    request: RequestArgs<FormfindRequest>,
+    /// Write the prestressed structure as a scene (rest lengths and stiffnesses realising the
+    /// prestress) that `statics`, `simulate` and every other command read.
+    #[arg(long, value_name = "SCENE.toml")]
+    out: Option<PathBuf>,
+    /// Draw the found structure (SVG, or PNG by the extension).
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Entry point of `tensegrity formfind`.
+pub fn run(args: &FormfindArgs) -> Result<()> {
+    let request: FormfindRequest = args.request.request()?;
+    let scene = output::open("--out", args.out.as_deref(), FileSink::open)?;
+    let figure = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let found = formfind::admitted(&request, super::guard::optional)?;
+    for w in &found.report.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some(sink) = scene {
+        let structure = found.structure.as_ref().context(
+            "--out: the form has no prestressed structure to write (see the warning above)",
+        )?;
+        sink.finish_with(tensegrity_io::scene::to_toml(structure))?;
+    }
+    if let Some(sink) = figure {
+        sink.finish(&drawing(&found))?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&found.report)?);
+        return Ok(());
+    }
+    print_report(&found.report);
+    for (flag, path) in [("scene", &args.out), ("figure", &args.svg)] {
+        if let Some(p) = path {
+            println!("wrote {flag} {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// The found form drawn by the figures crate.
+fn drawing(found: &Formfound) -> tensegrity_io::figure::Figure {
+    let t = &found.topology;
+    tensegrity_figures::draw::structure_figure(
+        &found.report.source,
+        &found.found.nodes,
+        t.bars.iter().map(|m| m.nodes).collect(),
+        t.strings.iter().map(|m| m.nodes).collect(),
+    )
+}
+
+fn print_report(r: &FormfindReport) {
+    println!(
+        "{}: {} nodes, {} bars, {} strings; method {}, iterations {}",
+        r.source, r.n_nodes, r.n_bars, r.n_strings, r.method, r.iterations
+    );
+    println!(
+        "self-stress states {}  prestressable {}  prestress stable {}  residual {:.3e}",
+        r.self_stress_dim, r.prestressable, r.prestress_stable, r.residual
+    );
+    println!("nodes (m):");
+    // round-off below the printed digits shown as 0, not as -0.000000000
+    let c = |x: f64| if x.abs() < 5e-10 { 0.0 } else { x };
+    for (i, p) in r.nodes.iter().enumerate() {
+        println!("  {i:4}  {:+.9} {:+.9} {:+.9}", c(p[0]), c(p[1]), c(p[2]));
+    }
+    let force = r.member_force.as_deref().unwrap_or(&[]);
+    println!("members: q [N/m], force at prestress {} N:", r.prestress);
+    for (k, q) in r.force_density.iter().enumerate() {
+        let name = match k.checked_sub(r.n_bars) {
+            None => format!("bar {k}"),
+            Some(j) => format!("string {j}"),
+        };
+        let f = force.get(k).map_or(String::new(), |f| format!("{f:>14.6}"));
+        println!("  {name:<12} {q:>14.9} {f}");
+    }
+}
