@@ -15,7 +15,7 @@ def prism():
     """The Snelson 3-bar prism: form-found when the engine has the form-finding command,
     else from its known equilibrium (the top triangle twisted 30 degrees)."""
     if "formfind" in tg.commands():
-        return tg.Structure.from_formfind(topology="prism:3")
+        return tg.Structure.from_formfind(builtin="prism:3")
     a = np.radians([0.0, 120.0, 240.0])
     nodes = np.vstack([np.c_[np.cos(a), np.sin(a), np.zeros(3)],
                        np.c_[np.cos(a + np.pi / 6), np.sin(a + np.pi / 6), np.ones(3)]])
@@ -39,7 +39,7 @@ def main():
 
     # strings 5 % shorter than their length: stiff, prestressed; dropped from 0.5 m
     length = np.linalg.norm(np.diff(shape.nodes[shape.strings], axis=1)[:, 0], axis=1)
-    lifted = shape.nodes + [0.0, 0.0, 0.5]
+    lifted = shape.nodes + [0.0, 0.0, 0.5 - shape.nodes[:, 2].min()]
     scene = shape.replace(
         nodes=lifted, bar_mass=1.0, stiffness=1000.0, rest_length=0.95 * length, damping=2.0,
         gravity=[0, 0, -9.81],

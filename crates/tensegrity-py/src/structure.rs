@@ -204,7 +204,8 @@ pub fn matrices(text: &str) -> Result<Value, Failure> {
 /// The structure of a topology crate as scene TOML: `toroid` (the `toroid` request, with
 /// stiff prestressed strings when it gives `string_stiffness`, as `--export-scene` writes
 /// it), `michell` (the truss of the `michell` request: members as bars, extra strings as
-/// strings, the last level pinned), `tbar` (the tread or wheel of the `tbar` request).
+/// strings, the last level pinned), `tbar` (the tread or wheel of the `tbar` request),
+/// `formfind` (the prestressed structure of the `formfind` request, as its `--out` writes it).
 pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failure> {
     let failed = |e: &dyn std::fmt::Display, c: Category| Failure::new(c, e.to_string());
     let structure = match kind {
@@ -233,10 +234,22 @@ pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failur
                 .and_then(|g| g.structure())
                 .map_err(|e| failed(&e, e.category()))?
         }
+        "formfind" => {
+            let r = tensegrity_engine::formfind::FormfindRequest::from_values(values)
+                .map_err(|e| Failure::invalid(&e))?;
+            let found = r.run().map_err(|e| failed(&e, e.category()))?;
+            found.structure.ok_or_else(|| {
+                let why = found.report.warnings.join("; ");
+                Failure::new(
+                    Category::Numerical,
+                    format!("the form has no prestressed structure: {why}"),
+                )
+            })?
+        }
         other => {
             return Err(Failure::new(
                 Category::Input,
-                format!("no topology `{other}` (known: toroid, michell, tbar)"),
+                format!("no topology `{other}` (known: toroid, michell, tbar, formfind)"),
             ))
         }
     };

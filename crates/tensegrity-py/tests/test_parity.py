@@ -134,8 +134,18 @@ def test_tbar_roll(cli_json):
 
 
 @pytest.mark.skipif("formfind" not in tg.commands(), reason="no formfind command in this engine")
-def test_formfind(cli_json):
-    assert_same(tg.formfind(), cli_json("formfind"))
+def test_formfind(cli_json, cli, tmp_path):
+    assert_same(tg.formfind(builtin="prism:3"), cli_json("formfind", "--builtin", "prism:3"))
+    assert_same(tg.formfind(builtin="tower:3", n=2, method="adaptive", prestress=50.0),
+                cli_json("formfind", "--builtin", "tower:3", "--n", "2", "--method", "adaptive",
+                         "--prestress", "50"))
+    # the found structure is the scene `formfind --out` writes
+    out = tmp_path / "prism.toml"
+    code, _, err = cli("formfind", "--builtin", "octahedron", "--out", out)
+    assert code == 0, err
+    s = tg.Structure.from_formfind(builtin="octahedron")
+    assert s.to_toml() == out.read_text()
+    assert tg.statics(s)["self_stress_dim"] >= 1
 
 
 def test_sweep_against_the_cli(cli, tmp_path):

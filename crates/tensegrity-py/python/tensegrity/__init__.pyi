@@ -791,8 +791,71 @@ def tbar_roll(
     ...
 
 
-def formfind(**kwargs: Any) -> Dict[str, Any]:
-    """Form-finding (not in this build of the engine)."""
+def formfind(
+    *,
+    topology: Optional[str] = ...,
+    builtin: Optional[str] = ...,
+    n: Optional[int] = ...,
+    method: Optional[Literal['fdm', 'adaptive', 'dr']] = ...,
+    group: Optional[str] = ...,
+    ratio: float = ...,
+    prestress: float = ...,
+    stiffness: float = ...,
+    bar_mass: float = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Form-finding: a connectivity (built-in topology or file) to a geometry in equilibrium with a self-stress (``tensegrity formfind --json``).
+
+    Parameters
+    ----------
+    topology : str, optional
+        The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a
+        value with a line break or `=`)
+    builtin : str, optional
+        A built-in form instead of a topology: prism:N, octahedron, tower:N:M, grid:K
+    n : int, optional
+        The last size of the built-in form, appended to its name (builtin prism, n 5:
+        prism:5), for sweeps; must be at least 1
+    method : {'fdm', 'adaptive', 'dr'}, optional
+        Method: fdm (force density, every member's given), adaptive (force densities found
+        from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses);
+        default: fdm when every member has a force density, else adaptive
+    group : str, optional
+        The group of the topology whose force density `ratio` multiplies
+    ratio : float
+        Factor on the force density of the members of `group`; must be finite and positive.
+        Default: 1.0
+    prestress : float
+        Prestress level of the exported structure: the largest string tension (N); must be
+        finite and positive. Default: 100.0
+    stiffness : float
+        Axial stiffness EA of the members that give none (strings' rest lengths, dynamic
+        relaxation) (N); must be finite and positive. Default: 100000.0
+    bar_mass : float
+        Mass of each bar of the exported structure (kg); must be finite and positive.
+        Default: 1.0
+    tolerance : float
+        Convergence tolerance of the iterative methods (relative residual); must be finite
+        and positive. Default: 1e-12
+    max_iterations : int
+        Iteration cap of the iterative methods; must be at least 1. Default: 10000
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
     ...
 
 

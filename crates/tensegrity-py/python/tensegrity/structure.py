@@ -293,6 +293,13 @@ class Structure:
         --export-scene`` writes it)."""
         return cls.from_toml(_native.topology("tbar", _convert.arguments(kwargs)))
 
+    @classmethod
+    def from_formfind(cls, **kwargs):
+        """The form-found, prestressed structure of the ``formfind`` command's keywords (as
+        ``formfind --out`` writes it: string rest lengths and stiffnesses realising the
+        prestress), e.g. ``Structure.from_formfind(builtin="prism:3")``."""
+        return cls.from_toml(_native.topology("formfind", _convert.arguments(kwargs)))
+
     # --- matrices ------------------------------------------------------------------------
 
     def _matrices(self):
