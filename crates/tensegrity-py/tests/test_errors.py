@@ -73,6 +73,9 @@ def test_scene_errors_are_the_clis(cli, tmp_path):
     (lambda: tg.simulate(EXAMPLES / "prism.toml", dt=-1),
      ["simulate", EXAMPLES / "prism.toml", "--dt", "-1"]),
     (lambda: tg.simulate(EXAMPLES / "prism.toml"), ["simulate", EXAMPLES / "prism.toml"]),
+    (lambda: tg.michell_optimize(planar=True, radius_ratio=4),
+     ["michell", "optimize", "--planar", "--radius-ratio", "4"]),
+    (lambda: tg.tbar(beta="pi/6", phi="pi/8"), ["tbar", "--beta", "pi/6", "--phi", "pi/8"]),
     (lambda: tg.statics(EXAMPLES / "prism.toml", method="qr"),
      ["statics", EXAMPLES / "prism.toml", "--method", "qr"]),
 ])
@@ -104,6 +107,18 @@ def test_refused_estimate_is_a_resource_error_with_the_clis_message(cli):
         tg.roll(fidelity="full", max_work=0.001)
     assert isinstance(e.value, tg.ResourceError)
     assert str(e.value) == message(cli, "roll", "--fidelity", "full", "--max-work", "0.001")
+
+
+def test_a_failed_computation_has_the_clis_message(cli, tmp_path):
+    s = tg.Structure([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1]], [[1, 2]],
+                     supports=[0], loads={2: [0, 0, -1.0]})
+    path = tmp_path / "mechanism.toml"
+    path.write_text(s.to_toml())
+    with pytest.raises(tg.ComputationError) as e:
+        tg.statics(path)
+    code, _, err = cli("statics", path)
+    assert code == 1
+    assert "error: " + str(e.value) == err.strip().splitlines()[-1]
 
 
 def test_a_failed_computation_is_a_runtime_error():
