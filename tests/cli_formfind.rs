@@ -243,7 +243,7 @@ fn an_output_path_is_checked_before_the_form_is_found() {
 }
 
 #[test]
-fn a_form_over_the_limits_is_refused_before_it_is_built() {
+fn a_form_over_the_limits_is_refused_before_it_is_found() {
     let out = common::run(&["formfind", "--builtin", "grid:300", "--max-work", "0.001"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     let e = stderr(&out);

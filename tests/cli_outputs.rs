@@ -358,6 +358,17 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
             "tbar roll --fidelity full --t-end 100 --out {}".into(),
             false,
         ),
+        // a grid of 560 400 members: seconds of form-finding before the scene or figure
+        (
+            "formfind --out",
+            "formfind --builtin grid:200 --out {}".into(),
+            false,
+        ),
+        (
+            "formfind --svg",
+            "formfind --builtin grid:200 --svg {}".into(),
+            false,
+        ),
         // four wheels rolled for 1000 s each: hours, unless the path is checked first
         (
             "fig-rolling --out",

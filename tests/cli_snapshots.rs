@@ -126,6 +126,10 @@ const CASES: &[(&str, &[&str])] = &[
     ),
     ("tipover_default", &["tipover", "--json"]),
     ("tipover_n16", &["tipover", "--sides", "16", "--json"]),
+    (
+        "formfind_prism3",
+        &["formfind", "--builtin", "prism:3", "--json"],
+    ),
 ];
 
 /// Fields that measure the machine, not the mechanics.

@@ -33,7 +33,11 @@ fn the_prism_sweep_finds_every_n_from_3_to_12() {
         column(&h, "prestressable"),
         column(&h, "prestress_stable"),
     );
-    let residual = column(&h, "residual");
+    let (residual, height, bar) = (
+        column(&h, "residual"),
+        column(&h, "height"),
+        column(&h, "max_bar_length"),
+    );
     for (row, want) in rows.iter().zip(3..) {
         assert_eq!(&row[status], "ok", "{row:?}");
         assert_eq!(row[n].parse::<usize>().unwrap(), want);
@@ -44,6 +48,17 @@ fn the_prism_sweep_finds_every_n_from_3_to_12() {
             "{row:?}"
         );
         assert!(row[residual].parse::<f64>().unwrap() < 1e-12, "{row:?}");
+        // the built-in's positions fix the affine freedom: unit rings at z = 0 and 1, the top
+        // turned by π/2 + π/N, so a bar spans √(1 + 2 − 2 cos(π/2 + π/N)) = √(3 + 2 sin(π/N))
+        let (h, l) = (
+            row[height].parse::<f64>().unwrap(),
+            row[bar].parse::<f64>().unwrap(),
+        );
+        let want = (3.0 + 2.0 * (std::f64::consts::PI / want as f64).sin()).sqrt();
+        assert!(
+            (h - 1.0).abs() < 1e-12 && (l - want).abs() < 1e-12,
+            "{row:?}: {l} vs {want}"
+        );
     }
 }
 

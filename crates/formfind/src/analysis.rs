@@ -4,8 +4,14 @@
 //! - residual: ‖A q‖ / ‖q‖ with A the equilibrium matrix at the found nodes (rows of fixed
 //!   nodes removed), i.e. the out-of-balance force of the force densities q per unit force
 //!   density (m);
-//! - self-stress dimension: members − rank A, from the core's statics back-end (dense SVD, or
-//!   the sparse rank-revealing QR for large structures);
+//! - self-stress dimension: members − rank A (the rank tolerance relative to σ_max is the
+//!   core's default, or 100 × ‖A q‖/(‖q‖ · size) up to 10⁻⁶ for a form in equilibrium only to
+//!   an iteration's tolerance). When the form is certified (below) and A Aᵀ,
+//!   without the rows of the supports (or of a statically determinate support of a
+//!   free-standing form), admits a sparse Cholesky factorisation, the structure has no
+//!   first-order mechanism and rank A is that number of rows ([`rigid_rank`]); otherwise
+//!   the core's statics back-end decides (dense SVD, or the sparse rank-revealing QR for
+//!   large structures);
 //! - prestressable: the found q is itself a witness when every string has q > 0, every bar
 //!   q < 0 and the relative residual ‖A q‖ / (‖q‖ · size) is below [`WITNESS_TOLERANCE`];
 //!   otherwise the core's margin LP decides;
@@ -88,7 +94,9 @@ pub(crate) fn size(nodes: &[Vector3<f64>]) -> f64 {
 
 /// A core structure of the topology at `nodes` (no properties; fixed nodes pinned).
 pub(crate) fn bare_structure(topology: &Topology, nodes: &[Vector3<f64>]) -> Result<Structure> {
-    let mut b = Structure::builder().nodes(nodes.iter().map(|p| [p.x, p.y, p.z]));
+    let mut b = Structure::builder()
+        .allow_isolated_nodes(!topology.fixed.is_empty())
+        .nodes(nodes.iter().map(|p| [p.x, p.y, p.z]));
     for m in &topology.bars {
         b = b.bar(Bar::new(m.nodes[0], m.nodes[1]));
     }
@@ -104,14 +112,35 @@ pub(crate) fn bare_structure(topology: &Topology, nodes: &[Vector3<f64>]) -> Res
 /// The statics of force densities `q` at `nodes` (see the module docs).
 pub(crate) fn analyse(topology: &Topology, nodes: &[Vector3<f64>], q: &[f64]) -> Result<Analysis> {
     let residual = residual(topology, nodes, q);
-    let structure = bare_structure(topology, nodes)?;
-    let statics = backend(&structure, StaticsSettings::default())?;
-    let self_stress_dim = statics.self_stress_dim();
     let signs_ok = (0..q.len()).all(|k| crate::topology::member_kind_ok(topology.is_bar(k), q[k]));
     let scale = size(nodes).max(f64::MIN_POSITIVE);
     let witness = signs_ok && residual <= WITNESS_TOLERANCE * scale;
+    let certified = witness && super_stable(topology, nodes, q);
+    // The sparse shortcut: a witness, a super-stability certificate and no first-order
+    // mechanism settle everything without the core's statics.
+    if certified {
+        if let Some(rank) = rigid_rank(topology, nodes) {
+            return Ok(Analysis {
+                self_stress_dim: q.len() - rank,
+                prestressable: true,
+                prestress_stable: true,
+                residual,
+            });
+        }
+    }
+    let structure = bare_structure(topology, nodes)?;
+    // A form found iteratively (dynamic relaxation) is in equilibrium to its tolerance, not
+    // to round-off: the rank decision takes a relative tolerance of 100 × its relative
+    // residual (at most 10⁻⁶) when that exceeds the default.
+    let mut settings = StaticsSettings::default();
+    let relative = residual / scale;
+    if witness && relative > 1e-14 {
+        settings = settings.rank_tolerance((100.0 * relative).min(1e-6))?;
+    }
+    let statics = backend(&structure, settings)?;
+    let self_stress_dim = statics.self_stress_dim();
     let prestressable = witness || statics.prestressability()?.prestressable;
-    let prestress_stable = if witness && super_stable(topology, nodes, q) {
+    let prestress_stable = if certified {
         true
     } else if witness && q.len() <= STABILITY_MAX_MEMBERS {
         statics
@@ -211,4 +240,88 @@ fn no_conic_at_infinity(topology: &Topology, nodes: &[Vector3<f64>]) -> bool {
     }
     let e = g.symmetric_eigenvalues();
     e.min() > 1e-10 * e.max()
+}
+
+/// The rank of the equilibrium matrix A when the structure has no first-order mechanism
+/// beyond the rigid-body motions its supports allow, else `None`.
+///
+/// The rows of the fixed nodes are removed; a free-standing structure also loses six rows
+/// of a statically determinate support (three at one anchor node, the two coordinate
+/// directions least aligned with the first anchor edge at a second, the direction most
+/// aligned with the anchors' plane normal at a third). A Aᵀ on the remaining rows is then
+/// positive definite (sparse Cholesky, with a shift of 10⁻¹⁰ of its largest diagonal entry
+/// as margin, i.e. σ_min(A) > 10⁻⁵ σ-scale) exactly when those rows are independent: rank A
+/// is their number.
+pub(crate) fn rigid_rank(topology: &Topology, nodes: &[Vector3<f64>]) -> Option<usize> {
+    let n = topology.n_nodes;
+    let mut removed = vec![[false; 3]; n];
+    for f in &topology.fixed {
+        removed[f.node] = [true; 3];
+    }
+    if topology.fixed.is_empty() {
+        let [a0, a1, a2, _] = anchors(nodes)?;
+        removed[a0] = [true; 3];
+        let d1 = nodes[a1] - nodes[a0];
+        let along = d1.iamax();
+        for (axis, r) in removed[a1].iter_mut().enumerate() {
+            *r = axis != along;
+        }
+        let normal = d1.cross(&(nodes[a2] - nodes[a0]));
+        removed[a2][normal.iamax()] = true;
+    }
+    let mut row = vec![[usize::MAX; 3]; n];
+    let mut rows = 0;
+    for i in 0..n {
+        for d in 0..3 {
+            if !removed[i][d] {
+                row[i][d] = rows;
+                rows += 1;
+            }
+        }
+    }
+    if rows == 0 {
+        return Some(0);
+    }
+    if rows > topology.n_members() {
+        return None;
+    }
+    let mut t = Vec::with_capacity(topology.n_members() * 21);
+    let mut diag_max = 0.0f64;
+    for &[i, j] in &topology.member_nodes() {
+        let m = nodes[j] - nodes[i];
+        // a_k: −m at node i, +m at node j; a_k a_kᵀ blocks ±m mᵀ.
+        for (a, sa) in [(i, -1.0), (j, 1.0)] {
+            for (b, sb) in [(i, -1.0), (j, 1.0)] {
+                for da in 0..3 {
+                    for db in 0..3 {
+                        let (r, c) = (row[a][da], row[b][db]);
+                        if r == usize::MAX || c == usize::MAX || r < c {
+                            continue;
+                        }
+                        let v = sa * sb * m[da] * m[db];
+                        if r == c {
+                            diag_max = diag_max.max(v);
+                        }
+                        t.push((r, c, v));
+                    }
+                }
+            }
+        }
+    }
+    for r in 0..rows {
+        t.push((r, r, 0.0));
+    }
+    let lower = CscMatrix::from_triplets(rows, rows, &t).ok()?;
+    let mut chol = SparseCholesky::new(lower.pattern()).ok()?;
+    let mut values = lower.values().to_vec();
+    let p = lower.pattern();
+    for c in 0..rows {
+        for s in p.col_ptr()[c]..p.col_ptr()[c + 1] {
+            if p.row_idx()[s] == c {
+                values[s] -= 1e-10 * diag_max;
+            }
+        }
+    }
+    chol.factor(&values).ok()?;
+    Some(rows)
 }

@@ -14,13 +14,16 @@
 //!   (mod 3). The 24 strings are the edges of the 8 triangles, one per octant (σx, σy, σz):
 //!   the end σ_a of the bar along a whose offset sign is σ_{a+2}. Groups `bars` (q = −3/2)
 //!   and `strings` (q = 1): string/bar = −2/3.
-//! - `tower:N:M` (M ≥ 1 stages): layers l = 0…M of N nodes (node lN+i at angle
+//! - `tower:N:M` (M ≥ 1 stages, N·(M+1) ≤ 1200 nodes): layers l = 0…M of N nodes (node lN+i at angle
 //!   2πi/N + l(π/2 + π/N), z = l); stage s is a prism between layers s and s+1 sharing its
 //!   rings with the neighbouring stages (class-2 joints at the inner layers). Members: bars
 //!   (sN+i, (s+1)N+i) stage by stage, then ring strings (lN+i, lN+i+1) layer by layer, then
 //!   vertical strings (sN+i, (s+1)N+(i−1 mod N)) stage by stage. Groups `bars` (−1),
 //!   `vertical` (1), `ring_end` (layers 0 and M: 1/(2 sin(π/N))) and `ring_inner`
-//!   (1/sin(π/N), the sum of the two stages' rings).
+//!   (1/sin(π/N), the sum of the two stages' rings). Each inner ring is planar, so
+//!   neighbouring stages may take affine maps that differ by a fold along it: D has nullity
+//!   4 + (M − 1), the form is prestress stable but not super stable, and the self-stress
+//!   space has dimension M (one per stage).
 //! - `grid:K` (1 ≤ K ≤ [`MAX_GRID`]): a double-layer grid of K × K four-bar prisms. Unit
 //!   (u, v) has its bottom square on the lattice corners (u…u+1, v…v+1, z = 0) and its top
 //!   square, twisted by 3π/4 and of radius ½, on the midpoints of the cell's edges at
@@ -68,10 +71,22 @@ pub fn builtin(name: &str) -> Result<Topology> {
     match parts.as_slice() {
         ["prism", n] => Ok(prism(parse(name, "N", n, 3, MAX_PRISM)?)),
         ["octahedron"] => Ok(octahedron()),
-        ["tower", n, m] => Ok(tower(
-            parse(name, "N", n, 3, MAX_PRISM)?,
-            parse(name, "M", m, 1, MAX_STAGES)?,
-        )),
+        ["tower", n, m] => {
+            let n = parse(name, "N", n, 3, MAX_PRISM)?;
+            let m = parse(name, "M", m, 1, MAX_STAGES)?;
+            if n * (m + 1) > crate::fdm::DENSE_MAX_NODES {
+                return Err(FormFindError::InvalidParameter(InvalidParameter::raw(
+                    format!("N·(M+1) of built-in \"{name}\""),
+                    n * (m + 1),
+                    format!(
+                        "a tower has N·(M+1) nodes, at most {} (its stacked rings let the \
+                         stages fold, which needs the dense null space)",
+                        crate::fdm::DENSE_MAX_NODES
+                    ),
+                )));
+            }
+            Ok(tower(n, m))
+        }
         ["grid", k] => Ok(grid(parse(name, "K", k, 1, MAX_GRID)?)),
         _ => Err(FormFindError::UnknownBuiltin {
             name: name.to_string(),

@@ -6,7 +6,9 @@
 //! equilibrium without loads reads D X = 0 for the n × 3 coordinate matrix X = Nᵀ.
 //!
 //! **Free-standing** (no fixed nodes): X lies in the null space of D. The constant vector is
-//! always in it; a 3-D geometry needs rank deficiency ≥ d + 1 = 4. Any affine image of an
+//! always in it; a 3-D geometry needs rank deficiency ≥ d + 1 = 4 (rank deficiency 3 gives a
+//! planar form, like the X-module, in the plane z = 0 of the canonical normalisation; less
+//! is [`FormFindError::RankDeficiency`]). Any affine image of an
 //! equilibrium is again one, so the geometry is fixed by a normalisation:
 //!
 //! - with initial `nodes`, the null-space geometry closest to them in least squares:
@@ -14,10 +16,12 @@
 //!   exactly 4-dimensional this is the affine image of any equilibrium closest to X₀, which is
 //!   also what the sparse path computes (below);
 //! - without them (or when that projection is flat), the canonical form: centroid at the
-//!   origin, the three non-constant null-space directions with the largest spread, taken
+//!   origin, the three (two for a planar form) non-constant null-space directions with the
+//!   largest spread, taken
 //!   orthonormal (equal second moments), rotated to the principal axes of the bar vectors
-//!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive, and
-//!   scaled to a mean bar length of 1.
+//!   (Σ b bᵀ, largest first) with the first significant coordinate of each axis positive,
+//!   scaled to a mean bar length of 1, and mirrored in z if needed so that the first four
+//!   affinely independent nodes (in index order) form a positively oriented tetrahedron.
 //!
 //! The null space of a topology of up to [`DENSE_MAX_NODES`] nodes comes from the symmetric
 //! eigendecomposition of D: eigenvalues |λ| ≤ [`NULL_SPACE_TOLERANCE`] · max|λ| count as zero.
@@ -40,6 +44,9 @@ pub const NULL_SPACE_TOLERANCE: f64 = 1e-9;
 /// Free-standing topologies up to this many nodes take the dense eigendecomposition of D;
 /// larger ones the sparse anchored solve.
 pub const DENSE_MAX_NODES: usize = 1200;
+
+/// Largest error of the test solve D_ff y = D_ff z (|z| ≤ 1) before D_ff counts as singular.
+pub(crate) const SINGULARITY_TOLERANCE: f64 = 1e-6;
 
 /// Relative tolerance of a linear solve's residual, ‖D X‖ ≤ tol · ‖D‖ · ‖X‖.
 pub(crate) const SOLVE_TOLERANCE: f64 = 1e-8;
@@ -115,7 +122,7 @@ pub(crate) fn null_space(d: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     let scale = w.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let tol = NULL_SPACE_TOLERANCE * scale;
     let null: Vec<usize> = (0..w.len()).filter(|&i| w[i].abs() <= tol).collect();
-    if null.len() < 4 {
+    if null.len() < 3 {
         let mut by_size: Vec<f64> = w
             .iter()
             .map(|x| x.abs() / scale.max(f64::MIN_POSITIVE))
@@ -143,8 +150,8 @@ fn points(x: &DMatrix<f64>) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-/// Whether the points span 3-D (smallest to largest principal spread above 1e-6).
-pub(crate) fn spans_3d(p: &[Vector3<f64>]) -> bool {
+/// The number of dimensions the points span (principal spreads above 1e-6 of the largest).
+pub(crate) fn spanned_dimensions(p: &[Vector3<f64>]) -> usize {
     let c = centroid(p);
     let mut m = Matrix3::zeros();
     for x in p {
@@ -152,8 +159,11 @@ pub(crate) fn spans_3d(p: &[Vector3<f64>]) -> bool {
         m += d * d.transpose();
     }
     let e = m.symmetric_eigenvalues();
-    let (lo, hi) = (e.min(), e.max());
-    hi > 0.0 && lo > 1e-12 * hi
+    let hi = e.max();
+    if hi.is_nan() || hi <= 0.0 {
+        return 0;
+    }
+    e.iter().filter(|&&x| x > 1e-12 * hi).count()
 }
 
 /// The centroid of the points.
@@ -167,7 +177,7 @@ pub(crate) fn normalise(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<
         let x0 = DMatrix::from_fn(x0.len(), 3, |i, j| x0[i][j]);
         let x = phi * (phi.transpose() * &x0);
         let p = points(&x);
-        if spans_3d(&p) {
+        if spanned_dimensions(&p) >= (phi.ncols() - 1).min(3) {
             return p;
         }
     }
@@ -187,9 +197,47 @@ fn canonical(topology: &Topology, phi: &DMatrix<f64>) -> Vec<Vector3<f64>> {
         Ok(s) => (s.u, s.s),
         Err(_) => return vec![Vector3::zeros(); n],
     };
-    let x = u.columns(0, 3).into_owned();
+    let dim = (phi.ncols() - 1).min(3);
+    let mut x = DMatrix::zeros(n, 3);
+    x.columns_mut(0, dim).copy_from(&u.columns(0, dim));
     let p = points(&x);
-    orient_and_scale(topology, p)
+    right_handed(orient_and_scale(topology, p))
+}
+
+/// Mirrors the last axis when the first four affinely independent nodes (in index order)
+/// form a negatively oriented tetrahedron: the canonical form's handedness convention
+/// (for `prism:N` it puts the bottom ring counter-clockwise about the axis towards the top,
+/// so the top is twisted by +(π/2 + π/N)).
+fn right_handed(mut p: Vec<Vector3<f64>>) -> Vec<Vector3<f64>> {
+    let size = p
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.amax()))
+        .max(f64::MIN_POSITIVE);
+    let Some(&p0) = p.first() else {
+        return p;
+    };
+    let e1 = p.iter().map(|x| x - p0).find(|d| d.norm() > 1e-9 * size);
+    let Some(e1) = e1 else {
+        return p;
+    };
+    let e2 = p
+        .iter()
+        .map(|x| x - p0)
+        .find(|d| e1.cross(d).norm() > 1e-9 * size * e1.norm());
+    let Some(e2) = e2 else {
+        return p;
+    };
+    let normal = e1.cross(&e2);
+    let volume = p
+        .iter()
+        .map(|x| normal.dot(&(x - p0)))
+        .find(|v| v.abs() > 1e-9 * size * normal.norm());
+    if volume.is_some_and(|v| v < 0.0) {
+        for x in p.iter_mut() {
+            x.z = -x.z;
+        }
+    }
+    p
 }
 
 /// Rotates to the principal axes of the bar vectors and scales to a mean bar length of 1.
@@ -283,6 +331,20 @@ pub(crate) fn fixed_solve(
     };
     let a = CscMatrix::from_triplets(nf, nf, &t)?;
     let mut lu = SparseLu::new(&a).map_err(|e| singular(e.to_string()))?;
+    // A numerically singular D_ff factors without complaint: solve D_ff y = D_ff z for a
+    // fixed pseudo-random z and require y = z.
+    let z: Vec<f64> = (0..nf).map(|i| (0.7 + 1.3 * i as f64).sin()).collect();
+    let mut y = a.mul_vec(&z);
+    lu.solve_in_place(&mut y);
+    let dev = y
+        .iter()
+        .zip(&z)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    if dev.is_nan() || dev > SINGULARITY_TOLERANCE {
+        return Err(singular(format!(
+            "a test solve is off by {dev:.1e}: D has null vectors that vanish at the held nodes"
+        )));
+    }
     let mut x = vec![Vector3::zeros(); nf];
     for axis in 0..3 {
         let mut b: Vec<f64> = rhs.iter().map(|r| r[axis]).collect();
@@ -361,7 +423,19 @@ fn anchored(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
         reason: "the initial nodes are coplanar; a 3-D guess is needed".into(),
     })?;
     let fixed: Vec<(usize, Vector3<f64>)> = a.iter().map(|&i| (i, x0[i])).collect();
-    let x = fixed_solve(topology, q, &fixed)?;
+    let x = fixed_solve(topology, q, &fixed).map_err(|e| match e {
+        FormFindError::SingularSystem { hint } => FormFindError::RankDeficiency {
+            found: 5,
+            required: 4,
+            hint: format!(
+                "with four anchor nodes held, {hint}; the sparse path of topologies over \
+                 {DENSE_MAX_NODES} nodes needs rank deficiency exactly 4 (a null space \
+                 beyond the affine maps, e.g. folds along the planar rings of stacked \
+                 stages, needs held nodes)"
+            ),
+        },
+        e => e,
+    })?;
     // The anchors' own rows must vanish too: then D X = 0 everywhere.
     let mut f = vec![Vector3::zeros(); topology.n_nodes];
     let mut qmax = 0.0f64;

@@ -14,11 +14,49 @@
 //!   prestress-stable self-stress; reported when none exists.
 //! - [`Method::Dr`]: dynamic relaxation with kinetic damping from rest lengths and axial
 //!   stiffnesses.
+//! - [`Method::Auto`] (the default) chooses among them from what the topology gives
+//!   ([`form_find`]).
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
 //!   prestress level.
 //!
 //! Topologies come from a [`Topology`] (built in Rust, read from a TOML file by the io crate)
 //! or from [`builtin`] (`prism:N`, `octahedron`, `tower:N:M`, `grid:K`, …).
+//!
+//! ```
+//! use formfind::{form_find, synthesize, Member, Method, Settings, Synthesis, Topology};
+//! use std::collections::BTreeMap;
+//!
+//! // The 3-bar prism from connectivity, member kinds and groups only: the adaptive method
+//! // finds its force densities.
+//! let n = 3;
+//! let group = |name: &str| (name.to_string(), formfind::Group::default());
+//! let mut bars = Vec::new();
+//! let mut strings = Vec::new();
+//! for i in 0..n {
+//!     bars.push(Member::new(i, n + i).group("bars"));
+//!     strings.push(Member::new(i, (i + 1) % n).group("bottom"));
+//!     strings.push(Member::new(n + i, n + (i + 1) % n).group("top"));
+//!     strings.push(Member::new(i, n + (i + n - 1) % n).group("vertical"));
+//! }
+//! let topology = Topology {
+//!     n_nodes: 2 * n,
+//!     bars,
+//!     strings,
+//!     groups: BTreeMap::from([group("bars"), group("bottom"), group("top"), group("vertical")]),
+//!     ..Topology::default()
+//! };
+//! let found = form_find(&topology, &Settings::default()).unwrap();
+//! assert_eq!(found.method, Method::Adaptive);
+//! assert!(found.prestressable && found.prestress_stable);
+//! // Bars average −1; for the symmetric prism every vertical string then carries 1.
+//! let vertical = found.force_density[3 + 2]; // strings[2], the first vertical
+//! assert!((vertical - 1.0).abs() < 1e-9);
+//!
+//! // A structure in equilibrium at t = 0 with 50 N in the most tensioned string.
+//! let synthesis = Synthesis { prestress: 50.0, ..Synthesis::default() };
+//! let structure = synthesize(&topology, &found, &synthesis).unwrap();
+//! assert_eq!((structure.n_bars(), structure.n_strings()), (3, 9));
+//! ```
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
@@ -123,3 +161,8 @@ fn finish(
         iterations,
     })
 }
+
+/// The README's examples, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -63,7 +63,7 @@ pub fn rest_lengths(
     let mut max_tension = 0.0f64;
     for k in nb..pairs.len() {
         let q = found.force_density[k];
-        if !(q > 0.0) {
+        if q.is_nan() || q <= 0.0 {
             return Err(FormFindError::NoPrestress {
                 reason: format!(
                     "{} has force density {q}: a string must be in tension",
@@ -118,7 +118,9 @@ pub fn synthesize(
     check("bar_mass", synthesis.bar_mass)?;
     let r = rest_lengths(topology, found, synthesis)?;
     let nb = topology.bars.len();
-    let mut b = Structure::builder().nodes(found.nodes.iter().map(|p| [p.x, p.y, p.z]));
+    let mut b = Structure::builder()
+        .allow_isolated_nodes(!topology.fixed.is_empty())
+        .nodes(found.nodes.iter().map(|p| [p.x, p.y, p.z]));
     for m in &topology.bars {
         b = b.bar(Bar::new(m.nodes[0], m.nodes[1]).mass(synthesis.bar_mass));
     }

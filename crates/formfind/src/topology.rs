@@ -180,8 +180,16 @@ impl Topology {
         if self.n_members() == 0 {
             return Err(bad("bars".into(), "the topology has no members".into()));
         }
+        for f in &self.fixed {
+            if let Some(t) = touched.get_mut(f.node) {
+                *t = true; // a held node may stand alone (an anchor of nothing)
+            }
+        }
         if let Some(i) = touched.iter().position(|t| !t) {
-            return Err(bad(format!("node {i}"), "no member ends at it".into()));
+            return Err(bad(
+                format!("node {i}"),
+                "no member ends at it (and it is not fixed)".into(),
+            ));
         }
         for (name, g) in &self.groups {
             if let Some(q) = g.force_density {
@@ -227,7 +235,7 @@ impl Topology {
     }
 }
 
-/// Where a member's force density came from.
+/// Whether force density `q` has the sign of its member's kind (bar < 0 < string).
 pub(crate) fn member_kind_ok(is_bar: bool, q: f64) -> bool {
     if is_bar {
         q < 0.0
@@ -324,9 +332,7 @@ impl Topology {
     /// dynamic relaxation that reproduces a synthesized form ([`crate::rest_lengths`]).
     pub fn with_lengths(&self, lengths: &[f64], stiffness: &[f64]) -> Topology {
         let mut t = self.clone();
-        let nb = t.bars.len();
         for (k, m) in t.bars.iter_mut().chain(t.strings.iter_mut()).enumerate() {
-            let _ = nb;
             if let Some(&l) = lengths.get(k) {
                 m.length = Some(l);
             }

@@ -150,7 +150,7 @@ fn builtin_names_are_checked() {
         match builtin(name) {
             Err(FormFindError::InvalidParameter(p)) => {
                 assert!(p.name.contains(needle), "{name}: {p}");
-                assert!(p.to_string().contains(name.split(':').last().unwrap()));
+                assert!(p.to_string().contains(name.rsplit(':').next().unwrap()));
             }
             other => panic!("{name}: {other:?}"),
         }

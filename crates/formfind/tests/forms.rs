@@ -106,6 +106,47 @@ fn prism_twist_is_found_from_a_wrong_initial_twist() {
 }
 
 #[test]
+fn prism_canonical_form_without_nodes_is_right_handed() {
+    for n in 3..=12 {
+        let mut t = builtin(&format!("prism:{n}")).unwrap();
+        t.nodes = None;
+        let f = form_find(&t, &settings(Method::Fdm)).unwrap();
+        check_prism(n, &f);
+    }
+}
+
+#[test]
+fn fixed_nodes_may_stand_alone() {
+    // A string between two held nodes and one free node pulled by two strings: a held node
+    // on no member is an anchor of nothing, accepted.
+    let t = Topology {
+        n_nodes: 4,
+        strings: vec![
+            formfind::Member::new(0, 2).force_density(1.0),
+            formfind::Member::new(2, 1).force_density(3.0),
+        ],
+        fixed: vec![
+            formfind::FixedNode {
+                node: 0,
+                position: [0.0, 0.0, 0.0],
+            },
+            formfind::FixedNode {
+                node: 1,
+                position: [4.0, 0.0, 0.0],
+            },
+            formfind::FixedNode {
+                node: 3,
+                position: [9.0, 9.0, 9.0],
+            },
+        ],
+        ..Topology::default()
+    };
+    let f = form_find(&t, &Settings::default()).unwrap();
+    // q₁ (x − 0) = q₂ (4 − x): x = 3.
+    assert!((f.nodes[2] - Vector3::new(3.0, 0.0, 0.0)).norm() < 1e-14);
+}
+
+#[test]
 fn prism_force_densities_found_by_the_adaptive_method() {
     for n in 3..=12 {
         let t = without_force_densities(builtin(&format!("prism:{n}")).unwrap());
@@ -238,10 +279,138 @@ fn the_grid_of_ten_thousand_members_exists() {
 }
 
 #[test]
-#[ignore = "the large grid in a debug build takes a while: cargo test --release -p formfind -- --ignored"]
 fn large_grid_is_form_found_sparsely() {
+    // 10 260 members: the sparse path (timed by the bench and the README's table, never here).
     let t = builtin("grid:27").unwrap();
     let f = form_find(&t, &Settings::default()).unwrap();
     assert!(f.residual < 1e-10, "{}", f.residual);
     assert!(f.prestressable && f.prestress_stable);
+}
+
+#[test]
+fn the_planar_x_module_is_a_square() {
+    // Two crossing bars inside a ring of four strings: D has rank deficiency 3, a planar
+    // form; with bar q = −1 and string q = 1 the ring is a square (closed form).
+    let t = Topology {
+        n_nodes: 4,
+        bars: vec![
+            formfind::Member::new(0, 2).force_density(-1.0),
+            formfind::Member::new(1, 3).force_density(-1.0),
+        ],
+        strings: (0..4)
+            .map(|i| formfind::Member::new(i, (i + 1) % 4).force_density(1.0))
+            .collect(),
+        ..Topology::default()
+    };
+    let f = form_find(&t, &settings(Method::Fdm)).unwrap();
+    assert!(f.nodes.iter().all(|p| p.z == 0.0));
+    let side: Vec<f64> = (0..4)
+        .map(|i| (f.nodes[(i + 1) % 4] - f.nodes[i]).norm())
+        .collect();
+    let diag = (f.nodes[2] - f.nodes[0]).norm();
+    for s in &side {
+        assert!((s / side[0] - 1.0).abs() < 1e-12);
+    }
+    assert!((diag / side[0] - 2f64.sqrt()).abs() < 1e-12);
+    assert!(f.residual < 1e-12 && f.prestressable);
+    assert_eq!(f.self_stress_dim, 1);
+}
+
+#[test]
+fn the_result_serialises_with_the_contract_keys() {
+    let f = form_find(&builtin("prism:3").unwrap(), &Settings::default()).unwrap();
+    let v = serde_json::to_value(&f).unwrap();
+    for key in [
+        "method",
+        "nodes",
+        "force_density",
+        "self_stress_dim",
+        "prestressable",
+        "prestress_stable",
+        "residual",
+        "iterations",
+    ] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    assert_eq!(v["method"], "fdm");
+    assert_eq!(v["nodes"].as_array().unwrap().len(), 6);
+    assert_eq!(v["nodes"][0].as_array().unwrap().len(), 3);
+    assert_eq!(v["force_density"].as_array().unwrap().len(), 12);
+}
+
+#[test]
+fn estimates_grow_with_the_topology() {
+    let small = formfind::estimate(&builtin("prism:4").unwrap(), &Settings::default());
+    let large = formfind::estimate(&builtin("grid:27").unwrap(), &Settings::default());
+    assert!(small.work_s < large.work_s && small.memory_bytes < large.memory_bytes);
+    assert!(large.work_s < 60.0, "{large:?}");
+    let adaptive = formfind::estimate(
+        &builtin("tower:12:99").unwrap(),
+        &settings(Method::Adaptive),
+    );
+    assert!(adaptive.work_s > large.work_s, "{adaptive:?}");
+}
+
+#[test]
+fn a_large_prism_takes_the_sparse_anchored_path() {
+    // 1202 nodes, over DENSE_MAX_NODES: four anchors, sparse LU, affine fit to the guess.
+    let n = 601;
+    assert!(2 * n > formfind::DENSE_MAX_NODES);
+    let f = form_find(
+        &builtin(&format!("prism:{n}")).unwrap(),
+        &settings(Method::Fdm),
+    )
+    .unwrap();
+    check_prism(n, &f);
+}
+
+#[test]
+fn a_large_tower_with_folds_is_refused_not_garbled() {
+    // Stacked prisms sharing planar rings: D has null vectors beyond the affine maps (a fold
+    // at every inner ring), so four anchors do not fix the form. Over DENSE_MAX_NODES the
+    // sparse path must say so.
+    let (n, m) = (13, 100);
+    assert!(n * (m + 1) > formfind::DENSE_MAX_NODES);
+    assert!(builtin(&format!("tower:{n}:{m}")).is_err());
+    let small = builtin("tower:13:1").unwrap();
+    let a = prism_twist(n);
+    let mut t = Topology {
+        n_nodes: n * (m + 1),
+        groups: small.groups.clone(),
+        ..Topology::default()
+    };
+    let mut nodes = Vec::new();
+    for l in 0..=m {
+        for i in 0..n {
+            let th = 2.0 * PI * i as f64 / n as f64 + l as f64 * a;
+            nodes.push([th.cos(), th.sin(), l as f64]);
+        }
+    }
+    t.nodes = Some(nodes);
+    for s in 0..m {
+        for i in 0..n {
+            t.bars
+                .push(formfind::Member::new(s * n + i, (s + 1) * n + i).group("bars"));
+            t.strings.push(
+                formfind::Member::new(s * n + i, (s + 1) * n + (i + n - 1) % n).group("vertical"),
+            );
+        }
+    }
+    for l in 0..=m {
+        let g = if l == 0 || l == m {
+            "ring_end"
+        } else {
+            "ring_inner"
+        };
+        for i in 0..n {
+            t.strings
+                .push(formfind::Member::new(l * n + i, l * n + (i + 1) % n).group(g));
+        }
+    }
+    match form_find(&t, &settings(Method::Fdm)) {
+        Err(formfind::FormFindError::RankDeficiency { hint, .. }) => {
+            assert!(hint.contains("held nodes"), "{hint}")
+        }
+        other => panic!("{other:?}"),
+    }
 }

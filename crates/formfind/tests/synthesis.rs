@@ -6,7 +6,7 @@ use formfind::{
     builtin, form_find, rest_lengths, synthesize, FormFound, Method, Settings, Synthesis, Topology,
 };
 use nalgebra::{Matrix3, Vector3};
-use tensegrity_core::statics::{backend, StaticsBackend, StaticsSettings};
+use tensegrity_core::statics::{backend, StaticsSettings};
 use tensegrity_core::{Simulation, SimulationSettings};
 
 fn fdm(t: &Topology) -> FormFound {
@@ -58,7 +58,7 @@ fn aligned_distance(a: &[Vector3<f64>], b: &[Vector3<f64>], scale: bool) -> f64 
 
 #[test]
 fn dynamic_relaxation_returns_to_the_force_density_form() {
-    for name in ["prism:3", "prism:6", "octahedron", "tower:4:2"] {
+    for name in ["prism:3", "prism:6", "octahedron", "tower:4:2", "grid:3"] {
         let t = builtin(name).unwrap();
         let found = fdm(&t);
         let syn = Synthesis {
@@ -113,6 +113,7 @@ fn dynamic_relaxation_returns_to_the_force_density_form() {
             );
         }
         assert!(relaxed.prestressable && relaxed.prestress_stable, "{name}");
+        assert_eq!(relaxed.self_stress_dim, found.self_stress_dim, "{name}");
     }
 }
 

@@ -29,7 +29,7 @@
 use crate::scene::SceneSource;
 use ::formfind::{FormFindError, FormFound, Method, Settings, Synthesis, Topology};
 use serde::{Deserialize, Serialize};
-use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::budget::{Estimate, Parameters};
 use tensegrity_core::request::{
     exclusive, Categorized, Category, InvalidParameter, Param, Request, Rule,
 };
@@ -362,26 +362,17 @@ impl FormfindRequest {
     }
 }
 
-/// Runs `formfind` under a front end's check of its estimate: a built-in is estimated from
-/// its name before it is built, a topology file after it is read (its size is in it); `admit`
-/// (a front end's limits: an error refuses the run, the value it returns — a progress
-/// indicator — lives while the form is found) sees the estimate first.
+/// Runs `formfind` under a front end's check of its estimate: the topology read (a file) or
+/// built (a built-in: its size is capped by the library, [`::formfind::MAX_GRID`] and the
+/// like, so building it is cheap), its estimate ([`estimate_of`]) handed to `admit` (a front
+/// end's limits: an error refuses the run, the value it returns — a progress indicator —
+/// lives while the form is found), then the form found.
 pub fn admitted<G, E: From<FormfindFailure>>(
     request: &FormfindRequest,
     admit: impl FnOnce(Option<Estimate>) -> Result<G, E>,
 ) -> Result<Formfound, E> {
-    // a built-in is estimated from its name, before it is built; a file once it is read
-    let (topology, source, _admitted) = if request.builtin_name().is_some() {
-        let admitted = admit(estimate(request)?)?;
-        let (topology, source) = request.topology()?;
-        (topology, source, admitted)
-    } else {
-        let (topology, source) = request.topology()?;
-        let members = topology.bars.len() + topology.strings.len();
-        let parameter = format!("topology = {source}");
-        let admitted = admit(Some(estimate_of(topology.n_nodes, members, parameter)))?;
-        (topology, source, admitted)
-    };
+    let (topology, source) = request.topology()?;
+    let _admitted = admit(Some(estimate_of(request, &topology, &source)))?;
     Ok(request.run_on(topology, source)?)
 }
 
@@ -433,85 +424,24 @@ fn extent_z(topology: &Topology, found: &FormFound) -> f64 {
     z.clone().fold(f64::NEG_INFINITY, f64::max) - z.fold(f64::INFINITY, f64::min)
 }
 
-/// Bytes a node and a member of a form-finding hold (positions, incidence, the sparse force
-/// density matrix and its factor, the self-stress analysis of the result).
-const BYTES_PER_NODE: f64 = 2048.0;
-/// See [`BYTES_PER_NODE`].
-const BYTES_PER_MEMBER: f64 = 512.0;
-/// Seconds of form-finding per node of a sparse (large) form, fitted on `grid:K` (release
-/// build, docs/PERFORMANCE.md), rounded up.
-const S_PER_NODE: f64 = 2e-5;
-/// Nodes from which the statics of the result leave the dense SVD (see the core's statics).
-const DENSE_NODES: usize = 100;
-
-/// The resource estimate of finding the form of `nodes` nodes and `members` members: the
-/// dense SVD of the equilibrium matrix for a small form, linear in the size for a large one
-/// (the sparse factorisations); `parameter` names what sets the size.
-pub fn estimate_of(nodes: usize, members: usize, parameter: String) -> Estimate {
-    if nodes < DENSE_NODES {
-        return budget::dense_statics(3 * nodes, members, parameter);
-    }
-    let (n, m) = (nodes as f64, members as f64);
-    Estimate::new(
-        format!("the form-finding of {nodes} nodes and {members} members"),
-        parameter,
-    )
-    .memory(BYTES_PER_NODE * n + BYTES_PER_MEMBER * m)
-    .work(S_PER_NODE * n)
+/// The library's estimate of finding the form of `topology` ([`::formfind::estimate`]: the
+/// method's solve and the statics of the form, from the sizes), named by what the request
+/// gives: `builtin = grid:40`, `n = 40` or `topology = FILE`.
+pub fn estimate_of(request: &FormfindRequest, topology: &Topology, source: &str) -> Estimate {
+    let mut e = ::formfind::estimate(topology, &request.settings());
+    e.parameters = match (request.n, &request.builtin) {
+        (Some(n), Some(_)) => Parameters::default().and("n", n),
+        (None, Some(_)) => Parameters::default().and("builtin", source),
+        _ => Parameters::default().and("topology", source),
+    };
+    e
 }
 
-/// The size (nodes, members) of a built-in form from its name alone, before it is built:
-/// `prism:N` (2N, 4N), `octahedron` (12, 30), `tower:N:M` (N(M + 1), N(3M + 1)), `grid:K`
-/// ((K + 1)² + 2K(K + 1), 12K² + 2K(K + 1)); `None` for a name that does not parse (the
-/// library refuses it, naming it). A test checks these against the built forms.
-pub fn builtin_size(name: &str) -> Option<(usize, usize)> {
-    let mut parts = name.split(':');
-    let kind = parts.next()?;
-    let sizes: Vec<usize> = parts
-        .map(|p| p.trim().parse().ok())
-        .collect::<Option<_>>()?;
-    let mul = |a: usize, b: usize| a.checked_mul(b);
-    match (kind, sizes.as_slice()) {
-        ("prism", [n]) => Some((mul(2, *n)?, mul(4, *n)?)),
-        ("octahedron", []) => Some((12, 30)),
-        // layers of N nodes; bars N·M, ring strings N(M + 1), vertical strings N·M
-        ("tower", [n, m]) => Some((
-            mul(*n, m.checked_add(1)?)?,
-            mul(*n, mul(3, *m)?.checked_add(1)?)?,
-        )),
-        // (K + 1)² corners and 2K(K + 1) edge midpoints; 12K² unit members and 2K(K + 1)
-        // bottom lattice edges
-        ("grid", [k]) => {
-            let edges = mul(mul(2, *k)?, k.checked_add(1)?)?;
-            let corners = mul(k.checked_add(1)?, k.checked_add(1)?)?;
-            Some((
-                corners.checked_add(edges)?,
-                mul(mul(12, *k)?, *k)?.checked_add(edges)?,
-            ))
-        }
-        _ => None,
-    }
-}
-
-/// The resource estimate of a request: its built-in's size from the name, a topology's from
-/// the file; `None` for a name the library will refuse (the run says why).
+/// The resource estimate of a request (the registry's, for sweeps): the topology read or
+/// built, then [`estimate_of`].
 pub fn estimate(request: &FormfindRequest) -> Result<Option<Estimate>, FormfindFailure> {
-    if let Some(name) = request.builtin_name() {
-        let parameter = match request.n {
-            Some(n) => format!("n = {n}"),
-            None => format!("builtin = {name}"),
-        };
-        return Ok(
-            builtin_size(&name).map(|(nodes, members)| estimate_of(nodes, members, parameter))
-        );
-    }
     let (topology, source) = request.topology()?;
-    let parameter = format!("topology = {source}");
-    Ok(Some(estimate_of(
-        topology.n_nodes,
-        topology.bars.len() + topology.strings.len(),
-        parameter,
-    )))
+    Ok(Some(estimate_of(request, &topology, &source)))
 }
 
 #[cfg(test)]
@@ -580,41 +510,36 @@ mod tests {
     }
 
     #[test]
-    fn builtin_sizes_are_those_of_the_built_forms() {
-        let names = [
-            "prism:3",
-            "prism:7",
-            "octahedron",
-            "tower:3:1",
-            "tower:4:3",
-            "grid:1",
-            "grid:3",
-        ];
-        for name in names {
-            let t = ::formfind::builtin(name).unwrap();
-            assert_eq!(
-                builtin_size(name),
-                Some((t.n_nodes, t.n_members())),
-                "{name}"
-            );
-        }
-    }
-
-    #[test]
-    fn builtin_sizes_come_from_their_names() {
-        assert_eq!(builtin_size("prism:5"), Some((10, 20)));
-        assert_eq!(builtin_size("octahedron"), Some((12, 30)));
-        assert_eq!(builtin_size("prism:x"), None);
-        assert_eq!(builtin_size("prism:99999999999999999999"), None);
-        let huge = FormfindRequest {
+    fn the_estimate_is_named_by_the_request_and_grows_with_the_form() {
+        let grid = |n| FormfindRequest {
             builtin: Some("grid".into()),
-            n: Some(1_000_000),
+            n: Some(n),
             ..Default::default()
         };
-        let e = estimate(&huge).unwrap().unwrap();
-        assert_eq!(e.parameters.to_string(), "n = 1000000");
-        assert!(tensegrity_core::budget::Limits::default()
-            .check(&e)
-            .is_err());
+        let (small, large) = (
+            estimate(&grid(4)).unwrap().unwrap(),
+            estimate(&grid(300)).unwrap().unwrap(),
+        );
+        assert_eq!(large.parameters.to_string(), "n = 300");
+        assert!(
+            large.work_s > 100.0 * small.work_s && large.memory_bytes > 100.0 * small.memory_bytes
+        );
+        let named = FormfindRequest {
+            builtin: Some("prism:3".into()),
+            ..Default::default()
+        };
+        assert_eq!(
+            estimate(&named).unwrap().unwrap().parameters.to_string(),
+            "builtin = prism:3"
+        );
+        // a built-in the library refuses is the run's error, named
+        let bad = FormfindRequest {
+            builtin: Some("grid:100000".into()),
+            ..Default::default()
+        };
+        assert!(estimate(&bad)
+            .unwrap_err()
+            .to_string()
+            .contains("grid:100000"));
     }
 }

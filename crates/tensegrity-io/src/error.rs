@@ -87,9 +87,9 @@ pub enum IoError {
         file: String,
         /// 1-based line of the offending item, when the error names one.
         line: Option<usize>,
-        /// The form-finding crate's error (names the item).
+        /// The form-finding crate's error (names the item; boxed: it is large).
         #[source]
-        source: formfind::FormFindError,
+        source: Box<formfind::FormFindError>,
     },
     /// A `[[supports]]` entry gives both `directions` and `fixed`.
     #[error(

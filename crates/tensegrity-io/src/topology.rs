@@ -132,7 +132,7 @@ pub fn from_str_named(text: &str, name: &str) -> Result<Topology> {
         .map_err(|(at, source)| IoError::InvalidTopology {
             file: name.to_string(),
             line: at.map(|start| line_column(text, start).0),
-            source,
+            source: Box::new(source),
         })
 }
 
