@@ -21,6 +21,16 @@ pytestmark = pytest.mark.skipif(not hasattr(signal, "pthread_kill"), reason="POS
 LIMIT_S = 0.5
 
 
+@pytest.fixture(autouse=True)
+def python_handles_sigint():
+    """Python's own SIGINT handler (KeyboardInterrupt), as in an interactive session: a
+    process started in the background by a non-interactive shell (a CI job) inherits SIGINT
+    ignored, and Python then installs no handler."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
 def interrupt_after(delay):
     """Sends SIGINT to this process after ``delay`` s; returns a list that receives the time
     it was sent."""
