@@ -20,7 +20,7 @@ use crate::sizing::ZERO_FORCE_RTOL;
 use crate::truss::MichellTruss;
 use serde::Serialize;
 use std::collections::BTreeSet;
-use tensegrity_core::{Bar, StringMember, Structure, Support};
+use tensegrity_core::{StringMember, Structure};
 
 /// The extra strings of a 3-D truss.
 #[derive(Debug, Clone, PartialEq)]
@@ -113,15 +113,9 @@ impl ExtraStrings {
     /// A `tensegrity_core::Structure` of the base truss (as bars) plus the extra strings, with
     /// the level-q nodes pinned; members are numbered base members, then extra strings.
     pub fn to_structure(&self, truss: &MichellTruss) -> Result<Structure> {
-        let mut b = Structure::builder().nodes(truss.nodes().iter().map(|n| n.position.into()));
-        for m in truss.members() {
-            b = b.bar(Bar::new(m.parent, m.child));
-        }
+        let mut b = truss.structure_builder();
         for &[x, y] in &self.pairs {
             b = b.string(StringMember::new(x, y));
-        }
-        for s in truss.n_free()..truss.nodes().len() {
-            b = b.support(Support::pinned(s));
         }
         Ok(b.build()?)
     }

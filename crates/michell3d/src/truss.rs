@@ -10,6 +10,7 @@ use crate::nodes::{self, NodeTuple};
 use crate::params::MichellParams;
 use nalgebra::Vector3;
 use serde::Serialize;
+use tensegrity_core::{Bar, Structure, StructureBuilder, Support};
 
 /// Which child of its parent a member reaches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -158,6 +159,25 @@ impl MichellTruss {
     /// Member lengths (m).
     pub fn lengths(&self) -> Vec<f64> {
         self.members.iter().map(|m| m.length).collect()
+    }
+
+    /// The truss as a core [`Structure`]: every member a bar (parent → child), the level-q
+    /// nodes pinned; members numbered as [`MichellTruss::members`].
+    pub fn structure(&self) -> Result<Structure> {
+        Ok(self.structure_builder().build()?)
+    }
+
+    /// The builder of [`MichellTruss::structure`], for callers that add members (extra
+    /// strings) before it validates.
+    pub fn structure_builder(&self) -> StructureBuilder {
+        let mut b = Structure::builder().nodes(self.nodes.iter().map(|n| n.position.into()));
+        for m in &self.members {
+            b = b.bar(Bar::new(m.parent, m.child));
+        }
+        for s in self.n_free..self.nodes.len() {
+            b = b.support(Support::pinned(s));
+        }
+        b
     }
 
     /// Number of non-support nodes (levels 0..q−1); they come first in the numbering.

@@ -41,8 +41,8 @@ pub trait Estimated: Request {
     fn estimate(&self) -> Result<Option<Estimate>, RunError>;
 }
 
-fn failed(e: impl std::fmt::Display) -> RunError {
-    RunError::Failed(e.to_string())
+fn failed<E: std::fmt::Display + tensegrity_core::request::Categorized>(e: E) -> RunError {
+    RunError::of(&e)
 }
 
 impl Estimated for ToroidRequest {
@@ -320,7 +320,8 @@ mod tests {
         let missing = json!({"scene": "no/such/scene.toml"});
         assert!(matches!(
             s.estimate(values(missing)),
-            Err(RunError::Failed(m)) if m.contains("no/such/scene.toml")
+            Err(RunError::Refused { message, category: tensegrity_core::request::Category::Input })
+                if message.contains("no/such/scene.toml")
         ));
         // commands without an estimate
         assert!(command("tipover")

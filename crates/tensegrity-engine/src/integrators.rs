@@ -119,14 +119,16 @@ impl Context {
 }
 
 /// One work–precision point against the sweep's shared reference.
-pub fn point(req: &IntegratorsRequest, ctx: &Context) -> Result<Point, String> {
-    let index = scene_index(req.scene.as_deref().unwrap_or_default()).map_err(|e| e.to_string())?;
+pub fn point(req: &IntegratorsRequest, ctx: &Context) -> Result<Point, crate::RunError> {
+    let index = scene_index(req.scene.as_deref().unwrap_or_default())?;
     let scene = &work_precision::scenes()[index];
     let integrator = req.integrator.unwrap_or_default();
     let parameter = req.parameter.unwrap_or(f64::NAN);
-    let reference = ctx.reference(index, scene)?;
+    let reference = ctx
+        .reference(index, scene)
+        .map_err(|e| crate::RunError::Failed(e.clone()))?;
     let (r, wall) =
-        run_one(scene, integrator, parameter, req.repeats).map_err(|e| e.to_string())?;
+        run_one(scene, integrator, parameter, req.repeats).map_err(|e| crate::RunError::of(&e))?;
     Ok(Point {
         scene: scene.name,
         integrator,

@@ -26,7 +26,7 @@ use serde_json::{Map, Value};
 use std::fmt::Display;
 use std::sync::OnceLock;
 use tensegrity_core::budget::Estimate;
-use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::request::{Categorized, Category, InvalidParameter, Param, Request};
 
 /// A result column: a scalar of the report, named by its JSON key (a nested key as
 /// `outer.inner`), with its SI unit (`""` when dimensionless or not a number).
@@ -49,17 +49,42 @@ pub enum RunError {
     /// A value the request refuses (the request was never run).
     #[error(transparent)]
     InvalidParameter(#[from] InvalidParameter),
-    /// The library call failed: its message.
+    /// The library call failed numerically: its message.
     #[error("{0}")]
     Failed(String),
+    /// The library call refused its input, was over a resource limit or was interrupted:
+    /// its message and the category of its error (what a front end maps to an exit code
+    /// or an exception).
+    #[error("{message}")]
+    Refused {
+        /// The library error's message.
+        message: String,
+        /// Its category ([`Category::Input`], [`Category::Resource`] or
+        /// [`Category::Interrupted`]).
+        category: Category,
+    },
 }
 
-impl tensegrity_core::request::Categorized for RunError {
-    /// A refused value is bad input; a failed library call a failed computation.
-    fn category(&self) -> tensegrity_core::request::Category {
+impl Categorized for RunError {
+    /// A refused value is bad input; a failed library call keeps its error's category.
+    fn category(&self) -> Category {
         match self {
-            Self::InvalidParameter(_) => tensegrity_core::request::Category::Input,
-            Self::Failed(_) => tensegrity_core::request::Category::Numerical,
+            Self::InvalidParameter(_) => Category::Input,
+            Self::Failed(_) => Category::Numerical,
+            Self::Refused { category, .. } => *category,
+        }
+    }
+}
+
+impl RunError {
+    /// The error of a failed library call, by its category.
+    pub fn of<E: Display + Categorized>(e: &E) -> Self {
+        match e.category() {
+            Category::Numerical => Self::Failed(e.to_string()),
+            category => Self::Refused {
+                message: e.to_string(),
+                category,
+            },
         }
     }
 }
@@ -136,8 +161,8 @@ impl Command {
     }
 }
 
-fn json<T: Serialize, E: Display>(r: Result<T, E>) -> Result<Value, RunError> {
-    let report = r.map_err(|e| RunError::Failed(e.to_string()))?;
+fn json<T: Serialize, E: Display + Categorized>(r: Result<T, E>) -> Result<Value, RunError> {
+    let report = r.map_err(|e| RunError::of(&e))?;
     serde_json::to_value(&report)
         .map_err(|e| RunError::Failed(format!("the report does not serialise: {e}")))
 }
@@ -147,7 +172,7 @@ pub fn entry<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column]) -
 where
     R: Request,
     T: Serialize + 'static,
-    E: Display + 'static,
+    E: Display + Categorized + 'static,
 {
     Command::of::<R>(
         columns,
@@ -160,7 +185,7 @@ pub fn estimated<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column
 where
     R: Estimated,
     T: Serialize + 'static,
-    E: Display + 'static,
+    E: Display + Categorized + 'static,
 {
     Command {
         estimate: Some(Box::new(|values| R::from_values(values)?.estimate())),
@@ -176,7 +201,7 @@ pub fn entry_in<R, T, E>(
 where
     R: Request,
     T: Serialize + 'static,
-    E: Display + 'static,
+    E: Display + Categorized + 'static,
 {
     Command::of::<R>(
         columns,

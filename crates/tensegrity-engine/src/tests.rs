@@ -1,7 +1,7 @@
 use super::*;
 use serde::Serialize;
 use serde_json::{json, Map, Value};
-use tensegrity_core::request::{check_description, Request};
+use tensegrity_core::request::{check_description, Category, Request};
 
 fn values(v: Value) -> Map<String, Value> {
     v.as_object().unwrap().clone()
@@ -122,7 +122,7 @@ fn a_failing_case_is_an_error_and_a_bad_value_names_its_parameter() {
     let v = json!({"complexity": 200, "cylindrical": 0.25, "beta": "pi/6", "phi": "pi/8"});
     let e = michell.run(values(v), &ctx).unwrap_err();
     assert!(
-        matches!(e, RunError::Failed(ref m) if m.contains("complexity = 200")),
+        matches!(e, RunError::Refused { ref message, category: Category::Input } if message.contains("complexity = 200")),
         "{e}"
     );
     let e = toroid.run(values(json!({"sides": 8.5})), &ctx).unwrap_err();

@@ -1,0 +1,106 @@
+"""tensegrity: tensegrity mechanics from Python.
+
+Every command of the ``tensegrity`` command line is a function here — :func:`statics`,
+:func:`simulate`, :func:`toroid`, :func:`roll`, :func:`tipover`, :func:`michell`,
+:func:`michell_optimize`, :func:`michell_table`, :func:`tbar`, :func:`tbar_roll`,
+:func:`formfind`, :func:`sweep` — taking the command's parameters as keyword arguments
+(the flag names in snake_case, the same defaults; angles in radians or as text such as
+``'30deg'`` or ``'pi/8'``) and returning the command's ``--json`` report as a dict, every
+vector or matrix a numpy array. A scene argument is a path, TOML text or a
+:class:`Structure`.
+
+The functions are built from the engine's registry of commands (:func:`commands`), so their
+keywords, defaults and docstrings are the engine's own descriptions. Long computations run
+with the GIL released and stop on Ctrl-C (:class:`~tensegrity.errors.Interrupted`, with the
+results so far). Bad input raises :class:`~tensegrity.errors.InputError` (a ``ValueError``)
+with the command line's message.
+"""
+
+import copy as _copy
+
+from . import _native
+from ._commands import REGISTRY as _REGISTRY
+from ._commands import make as _make
+from ._commands import make_roll as _make_roll
+from ._commands import make_simulate as _make_simulate
+from ._commands import make_tipover as _make_tipover
+from ._commands import read_rows, sweep
+from .errors import (ComputationError, InputError, Interrupted, ResourceError,
+                     TensegrityError)
+from .structure import Structure
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
+    "michell_table", "tbar", "tbar_roll", "formfind", "sweep", "run", "commands",
+    "Structure", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "ResourceError", "Interrupted",
+]
+
+#: One line per function: what the command does (its parameters come from the registry).
+SUMMARIES = {
+    "statics": "Statics of a scene: rank of the equilibrium matrix, self-stress, mechanisms, "
+               "prestressability, load solve, reactions and minimum-mass sizing "
+               "(``tensegrity statics SCENE --json``).",
+    "simulate": "Simulate a scene in time: rigid-bar dynamics with strings, gravity, "
+                "ground contact and actuation (``tensegrity simulate SCENE --json``).",
+    "toroid": "Build and analyse the 3-bar-prism tensegrity toroid wheel: counts, rank, "
+              "prestress, flexes, inertia (``tensegrity toroid --json``).",
+    "roll": "Roll the toroid wheel down an incline, rigid or full model, with its validity "
+            "(``tensegrity roll --json``).",
+    "tipover": "Tip-over of the toroid wheel under a lateral force; ``dynamic=True`` checks "
+               "the threshold with the full dynamics, ``rolling=True`` the lean while rolling "
+               "down a side slope (``tensegrity tipover [--dynamic|--rolling] --json``).",
+    "michell": "Discrete Michell truss (planar, cylindrical or spherical) under a tip load: "
+               "nodes, member forces, sizing (``tensegrity michell --json``).",
+    "michell_optimize": "Mass-optimal Michell truss for a fixed radius ratio "
+                        "(``tensegrity michell optimize --json``).",
+    "michell_table": "Michell truss mass against complexity, planar and 3-D (thesis Fig. 4.18; "
+                     "``tensegrity michell-table``).",
+    "tbar": "T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load "
+            "envelope, mass (``tensegrity tbar --json``).",
+    "tbar_roll": "Roll the T-bar wheel beside the toroid of equal outer radius, with tip-over "
+                 "(``tensegrity tbar roll --json``).",
+    "formfind": "Form-finding: a connectivity (built-in topology or file) to a geometry in "
+                "equilibrium with a self-stress (``tensegrity formfind --json``).",
+}
+
+_SCENE_DOC = """\
+``scene`` is a scene file's path, the TOML text of a scene, or a :class:`Structure`."""
+
+statics = _make("statics", "statics", SUMMARIES["statics"], ("scene",), _SCENE_DOC)
+simulate = _make_simulate(SUMMARIES["simulate"], _SCENE_DOC)
+toroid = _make("toroid", "toroid", SUMMARIES["toroid"])
+roll = _make_roll(SUMMARIES["roll"], "")
+tipover = _make_tipover(SUMMARIES["tipover"], "")
+michell = _make("michell", "michell", SUMMARIES["michell"])
+michell_optimize = _make("michell_optimize", "michell_optimize", SUMMARIES["michell_optimize"])
+michell_table = _make("michell_table", "michell_table", SUMMARIES["michell_table"])
+tbar = _make("tbar", "tbar", SUMMARIES["tbar"])
+tbar_roll = _make("tbar_roll", "tbar_roll", SUMMARIES["tbar_roll"])
+
+if "formfind" in _REGISTRY:
+    formfind = _make("formfind", "formfind", SUMMARIES["formfind"])
+else:
+    def formfind(**kwargs):
+        """Form-finding (not in this build of the engine: its registry has no ``formfind``
+        command yet)."""
+        raise ComputationError("the engine of this build has no `formfind` command")
+
+
+def run(command, **kwargs):
+    """Run any command of the registry by name (``integrators``, ``tipover_dynamic``, …) on
+    its parameters as keywords (and ``max_memory``, ``max_work``, ``max_output``): its
+    report as a dict with numpy arrays."""
+    from . import _commands
+    if command not in _REGISTRY:
+        raise InputError("no command `{}` (known: {})".format(command, ", ".join(_REGISTRY)))
+    fn = _commands.make(command, command, command)
+    return fn(**kwargs)
+
+
+def commands():
+    """The engine's registry: ``{name: {"params": [...], "columns": [...], "aliases": [...]}}``
+    with every parameter's name, kind, choices, unit, help, rule and default."""
+    return _copy.deepcopy(_REGISTRY)

@@ -1,0 +1,887 @@
+"""Type stubs of the package ``tensegrity`` (generated from the engine's registry by
+``python -m tensegrity._stubgen``; do not edit by hand)."""
+
+import os
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from .errors import (ComputationError as ComputationError, InputError as InputError,
+                     Interrupted as Interrupted, ResourceError as ResourceError,
+                     TensegrityError as TensegrityError)
+from .structure import Structure as Structure
+
+__version__: str
+SUMMARIES: Dict[str, str]
+
+Scene = Union[str, "os.PathLike[str]", Structure]
+Size = Union[float, str, None]
+
+
+def statics(
+    scene: Scene,
+    *,
+    rank_tol: Optional[float] = ...,
+    modes: Optional[int] = ...,
+    mass: Literal['lumped', 'consistent'] = ...,
+    least_squares: bool = ...,
+    method: Literal['auto', 'dense', 'sparse'] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Statics of a scene: rank of the equilibrium matrix, self-stress, mechanisms, prestressability, load solve, reactions and minimum-mass sizing (``tensegrity statics SCENE --json``).
+
+    ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
+
+    Parameters
+    ----------
+    scene : str, os.PathLike or Structure
+        The scene file (TOML), or the scene's TOML text (a value with a line break or `=`).
+        Required
+    rank_tol : float, optional
+        Relative rank tolerance of the SVD, in (0, 1) (default: max(rows, cols) · machine
+        epsilon); must be finite and positive
+    modes : int, optional
+        Also report the K lowest natural frequencies about the current state (strings need
+        stiffness and rest length, bars mass, material and radius); must be finite
+    mass : {'lumped', 'consistent'}
+        Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the
+        rigid-bar mass matrix of the dynamics). Default: 'lumped'
+    least_squares : bool
+        When the loads cannot be carried (the structure is a mechanism for them), report the
+        least-squares force densities marked `load_carried: false`, without sizing, instead
+        of failing
+    method : {'auto', 'dense', 'sparse'}
+        Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing
+        QR from 300 dofs and members on), dense or sparse. Default: 'auto'
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def simulate(
+    scene: Scene,
+    *,
+    t_end: Optional[float] = ...,
+    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk']] = ...,
+    dt: Optional[float] = ...,
+    rtol: Optional[float] = ...,
+    atol: Optional[float] = ...,
+    output_interval: Optional[float] = ...,
+    strict: bool = ...,
+    trajectory: bool = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Simulate a scene in time: rigid-bar dynamics with strings, gravity, ground contact and actuation (``tensegrity simulate SCENE --json``).
+
+    ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
+
+    Parameters
+    ----------
+    scene : str, os.PathLike or Structure
+        The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`,
+        or the scene's TOML text. Required
+    t_end : float, optional
+        End time; overrides `[simulation] t_end` (s); must be finite and positive
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk'}, optional
+        Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4,
+        adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff
+        strings and contact
+    dt : float, optional
+        Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)
+        (s); must be finite and positive
+    rtol : float, optional
+        Relative tolerance (rk45, sdirk); must be finite and positive
+    atol : float, optional
+        Absolute tolerance (rk45, sdirk); must be finite and positive
+    output_interval : float, optional
+        Sampling interval of the written trajectory; default: the scene's output times, else
+        t_end/200 (s); must be finite and positive
+    strict : bool
+        Fail (after writing the outputs) when the run has a drift warning
+    trajectory : bool, optional
+        Keep the node positions at the output times: the result also holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True.
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def toroid(
+    *,
+    sides: int = ...,
+    outer_tread: float = ...,
+    inner_tread: float = ...,
+    offset: float = ...,
+    outer_radius: float = ...,
+    inner_radius: float = ...,
+    rim_radius: float = ...,
+    stabilize: str = ...,
+    bar_density: float = ...,
+    prism_only: bool = ...,
+    min_tension: float = ...,
+    rim_window: bool = ...,
+    string_stiffness: Optional[float] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Build and analyse the 3-bar-prism tensegrity toroid wheel: counts, rank, prestress, flexes, inertia (``tensegrity toroid --json``).
+
+    Parameters
+    ----------
+    sides : int
+        Number of sides (prisms) n, at least 3; must be finite. Default: 8
+    outer_tread : float
+        Outer tread width T (m); must be finite and positive. Default: 0.4
+    inner_tread : float
+        Inner tread width t (m); must be finite and positive. Default: 0.3
+    offset : float
+        Tread offset D (m); must be finite and non-negative. Default: 0.1
+    outer_radius : float
+        Outer radius R_o (m); must be finite and positive. Default: 1.0
+    inner_radius : float
+        Inner radius R_i < R_o (m); must be finite and positive. Default: 0.6
+    rim_radius : float
+        Rim radius R_m (m); must be finite and positive. Default: 0.8
+    stabilize : str
+        Stabilising strings: comma-separated spokes, inner, outer, or none. Default:
+        'spokes,inner'
+    bar_density : float
+        Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    prism_only : bool
+        Analyse a single prism (six nodes, K6) instead of the whole wheel
+    min_tension : float
+        Minimum string tension of the prestress design (N); must be finite and positive.
+        Default: 10.0
+    rim_window : bool
+        Also search the rim radii R_m for which a single prism is prestressable
+    string_stiffness : float, optional
+        Give every string of the exported structure this stiffness and the rest length that
+        realises the prestress design (N/m); must be finite and positive
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def roll(
+    *,
+    sides: int = ...,
+    outer_tread: float = ...,
+    inner_tread: float = ...,
+    offset: float = ...,
+    outer_radius: float = ...,
+    inner_radius: float = ...,
+    rim_radius: float = ...,
+    stabilize: str = ...,
+    bar_density: float = ...,
+    incline: Union[float, str] = ...,
+    t_end: float = ...,
+    dt: float = ...,
+    fidelity: Literal['rigid', 'full', 'auto'] = ...,
+    contact: Literal['penalty', 'thesis'] = ...,
+    ground_damping: Optional[float] = ...,
+    ground_stiffness: float = ...,
+    mu: float = ...,
+    restitution: float = ...,
+    string_stiffness: float = ...,
+    min_tension: float = ...,
+    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk'] = ...,
+    gravity: float = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Roll the toroid wheel down an incline, rigid or full model, with its validity (``tensegrity roll --json``).
+
+    Parameters
+    ----------
+    sides : int
+        Number of sides (prisms) n, at least 3; must be finite. Default: 8
+    outer_tread : float
+        Outer tread width T (m); must be finite and positive. Default: 0.4
+    inner_tread : float
+        Inner tread width t (m); must be finite and positive. Default: 0.3
+    offset : float
+        Tread offset D (m); must be finite and non-negative. Default: 0.1
+    outer_radius : float
+        Outer radius R_o (m); must be finite and positive. Default: 1.0
+    inner_radius : float
+        Inner radius R_i < R_o (m); must be finite and positive. Default: 0.6
+    rim_radius : float
+        Rim radius R_m (m); must be finite and positive. Default: 0.8
+    stabilize : str
+        Stabilising strings: comma-separated spokes, inner, outer, or none. Default:
+        'spokes,inner'
+    bar_density : float
+        Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    incline : float or str
+        Slope angle (e.g. `50deg`, `pi/4`, radians) (rad); radians, or a string such as
+        '30deg', 'pi/8', '3pi/4'; must lie in [0, 1.5707963267948966). Default:
+        0.8726646259971648
+    t_end : float
+        Simulated time (s); must be finite and positive. Default: 10.0
+    dt : float
+        Integration step (s); must be finite and positive. Default: 0.0001
+    fidelity : {'rigid', 'full', 'auto'}
+        Model: rigid polygon, full tensegrity, or auto (the cheapest valid one). Default:
+        'auto'
+    contact : {'penalty', 'thesis'}
+        Ground contact of the full model. Default: 'penalty'
+    ground_damping : float, optional
+        Ground damping per contact node (unset: from the restitution) (N s/m); must be
+        finite and non-negative
+    ground_stiffness : float
+        Penalty ground stiffness per contact node (N/m); must be finite and positive.
+        Default: 100000.0
+    mu : float
+        Static friction coefficient μ_s (μ_k = 0.75 μ_s); must be finite and non-negative.
+        Default: 0.8
+    restitution : float
+        Normal coefficient of restitution e of an impact, in [0, 1]; must lie in [0, 1].
+        Default: 0.0
+    string_stiffness : float
+        String stiffness of the full model (N/m); must be finite and positive. Default:
+        20000.0
+    min_tension : float
+        Smallest string tension of the full model's prestress (N); must be finite and
+        positive. Default: 20.0
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk'}
+        Integrator of the full model. Default: 'rk4'
+    gravity : float
+        Gravity (m/s^2); must be finite and positive. Default: 9.81
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def tipover(
+    *,
+    sides: int = ...,
+    outer_tread: float = ...,
+    inner_tread: float = ...,
+    offset: float = ...,
+    outer_radius: float = ...,
+    inner_radius: float = ...,
+    rim_radius: float = ...,
+    stabilize: str = ...,
+    bar_density: float = ...,
+    gravity: float = ...,
+    sigma: Optional[float] = ...,
+    epsilon: Optional[float] = ...,
+    string_stiffness: float = ...,
+    min_tension: float = ...,
+    string_damping: float = ...,
+    ground_stiffness: float = ...,
+    ground_damping: float = ...,
+    mu: float = ...,
+    friction_regularization: float = ...,
+    dt: float = ...,
+    output_dt: float = ...,
+    settle: float = ...,
+    ramp_time: float = ...,
+    ramp_to: float = ...,
+    hold: float = ...,
+    incline: Union[float, str] = ...,
+    side_slope: Union[float, str] = ...,
+    t_end: float = ...,
+    dynamic: bool = ...,
+    rolling: bool = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Tip-over of the toroid wheel under a lateral force; ``dynamic=True`` checks the threshold with the full dynamics, ``rolling=True`` the lean while rolling down a side slope (``tensegrity tipover [--dynamic|--rolling] --json``).
+
+    Parameters
+    ----------
+    sides : int
+        Number of sides (prisms) n, at least 3; must be finite. Default: 8
+    outer_tread : float
+        Outer tread width T (m); must be finite and positive. Default: 0.4
+    inner_tread : float
+        Inner tread width t (m); must be finite and positive. Default: 0.3
+    offset : float
+        Tread offset D (m); must be finite and non-negative. Default: 0.1
+    outer_radius : float
+        Outer radius R_o (m); must be finite and positive. Default: 1.0
+    inner_radius : float
+        Inner radius R_i < R_o (m); must be finite and positive. Default: 0.6
+    rim_radius : float
+        Rim radius R_m (m); must be finite and positive. Default: 0.8
+    stabilize : str
+        Stabilising strings: comma-separated spokes, inner, outer, or none. Default:
+        'spokes,inner'
+    bar_density : float
+        Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    gravity : float
+        Gravity (m/s^2); must be finite and positive. Default: 9.81
+    sigma : float, optional
+        σ = R_i/R_o: sets inner_radius = σ outer_radius; must be finite
+    epsilon : float, optional
+        ε = t/T: sets inner_tread = ε outer_tread; must be finite
+    string_stiffness : float
+        String stiffness of the wheel: the threshold is the rigid one only for a stiff wheel
+        (a soft one deforms and tips early) (N/m); must be finite and positive. Default:
+        2000000.0
+    min_tension : float
+        Smallest string tension of the prestress (N); must be finite and positive. Default:
+        2000.0
+    string_damping : float
+        Axial damping of every string (N s/m); must be finite and non-negative. Default:
+        200.0
+    ground_stiffness : float
+        Penalty ground stiffness (N/m); must be finite and positive. Default: 1000000.0
+    ground_damping : float
+        Penalty ground damping (N s/m); must be finite and non-negative. Default: 2000.0
+    mu : float
+        Static friction coefficient of the ground (kinetic = 0.75 μ); must be finite and
+        positive. Default: 1.0
+    friction_regularization : float
+        Regularisation velocity of the friction law (m/s); must be finite and positive.
+        Default: 0.01
+    dt : float
+        RK4 step; stiffer strings need a smaller one (s); must be finite and positive.
+        Default: 0.0001
+    output_dt : float
+        Output interval of the history (s); must be finite and positive. Default: 0.002
+    settle : float
+        Time at rest before the ramp starts (s); must be finite and non-negative. Default:
+        0.5
+    ramp_time : float
+        Ramp duration, from 0 to ramp_to × the static threshold (s); must be finite and
+        positive. Default: 4.0
+    ramp_to : float
+        Largest force of the ramp, as a multiple of the static threshold; must be finite and
+        positive. Default: 1.3
+    hold : float
+        Time the largest force is held after the ramp (s); must be finite and non-negative.
+        Default: 0.0
+    incline : float or str
+        Incline downhill, e.g. `30deg` (rad); radians, or a string such as '30deg', 'pi/8',
+        '3pi/4'; must lie in [0, 1.5707963267948966). Default: 0.5235987755982988
+    side_slope : float or str
+        Side slope across, e.g. `5deg` (rad); radians, or a string such as '30deg', 'pi/8',
+        '3pi/4'; must be finite. Default: 0.08726646259971647
+    t_end : float
+        Simulated time (s); must be finite and positive. Default: 3.0
+    dynamic : bool, optional
+        The threshold checked by the full dynamics.
+    rolling : bool, optional
+        The lean while rolling down a side slope.
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def michell(
+    *,
+    complexity: int = ...,
+    planar: bool = ...,
+    cylindrical: Optional[float] = ...,
+    spherical: Optional[Union[float, str]] = ...,
+    beta: Union[float, str] = ...,
+    phi: Union[float, str] = ...,
+    r0: float = ...,
+    load: float = ...,
+    azimuth: Union[float, str] = ...,
+    polar: Union[float, str] = ...,
+    material: str = ...,
+    extra_strings: Optional[str] = ...,
+    method: Literal['recursive', 'global'] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Discrete Michell truss (planar, cylindrical or spherical) under a tip load: nodes, member forces, sizing (``tensegrity michell --json``).
+
+    Parameters
+    ----------
+    complexity : int
+        Complexity q (number of member levels; level-q nodes are supports); must be finite.
+        Required
+    planar : bool
+        Skelton's planar truss in the y–z plane
+    cylindrical : float, optional
+        3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11); must
+        be finite
+    spherical : float or str, optional
+        3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24` (rad);
+        radians, or a string such as '30deg', 'pi/8', '3pi/4'; must be finite
+    beta : float or str
+        Departure angle β, e.g. `pi/6` or `30deg` (rad); radians, or a string such as
+        '30deg', 'pi/8', '3pi/4'; must be finite. Required
+    phi : float or str
+        Segmentation angle φ, e.g. `pi/8` (rad); radians, or a string such as '30deg',
+        'pi/8', '3pi/4'; must be finite. Required
+    r0 : float
+        Initial radius r₀ (m); must be finite and positive. Default: 1.0
+    load : float
+        Tip load magnitude w₀ (N); must be finite and positive. Default: 1000.0
+    azimuth : float or str
+        Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃ (rad);
+        radians, or a string such as '30deg', 'pi/8', '3pi/4'; must be finite. Default: 0.0
+    polar : float or str
+        Load polar angle γ from ι̂₃ (eq. 4.13) (rad); radians, or a string such as '30deg',
+        'pi/8', '3pi/4'; must be finite. Default: 3.141592653589793
+    material : str
+        Material of bars and strings (aluminium, steel, titanium, carbon_fibre, nylon,
+        uhmwpe). Default: 'steel'
+    extra_strings : str, optional
+        Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to this many newtons,
+        or `auto`: to the smallest prestress above which no member but the tip members
+        changes sign over the nominal load region of complexity 1
+    method : {'recursive', 'global'}
+        Force propagation method. Default: 'recursive'
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def michell_optimize(
+    *,
+    planar: bool = ...,
+    cylindrical: Optional[float] = ...,
+    spherical: Optional[Union[float, str]] = ...,
+    radius_ratio: float = ...,
+    complexity: Optional[int] = ...,
+    joint_mass: float = ...,
+    max_complexity: int = ...,
+    material: str = ...,
+    load: float = ...,
+    r0: float = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Mass-optimal Michell truss for a fixed radius ratio (``tensegrity michell optimize --json``).
+
+    Parameters
+    ----------
+    planar : bool
+        Skelton's planar truss in the y–z plane
+    cylindrical : float, optional
+        3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11); must
+        be finite
+    spherical : float or str, optional
+        3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24` (rad);
+        radians, or a string such as '30deg', 'pi/8', '3pi/4'; must be finite
+    radius_ratio : float
+        ρ = r_q / r₀ in (0, 1): the support circle over the tip radius; must be finite.
+        Required
+    complexity : int, optional
+        The complexity q; optimised when left out (then joint_mass is needed); must be
+        finite
+    joint_mass : float
+        Mass of each joint, added per node (kg); must be finite and non-negative. Default:
+        0.0
+    max_complexity : int
+        Largest complexity the search tries; must be finite. Default: 60
+    material : str
+        Material of bars and strings. Default: 'steel'
+    load : float
+        Tip load w₀, perpendicular to the tip radius (−ι̂₃) (N); must be finite and
+        positive. Default: 1000.0
+    r0 : float
+        Initial (tip) radius r₀ (m); must be finite and positive. Default: 1.0
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def michell_table(
+    *,
+    max_complexity: int = ...,
+    load: float = ...,
+    material: str = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Michell truss mass against complexity, planar and 3-D (thesis Fig. 4.18; ``tensegrity michell-table``).
+
+    Parameters
+    ----------
+    max_complexity : int
+        Largest complexity (the table runs q = 2..=Q, at most the 3-D families' 100); must
+        lie in [2, 100]. Default: 35
+    load : float
+        Tip load w₀, along −ι̂₃ (N); must be finite and positive. Default: 1000.0
+    material : str
+        Material of bars and strings. Default: 'steel'
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def tbar(
+    *,
+    complexity: int = ...,
+    beta: Union[float, str] = ...,
+    phi: Union[float, str] = ...,
+    cylindrical: Optional[float] = ...,
+    spherical: Optional[Union[float, str]] = ...,
+    r0: float = ...,
+    wheel: bool = ...,
+    extended: Optional[float] = ...,
+    bar_base: Literal['rim', 'chord'] = ...,
+    rim: Literal['fixed', 'body'] = ...,
+    load: float = ...,
+    ea: float = ...,
+    prestress: Optional[float] = ...,
+    directions: int = ...,
+    material: str = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass (``tensegrity tbar --json``).
+
+    Parameters
+    ----------
+    complexity : int
+        Complexity q (lattice levels; level q lies on the rim); must be finite. Default: 1
+    beta : float or str
+        Departure angle β (e.g. `pi/6`, `30deg`) (rad); radians, or a string such as
+        '30deg', 'pi/8', '3pi/4'; must be finite. Required
+    phi : float or str
+        Segmentation angle φ; a wheel needs π/φ integer (rad); radians, or a string such as
+        '30deg', 'pi/8', '3pi/4'; must be finite. Required
+    cylindrical : float, optional
+        Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11); must be finite
+    spherical : float or str, optional
+        Spherical parameterisation with angle ε (eq. 4.12) (rad); radians, or a string such
+        as '30deg', 'pi/8', '3pi/4'; must be finite
+    r0 : float
+        Tip radius r₀ (m); must be finite and positive. Default: 1.0
+    wheel : bool
+        Build the wheel: π/φ treads every 2φ about ι̂₁
+    extended : float, optional
+        Build the extended wheel: the wheel and a copy translated by this offset along ι̂₁
+        (m); must be finite
+    bar_base : {'rim', 'chord'}
+        Base of the radial bar. Default: 'rim'
+    rim : {'fixed', 'body'}
+        Rim: rigid supports (`fixed`) or a free rim body of bars with a hub (`body`).
+        Default: 'fixed'
+    load : float
+        Tip load magnitude w₀ of the load envelope (N); must be finite and positive.
+        Default: 1.0
+    ea : float
+        Axial stiffness EA of every member (N); must be finite and positive. Default:
+        1000000.0
+    prestress : float, optional
+        Bar compression P of the slack map (N); must be finite and positive
+    directions : int
+        Directions of the slack map (quasi-uniform sphere); must lie in [1, 1000000].
+        Default: 2000
+    material : str
+        Material of the sizing (built-in table). Default: 'steel'
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def tbar_roll(
+    *,
+    complexity: int = ...,
+    beta: Union[float, str] = ...,
+    cylindrical: Optional[float] = ...,
+    spherical: Optional[Union[float, str]] = ...,
+    r0: float = ...,
+    extended: Optional[float] = ...,
+    bar_base: Literal['rim', 'chord'] = ...,
+    rim: Optional[Literal['fixed', 'body']] = ...,
+    fidelity: Literal['rigid', 'full'] = ...,
+    treads: Optional[Union[Sequence[int], str]] = ...,
+    incline: Union[float, str] = ...,
+    t_end: Optional[float] = ...,
+    dt: float = ...,
+    gravity: float = ...,
+    bar_density: float = ...,
+    mu_static: float = ...,
+    mu_kinetic: Optional[float] = ...,
+    restitution: float = ...,
+    rim_density: Optional[float] = ...,
+    string_stiffness: float = ...,
+    min_tension: Optional[float] = ...,
+    ground_stiffness: float = ...,
+    ground_damping: Optional[float] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Roll the T-bar wheel beside the toroid of equal outer radius, with tip-over (``tensegrity tbar roll --json``).
+
+    Parameters
+    ----------
+    complexity : int
+        Complexity q; must be at least 1. Default: 1
+    beta : float or str
+        Departure angle β (rad); radians, or a string such as '30deg', 'pi/8', '3pi/4'; must
+        be finite. Default: 0.5235987755982988
+    cylindrical : float, optional
+        Cylindrical parameterisation with offset δ (neither given: δ = 0.25) (m); must be
+        finite
+    spherical : float or str, optional
+        Spherical parameterisation with angle ε (rad); radians, or a string such as '30deg',
+        'pi/8', '3pi/4'; must be finite
+    r0 : float
+        Tip radius r₀: the rolling polygon's circumradius (m); must be finite and positive.
+        Default: 1.0
+    extended : float, optional
+        Roll the extended wheel with its copy at this offset (m); must be finite
+    bar_base : {'rim', 'chord'}
+        Base of the radial bar. Default: 'rim'
+    rim : {'fixed', 'body'}, optional
+        Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)
+    fidelity : {'rigid', 'full'}
+        Rolling model. Default: 'rigid'
+    treads : sequence of int or str, optional
+        Numbers of treads n = π/φ, each at least 3 (default 8,12,16,24 rigid, 8 full); must
+        be at least 3
+    incline : float or str
+        Slope angle (e.g. `50deg`, `pi/4`, radians) (rad); radians, or a string such as
+        '30deg', 'pi/8', '3pi/4'; must lie in [0, 1.5707963267948966). Default:
+        0.8726646259971648
+    t_end : float, optional
+        Simulated time (default 10 s rigid, 1 s full) (s); must be finite and positive
+    dt : float
+        Integration step (s); must be finite and positive. Default: 0.0001
+    gravity : float
+        Gravity (m/s^2); must be finite and positive. Default: 9.81
+    bar_density : float
+        Bar density of both wheels (kg/m); must be finite and positive. Default: 1.0
+    mu_static : float
+        Static friction coefficient; must be finite and non-negative. Default: 0.8
+    mu_kinetic : float, optional
+        Kinetic friction coefficient (default 0.75 μ_s); must be finite and non-negative
+    restitution : float
+        Normal coefficient of restitution e of an impact, in [0, 1]; must lie in [0, 1].
+        Default: 0.0
+    rim_density : float, optional
+        Full model: density of the rim body's bars (default bar_density) (kg/m); must be
+        finite and positive
+    string_stiffness : float
+        String stiffness of the full model (N/m); must be finite and positive. Default:
+        20000.0
+    min_tension : float, optional
+        Full model: smallest string tension of the prestress (default: twice the weight per
+        tip) (N); must be finite and positive
+    ground_stiffness : float
+        Penalty ground stiffness per contact node (N/m); must be finite and positive.
+        Default: 100000.0
+    ground_damping : float, optional
+        Ground damping per contact node (unset: from the restitution) (N s/m); must be
+        finite and non-negative
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def formfind(
+    *,
+    topology: Optional[str] = ...,
+    builtin: Optional[str] = ...,
+    n: Optional[int] = ...,
+    method: Optional[Literal['fdm', 'adaptive', 'dr']] = ...,
+    group: Optional[str] = ...,
+    ratio: float = ...,
+    prestress: float = ...,
+    stiffness: float = ...,
+    bar_mass: float = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Form-finding: a connectivity (built-in topology or file) to a geometry in equilibrium with a self-stress (``tensegrity formfind --json``).
+
+    Parameters
+    ----------
+    topology : str, optional
+        The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a
+        value with a line break or `=`)
+    builtin : str, optional
+        A built-in form instead of a topology: prism:N, octahedron, tower:N:M, grid:K
+    n : int, optional
+        The last size of the built-in form, appended to its name (builtin prism, n 5:
+        prism:5), for sweeps; must be at least 1
+    method : {'fdm', 'adaptive', 'dr'}, optional
+        Method: fdm (force density, every member's given), adaptive (force densities found
+        from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses);
+        default: fdm when every member has a force density, else adaptive
+    group : str, optional
+        The group of the topology whose force density `ratio` multiplies
+    ratio : float
+        Factor on the force density of the members of `group`; must be finite and positive.
+        Default: 1.0
+    prestress : float
+        Prestress level of the exported structure: the largest string tension (N); must be
+        finite and positive. Default: 100.0
+    stiffness : float
+        Axial stiffness EA of the members that give none (strings' rest lengths, dynamic
+        relaxation) (N); must be finite and positive. Default: 100000.0
+    bar_mass : float
+        Mass of each bar of the exported structure (kg); must be finite and positive.
+        Default: 1.0
+    tolerance : float
+        Convergence tolerance of the iterative methods (relative residual); must be finite
+        and positive. Default: 1e-12
+    max_iterations : int
+        Iteration cap of the iterative methods; must be at least 1. Default: 10000
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
+def sweep(
+    spec: Union[Dict[str, Any], str, "os.PathLike[str]"],
+    threads: Optional[int] = ...,
+    out: Union[str, "os.PathLike[str]", None] = ...,
+    shard: Optional[Tuple[int, int]] = ...,
+    resume: bool = ...,
+    units: bool = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, np.ndarray]:
+    """Run a parameter study (``tensegrity sweep SPEC --out FILE``): the spec as a dict,
+    TOML text or a path; ``threads`` workers; the rows as a dict of numpy columns."""
+    ...
+
+def read_rows(path: Union[str, "os.PathLike[str]"]) -> Dict[str, np.ndarray]:
+    """The rows of a sweep's CSV as a dict of numpy columns."""
+    ...
+
+def run(command: str, **kwargs: Any) -> Dict[str, Any]:
+    """Run any command of the registry by name on its parameters as keywords."""
+    ...
+
+def commands() -> Dict[str, Dict[str, Any]]:
+    """The engine's registry: every command with its parameters and result columns."""
+    ...

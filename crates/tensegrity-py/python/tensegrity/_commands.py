@@ -1,0 +1,359 @@
+"""One function per command, built from the engine's registry: the keyword arguments, their
+defaults, the signature and the docstring come from each command's parameters (name, kind,
+unit, default, help), so a parameter added to a request in Rust is a keyword here at once.
+Nothing about a parameter is written twice: this module only knows which registry command
+a function runs and how its result is handed back."""
+
+import csv
+import inspect
+import json
+import os
+import tempfile
+import textwrap
+
+import numpy as np
+
+from . import _convert, _native
+from .errors import Interrupted, TensegrityError
+
+#: The registry: every command, by name.
+REGISTRY = {c["name"]: c for c in json.loads(_native.commands())}
+
+#: Keywords of every function: the resource limits checked before any work (the command
+#: line's global flags ``--max-memory``, ``--max-work``, ``--max-output``).
+LIMITS = ("max_memory", "max_work", "max_output")
+
+_LIMITS_DOC = """\
+max_memory : float or str, optional
+    Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+    ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+max_work : float, optional
+    Refuse the call when its estimated work is above this many seconds (default 60).
+max_output : float or str, optional
+    Refuse the call when its estimated output is above this (default 1 GiB).
+"""
+
+_KIND_TYPE = {
+    "count": "int",
+    "number": "float",
+    "angle": "float or str",
+    "flag": "bool",
+    "choice": "str",
+    "text": "str",
+    "counts": "sequence of int or str",
+    "numbers": "sequence of float or str",
+}
+
+
+def params_of(*names):
+    """The parameters of the commands ``names`` (the first description of a name wins)."""
+    seen, out = set(), []
+    for n in names:
+        for p in REGISTRY[n]["params"]:
+            if p["name"] not in seen:
+                seen.add(p["name"])
+                out.append(p)
+    return out
+
+
+def describe(p):
+    """The numpydoc entry of one parameter."""
+    kind = _KIND_TYPE[p["kind"]]
+    if p["name"] == "scene":
+        kind = "str, os.PathLike or Structure"
+    if p["kind"] == "choice":
+        kind = "{" + ", ".join(repr(c) for c in p["choices"]) + "}"
+    head = "{} : {}".format(p["name"], kind)
+    if p["optional"] and not p["required"]:
+        head += ", optional"
+    text = p["help"]
+    if p["unit"]:
+        text += " ({})".format(p["unit"])
+    if p["kind"] == "angle":
+        text += "; radians, or a string such as '30deg', 'pi/8', '3pi/4'"
+    numeric = p["kind"] in ("count", "number", "angle", "counts", "numbers")
+    if numeric and p["rule"]:
+        text += "; " + p["rule"]
+    if p["required"]:
+        text += ". Required"
+    elif p["default"] is not None and p["kind"] != "flag":
+        text += ". Default: {!r}".format(p["default"])
+    body = textwrap.fill(text, 88, initial_indent="    ", subsequent_indent="    ")
+    return head + "\n" + body + "\n"
+
+
+def _signature(params, positional=(), extra=()):
+    items = []
+    for p in params:
+        kind = (
+            inspect.Parameter.POSITIONAL_OR_KEYWORD
+            if p["name"] in positional
+            else inspect.Parameter.KEYWORD_ONLY
+        )
+        default = inspect.Parameter.empty if p["required"] else p["default"]
+        items.append(inspect.Parameter(p["name"], kind, default=default))
+    items.sort(key=lambda q: q.kind)
+    for name, default in extra:
+        items.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default))
+    for name in LIMITS:
+        items.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None))
+    return inspect.Signature(items)
+
+
+def _limits(bound):
+    return json.dumps({k: _convert.value(bound.pop(k, None)) for k in LIMITS})
+
+
+def _given(bound, skip=()):
+    """The values given (a ``None`` keeps the default, as an absent flag does)."""
+    return {k: v for k, v in bound.items() if v is not None and k not in skip}
+
+
+def _partial(e, convert):
+    """Re-raises an error of the engine with its partial results converted."""
+    raw = getattr(e, "partial_raw", None)
+    if raw is not None:
+        e.partial = convert(raw)
+        del e.partial_raw
+    return e
+
+
+def _call(name, sig, args, kwargs):
+    """The arguments given (a default is not passed on: the engine applies its own, as the
+    command line passes only the flags given)."""
+    return dict(sig.bind(*args, **kwargs).arguments)
+
+
+def make(pyname, command, summary, positional=(), doc_extra=""):
+    """The function ``pyname`` running the registry's ``command``."""
+    params = REGISTRY[command]["params"]
+    sig = _signature(params, positional)
+
+    def f(*args, **kwargs):
+        bound = _call(pyname, sig, args, kwargs)
+        limits = _limits(bound)
+        values = _convert.arguments(_given(bound))
+        return _convert.report(_native.run(command, values, limits))
+
+    return finish(f, pyname, sig, summary, params, doc_extra)
+
+
+def finish(f, pyname, sig, summary, params, doc_extra="", extra_doc=""):
+    """Names ``f``, and gives it its signature and its docstring."""
+    f.__name__ = f.__qualname__ = pyname
+    f.__signature__ = sig
+    f.__module__ = "tensegrity"
+    f.__doc__ = docstring(summary, params, doc_extra, extra_doc)
+    return f
+
+
+def docstring(summary, params, doc_extra="", extra_doc=""):
+    """The docstring of a command function (also written into the stubs)."""
+    parts = [summary.strip(), ""]
+    if doc_extra:
+        parts += [textwrap.dedent(doc_extra).strip(), ""]
+    parts += ["Parameters", "----------"]
+    parts += [describe(p).rstrip() for p in params]
+    if extra_doc:
+        parts.append(textwrap.dedent(extra_doc).rstrip())
+    parts.append(_LIMITS_DOC.rstrip())
+    parts += [
+        "",
+        "Returns",
+        "-------",
+        "dict",
+        "    The command's ``--json`` report, every vector or matrix a numpy array.",
+    ]
+    return "\n".join(parts) + "\n"
+
+
+# --- the commands whose runs stream ------------------------------------------------------
+
+
+def make_simulate(summary, doc_extra):
+    params = REGISTRY["simulate"]["params"]
+    extra = (("trajectory", True),)
+    sig = _signature(params, ("scene",), extra)
+
+    def simulate(*args, **kwargs):
+        bound = _call("simulate", sig, args, kwargs)
+        limits = _limits(bound)
+        keep = bool(bound.pop("trajectory", True))
+        values = _convert.arguments(_given(bound))
+        try:
+            text, t, x, n = _native.simulate(values, limits, keep)
+        except Interrupted as e:
+            raise _partial(e, lambda raw: _samples(*raw)) from None
+        out = _convert.report(text)
+        if keep:
+            out.update(_samples(t, x, n))
+        return out
+
+    extra_doc = """\
+    trajectory : bool, optional
+        Keep the node positions at the output times (the scene's, else ``output_interval``,
+        else t_end/200), as the command line's ``--out`` writes them: the result then also
+        holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True."""
+    return finish(simulate, "simulate", sig, summary, params, doc_extra, extra_doc)
+
+
+def _samples(t, x, n):
+    t = np.frombuffer(t, dtype=np.float64).copy()
+    x = np.frombuffer(x, dtype=np.float64).copy()
+    return {"t": t, "trajectory": x.reshape(len(t), n, 3) if len(t) else x.reshape(0, n, 3)}
+
+
+def make_roll(summary, doc_extra):
+    params = REGISTRY["roll"]["params"]
+    sig = _signature(params)
+
+    def roll(*args, **kwargs):
+        bound = _call("roll", sig, args, kwargs)
+        limits = _limits(bound)
+        values = _convert.arguments(_given(bound))
+        try:
+            return _convert.report(_native.roll(values, limits))
+        except (Interrupted, TensegrityError) as e:
+            raise _partial(e, lambda raw: _convert.report(raw) if raw else None) from None
+
+    return finish(roll, "roll", sig, summary, params, doc_extra)
+
+
+def make_tipover(summary, doc_extra):
+    modes = ("tipover", "tipover_dynamic", "tipover_rolling")
+    params = params_of(*modes)
+    sig = _signature(params, (), (("dynamic", False), ("rolling", False)))
+
+    def tipover(*args, **kwargs):
+        bound = _call("tipover", sig, args, kwargs)
+        limits = _limits(bound)
+        dynamic, rolling = bool(bound.pop("dynamic", False)), bool(bound.pop("rolling", False))
+        if dynamic and rolling:
+            raise TypeError("tipover(): dynamic and rolling cannot be used together")
+        command = modes[1] if dynamic else modes[2] if rolling else modes[0]
+        values = _convert.arguments(_given(bound))
+        return _convert.report(_native.run(command, values, limits, list(modes)))
+
+    extra_doc = """\
+    dynamic : bool, optional
+        Check the threshold with the full 3-D dynamics (the command line's ``--dynamic``):
+        the wheel at rest on a side on level ground, a lateral force ramped at the hub.
+    rolling : bool, optional
+        Roll the wheel down a plane with a side slope and report its lean (``--rolling``)."""
+    return finish(tipover, "tipover", sig, summary, params, doc_extra, extra_doc)
+
+
+# --- sweeps -------------------------------------------------------------------------------
+
+_SWEEP_DOC = """\
+Run a parameter study (the command line's ``tensegrity sweep SPEC --out FILE``).
+
+Parameters
+----------
+spec : dict or str or os.PathLike
+    The sweep spec: a dict with the keys of a spec file (``study``, ``fixed``, ``axes``,
+    ``derived``, ``output``), TOML text, or the path of a spec file.
+threads : int, optional
+    Worker threads (default: one per core). Rows are the same for any thread count.
+out : str or os.PathLike, optional
+    Also keep the rows in this CSV file (the command line's ``--out``; with ``resume`` an
+    interrupted file is continued). Default: a temporary file, removed afterwards.
+shard : (int, int), optional
+    Run only shard ``k`` of ``n`` (cases with id = k-1 mod n), as ``--shard K/N``.
+resume : bool, optional
+    Continue the rows already in ``out``.
+units : bool, optional
+    Write the ``# units:`` line into ``out``.
+""" + _LIMITS_DOC + """
+Returns
+-------
+dict
+    One entry per column of the CSV, in its order: numeric columns as float64 (int64 for
+    whole numbers) numpy arrays, an empty cell NaN; text columns (``error``, choices) as
+    numpy arrays of str. A result column that repeats an axis column of the same name with
+    the same values is given once.
+"""
+
+
+def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
+          max_memory=None, max_work=None, max_output=None):
+    limits = json.dumps({"max_memory": _convert.value(max_memory),
+                         "max_work": _convert.value(max_work),
+                         "max_output": _convert.value(max_output)})
+    if isinstance(spec, dict):
+        text, is_path = _native.toml_text(_convert.dumps(spec)), False
+    elif isinstance(spec, os.PathLike) or ("\n" not in spec and "=" not in spec):
+        text, is_path = os.fspath(spec), True
+    else:
+        text, is_path = spec, False
+    if shard is not None:
+        shard = (int(shard[0]), int(shard[1]))
+    temporary = out is None
+    if temporary:
+        fd, path = tempfile.mkstemp(prefix="tensegrity-sweep-", suffix=".csv")
+        os.close(fd)
+        os.remove(path)
+    else:
+        path = os.fspath(out)
+    try:
+        try:
+            _native.sweep(text, is_path, path, limits,
+                          None if threads is None else int(threads), shard,
+                          bool(resume), bool(units))
+        except Interrupted as e:
+            e.partial = read_rows(path) if os.path.exists(path) else None
+            raise e from None
+        return read_rows(path)
+    finally:
+        if temporary:
+            for p in (path, os.path.join(os.path.dirname(path),
+                                         "." + os.path.basename(path) + ".lock")):
+                if os.path.exists(p):
+                    os.remove(p)
+
+
+sweep.__doc__ = _SWEEP_DOC
+
+
+def read_rows(path):
+    """The rows of a sweep's CSV as a dict of numpy columns (see :func:`sweep`)."""
+    with open(path, newline="", encoding="utf-8") as f:
+        lines = [line for line in f if not line.startswith("#")]
+    rows = list(csv.reader(lines))
+    if not rows:
+        return {}
+    header, body = rows[0], rows[1:]
+    columns = {}
+    for j, name in enumerate(header):
+        cells = [r[j] if j < len(r) else "" for r in body]
+        col = _column(cells)
+        if name in columns:
+            same = _same(columns[name], col)
+            if same:
+                continue
+            k = 1
+            while "{}.{}".format(name, k) in columns:
+                k += 1
+            name = "{}.{}".format(name, k)
+        columns[name] = col
+    return columns
+
+
+def _column(cells):
+    try:
+        numbers = [float(c) if c != "" else float("nan") for c in cells]
+    except ValueError:
+        return np.array(cells, dtype=str)
+    if cells and all(c != "" and c.lstrip("-").isdigit() for c in cells):
+        return np.array([int(c) for c in cells], dtype=np.int64)
+    if cells and all(c == "" for c in cells):
+        return np.array(cells, dtype=str)
+    return np.array(numbers, dtype=np.float64)
+
+
+def _same(a, b):
+    if a.shape != b.shape:
+        return False
+    if a.dtype.kind in "fi" and b.dtype.kind in "fi":
+        return bool(np.array_equal(a.astype(float), b.astype(float), equal_nan=True))
+    return bool(np.array_equal(a, b))

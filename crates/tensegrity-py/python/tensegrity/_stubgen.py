@@ -1,0 +1,146 @@
+"""Writes the type stubs ``__init__.pyi`` from the engine's registry, so that the stubs list
+every parameter of every command with the registry's own description:
+
+    python -m tensegrity._stubgen > crates/tensegrity-py/python/tensegrity/__init__.pyi
+
+The tests regenerate them and compare with the file shipped (tests/test_stubs.py).
+"""
+
+import sys
+
+from . import SUMMARIES
+from ._commands import LIMITS, REGISTRY, docstring, params_of
+
+_TYPE = {
+    "count": "int",
+    "number": "float",
+    "angle": "Union[float, str]",
+    "flag": "bool",
+    "text": "str",
+    "counts": "Union[Sequence[int], str]",
+    "numbers": "Union[Sequence[float], str]",
+}
+
+_HEAD = '''"""Type stubs of the package ``tensegrity`` (generated from the engine's registry by
+``python -m tensegrity._stubgen``; do not edit by hand)."""
+
+import os
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from .errors import (ComputationError as ComputationError, InputError as InputError,
+                     Interrupted as Interrupted, ResourceError as ResourceError,
+                     TensegrityError as TensegrityError)
+from .structure import Structure as Structure
+
+__version__: str
+SUMMARIES: Dict[str, str]
+
+Scene = Union[str, "os.PathLike[str]", Structure]
+Size = Union[float, str, None]
+'''
+
+
+def _type(p):
+    if p["kind"] == "choice":
+        t = "Literal[{}]".format(", ".join(repr(c) for c in p["choices"]))
+    else:
+        t = _TYPE[p["kind"]]
+    if p["name"] == "scene":
+        t = "Scene"
+    if p["default"] is None and not p["required"]:
+        t = "Optional[{}]".format(t)
+    return t
+
+
+def _default(p):
+    return "..." if not p["required"] else None
+
+
+def _indent(text):
+    return "\n".join(("    " + line) if line else "" for line in text.splitlines())
+
+
+def function(name, command_names, summary, positional=(), extra=(), extra_doc=""):
+    """The stub of one function."""
+    params = params_of(*command_names)
+    args = []
+    for p in params:
+        if p["name"] in positional:
+            args.append("{}: {}".format(p["name"], _type(p)))
+    args.append("*")
+    for p in params:
+        if p["name"] not in positional:
+            args.append("{}: {} = ...".format(p["name"], _type(p)))
+    for n, t in extra:
+        args.append("{}: {} = ...".format(n, t))
+    for n in LIMITS:
+        args.append("{}: Size = ...".format(n))
+    doc = docstring(summary, params, extra_doc=extra_doc)
+    lines = ["def {}(".format(name)]
+    lines += ["    {},".format(a) for a in args]
+    lines.append(") -> Dict[str, Any]:")
+    lines.append('    """' + _indent(doc).lstrip() + '\n    """')
+    lines.append("    ...")
+    return "\n".join(lines) + "\n"
+
+
+def stubs():
+    """The text of ``__init__.pyi``."""
+    out = [_HEAD]
+    scene = "``scene`` is a scene file's path, the TOML text of a scene, or a Structure."
+    out.append(function("statics", ["statics"], SUMMARIES["statics"] + "\n\n" + scene,
+                        positional=("scene",)))
+    out.append(function(
+        "simulate", ["simulate"], SUMMARIES["simulate"] + "\n\n" + scene, positional=("scene",),
+        extra=(("trajectory", "bool"),),
+        extra_doc="trajectory : bool, optional\n    Keep the node positions at the output "
+                  "times: the result also holds ``t`` (samples,) and ``trajectory`` "
+                  "(samples, nodes, 3). Default: True."))
+    out.append(function("toroid", ["toroid"], SUMMARIES["toroid"]))
+    out.append(function("roll", ["roll"], SUMMARIES["roll"]))
+    out.append(function(
+        "tipover", ["tipover", "tipover_dynamic", "tipover_rolling"], SUMMARIES["tipover"],
+        extra=(("dynamic", "bool"), ("rolling", "bool")),
+        extra_doc="dynamic : bool, optional\n    The threshold checked by the full dynamics.\n"
+                  "rolling : bool, optional\n    The lean while rolling down a side slope."))
+    for name in ("michell", "michell_optimize", "michell_table", "tbar", "tbar_roll"):
+        out.append(function(name, [name], SUMMARIES[name]))
+    if "formfind" in REGISTRY:
+        out.append(function("formfind", ["formfind"], SUMMARIES["formfind"]))
+    else:
+        out.append('def formfind(**kwargs: Any) -> Dict[str, Any]:\n'
+                   '    """Form-finding (not in this build of the engine)."""\n    ...\n')
+    out.append('''def sweep(
+    spec: Union[Dict[str, Any], str, "os.PathLike[str]"],
+    threads: Optional[int] = ...,
+    out: Union[str, "os.PathLike[str]", None] = ...,
+    shard: Optional[Tuple[int, int]] = ...,
+    resume: bool = ...,
+    units: bool = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, np.ndarray]:
+    """Run a parameter study (``tensegrity sweep SPEC --out FILE``): the spec as a dict,
+    TOML text or a path; ``threads`` workers; the rows as a dict of numpy columns."""
+    ...
+
+def read_rows(path: Union[str, "os.PathLike[str]"]) -> Dict[str, np.ndarray]:
+    """The rows of a sweep's CSV as a dict of numpy columns."""
+    ...
+
+def run(command: str, **kwargs: Any) -> Dict[str, Any]:
+    """Run any command of the registry by name on its parameters as keywords."""
+    ...
+
+def commands() -> Dict[str, Dict[str, Any]]:
+    """The engine's registry: every command with its parameters and result columns."""
+    ...
+''')
+    return "\n\n".join(out)
+
+
+if __name__ == "__main__":
+    sys.stdout.write(stubs())

@@ -1,0 +1,376 @@
+"""The structure model from numpy: :class:`Structure`.
+
+A structure is validated by the engine when it is made (the core's builder: every error
+names the item, e.g. ``string 0: stiffness must be positive and finite, got -1``) and crosses
+to the engine as scene TOML written by the io crate's writer (``to_toml``), read back exactly.
+Its arrays are read-only; :meth:`Structure.replace` makes a changed copy.
+"""
+
+import json
+import os
+
+import numpy as np
+
+from . import _convert, _native
+from .errors import InputError
+
+_AXES = "xyz"
+
+
+def _matrix(value, cols, name, dtype):
+    a = np.asarray(value, dtype=dtype)
+    if a.size == 0:
+        return np.zeros((0, cols), dtype=dtype)
+    if a.ndim != 2 or a.shape[1] != cols:
+        raise InputError("{}: expected an array of shape (k, {}), got shape {}".format(
+            name, cols, a.shape))
+    return a
+
+
+def _integers(value, name):
+    a = np.asarray(value)
+    if a.size == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    if a.dtype.kind == "f":
+        if not np.all(np.isfinite(a)) or not np.all(a == np.round(a)):
+            raise InputError("{}: node indices must be whole numbers".format(name))
+    elif a.dtype.kind not in "iu":
+        raise InputError("{}: node indices must be integers, got {}".format(name, a.dtype))
+    return _matrix(a.astype(np.int64), 2, name, np.int64)
+
+
+def _per_member(value, count, name):
+    """A per-member property: None (unset), one value for all, or one per member (NaN:
+    unset for that member)."""
+    if value is None:
+        return None
+    a = np.asarray(value, dtype=np.float64)
+    if a.ndim == 0:
+        a = np.full(count, float(a))
+    if a.shape != (count,):
+        raise InputError("{}: expected one value per member ({}), got shape {}".format(
+            name, count, a.shape))
+    return a
+
+
+def _names(value, count, name):
+    if value is None:
+        return None
+    if isinstance(value, str):
+        return [value] * count
+    names = [None if v is None else str(v) for v in value]
+    if len(names) != count:
+        raise InputError("{}: expected one name per member ({}), got {}".format(
+            name, count, len(names)))
+    return names
+
+
+def _supports(value):
+    """[(node, (fx, fy, fz))] from a dict {node: 'xyz' | (bool, bool, bool)} or a list of
+    pinned nodes."""
+    if value is None:
+        return []
+    if isinstance(value, dict):
+        items = value.items()
+    else:
+        items = [(n, "xyz") for n in np.asarray(value, dtype=np.int64).ravel()]
+    out = []
+    for node, fixed in items:
+        if isinstance(fixed, str):
+            bad = [c for c in fixed if c not in _AXES]
+            if bad:
+                raise InputError("support of node {}: unknown direction {!r} (use x, y, z)"
+                                 .format(node, bad[0]))
+            fixed = tuple(a in fixed for a in _AXES)
+        out.append((int(node), tuple(bool(f) for f in fixed)))
+    return out
+
+
+def _loads(value, n_nodes):
+    """[(node, force)] from a dict {node: force} or an (n, 3) array of nodal loads (rows of
+    zeros left out)."""
+    if value is None:
+        return []
+    if isinstance(value, dict):
+        return [(int(k), [float(x) for x in np.asarray(f, dtype=float).ravel()])
+                for k, f in value.items()]
+    a = _matrix(value, 3, "loads", np.float64)
+    if a.shape[0] != n_nodes:
+        raise InputError("loads: expected one row per node ({}), got {}".format(
+            n_nodes, a.shape[0]))
+    return [(i, a[i].tolist()) for i in range(n_nodes) if np.any(a[i] != 0.0)]
+
+
+def _opt(x):
+    return None if x is None or (isinstance(x, float) and np.isnan(x)) else float(x)
+
+
+class Structure:
+    """Bars and strings between nodes, with masses, stiffnesses, rest lengths, damping,
+    supports, loads and gravity.
+
+    Parameters
+    ----------
+    nodes : array_like, shape (n, 3)
+        Node positions (m).
+    bars, strings : array_like of int, shape (m, 2)
+        Node pairs, 0-based (a member runs from its first node to its second).
+    bar_mass : float or array_like, optional
+        Bar masses (kg): one for all or one per bar (NaN: unset).
+    bar_radius : float or array_like, optional
+        Bar radii (m), for sizing and modes.
+    bar_material, string_material : str or sequence of str, optional
+        Material names: built-in ones or keys of ``materials``.
+    stiffness : float or array_like, optional
+        String axial stiffness (N/m).
+    rest_length : float or array_like, optional
+        String rest lengths (m).
+    damping : float or array_like, optional
+        String damping (N s/m); default 0.
+    materials : dict, optional
+        ``{name: (density kg/m³, Young's modulus Pa, yield strength Pa)}``.
+    supports : dict or sequence of int, optional
+        ``{node: "xyz"}`` (the fixed directions, or three booleans), or nodes fixed in all
+        three directions.
+    loads : dict or array_like, optional
+        ``{node: (Fx, Fy, Fz)}`` (N), or an (n, 3) array of nodal loads.
+    gravity : array_like, shape (3,), optional
+        Gravitational acceleration (m/s²), e.g. ``(0, 0, -9.81)``.
+    velocities : array_like, shape (n, 3), optional
+        Initial node velocities (m/s) for ``simulate``.
+    simulation, ground : dict, optional
+        The scene's ``[simulation]`` and ``[ground]`` tables (keys as in a scene file, e.g.
+        ``ground={"point": [0, 0, 0], "normal": [0, 0, 1], "model": "penalty",
+        "stiffness": 1e4, "damping": 100.0}``).
+    actuation : list of dict, optional
+        The scene's ``[[actuation]]`` tables.
+
+    Raises
+    ------
+    InputError
+        (a ``ValueError``) naming the item: an index out of range, a non-finite coordinate,
+        a negative stiffness, …
+    """
+
+    def __init__(self, nodes, bars=(), strings=(), *, bar_mass=None, bar_radius=None,
+                 bar_material=None, stiffness=None, rest_length=None, damping=None,
+                 string_material=None, materials=None, supports=None, loads=None,
+                 gravity=None, velocities=None, simulation=None, ground=None, actuation=None):
+        self.nodes = _matrix(nodes, 3, "nodes", np.float64)
+        self.bars = _integers(bars, "bars")
+        self.strings = _integers(strings, "strings")
+        nb, ns, n = len(self.bars), len(self.strings), len(self.nodes)
+        self.bar_mass = _per_member(bar_mass, nb, "bar_mass")
+        self.bar_radius = _per_member(bar_radius, nb, "bar_radius")
+        self.bar_material = _names(bar_material, nb, "bar_material")
+        self.stiffness = _per_member(stiffness, ns, "stiffness")
+        self.rest_length = _per_member(rest_length, ns, "rest_length")
+        self.damping = _per_member(damping, ns, "damping")
+        self.string_material = _names(string_material, ns, "string_material")
+        self.materials = {str(k): tuple(float(x) for x in v)
+                          for k, v in (materials or {}).items()}
+        self.supports = _supports(supports)
+        self.loads = _loads(loads, n)
+        self.gravity = None if gravity is None else np.asarray(gravity, dtype=np.float64)
+        self.velocities = (None if velocities is None
+                           else _matrix(velocities, 3, "velocities", np.float64))
+        self.tables = {}
+        for name, table in (("simulation", simulation), ("ground", ground),
+                            ("actuation", actuation)):
+            if table is not None:
+                self.tables[name] = table
+        for a in (self.nodes, self.bars, self.strings, self.bar_mass, self.bar_radius,
+                  self.stiffness, self.rest_length, self.damping, self.gravity,
+                  self.velocities):
+            if a is not None:
+                a.setflags(write=False)
+        self._toml = _native.structure_toml(self._spec(), _convert.dumps(self.tables))
+
+    def _spec(self):
+        def at(a, k):
+            return None if a is None else _opt(a[k])
+
+        def name(a, k):
+            return None if a is None else a[k]
+
+        return {
+            "nodes": self.nodes.tolist(),
+            "velocities": None if self.velocities is None else self.velocities.tolist(),
+            "materials": list(self.materials.items()),
+            "bars": [((int(i), int(j)), at(self.bar_mass, k), name(self.bar_material, k),
+                      at(self.bar_radius, k)) for k, (i, j) in enumerate(self.bars)],
+            "strings": [((int(i), int(j)), at(self.stiffness, k), at(self.rest_length, k),
+                         at(self.damping, k) or 0.0, name(self.string_material, k))
+                        for k, (i, j) in enumerate(self.strings)],
+            "supports": self.supports,
+            "loads": self.loads,
+            "gravity": None if self.gravity is None else self.gravity.tolist(),
+        }
+
+    # --- scene TOML --------------------------------------------------------------------
+
+    def to_toml(self):
+        """The structure as scene TOML (the io crate's writer; read back exactly)."""
+        return self._toml
+
+    @classmethod
+    def from_toml(cls, scene):
+        """A structure from scene TOML text or a scene file's path (the io crate's reader:
+        errors name the file, the item and its line)."""
+        if isinstance(scene, os.PathLike) or ("\n" not in scene and "=" not in scene):
+            path = os.fspath(scene)
+            try:
+                with open(path, encoding="utf-8") as f:
+                    text = f.read()
+            except OSError as e:
+                raise InputError("reading {}: {}".format(path, e.strerror or e)) from None
+            name = path
+        else:
+            text, name = scene, "scene text"
+        spec = json.loads(_native.structure_read(text, name))
+        return cls._from_spec(spec)
+
+    @classmethod
+    def _from_spec(cls, spec):
+        bars, strings = spec["bars"], spec["strings"]
+
+        def column(rows, k, nan=True):
+            values = [r[k] for r in rows]
+            if all(v is None for v in values):
+                return None
+            return [float("nan") if v is None else v for v in values] if nan else values
+
+        return cls(
+            spec["nodes"] if spec["nodes"] else np.zeros((0, 3)),
+            [r[0] for r in bars],
+            [r[0] for r in strings],
+            bar_mass=column(bars, 1),
+            bar_material=column(bars, 2, nan=False),
+            bar_radius=column(bars, 3),
+            stiffness=column(strings, 1),
+            rest_length=column(strings, 2),
+            damping=column(strings, 3) if any(r[3] for r in strings) else None,
+            string_material=column(strings, 4, nan=False),
+            materials={k: tuple(v) for k, v in spec["materials"].items()},
+            supports={n: tuple(f) for n, f in spec["supports"]},
+            loads={n: f for n, f in spec["loads"]} or None,
+            gravity=spec["gravity"],
+            velocities=spec["velocities"],
+            **spec.get("tables", {}),
+        )
+
+    def replace(self, **changes):
+        """A copy with some arguments of the constructor changed."""
+        args = dict(
+            nodes=self.nodes, bars=self.bars, strings=self.strings, bar_mass=self.bar_mass,
+            bar_radius=self.bar_radius, bar_material=self.bar_material,
+            stiffness=self.stiffness, rest_length=self.rest_length, damping=self.damping,
+            string_material=self.string_material, materials=self.materials,
+            supports={n: f for n, f in self.supports},
+            loads={n: f for n, f in self.loads} or None, gravity=self.gravity,
+            velocities=self.velocities, **self.tables)
+        args.update(changes)
+        return Structure(**args)
+
+    # --- topologies --------------------------------------------------------------------
+
+    @classmethod
+    def toroid(cls, **kwargs):
+        """The toroid wheel of the ``toroid`` command's keywords (as ``toroid
+        --export-scene`` writes it; with ``string_stiffness`` its strings are stiff and
+        prestressed)."""
+        return cls.from_toml(_native.topology("toroid", _convert.arguments(kwargs)))
+
+    @classmethod
+    def michell(cls, **kwargs):
+        """The Michell truss of the ``michell`` command's keywords: members as bars, extra
+        strings (``extra_strings``) as strings, the last level pinned."""
+        return cls.from_toml(_native.topology("michell", _convert.arguments(kwargs)))
+
+    @classmethod
+    def tbar(cls, **kwargs):
+        """The T-bar tread or wheel of the ``tbar`` command's keywords (as ``tbar
+        --export-scene`` writes it)."""
+        return cls.from_toml(_native.topology("tbar", _convert.arguments(kwargs)))
+
+    @classmethod
+    def from_formfind(cls, **kwargs):
+        """The form-found, prestressed structure of the ``formfind`` command's keywords (as
+        ``formfind --out`` writes it: string rest lengths and stiffnesses realising the
+        prestress), e.g. ``Structure.from_formfind(builtin="prism:3")``."""
+        return cls.from_toml(_native.topology("formfind", _convert.arguments(kwargs)))
+
+    # --- matrices ------------------------------------------------------------------------
+
+    def _matrices(self):
+        if not hasattr(self, "_m"):
+            m = json.loads(_native.matrices(self._toml))
+            out = {}
+            for key in ("C_b", "C_s", "A"):
+                shape = tuple(m[key]["shape"])
+                a = np.array(m[key]["data"], dtype=np.float64).reshape(shape)
+                a.setflags(write=False)
+                out[key] = a
+            out["free_dofs"] = np.array(m["free_dofs"], dtype=np.int64).reshape(-1, 2)
+            self._m = out
+        return self._m
+
+    @property
+    def C_b(self):
+        """Bar connectivity (bars × nodes): −1 at a bar's first node, +1 at its second."""
+        return self._matrices()["C_b"]
+
+    @property
+    def C_s(self):
+        """String connectivity (strings × nodes)."""
+        return self._matrices()["C_s"]
+
+    @property
+    def equilibrium_matrix(self):
+        """The equilibrium matrix A (free degrees of freedom × members, bars then strings):
+        A q = w for force densities q (tension positive) and the free components w of the
+        nodal loads; rows node-major, supported directions removed (see ``free_dofs``)."""
+        return self._matrices()["A"]
+
+    @property
+    def free_dofs(self):
+        """(node, direction) of each row of the equilibrium matrix (direction 0, 1, 2 = x,
+        y, z)."""
+        return self._matrices()["free_dofs"]
+
+    def sparse(self, name):
+        """``C_b``, ``C_s`` or ``equilibrium_matrix`` as scipy-compatible triplets ``(row,
+        col, val, shape)``: ``scipy.sparse.coo_matrix((val, (row, col)), shape=shape)``."""
+        a = {"C_b": self.C_b, "C_s": self.C_s,
+             "equilibrium_matrix": self.equilibrium_matrix, "A": self.equilibrium_matrix}
+        if name not in a:
+            raise InputError("no matrix {!r} (C_b, C_s, equilibrium_matrix)".format(name))
+        m = a[name]
+        row, col = np.nonzero(m)
+        return row.astype(np.int64), col.astype(np.int64), m[row, col], m.shape
+
+    # --- sizes -----------------------------------------------------------------------------
+
+    @property
+    def n_nodes(self):
+        """Number of nodes."""
+        return len(self.nodes)
+
+    @property
+    def n_bars(self):
+        """Number of bars."""
+        return len(self.bars)
+
+    @property
+    def n_strings(self):
+        """Number of strings."""
+        return len(self.strings)
+
+    def __repr__(self):
+        return "Structure({} nodes, {} bars, {} strings)".format(
+            self.n_nodes, self.n_bars, self.n_strings)
+
+    def __eq__(self, other):
+        return isinstance(other, Structure) and self._toml == other._toml
+
+    __hash__ = None

@@ -1,0 +1,163 @@
+//! The runs that stream: `simulate` (the node trajectory kept in memory, as the CLI's `--out`
+//! writes it) and `roll` (the CLI's observed run) — the same library calls as the command
+//! line, stopping at their next step once the interrupt flag is set, with the results so far.
+
+use crate::errors::Failure;
+use serde_json::{Map, Value};
+use tensegrity_core::dynamics::{Sample, SampleSink, SimulationReport};
+use tensegrity_core::request::{Categorized, Category, Request};
+use tensegrity_core::CoreError;
+use tensegrity_engine::simulate::SimulateCommand;
+use tensegrity_engine::SceneError;
+use tensegrity_io::interrupt;
+use tensegrity_io::sink::RollingOutputs;
+use toroid::RollRequest;
+
+/// The samples of a run: times and node positions (row-major: sample, node, xyz).
+#[derive(Debug, Default)]
+pub struct Trajectory {
+    /// Sample times (s).
+    pub t: Vec<f64>,
+    /// Positions, 3 per node per sample (m).
+    pub nodes: Vec<f64>,
+    /// Nodes per sample.
+    pub n_nodes: usize,
+    last_t: f64,
+}
+
+impl SampleSink for Trajectory {
+    fn accept(&mut self, sample: Sample) -> Result<(), CoreError> {
+        if interrupt::requested() {
+            return Err(CoreError::Interrupted { t: self.last_t });
+        }
+        if let Some(nodes) = &sample.nodes {
+            self.n_nodes = nodes.len();
+            self.t.push(sample.t);
+            self.nodes
+                .extend(nodes.iter().flat_map(|n| [n.x, n.y, n.z]));
+        }
+        self.last_t = sample.t;
+        Ok(())
+    }
+
+    fn keep_going(&mut self) -> bool {
+        !interrupt::requested()
+    }
+}
+
+/// What a simulation gave: the report (JSON text) or the failure, and the samples so far.
+pub struct SimulateOutcome {
+    /// The report, or why there is none.
+    pub report: Result<String, Failure>,
+    /// The samples kept (those before an interruption).
+    pub trajectory: Trajectory,
+    /// The run was interrupted (at this time).
+    pub interrupted_at: Option<f64>,
+}
+
+/// The simulation of `values` set up as the CLI does (`trajectory`: samples kept, as with
+/// `--out`), its estimate checked against `limits`; `Err` before any work.
+pub fn prepare_simulation(
+    values: Map<String, Value>,
+    trajectory: bool,
+    limits: &tensegrity_core::budget::Limits,
+) -> Result<(SimulateCommand, tensegrity_core::Simulation), Failure> {
+    let command = SimulateCommand::from_values(values).map_err(|e| Failure::invalid(&e))?;
+    let (_, simulation) = command.prepare(trajectory).map_err(|e| match e {
+        SceneError::InvalidParameter(p) => Failure::invalid(&p),
+        e => Failure::new(e.category(), e.to_string()),
+    })?;
+    let estimate = tensegrity_engine::simulate::estimate(&simulation, false, false)
+        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
+    limits
+        .check(&estimate)
+        .map_err(|over| Failure::over_budget(&over))?;
+    Ok((command, simulation))
+}
+
+/// Runs a prepared simulation (on the worker thread).
+pub fn simulate(
+    command: SimulateCommand,
+    simulation: tensegrity_core::Simulation,
+) -> SimulateOutcome {
+    let mut trajectory = Trajectory::default();
+    let run = simulation.run_streaming(&mut trajectory);
+    let source = command
+        .source()
+        .map(ToString::to_string)
+        .unwrap_or_default();
+    let (report, interrupted_at) = match run {
+        Err(CoreError::Interrupted { t }) => (
+            Err(Failure::new(Category::Interrupted, "interrupted")),
+            Some(t),
+        ),
+        Err(e) => (
+            Err(Failure::new(e.category(), e.to_string()).context(&format!("simulating {source}"))),
+            None,
+        ),
+        Ok(result) => {
+            let report = SimulationReport::from(&result);
+            let strict = command
+                .strict_check(&report)
+                .map_err(|e| Failure::new(e.category(), e.to_string()));
+            let json = serde_json::to_string(&report)
+                .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
+            (strict.and(json), None)
+        }
+    };
+    SimulateOutcome {
+        report,
+        trajectory,
+        interrupted_at,
+    }
+}
+
+/// What a rolling run gave: the report (JSON text, also when interrupted or stopped by its
+/// integration: the partial run's, as the CLI prints it) and how it ended.
+pub struct RollOutcome {
+    /// The report.
+    pub report: Result<String, Failure>,
+    /// Why the run is incomplete: interrupted, or stopped by its integration (the CLI's exit
+    /// 1 message).
+    pub incomplete: Option<Failure>,
+}
+
+/// The request of `roll` (a bad value refused before any work).
+pub fn roll_request(values: Map<String, Value>) -> Result<RollRequest, Failure> {
+    RollRequest::from_values(values).map_err(|e| Failure::invalid(&e))
+}
+
+/// Runs `roll` as the CLI does: observed, stopping on the interrupt flag (on the worker
+/// thread).
+pub fn roll(request: RollRequest) -> RollOutcome {
+    let mut outputs = RollingOutputs::new(None, None);
+    let run = toroid::roll_observed(&request, &[], Some(&mut outputs));
+    let interrupted = interrupt::requested();
+    let mut report = match run {
+        Ok(r) => r,
+        Err(e) => {
+            return RollOutcome {
+                report: Err(Failure::new(e.category(), e.to_string())),
+                incomplete: None,
+            }
+        }
+    };
+    report.frames = outputs.take_frames();
+    let incomplete = match (report.summary.stopped_at, interrupted) {
+        (Some(_), true) => Some(Failure::new(Category::Interrupted, "interrupted")),
+        (Some(t), false) => Some(Failure::new(
+            Category::Numerical,
+            format!(
+                "the integration stopped at t = {t} s of `t_end` {} s: the results above cover [0, {t}] s only (see the warnings)",
+                report.t_end
+            ),
+        )),
+        (None, _) => None,
+    };
+    let json = serde_json::to_string(&report)
+        .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
+    RollOutcome {
+        report: json,
+        incomplete,
+    }
+}

@@ -1,0 +1,130 @@
+"""Bad input raises ``InputError`` (a ``ValueError``) naming the item, with the command
+line's message; failures of the computation and refused estimates raise ``RuntimeError``s."""
+
+import math
+
+import numpy as np
+import pytest
+
+import tensegrity as tg
+from conftest import EXAMPLES
+
+PRISM_NODES = np.array([
+    [1.0, 0.0, 0.0], [-0.5, 0.8660254037844387, 0.0], [-0.5, -0.8660254037844384, 0.0],
+    [0.8660254037844386, 0.5, 1.0], [-0.8660254037844385, 0.5, 1.0], [0.0, -1.0, 1.0]])
+BARS = [[0, 4], [1, 5], [2, 3]]
+STRINGS = [[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [0, 3], [1, 4], [2, 5]]
+
+
+def message(cli, *args):
+    code, _, err = cli(*args)
+    assert code == 2, err
+    line = err.strip().splitlines()[0]
+    assert line.startswith("error: "), err
+    return line[len("error: "):]
+
+
+def test_negative_stiffness_names_the_string():
+    stiffness = np.full(9, 100.0)
+    stiffness[4] = -5.0
+    with pytest.raises(ValueError) as e:
+        tg.Structure(PRISM_NODES, BARS, STRINGS, stiffness=stiffness)
+    assert isinstance(e.value, tg.InputError)
+    assert "string 4" in str(e.value) and "stiffness" in str(e.value) and "-5" in str(e.value)
+
+
+def test_out_of_range_index_names_the_member():
+    with pytest.raises(ValueError, match=r"bar 1: node index 9 is out of range"):
+        tg.Structure(PRISM_NODES, [[0, 4], [1, 9], [2, 3]], STRINGS)
+    with pytest.raises(ValueError, match=r"string 2: node index -1 is out of range"):
+        tg.Structure(PRISM_NODES, BARS, [[0, 1], [1, 2], [2, -1]])
+
+
+def test_nan_coordinate_names_the_node():
+    nodes = PRISM_NODES.copy()
+    nodes[3, 1] = math.nan
+    with pytest.raises(ValueError) as e:
+        tg.Structure(nodes, BARS, STRINGS)
+    assert "node 3" in str(e.value) and "not finite" in str(e.value), str(e.value)
+
+
+def test_scene_errors_are_the_clis(cli, tmp_path):
+    bad = (EXAMPLES / "prism.toml").read_text().replace("stiffness = 1000.0", "stiffness = -1.0", 1)
+    path = tmp_path / "bad.toml"
+    path.write_text(bad)
+    with pytest.raises(ValueError) as e:
+        tg.statics(path)
+    assert str(e.value) == message(cli, "statics", path)
+    assert "string 0" in str(e.value) and "line" in str(e.value)
+    with pytest.raises(ValueError) as e:
+        tg.statics(tmp_path / "missing.toml")
+    assert str(e.value) == message(cli, "statics", tmp_path / "missing.toml")
+
+
+@pytest.mark.parametrize("call, args", [
+    (lambda: tg.toroid(sides=1), ["toroid", "--sides", "1"]),
+    (lambda: tg.toroid(sides=2.5), ["toroid", "--sides", "2.5"]),
+    (lambda: tg.roll(t_end=-1), ["roll", "--t-end", "-1"]),
+    (lambda: tg.roll(incline="fortydeg"), ["roll", "--incline", "fortydeg"]),
+    (lambda: tg.michell(complexity=3, planar=True, beta=1, phi=1, r0=float("nan")),
+     ["michell", "--complexity", "3", "--planar", "--beta", "1", "--phi", "1", "--r0", "nan"]),
+    (lambda: tg.tipover(dynamic=True, incline=0.3),
+     ["tipover", "--dynamic", "--incline", "0.3"]),
+    (lambda: tg.simulate(EXAMPLES / "prism.toml", dt=-1),
+     ["simulate", EXAMPLES / "prism.toml", "--dt", "-1"]),
+    (lambda: tg.simulate(EXAMPLES / "prism.toml"), ["simulate", EXAMPLES / "prism.toml"]),
+    (lambda: tg.michell_optimize(planar=True, radius_ratio=4),
+     ["michell", "optimize", "--planar", "--radius-ratio", "4"]),
+    (lambda: tg.tbar(beta="pi/6", phi="pi/8"), ["tbar", "--beta", "pi/6", "--phi", "pi/8"]),
+    (lambda: tg.statics(EXAMPLES / "prism.toml", method="qr"),
+     ["statics", EXAMPLES / "prism.toml", "--method", "qr"]),
+])
+def test_keyword_errors_have_the_clis_message(cli, call, args):
+    with pytest.raises(ValueError) as e:
+        call()
+    want = message(cli, *args)
+    if want.startswith("invalid value '"):
+        # a choice the CLI's parser (clap) refuses itself, before the engine sees it: Python
+        # has the engine's message, naming the flag and the choices
+        assert str(e.value).startswith("invalid value for --method: method = \"qr\"")
+    else:
+        assert str(e.value) == want
+
+
+def test_a_bad_value_names_its_keyword():
+    with pytest.raises(tg.InputError) as e:
+        tg.roll(t_end=-1)
+    assert e.value.parameter == "t_end"
+
+
+def test_unknown_keyword_is_a_type_error():
+    with pytest.raises(TypeError):
+        tg.toroid(sidez=8)
+
+
+def test_refused_estimate_is_a_resource_error_with_the_clis_message(cli):
+    with pytest.raises(RuntimeError) as e:
+        tg.roll(fidelity="full", max_work=0.001)
+    assert isinstance(e.value, tg.ResourceError)
+    assert str(e.value) == message(cli, "roll", "--fidelity", "full", "--max-work", "0.001")
+
+
+def test_a_failed_computation_has_the_clis_message(cli, tmp_path):
+    s = tg.Structure([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1]], [[1, 2]],
+                     supports=[0], loads={2: [0, 0, -1.0]})
+    path = tmp_path / "mechanism.toml"
+    path.write_text(s.to_toml())
+    with pytest.raises(tg.ComputationError) as e:
+        tg.statics(path)
+    code, _, err = cli("statics", path)
+    assert code == 1
+    assert "error: " + str(e.value) == err.strip().splitlines()[-1]
+
+
+def test_a_failed_computation_is_a_runtime_error():
+    # a load on a mechanism the structure cannot carry (without least_squares)
+    s = tg.Structure([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1]], [[1, 2]],
+                     supports=[0], loads={2: [0, 0, -1.0]})
+    with pytest.raises(RuntimeError) as e:
+        tg.statics(s)
+    assert isinstance(e.value, tg.ComputationError) and not isinstance(e.value, ValueError)
