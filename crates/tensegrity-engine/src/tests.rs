@@ -257,6 +257,7 @@ fn the_scene_requests_round_trip_through_json_and_the_registry() {
         atol: Some(1e-9),
         output_interval: Some(0.1),
         strict: true,
+        convergence_check: false,
     };
     round_trip(&m);
     assert_eq!(serde_json::to_value(&m).unwrap()["integrator"], "sdirk");

@@ -119,7 +119,8 @@ pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
 /// Estimate of `roll`: the wheel's statics, then what the plan of the fidelity decision
 /// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
 /// model, or both — with their samples kept in memory (one per
-/// [`crate::defaults::ROLL_OUTPUT_DT`]); named `t_end = …, dt = …, sides = …`.
+/// [`crate::defaults::ROLL_OUTPUT_DT`]), and with `convergence_check` the same plan again at
+/// half the step; named `t_end = …, dt = …, sides = …`.
 pub fn roll(request: &RollRequest) -> Estimate {
     let wheel = &request.wheel;
     let statics = statics(&ToroidRequest {
@@ -127,7 +128,17 @@ pub fn roll(request: &RollRequest) -> Estimate {
         ..ToroidRequest::default()
     });
     let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
-    let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
+    let plan = request.decision().plan;
+    let mut run = wheel_rolling::estimate::plan(plan, &size, &full_sizes(wheel));
+    if request.checks.convergence_check {
+        // the refined run beside it: half the step, twice the steps
+        let fine = RunSize::new(request.t_end, 0.5 * request.settings.dt, wheel.params.sides);
+        run = run.then(wheel_rolling::estimate::plan(
+            plan,
+            &fine,
+            &full_sizes(wheel),
+        ));
+    }
     Estimate {
         parameters: size.parameter.into(),
         ..statics.then(run)
