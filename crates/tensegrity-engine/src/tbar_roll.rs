@@ -334,7 +334,9 @@ mod tests {
         let one = |n: usize| {
             let p = full.tbar_params(n, tbar_wheel::RimMode::Body);
             let t = tbar_wheel::rolling_full::full_roll_estimate(&p, 1.0, 1e-4).unwrap();
-            t.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
+            // and the convergence check's refined run at half the step
+            let fine = tbar_wheel::rolling_full::full_roll_estimate(&p, 1.0, 5e-5).unwrap();
+            t.work_s + fine.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
         };
         assert!((e.work_s - one(6) - one(8)).abs() < 1e-9 * e.work_s);
         assert!(!e.parameters.to_string().contains("--"), "{}", e.parameters);
