@@ -201,7 +201,30 @@ fn print_roll(r: &RollReport) {
         s.energy_balance_error
     );
     super::output::print_convergence(s.convergence.as_ref());
+    if let Some(e) = &r.ensemble {
+        print_ensemble(e);
+    }
     for w in &s.warnings {
         println!("warning: {}", super::spell::flags(w));
+    }
+}
+
+/// The ensemble's mean and 95 % interval per headline quantity, against the other model.
+fn print_ensemble(e: &wheel_rolling::Ensemble) {
+    println!(
+        "ensemble of {} copies ({} not valid); {}:",
+        e.members, e.invalid_members, e.perturbation
+    );
+    for q in &e.quantities {
+        let other = q
+            .other_model
+            .map_or(String::new(), |o| format!("; other model {o:.6}"));
+        println!(
+            "  {:<26} mean {:.6}, 95 % interval [{:.6}, {:.6}]{other}",
+            q.name, q.mean, q.low, q.high
+        );
+    }
+    if !e.note.is_empty() {
+        println!("note: {}", e.note);
     }
 }

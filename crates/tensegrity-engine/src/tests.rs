@@ -360,7 +360,10 @@ fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
     let simulate = command("simulate").unwrap();
     let ctx = Context::default();
     let mut run = simulate
-        .run(values(json!({ "scene": path, "convergence_check": false })), &ctx)
+        .run(
+            values(json!({ "scene": path, "convergence_check": false })),
+            &ctx,
+        )
         .unwrap();
     let mut want = serde_json::to_value(&direct).unwrap();
     // measured wall times differ; everything else is the same run

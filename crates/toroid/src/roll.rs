@@ -59,6 +59,9 @@ pub struct RollRequest {
     /// a refined resolution, [`wheel_rolling::convergence`]).
     #[serde(flatten)]
     pub checks: RunChecks,
+    /// Copies from perturbed starting poses run beside the run ([`wheel_rolling::ensemble`]);
+    /// 0 or 1: none.
+    pub ensemble: usize,
 }
 
 impl Default for RollRequest {
@@ -76,6 +79,7 @@ impl Default for RollRequest {
             min_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
             checks: RunChecks::default(),
+            ensemble: 0,
         }
     }
 }
@@ -124,6 +128,10 @@ impl Request for RollRequest {
             setting("gravity"),
         ]);
         out.extend(RunChecks::params());
+        out.push(Param::count(
+            "ensemble",
+            "Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in parallel) and report the mean and 95 % interval of every headline quantity against the other model (0: none)",
+        ));
         out
     }
 
@@ -261,7 +269,64 @@ pub fn roll_observed(
         observer,
         request.checks.convergence_check,
     )?;
-    Ok(RollReport::of(request, rolled))
+    let interrupted = rolled.result.validity.stopped_at.is_some();
+    let ensemble = match (request.ensemble, interrupted) {
+        (k, false) if k >= 2 => Some(ensemble(request, &wheel, &spec, rolled.fidelity)?),
+        _ => None,
+    };
+    let mut report = RollReport::of(request, rolled);
+    report.ensemble = ensemble;
+    Ok(report)
+}
+
+/// The ensemble of `request` (its model: the one that ran, `fidelity`) against one
+/// unperturbed run of the other model.
+fn ensemble(
+    request: &RollRequest,
+    wheel: &ToroidWheel,
+    spec: &RunSpec,
+    fidelity: wheel_rolling::Fidelity,
+) -> Result<wheel_rolling::Ensemble> {
+    let choice = |f: wheel_rolling::Fidelity| match f {
+        wheel_rolling::Fidelity::Rigid => FidelityChoice::Rigid,
+        wheel_rolling::Fidelity::Full => FidelityChoice::Full,
+    };
+    let decide = |c: FidelityChoice| {
+        RollRequest {
+            fidelity: c,
+            ..*request
+        }
+        .decision()
+    };
+    let other_fidelity = match fidelity {
+        wheel_rolling::Fidelity::Rigid => wheel_rolling::Fidelity::Full,
+        wheel_rolling::Fidelity::Full => wheel_rolling::Fidelity::Rigid,
+    };
+    let other_spec = RunSpec {
+        fidelity: choice(other_fidelity),
+        ..*spec
+    };
+    let other = wheel_rolling::roll_decided(
+        wheel,
+        &other_spec,
+        &decide(choice(other_fidelity)),
+        &[],
+        None,
+    )?;
+    let other = wheel_rolling::RunSummary::of(&other.result, spec.t_end);
+    let same = RunSpec {
+        fidelity: choice(fidelity),
+        ..*spec
+    };
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    Ok(wheel_rolling::ensemble::ensemble(
+        wheel,
+        &same,
+        &decide(choice(fidelity)),
+        request.ensemble,
+        threads,
+        Some(&other),
+    )?)
 }
 
 /// Rolls `request` once per wheel size in `sides` (the rest of the request unchanged), e.g.
@@ -286,7 +351,7 @@ mod tests {
     fn the_request_describes_every_field() {
         tensegrity_core::request::check_description::<RollRequest>().unwrap();
         let names: Vec<&str> = RollRequest::params().iter().map(|p| p.name).collect();
-        assert_eq!(names.len(), 24);
+        assert_eq!(names.len(), 25);
         for flag in [
             "sides",
             "stabilize",

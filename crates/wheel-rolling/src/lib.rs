@@ -30,6 +30,8 @@
 //! - [`run`]: [`roll_wheel`], one run of any [`Wheel`] under the decision;
 //! - [`convergence`]: [`roll_checked`], the run and its repetition at half the step (and
 //!   twice the penalty ground's stiffness) side by side, each headline quantity compared;
+//! - [`ensemble`]: K copies from perturbed starting poses in parallel, the mean and 95 %
+//!   interval of every headline quantity against the other model;
 //! - [`frames`]: the rigid model's node frames; [`defaults`]: the named defaults.
 //!
 //! ```
@@ -45,6 +47,7 @@
 pub mod contact;
 pub mod convergence;
 pub mod defaults;
+pub mod ensemble;
 mod error;
 pub mod estimate;
 pub mod fidelity;
@@ -60,6 +63,7 @@ pub mod validity;
 
 pub use contact::{ContactKind, ContactModel, GroundContact};
 pub use convergence::roll_checked;
+pub use ensemble::Ensemble;
 pub use error::{strict_check, Result, RollingError};
 pub use fidelity::{Decision, Fidelity, FidelityChoice, Plan};
 pub use full::{FullRolling, FullRun, WheelFrame, WheelScene};

@@ -138,6 +138,13 @@ impl Convergence {
             .iter()
             .filter(|q| !q.converged)
             .map(|q| match q.relative_change {
+                Some(r) if q.value.is_none() => format!(
+                    "not converged: `{}` moved by {:.2} % at the refined resolution ({}) (tolerance {:.2} %: converged when the change is at most half of it)",
+                    q.name,
+                    100.0 * r,
+                    self.refinement,
+                    100.0 * q.tolerance
+                ),
                 Some(r) => format!(
                     "not converged: `{}` moved by {:.2} % at the refined resolution ({}): {} -> {} (tolerance {:.2} %: converged when the change is at most half of it)",
                     q.name,
