@@ -30,6 +30,7 @@
 
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicBool, Ordering};
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::dynamics::recorder::{Sample, SampleSink};
 use tensegrity_core::dynamics::{
@@ -210,6 +211,20 @@ impl SimulateCommand {
     }
 }
 
+/// A sink that keeps no sample and stops the run once `.0` is set (the refined run of a run
+/// that failed or was interrupted).
+struct StopWhen<'a>(&'a AtomicBool);
+
+impl SampleSink for StopWhen<'_> {
+    fn accept(&mut self, _: Sample) -> Result<(), CoreError> {
+        Ok(())
+    }
+
+    fn keep_going(&mut self) -> bool {
+        !self.0.load(Ordering::Relaxed)
+    }
+}
+
 /// A sink that keeps no sample (a run whose samples nobody writes).
 struct Discard;
 
@@ -316,9 +331,13 @@ impl SimulateCommand {
         }
         let mut fine = self.simulation(scene, false)?;
         let label = Self::refine(&mut fine.settings);
+        let stop = AtomicBool::new(false);
         Ok(std::thread::scope(|s| {
-            let handle = s.spawn(move || fine.run_streaming(&mut Discard));
+            let watch = StopWhen(&stop);
+            let handle = s.spawn(move || fine.run_streaming(&mut { watch }));
             let main = simulation.run_streaming(sink);
+            // a run that failed (or was interrupted) is not compared: stop the refined one
+            stop.store(main.is_err(), Ordering::Relaxed);
             let refined = handle
                 .join()
                 .unwrap_or_else(|p| std::panic::resume_unwind(p));

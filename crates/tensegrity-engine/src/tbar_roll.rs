@@ -239,6 +239,7 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
             strict: false,
             ..request.checks
         },
+        ensemble: 0,
     }
 }
 

@@ -136,10 +136,7 @@ where
             roll_decided(wheel, &fine, decision, &[], Some(&mut watch))
         });
         let main = roll_decided(wheel, spec, decision, frame_times, observer);
-        if main
-            .as_ref()
-            .map_or(true, |m| m.result.validity.stopped_at.is_some())
-        {
+        if !matches!(&main, Ok(m) if m.result.validity.stopped_at.is_none()) {
             stop.store(true, Ordering::Relaxed);
         }
         (main, handle.join())
