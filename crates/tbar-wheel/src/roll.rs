@@ -195,8 +195,8 @@ impl Request for TbarRollRequest {
             .optional(),
             setting("ground_stiffness"),
             setting("ground_damping"),
-            checks[0].clone(),
-            checks[1].clone(),
+            checks[0],
+            checks[1],
         ]
     }
 

@@ -128,7 +128,7 @@ impl Request for SimulateCommand {
                 "strict",
                 "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge",
             ),
-            RunChecks::params()[1].clone(),
+            RunChecks::params()[1],
         ]
     }
 }

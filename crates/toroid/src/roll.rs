@@ -319,14 +319,14 @@ fn ensemble(
         ..*spec
     };
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    Ok(wheel_rolling::ensemble::ensemble(
+    wheel_rolling::ensemble::ensemble(
         wheel,
         &same,
         &decide(choice(fidelity)),
         request.ensemble,
         threads,
         Some(&other),
-    )?)
+    )
 }
 
 /// Rolls `request` once per wheel size in `sides` (the rest of the request unchanged), e.g.

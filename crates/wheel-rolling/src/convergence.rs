@@ -43,6 +43,9 @@ pub fn refinement(spec: &RunSpec, fidelity: Fidelity) -> &'static str {
     }
 }
 
+/// A headline quantity: its key, how to read it, its tolerance and its scale floor.
+type Headline = (&'static str, fn(&RunSummary) -> f64, f64, f64);
+
 /// The headline quantities of `main` against `refined` (module docs).
 pub fn of_summaries(main: &RunSummary, refined: &RunSummary, refinement: &str) -> Convergence {
     let mut c = Convergence::new(refinement);
@@ -61,7 +64,7 @@ pub fn of_summaries(main: &RunSummary, refined: &RunSummary, refinement: &str) -
         d::CONVERGENCE_FIRST_IMPACT,
         0.0,
     );
-    let pairs: [(&str, fn(&RunSummary) -> f64, f64, f64); 7] = [
+    let pairs: [Headline; 7] = [
         ("impacts", |s| s.impacts as f64, d::CONVERGENCE_SPREAD, 1.0),
         (
             "mean_axle_height",

@@ -57,6 +57,9 @@ pub struct Ensemble {
     pub note: String,
 }
 
+/// One slot per copy for its summary (or error).
+type Slots<E> = Mutex<Vec<Option<Result<RunSummary, E>>>>;
+
 /// The headline quantities of a summary, by key (those it has).
 pub fn headline(s: &RunSummary) -> Vec<(&'static str, Option<f64>)> {
     let first = s.first_impact;
@@ -75,7 +78,7 @@ pub fn headline(s: &RunSummary) -> Vec<(&'static str, Option<f64>)> {
 
 /// The incline offset of copy k (module docs).
 pub fn offset(k: usize) -> f64 {
-    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
     sign * (k / 2 + 1) as f64 * PERTURBATION
 }
 
@@ -94,8 +97,7 @@ where
     W::Error: Send,
 {
     let next = AtomicUsize::new(0);
-    let out: Mutex<Vec<Option<Result<RunSummary, W::Error>>>> =
-        Mutex::new((0..members).map(|_| None).collect());
+    let out: Slots<W::Error> = Mutex::new((0..members).map(|_| None).collect());
     std::thread::scope(|s| {
         for _ in 0..threads.clamp(1, members.max(1)) {
             s.spawn(|| loop {

@@ -346,7 +346,7 @@ impl<'o> Monitor<'o> {
     fn record(
         &mut self,
         t: f64,
-        (x, v, forces): (&[Vector3<f64>], &[Vector3<f64>], Option<&[f64]>),
+        (x, v, forces): NodeState<'_>,
         omega: f64,
         c: &StepContact,
         total: f64,
@@ -450,6 +450,9 @@ impl<'o> Monitor<'o> {
         }
     }
 }
+
+/// Node positions and velocities of a step, and its member forces when recorded.
+type NodeState<'a> = (&'a [Vector3<f64>], &'a [Vector3<f64>], Option<&'a [f64]>);
 
 impl SampleSink for Monitor<'_> {
     fn accept(&mut self, smp: Sample) -> Result<(), CoreError> {
