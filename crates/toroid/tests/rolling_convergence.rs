@@ -137,3 +137,39 @@ fn strict_makes_an_invalid_run_an_error() {
     .unwrap();
     assert!(!r.summary.valid);
 }
+
+/// `ensemble = K`: K perturbed copies, each headline quantity's mean and interval, against
+/// one run of the other model; the copies of a rigid pivot from rest agree on the first
+/// impact to far better than the models do.
+#[test]
+fn an_ensemble_reports_every_headline_quantity_against_the_other_model() {
+    let r = roll_observed(
+        &RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 1.0,
+            ensemble: 4,
+            checks: RunChecks::NONE,
+            ..RollRequest::default()
+        },
+        &[],
+        None,
+    )
+    .unwrap();
+    let e = r.ensemble.expect("K = 4");
+    assert_eq!((e.members, e.quantities.len()), (4, 9));
+    let first = e
+        .quantities
+        .iter()
+        .find(|q| q.name == "first_impact.t")
+        .unwrap();
+    let t = r.summary.first_impact.unwrap().t;
+    assert!(
+        first.low <= t + 1e-9 && t - 1e-9 <= first.high,
+        "{first:?} vs {t}"
+    );
+    assert!(first.high - first.low < 1e-3, "{first:?}");
+    // the other model (full) runs once: its first impact is a different number
+    let other = first.other_model.expect("the full model ran");
+    assert!((other - t).abs() > first.high - first.low);
+    assert_eq!(first.spread_exceeds_model_difference, Some(false));
+}
