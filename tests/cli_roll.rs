@@ -70,9 +70,22 @@ fn frames_draw_the_members_and_vtk_writes_a_series() {
     let members = 8 * 3 + 1 + 8 * 12 + 8 * 2 + 8 * 2;
     assert_eq!(text.matches("<polyline").count(), 3 * (members + 1));
     let pvd = std::fs::read_to_string(vtk.join("series.pvd")).unwrap();
-    // every 10 ms over 1 s, plus the three --frames
-    assert_eq!(pvd.matches("<DataSet").count(), 101 + 3);
-    assert!(vtk.join("frame_00000.vtu").exists());
+    // every 10 ms over 1 s; the three --frames lie on that grid: each time once
+    assert_eq!(pvd.matches("<DataSet").count(), 101);
+    let mut times: Vec<&str> = pvd
+        .split("timestep=\"")
+        .skip(1)
+        .filter_map(|s| s.split('"').next())
+        .collect();
+    let n = times.len();
+    times.dedup();
+    assert_eq!((n, times.len()), (101, 101), "{pvd}");
+    // the rigid model's frames carry its node velocities (a rigid body has no member force)
+    let frame = std::fs::read_to_string(vtk.join("frame_00050.vtu")).unwrap();
+    assert!(
+        frame.contains(r#"Name="velocity""#) && !frame.contains(r#"Name="force""#),
+        "{frame}"
+    );
     let out = run(&["roll", "--t-end", "1", "--frames", "2", "--svg", "x.svg"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--frames"));
@@ -196,4 +209,41 @@ fn a_diverged_roll_writes_what_it_computed_and_exits_with_an_error() {
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.starts_with("t,axle_s,axle_h,omega,"));
     assert!(text.lines().count() >= 2);
+}
+
+/// `roll --vtk` of the full model: node velocities as point data and member forces as cell
+/// data, each time once; `--strict` on the thesis contact (which sinks and pulls) exits 1.
+#[test]
+fn the_full_series_carries_forces_and_strict_fails_an_invalid_run() {
+    let dir = common::scratch("roll", "roll-full-vtk");
+    let vtk = dir.join("vtk");
+    let out = run(&[
+        "roll",
+        "--fidelity",
+        "full",
+        "--t-end",
+        "0.05",
+        "--no-convergence-check",
+        "--vtk",
+        vtk.to_str().unwrap(),
+    ]);
+    assert_ok(&out);
+    let frame = std::fs::read_to_string(vtk.join("frame_00003.vtu")).unwrap();
+    assert!(frame.contains(r#"Name="velocity""#) && frame.contains(r#"Name="force""#));
+    let strict = run(&[
+        "roll",
+        "--contact",
+        "thesis",
+        "--t-end",
+        "1.5",
+        "--no-convergence-check",
+        "--strict",
+    ]);
+    assert_eq!(strict.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&strict.stdout);
+    assert!(
+        stdout.lines().next().unwrap().contains("INVALID"),
+        "{stdout}"
+    );
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("strict: "));
 }

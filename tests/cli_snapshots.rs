@@ -121,6 +121,9 @@ const CASES: &[(&str, &[&str])] = &[
             "penalty",
             "--t-end",
             "0.3",
+            // 0.3 s of the default ground is not converged (the first pivot moves 3 % at
+            // twice the stiffness): the snapshot keeps the run's own figures
+            "--no-convergence-check",
             "--json",
         ],
     ),

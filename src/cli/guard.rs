@@ -191,8 +191,13 @@ pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<
 
 /// `tensegrity simulate`, with its outputs (an adaptive run shows the spinner: its steps are
 /// not known up front).
-pub fn simulation(sim: &tensegrity_core::Simulation, csv: bool, vtk: bool) -> Result<Progress> {
-    let e = tensegrity_engine::simulate::estimate(sim, csv, vtk)?;
+pub fn simulation(
+    command: &tensegrity_engine::simulate::SimulateCommand,
+    sim: &tensegrity_core::Simulation,
+    csv: bool,
+    vtk: bool,
+) -> Result<Progress> {
+    let e = tensegrity_engine::simulate::estimate_checked(command, sim, csv, vtk)?;
     check_with(e, sim.settings.integrator.is_adaptive())
 }
 

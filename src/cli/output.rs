@@ -22,3 +22,31 @@ pub fn open_required<T>(
 ) -> Result<T> {
     open(path).with_context(|| flag.to_string())
 }
+
+/// The end of a text headline: ` — INVALID (see the warnings)` for a result that is not valid.
+pub fn invalid_mark(valid: bool) -> &'static str {
+    if valid {
+        ""
+    } else {
+        " — INVALID (see the warnings)"
+    }
+}
+
+/// One line on the convergence check: what was refined and which quantities held.
+pub fn print_convergence(c: Option<&tensegrity_core::dynamics::Convergence>) {
+    let Some(c) = c else {
+        return println!("convergence: not checked");
+    };
+    let moved: Vec<&str> = c
+        .quantities
+        .iter()
+        .filter(|q| !q.converged)
+        .map(|q| q.name.as_str())
+        .collect();
+    let verdict = match (c.converged, moved.is_empty()) {
+        (true, _) => format!("all {} headline quantities converged", c.quantities.len()),
+        (false, true) => "not converged".to_string(),
+        (false, false) => format!("not converged: {}", moved.join(", ")),
+    };
+    println!("convergence ({}): {verdict}", c.refinement);
+}

@@ -1,6 +1,7 @@
 //! Command-line flags from the request descriptions ([`Param`]): [`RequestArgs`] builds one
 //! `--kebab-name` flag per parameter of a request (help = the parameter's help, unit and
-//! `[default: …]` from the request's [`Default`]; a [`Kind::Flag`] is a switch, a
+//! `[default: …]` from the request's [`Default`]; a [`Kind::Flag`] is a switch (one whose
+//! default is true is written negated, `--no-name`, and sets it false), a
 //! [`Kind::Choice`] lists its values, a list is comma-separated), collects only the values
 //! given on the command line and hands them to [`Request::from_values`]. A bad value is a
 //! usage error (exit 2) naming the flag ([`flag_of`]: the one place where a library's
@@ -126,12 +127,13 @@ impl<F: Flags> RequestArgs<F> {
 impl<F: Flags> FromArgMatches for RequestArgs<F> {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
         let mut given = Map::new();
+        let defaults = F::defaults();
         for p in F::params() {
             if m.value_source(p.name) != Some(ValueSource::CommandLine) {
                 continue;
             }
             let value = match p.kind {
-                Kind::Flag => Value::Bool(true),
+                Kind::Flag => Value::Bool(!negated(&p, &defaults)),
                 _ => Value::String(m.get_one::<String>(p.name).cloned().unwrap_or_default()),
             };
             given.insert(p.name.to_string(), value);
@@ -172,11 +174,23 @@ impl<F: Flags> Args for RequestArgs<F> {
     }
 }
 
+/// Whether the switch of `p` is written negated (`--no-name`): a flag whose default is true.
+fn negated(p: &Param, defaults: &Map<String, Value>) -> bool {
+    p.kind == Kind::Flag && defaults.get(p.name) == Some(&Value::Bool(true))
+}
+
 /// The flag (or the positional argument at `index`, [`POSITIONAL`]) of one parameter.
 fn arg(p: &Param, default: Option<&Value>, index: Option<usize>) -> Arg {
     let a = Arg::new(p.name).help(help(p, default)).required(p.required);
+    let on_by_default = p.kind == Kind::Flag && default == Some(&Value::Bool(true));
     let a = match index {
         Some(i) => a.index(i),
+        None if on_by_default => a
+            .long(format!("no-{}", p.name.replace('_', "-")))
+            .help(format!(
+                "Skip this, which is on by default: {}",
+                help(p, None)
+            )),
         None => a.long(p.name.replace('_', "-")),
     };
     match p.kind {

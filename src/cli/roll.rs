@@ -34,8 +34,10 @@ pub struct RollArgs {
     /// Times (s) of the wheel drawings of --svg, e.g. `0,1.5,3`.
     #[arg(long, value_delimiter = ',', value_name = "T,T,..")]
     frames: Option<Vec<f64>>,
-    /// Write the node trajectories as a ParaView series (DIR/series.pvd, every 10 ms; slope
-    /// coordinates: x along the axle, y down the slope, z above it).
+    /// Write the node trajectories as a ParaView series (DIR/series.pvd, every 10 ms, each time
+    /// once; slope coordinates: x along the axle, y down the slope, z above it), with the node
+    /// velocities (point data `velocity`) and, for the full model, the member forces (cell
+    /// data `force`, tension positive).
     #[arg(long, value_name = "DIR")]
     vtk: Option<PathBuf>,
     /// Print JSON.
@@ -56,6 +58,9 @@ impl RollArgs {
             let n = (t_end / defaults::ROLL_FRAME_DT).floor() as usize;
             times.extend((0..=n).map(|k| k as f64 * defaults::ROLL_FRAME_DT));
         }
+        // each time once (a --frames time on the --vtk grid is one frame)
+        times.sort_by(f64::total_cmp);
+        times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12);
         times
     }
 }
@@ -109,7 +114,8 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     } else {
         print_roll(&report);
     }
-    end(args, &report, interrupted, written.rows)
+    end(args, &report, interrupted, written.rows)?;
+    Ok(request.strict_check(&report)?)
 }
 
 /// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),
@@ -157,12 +163,13 @@ fn print_roll(r: &RollReport) {
     let s = &r.summary;
     let model = r.fidelity.name();
     println!(
-        "{model} rolling ({} contact), n = {}, incline {:.3} deg, {} s: {} impacts",
+        "{model} rolling ({} contact), n = {}, incline {:.3} deg, {} s: {} impacts{}",
         r.contact,
         r.sides,
         r.incline_rad.to_degrees(),
         r.t_end,
-        s.impacts
+        s.impacts,
+        super::output::invalid_mark(s.valid)
     );
     println!("model: {model} ({})", r.fidelity_reason);
     let span = if r.t_end > 1.0 {
@@ -193,7 +200,31 @@ fn print_roll(r: &RollReport) {
         s.max_penetration,
         s.energy_balance_error
     );
+    super::output::print_convergence(s.convergence.as_ref());
+    if let Some(e) = &r.ensemble {
+        print_ensemble(e);
+    }
     for w in &s.warnings {
         println!("warning: {}", super::spell::flags(w));
+    }
+}
+
+/// The ensemble's mean and 95 % interval per headline quantity, against the other model.
+fn print_ensemble(e: &wheel_rolling::Ensemble) {
+    println!(
+        "ensemble of {} copies ({} not valid); {}:",
+        e.members, e.invalid_members, e.perturbation
+    );
+    for q in &e.quantities {
+        let other = q
+            .other_model
+            .map_or(String::new(), |o| format!("; other model {o:.6}"));
+        println!(
+            "  {:<26} mean {:.6}, 95 % interval [{:.6}, {:.6}]{other}",
+            q.name, q.mean, q.low, q.high
+        );
+    }
+    if !e.note.is_empty() {
+        println!("note: {}", e.note);
     }
 }

@@ -15,10 +15,11 @@ use super::request_args::{usage, RequestArgs};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use tensegrity_core::dynamics::{IntegratorKind, SimulationReport};
-use tensegrity_core::{CoreError, Simulation, Structure};
+use tensegrity_core::{CoreError, Simulation};
 use tensegrity_engine::simulate::SimulateCommand;
-use tensegrity_engine::{SceneError, SceneSource};
+use tensegrity_engine::SceneError;
 use tensegrity_io::interrupt::{self, Interrupted};
+use tensegrity_io::scene::Scene;
 use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
 use tensegrity_io::trajectory::TrajectoryWriter;
 
@@ -47,9 +48,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         SceneError::InvalidParameter(p) => usage(p),
         e => e.into(),
     })?;
-    let _progress = super::guard::simulation(&simulation, csv, vtk)?;
-    let source = command.source()?;
-    let report = run_with_outputs(args, &simulation, &scene.structure, source)?;
+    let _progress = super::guard::simulation(&command, &simulation, csv, vtk)?;
+    let report = run_with_outputs(args, &command, &simulation, &scene)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -64,10 +64,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
 /// The run streamed to `--out` and `--vtk` (opened before it), what was written said.
 fn run_with_outputs(
     args: &SimulateArgs,
+    command: &SimulateCommand,
     simulation: &Simulation,
-    structure: &Structure,
-    source: &SceneSource,
+    scene: &Scene,
 ) -> Result<SimulationReport> {
+    let (structure, source) = (&scene.structure, command.source()?);
     let csv = output::open("--out", args.out.as_deref(), |p| {
         TrajectoryWriter::create(p, structure)
     })?;
@@ -76,9 +77,9 @@ fn run_with_outputs(
     })?;
     let mut outputs = SimulationOutputs::new(csv, vtk);
     let _polled = interrupt::polled();
-    let run = simulation.run_streaming(&mut outputs);
-    let written = outputs.finish(run.as_ref().err())?;
-    let result = match run {
+    let checked = command.run_beside(scene, simulation, &mut outputs)?;
+    let written = outputs.finish(checked.main.as_ref().err())?;
+    let report = match checked.report() {
         Err(CoreError::Interrupted { t }) => {
             let note = (args.out.is_some())
                 .then(|| format!("{} trajectory rows kept, marked incomplete", written.rows));
@@ -98,17 +99,18 @@ fn run_with_outputs(
             );
         }
     }
-    Ok(SimulationReport::from(&result))
+    Ok(report)
 }
 
 fn print_report(integrator: IntegratorKind, report: &SimulationReport) {
     println!(
-        "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms",
+        "simulated {} s with {} ({} steps, {} force evaluations) in {:.3} ms{}",
         report.t_end,
         integrator,
         report.steps,
         report.rhs_evals,
-        report.wall_time_s * 1e3
+        report.wall_time_s * 1e3,
+        super::output::invalid_mark(report.warnings.is_empty())
     );
     println!("max relative energy drift   {:.3e}", report.energy_drift);
     println!(
@@ -119,6 +121,7 @@ fn print_report(integrator: IntegratorKind, report: &SimulationReport) {
         "max |N P - D|               {:.3e} m",
         report.constraint_drift
     );
+    super::output::print_convergence(report.convergence.as_ref());
     println!("final nodes (m):");
     for (i, n) in report.final_nodes.iter().enumerate() {
         println!("  {i:4}  {:+.9e} {:+.9e} {:+.9e}", n[0], n[1], n[2]);

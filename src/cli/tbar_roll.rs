@@ -37,7 +37,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     let csv = output::open("--out", args.out.as_deref(), |p| {
         CsvSink::with_header(p, "tbar roll rows CSV", &row_columns().collect::<Vec<_>>())
     })?;
-    let report = tbar_roll::tbar_roll(&request)?;
+    let report = tbar_roll::report(&request)?;
     if let Some(csv) = csv {
         write_rows(csv, &report)?;
     }
@@ -51,7 +51,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     } else {
         print_roll(&report);
     }
-    Ok(())
+    Ok(tbar_roll::strict_check(&request, &report)?)
 }
 
 /// The per-row result columns: the engine's `rows.0.*` columns without the prefix.
@@ -80,7 +80,7 @@ fn write_rows(mut csv: CsvSink, report: &TbarRollReport) -> Result<()> {
 
 fn print_roll(r: &TbarRollReport) {
     println!(
-        "{} (rim {}) rolling down {:.2}° for {} s, {} model; toroid of equal outer radius",
+        "{} (rim {}) rolling down {:.2}° for {} s, {} model; toroid of equal outer radius{}",
         r.structure,
         r.rim.as_str(),
         r.incline_rad.to_degrees(),
@@ -89,7 +89,8 @@ fn print_roll(r: &TbarRollReport) {
             "full tensegrity"
         } else {
             "reduced rigid"
-        }
+        },
+        super::output::invalid_mark(r.valid)
     );
     println!("  n   T-bar m [kg]  I1 [kg m²]  oscillation [m]  speed [m/s]  valid | toroid m  oscillation [m]  speed [m/s]  valid");
     let cell = |s: &Option<WheelRun>| match s {

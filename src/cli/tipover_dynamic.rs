@@ -37,7 +37,7 @@ fn write_history<const N: usize>(
 pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) -> Result<()> {
     let _progress = super::guard::estimated(req)?;
     let sink = open_history(out, &["t", "lean", "downhill", "across"])?;
-    let r = req.run().context("rolling lean run failed")?;
+    let r = req.report().context("rolling lean run failed")?;
     for w in &r.warnings {
         eprintln!("warning: {}", super::spell::flags(w));
     }
@@ -50,12 +50,13 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
         println!(
-            "n = {}, T = {} m rolling {:.2}° down with a {:.2}° side slope (static limit {:.2}°)",
+            "n = {}, T = {} m rolling {:.2}° down with a {:.2}° side slope (static limit {:.2}°){}",
             r.sides,
             r.outer_tread,
             r.incline.to_degrees(),
             r.side_slope.to_degrees(),
-            r.static_critical_side_slope.to_degrees()
+            r.static_critical_side_slope.to_degrees(),
+            super::output::invalid_mark(r.valid)
         );
         println!(
             "largest lean {:.4} rad, final {:.4} rad, {:.3} m downhill: {}",
@@ -63,13 +64,14 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
             r.final_lean,
             r.downhill,
             match r.fall_time {
-                Some(t) => format!("fell at t = {t:.3} s"),
-                None => "stayed up".to_string(),
+                Some(t) => format!("fell at t = {t:.3} s (ends past its tip angle)"),
+                None => "did not fall (ends inside its tip angle)".to_string(),
             }
         );
         println!("{}", validity_line(r.valid, r.max_penetration));
+        super::output::print_convergence(r.convergence.as_ref());
     }
-    Ok(())
+    Ok(wheel_rolling::strict_check(req.checks.strict, &r.warnings)?)
 }
 
 /// Runs the dynamic check and prints its report.
@@ -77,7 +79,10 @@ pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Resul
     let header = ["t", "force", "lean", "near_normal", "far_normal"];
     let _progress = super::guard::estimated(req)?;
     let sink = open_history(out, &header)?;
-    let report = req.run().context("dynamic tip-over run failed")?;
+    let report = req.report().context("dynamic tip-over run failed")?;
+    for w in &report.warnings {
+        eprintln!("warning: {}", super::spell::flags(w));
+    }
     let rows = report
         .samples
         .iter()
@@ -88,13 +93,20 @@ pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Resul
     } else {
         print(&report);
     }
-    Ok(())
+    Ok(wheel_rolling::strict_check(
+        req.checks.strict,
+        &report.warnings,
+    )?)
 }
 
 fn print(r: &DynamicTipoverReport) {
     println!(
-        "n = {}, T = {} m, mass {:.4} kg, resting on a side (hub height {:.4} m)",
-        r.sides, r.outer_tread, r.mass_kg, r.hub_height
+        "n = {}, T = {} m, mass {:.4} kg, resting on a side (hub height {:.4} m){}",
+        r.sides,
+        r.outer_tread,
+        r.mass_kg,
+        r.hub_height,
+        super::output::invalid_mark(r.valid)
     );
     println!("static threshold (m g/2)(T/h): {:.4} N", r.static_threshold);
     match (r.dynamic_threshold, r.relative_difference) {
@@ -104,13 +116,16 @@ fn print(r: &DynamicTipoverReport) {
         ),
         _ => println!("the near tread edge never unloaded: the wheel did not tip"),
     }
+    let verdict = match r.tip_time {
+        Some(t) => format!("tipped over at t = {t:.3} s (lean past the tip angle of the load)"),
+        None => "did not tip".to_string(),
+    };
     println!(
-        "largest lean {:.4} rad, final {:.4} rad: {}",
-        r.max_lean,
-        r.final_lean,
-        if r.tipped { "tipped over" } else { "upright" }
+        "largest lean {:.4} rad, final {:.4} rad (static tip angle {:.4} rad): {verdict}",
+        r.max_lean, r.final_lean, r.static_tip_angle
     );
     println!("{}", validity_line(r.valid, r.max_penetration));
+    super::output::print_convergence(r.convergence.as_ref());
 }
 
 fn validity_line(valid: bool, max_penetration: f64) -> String {

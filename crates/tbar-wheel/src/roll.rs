@@ -31,7 +31,8 @@ use std::f64::consts::PI;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
-    roll_wheel, ContactKind, Fidelity, FidelityChoice, RollSettings, RunSpec, WheelRun,
+    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
+    RunSpec, WheelRun,
 };
 
 /// Default simulated time of the full model (s): the full model costs far more a second.
@@ -94,6 +95,10 @@ pub struct TbarRollRequest {
     /// Full model: smallest string tension of the prestress (N); unset: the prestress that
     /// carries twice the wheel's weight on one tip of each copy from every direction.
     pub min_tension: Option<f64>,
+    /// `strict` (an invalid report is an error) and `convergence_check` (every run repeated
+    /// at a refined resolution, [`wheel_rolling::convergence`]).
+    #[serde(flatten)]
+    pub checks: RunChecks,
 }
 
 impl Default for TbarRollRequest {
@@ -120,6 +125,7 @@ impl Default for TbarRollRequest {
             mu_kinetic: None,
             rim_density: None,
             min_tension: None,
+            checks: RunChecks::default(),
         }
     }
 }
@@ -129,6 +135,7 @@ impl Request for TbarRollRequest {
 
     fn params() -> Vec<Param> {
         let setting = RollSettings::param;
+        let checks = RunChecks::params();
         vec![
             Param::count("complexity", "Complexity q").rule(Rule::AtLeast(1.0)),
             Param::angle("beta", "Departure angle β"),
@@ -188,6 +195,8 @@ impl Request for TbarRollRequest {
             .optional(),
             setting("ground_stiffness"),
             setting("ground_damping"),
+            checks[0],
+            checks[1],
         ]
     }
 
@@ -346,7 +355,7 @@ impl TbarRollRequest {
 
     /// The rigid run of `polygon` in the settings of this request.
     pub fn rigid_run(&self, polygon: &wheel_rolling::Polygon) -> Result<WheelRun> {
-        let r = roll_wheel(polygon, &self.spec(Fidelity::Rigid), &[], None)?;
+        let r = self.checked_run(polygon, Fidelity::Rigid)?;
         Ok(WheelRun::of(
             Fidelity::Rigid,
             polygon,
@@ -410,12 +419,26 @@ impl TbarRollRequest {
         p: &TbarParams,
     ) -> Result<(WheelRun, FullDetails, crate::rolling_full::FullWheel)> {
         let w = full_wheel(p, &self.full_wheel_request())?;
-        let mut r = roll_wheel(&w, &self.spec(Fidelity::Full), &[], None)?;
+        let mut r = self.checked_run(&w, Fidelity::Full)?;
         let gravity = self.settings.gravity;
         r.result.validity.warnings.extend(w.warnings(gravity));
         let details = FullDetails::of(&w, r.ground_damping.unwrap_or_default());
         let run = WheelRun::of(Fidelity::Full, &w.mass.polygon(), &r.result, self.t_end());
         Ok((run, details, w))
+    }
+
+    /// The run of `wheel` with `fidelity`, repeated at the refined resolution beside it when
+    /// `convergence_check` is set.
+    fn checked_run<W>(&self, wheel: &W, fidelity: Fidelity) -> Result<wheel_rolling::Rolled>
+    where
+        W: wheel_rolling::Wheel + Sync,
+        W::Error: Send + std::fmt::Display,
+        crate::TbarError: From<W::Error>,
+    {
+        let spec = self.spec(fidelity);
+        let decision = Decision::of(&spec, &wheel.polygon());
+        let check = self.checks.convergence_check;
+        Ok(roll_checked(wheel, &spec, &decision, &[], None, check)?)
     }
 
     fn tipover(&self, g: &TbarGeometry, mp: &MassProperties, row: &mut TbarRollRow) {

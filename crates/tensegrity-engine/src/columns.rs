@@ -38,7 +38,7 @@ pub const TIPOVER: [Column; 8] = [
 ];
 
 /// The scalars of [`toroid::tipover_dynamic::DynamicTipoverReport`].
-pub const TIPOVER_DYNAMIC: [Column; 12] = [
+pub const TIPOVER_DYNAMIC: [Column; 16] = [
     col("sides", ""),
     col("outer_tread", "m"),
     col("mass_kg", "kg"),
@@ -48,23 +48,30 @@ pub const TIPOVER_DYNAMIC: [Column; 12] = [
     col("relative_difference", ""),
     col("max_lean", "rad"),
     col("final_lean", "rad"),
+    col("static_tip_angle", "rad"),
     col("tipped", ""),
+    col("tip_time", "s"),
     col("max_penetration", "m"),
     col("valid", ""),
+    col("convergence.refinement", ""),
+    col("convergence.converged", ""),
 ];
 
 /// The result scalars of [`toroid::rolling_lean::LeanRollingReport`] (its echo of the inputs
 /// `sides`, `outer_tread`, `incline`, `side_slope` left out: they are axis or fixed values).
-pub const TIPOVER_ROLLING: [Column; 9] = [
+pub const TIPOVER_ROLLING: [Column; 12] = [
     col("mass_kg", "kg"),
     col("static_critical_side_slope", "rad"),
     col("max_lean", "rad"),
     col("final_lean", "rad"),
+    col("static_tip_angle", "rad"),
     col("fell", ""),
     col("fall_time", "s"),
     col("downhill", "m"),
     col("max_penetration", "m"),
     col("valid", ""),
+    col("convergence.refinement", ""),
+    col("convergence.converged", ""),
 ];
 
 /// The scalars of [`michell3d::MichellReport`] (nested objects flattened with `.`; the keys
@@ -176,7 +183,7 @@ pub const INTEGRATORS: [Column; 7] = [
 
 /// The scalars of [`toroid::RollReport`], in its key order (validity included; the first
 /// impact as `first_impact.*`, empty when there is none).
-pub const ROLL: [Column; 29] = [
+pub const ROLL: [Column; 31] = [
     col("fidelity", ""),
     col("fidelity_reason", ""),
     col("contact", ""),
@@ -206,18 +213,21 @@ pub const ROLL: [Column; 29] = [
     col("lift_off_time", "s"),
     col("required_friction", ""),
     col("mean_slip_speed", "m/s"),
+    col("convergence.refinement", ""),
+    col("convergence.converged", ""),
 ];
 
 /// The scalars of [`tbar_wheel::TbarRollReport`] and of its first row (`rows.0.…`: the first
 /// number of treads — a sweep over `treads` gives one row a case): the T-bar run, the toroid
 /// column and the tip-over.
-pub const TBAR_ROLL: [Column; 30] = [
+pub const TBAR_ROLL: [Column; 32] = [
     col("model", ""),
     col("full_tensegrity_rolling", ""),
     col("structure", ""),
     col("rim", ""),
     col("incline_rad", "rad"),
     col("t_end", "s"),
+    col("valid", ""),
     col("rows.0.treads", ""),
     col("rows.0.phi", "rad"),
     col("rows.0.tbar.mass_kg", "kg"),
@@ -234,6 +244,7 @@ pub const TBAR_ROLL: [Column; 30] = [
     col("rows.0.tbar.slip_fraction", ""),
     col("rows.0.tbar.max_penetration", "m"),
     col("rows.0.tbar.energy_balance_error", ""),
+    col("rows.0.tbar.convergence.converged", ""),
     col("rows.0.toroid.mass_kg", "kg"),
     col("rows.0.toroid.I1", "kg m^2"),
     col("rows.0.toroid.valid", ""),
@@ -276,7 +287,7 @@ pub const STATICS: [Column; 25] = [
 
 /// The scalars of [`tensegrity_core::dynamics::SimulationReport`] (`wall_time_s` is measured:
 /// it differs from run to run).
-pub const SIMULATE: [Column; 7] = [
+pub const SIMULATE: [Column; 9] = [
     col("t_end", "s"),
     col("steps", ""),
     col("rhs_evals", ""),
@@ -284,6 +295,8 @@ pub const SIMULATE: [Column; 7] = [
     col("bar_length_drift", "m"),
     col("constraint_drift", "m"),
     col("wall_time_s", "s"),
+    col("convergence.refinement", ""),
+    col("convergence.converged", ""),
 ];
 
 /// [`crate::bench::WorkPrecisionReport`] has no scalar: its points are the study (the

@@ -126,7 +126,7 @@ impl Estimated for SimulateCommand {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         let scene = self.source()?.load().map_err(failed)?;
         let simulation = self.simulation(&scene, false).map_err(failed)?;
-        crate::simulate::estimate(&simulation, false, false)
+        crate::simulate::estimate_checked(self, &simulation, false, false)
             .map(Some)
             .map_err(failed)
     }

@@ -108,7 +108,7 @@ pub enum SceneError {
     #[error(transparent)]
     Core(#[from] CoreError),
     /// A `strict` simulation whose invariants drifted past their limits.
-    #[error("strict: {} drift warning(s): {}", warnings.len(), warnings.join("; "))]
+    #[error("strict: {} warning(s): {}", warnings.len(), warnings.join("; "))]
     Strict {
         /// The warnings of the run.
         warnings: Vec<String>,

@@ -30,10 +30,13 @@
 
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicBool, Ordering};
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::dynamics::recorder::{Sample, SampleSink};
-use tensegrity_core::dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
-use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::dynamics::{
+    Convergence, IntegratorKind, SimulationReport, SimulationResult, SimulationSettings,
+};
+use tensegrity_core::request::{InvalidParameter, Param, Request, RunChecks};
 use tensegrity_core::{CoreError, Simulation};
 use tensegrity_io::scene::{Scene, SimulationSpec};
 
@@ -41,7 +44,7 @@ use tensegrity_io::scene::{Scene, SimulationSpec};
 pub const DEFAULT_SAMPLES: f64 = 200.0;
 
 /// A scene run in time, as data: every field unset keeps the scene's value.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SimulateCommand {
     /// The scene: a TOML file, or its text (required).
@@ -58,8 +61,28 @@ pub struct SimulateCommand {
     pub atol: Option<f64>,
     /// Sampling interval of the written samples (s).
     pub output_interval: Option<f64>,
-    /// Fail when the run has a drift warning.
+    /// Fail when the run has a drift warning (or an unconverged final state).
     pub strict: bool,
+    /// Re-run at a refined resolution beside the run ([`SimulateCommand::refine`]) and
+    /// report the final state's change in `convergence`.
+    pub convergence_check: bool,
+}
+
+impl Default for SimulateCommand {
+    /// Every override unset, not strict, convergence checked.
+    fn default() -> Self {
+        Self {
+            scene: None,
+            t_end: None,
+            integrator: None,
+            dt: None,
+            rtol: None,
+            atol: None,
+            output_interval: None,
+            strict: false,
+            convergence_check: true,
+        }
+    }
 }
 
 impl Request for SimulateCommand {
@@ -103,8 +126,9 @@ impl Request for SimulateCommand {
             .optional(),
             Param::flag(
                 "strict",
-                "Fail (after writing the outputs) when the run has a drift warning",
+                "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge",
             ),
+            RunChecks::params()[1],
         ]
     }
 }
@@ -187,6 +211,20 @@ impl SimulateCommand {
     }
 }
 
+/// A sink that keeps no sample and stops the run once `.0` is set (the refined run of a run
+/// that failed or was interrupted).
+struct StopWhen<'a>(&'a AtomicBool);
+
+impl SampleSink for StopWhen<'_> {
+    fn accept(&mut self, _: Sample) -> Result<(), CoreError> {
+        Ok(())
+    }
+
+    fn keep_going(&mut self) -> bool {
+        !self.0.load(Ordering::Relaxed)
+    }
+}
+
 /// A sink that keeps no sample (a run whose samples nobody writes).
 struct Discard;
 
@@ -196,14 +234,172 @@ impl SampleSink for Discard {
     }
 }
 
-/// Runs `simulate` without writing samples: reads the scene, runs it, its report (an error
-/// under `strict` with drift warnings).
+/// Runs `simulate` without writing samples: reads the scene, runs it (beside its refined run
+/// with `convergence_check`), its report (an error under `strict` with drift warnings or an
+/// unconverged final state).
 pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneError> {
-    let (_, simulation) = command.prepare(false)?;
-    let result = simulation.run_streaming(&mut Discard)?;
-    let report = SimulationReport::from(&result);
+    let (scene, simulation) = command.prepare(false)?;
+    let report = command.run_checked(&scene, &simulation, &mut Discard)?;
     command.strict_check(&report)?;
     Ok(report)
+}
+
+/// Tolerance of the final node positions (relative to the structure's size).
+pub const CONVERGENCE_NODES: f64 = 1e-2;
+/// Tolerance of the final velocities (relative to the largest final speed).
+pub const CONVERGENCE_VELOCITIES: f64 = 2e-2;
+
+impl SimulateCommand {
+    /// The refined resolution of `settings`: a fixed step (rk4, rattle) halved; an adaptive
+    /// integrator's tolerances divided by 10 and its largest step halved. Returns what changed.
+    pub fn refine(settings: &mut SimulationSettings) -> &'static str {
+        settings.dt *= 0.5;
+        if settings.integrator.is_adaptive() {
+            settings.rtol *= 0.1;
+            settings.atol *= 0.1;
+            "rtol/10, atol/10, largest step/2"
+        } else {
+            "dt/2"
+        }
+    }
+
+    /// The convergence of a run's final state against the refined run's: the largest distance
+    /// between their final nodes over the structure's size (the largest distance of a final
+    /// node from their centroid, at least 1 mm) within [`CONVERGENCE_NODES`], the largest
+    /// difference of their final velocities over the largest final speed (at least 1 mm/s)
+    /// within [`CONVERGENCE_VELOCITIES`].
+    pub fn convergence(
+        main: &SimulationReport,
+        refined: &SimulationReport,
+        label: &str,
+    ) -> Convergence {
+        let gap = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+            a.iter()
+                .zip(b)
+                .map(|(p, q)| {
+                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+                })
+                .fold(0.0, f64::max)
+        };
+        let n = main.final_nodes.len().max(1) as f64;
+        let c = main.final_nodes.iter().fold([0.0; 3], |s, p| {
+            [s[0] + p[0] / n, s[1] + p[1] / n, s[2] + p[2] / n]
+        });
+        let size = gap(&main.final_nodes, &vec![c; main.final_nodes.len()]).max(1e-3);
+        let zero = vec![[0.0; 3]; main.final_velocities.len()];
+        let speed = gap(&main.final_velocities, &zero).max(1e-3);
+        let mut conv = Convergence::new(label);
+        conv.compare_change(
+            "final_nodes",
+            gap(&main.final_nodes, &refined.final_nodes) / size,
+            CONVERGENCE_NODES,
+        )
+        .compare_change(
+            "final_velocities",
+            gap(&main.final_velocities, &refined.final_velocities) / speed,
+            CONVERGENCE_VELOCITIES,
+        );
+        conv
+    }
+
+    /// Runs `simulation` (of `scene`, under this command) into `sink`, and with
+    /// `convergence_check` its refined run ([`SimulateCommand::refine`]) beside it in a second
+    /// thread: the report with its `convergence` and a warning per unconverged quantity.
+    pub fn run_checked(
+        &self,
+        scene: &Scene,
+        simulation: &Simulation,
+        sink: &mut dyn SampleSink,
+    ) -> Result<SimulationReport, SceneError> {
+        Ok(self.run_beside(scene, simulation, sink)?.report()?)
+    }
+
+    /// The run into `sink` and, with `convergence_check`, the refined run beside it (the
+    /// scene is read again for it: a second, independent model).
+    pub fn run_beside(
+        &self,
+        scene: &Scene,
+        simulation: &Simulation,
+        sink: &mut dyn SampleSink,
+    ) -> Result<Checked, SceneError> {
+        if !self.convergence_check {
+            let main = simulation.run_streaming(sink);
+            return Ok(Checked {
+                main,
+                refined: None,
+            });
+        }
+        let mut fine = self.simulation(scene, false)?;
+        let label = Self::refine(&mut fine.settings);
+        let stop = AtomicBool::new(false);
+        Ok(std::thread::scope(|s| {
+            let watch = StopWhen(&stop);
+            let handle = s.spawn(move || fine.run_streaming(&mut { watch }));
+            let main = simulation.run_streaming(sink);
+            // a run that failed (or was interrupted) is not compared: stop the refined one
+            stop.store(main.is_err(), Ordering::Relaxed);
+            let refined = handle
+                .join()
+                .unwrap_or_else(|p| std::panic::resume_unwind(p));
+            Checked {
+                main,
+                refined: Some((label, refined)),
+            }
+        }))
+    }
+}
+
+/// The resource estimate of the run of `simulation` under `command` ([`estimate`]), and
+/// with `convergence_check` its refined run's after it ([`SimulateCommand::refine`]: twice
+/// the work).
+pub fn estimate_checked(
+    command: &SimulateCommand,
+    simulation: &Simulation,
+    csv: bool,
+    vtk: bool,
+) -> Result<Estimate, CoreError> {
+    let e = estimate(simulation, csv, vtk)?;
+    if !command.convergence_check {
+        return Ok(e);
+    }
+    // twice the steps, nothing written (adaptive: rtol/10 costs 10^(1/5) ≈ 1.6 times the
+    // steps of a fifth-order pair, 10^(1/3) ≈ 2.2 of SDIRK's third order: about twice too)
+    // the refined run writes nothing and shares the run's description
+    Ok(Estimate {
+        work_s: 3.0 * e.work_s,
+        ..e
+    })
+}
+
+/// A run and its refined run ([`SimulateCommand::run_beside`]).
+#[derive(Debug)]
+pub struct Checked {
+    /// The run (its error, an interrupt included, as the core gave it).
+    pub main: Result<SimulationResult, CoreError>,
+    /// What the refined run changed, and its result; `None` when not checked.
+    pub refined: Option<(&'static str, Result<SimulationResult, CoreError>)>,
+}
+
+impl Checked {
+    /// The run's report, with the convergence of its final state and a warning per
+    /// unconverged quantity (or for a refined run that failed).
+    pub fn report(self) -> Result<SimulationReport, CoreError> {
+        let mut report = SimulationReport::from(&self.main?);
+        let convergence = match self.refined {
+            None => return Ok(report),
+            Some((label, Ok(fine))) => {
+                SimulateCommand::convergence(&report, &SimulationReport::from(&fine), label)
+            }
+            Some((label, Err(e))) => {
+                let mut c = Convergence::new(format!("{label}: the refined run failed: {e}"));
+                c.converged = false;
+                c
+            }
+        };
+        report.warnings.extend(convergence.warnings());
+        report.convergence = Some(convergence);
+        Ok(report)
+    }
 }
 
 /// The resource estimate of a run (module docs), after the core's check of its settings (a

@@ -18,7 +18,8 @@ use toroid::{RollRequest, Stabilize, ToroidParams, ToroidWheel, WheelSpec};
 use wheel_rolling::{defaults, ContactKind, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
 
 /// Runs `tbar roll` (module docs): one row per number of treads; what fails in a row is named
-/// in its `errors`, a request the command refuses is an error.
+/// in its `errors`, a request the command refuses is an error, and under `strict` so is a
+/// report that is not valid.
 ///
 /// ```
 /// use tbar_wheel::TbarRollRequest;
@@ -34,6 +35,23 @@ use wheel_rolling::{defaults, ContactKind, Fidelity, FidelityChoice, Polygon, Wh
 /// assert!(row.tbar.is_some() && row.toroid.is_some());
 /// ```
 pub fn tbar_roll(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
+    let r = report(request)?;
+    strict_check(request, &r)?;
+    Ok(r)
+}
+
+/// The `strict` rule: under `strict`, a report that is not valid is an error (exit code 1 on
+/// the command line).
+pub fn strict_check(request: &TbarRollRequest, report: &TbarRollReport) -> Result<(), TbarError> {
+    Ok(wheel_rolling::strict_check(
+        request.checks.strict,
+        &report.warnings,
+    )?)
+}
+
+/// As [`tbar_roll`], the report returned whatever its validity (a front end writes it, then
+/// applies [`strict_check`]).
+pub fn report(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
     request.validate()?;
     let rim = request.rim()?;
     let rows = request
@@ -55,8 +73,11 @@ pub fn tbar_roll(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError>
         rim,
         incline_rad: request.settings.incline,
         t_end: request.t_end(),
+        valid: true,
+        warnings: Vec::new(),
         rows,
-    })
+    }
+    .judged())
 }
 
 /// The reference toroid's parameters scaled to outer radius r₀, with n sides.
@@ -148,7 +169,8 @@ fn toroid_column(
 /// the rigid model the toroid column's statics and rigid run ([`toroid::budget::roll`] of
 /// the rigid model) and the T-bar's rigid run of the same size (its steps and samples grow
 /// with `t_end`, the statics with the treads); for the full model the T-bar's and the
-/// toroid's full runs. Named `treads = [..], t_end = .., dt = ..`.
+/// toroid's full runs; each again at half the step with `convergence_check`. Named
+/// `treads = [..], t_end = .., dt = ..`.
 ///
 /// ```
 /// use tbar_wheel::TbarRollRequest;
@@ -172,6 +194,10 @@ pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError
             Fidelity::Full => {
                 let p = request.tbar_params(n, rim);
                 let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt)?;
+                if request.checks.convergence_check {
+                    let fine = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt / 2.0)?;
+                    e = e.then(fine);
+                }
                 if let Ok(req) = toroid_request(request, n) {
                     e = e.then(toroid::budget::roll(&req));
                 }
@@ -209,6 +235,11 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
         mu: request.mu_static,
         min_tension: defaults::ROLL_MIN_TENSION,
         integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
+        checks: tensegrity_core::request::RunChecks {
+            strict: false,
+            ..request.checks
+        },
+        ensemble: 0,
     }
 }
 
@@ -304,7 +335,9 @@ mod tests {
         let one = |n: usize| {
             let p = full.tbar_params(n, tbar_wheel::RimMode::Body);
             let t = tbar_wheel::rolling_full::full_roll_estimate(&p, 1.0, 1e-4).unwrap();
-            t.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
+            // and the convergence check's refined run at half the step
+            let fine = tbar_wheel::rolling_full::full_roll_estimate(&p, 1.0, 5e-5).unwrap();
+            t.work_s + fine.work_s + toroid::budget::roll(&toroid_request(&full, n).unwrap()).work_s
         };
         assert!((e.work_s - one(6) - one(8)).abs() < 1e-9 * e.work_s);
         assert!(!e.parameters.to_string().contains("--"), "{}", e.parameters);

@@ -204,6 +204,7 @@ fn the_dynamic_and_rolling_columns_are_their_reports_scalars() {
     let mut report = d.run().unwrap();
     report.dynamic_threshold = Some(1.0);
     report.relative_difference = Some(0.0);
+    report.tip_time = Some(1.0);
     check_columns("tipover_dynamic", &[report], &[]);
     let r = toroid::TipoverRollingRequest::from_values(values(json!({
         "t_end": 0.02, "output_dt": 0.01
@@ -266,6 +267,7 @@ fn the_scene_requests_round_trip_through_json_and_the_registry() {
         atol: Some(1e-9),
         output_interval: Some(0.1),
         strict: true,
+        convergence_check: false,
     };
     round_trip(&m);
     assert_eq!(serde_json::to_value(&m).unwrap()["integrator"], "sdirk");
@@ -367,7 +369,10 @@ fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
     let simulate = command("simulate").unwrap();
     let ctx = Context::default();
     let mut run = simulate
-        .run(values(json!({ "scene": path })), &ctx)
+        .run(
+            values(json!({ "scene": path, "convergence_check": false })),
+            &ctx,
+        )
         .unwrap();
     let mut want = serde_json::to_value(&direct).unwrap();
     // measured wall times differ; everything else is the same run
@@ -376,7 +381,20 @@ fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
     }
     assert_eq!(run, want);
     assert_eq!(run["t_end"], 3.0);
-    check_columns("simulate", &[direct], &[]);
+    // with the check: the same run, and its final state against the refined run's
+    let checked = simulate
+        .run(values(json!({ "scene": path })), &ctx)
+        .unwrap();
+    assert_eq!(checked["final_nodes"], want["final_nodes"]);
+    let c = &checked["convergence"];
+    assert_eq!(c["refinement"], "rtol/10, atol/10, largest step/2");
+    assert_eq!(c["converged"], true, "{c}");
+    let checked: SimulationReport = {
+        let mut r = direct.clone();
+        r.convergence = serde_json::from_value(c.clone()).ok();
+        r
+    };
+    check_columns("simulate", &[checked], &[]);
     // rk4 at 0.05 s drifts (as `simulate --dt 0.05` warns): strict makes it an error
     let drift = json!({"scene": path, "integrator": "rk4", "dt": 0.05});
     let loose = simulate.run(values(drift.clone()), &ctx).unwrap();

@@ -479,6 +479,8 @@ mod tests {
                 Vector3::new(0.0, 1.0, 1.5),
                 Vector3::new(0.3, 0.0, 2.0),
             ],
+            velocities: Vec::new(),
+            member_forces: Vec::new(),
         };
         let p = frame_panel(&frame, &[[0, 1], [1, 2]]);
         assert_eq!(p.title, "t = 0.500 s");

@@ -126,7 +126,8 @@ pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
 /// Estimate of `roll`: the wheel's statics, then what the plan of the fidelity decision
 /// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
 /// model, or both — with their samples kept in memory (one per
-/// [`crate::defaults::ROLL_OUTPUT_DT`]); named `t_end = …, dt = …, sides = …`.
+/// [`crate::defaults::ROLL_OUTPUT_DT`]), with `convergence_check` the same plan again at
+/// half the step, and with `ensemble` K its K copies and the other model's run; named `t_end = …, dt = …, sides = …`.
 pub fn roll(request: &RollRequest) -> Estimate {
     let wheel = &request.wheel;
     let statics = statics(&ToroidRequest {
@@ -134,7 +135,27 @@ pub fn roll(request: &RollRequest) -> Estimate {
         ..ToroidRequest::default()
     });
     let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
-    let run = wheel_rolling::estimate::plan(request.decision().plan, &size, &full_sizes(wheel));
+    let plan = request.decision().plan;
+    let mut run = wheel_rolling::estimate::plan(plan, &size, &full_sizes(wheel));
+    if request.checks.convergence_check {
+        // the refined run beside it: half the step, twice the steps
+        let fine = RunSize::new(request.t_end, 0.5 * request.settings.dt, wheel.params.sides);
+        run = run.then(wheel_rolling::estimate::plan(
+            plan,
+            &fine,
+            &full_sizes(wheel),
+        ));
+    }
+    if request.ensemble >= 2 {
+        // K copies of the plan, then one run of the other model (at most the full one)
+        let one = wheel_rolling::estimate::plan(plan, &size, &full_sizes(wheel));
+        let copies = Estimate {
+            work_s: request.ensemble as f64 * one.work_s,
+            ..one
+        };
+        let other = wheel_rolling::estimate::full(&size, &full_sizes(wheel));
+        run = run.then(copies).then(other);
+    }
     Estimate {
         parameters: size.parameter.into(),
         ..statics.then(run)

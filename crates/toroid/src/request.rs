@@ -15,11 +15,11 @@
 use crate::error::Result;
 use crate::report::{TipoverRequest, ToroidRequest, WheelSpec};
 use crate::rolling_lean::{LeanRolling, LeanRollingReport};
-use crate::tipover_dynamic::{DynamicTipover, DynamicTipoverReport};
+use crate::tipover_dynamic::{beside, judge, refined_failed, DynamicTipover, DynamicTipoverReport};
 use crate::ToroidParams;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle;
-use tensegrity_core::request::{InvalidParameter, Param, Request, Rule};
+use tensegrity_core::request::{InvalidParameter, Param, Request, Rule, RunChecks};
 
 impl Request for ToroidRequest {
     const NAME: &'static str = "toroid";
@@ -175,12 +175,40 @@ pub struct TipoverDynamicRequest {
     /// The run (its [`Default`]: a quasi-static ramp on a stiff wheel and ground).
     #[serde(flatten)]
     pub settings: DynamicTipover,
+    /// `strict` and `convergence_check` (the ramp again at half the step and twice the
+    /// ground stiffness, beside it).
+    #[serde(flatten)]
+    pub checks: RunChecks,
 }
 
 impl TipoverDynamicRequest {
-    /// Builds the wheel and runs the ramp.
+    /// Builds the wheel and runs the ramp ([`TipoverDynamicRequest::report`]); under `strict`
+    /// a report that is not valid is an error.
     pub fn run(&self) -> Result<DynamicTipoverReport> {
-        self.settings.run(&self.wheel.build()?)
+        let r = self.report()?;
+        wheel_rolling::strict_check(self.checks.strict, &r.warnings)?;
+        Ok(r)
+    }
+
+    /// Builds the wheel and runs the ramp, with `convergence_check` beside the refined ramp
+    /// ([`DynamicTipover::refined`]); the report whatever its validity.
+    pub fn report(&self) -> Result<DynamicTipoverReport> {
+        let wheel = self.wheel.build()?;
+        let fine = self.settings.refined();
+        let (main, refined) = beside(
+            self.checks.convergence_check,
+            || self.settings.run(&wheel),
+            || fine.run(&wheel),
+        );
+        let mut r = main?;
+        let convergence = match refined {
+            Some(Ok(f)) => r.convergence(&f),
+            Some(Err(e)) => refined_failed(e),
+            None => return Ok(r),
+        };
+        r.convergence = judge(convergence, &mut r.warnings);
+        r.valid = r.warnings.is_empty();
+        Ok(r)
     }
 }
 
@@ -191,6 +219,7 @@ impl Request for TipoverDynamicRequest {
         let mut p = WheelSpec::params();
         p.extend(contact_params());
         p.extend(ramp_params());
+        p.extend(RunChecks::params());
         p
     }
 
@@ -244,6 +273,10 @@ pub struct TipoverRollingRequest {
     pub dt: f64,
     /// Output interval (s).
     pub output_dt: f64,
+    /// `strict` and `convergence_check` (the run again at half the step and twice the ground
+    /// stiffness, beside it).
+    #[serde(flatten)]
+    pub checks: RunChecks,
 }
 
 impl Default for TipoverRollingRequest {
@@ -266,6 +299,7 @@ impl Default for TipoverRollingRequest {
             friction_regularization: d.friction_regularization,
             dt: d.dt,
             output_dt: d.output_dt,
+            checks: RunChecks::default(),
         }
     }
 }
@@ -293,9 +327,37 @@ impl TipoverRollingRequest {
         }
     }
 
-    /// Builds the wheel and rolls it.
+    /// Builds the wheel and rolls it ([`TipoverRollingRequest::report`]); under `strict` a
+    /// report that is not valid is an error.
     pub fn run(&self) -> Result<LeanRollingReport> {
-        self.lean_rolling().run(&self.wheel.build()?)
+        let r = self.report()?;
+        wheel_rolling::strict_check(self.checks.strict, &r.warnings)?;
+        Ok(r)
+    }
+
+    /// Builds the wheel and rolls it, with `convergence_check` beside the refined run (half
+    /// the step, twice the ground stiffness); the report whatever its validity.
+    pub fn report(&self) -> Result<LeanRollingReport> {
+        let wheel = self.wheel.build()?;
+        let main = self.lean_rolling();
+        let fine = LeanRolling {
+            wheel: main.wheel.refined(),
+            ..main
+        };
+        let (r, refined) = beside(
+            self.checks.convergence_check,
+            || main.run(&wheel),
+            || fine.run(&wheel),
+        );
+        let mut r = r?;
+        let convergence = match refined {
+            Some(Ok(f)) => r.convergence(&f),
+            Some(Err(e)) => refined_failed(e),
+            None => return Ok(r),
+        };
+        r.convergence = judge(convergence, &mut r.warnings);
+        r.valid = r.warnings.is_empty();
+        Ok(r)
     }
 }
 
@@ -311,6 +373,7 @@ impl Request for TipoverRollingRequest {
             Param::number("t_end", "s", "Simulated time").positive(),
         ]);
         p.extend(contact_params());
+        p.extend(RunChecks::params());
         p
     }
 

@@ -26,7 +26,9 @@ use serde::{Deserialize, Serialize};
 use tensegrity_core::dynamics::IntegratorKind;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
 pub use wheel::{rigid_frames, scene, start_pose, ToroidWheel};
-use wheel_rolling::{ContactKind, Decision, FidelityChoice, Observer, RollSettings, RunSpec};
+use wheel_rolling::{
+    ContactKind, Decision, FidelityChoice, Observer, RollSettings, RunChecks, RunSpec,
+};
 
 /// What [`roll`] runs: the wheel, the shared rolling settings and the toroid's own choices.
 /// Its serde form is flat, every field named as the `roll` flag in snake_case:
@@ -53,6 +55,13 @@ pub struct RollRequest {
     pub min_tension: f64,
     /// Integrator of the full model (`dt` is its step, or its largest step when adaptive).
     pub integrator: IntegratorKind,
+    /// `strict` (an invalid result is an error) and `convergence_check` (the run repeated at
+    /// a refined resolution, [`wheel_rolling::convergence`]).
+    #[serde(flatten)]
+    pub checks: RunChecks,
+    /// Copies from perturbed starting poses run beside the run ([`wheel_rolling::ensemble`]);
+    /// 0 or 1: none.
+    pub ensemble: usize,
 }
 
 impl Default for RollRequest {
@@ -69,6 +78,8 @@ impl Default for RollRequest {
             mu: defaults::STATIC_FRICTION,
             min_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
+            checks: RunChecks::default(),
+            ensemble: 0,
         }
     }
 }
@@ -116,6 +127,11 @@ impl Request for RollRequest {
             ),
             setting("gravity"),
         ]);
+        out.extend(RunChecks::params());
+        out.push(Param::count(
+            "ensemble",
+            "Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in parallel) and report the mean and 95 % interval of every headline quantity against the other model (0: none)",
+        ));
         out
     }
 
@@ -157,6 +173,15 @@ impl RollRequest {
         }
     }
 
+    /// The `strict` rule: under `strict`, a report that is not valid is an error
+    /// ([`wheel_rolling::RollingError::Strict`], exit code 1 on the command line).
+    pub fn strict_check(&self, report: &RollReport) -> Result<()> {
+        Ok(wheel_rolling::strict_check(
+            self.checks.strict,
+            &report.summary.warnings,
+        )?)
+    }
+
     /// The fidelity decision of this request: from the wheel's mass computed from its
     /// parameters ([`crate::budget::wheel_mass`], nothing built), so the resource estimate
     /// ([`crate::budget::roll`]) and the run ([`roll`]) follow the same plan.
@@ -185,7 +210,9 @@ impl RollRequest {
     }
 }
 
-/// Builds the wheel, decides the model (module docs) and rolls it.
+/// Builds the wheel, decides the model (module docs) and rolls it (and, with
+/// `convergence_check`, rolls it again at the refined resolution beside it); under `strict`
+/// a result that is not valid is an error ([`RollRequest::strict_check`]).
 ///
 /// ```
 /// use toroid::{roll, RollRequest};
@@ -196,7 +223,9 @@ impl RollRequest {
 /// assert!(r.summary.mean_speed > 0.0 && r.summary.impacts > 0);
 /// ```
 pub fn roll(request: &RollRequest) -> Result<RollReport> {
-    roll_observed(request, &[], None)
+    let report = roll_observed(request, &[], None)?;
+    request.strict_check(&report)?;
+    Ok(report)
 }
 
 /// As [`roll`], keeping the wheel's nodes at `frame_times` (s) in [`RollReport::frames`]
@@ -207,7 +236,8 @@ pub fn roll_with_frames(request: &RollRequest, frame_times: &[f64]) -> Result<Ro
 
 /// As [`roll_with_frames`], handing every sample and frame to `observer` as the run makes it;
 /// an observer that stops the run gets the report of what was computed, with `stopped_at`
-/// and a warning (see [`wheel_rolling::observer`]).
+/// and a warning (see [`wheel_rolling::observer`]). The report is returned whatever its
+/// validity: a front end writes it, then applies [`RollRequest::strict_check`].
 pub fn roll_observed(
     request: &RollRequest,
     frame_times: &[f64],
@@ -223,9 +253,72 @@ pub fn roll_observed(
         min_tension: request.min_tension,
     };
     let spec = request.spec();
-    let rolled =
-        wheel_rolling::roll_decided(&wheel, &spec, &request.decision(), frame_times, observer)?;
-    Ok(RollReport::of(request, rolled))
+    let rolled = wheel_rolling::roll_checked(
+        &wheel,
+        &spec,
+        &request.decision(),
+        frame_times,
+        observer,
+        request.checks.convergence_check,
+    )?;
+    let interrupted = rolled.result.validity.stopped_at.is_some();
+    let ensemble = match (request.ensemble, interrupted) {
+        (k, false) if k >= 2 => Some(ensemble(request, &wheel, &spec, rolled.fidelity)?),
+        _ => None,
+    };
+    let mut report = RollReport::of(request, rolled);
+    report.ensemble = ensemble;
+    Ok(report)
+}
+
+/// The ensemble of `request` (its model: the one that ran, `fidelity`) against one
+/// unperturbed run of the other model.
+fn ensemble(
+    request: &RollRequest,
+    wheel: &ToroidWheel,
+    spec: &RunSpec,
+    fidelity: wheel_rolling::Fidelity,
+) -> Result<wheel_rolling::Ensemble> {
+    let choice = |f: wheel_rolling::Fidelity| match f {
+        wheel_rolling::Fidelity::Rigid => FidelityChoice::Rigid,
+        wheel_rolling::Fidelity::Full => FidelityChoice::Full,
+    };
+    let decide = |c: FidelityChoice| {
+        RollRequest {
+            fidelity: c,
+            ..*request
+        }
+        .decision()
+    };
+    let other_fidelity = match fidelity {
+        wheel_rolling::Fidelity::Rigid => wheel_rolling::Fidelity::Full,
+        wheel_rolling::Fidelity::Full => wheel_rolling::Fidelity::Rigid,
+    };
+    let other_spec = RunSpec {
+        fidelity: choice(other_fidelity),
+        ..*spec
+    };
+    let other = wheel_rolling::roll_decided(
+        wheel,
+        &other_spec,
+        &decide(choice(other_fidelity)),
+        &[],
+        None,
+    )?;
+    let other = wheel_rolling::RunSummary::of(&other.result, spec.t_end);
+    let same = RunSpec {
+        fidelity: choice(fidelity),
+        ..*spec
+    };
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    wheel_rolling::ensemble::ensemble(
+        wheel,
+        &same,
+        &decide(choice(fidelity)),
+        request.ensemble,
+        threads,
+        Some(&other),
+    )
 }
 
 /// Rolls `request` once per wheel size in `sides` (the rest of the request unchanged), e.g.
@@ -250,7 +343,7 @@ mod tests {
     fn the_request_describes_every_field() {
         tensegrity_core::request::check_description::<RollRequest>().unwrap();
         let names: Vec<&str> = RollRequest::params().iter().map(|p| p.name).collect();
-        assert_eq!(names.len(), 22);
+        assert_eq!(names.len(), 25);
         for flag in [
             "sides",
             "stabilize",

@@ -8,19 +8,27 @@
 //! > g (sin ψ, cos ψ sin φ, −cos ψ cos φ).
 //!
 //! The side slope pulls the wheel over as it rolls; the lean angle (the tilt of the wheel's
-//! axis out of the plane, [`crate::tipover_dynamic`]'s definition) is recorded. A wheel that
-//! leans past [`crate::tipover_dynamic::TIPPED_LEAN`] has fallen. The statically expected
-//! critical side slope of a wheel resting on a side is tan ψ = T / (2h), h = R_o cos(π/n)
-//! (the weight's line leaves the tread), so a wider tread and — through the hub height only
-//! weakly — more sides raise it; the run shows what rolling adds.
+//! axis out of the plane, [`crate::tipover_dynamic`]'s definition) is recorded. The statically
+//! expected critical side slope of a wheel resting on a side is tan ψ = T / (2h),
+//! h = R_o cos(π/n) (the weight's line leaves the tread), so a wider tread and — through the
+//! hub height only weakly — more sides raise it; the run shows what rolling adds.
+//!
+//! **Fell**: on the side slope the weight's line leaves the tread edge when the lean passes
+//! α₊ = atan(T/2h) − ψ (over the downhill-side edge) or −α₋ = −(atan(T/2h) + ψ) (over the
+//! other one) — [`crate::tipover_dynamic::tip_angle`] with the lateral component g sin ψ. The
+//! wheel has `fell` when it **ends** leaning beyond one of them (on its side, or past the point
+//! where its weight turns it over); `fall_time` is when that last excursion began. A wheel
+//! that passed the angle and came back (rolling can right it) has not fallen.
 
 use crate::analysis::analyse;
 use crate::builder::Toroid;
 use crate::error::Result;
-use crate::tipover_dynamic::{lean_and_hub, DynamicTipover, RunValidity, TIPPED_LEAN};
+use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity, REFINEMENT};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{IntegratorKind, Quantities, Simulation, SimulationSettings};
+use tensegrity_core::dynamics::{
+    Convergence, IntegratorKind, Quantities, Simulation, SimulationSettings,
+};
 
 /// A lean-while-rolling run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,9 +87,12 @@ pub struct LeanRollingReport {
     pub max_lean: f64,
     /// Lean at the end (rad).
     pub final_lean: f64,
-    /// Whether it fell (|lean| > the tipped threshold).
+    /// The static tip angle atan(T/2h) on a level plane (rad).
+    pub static_tip_angle: f64,
+    /// Whether it fell: it ends leaning past the tip angle of the side slope, α₊ or −α₋
+    /// (module docs).
     pub fell: bool,
-    /// Time at which it fell (s).
+    /// When its last excursion past that angle began (s); null when it did not fall.
     pub fall_time: Option<f64>,
     /// Hub travel downhill at the end (m).
     pub downhill: f64,
@@ -89,8 +100,12 @@ pub struct LeanRollingReport {
     pub max_penetration: f64,
     /// No warning: the run stayed inside its model.
     pub valid: bool,
-    /// What the run violated (penetration past 1 % of R_o, integrator drift).
+    /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
+    /// quantity).
     pub warnings: Vec<String>,
+    /// The headline quantities re-run at half the step and twice the ground stiffness
+    /// ([`crate::request::TipoverRollingRequest`]); null when not checked.
+    pub convergence: Option<Convergence>,
     /// The history (not serialised).
     #[serde(skip)]
     pub samples: Vec<RollingLeanSample>,
@@ -158,6 +173,14 @@ impl LeanRolling {
             .collect();
         let last = samples.last().copied();
         let max_lean = samples.iter().map(|s| s.lean.abs()).fold(0.0, f64::max);
+        let tread = toroid.params.outer_tread;
+        let (plus, minus) = (tip_angle(tread, h, ss, cs), tip_angle(tread, h, -ss, cs));
+        let beyond = |s: &RollingLeanSample| s.lean > plus || s.lean < -minus;
+        let fell = last.as_ref().is_some_and(beyond);
+        let fall_time = fell.then(|| {
+            let upright = samples.iter().rposition(|s| !beyond(s));
+            samples[upright.map_or(0, |i| i + 1)].t
+        });
         Ok(LeanRollingReport {
             sides: n,
             outer_tread: toroid.params.outer_tread,
@@ -167,16 +190,54 @@ impl LeanRolling {
             static_critical_side_slope: (toroid.params.outer_tread / (2.0 * h)).atan(),
             max_lean,
             final_lean: last.map_or(0.0, |s| s.lean),
-            fell: max_lean > TIPPED_LEAN,
-            fall_time: samples
-                .iter()
-                .find(|s| s.lean.abs() > TIPPED_LEAN)
-                .map(|s| s.t),
+            static_tip_angle: tip_angle(tread, h, 0.0, 1.0),
+            fell,
+            fall_time,
             downhill: last.map_or(0.0, |s| s.downhill),
             max_penetration: validity.max_penetration,
             valid: validity.warnings.is_empty(),
             warnings: validity.warnings,
+            convergence: None,
             samples,
         })
+    }
+}
+
+impl LeanRollingReport {
+    /// The convergence of this report's headline quantities against the `refined` run's:
+    /// the largest and the final lean within 5 % (on a scale of at least 0.01 rad), the
+    /// travel downhill within 2 % (at least 1 cm), the fall time within 2 %, and whether it fell.
+    pub fn convergence(&self, refined: &Self) -> Convergence {
+        let mut c = Convergence::new(REFINEMENT);
+        c.compare(
+            "max_lean",
+            Some(self.max_lean),
+            Some(refined.max_lean),
+            0.05,
+            0.01,
+        )
+        .compare(
+            "final_lean",
+            Some(self.final_lean),
+            Some(refined.final_lean),
+            0.05,
+            0.01,
+        )
+        .compare(
+            "downhill",
+            Some(self.downhill),
+            Some(refined.downhill),
+            0.02,
+            0.01,
+        )
+        .compare("fall_time", self.fall_time, refined.fall_time, 0.02, 0.0)
+        .compare(
+            "fell",
+            Some(f64::from(u8::from(self.fell))),
+            Some(f64::from(u8::from(refined.fell))),
+            0.5,
+            1.0,
+        );
+        c
     }
 }

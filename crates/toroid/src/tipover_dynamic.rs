@@ -20,6 +20,16 @@
 //! the normal of the rim polygon, out of the horizontal plane, positive towards +ι̂₁ at the top)
 //! is recorded at every sample.
 //!
+//! **Tipped** ([`tip_angle`]): a rigid wheel leaning by α about its far edge under the weight
+//! and a lateral force F at the hub (the centre of mass) turns over when the resultant passes
+//! outside the edge, h sin(α + ψ) > (T/2) cos(α + ψ) with tan ψ = F/(m g), i.e. beyond
+//!
+//! > α_c(F) = atan(T / 2h) − atan(F / (m g)),
+//!
+//! the static tip angle atan(T/2h) at F = 0, and 0 at the static threshold. The wheel has
+//! `tipped` when, with its near edge lifted, its lean passes α_c of the force at that sample:
+//! from there the load turns it over without any further increase.
+//!
 //! **Measured** (defaults, RK4 at 0.1 ms with the bar lengths and joints projected after every
 //! step): the ramp's threshold is within 1.2 % of the static one for n = 8 … 16 and T = 0.2 …
 //! 0.6 m (0.09 % for the reference wheel); a force held at 0.9–0.95 of it leaves the wheel
@@ -37,7 +47,7 @@ use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::dynamics::{
-    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
+    Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 
 /// Settings of a dynamic tip-over run (flat serde form, flattened into
@@ -136,21 +146,42 @@ pub struct DynamicTipoverReport {
     pub max_lean: f64,
     /// Lean at the end of the run (rad).
     pub final_lean: f64,
-    /// Whether the wheel tipped: its lean exceeded [`TIPPED_LEAN`].
+    /// The static tip angle atan(T / 2h) of the wheel at rest (rad): the lean at which its
+    /// weight alone turns it over.
+    pub static_tip_angle: f64,
+    /// Whether the wheel tipped: its near edge lifted and its lean passed the tip angle of
+    /// the load at that time, α_c(F) = atan(T/2h) − atan(F/(m g)) (module docs).
     pub tipped: bool,
+    /// When it tipped (s).
+    pub tip_time: Option<f64>,
     /// Deepest contact node below the ground (m).
     pub max_penetration: f64,
     /// No warning: the run stayed inside its model.
     pub valid: bool,
-    /// What the run violated (penetration past 1 % of R_o, integrator drift).
+    /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
+    /// quantity).
     pub warnings: Vec<String>,
+    /// The headline quantities re-run at half the step and twice the ground stiffness
+    /// ([`crate::request::TipoverDynamicRequest`]); null when not checked.
+    pub convergence: Option<Convergence>,
     /// The history (not serialised; `--out` writes it as CSV).
     #[serde(skip)]
     pub samples: Vec<LeanSample>,
 }
 
-/// A lean beyond this (rad, about 6°) counts as tipped over.
-pub const TIPPED_LEAN: f64 = 0.1;
+/// The lean (rad) beyond which a rigid wheel of tread T and hub height h, loaded by a
+/// lateral force `lateral` at its centre of mass against a `normal` weight component, turns
+/// over about its edge: atan(T / 2h) − atan(lateral / normal) (module docs).
+///
+/// ```
+/// use toroid::tipover_dynamic::tip_angle;
+/// // at rest: the static tip angle; at the static threshold F = m g T / 2h: zero
+/// assert!((tip_angle(0.4, 1.0, 0.0, 100.0) - 0.2f64.atan()).abs() < 1e-15);
+/// assert!(tip_angle(0.4, 1.0, 20.0, 100.0).abs() < 1e-15);
+/// ```
+pub fn tip_angle(tread: f64, hub_height: f64, lateral: f64, normal: f64) -> f64 {
+    (0.5 * tread / hub_height).atan() - lateral.atan2(normal)
+}
 
 impl DynamicTipover {
     /// Runs the ramp on `toroid` (see the module docs).
@@ -178,9 +209,10 @@ impl DynamicTipover {
         let result = sim.run()?;
         let samples = lean_history(toroid, &result.samples, |t| self.force_at(t, rate));
         let validity = RunValidity::of(toroid, &result, hub_height);
+        let weight = mass * self.gravity;
         Ok(report(
             toroid,
-            mass,
+            (mass, weight),
             hub_height,
             static_threshold,
             samples,
@@ -365,7 +397,7 @@ impl RunValidity {
 
 fn report(
     toroid: &Toroid,
-    mass_kg: f64,
+    (mass_kg, weight): (f64, f64),
     hub_height: f64,
     static_threshold: f64,
     samples: Vec<LeanSample>,
@@ -381,6 +413,11 @@ fn report(
     });
     let max_lean = samples.iter().map(|s| s.lean).fold(f64::MIN, f64::max);
     let final_lean = samples.last().map_or(0.0, |s| s.lean);
+    let tread = toroid.params.outer_tread;
+    let tip_time = samples
+        .iter()
+        .find(|s| s.near_normal <= 0.0 && s.lean > tip_angle(tread, hub_height, s.force, weight))
+        .map(|s| s.t);
     DynamicTipoverReport {
         sides: toroid.params.sides,
         outer_tread: toroid.params.outer_tread,
@@ -391,10 +428,97 @@ fn report(
         relative_difference: dynamic_threshold.map(|d| d / static_threshold - 1.0),
         max_lean,
         final_lean,
-        tipped: max_lean > TIPPED_LEAN,
+        static_tip_angle: tip_angle(tread, hub_height, 0.0, 1.0),
+        tipped: tip_time.is_some(),
+        tip_time,
         max_penetration: validity.max_penetration,
         valid: validity.warnings.is_empty(),
         warnings: validity.warnings,
+        convergence: None,
         samples,
     }
+}
+
+/// The refinement of the timed runs' convergence check.
+pub const REFINEMENT: &str = "dt/2, ground stiffness x2";
+
+impl DynamicTipover {
+    /// The same run at the refined resolution: half the step, twice the ground stiffness.
+    pub fn refined(&self) -> Self {
+        Self {
+            dt: 0.5 * self.dt,
+            ground_stiffness: 2.0 * self.ground_stiffness,
+            ..*self
+        }
+    }
+}
+
+impl DynamicTipoverReport {
+    /// The convergence of this report's headline quantities against the `refined` run's:
+    /// the dynamic threshold and the tip time within 2 %, the largest and the final lean
+    /// within 5 % (on a scale of at least 0.01 rad), and whether it tipped.
+    pub fn convergence(&self, refined: &Self) -> Convergence {
+        let mut c = Convergence::new(REFINEMENT);
+        let lean_scale = 0.01;
+        c.compare(
+            "dynamic_threshold",
+            self.dynamic_threshold,
+            refined.dynamic_threshold,
+            0.02,
+            0.0,
+        )
+        .compare("tip_time", self.tip_time, refined.tip_time, 0.02, 0.0)
+        .compare(
+            "max_lean",
+            Some(self.max_lean),
+            Some(refined.max_lean),
+            0.05,
+            lean_scale,
+        )
+        .compare(
+            "final_lean",
+            Some(self.final_lean),
+            Some(refined.final_lean),
+            0.05,
+            lean_scale,
+        )
+        .compare(
+            "tipped",
+            Some(f64::from(u8::from(self.tipped))),
+            Some(f64::from(u8::from(refined.tipped))),
+            0.5,
+            1.0,
+        );
+        c
+    }
+}
+
+/// `main()`, and with `check` also `refined()` in a second thread beside it.
+pub(crate) fn beside<A, B: Send>(
+    check: bool,
+    main: impl FnOnce() -> A,
+    refined: impl FnOnce() -> B + Send,
+) -> (A, Option<B>) {
+    if !check {
+        return (main(), None);
+    }
+    std::thread::scope(|s| {
+        let handle = s.spawn(refined);
+        let a = main();
+        (a, handle.join().ok())
+    })
+}
+
+/// The convergence of a refined run that failed (its error named).
+pub(crate) fn refined_failed(why: impl std::fmt::Display) -> Convergence {
+    let mut c = Convergence::new(format!("{REFINEMENT}: the refined run failed: {why}"));
+    c.converged = false;
+    c
+}
+
+/// Lays `convergence` on a result's `warnings` (one per unconverged quantity, or the
+/// refined run's failure) and returns it.
+pub(crate) fn judge(convergence: Convergence, warnings: &mut Vec<String>) -> Option<Convergence> {
+    warnings.extend(convergence.warnings());
+    Some(convergence)
 }

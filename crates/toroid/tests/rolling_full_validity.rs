@@ -3,12 +3,15 @@
 //! validity record is consistent with the samples.
 
 use toroid::{roll, ContactKind, FidelityChoice, RollReport, RollRequest};
-use wheel_rolling::{Fidelity, GroundContact, RollSettings};
+use wheel_rolling::{Fidelity, GroundContact, RollSettings, RunChecks};
 
+/// The full model, without the convergence check (these tests are about the model's own
+/// assumptions; `rolling_convergence.rs` checks convergence).
 fn full(t_end: f64) -> RollRequest {
     RollRequest {
         fidelity: FidelityChoice::Full,
         t_end,
+        checks: RunChecks::NONE,
         ..RollRequest::default()
     }
 }

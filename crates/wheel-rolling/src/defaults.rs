@@ -88,3 +88,16 @@ pub const ADAPTIVE_ATOL: f64 = 1e-8;
 /// Below this deformation measure m g / (k R_o) the `auto` fidelity considers the rigid
 /// model (see [`crate::fidelity`]).
 pub const RIGID_THRESHOLD: f64 = 1e-3;
+
+/// Convergence tolerances τ of the rolling headline quantities (relative; a quantity is
+/// converged when it moves by at most τ/2 at the refined resolution, see
+/// [`crate::convergence`]): the first impact's time and ω⁻.
+pub const CONVERGENCE_FIRST_IMPACT: f64 = 0.01;
+/// … the mean speed and the mean axle height (means over the run).
+pub const CONVERGENCE_MEAN: f64 = 0.02;
+/// … the final speed (one state at the end).
+pub const CONVERGENCE_FINAL_SPEED: f64 = 0.02;
+/// … the axle-height oscillation and the number of impacts (counts and spreads).
+pub const CONVERGENCE_SPREAD: f64 = 0.1;
+/// … the airborne and slip fractions (absolute: their scale is 1).
+pub const CONVERGENCE_FRACTION: f64 = 0.02;

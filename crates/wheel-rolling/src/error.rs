@@ -29,6 +29,13 @@ pub enum RollingError {
         /// What the wheel is.
         wheel: String,
     },
+    /// A `strict` request whose result is not valid (outside its model's assumptions, or not
+    /// converged): the result's warnings.
+    #[error("strict: the result is not valid: {}", warnings.join("; "))]
+    Strict {
+        /// The result's warnings.
+        warnings: Vec<String>,
+    },
     /// An error of the core dynamics (which names the time and member where it stopped).
     #[error(transparent)]
     Core(#[from] CoreError),
@@ -47,7 +54,27 @@ impl Categorized for RollingError {
             Self::InvalidParameter(_) | Self::NoFullModel { .. } | Self::NoSamples { .. } => {
                 Category::Input
             }
+            Self::Strict { .. } => Category::Numerical,
             Self::Core(e) => e.category(),
         }
     }
+}
+
+/// The `strict` rule of every dynamic request ([`tensegrity_core::request::RunChecks`]): a
+/// result with `warnings` (not valid) is an error when `strict`.
+///
+/// ```
+/// use wheel_rolling::{strict_check, RollingError};
+/// assert!(strict_check(true, &[]).is_ok());
+/// assert!(strict_check(false, &["sank".to_string()]).is_ok());
+/// let e = strict_check(true, &["sank".to_string()]).unwrap_err();
+/// assert!(matches!(e, RollingError::Strict { .. }) && e.to_string().contains("sank"));
+/// ```
+pub fn strict_check(strict: bool, warnings: &[String]) -> Result<()> {
+    if strict && !warnings.is_empty() {
+        return Err(RollingError::Strict {
+            warnings: warnings.to_vec(),
+        });
+    }
+    Ok(())
 }

@@ -7,7 +7,10 @@
 //! of its contact pairs 0 and 1, hub at the origin, axle along x; for the toroid the built
 //! wheel turned by −π/n) is at (x, s, h) = (0, s_hub(t), h_hub(t)) + R_x(−ψ(t)) p₀ in slope
 //! coordinates, the same coordinates as the full model's frames ([`WheelFrame`]). A frame
-//! asked at time t shows the sample nearest to t (the earlier one on a tie).
+//! asked at time t shows the sample nearest to t (the earlier one on a tie). Its node
+//! velocities are the rigid body's, v = v_hub − ω x̂ × R_x(−ψ) p₀, with v_hub the hub's
+//! velocity between the sample and the one before it (zero at the first); a rigid body has no
+//! member forces.
 
 use crate::full::WheelFrame;
 use crate::sample::RollingSample;
@@ -19,8 +22,8 @@ pub struct RigidFrames {
     p0: Vec<Vector3<f64>>,
     times: Vec<f64>,
     next: usize,
-    /// The previous sample and the turn ψ at it.
-    prev: Option<(RollingSample, f64)>,
+    /// The previous sample, the turn ψ at it and the hub's velocity (s, h) there.
+    prev: Option<(RollingSample, f64, [f64; 2])>,
 }
 
 impl RigidFrames {
@@ -40,40 +43,54 @@ impl RigidFrames {
         }
     }
 
-    fn place(&self, s: &RollingSample, psi: f64) -> WheelFrame {
+    fn place(&self, s: &RollingSample, psi: f64, hub_velocity: [f64; 2]) -> WheelFrame {
         let r = Rotation3::from_axis_angle(&Vector3::x_axis(), -psi);
         let hub = Vector3::new(0.0, s.s, s.h);
+        let v_hub = Vector3::new(0.0, hub_velocity[0], hub_velocity[1]);
+        let spin = Vector3::new(-s.omega, 0.0, 0.0);
         WheelFrame {
             t: s.t,
             nodes: self.p0.iter().map(|p| hub + r * p).collect(),
+            velocities: self
+                .p0
+                .iter()
+                .map(|p| v_hub + spin.cross(&(r * p)))
+                .collect(),
+            member_forces: Vec::new(),
         }
     }
 
     /// Takes the next sample; returns the frames whose time it completes.
     pub fn push(&mut self, s: &RollingSample) -> Vec<WheelFrame> {
-        let psi = match &self.prev {
-            Some((p, psi)) => psi + 0.5 * (s.t - p.t) * (s.omega + p.omega),
-            None => 0.0,
+        let (psi, v) = match &self.prev {
+            Some((p, psi, _)) if s.t > p.t => (
+                psi + 0.5 * (s.t - p.t) * (s.omega + p.omega),
+                [(s.s - p.s) / (s.t - p.t), (s.h - p.h) / (s.t - p.t)],
+            ),
+            Some((_, psi, v)) => (*psi, *v),
+            None => (0.0, [0.0; 2]),
         };
         let mut out = Vec::new();
         while self.next < self.times.len() && self.times[self.next] <= s.t {
             let t = self.times[self.next];
             let frame = match &self.prev {
-                Some((p, p_psi)) if (p.t - t).abs() <= (s.t - t).abs() => self.place(p, *p_psi),
-                _ => self.place(s, psi),
+                Some((p, p_psi, p_v)) if (p.t - t).abs() <= (s.t - t).abs() => {
+                    self.place(p, *p_psi, *p_v)
+                }
+                _ => self.place(s, psi, v),
             };
             out.push(frame);
             self.next += 1;
         }
-        self.prev = Some((*s, psi));
+        self.prev = Some((*s, psi, v));
         out
     }
 
     /// The frames still due after the last sample (at it), when `complete`; none otherwise.
     pub fn finish(self, complete: bool) -> Vec<WheelFrame> {
         match (&self.prev, complete) {
-            (Some((s, psi)), true) => (self.next..self.times.len())
-                .map(|_| self.place(s, *psi))
+            (Some((s, psi, v)), true) => (self.next..self.times.len())
+                .map(|_| self.place(s, *psi, *v))
                 .collect(),
             _ => Vec::new(),
         }

@@ -116,6 +116,11 @@ pub struct WheelFrame {
     /// Node positions (the structure's numbering) in slope coordinates: x along the axle,
     /// y = s along the slope (downhill, 0 at the starting downhill pair), z = h above it (m).
     pub nodes: Vec<Vector3<f64>>,
+    /// Node velocities in the same coordinates (m/s); empty when the model has none to give.
+    pub velocities: Vec<Vector3<f64>>,
+    /// Axial member forces, bars then strings, tension positive (N); empty for the rigid
+    /// model (a rigid body has no member forces).
+    pub member_forces: Vec<f64>,
 }
 
 /// A full-model run: the rolling result plus what only this model measures.

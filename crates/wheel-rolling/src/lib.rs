@@ -28,6 +28,10 @@
 //! - [`observer`]: the hook that receives every sample and frame as it is made and may stop
 //!   the run ([`Observer`]);
 //! - [`run`]: [`roll_wheel`], one run of any [`Wheel`] under the decision;
+//! - [`convergence`]: [`roll_checked`], the run and its repetition at half the step (and
+//!   twice the penalty ground's stiffness) side by side, each headline quantity compared;
+//! - [`ensemble`]: K copies from perturbed starting poses in parallel, the mean and 95 %
+//!   interval of every headline quantity against the other model;
 //! - [`frames`]: the rigid model's node frames; [`defaults`]: the named defaults.
 //!
 //! ```
@@ -41,7 +45,9 @@
 #![warn(missing_docs)]
 
 pub mod contact;
+pub mod convergence;
 pub mod defaults;
+pub mod ensemble;
 mod error;
 pub mod estimate;
 pub mod fidelity;
@@ -56,7 +62,9 @@ pub mod summary;
 pub mod validity;
 
 pub use contact::{ContactKind, ContactModel, GroundContact};
-pub use error::{Result, RollingError};
+pub use convergence::roll_checked;
+pub use ensemble::Ensemble;
+pub use error::{strict_check, Result, RollingError};
 pub use fidelity::{Decision, Fidelity, FidelityChoice, Plan};
 pub use full::{FullRolling, FullRun, WheelFrame, WheelScene};
 pub use observer::{Flow, Observer};
@@ -65,4 +73,6 @@ pub use run::{roll_decided, roll_wheel, Rolled, Wheel};
 pub use sample::{RollingResult, RollingSample};
 pub use settings::{RollSettings, RunSpec};
 pub use summary::{FirstImpact, RunSummary, WheelRun};
+pub use tensegrity_core::dynamics::{Convergence, QuantityConvergence};
+pub use tensegrity_core::request::RunChecks;
 pub use validity::{ImpactRecord, RollValidity};

@@ -372,6 +372,7 @@ impl RigidRolling {
             energy_balance_error,
             warnings,
             stopped_at: None,
+            convergence: None,
         }
     }
 

@@ -35,7 +35,7 @@ pub struct RollingSample {
 }
 
 /// The result of a rolling run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct RollingResult {
     /// Samples at the output interval.
     pub samples: Vec<RollingSample>,

@@ -8,6 +8,7 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::validity::ImpactRecord;
 use serde::{Deserialize, Serialize};
+use tensegrity_core::dynamics::Convergence;
 
 /// The first impact of a run (the JSON's `first_impact`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -72,6 +73,9 @@ pub struct RunSummary {
     pub required_friction: f64,
     /// Mean sliding speed of the loaded contact nodes (m/s).
     pub mean_slip_speed: f64,
+    /// The headline quantities re-estimated at a refined resolution
+    /// ([`crate::convergence`]); null when the check was skipped or the run stopped early.
+    pub convergence: Option<Convergence>,
 }
 
 impl RunSummary {
@@ -98,6 +102,7 @@ impl RunSummary {
             lift_off_time: r.lift_off_time,
             required_friction: r.required_friction,
             mean_slip_speed: r.mean_slip_speed,
+            convergence: v.convergence.clone(),
         }
     }
 }

@@ -7,6 +7,7 @@
 //! as well).
 
 use serde::{Deserialize, Serialize};
+use tensegrity_core::dynamics::Convergence;
 
 /// One contact impact (a new contact pair touching the slope).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -44,6 +45,10 @@ pub struct RollValidity {
     /// warning says why it stopped.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped_at: Option<f64>,
+    /// The headline quantities at a refined resolution ([`crate::convergence`]); `None` when
+    /// not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub convergence: Option<Convergence>,
 }
 
 impl RollValidity {

@@ -101,6 +101,33 @@ pub struct TbarRollReport {
     pub incline_rad: f64,
     /// Simulated time (s).
     pub t_end: f64,
+    /// Every run of every row (the T-bar's and the toroid's) valid, and no row with an error
+    /// ([`TbarRollReport::judged`]).
+    pub valid: bool,
+    /// Each run's warnings and each row's errors, prefixed by the row and the run.
+    pub warnings: Vec<String>,
     /// One row per number of treads.
     pub rows: Vec<TbarRollRow>,
+}
+
+impl TbarRollReport {
+    /// The report with `valid` and `warnings` gathered from its rows: the T-bar's and the
+    /// toroid's runs (the full model's rigid reference is a comparison, not the answer) and
+    /// the rows' errors.
+    pub fn judged(mut self) -> Self {
+        let mut warnings = Vec::new();
+        for row in &self.rows {
+            let n = row.treads;
+            for (what, run) in [("T-bar", &row.tbar), ("toroid", &row.toroid)] {
+                if let Some(run) = run {
+                    let w = &run.summary.warnings;
+                    warnings.extend(w.iter().map(|w| format!("n = {n}, {what}: {w}")));
+                }
+            }
+            warnings.extend(row.errors.iter().map(|e| format!("n = {n}: {e}")));
+        }
+        self.valid = warnings.is_empty();
+        self.warnings = warnings;
+        self
+    }
 }

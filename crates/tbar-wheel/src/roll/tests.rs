@@ -16,7 +16,8 @@ fn request() -> TbarRollRequest {
 #[test]
 fn the_request_describes_every_field() {
     tensegrity_core::request::check_description::<TbarRollRequest>().unwrap();
-    assert_eq!(TbarRollRequest::params().len(), 23);
+    // 23 and the two result checks (strict, convergence_check)
+    assert_eq!(TbarRollRequest::params().len(), 25);
 }
 
 #[test]

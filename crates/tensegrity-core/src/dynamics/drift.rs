@@ -9,6 +9,11 @@
 //!   ground damping, no friction, no thesis ground, no actuation): the relative drift
 //!   max|E − E₀| / max(|E₀|, max kinetic energy) must stay below [`DriftLimits::energy`]
 //!   (10⁻³).
+//! * Energy growth, when the model is passive ([`Model::is_passive`]: no actuation and no
+//!   thesis ground, so damping and friction can only remove energy): the largest gain
+//!   max(E − E₀) / max(|E₀|, max kinetic energy) must stay below
+//!   [`DriftLimits::energy_growth`] (5·10⁻²). A damped scene whose energy grows was
+//!   integrated unstably (e.g. RATTLE at a step beyond its stiff strings' period).
 //!
 //! Each breach is a [`DriftWarning`] whose message names the remedy: a smaller step, the
 //! adaptive `rk45`, the constraint-preserving `rattle`, or projection.
@@ -23,6 +28,8 @@ use std::fmt;
 pub struct DriftLimits {
     /// Relative energy drift of a conservative model.
     pub energy: f64,
+    /// Relative energy gain of a passive (conservative or dissipative) model.
+    pub energy_growth: f64,
     /// Bar-length error relative to the shortest bar.
     pub bar_length: f64,
     /// ‖N P − D‖ relative to the shortest bar.
@@ -33,6 +40,7 @@ impl Default for DriftLimits {
     fn default() -> Self {
         Self {
             energy: 1e-3,
+            energy_growth: 5e-2,
             bar_length: 1e-6,
             constraint: 1e-6,
         }
@@ -45,6 +53,8 @@ impl Default for DriftLimits {
 pub enum DriftQuantity {
     /// Total energy of a conservative model.
     Energy,
+    /// Total energy of a passive model, which may only fall.
+    EnergyGrowth,
     /// Rigid bar lengths.
     BarLength,
     /// The linear constraints N P = D.
@@ -68,11 +78,17 @@ impl fmt::Display for DriftWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let what = match self.quantity {
             DriftQuantity::Energy => "energy of this conservative model drifted",
+            DriftQuantity::EnergyGrowth => {
+                "energy of this passive (damped or conservative) model grew"
+            }
             DriftQuantity::BarLength => "bar lengths drifted",
             DriftQuantity::Constraint => "joint and support constraints (N P = D) drifted",
         };
         let remedy = match (self.quantity, self.integrator) {
             (_, IntegratorKind::Rattle) => "use a smaller `dt`",
+            (DriftQuantity::EnergyGrowth, _) => {
+                "use a smaller `dt`, or the L-stable `integrator = sdirk` for stiff strings and contact"
+            }
             (DriftQuantity::Energy, IntegratorKind::Rk45 | IntegratorKind::Sdirk) => {
                 "tighten `rtol` and `atol`, or use `integrator = rattle` (symplectic)"
             }
@@ -89,12 +105,13 @@ impl fmt::Display for DriftWarning {
     }
 }
 
-/// The warnings of a run with the given drifts (`bar_length` and `constraint` in metres).
+/// The warnings of a run with the given drifts (`energy`: relative drift, `energy_gain`:
+/// relative gain, `bar_length` and `constraint` in metres).
 pub fn check(
     model: &Model,
     integrator: IntegratorKind,
     limits: &DriftLimits,
-    energy: f64,
+    [energy, energy_gain]: [f64; 2],
     bar_length: f64,
     constraint: f64,
 ) -> Vec<DriftWarning> {
@@ -113,6 +130,13 @@ pub fn check(
     };
     if model.is_conservative() {
         push(DriftQuantity::Energy, energy, limits.energy);
+    }
+    if model.is_passive() {
+        push(
+            DriftQuantity::EnergyGrowth,
+            energy_gain,
+            limits.energy_growth,
+        );
     }
     push(
         DriftQuantity::BarLength,
@@ -135,6 +159,18 @@ impl Model {
             && self.rest_fn.is_none()
             && self.load_fn.is_none()
             && self.ground.as_ref().is_none_or(ground_is_conservative)
+    }
+
+    /// Whether the equations can only lose energy: no rest-length or load schedules
+    /// (actuation) and no thesis ground (which pulls); string and ground damping and friction
+    /// only dissipate.
+    pub fn is_passive(&self) -> bool {
+        self.rest_fn.is_none()
+            && self.load_fn.is_none()
+            && self
+                .ground
+                .as_ref()
+                .is_none_or(|g| matches!(g.model, GroundModel::Penalty { .. }))
     }
 
     /// The shortest bar's length (m) of the initial state (1/ε when there is no bar).

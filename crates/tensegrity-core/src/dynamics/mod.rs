@@ -50,6 +50,7 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
+pub mod convergence;
 pub mod drift;
 pub mod events;
 pub mod forces;
@@ -68,6 +69,7 @@ pub mod strings;
 #[cfg(any(test, feature = "test-models"))]
 pub mod work_precision;
 
+pub use convergence::{Convergence, QuantityConvergence};
 pub use drift::{DriftLimits, DriftQuantity, DriftWarning};
 pub use events::{Event, EventFn, EventHit, StateView};
 pub use forces::{Ground, GroundModel};

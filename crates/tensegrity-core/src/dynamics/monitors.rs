@@ -145,6 +145,8 @@ pub struct Monitor {
     pub energy0: f64,
     /// Largest |E − E₀|.
     pub max_energy_error: f64,
+    /// Largest E − E₀ (≥ 0): the energy gained.
+    pub max_energy_gain: f64,
     /// Largest kinetic energy seen (energy scale when E₀ ≈ 0).
     pub max_kinetic: f64,
     /// Largest bar-length error (m).
@@ -160,6 +162,7 @@ impl Monitor {
         Self {
             energy0: ke + model.potential_energy(y0),
             max_energy_error: 0.0,
+            max_energy_gain: 0.0,
             max_kinetic: ke,
             bar_length_drift: model.bar_length_error(y0),
             constraint_drift: model.constraint_error(y0),
@@ -172,17 +175,28 @@ impl Monitor {
         let e = ke + model.potential_energy(y);
         self.max_kinetic = self.max_kinetic.max(ke);
         self.max_energy_error = self.max_energy_error.max((e - self.energy0).abs());
+        self.max_energy_gain = self.max_energy_gain.max(e - self.energy0);
         self.bar_length_drift = self.bar_length_drift.max(model.bar_length_error(y));
         self.constraint_drift = self.constraint_drift.max(model.constraint_error(y));
     }
 
     /// Max relative energy drift: max|E − E₀| / max(|E₀|, max kinetic energy).
     pub fn energy_drift(&self) -> f64 {
+        self.relative(self.max_energy_error)
+    }
+
+    /// Max relative energy gain: max(E − E₀) / max(|E₀|, max kinetic energy).
+    pub fn energy_gain(&self) -> f64 {
+        self.relative(self.max_energy_gain)
+    }
+
+    /// `x` over the energy scale max(|E₀|, max kinetic energy) (itself when that is 0).
+    fn relative(&self, x: f64) -> f64 {
         let scale = self.energy0.abs().max(self.max_kinetic);
         if scale > 0.0 {
-            self.max_energy_error / scale
+            x / scale
         } else {
-            self.max_energy_error
+            x
         }
     }
 }

@@ -45,6 +45,10 @@ pub struct SimulationReport {
     /// run is within them).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// The final state re-estimated at a refined resolution (set by the front end that ran
+    /// the refined run; absent when not checked).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub convergence: Option<super::Convergence>,
 }
 
 impl From<&SimulationResult> for SimulationReport {
@@ -60,6 +64,7 @@ impl From<&SimulationResult> for SimulationReport {
             constraint_drift: r.constraint_drift,
             wall_time_s: r.wall_time_s,
             warnings: r.warnings.iter().map(ToString::to_string).collect(),
+            convergence: None,
         }
     }
 }

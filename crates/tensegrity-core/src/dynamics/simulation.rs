@@ -565,7 +565,7 @@ impl<'a> Driver<'a> {
             model,
             self.sim.settings.integrator,
             &self.sim.settings.drift_limits,
-            self.monitor.energy_drift(),
+            [self.monitor.energy_drift(), self.monitor.energy_gain()],
             self.monitor.bar_length_drift,
             self.monitor.constraint_drift,
         );

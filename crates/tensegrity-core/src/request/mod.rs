@@ -41,11 +41,13 @@
 //! ```
 
 mod category;
+mod checks;
 mod floats;
 mod invalid;
 mod param;
 
 pub use category::{Categorized, Category};
+pub use checks::RunChecks;
 pub use floats::floats;
 pub use invalid::InvalidParameter;
 pub use param::{Kind, Param, Rule};

@@ -3,6 +3,10 @@
 //! node frame to the VTK series while the run goes on, and the run stops at its next step once
 //! an interrupt is [requested](crate::interrupt::requested) or an output fails.
 //!
+//! Each frame goes to the series once per time (the first of several at the same time), with
+//! the node velocities as point data and the member forces as cell data when the model gives
+//! them ([`FrameData`]: the full model both, the rigid model velocities only).
+//!
 //! The run keeps no frame (bounded memory: a frame is the whole wheel): the observer keeps
 //! only those a figure needs ([`RollingOutputs::keeping`]: the frames within a tolerance of
 //! given times), handed back by [`RollingOutputs::take_frames`].
@@ -10,6 +14,7 @@
 use super::{CsvSink, VtkSeriesSink, Written};
 use crate::csv::RollingRow;
 use crate::error::{IoError, Result};
+use crate::vtk::FrameData;
 use wheel_rolling::{Flow, Observer, RollingSample, WheelFrame};
 
 /// The open outputs of one rolling run (either may be absent).
@@ -40,6 +45,9 @@ pub struct RollingOutputs<'a> {
     keep: Vec<f64>,
     tolerance: f64,
     kept: Vec<WheelFrame>,
+    /// Time of the last frame written to the VTK series (a frame at the same time is not
+    /// written again).
+    last_vtk: Option<f64>,
     /// An output error that stopped the run.
     failed: Option<IoError>,
 }
@@ -53,6 +61,7 @@ impl<'a> RollingOutputs<'a> {
             keep: Vec::new(),
             tolerance: 0.0,
             kept: Vec::new(),
+            last_vtk: None,
             failed: None,
         }
     }
@@ -118,8 +127,20 @@ impl Observer for RollingOutputs<'_> {
         {
             self.kept.push(frame.clone());
         }
+        // each time once in the series (a frame asked twice, or two asked times that fall
+        // on the same step, is written once)
+        if self.last_vtk.is_some_and(|t| frame.t <= t) {
+            return Flow::Continue;
+        }
+        let data = FrameData {
+            velocities: (!frame.velocities.is_empty()).then_some(&frame.velocities[..]),
+            member_forces: (!frame.member_forces.is_empty()).then_some(&frame.member_forces[..]),
+        };
         let written = match self.vtk.as_mut() {
-            Some(vtk) => vtk.frame(frame.t, &frame.nodes),
+            Some(vtk) => {
+                self.last_vtk = Some(frame.t);
+                vtk.frame_with(frame.t, &frame.nodes, &data)
+            }
             None => Ok(()),
         };
         self.flow(written)

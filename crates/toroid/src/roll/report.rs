@@ -41,6 +41,9 @@ pub struct RollReport {
     pub summary: RunSummary,
     /// Every impact: t, ω before and after, normal and tangential impulse (N·s).
     pub impact_log: Vec<ImpactRecord>,
+    /// With `ensemble` ≥ 2: the perturbed copies' statistics (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ensemble: Option<wheel_rolling::Ensemble>,
     /// Wall-clock time of the run (s); not serialised, so that the JSON (and a sweep's rows)
     /// depend on the mechanics only.
     #[serde(skip)]
@@ -71,6 +74,7 @@ impl RollReport {
             ground_damping: rolled.ground_damping,
             summary: RunSummary::of(&r, request.t_end),
             impact_log: r.impact_log,
+            ensemble: None,
             wall_time_s: rolled.wall_time_s,
             samples: r.samples,
             frames: rolled.frames,

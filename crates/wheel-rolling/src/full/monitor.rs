@@ -343,7 +343,14 @@ impl<'o> Monitor<'o> {
     }
 
     /// Keeps the output samples and the requested frames.
-    fn record(&mut self, t: f64, x: &[Vector3<f64>], omega: f64, c: &StepContact, total: f64) {
+    fn record(
+        &mut self,
+        t: f64,
+        (x, v, forces): NodeState<'_>,
+        omega: f64,
+        c: &StepContact,
+        total: f64,
+    ) {
         if t >= self.next_output as f64 * self.output_dt - 1e-9 * self.output_dt {
             self.next_output += 1;
             let hub = self.g.slope(&self.g.hub(x));
@@ -367,9 +374,12 @@ impl<'o> Monitor<'o> {
             && t >= self.frame_times[self.next_frame] - 1e-9
         {
             self.next_frame += 1;
+            // slope coordinates are a translation of the model's: velocities carry over
             let frame = WheelFrame {
                 t,
                 nodes: x.iter().map(|p| self.g.slope(p)).collect(),
+                velocities: v.to_vec(),
+                member_forces: forces.map(<[f64]>::to_vec).unwrap_or_default(),
             };
             if let Some(obs) = self.observer.as_deref_mut() {
                 self.stopped |= obs.frame(&frame) == Flow::Stop;
@@ -436,9 +446,13 @@ impl<'o> Monitor<'o> {
             energy_balance_error,
             warnings,
             stopped_at: None,
+            convergence: None,
         }
     }
 }
+
+/// Node positions and velocities of a step, and its member forces when recorded.
+type NodeState<'a> = (&'a [Vector3<f64>], &'a [Vector3<f64>], Option<&'a [f64]>);
 
 impl SampleSink for Monitor<'_> {
     fn accept(&mut self, smp: Sample) -> Result<(), CoreError> {
@@ -454,7 +468,13 @@ impl SampleSink for Monitor<'_> {
         self.min_normal = self.min_normal.min(c.min_normal);
         self.max_penetration = self.max_penetration.max(c.penetration);
         self.track_impacts(smp.t, omega, &c);
-        self.record(smp.t, x, omega, &c, energy.1);
+        self.record(
+            smp.t,
+            (x, v, smp.member_forces.as_deref()),
+            omega,
+            &c,
+            energy.1,
+        );
         self.prev = Some(Previous {
             t: smp.t,
             omega,

@@ -199,7 +199,8 @@ pub(super) fn run(
             velocities: true,
             contact_forces: true,
             energy: true,
-            member_forces: false,
+            // member forces only for the frames' outputs (they cost a pass over the members)
+            member_forces: !model.frame_times.is_empty(),
         },
         // RK4 alone drifts the bar lengths (~10⁻³ over seconds): project every step
         project: true,

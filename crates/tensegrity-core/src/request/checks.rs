@@ -1,0 +1,53 @@
+//! [`RunChecks`]: what every dynamic request (`roll`, `tbar_roll`, `tipover_dynamic`,
+//! `tipover_rolling`, `simulate`) shares about judging its own result — whether an invalid or
+//! unconverged result is an error (`strict`), and whether the result is re-estimated at a
+//! refined resolution (`convergence_check`, see [`crate::dynamics::convergence`]).
+//!
+//! Flattened into each request, so that the command line takes `--strict` and
+//! `--no-convergence-check` (a flag whose default is true is written negated) and Python the
+//! keywords `strict=`, `convergence_check=`.
+
+use super::Param;
+use serde::{Deserialize, Serialize};
+
+/// The result checks of a dynamic request (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct RunChecks {
+    /// An invalid (or unconverged) result is an error, after the outputs are written.
+    pub strict: bool,
+    /// Re-run at a refined resolution and report each headline quantity's change.
+    pub convergence_check: bool,
+}
+
+impl Default for RunChecks {
+    /// Not strict; convergence checked.
+    fn default() -> Self {
+        Self {
+            strict: false,
+            convergence_check: true,
+        }
+    }
+}
+
+impl RunChecks {
+    /// No convergence run, not strict (a run inside another study, e.g. a refined run itself).
+    pub const NONE: Self = Self {
+        strict: false,
+        convergence_check: false,
+    };
+
+    /// The two parameters, in this order.
+    pub fn params() -> [Param; 2] {
+        [
+            Param::flag(
+                "strict",
+                "Fail (exit 1, after writing the outputs) when the result is not valid: outside its model's assumptions or not converged",
+            ),
+            Param::flag(
+                "convergence_check",
+                "Re-run at half the step (penalty contact: and twice the ground stiffness), in parallel, and report each headline quantity's change in `convergence`; an unconverged result is not valid",
+            ),
+        ]
+    }
+}

@@ -1,0 +1,175 @@
+//! The convergence check of `roll` ([`wheel_rolling::convergence`]): what it reports as
+//! converged holds when the run is refined further, what moved is flagged, and the check can
+//! be skipped.
+
+use toroid::{roll_observed, FidelityChoice, RollRequest};
+use wheel_rolling::{RollSettings, RunChecks};
+
+fn full(t_end: f64) -> RollRequest {
+    RollRequest {
+        fidelity: FidelityChoice::Full,
+        t_end,
+        ..RollRequest::default()
+    }
+}
+
+/// The report's value of a headline quantity by its key.
+fn value(json: &serde_json::Value, key: &str) -> Option<f64> {
+    key.split('.')
+        .try_fold(json, |v, k| v.get(k))
+        .and_then(serde_json::Value::as_f64)
+}
+
+/// `roll --sides 8 --fidelity full --t-end 3`: every quantity reported converged changes by
+/// less than its stated tolerance when the run is repeated at a quarter of the step (the
+/// check's rule, r ≤ τ/2 at dt/2 and twice the ground stiffness, bounds the change to any finer
+/// run by τ for a first-order or better method). Unconverged quantities make the run invalid.
+#[test]
+fn what_is_reported_converged_holds_at_a_quarter_of_the_step() {
+    let base = full(3.0);
+    let r = roll_observed(&base, &[], None).unwrap();
+    let c = r.summary.convergence.clone().expect("checked by default");
+    assert_eq!(c.refinement, "dt/2, ground stiffness x2");
+    assert_eq!(c.quantities.len(), 9);
+    // the verdict and the warnings agree
+    assert_eq!(c.converged, c.quantities.iter().all(|q| q.converged));
+    let moved = c.quantities.iter().filter(|q| !q.converged).count();
+    let flagged = r
+        .summary
+        .warnings
+        .iter()
+        .filter(|w| w.starts_with("not converged"))
+        .count();
+    assert_eq!(moved, flagged, "{:?}", r.summary.warnings);
+    assert_eq!(r.summary.valid, r.summary.warnings.is_empty());
+    let quarter = roll_observed(
+        &RollRequest {
+            settings: RollSettings {
+                dt: base.settings.dt / 4.0,
+                ..base.settings
+            },
+            checks: RunChecks::NONE,
+            ..base
+        },
+        &[],
+        None,
+    )
+    .unwrap();
+    let (a, b) = (
+        serde_json::to_value(&r).unwrap(),
+        serde_json::to_value(&quarter).unwrap(),
+    );
+    let mut checked = 0;
+    for q in c.quantities.iter().filter(|q| q.converged) {
+        let (x, y) = (value(&a, &q.name), value(&b, &q.name));
+        assert_eq!(x, q.value, "{}", q.name);
+        let (Some(x), Some(y)) = (x, y) else {
+            assert_eq!(x.is_some(), y.is_some(), "{}", q.name);
+            continue;
+        };
+        let scale = match q.name.as_str() {
+            "impacts" | "airborne_fraction" | "slip_fraction" => 1.0,
+            _ => 1e-3,
+        };
+        let change = (y - x).abs() / x.abs().max(y.abs()).max(scale);
+        assert!(
+            change < q.tolerance,
+            "{}: {x} at dt, {y} at dt/4: {change} ≥ {}",
+            q.name,
+            q.tolerance
+        );
+        checked += 1;
+    }
+    assert!(checked >= 3, "{c:?}");
+}
+
+/// `convergence_check = false` runs once and reports no convergence; the rigid model's
+/// events are located to round-off, so its headline quantities hold at half the step.
+#[test]
+fn the_check_can_be_skipped_and_the_rigid_model_converges() {
+    let skipped = roll_observed(
+        &RollRequest {
+            checks: RunChecks::NONE,
+            ..full(0.3)
+        },
+        &[],
+        None,
+    )
+    .unwrap();
+    assert!(skipped.summary.convergence.is_none());
+    let json = serde_json::to_value(&skipped).unwrap();
+    assert!(json["convergence"].is_null());
+    let rigid = roll_observed(
+        &RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 3.0,
+            ..RollRequest::default()
+        },
+        &[],
+        None,
+    )
+    .unwrap();
+    let c = rigid.summary.convergence.expect("checked");
+    assert_eq!(c.refinement, "dt/2");
+    assert!(c.converged, "{c:?}");
+    assert!(rigid.summary.valid, "{:?}", rigid.summary.warnings);
+}
+
+/// `strict`: an invalid result is an error naming its warnings (the thesis contact sinks).
+#[test]
+fn strict_makes_an_invalid_run_an_error() {
+    let thesis = RollRequest {
+        contact: toroid::ContactKind::Thesis,
+        checks: RunChecks {
+            strict: true,
+            convergence_check: false,
+        },
+        ..full(1.5)
+    };
+    let e = toroid::roll(&thesis).unwrap_err();
+    assert!(e.to_string().starts_with("strict: "), "{e}");
+    assert!(e.to_string().contains("sank"), "{e}");
+    // the same run without strict is a report, flagged
+    let r = toroid::roll(&RollRequest {
+        checks: RunChecks::NONE,
+        ..thesis
+    })
+    .unwrap();
+    assert!(!r.summary.valid);
+}
+
+/// `ensemble = K`: K perturbed copies, each headline quantity's mean and interval, against
+/// one run of the other model; the copies of a rigid pivot from rest agree on the first
+/// impact to far better than the models do.
+#[test]
+fn an_ensemble_reports_every_headline_quantity_against_the_other_model() {
+    let r = roll_observed(
+        &RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 1.0,
+            ensemble: 4,
+            checks: RunChecks::NONE,
+            ..RollRequest::default()
+        },
+        &[],
+        None,
+    )
+    .unwrap();
+    let e = r.ensemble.expect("K = 4");
+    assert_eq!((e.members, e.quantities.len()), (4, 9));
+    let first = e
+        .quantities
+        .iter()
+        .find(|q| q.name == "first_impact.t")
+        .unwrap();
+    let t = r.summary.first_impact.unwrap().t;
+    assert!(
+        first.low <= t + 1e-9 && t - 1e-9 <= first.high,
+        "{first:?} vs {t}"
+    );
+    assert!(first.high - first.low < 1e-3, "{first:?}");
+    // the other model (full) runs once: its first impact is a different number
+    let other = first.other_model.expect("the full model ran");
+    assert!((other - t).abs() > first.high - first.low);
+    assert_eq!(first.spread_exceeds_model_difference, Some(false));
+}
