@@ -24,7 +24,8 @@
 //! (up to the next `$ ` line) its expected output. In a ```` ```sh ```` block every line is a
 //! command (`\` at the end continues it, `# …` is a comment); it has no expected output: its
 //! exit code and the files it writes are checked. `cargo` lines other than `cargo run` (the
-//! test and bench commands CI runs itself) are never run.
+//! test and bench commands CI runs itself) are never run, nor are CI's scripts (`bash .ci/…`,
+//! the README's test command).
 //!
 //! # Hidden checks: a statement in prose
 //!
@@ -298,7 +299,9 @@ fn parse(path: &Path) -> (Vec<Example>, Vec<Inline>, Vec<String>) {
                     .into_iter()
                     .filter(|(_, c)| {
                         let n = normalise(c);
-                        !n.starts_with("cargo ") || n.starts_with("cargo run")
+                        // CI's own commands (the test command, `bash .ci/…`) are never run here
+                        (!n.starts_with("cargo ") || n.starts_with("cargo run"))
+                            && !n.starts_with("bash .ci/")
                     })
                     .map(|(at, c)| (at, c, Vec::new()))
                     .collect()
