@@ -320,6 +320,39 @@ fn a_sparse_statics_of_minutes_is_refused_once_its_rank_is_known() {
 }
 
 #[test]
+fn a_sweep_case_of_minutes_is_refused_once_its_rank_is_known() {
+    // the same check as the command's, in a sweep: the case's estimate before the QR lets the
+    // tower of 1500 through, the sparse path's check after the QR refuses it under the sweep's
+    // limits (an error row naming the work and the limit), and the small tower's row answers
+    let dir = scratch("limits", "sweep_towers");
+    let (small, big) = (tower(&dir, 100), tower(&dir, 1500));
+    let spec = dir.join("statics.toml");
+    std::fs::write(
+        &spec,
+        format!("study = \"statics\"\n[axes]\nscene = [{small:?}, {big:?}]\n"),
+    )
+    .unwrap();
+    let out = dir.join("statics.csv");
+    let (o, _) = run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let text = std::fs::read_to_string(&out).unwrap_or_default();
+    assert!(o.status.code().is_some(), "killed: {o:?}");
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows.len(), 3, "{text}");
+    assert!(rows[1].contains(",ok"), "{}", rows[1]);
+    assert!(
+        rows[2].contains("error") && rows[2].contains("1500 self-stresses"),
+        "{}",
+        rows[2]
+    );
+}
+
+#[test]
 fn sweeps_refuse_the_big_case_by_name_and_run_the_others() {
     let dir = scratch("limits", "sweeps");
     for (name, spec, needle) in [

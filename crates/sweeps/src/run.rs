@@ -352,7 +352,7 @@ fn execute(
         })?;
     let shared = Shared {
         spec,
-        ctx: Context::default(),
+        ctx: opts.limits.map(Context::within).unwrap_or_default(),
         shard: opts.shard,
         limits: opts.limits,
         next: AtomicUsize::new(range.start),

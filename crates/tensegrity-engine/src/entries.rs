@@ -1,7 +1,7 @@
 //! The entries of the registry: one line per command (library call, result columns).
 
 use crate::columns as c;
-use crate::registry::{entry, entry_in, estimated, Command};
+use crate::registry::{entry, entry_in, estimated, estimated_in, Command};
 use michell3d::{MichellOptimizeRequest, MichellRequest, MichellTableRequest};
 use tbar_wheel::TbarStaticRequest;
 use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
@@ -20,7 +20,7 @@ pub(crate) fn all() -> Vec<Command> {
         entry_in(crate::integrators::point, &c::INTEGRATORS),
         estimated(TbarStaticRequest::run, &c::TBAR),
         estimated(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
-        estimated(crate::statics::statics, &c::STATICS),
+        estimated_in(crate::statics::statics_in, &c::STATICS),
         estimated(crate::simulate::simulate, &c::SIMULATE),
         entry(crate::bench::work_precision, &c::BENCH_WORK_PRECISION),
         estimated(crate::formfind::formfind, &c::FORMFIND),

@@ -10,6 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
+use tensegrity_core::budget::Limits;
 use tensegrity_core::dynamics::simulation::SimulationResult;
 use tensegrity_core::dynamics::work_precision::{self, max_node_error, run_one, Point, Scene};
 use tensegrity_core::dynamics::IntegratorKind;
@@ -87,11 +88,14 @@ fn scene_index(name: &str) -> Result<usize, InvalidParameter> {
 }
 
 /// What the cases of one sweep share: the reference run of each scene, computed once, by the
-/// first case that needs it.
+/// first case that needs it; and the front end's resource limits, for a run that checks them
+/// again once it knows more than its estimate did (the sparse statics, once its rank is known).
 #[derive(Debug)]
 pub struct Context {
     /// One slot per scene of [`work_precision::scenes`].
     references: Vec<OnceLock<Result<SimulationResult, String>>>,
+    /// The limits the runs keep to after their estimate, if any.
+    limits: Option<Limits>,
 }
 
 impl Default for Context {
@@ -101,11 +105,33 @@ impl Default for Context {
                 .iter()
                 .map(|_| OnceLock::new())
                 .collect(),
+            limits: None,
         }
     }
 }
 
 impl Context {
+    /// A context whose runs keep to `limits` also where they check again after their
+    /// estimate (a sweep's or a Python call's limits).
+    ///
+    /// ```
+    /// use tensegrity_core::budget::Limits;
+    /// let ctx = tensegrity_engine::Context::within(Limits::default());
+    /// assert_eq!(ctx.limits(), Some(&Limits::default()));
+    /// assert_eq!(tensegrity_engine::Context::default().limits(), None);
+    /// ```
+    pub fn within(limits: Limits) -> Self {
+        Self {
+            limits: Some(limits),
+            ..Self::default()
+        }
+    }
+
+    /// The limits of [`Context::within`], if any.
+    pub fn limits(&self) -> Option<&Limits> {
+        self.limits.as_ref()
+    }
+
     fn reference(&self, index: usize, scene: &Scene) -> Result<&SimulationResult, String> {
         self.references[index]
             .get_or_init(|| {

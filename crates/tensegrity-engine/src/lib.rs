@@ -49,7 +49,9 @@ pub mod tbar_roll;
 
 pub use estimate::Estimated;
 pub use integrators::Context;
-pub use registry::{col, command, commands, entry, entry_in, estimated, Column, Command, RunError};
+pub use registry::{
+    col, command, commands, entry, entry_in, estimated, estimated_in, Column, Command, RunError,
+};
 pub use scene::{SceneError, SceneSource};
 
 #[cfg(test)]

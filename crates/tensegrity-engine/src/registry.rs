@@ -193,6 +193,23 @@ where
     }
 }
 
+/// The entry of a library call that reads the sweep's [`Context`] (its limits, its shared
+/// reference runs), with `R`'s resource estimate.
+pub fn estimated_in<R, T, E>(
+    run: fn(&R, &Context) -> Result<T, E>,
+    columns: &'static [Column],
+) -> Command
+where
+    R: Estimated,
+    T: Serialize + 'static,
+    E: Display + Categorized + 'static,
+{
+    Command {
+        estimate: Some(Box::new(|values| R::from_values(values)?.estimate())),
+        ..entry_in(run, columns)
+    }
+}
+
 /// The entry of a library call that shares what the cases of a sweep share ([`Context`]).
 pub fn entry_in<R, T, E>(
     run: fn(&R, &Context) -> Result<T, E>,

@@ -143,6 +143,18 @@ pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
     Ok(command.report(&scene.structure)?)
 }
 
+/// Runs `statics` in a sweep's (or another front end's) [`Context`]: as [`statics`], with the
+/// context's limits checked again by the sparse path once its rank is known, so a case the
+/// estimate before the run let through is refused before its bases are allocated.
+pub fn statics_in(
+    command: &StaticsCommand,
+    ctx: &crate::Context,
+) -> Result<StaticsReport, SceneError> {
+    let scene = command.source()?.load()?;
+    let request = command.request_within(ctx.limits());
+    Ok(statics_report(&scene.structure, &request)?)
+}
+
 /// Runs `statics` under a front end's check of its estimate: reads the scene, hands the
 /// estimate ([`estimate`]) to `admit` (a front end's limits: an error refuses the run, the
 /// value it returns — a progress indicator — lives while the statics run), one report. The

@@ -165,10 +165,14 @@ pub fn context(c: &Command) -> &'static str {
     }
 }
 
-/// Runs `c` on `values` (after [`admit`]): the report as JSON text.
-pub fn run(c: &'static Command, values: Map<String, Value>) -> Result<String, Failure> {
+/// Runs `c` on `values` (after [`admit`]) within `limits`: the report as JSON text.
+pub fn run(
+    c: &'static Command,
+    values: Map<String, Value>,
+    limits: Limits,
+) -> Result<String, Failure> {
     let report = c
-        .run(values, &Context::default())
+        .run(values, &Context::within(limits))
         .map_err(|e| Failure::run(e).context(context(c)))?;
     Ok(report.to_string())
 }

@@ -97,7 +97,7 @@ fn run(
         raise(py, commands::check_modes(c, &modes, &values))?;
     }
     raise(py, commands::admit(c, &values, &limits))?;
-    match worker::run(py, false, move || commands::run(c, values)) {
+    match worker::run(py, false, move || commands::run(c, values, limits)) {
         Ok(report) => raise(py, report),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
