@@ -120,8 +120,8 @@ fn simulate(
 ) -> PyResult<(String, Py<PyAny>, Py<PyAny>, usize)> {
     let values = raise(py, object(values))?;
     let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
-    let (command, simulation) = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
-    let outcome = worker::run(py, true, move || runs::simulate(command, simulation));
+    let prepared = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
+    let outcome = worker::run(py, true, move || runs::simulate(prepared));
     let samples = |t: &runs::Trajectory| (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes);
     match outcome {
         Ok(o) => {

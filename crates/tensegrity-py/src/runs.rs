@@ -4,7 +4,7 @@
 
 use crate::errors::Failure;
 use serde_json::{Map, Value};
-use tensegrity_core::dynamics::{Sample, SampleSink, SimulationReport};
+use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::CoreError;
 use tensegrity_engine::simulate::SimulateCommand;
@@ -61,49 +61,69 @@ pub fn prepare_simulation(
     values: Map<String, Value>,
     trajectory: bool,
     limits: &tensegrity_core::budget::Limits,
-) -> Result<(SimulateCommand, tensegrity_core::Simulation), Failure> {
+) -> Result<PreparedSimulation, Failure> {
     let command = SimulateCommand::from_values(values).map_err(|e| Failure::invalid(&e))?;
-    let (_, simulation) = command.prepare(trajectory).map_err(|e| match e {
+    let (scene, simulation) = command.prepare(trajectory).map_err(|e| match e {
         SceneError::InvalidParameter(p) => Failure::invalid(&p),
         e => Failure::new(e.category(), e.to_string()),
     })?;
-    let estimate = tensegrity_engine::simulate::estimate(&simulation, false, false)
-        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
+    // the run and, with `convergence_check`, its refined run: the CLI's estimate
+    let estimate =
+        tensegrity_engine::simulate::estimate_checked(&command, &simulation, false, false)
+            .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     limits
         .check(&estimate)
         .map_err(|over| Failure::over_budget(&over))?;
-    Ok((command, simulation))
+    Ok(PreparedSimulation {
+        command,
+        scene,
+        simulation,
+    })
 }
 
-/// Runs a prepared simulation (on the worker thread).
-pub fn simulate(
+/// A simulation read, validated and admitted: what [`simulate`] runs.
+pub struct PreparedSimulation {
     command: SimulateCommand,
+    scene: tensegrity_io::scene::Scene,
     simulation: tensegrity_core::Simulation,
-) -> SimulateOutcome {
+}
+
+/// Runs a prepared simulation (on the worker thread) as the CLI does: with
+/// `convergence_check` its refined run beside it, the report with its `convergence`.
+pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
+    let PreparedSimulation {
+        command,
+        scene,
+        simulation,
+    } = prepared;
     let mut trajectory = Trajectory::default();
-    let run = simulation.run_streaming(&mut trajectory);
     let source = command
         .source()
         .map(ToString::to_string)
         .unwrap_or_default();
-    let (report, interrupted_at) = match run {
-        Err(CoreError::Interrupted { t }) => (
-            Err(Failure::new(Category::Interrupted, "interrupted")),
-            Some(t),
-        ),
-        Err(e) => (
-            Err(Failure::new(e.category(), e.to_string()).context(&format!("simulating {source}"))),
-            None,
-        ),
-        Ok(result) => {
-            let report = SimulationReport::from(&result);
-            let strict = command
-                .strict_check(&report)
-                .map_err(|e| Failure::new(e.category(), e.to_string()));
-            let json = serde_json::to_string(&report)
-                .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
-            (strict.and(json), None)
-        }
+    let failed = |e: &dyn std::fmt::Display, category: Category| {
+        Failure::new(category, e.to_string()).context(&format!("simulating {source}"))
+    };
+    let (report, interrupted_at) = match command.run_beside(&scene, &simulation, &mut trajectory) {
+        Err(e) => (Err(failed(&e, e.category())), None),
+        Ok(checked) => match &checked.main {
+            Err(CoreError::Interrupted { t }) => (
+                Err(Failure::new(Category::Interrupted, "interrupted")),
+                Some(*t),
+            ),
+            Err(e) => (Err(failed(e, e.category())), None),
+            Ok(_) => match checked.report() {
+                Err(e) => (Err(failed(&e, e.category())), None),
+                Ok(report) => {
+                    let strict = command
+                        .strict_check(&report)
+                        .map_err(|e| Failure::new(e.category(), e.to_string()));
+                    let json = serde_json::to_string(&report)
+                        .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
+                    (strict.and(json), None)
+                }
+            },
+        },
     };
     SimulateOutcome {
         report,

@@ -81,6 +81,7 @@ def simulate(
     atol: Optional[float] = ...,
     output_interval: Optional[float] = ...,
     strict: bool = ...,
+    convergence_check: bool = ...,
     trajectory: bool = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
@@ -112,7 +113,12 @@ def simulate(
         Sampling interval of the written trajectory; default: the scene's output times, else
         t_end/200 (s); must be finite and positive
     strict : bool
-        Fail (after writing the outputs) when the run has a drift warning
+        Fail (after writing the outputs) when the run has a drift warning or its final state
+        did not converge
+    convergence_check : bool
+        Re-run at half the step (penalty contact: and twice the ground stiffness), in
+        parallel, and report each headline quantity's change in `convergence`; an
+        unconverged result is not valid
     trajectory : bool, optional
         Keep the node positions at the output times: the result also holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True.
     max_memory : float or str, optional
@@ -223,6 +229,9 @@ def roll(
     min_tension: float = ...,
     integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk'] = ...,
     gravity: float = ...,
+    strict: bool = ...,
+    convergence_check: bool = ...,
+    ensemble: int = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -285,6 +294,17 @@ def roll(
         Integrator of the full model. Default: 'rk4'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
+    strict : bool
+        Fail (exit 1, after writing the outputs) when the result is not valid: outside its
+        model's assumptions or not converged
+    convergence_check : bool
+        Re-run at half the step (penalty contact: and twice the ground stiffness), in
+        parallel, and report each headline quantity's change in `convergence`; an
+        unconverged result is not valid
+    ensemble : int
+        Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in
+        parallel) and report the mean and 95 % interval of every headline quantity against
+        the other model (0: none); must be finite. Default: 0
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -328,6 +348,8 @@ def tipover(
     ramp_time: float = ...,
     ramp_to: float = ...,
     hold: float = ...,
+    strict: bool = ...,
+    convergence_check: bool = ...,
     incline: Union[float, str] = ...,
     side_slope: Union[float, str] = ...,
     t_end: float = ...,
@@ -382,7 +404,7 @@ def tipover(
         Penalty ground damping (N s/m); must be finite and non-negative. Default: 2000.0
     mu : float
         Static friction coefficient of the ground (kinetic = 0.75 μ); must be finite and
-        positive. Default: 1.0
+        non-negative. Default: 1.0
     friction_regularization : float
         Regularisation velocity of the friction law (m/s); must be finite and positive.
         Default: 0.01
@@ -403,6 +425,13 @@ def tipover(
     hold : float
         Time the largest force is held after the ramp (s); must be finite and non-negative.
         Default: 0.0
+    strict : bool
+        Fail (exit 1, after writing the outputs) when the result is not valid: outside its
+        model's assumptions or not converged
+    convergence_check : bool
+        Re-run at half the step (penalty contact: and twice the ground stiffness), in
+        parallel, and report each headline quantity's change in `convergence`; an
+        unconverged result is not valid
     incline : float or str
         Incline downhill, e.g. `30deg` (rad); radians, or a string such as '30deg', 'pi/8',
         '3pi/4'; must lie in [0, 1.5707963267948966). Default: 0.5235987755982988
@@ -455,8 +484,8 @@ def michell(
     Parameters
     ----------
     complexity : int
-        Complexity q (number of member levels; level-q nodes are supports); must be finite.
-        Required
+        Complexity q (number of member levels; level-q nodes are supports); must be at least
+        1. Required
     planar : bool
         Skelton's planar truss in the y–z plane
     cylindrical : float, optional
@@ -538,8 +567,8 @@ def michell_optimize(
         ρ = r_q / r₀ in (0, 1): the support circle over the tip radius; must be finite.
         Required
     complexity : int, optional
-        The complexity q; optimised when left out (then joint_mass is needed); must be
-        finite
+        The complexity q; optimised when left out (then joint_mass is needed); must be at
+        least 1
     joint_mass : float
         Mass of each joint, added per node (kg); must be finite and non-negative. Default:
         0.0
@@ -630,7 +659,8 @@ def tbar(
     Parameters
     ----------
     complexity : int
-        Complexity q (lattice levels; level q lies on the rim); must be finite. Default: 1
+        Complexity q (lattice levels; level q lies on the rim); must be at least 1. Default:
+        1
     beta : float or str
         Departure angle β (e.g. `pi/6`, `30deg`) (rad); radians, or a string such as
         '30deg', 'pi/8', '3pi/4'; must be finite. Required
@@ -708,6 +738,8 @@ def tbar_roll(
     min_tension: Optional[float] = ...,
     ground_stiffness: float = ...,
     ground_damping: Optional[float] = ...,
+    strict: bool = ...,
+    convergence_check: bool = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -722,8 +754,7 @@ def tbar_roll(
         Departure angle β (rad); radians, or a string such as '30deg', 'pi/8', '3pi/4'; must
         be finite. Default: 0.5235987755982988
     cylindrical : float, optional
-        Cylindrical parameterisation with offset δ (neither given: δ = 0.25) (m); must be
-        finite
+        Cylindrical parameterisation with offset δ (neither given: δ = 0.25); must be finite
     spherical : float or str, optional
         Spherical parameterisation with angle ε (rad); radians, or a string such as '30deg',
         'pi/8', '3pi/4'; must be finite
@@ -775,6 +806,13 @@ def tbar_roll(
     ground_damping : float, optional
         Ground damping per contact node (unset: from the restitution) (N s/m); must be
         finite and non-negative
+    strict : bool
+        Fail (exit 1, after writing the outputs) when the result is not valid: outside its
+        model's assumptions or not converged
+    convergence_check : bool
+        Re-run at half the step (penalty contact: and twice the ground stiffness), in
+        parallel, and report each headline quantity's change in `convergence`; an
+        unconverged result is not valid
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
