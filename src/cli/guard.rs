@@ -5,17 +5,17 @@
 //! `--max-work` (estimated seconds, default 60) and `--max-output` (bytes written, default
 //! 1 GiB); an estimate above them is refused (exit code 2) naming the parameter, the
 //! estimate, the limit, the flag that raises it and the flags of the parameters
-//! ([`flag_of`]). Work estimated above a few seconds shows an elapsed-time spinner on stderr
+//! ([`tensegrity_engine::spelling::flag_of`]). Work estimated above a few seconds shows an elapsed-time spinner on stderr
 //! when it is a terminal.
 
-use super::request_args::flag_of;
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::OnceLock;
 use std::time::Duration;
-use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Parameters, Resource};
+use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Resource};
 use tensegrity_core::CoreError;
+use tensegrity_engine::spelling::parameter_flags;
 use tensegrity_engine::{estimate, limits, Estimated, SceneError};
 
 static LIMITS: OnceLock<Limits> = OnceLock::new();
@@ -118,7 +118,7 @@ fn refusal(over: OverBudget) -> Refused {
         Resource::Output => ("--max-output", limits::suggest_size(over.estimated)),
         Resource::Work => ("--max-work", format!("{:.0}", over.estimated.ceil())),
     };
-    let flags = flags(&over.estimate.parameters);
+    let flags = parameter_flags(&over.estimate.parameters);
     let flags = if flags.is_empty() {
         flags
     } else {
@@ -150,23 +150,6 @@ pub fn refused_later(e: anyhow::Error) -> anyhow::Error {
         }
     });
     over.map_or(e, |over| refusal(over).into())
-}
-
-/// The flags of an estimate's parameters: `t_end = 1e9, dt = 0.001 s` → `--t-end 1e9 --dt
-/// 0.001` (the named ones; a note such as `10 sweep cases` has no flag).
-fn flags(parameters: &Parameters) -> String {
-    let flags: Vec<String> = parameters
-        .0
-        .iter()
-        .filter(|(name, _)| {
-            !name.is_empty() && name.chars().all(|c| c.is_ascii_lowercase() || c == '_')
-        })
-        .filter_map(|(name, value)| {
-            let value = value.split_whitespace().next()?;
-            Some(format!("{} {value}", flag_of(name)))
-        })
-        .collect();
-    flags.join(" ")
 }
 
 /// The engine's estimate of any request (`toroid`, `roll`, `statics`, …), checked.
@@ -225,6 +208,7 @@ pub fn sweep(cases: usize) -> Result<Progress> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tensegrity_core::budget::Parameters;
 
     #[test]
     fn parameters_become_flags() {
@@ -233,6 +217,9 @@ mod tests {
             .and("dt", "0.0001 s")
             .and("sides", 8)
             .and("", "10 sweep cases");
-        assert_eq!(flags(&p), "--t-end 1000000000 --dt 0.0001 --sides 8");
+        assert_eq!(
+            parameter_flags(&p),
+            "--t-end 1000000000 --dt 0.0001 --sides 8"
+        );
     }
 }

@@ -25,10 +25,7 @@ use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
 /// The parameters taken by position rather than as a flag (first the first).
 pub const POSITIONAL: &[&str] = &["scene", "topology"];
 
-/// The flag of a library parameter: `t_end` → `--t-end`.
-pub fn flag_of(name: &str) -> String {
-    format!("--{}", name.replace('_', "-"))
-}
+pub use tensegrity_engine::spelling::flag_of;
 
 /// The message of a bad flag value: the flag, then the library's parameter error.
 pub fn usage_message(e: &InvalidParameter) -> String {

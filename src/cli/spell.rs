@@ -4,45 +4,15 @@
 //! `` `integrator = rattle` ``. [`flags`] writes each one that is a flag of this tool as that
 //! flag (`--dt`, `--integrator rattle`, by [`flag_of`]); any other backticked text stays.
 
-use super::request_args::flag_of;
 use clap::CommandFactory;
 use std::collections::HashSet;
 use std::sync::OnceLock;
+use tensegrity_engine::spelling::{flag_of, spell_flags};
 
 /// `text` with every backticked parameter that is a flag of the command line written as that
 /// flag: `` `dt` `` → `--dt`, `` `integrator = rattle` `` → `--integrator rattle`.
 pub fn flags(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some((before, inner, after)) = backticked(rest) {
-        out.push_str(before);
-        let (name, value) = match inner.split_once(" = ") {
-            Some((name, value)) => (name, Some(value.trim_matches('"'))),
-            None => (inner, None),
-        };
-        let flag = flag_of(name);
-        if long_flags().contains(&flag) {
-            out.push_str(&flag);
-            if let Some(value) = value {
-                out.push(' ');
-                out.push_str(value);
-            }
-        } else {
-            out.push('`');
-            out.push_str(inner);
-            out.push('`');
-        }
-        rest = after;
-    }
-    out.push_str(rest);
-    out
-}
-
-/// The text before the first `` `…` ``, its contents, and the text after it.
-fn backticked(text: &str) -> Option<(&str, &str, &str)> {
-    let (before, tail) = text.split_once('`')?;
-    let (inner, after) = tail.split_once('`')?;
-    Some((before, inner, after))
+    spell_flags(text, |name| long_flags().contains(&flag_of(name)))
 }
 
 /// Every long flag of every subcommand (`--dt`, `--sides`, …).

@@ -44,6 +44,7 @@ pub mod limits;
 pub mod registry;
 pub mod scene;
 pub mod simulate;
+pub mod spelling;
 pub mod statics;
 pub mod tbar_roll;
 

@@ -15,7 +15,7 @@
 use pyo3::prelude::*;
 use std::collections::HashSet;
 use std::sync::OnceLock;
-use tensegrity_core::budget::{OverBudget, Parameters, Resource};
+use tensegrity_core::budget::{OverBudget, Resource};
 use tensegrity_core::request::{Category, InvalidParameter};
 use tensegrity_engine::RunError;
 
@@ -124,58 +124,14 @@ impl Failure {
     }
 }
 
-/// The flag of a library parameter: `t_end` → `--t-end` (the CLI's `flag_of`).
-pub fn flag_of(name: &str) -> String {
-    format!("--{}", name.replace('_', "-"))
-}
-
-/// The flags of an estimate's parameters (the CLI's `guard::flags`): `t_end = 1e9, dt =
-/// 0.001 s` → `--t-end 1e9 --dt 0.001`.
-fn parameter_flags(parameters: &Parameters) -> String {
-    let flags: Vec<String> = parameters
-        .0
-        .iter()
-        .filter(|(name, _)| {
-            !name.is_empty() && name.chars().all(|c| c.is_ascii_lowercase() || c == '_')
-        })
-        .filter_map(|(name, value)| {
-            let value = value.split_whitespace().next()?;
-            Some(format!("{} {value}", flag_of(name)))
-        })
-        .collect();
-    flags.join(" ")
-}
+pub use tensegrity_engine::spelling::flag_of;
+use tensegrity_engine::spelling::parameter_flags;
 
 /// `text` with every backticked parameter that is a flag of the command line written as that
 /// flag (the CLI's `spell::flags`): `` `dt` `` → `--dt`, `` `integrator = rattle` `` →
 /// `--integrator rattle`; other backticked text stays.
 pub fn flags(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some((before, tail)) = rest.split_once('`') {
-        let Some((inner, after)) = tail.split_once('`') else {
-            break;
-        };
-        out.push_str(before);
-        let (name, value) = match inner.split_once(" = ") {
-            Some((name, value)) => (name, Some(value.trim_matches('"'))),
-            None => (inner, None),
-        };
-        if known_flags().contains(name) {
-            out.push_str(&flag_of(name));
-            if let Some(value) = value {
-                out.push(' ');
-                out.push_str(value);
-            }
-        } else {
-            out.push('`');
-            out.push_str(inner);
-            out.push('`');
-        }
-        rest = after;
-    }
-    out.push_str(rest);
-    out
+    tensegrity_engine::spelling::spell_flags(text, |name| known_flags().contains(name))
 }
 
 /// The options of the command line that are no request's parameter but may be named in a
