@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::scratch;
+use common::{chain, scratch};
 use std::path::Path;
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
@@ -33,25 +33,6 @@ fn assert_refused(args: &[&str], needles: &[&str]) -> String {
     }
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
     err
-}
-
-/// A planar zig-zag chain of `n` nodes along x: bars between neighbours, strings between
-/// every other node (a triangulated strip: rank 2n − 3, n + 3 mechanisms out of its plane).
-fn chain(dir: &Path, n: usize) -> String {
-    let mut s = String::from("nodes = [\n");
-    for i in 0..n {
-        s += &format!("  [{i}.0, {}, 0.0],\n", 0.5 * (i % 2) as f64);
-    }
-    s += "]\n";
-    for i in 0..n - 1 {
-        s += &format!("[[bars]]\nnodes = [{i}, {}]\n", i + 1);
-    }
-    for i in 0..n - 2 {
-        s += &format!("[[strings]]\nnodes = [{i}, {}]\n", i + 2);
-    }
-    let path = dir.join(format!("chain{n}.toml"));
-    std::fs::write(&path, s).unwrap();
-    path.display().to_string()
 }
 
 #[test]

@@ -13,7 +13,7 @@
 
 mod common;
 
-use common::scratch;
+use common::{chain, scratch};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -99,24 +99,6 @@ fn completes(args: &[&str]) -> String {
     let (code, err) = no_abort(args, &out, took);
     assert_eq!(code, 0, "{args:?}: {err}");
     String::from_utf8_lossy(&out.stdout).to_string()
-}
-
-/// A planar zig-zag chain of `n` nodes (rank 2n − 3, no self-stress).
-fn chain(dir: &Path, n: usize) -> String {
-    let mut s = String::from("nodes = [\n");
-    for i in 0..n {
-        s += &format!("  [{i}.0, {}, 0.0],\n", 0.5 * (i % 2) as f64);
-    }
-    s += "]\n";
-    for i in 0..n - 1 {
-        s += &format!("[[bars]]\nnodes = [{i}, {}]\n", i + 1);
-    }
-    for i in 0..n - 2 {
-        s += &format!("[[strings]]\nnodes = [{i}, {}]\n", i + 2);
-    }
-    let path = dir.join(format!("chain{n}.toml"));
-    std::fs::write(&path, s).unwrap();
-    path.display().to_string()
 }
 
 /// One too-large request per command of the CLI, each refused under the cap naming its

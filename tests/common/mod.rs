@@ -60,3 +60,23 @@ pub fn listing(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// A planar zig-zag chain of `n` nodes along x, written as a scene in `dir`: bars between
+/// neighbours, strings between every other node (a triangulated strip: rank 2n − 3, no
+/// self-stress, n + 3 mechanisms out of its plane). Its path.
+pub fn chain(dir: &Path, n: usize) -> String {
+    let mut s = String::from("nodes = [\n");
+    for i in 0..n {
+        s += &format!("  [{i}.0, {}, 0.0],\n", 0.5 * (i % 2) as f64);
+    }
+    s += "]\n";
+    for i in 0..n - 1 {
+        s += &format!("[[bars]]\nnodes = [{i}, {}]\n", i + 1);
+    }
+    for i in 0..n - 2 {
+        s += &format!("[[strings]]\nnodes = [{i}, {}]\n", i + 2);
+    }
+    let path = dir.join(format!("chain{n}.toml"));
+    std::fs::write(&path, s).unwrap();
+    path.display().to_string()
+}
