@@ -3,25 +3,11 @@
 //! process, /proc/self/status, reset through clear_refs) stays far below the size of its
 //! inputs. Alone in its test binary, so no other test's allocations count.
 
-use std::path::{Path, PathBuf};
+mod shards;
+
+use shards::{row, shard, HEADER};
+use std::path::PathBuf;
 use sweeps::merge;
-
-const HEADER: &str = "# units: case, x [m], status, message\ncase,x,status,message\n";
-
-fn row(id: usize) -> String {
-    format!("{id},{:.6},ok,\n", (id as f64).sqrt())
-}
-
-/// Shard `k` of `n` of a sweep of `total` cases (ids k, k + n, …), with a spec line.
-fn shard(dir: &Path, k: usize, n: usize, total: usize) -> PathBuf {
-    let path = dir.join(format!("s{k}of{n}.csv"));
-    let mut text = format!("# spec: 00000000000000aa\n{HEADER}");
-    for id in (k..total).step_by(n) {
-        text += &row(id);
-    }
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 /// A field of /proc/self/status in bytes (`VmRSS`, `VmHWM`).
 fn status(key: &str) -> f64 {

@@ -5,27 +5,12 @@
 //! rows, a gap, an interrupted file, a file cut inside a row, two specs), each naming the
 //! file. (The memory a merge holds: `merge_memory.rs`.)
 
+mod shards;
+
+use shards::{row, shard, HEADER};
 use std::path::{Path, PathBuf};
 use sweeps::merge;
 use sweeps::merge::MAX_ROW_BYTES;
-
-const HEADER: &str = "# units: case, x [m], status, message\ncase,x,status,message\n";
-
-fn row(id: usize) -> String {
-    format!("{id},{:.6},ok,\n", (id as f64).sqrt())
-}
-
-/// Shard `k` of `n` of a sweep of `total` cases (`--shard k+1/n`: ids k, k + n, …), with a
-/// spec line, written to `dir`.
-fn shard(dir: &Path, k: usize, n: usize, total: usize) -> PathBuf {
-    let path = dir.join(format!("s{k}of{n}.csv"));
-    let mut text = format!("# spec: 00000000000000aa\n{HEADER}");
-    for id in (k..total).step_by(n) {
-        text += &row(id);
-    }
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 fn single(total: usize) -> String {
     let mut text = HEADER.to_string();
