@@ -1,12 +1,15 @@
 //! Criterion benches of the dynamics: one right-hand-side evaluation against the member count
 //! (class-1 prism chains and class-2 D-bar chains), and full runs (5000 RK4 steps of the
 //! 4-bar class-2 D-bar; the MOTES anchor `examples/anchors/motes_dbar.toml`: its right-hand
-//! side and its 5000 RK4 steps, `anchor/…`).
+//! side and its 5000 RK4 steps, `anchor/…`), and one RK4 step of the D-bar and of the class-1
+//! MOTES prism alone (`step/…`, issue 25; their instruction counts are in docs/PERFORMANCE.md).
 //! The structures come from `tensegrity_core::test_models`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
-use tensegrity_core::dynamics::{IntegratorKind, Model, Simulation, SimulationSettings};
+use tensegrity_core::dynamics::{
+    Integrator, IntegratorKind, Model, Rk4, Simulation, SimulationSettings,
+};
 use tensegrity_core::test_models::{self, dbar};
 use tensegrity_core::Structure;
 
@@ -110,5 +113,33 @@ fn anchor(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, rhs, full_run, anchor);
+/// One RK4 step (four right-hand sides) of the MOTES anchor D-bar (Ω by Woodbury) and of the
+/// class-1 MOTES prism, stepping on from the last state (both oscillate, bounded).
+fn step(c: &mut Criterion) {
+    let mut g = c.benchmark_group("step");
+    for (name, s) in [
+        ("motes-dbar-rk4", test_models::motes_anchor_dbar().unwrap()),
+        (
+            "motes-prism-rk4",
+            test_models::motes_anchor_prism().unwrap(),
+        ),
+    ] {
+        let model = Model::new(&s, None).unwrap();
+        let mut y = model.initial_state(&s).unwrap();
+        let mut ws = model.workspace().unwrap();
+        let mut rk = Rk4::new(y.len());
+        let mut t = 0.0;
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                rk.step(&model, &mut ws, t, black_box(&mut y), 1e-3)
+                    .unwrap();
+                t += 1e-3;
+                black_box(y[0])
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, rhs, full_run, anchor, step);
 criterion_main!(benches);

@@ -1,6 +1,8 @@
 //! Criterion benches: building and analysing the reference toroid (spokes + inner) for
 //! n = 8, 24, 100, and one second of rolling down 50° for n = 8 and 24 with the rigid and the
-//! full model.
+//! full model; and 100 steps of the full model's rolling (n = 8, 0.01 s at 0.1 ms, with the
+//! projection and the monitor of every step: issue 25's "full rolling step", reported per
+//! step).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
@@ -56,5 +58,27 @@ fn bench_rolling(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_build_analyse, bench_rolling);
+/// The full model's rolling step (n = 8, defaults): 100 steps (0.01 s) per iteration, with
+/// the setup (model, workspace, first monitor sample) in every iteration as well.
+fn bench_full_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("toroid_full_step");
+    group.sample_size(20);
+    group.throughput(criterion::Throughput::Elements(100));
+    let t = build(&ToroidParams::default().sides(8), options(), 1.0).unwrap();
+    let a = analyse(&t).unwrap();
+    let wheel = ToroidWheel {
+        toroid: &t,
+        analysis: &a,
+        string_stiffness: 2e4,
+        min_tension: 20.0,
+    };
+    let scene = wheel.scene().unwrap();
+    let full = FullRolling::default();
+    group.bench_function("n8-100-steps", |b| {
+        b.iter(|| black_box(full.run_scene(&scene, 0.01).unwrap()))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench_build_analyse, bench_rolling, bench_full_step);
 criterion_main!(benches);

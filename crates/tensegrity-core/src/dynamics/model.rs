@@ -69,6 +69,27 @@ pub(crate) struct LinearRow {
     pub target: f64,
 }
 
+/// A constraint row of N P = D whose gradients are all ±e_d: Σ_e s_e x[at_e] = target.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AxisRow {
+    pub at: [usize; 2],
+    pub s: [f64; 2],
+    pub len: usize,
+}
+
+impl AxisRow {
+    /// −Σ_e s_e a[at_e], summed in the entries' order from 0 (exactly the row's terms of
+    /// `constraint_rhs`'s entry loop).
+    #[inline]
+    pub(crate) fn neg_dot(&self, a: &[f64]) -> f64 {
+        let mut acc = 0.0;
+        for (&at, &s) in self.at.iter().zip(&self.s).take(self.len) {
+            acc -= s * a[at];
+        }
+        acc
+    }
+}
+
 /// The class-1 dynamic model of a [`Structure`].
 pub struct Model {
     pub(crate) n_nodes: usize,
@@ -89,6 +110,10 @@ pub struct Model {
     /// s·e_d (always, for the rows built here): the Ω right-hand side and the constraint forces
     /// then take one multiply per entry instead of a 3-vector product.
     pub(crate) axis_entries: Option<Vec<(usize, usize, usize, f64)>>,
+    /// The same entries row by row: for row r, up to two (position 3·node + d in a state
+    /// half, sign s) with the count (the Ω right-hand side and the ‖N P − D‖ monitor as one
+    /// pass over the rows).
+    pub(crate) axis_rows: Option<Vec<AxisRow>>,
     pub(crate) x0: Vec<f64>,
 }
 
@@ -115,7 +140,48 @@ pub struct Workspace {
     pub(crate) omega: Option<ConstraintMatrix>,
     pub(crate) omega_rhs: Vec<f64>,
     pub(crate) bhat: Vec<Vector3<f64>>,
+    /// The force-independent terms of every bar's accelerations, from the first pass of the
+    /// last right-hand side (reused by its second pass after the Ω solve).
+    pub(crate) bar_terms: Vec<BarTerms>,
     pub(crate) rhs_evals: u64,
+}
+
+/// The terms of a bar's accelerations that do not depend on the forces: b = x_b − x_a,
+/// l² = ‖b‖², and the centripetal term b ‖ḃ‖² / l².
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct BarTerms {
+    pub b: Vector3<f64>,
+    pub l2: f64,
+    pub centripetal: Vector3<f64>,
+}
+
+impl BarTerms {
+    /// The terms of the bar from `xa` to `xb` with end velocities `va`, `vb`.
+    #[inline]
+    fn of(xa: &[f64], xb: &[f64], va: &[f64], vb: &[f64]) -> Self {
+        let b = Vector3::new(xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]);
+        let bd = Vector3::new(vb[0] - va[0], vb[1] - va[1], vb[2] - va[2]);
+        let l2 = b.norm_squared();
+        Self {
+            b,
+            l2,
+            centripetal: b * (bd.norm_squared() / l2),
+        }
+    }
+
+    /// The accelerations of the two ends under end forces `fa`, `fb`, with ḃ = v_b − v_a and
+    /// J⁻¹ = 12/m: b̈ = (½f_d − b (½ bᵀf_d / l²)) J⁻¹ − b ‖ḃ‖²/l² (f_d = f_b − f_a),
+    /// r̈ = (f_a + f_b)/m, n̈_a = r̈ − ½b̈, n̈_b = r̈ + ½b̈ (module docs).
+    #[inline]
+    fn accel(&self, bar: &BarData, fa: &Vector3<f64>, fb: &Vector3<f64>, out: &mut [f64]) {
+        let b = &self.b;
+        let fd = fb - fa;
+        let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / self.l2)) * bar.inv_j - self.centripetal;
+        let rdd = (fa + fb) / bar.mass;
+        let (aa, ab) = (rdd - 0.5 * bdd, rdd + 0.5 * bdd);
+        out[..3].copy_from_slice(aa.as_slice());
+        out[3..6].copy_from_slice(ab.as_slice());
+    }
 }
 
 impl std::fmt::Debug for Workspace {
@@ -138,33 +204,18 @@ pub(crate) fn vec3(y: &[f64], i: usize) -> Vector3<f64> {
     Vector3::new(y[3 * i], y[3 * i + 1], y[3 * i + 2])
 }
 
+/// Node i of `y` with one range check (as [`vec3`]).
+#[inline]
+fn node_of(y: &[f64], i: usize) -> Vector3<f64> {
+    let p = &y[3 * i..3 * i + 3];
+    Vector3::new(p[0], p[1], p[2])
+}
+
 #[inline]
 pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
     y[3 * i] = v.x;
     y[3 * i + 1] = v.y;
     y[3 * i + 2] = v.z;
-}
-
-/// Accelerations of the two ends of a rigid bar of mass `m` (with `inv_j` = 12/m precomputed)
-/// under end forces `fa`, `fb`.
-#[inline]
-pub(crate) fn bar_accel(
-    m: f64,
-    inv_j: f64,
-    xa: &Vector3<f64>,
-    xb: &Vector3<f64>,
-    va: &Vector3<f64>,
-    vb: &Vector3<f64>,
-    fa: &Vector3<f64>,
-    fb: &Vector3<f64>,
-) -> (Vector3<f64>, Vector3<f64>) {
-    let b = xb - xa;
-    let bd = vb - va;
-    let l2 = b.norm_squared();
-    let fd = fb - fa;
-    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
-    let rdd = (fa + fb) / m;
-    (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
 }
 
 impl Model {
@@ -304,7 +355,7 @@ impl Model {
         constrained_bars.sort_unstable();
         constrained_bars.dedup();
         let inv_mass = bars.iter().map(|b| b.inv_mass).collect();
-        let axis_entries = linear_rows
+        let axis_entries: Option<Vec<(usize, usize, usize, f64)>> = linear_rows
             .iter()
             .enumerate()
             .flat_map(|(r, row)| {
@@ -315,6 +366,23 @@ impl Model {
                     .map(move |e| axis_of(&e.grad).map(|(d, s)| (r, e.node, d, s)))
             })
             .collect();
+        let axis_rows = axis_entries.as_ref().map(|entries| {
+            let mut rows = vec![
+                AxisRow {
+                    at: [0; 2],
+                    s: [0.0; 2],
+                    len: 0,
+                };
+                linear_rows.len()
+            ];
+            for &(r, node, d, sign) in entries {
+                let row = &mut rows[r];
+                row.at[row.len] = 3 * node + d;
+                row.s[row.len] = sign;
+                row.len += 1;
+            }
+            rows
+        });
         let mut model = Self {
             n_nodes,
             n1,
@@ -331,6 +399,7 @@ impl Model {
             load_fn: None,
             constrained_bars,
             axis_entries,
+            axis_rows,
             x0,
         };
         if let Some(g) = ground {
@@ -469,8 +538,27 @@ impl Model {
             omega_rhs: vec![0.0; self.linear_rows.len()],
             omega,
             bhat: vec![Vector3::zeros(); self.bars.len()],
+            bar_terms: vec![BarTerms::default(); self.bars.len()],
             rhs_evals: 0,
         })
+    }
+
+    /// The position of a string end (a class-1 node of `x`, or the anchor).
+    #[inline]
+    fn end_position(&self, r: NodeRef, x: &[f64]) -> Vector3<f64> {
+        match r {
+            NodeRef::Free(i) => node_of(x, i),
+            NodeRef::Anchor(p) => p,
+        }
+    }
+
+    /// The velocity of a string end (a class-1 node of `v`; an anchor does not move).
+    #[inline]
+    fn end_rate(&self, r: NodeRef, v: &[f64]) -> Vector3<f64> {
+        match r {
+            NodeRef::Free(i) => node_of(v, i),
+            NodeRef::Anchor(_) => Vector3::zeros(),
+        }
     }
 
     #[inline]
@@ -500,12 +588,16 @@ impl Model {
             }
             rest_fn(t, &mut ws.rest);
         }
-        for (k, s) in self.strings.iter().enumerate() {
-            let (xa, va) = self.end_state(s.ends[0], x, v);
-            let (xb, vb) = self.end_state(s.ends[1], x, v);
-            let sv = xb - xa;
-            let gamma = s.law.force_density(&sv, &(vb - va), ws.rest[k]);
-            ws.gamma[k] = gamma;
+        for ((s, &rest), gamma_k) in self.strings.iter().zip(&ws.rest).zip(ws.gamma.iter_mut()) {
+            let sv = self.end_position(s.ends[1], x) - self.end_position(s.ends[0], x);
+            // the rate only enters a damped string's law
+            let rate = if s.law.damping != 0.0 {
+                self.end_rate(s.ends[1], v) - self.end_rate(s.ends[0], v)
+            } else {
+                Vector3::zeros()
+            };
+            let gamma = s.law.force_density(&sv, &rate, rest);
+            *gamma_k = gamma;
             if gamma != 0.0 {
                 let t = sv * gamma;
                 if let NodeRef::Free(i) = s.ends[0] {
@@ -570,11 +662,10 @@ impl Model {
             }
             .into());
         }
-        self.bar_accelerations(x, v, &ws.f, dv, None);
+        self.first_pass(x, v, &ws.f, dv, &mut ws.bar_terms);
         if let Some(om) = ws.omega.as_mut() {
-            for (k, bh) in ws.bhat.iter_mut().enumerate() {
-                let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
-                *bh = b * (1.0 / b.norm());
+            for (bh, bt) in ws.bhat.iter_mut().zip(&ws.bar_terms) {
+                *bh = bt.b * (1.0 / bt.b.norm());
             }
             if let Err(e) = om.assemble_and_factor(&ws.bhat, &self.inv_mass) {
                 // A NaN/∞ in the state or the forces shows up as a failed factorisation:
@@ -596,17 +687,46 @@ impl Model {
             self.constraint_rhs(dv, &mut ws.omega_rhs);
             om.solve_in_place(&mut ws.omega_rhs);
             self.add_constraint_forces(&ws.omega_rhs, &mut ws.f);
-            self.bar_accelerations(x, v, &ws.f, dv, Some(&self.constrained_bars));
+            for &k in &self.constrained_bars {
+                ws.bar_terms[k].accel(
+                    &self.bars[k],
+                    &ws.f[2 * k],
+                    &ws.f[2 * k + 1],
+                    &mut dv[6 * k..6 * k + 6],
+                );
+            }
         }
         Ok(())
     }
 
+    /// The unconstrained accelerations of every bar into `dv` ([`BarTerms::accel`]), keeping
+    /// each bar's force-independent terms in `terms` for the second pass.
+    fn first_pass(
+        &self,
+        x: &[f64],
+        v: &[f64],
+        f: &[Vector3<f64>],
+        dv: &mut [f64],
+        terms: &mut [BarTerms],
+    ) {
+        for ((((bar, t), xk), vk), (fk, out)) in self
+            .bars
+            .iter()
+            .zip(terms.iter_mut())
+            .zip(x.chunks_exact(6))
+            .zip(v.chunks_exact(6))
+            .zip(f.chunks_exact(2).zip(dv.chunks_exact_mut(6)))
+        {
+            *t = BarTerms::of(&xk[..3], &xk[3..], &vk[..3], &vk[3..]);
+            t.accel(bar, &fk[0], &fk[1], out);
+        }
+    }
+
     /// The Ω right-hand side −G a of the unconstrained accelerations `dv`.
     fn constraint_rhs(&self, dv: &[f64], out: &mut [f64]) {
-        if let Some(axis) = &self.axis_entries {
-            out.fill(0.0);
-            for &(r, node, d, s) in axis {
-                out[r] -= s * dv[3 * node + d];
+        if let Some(rows) = &self.axis_rows {
+            for (o, row) in out.iter_mut().zip(rows) {
+                *o = row.neg_dot(dv);
             }
             return;
         }
@@ -633,37 +753,6 @@ impl Model {
             for e in row.row.entries.iter().flatten() {
                 f[e.node] += e.grad * *w;
             }
-        }
-    }
-
-    /// Writes the accelerations of the bars (all, or the listed ones) into `dv`.
-    #[inline]
-    pub(crate) fn bar_accelerations(
-        &self,
-        x: &[f64],
-        v: &[f64],
-        f: &[Vector3<f64>],
-        dv: &mut [f64],
-        only: Option<&[usize]>,
-    ) {
-        let mut one = |k: usize| {
-            let (a, b) = (2 * k, 2 * k + 1);
-            let (aa, ab) = bar_accel(
-                self.bars[k].mass,
-                self.bars[k].inv_j,
-                &vec3(x, a),
-                &vec3(x, b),
-                &vec3(v, a),
-                &vec3(v, b),
-                &f[a],
-                &f[b],
-            );
-            set3(dv, a, &aa);
-            set3(dv, b, &ab);
-        };
-        match only {
-            Some(list) => list.iter().for_each(|&k| one(k)),
-            None => (0..self.bars.len()).for_each(one),
         }
     }
 

@@ -73,6 +73,16 @@ impl Model {
 
     /// max |N P − D| over all constraint components (m).
     pub fn constraint_error(&self, y: &[f64]) -> f64 {
+        if let Some(rows) = &self.axis_rows {
+            // Σ s x − target = −(−Σ s x) − target, exact for finite states (s = ±1); a
+            // non-finite row is skipped, as the NaN of the general form below is by `max`
+            return rows
+                .iter()
+                .zip(&self.linear_rows)
+                .map(|(a, r)| (-a.neg_dot(y) - r.target).abs())
+                .filter(|e| !e.is_infinite())
+                .fold(0.0, f64::max);
+        }
         self.linear_rows
             .iter()
             .map(|r| {
@@ -96,9 +106,12 @@ impl Model {
         // squared distances: no square root per node and step
         let limit2 = limit * limit;
         let mut worst: Option<(usize, f64)> = None;
-        for i in 0..self.n1 {
-            let x = vec3(y, i);
-            if !(x.iter().all(|c| c.is_finite()) && vec3(v, i).iter().all(|c| c.is_finite())) {
+        let nodes = y[..3 * self.n1]
+            .chunks_exact(3)
+            .zip(v.chunks_exact(3))
+            .zip(self.x0.chunks_exact(3));
+        for (i, ((x, v), x0)) in nodes.enumerate() {
+            if !(x.iter().all(|c| c.is_finite()) && v.iter().all(|c| c.is_finite())) {
                 return Err(DynamicsError::NonFiniteState {
                     t,
                     member: MemberId::Bar(i / 2),
@@ -106,7 +119,8 @@ impl Model {
                 }
                 .into());
             }
-            let d2 = (x - vec3(&self.x0, i)).norm_squared();
+            let d2 =
+                (Vector3::new(x[0], x[1], x[2]) - Vector3::new(x0[0], x0[1], x0[2])).norm_squared();
             if d2 > limit2 && worst.is_none_or(|(_, d)| d2 > d) {
                 worst = Some((i, d2));
             }

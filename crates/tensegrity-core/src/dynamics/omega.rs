@@ -287,14 +287,19 @@ impl ConstraintMatrix {
             self.factored = true;
             return Ok(());
         }
-        self.values.iter_mut().for_each(|v| *v = 0.0);
-        if !self.axis.is_empty() {
-            for c in &self.axis {
-                let b = &bhat[c.bar];
-                self.values[c.slot] += inv_mass[c.bar] * (c.c0 + c.c1 * b[c.d] * b[c.d2]);
-            }
+        self.values.fill(0.0);
+        for c in &self.axis {
+            let b = &bhat[c.bar];
+            self.values[c.slot] += inv_mass[c.bar] * (c.c0 + c.c1 * b[c.d] * b[c.d2]);
         }
-        for c in self.contributions.iter().filter(|_| self.axis.is_empty()) {
+        // the general form only when the axis form is not available (not a filter over the
+        // contributions on every evaluation)
+        let general: &[Contribution] = if self.axis.is_empty() {
+            &self.contributions
+        } else {
+            &[]
+        };
+        for c in general {
             let u = self.rows[c.row_x].entries[c.ent_x]
                 .as_ref()
                 .map(|e| e.grad)

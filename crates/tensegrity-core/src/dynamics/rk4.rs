@@ -44,23 +44,29 @@ impl Integrator for Rk4 {
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
-        let n = y.len();
+        // the stages as zipped loops (vectorised, no index checks); each entry is computed
+        // exactly as y_i + (h/2) k_i etc.
+        fn stage(tmp: &mut [f64], y: &[f64], c: f64, k: &[f64]) {
+            for ((t, y), k) in tmp.iter_mut().zip(y).zip(k) {
+                *t = y + c * k;
+            }
+        }
         model.rhs(t, y, &mut self.k1, ws)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + 0.5 * h * self.k1[i];
-        }
+        stage(&mut self.tmp, y, 0.5 * h, &self.k1);
         model.rhs(t + 0.5 * h, &self.tmp, &mut self.k2, ws)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + 0.5 * h * self.k2[i];
-        }
+        stage(&mut self.tmp, y, 0.5 * h, &self.k2);
         model.rhs(t + 0.5 * h, &self.tmp, &mut self.k3, ws)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + h * self.k3[i];
-        }
+        stage(&mut self.tmp, y, h, &self.k3);
         model.rhs(t + h, &self.tmp, &mut self.k4, ws)?;
         let h6 = h / 6.0;
-        for i in 0..n {
-            y[i] += h6 * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
+        for ((((y, k1), k2), k3), k4) in y
+            .iter_mut()
+            .zip(&self.k1)
+            .zip(&self.k2)
+            .zip(&self.k3)
+            .zip(&self.k4)
+        {
+            *y += h6 * (k1 + 2.0 * (k2 + k3) + k4);
         }
         Ok(StepOutcome::fixed(h))
     }

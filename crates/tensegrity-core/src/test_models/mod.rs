@@ -20,6 +20,7 @@ mod dbar;
 mod double_pendulum;
 mod dropped_prism;
 mod motes_dbar;
+mod motes_prism;
 mod snelson;
 mod spinning_bar;
 
@@ -30,5 +31,6 @@ pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,
 };
 pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
+pub use motes_prism::motes_anchor_prism;
 pub use snelson::{oscillating_prism, snelson, snelson_prism, snelson_twist, PrismParams};
 pub use spinning_bar::{spinning_bar, spinning_bar_exact};

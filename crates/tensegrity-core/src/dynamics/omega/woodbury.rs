@@ -49,9 +49,15 @@ struct Entry {
     coef: f64,
 }
 
-/// Width of the register accumulators of the block products; blocks are padded to a multiple
-/// of it with zeros, so the inner loops have no remainder.
-const W: usize = 4;
+/// The blocks are padded to a multiple of this with zeros (the SSE2 width: the padded lanes
+/// cost a little, a 4-wide padding of 5-row blocks cost 3/8 of the products).
+const W: usize = 2;
+
+/// When no axis has more than this many rows, every block is padded to exactly this many
+/// (stride P): the block products and axpys then run on fixed-size arrays, unrolled and
+/// without index checks (the MOTES D-bar's 5-row blocks). The zero padding adds exact zeros,
+/// so the results are those of the unpadded sums.
+const P: usize = 8;
 
 /// The rows of one axis in the internal order, and where its blocks are stored.
 #[derive(Debug, Clone, Copy, Default)]
@@ -67,22 +73,33 @@ struct Block {
 }
 
 /// `out = Σ_{j < len} x_j m_j` for the padded symmetric lp × lp block `m` (row j = column j),
-/// with the accumulators in registers.
+/// accumulated row by row (each output summed in the order j = 0, 1, …: the same rounding
+/// as a dot product per output, without per-element index checks).
 #[inline]
 fn block_product(m: &[f64], blk: &Block, x: &[f64], out: &mut [f64]) {
-    if x.iter().all(|v| *v == 0.0) {
-        // a planar structure's out-of-plane block
-        out.fill(0.0);
-        return;
-    }
-    for (c, o) in out.chunks_exact_mut(W).enumerate() {
-        let mut acc = [0.0; W];
-        for (xj, row) in x.iter().zip(m.chunks_exact(blk.lp)).take(blk.len) {
-            for (a, r) in acc.iter_mut().zip(&row[c * W..c * W + W]) {
-                *a += xj * r;
+    if let (true, Ok(o)) = (blk.lp == P, <&mut [f64; P]>::try_from(&mut *out)) {
+        // the accumulators in registers
+        let mut acc = [0.0; P];
+        // (all zero: a planar structure's out-of-plane block)
+        if x.iter().any(|v| *v != 0.0) {
+            let (rows, _) = m.as_chunks::<P>();
+            for (xj, row) in x.iter().zip(rows).take(blk.len) {
+                for i in 0..P {
+                    acc[i] += xj * row[i];
+                }
             }
         }
-        o.copy_from_slice(&acc);
+        *o = acc;
+        return;
+    }
+    out.fill(0.0);
+    if x.iter().all(|v| *v == 0.0) {
+        return;
+    }
+    for (xj, row) in x.iter().zip(m.chunks_exact(blk.lp)).take(blk.len) {
+        for (o, r) in out.iter_mut().zip(row) {
+            *o += xj * r;
+        }
     }
 }
 
@@ -97,6 +114,13 @@ pub(super) struct LowRank {
     /// The entries, grouped by bar: those of bar k are `entries[bar_entries[k]..bar_entries[k + 1]]`.
     entries: Vec<Entry>,
     bar_entries: Vec<usize>,
+    /// Internal row of every entry (the order of `entries`).
+    erow: Vec<usize>,
+    /// s_e σ_e b̂_k[d] of every entry at the last factorisation (the entries of U; s_e σ_e
+    /// is ±1, so the products with it are exact and the rounding is the unweighted form's).
+    ew: Vec<f64>,
+    /// The blocks with rows, with their axis.
+    active: Vec<(usize, Block)>,
     /// A₀'s terms: (internal i, j, bar, α weight with sign).
     a0_terms: Vec<(usize, usize, usize, f64)>,
     /// The inverse masses the constants below belong to (empty before the first build).
@@ -107,7 +131,8 @@ pub(super) struct LowRank {
     a0inv: Vec<f64>,
     /// The blocks of A₀, padded, for the residual.
     a0: Vec<f64>,
-    /// V_{k,d} = A₀⁻¹ c_{k,d} on the rows of block d, at `v_off[3k + d]`.
+    /// V_{k,d} = A₀⁻¹ c_{k,d} on the rows of block d, at `v_off[3k + d]` (block-major: those
+    /// of block d start at `v_off[d]`, one after the other).
     v: Vec<f64>,
     v_off: Vec<usize>,
     /// T_{kl,d} = c_{k,d}ᵀ V_{l,d} at `(k·β + l)·3 + d`.
@@ -155,9 +180,15 @@ impl LowRank {
         }
         let mut blocks = [Block::default(); 3];
         let (mut start, mut off) = (0, 0);
+        let lens = [0, 1, 2].map(|d| row_axis.iter().filter(|&&a| a == d).count());
+        let fixed = lens.iter().all(|&l| l <= P);
         for (d, b) in blocks.iter_mut().enumerate() {
-            let len = row_axis.iter().filter(|&&a| a == d).count();
-            let lp = len.div_ceil(W) * W;
+            let len = lens[d];
+            let lp = match (len, fixed) {
+                (0, _) => 0,
+                (_, true) => P,
+                (_, false) => len.div_ceil(W) * W,
+            };
             *b = Block {
                 start,
                 len,
@@ -207,17 +238,29 @@ impl LowRank {
             .filter(|c| c.c0 != 0.0)
             .map(|c| (internal[c.dense / n], internal[c.dense % n], c.bar, c.c0))
             .collect();
-        let mut v_off = Vec::with_capacity(3 * nb);
+        // block-major: the V_{k,d} of one block d are contiguous (k = 0, 1, …)
+        let mut v_off = vec![0; 3 * nb];
         let mut vlen = 0;
-        for _ in 0..nb {
-            for b in &blocks {
-                v_off.push(vlen);
+        for (d, b) in blocks.iter().enumerate() {
+            for k in 0..nb {
+                v_off[3 * k + d] = vlen;
                 vlen += b.lp;
             }
         }
+        let erow = entries.iter().map(|e| e.row).collect();
+        let ew = vec![0.0; entries.len()];
+        let active = blocks
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.len > 0)
+            .map(|(d, b)| (d, *b))
+            .collect();
         Some(Self {
             pos: internal,
             blocks,
+            erow,
+            ew,
+            active,
             entries,
             bar_entries,
             a0_terms,
@@ -314,32 +357,56 @@ impl LowRank {
         if !self.ready {
             return false;
         }
-        self.coupled = [false; 3];
+        let mut coupled = [false; 3];
         for (b, &bar) in self.bh.chunks_exact_mut(3).zip(&self.bars) {
-            b.copy_from_slice(bhat[bar].as_slice());
-            for (c, v) in self.coupled.iter_mut().zip(b.iter()) {
-                *c |= *v != 0.0;
-            }
+            let h = &bhat[bar];
+            b.copy_from_slice(h.as_slice());
+            coupled[0] |= h.x != 0.0;
+            coupled[1] |= h.y != 0.0;
+            coupled[2] |= h.z != 0.0;
+        }
+        self.coupled = coupled;
+        for (w, e) in self.ew.iter_mut().zip(&self.entries) {
+            *w = e.coef * self.bh[e.kd];
         }
         let nb = self.bars.len();
         // S_kl = δ_kl m_k/3 − Σ_d b̂_k[d] b̂_l[d] T_{kl,d} (lower triangle)
-        for k in 0..nb {
-            let bk = &self.bh[3 * k..3 * k + 3];
-            for l in 0..=k {
-                let bl = &self.bh[3 * l..3 * l + 3];
-                let t = &self.t[(k * nb + l) * 3..][..3];
+        for (k, (srow, bk)) in self
+            .s
+            .chunks_exact_mut(nb)
+            .zip(self.bh.chunks_exact(3))
+            .enumerate()
+        {
+            let trow = &self.t[3 * k * nb..3 * (k + 1) * nb];
+            for (l, ((sv, bl), t)) in srow[..=k]
+                .iter_mut()
+                .zip(self.bh.chunks_exact(3))
+                .zip(trow.chunks_exact(3))
+                .enumerate()
+            {
                 let acc = bk[0] * bl[0] * t[0] + bk[1] * bl[1] * t[1] + bk[2] * bl[2] * t[2];
                 let diag = if k == l { self.cinv[k] } else { 0.0 };
-                self.s[k * nb + l] = diag - acc;
+                *sv = diag - acc;
             }
         }
         // LDLᵀ, left-looking (β is small)
+        let s = &mut self.s;
         for j in 0..nb {
             for i in j..nb {
-                let mut sum = self.s[i * nb + j];
-                for p in 0..j {
-                    sum -= self.s[i * nb + p] * self.s[j * nb + p] * self.dval[p];
-                }
+                let (head, tail) = s.split_at_mut(i * nb);
+                let ri = &mut tail[..nb];
+                let sum = {
+                    let rj = if i == j {
+                        &ri[..j]
+                    } else {
+                        &head[j * nb..j * nb + j]
+                    };
+                    let mut sum = ri[j];
+                    for ((a, b), d) in ri[..j].iter().zip(rj).zip(&self.dval[..j]) {
+                        sum -= a * b * d;
+                    }
+                    sum
+                };
                 if i == j {
                     if sum.is_nan() || sum <= MIN_PIVOT_RATIO * self.cinv[j] {
                         return false;
@@ -347,7 +414,7 @@ impl LowRank {
                     self.dval[j] = sum;
                     self.dinv[j] = 1.0 / sum;
                 } else {
-                    self.s[i * nb + j] = sum * self.dinv[j];
+                    ri[j] = sum * self.dinv[j];
                 }
             }
         }
@@ -364,7 +431,7 @@ impl LowRank {
         }
         self.solve_once(&mut x);
         // residual r − A x, with A x = A₀ x − Σ_k (3/m_k) u_k (u_kᵀ x)
-        for blk in self.blocks.iter().filter(|b| b.len > 0) {
+        for (_, blk) in &self.active {
             let span = blk.start..blk.start + blk.lp;
             let a0 = &self.a0[blk.off..blk.off + blk.lp * blk.lp];
             block_product(a0, blk, &x[span.clone()], &mut r[span]);
@@ -373,11 +440,12 @@ impl LowRank {
             r[p] = b - r[p];
         }
         for (k, c) in self.c.iter().enumerate() {
-            let ents = &self.entries[self.bar_entries[k]..self.bar_entries[k + 1]];
-            let q: f64 = ents.iter().map(|e| e.coef * self.bh[e.kd] * x[e.row]).sum();
+            let (lo, hi) = (self.bar_entries[k], self.bar_entries[k + 1]);
+            let (ew, er) = (&self.ew[lo..hi], &self.erow[lo..hi]);
+            let q: f64 = ew.iter().zip(er).map(|(w, &row)| w * x[row]).sum();
             let w = c * q;
-            for e in ents {
-                r[e.row] += w * e.coef * self.bh[e.kd];
+            for (e, &row) in ew.iter().zip(er) {
+                r[row] += w * e;
             }
         }
         self.solve_once(&mut r);
@@ -392,59 +460,71 @@ impl LowRank {
     fn solve_once(&mut self, b: &mut [f64]) {
         let nb = self.bars.len();
         // z = A₀⁻¹ b, block by block
-        for blk in self.blocks.iter().filter(|b| b.len > 0) {
+        for (_, blk) in &self.active {
             let span = blk.start..blk.start + blk.lp;
             let inv = &self.a0inv[blk.off..blk.off + blk.lp * blk.lp];
             block_product(inv, blk, &b[span.clone()], &mut self.z[span]);
         }
         // g = Uᵀ z
+        let z = &self.z;
         for (k, g) in self.g.iter_mut().enumerate() {
-            let ents = &self.entries[self.bar_entries[k]..self.bar_entries[k + 1]];
-            *g = ents
+            let (lo, hi) = (self.bar_entries[k], self.bar_entries[k + 1]);
+            *g = self.ew[lo..hi]
                 .iter()
-                .map(|e| e.coef * self.bh[e.kd] * self.z[e.row])
+                .zip(&self.erow[lo..hi])
+                .map(|(w, &row)| w * z[row])
                 .sum();
         }
         // y = S⁻¹ g = L⁻ᵀ D⁻¹ L⁻¹ g
+        let (s, g) = (&self.s, &mut self.g);
         for i in 0..nb {
-            let li = &self.s[i * nb..i * nb + i];
-            let sum: f64 = li.iter().zip(&self.g[..i]).map(|(l, g)| l * g).sum();
-            self.g[i] -= sum;
+            let li = &s[i * nb..i * nb + i];
+            let sum: f64 = li.iter().zip(&g[..i]).map(|(l, g)| l * g).sum();
+            g[i] -= sum;
         }
-        for (g, d) in self.g.iter_mut().zip(&self.dinv) {
+        for (g, d) in g.iter_mut().zip(&self.dinv) {
             *g *= d;
         }
         for i in (0..nb).rev() {
             let mut sum = 0.0;
             for p in i + 1..nb {
-                sum += self.s[p * nb + i] * self.g[p];
+                sum += s[p * nb + i] * g[p];
             }
-            self.g[i] -= sum;
+            g[i] -= sum;
         }
-        // x = z + Σ_{k,d} y_k b̂_k[d] V_{k,d}, block by block in register accumulators
-        for (d, blk) in self.blocks.iter().enumerate().filter(|(_, b)| b.len > 0) {
+        // x = z + Σ_{k,d} y_k b̂_k[d] V_{k,d}, block by block (each entry summed in the
+        // order k = 0, 1, …)
+        for &(d, blk) in &self.active {
+            let span = blk.start..blk.start + blk.lp;
+            let out = &mut b[span.clone()];
+            let zs = &self.z[span];
             if !self.coupled[d] {
-                // x = z on this block
-                b[blk.start..blk.start + blk.lp]
-                    .copy_from_slice(&self.z[blk.start..blk.start + blk.lp]);
+                out.copy_from_slice(zs);
                 continue;
             }
-            let span = blk.start..blk.start + blk.lp;
-            for (c, (o, z)) in b[span.clone()]
-                .chunks_exact_mut(W)
-                .zip(self.z[span].chunks_exact(W))
-                .enumerate()
-            {
-                let mut acc = [0.0; W];
-                acc.copy_from_slice(z);
-                for (k, y) in self.g.iter().enumerate() {
-                    let w = y * self.bh[3 * k + d];
-                    let v = &self.v[self.v_off[3 * k + d] + c * W..][..W];
-                    for (a, v) in acc.iter_mut().zip(v) {
-                        *a += w * v;
+            let base = self.v_off[d];
+            let vd = &self.v[base..base + nb * blk.lp];
+            let bh = self.bh.chunks_exact(3);
+            if let (Ok(o), Ok(z)) = (
+                <&mut [f64; P]>::try_from(&mut *out),
+                <&[f64; P]>::try_from(zs),
+            ) {
+                let mut acc = *z;
+                for ((y, bk), v) in self.g.iter().zip(bh).zip(vd.as_chunks::<P>().0) {
+                    let w = y * bk[d];
+                    for i in 0..P {
+                        acc[i] += w * v[i];
                     }
                 }
-                o.copy_from_slice(&acc);
+                *o = acc;
+                continue;
+            }
+            out.copy_from_slice(zs);
+            for ((y, bk), v) in self.g.iter().zip(bh).zip(vd.chunks_exact(blk.lp)) {
+                let w = y * bk[d];
+                for (o, v) in out.iter_mut().zip(v) {
+                    *o += w * v;
+                }
             }
         }
     }
