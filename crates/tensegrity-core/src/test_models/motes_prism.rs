@@ -61,3 +61,27 @@ pub fn motes_anchor_prism() -> Result<Structure> {
         )
         .build()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The scene's construction: every string's rest length is 90 % of its initial length
+    /// (the digits of the scene file), the bars have 1 kg and no node is fixed.
+    #[test]
+    fn rest_lengths_are_ninety_percent_of_the_initial_lengths() {
+        let s = motes_anchor_prism().unwrap();
+        assert_eq!((s.n_bars(), s.n_strings()), (3, 9));
+        for m in s.strings() {
+            let [a, b] = m.nodes;
+            let l = (s.nodes()[b] - s.nodes()[a]).norm();
+            let rest = m.rest_length.unwrap();
+            assert!(
+                (rest - 0.9 * l).abs() < 1e-12,
+                "{a}-{b}: {rest} against {l}"
+            );
+        }
+        assert!(s.bars().iter().all(|b| b.mass == Some(1.0)));
+        assert!(s.fixed_dofs().iter().all(|f| *f == [false; 3]));
+    }
+}
