@@ -60,22 +60,26 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         .into_iter()
         .map(|f| {
             let sinks = FigureSink::open(&dir.join(f.file_name(ext))).and_then(|s| {
-                Ok((s, CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?))
+                Ok((
+                    s,
+                    CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?,
+                ))
             });
             (f, sinks)
         })
         .collect();
-    let built = tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sinks, build| {
-        let write = || {
-            let (sink, data_sink) = sinks?;
-            let path = sink.path().to_path_buf();
-            let drawn = build()?;
-            sink.finish(&drawn.figure)?;
-            drawn.data.write(data_sink)?;
-            anyhow::Ok(path)
-        };
-        (f, write())
-    });
+    let built =
+        tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sinks, build| {
+            let write = || {
+                let (sink, data_sink) = sinks?;
+                let path = sink.path().to_path_buf();
+                let drawn = build()?;
+                sink.finish(&drawn.figure)?;
+                drawn.data.write(data_sink)?;
+                anyhow::Ok(path)
+            };
+            (f, write())
+        });
     dir.keep();
     data.keep();
     let index = index_of(args, ext, &built);

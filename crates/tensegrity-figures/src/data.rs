@@ -199,10 +199,7 @@ impl StructureFigure {
 
     /// The drawing (to scale) and its data.
     pub fn finish(self) -> Drawn {
-        Drawn::new(
-            crate::draw::drawing_figure(self.panels),
-            self.data.finish(),
-        )
+        Drawn::new(crate::draw::drawing_figure(self.panels), self.data.finish())
     }
 }
 
@@ -242,6 +239,8 @@ mod tests {
         assert_eq!(t.numbers("length"), vec![5.0]);
         assert_eq!(t.numbers("force_density"), vec![-2.0]);
         assert_eq!(t.numbers("margin"), vec![0.5; 3]);
-        assert!(t.to_csv().starts_with("panel,panel_title,item,id,group,node_a,node_b,x [m],"));
+        assert!(t
+            .to_csv()
+            .starts_with("panel,panel_title,item,id,group,node_a,node_b,x [m],"));
     }
 }

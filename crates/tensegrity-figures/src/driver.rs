@@ -10,13 +10,13 @@
 //! their title and a [`Warning`] returned beside the outcomes.
 
 use crate::catalog::{FigureSpec, FiguresRequest};
+use crate::data::Drawn;
 use crate::error::{FigureError, Result};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 use sweeps::{RunOptions, Silent, Spec};
 use tensegrity_io::csv::Curve;
-use crate::data::Drawn;
 use toroid::{RollReport, ToroidError};
 
 /// A figure drawn from a model used outside its assumptions: what the front end shows beside

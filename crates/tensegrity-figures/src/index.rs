@@ -76,9 +76,13 @@ impl FigureIndex {
         let cell = |s: &str| s.replace('|', "\\|").replace('\n', " ");
         let mut out = String::from("# Figures\n\n");
         if self.quick {
-            out.push_str("Built with `quick`: coarser grids and shorter runs on the rigid model.\n\n");
+            out.push_str(
+                "Built with `quick`: coarser grids and shorter runs on the rigid model.\n\n",
+            );
         }
-        out.push_str("| Fig. | thesis caption | files | command | differs from the thesis | status |\n");
+        out.push_str(
+            "| Fig. | thesis caption | files | command | differs from the thesis | status |\n",
+        );
         out.push_str("|---|---|---|---|---|---|\n");
         for e in &self.figures {
             let files: Vec<String> = e.files.iter().map(|f| format!("[{f}]({f})")).collect();

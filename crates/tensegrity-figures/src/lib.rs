@@ -57,7 +57,7 @@ pub mod work_precision;
 
 pub use catalog::{FigureSpec, FiguresRequest, FIGURES};
 pub use data::Drawn;
-pub use index::{FigureIndex, IndexEntry};
 pub use driver::{build_figures, Built, Context, Warning};
 pub use error::{FigureError, Result};
+pub use index::{FigureIndex, IndexEntry};
 pub use rolling::{fig_rolling, roll_figure, FigRolling, FigRollingRequest};

@@ -121,7 +121,14 @@ pub fn spiral_node(i: usize, k: usize, r0: f64, beta: f64, phi: f64) -> Vector3<
 }
 
 /// The nodes n_ik, i + k ≤ q, numbered row by row (i, then k), and their names.
-fn spiral_nodes(q: usize, phi: f64) -> (Vec<Vector3<f64>>, Vec<String>, HashMap<(usize, usize), usize>) {
+fn spiral_nodes(
+    q: usize,
+    phi: f64,
+) -> (
+    Vec<Vector3<f64>>,
+    Vec<String>,
+    HashMap<(usize, usize), usize>,
+) {
     let (mut nodes, mut names, mut index) = (Vec::new(), Vec::new(), HashMap::new());
     for i in 0..=q {
         for k in 0..=(q - i) {
@@ -135,7 +142,9 @@ fn spiral_nodes(q: usize, phi: f64) -> (Vec<Vector3<f64>>, Vec<String>, HashMap<
 
 /// The spiral of order `q − i`: members n_ik → n_i(k+1), k < q − i.
 fn spiral_members(q: usize, i: usize, index: &HashMap<(usize, usize), usize>) -> Vec<[usize; 2]> {
-    (0..q - i).map(|k| [index[&(i, k)], index[&(i, k + 1)]]).collect()
+    (0..q - i)
+        .map(|k| [index[&(i, k)], index[&(i, k + 1)]])
+        .collect()
 }
 
 /// The spiral colours, order 4 first.
@@ -164,7 +173,14 @@ pub fn fig_4_1(_: &Ctx) -> Result<Drawn> {
     let mut fig = StructureFigure::new(&[("beta", "rad"), ("phi", "rad")]);
     fig.node_labels = names;
     let extra = vec![BETA.into(), (PI / 8.0).into()];
-    fig.add("Michell spiral, q = 4, φ = π/8, β = π/6", View::Side, &nodes, &groups, &no_forces, extra);
+    fig.add(
+        "Michell spiral, q = 4, φ = π/8, β = π/6",
+        View::Side,
+        &nodes,
+        &groups,
+        &no_forces,
+        extra,
+    );
     Ok(fig.finish())
 }
 
@@ -231,7 +247,14 @@ pub fn fig_4_3(_: &Ctx) -> Result<Drawn> {
     let groups = [Group::new("members", (0x30, 0x30, 0x30), members)];
     let mut fig = StructureFigure::new(&TRUSS_COLUMNS);
     let title = "Michell topology, q = 4, φ = π/8, β = π/6";
-    fig.add(title, View::Side, &positions(&a), &groups, &no_forces, truss_extra(&a));
+    fig.add(
+        title,
+        View::Side,
+        &positions(&a),
+        &groups,
+        &no_forces,
+        truss_extra(&a),
+    );
     Ok(fig.finish())
 }
 
@@ -280,12 +303,23 @@ pub fn fig_4_4(_: &Ctx) -> Result<Drawn> {
     let forces = forces_of(&a);
     let force = |_: usize, _: usize, e: [usize; 2]| forces.get(&e).copied();
     let nodes = positions(&a);
-    fig.add("q = 4: force regions of the tip load θ00", View::Side, &nodes, &groups, &force, extra);
+    fig.add(
+        "q = 4: force regions of the tip load θ00",
+        View::Side,
+        &nodes,
+        &groups,
+        &force,
+        extra,
+    );
     let tip = View::Side.project(&nodes[0]);
     let panel = fig.panels.last_mut().expect("just added");
     let (light_blue, light_red) = ((0x7f, 0xb2, 0xe0), (0xf0, 0x90, 0x90));
-    panel.series.push(Series::new("blue region [π+β, 2π−β]", fan(tip, blue, 0.3)).with_color(light_blue));
-    panel.series.push(Series::new("red region [β, π−β]", fan(tip, red, 0.3)).with_color(light_red));
+    panel
+        .series
+        .push(Series::new("blue region [π+β, 2π−β]", fan(tip, blue, 0.3)).with_color(light_blue));
+    panel
+        .series
+        .push(Series::new("red region [β, π−β]", fan(tip, red, 0.3)).with_color(light_red));
     Ok(fig.finish())
 }
 
@@ -338,13 +372,20 @@ pub fn fig_4_9(_: &Ctx) -> Result<Drawn> {
         .collect();
     let mut by_mean: std::collections::BTreeMap<i64, Vec<[usize; 2]>> = Default::default();
     for m in a.truss.members() {
-        by_mean.entry(z_of[m.parent] + z_of[m.child]).or_default().push([m.parent, m.child]);
+        by_mean
+            .entry(z_of[m.parent] + z_of[m.child])
+            .or_default()
+            .push([m.parent, m.child]);
     }
     let groups: Vec<Group> = by_mean
         .into_iter()
         .map(|(twice, edges)| {
             let mean = twice as f64 / 2.0;
-            Group::new(format!("members, mean Z = {mean}"), height_color(mean), edges)
+            Group::new(
+                format!("members, mean Z = {mean}"),
+                height_color(mean),
+                edges,
+            )
         })
         .collect();
     let mut fig = StructureFigure::new(&TRUSS_COLUMNS);
@@ -352,7 +393,14 @@ pub fn fig_4_9(_: &Ctx) -> Result<Drawn> {
     let forces = forces_of(&a);
     let force = |_: usize, _: usize, e: [usize; 2]| forces.get(&e).copied();
     let nodes = positions(&a);
-    fig.add("q = 2, ε = π/12 (x–y), coloured by height class Z", View::Xy, &nodes, &groups, &force, truss_extra(&a));
+    fig.add(
+        "q = 2, ε = π/12 (x–y), coloured by height class Z",
+        View::Xy,
+        &nodes,
+        &groups,
+        &force,
+        truss_extra(&a),
+    );
     let panel = fig.panels.last_mut().expect("just added");
     let mut classes: Vec<i64> = z_of.clone();
     classes.sort_unstable();
@@ -476,7 +524,10 @@ fn sign_map_figure(ctx: &Ctx, member: usize, name: &str) -> Result<Drawn> {
             ]);
         }
     }
-    Ok(Drawn::new(Figure::new(vec![sign_map_panel(&map, name)]), data))
+    Ok(Drawn::new(
+        Figure::new(vec![sign_map_panel(&map, name)]),
+        data,
+    ))
 }
 
 /// Figs. 4.14–4.16: the sign of λ₁₀₁₀, λ₁₀₀₁, λ₀₁₀₀ over the load direction.
@@ -545,7 +596,14 @@ pub fn fig_4_19(_: &Ctx) -> Result<Drawn> {
             Group::new("extra strings", RED, extra.pairs().to_vec()),
         ];
         let title = format!("q = {q}");
-        fig.add(&title, View::Iso, &nodes, &groups, &no_forces, vec![q.into()]);
+        fig.add(
+            &title,
+            View::Iso,
+            &nodes,
+            &groups,
+            &no_forces,
+            vec![q.into()],
+        );
     }
     Ok(fig.finish())
 }
@@ -568,7 +626,15 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Drawn> {
     let mut panels = Vec::new();
     for (prestress, name) in [(10.0, "low"), (5000.0, "high")] {
         let grid = AngleGrid::new(0.0, 2.0 * PI, n);
-        let sweep = gamma_sweep(&truss, &extra, 1000.0, 0.0, grid, prestress, Method::Recursive)?;
+        let sweep = gamma_sweep(
+            &truss,
+            &extra,
+            1000.0,
+            0.0,
+            grid,
+            prestress,
+            Method::Recursive,
+        )?;
         let mut panel = Panel::new(
             format!("{name} prestress: {prestress} N per extra string"),
             "load polar angle γ [rad]",
@@ -580,7 +646,11 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Drawn> {
         ];
         for (forces, lengths, label, color) in curves {
             for (j, l) in lengths.iter().enumerate() {
-                let pts = sweep.polar.iter().zip(forces.iter()).map(|(&g, f)| (g, f[j] / l));
+                let pts = sweep
+                    .polar
+                    .iter()
+                    .zip(forces.iter())
+                    .map(|(&g, f)| (g, f[j] / l));
                 let s = Series::new(if j == 0 { label } else { "" }, pts.collect());
                 panel = panel.series(match color {
                     Some(c) => s.with_color(c),
