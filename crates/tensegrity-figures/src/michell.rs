@@ -203,7 +203,7 @@ pub fn fig_4_2(_: &Ctx) -> Result<Drawn> {
     let tip = View::Side.project(&nodes[index[&(q, 0)]]);
     let panel = fig.panels.last_mut().expect("just added");
     panel.series.push(
-        Series::new(format!("order 0 (n{q}0)"), vec![tip])
+        Series::new(format!("order 0 (n{q}0)"), vec![tip, tip])
             .with_markers()
             .with_color(SPIRAL_COLORS[q]),
     );
@@ -405,18 +405,19 @@ pub fn fig_4_9(_: &Ctx) -> Result<Drawn> {
     let mut classes: Vec<i64> = z_of.clone();
     classes.sort_unstable();
     classes.dedup();
+    // one marker per node (a polyline of one point twice: no line), labelled once a class
     for z in classes {
-        let pts = nodes
-            .iter()
-            .zip(&z_of)
-            .filter(|(_, &c)| c == z)
-            .map(|(n, _)| View::Xy.project(n))
-            .collect();
-        panel.series.push(
-            Series::new(format!("nodes, Z = {z}"), pts)
-                .with_markers()
-                .with_color(height_color(z as f64)),
-        );
+        let members = nodes.iter().zip(&z_of).filter(|(_, &c)| c == z);
+        for (k, (n, _)) in members.enumerate() {
+            let p = View::Xy.project(n);
+            let label = if k == 0 {
+                format!("nodes, Z = {z}")
+            } else {
+                String::new()
+            };
+            let marker = Series::new(label, vec![p, p]).with_markers();
+            panel.series.push(marker.with_color(height_color(z as f64)));
+        }
     }
     Ok(fig.finish())
 }

@@ -3,7 +3,7 @@
 //! - Fig. 3.1: the six nodes of prism 0 (`toroid::prism_nodes`, n6 = [0, R_m tan(π/n), −R_m]
 //!   as corrected by ERRATA 3.1), labelled;
 //! - Fig. 3.2: the seven parameters on the reference wheel: the circles R_o, R_m, R_i in the
-//!   side view, the treads T, t and the offset D from above;
+//!   side view, prism 0 from above with the treads T, t and the offset D;
 //! - Fig. 3.3: the reference wheel (n = 8) with the stabilising options (1, 2), (1, 3),
 //!   (2, 3), isometric ([`toroid::WheelSpec::build`]), its prestress design's member forces
 //!   and margin in the data;
@@ -117,7 +117,8 @@ pub fn fig_3_1(_: &Ctx) -> Result<Drawn> {
         for (i, n) in nodes.iter().enumerate() {
             let label = format!("n{}", i + 1);
             let point = view.project(n);
-            let s = Series::new(label, vec![point]).with_markers();
+            // a marker: a polyline of one point twice (no line to draw)
+            let s = Series::new(label, vec![point, point]).with_markers();
             panel.series.push(s);
         }
     }
@@ -125,8 +126,8 @@ pub fn fig_3_1(_: &Ctx) -> Result<Drawn> {
 }
 
 /// Fig. 3.2: the toroid's parameters on the reference wheel (spokes + inner rings): the side
-/// (y–z) with the circles R_o, R_m, R_i, and the top (y–x) with the tread widths T, t and
-/// the offset D; the seven parameters in the data.
+/// (y–z) with the circles R_o, R_m, R_i, and prism 0 from above (y–x) with the tread widths
+/// T, t and the offset D; the seven parameters in the data.
 pub fn fig_3_2(_: &Ctx) -> Result<Drawn> {
     let w = WheelSpec::default();
     let t = w.build()?;
@@ -178,7 +179,17 @@ pub fn fig_3_2(_: &Ctx) -> Result<Drawn> {
         side.series
             .push(Series::new(label, circle(r)).with_color(rgb));
     }
-    fig.add("top: T, t, D", View::Top, nodes, &groups, none, extra);
+    // one prism from above: n1, n2 at x = ±T/2; n4, n5 at x = ∓t/2, y = ∓D
+    let prism = toroid::build_prism(&p, w.bar_density)?;
+    let title = "prism 0 from above: T, t, D";
+    fig.add(
+        title,
+        View::Top,
+        prism.structure.nodes(),
+        &wheel_groups(&prism),
+        none,
+        extra,
+    );
     Ok(fig.finish())
 }
 
