@@ -120,15 +120,15 @@ pub fn spiral_node(i: usize, k: usize, r0: f64, beta: f64, phi: f64) -> Vector3<
     Vector3::new(0.0, r * phase.cos(), r * phase.sin())
 }
 
-/// The nodes n_ik, i + k ≤ q, numbered row by row (i, then k), and their names.
-fn spiral_nodes(
-    q: usize,
-    phi: f64,
-) -> (
+/// The nodes of a spiral drawing, their names and their numbers by (i, k).
+type Spiral = (
     Vec<Vector3<f64>>,
     Vec<String>,
     HashMap<(usize, usize), usize>,
-) {
+);
+
+/// The nodes n_ik, i + k ≤ q, numbered row by row (i, then k), and their names.
+fn spiral_nodes(q: usize, phi: f64) -> Spiral {
     let (mut nodes, mut names, mut index) = (Vec::new(), Vec::new(), HashMap::new());
     for i in 0..=q {
         for k in 0..=(q - i) {
@@ -349,12 +349,16 @@ pub fn fig_4_8(_: &Ctx) -> Result<Drawn> {
 
 /// The colour of height class Z (or of a member between classes, its mean).
 fn height_color(z: f64) -> (u8, u8, u8) {
-    match z {
-        z if z <= -1.5 => (0x08, 0x30, 0x8c),
-        z if z < 0.0 => (0x6b, 0xae, 0xd6),
-        z if z == 0.0 => (0x40, 0x40, 0x40),
-        z if z < 1.5 => (0xfd, 0x8d, 0x3c),
-        _ => (0xbd, 0x00, 0x26),
+    if z <= -1.5 {
+        (0x08, 0x30, 0x8c)
+    } else if z < 0.0 {
+        (0x6b, 0xae, 0xd6)
+    } else if z == 0.0 {
+        (0x40, 0x40, 0x40)
+    } else if z < 1.5 {
+        (0xfd, 0x8d, 0x3c)
+    } else {
+        (0xbd, 0x00, 0x26)
     }
 }
 
