@@ -6,9 +6,10 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-const EXPECTED: [&str; 24] = [
-    "3_3", "3_8", "3_9", "3_10", "3_11", "3_13", "4_2", "4_4", "4_6", "4_7", "4_8", "4_9", "4_10",
-    "4_11", "4_12", "4_14", "4_15", "4_16", "4_18", "4_19", "4_20", "5_1", "5_2", "5_3",
+const EXPECTED: [&str; 30] = [
+    "2_2", "3_1", "3_2", "3_3", "3_8", "3_9", "3_10", "3_11", "3_13", "4_1", "4_2", "4_3", "4_4",
+    "4_6", "4_7", "4_8", "4_9", "4_10", "4_11", "4_12", "4_13", "4_14", "4_15", "4_16", "4_18",
+    "4_19", "4_20", "5_1", "5_2", "5_3",
 ];
 
 fn run(args: &[&str]) -> Output {
@@ -142,7 +143,71 @@ fn quick_figures_are_all_written_with_their_data() {
     assert!((column(&h, &rows[0], "mass_kg.yield_buckling") - 1.354).abs() < 5e-4);
     let (_, rows) = table(&dir.join("data/fig_4_18.csv"));
     assert_eq!(rows.len(), 3 * 7);
+    every_figure_has_its_data_and_an_index_entry(&dir);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Every figure's data beside it (a header with units, rows), and an entry in index.json
+/// (and index.md) naming its files, the command that reproduces it and what differs from
+/// the thesis; Fig. 3.8's nodes on the slope and Fig. 3.9's n = 100 margin in their data.
+fn every_figure_has_its_data_and_an_index_entry(dir: &Path) {
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("index.json")).unwrap()).unwrap();
+    let md = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    let entries = index["figures"].as_array().unwrap();
+    assert_eq!(entries.len(), EXPECTED.len());
+    for (name, e) in EXPECTED.iter().zip(entries) {
+        let number = name.replace('_', ".");
+        assert_eq!(e["figure"], number.as_str());
+        assert_eq!(e["status"], "written");
+        let files: Vec<&str> = e["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap())
+            .collect();
+        assert_eq!(
+            files,
+            [format!("fig_{name}.svg"), format!("fig_{name}.csv")]
+        );
+        for f in &files {
+            assert!(dir.join(f).is_file(), "{f}");
+        }
+        let (header, rows) = table(&dir.join(files[1]));
+        assert!(!rows.is_empty(), "{name}: no data");
+        assert!(
+            header.iter().any(|h| h.ends_with(']')),
+            "{name}: no unit in {header:?}"
+        );
+        let command = e["command"].as_str().unwrap();
+        assert!(
+            command.contains(&format!("--only {number} --quick")),
+            "{command}"
+        );
+        assert!(!e["title"].as_str().unwrap().is_empty());
+        assert!(!e["differs_from_thesis"].as_str().unwrap().is_empty());
+        assert!(
+            md.contains(&format!("| {number} | ")),
+            "{number} not in index.md"
+        );
+    }
+    // Fig. 3.8 (quick: the rigid model): every node on or above the slope
+    let (h, rows) = table(&dir.join("fig_3_8.csv"));
+    let item = h.iter().position(|c| c == "item").unwrap();
+    for r in rows.iter().filter(|r| r[item] == "node") {
+        let pen = column(&h, r, "max_penetration [m]");
+        assert!(column(&h, r, "z [m]") >= -pen - 1e-12, "{r:?}");
+    }
+    // Fig. 3.9: the n = 100 wheel (D = 0.8/n) is prestressable
+    let (h, rows) = table(&dir.join("fig_3_9.csv"));
+    let n100: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| column(&h, r, "sides") == 100.0)
+        .collect();
+    assert!(!n100.is_empty());
+    assert!(n100
+        .iter()
+        .all(|r| column(&h, r, "prestress_margin") > 1e-3));
 }
 
 #[test]

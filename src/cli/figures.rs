@@ -1,16 +1,18 @@
 //! `tensegrity figures --out DIR [--quick] [--only LIST] [--png] [--threads N]`: every figure
 //! of the thesis the project computes, one file each (`fig_3_10.svg`, …), built in parallel
 //! by [`tensegrity_figures::build_figures`] from the table [`tensegrity_figures::FIGURES`].
-//! The directory, its `data/` (the sweeps' CSVs) and one figure sink per figure are opened
-//! before any work; a figure that fails is reported and the others are still written, and the
-//! command then exits non-zero naming the failed figures.
+//! The directory, its `data/` (the sweeps' CSVs) and one figure sink per figure — and one for
+//! its data, `fig_3_10.csv` — are opened before any work; a figure that fails is reported and
+//! the others are still written, and the command then exits non-zero naming the failed
+//! figures. `index.json` and `index.md` list every figure: caption, files, the command that
+//! reproduces it and what differs from the thesis.
 
 use super::output;
 use super::request_args::usage;
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_figures::{Built, FigureError, FigureSpec, FiguresRequest};
-use tensegrity_io::sink::{FigureSink, OutputDir};
+use tensegrity_figures::{Built, FigureError, FigureIndex, FigureSpec, FiguresRequest, IndexEntry};
+use tensegrity_io::sink::{CsvSink, FigureSink, FileSink, JsonSink, OutputDir};
 
 /// Arguments of `tensegrity figures`.
 #[derive(clap::Args, Debug)]
@@ -48,23 +50,80 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     let ext = request.extension();
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
-    // one sink per figure, before any work; a figure whose file cannot be opened fails alone
+    let index_sinks = (
+        output::open_required("--out", &dir.join("index.json"), JsonSink::open)?,
+        output::open_required("--out", &dir.join("index.md"), FileSink::open)?,
+    );
+    // two sinks per figure (picture, data), before any work; a figure whose files cannot be
+    // opened fails alone
     let jobs = chosen
         .into_iter()
-        .map(|f| (f, FigureSink::open(&dir.join(f.file_name(ext)))))
+        .map(|f| {
+            let sinks = FigureSink::open(&dir.join(f.file_name(ext))).and_then(|s| {
+                Ok((
+                    s,
+                    CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?,
+                ))
+            });
+            (f, sinks)
+        })
         .collect();
-    let built = tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sink, build| {
-        let write = || {
-            let sink = sink?;
-            let path = sink.path().to_path_buf();
-            sink.finish(&build()?)?;
-            anyhow::Ok(path)
-        };
-        (f, write())
-    });
+    let built =
+        tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sinks, build| {
+            let write = || {
+                let (sink, data_sink) = sinks?;
+                let path = sink.path().to_path_buf();
+                let drawn = build()?;
+                sink.finish(&drawn.figure)?;
+                drawn.data.write(data_sink)?;
+                anyhow::Ok(path)
+            };
+            (f, write())
+        });
     dir.keep();
     data.keep();
+    let index = index_of(args, ext, &built);
+    index_sinks.0.finish(&index)?;
+    index_sinks.1.finish_with(index.to_markdown())?;
     report(ext, built)
+}
+
+/// The index of the run: every figure, its files and the command that reproduces it.
+fn index_of(
+    args: &FiguresArgs,
+    ext: &str,
+    built: &Built<(&FigureSpec, Result<PathBuf>)>,
+) -> FigureIndex {
+    let figures = built
+        .outcomes
+        .iter()
+        .map(|(f, outcome)| {
+            let mut command = format!(
+                "tensegrity figures --out {} --only {}",
+                args.out.display(),
+                f.number
+            );
+            for (on, flag) in [(args.quick, " --quick"), (args.png, " --png")] {
+                if on {
+                    command.push_str(flag);
+                }
+            }
+            let files = vec![f.file_name(ext), f.file_name("csv")];
+            let error = outcome.as_ref().err().map(|e| format!("{e:#}"));
+            let mut entry = IndexEntry::new(f, files, command, error);
+            entry.warnings = built
+                .warnings
+                .iter()
+                .filter(|w| w.figure == f.number)
+                .map(|w| w.message.clone())
+                .collect();
+            entry
+        })
+        .collect();
+    FigureIndex {
+        quick: args.quick,
+        figures,
+    }
 }
 
 /// Prints the files written, the failures and the warnings; fails naming the failed files.
@@ -73,8 +132,9 @@ fn report(ext: &str, built: Built<(&FigureSpec, Result<PathBuf>)>) -> Result<()>
     for (f, outcome) in built.outcomes {
         match outcome {
             Ok(path) => println!(
-                "wrote {}  (Fig. {}: {})",
+                "wrote {} and its data {}  (Fig. {}: {})",
                 path.display(),
+                f.file_name("csv"),
                 f.number,
                 f.description
             ),

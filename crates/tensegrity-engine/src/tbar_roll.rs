@@ -101,6 +101,7 @@ fn toroid_wheel(request: &TbarRollRequest, n: usize) -> WheelSpec {
         params: toroid_params(request, n),
         stabilize: Stabilize::SPOKES_INNER,
         bar_density: request.bar_density,
+        scale_with_n: false,
     }
 }
 

@@ -10,13 +10,13 @@
 //! their title and a [`Warning`] returned beside the outcomes.
 
 use crate::catalog::{FigureSpec, FiguresRequest};
+use crate::data::Drawn;
 use crate::error::{FigureError, Result};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 use sweeps::{RunOptions, Silent, Spec};
 use tensegrity_io::csv::Curve;
-use tensegrity_io::figure::Figure;
 use toroid::{RollReport, ToroidError};
 
 /// A figure drawn from a model used outside its assumptions: what the front end shows beside
@@ -141,17 +141,17 @@ pub struct Built<R> {
 /// let jobs = request.selected()?.into_iter().map(|f| (f, f.file_name("svg"))).collect();
 /// let data = std::env::temp_dir();
 /// let built = build_figures(&request, &data, jobs, |_, name, build| {
-///     build().map(|figure| (name, figure.panels.len()))
+///     build().map(|drawn| (name, drawn.figure.panels.len()))
 /// });
 /// let outcomes: Vec<_> = built.outcomes.into_iter().collect::<Result<_, _>>()?;
-/// assert_eq!(outcomes, [("fig_4_2.svg".to_string(), 4), ("fig_5_1.svg".to_string(), 2)]);
+/// assert_eq!(outcomes, [("fig_4_2.svg".to_string(), 1), ("fig_5_1.svg".to_string(), 2)]);
 /// # Ok::<(), tensegrity_figures::FigureError>(())
 /// ```
 pub fn build_figures<T: Send, R: Send>(
     request: &FiguresRequest,
     data: &Path,
     jobs: Vec<(&'static FigureSpec, T)>,
-    deliver: impl Fn(&'static FigureSpec, T, &dyn Fn() -> Result<Figure>) -> R + Sync,
+    deliver: impl Fn(&'static FigureSpec, T, &dyn Fn() -> Result<Drawn>) -> R + Sync,
 ) -> Built<R> {
     let ctx = Context::new(request.quick, data);
     let count = jobs.len();

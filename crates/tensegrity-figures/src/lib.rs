@@ -9,16 +9,20 @@
 //!
 //! Figures are built, not written: a front end opens the figure's sink
 //! ([`tensegrity_io::sink::FigureSink`]) before the work, so a bad path fails at once, and
-//! finishes it with the figure. The only files written here are the CSVs of the sweeps behind
+//! finishes it with the figure, and writes the figure's data ([`Drawn::data`]) beside it.
+//! The only files written here are the CSVs of the sweeps behind
 //! Figs. 3.13 and 4.18, into the data directory a front end opened ([`Context::sweep`]).
 //!
 //! | module | what |
 //! |---|---|
-//! | [`catalog`] | [`FIGURES`]: number, description, builder of every thesis figure; [`FiguresRequest`] (`quick`, `only`, `png`, `threads`) |
+//! | [`catalog`] | [`FIGURES`]: number, description, thesis caption, what differs, builder of every thesis figure; [`FiguresRequest`] (`quick`, `only`, `png`, `threads`) |
+//! | [`data`] | [`Drawn`]: a figure and its data table (written beside it as CSV); the tables of structure drawings |
+//! | [`index`] | [`FigureIndex`]: the index of a `figures` run (JSON and Markdown) |
+//! | [`chapter2`] | chapter 2: Fig. 2.2 |
 //! | [`driver`] | [`build_figures`]: the chosen figures on worker threads, each handed to the front end as it is built; [`Context`] (sweeps, shared rolling runs, [`Warning`]s) |
 //! | [`draw`] | structures drawn to scale: members projected onto a plane, one polyline per member |
-//! | [`wheels`] | chapter 3: Figs. 3.3, 3.8, 3.9, 3.10, 3.11, 3.13 |
-//! | [`michell`] | chapter 4: Figs. 4.2–4.20 and the mass-table figure |
+//! | [`wheels`] | chapter 3: Figs. 3.1, 3.2, 3.3, 3.8, 3.9, 3.10, 3.11, 3.13 |
+//! | [`michell`] | chapter 4: Figs. 4.1–4.20 and the mass-table figure |
 //! | [`tbar`] | chapter 5: Figs. 5.1–5.3 and the side and top views of any T-bar |
 //! | [`rolling`] | [`FigRollingRequest`] and [`fig_rolling`]; the panels of one rolling run |
 //! | [`work_precision`] | error against wall time of every integrator |
@@ -30,17 +34,21 @@
 //! use tensegrity_figures::FIGURES;
 //! let fig = FIGURES.iter().find(|f| f.number == "5.2").unwrap();
 //! let ctx = tensegrity_figures::Context::new(true, std::env::temp_dir());
-//! let figure = fig.build(&ctx)?;
-//! assert_eq!(figure.panels[0].title, "T-bar wheel, side");
+//! let drawn = fig.build(&ctx)?;
+//! assert_eq!(drawn.figure.panels[0].title, "T-bar wheel, side");
 //! assert_eq!(fig.file_name("svg"), "fig_5_2.svg");
+//! assert!(drawn.data.header().contains(&"x [m]".to_string()));
 //! # Ok::<(), tensegrity_figures::FigureError>(())
 //! ```
 #![warn(missing_docs)]
 
 pub mod catalog;
+pub mod chapter2;
+pub mod data;
 pub mod draw;
 pub mod driver;
 pub mod error;
+pub mod index;
 pub mod michell;
 pub mod rolling;
 pub mod tbar;
@@ -48,6 +56,8 @@ pub mod wheels;
 pub mod work_precision;
 
 pub use catalog::{FigureSpec, FiguresRequest, FIGURES};
+pub use data::Drawn;
 pub use driver::{build_figures, Built, Context, Warning};
 pub use error::{FigureError, Result};
+pub use index::{FigureIndex, IndexEntry};
 pub use rolling::{fig_rolling, roll_figure, FigRolling, FigRollingRequest};

@@ -5,7 +5,8 @@
 //! from the projected line segments of [`tbar_wheel::drawing::polylines`]: side (ι̂₂, ι̂₃)
 //! and top (ι̂₂, ι̂₁).
 
-use crate::draw::{drawing_figure, BLUE, RED};
+use crate::data::{no_forces, Drawn, PanelData, StructureData};
+use crate::draw::{drawing_figure, Group, BLUE, RED};
 use crate::driver::Context as Ctx;
 use crate::error::Result;
 use michell3d::MichellParams;
@@ -31,15 +32,37 @@ fn panel(g: &TbarGeometry, view: View, title: &str) -> Panel {
     p
 }
 
-fn figure(layout: Layout, views: &[(View, &str)]) -> Result<Figure> {
+/// The drawing of `layout` in `views`; its data the geometry's nodes (labelled by their
+/// tuples), bars and strings per panel (no forces: the drawing shows the geometry).
+fn figure(layout: Layout, views: &[(View, &str)]) -> Result<Drawn> {
     let michell = MichellParams::cylindrical(2, 1.0, FRAC_PI_6, PI / 8.0, 0.25);
     let g = TbarGeometry::new(TbarParams::tread(michell).with_layout(layout))?;
     let panels = views.iter().map(|&(v, t)| panel(&g, v, t)).collect();
-    Ok(drawing_figure(panels))
+    let groups = [
+        Group::new("bars", BLUE, g.bars.clone()),
+        Group::new("strings", RED, g.strings.clone()),
+    ];
+    let mut data = StructureData::new(&[]);
+    for (k, &(view, title)) in views.iter().enumerate() {
+        let view = match view {
+            View::Side => crate::draw::View::Side,
+            View::Top => crate::draw::View::Top,
+        };
+        let p = PanelData {
+            panel: (k, title),
+            view,
+            nodes: &g.nodes,
+            groups: &groups,
+            extra: vec![],
+            node_labels: &g.labels,
+        };
+        data.panel(p, &no_forces);
+    }
+    Ok(Drawn::new(drawing_figure(panels), data.finish()))
 }
 
 /// Fig. 5.1: one tread.
-pub fn fig_5_1(_: &Ctx) -> Result<Figure> {
+pub fn fig_5_1(_: &Ctx) -> Result<Drawn> {
     figure(
         Layout::Tread,
         &[(View::Side, "T-bar tread, side"), (View::Top, "top")],
@@ -47,12 +70,12 @@ pub fn fig_5_1(_: &Ctx) -> Result<Figure> {
 }
 
 /// Fig. 5.2: the wheel.
-pub fn fig_5_2(_: &Ctx) -> Result<Figure> {
+pub fn fig_5_2(_: &Ctx) -> Result<Drawn> {
     figure(Layout::Wheel, &[(View::Side, "T-bar wheel, side")])
 }
 
 /// Fig. 5.3: the extended wheel (a copy 0.5 m along ι̂₁).
-pub fn fig_5_3(_: &Ctx) -> Result<Figure> {
+pub fn fig_5_3(_: &Ctx) -> Result<Drawn> {
     figure(
         Layout::Extended { offset: 0.5 },
         &[

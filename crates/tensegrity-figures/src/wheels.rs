@@ -1,11 +1,18 @@
-//! The toroid-wheel figures of chapter 3:
+//! The toroid-wheel figures of chapter 3, each with its data ([`crate::data`]):
 //!
+//! - Fig. 3.1: the six nodes of prism 0 (`toroid::prism_nodes`, n6 = [0, R_m tan(π/n), −R_m]
+//!   as corrected by ERRATA 3.1), labelled;
+//! - Fig. 3.2: the seven parameters on the reference wheel: the circles R_o, R_m, R_i in the
+//!   side view, prism 0 from above with the treads T, t and the offset D;
 //! - Fig. 3.3: the reference wheel (n = 8) with the stabilising options (1, 2), (1, 3),
-//!   (2, 3), isometric ([`toroid::WheelSpec::build`]);
-//! - Fig. 3.8: the n = 8 wheel rolling down 50° at three instants ([`toroid::roll`]), drawn in
-//!   the frame of the incline: the wheel's (y, z) rotated by −θ about its axle at (s, h),
-//!   θ(t) = ∫ω dt by the trapezoidal rule;
-//! - Fig. 3.9: wheels of complexity 6, 24, 100, side view;
+//!   (2, 3), isometric ([`toroid::WheelSpec::build`]), its prestress design's member forces
+//!   and margin in the data;
+//! - Fig. 3.8: the n = 8 wheel rolling down 50° at three instants, drawn from the run's own
+//!   node frames ([`toroid::roll_with_frames`]) in the incline's frame (s along the slope,
+//!   h above it), so a node in contact is on the slope, less the reported penetration;
+//! - Fig. 3.9: wheels of complexity 6, 24, 100, side view, with `scale_with_n`
+//!   (D = 0.8/n, [`toroid::WheelSpec::geometry`]): every one prestressable, its margin in
+//!   the data;
 //! - Figs. 3.10–3.11: the axle height above the incline less its mean, and the normal contact
 //!   force, of the n = 8, 12, 16, 24 wheels ([`toroid::rolling_series`] with the default
 //!   request, run once for both figures);
@@ -16,13 +23,15 @@
 //! whose net normal force goes negative (the wheel would leave the slope: outside the
 //! model's assumptions) is flagged in the figure's title and by a [`crate::Warning`].
 
-use crate::draw::{drawing_figure, structure_panel, Group, View, BLUE, GREY, RED};
+use crate::data::{Drawn, StructureFigure};
+use crate::draw::{Group, View, BLUE, GREY, RED};
 use crate::driver::Context as Ctx;
 use crate::error::Result;
-use nalgebra::Vector3;
 use tensegrity_io::figure::{Figure, Panel, Series};
-use toroid::{FidelityChoice, RollReport, RollRequest, Stabilize, Toroid, WheelSpec};
-use wheel_rolling::RollingSample;
+use tensegrity_io::figure_data::Value;
+use toroid::{
+    FidelityChoice, RollReport, RollRequest, Stabilize, Toroid, ToroidRequest, WheelSpec,
+};
 
 /// Bars blue, strings red.
 fn wheel_groups(t: &Toroid) -> [Group; 2] {
@@ -37,48 +46,186 @@ fn wheel_groups(t: &Toroid) -> [Group; 2] {
     ]
 }
 
-fn wheel(sides: usize, stabilize: Stabilize) -> Result<Toroid> {
-    let mut w = WheelSpec::default();
-    w.params.sides = sides;
-    w.stabilize = stabilize;
-    Ok(w.build()?)
+/// Member `k` of group `g` of [`wheel_groups`] in a list of forces, bars then strings.
+fn bar_then_string(forces: &[f64], bars: usize, g: usize, k: usize) -> Option<f64> {
+    forces.get(if g == 0 { k } else { bars + k }).copied()
 }
 
-/// Fig. 3.3: the reference wheel (n = 8) with options (1, 2), (1, 3) and (2, 3).
-pub fn fig_3_3(_: &Ctx) -> Result<Figure> {
-    let options = ["spokes,inner", "spokes,outer", "inner,outer"];
-    let panels = options
-        .iter()
-        .map(|o| {
-            let t = wheel(8, o.parse()?)?;
-            let nodes = t.structure.nodes();
-            Ok(structure_panel(
-                o.to_string(),
-                View::Iso,
-                nodes,
-                &wheel_groups(&t),
-            ))
-        })
-        .collect::<Result<Vec<Panel>>>()?;
-    Ok(drawing_figure(panels))
+/// A wheel drawn with its prestress design: the report (margin, design forces) of `wheel`.
+fn designed(wheel: WheelSpec) -> Result<(Toroid, toroid::ToroidReport)> {
+    let report = toroid::toroid_report(&ToroidRequest {
+        wheel,
+        ..ToroidRequest::default()
+    })?;
+    Ok((wheel.build()?, report))
 }
 
-/// Fig. 3.9: wheels of complexity 6, 24 and 100 (side view).
-pub fn fig_3_9(_: &Ctx) -> Result<Figure> {
-    let panels = [6, 24, 100]
-        .iter()
-        .map(|&n| {
-            let t = wheel(n, Stabilize::SPOKES_INNER)?;
-            let title = format!("n = {n}");
-            Ok(structure_panel(
-                title,
-                View::Side,
-                t.structure.nodes(),
-                &wheel_groups(&t),
-            ))
-        })
-        .collect::<Result<Vec<Panel>>>()?;
-    Ok(drawing_figure(panels))
+/// The data columns of a designed wheel.
+const WHEEL_COLUMNS: [(&str, &str); 5] = [
+    ("sides", ""),
+    ("offset", "m"),
+    ("scale_with_n", ""),
+    ("prestressable", ""),
+    ("prestress_margin", ""),
+];
+
+/// Adds a designed wheel as a panel: members with their design forces (smallest string
+/// tension [`toroid::defaults::DESIGN_MIN_TENSION`]), the margin in the data.
+fn wheel_panel(fig: &mut StructureFigure, title: &str, view: View, wheel: WheelSpec) -> Result<()> {
+    let (t, r) = designed(wheel)?;
+    let forces = r.prestress_member_force.clone().unwrap_or_default();
+    let bars = r.bars;
+    let extra: Vec<Value> = vec![
+        t.params.sides.into(),
+        t.params.offset.into(),
+        wheel.scale_with_n.into(),
+        r.prestressable.into(),
+        r.prestress_margin.into(),
+    ];
+    fig.add(
+        title,
+        view,
+        t.structure.nodes(),
+        &wheel_groups(&t),
+        &|g, k, _| bar_then_string(&forces, bars, g, k),
+        extra,
+    );
+    Ok(())
+}
+
+/// Fig. 3.1: the six nodes of prism 0 (n = 8 reference wheel, n6 as corrected by ERRATA
+/// 3.1), isometric and side (y–z), each node a labelled marker.
+pub fn fig_3_1(_: &Ctx) -> Result<Drawn> {
+    let p = toroid::ToroidParams::REFERENCE;
+    let t = toroid::build_prism(&p, toroid::defaults::BAR_DENSITY)?;
+    let nodes = t.structure.nodes();
+    let mut fig = StructureFigure::new(&[]);
+    fig.node_labels = (1..=nodes.len()).map(|i| format!("n{i}")).collect();
+    for (view, title) in [
+        (View::Iso, "3-bar prism, isometric"),
+        (View::Side, "side (y–z)"),
+    ] {
+        fig.add(
+            title,
+            view,
+            nodes,
+            &wheel_groups(&t),
+            &crate::data::no_forces,
+            vec![],
+        );
+        let panel = fig.panels.last_mut().expect("just added");
+        for (i, n) in nodes.iter().enumerate() {
+            let label = format!("n{}", i + 1);
+            let point = view.project(n);
+            // a marker: a polyline of one point twice (no line to draw)
+            let s = Series::new(label, vec![point, point]).with_markers();
+            panel.series.push(s);
+        }
+    }
+    Ok(fig.finish())
+}
+
+/// Fig. 3.2: the toroid's parameters on the reference wheel (spokes + inner rings): the side
+/// (y–z) with the circles R_o, R_m, R_i, and prism 0 from above (y–x) with the tread widths
+/// T, t and the offset D; the seven parameters in the data.
+pub fn fig_3_2(_: &Ctx) -> Result<Drawn> {
+    let w = WheelSpec::default();
+    let t = w.build()?;
+    let p = t.params;
+    let extra: Vec<Value> = vec![
+        p.sides.into(),
+        p.outer_tread.into(),
+        p.inner_tread.into(),
+        p.offset.into(),
+        p.outer_radius.into(),
+        p.inner_radius.into(),
+        p.rim_radius.into(),
+    ];
+    let mut fig = StructureFigure::new(&[
+        ("sides", ""),
+        ("outer_tread", "m"),
+        ("inner_tread", "m"),
+        ("offset", "m"),
+        ("outer_radius", "m"),
+        ("inner_radius", "m"),
+        ("rim_radius", "m"),
+    ]);
+    let groups = wheel_groups(&t);
+    let nodes = t.structure.nodes();
+    let none = &crate::data::no_forces;
+    fig.add(
+        "side: R_o, R_m, R_i",
+        View::Side,
+        nodes,
+        &groups,
+        none,
+        extra.clone(),
+    );
+    let circle = |r: f64| -> Vec<(f64, f64)> {
+        (0..=120)
+            .map(|k| {
+                let a = 2.0 * std::f64::consts::PI * k as f64 / 120.0;
+                (r * a.cos(), r * a.sin())
+            })
+            .collect()
+    };
+    let side = fig.panels.last_mut().expect("just added");
+    for (name, r, rgb) in [
+        ("R_o", p.outer_radius, GREY),
+        ("R_m", p.rim_radius, (0x2c, 0xa0, 0x2c)),
+        ("R_i", p.inner_radius, (0x94, 0x67, 0xbd)),
+    ] {
+        let label = format!("{name} = {r} m");
+        side.series
+            .push(Series::new(label, circle(r)).with_color(rgb));
+    }
+    // one prism from above: n1, n2 at x = ±T/2; n4, n5 at x = ∓t/2, y = ∓D
+    let prism = toroid::build_prism(&p, w.bar_density)?;
+    let title = "prism 0 from above: T, t, D";
+    fig.add(
+        title,
+        View::Top,
+        prism.structure.nodes(),
+        &wheel_groups(&prism),
+        none,
+        extra,
+    );
+    Ok(fig.finish())
+}
+
+/// Fig. 3.3: the reference wheel (n = 8) with options (1, 2), (1, 3) and (2, 3), with the
+/// prestress design's member forces in the data.
+pub fn fig_3_3(_: &Ctx) -> Result<Drawn> {
+    let mut fig = StructureFigure::new(&WHEEL_COLUMNS);
+    for o in ["spokes,inner", "spokes,outer", "inner,outer"] {
+        let wheel = WheelSpec {
+            stabilize: o.parse::<Stabilize>()?,
+            ..WheelSpec::default()
+        };
+        wheel_panel(&mut fig, o, View::Iso, wheel)?;
+    }
+    Ok(fig.finish())
+}
+
+/// Fig. 3.9: wheels of complexity 6, 24 and 100 (side view), with `scale_with_n`: the tread
+/// offset D = 0.8/n ([`WheelSpec::geometry`]), so that every wheel is prestressable (the
+/// reference D = 0.1 at n = 100 is not: margin 0); margins and design forces in the data.
+pub fn fig_3_9(_: &Ctx) -> Result<Drawn> {
+    let mut fig = StructureFigure::new(&WHEEL_COLUMNS);
+    for n in [6, 24, 100] {
+        let wheel = WheelSpec {
+            scale_with_n: true,
+            ..WheelSpec::with_sides(n)
+        };
+        let d = wheel.geometry().offset;
+        wheel_panel(
+            &mut fig,
+            &format!("n = {n}, D = 0.8/n = {d:.3} m"),
+            View::Side,
+            wheel,
+        )?;
+    }
+    Ok(fig.finish())
 }
 
 /// The default rolling request, shorter and on the reduced rigid model with `quick`.
@@ -95,19 +242,9 @@ fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
     }
 }
 
-/// The rotation angle θ(t) = ∫ω dt of the samples (trapezoidal rule).
-fn angles(samples: &[RollingSample]) -> Vec<f64> {
-    let mut theta = vec![0.0; samples.len()];
-    for k in 1..samples.len() {
-        let (a, b) = (&samples[k - 1], &samples[k]);
-        theta[k] = theta[k - 1] + 0.5 * (a.omega + b.omega) * (b.t - a.t);
-    }
-    theta
-}
-
-/// Fig. 3.8: the n = 8 wheel at t = 0, 1.5 and 3 s (0, 0.25, 0.5 s with `quick`), in the
-/// frame of the incline: the wheel's (y, z) rotated by −θ about its axle at (s, h).
-pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
+/// Fig. 3.8: the n = 8 wheel at t = 0, 1.5 and 3 s (0, 0.25, 0.5 s with `quick`), from the
+/// run's own node frames in the incline's frame ([`fig_3_8_of`]).
+pub fn fig_3_8(ctx: &Ctx) -> Result<Drawn> {
     let times = if ctx.quick() {
         [0.0, 0.25, 0.5]
     } else {
@@ -115,39 +252,86 @@ pub fn fig_3_8(ctx: &Ctx) -> Result<Figure> {
     };
     let mut req = rolling_request(ctx, times[2]);
     req.wheel.params.sides = 8;
-    let report = toroid::roll(&req)?;
+    fig_3_8_of(ctx, &req, &times)
+}
+
+/// The frames of one `roll` run at `times`, as the run placed the wheel
+/// ([`toroid::roll_with_frames`]: the full model's nodes, or the rigid wheel placed by its
+/// pose): y = s along the slope, z = h above it, so a node in contact is at h = 0 (less the
+/// reported penetration). The data: every node at every frame, with the frame's time, the
+/// model and the run's `max_penetration`; the member forces of the full model.
+pub fn fig_3_8_of(ctx: &Ctx, req: &RollRequest, times: &[f64]) -> Result<Drawn> {
+    let report = toroid::roll_with_frames(req, times)?;
     let flagged = flag_lift_off(ctx, "3.8", &[&report]);
     let t = req.wheel.build()?;
-    let theta = angles(&report.samples);
-    let mut panels = Vec::new();
-    for &time in &times {
-        let k = report
-            .samples
-            .iter()
-            .position(|s| s.t >= time - 1e-9)
-            .unwrap_or(report.samples.len() - 1);
-        let (s, th) = (&report.samples[k], theta[k]);
-        let (sin, cos) = (-th).sin_cos();
-        let moved: Vec<Vector3<f64>> = t
-            .structure
-            .nodes()
-            .iter()
-            .map(|p| {
-                let (y, z) = (p.y * cos - p.z * sin, p.y * sin + p.z * cos);
-                Vector3::new(p.x, s.s + y, s.h + z)
-            })
-            .collect();
-        let title = format!("t = {:.2} s ({}){}", s.t, fidelity(&report), note(flagged));
-        let panel = structure_panel(title, View::Side, &moved, &wheel_groups(&t));
-        let r = t.params.outer_radius;
-        panels.push(
-            panel.series(
-                Series::new("incline", vec![(s.s - 1.3 * r, 0.0), (s.s + 1.3 * r, 0.0)])
-                    .with_color(GREY),
-            ),
+    let mut fig = StructureFigure::new(&[("t", "s"), ("fidelity", ""), ("max_penetration", "m")]);
+    let bars = t.structure.bars().len();
+    let r = t.params.outer_radius;
+    for frame in &report.frames {
+        let mut frame = frame.clone();
+        if report.fidelity == wheel_rolling::Fidelity::Rigid {
+            if let Some(sample) = report.samples.iter().find(|s| s.t == frame.t) {
+                snap_to_contact(&mut frame, sample);
+            }
+        }
+        let title = format!(
+            "t = {:.2} s ({}){}",
+            frame.t,
+            fidelity(&report),
+            note(flagged)
         );
+        let extra: Vec<Value> = vec![
+            frame.t.into(),
+            fidelity(&report).into(),
+            report.summary.max_penetration.into(),
+        ];
+        let forces = &frame.member_forces;
+        fig.add(
+            &title,
+            View::Side,
+            &frame.nodes,
+            &wheel_groups(&t),
+            &|g, k, _| bar_then_string(forces, bars, g, k),
+            extra,
+        );
+        let s = frame.nodes.iter().map(|p| p.y).sum::<f64>() / frame.nodes.len() as f64;
+        let ground = Series::new("incline", vec![(s - 1.3 * r, 0.0), (s + 1.3 * r, 0.0)]);
+        let panel = fig.panels.last_mut().expect("just added");
+        panel.series.push(ground.with_color(GREY));
     }
-    Ok(drawing_figure(panels))
+    Ok(fig.finish())
+}
+
+/// The rigid model's frame turned onto its contact: the frame places the wheel by the turn
+/// ψ = ∫ω dt summed over the samples (trapezoidal rule), whose quadrature error leaves the
+/// contact vertex up to ~10⁻⁸ m off the slope; in contact (normal force > 0) the model's own
+/// pose has the contact pair at (`pivot`, 0), so the wheel is turned about its hub by the
+/// small angle that puts the vertex nearest to it there (skipped if that angle is not small).
+fn snap_to_contact(frame: &mut wheel_rolling::WheelFrame, sample: &wheel_rolling::RollingSample) {
+    if sample.normal <= 0.0 {
+        return;
+    }
+    let hub = (sample.s, sample.h);
+    let target = (sample.pivot - hub.0, -hub.1);
+    let nearest = frame.nodes.iter().min_by(|a, b| {
+        let d = |p: &&nalgebra::Vector3<f64>| (p.y - sample.pivot).hypot(p.z);
+        d(a).total_cmp(&d(b))
+    });
+    let Some(c) = nearest.map(|p| (p.y - hub.0, p.z - hub.1)) else {
+        return;
+    };
+    let delta = target.1.atan2(target.0) - c.1.atan2(c.0);
+    let delta = (delta + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI)
+        - std::f64::consts::PI;
+    if delta.abs() > 1e-4 {
+        return;
+    }
+    let (sin, cos) = delta.sin_cos();
+    for p in &mut frame.nodes {
+        let (y, z) = (p.y - hub.0, p.z - hub.1);
+        p.y = hub.0 + y * cos - z * sin;
+        p.z = hub.1 + y * sin + z * cos;
+    }
 }
 
 /// Flags the runs whose net normal force went negative: the model keeps the wheel on the
@@ -198,7 +382,7 @@ fn rolling_runs(ctx: &Ctx) -> Result<&[RollReport]> {
 }
 
 /// Fig. 3.10: the axle's height above the incline, less its mean, against time.
-pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
+pub fn fig_3_10(ctx: &Ctx) -> Result<Drawn> {
     let runs = rolling_runs(ctx)?;
     let flagged = flag_lift_off(ctx, "3.10", &runs.iter().collect::<Vec<_>>());
     let mut panel = Panel::new(
@@ -211,11 +395,15 @@ pub fn fig_3_10(ctx: &Ctx) -> Result<Figure> {
         let pts = r.samples.iter().map(|s| (s.t, s.h - mean)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
     }
-    Ok(Figure::new(vec![panel]))
+    Ok(Drawn::plot(
+        Figure::new(vec![panel]),
+        ("t", "s"),
+        ("axle_height_minus_mean", "m"),
+    ))
 }
 
 /// Fig. 3.11: the normal contact force of the n = 8 and n = 16 wheels against time.
-pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
+pub fn fig_3_11(ctx: &Ctx) -> Result<Drawn> {
     let all = rolling_runs(ctx)?;
     let runs: Vec<&RollReport> = all.iter().filter(|r| [8, 16].contains(&r.sides)).collect();
     let flagged = flag_lift_off(ctx, "3.11", &runs);
@@ -232,12 +420,16 @@ pub fn fig_3_11(ctx: &Ctx) -> Result<Figure> {
         let pts = r.samples.iter().map(|s| (s.t, s.normal)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
     }
-    Ok(Figure::new(vec![panel]))
+    Ok(Drawn::plot(
+        Figure::new(vec![panel]),
+        ("t", "s"),
+        ("normal_force", "N"),
+    ))
 }
 
 /// Fig. 3.13: F_f/F_e against σ, one curve per ε — a `tipover` sweep over real wheels
 /// (R_i = σ R_o, t = ε T of the reference geometry), its CSV kept beside the figure.
-pub fn fig_3_13(ctx: &Ctx) -> Result<Figure> {
+pub fn fig_3_13(ctx: &Ctx) -> Result<Drawn> {
     let (sigma_step, eps) = if ctx.quick() {
         ("0.1", "[0.25, 0.5, 0.75, 1.0]")
     } else {
@@ -257,5 +449,9 @@ pub fn fig_3_13(ctx: &Ctx) -> Result<Figure> {
     for (eps, pts) in curves {
         panel = panel.series(Series::new(format!("ε = {eps}"), pts));
     }
-    Ok(Figure::new(vec![panel]))
+    Ok(Drawn::plot(
+        Figure::new(vec![panel]),
+        ("sigma", "1"),
+        ("normalized_friction", "1"),
+    ))
 }

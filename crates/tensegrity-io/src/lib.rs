@@ -12,6 +12,8 @@
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
 //! - [`figure`]: line plots of one or more panels (linear or log axes, legends) on `plotters`,
 //!   written as SVG or PNG (with an embedded font) by file extension;
+//! - [`figure_data`]: the data of a figure as one table (header with units), written as CSV
+//!   beside the figure;
 //! - [`sink`]: the outputs of a command — CSV tables, VTK series, whole files, figures, JSON —
 //!   opened (locked, temporary file created) before any work, streamed, renamed into place on
 //!   success, kept with an `# incomplete` trailer when the run is interrupted or fails;
@@ -37,6 +39,7 @@
 pub mod csv;
 pub mod error;
 pub mod figure;
+pub mod figure_data;
 pub mod interrupt;
 pub mod read;
 pub mod scene;

@@ -95,7 +95,7 @@ pub fn cyclic_statics(request: &ToroidRequest) -> Estimate {
 /// Total bar mass of the wheel from the parameters (one prism's bar lengths × n, plus the
 /// axle of length T with spokes).
 pub fn wheel_mass(wheel: &WheelSpec) -> f64 {
-    let p: &ToroidParams = &wheel.params;
+    let p: &ToroidParams = &wheel.geometry();
     let x = crate::builder::prism_nodes(p);
     let prism: f64 = [(0, 3), (1, 4), (2, 5)]
         .iter()

@@ -26,3 +26,7 @@ pub const RIM_WINDOW_SAMPLES: usize = 75;
 
 /// Bisection tolerance of the rim-radius window (m).
 pub const RIM_WINDOW_TOL: f64 = 1e-6;
+
+/// The number of sides at which a wheel's tread offset D is given when `scale_with_n` scales
+/// it (D_n = D · 8 / n): the reference wheel's.
+pub const SCALE_REFERENCE_SIDES: usize = 8;

@@ -343,7 +343,7 @@ mod tests {
     fn the_request_describes_every_field() {
         tensegrity_core::request::check_description::<RollRequest>().unwrap();
         let names: Vec<&str> = RollRequest::params().iter().map(|p| p.name).collect();
-        assert_eq!(names.len(), 25);
+        assert_eq!(names.len(), 26);
         for flag in [
             "sides",
             "stabilize",
