@@ -8,8 +8,10 @@
 use super::output;
 use super::request_args::usage;
 use anyhow::Result;
+use serde_json::json;
 use std::path::PathBuf;
 use tensegrity_figures::{Built, FigureError, FigureSpec, FiguresRequest};
+use tensegrity_io::progress::{Measure, Progress};
 use tensegrity_io::sink::{FigureSink, OutputDir};
 
 /// Arguments of `tensegrity figures`.
@@ -31,6 +33,12 @@ pub struct FiguresArgs {
     /// Figures drawn at once (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+    /// Print the figures written, failed and warned about as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress report on stderr.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Runs `tensegrity figures`.
@@ -49,6 +57,14 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
     // one sink per figure, before any work; a figure whose file cannot be opened fails alone
+    let progress = Progress::auto(
+        "figures",
+        Measure::Count {
+            total: chosen.len(),
+            unit: "figures",
+        },
+        args.quiet,
+    );
     let jobs = chosen
         .into_iter()
         .map(|f| (f, FigureSink::open(&dir.join(f.file_name(ext)))))
@@ -60,11 +76,47 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
             sink.finish(&build()?)?;
             anyhow::Ok(path)
         };
-        (f, write())
+        let written = write();
+        progress.inc(1.0);
+        (f, written)
     });
+    progress.finish();
     dir.keep();
     data.keep();
-    report(ext, built)
+    match args.json {
+        true => report_json(ext, built),
+        false => report(ext, built),
+    }
+}
+
+/// [`report`] as one JSON object: `figures` (number, description, file), `failed` (number,
+/// file, error), `warnings` (figure, message).
+fn report_json(ext: &str, built: Built<(&FigureSpec, Result<PathBuf>)>) -> Result<()> {
+    let (mut figures, mut failed) = (Vec::new(), Vec::new());
+    for (f, outcome) in built.outcomes {
+        let (number, description) = (f.number, f.description);
+        match outcome {
+            Ok(p) => figures.push(json!({"number": number, "description": description,
+                "file": p.display().to_string()})),
+            Err(e) => failed.push(json!({"number": number, "file": f.file_name(ext),
+                "error": format!("{e:#}")})),
+        }
+    }
+    let warnings: Vec<_> = built
+        .warnings
+        .iter()
+        .map(|w| {
+            json!({"figure": w.figure,
+        "message": w.message})
+        })
+        .collect();
+    let n = failed.len();
+    let report = json!({"figures": figures, "failed": failed, "warnings": warnings});
+    println!("{}", serde_json::to_string_pretty(&report)?);
+    match n {
+        0 => Ok(()),
+        n => anyhow::bail!("{n} figure(s) failed"),
+    }
 }
 
 /// Prints the files written, the failures and the warnings; fails naming the failed files.

@@ -85,6 +85,9 @@ pub struct MichellTableArgs {
     /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this SVG file.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
+    /// Print the table as JSON (`rows`: the CSV's columns as keys) instead of CSV text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign

@@ -13,6 +13,7 @@ use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
+use tensegrity_figures::animation::{Camera, Scenery};
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs, VtkSeriesSink};
 use toroid::defaults;
@@ -43,6 +44,8 @@ pub struct RollArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 impl RollArgs {
@@ -68,7 +71,7 @@ impl RollArgs {
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
     let request = args.request()?;
-    let _progress = super::guard::roll(&request)?;
+    let progress = super::guard::roll(&request)?;
     let t_end = request.t_end;
     if let Some(t) = args
         .frames
@@ -78,15 +81,23 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     {
         anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s");
     }
-    // the VTK series draws the built wheel's members
-    let wheel = args
-        .vtk
-        .as_ref()
-        .map(|_| request.wheel.build())
+    let opened = args.animate.open()?;
+    // the VTK series and the animation draw the built wheel's members
+    let wheel = (args.vtk.is_some() || opened.is_some())
+        .then(|| request.wheel.build())
         .transpose()?;
-    let (figure, mut outputs) = open_outputs(args, &request, wheel.as_ref())?;
+    let mut animation = opened.zip(wheel.as_ref()).map(|(o, w)| {
+        let a = o.start(wheel_scenery(&request, w), t_end);
+        a.with_tolerance(request.settings.dt)
+    });
+    let mut times = args.frame_times(t_end);
+    times.extend(animation.iter().flat_map(|a| a.times().iter().copied()));
+    let (figure, outputs) = open_outputs(args, &request, wheel.as_ref())?;
+    let mut outputs = outputs.with_progress(progress.handle());
+    if let Some(a) = animation.as_mut() {
+        outputs = outputs.with_frames(a);
+    }
     let _polled = interrupt::polled();
-    let times = args.frame_times(t_end);
     let mut report = toroid::roll_observed(&request, &times, Some(&mut outputs))?;
     report.frames = outputs.take_frames();
     let interrupted = interrupt::requested();
@@ -95,6 +106,9 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         false => format!("the integration stopped at t = {t} s"),
     });
     let written = outputs.finish(reason.as_deref())?;
+    if !interrupted {
+        super::animate::finish(animation, args.animate.animate.as_deref())?;
+    }
     for w in &report.summary.warnings {
         eprintln!("warning: {}", super::spell::flags(w));
     }
@@ -116,6 +130,15 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     }
     end(args, &report, interrupted, written.rows)?;
     Ok(request.strict_check(&report)?)
+}
+
+/// The wheel rolling in the animation: its members in the side view turned by −incline (the
+/// slope goes down to the right), the camera following it.
+fn wheel_scenery(request: &RollRequest, wheel: &toroid::Toroid) -> Scenery {
+    let mut s = Scenery::structure("toroid rolling", &wheel.structure, None);
+    s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
+    (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
+    s
 }
 
 /// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),

@@ -37,12 +37,14 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod animation;
 pub mod catalog;
 pub mod draw;
 pub mod driver;
 pub mod error;
 pub mod michell;
 pub mod rolling;
+pub mod sweep_plot;
 pub mod tbar;
 pub mod wheels;
 pub mod work_precision;

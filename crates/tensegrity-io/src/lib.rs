@@ -38,6 +38,7 @@ pub mod csv;
 pub mod error;
 pub mod figure;
 pub mod interrupt;
+pub mod progress;
 pub mod read;
 pub mod scene;
 pub mod sink;
