@@ -9,11 +9,12 @@
 //! is printed and the exit code is 130. `fig-rolling` is [`super::fig_rolling`]; the figure of `--svg` is
 //! [`tensegrity_figures::roll_figure`].
 
+use super::animate::Opened;
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_figures::animation::{Camera, Scenery};
+use tensegrity_figures::animation::{Animation, Camera, Scenery};
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs, VtkSeriesSink};
 use toroid::defaults;
@@ -54,6 +55,15 @@ impl RollArgs {
         self.request.request()
     }
 
+    /// Every --frames time within the run.
+    fn check_frames(&self, t_end: f64) -> Result<()> {
+        let mut times = self.frames.iter().flatten();
+        match times.find(|t| !(0.0..=t_end).contains(*t)) {
+            Some(t) => anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s"),
+            None => Ok(()),
+        }
+    }
+
     /// The frame times the outputs need: --frames, and the --vtk grid.
     fn frame_times(&self, t_end: f64) -> Vec<f64> {
         let mut times = self.frames.clone().unwrap_or_default();
@@ -73,23 +83,15 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     let request = args.request()?;
     let progress = super::guard::roll(&request)?;
     let t_end = request.t_end;
-    if let Some(t) = args
-        .frames
-        .iter()
-        .flatten()
-        .find(|t| !(0.0..=t_end).contains(*t))
-    {
-        anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s");
-    }
+    args.check_frames(t_end)?;
     let opened = args.animate.open()?;
     // the VTK series and the animation draw the built wheel's members
     let wheel = (args.vtk.is_some() || opened.is_some())
         .then(|| request.wheel.build())
         .transpose()?;
-    let mut animation = opened.zip(wheel.as_ref()).map(|(o, w)| {
-        let a = o.start(wheel_scenery(&request, w), t_end);
-        a.with_tolerance(request.settings.dt)
-    });
+    let mut animation = opened
+        .zip(wheel.as_ref())
+        .map(|(o, w)| wheel_animation(o, &request, w));
     let mut times = args.frame_times(t_end);
     times.extend(animation.iter().flat_map(|a| a.times().iter().copied()));
     let (figure, outputs) = open_outputs(args, &request, wheel.as_ref())?;
@@ -133,12 +135,13 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
 }
 
 /// The wheel rolling in the animation: its members in the side view turned by −incline (the
-/// slope goes down to the right), the camera following it.
-fn wheel_scenery(request: &RollRequest, wheel: &toroid::Toroid) -> Scenery {
+/// slope goes down to the right), the camera following it; a frame is the step nearest its time.
+fn wheel_animation(o: Opened, request: &RollRequest, wheel: &toroid::Toroid) -> Animation {
     let mut s = Scenery::structure("toroid rolling", &wheel.structure, None);
     s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
     (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
-    s
+    o.start(s, request.t_end)
+        .with_tolerance(request.settings.dt)
 }
 
 /// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),

@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use tensegrity_core::dynamics::{IntegratorKind, SimulationReport};
 use tensegrity_core::{CoreError, Simulation};
 use tensegrity_engine::simulate::SimulateCommand;
-use tensegrity_engine::SceneError;
+use tensegrity_engine::{SceneError, SceneSource};
 use tensegrity_figures::animation::Scenery;
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::progress::Progress;
@@ -58,9 +58,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     })?;
     let progress = super::guard::simulation(&command, &simulation, csv, vtk)?;
     let mut animation = opened.map(|o| {
-        let title = command.source().map_or(String::new(), |s| s.to_string());
-        let ground = simulation.model.ground();
-        let scenery = Scenery::structure(title, &scene.structure, ground);
+        let scenery =
+            Scenery::structure(title(&command), &scene.structure, simulation.model.ground());
         o.start(scenery, simulation.settings.t_end)
     });
     if let Some(a) = &animation {
@@ -83,6 +82,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     Ok(command.strict_check(&report)?)
+}
+
+/// The animation's title: the scene's file name.
+fn title(command: &SimulateCommand) -> String {
+    let name = match command.source() {
+        Ok(SceneSource::Path(p)) => p.file_name().map(|n| n.to_string_lossy().into_owned()),
+        _ => None,
+    };
+    name.unwrap_or_else(|| "scene".into())
 }
 
 /// What a run needs: the command, its simulation and scene, its progress and its animation.

@@ -271,17 +271,21 @@ impl Scenery {
     fn frame(&self, t: f64, nodes: &[Vector3<f64>], (x0, x1, y0, y1): Window) -> Figure {
         let r = self.turn();
         let turned: Vec<Vector3<f64>> = nodes.iter().map(|p| r * p).collect();
+        // bars last: on top of the strings
         let groups = [
-            Group::new("bars", draw::BLUE, self.bars.clone()),
             Group::new("strings", draw::RED, self.strings.clone()),
+            Group::new("bars", draw::BLUE, self.bars.clone()),
         ];
         let title = format!("{}   t = {t:.3} s", self.title);
         let members = draw::structure_panel(title, self.view, &turned, &groups);
         let frame = Series::new("", vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)])
             .with_color((255, 255, 255));
-        let mut panel = members.clone();
+        let mut panel = members.clone().legend_above(0.25);
         panel.series = vec![frame];
-        if self.along_y && self.view == View::Side {
+        if self.tilt != 0.0 && self.view == View::Side {
+            // turned: the axes are the page's, not the structure's
+            (panel.x_label, panel.y_label) = ("horizontal [m]".into(), "vertical [m]".into());
+        } else if self.along_y && self.view == View::Side {
             panel.x_label = "ι1 [m]".into();
         }
         if let Some(segment) = self.ground_segment(&r, (x0, x1, y0, y1)) {
