@@ -236,14 +236,20 @@ fn the_michell_table_json_has_the_csv_columns_as_keys() {
 }
 
 #[test]
-#[ignore = "rolls the demo's wheels (about 20 s in the dev profile): cargo test --test cli_animate_progress -- --ignored"]
+
 fn the_demo_json_has_its_three_tables() {
     let v = json(&run(&["demo", "--json"]));
     let scenes = v["scenes"].as_array().unwrap();
-    assert!(scenes.iter().all(|s| s["nodes"].is_u64() && s["scene"].is_string()));
+    assert!(scenes
+        .iter()
+        .all(|s| s["nodes"].is_u64() && s["scene"].is_string()));
     let wheels = v["wheels"].as_array().unwrap();
     assert_eq!(wheels.len(), 4);
-    assert!(wheels.iter().all(|w| w["nodes"].is_u64() && w["prestressable"].is_boolean()));
+    assert!(wheels
+        .iter()
+        .all(|w| w["nodes"].is_u64() && w["prestressable"].is_boolean()));
     let rolling = v["rolling"].as_array().unwrap();
-    assert!(rolling.iter().all(|r| r["mass_kg"].is_f64() && r["valid"].is_boolean()));
+    assert!(rolling
+        .iter()
+        .all(|r| r["mass_kg"].is_f64() && r["valid"].is_boolean()));
 }

@@ -26,7 +26,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         "rolling": rolling(text)?,
     });
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     }
     Ok(())
 }

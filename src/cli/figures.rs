@@ -112,7 +112,7 @@ fn report_json(ext: &str, built: Built<(&FigureSpec, Result<PathBuf>)>) -> Resul
         .collect();
     let n = failed.len();
     let report = json!({"figures": figures, "failed": failed, "warnings": warnings});
-    println!("{}", serde_json::to_string_pretty(&report)?);
+    super::output::print_json(&report)?;
     match n {
         0 => Ok(()),
         n => anyhow::bail!("{n} figure(s) failed"),

@@ -101,7 +101,7 @@ pub fn run(args: &MichellArgs) -> Result<()> {
     let (sign_map, gamma_sweep) = open_outputs(args)?;
     let run = request.run().context("michell truss analysis failed")?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&run)?);
+        super::output::print_json(&run)?;
     } else {
         print!("{}", super::michell_text::report(&run));
     }

@@ -126,7 +126,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         eprintln!("wrote {n} VTK frames to {}/series.pvd", dir.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_roll(&report);
     }

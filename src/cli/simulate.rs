@@ -74,7 +74,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let report = run_with_outputs(args, run)?;
     super::animate::finish(animation, args.animate.animate.as_deref())?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_report(simulation.settings.integrator, &report);
     }

@@ -98,7 +98,7 @@ fn plot(args: &PlotArgs) -> Result<()> {
     .build()?;
     sink.finish(&figure)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         println!("wrote {}", args.out.display());
     }

@@ -62,7 +62,7 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     }
     let report = toroid::tipover_report(&args.request.request()?)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_tipover(&report);
     }

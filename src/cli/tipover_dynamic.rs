@@ -47,7 +47,7 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
         .map(|s| [s.t, s.lean, s.downhill, s.across]);
     write_history(sink, rows)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        super::output::print_json(&r)?;
     } else {
         println!(
             "n = {}, T = {} m rolling {:.2}° down with a {:.2}° side slope (static limit {:.2}°){}",
@@ -89,7 +89,7 @@ pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Resul
         .map(|s| [s.t, s.force, s.lean, s.near_normal, s.far_normal]);
     write_history(sink, rows)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print(&report);
     }

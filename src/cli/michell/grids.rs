@@ -121,7 +121,7 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     }
     if args.json {
         let json = serde_json::json!({ "rows": rows, "row_count": rows.len() });
-        println!("{}", serde_json::to_string_pretty(&json)?);
+        output::print_json(&json)?;
     }
     if let Some(sink) = svg {
         sink.finish(&tensegrity_figures::michell::mass_table_figure(
