@@ -39,6 +39,9 @@ pub struct SweepArgs {
     /// Write a `# units: …` comment line before the header.
     #[arg(long)]
     pub units: bool,
+    /// Print the summary (cases, rows written, resumed, error rows, file) as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Subcommands of `tensegrity sweep`.
@@ -117,6 +120,9 @@ pub struct MergeArgs {
     /// No summary.
     #[arg(long)]
     pub quiet: bool,
+    /// Print the summary (rows, files, output) as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 fn parse_where(s: &str) -> Result<(String, String), String> {
@@ -153,6 +159,12 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     };
     let summary = sweeps::run(&spec, out, &opts, &mut progress.handle())
         .with_context(|| format!("sweep {}", spec_path.display()))?;
+    if args.json {
+        return super::output::print_json(&serde_json::json!({
+            "total_cases": summary.total_cases, "shard_cases": summary.shard_cases,
+            "written": summary.written, "resumed": summary.resumed, "errors": summary.errors,
+            "out": out.display().to_string()}));
+    }
     if !args.quiet {
         println!(
             "{} of {} cases in {} ({} written now, {} already there; {} error rows)",
@@ -169,6 +181,12 @@ pub fn run(args: &SweepArgs) -> Result<()> {
 
 fn merge(args: &MergeArgs) -> Result<()> {
     let s = sweeps::merge(&args.inputs, &args.out)?;
+    if args.json {
+        let out = args.out.display().to_string();
+        return super::output::print_json(
+            &serde_json::json!({"rows": s.rows, "files": s.files, "out": out}),
+        );
+    }
     if !args.quiet {
         println!(
             "merged {} rows from {} files into {}",
