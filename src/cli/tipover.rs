@@ -44,6 +44,9 @@ pub struct TipoverArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// With --dynamic: the animation of the wheel under the ramp.
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 /// Entry point of `tensegrity tipover`.
@@ -55,7 +58,10 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     }
     if args.dynamic {
         let req = args.request.request()?;
-        return super::tipover_dynamic::run(&req, out, args.json);
+        return super::tipover_dynamic::run(&req, out, args.json, &args.animate);
+    }
+    if args.animate.animate.is_some() {
+        anyhow::bail!("--animate: only with --dynamic");
     }
     if let Some(path) = &args.grid {
         return run_grid(args, path);

@@ -280,7 +280,7 @@ impl Scenery {
         let members = draw::structure_panel(title, self.view, &turned, &groups);
         let frame = Series::new("", vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)])
             .with_color((255, 255, 255));
-        let mut panel = members.clone().legend_above(0.25);
+        let mut panel = members.clone().legend_above(0.4);
         panel.series = vec![frame];
         if self.tilt != 0.0 && self.view == View::Side {
             // turned: the axes are the page's, not the structure's
