@@ -197,8 +197,12 @@ impl Animation {
             .map(|(t, nodes)| (*t, scenery.projected(nodes)))
             .collect();
         let windows = scenery.windows(&turned);
+        // one size for every frame: the first's (the windows' aspects agree to round-off)
+        let mut size = None;
         for ((t, nodes), window) in kept.iter().zip(windows) {
-            sink.frame(&scenery.frame(*t, nodes, window))?;
+            let figure = scenery.frame(*t, nodes, window);
+            let (w, h) = *size.get_or_insert(figure.panel_size);
+            sink.frame(&figure.with_panel_size(w, h))?;
         }
         Ok(sink.finish()?)
     }
