@@ -52,6 +52,11 @@ pub struct TipoverArgs {
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     let out = args.out.as_deref();
+    if let (Some(p), false) = (&args.animate.animate, args.dynamic) {
+        let why = "an animation draws the `dynamic` run only";
+        let e = tensegrity_core::request::InvalidParameter::raw("animate", p.display(), why);
+        return Err(super::request_args::usage(e));
+    }
     if args.rolling {
         let req = args.request.request()?;
         return super::tipover_dynamic::run_rolling(&req, out, args.json);
@@ -59,9 +64,6 @@ pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     if args.dynamic {
         let req = args.request.request()?;
         return super::tipover_dynamic::run(&req, out, args.json, &args.animate);
-    }
-    if args.animate.animate.is_some() {
-        anyhow::bail!("--animate: only with --dynamic");
     }
     if let Some(path) = &args.grid {
         return run_grid(args, path);
