@@ -105,6 +105,10 @@ fn bad_animation_flags_are_refused_before_the_run() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fps"));
     assert!(!gif.exists());
+    // only the dynamic tip-over is a run in time
+    let out = run(&["tipover", "--animate", gif.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--animate"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
