@@ -255,19 +255,15 @@ impl Ticker {
             bar.finish_and_clear();
         }
         if s.lines {
-            let line = s.line();
-            let line = match (s.finished.load(Ordering::Relaxed), s.measure) {
-                (true, _) => line,
-                // the end of work counted by its estimate only: how long it took
-                (false, Measure::Estimated { work_s }) => format!(
-                    "{}: ended after {} (estimated {})",
-                    s.what,
-                    duration(s.start.elapsed().as_secs_f64()),
-                    duration(work_s)
-                ),
-                (false, _) => line.replacen(": ", ": stopped at ", 1),
-            };
-            eprintln!("{line}");
+            match (s.finished.load(Ordering::Relaxed), s.measure) {
+                (true, _) => eprintln!("{}", s.line()),
+                // work without a counter ends with its command's own output (a refusal
+                // stays one line)
+                (false, Measure::Estimated { .. }) => {}
+                // stopped before it began (an output refused): nothing to report
+                (false, _) if s.done() <= 0.0 => {}
+                (false, _) => eprintln!("{}", s.line().replacen(": ", ": stopped at ", 1)),
+            }
         }
     }
 }
