@@ -18,7 +18,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Run the bundled examples (scene statics, toroid wheel) on built-in defaults.
-    Demo,
+    Demo(cli::demo::DemoArgs),
     /// Equilibrium matrix, self-stress, prestressability, load solve and sizing of a scene.
     Statics(cli::statics::StaticsArgs),
     /// Simulate a scene in time (rigid-bar dynamics; RK4, adaptive RK45 or RATTLE).
@@ -56,7 +56,7 @@ fn main() {
     cli::guard::init(&cli.limits);
     cli::exit::install_interrupt_handler();
     let result = match &cli.command {
-        Command::Demo => cli::demo::run(),
+        Command::Demo(args) => cli::demo::run(args),
         Command::Statics(args) => cli::statics::run(args),
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Formfind(args) => cli::formfind::run(args),

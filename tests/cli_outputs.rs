@@ -286,6 +286,13 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
     let rows: Vec<(&str, String, bool)> = vec![
         ("simulate --out", format!("{sim} --out {{}}"), false),
         ("simulate --vtk", format!("{sim} --vtk {{}}"), true),
+        ("simulate --animate", format!("{sim} --animate {{}}"), false),
+        ("roll --animate", format!("{roll} --animate {{}}"), false),
+        (
+            "tipover --dynamic --animate",
+            "tipover --dynamic --hold 1e4 --animate {}".into(),
+            false,
+        ),
         (
             "bench work-precision --out",
             "bench work-precision --out {}".into(),
@@ -416,7 +423,9 @@ fn every_output_flag_refuses_an_unwritable_path_before_any_work() {
             let bad = parent.join(if *is_dir { "out-dir" } else { "x.svg" });
             let figure =
                 name.ends_with("--svg") || name.contains("plot") || name.starts_with("fig-");
-            let bad = if !is_dir && !figure {
+            let bad = if name.ends_with("--animate") {
+                bad.with_extension("gif")
+            } else if !is_dir && !figure {
                 bad.with_extension("csv")
             } else {
                 bad

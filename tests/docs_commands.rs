@@ -63,7 +63,8 @@
 //! - `file: PATH`: the command wrote PATH (relative to the scratch directory).
 //!
 //! Besides, after a successful checked command every file named by an output flag
-//! (`--out`, `--svg`, `--vtk`, `--sign-map`, `--gamma-sweep`, `--export-scene`, `--grid`)
+//! (`--out`, `--svg`, `--vtk`, `--sign-map`, `--gamma-sweep`, `--export-scene`, `--grid`,
+//! `--animate`)
 //! must exist.
 //!
 //! # How commands run
@@ -566,6 +567,7 @@ fn outputs(command: &str) -> Vec<String> {
                 "--gamma-sweep",
                 "--export-scene",
                 "--grid",
+                "--animate",
             ]
             .contains(&p[0].as_str())
         })

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use tensegrity_core::dynamics::work_precision::Point;
 use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
+use tensegrity_io::progress::{Measure, Progress};
 use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
 
 /// Arguments of `tensegrity bench`.
@@ -37,6 +38,9 @@ pub struct WorkPrecisionArgs {
     /// its parent must exist).
     #[arg(long, value_name = "DIR", default_value = "work-precision")]
     pub out: PathBuf,
+    /// Print the points (the CSV's columns as keys) and the files as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `tensegrity bench work-precision`.
@@ -56,11 +60,28 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
     })?;
     let svg_path = dir.join("work_precision.svg");
     let svg = output::open_required("--out", &svg_path, FigureSink::open)?;
-    let points = tensegrity_engine::bench::work_precision(&request)?.points;
+    let unit = "points";
+    let progress = Progress::auto("bench", Measure::Count { total: 0, unit }, false);
+    let mut tell = |done: usize, total: usize| {
+        progress.set_total(total);
+        progress.set(done as f64);
+    };
+    let points = tensegrity_engine::bench::work_precision_observed(&request, &mut tell)?.points;
+    progress.finish();
     csv.extend(points.iter().map(row))?;
     csv.finish()?;
     svg.finish(&tensegrity_figures::work_precision::figure(&points))?;
     dir.keep();
+    if args.json {
+        let rows: Vec<_> = points.iter().map(row).collect();
+        let (csv, figure) = (
+            csv_path.display().to_string(),
+            svg_path.display().to_string(),
+        );
+        return output::print_json(
+            &serde_json::json!({"points": rows, "csv": csv, "figure": figure}),
+        );
+    }
     println!(
         "{} points written to {} and {}",
         points.len(),

@@ -1,17 +1,34 @@
 //! `tensegrity demo`: the statics of every bundled example scene and the toroid wheel,
-//! summarised, on built-in defaults (library calls only).
+//! summarised, on built-in defaults (library calls only); `--json`: the same as one object
+//! (`scenes`, `wheels`, `rolling`, each a list of rows with the commands' own keys).
 
 use anyhow::Result;
+use serde_json::{json, Value};
 use tensegrity::EXAMPLE_SCENES;
 use tensegrity_core::{statics_report, StaticsRequest};
 use tensegrity_io::scene::Scene;
 use toroid::{FidelityChoice, RollRequest, ToroidRequest, WheelSpec};
 
+/// Arguments of `tensegrity demo`.
+#[derive(clap::Args, Debug)]
+pub struct DemoArgs {
+    /// Print the results as one JSON object instead of tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
 /// Runs the demo.
-pub fn run() -> Result<()> {
-    scenes()?;
-    wheels()?;
-    rolling()
+pub fn run(args: &DemoArgs) -> Result<()> {
+    let text = !args.json;
+    let report = json!({
+        "scenes": scenes(text)?,
+        "wheels": wheels(text)?,
+        "rolling": rolling(text)?,
+    });
+    if args.json {
+        super::output::print_json(&report)?;
+    }
+    Ok(())
 }
 
 fn margin(prestressable: bool, margin: f64) -> String {
@@ -22,24 +39,36 @@ fn margin(prestressable: bool, margin: f64) -> String {
     }
 }
 
-fn scenes() -> Result<()> {
-    println!("tensegrity demo: statics of the bundled example scenes\n");
-    println!(
-        "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>10} {:>10}",
-        "scene",
-        "nodes",
-        "bars",
-        "strings",
-        "rank",
-        "self-stress",
-        "internal",
-        "prestress",
-        "mass [kg]"
-    );
-    for (name, text) in EXAMPLE_SCENES {
-        let scene = Scene::from_str_named(text, name)?;
+fn scenes(text: bool) -> Result<Vec<Value>> {
+    let mut rows = Vec::new();
+    text.then(|| {
+        println!("tensegrity demo: statics of the bundled example scenes\n");
+        println!(
+            "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>10} {:>10}",
+            "scene",
+            "nodes",
+            "bars",
+            "strings",
+            "rank",
+            "self-stress",
+            "internal",
+            "prestress",
+            "mass [kg]"
+        )
+    });
+    for (name, toml) in EXAMPLE_SCENES {
+        let scene = Scene::from_str_named(toml, name)?;
         let r = statics_report(&scene.structure, &StaticsRequest::default())?;
         let mass = r.mass_kg.map_or("-".to_string(), |m| format!("{m:.6}"));
+        rows.push(
+            json!({"scene": name, "nodes": r.nodes, "bars": r.bars, "strings": r.strings,
+            "rank": r.rank, "self_stress_dim": r.self_stress_dim,
+            "internal_mechanisms": r.internal_mechanisms, "prestressable": r.prestressable,
+            "prestress_margin": r.prestress_margin, "mass_kg": r.mass_kg}),
+        );
+        if !text {
+            continue;
+        }
         println!(
             "{:<18} {:>5} {:>4} {:>7} {:>4} {:>11} {:>9} {:>10} {:>10}",
             name,
@@ -53,16 +82,21 @@ fn scenes() -> Result<()> {
             mass
         );
     }
-    println!("(full report of one scene: tensegrity statics examples/<scene> [--json])\n");
-    Ok(())
+    text.then(|| {
+        println!("(full report of one scene: tensegrity statics examples/<scene> [--json])\n")
+    });
+    Ok(rows)
 }
 
-fn wheels() -> Result<()> {
-    println!("tensegrity toroid wheel: n = 8, T 0.4, t 0.3, D 0.1, R_o 1, R_i 0.6, R_m 0.8 m, bars 1 kg/m\n");
-    println!(
-        "{:<18} {:>5} {:>4} {:>7} {:>11} {:>9} {:>10}",
-        "stabilising", "nodes", "bars", "strings", "self-stress", "internal", "prestress"
-    );
+fn wheels(text: bool) -> Result<Vec<Value>> {
+    let mut rows = Vec::new();
+    if text {
+        println!("tensegrity toroid wheel: n = 8, T 0.4, t 0.3, D 0.1, R_o 1, R_i 0.6, R_m 0.8 m, bars 1 kg/m\n");
+        println!(
+            "{:<18} {:>5} {:>4} {:>7} {:>11} {:>9} {:>10}",
+            "stabilising", "nodes", "bars", "strings", "self-stress", "internal", "prestress"
+        );
+    }
     for options in ["none", "spokes", "spokes,inner", "inner,outer"] {
         let request = ToroidRequest {
             wheel: WheelSpec {
@@ -72,6 +106,15 @@ fn wheels() -> Result<()> {
             ..ToroidRequest::default()
         };
         let a = toroid::toroid_report(&request)?;
+        rows.push(
+            json!({"stabilize": options, "nodes": a.nodes, "bars": a.bars,
+            "strings": a.strings, "self_stress_dim": a.self_stress_dim,
+            "internal_mechanisms": a.internal_mechanisms, "prestressable": a.prestressable,
+            "prestress_margin": a.prestress_margin}),
+        );
+        if !text {
+            continue;
+        }
         println!(
             "{:<18} {:>5} {:>4} {:>7} {:>11} {:>9} {:>10}",
             options,
@@ -83,11 +126,11 @@ fn wheels() -> Result<()> {
             margin(a.prestressable, a.prestress_margin)
         );
     }
-    Ok(())
+    Ok(rows)
 }
 
-fn rolling() -> Result<()> {
-    println!("\nrolling down 50 deg from rest on a side (thesis Fig. 3.10; * = not valid, see `tensegrity roll`):");
+fn rolling(text: bool) -> Result<Vec<Value>> {
+    text.then(|| println!("\nrolling down 50 deg from rest on a side (thesis Fig. 3.10; * = not valid, see `tensegrity roll`):"));
     let rigid = RollRequest {
         fidelity: FidelityChoice::Rigid,
         t_end: 5.0,
@@ -101,6 +144,19 @@ fn rolling() -> Result<()> {
         ..RollRequest::default()
     };
     runs.push(toroid::roll(&full)?);
+    let rows = runs
+        .iter()
+        .map(|r| {
+            json!({"fidelity": r.fidelity.name(), "sides": r.sides,
+        "t_end": r.t_end, "mass_kg": r.mass_kg, "i1": r.i1,
+        "mean_axle_height": r.summary.mean_axle_height, "mean_speed": r.summary.mean_speed,
+        "airborne_fraction": r.summary.airborne_fraction, "valid": r.summary.valid,
+        "warnings": r.summary.warnings})
+        })
+        .collect();
+    if !text {
+        return Ok(rows);
+    }
     for r in &runs {
         println!(
             "  {:<5} n = {:>2}, {} s: mass {:>7.3} kg, I1 {:>7.3} kg m^2, mean axle height {:.4} m, mean speed {:.3} m/s, airborne {:>5.1} %{}",
@@ -118,5 +174,5 @@ fn rolling() -> Result<()> {
     for r in runs.iter().filter(|r| !r.summary.valid) {
         println!("  * n = {}: {}", r.sides, r.summary.warnings.join("; "));
     }
-    Ok(())
+    Ok(rows)
 }

@@ -19,6 +19,9 @@ pub struct FigRollingArgs {
     out: PathBuf,
     #[command(flatten)]
     request: RequestArgs<FigRollingRequest>,
+    /// Print the runs' reports, the impulse table (`impacts`) and the figure's path as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Entry point of `tensegrity fig-rolling`.
@@ -28,8 +31,15 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
     let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
     let sink = output::open_required("--out", &args.out, FigureSink::open)?;
     let rolled = tensegrity_figures::fig_rolling(&request)?;
-    print_series(&rolled);
     sink.finish(&rolled.figure())?;
+    if args.json {
+        let (runs, impacts, figure) = (&rolled.runs, rolled.impacts(), args.out.display());
+        let figure = figure.to_string();
+        return output::print_json(
+            &serde_json::json!({"runs": runs, "impacts": impacts, "figure": figure}),
+        );
+    }
+    print_series(&rolled);
     println!("wrote {}", args.out.display());
     Ok(())
 }

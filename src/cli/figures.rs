@@ -10,8 +10,10 @@
 use super::output;
 use super::request_args::usage;
 use anyhow::Result;
+use serde_json::json;
 use std::path::PathBuf;
 use tensegrity_figures::{Built, FigureError, FigureIndex, FigureSpec, FiguresRequest, IndexEntry};
+use tensegrity_io::progress::{Measure, Progress};
 use tensegrity_io::sink::{CsvSink, FigureSink, FileSink, JsonSink, OutputDir};
 
 /// Arguments of `tensegrity figures`.
@@ -33,6 +35,12 @@ pub struct FiguresArgs {
     /// Figures drawn at once (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+    /// Print the figures written, failed and warned about as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress report on stderr.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Runs `tensegrity figures`.
@@ -53,6 +61,14 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     let index_sinks = (
         output::open_required("--out", &dir.join("index.json"), JsonSink::open)?,
         output::open_required("--out", &dir.join("index.md"), FileSink::open)?,
+    );
+    let progress = Progress::auto(
+        "figures",
+        Measure::Count {
+            total: chosen.len(),
+            unit: "figures",
+        },
+        args.quiet,
     );
     // two sinks per figure (picture, data), before any work; a figure whose files cannot be
     // opened fails alone
@@ -78,14 +94,48 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
                 drawn.data.write(data_sink)?;
                 anyhow::Ok(path)
             };
-            (f, write())
+            let written = write();
+            progress.inc(1.0);
+            (f, written)
         });
+    progress.finish();
     dir.keep();
     data.keep();
     let index = index_of(args, ext, &built);
     index_sinks.0.finish(&index)?;
     index_sinks.1.finish_with(index.to_markdown())?;
-    report(ext, built)
+    match args.json {
+        true => report_json(ext, built),
+        false => report(ext, built),
+    }
+}
+
+/// [`report`] as one JSON object: `figures` (number, description, file, data), `failed`
+/// (number, file, error), `warnings` (figure, message).
+fn report_json(ext: &str, built: Built<(&FigureSpec, Result<PathBuf>)>) -> Result<()> {
+    let (mut figures, mut failed) = (Vec::new(), Vec::new());
+    for (f, outcome) in built.outcomes {
+        let (number, description) = (f.number, f.description);
+        match outcome {
+            Ok(p) => figures.push(json!({"number": number, "description": description,
+                "file": p.display().to_string(),
+                "data": p.with_extension("csv").display().to_string()})),
+            Err(e) => failed.push(json!({"number": number, "file": f.file_name(ext),
+                "error": format!("{e:#}")})),
+        }
+    }
+    let warnings: Vec<_> = built
+        .warnings
+        .iter()
+        .map(|w| json!({"figure": w.figure, "message": w.message}))
+        .collect();
+    let n = failed.len();
+    let report = json!({"figures": figures, "failed": failed, "warnings": warnings});
+    super::output::print_json(&report)?;
+    match n {
+        0 => Ok(()),
+        n => anyhow::bail!("{n} figure(s) failed"),
+    }
 }
 
 /// The index of the run: every figure, its files and the command that reproduces it.

@@ -47,7 +47,7 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
         sink.finish(&drawing(&found))?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&found.report)?);
+        super::output::print_json(&found.report)?;
         return Ok(());
     }
     print_report(&found.report);

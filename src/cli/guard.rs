@@ -5,18 +5,18 @@
 //! `--max-work` (estimated seconds, default 60) and `--max-output` (bytes written, default
 //! 1 GiB); an estimate above them is refused (exit code 2) naming the parameter, the
 //! estimate, the limit, the flag that raises it and the flags of the parameters
-//! ([`tensegrity_engine::spelling::flag_of`]). Work estimated above a few seconds shows an elapsed-time spinner on stderr
-//! when it is a terminal.
+//! ([`tensegrity_engine::spelling::flag_of`]). Long work shows its progress
+//! ([`tensegrity_io::progress`]: a bar on a terminal, plain lines with percent and ETA
+//! otherwise): counted where the work counts (cases, figures, simulated time), else the
+//! elapsed time against the estimate for work estimated above a few seconds.
 
 use anyhow::Result;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
 use std::sync::OnceLock;
-use std::time::Duration;
-use tensegrity_core::budget::{self, Estimate, Limits, OverBudget, Resource};
+use tensegrity_core::budget::{Estimate, Limits, OverBudget, Resource};
 use tensegrity_core::CoreError;
 use tensegrity_engine::spelling::parameter_flags;
 use tensegrity_engine::{estimate, limits, Estimated, SceneError};
+use tensegrity_io::progress::{self, Measure};
 
 static LIMITS: OnceLock<Limits> = OnceLock::new();
 
@@ -68,15 +68,14 @@ pub struct Refused {
     pub flags: String,
 }
 
-/// Shows elapsed time on stderr while a long computation runs (when stderr is a terminal);
-/// drop it when the work is done.
-pub struct Progress(Option<ProgressBar>);
+/// The progress report of a command's work ([`tensegrity_io::progress`]): a bar on a
+/// terminal, plain lines with percent and ETA in a log; it ends when dropped.
+pub struct Progress(progress::Progress);
 
-impl Drop for Progress {
-    fn drop(&mut self) {
-        if let Some(bar) = self.0.take() {
-            bar.finish_and_clear();
-        }
+impl Progress {
+    /// A handle for the work's counter (a clone of the report).
+    pub fn handle(&self) -> progress::Progress {
+        self.0.clone()
     }
 }
 
@@ -87,27 +86,28 @@ pub fn check(estimate: Estimate) -> Result<Progress> {
 
 /// [`check`] of an estimate if there is one.
 pub fn optional(estimate: Option<Estimate>) -> Result<Progress> {
-    estimate.map_or(Ok(Progress(None)), check)
+    estimate.map_or(Ok(Progress(progress::Progress::hidden())), check)
 }
 
-/// [`check`], with the spinner shown on a terminal whatever the estimate when
-/// `work_unknown` (an adaptive integration's steps are not known in advance).
+/// [`check`], with the progress shown whatever the estimate when `work_unknown` (the rank
+/// of a sparse statics is not known in advance); work estimated under a few seconds shows
+/// none; the percent is the elapsed time against the estimate.
 pub fn check_with(estimate: Estimate, work_unknown: bool) -> Result<Progress> {
+    let measure = Measure::Estimated {
+        work_s: estimate.work_s,
+    };
+    let what = estimate.what.clone();
+    let shown = estimate.work_s >= SPINNER_AFTER_S || work_unknown;
+    counted(estimate, &what, measure, shown)
+}
+
+/// [`check`] of a work that counts its progress by `measure` (cases, figures, simulated
+/// time), reported as `what` when `shown`.
+pub fn counted(estimate: Estimate, what: &str, measure: Measure, shown: bool) -> Result<Progress> {
     if let Err(over) = limits().check(&estimate) {
         return Err(refusal(over).into());
     }
-    let quick = estimate.work_s < SPINNER_AFTER_S && !work_unknown;
-    if quick || !std::io::stderr().is_terminal() {
-        return Ok(Progress(None));
-    }
-    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed_precise} {msg}") {
-        bar.set_style(style);
-    }
-    let work = budget::human_seconds(estimate.work_s);
-    bar.set_message(format!("{} (estimated {work})", estimate.what));
-    bar.enable_steady_tick(Duration::from_millis(200));
-    Ok(Progress(Some(bar)))
+    Ok(Progress(progress::Progress::auto(what, measure, !shown)))
 }
 
 /// The refusal of an estimate over its limit: the flag that raises it, a value that would
@@ -162,9 +162,18 @@ pub fn toroid(request: &toroid::ToroidRequest) -> Result<Progress> {
     estimated(request)
 }
 
-/// `tensegrity roll`.
+/// `tensegrity roll`: its simulated time.
 pub fn roll(request: &toroid::RollRequest) -> Result<Progress> {
-    estimated(request)
+    let measure = Measure::Simulated {
+        t_end: request.t_end,
+    };
+    match request.estimate()? {
+        Some(e) => {
+            let shown = e.work_s >= SPINNER_AFTER_S;
+            counted(e, "roll", measure, shown)
+        }
+        None => optional(None),
+    }
 }
 
 /// `tensegrity fig-rolling`: the wheels roll at once, one thread each.
@@ -172,8 +181,8 @@ pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<
     optional(estimate::rolling_series(request, sides))
 }
 
-/// `tensegrity simulate`, with its outputs (an adaptive run shows the spinner: its steps are
-/// not known up front).
+/// `tensegrity simulate`, with its outputs: its simulated time (shown for an adaptive run
+/// whatever the estimate: its steps are not known up front).
 pub fn simulation(
     command: &tensegrity_engine::simulate::SimulateCommand,
     sim: &tensegrity_core::Simulation,
@@ -181,7 +190,9 @@ pub fn simulation(
     vtk: bool,
 ) -> Result<Progress> {
     let e = tensegrity_engine::simulate::estimate_checked(command, sim, csv, vtk)?;
-    check_with(e, sim.settings.integrator.is_adaptive())
+    let shown = e.work_s >= SPINNER_AFTER_S || sim.settings.integrator.is_adaptive();
+    let t_end = sim.settings.t_end;
+    counted(e, "simulate", Measure::Simulated { t_end }, shown)
 }
 
 /// `tensegrity michell`: the sign maps, if asked for.
@@ -200,9 +211,14 @@ pub fn friction_grid(n: usize) -> Result<Progress> {
     check(estimate::friction_grid(n))
 }
 
-/// `tensegrity sweep`: its CSV (each case is checked by the sweep itself).
-pub fn sweep(cases: usize) -> Result<Progress> {
-    check(sweeps::limits::output(cases))
+/// `tensegrity sweep`: its CSV (each case is checked by the sweep itself); the progress of
+/// its cases (the sweep sets the total of its shard).
+pub fn sweep(cases: usize, quiet: bool) -> Result<Progress> {
+    let measure = Measure::Count {
+        total: cases,
+        unit: "cases",
+    };
+    counted(sweeps::limits::output(cases), "sweep", measure, !quiet)
 }
 
 #[cfg(test)]

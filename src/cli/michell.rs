@@ -85,6 +85,9 @@ pub struct MichellTableArgs {
     /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this SVG file.
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
+    /// Print the table as JSON (`rows`: the CSV's columns as keys) instead of CSV text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
@@ -98,7 +101,7 @@ pub fn run(args: &MichellArgs) -> Result<()> {
     let (sign_map, gamma_sweep) = open_outputs(args)?;
     let run = request.run().context("michell truss analysis failed")?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&run)?);
+        super::output::print_json(&run)?;
     } else {
         print!("{}", super::michell_text::report(&run));
     }

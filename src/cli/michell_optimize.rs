@@ -26,7 +26,7 @@ pub fn run(args: &OptimizeArgs) -> Result<()> {
     let _progress = super::guard::estimated(&request)?;
     let o = request.run().context("Michell optimisation failed")?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&o)?);
+        super::output::print_json(&o)?;
     } else {
         print!("{}", text(&o));
     }

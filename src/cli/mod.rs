@@ -1,5 +1,6 @@
 //! Subcommands of the `tensegrity` binary: argument parsing and output only, no mechanics.
 
+pub mod animate;
 pub mod bench;
 pub mod demo;
 pub mod exit;

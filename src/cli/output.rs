@@ -50,3 +50,11 @@ pub fn print_convergence(c: Option<&tensegrity_core::dynamics::Convergence>) {
     };
     println!("convergence ({}): {verdict}", c.refinement);
 }
+
+/// Prints a report as pretty JSON with the conventional keys added beside its own
+/// ([`tensegrity_engine::keys`]).
+pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
+    let value = tensegrity_engine::keys::conventional(serde_json::to_value(report)?);
+    println!("{}", serde_json::to_string_pretty(&value)?);
+    Ok(())
+}

@@ -9,10 +9,12 @@
 //! is printed and the exit code is 130. `fig-rolling` is [`super::fig_rolling`]; the figure of `--svg` is
 //! [`tensegrity_figures::roll_figure`].
 
+use super::animate::Opened;
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
+use tensegrity_figures::animation::{Animation, Camera, Scenery};
 use tensegrity_io::interrupt::{self, Interrupted};
 use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs, VtkSeriesSink};
 use toroid::defaults;
@@ -43,12 +45,23 @@ pub struct RollArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 impl RollArgs {
     /// The library request the flags describe.
     pub fn request(&self) -> Result<RollRequest> {
         self.request.request()
+    }
+
+    /// Every --frames time within the run.
+    fn check_frames(&self, t_end: f64) -> Result<()> {
+        let mut times = self.frames.iter().flatten();
+        match times.find(|t| !(0.0..=t_end).contains(*t)) {
+            Some(t) => anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s"),
+            None => Ok(()),
+        }
     }
 
     /// The frame times the outputs need: --frames, and the --vtk grid.
@@ -68,25 +81,25 @@ impl RollArgs {
 /// Entry point of `tensegrity roll`.
 pub fn run_roll(args: &RollArgs) -> Result<()> {
     let request = args.request()?;
-    let _progress = super::guard::roll(&request)?;
+    let progress = super::guard::roll(&request)?;
     let t_end = request.t_end;
-    if let Some(t) = args
-        .frames
-        .iter()
-        .flatten()
-        .find(|t| !(0.0..=t_end).contains(*t))
-    {
-        anyhow::bail!("--frames: time {t} s lies outside the run [0, {t_end}] s");
-    }
-    // the VTK series draws the built wheel's members
-    let wheel = args
-        .vtk
-        .as_ref()
-        .map(|_| request.wheel.build())
+    args.check_frames(t_end)?;
+    let opened = args.animate.open()?;
+    // the VTK series and the animation draw the built wheel's members
+    let wheel = (args.vtk.is_some() || opened.is_some())
+        .then(|| request.wheel.build())
         .transpose()?;
-    let (figure, mut outputs) = open_outputs(args, &request, wheel.as_ref())?;
+    let mut animation = opened
+        .zip(wheel.as_ref())
+        .map(|(o, w)| wheel_animation(o, &request, w));
+    let mut times = args.frame_times(t_end);
+    times.extend(animation.iter().flat_map(|a| a.times().iter().copied()));
+    let (figure, outputs) = open_outputs(args, &request, wheel.as_ref())?;
+    let mut outputs = outputs.with_progress(progress.handle());
+    if let Some(a) = animation.as_mut() {
+        outputs = outputs.with_frames(a);
+    }
     let _polled = interrupt::polled();
-    let times = args.frame_times(t_end);
     let mut report = toroid::roll_observed(&request, &times, Some(&mut outputs))?;
     report.frames = outputs.take_frames();
     let interrupted = interrupt::requested();
@@ -95,6 +108,9 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         false => format!("the integration stopped at t = {t} s"),
     });
     let written = outputs.finish(reason.as_deref())?;
+    if !interrupted {
+        super::animate::finish(animation, args.animate.animate.as_deref())?;
+    }
     for w in &report.summary.warnings {
         eprintln!("warning: {}", super::spell::flags(w));
     }
@@ -110,12 +126,22 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         eprintln!("wrote {n} VTK frames to {}/series.pvd", dir.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_roll(&report);
     }
     end(args, &report, interrupted, written.rows)?;
     Ok(request.strict_check(&report)?)
+}
+
+/// The wheel rolling in the animation: its members in the side view turned by −incline (the
+/// slope goes down to the right), the camera following it; a frame is the step nearest its time.
+fn wheel_animation(o: Opened, request: &RollRequest, wheel: &toroid::Toroid) -> Animation {
+    let mut s = Scenery::structure("toroid rolling", &wheel.structure, None);
+    s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
+    (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
+    o.start(s, request.t_end)
+        .with_tolerance(request.settings.dt)
 }
 
 /// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),

@@ -8,7 +8,9 @@
 //! exactly the keys `t_end`, `steps`, `rhs_evals`, `final_nodes` (n×3, file node numbering:
 //! class-1 copies merged back), `final_velocities`, `energy_drift` (max relative),
 //! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
-//! `wall_time_s` (the integration alone, without parsing and output).
+//! `wall_time_s` (the integration alone, without parsing and output). `--animate FILE.gif`
+//! draws the structure over the run ([`super::animate`]); the progress (simulated time) goes
+//! to stderr.
 
 use super::output;
 use super::request_args::{usage, RequestArgs};
@@ -17,10 +19,12 @@ use std::path::PathBuf;
 use tensegrity_core::dynamics::{IntegratorKind, SimulationReport};
 use tensegrity_core::{CoreError, Simulation};
 use tensegrity_engine::simulate::SimulateCommand;
-use tensegrity_engine::SceneError;
+use tensegrity_engine::{SceneError, SceneSource};
+use tensegrity_figures::animation::Scenery;
 use tensegrity_io::interrupt::{self, Interrupted};
+use tensegrity_io::progress::Progress;
 use tensegrity_io::scene::Scene;
-use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
+use tensegrity_io::sink::{NodeFrames, SimulationOutputs, VtkSeriesSink};
 use tensegrity_io::trajectory::TrajectoryWriter;
 
 /// Arguments of `tensegrity simulate`: the request's flags ([`SimulateCommand`], the scene
@@ -38,20 +42,39 @@ pub struct SimulateArgs {
     /// Print the JSON report.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let command: SimulateCommand = args.request.request()?;
     let (csv, vtk) = (args.out.is_some(), args.vtk.is_some());
-    let (scene, simulation) = command.prepare(csv || vtk).map_err(|e| match e {
+    let opened = args.animate.open()?;
+    let sampled = csv || vtk || opened.is_some();
+    let (scene, mut simulation) = command.prepare(sampled).map_err(|e| match e {
         SceneError::InvalidParameter(p) => usage(p),
         e => e.into(),
     })?;
-    let _progress = super::guard::simulation(&command, &simulation, csv, vtk)?;
-    let report = run_with_outputs(args, &command, &simulation, &scene)?;
+    let progress = super::guard::simulation(&command, &simulation, csv, vtk)?;
+    let mut animation = opened.map(|o| {
+        let scenery =
+            Scenery::structure(title(&command), &scene.structure, simulation.model.ground());
+        o.start(scenery, simulation.settings.t_end)
+    });
+    if let Some(a) = &animation {
+        // the frames are samples at their own times (the trajectory holds them too)
+        simulation
+            .settings
+            .output_times
+            .extend_from_slice(a.times());
+    }
+    let frames = animation.as_mut().map(|a| a as &mut dyn NodeFrames);
+    let run = Run(&command, &simulation, &scene, progress.handle(), frames);
+    let report = run_with_outputs(args, run)?;
+    super::animate::finish(animation, args.animate.animate.as_deref())?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_report(simulation.settings.integrator, &report);
     }
@@ -61,13 +84,27 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     Ok(command.strict_check(&report)?)
 }
 
+/// The animation's title: the scene's file name.
+fn title(command: &SimulateCommand) -> String {
+    let name = match command.source() {
+        Ok(SceneSource::Path(p)) => p.file_name().map(|n| n.to_string_lossy().into_owned()),
+        _ => None,
+    };
+    name.unwrap_or_else(|| "scene".into())
+}
+
+/// What a run needs: the command, its simulation and scene, its progress and its animation.
+struct Run<'a>(
+    &'a SimulateCommand,
+    &'a Simulation,
+    &'a Scene,
+    Progress,
+    Option<&'a mut dyn NodeFrames>,
+);
+
 /// The run streamed to `--out` and `--vtk` (opened before it), what was written said.
-fn run_with_outputs(
-    args: &SimulateArgs,
-    command: &SimulateCommand,
-    simulation: &Simulation,
-    scene: &Scene,
-) -> Result<SimulationReport> {
+fn run_with_outputs(args: &SimulateArgs, run: Run<'_>) -> Result<SimulationReport> {
+    let Run(command, simulation, scene, progress, frames) = run;
     let (structure, source) = (&scene.structure, command.source()?);
     let csv = output::open("--out", args.out.as_deref(), |p| {
         TrajectoryWriter::create(p, structure)
@@ -75,7 +112,10 @@ fn run_with_outputs(
     let vtk = output::open("--vtk", args.vtk.as_deref(), |d| {
         VtkSeriesSink::open(d, structure)
     })?;
-    let mut outputs = SimulationOutputs::new(csv, vtk);
+    let mut outputs = SimulationOutputs::new(csv, vtk).with_progress(progress);
+    if let Some(f) = frames {
+        outputs = outputs.with_frames(f);
+    }
     let _polled = interrupt::polled();
     let checked = command.run_beside(scene, simulation, &mut outputs)?;
     let written = outputs.finish(checked.main.as_ref().err())?;

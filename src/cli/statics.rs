@@ -47,7 +47,7 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
         if let Some(w) = &report.statics_warning {
             eprintln!("warning: {w}");
         }
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_report(&scene.structure, &report);
     }

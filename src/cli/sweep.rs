@@ -3,12 +3,10 @@
 //! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--where COL=VALUE]…
 //! [--log-x] [--log-y] --out fig.svg`: parse the
 //! flags, make one call into the sweeps crate ([`sweeps::run`], [`sweeps::merge`]) and draw
-//! its progress (an indicatif bar with ETA on a terminal; nothing when stderr is piped or
-//! with `--quiet`).
+//! its progress ([`tensegrity_io::progress`]: a bar with ETA on a terminal, a line with
+//! percent and ETA every few seconds when stderr is a file or a pipe; nothing with `--quiet`).
 
 use anyhow::{Context, Result};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use sweeps::{RunOptions, Shard, Spec};
 use tensegrity_io::sink::FigureSink;
@@ -41,6 +39,9 @@ pub struct SweepArgs {
     /// Write a `# units: …` comment line before the header.
     #[arg(long)]
     pub units: bool,
+    /// Print the summary (cases, rows written, resumed, error rows, file) as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Subcommands of `tensegrity sweep`.
@@ -80,50 +81,30 @@ pub struct PlotArgs {
     /// The figure: SVG, or PNG by the extension.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
+    /// Print what was plotted as JSON (columns, curves, points).
+    #[arg(long)]
+    pub json: bool,
 }
 
-/// `tensegrity sweep plot`: one panel through the io crate's figure module.
+/// `tensegrity sweep plot`: [`tensegrity_figures::sweep_plot`] into the figure sink.
 fn plot(args: &PlotArgs) -> Result<()> {
-    use tensegrity_io::figure::{Figure, Panel, Scale, Series};
     let sink = super::output::open_required("--out", &args.out, FigureSink::open)?;
-    let filter: Vec<(&str, &str)> = args
-        .filter
-        .iter()
-        .map(|(c, v)| (c.as_str(), v.as_str()))
-        .collect();
-    let curves = tensegrity_io::csv::read_series_where(
-        &args.results,
-        &args.x,
-        &args.y,
-        args.group.as_deref(),
-        &filter,
-    )?;
-    if curves.is_empty() {
-        anyhow::bail!(
-            "{}: no ok row with numbers in `{}` and `{}`",
-            args.results.display(),
-            args.x,
-            args.y
-        );
+    let (figure, report) = tensegrity_figures::sweep_plot::SweepPlot {
+        results: args.results.clone(),
+        x: args.x.clone(),
+        y: args.y.clone(),
+        group: args.group.clone(),
+        filter: args.filter.clone(),
+        log_x: args.log_x,
+        log_y: args.log_y,
     }
-    let title = args
-        .results
-        .file_name()
-        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-    let mut panel = Panel::new(title, args.x.as_str(), args.y.as_str());
-    let scale = |log: bool| if log { Scale::Log } else { Scale::Linear };
-    (panel.x_scale, panel.y_scale) = (scale(args.log_x), scale(args.log_y));
-    let group = args.group.as_deref().unwrap_or("");
-    for (label, points) in curves {
-        let label = if group.is_empty() {
-            label
-        } else {
-            format!("{group} = {label}")
-        };
-        panel = panel.series(Series::new(label, points).with_markers());
+    .build()?;
+    sink.finish(&figure)?;
+    if args.json {
+        super::output::print_json(&report)?;
+    } else {
+        println!("wrote {}", args.out.display());
     }
-    sink.finish(&Figure::new(vec![panel]))?;
-    println!("wrote {}", args.out.display());
     Ok(())
 }
 
@@ -139,6 +120,9 @@ pub struct MergeArgs {
     /// No summary.
     #[arg(long)]
     pub quiet: bool,
+    /// Print the summary (rows, files, output) as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 fn parse_where(s: &str) -> Result<(String, String), String> {
@@ -152,43 +136,6 @@ fn parse_shard(s: &str) -> Result<Shard, String> {
     s.parse().map_err(|e: sweeps::SweepError| e.to_string())
 }
 
-/// The progress bar (hidden when not on a terminal or when quiet).
-struct Bar(ProgressBar);
-
-impl sweeps::Progress for Bar {
-    fn start(&mut self, total: usize, done: usize) {
-        self.0.set_length(total as u64);
-        self.0.set_position(done as u64);
-        self.0.reset_eta();
-    }
-
-    fn row(&mut self, error: bool) {
-        if error {
-            self.0.set_message("(with error rows)");
-        }
-        self.0.inc(1);
-    }
-
-    fn finish(&mut self) {
-        self.0.finish_and_clear();
-    }
-}
-
-fn bar(quiet: bool) -> Bar {
-    let target = if quiet || !std::io::stderr().is_terminal() {
-        ProgressDrawTarget::hidden()
-    } else {
-        ProgressDrawTarget::stderr()
-    };
-    let bar = ProgressBar::with_draw_target(Some(0), target);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{elapsed_precise} [{wide_bar}] {pos}/{len} cases, ETA {eta_precise} {msg}",
-    ) {
-        bar.set_style(style);
-    }
-    Bar(bar)
-}
-
 /// Runs `tensegrity sweep`.
 pub fn run(args: &SweepArgs) -> Result<()> {
     match &args.command {
@@ -200,7 +147,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         anyhow::bail!("usage: tensegrity sweep SPEC.toml --out results.csv");
     };
     let spec = Spec::read(spec_path)?;
-    let _guard = super::guard::sweep(spec.case_count()?)?;
+    let progress = super::guard::sweep(spec.case_count()?, args.quiet)?;
     // the workers stop at a signal; the file keeps its rows, marked incomplete (exit 130)
     let _polled = tensegrity_io::interrupt::polled();
     let opts = RunOptions {
@@ -210,8 +157,14 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         units: args.units,
         limits: Some(super::guard::limits()),
     };
-    let summary = sweeps::run(&spec, out, &opts, &mut bar(args.quiet))
+    let summary = sweeps::run(&spec, out, &opts, &mut progress.handle())
         .with_context(|| format!("sweep {}", spec_path.display()))?;
+    if args.json {
+        return super::output::print_json(&serde_json::json!({
+            "total_cases": summary.total_cases, "shard_cases": summary.shard_cases,
+            "written": summary.written, "resumed": summary.resumed, "errors": summary.errors,
+            "out": out.display().to_string()}));
+    }
     if !args.quiet {
         println!(
             "{} of {} cases in {} ({} written now, {} already there; {} error rows)",
@@ -228,6 +181,12 @@ pub fn run(args: &SweepArgs) -> Result<()> {
 
 fn merge(args: &MergeArgs) -> Result<()> {
     let s = sweeps::merge(&args.inputs, &args.out)?;
+    if args.json {
+        let out = args.out.display().to_string();
+        return super::output::print_json(
+            &serde_json::json!({"rows": s.rows, "files": s.files, "out": out}),
+        );
+    }
     if !args.quiet {
         println!(
             "merged {} rows from {} files into {}",

@@ -89,7 +89,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
     }
     outputs.write(&req)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_report(&report);
     }
@@ -100,7 +100,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
 fn run_loop_study(args: &TbarArgs, req: &TbarRequest, offset: f64) -> Result<()> {
     let rows = tbar_wheel::standing::loop_study(&req.params, offset)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&rows)?);
+        super::output::print_json(&rows)?;
         return Ok(());
     }
     println!("structure       stance  contacts  rank  self-stress  mechanisms  in-plane  out-of-plane  internal  margin");

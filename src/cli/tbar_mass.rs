@@ -18,7 +18,7 @@ pub fn run(req: &TbarRequest, complexities: &[usize], deltas: &[f64], json: bool
         &req.material,
     );
     if json {
-        println!("{}", serde_json::to_string_pretty(&rows)?);
+        super::output::print_json(&rows)?;
     } else {
         print_rows(&rows, req);
     }

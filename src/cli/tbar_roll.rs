@@ -47,7 +47,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
         }
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_roll(&report);
     }

@@ -44,25 +44,33 @@ pub struct TipoverArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// With --dynamic: the animation of the wheel under the ramp.
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 /// Entry point of `tensegrity tipover`.
 pub fn run_tipover(args: &TipoverArgs) -> Result<()> {
     let out = args.out.as_deref();
+    if let (Some(p), false) = (&args.animate.animate, args.dynamic) {
+        let why = "an animation draws the `dynamic` run only";
+        let e = tensegrity_core::request::InvalidParameter::raw("animate", p.display(), why);
+        return Err(super::request_args::usage(e));
+    }
     if args.rolling {
         let req = args.request.request()?;
         return super::tipover_dynamic::run_rolling(&req, out, args.json);
     }
     if args.dynamic {
         let req = args.request.request()?;
-        return super::tipover_dynamic::run(&req, out, args.json);
+        return super::tipover_dynamic::run(&req, out, args.json, &args.animate);
     }
     if let Some(path) = &args.grid {
         return run_grid(args, path);
     }
     let report = toroid::tipover_report(&args.request.request()?)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_tipover(&report);
     }

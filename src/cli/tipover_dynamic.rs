@@ -3,13 +3,20 @@
 //! [`TipoverDynamicRequest::run`]); `--rolling` the lean while rolling down a cross-sloped
 //! plane ([`TipoverRollingRequest::run`]).
 //!
-//! `--out` is opened before the run (a bad path: exit 2 at once) and renamed into place once
+//! `--animate FILE.gif` (with `--dynamic`) draws the wheel under the ramp from the run's
+//! samples ([`super::animate`]). `--out` is opened before the run (a bad path: exit 2 at once) and renamed into place once
 //! its rows are written; the runs do not poll the interrupt flag, so SIGINT leaves no file.
 
+use super::animate::AnimateArgs;
 use anyhow::{Context, Result};
+use nalgebra::Vector3;
 use std::path::Path;
-use tensegrity_io::sink::CsvSink;
+use tensegrity_core::dynamics::Ground;
+use tensegrity_core::Structure;
+use tensegrity_figures::animation::Scenery;
+use tensegrity_io::sink::{CsvSink, NodeFrames};
 use toroid::tipover_dynamic::DynamicTipoverReport;
+use toroid::tipover_dynamic::FrameWatch;
 use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
 
 /// Opens the lean history of `--out` with `header`.
@@ -47,7 +54,7 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
         .map(|s| [s.t, s.lean, s.downhill, s.across]);
     write_history(sink, rows)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        super::output::print_json(&r)?;
     } else {
         println!(
             "n = {}, T = {} m rolling {:.2}° down with a {:.2}° side slope (static limit {:.2}°){}",
@@ -75,11 +82,35 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
 }
 
 /// Runs the dynamic check and prints its report.
-pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Result<()> {
+pub fn run(
+    req: &TipoverDynamicRequest,
+    out: Option<&Path>,
+    json: bool,
+    animate: &AnimateArgs,
+) -> Result<()> {
     let header = ["t", "force", "lean", "near_normal", "far_normal"];
     let _progress = super::guard::estimated(req)?;
     let sink = open_history(out, &header)?;
-    let report = req.report().context("dynamic tip-over run failed")?;
+    let (mut opened, mut animation) = (animate.open()?, None);
+    let t_end = req.settings.t_end();
+    let mut watch = |s: &Structure, g: &Ground, t: f64, nodes: &[Vector3<f64>]| {
+        if let Some(o) = opened.take() {
+            let mut scenery = Scenery::structure("tip-over under a lateral force", s, Some(g));
+            scenery.along_y = true; // the lean about ι2 shows in the (x, z) plane
+            animation = Some(o.start(scenery, t_end));
+        }
+        if let Some(a) = animation.as_mut() {
+            let _ = a.frame(t, nodes); // keeping a frame cannot fail
+        }
+    };
+    let watched = animate
+        .animate
+        .is_some()
+        .then_some(&mut watch as &mut FrameWatch<'_>);
+    let report = req
+        .report_watched(watched)
+        .context("dynamic tip-over run failed")?;
+    super::animate::finish(animation, animate.animate.as_deref())?;
     for w in &report.warnings {
         eprintln!("warning: {}", super::spell::flags(w));
     }
@@ -89,7 +120,7 @@ pub fn run(req: &TipoverDynamicRequest, out: Option<&Path>, json: bool) -> Resul
         .map(|s| [s.t, s.force, s.lean, s.near_normal, s.far_normal]);
     write_history(sink, rows)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print(&report);
     }

@@ -42,7 +42,7 @@ pub fn run_toroid(args: &ToroidArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        super::output::print_json(&report)?;
     } else {
         print_toroid(&request, &report);
     }

@@ -152,6 +152,26 @@ pub struct Silent;
 
 impl Progress for Silent {}
 
+/// The io crate's report counts the cases: a bar on a terminal, lines with percent and ETA
+/// in a log.
+impl Progress for tensegrity_io::progress::Progress {
+    fn start(&mut self, total: usize, done: usize) {
+        self.set_total(total);
+        self.set(done as f64);
+    }
+
+    fn row(&mut self, error: bool) {
+        if error {
+            self.set_message("(with error rows)");
+        }
+        self.inc(1.0);
+    }
+
+    fn finish(&mut self) {
+        tensegrity_io::progress::Progress::finish(self);
+    }
+}
+
 /// What a sweep did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Summary {

@@ -40,8 +40,16 @@ pub struct WorkPrecisionReport {
 
 /// Runs the study ([`work_precision::measure`]).
 pub fn work_precision(request: &WorkPrecisionRequest) -> Result<WorkPrecisionReport, CoreError> {
+    work_precision_observed(request, &mut |_, _| {})
+}
+
+/// [`work_precision`], telling `progress(done, total)` after each point.
+pub fn work_precision_observed(
+    request: &WorkPrecisionRequest,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<WorkPrecisionReport, CoreError> {
     Ok(WorkPrecisionReport {
-        points: work_precision::measure(request.quick)?,
+        points: work_precision::measure_observed(request.quick, progress)?,
     })
 }
 

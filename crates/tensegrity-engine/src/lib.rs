@@ -40,6 +40,7 @@ mod entries;
 pub mod estimate;
 pub mod formfind;
 pub mod integrators;
+pub mod keys;
 pub mod limits;
 pub mod registry;
 pub mod scene;

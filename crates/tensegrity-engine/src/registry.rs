@@ -129,9 +129,10 @@ impl Command {
         (self.defaults)()
     }
 
-    /// Runs the command on named values (over the request's defaults): the report as JSON.
+    /// Runs the command on named values (over the request's defaults): the report as JSON,
+    /// with the conventional keys ([`crate::keys`]).
     pub fn run(&self, values: Map<String, Value>, ctx: &Context) -> Result<Value, RunError> {
-        (self.run)(values, ctx)
+        (self.run)(values, ctx).map(crate::keys::conventional)
     }
 
     /// The resource estimate of a run on named values (over the request's defaults); `None`

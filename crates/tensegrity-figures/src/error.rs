@@ -43,6 +43,16 @@ pub enum FigureError {
         /// The sweep's CSV.
         path: PathBuf,
     },
+    /// A plot of a results table found no row to draw.
+    #[error("{}: no ok row with numbers in `{x}` and `{y}`", path.display())]
+    EmptyPlot {
+        /// The table.
+        path: PathBuf,
+        /// The x column.
+        x: String,
+        /// The y column.
+        y: String,
+    },
     /// The code building the figure panicked (a bug); the other figures are still built.
     #[error("the figure's code panicked")]
     Panicked,
@@ -80,7 +90,7 @@ impl Categorized for FigureError {
     /// panic) is numerical.
     fn category(&self) -> Category {
         match self {
-            Self::InvalidParameter(_) => Category::Input,
+            Self::InvalidParameter(_) | Self::EmptyPlot { .. } => Category::Input,
             Self::Io(e) => e.category(),
             Self::Rolling(e) => e.category(),
             Self::Sweep(e) if e.is_interrupted() => Category::Interrupted,

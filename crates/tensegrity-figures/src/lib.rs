@@ -42,6 +42,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod animation;
 pub mod catalog;
 pub mod chapter2;
 pub mod data;
@@ -51,6 +52,7 @@ pub mod error;
 pub mod index;
 pub mod michell;
 pub mod rolling;
+pub mod sweep_plot;
 pub mod tbar;
 pub mod wheels;
 pub mod work_precision;

@@ -133,7 +133,7 @@ pub struct FigRolling {
 }
 
 /// Means over one run's impacts (§3.3.1).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ImpactMeans {
     /// The wheel's sides n.
     pub sides: usize,

@@ -359,6 +359,48 @@ pub fn read_series(
     read_series_where(path, x, y, group, &[])
 }
 
+/// The number a cell holds: a plain number as written, an angle written with its unit
+/// (`30deg`, `pi/6`, `3pi/4`: the sweep axes of angle parameters) in degrees.
+///
+/// ```
+/// use tensegrity_io::csv::{cell_value, is_angle};
+/// assert_eq!(cell_value("0.25"), Some(0.25));
+/// assert!((cell_value("pi/6").unwrap() - 30.0).abs() < 1e-12);
+/// assert_eq!(cell_value("30deg"), Some(30.0));
+/// assert_eq!(cell_value("rigid"), None);
+/// assert!(is_angle("45deg") && !is_angle("0.5"));
+/// ```
+pub fn cell_value(text: &str) -> Option<f64> {
+    match text.trim().parse::<f64>() {
+        Ok(v) => Some(v),
+        Err(_) if is_angle(text) => tensegrity_core::angle::parse_angle(text)
+            .ok()
+            .map(f64::to_degrees),
+        Err(_) => None,
+    }
+}
+
+/// Whether a cell is an angle written with its unit (`deg` or `pi`), not a plain number.
+pub fn is_angle(text: &str) -> bool {
+    let t = text.trim().to_ascii_lowercase();
+    (t.ends_with("deg") || t.contains("pi")) && tensegrity_core::angle::parse_angle(&t).is_ok()
+}
+
+/// Whether the column `name` of a sweep's CSV holds angles with units (its first ok row's
+/// cell, see [`is_angle`]); `false` for a column that is not there.
+pub fn column_is_angle(path: &std::path::Path, name: &str) -> Result<bool> {
+    let mut reader = ::csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(path)
+        .map_err(csv_error("CSV file"))?;
+    let header = reader.headers().map_err(csv_error("CSV header"))?.clone();
+    let Some(i) = header.iter().position(|h| h == name) else {
+        return Ok(false);
+    };
+    let first = reader.records().flatten().next();
+    Ok(first.is_some_and(|r| r.get(i).is_some_and(is_angle)))
+}
+
 /// [`read_series`] of the rows whose columns hold exactly the given texts (`filter`: pairs
 /// column, value), e.g. one tread width of a sweep over several:
 ///
@@ -413,7 +455,7 @@ pub fn read_series_where(
         if wanted.iter().any(|&(i, v)| record.get(i) != Some(v)) {
             continue;
         }
-        let num = |i: usize| record.get(i).and_then(|v| v.parse::<f64>().ok());
+        let num = |i: usize| record.get(i).and_then(cell_value);
         let (Some(xv), Some(yv)) = (num(xi), num(yi)) else {
             continue;
         };

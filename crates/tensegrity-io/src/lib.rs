@@ -41,6 +41,7 @@ pub mod error;
 pub mod figure;
 pub mod figure_data;
 pub mod interrupt;
+pub mod progress;
 pub mod read;
 pub mod scene;
 pub mod sink;

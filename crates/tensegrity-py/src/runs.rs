@@ -118,9 +118,7 @@ pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
                     let strict = command
                         .strict_check(&report)
                         .map_err(|e| Failure::new(e.category(), e.to_string()));
-                    let json = serde_json::to_string(&report)
-                        .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
-                    (strict.and(json), None)
+                    (strict.and(conventional_json(&report)), None)
                 }
             },
         },
@@ -174,10 +172,17 @@ pub fn roll(request: RollRequest) -> RollOutcome {
         )),
         (None, _) => None,
     };
-    let json = serde_json::to_string(&report)
-        .map_err(|e| Failure::new(Category::Numerical, e.to_string()));
+    let json = conventional_json(&report);
     RollOutcome {
         report: json,
         incomplete,
     }
+}
+
+/// A report as JSON text with the conventional keys beside its own (as the CLI's `--json`:
+/// [`tensegrity_engine::keys`]).
+fn conventional_json(report: &impl serde::Serialize) -> Result<String, Failure> {
+    let failure = |e: serde_json::Error| Failure::new(Category::Numerical, e.to_string());
+    let value = serde_json::to_value(report).map_err(failure)?;
+    serde_json::to_string(&tensegrity_engine::keys::conventional(value)).map_err(failure)
 }

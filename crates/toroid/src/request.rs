@@ -193,11 +193,20 @@ impl TipoverDynamicRequest {
     /// Builds the wheel and runs the ramp, with `convergence_check` beside the refined ramp
     /// ([`DynamicTipover::refined`]); the report whatever its validity.
     pub fn report(&self) -> Result<DynamicTipoverReport> {
+        self.report_watched(None)
+    }
+
+    /// [`TipoverDynamicRequest::report`], the main run watched
+    /// ([`DynamicTipover::run_watched`]: an animation).
+    pub fn report_watched(
+        &self,
+        watch: Option<&mut crate::tipover_dynamic::FrameWatch<'_>>,
+    ) -> Result<DynamicTipoverReport> {
         let wheel = self.wheel.build()?;
         let fine = self.settings.refined();
         let (main, refined) = beside(
             self.checks.convergence_check,
-            || self.settings.run(&wheel),
+            || self.settings.run_watched(&wheel, watch),
             || fine.run(&wheel),
         );
         let mut r = main?;

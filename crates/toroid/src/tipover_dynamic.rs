@@ -183,9 +183,29 @@ pub fn tip_angle(tread: f64, hub_height: f64, lateral: f64, normal: f64) -> f64 
     (0.5 * tread / hub_height).atan() - lateral.atan2(normal)
 }
 
+/// What watches a ramp: (standing model, ground, t, nodes) per recorded sample.
+pub type FrameWatch<'a> =
+    dyn FnMut(&tensegrity_core::Structure, &Ground, f64, &[Vector3<f64>]) + 'a;
+
 impl DynamicTipover {
     /// Runs the ramp on `toroid` (see the module docs).
     pub fn run(&self, toroid: &Toroid) -> Result<DynamicTipoverReport> {
+        self.run_watched(toroid, None)
+    }
+
+    /// The time the ramp runs: settling, ramp and hold (s).
+    pub fn t_end(&self) -> f64 {
+        self.settle + self.ramp_time + self.hold
+    }
+
+    /// [`DynamicTipover::run`], handing `watch` the standing model, its ground and the nodes
+    /// of every recorded sample (every `output_dt`, file numbering) after the run: what a
+    /// front end animates.
+    pub fn run_watched(
+        &self,
+        toroid: &Toroid,
+        watch: Option<&mut FrameWatch<'_>>,
+    ) -> Result<DynamicTipoverReport> {
         self.validate()?;
         let p = &toroid.params;
         let n = p.sides;
@@ -196,6 +216,7 @@ impl DynamicTipover {
         let hubs = hub_nodes(toroid);
         let t_end = self.settle + self.ramp_time + self.hold;
         let mut sim = Simulation::new(&structure, self.settings(t_end))?;
+        let floor = ground.clone();
         sim.model.set_ground(ground)?;
         let ramp = *self;
         let rate = self.ramp_to * static_threshold / self.ramp_time;
@@ -207,6 +228,13 @@ impl DynamicTipover {
             }
         }));
         let result = sim.run()?;
+        if let Some(watch) = watch {
+            for s in &result.samples {
+                if let Some(nodes) = &s.nodes {
+                    watch(&structure, &floor, s.t, nodes);
+                }
+            }
+        }
         let samples = lean_history(toroid, &result.samples, |t| self.force_at(t, rate));
         let validity = RunValidity::of(toroid, &result, hub_height);
         let weight = mass * self.gravity;

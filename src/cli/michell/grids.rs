@@ -110,11 +110,18 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
             sink.write_with(|w| write_mass_table(w, &rows))?;
             let path = sink.path().to_path_buf();
             sink.finish()?;
-            println!("wrote {} rows to {}", rows.len(), path.display());
+            if !args.json {
+                println!("wrote {} rows to {}", rows.len(), path.display());
+            }
         }
+        None if args.json => {}
         None => {
             write_mass_table(std::io::stdout().lock(), &rows)?;
         }
+    }
+    if args.json {
+        let json = serde_json::json!({ "rows": rows, "row_count": rows.len() });
+        output::print_json(&json)?;
     }
     if let Some(sink) = svg {
         sink.finish(&tensegrity_figures::michell::mass_table_figure(

@@ -70,6 +70,12 @@ pub trait SampleSink {
     fn keep_going(&mut self) -> bool {
         true
     }
+
+    /// Told the simulated time after every accepted step (a progress report: an adaptive
+    /// run's steps are not known in advance, its time is).
+    fn progress(&mut self, t: f64) {
+        let _ = t;
+    }
 }
 
 impl SampleSink for Vec<Sample> {

@@ -474,6 +474,9 @@ impl<'a> Driver<'a> {
                 .into());
             }
             model.check_state(t_new, &self.y, self.blowup_limit)?;
+            if let Some(sink) = self.sink.as_mut() {
+                sink.progress(t_new);
+            }
             if self.sink.as_mut().is_some_and(|sink| !sink.keep_going()) {
                 return Err(CoreError::Interrupted { t: self.t });
             }

@@ -197,11 +197,30 @@ pub fn sdirk_tolerances(quick: bool) -> Vec<f64> {
 /// the stiff scenes, RK4 on the contact scene at the largest steps) are left out rather than
 /// aborting the study.
 pub fn measure(quick: bool) -> Result<Vec<Point>, CoreError> {
+    measure_observed(quick, &mut |_, _| {})
+}
+
+/// [`measure`], telling `progress(done, total)` after each measured point (a progress report).
+pub fn measure_observed(
+    quick: bool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Vec<Point>, CoreError> {
     let repeats = if quick { 1 } else { 3 };
     let (dts, tols) = parameters(quick);
     let sdirk_tols = sdirk_tolerances(quick);
+    let per_scene: usize = IntegratorKind::ALL
+        .iter()
+        .map(|i| match i {
+            IntegratorKind::Rk45 => tols.len(),
+            IntegratorKind::Sdirk => sdirk_tols.len(),
+            _ => dts.len(),
+        })
+        .sum();
+    let scenes = scenes();
+    let (total, mut done) = (per_scene * scenes.len(), 0);
+    progress(done, total);
     let mut points = Vec::new();
-    for scene in &scenes() {
+    for scene in &scenes {
         let (reference, _) = run_one(scene, IntegratorKind::Rk45, 1e-13, 1)?;
         for integrator in IntegratorKind::ALL {
             let params = match integrator {
@@ -210,7 +229,10 @@ pub fn measure(quick: bool) -> Result<Vec<Point>, CoreError> {
                 _ => &dts,
             };
             for &p in params {
-                let Ok((r, wall)) = run_one(scene, integrator, p, repeats) else {
+                done += 1;
+                let run = run_one(scene, integrator, p, repeats);
+                progress(done, total);
+                let Ok((r, wall)) = run else {
                     continue;
                 };
                 points.push(Point {

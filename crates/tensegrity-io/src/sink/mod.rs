@@ -64,6 +64,7 @@
 mod csv;
 mod dir;
 mod file;
+mod gif;
 mod lock;
 mod rolling;
 mod simulation;
@@ -73,9 +74,10 @@ mod vtk;
 pub use self::csv::CsvSink;
 pub use self::dir::OutputDir;
 pub use self::file::{FigureSink, FileSink, ImageFormat, JsonSink};
+pub use self::gif::GifSink;
 pub use self::lock::PathLock;
 pub use self::rolling::RollingOutputs;
-pub use self::simulation::{SimulationOutputs, Written};
+pub use self::simulation::{NodeFrames, SimulationOutputs, Written};
 pub use self::vtk::{VtkSeriesSink, PVD_INTERVAL};
 
 #[cfg(test)]

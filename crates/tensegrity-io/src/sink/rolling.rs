@@ -11,9 +11,10 @@
 //! only those a figure needs ([`RollingOutputs::keeping`]: the frames within a tolerance of
 //! given times), handed back by [`RollingOutputs::take_frames`].
 
-use super::{CsvSink, VtkSeriesSink, Written};
+use super::{CsvSink, NodeFrames, VtkSeriesSink, Written};
 use crate::csv::RollingRow;
 use crate::error::{IoError, Result};
+use crate::progress::Progress;
 use crate::vtk::FrameData;
 use wheel_rolling::{Flow, Observer, RollingSample, WheelFrame};
 
@@ -48,6 +49,10 @@ pub struct RollingOutputs<'a> {
     /// Time of the last frame written to the VTK series (a frame at the same time is not
     /// written again).
     last_vtk: Option<f64>,
+    /// An animation, handed every frame.
+    frames: Option<&'a mut dyn NodeFrames>,
+    /// The simulated time of every sample.
+    progress: Progress,
     /// An output error that stopped the run.
     failed: Option<IoError>,
 }
@@ -62,8 +67,23 @@ impl<'a> RollingOutputs<'a> {
             tolerance: 0.0,
             kept: Vec::new(),
             last_vtk: None,
+            frames: None,
+            progress: Progress::hidden(),
             failed: None,
         }
+    }
+
+    /// Also hands every frame's nodes to `frames` (an animation; the run's frame times must
+    /// include the times it wants).
+    pub fn with_frames(mut self, frames: &'a mut dyn NodeFrames) -> Self {
+        self.frames = Some(frames);
+        self
+    }
+
+    /// Reports the simulated time of every sample to `progress` (finished with the outputs).
+    pub fn with_progress(mut self, progress: Progress) -> Self {
+        self.progress = progress;
+        self
     }
 
     /// Also keeps every frame within `tolerance` (s) of one of `times` (e.g. for drawings).
@@ -82,6 +102,9 @@ impl<'a> RollingOutputs<'a> {
     /// frames so far kept, marked incomplete with that reason (e.g. `interrupted at t = 1.5 s`).
     /// An output error that stopped the run is returned first.
     pub fn finish(mut self, incomplete: Option<&str>) -> Result<Written> {
+        if incomplete.is_none() {
+            self.progress.finish();
+        }
         if let Some(e) = self.failed.take() {
             return Err(e);
         }
@@ -112,6 +135,7 @@ impl<'a> RollingOutputs<'a> {
 
 impl Observer for RollingOutputs<'_> {
     fn sample(&mut self, sample: &RollingSample) -> Flow {
+        self.progress.set(sample.t);
         let written = match self.csv.as_mut() {
             Some(csv) => csv.serialize(&RollingRow::from(sample)),
             None => Ok(()),
@@ -126,6 +150,12 @@ impl Observer for RollingOutputs<'_> {
             .any(|t| (frame.t - t).abs() <= self.tolerance)
         {
             self.kept.push(frame.clone());
+        }
+        if let Some(f) = self.frames.as_mut() {
+            let drawn = f.frame(frame.t, &frame.nodes);
+            if self.flow(drawn) == Flow::Stop {
+                return Flow::Stop;
+            }
         }
         // each time once in the series (a frame asked twice, or two asked times that fall
         // on the same step, is written once)

@@ -1,13 +1,23 @@
 //! The outputs of a simulation as the core's [`SampleSink`]: every recorded sample goes to the
-//! trajectory CSV and the VTK series while the run goes on, and the run stops at its next
-//! sample (or step) once an interrupt is [requested](crate::interrupt::requested).
+//! trajectory CSV, the VTK series and any [`NodeFrames`] (an animation) while the run goes on,
+//! the simulated time to a [`Progress`] report after every step, and the run stops at its
+//! next sample (or step) once an interrupt is [requested](crate::interrupt::requested).
 
 use crate::error::{IoError, Result};
+use crate::progress::Progress;
 use crate::sink::VtkSeriesSink;
 use crate::trajectory::TrajectoryWriter;
 use crate::vtk::FrameData;
+use nalgebra::Vector3;
 use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::CoreError;
+
+/// What takes the node positions of a run as it goes (an animation: it keeps the frames it
+/// needs and draws them at its end).
+pub trait NodeFrames {
+    /// The nodes (file numbering) at time `t` (s); an error stops the run.
+    fn frame(&mut self, t: f64, nodes: &[Vector3<f64>]) -> Result<()>;
+}
 
 /// What a finished run wrote.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -45,9 +55,17 @@ pub struct Written {
 pub struct SimulationOutputs<'a> {
     csv: Option<TrajectoryWriter>,
     vtk: Option<VtkSeriesSink<'a>>,
+    frames: Option<&'a mut dyn NodeFrames>,
+    progress: Progress,
     /// An output error that stopped the run.
     failed: Option<IoError>,
     last_t: f64,
+}
+
+impl std::fmt::Debug for dyn NodeFrames + '_ {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("NodeFrames")
+    }
 }
 
 impl<'a> SimulationOutputs<'a> {
@@ -56,9 +74,23 @@ impl<'a> SimulationOutputs<'a> {
         Self {
             csv,
             vtk,
+            frames: None,
+            progress: Progress::hidden(),
             failed: None,
             last_t: 0.0,
         }
+    }
+
+    /// Also hands every sample's nodes to `frames` (e.g. an animation).
+    pub fn with_frames(mut self, frames: &'a mut dyn NodeFrames) -> Self {
+        self.frames = Some(frames);
+        self
+    }
+
+    /// Reports the simulated time to `progress` after every step.
+    pub fn with_progress(mut self, progress: Progress) -> Self {
+        self.progress = progress;
+        self
     }
 
     fn write(&mut self, s: &Sample) -> Result<()> {
@@ -72,6 +104,9 @@ impl<'a> SimulationOutputs<'a> {
             };
             w.frame_with(s.t, nodes, &data)?;
         }
+        if let (Some(f), Some(nodes)) = (self.frames.as_mut(), s.nodes.as_deref()) {
+            f.frame(s.t, nodes)?;
+        }
         Ok(())
     }
 
@@ -80,6 +115,9 @@ impl<'a> SimulationOutputs<'a> {
     /// incomplete with the error's message (a run stopped before its first sample leaves no
     /// CSV). An output error that stopped the run is returned first.
     pub fn finish(mut self, outcome: Option<&CoreError>) -> Result<Written> {
+        if outcome.is_none() {
+            self.progress.finish();
+        }
         if let Some(e) = self.failed.take() {
             return Err(e);
         }
@@ -113,5 +151,9 @@ impl SampleSink for SimulationOutputs<'_> {
 
     fn keep_going(&mut self) -> bool {
         !crate::interrupt::requested()
+    }
+
+    fn progress(&mut self, t: f64) {
+        self.progress.set(t);
     }
 }

@@ -1,0 +1,56 @@
+//! `--animate FILE.gif [--fps F] [--duration S]` of `simulate` and `roll`: the GIF sink is
+//! opened before the work, the run hands its nodes to a
+//! [`tensegrity_figures::animation::Animation`], which draws round(F·S) frames spread over
+//! the run when it ends.
+
+use anyhow::Result;
+use std::path::PathBuf;
+use tensegrity_figures::animation::{Animation, AnimationSpec, Scenery};
+use tensegrity_io::sink::GifSink;
+
+/// The animation flags.
+#[derive(clap::Args, Debug, Clone)]
+pub struct AnimateArgs {
+    /// Write an animated GIF of the structure over time (to scale, with the ground and the
+    /// time): round(fps × duration) frames spread evenly over the run.
+    #[arg(long, value_name = "FILE.gif")]
+    pub animate: Option<PathBuf>,
+    /// Frames per second of --animate (default 10).
+    #[arg(long, value_name = "F", requires = "animate")]
+    pub fps: Option<f64>,
+    /// Playing time of --animate in seconds (default 5).
+    #[arg(long, value_name = "S", requires = "animate")]
+    pub duration: Option<f64>,
+}
+
+/// An opened animation not yet given its scenery.
+pub struct Opened(GifSink, AnimationSpec);
+
+impl AnimateArgs {
+    /// The spec checked and the file opened (before the work), if asked for.
+    pub fn open(&self) -> Result<Option<Opened>> {
+        let Some(path) = &self.animate else {
+            return Ok(None);
+        };
+        let spec =
+            AnimationSpec::new(self.fps, self.duration).map_err(super::request_args::usage)?;
+        let sink = super::output::open_required("--animate", path, |p| GifSink::open(p, spec.fps))?;
+        Ok(Some(Opened(sink, spec)))
+    }
+}
+
+impl Opened {
+    /// The animation of `scenery` over [0, `t_end`].
+    pub fn start(self, scenery: Scenery, t_end: f64) -> Animation {
+        Animation::new(self.0, scenery, &self.1, t_end)
+    }
+}
+
+/// Draws and writes the animation, saying so on stderr.
+pub fn finish(animation: Option<Animation>, path: Option<&std::path::Path>) -> Result<()> {
+    if let (Some(a), Some(p)) = (animation, path) {
+        let n = a.finish()?;
+        eprintln!("wrote {n} frames to {}", p.display());
+    }
+    Ok(())
+}
