@@ -1,6 +1,7 @@
 //! Subcommands of the `tensegrity` binary: argument parsing and output only, no mechanics.
 
 pub mod bench;
+pub mod bench_anchors;
 pub mod demo;
 pub mod exit;
 pub mod fig_rolling;

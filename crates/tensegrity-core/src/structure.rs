@@ -524,6 +524,38 @@ impl StructureBuilder {
         self
     }
 
+    /// Appends several bars (in order).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    ///     .bars([Bar::new(0, 1), Bar::new(1, 2)])
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_bars(), 2);
+    /// ```
+    pub fn bars<I: IntoIterator<Item = Bar>>(mut self, bars: I) -> Self {
+        self.bars.extend(bars);
+        self
+    }
+
+    /// Appends several strings (in order).
+    ///
+    /// ```
+    /// use tensegrity_core::{StringMember, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    ///     .strings([StringMember::new(0, 1), StringMember::new(1, 2)])
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_strings(), 2);
+    /// ```
+    pub fn strings<I: IntoIterator<Item = StringMember>>(mut self, strings: I) -> Self {
+        self.strings.extend(strings);
+        self
+    }
+
     /// Appends a string.
     ///
     /// ```
