@@ -177,9 +177,5 @@ fn a_valid_structure_keeps_its_members_and_a_duplicate_names_the_first() {
         &[[1, 2], [3, 4], [1, 0], [4, 5], [5, 0]],
     )
     .unwrap_err();
-    assert_eq!(
-        e.to_string().contains("string 2: duplicates bar 0"),
-        true,
-        "{e}"
-    );
+    assert!(e.to_string().contains("string 2: duplicates bar 0"), "{e}");
 }

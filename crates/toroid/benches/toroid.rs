@@ -1,6 +1,7 @@
 //! Criterion benches: building and analysing the reference toroid (spokes + inner) for
 //! n = 8, 24, 100, and one second of rolling down 50° for n = 8 and 24 with the rigid and the
-//! full model.
+//! full model; `toroid_build_large`: the build alone (structure by indices, issue 25) for
+//! n = 1000 and 10000.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
@@ -31,6 +32,18 @@ fn bench_build_analyse(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_build_large(c: &mut Criterion) {
+    let mut group = c.benchmark_group("toroid_build_large");
+    group.sample_size(10);
+    for n in [1000usize, 10000] {
+        let p = ToroidParams::default().sides(n);
+        group.bench_with_input(BenchmarkId::new("build", n), &p, |b, p| {
+            b.iter(|| black_box(build(p, options(), 1.0).unwrap()))
+        });
+    }
+    group.finish();
+}
+
 fn bench_rolling(c: &mut Criterion) {
     let mut group = c.benchmark_group("toroid_rolling_1s");
     group.sample_size(10);
@@ -56,5 +69,10 @@ fn bench_rolling(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_build_analyse, bench_rolling);
+criterion_group!(
+    benches,
+    bench_build_analyse,
+    bench_build_large,
+    bench_rolling
+);
 criterion_main!(benches);
