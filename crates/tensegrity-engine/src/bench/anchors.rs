@@ -22,7 +22,7 @@ pub const MEASURED_ON: &str = "reference times: MOTES and TsgFEM under GNU Octav
 /// The runtime of the reference codes.
 pub const REFERENCE_RUNTIME: &str = "GNU Octave 7.3";
 
-/// One anchor scene.
+/// One anchor scene (serialised as its name, [`Anchor::name`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Anchor {
@@ -33,6 +33,7 @@ pub enum Anchor {
     /// The TsgFEM planar T-bar with tension-only strings under a step load, RK4, 2000 steps.
     TsgfemTbar,
     /// The compound double pendulum, RK4, 5000 steps.
+    #[serde(rename = "double_pendulum_rk4")]
     DoublePendulum,
 }
 
