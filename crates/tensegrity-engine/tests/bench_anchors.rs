@@ -123,6 +123,15 @@ fn without_a_counter_the_report_says_why() {
 }
 
 #[test]
+fn the_request_describes_its_fields() {
+    tensegrity_core::request::check_description::<AnchorsRequest>().unwrap();
+    use tensegrity_core::request::Request;
+    let r = AnchorsRequest::from_values([("repeats", serde_json::json!(3))]).unwrap();
+    assert_eq!((r.repeats, r.quick, r.instructions), (3, false, true));
+    assert!(AnchorsRequest::from_values([("repeats", serde_json::json!(0))]).is_err());
+}
+
+#[test]
 fn a_run_of_k_steps_is_the_start_of_the_whole_run() {
     let whole = Anchor::MotesDbar.run(None).unwrap();
     assert_eq!(whole.steps, 5000);
