@@ -26,7 +26,8 @@ enum Command {
     /// Form-finding: the equilibrium geometry and prestress of a topology file or a built-in
     /// form (force density, adaptive, dynamic relaxation), written as a scene.
     Formfind(cli::formfind::FormfindArgs),
-    /// Benchmarks, e.g. the work–precision report of the integrators.
+    /// Benchmarks: the work–precision report of the integrators; `bench anchors`, the anchor
+    /// scenes and the scaling series.
     Bench(cli::bench::BenchArgs),
     /// Discrete Michell truss (planar, cylindrical δ or spherical ε): nodes, forces, sizing.
     Michell(cli::michell::MichellArgs),

@@ -2,6 +2,8 @@
 //! integrator on five scenes, two of them stiff (the engine's `bench_work_precision` request,
 //! [`tensegrity_engine::bench`]), written as CSV and a figure (log–log, one curve per
 //! integrator, one panel per scene: [`tensegrity_figures::work_precision`]).
+//! `tensegrity bench anchors`: the anchor scenes and the scaling series
+//! ([`super::bench_anchors`]).
 
 use super::output;
 use super::request_args::RequestArgs;
@@ -26,6 +28,12 @@ pub struct BenchArgs {
 pub enum BenchCommand {
     /// Error against wall time for rk4, rk45, rattle and sdirk on five scenes.
     WorkPrecision(WorkPrecisionArgs),
+    /// The anchor scenes against the reference codes' times, and the cost against size of
+    /// the toroid, towers, Michell trusses and rolling, with their fitted exponents.
+    Anchors(super::bench_anchors::AnchorsArgs),
+    /// One anchor run, nothing printed (what `bench anchors` counts under callgrind).
+    #[command(hide = true)]
+    AnchorRun(super::bench_anchors::AnchorRunArgs),
 }
 
 /// Arguments of `tensegrity bench work-precision`: the request's flags
@@ -47,6 +55,8 @@ pub struct WorkPrecisionArgs {
 pub fn run(args: &BenchArgs) -> Result<()> {
     match &args.what {
         BenchCommand::WorkPrecision(a) => work_precision(a),
+        BenchCommand::Anchors(a) => super::bench_anchors::anchors(a),
+        BenchCommand::AnchorRun(a) => super::bench_anchors::anchor_run(a),
     }
 }
 

@@ -2,6 +2,7 @@
 
 pub mod animate;
 pub mod bench;
+pub mod bench_anchors;
 pub mod demo;
 pub mod exit;
 pub mod fig_rolling;

@@ -4,12 +4,17 @@
 //! item and reports the first problem as a [`CoreError`] naming it. Members are numbered bars
 //! first, then strings, both in insertion order; that order is used by every analysis
 //! (force-density vectors, self-stress bases, ...).
+//!
+//! Building works by indices: members are checked without hash maps or text labels, a
+//! member's or node's name (`bar 3`, `node 7`) being formatted only for the error that
+//! reports it (the `checks` submodule).
 
 use crate::error::{ModelError, Result};
 use crate::material::{Material, MaterialTable};
 pub use crate::member_id::MemberId;
 use nalgebra::{Matrix3xX, Vector3};
-use std::collections::HashMap;
+
+mod checks;
 
 /// A compressive member, rigid in dynamics, elastic in stiffness analysis when it has a
 /// material and a radius.
@@ -519,6 +524,38 @@ impl StructureBuilder {
         self
     }
 
+    /// Appends several bars (in order).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    ///     .bars([Bar::new(0, 1), Bar::new(1, 2)])
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_bars(), 2);
+    /// ```
+    pub fn bars<I: IntoIterator<Item = Bar>>(mut self, bars: I) -> Self {
+        self.bars.extend(bars);
+        self
+    }
+
+    /// Appends several strings (in order).
+    ///
+    /// ```
+    /// use tensegrity_core::{StringMember, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]])
+    ///     .strings([StringMember::new(0, 1), StringMember::new(1, 2)])
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.n_strings(), 2);
+    /// ```
+    pub fn strings<I: IntoIterator<Item = StringMember>>(mut self, strings: I) -> Self {
+        self.strings.extend(strings);
+        self
+    }
+
     /// Appends a string.
     ///
     /// ```
@@ -641,7 +678,7 @@ impl StructureBuilder {
         }
         let n = nodes.len();
         for (i, p) in nodes.iter().enumerate() {
-            check_finite(&format!("node {i}"), p)?;
+            check_finite(|| format!("node {i}"), p)?;
         }
         if let Some(v) = &velocities {
             if v.len() != n {
@@ -653,96 +690,42 @@ impl StructureBuilder {
                 .into());
             }
             for (i, p) in v.iter().enumerate() {
-                check_finite(&format!("velocity of node {i}"), p)?;
+                check_finite(|| format!("velocity of node {i}"), p)?;
             }
         }
         if bars.is_empty() && strings.is_empty() {
             return Err(ModelError::NoMembers.into());
         }
 
-        let mut seen: HashMap<(usize, usize), MemberId> = HashMap::new();
-        let mut touched = vec![false; n];
-        let members = bars
-            .iter()
-            .enumerate()
-            .map(|(i, b)| (MemberId::Bar(i), b.nodes))
-            .chain(
-                strings
-                    .iter()
-                    .enumerate()
-                    .map(|(i, s)| (MemberId::String(i), s.nodes)),
-            );
-        for (id, [a, b]) in members {
-            for node in [a, b] {
-                if node >= n {
-                    return Err(ModelError::NodeIndexOutOfRange {
-                        item: id.to_string(),
-                        node,
-                        n_nodes: n,
-                    }
-                    .into());
-                }
-            }
-            if a == b {
-                return Err(ModelError::SelfLoop {
-                    member: id,
-                    node: a,
-                }
-                .into());
-            }
-            let key = (a.min(b), a.max(b));
-            if let Some(&other) = seen.get(&key) {
-                return Err(ModelError::DuplicateMember {
-                    member: id,
-                    other,
-                    a: key.0,
-                    b: key.1,
-                }
-                .into());
-            }
-            seen.insert(key, id);
-            let length = (nodes[b] - nodes[a]).norm();
-            let scale = nodes[a].norm().max(nodes[b].norm()).max(1.0);
-            if length <= 1e-12 * scale {
-                return Err(ModelError::ZeroLengthMember {
-                    member: id,
-                    a,
-                    b,
-                    length,
-                }
-                .into());
-            }
-            touched[a] = true;
-            touched[b] = true;
-        }
-        if !allow_isolated {
-            if let Some(node) = touched.iter().position(|&t| !t) {
-                return Err(ModelError::IsolatedNode { node }.into());
-            }
-        }
+        checks::check_members(&nodes, &bars, &strings, allow_isolated)?;
 
+        // the item's name is formatted only for an error
         for (i, b) in bars.iter().enumerate() {
-            let item = MemberId::Bar(i).to_string();
-            positive(&item, "mass", b.mass)?;
-            positive(&item, "radius", b.radius)?;
+            let item = || MemberId::Bar(i).to_string();
+            positive(item, "mass", b.mass)?;
+            positive(item, "radius", b.radius)?;
             if let Some(name) = &b.material {
-                materials.lookup(name, &item)?;
+                if materials.get(name).is_none() {
+                    materials.lookup(name, &item())?;
+                }
             }
         }
         for (i, s) in strings.iter().enumerate() {
-            let item = MemberId::String(i).to_string();
-            positive(&item, "stiffness", s.stiffness)?;
-            positive(&item, "rest_length", s.rest_length)?;
+            let item = || MemberId::String(i).to_string();
+            positive(item, "stiffness", s.stiffness)?;
+            positive(item, "rest_length", s.rest_length)?;
             if !(s.damping.is_finite() && s.damping >= 0.0) {
                 return Err(ModelError::NegativeConstant {
-                    item,
+                    item: item(),
                     name: "damping",
                     value: s.damping,
                 }
                 .into());
             }
             if let Some(name) = &s.material {
-                materials.lookup(name, &item)?;
+                if materials.get(name).is_none() {
+                    materials.lookup(name, &item())?;
+                }
             }
         }
 
@@ -778,10 +761,10 @@ impl StructureBuilder {
                 }
                 .into());
             }
-            check_finite(&format!("load {i}"), &l.force)?;
+            check_finite(|| format!("load {i}"), &l.force)?;
         }
         if let Some(g) = &gravity {
-            check_finite("gravity", g)?;
+            check_finite(|| "gravity".to_string(), g)?;
         }
 
         Ok(Structure {
@@ -797,24 +780,24 @@ impl StructureBuilder {
     }
 }
 
-fn check_finite(item: &str, v: &Vector3<f64>) -> Result<()> {
-    for (axis, value) in ['x', 'y', 'z'].into_iter().zip(v.iter()) {
-        if !value.is_finite() {
-            return Err(ModelError::NonFinite {
-                item: item.to_string(),
-                axis,
-                value: *value,
-            }
-            .into());
+/// Every component of `v` finite, else an error naming `item()` (formatted only then).
+fn check_finite(item: impl Fn() -> String, v: &Vector3<f64>) -> Result<()> {
+    match v.iter().position(|value| !value.is_finite()) {
+        None => Ok(()),
+        Some(d) => Err(ModelError::NonFinite {
+            item: item(),
+            axis: ['x', 'y', 'z'][d],
+            value: v[d],
         }
+        .into()),
     }
-    Ok(())
 }
 
-fn positive(item: &str, name: &'static str, value: Option<f64>) -> Result<()> {
+/// A set value must be finite and positive, else an error naming `item()`.
+fn positive(item: impl Fn() -> String, name: &'static str, value: Option<f64>) -> Result<()> {
     match value {
         Some(v) if !(v.is_finite() && v > 0.0) => Err(ModelError::NonPositiveConstant {
-            item: item.to_string(),
+            item: item(),
             name,
             value: v,
         }

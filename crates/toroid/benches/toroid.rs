@@ -2,7 +2,8 @@
 //! n = 8, 24, 100, and one second of rolling down 50° for n = 8 and 24 with the rigid and the
 //! full model; and 100 steps of the full model's rolling (n = 8, 0.01 s at 0.1 ms, with the
 //! projection and the monitor of every step: issue 25's "full rolling step", reported per
-//! step).
+//! step); `toroid_build_large`: the build alone (structure by indices, issue 25) for
+//! n = 1000 and 10000.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
@@ -28,6 +29,18 @@ fn bench_build_analyse(c: &mut Criterion) {
         let t = build(&p, options(), 1.0).unwrap();
         group.bench_with_input(BenchmarkId::new("analyse", n), &t, |b, t| {
             b.iter(|| black_box(analyse(t).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+fn bench_build_large(c: &mut Criterion) {
+    let mut group = c.benchmark_group("toroid_build_large");
+    group.sample_size(10);
+    for n in [1000usize, 10000] {
+        let p = ToroidParams::default().sides(n);
+        group.bench_with_input(BenchmarkId::new("build", n), &p, |b, p| {
+            b.iter(|| black_box(build(p, options(), 1.0).unwrap()))
         });
     }
     group.finish();
@@ -80,5 +93,11 @@ fn bench_full_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_build_analyse, bench_rolling, bench_full_step);
+criterion_group!(
+    benches,
+    bench_build_analyse,
+    bench_build_large,
+    bench_rolling,
+    bench_full_step
+);
 criterion_main!(benches);

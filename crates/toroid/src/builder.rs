@@ -241,15 +241,15 @@ fn finish(
     axle: Option<[usize; 2]>,
     bar_density: f64,
 ) -> Result<Toroid> {
-    let mut b = Structure::builder().nodes(positions.iter().copied());
-    for ([i, j], _) in &bars {
-        let l = (Vector3::from(positions[*j]) - Vector3::from(positions[*i])).norm();
-        b = b.bar(Bar::new(*i, *j).mass(bar_density * l));
-    }
-    for ([i, j], _) in &strings {
-        b = b.string(StringMember::new(*i, *j));
-    }
-    let structure = b.build()?;
+    // members appended in bulk, by index (no per-member move of the builder)
+    let structure = Structure::builder()
+        .nodes(positions.iter().copied())
+        .bars(bars.iter().map(|&([i, j], _)| {
+            let l = (Vector3::from(positions[j]) - Vector3::from(positions[i])).norm();
+            Bar::new(i, j).mass(bar_density * l)
+        }))
+        .strings(strings.iter().map(|&([i, j], _)| StringMember::new(i, j)))
+        .build()?;
     Ok(Toroid {
         params,
         stabilize,

@@ -1,0 +1,262 @@
+//! `bench anchors`: the anchor scenes ([`Anchor`]) and the scaling series ([`SeriesKind`])
+//! measured in one run ([`AnchorsRequest`] → [`bench_anchors`] → [`AnchorsReport`]).
+//!
+//! Per anchor: the best wall time of the integration alone over `repeats` runs (as
+//! `simulate`'s `wall_time_s`: the monitors included, the scene's reading and setup not),
+//! per step, the final nodes and their distance to the independent reference, the reference
+//! code's time and the ratio to it (labelled: measured on that machine, [`MEASURED_ON`]); with
+//! `instructions` and an [`InstructionCounter`] (the command line's: the binary itself under
+//! callgrind), the instructions per step: (I(k) − I(1)) / (k − 1) from two whole-process
+//! counts of k and 1 steps, so that process start, reading and setup cancel.
+
+use super::anchors::{Anchor, ReferenceTime, MEASURED_ON};
+use super::series::{self, Series, SeriesKind};
+use super::BenchError;
+use serde::{Deserialize, Serialize};
+use tensegrity_core::request::{Param, Request, Rule};
+
+/// Repeats per measurement by default (the best is kept).
+pub const DEFAULT_REPEATS: usize = 5;
+
+/// Steps of the instruction counts when `quick` (the scene's own steps otherwise).
+pub const QUICK_COUNT_STEPS: u64 = 200;
+
+/// The benchmark, as data.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AnchorsRequest {
+    /// The small size set of every series (for a smoke test); the anchors run whole.
+    pub quick: bool,
+    /// Runs per measurement; the best is reported.
+    pub repeats: usize,
+    /// Count instructions per step where a counter is available (callgrind).
+    pub instructions: bool,
+}
+
+impl Default for AnchorsRequest {
+    /// The full size sets, [`DEFAULT_REPEATS`], instructions counted.
+    fn default() -> Self {
+        Self {
+            quick: false,
+            repeats: DEFAULT_REPEATS,
+            instructions: true,
+        }
+    }
+}
+
+impl Request for AnchorsRequest {
+    const NAME: &'static str = "bench_anchors";
+
+    fn params() -> Vec<Param> {
+        vec![
+            Param::flag(
+                "quick",
+                "The small size set of every scaling series (a smoke test); the anchors run whole",
+            ),
+            Param::count("repeats", "Runs per measurement (the best is reported)")
+                .rule(Rule::AtLeast(1.0)),
+            Param::flag(
+                "instructions",
+                "Count instructions per step of each anchor under callgrind when valgrind is installed",
+            ),
+        ]
+    }
+}
+
+/// Counts the instructions of whole runs of an anchor (the command line: the binary's hidden
+/// `bench anchor-run` mode under callgrind).
+pub trait InstructionCounter {
+    /// Instructions of one whole process running `anchor` for `steps` steps, or why none.
+    fn count(&self, anchor: Anchor, steps: u64) -> Result<u64, String>;
+}
+
+/// One anchor's measurement.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AnchorResult {
+    /// Which anchor.
+    pub anchor: Anchor,
+    /// Its scene file.
+    pub scene: String,
+    /// RK4 steps of the run.
+    pub steps: u64,
+    /// Best wall time of the integration over the repeats (s).
+    pub best_s: f64,
+    /// `best_s` per step (s).
+    pub per_step_s: f64,
+    /// Instructions per step (callgrind), when counted.
+    pub instructions_per_step: Option<f64>,
+    /// Final node positions (m).
+    pub final_nodes: Vec<[f64; 3]>,
+    /// Largest coordinate difference to the independent reference's final nodes (m).
+    pub final_error_m: f64,
+    /// What that difference may be: the RK4 error at the scene's step (m).
+    pub final_tolerance_m: f64,
+    /// The reference code and its time, measured on that machine.
+    pub reference: ReferenceTime,
+    /// The reference time over `best_s`.
+    pub ratio: f64,
+}
+
+/// What `bench anchors` measured.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AnchorsReport {
+    /// The request.
+    pub request: AnchorsRequest,
+    /// The anchors.
+    pub anchors: Vec<AnchorResult>,
+    /// The label of every reference time and ratio.
+    pub reference_note: &'static str,
+    /// Why instructions were not counted (absent when they were, or not asked for).
+    pub instructions_note: Option<String>,
+    /// The scaling series.
+    pub series: Vec<Series>,
+}
+
+/// One CSV row: an anchor, or a point of a series (`exponent`: the series' fit).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BenchRow {
+    /// `anchor` or `series`.
+    pub group: &'static str,
+    /// The anchor's or the series' name.
+    pub name: &'static str,
+    /// The series' size (empty for an anchor).
+    pub size: Option<usize>,
+    /// Members, where known.
+    pub members: Option<usize>,
+    /// Steps of a time integration.
+    pub steps: Option<u64>,
+    /// Best time (s).
+    pub best_s: f64,
+    /// Best time per step (s).
+    pub per_step_s: Option<f64>,
+    /// Instructions per step (callgrind).
+    pub instructions_per_step: Option<f64>,
+    /// Reference code (anchors).
+    pub reference_code: Option<&'static str>,
+    /// Its time, measured on that machine (s).
+    pub reference_s: Option<f64>,
+    /// Reference time over ours.
+    pub ratio: Option<f64>,
+    /// The series' fitted cost exponent.
+    pub exponent: Option<f64>,
+}
+
+impl AnchorsReport {
+    /// The report as CSV rows: the anchors, then every point of every series.
+    pub fn rows(&self) -> Vec<BenchRow> {
+        let anchors = self.anchors.iter().map(|a| BenchRow {
+            group: "anchor",
+            name: a.anchor.name(),
+            size: None,
+            members: None,
+            steps: Some(a.steps),
+            best_s: a.best_s,
+            per_step_s: Some(a.per_step_s),
+            instructions_per_step: a.instructions_per_step,
+            reference_code: Some(a.reference.code),
+            reference_s: Some(a.reference.seconds),
+            ratio: Some(a.ratio),
+            exponent: None,
+        });
+        let points = self.series.iter().flat_map(|s| {
+            s.points.iter().map(|p| BenchRow {
+                group: "series",
+                name: s.series.name(),
+                size: Some(p.size),
+                members: p.members,
+                steps: p.steps,
+                best_s: p.best_s,
+                per_step_s: p.per_step_s,
+                instructions_per_step: None,
+                reference_code: None,
+                reference_s: None,
+                ratio: None,
+                exponent: s.fit.map(|f| f.exponent),
+            })
+        });
+        anchors.chain(points).collect()
+    }
+}
+
+/// Runs the benchmark (module docs); `counter` counts instructions when the request asks for
+/// them (none given: the note says so).
+pub fn bench_anchors(
+    request: &AnchorsRequest,
+    counter: Option<&dyn InstructionCounter>,
+) -> Result<AnchorsReport, BenchError> {
+    let repeats = request.repeats.max(1);
+    let mut anchors = Vec::new();
+    for anchor in Anchor::ALL {
+        anchors.push(measure_anchor(anchor, repeats)?);
+    }
+    let mut instructions_note = None;
+    if request.instructions {
+        match counter {
+            None => instructions_note = Some("no instruction counter (valgrind) available".into()),
+            Some(c) => {
+                let steps = request.quick.then_some(QUICK_COUNT_STEPS);
+                if let Err(why) = count_all(&mut anchors, c, steps) {
+                    instructions_note = Some(why);
+                }
+            }
+        }
+    }
+    let series = SeriesKind::ALL
+        .into_iter()
+        .map(|kind| series::measure(kind, request.quick, repeats))
+        .collect::<Result<_, _>>()?;
+    Ok(AnchorsReport {
+        request: request.clone(),
+        anchors,
+        reference_note: MEASURED_ON,
+        instructions_note,
+        series,
+    })
+}
+
+/// The best of `repeats` runs of one anchor.
+fn measure_anchor(anchor: Anchor, repeats: usize) -> Result<AnchorResult, BenchError> {
+    let mut best = anchor.run(None)?;
+    for _ in 1..repeats {
+        let r = anchor.run(None)?;
+        if r.wall_time_s < best.wall_time_s {
+            best = r;
+        }
+    }
+    let final_nodes: Vec<[f64; 3]> = best.final_nodes.iter().map(|p| [p.x, p.y, p.z]).collect();
+    let final_error_m = final_nodes
+        .iter()
+        .zip(anchor.reference_final_nodes())
+        .flat_map(|(p, q)| (0..3).map(move |d| (p[d] - q[d]).abs()))
+        .fold(0.0, f64::max);
+    let reference = anchor.reference();
+    Ok(AnchorResult {
+        anchor,
+        scene: anchor.path(),
+        steps: best.steps,
+        best_s: best.wall_time_s,
+        per_step_s: best.wall_time_s / best.steps.max(1) as f64,
+        instructions_per_step: None,
+        final_nodes,
+        final_error_m,
+        final_tolerance_m: anchor.tolerance(),
+        reference,
+        ratio: reference.seconds / best.wall_time_s,
+    })
+}
+
+/// Instructions per step of every anchor: (I(k) − I(1)) / (k − 1), k the run's steps or
+/// `steps`.
+fn count_all(
+    anchors: &mut [AnchorResult],
+    counter: &dyn InstructionCounter,
+    steps: Option<u64>,
+) -> Result<(), String> {
+    for a in anchors {
+        let k = steps.unwrap_or(a.steps).min(a.steps).max(2);
+        let whole = counter.count(a.anchor, k)?;
+        let one = counter.count(a.anchor, 1)?;
+        a.instructions_per_step = Some(whole.saturating_sub(one) as f64 / (k - 1) as f64);
+    }
+    Ok(())
+}
