@@ -29,6 +29,9 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
     let sink = output::open_required("--out", &args.out, FigureSink::open)?;
     let rolled = tensegrity_figures::fig_rolling(&request)?;
     print_series(&rolled);
+    for note in rolled.ensemble_notes() {
+        println!("ensemble: {note}");
+    }
     sink.finish(&rolled.figure())?;
     println!("wrote {}", args.out.display());
     Ok(())

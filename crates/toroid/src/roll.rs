@@ -267,18 +267,24 @@ pub fn roll_observed(
         _ => None,
     };
     let mut report = RollReport::of(request, rolled);
-    report.ensemble = ensemble;
+    if let Some((e, samples)) = ensemble {
+        report.ensemble = Some(e);
+        report.ensemble_samples = samples;
+    }
     Ok(report)
 }
 
 /// The ensemble of `request` (its model: the one that ran, `fidelity`) against one
-/// unperturbed run of the other model.
+/// unperturbed run of the other model, and each copy's sampled history.
 fn ensemble(
     request: &RollRequest,
     wheel: &ToroidWheel,
     spec: &RunSpec,
     fidelity: wheel_rolling::Fidelity,
-) -> Result<wheel_rolling::Ensemble> {
+) -> Result<(
+    wheel_rolling::Ensemble,
+    Vec<Vec<wheel_rolling::RollingSample>>,
+)> {
     let choice = |f: wheel_rolling::Fidelity| match f {
         wheel_rolling::Fidelity::Rigid => FidelityChoice::Rigid,
         wheel_rolling::Fidelity::Full => FidelityChoice::Full,
@@ -311,7 +317,7 @@ fn ensemble(
         ..*spec
     };
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    wheel_rolling::ensemble::ensemble(
+    wheel_rolling::ensemble::ensemble_with_samples(
         wheel,
         &same,
         &decide(choice(fidelity)),
