@@ -69,8 +69,9 @@ pub enum FidelityChoice {
     Rigid,
     /// The full tensegrity dynamics.
     Full,
-    /// The cheapest valid model: rigid when the strings barely stretch under the wheel's
-    /// weight and the rigid run is valid, else full.
+    /// The fidelity policy (module docs): rigid where the strings barely stretch under the
+    /// wheel's weight, the models agree on the scene's class and the rigid run is valid, else
+    /// full.
     #[default]
     Auto,
 }
@@ -328,7 +329,7 @@ impl ClassAgreement {
 }
 
 /// The measured scenes' common settings: the toroid wheel with spokes and inner rings,
-/// strings 2·10⁶ N/m (m g/(k R_o) = 7.2·10⁻⁵), penalty ground 10⁶ N/m per node, μ_s = 1.2,
+/// strings 2·10⁶ N/m (m g/(k R_o) = 7.0·10⁻⁵ for n = 8, 1.1·10⁻⁴ for n = 16), penalty ground 10⁶ N/m per node, μ_s = 1.2,
 /// e = 0, RK4 at 50 µs, each model with its convergence check.
 pub const MEASURED_SETTINGS: &str =
     "the toroid, strings 2e6 N/m, ground 1e6 N/m, mu_s 1.2, e 0, dt 5e-5 s";
@@ -339,38 +340,39 @@ pub const MEASURED_SETTINGS: &str =
 pub const MEASURED: [ClassAgreement; 4] = [
     ClassAgreement {
         class: SceneClass::AtRest,
-        scenes: "10 deg, n = 8, 1 s",
+        scenes: "10 deg, n = 8, 1 s (the full wheel creeps 1.7 mm/s)",
         quantity: "mean_speed",
         difference: 1.0,
-        uncertainty: 0.04,
-        max_strain: 7.2e-5,
+        uncertainty: 0.544,
+        max_strain: 7.1e-5,
         min_ground_stiffness: 1e6,
     },
     ClassAgreement {
         class: SceneClass::FirstPivot,
-        scenes: "30 deg, n = 8, 1 s",
+        scenes:
+            "30 deg, n = 8, 1 s (0.604 against 0.632 m/s; the full wheel slips 19 % of the time)",
         quantity: "mean_speed",
-        difference: 0.01,
+        difference: 0.0433,
         uncertainty: 0.04,
-        max_strain: 7.2e-5,
+        max_strain: 7.1e-5,
         min_ground_stiffness: 1e6,
     },
     ClassAgreement {
         class: SceneClass::Rolling,
-        scenes: "20 deg, n = 16, 2 s",
+        scenes: "20 deg, n = 16, 2 s (the full wheel hops 38 % of the time)",
         quantity: "airborne_fraction",
-        difference: 0.38,
+        difference: 0.381,
         uncertainty: 0.04,
-        max_strain: 7.2e-5,
+        max_strain: 1.2e-4,
         min_ground_stiffness: 1e6,
     },
     ClassAgreement {
         class: SceneClass::Hopping,
-        scenes: "50 deg, n = 8, 2 s",
-        quantity: "airborne_fraction",
-        difference: 0.14,
-        uncertainty: 0.04,
-        max_strain: 7.2e-5,
+        scenes: "50 deg, n = 8, 2 s (final speed 6.80 against 8.75 m/s)",
+        quantity: "final_speed",
+        difference: 0.223,
+        uncertainty: 0.0582,
+        max_strain: 7.1e-5,
         min_ground_stiffness: 1e6,
     },
 ];

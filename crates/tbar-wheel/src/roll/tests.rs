@@ -27,7 +27,7 @@ fn the_defaults_depend_on_the_fidelity() {
     assert_eq!(rigid.rim().unwrap(), RimMode::Fixed);
     let full = TbarRollRequest {
         fidelity: FidelityChoice::Full,
-        ..rigid
+        ..rigid.clone()
     };
     assert_eq!((full.t_end(), full.treads()), (1.0, vec![8]));
     assert_eq!(full.rim().unwrap(), RimMode::Body);
