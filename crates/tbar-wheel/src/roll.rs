@@ -280,7 +280,7 @@ impl TbarRollRequest {
     /// use tbar_wheel::roll::TbarRollRequest;
     /// use tbar_wheel::RimMode;
     /// use wheel_rolling::FidelityChoice;
-    /// let full = TbarRollRequest { fidelity: Fidelity::Full, ..Default::default() };
+    /// let full = TbarRollRequest { fidelity: FidelityChoice::Full, ..Default::default() };
     /// assert_eq!(full.rim().unwrap(), RimMode::Body);
     /// let fixed = TbarRollRequest { rim: Some(RimMode::Fixed), ..full };
     /// assert_eq!(fixed.rim().unwrap_err().name, "rim");
