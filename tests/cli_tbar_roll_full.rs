@@ -150,7 +150,6 @@ fn the_default_full_roll_keeps_its_models_assumptions() {
         assert_eq!(r["model"], "full");
         assert_eq!(r["fidelity_reason"], "requested");
     }
-    assert!(tbar["impacts"].as_u64().unwrap() >= 1, "{tbar}");
     // the guard admitted it under the default --max-work (no flag given) with the check on
     let estimate = tensegrity_engine::tbar_roll::estimate(&tbar_wheel::TbarRollRequest {
         fidelity: wheel_rolling::FidelityChoice::Full,
@@ -167,7 +166,8 @@ fn the_default_full_roll_keeps_its_models_assumptions() {
 /// ground stiffness, for the T-bar and the toroid column. Release, about 15 s of CPU:
 /// `cargo test --release --test cli_tbar_roll_full -- --ignored`. Measured before the stick
 /// friction of issue 21 item 1: not yet valid — the regularised friction's creep moves
-/// `slip_fraction` (0.52 → 0.13) and the speeds (1–7 %) at the refinement (docs/ROLLING.md).
+/// `slip_fraction` (0.18 → 0.02) and the mean speed (1.5 %) at the refinement, and the
+/// toroid column's likewise (docs/ROLLING.md).
 #[test]
 #[ignore = "release, ~15 s: the default full T-bar roll with its convergence check"]
 fn the_default_full_roll_is_valid() {

@@ -48,10 +48,10 @@ pub const FULL_TREADS: [usize; 1] = [8];
 pub const DEFAULT_INCLINE_DEG: f64 = 30.0;
 
 /// Default density of the rim body's bars in the full model (and `auto`) (kg/m): a light
-/// rim, so that the rim body is not most of the wheel's mass and its tips do not sink into
-/// the default ground (with the 1 kg/m of the treads' bars the rim body is 50.2 of the n = 8
-/// loop's 52.7 kg and its tips sink 2.3 cm, more than 1 % of r₀).
-pub const FULL_RIM_DENSITY: f64 = 0.1;
+/// rim, so that the rim body is not most of the wheel's mass (2.49 of the n = 8 loop's
+/// 5.44 kg) and its tips do not sink into the default ground (with the 1 kg/m of the treads'
+/// bars the rim body is 49.7 of 52.7 kg and its tips sink 2.3 cm, more than 1 % of r₀).
+pub const FULL_RIM_DENSITY: f64 = 0.05;
 
 /// Default departure angle β (rad): π/6, the measured cases of docs/ROLLING.md.
 pub const DEFAULT_BETA: f64 = PI / 6.0;
@@ -204,7 +204,7 @@ impl Request for TbarRollRequest {
             Param::number(
                 "rim_density",
                 "kg/m",
-                "Density of the rim body's bars (default: bar_density for the rigid model, 0.1 kg/m for full and auto)",
+                "Density of the rim body's bars (default: bar_density for the rigid model, 0.05 kg/m for full and auto)",
             )
             .positive()
             .optional(),

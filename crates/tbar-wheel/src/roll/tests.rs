@@ -33,7 +33,7 @@ fn the_defaults_depend_on_the_fidelity() {
     assert_eq!(full.rim().unwrap(), RimMode::Body);
     assert!((full.mu_kinetic() - 0.6).abs() < 1e-15);
     // a light rim body for the full model, the treads' bar density for the rigid one; 30°
-    assert_eq!((full.rim_density(), rigid.rim_density()), (0.1, 1.0));
+    assert_eq!((full.rim_density(), rigid.rim_density()), (0.05, 1.0));
     assert!((rigid.settings.incline - 30f64.to_radians()).abs() < 1e-15);
     // `auto` may run the full model: its defaults
     let auto = TbarRollRequest {
@@ -43,7 +43,7 @@ fn the_defaults_depend_on_the_fidelity() {
     assert_eq!((auto.t_end(), auto.treads()), (1.0, vec![8]));
     assert_eq!(
         (auto.rim().unwrap(), auto.rim_density()),
-        (RimMode::Body, 0.1)
+        (RimMode::Body, 0.05)
     );
 }
 
