@@ -135,7 +135,7 @@ fn the_default_full_roll_keeps_its_models_assumptions() {
     );
     assert_eq!(v["valid"], true, "{}", v["warnings"]);
     let row = &v["rows"][0];
-    let (m, tbar) = (&row["mass_properties"], &row["tbar"]);
+    let m = &row["mass_properties"];
     // the rim body is not most of the mass
     let (mass, rim) = (
         m["mass"].as_f64().unwrap(),
