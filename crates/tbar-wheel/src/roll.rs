@@ -31,8 +31,7 @@ use std::f64::consts::PI;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
-    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
-    RunSpec, WheelRun,
+    roll_checked, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks, RunSpec, WheelRun,
 };
 
 /// Default simulated time of the full model (s): the full model costs far more a second.
@@ -348,14 +347,14 @@ impl TbarRollRequest {
             .with_rim(rim)
     }
 
-    /// The run both models read: penalty contact, μ_s and [`TbarRollRequest::mu_kinetic`],
-    /// RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model choice `fidelity`.
+    /// The run both models read: the full model's default contact (`RunSpec::default`, as
+    /// `roll`'s), μ_s and [`TbarRollRequest::mu_kinetic`], RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model choice `fidelity`.
     pub fn spec(&self, fidelity: FidelityChoice) -> RunSpec {
         RunSpec {
             settings: self.settings,
             t_end: self.t_end(),
             fidelity,
-            contact: ContactKind::Penalty,
+            contact: RunSpec::default().contact,
             mu_static: self.mu_static,
             mu_kinetic: self.mu_kinetic(),
             ..RunSpec::default()

@@ -15,7 +15,7 @@ use tbar_wheel::TbarError;
 use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::{InvalidParameter, Request};
 use toroid::{RollRequest, Stabilize, ToroidParams, ToroidWheel, WheelSpec};
-use wheel_rolling::{defaults, ContactKind, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
+use wheel_rolling::{defaults, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
 
 /// Runs `tbar roll` (module docs): one row per number of treads; what fails in a row is named
 /// in its `errors`, a request the command refuses is an error, and under `strict` so is a
@@ -262,7 +262,7 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
         settings: request.settings,
         t_end: request.t_end(),
         fidelity: FidelityChoice::Rigid,
-        contact: ContactKind::Penalty,
+        contact: RollRequest::default().contact,
         mu: request.mu_static,
         min_tension: defaults::ROLL_MIN_TENSION,
         integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
