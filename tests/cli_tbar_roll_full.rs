@@ -164,10 +164,10 @@ fn the_default_full_roll_keeps_its_models_assumptions() {
 /// Issue 21, must show: `tbar roll --fidelity full` with its defaults is valid — its model's
 /// assumptions kept and every headline quantity converged at half the step and twice the
 /// ground stiffness, for the T-bar and the toroid column. Release, about 15 s of CPU:
-/// `cargo test --release --test cli_tbar_roll_full -- --ignored`. Measured before the stick
-/// friction of issue 21 item 1: not yet valid — the regularised friction's creep moves
-/// `slip_fraction` (0.18 → 0.02) and the mean speed (1.5 %) at the refinement, and the
-/// toroid column's likewise (docs/ROLLING.md).
+/// `cargo test --release --test cli_tbar_roll_full -- --ignored`. Not yet valid: with the
+/// regularised friction the slip fraction and the speeds move at the refinement; with the
+/// stick friction of issue 21 item 1 merged the T-bar's run is valid and only the toroid
+/// column's `slip_fraction` moves (1.9 %, τ/2 = 1 %) (docs/ROLLING.md).
 #[test]
 #[ignore = "release, ~15 s: the default full T-bar roll with its convergence check"]
 fn the_default_full_roll_is_valid() {

@@ -320,6 +320,7 @@ mod tests {
             t_end: 2.0,
             settings: wheel_rolling::RollSettings {
                 incline: tbar_wheel::roll::DEFAULT_INCLINE_DEG.to_radians(),
+                ground_stiffness: tbar_wheel::roll::DEFAULT_GROUND_STIFFNESS,
                 ..base.settings
             },
             ..base

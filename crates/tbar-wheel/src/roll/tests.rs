@@ -35,6 +35,7 @@ fn the_defaults_depend_on_the_fidelity() {
     // a light rim body for the full model, the treads' bar density for the rigid one; 30°
     assert_eq!((full.rim_density(), rigid.rim_density()), (0.05, 1.0));
     assert!((rigid.settings.incline - 30f64.to_radians()).abs() < 1e-15);
+    assert_eq!(rigid.settings.ground_stiffness, 1e6);
     // `auto` may run the full model: its defaults
     let auto = TbarRollRequest {
         fidelity: FidelityChoice::Auto,
