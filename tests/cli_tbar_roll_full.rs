@@ -106,3 +106,76 @@ fn the_full_model_refuses_the_fixed_rim() {
         "{err}"
     );
 }
+
+/// `tbar roll --fidelity full` with its defaults (n = 8 loop, 1 s on 30°, light rim body)
+/// keeps every assumption of its models — no tip sinks more than 1 % of r₀, the ground never
+/// pulls, the energy budget closes — for the T-bar and the toroid column alike, and fits the
+/// default `--max-work` with the refined run counted (the guard admits it). The convergence
+/// check is skipped here (it triples the cost); `the_default_full_roll_is_valid` (ignored,
+/// release) runs the command exactly as a user does.
+#[test]
+fn the_default_full_roll_keeps_its_models_assumptions() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args([
+            "tbar",
+            "roll",
+            "--fidelity",
+            "full",
+            "--no-convergence-check",
+            "--json",
+        ])
+        .output()
+        .expect("binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (&v["model"], &v["fidelity"]),
+        (&"full".into(), &"full".into())
+    );
+    assert_eq!(v["valid"], true, "{}", v["warnings"]);
+    let row = &v["rows"][0];
+    let m = &row["mass_properties"];
+    // the rim body is not most of the mass
+    let (mass, rim) = (
+        m["mass"].as_f64().unwrap(),
+        m["rim_mass"].as_f64().unwrap_or(0.0),
+    );
+    assert!(rim < 0.5 * mass, "rim {rim} of {mass} kg");
+    for side in ["tbar", "toroid"] {
+        let r = &row[side];
+        assert!(r["max_penetration"].as_f64().unwrap() < 0.01, "{side}");
+        assert!(r["min_normal_force"].as_f64().unwrap() >= 0.0, "{side}");
+        assert!(r["energy_balance_error"].as_f64().unwrap() < 1e-2, "{side}");
+        assert_eq!(r["model"], "full");
+        assert_eq!(r["fidelity_reason"], "requested");
+    }
+    // the guard admitted it under the default --max-work (no flag given) with the check on
+    let estimate = tensegrity_engine::tbar_roll::estimate(&tbar_wheel::TbarRollRequest {
+        fidelity: wheel_rolling::FidelityChoice::Full,
+        ..Default::default()
+    })
+    .unwrap()
+    .unwrap();
+    let limits = tensegrity_core::budget::Limits::default();
+    assert!(limits.check(&estimate).is_ok(), "{}", estimate.work_s);
+}
+
+/// Issue 21, must show: `tbar roll --fidelity full` with its defaults is valid — its model's
+/// assumptions kept and every headline quantity converged at half the step and twice the
+/// ground stiffness, for the T-bar and the toroid column. Release, about 15 s of CPU:
+/// `cargo test --release --test cli_tbar_roll_full -- --ignored`. Not yet valid: with the
+/// regularised friction the slip fraction and the speeds move at the refinement; with the
+/// stick friction of issue 21 item 1 merged the T-bar's run is valid and only the toroid
+/// column's `slip_fraction` moves (1.9 %, τ/2 = 1 %) (docs/ROLLING.md).
+#[test]
+#[ignore = "release, ~15 s: the default full T-bar roll with its convergence check"]
+fn the_default_full_roll_is_valid() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(["tbar", "roll", "--fidelity", "full", "--json", "--strict"])
+        .output()
+        .expect("binary runs");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["valid"], true, "{}", v["warnings"]);
+    assert_eq!(out.status.code(), Some(0));
+}

@@ -31,9 +31,9 @@ fn canonical(name: &str) -> &str {
     }
 }
 
-/// Parameters that differ between siblings on purpose: the T-bar's rolling has no `auto`
-/// fidelity (there is no cheaper valid model to decide for: its choices are a subset).
-const DIFFERENT_ON_PURPOSE: &[&str] = &["fidelity"];
+/// Parameters that differ between siblings on purpose: none since the T-bar's rolling took
+/// `auto` (its `fidelity` now has the choices of `roll`).
+const DIFFERENT_ON_PURPOSE: &[&str] = &[];
 
 /// Every parameter shared by two siblings of `group` has the same kind, unit and rule.
 fn same_rules(group: &[(&str, Vec<Param>)]) -> Vec<String> {

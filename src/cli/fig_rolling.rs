@@ -35,11 +35,16 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
     if args.json {
         let (runs, impacts, figure) = (&rolled.runs, rolled.impacts(), args.out.display());
         let figure = figure.to_string();
+        let notes = rolled.ensemble_notes();
         return output::print_json(
-            &serde_json::json!({"runs": runs, "impacts": impacts, "figure": figure}),
+            &serde_json::json!({"runs": runs, "impacts": impacts, "figure": figure,
+                "ensemble_notes": notes}),
         );
     }
     print_series(&rolled);
+    for note in rolled.ensemble_notes() {
+        println!("ensemble: {note}");
+    }
     println!("wrote {}", args.out.display());
     Ok(())
 }

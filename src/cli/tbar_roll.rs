@@ -111,6 +111,9 @@ fn print_roll(r: &TbarRollReport) {
             cell(&row.tbar),
             cell(&row.toroid)
         );
+        if let Some(t) = row.tbar.as_ref().filter(|t| !t.fidelity_reason.is_empty()) {
+            println!("     model: {} ({})", t.model.name(), t.fidelity_reason);
+        }
         print_full(row);
         if let Some(t) = &row.tipover {
             println!(

@@ -31,8 +31,7 @@ use std::f64::consts::PI;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
-    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
-    RunSpec, WheelRun,
+    roll_checked, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks, RunSpec, WheelRun,
 };
 
 /// Default simulated time of the full model (s): the full model costs far more a second.
@@ -40,6 +39,25 @@ pub const FULL_T_END: f64 = 1.0;
 
 /// Default number of treads of the full model (its cost grows steeply with n).
 pub const FULL_TREADS: [usize; 1] = [8];
+
+/// Default slope of `tbar roll` (degrees): 30°, below the friction angle atan μ_s = 38.7° of
+/// the default μ_s = 0.8, so that the wheel rolls on its tips rather than slides and hops
+/// (on 50° the full wheel's uphill tips chatter and its 1 s statistics do not converge; see
+/// docs/ROLLING.md, "The T-bar wheel in the full model").
+pub const DEFAULT_INCLINE_DEG: f64 = 30.0;
+
+/// Default ground stiffness of `tbar roll` (N/m per contact node): 10⁶, ten times `roll`'s,
+/// so that the full model's tips barely enter the ground (0.05 mm for the default wheel) and
+/// the first pivot does not depend on it (with the stick contact the default full roll is
+/// then converged at twice the stiffness; at 10⁵ N/m its mean speed moves by 2 %). The rigid
+/// model does not read it.
+pub const DEFAULT_GROUND_STIFFNESS: f64 = 1e6;
+
+/// Default density of the rim body's bars in the full model (and `auto`) (kg/m): a light
+/// rim, so that the rim body is not most of the wheel's mass (2.49 of the n = 8 loop's
+/// 5.44 kg) and its tips do not sink into the default ground (with the 1 kg/m of the treads'
+/// bars the rim body is 49.7 of 52.7 kg and its tips sink 2.3 cm, more than 1 % of r₀).
+pub const FULL_RIM_DENSITY: f64 = 0.05;
 
 /// Default departure angle β (rad): π/6, the measured cases of docs/ROLLING.md.
 pub const DEFAULT_BETA: f64 = PI / 6.0;
@@ -75,8 +93,11 @@ pub struct TbarRollRequest {
     /// Rim mass: `fixed` (massless rigid rim) or `body` (the rim body's bars); unset: see
     /// [`TbarRollRequest::rim`].
     pub rim: Option<RimMode>,
-    /// Rolling model: `rigid` or `full`.
-    pub fidelity: Fidelity,
+    /// Rolling model: `rigid`, `full` or `auto` (the fidelity policy of
+    /// [`wheel_rolling::fidelity`]: rigid only where the two models agree within their
+    /// uncertainty on the scene's class, else full). `auto` takes the full model's defaults
+    /// (it may run the full model).
+    pub fidelity: FidelityChoice,
     /// Numbers of treads n = π/φ to roll; unset: see [`TbarRollRequest::treads`].
     pub treads: Option<Vec<usize>>,
     /// Slope, step, gravity, restitution, string and ground stiffness, ground damping.
@@ -90,7 +111,7 @@ pub struct TbarRollRequest {
     pub mu_static: f64,
     /// Kinetic friction coefficient; unset: 0.75 μ_s.
     pub mu_kinetic: Option<f64>,
-    /// Full model: density of the rim body's bars (kg/m); unset: `bar_density`.
+    /// Density of the rim body's bars (kg/m); unset: see [`TbarRollRequest::rim_density`].
     pub rim_density: Option<f64>,
     /// Full model: smallest string tension of the prestress (N); unset: the prestress that
     /// carries twice the wheel's weight on one tip of each copy from every direction.
@@ -104,8 +125,9 @@ pub struct TbarRollRequest {
 impl Default for TbarRollRequest {
     /// q = 1, β = π/6, cylindrical δ = 0.25 (unset: the default of neither parameterisation
     /// given, so that `spherical` alone is a complete request), r₀ = 1, the single loop on rim bar bases, the
-    /// rigid model, the rolling defaults of wheel-rolling (50°, 0.1 ms, g = 9.81, e = 0,
-    /// strings 2·10⁴ N/m, ground 10⁵ N/m), 1 kg/m bars, μ_s = 0.8; the rest unset.
+    /// rigid model, the rolling defaults of wheel-rolling on [`DEFAULT_INCLINE_DEG`] (30°)
+    /// and [`DEFAULT_GROUND_STIFFNESS`] (10⁶ N/m) (0.1 ms, g = 9.81, e = 0, strings
+    /// 2·10⁴ N/m), 1 kg/m bars, μ_s = 0.8; the rest unset.
     fn default() -> Self {
         Self {
             complexity: 1,
@@ -116,9 +138,13 @@ impl Default for TbarRollRequest {
             extended: None,
             bar_base: BarBase::Rim,
             rim: None,
-            fidelity: Fidelity::Rigid,
+            fidelity: FidelityChoice::Rigid,
             treads: None,
-            settings: RollSettings::default(),
+            settings: RollSettings {
+                incline: DEFAULT_INCLINE_DEG.to_radians(),
+                ground_stiffness: DEFAULT_GROUND_STIFFNESS,
+                ..RollSettings::default()
+            },
             t_end: None,
             bar_density: crate::rolling::DEFAULT_BAR_DENSITY,
             mu_static: roll_defaults::STATIC_FRICTION,
@@ -157,7 +183,11 @@ impl Request for TbarRollRequest {
                 "Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)",
             )
             .optional(),
-            Param::choice("fidelity", &["rigid", "full"], "Rolling model"),
+            Param::choice(
+                "fidelity",
+                FidelityChoice::NAMES,
+                "Rolling model (auto: rigid only where rigid and full agree within their uncertainty on this scene class, else full; takes the full model's defaults)",
+            ),
             Param::new(
                 "treads",
                 Kind::Counts,
@@ -181,7 +211,7 @@ impl Request for TbarRollRequest {
             Param::number(
                 "rim_density",
                 "kg/m",
-                "Full model: density of the rim body's bars (default bar_density)",
+                "Density of the rim body's bars (default: bar_density for the rigid model, 0.05 kg/m for full and auto)",
             )
             .positive()
             .optional(),
@@ -245,48 +275,54 @@ impl TbarRollRequest {
     /// ([`wheel_rolling::defaults::ROLL_T_END`]) or 1 s for the full model ([`FULL_T_END`]).
     pub fn t_end(&self) -> f64 {
         self.t_end.unwrap_or(match self.fidelity {
-            Fidelity::Rigid => roll_defaults::ROLL_T_END,
-            Fidelity::Full => FULL_T_END,
+            FidelityChoice::Rigid => roll_defaults::ROLL_T_END,
+            FidelityChoice::Full | FidelityChoice::Auto => FULL_T_END,
         })
     }
 
-    /// The rim: `rim`, else `fixed` for the rigid model or `body` for the full model; the
-    /// full model refuses `fixed` (it needs a free body).
+    /// The rim: `rim`, else `fixed` for the rigid model or `body` for the full model (and
+    /// `auto`, which may run it); the full model refuses `fixed` (it needs a free body).
     ///
     /// ```
     /// use tbar_wheel::roll::TbarRollRequest;
     /// use tbar_wheel::RimMode;
-    /// use wheel_rolling::Fidelity;
-    /// let full = TbarRollRequest { fidelity: Fidelity::Full, ..Default::default() };
+    /// use wheel_rolling::FidelityChoice;
+    /// let full = TbarRollRequest { fidelity: FidelityChoice::Full, ..Default::default() };
     /// assert_eq!(full.rim().unwrap(), RimMode::Body);
     /// let fixed = TbarRollRequest { rim: Some(RimMode::Fixed), ..full };
     /// assert_eq!(fixed.rim().unwrap_err().name, "rim");
     /// ```
     pub fn rim(&self) -> std::result::Result<RimMode, InvalidParameter> {
         match (self.fidelity, self.rim) {
-            (Fidelity::Full, Some(RimMode::Fixed)) => Err(InvalidParameter::text(
-                "rim",
-                "fixed",
-                "the full model needs a free body: the rim body (rim = body), not the fixed rim",
-            )),
-            (Fidelity::Full, _) => Ok(RimMode::Body),
-            (Fidelity::Rigid, r) => Ok(r.unwrap_or(RimMode::Fixed)),
+            (FidelityChoice::Full | FidelityChoice::Auto, Some(RimMode::Fixed)) => {
+                Err(InvalidParameter::text(
+                    "rim",
+                    "fixed",
+                    "the full model (which `auto` may run) needs a free body: the rim body (rim = body), not the fixed rim",
+                ))
+            }
+            (FidelityChoice::Full | FidelityChoice::Auto, _) => Ok(RimMode::Body),
+            (FidelityChoice::Rigid, r) => Ok(r.unwrap_or(RimMode::Fixed)),
         }
     }
 
     /// The numbers of treads: `treads`, else 8, 12, 16, 24 for the rigid model
-    /// ([`wheel_rolling::defaults::FIG_3_10_SIDES`]) or 8 for the full model
+    /// ([`wheel_rolling::defaults::FIG_3_10_SIDES`]) or 8 for the full model and `auto`
     /// ([`FULL_TREADS`]).
     pub fn treads(&self) -> Vec<usize> {
         self.treads.clone().unwrap_or_else(|| match self.fidelity {
-            Fidelity::Rigid => roll_defaults::FIG_3_10_SIDES.to_vec(),
-            Fidelity::Full => FULL_TREADS.to_vec(),
+            FidelityChoice::Rigid => roll_defaults::FIG_3_10_SIDES.to_vec(),
+            FidelityChoice::Full | FidelityChoice::Auto => FULL_TREADS.to_vec(),
         })
     }
 
-    /// The rim body's bar density: `rim_density`, else `bar_density`.
+    /// The rim body's bar density: `rim_density`, else `bar_density` for the rigid model or
+    /// [`FULL_RIM_DENSITY`] for the full model and `auto`.
     pub fn rim_density(&self) -> f64 {
-        self.rim_density.unwrap_or(self.bar_density)
+        self.rim_density.unwrap_or(match self.fidelity {
+            FidelityChoice::Rigid => self.bar_density,
+            FidelityChoice::Full | FidelityChoice::Auto => FULL_RIM_DENSITY,
+        })
     }
 
     /// μ_k: `mu_kinetic`, else 0.75 μ_s ([`wheel_rolling::defaults::KINETIC_FRICTION_RATIO`]).
@@ -319,17 +355,14 @@ impl TbarRollRequest {
             .with_rim(rim)
     }
 
-    /// The run both models read: penalty contact, μ_s and [`TbarRollRequest::mu_kinetic`],
-    /// RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model `fidelity`.
-    pub fn spec(&self, fidelity: Fidelity) -> RunSpec {
+    /// The run both models read: the full model's default contact (`RunSpec::default`, as
+    /// `roll`'s), μ_s and [`TbarRollRequest::mu_kinetic`], RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model choice `fidelity`.
+    pub fn spec(&self, fidelity: FidelityChoice) -> RunSpec {
         RunSpec {
             settings: self.settings,
             t_end: self.t_end(),
-            fidelity: match fidelity {
-                Fidelity::Rigid => FidelityChoice::Rigid,
-                Fidelity::Full => FidelityChoice::Full,
-            },
-            contact: ContactKind::Penalty,
+            fidelity,
+            contact: RunSpec::default().contact,
             mu_static: self.mu_static,
             mu_kinetic: self.mu_kinetic(),
             ..RunSpec::default()
@@ -355,13 +388,8 @@ impl TbarRollRequest {
 
     /// The rigid run of `polygon` in the settings of this request.
     pub fn rigid_run(&self, polygon: &wheel_rolling::Polygon) -> Result<WheelRun> {
-        let r = self.checked_run(polygon, Fidelity::Rigid)?;
-        Ok(WheelRun::of(
-            Fidelity::Rigid,
-            polygon,
-            &r.result,
-            self.t_end(),
-        ))
+        let r = self.checked_run(polygon, FidelityChoice::Rigid)?;
+        Ok(WheelRun::of(Fidelity::Rigid, polygon, &r.result, self.t_end()).because(r.reason))
     }
 
     /// The T-bar columns of the row of `n` treads (module docs): mass properties, the run of
@@ -371,8 +399,8 @@ impl TbarRollRequest {
         let mut row = TbarRollRow::new(n);
         let p = self.tbar_params(n, rim);
         match self.fidelity {
-            Fidelity::Rigid => self.rigid_columns(&p, &mut row),
-            Fidelity::Full => self.full_columns(&p, &mut row),
+            FidelityChoice::Rigid => self.rigid_columns(&p, &mut row),
+            FidelityChoice::Full | FidelityChoice::Auto => self.full_columns(&p, &mut row),
         }
         row
     }
@@ -412,24 +440,32 @@ impl TbarRollRequest {
         (row.tbar, row.full) = (Some(run), Some(details));
     }
 
-    /// The full tensegrity rolling of the T-bar wheel of `p`: its run, its structure and
-    /// prestress, and the wheel.
+    /// The full tensegrity rolling of the T-bar wheel of `p` (with `auto`: the model the
+    /// fidelity policy chose, the full structure built either way): its run, its structure
+    /// and prestress, and the wheel.
     pub fn full_run(
         &self,
         p: &TbarParams,
     ) -> Result<(WheelRun, FullDetails, crate::rolling_full::FullWheel)> {
         let w = full_wheel(p, &self.full_wheel_request())?;
-        let mut r = self.checked_run(&w, Fidelity::Full)?;
-        let gravity = self.settings.gravity;
-        r.result.validity.warnings.extend(w.warnings(gravity));
+        let choice = match self.fidelity {
+            FidelityChoice::Rigid => FidelityChoice::Full,
+            c => c,
+        };
+        let mut r = self.checked_run(&w, choice)?;
+        if r.fidelity == Fidelity::Full {
+            let gravity = self.settings.gravity;
+            r.result.validity.warnings.extend(w.warnings(gravity));
+        }
         let details = FullDetails::of(&w, r.ground_damping.unwrap_or_default());
-        let run = WheelRun::of(Fidelity::Full, &w.mass.polygon(), &r.result, self.t_end());
+        let run =
+            WheelRun::of(r.fidelity, &w.mass.polygon(), &r.result, self.t_end()).because(r.reason);
         Ok((run, details, w))
     }
 
     /// The run of `wheel` with `fidelity`, repeated at the refined resolution beside it when
     /// `convergence_check` is set.
-    fn checked_run<W>(&self, wheel: &W, fidelity: Fidelity) -> Result<wheel_rolling::Rolled>
+    fn checked_run<W>(&self, wheel: &W, fidelity: FidelityChoice) -> Result<wheel_rolling::Rolled>
     where
         W: wheel_rolling::Wheel + Sync,
         W::Error: Send + std::fmt::Display,

@@ -475,9 +475,10 @@ fn build_structure(
 
 /// The sizes of the full model of `params` (the isostatic structure): the class-1 model has
 /// two nodes per bar and 3 (copies − 1) coincidence rows per node, tied in a chain (so a
-/// hub's rows form a banded block of the sparse Ω system): ~4000 flops a bar on top of the
+/// hub's rows form a banded block of the sparse Ω system): ~1500 flops a bar on top of the
 /// core's per-member cost; a step is four right-hand sides and a projection (counted as two
-/// more).
+/// more). Calibrated on the default full roll (n = 8 loop, 1 s at 0.1 ms: 3.8 s of CPU
+/// against 10.2 s estimated; it was 4000 flops a bar, 5.8× over).
 pub fn full_sizes(params: &TbarParams) -> Result<FullSizes> {
     let mut g = TbarGeometry::new(params.with_rim(RimMode::Body))?;
     make_isostatic(&mut g);
@@ -488,15 +489,16 @@ pub fn full_sizes(params: &TbarParams) -> Result<FullSizes> {
         strings: g.strings.len(),
         constraint_rows: 3 * (2 * bars).saturating_sub(g.nodes.len()),
         rhs_per_step: 6.0,
-        extra_flops: 4000.0 * bars as f64,
+        extra_flops: 1500.0 * bars as f64,
     })
 }
 
 /// Estimate of a full rolling run of `params` for `t_end` s at step `dt` (RK4 with the
 /// projection onto the bar lengths and joints after every step), from the isostatic
 /// structure's sizes ([`full_sizes`], estimated by [`wheel_rolling::estimate::full`]).
-/// Checked against runs of 0.05 s on a shared 2-core machine (n = 6…24, loop and extended):
-/// conservative by 3–6×. One 1 ms sample is kept per millisecond.
+/// Checked against runs of 0.05 s on a shared 2-core machine (n = 6…24, loop and extended;
+/// conservative by 3–6× with 4000 flops a bar, so by about 1.2–2.7× now) and the default 1 s
+/// roll (2.7×). One 1 ms sample is kept per millisecond.
 pub fn full_roll_estimate(params: &TbarParams, t_end: f64, dt: f64) -> Result<Estimate> {
     let sizes = full_sizes(params)?;
     let n = params.treads_per_wheel()?;

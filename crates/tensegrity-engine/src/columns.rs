@@ -220,8 +220,9 @@ pub const ROLL: [Column; 31] = [
 /// The scalars of [`tbar_wheel::TbarRollReport`] and of its first row (`rows.0.…`: the first
 /// number of treads — a sweep over `treads` gives one row a case): the T-bar run, the toroid
 /// column and the tip-over.
-pub const TBAR_ROLL: [Column; 32] = [
+pub const TBAR_ROLL: [Column; 33] = [
     col("model", ""),
+    col("fidelity", ""),
     col("full_tensegrity_rolling", ""),
     col("structure", ""),
     col("rim", ""),

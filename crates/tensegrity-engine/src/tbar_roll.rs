@@ -15,7 +15,7 @@ use tbar_wheel::TbarError;
 use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::{InvalidParameter, Request};
 use toroid::{RollRequest, Stabilize, ToroidParams, ToroidWheel, WheelSpec};
-use wheel_rolling::{defaults, ContactKind, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
+use wheel_rolling::{defaults, Fidelity, FidelityChoice, Polygon, Wheel, WheelRun};
 
 /// Runs `tbar roll` (module docs): one row per number of treads; what fails in a row is named
 /// in its `errors`, a request the command refuses is an error, and under `strict` so is a
@@ -66,9 +66,12 @@ pub fn report(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
             row
         })
         .collect();
+    let rows: Vec<tbar_wheel::roll::TbarRollRow> = rows;
+    let model = ran(request, &rows);
     Ok(TbarRollReport {
-        model: request.fidelity,
-        full_tensegrity_rolling: request.fidelity == Fidelity::Full,
+        model,
+        fidelity: request.fidelity,
+        full_tensegrity_rolling: model == Fidelity::Full,
         structure: request.layout().name(),
         rim,
         incline_rad: request.settings.incline,
@@ -78,6 +81,26 @@ pub fn report(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
         rows,
     }
     .judged())
+}
+
+/// The model that ran: the one asked for, or with `auto` the full model when any row's T-bar
+/// run used it (else rigid).
+fn ran(request: &TbarRollRequest, rows: &[tbar_wheel::roll::TbarRollRow]) -> Fidelity {
+    match request.fidelity {
+        FidelityChoice::Rigid => Fidelity::Rigid,
+        FidelityChoice::Full => Fidelity::Full,
+        FidelityChoice::Auto => {
+            let full = rows
+                .iter()
+                .filter_map(|r| r.tbar.as_ref())
+                .any(|t| t.model == Fidelity::Full);
+            if full {
+                Fidelity::Full
+            } else {
+                Fidelity::Rigid
+            }
+        }
+    }
 }
 
 /// The reference toroid's parameters scaled to outer radius r₀, with n sides.
@@ -124,7 +147,10 @@ pub fn toroid_request(
         ));
     }
     Ok(RollRequest {
-        fidelity: FidelityChoice::Full,
+        fidelity: match request.fidelity {
+            FidelityChoice::Auto => FidelityChoice::Auto,
+            _ => FidelityChoice::Full,
+        },
         min_tension: request.min_tension.unwrap_or(defaults::ROLL_MIN_TENSION),
         ..rigid_toroid_request(request, n)
     })
@@ -136,7 +162,7 @@ fn toroid_column(
     n: usize,
 ) -> Result<WheelRun, Box<dyn std::error::Error>> {
     match request.fidelity {
-        Fidelity::Rigid => {
+        FidelityChoice::Rigid => {
             let t = toroid_wheel(request, n).build()?;
             let a = toroid::analyse(&t)?;
             let wheel = ToroidWheel {
@@ -147,7 +173,7 @@ fn toroid_column(
             };
             Ok(request.rigid_run(&wheel.polygon())?)
         }
-        Fidelity::Full => {
+        FidelityChoice::Full | FidelityChoice::Auto => {
             let r = toroid::roll(&toroid_request(request, n)?)?;
             let polygon = Polygon {
                 sides: n,
@@ -157,6 +183,7 @@ fn toroid_column(
             };
             Ok(WheelRun {
                 model: r.fidelity,
+                fidelity_reason: r.fidelity_reason,
                 mass_kg: r.mass_kg,
                 i1: r.i1,
                 impact_ratio: polygon.impact_ratio(),
@@ -188,11 +215,11 @@ pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError
     let mut total: Option<Estimate> = None;
     for n in request.treads() {
         let e = match request.fidelity {
-            Fidelity::Rigid => {
+            FidelityChoice::Rigid => {
                 let toroid = toroid::budget::roll(&rigid_toroid_request(request, n));
                 toroid.clone().then(toroid)
             }
-            Fidelity::Full => {
+            FidelityChoice::Full | FidelityChoice::Auto => {
                 let p = request.tbar_params(n, rim);
                 let mut e = tbar_wheel::rolling_full::full_roll_estimate(&p, t_end, dt)?;
                 if request.checks.convergence_check {
@@ -215,7 +242,11 @@ pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError
     Ok(total.map(|e| Estimate {
         what: format!(
             "the {} rolling runs of n = {treads:?}",
-            request.fidelity.name()
+            match request.fidelity {
+                FidelityChoice::Rigid => "rigid",
+                FidelityChoice::Full => "full",
+                FidelityChoice::Auto => "auto (rigid, then full)",
+            }
         ),
         parameters: format!("treads = {largest}, t_end = {t_end}, dt = {dt}")
             .as_str()
@@ -232,7 +263,7 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
         settings: request.settings,
         t_end: request.t_end(),
         fidelity: FidelityChoice::Rigid,
-        contact: ContactKind::Penalty,
+        contact: RollRequest::default().contact,
         mu: request.mu_static,
         min_tension: defaults::ROLL_MIN_TENSION,
         integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
@@ -267,7 +298,7 @@ mod tests {
         for row in &r.rows {
             assert!(row.errors.is_empty(), "{:?}", row.errors);
             let (t, o) = (row.tbar.as_ref().unwrap(), row.toroid.as_ref().unwrap());
-            // both roll down 50° > π/n and bump: more treads, smaller oscillation
+            // both roll down 30° > π/n and bump: more treads, smaller oscillation
             assert!(t.summary.impacts > 0 && o.summary.impacts > 0);
             let tip = row.tipover.as_ref().unwrap();
             let mg = row.mass_properties.unwrap().mass * 9.81;
@@ -284,10 +315,16 @@ mod tests {
         assert!(osc(1) < osc(0));
         // the toroid column is `toroid::roll` with the rigid fidelity (the reference wheel,
         // R_o = 1)
+        let base = RollRequest::with_sides(8);
         let direct = toroid::roll(&RollRequest {
             fidelity: FidelityChoice::Rigid,
             t_end: 2.0,
-            ..RollRequest::with_sides(8)
+            settings: wheel_rolling::RollSettings {
+                incline: tbar_wheel::roll::DEFAULT_INCLINE_DEG.to_radians(),
+                ground_stiffness: tbar_wheel::roll::DEFAULT_GROUND_STIFFNESS,
+                ..base.settings
+            },
+            ..base
         })
         .unwrap();
         let ours = r.rows[0].toroid.as_ref().unwrap();
@@ -328,7 +365,7 @@ mod tests {
     #[test]
     fn the_full_estimate_counts_both_wheels_of_every_row() {
         let full = TbarRollRequest {
-            fidelity: Fidelity::Full,
+            fidelity: FidelityChoice::Full,
             treads: Some(vec![6, 8]),
             ..TbarRollRequest::default()
         };

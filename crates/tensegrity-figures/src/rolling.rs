@@ -49,6 +49,11 @@ pub struct FigRollingRequest {
     pub mu: f64,
     /// Normal coefficient of restitution e of an impact, in [0, 1].
     pub restitution: f64,
+    /// Ensemble size K per wheel: with K ≥ 2, K copies from perturbed starting poses
+    /// ([`wheel_rolling::ensemble`]) and one run of the other model; the figure draws the
+    /// copies' mean axle height and its 95 % band instead of the single run, and the
+    /// output states where the spread exceeds the difference between the models. 0: none.
+    pub ensemble: usize,
 }
 
 impl Default for FigRollingRequest {
@@ -63,6 +68,7 @@ impl Default for FigRollingRequest {
             t_end: defaults::ROLL_T_END,
             mu: defaults::STATIC_FRICTION,
             restitution: defaults::RESTITUTION,
+            ensemble: 0,
         }
     }
 }
@@ -88,6 +94,10 @@ impl Request for FigRollingRequest {
             Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
                 .non_negative(),
             setting("restitution"),
+            Param::count(
+                "ensemble",
+                "Copies per wheel from perturbed starting poses (K >= 2): draws their mean and 95 % band, and states where the spread exceeds the difference between the models",
+            ),
         ]
     }
 
@@ -118,6 +128,7 @@ impl FigRollingRequest {
             },
             t_end: self.t_end,
             mu: self.mu,
+            ensemble: self.ensemble,
             ..RollRequest::default()
         };
         r.wheel.params.sides = sides;
@@ -176,9 +187,19 @@ impl ImpactMeans {
     }
 }
 
+/// A fixed colour per wheel (n = 8, 12, 16, 24), so that a band and its mean share it.
+const WHEEL_COLOURS: [(u8, u8, u8); 4] = [
+    (31, 119, 180),
+    (214, 39, 40),
+    (44, 160, 44),
+    (148, 103, 189),
+];
+
 impl FigRolling {
     /// Figs. 3.10 (axle height of every wheel) and 3.11 (reactions of n = 8 and 16) side by
-    /// side, each curve labelled `n = 8 rigid` (and `(NOT VALID)` when the run is not).
+    /// side, each curve labelled `n = 8 rigid` (and `(NOT VALID)` when the run is not). With
+    /// an ensemble, the axle height of each wheel is the copies' mean (`mean of K`) between
+    /// the two edges of its 95 % band (mean ± 1.96 s at each time), in the wheel's colour.
     pub fn figure(&self) -> Figure {
         let labelled: Vec<(String, &[RollingSample])> = self
             .runs
@@ -197,12 +218,75 @@ impl FigRolling {
             .filter(|(r, _)| [8, 16].contains(&r.sides))
             .map(|(_, l)| l.clone())
             .collect();
-        Figure::new(vec![axle_panel(&labelled), reaction_panel(&some)])
+        let axle = if self.runs.iter().any(|r| r.ensemble_samples.len() >= 2) {
+            self.band_panel()
+        } else {
+            axle_panel(&labelled)
+        };
+        Figure::new(vec![axle, reaction_panel(&some)])
+    }
+
+    /// The axle height of every wheel as its ensemble's mean and 95 % band (a wheel without
+    /// copies: its single run).
+    fn band_panel(&self) -> Panel {
+        let mut panel = axle_panel(&[]).legend_above(legend_band(self.runs.len()));
+        for (i, r) in self.runs.iter().enumerate() {
+            let colour = WHEEL_COLOURS[i % WHEEL_COLOURS.len()];
+            let model = r.fidelity.name();
+            let mark = if r.summary.valid { "" } else { " (NOT VALID)" };
+            let k = r.ensemble_samples.len();
+            if k < 2 {
+                let points = r.samples.iter().map(|s| (s.t, s.h)).collect();
+                let label = format!("n = {} {model}{mark}", r.sides);
+                panel
+                    .series
+                    .push(Series::new(label, points).with_color(colour));
+                continue;
+            }
+            let b = wheel_rolling::ensemble::band(&r.ensemble_samples, |s| s.h);
+            let label = format!("n = {} {model}: mean of {k}, 95 % band{mark}", r.sides);
+            let mean = b.iter().map(|p| (p.0, p.1)).collect();
+            panel
+                .series
+                .push(Series::new(label, mean).with_color(colour));
+            for edge in [
+                |p: &(f64, f64, f64, f64)| p.2,
+                |p: &(f64, f64, f64, f64)| p.3,
+            ] {
+                let points = b.iter().map(|p| (p.0, edge(p))).collect();
+                panel
+                    .series
+                    .push(Series::new("", points).with_color(colour));
+            }
+        }
+        panel
     }
 
     /// The impulse per new contact of every wheel.
     pub fn impacts(&self) -> Vec<ImpactMeans> {
         self.runs.iter().map(ImpactMeans::of).collect()
+    }
+
+    /// One line per wheel with an ensemble: its size, and where the spread of the copies
+    /// exceeds the difference between the models (the ensemble's `note`), or that it does not.
+    pub fn ensemble_notes(&self) -> Vec<String> {
+        self.runs
+            .iter()
+            .filter_map(|r| {
+                let e = r.ensemble.as_ref()?;
+                let what = if e.note.is_empty() {
+                    "the spread of the copies is within the difference between the models on every headline quantity".to_string()
+                } else {
+                    e.note.clone()
+                };
+                Some(format!(
+                    "n = {} ({} model, ensemble of {}): {what}",
+                    r.sides,
+                    r.fidelity.name(),
+                    e.members
+                ))
+            })
+            .collect()
     }
 }
 
@@ -339,7 +423,8 @@ mod tests {
                 "incline",
                 "t_end",
                 "mu",
-                "restitution"
+                "restitution",
+                "ensemble"
             ]
         );
         let r = FigRollingRequest::from_values([
@@ -363,6 +448,60 @@ mod tests {
         assert_eq!(d, RollRequest::with_sides(8));
         let e = FigRollingRequest::from_values([("t_end", serde_json::json!(0))]).unwrap_err();
         assert_eq!(e.name, "t_end");
+    }
+
+    /// `ensemble = K`: each wheel's axle height is the mean of its K copies between the two
+    /// edges of the 95 % band (one colour per wheel), and the output says, per wheel,
+    /// whether the spread exceeds the difference between the models.
+    #[test]
+    fn an_ensemble_draws_the_mean_and_the_band_and_states_the_spread() {
+        let request = FigRollingRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 1.0,
+            ensemble: 3,
+            ..FigRollingRequest::default()
+        };
+        let roll = |n: usize| {
+            let mut r = request.roll_request(n);
+            r.checks = wheel_rolling::RunChecks::NONE;
+            toroid::roll(&r).unwrap()
+        };
+        let rolled = FigRolling {
+            runs: vec![roll(8), roll(24)],
+        };
+        assert_eq!(rolled.runs[0].ensemble_samples.len(), 3);
+        let f = rolled.figure();
+        let axle = &f.panels[0];
+        // mean, low edge, high edge per wheel
+        assert_eq!(axle.series.len(), 6);
+        assert!(axle.series[0].label.contains("mean of 3, 95 % band"));
+        assert_eq!(
+            (axle.series[1].label.as_str(), axle.series[2].label.as_str()),
+            ("", "")
+        );
+        assert_eq!(axle.series[0].color, axle.series[2].color);
+        assert_ne!(axle.series[0].color, axle.series[3].color);
+        // the band holds its mean, and the mean is the copies' mean at each time
+        let b = wheel_rolling::ensemble::band(&rolled.runs[0].ensemble_samples, |s| s.h);
+        for ((lo, mid), hi) in axle.series[1]
+            .points
+            .iter()
+            .zip(&axle.series[0].points)
+            .zip(&axle.series[2].points)
+        {
+            assert!(lo.1 <= mid.1 + 1e-12 && mid.1 <= hi.1 + 1e-12);
+        }
+        let copies = &rolled.runs[0].ensemble_samples;
+        let j = copies[0].len() / 2;
+        let mean = copies.iter().map(|c| c[j].h).sum::<f64>() / 3.0;
+        assert!((b[j].1 - mean).abs() < 1e-12, "{} vs {mean}", b[j].1);
+        let notes = rolled.ensemble_notes();
+        assert_eq!(notes.len(), 2);
+        assert!(
+            notes[0].starts_with("n = 8 (rigid model, ensemble of 3)"),
+            "{}",
+            notes[0]
+        );
     }
 
     /// A short rigid run of the reference wheel with `sides` sides, marked (in)valid.

@@ -5,9 +5,10 @@
 //! its nodes in the starting pose, and for the full model the prestressed [`scene`]);
 //! wheel-rolling decides the model and runs it. The decision ([`RollRequest::decision`]) is
 //! the one the resource estimate ([`crate::budget::roll`]) budgets: `rigid` runs the reduced
-//! polygon model, `full` the prestressed tensegrity dynamics, and `auto` the cheapest model
-//! whose assumptions hold — rigid when m g / (k R_o) < 10⁻³ **and** the rigid run is valid
-//! (see [`wheel_rolling::fidelity`]). The report says which model ran and why
+//! polygon model, `full` the prestressed tensegrity dynamics, and `auto` the rigid model only
+//! where the two models agree within their uncertainty on the scene's class (a measured
+//! table), m g / (k R_o) < 10⁻³ **and** the rigid run is valid, else the full model (see
+//! [`wheel_rolling::fidelity`]). The report says which model ran and why
 //! (`fidelity_reason`).
 //!
 //! Both models start from the same state, at rest on a side of the contact polygon about to
@@ -267,18 +268,24 @@ pub fn roll_observed(
         _ => None,
     };
     let mut report = RollReport::of(request, rolled);
-    report.ensemble = ensemble;
+    if let Some((e, samples)) = ensemble {
+        report.ensemble = Some(e);
+        report.ensemble_samples = samples;
+    }
     Ok(report)
 }
 
 /// The ensemble of `request` (its model: the one that ran, `fidelity`) against one
-/// unperturbed run of the other model.
+/// unperturbed run of the other model, and each copy's sampled history.
 fn ensemble(
     request: &RollRequest,
     wheel: &ToroidWheel,
     spec: &RunSpec,
     fidelity: wheel_rolling::Fidelity,
-) -> Result<wheel_rolling::Ensemble> {
+) -> Result<(
+    wheel_rolling::Ensemble,
+    Vec<Vec<wheel_rolling::RollingSample>>,
+)> {
     let choice = |f: wheel_rolling::Fidelity| match f {
         wheel_rolling::Fidelity::Rigid => FidelityChoice::Rigid,
         wheel_rolling::Fidelity::Full => FidelityChoice::Full,
@@ -311,7 +318,7 @@ fn ensemble(
         ..*spec
     };
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    wheel_rolling::ensemble::ensemble(
+    wheel_rolling::ensemble::ensemble_with_samples(
         wheel,
         &same,
         &decide(choice(fidelity)),
@@ -402,7 +409,8 @@ mod tests {
     #[test]
     fn auto_fidelity_follows_the_documented_threshold() {
         // m g / (k R_o) of the reference wheel (≈ 14 kg) at 2·10⁴ N/m is ≈ 7·10⁻³: full;
-        // 100 times stiffer strings bring it below 10⁻³: rigid if the rigid run is valid
+        // 100 times stiffer strings bring it below 10⁻³: the rigid run first, the answer where
+        // the fidelity table says the models agree on its class
         let req = RollRequest::default();
         let d = req.decision();
         assert!(d.strain > defaults::RIGID_THRESHOLD, "{}", d.strain);

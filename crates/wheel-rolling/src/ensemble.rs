@@ -13,6 +13,7 @@
 
 use crate::fidelity::Decision;
 use crate::run::{roll_decided, Wheel};
+use crate::sample::RollingSample;
 use crate::settings::RunSpec;
 use crate::summary::RunSummary;
 use serde::{Deserialize, Serialize};
@@ -57,8 +58,8 @@ pub struct Ensemble {
     pub note: String,
 }
 
-/// One slot per copy for its summary (or error).
-type Slots<E> = Mutex<Vec<Option<Result<RunSummary, E>>>>;
+/// One slot per copy for its summary and samples (or error).
+type Slots<E> = Mutex<Vec<Option<Result<(RunSummary, Vec<RollingSample>), E>>>>;
 
 /// The headline quantities of a summary, by key (those it has).
 pub fn headline(s: &RunSummary) -> Vec<(&'static str, Option<f64>)> {
@@ -96,6 +97,23 @@ where
     W: Wheel + Sync,
     W::Error: Send,
 {
+    ensemble_with_samples(wheel, spec, decision, members, threads, other).map(|(e, _)| e)
+}
+
+/// As [`ensemble`], also returning each copy's sampled history (in copy order), for bands
+/// over time ([`band`]).
+pub fn ensemble_with_samples<W>(
+    wheel: &W,
+    spec: &RunSpec,
+    decision: &Decision,
+    members: usize,
+    threads: usize,
+    other: Option<&RunSummary>,
+) -> Result<(Ensemble, Vec<Vec<RollingSample>>), W::Error>
+where
+    W: Wheel + Sync,
+    W::Error: Send,
+{
     let next = AtomicUsize::new(0);
     let out: Slots<W::Error> = Mutex::new((0..members).map(|_| None).collect());
     std::thread::scope(|s| {
@@ -107,22 +125,81 @@ where
                 }
                 let mut copy = *spec;
                 copy.settings.incline += offset(k);
-                let r = roll_decided(wheel, &copy, decision, &[], None)
-                    .map(|r| RunSummary::of(&r.result, spec.t_end));
+                let r = roll_decided(wheel, &copy, decision, &[], None).map(|r| {
+                    let summary = RunSummary::of(&r.result, spec.t_end);
+                    (summary, r.result.samples)
+                });
                 out.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r);
             });
         }
     });
     let mut runs = Vec::with_capacity(members);
+    let mut histories = Vec::with_capacity(members);
     for r in out
         .into_inner()
         .unwrap_or_else(|e| e.into_inner())
         .into_iter()
         .flatten()
     {
-        runs.push(r?);
+        let (summary, samples) = r?;
+        runs.push(summary);
+        histories.push(samples);
     }
-    Ok(statistics(&runs, other))
+    Ok((statistics(&runs, other), histories))
+}
+
+/// A band over time: at each time t of the first history, the mean x̄(t) of `value` over
+/// the histories (each interpolated linearly at t; a history that ended before t is left
+/// out) and the interval x̄ ± 1.96 s(t) (the sample standard deviation), as
+/// `(t, mean, low, high)`.
+///
+/// ```
+/// use wheel_rolling::ensemble::band;
+/// use wheel_rolling::RollingSample;
+/// let at = |t: f64, h: f64| RollingSample { t, h, ..RollingSample::default() };
+/// let copies = vec![vec![at(0.0, 1.0), at(1.0, 3.0)], vec![at(0.0, 3.0), at(1.0, 5.0)]];
+/// let b = band(&copies, |s| s.h);
+/// assert_eq!(b[0].1, 2.0);
+/// assert_eq!(b[1].1, 4.0);
+/// // s = √2 at each time
+/// assert!((b[1].3 - b[1].2 - 2.0 * 1.96 * 2f64.sqrt()).abs() < 1e-12);
+/// ```
+pub fn band(
+    histories: &[Vec<RollingSample>],
+    value: impl Fn(&RollingSample) -> f64,
+) -> Vec<(f64, f64, f64, f64)> {
+    let Some(first) = histories.first() else {
+        return Vec::new();
+    };
+    let at = |h: &[RollingSample], t: f64| -> Option<f64> {
+        let i = h.partition_point(|s| s.t < t);
+        match (i.checked_sub(1).and_then(|j| h.get(j)), h.get(i)) {
+            (_, Some(b)) if b.t == t => Some(value(b)),
+            (Some(a), Some(b)) => {
+                let w = (t - a.t) / (b.t - a.t);
+                Some(value(a) + w * (value(b) - value(a)))
+            }
+            _ => None,
+        }
+    };
+    first
+        .iter()
+        .filter_map(|s| {
+            let xs: Vec<f64> = histories.iter().filter_map(|h| at(h, s.t)).collect();
+            if xs.is_empty() {
+                return None;
+            }
+            let n = xs.len() as f64;
+            let mean = xs.iter().sum::<f64>() / n;
+            let var = if xs.len() > 1 {
+                xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)
+            } else {
+                0.0
+            };
+            let half = 1.96 * var.sqrt();
+            Some((s.t, mean, mean - half, mean + half))
+        })
+        .collect()
 }
 
 /// The statistics of `runs` (module docs) against `other`.

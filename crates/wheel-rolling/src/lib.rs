@@ -20,8 +20,9 @@
 //! - [`sample`] and [`summary`]: the sampled history, its summary ([`RunSummary`]) and one
 //!   wheel's run as a comparison shows it ([`WheelRun`]);
 //! - [`fidelity`]: the one fidelity decision ([`Decision`], [`Plan`]) used by the run and by
-//!   its estimate: `auto` is rigid when ε = m g/(k R_o) < 10⁻³ and the rigid run is valid,
-//!   else full;
+//!   its estimate: `auto` is rigid when ε = m g/(k R_o) < 10⁻³, the models agree within
+//!   their uncertainty on the scene's class (the measured table [`fidelity::MEASURED`]) and
+//!   the rigid run is valid, else full;
 //! - [`estimate`]: resource estimates of rigid and full runs from sizes, and of a plan;
 //! - [`settings`]: [`RollSettings`], the serde settings every rolling request flattens, and
 //!   the resolved [`RunSpec`];

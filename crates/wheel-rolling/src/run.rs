@@ -8,8 +8,9 @@
 //! its [`Plan`] and returns the run with the model that ran and why.
 //!
 //! With an observer, `auto` on a stiff wheel first runs the rigid model unobserved (it costs
-//! milliseconds); if that run is valid it is run again, observed (bit-identical: the model is
-//! deterministic), else the full run is observed. So an observer sees one model's history.
+//! milliseconds); if that run is the answer ([`Decision::rigid_answers`]: valid, and its
+//! scene class one where the models agree) it is run again, observed (bit-identical: the
+//! model is deterministic), else the full run is observed. So an observer sees one model's history.
 
 use crate::contact::GroundContact;
 use crate::error::RollingError;
@@ -117,8 +118,8 @@ pub fn roll_decided<W: Wheel>(
     } else {
         wheel.start_pose()
     };
-    // the rigid run (if the plan makes one), whether it is the result, and the probe's
-    // validity that `auto` decided on
+    // the rigid run (if the plan makes one), whether it is the result, and the reasoning of
+    // `auto` on the probe
     let (rigid_done, rigid_is_result, probe) = match decision.plan {
         Plan::Rigid => (
             Some(timed_rigid(
@@ -146,18 +147,18 @@ pub fn roll_decided<W: Wheel>(
             let watching = watch.as_mut().map(|w| w as &mut dyn Observer);
             let probe = timed_rigid(&rigid, spec.t_end, &pose, probe_times, watching)?;
             let stopped = reborrow(&mut observer).is_some_and(|o| !o.keep_going());
-            let validity = probe.0.result.validity.clone();
-            let valid = validity.valid();
-            let run = match (valid && !stopped, reborrow(&mut observer)) {
+            let answers = decision.rigid_answers(&probe.0.result, spec.settings.ground_stiffness);
+            let reason = decision.reason(Some((&probe.0.result, spec.settings.ground_stiffness)));
+            let run = match (answers && !stopped, reborrow(&mut observer)) {
                 (true, Some(obs)) => {
                     timed_rigid(&rigid, spec.t_end, &pose, frame_times, Some(obs))?
                 }
                 _ => probe,
             };
-            (Some(run), valid || stopped, Some(validity))
+            (Some(run), answers || stopped, Some(reason))
         }
     };
-    let reason = decision.reason(probe.as_ref());
+    let reason = probe.unwrap_or_else(|| decision.reason(None));
     if let (true, Some((run, wall))) = (rigid_is_result, rigid_done) {
         return Ok(Rolled {
             fidelity: Fidelity::Rigid,

@@ -11,7 +11,7 @@
 use crate::validity::{ImpactRecord, RollValidity};
 
 /// One recorded sample.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RollingSample {
     /// Time (s).
     pub t: f64,

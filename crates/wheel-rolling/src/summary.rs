@@ -112,6 +112,10 @@ impl RunSummary {
 pub struct WheelRun {
     /// The model that ran.
     pub model: Fidelity,
+    /// Why that model ran: "requested", or the `auto` decision's reasoning
+    /// ([`crate::fidelity::Decision::reason`]); empty when not given.
+    #[serde(default)]
+    pub fidelity_reason: String,
     /// Mass m (kg).
     pub mass_kg: f64,
     /// I₁ about the axle (kg m²).
@@ -129,10 +133,19 @@ impl WheelRun {
     pub fn of(model: Fidelity, polygon: &Polygon, r: &RollingResult, t_end: f64) -> Self {
         Self {
             model,
+            fidelity_reason: String::new(),
             mass_kg: polygon.mass,
             i1: polygon.i1,
             impact_ratio: polygon.impact_ratio(),
             summary: RunSummary::of(r, t_end),
+        }
+    }
+
+    /// The run with `reason` as its `fidelity_reason`.
+    pub fn because(self, reason: impl Into<String>) -> Self {
+        Self {
+            fidelity_reason: reason.into(),
+            ..self
         }
     }
 }

@@ -104,8 +104,10 @@ fn an_observer_that_never_stops_sees_the_whole_run() {
 
 #[test]
 fn auto_on_a_stiff_wheel_shows_the_observer_one_model() {
-    // stiff strings (m g / (k R_o) = 5.9·10⁻⁵): the rigid run is probed unobserved, found
-    // valid, and run again for the observer; the observer sees that run only
+    // stiff strings (m g / (k R_o) = 5.9·10⁻⁵): the rigid run is probed unobserved; where
+    // the fidelity table says the models agree on its class it is the answer and is run
+    // again for the observer, which sees that run only; elsewhere the full model runs (a
+    // bare polygon has none: a named error) and the observer saw nothing of the probe
     let mut spec = rigid_spec(0.5);
     spec.fidelity = FidelityChoice::Auto;
     spec.settings.string_stiffness = 2e6;
@@ -114,10 +116,24 @@ fn auto_on_a_stiff_wheel_shows_the_observer_one_model() {
         samples: Vec::new(),
         frames: Vec::new(),
     };
-    let r = roll_wheel(&octagon(), &spec, &[], Some(&mut obs)).unwrap();
-    assert_eq!(r.fidelity, Fidelity::Rigid);
-    assert!(r.reason.contains("rigid run is valid"), "{}", r.reason);
-    assert_eq!(obs.samples, r.result.samples);
+    let probe = wheel_rolling::RigidRolling::new(&octagon(), &spec)
+        .run(0.5)
+        .unwrap();
+    let decision = wheel_rolling::Decision::of(&spec, &octagon());
+    let ground = spec.settings.ground_stiffness;
+    match roll_wheel(&octagon(), &spec, &[], Some(&mut obs)) {
+        Ok(r) => {
+            assert!(decision.rigid_answers(&probe, ground), "{}", r.reason);
+            assert_eq!(r.fidelity, Fidelity::Rigid);
+            assert!(r.reason.contains("rigid run is valid"), "{}", r.reason);
+            assert_eq!(obs.samples, r.result.samples);
+        }
+        Err(e) => {
+            assert!(!decision.rigid_answers(&probe, ground));
+            assert!(e.to_string().contains("no full model"), "{e}");
+            assert!(obs.samples.is_empty());
+        }
+    }
     // a bare polygon has no full model: asking for it is a named error
     spec.fidelity = FidelityChoice::Full;
     let e = roll_wheel(&octagon(), &spec, &[], None).unwrap_err();

@@ -6,7 +6,7 @@ use crate::rolling::{MassProperties, TipOver};
 use crate::rolling_full::{FullPrestress, FullWheel};
 use serde::Serialize;
 use std::f64::consts::PI;
-use wheel_rolling::{Fidelity, WheelRun};
+use wheel_rolling::{Fidelity, FidelityChoice, WheelRun};
 
 /// What only the full T-bar run has.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -89,8 +89,12 @@ impl TbarRollRow {
 /// The report of `tbar roll`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TbarRollReport {
-    /// The rolling model: `rigid` (reduced polygon) or `full` (tensegrity dynamics).
+    /// The rolling model that ran: `rigid` (reduced polygon) or `full` (tensegrity
+    /// dynamics); with `auto`, full when any row's T-bar run used it.
     pub model: Fidelity,
+    /// The model asked for: `rigid`, `full` or `auto` (each run's choice and its reason are
+    /// the row runs' `model` and `fidelity_reason`).
+    pub fidelity: FidelityChoice,
     /// Whether the full tensegrity rolling of the T-bar wheel ran (`fidelity = full`).
     pub full_tensegrity_rolling: bool,
     /// `wheel` or `extended wheel`.

@@ -26,12 +26,26 @@ fn the_defaults_depend_on_the_fidelity() {
     assert_eq!((rigid.t_end(), rigid.treads()), (10.0, vec![8, 12, 16, 24]));
     assert_eq!(rigid.rim().unwrap(), RimMode::Fixed);
     let full = TbarRollRequest {
-        fidelity: Fidelity::Full,
-        ..rigid
+        fidelity: FidelityChoice::Full,
+        ..rigid.clone()
     };
     assert_eq!((full.t_end(), full.treads()), (1.0, vec![8]));
     assert_eq!(full.rim().unwrap(), RimMode::Body);
     assert!((full.mu_kinetic() - 0.6).abs() < 1e-15);
+    // a light rim body for the full model, the treads' bar density for the rigid one; 30°
+    assert_eq!((full.rim_density(), rigid.rim_density()), (0.05, 1.0));
+    assert!((rigid.settings.incline - 30f64.to_radians()).abs() < 1e-15);
+    assert_eq!(rigid.settings.ground_stiffness, 1e6);
+    // `auto` may run the full model: its defaults
+    let auto = TbarRollRequest {
+        fidelity: FidelityChoice::Auto,
+        ..rigid
+    };
+    assert_eq!((auto.t_end(), auto.treads()), (1.0, vec![8]));
+    assert_eq!(
+        (auto.rim().unwrap(), auto.rim_density()),
+        (RimMode::Body, 0.05)
+    );
 }
 
 #[test]
@@ -105,7 +119,7 @@ fn the_tbar_model_is_the_polygon_of_the_wheel_and_its_impact_ratio_the_formula()
     let want = (mp.i1 + mr2 * (PI / 6.0).cos()) / (mp.i1 + mr2);
     assert!((polygon.impact_ratio() - want).abs() < 1e-14);
     assert!((impact_ratio(&mp) - want).abs() < 1e-14);
-    let model = wheel_rolling::RigidRolling::new(&polygon, &a.spec(Fidelity::Rigid));
+    let model = wheel_rolling::RigidRolling::new(&polygon, &a.spec(FidelityChoice::Rigid));
     assert!((model.mu_kinetic - 0.6).abs() < 1e-15);
 }
 
@@ -150,7 +164,7 @@ fn full_and_rigid_agree_through_the_first_pivot() {
     // Measured (RK4 at 0.1 ms): t 1.0301 / 1.0302 s, ω⁻ 2.6015 / 2.5967 rad/s (0.2 %); at
     // 0.05 ms 1.02955 s and 2.6011 rad/s. About 10 s.
     let a = TbarRollRequest {
-        fidelity: Fidelity::Full,
+        fidelity: FidelityChoice::Full,
         treads: Some(vec![6]),
         t_end: Some(1.1),
         settings: RollSettings {

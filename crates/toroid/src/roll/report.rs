@@ -44,6 +44,10 @@ pub struct RollReport {
     /// With `ensemble` ≥ 2: the perturbed copies' statistics (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ensemble: Option<wheel_rolling::Ensemble>,
+    /// With `ensemble` ≥ 2: each copy's sampled history, for bands over time
+    /// ([`wheel_rolling::ensemble::band`]); not serialised.
+    #[serde(skip)]
+    pub ensemble_samples: Vec<Vec<RollingSample>>,
     /// Wall-clock time of the run (s); not serialised, so that the JSON (and a sweep's rows)
     /// depend on the mechanics only.
     #[serde(skip)]
@@ -75,6 +79,7 @@ impl RollReport {
             summary: RunSummary::of(&r, request.t_end),
             impact_log: r.impact_log,
             ensemble: None,
+            ensemble_samples: Vec::new(),
             wall_time_s: rolled.wall_time_s,
             samples: r.samples,
             frames: rolled.frames,
