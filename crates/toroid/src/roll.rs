@@ -74,7 +74,7 @@ impl Default for RollRequest {
             settings: RollSettings::default(),
             t_end: defaults::ROLL_T_END,
             fidelity: FidelityChoice::Auto,
-            contact: ContactKind::Penalty,
+            contact: ContactKind::Stick,
             mu: defaults::STATIC_FRICTION,
             min_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
@@ -85,7 +85,7 @@ impl Default for RollRequest {
 }
 
 /// The integrators by name.
-const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk"];
+const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk", "imex"];
 
 impl Request for RollRequest {
     const NAME: &'static str = "roll";

@@ -116,6 +116,8 @@ pub struct Workspace {
     pub(crate) omega_rhs: Vec<f64>,
     pub(crate) bhat: Vec<Vector3<f64>>,
     pub(crate) rhs_evals: u64,
+    /// Friction anchors of the contact nodes ([`GroundModel::Stick`], module `stick`).
+    pub(crate) anchors: Vec<Option<super::stick::Anchor>>,
 }
 
 impl std::fmt::Debug for Workspace {
@@ -470,6 +472,7 @@ impl Model {
             omega,
             bhat: vec![Vector3::zeros(); self.bars.len()],
             rhs_evals: 0,
+            anchors: vec![None; self.contact.len()],
         })
     }
 
@@ -521,6 +524,13 @@ impl Model {
                 GroundModel::Penalty { .. } => {
                     for (k, &(_, c)) in self.contact.iter().enumerate() {
                         let f = g.penalty_force(&vec3(x, c), &vec3(v, c));
+                        ws.contact_f[k] = f;
+                        ws.f[c] += f;
+                    }
+                }
+                GroundModel::Stick { .. } => {
+                    for (k, &(_, c)) in self.contact.iter().enumerate() {
+                        let f = g.stick_force(&vec3(x, c), &vec3(v, c), ws.anchors[k].as_ref());
                         ws.contact_f[k] = f;
                         ws.f[c] += f;
                     }
