@@ -74,7 +74,7 @@ impl Default for RollRequest {
             settings: RollSettings::default(),
             t_end: defaults::ROLL_T_END,
             fidelity: FidelityChoice::Auto,
-            contact: ContactKind::Stick,
+            contact: ContactKind::Penalty,
             mu: defaults::STATIC_FRICTION,
             min_tension: defaults::ROLL_MIN_TENSION,
             integrator: IntegratorKind::Rk4,
@@ -416,6 +416,7 @@ mod tests {
     fn the_penalty_contact_uses_three_quarters_of_mu_as_kinetic_friction() {
         let mut req = RollRequest {
             mu: 0.5,
+            contact: ContactKind::Penalty,
             ..Default::default()
         };
         req.settings.ground_damping = Some(300.0);

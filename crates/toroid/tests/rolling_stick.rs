@@ -26,6 +26,7 @@ fn pivot(fidelity: FidelityChoice, t_end: f64, settings: RollSettings) -> RollRe
         fidelity,
         t_end,
         mu: 1.2,
+        contact: ContactKind::Stick,
         settings: RollSettings {
             incline: 30f64.to_radians(),
             restitution: 0.0,

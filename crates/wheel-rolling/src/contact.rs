@@ -21,13 +21,13 @@ use std::f64::consts::PI;
 #[serde(rename_all = "lowercase")]
 pub enum ContactKind {
     /// Penalty spring–damper (never pulling) with regularised Coulomb friction.
+    #[default]
     Penalty,
     /// Thesis §3.2.2: weight-based normal reaction plus velocity damping (it can pull and
     /// sink; its runs are flagged when they do).
     Thesis,
     /// The penalty spring–damper with friction that sticks: an elastic–plastic tangential
-    /// spring per contact node (`tensegrity_core::dynamics::stick`). The default.
-    #[default]
+    /// spring per contact node (`tensegrity_core::dynamics::stick`).
     Stick,
 }
 
@@ -130,7 +130,8 @@ impl ContactModel {
     /// ```
     /// use wheel_rolling::{ContactModel, Polygon, RunSpec};
     /// let p = Polygon { sides: 8, outer_radius: 1.0, mass: 10.0, i1: 5.0 };
-    /// let ContactModel::Penalty { damping, mu_kinetic, .. } = ContactModel::of(&RunSpec::default(), &p)
+    /// let spec = RunSpec { contact: wheel_rolling::ContactKind::Penalty, ..RunSpec::default() };
+    /// let ContactModel::Penalty { damping, mu_kinetic, .. } = ContactModel::of(&spec, &p)
     /// else { unreachable!() };
     /// // e = 0: ζ = 1, c = √(2 k m_eff)
     /// let s = (std::f64::consts::PI / 8.0).sin();

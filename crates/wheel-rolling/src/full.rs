@@ -19,21 +19,18 @@
 //!
 //! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
 //! contact group 0 (uphill) and group 1 (downhill) on the slope (the toroid: its prisms 0 and
-//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). For a penalty
-//! ground the contact plane is raised by the static penetration m g cos φ / (k n₀) (n₀ the
-//! nodes of groups 0 and 1: their equal share of the weight), so the wheel starts in its
-//! static contact instead of falling onto the springs, and with the stick contact the
-//! starting nodes hold from t = 0 (their anchors are set at the start). The wheel then pivots
-//! about the downhill pair. Recorded coordinates
+//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). The contact nodes start at zero
+//! penetration (not at the static penetration m g cos φ / (4 k), a fraction of a millimetre
+//! for the defaults); the wheel then pivots about the downhill pair. Recorded coordinates
 //! are those of the rigid model: s = y − R_o sin(π/n) along the slope (0 at the downhill
-//! pair), h = z + R_o cos(π/n) above the slope (not the raised contact plane).
+//! pair), h = z + R_o cos(π/n) above it.
 //!
-//! **Contact.** [`crate::ContactModel::Stick`] (the default) is the penalty normal force below
+//! **Contact.** [`crate::ContactModel::Stick`] (`contact = stick`) is the penalty normal force below
 //! with friction that sticks: an elastic–plastic tangential spring per node, anchored where the
 //! node touched, capped at μ_s N (μ_k N while it slides), with k_t =
 //! [`defaults::TANGENTIAL_STIFFNESS_RATIO`] k and the critical c_t
 //! ([`crate::contact::stick_damping`]); equations in `tensegrity_core::dynamics::stick`.
-//! [`crate::ContactModel::Penalty`]: per node, for penetration δ > 0,
+//! [`crate::ContactModel::Penalty`] (the default): per node, for penetration δ > 0,
 //! N = max(0, k δ − c δ̇ₙ) (never negative: a damper that would pull is clipped) and
 //! regularised Coulomb friction F_t = −μ(v) N tanh(v/v_reg) v̂ with a Stribeck transition
 //! from μ_s to μ_k (see `tensegrity_core::dynamics::Ground`). The normal damping follows

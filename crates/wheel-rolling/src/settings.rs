@@ -162,14 +162,14 @@ pub struct RunSpec {
 }
 
 impl Default for RunSpec {
-    /// [`RollSettings::default`] for 10 s, `auto`, stick contact, μ_s = 0.8, μ_k = 0.6,
+    /// [`RollSettings::default`] for 10 s, `auto`, penalty contact, μ_s = 0.8, μ_k = 0.6,
     /// RK4, 1 ms samples.
     fn default() -> Self {
         Self {
             settings: RollSettings::default(),
             t_end: defaults::ROLL_T_END,
             fidelity: FidelityChoice::Auto,
-            contact: ContactKind::Stick,
+            contact: ContactKind::Penalty,
             mu_static: defaults::STATIC_FRICTION,
             mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
             integrator: IntegratorKind::Rk4,

@@ -28,10 +28,8 @@ pub(super) struct Geometry {
     group: Vec<Option<usize>>,
     /// y of the starting downhill pair, R_o sin(π/n) (m).
     s_offset: f64,
-    /// z of the slope, −R_o cos(π/n) (m): the origin of the heights h.
+    /// z of the slope, −R_o cos(π/n) (m).
     plane_z: f64,
-    /// z of the ground plane of the contact (the slope raised by the starting penetration).
-    pub(super) ground_z: f64,
     /// Penalty stiffness per node (0 for the thesis contact).
     stiffness: f64,
     /// Contact transient of an impact (s): half a period of a pair's spring under the
@@ -55,7 +53,6 @@ impl Geometry {
             group: scene.group_of(),
             s_offset: r_o * half.sin(),
             plane_z: scene.plane_z(),
-            ground_z: scene.plane_z(),
             stiffness,
             energy_scale: scene.mass * gravity * r_o,
             landing: if stiffness > 0.0 {
@@ -135,7 +132,7 @@ impl StepContact {
         };
         let (mut count, mut strongest) = (0usize, 0.0);
         for &(node, f) in smp.contact_forces.iter().flatten() {
-            let delta = (g.ground_z - x[node].z).max(0.0);
+            let delta = (g.plane_z - x[node].z).max(0.0);
             let Some(pair) = g.group.get(node).copied().flatten() else {
                 continue;
             };

@@ -208,8 +208,7 @@ pub(super) fn run(
     };
     let mut sim = Simulation::new(&structure, settings)?;
     sim.model.set_ground(ground)?;
-    let mut geometry = Geometry::of(scene, model.contact.stiffness(), model.gravity);
-    geometry.ground_z += static_penetration(model, scene);
+    let geometry = Geometry::of(scene, model.contact.stiffness(), model.gravity);
     let mut monitor = Monitor::new(geometry, model.output_dt, &model.frame_times, observer);
     let start = std::time::Instant::now();
     let outcome = sim.run_streaming(&mut monitor);
@@ -245,25 +244,6 @@ pub(super) fn run(
         validity.warnings.push(interrupted_warning(t, t_end));
     }
     Ok(run)
-}
-
-/// The starting penetration of the penalty grounds, m g cos φ / (k n₀) with n₀ the nodes of
-/// groups 0 and 1 (their equal share of the weight; 0 for the thesis contact): the slope
-/// is raised by it so the wheel starts in its static contact, not in a free fall onto the
-/// springs.
-pub(super) fn static_penetration(model: &FullRolling, scene: &WheelScene) -> f64 {
-    let k = model.contact.stiffness();
-    let n0 = scene
-        .contact_groups
-        .iter()
-        .take(2)
-        .map(Vec::len)
-        .sum::<usize>();
-    if k > 0.0 && n0 > 0 {
-        scene.mass * model.gravity * model.incline.cos() / (k * n0 as f64)
-    } else {
-        0.0
-    }
 }
 
 /// The scene's structure under the tilted gravity, and the slope under groups 0 and 1.
@@ -308,7 +288,7 @@ fn scene_model(model: &FullRolling, scene: &WheelScene) -> Result<(Structure, Gr
             tangential_damping,
         },
     };
-    let plane = Vector3::new(0.0, 0.0, scene.plane_z() + static_penetration(model, scene));
+    let plane = Vector3::new(0.0, 0.0, scene.plane_z());
     let mut ground = Ground::new(plane, Vector3::z(), ground_model);
     ground.nodes = Some(scene.contact_groups.iter().flatten().copied().collect());
     Ok((structure, ground))
