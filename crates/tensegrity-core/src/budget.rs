@@ -429,6 +429,8 @@ pub fn simulation(
         K::Rattle => 2.0,
         K::Rk45 => 6.0,
         K::Sdirk => 12.0,
+        // two right-hand sides and the contact response columns
+        K::Imex => 3.0,
     };
     let flops = rhs_flops(
         model.bars.len(),

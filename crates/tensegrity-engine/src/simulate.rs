@@ -100,7 +100,7 @@ impl Request for SimulateCommand {
                 .optional(),
             Param::choice(
                 "integrator",
-                &["rk4", "rk45", "rattle", "sdirk"],
+                &["rk4", "rk45", "rattle", "sdirk", "imex"],
                 "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact",
             )
             .optional(),

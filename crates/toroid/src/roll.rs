@@ -86,7 +86,7 @@ impl Default for RollRequest {
 }
 
 /// The integrators by name.
-const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk"];
+const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk", "imex"];
 
 impl Request for RollRequest {
     const NAME: &'static str = "roll";
@@ -424,6 +424,7 @@ mod tests {
     fn the_penalty_contact_uses_three_quarters_of_mu_as_kinetic_friction() {
         let mut req = RollRequest {
             mu: 0.5,
+            contact: ContactKind::Penalty,
             ..Default::default()
         };
         req.settings.ground_damping = Some(300.0);

@@ -5,12 +5,14 @@
 use toroid::{roll, ContactKind, FidelityChoice, RollReport, RollRequest};
 use wheel_rolling::{Fidelity, GroundContact, RollSettings, RunChecks};
 
-/// The full model, without the convergence check (these tests are about the model's own
-/// assumptions; `rolling_convergence.rs` checks convergence).
+/// The full model with the regularised penalty contact (the default before the stick law,
+/// `rolling_stick.rs` tests that one), without the convergence check (these tests are about
+/// the model's own assumptions; `rolling_convergence.rs` checks convergence).
 fn full(t_end: f64) -> RollRequest {
     RollRequest {
         fidelity: FidelityChoice::Full,
         t_end,
+        contact: ContactKind::Penalty,
         checks: RunChecks::NONE,
         ..RollRequest::default()
     }

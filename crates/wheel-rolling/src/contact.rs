@@ -15,8 +15,8 @@ use crate::settings::RunSpec;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// The ground contact a request asks of the full model; serialises as `"penalty"` or
-/// `"thesis"`.
+/// The ground contact a request asks of the full model; serialises as `"penalty"`,
+/// `"thesis"` or `"stick"`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactKind {
@@ -26,11 +26,20 @@ pub enum ContactKind {
     /// Thesis §3.2.2: weight-based normal reaction plus velocity damping (it can pull and
     /// sink; its runs are flagged when they do).
     Thesis,
+    /// The penalty spring–damper with friction that sticks: an elastic–plastic tangential
+    /// spring per contact node (`tensegrity_core::dynamics::stick`).
+    Stick,
 }
 
 impl ContactKind {
     /// The names as requests write them.
-    pub const NAMES: &'static [&'static str] = &["penalty", "thesis"];
+    pub const NAMES: &'static [&'static str] = &["penalty", "thesis", "stick"];
+
+    /// Whether the contact is a penalty spring (its stiffness is refined by the convergence
+    /// check).
+    pub fn is_penalty(self) -> bool {
+        matches!(self, Self::Penalty | Self::Stick)
+    }
 }
 
 /// The contact a run used, as reports name it: `"rigid"` (the rigid model's unilateral
@@ -44,6 +53,8 @@ pub enum GroundContact {
     Penalty,
     /// The full model's thesis contact.
     Thesis,
+    /// The full model's penalty ground with friction that sticks.
+    Stick,
 }
 
 impl std::fmt::Display for GroundContact {
@@ -52,6 +63,7 @@ impl std::fmt::Display for GroundContact {
             Self::Rigid => "rigid",
             Self::Penalty => "penalty",
             Self::Thesis => "thesis",
+            Self::Stick => "stick",
         })
     }
 }
@@ -75,6 +87,22 @@ pub enum ContactModel {
         /// Kinetic friction coefficient.
         mu_kinetic: f64,
     },
+    /// Penalty normal spring–damper with an elastic–plastic tangential spring per node
+    /// (friction that sticks up to μ_s N; `tensegrity_core::dynamics::stick`).
+    Stick {
+        /// Normal stiffness per node (N/m).
+        stiffness: f64,
+        /// Normal damping per node (N·s/m).
+        damping: f64,
+        /// Static friction coefficient.
+        mu_static: f64,
+        /// Kinetic friction coefficient.
+        mu_kinetic: f64,
+        /// Tangential spring stiffness per node (N/m).
+        tangential_stiffness: f64,
+        /// Tangential damping per node (N·s/m).
+        tangential_damping: f64,
+    },
 }
 
 impl ContactModel {
@@ -95,12 +123,15 @@ impl ContactModel {
 
     /// The contact of `spec` for a wheel of `polygon`: the penalty damping follows from the
     /// restitution unless `ground_damping` is given; the thesis contact's damping defaults to
-    /// [`defaults::GROUND_DAMPING`].
+    /// [`defaults::GROUND_DAMPING`]. The stick contact's tangential spring is
+    /// k_t = [`defaults::TANGENTIAL_STIFFNESS_RATIO`] k and its damper the critical
+    /// c_t = [`defaults::TANGENTIAL_DAMPING_RATIO`] √(2 k_t m_eff) ([`stick_damping`]).
     ///
     /// ```
     /// use wheel_rolling::{ContactModel, Polygon, RunSpec};
     /// let p = Polygon { sides: 8, outer_radius: 1.0, mass: 10.0, i1: 5.0 };
-    /// let ContactModel::Penalty { damping, mu_kinetic, .. } = ContactModel::of(&RunSpec::default(), &p)
+    /// let spec = RunSpec { contact: wheel_rolling::ContactKind::Penalty, ..RunSpec::default() };
+    /// let ContactModel::Penalty { damping, mu_kinetic, .. } = ContactModel::of(&spec, &p)
     /// else { unreachable!() };
     /// // e = 0: ζ = 1, c = √(2 k m_eff)
     /// let s = (std::f64::consts::PI / 8.0).sin();
@@ -130,20 +161,43 @@ impl ContactModel {
                     mu_kinetic: spec.mu_kinetic,
                 }
             }
+            ContactKind::Stick => {
+                let m_eff = contact_effective_mass(
+                    polygon.mass,
+                    polygon.i1,
+                    polygon.outer_radius,
+                    polygon.sides,
+                );
+                let kt = defaults::TANGENTIAL_STIFFNESS_RATIO * s.ground_stiffness;
+                ContactModel::Stick {
+                    stiffness: s.ground_stiffness,
+                    damping: s.ground_damping.unwrap_or_else(|| {
+                        penalty_damping(s.restitution, s.ground_stiffness, m_eff)
+                    }),
+                    mu_static: spec.mu_static,
+                    mu_kinetic: spec.mu_kinetic,
+                    tangential_stiffness: kt,
+                    tangential_damping: stick_damping(kt, m_eff),
+                }
+            }
         }
     }
 
     /// The normal damping per node (N·s/m).
     pub fn damping(&self) -> f64 {
         match *self {
-            ContactModel::Thesis { damping } | ContactModel::Penalty { damping, .. } => damping,
+            ContactModel::Thesis { damping }
+            | ContactModel::Penalty { damping, .. }
+            | ContactModel::Stick { damping, .. } => damping,
         }
     }
 
     /// The penalty stiffness per node (N/m; 0 for the thesis contact).
     pub fn stiffness(&self) -> f64 {
         match *self {
-            ContactModel::Penalty { stiffness, .. } => stiffness,
+            ContactModel::Penalty { stiffness, .. } | ContactModel::Stick { stiffness, .. } => {
+                stiffness
+            }
             ContactModel::Thesis { .. } => 0.0,
         }
     }
@@ -153,6 +207,7 @@ impl ContactModel {
         match self {
             ContactModel::Thesis { .. } => GroundContact::Thesis,
             ContactModel::Penalty { .. } => GroundContact::Penalty,
+            ContactModel::Stick { .. } => GroundContact::Stick,
         }
     }
 }
@@ -193,4 +248,16 @@ pub fn contact_effective_mass(mass: f64, i1: f64, outer_radius: f64, sides: usiz
 /// ```
 pub fn penalty_damping(e: f64, stiffness: f64, effective_mass: f64) -> f64 {
     damping_ratio(e) * (2.0 * stiffness * effective_mass).sqrt()
+}
+
+/// Per-node tangential damping (N·s/m) of the stick contact for a tangential spring of
+/// stiffness `tangential_stiffness` on a wheel of effective mass `effective_mass` at a pair:
+/// c_t = [`defaults::TANGENTIAL_DAMPING_RATIO`] √(2 k_t m_eff) (critical for the pair).
+///
+/// ```
+/// use wheel_rolling::contact::stick_damping;
+/// assert!((stick_damping(1e5, 10.0) - (2e6f64).sqrt()).abs() < 1e-9);
+/// ```
+pub fn stick_damping(tangential_stiffness: f64, effective_mass: f64) -> f64 {
+    defaults::TANGENTIAL_DAMPING_RATIO * (2.0 * tangential_stiffness * effective_mass).sqrt()
 }

@@ -29,7 +29,7 @@ use tensegrity_core::dynamics::Convergence;
 pub fn refined(spec: &RunSpec) -> RunSpec {
     let mut r = *spec;
     r.settings.dt *= 0.5;
-    if spec.contact == ContactKind::Penalty {
+    if spec.contact.is_penalty() {
         r.settings.ground_stiffness *= 2.0;
     }
     r
@@ -38,7 +38,7 @@ pub fn refined(spec: &RunSpec) -> RunSpec {
 /// What [`refined`] changed for a run of `fidelity`.
 pub fn refinement(spec: &RunSpec, fidelity: Fidelity) -> &'static str {
     match (fidelity, spec.contact) {
-        (Fidelity::Full, ContactKind::Penalty) => "dt/2, ground stiffness x2",
+        (Fidelity::Full, ContactKind::Penalty | ContactKind::Stick) => "dt/2, ground stiffness x2",
         _ => "dt/2",
     }
 }

@@ -56,6 +56,16 @@ pub const PENETRATION_TOLERANCE: f64 = 0.01;
 /// behaves as a stiff viscous stick.
 pub const FRICTION_REGULARIZATION_VELOCITY: f64 = 1e-3;
 
+/// Tangential spring stiffness of the stick contact over its normal stiffness, k_t / k: the
+/// anchor spring that holds a stick (a node under a tangential load F < μ_s N rests at the
+/// stretch F / k_t, a fraction of a millimetre for the defaults; see
+/// `tensegrity_core::dynamics::stick`).
+pub const TANGENTIAL_STIFFNESS_RATIO: f64 = 1.0;
+
+/// Damping ratio of the stick contact's tangential spring–damper: c_t = ratio · √(2 k_t m_eff)
+/// per node (1: critical for a landing pair, the stick does not ring).
+pub const TANGENTIAL_DAMPING_RATIO: f64 = 1.0;
+
 /// Stribeck velocity of the penalty ground (m/s): the static → kinetic transition; a loaded
 /// contact node faster than this along the slope counts as slipping.
 pub const STRIBECK_VELOCITY: f64 = 1e-2;

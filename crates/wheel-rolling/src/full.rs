@@ -25,7 +25,12 @@
 //! are those of the rigid model: s = y − R_o sin(π/n) along the slope (0 at the downhill
 //! pair), h = z + R_o cos(π/n) above it.
 //!
-//! **Contact.** [`crate::ContactModel::Penalty`] (the default): per node, for penetration δ > 0,
+//! **Contact.** [`crate::ContactModel::Stick`] (`contact = stick`) is the penalty normal force below
+//! with friction that sticks: an elastic–plastic tangential spring per node, anchored where the
+//! node touched, capped at μ_s N (μ_k N while it slides), with k_t =
+//! [`defaults::TANGENTIAL_STIFFNESS_RATIO`] k and the critical c_t
+//! ([`crate::contact::stick_damping`]); equations in `tensegrity_core::dynamics::stick`.
+//! [`crate::ContactModel::Penalty`] (the default): per node, for penetration δ > 0,
 //! N = max(0, k δ − c δ̇ₙ) (never negative: a damper that would pull is clipped) and
 //! regularised Coulomb friction F_t = −μ(v) N tanh(v/v_reg) v̂ with a Stribeck transition
 //! from μ_s to μ_k (see `tensegrity_core::dynamics::Ground`). The normal damping follows

@@ -167,10 +167,12 @@ impl Model {
     pub fn is_passive(&self) -> bool {
         self.rest_fn.is_none()
             && self.load_fn.is_none()
-            && self
-                .ground
-                .as_ref()
-                .is_none_or(|g| matches!(g.model, GroundModel::Penalty { .. }))
+            && self.ground.as_ref().is_none_or(|g| {
+                matches!(
+                    g.model,
+                    GroundModel::Penalty { .. } | GroundModel::Stick { .. }
+                )
+            })
     }
 
     /// The shortest bar's length (m) of the initial state (1/ε when there is no bar).

@@ -15,6 +15,8 @@
 //!   reaction equal and opposite to the normal component of the total weight, and a damping
 //!   force −c v drives their velocities to zero (the thesis damps the in-plane tangential and
 //!   normal components; we damp all three). Not conservative.
+//! * [`GroundModel::Stick`]: the penalty normal force with an elastic–plastic tangential
+//!   spring per node that holds a stick up to μ_s f_n (module [`super::stick`]).
 
 use nalgebra::Vector3;
 
@@ -42,6 +44,22 @@ pub enum GroundModel {
         regularization_velocity: f64,
         /// Stribeck velocity v_s (m/s) of the static→kinetic transition.
         stribeck_velocity: f64,
+    },
+    /// Penalty spring–damper on penetration with friction that sticks: an elastic–plastic
+    /// tangential spring per node, anchored on the plane (equations in [`super::stick`]).
+    Stick {
+        /// Normal stiffness k (N/m).
+        stiffness: f64,
+        /// Normal damping c (N·s/m); the normal force is clipped at zero (no adhesion).
+        damping: f64,
+        /// Static friction coefficient μ_s (the cap while the anchor holds).
+        mu_static: f64,
+        /// Kinetic friction coefficient μ_k (the cap while the anchor slides).
+        mu_kinetic: f64,
+        /// Tangential spring stiffness k_t (N/m).
+        tangential_stiffness: f64,
+        /// Tangential damping c_t (N·s/m).
+        tangential_damping: f64,
     },
 }
 
@@ -112,7 +130,7 @@ impl Ground {
     #[inline]
     pub fn potential(&self, x: &Vector3<f64>) -> f64 {
         match self.model {
-            GroundModel::Penalty { stiffness, .. } => {
+            GroundModel::Penalty { stiffness, .. } | GroundModel::Stick { stiffness, .. } => {
                 let delta = (-self.height(x)).max(0.0);
                 0.5 * stiffness * delta * delta
             }

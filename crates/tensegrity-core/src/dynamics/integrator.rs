@@ -18,6 +18,7 @@
 //! driver and the [`Workspace`]; see [`IntegratorStats`]. The implicit, L-stable [`Sdirk`]
 //! fits the same trait: its Newton failures become rejected steps with a smaller proposal.
 
+use super::imex::Imex;
 use super::model::{Model, Workspace};
 use super::rattle::Rattle;
 use super::rk4::Rk4;
@@ -41,6 +42,9 @@ pub enum IntegratorKind {
     Rattle,
     /// Adaptive L-stable SDIRK 3(2) with Newton iterations (stiff strings and contact).
     Sdirk,
+    /// Fixed-step IMEX splitting: RK4 for the smooth forces, a linearly implicit ROS2 step
+    /// for the penalty ground contact ([`Imex`]): stiff contact at the step of the motion.
+    Imex,
 }
 
 impl IntegratorKind {
@@ -67,6 +71,7 @@ impl IntegratorKind {
             Self::Rk45 => Box::new(Dopri5::new(n, rtol, atol)),
             Self::Rattle => Box::new(Rattle::new(model)?),
             Self::Sdirk => Box::new(Sdirk::new(model, rtol, atol)?),
+            Self::Imex => Box::new(Imex::new(model)),
         })
     }
 }
@@ -78,21 +83,23 @@ impl fmt::Display for IntegratorKind {
             IntegratorKind::Rk45 => "rk45",
             IntegratorKind::Rattle => "rattle",
             IntegratorKind::Sdirk => "sdirk",
+            IntegratorKind::Imex => "imex",
         })
     }
 }
 
 impl FromStr for IntegratorKind {
     type Err = String;
-    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle` or `sdirk` (case-insensitive).
+    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk` or `imex` (case-insensitive).
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
             "rk4" => Ok(Self::Rk4),
             "rk45" | "dopri5" => Ok(Self::Rk45),
             "rattle" => Ok(Self::Rattle),
             "sdirk" => Ok(Self::Sdirk),
+            "imex" => Ok(Self::Imex),
             other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45, rattle or sdirk)"
+                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk or imex)"
             )),
         }
     }

@@ -144,6 +144,8 @@ pub struct Workspace {
     /// last right-hand side (reused by its second pass after the Ω solve).
     pub(crate) bar_terms: Vec<BarTerms>,
     pub(crate) rhs_evals: u64,
+    /// Friction anchors of the contact nodes ([`GroundModel::Stick`], module `stick`).
+    pub(crate) anchors: Vec<Option<super::stick::Anchor>>,
 }
 
 /// The terms of a bar's accelerations that do not depend on the forces: b = x_b − x_a,
@@ -540,6 +542,7 @@ impl Model {
             bhat: vec![Vector3::zeros(); self.bars.len()],
             bar_terms: vec![BarTerms::default(); self.bars.len()],
             rhs_evals: 0,
+            anchors: vec![None; self.contact.len()],
         })
     }
 
@@ -613,6 +616,13 @@ impl Model {
                 GroundModel::Penalty { .. } => {
                     for (k, &(_, c)) in self.contact.iter().enumerate() {
                         let f = g.penalty_force(&vec3(x, c), &vec3(v, c));
+                        ws.contact_f[k] = f;
+                        ws.f[c] += f;
+                    }
+                }
+                GroundModel::Stick { .. } => {
+                    for (k, &(_, c)) in self.contact.iter().enumerate() {
+                        let f = g.stick_force(&vec3(x, c), &vec3(v, c), ws.anchors[k].as_ref());
                         ws.contact_f[k] = f;
                         ws.f[c] += f;
                     }

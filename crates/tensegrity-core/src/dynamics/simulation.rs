@@ -227,7 +227,9 @@ impl Simulation {
         let s = &self.settings;
         positive("t_end", s.t_end)?;
         match s.integrator {
-            IntegratorKind::Rk4 | IntegratorKind::Rattle => positive("dt", s.dt)?,
+            IntegratorKind::Rk4 | IntegratorKind::Rattle | IntegratorKind::Imex => {
+                positive("dt", s.dt)?
+            }
             IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
                 positive("rtol", s.rtol)?;
                 positive("atol", s.atol)?;
@@ -396,6 +398,8 @@ impl<'a> Driver<'a> {
         let (model, s) = (&sim.model, &sim.settings);
         let mut ws = model.workspace()?;
         let y = sim.y0.clone();
+        // nodes that start on the ground hold from the start (stick ground)
+        model.update_contact_anchors(&y, &mut ws);
         let blowup_limit = s
             .blowup_distance
             .unwrap_or_else(|| model.default_blowup_limit());
@@ -510,6 +514,9 @@ impl<'a> Driver<'a> {
         }
         if let Some(p) = self.projector.as_mut() {
             p.project(model, &mut self.y, self.proj_tol, t_new)?;
+            integ.invalidate();
+        }
+        if model.update_contact_anchors(&self.y, &mut self.ws) {
             integ.invalidate();
         }
         self.monitor.observe(model, &self.y);

@@ -272,6 +272,21 @@ fn scene_model(model: &FullRolling, scene: &WheelScene) -> Result<(Structure, Gr
             regularization_velocity: defaults::FRICTION_REGULARIZATION_VELOCITY,
             stribeck_velocity: defaults::STRIBECK_VELOCITY,
         },
+        ContactModel::Stick {
+            stiffness,
+            damping,
+            mu_static,
+            mu_kinetic,
+            tangential_stiffness,
+            tangential_damping,
+        } => GroundModel::Stick {
+            stiffness,
+            damping,
+            mu_static,
+            mu_kinetic,
+            tangential_stiffness,
+            tangential_damping,
+        },
     };
     let plane = Vector3::new(0.0, 0.0, scene.plane_z());
     let mut ground = Ground::new(plane, Vector3::z(), ground_model);

@@ -1,0 +1,397 @@
+//! IMEX: a fixed-step splitting for stiff ground contact. The smooth forces (strings,
+//! gravity, loads, the rigid-bar inertia and joint terms) go with classic RK4; the penalty
+//! contact (normal spring–damper, friction) goes with a linearly implicit ROS2 step on the
+//! few contact nodes.
+//!
+//! **Splitting** (Strang, order 2). Write y' = f(y) = f_A(y) + f_B(y) with y = (x, v) and
+//!
+//! * f_A = (v, a(x, v; F_c = 0)): the rigid-bar dynamics N̈M + NK = W + ΩPᵀ of [`Model::rhs`]
+//!   without the ground's forces F_c;
+//! * f_B = (0, P_C(x) F_c(x, v)): the ground's forces alone, where P_C(x) (3 n₁ × 3m) is the
+//!   acceleration response of every class-1 node to a unit force on a coordinate of one of
+//!   the m contact nodes (the rigid-bar dynamics with the joint multipliers Ω at x: linear in
+//!   the force, one sparse solve with the Ω factorisation per response).
+//!
+//! One step of size h is B(h/2) ∘ A(h) ∘ B(h/2): A by one RK4 step of f_A (four evaluations;
+//! f_A is not stiff: the explicit step is bound by the strings, ω_max h < 2.8), B by one ROS2
+//! step (below). The ground's *stiffness* k enters as the position-frozen spring force of B
+//! (a kick per half step, stable for √(k/m_node) h < 2); its *damping* (the normal damper c,
+//! the tangential damper c_t, the regularised friction's viscous slope μ f_n / v_reg) is
+//! what makes explicit steps tiny, and B treats it implicitly.
+//!
+//! **B: ROS2 on the contact.** In B the positions are frozen, so v' = P_C F_c(v_C) (F_c of the
+//! contact velocities v_C only). ROS2 (Verwer, Spee, Blom & Hundsdorfer 1999; γ = 1 + 1/√2,
+//! L-stable with the exact Jacobian, order 2 for any approximation W of it):
+//!
+//! W k₁ = f_B(v₀),   W k₂ = f_B(v₀ + τ k₁) − 2 k₁,   v₁ = v₀ + τ (3/2 k₁ + 1/2 k₂),
+//!
+//! W = I − γτ P̃_C K_v S_C, with K_v = ∂F_c/∂v_C block-diagonal per node
+//! ([`Ground::contact_jacobian`](super::Ground::contact_jacobian)) and P̃_C the response
+//! columns, refreshed when the set of loaded contact nodes changes and at least every
+//! [`REFRESH`] substeps (a W-method: a stale P̃ costs no order). W k = r reduces to the
+//! 3m × 3m system (I − γτ P̃_CC K_v) k_C = r_C, then k = r + γτ P̃_C K_v k_C; each stage's
+//! r = P_C F_c is one response of the stage's contact forces. So a step costs four smooth
+//! right-hand sides plus, while a node touches, two Ω factorisations, four responses and
+//! two 3m × 3m LUs.
+//!
+//! The bar constraints are kept as for RK4: the driver projects every accepted state back
+//! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
+//! (whose reaction needs all contact nodes at once) stays in f_A.
+
+use super::forces::GroundModel;
+use super::integrator::{Integrator, IntegratorKind, StepOutcome};
+use super::model::{bar_accel, set3, vec3, Model, Workspace};
+use crate::error::{CoreError, DynamicsError, StepHint};
+use crate::structure::MemberId;
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+/// γ = 1 + 1/√2 of ROS2.
+const GAMMA: f64 = 1.0 + std::f64::consts::FRAC_1_SQRT_2;
+
+/// Contact substeps after which the response columns P̃_C are recomputed even if the set of
+/// loaded contact nodes did not change.
+pub const REFRESH: u32 = 8;
+
+/// The IMEX stepper (module docs).
+#[derive(Debug)]
+pub struct Imex {
+    k: [Vec<f64>; 4],
+    tmp: Vec<f64>,
+    /// Loaded contact nodes of the substep: (contact index, class-1 node, ∂F/∂v).
+    active: Vec<(usize, usize, Matrix3<f64>)>,
+    /// Class-1 nodes of the cached columns.
+    cached: Vec<usize>,
+    /// Substeps since the columns were computed.
+    age: u32,
+    /// Response columns P̃_C (3m of length 3 n₁).
+    cols: Vec<Vec<f64>>,
+    forces: Vec<Vector3<f64>>,
+    multipliers: Vec<f64>,
+    resp: Vec<f64>,
+    stage: Vec<f64>,
+    /// Contact substeps taken and response-column refreshes (work counters).
+    pub contact_substeps: u64,
+    /// Times the response columns were recomputed.
+    pub refreshes: u64,
+}
+
+impl Imex {
+    /// Buffers for `model`.
+    pub fn new(model: &Model) -> Self {
+        let n = model.state_len();
+        Self {
+            k: std::array::from_fn(|_| vec![0.0; n]),
+            tmp: vec![0.0; n],
+            active: Vec::new(),
+            cached: Vec::new(),
+            age: 0,
+            cols: Vec::new(),
+            forces: vec![Vector3::zeros(); model.n1],
+            multipliers: vec![0.0; model.linear_rows.len()],
+            resp: vec![0.0; 3 * model.n1],
+            stage: Vec::new(),
+            contact_substeps: 0,
+            refreshes: 0,
+        }
+    }
+}
+
+/// Whether the ground's forces are split off into B (penalty and stick grounds).
+fn splits(model: &Model) -> bool {
+    model.ground.as_ref().is_some_and(|g| {
+        matches!(
+            g.model,
+            GroundModel::Penalty { .. } | GroundModel::Stick { .. }
+        )
+    })
+}
+
+/// f_A: [`Model::rhs`] without the ground's forces (when they are split off).
+fn rhs_smooth(
+    model: &Model,
+    t: f64,
+    y: &[f64],
+    dy: &mut [f64],
+    ws: &mut Workspace,
+    multipliers: &mut [f64],
+) -> Result<(), CoreError> {
+    if !splits(model) {
+        return model.rhs(t, y, dy, ws);
+    }
+    ws.rhs_evals += 1;
+    let n3 = 3 * model.n1;
+    let (x, v) = y.split_at(n3);
+    let (dx, dv) = dy.split_at_mut(n3);
+    dx.copy_from_slice(v);
+    model.applied_forces(t, x, v, ws);
+    if let Some(g) = &model.ground {
+        for (k, &(_, c)) in model.contact.iter().enumerate() {
+            let spring = g.stick_force(&vec3(x, c), &Vector3::zeros(), ws.anchors[k].as_ref());
+            ws.f[c] += spring - ws.contact_f[k];
+        }
+    }
+    if let Some(i) = ws.f.iter().position(|f| !f.iter().all(|c| c.is_finite())) {
+        return Err(DynamicsError::NonFiniteState {
+            t,
+            member: MemberId::Bar(i / 2),
+            hint: StepHint::Unknown,
+        }
+        .into());
+    }
+    model.bar_accelerations(x, v, &ws.f, dv, None);
+    if ws.omega.is_some() {
+        factor_omega(model, x, ws)?;
+        constrain(model, ws, multipliers, dv);
+        model.bar_accelerations(x, v, &ws.f, dv, Some(&model.constrained_bars));
+    }
+    Ok(())
+}
+
+/// Refactors Ω at positions `x`.
+fn factor_omega(model: &Model, x: &[f64], ws: &mut Workspace) -> Result<(), CoreError> {
+    let Workspace { omega, bhat, .. } = ws;
+    let Some(om) = omega.as_mut() else {
+        return Ok(());
+    };
+    for (k, bh) in bhat.iter_mut().enumerate() {
+        let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
+        *bh = b * (1.0 / b.norm());
+    }
+    om.assemble_and_factor(bhat, &model.inv_mass)
+}
+
+/// Adds the joint forces Gᵀω that make the accelerations `dv` (of the forces `ws.f`) keep
+/// N P = D (Ω factored).
+fn constrain(model: &Model, ws: &mut Workspace, multipliers: &mut [f64], dv: &[f64]) {
+    let Workspace { omega, f, .. } = ws;
+    let Some(om) = omega.as_mut() else {
+        return;
+    };
+    for (w, row) in multipliers.iter_mut().zip(&model.linear_rows) {
+        *w = -row
+            .row
+            .entries
+            .iter()
+            .flatten()
+            .map(|e| e.grad.dot(&vec3(dv, e.node)))
+            .sum::<f64>();
+    }
+    om.solve_in_place(multipliers);
+    for (w, row) in multipliers.iter().zip(&model.linear_rows) {
+        for e in row.row.entries.iter().flatten() {
+            f[e.node] += e.grad * *w;
+        }
+    }
+}
+
+impl Imex {
+    /// `out` = P_C F: the accelerations of the forces `self.forces` (on contact nodes only)
+    /// at positions `x`, zero velocities (Ω factored at x).
+    fn respond(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
+        let out = &mut self.resp;
+        out.fill(0.0);
+        let zero = Vector3::zeros();
+        let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
+            let (a, b) = (2 * k, 2 * k + 1);
+            let data = &model.bars[k];
+            let (aa, ab) = bar_accel(
+                data.mass,
+                data.inv_j,
+                &vec3(x, a),
+                &vec3(x, b),
+                &zero,
+                &zero,
+                &f[a],
+                &f[b],
+            );
+            set3(out, a, &aa);
+            set3(out, b, &ab);
+        };
+        for &c in touched {
+            bar(c / 2, &self.forces, out);
+        }
+        if ws.omega.is_none() {
+            return;
+        }
+        std::mem::swap(&mut ws.f, &mut self.forces);
+        constrain(model, ws, &mut self.multipliers, out);
+        std::mem::swap(&mut ws.f, &mut self.forces);
+        for &c in touched {
+            bar(c / 2, &self.forces, out);
+        }
+        for &k in &model.constrained_bars {
+            bar(k, &self.forces, out);
+        }
+    }
+
+    /// The contact forces F_c at positions `x` and velocities `v` of the active nodes into
+    /// `self.forces` (zero elsewhere).
+    fn contact_forces(&mut self, model: &Model, ws: &Workspace, x: &[f64], v: &[f64]) {
+        self.forces.fill(Vector3::zeros());
+        let Some(g) = &model.ground else {
+            return;
+        };
+        for &(k, c, _) in &self.active {
+            let (xc, anchor) = (vec3(x, c), ws.anchors[k].as_ref());
+            self.forces[c] = g.stick_force(&xc, &vec3(v, c), anchor)
+                - g.stick_force(&xc, &Vector3::zeros(), anchor);
+        }
+    }
+
+    /// B(τ): the ROS2 contact substep on the velocities of `y` (module docs).
+    fn contact_substep(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace,
+        y: &mut [f64],
+        tau: f64,
+    ) -> Result<(), CoreError> {
+        let Some(g) = &model.ground else {
+            return Ok(());
+        };
+        let n3 = 3 * model.n1;
+        self.active.clear();
+        {
+            let (x, v) = y.split_at(n3);
+            for (k, &(_, c)) in model.contact.iter().enumerate() {
+                let xc = vec3(x, c);
+                if g.height(&xc) < 0.0 {
+                    let kv = g
+                        .contact_jacobian(&xc, &vec3(v, c), ws.anchors[k].as_ref())
+                        .map_or_else(Matrix3::zeros, |(_, kv)| kv);
+                    self.active.push((k, c, kv));
+                }
+            }
+        }
+        if self.active.is_empty() {
+            return Ok(());
+        }
+        self.contact_substeps += 1;
+        let touched: Vec<usize> = self.active.iter().map(|a| a.1).collect();
+        let x = y[..n3].to_vec();
+        factor_omega(model, &x, ws)?;
+        // the response columns P̃_C
+        let m3 = 3 * touched.len();
+        if touched != self.cached || self.age >= REFRESH {
+            self.cols.resize_with(m3, Vec::new);
+            for j in 0..m3 {
+                self.forces.fill(Vector3::zeros());
+                self.forces[touched[j / 3]][j % 3] = 1.0;
+                self.respond(model, ws, &x, &touched);
+                self.cols[j].clear();
+                self.cols[j].extend_from_slice(&self.resp);
+            }
+            self.cached.clone_from(&touched);
+            self.age = 0;
+            self.refreshes += 1;
+        }
+        self.age += 1;
+        let gt = GAMMA * tau;
+        let pcc = DMatrix::from_fn(m3, m3, |i, j| self.cols[j][3 * touched[i / 3] + i % 3]);
+        let mut kv = DMatrix::zeros(m3, m3);
+        for (i, a) in self.active.iter().enumerate() {
+            kv.fixed_view_mut::<3, 3>(3 * i, 3 * i).copy_from(&a.2);
+        }
+        let w = DMatrix::identity(m3, m3) - &pcc * &kv * gt;
+        let lu = w.lu();
+        // stage 1: r = P_C F(v₀)
+        let v0 = y[n3..].to_vec();
+        self.contact_forces(model, ws, &x, &v0);
+        self.respond(model, ws, &x, &touched);
+        let k1 = self.solve_stage(&lu, &kv, gt, &touched)?;
+        // stage 2 at v₀ + τ k₁: r = P_C F(v₀ + τ k₁) − 2 k₁
+        self.stage.clear();
+        self.stage
+            .extend(v0.iter().zip(&k1).map(|(a, b)| a + tau * b));
+        let stage = std::mem::take(&mut self.stage);
+        self.contact_forces(model, ws, &x, &stage);
+        self.stage = stage;
+        self.respond(model, ws, &x, &touched);
+        for (r, a) in self.resp.iter_mut().zip(&k1) {
+            *r -= 2.0 * a;
+        }
+        let k2 = self.solve_stage(&lu, &kv, gt, &touched)?;
+        for ((o, a), b) in y[n3..].iter_mut().zip(&k1).zip(&k2) {
+            *o += tau * (1.5 * a + 0.5 * b);
+        }
+        Ok(())
+    }
+
+    /// k = W⁻¹ r for r in `self.resp` (module docs).
+    fn solve_stage(
+        &self,
+        lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+        kv: &DMatrix<f64>,
+        gt: f64,
+        touched: &[usize],
+    ) -> Result<Vec<f64>, CoreError> {
+        let m3 = 3 * touched.len();
+        let r_c = DVector::from_fn(m3, |i, _| self.resp[3 * touched[i / 3] + i % 3]);
+        let k_c = lu.solve(&r_c).ok_or(DynamicsError::Diverged {
+            t: f64::NAN,
+            what: "the implicit contact system is singular",
+        })?;
+        let z = kv * k_c * gt;
+        let mut k = self.resp.clone();
+        for (j, col) in self.cols.iter().enumerate().take(m3) {
+            let s = z[j];
+            if s != 0.0 {
+                for (o, p) in k.iter_mut().zip(col) {
+                    *o += s * p;
+                }
+            }
+        }
+        Ok(k)
+    }
+}
+
+impl Integrator for Imex {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Imex
+    }
+
+    /// Advances `y` from `t` to `t + h` in place: B(h/2), RK4 on f_A, B(h/2).
+    fn step(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<StepOutcome, CoreError> {
+        let split = splits(model);
+        if split {
+            self.contact_substep(model, ws, y, 0.5 * h)?;
+        }
+        let mut k = std::mem::take(&mut self.k);
+        let mut mult = std::mem::take(&mut self.multipliers);
+        let result = (|| {
+            let n = y.len();
+            rhs_smooth(model, t, y, &mut k[0], ws, &mut mult)?;
+            for i in 0..n {
+                self.tmp[i] = y[i] + 0.5 * h * k[0][i];
+            }
+            rhs_smooth(model, t + 0.5 * h, &self.tmp, &mut k[1], ws, &mut mult)?;
+            for i in 0..n {
+                self.tmp[i] = y[i] + 0.5 * h * k[1][i];
+            }
+            rhs_smooth(model, t + 0.5 * h, &self.tmp, &mut k[2], ws, &mut mult)?;
+            for i in 0..n {
+                self.tmp[i] = y[i] + h * k[2][i];
+            }
+            rhs_smooth(model, t + h, &self.tmp, &mut k[3], ws, &mut mult)?;
+            let h6 = h / 6.0;
+            for i in 0..n {
+                y[i] += h6 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
+            }
+            Ok::<(), CoreError>(())
+        })();
+        self.k = k;
+        self.multipliers = mult;
+        result?;
+        if split {
+            self.contact_substep(model, ws, y, 0.5 * h)?;
+        }
+        Ok(StepOutcome::fixed(h))
+    }
+}

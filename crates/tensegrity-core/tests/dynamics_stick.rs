@@ -1,0 +1,144 @@
+//! Friction that sticks ([`GroundModel::Stick`]) and the IMEX integrator: a bar on a slope
+//! below atan μ_s rests at the closed-form spring stretch with zero creep (the regularised law
+//! creeps), above it slides with the kinetic-friction acceleration g(sin φ − μ_k cos φ); IMEX
+//! agrees with RK4 at a small step on a bar dropped onto the stick ground.
+
+use nalgebra::Vector3;
+use tensegrity_core::dynamics::{
+    Ground, GroundModel, IntegratorKind, Simulation, SimulationSettings,
+};
+use tensegrity_core::{Bar, Structure};
+
+const G: f64 = 9.81;
+const MASS: f64 = 2.0;
+const K: f64 = 1e5;
+const MU_S: f64 = 0.5;
+const MU_K: f64 = 0.4;
+
+/// A 1 m bar of 2 kg lying across a slope of angle `phi` (the plane z = 0 with gravity tilted
+/// towards +y), its ends `lift` above the plane.
+fn bar_on_slope(phi: f64, lift: f64) -> Structure {
+    Structure::builder()
+        .nodes([[-0.5, 0.0, lift], [0.5, 0.0, lift]])
+        .bar(Bar::new(0, 1).mass(MASS))
+        .gravity([0.0, G * phi.sin(), -G * phi.cos()])
+        .build()
+        .unwrap()
+}
+
+fn stick() -> GroundModel {
+    GroundModel::Stick {
+        stiffness: K,
+        damping: 400.0,
+        mu_static: MU_S,
+        mu_kinetic: MU_K,
+        tangential_stiffness: K,
+        tangential_damping: 400.0,
+    }
+}
+
+fn run(
+    s: &Structure,
+    ground: GroundModel,
+    integrator: IntegratorKind,
+    dt: f64,
+    t_end: f64,
+) -> Vec<Vector3<f64>> {
+    let settings = SimulationSettings {
+        t_end,
+        dt,
+        integrator,
+        project: true,
+        ..Default::default()
+    };
+    let mut sim = Simulation::new(s, settings).unwrap();
+    sim.model
+        .set_ground(Ground::new(Vector3::zeros(), Vector3::z(), ground))
+        .unwrap();
+    sim.run().unwrap().final_nodes
+}
+
+/// Static penetration of each end: half the weight's normal part over k.
+fn static_lift(phi: f64) -> f64 {
+    -MASS * G * phi.cos() / (2.0 * K)
+}
+
+#[test]
+fn a_bar_on_a_slope_below_atan_mu_rests_at_the_spring_stretch_without_creep() {
+    let phi = 20f64.to_radians(); // tan φ = 0.36 < μ_s = 0.5
+    let s = bar_on_slope(phi, static_lift(phi));
+    let at1 = run(&s, stick(), IntegratorKind::Rk4, 1e-4, 1.0);
+    let at2 = run(&s, stick(), IntegratorKind::Rk4, 1e-4, 2.0);
+    // closed form: each end's spring carries half of m g sin φ, so it rests at the stretch
+    // m g sin φ / (2 k_t) downhill of where it touched
+    let stretch = MASS * G * phi.sin() / (2.0 * K);
+    for (a, b) in at1.iter().zip(&at2) {
+        assert!(
+            (b.y - stretch).abs() < 0.02 * stretch,
+            "{} vs {stretch}",
+            b.y
+        );
+        // no creep: not a nanometre more in the second second
+        assert!((b.y - a.y).abs() < 1e-9, "creep {:e} m", b.y - a.y);
+    }
+    // the regularised Coulomb law cannot hold it: it creeps at v_reg artanh(tan φ / μ_s)
+    let penalty = GroundModel::Penalty {
+        stiffness: K,
+        damping: 400.0,
+        mu_static: MU_S,
+        mu_kinetic: MU_K,
+        regularization_velocity: 1e-3,
+        stribeck_velocity: 1e-2,
+    };
+    let p1 = run(&s, penalty, IntegratorKind::Rk4, 1e-4, 1.0);
+    let p2 = run(&s, penalty, IntegratorKind::Rk4, 1e-4, 2.0);
+    let creep = p2[0].y - p1[0].y;
+    let expected = 1e-3 * (phi.tan() / MU_S).atanh();
+    assert!(
+        (creep - expected).abs() < 0.05 * expected,
+        "{creep} vs {expected}"
+    );
+}
+
+#[test]
+fn a_bar_on_a_slope_above_atan_mu_slides_with_kinetic_friction() {
+    let phi = 35f64.to_radians(); // tan φ = 0.70 > μ_s = 0.5
+    let s = bar_on_slope(phi, static_lift(phi));
+    let (t1, t2) = (0.5, 1.0);
+    let y1 = run(&s, stick(), IntegratorKind::Rk4, 1e-4, t1)[0].y;
+    let y2 = run(&s, stick(), IntegratorKind::Rk4, 1e-4, t2)[0].y;
+    let y3 = run(&s, stick(), IntegratorKind::Rk4, 1e-4, 1.5)[0].y;
+    // constant acceleration a: second difference of equally spaced positions = a Δt²
+    let a = (y3 - 2.0 * y2 + y1) / (0.5 * 0.5);
+    let closed = G * (phi.sin() - MU_K * phi.cos());
+    assert!((a - closed).abs() < 1e-3 * closed, "{a} vs {closed}");
+}
+
+#[test]
+fn imex_agrees_with_rk4_at_a_small_step_on_a_bar_dropped_on_the_stick_ground() {
+    // a tilted bar falling 5 cm onto the slope: impact, stick, rocking, rest
+    let phi = 20f64.to_radians();
+    let s = Structure::builder()
+        .nodes([[-0.5, -0.1, 0.05], [0.5, 0.1, 0.25]])
+        .bar(Bar::new(0, 1).mass(MASS))
+        .gravity([0.0, G * phi.sin(), -G * phi.cos()])
+        .build()
+        .unwrap();
+    let reference = run(&s, stick(), IntegratorKind::Rk4, 1e-5, 0.6);
+    let error = |dt: f64| {
+        let imex = run(&s, stick(), IntegratorKind::Imex, dt, 0.6);
+        imex.iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).norm())
+            .fold(0.0, f64::max)
+    };
+    let (fine, coarse) = (error(1e-4), error(5e-4));
+    eprintln!("imex error {fine:e} (dt 1e-4), {coarse:e} (dt 5e-4)");
+    assert!(fine < 1e-3 && coarse < 5e-3, "{fine:e} {coarse:e}");
+    assert!(fine < coarse);
+    assert_eq!(
+        "imex".parse::<IntegratorKind>().unwrap(),
+        IntegratorKind::Imex
+    );
+    assert_eq!(IntegratorKind::Imex.to_string(), "imex");
+}

@@ -1,0 +1,149 @@
+//! The full model with friction that sticks (the default `stick` contact) against the rigid
+//! model from the same pose, and the IMEX integrator against RK4 on the reference wheel.
+//!
+//! The slow cases run in release mode only:
+//! `cargo test --release -p toroid --test rolling_stick -- --ignored`.
+
+use tensegrity_core::dynamics::IntegratorKind;
+use toroid::{roll_observed, RollRequest};
+use wheel_rolling::{ContactKind, FidelityChoice};
+use wheel_rolling::{Flow, Observer, RollSettings, RollingSample, RunChecks};
+
+/// Keeps every sample.
+#[derive(Default)]
+struct Keep(Vec<RollingSample>);
+
+impl Observer for Keep {
+    fn sample(&mut self, s: &RollingSample) -> Flow {
+        self.0.push(*s);
+        Flow::Continue
+    }
+}
+
+/// n = 8 on 30°, μ = 1.2, e = 0 (the pivot of thesis Fig. 3.10's set-up that does not slide).
+fn pivot(fidelity: FidelityChoice, t_end: f64, settings: RollSettings) -> RollRequest {
+    RollRequest {
+        fidelity,
+        t_end,
+        mu: 1.2,
+        contact: ContactKind::Stick,
+        settings: RollSettings {
+            incline: 30f64.to_radians(),
+            restitution: 0.0,
+            ..settings
+        },
+        checks: RunChecks::NONE,
+        ..RollRequest::with_sides(8)
+    }
+}
+
+/// First impact time and the axle travel at `at` (s) of a run.
+fn run(req: &RollRequest, at: Option<f64>) -> (f64, f64, Vec<RollingSample>, bool) {
+    let mut keep = Keep::default();
+    let r = roll_observed(req, &[], Some(&mut keep)).unwrap();
+    let t1 = r.summary.first_impact.expect("an impact").t;
+    let samples = keep.0;
+    let when = at.unwrap_or(0.9 * t1);
+    let s = samples
+        .iter()
+        .min_by(|a, b| (a.t - when).abs().total_cmp(&(b.t - when).abs()))
+        .unwrap();
+    (t1, s.s - samples[0].s, samples, r.summary.valid)
+}
+
+/// Relative differences of the full run with stiff strings and ground (`k` N/m each, step
+/// `dt`) from the rigid run: (first impact, axle travel at 0.9 of the rigid first impact).
+fn against_rigid(k: f64, dt: f64) -> (f64, f64) {
+    let rigid = pivot(FidelityChoice::Rigid, 1.2, RollSettings::default());
+    let (t_r, _, _, valid) = run(&rigid, None);
+    assert!(valid);
+    let (_, travel_r, _, _) = run(&rigid, Some(0.9 * t_r));
+    let full = pivot(
+        FidelityChoice::Full,
+        1.2,
+        RollSettings {
+            string_stiffness: k,
+            ground_stiffness: k,
+            dt,
+            ..RollSettings::default()
+        },
+    );
+    assert_eq!(full.contact, ContactKind::Stick);
+    let (t_f, travel_f, _, valid) = run(&full, Some(0.9 * t_r));
+    assert!(valid);
+    ((t_f - t_r) / t_r, (travel_f - travel_r) / travel_r)
+}
+
+/// Full (stiff strings and ground, μ = 1.2, e = 0) against rigid through the first pivot,
+/// n = 8 on 30°. Measured (release, this branch): strings and ground 10⁶ N/m at dt 5·10⁻⁵ s:
+/// first impact −2.0 %, axle travel at 0.9 t₁ +6.3 %; 10⁷ N/m at 2·10⁻⁵ s: −0.64 % and +2.0 %.
+/// The friction holds (the same numbers as the regularised law: the gap is not creep but the
+/// elastic wheel's start, see docs/ROLLING.md); the full model approaches the rigid pivot as
+/// the strings stiffen. The 1 % is not met at 10⁶ N/m.
+#[test]
+#[ignore = "release mode: cargo test --release -p toroid --test rolling_stick -- --ignored"]
+fn the_full_pivot_approaches_the_rigid_one_as_strings_and_ground_stiffen() {
+    let (impact6, travel6) = against_rigid(1e6, 5e-5);
+    let (impact7, travel7) = against_rigid(1e7, 2e-5);
+    eprintln!("1e6: impact {impact6:+.4}, travel {travel6:+.4}; 1e7: impact {impact7:+.4}, travel {travel7:+.4}");
+    assert!(impact6.abs() < 0.025 && travel6.abs() < 0.07);
+    assert!(impact7.abs() < 0.01 && travel7.abs() < 0.025);
+    assert!(impact7.abs() < impact6.abs() && travel7.abs() < travel6.abs());
+}
+
+/// IMEX at 10⁻⁴ s against RK4 at 2.5·10⁻⁵ s on the reference wheel (default strings and
+/// ground, stick contact) through the first pivot: axle positions within 1 mm, the first
+/// impact within 0.1 %, and both energy budgets closed to 10⁻³ (measured: 4.8·10⁻⁴ m,
+/// 2.4·10⁻⁴ and 1.0·10⁻³).
+#[test]
+#[ignore = "release mode: cargo test --release -p toroid --test rolling_stick -- --ignored"]
+fn imex_agrees_with_rk4_on_the_reference_wheel_and_closes_its_energy_budget() {
+    let at = |integrator: IntegratorKind, dt: f64| {
+        let mut req = pivot(
+            FidelityChoice::Full,
+            1.2,
+            RollSettings {
+                dt,
+                ..RollSettings::default()
+            },
+        );
+        req.integrator = integrator;
+        let mut keep = Keep::default();
+        let r = roll_observed(&req, &[], Some(&mut keep)).unwrap();
+        (r.summary, keep.0)
+    };
+    let (rk4, ref_samples) = at(IntegratorKind::Rk4, 2.5e-5);
+    let (imex, samples) = at(IntegratorKind::Imex, 1e-4);
+    assert!(rk4.valid && imex.valid, "{:?}", imex.warnings);
+    assert!(rk4.energy_balance_error < 2e-3 && imex.energy_balance_error < 1e-3);
+    let (t_rk4, t_imex) = (rk4.first_impact.unwrap().t, imex.first_impact.unwrap().t);
+    assert!((t_imex - t_rk4).abs() < 1e-3 * t_rk4, "{t_imex} vs {t_rk4}");
+    let worst = samples
+        .iter()
+        .zip(&ref_samples)
+        .filter(|(a, _)| a.t <= 1.0)
+        .map(|(a, b)| (a.s - b.s).abs().max((a.h - b.h).abs()))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "{worst}");
+}
+
+/// Fast: the default contact is the stick law, and a short full run with it is valid and its
+/// energy budget closes (RK4 at the default step, IMEX at twice it).
+#[test]
+fn the_default_stick_contact_closes_its_energy_budget() {
+    for (integrator, dt) in [(IntegratorKind::Rk4, 1e-4), (IntegratorKind::Imex, 2e-4)] {
+        let mut req = pivot(
+            FidelityChoice::Full,
+            0.15,
+            RollSettings {
+                dt,
+                ..RollSettings::default()
+            },
+        );
+        req.integrator = integrator;
+        let r = roll_observed(&req, &[], None).unwrap();
+        assert_eq!(r.contact, wheel_rolling::GroundContact::Stick);
+        assert!(r.summary.valid, "{integrator}: {:?}", r.summary.warnings);
+        assert!(r.summary.energy_balance_error < 5e-3, "{integrator}");
+    }
+}
