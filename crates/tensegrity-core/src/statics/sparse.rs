@@ -53,11 +53,23 @@
 use super::load::LoadSolution;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
+use super::front::Factorization;
 use super::{orient_self_stress, DofMap, StaticsSettings};
 use crate::error::{CoreError, Result};
 use crate::linalg::{self, CscMatrix, RankRevealingQr};
 use crate::structure::Structure;
 use nalgebra::{DMatrix, DVector, Vector3};
+use std::sync::OnceLock;
+
+/// Largest self-stress basis (members × dimension numbers) the statics report lists; a
+/// larger one is left out of the report (its dimension is given), since its
+/// orthonormalisation costs O(members·s²) and its listing members·s numbers.
+pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
+
+/// Largest internal-mechanism basis (free dofs × mechanisms numbers) for which prestress
+/// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
+/// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
+pub const DENSE_MECHANISMS_MAX: usize = 250_000;
 
 /// Power-method steps for σ_max of the equilibrium matrix.
 const POWER_STEPS: usize = 40;
@@ -267,6 +279,29 @@ fn transpose_mul(a: &CscMatrix, y: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// The lower triangle of NᵀN for a sparse N, from the rows of N (each row's pairs).
+fn gram_lower(n: &CscMatrix) -> Result<CscMatrix> {
+    let (rows, cols) = (n.pattern().nrows(), n.pattern().ncols());
+    let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
+    let mut by_row: Vec<Vec<(usize, f64)>> = vec![Vec::new(); rows];
+    for c in 0..cols {
+        for s in cp[c]..cp[c + 1] {
+            by_row[ri[s]].push((c, v[s]));
+        }
+    }
+    let mut t = Vec::new();
+    for row in &by_row {
+        for &(a, va) in row {
+            for &(b, vb) in row {
+                if a >= b {
+                    t.push((a, b, va * vb));
+                }
+            }
+        }
+    }
+    CscMatrix::from_triplets(cols, cols, &t)
+}
+
 /// The factored equilibrium problem of a large structure (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct SparseStatics<'a> {
@@ -275,8 +310,10 @@ pub struct SparseStatics<'a> {
     a: CscMatrix,
     qr: RankRevealingQr,
     tolerance: f64,
+    sigma_max: f64,
     sigma_min_estimate: f64,
-    self_stress: DMatrix<f64>,
+    null_basis: CscMatrix,
+    self_stress: OnceLock<DMatrix<f64>>,
 }
 
 impl<'a> SparseStatics<'a> {
@@ -318,15 +355,17 @@ impl<'a> SparseStatics<'a> {
             .check(&after)
             .map_err(|over| CoreError::OverBudget(Box::new(over)))?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
-        let self_stress = orient_self_stress(qr.orthonormal_null_space(), structure.n_bars());
+        let null_basis = qr.sparse_null_vectors()?;
         Ok(Self {
             structure,
             dofs,
             a,
             qr,
             tolerance,
+            sigma_max: sigma,
             sigma_min_estimate,
-            self_stress,
+            null_basis,
+            self_stress: OnceLock::new(),
         })
     }
 
@@ -393,9 +432,59 @@ impl<'a> SparseStatics<'a> {
     }
 
     /// The orthonormal self-stress basis (members × dimension), oriented like the dense
-    /// path's.
+    /// path's: the sparse basis orthonormalised by a thin QR on first use, O(members·s²)
+    /// flops and members·s numbers (the statics report lists it only up to
+    /// [`SELF_STRESS_LIST_MAX`] numbers).
     pub fn self_stress_basis(&self) -> &DMatrix<f64> {
-        &self.self_stress
+        self.self_stress.get_or_init(|| {
+            let n = &self.null_basis;
+            let (rows, cols) = (n.pattern().nrows(), n.pattern().ncols());
+            if cols == 0 {
+                return DMatrix::zeros(rows, 0);
+            }
+            let mut f = faer::Mat::<f64>::zeros(rows, cols);
+            let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
+            for c in 0..cols {
+                for s in cp[c]..cp[c + 1] {
+                    f[(ri[s], c)] = v[s];
+                }
+            }
+            let q = f.qr().compute_thin_Q();
+            let q = DMatrix::from_fn(q.nrows(), q.ncols(), |i, j| q[(i, j)]);
+            orient_self_stress(q, self.structure.n_bars())
+        })
+    }
+
+    /// The sparse self-stress basis N (members × dimension, not orthonormal): one null
+    /// vector per rejected member, 1 at that member and 0 at the other rejected ones
+    /// ([`RankRevealingQr::sparse_null_vectors`]).
+    pub fn sparse_self_stress_basis(&self) -> &CscMatrix {
+        &self.null_basis
+    }
+
+    /// The orthogonal projection of `x` (members) on the self-stress space,
+    /// N (NᵀN)⁻¹ Nᵀ x, by a sparse Cholesky factorisation of NᵀN (s × s, sparse when the
+    /// null vectors are local; NᵀN ⪰ I since each null vector has a unit entry where the
+    /// others vanish). The normal equations lose accuracy with N's conditioning, so the
+    /// component is removed again from the remainder twice (iterative refinement).
+    pub fn project_on_self_stress(&self, x: &[f64]) -> Result<Vec<f64>> {
+        let n = &self.null_basis;
+        let members = n.pattern().nrows();
+        if n.pattern().ncols() == 0 {
+            return Ok(vec![0.0; members]);
+        }
+        let gram = gram_lower(n)?;
+        let mut chol = linalg::SparseCholesky::new(gram.pattern())?;
+        chol.factor(gram.values())?;
+        let mut rest = x.to_vec();
+        for _ in 0..3 {
+            let mut c = transpose_mul(n, &rest);
+            chol.solve_in_place(&mut c);
+            for (r, v) in rest.iter_mut().zip(n.mul_vec(&c)) {
+                *r -= v;
+            }
+        }
+        Ok(x.iter().zip(&rest).map(|(a, b)| a - b).collect())
     }
 }
 
@@ -414,13 +503,9 @@ impl SparseStatics<'_> {
         if self.self_stress_dim() == 0 {
             return Ok(Prestressability::none(n));
         }
-        let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, signs)?;
-        let raw = DVector::from_column_slice(&z[..n]);
-        let basis = &self.self_stress;
-        Ok(Prestressability::from_signed(
-            basis * (basis.transpose() * raw),
-            signs,
-        ))
+        let c = super::prestress::solve_null_space_lp(&self.null_basis, signs)?;
+        let q = DVector::from_vec(self.null_basis.mul_vec(&c));
+        Ok(Prestressability::from_signed(q, signs))
     }
 
     /// An orthonormal basis of the internal mechanisms (free dofs × count): the flexes with
@@ -452,10 +537,125 @@ impl SparseStatics<'_> {
         Ok(rigid_motions(self.structure, &self.dofs)?.ncols())
     }
 
-    /// Prestress stability with force densities `q` (the dense path's test and tolerance).
+    /// Prestress stability with force densities `q` (normally a self-stress).
+    ///
+    /// While the internal-mechanism basis is small (free dofs × mechanisms ≤
+    /// [`DENSE_MECHANISMS_MAX`]) this is the dense path's test and tolerance (the eigenvalues
+    /// of the stress matrix projected on an orthonormal basis of the internal mechanisms must
+    /// exceed 10⁻⁹·max|q|). Beyond, the sparse test [`stable_by_cholesky`](Self::stable_by_cholesky)
+    /// decides; when it cannot certify stability the answer is the error
+    /// [`CoreError::Unsupported`] (the report then says that stability was not tested).
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
-        let (phi, _) = self.internal_mechanisms()?;
-        self.prestress_stability_on(&phi, q)
+        let (m, d) = (self.dofs.len(), self.mechanisms());
+        if m.saturating_mul(d) <= DENSE_MECHANISMS_MAX {
+            let (phi, _) = self.internal_mechanisms()?;
+            return self.prestress_stability_on(&phi, q);
+        }
+        let internal = d.saturating_sub(self.rigid_body_motions()?);
+        if internal == 0 {
+            return Ok(PrestressStability::rigid());
+        }
+        if self.stable_by_cholesky(q)? {
+            return Ok(PrestressStability {
+                internal_mechanisms: internal,
+                eigenvalues: Vec::new(),
+                stable: true,
+            });
+        }
+        Err(Factorization::SparseQr.unsupported(
+            "prestress stability beyond the dense test's size, where the sparse test does not certify it",
+        ))
+    }
+
+    /// The sparse prestress-stability test: `true` certifies that the dense path's test
+    /// (the stress matrix Ω̄ = Ω ⊗ I₃ on the internal mechanisms, eigenvalues above
+    /// σ = 10⁻⁹·max|q|) says stable; `false` is no certificate (unstable, or too close to call).
+    ///
+    /// H(μ) = μ A Aᵀ + Ω̄ − σ′ I on the free dofs without a few pinned ones (the rows of the
+    /// rigid-body basis T with the largest pivots, one per rigid motion the supports allow:
+    /// every internal mechanism has exactly one representative vanishing there). For u = v + w
+    /// with w ∈ ker Aᵀ, uᵀ H u = μ‖Aᵀv‖² + uᵀ(Ω̄ − σ′I)u, so H positive definite for some μ > 0
+    /// implies wᵀ Ω̄ w > σ′‖w‖² for every internal mechanism w pinned so; since Ω̄ annihilates
+    /// the rigid motions (q a self-stress) and the orthogonal representative is the shortest
+    /// of its class, the dense test's Rayleigh quotients exceed σ′ ≥ σ as well. H is the
+    /// tangent stiffness with member stiffness μ·length², a sparse matrix with A's pattern,
+    /// tested by a sparse Cholesky factorisation (AMD order): linear in the members for a
+    /// banded structure. σ′ = σ + 10³·ε·(μ σ_max² + ‖Ω̄‖) covers the factorisation's rounding;
+    /// μ = 10²ᵏ ‖Ω̄‖ / σ_r² for k = 1, 2, 3 (σ_r by its estimate), the first success deciding.
+    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<bool> {
+        let q_max = q.amax();
+        let sigma_r = self.sigma_min_estimate;
+        if q.len() != self.structure.n_members()
+            || q_max <= 0.0
+            || !q_max.is_finite()
+            || !(sigma_r > 0.0 && sigma_r.is_finite())
+        {
+            return Ok(false);
+        }
+        let rigid = rigid_motions(self.structure, &self.dofs)?;
+        let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        let (entries, omega_bound) = self.penalty_entries(q, &index);
+        let positions: Vec<(usize, usize, f64)> = entries.iter().map(|e| (e.0, e.1, 0.0)).collect();
+        let pattern = CscMatrix::from_triplets(kept, kept, &positions)?;
+        let mut chol = linalg::SparseCholesky::new(pattern.pattern())?;
+        let threshold = 1e-9 * q_max;
+        for mu_factor in [1e2, 1e4, 1e6] {
+            let mu = mu_factor * omega_bound / (sigma_r * sigma_r);
+            let rounding =
+                1e3 * f64::EPSILON * (mu * 1.1 * self.sigma_max.powi(2) + omega_bound);
+            let shift = threshold + rounding;
+            let t: Vec<(usize, usize, f64)> = entries
+                .iter()
+                .map(|&(r, c, gram, stress, diag)| (r, c, mu * gram + stress - diag * shift))
+                .collect();
+            let h = CscMatrix::from_triplets(kept, kept, &t)?;
+            if chol.factor(h.values()).is_ok() {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
+    /// The lower-triangle entries of H's parts per member: (row, col, A Aᵀ part, Ω̄ part,
+    /// 1 on the diagonal) over the kept dofs (`index`), every kept diagonal present; and the
+    /// Gershgorin bound 2·max over nodes of Σ|q| of ‖Ω̄‖.
+    #[allow(clippy::type_complexity)]
+    fn penalty_entries(
+        &self,
+        q: &DVector<f64>,
+        index: &[Option<usize>],
+    ) -> (Vec<(usize, usize, f64, f64, f64)>, f64) {
+        let mut out: Vec<(usize, usize, f64, f64, f64)> = index
+            .iter()
+            .flatten()
+            .map(|&k| (k, k, 0.0, 0.0, 1.0))
+            .collect();
+        let mut node_sum = vec![0.0; self.structure.n_nodes()];
+        let nodes = self.structure.nodes();
+        for (k, [i, j]) in self.structure.member_nodes().into_iter().enumerate() {
+            node_sum[i] += q[k].abs();
+            node_sum[j] += q[k].abs();
+            let e = nodes[j] - nodes[i];
+            // (kept dof, A entry, Ω̄ sign) of the member's six dofs
+            let mut slots = Vec::with_capacity(6);
+            for d in 0..3 {
+                for (node, sign) in [(i, -1.0), (j, 1.0)] {
+                    if let Some(r) = self.dofs.row[node][d].and_then(|r| index[r]) {
+                        slots.push((r, sign * e[d], sign, d));
+                    }
+                }
+            }
+            for &(ra, aa, sa, da) in &slots {
+                for &(rb, ab, sb, db) in &slots {
+                    if ra >= rb {
+                        let stress = if da == db { q[k] * sa * sb } else { 0.0 };
+                        out.push((ra, rb, aa * ab, stress, 0.0));
+                    }
+                }
+            }
+        }
+        let bound = 2.0 * node_sum.iter().fold(0.0f64, |m, &v| m.max(v));
+        (out, bound)
     }
 
     /// Prestress stability with force densities `q` on a given orthonormal basis `phi` of the
@@ -508,11 +708,54 @@ impl SparseStatics<'_> {
     pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
         let w = self.dofs.gather(w_nodes);
         let (basic, _) = self.qr.solve_basic(w.as_slice());
-        let basis = &self.self_stress;
-        let q = &basic - basis * (basis.transpose() * &basic);
+        let q = match self.project_on_self_stress(basic.as_slice()) {
+            Ok(p) => &basic - DVector::from_vec(p),
+            // NᵀN is positive definite in exact arithmetic; should its factorisation fail,
+            // the orthonormal basis projects instead
+            Err(_) => {
+                let basis = self.self_stress_basis();
+                &basic - basis * (basis.transpose() * &basic)
+            }
+        };
         let aq = DVector::from_vec(self.a.mul_vec(q.as_slice()));
         super::load::assemble_solution(self.structure, &self.dofs, w_nodes, q, &aq - &w)
     }
+}
+
+/// One free-dof row per column of the rigid-body basis `t` (m × k): greedy pivoting on the
+/// rows (the row of largest residual norm, then the others orthogonalised against it), so
+/// that the k × k submatrix is well conditioned.
+fn pinned_rows(t: &DMatrix<f64>) -> Vec<usize> {
+    let mut res = t.clone();
+    let mut chosen = Vec::with_capacity(t.ncols());
+    for _ in 0..t.ncols() {
+        let best = (0..res.nrows())
+            .filter(|r| !chosen.contains(r))
+            .max_by(|&a, &b| res.row(a).norm_squared().total_cmp(&res.row(b).norm_squared()));
+        let Some(best) = best else { break };
+        let norm = res.row(best).norm();
+        if norm <= 0.0 {
+            break;
+        }
+        let v = res.row(best).transpose() / norm;
+        let proj = &res * &v;
+        res -= proj * v.transpose();
+        chosen.push(best);
+    }
+    chosen
+}
+
+/// The new index of every free dof without the `pinned` ones, and their count.
+fn kept_dofs(m: usize, pinned: &[usize]) -> (Vec<Option<usize>>, usize) {
+    let mut index = vec![None; m];
+    let mut next = 0;
+    for (r, slot) in index.iter_mut().enumerate() {
+        if !pinned.contains(&r) {
+            *slot = Some(next);
+            next += 1;
+        }
+    }
+    (index, next)
 }
 
 /// Rigid-body motions on the free dofs that the supports allow, orthonormal (free dofs ×
