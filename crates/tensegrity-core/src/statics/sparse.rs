@@ -66,6 +66,10 @@ use std::sync::OnceLock;
 /// orthonormalisation costs O(members·s²) and its listing members·s numbers.
 pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
 
+/// The sparse flex basis of [`SparseStatics::stable_by_cholesky`] may hold this many entries
+/// per kept dof; beyond, the flexes are not local and the test gives no decision.
+pub const FLEX_ENTRIES_PER_DOF: usize = 32;
+
 /// Largest internal-mechanism basis (free dofs × mechanisms numbers) for which prestress
 /// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
 /// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
@@ -78,8 +82,23 @@ const INVERSE_STEPS: usize = 12;
 /// The σ_min(R_acc) estimate must exceed this multiple of max(τ, ‖E‖_F) for a certified rank.
 const CERTIFY_FACTOR: f64 = 100.0;
 /// A member whose acceptance would drop the condition estimate of R_acc below this fraction
-/// of σ_max is deferred to the end of the factorisation.
+/// of σ_max is deferred to the end of the factorisation; another level for larger structures ([`defer_level`]).
 const DEFER_BELOW: f64 = 1e-3;
+
+/// The deferral level of an m × n matrix with rank tolerance τ: 10⁻³·σ_max up to 1000 rows
+/// and columns (a condition estimate of R_acc within 10³ of A's scale), and beyond that
+/// 10·[`REJECT_FACTOR`]·τ, ten times the rejection level. A long structure's own σ_r falls
+/// with its size (a tower of N prisms: σ_r ∝ 1/N²), so a fixed fraction of σ_max would defer
+/// most of its members, and a deferred member spans the whole band (quadratic work and
+/// global null vectors); the certificate (σ_min(R_acc) against the rejected residuals)
+/// still catches an accepted set that went bad.
+fn defer_level(m: usize, n: usize, sigma_max: f64, tolerance: f64) -> f64 {
+    if m.max(n) <= 1000 {
+        DEFER_BELOW * sigma_max
+    } else {
+        10.0 * REJECT_FACTOR * tolerance
+    }
+}
 /// Columns are rejected when their residual is at most this multiple of τ: the residual of
 /// an exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the
 /// SVD's ε·‖A‖, so τ itself would accept some dependent columns of ill-conditioned
@@ -341,7 +360,7 @@ impl<'a> SparseStatics<'a> {
             &a,
             &row_order,
             REJECT_FACTOR * tolerance,
-            DEFER_BELOW * sigma,
+            defer_level(m, n, sigma, tolerance),
         )?;
         // the rank is known: the bases, the LP and the stability test are estimated and
         // checked before they are allocated
@@ -555,107 +574,159 @@ impl SparseStatics<'_> {
         if internal == 0 {
             return Ok(PrestressStability::rigid());
         }
-        if self.stable_by_cholesky(q)? {
-            return Ok(PrestressStability {
+        match self.stable_by_cholesky(q)? {
+            Some(stable) => Ok(PrestressStability {
                 internal_mechanisms: internal,
                 eigenvalues: Vec::new(),
-                stable: true,
-            });
+                stable,
+            }),
+            None => Err(Factorization::SparseQr.unsupported(
+                "prestress stability beyond the dense test's size, where the sparse flexes disagree with the rank",
+            )),
         }
-        Err(Factorization::SparseQr.unsupported(
-            "prestress stability beyond the dense test's size, where the sparse test does not certify it",
-        ))
     }
 
-    /// The sparse prestress-stability test: `true` certifies that the dense path's test
-    /// (the stress matrix Ω̄ = Ω ⊗ I₃ on the internal mechanisms, eigenvalues above
-    /// σ = 10⁻⁹·max|q|) says stable; `false` is no certificate (unstable, or too close to call).
+    /// The sparse prestress-stability test: `Some(stable)` with the dense path's decision
+    /// (the stress matrix Ω̄ = Ω ⊗ I₃ on the internal mechanisms, Rayleigh quotients above
+    /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when the sparse
+    /// flexes do not match the rank of A, or when they are not local (more than
+    /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
+    /// quadratically; a long tower's flexes span a growing part of it).
     ///
-    /// H(μ) = μ A Aᵀ + Ω̄ − σ′ I on the free dofs without a few pinned ones (the rows of the
-    /// rigid-body basis T with the largest pivots, one per rigid motion the supports allow:
-    /// every internal mechanism has exactly one representative vanishing there). For u = v + w
-    /// with w ∈ ker Aᵀ, uᵀ H u = μ‖Aᵀv‖² + uᵀ(Ω̄ − σ′I)u, so H positive definite for some μ > 0
-    /// implies wᵀ Ω̄ w > σ′‖w‖² for every internal mechanism w pinned so; since Ω̄ annihilates
-    /// the rigid motions (q a self-stress) and the orthogonal representative is the shortest
-    /// of its class, the dense test's Rayleigh quotients exceed σ′ ≥ σ as well. H is the
-    /// tangent stiffness with member stiffness μ·length², a sparse matrix with A's pattern,
-    /// tested by a sparse Cholesky factorisation (AMD order): linear in the members for a
-    /// banded structure. σ′ = σ + 10³·ε·(μ σ_max² + ‖Ω̄‖) covers the factorisation's rounding;
-    /// μ = 10²ᵏ ‖Ω̄‖ / σ_r² for k = 1, 2, 3 (σ_r by its estimate), the first success deciding.
-    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<bool> {
+    /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
+    /// pivots, one per rigid motion the supports allow), so that every internal mechanism
+    /// has exactly one representative vanishing there: the null space of Aᵀ without the
+    /// pinned rows. Its sparse basis M (kept dofs × internal mechanisms) comes from a second
+    /// rank-revealing QR, of Aᵀ (members along the band, dofs as columns), whose null
+    /// vectors are local flexes ([`RankRevealingQr::sparse_null_vectors`]). Then
+    /// K = Mᵀ Ω̄ M − σ MᵀM (sparse: member by member, Σ q_k (Δ_k M)ᵀ(Δ_k M)) is positive
+    /// definite exactly when every pinned internal mechanism w has wᵀΩ̄w > σ‖w‖², tested by a
+    /// sparse Cholesky factorisation. Ω̄ annihilates the rigid motions (q a self-stress) and
+    /// the orthogonal representative is the shortest of its class, so K positive definite
+    /// implies the dense test's "stable"; the converse holds unless the smallest Rayleigh
+    /// quotient lies within the pinning's conditioning of σ.
+    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<Option<bool>> {
         let q_max = q.amax();
-        let sigma_r = self.sigma_min_estimate;
-        if q.len() != self.structure.n_members()
-            || q_max <= 0.0
-            || !q_max.is_finite()
-            || !(sigma_r > 0.0 && sigma_r.is_finite())
-        {
-            return Ok(false);
+        if q.len() != self.structure.n_members() || !(q_max > 0.0 && q_max.is_finite()) {
+            return Ok(None);
         }
         let rigid = rigid_motions(self.structure, &self.dofs)?;
+        let internal = self.mechanisms().saturating_sub(rigid.ncols());
         let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
-        let (entries, omega_bound) = self.penalty_entries(q, &index);
-        let positions: Vec<(usize, usize, f64)> = entries.iter().map(|e| (e.0, e.1, 0.0)).collect();
-        let pattern = CscMatrix::from_triplets(kept, kept, &positions)?;
-        let mut chol = linalg::SparseCholesky::new(pattern.pattern())?;
-        let threshold = 1e-9 * q_max;
-        for mu_factor in [1e2, 1e4, 1e6] {
-            let mu = mu_factor * omega_bound / (sigma_r * sigma_r);
-            let rounding =
-                1e3 * f64::EPSILON * (mu * 1.1 * self.sigma_max.powi(2) + omega_bound);
-            let shift = threshold + rounding;
-            let t: Vec<(usize, usize, f64)> = entries
-                .iter()
-                .map(|&(r, c, gram, stress, diag)| (r, c, mu * gram + stress - diag * shift))
-                .collect();
-            let h = CscMatrix::from_triplets(kept, kept, &t)?;
-            if chol.factor(h.values()).is_ok() {
-                return Ok(true);
-            }
-        }
-        Ok(false)
-    }
-
-    /// The lower-triangle entries of H's parts per member: (row, col, A Aᵀ part, Ω̄ part,
-    /// 1 on the diagonal) over the kept dofs (`index`), every kept diagonal present; and the
-    /// Gershgorin bound 2·max over nodes of Σ|q| of ‖Ω̄‖.
-    #[allow(clippy::type_complexity)]
-    fn penalty_entries(
-        &self,
-        q: &DVector<f64>,
-        index: &[Option<usize>],
-    ) -> (Vec<(usize, usize, f64, f64, f64)>, f64) {
-        let mut out: Vec<(usize, usize, f64, f64, f64)> = index
-            .iter()
-            .flatten()
-            .map(|&k| (k, k, 0.0, 0.0, 1.0))
-            .collect();
-        let mut node_sum = vec![0.0; self.structure.n_nodes()];
-        let nodes = self.structure.nodes();
-        for (k, [i, j]) in self.structure.member_nodes().into_iter().enumerate() {
-            node_sum[i] += q[k].abs();
-            node_sum[j] += q[k].abs();
-            let e = nodes[j] - nodes[i];
-            // (kept dof, A entry, Ω̄ sign) of the member's six dofs
-            let mut slots = Vec::with_capacity(6);
+        // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
+        let n = self.structure.n_members();
+        let member_nodes = self.structure.member_nodes();
+        let mut t = Vec::with_capacity(6 * n);
+        for (k, &[i, j]) in member_nodes.iter().enumerate() {
+            let e = self.structure.nodes()[j] - self.structure.nodes()[i];
             for d in 0..3 {
                 for (node, sign) in [(i, -1.0), (j, 1.0)] {
-                    if let Some(r) = self.dofs.row[node][d].and_then(|r| index[r]) {
-                        slots.push((r, sign * e[d], sign, d));
-                    }
-                }
-            }
-            for &(ra, aa, sa, da) in &slots {
-                for &(rb, ab, sb, db) in &slots {
-                    if ra >= rb {
-                        let stress = if da == db { q[k] * sa * sb } else { 0.0 };
-                        out.push((ra, rb, aa * ab, stress, 0.0));
+                    if let Some(c) = self.dofs.row[node][d].and_then(|r| index[r]) {
+                        t.push((k, c, sign * e[d]));
                     }
                 }
             }
         }
-        let bound = 2.0 * node_sum.iter().fold(0.0f64, |m, &v| m.max(v));
-        (out, bound)
+        let at = CscMatrix::from_triplets(n, kept, &t)?;
+        let node_pos = inverse(&node_order_rcm(self.structure));
+        let mut member_order: Vec<usize> = (0..n).collect();
+        member_order.sort_by_key(|&k| {
+            let [i, j] = member_nodes[k];
+            let (a, b) = (node_pos[i], node_pos[j]);
+            (a.max(b), a.min(b))
+        });
+        let flexes = RankRevealingQr::with_deferral(
+            &at,
+            &member_order,
+            REJECT_FACTOR * self.tolerance,
+            defer_level(n, kept, self.sigma_max, self.tolerance),
+        )?;
+        if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
+            return Ok(None);
+        }
+        let Some(m) = flexes.sparse_null_vectors_within(FLEX_ENTRIES_PER_DOF * kept)? else {
+            return Ok(None);
+        };
+        let kmat = self.projected_stress_lower(&m, q, &index, 1e-9 * q_max)?;
+        let mut chol = linalg::SparseCholesky::new(kmat.pattern())?;
+        Ok(Some(chol.factor(kmat.values()).is_ok()))
+    }
+
+    /// The lower triangle of K = Mᵀ (Ω̄ − σ I) M for a sparse M (kept dofs × d, `index`
+    /// numbering the kept dofs among the free ones), column by column: Y = (Ω̄ − σ I) M_c
+    /// member by member from the nodes M_c touches, then Mᵀ Y through the rows of M, both
+    /// accumulated in scatter vectors (cost ≈ nnz(M) × the rows' lengths).
+    fn projected_stress_lower(
+        &self,
+        m: &CscMatrix,
+        q: &DVector<f64>,
+        index: &[Option<usize>],
+        sigma: f64,
+    ) -> Result<CscMatrix> {
+        let kept = m.pattern().nrows();
+        let d = m.pattern().ncols();
+        let mut dof_of = vec![(0usize, 0usize); kept];
+        for (node, rows) in self.dofs.row.iter().enumerate() {
+            for (dir, r) in rows.iter().enumerate() {
+                if let Some(k) = r.and_then(|r| index[r]) {
+                    dof_of[k] = (node, dir);
+                }
+            }
+        }
+        let mut adjacent = vec![Vec::new(); self.structure.n_nodes()];
+        for (k, [i, j]) in self.structure.member_nodes().into_iter().enumerate() {
+            adjacent[i].push((j, q[k]));
+            adjacent[j].push((i, q[k]));
+        }
+        let kept_at = |node: usize, dir: usize| self.dofs.row[node][dir].and_then(|r| index[r]);
+        let rows = csc_rows(m);
+        let (cp, ri, vals) = (m.pattern().col_ptr(), m.pattern().row_idx(), m.values());
+        let (mut y, mut y_touched, mut y_seen) = (vec![0.0; kept], Vec::new(), vec![false; kept]);
+        let (mut acc, mut acc_touched, mut acc_seen) = (vec![0.0; d], Vec::new(), vec![false; d]);
+        let mut t = Vec::new();
+        for c in 0..d {
+            let mut add = |r: usize, v: f64, y: &mut [f64]| {
+                y[r] += v;
+                if !y_seen[r] {
+                    y_seen[r] = true;
+                    y_touched.push(r);
+                }
+            };
+            for s in cp[c]..cp[c + 1] {
+                let (r, v) = (ri[s], vals[s]);
+                let (node, dir) = dof_of[r];
+                add(r, -sigma * v, &mut y);
+                for &(other, qk) in &adjacent[node] {
+                    add(r, qk * v, &mut y);
+                    if let Some(r2) = kept_at(other, dir) {
+                        add(r2, -qk * v, &mut y);
+                    }
+                }
+            }
+            for &r in &y_touched {
+                let yr = y[r];
+                y[r] = 0.0;
+                y_seen[r] = false;
+                for &(a, mv) in &rows[r] {
+                    if a >= c {
+                        acc[a] += mv * yr;
+                        if !acc_seen[a] {
+                            acc_seen[a] = true;
+                            acc_touched.push(a);
+                        }
+                    }
+                }
+            }
+            y_touched.clear();
+            t.push((c, c, 0.0));
+            for &a in &acc_touched {
+                t.push((a, c, acc[a]));
+                acc[a] = 0.0;
+                acc_seen[a] = false;
+            }
+            acc_touched.clear();
+        }
+        CscMatrix::from_triplets(d, d, &t)
     }
 
     /// Prestress stability with force densities `q` on a given orthonormal basis `phi` of the
@@ -720,6 +791,27 @@ impl SparseStatics<'_> {
         let aq = DVector::from_vec(self.a.mul_vec(q.as_slice()));
         super::load::assemble_solution(self.structure, &self.dofs, w_nodes, q, &aq - &w)
     }
+}
+
+/// `inv[v] = position` of a permutation `order[position] = v`.
+fn inverse(order: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0; order.len()];
+    for (p, &v) in order.iter().enumerate() {
+        inv[v] = p;
+    }
+    inv
+}
+
+/// The rows of a CSC matrix as (column, value) lists.
+fn csc_rows(m: &CscMatrix) -> Vec<Vec<(usize, f64)>> {
+    let (cp, ri, v) = (m.pattern().col_ptr(), m.pattern().row_idx(), m.values());
+    let mut rows = vec![Vec::new(); m.pattern().nrows()];
+    for c in 0..m.pattern().ncols() {
+        for s in cp[c]..cp[c + 1] {
+            rows[ri[s]].push((c, v[s]));
+        }
+    }
+    rows
 }
 
 /// One free-dof row per column of the rigid-body basis `t` (m × k): greedy pivoting on the

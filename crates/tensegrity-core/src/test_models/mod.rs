@@ -13,11 +13,13 @@
 //! | MOTES D-bar | [`motes_dbar`] | N P = D and bar lengths kept over 5000 RK4 steps |
 //! | dropped prism | [`dropped_prism`], [`dropped_prism_ground`] | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
 //! | spinning bar | [`spinning_bar`] | exact rotation ([`spinning_bar_exact`]) |
+//! | double-layer lattice | [`double_layer_grid`] | sparse statics scaling; dense agreement |
 //! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`], [`snelson_tower_free`] | size scaling for benches |
 
 mod chains;
 mod dbar;
 mod double_pendulum;
+mod lattice;
 mod dropped_prism;
 mod motes_dbar;
 mod snelson;
@@ -25,6 +27,7 @@ mod spinning_bar;
 
 pub use chains::{dbar_chain, prism_stack, snelson_tower, snelson_tower_free};
 pub use dbar::{alu, dbar, dbar_frame, loaded_dbar};
+pub use lattice::double_layer_grid;
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,

@@ -5,7 +5,7 @@
 //!
 //! The rows are first put in a caller-given order that keeps the matrix banded (for the
 //! equilibrium matrix: a reverse Cuthill–McKee order of the nodes). The columns are then
-//! processed in the order of their last row (ties by first row), so that every column ends at
+//! processed in the order of their last row (ties: the longest span last), so that every column ends at
 //! or after the columns before it: a "staircase". Column k, with rows `f..=l`, receives the
 //! Householder reflectors H_j of the columns accepted before it that reach row f; reflector j
 //! acts on rows `j..=e_j` (it starts at its own pivot position j and ends at its column's last
@@ -211,11 +211,14 @@ impl RankRevealingQr {
         let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
         let pos_of = inverse_permutation(row_order, m)?;
         let (cp, ri, vals) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
-        // staircase order: by last position, then first position
+        // staircase order: by last position, then the longest span last (a column that
+        // spans from further back is processed after the short ones ending at the same
+        // position, so that a dependency closes on it: its circuit — the null vector — stays
+        // local instead of telescoping through the shorter columns rejected before)
         let span = |k: usize| {
             let rows = ri[cp[k]..cp[k + 1]].iter().map(|&r| pos_of[r]);
             let (lo, hi) = rows.fold((usize::MAX, 0), |(lo, hi), p| (lo.min(p), hi.max(p)));
-            (hi, lo)
+            (hi, std::cmp::Reverse(lo))
         };
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by_key(|&k| span(k));
@@ -395,7 +398,8 @@ impl RankRevealingQr {
     /// [`sparse_null_vectors`](Self::sparse_null_vectors).
     pub fn null_vectors(&self) -> DMatrix<f64> {
         let mut out = DMatrix::zeros(self.ncols, self.dependent.len());
-        for (d, entries) in self.null_vector_entries().into_iter().enumerate() {
+        let all = self.null_vector_entries(usize::MAX).unwrap_or_default();
+        for (d, entries) in all.into_iter().enumerate() {
             for (k, v) in entries {
                 out[(k, d)] = v;
             }
@@ -424,18 +428,29 @@ impl RankRevealingQr {
     /// assert_eq!((n.pattern().nrows(), n.pattern().ncols(), n.pattern().nnz()), (3, 1, 3));
     /// ```
     pub fn sparse_null_vectors(&self) -> Result<CscMatrix> {
-        let entries = self.null_vector_entries();
+        Ok(self
+            .sparse_null_vectors_within(usize::MAX)?
+            .expect("no entry limit"))
+    }
+
+    /// As [`sparse_null_vectors`](Self::sparse_null_vectors), or `None` as soon as the
+    /// vectors hold more than `max_entries` entries (they are not local).
+    pub fn sparse_null_vectors_within(&self, max_entries: usize) -> Result<Option<CscMatrix>> {
+        let Some(entries) = self.null_vector_entries(max_entries) else {
+            return Ok(None);
+        };
         let t: Vec<(usize, usize, f64)> = entries
             .iter()
             .enumerate()
             .flat_map(|(d, e)| e.iter().map(move |&(k, v)| (k, d, v)))
             .collect();
-        CscMatrix::from_triplets(self.ncols, entries.len(), &t)
+        CscMatrix::from_triplets(self.ncols, entries.len(), &t).map(Some)
     }
 
     /// The (original column, value) entries of each null vector (see
-    /// [`sparse_null_vectors`](Self::sparse_null_vectors)).
-    fn null_vector_entries(&self) -> Vec<Vec<(usize, f64)>> {
+    /// [`sparse_null_vectors`](Self::sparse_null_vectors)); `None` beyond `max_entries`.
+    fn null_vector_entries(&self, max_entries: usize) -> Option<Vec<Vec<(usize, f64)>>> {
+        let mut total = 0usize;
         let r = self.rank();
         let mut w = vec![0.0; r];
         let mut queued = vec![false; r];
@@ -466,9 +481,13 @@ impl RankRevealingQr {
                     }
                 }
             }
+            total += entries.len();
+            if total > max_entries {
+                return None;
+            }
             out.push(entries);
         }
-        out
+        Some(out)
     }
 
     /// An orthonormal basis of the null space: [`null_vectors`](Self::null_vectors)
