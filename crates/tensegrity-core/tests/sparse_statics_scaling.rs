@@ -27,12 +27,19 @@ fn stage_timings() {
         let r = tensegrity_core::statics::report::statics_report(
             &s,
             &tensegrity_core::statics::report::StaticsRequest {
-                settings: StaticsSettings::default().method(tensegrity_core::statics::StaticsMethod::Sparse),
+                settings: StaticsSettings::default()
+                    .method(tensegrity_core::statics::StaticsMethod::Sparse),
                 ..Default::default()
             },
         )
         .unwrap();
-        println!("  report {:.3}s sigma_r {:.3e} nnz(N) {} {:?}", t.elapsed().as_secs_f64(), sp.sigma_min_r_estimate(), sp.sparse_self_stress_basis().values().len(), r.statics_warning);
+        println!(
+            "  report {:.3}s sigma_r {:.3e} nnz(N) {} {:?}",
+            t.elapsed().as_secs_f64(),
+            sp.sigma_min_r_estimate(),
+            sp.sparse_self_stress_basis().values().len(),
+            r.statics_warning
+        );
         println!(
             "tower {n}: factor+basis {t1:.3}s LP {t2:.3}s mechanisms {t3:.3}s stability {t4:.3}s (margin {} stable {})",
             pre.margin, st.stable

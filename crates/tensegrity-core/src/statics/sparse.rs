@@ -34,26 +34,33 @@
 //!
 //! - rank r, self-stress dimension members − r, mechanisms dofs − r;
 //! - the self-stress basis: the null vectors e_k − Σ x_j e_{acc(j)} of the rejected members,
-//!   orthonormalised by a thin QR (n × s, O(n·s²)) and oriented like the dense path's
-//!   (strings summing positive);
+//!   kept sparse ([`RankRevealingQr::sparse_null_vectors`]: a sparse back substitution per
+//!   vector). The staircase puts, among the members ending at the same row, the longest span
+//!   last, so a dependency closes on a member of its own cell and each null vector is a
+//!   local circuit (a tower: one prism, 12 members), not a telescoping sum through the members
+//!   rejected before. The orthonormal basis (thin QR, O(n·s²), oriented like the dense
+//!   path's) is built only when asked for; the report lists it up to
+//!   [`SELF_STRESS_LIST_MAX`] numbers;
 //! - first-order flexes: Q's last m − r columns (orthonormal); the rigid-body motions the
 //!   supports allow are projected out and the internal mechanisms taken from the projected
 //!   Gram matrix (its eigenvalues are 1 or 0);
-//! - prestressability: the margin LP written in the member force densities,
-//!   `max t  s.t.  R q = 0, q_s ≥ t, q_b ≤ −t, |q| ≤ 1`, with the r × n factor R = QᵀA (full
-//!   row rank, as sparse as A's profile), solved by Clarabel's sparse interior point: its
-//!   size grows with the number of members, not with (members × self-stress dimension) as
-//!   the dense LP over a basis does. The returned stress is projected on the null space,
-//!   scaled to max|q| = 1 and its margin recomputed, as on the dense path;
-//! - prestress stability: the stress matrix applied member by member to the internal
-//!   mechanisms, then a small symmetric eigenproblem;
+//! - prestressability: the margin LP over the sparse basis N, q = N c
+//!   (`max t  s.t.  σ_k (N c)_k ≥ t, σ_k (N c)_k ≤ 1`), solved by Clarabel's sparse interior
+//!   point: its rows have N's sparsity. The stress N c lies in the null space by
+//!   construction; it is scaled to max|q| = 1 and its margin recomputed, as on the dense
+//!   path;
+//! - prestress stability: below [`DENSE_MECHANISMS_MAX`] the stress matrix applied member by
+//!   member to the internal mechanisms, then a small symmetric eigenproblem; beyond, the
+//!   sparse flex test ([`SparseStatics::stable_by_cholesky`]); when that cannot decide, the
+//!   report says stability was not tested;
 //! - the minimal-norm load solve: the basic solution R_acc x = (Qᵀw)_{1..r} minus its
-//!   projection on the self-stress space.
+//!   projection on the self-stress space (a sparse Cholesky factorisation of NᵀN,
+//!   refined twice).
 
+use super::front::Factorization;
 use super::load::LoadSolution;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
-use super::front::Factorization;
 use super::{orient_self_stress, DofMap, StaticsSettings};
 use crate::error::{CoreError, Result};
 use crate::linalg::{self, CscMatrix, RankRevealingQr};
@@ -212,22 +219,22 @@ pub const SPARSE_FLOP_RATE: f64 = 1.5e9;
 /// self-stresses, d = m − r mechanisms: what is still to come and what is held at its peak.
 ///
 /// - memory: the factorisation (16·entries: each column's window is allocated whole, then
-///   shrunk to its entries, and the allocator keeps the tails), the self-stress basis n × s about four times
-///   (the null vectors, their orthonormalisation's input and Q, the oriented basis) and, when
-///   there is a self-stress (the prestressability LP over R and the stability test), the LP's
-///   sparse R and its interior-point factor (~3 × 16·entries) and the mechanisms m × d about
-///   four times (Q's last columns in position and row order, projected, the stress matrix
-///   applied to them);
-/// - work: the s back substitutions over R (s·entries), the thin QR of the basis (2ns²) and,
-///   with a self-stress, Q's last columns (d·entries), their Gram matrix (2md²), its
-///   eigenproblem (10d³) and the LP (20·entries per interior-point step, 30 steps).
+///   shrunk to its entries, and the allocator keeps the tails), the orthonormal self-stress
+///   basis n × s about four times when the report lists it (n·s ≤ [`SELF_STRESS_LIST_MAX`])
+///   and, when there is a self-stress, the LP's sparse rows and interior-point factor
+///   (~3 × 16·entries) and either the dense mechanisms m × d about four times (m·d ≤
+///   [`DENSE_MECHANISMS_MAX`]) or the flex QR (~2 × 16·entries);
+/// - work: the local sparse null vectors (64 flops each), the thin QR of a listed basis
+///   (2ns²) and, with a self-stress, the LP (20·entries per interior-point step, 30 steps)
+///   and either the dense mechanism test (d·entries + 2md² + 10d³) or the flex QR and the
+///   sparse test (200·entries).
 ///
 /// ```
 /// use tensegrity_core::statics::sparse_after_qr;
 /// // a chain without self-stress: the factorisation and nothing to add
 /// let e = sparse_after_qr(9000, 5997, 5997, 1_000_000);
 /// assert_eq!(e.memory_bytes, 16e6);
-/// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 1.0);
+/// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 0.5);
 /// ```
 pub fn sparse_after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Estimate {
     after_qr(m, n, r, entries)
@@ -238,10 +245,27 @@ fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Esti
     let s = n.saturating_sub(r) as f64;
     let d = m.saturating_sub(r) as f64;
     let stressed = if s > 0.0 { 1.0 } else { 0.0 };
-    let memory = 16.0 * e + 32.0 * nf * s + stressed * (48.0 * e + 32.0 * mf * d);
-    let flops = s * e
-        + 2.0 * nf * s * s
-        + stressed * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d + 600.0 * e);
+    // the orthonormal basis only when the report lists it
+    let listed = if nf * s <= SELF_STRESS_LIST_MAX as f64 {
+        1.0
+    } else {
+        0.0
+    };
+    // the dense mechanism test below its size, else the flex QR and the sparse test
+    let dense_mech = if mf * d <= DENSE_MECHANISMS_MAX as f64 {
+        1.0
+    } else {
+        0.0
+    };
+    let memory = 16.0 * e
+        + listed * 32.0 * nf * s
+        + stressed * (48.0 * e + dense_mech * 32.0 * mf * d + (1.0 - dense_mech) * 32.0 * e);
+    let flops = s * 64.0
+        + listed * 2.0 * nf * s * s
+        + stressed
+            * (600.0 * e
+                + dense_mech * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d)
+                + (1.0 - dense_mech) * 200.0 * e);
     let (s_dim, d_dim) = (n.saturating_sub(r), m.saturating_sub(r));
     crate::budget::Estimate::new(
         format!("the sparse statics of the {m} × {n} equilibrium matrix after its QR"),
@@ -581,7 +605,7 @@ impl SparseStatics<'_> {
                 stable,
             }),
             None => Err(Factorization::SparseQr.unsupported(
-                "prestress stability beyond the dense test's size, where the sparse flexes disagree with the rank",
+                "prestress stability of a structure this large whose flexes are not local (or disagree with the rank)",
             )),
         }
     }
@@ -823,7 +847,11 @@ fn pinned_rows(t: &DMatrix<f64>) -> Vec<usize> {
     for _ in 0..t.ncols() {
         let best = (0..res.nrows())
             .filter(|r| !chosen.contains(r))
-            .max_by(|&a, &b| res.row(a).norm_squared().total_cmp(&res.row(b).norm_squared()));
+            .max_by(|&a, &b| {
+                res.row(a)
+                    .norm_squared()
+                    .total_cmp(&res.row(b).norm_squared())
+            });
         let Some(best) = best else { break };
         let norm = res.row(best).norm();
         if norm <= 0.0 {

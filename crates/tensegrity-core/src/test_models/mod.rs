@@ -19,19 +19,19 @@
 mod chains;
 mod dbar;
 mod double_pendulum;
-mod lattice;
 mod dropped_prism;
+mod lattice;
 mod motes_dbar;
 mod snelson;
 mod spinning_bar;
 
 pub use chains::{dbar_chain, prism_stack, snelson_tower, snelson_tower_free};
 pub use dbar::{alu, dbar, dbar_frame, loaded_dbar};
-pub use lattice::double_layer_grid;
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,
 };
+pub use lattice::double_layer_grid;
 pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
 pub use snelson::{oscillating_prism, snelson, snelson_prism, snelson_twist, PrismParams};
 pub use spinning_bar::{spinning_bar, spinning_bar_exact};

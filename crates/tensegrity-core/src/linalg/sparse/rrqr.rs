@@ -470,7 +470,7 @@ impl RankRevealingQr {
                 let col = &self.r_cols[self.pivot_col[j]];
                 let x = w[j] / col.vals[j - col.start];
                 w[j] = 0.0;
-                if !(x.abs() > NULL_DROP * largest) {
+                if x.is_nan() || x.abs() <= NULL_DROP * largest {
                     continue;
                 }
                 largest = largest.max(x.abs());
