@@ -1,6 +1,7 @@
 //! Criterion benches of the sparse statics against the dense SVD path: the full statics
 //! report (rank, self-stress basis, margin LP, flexes, prestress stability) of towers of
-//! stacked Snelson prisms sharing their triangles (banded) and of random banded structures.
+//! stacked Snelson prisms sharing their triangles (banded; up to 3,200 prisms, issue 25), of a
+//! small double-layer lattice and of random banded structures.
 //!
 //! `cargo bench -p tensegrity-core --bench sparse_statics`
 #![allow(missing_docs)]
@@ -60,6 +61,14 @@ fn bench(c: &mut Criterion) {
         ("tower", 100, tower(100)),
         ("tower", 200, tower(200)),
         ("tower", 400, tower(400)),
+        ("tower", 800, tower(800)),
+        ("tower", 1600, tower(1600)),
+        ("tower", 3200, tower(3200)),
+        (
+            "lattice",
+            6,
+            test_models::double_layer_grid(6).expect("valid lattice"),
+        ),
         ("random", 150, random_banded(150)),
         ("random", 500, random_banded(500)),
     ];

@@ -214,3 +214,71 @@ fn the_sparse_statics_api_answers_like_the_dense_one() {
     let gram = q.transpose() * q;
     assert!((gram - DMatrix::identity(8, 8)).amax() < 1e-12);
 }
+
+/// Issue 25: the near-linear path (local sparse null vectors, the margin LP over them, the
+/// sparse flex test of stability) answers like the dense SVD on towers and on a double-layer
+/// lattice small enough for it: rank, self-stress dimension, mechanisms, margin, stability.
+#[test]
+fn towers_and_a_lattice_match_the_dense_path_on_the_near_linear_path() {
+    let cases = [
+        ("tower of 40", test_models::snelson_tower_free(40).unwrap()),
+        ("tower of 64", test_models::snelson_tower_free(64).unwrap()),
+        ("lattice 4 × 4", test_models::double_layer_grid(4).unwrap()),
+        ("lattice 6 × 6", test_models::double_layer_grid(6).unwrap()),
+    ];
+    for (what, s) in &cases {
+        let dense = report(s, StaticsMethod::Dense);
+        let sparse = report(s, StaticsMethod::Sparse);
+        assert_same(&dense, &sparse, what);
+        assert!(sparse.prestressable, "{what}");
+        // the sparse stability test (used beyond the dense test's size) agrees as well
+        let st = SparseStatics::with_settings(s, StaticsSettings::default()).unwrap();
+        let q = nalgebra::DVector::from_column_slice(sparse.prestress.as_ref().unwrap());
+        assert_eq!(
+            st.stable_by_cholesky(&q).unwrap(),
+            dense.prestress_stable,
+            "{what}"
+        );
+        // the sparse self-stress basis spans the null space: A N = 0 to round-off
+        let n = st.sparse_self_stress_basis();
+        assert_eq!(n.pattern().ncols(), dense.self_stress_dim, "{what}");
+        let a = st.matrix();
+        for c in 0..n.pattern().ncols() {
+            let mut x = vec![0.0; n.pattern().nrows()];
+            let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
+            for slot in cp[c]..cp[c + 1] {
+                x[ri[slot]] = v[slot];
+            }
+            let ax = a.mul_vec(&x);
+            assert!(ax.iter().all(|y| y.abs() < 1e-10), "{what}: column {c}");
+        }
+    }
+}
+
+/// The tower's null vectors are local (one prism each: 12 members), so the sparse basis
+/// grows linearly with the tower.
+#[test]
+fn a_towers_self_stresses_are_local() {
+    for stages in [50, 200] {
+        let s = test_models::snelson_tower_free(stages).unwrap();
+        let st = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let n = st.sparse_self_stress_basis();
+        assert_eq!(n.pattern().ncols(), stages);
+        assert!(n.pattern().nnz() <= 12 * stages, "{}", n.pattern().nnz());
+    }
+}
+
+/// A self-stress basis above `SELF_STRESS_LIST_MAX` numbers is not listed (its dimension is,
+/// with the reason); margin and stability are still computed (the sparse flex test).
+#[test]
+fn a_large_self_stress_basis_is_not_listed() {
+    let s = test_models::snelson_tower_free(350).unwrap();
+    let r = report(&s, StaticsMethod::Auto);
+    assert_eq!((r.self_stress_dim, r.internal_mechanisms), (350, 350));
+    assert!(r.self_stress.is_empty());
+    let why = r.self_stress_omitted.as_deref().unwrap();
+    assert!(why.contains("350-dimensional"), "{why}");
+    assert!((r.prestress_margin - 1.0 / 3f64.sqrt()).abs() < 1e-9);
+    assert_eq!(r.prestress_stable, Some(true), "{:?}", r.statics_warning);
+    assert!(r.statics_warning.is_none(), "{:?}", r.statics_warning);
+}

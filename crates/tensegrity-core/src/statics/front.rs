@@ -99,13 +99,24 @@ pub enum SelfStressBasis {
         /// The dimension of the whole self-stress space.
         dim: usize,
     },
+    /// Not listed: the orthonormal basis of a large self-stress space (members × `dim`
+    /// numbers above [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)) would
+    /// cost O(members·dim²) to build and dominate the report; `basis` has no column.
+    Omitted {
+        /// Members × 0.
+        basis: DMatrix<f64>,
+        /// The dimension of the self-stress space.
+        dim: usize,
+    },
 }
 
 impl SelfStressBasis {
     /// The columns held (the whole basis, or the symmetric part).
     pub fn matrix(&self) -> &DMatrix<f64> {
         match self {
-            SelfStressBasis::Full(b) | SelfStressBasis::Symmetric { basis: b, .. } => b,
+            SelfStressBasis::Full(b)
+            | SelfStressBasis::Symmetric { basis: b, .. }
+            | SelfStressBasis::Omitted { basis: b, .. } => b,
         }
     }
 }
@@ -285,6 +296,16 @@ impl StaticsBackend for SparseStatics<'_> {
         }
     }
     fn self_stress(&self) -> SelfStressBasis {
+        let (n, dim) = (
+            SparseStatics::structure(self).n_members(),
+            SparseStatics::self_stress_dim(self),
+        );
+        if n.saturating_mul(dim) > super::sparse::SELF_STRESS_LIST_MAX {
+            return SelfStressBasis::Omitted {
+                basis: DMatrix::zeros(n, 0),
+                dim,
+            };
+        }
         SelfStressBasis::Full(self.self_stress_basis().clone())
     }
     fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {

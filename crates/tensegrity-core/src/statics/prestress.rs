@@ -229,59 +229,55 @@ pub fn solve_lp(
     }
 }
 
-/// The margin LP over the member force densities, the self-stress space given by the r × n
-/// equations `r_eq` q = 0 of full row rank:
-/// `max t  s.t.  r_eq q = 0, σ_k q_k ≥ t (signed members), |q| ≤ 1, t ≥ 0`, by Clarabel
-/// (sparse), with the rows of [`margin_lp`]. Returns z = [q, t].
-pub(super) fn solve_member_lp(
-    r_eq: &crate::linalg::CscMatrix,
+/// The margin LP over a sparse self-stress basis N (members × s, not necessarily
+/// orthonormal): `max t  s.t.  σ_k (N c)_k ≥ t,  σ_k (N c)_k ≤ 1` for signed members and
+/// `|(N c)_k| ≤ 1` for free ones, t ≥ 0; the same rows as [`margin_lp`] with q = N c, so the
+/// optimum (scale-free after q is rescaled to max|q| = 1) is the same. The constraint matrix
+/// has N's sparsity (three entries per stored entry of N at most), so Clarabel's sparse
+/// interior point costs about what a factorisation of N's pattern does. Returns c.
+pub(super) fn solve_null_space_lp(
+    basis: &crate::linalg::CscMatrix,
     signs: &[MemberSign],
 ) -> Result<Vec<f64>> {
-    let problem = "prestressability LP (sparse)";
-    let (r, n) = (r_eq.pattern().nrows(), r_eq.pattern().ncols());
-    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    let problem = "prestressability LP (sparse self-stress basis)";
+    let (n, s) = (basis.pattern().nrows(), basis.pattern().ncols());
     let (cp, ri, vals) = (
-        r_eq.pattern().col_ptr(),
-        r_eq.pattern().row_idx(),
-        r_eq.values(),
+        basis.pattern().col_ptr(),
+        basis.pattern().row_idx(),
+        basis.values(),
     );
-    for k in 0..n {
-        for s in cp[k]..cp[k + 1] {
-            ii.push(ri[s]);
-            jj.push(k);
-            vv.push(vals[s]);
+    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    for c in 0..s {
+        for slot in cp[c]..cp[c + 1] {
+            let (k, v) = (ri[slot], vals[slot]);
+            let first = signs[k].sigma().map_or(1.0, |sigma| -sigma);
+            ii.extend([2 * k, 2 * k + 1]);
+            jj.extend([c, c]);
+            vv.extend([first * v, -first * v]);
         }
     }
-    // inequalities A z + s = b, s ≥ 0 (same rows as the dense LP)
-    let mut b = vec![0.0; r + 2 * n + 1];
+    let mut b = vec![0.0; 2 * n + 1];
     for k in 0..n {
-        let row = r + 2 * k;
         match signs[k].sigma() {
-            Some(sigma) => {
-                ii.extend([row, row, row + 1]);
-                jj.extend([k, n, k]);
-                vv.extend([-sigma, 1.0, sigma]);
+            Some(_) => {
+                ii.push(2 * k);
+                jj.push(s);
+                vv.push(1.0);
             }
-            None => {
-                ii.extend([row, row + 1]);
-                jj.extend([k, k]);
-                vv.extend([1.0, -1.0]);
-                b[row] = 1.0;
-            }
+            None => b[2 * k] = 1.0,
         }
-        b[row + 1] = 1.0;
+        b[2 * k + 1] = 1.0;
     }
-    ii.push(r + 2 * n);
-    jj.push(n);
+    ii.push(2 * n);
+    jj.push(s);
     vv.push(-1.0);
-    let a = CscMatrix::new_from_triplets(r + 2 * n + 1, n + 1, ii, jj, vv);
-    let mut c = vec![0.0; n + 1];
-    c[n] = -1.0;
-    let cones = [
-        SupportedConeT::ZeroConeT(r),
-        SupportedConeT::NonnegativeConeT(2 * n + 1),
-    ];
-    run_clarabel(&a, &c, &b, &cones, problem)
+    let a = CscMatrix::new_from_triplets(2 * n + 1, s + 1, ii, jj, vv);
+    let mut c = vec![0.0; s + 1];
+    c[s] = -1.0;
+    let cones = [SupportedConeT::NonnegativeConeT(2 * n + 1)];
+    let mut z = run_clarabel(&a, &c, &b, &cones, problem)?;
+    z.truncate(s);
+    Ok(z)
 }
 
 /// Solves min cᵀz s.t. G z ≤ h with Clarabel.

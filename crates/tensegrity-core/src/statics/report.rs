@@ -88,6 +88,10 @@ pub struct StaticsReport {
     pub prestress_stable: Option<bool>,
     /// Orthonormal self-stress basis (force densities), members bars then strings.
     pub self_stress: Vec<Vec<f64>>,
+    /// Set when `self_stress` is left empty although the space is not: why (its dimension
+    /// and size; see [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub self_stress_omitted: Option<String>,
     /// The max-margin self-stress (force densities) scaled to max|q| = 1 (only when
     /// prestressable).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -225,8 +229,18 @@ fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
             basis.ncols()
         ));
     }
+    let self_stress_omitted = match &basis {
+        SelfStressBasis::Omitted { dim, basis } => Some(format!(
+            "the {dim}-dimensional self-stress basis of {} members ({} numbers) is not listed: above {} numbers its orthonormalisation would dominate the analysis",
+            basis.nrows(),
+            dim * basis.nrows(),
+            super::sparse::SELF_STRESS_LIST_MAX
+        )),
+        _ => None,
+    };
     let kind = backend.kind();
     Ok(StaticsReport {
+        self_stress_omitted,
         nodes: structure.n_nodes(),
         bars: structure.n_bars(),
         strings: structure.n_strings(),

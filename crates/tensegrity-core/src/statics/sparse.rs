@@ -34,22 +34,30 @@
 //!
 //! - rank r, self-stress dimension members − r, mechanisms dofs − r;
 //! - the self-stress basis: the null vectors e_k − Σ x_j e_{acc(j)} of the rejected members,
-//!   orthonormalised by a thin QR (n × s, O(n·s²)) and oriented like the dense path's
-//!   (strings summing positive);
+//!   kept sparse ([`RankRevealingQr::sparse_null_vectors`]: a sparse back substitution per
+//!   vector). The staircase puts, among the members ending at the same row, the longest span
+//!   last, so a dependency closes on a member of its own cell and each null vector is a
+//!   local circuit (a tower: one prism, 12 members), not a telescoping sum through the members
+//!   rejected before. The orthonormal basis (thin QR, O(n·s²), oriented like the dense
+//!   path's) is built only when asked for; the report lists it up to
+//!   [`SELF_STRESS_LIST_MAX`] numbers;
 //! - first-order flexes: Q's last m − r columns (orthonormal); the rigid-body motions the
 //!   supports allow are projected out and the internal mechanisms taken from the projected
 //!   Gram matrix (its eigenvalues are 1 or 0);
-//! - prestressability: the margin LP written in the member force densities,
-//!   `max t  s.t.  R q = 0, q_s ≥ t, q_b ≤ −t, |q| ≤ 1`, with the r × n factor R = QᵀA (full
-//!   row rank, as sparse as A's profile), solved by Clarabel's sparse interior point: its
-//!   size grows with the number of members, not with (members × self-stress dimension) as
-//!   the dense LP over a basis does. The returned stress is projected on the null space,
-//!   scaled to max|q| = 1 and its margin recomputed, as on the dense path;
-//! - prestress stability: the stress matrix applied member by member to the internal
-//!   mechanisms, then a small symmetric eigenproblem;
+//! - prestressability: the margin LP over the sparse basis N, q = N c
+//!   (`max t  s.t.  σ_k (N c)_k ≥ t, σ_k (N c)_k ≤ 1`), solved by Clarabel's sparse interior
+//!   point: its rows have N's sparsity. The stress N c lies in the null space by
+//!   construction; it is scaled to max|q| = 1 and its margin recomputed, as on the dense
+//!   path;
+//! - prestress stability: below [`DENSE_MECHANISMS_MAX`] the stress matrix applied member by
+//!   member to the internal mechanisms, then a small symmetric eigenproblem; beyond, the
+//!   sparse flex test ([`SparseStatics::stable_by_cholesky`]); when that cannot decide, the
+//!   report says stability was not tested;
 //! - the minimal-norm load solve: the basic solution R_acc x = (Qᵀw)_{1..r} minus its
-//!   projection on the self-stress space.
+//!   projection on the self-stress space (a sparse Cholesky factorisation of NᵀN,
+//!   refined twice).
 
+use super::front::Factorization;
 use super::load::LoadSolution;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
@@ -58,6 +66,21 @@ use crate::error::{CoreError, Result};
 use crate::linalg::{self, CscMatrix, RankRevealingQr};
 use crate::structure::Structure;
 use nalgebra::{DMatrix, DVector, Vector3};
+use std::sync::OnceLock;
+
+/// Largest self-stress basis (members × dimension numbers) the statics report lists; a
+/// larger one is left out of the report (its dimension is given), since its
+/// orthonormalisation costs O(members·s²) and its listing members·s numbers.
+pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
+
+/// The sparse flex basis of [`SparseStatics::stable_by_cholesky`] may hold this many entries
+/// per kept dof; beyond, the flexes are not local and the test gives no decision.
+pub const FLEX_ENTRIES_PER_DOF: usize = 32;
+
+/// Largest internal-mechanism basis (free dofs × mechanisms numbers) for which prestress
+/// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
+/// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
+pub const DENSE_MECHANISMS_MAX: usize = 250_000;
 
 /// Power-method steps for σ_max of the equilibrium matrix.
 const POWER_STEPS: usize = 40;
@@ -66,8 +89,23 @@ const INVERSE_STEPS: usize = 12;
 /// The σ_min(R_acc) estimate must exceed this multiple of max(τ, ‖E‖_F) for a certified rank.
 const CERTIFY_FACTOR: f64 = 100.0;
 /// A member whose acceptance would drop the condition estimate of R_acc below this fraction
-/// of σ_max is deferred to the end of the factorisation.
+/// of σ_max is deferred to the end of the factorisation; another level for larger structures ([`defer_level`]).
 const DEFER_BELOW: f64 = 1e-3;
+
+/// The deferral level of an m × n matrix with rank tolerance τ: 10⁻³·σ_max up to 1000 rows
+/// and columns (a condition estimate of R_acc within 10³ of A's scale), and beyond that
+/// 10·[`REJECT_FACTOR`]·τ, ten times the rejection level. A long structure's own σ_r falls
+/// with its size (a tower of N prisms: σ_r ∝ 1/N²), so a fixed fraction of σ_max would defer
+/// most of its members, and a deferred member spans the whole band (quadratic work and
+/// global null vectors); the certificate (σ_min(R_acc) against the rejected residuals)
+/// still catches an accepted set that went bad.
+fn defer_level(m: usize, n: usize, sigma_max: f64, tolerance: f64) -> f64 {
+    if m.max(n) <= 1000 {
+        DEFER_BELOW * sigma_max
+    } else {
+        10.0 * REJECT_FACTOR * tolerance
+    }
+}
 /// Columns are rejected when their residual is at most this multiple of τ: the residual of
 /// an exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the
 /// SVD's ε·‖A‖, so τ itself would accept some dependent columns of ill-conditioned
@@ -181,22 +219,22 @@ pub const SPARSE_FLOP_RATE: f64 = 1.5e9;
 /// self-stresses, d = m − r mechanisms: what is still to come and what is held at its peak.
 ///
 /// - memory: the factorisation (16·entries: each column's window is allocated whole, then
-///   shrunk to its entries, and the allocator keeps the tails), the self-stress basis n × s about four times
-///   (the null vectors, their orthonormalisation's input and Q, the oriented basis) and, when
-///   there is a self-stress (the prestressability LP over R and the stability test), the LP's
-///   sparse R and its interior-point factor (~3 × 16·entries) and the mechanisms m × d about
-///   four times (Q's last columns in position and row order, projected, the stress matrix
-///   applied to them);
-/// - work: the s back substitutions over R (s·entries), the thin QR of the basis (2ns²) and,
-///   with a self-stress, Q's last columns (d·entries), their Gram matrix (2md²), its
-///   eigenproblem (10d³) and the LP (20·entries per interior-point step, 30 steps).
+///   shrunk to its entries, and the allocator keeps the tails), the orthonormal self-stress
+///   basis n × s about four times when the report lists it (n·s ≤ [`SELF_STRESS_LIST_MAX`])
+///   and, when there is a self-stress, the LP's sparse rows and interior-point factor
+///   (~3 × 16·entries) and either the dense mechanisms m × d about four times (m·d ≤
+///   [`DENSE_MECHANISMS_MAX`]) or the flex QR (~2 × 16·entries);
+/// - work: the local sparse null vectors (64 flops each), the thin QR of a listed basis
+///   (2ns²) and, with a self-stress, the LP (20·entries per interior-point step, 30 steps)
+///   and either the dense mechanism test (d·entries + 2md² + 10d³) or the flex QR and the
+///   sparse test (200·entries).
 ///
 /// ```
 /// use tensegrity_core::statics::sparse_after_qr;
 /// // a chain without self-stress: the factorisation and nothing to add
 /// let e = sparse_after_qr(9000, 5997, 5997, 1_000_000);
 /// assert_eq!(e.memory_bytes, 16e6);
-/// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 1.0);
+/// assert!(sparse_after_qr(4509, 4503, 4003, 2_000_000).work_s > 0.5);
 /// ```
 pub fn sparse_after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Estimate {
     after_qr(m, n, r, entries)
@@ -207,10 +245,27 @@ fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> crate::budget::Esti
     let s = n.saturating_sub(r) as f64;
     let d = m.saturating_sub(r) as f64;
     let stressed = if s > 0.0 { 1.0 } else { 0.0 };
-    let memory = 16.0 * e + 32.0 * nf * s + stressed * (48.0 * e + 32.0 * mf * d);
-    let flops = s * e
-        + 2.0 * nf * s * s
-        + stressed * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d + 600.0 * e);
+    // the orthonormal basis only when the report lists it
+    let listed = if nf * s <= SELF_STRESS_LIST_MAX as f64 {
+        1.0
+    } else {
+        0.0
+    };
+    // the dense mechanism test below its size, else the flex QR and the sparse test
+    let dense_mech = if mf * d <= DENSE_MECHANISMS_MAX as f64 {
+        1.0
+    } else {
+        0.0
+    };
+    let memory = 16.0 * e
+        + listed * 32.0 * nf * s
+        + stressed * (48.0 * e + dense_mech * 32.0 * mf * d + (1.0 - dense_mech) * 32.0 * e);
+    let flops = s * 64.0
+        + listed * 2.0 * nf * s * s
+        + stressed
+            * (600.0 * e
+                + dense_mech * (d * e + 2.0 * mf * d * d + 10.0 * d * d * d)
+                + (1.0 - dense_mech) * 200.0 * e);
     let (s_dim, d_dim) = (n.saturating_sub(r), m.saturating_sub(r));
     crate::budget::Estimate::new(
         format!("the sparse statics of the {m} × {n} equilibrium matrix after its QR"),
@@ -267,6 +322,29 @@ fn transpose_mul(a: &CscMatrix, y: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// The lower triangle of NᵀN for a sparse N, from the rows of N (each row's pairs).
+fn gram_lower(n: &CscMatrix) -> Result<CscMatrix> {
+    let (rows, cols) = (n.pattern().nrows(), n.pattern().ncols());
+    let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
+    let mut by_row: Vec<Vec<(usize, f64)>> = vec![Vec::new(); rows];
+    for c in 0..cols {
+        for s in cp[c]..cp[c + 1] {
+            by_row[ri[s]].push((c, v[s]));
+        }
+    }
+    let mut t = Vec::new();
+    for row in &by_row {
+        for &(a, va) in row {
+            for &(b, vb) in row {
+                if a >= b {
+                    t.push((a, b, va * vb));
+                }
+            }
+        }
+    }
+    CscMatrix::from_triplets(cols, cols, &t)
+}
+
 /// The factored equilibrium problem of a large structure (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct SparseStatics<'a> {
@@ -275,8 +353,10 @@ pub struct SparseStatics<'a> {
     a: CscMatrix,
     qr: RankRevealingQr,
     tolerance: f64,
+    sigma_max: f64,
     sigma_min_estimate: f64,
-    self_stress: DMatrix<f64>,
+    null_basis: CscMatrix,
+    self_stress: OnceLock<DMatrix<f64>>,
 }
 
 impl<'a> SparseStatics<'a> {
@@ -304,7 +384,7 @@ impl<'a> SparseStatics<'a> {
             &a,
             &row_order,
             REJECT_FACTOR * tolerance,
-            DEFER_BELOW * sigma,
+            defer_level(m, n, sigma, tolerance),
         )?;
         // the rank is known: the bases, the LP and the stability test are estimated and
         // checked before they are allocated
@@ -318,15 +398,17 @@ impl<'a> SparseStatics<'a> {
             .check(&after)
             .map_err(|over| CoreError::OverBudget(Box::new(over)))?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
-        let self_stress = orient_self_stress(qr.orthonormal_null_space(), structure.n_bars());
+        let null_basis = qr.sparse_null_vectors()?;
         Ok(Self {
             structure,
             dofs,
             a,
             qr,
             tolerance,
+            sigma_max: sigma,
             sigma_min_estimate,
-            self_stress,
+            null_basis,
+            self_stress: OnceLock::new(),
         })
     }
 
@@ -393,9 +475,59 @@ impl<'a> SparseStatics<'a> {
     }
 
     /// The orthonormal self-stress basis (members × dimension), oriented like the dense
-    /// path's.
+    /// path's: the sparse basis orthonormalised by a thin QR on first use, O(members·s²)
+    /// flops and members·s numbers (the statics report lists it only up to
+    /// [`SELF_STRESS_LIST_MAX`] numbers).
     pub fn self_stress_basis(&self) -> &DMatrix<f64> {
-        &self.self_stress
+        self.self_stress.get_or_init(|| {
+            let n = &self.null_basis;
+            let (rows, cols) = (n.pattern().nrows(), n.pattern().ncols());
+            if cols == 0 {
+                return DMatrix::zeros(rows, 0);
+            }
+            let mut f = faer::Mat::<f64>::zeros(rows, cols);
+            let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
+            for c in 0..cols {
+                for s in cp[c]..cp[c + 1] {
+                    f[(ri[s], c)] = v[s];
+                }
+            }
+            let q = f.qr().compute_thin_Q();
+            let q = DMatrix::from_fn(q.nrows(), q.ncols(), |i, j| q[(i, j)]);
+            orient_self_stress(q, self.structure.n_bars())
+        })
+    }
+
+    /// The sparse self-stress basis N (members × dimension, not orthonormal): one null
+    /// vector per rejected member, 1 at that member and 0 at the other rejected ones
+    /// ([`RankRevealingQr::sparse_null_vectors`]).
+    pub fn sparse_self_stress_basis(&self) -> &CscMatrix {
+        &self.null_basis
+    }
+
+    /// The orthogonal projection of `x` (members) on the self-stress space,
+    /// N (NᵀN)⁻¹ Nᵀ x, by a sparse Cholesky factorisation of NᵀN (s × s, sparse when the
+    /// null vectors are local; NᵀN ⪰ I since each null vector has a unit entry where the
+    /// others vanish). The normal equations lose accuracy with N's conditioning, so the
+    /// component is removed again from the remainder twice (iterative refinement).
+    pub fn project_on_self_stress(&self, x: &[f64]) -> Result<Vec<f64>> {
+        let n = &self.null_basis;
+        let members = n.pattern().nrows();
+        if n.pattern().ncols() == 0 {
+            return Ok(vec![0.0; members]);
+        }
+        let gram = gram_lower(n)?;
+        let mut chol = linalg::SparseCholesky::new(gram.pattern())?;
+        chol.factor(gram.values())?;
+        let mut rest = x.to_vec();
+        for _ in 0..3 {
+            let mut c = transpose_mul(n, &rest);
+            chol.solve_in_place(&mut c);
+            for (r, v) in rest.iter_mut().zip(n.mul_vec(&c)) {
+                *r -= v;
+            }
+        }
+        Ok(x.iter().zip(&rest).map(|(a, b)| a - b).collect())
     }
 }
 
@@ -414,13 +546,9 @@ impl SparseStatics<'_> {
         if self.self_stress_dim() == 0 {
             return Ok(Prestressability::none(n));
         }
-        let z = super::prestress::solve_member_lp(&self.qr.r_factor()?, signs)?;
-        let raw = DVector::from_column_slice(&z[..n]);
-        let basis = &self.self_stress;
-        Ok(Prestressability::from_signed(
-            basis * (basis.transpose() * raw),
-            signs,
-        ))
+        let c = super::prestress::solve_null_space_lp(&self.null_basis, signs)?;
+        let q = DVector::from_vec(self.null_basis.mul_vec(&c));
+        Ok(Prestressability::from_signed(q, signs))
     }
 
     /// An orthonormal basis of the internal mechanisms (free dofs × count): the flexes with
@@ -452,10 +580,177 @@ impl SparseStatics<'_> {
         Ok(rigid_motions(self.structure, &self.dofs)?.ncols())
     }
 
-    /// Prestress stability with force densities `q` (the dense path's test and tolerance).
+    /// Prestress stability with force densities `q` (normally a self-stress).
+    ///
+    /// While the internal-mechanism basis is small (free dofs × mechanisms ≤
+    /// [`DENSE_MECHANISMS_MAX`]) this is the dense path's test and tolerance (the eigenvalues
+    /// of the stress matrix projected on an orthonormal basis of the internal mechanisms must
+    /// exceed 10⁻⁹·max|q|). Beyond, the sparse test [`stable_by_cholesky`](Self::stable_by_cholesky)
+    /// decides; when it cannot certify stability the answer is the error
+    /// [`CoreError::Unsupported`] (the report then says that stability was not tested).
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
-        let (phi, _) = self.internal_mechanisms()?;
-        self.prestress_stability_on(&phi, q)
+        let (m, d) = (self.dofs.len(), self.mechanisms());
+        if m.saturating_mul(d) <= DENSE_MECHANISMS_MAX {
+            let (phi, _) = self.internal_mechanisms()?;
+            return self.prestress_stability_on(&phi, q);
+        }
+        let internal = d.saturating_sub(self.rigid_body_motions()?);
+        if internal == 0 {
+            return Ok(PrestressStability::rigid());
+        }
+        match self.stable_by_cholesky(q)? {
+            Some(stable) => Ok(PrestressStability {
+                internal_mechanisms: internal,
+                eigenvalues: Vec::new(),
+                stable,
+            }),
+            None => Err(Factorization::SparseQr.unsupported(
+                "prestress stability of a structure this large whose flexes are not local (or disagree with the rank)",
+            )),
+        }
+    }
+
+    /// The sparse prestress-stability test: `Some(stable)` with the dense path's decision
+    /// (the stress matrix Ω̄ = Ω ⊗ I₃ on the internal mechanisms, Rayleigh quotients above
+    /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when the sparse
+    /// flexes do not match the rank of A, or when they are not local (more than
+    /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
+    /// quadratically; a long tower's flexes span a growing part of it).
+    ///
+    /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
+    /// pivots, one per rigid motion the supports allow), so that every internal mechanism
+    /// has exactly one representative vanishing there: the null space of Aᵀ without the
+    /// pinned rows. Its sparse basis M (kept dofs × internal mechanisms) comes from a second
+    /// rank-revealing QR, of Aᵀ (members along the band, dofs as columns), whose null
+    /// vectors are local flexes ([`RankRevealingQr::sparse_null_vectors`]). Then
+    /// K = Mᵀ Ω̄ M − σ MᵀM (sparse: member by member, Σ q_k (Δ_k M)ᵀ(Δ_k M)) is positive
+    /// definite exactly when every pinned internal mechanism w has wᵀΩ̄w > σ‖w‖², tested by a
+    /// sparse Cholesky factorisation. Ω̄ annihilates the rigid motions (q a self-stress) and
+    /// the orthogonal representative is the shortest of its class, so K positive definite
+    /// implies the dense test's "stable"; the converse holds unless the smallest Rayleigh
+    /// quotient lies within the pinning's conditioning of σ.
+    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<Option<bool>> {
+        let q_max = q.amax();
+        if q.len() != self.structure.n_members() || !(q_max > 0.0 && q_max.is_finite()) {
+            return Ok(None);
+        }
+        let rigid = rigid_motions(self.structure, &self.dofs)?;
+        let internal = self.mechanisms().saturating_sub(rigid.ncols());
+        let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
+        let n = self.structure.n_members();
+        let member_nodes = self.structure.member_nodes();
+        let mut t = Vec::with_capacity(6 * n);
+        for (k, &[i, j]) in member_nodes.iter().enumerate() {
+            let e = self.structure.nodes()[j] - self.structure.nodes()[i];
+            for d in 0..3 {
+                for (node, sign) in [(i, -1.0), (j, 1.0)] {
+                    if let Some(c) = self.dofs.row[node][d].and_then(|r| index[r]) {
+                        t.push((k, c, sign * e[d]));
+                    }
+                }
+            }
+        }
+        let at = CscMatrix::from_triplets(n, kept, &t)?;
+        let node_pos = inverse(&node_order_rcm(self.structure));
+        let mut member_order: Vec<usize> = (0..n).collect();
+        member_order.sort_by_key(|&k| {
+            let [i, j] = member_nodes[k];
+            let (a, b) = (node_pos[i], node_pos[j]);
+            (a.max(b), a.min(b))
+        });
+        let flexes = RankRevealingQr::with_deferral(
+            &at,
+            &member_order,
+            REJECT_FACTOR * self.tolerance,
+            defer_level(n, kept, self.sigma_max, self.tolerance),
+        )?;
+        if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
+            return Ok(None);
+        }
+        let Some(m) = flexes.sparse_null_vectors_within(FLEX_ENTRIES_PER_DOF * kept)? else {
+            return Ok(None);
+        };
+        let kmat = self.projected_stress_lower(&m, q, &index, 1e-9 * q_max)?;
+        let mut chol = linalg::SparseCholesky::new(kmat.pattern())?;
+        Ok(Some(chol.factor(kmat.values()).is_ok()))
+    }
+
+    /// The lower triangle of K = Mᵀ (Ω̄ − σ I) M for a sparse M (kept dofs × d, `index`
+    /// numbering the kept dofs among the free ones), column by column: Y = (Ω̄ − σ I) M_c
+    /// member by member from the nodes M_c touches, then Mᵀ Y through the rows of M, both
+    /// accumulated in scatter vectors (cost ≈ nnz(M) × the rows' lengths).
+    fn projected_stress_lower(
+        &self,
+        m: &CscMatrix,
+        q: &DVector<f64>,
+        index: &[Option<usize>],
+        sigma: f64,
+    ) -> Result<CscMatrix> {
+        let kept = m.pattern().nrows();
+        let d = m.pattern().ncols();
+        let mut dof_of = vec![(0usize, 0usize); kept];
+        for (node, rows) in self.dofs.row.iter().enumerate() {
+            for (dir, r) in rows.iter().enumerate() {
+                if let Some(k) = r.and_then(|r| index[r]) {
+                    dof_of[k] = (node, dir);
+                }
+            }
+        }
+        let mut adjacent = vec![Vec::new(); self.structure.n_nodes()];
+        for (k, [i, j]) in self.structure.member_nodes().into_iter().enumerate() {
+            adjacent[i].push((j, q[k]));
+            adjacent[j].push((i, q[k]));
+        }
+        let kept_at = |node: usize, dir: usize| self.dofs.row[node][dir].and_then(|r| index[r]);
+        let rows = csc_rows(m);
+        let (cp, ri, vals) = (m.pattern().col_ptr(), m.pattern().row_idx(), m.values());
+        let (mut y, mut y_touched, mut y_seen) = (vec![0.0; kept], Vec::new(), vec![false; kept]);
+        let (mut acc, mut acc_touched, mut acc_seen) = (vec![0.0; d], Vec::new(), vec![false; d]);
+        let mut t = Vec::new();
+        for c in 0..d {
+            let mut add = |r: usize, v: f64, y: &mut [f64]| {
+                y[r] += v;
+                if !y_seen[r] {
+                    y_seen[r] = true;
+                    y_touched.push(r);
+                }
+            };
+            for s in cp[c]..cp[c + 1] {
+                let (r, v) = (ri[s], vals[s]);
+                let (node, dir) = dof_of[r];
+                add(r, -sigma * v, &mut y);
+                for &(other, qk) in &adjacent[node] {
+                    add(r, qk * v, &mut y);
+                    if let Some(r2) = kept_at(other, dir) {
+                        add(r2, -qk * v, &mut y);
+                    }
+                }
+            }
+            for &r in &y_touched {
+                let yr = y[r];
+                y[r] = 0.0;
+                y_seen[r] = false;
+                for &(a, mv) in &rows[r] {
+                    if a >= c {
+                        acc[a] += mv * yr;
+                        if !acc_seen[a] {
+                            acc_seen[a] = true;
+                            acc_touched.push(a);
+                        }
+                    }
+                }
+            }
+            y_touched.clear();
+            t.push((c, c, 0.0));
+            for &a in &acc_touched {
+                t.push((a, c, acc[a]));
+                acc[a] = 0.0;
+                acc_seen[a] = false;
+            }
+            acc_touched.clear();
+        }
+        CscMatrix::from_triplets(d, d, &t)
     }
 
     /// Prestress stability with force densities `q` on a given orthonormal basis `phi` of the
@@ -508,11 +803,79 @@ impl SparseStatics<'_> {
     pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
         let w = self.dofs.gather(w_nodes);
         let (basic, _) = self.qr.solve_basic(w.as_slice());
-        let basis = &self.self_stress;
-        let q = &basic - basis * (basis.transpose() * &basic);
+        let q = match self.project_on_self_stress(basic.as_slice()) {
+            Ok(p) => &basic - DVector::from_vec(p),
+            // NᵀN is positive definite in exact arithmetic; should its factorisation fail,
+            // the orthonormal basis projects instead
+            Err(_) => {
+                let basis = self.self_stress_basis();
+                &basic - basis * (basis.transpose() * &basic)
+            }
+        };
         let aq = DVector::from_vec(self.a.mul_vec(q.as_slice()));
         super::load::assemble_solution(self.structure, &self.dofs, w_nodes, q, &aq - &w)
     }
+}
+
+/// `inv[v] = position` of a permutation `order[position] = v`.
+fn inverse(order: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0; order.len()];
+    for (p, &v) in order.iter().enumerate() {
+        inv[v] = p;
+    }
+    inv
+}
+
+/// The rows of a CSC matrix as (column, value) lists.
+fn csc_rows(m: &CscMatrix) -> Vec<Vec<(usize, f64)>> {
+    let (cp, ri, v) = (m.pattern().col_ptr(), m.pattern().row_idx(), m.values());
+    let mut rows = vec![Vec::new(); m.pattern().nrows()];
+    for c in 0..m.pattern().ncols() {
+        for s in cp[c]..cp[c + 1] {
+            rows[ri[s]].push((c, v[s]));
+        }
+    }
+    rows
+}
+
+/// One free-dof row per column of the rigid-body basis `t` (m × k): greedy pivoting on the
+/// rows (the row of largest residual norm, then the others orthogonalised against it), so
+/// that the k × k submatrix is well conditioned.
+fn pinned_rows(t: &DMatrix<f64>) -> Vec<usize> {
+    let mut res = t.clone();
+    let mut chosen = Vec::with_capacity(t.ncols());
+    for _ in 0..t.ncols() {
+        let best = (0..res.nrows())
+            .filter(|r| !chosen.contains(r))
+            .max_by(|&a, &b| {
+                res.row(a)
+                    .norm_squared()
+                    .total_cmp(&res.row(b).norm_squared())
+            });
+        let Some(best) = best else { break };
+        let norm = res.row(best).norm();
+        if norm <= 0.0 {
+            break;
+        }
+        let v = res.row(best).transpose() / norm;
+        let proj = &res * &v;
+        res -= proj * v.transpose();
+        chosen.push(best);
+    }
+    chosen
+}
+
+/// The new index of every free dof without the `pinned` ones, and their count.
+fn kept_dofs(m: usize, pinned: &[usize]) -> (Vec<Option<usize>>, usize) {
+    let mut index = vec![None; m];
+    let mut next = 0;
+    for (r, slot) in index.iter_mut().enumerate() {
+        if !pinned.contains(&r) {
+            *slot = Some(next);
+            next += 1;
+        }
+    }
+    (index, next)
 }
 
 /// Rigid-body motions on the free dofs that the supports allow, orthonormal (free dofs ×

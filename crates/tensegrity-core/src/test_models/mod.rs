@@ -13,12 +13,14 @@
 //! | MOTES D-bar | [`motes_dbar`] | N P = D and bar lengths kept over 5000 RK4 steps |
 //! | dropped prism | [`dropped_prism`], [`dropped_prism_ground`] | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
 //! | spinning bar | [`spinning_bar`] | exact rotation ([`spinning_bar_exact`]) |
+//! | double-layer lattice | [`double_layer_grid`] | sparse statics scaling; dense agreement |
 //! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`], [`snelson_tower_free`] | size scaling for benches |
 
 mod chains;
 mod dbar;
 mod double_pendulum;
 mod dropped_prism;
+mod lattice;
 mod motes_dbar;
 mod motes_prism;
 mod snelson;
@@ -30,6 +32,7 @@ pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TI
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,
 };
+pub use lattice::double_layer_grid;
 pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
 pub use motes_prism::motes_anchor_prism;
 pub use snelson::{oscillating_prism, snelson, snelson_prism, snelson_twist, PrismParams};
