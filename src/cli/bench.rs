@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use tensegrity_core::dynamics::work_precision::Point;
 use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
-use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
+use tensegrity_io::sink::{CsvSink, OutputDir};
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]
@@ -37,6 +37,8 @@ pub struct WorkPrecisionArgs {
     /// its parent must exist).
     #[arg(long, value_name = "DIR", default_value = "work-precision")]
     pub out: PathBuf,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `tensegrity bench work-precision`.
@@ -55,7 +57,7 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
         CsvSink::open(p, "work-precision CSV")
     })?;
     let svg_path = dir.join("work_precision.svg");
-    let svg = output::open_required("--out", &svg_path, FigureSink::open)?;
+    let svg = args.figure.open_required("--out", &svg_path)?;
     let points = tensegrity_engine::bench::work_precision(&request)?.points;
     csv.extend(points.iter().map(row))?;
     csv.finish()?;

@@ -28,9 +28,14 @@ pub struct FiguresArgs {
     /// Write PNG images (embedded font, no system library) instead of SVG.
     #[arg(long)]
     pub png: bool,
+    /// Write PDF files (one page each, the figure's size or --size) instead of SVG.
+    #[arg(long, conflicts_with = "png")]
+    pub pdf: bool,
     /// Figures drawn at once (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `tensegrity figures`.
@@ -45,13 +50,19 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         FigureError::InvalidParameter(p) => usage(p),
         e => e.into(),
     })?;
-    let ext = request.extension();
+    let ext = if args.pdf { "pdf" } else { request.extension() };
+    let options = args.figure.options()?;
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
     // one sink per figure, before any work; a figure whose file cannot be opened fails alone
     let jobs = chosen
         .into_iter()
-        .map(|f| (f, FigureSink::open(&dir.join(f.file_name(ext)))))
+        .map(|f| {
+            (
+                f,
+                FigureSink::open_with(&dir.join(f.file_name(ext)), options),
+            )
+        })
         .collect();
     let built = tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sink, build| {
         let write = || {

@@ -9,7 +9,7 @@ use super::request_args::RequestArgs;
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use tensegrity_engine::formfind::{self, FormfindReport, FormfindRequest, Formfound};
-use tensegrity_io::sink::{FigureSink, FileSink};
+use tensegrity_io::sink::FileSink;
 
 /// Arguments of `tensegrity formfind`: the request's flags and the outputs.
 #[derive(clap::Args, Debug)]
@@ -20,9 +20,11 @@ pub struct FormfindArgs {
     /// prestress) that `statics`, `simulate` and every other command read.
     #[arg(long, value_name = "SCENE.toml")]
     out: Option<PathBuf>,
-    /// Draw the found structure (SVG, or PNG by the extension).
+    /// Draw the found structure (SVG, PNG or PDF by the extension).
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -32,7 +34,7 @@ pub struct FormfindArgs {
 pub fn run(args: &FormfindArgs) -> Result<()> {
     let request: FormfindRequest = args.request.request()?;
     let scene = output::open("--out", args.out.as_deref(), FileSink::open)?;
-    let figure = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let found = formfind::admitted(&request, super::guard::optional)?;
     for w in &found.report.warnings {
         eprintln!("warning: {w}");

@@ -11,7 +11,6 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use sweeps::{RunOptions, Shard, Spec};
-use tensegrity_io::sink::FigureSink;
 
 /// Arguments of `tensegrity sweep`.
 #[derive(clap::Args, Debug)]
@@ -77,15 +76,17 @@ pub struct PlotArgs {
     /// Logarithmic y axis.
     #[arg(long)]
     pub log_y: bool,
-    /// The figure: SVG, or PNG by the extension.
+    /// The figure: SVG, PNG or PDF by the extension.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// `tensegrity sweep plot`: one panel through the io crate's figure module.
 fn plot(args: &PlotArgs) -> Result<()> {
     use tensegrity_io::figure::{Figure, Panel, Scale, Series};
-    let sink = super::output::open_required("--out", &args.out, FigureSink::open)?;
+    let sink = args.figure.open_required("--out", &args.out)?;
     let filter: Vec<(&str, &str)> = args
         .filter
         .iter()
