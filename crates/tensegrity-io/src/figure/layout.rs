@@ -167,7 +167,7 @@ pub fn linear_ticks(
     spacing: f64,
 ) -> (Vec<(f64, String)>, Option<i32>) {
     let span = hi - lo;
-    if !(span > 0.0) || !span.is_finite() {
+    if span.is_nan() || span <= 0.0 || !span.is_finite() {
         return (vec![(lo, decimal(lo, 2))], None);
     }
     let step = nice_step(span, (length / spacing).floor().max(2.0));
