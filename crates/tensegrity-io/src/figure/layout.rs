@@ -341,9 +341,16 @@ pub fn place(panel: &Panel, area: Rect) -> PanelLayout {
         // the y tick labels' width depends on the ticks, which depend on the height only
         let h = (area.h - top - bottom).max(20.0);
         let (_, probe) = axes(panel, x, y, (area.w - 90.0 - right).max(20.0), h);
-        let left = 8.0 + LABEL_SIZE + 8.0 + widest(&probe.ticks) + 6.0;
-        let w = (area.w - left - right).max(20.0);
-        let (xa, ya) = axes(panel, x, y, w, h);
+        let mut left = 8.0 + LABEL_SIZE + 8.0 + widest(&probe.ticks) + 6.0;
+        let mut w = (area.w - left - right).max(20.0);
+        let (mut xa, mut ya) = axes(panel, x, y, w, h);
+        // with equal axes the y range, and so its labels, depend on the width: widen once
+        let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
+        if needed > left {
+            left = needed;
+            w = (area.w - left - right).max(20.0);
+            (xa, ya) = axes(panel, x, y, w, h);
+        }
         let plot = Rect {
             x: area.x + left,
             y: area.y + top,
