@@ -24,7 +24,7 @@ FRONT = {"tensegrity", "tensegrity-io", "tensegrity-engine", "sweeps", "tensegri
          "tensegrity-figures"}
 MODEL_MAY_USE = {"tensegrity-core", "wheel-rolling"}
 EXCEPTIONS = {("tbar-wheel", "michell3d")}
-FORMATS = {"toml", "csv", "plotters"}
+FORMATS = {"toml", "csv", "plotters", "usvg", "resvg", "svg2pdf"}
 CLI_SHARE = 0.10
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

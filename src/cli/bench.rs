@@ -13,7 +13,7 @@ use tensegrity_core::dynamics::work_precision::Point;
 use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
 use tensegrity_io::progress::{Measure, Progress};
-use tensegrity_io::sink::{CsvSink, FigureSink, OutputDir};
+use tensegrity_io::sink::{CsvSink, OutputDir};
 
 /// Arguments of `tensegrity bench`.
 #[derive(clap::Args, Debug)]
@@ -49,6 +49,8 @@ pub struct WorkPrecisionArgs {
     /// Print the points (the CSV's columns as keys) and the files as JSON.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `tensegrity bench work-precision`.
@@ -69,7 +71,7 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
         CsvSink::open(p, "work-precision CSV")
     })?;
     let svg_path = dir.join("work_precision.svg");
-    let svg = output::open_required("--out", &svg_path, FigureSink::open)?;
+    let svg = args.figure.open_required("--out", &svg_path)?;
     let unit = "points";
     let progress = Progress::auto("bench", Measure::Count { total: 0, unit }, false);
     let mut tell = |done: usize, total: usize| {

@@ -4,17 +4,15 @@
 //! ([`tensegrity_figures::fig_rolling`]: one thread per wheel); the summary of each run and
 //! the impact impulse per new contact against n (§3.3.1) are printed.
 
-use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
 use tensegrity_figures::rolling::{FigRolling, FigRollingRequest};
-use tensegrity_io::sink::FigureSink;
 
 /// Arguments of `tensegrity fig-rolling`.
 #[derive(clap::Args, Debug)]
 pub struct FigRollingArgs {
-    /// Output SVG file (or PNG, by the extension).
+    /// Output figure: SVG, PNG or PDF by the extension.
     #[arg(long, value_name = "FILE", default_value = "rolling.svg")]
     out: PathBuf,
     #[command(flatten)]
@@ -22,6 +20,8 @@ pub struct FigRollingArgs {
     /// Print the runs' reports, the impulse table (`impacts`) and the figure's path as JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Entry point of `tensegrity fig-rolling`.
@@ -29,7 +29,7 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
     let request: FigRollingRequest = args.request.request()?;
     let sides = FigRollingRequest::SIDES;
     let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
-    let sink = output::open_required("--out", &args.out, FigureSink::open)?;
+    let sink = args.figure.open_required("--out", &args.out)?;
     let rolled = tensegrity_figures::fig_rolling(&request)?;
     sink.finish(&rolled.figure())?;
     if args.json {

@@ -32,6 +32,9 @@ pub struct FiguresArgs {
     /// Write PNG images (embedded font, no system library) instead of SVG.
     #[arg(long)]
     pub png: bool,
+    /// Write PDF files (one page each, the figure's size or --size) instead of SVG.
+    #[arg(long, conflicts_with = "png")]
+    pub pdf: bool,
     /// Figures drawn at once (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
@@ -41,6 +44,8 @@ pub struct FiguresArgs {
     /// No progress report on stderr.
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `tensegrity figures`.
@@ -55,7 +60,8 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         FigureError::InvalidParameter(p) => usage(p),
         e => e.into(),
     })?;
-    let ext = request.extension();
+    let ext = if args.pdf { "pdf" } else { request.extension() };
+    let options = args.figure.options()?;
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
     let index_sinks = (
@@ -75,7 +81,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     let jobs = chosen
         .into_iter()
         .map(|f| {
-            let sinks = FigureSink::open(&dir.join(f.file_name(ext))).and_then(|s| {
+            let sinks = FigureSink::open_with(&dir.join(f.file_name(ext)), options).and_then(|s| {
                 Ok((
                     s,
                     CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?,
@@ -153,7 +159,11 @@ fn index_of(
                 args.out.display(),
                 f.number
             );
-            for (on, flag) in [(args.quick, " --quick"), (args.png, " --png")] {
+            for (on, flag) in [
+                (args.quick, " --quick"),
+                (args.png, " --png"),
+                (args.pdf, " --pdf"),
+            ] {
                 if on {
                     command.push_str(flag);
                 }

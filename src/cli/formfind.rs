@@ -4,12 +4,13 @@
 //! ([`formfind::admitted`]: the estimate checked against the limits, the form found and its
 //! prestress synthesised); the scene and the figure are opened before the work.
 
+use super::figure_args::StructureArgs;
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use tensegrity_engine::formfind::{self, FormfindReport, FormfindRequest, Formfound};
-use tensegrity_io::sink::{FigureSink, FileSink};
+use tensegrity_io::sink::FileSink;
 
 /// Arguments of `tensegrity formfind`: the request's flags and the outputs.
 #[derive(clap::Args, Debug)]
@@ -20,9 +21,13 @@ pub struct FormfindArgs {
     /// prestress) that `statics`, `simulate` and every other command read.
     #[arg(long, value_name = "SCENE.toml")]
     out: Option<PathBuf>,
-    /// Draw the found structure (SVG, or PNG by the extension).
+    /// Draw the found structure (SVG, PNG or PDF by the extension).
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
+    #[command(flatten)]
+    style: super::figure_args::StructureArgs,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -32,7 +37,7 @@ pub struct FormfindArgs {
 pub fn run(args: &FormfindArgs) -> Result<()> {
     let request: FormfindRequest = args.request.request()?;
     let scene = output::open("--out", args.out.as_deref(), FileSink::open)?;
-    let figure = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let found = formfind::admitted(&request, super::guard::optional)?;
     for w in &found.report.warnings {
         eprintln!("warning: {w}");
@@ -44,7 +49,7 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
         sink.finish_with(tensegrity_io::scene::to_toml(structure))?;
     }
     if let Some(sink) = figure {
-        sink.finish(&drawing(&found))?;
+        sink.finish(&drawing(&found, &args.style))?;
     }
     if args.json {
         super::output::print_json(&found.report)?;
@@ -59,15 +64,27 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
     Ok(())
 }
 
-/// The found form drawn by the figures crate.
-fn drawing(found: &Formfound) -> tensegrity_io::figure::Figure {
+/// The found form drawn by the figures crate: isometric and from above, or in the one view,
+/// colouring and labels asked for.
+fn drawing(found: &Formfound, how: &StructureArgs) -> tensegrity_io::figure::Figure {
+    use tensegrity_figures::draw;
     let t = &found.topology;
-    tensegrity_figures::draw::structure_figure(
-        &found.report.source,
-        &found.found.nodes,
-        t.bars.iter().map(|m| m.nodes).collect(),
-        t.strings.iter().map(|m| m.nodes).collect(),
-    )
+    let bars: Vec<[usize; 2]> = t.bars.iter().map(|m| m.nodes).collect();
+    let strings: Vec<[usize; 2]> = t.strings.iter().map(|m| m.nodes).collect();
+    if how.view.is_none() && how.color_by.is_none() && how.labels.is_empty() {
+        let nodes = &found.found.nodes;
+        return draw::structure_figure(&found.report.source, nodes, bars, strings);
+    }
+    let d = draw::Drawing {
+        nodes: found.found.nodes.clone(),
+        bars,
+        strings,
+        force: found.report.member_force.clone(),
+        force_density: Some(found.report.force_density.clone()),
+        ..draw::Drawing::default()
+    };
+    let panel = draw::drawing_panel(&found.report.source, &d, &how.style(draw::View::Iso));
+    draw::drawing_figure_of(vec![panel], 560)
 }
 
 fn print_report(r: &FormfindReport) {

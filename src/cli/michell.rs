@@ -50,6 +50,15 @@ pub struct MichellArgs {
     /// Sign-map grid, azimuth × polar points.
     #[arg(long, value_name = "NAxNP", default_value = "361x181", value_parser = parse_grid)]
     pub map_grid: (usize, usize),
+    /// Draw the truss to FILE (.svg, .png or .pdf): members coloured by force (tension
+    /// dashed), supports and the tip load; planar trusses in the yz plane, 3-D ones isometric
+    /// unless --view is given.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
+    #[command(flatten)]
+    drawing: super::figure_args::StructureArgs,
     /// With --extra-strings: write member forces over γ ∈ [0, 2π] (Fig. 4.20) to this CSV.
     #[arg(long, value_name = "FILE", requires = "extra_strings")]
     pub gamma_sweep: Option<PathBuf>,
@@ -82,12 +91,15 @@ pub struct MichellTableArgs {
     /// Write the table to this CSV (else print it).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
-    /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this SVG file.
+    /// Also plot yield + buckling mass against complexity (Fig. 4.18) to this figure (SVG,
+    /// PNG or PDF by the extension).
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
     /// Print the table as JSON (`rows`: the CSV's columns as keys) instead of CSV text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `tensegrity michell`: one analysis (the truss is built once and reused by the sign
@@ -99,11 +111,28 @@ pub fn run(args: &MichellArgs) -> Result<()> {
     let _progress = super::guard::michell(args)?;
     let request: MichellRequest = args.request.request()?;
     let (sign_map, gamma_sweep) = open_outputs(args)?;
+    let drawing = args.figure.open("--svg", args.svg.as_deref())?;
     let run = request.run().context("michell truss analysis failed")?;
     if args.json {
         super::output::print_json(&run)?;
     } else {
         print!("{}", super::michell_text::report(&run));
+    }
+    if let Some(sink) = drawing {
+        let nodes: Vec<_> = run
+            .analysis
+            .truss
+            .nodes()
+            .iter()
+            .map(|n| n.position)
+            .collect();
+        let style = args
+            .drawing
+            .style(tensegrity_figures::draw::default_view(&nodes));
+        sink.finish(&tensegrity_figures::structures::michell_figure(
+            &run.analysis,
+            &style,
+        ))?;
     }
     if let Some(sink) = sign_map {
         write_sign_maps(args, &run.request, &run.analysis.truss, sink)?;

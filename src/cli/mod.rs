@@ -6,6 +6,7 @@ pub mod bench_anchors;
 pub mod demo;
 pub mod exit;
 pub mod fig_rolling;
+pub mod figure_args;
 pub mod figures;
 pub mod formfind;
 pub mod guard;

@@ -30,9 +30,11 @@ pub struct RollArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     /// With --frames: draw the wheel's members at those times (Fig. 3.8); without: plot the
-    /// axle height above the slope and the normal reaction against time. SVG or PNG.
+    /// axle height above the slope and the normal reaction against time. SVG, PNG or PDF.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
     /// Times (s) of the wheel drawings of --svg, e.g. `0,1.5,3`.
     #[arg(long, value_delimiter = ',', value_name = "T,T,..")]
     frames: Option<Vec<f64>>,
@@ -154,7 +156,7 @@ fn open_outputs<'a>(
     let csv = output::open("--out", args.out.as_deref(), |p| {
         CsvSink::open(p, "rolling history CSV")
     })?;
-    let figure = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let vtk = match (&args.vtk, wheel) {
         (Some(dir), Some(t)) => Some(output::open_required("--vtk", dir, |d| {
             VtkSeriesSink::open(d, &t.structure)

@@ -1,14 +1,21 @@
 //! `tensegrity statics SCENE.toml [--json] [--rank-tol REL] [--modes K] [--mass M]
-//! [--least-squares] [--method M]`: the engine's `statics` request ([`StaticsCommand`]), one
+//! [--least-squares] [--method M] [--svg FILE [--view V] [--color-by BY] [--labels L]
+//! [--size WxH] [--dpi D]]`: the engine's `statics` request ([`StaticsCommand`]), one
 //! call ([`statics::admitted`]: the scene read, its estimate checked against the limits, one
-//! report) printed as text or JSON.
+//! report) printed as text or JSON; `--svg` draws the structure coloured by force with its
+//! reactions ([`tensegrity_figures::structures::statics_figure`]), or with `--modes K` the K
+//! lowest mode shapes ([`tensegrity_figures::structures::modes_figure`]).
 
+use super::figure_args::{FigureArgs, StructureArgs};
 use super::request_args::RequestArgs;
 use anyhow::Result;
+use std::path::PathBuf;
 use tensegrity_core::budget::Estimate;
 use tensegrity_core::statics::Factorization;
 use tensegrity_core::{StaticsReport, Structure};
 use tensegrity_engine::statics::{self, StaticsCommand};
+use tensegrity_figures::draw::default_view;
+use tensegrity_figures::structures;
 
 /// Arguments of `tensegrity statics`: the request's flags ([`StaticsCommand`], the scene
 /// positional) and the output.
@@ -19,11 +26,21 @@ pub struct StaticsArgs {
     /// Print JSON instead of a readable report.
     #[arg(long)]
     pub json: bool,
+    /// Draw the structure to FILE (.svg, .png or .pdf): members coloured by force (or by the
+    /// prestress force density when nothing is loaded), supports, loads and reactions; with
+    /// --modes K the K lowest mode shapes (or mechanisms) instead.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: FigureArgs,
+    #[command(flatten)]
+    drawing: StructureArgs,
 }
 
 /// Entry point of `tensegrity statics`.
 pub fn run(args: &StaticsArgs) -> Result<()> {
     let command: StaticsCommand = args.request.request()?;
+    let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let limits = super::guard::limits();
     // the sparse path's cost after its QR grows with the self-stresses it finds, which no
     // estimate before the run knows: the spinner shows whatever the estimate
@@ -50,6 +67,14 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
         super::output::print_json(&report)?;
     } else {
         print_report(&scene.structure, &report);
+    }
+    if let Some(sink) = figure {
+        let style = args.drawing.style(default_view(scene.structure.nodes()));
+        let fig = match command.modes {
+            Some(k) => structures::modes_figure(&scene.structure, k, command.mass, &style)?,
+            None => structures::statics_figure(&scene.structure, &report, &style),
+        };
+        sink.finish(&fig)?;
     }
     Ok(())
 }

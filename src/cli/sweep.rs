@@ -9,7 +9,6 @@
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use sweeps::{RunOptions, Shard, Spec};
-use tensegrity_io::sink::FigureSink;
 
 /// Arguments of `tensegrity sweep`.
 #[derive(clap::Args, Debug)]
@@ -78,17 +77,19 @@ pub struct PlotArgs {
     /// Logarithmic y axis.
     #[arg(long)]
     pub log_y: bool,
-    /// The figure: SVG, or PNG by the extension.
+    /// The figure: SVG, PNG or PDF by the extension.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Print what was plotted as JSON (columns, curves, points).
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// `tensegrity sweep plot`: [`tensegrity_figures::sweep_plot`] into the figure sink.
 fn plot(args: &PlotArgs) -> Result<()> {
-    let sink = super::output::open_required("--out", &args.out, FigureSink::open)?;
+    let sink = args.figure.open_required("--out", &args.out)?;
     let (figure, report) = tensegrity_figures::sweep_plot::SweepPlot {
         results: args.results.clone(),
         x: args.x.clone(),

@@ -54,9 +54,13 @@ pub struct TbarArgs {
     /// Write the structure as a VTK `.vtu` file.
     #[arg(long, value_name = "FILE")]
     vtk: Option<PathBuf>,
-    /// Draw the side and top views (SVG or PNG by the extension).
+    /// Draw the side (yz) and top (yx) views, or the --view given (.svg, .png or .pdf).
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
+    #[command(flatten)]
+    drawing: super::figure_args::StructureArgs,
     /// Print JSON.
     #[arg(long)]
     json: bool,

@@ -20,7 +20,8 @@
 //! | [`index`] | [`FigureIndex`]: the index of a `figures` run (JSON and Markdown) |
 //! | [`chapter2`] | chapter 2: Fig. 2.2 |
 //! | [`driver`] | [`build_figures`]: the chosen figures on worker threads, each handed to the front end as it is built; [`Context`] (sweeps, shared rolling runs, [`Warning`]s) |
-//! | [`draw`] | structures drawn to scale: members projected onto a plane, one polyline per member |
+//! | [`draw`] | structures drawn to scale in one style: views, bars and strings, colouring by force, supports, loads, labels |
+//! | [`structures`] | the statics of a structure coloured by force with its reactions; mode shapes and mechanisms |
 //! | [`wheels`] | chapter 3: Figs. 3.1, 3.2, 3.3, 3.8, 3.9, 3.10, 3.11, 3.13 |
 //! | [`michell`] | chapter 4: Figs. 4.1–4.20 and the mass-table figure |
 //! | [`tbar`] | chapter 5: Figs. 5.1–5.3 and the side and top views of any T-bar |
@@ -52,6 +53,7 @@ pub mod error;
 pub mod index;
 pub mod michell;
 pub mod rolling;
+pub mod structures;
 pub mod sweep_plot;
 pub mod tbar;
 pub mod wheels;

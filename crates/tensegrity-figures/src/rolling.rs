@@ -320,23 +320,54 @@ pub fn roll_figure(
     report: &RollReport,
     frame_times: Option<&[f64]>,
 ) -> Result<Figure> {
-    let panels = match frame_times {
+    match frame_times {
         Some(times) => {
             let toroid = request.wheel.build()?;
-            let members = toroid.structure.member_nodes();
             let dt = request.settings.dt;
-            times
+            let panels = times
                 .iter()
                 .filter_map(|&t| report.frames.iter().find(|f| (f.t - t).abs() <= dt))
-                .map(|f| frame_panel(f, &members))
-                .collect()
+                .map(|f| wheel_on_slope_panel(f, &toroid.structure))
+                .collect();
+            Ok(crate::draw::drawing_figure(panels))
         }
         None => {
             let runs = [(format!("n = {}", report.sides), report.samples.as_slice())];
-            vec![axle_panel(&runs), reaction_panel(&runs)]
+            Ok(Figure::new(vec![axle_panel(&runs), reaction_panel(&runs)]))
         }
+    }
+}
+
+/// The wheel at one frame in the rolling plane (s along the slope, h above it), in the
+/// structure style of [`crate::draw`] (to scale, bars thick and dark, strings thin), above the
+/// slope h = 0.
+pub fn wheel_on_slope_panel(frame: &WheelFrame, structure: &tensegrity_core::Structure) -> Panel {
+    use crate::draw::{drawing_panel, Drawing, Style, View};
+    let drawing = Drawing {
+        nodes: frame.nodes.clone(),
+        ..Drawing::of(structure)
     };
-    Ok(Figure::new(panels))
+    let style = Style {
+        view: View::Side,
+        ..Style::default()
+    };
+    let mut panel = drawing_panel(format!("t = {:.3} s", frame.t), &drawing, &style);
+    panel.x_label = "along the slope s [m]".into();
+    panel.y_label = "above the slope h [m]".into();
+    let (lo, hi) = frame
+        .nodes
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    let pad = 0.15 * (hi - lo);
+    panel.series.insert(
+        0,
+        Series::new("slope", vec![(lo - pad, 0.0), (hi + pad, 0.0)])
+            .with_color((0x60, 0x60, 0x60))
+            .with_width(2.5),
+    );
+    panel
 }
 
 /// The wheel's members in the rolling plane (s, h) at one time (thesis Fig. 3.8), above the

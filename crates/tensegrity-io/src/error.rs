@@ -231,7 +231,15 @@ pub enum IoError {
         /// What is wrong.
         reason: &'static str,
     },
-    /// The plotting backend failed (its error types are generic, so the message is kept).
+    /// A figure size or resolution that cannot be used, e.g. `12x` or a dpi of 0.
+    #[error("figure size `{text}`: {reason}")]
+    InvalidFigureSize {
+        /// The text given.
+        text: String,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// The renderer failed (its error types are generic, so the message is kept).
     #[error("drawing the figure: {message}")]
     Drawing {
         /// The backend's message.

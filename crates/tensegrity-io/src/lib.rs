@@ -10,8 +10,9 @@
 //! - [`csv`]: tables through the `csv` crate, with a header row whose column names carry the
 //!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
-//! - [`figure`]: line plots of one or more panels (linear or log axes, legends) on `plotters`,
-//!   written as SVG or PNG (with an embedded font) by file extension;
+//! - [`figure`]: figures of one or more panels (line plots on linear or log axes, structure
+//!   drawings with equal axes, legends placed off the data), written as SVG, PNG or PDF (with an
+//!   embedded font) by file extension, at a chosen size and dpi;
 //! - [`figure_data`]: the data of a figure as one table (header with units), written as CSV
 //!   beside the figure;
 //! - [`sink`]: the outputs of a command — CSV tables, VTK series, whole files, figures, JSON —

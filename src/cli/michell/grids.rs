@@ -6,7 +6,7 @@ use crate::cli::output;
 use anyhow::Result;
 use michell3d::signmap::AngleGrid;
 use michell3d::{AnalysisRequest, MichellTableRequest, MichellTruss};
-use tensegrity_io::sink::{FigureSink, FileSink};
+use tensegrity_io::sink::FileSink;
 
 /// `--sign-map` and `--gamma-sweep`, opened before the analysis.
 pub fn open_outputs(args: &MichellArgs) -> Result<(Option<FileSink>, Option<FileSink>)> {
@@ -102,7 +102,7 @@ pub fn run_table(args: &MichellTableArgs) -> Result<()> {
     let material = request.material()?;
     let _progress = crate::cli::guard::estimated(&request)?;
     let out = output::open("--out", args.out.as_deref(), FileSink::open)?;
-    let svg = output::open("--svg", args.svg.as_deref(), FigureSink::open)?;
+    let svg = args.figure.open("--svg", args.svg.as_deref())?;
     let qs = request.complexities();
     let rows = mass_vs_complexity(&qs, &FIG_4_18_DELTAS, request.load, &material)?;
     match out {

@@ -5,6 +5,7 @@ use super::TbarArgs;
 use crate::cli::output;
 use anyhow::Result;
 use tbar_wheel::{TbarGeometry, TbarRequest};
+use tensegrity_figures::draw::{drawing_figure_of, drawing_panel, Drawing, View};
 use tensegrity_io::sink::{FigureSink, FileSink};
 
 /// The sinks of `--export-scene`, `--vtk` and `--svg`.
@@ -12,6 +13,8 @@ pub struct Outputs {
     scene: Option<FileSink>,
     vtk: Option<FileSink>,
     svg: Option<FigureSink>,
+    views: Vec<View>,
+    style: tensegrity_figures::draw::Style,
 }
 
 /// Opens the output flags given, before any work.
@@ -23,7 +26,12 @@ pub fn open(args: &TbarArgs) -> Result<Outputs> {
             FileSink::open,
         )?,
         vtk: output::open("--vtk", args.vtk.as_deref(), FileSink::open)?,
-        svg: output::open("--svg", args.svg.as_deref(), FigureSink::open)?,
+        svg: args.figure.open("--svg", args.svg.as_deref())?,
+        views: match args.drawing.view {
+            Some(v) => vec![v],
+            None => vec![View::Side, View::Top],
+        },
+        style: args.drawing.style(View::Side),
     })
 }
 
@@ -42,7 +50,19 @@ impl Outputs {
             sink.finish_with(tensegrity_io::vtk::vtu(&s, s.nodes()))?;
         }
         if let Some(sink) = self.svg {
-            sink.finish(&tensegrity_figures::tbar::side_and_top(&g))?;
+            let drawing = Drawing::of(&s);
+            let panels = self
+                .views
+                .iter()
+                .map(|&view| {
+                    let style = tensegrity_figures::draw::Style {
+                        view,
+                        ..self.style.clone()
+                    };
+                    drawing_panel(format!("T-bar, {} view", view.name()), &drawing, &style)
+                })
+                .collect();
+            sink.finish(&drawing_figure_of(panels, 460))?;
         }
         Ok(())
     }

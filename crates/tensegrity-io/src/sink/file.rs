@@ -4,7 +4,7 @@
 
 use super::staged::Staged;
 use crate::error::{IoError, Result};
-use crate::figure::Figure;
+use crate::figure::{Figure, RenderOptions};
 use crate::interrupt::{self, Interruptible};
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -124,8 +124,10 @@ impl Write for FileSink {
 pub enum ImageFormat {
     /// `.svg`: text stays text.
     Svg,
-    /// `.png`: drawn with the embedded font.
+    /// `.png`: rendered with the embedded font at the chosen dpi.
     Png,
+    /// `.pdf`: one page of the figure's size, text with the embedded font.
+    Pdf,
 }
 
 impl ImageFormat {
@@ -139,9 +141,10 @@ impl ImageFormat {
         match ext.as_deref() {
             Some("svg") => Ok(Self::Svg),
             Some("png") => Ok(Self::Png),
+            Some("pdf") => Ok(Self::Pdf),
             _ => Err(IoError::UnsupportedFormat {
                 path: path.to_path_buf(),
-                expected: "svg, png",
+                expected: "svg, png, pdf",
             }),
         }
     }
@@ -167,16 +170,34 @@ impl ImageFormat {
 pub struct FigureSink {
     file: FileSink,
     format: ImageFormat,
+    options: RenderOptions,
 }
 
 impl FigureSink {
-    /// Checks the extension, locks `path` and creates its temporary file.
+    /// Checks the extension, locks `path` and creates its temporary file; the figure is
+    /// rendered at its own size (96 dpi for PNG).
     pub fn open(path: &Path) -> Result<Self> {
+        Self::open_with(path, RenderOptions::default())
+    }
+
+    /// [`FigureSink::open`] with a size and a dpi for the figure.
+    pub fn open_with(path: &Path, options: RenderOptions) -> Result<Self> {
         let format = ImageFormat::of(path)?;
         Ok(Self {
             file: FileSink::open(path)?,
             format,
+            options,
         })
+    }
+
+    /// The format, by the file's extension.
+    pub fn format(&self) -> ImageFormat {
+        self.format
+    }
+
+    /// The size and dpi the figure is rendered at.
+    pub fn options(&self) -> RenderOptions {
+        self.options
     }
 
     /// The target path.
@@ -186,20 +207,14 @@ impl FigureSink {
 
     /// Draws `figure` into the file and renames it onto the target.
     pub fn finish(mut self, figure: &Figure) -> Result<()> {
-        match self.format {
-            ImageFormat::Svg => {
-                let svg = figure.to_svg()?;
-                self.file.write_with(|w| {
-                    w.write_all(svg.as_bytes())
-                        .map_err(IoError::stream("SVG figure"))
-                })?;
-            }
-            ImageFormat::Png => {
-                let (rgb, size) = figure.to_rgb()?;
-                self.file
-                    .write_with(|w| crate::figure::encode_png(w, &rgb, size))?;
-            }
-        }
+        let o = &self.options;
+        let (bytes, what) = match self.format {
+            ImageFormat::Svg => (figure.to_svg_with(o)?.into_bytes(), "SVG figure"),
+            ImageFormat::Png => (figure.to_png_with(o)?, "PNG figure"),
+            ImageFormat::Pdf => (figure.to_pdf_with(o)?, "PDF figure"),
+        };
+        self.file
+            .write_with(|w| w.write_all(&bytes).map_err(IoError::stream(what)))?;
         self.file.finish()
     }
 }

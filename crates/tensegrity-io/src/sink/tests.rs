@@ -153,7 +153,7 @@ fn bad_paths_fail_at_open_naming_the_path() {
         assert!(matches!(e, IoError::Write { .. }), "{e:?}");
         assert!(e.to_string().contains(&path.display().to_string()), "{e}");
     }
-    let e = FigureSink::open(&dir.join("fig.pdf")).unwrap_err();
+    let e = FigureSink::open(&dir.join("fig.bmp")).unwrap_err();
     assert!(matches!(e, IoError::UnsupportedFormat { .. }), "{e:?}");
     for series in [dir.join("missing").join("vtk"), dir.join("file")] {
         let e = VtkSeriesSink::open(&series, &s).unwrap_err();

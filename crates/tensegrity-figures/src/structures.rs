@@ -1,0 +1,184 @@
+//! Pictures of one structure's analysis in the [`crate::draw`] style: the statics (members
+//! coloured by the load solve's member force, or by the max-margin prestress as force density
+//! when nothing is loaded; supports, loads and reactions drawn) and the mode shapes (the K
+//! lowest modes of small vibration about the equilibrium force densities, each shape δn
+//! scaled so that its largest node displacement is 10 % of the drawing's extent and drawn over
+//! the undeformed structure; where the modes cannot be computed, e.g. without string
+//! stiffness or bar mass, the first-order internal mechanisms Aᵀ δn = 0 instead).
+
+use crate::draw::{drawing_figure_of, drawing_panel, ColorBy, Drawing, Style};
+use crate::error::Result;
+use nalgebra::{DMatrix, Vector3};
+use tensegrity_core::statics::DofMap;
+use tensegrity_core::stiffness::{self, MassModel};
+use tensegrity_core::{Statics, StaticsReport, Structure};
+use tensegrity_io::figure::Figure;
+
+/// The structure of a statics report, members coloured by force (or prestress force
+/// density), reactions drawn. With `style.color_by` [`ColorBy::Kind`] the colouring is chosen
+/// from what the report has; a colouring the report cannot give falls back to the other.
+pub fn statics_figure(structure: &Structure, report: &StaticsReport, style: &Style) -> Figure {
+    let mut d = Drawing::of(structure);
+    d.force = report.member_force.clone();
+    d.force_density = report
+        .force_density
+        .clone()
+        .or_else(|| report.prestress.clone());
+    d.reactions = report
+        .reactions
+        .iter()
+        .flatten()
+        .map(|r| (r.node, Vector3::from(r.force)))
+        .collect();
+    let mut style = style.clone();
+    style.color_by = match (style.color_by, d.force.is_some()) {
+        (ColorBy::Force, true) | (ColorBy::Kind, true) => ColorBy::Force,
+        (_, _) if d.force_density.is_some() => ColorBy::ForceDensity,
+        _ => ColorBy::Kind,
+    };
+    let what = match (style.color_by, report.member_force.is_some()) {
+        (ColorBy::Force, _) => "member forces of the load solve",
+        (ColorBy::ForceDensity, true) => "force densities of the load solve",
+        (ColorBy::ForceDensity, false) => "max-margin prestress (max |q| = 1)",
+        _ => "bars and strings",
+    };
+    let title = format!("{what}, {} view", style.view.name());
+    drawing_figure_of(vec![drawing_panel(title, &d, &style)], 640)
+}
+
+/// The nodes moved by `shape` (free dofs, as [`DofMap`]) scaled so that the largest node
+/// displacement is `amplitude`.
+fn displaced(
+    nodes: &[Vector3<f64>],
+    dofs: &DofMap,
+    shape: &[f64],
+    amplitude: f64,
+) -> Vec<Vector3<f64>> {
+    let mut delta = vec![Vector3::zeros(); nodes.len()];
+    for (&(node, dim), &v) in dofs.free.iter().zip(shape) {
+        delta[node][dim] = v;
+    }
+    let largest = delta.iter().map(|d| d.norm()).fold(0.0f64, f64::max);
+    let s = if largest > 0.0 {
+        amplitude / largest
+    } else {
+        0.0
+    };
+    nodes.iter().zip(&delta).map(|(p, d)| p + d * s).collect()
+}
+
+/// The largest distance between two nodes along an axis.
+fn extent(nodes: &[Vector3<f64>]) -> f64 {
+    (0..3)
+        .map(|d| {
+            let (lo, hi) = nodes.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+                (lo.min(p[d]), hi.max(p[d]))
+            });
+            hi - lo
+        })
+        .fold(0.0, f64::max)
+        .max(1e-9)
+}
+
+/// The `k` lowest mode shapes (titles with their frequencies), or the first `k` internal
+/// mechanisms where the modes cannot be computed; an error when neither exists.
+pub fn modes_figure(
+    structure: &Structure,
+    k: usize,
+    mass: MassModel,
+    style: &Style,
+) -> Result<Figure> {
+    let dofs = DofMap::of(structure);
+    let modes = stiffness::equilibrium_force_densities(structure)
+        .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
+    let (shapes, titles): (DMatrix<f64>, Vec<String>) = match modes {
+        Ok(m) => {
+            // rigid-body motions the supports allow are zero modes: not drawn
+            let top = m.eigenvalues.iter().fold(0.0f64, |a, &w| a.max(w.abs()));
+            let kept: Vec<usize> = (0..m.eigenvalues.len())
+                .filter(|&i| m.eigenvalues[i] > 1e-9 * top)
+                .collect();
+            let titles = kept
+                .iter()
+                .map(|&i| format!("mode {}: f = {:.4} Hz", i + 1, m.frequencies_hz[i]))
+                .collect();
+            (m.shapes.select_columns(kept.iter()), titles)
+        }
+        Err(modal) => {
+            let flexes = Statics::new(structure)?.flexes()?;
+            if flexes.internal.ncols() == 0 {
+                return Err(modal.into());
+            }
+            let titles = (0..flexes.internal.ncols())
+                .map(|i| format!("mechanism {} (modes: {modal})", i + 1))
+                .collect();
+            (flexes.internal, titles)
+        }
+    };
+    let amplitude = 0.1 * extent(structure.nodes());
+    let base = Drawing::of(structure);
+    let style = Style {
+        color_by: ColorBy::Kind,
+        ..style.clone()
+    };
+    let panels = (0..k.min(shapes.ncols()))
+        .map(|i| {
+            let col: Vec<f64> = shapes.column(i).iter().copied().collect();
+            let d = Drawing {
+                nodes: displaced(structure.nodes(), &dofs, &col, amplitude),
+                reference: Some(structure.nodes().to_vec()),
+                loads: Vec::new(),
+                ..base.clone()
+            };
+            let mut panel = drawing_panel(titles[i].clone(), &d, &style);
+            if i > 0 {
+                // one legend, on the first panel
+                panel.series.iter_mut().for_each(|s| s.label.clear());
+                panel.marks.iter_mut().for_each(|m| m.label.clear());
+            }
+            panel
+        })
+        .collect();
+    Ok(drawing_figure_of(panels, 420))
+}
+
+/// A Michell truss of an analysis drawn in `style`: members coloured by force (tension
+/// dashed), the supports (level-q nodes), the tip load at the level-0 node.
+pub fn michell_figure(analysis: &michell3d::MichellAnalysis, style: &Style) -> Figure {
+    let truss = &analysis.truss;
+    let report = &analysis.report;
+    let nodes: Vec<Vector3<f64>> = truss.nodes().iter().map(|n| n.position).collect();
+    let tip = truss.nodes().iter().position(|n| n.tuple.level() == 0);
+    let d = Drawing {
+        bars: Vec::new(),
+        strings: truss
+            .members()
+            .iter()
+            .map(|m| [m.parent, m.child])
+            .collect(),
+        force: Some(report.members.iter().map(|m| m.force).collect()),
+        force_density: Some(report.members.iter().map(|m| m.force_density).collect()),
+        supports: (0..nodes.len()).filter(|&i| truss.is_support(i)).collect(),
+        loads: tip
+            .map(|t| vec![(t, Vector3::from(report.load))])
+            .unwrap_or_default(),
+        nodes,
+        ..Drawing::default()
+    };
+    let style = Style {
+        color_by: match style.color_by {
+            ColorBy::Kind => ColorBy::Force,
+            other => other,
+        },
+        // every member is one kind here: bars and strings are told apart by their sign
+        string_width: 2.0,
+        ..style.clone()
+    };
+    let p = &report.params;
+    let title = format!(
+        "Michell truss, q = {}, {} view",
+        p.complexity,
+        style.view.name()
+    );
+    drawing_figure_of(vec![drawing_panel(title, &d, &style)], 640)
+}

@@ -1,0 +1,520 @@
+//! The SVG text of a figure, written from the panel model and its [`layout`]: coordinates to
+//! 10⁻⁵ px (no whole-pixel staircases; a structure drawing's scale can be read back), one
+//! `<polyline>` per series, text as `<text>` with `<tspan>`s for sub- and superscripts.
+//!
+//! Each panel is a `<g class="panel">` whose `data-plot` (left top width height, px),
+//! `data-x-range` and `data-y-range` (drawing coordinates) give the map from data to pixels:
+//! x_px = left + (x − x₀)·width/(x₁ − x₀), y_px = top + height − (y − y₀)·height/(y₁ − y₀).
+
+use super::layout::{self, Glyph, PanelLayout, Rect, LABEL_SIZE, TICK_SIZE, TITLE_SIZE};
+use super::text::{self, Shift, SCRIPT_SCALE};
+use super::{diverging_color, Figure, MarkShape, Panel, Unit, FONT_FAMILY};
+use std::fmt::Write;
+
+/// A number with at most 5 decimals, trailing zeros dropped.
+pub fn num(v: f64) -> String {
+    let s = format!("{v:.5}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+fn rgb((r, g, b): (u8, u8, u8)) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Text with its markup as `<text>` at (x, y); `anchor` start, middle or end; `rotate` −90
+/// for a y-axis label.
+fn label(out: &mut String, t: &str, (x, y): (f64, f64), size: f64, anchor: &str, rotate: bool) {
+    let transform = if rotate {
+        format!(" transform=\"rotate(-90 {} {})\"", num(x), num(y))
+    } else {
+        String::new()
+    };
+    let _ = write!(
+        out,
+        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"{anchor}\"{transform}>",
+        num(x),
+        num(y),
+        num(size)
+    );
+    let runs = text::runs(t);
+    if let [(run, Shift::Normal)] = runs.as_slice() {
+        out.push_str(&escape(run));
+        out.push_str("</text>\n");
+        return;
+    }
+    let mut offset = 0.0;
+    for (run, shift) in runs {
+        let (target, s) = match shift {
+            Shift::Normal => (0.0, size),
+            Shift::Sub => (0.28 * size, size * SCRIPT_SCALE),
+            Shift::Sup => (-0.42 * size, size * SCRIPT_SCALE),
+        };
+        let dy = target - offset;
+        offset = target;
+        let dy = if dy == 0.0 {
+            String::new()
+        } else {
+            format!(" dy=\"{}\"", num(dy))
+        };
+        let _ = write!(
+            out,
+            "<tspan font-size=\"{}\"{dy}>{}</tspan>",
+            num(s),
+            escape(&run)
+        );
+    }
+    out.push_str("</text>\n");
+}
+
+/// The SVG of `figure` laid out on `size` CSS pixels; `unit` the unit of its `width` and
+/// `height` attributes (pixels when `None`).
+pub fn write(figure: &Figure, (w, h): (f64, f64), unit: Option<Unit>) -> String {
+    let unit = unit.unwrap_or_default();
+    let (pw, ph) = (w / unit.px(), h / unit.px());
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}{}\" height=\"{}{}\" viewBox=\"0 0 {} {}\" font-family=\"{FONT_FAMILY}, sans-serif\">",
+        num(pw),
+        unit.suffix(),
+        num(ph),
+        unit.suffix(),
+        num(w),
+        num(h)
+    );
+    out.push_str("<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
+    let panel_w = w / figure.panels.len() as f64;
+    for (k, panel) in figure.panels.iter().enumerate() {
+        let area = Rect {
+            x: k as f64 * panel_w,
+            y: 0.0,
+            w: panel_w,
+            h,
+        };
+        let l = layout::place(panel, area);
+        write_panel(&mut out, panel, &l, k);
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
+fn write_panel(out: &mut String, panel: &Panel, l: &PanelLayout, k: usize) {
+    let p = l.plot;
+    let _ = writeln!(
+        out,
+        "<g class=\"panel\" data-plot=\"{} {} {} {}\" data-x-range=\"{} {}\" data-y-range=\"{} {}\">",
+        num(p.x),
+        num(p.y),
+        num(p.w),
+        num(p.h),
+        l.x.lo,
+        l.x.hi,
+        l.y.lo,
+        l.y.hi
+    );
+    if !panel.title.is_empty() {
+        let title_y = l.area.y + 8.0 + TITLE_SIZE;
+        label(
+            out,
+            &panel.title,
+            (p.x + 0.5 * p.w, title_y),
+            TITLE_SIZE,
+            "middle",
+            false,
+        );
+    }
+    write_axes(out, panel, l);
+    let _ = writeln!(
+        out,
+        "<clipPath id=\"plot{k}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath>\n<g clip-path=\"url(#plot{k})\">",
+        num(p.x),
+        num(p.y),
+        num(p.w),
+        num(p.h)
+    );
+    write_data(out, panel, l);
+    out.push_str("</g>\n");
+    let _ = writeln!(
+        out,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#000000\" stroke-width=\"0.8\"/>",
+        num(p.x),
+        num(p.y),
+        num(p.w),
+        num(p.h)
+    );
+    if let Some(legend) = &l.legend {
+        write_legend(out, legend);
+    }
+    if let (Some(bar), Some(rect)) = (&panel.colorbar, l.colorbar) {
+        write_colorbar(out, bar, rect, k);
+    }
+    out.push_str("</g>\n");
+}
+
+fn write_axes(out: &mut String, panel: &Panel, l: &PanelLayout) {
+    let p = l.plot;
+    let grid = |out: &mut String, a: (f64, f64), b: (f64, f64)| {
+        let _ = writeln!(
+            out,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#e3e3e3\" stroke-width=\"0.7\"/>",
+            num(a.0),
+            num(a.1),
+            num(b.0),
+            num(b.1)
+        );
+    };
+    let tick = |out: &mut String, a: (f64, f64), b: (f64, f64)| {
+        let _ = writeln!(
+            out,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#000000\" stroke-width=\"0.8\"/>",
+            num(a.0),
+            num(a.1),
+            num(b.0),
+            num(b.1)
+        );
+    };
+    let bottom = p.y + p.h;
+    for (v, t) in &l.x.ticks {
+        let x = l.px((*v, l.y.lo)).0;
+        if panel.grid {
+            grid(out, (x, p.y), (x, bottom));
+        }
+        tick(out, (x, bottom), (x, bottom + 4.0));
+        label(
+            out,
+            t,
+            (x, bottom + 6.0 + TICK_SIZE),
+            TICK_SIZE,
+            "middle",
+            false,
+        );
+    }
+    for (v, t) in &l.y.ticks {
+        let y = l.px((l.x.lo, *v)).1;
+        if panel.grid {
+            grid(out, (p.x, y), (p.x + p.w, y));
+        }
+        tick(out, (p.x - 4.0, y), (p.x, y));
+        label(
+            out,
+            t,
+            (p.x - 6.0, y + 0.35 * TICK_SIZE),
+            TICK_SIZE,
+            "end",
+            false,
+        );
+    }
+    let x_label_y = bottom + 6.0 + TICK_SIZE + 6.0 + LABEL_SIZE;
+    label(
+        out,
+        &panel.x_label,
+        (p.x + 0.5 * p.w, x_label_y),
+        LABEL_SIZE,
+        "middle",
+        false,
+    );
+    let y_label_x = l.area.x + 8.0 + LABEL_SIZE;
+    label(
+        out,
+        &panel.y_label,
+        (y_label_x, p.y + 0.5 * p.h),
+        LABEL_SIZE,
+        "middle",
+        true,
+    );
+    if let Some(e) = l.x.factor {
+        let t = format!("×{}", layout::power_of_ten(e));
+        label(out, &t, (p.x + p.w, x_label_y), TICK_SIZE, "end", false);
+    }
+    if let Some(e) = l.y.factor {
+        let t = format!("×{}", layout::power_of_ten(e));
+        label(out, &t, (p.x, p.y - 4.0), TICK_SIZE, "start", false);
+    }
+}
+
+fn polyline(out: &mut String, pts: &[(f64, f64)], color: (u8, u8, u8), width: f64, dashed: bool) {
+    let points: Vec<String> = pts
+        .iter()
+        .map(|&(x, y)| format!("{},{}", num(x), num(y)))
+        .collect();
+    let dash = if dashed {
+        format!(
+            " stroke-dasharray=\"{} {}\"",
+            num(3.0 * width.max(1.5)),
+            num(2.0 * width.max(1.5))
+        )
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        out,
+        "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\"{dash}/>",
+        points.join(" "),
+        rgb(color),
+        num(width)
+    );
+}
+
+/// A straight stroke as `<line>` (legend samples, arrow shafts: not a series, so no
+/// `<polyline>`).
+fn segment(
+    out: &mut String,
+    a: (f64, f64),
+    b: (f64, f64),
+    color: (u8, u8, u8),
+    width: f64,
+    dashed: bool,
+) {
+    let dash = if dashed {
+        format!(
+            " stroke-dasharray=\"{} {}\"",
+            num(3.0 * width.max(1.5)),
+            num(2.0 * width.max(1.5))
+        )
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        out,
+        "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{dash}/>",
+        num(a.0),
+        num(a.1),
+        num(b.0),
+        num(b.1),
+        rgb(color),
+        num(width)
+    );
+}
+
+fn arrow(out: &mut String, from: (f64, f64), to: (f64, f64), color: (u8, u8, u8)) {
+    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+    let len = dx.hypot(dy);
+    if len < 1e-9 {
+        return;
+    }
+    let (ux, uy) = (dx / len, dy / len);
+    let head = 8.0f64.min(0.6 * len);
+    let base = (to.0 - head * ux, to.1 - head * uy);
+    segment(out, from, base, color, 1.6, false);
+    let (nx, ny) = (-uy * 0.4 * head, ux * 0.4 * head);
+    let _ = writeln!(
+        out,
+        "<polygon points=\"{},{} {},{} {},{}\" fill=\"{}\"/>",
+        num(to.0),
+        num(to.1),
+        num(base.0 + nx),
+        num(base.1 + ny),
+        num(base.0 - nx),
+        num(base.1 - ny),
+        rgb(color)
+    );
+}
+
+fn mark(out: &mut String, shape: MarkShape, (x, y): (f64, f64), color: (u8, u8, u8)) {
+    match shape {
+        MarkShape::Dot => {
+            let _ = writeln!(
+                out,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"2.5\" fill=\"{}\"/>",
+                num(x),
+                num(y),
+                rgb(color)
+            );
+        }
+        MarkShape::Support => {
+            let _ = writeln!(
+                out,
+                "<polygon points=\"{},{} {},{} {},{}\" fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                num(x),
+                num(y),
+                num(x - 6.0),
+                num(y + 10.0),
+                num(x + 6.0),
+                num(y + 10.0),
+                rgb(color)
+            );
+            segment(
+                out,
+                (x - 8.0, y + 12.0),
+                (x + 8.0, y + 12.0),
+                color,
+                1.2,
+                false,
+            );
+        }
+    }
+}
+
+fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) {
+    for (k, (s, pts)) in panel.series.iter().zip(panel.drawn_points()).enumerate() {
+        let color = layout::series_color(k, s);
+        let px: Vec<(f64, f64)> = pts.iter().map(|&p| l.px(p)).collect();
+        polyline(out, &px, color, s.width, s.dashed);
+        if s.markers {
+            for &(x, y) in &px {
+                let _ = writeln!(
+                    out,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>",
+                    num(x),
+                    num(y),
+                    rgb(color)
+                );
+            }
+        }
+    }
+    for a in &panel.arrows {
+        if let (Some(p), Some(q)) = (panel.to_drawing(a.from), panel.to_drawing(a.to)) {
+            arrow(out, l.px(p), l.px(q), a.color);
+        }
+    }
+    for m in &panel.marks {
+        if let Some(p) = panel.to_drawing(m.at) {
+            mark(out, m.shape, l.px(p), m.color);
+        }
+    }
+    for n in &panel.notes {
+        if let Some(p) = panel.to_drawing(n.at) {
+            let (x, y) = l.px(p);
+            let _ = write!(out, "<g fill=\"{}\">", rgb(n.color));
+            label(out, &n.text, (x + 2.5, y - 2.5), 9.0, "start", false);
+            out.push_str("</g>\n");
+        }
+    }
+}
+
+fn write_legend(out: &mut String, legend: &layout::Legend) {
+    let r = legend.rect;
+    let _ = writeln!(
+        out,
+        "<rect class=\"legend\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" fill-opacity=\"0.9\" stroke=\"#666666\" stroke-width=\"0.6\"/>",
+        num(r.x),
+        num(r.y),
+        num(r.w),
+        num(r.h)
+    );
+    for (i, (glyph, t)) in legend.entries.iter().enumerate() {
+        let y = r.y + 6.0 + 16.0 * i as f64 + 8.0;
+        let (x0, x1) = (r.x + 8.0, r.x + 32.0);
+        match *glyph {
+            Glyph::Line {
+                color,
+                width,
+                dashed,
+                marker,
+            } => {
+                segment(out, (x0, y), (x1, y), color, width.min(4.0), dashed);
+                if marker {
+                    let _ = writeln!(
+                        out,
+                        "<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>",
+                        num(0.5 * (x0 + x1)),
+                        num(y),
+                        rgb(color)
+                    );
+                }
+            }
+            Glyph::Arrow(color) => arrow(out, (x0, y), (x1, y), color),
+            Glyph::Mark(shape, color) => {
+                let at = match shape {
+                    MarkShape::Support => (0.5 * (x0 + x1), y - 6.0),
+                    MarkShape::Dot => (0.5 * (x0 + x1), y),
+                };
+                mark(out, shape, at, color)
+            }
+        }
+        label(
+            out,
+            t,
+            (x1 + 6.0, y + 0.35 * TICK_SIZE),
+            TICK_SIZE,
+            "start",
+            false,
+        );
+    }
+}
+
+fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize) {
+    let _ = write!(
+        out,
+        "<linearGradient id=\"cbar{k}\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
+    );
+    for i in 0..=10 {
+        let t = i as f64 / 10.0;
+        let v = (2.0 * t - 1.0) * bar.max_abs;
+        let _ = write!(
+            out,
+            "<stop offset=\"{}\" stop-color=\"{}\"/>",
+            num(t),
+            rgb(diverging_color(v, bar.max_abs))
+        );
+    }
+    out.push_str("</linearGradient>\n");
+    let _ = writeln!(
+        out,
+        "<rect class=\"colorbar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#cbar{k})\" stroke=\"#444444\" stroke-width=\"0.6\"/>",
+        num(r.x),
+        num(r.y),
+        num(r.w),
+        num(r.h)
+    );
+    let (ticks, factor) = layout::linear_ticks(-bar.max_abs, bar.max_abs, r.h, 30.0);
+    for (v, t) in ticks {
+        let y = r.y + r.h * (1.0 - (v / bar.max_abs + 1.0) / 2.0);
+        let _ = writeln!(
+            out,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#000000\" stroke-width=\"0.8\"/>",
+            num(r.x + r.w),
+            num(y),
+            num(r.x + r.w + 3.0),
+            num(y)
+        );
+        label(
+            out,
+            &t,
+            (r.x + r.w + 5.0, y + 0.35 * TICK_SIZE),
+            TICK_SIZE,
+            "start",
+            false,
+        );
+    }
+    let mut title = bar.label.clone();
+    if let Some(e) = factor {
+        title = format!("{title} ×{}", layout::power_of_ten(e));
+    }
+    let x = r.x + r.w + 56.0;
+    label(out, &title, (x, r.y + 0.5 * r.h), TICK_SIZE, "middle", true);
+    label(out, "tension", (r.x, r.y - 5.0), 9.0, "start", false);
+    label(
+        out,
+        "compression",
+        (r.x, r.y + r.h + 12.0),
+        9.0,
+        "start",
+        false,
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_five_decimals_at_most() {
+        assert_eq!(num(1.0), "1");
+        assert_eq!(num(1.234567), "1.23457");
+        assert_eq!(num(-0.000001), "0");
+        assert_eq!(num(-2.5), "-2.5");
+    }
+}
