@@ -36,7 +36,7 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
         let (runs, impacts, figure) = (&rolled.runs, rolled.impacts(), args.out.display());
         let figure = figure.to_string();
         let notes = rolled.ensemble_notes();
-        return output::print_json(
+        return super::output::print_json(
             &serde_json::json!({"runs": runs, "impacts": impacts, "figure": figure,
                 "ensemble_notes": notes}),
         );

@@ -121,7 +121,7 @@ fn the_catalogue_structure_figures_are_to_scale() {
     let mut panels = 0;
     for number in ["3.3", "3.9", "4.4", "4.7", "5.1", "5.3"] {
         let spec = FIGURES.iter().find(|f| f.number == number).unwrap();
-        let fig = spec.build(&ctx).unwrap();
+        let fig = spec.build(&ctx).unwrap().figure;
         for o in sizes() {
             panels += assert_to_scale(&fig, &o, number);
         }
