@@ -68,11 +68,12 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         output::open_required("--out", &dir.join("index.json"), JsonSink::open)?,
         output::open_required("--out", &dir.join("index.md"), FileSink::open)?,
     );
+    let unit = "figures";
     let progress = Progress::auto(
         "figures",
         Measure::Count {
             total: chosen.len(),
-            unit: "figures",
+            unit,
         },
         args.quiet,
     );
@@ -80,15 +81,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     // opened fails alone
     let jobs = chosen
         .into_iter()
-        .map(|f| {
-            let sinks = FigureSink::open_with(&dir.join(f.file_name(ext)), options).and_then(|s| {
-                Ok((
-                    s,
-                    CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?,
-                ))
-            });
-            (f, sinks)
-        })
+        .map(|f| (f, figure_sinks(dir.path(), f, ext, options)))
         .collect();
     let built =
         tensegrity_figures::build_figures(&request, data.path(), jobs, |f, sinks, build| {
@@ -114,6 +107,18 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         true => report_json(ext, built),
         false => report(ext, built),
     }
+}
+
+/// The picture's and the data's sinks of one figure.
+fn figure_sinks(
+    dir: &std::path::Path,
+    f: &FigureSpec,
+    ext: &str,
+    options: tensegrity_io::figure::RenderOptions,
+) -> tensegrity_io::Result<(FigureSink, CsvSink)> {
+    let picture = FigureSink::open_with(&dir.join(f.file_name(ext)), options)?;
+    let data = CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?;
+    Ok((picture, data))
 }
 
 /// [`report`] as one JSON object: `figures` (number, description, file, data), `failed`

@@ -485,15 +485,14 @@ impl<'a> SparseStatics<'a> {
             if cols == 0 {
                 return DMatrix::zeros(rows, 0);
             }
-            let mut f = faer::Mat::<f64>::zeros(rows, cols);
+            let mut f = DMatrix::<f64>::zeros(rows, cols);
             let (cp, ri, v) = (n.pattern().col_ptr(), n.pattern().row_idx(), n.values());
             for c in 0..cols {
                 for s in cp[c]..cp[c + 1] {
                     f[(ri[s], c)] = v[s];
                 }
             }
-            let q = f.qr().compute_thin_Q();
-            let q = DMatrix::from_fn(q.nrows(), q.ncols(), |i, j| q[(i, j)]);
+            let q = crate::linalg::dense::thin_q(&f);
             orient_self_stress(q, self.structure.n_bars())
         })
     }

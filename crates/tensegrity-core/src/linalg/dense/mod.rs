@@ -1,15 +1,17 @@
 //! Dense factorisations on nalgebra matrices: SVD ([`svd()`]), symmetric eigendecomposition
 //! ([`eigen`]), an in-place Cholesky for small SPD systems ([`cholesky`]) and an in-place LU
-//! with partial pivoting for small general systems ([`lu`]).
+//! with partial pivoting for small general systems ([`lu`]) and the thin Q of a QR ([`thin_q`]).
 
 pub mod cholesky;
 pub mod eigen;
 pub mod lu;
+pub mod qr;
 pub mod svd;
 
 pub use cholesky::DenseCholesky;
 pub use eigen::symmetric_eigen;
 pub use lu::DenseLu;
+pub use qr::thin_q;
 pub use svd::{orthonormal_basis, rank_tolerance, svd, Svd};
 
 use faer::Mat;
