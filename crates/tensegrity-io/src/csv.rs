@@ -371,7 +371,16 @@ pub fn read_series(
 /// assert!(is_angle("45deg") && !is_angle("0.5"));
 /// ```
 pub fn cell_value(text: &str) -> Option<f64> {
-    match text.trim().parse::<f64>() {
+    let text = text.trim();
+    // degrees as written (a round trip through radians would turn 30 into 29.999…)
+    if let Some(v) = text
+        .strip_suffix("deg")
+        .and_then(|d| d.trim().parse::<f64>().ok())
+        .filter(|v| v.is_finite())
+    {
+        return Some(v);
+    }
+    match text.parse::<f64>() {
         Ok(v) => Some(v),
         Err(_) if is_angle(text) => tensegrity_core::angle::parse_angle(text)
             .ok()

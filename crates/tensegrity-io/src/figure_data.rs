@@ -175,7 +175,7 @@ impl FigureData {
     /// let fig = Figure::new(vec![Panel::new("drop", "time [s]", "height [m]")
     ///     .series(Series::new("z", vec![(0.0, 1.0), (0.5, 0.75)]))]);
     /// let data = FigureData::of_series(&fig, ("t", "s"), ("z", "m"));
-    /// assert_eq!(data.to_csv().lines().nth(2), Some("0,drop,z,0,0.5,0.75"));
+    /// assert_eq!(data.to_csv().lines().nth(2), Some("0,drop,z,1,0.5,0.75"));
     /// ```
     pub fn of_series(figure: &Figure, x: (&str, &str), y: (&str, &str)) -> Self {
         let mut data = Self::new(&[

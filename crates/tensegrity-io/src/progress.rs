@@ -21,10 +21,14 @@
 //!
 //! ```
 //! use tensegrity_io::progress::{Measure, Progress, Target};
-//! let p = Progress::new("cases", Measure::Count { total: 4, unit: "cases" }, Target::Hidden);
+//! let p = Progress::new("cases", Measure::Count { total: 4, unit: "cases" }, Target::Lines);
 //! p.inc(3.0);
 //! assert_eq!(p.fraction(), 0.75);
 //! p.finish();
+//! // hidden: nothing is counted, nothing drawn
+//! let q = Progress::new("cases", Measure::Count { total: 4, unit: "cases" }, Target::Hidden);
+//! q.inc(3.0);
+//! assert_eq!(q.fraction(), 0.0);
 //! ```
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
