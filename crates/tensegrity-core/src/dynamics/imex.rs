@@ -40,7 +40,7 @@
 
 use super::forces::GroundModel;
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{bar_accel, set3, vec3, Model, Workspace};
+use super::model::{set3, vec3, Model, Workspace};
 use crate::error::{CoreError, DynamicsError, StepHint};
 use crate::structure::MemberId;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -138,11 +138,11 @@ fn rhs_smooth(
         }
         .into());
     }
-    model.bar_accelerations(x, v, &ws.f, dv, None);
+    bar_accelerations(model, x, v, &ws.f, dv, None);
     if ws.omega.is_some() {
         factor_omega(model, x, ws)?;
         constrain(model, ws, multipliers, dv);
-        model.bar_accelerations(x, v, &ws.f, dv, Some(&model.constrained_bars));
+        bar_accelerations(model, x, v, &ws.f, dv, Some(&model.constrained_bars));
     }
     Ok(())
 }
@@ -393,5 +393,60 @@ impl Integrator for Imex {
             self.contact_substep(model, ws, y, 0.5 * h)?;
         }
         Ok(StepOutcome::fixed(h))
+    }
+}
+
+/// Accelerations of the two ends of a rigid bar of mass `m` (with `inv_j` = 12/m) under end
+/// forces `fa`, `fb`: r̈ = (fa + fb)/m, b̈ = (½ f_d − b (½ b·f_d)/l²) J⁻¹ − b |ḃ|²/l² with
+/// f_d = fb − fa.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn bar_accel(
+    m: f64,
+    inv_j: f64,
+    xa: &Vector3<f64>,
+    xb: &Vector3<f64>,
+    va: &Vector3<f64>,
+    vb: &Vector3<f64>,
+    fa: &Vector3<f64>,
+    fb: &Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let b = xb - xa;
+    let bd = vb - va;
+    let l2 = b.norm_squared();
+    let fd = fb - fa;
+    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
+    let rdd = (fa + fb) / m;
+    (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
+}
+
+/// Writes the accelerations of the bars of `model` (all, or the listed ones) into `dv`.
+fn bar_accelerations(
+    model: &Model,
+    x: &[f64],
+    v: &[f64],
+    f: &[Vector3<f64>],
+    dv: &mut [f64],
+    only: Option<&[usize]>,
+) {
+    let mut one = |k: usize| {
+        let (a, b) = (2 * k, 2 * k + 1);
+        let data = &model.bars[k];
+        let (aa, ab) = bar_accel(
+            data.mass,
+            data.inv_j,
+            &vec3(x, a),
+            &vec3(x, b),
+            &vec3(v, a),
+            &vec3(v, b),
+            &f[a],
+            &f[b],
+        );
+        set3(dv, a, &aa);
+        set3(dv, b, &ab);
+    };
+    match only {
+        Some(list) => list.iter().for_each(|&k| one(k)),
+        None => (0..model.bars.len()).for_each(one),
     }
 }
