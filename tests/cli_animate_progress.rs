@@ -128,7 +128,9 @@ fn tbar_roll_animates_the_wheel_with_the_requested_frames() {
     assert_ok(&out);
     let f = frames(&gif);
     assert_eq!(f.len(), 8, "round(4 × 2) frames");
-    assert!(f.iter().all(|&(w, h, delay)| (w, h, delay) == (f[0].0, f[0].1, 25)));
+    assert!(f
+        .iter()
+        .all(|&(w, h, delay)| (w, h, delay) == (f[0].0, f[0].1, 25)));
     let (first, last) = first_and_last(&gif);
     assert_ne!(first, last, "the wheel turns over the run");
     // the full model: its nodes
