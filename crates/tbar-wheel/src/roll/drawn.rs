@@ -92,3 +92,62 @@ impl TbarRollRequest {
         Ok(WheelRun::of(Fidelity::Rigid, &polygon, &r.result, self.t_end()).because(r.reason))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wheel_rolling::{Flow, WheelFrame};
+
+    /// Keeps the frames it is handed.
+    struct Kept(Vec<WheelFrame>);
+
+    impl Observer for Kept {
+        fn frame(&mut self, frame: &WheelFrame) -> Flow {
+            self.0.push(frame.clone());
+            Flow::Continue
+        }
+    }
+
+    #[test]
+    fn the_rigid_run_places_the_nodes_as_a_rigid_body_standing_on_two_tips() {
+        let r = TbarRollRequest {
+            t_end: Some(0.5),
+            ..TbarRollRequest::default()
+        };
+        let (n, rim) = (8, RimMode::Fixed);
+        let times = [0.0, 0.25, 0.5];
+        let mut kept = Kept(Vec::new());
+        let watch = Watch {
+            times: &times,
+            observer: &mut kept,
+        };
+        let watched = r.tbar_row_watched(n, rim, Some(watch));
+        // watching changes nothing in the row
+        let plain = r.tbar_row(n, rim);
+        assert_eq!(format!("{:?}", watched.tbar), format!("{:?}", plain.tbar));
+        let frames = kept.0;
+        assert_eq!(frames.len(), 3);
+        let drawn = r.drawing(n, rim).unwrap();
+        assert!(frames.iter().all(|f| f.nodes.len() == drawn.n_nodes()));
+        // at t = 0 the tips of treads 0 and 1 touch the slope (h = 0), the others are above
+        let g = TbarGeometry::new(r.tbar_params(n, rim)).unwrap();
+        let p0 = &frames[0].nodes;
+        for (k, &tip) in g.tips.iter().enumerate() {
+            let h = p0[tip].z;
+            match k {
+                0 | 1 => assert!(h.abs() < 1e-9, "tip {k}: h = {h}"),
+                _ => assert!(h > 1e-3, "tip {k}: h = {h}"),
+            }
+        }
+        // later frames: the same distances between nodes (a rigid body), moved downhill
+        let last = &frames[2].nodes;
+        for i in 0..p0.len() {
+            for j in 0..i {
+                let (d0, d1) = ((p0[i] - p0[j]).norm(), (last[i] - last[j]).norm());
+                assert!((d0 - d1).abs() < 1e-9, "nodes {i}, {j}: {d0} vs {d1}");
+            }
+        }
+        let centre = |p: &[Vector3<f64>]| p.iter().sum::<Vector3<f64>>() / p.len() as f64;
+        assert!(centre(last).y > centre(p0).y + 1e-3);
+    }
+}
