@@ -1,5 +1,6 @@
 //! Animations, progress lines in logs and the JSON of every command (issue 22, items 6–8):
-//! `--animate` writes exactly round(fps × duration) frames (decoded with the `gif` crate);
+//! `--animate` writes exactly round(fps × duration) frames (decoded with the `gif` crate),
+//! also for `tbar roll` (rigid and full model);
 //! with stderr redirected to a file, `sweep` and `figures` write progress lines with percent
 //! and ETA; the JSON of `demo`, `figures`, `michell-table` and `sweep plot` parses and carries
 //! its keys; `sweep plot` draws an angle-valued axis (`incline`, written `30deg`) in degrees.
@@ -89,6 +90,66 @@ fn roll_animates_the_wheel_with_the_requested_frames() {
     ]);
     assert_ok(&out);
     assert_eq!(frames(&gif).len(), 7);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The pixels of the first and the last frame of an animated GIF.
+fn first_and_last(path: &Path) -> (Vec<u8>, Vec<u8>) {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options.read_info(File::open(path).unwrap()).unwrap();
+    let first = decoder.read_next_frame().unwrap().unwrap().buffer.to_vec();
+    let mut last = first.clone();
+    while let Some(f) = decoder.read_next_frame().unwrap() {
+        last = f.buffer.to_vec();
+    }
+    (first, last)
+}
+
+#[test]
+fn tbar_roll_animates_the_wheel_with_the_requested_frames() {
+    let dir = scratch("anim", "tbar-roll");
+    let gif = dir.join("tbar.gif");
+    // the default (rigid) model: the T-bar's nodes placed by the rigid pose
+    let out = run(&[
+        "tbar",
+        "roll",
+        "--treads",
+        "8",
+        "--t-end",
+        "0.5",
+        "--animate",
+        gif.to_str().unwrap(),
+        "--fps",
+        "4",
+        "--duration",
+        "2",
+    ]);
+    assert_ok(&out);
+    let f = frames(&gif);
+    assert_eq!(f.len(), 8, "round(4 × 2) frames");
+    assert!(f
+        .iter()
+        .all(|&(w, h, delay)| (w, h, delay) == (f[0].0, f[0].1, 25)));
+    let (first, last) = first_and_last(&gif);
+    assert_ne!(first, last, "the wheel turns over the run");
+    // the full model: its nodes
+    let out = run(&[
+        "tbar",
+        "roll",
+        "--fidelity",
+        "full",
+        "--t-end",
+        "0.02",
+        "--animate",
+        gif.to_str().unwrap(),
+        "--fps",
+        "3",
+        "--duration",
+        "1",
+    ]);
+    assert_ok(&out);
+    assert_eq!(frames(&gif).len(), 3);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

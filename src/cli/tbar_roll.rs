@@ -4,14 +4,20 @@
 //! defaults are the library's (the fidelity-dependent ones resolved by the request).
 //! `--out FILE.csv` writes one row per tread count: the per-row result columns of the engine
 //! ([`tensegrity_engine::columns::TBAR_ROLL`], `rows.K.` left out), opened before the run.
+//! `--animate FILE.gif` draws the T-bar wheel of the first tread count rolling
+//! ([`super::animate`]; the nodes of [`TbarRollRequest::drawing`] from its run's frames: the
+//! full model's nodes, or the rigid model's pose placing them), also opened before the run.
 
+use super::animate::Opened;
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, TbarRollRow};
+use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, TbarRollRow, Watch};
+use tensegrity_core::request::Request;
 use tensegrity_engine::tbar_roll;
-use tensegrity_io::sink::CsvSink;
+use tensegrity_figures::animation::{Animation, Camera, Scenery};
+use tensegrity_io::sink::{CsvSink, RollingOutputs};
 use wheel_rolling::WheelRun;
 
 /// Arguments of `tensegrity tbar roll`: the request's flags ([`TbarRollRequest`]).
@@ -25,6 +31,8 @@ pub struct TbarRollArgs {
     /// Write one CSV row per tread count (T-bar and toroid runs, tip-over).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    animate: super::animate::AnimateArgs,
 }
 
 /// Entry point of `tensegrity tbar roll`.
@@ -37,7 +45,12 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     let csv = output::open("--out", args.out.as_deref(), |p| {
         CsvSink::with_header(p, "tbar roll rows CSV", &row_columns().collect::<Vec<_>>())
     })?;
-    let report = tbar_roll::report(&request)?;
+    let mut animation = match args.animate.open()? {
+        Some(o) => Some(tbar_animation(o, &request)?),
+        None => None,
+    };
+    let report = watched_report(&request, animation.as_mut())?;
+    super::animate::finish(animation, args.animate.animate.as_deref())?;
     if let Some(csv) = csv {
         write_rows(csv, &report)?;
     }
@@ -52,6 +65,37 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
         print_roll(&report);
     }
     Ok(tbar_roll::strict_check(&request, &report)?)
+}
+
+/// The T-bar wheel of the first tread count rolling: its members in the side view turned by
+/// −incline (the slope goes down to the right), on the slope, the camera following it.
+fn tbar_animation(o: Opened, request: &TbarRollRequest) -> Result<Animation> {
+    request.validate()?;
+    let n = request.treads().first().copied().unwrap_or_default();
+    let drawn = request.drawing(n, request.rim()?)?;
+    let title = format!("T-bar wheel rolling (n = {n})");
+    let mut s = Scenery::structure(title, &drawn, None);
+    s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
+    (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
+    Ok(o.start(s, request.t_end())
+        .with_tolerance(request.settings.dt))
+}
+
+/// The report, the first row's T-bar run drawn into `animation` if any.
+fn watched_report(
+    request: &TbarRollRequest,
+    animation: Option<&mut Animation>,
+) -> Result<TbarRollReport> {
+    let Some(a) = animation else {
+        return Ok(tbar_roll::report(request)?);
+    };
+    let times = a.times().to_vec();
+    let mut outputs = RollingOutputs::new(None, None).with_frames(a);
+    let watch = Watch {
+        times: &times,
+        observer: &mut outputs,
+    };
+    Ok(tbar_roll::report_watched(request, Some(watch))?)
 }
 
 /// The per-row result columns: the engine's `rows.0.*` columns without the prefix.

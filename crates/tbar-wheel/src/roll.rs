@@ -17,6 +17,7 @@
 //! toroid column (the reference toroid scaled to r₀ with n sides) is composed by the engine
 //! crate, since topology crates do not depend on each other.
 
+mod drawn;
 mod report;
 
 use crate::error::Result;
@@ -24,6 +25,7 @@ use crate::geometry::TbarGeometry;
 use crate::params::{BarBase, Layout, RimMode, TbarParams};
 use crate::rolling::{mass_properties_with, tipover, MassProperties};
 use crate::rolling_full::{full_wheel, FullWheelRequest, PrestressLevel, DEFAULT_CAPACITY_FACTOR};
+pub use drawn::Watch;
 use michell3d::MichellParams;
 pub use report::{FullDetails, TbarRollReport, TbarRollRow};
 use serde::{Deserialize, Serialize};
@@ -388,7 +390,7 @@ impl TbarRollRequest {
 
     /// The rigid run of `polygon` in the settings of this request.
     pub fn rigid_run(&self, polygon: &wheel_rolling::Polygon) -> Result<WheelRun> {
-        let r = self.checked_run(polygon, FidelityChoice::Rigid)?;
+        let r = self.checked_run(polygon, FidelityChoice::Rigid, None)?;
         Ok(WheelRun::of(Fidelity::Rigid, polygon, &r.result, self.t_end()).because(r.reason))
     }
 
@@ -396,17 +398,24 @@ impl TbarRollRequest {
     /// the model asked for (and for the full model its rigid reference and structure),
     /// tip-over. What fails is named in the row's `errors`; the toroid column is left empty.
     pub fn tbar_row(&self, n: usize, rim: RimMode) -> TbarRollRow {
+        self.tbar_row_watched(n, rim, None)
+    }
+
+    /// As [`TbarRollRequest::tbar_row`], the T-bar run handing the wheel's node frames at the
+    /// watched times to the watch's observer (the nodes of [`TbarRollRequest::drawing`]).
+    pub fn tbar_row_watched(&self, n: usize, rim: RimMode, watch: Option<Watch>) -> TbarRollRow {
         let mut row = TbarRollRow::new(n);
         let p = self.tbar_params(n, rim);
         match self.fidelity {
-            FidelityChoice::Rigid => self.rigid_columns(&p, &mut row),
-            FidelityChoice::Full | FidelityChoice::Auto => self.full_columns(&p, &mut row),
+            FidelityChoice::Rigid => self.rigid_columns(&p, &mut row, watch),
+            FidelityChoice::Full | FidelityChoice::Auto => self.full_columns(&p, &mut row, watch),
         }
         row
     }
 
-    /// The rigid model: mass properties of the geometry, its run, tip-over.
-    fn rigid_columns(&self, p: &TbarParams, row: &mut TbarRollRow) {
+    /// The rigid model: mass properties of the geometry, its run (its nodes placed by the
+    /// rigid pose when watched), tip-over.
+    fn rigid_columns(&self, p: &TbarParams, row: &mut TbarRollRow, watch: Option<Watch>) {
         let built = TbarGeometry::new(*p).and_then(|g| {
             let mp = mass_properties_with(&g, self.bar_density, self.rim_density())?;
             Ok((mp, g))
@@ -415,7 +424,7 @@ impl TbarRollRequest {
             Ok((mp, g)) => {
                 row.mass_properties = Some(mp);
                 self.tipover(&g, &mp, row);
-                match self.rigid_run(&mp.polygon()) {
+                match self.posed_run(&g, &mp, watch) {
                     Ok(s) => row.tbar = Some(s),
                     Err(e) => row.errors.push(format!("T-bar rolling: {e}")),
                 }
@@ -426,8 +435,8 @@ impl TbarRollRequest {
 
     /// The full model: the structure that ran (its mass properties, with the isostatic rim
     /// body), its run, the rigid polygon of the same mass and I₁, tip-over.
-    fn full_columns(&self, p: &TbarParams, row: &mut TbarRollRow) {
-        let (run, details, w) = match self.full_run(p) {
+    fn full_columns(&self, p: &TbarParams, row: &mut TbarRollRow, watch: Option<Watch>) {
+        let (run, details, w) = match self.full_run_watched(p, watch) {
             Ok(r) => r,
             Err(e) => return row.errors.push(format!("T-bar full rolling: {e}")),
         };
@@ -447,12 +456,21 @@ impl TbarRollRequest {
         &self,
         p: &TbarParams,
     ) -> Result<(WheelRun, FullDetails, crate::rolling_full::FullWheel)> {
+        self.full_run_watched(p, None)
+    }
+
+    /// As [`TbarRollRequest::full_run`], watched (see [`TbarRollRequest::tbar_row_watched`]).
+    pub fn full_run_watched(
+        &self,
+        p: &TbarParams,
+        watch: Option<Watch>,
+    ) -> Result<(WheelRun, FullDetails, crate::rolling_full::FullWheel)> {
         let w = full_wheel(p, &self.full_wheel_request())?;
         let choice = match self.fidelity {
             FidelityChoice::Rigid => FidelityChoice::Full,
             c => c,
         };
-        let mut r = self.checked_run(&w, choice)?;
+        let mut r = self.checked_run(&w, choice, watch)?;
         if r.fidelity == Fidelity::Full {
             let gravity = self.settings.gravity;
             r.result.validity.warnings.extend(w.warnings(gravity));
@@ -465,7 +483,12 @@ impl TbarRollRequest {
 
     /// The run of `wheel` with `fidelity`, repeated at the refined resolution beside it when
     /// `convergence_check` is set.
-    fn checked_run<W>(&self, wheel: &W, fidelity: FidelityChoice) -> Result<wheel_rolling::Rolled>
+    fn checked_run<W>(
+        &self,
+        wheel: &W,
+        fidelity: FidelityChoice,
+        watch: Option<Watch>,
+    ) -> Result<wheel_rolling::Rolled>
     where
         W: wheel_rolling::Wheel + Sync,
         W::Error: Send + std::fmt::Display,
@@ -474,7 +497,13 @@ impl TbarRollRequest {
         let spec = self.spec(fidelity);
         let decision = Decision::of(&spec, &wheel.polygon());
         let check = self.checks.convergence_check;
-        Ok(roll_checked(wheel, &spec, &decision, &[], None, check)?)
+        let (times, observer) = match watch {
+            Some(w) => (w.times, Some(w.observer)),
+            None => (&[][..], None),
+        };
+        Ok(roll_checked(
+            wheel, &spec, &decision, times, observer, check,
+        )?)
     }
 
     fn tipover(&self, g: &TbarGeometry, mp: &MassProperties, row: &mut TbarRollRow) {

@@ -187,6 +187,12 @@ impl wheel_rolling::Wheel for FullWheel {
         self.mass.polygon()
     }
 
+    /// The structure's nodes (built in the starting pose), for `auto` runs the policy hands
+    /// to the rigid model.
+    fn start_pose(&self) -> Vec<nalgebra::Vector3<f64>> {
+        self.structure.nodes().to_vec()
+    }
+
     fn scene(&self) -> Result<WheelScene> {
         Ok(FullWheel::scene(self))
     }

@@ -10,7 +10,7 @@
 //! the rigid polygon of its m and I₁ under the T-bar's settings, or `toroid::roll` with the
 //! full model ([`toroid_request`]).
 
-use tbar_wheel::roll::{TbarRollReport, TbarRollRequest};
+use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, Watch};
 use tbar_wheel::TbarError;
 use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::{InvalidParameter, Request};
@@ -52,13 +52,23 @@ pub fn strict_check(request: &TbarRollRequest, report: &TbarRollReport) -> Resul
 /// As [`tbar_roll`], the report returned whatever its validity (a front end writes it, then
 /// applies [`strict_check`]).
 pub fn report(request: &TbarRollRequest) -> Result<TbarRollReport, TbarError> {
+    report_watched(request, None)
+}
+
+/// As [`report`], the T-bar run of the first row (the first number of treads) handing its
+/// node frames at the watched times to the watch (an animation of
+/// [`TbarRollRequest::drawing`]).
+pub fn report_watched(
+    request: &TbarRollRequest,
+    mut watch: Option<Watch>,
+) -> Result<TbarRollReport, TbarError> {
     request.validate()?;
     let rim = request.rim()?;
     let rows = request
         .treads()
         .into_iter()
         .map(|n| {
-            let mut row = request.tbar_row(n, rim);
+            let mut row = request.tbar_row_watched(n, rim, watch.take());
             match toroid_column(request, n) {
                 Ok(s) => row.toroid = Some(s),
                 Err(e) => row.errors.push(format!("toroid: {e}")),
