@@ -75,7 +75,7 @@ def simulate(
     scene: Scene,
     *,
     t_end: Optional[float] = ...,
-    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk']] = ...,
+    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex']] = ...,
     dt: Optional[float] = ...,
     rtol: Optional[float] = ...,
     atol: Optional[float] = ...,
@@ -98,7 +98,7 @@ def simulate(
         or the scene's TOML text. Required
     t_end : float, optional
         End time; overrides `[simulation] t_end` (s); must be finite and positive
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk'}, optional
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex'}, optional
         Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4,
         adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff
         strings and contact
@@ -148,6 +148,7 @@ def toroid(
     rim_radius: float = ...,
     stabilize: str = ...,
     bar_density: float = ...,
+    scale_with_n: bool = ...,
     prism_only: bool = ...,
     min_tension: float = ...,
     rim_window: bool = ...,
@@ -179,6 +180,9 @@ def toroid(
         'spokes,inner'
     bar_density : float
         Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    scale_with_n : bool
+        Scale the tread offset with the sides: D_n = D·8/n (0.8/n for the reference D =
+        0.1), so large wheels stay prestressable
     prism_only : bool
         Analyse a single prism (six nodes, K6) instead of the whole wheel
     min_tension : float
@@ -216,18 +220,19 @@ def roll(
     rim_radius: float = ...,
     stabilize: str = ...,
     bar_density: float = ...,
+    scale_with_n: bool = ...,
     incline: Union[float, str] = ...,
     t_end: float = ...,
     dt: float = ...,
     fidelity: Literal['rigid', 'full', 'auto'] = ...,
-    contact: Literal['penalty', 'thesis'] = ...,
+    contact: Literal['penalty', 'thesis', 'stick'] = ...,
     ground_damping: Optional[float] = ...,
     ground_stiffness: float = ...,
     mu: float = ...,
     restitution: float = ...,
     string_stiffness: float = ...,
     min_tension: float = ...,
-    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk'] = ...,
+    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex'] = ...,
     gravity: float = ...,
     strict: bool = ...,
     convergence_check: bool = ...,
@@ -259,6 +264,9 @@ def roll(
         'spokes,inner'
     bar_density : float
         Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    scale_with_n : bool
+        Scale the tread offset with the sides: D_n = D·8/n (0.8/n for the reference D =
+        0.1), so large wheels stay prestressable
     incline : float or str
         Slope angle (e.g. `50deg`, `pi/4`, radians) (rad); radians, or a string such as
         '30deg', 'pi/8', '3pi/4'; must lie in [0, 1.5707963267948966). Default:
@@ -270,7 +278,7 @@ def roll(
     fidelity : {'rigid', 'full', 'auto'}
         Model: rigid polygon, full tensegrity, or auto (the cheapest valid one). Default:
         'auto'
-    contact : {'penalty', 'thesis'}
+    contact : {'penalty', 'thesis', 'stick'}
         Ground contact of the full model. Default: 'penalty'
     ground_damping : float, optional
         Ground damping per contact node (unset: from the restitution) (N s/m); must be
@@ -290,7 +298,7 @@ def roll(
     min_tension : float
         Smallest string tension of the full model's prestress (N); must be finite and
         positive. Default: 20.0
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk'}
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex'}
         Integrator of the full model. Default: 'rk4'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
@@ -332,6 +340,7 @@ def tipover(
     rim_radius: float = ...,
     stabilize: str = ...,
     bar_density: float = ...,
+    scale_with_n: bool = ...,
     gravity: float = ...,
     sigma: Optional[float] = ...,
     epsilon: Optional[float] = ...,
@@ -382,6 +391,9 @@ def tipover(
         'spokes,inner'
     bar_density : float
         Bar mass per length (kg/m); must be finite and positive. Default: 1.0
+    scale_with_n : bool
+        Scale the tread offset with the sides: D_n = D·8/n (0.8/n for the reference D =
+        0.1), so large wheels stay prestressable
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     sigma : float, optional
@@ -723,7 +735,7 @@ def tbar_roll(
     extended: Optional[float] = ...,
     bar_base: Literal['rim', 'chord'] = ...,
     rim: Optional[Literal['fixed', 'body']] = ...,
-    fidelity: Literal['rigid', 'full'] = ...,
+    fidelity: Literal['rigid', 'full', 'auto'] = ...,
     treads: Optional[Union[Sequence[int], str]] = ...,
     incline: Union[float, str] = ...,
     t_end: Optional[float] = ...,
@@ -767,15 +779,16 @@ def tbar_roll(
         Base of the radial bar. Default: 'rim'
     rim : {'fixed', 'body'}, optional
         Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)
-    fidelity : {'rigid', 'full'}
-        Rolling model. Default: 'rigid'
+    fidelity : {'rigid', 'full', 'auto'}
+        Rolling model (auto: rigid only where rigid and full agree within their uncertainty
+        on this scene class, else full; takes the full model's defaults). Default: 'rigid'
     treads : sequence of int or str, optional
         Numbers of treads n = π/φ, each at least 3 (default 8,12,16,24 rigid, 8 full); must
         be at least 3
     incline : float or str
         Slope angle (e.g. `50deg`, `pi/4`, radians) (rad); radians, or a string such as
         '30deg', 'pi/8', '3pi/4'; must lie in [0, 1.5707963267948966). Default:
-        0.8726646259971648
+        0.5235987755982988
     t_end : float, optional
         Simulated time (default 10 s rigid, 1 s full) (s); must be finite and positive
     dt : float
@@ -792,8 +805,8 @@ def tbar_roll(
         Normal coefficient of restitution e of an impact, in [0, 1]; must lie in [0, 1].
         Default: 0.0
     rim_density : float, optional
-        Full model: density of the rim body's bars (default bar_density) (kg/m); must be
-        finite and positive
+        Density of the rim body's bars (default: bar_density for the rigid model, 0.05 kg/m
+        for full and auto) (kg/m); must be finite and positive
     string_stiffness : float
         String stiffness of the full model (N/m); must be finite and positive. Default:
         20000.0
@@ -802,7 +815,7 @@ def tbar_roll(
         tip) (N); must be finite and positive
     ground_stiffness : float
         Penalty ground stiffness per contact node (N/m); must be finite and positive.
-        Default: 100000.0
+        Default: 1000000.0
     ground_damping : float, optional
         Ground damping per contact node (unset: from the restitution) (N s/m); must be
         finite and non-negative
