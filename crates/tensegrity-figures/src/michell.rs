@@ -565,7 +565,7 @@ pub fn fig_4_18(ctx: &Ctx) -> Result<Drawn> {
     curves.extend(ctx.sweep("fig_4_18", &cyl, "complexity", y, "cylindrical")?);
     let mut panel = Panel::new(
         "steel yield + buckling mass, w0 = 1 kN (Fig. 4.18)",
-        "complexity q",
+        "complexity q [–]",
         "mass [kg]",
     );
     for (group, pts) in curves {
@@ -698,7 +698,7 @@ pub fn mass_table_figure(
             "{} yield + buckling mass, w0 = {} N (Fig. 4.18)",
             request.material, request.load
         ),
-        "complexity q",
+        "complexity q [–]",
         "mass [kg]",
     );
     panel.series = all;

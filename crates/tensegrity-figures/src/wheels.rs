@@ -443,8 +443,8 @@ pub fn fig_3_13(ctx: &Ctx) -> Result<Drawn> {
     let curves = ctx.sweep("fig_3_13", &spec, "sigma", "normalized_friction", "epsilon")?;
     let mut panel = Panel::new(
         "friction at the tip-over threshold (Fig. 3.13)",
-        "σ = R_i/R_o",
-        "F_f/F_e",
+        "σ = R_i/R_o [–]",
+        "F_f/F_e [–]",
     );
     for (eps, pts) in curves {
         panel = panel.series(Series::new(format!("ε = {eps}"), pts));
