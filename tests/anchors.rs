@@ -12,12 +12,15 @@
 //!
 //! The double pendulum's reference integrator is checked in turn against the published tip
 //! at t = 5 s, and against the closed-form Lagrangian of two uniform rods in angle
-//! coordinates. The final states are also pinned as numbers (`REFERENCE_*`) for comparison
+//! coordinates. The final states are also pinned as numbers (`Anchor::reference_final_nodes`, the engine's) for comparison
 //! with the reference codes (MOTES, TsgFEM) run side by side.
 
+// The pinned final states (independent integrator, RK4 at a tenth of the scenes' steps) are the
+// engine's, which `bench anchors` reports against too.
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::process::Command;
 use tensegrity_core::Structure;
+use tensegrity_engine::bench::anchors::Anchor;
 
 /// The model of the reference integrator: shared nodes, bars as length constraints.
 struct Reference {
@@ -233,54 +236,6 @@ fn check_anchor(path: &str, dt: f64, steps: u64, tol: f64, reference: &[[f64; 3]
     );
 }
 
-/// Final nodes of the MOTES D-bar at t = 5 s (independent integrator, RK4 at 1e-4; the run at
-/// the scene's 1e-3 lands within 2e-6 of it).
-const REFERENCE_MOTES_DBAR: [[f64; 3]; 4] = [
-    [-1.0, 0.0, 0.0],
-    [-0.802251287978851, -1.4003197659441746, 0.0],
-    [-0.6045025759579379, -1.7562077706334087e-14, 0.0],
-    [-0.8022512879788818, 1.4003197659441213, 0.0],
-];
-/// Final nodes of the prism at t = 5 s.
-const REFERENCE_MOTES_PRISM: [[f64; 3]; 6] = [
-    [
-        0.9963498821440334,
-        -0.0070183114385637905,
-        -0.001648209363452766,
-    ],
-    [
-        -0.49209690507454135,
-        0.8663734647136662,
-        -0.001648209363428303,
-    ],
-    [
-        -0.5042529770694993,
-        -0.8593551532750594,
-        -0.001648209363423855,
-    ],
-    [0.8593551532750725, 0.5042529770695015, 2.0016482093633945],
-    [-0.8663734647136557, 0.4920969050745413, 2.0016482093634127],
-    [
-        0.007018311438577982,
-        -0.9963498821440276,
-        2.0016482093634207,
-    ],
-];
-/// Final nodes of the T-bar at t = 2 s.
-const REFERENCE_TSGFEM_TBAR: [[f64; 3]; 5] = [
-    [0.0, 0.0, 0.0],
-    [1.9975627266439149, 0.0, 0.0],
-    [0.9987813633219558, -0.0493537058458872, 0.0],
-    [0.9984600220132863, 0.45064619089384395, 0.0],
-    [0.9986165825773048, -0.5493536786931973, 0.0],
-];
-/// Final nodes of the double pendulum at t = 5 s.
-const REFERENCE_DOUBLE_PENDULUM: [[f64; 3]; 3] = [
-    [0.0, 0.0, 0.0],
-    [0.6246646016257225, -0.7808931652126023, 0.0],
-    [1.3403149308132003, -1.479351901526694, 0.0],
-];
-
 #[test]
 fn motes_dbar_matches_the_independent_integrator() {
     check_anchor(
@@ -289,7 +244,7 @@ fn motes_dbar_matches_the_independent_integrator() {
         5000,
         // string 0-2 goes slack (a kink in the force): RK4 at 1e-3 is 1.2e-6 off
         2e-6,
-        &REFERENCE_MOTES_DBAR,
+        Anchor::MotesDbar.reference_final_nodes(),
     );
 }
 
@@ -301,7 +256,7 @@ fn motes_prism_matches_the_independent_integrator() {
         5000,
         // measured 3.0e-8
         1e-7,
-        &REFERENCE_MOTES_PRISM,
+        Anchor::MotesPrism.reference_final_nodes(),
     );
 }
 
@@ -313,7 +268,7 @@ fn tsgfem_tbar_matches_the_independent_integrator() {
         2000,
         // measured 1.5e-8, with strings going slack
         5e-8,
-        &REFERENCE_TSGFEM_TBAR,
+        Anchor::TsgfemTbar.reference_final_nodes(),
     );
 }
 
@@ -325,7 +280,7 @@ fn double_pendulum_matches_the_independent_integrator() {
         5000,
         // measured 1.2e-9
         5e-9,
-        &REFERENCE_DOUBLE_PENDULUM,
+        Anchor::DoublePendulum.reference_final_nodes(),
     );
 }
 
