@@ -40,7 +40,7 @@
 
 use super::forces::GroundModel;
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{set3, vec3, Model, Workspace};
+use super::model::{vec3, BarTerms, Model, Workspace};
 use crate::error::{CoreError, DynamicsError, StepHint};
 use crate::structure::MemberId;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -167,21 +167,9 @@ fn constrain(model: &Model, ws: &mut Workspace, multipliers: &mut [f64], dv: &[f
     let Some(om) = omega.as_mut() else {
         return;
     };
-    for (w, row) in multipliers.iter_mut().zip(&model.linear_rows) {
-        *w = -row
-            .row
-            .entries
-            .iter()
-            .flatten()
-            .map(|e| e.grad.dot(&vec3(dv, e.node)))
-            .sum::<f64>();
-    }
+    model.constraint_rhs(dv, multipliers);
     om.solve_in_place(multipliers);
-    for (w, row) in multipliers.iter().zip(&model.linear_rows) {
-        for e in row.row.entries.iter().flatten() {
-            f[e.node] += e.grad * *w;
-        }
-    }
+    model.add_constraint_forces(multipliers, f);
 }
 
 impl Imex {
@@ -190,22 +178,16 @@ impl Imex {
     fn respond(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
         let out = &mut self.resp;
         out.fill(0.0);
-        let zero = Vector3::zeros();
+        let zero = [0.0; 3];
         let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
-            let (a, b) = (2 * k, 2 * k + 1);
-            let data = &model.bars[k];
-            let (aa, ab) = bar_accel(
-                data.mass,
-                data.inv_j,
-                &vec3(x, a),
-                &vec3(x, b),
-                &zero,
-                &zero,
-                &f[a],
-                &f[b],
+            let xk = &x[6 * k..6 * k + 6];
+            let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
+            t.accel(
+                &model.bars[k],
+                &f[2 * k],
+                &f[2 * k + 1],
+                &mut out[6 * k..6 * k + 6],
             );
-            set3(out, a, &aa);
-            set3(out, b, &ab);
         };
         for &c in touched {
             bar(c / 2, &self.forces, out);
@@ -396,30 +378,8 @@ impl Integrator for Imex {
     }
 }
 
-/// Accelerations of a free bar's two end nodes under the end forces `fa`, `fb`: the centre
-/// of mass r̈ = (f_a + f_b)/m and the bar vector b̈ = (½ f_d − b (½ b·f_d)/|b|²)/J̃ −
-/// b |ḃ|²/|b|² (f_d = f_b − f_a, J̃ = m/12), which keeps |b| constant to first order.
-#[allow(clippy::too_many_arguments)]
-fn bar_accel(
-    m: f64,
-    inv_j: f64,
-    xa: &Vector3<f64>,
-    xb: &Vector3<f64>,
-    va: &Vector3<f64>,
-    vb: &Vector3<f64>,
-    fa: &Vector3<f64>,
-    fb: &Vector3<f64>,
-) -> (Vector3<f64>, Vector3<f64>) {
-    let b = xb - xa;
-    let bd = vb - va;
-    let l2 = b.norm_squared();
-    let fd = fb - fa;
-    let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / l2)) * inv_j - b * (bd.norm_squared() / l2);
-    let rdd = (fa + fb) / m;
-    (rdd - 0.5 * bdd, rdd + 0.5 * bdd)
-}
-
-/// [`bar_accel`] for every bar of the model (or the listed ones), written into `dv`.
+/// The free-bar accelerations ([`BarTerms`]) of every bar of the model (or the listed ones),
+/// written into `dv`.
 fn bar_accelerations(
     model: &Model,
     x: &[f64],
@@ -429,19 +389,14 @@ fn bar_accelerations(
     only: Option<&[usize]>,
 ) {
     let mut one = |k: usize| {
-        let (a, b) = (2 * k, 2 * k + 1);
-        let (aa, ab) = bar_accel(
-            model.bars[k].mass,
-            model.bars[k].inv_j,
-            &vec3(x, a),
-            &vec3(x, b),
-            &vec3(v, a),
-            &vec3(v, b),
-            &f[a],
-            &f[b],
+        let (xk, vk) = (&x[6 * k..6 * k + 6], &v[6 * k..6 * k + 6]);
+        let t = BarTerms::of(&xk[..3], &xk[3..], &vk[..3], &vk[3..]);
+        t.accel(
+            &model.bars[k],
+            &f[2 * k],
+            &f[2 * k + 1],
+            &mut dv[6 * k..6 * k + 6],
         );
-        set3(dv, a, &aa);
-        set3(dv, b, &ab);
     };
     match only {
         Some(list) => list.iter().for_each(|&k| one(k)),

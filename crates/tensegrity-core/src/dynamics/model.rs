@@ -160,7 +160,7 @@ pub(crate) struct BarTerms {
 impl BarTerms {
     /// The terms of the bar from `xa` to `xb` with end velocities `va`, `vb`.
     #[inline]
-    fn of(xa: &[f64], xb: &[f64], va: &[f64], vb: &[f64]) -> Self {
+    pub(crate) fn of(xa: &[f64], xb: &[f64], va: &[f64], vb: &[f64]) -> Self {
         let b = Vector3::new(xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]);
         let bd = Vector3::new(vb[0] - va[0], vb[1] - va[1], vb[2] - va[2]);
         let l2 = b.norm_squared();
@@ -175,7 +175,13 @@ impl BarTerms {
     /// J⁻¹ = 12/m: b̈ = (½f_d − b (½ bᵀf_d / l²)) J⁻¹ − b ‖ḃ‖²/l² (f_d = f_b − f_a),
     /// r̈ = (f_a + f_b)/m, n̈_a = r̈ − ½b̈, n̈_b = r̈ + ½b̈ (module docs).
     #[inline]
-    fn accel(&self, bar: &BarData, fa: &Vector3<f64>, fb: &Vector3<f64>, out: &mut [f64]) {
+    pub(crate) fn accel(
+        &self,
+        bar: &BarData,
+        fa: &Vector3<f64>,
+        fb: &Vector3<f64>,
+        out: &mut [f64],
+    ) {
         let b = &self.b;
         let fd = fb - fa;
         let bdd = (0.5 * fd - b * (0.5 * b.dot(&fd) / self.l2)) * bar.inv_j - self.centripetal;
@@ -733,7 +739,7 @@ impl Model {
     }
 
     /// The Ω right-hand side −G a of the unconstrained accelerations `dv`.
-    fn constraint_rhs(&self, dv: &[f64], out: &mut [f64]) {
+    pub(crate) fn constraint_rhs(&self, dv: &[f64], out: &mut [f64]) {
         if let Some(rows) = &self.axis_rows {
             for (o, row) in out.iter_mut().zip(rows) {
                 *o = row.neg_dot(dv);
@@ -752,7 +758,7 @@ impl Model {
     }
 
     /// Adds the constraint forces Gᵀ ω to `f`.
-    fn add_constraint_forces(&self, omega: &[f64], f: &mut [Vector3<f64>]) {
+    pub(crate) fn add_constraint_forces(&self, omega: &[f64], f: &mut [Vector3<f64>]) {
         if let Some(axis) = &self.axis_entries {
             for &(r, node, d, s) in axis {
                 f[node][d] += s * omega[r];
