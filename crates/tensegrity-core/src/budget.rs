@@ -404,7 +404,8 @@ pub fn table(
 
 /// Estimate of a [`Simulation`](crate::dynamics::Simulation) run from its settings and model
 /// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
-/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4,
+/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4 (with
+/// flight steps at most that),
 /// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
 /// memory unless `streamed`, and written at `bytes_per_number` when `written`.
 pub fn simulation(
@@ -425,7 +426,8 @@ pub fn simulation(
     };
     let steps = (s.t_end / step).ceil();
     let rhs_per_step = match s.integrator {
-        K::Rk4 => 4.0,
+        // flight steps: at most every step at dt (a run that never leaves the ground)
+        K::Rk4 | K::Rk4Flight => 4.0,
         K::Rattle => 2.0,
         K::Rk45 => 6.0,
         K::Sdirk => 12.0,

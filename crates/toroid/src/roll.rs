@@ -86,7 +86,7 @@ impl Default for RollRequest {
 }
 
 /// The integrators by name.
-const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk", "imex"];
+const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk", "imex", "rk4-flight"];
 
 impl Request for RollRequest {
     const NAME: &'static str = "roll";

@@ -18,6 +18,7 @@
 //! driver and the [`Workspace`]; see [`IntegratorStats`]. The implicit, L-stable [`Sdirk`]
 //! fits the same trait: its Newton failures become rejected steps with a smaller proposal.
 
+use super::flight::Flight;
 use super::imex::Imex;
 use super::model::{Model, Workspace};
 use super::rattle::Rattle;
@@ -45,6 +46,10 @@ pub enum IntegratorKind {
     /// Fixed-step IMEX splitting: RK4 for the smooth forces, a linearly implicit ROS2 step
     /// for the penalty ground contact ([`Imex`]): stiff contact at the step of the motion.
     Imex,
+    /// RK4 at `dt` while a ground contact node touches or approaches the ground, and at
+    /// [`FLIGHT_RATIO`](super::flight::FLIGHT_RATIO)·dt in flight ([`Flight`]).
+    #[serde(rename = "rk4-flight")]
+    Rk4Flight,
 }
 
 impl IntegratorKind {
@@ -72,6 +77,7 @@ impl IntegratorKind {
             Self::Rattle => Box::new(Rattle::new(model)?),
             Self::Sdirk => Box::new(Sdirk::new(model, rtol, atol)?),
             Self::Imex => Box::new(Imex::new(model)),
+            Self::Rk4Flight => Box::new(Flight::new(model, Box::new(Rk4::new(n)), self)),
         })
     }
 }
@@ -84,13 +90,15 @@ impl fmt::Display for IntegratorKind {
             IntegratorKind::Rattle => "rattle",
             IntegratorKind::Sdirk => "sdirk",
             IntegratorKind::Imex => "imex",
+            IntegratorKind::Rk4Flight => "rk4-flight",
         })
     }
 }
 
 impl FromStr for IntegratorKind {
     type Err = String;
-    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk` or `imex` (case-insensitive).
+    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk`, `imex` or `rk4-flight`
+    /// (case-insensitive).
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
             "rk4" => Ok(Self::Rk4),
@@ -98,8 +106,9 @@ impl FromStr for IntegratorKind {
             "rattle" => Ok(Self::Rattle),
             "sdirk" => Ok(Self::Sdirk),
             "imex" => Ok(Self::Imex),
+            "rk4-flight" | "rk4flight" => Ok(Self::Rk4Flight),
             other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk or imex)"
+                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk, imex or rk4-flight)"
             )),
         }
     }
@@ -192,6 +201,12 @@ pub trait Integrator: fmt::Debug {
 
     /// Forgets cached stages (the state was changed outside the integrator).
     fn invalidate(&mut self) {}
+
+    /// The largest step the driver lets an adaptive method take in a run of step `dt`
+    /// (`dt` itself, except for methods that take multiples of it, e.g. [`Flight`]).
+    fn max_step(&self, dt: f64) -> f64 {
+        dt
+    }
 }
 
 /// The last stage of the standard starting-step heuristic (Hairer, Nørsett & Wanner, §II.4):

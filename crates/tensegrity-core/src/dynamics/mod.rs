@@ -53,6 +53,7 @@
 pub mod convergence;
 pub mod drift;
 pub mod events;
+pub mod flight;
 pub mod forces;
 pub mod imex;
 pub mod integrator;
@@ -74,6 +75,7 @@ pub mod work_precision;
 pub use convergence::{Convergence, QuantityConvergence};
 pub use drift::{DriftLimits, DriftQuantity, DriftWarning};
 pub use events::{Event, EventFn, EventHit, StateView};
+pub use flight::Flight;
 pub use forces::{Ground, GroundModel};
 pub use imex::Imex;
 pub use integrator::{Integrator, IntegratorKind, IntegratorStats, StepOutcome};

@@ -108,6 +108,8 @@ pub struct Recorder {
     next: usize,
     grid: Option<Grid>,
     quantities: Quantities,
+    /// Time of the last sample taken.
+    last: Option<f64>,
     /// The samples taken so far (handed out and cleared by a streamed run).
     pub samples: Vec<Sample>,
 }
@@ -124,6 +126,7 @@ impl Recorder {
             next: 0,
             grid: None,
             quantities,
+            last: None,
         }
     }
 
@@ -176,6 +179,36 @@ impl Recorder {
         model: &Model,
         ws: &mut Workspace,
     ) -> Result<(), CoreError> {
+        self.take(t, y, model, ws)?;
+        let due = self.next_time();
+        self.advance(due);
+        Ok(())
+    }
+
+    /// Records the state `y` at time `t` unless the last sample was taken at `t`, without
+    /// moving past any output time (the samples of
+    /// [`SimulationSettings::sample_every_step`](super::SimulationSettings::sample_every_step)).
+    pub fn record_step(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        model: &Model,
+        ws: &mut Workspace,
+    ) -> Result<(), CoreError> {
+        if self.last == Some(t) {
+            return Ok(());
+        }
+        self.take(t, y, model, ws)
+    }
+
+    /// Takes one sample of `y` at `t`.
+    fn take(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        model: &Model,
+        ws: &mut Workspace,
+    ) -> Result<(), CoreError> {
         let q = self.quantities;
         let evals = ws.rhs_evals;
         let sample = Sample {
@@ -192,8 +225,7 @@ impl Recorder {
         };
         ws.rhs_evals = evals; // diagnostics do not count as integration work
         self.samples.push(sample);
-        let due = self.next_time();
-        self.advance(due);
+        self.last = Some(t);
         Ok(())
     }
 }

@@ -46,6 +46,9 @@ pub struct SimulationSettings {
     pub output_interval: Option<f64>,
     /// What the recorder samples.
     pub quantities: Quantities,
+    /// Also sample the state at the end of every accepted step (for monitors that integrate
+    /// along the run, under a method whose steps vary, e.g. [`IntegratorKind::Rk4Flight`]).
+    pub sample_every_step: bool,
     /// Project RK4/RK45 states back onto bar lengths and N P = D after every step.
     pub project: bool,
     /// Blow-up distance (m); `None` = [`Model::default_blowup_limit`].
@@ -67,6 +70,7 @@ impl Default for SimulationSettings {
             output_times: Vec::new(),
             output_interval: None,
             quantities: Quantities::default(),
+            sample_every_step: false,
             project: false,
             blowup_distance: None,
             drift_limits: DriftLimits::default(),
@@ -203,11 +207,12 @@ impl Simulation {
         let mut integrator = s.integrator.build(&self.model, s.rtol, s.atol)?;
         let mut driver = Driver::new(self, integrator.as_ref(), sink)?;
         let start = Instant::now();
-        let h0 = integrator.start(&self.model, &mut driver.ws, 0.0, &driver.y, s.dt)?;
+        let h_max = integrator.max_step(s.dt);
+        let h0 = integrator.start(&self.model, &mut driver.ws, 0.0, &driver.y, h_max)?;
         let mut control = if integrator.is_adaptive() {
             StepControl::Adaptive {
                 h: h0,
-                h_max: s.dt,
+                h_max,
                 h_min: s.h_min,
             }
         } else {
@@ -227,9 +232,10 @@ impl Simulation {
         let s = &self.settings;
         positive("t_end", s.t_end)?;
         match s.integrator {
-            IntegratorKind::Rk4 | IntegratorKind::Rattle | IntegratorKind::Imex => {
-                positive("dt", s.dt)?
-            }
+            IntegratorKind::Rk4
+            | IntegratorKind::Rattle
+            | IntegratorKind::Imex
+            | IntegratorKind::Rk4Flight => positive("dt", s.dt)?,
             IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
                 positive("rtol", s.rtol)?;
                 positive("atol", s.atol)?;
@@ -523,6 +529,13 @@ impl<'a> Driver<'a> {
         self.t = t_new;
         if !dense {
             self.record_at_step_end()?;
+        }
+        if self.sim.settings.sample_every_step {
+            let d0 = Instant::now();
+            self.rec
+                .record_step(self.t, &self.y, &self.sim.model, &mut self.ws)?;
+            self.diag_time += d0.elapsed().as_secs_f64();
+            self.drain()?;
         }
         Ok(false)
     }

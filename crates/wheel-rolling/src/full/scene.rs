@@ -30,7 +30,9 @@ use crate::error::{Result, RollingError};
 use crate::observer::{interrupted_warning, Observer};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{Ground, GroundModel, Quantities, Simulation, SimulationSettings};
+use tensegrity_core::dynamics::{
+    Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
+};
 use tensegrity_core::{CoreError, Structure};
 
 /// A prestressed wheel in its starting pose, with what the monitor needs of it.
@@ -178,6 +180,7 @@ pub(super) fn run(
     let (structure, ground) = scene_model(model, scene)?;
     let d = SimulationSettings::default();
     let adaptive = model.integrator.is_adaptive();
+    let flight = model.integrator == IntegratorKind::Rk4Flight;
     let settings = SimulationSettings {
         t_end,
         integrator: model.integrator,
@@ -192,8 +195,15 @@ pub(super) fn run(
         } else {
             d.atol
         },
-        // every step is seen by the monitor (energy budget, validity, impacts)
-        output_interval: Some(model.dt.min(model.output_dt)),
+        // every step is seen by the monitor (energy budget, validity, impacts): the
+        // fixed-step methods land on every point of the dt grid, flight steps are sampled
+        // where they end
+        output_interval: Some(if flight {
+            model.output_dt
+        } else {
+            model.dt.min(model.output_dt)
+        }),
+        sample_every_step: flight,
         quantities: Quantities {
             nodes: true,
             velocities: true,
