@@ -232,7 +232,7 @@ def roll(
     restitution: float = ...,
     string_stiffness: float = ...,
     min_tension: float = ...,
-    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex'] = ...,
+    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'rk4-flight'] = ...,
     gravity: float = ...,
     strict: bool = ...,
     convergence_check: bool = ...,
@@ -298,7 +298,7 @@ def roll(
     min_tension : float
         Smallest string tension of the full model's prestress (N); must be finite and
         positive. Default: 20.0
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex'}
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'rk4-flight'}
         Integrator of the full model. Default: 'rk4'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
