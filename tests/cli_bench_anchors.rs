@@ -138,16 +138,28 @@ fn the_toroids_instructions_grow_linearly() {
     let out = run(&["bench", "anchors", "--quick", "--repeats", "1", "--json"]);
     assert_ok(&out);
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert!(v["instructions_note"].is_null(), "{}", v["instructions_note"]);
+    assert!(
+        v["instructions_note"].is_null(),
+        "{}",
+        v["instructions_note"]
+    );
     // every anchor's step costs instructions, fewer than a whole process start
     for a in v["anchors"].as_array().unwrap() {
         let i = a["instructions_per_step"].as_f64().unwrap();
         assert!(i > 1e3 && i < 1e7, "{}: {i}", a["anchor"]);
     }
     for s in v["series"].as_array().unwrap() {
-        assert!(s["instructions_note"].is_null(), "{}", s["instructions_note"]);
+        assert!(
+            s["instructions_note"].is_null(),
+            "{}",
+            s["instructions_note"]
+        );
         for p in s["points"].as_array().unwrap() {
-            assert!(p["instructions"].as_f64().unwrap() > 0.0, "{}: {p}", s["series"]);
+            assert!(
+                p["instructions"].as_f64().unwrap() > 0.0,
+                "{}: {p}",
+                s["series"]
+            );
         }
     }
     // the toroid by its cyclic path: linear in the sides

@@ -91,7 +91,11 @@ pub fn series_run(args: &SeriesRunArgs) -> Result<()> {
         .find(|k| k.name() == args.series)
         .ok_or_else(|| {
             let names: Vec<&str> = SeriesKind::ALL.iter().map(|k| k.name()).collect();
-            anyhow!("unknown series `{}` (one of {})", args.series, names.join(", "))
+            anyhow!(
+                "unknown series `{}` (one of {})",
+                args.series,
+                names.join(", ")
+            )
         })?;
     run_counted(kind, args.size, args.reps)?;
     Ok(())
@@ -195,7 +199,10 @@ impl Callgrind {
         let _ = std::fs::remove_file(&file);
         let out = out?;
         if !out.status.success() {
-            return Err(format!("the callgrind run of {what} failed ({})", out.status));
+            return Err(format!(
+                "the callgrind run of {what} failed ({})",
+                out.status
+            ));
         }
         callgrind_total(&String::from_utf8_lossy(&out.stderr))
             .ok_or_else(|| "no instruction total in callgrind's output".to_string())
@@ -211,7 +218,13 @@ impl InstructionCounter for Callgrind {
     }
 
     fn count_series(&self, kind: SeriesKind, size: usize, reps: u64) -> Result<u64, String> {
-        let args = ["bench", "series-run", kind.name(), &size.to_string(), "--reps"];
+        let args = [
+            "bench",
+            "series-run",
+            kind.name(),
+            &size.to_string(),
+            "--reps",
+        ];
         let mut args: Vec<String> = args.map(String::from).to_vec();
         args.push(reps.to_string());
         self.total(&args, &format!("{} {size}", kind.name()))

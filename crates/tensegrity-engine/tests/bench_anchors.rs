@@ -45,6 +45,10 @@ impl InstructionCounter for Broken {
     fn count(&self, _: Anchor, _: u64) -> Result<u64, String> {
         Err("valgrind: not found".into())
     }
+
+    fn count_series(&self, _: SeriesKind, _: usize, _: u64) -> Result<u64, String> {
+        Err("valgrind: not found".into())
+    }
 }
 
 fn quick(instructions: bool) -> AnchorsRequest {
@@ -122,6 +126,9 @@ fn the_report_holds_every_anchor_and_series_with_the_reference_final_states() {
     assert_eq!(members(0), [100, 200, 400].map(|n| Some(19 * n + 1)));
     assert_eq!(members(1), [5, 10, 20].map(|n| Some(9 * n + 3)));
     assert!(r.series[3].points.iter().all(|p| p.steps == Some(20)));
+    // the Michell truss reports its members too: more with each complexity
+    let michell = members(2);
+    assert!(michell.iter().all(Option::is_some) && michell.windows(2).all(|w| w[0] < w[1]));
     // the instructions: start-up and setup removed, the call's (per step for rolling) left,
     // and the power law fitted to them exactly
     for (s, p) in r.series.iter().zip(EXPONENTS) {
@@ -155,7 +162,10 @@ fn the_report_holds_every_anchor_and_series_with_the_reference_final_states() {
     let exponent = r.series[0].instructions_fit.map(|f| f.exponent);
     assert_eq!(rows[4].instructions_exponent, exponent);
     let last = rows.last().unwrap();
-    assert_eq!(last.instructions_per_step, Some((500.0 * 8f64.powf(1.5)).round()));
+    assert_eq!(
+        last.instructions_per_step,
+        Some((500.0 * 8f64.powf(1.5)).round())
+    );
 }
 
 #[test]
@@ -186,7 +196,10 @@ fn without_a_counter_the_report_says_why() {
     // a counter of the anchors alone: the anchors counted, the series say why not
     let r = bench_anchors(&quick(true), Some(&AnchorsOnly)).unwrap();
     assert!(r.instructions_note.is_none());
-    assert!(r.anchors.iter().all(|a| a.instructions_per_step == Some(10.0)));
+    assert!(r
+        .anchors
+        .iter()
+        .all(|a| a.instructions_per_step == Some(10.0)));
     assert!(r.series.iter().all(|s| s.instructions_note.as_deref()
         == Some("this instruction counter counts the anchors only")));
 }

@@ -9,7 +9,11 @@
 //! | `michell` | complexity q | the 3-D Michell truss, δ = 0.25, β = π/6, φ = π/q, global solve ([`michell3d::MichellRequest::run`]) | the whole call |
 //! | `rolling` | sides n | the toroid rolled down 50° with the full model (penalty contact, RK4 at 0.1 ms) for a few steps ([`toroid::roll`]) | per step (the integration alone) |
 //!
-//! The cost exponent of each series is fitted on log–log ([`super::fit`]).
+//! The cost exponent of each series is fitted on log–log ([`super::fit`]); with an
+//! instruction counter (callgrind), the instructions of the same call at every size and their
+//! own exponent, which does not depend on the machine's load ([`super::count`]). The timed
+//! call's input (request, tower) is built before the clock starts ([`run_counted`] is the
+//! same input and call, for the counter).
 
 use super::fit::{power_law, PowerLaw};
 use super::BenchError;
@@ -91,7 +95,7 @@ impl SeriesKind {
 pub struct SeriesPoint {
     /// The size (the series' parameter).
     pub size: usize,
-    /// Members of the structure, where the call reports them.
+    /// Members of the structure, where the call reports them (toroid, towers, Michell).
     pub members: Option<usize>,
     /// Best time of the call over the repeats (s).
     pub best_s: f64,
@@ -166,19 +170,20 @@ enum Prepared {
 /// The series' input at `size` (rolling: `steps` RK4 steps of its step).
 fn prepare(kind: SeriesKind, size: usize, steps: u64) -> Result<Prepared, BenchError> {
     Ok(match kind {
-        SeriesKind::Toroid => {
-            Prepared::Toroid(toroid::ToroidRequest::from_values([("sides", json!(size))])?)
-        }
+        SeriesKind::Toroid => Prepared::Toroid(toroid::ToroidRequest::from_values([(
+            "sides",
+            json!(size),
+        )])?),
         SeriesKind::Towers => Prepared::Towers(Box::new(test_models::snelson_tower_free(size)?)),
-        SeriesKind::Michell => Prepared::Michell(Box::new(michell3d::MichellRequest::from_values(
-            [
+        SeriesKind::Michell => {
+            Prepared::Michell(Box::new(michell3d::MichellRequest::from_values([
                 ("complexity", json!(size)),
                 ("cylindrical", json!(0.25)),
                 ("beta", json!(std::f64::consts::PI / 6.0)),
                 ("phi", json!(std::f64::consts::PI / size as f64)),
                 ("method", json!("global")),
-            ],
-        )?)),
+            ])?))
+        }
         SeriesKind::Rolling => {
             let mut request = toroid::RollRequest::from_values([
                 ("sides", json!(size)),
@@ -209,10 +214,7 @@ fn call(prepared: &Prepared) -> Result<Called, BenchError> {
             statics_report(tower, &StaticsRequest::default())?;
             (Some(tower.n_members()), None)
         }
-        Prepared::Michell(request) => {
-            request.run()?;
-            (None, None)
-        }
+        Prepared::Michell(request) => (Some(request.run()?.analysis.report.members.len()), None),
         Prepared::Rolling(request) => (None, Some(toroid::roll(request)?.wall_time_s)),
     };
     Ok(Called {

@@ -12,8 +12,8 @@
 //! ([`super::count`]).
 
 use super::anchors::{Anchor, ReferenceTime, MEASURED_ON};
-pub use super::count::{CountedRun, InstructionCounter};
 use super::count;
+pub use super::count::{CountedRun, InstructionCounter};
 use super::series::{self, Series, SeriesKind};
 use super::BenchError;
 use serde::{Deserialize, Serialize};
@@ -282,8 +282,12 @@ fn count_all(
         .collect();
     let mut counts = counter.count_batch(&runs).into_iter();
     for (a, k) in anchors.iter_mut().zip(ks) {
-        let whole = counts.next().ok_or("the counter returned too few counts")??;
-        let one = counts.next().ok_or("the counter returned too few counts")??;
+        let whole = counts
+            .next()
+            .ok_or("the counter returned too few counts")??;
+        let one = counts
+            .next()
+            .ok_or("the counter returned too few counts")??;
         a.instructions_per_step = Some(whole.saturating_sub(one) as f64 / (k - 1) as f64);
     }
     Ok(())
