@@ -34,6 +34,10 @@ pub enum BenchCommand {
     /// One anchor run, nothing printed (what `bench anchors` counts under callgrind).
     #[command(hide = true)]
     AnchorRun(super::bench_anchors::AnchorRunArgs),
+    /// One scaling series point's setup and calls, nothing printed (what `bench anchors`
+    /// counts under callgrind).
+    #[command(hide = true)]
+    SeriesRun(super::bench_anchors::SeriesRunArgs),
 }
 
 /// Arguments of `tensegrity bench work-precision`: the request's flags
@@ -59,6 +63,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchCommand::WorkPrecision(a) => work_precision(a),
         BenchCommand::Anchors(a) => super::bench_anchors::anchors(a),
         BenchCommand::AnchorRun(a) => super::bench_anchors::anchor_run(a),
+        BenchCommand::SeriesRun(a) => super::bench_anchors::series_run(a),
     }
 }
 

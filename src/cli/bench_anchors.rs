@@ -1,16 +1,21 @@
 //! `tensegrity bench anchors [--quick] [--repeats K] [--no-instructions] [--json] [--csv FILE]`:
 //! the anchor scenes against the reference codes' times and the scaling series with their
-//! cost exponents (the engine's [`bench_anchors`]); the instructions per step are counted by
-//! running this binary's hidden `bench anchor-run NAME --steps K` under callgrind when
-//! valgrind is installed ([`Callgrind`]).
+//! cost exponents (the engine's [`bench_anchors`]); the instructions (per anchor step, per
+//! series point) are counted by running this binary's hidden `bench anchor-run NAME --steps K`
+//! and `bench series-run SERIES SIZE --reps R` under callgrind when valgrind is installed
+//! ([`Callgrind`], several runs side by side).
 
 use super::output;
 use super::request_args::RequestArgs;
 use anyhow::{anyhow, Result};
 use std::path::PathBuf;
 use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use tensegrity_engine::bench::series::{run_counted, Series, SeriesKind};
 use tensegrity_engine::bench::{
-    bench_anchors, callgrind_total, Anchor, AnchorsReport, AnchorsRequest, InstructionCounter,
+    bench_anchors, callgrind_total, Anchor, AnchorsReport, AnchorsRequest, CountedRun,
+    InstructionCounter,
 };
 use tensegrity_io::sink::CsvSink;
 
@@ -36,6 +41,19 @@ pub struct AnchorRunArgs {
     /// Steps to run (default: the scene's).
     #[arg(long)]
     steps: Option<u64>,
+}
+
+/// Arguments of the hidden `tensegrity bench series-run`: one series point's input, then
+/// `--reps` calls (steps for rolling), nothing printed (what callgrind counts).
+#[derive(clap::Args, Debug)]
+pub struct SeriesRunArgs {
+    /// The series (toroid, towers, michell, rolling).
+    series: String,
+    /// The size.
+    size: usize,
+    /// Calls after the setup (0: the setup alone); steps for the rolling series.
+    #[arg(long, default_value_t = 1)]
+    reps: u64,
 }
 
 /// Runs `tensegrity bench anchors`.
@@ -66,6 +84,23 @@ pub fn anchor_run(args: &AnchorRunArgs) -> Result<()> {
     Ok(())
 }
 
+/// Runs the hidden `tensegrity bench series-run`.
+pub fn series_run(args: &SeriesRunArgs) -> Result<()> {
+    let kind = SeriesKind::ALL
+        .into_iter()
+        .find(|k| k.name() == args.series)
+        .ok_or_else(|| {
+            let names: Vec<&str> = SeriesKind::ALL.iter().map(|k| k.name()).collect();
+            anyhow!(
+                "unknown series `{}` (one of {})",
+                args.series,
+                names.join(", ")
+            )
+        })?;
+    run_counted(kind, args.size, args.reps)?;
+    Ok(())
+}
+
 fn print(r: &AnchorsReport) {
     println!("anchor                steps   best ms  µs/step  instr/step  final error m       reference       ratio");
     for a in &r.anchors {
@@ -91,21 +126,41 @@ fn print(r: &AnchorsReport) {
         println!("instructions not counted: {note}");
     }
     for s in &r.series {
-        let points: Vec<String> = s
-            .points
-            .iter()
-            .map(|p| match p.per_step_s {
-                Some(t) => format!("{} {:.2} µs/step", p.size, t * 1e6),
-                None => format!("{} {:.3} ms", p.size, p.best_s * 1e3),
-            })
-            .collect();
-        let fit = s.fit.map_or("-".into(), |f| format!("{:.2}", f.exponent));
-        println!(
-            "{} ({}): {}; exponent {fit}",
-            s.series.name(),
-            s.parameter,
-            points.join(", ")
-        );
+        print_series(s);
+    }
+}
+
+fn print_series(s: &Series) {
+    let points: Vec<String> = s
+        .points
+        .iter()
+        .map(|p| match p.per_step_s {
+            Some(t) => format!("{} {:.2} µs/step", p.size, t * 1e6),
+            None => format!("{} {:.3} ms", p.size, p.best_s * 1e3),
+        })
+        .collect();
+    let fit = s.fit.map_or("-".into(), |f| format!("{:.2}", f.exponent));
+    println!(
+        "{} ({}): {}; exponent {fit}",
+        s.series.name(),
+        s.parameter,
+        points.join(", ")
+    );
+    let counts: Vec<String> = s
+        .points
+        .iter()
+        .filter_map(|p| match p.instructions_per_step {
+            Some(i) => Some(format!("{} {i:.0}/step", p.size)),
+            None => Some(format!("{} {:.0}", p.size, p.instructions?)),
+        })
+        .collect();
+    match (&s.instructions_note, s.instructions_fit) {
+        (Some(note), _) => println!("  instructions: - ({note})"),
+        (None, fit) => println!(
+            "  instructions: {}; exponent {}",
+            counts.join(", "),
+            fit.map_or("-".into(), |f| format!("{:.2}", f.exponent))
+        ),
     }
 }
 
@@ -125,27 +180,78 @@ impl Callgrind {
     }
 }
 
-impl InstructionCounter for Callgrind {
-    fn count(&self, anchor: Anchor, steps: u64) -> Result<u64, String> {
-        let file =
-            std::env::temp_dir().join(format!("tensegrity-callgrind-{}.out", std::process::id()));
+impl Callgrind {
+    /// Instructions of this binary run with `args` under callgrind.
+    fn total(&self, args: &[String], what: &str) -> Result<u64, String> {
+        static RUN: AtomicUsize = AtomicUsize::new(0);
+        let file = std::env::temp_dir().join(format!(
+            "tensegrity-callgrind-{}-{}.out",
+            std::process::id(),
+            RUN.fetch_add(1, Ordering::Relaxed)
+        ));
         let out = Command::new("valgrind")
             .arg("--tool=callgrind")
             .arg(format!("--callgrind-out-file={}", file.display()))
             .arg(&self.exe)
-            .args(["bench", "anchor-run", anchor.name(), "--steps"])
-            .arg(steps.to_string())
+            .args(args)
             .output()
             .map_err(|e| format!("valgrind: {e}"));
         let _ = std::fs::remove_file(&file);
         let out = out?;
         if !out.status.success() {
             return Err(format!(
-                "the callgrind run of {anchor} failed ({})",
+                "the callgrind run of {what} failed ({})",
                 out.status
             ));
         }
         callgrind_total(&String::from_utf8_lossy(&out.stderr))
             .ok_or_else(|| "no instruction total in callgrind's output".to_string())
+    }
+}
+
+impl InstructionCounter for Callgrind {
+    fn count(&self, anchor: Anchor, steps: u64) -> Result<u64, String> {
+        let args = ["bench", "anchor-run", anchor.name(), "--steps"];
+        let mut args: Vec<String> = args.map(String::from).to_vec();
+        args.push(steps.to_string());
+        self.total(&args, anchor.name())
+    }
+
+    fn count_series(&self, kind: SeriesKind, size: usize, reps: u64) -> Result<u64, String> {
+        let args = [
+            "bench",
+            "series-run",
+            kind.name(),
+            &size.to_string(),
+            "--reps",
+        ];
+        let mut args: Vec<String> = args.map(String::from).to_vec();
+        args.push(reps.to_string());
+        self.total(&args, &format!("{} {size}", kind.name()))
+    }
+
+    /// The runs side by side, one per available core (each run is one thread).
+    fn count_batch(&self, runs: &[CountedRun]) -> Vec<Result<u64, String>> {
+        let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let next = AtomicUsize::new(0);
+        let results: Vec<Mutex<Option<Result<u64, String>>>> =
+            runs.iter().map(|_| Mutex::new(None)).collect();
+        std::thread::scope(|scope| {
+            for _ in 0..workers.min(runs.len()) {
+                scope.spawn(|| loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(&run) = runs.get(i) else { break };
+                    let count = self.count_run(run);
+                    if let Ok(mut slot) = results[i].lock() {
+                        *slot = Some(count);
+                    }
+                });
+            }
+        });
+        let lost = || Err("a callgrind run was lost".to_string());
+        results
+            .into_iter()
+            .map(|m| m.into_inner().ok().flatten().unwrap_or_else(lost))
+            .collect()
     }
 }

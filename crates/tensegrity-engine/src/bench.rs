@@ -8,9 +8,11 @@
 //! `wall_time_s` is a measured time, different from run to run.
 //!
 //! `bench anchors` ([`suite`]): the anchor scenes ([`anchors`]) against the reference codes'
-//! times, the scaling series ([`series`]) and their cost exponents ([`fit`]).
+//! times, the scaling series ([`series`]) and their cost exponents ([`fit`]), in time and in
+//! instructions ([`count`]).
 
 pub mod anchors;
+pub mod count;
 pub mod fit;
 pub mod series;
 pub mod suite;
@@ -22,7 +24,8 @@ use tensegrity_core::request::{Categorized, Category, InvalidParameter, Param, R
 use tensegrity_core::CoreError;
 
 pub use anchors::Anchor;
-pub use suite::{bench_anchors, AnchorsReport, AnchorsRequest, InstructionCounter};
+pub use count::{CountedRun, InstructionCounter};
+pub use suite::{bench_anchors, AnchorsReport, AnchorsRequest};
 
 /// Why `bench anchors` gave no report: the first failed measurement's error.
 #[derive(Debug, thiserror::Error)]

@@ -4,17 +4,37 @@
 //! quick size set and one repeat; no timing is asserted.
 
 use tensegrity_engine::bench::fit::power_law;
-use tensegrity_engine::bench::series::SeriesKind;
+use tensegrity_engine::bench::series::{run_counted, SeriesKind};
 use tensegrity_engine::bench::{bench_anchors, Anchor, AnchorsRequest, InstructionCounter};
 
 /// A counter whose whole-process count is a fixed start-up cost plus a known cost per step,
-/// different per anchor.
+/// different per anchor; for a series point, start-up + a setup growing with the size +
+/// `reps` calls of cost 500 · size^p, p = 1, 2, 3, 1.5 for toroid, towers, Michell, rolling
+/// (per step).
 struct Linear;
+
+/// The exponents of [`Linear`]'s series.
+const EXPONENTS: [f64; 4] = [1.0, 2.0, 3.0, 1.5];
 
 impl InstructionCounter for Linear {
     fn count(&self, anchor: Anchor, steps: u64) -> Result<u64, String> {
         let per_step = 1000 * (1 + Anchor::ALL.iter().position(|&a| a == anchor).unwrap() as u64);
         Ok(3_000_000 + per_step * steps)
+    }
+
+    fn count_series(&self, kind: SeriesKind, size: usize, reps: u64) -> Result<u64, String> {
+        let p = EXPONENTS[SeriesKind::ALL.iter().position(|&k| k == kind).unwrap()];
+        let call = (500.0 * (size as f64).powf(p)).round() as u64;
+        Ok(3_000_000 + 70_000 * size as u64 + reps * call)
+    }
+}
+
+/// A counter that counts the anchors only (the trait's default for the series).
+struct AnchorsOnly;
+
+impl InstructionCounter for AnchorsOnly {
+    fn count(&self, _: Anchor, steps: u64) -> Result<u64, String> {
+        Ok(1_000_000 + 10 * steps)
     }
 }
 
@@ -23,6 +43,10 @@ struct Broken;
 
 impl InstructionCounter for Broken {
     fn count(&self, _: Anchor, _: u64) -> Result<u64, String> {
+        Err("valgrind: not found".into())
+    }
+
+    fn count_series(&self, _: SeriesKind, _: usize, _: u64) -> Result<u64, String> {
         Err("valgrind: not found".into())
     }
 }
@@ -99,27 +123,97 @@ fn the_report_holds_every_anchor_and_series_with_the_reference_final_states() {
     // 9N + 3 for the towers
     let members =
         |k: usize| -> Vec<Option<usize>> { r.series[k].points.iter().map(|p| p.members).collect() };
-    assert_eq!(members(0), [8, 16, 32].map(|n| Some(19 * n + 1)));
+    assert_eq!(members(0), [100, 200, 400].map(|n| Some(19 * n + 1)));
     assert_eq!(members(1), [5, 10, 20].map(|n| Some(9 * n + 3)));
     assert!(r.series[3].points.iter().all(|p| p.steps == Some(20)));
+    // the Michell truss reports its members too: more with each complexity
+    let michell = members(2);
+    assert!(michell.iter().all(Option::is_some) && michell.windows(2).all(|w| w[0] < w[1]));
+    // the instructions: start-up and setup removed, the call's (per step for rolling) left,
+    // and the power law fitted to them exactly
+    for (s, p) in r.series.iter().zip(EXPONENTS) {
+        assert!(s.instructions_note.is_none(), "{:?}", s.instructions_note);
+        for point in &s.points {
+            let call = (500.0 * (point.size as f64).powf(p)).round();
+            match point.steps {
+                Some(k) => {
+                    assert_eq!(point.instructions_per_step, Some(call));
+                    assert_eq!(point.instructions, Some(call * k as f64));
+                }
+                None => {
+                    assert_eq!(point.instructions, Some(call));
+                    assert!(point.instructions_per_step.is_none());
+                }
+            }
+        }
+        let fit = s.instructions_fit.unwrap();
+        assert!((fit.exponent - p).abs() < 1e-3, "{:?}: {fit:?}", s.series);
+    }
 
     let rows = r.rows();
     assert_eq!(rows.len(), 4 + 3 + 3 + 3 + 2);
     assert_eq!(rows[0].name, "motes_dbar");
     assert_eq!(rows[0].reference_s, Some(54.3));
+    assert_eq!(rows[0].instructions_per_step, Some(1000.0));
+    assert!(rows[0].instructions.is_none() && rows[0].instructions_exponent.is_none());
     assert_eq!(rows[4].group, "series");
     assert_eq!(rows[4].exponent, r.series[0].fit.map(|f| f.exponent));
+    assert_eq!(rows[4].instructions, r.series[0].points[0].instructions);
+    let exponent = r.series[0].instructions_fit.map(|f| f.exponent);
+    assert_eq!(rows[4].instructions_exponent, exponent);
+    let last = rows.last().unwrap();
+    assert_eq!(
+        last.instructions_per_step,
+        Some((500.0 * 8f64.powf(1.5)).round())
+    );
 }
 
 #[test]
 fn without_a_counter_the_report_says_why() {
+    let no_instructions = |r: &tensegrity_engine::bench::AnchorsReport, note: &str| {
+        for s in &r.series {
+            assert_eq!(s.instructions_note.as_deref(), Some(note));
+            assert!(s.instructions_fit.is_none());
+            let counted = |p: &tensegrity_engine::bench::series::SeriesPoint| {
+                p.instructions.is_some() || p.instructions_per_step.is_some()
+            };
+            assert!(!s.points.iter().any(counted));
+        }
+        assert!(r.rows().iter().all(|row| row.instructions.is_none()
+            && row.instructions_exponent.is_none()
+            && row.instructions_per_step.is_none()));
+    };
     let r = bench_anchors(&quick(true), None).unwrap();
-    assert!(r.instructions_note.unwrap().contains("valgrind"));
+    assert!(r.instructions_note.as_ref().unwrap().contains("valgrind"));
     assert!(r.anchors.iter().all(|a| a.instructions_per_step.is_none()));
+    no_instructions(&r, "no instruction counter (valgrind) available");
     let r = bench_anchors(&quick(true), Some(&Broken)).unwrap();
     assert_eq!(r.instructions_note.as_deref(), Some("valgrind: not found"));
+    no_instructions(&r, "valgrind: not found");
     let r = bench_anchors(&quick(false), Some(&Broken)).unwrap();
     assert!(r.instructions_note.is_none());
+    no_instructions(&r, "instructions not requested");
+    // a counter of the anchors alone: the anchors counted, the series say why not
+    let r = bench_anchors(&quick(true), Some(&AnchorsOnly)).unwrap();
+    assert!(r.instructions_note.is_none());
+    assert!(r
+        .anchors
+        .iter()
+        .all(|a| a.instructions_per_step == Some(10.0)));
+    assert!(r.series.iter().all(|s| s.instructions_note.as_deref()
+        == Some("this instruction counter counts the anchors only")));
+}
+
+#[test]
+fn a_counted_series_run_is_the_timed_call() {
+    // the hidden run's setup alone and its calls succeed at the quick sizes (what callgrind
+    // counts); a bad size is an error, not a panic
+    for kind in SeriesKind::ALL {
+        let size = kind.sizes(true)[0];
+        run_counted(kind, size, 0).unwrap();
+        run_counted(kind, size, 2).unwrap();
+    }
+    assert!(run_counted(SeriesKind::Toroid, 1, 1).is_err());
 }
 
 #[test]

@@ -9,7 +9,11 @@
 //! | `michell` | complexity q | the 3-D Michell truss, δ = 0.25, β = π/6, φ = π/q, global solve ([`michell3d::MichellRequest::run`]) | the whole call |
 //! | `rolling` | sides n | the toroid rolled down 50° with the full model (penalty contact, RK4 at 0.1 ms) for a few steps ([`toroid::roll`]) | per step (the integration alone) |
 //!
-//! The cost exponent of each series is fitted on log–log ([`super::fit`]).
+//! The cost exponent of each series is fitted on log–log ([`super::fit`]); with an
+//! instruction counter (callgrind), the instructions of the same call at every size and their
+//! own exponent, which does not depend on the machine's load ([`super::count`]). The timed
+//! call's input (request, tower) is built before the clock starts ([`run_counted`] is the
+//! same input and call, for the counter).
 
 use super::fit::{power_law, PowerLaw};
 use super::BenchError;
@@ -17,7 +21,7 @@ use serde::Serialize;
 use serde_json::json;
 use std::time::Instant;
 use tensegrity_core::request::Request;
-use tensegrity_core::{statics_report, test_models, StaticsRequest};
+use tensegrity_core::{statics_report, test_models, StaticsRequest, Structure};
 
 /// One scaling series.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -65,7 +69,7 @@ impl SeriesKind {
     pub fn sizes(self, quick: bool) -> &'static [usize] {
         match (self, quick) {
             (SeriesKind::Toroid, false) => &[100, 316, 1000, 3162, 10000],
-            (SeriesKind::Toroid, true) => &[8, 16, 32],
+            (SeriesKind::Toroid, true) => &[100, 200, 400],
             (SeriesKind::Towers, false) => &[50, 100, 200, 400],
             (SeriesKind::Towers, true) => &[5, 10, 20],
             (SeriesKind::Michell, false) => &[10, 20, 40, 80],
@@ -75,12 +79,13 @@ impl SeriesKind {
         }
     }
 
-    /// Simulated time of a rolling point (s): 200 steps of 0.1 ms, 20 when quick.
-    fn rolling_t_end(quick: bool) -> f64 {
-        if quick {
-            2e-3
-        } else {
-            2e-2
+    /// RK4 steps of a point of a time integration (the rolling series: 200 steps of 0.1 ms,
+    /// 20 when quick); `None` for the other series.
+    pub fn steps(self, quick: bool) -> Option<u64> {
+        match (self, quick) {
+            (SeriesKind::Rolling, false) => Some(200),
+            (SeriesKind::Rolling, true) => Some(20),
+            _ => None,
         }
     }
 }
@@ -90,7 +95,7 @@ impl SeriesKind {
 pub struct SeriesPoint {
     /// The size (the series' parameter).
     pub size: usize,
-    /// Members of the structure, where the call reports them.
+    /// Members of the structure, where the call reports them (toroid, towers, Michell).
     pub members: Option<usize>,
     /// Best time of the call over the repeats (s).
     pub best_s: f64,
@@ -98,6 +103,11 @@ pub struct SeriesPoint {
     pub steps: Option<u64>,
     /// Best time per step (s), for a time integration.
     pub per_step_s: Option<f64>,
+    /// Instructions of the call (callgrind, process start and setup removed; for a time
+    /// integration `steps` · `instructions_per_step`), when counted ([`super::count`]).
+    pub instructions: Option<f64>,
+    /// Instructions per step of a time integration, when counted.
+    pub instructions_per_step: Option<f64>,
 }
 
 /// A series: its points and the fitted cost exponent (of `per_step_s` for a time
@@ -112,6 +122,11 @@ pub struct Series {
     pub points: Vec<SeriesPoint>,
     /// The least-squares power law on log–log.
     pub fit: Option<PowerLaw>,
+    /// The power law fitted to the instructions (`instructions_per_step` for a time
+    /// integration, `instructions` otherwise): an exponent that does not depend on the load.
+    pub instructions_fit: Option<PowerLaw>,
+    /// Why the instructions are absent (not requested, no counter, a failed count).
+    pub instructions_note: Option<String>,
 }
 
 /// Measures one series (best of `repeats` per size).
@@ -139,60 +154,116 @@ pub fn measure(kind: SeriesKind, quick: bool, repeats: usize) -> Result<Series, 
         parameter: kind.parameter(),
         fit: power_law(&xy),
         points,
+        instructions_fit: None,
+        instructions_note: None,
     })
 }
 
-/// One timed run of the series' call at `size`.
-fn point(kind: SeriesKind, size: usize, quick: bool) -> Result<SeriesPoint, BenchError> {
-    let timed = |members: Option<usize>, t0: Instant| SeriesPoint {
-        size,
-        members,
-        best_s: t0.elapsed().as_secs_f64(),
-        steps: None,
-        per_step_s: None,
-    };
-    match kind {
-        SeriesKind::Toroid => {
-            let request = toroid::ToroidRequest::from_values([("sides", json!(size))])?;
-            let t0 = Instant::now();
-            let r = toroid::toroid_report(&request)?;
-            Ok(timed(Some(r.bars + r.strings), t0))
-        }
-        SeriesKind::Towers => {
-            let tower = test_models::snelson_tower_free(size)?;
-            let t0 = Instant::now();
-            statics_report(&tower, &StaticsRequest::default())?;
-            Ok(timed(Some(tower.n_members()), t0))
-        }
+/// The input of one call of a series at one size, built before the call is timed or counted.
+enum Prepared {
+    Toroid(toroid::ToroidRequest),
+    Towers(Box<Structure>),
+    Michell(Box<michell3d::MichellRequest>),
+    Rolling(Box<toroid::RollRequest>),
+}
+
+/// The series' input at `size` (rolling: `steps` RK4 steps of its step).
+fn prepare(kind: SeriesKind, size: usize, steps: u64) -> Result<Prepared, BenchError> {
+    Ok(match kind {
+        SeriesKind::Toroid => Prepared::Toroid(toroid::ToroidRequest::from_values([(
+            "sides",
+            json!(size),
+        )])?),
+        SeriesKind::Towers => Prepared::Towers(Box::new(test_models::snelson_tower_free(size)?)),
         SeriesKind::Michell => {
-            let request = michell3d::MichellRequest::from_values([
+            Prepared::Michell(Box::new(michell3d::MichellRequest::from_values([
                 ("complexity", json!(size)),
                 ("cylindrical", json!(0.25)),
                 ("beta", json!(std::f64::consts::PI / 6.0)),
                 ("phi", json!(std::f64::consts::PI / size as f64)),
                 ("method", json!("global")),
-            ])?;
-            let t0 = Instant::now();
-            request.run()?;
-            Ok(timed(None, t0))
+            ])?))
         }
         SeriesKind::Rolling => {
-            let t_end = SeriesKind::rolling_t_end(quick);
-            let request = toroid::RollRequest::from_values([
+            let mut request = toroid::RollRequest::from_values([
                 ("sides", json!(size)),
                 ("fidelity", json!("full")),
-                ("t_end", json!(t_end)),
                 ("convergence_check", json!(false)),
             ])?;
-            let r = toroid::roll(&request)?;
-            let steps = (t_end / request.settings.dt).round() as u64;
-            Ok(SeriesPoint {
-                size,
-                members: None,
-                best_s: r.wall_time_s,
-                steps: Some(steps),
-                per_step_s: Some(r.wall_time_s / steps as f64),
-            })
+            request.t_end = steps as f64 * request.settings.dt;
+            Prepared::Rolling(Box::new(request))
         }
+    })
+}
+
+/// What one call returned: the members where the call reports them, the integration's
+/// wall time for the rolling series.
+struct Called {
+    members: Option<usize>,
+    wall_time_s: Option<f64>,
+}
+
+/// One call of the series on its prepared input.
+fn call(prepared: &Prepared) -> Result<Called, BenchError> {
+    let (members, wall_time_s) = match prepared {
+        Prepared::Toroid(request) => {
+            let r = toroid::toroid_report(request)?;
+            (Some(r.bars + r.strings), None)
+        }
+        Prepared::Towers(tower) => {
+            statics_report(tower, &StaticsRequest::default())?;
+            (Some(tower.n_members()), None)
+        }
+        Prepared::Michell(request) => (Some(request.run()?.analysis.report.members.len()), None),
+        Prepared::Rolling(request) => (None, Some(toroid::roll(request)?.wall_time_s)),
+    };
+    Ok(Called {
+        members,
+        wall_time_s,
+    })
+}
+
+/// One timed run of the series' call at `size`.
+fn point(kind: SeriesKind, size: usize, quick: bool) -> Result<SeriesPoint, BenchError> {
+    let steps = kind.steps(quick);
+    let prepared = prepare(kind, size, steps.unwrap_or(0))?;
+    let t0 = Instant::now();
+    let called = call(&prepared)?;
+    let elapsed = t0.elapsed().as_secs_f64();
+    Ok(match (called.wall_time_s, steps) {
+        (Some(wall), Some(steps)) => SeriesPoint {
+            size,
+            members: called.members,
+            best_s: wall,
+            steps: Some(steps),
+            per_step_s: Some(wall / steps as f64),
+            instructions: None,
+            instructions_per_step: None,
+        },
+        _ => SeriesPoint {
+            size,
+            members: called.members,
+            best_s: elapsed,
+            steps: None,
+            per_step_s: None,
+            instructions: None,
+            instructions_per_step: None,
+        },
+    })
+}
+
+/// The process an instruction counter runs for one series point (the command line's hidden
+/// `bench series-run`): the input at `size` built, then `reps` calls of the series' call
+/// (none: the setup alone), or, for the rolling series, one run of `reps` RK4 steps.
+pub fn run_counted(kind: SeriesKind, size: usize, reps: u64) -> Result<(), BenchError> {
+    if kind == SeriesKind::Rolling {
+        let prepared = prepare(kind, size, reps.max(1))?;
+        call(&prepared)?;
+        return Ok(());
     }
+    let prepared = prepare(kind, size, 0)?;
+    for _ in 0..reps {
+        std::hint::black_box(call(&prepared)?.members);
+    }
+    Ok(())
 }

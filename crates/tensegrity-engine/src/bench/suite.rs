@@ -7,13 +7,20 @@
 //! code's time and the ratio to it (labelled: measured on that machine, [`MEASURED_ON`]); with
 //! `instructions` and an [`InstructionCounter`] (the command line's: the binary itself under
 //! callgrind), the instructions per step: (I(k) − I(1)) / (k − 1) from two whole-process
-//! counts of k and 1 steps, so that process start, reading and setup cancel.
+//! counts of k and 1 steps, so that process start, reading and setup cancel; and the
+//! instructions of every scaling series point with their own fitted exponent
+//! ([`super::count`]).
 
 use super::anchors::{Anchor, ReferenceTime, MEASURED_ON};
+use super::count;
+pub use super::count::{CountedRun, InstructionCounter};
 use super::series::{self, Series, SeriesKind};
 use super::BenchError;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::request::{Param, Request, Rule};
+
+/// The note of a report without an instruction counter.
+const NO_COUNTER: &str = "no instruction counter (valgrind) available";
 
 /// Repeats per measurement by default (the best is kept).
 pub const DEFAULT_REPEATS: usize = 5;
@@ -29,7 +36,8 @@ pub struct AnchorsRequest {
     pub quick: bool,
     /// Runs per measurement; the best is reported.
     pub repeats: usize,
-    /// Count instructions per step where a counter is available (callgrind).
+    /// Count instructions (per anchor step, per series point) where a counter is available
+    /// (callgrind).
     pub instructions: bool,
 }
 
@@ -57,17 +65,10 @@ impl Request for AnchorsRequest {
                 .rule(Rule::AtLeast(1.0)),
             Param::flag(
                 "instructions",
-                "Count instructions per step of each anchor under callgrind when valgrind is installed",
+                "Count instructions (per step of each anchor, per point of each scaling series) under callgrind when valgrind is installed",
             ),
         ]
     }
-}
-
-/// Counts the instructions of whole runs of an anchor (the command line: the binary's hidden
-/// `bench anchor-run` mode under callgrind).
-pub trait InstructionCounter {
-    /// Instructions of one whole process running `anchor` for `steps` steps, or why none.
-    fn count(&self, anchor: Anchor, steps: u64) -> Result<u64, String>;
 }
 
 /// One anchor's measurement.
@@ -139,6 +140,10 @@ pub struct BenchRow {
     pub ratio: Option<f64>,
     /// The series' fitted cost exponent.
     pub exponent: Option<f64>,
+    /// Instructions of the series point's call (callgrind; start-up and setup removed).
+    pub instructions: Option<f64>,
+    /// The exponent fitted to the series' instructions.
+    pub instructions_exponent: Option<f64>,
 }
 
 impl AnchorsReport {
@@ -157,6 +162,8 @@ impl AnchorsReport {
             reference_s: Some(a.reference.seconds),
             ratio: Some(a.ratio),
             exponent: None,
+            instructions: None,
+            instructions_exponent: None,
         });
         let points = self.series.iter().flat_map(|s| {
             s.points.iter().map(|p| BenchRow {
@@ -167,11 +174,13 @@ impl AnchorsReport {
                 steps: p.steps,
                 best_s: p.best_s,
                 per_step_s: p.per_step_s,
-                instructions_per_step: None,
+                instructions_per_step: p.instructions_per_step,
                 reference_code: None,
                 reference_s: None,
                 ratio: None,
                 exponent: s.fit.map(|f| f.exponent),
+                instructions: p.instructions,
+                instructions_exponent: s.instructions_fit.map(|f| f.exponent),
             })
         });
         anchors.chain(points).collect()
@@ -192,7 +201,7 @@ pub fn bench_anchors(
     let mut instructions_note = None;
     if request.instructions {
         match counter {
-            None => instructions_note = Some("no instruction counter (valgrind) available".into()),
+            None => instructions_note = Some(NO_COUNTER.into()),
             Some(c) => {
                 let steps = request.quick.then_some(QUICK_COUNT_STEPS);
                 if let Err(why) = count_all(&mut anchors, c, steps) {
@@ -201,10 +210,15 @@ pub fn bench_anchors(
             }
         }
     }
-    let series = SeriesKind::ALL
+    let mut series: Vec<Series> = SeriesKind::ALL
         .into_iter()
         .map(|kind| series::measure(kind, request.quick, repeats))
         .collect::<Result<_, _>>()?;
+    match (request.instructions, counter) {
+        (false, _) => count::not_counted(&mut series, "instructions not requested"),
+        (true, None) => count::not_counted(&mut series, NO_COUNTER),
+        (true, Some(c)) => count::count_series(&mut series, c, request.quick),
+    }
     Ok(AnchorsReport {
         request: request.clone(),
         anchors,
@@ -252,10 +266,28 @@ fn count_all(
     counter: &dyn InstructionCounter,
     steps: Option<u64>,
 ) -> Result<(), String> {
-    for a in anchors {
-        let k = steps.unwrap_or(a.steps).min(a.steps).max(2);
-        let whole = counter.count(a.anchor, k)?;
-        let one = counter.count(a.anchor, 1)?;
+    let ks: Vec<u64> = anchors
+        .iter()
+        .map(|a| steps.unwrap_or(a.steps).min(a.steps).max(2))
+        .collect();
+    let runs: Vec<CountedRun> = anchors
+        .iter()
+        .zip(&ks)
+        .flat_map(|(a, &k)| {
+            [k, 1].map(|steps| CountedRun::Anchor {
+                anchor: a.anchor,
+                steps,
+            })
+        })
+        .collect();
+    let mut counts = counter.count_batch(&runs).into_iter();
+    for (a, k) in anchors.iter_mut().zip(ks) {
+        let whole = counts
+            .next()
+            .ok_or("the counter returned too few counts")??;
+        let one = counts
+            .next()
+            .ok_or("the counter returned too few counts")??;
         a.instructions_per_step = Some(whole.saturating_sub(one) as f64 / (k - 1) as f64);
     }
     Ok(())
