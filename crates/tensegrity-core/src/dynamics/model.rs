@@ -21,6 +21,10 @@
 //!
 //! which is sparse (two constraints interact only through a shared bar); its pattern is
 //! factored symbolically once (module `omega`) and refactored numerically per evaluation.
+//! Small jointed structures (at most 8 constrained bars) skip Ω: the same KKT system is solved
+//! in joint space, N P = D eliminated by its 0/1 null-space basis and one multiplier per bar
+//! solved for instead (module `omega::joint_space`; the Ω path remains its fallback and
+//! gives [`Model::member_forces`] the joint forces).
 //! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
 //! velocities satisfy Ṅ P = 0.
 
