@@ -125,6 +125,8 @@ pub struct Model {
     pub(crate) joint_space: Option<JointSpace>,
     /// The bars on no constraint row (their accelerations are the class-1 closed form).
     pub(crate) free_bars: Vec<usize>,
+    /// The class-1 nodes of every string's ends, when no string ends at an anchor.
+    pub(crate) string_nodes: Option<Vec<[usize; 2]>>,
 }
 
 impl std::fmt::Debug for Model {
@@ -409,6 +411,13 @@ impl Model {
         let free_bars = (0..nb)
             .filter(|k| constrained_bars.binary_search(k).is_err())
             .collect();
+        let string_nodes = strings
+            .iter()
+            .map(|s| match s.ends {
+                [NodeRef::Free(i), NodeRef::Free(j)] => Some([i, j]),
+                _ => None,
+            })
+            .collect();
         let mut model = Self {
             n_nodes,
             n1,
@@ -429,6 +438,7 @@ impl Model {
             x0,
             joint_space,
             free_bars,
+            string_nodes,
         };
         if let Some(g) = ground {
             model.set_ground(g)?;
@@ -618,7 +628,31 @@ impl Model {
             }
             rest_fn(t, &mut ws.rest);
         }
-        for ((s, &rest), gamma_k) in self.strings.iter().zip(&ws.rest).zip(ws.gamma.iter_mut()) {
+        if let Some(ends) = &self.string_nodes {
+            // every string between class-1 nodes: the same law without the anchor cases
+            let strings = ends.iter().zip(&self.strings).zip(&ws.rest);
+            for (((&[i, j], s), &rest), gamma_k) in strings.zip(ws.gamma.iter_mut()) {
+                let sv = node_of(x, j) - node_of(x, i);
+                let rate = if s.law.damping != 0.0 {
+                    node_of(v, j) - node_of(v, i)
+                } else {
+                    Vector3::zeros()
+                };
+                let gamma = s.law.force_density(&sv, &rate, rest);
+                *gamma_k = gamma;
+                if gamma != 0.0 {
+                    let t = sv * gamma;
+                    ws.f[i] += t;
+                    ws.f[j] -= t;
+                }
+            }
+        }
+        let general = if self.string_nodes.is_some() {
+            &[][..]
+        } else {
+            &self.strings[..]
+        };
+        for ((s, &rest), gamma_k) in general.iter().zip(&ws.rest).zip(ws.gamma.iter_mut()) {
             let sv = self.end_position(s.ends[1], x) - self.end_position(s.ends[0], x);
             // the rate only enters a damped string's law
             let rate = if s.law.damping != 0.0 {
