@@ -330,3 +330,26 @@ fn the_reference_integrator_reproduces_the_published_double_pendulum() {
         Reference::new(&scene("examples/anchors/double_pendulum_rk4.toml")).run(1e-4, 50_000);
     assert!((nodes[2].x - tip[0]).abs() < 1e-9 && (nodes[2].y - tip[1]).abs() < 1e-9);
 }
+
+/// The MOTES D-bar at the scene's own step against the independent integrator at the same
+/// step: the same RK4 on the same equations, so they differ by round-off alone, amplified
+/// by the motion (a 1-ulp change of one initial coordinate moves the final nodes by up to
+/// 5e-13 m, docs/PERFORMANCE.md): measured 2.0e-12 m. The scene is symmetric under
+/// y → −y (nodes 1 ↔ 3, node 2 on the axis), which exact arithmetic keeps; the run keeps it
+/// to 5e-14 m (the Ω formulation before the joint-space form broke it by 6.7e-12 m).
+#[test]
+fn motes_dbar_agrees_with_the_independent_integrator_to_round_off() {
+    let path = "examples/anchors/motes_dbar.toml";
+    let (ours, _) = simulate(path, None);
+    let independent = Reference::new(&scene(path)).run(1e-3, 5000);
+    let d = max_diff(&ours, &independent);
+    assert!(d < 1e-11, "ours vs independent at the same step: {d:e}");
+    let mirror = (ours[1].x - ours[3].x)
+        .abs()
+        .max((ours[1].y + ours[3].y).abs())
+        .max(ours[2].y.abs());
+    assert!(
+        mirror < 2e-13,
+        "mirror symmetry broken by {mirror:e}: {ours:?}"
+    );
+}

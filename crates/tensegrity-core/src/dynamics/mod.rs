@@ -13,7 +13,8 @@
 //! * Class-k joints and supports: class-1 copies with N P = D; Ω from the closed form
 //!   [(PᵀM⁻¹P)⊗I₃ − ¼ Σ_k (J_k l_k²)⁻¹ (h_k h_kᵀ)⊗(b_k b_kᵀ)] vec Ω = vec(D̈ − N̈₀P),
 //!   h_k = Pᵀc_k, solved with a sparse Cholesky factorisation whose symbolic part is reused
-//!   ([`model`], `omega`).
+//!   ([`model`], `omega`); for a few jointed bars the same system is solved in joint space
+//!   (N P = D eliminated exactly, one multiplier per bar: `omega::joint_space`).
 //!
 //! # Integrators
 //!

@@ -21,10 +21,15 @@
 //!
 //! which is sparse (two constraints interact only through a shared bar); its pattern is
 //! factored symbolically once (module `omega`) and refactored numerically per evaluation.
+//! Small jointed structures (at most 8 constrained bars) skip Ω: the same KKT system is solved
+//! in joint space, N P = D eliminated by its 0/1 null-space basis and one multiplier per bar
+//! solved for instead (module `omega::joint_space`; the Ω path remains its fallback and
+//! gives [`Model::member_forces`] the joint forces).
 //! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
 //! velocities satisfy Ṅ P = 0.
 
 use super::forces::{Ground, GroundModel};
+use super::omega::joint_space::{JointScratch, JointSpace};
 use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
 use crate::error::{CoreError, DynamicsError, ModelError, StepHint};
@@ -115,6 +120,13 @@ pub struct Model {
     /// pass over the rows).
     pub(crate) axis_rows: Option<Vec<AxisRow>>,
     pub(crate) x0: Vec<f64>,
+    /// The joint-space form of the constrained bars (module `omega::joint_space`), when
+    /// they are few: the right-hand side then solves for the bar multipliers instead of Ω.
+    pub(crate) joint_space: Option<JointSpace>,
+    /// The bars on no constraint row (their accelerations are the class-1 closed form).
+    pub(crate) free_bars: Vec<usize>,
+    /// The class-1 nodes of every string's ends, when no string ends at an anchor.
+    pub(crate) string_nodes: Option<Vec<[usize; 2]>>,
 }
 
 impl std::fmt::Debug for Model {
@@ -146,6 +158,8 @@ pub struct Workspace {
     pub(crate) rhs_evals: u64,
     /// Friction anchors of the contact nodes ([`GroundModel::Stick`], module `stick`).
     pub(crate) anchors: Vec<Option<super::stick::Anchor>>,
+    /// Scratch of the joint-space form.
+    pub(crate) joint: Box<JointScratch>,
 }
 
 /// The terms of a bar's accelerations that do not depend on the forces: b = x_b − x_a,
@@ -391,6 +405,19 @@ impl Model {
             }
             rows
         });
+        let node_of: Vec<usize> = structure.bars().iter().flat_map(|b| b.nodes).collect();
+        let masses: Vec<f64> = bars.iter().map(|b| b.mass).collect();
+        let joint_space = JointSpace::new(&constrained_bars, &masses, &node_of, &copies, &fixed);
+        let free_bars = (0..nb)
+            .filter(|k| constrained_bars.binary_search(k).is_err())
+            .collect();
+        let string_nodes = strings
+            .iter()
+            .map(|s| match s.ends {
+                [NodeRef::Free(i), NodeRef::Free(j)] => Some([i, j]),
+                _ => None,
+            })
+            .collect();
         let mut model = Self {
             n_nodes,
             n1,
@@ -409,6 +436,9 @@ impl Model {
             axis_entries,
             axis_rows,
             x0,
+            joint_space,
+            free_bars,
+            string_nodes,
         };
         if let Some(g) = ground {
             model.set_ground(g)?;
@@ -549,6 +579,7 @@ impl Model {
             bar_terms: vec![BarTerms::default(); self.bars.len()],
             rhs_evals: 0,
             anchors: vec![None; self.contact.len()],
+            joint: Box::default(),
         })
     }
 
@@ -597,7 +628,31 @@ impl Model {
             }
             rest_fn(t, &mut ws.rest);
         }
-        for ((s, &rest), gamma_k) in self.strings.iter().zip(&ws.rest).zip(ws.gamma.iter_mut()) {
+        if let Some(ends) = &self.string_nodes {
+            // every string between class-1 nodes: the same law without the anchor cases
+            let strings = ends.iter().zip(&self.strings).zip(&ws.rest);
+            for (((&[i, j], s), &rest), gamma_k) in strings.zip(ws.gamma.iter_mut()) {
+                let sv = node_of(x, j) - node_of(x, i);
+                let rate = if s.law.damping != 0.0 {
+                    node_of(v, j) - node_of(v, i)
+                } else {
+                    Vector3::zeros()
+                };
+                let gamma = s.law.force_density(&sv, &rate, rest);
+                *gamma_k = gamma;
+                if gamma != 0.0 {
+                    let t = sv * gamma;
+                    ws.f[i] += t;
+                    ws.f[j] -= t;
+                }
+            }
+        }
+        let general = if self.string_nodes.is_some() {
+            &[][..]
+        } else {
+            &self.strings[..]
+        };
+        for ((s, &rest), gamma_k) in general.iter().zip(&ws.rest).zip(ws.gamma.iter_mut()) {
             let sv = self.end_position(s.ends[1], x) - self.end_position(s.ends[0], x);
             // the rate only enters a damped string's law
             let rate = if s.law.damping != 0.0 {
@@ -664,6 +719,19 @@ impl Model {
         dy: &mut [f64],
         ws: &mut Workspace,
     ) -> Result<(), CoreError> {
+        self.rhs_with(t, y, dy, ws, true)
+    }
+
+    /// [`Model::rhs`]; with `joint_space` false the constrained bars always go through Ω
+    /// (leaving the constraint forces Gᵀω in `ws.f`, as [`Model::member_forces`] needs).
+    pub(crate) fn rhs_with(
+        &self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        ws: &mut Workspace,
+        joint_space: bool,
+    ) -> Result<(), CoreError> {
         ws.rhs_evals += 1;
         let n3 = 3 * self.n1;
         let (x, v) = y.split_at(n3);
@@ -677,6 +745,21 @@ impl Model {
                 hint: StepHint::Unknown,
             }
             .into());
+        }
+        if let (true, Some(js)) = (joint_space, &self.joint_space) {
+            for &k in &self.free_bars {
+                let (xk, vk) = (&x[6 * k..6 * k + 6], &v[6 * k..6 * k + 6]);
+                let terms = BarTerms::of(&xk[..3], &xk[3..], &vk[..3], &vk[3..]);
+                terms.accel(
+                    &self.bars[k],
+                    &ws.f[2 * k],
+                    &ws.f[2 * k + 1],
+                    &mut dv[6 * k..6 * k + 6],
+                );
+            }
+            if js.accelerations(x, v, &ws.f, dv, &mut ws.joint) {
+                return Ok(());
+            }
         }
         self.first_pass(x, v, &ws.f, dv, &mut ws.bar_terms);
         if let Some(om) = ws.omega.as_mut() {
@@ -804,7 +887,7 @@ impl Model {
         ws: &mut Workspace,
     ) -> Result<Vec<f64>, CoreError> {
         let mut dy = vec![0.0; y.len()];
-        self.rhs(t, y, &mut dy, ws)?;
+        self.rhs_with(t, y, &mut dy, ws, false)?;
         let n3 = 3 * self.n1;
         let (x, v) = y.split_at(n3);
         let mut out = Vec::with_capacity(self.bars.len() + self.strings.len());

@@ -26,6 +26,7 @@
 //! identity in the submodule `woodbury` (see there), with the dense Cholesky of the assembled
 //! system as the fallback near singular configurations.
 
+pub(crate) mod joint_space;
 mod woodbury;
 
 use crate::error::{CoreError, DynamicsError, FactorizationFailure, NumericsError};
