@@ -273,7 +273,7 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
         settings: request.settings,
         t_end: request.t_end(),
         fidelity: FidelityChoice::Rigid,
-        contact: RollRequest::default().contact,
+        contact: request.contact,
         mu: request.mu_static,
         min_tension: defaults::ROLL_MIN_TENSION,
         integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
