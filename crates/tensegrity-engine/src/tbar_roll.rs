@@ -84,6 +84,7 @@ pub fn report_watched(
         full_tensegrity_rolling: model == Fidelity::Full,
         structure: request.layout().name(),
         rim,
+        contact: (model == Fidelity::Full).then_some(request.contact),
         incline_rad: request.settings.incline,
         t_end: request.t_end(),
         valid: true,
