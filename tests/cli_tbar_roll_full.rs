@@ -174,7 +174,15 @@ fn the_default_full_roll_keeps_its_models_assumptions() {
 #[test]
 fn the_stick_contact_converges_where_the_regularised_friction_does_not() {
     let full = |extra: &[&str]| {
-        let mut args = vec!["tbar", "roll", "--fidelity", "full", "--t-end", "0.3", "--json"];
+        let mut args = vec![
+            "tbar",
+            "roll",
+            "--fidelity",
+            "full",
+            "--t-end",
+            "0.3",
+            "--json",
+        ];
         args.extend_from_slice(extra);
         let out = Command::new(env!("CARGO_BIN_EXE_tensegrity"))
             .args(&args)
@@ -235,7 +243,10 @@ fn the_default_full_roll_is_valid() {
         assert_eq!(c["converged"], true, "{side}: {c}");
         for q in c["quantities"].as_array().unwrap() {
             if let Some(change) = q["relative_change"].as_f64() {
-                assert!(change <= 0.5 * q["tolerance"].as_f64().unwrap(), "{side}: {q}");
+                assert!(
+                    change <= 0.5 * q["tolerance"].as_f64().unwrap(),
+                    "{side}: {q}"
+                );
             }
         }
     }

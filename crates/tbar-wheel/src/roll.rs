@@ -34,7 +34,8 @@ use std::f64::consts::PI;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
-    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks, RunSpec, WheelRun,
+    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
+    RunSpec, WheelRun,
 };
 
 /// Default simulated time of the full model (s): the full model costs far more a second.
