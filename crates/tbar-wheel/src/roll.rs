@@ -9,7 +9,8 @@
 //!   `rim_density` with `rim = body` — strings massless) in the reduced rigid model;
 //! - **full**: the prestressed wheel with its free rim body ([`crate::rolling_full::full_wheel`],
 //!   a [`wheel_rolling::Wheel`]) in the full tensegrity model with a penalty ground at the
-//!   tips; the row also carries the rigid polygon of the same m and I₁
+//!   tips, by default with friction that sticks ([`DEFAULT_CONTACT`]; `contact` chooses);
+//!   the row also carries the rigid polygon of the same m and I₁
 //!   (`tbar_rigid_reference`) for the first contact phase. The full model needs the rim body
 //!   (a free body): `rim = fixed` is refused.
 //!
@@ -33,7 +34,8 @@ use std::f64::consts::PI;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
-    roll_checked, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks, RunSpec, WheelRun,
+    roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
+    RunSpec, WheelRun,
 };
 
 /// Default simulated time of the full model (s): the full model costs far more a second.
@@ -60,6 +62,18 @@ pub const DEFAULT_GROUND_STIFFNESS: f64 = 1e6;
 /// 5.44 kg) and its tips do not sink into the default ground (with the 1 kg/m of the treads'
 /// bars the rim body is 49.7 of 52.7 kg and its tips sink 2.3 cm, more than 1 % of r₀).
 pub const FULL_RIM_DENSITY: f64 = 0.05;
+
+/// Default ground contact of `tbar roll`'s full model (T-bar and toroid columns): `stick`,
+/// the penalty ground with an elastic–plastic tangential spring per contact node, which
+/// holds a stick up to μ_s N. The regularised Coulomb law of `penalty` is a viscous law of
+/// slope μ N / v_s below the Stribeck velocity v_s: a tip under a static tangential load
+/// creeps, and at the default step its stiff viscous stick is near the explicit step's
+/// stability limit, so whether a tip counts as slipping depends on the step and the ground
+/// stiffness (default scene: the T-bar's `slip_fraction` 0.153 at 0.1 ms and 10⁶ N/m, 0.009
+/// at half the step and twice the stiffness; the toroid's 0.695 and 0.160). With the stick
+/// contact the T-bar's run is converged (0.012 and 0.007) and its energy budget closes to
+/// 10⁻⁷ (2.5·10⁻³ with `penalty`); see docs/ROLLING.md, "The T-bar wheel in the full model".
+pub const DEFAULT_CONTACT: ContactKind = ContactKind::Stick;
 
 /// Default departure angle β (rad): π/6, the measured cases of docs/ROLLING.md.
 pub const DEFAULT_BETA: f64 = PI / 6.0;
@@ -118,6 +132,9 @@ pub struct TbarRollRequest {
     /// Full model: smallest string tension of the prestress (N); unset: the prestress that
     /// carries twice the wheel's weight on one tip of each copy from every direction.
     pub min_tension: Option<f64>,
+    /// Ground contact of the full model (T-bar and toroid columns): `penalty`, `thesis` or
+    /// `stick`; default [`DEFAULT_CONTACT`].
+    pub contact: ContactKind,
     /// `strict` (an invalid report is an error) and `convergence_check` (every run repeated
     /// at a refined resolution, [`wheel_rolling::convergence`]).
     #[serde(flatten)]
@@ -129,7 +146,8 @@ impl Default for TbarRollRequest {
     /// given, so that `spherical` alone is a complete request), r₀ = 1, the single loop on rim bar bases, the
     /// rigid model, the rolling defaults of wheel-rolling on [`DEFAULT_INCLINE_DEG`] (30°)
     /// and [`DEFAULT_GROUND_STIFFNESS`] (10⁶ N/m) (0.1 ms, g = 9.81, e = 0, strings
-    /// 2·10⁴ N/m), 1 kg/m bars, μ_s = 0.8; the rest unset.
+    /// 2·10⁴ N/m), 1 kg/m bars, μ_s = 0.8, the full model's [`DEFAULT_CONTACT`] (stick); the
+    /// rest unset.
     fn default() -> Self {
         Self {
             complexity: 1,
@@ -153,6 +171,7 @@ impl Default for TbarRollRequest {
             mu_kinetic: None,
             rim_density: None,
             min_tension: None,
+            contact: DEFAULT_CONTACT,
             checks: RunChecks::default(),
         }
     }
@@ -225,6 +244,11 @@ impl Request for TbarRollRequest {
             )
             .positive()
             .optional(),
+            Param::choice(
+                "contact",
+                ContactKind::NAMES,
+                "Ground contact of the full model, T-bar and toroid (default stick: friction that holds a stick)",
+            ),
             setting("ground_stiffness"),
             setting("ground_damping"),
             checks[0],
@@ -357,14 +381,15 @@ impl TbarRollRequest {
             .with_rim(rim)
     }
 
-    /// The run both models read: the full model's default contact (`RunSpec::default`, as
-    /// `roll`'s), μ_s and [`TbarRollRequest::mu_kinetic`], RK4, 1 ms samples, for [`TbarRollRequest::t_end`] s with the model choice `fidelity`.
+    /// The run both models read: the full model's ground contact `contact` (the rigid model
+    /// has its own), μ_s and [`TbarRollRequest::mu_kinetic`], RK4, 1 ms samples, for
+    /// [`TbarRollRequest::t_end`] s with the model choice `fidelity`.
     pub fn spec(&self, fidelity: FidelityChoice) -> RunSpec {
         RunSpec {
             settings: self.settings,
             t_end: self.t_end(),
             fidelity,
-            contact: RunSpec::default().contact,
+            contact: self.contact,
             mu_static: self.mu_static,
             mu_kinetic: self.mu_kinetic(),
             ..RunSpec::default()

@@ -66,8 +66,9 @@ pub const TANGENTIAL_STIFFNESS_RATIO: f64 = 1.0;
 /// per node (1: critical for a landing pair, the stick does not ring).
 pub const TANGENTIAL_DAMPING_RATIO: f64 = 1.0;
 
-/// Stribeck velocity of the penalty ground (m/s): the static → kinetic transition; a loaded
-/// contact node faster than this along the slope counts as slipping.
+/// Stribeck velocity of the penalty ground (m/s): the static → kinetic transition; a contact
+/// whose load-weighted slip speed Σ f_n |v_t| / Σ f_n is faster than this along the slope
+/// counts as slipping.
 pub const STRIBECK_VELOCITY: f64 = 1e-2;
 
 /// Largest relative residual of the full model's energy budget that still counts as closed

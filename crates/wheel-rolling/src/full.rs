@@ -43,8 +43,10 @@
 //!
 //! **Validity** ([`crate::validity::RollValidity`]), from every integration step:
 //! the smallest normal force of any loaded contact node, the fraction of time with no node
-//! loaded (airborne), the fraction with a loaded node sliding faster than the Stribeck
-//! velocity (slip), the deepest penetration, and the energy budget. The budget is
+//! loaded (airborne), the fraction with the contact sliding — its load-weighted slip speed
+//! Σ f_n |v_t| / Σ f_n over the loaded nodes faster than the Stribeck velocity (slip; a
+//! landing or lifting node carries no load, and its slide under a vanishing cap μ f_n, whose
+//! duration follows the penalty's stiffness, is not the wheel's) — the deepest penetration, and the energy budget. The budget is
 //! E(t) − E(0) = W_nc(t), with E = kinetic + string elastic + gravity + ground-spring
 //! (½ k δ²) energy and W_nc = ∫ Σ_contact (F·v − k δ v_n) dt the work of the ground's damping
 //! (normal) and friction (tangential); W_nc is integrated by the trapezoidal rule at every

@@ -101,6 +101,9 @@ pub struct TbarRollReport {
     pub structure: &'static str,
     /// `body` (rim body's bars in the mass) or `fixed` (massless rigid rim).
     pub rim: RimMode,
+    /// The full model's ground contact (`penalty`, `thesis` or `stick`) when the full model
+    /// ran, else `null` (the rigid model has its own unilateral impacts).
+    pub contact: Option<wheel_rolling::ContactKind>,
     /// Slope angle (rad).
     pub incline_rad: f64,
     /// Simulated time (s).

@@ -16,8 +16,10 @@ fn request() -> TbarRollRequest {
 #[test]
 fn the_request_describes_every_field() {
     tensegrity_core::request::check_description::<TbarRollRequest>().unwrap();
-    // 23 and the two result checks (strict, convergence_check)
-    assert_eq!(TbarRollRequest::params().len(), 25);
+    // 24 and the two result checks (strict, convergence_check)
+    assert_eq!(TbarRollRequest::params().len(), 26);
+    // the full model's contact defaults to friction that sticks
+    assert_eq!(TbarRollRequest::default().contact, ContactKind::Stick);
 }
 
 #[test]

@@ -106,7 +106,9 @@ struct StepContact {
     penetration: f64,
     /// Mean in-plane speed of the loaded nodes (m/s).
     slip_speed: f64,
-    /// Whether a loaded node slides faster than the Stribeck velocity.
+    /// Whether the contact slides: its load-weighted slip speed Σ f_n |v_t| / Σ f_n over the
+    /// loaded nodes exceeds the Stribeck velocity (a node that lands or lifts off carries
+    /// almost no load, and its slide under a vanishing Coulomb cap μ f_n is not the wheel's).
     slipping: bool,
     /// Power of the normal damping (W).
     p_damp: f64,
@@ -131,6 +133,8 @@ impl StepContact {
             pivot: f64::NAN,
         };
         let (mut count, mut strongest) = (0usize, 0.0);
+        // Σ f_n |v_t| and Σ f_n over the loaded nodes: the contact's load-weighted slip speed
+        let (mut weighted_slip, mut load) = (0.0, 0.0);
         for &(node, f) in smp.contact_forces.iter().flatten() {
             let delta = (g.plane_z - x[node].z).max(0.0);
             let Some(pair) = g.group.get(node).copied().flatten() else {
@@ -150,7 +154,8 @@ impl StepContact {
             c.min_normal = c.min_normal.min(f.z);
             let speed = vel.xy().norm();
             c.slip_speed += speed;
-            c.slipping |= speed > defaults::STRIBECK_VELOCITY;
+            weighted_slip += f.z.max(0.0) * speed;
+            load += f.z.max(0.0);
             count += 1;
             c.p_fric += f.xy().dot(&vel.xy());
             if f.z > strongest {
@@ -161,6 +166,7 @@ impl StepContact {
         if count > 0 {
             c.slip_speed /= count as f64;
         }
+        c.slipping = load > 0.0 && weighted_slip > defaults::STRIBECK_VELOCITY * load;
         c
     }
 
