@@ -66,6 +66,7 @@
 //! pair's contact force over that transient (normal and tangential impulse).
 
 mod monitor;
+mod rest;
 mod scene;
 
 use crate::contact::ContactModel;
@@ -75,6 +76,7 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::settings::RunSpec;
 use nalgebra::Vector3;
+pub use rest::{FullStart, Settled};
 pub use scene::WheelScene;
 use tensegrity_core::dynamics::IntegratorKind;
 
@@ -95,6 +97,10 @@ pub struct FullRolling {
     pub output_dt: f64,
     /// Times (s) at which to keep the node positions (see [`FullRun::frames`]).
     pub frame_times: Vec<f64>,
+    /// How the wheel starts: at rest in its deformed shape under gravity, or released from
+    /// its unloaded shape; by default ([`FullStart::Auto`]) at rest when the wheel is stiff
+    /// (module `rest`).
+    pub start: FullStart,
 }
 
 impl Default for FullRolling {
@@ -109,6 +115,7 @@ impl Default for FullRolling {
             dt: defaults::ROLL_DT,
             output_dt: defaults::ROLL_OUTPUT_DT,
             frame_times: Vec::new(),
+            start: FullStart::Auto,
         }
     }
 }
@@ -141,6 +148,9 @@ pub struct FullRun {
     pub friction_work: f64,
     /// Wall-clock time of the integration (s).
     pub wall_time_s: f64,
+    /// The relaxation to the start at rest ([`FullStart::Rest`]); `None` when the wheel
+    /// started unloaded.
+    pub settled: Option<Settled>,
 }
 
 impl FullRolling {
@@ -155,6 +165,7 @@ impl FullRolling {
             dt: spec.settings.dt,
             output_dt: spec.output_dt,
             frame_times: Vec::new(),
+            start: FullStart::Auto,
         }
     }
 
