@@ -205,6 +205,9 @@ pub(super) fn settle(
         if steps % CHECK_EVERY == 0 {
             let speed = v.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
             residual = relax.residual(&model, &y, &mut ws)?;
+            if !residual.is_finite() {
+                break;
+            }
             if residual <= RESIDUAL * g0 && speed <= SPEED * g0 * dt {
                 converged = true;
                 break;
