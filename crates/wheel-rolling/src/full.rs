@@ -19,9 +19,13 @@
 //!
 //! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
 //! contact group 0 (uphill) and group 1 (downhill) on the slope (the toroid: its prisms 0 and
-//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). The contact nodes start at zero
-//! penetration (not at the static penetration m g cos φ / (4 k), a fraction of a millimetre
-//! for the defaults); the wheel then pivots about the downhill pair. Recorded coordinates
+//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). A stiff wheel
+//! ([`FullStart::Auto`], the default: m g/(k R_o) < 10⁻³) starts **at rest in its deformed
+//! shape under gravity** (module `rest`): where it pivots, the shape in which every node
+//! accelerates as the rigid pivot about the downhill pair with the uphill pair just touching;
+//! where it rests, its static equilibrium on both pairs. A flexible wheel (and
+//! [`FullStart::Unloaded`], and the thesis contact) starts in the scene's unloaded shape at
+//! zero penetration and sags into the ground at the release. Recorded coordinates
 //! are those of the rigid model: s = y − R_o sin(π/n) along the slope (0 at the downhill
 //! pair), h = z + R_o cos(π/n) above it.
 //!
