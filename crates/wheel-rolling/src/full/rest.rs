@@ -145,7 +145,7 @@ pub(super) fn settle(
     dt: f64,
 ) -> Result<Option<(Structure, Settled)>> {
     let k = contact.stiffness();
-    if matches!(contact, ContactModel::Thesis { .. }) || !(k > 0.0) {
+    if matches!(contact, ContactModel::Thesis { .. }) || k.is_nan() || k <= 0.0 {
         return Ok(None);
     }
     let kt = match *contact {
