@@ -55,11 +55,11 @@ fn track_difference(a: &[RollingSample], b: &[RollingSample], until: f64) -> f64
 fn rigid_and_full_agree_through_the_first_pivot_on_30_degrees() {
     // n = 8, 30°, μ = 1.2, e = 0: the rigid model's first impact is the closed form (time
     // from the pivot equation, ω⁻ from energy: ½(I₁ + m R²) ω⁻² = 2 m g R sin φ sin(π/n)).
-    // The full wheel is elastic: it sags under its weight and settles into the penalty
-    // ground at the start, and the pivot from rest (an inverted pendulum) amplifies that
-    // offset (the full wheel leads by about 0.01 rad/s from the first 0.1 s), so the
-    // tolerances are 3 % on the impact time, 1 % on ω⁻ and 5 % of R_o on the axle track up
-    // to the first impact (measured: 1.4 %, 0.14 %, 3.3 cm).
+    // The full wheel starts at rest in its deformed shape under gravity (`FullStart`: a stiff
+    // wheel), so it pivots as the rigid one does; tolerances 1 % on the impact time, 0.5 % on
+    // ω⁻ and 1 % of R_o on the axle track up to the first impact (measured: +0.19 %,
+    // −0.012 %, 1.9 mm; released from its unloaded shape it sagged into the ground and led:
+    // 1.4 %, 0.14 %, 3.3 cm).
     let (rigid, full) = pair(8, 30.0, 1.2, 1.15);
     assert!(rigid.summary.valid && full.summary.max_penetration < 0.01);
     let (r, f) = (
@@ -69,13 +69,15 @@ fn rigid_and_full_agree_through_the_first_pivot_on_30_degrees() {
     let (m, i1, g, phi) = (rigid.mass_kg, rigid.i1, 9.81, 30f64.to_radians());
     let omega = (4.0 * m * g * phi.sin() * (PI / 8.0).sin() / (i1 + m)).sqrt();
     assert!((r.omega_before - omega).abs() < 1e-6 * omega);
-    assert!((f.t - r.t).abs() < 0.03 * r.t, "{} vs {}", f.t, r.t);
-    assert!((f.omega_before - r.omega_before).abs() < 0.01 * r.omega_before);
+    assert!((f.t - r.t).abs() < 0.01 * r.t, "{} vs {}", f.t, r.t);
+    assert!((f.omega_before - r.omega_before).abs() < 0.005 * r.omega_before);
     let d = track_difference(&rigid.samples, &full.samples, r.t.min(f.t));
-    assert!(d < 0.05, "axle tracks differ by {d} m");
-    // both start from the same state: the downhill pair at s = 0, the axle above the side
+    assert!(d < 0.01, "axle tracks differ by {d} m");
+    // both start from the same pose: the downhill pair at s = 0, the axle above the side; the
+    // full wheel's axle lower and turned by its static deformation (measured: s +0.22 mm,
+    // h −0.05 mm)
     let (a, b) = (&rigid.samples[0], &full.samples[0]);
-    assert!((a.s - b.s).abs() < 1e-12 && (a.h - b.h).abs() < 1e-12);
+    assert!((a.s - b.s).abs() < 1e-3 && (a.h - b.h).abs() < 1e-3);
     assert!((a.h - (PI / 8.0).cos()).abs() < 1e-12);
 }
 

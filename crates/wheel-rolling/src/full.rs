@@ -19,9 +19,13 @@
 //!
 //! **Start** (the same state as the rigid model): at rest on a side of the contact polygon,
 //! contact group 0 (uphill) and group 1 (downhill) on the slope (the toroid: its prisms 0 and
-//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). The contact nodes start at zero
-//! penetration (not at the static penetration m g cos φ / (4 k), a fraction of a millimetre
-//! for the defaults); the wheel then pivots about the downhill pair. Recorded coordinates
+//! 1, the wheel turned by −π/n about x), the slope the plane z = −R_o cos(π/n). A stiff wheel
+//! ([`FullStart::Auto`], the default: m g/(k R_o) < 10⁻³) starts **at rest in its deformed
+//! shape under gravity** (module `rest`): where it pivots, the shape in which every node
+//! accelerates as the rigid pivot about the downhill pair with the uphill pair just touching;
+//! where it rests, its static equilibrium on both pairs. A flexible wheel (and
+//! [`FullStart::Unloaded`], and the thesis contact) starts in the scene's unloaded shape at
+//! zero penetration and sags into the ground at the release. Recorded coordinates
 //! are those of the rigid model: s = y − R_o sin(π/n) along the slope (0 at the downhill
 //! pair), h = z + R_o cos(π/n) above it.
 //!
@@ -68,6 +72,7 @@
 //! pair's contact force over that transient (normal and tangential impulse).
 
 mod monitor;
+mod rest;
 mod scene;
 
 use crate::contact::ContactModel;
@@ -77,6 +82,7 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::settings::RunSpec;
 use nalgebra::Vector3;
+pub use rest::{FullStart, Settled};
 pub use scene::WheelScene;
 use tensegrity_core::dynamics::IntegratorKind;
 
@@ -97,6 +103,10 @@ pub struct FullRolling {
     pub output_dt: f64,
     /// Times (s) at which to keep the node positions (see [`FullRun::frames`]).
     pub frame_times: Vec<f64>,
+    /// How the wheel starts: at rest in its deformed shape under gravity, or released from
+    /// its unloaded shape; by default ([`FullStart::Auto`]) at rest when the wheel is stiff
+    /// (module `rest`).
+    pub start: FullStart,
 }
 
 impl Default for FullRolling {
@@ -111,6 +121,7 @@ impl Default for FullRolling {
             dt: defaults::ROLL_DT,
             output_dt: defaults::ROLL_OUTPUT_DT,
             frame_times: Vec::new(),
+            start: FullStart::Auto,
         }
     }
 }
@@ -143,6 +154,9 @@ pub struct FullRun {
     pub friction_work: f64,
     /// Wall-clock time of the integration (s).
     pub wall_time_s: f64,
+    /// The relaxation to the start at rest ([`FullStart::Rest`]); `None` when the wheel
+    /// started unloaded.
+    pub settled: Option<Settled>,
 }
 
 impl FullRolling {
@@ -157,6 +171,7 @@ impl FullRolling {
             dt: spec.settings.dt,
             output_dt: spec.output_dt,
             frame_times: Vec::new(),
+            start: FullStart::Auto,
         }
     }
 

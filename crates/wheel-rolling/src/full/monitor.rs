@@ -412,6 +412,7 @@ impl<'o> Monitor<'o> {
             damping_work: self.damping_work,
             friction_work: self.friction_work,
             wall_time_s,
+            settled: None,
         }
     }
 

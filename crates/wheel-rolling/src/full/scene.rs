@@ -177,7 +177,18 @@ pub(super) fn run(
     t_end: f64,
     observer: Option<&mut dyn Observer>,
 ) -> Result<FullRun> {
-    let (structure, ground) = scene_model(model, scene)?;
+    let (mut structure, ground) = scene_model(model, scene)?;
+    let mut settled = None;
+    if model.start.at_rest(scene, model.gravity) {
+        // a relaxation that fails (a step too large for the stiffness: the run itself will
+        // say so) leaves the wheel unloaded
+        if let Ok(Some((rest, how))) =
+            super::rest::settle(&structure, scene, &model.contact, model.dt)
+        {
+            structure = rest;
+            settled = Some(how);
+        }
+    }
     let d = SimulationSettings::default();
     let adaptive = model.integrator.is_adaptive();
     let flight = model.integrator == IntegratorKind::Rk4Flight;
@@ -239,6 +250,7 @@ pub(super) fn run(
         Err(e) => (start.elapsed().as_secs_f64(), Vec::new(), Some(e)),
     };
     let mut run = monitor.finish(model.output_dt, wall_time_s);
+    run.settled = settled;
     let validity = &mut run.result.validity;
     validity
         .warnings
