@@ -24,7 +24,8 @@
 //!   so).
 //!
 //! Not computed here (the report says so, or the banded path answers): the self-stress basis
-//! (its dimension is given), prestress stability and the load solve — a loaded structure
+//! (its dimension is given), prestress stability when there are internal mechanisms (without
+//! them the structure is stable, as on the dense path) and the load solve — a loaded structure
 //! stays on the banded path ([`prefers_nested`]).
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
@@ -353,6 +354,11 @@ impl StaticsBackend for NestedStatics<'_> {
         Ok(Prestressability::from_signed(DVector::from_vec(q), signs))
     }
     fn prestress_stability(&self, _q: &DVector<f64>) -> Result<PrestressStability> {
+        // without internal mechanisms the structure is stable for any stress (the dense
+        // path's answer); with some, the test is not available here
+        if self.internal_mechanisms()? == 0 {
+            return Ok(PrestressStability::rigid());
+        }
         Err(Factorization::SparseQr
             .unsupported("prestress stability of a lattice (nested-dissection QR)"))
     }
