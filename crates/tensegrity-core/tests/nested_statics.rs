@@ -69,6 +69,29 @@ fn lattices_and_towers_on_the_nested_path_match_the_dense_path() {
 }
 
 #[test]
+fn the_margin_with_sign_free_members_matches_the_dense_path() {
+    use tensegrity_core::statics::MemberSign;
+    let s = test_models::double_layer_grid(5).unwrap();
+    let mut signs = MemberSign::standard(&s);
+    for (k, sign) in signs.iter_mut().enumerate() {
+        if k % 7 == 0 {
+            *sign = MemberSign::Free;
+        }
+    }
+    let dense = Statics::with_settings(&s, StaticsSettings::default()).unwrap();
+    let nested = NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+    let a = dense.prestressability_with(&signs).unwrap();
+    let b = nested.prestressability_with(&signs).unwrap();
+    assert!(
+        (a.margin - b.margin).abs() < 1e-9,
+        "{} vs {}",
+        a.margin,
+        b.margin
+    );
+    assert!(b.prestressable);
+}
+
+#[test]
 fn the_automatic_choice_sends_a_wide_lattice_to_the_nested_path() {
     let s = test_models::double_layer_grid(12).unwrap();
     assert!(prefers_nested(&s));

@@ -21,6 +21,7 @@ mod flexes;
 pub mod front;
 mod gap;
 mod load;
+mod margin_ipm;
 pub mod nested;
 mod prestress;
 pub mod report;

@@ -19,9 +19,10 @@
 //! - **certificate**: as on the banded path, σ_min(R_acc) (inverse iteration) must exceed
 //!   100·max(τ, ‖E‖_F), ‖E‖_F the rejected residuals;
 //! - **margin**: the LP `max t  s.t.  A q = 0,  σ_k q_k ≥ t,  σ_k q_k ≤ 1` over the force
-//!   densities themselves (equality rows A, no self-stress basis), by Clarabel's sparse LDL,
-//!   up to [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says
-//!   so).
+//!   densities themselves (equality rows A, no self-stress basis), by an interior-point
+//!   method on the normal matrix A D⁻¹ Aᵀ ([`margin_ipm`](super::margin_ipm): a stiffness
+//!   pattern, one sparse Cholesky a step; Clarabel on the same rows should it fail), up to
+//!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
 //!
 //! Not computed here (the report says so, or the banded path answers): the self-stress basis
 //! (its dimension is given), prestress stability when there are internal mechanisms (without
@@ -46,9 +47,9 @@ pub const LEAF_NODES: usize = 24;
 /// goes to the nested-dissection path ([`prefers_nested`]).
 pub const BAND_NODES_MAX: usize = 24;
 
-/// The margin LP over the force densities is solved up to this many members; beyond, its
-/// interior-point factorisations would dominate the analysis.
-pub const LP_MEMBERS_MAX: usize = 25_000;
+/// The margin LP over the force densities is solved up to this many members (10⁵ members of
+/// a lattice: about 2 s); beyond, the report says it was not computed.
+pub const LP_MEMBERS_MAX: usize = 400_000;
 
 /// Rejection and certificate factors, as on the banded path.
 const REJECT_FACTOR: f64 = 1e3;
@@ -350,7 +351,9 @@ impl StaticsBackend for NestedStatics<'_> {
                 "the prestressability margin of a lattice this large (nested dissection)",
             ));
         }
-        let q = super::prestress::solve_equilibrium_lp(&self.a, signs)?;
+        // the interior point on A D⁻¹ Aᵀ; Clarabel on the same rows should it fail
+        let q = super::margin_ipm::solve(&self.a, signs)
+            .or_else(|_| super::prestress::solve_equilibrium_lp(&self.a, signs))?;
         Ok(Prestressability::from_signed(DVector::from_vec(q), signs))
     }
     fn prestress_stability(&self, _q: &DVector<f64>) -> Result<PrestressStability> {
