@@ -78,11 +78,11 @@ pub fn prefers_nested(structure: &Structure) -> bool {
 }
 
 /// Flops a second of the multifrontal QR's dense front updates, and the margin LP's cost per
-/// member^1.5 (Clarabel's sparse LDL on a planar lattice), both measured on the
+/// member^1.5 (the interior point on A D⁻¹ Aᵀ of a planar lattice), both measured on the
 /// double-layer grids of `docs/PERFORMANCE.md` and rounded so that the estimate bounds the
 /// time.
-const FRONT_FLOP_RATE: f64 = 1.0e9;
-const LP_S_PER_MEMBER_1_5: f64 = 1.0e-6;
+const FRONT_FLOP_RATE: f64 = 2.0e9;
+const LP_S_PER_MEMBER_1_5: f64 = 1.5e-7;
 
 /// The resource estimate of the nested-dissection statics of `structure` before it runs:
 /// memory 16 bytes a stored R entry (Σ pivots × front columns, every pivot accepted) plus the
