@@ -25,8 +25,8 @@
 //!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
 //!
 //! Not computed here (the report says so, or the banded path answers): the self-stress basis
-//! (its dimension is given), prestress stability when there are internal mechanisms (without
-//! them the structure is stable, as on the dense path) and the load solve — a loaded structure
+//! (its dimension is given) and the load solve; prestress stability is "stable" without
+//! internal mechanisms (as on the dense path) and otherwise the banded path's test — a loaded structure
 //! stays on the banded path ([`prefers_nested`]).
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
@@ -57,10 +57,15 @@ const CERTIFY_FACTOR: f64 = 100.0;
 const INVERSE_STEPS: usize = 12;
 
 /// Whether the automatic choice sends `structure` to the nested-dissection path rather than
-/// the banded QR: unloaded, and its reverse Cuthill–McKee band wider than
-/// [`BAND_NODES_MAX`] nodes (a lattice; a tower's band is a few rings).
+/// the banded QR: unloaded, with more members × (members − free dofs) — a lower bound of
+/// members × self-stresses — than the report lists
+/// ([`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX): the basis would not be
+/// listed on either path), and its reverse Cuthill–McKee band wider than [`BAND_NODES_MAX`]
+/// nodes (a lattice; a tower's band is a few rings).
 pub fn prefers_nested(structure: &Structure) -> bool {
-    if structure.is_loaded() {
+    let n = structure.n_members();
+    let surplus = n.saturating_sub(DofMap::of(structure).len());
+    if structure.is_loaded() || n.saturating_mul(surplus) <= super::sparse::SELF_STRESS_LIST_MAX {
         return false;
     }
     let order = node_order_rcm(structure);
@@ -242,6 +247,7 @@ pub struct NestedStatics<'a> {
     qr: FrontalQr,
     tolerance: f64,
     sigma_min_estimate: f64,
+    settings: StaticsSettings,
 }
 
 impl<'a> NestedStatics<'a> {
@@ -262,6 +268,7 @@ impl<'a> NestedStatics<'a> {
             qr,
             tolerance,
             sigma_min_estimate,
+            settings,
         })
     }
 
@@ -356,14 +363,14 @@ impl StaticsBackend for NestedStatics<'_> {
             .or_else(|_| super::prestress::solve_equilibrium_lp(&self.a, signs))?;
         Ok(Prestressability::from_signed(DVector::from_vec(q), signs))
     }
-    fn prestress_stability(&self, _q: &DVector<f64>) -> Result<PrestressStability> {
+    fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         // without internal mechanisms the structure is stable for any stress (the dense
         // path's answer); with some, the test is not available here
         if self.internal_mechanisms()? == 0 {
             return Ok(PrestressStability::rigid());
         }
-        Err(Factorization::SparseQr
-            .unsupported("prestress stability of a lattice (nested-dissection QR)"))
+        // with internal mechanisms: the banded path's test (its flexes)
+        super::SparseStatics::with_settings(self.structure, self.settings)?.prestress_stability(q)
     }
     fn solve_nodal_forces(&self, _w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution> {
         Err(CoreError::Unsupported {
