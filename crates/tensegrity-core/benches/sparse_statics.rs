@@ -1,7 +1,9 @@
 //! Criterion benches of the sparse statics against the dense SVD path: the full statics
 //! report (rank, self-stress basis, margin LP, flexes, prestress stability) of towers of
 //! stacked Snelson prisms sharing their triangles (banded; up to 3,200 prisms, issue 25), of a
-//! small double-layer lattice and of random banded structures.
+//! small double-layer lattice and of random banded structures; and the nested-dissection
+//! path (`statics_nested`: the automatic choice for a wide structure) on double-layer
+//! lattices of K × K cells up to K = 80 (89,760 members).
 //!
 //! `cargo bench -p tensegrity-core --bench sparse_statics`
 #![allow(missing_docs)]
@@ -83,6 +85,16 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| statics_report(black_box(s), &request(StaticsMethod::Dense)).unwrap())
             });
         }
+    }
+    group.finish();
+    let mut group = c.benchmark_group("statics_nested");
+    group.sample_size(10);
+    for k in [10, 20, 40, 80] {
+        let s = test_models::double_layer_grid(k).expect("valid lattice");
+        let id = format!("lattice{k}_{}members", s.n_members());
+        group.bench_function(BenchmarkId::new("auto", &id), |b| {
+            b.iter(|| statics_report(black_box(&s), &request(StaticsMethod::Auto)).unwrap())
+        });
     }
     group.finish();
 }

@@ -11,8 +11,14 @@ fn stage_timings() {
         .split(',')
         .map(|s| s.parse().unwrap())
         .collect();
+    let grid = std::env::var("MODEL").is_ok_and(|m| m == "grid");
     for n in sizes {
-        let s = test_models::snelson_tower_free(n).unwrap();
+        let s = if grid {
+            test_models::double_layer_grid(n).unwrap()
+        } else {
+            test_models::snelson_tower_free(n).unwrap()
+        };
+        println!("members {} dofs {}", s.n_members(), 3 * s.n_nodes());
         let t = Instant::now();
         let sp = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
         let t1 = t.elapsed().as_secs_f64();
@@ -63,6 +69,41 @@ fn cholesky_vs_dense() {
             sp.stable_by_cholesky(&pre.stress).unwrap().unwrap(),
             sp.sigma_min_r_estimate(),
             pre.stress.amax()
+        );
+    }
+}
+
+/// Stage timings of the nested-dissection path on double-layer grids (`GRIDS=20,40`).
+#[test]
+#[ignore]
+fn nested_timings() {
+    use tensegrity_core::statics::{NestedStatics, StaticsBackend};
+    let sizes: Vec<usize> = std::env::var("GRIDS")
+        .unwrap_or("20,40".into())
+        .split(',')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    for k in sizes {
+        let s = test_models::double_layer_grid(k).unwrap();
+        let t = Instant::now();
+        let nd = NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let t1 = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let pre = nd.prestressability();
+        let t2 = t.elapsed().as_secs_f64();
+        println!(
+            "grid {k}: members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s margin {:?}",
+            s.n_members(),
+            nd.rank(),
+            nd.self_stress_dim(),
+            nd.mechanisms(),
+            nd.is_certified(),
+            nd.sigma_min_r_estimate(),
+            nd.factorization().rejected_residual(),
+            nd.tolerance(),
+            nd.factorization().largest_front(),
+            nd.factorization().stored_entries(),
+            pre.map(|p| p.margin)
         );
     }
 }

@@ -207,6 +207,12 @@ pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estim
     if dense {
         return Some(budget::dense_statics(dofs, members, parameter));
     }
+    // a wide unloaded structure (a lattice) takes the nested-dissection path
+    if command.method == StaticsMethod::Auto
+        && tensegrity_core::statics::nested::prefers_nested(structure)
+    {
+        return tensegrity_core::statics::nested::nested_estimate(structure, parameter).ok();
+    }
     // the sparse QR within its profile (a bound of what the factorisation stores), its work
     // (QR_FLOPS_PER_ENTRY a profile entry), then the stages after it at the generic rank
     // min(dofs, members); a structure with more self-stresses is checked again by the core

@@ -280,6 +280,61 @@ pub(super) fn solve_null_space_lp(
     Ok(z)
 }
 
+/// The margin LP over the member force densities themselves, with the equilibrium as
+/// equality rows: `max t  s.t.  A q = 0,  σ_k q_k ≥ t,  σ_k q_k ≤ 1` for signed members,
+/// `|q_k| ≤ 1` for free ones, t ≥ 0 — the rows of [`solve_null_space_lp`] without a
+/// self-stress basis (for a structure whose basis is large and not local, e.g. a lattice).
+/// The constraint matrix has A's sparsity plus two entries per member, so Clarabel's sparse
+/// LDL costs about a factorisation of A's pattern. Returns q (A q = 0 to the solver's
+/// feasibility tolerance, 10⁻¹⁰).
+pub(super) fn solve_equilibrium_lp(
+    a: &crate::linalg::CscMatrix,
+    signs: &[MemberSign],
+) -> Result<Vec<f64>> {
+    let problem = "prestressability LP (equilibrium rows)";
+    let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
+    let (cp, ri, vals) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..n {
+        for slot in cp[k]..cp[k + 1] {
+            ii.push(ri[slot]);
+            jj.push(k);
+            vv.push(vals[slot]);
+        }
+    }
+    // inequality rows m + 2k (σ_k q_k ≥ t, or q_k ≤ 1 when free) and m + 2k + 1 (σ_k q_k ≤ 1,
+    // or −q_k ≤ 1 when free); the last row −t ≤ 0
+    let mut b = vec![0.0; m + 2 * n + 1];
+    for k in 0..n {
+        let first = signs[k].sigma().map_or(1.0, |sigma| -sigma);
+        ii.extend([m + 2 * k, m + 2 * k + 1]);
+        jj.extend([k, k]);
+        vv.extend([first, -first]);
+        match signs[k].sigma() {
+            Some(_) => {
+                ii.push(m + 2 * k);
+                jj.push(n);
+                vv.push(1.0);
+            }
+            None => b[m + 2 * k] = 1.0,
+        }
+        b[m + 2 * k + 1] = 1.0;
+    }
+    ii.push(m + 2 * n);
+    jj.push(n);
+    vv.push(-1.0);
+    let g = CscMatrix::new_from_triplets(m + 2 * n + 1, n + 1, ii, jj, vv);
+    let mut c = vec![0.0; n + 1];
+    c[n] = -1.0;
+    let cones = [
+        SupportedConeT::ZeroConeT(m),
+        SupportedConeT::NonnegativeConeT(2 * n + 1),
+    ];
+    let mut z = run_clarabel(&g, &c, &b, &cones, problem)?;
+    z.truncate(n);
+    Ok(z)
+}
+
 /// Solves min cᵀz s.t. G z ≤ h with Clarabel.
 fn solve_clarabel(
     g: &DMatrix<f64>,

@@ -31,6 +31,7 @@
 //! is said in `statics_warning`; `spectral_gap` gives the singular values behind the decision.
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
+use super::prestress::Prestressability;
 use super::{SpectralGap, StaticsSettings};
 use crate::error::{CoreError, Result, StaticsError};
 use crate::sizing::{self, Governing, SizingReport};
@@ -204,9 +205,19 @@ pub fn report_from(
 /// Counts, self-stress, prestressability and mechanisms; the optional parts left empty.
 fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
     let structure = backend.structure();
-    let pre = backend.prestressability()?;
-    let internal_mechanisms = backend.internal_mechanisms()?;
     let mut notes = Vec::new();
+    // a back-end may leave the margin of a very large structure out (nested dissection)
+    let pre = match backend.prestressability() {
+        Ok(pre) => pre,
+        Err(e @ CoreError::Unsupported { .. }) => {
+            notes.push(format!(
+                "prestressability not computed (prestressable and prestress_margin are not answers): {e}"
+            ));
+            Prestressability::none(structure.n_members())
+        }
+        Err(e) => return Err(e),
+    };
+    let internal_mechanisms = backend.internal_mechanisms()?;
     if let Certification::NotCertified { reason } = backend.certification() {
         notes.push(reason);
     }

@@ -1,7 +1,9 @@
 //! Which back-end answers a statics question ([`StaticsBackend`]).
 //!
 //! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
-//!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on;
+//!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on
+//!   (automatic method: along the band, or along a nested dissection for an unloaded
+//!   structure whose band is wide, a lattice: [`prefers_nested`](super::nested::prefers_nested));
 //!   an uncertified sparse rank decision falls back to the SVD when the method is automatic
 //!   and the SVD fits the memory budget and the default work limit, and is otherwise
 //!   returned as is (its
@@ -61,8 +63,15 @@ pub fn backend<'a>(
     settings: StaticsSettings,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
     if wants_sparse(structure, &settings) {
-        let sparse = SparseStatics::with_settings(structure, settings)?;
         let fallback = settings.method == StaticsMethod::Auto && dense_fits(structure, &settings);
+        if settings.method == StaticsMethod::Auto && super::nested::prefers_nested(structure) {
+            let nested = super::NestedStatics::with_settings(structure, settings)?;
+            if nested.is_certified() || !fallback {
+                return Ok(Box::new(nested));
+            }
+            return Ok(Box::new(Statics::with_settings(structure, settings)?));
+        }
+        let sparse = SparseStatics::with_settings(structure, settings)?;
         if sparse.is_certified() || !fallback {
             return Ok(Box::new(sparse));
         }

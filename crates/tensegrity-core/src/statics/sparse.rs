@@ -294,7 +294,7 @@ fn sparse_bytes_bound(a: &CscMatrix, pos_of_row: &[usize]) -> f64 {
 }
 
 /// σ_max of A by the power method on AᵀA (a lower estimate, accurate to a few digits).
-fn sigma_max(a: &CscMatrix) -> f64 {
+pub(super) fn sigma_max(a: &CscMatrix) -> f64 {
     let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
     if m == 0 || n == 0 {
         return 0.0;
@@ -879,7 +879,7 @@ fn kept_dofs(m: usize, pinned: &[usize]) -> (Vec<Option<usize>>, usize) {
 
 /// Rigid-body motions on the free dofs that the supports allow, orthonormal (free dofs ×
 /// count), from 6×6 Gram matrices (no m × m factor).
-fn rigid_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatrix<f64>> {
+pub(super) fn rigid_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatrix<f64>> {
     let n = structure.n_nodes();
     let centre = structure.nodes().iter().sum::<Vector3<f64>>() / n.max(1) as f64;
     let mut t_free = DMatrix::zeros(dofs.len(), 6);

@@ -11,14 +11,18 @@
 //! - [`lu`]: P A Q = L U with partial pivoting for general square matrices;
 //! - [`rrqr`]: a rank-revealing staircase Householder QR of a banded rectangular matrix that
 //!   rejects dependent columns (rank, null spaces and least squares of the equilibrium matrix
-//!   of large structures without the SVD's full U and V).
+//!   of large structures without the SVD's full U and V);
+//! - [`frontal`]: a rank-revealing multifrontal QR of Aᵀ along a nested-dissection tree
+//!   (rank and certificate of lattices, whose band is too wide for [`rrqr`]).
 
 pub mod cholesky;
+pub mod frontal;
 pub mod lu;
 pub mod ordering;
 pub mod rrqr;
 
 pub use cholesky::{cholesky_solve, SparseCholesky, StaticCholesky};
+pub use frontal::FrontalQr;
 pub use lu::{lu_solve, SparseLu};
 pub use ordering::amd_ordering;
 pub use rrqr::RankRevealingQr;

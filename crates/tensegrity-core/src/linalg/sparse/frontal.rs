@@ -1,0 +1,566 @@
+//! Rank-revealing multifrontal QR of Aᵀ along an elimination tree (nested dissection).
+//!
+//! # Method
+//!
+//! The matrix factored is B = Aᵀ for a sparse m × n matrix A given by its columns (for the
+//! equilibrium matrix: B has one row per member and one column per free dof). B's columns
+//! are grouped into **fronts** that form a tree (a nested dissection of the structure: the
+//! leaves are small sub-domains, every inner front is the separator of its two children),
+//! numbered in post order, so that a row of B touches one front and its ancestors only. A
+//! row is assembled into the front of its earliest column. Front F then holds, as a dense
+//! matrix, its assembled rows and the contribution blocks of its children, over its own
+//! (pivot) columns followed by the border columns (ancestors' columns the rows touch):
+//!
+//! - Householder QR with column pivoting restricted to the pivot columns: at each step the
+//!   remaining pivot column of largest residual norm becomes the next pivot; when the largest
+//!   residual is at most the rejection tolerance τ, the remaining pivot columns are
+//!   **rejected** (dependent on the pivots before them, inside F's subtree): their residuals,
+//!   of norm ≤ τ each, are dropped (they form E) and their R entries kept as R_dep;
+//! - the accepted rows are R's rows (entries on F's later pivots and on border columns);
+//! - the rows left over the border columns are the contribution block passed to the parent,
+//!   reduced by an unpivoted QR to at most as many rows as border columns (rows beyond are
+//!   exactly zero after it: each is a left null vector of B, a self-stress).
+//!
+//! The result is B Pc = Q [R_acc R_dep; 0 0] + E, R_acc (r × r) upper triangular in the
+//! pivot order, r the rank: the self-stress dimension n − r (rows of B) and the mechanisms
+//! m − r (columns of B) follow. With a separator of s columns the top front costs
+//! O(rows·s²) flops; on a structure of planar extent (separators ∝ √m) the whole
+//! factorisation costs O(m^1.5) flops and O(m log m) stored entries, on a long one (a tower:
+//! separators of bounded size) O(m).
+//!
+//! # Certificate
+//!
+//! As for the banded QR ([`super::rrqr`]): ‖E‖_F bounds σ_{r+1}(A) from above and
+//! σ_min(R_acc) ≤ σ_r(A) from below ([`FrontalQr::sigma_min_estimate`], inverse iteration with
+//! the sparse triangular R_acc); the caller compares both with τ.
+
+use super::CscMatrix;
+use crate::error::{FactorizationFailure, Result};
+use crate::linalg::failure;
+
+/// One row of R: its entries from the diagonal rightwards, the diagonal first. During the
+/// factorisation `cols` holds original columns of B; afterwards the pivot indices of the
+/// accepted ones (R_acc), the rejected columns' entries moved to `dep` (R_dep).
+#[derive(Debug, Clone)]
+struct RRow {
+    cols: Vec<usize>,
+    vals: Vec<f64>,
+    dep: Vec<(usize, f64)>,
+}
+
+/// A dense contribution block: rows × `cols.len()`, column-major.
+#[derive(Debug, Clone, Default)]
+struct Contribution {
+    cols: Vec<usize>,
+    rows: usize,
+    data: Vec<f64>,
+}
+
+/// The rank-revealing multifrontal QR of Aᵀ (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct FrontalQr {
+    /// Columns of B (rows of A).
+    ncols: usize,
+    /// Rows of B (columns of A).
+    nrows: usize,
+    tol: f64,
+    /// R's rows in pivot order.
+    r_rows: Vec<RRow>,
+    /// Pivot index of every column of B (`None`: rejected).
+    pivot_of: Vec<Option<usize>>,
+    rejected_sq: f64,
+    /// Largest number of rows × columns of a front (a measure of the work).
+    largest_front: (usize, usize),
+}
+
+impl FrontalQr {
+    /// Factors Aᵀ for the m × n matrix `a` (each column of `a` is a row of B) with B's columns
+    /// (`a`'s rows) grouped into `fronts` (each a list of columns, every column in exactly one
+    /// front), `parent[f]` the parent front (`None` at a root; a parent comes after its
+    /// children), and absolute rejection tolerance `tol`.
+    ///
+    /// ```
+    /// use tensegrity_core::linalg::{CscMatrix, FrontalQr};
+    /// // A (2 × 3): columns e0, e0 + e1, 2·e0 + e1 — rank 2, one dependent column
+    /// let a = CscMatrix::from_triplets(
+    ///     2, 3, &[(0, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0), (0, 2, 2.0), (1, 2, 1.0)],
+    /// ).unwrap();
+    /// let qr = FrontalQr::new(&a, &[vec![0], vec![1]], &[Some(1), None], 1e-12).unwrap();
+    /// assert_eq!(qr.rank(), 2);
+    /// assert!(qr.sigma_min_estimate(20) > 0.1);
+    /// ```
+    pub fn new(
+        a: &CscMatrix,
+        fronts: &[Vec<usize>],
+        parent: &[Option<usize>],
+        tol: f64,
+    ) -> Result<Self> {
+        let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
+        let bad = |expected: usize, found: usize| {
+            let reason = FactorizationFailure::DimensionMismatch { expected, found };
+            failure("multifrontal QR (elimination tree)", reason)
+        };
+        if parent.len() != fronts.len() {
+            return Err(bad(fronts.len(), parent.len()));
+        }
+        let mut front_of = vec![usize::MAX; m];
+        for (f, cols) in fronts.iter().enumerate() {
+            for &c in cols {
+                if c >= m || front_of[c] != usize::MAX {
+                    return Err(bad(m, c));
+                }
+                front_of[c] = f;
+            }
+        }
+        if let Some(c) = front_of.iter().position(|&f| f == usize::MAX) {
+            return Err(bad(m, c));
+        }
+        if let Some(f) = (0..fronts.len()).find(|&f| parent[f].is_some_and(|p| p <= f)) {
+            return Err(bad(f + 1, parent[f].unwrap_or(0)));
+        }
+        // rows of B (columns of A) by the front of their earliest column
+        let (cp, ri, vals) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+        let mut assembled: Vec<Vec<usize>> = vec![Vec::new(); fronts.len()];
+        for k in 0..n {
+            if let Some(f) = ri[cp[k]..cp[k + 1]].iter().map(|&r| front_of[r]).min() {
+                assembled[f].push(k);
+            }
+        }
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); fronts.len()];
+        for (f, p) in parent.iter().enumerate() {
+            if let Some(p) = p {
+                children[*p].push(f);
+            }
+        }
+        let mut qr = Self {
+            ncols: m,
+            nrows: n,
+            tol,
+            r_rows: Vec::new(),
+            pivot_of: vec![None; m],
+            rejected_sq: 0.0,
+            largest_front: (0, 0),
+        };
+        let mut pending: Vec<Contribution> = vec![Contribution::default(); fronts.len()];
+        let mut local = vec![usize::MAX; m];
+        for f in 0..fronts.len() {
+            let kids: Vec<Contribution> = children[f]
+                .iter()
+                .map(|&c| std::mem::take(&mut pending[c]))
+                .collect();
+            let rows: Vec<(&[usize], &[f64])> = assembled[f]
+                .iter()
+                .map(|&k| (&ri[cp[k]..cp[k + 1]], &vals[cp[k]..cp[k + 1]]))
+                .collect();
+            let out = qr.front(&fronts[f], &rows, &kids, &mut local);
+            if parent[f].is_none() && !out.cols.is_empty() {
+                return Err(bad(0, out.cols[0]));
+            }
+            pending[f] = out;
+        }
+        // R's columns → pivot indices (R_acc), the rejected ones apart (R_dep)
+        for row in &mut qr.r_rows {
+            let (mut k, cols) = (0, std::mem::take(&mut row.cols));
+            for (&c, idx) in cols.iter().zip(0..) {
+                let v = row.vals[idx];
+                match qr.pivot_of[c] {
+                    Some(p) => {
+                        row.vals[k] = v;
+                        row.cols.push(p);
+                        k += 1;
+                    }
+                    None => row.dep.push((c, v)),
+                }
+            }
+            row.vals.truncate(k);
+        }
+        Ok(qr)
+    }
+
+    /// The fronts' sizes before factoring (every pivot accepted): for each front its rows,
+    /// pivot columns and all columns, from the pattern of `a` and the tree as for
+    /// [`new`](Self::new) (which must accept them). For an estimate of the memory (R holds
+    /// Σ pivots·columns entries) and of the work (Σ 2·rows·columns·pivots flops).
+    ///
+    /// ```
+    /// use tensegrity_core::linalg::{CscMatrix, FrontalQr};
+    /// let a = CscMatrix::from_triplets(
+    ///     2, 3, &[(0, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0), (0, 2, 2.0), (1, 2, 1.0)],
+    /// ).unwrap();
+    /// let sizes = FrontalQr::symbolic(&a, &[vec![0], vec![1]], &[Some(1), None]);
+    /// assert_eq!(sizes, vec![(3, 1, 2), (1, 1, 1)]);
+    /// ```
+    pub fn symbolic(
+        a: &CscMatrix,
+        fronts: &[Vec<usize>],
+        parent: &[Option<usize>],
+    ) -> Vec<(usize, usize, usize)> {
+        let m = a.pattern().nrows();
+        let mut front_of = vec![usize::MAX; m];
+        for (f, cols) in fronts.iter().enumerate() {
+            for &c in cols.iter().filter(|&&c| c < m) {
+                front_of[c] = f;
+            }
+        }
+        let (cp, ri) = (a.pattern().col_ptr(), a.pattern().row_idx());
+        let mut rows = vec![0usize; fronts.len()];
+        let mut touched: Vec<Vec<usize>> = vec![Vec::new(); fronts.len()];
+        for k in 0..a.pattern().ncols() {
+            let cols = &ri[cp[k]..cp[k + 1]];
+            if let Some(f) = cols
+                .iter()
+                .map(|&r| front_of[r])
+                .filter(|&f| f != usize::MAX)
+                .min()
+            {
+                rows[f] += 1;
+                touched[f].extend(cols.iter().filter(|&&c| front_of[c] != f));
+            }
+        }
+        let mut out = Vec::with_capacity(fronts.len());
+        for f in 0..fronts.len() {
+            let mut border = std::mem::take(&mut touched[f]);
+            border.sort_unstable();
+            border.dedup();
+            let (np, nb) = (fronts[f].len(), border.len());
+            let nr = rows[f];
+            out.push((nr, np, np + nb));
+            if let Some(p) = parent
+                .get(f)
+                .copied()
+                .flatten()
+                .filter(|&p| p < fronts.len())
+            {
+                rows[p] += nr.saturating_sub(np).min(nb);
+                touched[p].extend(border.into_iter().filter(|&c| front_of[c] != p));
+            }
+        }
+        out
+    }
+
+    /// Assembles, factors and reduces one front; returns its contribution block.
+    fn front(
+        &mut self,
+        pivots: &[usize],
+        rows: &[(&[usize], &[f64])],
+        kids: &[Contribution],
+        local: &mut [usize],
+    ) -> Contribution {
+        // the front's columns: pivots, then the border
+        let mut cols: Vec<usize> = pivots.to_vec();
+        for (i, &c) in cols.iter().enumerate() {
+            local[c] = i;
+        }
+        let np = cols.len();
+        let touched = rows
+            .iter()
+            .flat_map(|r| r.0.iter())
+            .chain(kids.iter().flat_map(|k| k.cols.iter()));
+        for &c in touched {
+            if local[c] == usize::MAX {
+                local[c] = cols.len();
+                cols.push(c);
+            }
+        }
+        let nc = cols.len();
+        let nr = rows.len() + kids.iter().map(|k| k.rows).sum::<usize>();
+        self.largest_front = self.largest_front.max((nr, nc));
+        let mut w = vec![0.0; nr * nc];
+        for (i, (idx, v)) in rows.iter().enumerate() {
+            for (&c, &x) in idx.iter().zip(v.iter()) {
+                w[local[c] * nr + i] += x;
+            }
+        }
+        let mut r0 = rows.len();
+        for k in kids {
+            for (j, &c) in k.cols.iter().enumerate() {
+                let dst = local[c] * nr + r0;
+                w[dst..dst + k.rows].copy_from_slice(&k.data[j * k.rows..(j + 1) * k.rows]);
+            }
+            r0 += k.rows;
+        }
+        for &c in &cols {
+            local[c] = usize::MAX;
+        }
+        // pivoted Householder on the pivot columns
+        let mut perm: Vec<usize> = (0..nc).collect();
+        let mut accepted = 0;
+        while accepted < np.min(nr) {
+            let i = accepted;
+            let norm_of = |j: usize, w: &[f64]| {
+                let col = &w[j * nr + i..(j + 1) * nr];
+                dot(col, col)
+            };
+            let (best, best_sq) = (i..np)
+                .map(|j| (j, norm_of(j, &w)))
+                .fold((i, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });
+            if best_sq.sqrt() <= self.tol {
+                break;
+            }
+            if best != i {
+                perm.swap(i, best);
+                for r in 0..nr {
+                    w.swap(i * nr + r, best * nr + r);
+                }
+            }
+            householder_step(&mut w, nr, nc, i, i, best_sq.sqrt());
+            accepted += 1;
+        }
+        // rejected pivot columns: their residuals (rows accepted..) are E
+        for j in accepted..np {
+            let col = &mut w[j * nr..(j + 1) * nr];
+            self.rejected_sq += col[accepted..].iter().map(|x| x * x).sum::<f64>();
+            col[accepted..].iter_mut().for_each(|x| *x = 0.0);
+        }
+        let base = self.r_rows.len();
+        for i in 0..accepted {
+            self.pivot_of[cols[perm[i]]] = Some(base + i);
+            let mut rc = Vec::with_capacity(nc - i);
+            let mut rv = Vec::with_capacity(nc - i);
+            for j in i..nc {
+                let v = w[j * nr + i];
+                if v != 0.0 || j == i {
+                    rc.push(cols[perm[j]]);
+                    rv.push(v);
+                }
+            }
+            self.r_rows.push(RRow {
+                cols: rc,
+                vals: rv,
+                dep: Vec::new(),
+            });
+        }
+        // the contribution block: rows accepted.., border columns
+        let cr = nr - accepted;
+        let cb = nc - np;
+        let mut data = vec![0.0; cr * cb];
+        for j in 0..cb {
+            let src = &w[(np + j) * nr + accepted..(np + j + 1) * nr];
+            data[j * cr..(j + 1) * cr].copy_from_slice(src);
+        }
+        let border: Vec<usize> = (np..nc).map(|j| cols[perm[j]]).collect();
+        if cr > cb {
+            // reduce to cb rows: an unpivoted QR, the rest is zero
+            for i in 0..cb {
+                let sq: f64 = data[i * cr + i..(i + 1) * cr].iter().map(|x| x * x).sum();
+                householder_step(&mut data, cr, cb, i, i, sq.sqrt());
+            }
+            let mut reduced = vec![0.0; cb * cb];
+            for j in 0..cb {
+                reduced[j * cb..j * cb + j + 1].copy_from_slice(&data[j * cr..j * cr + j + 1]);
+            }
+            return Contribution {
+                cols: border,
+                rows: cb,
+                data: reduced,
+            };
+        }
+        Contribution {
+            cols: border,
+            rows: cr,
+            data,
+        }
+    }
+
+    /// The rank r: the accepted pivots.
+    pub fn rank(&self) -> usize {
+        self.r_rows.len()
+    }
+
+    /// Rows of B (columns of A).
+    pub fn nrows(&self) -> usize {
+        self.nrows
+    }
+
+    /// Columns of B (rows of A).
+    pub fn ncols(&self) -> usize {
+        self.ncols
+    }
+
+    /// The absolute rejection tolerance.
+    pub fn tolerance(&self) -> f64 {
+        self.tol
+    }
+
+    /// Frobenius norm of the rejected residuals: an upper bound of σ_{r+1}(A).
+    pub fn rejected_residual(&self) -> f64 {
+        self.rejected_sq.sqrt()
+    }
+
+    /// Stored entries of R (R_acc and R_dep).
+    pub fn stored_entries(&self) -> usize {
+        self.r_rows.iter().map(|r| r.vals.len() + r.dep.len()).sum()
+    }
+
+    /// The largest front, rows × columns.
+    pub fn largest_front(&self) -> (usize, usize) {
+        self.largest_front
+    }
+
+    /// The columns of B that were rejected (A's rows outside the pivots: one per mechanism).
+    pub fn rejected_columns(&self) -> Vec<usize> {
+        (0..self.ncols)
+            .filter(|&c| self.pivot_of[c].is_none())
+            .collect()
+    }
+
+    /// Back substitution R_acc x = c in place (pivot order; entries on rejected columns
+    /// skipped).
+    fn back_substitute(&self, c: &mut [f64]) {
+        for i in (0..c.len()).rev() {
+            let row = &self.r_rows[i];
+            let mut s = c[i];
+            for (&j, &v) in row.cols.iter().zip(&row.vals).skip(1) {
+                s -= v * c[j];
+            }
+            c[i] = s / row.vals[0];
+        }
+    }
+
+    /// Forward substitution R_accᵀ y = c in place.
+    fn forward_substitute_transposed(&self, c: &mut [f64]) {
+        for i in 0..c.len() {
+            let row = &self.r_rows[i];
+            let y = c[i] / row.vals[0];
+            c[i] = y;
+            for (&j, &v) in row.cols.iter().zip(&row.vals).skip(1) {
+                c[j] -= v * y;
+            }
+        }
+    }
+
+    /// An estimate of σ_min(R_acc) (≤ σ_r(A) up to the rejected part) by `iterations` steps
+    /// of inverse iteration on R_accᵀ R_acc; +∞ at rank 0. Inverse iteration converges from
+    /// above: an upper estimate of σ_min(R_acc), accurate to a small factor in a few steps.
+    pub fn sigma_min_estimate(&self, iterations: usize) -> f64 {
+        let r = self.rank();
+        if r == 0 {
+            return f64::INFINITY;
+        }
+        let mut x: Vec<f64> = (0..r)
+            .map(|i| 1.0 + 0.5 * ((i * 7919) % 13) as f64)
+            .collect();
+        let mut sigma = f64::INFINITY;
+        for _ in 0..iterations.max(1) {
+            let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+            x.iter_mut().for_each(|v| *v /= norm);
+            self.forward_substitute_transposed(&mut x);
+            self.back_substitute(&mut x);
+            let grow = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if !grow.is_finite() || grow == 0.0 {
+                return 0.0;
+            }
+            sigma = 1.0 / grow.sqrt();
+        }
+        sigma
+    }
+}
+
+/// One Householder step on the column-major `nr × nc` matrix `w`: the reflector that maps
+/// column `j`'s entries from row `i` down (norm `norm`) onto row `i`, applied to the columns
+/// after `j`.
+fn householder_step(w: &mut [f64], nr: usize, nc: usize, i: usize, j: usize, norm: f64) {
+    if norm == 0.0 {
+        return;
+    }
+    let (head, tail) = w.split_at_mut((j + 1) * nr);
+    let v = &mut head[j * nr + i..(j + 1) * nr];
+    let alpha = if v[0] > 0.0 { -norm } else { norm };
+    v[0] -= alpha;
+    let vv = dot(v, v);
+    let beta = if vv > 0.0 { 2.0 / vv } else { 0.0 };
+    for c in 0..nc - j - 1 {
+        let col = &mut tail[c * nr + i..(c + 1) * nr];
+        let s = dot(v, col) * beta;
+        if s != 0.0 {
+            for (x, a) in col.iter_mut().zip(v.iter()) {
+                *x -= s * a;
+            }
+        }
+    }
+    v[0] = alpha;
+    v[1..].iter_mut().for_each(|x| *x = 0.0);
+}
+
+/// The dot product with four partial sums (vectorised; the order of the additions differs
+/// from a left-to-right sum by rounding only).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    acc[0] + acc[1] + acc[2] + acc[3] + tail
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DMatrix;
+
+    /// A deterministic entry in [−1, 1).
+    fn entry(i: usize, k: usize) -> f64 {
+        let x = ((i * 7919 + k * 104_729) as f64 * 0.618_033_988_7).sin() * 43_758.545_3;
+        2.0 * (x - x.floor()) - 1.0
+    }
+
+    #[test]
+    fn rank_and_smallest_singular_value_match_the_svd_on_a_chain_of_fronts() {
+        // A: m = 12 rows in 3 fronts (0 and 1 children of 2), n = 20 columns touching one front
+        // and its parent; columns 7, 11, … combinations of two others
+        let (m, n) = (12, 20);
+        let mut dense = DMatrix::<f64>::zeros(m, n);
+        let front_rows = [0..4, 4..8, 8..12];
+        for k in 0..n {
+            if k % 4 == 3 && k >= 7 {
+                // columns of the same parity lie in the same front
+                let c = dense.column(k - 2) * 0.7 - dense.column(k - 4) * 1.3;
+                dense.set_column(k, &c);
+                continue;
+            }
+            let f = k % 2;
+            for i in front_rows[f].clone().chain(front_rows[2].clone()) {
+                if (i + k) % 3 != 0 {
+                    dense[(i, k)] = entry(i, k);
+                }
+            }
+        }
+        let mut t = Vec::new();
+        for k in 0..n {
+            for i in 0..m {
+                if dense[(i, k)] != 0.0 {
+                    t.push((i, k, dense[(i, k)]));
+                }
+            }
+        }
+        let a = CscMatrix::from_triplets(m, n, &t).unwrap();
+        let fronts: Vec<Vec<usize>> = front_rows.iter().map(|r| r.clone().collect()).collect();
+        let qr = FrontalQr::new(&a, &fronts, &[Some(2), Some(2), None], 1e-10).unwrap();
+        let svd = crate::linalg::svd(&dense).unwrap();
+        let rank = svd.rank(1e-10 * svd.s[0]);
+        assert_eq!(qr.rank(), rank);
+        assert!(qr.rejected_residual() < 1e-12);
+        let s_r = svd.s[rank - 1];
+        let est = qr.sigma_min_estimate(30);
+        assert!(
+            est <= 1.5 * s_r * 10.0 && est > 1e-3 * s_r,
+            "{est} vs {s_r}"
+        );
+    }
+
+    #[test]
+    fn a_bad_tree_is_an_error() {
+        let a = CscMatrix::from_triplets(2, 1, &[(0, 0, 1.0), (1, 0, 1.0)]).unwrap();
+        assert!(FrontalQr::new(&a, &[vec![0]], &[None], 1e-12).is_err());
+        assert!(FrontalQr::new(&a, &[vec![0], vec![1]], &[None, None], 1e-12).is_err());
+        assert!(FrontalQr::new(&a, &[vec![0, 1]], &[None], 1e-12).is_ok());
+    }
+}

@@ -1,0 +1,231 @@
+//! The prestressability margin LP over the force densities of a large structure, by a
+//! primal-dual interior-point method whose linear systems are the equilibrium normal
+//! matrix A D⁻¹ Aᵀ (free dofs × free dofs, the sparsity of a stiffness matrix), factored by
+//! the sparse supernodal Cholesky.
+//!
+//! With p_k = σ_k q_k (σ_k = −1 for a compressed member, +1 otherwise) and A' = A diag(σ):
+//!
+//! `min −t  s.t.  A' p = 0,  s1 = p − e t − l ≥ 0,  s2 = 1 − p ≥ 0`
+//!
+//! e_k = 1 and l_k = 0 for a signed member (t ≤ p_k ≤ 1), e_k = 0 and l_k = −1 for a free
+//! one (|q_k| ≤ 1). Dual variables y (equilibrium), z1, z2 ≥ 0; optimality:
+//! A'ᵀy + z1 − z2 = 0, eᵀz1 = 1, s∘z = 0. Each Newton step eliminates the slacks and duals
+//! member by member (D = Z1/S1 + Z2/S2, d1 = e∘Z1/S1), leaving
+//!
+//! `[M  u; −uᵀ  c] [dy; dt] = [f1; f2]`,  M = A' D⁻¹ A'ᵀ, u = A' D⁻¹ d1, c = Σd1 − d1ᵀD⁻¹d1,
+//!
+//! solved by one factorisation of M (+ δI, δ = 10⁻¹³·max diag, for the mechanisms) and a
+//! Schur complement on t; then dp = D⁻¹(A'ᵀdy + d1 dt + w). Mehrotra's predictor-corrector,
+//! at most [`MAX_ITERATIONS`] steps, stopping when the equilibrium residual, the dual
+//! residual and the complementarity are below 10⁻¹¹ (relative). The stress returned is
+//! q = σ∘p; the caller recomputes its margin.
+
+use super::prestress::MemberSign;
+use crate::error::{CoreError, NumericsError, Result};
+use crate::linalg::{CscMatrix, CscPattern, SparseCholesky};
+
+/// Most interior-point steps.
+pub const MAX_ITERATIONS: usize = 80;
+const TOL: f64 = 1e-11;
+
+/// Solves the margin LP (module documentation) for the equilibrium matrix `a` (dofs ×
+/// members); returns q.
+pub fn solve(a: &CscMatrix, signs: &[MemberSign]) -> Result<Vec<f64>> {
+    let failed = |status: &str| {
+        CoreError::Numerics(NumericsError::SolverFailed {
+            problem: "prestressability LP (interior point on A D⁻¹ Aᵀ)",
+            status: status.to_string(),
+        })
+    };
+    let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
+    let (cp, ri, av) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+    let sigma: Vec<f64> = signs.iter().map(|s| s.sigma().unwrap_or(1.0)).collect();
+    let e: Vec<f64> = signs
+        .iter()
+        .map(|s| f64::from(u8::from(s.sigma().is_some())))
+        .collect();
+    let l: Vec<f64> = e.iter().map(|&e| e - 1.0).collect();
+    let n_signed: f64 = e.iter().sum();
+    if n_signed == 0.0 {
+        return Err(failed("no signed member"));
+    }
+    // the pattern of the lower triangle of A Aᵀ and each member's slots
+    let mut t = Vec::new();
+    for k in 0..n {
+        for s1 in cp[k]..cp[k + 1] {
+            for s2 in cp[k]..cp[k + 1] {
+                if ri[s1] >= ri[s2] {
+                    t.push((ri[s1], ri[s2], 0.0));
+                }
+            }
+        }
+    }
+    for i in 0..m {
+        t.push((i, i, 0.0));
+    }
+    let pattern: CscPattern = CscMatrix::from_triplets(m, m, &t)?.pattern().clone();
+    let mut slots = Vec::new();
+    let mut slot_ptr = vec![0usize];
+    for k in 0..n {
+        for s1 in cp[k]..cp[k + 1] {
+            for s2 in cp[k]..cp[k + 1] {
+                if ri[s1] >= ri[s2] {
+                    let slot = pattern
+                        .slot(ri[s1], ri[s2])
+                        .ok_or_else(|| failed("pattern"))?;
+                    slots.push((slot, s1, s2));
+                }
+            }
+        }
+        slot_ptr.push(slots.len());
+    }
+    let diag: Vec<usize> = (0..m)
+        .map(|i| pattern.slot(i, i).ok_or_else(|| failed("pattern")))
+        .collect::<Result<_>>()?;
+    let mut chol = SparseCholesky::new(&pattern)?;
+    // A' x and A'ᵀ y
+    let apply = |x: &[f64]| -> Vec<f64> {
+        let mut y = vec![0.0; m];
+        for k in 0..n {
+            let xk = sigma[k] * x[k];
+            for s in cp[k]..cp[k + 1] {
+                y[ri[s]] += av[s] * xk;
+            }
+        }
+        y
+    };
+    let apply_t = |y: &[f64]| -> Vec<f64> {
+        (0..n)
+            .map(|k| sigma[k] * (cp[k]..cp[k + 1]).map(|s| av[s] * y[ri[s]]).sum::<f64>())
+            .collect()
+    };
+    // start: p midway, t = 0, unit slacks and duals (eᵀz1 = 1 is reached on the way)
+    let mut p: Vec<f64> = l.iter().map(|&l| 0.5 * (1.0 + l)).collect();
+    let mut tt = 0.0;
+    let mut y = vec![0.0; m];
+    let (mut s1, mut s2) = (vec![1.0; n], vec![1.0; n]);
+    let (mut z1, mut z2) = (vec![1.0; n], vec![1.0; n]);
+    let mut values = vec![0.0; pattern.nnz()];
+    for _ in 0..MAX_ITERATIONS {
+        let atp = apply(&p);
+        let aty = apply_t(&y);
+        let r_p = atp;
+        let r_d: Vec<f64> = (0..n).map(|k| aty[k] + z1[k] - z2[k]).collect();
+        let r_t = (0..n).map(|k| e[k] * z1[k]).sum::<f64>() - 1.0;
+        let r1: Vec<f64> = (0..n).map(|k| p[k] - e[k] * tt - l[k] - s1[k]).collect();
+        let r2: Vec<f64> = (0..n).map(|k| 1.0 - p[k] - s2[k]).collect();
+        let mu = (0..n).map(|k| s1[k] * z1[k] + s2[k] * z2[k]).sum::<f64>() / (2 * n) as f64;
+        let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if norm(&r_p) < TOL
+            && norm(&r_d) < TOL
+            && r_t.abs() < TOL
+            && norm(&r1) < TOL
+            && norm(&r2) < TOL
+            && mu < TOL
+        {
+            return Ok((0..n).map(|k| sigma[k] * p[k]).collect());
+        }
+        // the normal matrix
+        let dd: Vec<f64> = (0..n).map(|k| z1[k] / s1[k] + z2[k] / s2[k]).collect();
+        let d1: Vec<f64> = (0..n).map(|k| e[k] * z1[k] / s1[k]).collect();
+        values.iter_mut().for_each(|v| *v = 0.0);
+        for k in 0..n {
+            let w = 1.0 / dd[k];
+            for &(slot, a1, a2) in &slots[slot_ptr[k]..slot_ptr[k + 1]] {
+                values[slot] += w * av[a1] * av[a2];
+            }
+        }
+        let dmax = diag.iter().fold(0.0f64, |a, &s| a.max(values[s]));
+        for &s in &diag {
+            values[s] += 1e-13 * dmax.max(f64::MIN_POSITIVE);
+        }
+        chol.factor(&values)
+            .map_err(|_| failed("normal matrix not positive definite"))?;
+        let mut mu_inv_u: Vec<f64> = apply(&(0..n).map(|k| d1[k] / dd[k]).collect::<Vec<_>>());
+        let u = mu_inv_u.clone();
+        chol.solve_in_place(&mut mu_inv_u);
+        let c = (0..n).map(|k| d1[k] - d1[k] * d1[k] / dd[k]).sum::<f64>();
+        let ut_minv_u: f64 = u.iter().zip(&mu_inv_u).map(|(a, b)| a * b).sum();
+        // one Newton direction for the complementarity targets rc1, rc2
+        let mut direction = |rc1: &[f64], rc2: &[f64]| {
+            let g: Vec<f64> = (0..n)
+                .map(|k| {
+                    -rc1[k] / s1[k] - z1[k] / s1[k] * r1[k] + rc2[k] / s2[k] + z2[k] / s2[k] * r2[k]
+                })
+                .collect();
+            let w: Vec<f64> = (0..n).map(|k| g[k] + r_d[k]).collect();
+            let h1: f64 = (0..n)
+                .map(|k| e[k] * (-rc1[k] / s1[k] - z1[k] / s1[k] * r1[k]))
+                .sum();
+            let aw = apply(&(0..n).map(|k| w[k] / dd[k]).collect::<Vec<_>>());
+            let mut f1: Vec<f64> = (0..m).map(|i| -r_p[i] - aw[i]).collect();
+            let f2 = -r_t - h1 + (0..n).map(|k| d1[k] * w[k] / dd[k]).sum::<f64>();
+            let u_f1: f64 = {
+                chol.solve_in_place(&mut f1);
+                u.iter().zip(&f1).map(|(a, b)| a * b).sum()
+            };
+            let dt = (f2 + u_f1) / (c + ut_minv_u);
+            let dy: Vec<f64> = (0..m).map(|i| f1[i] - mu_inv_u[i] * dt).collect();
+            let atdy = apply_t(&dy);
+            let dp: Vec<f64> = (0..n)
+                .map(|k| (atdy[k] + d1[k] * dt + w[k]) / dd[k])
+                .collect();
+            let ds1: Vec<f64> = (0..n).map(|k| dp[k] - e[k] * dt + r1[k]).collect();
+            let ds2: Vec<f64> = (0..n).map(|k| -dp[k] + r2[k]).collect();
+            let dz1: Vec<f64> = (0..n).map(|k| (-rc1[k] - z1[k] * ds1[k]) / s1[k]).collect();
+            let dz2: Vec<f64> = (0..n).map(|k| (-rc2[k] - z2[k] * ds2[k]) / s2[k]).collect();
+            (dp, dt, dy, ds1, ds2, dz1, dz2)
+        };
+        let step = |x: &[f64], dx: &[f64]| {
+            x.iter()
+                .zip(dx)
+                .filter(|(_, &d)| d < 0.0)
+                .fold(1.0f64, |a, (&x, &d)| a.min(-x / d))
+        };
+        // predictor
+        let rc1: Vec<f64> = (0..n).map(|k| s1[k] * z1[k]).collect();
+        let rc2: Vec<f64> = (0..n).map(|k| s2[k] * z2[k]).collect();
+        let (_, _, _, ds1, ds2, dz1, dz2) = direction(&rc1, &rc2);
+        let alpha = step(&s1, &ds1)
+            .min(step(&s2, &ds2))
+            .min(step(&z1, &dz1))
+            .min(step(&z2, &dz2));
+        let mu_aff = (0..n)
+            .map(|k| {
+                (s1[k] + alpha * ds1[k]) * (z1[k] + alpha * dz1[k])
+                    + (s2[k] + alpha * ds2[k]) * (z2[k] + alpha * dz2[k])
+            })
+            .sum::<f64>()
+            / (2 * n) as f64;
+        let centre = (mu_aff / mu).powi(3) * mu;
+        // corrector
+        let rc1: Vec<f64> = (0..n)
+            .map(|k| s1[k] * z1[k] + ds1[k] * dz1[k] - centre)
+            .collect();
+        let rc2: Vec<f64> = (0..n)
+            .map(|k| s2[k] * z2[k] + ds2[k] * dz2[k] - centre)
+            .collect();
+        let (dp, dt, dy, ds1, ds2, dz1, dz2) = direction(&rc1, &rc2);
+        let alpha = 0.99
+            * step(&s1, &ds1)
+                .min(step(&s2, &ds2))
+                .min(step(&z1, &dz1))
+                .min(step(&z2, &dz2));
+        let alpha = alpha.min(1.0);
+        for k in 0..n {
+            p[k] += alpha * dp[k];
+            s1[k] += alpha * ds1[k];
+            s2[k] += alpha * ds2[k];
+            z1[k] += alpha * dz1[k];
+            z2[k] += alpha * dz2[k];
+        }
+        tt += alpha * dt;
+        for i in 0..m {
+            y[i] += alpha * dy[i];
+        }
+        if !tt.is_finite() {
+            return Err(failed("diverged"));
+        }
+    }
+    Err(failed("no convergence"))
+}

@@ -1,0 +1,381 @@
+//! Sparse statics of lattices: rank, self-stress dimension, mechanisms and the margin of the
+//! equilibrium matrix A (free dofs × members) through a nested dissection of the structure.
+//!
+//! # Why
+//!
+//! The banded QR of [`SparseStatics`](super::SparseStatics) processes the members along a
+//! band; a structure of planar or spatial extent (a double-layer grid of K × K cells) has a
+//! band of ∝ K nodes, its null vectors (self-stresses) are not local in the band order and
+//! their sparse basis, and the margin LP over it, grow quadratically. Here:
+//!
+//! - **ordering**: a coordinate nested dissection of the nodes ([`dissection`]): the node set
+//!   is split at the median of its longest extent, the separator is the smaller of the two
+//!   boundaries (the nodes of one side with a neighbour on the other), and both sides are
+//!   dissected again down to [`LEAF_NODES`] nodes; no member joins two sibling sub-domains,
+//!   so a member touches one front and its ancestors;
+//! - **factorisation**: the rank-revealing multifrontal QR of Aᵀ
+//!   ([`FrontalQr`](crate::linalg::FrontalQr)) along that tree, with the banded path's
+//!   tolerances: τ = max(m, n)·ε·σ_max (σ_max by the power method), rejection at 1000·τ;
+//! - **certificate**: as on the banded path, σ_min(R_acc) (inverse iteration) must exceed
+//!   100·max(τ, ‖E‖_F), ‖E‖_F the rejected residuals;
+//! - **margin**: the LP `max t  s.t.  A q = 0,  σ_k q_k ≥ t,  σ_k q_k ≤ 1` over the force
+//!   densities themselves (equality rows A, no self-stress basis), by an interior-point
+//!   method on the normal matrix A D⁻¹ Aᵀ ([`margin_ipm`](super::margin_ipm): a stiffness
+//!   pattern, one sparse Cholesky a step; Clarabel on the same rows should it fail), up to
+//!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
+//!
+//! Not computed here (the report says so, or the banded path answers): the self-stress basis
+//! (its dimension is given) and the load solve; prestress stability is "stable" without
+//! internal mechanisms (as on the dense path) and otherwise the banded path's test — a loaded structure
+//! stays on the banded path ([`prefers_nested`]).
+
+use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
+use super::load::LoadSolution;
+use super::prestress::{MemberSign, Prestressability};
+use super::sparse::{equilibrium_matrix_sparse, node_order_rcm, rigid_motions, sigma_max};
+use super::stability::PrestressStability;
+use super::{DofMap, SpectralGap, StaticsSettings};
+use crate::error::{CoreError, Result};
+use crate::linalg::{self, CscMatrix, FrontalQr};
+use crate::structure::Structure;
+use nalgebra::{DMatrix, DVector, Matrix3xX};
+
+/// Sub-domains of at most this many nodes are not dissected further (leaf fronts).
+pub const LEAF_NODES: usize = 24;
+
+/// The band (in node positions of the reverse Cuthill–McKee order) above which a structure
+/// goes to the nested-dissection path ([`prefers_nested`]).
+pub const BAND_NODES_MAX: usize = 24;
+
+/// The margin LP over the force densities is solved up to this many members (10⁵ members of
+/// a lattice: about 2 s); beyond, the report says it was not computed.
+pub const LP_MEMBERS_MAX: usize = 400_000;
+
+/// Rejection and certificate factors, as on the banded path.
+const REJECT_FACTOR: f64 = 1e3;
+const CERTIFY_FACTOR: f64 = 100.0;
+const INVERSE_STEPS: usize = 12;
+
+/// Whether the automatic choice sends `structure` to the nested-dissection path rather than
+/// the banded QR: unloaded, with more members × (members − free dofs) — a lower bound of
+/// members × self-stresses — than the report lists
+/// ([`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX): the basis would not be
+/// listed on either path), and its reverse Cuthill–McKee band wider than [`BAND_NODES_MAX`]
+/// nodes (a lattice; a tower's band is a few rings).
+pub fn prefers_nested(structure: &Structure) -> bool {
+    let n = structure.n_members();
+    let surplus = n.saturating_sub(DofMap::of(structure).len());
+    if structure.is_loaded() || n.saturating_mul(surplus) <= super::sparse::SELF_STRESS_LIST_MAX {
+        return false;
+    }
+    let order = node_order_rcm(structure);
+    let mut pos = vec![0usize; order.len()];
+    for (p, &v) in order.iter().enumerate() {
+        pos[v] = p;
+    }
+    let band = structure
+        .member_nodes()
+        .into_iter()
+        .map(|[i, j]| pos[i].abs_diff(pos[j]))
+        .max()
+        .unwrap_or(0);
+    band > BAND_NODES_MAX
+}
+
+/// Flops a second of the multifrontal QR's dense front updates, and the margin LP's cost per
+/// member^1.5 (the interior point on A D⁻¹ Aᵀ of a planar lattice), both measured on the
+/// double-layer grids of `docs/PERFORMANCE.md` and rounded so that the estimate bounds the
+/// time.
+const FRONT_FLOP_RATE: f64 = 2.0e9;
+const LP_S_PER_MEMBER_1_5: f64 = 1.5e-7;
+
+/// The resource estimate of the nested-dissection statics of `structure` before it runs:
+/// memory 16 bytes a stored R entry (Σ pivots × front columns, every pivot accepted) plus the
+/// largest dense front, and for the margin LP (up to [`LP_MEMBERS_MAX`] members) about 30 % of
+/// the factor again; work the fronts' 2·rows·columns·pivots flops and the LP.
+pub fn nested_estimate(
+    structure: &Structure,
+    parameter: String,
+) -> Result<crate::budget::Estimate> {
+    let dofs = DofMap::of(structure);
+    let a = equilibrium_matrix_sparse(structure, &dofs)?;
+    let (fronts, parent) = dof_fronts(structure, &dofs);
+    let sizes = FrontalQr::symbolic(&a, &fronts, &parent);
+    let entries: f64 = sizes.iter().map(|&(_, np, nc)| (np * nc) as f64).sum();
+    let largest = sizes
+        .iter()
+        .map(|&(nr, _, nc)| (nr * nc) as f64)
+        .fold(0.0, f64::max);
+    let flops: f64 = sizes
+        .iter()
+        .map(|&(nr, np, nc)| 2.0 * (nr * nc * np) as f64)
+        .sum();
+    let n = structure.n_members();
+    let lp = if n <= LP_MEMBERS_MAX { 1.0 } else { 0.0 };
+    Ok(crate::budget::Estimate::new(
+        format!(
+            "the sparse statics (nested-dissection QR of the {} × {n} equilibrium matrix)",
+            dofs.len()
+        ),
+        parameter,
+    )
+    .memory(16.0 * entries * (1.0 + 0.3 * lp) + 8.0 * largest)
+    .work(flops / FRONT_FLOP_RATE + lp * LP_S_PER_MEMBER_1_5 * (n as f64).powf(1.5)))
+}
+
+/// The dissection's fronts as lists of free dofs (rows of A), and their parents.
+fn dof_fronts(structure: &Structure, dofs: &DofMap) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
+    let (node_fronts, parent) = dissection(structure);
+    let fronts = node_fronts
+        .iter()
+        .map(|nodes| {
+            nodes
+                .iter()
+                .flat_map(|&v| dofs.row[v].into_iter().flatten())
+                .collect()
+        })
+        .collect();
+    (fronts, parent)
+}
+
+/// A nested dissection of the nodes by coordinates: the fronts (node lists, post order:
+/// children before their parent) and each front's parent.
+pub fn dissection(structure: &Structure) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
+    let n = structure.n_nodes();
+    let mut adj = vec![Vec::new(); n];
+    for [i, j] in structure.member_nodes() {
+        if i != j {
+            adj[i].push(j);
+            adj[j].push(i);
+        }
+    }
+    let mut d = Dissector {
+        pos: structure.nodes().iter().map(|p| [p.x, p.y, p.z]).collect(),
+        adj,
+        side: vec![0; n],
+        fronts: Vec::new(),
+        parent: Vec::new(),
+    };
+    d.split((0..n).collect());
+    (d.fronts, d.parent)
+}
+
+struct Dissector {
+    pos: Vec<[f64; 3]>,
+    adj: Vec<Vec<usize>>,
+    side: Vec<u8>,
+    fronts: Vec<Vec<usize>>,
+    parent: Vec<Option<usize>>,
+}
+
+impl Dissector {
+    fn push(&mut self, nodes: Vec<usize>, children: &[usize]) -> usize {
+        let f = self.fronts.len();
+        self.fronts.push(nodes);
+        self.parent.push(None);
+        for &c in children {
+            self.parent[c] = Some(f);
+        }
+        f
+    }
+
+    /// Dissects `set`; returns the index of its top front.
+    fn split(&mut self, mut set: Vec<usize>) -> usize {
+        if set.len() <= LEAF_NODES {
+            return self.push(set, &[]);
+        }
+        let extent = |a: usize| {
+            let (lo, hi) = set
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                    (l.min(self.pos[v][a]), h.max(self.pos[v][a]))
+                });
+            hi - lo
+        };
+        let axis = (0..3)
+            .max_by(|&a, &b| extent(a).total_cmp(&extent(b)))
+            .unwrap_or(0);
+        let key = |v: usize| self.pos[v][axis];
+        set.sort_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+        // cut between distinct coordinates next to the median
+        let c = key(set[set.len() / 2]);
+        let mut cut = set.partition_point(|&v| key(v) < c);
+        if cut == 0 {
+            cut = set.partition_point(|&v| key(v) <= c);
+        }
+        if cut == 0 || cut == set.len() {
+            return self.push(set, &[]);
+        }
+        for (i, &v) in set.iter().enumerate() {
+            self.side[v] = if i < cut { 1 } else { 2 };
+        }
+        let boundary = |s: u8, d: &Self| -> Vec<usize> {
+            set.iter()
+                .copied()
+                .filter(|&v| d.side[v] == s && d.adj[v].iter().any(|&w| d.side[w] == 3 - s))
+                .collect()
+        };
+        let (bl, br) = (boundary(1, self), boundary(2, self));
+        let sep = if bl.len() <= br.len() { bl } else { br };
+        for &v in &sep {
+            self.side[v] = 3;
+        }
+        let left: Vec<usize> = set.iter().copied().filter(|&v| self.side[v] == 1).collect();
+        let right: Vec<usize> = set.iter().copied().filter(|&v| self.side[v] == 2).collect();
+        for &v in &set {
+            self.side[v] = 0;
+        }
+        if 2 * sep.len() >= set.len() {
+            return self.push(set, &[]);
+        }
+        let mut kids = Vec::new();
+        for part in [left, right] {
+            if !part.is_empty() {
+                kids.push(self.split(part));
+            }
+        }
+        self.push(sep, &kids)
+    }
+}
+
+/// The factored equilibrium problem of a lattice (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct NestedStatics<'a> {
+    structure: &'a Structure,
+    dofs: DofMap,
+    a: CscMatrix,
+    qr: FrontalQr,
+    tolerance: f64,
+    sigma_min_estimate: f64,
+    settings: StaticsSettings,
+}
+
+impl<'a> NestedStatics<'a> {
+    /// Orders, factors and estimates σ_min(R_acc).
+    pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
+        let dofs = DofMap::of(structure);
+        let a = equilibrium_matrix_sparse(structure, &dofs)?;
+        let (m, n) = (dofs.len(), structure.n_members());
+        let (fronts, parent) = dof_fronts(structure, &dofs);
+        let sigma = sigma_max(&a);
+        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let qr = FrontalQr::new(&a, &fronts, &parent, REJECT_FACTOR * tolerance)?;
+        let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
+        Ok(Self {
+            structure,
+            dofs,
+            a,
+            qr,
+            tolerance,
+            sigma_min_estimate,
+            settings,
+        })
+    }
+
+    /// The factorisation.
+    pub fn factorization(&self) -> &FrontalQr {
+        &self.qr
+    }
+
+    /// The estimate of σ_min(R_acc), a lower bound of σ_r(A) (+∞ at rank 0).
+    pub fn sigma_min_r_estimate(&self) -> f64 {
+        self.sigma_min_estimate
+    }
+
+    /// Whether the rank decision is certified: σ_min(R_acc) > 100·max(τ, ‖E‖_F).
+    pub fn is_certified(&self) -> bool {
+        let noise = self.qr.rejected_residual().max(self.tolerance);
+        self.sigma_min_estimate > CERTIFY_FACTOR * noise
+    }
+}
+
+impl StaticsBackend for NestedStatics<'_> {
+    fn kind(&self) -> Factorization {
+        Factorization::SparseQr
+    }
+    fn structure(&self) -> &Structure {
+        self.structure
+    }
+    fn free_dofs(&self) -> usize {
+        self.dofs.len()
+    }
+    fn rank(&self) -> usize {
+        self.qr.rank()
+    }
+    fn rigid_body_motions(&self) -> Result<usize> {
+        Ok(rigid_motions(self.structure, &self.dofs)?.ncols())
+    }
+    fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+    fn smallest_singular_value(&self) -> f64 {
+        let (m, n) = (self.dofs.len(), self.structure.n_members());
+        if self.qr.rank() < m.min(n) {
+            self.qr.rejected_residual()
+        } else {
+            self.sigma_min_estimate
+        }
+    }
+    fn spectral_gap(&self) -> SpectralGap {
+        let (m, n) = (self.dofs.len(), self.structure.n_members());
+        let below = (self.qr.rank() < m.min(n)).then_some(self.qr.rejected_residual());
+        let mut gap = SpectralGap::from_values(below, self.tolerance, None);
+        let above = self.sigma_min_estimate;
+        gap.sigma_above = above.is_finite().then_some(above);
+        gap.ratio = match (gap.sigma_above, gap.sigma_below) {
+            (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+            _ => None,
+        };
+        gap
+    }
+    fn certification(&self) -> Certification {
+        if self.is_certified() {
+            return Certification::Certified;
+        }
+        Certification::NotCertified {
+            reason: format!(
+                "the sparse rank decision (nested dissection) is not certified (rejected residual {:.3e}, σ_min(R) estimate {:.3e}, tolerance {:.3e}): rank and self-stress dimension may differ from the SVD's",
+                self.qr.rejected_residual(),
+                self.sigma_min_estimate,
+                self.tolerance
+            ),
+        }
+    }
+    fn self_stress(&self) -> SelfStressBasis {
+        SelfStressBasis::Omitted {
+            basis: DMatrix::zeros(self.structure.n_members(), 0),
+            dim: self.self_stress_dim(),
+        }
+    }
+    fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
+        let n = self.structure.n_members();
+        super::prestress::check_signs(signs, n)?;
+        if self.self_stress_dim() == 0 {
+            return Ok(Prestressability::none(n));
+        }
+        if n > LP_MEMBERS_MAX {
+            return Err(Factorization::SparseQr.unsupported(
+                "the prestressability margin of a lattice this large (nested dissection)",
+            ));
+        }
+        // the interior point on A D⁻¹ Aᵀ; Clarabel on the same rows should it fail
+        let q = super::margin_ipm::solve(&self.a, signs)
+            .or_else(|_| super::prestress::solve_equilibrium_lp(&self.a, signs))?;
+        Ok(Prestressability::from_signed(DVector::from_vec(q), signs))
+    }
+    fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
+        // without internal mechanisms the structure is stable for any stress (the dense
+        // path's answer); with some, the test is not available here
+        if self.internal_mechanisms()? == 0 {
+            return Ok(PrestressStability::rigid());
+        }
+        // with internal mechanisms: the banded path's test (its flexes)
+        super::SparseStatics::with_settings(self.structure, self.settings)?.prestress_stability(q)
+    }
+    fn solve_nodal_forces(&self, _w_nodes: &Matrix3xX<f64>) -> Result<LoadSolution> {
+        Err(CoreError::Unsupported {
+            analysis: "the load solve",
+            backend: "sparse rank-revealing QR (nested dissection)",
+        })
+    }
+}
