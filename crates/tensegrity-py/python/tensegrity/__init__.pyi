@@ -748,6 +748,7 @@ def tbar_roll(
     rim_density: Optional[float] = ...,
     string_stiffness: float = ...,
     min_tension: Optional[float] = ...,
+    contact: Literal['penalty', 'thesis', 'stick'] = ...,
     ground_stiffness: float = ...,
     ground_damping: Optional[float] = ...,
     strict: bool = ...,
@@ -813,6 +814,9 @@ def tbar_roll(
     min_tension : float, optional
         Full model: smallest string tension of the prestress (default: twice the weight per
         tip) (N); must be finite and positive
+    contact : {'penalty', 'thesis', 'stick'}
+        Ground contact of the full model, T-bar and toroid (default stick: friction that
+        holds a stick). Default: 'stick'
     ground_stiffness : float
         Penalty ground stiffness per contact node (N/m); must be finite and positive.
         Default: 1000000.0
