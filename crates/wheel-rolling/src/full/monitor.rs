@@ -183,6 +183,9 @@ struct OpenImpact {
     impulse: Vector3<f64>,
     /// Pairs loaded just before the touch-down.
     others: Vec<usize>,
+    /// Since when the new pair is off the ground again while the old pivot still carries
+    /// (None while it is loaded): a graze once that lasts [`defaults::CONTACT_REARM_TIME`].
+    left: Option<f64>,
 }
 
 /// The previous step.
@@ -295,19 +298,24 @@ impl<'o> Monitor<'o> {
 
     /// New contacts and the end of contact transients.
     fn track_impacts(&mut self, t: f64, omega: f64, c: &StepContact) {
-        if let Some(open) = &self.open {
+        if let Some(open) = &mut self.open {
             let released = open.others.iter().all(|&k| !c.loaded[k]);
             let age = t - open.t;
-            if !c.loaded[open.pair] && !released {
-                // a graze: the new pair left again while the old pivot still carried the
+            if c.loaded[open.pair] {
+                // back on the ground (or still there): a lift-off shorter than the re-arm
+                // time was chatter of the penalty spring at the touch-down, not a graze
+                open.left = None;
+                if (released && age >= self.g.landing) || age >= defaults::IMPACT_WINDOW {
+                    // the new pair's spring has taken the wheel over
+                    self.close_impact(omega);
+                }
+            } else if released {
+                // the new pair bounced off and the old one is gone too
+                self.close_impact(omega);
+            } else if t - *open.left.get_or_insert(t) >= defaults::CONTACT_REARM_TIME {
+                // a graze: the new pair stayed off while the old pivot still carried the
                 // wheel, so it took nothing over
                 self.open = None;
-            } else if !c.loaded[open.pair]
-                || (released && age >= self.g.landing)
-                || age >= defaults::IMPACT_WINDOW
-            {
-                // the new pair's spring has taken the wheel over (or bounced off)
-                self.close_impact(omega);
             }
         }
         let before: Vec<usize> = match &self.prev {
@@ -327,6 +335,7 @@ impl<'o> Monitor<'o> {
                             omega_before,
                             impulse: Vector3::zeros(),
                             others: before.iter().copied().filter(|&j| j != k).collect(),
+                            left: None,
                         });
                     }
                 }
