@@ -301,7 +301,13 @@ impl<'o> Monitor<'o> {
         if let Some(open) = &mut self.open {
             let released = open.others.iter().all(|&k| !c.loaded[k]);
             let age = t - open.t;
-            if c.loaded[open.pair] {
+            let grazed = |left: Option<f64>| {
+                left.is_some_and(|left| t - left >= defaults::CONTACT_REARM_TIME)
+            };
+            if c.loaded[open.pair] && grazed(open.left) {
+                // back on the ground after a graze: a new contact (the loop below)
+                self.open = None;
+            } else if c.loaded[open.pair] {
                 // back on the ground (or still there): a lift-off shorter than the re-arm
                 // time was chatter of the penalty spring at the touch-down, not a graze
                 open.left = None;
@@ -312,7 +318,7 @@ impl<'o> Monitor<'o> {
             } else if released {
                 // the new pair bounced off and the old one is gone too
                 self.close_impact(omega);
-            } else if t - *open.left.get_or_insert(t) >= defaults::CONTACT_REARM_TIME {
+            } else if grazed(Some(*open.left.get_or_insert(t))) {
                 // a graze: the new pair stayed off while the old pivot still carried the
                 // wheel, so it took nothing over
                 self.open = None;
@@ -328,6 +334,11 @@ impl<'o> Monitor<'o> {
                 (true, Some(since)) => {
                     self.off_since[k] = None;
                     if t - since >= defaults::CONTACT_REARM_TIME {
+                        if self.open.as_ref().is_some_and(|o| o.left.is_some()) {
+                            // the open one's pair is off while its old pivot carries: a
+                            // graze in the making, not an impact
+                            self.open = None;
+                        }
                         self.close_impact(omega_before);
                         self.open = Some(OpenImpact {
                             pair: k,
