@@ -216,6 +216,8 @@ pub(super) struct Monitor<'o> {
     slip_time: f64,
     /// Per pair: since when it is off the ground (None while loaded).
     off_since: Vec<Option<f64>>,
+    /// The pairs loaded at the last step with a contact (before this one).
+    last_loaded: Vec<bool>,
     open: Option<OpenImpact>,
     impacts: Vec<ImpactRecord>,
     /// Who receives the samples and frames, if anyone.
@@ -239,6 +241,7 @@ impl<'o> Monitor<'o> {
         let off_since = (0..g.n)
             .map(|k| (k > 1).then_some(f64::NEG_INFINITY))
             .collect();
+        let last_loaded = (0..g.n).map(|k| k <= 1).collect();
         let keep_frames = observer.as_deref().is_none_or(|o| o.keeps_frames());
         Self {
             g,
@@ -259,6 +262,7 @@ impl<'o> Monitor<'o> {
             airborne_time: 0.0,
             slip_time: 0.0,
             off_since,
+            last_loaded,
             open: None,
             impacts: Vec::new(),
             observer,
@@ -329,11 +333,19 @@ impl<'o> Monitor<'o> {
             None => Vec::new(),
         };
         let omega_before = self.prev.as_ref().map_or(omega, |p| p.omega);
+        let airborne_before = before.is_empty();
         for k in 0..self.g.n {
             match (c.loaded[k], self.off_since[k]) {
                 (true, Some(since)) => {
                     self.off_since[k] = None;
-                    if t - since >= defaults::CONTACT_REARM_TIME {
+                    // the pair that carried the wheel landing again after a hop shorter than
+                    // the impact window: the pivot's chatter, not a new contact group
+                    let rearm = if airborne_before && self.last_loaded[k] {
+                        defaults::IMPACT_WINDOW
+                    } else {
+                        defaults::CONTACT_REARM_TIME
+                    };
+                    if t - since >= rearm {
                         if self.open.as_ref().is_some_and(|o| o.left.is_some()) {
                             // the open one's pair is off while its old pivot carries: a
                             // graze in the making, not an impact
@@ -353,6 +365,9 @@ impl<'o> Monitor<'o> {
                 (false, None) => self.off_since[k] = Some(t),
                 _ => {}
             }
+        }
+        if !c.airborne() {
+            self.last_loaded.clone_from(&c.loaded);
         }
     }
 
