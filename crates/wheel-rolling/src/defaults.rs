@@ -82,7 +82,8 @@ pub const ENERGY_BALANCE_TOLERANCE: f64 = 1e-2;
 pub const RIGID_ENERGY_BALANCE_TOLERANCE: f64 = 1e-6;
 
 /// A contact pair counts as a new contact (an impact) when it loads after being off the
-/// ground for at least this long (s); shorter gaps are chatter of the same contact.
+/// ground for at least this long (s); shorter gaps are chatter of the same contact. (The pair
+/// that carried the wheel before a flight needs [`IMPACT_WINDOW`]: a sliding pivot's hops.)
 pub const CONTACT_REARM_TIME: f64 = 2e-3;
 
 /// Longest contact transient of an impact of the full model (s): the impulse is integrated

@@ -62,8 +62,12 @@
 //! than [`defaults::ENERGY_BALANCE_TOLERANCE`].
 //!
 //! **Impacts**: a contact pair that loads after [`defaults::CONTACT_REARM_TIME`] off the
-//! ground is a new contact, unless it leaves the ground again while the previously loaded
-//! pairs still carry the wheel (a graze, which takes nothing over). Its record holds the touch-down time, ω (about the axle: the mean
+//! ground is a new contact (a pair that carried the wheel before a flight needs
+//! [`defaults::IMPACT_WINDOW`] off: a sliding pivot's short hops are not impacts), unless it
+//! leaves the ground again, for at least that re-arm time, while the previously loaded pairs
+//! still carry the wheel (a graze, which takes nothing over and is never recorded; a shorter
+//! lift-off is the penalty spring's chatter at the touch-down and the impact goes on). Its
+//! record holds the touch-down time, ω (about the axle: the mean
 //! over rim joints of ((r − hub) × (v − v_hub))ₓ / ‖r − hub‖², positive rolling downhill)
 //! just before, ω at the end of the contact transient (when the previously loaded pairs have
 //! left the slope and the new pair's spring has had half a period π √(m_eff / 2k) to take the

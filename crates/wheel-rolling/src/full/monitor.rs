@@ -183,6 +183,9 @@ struct OpenImpact {
     impulse: Vector3<f64>,
     /// Pairs loaded just before the touch-down.
     others: Vec<usize>,
+    /// Since when the new pair is off the ground again while the old pivot still carries
+    /// (None while it is loaded): a graze once that lasts [`defaults::CONTACT_REARM_TIME`].
+    left: Option<f64>,
 }
 
 /// The previous step.
@@ -213,6 +216,8 @@ pub(super) struct Monitor<'o> {
     slip_time: f64,
     /// Per pair: since when it is off the ground (None while loaded).
     off_since: Vec<Option<f64>>,
+    /// The pairs loaded at the last step with a contact (before this one).
+    last_loaded: Vec<bool>,
     open: Option<OpenImpact>,
     impacts: Vec<ImpactRecord>,
     /// Who receives the samples and frames, if anyone.
@@ -236,6 +241,7 @@ impl<'o> Monitor<'o> {
         let off_since = (0..g.n)
             .map(|k| (k > 1).then_some(f64::NEG_INFINITY))
             .collect();
+        let last_loaded = (0..g.n).map(|k| k <= 1).collect();
         let keep_frames = observer.as_deref().is_none_or(|o| o.keeps_frames());
         Self {
             g,
@@ -256,6 +262,7 @@ impl<'o> Monitor<'o> {
             airborne_time: 0.0,
             slip_time: 0.0,
             off_since,
+            last_loaded,
             open: None,
             impacts: Vec::new(),
             observer,
@@ -295,19 +302,30 @@ impl<'o> Monitor<'o> {
 
     /// New contacts and the end of contact transients.
     fn track_impacts(&mut self, t: f64, omega: f64, c: &StepContact) {
-        if let Some(open) = &self.open {
+        if let Some(open) = &mut self.open {
             let released = open.others.iter().all(|&k| !c.loaded[k]);
             let age = t - open.t;
-            if !c.loaded[open.pair] && !released {
-                // a graze: the new pair left again while the old pivot still carried the
+            let grazed = |left: Option<f64>| {
+                left.is_some_and(|left| t - left >= defaults::CONTACT_REARM_TIME)
+            };
+            if c.loaded[open.pair] && grazed(open.left) {
+                // back on the ground after a graze: a new contact (the loop below)
+                self.open = None;
+            } else if c.loaded[open.pair] {
+                // back on the ground (or still there): a lift-off shorter than the re-arm
+                // time was chatter of the penalty spring at the touch-down, not a graze
+                open.left = None;
+                if (released && age >= self.g.landing) || age >= defaults::IMPACT_WINDOW {
+                    // the new pair's spring has taken the wheel over
+                    self.close_impact(omega);
+                }
+            } else if released {
+                // the new pair bounced off and the old one is gone too
+                self.close_impact(omega);
+            } else if grazed(Some(*open.left.get_or_insert(t))) {
+                // a graze: the new pair stayed off while the old pivot still carried the
                 // wheel, so it took nothing over
                 self.open = None;
-            } else if !c.loaded[open.pair]
-                || (released && age >= self.g.landing)
-                || age >= defaults::IMPACT_WINDOW
-            {
-                // the new pair's spring has taken the wheel over (or bounced off)
-                self.close_impact(omega);
             }
         }
         let before: Vec<usize> = match &self.prev {
@@ -315,11 +333,24 @@ impl<'o> Monitor<'o> {
             None => Vec::new(),
         };
         let omega_before = self.prev.as_ref().map_or(omega, |p| p.omega);
+        let airborne_before = before.is_empty();
         for k in 0..self.g.n {
             match (c.loaded[k], self.off_since[k]) {
                 (true, Some(since)) => {
                     self.off_since[k] = None;
-                    if t - since >= defaults::CONTACT_REARM_TIME {
+                    // the pair that carried the wheel landing again after a hop shorter than
+                    // the impact window: the pivot's chatter, not a new contact group
+                    let rearm = if airborne_before && self.last_loaded[k] {
+                        defaults::IMPACT_WINDOW
+                    } else {
+                        defaults::CONTACT_REARM_TIME
+                    };
+                    if t - since >= rearm {
+                        if self.open.as_ref().is_some_and(|o| o.left.is_some()) {
+                            // the open one's pair is off while its old pivot carries: a
+                            // graze in the making, not an impact
+                            self.open = None;
+                        }
                         self.close_impact(omega_before);
                         self.open = Some(OpenImpact {
                             pair: k,
@@ -327,12 +358,16 @@ impl<'o> Monitor<'o> {
                             omega_before,
                             impulse: Vector3::zeros(),
                             others: before.iter().copied().filter(|&j| j != k).collect(),
+                            left: None,
                         });
                     }
                 }
                 (false, None) => self.off_since[k] = Some(t),
                 _ => {}
             }
+        }
+        if !c.airborne() {
+            self.last_loaded.clone_from(&c.loaded);
         }
     }
 
