@@ -77,6 +77,14 @@ pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
 /// per kept dof; beyond, the flexes are not local and the test gives no decision.
 pub const FLEX_ENTRIES_PER_DOF: usize = 32;
 
+/// The flex test of [`SparseStatics::stable_by_cholesky`] is not attempted when the
+/// factor of A already holds more than this many entries per kept dof: the QR of Aᵀ it
+/// would run has the same band profile (on the towers its stored entries equal A's to
+/// 0.1 %), so it would cost as much again in time and memory, and with that much fill its
+/// null vectors were never local (towers: 194 entries per dof at 400 prisms, flexes local;
+/// 371 at 800, flexes 90 entries per dof, not local).
+pub const FLEX_QR_ENTRIES_PER_DOF: usize = 256;
+
 /// Largest internal-mechanism basis (free dofs × mechanisms numbers) for which prestress
 /// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
 /// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
@@ -614,7 +622,8 @@ impl SparseStatics<'_> {
     /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when the sparse
     /// flexes do not match the rank of A, or when they are not local (more than
     /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
-    /// quadratically; a long tower's flexes span a growing part of it).
+    /// quadratically; a long tower's flexes span a growing part of it), or, without trying,
+    /// when the factor of A holds more than [`FLEX_QR_ENTRIES_PER_DOF`] entries per kept dof.
     ///
     /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
     /// pivots, one per rigid motion the supports allow), so that every internal mechanism
@@ -636,6 +645,9 @@ impl SparseStatics<'_> {
         let rigid = rigid_motions(self.structure, &self.dofs)?;
         let internal = self.mechanisms().saturating_sub(rigid.ncols());
         let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        if self.qr.stored_entries() > FLEX_QR_ENTRIES_PER_DOF.saturating_mul(kept) {
+            return Ok(None);
+        }
         // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
         let n = self.structure.n_members();
         let member_nodes = self.structure.member_nodes();
