@@ -59,6 +59,7 @@
 
 use super::front::Factorization;
 use super::load::LoadSolution;
+use super::penalty::stable_by_penalty;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
 use super::{orient_self_stress, DofMap, StaticsSettings};
@@ -645,8 +646,20 @@ impl SparseStatics<'_> {
         let rigid = rigid_motions(self.structure, &self.dofs)?;
         let internal = self.mechanisms().saturating_sub(rigid.ncols());
         let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        let penalty = || {
+            let sigma = 1e-9 * q_max;
+            stable_by_penalty(
+                self.structure,
+                &self.dofs,
+                &index,
+                kept,
+                q,
+                sigma,
+                self.sigma_max,
+            )
+        };
         if self.qr.stored_entries() > FLEX_QR_ENTRIES_PER_DOF.saturating_mul(kept) {
-            return Ok(None);
+            return penalty();
         }
         // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
         let n = self.structure.n_members();
@@ -677,10 +690,10 @@ impl SparseStatics<'_> {
             defer_level(n, kept, self.sigma_max, self.tolerance),
         )?;
         if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
-            return Ok(None);
+            return penalty();
         }
         let Some(m) = flexes.sparse_null_vectors_within(FLEX_ENTRIES_PER_DOF * kept)? else {
-            return Ok(None);
+            return penalty();
         };
         let kmat = self.projected_stress_lower(&m, q, &index, 1e-9 * q_max)?;
         let mut chol = linalg::SparseCholesky::new(kmat.pattern())?;
