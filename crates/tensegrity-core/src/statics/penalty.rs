@@ -22,7 +22,7 @@ use crate::structure::Structure;
 use nalgebra::DVector;
 
 /// Penalty weights tried, as multiples of max|q| / σ_max(A)².
-const MU_LADDER: [f64; 5] = [1.0, 1e2, 1e4, 1e6, 1e8];
+const MU_LADDER: [f64; 5] = [1e2, 1e3, 1e4, 1e5, 1e6];
 
 /// `Some(true)` when K_μ is positive definite for one μ of the ladder (certified stable),
 /// `None` otherwise. `index` numbers the kept dofs among the free rows (`kept` of them),

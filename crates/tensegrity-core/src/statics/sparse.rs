@@ -625,6 +625,9 @@ impl SparseStatics<'_> {
     /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
     /// quadratically; a long tower's flexes span a growing part of it), or, without trying,
     /// when the factor of A holds more than [`FLEX_QR_ENTRIES_PER_DOF`] entries per kept dof.
+    /// In those cases the penalised stress matrix (`statics/penalty.rs`, a banded sparse
+    /// Cholesky of Ω̄ − σ′I + μAAᵀ on the kept dofs) may still certify `Some(true)`; it never
+    /// answers "unstable".
     ///
     /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
     /// pivots, one per rigid motion the supports allow), so that every internal mechanism
