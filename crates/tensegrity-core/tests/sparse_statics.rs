@@ -282,3 +282,52 @@ fn a_large_self_stress_basis_is_not_listed() {
     assert_eq!(r.prestress_stable, Some(true), "{:?}", r.statics_warning);
     assert!(r.statics_warning.is_none(), "{:?}", r.statics_warning);
 }
+
+/// The two sparse stability tests against the eigenvalue test on an orthonormal basis of
+/// the internal mechanisms (one prism's self-stress: unstable, the other prisms'
+/// mechanisms unstiffened; all prisms' self-stresses, bars compressed: stable). At 400
+/// prisms (factor below `FLEX_QR_ENTRIES_PER_DOF`) the local-flex Cholesky decides both; at
+/// 500 (fill past the guard, flexes not local) the penalised stress matrix certifies the
+/// stable one and gives no decision — never "stable" — on the unstable one; the report
+/// then says "stable" with no warning.
+#[test]
+fn the_sparse_stability_tests_agree_with_the_eigen_test_beyond_the_flex_guard() {
+    for stages in [400, 500] {
+        let s = test_models::snelson_tower_free(stages).unwrap();
+        let st = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let q = st.sparse_self_stress_basis();
+        let (cp, ri, v) = (q.pattern().col_ptr(), q.pattern().row_idx(), q.values());
+        let mut q0 = nalgebra::DVector::zeros(s.n_members());
+        for slot in cp[0]..cp[1] {
+            q0[ri[slot]] = v[slot];
+        }
+        let mut qs = nalgebra::DVector::zeros(s.n_members());
+        for c in 0..q.pattern().ncols() {
+            let sign = (cp[c]..cp[c + 1]).map(|slot| v[slot]).sum::<f64>().signum();
+            for slot in cp[c]..cp[c + 1] {
+                qs[ri[slot]] += sign * v[slot];
+            }
+        }
+        let (phi, _) = st.internal_mechanisms().unwrap();
+        for (what, q, stable) in [
+            ("one prism's stress", &q0, false),
+            ("all prisms' stresses", &qs, true),
+        ] {
+            let dense = st.prestress_stability_on(&phi, q).unwrap().stable;
+            assert_eq!(dense, stable, "{stages}: {what}");
+            let sparse = st.stable_by_cholesky(q).unwrap();
+            if stages == 400 {
+                assert_eq!(sparse, Some(dense), "{stages}: {what}");
+            } else {
+                assert_eq!(sparse, dense.then_some(true), "{stages}: {what}");
+            }
+        }
+    }
+    let r = report(
+        &test_models::snelson_tower_free(500).unwrap(),
+        StaticsMethod::Auto,
+    );
+    assert_eq!((r.self_stress_dim, r.internal_mechanisms), (500, 500));
+    assert_eq!(r.prestress_stable, Some(true), "{:?}", r.statics_warning);
+    assert!(r.statics_warning.is_none(), "{:?}", r.statics_warning);
+}

@@ -23,6 +23,7 @@ mod gap;
 mod load;
 mod margin_ipm;
 pub mod nested;
+mod penalty;
 mod prestress;
 pub mod report;
 mod select;

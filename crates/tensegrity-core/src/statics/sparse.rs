@@ -59,6 +59,7 @@
 
 use super::front::Factorization;
 use super::load::LoadSolution;
+use super::penalty::stable_by_penalty;
 use super::prestress::{MemberSign, Prestressability};
 use super::stability::PrestressStability;
 use super::{orient_self_stress, DofMap, StaticsSettings};
@@ -76,6 +77,14 @@ pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
 /// The sparse flex basis of [`SparseStatics::stable_by_cholesky`] may hold this many entries
 /// per kept dof; beyond, the flexes are not local and the test gives no decision.
 pub const FLEX_ENTRIES_PER_DOF: usize = 32;
+
+/// The flex test of [`SparseStatics::stable_by_cholesky`] is not attempted when the
+/// factor of A already holds more than this many entries per kept dof: the QR of Aᵀ it
+/// would run has the same band profile (on the towers its stored entries equal A's to
+/// 0.1 %), so it would cost as much again in time and memory, and with that much fill its
+/// null vectors were never local (towers: 194 entries per dof at 400 prisms, flexes local;
+/// 371 at 800, flexes 90 entries per dof, not local).
+pub const FLEX_QR_ENTRIES_PER_DOF: usize = 256;
 
 /// Largest internal-mechanism basis (free dofs × mechanisms numbers) for which prestress
 /// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
@@ -614,7 +623,11 @@ impl SparseStatics<'_> {
     /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when the sparse
     /// flexes do not match the rank of A, or when they are not local (more than
     /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
-    /// quadratically; a long tower's flexes span a growing part of it).
+    /// quadratically; a long tower's flexes span a growing part of it), or, without trying,
+    /// when the factor of A holds more than [`FLEX_QR_ENTRIES_PER_DOF`] entries per kept dof.
+    /// In those cases the penalised stress matrix (`statics/penalty.rs`, a banded sparse
+    /// Cholesky of Ω̄ − σ′I + μAAᵀ on the kept dofs) may still certify `Some(true)`; it never
+    /// answers "unstable".
     ///
     /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
     /// pivots, one per rigid motion the supports allow), so that every internal mechanism
@@ -636,6 +649,21 @@ impl SparseStatics<'_> {
         let rigid = rigid_motions(self.structure, &self.dofs)?;
         let internal = self.mechanisms().saturating_sub(rigid.ncols());
         let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        let penalty = || {
+            let sigma = 1e-9 * q_max;
+            stable_by_penalty(
+                self.structure,
+                &self.dofs,
+                &index,
+                kept,
+                q,
+                sigma,
+                self.sigma_max,
+            )
+        };
+        if self.qr.stored_entries() > FLEX_QR_ENTRIES_PER_DOF.saturating_mul(kept) {
+            return penalty();
+        }
         // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
         let n = self.structure.n_members();
         let member_nodes = self.structure.member_nodes();
@@ -665,10 +693,10 @@ impl SparseStatics<'_> {
             defer_level(n, kept, self.sigma_max, self.tolerance),
         )?;
         if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
-            return Ok(None);
+            return penalty();
         }
         let Some(m) = flexes.sparse_null_vectors_within(FLEX_ENTRIES_PER_DOF * kept)? else {
-            return Ok(None);
+            return penalty();
         };
         let kmat = self.projected_stress_lower(&m, q, &index, 1e-9 * q_max)?;
         let mut chol = linalg::SparseCholesky::new(kmat.pattern())?;
