@@ -56,6 +56,17 @@ pub fn dbar(l: f64, h: f64, m: f64, k: f64, stretch: f64) -> Result<Structure> {
         .build()
 }
 
+/// The dynamic D-bar `dbar(2.0, 0.5, 1.5, 1000.0, 0.05)` held in some directions only: node 0
+/// in x and z, node 3 in y. Its constraint rows mix joints with partial supports, the case the
+/// joint-space and Woodbury solves must agree with the direct one on.
+pub fn partly_supported_dbar() -> Result<Structure> {
+    dbar(2.0, 0.5, 1.5, 1000.0, 0.05)?
+        .to_builder()
+        .support(Support::directions(0, [true, false, true]))
+        .support(Support::directions(3, [false, true, false]))
+        .build()
+}
+
 /// The benchmark aluminium: ρ 2700 kg/m³, E 60 GPa, σ_Y 110 MPa.
 pub fn alu() -> Material {
     Material::new(2700.0, 60e9, 110e6)

@@ -7,7 +7,7 @@
 //!
 //! | model | function | reference answer |
 //! |---|---|---|
-//! | D-bar (thesis §2.2.1) | [`dbar`], [`dbar_frame`], [`loaded_dbar`] | one self-stress; C of eq. 2.8–2.10; hand-calculated forces |
+//! | D-bar (thesis §2.2.1) | [`dbar`], [`dbar_frame`], [`loaded_dbar`], [`partly_supported_dbar`] | one self-stress; C of eq. 2.8–2.10; hand-calculated forces |
 //! | Snelson prism | [`snelson_prism`], [`snelson`] | self-stress only at twist π/2 − π/p ([`snelson_twist`]); q ratios 1 : 1 : √3 : −√3 |
 //! | double pendulum | [`double_pendulum`] | published tip at t = 5 s ([`DOUBLE_PENDULUM_TIP_5S`]) |
 //! | MOTES D-bar | [`motes_dbar`] | N P = D and bar lengths kept over 5000 RK4 steps |
@@ -27,7 +27,7 @@ mod snelson;
 mod spinning_bar;
 
 pub use chains::{dbar_chain, prism_stack, snelson_tower, snelson_tower_free};
-pub use dbar::{alu, dbar, dbar_frame, loaded_dbar};
+pub use dbar::{alu, dbar, dbar_frame, loaded_dbar, partly_supported_dbar};
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,

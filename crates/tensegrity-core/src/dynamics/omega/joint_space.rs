@@ -380,14 +380,7 @@ mod tests {
     /// hub with a free bar beside it (the free bar's closed form is the same code).
     #[test]
     fn joint_space_matches_the_omega_path() {
-        let mut partial = test_models::dbar(2.0, 0.5, 1.5, 1000.0, 0.05).unwrap();
-        let last = partial.nodes().len() - 1;
-        partial = partial
-            .to_builder()
-            .support(Support::directions(0, [true, false, true]))
-            .support(Support::directions(last, [false, true, false]))
-            .build()
-            .unwrap();
+        let partial = test_models::partly_supported_dbar().unwrap();
         let cases = [
             test_models::motes_anchor_dbar().unwrap(),
             partial,

@@ -576,14 +576,7 @@ mod tests {
     /// and a two-D-bar chain.
     #[test]
     fn woodbury_matches_the_direct_solve() {
-        let mut partial = test_models::dbar(2.0, 0.5, 1.5, 1000.0, 0.05).unwrap();
-        let fixed = partial.nodes().len() - 1;
-        partial = partial
-            .to_builder()
-            .support(Support::directions(0, [true, false, true]))
-            .support(Support::directions(fixed, [false, true, false]))
-            .build()
-            .unwrap();
+        let partial = test_models::partly_supported_dbar().unwrap();
         let cases = [
             test_models::motes_anchor_dbar().unwrap(),
             partial,
