@@ -67,6 +67,19 @@ pub fn partly_supported_dbar() -> Result<Structure> {
         .build()
 }
 
+/// Two bars (masses 1 and 2 kg) in an L, the first pinned at both ends: a constraint set whose
+/// joint system is singular (its Schur complement m/3 − m/3 vanishes), which every solve of the
+/// constraint forces must report rather than divide by.
+pub fn bar_pinned_at_both_ends() -> Result<Structure> {
+    Structure::builder()
+        .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
+        .bar(Bar::new(0, 1).mass(1.0))
+        .bar(Bar::new(1, 2).mass(2.0))
+        .support(Support::pinned(0))
+        .support(Support::pinned(1))
+        .build()
+}
+
 /// The benchmark aluminium: ρ 2700 kg/m³, E 60 GPa, σ_Y 110 MPa.
 pub fn alu() -> Material {
     Material::new(2700.0, 60e9, 110e6)

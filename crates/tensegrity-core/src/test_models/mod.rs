@@ -27,7 +27,9 @@ mod snelson;
 mod spinning_bar;
 
 pub use chains::{dbar_chain, prism_stack, snelson_tower, snelson_tower_free};
-pub use dbar::{alu, dbar, dbar_frame, loaded_dbar, partly_supported_dbar};
+pub use dbar::{
+    alu, bar_pinned_at_both_ends, dbar, dbar_frame, loaded_dbar, partly_supported_dbar,
+};
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
 pub use dropped_prism::{
     dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,

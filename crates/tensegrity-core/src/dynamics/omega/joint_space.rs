@@ -454,14 +454,7 @@ mod tests {
     /// singular constraint set as before.
     #[test]
     fn a_singular_system_is_left_to_the_omega_path() {
-        let s = Structure::builder()
-            .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
-            .bar(Bar::new(0, 1).mass(1.0))
-            .bar(Bar::new(1, 2).mass(2.0))
-            .support(Support::pinned(0))
-            .support(Support::pinned(1))
-            .build()
-            .unwrap();
+        let s = test_models::bar_pinned_at_both_ends().unwrap();
         let model = Model::new(&s, None).unwrap();
         assert!(model.joint_space.is_some());
         let y = model.initial_state(&s).unwrap();

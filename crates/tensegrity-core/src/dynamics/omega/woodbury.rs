@@ -534,7 +534,7 @@ impl LowRank {
 mod tests {
     use super::super::ConstraintMatrix;
     use crate::dynamics::model::Model;
-    use crate::structure::{Bar, Structure, Support};
+    use crate::structure::Structure;
     use crate::test_models;
     use nalgebra::Vector3;
 
@@ -652,14 +652,7 @@ mod tests {
     /// direct factorisation, which reports it as before.
     #[test]
     fn singular_system_falls_back_to_the_direct_error() {
-        let s = Structure::builder()
-            .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
-            .bar(Bar::new(0, 1).mass(1.0))
-            .bar(Bar::new(1, 2).mass(2.0))
-            .support(Support::pinned(0))
-            .support(Support::pinned(1))
-            .build()
-            .unwrap();
+        let s = test_models::bar_pinned_at_both_ends().unwrap();
         let (mut lr, _, inv_mass) = both(&s);
         let bhat = [Vector3::x(), Vector3::y()];
         let e = lr.assemble_and_factor(&bhat, &inv_mass).unwrap_err();

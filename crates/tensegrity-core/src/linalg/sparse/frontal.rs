@@ -433,26 +433,10 @@ impl FrontalQr {
     /// of inverse iteration on R_accᵀ R_acc; +∞ at rank 0. Inverse iteration converges from
     /// above: an upper estimate of σ_min(R_acc), accurate to a small factor in a few steps.
     pub fn sigma_min_estimate(&self, iterations: usize) -> f64 {
-        let r = self.rank();
-        if r == 0 {
-            return f64::INFINITY;
-        }
-        let mut x: Vec<f64> = (0..r)
-            .map(|i| 1.0 + 0.5 * ((i * 7919) % 13) as f64)
-            .collect();
-        let mut sigma = f64::INFINITY;
-        for _ in 0..iterations.max(1) {
-            let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-            x.iter_mut().for_each(|v| *v /= norm);
-            self.forward_substitute_transposed(&mut x);
-            self.back_substitute(&mut x);
-            let grow = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if !grow.is_finite() || grow == 0.0 {
-                return 0.0;
-            }
-            sigma = 1.0 / grow.sqrt();
-        }
-        sigma
+        super::sigma_min::sigma_min_by_inverse_iteration(self.rank(), iterations, |x| {
+            self.forward_substitute_transposed(x);
+            self.back_substitute(x);
+        })
     }
 }
 

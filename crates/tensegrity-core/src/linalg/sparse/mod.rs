@@ -20,6 +20,7 @@ pub mod frontal;
 pub mod lu;
 pub mod ordering;
 pub mod rrqr;
+mod sigma_min;
 
 pub use cholesky::{cholesky_solve, SparseCholesky, StaticCholesky};
 pub use frontal::FrontalQr;
