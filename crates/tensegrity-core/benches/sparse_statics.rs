@@ -3,7 +3,9 @@
 //! stacked Snelson prisms sharing their triangles (banded; up to 3,200 prisms, issue 25), of a
 //! small double-layer lattice and of random banded structures; and the nested-dissection
 //! path (`statics_nested`: the automatic choice for a wide structure) on double-layer
-//! lattices of K × K cells up to K = 80 (89,760 members).
+//! lattices of K × K cells up to K = 80 (89,760 members), and in its members orientation
+//! (the automatic choice for a long unloaded structure above 5,000 members) on towers of
+//! 800, 3,200 and 12,800 prisms.
 //!
 //! `cargo bench -p tensegrity-core --bench sparse_statics`
 #![allow(missing_docs)]
@@ -92,6 +94,15 @@ fn bench(c: &mut Criterion) {
     for k in [10, 20, 40, 80] {
         let s = test_models::double_layer_grid(k).expect("valid lattice");
         let id = format!("lattice{k}_{}members", s.n_members());
+        group.bench_function(BenchmarkId::new("auto", &id), |b| {
+            b.iter(|| statics_report(black_box(&s), &request(StaticsMethod::Auto)).unwrap())
+        });
+    }
+    // towers above 5000 members: the nested dissection of A itself (the automatic choice),
+    // against the banded QR of the `statics_report` group above (`sparse_qr`, forced)
+    for stages in [800, 3200, 12800] {
+        let s = tower(stages);
+        let id = format!("tower{stages}_{}members", s.n_members());
         group.bench_function(BenchmarkId::new("auto", &id), |b| {
             b.iter(|| statics_report(black_box(&s), &request(StaticsMethod::Auto)).unwrap())
         });

@@ -3,6 +3,7 @@
 //! mechanisms and prestressability margin on double-layer lattices and towers, certified;
 //! the automatic choice sends a wide lattice to it; its dissection is a valid elimination
 //! tree.
+use tensegrity_core::statics::nested::Orientation;
 use tensegrity_core::statics::nested::{dissection, prefers_nested};
 use tensegrity_core::statics::report::{statics_report, StaticsRequest};
 use tensegrity_core::statics::{
@@ -11,8 +12,12 @@ use tensegrity_core::statics::{
 use tensegrity_core::{test_models, Statics, Structure};
 
 fn assert_same_as_dense(s: &Structure, what: &str) {
-    let dense = Statics::with_settings(s, StaticsSettings::default()).unwrap();
     let nested = NestedStatics::with_settings(s, StaticsSettings::default()).unwrap();
+    assert_nested_same_as_dense(s, &nested, what);
+}
+
+fn assert_nested_same_as_dense(s: &Structure, nested: &NestedStatics, what: &str) {
+    let dense = Statics::with_settings(s, StaticsSettings::default()).unwrap();
     assert!(
         nested.is_certified(),
         "{what}: {:?}",
@@ -21,7 +26,7 @@ fn assert_same_as_dense(s: &Structure, what: &str) {
     assert_eq!(
         (dense.rank(), dense.self_stress_dim(), dense.mechanisms()),
         (
-            StaticsBackend::rank(&nested),
+            StaticsBackend::rank(nested),
             nested.self_stress_dim(),
             nested.mechanisms()
         ),
@@ -31,7 +36,7 @@ fn assert_same_as_dense(s: &Structure, what: &str) {
     assert_eq!(rigid, nested.rigid_body_motions().unwrap(), "{what}");
     let (a, b) = (
         dense.prestressability().unwrap(),
-        StaticsBackend::prestressability(&nested).unwrap(),
+        StaticsBackend::prestressability(nested).unwrap(),
     );
     assert_eq!(a.prestressable, b.prestressable, "{what}");
     assert!(
@@ -66,6 +71,97 @@ fn lattices_and_towers_on_the_nested_path_match_the_dense_path() {
         let s = test_models::snelson_tower(stages).unwrap();
         assert_same_as_dense(&s, &format!("pinned tower of {stages}"));
     }
+}
+
+/// The members orientation (the multifrontal QR of A itself, for long structures): the
+/// dense path's rank, self-stress dimension, mechanisms and margin; a sparse self-stress
+/// basis in the null space of A whose vectors are the towers' local circuits (12 members,
+/// one prism); the stability decision of the dense eigenvalue test.
+#[test]
+fn the_members_orientation_matches_the_dense_path_with_local_self_stresses() {
+    for k in [2, 3, 5] {
+        let s = test_models::double_layer_grid(k).unwrap();
+        let nested = NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap();
+        assert_eq!(nested.orientation(), Orientation::Members);
+        assert_nested_same_as_dense(&s, &nested, &format!("{k} × {k} lattice (members)"));
+    }
+    for stages in [1, 5, 40, 64] {
+        for (s, what) in [
+            (test_models::snelson_tower_free(stages).unwrap(), "free"),
+            (test_models::snelson_tower(stages).unwrap(), "pinned"),
+        ] {
+            let what = format!("{what} tower of {stages} (members)");
+            let nested =
+                NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap();
+            assert_nested_same_as_dense(&s, &nested, &what);
+            let basis = nested.sparse_self_stress_basis().expect("a local basis");
+            // the pinned ring's strings carry a trivial self-stress each (zero columns)
+            let s_dim = basis.pattern().ncols();
+            assert_eq!(s_dim, nested.self_stress_dim(), "{what}");
+            let dofs = tensegrity_core::statics::DofMap::of(&s);
+            let a = tensegrity_core::statics::sparse::equilibrium_matrix_sparse(&s, &dofs).unwrap();
+            let cp = basis.pattern().col_ptr();
+            for c in 0..s_dim {
+                // one prism's circuit: 3 bars, 3 verticals, two rings of 3 strings (at the
+                // pinned ring: without it, or one pinned string alone)
+                let len = cp[c + 1] - cp[c];
+                assert!(len <= 12, "{what}: self-stress {c}: {len} entries");
+                let mut v = vec![0.0; s.n_members()];
+                for slot in cp[c]..cp[c + 1] {
+                    v[basis.pattern().row_idx()[slot]] = basis.values()[slot];
+                }
+                let worst = a.mul_vec(&v).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!(worst < 1e-10, "{what}: |A n_{c}| = {worst:e}");
+            }
+            // the stability of the LP's stress: the penalised certificate (or the banded
+            // test) against the dense eigenvalue test
+            let q = StaticsBackend::prestressability(&nested).unwrap().stress;
+            let dense = Statics::with_settings(&s, StaticsSettings::default()).unwrap();
+            let expected = StaticsBackend::prestress_stability(&dense, &q)
+                .unwrap()
+                .stable;
+            let got = StaticsBackend::prestress_stability(&nested, &q)
+                .unwrap()
+                .stable;
+            assert_eq!(got, expected, "{what}");
+        }
+    }
+}
+
+/// Above [`NESTED_MEMBERS_MIN`] members an unloaded tower goes to the members orientation:
+/// the banded QR's rank, self-stress dimension, mechanisms, margin and stability, in time
+/// and memory linear in the tower (the banded factor fills quadratically with the
+/// mechanisms met along the band).
+#[test]
+fn the_automatic_choice_sends_a_long_tower_to_the_members_orientation() {
+    use tensegrity_core::statics::nested::{prefers_nested_members, NESTED_MEMBERS_MIN};
+    use tensegrity_core::statics::SparseStatics;
+    let s = test_models::snelson_tower_free(600).unwrap();
+    assert!(s.n_members() >= NESTED_MEMBERS_MIN && prefers_nested_members(&s));
+    assert!(!prefers_nested_members(
+        &test_models::snelson_tower_free(400).unwrap()
+    ));
+    // loaded: the load solve is the banded path's
+    assert!(!prefers_nested_members(
+        &test_models::snelson_tower(600).unwrap()
+    ));
+    let report = statics_report(&s, &StaticsRequest::default()).unwrap();
+    let banded = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+    assert!(banded.is_certified());
+    assert_eq!(
+        (report.rank, report.self_stress_dim, report.mechanisms),
+        (banded.rank(), banded.self_stress_dim(), banded.mechanisms())
+    );
+    let margin = report.prestress_margin;
+    let expected = banded.prestressability().unwrap().margin;
+    assert!((margin - expected).abs() < 1e-9, "{margin} vs {expected}");
+    assert!((margin - 1.0 / 3f64.sqrt()).abs() < 1e-12);
+    assert_eq!(report.prestress_stable, Some(true));
+    assert!(
+        report.statics_warning.is_none(),
+        "{:?}",
+        report.statics_warning
+    );
 }
 
 #[test]

@@ -86,13 +86,18 @@ fn nested_timings() {
     for k in sizes {
         let s = test_models::double_layer_grid(k).unwrap();
         let t = Instant::now();
-        let nd = NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let nd = if std::env::var("ORIENT").is_ok_and(|o| o == "members") {
+            NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap()
+        } else {
+            NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap()
+        };
         let t1 = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let pre = nd.prestressability();
         let t2 = t.elapsed().as_secs_f64();
         println!(
-            "grid {k}: members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s margin {:?}",
+            "grid {k}: basis {:?} members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s margin {:?}",
+            nd.sparse_self_stress_basis().map(|b| b.pattern().nnz()),
             s.n_members(),
             nd.rank(),
             nd.self_stress_dim(),
@@ -104,6 +109,65 @@ fn nested_timings() {
             nd.factorization().largest_front(),
             nd.factorization().stored_entries(),
             pre.map(|p| p.margin)
+        );
+    }
+}
+
+/// Stage timings of the nested-dissection path on free towers (`TOWERS=800,3200`).
+#[test]
+#[ignore]
+fn nested_tower_timings() {
+    use tensegrity_core::statics::{NestedStatics, StaticsBackend};
+    let sizes: Vec<usize> = std::env::var("TOWERS")
+        .unwrap_or("200,800".into())
+        .split(',')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    for n in sizes {
+        let s = test_models::snelson_tower_free(n).unwrap();
+        let t = Instant::now();
+        let nd = if std::env::var("ORIENT").is_ok_and(|o| o == "dofs") {
+            NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap()
+        } else {
+            NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap()
+        };
+        let t1 = t.elapsed().as_secs_f64();
+        if let Some(b) = nd.sparse_self_stress_basis() {
+            let cp = b.pattern().col_ptr();
+            let mut sizes: Vec<usize> = cp.windows(2).map(|w| w[1] - w[0]).collect();
+            sizes.sort_unstable();
+            let big = sizes.iter().filter(|&&x| x > 12).count();
+            println!(
+                "  null vector sizes: median {} p90 {} max {} (> 12: {big})",
+                sizes[sizes.len() / 2],
+                sizes[sizes.len() * 9 / 10],
+                sizes.last().unwrap()
+            );
+        }
+        let t = Instant::now();
+        let pre = nd.prestressability();
+        let t2 = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let stab = pre
+            .as_ref()
+            .ok()
+            .map(|p| nd.prestress_stability(&p.stress).map(|s| s.stable));
+        let t3 = t.elapsed().as_secs_f64();
+        println!(
+            "tower {n}: basis {:?} members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s stab {t3:.3}s margin {:?} stable {:?}",
+            nd.sparse_self_stress_basis().map(|b| b.pattern().nnz()),
+            s.n_members(),
+            nd.rank(),
+            nd.self_stress_dim(),
+            nd.mechanisms(),
+            nd.is_certified(),
+            nd.sigma_min_r_estimate(),
+            nd.factorization().rejected_residual(),
+            nd.tolerance(),
+            nd.factorization().largest_front(),
+            nd.factorization().stored_entries(),
+            pre.as_ref().map(|p| p.margin).ok(),
+            stab
         );
     }
 }

@@ -213,6 +213,14 @@ pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estim
     {
         return tensegrity_core::statics::nested::nested_estimate(structure, parameter).ok();
     }
+    // a large unloaded structure of narrow band (a tower) takes the nested dissection of A
+    // itself first; the banded QR it may still choose checks its own bound and budget
+    if command.method == StaticsMethod::Auto
+        && tensegrity_core::statics::nested::prefers_nested_members(structure)
+    {
+        return tensegrity_core::statics::nested::nested_members_estimate(structure, parameter)
+            .ok();
+    }
     // the sparse QR within its profile (a bound of what the factorisation stores), its work
     // (QR_FLOPS_PER_ENTRY a profile entry), then the stages after it at the generic rank
     // min(dofs, members); a structure with more self-stresses is checked again by the core

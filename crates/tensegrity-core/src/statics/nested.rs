@@ -1,5 +1,6 @@
-//! Sparse statics of lattices: rank, self-stress dimension, mechanisms and the margin of the
-//! equilibrium matrix A (free dofs × members) through a nested dissection of the structure.
+//! Sparse statics of lattices and long structures: rank, self-stress dimension, mechanisms and
+//! the margin of the equilibrium matrix A (free dofs × members) through a nested dissection
+//! of the structure.
 //!
 //! # Why
 //!
@@ -28,6 +29,41 @@
 //! (its dimension is given) and the load solve; prestress stability is "stable" without
 //! internal mechanisms (as on the dense path) and otherwise the banded path's test — a loaded structure
 //! stays on the banded path ([`prefers_nested`]).
+//!
+//! # Long structures: the QR of A itself ([`Orientation::Members`])
+//!
+//! A tower of N prisms has N + 6 mechanisms, one a prism and global (a prism's top turns
+//! against its bottom, carrying everything above). Along the band they fill the banded QR's
+//! factor quadratically (its pivot lags the rows by the mechanisms met so far: ≈ 4N² stored
+//! entries), and in the QR of Aᵀ above they are the rejected columns, whose residuals carry
+//! the rounding of a half-tower's conditioning (∝ N²·ε against σ_r ∝ N⁻²): no certificate
+//! survives beyond ~2,000 prisms. [`NestedStatics::members_with_settings`] factors A along
+//! the same dissection instead, members as columns, so that the rejected columns are the
+//! self-stresses, which are local:
+//!
+//! - **fronts**: leaves of [`MEMBER_LEAF_NODES`] nodes; each member in the front of its
+//!   end that lies higher in the tree (a dof row then touches its node's front and the
+//!   ancestors only); within a front the members in the banded QR's staircase order (members
+//!   to lower fronts last, then by the later end in the reverse Cuthill–McKee order, the
+//!   longest span last), so that a dependency closes on a member of its own cell;
+//! - **pivots**: threshold pivoting ([`FrontalQr::with_threshold`],
+//!   [`MEMBER_PIVOT_THRESHOLD`]) keeps that order where the columns are well conditioned;
+//!   rejection and certificate as above;
+//! - **self-stresses**: the rejected members' null vectors, e_k − Σ x_j e_acc(j) with
+//!   R_acc x = R_dep e_k by a sparse back substitution
+//!   ([`FrontalQr::sparse_null_vectors_within`]): a tower's are its prisms' circuits (12
+//!   members each), kept up to [`NULL_ENTRIES_PER_MEMBER`] entries a member;
+//! - **margin**: the banded path's LP over that sparse basis, q = N c (Clarabel), the
+//!   interior point on A D⁻¹ Aᵀ should it fail or the basis not be local;
+//! - **stability** with internal mechanisms: the penalised stress matrix
+//!   ([`penalty`](super::penalty): Ω̄ − σ′I + μAAᵀ positive definite proves the dense test's
+//!   "stable", a banded Cholesky, linear), then the banded test where few mechanisms keep its
+//!   factor small, else "not tested".
+//!
+//! The automatic choice ([`prefers_nested_members`]) takes it for an unloaded structure of
+//! narrow band with at least [`NESTED_MEMBERS_MIN`] members, unless the report would list
+//! the self-stress basis (the banded path builds it). Cost and memory are linear in the
+//! tower (docs/PERFORMANCE.md: 12,800 prisms, 115,203 members, in about 4 s and 0.44 GB).
 
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 use super::load::LoadSolution;
@@ -123,6 +159,127 @@ pub fn nested_estimate(
     .work(flops / FRONT_FLOP_RATE + lp * LP_S_PER_MEMBER_1_5 * (n as f64).powf(1.5)))
 }
 
+/// Leaf size of the dissection in the members orientation: a tower's stage has 3 nodes, so
+/// leaves of 4 stages; smaller dense fronts than [`LEAF_NODES`] where the band is narrow.
+pub const MEMBER_LEAF_NODES: usize = 12;
+
+/// The sparse self-stress basis of the members orientation is kept up to this many entries
+/// per member (a tower: 12 entries a self-stress, 9 members a prism); beyond, its vectors are
+/// not local and the margin LP takes the equilibrium rows.
+pub const NULL_ENTRIES_PER_MEMBER: usize = 16;
+
+/// The smallest structure (members) that the automatic choice sends to the members
+/// orientation ([`prefers_nested_members`]).
+pub const NESTED_MEMBERS_MIN: usize = 5_000;
+
+/// Whether the automatic choice first factors `structure` in the members orientation
+/// ([`Orientation::Members`]): unloaded (the load solve is the banded path's), at least
+/// [`NESTED_MEMBERS_MIN`] members and not a lattice ([`prefers_nested`]). The banded QR's
+/// factor grows with the mechanisms met along the band (quadratically on a tower, whose
+/// mechanisms are one a prism); the choice keeps this factorisation unless the banded one
+/// would list the self-stress basis ([`crate::statics::backend`]).
+pub fn prefers_nested_members(structure: &Structure) -> bool {
+    !structure.is_loaded()
+        && structure.n_members() >= NESTED_MEMBERS_MIN
+        && !prefers_nested(structure)
+}
+
+/// Threshold of the members orientation's pivot choice
+/// ([`FrontalQr::with_threshold`]): a member is taken in the staircase order of its front
+/// while its residual is within this factor of the largest.
+pub const MEMBER_PIVOT_THRESHOLD: f64 = 1e-3;
+
+/// The members orientation's fronts: the dissection of the nodes (leaves of
+/// [`MEMBER_LEAF_NODES`]), each member in the front of its higher end, and the parents.
+/// Within a front the members are in the banded QR's staircase order (by the later of their
+/// ends in the reverse Cuthill–McKee order of the nodes, the longest span last), so that,
+/// as on the band, a dependency closes on a member of its own cell and the self-stresses
+/// come out as local circuits.
+fn member_fronts(structure: &Structure) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
+    let (node_fronts, parent) = dissection_with_leaves(structure, MEMBER_LEAF_NODES);
+    let mut front_of = vec![0usize; structure.n_nodes()];
+    for (f, nodes) in node_fronts.iter().enumerate() {
+        for &v in nodes {
+            front_of[v] = f;
+        }
+    }
+    let order = node_order_rcm(structure);
+    let mut pos = vec![0usize; order.len()];
+    for (p, &v) in order.iter().enumerate() {
+        pos[v] = p;
+    }
+    let members = structure.member_nodes();
+    let mut fronts = vec![Vec::new(); node_fronts.len()];
+    for (k, &[i, j]) in members.iter().enumerate() {
+        // post order: an ancestor has the larger index
+        fronts[front_of[i].max(front_of[j])].push(k);
+    }
+    for front in &mut fronts {
+        front.sort_by_key(|&k| {
+            let [i, j] = members[k];
+            let (a, b) = (pos[i], pos[j]);
+            let below = front_of[i].min(front_of[j]);
+            (
+                std::cmp::Reverse(below),
+                a.max(b),
+                std::cmp::Reverse(a.min(b)),
+            )
+        });
+    }
+    (fronts, parent)
+}
+
+/// Aᵀ of a sparse matrix.
+fn transpose(a: &CscMatrix) -> Result<CscMatrix> {
+    let (cp, ri, v) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+    let mut t = Vec::with_capacity(v.len());
+    for c in 0..a.pattern().ncols() {
+        for s in cp[c]..cp[c + 1] {
+            t.push((c, ri[s], v[s]));
+        }
+    }
+    CscMatrix::from_triplets(a.pattern().ncols(), a.pattern().nrows(), &t)
+}
+
+/// The resource estimate of the members orientation ([`Orientation::Members`]) of
+/// `structure` before it runs: memory 16 bytes a stored R entry (every pivot accepted), the
+/// largest dense front, the sparse self-stress basis and the margin LP over it (at most
+/// [`NULL_ENTRIES_PER_MEMBER`] entries a member, about ten times that for Clarabel's
+/// factor) and the penalised stress matrix of the stability test (36 triplets a member);
+/// work the fronts' 2·rows·columns·pivots flops, the LP (30 interior-point steps over the
+/// basis) and five banded Cholesky factorisations.
+pub fn nested_members_estimate(
+    structure: &Structure,
+    parameter: String,
+) -> Result<crate::budget::Estimate> {
+    let dofs = DofMap::of(structure);
+    let at = transpose(&equilibrium_matrix_sparse(structure, &dofs)?)?;
+    let (fronts, parent) = member_fronts(structure);
+    let sizes = FrontalQr::symbolic(&at, &fronts, &parent);
+    let entries: f64 = sizes.iter().map(|&(_, np, nc)| (np * nc) as f64).sum();
+    let largest = sizes
+        .iter()
+        .map(|&(nr, _, nc)| (nr * nc) as f64)
+        .fold(0.0, f64::max);
+    let flops: f64 = sizes
+        .iter()
+        .map(|&(nr, np, nc)| 2.0 * (nr * nc * np) as f64)
+        .sum();
+    let n = structure.n_members() as f64;
+    let basis = (NULL_ENTRIES_PER_MEMBER as f64) * n;
+    let penalty = 36.0 * n;
+    Ok(crate::budget::Estimate::new(
+        format!(
+            "the sparse statics (nested-dissection QR of the {} × {} equilibrium matrix)",
+            dofs.len(),
+            structure.n_members()
+        ),
+        parameter,
+    )
+    .memory(16.0 * entries + 8.0 * largest + 16.0 * 11.0 * basis + 3.0 * 24.0 * penalty)
+    .work((flops + 30.0 * 20.0 * basis + 5.0 * 50.0 * penalty) / FRONT_FLOP_RATE))
+}
+
 /// The dissection's fronts as lists of free dofs (rows of A), and their parents.
 fn dof_fronts(structure: &Structure, dofs: &DofMap) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
     let (node_fronts, parent) = dissection(structure);
@@ -141,6 +298,14 @@ fn dof_fronts(structure: &Structure, dofs: &DofMap) -> (Vec<Vec<usize>>, Vec<Opt
 /// A nested dissection of the nodes by coordinates: the fronts (node lists, post order:
 /// children before their parent) and each front's parent.
 pub fn dissection(structure: &Structure) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
+    dissection_with_leaves(structure, LEAF_NODES)
+}
+
+/// [`dissection`] down to sub-domains of at most `leaf` nodes.
+pub fn dissection_with_leaves(
+    structure: &Structure,
+    leaf: usize,
+) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
     let n = structure.n_nodes();
     let mut adj = vec![Vec::new(); n];
     for [i, j] in structure.member_nodes() {
@@ -153,6 +318,7 @@ pub fn dissection(structure: &Structure) -> (Vec<Vec<usize>>, Vec<Option<usize>>
         pos: structure.nodes().iter().map(|p| [p.x, p.y, p.z]).collect(),
         adj,
         side: vec![0; n],
+        leaf: leaf.max(1),
         fronts: Vec::new(),
         parent: Vec::new(),
     };
@@ -164,6 +330,7 @@ struct Dissector {
     pos: Vec<[f64; 3]>,
     adj: Vec<Vec<usize>>,
     side: Vec<u8>,
+    leaf: usize,
     fronts: Vec<Vec<usize>>,
     parent: Vec<Option<usize>>,
 }
@@ -181,7 +348,7 @@ impl Dissector {
 
     /// Dissects `set`; returns the index of its top front.
     fn split(&mut self, mut set: Vec<usize>) -> usize {
-        if set.len() <= LEAF_NODES {
+        if set.len() <= self.leaf {
             return self.push(set, &[]);
         }
         let extent = |a: usize| {
@@ -245,9 +412,27 @@ pub struct NestedStatics<'a> {
     dofs: DofMap,
     a: CscMatrix,
     qr: FrontalQr,
+    orientation: Orientation,
     tolerance: f64,
+    sigma_max: f64,
     sigma_min_estimate: f64,
+    /// The sparse self-stress basis (members orientation, when its vectors are local).
+    null_basis: Option<CscMatrix>,
     settings: StaticsSettings,
+}
+
+/// Which matrix the multifrontal QR factors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Orientation {
+    /// Aᵀ (members × dofs), dofs as columns: the rejected columns are mechanisms. For
+    /// lattices, which have few (their self-stresses are many and not listed).
+    Dofs,
+    /// A itself, members as columns: the rejected columns are self-stresses, local circuits
+    /// on a long structure, whose sparse basis carries the margin LP. For towers, whose
+    /// mechanisms are many and global: in the QR of Aᵀ their rejected residuals carry the
+    /// rounding of a half-tower's conditioning (∝ N²·ε, against σ_r ∝ N⁻²), which no
+    /// certificate survives beyond ~2,000 prisms, and on the band they fill R quadratically.
+    Members,
 }
 
 impl<'a> NestedStatics<'a> {
@@ -266,10 +451,75 @@ impl<'a> NestedStatics<'a> {
             dofs,
             a,
             qr,
+            orientation: Orientation::Dofs,
             tolerance,
+            sigma_max: sigma,
             sigma_min_estimate,
+            null_basis: None,
             settings,
         })
+    }
+
+    /// The members orientation ([`Orientation::Members`]): the multifrontal QR of A itself
+    /// along the same dissection (leaves of [`MEMBER_LEAF_NODES`] nodes), each member in
+    /// the front of whichever of its ends lies higher in the tree (no member joins two
+    /// siblings, so every dof row touches one front and its ancestors); the rejected
+    /// members' null vectors form a sparse self-stress basis, kept when it holds at most
+    /// [`NULL_ENTRIES_PER_MEMBER`] entries per member.
+    ///
+    /// ```
+    /// use tensegrity_core::statics::{NestedStatics, StaticsBackend, StaticsSettings};
+    /// use tensegrity_core::test_models::snelson_tower_free;
+    /// let tower = snelson_tower_free(12).unwrap();
+    /// let nd = NestedStatics::members_with_settings(&tower, StaticsSettings::default()).unwrap();
+    /// // one self-stress a prism; 12 internal mechanisms and the 6 rigid motions
+    /// assert_eq!((nd.self_stress_dim(), nd.mechanisms()), (12, 18));
+    /// assert!(nd.is_certified());
+    /// ```
+    pub fn members_with_settings(
+        structure: &'a Structure,
+        settings: StaticsSettings,
+    ) -> Result<Self> {
+        let dofs = DofMap::of(structure);
+        let a = equilibrium_matrix_sparse(structure, &dofs)?;
+        let (m, n) = (dofs.len(), structure.n_members());
+        let at = transpose(&a)?;
+        let (fronts, parent) = member_fronts(structure);
+        let sigma = sigma_max(&a);
+        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let qr = FrontalQr::with_threshold(
+            &at,
+            &fronts,
+            &parent,
+            REJECT_FACTOR * tolerance,
+            MEMBER_PIVOT_THRESHOLD,
+        )?;
+        let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
+        let null_basis =
+            qr.sparse_null_vectors_within(NULL_ENTRIES_PER_MEMBER.saturating_mul(n))?;
+        Ok(Self {
+            structure,
+            dofs,
+            a,
+            qr,
+            orientation: Orientation::Members,
+            tolerance,
+            sigma_max: sigma,
+            sigma_min_estimate,
+            null_basis,
+            settings,
+        })
+    }
+
+    /// Which matrix was factored.
+    pub fn orientation(&self) -> Orientation {
+        self.orientation
+    }
+
+    /// The sparse self-stress basis N (members × dimension, not orthonormal) of the members
+    /// orientation, when its vectors are local; `None` otherwise.
+    pub fn sparse_self_stress_basis(&self) -> Option<&CscMatrix> {
+        self.null_basis.as_ref()
     }
 
     /// The factorisation.
@@ -358,6 +608,13 @@ impl StaticsBackend for NestedStatics<'_> {
                 "the prestressability margin of a lattice this large (nested dissection)",
             ));
         }
+        if let Some(basis) = &self.null_basis {
+            // the LP over the sparse basis, q = N c (the banded path's LP)
+            if let Ok(c) = super::prestress::solve_null_space_lp(basis, signs) {
+                let q = DVector::from_vec(basis.mul_vec(&c));
+                return Ok(Prestressability::from_signed(q, signs));
+            }
+        }
         // the interior point on A D⁻¹ Aᵀ; Clarabel on the same rows should it fail
         let q = super::margin_ipm::solve(&self.a, signs)
             .or_else(|_| super::prestress::solve_equilibrium_lp(&self.a, signs))?;
@@ -366,8 +623,32 @@ impl StaticsBackend for NestedStatics<'_> {
     fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         // without internal mechanisms the structure is stable for any stress (the dense
         // path's answer); with some, the test is not available here
-        if self.internal_mechanisms()? == 0 {
+        let internal = self.internal_mechanisms()?;
+        if internal == 0 {
             return Ok(PrestressStability::rigid());
+        }
+        if self.orientation == Orientation::Members {
+            // the penalised stress matrix (linear: no flex basis), which only proves
+            // stability; then the banded test where few mechanisms keep its factor banded
+            let certificate = super::sparse::stable_by_penalty_certificate(
+                self.structure,
+                &self.dofs,
+                q,
+                self.sigma_max,
+            )?;
+            if certificate == Some(true) {
+                return Ok(PrestressStability {
+                    internal_mechanisms: internal,
+                    eigenvalues: Vec::new(),
+                    stable: true,
+                });
+            }
+            let (m, d) = (self.dofs.len(), self.mechanisms());
+            if m.saturating_mul(d) > super::sparse::DENSE_MECHANISMS_MAX {
+                return Err(Factorization::SparseQr.unsupported(
+                    "prestress stability of a long structure with this many mechanisms (the penalised stress matrix gives no decision)",
+                ));
+            }
         }
         // with internal mechanisms: the banded path's test (its flexes)
         super::SparseStatics::with_settings(self.structure, self.settings)?.prestress_stability(q)

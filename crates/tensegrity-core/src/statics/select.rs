@@ -3,7 +3,9 @@
 //! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
 //!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on
 //!   (automatic method: along the band, or along a nested dissection for an unloaded
-//!   structure whose band is wide, a lattice: [`prefers_nested`](super::nested::prefers_nested));
+//!   structure whose band is wide, a lattice: [`prefers_nested`](super::nested::prefers_nested);
+//!   for a large unloaded structure of narrow band, a tower, along a nested dissection of A
+//!   itself: [`prefers_nested_members`](super::nested::prefers_nested_members));
 //!   an uncertified sparse rank decision falls back to the SVD when the method is automatic
 //!   and the SVD fits the memory budget and the default work limit, and is otherwise
 //!   returned as is (its
@@ -18,7 +20,7 @@ use super::{
     dense_statics_bytes, DofMap, SparseStatics, Statics, StaticsBackend, StaticsMethod,
     StaticsSettings, DEFAULT_MEMORY_LIMIT, SPARSE_MIN_SIZE,
 };
-use crate::error::Result;
+use crate::error::{CoreError, Result};
 use crate::structure::Structure;
 
 /// Whether the dense SVD of `structure` fits the memory budget of `settings` and its
@@ -71,12 +73,49 @@ pub fn backend<'a>(
             }
             return Ok(Box::new(Statics::with_settings(structure, settings)?));
         }
+        if settings.method == StaticsMethod::Auto
+            && super::nested::prefers_nested_members(structure)
+        {
+            return long_structure(structure, settings, fallback);
+        }
         let sparse = SparseStatics::with_settings(structure, settings)?;
         if sparse.is_certified() || !fallback {
             return Ok(Box::new(sparse));
         }
     }
     Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+/// A large unloaded structure of narrow band (a tower): the nested-dissection QR of A
+/// itself ([`NestedStatics::members_with_settings`], linear), kept when certified unless the
+/// report would list its self-stress basis (0 < members × self-stresses ≤
+/// [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)), which the banded QR
+/// builds; the banded QR otherwise (with the SVD as its fallback), and the nested result
+/// again where the banded QR exceeds its memory bound or budget.
+fn long_structure<'a>(
+    structure: &'a Structure,
+    settings: StaticsSettings,
+    fallback: bool,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    let nested = super::NestedStatics::members_with_settings(structure, settings)?;
+    let s = nested.self_stress_dim();
+    let listed =
+        s > 0 && structure.n_members().saturating_mul(s) <= super::sparse::SELF_STRESS_LIST_MAX;
+    if nested.is_certified() && !listed {
+        return Ok(Box::new(nested));
+    }
+    match SparseStatics::with_settings(structure, settings) {
+        Ok(sparse) if sparse.is_certified() || !fallback => Ok(Box::new(sparse)),
+        Ok(_) => Ok(Box::new(Statics::with_settings(structure, settings)?)),
+        Err(CoreError::TooLarge { .. } | CoreError::OverBudget(_)) => {
+            if nested.is_certified() || !fallback {
+                Ok(Box::new(nested))
+            } else {
+                Ok(Box::new(Statics::with_settings(structure, settings)?))
+            }
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// The back-end of a structure with a validated cyclic symmetry (see the module docs).

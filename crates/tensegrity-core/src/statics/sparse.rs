@@ -865,6 +865,26 @@ fn csc_rows(m: &CscMatrix) -> Vec<Vec<(usize, f64)>> {
     rows
 }
 
+/// The penalised stress-matrix certificate (`statics/penalty.rs`) for `structure` on its
+/// free dofs `dofs`, with the pins of [`SparseStatics::stable_by_cholesky`] (one free dof per
+/// rigid motion the supports allow) and the dense test's threshold σ = 10⁻⁹·max|q|:
+/// `Some(true)` when it proves the stress `q` stable, `None` when it cannot decide.
+/// `sigma_a` is σ_max(A). Linear in the members (a banded sparse Cholesky).
+pub(super) fn stable_by_penalty_certificate(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    sigma_a: f64,
+) -> Result<Option<bool>> {
+    let q_max = q.amax();
+    if q.len() != structure.n_members() || !(q_max > 0.0 && q_max.is_finite()) {
+        return Ok(None);
+    }
+    let rigid = rigid_motions(structure, dofs)?;
+    let (index, kept) = kept_dofs(dofs.len(), &pinned_rows(&rigid));
+    stable_by_penalty(structure, dofs, &index, kept, q, 1e-9 * q_max, sigma_a)
+}
+
 /// One free-dof row per column of the rigid-body basis `t` (m × k): greedy pivoting on the
 /// rows (the row of largest residual norm, then the others orthogonalised against it), so
 /// that the k × k submatrix is well conditioned.

@@ -38,6 +38,14 @@ use super::CscMatrix;
 use crate::error::{FactorizationFailure, Result};
 use crate::linalg::failure;
 
+/// Relative drop tolerance of the null vectors ([`FrontalQr::sparse_null_vectors_within`]).
+/// Larger than the banded QR's ([`super::rrqr::NULL_DROP`]): a separator's rows reach every
+/// pivot of its subtree, so the back substitution spreads the rounding of a local circuit
+/// (entries of 10⁻¹³ of its largest on a tower) over the subtree. Dropping entries below
+/// 10⁻¹¹ of the largest moves A times the vector by about 10⁻¹¹‖A‖, far below the rejected
+/// residual it already carries (up to 1000·τ).
+pub const NULL_DROP: f64 = 1e-11;
+
 /// One row of R: its entries from the diagonal rightwards, the diagonal first. During the
 /// factorisation `cols` holds original columns of B; afterwards the pivot indices of the
 /// accepted ones (R_acc), the rejected columns' entries moved to `dep` (R_dep).
@@ -64,6 +72,8 @@ pub struct FrontalQr {
     /// Rows of B (columns of A).
     nrows: usize,
     tol: f64,
+    /// Threshold of the pivot choice ([`FrontalQr::with_threshold`]).
+    theta: f64,
     /// R's rows in pivot order.
     r_rows: Vec<RRow>,
     /// Pivot index of every column of B (`None`: rejected).
@@ -94,6 +104,23 @@ impl FrontalQr {
         fronts: &[Vec<usize>],
         parent: &[Option<usize>],
         tol: f64,
+    ) -> Result<Self> {
+        Self::with_threshold(a, fronts, parent, tol, 1.0)
+    }
+
+    /// As [`new`](Self::new) with threshold pivoting: in each front the next pivot is the
+    /// first remaining pivot column, in the order given in `fronts`, whose residual norm is at
+    /// least `theta` times the largest (θ = 1: the largest, column pivoting; 0 < θ < 1 keeps
+    /// the given order where the columns are well conditioned, so a caller's order decides
+    /// which columns close a dependency and are rejected, as the banded QR's staircase
+    /// does). The rejection rule is unchanged: the remaining columns are rejected when the
+    /// largest residual is at most `tol`.
+    pub fn with_threshold(
+        a: &CscMatrix,
+        fronts: &[Vec<usize>],
+        parent: &[Option<usize>],
+        tol: f64,
+        theta: f64,
     ) -> Result<Self> {
         let (m, n) = (a.pattern().nrows(), a.pattern().ncols());
         let bad = |expected: usize, found: usize| {
@@ -136,6 +163,7 @@ impl FrontalQr {
             ncols: m,
             nrows: n,
             tol,
+            theta: theta.clamp(f64::MIN_POSITIVE, 1.0),
             r_rows: Vec::new(),
             pivot_of: vec![None; m],
             rejected_sq: 0.0,
@@ -297,13 +325,26 @@ impl FrontalQr {
             if best_sq.sqrt() <= self.tol {
                 break;
             }
-            if best != i {
-                perm.swap(i, best);
-                for r in 0..nr {
-                    w.swap(i * nr + r, best * nr + r);
+            let pivot_sq = if self.theta < 1.0 {
+                // the first column in order above the threshold; the others keep their order
+                let floor = self.theta * self.theta * best_sq;
+                let (first, first_sq) = (i..np)
+                    .map(|j| (j, norm_of(j, &w)))
+                    .find(|&(_, sq)| sq >= floor)
+                    .unwrap_or((best, best_sq));
+                perm[i..=first].rotate_right(1);
+                w[i * nr..(first + 1) * nr].rotate_right(nr);
+                first_sq
+            } else {
+                if best != i {
+                    perm.swap(i, best);
+                    for r in 0..nr {
+                        w.swap(i * nr + r, best * nr + r);
+                    }
                 }
-            }
-            householder_step(&mut w, nr, nc, i, i, best_sq.sqrt());
+                best_sq
+            };
+            householder_step(&mut w, nr, nc, i, i, pivot_sq.sqrt());
             accepted += 1;
         }
         // rejected pivot columns: their residuals (rows accepted..) are E
@@ -402,6 +443,90 @@ impl FrontalQr {
         (0..self.ncols)
             .filter(|&c| self.pivot_of[c].is_none())
             .collect()
+    }
+
+    /// The null vectors of B, one per rejected column c: the vector with 1 at c, 0 at the
+    /// other rejected columns and −x on the accepted ones, R_acc x = (R_dep)_c (B times it
+    /// equals c's rejected residual, of norm ≤ τ); columns in the order of the rejected
+    /// columns, B's columns as rows. The back substitution is sparse (a heap of the pivots
+    /// reached, entries below 10⁻¹⁴ of the largest dropped), so a dependency that closes
+    /// inside a few fronts gives a local vector; `None` as soon as the vectors hold more
+    /// than `max_entries` entries (they are not local).
+    ///
+    /// ```
+    /// use tensegrity_core::linalg::{CscMatrix, FrontalQr};
+    /// // B = Aᵀ with A's columns e0, e0 + e1, 2·e0 + e1: B's column 2 = B's column 0 + column 1
+    /// let a = CscMatrix::from_triplets(
+    ///     3, 2, &[(0, 0, 1.0), (1, 0, 1.0), (1, 1, 1.0), (2, 0, 2.0), (2, 1, 1.0)],
+    /// ).unwrap();
+    /// let qr = FrontalQr::new(&a, &[vec![0, 1, 2]], &[None], 1e-12).unwrap();
+    /// let n = qr.sparse_null_vectors_within(usize::MAX).unwrap().unwrap();
+    /// assert_eq!((n.pattern().nrows(), n.pattern().ncols()), (3, 1));
+    /// let v: Vec<f64> = (0..3).map(|r| n.pattern().slot(r, 0).map_or(0.0, |s| n.values()[s])).collect();
+    /// // v ∝ (1, 1, −1): B v = 0
+    /// assert!((v[0] - v[1]).abs() < 1e-12 && (v[0] + v[2]).abs() < 1e-12);
+    /// ```
+    pub fn sparse_null_vectors_within(&self, max_entries: usize) -> Result<Option<CscMatrix>> {
+        let r = self.rank();
+        // R_acc by columns (entries above the diagonal) and R_dep by rejected column
+        let mut above: Vec<Vec<(usize, f64)>> = vec![Vec::new(); r];
+        let mut dep: Vec<Vec<(usize, f64)>> = vec![Vec::new(); self.ncols];
+        for (i, row) in self.r_rows.iter().enumerate() {
+            for (&j, &v) in row.cols.iter().zip(&row.vals).skip(1) {
+                if v != 0.0 {
+                    above[j].push((i, v));
+                }
+            }
+            for &(c, v) in &row.dep {
+                if v != 0.0 {
+                    dep[c].push((i, v));
+                }
+            }
+        }
+        let mut col_of = vec![0usize; r];
+        for (c, p) in self.pivot_of.iter().enumerate() {
+            if let Some(p) = *p {
+                col_of[p] = c;
+            }
+        }
+        let mut w = vec![0.0; r];
+        let mut queued = vec![false; r];
+        let mut heap = std::collections::BinaryHeap::new();
+        let mut t: Vec<(usize, usize, f64)> = Vec::new();
+        let mut d = 0;
+        for c in (0..self.ncols).filter(|&c| self.pivot_of[c].is_none()) {
+            t.push((c, d, 1.0));
+            for &(i, v) in &dep[c] {
+                w[i] += v;
+                if !queued[i] {
+                    queued[i] = true;
+                    heap.push(i);
+                }
+            }
+            let mut largest = 1.0f64;
+            while let Some(j) = heap.pop() {
+                queued[j] = false;
+                let x = w[j] / self.r_rows[j].vals[0];
+                w[j] = 0.0;
+                if x.is_nan() || x.abs() <= NULL_DROP * largest {
+                    continue;
+                }
+                largest = largest.max(x.abs());
+                t.push((col_of[j], d, -x));
+                for &(i, v) in &above[j] {
+                    w[i] -= v * x;
+                    if !queued[i] {
+                        queued[i] = true;
+                        heap.push(i);
+                    }
+                }
+            }
+            if t.len() > max_entries {
+                return Ok(None);
+            }
+            d += 1;
+        }
+        CscMatrix::from_triplets(self.ncols, d, &t).map(Some)
     }
 
     /// Back substitution R_acc x = c in place (pivot order; entries on rejected columns
@@ -538,6 +663,64 @@ mod tests {
             est <= 1.5 * s_r * 10.0 && est > 1e-3 * s_r,
             "{est} vs {s_r}"
         );
+    }
+
+    #[test]
+    fn threshold_pivoting_keeps_the_rank_and_its_null_vectors_annihilate_b() {
+        // B = Aᵀ (20 rows × 12 columns in 3 fronts, 0 and 1 children of 2): columns 7 and 11
+        // of B combinations of two earlier ones in their front
+        let (m, n) = (12, 20);
+        let mut b = DMatrix::<f64>::zeros(n, m);
+        let front_cols = [0..4, 4..8, 8..12];
+        for r in 0..n {
+            let f = r % 2;
+            for c in front_cols[f].clone().chain(front_cols[2].clone()) {
+                if (r + c) % 3 != 0 {
+                    b[(r, c)] = entry(r, c);
+                }
+            }
+        }
+        for (c, (x, y)) in [(3, (1, 2)), (7, (5, 4)), (11, (9, 8))] {
+            let col = b.column(x) * 0.7 - b.column(y) * 1.3;
+            b.set_column(c, &col);
+        }
+        let mut t = Vec::new();
+        for r in 0..n {
+            for c in 0..m {
+                if b[(r, c)] != 0.0 {
+                    // a's column r is B's row r
+                    t.push((c, r, b[(r, c)]));
+                }
+            }
+        }
+        let a = CscMatrix::from_triplets(m, n, &t).unwrap();
+        let fronts: Vec<Vec<usize>> = front_cols.iter().map(|r| r.clone().collect()).collect();
+        let rank = crate::linalg::svd(&b).unwrap();
+        let rank = rank.rank(1e-10 * rank.s[0]);
+        for theta in [1.0, 0.1, 1e-3] {
+            let qr =
+                FrontalQr::with_threshold(&a, &fronts, &[Some(2), Some(2), None], 1e-10, theta)
+                    .unwrap();
+            assert_eq!(qr.rank(), rank, "θ = {theta}");
+            let nv = qr.sparse_null_vectors_within(usize::MAX).unwrap().unwrap();
+            assert_eq!(nv.pattern().ncols(), m - rank);
+            let rejected = qr.rejected_columns();
+            for k in 0..nv.pattern().ncols() {
+                let mut v = nalgebra::DVector::<f64>::zeros(m);
+                for s in nv.pattern().col_ptr()[k]..nv.pattern().col_ptr()[k + 1] {
+                    v[nv.pattern().row_idx()[s]] = nv.values()[s];
+                }
+                assert!((&b * &v).amax() < 1e-12, "θ = {theta}: B n_{k}");
+                // 1 at its own rejected column, 0 at the others
+                for (j, &c) in rejected.iter().enumerate() {
+                    assert_eq!(v[c], if j == k { 1.0 } else { 0.0 });
+                }
+            }
+        }
+        // with θ < 1 the given order decides: the last column of each dependency is rejected
+        let qr =
+            FrontalQr::with_threshold(&a, &fronts, &[Some(2), Some(2), None], 1e-10, 1e-3).unwrap();
+        assert_eq!(qr.rejected_columns(), vec![3, 7, 11]);
     }
 
     #[test]
