@@ -199,32 +199,30 @@ fn a_long_michell_search_is_refused_by_its_estimate() {
     assert!(j["complexity"].as_u64().unwrap() >= 1);
 }
 
+/// `statics SCENE --json` succeeds within a minute; its report.
+fn statics_answers(scene: &str) -> serde_json::Value {
+    let (out, took) = run(&["statics", scene, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(took < Duration::from_secs(60), "{took:?}");
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
 #[test]
 fn long_chains_answer_or_are_refused_by_their_estimate() {
     let dir = scratch("limits", "chains");
     // 3,000 nodes: the sparse path answers in seconds (rank 2n − 3, n + 3 mechanisms)
     let small = chain(&dir, 3000);
-    let (out, took) = run(&["statics", &small, "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(took < Duration::from_secs(60), "{took:?}");
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = statics_answers(&small);
     assert_eq!(j["rank"], 2 * 3000 - 3);
     assert_eq!(j["self_stress_dim"], 0);
     // 18,000 nodes (35,997 members): the nested dissection of A itself answers in linear
     // time and memory (the banded QR needed ~4 GB, its estimate 7.2 GiB) ...
     let big = chain(&dir, 18000);
-    let (out, took) = run(&["statics", &big, "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(took < Duration::from_secs(60), "{took:?}");
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = statics_answers(&big);
     assert_eq!(j["rank"], 2 * 18000 - 3);
     assert_eq!(j["mechanisms"], 18000 + 3);
     // ... and its estimate (194 MiB) refuses it under a smaller limit, naming the flag

@@ -1,7 +1,8 @@
 //! Stage timings of the sparse statics on towers (diagnostic; `--ignored --nocapture`).
 use std::time::Instant;
-use tensegrity_core::statics::{SparseStatics, StaticsSettings};
-use tensegrity_core::test_models;
+use tensegrity_core::statics::nested::Orientation;
+use tensegrity_core::statics::{NestedStatics, SparseStatics, StaticsBackend, StaticsSettings};
+use tensegrity_core::{test_models, Structure};
 
 #[test]
 #[ignore]
@@ -73,101 +74,89 @@ fn cholesky_vs_dense() {
     }
 }
 
-/// Stage timings of the nested-dissection path on double-layer grids (`GRIDS=20,40`).
+/// Stage timings of the nested-dissection path on double-layer grids (`GRIDS=20,40`; the
+/// QR of Aᵀ, `ORIENT=members` for the QR of A).
 #[test]
 #[ignore]
 fn nested_timings() {
-    use tensegrity_core::statics::{NestedStatics, StaticsBackend};
-    let sizes: Vec<usize> = std::env::var("GRIDS")
-        .unwrap_or("20,40".into())
-        .split(',')
-        .map(|s| s.parse().unwrap())
-        .collect();
-    for k in sizes {
+    for k in sizes("GRIDS", "20,40") {
         let s = test_models::double_layer_grid(k).unwrap();
-        let t = Instant::now();
-        let nd = if std::env::var("ORIENT").is_ok_and(|o| o == "members") {
-            NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap()
-        } else {
-            NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap()
-        };
-        let t1 = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let pre = nd.prestressability();
-        let t2 = t.elapsed().as_secs_f64();
-        println!(
-            "grid {k}: basis {:?} members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s margin {:?}",
-            nd.sparse_self_stress_basis().map(|b| b.pattern().nnz()),
-            s.n_members(),
-            nd.rank(),
-            nd.self_stress_dim(),
-            nd.mechanisms(),
-            nd.is_certified(),
-            nd.sigma_min_r_estimate(),
-            nd.factorization().rejected_residual(),
-            nd.tolerance(),
-            nd.factorization().largest_front(),
-            nd.factorization().stored_entries(),
-            pre.map(|p| p.margin)
-        );
+        nested_stages(&format!("grid {k}"), &s, orientation("dofs"));
     }
 }
 
-/// Stage timings of the nested-dissection path on free towers (`TOWERS=800,3200`).
+/// Stage timings of the nested-dissection path on free towers (`TOWERS=800,3200`; the QR of
+/// A, `ORIENT=dofs` for the QR of Aᵀ).
 #[test]
 #[ignore]
 fn nested_tower_timings() {
-    use tensegrity_core::statics::{NestedStatics, StaticsBackend};
-    let sizes: Vec<usize> = std::env::var("TOWERS")
-        .unwrap_or("200,800".into())
+    for n in sizes("TOWERS", "200,800") {
+        let s = test_models::snelson_tower_free(n).unwrap();
+        nested_stages(&format!("tower {n}"), &s, orientation("members"));
+    }
+}
+
+/// The sizes listed in the environment variable `var` (comma-separated), else `default`.
+fn sizes(var: &str, default: &str) -> Vec<usize> {
+    std::env::var(var)
+        .unwrap_or(default.into())
         .split(',')
         .map(|s| s.parse().unwrap())
-        .collect();
-    for n in sizes {
-        let s = test_models::snelson_tower_free(n).unwrap();
-        let t = Instant::now();
-        let nd = if std::env::var("ORIENT").is_ok_and(|o| o == "dofs") {
-            NestedStatics::with_settings(&s, StaticsSettings::default()).unwrap()
-        } else {
-            NestedStatics::members_with_settings(&s, StaticsSettings::default()).unwrap()
-        };
-        let t1 = t.elapsed().as_secs_f64();
-        if let Some(b) = nd.sparse_self_stress_basis() {
-            let cp = b.pattern().col_ptr();
-            let mut sizes: Vec<usize> = cp.windows(2).map(|w| w[1] - w[0]).collect();
-            sizes.sort_unstable();
-            let big = sizes.iter().filter(|&&x| x > 12).count();
+        .collect()
+}
+
+/// `ORIENT` (`dofs` or `members`), else `default`.
+fn orientation(default: &str) -> Orientation {
+    match std::env::var("ORIENT").unwrap_or(default.into()).as_str() {
+        "members" => Orientation::Members,
+        _ => Orientation::Dofs,
+    }
+}
+
+/// Factors `s` on the nested path in `orientation`, then the margin LP and the stability test
+/// of its stress; prints the stages' times and the factorisation's numbers.
+fn nested_stages(label: &str, s: &Structure, orientation: Orientation) {
+    let t = Instant::now();
+    let nd = match orientation {
+        Orientation::Dofs => NestedStatics::with_settings(s, StaticsSettings::default()),
+        Orientation::Members => NestedStatics::members_with_settings(s, StaticsSettings::default()),
+    }
+    .unwrap();
+    let t1 = t.elapsed().as_secs_f64();
+    if let Some(b) = nd.sparse_self_stress_basis() {
+        let cp = b.pattern().col_ptr();
+        let mut sizes: Vec<usize> = cp.windows(2).map(|w| w[1] - w[0]).collect();
+        sizes.sort_unstable();
+        if let Some(&max) = sizes.last() {
             println!(
-                "  null vector sizes: median {} p90 {} max {} (> 12: {big})",
-                sizes[sizes.len() / 2],
-                sizes[sizes.len() * 9 / 10],
-                sizes.last().unwrap()
+                "  null vector entries: median {} max {max}",
+                sizes[sizes.len() / 2]
             );
         }
-        let t = Instant::now();
-        let pre = nd.prestressability();
-        let t2 = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let stab = pre
-            .as_ref()
-            .ok()
-            .map(|p| nd.prestress_stability(&p.stress).map(|s| s.stable));
-        let t3 = t.elapsed().as_secs_f64();
-        println!(
-            "tower {n}: basis {:?} members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s stab {t3:.3}s margin {:?} stable {:?}",
-            nd.sparse_self_stress_basis().map(|b| b.pattern().nnz()),
-            s.n_members(),
-            nd.rank(),
-            nd.self_stress_dim(),
-            nd.mechanisms(),
-            nd.is_certified(),
-            nd.sigma_min_r_estimate(),
-            nd.factorization().rejected_residual(),
-            nd.tolerance(),
-            nd.factorization().largest_front(),
-            nd.factorization().stored_entries(),
-            pre.as_ref().map(|p| p.margin).ok(),
-            stab
-        );
     }
+    let t = Instant::now();
+    let pre = nd.prestressability();
+    let t2 = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let stable = pre
+        .as_ref()
+        .ok()
+        .map(|p| nd.prestress_stability(&p.stress).map(|s| s.stable));
+    let t3 = t.elapsed().as_secs_f64();
+    println!(
+        "{label}: basis {:?} members {} rank {} s {} mech {} certified {} sigma_r {:.3e} E {:.3e} tol {:.3e} front {:?} entries {} | factor {t1:.3}s LP {t2:.3}s stability {t3:.3}s margin {:?} stable {:?}",
+        nd.sparse_self_stress_basis().map(|b| b.pattern().nnz()),
+        s.n_members(),
+        nd.rank(),
+        nd.self_stress_dim(),
+        nd.mechanisms(),
+        nd.is_certified(),
+        nd.sigma_min_r_estimate(),
+        nd.factorization().rejected_residual(),
+        nd.tolerance(),
+        nd.factorization().largest_front(),
+        nd.factorization().stored_entries(),
+        pre.as_ref().map(|p| p.margin).ok(),
+        stable
+    );
 }

@@ -136,16 +136,7 @@ pub fn nested_estimate(
     let dofs = DofMap::of(structure);
     let a = equilibrium_matrix_sparse(structure, &dofs)?;
     let (fronts, parent) = dof_fronts(structure, &dofs);
-    let sizes = FrontalQr::symbolic(&a, &fronts, &parent);
-    let entries: f64 = sizes.iter().map(|&(_, np, nc)| (np * nc) as f64).sum();
-    let largest = sizes
-        .iter()
-        .map(|&(nr, _, nc)| (nr * nc) as f64)
-        .fold(0.0, f64::max);
-    let flops: f64 = sizes
-        .iter()
-        .map(|&(nr, np, nc)| 2.0 * (nr * nc * np) as f64)
-        .sum();
+    let (entries, largest, flops) = front_totals(&FrontalQr::symbolic(&a, &fronts, &parent));
     let n = structure.n_members();
     let lp = if n <= LP_MEMBERS_MAX { 1.0 } else { 0.0 };
     Ok(crate::budget::Estimate::new(
@@ -255,16 +246,7 @@ pub fn nested_members_estimate(
     let dofs = DofMap::of(structure);
     let at = transpose(&equilibrium_matrix_sparse(structure, &dofs)?)?;
     let (fronts, parent) = member_fronts(structure);
-    let sizes = FrontalQr::symbolic(&at, &fronts, &parent);
-    let entries: f64 = sizes.iter().map(|&(_, np, nc)| (np * nc) as f64).sum();
-    let largest = sizes
-        .iter()
-        .map(|&(nr, _, nc)| (nr * nc) as f64)
-        .fold(0.0, f64::max);
-    let flops: f64 = sizes
-        .iter()
-        .map(|&(nr, np, nc)| 2.0 * (nr * nc * np) as f64)
-        .sum();
+    let (entries, largest, flops) = front_totals(&FrontalQr::symbolic(&at, &fronts, &parent));
     let n = structure.n_members() as f64;
     let basis = (NULL_ENTRIES_PER_MEMBER as f64) * n;
     let penalty = 36.0 * n;
@@ -278,6 +260,22 @@ pub fn nested_members_estimate(
     )
     .memory(16.0 * entries + 8.0 * largest + 16.0 * 11.0 * basis + 3.0 * 24.0 * penalty)
     .work((flops + 30.0 * 20.0 * basis + 5.0 * 50.0 * penalty) / FRONT_FLOP_RATE))
+}
+
+/// From the fronts' sizes of [`FrontalQr::symbolic`] (rows, pivots, columns): the stored R
+/// entries (Σ pivots × columns, every pivot accepted), the largest dense front (rows ×
+/// columns) and the flops (Σ 2·rows·columns·pivots).
+fn front_totals(sizes: &[(usize, usize, usize)]) -> (f64, f64, f64) {
+    sizes.iter().fold(
+        (0.0, 0.0, 0.0),
+        |(entries, largest, flops), &(nr, np, nc)| {
+            (
+                entries + (np * nc) as f64,
+                f64::max(largest, (nr * nc) as f64),
+                flops + 2.0 * (nr * nc * np) as f64,
+            )
+        },
+    )
 }
 
 /// The dissection's fronts as lists of free dofs (rows of A), and their parents.

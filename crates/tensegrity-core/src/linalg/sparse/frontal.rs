@@ -621,6 +621,19 @@ mod tests {
         2.0 * (x - x.floor()) - 1.0
     }
 
+    /// The (row, column, value) triplets of the nonzero entries of `d`.
+    fn nonzeros(d: &DMatrix<f64>) -> Vec<(usize, usize, f64)> {
+        let mut t = Vec::new();
+        for k in 0..d.ncols() {
+            for i in 0..d.nrows() {
+                if d[(i, k)] != 0.0 {
+                    t.push((i, k, d[(i, k)]));
+                }
+            }
+        }
+        t
+    }
+
     #[test]
     fn rank_and_smallest_singular_value_match_the_svd_on_a_chain_of_fronts() {
         // A: m = 12 rows in 3 fronts (0 and 1 children of 2), n = 20 columns touching one front
@@ -642,15 +655,7 @@ mod tests {
                 }
             }
         }
-        let mut t = Vec::new();
-        for k in 0..n {
-            for i in 0..m {
-                if dense[(i, k)] != 0.0 {
-                    t.push((i, k, dense[(i, k)]));
-                }
-            }
-        }
-        let a = CscMatrix::from_triplets(m, n, &t).unwrap();
+        let a = CscMatrix::from_triplets(m, n, &nonzeros(&dense)).unwrap();
         let fronts: Vec<Vec<usize>> = front_rows.iter().map(|r| r.clone().collect()).collect();
         let qr = FrontalQr::new(&a, &fronts, &[Some(2), Some(2), None], 1e-10).unwrap();
         let svd = crate::linalg::svd(&dense).unwrap();
@@ -667,8 +672,8 @@ mod tests {
 
     #[test]
     fn threshold_pivoting_keeps_the_rank_and_its_null_vectors_annihilate_b() {
-        // B = Aᵀ (20 rows × 12 columns in 3 fronts, 0 and 1 children of 2): columns 7 and 11
-        // of B combinations of two earlier ones in their front
+        // B = Aᵀ (20 rows × 12 columns in 3 fronts, 0 and 1 children of 2): columns 3, 7 and
+        // 11 of B combinations of two earlier ones in their front
         let (m, n) = (12, 20);
         let mut b = DMatrix::<f64>::zeros(n, m);
         let front_cols = [0..4, 4..8, 8..12];
@@ -684,16 +689,8 @@ mod tests {
             let col = b.column(x) * 0.7 - b.column(y) * 1.3;
             b.set_column(c, &col);
         }
-        let mut t = Vec::new();
-        for r in 0..n {
-            for c in 0..m {
-                if b[(r, c)] != 0.0 {
-                    // a's column r is B's row r
-                    t.push((c, r, b[(r, c)]));
-                }
-            }
-        }
-        let a = CscMatrix::from_triplets(m, n, &t).unwrap();
+        // a's column r is B's row r
+        let a = CscMatrix::from_triplets(m, n, &nonzeros(&b.transpose())).unwrap();
         let fronts: Vec<Vec<usize>> = front_cols.iter().map(|r| r.clone().collect()).collect();
         let rank = crate::linalg::svd(&b).unwrap();
         let rank = rank.rank(1e-10 * rank.s[0]);
