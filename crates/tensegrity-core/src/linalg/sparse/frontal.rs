@@ -16,6 +16,8 @@
 //!   residual is at most the rejection tolerance τ, the remaining pivot columns are
 //!   **rejected** (dependent on the pivots before them, inside F's subtree): their residuals,
 //!   of norm ≤ τ each, are dropped (they form E) and their R entries kept as R_dep;
+//!   (on a large front the reflectors reach the border columns afterwards, in blocks of
+//!   32: H_{r0} ⋯ H_{r1−1} = I − V T Vᵀ, applied as two matrix products);
 //! - the accepted rows are R's rows (entries on F's later pivots and on border columns);
 //! - the rows left over the border columns are the contribution block passed to the parent,
 //!   reduced by an unpivoted QR to at most as many rows as border columns (rows beyond are
@@ -310,8 +312,14 @@ impl FrontalQr {
         for &c in &cols {
             local[c] = usize::MAX;
         }
-        // pivoted Householder on the pivot columns
+        // pivoted Householder on the pivot columns; on a large front the reflectors are kept
+        // (`refl`, one column of nr a reflector) and applied to the border columns afterwards
+        // in blocks (small fronts, a tower's, apply them column by column as they come)
+        let blocked = nr >= BLOCKED_MIN && nc - np >= BLOCKED_MIN;
+        let reach = if blocked { np } else { nc };
         let mut perm: Vec<usize> = (0..nc).collect();
+        let mut refl: Vec<f64> = Vec::new();
+        let mut betas: Vec<f64> = Vec::new();
         let mut accepted = 0;
         while accepted < np.min(nr) {
             let i = accepted;
@@ -344,8 +352,21 @@ impl FrontalQr {
                 }
                 best_sq
             };
-            householder_step(&mut w, nr, nc, i, i, pivot_sq.sqrt());
+            refl.resize((accepted + 1) * nr, 0.0);
+            let beta = householder_step(
+                &mut w,
+                nr,
+                reach,
+                i,
+                i,
+                pivot_sq.sqrt(),
+                &mut refl[accepted * nr..],
+            );
+            betas.push(beta);
             accepted += 1;
+        }
+        if blocked {
+            apply_reflectors_blocked(&mut w[np * nr..], nr, nc - np, &refl, &betas);
         }
         // rejected pivot columns: their residuals (rows accepted..) are E
         for j in accepted..np {
@@ -382,9 +403,10 @@ impl FrontalQr {
         let border: Vec<usize> = (np..nc).map(|j| cols[perm[j]]).collect();
         if cr > cb {
             // reduce to cb rows: an unpivoted QR, the rest is zero
+            let mut v = vec![0.0; cr];
             for i in 0..cb {
                 let sq: f64 = data[i * cr + i..(i + 1) * cr].iter().map(|x| x * x).sum();
-                householder_step(&mut data, cr, cb, i, i, sq.sqrt());
+                householder_step(&mut data, cr, cb, i, i, sq.sqrt(), &mut v);
             }
             let mut reduced = vec![0.0; cb * cb];
             for j in 0..cb {
@@ -565,12 +587,22 @@ impl FrontalQr {
     }
 }
 
-/// One Householder step on the column-major `nr × nc` matrix `w`: the reflector that maps
-/// column `j`'s entries from row `i` down (norm `norm`) onto row `i`, applied to the columns
-/// after `j`.
-fn householder_step(w: &mut [f64], nr: usize, nc: usize, i: usize, j: usize, norm: f64) {
+/// One Householder step on the column-major `nr × nc` matrix `w`: the reflector
+/// H = I − β v vᵀ that maps column `j`'s entries from row `i` down (norm `norm`) onto row `i`,
+/// applied to the columns after `j` (up to `nc`); v is written to `v_out` (length `nr`,
+/// zero above row `i`) and β returned (0 for a zero column: no reflector).
+fn householder_step(
+    w: &mut [f64],
+    nr: usize,
+    nc: usize,
+    i: usize,
+    j: usize,
+    norm: f64,
+    v_out: &mut [f64],
+) -> f64 {
+    v_out[..nr].iter_mut().for_each(|x| *x = 0.0);
     if norm == 0.0 {
-        return;
+        return 0.0;
     }
     let (head, tail) = w.split_at_mut((j + 1) * nr);
     let v = &mut head[j * nr + i..(j + 1) * nr];
@@ -578,7 +610,7 @@ fn householder_step(w: &mut [f64], nr: usize, nc: usize, i: usize, j: usize, nor
     v[0] -= alpha;
     let vv = dot(v, v);
     let beta = if vv > 0.0 { 2.0 / vv } else { 0.0 };
-    for c in 0..nc - j - 1 {
+    for c in 0..nc.saturating_sub(j + 1) {
         let col = &mut tail[c * nr + i..(c + 1) * nr];
         let s = dot(v, col) * beta;
         if s != 0.0 {
@@ -587,8 +619,81 @@ fn householder_step(w: &mut [f64], nr: usize, nc: usize, i: usize, j: usize, nor
             }
         }
     }
+    v_out[i..nr].copy_from_slice(v);
     v[0] = alpha;
     v[1..].iter_mut().for_each(|x| *x = 0.0);
+    beta
+}
+
+/// Fronts with at least this many rows and border columns apply their reflectors to the
+/// border in blocks ([`apply_reflectors_blocked`]); smaller ones one by one.
+const BLOCKED_MIN: usize = 64;
+
+/// Reflectors applied to the border at once in blocks of this many (compact WY).
+const REFLECTOR_BLOCK: usize = 32;
+
+/// Applies the reflectors H_k = I − β_k v_k v_kᵀ (`refl`: column k is v_k, of length `nr`,
+/// zero above row k), H_0 first, to the column-major `nr × ncols` block `b`. In blocks of
+/// [`REFLECTOR_BLOCK`]: H_{r0} ⋯ H_{r1−1} = I − V T Vᵀ with T upper triangular
+/// (T_jj = β_j, T[..j, j] = −β_j T[..j, ..j] Vᵀv_j), so the block's product applied to b is
+/// b − V Tᵀ (Vᵀ b): two matrix products on rows r0.. instead of one pass over b a reflector.
+fn apply_reflectors_blocked(b: &mut [f64], nr: usize, ncols: usize, refl: &[f64], betas: &[f64]) {
+    use faer::{Accum, MatMut, MatRef, Par};
+    let k = betas.len();
+    if ncols == 0 || k == 0 {
+        return;
+    }
+    let mut r0 = 0;
+    while r0 < k {
+        let r1 = (r0 + REFLECTOR_BLOCK).min(k);
+        let nb = r1 - r0;
+        let rows = nr - r0;
+        // V on rows r0..: column j of the block is v_{r0+j}
+        let mut v = vec![0.0; rows * nb];
+        for j in 0..nb {
+            let src = &refl[(r0 + j) * nr + r0..(r0 + j + 1) * nr];
+            v[j * rows..(j + 1) * rows].copy_from_slice(src);
+        }
+        let mut t = vec![0.0; nb * nb];
+        for j in 0..nb {
+            let beta = betas[r0 + j];
+            t[j * nb + j] = beta;
+            let vj = &v[j * rows..(j + 1) * rows];
+            let z: Vec<f64> = (0..j)
+                .map(|l| dot(&v[l * rows..(l + 1) * rows], vj))
+                .collect();
+            for row in 0..j {
+                let s: f64 = (row..j).map(|l| t[l * nb + row] * z[l]).sum();
+                t[j * nb + row] = -beta * s;
+            }
+        }
+        let vm = MatRef::from_column_major_slice(&v, rows, nb);
+        let tm = MatRef::from_column_major_slice(&t, nb, nb);
+        let mut bm = MatMut::from_column_major_slice_mut(b, nr, ncols);
+        let mut sub = bm.as_mut().submatrix_mut(r0, 0, rows, ncols);
+        let mut vtb = vec![0.0; nb * ncols];
+        let mut vtb_m = MatMut::from_column_major_slice_mut(&mut vtb, nb, ncols);
+        faer::linalg::matmul::matmul(
+            vtb_m.as_mut(),
+            Accum::Replace,
+            vm.transpose(),
+            sub.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        let mut w2 = vec![0.0; nb * ncols];
+        let mut w2_m = MatMut::from_column_major_slice_mut(&mut w2, nb, ncols);
+        faer::linalg::matmul::matmul(
+            w2_m.as_mut(),
+            Accum::Replace,
+            tm.transpose(),
+            vtb_m.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        faer::linalg::matmul::matmul(sub.as_mut(), Accum::Add, vm, w2_m.as_ref(), -1.0, Par::Seq);
+        r0 = r1;
+    }
 }
 
 /// The dot product with four partial sums (vectorised; the order of the additions differs
