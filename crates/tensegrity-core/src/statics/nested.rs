@@ -178,14 +178,15 @@ pub fn prefers_nested_members(structure: &Structure) -> bool {
 /// Threshold of the members orientation's pivot choice
 /// ([`FrontalQr::with_threshold`]): a member is taken in the staircase order of its front
 /// while its residual is within this factor of the largest.
-pub const MEMBER_PIVOT_THRESHOLD: f64 = 1e-3;
+pub const MEMBER_PIVOT_THRESHOLD: f64 = 0.1;
 
 /// The members orientation's fronts: the dissection of the nodes (leaves of
 /// [`MEMBER_LEAF_NODES`]), each member in the front of its higher end, and the parents.
-/// Within a front the members are in the banded QR's staircase order (by the later of their
-/// ends in the reverse Cuthill–McKee order of the nodes, the longest span last), so that,
-/// as on the band, a dependency closes on a member of its own cell and the self-stresses
-/// come out as local circuits.
+/// Within a front the members are in the banded QR's staircase order (the members whose
+/// other end lies in a lower front last, then by the later of their ends in the reverse
+/// Cuthill–McKee order of the nodes, the longest span last), so that, as on the band, a
+/// dependency closes on a member of its own cell and the self-stresses come out as local
+/// circuits.
 fn member_fronts(structure: &Structure) -> (Vec<Vec<usize>>, Vec<Option<usize>>) {
     let (node_fronts, parent) = dissection_with_leaves(structure, MEMBER_LEAF_NODES);
     let mut front_of = vec![0usize; structure.n_nodes()];

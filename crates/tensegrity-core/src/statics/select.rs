@@ -97,7 +97,14 @@ fn long_structure<'a>(
     settings: StaticsSettings,
     fallback: bool,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
-    let nested = super::NestedStatics::members_with_settings(structure, settings)?;
+    // should the nested factorisation fail, the banded QR answers as it did before
+    let Ok(nested) = super::NestedStatics::members_with_settings(structure, settings) else {
+        let sparse = SparseStatics::with_settings(structure, settings)?;
+        if sparse.is_certified() || !fallback {
+            return Ok(Box::new(sparse));
+        }
+        return Ok(Box::new(Statics::with_settings(structure, settings)?));
+    };
     let s = nested.self_stress_dim();
     let listed =
         s > 0 && structure.n_members().saturating_mul(s) <= super::sparse::SELF_STRESS_LIST_MAX;
