@@ -551,39 +551,67 @@ impl FrontalQr {
         CscMatrix::from_triplets(self.ncols, d, &t).map(Some)
     }
 
+    /// An estimate of σ_min(R_acc) (≤ σ_r(A) up to the rejected part) by `iterations` steps
+    /// of inverse iteration on R_accᵀ R_acc; +∞ at rank 0. Inverse iteration converges from
+    /// above: an upper estimate of σ_min(R_acc), accurate to a small factor in a few steps.
+    /// R_acc is copied once into contiguous rows for the solves (the same operations in the
+    /// same order as on the rows themselves: the same result, at half the memory traffic).
+    pub fn sigma_min_estimate(&self, iterations: usize) -> f64 {
+        let r = FlatRows::of(&self.r_rows);
+        super::sigma_min::sigma_min_by_inverse_iteration(self.rank(), iterations, |x| {
+            r.forward_substitute_transposed(x);
+            r.back_substitute(x);
+        })
+    }
+}
+
+/// R_acc in contiguous rows (compressed sparse rows, the diagonal first in each row).
+struct FlatRows {
+    ptr: Vec<usize>,
+    cols: Vec<usize>,
+    vals: Vec<f64>,
+}
+
+impl FlatRows {
+    fn of(rows: &[RRow]) -> Self {
+        let nnz = rows.iter().map(|r| r.vals.len()).sum();
+        let mut flat = Self {
+            ptr: Vec::with_capacity(rows.len() + 1),
+            cols: Vec::with_capacity(nnz),
+            vals: Vec::with_capacity(nnz),
+        };
+        flat.ptr.push(0);
+        for row in rows {
+            flat.cols.extend_from_slice(&row.cols);
+            flat.vals.extend_from_slice(&row.vals);
+            flat.ptr.push(flat.vals.len());
+        }
+        flat
+    }
+
     /// Back substitution R_acc x = c in place (pivot order; entries on rejected columns
     /// skipped).
     fn back_substitute(&self, c: &mut [f64]) {
         for i in (0..c.len()).rev() {
-            let row = &self.r_rows[i];
+            let (lo, hi) = (self.ptr[i], self.ptr[i + 1]);
             let mut s = c[i];
-            for (&j, &v) in row.cols.iter().zip(&row.vals).skip(1) {
+            for (&j, &v) in self.cols[lo + 1..hi].iter().zip(&self.vals[lo + 1..hi]) {
                 s -= v * c[j];
             }
-            c[i] = s / row.vals[0];
+            c[i] = s / self.vals[lo];
         }
     }
 
     /// Forward substitution R_accᵀ y = c in place.
     fn forward_substitute_transposed(&self, c: &mut [f64]) {
         for i in 0..c.len() {
-            let row = &self.r_rows[i];
-            let y = c[i] / row.vals[0];
+            let (lo, hi) = (self.ptr[i], self.ptr[i + 1]);
+            let y = c[i] / self.vals[lo];
             c[i] = y;
-            for (&j, &v) in row.cols.iter().zip(&row.vals).skip(1) {
+            for (&j, &v) in self.cols[lo + 1..hi].iter().zip(&self.vals[lo + 1..hi]) {
                 c[j] -= v * y;
             }
         }
-    }
-
-    /// An estimate of σ_min(R_acc) (≤ σ_r(A) up to the rejected part) by `iterations` steps
-    /// of inverse iteration on R_accᵀ R_acc; +∞ at rank 0. Inverse iteration converges from
-    /// above: an upper estimate of σ_min(R_acc), accurate to a small factor in a few steps.
-    pub fn sigma_min_estimate(&self, iterations: usize) -> f64 {
-        super::sigma_min::sigma_min_by_inverse_iteration(self.rank(), iterations, |x| {
-            self.forward_substitute_transposed(x);
-            self.back_substitute(x);
-        })
     }
 }
 
