@@ -352,16 +352,13 @@ impl FrontalQr {
                 }
                 best_sq
             };
-            refl.resize((accepted + 1) * nr, 0.0);
-            let beta = householder_step(
-                &mut w,
-                nr,
-                reach,
-                i,
-                i,
-                pivot_sq.sqrt(),
-                &mut refl[accepted * nr..],
-            );
+            let kept = if blocked {
+                refl.resize((accepted + 1) * nr, 0.0);
+                Some(&mut refl[accepted * nr..])
+            } else {
+                None
+            };
+            let beta = householder_step(&mut w, nr, reach, i, i, pivot_sq.sqrt(), kept);
             betas.push(beta);
             accepted += 1;
         }
@@ -403,10 +400,9 @@ impl FrontalQr {
         let border: Vec<usize> = (np..nc).map(|j| cols[perm[j]]).collect();
         if cr > cb {
             // reduce to cb rows: an unpivoted QR, the rest is zero
-            let mut v = vec![0.0; cr];
             for i in 0..cb {
                 let sq: f64 = data[i * cr + i..(i + 1) * cr].iter().map(|x| x * x).sum();
-                householder_step(&mut data, cr, cb, i, i, sq.sqrt(), &mut v);
+                householder_step(&mut data, cr, cb, i, i, sq.sqrt(), None);
             }
             let mut reduced = vec![0.0; cb * cb];
             for j in 0..cb {
@@ -617,8 +613,8 @@ impl FlatRows {
 
 /// One Householder step on the column-major `nr × nc` matrix `w`: the reflector
 /// H = I − β v vᵀ that maps column `j`'s entries from row `i` down (norm `norm`) onto row `i`,
-/// applied to the columns after `j` (up to `nc`); v is written to `v_out` (length `nr`,
-/// zero above row `i`) and β returned (0 for a zero column: no reflector).
+/// applied to the columns after `j` (up to `nc`); v is written to `v_out` when given (length
+/// `nr`, zero above row `i`) and β returned (0 for a zero column: no reflector).
 fn householder_step(
     w: &mut [f64],
     nr: usize,
@@ -626,9 +622,11 @@ fn householder_step(
     i: usize,
     j: usize,
     norm: f64,
-    v_out: &mut [f64],
+    mut v_out: Option<&mut [f64]>,
 ) -> f64 {
-    v_out[..nr].iter_mut().for_each(|x| *x = 0.0);
+    if let Some(out) = v_out.as_deref_mut() {
+        out[..nr].iter_mut().for_each(|x| *x = 0.0);
+    }
     if norm == 0.0 {
         return 0.0;
     }
@@ -647,7 +645,9 @@ fn householder_step(
             }
         }
     }
-    v_out[i..nr].copy_from_slice(v);
+    if let Some(out) = v_out {
+        out[i..nr].copy_from_slice(v);
+    }
     v[0] = alpha;
     v[1..].iter_mut().for_each(|x| *x = 0.0);
     beta
