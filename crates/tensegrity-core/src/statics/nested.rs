@@ -615,7 +615,16 @@ impl StaticsBackend for NestedStatics<'_> {
             }
         }
         // the interior point on A D⁻¹ Aᵀ; Clarabel on the same rows should it fail
-        let q = super::margin_ipm::solve(&self.a, signs)
+        // the normal matrix A D⁻¹ Aᵀ has the pattern of a stiffness matrix: the structure's
+        // own nested dissection orders it with less fill than AMD (lattice K = 86: 10.4 M
+        // against 13.9 M entries of L, 0.31 against 0.53 s a factorisation)
+        let (fronts, _) = dissection(self.structure);
+        let order: Vec<usize> = fronts
+            .iter()
+            .flatten()
+            .flat_map(|&v| self.dofs.row[v].into_iter().flatten())
+            .collect();
+        let q = super::margin_ipm::solve(&self.a, signs, Some(&order))
             .or_else(|_| super::prestress::solve_equilibrium_lp(&self.a, signs))?;
         Ok(Prestressability::from_signed(DVector::from_vec(q), signs))
     }

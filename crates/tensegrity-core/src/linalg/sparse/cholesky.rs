@@ -18,7 +18,7 @@
 //! factorisation fails with [`FactorizationFailure::NonPositivePivot`], whose `pivot` is the
 //! number of pivots that succeeded (a lower bound on the numerical rank).
 
-use super::ordering::{permutation, symbolic_cholesky};
+use super::ordering::{permutation, symbolic_cholesky, symbolic_cholesky_ordered};
 use super::{CscMatrix, CscPattern};
 use crate::error::{FactorizationFailure, Result};
 use crate::linalg::{failed, failure};
@@ -275,7 +275,17 @@ impl SparseCholesky {
     /// The symbolic analysis (AMD ordering, pattern of L, workspace) of the lower-triangular
     /// square pattern `lower`.
     pub fn new(lower: &CscPattern) -> Result<Self> {
-        let symbolic = symbolic_cholesky(lower)?;
+        Self::from_symbolic(lower, symbolic_cholesky(lower)?)
+    }
+
+    /// The symbolic analysis of `lower` eliminated in the order `fwd` (`fwd[new] = old`, a
+    /// permutation of 0..n) instead of AMD's: for a structure's own nested dissection, whose
+    /// separators AMD does not find on large lattices.
+    pub fn with_ordering(lower: &CscPattern, fwd: &[usize]) -> Result<Self> {
+        Self::from_symbolic(lower, symbolic_cholesky_ordered(lower, Some(fwd))?)
+    }
+
+    fn from_symbolic(lower: &CscPattern, symbolic: SymbolicCholesky<usize>) -> Result<Self> {
         let req = StackReq::any_of(&[
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),

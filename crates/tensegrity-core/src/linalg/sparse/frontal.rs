@@ -20,8 +20,10 @@
 //!   32: H_{r0} ⋯ H_{r1−1} = I − V T Vᵀ, applied as two matrix products);
 //! - the accepted rows are R's rows (entries on F's later pivots and on border columns);
 //! - the rows left over the border columns are the contribution block passed to the parent,
-//!   reduced by an unpivoted QR to at most as many rows as border columns (rows beyond are
-//!   exactly zero after it: each is a left null vector of B, a self-stress).
+//!   reduced by an unpivoted QR (faer's blocked one from 32 columns: a separator's block has
+//!   hundreds, and one reflector at a time was two thirds of a lattice's factorisation) to
+//!   at most as many rows as border columns (rows beyond are exactly zero after it: each is
+//!   a left null vector of B, a self-stress).
 //!
 //! The result is B Pc = Q [R_acc R_dep; 0 0] + E, R_acc (r × r) upper triangular in the
 //! pivot order, r the rank: the self-stress dimension n − r (rows of B) and the mechanisms
@@ -400,10 +402,7 @@ impl FrontalQr {
         let border: Vec<usize> = (np..nc).map(|j| cols[perm[j]]).collect();
         if cr > cb {
             // reduce to cb rows: an unpivoted QR, the rest is zero
-            for i in 0..cb {
-                let sq: f64 = data[i * cr + i..(i + 1) * cr].iter().map(|x| x * x).sum();
-                householder_step(&mut data, cr, cb, i, i, sq.sqrt(), None);
-            }
+            reduce_to_triangle(&mut data, cr, cb);
             let mut reduced = vec![0.0; cb * cb];
             for j in 0..cb {
                 reduced[j * cb..j * cb + j + 1].copy_from_slice(&data[j * cr..j * cr + j + 1]);
@@ -550,9 +549,12 @@ impl FrontalQr {
     /// An estimate of σ_min(R_acc) (≤ σ_r(A) up to the rejected part) by `iterations` steps
     /// of inverse iteration on R_accᵀ R_acc; +∞ at rank 0. Inverse iteration converges from
     /// above: an upper estimate of σ_min(R_acc), accurate to a small factor in a few steps.
-    /// R_acc is copied once into contiguous rows for the solves (the same operations in the
-    /// same order as on the rows themselves: the same result, at half the memory traffic).
+    /// R_acc is copied once into contiguous rows for the solves (32-bit indices; a rank of
+    /// 2³² or more, which no memory holds, gives 0: uncertified).
     pub fn sigma_min_estimate(&self, iterations: usize) -> f64 {
+        if u32::try_from(self.rank()).is_err() {
+            return 0.0;
+        }
         let r = FlatRows::of(&self.r_rows);
         super::sigma_min::sigma_min_by_inverse_iteration(self.rank(), iterations, |x| {
             r.forward_substitute_transposed(x);
@@ -561,14 +563,16 @@ impl FrontalQr {
     }
 }
 
-/// R_acc in contiguous rows (compressed sparse rows, the diagonal first in each row).
+/// R_acc in contiguous rows (compressed sparse rows, the diagonal first in each row; 32-bit
+/// column indices, a quarter less memory traffic for these memory-bound solves).
 struct FlatRows {
     ptr: Vec<usize>,
-    cols: Vec<usize>,
+    cols: Vec<u32>,
     vals: Vec<f64>,
 }
 
 impl FlatRows {
+    /// The rows of R_acc (pivot indices below 2³²: [`FrontalQr::sigma_min_estimate`]).
     fn of(rows: &[RRow]) -> Self {
         let nnz = rows.iter().map(|r| r.vals.len()).sum();
         let mut flat = Self {
@@ -578,7 +582,7 @@ impl FlatRows {
         };
         flat.ptr.push(0);
         for row in rows {
-            flat.cols.extend_from_slice(&row.cols);
+            flat.cols.extend(row.cols.iter().map(|&j| j as u32));
             flat.vals.extend_from_slice(&row.vals);
             flat.ptr.push(flat.vals.len());
         }
@@ -586,14 +590,23 @@ impl FlatRows {
     }
 
     /// Back substitution R_acc x = c in place (pivot order; entries on rejected columns
-    /// skipped).
+    /// skipped). Four partial sums a row: the row's products do not wait on one another.
     fn back_substitute(&self, c: &mut [f64]) {
         for i in (0..c.len()).rev() {
             let (lo, hi) = (self.ptr[i], self.ptr[i + 1]);
-            let mut s = c[i];
-            for (&j, &v) in self.cols[lo + 1..hi].iter().zip(&self.vals[lo + 1..hi]) {
-                s -= v * c[j];
+            let (cols, vals) = (&self.cols[lo + 1..hi], &self.vals[lo + 1..hi]);
+            let mut acc = [0.0; 4];
+            let (cc, vc) = (cols.chunks_exact(4), vals.chunks_exact(4));
+            let mut tail = 0.0;
+            for (&j, &v) in cc.remainder().iter().zip(vc.remainder()) {
+                tail += v * c[j as usize];
             }
+            for (j, v) in cc.zip(vc) {
+                for k in 0..4 {
+                    acc[k] += v[k] * c[j[k] as usize];
+                }
+            }
+            let s = c[i] - ((acc[0] + acc[1]) + (acc[2] + acc[3]) + tail);
             c[i] = s / self.vals[lo];
         }
     }
@@ -605,7 +618,7 @@ impl FlatRows {
             let y = c[i] / self.vals[lo];
             c[i] = y;
             for (&j, &v) in self.cols[lo + 1..hi].iter().zip(&self.vals[lo + 1..hi]) {
-                c[j] -= v * y;
+                c[j as usize] -= v * y;
             }
         }
     }
@@ -652,6 +665,39 @@ fn householder_step(
     v[1..].iter_mut().for_each(|x| *x = 0.0);
     beta
 }
+
+/// The unpivoted QR of the column-major `nr × nc` block `b` (nr > nc) in place: its upper
+/// triangle becomes R (up to the signs of R's rows, which the parent's QR does not see).
+/// Level 3 (faer's blocked Householder QR) where the block is large: a separator's
+/// contribution block has hundreds of columns, and a reflector at a time is the
+/// factorisation's largest cost there.
+fn reduce_to_triangle(b: &mut [f64], nr: usize, nc: usize) {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::qr::no_pivoting::factor;
+    use faer::{MatMut, Par};
+    if nc < REDUCE_BLOCKED_MIN {
+        for i in 0..nc {
+            let sq = dot(&b[i * nr + i..(i + 1) * nr], &b[i * nr + i..(i + 1) * nr]);
+            householder_step(b, nr, nc, i, i, sq.sqrt(), None);
+        }
+        return;
+    }
+    let block = factor::recommended_block_size::<f64>(nr, nc);
+    let mut coeff = vec![0.0; block * nc];
+    let scratch = factor::qr_in_place_scratch::<f64>(nr, nc, block, Par::Seq, Default::default());
+    let mut buf = MemBuffer::new(scratch);
+    factor::qr_in_place(
+        MatMut::from_column_major_slice_mut(b, nr, nc),
+        MatMut::from_column_major_slice_mut(&mut coeff, block, nc),
+        Par::Seq,
+        MemStack::new(&mut buf),
+        Default::default(),
+    );
+}
+
+/// Contribution blocks with at least this many columns are reduced by the blocked QR
+/// ([`reduce_to_triangle`]).
+const REDUCE_BLOCKED_MIN: usize = 32;
 
 /// Fronts with at least this many rows and border columns apply their reflectors to the
 /// border in blocks ([`apply_reflectors_blocked`]); smaller ones one by one.

@@ -8,6 +8,7 @@
 use super::CscPattern;
 use crate::error::{FactorizationFailure, Result};
 use crate::linalg::{failed, failure};
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
 };
@@ -31,6 +32,15 @@ pub fn amd_ordering(lower: &CscPattern) -> Result<Vec<usize>> {
 
 /// faer's symbolic Cholesky (AMD ordering) of a lower-triangular square pattern.
 pub(super) fn symbolic_cholesky(lower: &CscPattern) -> Result<SymbolicCholesky<usize>> {
+    symbolic_cholesky_ordered(lower, None)
+}
+
+/// faer's symbolic Cholesky of a lower-triangular square pattern in the elimination order
+/// `fwd` (`fwd[new] = old`, a permutation of 0..n), or AMD's when `None`.
+pub(super) fn symbolic_cholesky_ordered(
+    lower: &CscPattern,
+    fwd: Option<&[usize]>,
+) -> Result<SymbolicCholesky<usize>> {
     if !lower.is_lower_square() {
         let column = (0..lower.ncols())
             .find(|&j| {
@@ -42,13 +52,33 @@ pub(super) fn symbolic_cholesky(lower: &CscPattern) -> Result<SymbolicCholesky<u
         let reason = FactorizationFailure::InvalidPattern { column };
         return Err(failure("symbolic Cholesky", reason));
     }
+    let n = lower.ncols();
+    let mut inv = vec![usize::MAX; n];
+    if let Some(fwd) = fwd {
+        for (new, &old) in fwd.iter().enumerate() {
+            if let Some(slot) = inv.get_mut(old) {
+                *slot = new;
+            }
+        }
+        if fwd.len() != n || inv.contains(&usize::MAX) {
+            let reason = FactorizationFailure::DimensionMismatch {
+                expected: n,
+                found: fwd.len(),
+            };
+            return Err(failure("symbolic Cholesky (ordering)", reason));
+        }
+    }
+    let ordering = match fwd {
+        Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inv, n)),
+        None => SymmetricOrdering::Amd,
+    };
     factorize_symbolic_cholesky(
         lower.as_faer(),
         Side::Lower,
-        SymmetricOrdering::Amd,
+        ordering,
         CholeskySymbolicParams::default(),
     )
-    .map_err(failed("symbolic Cholesky", lower.ncols()))
+    .map_err(failed("symbolic Cholesky", n))
 }
 
 /// The fill-reducing permutation of a symbolic factorisation, `fwd[new] = old`.
