@@ -376,8 +376,11 @@ impl FrontalQr {
         let base = self.r_rows.len();
         for i in 0..accepted {
             self.pivot_of[cols[perm[i]]] = Some(base + i);
-            let mut rc = Vec::with_capacity(nc - i);
-            let mut rv = Vec::with_capacity(nc - i);
+            // exact capacity: R's rows are sparse beyond the front's dense part, and a row's
+            // full width (nc − i) would hold half as much again on a lattice
+            let len = 1 + (i + 1..nc).filter(|&j| w[j * nr + i] != 0.0).count();
+            let mut rc = Vec::with_capacity(len);
+            let mut rv = Vec::with_capacity(len);
             for j in i..nc {
                 let v = w[j * nr + i];
                 if v != 0.0 || j == i {
