@@ -135,7 +135,7 @@ const FIXED_BYTES: f64 = 4.0 * 1024.0 * 1024.0;
 /// memory 16 bytes a stored R entry (E = Σ pivots × front columns, every pivot accepted)
 /// plus the largest dense front, and on top of R the larger of the σ_min(R) iteration's
 /// contiguous copy (12 bytes an entry) and, for the margin LP (up to [`LP_MEMBERS_MAX`]
-/// members), its Cholesky factor with faer's symbolic structure and workspace (≤ 12 bytes
+/// members), its Cholesky factor with the factor's symbolic structure and workspace (≤ 12 bytes
 /// for each of E entries: 10.4 M entries of L against E = 14.1 M at K = 86), the normal
 /// matrix's member contributions (24 bytes each) and its vectors; then the dissection and
 /// the report ([`REPORT_BYTES_PER_MEMBER`], [`FIXED_BYTES`]); work
