@@ -70,7 +70,7 @@ impl SeriesKind {
         match (self, quick) {
             (SeriesKind::Toroid, false) => &[100, 316, 1000, 3162, 10000],
             (SeriesKind::Toroid, true) => &[100, 200, 400],
-            (SeriesKind::Towers, false) => &[50, 100, 200, 400],
+            (SeriesKind::Towers, false) => &[50, 100, 200, 400, 800, 1600],
             (SeriesKind::Towers, true) => &[5, 10, 20],
             (SeriesKind::Michell, false) => &[10, 20, 40, 80],
             (SeriesKind::Michell, true) => &[4, 6, 8],
