@@ -276,3 +276,67 @@ impl NormalPattern {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::statics::prestress::{solve_equilibrium_lp, Prestressability};
+    use crate::statics::sparse::equilibrium_matrix_sparse;
+    use crate::statics::DofMap;
+    use nalgebra::DVector;
+
+    /// The interior point (AMD and the dissection's order) against Clarabel on the same rows,
+    /// for the standard signs, some members free, every sign flipped and a pseudo-random mix
+    /// (not prestressable: the interior point must still end, at the same margin).
+    #[test]
+    fn the_interior_point_matches_clarabel_on_hard_sign_patterns() {
+        let s = crate::test_models::double_layer_grid(6).unwrap();
+        let dofs = DofMap::of(&s);
+        let a = equilibrium_matrix_sparse(&s, &dofs).unwrap();
+        let (fronts, _) = crate::statics::nested::dissection(&s);
+        let order: Vec<usize> = fronts
+            .iter()
+            .flatten()
+            .flat_map(|&v| dofs.row[v].into_iter().flatten())
+            .collect();
+        let standard = MemberSign::standard(&s);
+        let flip = |x: MemberSign| match x {
+            MemberSign::Tension => MemberSign::Compression,
+            MemberSign::Compression => MemberSign::Tension,
+            MemberSign::Free => MemberSign::Free,
+        };
+        let patterns: Vec<Vec<MemberSign>> = vec![
+            standard.clone(),
+            (standard.iter().enumerate())
+                .map(|(k, &x)| if k % 7 == 0 { MemberSign::Free } else { x })
+                .collect(),
+            standard.iter().map(|&x| flip(x)).collect(),
+            (standard.iter().enumerate())
+                .map(|(k, &x)| if (k * 7919) % 13 < 3 { flip(x) } else { x })
+                .collect(),
+        ];
+        let margin = |q: Vec<f64>, signs: &[MemberSign]| {
+            Prestressability::from_signed(DVector::from_vec(q), signs).margin
+        };
+        let mut margins = Vec::new();
+        for signs in &patterns {
+            let reference = margin(solve_equilibrium_lp(&a, signs).unwrap(), signs);
+            for ordering in [None, Some(order.as_slice())] {
+                let q = solve(&a, signs, ordering).unwrap();
+                let eq = a.mul_vec(&q).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!(eq < 1e-9, "A q = {eq}");
+                let ours = margin(q, signs);
+                assert!(
+                    (ours - reference).abs() < 1e-7,
+                    "{ours} against Clarabel's {reference}"
+                );
+            }
+            margins.push(reference);
+        }
+        // the uniform stress is optimal for the standard signs, and its negative for the
+        // flipped ones (−q is a self-stress too); the mix is not prestressable
+        assert!((margins[0] - 1.0).abs() < 1e-9, "{margins:?}");
+        assert!((margins[2] - margins[0]).abs() < 1e-9, "{margins:?}");
+        assert!(margins[3] <= 1e-9, "{margins:?}");
+    }
+}
