@@ -22,7 +22,8 @@
 //! - **margin**: the LP `max t  s.t.  A q = 0,  σ_k q_k ≥ t,  σ_k q_k ≤ 1` over the force
 //!   densities themselves (equality rows A, no self-stress basis), by an interior-point
 //!   method on the normal matrix A D⁻¹ Aᵀ ([`margin_ipm`](super::margin_ipm): a stiffness
-//!   pattern, one sparse Cholesky a step; Clarabel on the same rows should it fail), up to
+//!   pattern, one sparse Cholesky a step in the order of this dissection; Clarabel on the
+//!   same rows should it fail), up to
 //!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
 //!
 //! Not computed here (the report says so, or the banded path answers): the self-stress basis
