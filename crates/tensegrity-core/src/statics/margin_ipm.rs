@@ -293,12 +293,7 @@ mod tests {
         let s = crate::test_models::double_layer_grid(6).unwrap();
         let dofs = DofMap::of(&s);
         let a = equilibrium_matrix_sparse(&s, &dofs).unwrap();
-        let (fronts, _) = crate::statics::nested::dissection(&s);
-        let order: Vec<usize> = fronts
-            .iter()
-            .flatten()
-            .flat_map(|&v| dofs.row[v].into_iter().flatten())
-            .collect();
+        let order = crate::statics::nested::dof_fronts(&s, &dofs).0.concat();
         let standard = MemberSign::standard(&s);
         let flip = |x: MemberSign| match x {
             MemberSign::Tension => MemberSign::Compression,
