@@ -160,6 +160,10 @@ pub struct Workspace {
     pub(crate) anchors: Vec<Option<super::stick::Anchor>>,
     /// Scratch of the joint-space form.
     pub(crate) joint: Box<JointScratch>,
+    /// The contact's non-conservative work (normal damping, tangential friction; J, from the
+    /// start) as integrated by an integrator that applies the contact in its own substeps
+    /// ([`super::imex`]); `None` for integrators that evaluate it in the right-hand side.
+    pub(crate) contact_work: Option<(f64, f64)>,
 }
 
 /// The terms of a bar's accelerations that do not depend on the forces: b = x_b − x_a,
@@ -580,6 +584,7 @@ impl Model {
             rhs_evals: 0,
             anchors: vec![None; self.contact.len()],
             joint: Box::default(),
+            contact_work: None,
         })
     }
 

@@ -55,6 +55,12 @@ pub struct Sample {
     pub energy: Option<(f64, f64)>,
     /// `(file node, force)` for every contact node, if requested.
     pub contact_forces: Option<Vec<(usize, Vector3<f64>)>>,
+    /// The contact's non-conservative work from the start, (normal damping, friction) in J,
+    /// as integrated by the step itself, when the integrator applies the contact in its own
+    /// substeps (IMEX: the work of its implicit contact substeps is their exact change of
+    /// kinetic energy); `None` when the contact is part of the right-hand side, whose work a
+    /// sink integrates from `contact_forces`.
+    pub contact_work: Option<(f64, f64)>,
 }
 
 /// Where the samples of a streamed run go ([`Simulation::run_streaming`]), one at a time, in
@@ -222,6 +228,7 @@ impl Recorder {
             },
             energy: q.energy.then(|| (model.kinetic_energy(y), model.energy(y))),
             contact_forces: q.contact_forces.then(|| model.contact_forces(t, y, ws)),
+            contact_work: ws.contact_work,
         };
         ws.rhs_evals = evals; // diagnostics do not count as integration work
         self.samples.push(sample);

@@ -277,15 +277,28 @@ impl<'o> Monitor<'o> {
     }
 
     /// Integrates the interval from the previous step to this one.
-    fn integrate(&mut self, t: f64, c: &StepContact, energy: (f64, f64)) {
+    /// `integrated`: the contact's work as the integrator integrated it (IMEX's implicit
+    /// substeps), which replaces the trapezoidal rule over the step's end points.
+    fn integrate(
+        &mut self,
+        t: f64,
+        c: &StepContact,
+        energy: (f64, f64),
+        integrated: Option<(f64, f64)>,
+    ) {
         let (kinetic, total) = energy;
         let Some(p) = &self.prev else {
             self.e0 = total;
             return;
         };
         let dt = t - p.t;
-        self.damping_work += 0.5 * dt * (p.contact.p_damp + c.p_damp);
-        self.friction_work += 0.5 * dt * (p.contact.p_fric + c.p_fric);
+        if let Some((damping, friction)) = integrated {
+            self.damping_work = damping;
+            self.friction_work = friction;
+        } else {
+            self.damping_work += 0.5 * dt * (p.contact.p_damp + c.p_damp);
+            self.friction_work += 0.5 * dt * (p.contact.p_fric + c.p_fric);
+        }
         if c.airborne() {
             self.airborne_time += dt;
         } else if c.slipping {
@@ -506,7 +519,7 @@ impl SampleSink for Monitor<'_> {
         };
         let c = StepContact::of(&self.g, &smp, x, v);
         let omega = self.g.omega(x, v);
-        self.integrate(smp.t, &c, energy);
+        self.integrate(smp.t, &c, energy, smp.contact_work);
         self.min_normal = self.min_normal.min(c.min_normal);
         self.max_penetration = self.max_penetration.max(c.penetration);
         self.track_impacts(smp.t, omega, &c);
