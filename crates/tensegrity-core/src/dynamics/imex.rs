@@ -61,8 +61,9 @@
 //! 4.1·10⁻⁶ and 1.4·10⁻⁵ m at h = 10⁻⁴, 2.5·10⁻⁴ and 5·10⁻⁴ s (second order), against 4.3·10⁻⁵,
 //! 1.6·10⁻⁴ and 3.8·10⁻⁴ m without F*. On the default 50° run (penalty contact) the first
 //! impact comes at 0.7405 s at 5·10⁻⁴ s, against RK4's 0.7404 s, where it had come at 0.805 s
-//! without F*. A node that lands inside a step gets no damping until the next B: at touch-down
-//! the scheme is first order, like every fixed step here. Test:
+//! without F*. After an impact the error is first order, like that of every fixed step here:
+//! a node that lands inside a step gets no damping until the next B. Retaking such a step as
+//! two, split at the interpolated touch-down, did not reduce it on the reference wheel. Test:
 //! `dynamics_stick::imex_follows_the_slaved_creep_of_the_regularised_friction` (the creep
 //! speed within 0.3 %; without F* it is 13 % too fast at 2.5·10⁻⁴ s).
 //!
