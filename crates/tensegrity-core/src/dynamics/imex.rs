@@ -143,10 +143,11 @@ fn splits(model: &Model) -> bool {
     })
 }
 
-/// f_A: [`Model::rhs`] without the ground's forces (when they are split off). Returns the
-/// power of A's non-conservative contact forces: the tangential part of the position-only
-/// force F_c(x, 0) (the stick law's anchor spring; zero for the penalty law), whose normal
-/// part k δ is the ground spring of the energy budget.
+/// f_A: [`Model::rhs`] without the ground's forces (when they are split off), plus the held
+/// force `frozen` (per contact node). Returns the power (normal, tangential) of A's
+/// non-conservative contact forces: the held force and the tangential part of the
+/// position-only force F_c(x, 0) (the stick law's anchor spring; zero for the penalty law),
+/// whose normal part k δ is the ground spring of the energy budget.
 fn rhs_smooth(
     model: &Model,
     t: f64,
@@ -435,12 +436,9 @@ impl Integrator for Imex {
     ) -> Result<StepOutcome, CoreError> {
         let split = splits(model);
         let mut work = ws.contact_work.unwrap_or_default();
+        self.frozen.clear();
         if split {
             self.freeze(model, ws, y);
-        } else {
-            self.frozen.clear();
-        }
-        if split {
             let (wn, wt) = self.contact_substep(model, ws, y, 0.5 * h)?;
             work.0 += wn;
             work.1 += wt;
