@@ -71,7 +71,7 @@
 //! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
 //! (whose reaction needs all contact nodes at once) stays in f_A.
 
-use super::forces::GroundModel;
+use super::forces::{Ground, GroundModel};
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{vec3, BarTerms, Model, Workspace};
 use crate::error::{CoreError, DynamicsError, StepHint};
@@ -200,6 +200,17 @@ fn rhs_smooth(
     Ok((normal_power, tangential_power))
 }
 
+/// The velocity-dependent part F_c(x, v) − F_c(x, 0) of a contact node's force: what B
+/// integrates (the rest is A's).
+fn velocity_dependent(
+    g: &Ground,
+    x: &Vector3<f64>,
+    v: &Vector3<f64>,
+    anchor: Option<&super::stick::Anchor>,
+) -> Vector3<f64> {
+    g.stick_force(x, v, anchor) - g.stick_force(x, &Vector3::zeros(), anchor)
+}
+
 /// Refactors Ω at positions `x`.
 fn factor_omega(model: &Model, x: &[f64], ws: &mut Workspace) -> Result<(), CoreError> {
     let Workspace { omega, bhat, .. } = ws;
@@ -267,10 +278,9 @@ impl Imex {
             return;
         };
         for &(k, c, _) in &self.active {
-            let (xc, anchor) = (vec3(x, c), ws.anchors[k].as_ref());
-            self.forces[c] = g.stick_force(&xc, &vec3(v, c), anchor)
-                - g.stick_force(&xc, &Vector3::zeros(), anchor)
-                - self.frozen[k];
+            let anchor = ws.anchors[k].as_ref();
+            self.forces[c] =
+                velocity_dependent(g, &vec3(x, c), &vec3(v, c), anchor) - self.frozen[k];
         }
     }
 
@@ -283,10 +293,9 @@ impl Imex {
         };
         let (x, v) = y.split_at(3 * model.n1);
         for (k, &(_, c)) in model.contact.iter().enumerate() {
-            let (xc, anchor) = (vec3(x, c), ws.anchors[k].as_ref());
+            let xc = vec3(x, c);
             let f = if g.height(&xc) < 0.0 {
-                g.stick_force(&xc, &vec3(v, c), anchor)
-                    - g.stick_force(&xc, &Vector3::zeros(), anchor)
+                velocity_dependent(g, &xc, &vec3(v, c), ws.anchors[k].as_ref())
             } else {
                 Vector3::zeros()
             };
