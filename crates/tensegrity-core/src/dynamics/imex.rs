@@ -15,8 +15,9 @@
 //! One step of size h is B(h/2) ∘ A(h) ∘ B(h/2): A by one RK4 step of f_A (four evaluations;
 //! f_A is not stiff: the explicit step is bound by the strings, ω_max h < 2.8), B by one ROS2
 //! step (below), with the step's starting damping force held in A and taken out of B ("The
-//! held force" below). The ground's *stiffness* k enters as the position-frozen spring force of B
-//! (a kick per half step, stable for √(k/m_node) h < 2); its *damping* (the normal damper c,
+//! held force" below). The ground's *stiffness* (the position-only force F_c(x, 0): the normal
+//! spring k δ and the stick law's anchor spring) stays in A, integrated by RK4 with the rest;
+//! its *damping* (the normal damper c,
 //! the tangential damper c_t, the regularised friction's viscous slope μ f_n / v_reg) is
 //! what makes explicit steps tiny, and B treats it implicitly.
 //!
