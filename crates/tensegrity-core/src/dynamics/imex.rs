@@ -103,6 +103,9 @@ pub struct Imex {
     /// Per contact node: the velocity-dependent contact force at the step's start, held in A
     /// and taken out of B (module docs).
     frozen: Vec<Vector3<f64>>,
+    /// Per contact node: whether it touched the ground at the previous step's start (a node
+    /// that has just landed holds no force: module docs, "The held force at a landing").
+    touched_before: Vec<bool>,
     multipliers: Vec<f64>,
     resp: Vec<f64>,
     stage: Vec<f64>,
@@ -125,6 +128,7 @@ impl Imex {
             cols: Vec::new(),
             forces: vec![Vector3::zeros(); model.n1],
             frozen: Vec::new(),
+            touched_before: vec![false; model.contact.len()],
             multipliers: vec![0.0; model.linear_rows.len()],
             resp: vec![0.0; 3 * model.n1],
             stage: Vec::new(),
@@ -286,16 +290,23 @@ impl Imex {
     }
 
     /// The velocity-dependent contact forces F_c(x, v) − F_c(x, 0) of the state `y`, per
-    /// contact node (zero off the ground), into `self.frozen`.
+    /// contact node, into `self.frozen`: zero off the ground and for a node that was off it at
+    /// the previous step's start.
     fn freeze(&mut self, model: &Model, ws: &Workspace, y: &[f64]) {
         self.frozen.clear();
         let Some(g) = &model.ground else {
             return;
         };
         let (x, v) = y.split_at(3 * model.n1);
+        self.touched_before.resize(model.contact.len(), false);
         for (k, &(_, c)) in model.contact.iter().enumerate() {
             let xc = vec3(x, c);
-            let f = if g.height(&xc) < 0.0 {
+            let touching = g.height(&xc) < 0.0;
+            // a node that has just landed still moves at its impact speed: holding its damping
+            // force through A would act as a restitution
+            let hold = touching && self.touched_before[k];
+            self.touched_before[k] = touching;
+            let f = if hold {
                 velocity_dependent(g, &xc, &vec3(v, c), ws.anchors[k].as_ref())
             } else {
                 Vector3::zeros()
