@@ -260,6 +260,11 @@ impl ConstraintMatrix {
             .collect()
     }
 
+    /// Whether the last [`Self::assemble_and_factor`] succeeded (its factor is usable).
+    pub(crate) fn is_factored(&self) -> bool {
+        self.factored
+    }
+
     /// Refills the values from the current gradients, bar unit vectors `bhat` (only used for
     /// the rigid Ω form) and inverse bar masses, then refactors numerically.
     pub fn assemble_and_factor(
