@@ -41,12 +41,6 @@ pub struct ConstraintSet {
 /// made the iteration fail on a converged state.
 const ROUNDOFF_FLOOR: f64 = 16.0 * f64::EPSILON;
 
-/// Position drift ½(‖b‖² − l²), relative to ℓ², above which [`ConstraintSet::project`]
-/// refactors G M⁻¹ Gᵀ at the corrected positions before it projects the velocities. RK4 and
-/// IMEX on the hopping n = 24 wheel drift by at most 3.3·10⁻⁹ ℓ² per step (median 2·10⁻¹²
-/// at 10⁻⁴ s, 6·10⁻¹¹ at 5·10⁻⁴ s).
-const VELOCITY_REFACTOR: f64 = 1e-8;
-
 impl ConstraintSet {
     /// Builds the constraint rows of `model` (bars first, then N P = D).
     pub fn new(model: &Model) -> Result<Self, CoreError> {
@@ -159,15 +153,8 @@ impl ConstraintSet {
         let n3 = 3 * model.n1;
         let (x, v) = y.split_at_mut(n3);
         self.factor(model, x)?;
-        let drift = self.residual(x);
         self.solve_positions(model, x, tol, t)?;
-        // G at the corrected positions differs from the factored one by the correction, of
-        // the order of the drift: below `VELOCITY_REFACTOR` ℓ² the factor is kept for the
-        // velocities (what G v then leaves is that fraction of ‖b‖ ‖v‖, and the next step's
-        // projection removes it)
-        if drift > VELOCITY_REFACTOR * self.length_scale * self.length_scale {
-            self.factor(model, x)?;
-        }
+        self.factor(model, x)?;
         self.project_velocities(model, v);
         Ok(self.residual(x))
     }
