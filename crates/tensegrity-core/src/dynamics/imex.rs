@@ -33,9 +33,11 @@
 //! [`REFRESH`] substeps (a W-method: a stale P̃ costs no order). W k = r reduces to the
 //! 3m × 3m system (I − γτ P̃_CC K_v) k_C = r_C, then k = r + γτ P̃_C K_v k_C; each stage's
 //! r = P_C F_c is one response of the stage's contact forces. So a step costs four smooth
-//! right-hand sides plus, while a node touches, two Ω factorisations (one where the opening B
-//! finds Ω factored where the previous step's closing B left it: the projection between them
-//! moves the bar directions by at most 10⁻⁸ there), four responses and two 3m × 3m LUs.
+//! right-hand sides plus, while a node touches, two Ω factorisations, four responses and two
+//! 3m × 3m LUs. Of the six Ω factorisations this makes two are saved: A's first stage is at
+//! the positions of the opening B, and the opening B finds Ω factored where the previous
+//! step's closing B left it (the projection between them moves the bar directions by at most
+//! 10⁻⁸ there), so such a step factors Ω four times.
 //!
 //! **Work of the contact** ([`super::Sample::contact_work`]). The sink of an explicit method
 //! integrates the contact's non-conservative work from the forces and velocities at the step
@@ -208,7 +210,8 @@ fn rhs_smooth(
     }
     bar_accelerations(model, x, v, &ws.f, dv, None);
     if ws.omega.is_some() {
-        factor_omega(model, x, ws)?;
+        // the first stage sits where the opening contact substep factored Ω
+        factor_omega_unless_current(model, x, ws)?;
         constrain(model, ws, multipliers, dv);
         bar_accelerations(model, x, v, &ws.f, dv, Some(&model.constrained_bars));
     }
@@ -227,9 +230,10 @@ fn velocity_dependent(
 }
 
 /// Refactors Ω at positions `x` unless it is factored at bar directions within
-/// [`OMEGA_REUSE`] of those of `x`: the contact substep that opens a step sits where the one
-/// that closed the previous step was, moved only by the driver's projection onto the bar
-/// constraints, and Ω depends on the positions only through the bar directions b̂.
+/// [`OMEGA_REUSE`] of those of `x`. Ω depends on the positions only through the bar directions
+/// b̂, and two evaluations of a step share them: the contact substep that opens a step sits
+/// where the one that closed the previous step was (moved only by the driver's projection onto
+/// the bar constraints), and A's first stage where the opening substep was (B moves no node).
 fn factor_omega_unless_current(
     model: &Model,
     x: &[f64],
