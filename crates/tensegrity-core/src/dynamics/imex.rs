@@ -252,8 +252,8 @@ fn factor_omega_unless_current(
     factor_omega(model, x, ws)
 }
 
-/// Largest change of a bar direction's component at which the contact substep keeps the
-/// factored Ω. On the hopping n = 24 wheel at 5·10⁻⁴ s the projection moves the directions by
+/// Largest change of a bar direction's component at which a factored Ω is kept
+/// ([`factor_omega_unless_current`]). On the hopping n = 24 wheel at 5·10⁻⁴ s the projection moves the directions by
 /// 10⁻¹⁵ … 10⁻⁸ (the response's relative error, far below the step's), a step by 10⁻⁶ and more.
 const OMEGA_REUSE: f64 = 1e-8;
 
