@@ -32,6 +32,12 @@ pub struct ConstraintSet {
     length2: Vec<f64>,
     /// max(longest bar, 1 m): the length scale of the residuals' round-off.
     length_scale: f64,
+    /// Whether `sys` holds the factor of the last projection's corrected positions (the
+    /// next projection's position step starts from it; a factor taken in between by RATTLE
+    /// is as recent and serves as well).
+    factored: bool,
+    /// Positions before a position step that starts from the previous projection's factor.
+    start: Vec<f64>,
 }
 
 /// Multiple of ε·max|x|·ℓ below which a constraint residual is round-off: b = x_b − x_a
@@ -40,6 +46,10 @@ pub struct ConstraintSet {
 /// (a wheel 100 m down a slope) this floor exceeds a fixed tolerance of 10⁻¹⁴ l², which
 /// made the iteration fail on a converged state.
 const ROUNDOFF_FLOOR: f64 = 16.0 * f64::EPSILON;
+
+/// Iterations the position step may take from the previous projection's factor before it
+/// refactors at the current positions.
+const STALE_ITERATIONS: usize = 6;
 
 impl ConstraintSet {
     /// Builds the constraint rows of `model` (bars first, then N P = D).
@@ -75,6 +85,8 @@ impl ConstraintSet {
             cf: vec![Vector3::zeros(); model.n1],
             length2: model.bars.iter().map(|b| b.length0 * b.length0).collect(),
             length_scale: model.bars.iter().map(|b| b.length0).fold(1.0, f64::max),
+            factored: false,
+            start: Vec::new(),
         })
     }
 
@@ -152,9 +164,28 @@ impl ConstraintSet {
     ) -> Result<f64, CoreError> {
         let n3 = 3 * model.n1;
         let (x, v) = y.split_at_mut(n3);
+        // The position step is a quasi-Newton iteration: it starts from the factor of the
+        // previous projection (one step away, a few cheap iterations), and refactors at x only
+        // if that does not converge within STALE_ITERATIONS.
+        let mut converged = false;
+        if self.factored {
+            self.start.clear();
+            self.start.extend_from_slice(x);
+            converged = self
+                .solve_positions(model, x, tol, t, STALE_ITERATIONS)
+                .is_ok();
+            if !converged {
+                x.copy_from_slice(&self.start);
+            }
+        }
+        self.factored = false;
+        if !converged {
+            self.factor(model, x)?;
+            self.solve_positions(model, x, tol, t, 100)?;
+        }
+        // the velocities are projected with G at the corrected positions
         self.factor(model, x)?;
-        self.solve_positions(model, x, tol, t)?;
-        self.factor(model, x)?;
+        self.factored = true;
         self.project_velocities(model, v);
         Ok(self.residual(x))
     }
@@ -166,11 +197,12 @@ impl ConstraintSet {
         x: &mut [f64],
         tol: f64,
         t: f64,
+        iterations: usize,
     ) -> Result<(), CoreError> {
         let reach = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let tol = tol.max(ROUNDOFF_FLOOR * reach * self.length_scale);
         let mut res = f64::INFINITY;
-        for _ in 0..100 {
+        for _ in 0..iterations {
             res = self.residual(x);
             if res <= tol {
                 return Ok(());
@@ -284,7 +316,7 @@ impl Integrator for Rattle {
             let dt = format!("{h:.12e}").parse().unwrap_or(h);
             DynamicsError::RattleStepFailed { t, dt, residual }.into()
         };
-        if let Err(e) = self.cons.solve_positions(model, x, self.tol, t) {
+        if let Err(e) = self.cons.solve_positions(model, x, self.tol, t, 100) {
             let residual = match e {
                 CoreError::Dynamics(DynamicsError::ConstraintNotConverged { residual, .. }) => {
                     residual
