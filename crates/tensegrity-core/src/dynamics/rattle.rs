@@ -153,8 +153,11 @@ impl ConstraintSet {
         apply_minv(model, &self.cf, scale, out);
     }
 
-    /// Projects positions onto g = 0 along M⁻¹Gᵀ (gradients at the current x), then velocities
-    /// onto G v = 0. Returns the remaining position residual.
+    /// Projects positions onto g = 0 along M⁻¹Gᵀ, then velocities onto G v = 0 with G at the
+    /// corrected positions. The position step's G is the previous projection's (a quasi-Newton
+    /// iteration one step stale: a few solves instead of a factorisation), or that of the
+    /// current x when it does not converge within [`STALE_ITERATIONS`] (and in the first
+    /// projection). Returns the remaining position residual.
     pub fn project(
         &mut self,
         model: &Model,
