@@ -156,7 +156,7 @@ impl ConstraintSet {
     /// Projects positions onto g = 0 along M⁻¹Gᵀ, then velocities onto G v = 0 with G at the
     /// corrected positions. The position step's G is the previous projection's (a quasi-Newton
     /// iteration one step stale: a few solves instead of a factorisation), or that of the
-    /// current x when it does not converge within [`STALE_ITERATIONS`] (and in the first
+    /// current x when it does not converge within six iterations (and in the first
     /// projection). Returns the remaining position residual.
     pub fn project(
         &mut self,
