@@ -298,7 +298,7 @@ fn imex_damps_a_landing_on_an_overdamped_ground_without_a_held_impulse() {
             error < tolerance,
             "dt {dt:e}: {imex:e} m against RK4's {reference:e} m"
         );
-        assert!(error > previous, "the error falls with the step");
+        assert!(error > previous, "the error grows with the step");
         previous = error;
     }
 }
