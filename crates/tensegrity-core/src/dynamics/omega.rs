@@ -30,7 +30,7 @@ pub(crate) mod joint_space;
 mod woodbury;
 
 use crate::error::{CoreError, DynamicsError, FactorizationFailure, NumericsError};
-use crate::linalg::{CscPattern, DenseCholesky, StaticCholesky};
+use crate::linalg::{Block3Cholesky, CscPattern, DenseCholesky, StaticCholesky};
 use nalgebra::Vector3;
 
 /// Largest system solved with the dense Cholesky path.
@@ -90,6 +90,8 @@ enum Factor {
     Dense(DenseCholesky),
     /// The static-schedule sparse Cholesky (larger systems).
     Static(Box<StaticCholesky>),
+    /// The 3×3 block Cholesky (larger systems whose rows come in groups: the Ω system).
+    Block(Box<Block3Cholesky>),
     /// The general sparse Cholesky (tests: cross-check of the static schedule).
     #[cfg(test)]
     General(Box<crate::linalg::SparseCholesky>),
@@ -97,6 +99,26 @@ enum Factor {
 
 /// The constraint-system error for a failed factorisation: a non-positive pivot is a singular
 /// (redundant or conflicting) constraint set.
+/// The groups of the 3×3 block factorisation: runs of at most three consecutive rows that
+/// touch the same nodes (the x, y and z rows of one tie of N P = D), or `None` when padding
+/// the groups to three rows would cost more than a quarter of the system (the RATTLE system,
+/// whose bar rows stand alone).
+fn row_groups(rows: &[Row]) -> Option<Vec<usize>> {
+    let nodes = |r: &Row| r.entries.map(|e| e.map(|e| e.node));
+    let mut groups = Vec::with_capacity(rows.len());
+    let (mut group, mut size) = (0, 0);
+    for (i, row) in rows.iter().enumerate() {
+        if i > 0 && (size == 3 || nodes(row) != nodes(&rows[i - 1])) {
+            group += 1;
+            size = 0;
+        }
+        groups.push(group);
+        size += 1;
+    }
+    let padded = 3 * (group + 1);
+    (4 * padded <= 5 * rows.len()).then_some(groups)
+}
+
 fn constraint_error(e: CoreError) -> CoreError {
     match e {
         CoreError::Numerics(NumericsError::Factorization {
@@ -204,6 +226,10 @@ impl ConstraintMatrix {
         let values = vec![0.0; pattern.nnz()];
         let factor = if n <= DENSE_MAX {
             Factor::Dense(DenseCholesky::new(n))
+        } else if let Some(block) =
+            row_groups(&rows).and_then(|groups| Block3Cholesky::new(&pattern, &groups))
+        {
+            Factor::Block(Box::new(block))
         } else {
             Factor::Static(Box::new(
                 StaticCholesky::new(&pattern).map_err(constraint_error)?,
@@ -331,6 +357,7 @@ impl ConstraintMatrix {
         match &mut self.factor {
             Factor::Dense(c) => c.factor(&self.pattern, &self.values),
             Factor::Static(c) => c.factor(&self.values),
+            Factor::Block(c) => c.factor(&self.values),
             #[cfg(test)]
             Factor::General(c) => c.factor(&self.values),
         }
@@ -351,6 +378,7 @@ impl ConstraintMatrix {
         match &mut self.factor {
             Factor::Dense(c) => c.solve_in_place(rhs),
             Factor::Static(c) => c.solve_in_place(rhs),
+            Factor::Block(c) => c.solve_in_place(rhs),
             #[cfg(test)]
             Factor::General(c) => c.solve_in_place(rhs),
         }
@@ -405,7 +433,12 @@ mod tests {
             .collect();
         let mut sparse = ConstraintMatrix::new(rows.clone(), true).unwrap();
         sparse.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
-        assert!(matches!(sparse.factor, Factor::Static(_)));
+        // the Ω rows come in ties of three: the block factorisation
+        assert!(matches!(sparse.factor, Factor::Block(_)));
+        // the scalar static schedule on the same pattern
+        let mut scalar = ConstraintMatrix::new(rows.clone(), true).unwrap();
+        scalar.factor = Factor::Static(Box::new(StaticCholesky::new(&scalar.pattern).unwrap()));
+        scalar.assemble_and_factor(&bhat, &model.inv_mass).unwrap();
         // the general sparse Cholesky on the same pattern
         let mut general = ConstraintMatrix::new(rows.clone(), true).unwrap();
         general.factor = Factor::General(Box::new(SparseCholesky::new(&general.pattern).unwrap()));
@@ -426,6 +459,14 @@ mod tests {
         dense.solve_in_place(&mut x2);
         let mut x4 = rhs.clone();
         general.solve_in_place(&mut x4);
+        let mut x5 = rhs.clone();
+        scalar.solve_in_place(&mut x5);
+        let diff5 = x1
+            .iter()
+            .zip(&x5)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(diff5 <= 1e-12 * x1.iter().map(|a| a.abs()).fold(0.0, f64::max));
         let diff4 = x1
             .iter()
             .zip(&x4)

@@ -49,8 +49,8 @@ pub use dense::{
     orthonormal_basis, rank_tolerance, svd, symmetric_eigen, DenseCholesky, DenseLu, Svd,
 };
 pub use sparse::{
-    amd_ordering, cholesky_solve, lu_solve, CscMatrix, CscPattern, FrontalQr, RankRevealingQr,
-    SparseCholesky, SparseLu, StaticCholesky,
+    amd_ordering, cholesky_solve, lu_solve, Block3Cholesky, CscMatrix, CscPattern, FrontalQr,
+    RankRevealingQr, SparseCholesky, SparseLu, StaticCholesky,
 };
 
 use crate::error::{CoreError, NumericsError};

@@ -350,7 +350,7 @@ impl StaticCholesky {
 }
 
 /// The lower triangle of P A Pᵀ by column: (new row i ≥ j, slot of A's values), rows sorted.
-fn permuted_lower(lower: &CscPattern, inv: &[usize]) -> Vec<Vec<(usize, usize)>> {
+pub(super) fn permuted_lower(lower: &CscPattern, inv: &[usize]) -> Vec<Vec<(usize, usize)>> {
     let n = lower.ncols();
     let (col_ptr, row_idx) = (lower.col_ptr(), lower.row_idx());
     let mut cols: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
@@ -369,7 +369,7 @@ fn permuted_lower(lower: &CscPattern, inv: &[usize]) -> Vec<Vec<(usize, usize)>>
 
 /// The strictly lower pattern of L by column, through the elimination tree: column j of L
 /// holds the rows of column j of A below the diagonal and those of its children's columns.
-fn symbolic_patterns(cols: &[Vec<(usize, usize)>]) -> Vec<Vec<usize>> {
+pub(super) fn symbolic_patterns(cols: &[Vec<(usize, usize)>]) -> Vec<Vec<usize>> {
     let n = cols.len();
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); n];
     let mut patterns: Vec<Vec<usize>> = Vec::with_capacity(n);
@@ -388,7 +388,7 @@ fn symbolic_patterns(cols: &[Vec<(usize, usize)>]) -> Vec<Vec<usize>> {
 }
 
 /// Concatenates per-column lists into (pointers, entries).
-fn flatten<T: Copy>(lists: &[Vec<T>]) -> (Vec<usize>, Vec<T>) {
+pub(super) fn flatten<T: Copy>(lists: &[Vec<T>]) -> (Vec<usize>, Vec<T>) {
     let mut ptr = Vec::with_capacity(lists.len() + 1);
     ptr.push(0);
     let mut entries = Vec::new();

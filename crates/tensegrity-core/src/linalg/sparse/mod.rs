@@ -8,6 +8,8 @@
 //! - [`cholesky`]: A = L Lᵀ for SPD matrices with a fixed pattern, symbolic analysis once and a
 //!   numeric refactorisation per call (the in-house [`StaticCholesky`] and the general
 //!   [`SparseCholesky`]);
+//! - [`block3`]: the same for systems whose unknowns come in groups of up to three with a
+//!   shared pattern ([`Block3Cholesky`]: 3×3 blocks, the Ω system of the rigid-bar dynamics);
 //! - [`lu`]: P A Q = L U with partial pivoting for general square matrices;
 //! - [`rrqr`]: a rank-revealing staircase Householder QR of a banded rectangular matrix that
 //!   rejects dependent columns (rank, null spaces and least squares of the equilibrium matrix
@@ -15,6 +17,7 @@
 //! - [`frontal`]: a rank-revealing multifrontal QR of Aᵀ along a nested-dissection tree
 //!   (rank and certificate of lattices, whose band is too wide for [`rrqr`]).
 
+pub mod block3;
 pub mod cholesky;
 pub mod frontal;
 pub mod lu;
@@ -22,6 +25,7 @@ pub mod ordering;
 pub mod rrqr;
 mod sigma_min;
 
+pub use block3::Block3Cholesky;
 pub use cholesky::{cholesky_solve, SparseCholesky, StaticCholesky};
 pub use frontal::FrontalQr;
 pub use lu::{lu_solve, SparseLu};
