@@ -17,8 +17,11 @@
 //! at most [`DENSE_MAX`] rows (a few class-k joints) use the in-place
 //! [`DenseCholesky`](crate::linalg::DenseCholesky), since a sparse factorisation's per-call
 //! overhead (permutation, dispatch) is several times the flops of a 12×12 one; larger systems
-//! use the AMD-ordered static-schedule [`StaticCholesky`](crate::linalg::StaticCholesky) (the
-//! general [`SparseCholesky`](crate::linalg::SparseCholesky) is cross-checked against it in the
+//! whose rows come in runs of up to three on the same nodes (the Ω system: x, y, z of a tie)
+//! use the 3×3 block [`Block3Cholesky`](crate::linalg::Block3Cholesky), the others (RATTLE's
+//! single bar rows) the AMD-ordered static-schedule
+//! [`StaticCholesky`](crate::linalg::StaticCholesky) (the general
+//! [`SparseCholesky`](crate::linalg::SparseCholesky) is cross-checked against both in the
 //! tests).
 //!
 //! Small Ω systems with axis-aligned gradients (all of N P = D) are not factored at all: they

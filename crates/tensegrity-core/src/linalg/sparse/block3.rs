@@ -349,7 +349,7 @@ mod tests {
         }
         let n = start[k];
         let groups: Vec<usize> = (0..k)
-            .flat_map(|g| std::iter::repeat(g).take(sizes[g]))
+            .flat_map(|g| std::iter::repeat_n(g, sizes[g]))
             .collect();
         let mut t = Vec::new();
         let entry = |i: usize, j: usize| ((i * 7 + j * 3) % 11) as f64 / 11.0 - 0.5;
