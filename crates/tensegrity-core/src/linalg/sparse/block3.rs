@@ -336,6 +336,7 @@ fn inverse_cholesky(a: &Matrix3<f64>, tol: f64) -> std::result::Result<Matrix3<f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::sparse::cholesky::tests::sym_mul;
     use crate::linalg::{CscMatrix, StaticCholesky};
 
     /// A block-ring SPD matrix: `k` groups of sizes cycling 3, 3, 2, 1 (as ties and fixed
@@ -368,21 +369,6 @@ mod tests {
             }
         }
         (CscMatrix::from_triplets(n, n, &t).unwrap(), groups)
-    }
-
-    fn sym_mul(a: &CscMatrix, x: &[f64]) -> Vec<f64> {
-        let p = a.pattern();
-        let mut y = vec![0.0; x.len()];
-        for j in 0..p.ncols() {
-            for s in p.col_ptr()[j]..p.col_ptr()[j + 1] {
-                let i = p.row_idx()[s];
-                y[i] += a.values()[s] * x[j];
-                if i != j {
-                    y[j] += a.values()[s] * x[i];
-                }
-            }
-        }
-        y
     }
 
     #[test]

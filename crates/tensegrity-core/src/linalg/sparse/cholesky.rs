@@ -517,7 +517,7 @@ pub fn cholesky_solve(lower: &CscMatrix, b: &[f64]) -> Result<Vec<f64>> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     /// Lower triangle of the 5-point Laplacian on a k×k grid, shifted by `shift` (SPD).
@@ -539,7 +539,7 @@ mod tests {
     }
 
     /// A x for a symmetric matrix stored by its lower triangle.
-    fn sym_mul(a: &CscMatrix, x: &[f64]) -> Vec<f64> {
+    pub(crate) fn sym_mul(a: &CscMatrix, x: &[f64]) -> Vec<f64> {
         let p = a.pattern();
         let mut y = vec![0.0; x.len()];
         for j in 0..p.ncols() {
