@@ -143,7 +143,7 @@ fn wheel_animation(o: Opened, request: &RollRequest, wheel: &toroid::Toroid) -> 
     s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
     (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
     o.start(s, request.t_end)
-        .with_tolerance(request.settings.dt)
+        .with_tolerance(request.coarser_step())
 }
 
 /// Opens `--svg` and the outputs the run streams to (`--out`, `--vtk` of `wheel`'s members),
@@ -164,7 +164,7 @@ fn open_outputs<'a>(
         _ => None,
     };
     let keep = args.frames.as_deref().unwrap_or_default();
-    let outputs = RollingOutputs::new(csv, vtk).keeping(keep, request.settings.dt);
+    let outputs = RollingOutputs::new(csv, vtk).keeping(keep, request.coarser_step());
     Ok((figure, outputs))
 }
 

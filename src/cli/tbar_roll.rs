@@ -78,7 +78,7 @@ fn tbar_animation(o: Opened, request: &TbarRollRequest) -> Result<Animation> {
     s.ground = Some((nalgebra::Vector3::zeros(), nalgebra::Vector3::z()));
     (s.tilt, s.camera) = (-request.settings.incline, Camera::Follow);
     Ok(o.start(s, request.t_end())
-        .with_tolerance(request.settings.dt))
+        .with_tolerance(request.spec(request.fidelity).full_dt()))
 }
 
 /// The report, the first row's T-bar run drawn into `animation` if any.

@@ -222,7 +222,7 @@ fn toroid_column(
 /// ```
 pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError> {
     let rim = request.rim()?;
-    let (t_end, dt) = (request.t_end(), request.settings.dt);
+    let (t_end, dt) = (request.t_end(), request.spec(request.fidelity).full_dt());
     let mut total: Option<Estimate> = None;
     for n in request.treads() {
         let e = match request.fidelity {

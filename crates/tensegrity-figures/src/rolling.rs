@@ -323,7 +323,7 @@ pub fn roll_figure(
     match frame_times {
         Some(times) => {
             let toroid = request.wheel.build()?;
-            let dt = request.settings.dt;
+            let dt = request.coarser_step();
             let panels = times
                 .iter()
                 .filter_map(|&t| report.frames.iter().find(|f| (f.t - t).abs() <= dt))

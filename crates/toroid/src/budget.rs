@@ -21,6 +21,7 @@ use crate::request::{TipoverDynamicRequest, TipoverRollingRequest};
 use crate::roll::RollRequest;
 use tensegrity_core::budget::{self, Estimate};
 use wheel_rolling::estimate::{FullSizes, RunSize};
+use wheel_rolling::fidelity::Plan;
 
 /// Node, bar and string counts of the wheel (or of the single prism).
 pub fn counts(wheel: &WheelSpec, prism_only: bool) -> (usize, usize, usize) {
@@ -134,26 +135,42 @@ pub fn roll(request: &RollRequest) -> Estimate {
         wheel: *wheel,
         ..ToroidRequest::default()
     });
-    let size = RunSize::new(request.t_end, request.settings.dt, wheel.params.sides);
     let plan = request.decision().plan;
-    let mut run = wheel_rolling::estimate::plan(plan, &size, &full_sizes(wheel));
+    let spec = request.spec();
+    let sides = wheel.params.sides;
+    let sizes = full_sizes(wheel);
+    // each model at its own step (the full model's is coarser under IMEX); `scale` halves
+    // both for the refined run of the convergence check
+    let at = |scale: f64| {
+        let rigid = RunSize::new(request.t_end, scale * spec.rigid_dt(), sides);
+        let full = RunSize::new(request.t_end, scale * spec.full_dt(), sides);
+        let run = match plan {
+            Plan::Rigid => wheel_rolling::estimate::rigid(&rigid),
+            Plan::Full => wheel_rolling::estimate::full(&full, &sizes),
+            Plan::RigidThenFullIfInvalid => wheel_rolling::estimate::rigid(&rigid)
+                .then(wheel_rolling::estimate::full(&full, &sizes)),
+        };
+        (run, rigid, full)
+    };
+    let (one, rigid_size, full_size) = at(1.0);
+    // the estimate is named by the step of the model that runs first
+    let size = if plan == Plan::Full {
+        full_size.clone()
+    } else {
+        rigid_size
+    };
+    let mut run = one.clone();
     if request.checks.convergence_check {
         // the refined run beside it: half the step, twice the steps
-        let fine = RunSize::new(request.t_end, 0.5 * request.settings.dt, wheel.params.sides);
-        run = run.then(wheel_rolling::estimate::plan(
-            plan,
-            &fine,
-            &full_sizes(wheel),
-        ));
+        run = run.then(at(0.5).0);
     }
     if request.ensemble >= 2 {
         // K copies of the plan, then one run of the other model (at most the full one)
-        let one = wheel_rolling::estimate::plan(plan, &size, &full_sizes(wheel));
         let copies = Estimate {
             work_s: request.ensemble as f64 * one.work_s,
             ..one
         };
-        let other = wheel_rolling::estimate::full(&size, &full_sizes(wheel));
+        let other = wheel_rolling::estimate::full(&full_size, &sizes);
         run = run.then(copies).then(other);
     }
     Estimate {
@@ -286,7 +303,7 @@ mod tests {
         };
         assert_eq!(
             roll(&r).parameters.to_string(),
-            "t_end = 1000000000, dt = 0.0001, sides = 8"
+            "t_end = 1000000000, dt = 0.0005, sides = 8"
         );
         let e = roll(&r);
         // 1e12 samples kept in memory

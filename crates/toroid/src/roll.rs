@@ -54,7 +54,8 @@ pub struct RollRequest {
     pub mu: f64,
     /// Smallest string tension of the full model's prestress (N).
     pub min_tension: f64,
-    /// Integrator of the full model (`dt` is its step, or its largest step when adaptive).
+    /// Integrator of the full model (`dt` is its step, or its largest step when adaptive):
+    /// IMEX by default, its contact damping implicit.
     pub integrator: IntegratorKind,
     /// `strict` (an invalid result is an error) and `convergence_check` (the run repeated at
     /// a refined resolution, [`wheel_rolling::convergence`]).
@@ -66,7 +67,8 @@ pub struct RollRequest {
 }
 
 impl Default for RollRequest {
-    /// The reference wheel down 50° for 10 s at a 0.1 ms step (RK4 for the full model),
+    /// The reference wheel down 50° for 10 s, the rigid model at a 0.1 ms step and the full
+    /// one by IMEX at 0.5 ms ([`wheel_rolling::defaults::full_dt`]),
     /// `auto` fidelity, penalty contact with e = 0, and the contact and string defaults of
     /// [`crate::defaults`].
     fn default() -> Self {
@@ -78,7 +80,7 @@ impl Default for RollRequest {
             contact: ContactKind::Penalty,
             mu: defaults::STATIC_FRICTION,
             min_tension: defaults::ROLL_MIN_TENSION,
-            integrator: IntegratorKind::Rk4,
+            integrator: IntegratorKind::Imex,
             checks: RunChecks::default(),
             ensemble: 0,
         }
@@ -171,7 +173,20 @@ impl RollRequest {
             mu_kinetic: defaults::KINETIC_FRICTION_RATIO * self.mu,
             integrator: self.integrator,
             output_dt: defaults::ROLL_OUTPUT_DT,
+            step_scale: 1.0,
         }
+    }
+
+    /// The coarser of the two models' steps (s): how far from its time a frame of either
+    /// model may lie.
+    ///
+    /// ```
+    /// let r = toroid::RollRequest::default();
+    /// assert_eq!(r.coarser_step(), 5e-4); // IMEX on the penalty ground
+    /// ```
+    pub fn coarser_step(&self) -> f64 {
+        let spec = self.spec();
+        spec.rigid_dt().max(spec.full_dt())
     }
 
     /// The `strict` rule: under `strict`, a report that is not valid is an error

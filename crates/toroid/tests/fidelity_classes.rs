@@ -68,7 +68,7 @@ fn stiff(
             incline: incline_deg.to_radians(),
             string_stiffness: 2e6,
             ground_stiffness: 1e6,
-            dt: 5e-5,
+            dt: Some(5e-5),
             ..RollSettings::default()
         },
         checks,

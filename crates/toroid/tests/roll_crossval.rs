@@ -20,7 +20,7 @@ fn pair(sides: usize, incline_deg: f64, mu: f64, t_end: f64) -> (RollReport, Rol
             restitution: 0.0,
             string_stiffness: 2e6,
             ground_stiffness: 1e6,
-            dt: 5e-5,
+            dt: Some(5e-5),
             ..RollSettings::default()
         },
         mu,

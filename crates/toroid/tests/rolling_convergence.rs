@@ -45,7 +45,7 @@ fn what_is_reported_converged_holds_at_a_quarter_of_the_step() {
     let quarter = roll_observed(
         &RollRequest {
             settings: RollSettings {
-                dt: base.settings.dt / 4.0,
+                dt: Some(base.spec().full_dt() / 4.0),
                 ..base.settings
             },
             checks: RunChecks::NONE,

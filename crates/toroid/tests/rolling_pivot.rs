@@ -37,7 +37,7 @@ fn request(fidelity: FidelityChoice, sides: usize, incline_deg: f64, t_end: f64)
             restitution: 0.0,
             string_stiffness: 1e6,
             ground_stiffness: 1e6,
-            dt: 5e-5,
+            dt: Some(5e-5),
             ..RollSettings::default()
         },
         checks: RunChecks::NONE,

@@ -64,7 +64,7 @@ fn against_rigid(k: f64, dt: f64) -> (f64, f64) {
         RollSettings {
             string_stiffness: k,
             ground_stiffness: k,
-            dt,
+            dt: Some(dt),
             ..RollSettings::default()
         },
     );
@@ -103,7 +103,7 @@ fn imex_agrees_with_rk4_on_the_reference_wheel_and_closes_its_energy_budget() {
             FidelityChoice::Full,
             1.2,
             RollSettings {
-                dt,
+                dt: Some(dt),
                 ..RollSettings::default()
             },
         );
@@ -136,7 +136,7 @@ fn the_default_stick_contact_closes_its_energy_budget() {
             FidelityChoice::Full,
             0.15,
             RollSettings {
-                dt,
+                dt: Some(dt),
                 ..RollSettings::default()
             },
         );

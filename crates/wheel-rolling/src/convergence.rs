@@ -1,5 +1,5 @@
 //! Convergence of a rolling run ([`roll_checked`]): the run is repeated at a refined
-//! resolution ([`refined`]: half the step `dt`, and for the full model's penalty contact twice
+//! resolution ([`refined`]: half the step of either model, and for the full model's penalty contact twice
 //! the ground stiffness, its damping following from the restitution unless given), in a
 //! second thread beside the run itself, and each headline quantity of the two summaries is
 //! compared ([`of_summaries`], the rule of [`tensegrity_core::dynamics::convergence`]: converged
@@ -28,7 +28,7 @@ use tensegrity_core::dynamics::Convergence;
 /// stiffness (used by the full model only).
 pub fn refined(spec: &RunSpec) -> RunSpec {
     let mut r = *spec;
-    r.settings.dt *= 0.5;
+    r.step_scale *= 0.5;
     if spec.contact.is_penalty() {
         r.settings.ground_stiffness *= 2.0;
     }

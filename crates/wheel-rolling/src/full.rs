@@ -172,7 +172,7 @@ impl FullRolling {
             gravity: spec.settings.gravity,
             contact: ContactModel::of(spec, polygon),
             integrator: spec.integrator,
-            dt: spec.settings.dt,
+            dt: spec.full_dt(),
             output_dt: spec.output_dt,
             frame_times: Vec::new(),
             start: FullStart::Auto,

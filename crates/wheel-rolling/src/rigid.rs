@@ -164,7 +164,7 @@ impl RigidRolling {
             i1: polygon.i1,
             incline: spec.settings.incline,
             gravity: spec.settings.gravity,
-            dt: spec.settings.dt,
+            dt: spec.rigid_dt(),
             output_dt: spec.output_dt,
             mu_static: spec.mu_static,
             mu_kinetic: spec.mu_kinetic,

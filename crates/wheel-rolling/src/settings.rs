@@ -37,9 +37,10 @@ pub struct RollSettings {
     /// Slope angle φ (rad; reads `50deg`, `pi/4`, …).
     #[serde(with = "tensegrity_core::angle::serde_angle")]
     pub incline: f64,
-    /// Integration step (s): the fixed step of RK4 and of the rigid model, the largest step
-    /// of the adaptive integrators.
-    pub dt: f64,
+    /// Integration step (s): the fixed step of the rigid model and of the full model's
+    /// fixed-step integrators, the largest step of the adaptive ones. Unset: each model's
+    /// default ([`RunSpec::rigid_dt`], [`RunSpec::full_dt`]).
+    pub dt: Option<f64>,
     /// Gravity g (m/s²).
     pub gravity: f64,
     /// Normal coefficient of restitution e of an impact, in [0, 1]: the rigid model's impact
@@ -57,12 +58,12 @@ pub struct RollSettings {
 }
 
 impl Default for RollSettings {
-    /// 50°, 0.1 ms, g = 9.81 m/s², e = 0, strings 2·10⁴ N/m, ground 10⁵ N/m per node, the
+    /// 50°, each model's default step, g = 9.81 m/s², e = 0, strings 2·10⁴ N/m, ground 10⁵ N/m per node, the
     /// damping from the restitution ([`crate::defaults`]).
     fn default() -> Self {
         Self {
             incline: defaults::INCLINE_DEG.to_radians(),
-            dt: defaults::ROLL_DT,
+            dt: None,
             gravity: defaults::GRAVITY,
             restitution: defaults::RESTITUTION,
             string_stiffness: defaults::STRING_STIFFNESS,
@@ -78,7 +79,7 @@ impl RollSettings {
     pub fn check_finite(&self) -> Result<(), InvalidParameter> {
         finite(&[
             ("incline", self.incline),
-            ("dt", self.dt),
+            ("dt", self.dt.unwrap_or(1.0)),
             ("gravity", self.gravity),
             ("restitution", self.restitution),
             ("string_stiffness", self.string_stiffness),
@@ -109,7 +110,13 @@ impl RollSettings {
         vec![
             Param::angle("incline", "Slope angle (e.g. `50deg`, `pi/4`, radians)")
                 .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
-            Param::number("dt", "s", "Integration step").positive(),
+            Param::number(
+                "dt",
+                "s",
+                "Integration step (unset: 1e-4 s; 5e-4 s for the full model under IMEX on a penalty ground)",
+            )
+            .positive()
+            .optional(),
             Param::number("gravity", "m/s^2", "Gravity").positive(),
             Param::number(
                 "restitution",
@@ -155,10 +162,45 @@ pub struct RunSpec {
     pub mu_static: f64,
     /// Kinetic friction coefficient μ_k ≤ μ_s.
     pub mu_kinetic: f64,
-    /// Integrator of the full model (`settings.dt` is its step, or its largest step).
+    /// Integrator of the full model ([`RunSpec::full_dt`] is its step, or its largest step).
     pub integrator: IntegratorKind,
     /// Output (sampling) interval of both models (s).
     pub output_dt: f64,
+    /// Factor on both models' steps: 1, and ½ for the refined run of the convergence check
+    /// ([`crate::convergence::refined`]).
+    pub step_scale: f64,
+}
+
+impl RunSpec {
+    /// The rigid model's step (s): `settings.dt`, or [`defaults::ROLL_DT`], times
+    /// `step_scale`.
+    ///
+    /// ```
+    /// let spec = wheel_rolling::RunSpec::default();
+    /// assert_eq!(spec.rigid_dt(), 1e-4);
+    /// ```
+    pub fn rigid_dt(&self) -> f64 {
+        self.step_scale * self.settings.dt.unwrap_or(defaults::ROLL_DT)
+    }
+
+    /// The full model's step (s): `settings.dt`, or the default of its integrator and
+    /// contact ([`defaults::full_dt`]), times `step_scale`.
+    ///
+    /// ```
+    /// use tensegrity_core::dynamics::IntegratorKind;
+    /// use wheel_rolling::{RollSettings, RunSpec};
+    /// let imex = RunSpec { integrator: IntegratorKind::Imex, ..RunSpec::default() };
+    /// assert_eq!(imex.full_dt(), 5e-4);
+    /// let given = RunSpec { settings: RollSettings { dt: Some(2e-4), ..imex.settings }, ..imex };
+    /// assert_eq!((given.full_dt(), given.rigid_dt()), (2e-4, 2e-4));
+    /// ```
+    pub fn full_dt(&self) -> f64 {
+        self.step_scale
+            * self
+                .settings
+                .dt
+                .unwrap_or_else(|| defaults::full_dt(self.integrator, self.contact))
+    }
 }
 
 impl Default for RunSpec {
@@ -174,6 +216,7 @@ impl Default for RunSpec {
             mu_kinetic: defaults::KINETIC_FRICTION_RATIO * defaults::STATIC_FRICTION,
             integrator: IntegratorKind::Rk4,
             output_dt: defaults::ROLL_OUTPUT_DT,
+            step_scale: 1.0,
         }
     }
 }

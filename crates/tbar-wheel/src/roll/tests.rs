@@ -173,7 +173,7 @@ fn full_and_rigid_agree_through_the_first_pivot() {
             incline: 40f64.to_radians(),
             string_stiffness: 2e6,
             ground_stiffness: 1e6,
-            dt: 1e-4,
+            dt: Some(1e-4),
             ..RollSettings::default()
         },
         mu_static: 1.2,

@@ -188,9 +188,10 @@ fn prepare(kind: SeriesKind, size: usize, steps: u64) -> Result<Prepared, BenchE
             let mut request = toroid::RollRequest::from_values([
                 ("sides", json!(size)),
                 ("fidelity", json!("full")),
+                ("integrator", json!("rk4")),
                 ("convergence_check", json!(false)),
             ])?;
-            request.t_end = steps as f64 * request.settings.dt;
+            request.t_end = steps as f64 * request.spec().full_dt();
             Prepared::Rolling(Box::new(request))
         }
     })

@@ -4,6 +4,7 @@
 
 use super::RollRequest;
 use serde::Serialize;
+use tensegrity_core::dynamics::IntegratorKind;
 use wheel_rolling::{
     Fidelity, GroundContact, ImpactRecord, Rolled, RollingSample, RunSummary, WheelFrame,
 };
@@ -35,6 +36,12 @@ pub struct RollReport {
     pub restitution: f64,
     /// Normal ground damping per node of the full model (N·s/m; null for the rigid model).
     pub ground_damping: Option<f64>,
+    /// The full model's integrator (null for the rigid model, which steps its one degree of
+    /// freedom by RK4 between exactly located events).
+    pub integrator: Option<IntegratorKind>,
+    /// The step the model ran at (s): the request's `dt`, or the model's default
+    /// ([`wheel_rolling::RunSpec::rigid_dt`], [`wheel_rolling::RunSpec::full_dt`]).
+    pub dt: f64,
     /// Validity and summary figures of the run (`valid`, `warnings`, `stopped_at`,
     /// `impacts`, `first_impact`, `mean_speed`, …).
     #[serde(flatten)]
@@ -64,6 +71,11 @@ impl RollReport {
     /// The report of `rolled`, the run of `request`.
     pub fn of(request: &RollRequest, rolled: Rolled) -> Self {
         let r = rolled.result;
+        let spec = request.spec();
+        let (integrator, dt) = match rolled.fidelity {
+            Fidelity::Rigid => (None, spec.rigid_dt()),
+            Fidelity::Full => (Some(request.integrator), spec.full_dt()),
+        };
         Self {
             fidelity: rolled.fidelity,
             fidelity_reason: rolled.reason,
@@ -76,6 +88,8 @@ impl RollReport {
             mu: request.mu,
             restitution: request.settings.restitution,
             ground_damping: rolled.ground_damping,
+            integrator,
+            dt,
             summary: RunSummary::of(&r, request.t_end),
             impact_log: r.impact_log,
             ensemble: None,
