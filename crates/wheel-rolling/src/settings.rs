@@ -113,7 +113,7 @@ impl RollSettings {
             Param::number(
                 "dt",
                 "s",
-                "Integration step (unset: 1e-4 s; 5e-4 s for the full model under IMEX on a penalty ground)",
+                "Integration step (unset: 1e-4 s; for the full model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer than 2e4 N/m)",
             )
             .positive()
             .optional(),
@@ -184,7 +184,7 @@ impl RunSpec {
     }
 
     /// The full model's step (s): `settings.dt`, or the default of its integrator and
-    /// contact ([`defaults::full_dt`]), times `step_scale`.
+    /// contact and strings ([`defaults::full_dt`]), times `step_scale`.
     ///
     /// ```
     /// use tensegrity_core::dynamics::IntegratorKind;
@@ -196,10 +196,13 @@ impl RunSpec {
     /// ```
     pub fn full_dt(&self) -> f64 {
         self.step_scale
-            * self
-                .settings
-                .dt
-                .unwrap_or_else(|| defaults::full_dt(self.integrator, self.contact))
+            * self.settings.dt.unwrap_or_else(|| {
+                defaults::full_dt(
+                    self.integrator,
+                    self.contact,
+                    self.settings.string_stiffness,
+                )
+            })
     }
 }
 
