@@ -61,6 +61,8 @@ const ROLL: Table = Table {
         ("stabilize", ["\"spokes,inner\"", "\"inner,outer\""]),
         ("t_end", ["0.05", "0.06"]),
         ("ground_damping", ["100.0", "200.0"]),
+        // unset by default (each model's own step)
+        ("dt", ["0.0001", "0.0002"]),
     ],
 };
 
@@ -81,6 +83,7 @@ const TBAR_ROLL: Table = Table {
         ("rim_density", ["1.0", "2.0"]),
         ("min_tension", ["50.0", "60.0"]),
         ("ground_damping", ["100.0", "200.0"]),
+        ("dt", ["0.0001", "0.0002"]),
     ],
 };
 
