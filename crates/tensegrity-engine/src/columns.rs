@@ -183,7 +183,7 @@ pub const INTEGRATORS: [Column; 7] = [
 
 /// The scalars of [`toroid::RollReport`], in its key order (validity included; the first
 /// impact as `first_impact.*`, empty when there is none).
-pub const ROLL: [Column; 31] = [
+pub const ROLL: [Column; 33] = [
     col("fidelity", ""),
     col("fidelity_reason", ""),
     col("contact", ""),
@@ -195,6 +195,8 @@ pub const ROLL: [Column; 31] = [
     col("mu", ""),
     col("restitution", ""),
     col("ground_damping", "N s/m"),
+    col("integrator", ""),
+    col("dt", "s"),
     col("valid", ""),
     col("impacts", ""),
     col("first_impact.t", "s"),

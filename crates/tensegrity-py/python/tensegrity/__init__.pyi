@@ -223,7 +223,7 @@ def roll(
     scale_with_n: bool = ...,
     incline: Union[float, str] = ...,
     t_end: float = ...,
-    dt: float = ...,
+    dt: Optional[float] = ...,
     fidelity: Literal['rigid', 'full', 'auto'] = ...,
     contact: Literal['penalty', 'thesis', 'stick'] = ...,
     ground_damping: Optional[float] = ...,
@@ -273,8 +273,10 @@ def roll(
         0.8726646259971648
     t_end : float
         Simulated time (s); must be finite and positive. Default: 10.0
-    dt : float
-        Integration step (s); must be finite and positive. Default: 0.0001
+    dt : float, optional
+        Integration step (unset: 1e-4 s; for the full model under IMEX on a penalty or stick
+        ground 5e-4 s, shorter for strings stiffer than 2e4 N/m) (s); must be finite and
+        positive
     fidelity : {'rigid', 'full', 'auto'}
         Model: rigid polygon, full tensegrity, or auto (the cheapest valid one). Default:
         'auto'
@@ -299,7 +301,7 @@ def roll(
         Smallest string tension of the full model's prestress (N); must be finite and
         positive. Default: 20.0
     integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'rk4-flight'}
-        Integrator of the full model. Default: 'rk4'
+        Integrator of the full model. Default: 'imex'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     strict : bool
@@ -739,7 +741,7 @@ def tbar_roll(
     treads: Optional[Union[Sequence[int], str]] = ...,
     incline: Union[float, str] = ...,
     t_end: Optional[float] = ...,
-    dt: float = ...,
+    dt: Optional[float] = ...,
     gravity: float = ...,
     bar_density: float = ...,
     mu_static: float = ...,
@@ -792,8 +794,10 @@ def tbar_roll(
         0.5235987755982988
     t_end : float, optional
         Simulated time (default 10 s rigid, 1 s full) (s); must be finite and positive
-    dt : float
-        Integration step (s); must be finite and positive. Default: 0.0001
+    dt : float, optional
+        Integration step (unset: 1e-4 s; for the full model under IMEX on a penalty or stick
+        ground 5e-4 s, shorter for strings stiffer than 2e4 N/m) (s); must be finite and
+        positive
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     bar_density : float
