@@ -58,8 +58,8 @@ pub struct RollSettings {
 }
 
 impl Default for RollSettings {
-    /// 50°, each model's default step, g = 9.81 m/s², e = 0, strings 2·10⁴ N/m, ground 10⁵ N/m per node, the
-    /// damping from the restitution ([`crate::defaults`]).
+    /// 50°, each model's default step, g = 9.81 m/s², e = 0, strings 2·10⁴ N/m, ground
+    /// 10⁵ N/m per node, the damping from the restitution ([`crate::defaults`]).
     fn default() -> Self {
         Self {
             incline: defaults::INCLINE_DEG.to_radians(),
