@@ -70,7 +70,9 @@ def test_simulation_stops_within_half_a_second_with_the_samples_so_far():
 
 
 def test_sweep_stops_with_the_rows_so_far_kept_in_its_file(tmp_path):
-    spec = {"study": "roll", "fixed": {"fidelity": "full", "t_end": 0.5},
+    # RK4 at 1e-4 s: the sweep must outlast the interrupt at 1 s (the default IMEX runs it in
+    # about that time)
+    spec = {"study": "roll", "fixed": {"fidelity": "full", "t_end": 0.5, "integrator": "rk4"},
             "axes": {"sides": list(range(6, 16))}}
     out = tmp_path / "rows.csv"
     sent = interrupt_after(1.0)
