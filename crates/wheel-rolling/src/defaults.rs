@@ -24,12 +24,21 @@ pub const ROLL_DT: f64 = 1e-4;
 /// it: 1.9·10⁻²).
 pub const IMEX_ROLL_DT: f64 = 5e-4;
 
+/// The shortest default step of the full model under IMEX (s): what [`full_dt`] gives for
+/// strings of 8·10⁶ N/m and stiffer. A bound on the cost, not on the accuracy: at 10⁷ N/m on
+/// 50° for 1 s this step closes the energy budget to 1.9·10⁻⁴.
+pub const IMEX_MIN_DT: f64 = 2.5e-5;
+
 /// The full model's step when the request leaves `dt` unset. IMEX on a penalty or stick
 /// ground: [`IMEX_ROLL_DT`] · √([`STRING_STIFFNESS`] / k), k the string stiffness, kept
-/// within [[`ROLL_DT`], [`IMEX_ROLL_DT`]]: the strings stay in IMEX's explicit part, whose
+/// within [[`IMEX_MIN_DT`], [`IMEX_ROLL_DT`]]: the strings stay in IMEX's explicit part, whose
 /// error grows with their frequency √k (on 50° for 3 s, 5·10⁻⁴ s misses the energy budget
 /// by 1.0·10⁻² at 10⁵ N/m and 2.0·10⁻² at 2·10⁵ N/m, where at 2·10⁶ N/m it diverges within
-/// 5 ms and 10⁻⁴ s closes the budget to 2·10⁻⁵). [`ROLL_DT`] otherwise (the thesis contact stays in the explicit part).
+/// 5 ms). The floor was [`ROLL_DT`] until 2026-12-03; with strings and ground of 10⁶ N/m
+/// (μ = 1.2, e = 0, 3 s) 10⁻⁴ s missed the budget by 1.3·10⁻² (n = 8 on 40°) and
+/// 2.5·10⁻² (n = 10 on 20°), where the scaled 7.1·10⁻⁵ s closes it to 3.3·10⁻³ and
+/// 4.9·10⁻³ (n = 6 and 24 on 50°: 1.2·10⁻³, 3.5·10⁻³). [`ROLL_DT`] otherwise (the thesis
+/// contact stays in the explicit part).
 ///
 /// ```
 /// use tensegrity_core::dynamics::IntegratorKind;
@@ -37,7 +46,8 @@ pub const IMEX_ROLL_DT: f64 = 5e-4;
 /// let imex = |contact, k| defaults::full_dt(IntegratorKind::Imex, contact, k);
 /// assert_eq!(imex(ContactKind::Penalty, 2e4), 5e-4);
 /// assert!((imex(ContactKind::Stick, 8e4) - 2.5e-4).abs() < 1e-15);
-/// assert_eq!(imex(ContactKind::Penalty, 2e6), 1e-4);
+/// assert!((imex(ContactKind::Penalty, 2e6) - 5e-5).abs() < 1e-15);
+/// assert_eq!(imex(ContactKind::Penalty, 1e9), defaults::IMEX_MIN_DT);
 /// assert_eq!(imex(ContactKind::Thesis, 2e4), 1e-4);
 /// assert_eq!(defaults::full_dt(IntegratorKind::Rk4, ContactKind::Penalty, 2e4), 1e-4);
 /// ```
@@ -52,7 +62,7 @@ pub fn full_dt(
             if scaled.is_nan() {
                 ROLL_DT
             } else {
-                scaled.clamp(ROLL_DT, IMEX_ROLL_DT)
+                scaled.clamp(IMEX_MIN_DT, IMEX_ROLL_DT)
             }
         }
         _ => ROLL_DT,
