@@ -80,6 +80,15 @@
 //! 5·10⁻⁴ s, against 35 % and 60 % when the landing holds its F*). Retaking a landing step as
 //! two, split at the interpolated touch-down, did not reduce the error on the reference wheel.
 //!
+//! **A limit: creep under regularised friction.** On the penalty ground a loaded node below
+//! the regularisation velocity creeps (v = v_reg artanh(F_t / μ f_n)). The splitting resolves
+//! that creep at steps up to about 5·10⁻⁵ s on the reference wheel (second order there); at
+//! 10⁻⁴ s and above the creeping pivot chatters at 3–50 mm/s and the axle runs ahead by up to
+//! 1.1·10⁻² m in 0.95 s at 5·10⁻⁴ s, while the budget closes. Solving B exactly (Newton on
+//! an L-stable SDIRK) does not help: the error is the splitting's. The stick ground, whose
+//! anchor spring sits in A, has no such creep. Measurements: docs/ROLLING.md, "Work–precision
+//! on the default (penalty) ground".
+//!
 //! The bar constraints are kept as for RK4: the driver projects every accepted state back
 //! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
 //! (whose reaction needs all contact nodes at once) stays in f_A.
