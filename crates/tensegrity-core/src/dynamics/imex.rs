@@ -85,7 +85,10 @@
 //! that creep at steps up to about 5·10⁻⁵ s on the reference wheel (second order there); at
 //! 10⁻⁴ s and above the creeping pivot chatters at 3–50 mm/s and the axle runs ahead by up to
 //! 1.1·10⁻² m in 0.95 s at 5·10⁻⁴ s, while the budget closes. Solving B exactly (Newton on
-//! an L-stable SDIRK) does not help: the error is the splitting's. The stick ground, whose
+//! an L-stable SDIRK) does not help: the error is the splitting's. For m v̇ = L − β v the
+//! step maps the creep error by 1 − 2|z| R(z), z = −β h/(2m), R the stability function of
+//! B: ROS2's R(z) → 0.828/|z| gives −0.657 in the stiff limit where the exact map gives 0, so
+//! the error flips sign every step. The stick ground, whose
 //! anchor spring sits in A, has no such creep. Measurements: docs/ROLLING.md, "Work–precision
 //! on the default (penalty) ground".
 //!
