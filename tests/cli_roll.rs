@@ -263,3 +263,37 @@ fn the_full_series_carries_forces_and_strict_fails_an_invalid_run() {
     );
     assert!(String::from_utf8_lossy(&strict.stderr).contains("strict: "));
 }
+
+/// A step longer than the 1 ms output interval would be cut to it (the JSON's `dt` would not
+/// be the step that ran, and the convergence check's half step would refine nothing): `roll`
+/// and `tbar roll` refuse it by name; the interval itself runs.
+#[test]
+fn a_step_longer_than_the_output_interval_is_refused() {
+    for args in [
+        &["roll", "--dt", "2e-3"][..],
+        &["roll", "--fidelity", "full", "--dt", "1e300"][..],
+        &["tbar", "roll", "--dt", "5e-3"][..],
+    ] {
+        let out = run(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("dt") && err.contains("output interval"),
+            "{args:?}: {err}"
+        );
+    }
+    let out = run(&[
+        "roll",
+        "--fidelity",
+        "rigid",
+        "--t-end",
+        "0.05",
+        "--dt",
+        "1e-3",
+        "--no-convergence-check",
+        "--json",
+    ]);
+    assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["dt"], 1e-3);
+}

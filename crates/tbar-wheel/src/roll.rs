@@ -256,10 +256,11 @@ impl Request for TbarRollRequest {
         ]
     }
 
-    /// Finite numbers; the full model needs the rim body; one parameterisation; the treads
-    /// given, at most [`crate::params::MAX_TREADS`].
+    /// Finite numbers and `dt` within the output interval ([`RollSettings::check`]); the full
+    /// model needs the rim body; one parameterisation; the treads given, at most
+    /// [`crate::params::MAX_TREADS`].
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
-        self.settings.check_finite()?;
+        self.settings.check()?;
         wheel_rolling::settings::finite(&[
             ("beta", self.beta),
             ("cylindrical", self.cylindrical.unwrap_or(0.0)),

@@ -138,10 +138,11 @@ impl Request for RollRequest {
         out
     }
 
-    /// Finite numbers (which the per-field rules cannot see otherwise), and the wheel's
-    /// geometry rules across its parameters (R_i < R_o).
+    /// Finite numbers (which the per-field rules cannot see otherwise), `dt` within the output
+    /// interval ([`RollSettings::check`]), and the wheel's geometry rules across its
+    /// parameters (R_i < R_o).
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
-        self.settings.check_finite()?;
+        self.settings.check()?;
         wheel_rolling::settings::finite(&[
             ("t_end", self.t_end),
             ("mu", self.mu),

@@ -88,6 +88,35 @@ impl RollSettings {
         ])
     }
 
+    /// The shared rules across fields: every number finite ([`RollSettings::check_finite`]),
+    /// and an explicit `dt` no longer than the output interval
+    /// [`defaults::ROLL_OUTPUT_DT`]: both models cut their steps at the sample times, so a
+    /// longer step would not be the step that runs, and the convergence check's half step
+    /// would refine nothing.
+    ///
+    /// ```
+    /// use wheel_rolling::RollSettings;
+    /// let step = |dt| RollSettings { dt: Some(dt), ..RollSettings::default() }.check();
+    /// assert!(step(1e-3).is_ok());
+    /// let err = step(2e-3).unwrap_err();
+    /// assert_eq!(err.name, "dt");
+    /// assert!(err.to_string().contains("output interval"), "{err}");
+    /// ```
+    pub fn check(&self) -> Result<(), InvalidParameter> {
+        self.check_finite()?;
+        match self.dt {
+            Some(dt) if dt > defaults::ROLL_OUTPUT_DT => Err(InvalidParameter::new(
+                "dt",
+                dt,
+                format!(
+                    "must not exceed the output interval {} s (the steps are cut at the sample times)",
+                    defaults::ROLL_OUTPUT_DT
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// The shared setting of that name, for a request that flattens these settings and lists
     /// them among its own parameters.
     ///
