@@ -66,6 +66,7 @@ def test_scene_errors_are_the_clis(cli, tmp_path):
     (lambda: tg.toroid(sides=2.5), ["toroid", "--sides", "2.5"]),
     (lambda: tg.roll(t_end=-1), ["roll", "--t-end", "-1"]),
     (lambda: tg.roll(incline="fortydeg"), ["roll", "--incline", "fortydeg"]),
+    (lambda: tg.roll(dt=2e-3), ["roll", "--dt", "2e-3"]),
     (lambda: tg.michell(complexity=3, planar=True, beta=1, phi=1, r0=float("nan")),
      ["michell", "--complexity", "3", "--planar", "--beta", "1", "--phi", "1", "--r0", "nan"]),
     (lambda: tg.tipover(dynamic=True, incline=0.3),

@@ -274,9 +274,9 @@ def roll(
     t_end : float
         Simulated time (s); must be finite and positive. Default: 10.0
     dt : float, optional
-        Integration step (unset: 1e-4 s; for the full model under IMEX on a penalty or stick
-        ground 5e-4 s, shorter for strings stiffer than 2e4 N/m) (s); must be finite and
-        positive
+        Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full
+        model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer
+        than 2e4 N/m) (s); must be finite and positive
     fidelity : {'rigid', 'full', 'auto'}
         Model: rigid polygon, full tensegrity, or auto (the cheapest valid one). Default:
         'auto'
@@ -795,9 +795,9 @@ def tbar_roll(
     t_end : float, optional
         Simulated time (default 10 s rigid, 1 s full) (s); must be finite and positive
     dt : float, optional
-        Integration step (unset: 1e-4 s; for the full model under IMEX on a penalty or stick
-        ground 5e-4 s, shorter for strings stiffer than 2e4 N/m) (s); must be finite and
-        positive
+        Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full
+        model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer
+        than 2e4 N/m) (s); must be finite and positive
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     bar_density : float
