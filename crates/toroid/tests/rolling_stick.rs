@@ -131,7 +131,7 @@ fn imex_agrees_with_rk4_on_the_reference_wheel_and_closes_its_energy_budget() {
 /// Fast: a short full run with the stick law is valid and its energy budget closes (RK4 at
 /// its default step, IMEX at twice it).
 #[test]
-fn the_default_stick_contact_closes_its_energy_budget() {
+fn a_short_stick_contact_run_closes_its_energy_budget() {
     for (integrator, dt) in [(IntegratorKind::Rk4, 1e-4), (IntegratorKind::Imex, 2e-4)] {
         let mut req = pivot(
             FidelityChoice::Full,

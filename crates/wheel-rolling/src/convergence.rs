@@ -1,10 +1,10 @@
 //! Convergence of a rolling run ([`roll_checked`]): the run is repeated at a refined
 //! resolution ([`refined`]: half the step of either model, and for the full model's penalty
 //! contact twice the ground stiffness, its damping following from the restitution unless
-//! given), in a
-//! second thread beside the run itself, and each headline quantity of the two summaries is
-//! compared ([`of_summaries`], the rule of [`tensegrity_core::dynamics::convergence`]: converged
-//! when it moves by at most half its tolerance).
+//! given), in a second thread beside the run itself, and each headline quantity of the two
+//! summaries is compared ([`of_summaries`], the rule of
+//! [`tensegrity_core::dynamics::convergence`]: converged when it moves by at most half its
+//! tolerance).
 //!
 //! The headline quantities and their tolerances τ ([`crate::defaults`]): `first_impact.t` and
 //! `first_impact.omega_before` 1 %; `mean_speed`, `mean_axle_height` 2 %; `final_speed` 2 %;

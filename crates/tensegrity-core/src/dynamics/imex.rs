@@ -88,9 +88,9 @@
 //! an L-stable SDIRK) does not help: the error is the splitting's. For m v̇ = L − β v the
 //! step maps the creep error by 1 − 2|z| R(z), z = −β h/(2m), R the stability function of
 //! B: ROS2's R(z) → 0.828/|z| gives −0.657 in the stiff limit where the exact map gives 0, so
-//! the error flips sign every step. The stick ground, whose
-//! anchor spring sits in A, has no such creep. Measurements: docs/ROLLING.md, "Work–precision
-//! on the default (penalty) ground".
+//! the error flips sign every step. The stick ground, whose anchor spring sits in A, has no
+//! such creep. Measurements: docs/ROLLING.md, "Work–precision on the default (penalty)
+//! ground".
 //!
 //! The bar constraints are kept as for RK4: the driver projects every accepted state back
 //! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
