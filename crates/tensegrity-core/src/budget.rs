@@ -433,6 +433,8 @@ pub fn simulation(
         K::Sdirk => 12.0,
         // two right-hand sides and the contact response columns
         K::Imex => 3.0,
+        // four right-hand sides, four responses and the Newton solves of the stages
+        K::ImexArk => 6.0,
     };
     let flops = rhs_flops(
         model.bars.len(),

@@ -100,8 +100,8 @@ impl Request for SimulateCommand {
                 .optional(),
             Param::choice(
                 "integrator",
-                &["rk4", "rk45", "rattle", "sdirk", "imex"],
-                "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact",
+                &["rk4", "rk45", "rattle", "sdirk", "imex", "imex-ark"],
+                "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage)",
             )
             .optional(),
             Param::number(

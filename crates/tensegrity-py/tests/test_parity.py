@@ -79,6 +79,15 @@ def test_roll_rigid_and_full(cli_json):
                 cli_json("roll", "--fidelity", "full", "--t-end", "0.3"))
 
 
+def test_roll_full_under_imex_ark(cli_json):
+    py = tg.roll(fidelity="full", t_end=0.3, integrator="imex-ark", incline="30deg", mu=1.2)
+    assert_same(py, cli_json("roll", "--fidelity", "full", "--t-end", "0.3",
+                             "--integrator", "imex-ark", "--incline", "30deg", "--mu", "1.2"))
+    # its own default step (wheel_rolling::defaults::IMEX_ARK_ROLL_DT), not the split's
+    assert py["integrator"] == "imex-ark" and py["dt"] == 2.5e-4
+    assert py["valid"] and py["energy_balance_error"] < 2e-3
+
+
 def test_tipover_three_modes(cli_json):
     assert_same(tg.tipover(sides=16, sigma=0.5), cli_json("tipover", "--sides", "16", "--sigma", "0.5"))
     assert_same(tg.tipover(dynamic=True), cli_json("tipover", "--dynamic"))

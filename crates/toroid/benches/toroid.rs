@@ -76,6 +76,16 @@ fn bench_rolling(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("full-imex-5e-4", n), &scene, |b, s| {
             b.iter(|| black_box(imex.run_scene(s, 1.0).unwrap()))
         });
+        let ark = FullRolling {
+            integrator: IntegratorKind::ImexArk,
+            dt: 2.5e-4,
+            ..FullRolling::default()
+        };
+        group.bench_with_input(
+            BenchmarkId::new("full-imex-ark-2.5e-4", n),
+            &scene,
+            |b, s| b.iter(|| black_box(ark.run_scene(s, 1.0).unwrap())),
+        );
     }
     group.finish();
 }

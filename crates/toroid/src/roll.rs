@@ -88,7 +88,15 @@ impl Default for RollRequest {
 }
 
 /// The integrators by name.
-const INTEGRATORS: &[&str] = &["rk4", "rk45", "rattle", "sdirk", "imex", "rk4-flight"];
+const INTEGRATORS: &[&str] = &[
+    "rk4",
+    "rk45",
+    "rattle",
+    "sdirk",
+    "imex",
+    "imex-ark",
+    "rk4-flight",
+];
 
 impl Request for RollRequest {
     const NAME: &'static str = "roll";

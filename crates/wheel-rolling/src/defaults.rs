@@ -24,6 +24,13 @@ pub const ROLL_DT: f64 = 1e-4;
 /// it: 1.9·10⁻²).
 pub const IMEX_ROLL_DT: f64 = 5e-4;
 
+/// Step of the full model under IMEX-ARK ([`IntegratorKind::ImexArk`](tensegrity_core::dynamics::IntegratorKind::ImexArk))
+/// with a penalty ground and the default strings (s). On the reference pivot of
+/// docs/ROLLING.md (n = 8 on 30°, μ = 1.2) it follows the axle to 1.5·10⁻⁶ m before the
+/// impact, where the split IMEX at [`IMEX_ROLL_DT`] is 1.1·10⁻² m off; at 5·10⁻⁴ s its
+/// stage equations stall on the Stribeck weakening more often (432 of 6,514 stages).
+pub const IMEX_ARK_ROLL_DT: f64 = 2.5e-4;
+
 /// The shortest default step of the full model under IMEX (s): what [`full_dt`] gives for
 /// strings of 8·10⁶ N/m and stiffer. A bound on the cost, not on the accuracy: at 10⁷ N/m on
 /// 50° for 1 s this step closes the energy budget to 1.9·10⁻⁴.
@@ -37,7 +44,8 @@ pub const IMEX_MIN_DT: f64 = 2.5e-5;
 /// 5 ms). The floor was [`ROLL_DT`] until 2026-12-03; with strings and ground of 10⁶ N/m
 /// (μ = 1.2, e = 0, 3 s) 10⁻⁴ s missed the budget by 1.3·10⁻² (n = 8 on 40°) and
 /// 2.5·10⁻² (n = 10 on 20°), where the scaled 7.1·10⁻⁵ s closes it to 3.3·10⁻³ and
-/// 4.9·10⁻³ (n = 6 and 24 on 50°: 1.2·10⁻³, 3.5·10⁻³). [`ROLL_DT`] otherwise (the thesis
+/// 4.9·10⁻³ (n = 6 and 24 on 50°: 1.2·10⁻³, 3.5·10⁻³). IMEX-ARK on those grounds: the same
+/// rule from [`IMEX_ARK_ROLL_DT`]. [`ROLL_DT`] otherwise (the thesis
 /// contact stays in the explicit part).
 ///
 /// ```
@@ -49,6 +57,9 @@ pub const IMEX_MIN_DT: f64 = 2.5e-5;
 /// assert!((imex(ContactKind::Penalty, 2e6) - 5e-5).abs() < 1e-15);
 /// assert_eq!(imex(ContactKind::Penalty, 1e9), defaults::IMEX_MIN_DT);
 /// assert_eq!(imex(ContactKind::Thesis, 2e4), 1e-4);
+/// let ark = |k| defaults::full_dt(IntegratorKind::ImexArk, ContactKind::Penalty, k);
+/// assert_eq!(ark(2e4), defaults::IMEX_ARK_ROLL_DT);
+/// assert!((ark(8e4) - 1.25e-4).abs() < 1e-15);
 /// assert_eq!(defaults::full_dt(IntegratorKind::Rk4, ContactKind::Penalty, 2e4), 1e-4);
 /// ```
 pub fn full_dt(
@@ -63,6 +74,14 @@ pub fn full_dt(
                 ROLL_DT
             } else {
                 scaled.clamp(IMEX_MIN_DT, IMEX_ROLL_DT)
+            }
+        }
+        tensegrity_core::dynamics::IntegratorKind::ImexArk if contact.is_penalty() => {
+            let scaled = IMEX_ARK_ROLL_DT * (STRING_STIFFNESS / string_stiffness).sqrt();
+            if scaled.is_nan() {
+                ROLL_DT
+            } else {
+                scaled.clamp(IMEX_MIN_DT, IMEX_ARK_ROLL_DT)
             }
         }
         _ => ROLL_DT,

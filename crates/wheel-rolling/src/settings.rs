@@ -142,7 +142,7 @@ impl RollSettings {
             Param::number(
                 "dt",
                 "s",
-                "Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer than 2e4 N/m)",
+                "Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full model on a penalty or stick ground 5e-4 s under IMEX and 2.5e-4 s under IMEX-ARK, shorter for strings stiffer than 2e4 N/m)",
             )
             .positive()
             .optional(),

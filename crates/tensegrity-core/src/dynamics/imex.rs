@@ -163,7 +163,7 @@ impl Imex {
 }
 
 /// Whether the ground's forces are split off into B (penalty and stick grounds).
-fn splits(model: &Model) -> bool {
+pub(super) fn splits(model: &Model) -> bool {
     model.ground.as_ref().is_some_and(|g| {
         matches!(
             g.model,
@@ -177,7 +177,7 @@ fn splits(model: &Model) -> bool {
 /// non-conservative contact forces: the held force and the tangential part of the
 /// position-only force F_c(x, 0) (the stick law's anchor spring; zero for the penalty law),
 /// whose normal part k δ is the ground spring of the energy budget.
-fn rhs_smooth(
+pub(super) fn rhs_smooth(
     model: &Model,
     t: f64,
     y: &[f64],
@@ -232,7 +232,7 @@ fn rhs_smooth(
 
 /// The velocity-dependent part F_c(x, v) − F_c(x, 0) of a contact node's force: what B
 /// integrates (the rest is A's).
-fn velocity_dependent(
+pub(super) fn velocity_dependent(
     g: &Ground,
     x: &Vector3<f64>,
     v: &Vector3<f64>,
@@ -246,7 +246,7 @@ fn velocity_dependent(
 /// b̂, and two evaluations of a step share them: the contact substep that opens a step sits
 /// where the one that closed the previous step was (moved only by the driver's projection onto
 /// the bar constraints), and A's first stage where the opening substep was (B moves no node).
-fn factor_omega_unless_current(
+pub(super) fn factor_omega_unless_current(
     model: &Model,
     x: &[f64],
     ws: &mut Workspace,
@@ -294,38 +294,59 @@ fn constrain(model: &Model, ws: &mut Workspace, multipliers: &mut [f64], dv: &[f
     model.add_constraint_forces(multipliers, f);
 }
 
+/// `out` = P_C F: the accelerations of the forces `forces` (per class-1 node, nonzero on the
+/// contact nodes `touched` only) at positions `x` and zero velocities, with the joint forces
+/// that keep N P = D (Ω factored at x). `forces` comes back with those joint forces added.
+pub(super) fn respond(
+    model: &Model,
+    ws: &mut Workspace,
+    x: &[f64],
+    touched: &[usize],
+    forces: &mut Vec<Vector3<f64>>,
+    multipliers: &mut [f64],
+    out: &mut [f64],
+) {
+    out.fill(0.0);
+    let zero = [0.0; 3];
+    let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
+        let xk = &x[6 * k..6 * k + 6];
+        let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
+        t.accel(
+            &model.bars[k],
+            &f[2 * k],
+            &f[2 * k + 1],
+            &mut out[6 * k..6 * k + 6],
+        );
+    };
+    for &c in touched {
+        bar(c / 2, forces, out);
+    }
+    if ws.omega.is_none() {
+        return;
+    }
+    std::mem::swap(&mut ws.f, forces);
+    constrain(model, ws, multipliers, out);
+    std::mem::swap(&mut ws.f, forces);
+    for &c in touched {
+        bar(c / 2, forces, out);
+    }
+    for &k in &model.constrained_bars {
+        bar(k, forces, out);
+    }
+}
+
 impl Imex {
-    /// `out` = P_C F: the accelerations of the forces `self.forces` (on contact nodes only)
-    /// at positions `x`, zero velocities (Ω factored at x).
+    /// `self.resp` = P_C F for the forces `self.forces` ([`respond`]).
     fn respond(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
-        let out = &mut self.resp;
-        out.fill(0.0);
-        let zero = [0.0; 3];
-        let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
-            let xk = &x[6 * k..6 * k + 6];
-            let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
-            t.accel(
-                &model.bars[k],
-                &f[2 * k],
-                &f[2 * k + 1],
-                &mut out[6 * k..6 * k + 6],
-            );
-        };
-        for &c in touched {
-            bar(c / 2, &self.forces, out);
-        }
-        if ws.omega.is_none() {
-            return;
-        }
-        std::mem::swap(&mut ws.f, &mut self.forces);
-        constrain(model, ws, &mut self.multipliers, out);
-        std::mem::swap(&mut ws.f, &mut self.forces);
-        for &c in touched {
-            bar(c / 2, &self.forces, out);
-        }
-        for &k in &model.constrained_bars {
-            bar(k, &self.forces, out);
-        }
+        respond(
+            model,
+            ws,
+            x,
+            touched,
+            &mut self.forces,
+            &mut self.multipliers,
+            &mut self.resp,
+        );
     }
 
     /// The contact forces F_c at positions `x` and velocities `v` of the active nodes into

@@ -18,6 +18,7 @@
 //! driver and the [`Workspace`]; see [`IntegratorStats`]. The implicit, L-stable [`Sdirk`]
 //! fits the same trait: its Newton failures become rejected steps with a smaller proposal.
 
+use super::ark::ImexArk;
 use super::flight::Flight;
 use super::imex::Imex;
 use super::model::{Model, Workspace};
@@ -46,6 +47,12 @@ pub enum IntegratorKind {
     /// Fixed-step IMEX splitting: RK4 for the smooth forces, a linearly implicit ROS2 step
     /// for the penalty ground contact ([`Imex`]): stiff contact at the step of the motion.
     Imex,
+    /// Fixed-step additive Runge–Kutta ARK3(2)4L\[2\]SA: the smooth forces explicit, the
+    /// ground's damping and friction implicit at every stage ([`ImexArk`]): order 3 where the
+    /// contact creeps or sticks, at the cost of a Newton solve on the contact velocities per
+    /// stage.
+    #[serde(rename = "imex-ark")]
+    ImexArk,
     /// RK4 at `dt` while a ground contact node touches or approaches the ground, and at
     /// [`FLIGHT_RATIO`](super::flight::FLIGHT_RATIO)·dt in flight ([`Flight`]).
     #[serde(rename = "rk4-flight")]
@@ -77,6 +84,7 @@ impl IntegratorKind {
             Self::Rattle => Box::new(Rattle::new(model)?),
             Self::Sdirk => Box::new(Sdirk::new(model, rtol, atol)?),
             Self::Imex => Box::new(Imex::new(model)),
+            Self::ImexArk => Box::new(ImexArk::new(model)),
             Self::Rk4Flight => Box::new(Flight::new(model, Box::new(Rk4::new(n)), self)),
         })
     }
@@ -90,6 +98,7 @@ impl fmt::Display for IntegratorKind {
             IntegratorKind::Rattle => "rattle",
             IntegratorKind::Sdirk => "sdirk",
             IntegratorKind::Imex => "imex",
+            IntegratorKind::ImexArk => "imex-ark",
             IntegratorKind::Rk4Flight => "rk4-flight",
         })
     }
@@ -97,7 +106,8 @@ impl fmt::Display for IntegratorKind {
 
 impl FromStr for IntegratorKind {
     type Err = String;
-    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk`, `imex` or `rk4-flight`
+    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk`, `imex`, `imex-ark` (or `ark`) or
+    /// `rk4-flight`
     /// (case-insensitive).
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
@@ -106,9 +116,10 @@ impl FromStr for IntegratorKind {
             "rattle" => Ok(Self::Rattle),
             "sdirk" => Ok(Self::Sdirk),
             "imex" => Ok(Self::Imex),
+            "imex-ark" | "ark" => Ok(Self::ImexArk),
             "rk4-flight" | "rk4flight" => Ok(Self::Rk4Flight),
             other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk, imex or rk4-flight)"
+                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk, imex, imex-ark or rk4-flight)"
             )),
         }
     }
@@ -206,6 +217,13 @@ pub trait Integrator: fmt::Debug {
     /// (`dt` itself, except for methods that take multiples of it, e.g. [`Flight`]).
     fn max_step(&self, dt: f64) -> f64 {
         dt
+    }
+
+    /// Implicit stage equations solved so far and how many of them ended above their
+    /// acceptance residual ([`ImexArk`]; (0, 0) for methods without such solves or whose
+    /// failed solves become rejected steps).
+    fn implicit_solves(&self) -> (u64, u64) {
+        (0, 0)
     }
 }
 

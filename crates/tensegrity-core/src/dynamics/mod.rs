@@ -51,6 +51,7 @@
 //! assert!(r.energy_drift < 1e-7);
 //! ```
 
+pub mod ark;
 pub mod convergence;
 pub mod drift;
 pub mod events;
@@ -73,6 +74,7 @@ pub mod strings;
 #[cfg(any(test, feature = "test-models"))]
 pub mod work_precision;
 
+pub use ark::ImexArk;
 pub use convergence::{Convergence, QuantityConvergence};
 pub use drift::{DriftLimits, DriftQuantity, DriftWarning};
 pub use events::{Event, EventFn, EventHit, StateView};

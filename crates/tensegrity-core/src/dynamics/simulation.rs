@@ -222,7 +222,7 @@ impl Simulation {
             return Err(diverged(e, driver.t, s));
         }
         let wall_time_s = (start.elapsed().as_secs_f64() - driver.diag_time).max(0.0);
-        Ok(driver.finish(wall_time_s))
+        Ok(driver.finish(wall_time_s, integrator.implicit_solves()))
     }
 
     /// Checks the numerical settings of the chosen integrator (also done by
@@ -235,6 +235,7 @@ impl Simulation {
             IntegratorKind::Rk4
             | IntegratorKind::Rattle
             | IntegratorKind::Imex
+            | IntegratorKind::ImexArk
             | IntegratorKind::Rk4Flight => positive("dt", s.dt)?,
             IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
                 positive("rtol", s.rtol)?;
@@ -581,7 +582,7 @@ impl<'a> Driver<'a> {
     }
 
     /// The result of the run.
-    fn finish(mut self, wall_time_s: f64) -> SimulationResult {
+    fn finish(mut self, wall_time_s: f64, implicit_solves: (u64, u64)) -> SimulationResult {
         let model = &self.sim.model;
         self.stats.rhs_evals = self.ws.rhs_evals;
         let warnings = drift::check(
@@ -591,6 +592,7 @@ impl<'a> Driver<'a> {
             [self.monitor.energy_drift(), self.monitor.energy_gain()],
             self.monitor.bar_length_drift,
             self.monitor.constraint_drift,
+            implicit_solves,
         );
         SimulationResult {
             warnings,

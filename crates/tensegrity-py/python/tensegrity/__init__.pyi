@@ -75,7 +75,7 @@ def simulate(
     scene: Scene,
     *,
     t_end: Optional[float] = ...,
-    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex']] = ...,
+    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark']] = ...,
     dt: Optional[float] = ...,
     rtol: Optional[float] = ...,
     atol: Optional[float] = ...,
@@ -98,10 +98,11 @@ def simulate(
         or the scene's TOML text. Required
     t_end : float, optional
         End time; overrides `[simulation] t_end` (s); must be finite and positive
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex'}, optional
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark'}, optional
         Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4,
         adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff
-        strings and contact
+        strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK
+        (penalty contact implicit in every stage)
     dt : float, optional
         Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)
         (s); must be finite and positive
@@ -232,7 +233,7 @@ def roll(
     restitution: float = ...,
     string_stiffness: float = ...,
     min_tension: float = ...,
-    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'rk4-flight'] = ...,
+    integrator: Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight'] = ...,
     gravity: float = ...,
     strict: bool = ...,
     convergence_check: bool = ...,
@@ -275,8 +276,8 @@ def roll(
         Simulated time (s); must be finite and positive. Default: 10.0
     dt : float, optional
         Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full
-        model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer
-        than 2e4 N/m) (s); must be finite and positive
+        model on a penalty or stick ground 5e-4 s under IMEX and 2.5e-4 s under IMEX-ARK,
+        shorter for strings stiffer than 2e4 N/m) (s); must be finite and positive
     fidelity : {'rigid', 'full', 'auto'}
         Model: rigid polygon, full tensegrity, or auto (the cheapest valid one). Default:
         'auto'
@@ -300,7 +301,7 @@ def roll(
     min_tension : float
         Smallest string tension of the full model's prestress (N); must be finite and
         positive. Default: 20.0
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'rk4-flight'}
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight'}
         Integrator of the full model. Default: 'imex'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
@@ -796,8 +797,8 @@ def tbar_roll(
         Simulated time (default 10 s rigid, 1 s full) (s); must be finite and positive
     dt : float, optional
         Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full
-        model under IMEX on a penalty or stick ground 5e-4 s, shorter for strings stiffer
-        than 2e4 N/m) (s); must be finite and positive
+        model on a penalty or stick ground 5e-4 s under IMEX and 2.5e-4 s under IMEX-ARK,
+        shorter for strings stiffer than 2e4 N/m) (s); must be finite and positive
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     bar_density : float
