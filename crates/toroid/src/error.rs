@@ -28,6 +28,17 @@ pub enum ToroidError {
         /// The LP margin found.
         margin: f64,
     },
+    /// The dynamic tip-over run (fixed-step RK4, no integrator to choose) ran away: a step too
+    /// large for the stiffness of its strings and ground.
+    #[error("the RK4 run diverged at t = {t:?} s ({what}): its step ({dt:?} s) is too large for the stiffness of the strings or the ground; use a smaller `dt`")]
+    TipoverDiverged {
+        /// Time of the last accepted state, or of the detection (s).
+        t: f64,
+        /// The step (s).
+        dt: f64,
+        /// What ran away.
+        what: String,
+    },
     /// An error of the rolling models that is neither a parameter nor a core error (e.g. no
     /// sample recorded).
     #[error(transparent)]
@@ -55,7 +66,7 @@ impl Categorized for ToroidError {
     fn category(&self) -> Category {
         match self {
             Self::InvalidParameter(_) | Self::UnknownStabilizeOption { .. } => Category::Input,
-            Self::NotPrestressable { .. } => Category::Numerical,
+            Self::NotPrestressable { .. } | Self::TipoverDiverged { .. } => Category::Numerical,
             Self::Rolling(e) => e.category(),
             Self::Core(e) => e.category(),
         }

@@ -42,13 +42,14 @@
 
 use crate::analysis::{analyse, prestress_design, prestressed_structure};
 use crate::builder::Toroid;
-use crate::error::Result;
+use crate::error::{Result, ToroidError};
 use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::dynamics::{
     Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
+use tensegrity_core::CoreError;
 
 /// Settings of a dynamic tip-over run (flat serde form, flattened into
 /// [`crate::request::TipoverDynamicRequest`]).
@@ -227,7 +228,7 @@ impl DynamicTipover {
                 f[i] = Vector3::new(force / share.len() as f64, 0.0, 0.0);
             }
         }));
-        let result = sim.run()?;
+        let result = sim.run().map_err(|e| diverged(e, self.dt))?;
         if let Some(watch) = watch {
             for s in &result.samples {
                 if let Some(nodes) = &s.nodes {
@@ -549,4 +550,37 @@ pub(crate) fn refined_failed(why: impl std::fmt::Display) -> Convergence {
 pub(crate) fn judge(convergence: Convergence, warnings: &mut Vec<String>) -> Option<Convergence> {
     warnings.extend(convergence.warnings());
     Some(convergence)
+}
+
+/// A run-away state of the RK4 run as [`ToroidError::TipoverDiverged`], whose remedy is the
+/// one this run has (a smaller `dt`; the core's message also names integrators the request
+/// does not take). Any other error is the core's.
+fn diverged(e: CoreError, dt: f64) -> ToroidError {
+    use tensegrity_core::{error::StepHint, DynamicsError as D};
+    let (t, what) = match e {
+        CoreError::Dynamics(D::Diverged { t, what }) => (t, what.to_string()),
+        CoreError::Dynamics(D::BlowUp {
+            t,
+            member,
+            distance,
+            limit,
+            ..
+        }) => {
+            let hint = StepHint::Unknown;
+            let e = D::BlowUp {
+                t,
+                member,
+                distance,
+                limit,
+                hint,
+            };
+            (t, e.to_string())
+        }
+        CoreError::Dynamics(D::NonFiniteState { t, member, .. }) => {
+            let hint = StepHint::Unknown;
+            (t, D::NonFiniteState { t, member, hint }.to_string())
+        }
+        other => return other.into(),
+    };
+    ToroidError::TipoverDiverged { t, dt, what }
 }

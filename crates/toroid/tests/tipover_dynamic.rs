@@ -99,3 +99,25 @@ fn bad_settings_name_the_parameter() {
     .unwrap_err();
     assert!(err.to_string().contains("ramp_time"), "{err}");
 }
+
+/// A step too large for the stiff standing wheel (2·10⁻³ s; it diverges within 5 ms) is an
+/// error that names this run's only remedy, a smaller `dt`, and not the integrators the
+/// request does not take; its time is where the run stopped.
+#[test]
+fn a_diverged_run_names_the_step_it_ran_at_and_no_integrator() {
+    let wheel = WheelSpec::default().build().unwrap();
+    let e = DynamicTipover {
+        dt: 2e-3,
+        ..Default::default()
+    }
+    .run(&wheel)
+    .unwrap_err();
+    let toroid::ToroidError::TipoverDiverged { t, dt, .. } = &e else {
+        panic!("{e}");
+    };
+    assert_eq!(*dt, 2e-3);
+    assert!(*t > 0.0 && *t < 0.01, "{t}");
+    let text = e.to_string();
+    assert!(text.contains("use a smaller `dt`"), "{text}");
+    assert!(!text.contains("integrator"), "{text}");
+}

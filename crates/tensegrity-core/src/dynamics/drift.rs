@@ -118,11 +118,13 @@ impl fmt::Display for DriftWarning {
             _ => "use a smaller `dt`, `integrator = rattle` (keeps lengths and joints exactly), or projection ([simulation] project = true)",
         };
         if self.quantity == DriftQuantity::ImplicitSolve {
+            // 100 × 0.1 is 10.000000000000002: print the limit to 3 decimals, trimmed
+            let limit = format!("{:.3}", 100.0 * self.limit);
+            let limit = limit.trim_end_matches('0').trim_end_matches('.');
             return write!(
                 f,
-                "{what}: {:.1} % of them, above the limit {} %; the trajectory is not trustworthy: {remedy}",
+                "{what}: {:.1} % of them, above the limit {limit} %; the trajectory is not trustworthy: {remedy}",
                 100.0 * self.value,
-                100.0 * self.limit
             );
         }
         write!(

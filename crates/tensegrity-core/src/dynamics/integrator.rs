@@ -48,9 +48,9 @@ pub enum IntegratorKind {
     /// for the penalty ground contact ([`Imex`]): stiff contact at the step of the motion.
     Imex,
     /// Fixed-step additive Runge–Kutta ARK3(2)4L\[2\]SA: the smooth forces explicit, the
-    /// ground's damping and friction implicit at every stage ([`ImexArk`]): order 3 where the
-    /// contact creeps or sticks, at the cost of a Newton solve on the contact velocities per
-    /// stage.
+    /// ground's damping and friction implicit at every stage ([`ImexArk`]): it follows a
+    /// contact that creeps under the regularised friction at steps of the motion, at the cost
+    /// of a Newton solve on the contact velocities per stage.
     #[serde(rename = "imex-ark")]
     ImexArk,
     /// RK4 at `dt` while a ground contact node touches or approaches the ground, and at
