@@ -368,4 +368,10 @@ fn imex_ark_is_named_imex_ark() {
     assert!(!IntegratorKind::ImexArk.is_adaptive());
     let json = serde_json::to_string(&IntegratorKind::ImexArk).unwrap();
     assert_eq!(json, "\"imex-ark\"");
+    // the front ends' choices are the names that parse and print back
+    for name in IntegratorKind::NAMES {
+        let kind: IntegratorKind = name.parse().unwrap();
+        assert_eq!(kind.to_string(), *name);
+        assert_eq!(serde_json::to_string(&kind).unwrap(), format!("\"{name}\""));
+    }
 }

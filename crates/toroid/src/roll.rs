@@ -87,17 +87,6 @@ impl Default for RollRequest {
     }
 }
 
-/// The integrators by name.
-const INTEGRATORS: &[&str] = &[
-    "rk4",
-    "rk45",
-    "rattle",
-    "sdirk",
-    "imex",
-    "imex-ark",
-    "rk4-flight",
-];
-
 impl Request for RollRequest {
     const NAME: &'static str = "roll";
 
@@ -132,7 +121,7 @@ impl Request for RollRequest {
             .positive(),
             Param::new(
                 "integrator",
-                Kind::Choice(INTEGRATORS),
+                Kind::Choice(IntegratorKind::NAMES),
                 "",
                 "Integrator of the full model",
             ),

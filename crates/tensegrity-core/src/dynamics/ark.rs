@@ -66,7 +66,7 @@
 //! the step is classic RK4 ([`Rk4`]).
 
 use super::forces::Ground;
-use super::imex::{factor_omega_unless_current, respond, rhs_smooth, splits};
+use super::imex::{factor_omega_unless_current, rhs_smooth, splits, Response};
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
 use super::model::{vec3, Model, Workspace};
 use super::rk4::Rk4;
@@ -131,11 +131,10 @@ pub struct ImexArk {
     ki: [Vec<f64>; 4],
     y0: Vec<f64>,
     tmp: Vec<f64>,
-    forces: Vec<Vector3<f64>>,
-    multipliers: Vec<f64>,
+    /// P_C of the contact forces (`response.forces`) into `response.out`.
+    response: Response,
     /// Joint multipliers of the smooth right-hand sides.
     smooth_multipliers: Vec<f64>,
-    resp: Vec<f64>,
     /// Loaded contact nodes of the stage: (contact index, class-1 node).
     active: Vec<(usize, usize)>,
     /// F_c(x, 0) of the active nodes at the stage's positions.
@@ -169,10 +168,8 @@ impl ImexArk {
             ki: std::array::from_fn(|_| vec![0.0; n3]),
             y0: vec![0.0; n],
             tmp: vec![0.0; n],
-            forces: vec![Vector3::zeros(); model.n1],
-            multipliers: vec![0.0; model.linear_rows.len()],
+            response: Response::new(model),
             smooth_multipliers: vec![0.0; model.linear_rows.len()],
-            resp: vec![0.0; n3],
             active: Vec::new(),
             rest: Vec::new(),
             last: vec![None; model.contact.len()],
@@ -187,19 +184,6 @@ impl ImexArk {
         }
     }
 
-    /// `self.resp` = P_C F for `self.forces` at `x`.
-    fn respond(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
-        respond(
-            model,
-            ws,
-            x,
-            touched,
-            &mut self.forces,
-            &mut self.multipliers,
-            &mut self.resp,
-        );
-    }
-
     /// Recomputes P̃_CC at `x` for the nodes `touched` unless it is current.
     fn refresh(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
         if touched == self.cached.as_slice() && self.age < super::imex::REFRESH {
@@ -209,12 +193,12 @@ impl ImexArk {
         let m3 = 3 * touched.len();
         let mut pcc = DMatrix::zeros(m3, m3);
         for j in 0..m3 {
-            self.forces.fill(Vector3::zeros());
-            self.forces[touched[j / 3]][j % 3] = 1.0;
-            self.respond(model, ws, x, touched);
+            self.response.forces.fill(Vector3::zeros());
+            self.response.forces[touched[j / 3]][j % 3] = 1.0;
+            self.response.respond(model, ws, x, touched);
             for (r, &c) in touched.iter().enumerate() {
                 for e in 0..3 {
-                    pcc[(3 * r + e, j)] = self.resp[3 * c + e];
+                    pcc[(3 * r + e, j)] = self.response.out[3 * c + e];
                 }
             }
         }
@@ -416,16 +400,16 @@ impl ImexArk {
                         u
                     };
                     let f = self.reduced(g, ws, &x, &u);
-                    self.forces.fill(Vector3::zeros());
+                    self.response.forces.fill(Vector3::zeros());
                     let hb = h * AI[3][i];
                     for (q, &(k, c)) in self.active.iter().enumerate() {
                         let fq: Vector3<f64> = f.fixed_rows::<3>(3 * q).into();
-                        self.forces[c] = fq;
+                        self.response.forces[c] = fq;
                         self.last[k] = Some(u.fixed_rows::<3>(3 * q).into());
                         self.impulse[k] += fq * hb;
                     }
-                    self.respond(model, ws, &x, &touched);
-                    self.ki[i].copy_from_slice(&self.resp);
+                    self.response.respond(model, ws, &x, &touched);
+                    self.ki[i].copy_from_slice(&self.response.out);
                     let a = h * AI[i][i];
                     for (o, k) in self.tmp[n3..].iter_mut().zip(&self.ki[i]) {
                         *o += a * k;

@@ -123,15 +123,16 @@ pub struct Imex {
     age: u32,
     /// Response columns P̃_C (3m of length 3 n₁).
     cols: Vec<Vec<f64>>,
-    forces: Vec<Vector3<f64>>,
+    /// P_C of the contact forces (`response.forces`) into `response.out`.
+    response: Response,
     /// Per contact node: the velocity-dependent contact force at the step's start, held in A
     /// and taken out of B (module docs).
     frozen: Vec<Vector3<f64>>,
     /// Per contact node: whether it touched the ground at the previous step's start (a node
     /// that has just landed holds no force: module docs, "The held force at a landing").
     touched_before: Vec<bool>,
+    /// Joint multipliers of A's right-hand sides.
     multipliers: Vec<f64>,
-    resp: Vec<f64>,
     stage: Vec<f64>,
     /// Contact substeps taken and response-column refreshes (work counters).
     pub contact_substeps: u64,
@@ -150,11 +151,10 @@ impl Imex {
             cached: Vec::new(),
             age: 0,
             cols: Vec::new(),
-            forces: vec![Vector3::zeros(); model.n1],
+            response: Response::new(model),
             frozen: Vec::new(),
             touched_before: vec![false; model.contact.len()],
             multipliers: vec![0.0; model.linear_rows.len()],
-            resp: vec![0.0; 3 * model.n1],
             stage: Vec::new(),
             contact_substeps: 0,
             refreshes: 0,
@@ -294,71 +294,83 @@ fn constrain(model: &Model, ws: &mut Workspace, multipliers: &mut [f64], dv: &[f
     model.add_constraint_forces(multipliers, f);
 }
 
-/// `out` = P_C F: the accelerations of the forces `forces` (per class-1 node, nonzero on the
-/// contact nodes `touched` only) at positions `x` and zero velocities, with the joint forces
-/// that keep N P = D (Ω factored at x). `forces` comes back with those joint forces added.
-pub(super) fn respond(
-    model: &Model,
-    ws: &mut Workspace,
-    x: &[f64],
-    touched: &[usize],
-    forces: &mut Vec<Vector3<f64>>,
-    multipliers: &mut [f64],
-    out: &mut [f64],
-) {
-    out.fill(0.0);
-    let zero = [0.0; 3];
-    let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
-        let xk = &x[6 * k..6 * k + 6];
-        let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
-        t.accel(
-            &model.bars[k],
-            &f[2 * k],
-            &f[2 * k + 1],
-            &mut out[6 * k..6 * k + 6],
-        );
-    };
-    for &c in touched {
-        bar(c / 2, forces, out);
+/// The constrained response P_C F of forces on contact nodes (module docs), with its
+/// buffers; shared by [`Imex`] and [`ImexArk`](super::ImexArk).
+#[derive(Debug)]
+pub(super) struct Response {
+    /// The forces per class-1 node, nonzero on the contact nodes only; [`Response::respond`]
+    /// leaves the joint forces that keep N P = D added to them.
+    pub(super) forces: Vec<Vector3<f64>>,
+    multipliers: Vec<f64>,
+    /// The accelerations P_C F of every class-1 node (3 n₁).
+    pub(super) out: Vec<f64>,
+}
+
+impl Response {
+    /// Buffers for `model`.
+    pub(super) fn new(model: &Model) -> Self {
+        Self {
+            forces: vec![Vector3::zeros(); model.n1],
+            multipliers: vec![0.0; model.linear_rows.len()],
+            out: vec![0.0; 3 * model.n1],
+        }
     }
-    if ws.omega.is_none() {
-        return;
-    }
-    std::mem::swap(&mut ws.f, forces);
-    constrain(model, ws, multipliers, out);
-    std::mem::swap(&mut ws.f, forces);
-    for &c in touched {
-        bar(c / 2, forces, out);
-    }
-    for &k in &model.constrained_bars {
-        bar(k, forces, out);
+
+    /// `self.out` = P_C F: the accelerations of `self.response.forces` (on the contact nodes
+    /// `touched`) at positions `x` and zero velocities (Ω factored at x).
+    pub(super) fn respond(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace,
+        x: &[f64],
+        touched: &[usize],
+    ) {
+        let Self {
+            forces,
+            multipliers,
+            out,
+        } = self;
+        out.fill(0.0);
+        let zero = [0.0; 3];
+        let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
+            let xk = &x[6 * k..6 * k + 6];
+            let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
+            t.accel(
+                &model.bars[k],
+                &f[2 * k],
+                &f[2 * k + 1],
+                &mut out[6 * k..6 * k + 6],
+            );
+        };
+        for &c in touched {
+            bar(c / 2, forces, out);
+        }
+        if ws.omega.is_none() {
+            return;
+        }
+        std::mem::swap(&mut ws.f, forces);
+        constrain(model, ws, multipliers, out);
+        std::mem::swap(&mut ws.f, forces);
+        for &c in touched {
+            bar(c / 2, forces, out);
+        }
+        for &k in &model.constrained_bars {
+            bar(k, forces, out);
+        }
     }
 }
 
 impl Imex {
-    /// `self.resp` = P_C F for the forces `self.forces` ([`respond`]).
-    fn respond(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
-        respond(
-            model,
-            ws,
-            x,
-            touched,
-            &mut self.forces,
-            &mut self.multipliers,
-            &mut self.resp,
-        );
-    }
-
     /// The contact forces F_c at positions `x` and velocities `v` of the active nodes into
-    /// `self.forces` (zero elsewhere).
+    /// `self.response.forces` (zero elsewhere).
     fn contact_forces(&mut self, model: &Model, ws: &Workspace, x: &[f64], v: &[f64]) {
-        self.forces.fill(Vector3::zeros());
+        self.response.forces.fill(Vector3::zeros());
         let Some(g) = &model.ground else {
             return;
         };
         for &(k, c, _) in &self.active {
             let anchor = ws.anchors[k].as_ref();
-            self.forces[c] =
+            self.response.forces[c] =
                 velocity_dependent(g, &vec3(x, c), &vec3(v, c), anchor) - self.frozen[k];
         }
     }
@@ -389,11 +401,11 @@ impl Imex {
         }
     }
 
-    /// The power of `self.forces` at the active nodes' velocities `v`, split into its
+    /// The power of `self.response.forces` at the active nodes' velocities `v`, split into its
     /// normal and tangential parts.
     fn split_power(&self, normal: &Vector3<f64>, v: &[f64]) -> (f64, f64) {
         self.active.iter().fold((0.0, 0.0), |(pn, pt), &(_, c, _)| {
-            let (f, vc) = (self.forces[c], vec3(v, c));
+            let (f, vc) = (self.response.forces[c], vec3(v, c));
             let fn_ = f.dot(normal);
             let along = fn_ * vc.dot(normal);
             (pn + along, pt + f.dot(&vc) - along)
@@ -440,11 +452,11 @@ impl Imex {
         if touched != self.cached || self.age >= REFRESH {
             self.cols.resize_with(m3, Vec::new);
             for j in 0..m3 {
-                self.forces.fill(Vector3::zeros());
-                self.forces[touched[j / 3]][j % 3] = 1.0;
-                self.respond(model, ws, &x, &touched);
+                self.response.forces.fill(Vector3::zeros());
+                self.response.forces[touched[j / 3]][j % 3] = 1.0;
+                self.response.respond(model, ws, &x, &touched);
                 self.cols[j].clear();
-                self.cols[j].extend_from_slice(&self.resp);
+                self.cols[j].extend_from_slice(&self.response.out);
             }
             self.cached.clone_from(&touched);
             self.age = 0;
@@ -463,7 +475,7 @@ impl Imex {
         let v0 = y[n3..].to_vec();
         self.contact_forces(model, ws, &x, &v0);
         let (n1, t1) = self.split_power(&g.normal, &v0);
-        self.respond(model, ws, &x, &touched);
+        self.response.respond(model, ws, &x, &touched);
         let k1 = self.solve_stage(&lu, &kv, gt, &touched)?;
         // stage 2 at v₀ + τ k₁: r = P_C F(v₀ + τ k₁) − 2 k₁
         self.stage.clear();
@@ -473,8 +485,8 @@ impl Imex {
         self.contact_forces(model, ws, &x, &stage);
         let (n2, t2) = self.split_power(&g.normal, &stage);
         self.stage = stage;
-        self.respond(model, ws, &x, &touched);
-        for (r, a) in self.resp.iter_mut().zip(&k1) {
+        self.response.respond(model, ws, &x, &touched);
+        for (r, a) in self.response.out.iter_mut().zip(&k1) {
             *r -= 2.0 * a;
         }
         let k2 = self.solve_stage(&lu, &kv, gt, &touched)?;
@@ -487,7 +499,7 @@ impl Imex {
         Ok((work * normal_share, work * (1.0 - normal_share)))
     }
 
-    /// k = W⁻¹ r for r in `self.resp` (module docs).
+    /// k = W⁻¹ r for r in `self.response.out` (module docs).
     fn solve_stage(
         &self,
         lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
@@ -496,13 +508,13 @@ impl Imex {
         touched: &[usize],
     ) -> Result<Vec<f64>, CoreError> {
         let m3 = 3 * touched.len();
-        let r_c = DVector::from_fn(m3, |i, _| self.resp[3 * touched[i / 3] + i % 3]);
+        let r_c = DVector::from_fn(m3, |i, _| self.response.out[3 * touched[i / 3] + i % 3]);
         let k_c = lu.solve(&r_c).ok_or(DynamicsError::Diverged {
             t: f64::NAN,
             what: "the implicit contact system is singular",
         })?;
         let z = kv * k_c * gt;
-        let mut k = self.resp.clone();
+        let mut k = self.response.out.clone();
         for (j, col) in self.cols.iter().enumerate().take(m3) {
             let s = z[j];
             if s != 0.0 {

@@ -60,6 +60,18 @@ pub enum IntegratorKind {
 }
 
 impl IntegratorKind {
+    /// The name of every kind, as [`fmt::Display`] writes it and [`FromStr`] reads it (the
+    /// choices of a front end's `integrator` parameter).
+    pub const NAMES: &'static [&'static str] = &[
+        "rk4",
+        "rk45",
+        "rattle",
+        "sdirk",
+        "imex",
+        "imex-ark",
+        "rk4-flight",
+    ];
+
     /// Every integrator, in a fixed order (for studies and tests).
     pub const ALL: [IntegratorKind; 4] = [Self::Rk4, Self::Rk45, Self::Rattle, Self::Sdirk];
 
