@@ -3,16 +3,24 @@
 
 The workspace members come from `cargo metadata`, so a new crate is checked without editing
 this file. Members are either front crates (the binary, io, engine, sweeps, Python, figures:
-they may know file formats) or model crates (everything else: the core, wheel-rolling and the
-topology crates), for which:
+they may know file formats) or model crates (everything else: the layers — linalg, core,
+statics, dynamics —, wheel-rolling and the topology crates), for which:
 - no normal dependency, direct or transitive, on toml, csv or plotters;
-- workspace dependencies only on tensegrity-core and wheel-rolling (tbar-wheel may also use
+- workspace dependencies only on the layers and wheel-rolling (tbar-wheel may also use
   michell3d's node parameterisation): topology crates never depend on each other;
+The layers (every dependency kind, direct or transitive, as `cargo metadata` resolves it):
+- faer is a dependency of tensegrity-linalg alone, which depends on no workspace crate;
+- tensegrity-core depends on no workspace crate but tensegrity-linalg (its error type);
+- tensegrity-statics and tensegrity-dynamics never on each other; wheel-rolling never on
+  tensegrity-statics; michell3d and formfind never on tensegrity-dynamics;
+Every crate (each library's src/ and the binary's src/): no circle of imports between its files
+(circles.py: a file imports another when a `use` or a `crate::`/`super::`/`self::` path names
+an item defined there, re-exports followed).
 Every library crate (all of crates/): no command-line flag (`--name`) in a string of its
-production code: libraries name their own parameters. Everywhere: faer is named only under crates/tensegrity-core/src/linalg/. The CLI (src/): no
-hand-written SVG, no function over 60 lines, no file over 300 lines, and at most 10 % of the
-workspace's production lines (non-blank lines not starting with //, outside tests/, benches/,
-examples/ and #[cfg(test)] modules).
+production code: libraries name their own parameters. Everywhere: faer is named only under
+crates/tensegrity-linalg/. The CLI (src/): no hand-written SVG, no function over 60 lines, no
+file over 300 lines, and at most 8 % of the workspace's production lines (non-blank lines not
+starting with //, outside tests/, benches/, examples/ and #[cfg(test)] modules).
 """
 import json
 import os
@@ -22,10 +30,23 @@ import sys
 
 FRONT = {"tensegrity", "tensegrity-io", "tensegrity-engine", "sweeps", "tensegrity-py",
          "tensegrity-figures"}
-MODEL_MAY_USE = {"tensegrity-core", "wheel-rolling"}
+LAYERS = {"tensegrity-linalg", "tensegrity-core", "tensegrity-statics", "tensegrity-dynamics"}
+MODEL_MAY_USE = LAYERS | {"wheel-rolling"}
+# (crate, workspace crate it must not reach by any path of dependencies)
+FORBIDDEN = [
+    ("tensegrity-linalg", "tensegrity-core"),
+    ("tensegrity-core", "tensegrity-statics"),
+    ("tensegrity-core", "tensegrity-dynamics"),
+    ("tensegrity-statics", "tensegrity-dynamics"),
+    ("tensegrity-dynamics", "tensegrity-statics"),
+    ("wheel-rolling", "tensegrity-statics"),
+    ("michell3d", "tensegrity-dynamics"),
+    ("formfind", "tensegrity-dynamics"),
+]
+FAER_ONLY_IN = "tensegrity-linalg"
 EXCEPTIONS = {("tbar-wheel", "michell3d")}
 FORMATS = {"toml", "csv", "plotters", "usvg", "resvg", "svg2pdf"}
-CLI_SHARE = 0.10
+CLI_SHARE = 0.08
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.chdir(root)
@@ -78,13 +99,52 @@ meta = json.loads(subprocess.run(
 members = {p["name"]: p for p in meta["packages"]}
 model = sorted(n for n in members if n not in FRONT)
 
-# faer only under the core's linalg/
+# faer only in tensegrity-linalg: named in no other file, a dependency of no other member
 for top in ["crates", "src", "benches", "tests"]:
     for f in rust_files(top):
-        if f.startswith("crates/tensegrity-core/src/linalg/"):
+        if f.startswith("crates/tensegrity-linalg/"):
             continue
         if re.search(r"\bfaer\b", open(f, encoding="utf-8").read()):
-            fail(f"faer is named outside crates/tensegrity-core/src/linalg/: {f}")
+            fail(f"faer is named outside crates/tensegrity-linalg/: {f}")
+for name, pkg in sorted(members.items()):
+    if name != FAER_ONLY_IN and any(d["name"] == "faer" for d in pkg["dependencies"]):
+        fail(f"{name} depends on faer directly (only {FAER_ONLY_IN} may)")
+
+# the layer graph: every dependency kind, followed transitively through workspace members
+def reaches(start):
+    seen, todo = set(), [start]
+    while todo:
+        for dep in members[todo.pop()]["dependencies"]:
+            d = dep["name"]
+            if d in members and d not in seen and d != start:
+                seen.add(d)
+                todo.append(d)
+    return seen
+
+
+checked = []
+for name, banned in FORBIDDEN:
+    if name not in members:
+        fail(f"the layer {name} is not a workspace member")
+        continue
+    if banned in reaches(name):
+        fail(f"{name} depends on {banned} (directly or through another member)")
+    checked.append(f"{name} -/-> {banned}")
+print(f"layout: crate graph: faer only in {FAER_ONLY_IN}; " + "; ".join(checked))
+
+# no import circle between the files of one crate
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import circles  # noqa: E402
+
+n_files = n_imports = 0
+srcs = [os.path.join(os.path.dirname(p["manifest_path"]), "src") for p in members.values()]
+for src in sorted(srcs):
+    crate, graph, comps = circles.circles(src)
+    n_files += len(crate.files)
+    n_imports += sum(len(v) for v in graph.values())
+    for comp in comps:
+        fail(f"import circle in {os.path.relpath(src, root)}: " + " <-> ".join(comp))
+print(f"layout: import circles: {len(srcs)} crates, {n_files} files, {n_imports} imports between files checked")
 
 for name in model:
     pkg = members[name]

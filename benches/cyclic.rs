@@ -1,7 +1,7 @@
 //! Criterion benches of the symmetry-adapted statics of the toroid wheel (spokes + inner
 //! rings) for n = 8 … 10000 prisms: the whole analysis (Fourier blocks, per-block SVD,
 //! rigid-body counts, the symmetric margin LP, mass and inertia) against n, and the dense
-//! path at the sizes it can reach, for the cost exponents in docs/PERFORMANCE.md.
+//! path at the sizes it can reach, for the cost exponents in docs/notes/PERFORMANCE.md.
 //!
 //! The T-bar wheel (q = 1, β = π/6, δ = 0.25, rigid rim) the same way: the whole
 //! `tbar_report` (geometry, descriptor, blocks, symmetric margin LP, the load response by

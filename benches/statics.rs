@@ -4,7 +4,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use tensegrity::core::{test_models, Statics, Structure};
+use tensegrity::core::{test_models, Structure};
+use tensegrity::statics::Statics;
 
 fn tower(stages: usize) -> Structure {
     test_models::snelson_tower(stages).expect("valid tower")

@@ -7,7 +7,8 @@
 //! This crate is a thin facade over the workspace crates and hosts the `tensegrity` binary.
 //!
 //! ```
-//! use tensegrity::core::{Bar, Statics, StringMember, Structure};
+//! use tensegrity::core::{Bar, StringMember, Structure};
+//! use tensegrity::statics::Statics;
 //! // a planar D-bar (thesis §2.2.1): 4 bars, 2 strings, one self-stress
 //! let s = Structure::builder()
 //!     .nodes([[0.0, 0.0, 0.0], [1.0, 0.5, 0.0], [1.0, -0.5, 0.0], [2.0, 0.0, 0.0]])
@@ -23,7 +24,10 @@ pub use michell3d;
 pub use sweeps;
 pub use tbar_wheel;
 pub use tensegrity_core as core;
+pub use tensegrity_dynamics as dynamics;
 pub use tensegrity_io as io;
+pub use tensegrity_linalg as linalg;
+pub use tensegrity_statics as statics;
 pub use toroid;
 
 /// The example scenes shipped with the toolkit, as `(file name, TOML text)`.
@@ -42,3 +46,8 @@ pub const EXAMPLE_SCENES: &[(&str, &str)] = &[
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+/// The Rust examples of the library guide, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/guide/library.md")]
+struct LibraryGuideDoctests;

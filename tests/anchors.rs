@@ -334,7 +334,7 @@ fn the_reference_integrator_reproduces_the_published_double_pendulum() {
 /// The MOTES D-bar at the scene's own step against the independent integrator at the same
 /// step: the same RK4 on the same equations, so they differ by round-off alone, amplified
 /// by the motion (a 1-ulp change of one initial coordinate moves the final nodes by up to
-/// 5e-13 m, docs/PERFORMANCE.md): measured 2.0e-12 m. The scene is symmetric under
+/// 5e-13 m, docs/notes/PERFORMANCE.md): measured 2.0e-12 m. The scene is symmetric under
 /// y → −y (nodes 1 ↔ 3, node 2 on the axis), which exact arithmetic keeps; the run keeps it
 /// to 5e-14 m (the Ω formulation before the joint-space form broke it by 6.7e-12 m).
 #[test]

@@ -124,14 +124,22 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// README.md and every docs/*.md.
+/// README.md, then every `.md` under docs/ and its subfolders (docs/guide/, docs/notes/),
+/// sorted by path.
 fn documents() -> Vec<PathBuf> {
+    fn markdown_under(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                markdown_under(&path, out);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
     let mut docs = vec![root().join("README.md")];
-    let mut more: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .collect();
+    let mut more = Vec::new();
+    markdown_under(&root().join("docs"), &mut more);
     more.sort();
     docs.extend(more);
     docs

@@ -12,9 +12,9 @@
 //!   net's mirror symmetry.
 
 use std::f64::consts::PI;
-use tensegrity_core::{statics_report, StaticsRequest};
 use tensegrity_engine::formfind::{FormfindRequest, Formfound};
 use tensegrity_engine::SceneSource;
+use tensegrity_statics::{statics_report, StaticsRequest};
 
 type P = [f64; 3];
 

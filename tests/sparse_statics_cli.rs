@@ -1,7 +1,7 @@
 //! `tensegrity statics` on stacked-prism towers: the 200-prism tower of
 //! `examples/tower200.toml` goes through the sparse rank-revealing QR and gives one self-stress
 //! and one internal mechanism per prism and the margin 1/√3 of the dense path (measured in
-//! release: docs/PERFORMANCE.md); the two-prism `examples/tower.toml` gives the same answer
+//! release: docs/notes/PERFORMANCE.md); the two-prism `examples/tower.toml` gives the same answer
 //! through both factorisations.
 use serde_json::Value;
 use std::process::Command;

@@ -9,7 +9,7 @@ use super::output;
 use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
-use tensegrity_core::dynamics::work_precision::Point;
+use tensegrity_dynamics::work_precision::Point;
 use tensegrity_engine::bench::WorkPrecisionRequest;
 use tensegrity_io::csv::WorkPrecisionRow;
 use tensegrity_io::progress::{Measure, Progress};

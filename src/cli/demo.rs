@@ -5,8 +5,8 @@
 use anyhow::Result;
 use serde_json::{json, Value};
 use tensegrity::EXAMPLE_SCENES;
-use tensegrity_core::{statics_report, StaticsRequest};
 use tensegrity_io::scene::Scene;
+use tensegrity_statics::{statics_report, StaticsRequest};
 use toroid::{FidelityChoice, RollRequest, ToroidRequest, WheelSpec};
 
 /// Arguments of `tensegrity demo`.

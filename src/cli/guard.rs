@@ -185,7 +185,7 @@ pub fn rolling_series(request: &toroid::RollRequest, sides: &[usize]) -> Result<
 /// whatever the estimate: its steps are not known up front).
 pub fn simulation(
     command: &tensegrity_engine::simulate::SimulateCommand,
-    sim: &tensegrity_core::Simulation,
+    sim: &tensegrity_dynamics::Simulation,
     csv: bool,
     vtk: bool,
 ) -> Result<Progress> {
@@ -193,12 +193,6 @@ pub fn simulation(
     let shown = e.work_s >= SPINNER_AFTER_S || sim.settings.integrator.is_adaptive();
     let t_end = sim.settings.t_end;
     counted(e, "simulate", Measure::Simulated { t_end }, shown)
-}
-
-/// `tensegrity michell`: the sign maps, if asked for.
-pub fn michell(args: &super::michell::MichellArgs) -> Result<Progress> {
-    let members = args.map_members.len();
-    sign_map(args.map_grid, members, args.sign_map.is_some())
 }
 
 /// `tensegrity michell --sign-map` (nothing without it).

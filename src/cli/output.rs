@@ -33,7 +33,7 @@ pub fn invalid_mark(valid: bool) -> &'static str {
 }
 
 /// One line on the convergence check: what was refined and which quantities held.
-pub fn print_convergence(c: Option<&tensegrity_core::dynamics::Convergence>) {
+pub fn print_convergence(c: Option<&tensegrity_dynamics::Convergence>) {
     let Some(c) = c else {
         return println!("convergence: not checked");
     };

@@ -1,5 +1,6 @@
-//! `tensegrity simulate SCENE.toml [--t-end S] [--integrator rk4|rk45|rattle|sdirk] [--dt S]
-//! [--rtol X] [--atol X] [--out traj.csv] [--output-interval S] [--json]`.
+//! `tensegrity simulate SCENE.toml [--t-end S]
+//! [--integrator rk4|rk45|rattle|sdirk|imex|imex-ark] [--dt S] [--rtol X] [--atol X]
+//! [--out traj.csv] [--output-interval S] [--json]`.
 //!
 //! The flags are the engine's `simulate` request ([`SimulateCommand`]): the scene's
 //! `[simulation]`, `[ground]` and `[[actuation]]` tables configure the run and the flags
@@ -16,8 +17,9 @@ use super::output;
 use super::request_args::{usage, RequestArgs};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
-use tensegrity_core::dynamics::{IntegratorKind, SimulationReport};
-use tensegrity_core::{CoreError, Simulation};
+use tensegrity_core::CoreError;
+use tensegrity_dynamics::Simulation;
+use tensegrity_dynamics::{IntegratorKind, SimulationReport};
 use tensegrity_engine::simulate::SimulateCommand;
 use tensegrity_engine::{SceneError, SceneSource};
 use tensegrity_figures::animation::Scenery;

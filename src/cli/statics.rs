@@ -11,11 +11,12 @@ use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
 use tensegrity_core::budget::Estimate;
-use tensegrity_core::statics::Factorization;
-use tensegrity_core::{StaticsReport, Structure};
+use tensegrity_core::Structure;
 use tensegrity_engine::statics::{self, StaticsCommand};
 use tensegrity_figures::draw::default_view;
 use tensegrity_figures::structures;
+use tensegrity_statics::Factorization;
+use tensegrity_statics::StaticsReport;
 
 /// Arguments of `tensegrity statics`: the request's flags ([`StaticsCommand`], the scene
 /// positional) and the output.

@@ -158,7 +158,7 @@ pub(crate) fn run(
     for it in 1..=settings.max_iterations {
         let q: Vec<f64> = pr.param.iter().map(|&i| p[i]).collect();
         let d = fdm::dense_matrix(&pairs, &q, n);
-        let (w, v) = tensegrity_core::linalg::symmetric_eigen(&d)?;
+        let (w, v) = tensegrity_linalg::symmetric_eigen(&d)?;
         let scale = w.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         err = w.iter().take(4).fold(0.0f64, |a, x| a.max(x.abs())) / scale;
         if let Some((e_best, p_best, it_best)) = &best {
@@ -211,7 +211,7 @@ fn scale_bars(pairs: &[[usize; 2]], pr: &Params, n: usize, p: &mut DVector<f64>)
             .iter()
             .map(|&i| if pr.is_bar[i] { s * p[i] } else { p[i] })
             .collect();
-        let (w, _) = tensegrity_core::linalg::symmetric_eigen(&fdm::dense_matrix(pairs, &q, n))?;
+        let (w, _) = tensegrity_linalg::symmetric_eigen(&fdm::dense_matrix(pairs, &q, n))?;
         Ok(w.get(3).copied().unwrap_or(0.0))
     };
     let (mut lo, mut hi) = (0.0, 1.0);

@@ -28,9 +28,9 @@ use crate::fdm::anchors;
 use crate::topology::Topology;
 use crate::Result;
 use nalgebra::{DVector, Matrix6, Vector3, Vector6};
-use tensegrity_core::linalg::{CscMatrix, SparseCholesky};
-use tensegrity_core::statics::{backend, StaticsSettings};
 use tensegrity_core::{Bar, StringMember, Structure, Support};
+use tensegrity_linalg::{CscMatrix, SparseCholesky};
+use tensegrity_statics::{backend, StaticsSettings};
 
 /// Relative residual below which the found force densities count as a self-stress.
 pub const WITNESS_TOLERANCE: f64 = 1e-8;

@@ -76,6 +76,12 @@ pub enum FormFindError {
     Core(#[from] CoreError),
 }
 
+impl From<tensegrity_linalg::LinalgError> for FormFindError {
+    fn from(e: tensegrity_linalg::LinalgError) -> Self {
+        Self::Core(e.into())
+    }
+}
+
 impl Categorized for FormFindError {
     /// Bad parameters, topologies and names are bad input; a search that finds no form is a
     /// failed computation; a core error keeps its own category.

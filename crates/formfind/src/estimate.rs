@@ -50,7 +50,7 @@ pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
             .work(200.0 * nf.powf(1.5) / SCALAR_FLOP_RATE),
     };
     let rows = 3 * n;
-    let statics = if rows.min(m) < tensegrity_core::statics::SPARSE_MIN_SIZE {
+    let statics = if rows.min(m) < tensegrity_statics::SPARSE_MIN_SIZE {
         budget::dense_statics(rows, m, params)
     } else {
         Estimate::new("the sparse statics of the form", params)

@@ -36,7 +36,7 @@
 use crate::error::{FormFindError, Result};
 use crate::topology::Topology;
 use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3, Vector4};
-use tensegrity_core::linalg::{self, CscMatrix, SparseLu};
+use tensegrity_linalg::{self as linalg, CscMatrix, SparseLu};
 
 /// Relative tolerance of the null space of D: |λ| ≤ tol · max|λ| counts as zero.
 pub const NULL_SPACE_TOLERANCE: f64 = 1e-9;

@@ -90,6 +90,12 @@ pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>)
     ))
 }
 
+impl From<tensegrity_linalg::LinalgError> for MichellError {
+    fn from(e: tensegrity_linalg::LinalgError) -> Self {
+        Self::Core(e.into())
+    }
+}
+
 impl Categorized for MichellError {
     /// A parameter, load, grid or index the truss does not take is bad input; a singular
     /// node or system, an overflow or no extra-string prestress is a failed computation; a

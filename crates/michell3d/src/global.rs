@@ -26,7 +26,7 @@
 //!
 //! and is solved by block forward substitution, D_k q_k = b_k − E_k q_{k−1}, each square
 //! diagonal block D_k factored by the core's sparse LU with partial pivoting
-//! ([`tensegrity_core::linalg::SparseLu`]). Nothing here assumes D_k's inner structure (it
+//! ([`tensegrity_linalg::SparseLu`]). Nothing here assumes D_k's inner structure (it
 //! happens to be block diagonal, one 3×3 block per node): the blocks are read off the assembled
 //! matrix, and an assembled matrix that is not block lower triangular by levels (or a diagonal
 //! block that is not square) falls back to one LU of the whole system. The cost is linear in
@@ -38,7 +38,7 @@ use crate::loads::NodalLoads;
 use crate::solution::ForceSolution;
 use crate::truss::MichellTruss;
 use nalgebra::Vector3;
-use tensegrity_core::linalg::{lu_solve, CscMatrix, SparseLu};
+use tensegrity_linalg::{lu_solve, CscMatrix, SparseLu};
 
 /// Relative residual ‖A q + w‖ / (‖A‖_max·‖q‖₁ + ‖w‖) accepted from the sparse LU.
 const RESIDUAL_RTOL: f64 = 1e-9;

@@ -13,8 +13,8 @@ use crate::propagation::{propagate, Method};
 use crate::sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing};
 use crate::truss::MichellTruss;
 use serde::Serialize;
-use tensegrity_core::sizing::Governing;
 use tensegrity_core::MaterialTable;
+use tensegrity_statics::sizing::Governing;
 
 /// Everything one analysis needs.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,7 +3,7 @@
 //! The member type follows the sign of the force density: tension → string, compression → bar,
 //! |f| ≤ [`ZERO_FORCE_RTOL`]·max|f| → no member. Strings are sized for yield,
 //! m = (ρ_s/σ_s) |f| l; bars for yield and Euler buckling (pinned–pinned solid rod),
-//! r = max(r_Y, r_B), via `tensegrity_core::sizing`. Two totals are reported:
+//! r = max(r_Y, r_B), via `tensegrity_statics::sizing`. Two totals are reported:
 //!
 //! - `yield_mass`: every member sized for yield only, Σ (ρ/σ)|q| l²;
 //! - `yield_buckling_mass`: strings for yield, bars for max(yield, buckling).
@@ -18,8 +18,8 @@
 use crate::params::MichellParams;
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::sizing::{size_bar, size_string, Governing, MemberSize};
 use tensegrity_core::Material;
+use tensegrity_statics::sizing::{size_bar, size_string, Governing, MemberSize};
 
 /// Forces with |f| ≤ this × max|f| count as zero ("none" members).
 pub const ZERO_FORCE_RTOL: f64 = 1e-9;

@@ -4,7 +4,7 @@ mod common;
 
 use michell3d::*;
 use std::f64::consts::{FRAC_PI_6, PI};
-use tensegrity_core::Statics;
+use tensegrity_statics::Statics;
 
 #[test]
 fn each_extra_string_adds_one_self_stress() {

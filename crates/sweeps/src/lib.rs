@@ -50,6 +50,7 @@ pub mod limits;
 pub mod merge;
 mod resume;
 pub mod run;
+mod shard;
 pub mod spec;
 pub mod table;
 pub mod values;

@@ -77,7 +77,7 @@ fn check_tail(file: &mut File, path: &Path) -> Result<()> {
     }
     let body = &tail[..tail.len() - 1];
     let last_line = &body[body.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1)..];
-    if last_line.starts_with(crate::run::INCOMPLETE.as_bytes()) {
+    if last_line.starts_with(crate::table::INCOMPLETE.as_bytes()) {
         return Err(interrupted(path));
     }
     Ok(())
@@ -153,7 +153,7 @@ impl<'a> Input<'a> {
         let Some(line) = self.line()? else {
             return Ok(None);
         };
-        if line.starts_with(crate::run::INCOMPLETE.as_bytes()) {
+        if line.starts_with(crate::table::INCOMPLETE.as_bytes()) {
             return Err(interrupted(self.path));
         }
         let id = line

@@ -3,9 +3,9 @@
 //! last complete row and opened for appending.
 
 use crate::error::{Result, SweepError};
-use crate::run::{Shard, INCOMPLETE};
+use crate::shard::Shard;
 use crate::spec::Spec;
-use crate::table;
+use crate::table::{self, INCOMPLETE};
 use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek, Write};
 use std::path::Path;

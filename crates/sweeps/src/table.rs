@@ -62,6 +62,9 @@ pub fn preamble(spec: &Spec, with_units: bool) -> Vec<u8> {
     out
 }
 
+/// The start of the last line of an interrupted sweep's file.
+pub const INCOMPLETE: &str = "# incomplete:";
+
 /// The start of the spec-hash line of a shard's file.
 pub const SPEC_LINE: &str = "# spec: ";
 

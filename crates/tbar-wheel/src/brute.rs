@@ -21,7 +21,8 @@
 
 use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
-use tensegrity_core::{Statics, Structure};
+use tensegrity_core::Structure;
+use tensegrity_statics::Statics;
 
 /// Directions of the coarse sphere sample of the brute force.
 pub const COARSE_DIRECTIONS: usize = 600;

@@ -31,7 +31,8 @@
 //! ι̂₁; the two copies share nothing (64 nodes, 16 bars, 64 strings for q = 1, φ = π/8).
 //!
 //! **Rim body.** With [`RimMode::Body`] the supports are replaced by a rim body of bars (two
-//! hub nodes `hub_left`, `hub_right` appended last, spokes and a ring; see [`crate::rim`]).
+//! hub nodes `hub_left`, `hub_right` appended last, spokes and a ring; see [`crate::rim`]),
+//! attached at the end of [`TbarGeometry::new`].
 //!
 //! **Labels.** Tread 0 of the first wheel: `tip`, `bar_base`, then its lattice tuples level by
 //! level as `UDLR` (e.g. `1010`; `U_D_L_R` when an index exceeds 9), inside a level by D
@@ -44,7 +45,7 @@ use crate::params::{BarBase, Layout, RimMode, TbarParams};
 use crate::rim::RimBody;
 use michell3d::nodes::{position, NodeTuple};
 use nalgebra::{Rotation3, Vector3};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
 use tensegrity_core::{Bar, StringMember, Structure, Support};
 
 /// Nodes closer than this × r₀ are one node.
@@ -313,7 +314,7 @@ impl TbarGeometry {
             }
         }
         if params.rim == RimMode::Body {
-            crate::rim::attach(&mut g);
+            attach_rim(&mut g);
         }
         Ok(g)
     }
@@ -348,4 +349,74 @@ impl TbarGeometry {
         }
         Ok(b.build()?)
     }
+}
+
+/// Adds the hub nodes and the rim-body bars to `g`, turning its rim supports into rim points.
+fn attach_rim(g: &mut TbarGeometry) {
+    let rim_points: Vec<usize> = (0..g.nodes.len()).filter(|&i| g.supported[i]).collect();
+    let r_q = g.params.rim_radius();
+    let (x_min, x_max) = rim_points
+        .iter()
+        .fold((f64::INFINITY, -f64::INFINITY), |a, &i| {
+            (a.0.min(g.nodes[i].x), a.1.max(g.nodes[i].x))
+        });
+    let hubs = [g.nodes.len(), g.nodes.len() + 1];
+    for (label, x) in [("hub_left", x_min - r_q), ("hub_right", x_max + r_q)] {
+        g.nodes.push(Vector3::new(x, 0.0, 0.0));
+        g.labels.push(label.to_string());
+        g.supported.push(false);
+    }
+    g.supported.iter_mut().for_each(|s| *s = false);
+    let mut bars = vec![hubs];
+    for &p in &rim_points {
+        bars.extend(hubs.map(|h| [p, h]));
+    }
+    let spokes = bars.len() - 1;
+    let ring = ring_bars(g, &rim_points);
+    let n_ring = ring.len();
+    bars.extend(ring);
+    g.rim = Some(RimBody {
+        hubs,
+        bars,
+        rim_points,
+        spokes,
+        ring: n_ring,
+    });
+}
+
+/// Every point of an angle group joined to every point of the next group.
+fn ring_bars(g: &TbarGeometry, points: &[usize]) -> Vec<[usize; 2]> {
+    let phi = g.params.michell.phi;
+    let turns = (2.0 * std::f64::consts::PI / phi).round() as i64;
+    let mut groups: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
+    for &p in points {
+        let n = g.nodes[p];
+        let k = (n.z.atan2(n.y) / phi).round() as i64;
+        let k = if g.params.layout == Layout::Tread {
+            k
+        } else {
+            k.rem_euclid(turns)
+        };
+        groups.entry(k).or_default().push(p);
+    }
+    let list: Vec<&Vec<usize>> = groups.values().collect();
+    let closed = g.params.layout != Layout::Tread && list.len() > 2;
+    let links = if closed {
+        list.len()
+    } else {
+        list.len().saturating_sub(1)
+    };
+    let mut seen = HashSet::new();
+    let mut out = Vec::new();
+    for i in 0..links {
+        let (a, b) = (list[i], list[(i + 1) % list.len()]);
+        for &p in a {
+            for &q in b {
+                if p != q && seen.insert((p.min(q), p.max(q))) {
+                    out.push([p, q]);
+                }
+            }
+        }
+    }
+    out
 }

@@ -8,7 +8,7 @@
 //! - [`geometry`]: the four-offspring lattice with merged tuples, the radial bar, the rigid rim
 //!   supports, the wheel and extended wheel ([`TbarGeometry`]);
 //! - [`statics`]: rank, self-stress dimension, mechanisms and prestressability margin through
-//!   the core's statics front ([`tensegrity_core::statics::StaticsBackend`]): the cyclic
+//!   the core's statics front ([`tensegrity_statics::StaticsBackend`]): the cyclic
 //!   blocks for a wheel (O(n) in the treads), the dense SVD for a tread;
 //! - [`envelope`]: the omnidirectional load envelope (minimum prestress by an LP over the
 //!   self-stress space, critical member and direction, slack map);
@@ -39,6 +39,7 @@ pub mod envelope;
 pub mod error;
 pub mod geometry;
 pub mod mass;
+mod mass_sweep;
 pub mod params;
 pub mod report;
 pub mod request;

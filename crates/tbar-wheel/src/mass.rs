@@ -11,11 +11,12 @@
 
 use crate::envelope::LoadResponse;
 use crate::error::Result;
-use crate::params::{Layout, RimMode, TbarParams};
+pub use crate::mass_sweep::{mass_sweep, MassRow};
+use crate::params::TbarParams;
 use michell3d::{analyse, AnalysisRequest};
 use serde::Serialize;
-use tensegrity_core::sizing::{size_bar, size_string};
 use tensegrity_core::MaterialTable;
+use tensegrity_statics::sizing::{size_bar, size_string};
 
 /// Default material of the sizing.
 pub const DEFAULT_MATERIAL: &str = "steel";
@@ -88,71 +89,4 @@ pub fn compare(
         michell_mass_kg: michell,
         mass_ratio: mass / (treads as f64 * michell),
     })
-}
-
-/// One row of the mass sweep over q and δ.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct MassRow {
-    /// Complexity q.
-    pub complexity: usize,
-    /// Out-of-plane parameter δ (or ε).
-    pub delta: f64,
-    /// Minimum prestress (N), when the tread has an envelope.
-    pub min_prestress: Option<f64>,
-    /// The masses, when the tread has an envelope.
-    pub mass: Option<MassComparison>,
-    /// Why there is no envelope (mechanism, not prestressable), if so.
-    pub note: Option<String>,
-}
-
-/// The mass price of the envelope over complexities and δ (single treads with the rigid rim,
-/// cylindrical with δ, or spherical with ε when `base` is spherical).
-pub fn mass_sweep(
-    base: &TbarParams,
-    complexities: &[usize],
-    deltas: &[f64],
-    load: f64,
-    ea: f64,
-    material: &str,
-) -> Vec<MassRow> {
-    let mut rows = Vec::new();
-    for &q in complexities {
-        for &delta in deltas {
-            let mut michell = base.michell.with_complexity(q);
-            michell.geometry = match michell.geometry {
-                michell3d::Geometry::Spherical { .. } => {
-                    michell3d::Geometry::Spherical { epsilon: delta }
-                }
-                _ => michell3d::Geometry::Cylindrical { delta },
-            };
-            let params = TbarParams {
-                michell,
-                layout: Layout::Tread,
-                rim: RimMode::Fixed,
-                ..*base
-            };
-            let mut req = crate::report::TbarRequest::new(params);
-            req.load = load;
-            req.ea = ea;
-            req.material = material.to_string();
-            let row = match crate::report::tbar_report(&req) {
-                Ok(r) => MassRow {
-                    complexity: q,
-                    delta,
-                    min_prestress: r.min_prestress,
-                    mass: r.mass,
-                    note: r.warnings.first().cloned(),
-                },
-                Err(e) => MassRow {
-                    complexity: q,
-                    delta,
-                    min_prestress: None,
-                    mass: None,
-                    note: Some(e.to_string()),
-                },
-            };
-            rows.push(row);
-        }
-    }
-    rows
 }

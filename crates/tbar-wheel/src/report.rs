@@ -15,8 +15,8 @@ use crate::mass::{self, MassComparison};
 use crate::params::{RimMode, TbarParams};
 use crate::statics::{backend, summarise};
 use serde::Serialize;
-use tensegrity_core::statics::{Certification, Factorization, SpectralGap, StaticsBackend};
 use tensegrity_core::Structure;
+use tensegrity_statics::{Certification, Factorization, SpectralGap, StaticsBackend};
 
 /// Everything one analysis needs.
 #[derive(Debug, Clone, PartialEq)]
@@ -204,7 +204,7 @@ fn report_with(req: &TbarRequest, cyclic: bool) -> Result<TbarReport> {
         let margin =
             crate::rim::prestressability(statics.as_ref(), geometry.bars.len(), rim.bars.len())?;
         report.prestress_margin = margin;
-        report.prestressable = margin > tensegrity_core::statics::PRESTRESS_TOLERANCE;
+        report.prestressable = margin > tensegrity_statics::PRESTRESS_TOLERANCE;
         report.warnings.push(
             "rim body: free-body statics (six rigid-body motions, no supports); the load \
              envelope, minimum prestress and mass are computed with the rigid rim (rim = fixed)"

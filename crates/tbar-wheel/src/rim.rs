@@ -22,17 +22,17 @@
 //! 1 + 6nc + 2n·2c² = 1 + 6nc + 4nc² rim bars and 2 extra nodes (q = 1, φ = π/8: 81 rim bars
 //! for the wheel, 225 for the extended wheel).
 //!
+//! [`TbarGeometry::new`](crate::geometry::TbarGeometry::new) builds and attaches the rim body
+//! ([`RimMode::Body`](crate::params::RimMode::Body)); this module holds what it is
+//! ([`RimBody`]) and the prestressability of a structure carrying it.
+//!
 //! The rim body has no supports: the structure is a free body (six rigid-body motions). Its
 //! bars have no required sign (a rigid body's members carry either sign), so the
 //! prestressability of a structure with a rim body asks the tread members only for the right
 //! sign ([`prestressability`]).
 
 use crate::error::Result;
-use crate::geometry::TbarGeometry;
-use crate::params::Layout;
-use nalgebra::Vector3;
-use std::collections::{BTreeMap, HashSet};
-use tensegrity_core::statics::{MemberSign, StaticsBackend};
+use tensegrity_statics::{MemberSign, StaticsBackend};
 
 /// The rim body attached to a geometry.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -47,76 +47,6 @@ pub struct RimBody {
     pub spokes: usize,
     /// Ring bars.
     pub ring: usize,
-}
-
-/// Adds the hub nodes and the rim-body bars to `g`, turning its rim supports into rim points.
-pub(crate) fn attach(g: &mut TbarGeometry) {
-    let rim_points: Vec<usize> = (0..g.nodes.len()).filter(|&i| g.supported[i]).collect();
-    let r_q = g.params.rim_radius();
-    let (x_min, x_max) = rim_points
-        .iter()
-        .fold((f64::INFINITY, -f64::INFINITY), |a, &i| {
-            (a.0.min(g.nodes[i].x), a.1.max(g.nodes[i].x))
-        });
-    let hubs = [g.nodes.len(), g.nodes.len() + 1];
-    for (label, x) in [("hub_left", x_min - r_q), ("hub_right", x_max + r_q)] {
-        g.nodes.push(Vector3::new(x, 0.0, 0.0));
-        g.labels.push(label.to_string());
-        g.supported.push(false);
-    }
-    g.supported.iter_mut().for_each(|s| *s = false);
-    let mut bars = vec![hubs];
-    for &p in &rim_points {
-        bars.extend(hubs.map(|h| [p, h]));
-    }
-    let spokes = bars.len() - 1;
-    let ring = ring_bars(g, &rim_points);
-    let n_ring = ring.len();
-    bars.extend(ring);
-    g.rim = Some(RimBody {
-        hubs,
-        bars,
-        rim_points,
-        spokes,
-        ring: n_ring,
-    });
-}
-
-/// Every point of an angle group joined to every point of the next group.
-fn ring_bars(g: &TbarGeometry, points: &[usize]) -> Vec<[usize; 2]> {
-    let phi = g.params.michell.phi;
-    let turns = (2.0 * std::f64::consts::PI / phi).round() as i64;
-    let mut groups: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
-    for &p in points {
-        let n = g.nodes[p];
-        let k = (n.z.atan2(n.y) / phi).round() as i64;
-        let k = if g.params.layout == Layout::Tread {
-            k
-        } else {
-            k.rem_euclid(turns)
-        };
-        groups.entry(k).or_default().push(p);
-    }
-    let list: Vec<&Vec<usize>> = groups.values().collect();
-    let closed = g.params.layout != Layout::Tread && list.len() > 2;
-    let links = if closed {
-        list.len()
-    } else {
-        list.len().saturating_sub(1)
-    };
-    let mut seen = HashSet::new();
-    let mut out = Vec::new();
-    for i in 0..links {
-        let (a, b) = (list[i], list[(i + 1) % list.len()]);
-        for &p in a {
-            for &q in b {
-                if p != q && seen.insert((p.min(q), p.max(q))) {
-                    out.push([p, q]);
-                }
-            }
-        }
-    }
-    out
 }
 
 /// The prestressability LP of a structure whose first `tread_bars` bars are tread bars and

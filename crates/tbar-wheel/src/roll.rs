@@ -47,7 +47,7 @@ pub const FULL_TREADS: [usize; 1] = [8];
 /// Default slope of `tbar roll` (degrees): 30°, below the friction angle atan μ_s = 38.7° of
 /// the default μ_s = 0.8, so that the wheel rolls on its tips rather than slides and hops
 /// (on 50° the full wheel's uphill tips chatter and its 1 s statistics do not converge; see
-/// docs/ROLLING.md, "The T-bar wheel in the full model").
+/// docs/notes/ROLLING.md, "The T-bar wheel in the full model").
 pub const DEFAULT_INCLINE_DEG: f64 = 30.0;
 
 /// Default ground stiffness of `tbar roll` (N/m per contact node): 10⁶, ten times `roll`'s,
@@ -72,10 +72,10 @@ pub const FULL_RIM_DENSITY: f64 = 0.05;
 /// stiffness (default scene: the T-bar's `slip_fraction` 0.153 at 0.1 ms and 10⁶ N/m, 0.009
 /// at half the step and twice the stiffness; the toroid's 0.695 and 0.160). With the stick
 /// contact the T-bar's run is converged (0.012 and 0.007) and its energy budget closes to
-/// 10⁻⁷ (2.5·10⁻³ with `penalty`); see docs/ROLLING.md, "The T-bar wheel in the full model".
+/// 10⁻⁷ (2.5·10⁻³ with `penalty`); see docs/notes/ROLLING.md, "The T-bar wheel in the full model".
 pub const DEFAULT_CONTACT: ContactKind = ContactKind::Stick;
 
-/// Default departure angle β (rad): π/6, the measured cases of docs/ROLLING.md.
+/// Default departure angle β (rad): π/6, the measured cases of docs/notes/ROLLING.md.
 pub const DEFAULT_BETA: f64 = PI / 6.0;
 
 /// Default cylindrical offset δ (m) when neither parameterisation is given.

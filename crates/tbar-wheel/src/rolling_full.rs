@@ -51,7 +51,8 @@ use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::budget::Estimate;
-use tensegrity_core::{Bar, Statics, StringMember, Structure};
+use tensegrity_core::{Bar, StringMember, Structure};
+use tensegrity_statics::Statics;
 use wheel_rolling::estimate::{FullSizes, RunSize};
 use wheel_rolling::{Polygon, WheelScene};
 

@@ -29,7 +29,8 @@ use crate::geometry::TbarGeometry;
 use crate::params::{Layout, RimMode, TbarParams};
 use nalgebra::{DMatrix, Vector3};
 use serde::Serialize;
-use tensegrity_core::{Statics, Structure, Support};
+use tensegrity_core::{Structure, Support};
+use tensegrity_statics::Statics;
 
 /// How the structure touches the ground.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -13,15 +13,14 @@
 //! structure is within [`MAX_DENSE_DOFS`], and otherwise keeps the cyclic answer (the
 //! report then says so). A single tread (no rotational symmetry) takes the dense SVD.
 //!
-//! [`CyclicStatics`]: tensegrity_core::statics::symmetry::CyclicStatics
+//! [`CyclicStatics`]: tensegrity_statics::symmetry::CyclicStatics
 
 use crate::error::{Result, TbarError};
 use serde::Serialize;
-use tensegrity_core::statics::symmetry::CyclicSymmetry;
-use tensegrity_core::statics::{
-    cyclic_backend, StaticsBackend, StaticsSettings, DEFAULT_MEMORY_LIMIT,
-};
-use tensegrity_core::{Statics, Structure};
+use tensegrity_core::Structure;
+use tensegrity_statics::symmetry::CyclicSymmetry;
+use tensegrity_statics::Statics;
+use tensegrity_statics::{cyclic_backend, StaticsBackend, StaticsSettings, DEFAULT_MEMORY_LIMIT};
 
 /// Largest number of free degrees of freedom of the dense statics (SVD of A).
 pub const MAX_DENSE_DOFS: usize = 6000;

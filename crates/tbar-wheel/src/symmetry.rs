@@ -16,8 +16,8 @@ use crate::geometry::TbarGeometry;
 use crate::params::Layout;
 use crate::statics::{summarise, StaticsSummary};
 use nalgebra::Vector3;
-use tensegrity_core::statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
 use tensegrity_core::{CoreError, StaticsError, Structure};
+use tensegrity_statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
 
 /// The Cₙ descriptor (n = π/φ) of a wheel or extended wheel and its structure; a single tread
 /// has no rotational symmetry (`SymmetryError::TooFewSides` with n = 1).

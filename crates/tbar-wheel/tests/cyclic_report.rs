@@ -23,8 +23,8 @@ use tbar_wheel::{
     tbar_report, tbar_report_dense, BarBase, Layout, RimMode, TbarGeometry, TbarParams, TbarReport,
     TbarRequest,
 };
-use tensegrity_core::statics::{Factorization, StaticsSettings};
-use tensegrity_core::Statics;
+use tensegrity_statics::Statics;
+use tensegrity_statics::{Factorization, StaticsSettings};
 
 fn close(a: Option<f64>, b: Option<f64>, what: &str) {
     match (a, b) {

@@ -12,7 +12,7 @@ use tbar_wheel::envelope::{
     LoadResponse,
 };
 use tbar_wheel::{tbar_report, BarBase, Layout, TbarGeometry, TbarParams, TbarRequest};
-use tensegrity_core::Statics;
+use tensegrity_statics::Statics;
 
 fn tread(base: BarBase, delta: f64) -> TbarParams {
     TbarParams::tread(MichellParams::cylindrical(

@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, DVector};
 use std::f64::consts::{FRAC_PI_6, PI};
 use tbar_wheel::rolling_full::{full_wheel, FullWheel, FullWheelRequest, PrestressLevel};
 use tbar_wheel::{tbar_report, Layout, TbarError, TbarParams, TbarRequest};
-use tensegrity_core::Statics;
+use tensegrity_statics::Statics;
 
 fn params(n: usize, layout: Layout) -> TbarParams {
     let m = MichellParams::cylindrical(1, 1.0, FRAC_PI_6, PI / n as f64, 0.25);

@@ -7,16 +7,35 @@
 //! (radians) or a string in these forms; it serialises as the number in radians.
 
 use std::f64::consts::PI;
+use thiserror::Error;
+
+/// An angle that [`parse_angle`] cannot read; the text is kept as written.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum AngleError {
+    /// Not one of the accepted forms (or not finite).
+    #[error("invalid angle \"{text}\": expected e.g. `22.5deg`, `pi/8`, `3pi/4`, `-pi/4` or radians `0.5`")]
+    Malformed {
+        /// The text given.
+        text: String,
+    },
+    /// A `pi/d` form with d = 0.
+    #[error("invalid angle \"{text}\": division by zero")]
+    DivisionByZero {
+        /// The text given.
+        text: String,
+    },
+}
 
 /// Parses an angle and returns it in radians.
 ///
 /// Accepted forms: `<x>deg` (degrees), `[<k>][*]pi[/<d>]` with an optional sign (k·π/d), and
 /// a bare number (radians). Non-finite values and zero denominators are rejected.
-pub fn parse_angle(s: &str) -> Result<f64, String> {
-    let bad = || {
-        format!("invalid angle \"{s}\": expected e.g. `22.5deg`, `pi/8`, `3pi/4`, `-pi/4` or radians `0.5`")
+pub fn parse_angle(s: &str) -> Result<f64, AngleError> {
+    let bad = || AngleError::Malformed {
+        text: s.to_string(),
     };
-    let number = |t: &str| -> Result<f64, String> {
+    let number = |t: &str| -> Result<f64, AngleError> {
         let t = t.trim();
         // Rust parses "inf"/"nan"; an angle must be a plain finite number.
         if t.is_empty()
@@ -49,7 +68,9 @@ pub fn parse_angle(s: &str) -> Result<f64, String> {
         } else {
             let d = number(rest.strip_prefix('/').ok_or_else(bad)?)?;
             if d == 0.0 {
-                return Err(format!("invalid angle \"{s}\": division by zero"));
+                return Err(AngleError::DivisionByZero {
+                    text: s.to_string(),
+                });
             }
             d
         };
@@ -156,13 +177,27 @@ mod tests {
     }
 
     #[test]
+    fn errors_keep_the_text_and_name_the_problem() {
+        assert_eq!(
+            parse_angle("pi/0"),
+            Err(super::AngleError::DivisionByZero {
+                text: "pi/0".into()
+            })
+        );
+        let e = parse_angle("north").unwrap_err();
+        assert!(e
+            .to_string()
+            .starts_with("invalid angle \"north\": expected e.g."));
+    }
+
+    #[test]
     fn rejected_forms() {
         for s in [
             "", "deg", "abc", "pi/0", "pi/", "pi*2", "3pi4", "inf", "nan", "-inf", "1e999",
             "22.5rad", "pi/x", "1/2",
         ] {
             let e = parse_angle(s).expect_err(s);
-            assert!(e.contains("invalid angle"), "{s}: {e}");
+            assert!(e.to_string().contains("invalid angle"), "{s}: {e}");
         }
     }
 }

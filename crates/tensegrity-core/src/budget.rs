@@ -330,7 +330,22 @@ impl Limits {
     }
 }
 
-pub use crate::statics::dense_statics_bytes;
+/// Bytes the dense statics of an m × n equilibrium matrix holds at its peak: A, U and V
+/// each in the backend, at the API and in a working copy (3mn + 3m² + 3n²), and the bases of
+/// the mechanisms (m × (m − n) at least) or self-stresses (n × (n − m)) held twice, in f64 —
+/// calibrated against the measured peak (`crates/tensegrity-engine/tests/statics_estimate.rs`:
+/// 155 MB resident for 1800 × 1197, estimated 181 MB).
+///
+/// ```
+/// use tensegrity_core::budget::dense_statics_bytes;
+/// // 8 · 3 (1800·1197 + 1800² + 1197²) + 16 · 1800 · 603
+/// assert_eq!(dense_statics_bytes(1800, 1197), 24.0 * 6_827_409.0 + 16.0 * 1_085_400.0);
+/// ```
+pub fn dense_statics_bytes(m: usize, n: usize) -> f64 {
+    let (m, n) = (m as f64, n as f64);
+    let bases = m * (m - n).max(0.0) + n * (n - m).max(0.0);
+    24.0 * (m * n + m * m + n * n) + 16.0 * bases
+}
 
 /// Flops of the SVD of an m × n matrix with full U and V (Golub–Van Loan's R-SVD count).
 pub fn svd_flops(m: usize, n: usize) -> f64 {
@@ -400,66 +415,6 @@ pub fn table(
     Estimate::new(format!("{rows:.3e} output rows"), parameters)
         .output(bytes)
         .memory(if in_memory { bytes } else { 0.0 })
-}
-
-/// Estimate of a [`Simulation`](crate::dynamics::Simulation) run from its settings and model
-/// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
-/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4 (with
-/// flight steps at most that),
-/// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
-/// memory unless `streamed`, and written at `bytes_per_number` when `written`.
-pub fn simulation(
-    sim: &crate::dynamics::Simulation,
-    streamed: bool,
-    written: bool,
-    bytes_per_number: f64,
-    parameters: impl Into<Parameters>,
-) -> Estimate {
-    use crate::dynamics::IntegratorKind as K;
-    let (s, model) = (&sim.settings, &sim.model);
-    let samples = s.output_times.len() as f64
-        + s.output_interval
-            .map_or(0.0, |dt_out| (s.t_end / dt_out).floor() + 1.0);
-    let step = match (s.integrator.is_adaptive(), s.output_interval) {
-        (false, Some(dt_out)) => s.dt.min(dt_out),
-        _ => s.dt,
-    };
-    let steps = (s.t_end / step).ceil();
-    let rhs_per_step = match s.integrator {
-        // flight steps: at most every step at dt (a run that never leaves the ground)
-        K::Rk4 | K::Rk4Flight => 4.0,
-        K::Rattle => 2.0,
-        K::Rk45 => 6.0,
-        K::Sdirk => 12.0,
-        // two right-hand sides and the contact response columns
-        K::Imex => 3.0,
-        // four right-hand sides, four responses and the Newton solves of the stages
-        K::ImexArk => 6.0,
-    };
-    let flops = rhs_flops(
-        model.bars.len(),
-        model.strings.len(),
-        model.n_constraint_rows(),
-    );
-    let q = &s.quantities;
-    let nodes = model.node_map.len() as f64;
-    let numbers = 1.0
-        + 3.0 * nodes * (f64::from(u8::from(q.nodes)) + f64::from(u8::from(q.velocities)))
-        + (model.bars.len() + model.strings.len()) as f64 * f64::from(u8::from(q.member_forces))
-        + 3.0 * f64::from(u8::from(q.energy))
-        + 4.0 * model.contact.len() as f64 * f64::from(u8::from(q.contact_forces));
-    let run = integration(steps, rhs_per_step, flops, model.state_len(), parameters);
-    let sample_bytes = numbers * if streamed { 0.0 } else { 8.0 };
-    Estimate {
-        memory_bytes: run.memory_bytes + samples * sample_bytes,
-        output_bytes: if written {
-            samples * numbers * bytes_per_number
-        } else {
-            0.0
-        },
-        what: format!("{} and {samples:.3e} output samples", run.what),
-        ..run
-    }
 }
 
 #[cfg(test)]

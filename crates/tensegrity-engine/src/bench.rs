@@ -1,5 +1,5 @@
 //! `bench work-precision`: error against wall time of every integrator on the scenes of
-//! [`tensegrity_core::dynamics::work_precision`] ([`WorkPrecisionRequest`], a request named
+//! [`tensegrity_dynamics::work_precision`] ([`WorkPrecisionRequest`], a request named
 //! `bench_work_precision`) — each integrator over its step or tolerance range, the error the
 //! largest final node distance to a tight RK45 reference; the `integrators` study is one point
 //! of it ([`crate::integrators`]).
@@ -19,9 +19,9 @@ pub mod suite;
 
 use crate::scene::SceneError;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::work_precision::{self, Point};
 use tensegrity_core::request::{Categorized, Category, InvalidParameter, Param, Request};
 use tensegrity_core::CoreError;
+use tensegrity_dynamics::work_precision::{self, Point, Skipped};
 
 pub use anchors::Anchor;
 pub use count::{CountedRun, InstructionCounter};
@@ -101,6 +101,9 @@ impl Request for WorkPrecisionRequest {
 pub struct WorkPrecisionReport {
     /// One point per scene, integrator and step or tolerance (failed runs left out).
     pub points: Vec<Point>,
+    /// The runs that gave no point, each with its reason (every integrator of
+    /// `IntegratorKind::ALL` is run; none is left out without saying why).
+    pub skipped: Vec<Skipped>,
 }
 
 /// Runs the study ([`work_precision::measure`]).
@@ -113,8 +116,10 @@ pub fn work_precision_observed(
     request: &WorkPrecisionRequest,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<WorkPrecisionReport, CoreError> {
+    let study = work_precision::measure_observed(request.quick, progress)?;
     Ok(WorkPrecisionReport {
-        points: work_precision::measure_observed(request.quick, progress)?,
+        points: study.points,
+        skipped: study.skipped,
     })
 }
 

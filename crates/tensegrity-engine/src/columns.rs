@@ -2,7 +2,7 @@
 //! report's key order; nested keys as `outer.inner`. The tests check each list against the
 //! reports' JSON.
 
-use crate::registry::{col, Column};
+use crate::column::{col, Column};
 
 /// The scalars of [`toroid::ToroidReport`].
 pub const TOROID: [Column; 17] = [
@@ -170,7 +170,7 @@ pub const TBAR: [Column; 50] = [
     col("statics_warning", ""),
 ];
 
-/// The fields of [`tensegrity_core::dynamics::work_precision::Point`].
+/// The fields of [`tensegrity_dynamics::work_precision::Point`].
 pub const INTEGRATORS: [Column; 7] = [
     col("scene", ""),
     col("integrator", ""),
@@ -258,7 +258,7 @@ pub const TBAR_ROLL: [Column; 33] = [
     col("rows.0.tipover.min_friction_to_tip", ""),
 ];
 
-/// The scalars of [`tensegrity_core::StaticsReport`] (the optional ones empty when the report
+/// The scalars of [`tensegrity_statics::StaticsReport`] (the optional ones empty when the report
 /// leaves them out: no loads, no materials, no modes).
 pub const STATICS: [Column; 25] = [
     col("nodes", ""),
@@ -288,7 +288,7 @@ pub const STATICS: [Column; 25] = [
     col("spectral_gap.block", ""),
 ];
 
-/// The scalars of [`tensegrity_core::dynamics::SimulationReport`] (`wall_time_s` is measured:
+/// The scalars of [`tensegrity_dynamics::SimulationReport`] (`wall_time_s` is measured:
 /// it differs from run to run).
 pub const SIMULATE: [Column; 9] = [
     col("t_end", "s"),

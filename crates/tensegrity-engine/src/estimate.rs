@@ -25,7 +25,7 @@
 //! own spelling.
 
 use crate::formfind::FormfindRequest;
-use crate::registry::RunError;
+use crate::run_error::RunError;
 use crate::simulate::SimulateCommand;
 use crate::statics::StaticsCommand;
 use michell3d::{MichellOptimizeRequest, MichellTableRequest};

@@ -1,5 +1,5 @@
 //! The `integrators` command (a sweep study): one point of the work–precision study of
-//! [`tensegrity_core::dynamics::work_precision`] — a scene (any of [`work_precision::scenes`]:
+//! [`tensegrity_dynamics::work_precision`] — a scene (any of [`work_precision::scenes`]:
 //! `prism-oscillating`, `double-pendulum`, `prism-dropped` and the stiff ones), an integrator
 //! (`rk4`, `rk45`, `rattle`, `sdirk`), its `parameter` (dt in s, or rtol for the adaptive ones)
 //! and the timing `repeats` — with the error measure of `tensegrity bench work-precision`:
@@ -8,16 +8,12 @@
 //!
 //! `wall_time_s` is a measured time: it differs from run to run.
 
+pub use crate::context::Context;
+use crate::run_error::RunError;
 use serde::{Deserialize, Serialize};
-use std::sync::OnceLock;
-use tensegrity_core::budget::Limits;
-use tensegrity_core::dynamics::simulation::SimulationResult;
-use tensegrity_core::dynamics::work_precision::{self, max_node_error, run_one, Point, Scene};
-use tensegrity_core::dynamics::IntegratorKind;
 use tensegrity_core::request::{InvalidParameter, Param, Request, Rule};
-
-/// The RK45 reference of the study (rtol 10⁻¹³), as `bench work-precision` runs it.
-const REFERENCE_RTOL: f64 = 1e-13;
+use tensegrity_dynamics::work_precision::{self, max_node_error, run_one, Point};
+use tensegrity_dynamics::IntegratorKind;
 
 /// One point of the work–precision study.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -87,74 +83,17 @@ fn scene_index(name: &str) -> Result<usize, InvalidParameter> {
     })
 }
 
-/// What the cases of one sweep share: the reference run of each scene, computed once, by the
-/// first case that needs it; and the front end's resource limits, for a run that checks them
-/// again once it knows more than its estimate did (the sparse statics, once its rank is known).
-#[derive(Debug)]
-pub struct Context {
-    /// One slot per scene of [`work_precision::scenes`].
-    references: Vec<OnceLock<Result<SimulationResult, String>>>,
-    /// The limits the runs keep to after their estimate, if any.
-    limits: Option<Limits>,
-}
-
-impl Default for Context {
-    fn default() -> Self {
-        Self {
-            references: work_precision::scenes()
-                .iter()
-                .map(|_| OnceLock::new())
-                .collect(),
-            limits: None,
-        }
-    }
-}
-
-impl Context {
-    /// A context whose runs keep to `limits` also where they check again after their
-    /// estimate (a sweep's or a Python call's limits).
-    ///
-    /// ```
-    /// use tensegrity_core::budget::Limits;
-    /// let ctx = tensegrity_engine::Context::within(Limits::default());
-    /// assert_eq!(ctx.limits(), Some(&Limits::default()));
-    /// assert_eq!(tensegrity_engine::Context::default().limits(), None);
-    /// ```
-    pub fn within(limits: Limits) -> Self {
-        Self {
-            limits: Some(limits),
-            ..Self::default()
-        }
-    }
-
-    /// The limits of [`Context::within`], if any.
-    pub fn limits(&self) -> Option<&Limits> {
-        self.limits.as_ref()
-    }
-
-    fn reference(&self, index: usize, scene: &Scene) -> Result<&SimulationResult, String> {
-        self.references[index]
-            .get_or_init(|| {
-                run_one(scene, IntegratorKind::Rk45, REFERENCE_RTOL, 1)
-                    .map(|(r, _)| r)
-                    .map_err(|e| format!("reference run of {}: {e}", scene.name))
-            })
-            .as_ref()
-            .map_err(Clone::clone)
-    }
-}
-
 /// One work–precision point against the sweep's shared reference.
-pub fn point(req: &IntegratorsRequest, ctx: &Context) -> Result<Point, crate::RunError> {
+pub fn point(req: &IntegratorsRequest, ctx: &Context) -> Result<Point, RunError> {
     let index = scene_index(req.scene.as_deref().unwrap_or_default())?;
     let scene = &work_precision::scenes()[index];
     let integrator = req.integrator.unwrap_or_default();
     let parameter = req.parameter.unwrap_or(f64::NAN);
     let reference = ctx
         .reference(index, scene)
-        .map_err(|e| crate::RunError::Failed(e.clone()))?;
+        .map_err(|e| RunError::Failed(e.clone()))?;
     let (r, wall) =
-        run_one(scene, integrator, parameter, req.repeats).map_err(|e| crate::RunError::of(&e))?;
+        run_one(scene, integrator, parameter, req.repeats).map_err(|e| RunError::of(&e))?;
     Ok(Point {
         scene: scene.name,
         integrator,

@@ -35,7 +35,9 @@
 #![warn(missing_docs)]
 
 pub mod bench;
+mod column;
 pub mod columns;
+mod context;
 mod entries;
 pub mod estimate;
 pub mod formfind;
@@ -43,6 +45,7 @@ pub mod integrators;
 pub mod keys;
 pub mod limits;
 pub mod registry;
+mod run_error;
 pub mod scene;
 pub mod simulate;
 pub mod spelling;

@@ -19,75 +19,16 @@
 //! assert_eq!(tensegrity_engine::command("lean").unwrap().name, "tipover_rolling");
 //! ```
 
+pub use crate::column::{col, Column};
+use crate::context::Context;
+pub use crate::entries::{command, commands, names};
 use crate::estimate::Estimated;
-use crate::integrators::Context;
+pub use crate::run_error::RunError;
 use serde::Serialize;
 use serde_json::{Map, Value};
 use std::fmt::Display;
-use std::sync::OnceLock;
 use tensegrity_core::budget::Estimate;
-use tensegrity_core::request::{Categorized, Category, InvalidParameter, Param, Request};
-
-/// A result column: a scalar of the report, named by its JSON key (a nested key as
-/// `outer.inner`), with its SI unit (`""` when dimensionless or not a number).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Column {
-    /// The JSON key path.
-    pub name: &'static str,
-    /// SI unit.
-    pub unit: &'static str,
-}
-
-/// A column.
-pub const fn col(name: &'static str, unit: &'static str) -> Column {
-    Column { name, unit }
-}
-
-/// Why a run gave no report.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum RunError {
-    /// A value the request refuses (the request was never run).
-    #[error(transparent)]
-    InvalidParameter(#[from] InvalidParameter),
-    /// The library call failed numerically: its message.
-    #[error("{0}")]
-    Failed(String),
-    /// The library call refused its input, was over a resource limit or was interrupted:
-    /// its message and the category of its error (what a front end maps to an exit code
-    /// or an exception).
-    #[error("{message}")]
-    Refused {
-        /// The library error's message.
-        message: String,
-        /// Its category ([`Category::Input`], [`Category::Resource`] or
-        /// [`Category::Interrupted`]).
-        category: Category,
-    },
-}
-
-impl Categorized for RunError {
-    /// A refused value is bad input; a failed library call keeps its error's category.
-    fn category(&self) -> Category {
-        match self {
-            Self::InvalidParameter(_) => Category::Input,
-            Self::Failed(_) => Category::Numerical,
-            Self::Refused { category, .. } => *category,
-        }
-    }
-}
-
-impl RunError {
-    /// The error of a failed library call, by its category.
-    pub fn of<E: Display + Categorized>(e: &E) -> Self {
-        match e.category() {
-            Category::Numerical => Self::Failed(e.to_string()),
-            category => Self::Refused {
-                message: e.to_string(),
-                category,
-            },
-        }
-    }
-}
+use tensegrity_core::request::{Categorized, Param, Request};
 
 type RunFn = Box<dyn Fn(Map<String, Value>, &Context) -> Result<Value, RunError> + Send + Sync>;
 type EstimateFn =
@@ -225,23 +166,4 @@ where
         columns,
         Box::new(move |values, ctx| json(run(&R::from_values(values)?, ctx))),
     )
-}
-
-/// Every command (built once).
-pub fn commands() -> &'static [Command] {
-    static REGISTRY: OnceLock<Vec<Command>> = OnceLock::new();
-    REGISTRY.get_or_init(crate::entries::all)
-}
-
-/// The command of that name or alias.
-pub fn command(name: &str) -> Option<&'static Command> {
-    commands()
-        .iter()
-        .find(|c| c.name == name || c.aliases.contains(&name))
-}
-
-/// The names of every command, comma-separated (for messages).
-pub fn names() -> String {
-    let names: Vec<&str> = commands().iter().map(|c| c.name).collect();
-    names.join(", ")
 }

@@ -10,7 +10,7 @@
 //! output times, else t_end / 200). A `strict` run whose invariants drifted past their limits
 //! fails ([`SceneError::Strict`]) after its outputs are written.
 //!
-//! Its resource estimate ([`estimate`], [`budget::simulation`]): the steps t_end / dt (a
+//! Its resource estimate ([`estimate`], [`tensegrity_dynamics::estimate::simulation`]): the steps t_end / dt (a
 //! fixed step lands on every output time, an adaptive run takes at least as many), the
 //! right-hand sides per step of the integrator, the samples streamed and, when written, their
 //! bytes (~25 a number in CSV, ~40 in VTK).
@@ -31,13 +31,14 @@
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
-use tensegrity_core::budget::{self, Estimate};
-use tensegrity_core::dynamics::recorder::{Sample, SampleSink};
-use tensegrity_core::dynamics::{
+use tensegrity_core::budget::Estimate;
+use tensegrity_core::request::{InvalidParameter, Param, Request, RunChecks};
+use tensegrity_core::CoreError;
+use tensegrity_dynamics::recorder::{Sample, SampleSink};
+use tensegrity_dynamics::Simulation;
+use tensegrity_dynamics::{
     Convergence, IntegratorKind, SimulationReport, SimulationResult, SimulationSettings,
 };
-use tensegrity_core::request::{InvalidParameter, Param, Request, RunChecks};
-use tensegrity_core::{CoreError, Simulation};
 use tensegrity_io::scene::{Scene, SimulationSpec};
 
 /// Samples per run when the scene names no output times and no interval is given.
@@ -413,7 +414,7 @@ pub fn estimate(simulation: &Simulation, csv: bool, vtk: bool) -> Result<Estimat
         parameter.push_str(&format!(", output interval {dt_out} s"));
     }
     let bytes_per_number = 25.0 * f64::from(u8::from(csv)) + 40.0 * f64::from(u8::from(vtk));
-    Ok(budget::simulation(
+    Ok(tensegrity_dynamics::estimate::simulation(
         simulation,
         true,
         csv || vtk,

@@ -1,5 +1,5 @@
 //! `statics`: the statics of a scene ([`StaticsCommand`], a request named `statics`) — one
-//! call of the core's statics front ([`tensegrity_core::statics_report`]: rank, self-stress,
+//! call of the core's statics front ([`tensegrity_statics::statics_report`]: rank, self-stress,
 //! prestressability, mechanisms, the load solve and sizing, the modes on request) on the
 //! scene's structure.
 //!
@@ -20,16 +20,18 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::context::Context;
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{self, Estimate, Limits};
 use tensegrity_core::request::{InvalidParameter, Param, Request};
-use tensegrity_core::statics::{
+use tensegrity_core::{CoreError, Structure};
+use tensegrity_io::scene::Scene;
+use tensegrity_statics::stiffness::MassModel;
+use tensegrity_statics::{
     sparse_after_qr, DofMap, StaticsMethod, StaticsSettings, SPARSE_FLOP_RATE, SPARSE_MIN_SIZE,
 };
-use tensegrity_core::stiffness::MassModel;
-use tensegrity_core::{statics_report, CoreError, StaticsReport, StaticsRequest, Structure};
-use tensegrity_io::scene::Scene;
+use tensegrity_statics::{statics_report, StaticsReport, StaticsRequest};
 
 /// The statics of a scene, as data (defaults: the SVD's own rank tolerance, the method
 /// chosen by size, no modes, the lumped mass, a load that is not carried an error).
@@ -146,10 +148,7 @@ pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
 /// Runs `statics` in a sweep's (or another front end's) [`Context`]: as [`statics`], with the
 /// context's limits checked again by the sparse path once its rank is known, so a case the
 /// estimate before the run let through is refused before its bases are allocated.
-pub fn statics_in(
-    command: &StaticsCommand,
-    ctx: &crate::Context,
-) -> Result<StaticsReport, SceneError> {
+pub fn statics_in(command: &StaticsCommand, ctx: &Context) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
     let request = command.request_within(ctx.limits());
     Ok(statics_report(&scene.structure, &request)?)
@@ -209,23 +208,22 @@ pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estim
     }
     // a wide unloaded structure (a lattice) takes the nested-dissection path
     if command.method == StaticsMethod::Auto
-        && tensegrity_core::statics::nested::prefers_nested(structure)
+        && tensegrity_statics::nested::prefers_nested(structure)
     {
-        return tensegrity_core::statics::nested::nested_estimate(structure, parameter).ok();
+        return tensegrity_statics::nested::nested_estimate(structure, parameter).ok();
     }
     // a large unloaded structure of narrow band (a tower) takes the nested dissection of A
     // itself first; the banded QR it may still choose checks its own bound and budget
     if command.method == StaticsMethod::Auto
-        && tensegrity_core::statics::nested::prefers_nested_members(structure)
+        && tensegrity_statics::nested::prefers_nested_members(structure)
     {
-        return tensegrity_core::statics::nested::nested_members_estimate(structure, parameter)
-            .ok();
+        return tensegrity_statics::nested::nested_members_estimate(structure, parameter).ok();
     }
     // the sparse QR within its profile (a bound of what the factorisation stores), its work
     // (QR_FLOPS_PER_ENTRY a profile entry), then the stages after it at the generic rank
     // min(dofs, members); a structure with more self-stresses is checked again by the core
     // once its rank is known (`StaticsSettings::work_limit`, the memory limit)
-    let profile = tensegrity_core::statics::sparse_statics_bytes(structure).unwrap_or(0.0);
+    let profile = tensegrity_statics::sparse_statics_bytes(structure).unwrap_or(0.0);
     let after = sparse_after_qr(dofs, members, dofs.min(members), 0);
     let qr_work = QR_FLOPS_PER_ENTRY * (profile / 8.0) / SPARSE_FLOP_RATE;
     Some(
@@ -280,7 +278,7 @@ mod tests {
         let m = DofMap::of(&s).len();
         assert_eq!(
             e.memory_bytes,
-            tensegrity_core::statics::dense_statics_bytes(m, s.n_members())
+            tensegrity_statics::dense_statics_bytes(m, s.n_members())
         );
         let sparse = StaticsCommand {
             method: StaticsMethod::Sparse,

@@ -277,7 +277,7 @@ fn rigid_toroid_request(request: &TbarRollRequest, n: usize) -> RollRequest {
         contact: request.contact,
         mu: request.mu_static,
         min_tension: defaults::ROLL_MIN_TENSION,
-        integrator: tensegrity_core::dynamics::IntegratorKind::Rk4,
+        integrator: tensegrity_dynamics::IntegratorKind::Rk4,
         checks: tensegrity_core::request::RunChecks {
             strict: false,
             ..request.checks

@@ -242,9 +242,9 @@ fn round_trip<R: Request + std::fmt::Debug + PartialEq>(r: &R) {
 
 #[test]
 fn the_scene_requests_round_trip_through_json_and_the_registry() {
-    use tensegrity_core::dynamics::IntegratorKind;
-    use tensegrity_core::statics::StaticsMethod;
-    use tensegrity_core::stiffness::MassModel;
+    use tensegrity_dynamics::IntegratorKind;
+    use tensegrity_statics::stiffness::MassModel;
+    use tensegrity_statics::StaticsMethod;
     let s = statics::StaticsCommand {
         scene: Some(SceneSource::parse("../../examples/prism.toml")),
         rank_tol: Some(1e-9),
@@ -283,7 +283,7 @@ fn the_scene_requests_round_trip_through_json_and_the_registry() {
 
 #[test]
 fn statics_by_name_gives_the_cores_rank_and_self_stress_count() {
-    use tensegrity_core::{statics_report, StaticsRequest};
+    use tensegrity_statics::{statics_report, StaticsRequest};
     let ctx = Context::default();
     // the Snelson prism: 12 members, one self-stress state (rank 11)
     for (path, self_stress) in [
@@ -333,7 +333,7 @@ fn statics_admitted_refuses_before_the_report() {
 
 #[test]
 fn statics_runs_equal_the_library_report_and_its_columns_are_its_scalars() {
-    use tensegrity_core::{statics_report, StaticsRequest};
+    use tensegrity_statics::{statics_report, StaticsRequest};
     let path = "../../examples/dbar_loaded.toml";
     let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
     let direct = statics_report(&scene.structure, &StaticsRequest::default()).unwrap();
@@ -362,14 +362,14 @@ fn statics_runs_equal_the_library_report_and_its_columns_are_its_scalars() {
     full.sizing_warning = Some("w".into());
     full.modal_error = Some("m".into());
     full.sizing_error = Some("s".into());
-    full.statics_method = Some(tensegrity_core::statics::Factorization::SparseQr);
+    full.statics_method = Some(tensegrity_statics::Factorization::SparseQr);
     full.statics_warning = Some("w".into());
     check_columns("statics", &[full], &[]);
 }
 
 #[test]
 fn simulate_runs_equal_the_library_run_and_strict_fails_on_drift() {
-    use tensegrity_core::dynamics::SimulationReport;
+    use tensegrity_dynamics::SimulationReport;
     let path = "../../examples/prism_drop.toml";
     let scene = tensegrity_io::scene::Scene::from_path(path.as_ref()).unwrap();
     let direct = SimulationReport::from(&scene.simulation().unwrap().run().unwrap());

@@ -12,9 +12,9 @@
 //! hide the next one's peak.
 
 use std::process::Command;
-use tensegrity_core::statics::{sparse_after_qr, SparseStatics, StaticsMethod, StaticsSettings};
 use tensegrity_engine::scene::SceneSource;
 use tensegrity_engine::statics::{estimate, statics, StaticsCommand};
+use tensegrity_statics::{sparse_after_qr, SparseStatics, StaticsMethod, StaticsSettings};
 
 /// A field of /proc/self/status in bytes (`VmRSS`, `VmHWM`).
 fn status(key: &str) -> f64 {

@@ -121,7 +121,7 @@ impl Scenery {
     pub fn structure(
         title: impl Into<String>,
         structure: &tensegrity_core::Structure,
-        ground: Option<&tensegrity_core::dynamics::Ground>,
+        ground: Option<&tensegrity_dynamics::Ground>,
     ) -> Self {
         let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
         for p in structure.nodes() {

@@ -20,8 +20,8 @@
 //! | 4.20 | member force densities over γ | [`michell3d::extra_strings::gamma_sweep`] |
 //! | 5.1–5.3 | T-bar tread, wheel, extended wheel | [`tbar_wheel::drawing::polylines`] |
 
+use crate::context::Context;
 use crate::data::Drawn;
-use crate::driver::Context;
 use crate::error::Result;
 use crate::{chapter2, michell, tbar, wheels as wheel};
 use serde::{Deserialize, Serialize};

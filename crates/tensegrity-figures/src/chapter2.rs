@@ -3,9 +3,9 @@
 //! strings 1→4, 2→3 (rows of C_b and C_s, eq. 2.9, −1 at the start node as ERRATA 2.1), so
 //! that B = N C_bᵀ has columns [L/2, ±h/2] and S = N C_sᵀ = [L, 0; 0, −h] (eq. 2.10).
 
+use crate::context::Context as Ctx;
 use crate::data::{no_forces, Drawn, StructureFigure};
 use crate::draw::{Group, View, BLUE, RED};
-use crate::driver::Context as Ctx;
 use crate::error::Result;
 use nalgebra::Vector3;
 

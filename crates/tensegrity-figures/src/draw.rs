@@ -164,8 +164,9 @@ impl FromStr for View {
                 let (a, e) = other.split_once(',').ok_or_else(|| {
                     format!("unknown view \"{s}\": expected iso, xy, yz, xz or AZIMUTH,ELEVATION (e.g. 30deg,20deg)")
                 })?;
-                let azimuth = tensegrity_core::angle::parse_angle(a)?;
-                let elevation = tensegrity_core::angle::parse_angle(e)?;
+                let azimuth = tensegrity_core::angle::parse_angle(a).map_err(|e| e.to_string())?;
+                let elevation =
+                    tensegrity_core::angle::parse_angle(e).map_err(|e| e.to_string())?;
                 if elevation.abs() > std::f64::consts::FRAC_PI_2 + 1e-12 {
                     return Err(format!(
                         "view \"{s}\": the elevation must lie in [−90°, 90°]"

@@ -46,6 +46,7 @@
 pub mod animation;
 pub mod catalog;
 pub mod chapter2;
+mod context;
 pub mod data;
 pub mod draw;
 pub mod driver;
@@ -56,6 +57,7 @@ pub mod rolling;
 pub mod structures;
 pub mod sweep_plot;
 pub mod tbar;
+mod warning;
 pub mod wheels;
 pub mod work_precision;
 

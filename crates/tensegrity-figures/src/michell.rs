@@ -29,9 +29,9 @@
 //!   γ ∈ [0, 2π] with 10 N and 5 kN in the extra strings
 //!   ([`michell3d::extra_strings::gamma_sweep`]).
 
+use crate::context::Context as Ctx;
 use crate::data::{no_forces, Drawn, StructureFigure};
 use crate::draw::{Group, View, BLUE, GREY, RED};
-use crate::driver::Context as Ctx;
 use crate::error::Result;
 use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
 use michell3d::signmap::{AngleGrid, SignMap};

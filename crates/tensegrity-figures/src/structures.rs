@@ -9,10 +9,11 @@
 use crate::draw::{drawing_figure_of, drawing_panel, ColorBy, Drawing, Style};
 use crate::error::Result;
 use nalgebra::{DMatrix, Vector3};
-use tensegrity_core::statics::DofMap;
-use tensegrity_core::stiffness::{self, MassModel};
-use tensegrity_core::{Statics, StaticsReport, Structure};
+use tensegrity_core::Structure;
 use tensegrity_io::figure::Figure;
+use tensegrity_statics::stiffness::{self, MassModel};
+use tensegrity_statics::DofMap;
+use tensegrity_statics::{Statics, StaticsReport};
 
 /// The structure of a statics report, members coloured by force (or prestress force
 /// density), reactions drawn. With `style.color_by` [`ColorBy::Kind`] the colouring is chosen

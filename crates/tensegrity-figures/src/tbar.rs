@@ -5,9 +5,9 @@
 //! from the projected line segments of [`tbar_wheel::drawing::polylines`]: side (ι̂₂, ι̂₃)
 //! and top (ι̂₂, ι̂₁).
 
+use crate::context::Context as Ctx;
 use crate::data::{no_forces, Drawn, PanelData, StructureData};
 use crate::draw::{drawing_figure, Group, BLUE, RED};
-use crate::driver::Context as Ctx;
 use crate::error::Result;
 use michell3d::MichellParams;
 use std::f64::consts::{FRAC_PI_6, PI};

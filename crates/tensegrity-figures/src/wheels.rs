@@ -23,9 +23,9 @@
 //! whose net normal force goes negative (the wheel would leave the slope: outside the
 //! model's assumptions) is flagged in the figure's title and by a [`crate::Warning`].
 
+use crate::context::Context as Ctx;
 use crate::data::{Drawn, StructureFigure};
 use crate::draw::{Group, View, BLUE, GREY, RED};
-use crate::driver::Context as Ctx;
 use crate::error::Result;
 use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::figure_data::Value;

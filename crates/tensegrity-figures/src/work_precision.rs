@@ -1,18 +1,18 @@
-//! The work–precision figure of the integrators ([`tensegrity_core::dynamics::work_precision`]:
+//! The work–precision figure of the integrators ([`tensegrity_dynamics::work_precision`]:
 //! every integrator on five scenes, two of them stiff): one log–log panel per scene, the
 //! maximum node error (m) at the end time against the best-of-N wall time (s), one curve per
 //! integrator (points with a zero error left out: nothing to draw on a log axis).
 
-use tensegrity_core::dynamics::work_precision::Point;
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::work_precision::Point;
+use tensegrity_dynamics::IntegratorKind;
 use tensegrity_io::figure::{Figure, Panel, Series};
 
 /// One log–log panel per scene (in the order the points list them), one curve per
 /// integrator with markers.
 ///
 /// ```
-/// use tensegrity_core::dynamics::work_precision::Point;
-/// use tensegrity_core::dynamics::IntegratorKind;
+/// use tensegrity_dynamics::work_precision::Point;
+/// use tensegrity_dynamics::IntegratorKind;
 /// let point = |scene, integrator, error, wall_time_s| Point {
 ///     scene, integrator, parameter: 1e-3, steps: 10, rhs_evals: 40, error, wall_time_s,
 /// };

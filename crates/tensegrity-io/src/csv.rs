@@ -24,7 +24,7 @@ use michell3d::extra_strings::GammaSweepRow;
 use michell3d::signmap::SignMapRow;
 use serde::{Serialize, Serializer};
 use std::io::Write;
-use tensegrity_core::dynamics::SimulationResult;
+use tensegrity_dynamics::SimulationResult;
 use wheel_rolling::RollingSample;
 
 /// An `f64` written as `{:.17e}` (17 digits after the point: exact, fixed layout).
@@ -114,7 +114,7 @@ pub fn write_table<W: Write, H: AsRef<[u8]>, F: AsRef<[u8]>>(
 ///
 /// ```
 /// use tensegrity_core::{Bar, Structure};
-/// use tensegrity_core::dynamics::{Simulation, SimulationSettings};
+/// use tensegrity_dynamics::{Simulation, SimulationSettings};
 /// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 ///     .bar(Bar::new(0, 1).mass(1.0)).build().unwrap();
 /// let mut settings = SimulationSettings { t_end: 0.1, output_interval: Some(0.05), ..Default::default() };

@@ -17,13 +17,13 @@
 use crate::error::Result;
 use crate::sink::CsvSink;
 use std::path::Path;
-use tensegrity_core::dynamics::Sample;
 use tensegrity_core::{MemberId, Structure};
+use tensegrity_dynamics::Sample;
 
 /// A trajectory CSV being written (see the module documentation).
 ///
 /// ```
-/// use tensegrity_core::dynamics::{Quantities, Simulation, SimulationSettings};
+/// use tensegrity_dynamics::{Quantities, Simulation, SimulationSettings};
 /// use tensegrity_core::{Bar, Structure};
 /// use tensegrity_io::trajectory::TrajectoryWriter;
 /// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])

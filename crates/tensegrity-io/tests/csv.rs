@@ -5,9 +5,9 @@ use michell3d::extra_strings::{gamma_sweep, ExtraStrings};
 use michell3d::signmap::{sign_map_rows, sign_maps, AngleGrid};
 use michell3d::{Method, MichellParams, MichellTruss};
 use std::f64::consts::{FRAC_PI_6, PI};
-use tensegrity_core::dynamics::{Simulation, SimulationSettings};
 use tensegrity_core::test_models::double_pendulum;
 use tensegrity_core::MaterialTable;
+use tensegrity_dynamics::{Simulation, SimulationSettings};
 use tensegrity_io::csv;
 
 fn written(f: impl FnOnce(&mut Vec<u8>) -> tensegrity_io::Result<usize>) -> (usize, String) {

@@ -4,9 +4,9 @@
 
 use nalgebra::Vector3;
 use std::path::Path;
-use tensegrity_core::dynamics::{IntegratorKind, Quantities, Simulation, SimulationSettings};
-use tensegrity_core::stiffness::{self, MassModel};
+use tensegrity_dynamics::{IntegratorKind, Quantities, Simulation, SimulationSettings};
 use tensegrity_io::scene::Scene;
+use tensegrity_statics::stiffness::{self, MassModel};
 
 #[test]
 fn modal_frequency_matches_the_period_of_small_oscillations() {

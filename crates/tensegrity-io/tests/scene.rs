@@ -1,8 +1,8 @@
 //! Scene files: the bundled examples parse, and bad files give errors with the item and line.
 
 use std::path::Path;
-use tensegrity_core::Statics;
 use tensegrity_io::scene::Scene;
+use tensegrity_statics::Statics;
 
 fn examples() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
@@ -32,7 +32,7 @@ fn bundled_examples_parse_with_the_expected_counts() {
 fn the_prism_scene_rest_lengths_realise_its_self_stress() {
     let scene = Scene::from_path(&examples().join("prism.toml")).unwrap();
     let s = &scene.structure;
-    let q = tensegrity_core::stiffness::string_force_densities(s).unwrap();
+    let q = tensegrity_statics::stiffness::string_force_densities(s).unwrap();
     // ring strings 10 N/m, verticals 10√3 N/m (ERRATA P.1 ratios)
     for k in 3..9 {
         assert!((q[k] - 10.0).abs() < 1e-9);

@@ -1,8 +1,8 @@
 //! The dynamics tables of a scene (`[simulation]`, `[ground]`, `[[actuation]]`): parsing,
 //! mapping onto the core's settings and ground, actuation schedules and their errors.
 
-use tensegrity_core::dynamics::{IntegratorKind, Quantities, SimulationSettings};
 use tensegrity_core::test_models::{double_pendulum, snelson_prism, PrismParams};
+use tensegrity_dynamics::{IntegratorKind, Quantities, SimulationSettings};
 use tensegrity_io::scene::{build_simulation, ActuationSpec, GroundSpec, Scene, SimulationSpec};
 
 #[test]

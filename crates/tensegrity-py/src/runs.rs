@@ -4,9 +4,9 @@
 
 use crate::errors::Failure;
 use serde_json::{Map, Value};
-use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::CoreError;
+use tensegrity_dynamics::{Sample, SampleSink};
 use tensegrity_engine::simulate::SimulateCommand;
 use tensegrity_engine::SceneError;
 use tensegrity_io::interrupt;
@@ -85,7 +85,7 @@ pub fn prepare_simulation(
 pub struct PreparedSimulation {
     command: SimulateCommand,
     scene: tensegrity_io::scene::Scene,
-    simulation: tensegrity_core::Simulation,
+    simulation: tensegrity_dynamics::Simulation,
 }
 
 /// Runs a prepared simulation (on the worker thread) as the CLI does: with

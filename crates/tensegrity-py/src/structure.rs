@@ -11,9 +11,9 @@ use pyo3::types::PyDict;
 use serde_json::{json, Map, Value};
 use tensegrity_core::connectivity::Connectivity;
 use tensegrity_core::request::{Categorized, Category, Request};
-use tensegrity_core::statics::{equilibrium_matrix, DofMap};
 use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
 use tensegrity_io::scene::Scene;
+use tensegrity_statics::{equilibrium_matrix, DofMap};
 
 /// The tables of a scene that are not the structure's: kept as given, written after it.
 pub const TABLES: &[&str] = &["simulation", "ground", "actuation"];

@@ -1,13 +1,13 @@
 //! Criterion benches: building and analysing the reference toroid (spokes + inner) for
 //! n = 8, 24, 100, and one second of rolling down 50° for n = 8 and 24 with the rigid and the
-//! full model (RK4 at 0.1 ms, the default, and IMEX at 0.5 ms: docs/ROLLING.md); and 100
+//! full model (RK4 at 0.1 ms, the default, and IMEX at 0.5 ms: docs/notes/ROLLING.md); and 100
 //! steps of the full model's rolling (n = 8, 0.01 s at 0.1 ms, with the projection and the
 //! monitor of every step: issue 25's "full rolling step", reported per step); `toroid_build_large`: the build alone (structure by indices, issue 25) for
 //! n = 1000 and 10000.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 use toroid::{analyse, build, Stabilize, ToroidParams, ToroidWheel};
 use wheel_rolling::{FullRolling, RigidRolling, RunSpec, Wheel};
 

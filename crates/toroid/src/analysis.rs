@@ -3,7 +3,7 @@
 //! design, mass and inertia; and the rim-radius window of single-prism prestressability.
 //!
 //! A wheel is analysed in the symmetry-adapted basis of its Cₙ symmetry about ι₁
-//! ([`crate::toroid_symmetry`], `tensegrity_core::statics::symmetry`): n blocks of at most
+//! ([`crate::toroid_symmetry`], `tensegrity_statics::symmetry`): n blocks of at most
 //! 17 rows and 21 columns instead of one SVD of 15n × 17n, so rank, self-stress dimension,
 //! mechanisms (each per representation k) and the prestress margin (an LP over the fully
 //! symmetric self-stresses) cost O(n); mass and inertia are sums over bars, O(n).
@@ -17,9 +17,9 @@ use crate::inertia::{wheel_inertia, wheel_mass};
 use crate::params::ToroidParams;
 use crate::symmetry::toroid_symmetry;
 use nalgebra::{DVector, Matrix3};
-use tensegrity_core::statics::symmetry::{CyclicStatics, RepCounts};
-use tensegrity_core::statics::{Certification, SpectralGap, StaticsBackend};
-use tensegrity_core::{Prestressability, Statics};
+use tensegrity_statics::symmetry::{CyclicStatics, RepCounts};
+use tensegrity_statics::{Certification, SpectralGap, StaticsBackend};
+use tensegrity_statics::{Prestressability, Statics};
 
 /// The analysis of a toroid (or a single prism).
 #[derive(Debug, Clone, PartialEq)]
@@ -308,7 +308,7 @@ pub fn rim_radius_window(
 /// let t = build(&ToroidParams::default(), "spokes,inner".parse().unwrap(), 1.0).unwrap();
 /// let d = prestress_design(&t, 10.0).unwrap();
 /// let s = prestressed_structure(&t, &d, 5e4).unwrap();
-/// let q = tensegrity_core::stiffness::string_force_densities(&s).unwrap();
+/// let q = tensegrity_statics::stiffness::string_force_densities(&s).unwrap();
 /// let nb = s.n_bars();
 /// assert!((q[nb] - d.force_density[nb]).abs() < 1e-9);
 /// ```

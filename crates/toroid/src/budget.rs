@@ -15,10 +15,10 @@
 //! `tipover --dynamic` (4.5 s simulated, n = 8) is estimated at 3.4 s and took 0.73 s of CPU
 //! (release), conservative like the roll estimate.
 
-use crate::params::ToroidParams;
 use crate::report::{ToroidRequest, WheelSpec};
 use crate::request::{TipoverDynamicRequest, TipoverRollingRequest};
 use crate::roll::RollRequest;
+pub use crate::spec_mass::wheel_mass;
 use tensegrity_core::budget::{self, Estimate};
 use wheel_rolling::estimate::{FullSizes, RunSize};
 use wheel_rolling::fidelity::Plan;
@@ -91,23 +91,6 @@ pub fn cyclic_statics(request: &ToroidRequest) -> Estimate {
     )
     .memory(memory)
     .work(work / budget::DENSE_FLOP_RATE)
-}
-
-/// Total bar mass of the wheel from the parameters (one prism's bar lengths × n, plus the
-/// axle of length T with spokes).
-pub fn wheel_mass(wheel: &WheelSpec) -> f64 {
-    let p: &ToroidParams = &wheel.geometry();
-    let x = crate::builder::prism_nodes(p);
-    let prism: f64 = [(0, 3), (1, 4), (2, 5)]
-        .iter()
-        .map(|&(a, b)| (x[b] - x[a]).norm())
-        .sum();
-    let axle = if wheel.stabilize.spokes {
-        p.outer_tread
-    } else {
-        0.0
-    };
-    wheel.bar_density * (p.sides as f64 * prism + axle)
 }
 
 /// The sizes of the wheel's full rolling model: the class-1 model of its bars and strings,

@@ -28,6 +28,7 @@ pub mod report;
 pub mod request;
 pub mod roll;
 pub mod rolling_lean;
+mod spec_mass;
 mod symmetry;
 mod tipover;
 pub mod tipover_dynamic;

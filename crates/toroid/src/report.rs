@@ -17,8 +17,8 @@ use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
 use tensegrity_core::request::{InvalidParameter, Param};
-use tensegrity_core::statics::SpectralGap;
 use tensegrity_core::Structure;
+use tensegrity_statics::SpectralGap;
 
 /// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
 /// seven parameters, `stabilize` as `"spokes,inner"`, `bar_density`), so a request that

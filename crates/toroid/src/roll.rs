@@ -24,8 +24,8 @@ use crate::error::Result;
 use crate::report::WheelSpec;
 pub use report::RollReport;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::IntegratorKind;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
+use tensegrity_dynamics::IntegratorKind;
 pub use wheel::{rigid_frames, scene, start_pose, ToroidWheel};
 use wheel_rolling::{
     ContactKind, Decision, FidelityChoice, Observer, RollSettings, RunChecks, RunSpec,
@@ -216,7 +216,7 @@ impl RollRequest {
         let s = &self.settings;
         Decision::new(
             self.fidelity,
-            crate::budget::wheel_mass(&self.wheel),
+            crate::spec_mass::wheel_mass(&self.wheel),
             s.gravity,
             s.string_stiffness,
             self.wheel.params.outer_radius,

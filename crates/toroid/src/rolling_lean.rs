@@ -26,7 +26,7 @@ use crate::error::Result;
 use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity, REFINEMENT};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{
+use tensegrity_dynamics::{
     Convergence, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 

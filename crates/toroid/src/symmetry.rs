@@ -10,7 +10,7 @@
 use crate::builder::Toroid;
 use crate::error::Result;
 use nalgebra::Vector3;
-use tensegrity_core::statics::symmetry::CyclicSymmetry;
+use tensegrity_statics::symmetry::CyclicSymmetry;
 
 /// The Cₙ descriptor of a built toroid (n = sides), validated against its structure.
 ///
@@ -60,7 +60,7 @@ pub struct SymmetryCounts {
 
 impl SymmetryCounts {
     /// The counts of a symmetric analysis; `None` when `reps` is empty (the dense path).
-    pub fn of(reps: &[tensegrity_core::statics::symmetry::RepCounts]) -> Option<Self> {
+    pub fn of(reps: &[tensegrity_statics::symmetry::RepCounts]) -> Option<Self> {
         (!reps.is_empty()).then(|| Self {
             self_stress_by_representation: reps.iter().map(|r| r.self_stress).collect(),
             internal_mechanisms_by_representation: reps

@@ -46,10 +46,10 @@ use crate::error::{Result, ToroidError};
 use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{
+use tensegrity_core::CoreError;
+use tensegrity_dynamics::{
     Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
-use tensegrity_core::CoreError;
 
 /// Settings of a dynamic tip-over run (flat serde form, flattened into
 /// [`crate::request::TipoverDynamicRequest`]).
@@ -355,7 +355,7 @@ pub(crate) fn lean_and_hub(x: &[Vector3<f64>], rim: &[usize]) -> (f64, Vector3<f
 /// Lean angle and edge loads of every sample.
 pub(crate) fn lean_history(
     toroid: &Toroid,
-    samples: &[tensegrity_core::dynamics::Sample],
+    samples: &[tensegrity_dynamics::Sample],
     force_at: impl Fn(f64) -> f64,
 ) -> Vec<LeanSample> {
     let n = toroid.params.sides;
@@ -399,7 +399,7 @@ impl RunValidity {
     /// The validity of a run of the wheel standing on the plane z = −`hub_height`.
     pub(crate) fn of(
         toroid: &Toroid,
-        result: &tensegrity_core::dynamics::SimulationResult,
+        result: &tensegrity_dynamics::SimulationResult,
         hub_height: f64,
     ) -> Self {
         let n = toroid.params.sides;

@@ -4,7 +4,7 @@
 //! (10⁶ N/m per node), the same μ and e = 0 (the penalty damping matched to it).
 //!
 //! The default test checks the first pivot, where both models apply; the ignored harness
-//! prints the table of docs/ROLLING.md:
+//! prints the table of docs/notes/ROLLING.md:
 //! `cargo test --release -p toroid --test roll_crossval -- --ignored --nocapture`.
 
 use std::f64::consts::PI;

@@ -1,4 +1,4 @@
-//! IMEX-ARK (`--integrator imex-ark`) on the reference pivot of docs/ROLLING.md ("Work–precision
+//! IMEX-ARK (`--integrator imex-ark`) on the reference pivot of docs/notes/ROLLING.md ("Work–precision
 //! on the default (penalty) ground"): n = 8 on 30°, μ = 1.2, e = 0, the default penalty
 //! ground, whose pivot creeps under the regularised friction. Against the split IMEX at a tenth
 //! of its default step (a second method that resolves the creep: 1.8·10⁻⁷ m from RK4 at
@@ -7,7 +7,7 @@
 //! The slow case runs in release mode only:
 //! `cargo test --release -p toroid --test rolling_ark -- --ignored`.
 
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 use toroid::{roll_observed, RollRequest};
 use wheel_rolling::{defaults, FidelityChoice, RunSummary};
 use wheel_rolling::{Flow, Observer, RollSettings, RollingSample, RunChecks};

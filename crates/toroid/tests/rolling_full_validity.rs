@@ -2,7 +2,7 @@
 //! is flagged, the reference case is converged in the step and the ground stiffness, and the
 //! validity record is consistent with the samples.
 
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 use toroid::{roll, ContactKind, FidelityChoice, RollReport, RollRequest};
 use wheel_rolling::{Fidelity, GroundContact, RollSettings, RunChecks};
 
@@ -82,7 +82,7 @@ fn figures(r: &RollReport) -> [f64; 4] {
 
 #[test]
 fn the_reference_case_is_converged_in_dt_and_ground_stiffness() {
-    // RK4 at 1e-4 s (the reference of the work–precision table in docs/ROLLING.md; the
+    // RK4 at 1e-4 s (the reference of the work–precision table in docs/notes/ROLLING.md; the
     // default IMEX step of 5e-4 s puts ω before the first impact 1.5 % from RK4 at 5e-5 s,
     // and the run's convergence check reports that quantity unconverged:
     // rolling_convergence.rs). 1 s of the reference run: mean speed, mean axle height, time of and spin before the

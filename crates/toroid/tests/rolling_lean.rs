@@ -1,5 +1,5 @@
 //! Lean while rolling down a cross-sloped plane: the set-up's closed forms and a case each side
-//! of the outcome (the conclusion's stability claim is a measured study, docs/SWEEPS.md).
+//! of the outcome (the conclusion's stability claim is a measured study, docs/guide/sweeps.md).
 
 use toroid::rolling_lean::LeanRolling;
 use toroid::WheelSpec;

@@ -5,7 +5,7 @@
 //! The slow cases run in release mode only:
 //! `cargo test --release -p toroid --test rolling_stick -- --ignored`.
 
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 use toroid::{roll_observed, RollRequest};
 use wheel_rolling::{ContactKind, FidelityChoice};
 use wheel_rolling::{Flow, Observer, RollSettings, RollingSample, RunChecks};

@@ -62,7 +62,7 @@ fn compare(n: usize, o: &str) {
     assert_eq!(reps.iter().map(|r| r.rigid_body).sum::<usize>(), 6);
     // the symmetric stress is a self-stress: A q = 0, and it carries the margin
     if let Some(q) = &sym.prestress {
-        let a = tensegrity_core::statics::equilibrium_matrix_full(&t.structure);
+        let a = tensegrity_statics::equilibrium_matrix_full(&t.structure);
         assert!((a * q).amax() < 1e-9, "A q = 0, {what}");
         let nb = t.structure.n_bars();
         let worst = (0..q.len())
@@ -156,9 +156,9 @@ fn symmetric_equals_dense_off_the_reference_geometry() {
 /// cyclic blocks): the same counts and margin.
 #[test]
 fn every_statics_backend_analyses_the_toroid_alike() {
-    use tensegrity_core::statics::symmetry::CyclicStatics;
-    use tensegrity_core::statics::{SparseStatics, StaticsSettings};
-    use tensegrity_core::Statics;
+    use tensegrity_statics::symmetry::CyclicStatics;
+    use tensegrity_statics::Statics;
+    use tensegrity_statics::{SparseStatics, StaticsSettings};
     for (n, o) in [
         (5, "spokes,inner"),
         (8, "inner,outer"),

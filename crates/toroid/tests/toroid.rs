@@ -72,9 +72,9 @@ fn internal_mechanisms_per_option_set_match_errata_3_4() {
         let a = analyse(&t).unwrap();
         assert_eq!(a.internal_mechanisms, flexes, "{o}");
         // the two LP solvers agree on the prestress margin
-        let clarabel = tensegrity_core::StaticsSettings::default()
-            .lp_solver(tensegrity_core::statics::LpSolver::Clarabel);
-        let other = tensegrity_core::Statics::with_settings(&t.structure, clarabel)
+        let clarabel = tensegrity_statics::StaticsSettings::default()
+            .lp_solver(tensegrity_statics::LpSolver::Clarabel);
+        let other = tensegrity_statics::Statics::with_settings(&t.structure, clarabel)
             .unwrap()
             .prestressability()
             .unwrap();
@@ -176,7 +176,7 @@ fn prestress_design_balances_and_hits_the_minimum_tension() {
     let t = build(&ToroidParams::default(), opts("spokes,inner"), 1.0).unwrap();
     let d = prestress_design(&t, 25.0).unwrap();
     let s = &t.structure;
-    let a = tensegrity_core::statics::equilibrium_matrix_full(s);
+    let a = tensegrity_statics::equilibrium_matrix_full(s);
     let residual = (&a * &d.force_density).amax();
     assert!(residual < 1e-9 * d.force_density.amax(), "{residual}");
     let nb = s.n_bars();

@@ -9,38 +9,12 @@
 //! ([`contact_effective_mass`]), so the per-node damping is c = ζ √(2 k m_eff)
 //! ([`penalty_damping`]).
 
+pub use crate::contact_kind::ContactKind;
 use crate::defaults;
-use crate::rigid::Polygon;
+use crate::polygon::Polygon;
 use crate::settings::RunSpec;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-
-/// The ground contact a request asks of the full model; serialises as `"penalty"`,
-/// `"thesis"` or `"stick"`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ContactKind {
-    /// Penalty spring–damper (never pulling) with regularised Coulomb friction.
-    #[default]
-    Penalty,
-    /// Thesis §3.2.2: weight-based normal reaction plus velocity damping (it can pull and
-    /// sink; its runs are flagged when they do).
-    Thesis,
-    /// The penalty spring–damper with friction that sticks: an elastic–plastic tangential
-    /// spring per contact node (`tensegrity_core::dynamics::stick`).
-    Stick,
-}
-
-impl ContactKind {
-    /// The names as requests write them.
-    pub const NAMES: &'static [&'static str] = &["penalty", "thesis", "stick"];
-
-    /// Whether the contact is a penalty spring (its stiffness is refined by the convergence
-    /// check).
-    pub fn is_penalty(self) -> bool {
-        matches!(self, Self::Penalty | Self::Stick)
-    }
-}
 
 /// The contact a run used, as reports name it: `"rigid"` (the rigid model's unilateral
 /// impacts), `"penalty"` or `"thesis"`.
@@ -88,7 +62,7 @@ pub enum ContactModel {
         mu_kinetic: f64,
     },
     /// Penalty normal spring–damper with an elastic–plastic tangential spring per node
-    /// (friction that sticks up to μ_s N; `tensegrity_core::dynamics::stick`).
+    /// (friction that sticks up to μ_s N; `tensegrity_dynamics::stick`).
     Stick {
         /// Normal stiffness per node (N/m).
         stiffness: f64,

@@ -3,7 +3,7 @@
 //! contact twice the ground stiffness, its damping following from the restitution unless
 //! given), in a second thread beside the run itself, and each headline quantity of the two
 //! summaries is compared ([`of_summaries`], the rule of
-//! [`tensegrity_core::dynamics::convergence`]: converged when it moves by at most half its
+//! [`tensegrity_dynamics::convergence`]: converged when it moves by at most half its
 //! tolerance).
 //!
 //! The headline quantities and their tolerances τ ([`crate::defaults`]): `first_impact.t` and
@@ -23,7 +23,7 @@ use crate::run::{roll_decided, Rolled, Wheel};
 use crate::settings::RunSpec;
 use crate::summary::RunSummary;
 use std::sync::atomic::{AtomicBool, Ordering};
-use tensegrity_core::dynamics::Convergence;
+use tensegrity_dynamics::Convergence;
 
 /// The refined run of `spec`: half the step; with a penalty contact also twice the ground
 /// stiffness (used by the full model only).

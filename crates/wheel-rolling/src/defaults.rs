@@ -24,9 +24,9 @@ pub const ROLL_DT: f64 = 1e-4;
 /// it: 1.9·10⁻²).
 pub const IMEX_ROLL_DT: f64 = 5e-4;
 
-/// Step of the full model under IMEX-ARK ([`IntegratorKind::ImexArk`](tensegrity_core::dynamics::IntegratorKind::ImexArk))
+/// Step of the full model under IMEX-ARK ([`IntegratorKind::ImexArk`](tensegrity_dynamics::IntegratorKind::ImexArk))
 /// with a penalty ground and the default strings (s). On the reference pivot of
-/// docs/ROLLING.md (n = 8 on 30°, μ = 1.2) it follows the axle to 1.5·10⁻⁶ m before the
+/// docs/notes/ROLLING.md (n = 8 on 30°, μ = 1.2) it follows the axle to 1.5·10⁻⁶ m before the
 /// impact, where the split IMEX at [`IMEX_ROLL_DT`] is 1.1·10⁻² m off; at 5·10⁻⁴ s its
 /// stage equations stall on the Stribeck weakening more often (432 of 6,514 stages).
 pub const IMEX_ARK_ROLL_DT: f64 = 2.5e-4;
@@ -49,7 +49,7 @@ pub const IMEX_MIN_DT: f64 = 2.5e-5;
 /// contact stays in the explicit part).
 ///
 /// ```
-/// use tensegrity_core::dynamics::IntegratorKind;
+/// use tensegrity_dynamics::IntegratorKind;
 /// use wheel_rolling::{defaults, ContactKind};
 /// let imex = |contact, k| defaults::full_dt(IntegratorKind::Imex, contact, k);
 /// assert_eq!(imex(ContactKind::Penalty, 2e4), 5e-4);
@@ -63,12 +63,12 @@ pub const IMEX_MIN_DT: f64 = 2.5e-5;
 /// assert_eq!(defaults::full_dt(IntegratorKind::Rk4, ContactKind::Penalty, 2e4), 1e-4);
 /// ```
 pub fn full_dt(
-    integrator: tensegrity_core::dynamics::IntegratorKind,
-    contact: crate::ContactKind,
+    integrator: tensegrity_dynamics::IntegratorKind,
+    contact: crate::contact_kind::ContactKind,
     string_stiffness: f64,
 ) -> f64 {
     match integrator {
-        tensegrity_core::dynamics::IntegratorKind::Imex if contact.is_penalty() => {
+        tensegrity_dynamics::IntegratorKind::Imex if contact.is_penalty() => {
             let scaled = IMEX_ROLL_DT * (STRING_STIFFNESS / string_stiffness).sqrt();
             if scaled.is_nan() {
                 ROLL_DT
@@ -76,7 +76,7 @@ pub fn full_dt(
                 scaled.clamp(IMEX_MIN_DT, IMEX_ROLL_DT)
             }
         }
-        tensegrity_core::dynamics::IntegratorKind::ImexArk if contact.is_penalty() => {
+        tensegrity_dynamics::IntegratorKind::ImexArk if contact.is_penalty() => {
             let scaled = IMEX_ARK_ROLL_DT * (STRING_STIFFNESS / string_stiffness).sqrt();
             if scaled.is_nan() {
                 ROLL_DT
@@ -130,7 +130,7 @@ pub const FRICTION_REGULARIZATION_VELOCITY: f64 = 1e-3;
 /// Tangential spring stiffness of the stick contact over its normal stiffness, k_t / k: the
 /// anchor spring that holds a stick (a node under a tangential load F < μ_s N rests at the
 /// stretch F / k_t, a fraction of a millimetre for the defaults; see
-/// `tensegrity_core::dynamics::stick`).
+/// `tensegrity_dynamics::stick`).
 pub const TANGENTIAL_STIFFNESS_RATIO: f64 = 1.0;
 
 /// Damping ratio of the stick contact's tangential spring–damper: c_t = ratio · √(2 k_t m_eff)

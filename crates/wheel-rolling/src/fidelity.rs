@@ -38,6 +38,7 @@
 //! scenes; the class agrees when that ratio is at most 1. When a model changes (its
 //! friction, its integrator), re-measure and replace the rows: the policy follows.
 use crate::defaults::RIGID_THRESHOLD;
+pub use crate::fidelity_choice::FidelityChoice;
 use crate::sample::RollingResult;
 use serde::{Deserialize, Serialize};
 
@@ -59,26 +60,6 @@ impl Fidelity {
             Self::Full => "full",
         }
     }
-}
-
-/// The model a request asks for; serialises as `"rigid"`, `"full"` or `"auto"`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum FidelityChoice {
-    /// The reduced rigid polygon.
-    Rigid,
-    /// The full tensegrity dynamics.
-    Full,
-    /// The fidelity policy (module docs): rigid where the strings barely stretch under the
-    /// wheel's weight, the models agree on the scene's class and the rigid run is valid, else
-    /// full.
-    #[default]
-    Auto,
-}
-
-impl FidelityChoice {
-    /// The names as requests write them.
-    pub const NAMES: &'static [&'static str] = &["rigid", "full", "auto"];
 }
 
 /// What a run will do, decided before it starts.
@@ -334,7 +315,7 @@ impl ClassAgreement {
 pub const MEASURED_SETTINGS: &str =
     "the toroid, strings 2e6 N/m, ground 1e6 N/m, mu_s 1.2, e 0, dt 5e-5 s";
 
-/// The measured table of rigid against full per scene class (module docs; docs/ROLLING.md
+/// The measured table of rigid against full per scene class (module docs; docs/notes/ROLLING.md
 /// "The fidelity policy"). Measured on the models of this version; re-measure after a
 /// model changes.
 pub const MEASURED: [ClassAgreement; 4] = [

@@ -12,7 +12,7 @@
 //! velocity between the sample and the one before it (zero at the first); a rigid body has no
 //! member forces.
 
-use crate::full::WheelFrame;
+use crate::frame::WheelFrame;
 use crate::sample::RollingSample;
 use nalgebra::{Rotation3, Vector3};
 

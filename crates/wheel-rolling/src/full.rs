@@ -33,11 +33,11 @@
 //! with friction that sticks: an elastic–plastic tangential spring per node, anchored where the
 //! node touched, capped at μ_s N (μ_k N while it slides), with k_t =
 //! [`defaults::TANGENTIAL_STIFFNESS_RATIO`] k and the critical c_t
-//! ([`crate::contact::stick_damping`]); equations in `tensegrity_core::dynamics::stick`.
+//! ([`crate::contact::stick_damping`]); equations in `tensegrity_dynamics::stick`.
 //! [`crate::ContactModel::Penalty`] (the default): per node, for penetration δ > 0,
 //! N = max(0, k δ − c δ̇ₙ) (never negative: a damper that would pull is clipped) and
 //! regularised Coulomb friction F_t = −μ(v) N tanh(v/v_reg) v̂ with a Stribeck transition
-//! from μ_s to μ_k (see `tensegrity_core::dynamics::Ground`). The normal damping follows
+//! from μ_s to μ_k (see `tensegrity_dynamics::Ground`). The normal damping follows
 //! from a coefficient of restitution e ([`crate::contact::penalty_damping`]): a linear spring–damper of
 //! damping ratio ζ rebounds with e = exp(−ζπ/√(1−ζ²)), so ζ = −ln e / √(π² + ln² e) (ζ = 1
 //! for e = 0), and c = ζ √(2 k m_eff) per node for a pair of nodes landing on a rigid wheel
@@ -75,20 +75,21 @@
 //! the touch-down), and the integral of the new
 //! pair's contact force over that transient (normal and tangential impulse).
 
+mod integrate;
 mod monitor;
 mod rest;
 mod scene;
 
 use crate::contact::ContactModel;
 use crate::defaults;
+pub use crate::frame::WheelFrame;
 use crate::observer::Observer;
-use crate::rigid::Polygon;
+use crate::polygon::Polygon;
 use crate::sample::RollingResult;
 use crate::settings::RunSpec;
-use nalgebra::Vector3;
 pub use rest::{FullStart, Settled};
 pub use scene::WheelScene;
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 
 /// Settings of a full-model rolling run.
 #[derive(Debug, Clone, PartialEq)]
@@ -128,21 +129,6 @@ impl Default for FullRolling {
             start: FullStart::Auto,
         }
     }
-}
-
-/// A snapshot of the wheel's nodes.
-#[derive(Debug, Clone, PartialEq)]
-pub struct WheelFrame {
-    /// Time (s).
-    pub t: f64,
-    /// Node positions (the structure's numbering) in slope coordinates: x along the axle,
-    /// y = s along the slope (downhill, 0 at the starting downhill pair), z = h above it (m).
-    pub nodes: Vec<Vector3<f64>>,
-    /// Node velocities in the same coordinates (m/s); empty when the model has none to give.
-    pub velocities: Vec<Vector3<f64>>,
-    /// Axial member forces, bars then strings, tension positive (N); empty for the rigid
-    /// model (a rigid body has no member forces).
-    pub member_forces: Vec<f64>,
 }
 
 /// A full-model run: the rolling result plus what only this model measures.
@@ -195,7 +181,7 @@ impl FullRolling {
     ) -> crate::Result<FullRun> {
         self.validate(t_end)?;
         scene.validate()?;
-        scene::run(self, scene, t_end, observer)
+        integrate::run(self, scene, t_end, observer)
     }
 
     fn validate(&self, t_end: f64) -> crate::Result<()> {

@@ -46,15 +46,19 @@
 #![warn(missing_docs)]
 
 pub mod contact;
+mod contact_kind;
 pub mod convergence;
 pub mod defaults;
 pub mod ensemble;
 mod error;
 pub mod estimate;
 pub mod fidelity;
+mod fidelity_choice;
+mod frame;
 pub mod frames;
 pub mod full;
 pub mod observer;
+mod polygon;
 pub mod rigid;
 pub mod run;
 pub mod sample;
@@ -74,6 +78,6 @@ pub use run::{roll_decided, roll_wheel, Rolled, Wheel};
 pub use sample::{RollingResult, RollingSample};
 pub use settings::{RollSettings, RunSpec};
 pub use summary::{FirstImpact, RunSummary, WheelRun};
-pub use tensegrity_core::dynamics::{Convergence, QuantityConvergence};
 pub use tensegrity_core::request::RunChecks;
+pub use tensegrity_dynamics::{Convergence, QuantityConvergence};
 pub use validity::{ImpactRecord, RollValidity};

@@ -11,7 +11,7 @@
 //! millisecond); the node frames, a whole wheel each, are kept only while the observer wants
 //! them ([`Observer::keeps_frames`]).
 
-use crate::full::WheelFrame;
+use crate::frame::WheelFrame;
 use crate::sample::RollingSample;
 
 /// What an observer asks of the run after each item.

@@ -8,12 +8,12 @@
 //! against the T-bar's `mu_static`/`mu_kinetic`, a fixed or fidelity-dependent `t_end`, the
 //! T-bar's optional prestress level) each request resolves into the [`RunSpec`].
 
-use crate::contact::ContactKind;
+use crate::contact_kind::ContactKind;
 use crate::defaults;
-use crate::fidelity::FidelityChoice;
+use crate::fidelity_choice::FidelityChoice;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::IntegratorKind;
 use tensegrity_core::request::{InvalidParameter, Param, Rule};
+use tensegrity_dynamics::IntegratorKind;
 
 /// The first of `values` that is not finite, as an [`InvalidParameter`] of its name.
 ///
@@ -216,7 +216,7 @@ impl RunSpec {
     /// contact and strings ([`defaults::full_dt`]), times `step_scale`.
     ///
     /// ```
-    /// use tensegrity_core::dynamics::IntegratorKind;
+    /// use tensegrity_dynamics::IntegratorKind;
     /// use wheel_rolling::{RollSettings, RunSpec};
     /// let imex = RunSpec { integrator: IntegratorKind::Imex, ..RunSpec::default() };
     /// assert_eq!(imex.full_dt(), 5e-4);

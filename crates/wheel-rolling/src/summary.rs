@@ -8,7 +8,7 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::validity::ImpactRecord;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::Convergence;
+use tensegrity_dynamics::Convergence;
 
 /// The first impact of a run (the JSON's `first_impact`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -7,7 +7,7 @@
 //! as well).
 
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::Convergence;
+use tensegrity_dynamics::Convergence;
 
 /// One contact impact (a new contact pair touching the slope).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -1,7 +1,7 @@
 //! `michell --sign-map`, `--gamma-sweep` and `michell-table`: the grids of Figs. 4.14–4.16,
 //! 4.20 and 4.18, their output files opened (io sinks) before the grids are computed.
 
-use super::{MichellArgs, MichellTableArgs};
+use super::args::{MichellArgs, MichellTableArgs};
 use crate::cli::output;
 use anyhow::Result;
 use michell3d::signmap::AngleGrid;

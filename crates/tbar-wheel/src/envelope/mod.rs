@@ -26,7 +26,7 @@
 //! i.e. the smallest bar compression P for which some self-stress keeps every string in
 //! tension and every bar in compression for every load direction. With one EA, g does not
 //! depend on EA, and the LP is homogeneous in w₀ (solved for w₀ = 1 and scaled). It is solved
-//! by the core's dense LP ([`tensegrity_core::statics::solve_lp`]); the reported prestress is
+//! by the core's dense LP ([`tensegrity_statics::solve_lp`]); the reported prestress is
 //! then certified: the returned state s is scaled by λ = max(a_k/s_k, a_bar/−s_bar), which
 //! makes every constraint hold exactly, and P = max over bars of −λ s_b.
 //!
@@ -59,7 +59,7 @@
 //! tip, each from a rotated response (O(tips × members) per direction, as on the dense
 //! path).
 //!
-//! [`SelfStressBasis::Symmetric`]: tensegrity_core::statics::SelfStressBasis::Symmetric
+//! [`SelfStressBasis::Symmetric`]: tensegrity_statics::SelfStressBasis::Symmetric
 
 mod response;
 mod slack;
@@ -71,7 +71,7 @@ use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
-use tensegrity_core::statics::{solve_lp, StaticsBackend};
+use tensegrity_statics::{solve_lp, StaticsBackend};
 
 /// Default tip load magnitude w₀ (N).
 pub const DEFAULT_LOAD: f64 = 1.0;

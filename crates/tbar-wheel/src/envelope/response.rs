@@ -14,9 +14,9 @@
 use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::borrow::Cow;
-use tensegrity_core::statics::symmetry::{elastic_response, CyclicSymmetry, MemberRotations};
-use tensegrity_core::statics::{equilibrium_matrix, DofMap, StaticsBackend};
 use tensegrity_core::{CoreError, NumericsError, Structure};
+use tensegrity_statics::symmetry::{elastic_response, CyclicSymmetry, MemberRotations};
+use tensegrity_statics::{equilibrium_matrix, DofMap, StaticsBackend};
 
 /// The linear response of every member force to a unit tip load, for every loaded tip.
 #[derive(Debug, Clone)]

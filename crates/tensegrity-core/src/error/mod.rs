@@ -25,11 +25,14 @@ mod dynamics;
 mod model;
 mod numerics;
 mod statics;
+mod symmetry;
 
+pub use crate::number::short_number;
 pub use dynamics::{DynamicsError, StepHint};
 pub use model::ModelError;
 pub use numerics::{FactorizationFailure, NumericsError};
 pub use statics::StaticsError;
+pub use symmetry::SymmetryError;
 
 use crate::request::{Categorized, Category, InvalidParameter};
 use thiserror::Error;
@@ -108,24 +111,6 @@ impl Categorized for CoreError {
     }
 }
 
-/// A number as a person reads it: plain decimals for ordinary magnitudes, scientific
-/// notation for tiny or huge ones (`1e-300`, not three hundred zeros).
-///
-/// ```
-/// use tensegrity_core::error::short_number;
-/// assert_eq!(short_number(-5.0), "-5");
-/// assert_eq!(short_number(1.5), "1.5");
-/// assert_eq!(short_number(1e-300), "1e-300");
-/// assert_eq!(short_number(f64::NAN), "NaN");
-/// ```
-pub fn short_number(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
-    }
-}
-
 impl CoreError {
     /// Shorthand for [`CoreError::InvalidParameter`].
     ///
@@ -139,8 +124,23 @@ impl CoreError {
     }
 }
 
-impl From<crate::statics::symmetry::SymmetryError> for CoreError {
-    fn from(e: crate::statics::symmetry::SymmetryError) -> Self {
+impl From<SymmetryError> for CoreError {
+    fn from(e: SymmetryError) -> Self {
         Self::Statics(e.into())
+    }
+}
+
+impl From<tensegrity_linalg::LinalgError> for NumericsError {
+    fn from(e: tensegrity_linalg::LinalgError) -> Self {
+        Self::Factorization {
+            operation: e.operation,
+            reason: e.reason,
+        }
+    }
+}
+
+impl From<tensegrity_linalg::LinalgError> for CoreError {
+    fn from(e: tensegrity_linalg::LinalgError) -> Self {
+        Self::Numerics(e.into())
     }
 }

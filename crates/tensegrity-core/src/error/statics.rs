@@ -1,9 +1,9 @@
 //! [`StaticsError`]: a statics analysis (load solve, sizing, cyclic symmetry) that has no
 //! answer for a valid structure, or a symmetry descriptor that does not fit it.
 
+use super::symmetry::SymmetryError;
 use crate::member_id::MemberId;
 use crate::request::{Categorized, Category};
-use crate::statics::symmetry::SymmetryError;
 use thiserror::Error;
 
 /// Everything a statics analysis can fail on, beyond the model and the numerical kernels.

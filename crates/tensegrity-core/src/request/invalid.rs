@@ -21,7 +21,7 @@ use std::fmt;
 pub struct InvalidParameter {
     /// The parameter (a request field, `snake_case`).
     pub name: Cow<'static, str>,
-    /// The value as given, written out (numbers in [`crate::error::short_number`] form,
+    /// The value as given, written out (numbers in [`crate::number::short_number`] form,
     /// text quoted).
     pub value: String,
     /// Why it is invalid: the rule it breaks.
@@ -33,7 +33,7 @@ impl InvalidParameter {
     pub fn new(name: impl Into<Cow<'static, str>>, value: f64, reason: impl Into<String>) -> Self {
         Self {
             name: name.into(),
-            value: crate::error::short_number(value),
+            value: crate::number::short_number(value),
             reason: reason.into(),
         }
     }

@@ -309,7 +309,7 @@ impl Param {
         let x = match (self.kind, v) {
             (_, Value::Number(n)) => n.as_f64(),
             (Kind::Angle, Value::String(s)) => {
-                Some(crate::angle::parse_angle(s).map_err(|e| self.bad(v, e))?)
+                Some(crate::angle::parse_angle(s).map_err(|e| self.bad(v, e.to_string()))?)
             }
             (_, Value::String(s)) => s.trim().parse::<f64>().ok(),
             _ => None,

@@ -11,7 +11,7 @@
 //! | Snelson prism | [`snelson_prism`], [`snelson`] | self-stress only at twist π/2 − π/p ([`snelson_twist`]); q ratios 1 : 1 : √3 : −√3 |
 //! | double pendulum | [`double_pendulum`] | published tip at t = 5 s ([`DOUBLE_PENDULUM_TIP_5S`]) |
 //! | MOTES D-bar | [`motes_dbar`] | N P = D and bar lengths kept over 5000 RK4 steps |
-//! | dropped prism | [`dropped_prism`], [`dropped_prism_ground`] | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
+//! | dropped prism | [`dropped_prism`], `tensegrity_dynamics::test_models::dropped_prism_ground` | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
 //! | spinning bar | [`spinning_bar`] | exact rotation ([`spinning_bar_exact`]) |
 //! | double-layer lattice | [`double_layer_grid`] | sparse statics scaling; dense agreement |
 //! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`], [`snelson_tower_free`] | size scaling for benches |
@@ -31,9 +31,7 @@ pub use dbar::{
     alu, bar_pinned_at_both_ends, dbar, dbar_frame, loaded_dbar, partly_supported_dbar,
 };
 pub use double_pendulum::{double_pendulum, DOUBLE_PENDULUM_G, DOUBLE_PENDULUM_TIP_5S};
-pub use dropped_prism::{
-    dropped_prism, dropped_prism_ground, dropped_prism_penetration, DROPPED_PRISM_G,
-};
+pub use dropped_prism::{dropped_prism, dropped_prism_penetration, DROPPED_PRISM_G};
 pub use lattice::double_layer_grid;
 pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
 pub use motes_prism::motes_anchor_prism;

@@ -13,7 +13,7 @@ use crate::scene::SceneError;
 use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
-use tensegrity_core::dynamics::SimulationResult;
+use tensegrity_dynamics::SimulationResult;
 use tensegrity_io::scene::Scene;
 
 /// The label of every reference time and ratio.

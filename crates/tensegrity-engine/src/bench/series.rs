@@ -5,7 +5,7 @@
 //! | series | size | call | time |
 //! |---|---|---|---|
 //! | `toroid` | sides n | [`toroid::toroid_report`] (reference wheel, spokes + inner: build, cyclic statics, prestress, mass) | the whole call |
-//! | `towers` | prisms N | the statics report of a free tower of N Snelson prisms ([`tensegrity_core::statics_report`], the default method) | the whole call |
+//! | `towers` | prisms N | the statics report of a free tower of N Snelson prisms ([`tensegrity_statics::statics_report`], the default method) | the whole call |
 //! | `michell` | complexity q | the 3-D Michell truss, δ = 0.25, β = π/6, φ = π/q, global solve ([`michell3d::MichellRequest::run`]) | the whole call |
 //! | `rolling` | sides n | the toroid rolled down 50° with the full model (penalty contact, RK4 at 0.1 ms) for a few steps ([`toroid::roll`]) | per step (the integration alone) |
 //!
@@ -21,7 +21,8 @@ use serde::Serialize;
 use serde_json::json;
 use std::time::Instant;
 use tensegrity_core::request::Request;
-use tensegrity_core::{statics_report, test_models, StaticsRequest, Structure};
+use tensegrity_core::{test_models, Structure};
+use tensegrity_statics::{statics_report, StaticsRequest};
 
 /// One scaling series.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -39,10 +39,10 @@
 //! ```
 
 use crate::error::{IoError, Result};
-use std::path::Path;
 
 pub mod layout;
 pub mod render;
+mod save;
 mod size;
 pub mod svg;
 mod text;
@@ -408,32 +408,6 @@ impl Figure {
     pub fn to_pdf_with(&self, options: &RenderOptions) -> Result<Vec<u8>> {
         let text = self.to_svg_with(options)?;
         render::pdf(&text)
-    }
-
-    /// Writes the figure to `path` at its own size: SVG for `.svg`, PNG for `.png`, PDF for
-    /// `.pdf` (case-insensitive), through a [`crate::sink::FigureSink`] (a command opens the
-    /// sink before its work instead).
-    ///
-    /// ```
-    /// use tensegrity_io::figure::{Figure, Panel, Series};
-    /// let fig = Figure::new(vec![Panel::new("error", "time [s]", "error [m]")
-    ///     .log_log()
-    ///     .series(Series::new("rk4", vec![(1e-3, 1e-4), (1e-2, 1e-8)]).with_markers())]);
-    /// let dir = std::env::temp_dir();
-    /// let path = dir.join(format!("tensegrity-io-fig-{}.png", std::process::id()));
-    /// fig.save(&path)?;
-    /// assert!(std::fs::read(&path).unwrap().starts_with(b"\x89PNG"));
-    /// # std::fs::remove_file(&path).unwrap();
-    /// assert!(fig.save(&dir.join("figure.bmp")).is_err());
-    /// # Ok::<(), tensegrity_io::IoError>(())
-    /// ```
-    pub fn save(&self, path: &Path) -> Result<()> {
-        crate::sink::FigureSink::open(path)?.finish(self)
-    }
-
-    /// [`Figure::save`] under `options` (size, dpi).
-    pub fn save_with(&self, path: &Path, options: &RenderOptions) -> Result<()> {
-        crate::sink::FigureSink::open_with(path, *options)?.finish(self)
     }
 }
 

@@ -48,10 +48,10 @@
 use crate::error::{IoError, Result};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::dynamics::{
+use tensegrity_core::Structure;
+use tensegrity_dynamics::{
     Ground, GroundModel, IntegratorKind, Model, Quantities, Simulation, SimulationSettings,
 };
-use tensegrity_core::Structure;
 
 /// The `[simulation]` table.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]

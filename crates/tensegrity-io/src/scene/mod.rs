@@ -2,8 +2,8 @@
 //! dynamics tables of [`dynamics`].
 //!
 //! The file schema ([`SceneFile`] and its `*Spec` tables) is mapped onto the core's builders
-//! ([`Structure::builder`], [`tensegrity_core::dynamics::Simulation::new`],
-//! [`tensegrity_core::dynamics::Ground::new`]); the core itself knows no file format.
+//! ([`Structure::builder`], [`tensegrity_dynamics::Simulation::new`],
+//! [`tensegrity_dynamics::Ground::new`]); the core itself knows no file format.
 //!
 //! Node indices are 0-based. Unknown keys are rejected, and every error names the offending
 //! item and its line:
@@ -51,8 +51,8 @@ use crate::error::{IoError, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
-use tensegrity_core::dynamics::Simulation;
 use tensegrity_core::{Bar, CoreError, Material, ModelError, StringMember, Structure, Support};
+use tensegrity_dynamics::Simulation;
 use toml::Spanned;
 
 /// The raw contents of a scene file.

@@ -9,8 +9,8 @@ use crate::sink::VtkSeriesSink;
 use crate::trajectory::TrajectoryWriter;
 use crate::vtk::FrameData;
 use nalgebra::Vector3;
-use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::CoreError;
+use tensegrity_dynamics::{Sample, SampleSink};
 
 /// What takes the node positions of a run as it goes (an animation: it keeps the frames it
 /// needs and draws them at its end).
@@ -31,7 +31,7 @@ pub struct Written {
 /// The open outputs of one simulation (either may be absent).
 ///
 /// ```
-/// use tensegrity_core::dynamics::{Simulation, SimulationSettings};
+/// use tensegrity_dynamics::{Simulation, SimulationSettings};
 /// use tensegrity_core::{Bar, Structure};
 /// use tensegrity_io::sink::{SimulationOutputs, VtkSeriesSink};
 /// use tensegrity_io::trajectory::TrajectoryWriter;

@@ -4,7 +4,7 @@
 
 use super::RollRequest;
 use serde::Serialize;
-use tensegrity_core::dynamics::IntegratorKind;
+use tensegrity_dynamics::IntegratorKind;
 use wheel_rolling::{
     Fidelity, GroundContact, ImpactRecord, Rolled, RollingSample, RunSummary, WheelFrame,
 };

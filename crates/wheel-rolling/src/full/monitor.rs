@@ -3,16 +3,18 @@
 //! validity figures, the energy budget and the impact log (equations in the parent module);
 //! it hands each sample and frame to the run's observer as it keeps it.
 
-use super::{FullRun, WheelFrame, WheelScene};
+use super::scene::WheelScene;
+use super::FullRun;
 use crate::contact::contact_effective_mass;
 use crate::defaults;
+use crate::frame::WheelFrame;
 use crate::observer::{Flow, Observer};
 use crate::sample::{summarise, RollingSample};
 use crate::validity::{ImpactRecord, RollValidity};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use tensegrity_core::dynamics::{Sample, SampleSink};
 use tensegrity_core::CoreError;
+use tensegrity_dynamics::{Sample, SampleSink};
 
 /// What the monitor needs of the wheel and the slope.
 pub(super) struct Geometry {

@@ -46,7 +46,7 @@
 //!
 //! **When** ([`FullStart::Auto`], the default): at rest when the wheel is stiff, m g/(k R_o)
 //! below [`defaults::RIGID_THRESHOLD`] (k the softest string): where the rigid model applies
-//! and the two models are compared (docs/ROLLING.md, "Cross-validation"). A flexible wheel
+//! and the two models are compared (docs/notes/ROLLING.md, "Cross-validation"). A flexible wheel
 //! (the default strings: 7·10⁻³) starts unloaded as before: its relaxation does not converge
 //! (the soft mode above) and would cost thousands of steps. The thesis contact has no spring
 //! to rest on: it always starts unloaded, as does [`FullStart::Unloaded`].
@@ -56,13 +56,13 @@
 //! impact −0.07 % and axle travel at 0.9 t₁ +0.19 % (unloaded start: −2.0 % and +6.3 %); the
 //! relaxation takes about 2 000 steps there (a tenth of the run to the first impact).
 
-use super::WheelScene;
+use super::scene::WheelScene;
 use crate::contact::ContactModel;
 use crate::defaults;
 use crate::error::Result;
 use nalgebra::Vector3;
-use tensegrity_core::dynamics::{ConstraintSet, Ground, GroundModel, Model, NodeRef, Workspace};
 use tensegrity_core::{MemberId, Structure};
+use tensegrity_dynamics::{ConstraintSet, Ground, GroundModel, Model, NodeRef, Workspace};
 
 /// Relative residual acceleration (of g₀) at which the relaxation stops.
 pub const RESIDUAL: f64 = 1e-3;

@@ -1,0 +1,64 @@
+//! The resource estimate of a [`Simulation`](crate::Simulation) run, from its settings and
+//! the model's sizes (the core's `budget` types and flop counts).
+
+use tensegrity_core::budget::{integration, rhs_flops, Estimate, Parameters};
+
+/// Estimate of a [`Simulation`](crate::Simulation) run from its settings and model
+/// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
+/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4 (with
+/// flight steps at most that),
+/// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
+/// memory unless `streamed`, and written at `bytes_per_number` when `written`.
+pub fn simulation(
+    sim: &crate::Simulation,
+    streamed: bool,
+    written: bool,
+    bytes_per_number: f64,
+    parameters: impl Into<Parameters>,
+) -> Estimate {
+    use crate::IntegratorKind as K;
+    let (s, model) = (&sim.settings, &sim.model);
+    let samples = s.output_times.len() as f64
+        + s.output_interval
+            .map_or(0.0, |dt_out| (s.t_end / dt_out).floor() + 1.0);
+    let step = match (s.integrator.is_adaptive(), s.output_interval) {
+        (false, Some(dt_out)) => s.dt.min(dt_out),
+        _ => s.dt,
+    };
+    let steps = (s.t_end / step).ceil();
+    let rhs_per_step = match s.integrator {
+        // flight steps: at most every step at dt (a run that never leaves the ground)
+        K::Rk4 | K::Rk4Flight => 4.0,
+        K::Rattle => 2.0,
+        K::Rk45 => 6.0,
+        K::Sdirk => 12.0,
+        // two right-hand sides and the contact response columns
+        K::Imex => 3.0,
+        // four right-hand sides, four responses and the Newton solves of the stages
+        K::ImexArk => 6.0,
+    };
+    let flops = rhs_flops(
+        model.bars.len(),
+        model.strings.len(),
+        model.n_constraint_rows(),
+    );
+    let q = &s.quantities;
+    let nodes = model.node_map.len() as f64;
+    let numbers = 1.0
+        + 3.0 * nodes * (f64::from(u8::from(q.nodes)) + f64::from(u8::from(q.velocities)))
+        + (model.bars.len() + model.strings.len()) as f64 * f64::from(u8::from(q.member_forces))
+        + 3.0 * f64::from(u8::from(q.energy))
+        + 4.0 * model.contact.len() as f64 * f64::from(u8::from(q.contact_forces));
+    let run = integration(steps, rhs_per_step, flops, model.state_len(), parameters);
+    let sample_bytes = numbers * if streamed { 0.0 } else { 8.0 };
+    Estimate {
+        memory_bytes: run.memory_bytes + samples * sample_bytes,
+        output_bytes: if written {
+            samples * numbers * bytes_per_number
+        } else {
+            0.0
+        },
+        what: format!("{} and {samples:.3e} output samples", run.what),
+        ..run
+    }
+}

@@ -1,0 +1,36 @@
+//! [`IntegratorKind::build`]: a fresh integrator of a kind for a model (the one place that
+//! knows every method's constructor).
+
+use crate::ark::ImexArk;
+use crate::flight::Flight;
+use crate::imex::Imex;
+use crate::integrator::Integrator;
+use crate::kind::IntegratorKind;
+use crate::model::Model;
+use crate::rattle::Rattle;
+use crate::rk4::Rk4;
+use crate::rk45::Dopri5;
+use crate::sdirk::Sdirk;
+use tensegrity_core::error::CoreError;
+
+impl IntegratorKind {
+    /// A fresh integrator of this kind for `model`; `rtol` and `atol` are used by the
+    /// adaptive ones only.
+    pub fn build(
+        self,
+        model: &Model,
+        rtol: f64,
+        atol: f64,
+    ) -> Result<Box<dyn Integrator>, CoreError> {
+        let n = model.state_len();
+        Ok(match self {
+            Self::Rk4 => Box::new(Rk4::new(n)),
+            Self::Rk45 => Box::new(Dopri5::new(n, rtol, atol)),
+            Self::Rattle => Box::new(Rattle::new(model)?),
+            Self::Sdirk => Box::new(Sdirk::new(model, rtol, atol)?),
+            Self::Imex => Box::new(Imex::new(model)),
+            Self::ImexArk => Box::new(ImexArk::new(model)),
+            Self::Rk4Flight => Box::new(Flight::new(model, Box::new(Rk4::new(n)), self)),
+        })
+    }
+}

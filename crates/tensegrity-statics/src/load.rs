@@ -1,0 +1,124 @@
+//! Load solve: the minimal-norm force densities q with A q = w (w = free rows of the external
+//! force matrix W, loads plus bar weights), member forces q·l, support reactions and the
+//! equilibrium residual.
+//!
+//! The reaction at a fixed degree of freedom is whatever the support must supply so that the
+//! node balances: r = (A_full q − w) at that row. When w is not in the range of A (the load
+//! drives a mechanism), the least-squares q is returned and the residual ‖A q − w‖ says by how
+//! much equilibrium fails. A load counts as carried when ‖A q − w‖₂ ≤
+//! [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂; otherwise [`LoadSolution::unbalanced`] names the nodes whose
+//! residual force exceeds that tolerance.
+
+use super::{DofMap, Statics};
+use nalgebra::{DVector, Vector3};
+use tensegrity_core::structure::Structure;
+
+/// Relative equilibrium residual ‖A q − w‖₂ / ‖w‖₂ above which a load is not carried (the
+/// minimal-norm solve of a consistent system leaves round-off of order κ(A)·ε).
+pub const LOAD_RESIDUAL_TOLERANCE: f64 = 1e-8;
+
+/// The solution of a load problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadSolution {
+    /// Force densities q (N/m, tension positive), bars then strings.
+    pub force_density: DVector<f64>,
+    /// Axial forces q·l (N, tension positive).
+    pub member_force: DVector<f64>,
+    /// `(node, reaction)` for every supported node, in support order (free directions of a
+    /// partially supported node carry 0).
+    pub reactions: Vec<(usize, Vector3<f64>)>,
+    /// ‖A q − w‖₂ over the free degrees of freedom (N).
+    pub residual: f64,
+    /// The residual relative to ‖w‖₂ (0 when w = 0).
+    pub relative_residual: f64,
+    /// `(node, residual force)` of every node whose unbalanced force A q − w exceeds
+    /// [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂ (empty when the load is carried).
+    pub unbalanced: Vec<(usize, Vector3<f64>)>,
+}
+
+impl LoadSolution {
+    /// Whether the structure carries the load: relative residual within
+    /// [`LOAD_RESIDUAL_TOLERANCE`].
+    pub fn load_carried(&self) -> bool {
+        self.relative_residual <= LOAD_RESIDUAL_TOLERANCE
+    }
+}
+
+impl Statics<'_> {
+    /// Solves for the structure's own loads (nodal loads plus gravity on bar masses).
+    pub fn solve_loads(&self) -> LoadSolution {
+        self.solve_nodal_forces(&self.structure().W())
+    }
+
+    /// Solves A q = w for an arbitrary 3×n nodal force matrix `w_nodes`.
+    pub fn solve_nodal_forces(&self, w_nodes: &nalgebra::Matrix3xX<f64>) -> LoadSolution {
+        let w = self.dofs().gather(w_nodes);
+        let q = self.solve_min_norm(&w);
+        let r = self.matrix() * &q - &w;
+        assemble_solution(self.structure(), self.dofs(), w_nodes, q, r)
+    }
+}
+
+/// The load solution for force densities `q` with equilibrium residual `r` = A q − w on the
+/// free rows: member forces, reactions, residual norms and unbalanced nodes.
+pub(super) fn assemble_solution(
+    structure: &Structure,
+    dofs: &DofMap,
+    w_nodes: &nalgebra::Matrix3xX<f64>,
+    q: DVector<f64>,
+    r: DVector<f64>,
+) -> LoadSolution {
+    let w_norm = dofs.gather(w_nodes).norm();
+    let lengths = structure.member_lengths();
+    let member_force = DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
+    let residual = r.norm();
+    let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
+    let unbalanced = unbalanced_nodes(structure, dofs, &r, LOAD_RESIDUAL_TOLERANCE * w_norm);
+
+    // (A_full q) node by node, one member at a time: −q m at the start, +q m at the end
+    let mut internal = vec![Vector3::zeros(); structure.n_nodes()];
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let t = structure.member_vector(k) * q[k];
+        internal[i] -= t;
+        internal[j] += t;
+    }
+    let reactions = structure
+        .supports()
+        .iter()
+        .map(|s| {
+            let mut r = Vector3::zeros();
+            for d in 0..3 {
+                if s.fixed[d] {
+                    r[d] = internal[s.node][d] - w_nodes[(d, s.node)];
+                }
+            }
+            (s.node, r)
+        })
+        .collect();
+    LoadSolution {
+        force_density: q,
+        member_force,
+        reactions,
+        residual,
+        relative_residual,
+        unbalanced,
+    }
+}
+
+/// Nodes whose residual force (free directions of `r`, node by node) exceeds `tol`.
+fn unbalanced_nodes(
+    structure: &Structure,
+    dofs: &DofMap,
+    r: &DVector<f64>,
+    tol: f64,
+) -> Vec<(usize, Vector3<f64>)> {
+    let mut per_node = vec![Vector3::zeros(); structure.n_nodes()];
+    for (row, &(node, d)) in dofs.free.iter().enumerate() {
+        per_node[node][d] = r[row];
+    }
+    per_node
+        .into_iter()
+        .enumerate()
+        .filter(|(_, f)| f.norm() > tol)
+        .collect()
+}

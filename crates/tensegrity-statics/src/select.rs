@@ -1,0 +1,146 @@
+//! Which back-end answers a statics question ([`StaticsBackend`]).
+//!
+//! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
+//!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on
+//!   (automatic method: along the band, or along a nested dissection for an unloaded
+//!   structure whose band is wide, a lattice: [`prefers_nested`](super::nested::prefers_nested);
+//!   for a large unloaded structure of narrow band, a tower, along a nested dissection of A
+//!   itself: [`prefers_nested_members`](super::nested::prefers_nested_members));
+//!   an uncertified sparse rank decision falls back to the SVD when the method is automatic
+//!   and the SVD fits the memory budget and the default work limit, and is otherwise
+//!   returned as is (its
+//!   [`Certification`](super::Certification) says so).
+//! - [`cyclic_backend`] (structures with a validated Cₙ descriptor): the symmetry-adapted
+//!   blocks ([`CyclicStatics`]); an uncertified block rank decision falls back to the dense
+//!   SVD when it fits the memory budget and the work limit, and is otherwise returned as is.
+//!   `method = Dense` or `Sparse` forces that back-end.
+
+use super::symmetry::{CyclicStatics, CyclicSymmetry};
+use super::{
+    dense_statics_bytes, DofMap, SparseStatics, Statics, StaticsBackend, StaticsMethod,
+    StaticsSettings, DEFAULT_MEMORY_LIMIT, SPARSE_MIN_SIZE,
+};
+use tensegrity_core::error::{CoreError, Result};
+use tensegrity_core::structure::Structure;
+
+/// Whether the dense SVD of `structure` fits the memory budget of `settings` and its
+/// estimated work the default work limit ([`tensegrity_core::budget::DEFAULT_MAX_WORK_S`]): a fallback
+/// beyond it would run for minutes unannounced, so the uncertified decision is returned
+/// (flagged) instead.
+fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
+    let (m, n) = (DofMap::of(structure).len(), structure.n_members());
+    let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
+    let work = tensegrity_core::budget::dense_statics(m, n, "").work_s;
+    dense_statics_bytes(m, n) <= limit && work <= tensegrity_core::budget::DEFAULT_MAX_WORK_S
+}
+
+/// Whether `settings` send `structure` to the sparse QR.
+fn wants_sparse(structure: &Structure, settings: &StaticsSettings) -> bool {
+    match settings.method {
+        StaticsMethod::Dense => false,
+        StaticsMethod::Sparse => true,
+        StaticsMethod::Auto => {
+            let dofs = DofMap::of(structure).len();
+            dofs.min(structure.n_members()) >= SPARSE_MIN_SIZE
+        }
+    }
+}
+
+/// The back-end [`StaticsMethod`] chooses for a general structure (see the module docs).
+///
+/// ```
+/// use tensegrity_statics::{backend, Factorization, StaticsBackend, StaticsSettings};
+/// use tensegrity_core::{Bar, StringMember, Structure};
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.5, 0.0], [1.0, -0.5, 0.0], [2.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1)).bar(Bar::new(0, 2)).bar(Bar::new(1, 3)).bar(Bar::new(2, 3))
+///     .string(StringMember::new(0, 3)).string(StringMember::new(1, 2))
+///     .build()
+///     .unwrap();
+/// let b = backend(&s, StaticsSettings::default()).unwrap();
+/// assert_eq!((b.kind(), b.self_stress_dim()), (Factorization::Svd, 1));
+/// ```
+pub fn backend<'a>(
+    structure: &'a Structure,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    if wants_sparse(structure, &settings) {
+        let fallback = settings.method == StaticsMethod::Auto && dense_fits(structure, &settings);
+        if settings.method == StaticsMethod::Auto && super::nested::prefers_nested(structure) {
+            let nested = super::NestedStatics::with_settings(structure, settings)?;
+            if nested.is_certified() || !fallback {
+                return Ok(Box::new(nested));
+            }
+            return Ok(Box::new(Statics::with_settings(structure, settings)?));
+        }
+        if settings.method == StaticsMethod::Auto
+            && super::nested::prefers_nested_members(structure)
+        {
+            return long_structure(structure, settings, fallback);
+        }
+        let sparse = SparseStatics::with_settings(structure, settings)?;
+        if sparse.is_certified() || !fallback {
+            return Ok(Box::new(sparse));
+        }
+    }
+    Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+/// A large unloaded structure of narrow band (a tower): the nested-dissection QR of A
+/// itself ([`NestedStatics::members_with_settings`], linear), kept when certified unless the
+/// report would list its self-stress basis (0 < members × self-stresses ≤
+/// [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)), which the banded QR
+/// builds; the banded QR otherwise (with the SVD as its fallback), and the nested result
+/// again where the banded QR exceeds its memory bound or budget.
+fn long_structure<'a>(
+    structure: &'a Structure,
+    settings: StaticsSettings,
+    fallback: bool,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    // should the nested factorisation fail, the banded QR answers as it did before
+    let Ok(nested) = super::NestedStatics::members_with_settings(structure, settings) else {
+        let sparse = SparseStatics::with_settings(structure, settings)?;
+        if sparse.is_certified() || !fallback {
+            return Ok(Box::new(sparse));
+        }
+        return Ok(Box::new(Statics::with_settings(structure, settings)?));
+    };
+    let s = nested.self_stress_dim();
+    let listed =
+        s > 0 && structure.n_members().saturating_mul(s) <= super::sparse::SELF_STRESS_LIST_MAX;
+    if nested.is_certified() && !listed {
+        return Ok(Box::new(nested));
+    }
+    match SparseStatics::with_settings(structure, settings) {
+        Ok(sparse) if sparse.is_certified() || !fallback => Ok(Box::new(sparse)),
+        Ok(_) => Ok(Box::new(Statics::with_settings(structure, settings)?)),
+        Err(CoreError::TooLarge { .. } | CoreError::OverBudget(_)) => {
+            if nested.is_certified() || !fallback {
+                Ok(Box::new(nested))
+            } else {
+                Ok(Box::new(Statics::with_settings(structure, settings)?))
+            }
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The back-end of a structure with a validated cyclic symmetry (see the module docs).
+pub fn cyclic_backend<'a>(
+    structure: &'a Structure,
+    symmetry: &'a CyclicSymmetry,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    match settings.method {
+        StaticsMethod::Dense => return Ok(Box::new(Statics::with_settings(structure, settings)?)),
+        StaticsMethod::Sparse => {
+            return Ok(Box::new(SparseStatics::with_settings(structure, settings)?))
+        }
+        StaticsMethod::Auto => {}
+    }
+    let cyclic = CyclicStatics::with_settings(structure, symmetry, settings)?;
+    if cyclic.is_certified() || !dense_fits(structure, &settings) {
+        return Ok(Box::new(cyclic));
+    }
+    Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
