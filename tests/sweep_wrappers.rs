@@ -215,7 +215,11 @@ fn work_precision_points_are_the_integrators_sweep() {
                   \"prism-stiff-strings\", \"prism-damped-ground\"]";
     let mut swept = Vec::new();
     for (name, integrators, parameters) in [
-        ("fixed", "[\"rk4\", \"rattle\"]", "[4e-3, 1e-3]"),
+        (
+            "fixed",
+            "[\"rk4\", \"rattle\", \"imex\", \"imex-ark\", \"rk4-flight\"]",
+            "[4e-3, 1e-3]",
+        ),
         ("rk45", "[\"rk45\"]", "[1e-5, 1e-8]"),
         ("sdirk", "[\"sdirk\"]", "[1e-4, 1e-6]"),
     ] {

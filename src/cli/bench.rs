@@ -83,7 +83,8 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
         progress.set_total(total);
         progress.set(done as f64);
     };
-    let points = tensegrity_engine::bench::work_precision_observed(&request, &mut tell)?.points;
+    let report = tensegrity_engine::bench::work_precision_observed(&request, &mut tell)?;
+    let (points, skipped) = (report.points, report.skipped);
     progress.finish();
     csv.extend(points.iter().map(row))?;
     csv.finish()?;
@@ -96,7 +97,7 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
             svg_path.display().to_string(),
         );
         return output::print_json(
-            &serde_json::json!({"points": rows, "csv": csv, "figure": figure}),
+            &serde_json::json!({"points": rows, "skipped": skipped, "csv": csv, "figure": figure}),
         );
     }
     println!(
@@ -105,6 +106,12 @@ fn work_precision(args: &WorkPrecisionArgs) -> Result<()> {
         csv_path.display(),
         svg_path.display()
     );
+    for s in &skipped {
+        println!(
+            "no point: {} on {} at {}: {}",
+            s.integrator, s.scene, s.parameter, s.reason
+        );
+    }
     Ok(())
 }
 

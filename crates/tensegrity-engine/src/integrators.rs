@@ -47,12 +47,7 @@ impl Request for IntegratorsRequest {
     fn params() -> Vec<Param> {
         vec![
             Param::text("scene", "A scene of the work–precision study").required(),
-            Param::choice(
-                "integrator",
-                &["rk4", "rk45", "rattle", "sdirk"],
-                "The integrator",
-            )
-            .required(),
+            Param::choice("integrator", IntegratorKind::NAMES, "The integrator").required(),
             Param::number(
                 "parameter",
                 "",

@@ -95,7 +95,8 @@ impl DofMap {
 /// The full equilibrium matrix (3n × members, no rows removed), node-major rows.
 ///
 /// ```
-/// use tensegrity_core::{statics, Bar, Structure};
+/// use tensegrity_core::{Bar, Structure};
+/// use tensegrity_statics as statics;
 /// let s = Structure::builder()
 ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
 ///     .bar(Bar::new(0, 1))

@@ -50,7 +50,8 @@ impl std::fmt::Display for Governing {
 /// Yield-limited radius r_Y = √(|f| / (π σ_Y)).
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::sizing;
 /// let steel = Material::new(7862.0, 210e9, 690e6);
 /// let r = sizing::yield_radius(&steel, 1000.0);
 /// assert!((std::f64::consts::PI * r * r * 690e6 - 1000.0).abs() < 1e-9);
@@ -62,7 +63,8 @@ pub fn yield_radius(material: &Material, force: f64) -> f64 {
 /// Yield-limited mass m_Y = (ρ/σ_Y) |f| l.
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::sizing;
 /// let alu = Material::new(2700.0, 60e9, 110e6);
 /// assert!((sizing::yield_mass(&alu, 1e4, 2.0) - 2700.0 / 110e6 * 2e4).abs() < 1e-15);
 /// ```
@@ -73,7 +75,8 @@ pub fn yield_mass(material: &Material, force: f64, length: f64) -> f64 {
 /// Buckling-limited radius r_B = (4 |f| l² / (π³ E))^¼ (pinned–pinned solid rod).
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::sizing;
 /// let alu = Material::new(2700.0, 60e9, 110e6);
 /// let r = sizing::buckling_radius(&alu, 1e4, 2.0);
 /// let euler = std::f64::consts::PI.powi(3) * 60e9 * r.powi(4) / (4.0 * 4.0);
@@ -86,7 +89,8 @@ pub fn buckling_radius(material: &Material, force: f64, length: f64) -> f64 {
 /// Buckling-limited mass m_B = 2 ρ l² √(|f| / (π E)).
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::sizing;
 /// let alu = Material::new(2700.0, 60e9, 110e6);
 /// // one 2 m aluminium bar under 10 kN: 4.975116 kg (published benchmark)
 /// assert!((sizing::buckling_mass(&alu, 1e4, 2.0) - 4.975116).abs() < 1e-6);
@@ -117,7 +121,8 @@ pub struct MemberSize {
 /// Sizes a string (tension only, yield).
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::sizing;
 /// let alu = Material::new(2700.0, 60e9, 110e6);
 /// let s = sizing::size_string(&alu, 1e4, 2.0).unwrap();
 /// assert!((s.mass - 0.490909).abs() < 1e-6);
@@ -147,7 +152,8 @@ pub fn size_string(material: &Material, force: f64, length: f64) -> Option<Membe
 /// Sizes a bar: yield in tension, max(yield, buckling) in compression.
 ///
 /// ```
-/// use tensegrity_core::{sizing, Material, sizing::Governing};
+/// use tensegrity_core::Material;
+/// use tensegrity_statics::{sizing, sizing::Governing};
 /// let alu = Material::new(2700.0, 60e9, 110e6);
 /// let b = sizing::size_bar(&alu, -1e4, 2.0);
 /// assert_eq!(b.governing, Governing::Buckling);
@@ -217,7 +223,8 @@ pub fn size_structure(structure: &Structure, member_force: &DVector<f64>) -> Res
 ///
 /// ```
 /// use nalgebra::DVector;
-/// use tensegrity_core::{sizing, Bar, Material, MemberId, StringMember, Structure};
+/// use tensegrity_core::{Bar, Material, MemberId, StringMember, Structure};
+/// use tensegrity_statics::sizing;
 /// let s = Structure::builder()
 ///     .material("alu", Material::new(2700.0, 60e9, 110e6))
 ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]])

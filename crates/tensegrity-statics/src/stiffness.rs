@@ -61,7 +61,8 @@ fn assemble(
 ///
 /// ```
 /// use nalgebra::DVector;
-/// use tensegrity_core::{statics::DofMap, stiffness, StringMember, Structure};
+/// use tensegrity_core::{StringMember, Structure};
+/// use tensegrity_statics::{DofMap, stiffness};
 /// let s = Structure::builder()
 ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 ///     .string(StringMember::new(0, 1))
@@ -152,7 +153,8 @@ pub fn string_force_densities(structure: &Structure) -> Result<DVector<f64>> {
 /// residual ‖A q − w‖ (N), which is zero when the rest lengths realise a self-stress.
 ///
 /// ```
-/// use tensegrity_core::{stiffness, Bar, StringMember, Structure};
+/// use tensegrity_core::{Bar, StringMember, Structure};
+/// use tensegrity_statics::stiffness;
 /// // a bar held in compression by a string along it: the bar force balances the string
 /// let s = Structure::builder()
 ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
