@@ -28,7 +28,7 @@ import re
 import subprocess
 import sys
 
-FRONT = {"tensegrity", "tensegrity-io", "tensegrity-engine", "sweeps", "tensegrity-py",
+FRONT = {"tensegrity", "tensegrity-io", "tensegrity-engine", "tensegrity-bench", "sweeps", "tensegrity-py",
          "tensegrity-figures"}
 LAYERS = {"tensegrity-linalg", "tensegrity-core", "tensegrity-statics", "tensegrity-dynamics"}
 MODEL_MAY_USE = LAYERS | {"wheel-rolling"}

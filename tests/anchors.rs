@@ -19,8 +19,8 @@
 // engine's, which `bench anchors` reports against too.
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::process::Command;
+use tensegrity_bench::anchors::Anchor;
 use tensegrity_core::Structure;
-use tensegrity_engine::bench::anchors::Anchor;
 
 /// The model of the reference integrator: shared nodes, bars as length constraints.
 struct Reference {

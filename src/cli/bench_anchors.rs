@@ -12,8 +12,8 @@ use std::path::PathBuf;
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use tensegrity_engine::bench::series::{run_counted, Series, SeriesKind};
-use tensegrity_engine::bench::{
+use tensegrity_bench::series::{run_counted, Series, SeriesKind};
+use tensegrity_bench::{
     bench_anchors, callgrind_total, Anchor, AnchorsReport, AnchorsRequest, CountedRun,
     InstructionCounter,
 };

@@ -68,6 +68,7 @@ mod error;
 mod estimate;
 mod fdm;
 mod method;
+mod report;
 mod result;
 mod synth;
 mod topology;
@@ -78,8 +79,9 @@ pub use error::{FormFindError, Result};
 pub use estimate::estimate;
 pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
 pub use method::{Method, Settings, Synthesis};
+pub use report::{find, scale_group, FormfindReport, Formfound};
 pub use result::FormFound;
-pub use synth::{rest_lengths, synthesize, RestLengths};
+pub use synth::{rest_lengths, synthesize, synthesize_with, RestLengths};
 pub use topology::{FixedNode, Group, Member, Topology};
 
 use nalgebra::Vector3;

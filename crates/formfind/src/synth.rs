@@ -117,6 +117,18 @@ pub fn synthesize(
 ) -> Result<Structure> {
     check("bar_mass", synthesis.bar_mass)?;
     let r = rest_lengths(topology, found, synthesis)?;
+    synthesize_with(topology, found, synthesis, &r)
+}
+
+/// [`synthesize`] from rest lengths already computed by [`rest_lengths`] for the same
+/// topology, form and synthesis (a caller that reports them computes them once).
+pub fn synthesize_with(
+    topology: &Topology,
+    found: &FormFound,
+    synthesis: &Synthesis,
+    r: &RestLengths,
+) -> Result<Structure> {
+    check("bar_mass", synthesis.bar_mass)?;
     let nb = topology.bars.len();
     let mut b = Structure::builder()
         .allow_isolated_nodes(!topology.fixed.is_empty())

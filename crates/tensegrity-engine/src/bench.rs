@@ -7,75 +7,13 @@
 //! The report is the list of points (no scalar: a sweep row of it has no result column);
 //! `wall_time_s` is a measured time, different from run to run.
 //!
-//! `bench anchors` ([`suite`]): the anchor scenes ([`anchors`]) against the reference codes'
-//! times, the scaling series ([`series`]) and their cost exponents ([`fit`]), in time and in
-//! instructions ([`count`]).
+//! `bench anchors` is the `tensegrity-bench` crate (the anchor scenes, the scaling series and
+//! their cost exponents).
 
-pub mod anchors;
-pub mod count;
-pub mod fit;
-pub mod series;
-pub mod suite;
-
-use crate::scene::SceneError;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{Categorized, Category, InvalidParameter, Param, Request};
+use tensegrity_core::request::{Param, Request};
 use tensegrity_core::CoreError;
 use tensegrity_dynamics::work_precision::{self, Point, Skipped};
-
-pub use anchors::Anchor;
-pub use count::{CountedRun, InstructionCounter};
-pub use suite::{bench_anchors, AnchorsReport, AnchorsRequest};
-
-/// Why `bench anchors` gave no report: the first failed measurement's error.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum BenchError {
-    /// A request of a series refused its values.
-    #[error(transparent)]
-    InvalidParameter(#[from] InvalidParameter),
-    /// An anchor scene could not be read or run.
-    #[error(transparent)]
-    Scene(#[from] SceneError),
-    /// A core analysis failed (the towers' statics).
-    #[error(transparent)]
-    Core(#[from] CoreError),
-    /// The toroid's analysis or rolling failed.
-    #[error(transparent)]
-    Toroid(#[from] toroid::ToroidError),
-    /// The Michell truss failed.
-    #[error(transparent)]
-    Michell(#[from] michell3d::MichellError),
-}
-
-impl Categorized for BenchError {
-    /// The category of the wrapped error.
-    fn category(&self) -> Category {
-        match self {
-            BenchError::InvalidParameter(_) => Category::Input,
-            BenchError::Scene(e) => e.category(),
-            BenchError::Core(e) => e.category(),
-            BenchError::Toroid(e) => e.category(),
-            BenchError::Michell(e) => e.category(),
-        }
-    }
-}
-
-/// The total instruction count in callgrind's summary (`==PID== Collected : N`, on stderr),
-/// if present.
-///
-/// ```
-/// use tensegrity_engine::bench::callgrind_total;
-/// let err = "==7== Events    : Ir\n==7== Collected : 1470793396\n==7== \n==7== I   refs:      1,470,793,396\n";
-/// assert_eq!(callgrind_total(err), Some(1_470_793_396));
-/// assert_eq!(callgrind_total("no valgrind here"), None);
-/// ```
-pub fn callgrind_total(stderr: &str) -> Option<u64> {
-    stderr.lines().find_map(|line| {
-        let (_, rest) = line.split_once("Collected :")?;
-        rest.trim().parse().ok()
-    })
-}
 
 /// The work–precision study, as data (default: every point, three timing repetitions).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]

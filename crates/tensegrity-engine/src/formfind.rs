@@ -1,8 +1,8 @@
 //! `formfind`: the form of a tensegrity from its connectivity ([`FormfindRequest`], a request
-//! named `formfind`) — a topology file or a built-in form, one call of
-//! [`formfind::form_find`] (force density, adaptive force density or dynamic relaxation),
-//! then [`formfind::synthesize`]: the found self-stress scaled to the prestress level and the
-//! string rest lengths that realise it at the given axial stiffness, a
+//! named `formfind`) — a topology file or a built-in form, read here (the library knows no
+//! file format), then one call of the library's [`formfind::find`]: the form (force density,
+//! adaptive force density or dynamic relaxation), the found self-stress scaled to the
+//! prestress level and the string rest lengths that realise it at the given axial stiffness, a
 //! [`tensegrity_core::Structure`] that starts in equilibrium (the scene `--out` writes).
 //!
 //! The report ([`FormfindReport`]) holds the found geometry (`nodes`), the force densities q
@@ -27,13 +27,13 @@
 //! ```
 
 use crate::scene::SceneSource;
-use ::formfind::{FormFindError, FormFound, Method, Settings, Synthesis, Topology};
+use ::formfind::{FormFindError, Method, Settings, Synthesis, Topology};
+pub use ::formfind::{FormfindReport, Formfound};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{Estimate, Parameters};
 use tensegrity_core::request::{
     exclusive, Categorized, Category, InvalidParameter, Param, Request, Rule,
 };
-use tensegrity_core::Structure;
 use tensegrity_io::IoError;
 
 /// The form-finding of a topology file or a built-in form, as data (defaults: the method by
@@ -191,64 +191,6 @@ impl Categorized for FormfindFailure {
     }
 }
 
-/// The report of `formfind` (module docs). Member lists are bars then strings, in topology
-/// order.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FormfindReport {
-    /// The built-in's name, the topology file, or `topology text`.
-    pub source: String,
-    /// Nodes.
-    pub n_nodes: usize,
-    /// Bars.
-    pub n_bars: usize,
-    /// Strings.
-    pub n_strings: usize,
-    /// The method that found the form.
-    pub method: Method,
-    /// One [x, y, z] per node (m).
-    pub nodes: Vec<[f64; 3]>,
-    /// Force density q per member (N/m, tension-positive), normalised by the method.
-    pub force_density: Vec<f64>,
-    /// Dimension of the self-stress space of the found geometry.
-    pub self_stress_dim: usize,
-    /// Whether a self-stress with strings in tension and bars in compression exists.
-    pub prestressable: bool,
-    /// Whether the prestressed structure is stable.
-    pub prestress_stable: bool,
-    /// ‖A q‖ / ‖q‖ at the found geometry.
-    pub residual: f64,
-    /// Iterations of the method (1 for a direct solve).
-    pub iterations: usize,
-    /// The extent along z of the nodes the method placed (every node of a free-standing
-    /// form, the free ones where nodes are held) (m).
-    pub height: f64,
-    /// The longest bar (m; 0 without bars).
-    pub max_bar_length: f64,
-    /// The prestress level of the exported structure: the largest string tension (N).
-    pub prestress: f64,
-    /// Member forces at that level (N, tension-positive), `null` where there is no scene.
-    pub member_force: Option<Vec<f64>>,
-    /// Rest length of each string of the exported structure (m), `null` where there is no
-    /// scene.
-    pub rest_length: Option<Vec<f64>>,
-    /// What the caller should know (a form that is not prestress-stable, no scene, …).
-    pub warnings: Vec<String>,
-}
-
-/// Everything a `formfind` run makes: the topology, the found form, the structure realising
-/// its prestress (when it can be synthesised) and the report.
-#[derive(Debug, Clone)]
-pub struct Formfound {
-    /// The topology found.
-    pub topology: Topology,
-    /// The library's result.
-    pub found: FormFound,
-    /// The prestressed structure (`None` where the synthesis failed: the report says why).
-    pub structure: Option<Structure>,
-    /// The report.
-    pub report: FormfindReport,
-}
-
 impl FormfindRequest {
     /// The built-in's full name (`n` appended), if a built-in is asked for.
     pub fn builtin_name(&self) -> Option<String> {
@@ -277,7 +219,7 @@ impl FormfindRequest {
             }
         };
         if let Some(g) = &self.group {
-            scale_group(&mut topology, g, self.ratio)?;
+            ::formfind::scale_group(&mut topology, g, self.ratio)?;
         }
         Ok((topology, source))
     }
@@ -307,58 +249,15 @@ impl FormfindRequest {
         self.run_on(topology, source)
     }
 
-    /// Runs the form-finding and the synthesis of a topology already read.
+    /// Runs the form-finding and the synthesis of a topology already read
+    /// ([`::formfind::find`]).
     pub fn run_on(&self, topology: Topology, source: String) -> Result<Formfound, FormfindFailure> {
-        let found = ::formfind::form_find(&topology, &self.settings())?;
-        let mut warnings = Vec::new();
-        if !found.prestressable {
-            warnings.push("the self-stress is not prestressable: no state with every string in tension and every bar in compression".to_string());
-        } else if !found.prestress_stable {
-            warnings.push(
-                "the prestressed form is not stable: a mechanism is not stiffened by the prestress"
-                    .to_string(),
-            );
-        }
-        let synthesis = self.synthesis();
-        let synthesised = ::formfind::rest_lengths(&topology, &found, &synthesis)
-            .and_then(|r| Ok((::formfind::synthesize(&topology, &found, &synthesis)?, r)));
-        let (structure, rest) = match synthesised {
-            Ok((s, r)) => (Some(s), Some(r)),
-            Err(e) => {
-                warnings.push(format!("no prestressed structure: {e}"));
-                (None, None)
-            }
-        };
-        let report = FormfindReport {
-            source,
-            n_nodes: topology.n_nodes,
-            n_bars: topology.bars.len(),
-            n_strings: topology.strings.len(),
-            method: found.method,
-            nodes: found.node_rows(),
-            force_density: found.force_density.clone(),
-            self_stress_dim: found.self_stress_dim,
-            prestressable: found.prestressable,
-            prestress_stable: found.prestress_stable,
-            residual: found.residual,
-            iterations: found.iterations,
-            height: extent_z(&topology, &found),
-            max_bar_length: topology
-                .bars
-                .iter()
-                .map(|b| (found.nodes[b.nodes[1]] - found.nodes[b.nodes[0]]).norm())
-                .fold(0.0, f64::max),
-            prestress: self.prestress,
-            member_force: rest.as_ref().map(|r| r.tension.clone()),
-            rest_length: rest.map(|r| r.rest_length),
-            warnings,
-        };
-        Ok(Formfound {
+        Ok(::formfind::find(
             topology,
-            found,
-            structure,
-            report,
-        })
+            source,
+            &self.settings(),
+            &self.synthesis(),
+        )?)
     }
 }
 
@@ -379,49 +278,6 @@ pub fn admitted<G, E: From<FormfindFailure>>(
 /// Runs `formfind`: the report (the registry's library call).
 pub fn formfind(request: &FormfindRequest) -> Result<FormfindReport, FormfindFailure> {
     Ok(request.run()?.report)
-}
-
-/// Multiplies the force density of group `name` (the group's own and its members') by
-/// `ratio`; an unknown group, or one without a force density, is refused naming `group`.
-fn scale_group(topology: &mut Topology, name: &str, ratio: f64) -> Result<(), InvalidParameter> {
-    let Some(group) = topology.groups.get_mut(name) else {
-        let known: Vec<&str> = topology.groups.keys().map(String::as_str).collect();
-        let reason = format!(
-            "no such group in the topology (groups: {})",
-            known.join(", ")
-        );
-        return Err(InvalidParameter::text("group", name, reason));
-    };
-    let mut scaled = false;
-    if let Some(q) = &mut group.force_density {
-        *q *= ratio;
-        scaled = true;
-    }
-    for m in topology.bars.iter_mut().chain(topology.strings.iter_mut()) {
-        if let (Some(q), Some(g)) = (&mut m.force_density, &m.group) {
-            if g == name {
-                *q *= ratio;
-                scaled = true;
-            }
-        }
-    }
-    if !scaled {
-        let reason = "the group has no force density to scale";
-        return Err(InvalidParameter::text("group", name, reason));
-    }
-    Ok(())
-}
-
-/// The extent along z of the nodes that are not held.
-fn extent_z(topology: &Topology, found: &FormFound) -> f64 {
-    let mut held = vec![false; found.nodes.len()];
-    for f in &topology.fixed {
-        held[f.node] = true;
-    }
-    let z = (0..found.nodes.len())
-        .filter(|&i| !held[i])
-        .map(|i| found.nodes[i].z);
-    z.clone().fold(f64::NEG_INFINITY, f64::max) - z.fold(f64::INFINITY, f64::min)
 }
 
 /// The library's estimate of finding the form of `topology` ([`::formfind::estimate`]: the
@@ -500,12 +356,12 @@ mod tests {
         let text = "[groups.v]\nforce_density = 2.0\n[[bars]]\nnodes = [0, 1]\nforce_density = -1.0\n\
                     [[strings]]\nnodes = [1, 2]\ngroup = \"v\"\n[[strings]]\nnodes = [2, 0]\nforce_density = 1.0\n";
         let mut t = tensegrity_io::topology::from_str_named(text, "t").unwrap();
-        scale_group(&mut t, "v", 1.5).unwrap();
+        ::formfind::scale_group(&mut t, "v", 1.5).unwrap();
         assert_eq!(t.groups["v"].force_density, Some(3.0));
-        let e = scale_group(&mut t, "w", 1.5).unwrap_err();
+        let e = ::formfind::scale_group(&mut t, "w", 1.5).unwrap_err();
         assert!(e.to_string().contains("groups: v"), "{e}");
         t.groups.get_mut("v").unwrap().force_density = None;
-        let e = scale_group(&mut t, "v", 1.5).unwrap_err();
+        let e = ::formfind::scale_group(&mut t, "v", 1.5).unwrap_err();
         assert!(e.to_string().contains("no force density"), "{e}");
     }
 

@@ -9,11 +9,11 @@
 //! a ratio against them compares a time measured on that machine with one measured where the
 //! benchmark runs, and is labelled so ([`MEASURED_ON`]).
 
-use crate::scene::SceneError;
 use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
 use tensegrity_dynamics::SimulationResult;
+use tensegrity_engine::scene::SceneError;
 use tensegrity_io::scene::Scene;
 
 /// The label of every reference time and ratio.
@@ -73,11 +73,11 @@ impl Anchor {
     /// The scene's TOML text (the file, built in).
     pub fn toml(self) -> &'static str {
         match self {
-            Anchor::MotesDbar => include_str!("../../../../examples/anchors/motes_dbar.toml"),
-            Anchor::MotesPrism => include_str!("../../../../examples/anchors/motes_prism.toml"),
-            Anchor::TsgfemTbar => include_str!("../../../../examples/anchors/tsgfem_tbar.toml"),
+            Anchor::MotesDbar => include_str!("../../../examples/anchors/motes_dbar.toml"),
+            Anchor::MotesPrism => include_str!("../../../examples/anchors/motes_prism.toml"),
+            Anchor::TsgfemTbar => include_str!("../../../examples/anchors/tsgfem_tbar.toml"),
             Anchor::DoublePendulum => {
-                include_str!("../../../../examples/anchors/double_pendulum_rk4.toml")
+                include_str!("../../../examples/anchors/double_pendulum_rk4.toml")
             }
         }
     }

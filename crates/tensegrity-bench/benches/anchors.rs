@@ -7,8 +7,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use tensegrity_engine::bench::series::{measure, SeriesKind};
-use tensegrity_engine::bench::Anchor;
+use tensegrity_bench::series::{measure, SeriesKind};
+use tensegrity_bench::Anchor;
 
 fn anchors(c: &mut Criterion) {
     let mut g = c.benchmark_group("anchors");

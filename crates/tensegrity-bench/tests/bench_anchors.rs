@@ -3,9 +3,9 @@
 //! differencing, the rows, and the exponent fit against synthetic power laws. Run with the
 //! quick size set and one repeat; no timing is asserted.
 
-use tensegrity_engine::bench::fit::power_law;
-use tensegrity_engine::bench::series::{run_counted, SeriesKind};
-use tensegrity_engine::bench::{bench_anchors, Anchor, AnchorsRequest, InstructionCounter};
+use tensegrity_bench::fit::power_law;
+use tensegrity_bench::series::{run_counted, SeriesKind};
+use tensegrity_bench::{bench_anchors, Anchor, AnchorsRequest, InstructionCounter};
 
 /// A counter whose whole-process count is a fixed start-up cost plus a known cost per step,
 /// different per anchor; for a series point, start-up + a setup growing with the size +
@@ -170,11 +170,11 @@ fn the_report_holds_every_anchor_and_series_with_the_reference_final_states() {
 
 #[test]
 fn without_a_counter_the_report_says_why() {
-    let no_instructions = |r: &tensegrity_engine::bench::AnchorsReport, note: &str| {
+    let no_instructions = |r: &tensegrity_bench::AnchorsReport, note: &str| {
         for s in &r.series {
             assert_eq!(s.instructions_note.as_deref(), Some(note));
             assert!(s.instructions_fit.is_none());
-            let counted = |p: &tensegrity_engine::bench::series::SeriesPoint| {
+            let counted = |p: &tensegrity_bench::series::SeriesPoint| {
                 p.instructions.is_some() || p.instructions_per_step.is_some()
             };
             assert!(!s.points.iter().any(counted));

@@ -11,11 +11,11 @@
 //! instructions of every scaling series point with their own fitted exponent
 //! ([`super::count`]).
 
-use super::anchors::{Anchor, ReferenceTime, MEASURED_ON};
-use super::count;
-pub use super::count::{CountedRun, InstructionCounter};
-use super::series::{self, Series, SeriesKind};
-use super::BenchError;
+use crate::anchors::{Anchor, ReferenceTime, MEASURED_ON};
+use crate::count;
+pub use crate::count::{CountedRun, InstructionCounter};
+use crate::series::{self, Series, SeriesKind};
+use crate::BenchError;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::request::{Param, Request, Rule};
 

@@ -15,9 +15,9 @@
 //! size ([`super::fit`]), beside the one of its times. A count that fails leaves the
 //! instruction fields `null` and says why in the series' `instructions_note`.
 
-use super::anchors::Anchor;
-use super::fit::power_law;
-use super::series::{Series, SeriesKind};
+use crate::anchors::Anchor;
+use crate::fit::power_law;
+use crate::series::{Series, SeriesKind};
 
 /// One whole process an [`InstructionCounter`] counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -15,8 +15,8 @@
 //! call's input (request, tower) is built before the clock starts ([`run_counted`] is the
 //! same input and call, for the counter).
 
-use super::fit::{power_law, PowerLaw};
-use super::BenchError;
+use crate::fit::{power_law, PowerLaw};
+use crate::BenchError;
 use serde::Serialize;
 use serde_json::json;
 use std::time::Instant;

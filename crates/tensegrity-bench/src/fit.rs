@@ -2,7 +2,7 @@
 //! p = Σ(xᵢ − x̄)(yᵢ − ȳ) / Σ(xᵢ − x̄)², log c = ȳ − p x̄ with xᵢ = ln nᵢ, yᵢ = ln tᵢ.
 //!
 //! ```
-//! use tensegrity_engine::bench::fit::power_law;
+//! use tensegrity_bench::fit::power_law;
 //! let points: Vec<(f64, f64)> = [10.0, 20.0, 40.0].iter().map(|&n| (n, 3e-6 * n * n)).collect();
 //! let fit = power_law(&points).unwrap();
 //! assert!((fit.exponent - 2.0).abs() < 1e-12);

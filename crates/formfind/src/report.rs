@@ -1,0 +1,181 @@
+//! The report of a form-finding run ([`find`]): the form found by [`form_find`], the statics
+//! of its self-stress, and the structure that realises it at a prestress level
+//! ([`synthesize_with`], from the string rest lengths computed once).
+//!
+//! At the prestress level P (the largest string tension) the member forces are
+//! T_k = α q_k L_k with α = P / max_strings(q_k L_k), and each string's rest length is
+//! s0 = L / (1 + T / EA) (see [`rest_lengths`]). The report also holds the equilibrium
+//! residual ‖A q‖ / ‖q‖ of the found geometry, its height (the z extent of the nodes the method
+//! placed) and the longest bar.
+
+use crate::synth::{rest_lengths, synthesize_with};
+use crate::{form_find, FormFound, Method, Result, Settings, Synthesis, Topology};
+use serde::Serialize;
+use tensegrity_core::request::InvalidParameter;
+use tensegrity_core::Structure;
+
+/// The report of a form-finding run (module docs). Member lists are bars then strings, in topology
+/// order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FormfindReport {
+    /// The built-in's name, the topology file, or `topology text`.
+    pub source: String,
+    /// Nodes.
+    pub n_nodes: usize,
+    /// Bars.
+    pub n_bars: usize,
+    /// Strings.
+    pub n_strings: usize,
+    /// The method that found the form.
+    pub method: Method,
+    /// One [x, y, z] per node (m).
+    pub nodes: Vec<[f64; 3]>,
+    /// Force density q per member (N/m, tension-positive), normalised by the method.
+    pub force_density: Vec<f64>,
+    /// Dimension of the self-stress space of the found geometry.
+    pub self_stress_dim: usize,
+    /// Whether a self-stress with strings in tension and bars in compression exists.
+    pub prestressable: bool,
+    /// Whether the prestressed structure is stable.
+    pub prestress_stable: bool,
+    /// ‖A q‖ / ‖q‖ at the found geometry.
+    pub residual: f64,
+    /// Iterations of the method (1 for a direct solve).
+    pub iterations: usize,
+    /// The extent along z of the nodes the method placed (every node of a free-standing
+    /// form, the free ones where nodes are held) (m).
+    pub height: f64,
+    /// The longest bar (m; 0 without bars).
+    pub max_bar_length: f64,
+    /// The prestress level of the exported structure: the largest string tension (N).
+    pub prestress: f64,
+    /// Member forces at that level (N, tension-positive), `null` where there is no scene.
+    pub member_force: Option<Vec<f64>>,
+    /// Rest length of each string of the exported structure (m), `null` where there is no
+    /// scene.
+    pub rest_length: Option<Vec<f64>>,
+    /// What the caller should know (a form that is not prestress-stable, no scene, …).
+    pub warnings: Vec<String>,
+}
+
+/// Everything a `formfind` run makes: the topology, the found form, the structure realising
+/// its prestress (when it can be synthesised) and the report.
+#[derive(Debug, Clone)]
+pub struct Formfound {
+    /// The topology found.
+    pub topology: Topology,
+    /// The library's result.
+    pub found: FormFound,
+    /// The prestressed structure (`None` where the synthesis failed: the report says why).
+    pub structure: Option<Structure>,
+    /// The report.
+    pub report: FormfindReport,
+}
+
+/// Finds the form of `topology` (`source`: its label in the report) and synthesises the
+/// prestressed structure; a synthesis that fails leaves `structure` unset and says why in
+/// the report's warnings.
+pub fn find(
+    topology: Topology,
+    source: String,
+    settings: &Settings,
+    synthesis: &Synthesis,
+) -> Result<Formfound> {
+    let found = form_find(&topology, settings)?;
+    let mut warnings = Vec::new();
+    if !found.prestressable {
+        warnings.push("the self-stress is not prestressable: no state with every string in tension and every bar in compression".to_string());
+    } else if !found.prestress_stable {
+        warnings.push(
+            "the prestressed form is not stable: a mechanism is not stiffened by the prestress"
+                .to_string(),
+        );
+    }
+    // the rest lengths once: the structure is built from them
+    let synthesised = rest_lengths(&topology, &found, synthesis)
+        .and_then(|r| Ok((synthesize_with(&topology, &found, synthesis, &r)?, r)));
+    let (structure, rest) = match synthesised {
+        Ok((s, r)) => (Some(s), Some(r)),
+        Err(e) => {
+            warnings.push(format!("no prestressed structure: {e}"));
+            (None, None)
+        }
+    };
+    let report = FormfindReport {
+        source,
+        n_nodes: topology.n_nodes,
+        n_bars: topology.bars.len(),
+        n_strings: topology.strings.len(),
+        method: found.method,
+        nodes: found.node_rows(),
+        force_density: found.force_density.clone(),
+        self_stress_dim: found.self_stress_dim,
+        prestressable: found.prestressable,
+        prestress_stable: found.prestress_stable,
+        residual: found.residual,
+        iterations: found.iterations,
+        height: extent_z(&topology, &found),
+        max_bar_length: topology
+            .bars
+            .iter()
+            .map(|b| (found.nodes[b.nodes[1]] - found.nodes[b.nodes[0]]).norm())
+            .fold(0.0, f64::max),
+        prestress: synthesis.prestress,
+        member_force: rest.as_ref().map(|r| r.tension.clone()),
+        rest_length: rest.map(|r| r.rest_length),
+        warnings,
+    };
+    Ok(Formfound {
+        topology,
+        found,
+        structure,
+        report,
+    })
+}
+
+/// Multiplies the force density of group `name` (the group's own and its members') by
+/// `ratio`; an unknown group, or one without a force density, is refused naming `group`.
+pub fn scale_group(
+    topology: &mut Topology,
+    name: &str,
+    ratio: f64,
+) -> Result<(), InvalidParameter> {
+    let Some(group) = topology.groups.get_mut(name) else {
+        let known: Vec<&str> = topology.groups.keys().map(String::as_str).collect();
+        let reason = format!(
+            "no such group in the topology (groups: {})",
+            known.join(", ")
+        );
+        return Err(InvalidParameter::text("group", name, reason));
+    };
+    let mut scaled = false;
+    if let Some(q) = &mut group.force_density {
+        *q *= ratio;
+        scaled = true;
+    }
+    for m in topology.bars.iter_mut().chain(topology.strings.iter_mut()) {
+        if let (Some(q), Some(g)) = (&mut m.force_density, &m.group) {
+            if g == name {
+                *q *= ratio;
+                scaled = true;
+            }
+        }
+    }
+    if !scaled {
+        let reason = "the group has no force density to scale";
+        return Err(InvalidParameter::text("group", name, reason));
+    }
+    Ok(())
+}
+
+/// The extent along z of the nodes that are not held.
+fn extent_z(topology: &Topology, found: &FormFound) -> f64 {
+    let mut held = vec![false; found.nodes.len()];
+    for f in &topology.fixed {
+        held[f.node] = true;
+    }
+    let z = (0..found.nodes.len())
+        .filter(|&i| !held[i])
+        .map(|i| found.nodes[i].z);
+    z.clone().fold(f64::NEG_INFINITY, f64::max) - z.fold(f64::INFINITY, f64::min)
+}
