@@ -20,6 +20,57 @@
 use std::collections::BTreeSet;
 use std::fmt;
 
+/// Why an expression could not be read or evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExprError {
+    /// A number the lexer cannot read.
+    #[error("invalid number `{text}`")]
+    InvalidNumber {
+        /// The digits as written.
+        text: String,
+    },
+    /// A character that is no part of an expression.
+    #[error("unexpected character `{character}`")]
+    UnexpectedCharacter {
+        /// The character.
+        character: char,
+    },
+    /// A token where another was expected.
+    #[error("unexpected `{token}`")]
+    UnexpectedToken {
+        /// The token as written.
+        token: String,
+    },
+    /// An opening parenthesis without its closing one.
+    #[error("missing `)`")]
+    MissingParenthesis,
+    /// The expression ends where an operand is expected.
+    #[error("unexpected end of the expression")]
+    UnexpectedEnd,
+    /// Nothing to read.
+    #[error("empty expression")]
+    Empty,
+    /// A name the lookup does not know.
+    #[error("unknown name `{name}`")]
+    UnknownName {
+        /// The name.
+        name: String,
+    },
+    /// The lookup of a name failed (its message).
+    #[error("{message}")]
+    Lookup {
+        /// The lookup's message.
+        message: String,
+    },
+    /// A division by zero.
+    #[error("division by zero")]
+    DivisionByZero,
+    /// The value overflowed or is NaN.
+    #[error("the value is not finite")]
+    NotFinite,
+}
+
 /// A parsed expression.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Expr {
@@ -69,7 +120,7 @@ impl fmt::Display for Token {
     }
 }
 
-fn lex(text: &str) -> Result<Vec<Token>, String> {
+fn lex(text: &str) -> Result<Vec<Token>, ExprError> {
     let chars: Vec<char> = text.chars().collect();
     let mut out = Vec::new();
     let mut i = 0;
@@ -96,7 +147,9 @@ fn lex(text: &str) -> Result<Vec<Token>, String> {
                 }
             }
             let s: String = chars[start..i].iter().collect();
-            let x: f64 = s.parse().map_err(|_| format!("invalid number `{s}`"))?;
+            let x: f64 = s
+                .parse()
+                .map_err(|_| ExprError::InvalidNumber { text: s.clone() })?;
             out.push(Token::Number(x));
         } else if c.is_alphabetic() || c == '_' {
             let start = i;
@@ -113,7 +166,7 @@ fn lex(text: &str) -> Result<Vec<Token>, String> {
                 '*' | '×' | '·' => Token::Op('*'),
                 '/' | '÷' => Token::Op('/'),
                 '^' => Token::Op('^'),
-                other => return Err(format!("unexpected character `{other}`")),
+                other => return Err(ExprError::UnexpectedCharacter { character: other }),
             });
             i += 1;
         }
@@ -137,7 +190,7 @@ impl Parser {
         t
     }
 
-    fn expr(&mut self) -> Result<Expr, String> {
+    fn expr(&mut self) -> Result<Expr, ExprError> {
         let mut left = self.term()?;
         while let Some(Token::Op(c @ ('+' | '-'))) = self.peek() {
             let op = if *c == '+' { Op::Add } else { Op::Sub };
@@ -147,7 +200,7 @@ impl Parser {
         Ok(left)
     }
 
-    fn term(&mut self) -> Result<Expr, String> {
+    fn term(&mut self) -> Result<Expr, ExprError> {
         let mut left = self.unary()?;
         loop {
             let op = match self.peek() {
@@ -165,7 +218,7 @@ impl Parser {
         }
     }
 
-    fn unary(&mut self) -> Result<Expr, String> {
+    fn unary(&mut self) -> Result<Expr, ExprError> {
         match self.peek() {
             Some(Token::Op('-')) => {
                 self.at += 1;
@@ -179,7 +232,7 @@ impl Parser {
         }
     }
 
-    fn power(&mut self) -> Result<Expr, String> {
+    fn power(&mut self) -> Result<Expr, ExprError> {
         let base = self.atom()?;
         if let Some(Token::Op('^')) = self.peek() {
             self.at += 1;
@@ -192,7 +245,7 @@ impl Parser {
         Ok(base)
     }
 
-    fn atom(&mut self) -> Result<Expr, String> {
+    fn atom(&mut self) -> Result<Expr, ExprError> {
         match self.next() {
             Some(Token::Number(x)) => Ok(Expr::Number(x)),
             Some(Token::Name(n)) if n == "pi" || n == "π" => {
@@ -203,11 +256,13 @@ impl Parser {
                 let e = self.expr()?;
                 match self.next() {
                     Some(Token::Close) => Ok(e),
-                    _ => Err("missing `)`".into()),
+                    _ => Err(ExprError::MissingParenthesis),
                 }
             }
-            Some(t) => Err(format!("unexpected `{t}`")),
-            None => Err("unexpected end of the expression".into()),
+            Some(t) => Err(ExprError::UnexpectedToken {
+                token: t.to_string(),
+            }),
+            None => Err(ExprError::UnexpectedEnd),
         }
     }
 }
@@ -222,16 +277,18 @@ impl Expr {
     /// assert_eq!(phi, std::f64::consts::PI / 8.0);
     /// assert!(Expr::parse("2 * (sides").is_err());
     /// ```
-    pub fn parse(text: &str) -> Result<Expr, String> {
+    pub fn parse(text: &str) -> Result<Expr, ExprError> {
         let tokens = lex(text)?;
         if tokens.is_empty() {
-            return Err("empty expression".into());
+            return Err(ExprError::Empty);
         }
         let mut p = Parser { tokens, at: 0 };
         let e = p.expr()?;
         match p.peek() {
             None => Ok(e),
-            Some(t) => Err(format!("unexpected `{t}`")),
+            Some(t) => Err(ExprError::UnexpectedToken {
+                token: t.to_string(),
+            }),
         }
     }
 
@@ -260,10 +317,12 @@ impl Expr {
     pub fn eval(
         &self,
         lookup: &dyn Fn(&str) -> Option<Result<f64, String>>,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, ExprError> {
         let v = match self {
             Expr::Number(x) => *x,
-            Expr::Name(n) => lookup(n).ok_or_else(|| format!("unknown name `{n}`"))??,
+            Expr::Name(n) => lookup(n)
+                .ok_or_else(|| ExprError::UnknownName { name: n.clone() })?
+                .map_err(|message| ExprError::Lookup { message })?,
             Expr::Neg(e) => -e.eval(lookup)?,
             Expr::Binary(op, a, b) => {
                 let (a, b) = (a.eval(lookup)?, b.eval(lookup)?);
@@ -271,7 +330,7 @@ impl Expr {
                     Op::Add => a + b,
                     Op::Sub => a - b,
                     Op::Mul => a * b,
-                    Op::Div if b == 0.0 => return Err("division by zero".into()),
+                    Op::Div if b == 0.0 => return Err(ExprError::DivisionByZero),
                     Op::Div => a / b,
                     Op::Pow => a.powf(b),
                 }
@@ -280,7 +339,7 @@ impl Expr {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err("the value is not finite".into())
+            Err(ExprError::NotFinite)
         }
     }
 }
@@ -290,7 +349,7 @@ mod tests {
     use super::Expr;
     use std::f64::consts::PI;
 
-    fn eval(text: &str) -> Result<f64, String> {
+    fn eval(text: &str) -> Result<f64, super::ExprError> {
         let vars = |n: &str| match n {
             "q" => Some(Ok(8.0)),
             "sides" => Some(Ok(16.0)),
@@ -316,15 +375,18 @@ mod tests {
 
     #[test]
     fn errors_name_the_problem() {
-        assert!(eval("1 / (q - 8)")
-            .unwrap_err()
-            .contains("division by zero"));
-        assert!(eval("x + 1").unwrap_err().contains("`x`"));
-        assert!(eval("1 +").unwrap_err().contains("end"));
-        assert!(eval("(1").unwrap_err().contains(")"));
-        assert!(eval("1 $ 2").unwrap_err().contains("$"));
-        assert!(eval("").unwrap_err().contains("empty"));
-        assert!(eval("10 ^ 400").unwrap_err().contains("finite"));
+        use super::ExprError as E;
+        assert_eq!(eval("1 / (q - 8)"), Err(E::DivisionByZero));
+        assert_eq!(eval("x + 1"), Err(E::UnknownName { name: "x".into() }));
+        assert_eq!(eval("1 +"), Err(E::UnexpectedEnd));
+        assert_eq!(eval("(1"), Err(E::MissingParenthesis));
+        assert_eq!(
+            eval("1 $ 2"),
+            Err(E::UnexpectedCharacter { character: '$' })
+        );
+        assert_eq!(eval(""), Err(E::Empty));
+        assert_eq!(eval("10 ^ 400"), Err(E::NotFinite));
+        assert!(eval("x + 1").unwrap_err().to_string().contains("`x`"));
         let names = Expr::parse("pi / q + sides * q").unwrap().names();
         assert_eq!(names.into_iter().collect::<Vec<_>>(), ["q", "sides"]);
     }

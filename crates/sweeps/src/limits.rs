@@ -22,16 +22,22 @@ pub const ROW_BYTES: f64 = 200.0;
 /// let values = |n: u64| json!({ "sides": n }).as_object().unwrap().clone();
 /// assert!(sweeps::limits::admit(toroid, &values(8), &Limits::default()).is_ok());
 /// let e = sweeps::limits::admit(toroid, &values(100_000_000), &Limits::default()).unwrap_err();
+/// let e = e.to_string();
 /// assert!(e.contains("sides = 100000000") && e.contains("above the limit"), "{e}");
 /// ```
-pub fn admit(study: Study, values: &Map<String, Value>, limits: &Limits) -> Result<(), String> {
+pub fn admit(study: Study, values: &Map<String, Value>, limits: &Limits) -> Result<(), Refused> {
     match study.estimate(values.clone()) {
         Ok(Some(estimate)) => limits
             .check(&estimate)
-            .map_err(|over| format!("refused before running: {over}")),
+            .map_err(|over| Refused(Box::new(over))),
         Ok(None) | Err(_) => Ok(()),
     }
 }
+
+/// A case refused before it ran: its estimate is above a limit.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("refused before running: {0}")]
+pub struct Refused(pub Box<tensegrity_core::budget::OverBudget>);
 
 /// The sweep's own output: one CSV row of ~[`ROW_BYTES`] per case, streamed (the work is
 /// not estimated: a sweep shows its progress and can be resumed).

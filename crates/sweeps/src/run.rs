@@ -249,7 +249,7 @@ impl Shared<'_> {
         let result = case.params.and_then(|p| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 if let Some(limits) = &self.limits {
-                    crate::limits::admit(self.spec.study, &p, limits)?;
+                    crate::limits::admit(self.spec.study, &p, limits).map_err(|e| e.to_string())?;
                 }
                 self.spec.study.run(p, &self.ctx).map_err(|e| match e {
                     tensegrity_engine::RunError::InvalidParameter(p) => {

@@ -508,7 +508,7 @@ fn derived_rules(
             return Err(bad("only numeric parameters can be derived".into()));
         }
         let e = match v {
-            toml::Value::String(s) => Expr::parse(s).map_err(bad)?,
+            toml::Value::String(s) => Expr::parse(s).map_err(|e| bad(e.to_string()))?,
             toml::Value::Integer(i) => Expr::Number(*i as f64),
             toml::Value::Float(x) => Expr::Number(*x),
             _ => {

@@ -5,14 +5,16 @@
 //! **The split.** As in [`Imex`](super::Imex), y' = f_E(y) + f_I(y) with y = (x, v),
 //!
 //! * f_E = (v, a(x, v; F_c(x, 0))): the rigid-bar dynamics N̈M + NK = W + ΩPᵀ of
-//!   [`Model::rhs`] with the ground's position-only force F_c(x, 0) (the normal spring k δ,
-//!   the stick law's anchor spring) but not its velocity-dependent part;
+//!   [`Model::rhs`](super::Model::rhs) with the ground's position-only force F_c(x, 0) (the
+//!   normal spring k δ, the stick law's anchor spring) but not its velocity-dependent part
+//!   ([`ContactSystem::rhs_explicit`] without held forces);
 //! * f_I = (0, P_C(x) F̃(x, v)): the velocity-dependent force F̃ = F_c(x, v) − F_c(x, 0) of
 //!   the m loaded contact nodes (normal damper, tangential damper, regularised friction with
 //!   its Stribeck weakening), through the constrained response P_C(x) of every class-1 node to
 //!   a force on a contact node (linear in the force: one Ω solve per response).
 //!
-//! **A step.** With tableaux a^E, a^I (γ = a^I_ii = 0.4359, L-stable) and shared weights b,
+//! **A step.** With tableaux a^E, a^I (γ = a^I_ii = 0.4359, L-stable) and shared weights b
+//! ([`ARK3`]),
 //!
 //! Y_i = y_n + h Σ_{j<i} a^E_ij f_E(Y_j) + h Σ_{j≤i} a^I_ij f_I(Y_j),   y_{n+1} = y_n + h Σ b_i (f_E + f_I)(Y_i).
 //!
@@ -63,52 +65,35 @@
 //!
 //! The bar constraints are kept as for RK4: the driver projects every accepted state back
 //! onto the bar lengths and N P = D. Without a penalty or stick ground there is no f_I and
-//! the step is classic RK4 ([`Rk4`]).
+//! the step is classic RK4 ([`Rk4`]). The method is written against [`ContactSystem`] (F̃ from
+//! its [`contact_force`](ContactSystem::contact_force), P_C its
+//! [`respond`](ContactSystem::respond)).
 
-use super::forces::Ground;
-use super::imex::{factor_omega_unless_current, rhs_smooth, splits, Response};
+use super::imex::Response;
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{vec3, Model, Workspace};
 use super::rk4::Rk4;
+use super::system::{vec3, ContactSystem};
+use super::tableau::{Tableau, ARK3};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use tensegrity_core::error::CoreError;
 
+/// The coefficients ([`ARK3`]).
+const TAB: Tableau<4> = ARK3;
+
 /// γ of ARK3(2)4L\[2\]SA's ESDIRK part.
-const GAMMA: f64 = 0.435_866_521_508_459;
+const GAMMA: f64 = TAB.diagonal();
 
 /// Explicit tableau a^E of ARK3(2)4L\[2\]SA.
-const AE: [[f64; 4]; 4] = [
-    [0.0; 4],
-    [0.871_733_043_016_918, 0.0, 0.0, 0.0],
-    [0.527_589_011_976_300_4, 0.072_410_988_023_699_6, 0.0, 0.0],
-    [
-        0.399_096_007_676_070_1,
-        -0.437_557_654_613_519_4,
-        1.038_461_646_937_449_3,
-        0.0,
-    ],
-];
+const AE: [[f64; 4]; 4] = TAB.a;
 
-/// Implicit (ESDIRK) tableau a^I of ARK3(2)4L\[2\]SA; its last row is the weights b of both.
-const AI: [[f64; 4]; 4] = [
-    [0.0; 4],
-    [GAMMA, GAMMA, 0.0, 0.0],
-    [
-        0.257_648_246_066_427_2,
-        -0.093_514_767_574_886_25,
-        GAMMA,
-        0.0,
-    ],
-    [
-        0.187_641_024_346_723_8,
-        -0.595_297_473_576_955,
-        0.971_789_927_721_772_1,
-        GAMMA,
-    ],
-];
+/// Implicit (ESDIRK) tableau a^I of ARK3(2)4L\[2\]SA.
+const AI: [[f64; 4]; 4] = TAB.implicit();
+
+/// The weights b of both (the last row of a^I).
+const B: [f64; 4] = TAB.b;
 
 /// Abscissae c of ARK3(2)4L\[2\]SA.
-const C: [f64; 4] = [0.0, 0.871_733_043_016_918, 0.6, 1.0];
+const C: [f64; 4] = TAB.c;
 
 /// Newton iterations of a stage equation at most.
 pub const NEWTON_ITERATIONS: usize = 30;
@@ -133,8 +118,6 @@ pub struct ImexArk {
     tmp: Vec<f64>,
     /// P_C of the contact forces (`response.forces`) into `response.out`.
     response: Response,
-    /// Joint multipliers of the smooth right-hand sides.
-    smooth_multipliers: Vec<f64>,
     /// Loaded contact nodes of the stage: (contact index, class-1 node).
     active: Vec<(usize, usize)>,
     /// F_c(x, 0) of the active nodes at the stage's positions.
@@ -158,22 +141,22 @@ pub struct ImexArk {
 }
 
 impl ImexArk {
-    /// Buffers for `model`.
-    pub fn new(model: &Model) -> Self {
-        let n = model.state_len();
-        let n3 = 3 * model.n1;
+    /// Buffers for `system`.
+    pub fn new<S: ContactSystem>(system: &S) -> Self {
+        let n = system.state_len();
+        let n3 = n / 2;
+        let m = system.contact_points();
         Self {
             rk4: Rk4::new(n),
             ke: std::array::from_fn(|_| vec![0.0; n]),
             ki: std::array::from_fn(|_| vec![0.0; n3]),
             y0: vec![0.0; n],
             tmp: vec![0.0; n],
-            response: Response::new(model),
-            smooth_multipliers: vec![0.0; model.linear_rows.len()],
+            response: Response::new(n / 6),
             active: Vec::new(),
             rest: Vec::new(),
-            last: vec![None; model.contact.len()],
-            impulse: vec![Vector3::zeros(); model.contact.len()],
+            last: vec![None; m],
+            impulse: vec![Vector3::zeros(); m],
             pcc: DMatrix::zeros(0, 0),
             cached: Vec::new(),
             age: 0,
@@ -185,7 +168,13 @@ impl ImexArk {
     }
 
     /// Recomputes P̃_CC at `x` for the nodes `touched` unless it is current.
-    fn refresh(&mut self, model: &Model, ws: &mut Workspace, x: &[f64], touched: &[usize]) {
+    fn refresh<S: ContactSystem>(
+        &mut self,
+        system: &S,
+        ws: &mut S::Workspace,
+        x: &[f64],
+        touched: &[usize],
+    ) {
         if touched == self.cached.as_slice() && self.age < super::imex::REFRESH {
             self.age += 1;
             return;
@@ -195,7 +184,7 @@ impl ImexArk {
         for j in 0..m3 {
             self.response.forces.fill(Vector3::zeros());
             self.response.forces[touched[j / 3]][j % 3] = 1.0;
-            self.response.respond(model, ws, x, touched);
+            self.response.respond(system, ws, x, touched);
             for (r, &c) in touched.iter().enumerate() {
                 for e in 0..3 {
                     pcc[(3 * r + e, j)] = self.response.out[3 * c + e];
@@ -209,10 +198,16 @@ impl ImexArk {
     }
 
     /// F̃ of the active nodes at their velocities `u` (3m).
-    fn reduced(&self, g: &Ground, ws: &Workspace, x: &[f64], u: &DVector<f64>) -> DVector<f64> {
+    fn reduced<S: ContactSystem>(
+        &self,
+        system: &S,
+        ws: &S::Workspace,
+        x: &[f64],
+        u: &DVector<f64>,
+    ) -> DVector<f64> {
         let mut f = DVector::zeros(u.len());
         for (i, &(k, c)) in self.active.iter().enumerate() {
-            let fi = self.node_force(g, ws, x, i, k, c, &u.fixed_rows::<3>(3 * i).into());
+            let fi = self.node_force(system, ws, x, i, k, c, &u.fixed_rows::<3>(3 * i).into());
             f.fixed_rows_mut::<3>(3 * i).copy_from(&fi);
         }
         f
@@ -220,17 +215,17 @@ impl ImexArk {
 
     /// F̃ of active node `i` (contact index `k`, class-1 node `c`) at velocity `v`.
     #[allow(clippy::too_many_arguments)]
-    fn node_force(
+    fn node_force<S: ContactSystem>(
         &self,
-        g: &Ground,
-        ws: &Workspace,
+        system: &S,
+        ws: &S::Workspace,
         x: &[f64],
         i: usize,
         k: usize,
         c: usize,
         v: &Vector3<f64>,
     ) -> Vector3<f64> {
-        g.stick_force(&vec3(x, c), v, ws.anchors[k].as_ref()) - self.rest[i]
+        system.contact_force(ws, k, &vec3(x, c), v) - self.rest[i]
     }
 
     /// Solves u = b + a P̃_CC F̃(u) (module docs): Newton's method from `start` (and from b,
@@ -238,24 +233,24 @@ impl ImexArk {
     /// a/4, a/2, 3a/4, a, each from the last), which follows the root that grows out of the
     /// explicit predictor where Stribeck weakening gives the equation several. Returns the
     /// solution with the smaller residual and whether it met [`NEWTON_ACCEPT`].
-    fn solve(
+    fn solve<S: ContactSystem>(
         &mut self,
-        g: &Ground,
-        ws: &Workspace,
+        system: &S,
+        ws: &S::Workspace,
         x: &[f64],
         b: &DVector<f64>,
         a: f64,
         start: DVector<f64>,
     ) -> (DVector<f64>, bool) {
         let accept = NEWTON_ACCEPT * (1.0 + b.amax());
-        let (u, r) = self.newton(g, ws, x, b, a, start);
+        let (u, r) = self.newton(system, ws, x, b, a, start);
         if r <= accept {
             return (u, true);
         }
         let mut v = b.clone();
         let mut rv = f64::INFINITY;
         for s in [0.25, 0.5, 0.75, 1.0] {
-            (v, rv) = self.newton(g, ws, x, b, a * s, v);
+            (v, rv) = self.newton(system, ws, x, b, a * s, v);
         }
         if rv < r {
             (v, rv <= accept)
@@ -266,10 +261,10 @@ impl ImexArk {
 
     /// Newton's method on u = b + a P̃_CC F̃(u) from `start` (or b, if its residual is
     /// smaller), with a backtracking line search; returns u and its largest residual.
-    fn newton(
+    fn newton<S: ContactSystem>(
         &mut self,
-        g: &Ground,
-        ws: &Workspace,
+        system: &S,
+        ws: &S::Workspace,
         x: &[f64],
         b: &DVector<f64>,
         a: f64,
@@ -278,7 +273,7 @@ impl ImexArk {
         let m3 = b.len();
         let scale = 1.0 + b.amax();
         let residual = |s: &Self, u: &DVector<f64>| {
-            let f = s.reduced(g, ws, x, u);
+            let f = s.reduced(system, ws, x, u);
             (u - b - &s.pcc * &f * a, f)
         };
         let mut u = start;
@@ -306,7 +301,7 @@ impl ImexArk {
                 for d in 0..3 {
                     let mut up = ui;
                     up[d] += eps;
-                    let fd = self.node_force(g, ws, x, i, k, c, &up);
+                    let fd = self.node_force(system, ws, x, i, k, c, &up);
                     block.set_column(d, &((fd - f0) / eps));
                 }
                 kv.fixed_view_mut::<3, 3>(3 * i, 3 * i).copy_from(&block);
@@ -332,23 +327,21 @@ impl ImexArk {
     }
 
     /// One ARK step on a penalty or stick ground (module docs).
-    fn ark_step(
+    fn ark_step<S: ContactSystem>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<(), CoreError> {
-        let Some(g) = model.ground.as_ref() else {
-            return Ok(());
-        };
         let n = y.len();
-        let n3 = 3 * model.n1;
-        let mut work = ws.contact_work.unwrap_or_default();
+        let n3 = n / 2;
+        let m = system.contact_points();
+        let normal = system.ground_normal();
+        let mut work = system.contact_work(ws).unwrap_or_default();
         self.y0.copy_from_slice(y);
         let mut ke = std::mem::take(&mut self.ke);
-        let mut mult = std::mem::take(&mut self.smooth_multipliers);
         let mut power = [(0.0, 0.0); 4];
         self.impulse.fill(Vector3::zeros());
         let result = (|| {
@@ -367,65 +360,55 @@ impl ImexArk {
                 let x = self.tmp[..n3].to_vec();
                 self.active.clear();
                 self.rest.clear();
-                for (k, &(_, c)) in model.contact.iter().enumerate() {
+                for k in 0..m {
+                    let c = system.contact_node(k);
                     let xc = vec3(&x, c);
-                    if g.height(&xc) < 0.0 {
+                    if system.ground_height(&xc) < 0.0 {
                         self.active.push((k, c));
-                        self.rest.push(g.stick_force(
-                            &xc,
-                            &Vector3::zeros(),
-                            ws.anchors[k].as_ref(),
-                        ));
+                        self.rest
+                            .push(system.contact_force(ws, k, &xc, &Vector3::zeros()));
                     } else {
                         self.last[k] = None;
                     }
                 }
                 if !self.active.is_empty() {
-                    factor_omega_unless_current(model, &x, ws)?;
+                    system.prepare_response(ws, &x)?;
                     let touched: Vec<usize> = self.active.iter().map(|a| a.1).collect();
                     let m3 = 3 * touched.len();
                     let b = DVector::from_fn(m3, |r, _| self.tmp[n3 + 3 * touched[r / 3] + r % 3]);
                     let u = if i == 0 {
                         b.clone()
                     } else {
-                        self.refresh(model, ws, &x, &touched);
+                        self.refresh(system, ws, &x, &touched);
                         let start = DVector::from_fn(m3, |r, _| {
                             self.last[self.active[r / 3].0].map_or(b[r], |v| v[r % 3])
                         });
                         self.contact_stages += 1;
-                        let (u, ok) = self.solve(g, ws, &x, &b, h * GAMMA, start);
+                        let (u, ok) = self.solve(system, ws, &x, &b, h * GAMMA, start);
                         if !ok {
                             self.unconverged += 1;
                         }
                         u
                     };
-                    let f = self.reduced(g, ws, &x, &u);
+                    let f = self.reduced(system, ws, &x, &u);
                     self.response.forces.fill(Vector3::zeros());
-                    let hb = h * AI[3][i];
+                    let hb = h * B[i];
                     for (q, &(k, c)) in self.active.iter().enumerate() {
                         let fq: Vector3<f64> = f.fixed_rows::<3>(3 * q).into();
                         self.response.forces[c] = fq;
                         self.last[k] = Some(u.fixed_rows::<3>(3 * q).into());
                         self.impulse[k] += fq * hb;
                     }
-                    self.response.respond(model, ws, &x, &touched);
+                    self.response.respond(system, ws, &x, &touched);
                     self.ki[i].copy_from_slice(&self.response.out);
                     let a = h * AI[i][i];
                     for (o, k) in self.tmp[n3..].iter_mut().zip(&self.ki[i]) {
                         *o += a * k;
                     }
                 }
-                power[i] = rhs_smooth(
-                    model,
-                    t + C[i] * h,
-                    &self.tmp,
-                    &mut ke[i],
-                    ws,
-                    &mut mult,
-                    &[],
-                )?;
+                power[i] = system.rhs_explicit(t + C[i] * h, &self.tmp, &mut ke[i], ws, &[])?;
             }
-            for (i, bi) in AI[3].iter().enumerate() {
+            for (i, bi) in B.iter().enumerate() {
                 let hb = h * bi;
                 for q in 0..n {
                     y[q] += hb * ke[i][q];
@@ -438,11 +421,12 @@ impl ImexArk {
             }
             // the implicit forces' work: each node's impulse times its mean velocity over
             // the step (exact for an impulse on a free mass, whatever the damping time)
-            for (k, &(_, c)) in model.contact.iter().enumerate() {
+            for k in 0..m {
+                let c = system.contact_node(k);
                 let j = self.impulse[k];
                 if j != Vector3::zeros() {
                     let mean = (vec3(&self.y0[n3..], c) + vec3(&y[n3..], c)) * 0.5;
-                    let along = j.dot(&g.normal) * mean.dot(&g.normal);
+                    let along = j.dot(&normal) * mean.dot(&normal);
                     work.0 += along;
                     work.1 += j.dot(&mean) - along;
                 }
@@ -450,14 +434,13 @@ impl ImexArk {
             Ok::<(), CoreError>(())
         })();
         self.ke = ke;
-        self.smooth_multipliers = mult;
         result?;
-        ws.contact_work = Some(work);
+        system.set_contact_work(ws, work);
         Ok(())
     }
 }
 
-impl Integrator for ImexArk {
+impl<S: ContactSystem> Integrator<S> for ImexArk {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::ImexArk
     }
@@ -465,64 +448,20 @@ impl Integrator for ImexArk {
     /// Advances `y` from `t` to `t + h` in place (module docs).
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
-        if !splits(model) {
-            return self.rk4.step(model, ws, t, y, h);
+        if !system.splits_contact() {
+            return self.rk4.step(system, ws, t, y, h);
         }
-        self.ark_step(model, ws, t, y, h)?;
+        self.ark_step(system, ws, t, y, h)?;
         Ok(StepOutcome::fixed(h))
     }
 
     fn implicit_solves(&self) -> (u64, u64) {
         (self.contact_stages, self.unconverged)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{AE, AI, C, GAMMA};
-
-    /// The tableaux as published satisfy the order-3 conditions of both methods (with shared
-    /// abscissae and weights these are also the coupling conditions), and the ESDIRK is
-    /// A-stable on the imaginary axis and L-stable.
-    #[test]
-    fn the_tableaux_have_order_three_and_an_l_stable_implicit_part() {
-        let b = AI[3];
-        for a in [AE, AI] {
-            for i in 0..4 {
-                let row: f64 = a[i].iter().sum();
-                assert!((row - C[i]).abs() < 1e-14, "row {i}: {row} vs {}", C[i]);
-            }
-            let sum = |f: &dyn Fn(usize) -> f64| (0..4).map(f).sum::<f64>();
-            assert!((sum(&|i| b[i]) - 1.0).abs() < 1e-14);
-            assert!((sum(&|i| b[i] * C[i]) - 0.5).abs() < 1e-14);
-            assert!((sum(&|i| b[i] * C[i] * C[i]) - 1.0 / 3.0).abs() < 1e-14);
-            let bac = sum(&|i| b[i] * (0..4).map(|j| a[i][j] * C[j]).sum::<f64>());
-            assert!((bac - 1.0 / 6.0).abs() < 1e-14, "{bac}");
-        }
-        for i in 1..4 {
-            assert_eq!(AI[i][i], GAMMA);
-        }
-        // the ESDIRK's stability function R(z) (y' = z y): |R| ≤ 1 on the imaginary axis, and
-        // R → 0 as z → −∞ (L-stable)
-        let r = |z: nalgebra::Complex<f64>| {
-            let mut y = [nalgebra::Complex::new(1.0, 0.0); 4];
-            for i in 1..4 {
-                let explicit: nalgebra::Complex<f64> = (0..i).map(|j| y[j] * AI[i][j]).sum();
-                y[i] = (z * explicit + 1.0) / (-z * GAMMA + 1.0);
-            }
-            z * (0..4).map(|i| y[i] * b[i]).sum::<nalgebra::Complex<f64>>() + 1.0
-        };
-        for w in [0.1, 1.0, 10.0, 1e3, 1e6] {
-            let m = r(nalgebra::Complex::new(0.0, w)).norm();
-            assert!(m <= 1.0 + 1e-12, "|R({w} i)| = {m}");
-        }
-        assert!(r(nalgebra::Complex::new(-1e9, 0.0)).norm() < 1e-8);
-        assert!((r(nalgebra::Complex::new(-1e-4, 0.0)).re - (-1e-4f64).exp()).abs() < 1e-15);
     }
 }

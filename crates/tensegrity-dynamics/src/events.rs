@@ -120,7 +120,7 @@ impl<'a> EventTracker<'a> {
     /// The state at `t` inside the step [t0, t1] that ended in `y1`, into `out`.
     pub fn state_at(
         &self,
-        integ: &dyn Integrator,
+        integ: &dyn Integrator<Model>,
         (t0, t1): (f64, f64),
         y1: &[f64],
         t: f64,
@@ -139,7 +139,7 @@ impl<'a> EventTracker<'a> {
     pub fn after_step(
         &mut self,
         model: &Model,
-        integ: &dyn Integrator,
+        integ: &dyn Integrator<Model>,
         (t0, t1): (f64, f64),
         y1: &[f64],
     ) -> Option<f64> {
@@ -167,7 +167,7 @@ impl<'a> EventTracker<'a> {
     fn locate(
         &mut self,
         model: &Model,
-        integ: &dyn Integrator,
+        integ: &dyn Integrator<Model>,
         ev: &Event,
         (t0, t1): (f64, f64),
         y1: &[f64],

@@ -1,5 +1,6 @@
 //! [`IntegratorKind::build`]: a fresh integrator of a kind for a model (the one place that
-//! knows every method's constructor).
+//! knows every method's constructor; the methods themselves are generic over the
+//! [`System`](crate::System) they advance, and are built here for [`Model`]).
 
 use crate::ark::ImexArk;
 use crate::flight::Flight;
@@ -21,7 +22,7 @@ impl IntegratorKind {
         model: &Model,
         rtol: f64,
         atol: f64,
-    ) -> Result<Box<dyn Integrator>, CoreError> {
+    ) -> Result<Box<dyn Integrator<Model>>, CoreError> {
         let n = model.state_len();
         Ok(match self {
             Self::Rk4 => Box::new(Rk4::new(n)),

@@ -22,10 +22,13 @@
 //! in flight. The driver sees an adaptive method (a step may be rejected, each outcome
 //! proposes the next step; [`Integrator::max_step`] = H), and projects and monitors every
 //! accepted step as it does for the inner method.
+//!
+//! The heights and normal speeds are the [`ContactSystem`]'s: z_i = h(x_i) − h_touch
+//! ([`ContactSystem::ground_height`], [`ContactSystem::touch_height`]) and ż_i = n̂·v_i.
 
-use super::forces::GroundModel;
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{Model, Workspace};
+use super::system::{vec3, ContactSystem};
+use std::fmt;
 use tensegrity_core::error::CoreError;
 
 /// Flight step over contact step: H = `FLIGHT_RATIO`·dt.
@@ -38,11 +41,10 @@ pub const FLIGHT_RATIO: u32 = 5;
 /// Safety factor on the approach speed when deciding to try a flight step.
 pub const APPROACH_SAFETY: f64 = 1.5;
 
-/// A fixed-step method that takes [`FLIGHT_RATIO`] times its step while no contact node is
-/// near the ground (module docs).
-#[derive(Debug)]
-pub struct Flight {
-    inner: Box<dyn Integrator>,
+/// A fixed-step method on the system `S` that takes [`FLIGHT_RATIO`] times its step while no
+/// contact node is near the ground (module docs).
+pub struct Flight<S> {
+    inner: Box<dyn Integrator<S>>,
     kind: IntegratorKind,
     /// The contact step dt (s); set by [`Integrator::start`] from the run's `dt`.
     fine: f64,
@@ -54,14 +56,26 @@ pub struct Flight {
     pub landings: u64,
 }
 
-impl Flight {
+impl<S> fmt::Debug for Flight<S> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Flight")
+            .field("inner", &self.inner)
+            .field("kind", &self.kind)
+            .field("fine", &self.fine)
+            .field("flight_steps", &self.flight_steps)
+            .field("landings", &self.landings)
+            .finish()
+    }
+}
+
+impl<S: ContactSystem> Flight<S> {
     /// Flight steps around `inner`, reported as `kind`.
-    pub fn new(model: &Model, inner: Box<dyn Integrator>, kind: IntegratorKind) -> Self {
+    pub fn new(system: &S, inner: Box<dyn Integrator<S>>, kind: IntegratorKind) -> Self {
         Self {
             inner,
             kind,
             fine: 0.0,
-            backup: vec![0.0; model.state_len()],
+            backup: vec![0.0; system.state_len()],
             flight_steps: 0,
             landings: 0,
         }
@@ -72,50 +86,44 @@ impl Flight {
         self.fine * f64::from(FLIGHT_RATIO)
     }
 
-    /// The step from `t` to the next point of the grid of spacing `grid` (a t off a grid
-    /// point by round-off counts as on it, so no sliver of a step is made).
-    fn to_grid(t: f64, grid: f64) -> f64 {
-        let k = (t / grid + 1e-6).floor() + 1.0;
-        k * grid - t
-    }
-
     /// The step to propose from the state `y` at `t`.
-    fn proposal(&self, model: &Model, t: f64, y: &[f64]) -> f64 {
-        let h = Self::to_grid(t, self.coarse());
-        if h > 1.5 * self.fine && clear(model, y, h * APPROACH_SAFETY) {
+    fn proposal(&self, system: &S, t: f64, y: &[f64]) -> f64 {
+        let h = to_grid(t, self.coarse());
+        if h > 1.5 * self.fine && clear(system, y, h * APPROACH_SAFETY) {
             h
         } else {
-            Self::to_grid(t, self.fine)
+            to_grid(t, self.fine)
         }
     }
 }
 
-/// Height below which a contact node counts as touching (the thesis ground's tolerance,
-/// else the plane itself).
-fn touch_height(model: &Model) -> f64 {
-    match model.ground.as_ref().map(|g| g.model) {
-        Some(GroundModel::Thesis { tolerance, .. }) => tolerance,
-        _ => 0.0,
-    }
+/// Height above the touch height and normal speed of every contact node of `y`.
+fn heights<'a, S: ContactSystem>(
+    system: &'a S,
+    y: &'a [f64],
+) -> impl Iterator<Item = (f64, f64)> + 'a {
+    let n3 = y.len() / 2;
+    let touch = system.touch_height();
+    let normal = system.ground_normal();
+    (0..system.contact_points()).map(move |k| {
+        let c = system.contact_node(k);
+        let x = vec3(y, c);
+        let v = vec3(&y[n3..], c);
+        (system.ground_height(&x) - touch, v.dot(&normal))
+    })
 }
 
-/// Height above the touch height and normal speed of every contact node of `y`.
-fn heights<'a>(model: &'a Model, y: &'a [f64]) -> impl Iterator<Item = (f64, f64)> + 'a {
-    let n3 = 3 * model.n1;
-    let touch = touch_height(model);
-    let ground = model.ground.as_ref();
-    model.contact.iter().filter_map(move |&(_, c)| {
-        let g = ground?;
-        let x = super::model::vec3(y, c);
-        let v = super::model::vec3(&y[n3..], c);
-        Some((g.height(&x) - touch, v.dot(&g.normal)))
-    })
+/// The step from `t` to the next point of the grid of spacing `grid` (a t off a grid
+/// point by round-off counts as on it, so no sliver of a step is made).
+fn to_grid(t: f64, grid: f64) -> f64 {
+    let k = (t / grid + 1e-6).floor() + 1.0;
+    k * grid - t
 }
 
 /// Whether every contact node is above the ground and stays so for `span` seconds at its
 /// current approach speed.
-fn clear(model: &Model, y: &[f64], span: f64) -> bool {
-    heights(model, y).all(|(z, zd)| z > 0.0 && z + zd.min(0.0) * span > 0.0)
+fn clear<S: ContactSystem>(system: &S, y: &[f64], span: f64) -> bool {
+    heights(system, y).all(|(z, zd)| z > 0.0 && z + zd.min(0.0) * span > 0.0)
 }
 
 /// Whether the cubic Hermite interpolant of a height with ends (z0, zd0) and (z1, zd1) over
@@ -153,9 +161,9 @@ fn hermite_positive(z0: f64, zd0: f64, z1: f64, zd1: f64, h: f64) -> bool {
 }
 
 /// Whether no contact node crossed the plane between the states `y0` and `y1`, `h` apart.
-fn stayed_clear(model: &Model, y0: &[f64], y1: &[f64], h: f64) -> bool {
-    heights(model, y0)
-        .zip(heights(model, y1))
+fn stayed_clear<S: ContactSystem>(system: &S, y0: &[f64], y1: &[f64], h: f64) -> bool {
+    heights(system, y0)
+        .zip(heights(system, y1))
         .all(|((z0, zd0), (z1, zd1))| hermite_positive(z0, zd0, z1, zd1, h))
 }
 
@@ -166,7 +174,7 @@ fn rejected(h_next: f64) -> StepOutcome {
     }
 }
 
-impl Integrator for Flight {
+impl<S: ContactSystem> Integrator<S> for Flight<S> {
     fn kind(&self) -> IntegratorKind {
         self.kind
     }
@@ -188,51 +196,51 @@ impl Integrator for Flight {
     /// first step.
     fn start(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &[f64],
         h_max: f64,
     ) -> Result<f64, CoreError> {
         self.fine = h_max / f64::from(FLIGHT_RATIO);
-        self.inner.start(model, ws, t, y, self.fine)?;
-        Ok(self.proposal(model, t, y))
+        self.inner.start(system, ws, t, y, self.fine)?;
+        Ok(self.proposal(system, t, y))
     }
 
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
         if h <= 1.5 * self.fine {
-            let out = self.inner.step(model, ws, t, y, h)?;
+            let out = self.inner.step(system, ws, t, y, h)?;
             if !out.accepted {
                 return Ok(out);
             }
             return Ok(StepOutcome {
                 accepted: true,
-                h_next: self.proposal(model, t + h, y),
+                h_next: self.proposal(system, t + h, y),
             });
         }
         // a flight step: only from a clear state, kept only if nothing touched inside it
-        if !clear(model, y, h * APPROACH_SAFETY) {
-            return Ok(rejected(Self::to_grid(t, self.fine)));
+        if !clear(system, y, h * APPROACH_SAFETY) {
+            return Ok(rejected(to_grid(t, self.fine)));
         }
         self.backup.copy_from_slice(y);
-        let out = self.inner.step(model, ws, t, y, h)?;
-        if !out.accepted || !stayed_clear(model, &self.backup, y, h) {
+        let out = self.inner.step(system, ws, t, y, h)?;
+        if !out.accepted || !stayed_clear(system, &self.backup, y, h) {
             y.copy_from_slice(&self.backup);
             self.inner.invalidate();
             self.landings += 1;
-            return Ok(rejected(Self::to_grid(t, self.fine)));
+            return Ok(rejected(to_grid(t, self.fine)));
         }
         self.flight_steps += 1;
         Ok(StepOutcome {
             accepted: true,
-            h_next: self.proposal(model, t + h, y),
+            h_next: self.proposal(system, t + h, y),
         })
     }
 
@@ -260,15 +268,15 @@ mod tests {
 
     #[test]
     fn steps_land_on_the_grid() {
-        let h = Flight::to_grid(0.0, 1e-4);
+        let h = to_grid(0.0, 1e-4);
         assert!((h - 1e-4).abs() < 1e-18);
         // from just past a grid point (round-off), the next full spacing
-        let h = Flight::to_grid(3e-4 + 1e-17, 1e-4);
+        let h = to_grid(3e-4 + 1e-17, 1e-4);
         assert!((3e-4 + 1e-17 + h - 4e-4).abs() < 1e-16);
         // from the fine grid to the coarse one
-        let h = Flight::to_grid(1.3e-3, 1e-3);
+        let h = to_grid(1.3e-3, 1e-3);
         assert!((h - 0.7e-3).abs() < 1e-15);
-        let h = Flight::to_grid(1.6e-3 - 1e-18, 1e-4);
+        let h = to_grid(1.6e-3 - 1e-18, 1e-4);
         assert!((h - 1e-4).abs() < 1e-15);
     }
 }

@@ -5,8 +5,8 @@
 //!
 //! **Splitting** (Strang, order 2). Write y' = f(y) = f_A(y) + f_B(y) with y = (x, v) and
 //!
-//! * f_A = (v, a(x, v; F_c = 0)): the rigid-bar dynamics N̈M + NK = W + ΩPᵀ of [`Model::rhs`]
-//!   without the ground's forces F_c;
+//! * f_A = (v, a(x, v; F_c = 0)): the rigid-bar dynamics N̈M + NK = W + ΩPᵀ of
+//!   [`Model::rhs`](super::Model::rhs) without the ground's forces F_c;
 //! * f_B = (0, P_C(x) F_c(x, v)): the ground's forces alone, where P_C(x) (3 n₁ × 3m) is the
 //!   acceleration response of every class-1 node to a unit force on a coordinate of one of
 //!   the m contact nodes (the rigid-bar dynamics with the joint multipliers Ω at x: linear in
@@ -28,7 +28,7 @@
 //! W k₁ = f_B(v₀),   W k₂ = f_B(v₀ + τ k₁) − 2 k₁,   v₁ = v₀ + τ (3/2 k₁ + 1/2 k₂),
 //!
 //! W = I − γτ P̃_C K_v S_C, with K_v = ∂F_c/∂v_C block-diagonal per node
-//! ([`Ground::contact_jacobian`](super::Ground::contact_jacobian)) and P̃_C the response
+//! ([`ContactSystem::contact_damping`]) and P̃_C the response
 //! columns, refreshed when the set of loaded contact nodes changes and at least every
 //! [`REFRESH`] substeps (a W-method: a stale P̃ costs no order). W k = r reduces to the
 //! 3m × 3m system (I − γτ P̃_CC K_v) k_C = r_C, then k = r + γτ P̃_C K_v k_C; each stage's
@@ -95,16 +95,28 @@
 //! The bar constraints are kept as for RK4: the driver projects every accepted state back
 //! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
 //! (whose reaction needs all contact nodes at once) stays in f_A.
+//!
+//! The method is written against [`ContactSystem`]: f_A is its
+//! [`rhs_explicit`](ContactSystem::rhs_explicit), P_C its [`respond`](ContactSystem::respond),
+//! F_c its [`contact_force`](ContactSystem::contact_force) (the model's side:
+//! `contact_split.rs`). RK4's coefficients are [`RK4`]'s.
 
-use super::forces::{Ground, GroundModel};
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{vec3, BarTerms, Model, Workspace};
+use super::system::{vec3, ContactSystem};
+use super::tableau::{Tableau, RK4};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
-use tensegrity_core::error::{CoreError, DynamicsError, StepHint};
-use tensegrity_core::structure::MemberId;
+use tensegrity_core::error::{CoreError, DynamicsError};
 
 /// γ = 1 + 1/√2 of ROS2.
 const GAMMA: f64 = 1.0 + std::f64::consts::FRAC_1_SQRT_2;
+
+/// The coefficients of A's RK4 step.
+const TAB: Tableau<4> = RK4;
+/// 1/b₁ and b₂/b₁: A's update is y + (h/6)(k₁ + 2(k₂ + k₃) + k₄).
+const WEIGHT_DIVISOR: f64 = 1.0 / TAB.b[0];
+/// b₂/b₁.
+const MIDDLE_WEIGHT: f64 = TAB.b[1] / TAB.b[0];
+const _: () = assert!(WEIGHT_DIVISOR == 6.0 && MIDDLE_WEIGHT == 2.0);
 
 /// Contact substeps after which the response columns P̃_C are recomputed even if the set of
 /// loaded contact nodes did not change.
@@ -131,8 +143,6 @@ pub struct Imex {
     /// Per contact node: whether it touched the ground at the previous step's start (a node
     /// that has just landed holds no force: module docs, "The held force at a landing").
     touched_before: Vec<bool>,
-    /// Joint multipliers of A's right-hand sides.
-    multipliers: Vec<f64>,
     stage: Vec<f64>,
     /// Contact substeps taken and response-column refreshes (work counters).
     pub contact_substeps: u64,
@@ -141,9 +151,9 @@ pub struct Imex {
 }
 
 impl Imex {
-    /// Buffers for `model`.
-    pub fn new(model: &Model) -> Self {
-        let n = model.state_len();
+    /// Buffers for `system`.
+    pub fn new<S: ContactSystem>(system: &S) -> Self {
+        let n = system.state_len();
         Self {
             k: std::array::from_fn(|_| vec![0.0; n]),
             tmp: vec![0.0; n],
@@ -151,10 +161,9 @@ impl Imex {
             cached: Vec::new(),
             age: 0,
             cols: Vec::new(),
-            response: Response::new(model),
+            response: Response::new(n / 6),
             frozen: Vec::new(),
-            touched_before: vec![false; model.contact.len()],
-            multipliers: vec![0.0; model.linear_rows.len()],
+            touched_before: vec![false; system.contact_points()],
             stage: Vec::new(),
             contact_substeps: 0,
             refreshes: 0,
@@ -162,238 +171,87 @@ impl Imex {
     }
 }
 
-/// Whether the ground's forces are split off into B (penalty and stick grounds).
-pub(super) fn splits(model: &Model) -> bool {
-    model.ground.as_ref().is_some_and(|g| {
-        matches!(
-            g.model,
-            GroundModel::Penalty { .. } | GroundModel::Stick { .. }
-        )
-    })
-}
-
-/// f_A: [`Model::rhs`] without the ground's forces (when they are split off), plus the held
-/// force `frozen` (per contact node). Returns the power (normal, tangential) of A's
-/// non-conservative contact forces: the held force and the tangential part of the
-/// position-only force F_c(x, 0) (the stick law's anchor spring; zero for the penalty law),
-/// whose normal part k δ is the ground spring of the energy budget.
-pub(super) fn rhs_smooth(
-    model: &Model,
-    t: f64,
-    y: &[f64],
-    dy: &mut [f64],
-    ws: &mut Workspace,
-    multipliers: &mut [f64],
-    frozen: &[Vector3<f64>],
-) -> Result<(f64, f64), CoreError> {
-    if !splits(model) {
-        model.rhs(t, y, dy, ws)?;
-        return Ok((0.0, 0.0));
-    }
-    ws.rhs_evals += 1;
-    let n3 = 3 * model.n1;
-    let (x, v) = y.split_at(n3);
-    let (dx, dv) = dy.split_at_mut(n3);
-    dx.copy_from_slice(v);
-    model.applied_forces(t, x, v, ws);
-    let (mut normal_power, mut tangential_power) = (0.0, 0.0);
-    if let Some(g) = &model.ground {
-        for (k, &(_, c)) in model.contact.iter().enumerate() {
-            let spring = g.stick_force(&vec3(x, c), &Vector3::zeros(), ws.anchors[k].as_ref());
-            let held = frozen.get(k).copied().unwrap_or_default();
-            ws.f[c] += spring - ws.contact_f[k] + held;
-            if spring != Vector3::zeros() || held != Vector3::zeros() {
-                let vc = vec3(v, c);
-                // the spring's normal part k δ is the budget's ground spring
-                let non_conservative = spring - g.normal * spring.dot(&g.normal) + held;
-                let along = non_conservative.dot(&g.normal) * vc.dot(&g.normal);
-                normal_power += along;
-                tangential_power += non_conservative.dot(&vc) - along;
-            }
-        }
-    }
-    if let Some(i) = ws.f.iter().position(|f| !f.iter().all(|c| c.is_finite())) {
-        return Err(DynamicsError::NonFiniteState {
-            t,
-            member: MemberId::Bar(i / 2),
-            hint: StepHint::Unknown,
-        }
-        .into());
-    }
-    bar_accelerations(model, x, v, &ws.f, dv, None);
-    if ws.omega.is_some() {
-        // the first stage sits where the opening contact substep factored Ω
-        factor_omega_unless_current(model, x, ws)?;
-        constrain(model, ws, multipliers, dv);
-        bar_accelerations(model, x, v, &ws.f, dv, Some(&model.constrained_bars));
-    }
-    Ok((normal_power, tangential_power))
-}
-
-/// The velocity-dependent part F_c(x, v) − F_c(x, 0) of a contact node's force: what B
+/// The velocity-dependent part F_c(x, v) − F_c(x, 0) of contact point `k`'s force: what B
 /// integrates (the rest is A's).
-pub(super) fn velocity_dependent(
-    g: &Ground,
+fn velocity_dependent<S: ContactSystem>(
+    system: &S,
+    ws: &S::Workspace,
+    k: usize,
     x: &Vector3<f64>,
     v: &Vector3<f64>,
-    anchor: Option<&super::anchor::Anchor>,
 ) -> Vector3<f64> {
-    g.stick_force(x, v, anchor) - g.stick_force(x, &Vector3::zeros(), anchor)
-}
-
-/// Refactors Ω at positions `x` unless it is factored at bar directions within
-/// [`OMEGA_REUSE`] of those of `x`. Ω depends on the positions only through the bar directions
-/// b̂, and two evaluations of a step share them: the contact substep that opens a step sits
-/// where the one that closed the previous step was (moved only by the driver's projection onto
-/// the bar constraints), and A's first stage where the opening substep was (B moves no node).
-pub(super) fn factor_omega_unless_current(
-    model: &Model,
-    x: &[f64],
-    ws: &mut Workspace,
-) -> Result<(), CoreError> {
-    if let Some(om) = ws.omega.as_ref() {
-        let current = om.is_factored()
-            && ws.bhat.iter().enumerate().all(|(k, bh)| {
-                let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
-                (b * (1.0 / b.norm()) - bh).amax() <= OMEGA_REUSE
-            });
-        if current {
-            return Ok(());
-        }
-    }
-    factor_omega(model, x, ws)
-}
-
-/// Largest change of a bar direction's component at which a factored Ω is kept
-/// ([`factor_omega_unless_current`]). On the hopping n = 24 wheel at 5·10⁻⁴ s the projection moves the directions by
-/// 10⁻¹⁵ … 10⁻⁸ (the response's relative error, far below the step's), a step by 10⁻⁶ and more.
-const OMEGA_REUSE: f64 = 1e-8;
-
-/// Refactors Ω at positions `x`.
-fn factor_omega(model: &Model, x: &[f64], ws: &mut Workspace) -> Result<(), CoreError> {
-    let Workspace { omega, bhat, .. } = ws;
-    let Some(om) = omega.as_mut() else {
-        return Ok(());
-    };
-    for (k, bh) in bhat.iter_mut().enumerate() {
-        let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
-        *bh = b * (1.0 / b.norm());
-    }
-    om.assemble_and_factor(bhat, &model.inv_mass)
-}
-
-/// Adds the joint forces Gᵀω that make the accelerations `dv` (of the forces `ws.f`) keep
-/// N P = D (Ω factored).
-fn constrain(model: &Model, ws: &mut Workspace, multipliers: &mut [f64], dv: &[f64]) {
-    let Workspace { omega, f, .. } = ws;
-    let Some(om) = omega.as_mut() else {
-        return;
-    };
-    model.constraint_rhs(dv, multipliers);
-    om.solve_in_place(multipliers);
-    model.add_constraint_forces(multipliers, f);
+    system.contact_force(ws, k, x, v) - system.contact_force(ws, k, x, &Vector3::zeros())
 }
 
 /// The constrained response P_C F of forces on contact nodes (module docs), with its
 /// buffers; shared by [`Imex`] and [`ImexArk`](super::ImexArk).
 #[derive(Debug)]
 pub(super) struct Response {
-    /// The forces per class-1 node, nonzero on the contact nodes only; [`Response::respond`]
-    /// leaves the joint forces that keep N P = D added to them.
+    /// The forces per node, nonzero on the contact nodes only; [`Response::respond`] leaves
+    /// the joint forces that keep N P = D added to them.
     pub(super) forces: Vec<Vector3<f64>>,
-    multipliers: Vec<f64>,
-    /// The accelerations P_C F of every class-1 node (3 n₁).
+    /// The accelerations P_C F of every node (3 per node).
     pub(super) out: Vec<f64>,
 }
 
 impl Response {
-    /// Buffers for `model`.
-    pub(super) fn new(model: &Model) -> Self {
+    /// Buffers for `nodes` nodes.
+    pub(super) fn new(nodes: usize) -> Self {
         Self {
-            forces: vec![Vector3::zeros(); model.n1],
-            multipliers: vec![0.0; model.linear_rows.len()],
-            out: vec![0.0; 3 * model.n1],
+            forces: vec![Vector3::zeros(); nodes],
+            out: vec![0.0; 3 * nodes],
         }
     }
 
-    /// `self.out` = P_C F: the accelerations of `self.response.forces` (on the contact nodes
-    /// `touched`) at positions `x` and zero velocities (Ω factored at x).
-    pub(super) fn respond(
+    /// `self.out` = P_C F: the accelerations of `self.forces` (on the contact nodes
+    /// `touched`) at positions `x` and zero velocities ([`ContactSystem::respond`]; prepared
+    /// at x).
+    pub(super) fn respond<S: ContactSystem>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         x: &[f64],
         touched: &[usize],
     ) {
-        let Self {
-            forces,
-            multipliers,
-            out,
-        } = self;
-        out.fill(0.0);
-        let zero = [0.0; 3];
-        let bar = |k: usize, f: &[Vector3<f64>], out: &mut [f64]| {
-            let xk = &x[6 * k..6 * k + 6];
-            let t = BarTerms::of(&xk[..3], &xk[3..], &zero, &zero);
-            t.accel(
-                &model.bars[k],
-                &f[2 * k],
-                &f[2 * k + 1],
-                &mut out[6 * k..6 * k + 6],
-            );
-        };
-        for &c in touched {
-            bar(c / 2, forces, out);
-        }
-        if ws.omega.is_none() {
-            return;
-        }
-        std::mem::swap(&mut ws.f, forces);
-        constrain(model, ws, multipliers, out);
-        std::mem::swap(&mut ws.f, forces);
-        for &c in touched {
-            bar(c / 2, forces, out);
-        }
-        for &k in &model.constrained_bars {
-            bar(k, forces, out);
-        }
+        system.respond(ws, x, &mut self.forces, touched, &mut self.out);
     }
 }
 
 impl Imex {
     /// The contact forces F_c at positions `x` and velocities `v` of the active nodes into
     /// `self.response.forces` (zero elsewhere).
-    fn contact_forces(&mut self, model: &Model, ws: &Workspace, x: &[f64], v: &[f64]) {
+    fn contact_forces<S: ContactSystem>(
+        &mut self,
+        system: &S,
+        ws: &S::Workspace,
+        x: &[f64],
+        v: &[f64],
+    ) {
         self.response.forces.fill(Vector3::zeros());
-        let Some(g) = &model.ground else {
-            return;
-        };
         for &(k, c, _) in &self.active {
-            let anchor = ws.anchors[k].as_ref();
             self.response.forces[c] =
-                velocity_dependent(g, &vec3(x, c), &vec3(v, c), anchor) - self.frozen[k];
+                velocity_dependent(system, ws, k, &vec3(x, c), &vec3(v, c)) - self.frozen[k];
         }
     }
 
     /// The velocity-dependent contact forces F_c(x, v) − F_c(x, 0) of the state `y`, per
     /// contact node, into `self.frozen`: zero off the ground and for a node that was off it at
     /// the previous step's start.
-    fn freeze(&mut self, model: &Model, ws: &Workspace, y: &[f64]) {
+    fn freeze<S: ContactSystem>(&mut self, system: &S, ws: &S::Workspace, y: &[f64]) {
         self.frozen.clear();
-        let Some(g) = &model.ground else {
-            return;
-        };
-        let (x, v) = y.split_at(3 * model.n1);
-        self.touched_before.resize(model.contact.len(), false);
-        for (k, &(_, c)) in model.contact.iter().enumerate() {
+        let (x, v) = y.split_at(y.len() / 2);
+        let m = system.contact_points();
+        self.touched_before.resize(m, false);
+        for k in 0..m {
+            let c = system.contact_node(k);
             let xc = vec3(x, c);
-            let touching = g.height(&xc) < 0.0;
+            let touching = system.ground_height(&xc) < 0.0;
             // a node that has just landed still moves at its impact speed: holding its damping
             // force through A would act as a restitution
             let hold = touching && self.touched_before[k];
             self.touched_before[k] = touching;
             let f = if hold {
-                velocity_dependent(g, &xc, &vec3(v, c), ws.anchors[k].as_ref())
+                velocity_dependent(system, ws, k, &xc, &vec3(v, c))
             } else {
                 Vector3::zeros()
             };
@@ -415,26 +273,23 @@ impl Imex {
     /// B(τ): the ROS2 contact substep on the velocities of `y` (module docs). Returns its
     /// work (normal, tangential): the exact change of kinetic energy (the positions are
     /// frozen), split in the proportion of the stages' normal and tangential powers.
-    fn contact_substep(
+    fn contact_substep<S: ContactSystem>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         y: &mut [f64],
         tau: f64,
     ) -> Result<(f64, f64), CoreError> {
-        let Some(g) = &model.ground else {
-            return Ok((0.0, 0.0));
-        };
-        let n3 = 3 * model.n1;
+        let n3 = y.len() / 2;
+        let normal = system.ground_normal();
         self.active.clear();
         {
             let (x, v) = y.split_at(n3);
-            for (k, &(_, c)) in model.contact.iter().enumerate() {
+            for k in 0..system.contact_points() {
+                let c = system.contact_node(k);
                 let xc = vec3(x, c);
-                if g.height(&xc) < 0.0 || self.frozen[k] != Vector3::zeros() {
-                    let kv = g
-                        .contact_jacobian(&xc, &vec3(v, c), ws.anchors[k].as_ref())
-                        .map_or_else(Matrix3::zeros, |(_, kv)| kv);
+                if system.ground_height(&xc) < 0.0 || self.frozen[k] != Vector3::zeros() {
+                    let kv = system.contact_damping(ws, k, &xc, &vec3(v, c));
                     self.active.push((k, c, kv));
                 }
             }
@@ -443,10 +298,10 @@ impl Imex {
             return Ok((0.0, 0.0));
         }
         self.contact_substeps += 1;
-        let kinetic_before = model.kinetic_energy(y);
+        let kinetic_before = system.kinetic_energy(y);
         let touched: Vec<usize> = self.active.iter().map(|a| a.1).collect();
         let x = y[..n3].to_vec();
-        factor_omega_unless_current(model, &x, ws)?;
+        system.prepare_response(ws, &x)?;
         // the response columns P̃_C
         let m3 = 3 * touched.len();
         if touched != self.cached || self.age >= REFRESH {
@@ -454,7 +309,7 @@ impl Imex {
             for j in 0..m3 {
                 self.response.forces.fill(Vector3::zeros());
                 self.response.forces[touched[j / 3]][j % 3] = 1.0;
-                self.response.respond(model, ws, &x, &touched);
+                self.response.respond(system, ws, &x, &touched);
                 self.cols[j].clear();
                 self.cols[j].extend_from_slice(&self.response.out);
             }
@@ -473,19 +328,19 @@ impl Imex {
         let lu = w.lu();
         // stage 1: r = P_C F(v₀)
         let v0 = y[n3..].to_vec();
-        self.contact_forces(model, ws, &x, &v0);
-        let (n1, t1) = self.split_power(&g.normal, &v0);
-        self.response.respond(model, ws, &x, &touched);
+        self.contact_forces(system, ws, &x, &v0);
+        let (n1, t1) = self.split_power(&normal, &v0);
+        self.response.respond(system, ws, &x, &touched);
         let k1 = self.solve_stage(&lu, &kv, gt, &touched)?;
         // stage 2 at v₀ + τ k₁: r = P_C F(v₀ + τ k₁) − 2 k₁
         self.stage.clear();
         self.stage
             .extend(v0.iter().zip(&k1).map(|(a, b)| a + tau * b));
         let stage = std::mem::take(&mut self.stage);
-        self.contact_forces(model, ws, &x, &stage);
-        let (n2, t2) = self.split_power(&g.normal, &stage);
+        self.contact_forces(system, ws, &x, &stage);
+        let (n2, t2) = self.split_power(&normal, &stage);
         self.stage = stage;
-        self.response.respond(model, ws, &x, &touched);
+        self.response.respond(system, ws, &x, &touched);
         for (r, a) in self.response.out.iter_mut().zip(&k1) {
             *r -= 2.0 * a;
         }
@@ -493,7 +348,7 @@ impl Imex {
         for ((o, a), b) in y[n3..].iter_mut().zip(&k1).zip(&k2) {
             *o += tau * (1.5 * a + 0.5 * b);
         }
-        let work = model.kinetic_energy(y) - kinetic_before;
+        let work = system.kinetic_energy(y) - kinetic_before;
         let (wn, wt) = ((n1 + n2).abs(), (t1 + t2).abs());
         let normal_share = if wn + wt > 0.0 { wn / (wn + wt) } else { 1.0 };
         Ok((work * normal_share, work * (1.0 - normal_share)))
@@ -527,7 +382,7 @@ impl Imex {
     }
 }
 
-impl Integrator for Imex {
+impl<S: ContactSystem> Integrator<S> for Imex {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Imex
     }
@@ -535,102 +390,60 @@ impl Integrator for Imex {
     /// Advances `y` from `t` to `t + h` in place: B(h/2), RK4 on f_A, B(h/2).
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
-        let split = splits(model);
-        let mut work = ws.contact_work.unwrap_or_default();
+        let split = system.splits_contact();
+        let mut work = system.contact_work(ws).unwrap_or_default();
         self.frozen.clear();
         if split {
-            self.freeze(model, ws, y);
-            let (wn, wt) = self.contact_substep(model, ws, y, 0.5 * h)?;
+            self.freeze(system, ws, y);
+            let (wn, wt) = self.contact_substep(system, ws, y, 0.5 * h)?;
             work.0 += wn;
             work.1 += wt;
         }
+        let (a, c) = (&TAB.a, &TAB.c);
         let mut power = [(0.0, 0.0); 4];
         let frozen = std::mem::take(&mut self.frozen);
         let mut k = std::mem::take(&mut self.k);
-        let mut mult = std::mem::take(&mut self.multipliers);
         let result = (|| {
             let n = y.len();
-            power[0] = rhs_smooth(model, t, y, &mut k[0], ws, &mut mult, &frozen)?;
+            power[0] = system.rhs_explicit(t, y, &mut k[0], ws, &frozen)?;
             for i in 0..n {
-                self.tmp[i] = y[i] + 0.5 * h * k[0][i];
+                self.tmp[i] = y[i] + a[1][0] * h * k[0][i];
             }
-            power[1] = rhs_smooth(
-                model,
-                t + 0.5 * h,
-                &self.tmp,
-                &mut k[1],
-                ws,
-                &mut mult,
-                &frozen,
-            )?;
+            power[1] = system.rhs_explicit(t + c[1] * h, &self.tmp, &mut k[1], ws, &frozen)?;
             for i in 0..n {
-                self.tmp[i] = y[i] + 0.5 * h * k[1][i];
+                self.tmp[i] = y[i] + a[2][1] * h * k[1][i];
             }
-            power[2] = rhs_smooth(
-                model,
-                t + 0.5 * h,
-                &self.tmp,
-                &mut k[2],
-                ws,
-                &mut mult,
-                &frozen,
-            )?;
+            power[2] = system.rhs_explicit(t + c[2] * h, &self.tmp, &mut k[2], ws, &frozen)?;
             for i in 0..n {
-                self.tmp[i] = y[i] + h * k[2][i];
+                self.tmp[i] = y[i] + a[3][2] * h * k[2][i];
             }
-            power[3] = rhs_smooth(model, t + h, &self.tmp, &mut k[3], ws, &mut mult, &frozen)?;
-            let h6 = h / 6.0;
+            power[3] = system.rhs_explicit(t + c[3] * h, &self.tmp, &mut k[3], ws, &frozen)?;
+            let h6 = h / WEIGHT_DIVISOR;
             for i in 0..n {
-                y[i] += h6 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
+                y[i] += h6 * (k[0][i] + MIDDLE_WEIGHT * (k[1][i] + k[2][i]) + k[3][i]);
             }
             Ok::<(), CoreError>(())
         })();
         self.k = k;
-        self.multipliers = mult;
         self.frozen = frozen;
         result?;
         if split {
             // A's non-conservative contact work by RK4's own quadrature of its power
-            let rk4 = |p: [f64; 4]| h / 6.0 * (p[0] + 2.0 * (p[1] + p[2]) + p[3]);
+            let rk4 =
+                |p: [f64; 4]| h / WEIGHT_DIVISOR * (p[0] + MIDDLE_WEIGHT * (p[1] + p[2]) + p[3]);
             work.0 += rk4(power.map(|p| p.0));
             work.1 += rk4(power.map(|p| p.1));
-            let (wn, wt) = self.contact_substep(model, ws, y, 0.5 * h)?;
+            let (wn, wt) = self.contact_substep(system, ws, y, 0.5 * h)?;
             work.0 += wn;
             work.1 += wt;
-            ws.contact_work = Some(work);
+            system.set_contact_work(ws, work);
         }
         Ok(StepOutcome::fixed(h))
-    }
-}
-
-/// The free-bar accelerations ([`BarTerms`]) of every bar of the model (or the listed ones),
-/// written into `dv`.
-fn bar_accelerations(
-    model: &Model,
-    x: &[f64],
-    v: &[f64],
-    f: &[Vector3<f64>],
-    dv: &mut [f64],
-    only: Option<&[usize]>,
-) {
-    let mut one = |k: usize| {
-        let (xk, vk) = (&x[6 * k..6 * k + 6], &v[6 * k..6 * k + 6]);
-        let t = BarTerms::of(&xk[..3], &xk[3..], &vk[..3], &vk[3..]);
-        t.accel(
-            &model.bars[k],
-            &f[2 * k],
-            &f[2 * k + 1],
-            &mut dv[6 * k..6 * k + 6],
-        );
-    };
-    match only {
-        Some(list) => list.iter().for_each(|&k| one(k)),
-        None => (0..model.bars.len()).for_each(one),
     }
 }

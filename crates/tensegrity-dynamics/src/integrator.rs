@@ -1,25 +1,32 @@
 //! The [`Integrator`] trait: one step of a time integrator of y' = f(t, y), driven by
 //! [`Simulation::run`](super::Simulation::run).
 //!
-//! The state y holds the class-1 positions then velocities; f is [`Model::rhs`] (or, for
-//! RATTLE, the applied forces with the constraint multipliers). One trait covers
+//! The integrator is generic over the system it advances ([`System`]: the state and its
+//! right-hand side f, with [`ConstrainedSystem`](super::ConstrainedSystem) and
+//! [`ContactSystem`](super::ContactSystem) for the methods that need the constraints or the
+//! contact split); the simulation steps [`Model`](super::Model), whose state y holds the
+//! class-1 positions then velocities and whose f is [`Model::rhs`](super::Model::rhs) (or,
+//! for RATTLE, the applied forces with the constraint multipliers). One trait covers
 //!
-//! * fixed-step methods ([`Rk4`], [`Rattle`]): every step is accepted and the driver places
-//!   the steps on the grid t_k = k·dt, shortened to land on output times;
-//! * adaptive methods ([`Dopri5`]): a step may be rejected, and every outcome carries the
-//!   step the method proposes next; the driver caps it at the maximum step and the end time;
-//! * constraint-preserving methods ([`Rattle`]): they keep ‖b_k‖ = l_k and N P = D
-//!   themselves, so the driver does not project their states;
+//! * fixed-step methods ([`Rk4`](super::Rk4), [`Rattle`](super::Rattle)): every step is
+//!   accepted and the driver places the steps on the grid t_k = k·dt, shortened to land on
+//!   output times;
+//! * adaptive methods ([`Dopri5`](super::Dopri5)): a step may be rejected, and every outcome
+//!   carries the step the method proposes next; the driver caps it at the maximum step and the
+//!   end time;
+//! * constraint-preserving methods ([`Rattle`](super::Rattle)): they keep ‖b_k‖ = l_k and
+//!   N P = D themselves, so the driver does not project their states;
 //! * dense output: a method that can evaluate its solution inside the last accepted step
 //!   ([`Integrator::interpolate`]) gets output samples and events located through it; without
 //!   it the driver lands on output times and the event module interpolates linearly.
 //!
 //! The counters (accepted and rejected steps, right-hand-side evaluations) are kept by the
-//! driver and the [`Workspace`]; see [`IntegratorStats`]. The implicit, L-stable [`Sdirk`]
-//! fits the same trait: its Newton failures become rejected steps with a smaller proposal.
+//! driver and the system's workspace; see [`IntegratorStats`]. The implicit, L-stable
+//! [`Sdirk`](super::Sdirk) fits the same trait: its Newton failures become rejected steps with
+//! a smaller proposal.
 
 pub use super::kind::IntegratorKind;
-use super::model::{Model, Workspace};
+use super::system::System;
 use serde::Serialize;
 use std::fmt;
 use tensegrity_core::error::CoreError;
@@ -56,12 +63,12 @@ pub struct IntegratorStats {
     pub rhs_evals: u64,
 }
 
-/// One time integrator of the rigid-bar dynamics.
+/// One time integrator of the system `S` (module docs).
 ///
 /// The driver calls [`start`](Self::start) once at the initial state, then
 /// [`step`](Self::step) until the end time; after it modified an accepted state itself (a
 /// projection onto the constraints) it calls [`invalidate`](Self::invalidate).
-pub trait Integrator: fmt::Debug {
+pub trait Integrator<S: System>: fmt::Debug {
     /// Which integrator this is.
     fn kind(&self) -> IntegratorKind;
 
@@ -83,8 +90,8 @@ pub trait Integrator: fmt::Debug {
     /// Prepares a run from (t, y) and returns the first step to try (at most `h_max`).
     fn start(
         &mut self,
-        _model: &Model,
-        _ws: &mut Workspace,
+        _system: &S,
+        _ws: &mut S::Workspace,
         _t: f64,
         _y: &[f64],
         h_max: f64,
@@ -95,8 +102,8 @@ pub trait Integrator: fmt::Debug {
     /// Attempts one step of size `h` from (t, y), advancing `y` in place when accepted.
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
@@ -113,14 +120,14 @@ pub trait Integrator: fmt::Debug {
     fn invalidate(&mut self) {}
 
     /// The largest step the driver lets an adaptive method take in a run of step `dt`
-    /// (`dt` itself, except for methods that take multiples of it, e.g. [`Flight`]).
+    /// (`dt` itself, except for methods that take multiples of it, e.g. [`Flight`](super::Flight)).
     fn max_step(&self, dt: f64) -> f64 {
         dt
     }
 
     /// Implicit stage equations solved so far and how many of them ended above their
-    /// acceptance residual ([`ImexArk`]; (0, 0) for methods without such solves or whose
-    /// failed solves become rejected steps).
+    /// acceptance residual ([`ImexArk`](super::ImexArk); (0, 0) for methods without such
+    /// solves or whose failed solves become rejected steps).
     fn implicit_solves(&self) -> (u64, u64) {
         (0, 0)
     }

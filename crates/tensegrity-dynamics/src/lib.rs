@@ -21,8 +21,14 @@
 //! [`Rk4`] (fixed step, MOTES parity), [`Dopri5`] (adaptive 5(4), dense output, events),
 //! [`Rattle`] (constraint-preserving, symplectic, 2nd order) and [`Sdirk`] (adaptive,
 //! L-stable, 3rd order, Newton with a finite-difference Jacobian: stiff strings and stiff or
-//! dissipative contact at the step the rigid-body motion needs), all behind the [`Integrator`]
-//! trait ([`integrator`]) that the one driver loop of [`Simulation::run`] steps; sign changes
+//! dissipative contact at the step the rigid-body motion needs), [`Imex`] and [`ImexArk`]
+//! (the ground's stiff part implicit) and [`Flight`], all behind the [`Integrator`]
+//! trait ([`integrator`]) that the one driver loop of [`Simulation::run`] steps. The methods are
+//! written against the system they advance ([`System`]: state and right-hand side;
+//! [`ConstrainedSystem`]: the constraints, their projection and RATTLE's pieces;
+//! [`ContactSystem`]: the contact split), which [`Model`] implements, and take their
+//! coefficients from one [`Tableau`] type ([`tableau`]); what each method is (order, implicit
+//! parts, events, purpose) is [`IntegratorKind::facts`]. Sign changes
 //! of event functions are located by [`events`]; RK states can be projected back onto the
 //! constraints ([`SimulationSettings::project`]). Every run reports its work counters
 //! ([`IntegratorStats`]); `work_precision` (feature `test-models`) measures error against
@@ -53,6 +59,8 @@
 
 pub mod anchor;
 pub mod ark;
+pub mod constraints;
+mod contact_split;
 pub mod convergence;
 pub mod drift;
 pub mod estimate;
@@ -75,6 +83,8 @@ pub mod sdirk;
 pub mod simulation;
 pub mod stick;
 pub mod strings;
+pub mod system;
+pub mod tableau;
 #[cfg(any(test, feature = "test-models"))]
 pub mod test_models;
 #[cfg(any(test, feature = "test-models"))]
@@ -82,6 +92,7 @@ pub mod work_precision;
 
 pub use anchor::Anchor;
 pub use ark::ImexArk;
+pub use constraints::ConstraintSet;
 pub use convergence::{Convergence, QuantityConvergence};
 pub use drift::{DriftLimits, DriftQuantity, DriftWarning};
 pub use events::{Event, EventFn, EventHit, StateView};
@@ -92,7 +103,7 @@ pub use integrator::{Integrator, IntegratorStats, StepOutcome};
 pub use kind::{Implicit, IntegratorFacts, IntegratorKind};
 pub use model::{LoadFn, Model, NodeRef, RestLengthFn, Workspace};
 pub use monitors::Monitor;
-pub use rattle::{ConstraintSet, Rattle};
+pub use rattle::Rattle;
 pub use recorder::{Quantities, Recorder, Sample, SampleSink};
 pub use report::SimulationReport;
 pub use rk4::Rk4;
@@ -100,6 +111,8 @@ pub use rk45::Dopri5;
 pub use sdirk::{Sdirk, SdirkStats};
 pub use simulation::{Simulation, SimulationResult, SimulationSettings};
 pub use strings::StringLaw;
+pub use system::{ConstrainedSystem, ContactSystem, System};
+pub use tableau::Tableau;
 
 /// The README's examples, compiled and run as doc-tests.
 #[cfg(doctest)]

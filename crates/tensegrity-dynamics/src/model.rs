@@ -32,6 +32,8 @@ use super::forces::{Ground, GroundModel};
 use super::omega::joint_space::{JointScratch, JointSpace};
 use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
 use super::strings::StringLaw;
+use super::system::System;
+pub(crate) use super::system::{set3, vec3};
 use nalgebra::Vector3;
 use tensegrity_core::error::{CoreError, DynamicsError, ModelError, StepHint};
 use tensegrity_core::structure::{MemberId, Structure};
@@ -150,6 +152,8 @@ pub struct Workspace {
     pub(crate) extra: Vec<Vector3<f64>>,
     pub(crate) contact_f: Vec<Vector3<f64>>,
     pub(crate) omega: Option<ConstraintMatrix>,
+    /// The Ω right-hand side and multipliers (also the multipliers of the contact split's
+    /// constraint solves, module `contact_split`).
     pub(crate) omega_rhs: Vec<f64>,
     pub(crate) bhat: Vec<Vector3<f64>>,
     /// The force-independent terms of every bar's accelerations, from the first pass of the
@@ -225,11 +229,6 @@ impl Workspace {
     }
 }
 
-#[inline]
-pub(crate) fn vec3(y: &[f64], i: usize) -> Vector3<f64> {
-    Vector3::new(y[3 * i], y[3 * i + 1], y[3 * i + 2])
-}
-
 /// Node i of `y` with one range check (as [`vec3`]).
 #[inline]
 fn node_of(y: &[f64], i: usize) -> Vector3<f64> {
@@ -237,11 +236,18 @@ fn node_of(y: &[f64], i: usize) -> Vector3<f64> {
     Vector3::new(p[0], p[1], p[2])
 }
 
-#[inline]
-pub(crate) fn set3(y: &mut [f64], i: usize, v: &Vector3<f64>) {
-    y[3 * i] = v.x;
-    y[3 * i + 1] = v.y;
-    y[3 * i + 2] = v.z;
+/// The model as the system the integrators advance: y = (x, v) of the class-1 nodes,
+/// f = [`Model::rhs`].
+impl System for Model {
+    type Workspace = Workspace;
+
+    fn state_len(&self) -> usize {
+        Model::state_len(self)
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64], ws: &mut Workspace) -> Result<(), CoreError> {
+        Model::rhs(self, t, y, dy, ws)
+    }
 }
 
 impl Model {

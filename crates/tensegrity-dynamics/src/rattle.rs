@@ -1,11 +1,11 @@
 //! RATTLE: a second-order, symplectic (for conservative forces), constraint-preserving step
-//! for bar lengths and N P = D; the same machinery projects RK states back onto the
-//! constraints.
+//! for bar lengths and N P = D, over any [`ConstrainedSystem`] (the constraints and their
+//! projection: [`ConstraintSet`](super::ConstraintSet) for the model).
 //!
 //! In class-1 coordinates q (two nodes per bar) the bars are point pairs with the block
 //! mass matrix M = [[m/3, m/6], [m/6, m/3]] ⊗ I₃ (translational plus J = m/12 rotational
 //! inertia) subject to g(q) = 0: ½(‖b_k‖² − l_k²) = 0 for every bar and N P − D = 0. With
-//! G = ∂g/∂q and applied forces f(t, q, v):
+//! G = ∂g/∂q and applied forces f(t, q, v) ([`ConstrainedSystem::forces`]):
 //!
 //! v½ = v_n + h/2 M⁻¹(f_n + G(q_n)ᵀμ),  q_{n+1} = q_n + h v½,  g(q_{n+1}) = 0,
 //! v_{n+1} = v½ + h/2 M⁻¹(f_{n+1} + G(q_{n+1})ᵀν),  G(q_{n+1}) v_{n+1} = 0.
@@ -16,235 +16,15 @@
 //! half-kick is iterated twice on v_{n+1}.
 
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{set3, vec3, Model, Workspace};
-use super::omega::{ConstraintMatrix, Row, RowEntry};
+use super::system::ConstrainedSystem;
 use nalgebra::Vector3;
 use tensegrity_core::error::{CoreError, DynamicsError};
 
-/// The bar-length and N P = D constraints with their sparse multiplier system.
+/// The RATTLE stepper over the constraint set `C` of its system
+/// ([`ConstrainedSystem::Constraints`]).
 #[derive(Debug)]
-pub struct ConstraintSet {
-    sys: ConstraintMatrix,
-    n_bars: usize,
-    targets: Vec<f64>,
-    r: Vec<f64>,
-    cf: Vec<Vector3<f64>>,
-    length2: Vec<f64>,
-    /// max(longest bar, 1 m): the length scale of the residuals' round-off.
-    length_scale: f64,
-    /// Whether `sys` holds the factor of the last projection's corrected positions (the
-    /// next projection's position step starts from it; a factor taken in between by RATTLE
-    /// is as recent and serves as well).
-    factored: bool,
-    /// Positions before a position step that starts from the previous projection's factor.
-    start: Vec<f64>,
-}
-
-/// Multiple of ε·max|x|·ℓ below which a constraint residual is round-off: b = x_b − x_a
-/// carries an absolute error ~ε max|x| however short the bar, so ½(‖b‖² − l²) cannot be
-/// driven below ~√3 ε max|x| l (and N P − D below ~ε max|x| per entry). Far from the origin
-/// (a wheel 100 m down a slope) this floor exceeds a fixed tolerance of 10⁻¹⁴ l², which
-/// made the iteration fail on a converged state.
-const ROUNDOFF_FLOOR: f64 = 16.0 * f64::EPSILON;
-
-/// Iterations the position step may take from the previous projection's factor before it
-/// refactors at the current positions.
-const STALE_ITERATIONS: usize = 6;
-
-impl ConstraintSet {
-    /// Builds the constraint rows of `model` (bars first, then N P = D).
-    pub fn new(model: &Model) -> Result<Self, CoreError> {
-        let nb = model.bars.len();
-        let mut rows = Vec::with_capacity(nb + model.linear_rows.len());
-        let mut targets = Vec::with_capacity(rows.capacity());
-        for k in 0..nb {
-            rows.push(Row {
-                entries: [
-                    Some(RowEntry {
-                        node: 2 * k,
-                        grad: Vector3::zeros(),
-                    }),
-                    Some(RowEntry {
-                        node: 2 * k + 1,
-                        grad: Vector3::zeros(),
-                    }),
-                ],
-            });
-            targets.push(0.0);
-        }
-        for r in &model.linear_rows {
-            rows.push(r.row.clone());
-            targets.push(r.target);
-        }
-        let n = rows.len();
-        Ok(Self {
-            sys: ConstraintMatrix::new(rows, false)?,
-            n_bars: nb,
-            targets,
-            r: vec![0.0; n],
-            cf: vec![Vector3::zeros(); model.n1],
-            length2: model.bars.iter().map(|b| b.length0 * b.length0).collect(),
-            length_scale: model.bars.iter().map(|b| b.length0).fold(1.0, f64::max),
-            factored: false,
-            start: Vec::new(),
-        })
-    }
-
-    fn set_grads(&mut self, x: &[f64]) {
-        for k in 0..self.n_bars {
-            let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
-            let e = &mut self.sys.rows[k].entries;
-            if let Some(a) = e[0].as_mut() {
-                a.grad = -b;
-            }
-            if let Some(a) = e[1].as_mut() {
-                a.grad = b;
-            }
-        }
-    }
-
-    fn factor(&mut self, model: &Model, x: &[f64]) -> Result<(), CoreError> {
-        self.set_grads(x);
-        self.sys.assemble_and_factor(&[], &model.inv_mass)
-    }
-
-    /// Residuals g(x) into self.r; returns max |g|.
-    fn residual(&mut self, x: &[f64]) -> f64 {
-        let mut worst: f64 = 0.0;
-        for k in 0..self.n_bars {
-            let b = vec3(x, 2 * k + 1) - vec3(x, 2 * k);
-            self.r[k] = 0.5 * (b.norm_squared() - self.length2[k]);
-        }
-        for (i, row) in self.sys.rows.iter().enumerate().skip(self.n_bars) {
-            self.r[i] = row
-                .entries
-                .iter()
-                .flatten()
-                .map(|e| e.grad.dot(&vec3(x, e.node)))
-                .sum::<f64>()
-                - self.targets[i];
-        }
-        for v in &self.r {
-            worst = worst.max(v.abs());
-        }
-        worst
-    }
-
-    /// Velocity residuals G v into self.r.
-    fn velocity_residual(&mut self, v: &[f64]) {
-        for (i, row) in self.sys.rows.iter().enumerate() {
-            self.r[i] = row
-                .entries
-                .iter()
-                .flatten()
-                .map(|e| e.grad.dot(&vec3(v, e.node)))
-                .sum::<f64>();
-        }
-    }
-
-    /// out += scale · M⁻¹ Gᵀ m (with the gradients currently stored).
-    fn add_minv_gt(&mut self, model: &Model, m: &[f64], scale: f64, out: &mut [f64]) {
-        self.cf.iter_mut().for_each(|c| *c = Vector3::zeros());
-        for (row, &mu) in self.sys.rows.iter().zip(m) {
-            for e in row.entries.iter().flatten() {
-                self.cf[e.node] += e.grad * mu;
-            }
-        }
-        apply_minv(model, &self.cf, scale, out);
-    }
-
-    /// Projects positions onto g = 0 along M⁻¹Gᵀ, then velocities onto G v = 0 with G at the
-    /// corrected positions. The position step's G is the previous projection's (a quasi-Newton
-    /// iteration one step stale: a few solves instead of a factorisation), or that of the
-    /// current x when it does not converge within six iterations (and in the first
-    /// projection). Returns the remaining position residual.
-    pub fn project(
-        &mut self,
-        model: &Model,
-        y: &mut [f64],
-        tol: f64,
-        t: f64,
-    ) -> Result<f64, CoreError> {
-        let n3 = 3 * model.n1;
-        let (x, v) = y.split_at_mut(n3);
-        // The position step is a quasi-Newton iteration: it starts from the factor of the
-        // previous projection (one step away, a few cheap iterations), and refactors at x only
-        // if that does not converge within STALE_ITERATIONS.
-        let mut converged = false;
-        if self.factored {
-            self.start.clear();
-            self.start.extend_from_slice(x);
-            converged = self
-                .solve_positions(model, x, tol, t, STALE_ITERATIONS)
-                .is_ok();
-            if !converged {
-                x.copy_from_slice(&self.start);
-            }
-        }
-        self.factored = false;
-        if !converged {
-            self.factor(model, x)?;
-            self.solve_positions(model, x, tol, t, 100)?;
-        }
-        // the velocities are projected with G at the corrected positions
-        self.factor(model, x)?;
-        self.factored = true;
-        self.project_velocities(model, v);
-        Ok(self.residual(x))
-    }
-
-    /// Quasi-Newton position solve with the current factorisation.
-    fn solve_positions(
-        &mut self,
-        model: &Model,
-        x: &mut [f64],
-        tol: f64,
-        t: f64,
-        iterations: usize,
-    ) -> Result<(), CoreError> {
-        let reach = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let tol = tol.max(ROUNDOFF_FLOOR * reach * self.length_scale);
-        let mut res = f64::INFINITY;
-        for _ in 0..iterations {
-            res = self.residual(x);
-            if res <= tol {
-                return Ok(());
-            }
-            let mut d = std::mem::take(&mut self.r);
-            d.iter_mut().for_each(|v| *v = -*v);
-            self.sys.solve_in_place(&mut d);
-            self.add_minv_gt(model, &d, 1.0, x);
-            self.r = d;
-        }
-        Err(DynamicsError::ConstraintNotConverged { t, residual: res }.into())
-    }
-
-    fn project_velocities(&mut self, model: &Model, v: &mut [f64]) {
-        self.velocity_residual(v);
-        let mut d = std::mem::take(&mut self.r);
-        d.iter_mut().for_each(|x| *x = -*x);
-        self.sys.solve_in_place(&mut d);
-        self.add_minv_gt(model, &d, 1.0, v);
-        self.r = d;
-    }
-}
-
-/// out += scale · M⁻¹ f per bar (M⁻¹ = [[4, −2], [−2, 4]]/m).
-fn apply_minv(model: &Model, f: &[Vector3<f64>], scale: f64, out: &mut [f64]) {
-    for (k, bar) in model.bars.iter().enumerate() {
-        let (a, b) = (2 * k, 2 * k + 1);
-        let s = scale * bar.inv_mass;
-        let da = (f[a] * 4.0 - f[b] * 2.0) * s;
-        let db = (f[b] * 4.0 - f[a] * 2.0) * s;
-        set3(out, a, &(vec3(out, a) + da));
-        set3(out, b, &(vec3(out, b) + db));
-    }
-}
-
-/// The RATTLE stepper.
-#[derive(Debug)]
-pub struct Rattle {
-    cons: ConstraintSet,
+pub struct Rattle<C> {
+    cons: C,
     x_old: Vec<f64>,
     v_half: Vec<f64>,
     f_cache: Vec<Vector3<f64>>,
@@ -255,29 +35,23 @@ pub struct Rattle {
     pub tol: f64,
 }
 
-impl Rattle {
-    /// A stepper for `model`.
-    pub fn new(model: &Model) -> Result<Self, CoreError> {
-        let velocity_dependent =
-            model.ground.is_some() || model.strings.iter().any(|s| s.law.damping > 0.0);
-        let scale = model
-            .bars
-            .iter()
-            .map(|b| b.length0 * b.length0)
-            .fold(1.0, f64::max);
+impl<C> Rattle<C> {
+    /// A stepper for `system`; fails when its constraints are redundant.
+    pub fn new<S: ConstrainedSystem<Constraints = C>>(system: &S) -> Result<Self, CoreError> {
+        let n = system.state_len();
         Ok(Self {
-            cons: ConstraintSet::new(model)?,
-            x_old: vec![0.0; 3 * model.n1],
-            v_half: vec![0.0; 3 * model.n1],
-            f_cache: vec![Vector3::zeros(); model.n1],
+            cons: system.constraints()?,
+            x_old: vec![0.0; n / 2],
+            v_half: vec![0.0; n / 2],
+            f_cache: vec![Vector3::zeros(); n / 6],
             cache_valid: false,
-            velocity_dependent,
-            tol: 1e-14 * scale,
+            velocity_dependent: system.velocity_dependent_forces(),
+            tol: system.constraint_tolerance(),
         })
     }
 }
 
-impl Integrator for Rattle {
+impl<S: ConstrainedSystem> Integrator<S> for Rattle<S::Constraints> {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Rattle
     }
@@ -289,26 +63,25 @@ impl Integrator for Rattle {
     /// Advances y = (q, v) from t to t + h.
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
-        let n3 = 3 * model.n1;
+        let n3 = y.len() / 2;
         let (x, v) = y.split_at_mut(n3);
         if !self.cache_valid {
-            ws.rhs_evals += 1;
-            model.applied_forces(t, x, v, ws);
-            self.f_cache.copy_from_slice(&ws.f);
+            let f = system.forces(t, x, v, ws);
+            self.f_cache.copy_from_slice(f);
             // the state the previous step accepted (or the initial one, where a failure is a
             // redundant constraint set and stays one)
-            self.cons.factor(model, x)?;
+            system.factor_constraints(&mut self.cons, x)?;
         }
         // half kick and drift
         self.x_old.copy_from_slice(x);
         self.v_half.copy_from_slice(v);
-        apply_minv(model, &self.f_cache, 0.5 * h, &mut self.v_half);
+        system.add_inverse_mass(&self.f_cache, 0.5 * h, &mut self.v_half);
         for i in 0..n3 {
             x[i] += h * self.v_half[i];
         }
@@ -319,7 +92,7 @@ impl Integrator for Rattle {
             let dt = format!("{h:.12e}").parse().unwrap_or(h);
             DynamicsError::RattleStepFailed { t, dt, residual }.into()
         };
-        if let Err(e) = self.cons.solve_positions(model, x, self.tol, t, 100) {
+        if let Err(e) = system.solve_positions(&mut self.cons, x, self.tol, t, 100) {
             let residual = match e {
                 CoreError::Dynamics(DynamicsError::ConstraintNotConverged { residual, .. }) => {
                     residual
@@ -332,24 +105,22 @@ impl Integrator for Rattle {
             self.v_half[i] = (x[i] - self.x_old[i]) / h;
         }
         // second half kick at q_{n+1}
-        if self.cons.factor(model, x).is_err() {
+        if system.factor_constraints(&mut self.cons, x).is_err() {
             return Err(failed(None));
         }
         v.copy_from_slice(&self.v_half);
         let iterations = if self.velocity_dependent { 3 } else { 1 };
         for _ in 0..iterations {
-            ws.rhs_evals += 1;
-            model.applied_forces(t + h, x, v, ws);
+            let f = system.forces(t + h, x, v, ws);
             v.copy_from_slice(&self.v_half);
-            apply_minv(model, &ws.f, 0.5 * h, v);
-            self.cons.project_velocities(model, v);
+            system.add_inverse_mass(f, 0.5 * h, v);
+            system.project_velocities(&mut self.cons, v);
+            if !self.velocity_dependent {
+                // the forces at q_{n+1} start the next step
+                self.f_cache.copy_from_slice(f);
+            }
         }
-        if self.velocity_dependent {
-            self.cache_valid = false;
-        } else {
-            self.f_cache.copy_from_slice(&ws.f);
-            self.cache_valid = true;
-        }
+        self.cache_valid = !self.velocity_dependent;
         Ok(StepOutcome::fixed(h))
     }
 

@@ -1,4 +1,9 @@
-//! Adaptive Dormand–Prince 5(4) with error control, dense output and event location.
+//! Adaptive Dormand–Prince 5(4) with error control, dense output and event location, for any
+//! [`System`]; the coefficients are [`DORMAND_PRINCE`].
+//!
+//! Stages k_i = f(t + c_i h, y + h Σ_{j<i} a_ij k_j), i = 1…7, the last at
+//! y_{n+1} = y + h Σ b_j k_j (first same as last: it is the next step's k₁); error
+//! estimate h Σ e_j k_j with e = b − b̂ (b̂ of order 4).
 //!
 //! Written in-house rather than taken from diffsol: the right-hand side needs our own
 //! preallocated workspace (Ω factorisation) and fallible evaluation, steps are followed by
@@ -9,58 +14,20 @@
 //! accepted when ‖e‖ ≤ 1, and the next step is h·min(5, max(0.2, 0.9‖e‖^{-1/5})).
 
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{Model, Workspace};
+use super::system::System;
+use super::tableau::{Tableau, DORMAND_PRINCE};
 use tensegrity_core::error::CoreError;
 
-const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
-const A: [[f64; 6]; 7] = [
-    [0.0; 6],
-    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-    ],
-];
-const E: [f64; 7] = [
-    71.0 / 57600.0,
-    0.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-];
-const D: [f64; 7] = [
-    -12715105075.0 / 11282082432.0,
-    0.0,
-    87487479700.0 / 32700410799.0,
-    -10690763975.0 / 1880347072.0,
-    701980252875.0 / 199316789632.0,
-    -1453857185.0 / 822651844.0,
-    69997945.0 / 29380423.0,
-];
+/// The coefficients ([`DORMAND_PRINCE`]).
+const TAB: Tableau<7> = DORMAND_PRINCE;
+/// Stage matrix (its last row is b: first same as last).
+const A: [[f64; 7]; 7] = TAB.a;
+/// Abscissae.
+const C: [f64; 7] = TAB.c;
+/// Error weights b − b̂.
+const E: [f64; 7] = TAB.error_weights();
+/// Dense-output coefficients.
+const D: [f64; 7] = TAB.dense_output();
 
 /// Dormand–Prince 5(4) stepper state.
 #[derive(Debug, Clone)]
@@ -97,7 +64,7 @@ impl Dopri5 {
     }
 }
 
-impl Integrator for Dopri5 {
+impl<S: System> Integrator<S> for Dopri5 {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Rk45
     }
@@ -119,14 +86,14 @@ impl Integrator for Dopri5 {
     /// A starting step size (Hairer & Wanner's heuristic, 2 right-hand-side evaluations).
     fn start(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &[f64],
         h_max: f64,
     ) -> Result<f64, CoreError> {
         let n = y.len();
-        model.rhs(t, y, &mut self.k[0], ws)?;
+        system.rhs(t, y, &mut self.k[0], ws)?;
         self.fsal_valid = true;
         let sc = |i: usize| self.atol + self.rtol * y[i].abs();
         let norm = |v: &dyn Fn(usize) -> f64| {
@@ -143,7 +110,7 @@ impl Integrator for Dopri5 {
         for i in 0..n {
             self.tmp[i] = y[i] + h0 * self.k[0][i];
         }
-        model.rhs(t + h0, &self.tmp, &mut self.k[1], ws)?;
+        system.rhs(t + h0, &self.tmp, &mut self.k[1], ws)?;
         let d2 = norm(&|i| (self.k[1][i] - self.k[0][i]) / h0);
         Ok(super::integrator::starting_step(h0, d1, d2, 0.2, h_max))
     }
@@ -153,15 +120,15 @@ impl Integrator for Dopri5 {
     /// carries the step to retry with.
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
         let n = y.len();
         if !self.fsal_valid {
-            model.rhs(t, y, &mut self.k[0], ws)?;
+            system.rhs(t, y, &mut self.k[0], ws)?;
             self.fsal_valid = true;
         }
         for s in 1..7 {
@@ -175,7 +142,7 @@ impl Integrator for Dopri5 {
                 }
                 self.tmp[i] = y[i] + h * acc;
             }
-            model.rhs(t + C[s] * h, &self.tmp, &mut self.k[s], ws)?;
+            system.rhs(t + C[s] * h, &self.tmp, &mut self.k[s], ws)?;
             if s == 6 {
                 self.y_new.copy_from_slice(&self.tmp);
             }

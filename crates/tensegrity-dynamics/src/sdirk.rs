@@ -3,9 +3,10 @@
 //!
 //! # Method
 //!
-//! Alexander's three-stage SDIRK of order 3 (SIAM J. Numer. Anal. 14, 1977), stiffly
-//! accurate (the last stage is the solution) and L-stable, so that string modes of
-//! frequency ω ≫ 1/h and contact dampers with c/m ≫ 1/h are damped instead of amplified:
+//! Alexander's three-stage SDIRK of order 3 (SIAM J. Numer. Anal. 14, 1977; the coefficients
+//! are [`SDIRK3`]), stiffly accurate (the last stage is the solution) and L-stable, so that
+//! string modes of frequency ω ≫ 1/h and contact dampers with c/m ≫ 1/h are damped instead of
+//! amplified:
 //!
 //! ```text
 //!  γ  | γ
@@ -40,18 +41,25 @@
 //! # Constraints and output
 //!
 //! After every accepted step the state is projected back onto the bar lengths and N P = D
-//! with the RATTLE constraint set ([`ConstraintSet::project`]), so the method reports that it
-//! keeps the constraints. Dense output is the cubic Hermite interpolant through (y_n, f_n)
-//! and (y_{n+1}, k₃) (order 3, like the method).
+//! ([`ConstrainedSystem::project`]; for the model the RATTLE constraint set), so the method
+//! reports that it keeps the constraints. The method runs on any [`ConstrainedSystem`] (the
+//! state y = (x, v) with x and v of equal length). Dense output is the cubic Hermite
+//! interpolant through (y_n, f_n) and (y_{n+1}, k₃) (order 3, like the method).
 
 use super::integrator::{Integrator, IntegratorKind, StepOutcome};
-use super::model::{Model, Workspace};
-use super::rattle::ConstraintSet;
+use super::system::{ConstrainedSystem, System};
+use super::tableau::{Tableau, SDIRK3};
 use tensegrity_core::error::{CoreError, NumericsError};
 use tensegrity_linalg::DenseLu;
 
+/// The coefficients ([`SDIRK3`]).
+const TAB: Tableau<3> = SDIRK3;
+
+/// Error weights b − b̂ of [`SDIRK3`].
+const E: [f64; 3] = TAB.error_weights();
+
 /// γ of Alexander's SDIRK3: the root in (1/6, 1/2) of x³ − 3x² + 3x/2 − 1/6.
-pub const GAMMA: f64 = 0.435_866_521_508_459;
+pub const GAMMA: f64 = TAB.diagonal();
 
 /// Largest Newton matrix (3 n₁ class-1 coordinates, i.e. 400 bars): the dense Jacobian and
 /// LU need three n×n matrices, 138 MB at this size.
@@ -63,32 +71,6 @@ const MAX_NEWTON: usize = 10;
 const THETA_DIVERGE: f64 = 0.9;
 /// Refresh the Jacobian after a step whose Newton contraction exceeded this.
 const THETA_REFRESH: f64 = 0.05;
-
-/// The Butcher tableau (A lower triangle, c, b, b̂) of the method, for checks and docs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tableau {
-    /// Stage matrix (lower triangular, diagonal γ).
-    pub a: [[f64; 3]; 3],
-    /// Stage times.
-    pub c: [f64; 3],
-    /// Weights of the order-3 solution.
-    pub b: [f64; 3],
-    /// Weights of the embedded order-2 solution.
-    pub b_hat: [f64; 3],
-}
-
-/// The tableau of the method (see the module docs).
-pub fn tableau() -> Tableau {
-    let g = GAMMA;
-    let b1 = -(6.0 * g * g - 16.0 * g + 1.0) / 4.0;
-    let b2 = (6.0 * g * g - 20.0 * g + 5.0) / 4.0;
-    Tableau {
-        a: [[g, 0.0, 0.0], [(1.0 - g) / 2.0, g, 0.0], [b1, b2, g]],
-        c: [g, (1.0 + g) / 2.0, 1.0],
-        b: [b1, b2, g],
-        b_hat: [g / (1.0 - g), (1.0 - 2.0 * g) / (1.0 - g), 0.0],
-    }
-}
 
 /// Work counters of the implicit solver (beyond the driver's steps and force evaluations,
 /// which include the Jacobian columns).
@@ -104,9 +86,11 @@ pub struct SdirkStats {
     pub newton_failures: u64,
 }
 
-/// The SDIRK stepper: tolerances, Jacobian, Newton matrix, stages and dense output.
+/// The SDIRK stepper: tolerances, Jacobian, Newton matrix, stages and dense output, with the
+/// constraint set `C` of its system ([`ConstrainedSystem::Constraints`]) that it projects
+/// onto.
 #[derive(Debug)]
-pub struct Sdirk {
+pub struct Sdirk<C> {
     /// Relative tolerance.
     pub rtol: f64,
     /// Absolute tolerance.
@@ -116,7 +100,6 @@ pub struct Sdirk {
     pub error_control: bool,
     /// Work counters.
     pub stats: SdirkStats,
-    tab: Tableau,
     n3: usize,
     ax: Vec<f64>,
     av: Vec<f64>,
@@ -142,7 +125,7 @@ pub struct Sdirk {
     has_last: bool,
     t_old: f64,
     h_old: f64,
-    cons: ConstraintSet,
+    cons: C,
     proj_tol: f64,
 }
 
@@ -154,11 +137,15 @@ enum Attempt {
     Done(f64),
 }
 
-impl Sdirk {
-    /// A stepper for `model` with the given tolerances. Fails when the model is too large for
-    /// dense Jacobians ([`MAX_COORDINATES`]) or its constraints are singular.
-    pub fn new(model: &Model, rtol: f64, atol: f64) -> Result<Self, CoreError> {
-        let n = model.state_len();
+impl<C> Sdirk<C> {
+    /// A stepper for `system` with the given tolerances. Fails when the system is too large
+    /// for dense Jacobians ([`MAX_COORDINATES`]) or its constraints are singular.
+    pub fn new<S: ConstrainedSystem<Constraints = C>>(
+        system: &S,
+        rtol: f64,
+        atol: f64,
+    ) -> Result<Self, CoreError> {
+        let n = system.state_len();
         let n3 = n / 2;
         if n3 > MAX_COORDINATES {
             return Err(CoreError::invalid_parameter(
@@ -171,17 +158,11 @@ impl Sdirk {
             ));
         }
         let v = || vec![0.0; n];
-        let scale = model
-            .bars
-            .iter()
-            .map(|b| b.length0 * b.length0)
-            .fold(1.0, f64::max);
         Ok(Self {
             rtol,
             atol,
             error_control: true,
             stats: SdirkStats::default(),
-            tab: tableau(),
             n3,
             ax: vec![0.0; n3 * n3],
             av: vec![0.0; n3 * n3],
@@ -207,8 +188,8 @@ impl Sdirk {
             has_last: false,
             t_old: 0.0,
             h_old: 0.0,
-            cons: ConstraintSet::new(model)?,
-            proj_tol: 1e-14 * scale,
+            cons: system.constraints()?,
+            proj_tol: system.constraint_tolerance(),
         })
     }
 
@@ -227,15 +208,15 @@ impl Sdirk {
     }
 
     /// f0 = f(t, y) when it is not known from the last stage of the previous step.
-    fn ensure_f0(
+    fn ensure_f0<S: System>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &[f64],
     ) -> Result<(), CoreError> {
         if !self.f0_valid {
-            model.rhs(t, y, &mut self.f0, ws)?;
+            system.rhs(t, y, &mut self.f0, ws)?;
             self.f0_valid = true;
         }
         Ok(())
@@ -244,36 +225,36 @@ impl Sdirk {
     /// Forward-difference A_x, A_v at (t, y): 6 n₁ + 1 force evaluations. The base value
     /// f(t, y) is evaluated afresh (the cached f0 from the last stage is only accurate to the
     /// Newton tolerance, which a difference quotient would amplify by 1/δ) and kept as f0.
-    fn jacobian(
+    fn jacobian<S: System>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &[f64],
     ) -> Result<(), CoreError> {
-        self.jacobian_at(model, ws, t, y)?;
+        self.jacobian_at(system, ws, t, y)?;
         self.f0.copy_from_slice(&self.psi);
         self.f0_valid = true;
         Ok(())
     }
 
     /// Forward-difference A_x, A_v at (t, p), with f(t, p) left in `self.psi`.
-    fn jacobian_at(
+    fn jacobian_at<S: System>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         p: &[f64],
     ) -> Result<(), CoreError> {
         let n3 = self.n3;
-        model.rhs(t, p, &mut self.psi, ws)?;
+        system.rhs(t, p, &mut self.psi, ws)?;
         self.z.copy_from_slice(p);
         for j in 0..2 * n3 {
             let yj = self.z[j];
             let d = f64::EPSILON.sqrt() * yj.abs().max(1e-2);
             self.z[j] = yj + d;
             let d = self.z[j] - yj; // the step actually taken
-            model.rhs(t, &self.z, &mut self.fz, ws)?;
+            system.rhs(t, &self.z, &mut self.fz, ws)?;
             self.z[j] = yj;
             let (m, col) = if j < n3 {
                 (&mut self.ax, j)
@@ -331,13 +312,13 @@ impl Sdirk {
     }
 }
 
-impl Sdirk {
+impl<C> Sdirk<C> {
     /// Simplified Newton for stage `i` at time `ts` from the guess in `self.z` (ψ in
     /// `self.psi`); on success k_i = (z − ψ)/(hγ). Returns whether it converged.
-    fn newton_stage(
+    fn newton_stage<S: System>(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         ts: f64,
         h: f64,
         i: usize,
@@ -348,7 +329,7 @@ impl Sdirk {
         let mut prev = f64::INFINITY;
         for it in 0..MAX_NEWTON {
             self.stats.newton_iterations += 1;
-            if model.rhs(ts, &self.z, &mut self.fz, ws).is_err() {
+            if system.rhs(ts, &self.z, &mut self.fz, ws).is_err() {
                 return false;
             }
             let mut r = std::mem::take(&mut self.r);
@@ -384,8 +365,15 @@ impl Sdirk {
     }
 
     /// The three stages and the filtered error estimate of a step of size h from (t, y).
-    fn attempt(&mut self, model: &Model, ws: &mut Workspace, t: f64, y: &[f64], h: f64) -> Attempt {
-        let tab = self.tab;
+    fn attempt<S: System>(
+        &mut self,
+        system: &S,
+        ws: &mut S::Workspace,
+        t: f64,
+        y: &[f64],
+        h: f64,
+    ) -> Attempt {
+        let tab = TAB;
         self.theta_max = 0.0;
         for i in 0..3 {
             self.psi.copy_from_slice(y);
@@ -405,7 +393,7 @@ impl Sdirk {
                     *z = p + hg * g;
                 }
             }
-            if !self.newton_stage(model, ws, t + tab.c[i] * h, h, i) {
+            if !self.newton_stage(system, ws, t + tab.c[i] * h, h, i) {
                 self.stats.newton_failures += 1;
                 return Attempt::NewtonFailed;
             }
@@ -413,10 +401,7 @@ impl Sdirk {
         self.y_new.copy_from_slice(&self.z);
         let mut e = std::mem::take(&mut self.r);
         for (idx, e) in e.iter_mut().enumerate() {
-            *e = h
-                * (0..3)
-                    .map(|j| (tab.b[j] - tab.b_hat[j]) * self.k[j][idx])
-                    .sum::<f64>();
+            *e = h * (0..3).map(|j| E[j] * self.k[j][idx]).sum::<f64>();
         }
         self.solve(h, &mut e);
         for ((w, a), b) in self.w.iter_mut().zip(y).zip(&self.y_new) {
@@ -435,10 +420,15 @@ impl Sdirk {
 
     /// Accepts y_new: projects it onto the constraints, keeps the dense output, advances y.
     /// Returns `false` (nothing changed) when the projection fails.
-    fn accept(&mut self, model: &Model, t: f64, y: &mut [f64], h: f64) -> bool {
-        if self
-            .cons
-            .project(model, &mut self.y_new, self.proj_tol, t + h)
+    fn accept<S: ConstrainedSystem<Constraints = C>>(
+        &mut self,
+        system: &S,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> bool {
+        if system
+            .project(&mut self.cons, &mut self.y_new, self.proj_tol, t + h)
             .is_err()
         {
             return false;
@@ -482,7 +472,7 @@ impl Sdirk {
     }
 }
 
-impl Integrator for Sdirk {
+impl<S: ConstrainedSystem> Integrator<S> for Sdirk<S::Constraints> {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Sdirk
     }
@@ -509,14 +499,14 @@ impl Integrator for Sdirk {
     /// order 3 (one more force evaluation).
     fn start(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &[f64],
         h_max: f64,
     ) -> Result<f64, CoreError> {
         self.has_last = false;
-        self.jacobian(model, ws, t, y)?;
+        self.jacobian(system, ws, t, y)?;
         if !self.error_control {
             return Ok(h_max);
         }
@@ -532,7 +522,7 @@ impl Integrator for Sdirk {
         for ((z, a), f) in self.z.iter_mut().zip(y).zip(&self.f0) {
             *z = a + h0 * f;
         }
-        model.rhs(t + h0, &self.z, &mut self.fz, ws)?;
+        system.rhs(t + h0, &self.z, &mut self.fz, ws)?;
         let mut diff = std::mem::take(&mut self.r);
         for ((d, a), b) in diff.iter_mut().zip(&self.fz).zip(&self.f0) {
             *d = (a - b) / h0;
@@ -546,21 +536,21 @@ impl Integrator for Sdirk {
     /// reject with h/4; an error estimate above 1 rejects with a smaller step.
     fn step(
         &mut self,
-        model: &Model,
-        ws: &mut Workspace,
+        system: &S,
+        ws: &mut S::Workspace,
         t: f64,
         y: &mut [f64],
         h: f64,
     ) -> Result<StepOutcome, CoreError> {
-        self.ensure_f0(model, ws, t, y)?;
+        self.ensure_f0(system, ws, t, y)?;
         if self.jac_stale {
-            self.jacobian(model, ws, t, y)?;
+            self.jacobian(system, ws, t, y)?;
         }
         let mut second_chance = true;
         loop {
             self.set_weights(y);
             let attempt = match self.factor(h) {
-                Ok(()) => self.attempt(model, ws, t, y, h),
+                Ok(()) => self.attempt(system, ws, t, y, h),
                 Err(_) => Attempt::NewtonFailed,
             };
             if matches!(attempt, Attempt::NewtonFailed) && self.jac_fresh && second_chance {
@@ -570,7 +560,7 @@ impl Integrator for Sdirk {
                 let mut p = std::mem::take(&mut self.y_new);
                 p.copy_from_slice(&self.z);
                 let ok = p.iter().all(|v| v.is_finite())
-                    && self.jacobian_at(model, ws, t + h, &p).is_ok();
+                    && self.jacobian_at(system, ws, t + h, &p).is_ok();
                 self.y_new = p;
                 if ok {
                     self.jac_stale = true;
@@ -578,14 +568,14 @@ impl Integrator for Sdirk {
                 }
             }
             match attempt {
-                Attempt::NewtonFailed if !self.jac_fresh => self.jacobian(model, ws, t, y)?,
+                Attempt::NewtonFailed if !self.jac_fresh => self.jacobian(system, ws, t, y)?,
                 Attempt::NewtonFailed => return self.reject(h, 0.25),
                 Attempt::Done(err) if self.error_control && err > 1.0 => {
                     let fac = (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 0.9);
                     return self.reject(h, fac);
                 }
                 Attempt::Done(err) => {
-                    if !self.accept(model, t, y, h) {
+                    if !self.accept(system, t, y, h) {
                         return self.reject(h, 0.5);
                     }
                     return Ok(StepOutcome {
@@ -604,7 +594,7 @@ impl Integrator for Sdirk {
     }
 }
 
-impl Sdirk {
+impl<C> Sdirk<C> {
     /// Writes the last step's Hermite cubic at `t` into `self.z`; `false` when there is no
     /// last step (first step, or the state was changed outside).
     fn extrapolate(&mut self, t: f64) -> bool {
@@ -634,7 +624,7 @@ impl Sdirk {
     }
 }
 
-impl Sdirk {
+impl<C> Sdirk<C> {
     /// A rejected step: the state is untouched; a fixed-step run cannot shrink its step and
     /// fails instead.
     fn reject(&self, h: f64, factor: f64) -> Result<StepOutcome, CoreError> {
@@ -648,53 +638,5 @@ impl Sdirk {
             accepted: false,
             h_next: h * factor,
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The tableau satisfies the order conditions (3 for b, 2 for b̂), c = A·1, γ solves
-    /// its cubic, and the method is L-stable: stiffly accurate (last row of A = b) with a
-    /// non-singular A, so R(∞) = 1 − bᵀA⁻¹1 = 0.
-    #[test]
-    fn tableau_order_conditions_and_l_stability() {
-        let t = tableau();
-        let g = GAMMA;
-        assert!((g.powi(3) - 3.0 * g * g + 1.5 * g - 1.0 / 6.0).abs() < 1e-15);
-        for i in 0..3 {
-            let row: f64 = t.a[i].iter().sum();
-            assert!((row - t.c[i]).abs() < 1e-15, "c{i}");
-        }
-        let dot = |u: &[f64; 3], v: &[f64; 3]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
-        let c2 = t.c.map(|c| c * c);
-        let ac: [f64; 3] = std::array::from_fn(|i| dot(&t.a[i], &t.c));
-        assert!((t.b.iter().sum::<f64>() - 1.0).abs() < 1e-15);
-        assert!((dot(&t.b, &t.c) - 0.5).abs() < 1e-15);
-        assert!((dot(&t.b, &c2) - 1.0 / 3.0).abs() < 1e-14);
-        assert!((dot(&t.b, &ac) - 1.0 / 6.0).abs() < 1e-14);
-        assert!((t.b_hat.iter().sum::<f64>() - 1.0).abs() < 1e-15);
-        assert!((dot(&t.b_hat, &t.c) - 0.5).abs() < 1e-15);
-        // the embedded pair differs at third order (a genuine error estimate)
-        assert!((dot(&t.b_hat, &c2) - 1.0 / 3.0).abs() > 1e-2);
-        assert_eq!(t.a[2], t.b);
-        // R(z) at z → −∞ through the stability function R(z) = 1 + z bᵀ(I − zA)⁻¹1
-        let r = |z: f64| {
-            // forward substitution of (I − zA) u = 1 (A lower triangular)
-            let mut u = [0.0; 3];
-            for i in 0..3 {
-                let s: f64 = (0..i).map(|j| t.a[i][j] * u[j]).sum();
-                u[i] = (1.0 + z * s) / (1.0 - z * t.a[i][i]);
-            }
-            1.0 + z * dot(&t.b, &u)
-        };
-        assert!(r(-1e8).abs() < 1e-6, "R(-1e8) = {}", r(-1e8));
-        for z in [-0.1, -1.0, -10.0, -100.0] {
-            assert!(r(z).abs() < 1.0, "|R({z})| = {}", r(z).abs());
-        }
-        // a small step reproduces exp(z) to third order
-        let z: f64 = -1e-2;
-        assert!((r(z) - z.exp()).abs() < 1e-8);
     }
 }

@@ -8,6 +8,7 @@
 //! dense output where the integrator has one), projects non-conserving methods back onto the
 //! constraints if asked, and updates the monitors.
 
+use super::constraints::ConstraintSet;
 use super::drift::{self, DriftLimits, DriftWarning};
 use super::events::EventTracker;
 pub use super::events::{Event, EventFn, EventHit, StateView};
@@ -15,8 +16,8 @@ pub use super::integrator::IntegratorKind;
 use super::integrator::{Integrator, IntegratorStats, StepOutcome};
 use super::model::{Model, Workspace};
 use super::monitors::Monitor;
-use super::rattle::ConstraintSet;
 use super::recorder::{Quantities, Recorder, Sample, SampleSink};
+use super::system::ConstrainedSystem;
 use nalgebra::Vector3;
 use std::fmt;
 use std::time::Instant;
@@ -399,7 +400,7 @@ impl<'a> Driver<'a> {
     /// Workspace, recorder, monitors and projector at t = 0 (samples due at 0 are taken).
     fn new(
         sim: &'a Simulation,
-        integ: &dyn Integrator,
+        integ: &dyn Integrator<Model>,
         sink: Option<&'a mut dyn SampleSink>,
     ) -> Result<Self, CoreError> {
         let (model, s) = (&sim.model, &sim.settings);
@@ -422,12 +423,7 @@ impl<'a> Driver<'a> {
         } else {
             None
         };
-        let proj_tol = 1e-14
-            * model
-                .bars
-                .iter()
-                .map(|b| b.length0 * b.length0)
-                .fold(1.0, f64::max);
+        let proj_tol = model.constraint_tolerance();
         let dense = integ.has_dense_output();
         let mut driver = Self {
             sim,
@@ -463,7 +459,7 @@ impl<'a> Driver<'a> {
     /// The driver loop: attempt, accept or reject, and post-process accepted steps.
     fn integrate(
         &mut self,
-        integ: &mut dyn Integrator,
+        integ: &mut dyn Integrator<Model>,
         control: &mut StepControl,
     ) -> Result<(), CoreError> {
         let (model, s) = (&self.sim.model, &self.sim.settings);
@@ -500,7 +496,11 @@ impl<'a> Driver<'a> {
 
     /// Events, samples, projection and monitors after an accepted step [self.t, t_new];
     /// returns `true` when a terminal event stopped the run.
-    fn after_step(&mut self, integ: &mut dyn Integrator, t_new: f64) -> Result<bool, CoreError> {
+    fn after_step(
+        &mut self,
+        integ: &mut dyn Integrator<Model>,
+        t_new: f64,
+    ) -> Result<bool, CoreError> {
         let model = &self.sim.model;
         let span = (self.t, t_new);
         let stop = self.events.after_step(model, integ, span, &self.y);
@@ -545,7 +545,7 @@ impl<'a> Driver<'a> {
     /// end state itself at its end).
     fn record_dense(
         &mut self,
-        integ: &dyn Integrator,
+        integ: &dyn Integrator<Model>,
         (t0, t_new): (f64, f64),
         t_stop: f64,
     ) -> Result<(), CoreError> {

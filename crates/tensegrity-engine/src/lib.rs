@@ -52,6 +52,14 @@ pub mod spelling;
 pub mod statics;
 pub mod tbar_roll;
 
+/// The engine's data model of named values and reports: the tree every front end hands in
+/// (`Request::from_values`) and gets back from a registry run. Front ends build and read it
+/// natively (the Python package converts its objects to and from it, without text); it is
+/// serde_json's value tree, re-exported so that a front end needs no serde_json of its own.
+pub mod value {
+    pub use serde_json::{json, to_value, Error, Map, Number, Value};
+}
+
 pub use estimate::Estimated;
 pub use integrators::Context;
 pub use registry::{

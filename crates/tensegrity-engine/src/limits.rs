@@ -40,9 +40,24 @@ pub fn available_memory() -> f64 {
     avail
 }
 
+/// A size that [`parse_size`] cannot read (the text as written).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("invalid size \"{text}\": use e.g. 500M, 16G, 2T")]
+pub struct SizeError {
+    /// The text given.
+    pub text: String,
+}
+
 /// Parses a size (bytes): a number with an optional unit K, M, G, T (powers of 1000, or Ki,
 /// Mi, Gi, Ti for powers of 1024; a trailing B is allowed).
-pub fn parse_size(s: &str) -> Result<f64, String> {
+///
+/// ```
+/// use tensegrity_engine::limits::parse_size;
+/// assert_eq!(parse_size("16Gi"), Ok(16.0 * 1024f64.powi(3)));
+/// assert_eq!(parse_size("500M"), Ok(5e8));
+/// assert_eq!(parse_size("lots").unwrap_err().text, "lots");
+/// ```
+pub fn parse_size(s: &str) -> Result<f64, SizeError> {
     let t = s.trim().trim_end_matches(['B', 'b']);
     let at = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
     let units = ["", "K", "M", "G", "T"];
@@ -58,7 +73,9 @@ pub fn parse_size(s: &str) -> Result<f64, String> {
         (Some(p), Ok(v)) if v.is_finite() && v > 0.0 => {
             Ok(v * if binary { 1024f64 } else { 1000f64 }.powi(p as i32))
         }
-        _ => Err(format!("invalid size \"{s}\": use e.g. 500M, 16G, 2T")),
+        _ => Err(SizeError {
+            text: s.to_string(),
+        }),
     }
 }
 

@@ -46,6 +46,7 @@ pub mod progress;
 pub mod read;
 pub mod scene;
 pub mod sink;
+pub mod tables;
 pub mod topology;
 pub mod trajectory;
 pub mod vtk;

@@ -5,12 +5,12 @@
 //! interrupt flag; sweeps through [`sweeps::run`].
 
 use crate::errors::Failure;
-use serde_json::{json, Map, Value};
 use tensegrity_core::budget::Limits;
 use tensegrity_core::request::{Category, InvalidParameter, Kind, Param};
+use tensegrity_engine::value::{json, Map, Value};
 use tensegrity_engine::{command, Command, Context};
 
-/// The registry as JSON: per command its name, aliases, parameters (name, kind, choices,
+/// The registry as the engine's value tree: per command its name, aliases, parameters (name, kind, choices,
 /// unit, help, rule, optional, required, default) and result columns.
 pub fn describe() -> Value {
     let commands: Vec<Value> = tensegrity_engine::commands()
@@ -85,7 +85,7 @@ pub fn limits(given: &Map<String, Value>) -> Result<Limits, Failure> {
             },
             Value::String(s) => tensegrity_engine::limits::parse_size(s)
                 .map(Some)
-                .map_err(bad),
+                .map_err(|e| bad(e.to_string())),
             _ => Err(bad("expected a number or a size such as 500M".into())),
         }
     };
@@ -165,14 +165,12 @@ pub fn context(c: &Command) -> &'static str {
     }
 }
 
-/// Runs `c` on `values` (after [`admit`]) within `limits`: the report as JSON text.
+/// Runs `c` on `values` (after [`admit`]) within `limits`: the report.
 pub fn run(
     c: &'static Command,
     values: Map<String, Value>,
     limits: Limits,
-) -> Result<String, Failure> {
-    let report = c
-        .run(values, &Context::within(limits))
-        .map_err(|e| Failure::run(e).context(context(c)))?;
-    Ok(report.to_string())
+) -> Result<Value, Failure> {
+    c.run(values, &Context::within(limits))
+        .map_err(|e| Failure::run(e).context(context(c)))
 }

@@ -1,20 +1,17 @@
-//! Errors as Python exceptions, with the command line's text.
+//! Errors as Python exceptions, in the caller's words.
 //!
 //! Every library error is [`Categorized`]; its category picks the exception class of
 //! `tensegrity.errors` (Python): input → `InputError` (a `ValueError`), resource →
 //! `ResourceError`, numerical → `ComputationError` (both `RuntimeError`s), interrupted →
 //! `Interrupted` (a `KeyboardInterrupt`).
 //!
-//! The message is the command line's, word for word, so one text serves both front ends: a
-//! bad keyword value reads `invalid value for --sides: sides = 1: …` (the CLI's
-//! `usage_message`), a library message names its parameters as flags (`` `dt` `` → `--dt`, as
-//! the CLI's `spell::flags` writes every backticked name that is a flag), and a refused
-//! estimate names the limit's flag (`--max-work`). The flag of a keyword is the keyword in
-//! kebab-case; the exception's `parameter` attribute gives the keyword itself.
+//! The message is the library's, which names its parameters as they are named in Rust and
+//! in Python (`` `dt` ``, never the command line's `--dt`): a bad keyword value reads
+//! `sides = 1: …` (the [`InvalidParameter`] itself), and a refused estimate names the keyword
+//! that raises the limit (`max_work=120`). The exception's `parameter` attribute gives the
+//! keyword of a bad value.
 
 use pyo3::prelude::*;
-use std::collections::HashSet;
-use std::sync::OnceLock;
 use tensegrity_core::budget::{OverBudget, Resource};
 use tensegrity_core::request::{Category, InvalidParameter};
 use tensegrity_engine::RunError;
@@ -31,17 +28,12 @@ pub struct Failure {
 }
 
 impl Failure {
-    /// A failure of `category` with `message` spelled as the command line spells it.
+    /// A failure of `category` with the library's `message`.
     pub fn new(category: Category, message: impl AsRef<str>) -> Self {
-        Self {
-            category,
-            message: flags(message.as_ref()),
-            parameter: None,
-        }
+        Self::raw(category, message.as_ref())
     }
 
-    /// A failure whose message stays as the library wrote it (a sweep's errors name the
-    /// parameters as its spec does, as on the command line).
+    /// A failure whose message stays as the library wrote it.
     pub fn raw(category: Category, message: impl Into<String>) -> Self {
         Self {
             category,
@@ -50,11 +42,11 @@ impl Failure {
         }
     }
 
-    /// A bad keyword value, as the command line's usage error.
+    /// A bad keyword value: the parameter's own message (`sides = 1: …`).
     pub fn invalid(p: &InvalidParameter) -> Self {
         Self {
             category: Category::Input,
-            message: format!("invalid value for {}: {p}", flag_of(&p.name)),
+            message: p.to_string(),
             parameter: Some(p.name.to_string()),
         }
     }
@@ -77,7 +69,7 @@ impl Failure {
         self
     }
 
-    /// An estimate over its limit, with the flag that raises it (the CLI's `guard::Refused`).
+    /// An estimate over its limit, with the keyword that raises it.
     pub fn over_budget(over: &OverBudget) -> Self {
         let (limit, suggested) = match over.resource {
             Resource::Memory => (
@@ -90,8 +82,7 @@ impl Failure {
             ),
             Resource::Work => ("max_work", format!("{:.0}", over.estimated.ceil())),
         };
-        let flag = flag_of(limit);
-        let named = parameter_flags(&over.estimate.parameters);
+        let named = over.estimate.parameters.to_string();
         let named = if named.is_empty() {
             named
         } else {
@@ -99,7 +90,7 @@ impl Failure {
         };
         Self::new(
             Category::Resource,
-            format!("{over}; raise the limit with {flag} (e.g. {flag} {suggested}) or make the request smaller{named}"),
+            format!("{over}; raise the limit with `{limit}` (e.g. {limit}={suggested}) or make the request smaller{named}"),
         )
     }
 
@@ -122,60 +113,4 @@ impl Failure {
         value.setattr("parameter", self.parameter.as_deref())?;
         Ok(PyErr::from_value(value))
     }
-}
-
-pub use tensegrity_engine::spelling::flag_of;
-use tensegrity_engine::spelling::parameter_flags;
-
-/// `text` with every backticked parameter that is a flag of the command line written as that
-/// flag (the CLI's `spell::flags`): `` `dt` `` → `--dt`, `` `integrator = rattle` `` →
-/// `--integrator rattle`; other backticked text stays.
-pub fn flags(text: &str) -> String {
-    tensegrity_engine::spelling::spell_flags(text, |name| known_flags().contains(name))
-}
-
-/// The options of the command line that are no request's parameter but may be named in a
-/// message (its outputs, modes and limits).
-const FRONT_END_OPTIONS: &[&str] = &[
-    "json",
-    "out",
-    "svg",
-    "vtk",
-    "frames",
-    "grid",
-    "grid_points",
-    "eps_max",
-    "dynamic",
-    "rolling",
-    "export_scene",
-    "sign_map",
-    "map_members",
-    "map_grid",
-    "gamma_sweep",
-    "loop_study",
-    "mass_sweep",
-    "threads",
-    "shard",
-    "resume",
-    "units",
-    "quiet",
-    "max_memory",
-    "max_work",
-    "max_output",
-];
-
-/// Every name that is a flag of the command line: the parameters of every registered
-/// command (a positional scene excepted) and the front-end options.
-fn known_flags() -> &'static HashSet<String> {
-    static FLAGS: OnceLock<HashSet<String>> = OnceLock::new();
-    FLAGS.get_or_init(|| {
-        let mut set: HashSet<String> = tensegrity_engine::commands()
-            .iter()
-            .flat_map(|c| c.params())
-            .filter(|p| p.name != "scene")
-            .map(|p| p.name.to_string())
-            .collect();
-        set.extend(FRONT_END_OPTIONS.iter().map(|s| s.to_string()));
-        set
-    })
 }

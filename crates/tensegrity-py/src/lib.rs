@@ -5,15 +5,17 @@
 //! with names, kinds, units, defaults and help: the Python package builds its keyword
 //! arguments, signatures and docstrings from them), runs a command on named values — the
 //! estimate checked against the limits first, the work on a Rust thread with the GIL released
-//! while the caller polls for signals ([`worker`]) — and hands back the report as JSON text,
-//! which Python turns into dicts and numpy arrays. `simulate` and `roll` stream through the
+//! while the caller polls for signals ([`worker`]) — and hands back the report as Python
+//! objects built from the engine's values, every vector or matrix a numpy array ([`convert`]:
+//! no text crosses, keyword values go in typed). `simulate` and `roll` stream through the
 //! library calls the CLI makes ([`runs`]), sweeps run through the sweeps crate ([`sweep`]),
-//! and the structure model crosses as scene TOML through the io crate's reader and writer
-//! ([`structure`]). Errors become the package's exceptions by their category, with the
-//! command line's message ([`errors`]). No physics and no second description of a parameter
-//! live here.
+//! and the structure model is built from numpy arrays ([`structure`]; it still reaches the
+//! engine's scene reader as the scene TOML the io crate writes). Errors become the package's
+//! exceptions by their category, naming keywords, never flags ([`errors`]). No physics and
+//! no second description of a parameter live here.
 
 mod commands;
+mod convert;
 mod errors;
 mod runs;
 mod structure;
@@ -24,20 +26,27 @@ use errors::Failure;
 use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
-use serde_json::{Map, Value};
 use tensegrity_core::request::Category;
+use tensegrity_engine::value::{Map, Value};
 use worker::Stopped;
 
-/// Named values from their JSON text (an object).
-fn object(text: &str) -> Result<Map<String, Value>, Failure> {
-    match serde_json::from_str(text) {
-        Ok(Value::Object(m)) => Ok(m),
-        Ok(_) => Err(Failure::new(Category::Input, "expected named values")),
-        Err(e) => Err(Failure::new(
-            Category::Input,
-            format!("unreadable values: {e}"),
-        )),
-    }
+/// What `simulate` hands back: the report, the sample times and node positions (raw f64
+/// bytes) and the node count.
+type SimulateResult = (Py<PyAny>, Py<PyAny>, Py<PyAny>, usize);
+
+/// Keyword values as the engine's named values ([`convert::named`]).
+fn object(values: &Bound<'_, PyDict>) -> Result<Map<String, Value>, Failure> {
+    convert::named(values)
+}
+
+/// The limits given as keywords (`max_memory`, `max_work`, `max_output`).
+fn limits_of(limits: &Bound<'_, PyDict>) -> Result<tensegrity_core::budget::Limits, Failure> {
+    convert::named(limits).and_then(|l| commands::limits(&l))
+}
+
+/// A report as Python objects ([`convert::to_py`]).
+fn report(py: Python<'_>, v: &Value) -> PyResult<Py<PyAny>> {
+    Ok(convert::to_py(py, v)?.unbind())
 }
 
 /// A [`Failure`] raised in Python.
@@ -73,8 +82,8 @@ fn stopped<T>(
 
 /// Every command of the registry (JSON text).
 #[pyfunction(name = "commands")]
-fn list_commands() -> String {
-    commands::describe().to_string()
+fn list_commands(py: Python<'_>) -> PyResult<Py<PyAny>> {
+    report(py, &commands::describe())
 }
 
 /// Runs the command `name` on `values` (JSON object) under `limits` (JSON object of
@@ -85,20 +94,20 @@ fn list_commands() -> String {
 fn run(
     py: Python<'_>,
     name: &str,
-    values: &str,
-    limits: &str,
+    values: &Bound<'_, PyDict>,
+    limits: &Bound<'_, PyDict>,
     modes: Vec<String>,
-) -> PyResult<String> {
+) -> PyResult<Py<PyAny>> {
     let c = raise(py, commands::find(name))?;
     let values = raise(py, object(values))?;
-    let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
+    let limits = raise(py, limits_of(limits))?;
     if !modes.is_empty() {
         let modes: Vec<_> = raise(py, modes.iter().map(|m| commands::find(m)).collect())?;
         raise(py, commands::check_modes(c, &modes, &values))?;
     }
     raise(py, commands::admit(c, &values, &limits))?;
     match worker::run(py, false, move || commands::run(c, values, limits)) {
-        Ok(report) => raise(py, report),
+        Ok(r) => report(py, &raise(py, r)?),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
 }
@@ -114,12 +123,12 @@ fn bytes(py: Python<'_>, xs: &[f64]) -> Py<PyAny> {
 #[pyfunction]
 fn simulate(
     py: Python<'_>,
-    values: &str,
-    limits: &str,
+    values: &Bound<'_, PyDict>,
+    limits: &Bound<'_, PyDict>,
     trajectory: bool,
-) -> PyResult<(String, Py<PyAny>, Py<PyAny>, usize)> {
+) -> PyResult<SimulateResult> {
     let values = raise(py, object(values))?;
-    let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
+    let limits = raise(py, limits_of(limits))?;
     let prepared = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
     let outcome = worker::run(py, true, move || runs::simulate(prepared));
     let samples = |t: &runs::Trajectory| (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes);
@@ -130,9 +139,9 @@ fn simulate(
                 let _ = e.value(py).setattr("partial_raw", samples(&o.trajectory));
                 return Err(e);
             }
-            let report = raise(py, o.report)?;
+            let r = report(py, &raise(py, o.report)?)?;
             let (t, x, n) = samples(&o.trajectory);
-            Ok((report, t, x, n))
+            Ok((r, t, x, n))
         }
         Err(s) => Err(stopped(py, s, |o| {
             samples(&o.trajectory)
@@ -145,26 +154,31 @@ fn simulate(
 /// Runs `roll` on `values` as the CLI does (observed, stopping on Ctrl-C): the report JSON;
 /// an interrupted or stopped run raises with the partial report in `partial_raw`.
 #[pyfunction]
-fn roll(py: Python<'_>, values: &str, limits: &str) -> PyResult<String> {
+fn roll(
+    py: Python<'_>,
+    values: &Bound<'_, PyDict>,
+    limits: &Bound<'_, PyDict>,
+) -> PyResult<Py<PyAny>> {
     let values = raise(py, object(values))?;
-    let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
+    let limits = raise(py, limits_of(limits))?;
     let c = raise(py, commands::find("roll"))?;
     raise(py, commands::admit(c, &values, &limits))?;
     let request = raise(py, runs::roll_request(values))?;
     match worker::run(py, true, move || runs::roll(request)) {
         Ok(o) => {
-            let report = raise(py, o.report)?;
+            let r = report(py, &raise(py, o.report)?)?;
             match o.incomplete {
-                None => Ok(report),
+                None => Ok(r),
                 Some(f) => {
                     let e = f.into_pyerr(py);
-                    let _ = e.value(py).setattr("partial_raw", report);
+                    let _ = e.value(py).setattr("partial_raw", r);
                     Err(e)
                 }
             }
         }
-        Err(s) => Err(stopped(py, s, |o| {
-            Ok(o.report.ok().into_pyobject(py)?.into_any().unbind())
+        Err(s) => Err(stopped(py, s, |o| match o.report.ok() {
+            Some(v) => report(py, &v),
+            None => Ok(py.None()),
         })),
     }
 }
@@ -179,7 +193,7 @@ fn run_sweep(
     spec: &str,
     is_path: bool,
     out: &str,
-    limits: &str,
+    limits: &Bound<'_, PyDict>,
     threads: Option<usize>,
     shard: Option<(usize, usize)>,
     resume: bool,
@@ -190,7 +204,7 @@ fn run_sweep(
     } else {
         sweep::Source::Text(spec.to_string())
     };
-    let limits = raise(py, object(limits).and_then(|l| commands::limits(&l)))?;
+    let limits = raise(py, limits_of(limits))?;
     if threads == Some(0) {
         let p = tensegrity_core::request::InvalidParameter::raw("threads", 0, "must be at least 1");
         return Err(Failure::invalid(&p).into_pyerr(py));
@@ -216,27 +230,33 @@ fn run_sweep(
 /// Scene TOML of a structure spec (a dict, see [`structure::build`]) and its other tables
 /// (`tables`: JSON object).
 #[pyfunction]
-fn structure_toml(py: Python<'_>, spec: &Bound<'_, PyDict>, tables: &str) -> PyResult<String> {
+fn structure_toml(
+    py: Python<'_>,
+    spec: &Bound<'_, PyDict>,
+    tables: &Bound<'_, PyDict>,
+) -> PyResult<String> {
     let s = raise(py, structure::build(spec)?)?;
     let tables = raise(py, object(tables))?;
     raise(py, structure::scene_text(&s, &tables))
 }
 
-/// The structure spec (JSON) of scene TOML; `name` labels its errors.
+/// The structure spec (a dict) of scene TOML; `name` labels its errors.
 #[pyfunction]
-fn structure_read(py: Python<'_>, text: &str, name: &str) -> PyResult<String> {
-    raise(py, structure::read(text, name).map(|v| v.to_string()))
+fn structure_read(py: Python<'_>, text: &str, name: &str) -> PyResult<Py<PyAny>> {
+    let spec = raise(py, structure::read(text, name))?;
+    Ok(convert::to_plain(py, &spec)?.unbind())
 }
 
-/// C_b, C_s and the equilibrium matrix of scene TOML (JSON).
+/// C_b, C_s and the equilibrium matrix of scene TOML (a dict).
 #[pyfunction]
-fn matrices(py: Python<'_>, text: &str) -> PyResult<String> {
-    raise(py, structure::matrices(text).map(|v| v.to_string()))
+fn matrices(py: Python<'_>, text: &str) -> PyResult<Py<PyAny>> {
+    let m = raise(py, structure::matrices(text))?;
+    Ok(convert::to_plain(py, &m)?.unbind())
 }
 
 /// The structure of a topology crate as scene TOML (`toroid`, `michell`, `tbar`).
 #[pyfunction]
-fn topology(py: Python<'_>, kind: &str, values: &str) -> PyResult<String> {
+fn topology(py: Python<'_>, kind: &str, values: &Bound<'_, PyDict>) -> PyResult<String> {
     let values = raise(py, object(values))?;
     let kind = kind.to_string();
     match worker::run(py, false, move || structure::topology(&kind, values)) {
@@ -245,14 +265,11 @@ fn topology(py: Python<'_>, kind: &str, values: &str) -> PyResult<String> {
     }
 }
 
-/// TOML text of a JSON object (a sweep spec or scene tables given as a dict).
+/// TOML text of a dict (a sweep spec given as a dict).
 #[pyfunction]
-fn toml_text(py: Python<'_>, value: &str) -> PyResult<String> {
-    let v: Value = raise(
-        py,
-        serde_json::from_str(value).map_err(|e| Failure::new(Category::Input, e.to_string())),
-    )?;
-    raise(py, structure::toml_text(&v))
+fn toml_text(py: Python<'_>, value: &Bound<'_, PyDict>) -> PyResult<String> {
+    let v = raise(py, object(value))?;
+    raise(py, structure::toml_text(&Value::Object(v)))
 }
 
 /// The native module.

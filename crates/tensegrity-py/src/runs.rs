@@ -3,11 +3,11 @@
 //! line, stopping at their next step once the interrupt flag is set, with the results so far.
 
 use crate::errors::Failure;
-use serde_json::{Map, Value};
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::CoreError;
 use tensegrity_dynamics::{Sample, SampleSink};
 use tensegrity_engine::simulate::SimulateCommand;
+use tensegrity_engine::value::{Map, Value};
 use tensegrity_engine::SceneError;
 use tensegrity_io::interrupt;
 use tensegrity_io::sink::RollingOutputs;
@@ -48,7 +48,7 @@ impl SampleSink for Trajectory {
 /// What a simulation gave: the report (JSON text) or the failure, and the samples so far.
 pub struct SimulateOutcome {
     /// The report, or why there is none.
-    pub report: Result<String, Failure>,
+    pub report: Result<Value, Failure>,
     /// The samples kept (those before an interruption).
     pub trajectory: Trajectory,
     /// The run was interrupted (at this time).
@@ -134,7 +134,7 @@ pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
 /// integration: the partial run's, as the CLI prints it) and how it ended.
 pub struct RollOutcome {
     /// The report.
-    pub report: Result<String, Failure>,
+    pub report: Result<Value, Failure>,
     /// Why the run is incomplete: interrupted, or stopped by its integration (the CLI's exit
     /// 1 message).
     pub incomplete: Option<Failure>,
@@ -179,10 +179,11 @@ pub fn roll(request: RollRequest) -> RollOutcome {
     }
 }
 
-/// A report as JSON text with the conventional keys beside its own (as the CLI's `--json`:
-/// [`tensegrity_engine::keys`]).
-fn conventional_json(report: &impl serde::Serialize) -> Result<String, Failure> {
-    let failure = |e: serde_json::Error| Failure::new(Category::Numerical, e.to_string());
-    let value = serde_json::to_value(report).map_err(failure)?;
-    serde_json::to_string(&tensegrity_engine::keys::conventional(value)).map_err(failure)
+/// A report as the engine's value tree with the conventional keys beside its own (as the
+/// CLI's `--json`: [`tensegrity_engine::keys`]).
+fn conventional_json(report: &impl serde::Serialize) -> Result<Value, Failure> {
+    let failure =
+        |e: tensegrity_engine::value::Error| Failure::new(Category::Numerical, e.to_string());
+    let value = tensegrity_engine::value::to_value(report).map_err(failure)?;
+    Ok(tensegrity_engine::keys::conventional(value))
 }

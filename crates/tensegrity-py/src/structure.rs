@@ -8,10 +8,10 @@
 use crate::errors::Failure;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde_json::{json, Map, Value};
 use tensegrity_core::connectivity::Connectivity;
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
+use tensegrity_engine::value::{json, Map, Value};
 use tensegrity_io::scene::Scene;
 use tensegrity_statics::{equilibrium_matrix, DofMap};
 
@@ -131,9 +131,7 @@ pub fn scene_text(structure: &Structure, tables: &Map<String, Value>) -> Result<
 /// TOML text of a JSON object (a dict of Python scalars, lists and dicts): a sweep spec or
 /// the tables of a scene.
 pub fn toml_text(value: &Value) -> Result<String, Failure> {
-    let bad = |e: String| Failure::new(Category::Input, format!("not writable as TOML: {e}"));
-    let table = toml::Value::try_from(value).map_err(|e| bad(e.to_string()))?;
-    toml::to_string(&table).map_err(|e| bad(e.to_string()))
+    tensegrity_io::tables::to_toml(value).map_err(|e| Failure::new(Category::Input, e.to_string()))
 }
 
 /// The spec of a scene (as [`build`] takes it, in JSON) and its other tables.
@@ -142,10 +140,10 @@ pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
         Scene::from_str_named(text, name).map_err(|e| Failure::new(e.category(), e.to_string()))?;
     let s = &scene.structure;
     let v3 = |v: &nalgebra::Vector3<f64>| json!([v.x, v.y, v.z]);
-    let raw: toml::Table = toml::from_str(text).unwrap_or_default();
+    let raw = tensegrity_io::tables::read(text);
     let materials: Map<String, Value> = raw
         .get("materials")
-        .and_then(toml::Value::as_table)
+        .and_then(Value::as_object)
         .into_iter()
         .flat_map(|t| t.keys())
         .filter_map(|k| {
@@ -159,7 +157,7 @@ pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
     let tables: Map<String, Value> = TABLES
         .iter()
         .filter_map(|t| {
-            let v = serde_json::to_value(raw.get(*t)?).ok()?;
+            let v = raw.get(*t)?.clone();
             Some((t.to_string(), v))
         })
         .collect();

@@ -60,12 +60,9 @@ pub fn admit(spec: &Spec, opts: &Options) -> Result<Shard, Failure> {
         .map_err(|over| Failure::over_budget(&over))?;
     match opts.shard {
         None => Ok(Shard::ALL),
-        Some((k, n)) => format!("{k}/{n}").parse::<Shard>().map_err(|e| {
-            Failure::raw(
-                Category::Input,
-                format!("invalid value for {}: {e}", crate::errors::flag_of("shard")),
-            )
-        }),
+        Some((k, n)) => format!("{k}/{n}")
+            .parse::<Shard>()
+            .map_err(|e| Failure::raw(Category::Input, format!("shard: {e}"))),
     }
 }
 

@@ -178,46 +178,106 @@ fn unreadable<R: Request>(
 /// validation (a request with [`Param::required`] fields has no complete default: then each
 /// set default passes its field's rule, and the required ones default to `null`). Each
 /// request's tests call it, so a field cannot be added without its description.
-pub fn check_description<R: Request>() -> Result<(), String> {
+pub fn check_description<R: Request>() -> Result<(), DescriptionMismatch> {
+    let request = R::NAME;
     let fields: Vec<String> = R::defaults().keys().cloned().collect();
     let params = R::params();
     let mut names: Vec<&str> = params.iter().map(|p| p.name).collect();
     names.sort_unstable();
     if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
-        return Err(format!("{}: `{}` is described twice", R::NAME, w[0]));
+        let field = w[0].to_string();
+        return Err(DescriptionMismatch::Twice { request, field });
     }
     if let Some(f) = fields.iter().find(|f| !names.contains(&f.as_str())) {
-        return Err(format!("{}: field `{f}` has no description", R::NAME));
+        let field = f.clone();
+        return Err(DescriptionMismatch::Undescribed { request, field });
     }
     if let Some(n) = names.iter().find(|n| !fields.iter().any(|f| f == *n)) {
-        return Err(format!("{}: `{n}` is described but is no field", R::NAME));
+        let field = n.to_string();
+        return Err(DescriptionMismatch::NoField { request, field });
     }
     let defaults = R::defaults();
     for p in &params {
         let v = &defaults[p.name];
+        let field = p.name.to_string();
         if v.is_null() && !p.optional {
-            return Err(format!(
-                "{}: `{}` defaults to null but is not optional",
-                R::NAME,
-                p.name
-            ));
+            return Err(DescriptionMismatch::NullNotOptional { request, field });
         }
         if p.required && !v.is_null() {
-            return Err(format!(
-                "{}: `{}` is required but has a default",
-                R::NAME,
-                p.name
-            ));
+            return Err(DescriptionMismatch::RequiredWithDefault { request, field });
         }
         p.check(v)
-            .map_err(|e| format!("{}: the default is invalid: {e}", R::NAME))?;
+            .map_err(|e| DescriptionMismatch::InvalidDefault { request, error: e })?;
     }
     if params.iter().any(|p| p.required) {
         return Ok(());
     }
     R::default()
         .validate()
-        .map_err(|e| format!("{}: the defaults are invalid: {e}", R::NAME))
+        .map_err(|e| DescriptionMismatch::InvalidDefaults { request, error: e })
+}
+
+/// How a request's description ([`Request::params`]) and its fields disagree
+/// ([`check_description`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DescriptionMismatch {
+    /// Two descriptions of one name.
+    #[error("{request}: `{field}` is described twice")]
+    Twice {
+        /// The request.
+        request: &'static str,
+        /// The field.
+        field: String,
+    },
+    /// A field without a description.
+    #[error("{request}: field `{field}` has no description")]
+    Undescribed {
+        /// The request.
+        request: &'static str,
+        /// The field.
+        field: String,
+    },
+    /// A description without a field.
+    #[error("{request}: `{field}` is described but is no field")]
+    NoField {
+        /// The request.
+        request: &'static str,
+        /// The described name.
+        field: String,
+    },
+    /// A field that defaults to null but is not optional.
+    #[error("{request}: `{field}` defaults to null but is not optional")]
+    NullNotOptional {
+        /// The request.
+        request: &'static str,
+        /// The field.
+        field: String,
+    },
+    /// A required field with a default.
+    #[error("{request}: `{field}` is required but has a default")]
+    RequiredWithDefault {
+        /// The request.
+        request: &'static str,
+        /// The field.
+        field: String,
+    },
+    /// A default that fails its own rule.
+    #[error("{request}: the default is invalid: {error}")]
+    InvalidDefault {
+        /// The request.
+        request: &'static str,
+        /// The rule's refusal.
+        error: InvalidParameter,
+    },
+    /// Defaults that fail the request's validation.
+    #[error("{request}: the defaults are invalid: {error}")]
+    InvalidDefaults {
+        /// The request.
+        request: &'static str,
+        /// The validation's refusal.
+        error: InvalidParameter,
+    },
 }
 
 /// The one rule of mutually exclusive fields (`planar`, `cylindrical`, `spherical`): at most

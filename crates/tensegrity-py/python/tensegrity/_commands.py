@@ -6,7 +6,6 @@ a function runs and how its result is handed back."""
 
 import csv
 import inspect
-import json
 import os
 import tempfile
 import textwrap
@@ -17,7 +16,7 @@ from . import _convert, _native
 from .errors import Interrupted, TensegrityError
 
 #: The registry: every command, by name.
-REGISTRY = {c["name"]: c for c in json.loads(_native.commands())}
+REGISTRY = {c["name"]: c for c in _native.commands()}
 
 #: Keywords of every function: the resource limits checked before any work (the command
 #: line's global flags ``--max-memory``, ``--max-work``, ``--max-output``).
@@ -101,7 +100,7 @@ def _signature(params, positional=(), extra=()):
 
 
 def _limits(bound):
-    return json.dumps({k: _convert.value(bound.pop(k, None)) for k in LIMITS})
+    return _convert.plain({k: bound.pop(k, None) for k in LIMITS})
 
 
 def _given(bound, skip=()):
@@ -133,7 +132,7 @@ def make(pyname, command, summary, positional=(), doc_extra=""):
         bound = _call(pyname, sig, args, kwargs)
         limits = _limits(bound)
         values = _convert.arguments(_given(bound))
-        return _convert.report(_native.run(command, values, limits))
+        return _native.run(command, values, limits)
 
     return finish(f, pyname, sig, summary, params, doc_extra)
 
@@ -181,10 +180,9 @@ def make_simulate(summary, doc_extra):
         keep = bool(bound.pop("trajectory", True))
         values = _convert.arguments(_given(bound))
         try:
-            text, t, x, n = _native.simulate(values, limits, keep)
+            out, t, x, n = _native.simulate(values, limits, keep)
         except Interrupted as e:
             raise _partial(e, lambda raw: _samples(*raw)) from None
-        out = _convert.report(text)
         if keep:
             out.update(_samples(t, x, n))
         return out
@@ -212,9 +210,9 @@ def make_roll(summary, doc_extra):
         limits = _limits(bound)
         values = _convert.arguments(_given(bound))
         try:
-            return _convert.report(_native.roll(values, limits))
+            return _native.roll(values, limits)
         except (Interrupted, TensegrityError) as e:
-            raise _partial(e, lambda raw: _convert.report(raw) if raw else None) from None
+            raise _partial(e, lambda raw: raw) from None
 
     return finish(roll, "roll", sig, summary, params, doc_extra)
 
@@ -232,7 +230,7 @@ def make_tipover(summary, doc_extra):
             raise TypeError("tipover(): dynamic and rolling cannot be used together")
         command = modes[1] if dynamic else modes[2] if rolling else modes[0]
         values = _convert.arguments(_given(bound))
-        return _convert.report(_native.run(command, values, limits, list(modes)))
+        return _native.run(command, values, limits, list(modes))
 
     extra_doc = """\
     dynamic : bool, optional
@@ -277,11 +275,10 @@ dict
 
 def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
           max_memory=None, max_work=None, max_output=None):
-    limits = json.dumps({"max_memory": _convert.value(max_memory),
-                         "max_work": _convert.value(max_work),
-                         "max_output": _convert.value(max_output)})
+    limits = _convert.plain({"max_memory": max_memory, "max_work": max_work,
+                             "max_output": max_output})
     if isinstance(spec, dict):
-        text, is_path = _native.toml_text(_convert.dumps(spec)), False
+        text, is_path = _native.toml_text(_convert.plain(spec)), False
     elif isinstance(spec, os.PathLike) or ("\n" not in spec and "=" not in spec):
         text, is_path = os.fspath(spec), True
     else:

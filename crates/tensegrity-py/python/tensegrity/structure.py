@@ -6,7 +6,6 @@ to the engine as scene TOML written by the io crate's writer (``to_toml``), read
 Its arrays are read-only; :meth:`Structure.replace` makes a changed copy.
 """
 
-import json
 import os
 
 import numpy as np
@@ -184,7 +183,7 @@ class Structure:
                   self.velocities):
             if a is not None:
                 a.setflags(write=False)
-        self._toml = _native.structure_toml(self._spec(), _convert.dumps(self.tables))
+        self._toml = _native.structure_toml(self._spec(), _convert.plain(self.tables))
 
     def _spec(self):
         def at(a, k):
@@ -227,7 +226,7 @@ class Structure:
             name = path
         else:
             text, name = scene, "scene text"
-        spec = json.loads(_native.structure_read(text, name))
+        spec = _native.structure_read(text, name)
         return cls._from_spec(spec)
 
     @classmethod
@@ -304,7 +303,7 @@ class Structure:
 
     def _matrices(self):
         if not hasattr(self, "_m"):
-            m = json.loads(_native.matrices(self._toml))
+            m = _native.matrices(self._toml)
             out = {}
             for key in ("C_b", "C_s", "A"):
                 shape = tuple(m[key]["shape"])

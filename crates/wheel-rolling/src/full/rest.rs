@@ -32,7 +32,8 @@
 //!
 //! **How** (dynamic relaxation with kinetic damping): the pseudo-motion ẍ = a(x, ẋ) − α e
 //! (α = 0 when the wheel rests; α = eᵀM a / eᵀM e with M the bars' consistent mass, so the
-//! pseudo-velocity is also kept M-orthogonal to e) is integrated with RK4 at the run's step,
+//! pseudo-velocity is also kept M-orthogonal to e) is integrated with RK4 at the run's step
+//! (the dynamics crate's [`Rk4`] over the pseudo-dynamics as a [`System`]),
 //! projected onto the bar lengths and joints after every step, the anchors moved as in the
 //! run; whenever the pseudo-kinetic energy Σ ‖ẋ‖² falls (a peak has passed), every velocity
 //! is set to zero. It stops when the residual max ‖a − α e‖ at rest is below [`RESIDUAL`] g₀
@@ -61,8 +62,10 @@ use crate::contact::ContactModel;
 use crate::defaults;
 use crate::error::Result;
 use nalgebra::Vector3;
-use tensegrity_core::{MemberId, Structure};
-use tensegrity_dynamics::{ConstraintSet, Ground, GroundModel, Model, NodeRef, Workspace};
+use tensegrity_core::{CoreError, MemberId, Structure};
+use tensegrity_dynamics::{
+    ConstraintSet, Ground, GroundModel, Integrator, Model, NodeRef, Rk4, System, Workspace,
+};
 
 /// Relative residual acceleration (of g₀) at which the relaxation stops.
 pub const RESIDUAL: f64 = 1e-3;
@@ -200,12 +203,16 @@ pub(super) fn settle(
         relax.pivot = None;
     }
     let mut constraints = ConstraintSet::new(&model)?;
-    let mut rk = Rk4Relax::new(y.len());
+    let mut rk = Rk4::new(y.len());
     let (mut ke_prev, mut steps, mut residual) = (0.0, 0, f64::INFINITY);
     let (mut best, mut best_at, mut converged) = (f64::INFINITY, 0, false);
     let (mut least, mut at_least) = (f64::INFINITY, y.clone());
     while steps < MAX_STEPS && steps - best_at < STALL {
-        rk.step(&mut relax, &model, &mut ws, &mut y, dt)?;
+        let pseudo = PseudoDynamics {
+            model: &model,
+            relax: &relax,
+        };
+        rk.step(&pseudo, &mut ws, 0.0, &mut y, dt)?;
         constraints.project(&model, &mut y, 1e-12 * scene.outer_radius, 0.0)?;
         model.update_contact_anchors(&y, &mut ws);
         let (x, v) = y.split_at_mut(relax.n3);
@@ -317,7 +324,13 @@ impl Relax {
     }
 
     /// The pseudo-accelerations at `y` into `out`.
-    fn rhs(&mut self, model: &Model, y: &[f64], out: &mut [f64], ws: &mut Workspace) -> Result<()> {
+    fn rhs(
+        &self,
+        model: &Model,
+        y: &[f64],
+        out: &mut [f64],
+        ws: &mut Workspace,
+    ) -> std::result::Result<(), CoreError> {
         model.rhs(0.0, y, out, ws)?;
         let (x, dv) = (&y[..self.n3], &mut out[self.n3..]);
         self.remove(x, dv);
@@ -339,40 +352,29 @@ impl Relax {
     }
 }
 
-/// Classic RK4 of the pseudo-dynamics.
-struct Rk4Relax {
-    k: [Vec<f64>; 4],
-    tmp: Vec<f64>,
+/// The pseudo-dynamics ẍ = a(x, ẋ) − α e of the relaxation (module docs) as the system its
+/// RK4 steps: the model's right-hand side at t = 0 with the pivot's component removed.
+struct PseudoDynamics<'a> {
+    model: &'a Model,
+    relax: &'a Relax,
 }
 
-impl Rk4Relax {
-    fn new(n: usize) -> Self {
-        Self {
-            k: std::array::from_fn(|_| vec![0.0; n]),
-            tmp: vec![0.0; n],
-        }
+impl System for PseudoDynamics<'_> {
+    type Workspace = Workspace;
+
+    fn state_len(&self) -> usize {
+        self.model.state_len()
     }
 
-    fn step(
-        &mut self,
-        f: &mut Relax,
-        model: &Model,
+    /// The pseudo-accelerations ([`Relax::rhs`]); the relaxation is autonomous (`t` unused).
+    fn rhs(
+        &self,
+        _t: f64,
+        y: &[f64],
+        dy: &mut [f64],
         ws: &mut Workspace,
-        y: &mut [f64],
-        h: f64,
-    ) -> Result<()> {
-        let [k1, k2, k3, k4] = &mut self.k;
-        f.rhs(model, y, k1, ws)?;
-        stage(&mut self.tmp, y, 0.5 * h, k1);
-        f.rhs(model, &self.tmp, k2, ws)?;
-        stage(&mut self.tmp, y, 0.5 * h, k2);
-        f.rhs(model, &self.tmp, k3, ws)?;
-        stage(&mut self.tmp, y, h, k3);
-        f.rhs(model, &self.tmp, k4, ws)?;
-        for (i, yi) in y.iter_mut().enumerate() {
-            *yi += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-        }
-        Ok(())
+    ) -> std::result::Result<(), CoreError> {
+        self.relax.rhs(self.model, y, dy, ws)
     }
 }
 
@@ -395,12 +397,6 @@ fn bar_masses(structure: &Structure) -> Vec<f64> {
             bar.mass.or(derived).unwrap_or(1.0)
         })
         .collect()
-}
-
-fn stage(tmp: &mut [f64], y: &[f64], c: f64, k: &[f64]) {
-    for ((t, yi), ki) in tmp.iter_mut().zip(y).zip(k) {
-        *t = yi + c * ki;
-    }
 }
 
 fn node(x: &[f64], c: usize) -> Vector3<f64> {
