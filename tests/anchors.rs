@@ -1,7 +1,7 @@
 //! The anchor scenes (`examples/anchors/`), run by the binary exactly as a user runs them,
 //! against reference final states computed *independently* of the library's dynamics.
 //!
-//! The reference integrator below shares nothing with `tensegrity_core::dynamics`: it works
+//! The reference integrator below shares nothing with `tensegrity_dynamics`: it works
 //! on the shared nodes of the scene (no class-1 copies, no coincidence constraints), with the
 //! consistent mass matrix of a thin rigid bar (m/6)[[2, 1], [1, 2]] ⊗ I₃ assembled over the
 //! bars (kinetic energy ½m‖ṙ‖² + ½(m/12)‖ḃ‖²), the bar lengths as holonomic constraints
