@@ -6,8 +6,9 @@ this file. Members are either front crates (the binary, io, engine, sweeps, Pyth
 they may know file formats) or model crates (everything else: the layers — linalg, core,
 statics, dynamics —, wheel-rolling and the topology crates), for which:
 - no normal dependency, direct or transitive, on toml, csv or plotters;
-- workspace dependencies only on the layers and wheel-rolling (tbar-wheel may also use
-  michell3d's node parameterisation): topology crates never depend on each other;
+- workspace dependencies only on the layers, wheel-rolling and the proc-macro crate
+  tensegrity-derive (tbar-wheel may also use michell3d's node parameterisation): topology
+  crates never depend on each other;
 The layers (every dependency kind, direct or transitive, as `cargo metadata` resolves it):
 - faer is a dependency of tensegrity-linalg alone, which depends on no workspace crate;
 - tensegrity-core depends on no workspace crate but tensegrity-linalg (its error type);
@@ -31,7 +32,8 @@ import sys
 FRONT = {"tensegrity", "tensegrity-io", "tensegrity-engine", "tensegrity-bench", "sweeps", "tensegrity-py",
          "tensegrity-figures"}
 LAYERS = {"tensegrity-linalg", "tensegrity-core", "tensegrity-statics", "tensegrity-dynamics"}
-MODEL_MAY_USE = LAYERS | {"wheel-rolling"}
+# tensegrity-derive: the workspace's proc-macro crate (`#[derive(Columns)]`), no model code
+MODEL_MAY_USE = LAYERS | {"wheel-rolling", "tensegrity-derive"}
 # (crate, workspace crate it must not reach by any path of dependencies)
 FORBIDDEN = [
     ("tensegrity-linalg", "tensegrity-core"),

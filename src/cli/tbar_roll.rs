@@ -3,7 +3,8 @@
 //! equal outer radius, rigid or full model, with tip-over) and prints the report. The
 //! defaults are the library's (the fidelity-dependent ones resolved by the request).
 //! `--out FILE.csv` writes one row per tread count: the per-row result columns of the engine
-//! ([`tensegrity_engine::columns::TBAR_ROLL`], `rows.K.` left out), opened before the run.
+//! (the `rows.0.` columns of [`TbarRollReport`]'s `Columns`, the prefix left out), opened
+//! before the run.
 //! `--animate FILE.gif` draws the T-bar wheel of the first tread count rolling
 //! ([`super::animate`]; the nodes of [`TbarRollRequest::drawing`] from its run's frames: the
 //! full model's nodes, or the rigid model's pose placing them), also opened before the run.
@@ -14,6 +15,7 @@ use super::request_args::RequestArgs;
 use anyhow::Result;
 use std::path::PathBuf;
 use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, TbarRollRow, Watch};
+use tensegrity_core::columns::Columns;
 use tensegrity_core::request::Request;
 use tensegrity_engine::tbar_roll;
 use tensegrity_figures::animation::{Animation, Camera, Scenery};
@@ -100,7 +102,7 @@ fn watched_report(
 
 /// The per-row result columns: the engine's `rows.0.*` columns without the prefix.
 fn row_columns() -> impl Iterator<Item = &'static str> {
-    tensegrity_engine::columns::TBAR_ROLL
+    <TbarRollReport as Columns>::columns()
         .iter()
         .filter_map(|c| c.name.strip_prefix("rows.0."))
 }

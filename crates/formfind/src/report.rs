@@ -13,10 +13,11 @@ use crate::{form_find, FormFound, Method, Result, Settings, Synthesis, Topology}
 use serde::Serialize;
 use tensegrity_core::request::InvalidParameter;
 use tensegrity_core::Structure;
+use tensegrity_derive::Columns;
 
 /// The report of a form-finding run (module docs). Member lists are bars then strings, in topology
 /// order.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct FormfindReport {
     /// The built-in's name, the topology file, or `topology text`.
     pub source: String,
@@ -44,10 +45,13 @@ pub struct FormfindReport {
     pub iterations: usize,
     /// The extent along z of the nodes the method placed (every node of a free-standing
     /// form, the free ones where nodes are held) (m).
+    #[column(unit = "m")]
     pub height: f64,
     /// The longest bar (m; 0 without bars).
+    #[column(unit = "m")]
     pub max_bar_length: f64,
     /// The prestress level of the exported structure: the largest string tension (N).
+    #[column(unit = "N")]
     pub prestress: f64,
     /// Member forces at that level (N, tension-positive), `null` where there is no scene.
     pub member_force: Option<Vec<f64>>,

@@ -34,6 +34,7 @@ use crate::params::{Geometry, MichellParams};
 use crate::report::{analyse, AnalysisRequest};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 
 /// Grid points of the φ scan before golden-section refinement.
 const PHI_GRID: usize = 48;
@@ -121,23 +122,29 @@ impl OptimizeRequest {
 }
 
 /// The optimal design of [`optimize`]; serialises to the JSON of `michell optimize`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct Optimum {
     /// `planar`, `cylindrical` or `spherical`.
+    #[column(nested)]
     pub geometry: Geometry,
     /// ρ = r_q / r₀.
     pub radius_ratio: f64,
     /// Departure angle β (rad).
+    #[column(unit = "rad")]
     pub beta: f64,
     /// Segmentation angle φ (rad).
+    #[column(unit = "rad")]
     pub phi: f64,
     /// Complexity q (optimised when not given).
     pub complexity: usize,
     /// Members plus joints (kg): yield sizing in the plane, yield + buckling in 3-D.
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// Members only (kg).
+    #[column(unit = "kg")]
     pub member_mass_kg: f64,
     /// Joints only (kg).
+    #[column(unit = "kg")]
     pub joint_mass_kg: f64,
     /// Number of joints (nodes, supports included).
     pub joints: usize,
@@ -146,6 +153,7 @@ pub struct Optimum {
     /// Michell's continuum 2 ln(1/ρ), the q → ∞ limit of the planar optimum.
     pub continuum_normalized_mass: f64,
     /// 3-D only: the optimal planar mass (yield + buckling, joints) at the same q.
+    #[column(unit = "kg")]
     pub planar_mass_kg: Option<f64>,
     /// 3-D only: `mass_kg / planar_mass_kg`, the mass penalty of the spatial truss.
     pub mass_penalty: Option<f64>,

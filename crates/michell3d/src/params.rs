@@ -15,6 +15,7 @@
 use crate::error::{invalid, Result};
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
+use tensegrity_derive::Columns;
 
 /// Largest complexity accepted for a 3-D truss ((q+1)(q+2)(q+3)/6 = 176 851 nodes at q = 100).
 pub const MAX_COMPLEXITY_3D: usize = 100;
@@ -25,7 +26,7 @@ pub const MAX_COMPLEXITY_PLANAR: usize = 1000;
 const ANGLE_TOL: f64 = 1e-9;
 
 /// How the nodes leave the y–z plane.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Geometry {
     /// Skelton's planar truss: two-index nodes n_ik in the y–z plane.
@@ -38,6 +39,7 @@ pub enum Geometry {
     /// Spherical parameterisation, x = r_k cos(ℤφ) tan(𝕏ε) (eq. 4.12).
     Spherical {
         /// Out-of-plane segmentation angle ε (rad).
+        #[column(unit = "rad")]
         epsilon: f64,
     },
 }
@@ -50,17 +52,21 @@ impl Geometry {
 }
 
 /// The parameters of a discrete Michell truss.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns)]
 pub struct MichellParams {
     /// Complexity q (number of member levels); level-q nodes are supports.
     pub complexity: usize,
     /// Initial radius r₀ (m): distance of the tip node n₀₀₀₀ = [0, r₀, 0] from the origin.
+    #[column(unit = "m")]
     pub r0: f64,
     /// Departure angle β (rad).
+    #[column(unit = "rad")]
     pub beta: f64,
     /// Segmentation angle φ (rad).
+    #[column(unit = "rad")]
     pub phi: f64,
     /// Planar, cylindrical (δ) or spherical (ε).
+    #[column(nested)]
     pub geometry: Geometry,
 }
 

@@ -14,6 +14,7 @@ use crate::sizing::{normalized_yield_mass, size_members, MemberKind, TrussSizing
 use crate::truss::MichellTruss;
 use serde::Serialize;
 use tensegrity_core::MaterialTable;
+use tensegrity_derive::Columns;
 use tensegrity_statics::sizing::Governing;
 
 /// Everything one analysis needs.
@@ -87,19 +88,22 @@ pub struct MemberReport {
 }
 
 /// Total masses (kg).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns)]
 pub struct MassReport {
     /// Every member sized for yield only.
     #[serde(rename = "yield")]
+    #[column(unit = "kg")]
     pub yield_only: f64,
     /// Strings for yield, bars for max(yield, buckling).
+    #[column(unit = "kg")]
     pub yield_buckling: f64,
 }
 
 /// The result of [`analyse`]; serialises to the JSON of the `michell` subcommand.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct MichellReport {
     /// Parameters used.
+    #[column(nested)]
     pub params: MichellParams,
     /// Solver used.
     pub method: Method,
@@ -114,8 +118,10 @@ pub struct MichellReport {
     /// Extra strings (empty without `--extra-strings`).
     pub extra_strings: Vec<MemberReport>,
     /// Prestress of the extra strings (N), if any.
+    #[column(unit = "N")]
     pub prestress: Option<f64>,
     /// Total masses (kg), extra strings included.
+    #[column(nested)]
     pub mass_kg: MassReport,
     /// Σ|q|·l²/(w₀ r₀) over all members (extra strings included).
     pub normalized_yield_mass: f64,

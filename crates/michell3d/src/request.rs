@@ -28,7 +28,9 @@ use crate::truss::MichellTruss;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::f64::consts::PI;
 use tensegrity_core::angle::{serde_angle, serde_angle_option};
+use tensegrity_core::columns::{Column, Columns};
 use tensegrity_core::request::{exclusive, InvalidParameter, Param, Request, Rule};
+use tensegrity_derive::Columns;
 
 /// Default tip load w₀ (N).
 pub const DEFAULT_LOAD: f64 = 1000.0;
@@ -276,6 +278,14 @@ impl Serialize for MichellRun {
     }
 }
 
+/// The report's columns ([`MichellReport`]): the keys of the extra strings' check, serialised
+/// after the report's, are not result columns.
+impl Columns for MichellRun {
+    fn columns() -> &'static [Column] {
+        MichellReport::columns()
+    }
+}
+
 impl MichellRequest {
     /// The truss parameters (q = 0 and NaN angles where unset: the library refuses them).
     pub fn params(&self) -> MichellParams {
@@ -489,7 +499,7 @@ impl Default for MichellTableRequest {
 }
 
 /// The rows of `michell-table`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct MichellTable {
     /// One row per complexity and family (planar first, then each δ).
     pub rows: Vec<MassRow>,

@@ -16,6 +16,7 @@ use crate::params::TbarParams;
 use michell3d::{analyse, AnalysisRequest};
 use serde::Serialize;
 use tensegrity_core::MaterialTable;
+use tensegrity_derive::Columns;
 use tensegrity_statics::sizing::{size_bar, size_string};
 
 /// Default material of the sizing.
@@ -39,15 +40,18 @@ pub fn design_forces(response: &LoadResponse, state: &[f64], load: f64) -> Vec<f
 }
 
 /// Masses of the T-bar structure and of the matching Michell truss.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct MassComparison {
     /// Material name (core table).
     pub material: String,
     /// T-bar mass, strings for yield and bars for max(yield, buckling) (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// T-bar mass with every member sized for yield only (kg).
+    #[column(unit = "kg")]
     pub yield_mass_kg: f64,
     /// Mass of the 3-D Michell truss of the same parameters for its nominal load (kg).
+    #[column(unit = "kg")]
     pub michell_mass_kg: f64,
     /// mass_kg / (treads × michell_mass_kg).
     pub mass_ratio: f64,

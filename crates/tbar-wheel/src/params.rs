@@ -17,6 +17,7 @@ use crate::error::{invalid, Result, TbarError};
 use michell3d::MichellParams;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 
 /// Largest complexity accepted (a tread has (q+1)(q+2)(2q+3)/6 lattice nodes: 3 311 at q = 20).
 pub const MAX_COMPLEXITY: usize = 20;
@@ -71,7 +72,7 @@ impl RimMode {
 }
 
 /// One tread, the wheel, or the extended wheel.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Columns)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Layout {
     /// A single tread (Fig. 5.1).
@@ -82,6 +83,7 @@ pub enum Layout {
     /// The wheel and a copy translated by `offset` along ι̂₁ (Fig. 5.3).
     Extended {
         /// Translation of the copy along ι̂₁ (m).
+        #[column(unit = "m")]
         offset: f64,
     },
 }
@@ -98,13 +100,15 @@ impl Layout {
 }
 
 /// Everything that defines the geometry of a T-bar structure.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns)]
 pub struct TbarParams {
     /// The 3-D Michell parameters of the lattice (q, r₀, β, φ, δ or ε).
+    #[column(nested)]
     pub michell: MichellParams,
     /// The base of the radial bar.
     pub bar_base: BarBase,
     /// Tread, wheel or extended wheel.
+    #[column(nested)]
     pub layout: Layout,
     /// Rigid rim (supports) or rim body.
     pub rim: RimMode,

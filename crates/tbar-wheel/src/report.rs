@@ -16,6 +16,7 @@ use crate::params::{RimMode, TbarParams};
 use crate::statics::{backend, summarise};
 use serde::Serialize;
 use tensegrity_core::Structure;
+use tensegrity_derive::Columns;
 use tensegrity_statics::{Certification, Factorization, SpectralGap, StaticsBackend};
 
 /// Everything one analysis needs.
@@ -72,9 +73,10 @@ impl TbarRequest {
 }
 
 /// The report of one analysis (the JSON contract of `tensegrity tbar --json`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct TbarReport {
     /// The parameters.
+    #[column(nested)]
     pub params: TbarParams,
     /// Number of nodes.
     pub nodes: usize,
@@ -116,18 +118,23 @@ pub struct TbarReport {
     /// The core's prestressability margin.
     pub prestress_margin: f64,
     /// Tip load w₀ (N).
+    #[column(unit = "N")]
     pub load: f64,
     /// Axial stiffness EA (N).
+    #[column(unit = "N")]
     pub ea: f64,
     /// Minimum bar compression (N) carrying w₀ from every direction.
+    #[column(unit = "N")]
     pub min_prestress: Option<f64>,
     /// The binding member and its worst direction.
+    #[column(nested)]
     pub critical_member: Option<CriticalMember>,
     /// Every binding member (indices, bars first).
     pub active_members: Vec<usize>,
     /// Member forces (N, bars first) of the minimum-prestress state.
     pub prestress_force: Option<Vec<f64>>,
     /// The bar compression of the slack map (N).
+    #[column(unit = "N")]
     pub prestress: Option<f64>,
     /// Fraction of the sampled directions that slacken a string or put a bar in tension.
     pub slack_fraction: Option<f64>,
@@ -140,13 +147,16 @@ pub struct TbarReport {
     /// The slack map over (azimuth, polar).
     pub slack_map: Option<Vec<SlackPoint>>,
     /// Mass of the T-bar structure sized for the envelope (kg).
+    #[column(unit = "kg")]
     pub mass_kg: Option<f64>,
     /// Masses against the Michell truss.
+    #[column(nested)]
     pub mass: Option<MassComparison>,
     /// Everything the analysis could not do, and why.
     pub warnings: Vec<String>,
     /// The singular values on either side of the rank tolerance behind the counts (the
     /// narrowest block's for a wheel).
+    #[column(nested)]
     pub spectral_gap: SpectralGap,
     /// Set (else `null`) when the rank decision has no clear gap (a singular value within a
     /// factor 10 of the tolerance); also listed in `warnings`.

@@ -29,6 +29,7 @@ use crate::geometry::TbarGeometry;
 use crate::params::Layout;
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 
 /// Default bar density (kg/m): the toroid crate's.
 pub const DEFAULT_BAR_DENSITY: f64 = 1.0;
@@ -124,19 +125,24 @@ pub fn impact_ratio(p: &MassProperties) -> f64 {
 }
 
 /// Out-of-plane tip-over figures of a T-bar wheel.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct TipOver {
     /// Track T (m): the offset of the copy (0 for a single loop).
+    #[column(unit = "m")]
     pub track: f64,
     /// R_o = r₀ (m).
+    #[column(unit = "m")]
     pub outer_radius: f64,
     /// ρ = T/R_o.
     pub rho: f64,
     /// Wheel mass m (kg).
+    #[column(unit = "kg")]
     pub mass: f64,
     /// Lateral axle force above which the wheel tips, thesis form (m g/2) ρ (N).
+    #[column(unit = "N")]
     pub critical_lateral_force: f64,
     /// The same standing on an edge (axle height r₀ cos φ): (m g/2) T/(r₀ cos φ) (N).
+    #[column(unit = "N")]
     pub critical_lateral_force_edge: f64,
     /// Smallest static friction coefficient for which it tips before sliding, ρ/2.
     pub min_friction_to_tip: f64,

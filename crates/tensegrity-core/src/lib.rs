@@ -12,6 +12,8 @@
 //! - [`validate`]: the checks of scalar parameters shared by requests, scenes and flags;
 //! - [`request`]: requests as data ([`request::Request`], one [`request::Param`] per field),
 //!   the shared [`request::InvalidParameter`] and the error [`request::Category`];
+//! - [`columns`]: the scalar result columns of a report ([`columns::Column`]), declared on
+//!   its fields with `#[derive(Columns)]` (crate `tensegrity-derive`);
 //! - [`angle`]: the angle forms of every front end (`30deg`, `pi/8`, radians);
 //! - [`material`]: materials and the built-in table;
 //! - [`error`]: [`CoreError`] and its concerns (model, statics, dynamics, numerics), shared
@@ -25,6 +27,7 @@
 
 pub mod angle;
 pub mod budget;
+pub mod columns;
 pub mod connectivity;
 pub mod error;
 pub mod material;

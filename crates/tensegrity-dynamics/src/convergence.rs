@@ -16,6 +16,7 @@
 //! valid.
 
 use serde::{Deserialize, Serialize};
+use tensegrity_derive::Columns;
 
 /// One headline quantity at the run's and at the refined resolution.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -36,7 +37,7 @@ pub struct QuantityConvergence {
 }
 
 /// The convergence of a result's headline quantities (module docs).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns, Deserialize)]
 pub struct Convergence {
     /// What the refined run changed, e.g. `dt/2, ground stiffness x2`.
     pub refinement: String,

@@ -3,6 +3,7 @@
 
 use super::simulation::SimulationResult;
 use serde::Serialize;
+use tensegrity_derive::Columns;
 
 /// Summary of a run: final state, cost and drift of the invariants.
 ///
@@ -21,9 +22,10 @@ use serde::Serialize;
 /// assert_eq!(report.final_nodes[1], [1.0, 0.0, 0.0]); // no force, no motion
 /// assert!(report.warnings.is_empty());
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct SimulationReport {
     /// Final time reached (s).
+    #[column(unit = "s")]
     pub t_end: f64,
     /// Accepted steps.
     pub steps: u64,
@@ -36,10 +38,13 @@ pub struct SimulationReport {
     /// Max relative total-energy drift.
     pub energy_drift: f64,
     /// Max absolute bar-length error (m).
+    #[column(unit = "m")]
     pub bar_length_drift: f64,
     /// Max absolute ‖N P − D‖ component (m).
+    #[column(unit = "m")]
     pub constraint_drift: f64,
     /// Wall time of the integration alone (s).
+    #[column(unit = "s")]
     pub wall_time_s: f64,
     /// The invariants that drifted past their limits, each with its remedy (absent when the
     /// run is within them).
@@ -48,6 +53,7 @@ pub struct SimulationReport {
     /// The final state re-estimated at a refined resolution (set by the front end that ran
     /// the refined run; absent when not checked).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(nested)]
     pub convergence: Option<super::Convergence>,
 }
 

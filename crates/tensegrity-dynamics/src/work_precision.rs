@@ -16,9 +16,10 @@ use super::simulation::{Simulation, SimulationResult, SimulationSettings};
 use crate::test_models;
 use serde::Serialize;
 use tensegrity_core::error::CoreError;
+use tensegrity_derive::Columns;
 
 /// One measured point.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct Point {
     /// Scene name.
     pub scene: &'static str,
@@ -31,8 +32,10 @@ pub struct Point {
     /// Force evaluations.
     pub rhs_evals: u64,
     /// Max node-position error at the end time (m), at least 1e-16.
+    #[column(unit = "m")]
     pub error: f64,
     /// Best-of-N integration wall time (s), at least 1e-9.
+    #[column(unit = "s")]
     pub wall_time_s: f64,
 }
 

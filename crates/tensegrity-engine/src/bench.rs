@@ -13,6 +13,7 @@
 use serde::{Deserialize, Serialize};
 use tensegrity_core::request::{Param, Request};
 use tensegrity_core::CoreError;
+use tensegrity_derive::Columns;
 use tensegrity_dynamics::work_precision::{self, Point, Skipped};
 
 /// The work–precision study, as data (default: every point, three timing repetitions).
@@ -35,7 +36,7 @@ impl Request for WorkPrecisionRequest {
 }
 
 /// The points of the study, scene by scene, integrator by integrator.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct WorkPrecisionReport {
     /// One point per scene, integrator and step or tolerance (failed runs left out).
     pub points: Vec<Point>,

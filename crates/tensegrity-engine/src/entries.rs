@@ -1,7 +1,7 @@
-//! The entries of the registry: one line per command (library call, result columns), built
+//! The entries of the registry: one line per command (the library call; its report's type
+//! gives the result columns, [`crate::registry::Columns`]), built
 //! once into the table that [`commands`] returns and [`command`] searches by name.
 
-use crate::columns as c;
 use crate::registry::{entry, entry_in, estimated, estimated_in, Command};
 use michell3d::{MichellOptimizeRequest, MichellRequest, MichellTableRequest};
 use std::sync::OnceLock;
@@ -11,21 +11,21 @@ use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
 /// Every command.
 pub(crate) fn all() -> Vec<Command> {
     vec![
-        estimated(toroid::toroid_report, &c::TOROID),
-        estimated(toroid::roll, &c::ROLL),
-        entry(toroid::tipover_report, &c::TIPOVER),
-        estimated(TipoverDynamicRequest::run, &c::TIPOVER_DYNAMIC),
-        estimated(TipoverRollingRequest::run, &c::TIPOVER_ROLLING).alias(&["lean"]),
-        entry(MichellRequest::run, &c::MICHELL),
-        estimated(MichellOptimizeRequest::run, &c::MICHELL_OPTIMIZE),
-        estimated(MichellTableRequest::run, &c::MICHELL_TABLE),
-        entry_in(crate::integrators::point, &c::INTEGRATORS),
-        estimated(TbarStaticRequest::run, &c::TBAR),
-        estimated(crate::tbar_roll::tbar_roll, &c::TBAR_ROLL),
-        estimated_in(crate::statics::statics_in, &c::STATICS),
-        estimated(crate::simulate::simulate, &c::SIMULATE),
-        entry(crate::bench::work_precision, &c::BENCH_WORK_PRECISION),
-        estimated(crate::formfind::formfind, &c::FORMFIND),
+        estimated(toroid::toroid_report),
+        estimated(toroid::roll),
+        entry(toroid::tipover_report),
+        estimated(TipoverDynamicRequest::run),
+        estimated(TipoverRollingRequest::run).alias(&["lean"]),
+        entry(MichellRequest::run),
+        estimated(MichellOptimizeRequest::run),
+        estimated(MichellTableRequest::run),
+        entry_in(crate::integrators::point),
+        estimated(TbarStaticRequest::run),
+        estimated(crate::tbar_roll::tbar_roll),
+        estimated_in(crate::statics::statics_in),
+        estimated(crate::simulate::simulate),
+        entry(crate::bench::work_precision),
+        estimated(crate::formfind::formfind),
     ]
 }
 

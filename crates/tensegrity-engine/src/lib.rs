@@ -8,7 +8,9 @@
 //! crates never depend on each other.
 //!
 //! The [`registry`] names every command that takes a request, with its parameters, the
-//! scalar result columns of its report ([`columns`]) and a `run` from named JSON values to
+//! scalar result columns of its report (the report type's
+//! [`Columns`](tensegrity_core::columns::Columns), declared on its fields with
+//! `#[derive(Columns)]` of `tensegrity-derive`) and a `run` from named JSON values to
 //! the report as JSON; the sweeps run any of them as a study of the same name.
 //!
 //! | command (study) | request | library call |
@@ -35,8 +37,6 @@
 #![warn(missing_docs)]
 
 pub mod bench;
-mod column;
-pub mod columns;
 mod context;
 mod entries;
 pub mod estimate;

@@ -5,7 +5,8 @@
 //! > values → [`Request::from_values`] → the library call → `serde_json::to_value`.
 //!
 //! An entry is one line: [`entry`] takes the library call (any `fn(&R) -> Result<T, E>` with
-//! `R: Request`, `T: Serialize`), [`entry_in`] one that shares the sweep's [`Context`], and
+//! `R: Request`, `T: Serialize + Columns`: the command's result columns are the report's
+//! [`Columns`]), [`entry_in`] one that shares the sweep's [`Context`], and
 //! [`estimated`] one whose request has a resource estimate ([`Estimated`]): the command's
 //! [`Command::estimate`] on named values, which a front end checks against its limits before
 //! the run (the sweeps before every case).
@@ -19,7 +20,6 @@
 //! assert_eq!(tensegrity_engine::command("lean").unwrap().name, "tipover_rolling");
 //! ```
 
-pub use crate::column::{col, Column};
 use crate::context::Context;
 pub use crate::entries::{command, commands, names};
 use crate::estimate::Estimated;
@@ -28,6 +28,7 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 use std::fmt::Display;
 use tensegrity_core::budget::Estimate;
+pub use tensegrity_core::columns::{col, Column, Columns};
 use tensegrity_core::request::{Categorized, Param, Request};
 
 type RunFn = Box<dyn Fn(Map<String, Value>, &Context) -> Result<Value, RunError> + Send + Sync>;
@@ -40,7 +41,8 @@ pub struct Command {
     pub name: &'static str,
     /// Other names a sweep spec may give (`lean` for `tipover_rolling`).
     pub aliases: &'static [&'static str],
-    /// The scalar result columns of the report, in its key order.
+    /// The scalar result columns of the report, in its key order: the report type's
+    /// [`Columns`], declared on its fields (`#[derive(Columns)]`).
     pub columns: &'static [Column],
     params: fn() -> Vec<Param>,
     defaults: fn() -> Map<String, Value>,
@@ -110,60 +112,54 @@ fn json<T: Serialize, E: Display + Categorized>(r: Result<T, E>) -> Result<Value
 }
 
 /// The entry of the library call `run` of request `R`.
-pub fn entry<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column]) -> Command
+pub fn entry<R, T, E>(run: fn(&R) -> Result<T, E>) -> Command
 where
     R: Request,
-    T: Serialize + 'static,
+    T: Serialize + Columns + 'static,
     E: Display + Categorized + 'static,
 {
     Command::of::<R>(
-        columns,
+        T::columns(),
         Box::new(move |values, _| json(run(&R::from_values(values)?))),
     )
 }
 
 /// The entry of the library call `run` of request `R`, with `R`'s resource estimate.
-pub fn estimated<R, T, E>(run: fn(&R) -> Result<T, E>, columns: &'static [Column]) -> Command
+pub fn estimated<R, T, E>(run: fn(&R) -> Result<T, E>) -> Command
 where
     R: Estimated,
-    T: Serialize + 'static,
+    T: Serialize + Columns + 'static,
     E: Display + Categorized + 'static,
 {
     Command {
         estimate: Some(Box::new(|values| R::from_values(values)?.estimate())),
-        ..entry(run, columns)
+        ..entry(run)
     }
 }
 
 /// The entry of a library call that reads the sweep's [`Context`] (its limits, its shared
 /// reference runs), with `R`'s resource estimate.
-pub fn estimated_in<R, T, E>(
-    run: fn(&R, &Context) -> Result<T, E>,
-    columns: &'static [Column],
-) -> Command
+pub fn estimated_in<R, T, E>(run: fn(&R, &Context) -> Result<T, E>) -> Command
 where
     R: Estimated,
-    T: Serialize + 'static,
+    T: Serialize + Columns + 'static,
     E: Display + Categorized + 'static,
 {
     Command {
         estimate: Some(Box::new(|values| R::from_values(values)?.estimate())),
-        ..entry_in(run, columns)
+        ..entry_in(run)
     }
 }
 
 /// The entry of a library call that shares what the cases of a sweep share ([`Context`]).
-pub fn entry_in<R, T, E>(
-    run: fn(&R, &Context) -> Result<T, E>,
-    columns: &'static [Column],
-) -> Command
+pub fn entry_in<R, T, E>(run: fn(&R, &Context) -> Result<T, E>) -> Command
 where
     R: Request,
-    T: Serialize + 'static,
+    T: Serialize + Columns + 'static,
     E: Display + Categorized + 'static,
 {
     Command::of::<R>(
-        columns,
+        T::columns(),
         Box::new(move |values, ctx| json(run(&R::from_values(values)?, ctx))),
     )
 }

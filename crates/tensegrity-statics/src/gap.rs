@@ -9,13 +9,14 @@
 //! (`statics_warning`) instead of as fact.
 
 use serde::Serialize;
+use tensegrity_derive::Columns;
 
 /// No singular value within this factor of the tolerance: the gap rule (see the module docs).
 pub const GAP_FACTOR: f64 = 10.0;
 
 /// The singular values on either side of the rank tolerance of one decision (for the cyclic
 /// back-end: of the block with the narrowest gap).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Columns)]
 pub struct SpectralGap {
     /// The absolute rank tolerance τ of this decision.
     pub tolerance: f64,

@@ -38,6 +38,7 @@ use crate::stiffness::{self, MassModel};
 use serde::Serialize;
 use tensegrity_core::error::{CoreError, Result, StaticsError};
 use tensegrity_core::structure::{MemberId, Structure};
+use tensegrity_derive::Columns;
 
 /// What [`statics_report`] computes. The default is the default SVD rank tolerance, no modes
 /// and the lumped mass model.
@@ -64,7 +65,7 @@ pub struct Reaction {
 }
 
 /// Everything `tensegrity statics` reports; serialises to its JSON.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns, Default)]
 pub struct StaticsReport {
     /// Number of nodes.
     pub nodes: usize,
@@ -92,6 +93,7 @@ pub struct StaticsReport {
     /// Set when `self_stress` is left empty although the space is not: why (its dimension
     /// and size; see [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
     pub self_stress_omitted: Option<String>,
     /// The max-margin self-stress (force densities) scaled to max|q| = 1 (only when
     /// prestressable).
@@ -112,6 +114,7 @@ pub struct StaticsReport {
     pub reactions: Option<Vec<Reaction>>,
     /// ‖A q − w‖₂ (N).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(unit = "N")]
     pub residual: Option<f64>,
     /// Whether the loads are carried (relative residual within the tolerance); false only
     /// with [`StaticsRequest::least_squares`].
@@ -122,6 +125,7 @@ pub struct StaticsReport {
     pub unbalanced_nodes: Option<Vec<usize>>,
     /// Total minimum mass for the loads (kg), when members have materials.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(unit = "kg")]
     pub mass_kg: Option<f64>,
     /// Minimum radius of each member for the loads (m), when sized.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -161,6 +165,7 @@ pub struct StaticsReport {
     /// The singular values on either side of the rank tolerance behind the rank decision
     /// ([`SpectralGap`]; the narrowest block's for the cyclic back-end). A decision without a
     /// clear gap (a value within a factor 10 of the tolerance) is flagged in `statics_warning`.
+    #[column(nested)]
     pub spectral_gap: SpectralGap,
 }
 

@@ -18,6 +18,7 @@ use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
 use tensegrity_core::request::{InvalidParameter, Param};
 use tensegrity_core::Structure;
+use tensegrity_derive::Columns;
 use tensegrity_statics::SpectralGap;
 
 /// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
@@ -237,7 +238,7 @@ impl Serialize for Stabilized {
 }
 
 /// The statics, mass and inertia of one toroid; serialises to the JSON of `tensegrity toroid`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct ToroidReport {
     /// Node count.
     pub nodes: usize,
@@ -258,11 +259,13 @@ pub struct ToroidReport {
     /// First-order flexes beyond the rigid-body motions.
     pub internal_mechanisms: usize,
     /// Total bar mass (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// Inertia tensor about the wheel centre (kg m²), row-major.
     pub inertia: [[f64; 3]; 3],
     /// I₁ about the rolling axis (kg m²).
     #[serde(rename = "I1")]
+    #[column(unit = "kg m^2")]
     pub i1: f64,
     /// Member forces of the prestress design (N, tension positive, bars then strings), when
     /// prestressable.
@@ -275,9 +278,11 @@ pub struct ToroidReport {
     /// Self-stress states and internal mechanisms per representation of the wheel's Cₙ
     /// symmetry (the symmetry-adapted analysis); absent for a single prism.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
     pub symmetry: Option<SymmetryCounts>,
     /// The singular values on either side of the rank tolerance behind the counts (the
     /// narrowest block's of the symmetry-adapted analysis).
+    #[column(nested)]
     pub spectral_gap: SpectralGap,
     /// Set (else `null`) when the rank decision has no clear gap: a singular value within a
     /// factor 10 of the tolerance, so rank, self-stress dimension and mechanisms are uncertain.
@@ -406,9 +411,10 @@ impl TipoverRequest {
 }
 
 /// Tip-over figures of one wheel; serialises to the JSON of `tensegrity tipover`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns)]
 pub struct TipoverReport {
     /// Wheel (bar) mass (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// ρ = T/R_o.
     pub rho: f64,
@@ -419,6 +425,7 @@ pub struct TipoverReport {
     /// cot θ of the contact bar with the ground.
     pub cot_theta: f64,
     /// Lateral axle force at which the wheel tips (N).
+    #[column(unit = "N")]
     pub critical_lateral_force: f64,
     /// F_f/F_e at the threshold (eq. 3.29).
     pub normalized_friction: f64,

@@ -26,6 +26,7 @@ use crate::error::Result;
 use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity, REFINEMENT};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 use tensegrity_dynamics::{
     Convergence, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
@@ -69,34 +70,46 @@ pub struct RollingLeanSample {
 }
 
 /// The result of [`LeanRolling::run`].
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct LeanRollingReport {
     /// Number of sides n.
+    #[column(skip)]
     pub sides: usize,
     /// Outer tread width T (m).
+    #[column(skip)]
     pub outer_tread: f64,
     /// Incline (rad).
+    #[column(skip)]
     pub incline: f64,
     /// Side slope (rad).
+    #[column(skip)]
     pub side_slope: f64,
     /// Wheel mass (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// Static critical side slope atan(T / 2h) of the wheel at rest on a side (rad).
+    #[column(unit = "rad")]
     pub static_critical_side_slope: f64,
     /// Largest |lean| (rad).
+    #[column(unit = "rad")]
     pub max_lean: f64,
     /// Lean at the end (rad).
+    #[column(unit = "rad")]
     pub final_lean: f64,
     /// The static tip angle atan(T/2h) on a level plane (rad).
+    #[column(unit = "rad")]
     pub static_tip_angle: f64,
     /// Whether it fell: it ends leaning past the tip angle of the side slope, α₊ or −α₋
     /// (module docs).
     pub fell: bool,
     /// When its last excursion past that angle began (s); null when it did not fall.
+    #[column(unit = "s")]
     pub fall_time: Option<f64>,
     /// Hub travel downhill at the end (m).
+    #[column(unit = "m")]
     pub downhill: f64,
     /// Deepest contact node below the plane (m).
+    #[column(unit = "m")]
     pub max_penetration: f64,
     /// No warning: the run stayed inside its model.
     pub valid: bool,
@@ -105,6 +118,7 @@ pub struct LeanRollingReport {
     pub warnings: Vec<String>,
     /// The headline quantities re-run at half the step and twice the ground stiffness
     /// ([`crate::request::TipoverRollingRequest`]); null when not checked.
+    #[column(nested)]
     pub convergence: Option<Convergence>,
     /// The history (not serialised).
     #[serde(skip)]

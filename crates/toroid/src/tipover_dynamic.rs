@@ -47,6 +47,7 @@ use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::CoreError;
+use tensegrity_derive::Columns;
 use tensegrity_dynamics::{
     Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
@@ -127,35 +128,45 @@ pub struct LeanSample {
 }
 
 /// The result of [`DynamicTipover::run`]; serialises to the JSON of `tipover --dynamic`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct DynamicTipoverReport {
     /// Number of sides n.
     pub sides: usize,
     /// Outer tread width T (m).
+    #[column(unit = "m")]
     pub outer_tread: f64,
     /// Wheel mass (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// Hub height of the starting pose, R_o cos(π/n) (m).
+    #[column(unit = "m")]
     pub hub_height: f64,
     /// (m g / 2)(T / h) (N).
+    #[column(unit = "N")]
     pub static_threshold: f64,
     /// Lateral force at which the near tread edge unloads (N); `None` if it never does.
+    #[column(unit = "N")]
     pub dynamic_threshold: Option<f64>,
     /// dynamic / static − 1.
     pub relative_difference: Option<f64>,
     /// Largest lean angle reached (rad).
+    #[column(unit = "rad")]
     pub max_lean: f64,
     /// Lean at the end of the run (rad).
+    #[column(unit = "rad")]
     pub final_lean: f64,
     /// The static tip angle atan(T / 2h) of the wheel at rest (rad): the lean at which its
     /// weight alone turns it over.
+    #[column(unit = "rad")]
     pub static_tip_angle: f64,
     /// Whether the wheel tipped: its near edge lifted and its lean passed the tip angle of
     /// the load at that time, α_c(F) = atan(T/2h) − atan(F/(m g)) (module docs).
     pub tipped: bool,
     /// When it tipped (s).
+    #[column(unit = "s")]
     pub tip_time: Option<f64>,
     /// Deepest contact node below the ground (m).
+    #[column(unit = "m")]
     pub max_penetration: f64,
     /// No warning: the run stayed inside its model.
     pub valid: bool,
@@ -164,6 +175,7 @@ pub struct DynamicTipoverReport {
     pub warnings: Vec<String>,
     /// The headline quantities re-run at half the step and twice the ground stiffness
     /// ([`crate::request::TipoverDynamicRequest`]); null when not checked.
+    #[column(nested)]
     pub convergence: Option<Convergence>,
     /// The history (not serialised; `--out` writes it as CSV).
     #[serde(skip)]

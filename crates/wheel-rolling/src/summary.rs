@@ -8,16 +8,20 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::validity::ImpactRecord;
 use serde::{Deserialize, Serialize};
+use tensegrity_derive::Columns;
 use tensegrity_dynamics::Convergence;
 
 /// The first impact of a run (the JSON's `first_impact`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Columns, Deserialize)]
 pub struct FirstImpact {
     /// Time (s).
+    #[column(unit = "s")]
     pub t: f64,
     /// Angular velocity about the axle before the impact (rad/s).
+    #[column(unit = "rad/s")]
     pub omega_before: f64,
     /// Angular velocity about the axle after it (rad/s).
+    #[column(unit = "rad/s")]
     pub omega_after: f64,
 }
 
@@ -32,7 +36,7 @@ impl From<&ImpactRecord> for FirstImpact {
 }
 
 /// The summary figures of one rolling run (either model), with its validity.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns, Deserialize)]
 pub struct RunSummary {
     /// Whether the run stayed inside its model's assumptions (no warning).
     pub valid: bool,
@@ -41,40 +45,52 @@ pub struct RunSummary {
     /// Set when the run stopped before `t_end` (an integration failure or its observer): the
     /// time (s) of the last state kept; every figure covers [0, stopped_at] only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
     pub stopped_at: Option<f64>,
     /// Number of contact-pair impacts.
     pub impacts: usize,
     /// The first impact (null if none).
+    #[column(nested)]
     pub first_impact: Option<FirstImpact>,
     /// RMS deviation of the axle height about its mean, after the first second (m; over the
     /// whole run if shorter).
+    #[column(unit = "m")]
     pub axle_height_oscillation: f64,
     /// Mean axle height above the slope after the first second (m).
+    #[column(unit = "m")]
     pub mean_axle_height: f64,
     /// Mean downhill speed of the axle after the first second (m/s).
+    #[column(unit = "m/s")]
     pub mean_speed: f64,
     /// Downhill speed of the axle at the end (m/s).
+    #[column(unit = "m/s")]
     pub final_speed: f64,
     /// Largest contact force magnitude (N).
+    #[column(unit = "N")]
     pub max_reaction: f64,
     /// Smallest normal force (N); negative means the ground pulled.
+    #[column(unit = "N")]
     pub min_normal_force: f64,
     /// Fraction of the time with no contact.
     pub airborne_fraction: f64,
     /// Fraction of the time in contact and sliding.
     pub slip_fraction: f64,
     /// Deepest penetration of a contact node below the slope (m).
+    #[column(unit = "m")]
     pub max_penetration: f64,
     /// Energy-budget residual over the budget's largest term (dimensionless).
     pub energy_balance_error: f64,
     /// Sampled time with a negative normal force (s).
+    #[column(unit = "s")]
     pub lift_off_time: f64,
     /// Largest |F_t|/N: the friction coefficient rolling without slip needs.
     pub required_friction: f64,
     /// Mean sliding speed of the loaded contact nodes (m/s).
+    #[column(unit = "m/s")]
     pub mean_slip_speed: f64,
     /// The headline quantities re-estimated at a refined resolution
     /// ([`crate::convergence`]); null when the check was skipped or the run stopped early.
+    #[column(nested)]
     pub convergence: Option<Convergence>,
 }
 
@@ -108,7 +124,7 @@ impl RunSummary {
 }
 
 /// One wheel's run in a comparison: the model, the wheel and the summary.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns, Deserialize)]
 pub struct WheelRun {
     /// The model that ran.
     pub model: Fidelity,
@@ -117,9 +133,11 @@ pub struct WheelRun {
     #[serde(default)]
     pub fidelity_reason: String,
     /// Mass m (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// I₁ about the axle (kg m²).
     #[serde(rename = "I1")]
+    #[column(unit = "kg m^2")]
     pub i1: f64,
     /// ω⁺/ω⁻ of a plastic pivot-to-pivot impact of its polygon.
     pub impact_ratio: f64,

@@ -71,6 +71,7 @@ use crate::error::{invalid, Result, TbarError};
 use nalgebra::{DMatrix, DVector, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 use tensegrity_statics::{solve_lp, StaticsBackend};
 
 /// Default tip load magnitude w₀ (N).
@@ -102,7 +103,7 @@ impl std::fmt::Display for MemberKind {
 }
 
 /// The binding member of the minimum-prestress state.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct CriticalMember {
     /// Member index (bars first, then strings).
     pub member: usize,
@@ -117,8 +118,10 @@ pub struct CriticalMember {
     /// Worst load direction (unit vector).
     pub direction: [f64; 3],
     /// Azimuth of the direction in the ι̂₁ι̂₂ plane (rad, [0, 2π)).
+    #[column(unit = "rad")]
     pub azimuth: f64,
     /// Polar angle of the direction from ι̂₃ (rad).
+    #[column(unit = "rad")]
     pub polar: f64,
 }
 

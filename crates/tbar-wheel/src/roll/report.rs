@@ -6,6 +6,7 @@ use crate::rolling::{MassProperties, TipOver};
 use crate::rolling_full::{FullPrestress, FullWheel};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_derive::Columns;
 use wheel_rolling::{Fidelity, FidelityChoice, WheelRun};
 
 /// What only the full T-bar run has.
@@ -46,24 +47,37 @@ impl FullDetails {
 }
 
 /// One number of treads.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct TbarRollRow {
     /// Treads per wheel n = π/φ (the polygon's sides).
     pub treads: usize,
     /// φ = π/n (rad).
+    #[column(unit = "rad")]
     pub phi: f64,
     /// The T-bar wheel's mass properties.
+    #[column(skip)]
     pub mass_properties: Option<MassProperties>,
     /// The T-bar wheel's run (of the model asked for).
+    #[column(
+        nested,
+        only = "mass_kg, I1, impact_ratio, valid, impacts, first_impact.t, axle_height_oscillation, mean_speed, final_speed, min_normal_force, airborne_fraction, slip_fraction, max_penetration, energy_balance_error, convergence.converged"
+    )]
     pub tbar: Option<WheelRun>,
     /// Full model only: the rigid model of the same polygon, mass and I₁, for the first
     /// contact phase.
+    #[column(skip)]
     pub tbar_rigid_reference: Option<WheelRun>,
     /// Full model only: the structure and its prestress.
+    #[column(skip)]
     pub full: Option<FullDetails>,
     /// The toroid of equal outer radius and n sides.
+    #[column(
+        nested,
+        only = "mass_kg, I1, valid, impacts, axle_height_oscillation, mean_speed"
+    )]
     pub toroid: Option<WheelRun>,
     /// Out-of-plane tip-over of the T-bar structure (its own weight).
+    #[column(nested, only = "critical_lateral_force, min_friction_to_tip")]
     pub tipover: Option<TipOver>,
     /// Why a part is missing.
     pub errors: Vec<String>,
@@ -87,7 +101,7 @@ impl TbarRollRow {
 }
 
 /// The report of `tbar roll`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct TbarRollReport {
     /// The rolling model that ran: `rigid` (reduced polygon) or `full` (tensegrity
     /// dynamics); with `auto`, full when any row's T-bar run used it.
@@ -103,10 +117,13 @@ pub struct TbarRollReport {
     pub rim: RimMode,
     /// The full model's ground contact (`penalty`, `thesis` or `stick`) when the full model
     /// ran, else `null` (the rigid model has its own unilateral impacts).
+    #[column(skip)]
     pub contact: Option<wheel_rolling::ContactKind>,
     /// Slope angle (rad).
+    #[column(unit = "rad")]
     pub incline_rad: f64,
     /// Simulated time (s).
+    #[column(unit = "s")]
     pub t_end: f64,
     /// Every run of every row (the T-bar's and the toroid's) valid, and no row with an error
     /// ([`TbarRollReport::judged`]).
@@ -114,6 +131,7 @@ pub struct TbarRollReport {
     /// Each run's warnings and each row's errors, prefixed by the row and the run.
     pub warnings: Vec<String>,
     /// One row per number of treads.
+    #[column(first)]
     pub rows: Vec<TbarRollRow>,
 }
 

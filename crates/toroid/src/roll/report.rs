@@ -4,13 +4,14 @@
 
 use super::RollRequest;
 use serde::Serialize;
+use tensegrity_derive::Columns;
 use tensegrity_dynamics::IntegratorKind;
 use wheel_rolling::{
     Fidelity, GroundContact, ImpactRecord, Rolled, RollingSample, RunSummary, WheelFrame,
 };
 
 /// The summary of one rolling run; serialises to the JSON of `tensegrity roll`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
 pub struct RollReport {
     /// The model that ran.
     pub fidelity: Fidelity,
@@ -22,25 +23,31 @@ pub struct RollReport {
     /// Number of sides n.
     pub sides: usize,
     /// Slope angle (rad).
+    #[column(unit = "rad")]
     pub incline_rad: f64,
     /// Simulated time asked for (s).
+    #[column(unit = "s")]
     pub t_end: f64,
     /// Wheel mass (kg).
+    #[column(unit = "kg")]
     pub mass_kg: f64,
     /// I₁ about the rolling axis (kg m²).
     #[serde(rename = "I1")]
+    #[column(unit = "kg m^2")]
     pub i1: f64,
     /// Static friction coefficient μ_s (μ_k = 0.75 μ_s).
     pub mu: f64,
     /// Normal coefficient of restitution.
     pub restitution: f64,
     /// Normal ground damping per node of the full model (N·s/m; null for the rigid model).
+    #[column(unit = "N s/m")]
     pub ground_damping: Option<f64>,
     /// The full model's integrator (null for the rigid model, which steps its one degree of
     /// freedom by RK4 between exactly located events).
     pub integrator: Option<IntegratorKind>,
     /// The step the model ran at (s): the request's `dt`, or the model's default
     /// ([`wheel_rolling::RunSpec::rigid_dt`], [`wheel_rolling::RunSpec::full_dt`]).
+    #[column(unit = "s")]
     pub dt: f64,
     /// Validity and summary figures of the run (`valid`, `warnings`, `stopped_at`,
     /// `impacts`, `first_impact`, `mean_speed`, …).
@@ -50,6 +57,7 @@ pub struct RollReport {
     pub impact_log: Vec<ImpactRecord>,
     /// With `ensemble` ≥ 2: the perturbed copies' statistics (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
     pub ensemble: Option<wheel_rolling::Ensemble>,
     /// With `ensemble` ≥ 2: each copy's sampled history, for bands over time
     /// ([`wheel_rolling::ensemble::band`]); not serialised.
