@@ -13,7 +13,7 @@ mod common;
 
 use common::scratch;
 use std::collections::BTreeMap;
-use tensegrity_core::request::{Param, Request};
+use tensegrity_core::request::{Param, Params};
 
 /// The parameters of a registered command.
 fn registered(name: &str) -> Vec<Param> {

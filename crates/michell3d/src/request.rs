@@ -29,8 +29,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::f64::consts::PI;
 use tensegrity_core::angle::{serde_angle, serde_angle_option};
 use tensegrity_core::columns::{Column, Columns};
-use tensegrity_core::request::{exclusive, InvalidParameter, Param, Request, Rule};
-use tensegrity_derive::Columns;
+use tensegrity_core::request::{exclusive, InvalidParameter, Request};
+use tensegrity_derive::{Columns, Params};
 
 /// Default tip load w₀ (N).
 pub const DEFAULT_LOAD: f64 = 1000.0;
@@ -52,21 +52,16 @@ fn geometry_given(
     ]
 }
 
-fn geometry_params() -> [Param; 3] {
-    [
-        Param::flag("planar", "Skelton's planar truss in the y–z plane"),
-        Param::number(
-            "cylindrical",
-            "",
-            "3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11)",
-        )
-        .optional(),
-        Param::angle(
-            "spherical",
-            "3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24`",
-        )
-        .optional(),
-    ]
+/// The help texts of the geometry fields every request of the truss shares.
+mod help {
+    /// `planar`.
+    pub const PLANAR: &str = "Skelton's planar truss in the y–z plane";
+    /// `cylindrical`.
+    pub const CYLINDRICAL: &str =
+        "3-D truss, cylindrical parameterisation with dimensionless offset δ (eq. 4.11)";
+    /// `spherical`.
+    pub const SPHERICAL: &str =
+        "3-D truss, spherical parameterisation with angle ε (eq. 4.12), e.g. `pi/24`";
 }
 
 fn geometry_of(cylindrical: Option<f64>, spherical: Option<f64>) -> Geometry {
@@ -128,39 +123,62 @@ impl<'de> Deserialize<'de> for ExtraStringsPrestress {
 }
 
 /// `michell`: one discrete Michell truss under a tip load (thesis chapter 4).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct MichellRequest {
     /// Complexity q (required).
+    #[param(count, help = "Complexity q (number of member levels; level-q nodes are supports)", rule = AtLeast(1.0), required)]
     pub complexity: Option<usize>,
     /// Skelton's planar truss.
+    #[param(flag, help = help::PLANAR)]
     pub planar: bool,
     /// Cylindrical offset δ.
+    #[param(number, help = help::CYLINDRICAL, optional)]
     pub cylindrical: Option<f64>,
     /// Spherical angle ε (rad).
     #[serde(with = "serde_angle_option")]
+    #[param(angle, help = help::SPHERICAL, optional)]
     pub spherical: Option<f64>,
     /// Departure angle β (rad, required).
     #[serde(with = "serde_angle_option")]
+    #[param(angle, help = "Departure angle β, e.g. `pi/6` or `30deg`", required)]
     pub beta: Option<f64>,
     /// Segmentation angle φ (rad, required).
     #[serde(with = "serde_angle_option")]
+    #[param(angle, help = "Segmentation angle φ, e.g. `pi/8`", required)]
     pub phi: Option<f64>,
     /// Initial radius r₀ (m).
+    #[param(number, unit = "m", help = "Initial radius r₀", positive)]
     pub r0: f64,
     /// Tip load magnitude w₀ (N).
+    #[param(number, unit = "N", help = "Tip load magnitude w₀", positive)]
     pub load: f64,
     /// Load azimuth φ_w (rad).
     #[serde(with = "serde_angle")]
+    #[param(
+        angle,
+        help = "Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃"
+    )]
     pub azimuth: f64,
     /// Load polar angle γ from ι̂₃ (rad).
     #[serde(with = "serde_angle")]
+    #[param(angle, help = "Load polar angle γ from ι̂₃ (eq. 4.13)")]
     pub polar: f64,
     /// Material of bars and strings (a built-in name).
+    #[param(
+        text,
+        help = "Material of bars and strings (aluminium, steel, titanium, carbon_fibre, nylon, uhmwpe)"
+    )]
     pub material: String,
     /// Extra strings of §4.6 and their prestress.
+    #[param(
+        text,
+        help = "Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to this many newtons, or `auto`: to the smallest prestress above which no member but the tip members changes sign over the nominal load region of complexity 1",
+        optional
+    )]
     pub extra_strings: Option<ExtraStringsPrestress>,
     /// Force propagation method.
+    #[param(choice = ["recursive", "global"], help = "Force propagation method")]
     pub method: Method,
 }
 
@@ -189,45 +207,6 @@ impl Default for MichellRequest {
 
 impl Request for MichellRequest {
     const NAME: &'static str = "michell";
-
-    fn params() -> Vec<Param> {
-        let mut p = vec![Param::count(
-            "complexity",
-            "Complexity q (number of member levels; level-q nodes are supports)",
-        )
-        .rule(Rule::AtLeast(1.0))
-        .required()];
-        p.extend(geometry_params());
-        p.extend([
-            Param::angle("beta", "Departure angle β, e.g. `pi/6` or `30deg`").required(),
-            Param::angle("phi", "Segmentation angle φ, e.g. `pi/8`").required(),
-            Param::number("r0", "m", "Initial radius r₀").positive(),
-            Param::number("load", "N", "Tip load magnitude w₀").positive(),
-            Param::angle(
-                "azimuth",
-                "Load azimuth φ_w (eq. 4.13); with the default polar angle the load is −ι̂₃",
-            ),
-            Param::angle("polar", "Load polar angle γ from ι̂₃ (eq. 4.13)"),
-            Param::text(
-                "material",
-                "Material of bars and strings (aluminium, steel, titanium, carbon_fibre, \
-                 nylon, uhmwpe)",
-            ),
-            Param::text(
-                "extra_strings",
-                "Add the extra strings of §4.6 (q ≥ 2, 3-D), each pretensioned to this many \
-                 newtons, or `auto`: to the smallest prestress above which no member but the \
-                 tip members changes sign over the nominal load region of complexity 1",
-            )
-            .optional(),
-            Param::choice(
-                "method",
-                &["recursive", "global"],
-                "Force propagation method",
-            ),
-        ]);
-        p
-    }
 
     /// Exactly one of `planar`, `cylindrical`, `spherical`.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
@@ -364,29 +343,53 @@ fn resolve(
 
 /// `michell optimize`: the mass-optimal truss for a given radius ratio ρ = r_q/r₀
 /// ([`optimize`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct MichellOptimizeRequest {
     /// Skelton's planar truss (yield sizing).
+    #[param(flag, help = help::PLANAR)]
     pub planar: bool,
     /// Cylindrical offset δ (yield + buckling sizing).
+    #[param(number, help = help::CYLINDRICAL, optional)]
     pub cylindrical: Option<f64>,
     /// Spherical angle ε (rad, yield + buckling sizing).
     #[serde(with = "serde_angle_option")]
+    #[param(angle, help = help::SPHERICAL, optional)]
     pub spherical: Option<f64>,
     /// ρ = r_q / r₀ in (0, 1) (required).
+    #[param(
+        number,
+        help = "ρ = r_q / r₀ in (0, 1): the support circle over the tip radius",
+        required
+    )]
     pub radius_ratio: Option<f64>,
     /// The complexity q; optimised when unset (then a joint mass is needed).
+    #[param(count, help = "The complexity q; optimised when left out (then joint_mass is needed)", rule = AtLeast(1.0), optional)]
     pub complexity: Option<usize>,
     /// Mass of each joint (kg).
+    #[param(
+        number,
+        unit = "kg",
+        help = "Mass of each joint, added per node",
+        non_negative
+    )]
     pub joint_mass: f64,
     /// Largest complexity the search tries.
+    #[param(count, help = "Largest complexity the search tries")]
     pub max_complexity: usize,
     /// Material of bars and strings.
+    #[param(text, help = "Material of bars and strings")]
     pub material: String,
     /// Tip load w₀ (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Tip load w₀, perpendicular to the tip radius (−ι̂₃)",
+        positive
+    )]
     pub load: f64,
     /// Initial (tip) radius r₀ (m).
+    #[param(number, unit = "m", help = "Initial (tip) radius r₀", positive)]
     pub r0: f64,
 }
 
@@ -433,35 +436,6 @@ impl MichellOptimizeRequest {
 impl Request for MichellOptimizeRequest {
     const NAME: &'static str = "michell_optimize";
 
-    fn params() -> Vec<Param> {
-        let mut p = geometry_params().to_vec();
-        p.extend([
-            Param::number(
-                "radius_ratio",
-                "",
-                "ρ = r_q / r₀ in (0, 1): the support circle over the tip radius",
-            )
-            .required(),
-            Param::count(
-                "complexity",
-                "The complexity q; optimised when left out (then joint_mass is needed)",
-            )
-            .rule(Rule::AtLeast(1.0))
-            .optional(),
-            Param::number("joint_mass", "kg", "Mass of each joint, added per node").non_negative(),
-            Param::count("max_complexity", "Largest complexity the search tries"),
-            Param::text("material", "Material of bars and strings"),
-            Param::number(
-                "load",
-                "N",
-                "Tip load w₀, perpendicular to the tip radius (−ι̂₃)",
-            )
-            .positive(),
-            Param::number("r0", "m", "Initial (tip) radius r₀").positive(),
-        ]);
-        p
-    }
-
     /// Exactly one of `planar`, `cylindrical`, `spherical`.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         exclusive(
@@ -476,14 +450,17 @@ pub const TABLE_MAX_COMPLEXITY: usize = 35;
 
 /// `michell-table` (Fig. 4.18): mass against complexity q = 2..=`max_complexity`, planar and
 /// δ = 0.1, 0.25, 0.5 ([`FIG_4_18_DELTAS`]), r₀ = 1, β = π/6, φ = π/q.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct MichellTableRequest {
     /// Largest complexity (the table runs q = 2..=Q).
+    #[param(count, help = "Largest complexity (the table runs q = 2..=Q, at most the 3-D families' 100)", rule = Closed(2.0, crate::params::MAX_COMPLEXITY_3D as f64))]
     pub max_complexity: usize,
     /// Tip load w₀ (N), along −ι̂₃.
+    #[param(number, unit = "N", help = "Tip load w₀, along −ι̂₃", positive)]
     pub load: f64,
     /// Material of bars and strings.
+    #[param(text, help = "Material of bars and strings")]
     pub material: String,
 }
 
@@ -531,18 +508,6 @@ impl MichellTableRequest {
 
 impl Request for MichellTableRequest {
     const NAME: &'static str = "michell_table";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::count(
-                "max_complexity",
-                "Largest complexity (the table runs q = 2..=Q, at most the 3-D families' 100)",
-            )
-            .rule(Rule::Closed(2.0, crate::params::MAX_COMPLEXITY_3D as f64)),
-            Param::number("load", "N", "Tip load w₀, along −ι̂₃").positive(),
-            Param::text("material", "Material of bars and strings"),
-        ]
-    }
 }
 
 #[cfg(test)]

@@ -15,7 +15,8 @@ use crate::report::{tbar_report, TbarReport, TbarRequest};
 use michell3d::{Geometry, MichellParams};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle_option;
-use tensegrity_core::request::{exclusive, InvalidParameter, Param, Request, Rule};
+use tensegrity_core::request::{exclusive, InvalidParameter, Request};
+use tensegrity_derive::Params;
 
 /// Default complexity q of a T-bar tread.
 pub const DEFAULT_COMPLEXITY: usize = 1;
@@ -24,41 +25,89 @@ pub const DEFAULT_R0: f64 = 1.0;
 
 /// `tbar`: the T-bar tread, wheel or extended wheel of thesis chapter 5 (statics, load
 /// envelope, mass; [`tbar_report`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct TbarStaticRequest {
     /// Complexity q (lattice levels; level q lies on the rim).
+    #[param(count, help = "Complexity q (lattice levels; level q lies on the rim)", rule = AtLeast(1.0))]
     pub complexity: usize,
     /// Departure angle β (rad, required).
     #[serde(with = "serde_angle_option")]
+    #[param(angle, help = "Departure angle β (e.g. `pi/6`, `30deg`)", required)]
     pub beta: Option<f64>,
     /// Segmentation angle φ (rad, required); a wheel needs π/φ integer.
     #[serde(with = "serde_angle_option")]
+    #[param(
+        angle,
+        help = "Segmentation angle φ; a wheel needs π/φ integer",
+        required
+    )]
     pub phi: Option<f64>,
     /// Cylindrical parameterisation with offset δ.
+    #[param(
+        number,
+        help = "Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11)",
+        optional
+    )]
     pub cylindrical: Option<f64>,
     /// Spherical parameterisation with angle ε (rad).
     #[serde(with = "serde_angle_option")]
+    #[param(
+        angle,
+        help = "Spherical parameterisation with angle ε (eq. 4.12)",
+        optional
+    )]
     pub spherical: Option<f64>,
     /// Tip radius r₀ (m).
+    #[param(number, unit = "m", help = "Tip radius r₀", positive)]
     pub r0: f64,
     /// Build the wheel: π/φ treads every 2φ about ι̂₁.
+    #[param(flag, help = "Build the wheel: π/φ treads every 2φ about ι̂₁")]
     pub wheel: bool,
     /// Build the extended wheel: the wheel and a copy translated by this offset (m) along ι̂₁.
+    #[param(
+        number,
+        unit = "m",
+        help = "Build the extended wheel: the wheel and a copy translated by this offset along ι̂₁",
+        optional
+    )]
     pub extended: Option<f64>,
     /// Base of the radial bar.
+    #[param(choice = ["rim", "chord"], help = "Base of the radial bar")]
     pub bar_base: BarBase,
     /// Rigid rim (`fixed`) or a free rim body of bars with a hub (`body`).
+    #[param(choice = ["fixed", "body"], help = "Rim: rigid supports (`fixed`) or a free rim body of bars with a hub (`body`)")]
     pub rim: RimMode,
     /// Tip load magnitude w₀ (N) of the load envelope.
+    #[param(
+        number,
+        unit = "N",
+        help = "Tip load magnitude w₀ of the load envelope",
+        positive
+    )]
     pub load: f64,
     /// Axial stiffness EA of every member (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Axial stiffness EA of every member",
+        positive
+    )]
     pub ea: f64,
     /// Bar compression P (N) of the slack map.
+    #[param(
+        number,
+        unit = "N",
+        help = "Bar compression P of the slack map",
+        positive,
+        optional
+    )]
     pub prestress: Option<f64>,
     /// Directions of the slack map.
+    #[param(count, help = "Directions of the slack map (quasi-uniform sphere)", rule = Closed(1.0, MAX_DIRECTIONS as f64))]
     pub directions: usize,
     /// Material of the sizing.
+    #[param(text, help = "Material of the sizing (built-in table)")]
     pub material: String,
 }
 
@@ -133,55 +182,6 @@ impl TbarStaticRequest {
 
 impl Request for TbarStaticRequest {
     const NAME: &'static str = "tbar";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::count(
-                "complexity",
-                "Complexity q (lattice levels; level q lies on the rim)",
-            )
-            .rule(Rule::AtLeast(1.0)),
-            Param::angle("beta", "Departure angle β (e.g. `pi/6`, `30deg`)").required(),
-            Param::angle("phi", "Segmentation angle φ; a wheel needs π/φ integer").required(),
-            Param::number(
-                "cylindrical",
-                "",
-                "Cylindrical parameterisation with offset δ (dimensionless, eq. 4.11)",
-            )
-            .optional(),
-            Param::angle(
-                "spherical",
-                "Spherical parameterisation with angle ε (eq. 4.12)",
-            )
-            .optional(),
-            Param::number("r0", "m", "Tip radius r₀").positive(),
-            Param::flag("wheel", "Build the wheel: π/φ treads every 2φ about ι̂₁"),
-            Param::number(
-                "extended",
-                "m",
-                "Build the extended wheel: the wheel and a copy translated by this offset \
-                 along ι̂₁",
-            )
-            .optional(),
-            Param::choice("bar_base", &["rim", "chord"], "Base of the radial bar"),
-            Param::choice(
-                "rim",
-                &["fixed", "body"],
-                "Rim: rigid supports (`fixed`) or a free rim body of bars with a hub (`body`)",
-            ),
-            Param::number("load", "N", "Tip load magnitude w₀ of the load envelope").positive(),
-            Param::number("ea", "N", "Axial stiffness EA of every member").positive(),
-            Param::number("prestress", "N", "Bar compression P of the slack map")
-                .positive()
-                .optional(),
-            Param::count(
-                "directions",
-                "Directions of the slack map (quasi-uniform sphere)",
-            )
-            .rule(Rule::Closed(1.0, MAX_DIRECTIONS as f64)),
-            Param::text("material", "Material of the sizing (built-in table)"),
-        ]
-    }
 
     /// Exactly one of `cylindrical`, `spherical`.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {

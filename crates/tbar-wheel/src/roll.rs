@@ -31,7 +31,8 @@ use michell3d::MichellParams;
 pub use report::{FullDetails, TbarRollReport, TbarRollRow};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-use tensegrity_core::request::{InvalidParameter, Kind, Param, Request, Rule};
+use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_derive::Params;
 use wheel_rolling::defaults as roll_defaults;
 use wheel_rolling::{
     roll_checked, ContactKind, Decision, Fidelity, FidelityChoice, RollSettings, RunChecks,
@@ -85,55 +86,112 @@ pub const DEFAULT_CYLINDRICAL: f64 = 0.25;
 /// fields left unset (`null`) take the documented defaults of their methods, some of which
 /// depend on the fidelity ([`TbarRollRequest::t_end`], [`TbarRollRequest::treads`],
 /// [`TbarRollRequest::rim`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
+#[params(
+    order = "incline, t_end, dt, gravity, bar_density, mu_static, mu_kinetic, restitution, rim_density, string_stiffness, min_tension, contact, ground_stiffness, ground_damping"
+)]
 #[serde(default, deny_unknown_fields)]
 pub struct TbarRollRequest {
     /// Complexity q of the treads.
+    #[param(count, help = "Complexity q", rule = AtLeast(1.0))]
     pub complexity: usize,
     /// Departure angle β (rad).
     #[serde(with = "tensegrity_core::angle::serde_angle")]
+    #[param(angle, help = "Departure angle β")]
     pub beta: f64,
     /// Cylindrical parameterisation with offset δ (m); exclusive with `spherical`; neither
     /// given: δ = [`DEFAULT_CYLINDRICAL`].
+    #[param(
+        number,
+        help = "Cylindrical parameterisation with offset δ (neither given: δ = 0.25)",
+        optional
+    )]
     pub cylindrical: Option<f64>,
     /// Spherical parameterisation with angle ε (rad); exclusive with `cylindrical`.
     #[serde(with = "tensegrity_core::angle::serde_angle_option")]
+    #[param(angle, help = "Spherical parameterisation with angle ε", optional)]
     pub spherical: Option<f64>,
     /// Tip radius r₀ (m): the rolling polygon's circumradius.
+    #[param(
+        number,
+        unit = "m",
+        help = "Tip radius r₀: the rolling polygon's circumradius",
+        positive
+    )]
     pub r0: f64,
     /// Roll the extended wheel with its copy at this offset (m) along ι̂₁; unset: the single
     /// loop.
+    #[param(
+        number,
+        unit = "m",
+        help = "Roll the extended wheel with its copy at this offset",
+        optional
+    )]
     pub extended: Option<f64>,
     /// Base of the radial bar.
+    #[param(choice = ["rim", "chord"], help = "Base of the radial bar")]
     pub bar_base: BarBase,
     /// Rim mass: `fixed` (massless rigid rim) or `body` (the rim body's bars); unset: see
     /// [`TbarRollRequest::rim`].
+    #[param(choice = ["fixed", "body"], help = "Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)", optional)]
     pub rim: Option<RimMode>,
     /// Rolling model: `rigid`, `full` or `auto` (the fidelity policy of
     /// [`wheel_rolling::fidelity`]: rigid only where the two models agree within their
     /// uncertainty on the scene's class, else full). `auto` takes the full model's defaults
     /// (it may run the full model).
+    #[param(choice = FidelityChoice::NAMES, help = "Rolling model (auto: rigid only where rigid and full agree within their uncertainty on this scene class, else full; takes the full model's defaults)")]
     pub fidelity: FidelityChoice,
     /// Numbers of treads n = π/φ to roll; unset: see [`TbarRollRequest::treads`].
+    #[param(counts, help = "Numbers of treads n = π/φ, each at least 3 (default 8,12,16,24 rigid, 8 full)", rule = AtLeast(3.0), optional)]
     pub treads: Option<Vec<usize>>,
     /// Slope, step, gravity, restitution, string and ground stiffness, ground damping.
     #[serde(flatten)]
     pub settings: RollSettings,
     /// Simulated time (s); unset: see [`TbarRollRequest::t_end`].
+    #[param(
+        number,
+        unit = "s",
+        help = "Simulated time (default 10 s rigid, 1 s full)",
+        positive,
+        optional
+    )]
     pub t_end: Option<f64>,
     /// Bar density of both wheels (kg/m); strings are massless.
+    #[param(number, unit = "kg/m", help = "Bar density of both wheels", positive)]
     pub bar_density: f64,
     /// Static friction coefficient of the slope.
+    #[param(number, help = "Static friction coefficient", non_negative)]
     pub mu_static: f64,
     /// Kinetic friction coefficient; unset: 0.75 μ_s.
+    #[param(
+        number,
+        help = "Kinetic friction coefficient (default 0.75 μ_s)",
+        non_negative,
+        optional
+    )]
     pub mu_kinetic: Option<f64>,
     /// Density of the rim body's bars (kg/m); unset: see [`TbarRollRequest::rim_density`].
+    #[param(
+        number,
+        unit = "kg/m",
+        help = "Density of the rim body's bars (default: bar_density for the rigid model, 0.05 kg/m for full and auto)",
+        positive,
+        optional
+    )]
     pub rim_density: Option<f64>,
     /// Full model: smallest string tension of the prestress (N); unset: the prestress that
     /// carries twice the wheel's weight on one tip of each copy from every direction.
+    #[param(
+        number,
+        unit = "N",
+        help = "Full model: smallest string tension of the prestress (default: twice the weight per tip)",
+        positive,
+        optional
+    )]
     pub min_tension: Option<f64>,
     /// Ground contact of the full model (T-bar and toroid columns): `penalty`, `thesis` or
     /// `stick`; default [`DEFAULT_CONTACT`].
+    #[param(choice = ContactKind::NAMES, help = "Ground contact of the full model, T-bar and toroid (default stick: friction that holds a stick)")]
     pub contact: ContactKind,
     /// `strict` (an invalid report is an error) and `convergence_check` (every run repeated
     /// at a refined resolution, [`wheel_rolling::convergence`]).
@@ -179,82 +237,6 @@ impl Default for TbarRollRequest {
 
 impl Request for TbarRollRequest {
     const NAME: &'static str = "tbar_roll";
-
-    fn params() -> Vec<Param> {
-        let setting = RollSettings::param;
-        let checks = RunChecks::params();
-        vec![
-            Param::count("complexity", "Complexity q").rule(Rule::AtLeast(1.0)),
-            Param::angle("beta", "Departure angle β"),
-            Param::number(
-                "cylindrical",
-                "",
-                "Cylindrical parameterisation with offset δ (neither given: δ = 0.25)",
-            )
-            .optional(),
-            Param::angle("spherical", "Spherical parameterisation with angle ε").optional(),
-            Param::number("r0", "m", "Tip radius r₀: the rolling polygon's circumradius")
-                .positive(),
-            Param::number("extended", "m", "Roll the extended wheel with its copy at this offset")
-                .optional(),
-            Param::choice("bar_base", &["rim", "chord"], "Base of the radial bar"),
-            Param::choice(
-                "rim",
-                &["fixed", "body"],
-                "Rim mass: fixed (massless rigid rim; rigid default) or body (full: only choice)",
-            )
-            .optional(),
-            Param::choice(
-                "fidelity",
-                FidelityChoice::NAMES,
-                "Rolling model (auto: rigid only where rigid and full agree within their uncertainty on this scene class, else full; takes the full model's defaults)",
-            ),
-            Param::new(
-                "treads",
-                Kind::Counts,
-                "",
-                "Numbers of treads n = π/φ, each at least 3 (default 8,12,16,24 rigid, 8 full)",
-            )
-            .rule(Rule::AtLeast(3.0))
-            .optional(),
-            setting("incline"),
-            Param::number("t_end", "s", "Simulated time (default 10 s rigid, 1 s full)")
-                .positive()
-                .optional(),
-            setting("dt"),
-            setting("gravity"),
-            Param::number("bar_density", "kg/m", "Bar density of both wheels").positive(),
-            Param::number("mu_static", "", "Static friction coefficient").non_negative(),
-            Param::number("mu_kinetic", "", "Kinetic friction coefficient (default 0.75 μ_s)")
-                .non_negative()
-                .optional(),
-            setting("restitution"),
-            Param::number(
-                "rim_density",
-                "kg/m",
-                "Density of the rim body's bars (default: bar_density for the rigid model, 0.05 kg/m for full and auto)",
-            )
-            .positive()
-            .optional(),
-            setting("string_stiffness"),
-            Param::number(
-                "min_tension",
-                "N",
-                "Full model: smallest string tension of the prestress (default: twice the weight per tip)",
-            )
-            .positive()
-            .optional(),
-            Param::choice(
-                "contact",
-                ContactKind::NAMES,
-                "Ground contact of the full model, T-bar and toroid (default stick: friction that holds a stick)",
-            ),
-            setting("ground_stiffness"),
-            setting("ground_damping"),
-            checks[0],
-            checks[1],
-        ]
-    }
 
     /// Finite numbers and `dt` within the output interval ([`RollSettings::check`]); the full
     /// model needs the rim body; one parameterisation; the treads given, at most

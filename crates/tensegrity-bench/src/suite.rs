@@ -17,7 +17,8 @@ pub use crate::count::{CountedRun, InstructionCounter};
 use crate::series::{self, Series, SeriesKind};
 use crate::BenchError;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{Param, Request, Rule};
+use tensegrity_core::request::Request;
+use tensegrity_derive::Params;
 
 /// The note of a report without an instruction counter.
 const NO_COUNTER: &str = "no instruction counter (valgrind) available";
@@ -29,15 +30,24 @@ pub const DEFAULT_REPEATS: usize = 5;
 pub const QUICK_COUNT_STEPS: u64 = 200;
 
 /// The benchmark, as data.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct AnchorsRequest {
     /// The small size set of every series (for a smoke test); the anchors run whole.
+    #[param(
+        flag,
+        help = "The small size set of every scaling series (a smoke test); the anchors run whole"
+    )]
     pub quick: bool,
     /// Runs per measurement; the best is reported.
+    #[param(count, help = "Runs per measurement (the best is reported)", rule = AtLeast(1.0))]
     pub repeats: usize,
     /// Count instructions (per anchor step, per series point) where a counter is available
     /// (callgrind).
+    #[param(
+        flag,
+        help = "Count instructions (per step of each anchor, per point of each scaling series) under callgrind when valgrind is installed"
+    )]
     pub instructions: bool,
 }
 
@@ -54,21 +64,6 @@ impl Default for AnchorsRequest {
 
 impl Request for AnchorsRequest {
     const NAME: &'static str = "bench_anchors";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::flag(
-                "quick",
-                "The small size set of every scaling series (a smoke test); the anchors run whole",
-            ),
-            Param::count("repeats", "Runs per measurement (the best is reported)")
-                .rule(Rule::AtLeast(1.0)),
-            Param::flag(
-                "instructions",
-                "Count instructions (per step of each anchor, per point of each scaling series) under callgrind when valgrind is installed",
-            ),
-        ]
-    }
 }
 
 /// One anchor's measurement.

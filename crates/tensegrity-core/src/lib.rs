@@ -25,6 +25,9 @@
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+// the derive macros of tensegrity-derive name this crate by its path
+extern crate self as tensegrity_core;
+
 pub mod angle;
 pub mod budget;
 pub mod columns;

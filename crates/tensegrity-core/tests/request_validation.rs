@@ -2,11 +2,13 @@
 //! its JSON form writes them as `null`, which the per-field rules would take for unset.
 
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{check_description, Param, Request};
+use tensegrity_core::request::{check_description, Request};
+use tensegrity_derive::Params;
 
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 struct Geometry {
+    #[param(number, unit = "m", help = "Radius", positive)]
     radius: f64,
 }
 
@@ -16,12 +18,16 @@ impl Default for Geometry {
     }
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 struct Run {
+    #[param(number, unit = "s", help = "Simulated time", positive)]
     t_end: f64,
+    #[param(number, unit = "N s/m", help = "Damping", optional)]
     damping: Option<f64>,
+    #[param(numbers, help = "Sample points")]
     grid: Vec<f64>,
+    #[param(count, help = "Sides")]
     sides: usize,
     #[serde(flatten)]
     geometry: Geometry,
@@ -41,15 +47,6 @@ impl Default for Run {
 
 impl Request for Run {
     const NAME: &'static str = "run";
-    fn params() -> Vec<Param> {
-        vec![
-            Param::number("t_end", "s", "Simulated time").positive(),
-            Param::number("damping", "N s/m", "Damping").optional(),
-            Param::numbers("grid", "", "Sample points"),
-            Param::count("sides", "Sides"),
-            Param::number("radius", "m", "Radius").positive(),
-        ]
-    }
 }
 
 /// The field and the text of the error of `run`'s validation.

@@ -86,7 +86,76 @@
 //!     ]
 //! );
 //! ```
+//!
+//! `#[derive(Params)]`: the parameters of a request (one `tensegrity_core::request::Param` per
+//! field: name, kind, unit, help, rule, optional / required), declared once on its fields. It
+//! implements `tensegrity_core::request::Params`, the supertrait of `Request` that the command
+//! line's flags, the sweep axes and the Python signatures, stubs and docstrings are built from.
+//! Field by field, in field order (the name is the serde key: `#[serde(rename = "…")]`
+//! honoured; `#[serde(skip)]` fields have none):
+//!
+//! - `#[param(<kind>, help = …)]`, the kind one of `number`, `count`, `angle` (unit `rad`),
+//!   `flag`, `text`, `counts`, `numbers`, or `choice = ["a", "b"]` / `choice = Type::NAMES` (a
+//!   const `&[&str]`); `help` a string or a const path;
+//! - `unit = "N"`; a rule: `positive`, `non_negative` or `rule = AtLeast(1.0)` (a
+//!   `tensegrity_core::request::Rule`, its variants in scope); `optional` (may be `null`),
+//!   `required` (no default, must be given);
+//! - `#[serde(flatten)]` or `#[param(flatten)]` (a part serialised flat by other means): the
+//!   field type's own `Params`, spliced in;
+//! - `#[params(order = "a, b, …")]` on the struct: those parameters in that order, in the
+//!   places they take together (a request that lists a flattened part's fields among its own).
+//!
+//! A field without `#[param]` (not flattened, not skipped) is refused at compile time.
+//!
+//! ```
+//! use serde::{Deserialize, Serialize};
+//! use tensegrity_core::request::{Kind, Param, Params, Rule};
+//! use tensegrity_derive::Params;
+//!
+//! #[derive(Default, Serialize, Deserialize, Params)]
+//! #[serde(default)]
+//! struct Checks {
+//!     #[param(flag, help = "Fail on an invalid result")]
+//!     strict: bool,
+//! }
+//!
+//! const METHODS: &[&str] = &["fdm", "dr"];
+//!
+//! #[derive(Default, Serialize, Deserialize, Params)]
+//! #[serde(default)]
+//! #[params(order = "strict, t_end")]
+//! struct Run {
+//!     #[param(number, unit = "s", help = "Simulated time", positive)]
+//!     t_end: f64,
+//!     #[serde(rename = "q")]
+//!     #[param(count, help = "Complexity", rule = AtLeast(1.0))]
+//!     complexity: usize,
+//!     #[param(choice = ["rk4", "rk45"], help = "Integrator", optional)]
+//!     integrator: Option<String>,
+//!     #[param(choice = METHODS, help = "Method")]
+//!     method: String,
+//!     #[param(angle, help = "Slope", required)]
+//!     incline: Option<f64>,
+//!     #[serde(flatten)]
+//!     checks: Checks,
+//! }
+//!
+//! assert_eq!(
+//!     Run::params(),
+//!     [
+//!         Param::flag("strict", "Fail on an invalid result"),
+//!         Param::count("q", "Complexity").rule(Rule::AtLeast(1.0)),
+//!         Param::choice("integrator", &["rk4", "rk45"], "Integrator").optional(),
+//!         Param::choice("method", METHODS, "Method"),
+//!         Param::angle("incline", "Slope").required(),
+//!         Param::number("t_end", "s", "Simulated time").positive(),
+//!     ]
+//! );
+//! assert_eq!(Run::params()[4].kind, Kind::Angle);
+//! ```
 #![warn(missing_docs)]
+
+mod params;
 
 use proc_macro::TokenStream;
 use proc_macro2::TokenStream as Tokens;
@@ -100,6 +169,16 @@ use syn::{parse_macro_input, Attribute, Data, DeriveInput, Error, Fields, LitStr
 pub fn derive_columns(input: TokenStream) -> TokenStream {
     let input = parse_macro_input!(input as DeriveInput);
     expand(&input)
+        .unwrap_or_else(Error::into_compile_error)
+        .into()
+}
+
+/// Derives `tensegrity_core::request::Params` (the crate docs give the rule and the
+/// attributes).
+#[proc_macro_derive(Params, attributes(param, params))]
+pub fn derive_params(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    params::expand(&input)
         .unwrap_or_else(Error::into_compile_error)
         .into()
 }
@@ -283,7 +362,7 @@ fn element(ty: &Type) -> Option<&Type> {
 
 /// What the serde attributes say about the columns.
 #[derive(Default)]
-struct Serde {
+pub(crate) struct Serde {
     rename: Option<String>,
     skip: bool,
     flatten: bool,
@@ -293,7 +372,7 @@ struct Serde {
     rename_all: bool,
 }
 
-fn serde_attrs(attrs: &[Attribute]) -> syn::Result<Serde> {
+pub(crate) fn serde_attrs(attrs: &[Attribute]) -> syn::Result<Serde> {
     let mut s = Serde::default();
     for attr in attrs.iter().filter(|a| a.path().is_ident("serde")) {
         attr.parse_nested_meta(|meta| {

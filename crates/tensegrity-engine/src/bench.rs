@@ -11,28 +11,25 @@
 //! their cost exponents).
 
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{Param, Request};
+use tensegrity_core::request::Request;
 use tensegrity_core::CoreError;
-use tensegrity_derive::Columns;
+use tensegrity_derive::{Columns, Params};
 use tensegrity_dynamics::work_precision::{self, Point, Skipped};
 
 /// The work–precision study, as data (default: every point, three timing repetitions).
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct WorkPrecisionRequest {
     /// Fewer points and a single timing repetition (a smoke test).
+    #[param(
+        flag,
+        help = "Fewer points and a single timing repetition (for a smoke test)"
+    )]
     pub quick: bool,
 }
 
 impl Request for WorkPrecisionRequest {
     const NAME: &'static str = "bench_work_precision";
-
-    fn params() -> Vec<Param> {
-        vec![Param::flag(
-            "quick",
-            "Fewer points and a single timing repetition (for a smoke test)",
-        )]
-    }
 }
 
 /// The points of the study, scene by scene, integrator by integrator.

@@ -31,37 +31,82 @@ use ::formfind::{FormFindError, Method, Settings, Synthesis, Topology};
 pub use ::formfind::{FormfindReport, Formfound};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{Estimate, Parameters};
-use tensegrity_core::request::{
-    exclusive, Categorized, Category, InvalidParameter, Param, Request, Rule,
-};
+use tensegrity_core::request::{exclusive, Categorized, Category, InvalidParameter, Request};
+use tensegrity_derive::Params;
 use tensegrity_io::IoError;
 
 /// The form-finding of a topology file or a built-in form, as data (defaults: the method by
 /// what the topology gives, the library's prestress, stiffness, bar mass and tolerances).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct FormfindRequest {
     /// The topology: a TOML file, or its text (excludes `builtin`).
+    #[param(
+        text,
+        help = "The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a value with a line break or `=`)",
+        optional
+    )]
     pub topology: Option<SceneSource>,
     /// A built-in form by name (`prism:3`, `octahedron`, `tower:3:2`, `grid:4`).
+    #[param(
+        text,
+        help = "A built-in form instead of a topology: prism:N, octahedron, tower:N:M, grid:K",
+        optional
+    )]
     pub builtin: Option<String>,
     /// The last size of the built-in, appended to its name (`prism` with n = 5: `prism:5`).
+    #[param(count, help = "The last size of the built-in form, appended to its name (builtin prism, n 5: prism:5), for sweeps", rule = AtLeast(1.0), optional)]
     pub n: Option<usize>,
     /// The method (`None`: `fdm` when every member has a force density, else `adaptive`).
+    #[param(choice = ["fdm", "adaptive", "dr"], help = "Method: fdm (force density, every member's given), adaptive (force densities found from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses); default: fdm when every member has a force density, else adaptive", optional)]
     pub method: Option<Method>,
     /// The group whose force density `ratio` multiplies.
+    #[param(
+        text,
+        help = "The group of the topology whose force density `ratio` multiplies",
+        optional
+    )]
     pub group: Option<String>,
     /// The factor on the force density of the members of `group`.
+    #[param(
+        number,
+        help = "Factor on the force density of the members of `group`",
+        positive
+    )]
     pub ratio: f64,
     /// Prestress level: the largest string tension (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Prestress level of the exported structure: the largest string tension",
+        positive
+    )]
     pub prestress: f64,
     /// Axial stiffness EA of the members that give none (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Axial stiffness EA of the members that give none (strings' rest lengths, dynamic relaxation)",
+        positive
+    )]
     pub stiffness: f64,
     /// Mass of each bar of the exported structure (kg).
+    #[param(
+        number,
+        unit = "kg",
+        help = "Mass of each bar of the exported structure",
+        positive
+    )]
     pub bar_mass: f64,
     /// Convergence tolerance of the iterative methods (relative residual).
+    #[param(
+        number,
+        help = "Convergence tolerance of the iterative methods (relative residual)",
+        positive
+    )]
     pub tolerance: f64,
     /// Iteration cap of the iterative methods.
+    #[param(count, help = "Iteration cap of the iterative methods", rule = AtLeast(1.0))]
     pub max_iterations: usize,
 }
 
@@ -86,61 +131,6 @@ impl Default for FormfindRequest {
 
 impl Request for FormfindRequest {
     const NAME: &'static str = "formfind";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::text(
-                "topology",
-                "The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a value with a line break or `=`)",
-            )
-            .optional(),
-            Param::text(
-                "builtin",
-                "A built-in form instead of a topology: prism:N, octahedron, tower:N:M, grid:K",
-            )
-            .optional(),
-            Param::count(
-                "n",
-                "The last size of the built-in form, appended to its name (builtin prism, n 5: prism:5), for sweeps",
-            )
-            .rule(Rule::AtLeast(1.0))
-            .optional(),
-            Param::choice(
-                "method",
-                &["fdm", "adaptive", "dr"],
-                "Method: fdm (force density, every member's given), adaptive (force densities found from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses); default: fdm when every member has a force density, else adaptive",
-            )
-            .optional(),
-            Param::text(
-                "group",
-                "The group of the topology whose force density `ratio` multiplies",
-            )
-            .optional(),
-            Param::number("ratio", "", "Factor on the force density of the members of `group`")
-                .positive(),
-            Param::number(
-                "prestress",
-                "N",
-                "Prestress level of the exported structure: the largest string tension",
-            )
-            .positive(),
-            Param::number(
-                "stiffness",
-                "N",
-                "Axial stiffness EA of the members that give none (strings' rest lengths, dynamic relaxation)",
-            )
-            .positive(),
-            Param::number("bar_mass", "kg", "Mass of each bar of the exported structure").positive(),
-            Param::number(
-                "tolerance",
-                "",
-                "Convergence tolerance of the iterative methods (relative residual)",
-            )
-            .positive(),
-            Param::count("max_iterations", "Iteration cap of the iterative methods")
-                .rule(Rule::AtLeast(1.0)),
-        ]
-    }
 
     /// At most one of `topology` and `builtin` (one is needed to run: [`Self::topology`]);
     /// `n` sizes a built-in; a `ratio` other than 1 scales a `group`.

@@ -11,21 +11,31 @@
 pub use crate::context::Context;
 use crate::run_error::RunError;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{InvalidParameter, Param, Request, Rule};
+use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_derive::Params;
 use tensegrity_dynamics::work_precision::{self, max_node_error, run_one, Point};
 use tensegrity_dynamics::IntegratorKind;
 
 /// One point of the work–precision study.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct IntegratorsRequest {
     /// The scene (required).
+    #[param(text, help = "A scene of the work–precision study", required)]
     pub scene: Option<String>,
     /// The integrator (required).
+    #[param(choice = IntegratorKind::NAMES, help = "The integrator", required)]
     pub integrator: Option<IntegratorKind>,
     /// dt (s) of a fixed-step integrator, rtol of an adaptive one (required).
+    #[param(
+        number,
+        help = "dt (s) of a fixed-step integrator, rtol of an adaptive one",
+        positive,
+        required
+    )]
     pub parameter: Option<f64>,
     /// Timed repetitions (the best counts).
+    #[param(count, help = "Timed repetitions (the best counts)", rule = AtLeast(1.0))]
     pub repeats: usize,
 }
 
@@ -43,21 +53,6 @@ impl Default for IntegratorsRequest {
 
 impl Request for IntegratorsRequest {
     const NAME: &'static str = "integrators";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::text("scene", "A scene of the work–precision study").required(),
-            Param::choice("integrator", IntegratorKind::NAMES, "The integrator").required(),
-            Param::number(
-                "parameter",
-                "",
-                "dt (s) of a fixed-step integrator, rtol of an adaptive one",
-            )
-            .positive()
-            .required(),
-            Param::count("repeats", "Timed repetitions (the best counts)").rule(Rule::AtLeast(1.0)),
-        ]
-    }
 
     /// The scene is one of [`work_precision::scenes`].
     fn check(&self) -> Result<(), InvalidParameter> {

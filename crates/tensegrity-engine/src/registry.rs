@@ -1,5 +1,5 @@
 //! The command registry: every command that takes a request, by name (the sweep study of the
-//! same name), with its parameters ([`Request::params`]), the scalar result columns of its
+//! same name), with its parameters ([`tensegrity_core::request::Params::params`]), the scalar result columns of its
 //! report and a `run` from named JSON values to the report as JSON:
 //!
 //! > values → [`Request::from_values`] → the library call → `serde_json::to_value`.

@@ -32,8 +32,9 @@ use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
 use tensegrity_core::budget::Estimate;
-use tensegrity_core::request::{InvalidParameter, Param, Request, RunChecks};
+use tensegrity_core::request::{InvalidParameter, Request, RunChecks};
 use tensegrity_core::CoreError;
+use tensegrity_derive::Params;
 use tensegrity_dynamics::recorder::{Sample, SampleSink};
 use tensegrity_dynamics::Simulation;
 use tensegrity_dynamics::{
@@ -45,27 +46,61 @@ use tensegrity_io::scene::{Scene, SimulationSpec};
 pub const DEFAULT_SAMPLES: f64 = 200.0;
 
 /// A scene run in time, as data: every field unset keeps the scene's value.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct SimulateCommand {
     /// The scene: a TOML file, or its text (required).
+    #[param(
+        text,
+        help = "The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`, or the scene's TOML text",
+        required
+    )]
     pub scene: Option<SceneSource>,
     /// End time (s); overrides `[simulation] t_end`.
+    #[param(
+        number,
+        unit = "s",
+        help = "End time; overrides `[simulation] t_end`",
+        positive,
+        optional
+    )]
     pub t_end: Option<f64>,
     /// Integrator; overrides `[simulation] integrator`.
+    #[param(choice = ["rk4", "rk45", "rattle", "sdirk", "imex", "imex-ark"], help = "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage)", optional)]
     pub integrator: Option<IntegratorKind>,
     /// Fixed step (rk4, rattle) or largest step (rk45, sdirk), s.
+    #[param(
+        number,
+        unit = "s",
+        help = "Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)",
+        positive,
+        optional
+    )]
     pub dt: Option<f64>,
     /// Relative tolerance (rk45, sdirk).
+    #[param(number, help = "Relative tolerance (rk45, sdirk)", positive, optional)]
     pub rtol: Option<f64>,
     /// Absolute tolerance (rk45, sdirk).
+    #[param(number, help = "Absolute tolerance (rk45, sdirk)", positive, optional)]
     pub atol: Option<f64>,
     /// Sampling interval of the written samples (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "Sampling interval of the written trajectory; default: the scene's output times, else t_end/200",
+        positive,
+        optional
+    )]
     pub output_interval: Option<f64>,
     /// Fail when the run has a drift warning (or an unconverged final state).
+    #[param(
+        flag,
+        help = "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge"
+    )]
     pub strict: bool,
     /// Re-run at a refined resolution beside the run ([`SimulateCommand::refine`]) and
     /// report the final state's change in `convergence`.
+    #[param(flag, help = RunChecks::CONVERGENCE_CHECK_HELP)]
     pub convergence_check: bool,
 }
 
@@ -88,50 +123,6 @@ impl Default for SimulateCommand {
 
 impl Request for SimulateCommand {
     const NAME: &'static str = "simulate";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::text(
-                "scene",
-                "The scene file (TOML) with an optional `[simulation]`, `[ground]`, `[[actuation]]`, or the scene's TOML text",
-            )
-            .required(),
-            Param::number("t_end", "s", "End time; overrides `[simulation] t_end`")
-                .positive()
-                .optional(),
-            Param::choice(
-                "integrator",
-                &["rk4", "rk45", "rattle", "sdirk", "imex", "imex-ark"],
-                "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage)",
-            )
-            .optional(),
-            Param::number(
-                "dt",
-                "s",
-                "Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)",
-            )
-            .positive()
-            .optional(),
-            Param::number("rtol", "", "Relative tolerance (rk45, sdirk)")
-                .positive()
-                .optional(),
-            Param::number("atol", "", "Absolute tolerance (rk45, sdirk)")
-                .positive()
-                .optional(),
-            Param::number(
-                "output_interval",
-                "s",
-                "Sampling interval of the written trajectory; default: the scene's output times, else t_end/200",
-            )
-            .positive()
-            .optional(),
-            Param::flag(
-                "strict",
-                "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge",
-            ),
-            RunChecks::params()[1],
-        ]
-    }
 }
 
 impl SimulateCommand {

@@ -24,8 +24,9 @@ use crate::context::Context;
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{self, Estimate, Limits};
-use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::request::{InvalidParameter, Request};
 use tensegrity_core::{CoreError, Structure};
+use tensegrity_derive::Params;
 use tensegrity_io::scene::Scene;
 use tensegrity_statics::stiffness::MassModel;
 use tensegrity_statics::{
@@ -35,62 +36,48 @@ use tensegrity_statics::{statics_report, StaticsReport, StaticsRequest};
 
 /// The statics of a scene, as data (defaults: the SVD's own rank tolerance, the method
 /// chosen by size, no modes, the lumped mass, a load that is not carried an error).
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct StaticsCommand {
     /// The scene: a TOML file, or its text (required).
+    #[param(
+        text,
+        help = "The scene file (TOML), or the scene's TOML text (a value with a line break or `=`)",
+        required
+    )]
     pub scene: Option<SceneSource>,
     /// Relative rank tolerance of the SVD, in (0, 1) (`None`: max(rows, cols) · ε).
+    #[param(
+        number,
+        help = "Relative rank tolerance of the SVD, in (0, 1) (default: max(rows, cols) · machine epsilon)",
+        positive,
+        optional
+    )]
     pub rank_tol: Option<f64>,
     /// Also report the k lowest natural frequencies.
+    #[param(
+        count,
+        help = "Also report the K lowest natural frequencies about the current state (strings need stiffness and rest length, bars mass, material and radius)",
+        optional
+    )]
     pub modes: Option<usize>,
     /// The mass matrix of the modes.
+    #[param(choice = ["lumped", "consistent"], help = "Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the rigid-bar mass matrix of the dynamics)")]
     pub mass: MassModel,
     /// Report the least-squares force densities of a load that is not carried (marked
     /// `load_carried: false`, without sizing) instead of failing.
+    #[param(
+        flag,
+        help = "When the loads cannot be carried (the structure is a mechanism for them), report the least-squares force densities marked `load_carried: false`, without sizing, instead of failing"
+    )]
     pub least_squares: bool,
     /// The factorisation: by size, the dense SVD or the sparse QR.
+    #[param(choice = ["auto", "dense", "sparse"], help = "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 300 dofs and members on), dense or sparse")]
     pub method: StaticsMethod,
 }
 
 impl Request for StaticsCommand {
     const NAME: &'static str = "statics";
-
-    fn params() -> Vec<Param> {
-        vec![
-            Param::text(
-                "scene",
-                "The scene file (TOML), or the scene's TOML text (a value with a line break or `=`)",
-            )
-            .required(),
-            Param::number(
-                "rank_tol",
-                "",
-                "Relative rank tolerance of the SVD, in (0, 1) (default: max(rows, cols) · machine epsilon)",
-            )
-            .positive()
-            .optional(),
-            Param::count(
-                "modes",
-                "Also report the K lowest natural frequencies about the current state (strings need stiffness and rest length, bars mass, material and radius)",
-            )
-            .optional(),
-            Param::choice(
-                "mass",
-                &["lumped", "consistent"],
-                "Mass matrix of the modes: lumped (half of each bar at each end) or consistent (the rigid-bar mass matrix of the dynamics)",
-            ),
-            Param::flag(
-                "least_squares",
-                "When the loads cannot be carried (the structure is a mechanism for them), report the least-squares force densities marked `load_carried: false`, without sizing, instead of failing",
-            ),
-            Param::choice(
-                "method",
-                &["auto", "dense", "sparse"],
-                "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 300 dofs and members on), dense or sparse",
-            ),
-        ]
-    }
 
     /// A relative rank tolerance lies strictly between 0 and 1.
     fn check(&self) -> Result<(), InvalidParameter> {

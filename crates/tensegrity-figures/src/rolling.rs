@@ -16,7 +16,8 @@
 
 use crate::error::{FigureError, Result};
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{InvalidParameter, Param, Request};
+use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_derive::Params;
 use tensegrity_io::figure::{Figure, Panel, Series};
 use toroid::{defaults, RollReport, RollRequest};
 use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, WheelFrame};
@@ -33,26 +34,40 @@ use wheel_rolling::{ContactKind, FidelityChoice, RollSettings, RollingSample, Wh
 /// let e = FigRollingRequest::from_values([("restitution", serde_json::json!(2))]).unwrap_err();
 /// assert_eq!(e.name, "restitution");
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct FigRollingRequest {
     /// The model: `rigid`, `full` or `auto` (the cheapest valid one per wheel).
+    #[param(choice = FidelityChoice::NAMES, help = "Model (auto: the cheapest valid one per wheel; with the default strings, full)")]
     pub fidelity: FidelityChoice,
     /// Ground contact of the full model: `penalty` or `thesis`.
+    #[param(choice = ContactKind::NAMES, help = "Ground contact of the full model")]
     pub contact: ContactKind,
     /// Slope angle (rad; reads `50deg`, `pi/4`, …).
     #[serde(with = "tensegrity_core::angle::serde_angle")]
+    #[param(angle, help = wheel_rolling::settings::help::INCLINE, rule = HalfOpen(0.0, std::f64::consts::FRAC_PI_2))]
     pub incline: f64,
     /// Simulated time (s).
+    #[param(number, unit = "s", help = "Simulated time", positive)]
     pub t_end: f64,
     /// Static friction coefficient μ_s; μ_k = 0.75 μ_s.
+    #[param(
+        number,
+        help = "Static friction coefficient μ_s (μ_k = 0.75 μ_s)",
+        non_negative
+    )]
     pub mu: f64,
     /// Normal coefficient of restitution e of an impact, in [0, 1].
+    #[param(number, help = wheel_rolling::settings::help::RESTITUTION, rule = Closed(0.0, 1.0))]
     pub restitution: f64,
     /// Ensemble size K per wheel: with K ≥ 2, K copies from perturbed starting poses
     /// ([`wheel_rolling::ensemble`]) and one run of the other model; the figure draws the
     /// copies' mean axle height and its 95 % band instead of the single run, and the
     /// output states where the spread exceeds the difference between the models. 0: none.
+    #[param(
+        count,
+        help = "Copies per wheel from perturbed starting poses (K >= 2): draws their mean and 95 % band, and states where the spread exceeds the difference between the models"
+    )]
     pub ensemble: usize,
 }
 
@@ -75,31 +90,6 @@ impl Default for FigRollingRequest {
 
 impl Request for FigRollingRequest {
     const NAME: &'static str = "fig_rolling";
-
-    fn params() -> Vec<Param> {
-        let setting = RollSettings::param;
-        vec![
-            Param::choice(
-                "fidelity",
-                FidelityChoice::NAMES,
-                "Model (auto: the cheapest valid one per wheel; with the default strings, full)",
-            ),
-            Param::choice(
-                "contact",
-                ContactKind::NAMES,
-                "Ground contact of the full model",
-            ),
-            setting("incline"),
-            Param::number("t_end", "s", "Simulated time").positive(),
-            Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
-                .non_negative(),
-            setting("restitution"),
-            Param::count(
-                "ensemble",
-                "Copies per wheel from perturbed starting poses (K >= 2): draws their mean and 95 % band, and states where the spread exceeds the difference between the models",
-            ),
-        ]
-    }
 
     /// Finite numbers (a non-finite number set in code serialises as `null`).
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
@@ -441,6 +431,7 @@ pub fn reaction_panel(runs: &[(String, &[RollingSample])]) -> Panel {
 mod tests {
     use super::*;
     use nalgebra::Vector3;
+    use tensegrity_core::request::Params;
 
     #[test]
     fn the_request_describes_every_field_and_reads_its_flat_form() {

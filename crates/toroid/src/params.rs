@@ -4,28 +4,37 @@ use crate::error::{Result, ToroidError};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
-use tensegrity_core::request::Param;
+use tensegrity_derive::Params;
 
 /// Geometry of the toroid: n sides, outer/inner tread widths T, t, tread offset D, outer,
 /// inner and rim radii R_o, R_i, R_m (all lengths in m). Serialised flat (inside a request:
 /// `#[serde(flatten)]`), each field under its name; missing fields take the reference
 /// wheel's value.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default)]
+/// One [`tensegrity_core::request::Param`] per field (`#[derive(Params)]`; lengths in m).
+/// `sides` has no range rule of its own: the builder refuses n < 3 in its own words.
 pub struct ToroidParams {
     /// Number of sides (prisms) n ≥ 3.
+    #[param(count, help = "Number of sides (prisms) n, at least 3")]
     pub sides: usize,
     /// Outer tread width T.
+    #[param(number, unit = "m", help = "Outer tread width T", positive)]
     pub outer_tread: f64,
     /// Inner tread width t.
+    #[param(number, unit = "m", help = "Inner tread width t", positive)]
     pub inner_tread: f64,
     /// Tread offset D (≥ 0).
+    #[param(number, unit = "m", help = "Tread offset D", non_negative)]
     pub offset: f64,
     /// Outer radius R_o.
+    #[param(number, unit = "m", help = "Outer radius R_o", positive)]
     pub outer_radius: f64,
     /// Inner radius R_i < R_o.
+    #[param(number, unit = "m", help = "Inner radius R_i < R_o", positive)]
     pub inner_radius: f64,
     /// Rim radius R_m.
+    #[param(number, unit = "m", help = "Rim radius R_m", positive)]
     pub rim_radius: f64,
 }
 
@@ -48,20 +57,6 @@ impl ToroidParams {
         inner_radius: 0.6,
         rim_radius: 0.8,
     };
-
-    /// One [`Param`] per field (named as the fields; lengths in m). `sides` has no range rule
-    /// of its own: the builder refuses n < 3 in its own words.
-    pub fn params() -> Vec<Param> {
-        vec![
-            Param::count("sides", "Number of sides (prisms) n, at least 3"),
-            Param::number("outer_tread", "m", "Outer tread width T").positive(),
-            Param::number("inner_tread", "m", "Inner tread width t").positive(),
-            Param::number("offset", "m", "Tread offset D").non_negative(),
-            Param::number("outer_radius", "m", "Outer radius R_o").positive(),
-            Param::number("inner_radius", "m", "Inner radius R_i < R_o").positive(),
-            Param::number("rim_radius", "m", "Rim radius R_m").positive(),
-        ]
-    }
 
     /// Sets the number of sides.
     ///

@@ -16,27 +16,37 @@ use crate::params::{Stabilize, ToroidParams};
 use crate::symmetry::SymmetryCounts;
 use crate::tipover::tipover;
 use serde::{Deserialize, Serialize, Serializer};
-use tensegrity_core::request::{InvalidParameter, Param};
+use tensegrity_core::request::InvalidParameter;
 use tensegrity_core::Structure;
-use tensegrity_derive::Columns;
+use tensegrity_derive::{Columns, Params};
 use tensegrity_statics::SpectralGap;
 
 /// One wheel: geometry, stabilising strings and bar mass per length. Serialised flat (the
 /// seven parameters, `stabilize` as `"spokes,inner"`, `bar_density`), so a request that
 /// `#[serde(flatten)]`s it reads `{"sides": 12, "stabilize": "spokes,outer", ...}`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(from = "WheelFields", into = "WheelFields")]
 pub struct WheelSpec {
     /// The seven geometric parameters.
+    #[param(flatten)]
     pub params: ToroidParams,
     /// The stabilising string sets.
+    #[param(
+        text,
+        help = "Stabilising strings: comma-separated spokes, inner, outer, or none"
+    )]
     pub stabilize: Stabilize,
     /// Bar mass per length (kg/m); strings are massless.
+    #[param(number, unit = "kg/m", help = "Bar mass per length", positive)]
     pub bar_density: f64,
     /// Scale the tread offset with the number of sides ([`WheelSpec::geometry`]): D is read
     /// as its value at [`defaults::SCALE_REFERENCE_SIDES`] sides and built as
     /// D · n_ref / n (the reference D = 0.1 gives D = 0.8/n), so that large wheels stay
     /// prestressable.
+    #[param(
+        flag,
+        help = "Scale the tread offset with the sides: D_n = D·8/n (0.8/n for the reference D = 0.1), so large wheels stay prestressable"
+    )]
     pub scale_with_n: bool,
 }
 
@@ -163,39 +173,44 @@ impl WheelSpec {
     pub fn build(&self) -> Result<Toroid> {
         build(&self.geometry(), self.stabilize, self.bar_density)
     }
-
-    /// One [`Param`] per field: the seven parameters of [`ToroidParams::params`], then
-    /// `stabilize` and `bar_density`.
-    pub fn params() -> Vec<Param> {
-        let mut out = ToroidParams::params();
-        out.push(Param::text(
-            "stabilize",
-            "Stabilising strings: comma-separated spokes, inner, outer, or none",
-        ));
-        out.push(Param::number("bar_density", "kg/m", "Bar mass per length").positive());
-        out.push(Param::flag(
-            "scale_with_n",
-            "Scale the tread offset with the sides: D_n = D·8/n (0.8/n for the reference D = 0.1), so large wheels stay prestressable",
-        ));
-        out
-    }
 }
 
 /// What [`toroid_report`] analyses (the request of `toroid`, see [`crate::request`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct ToroidRequest {
     /// The wheel.
     #[serde(flatten)]
     pub wheel: WheelSpec,
     /// Analyse a single prism (six nodes, K6) instead of the whole wheel.
+    #[param(
+        flag,
+        help = "Analyse a single prism (six nodes, K6) instead of the whole wheel"
+    )]
     pub prism_only: bool,
     /// Minimum string tension of the prestress design (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Minimum string tension of the prestress design",
+        positive
+    )]
     pub min_tension: f64,
     /// Also search the rim radii R_m for which a single prism is prestressable.
+    #[param(
+        flag,
+        help = "Also search the rim radii R_m for which a single prism is prestressable"
+    )]
     pub rim_window: bool,
     /// Give every string of [`ToroidReport::structure`] this stiffness (N/m) and the rest
     /// length that realises the prestress design (needs a prestressable toroid).
+    #[param(
+        number,
+        unit = "N/m",
+        help = "Give every string of the exported structure this stiffness and the rest length that realises the prestress design",
+        positive,
+        optional
+    )]
     pub string_stiffness: Option<f64>,
 }
 
@@ -363,17 +378,24 @@ pub fn toroid_report(request: &ToroidRequest) -> Result<ToroidReport> {
 ///
 /// σ = R_i/R_o and ε = t/T (thesis §3.3.2, Fig. 3.13) may be given instead of the inner
 /// radius and tread: they set R_i = σ R_o and t = ε T of the wheel ([`Self::wheel_spec`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct TipoverRequest {
     /// The wheel.
     #[serde(flatten)]
     pub wheel: WheelSpec,
     /// Gravity (m/s²).
+    #[param(number, unit = "m/s^2", help = "Gravity", positive)]
     pub gravity: f64,
     /// σ = R_i/R_o: sets the inner radius to σ R_o.
+    #[param(
+        number,
+        help = "σ = R_i/R_o: sets inner_radius = σ outer_radius",
+        optional
+    )]
     pub sigma: Option<f64>,
     /// ε = t/T: sets the inner tread to ε T.
+    #[param(number, help = "ε = t/T: sets inner_tread = ε outer_tread", optional)]
     pub epsilon: Option<f64>,
 }
 

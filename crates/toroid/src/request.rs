@@ -9,7 +9,7 @@
 //! | [`TipoverDynamicRequest`] | `tipover --dynamic` / `tipover_dynamic` | [`TipoverDynamicRequest::run`] |
 //! | [`TipoverRollingRequest`] | `tipover --rolling` / `tipover_rolling` | [`TipoverRollingRequest::run`] |
 //!
-//! Every one starts from the wheel ([`WheelSpec`], flattened: [`WheelSpec::params`]); the defaults
+//! Every one starts from the wheel ([`WheelSpec`], flattened: its parameters come first); the defaults
 //! are the named constants of [`crate::defaults`] and of [`DynamicTipover::default`].
 
 use crate::error::Result;
@@ -19,39 +19,11 @@ use crate::tipover_dynamic::{beside, judge, refined_failed, DynamicTipover, Dyna
 use crate::ToroidParams;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle;
-use tensegrity_core::request::{InvalidParameter, Param, Request, Rule, RunChecks};
+use tensegrity_core::request::{InvalidParameter, Request, RunChecks};
+use tensegrity_derive::Params;
 
 impl Request for ToroidRequest {
     const NAME: &'static str = "toroid";
-
-    fn params() -> Vec<Param> {
-        let mut p = WheelSpec::params();
-        p.extend([
-            Param::flag(
-                "prism_only",
-                "Analyse a single prism (six nodes, K6) instead of the whole wheel",
-            ),
-            Param::number(
-                "min_tension",
-                "N",
-                "Minimum string tension of the prestress design",
-            )
-            .positive(),
-            Param::flag(
-                "rim_window",
-                "Also search the rim radii R_m for which a single prism is prestressable",
-            ),
-            Param::number(
-                "string_stiffness",
-                "N/m",
-                "Give every string of the exported structure this stiffness and the rest \
-                 length that realises the prestress design",
-            )
-            .positive()
-            .optional(),
-        ]);
-        p
-    }
 
     /// The wheel's geometry rules across its parameters, as every request of the wheel.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
@@ -61,21 +33,6 @@ impl Request for ToroidRequest {
 
 impl Request for TipoverRequest {
     const NAME: &'static str = "tipover";
-
-    fn params() -> Vec<Param> {
-        let mut p = WheelSpec::params();
-        p.extend([
-            Param::number("gravity", "m/s^2", "Gravity").positive(),
-            Param::number(
-                "sigma",
-                "",
-                "σ = R_i/R_o: sets inner_radius = σ outer_radius",
-            )
-            .optional(),
-            Param::number("epsilon", "", "ε = t/T: sets inner_tread = ε outer_tread").optional(),
-        ]);
-        p
-    }
 
     /// σ replaces the inner radius and ε the inner tread: each may not come with the length it
     /// sets (a length other than its default).
@@ -106,67 +63,9 @@ impl Request for TipoverRequest {
     }
 }
 
-/// The time ramp of [`DynamicTipover`]'s lateral force.
-fn ramp_params() -> Vec<Param> {
-    vec![
-        Param::number("settle", "s", "Time at rest before the ramp starts").non_negative(),
-        Param::number(
-            "ramp_time",
-            "s",
-            "Ramp duration, from 0 to ramp_to × the static threshold",
-        )
-        .positive(),
-        Param::number(
-            "ramp_to",
-            "",
-            "Largest force of the ramp, as a multiple of the static threshold",
-        )
-        .positive(),
-        Param::number("hold", "s", "Time the largest force is held after the ramp").non_negative(),
-    ]
-}
-
-/// The wheel, ground and integration settings of [`DynamicTipover`] that every timed run of
-/// the prestressed wheel uses (in the order of its fields, ramp left out).
-fn contact_params() -> Vec<Param> {
-    vec![
-        Param::number("gravity", "m/s^2", "Gravity").positive(),
-        Param::number(
-            "string_stiffness",
-            "N/m",
-            "String stiffness of the wheel: the threshold is the rigid one only for a stiff \
-             wheel (a soft one deforms and tips early)",
-        )
-        .positive(),
-        Param::number(
-            "min_tension",
-            "N",
-            "Smallest string tension of the prestress",
-        )
-        .positive(),
-        Param::number("string_damping", "N s/m", "Axial damping of every string").non_negative(),
-        Param::number("ground_stiffness", "N/m", "Penalty ground stiffness").positive(),
-        Param::number("ground_damping", "N s/m", "Penalty ground damping").non_negative(),
-        Param::number(
-            "mu",
-            "",
-            "Static friction coefficient of the ground (kinetic = 0.75 μ)",
-        )
-        .non_negative(),
-        Param::number(
-            "friction_regularization",
-            "m/s",
-            "Regularisation velocity of the friction law",
-        )
-        .positive(),
-        Param::number("dt", "s", "RK4 step; stiffer strings need a smaller one").positive(),
-        Param::number("output_dt", "s", "Output interval of the history").positive(),
-    ]
-}
-
 /// `tipover --dynamic` (study `tipover_dynamic`): the static tip-over threshold checked by the
 /// full 3-D dynamics ([`DynamicTipover::run`]) on the wheel.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct TipoverDynamicRequest {
     /// The wheel.
@@ -224,14 +123,6 @@ impl TipoverDynamicRequest {
 impl Request for TipoverDynamicRequest {
     const NAME: &'static str = "tipover_dynamic";
 
-    fn params() -> Vec<Param> {
-        let mut p = WheelSpec::params();
-        p.extend(contact_params());
-        p.extend(ramp_params());
-        p.extend(RunChecks::params());
-        p
-    }
-
     /// The wheel's geometry rules across its parameters, as `roll` checks them.
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         self.wheel.check()
@@ -248,7 +139,7 @@ pub const ROLLING_T_END: f64 = 3.0;
 /// `tipover --rolling` (study `tipover_rolling`, alias `lean`): the wheel rolling down a plane
 /// with a side slope, its lean recorded ([`LeanRolling`]); the wheel, ground and integration
 /// settings are [`DynamicTipover`]'s.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
 pub struct TipoverRollingRequest {
     /// The wheel.
@@ -256,31 +147,68 @@ pub struct TipoverRollingRequest {
     pub wheel: WheelSpec,
     /// Incline φ downhill (rad).
     #[serde(with = "serde_angle")]
+    #[param(angle, help = "Incline downhill, e.g. `30deg`", rule = HalfOpen(0.0, std::f64::consts::FRAC_PI_2))]
     pub incline: f64,
     /// Side slope ψ (rad).
     #[serde(with = "serde_angle")]
+    #[param(angle, help = "Side slope across, e.g. `5deg`")]
     pub side_slope: f64,
     /// Simulated time (s).
+    #[param(number, unit = "s", help = "Simulated time", positive)]
     pub t_end: f64,
     /// Gravity (m/s²).
+    #[param(number, unit = "m/s^2", help = "Gravity", positive)]
     pub gravity: f64,
     /// String stiffness of the prestressed wheel (N/m).
+    #[param(number, unit = "N/m", help = crate::tipover_dynamic::help::STRING_STIFFNESS, positive)]
     pub string_stiffness: f64,
     /// Smallest string tension of the prestress (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Smallest string tension of the prestress",
+        positive
+    )]
     pub min_tension: f64,
     /// Axial damping of every string (N·s/m).
+    #[param(
+        number,
+        unit = "N s/m",
+        help = "Axial damping of every string",
+        non_negative
+    )]
     pub string_damping: f64,
     /// Penalty ground stiffness (N/m).
+    #[param(number, unit = "N/m", help = "Penalty ground stiffness", positive)]
     pub ground_stiffness: f64,
     /// Penalty ground damping (N·s/m).
+    #[param(number, unit = "N s/m", help = "Penalty ground damping", non_negative)]
     pub ground_damping: f64,
     /// Static friction coefficient (kinetic = 0.75 of it).
+    #[param(
+        number,
+        help = "Static friction coefficient of the ground (kinetic = 0.75 μ)",
+        non_negative
+    )]
     pub mu: f64,
     /// Regularisation velocity of the friction law (m/s).
+    #[param(
+        number,
+        unit = "m/s",
+        help = "Regularisation velocity of the friction law",
+        positive
+    )]
     pub friction_regularization: f64,
     /// RK4 step (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "RK4 step; stiffer strings need a smaller one",
+        positive
+    )]
     pub dt: f64,
     /// Output interval (s).
+    #[param(number, unit = "s", help = "Output interval of the history", positive)]
     pub output_dt: f64,
     /// `strict` and `convergence_check` (the run again at half the step and twice the ground
     /// stiffness, beside it).
@@ -372,19 +300,6 @@ impl TipoverRollingRequest {
 
 impl Request for TipoverRollingRequest {
     const NAME: &'static str = "tipover_rolling";
-
-    fn params() -> Vec<Param> {
-        let mut p = WheelSpec::params();
-        p.extend([
-            Param::angle("incline", "Incline downhill, e.g. `30deg`")
-                .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
-            Param::angle("side_slope", "Side slope across, e.g. `5deg`"),
-            Param::number("t_end", "s", "Simulated time").positive(),
-        ]);
-        p.extend(contact_params());
-        p.extend(RunChecks::params());
-        p
-    }
 
     /// The wheel's geometry rules (as `roll` checks them) and the side slope within
     /// (−π/2, π/2), before anything is built.

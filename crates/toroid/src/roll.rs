@@ -24,7 +24,8 @@ use crate::error::Result;
 use crate::report::WheelSpec;
 pub use report::RollReport;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
+use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_derive::Params;
 use tensegrity_dynamics::IntegratorKind;
 pub use wheel::{rigid_frames, scene, start_pose, ToroidWheel};
 use wheel_rolling::{
@@ -34,7 +35,10 @@ use wheel_rolling::{
 /// What [`roll`] runs: the wheel, the shared rolling settings and the toroid's own choices.
 /// Its serde form is flat, every field named as the `roll` flag in snake_case:
 /// `{"sides": 12, "incline": "30deg", "fidelity": "rigid", ...}`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
+#[params(
+    order = "incline, t_end, dt, fidelity, contact, ground_damping, ground_stiffness, mu, restitution, string_stiffness, min_tension, integrator, gravity"
+)]
 #[serde(default, deny_unknown_fields)]
 pub struct RollRequest {
     /// The wheel.
@@ -44,18 +48,33 @@ pub struct RollRequest {
     #[serde(flatten)]
     pub settings: RollSettings,
     /// Simulated time (s).
+    #[param(number, unit = "s", help = "Simulated time", positive)]
     pub t_end: f64,
     /// The model: `rigid`, `full` or `auto`.
+    #[param(choice = FidelityChoice::NAMES, help = "Model: rigid polygon, full tensegrity, or auto (the cheapest valid one)")]
     pub fidelity: FidelityChoice,
     /// Ground contact of the full model: `penalty` or `thesis`.
+    #[param(choice = ContactKind::NAMES, help = "Ground contact of the full model")]
     pub contact: ContactKind,
     /// Static friction coefficient μ_s; μ_k = 0.75 μ_s
     /// ([`defaults::KINETIC_FRICTION_RATIO`]).
+    #[param(
+        number,
+        help = "Static friction coefficient μ_s (μ_k = 0.75 μ_s)",
+        non_negative
+    )]
     pub mu: f64,
     /// Smallest string tension of the full model's prestress (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Smallest string tension of the full model's prestress",
+        positive
+    )]
     pub min_tension: f64,
     /// Integrator of the full model (`dt` is its step, or its largest step when adaptive):
     /// IMEX by default, its contact damping implicit.
+    #[param(choice = IntegratorKind::NAMES, help = "Integrator of the full model")]
     pub integrator: IntegratorKind,
     /// `strict` (an invalid result is an error) and `convergence_check` (the run repeated at
     /// a refined resolution, [`wheel_rolling::convergence`]).
@@ -63,6 +82,10 @@ pub struct RollRequest {
     pub checks: RunChecks,
     /// Copies from perturbed starting poses run beside the run ([`wheel_rolling::ensemble`]);
     /// 0 or 1: none.
+    #[param(
+        count,
+        help = "Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in parallel) and report the mean and 95 % interval of every headline quantity against the other model (0: none)"
+    )]
     pub ensemble: usize,
 }
 
@@ -89,51 +112,6 @@ impl Default for RollRequest {
 
 impl Request for RollRequest {
     const NAME: &'static str = "roll";
-
-    fn params() -> Vec<Param> {
-        let setting = RollSettings::param;
-        let mut out = WheelSpec::params();
-        out.extend([
-            setting("incline"),
-            Param::number("t_end", "s", "Simulated time").positive(),
-            setting("dt"),
-            Param::choice(
-                "fidelity",
-                FidelityChoice::NAMES,
-                "Model: rigid polygon, full tensegrity, or auto (the cheapest valid one)",
-            ),
-            Param::choice(
-                "contact",
-                ContactKind::NAMES,
-                "Ground contact of the full model",
-            ),
-            setting("ground_damping"),
-            setting("ground_stiffness"),
-            Param::number("mu", "", "Static friction coefficient μ_s (μ_k = 0.75 μ_s)")
-                .non_negative(),
-            setting("restitution"),
-            setting("string_stiffness"),
-            Param::number(
-                "min_tension",
-                "N",
-                "Smallest string tension of the full model's prestress",
-            )
-            .positive(),
-            Param::new(
-                "integrator",
-                Kind::Choice(IntegratorKind::NAMES),
-                "",
-                "Integrator of the full model",
-            ),
-            setting("gravity"),
-        ]);
-        out.extend(RunChecks::params());
-        out.push(Param::count(
-            "ensemble",
-            "Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in parallel) and report the mean and 95 % interval of every headline quantity against the other model (0: none)",
-        ));
-        out
-    }
 
     /// Finite numbers (which the per-field rules cannot see otherwise), `dt` within the output
     /// interval ([`RollSettings::check`]), and the wheel's geometry rules across its
@@ -357,6 +335,7 @@ pub fn rolling_series(request: &RollRequest, sides: &[usize]) -> Result<Vec<Roll
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tensegrity_core::request::Params;
     use wheel_rolling::{ContactModel, Fidelity, Plan};
 
     #[test]

@@ -47,45 +47,109 @@ use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::CoreError;
-use tensegrity_derive::Columns;
+use tensegrity_derive::{Columns, Params};
 use tensegrity_dynamics::{
     Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
 
+/// Help texts shared by [`DynamicTipover`] and the request of the rolling tip-over.
+pub(crate) mod help {
+    /// `string_stiffness`.
+    pub const STRING_STIFFNESS: &str = "String stiffness of the wheel: the threshold is the rigid one only for a stiff wheel (a soft one deforms and tips early)";
+}
+
 /// Settings of a dynamic tip-over run (flat serde form, flattened into
 /// [`crate::request::TipoverDynamicRequest`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize, Params)]
+#[params(order = "dt, output_dt, settle, ramp_time, ramp_to, hold")]
 #[serde(default)]
 pub struct DynamicTipover {
     /// Gravity (m/s²).
+    #[param(number, unit = "m/s^2", help = "Gravity", positive)]
     pub gravity: f64,
     /// String stiffness of the prestressed wheel (N/m).
+    #[param(number, unit = "N/m", help = crate::tipover_dynamic::help::STRING_STIFFNESS, positive)]
     pub string_stiffness: f64,
     /// Smallest string tension of the prestress (N).
+    #[param(
+        number,
+        unit = "N",
+        help = "Smallest string tension of the prestress",
+        positive
+    )]
     pub min_tension: f64,
     /// Axial damping of every string (N·s/m), so that the ramp's ringing dies out.
+    #[param(
+        number,
+        unit = "N s/m",
+        help = "Axial damping of every string",
+        non_negative
+    )]
     pub string_damping: f64,
     /// Penalty ground stiffness (N/m).
+    #[param(number, unit = "N/m", help = "Penalty ground stiffness", positive)]
     pub ground_stiffness: f64,
     /// Penalty ground damping (N·s/m).
+    #[param(number, unit = "N s/m", help = "Penalty ground damping", non_negative)]
     pub ground_damping: f64,
     /// Static friction coefficient (kinetic = 0.75 of it).
+    #[param(
+        number,
+        help = "Static friction coefficient of the ground (kinetic = 0.75 μ)",
+        non_negative
+    )]
     pub mu: f64,
     /// Regularisation velocity of the friction law (m/s). Its damping-like slope μN/v_reg
     /// must stay within RK4's stability at `dt` (μ N dt / (v_reg m) ≲ 2.8), else the contact
     /// chatters.
+    #[param(
+        number,
+        unit = "m/s",
+        help = "Regularisation velocity of the friction law",
+        positive
+    )]
     pub friction_regularization: f64,
     /// Time at rest before the ramp starts (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "Time at rest before the ramp starts",
+        non_negative
+    )]
     pub settle: f64,
     /// Duration of the ramp from 0 to `ramp_to` × the static threshold (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "Ramp duration, from 0 to ramp_to × the static threshold",
+        positive
+    )]
     pub ramp_time: f64,
     /// Largest force of the ramp as a multiple of the static threshold.
+    #[param(
+        number,
+        help = "Largest force of the ramp, as a multiple of the static threshold",
+        positive
+    )]
     pub ramp_to: f64,
     /// Time the force is held at its largest value after the ramp (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "Time the largest force is held after the ramp",
+        non_negative
+    )]
     pub hold: f64,
     /// RK4 step (s).
+    #[param(
+        number,
+        unit = "s",
+        help = "RK4 step; stiffer strings need a smaller one",
+        positive
+    )]
     pub dt: f64,
     /// Output interval (s).
+    #[param(number, unit = "s", help = "Output interval of the history", positive)]
     pub output_dt: f64,
 }
 

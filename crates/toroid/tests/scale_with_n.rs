@@ -46,7 +46,7 @@ fn every_wheel_request_reads_the_flag_and_keeps_the_offset_asked() {
     let toroid: ToroidRequest = serde_json::from_str(r#"{"scale_with_n": true}"#).unwrap();
     assert!(toroid.wheel.scale_with_n);
     // the parameter is described once, as a flag
-    let params = <ToroidRequest as tensegrity_core::request::Request>::params();
+    let params = <ToroidRequest as tensegrity_core::request::Params>::params();
     assert_eq!(
         params.iter().filter(|p| p.name == "scale_with_n").count(),
         1

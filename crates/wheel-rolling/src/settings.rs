@@ -12,8 +12,18 @@ use crate::contact_kind::ContactKind;
 use crate::defaults;
 use crate::fidelity_choice::FidelityChoice;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::request::{InvalidParameter, Param, Rule};
+use tensegrity_core::request::InvalidParameter;
+use tensegrity_derive::Params;
 use tensegrity_dynamics::IntegratorKind;
+
+/// The help texts of the settings that a request spelling them itself shares (the figure of
+/// the rolling series).
+pub mod help {
+    /// `incline`.
+    pub const INCLINE: &str = "Slope angle (e.g. `50deg`, `pi/4`, radians)";
+    /// `restitution`.
+    pub const RESTITUTION: &str = "Normal coefficient of restitution e of an impact, in [0, 1]";
+}
 
 /// The first of `values` that is not finite, as an [`InvalidParameter`] of its name.
 ///
@@ -31,29 +41,66 @@ pub fn finite(values: &[(&'static str, f64)]) -> Result<(), InvalidParameter> {
 
 /// The run settings every rolling request shares (module docs); serialised flat inside the
 /// request.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default)]
 pub struct RollSettings {
     /// Slope angle φ (rad; reads `50deg`, `pi/4`, …).
     #[serde(with = "tensegrity_core::angle::serde_angle")]
+    #[param(
+        angle,
+        help = help::INCLINE,
+        rule = HalfOpen(0.0, std::f64::consts::FRAC_PI_2)
+    )]
     pub incline: f64,
     /// Integration step (s): the fixed step of the rigid model and of the full model's
     /// fixed-step integrators, the largest step of the adaptive ones. Unset: each model's
     /// default ([`RunSpec::rigid_dt`], [`RunSpec::full_dt`]).
+    #[param(
+        number,
+        unit = "s",
+        help = "Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full model on a penalty or stick ground 5e-4 s under IMEX and 2.5e-4 s under IMEX-ARK, shorter for strings stiffer than 2e4 N/m)",
+        positive,
+        optional
+    )]
     pub dt: Option<f64>,
     /// Gravity g (m/s²).
+    #[param(number, unit = "m/s^2", help = "Gravity", positive)]
     pub gravity: f64,
     /// Normal coefficient of restitution e of an impact, in [0, 1]: the rigid model's impact
     /// law, and the penalty damping unless `ground_damping` is given.
+    #[param(
+        number,
+        help = help::RESTITUTION,
+        rule = Closed(0.0, 1.0)
+    )]
     pub restitution: f64,
     /// String stiffness of the full model (N/m); it also decides the `auto` fidelity.
+    #[param(
+        number,
+        unit = "N/m",
+        help = "String stiffness of the full model",
+        positive
+    )]
     pub string_stiffness: f64,
     /// Penalty ground stiffness per contact node (N/m).
+    #[param(
+        number,
+        unit = "N/m",
+        help = "Penalty ground stiffness per contact node",
+        positive
+    )]
     pub ground_stiffness: f64,
     /// Ground damping (N·s/m): normal damping per contact node (penalty) or contact-velocity
     /// damping (thesis). Unset: the penalty damping that gives `restitution`
     /// ([`crate::contact::penalty_damping`]), or [`defaults::GROUND_DAMPING`] for the thesis
     /// contact.
+    #[param(
+        number,
+        unit = "N s/m",
+        help = "Ground damping per contact node (unset: from the restitution)",
+        non_negative,
+        optional
+    )]
     pub ground_damping: Option<f64>,
 }
 
@@ -115,64 +162,6 @@ impl RollSettings {
             )),
             _ => Ok(()),
         }
-    }
-
-    /// The shared setting of that name, for a request that flattens these settings and lists
-    /// them among its own parameters.
-    ///
-    /// ```
-    /// let p = wheel_rolling::RollSettings::param("dt");
-    /// assert_eq!((p.name, p.unit), ("dt", "s"));
-    /// ```
-    ///
-    /// # Panics
-    /// When `name` is not a field of [`RollSettings`] (a programming error of the caller).
-    pub fn param(name: &str) -> Param {
-        Self::params()
-            .into_iter()
-            .find(|p| p.name == name)
-            .unwrap_or_else(|| panic!("`{name}` is not a rolling setting"))
-    }
-
-    /// One [`Param`] per field, in the field order.
-    pub fn params() -> Vec<Param> {
-        vec![
-            Param::angle("incline", "Slope angle (e.g. `50deg`, `pi/4`, radians)")
-                .rule(Rule::HalfOpen(0.0, std::f64::consts::FRAC_PI_2)),
-            Param::number(
-                "dt",
-                "s",
-                "Integration step, at most the 1 ms output interval (unset: 1e-4 s; for the full model on a penalty or stick ground 5e-4 s under IMEX and 2.5e-4 s under IMEX-ARK, shorter for strings stiffer than 2e4 N/m)",
-            )
-            .positive()
-            .optional(),
-            Param::number("gravity", "m/s^2", "Gravity").positive(),
-            Param::number(
-                "restitution",
-                "",
-                "Normal coefficient of restitution e of an impact, in [0, 1]",
-            )
-            .rule(Rule::Closed(0.0, 1.0)),
-            Param::number(
-                "string_stiffness",
-                "N/m",
-                "String stiffness of the full model",
-            )
-            .positive(),
-            Param::number(
-                "ground_stiffness",
-                "N/m",
-                "Penalty ground stiffness per contact node",
-            )
-            .positive(),
-            Param::number(
-                "ground_damping",
-                "N s/m",
-                "Ground damping per contact node (unset: from the restitution)",
-            )
-            .non_negative()
-            .optional(),
-        ]
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::rolling::{impact_ratio, mass_properties};
+use tensegrity_core::request::Params;
 
 /// The request of `--beta pi/6 --cylindrical 0.25 --t-end 2`.
 fn request() -> TbarRollRequest {

@@ -7,16 +7,24 @@
 //! `--no-convergence-check` (a flag whose default is true is written negated) and Python the
 //! keywords `strict=`, `convergence_check=`.
 
-use super::Param;
 use serde::{Deserialize, Serialize};
+use tensegrity_derive::Params;
 
 /// The result checks of a dynamic request (module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Params)]
 #[serde(default)]
 pub struct RunChecks {
     /// An invalid (or unconverged) result is an error, after the outputs are written.
+    #[param(
+        flag,
+        help = "Fail (exit 1, after writing the outputs) when the result is not valid: outside its model's assumptions or not converged"
+    )]
     pub strict: bool,
     /// Re-run at a refined resolution and report each headline quantity's change.
+    #[param(
+        flag,
+        help = Self::CONVERGENCE_CHECK_HELP
+    )]
     pub convergence_check: bool,
 }
 
@@ -37,17 +45,7 @@ impl RunChecks {
         convergence_check: false,
     };
 
-    /// The two parameters, in this order.
-    pub fn params() -> [Param; 2] {
-        [
-            Param::flag(
-                "strict",
-                "Fail (exit 1, after writing the outputs) when the result is not valid: outside its model's assumptions or not converged",
-            ),
-            Param::flag(
-                "convergence_check",
-                "Re-run at half the step (penalty contact: and twice the ground stiffness), in parallel, and report each headline quantity's change in `convergence`; an unconverged result is not valid",
-            ),
-        ]
-    }
+    /// The help text of `convergence_check` (also of the requests that spell the field
+    /// themselves, `simulate`).
+    pub const CONVERGENCE_CHECK_HELP: &'static str = "Re-run at half the step (penalty contact: and twice the ground stiffness), in parallel, and report each headline quantity's change in `convergence`; an unconverged result is not valid";
 }

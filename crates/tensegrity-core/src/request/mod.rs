@@ -2,9 +2,11 @@
 //! documented defaults, one validation, and one description per field ([`Param`]).
 //!
 //! The description serves every front end: the command line builds its flags from
-//! [`Request::params`] (`--name-with-hyphens`), a sweep reads its axes by the same names, and
-//! Python takes them as keyword arguments. A field added to a request (with its [`Param`])
-//! is therefore settable from the command line and sweepable without a second table.
+//! [`Params::params`] (`--name-with-hyphens`), a sweep reads its axes by the same names, and
+//! Python takes them as keyword arguments (its signatures, stubs and docstrings too). It is
+//! declared once, on the fields: `#[derive(Params)]` of `tensegrity-derive` (its crate docs
+//! give the attributes). A field added to a request (with its `#[param(…)]`) is therefore
+//! settable from the command line and sweepable without a second table.
 //!
 //! Values arrive as JSON values from any front end ([`Request::from_values`]): each is
 //! normalised by its [`Kind`] (angle strings to radians, integral floats to counts,
@@ -15,23 +17,30 @@
 //!
 //! ```
 //! use serde::{Deserialize, Serialize};
-//! use tensegrity_core::request::{InvalidParameter, Param, Request};
+//! use tensegrity_core::request::{Param, Params, Request};
+//! use tensegrity_derive::Params;
 //!
-//! #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+//! #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 //! #[serde(default, deny_unknown_fields)]
-//! struct Drop { height: f64, bounces: usize }
+//! struct Drop {
+//!     #[param(number, unit = "m", help = "Drop height", positive)]
+//!     height: f64,
+//!     #[param(count, help = "Bounces to follow")]
+//!     bounces: usize,
+//! }
 //! impl Default for Drop {
 //!     fn default() -> Self { Drop { height: 1.0, bounces: 3 } }
 //! }
 //! impl Request for Drop {
 //!     const NAME: &'static str = "drop";
-//!     fn params() -> Vec<Param> {
-//!         vec![
-//!             Param::number("height", "m", "Drop height").positive(),
-//!             Param::count("bounces", "Bounces to follow"),
-//!         ]
-//!     }
 //! }
+//! assert_eq!(
+//!     Drop::params(),
+//!     [
+//!         Param::number("height", "m", "Drop height").positive(),
+//!         Param::count("bounces", "Bounces to follow"),
+//!     ]
+//! );
 //! let d = Drop::from_values([("height".to_string(), serde_json::json!("2.5"))]).unwrap();
 //! assert_eq!(d, Drop { height: 2.5, bounces: 3 });
 //! let e = Drop::from_values([("height".to_string(), serde_json::json!(-1))]).unwrap_err();
@@ -50,7 +59,7 @@ pub use category::{Categorized, Category};
 pub use checks::RunChecks;
 pub use floats::floats;
 pub use invalid::InvalidParameter;
-pub use param::{Kind, Param, Rule};
+pub use param::{arrange, Kind, Param, Params, Rule};
 
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -58,12 +67,14 @@ use serde_json::{Map, Value};
 
 /// A request of a library analysis: plain data with defaults, one validation and a
 /// description of every field (module docs).
-pub trait Request: Serialize + DeserializeOwned + Default + Clone + Send + Sync + 'static {
+///
+/// Its description, [`Params::params`] (one [`Param`] per field, in the order front ends list
+/// them), is derived from the fields: `#[derive(Params)]` of `tensegrity-derive`.
+pub trait Request:
+    Params + Serialize + DeserializeOwned + Default + Clone + Send + Sync + 'static
+{
     /// The command's and the sweep study's name (`roll`, `tbar_roll`, …).
     const NAME: &'static str;
-
-    /// One description per field, in the order front ends list them.
-    fn params() -> Vec<Param>;
 
     /// Checks across fields, beyond each field's [`Rule`] (e.g. μ_k ≤ μ_s).
     fn check(&self) -> Result<(), InvalidParameter> {
@@ -217,7 +228,7 @@ pub fn check_description<R: Request>() -> Result<(), DescriptionMismatch> {
         .map_err(|e| DescriptionMismatch::InvalidDefaults { request, error: e })
 }
 
-/// How a request's description ([`Request::params`]) and its fields disagree
+/// How a request's description ([`Params::params`]) and its fields disagree
 /// ([`check_description`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]

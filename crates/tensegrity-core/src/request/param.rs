@@ -350,3 +350,42 @@ fn scalar_text(v: &Value) -> String {
         other => other.to_string(),
     }
 }
+
+/// The description of a request's fields (or of a part flattened into requests): one
+/// [`Param`] per field, in the order front ends list them. Derived from the fields,
+/// `#[derive(Params)]` of `tensegrity-derive`; [`super::check_description`] checks it against
+/// the fields and the defaults.
+pub trait Params {
+    /// One description per field, in the order front ends list them.
+    fn params() -> Vec<Param>;
+}
+
+/// `params` with the ones named in `order` put in that order, in the places they take
+/// together; the others stay where they are (`#[params(order = "…")]` of the derive, for a
+/// request that lists the fields of a flattened part among its own).
+///
+/// ```
+/// use tensegrity_core::request::{arrange, Param};
+/// let p = ["a", "b", "c", "d"].map(|n| Param::flag(n, "")).to_vec();
+/// let names: Vec<&str> = arrange(p, &["c", "b"]).iter().map(|p| p.name).collect();
+/// assert_eq!(names, ["a", "c", "b", "d"]);
+/// ```
+///
+/// # Panics
+/// When a name of `order` is no parameter, or named twice (a programming error of the
+/// declaration).
+pub fn arrange(params: Vec<Param>, order: &[&str]) -> Vec<Param> {
+    let slots: Vec<usize> = (0..params.len())
+        .filter(|&i| order.contains(&params[i].name))
+        .collect();
+    assert_eq!(
+        slots.len(),
+        order.len(),
+        "the order {order:?} names a parameter twice or one that is not there"
+    );
+    let mut out = params.clone();
+    for (slot, name) in slots.into_iter().zip(order) {
+        out[slot] = *params.iter().find(|p| p.name == *name).expect("counted");
+    }
+    out
+}
