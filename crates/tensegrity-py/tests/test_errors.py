@@ -147,3 +147,13 @@ def test_a_failed_computation_is_a_runtime_error():
     with pytest.raises(RuntimeError) as e:
         tg.statics(s)
     assert isinstance(e.value, tg.ComputationError) and not isinstance(e.value, ValueError)
+
+
+def test_numpy_values_cross_as_their_numbers_and_other_objects_are_refused_by_name():
+    # a numpy integer is the integer (the same report), an object the engine cannot read is
+    # an input error naming its keyword
+    assert tg.toroid(sides=np.int64(12))["mass_kg"] == tg.toroid(sides=12)["mass_kg"]
+    with pytest.raises(tg.InputError) as e:
+        tg.toroid(sides=object())
+    assert e.value.parameter == "sides"
+    assert "cannot be passed" in str(e.value) and "--" not in str(e.value)

@@ -2,7 +2,9 @@
 defaults, the signature and the docstring come from each command's parameters (name, kind,
 unit, default, help), so a parameter added to a request in Rust is a keyword here at once.
 Nothing about a parameter is written twice: this module only knows which registry command
-a function runs and how its result is handed back."""
+a function runs and how its result is handed back. Values cross as Python objects: the native
+module converts them to the engine's values and its reports back (``src/convert.rs``), so no
+text is written on the way."""
 
 import csv
 import inspect
@@ -12,7 +14,7 @@ import textwrap
 
 import numpy as np
 
-from . import _convert, _native
+from . import _native
 from .errors import Interrupted, TensegrityError
 
 #: The registry: every command, by name.
@@ -100,7 +102,7 @@ def _signature(params, positional=(), extra=()):
 
 
 def _limits(bound):
-    return _convert.plain({k: bound.pop(k, None) for k in LIMITS})
+    return {k: bound.pop(k, None) for k in LIMITS}
 
 
 def _given(bound, skip=()):
@@ -131,7 +133,7 @@ def make(pyname, command, summary, positional=(), doc_extra=""):
     def f(*args, **kwargs):
         bound = _call(pyname, sig, args, kwargs)
         limits = _limits(bound)
-        values = _convert.arguments(_given(bound))
+        values = _given(bound)
         return _native.run(command, values, limits)
 
     return finish(f, pyname, sig, summary, params, doc_extra)
@@ -178,7 +180,7 @@ def make_simulate(summary, doc_extra):
         bound = _call("simulate", sig, args, kwargs)
         limits = _limits(bound)
         keep = bool(bound.pop("trajectory", True))
-        values = _convert.arguments(_given(bound))
+        values = _given(bound)
         try:
             out, t, x, n = _native.simulate(values, limits, keep)
         except Interrupted as e:
@@ -208,7 +210,7 @@ def make_roll(summary, doc_extra):
     def roll(*args, **kwargs):
         bound = _call("roll", sig, args, kwargs)
         limits = _limits(bound)
-        values = _convert.arguments(_given(bound))
+        values = _given(bound)
         try:
             return _native.roll(values, limits)
         except (Interrupted, TensegrityError) as e:
@@ -229,7 +231,7 @@ def make_tipover(summary, doc_extra):
         if dynamic and rolling:
             raise TypeError("tipover(): dynamic and rolling cannot be used together")
         command = modes[1] if dynamic else modes[2] if rolling else modes[0]
-        values = _convert.arguments(_given(bound))
+        values = _given(bound)
         return _native.run(command, values, limits, list(modes))
 
     extra_doc = """\
@@ -275,10 +277,9 @@ dict
 
 def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
           max_memory=None, max_work=None, max_output=None):
-    limits = _convert.plain({"max_memory": max_memory, "max_work": max_work,
-                             "max_output": max_output})
+    limits = {"max_memory": max_memory, "max_work": max_work, "max_output": max_output}
     if isinstance(spec, dict):
-        text, is_path = _native.toml_text(_convert.plain(spec)), False
+        text, is_path = _native.toml_text(dict(spec)), False
     elif isinstance(spec, os.PathLike) or ("\n" not in spec and "=" not in spec):
         text, is_path = os.fspath(spec), True
     else:

@@ -10,7 +10,7 @@ import os
 
 import numpy as np
 
-from . import _convert, _native
+from . import _native
 from .errors import InputError
 
 _AXES = "xyz"
@@ -183,7 +183,7 @@ class Structure:
                   self.velocities):
             if a is not None:
                 a.setflags(write=False)
-        self._toml = _native.structure_toml(self._spec(), _convert.plain(self.tables))
+        self._toml = _native.structure_toml(self._spec(), dict(self.tables))
 
     def _spec(self):
         def at(a, k):
@@ -278,26 +278,26 @@ class Structure:
         """The toroid wheel of the ``toroid`` command's keywords (as ``toroid
         --export-scene`` writes it; with ``string_stiffness`` its strings are stiff and
         prestressed)."""
-        return cls.from_toml(_native.topology("toroid", _convert.arguments(kwargs)))
+        return cls.from_toml(_native.topology("toroid", kwargs))
 
     @classmethod
     def michell(cls, **kwargs):
         """The Michell truss of the ``michell`` command's keywords: members as bars, extra
         strings (``extra_strings``) as strings, the last level pinned."""
-        return cls.from_toml(_native.topology("michell", _convert.arguments(kwargs)))
+        return cls.from_toml(_native.topology("michell", kwargs))
 
     @classmethod
     def tbar(cls, **kwargs):
         """The T-bar tread or wheel of the ``tbar`` command's keywords (as ``tbar
         --export-scene`` writes it)."""
-        return cls.from_toml(_native.topology("tbar", _convert.arguments(kwargs)))
+        return cls.from_toml(_native.topology("tbar", kwargs))
 
     @classmethod
     def from_formfind(cls, **kwargs):
         """The form-found, prestressed structure of the ``formfind`` command's keywords (as
         ``formfind --out`` writes it: string rest lengths and stiffnesses realising the
         prestress), e.g. ``Structure.from_formfind(builtin="prism:3")``."""
-        return cls.from_toml(_native.topology("formfind", _convert.arguments(kwargs)))
+        return cls.from_toml(_native.topology("formfind", kwargs))
 
     # --- matrices ------------------------------------------------------------------------
 
