@@ -597,14 +597,18 @@ fn a_drifted_simulation_warns_and_fails_under_strict() {
         "--integrator",
         "rk4",
         "--dt",
-        "0.05",
+        "0.01",
         "--json",
     ];
     let out = run(&args);
     assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let warnings = v["warnings"].as_array().expect("warnings in the JSON");
-    assert!(warnings[0]
+    // a warning is an object: its kind, its text and its numbers
+    assert_eq!(warnings[0]["kind"], "drift");
+    assert_eq!(warnings[0]["invariant"], "bar_length");
+    assert!(warnings[0]["value"].as_f64().unwrap() > warnings[0]["limit"].as_f64().unwrap());
+    assert!(warnings[0]["message"]
         .as_str()
         .unwrap()
         .contains("bar lengths drifted"));

@@ -56,13 +56,19 @@ pub struct SeriesRunArgs {
     reps: u64,
 }
 
-/// Runs `tensegrity bench anchors`.
+/// Runs `tensegrity bench anchors`: the suite's estimate ([`tensegrity_bench::estimate`]:
+/// its repeats, its callgrind runs side by side, its CSV) checked against the limits
+/// (`--max-work`, `--max-memory`, `--max-output`) before anything runs or is written.
 pub fn anchors(args: &AnchorsArgs) -> Result<()> {
     let request: AnchorsRequest = args.request.request()?;
+    let counter = Callgrind::find();
+    let counted = request.instructions && counter.is_some();
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let e = tensegrity_bench::estimate::estimate(&request, counted, workers, args.csv.is_some())?;
+    let _progress = super::guard::check(e)?;
     let csv = output::open("--csv", args.csv.as_deref(), |p| {
         CsvSink::open(p, "bench CSV")
     })?;
-    let counter = Callgrind::find();
     let counter = counter.as_ref().map(|c| c as &dyn InstructionCounter);
     let report = bench_anchors(&request, counter)?;
     if let Some(mut csv) = csv {

@@ -172,7 +172,22 @@ fn rolling(text: bool) -> Result<Vec<Value>> {
         );
     }
     for r in runs.iter().filter(|r| !r.summary.valid) {
-        println!("  * n = {}: {}", r.sides, r.summary.warnings.join("; "));
+        let why: Vec<String> = r.summary.warnings.iter().map(short).collect();
+        println!("  * n = {}: {}", r.sides, why.join("; "));
     }
     Ok(rows)
+}
+
+/// A warning in a few words (the demo's rows stay one line each; `roll` gives the full text).
+fn short(w: &tensegrity_core::Warning) -> String {
+    use tensegrity_core::Warning as W;
+    match w {
+        W::NotConverged {
+            quantity,
+            relative_change: Some(r),
+            ..
+        } => format!("{quantity} moved {:.1} % at the refined step", 100.0 * r),
+        W::NotConverged { quantity, .. } => format!("{quantity} changed at the refined step"),
+        other => other.kind().replace('_', " "),
+    }
 }

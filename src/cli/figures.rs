@@ -13,6 +13,7 @@ use anyhow::Result;
 use serde_json::json;
 use std::path::PathBuf;
 use tensegrity_figures::{Built, FigureError, FigureIndex, FigureSpec, FiguresRequest, IndexEntry};
+use tensegrity_io::figure::RenderOptions;
 use tensegrity_io::progress::{Measure, Progress};
 use tensegrity_io::sink::{CsvSink, FigureSink, FileSink, JsonSink, OutputDir};
 
@@ -56,12 +57,8 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         png: args.png,
         threads: args.threads.map(usize::from),
     };
-    let chosen = request.selected().map_err(|e| match e {
-        FigureError::InvalidParameter(p) => usage(p),
-        e => e.into(),
-    })?;
+    let (chosen, options) = chosen(args, &request)?;
     let ext = if args.pdf { "pdf" } else { request.extension() };
-    let options = args.figure.options()?;
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
     let index_sinks = (
@@ -109,12 +106,29 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
     }
 }
 
+/// The figures chosen and the render options, checked against every one of them before any
+/// is computed ([`tensegrity_figures::page::check_options`]); a bad `--only`, `--size` or
+/// `--dpi` is a usage error naming the flag.
+fn chosen(
+    args: &FiguresArgs,
+    request: &FiguresRequest,
+) -> Result<(Vec<&'static FigureSpec>, RenderOptions)> {
+    let bad = |e| match e {
+        FigureError::InvalidParameter(p) => usage(p),
+        e => e.into(),
+    };
+    let chosen = request.selected().map_err(bad)?;
+    let options = args.figure.options()?;
+    tensegrity_figures::page::check_options(&chosen, &options, args.png).map_err(bad)?;
+    Ok((chosen, options))
+}
+
 /// The picture's and the data's sinks of one figure.
 fn figure_sinks(
     dir: &std::path::Path,
     f: &FigureSpec,
     ext: &str,
-    options: tensegrity_io::figure::RenderOptions,
+    options: RenderOptions,
 ) -> tensegrity_io::Result<(FigureSink, CsvSink)> {
     let picture = FigureSink::open_with(&dir.join(f.file_name(ext)), options)?;
     let data = CsvSink::open_records(&dir.join(f.file_name("csv")), "figure data")?;
@@ -138,7 +152,11 @@ fn report_json(ext: &str, built: Built<(&FigureSpec, Result<PathBuf>)>) -> Resul
     let warnings: Vec<_> = built
         .warnings
         .iter()
-        .map(|w| json!({"figure": w.figure, "message": w.message}))
+        .map(|w| {
+            let mut v = serde_json::to_value(&w.warning).unwrap_or_default();
+            v["figure"] = json!(w.figure);
+            v
+        })
         .collect();
     let n = failed.len();
     let report = json!({"figures": figures, "failed": failed, "warnings": warnings});
@@ -180,7 +198,7 @@ fn index_of(
                 .warnings
                 .iter()
                 .filter(|w| w.figure == f.number)
-                .map(|w| w.message.clone())
+                .map(|w| w.warning.clone())
                 .collect();
             entry
         })

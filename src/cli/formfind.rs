@@ -1,8 +1,10 @@
-//! `tensegrity formfind (TOPOLOGY.toml | --builtin NAME) [--method fdm|adaptive|dr]
+//! `tensegrity formfind (TOPOLOGY.toml | --builtin NAME) [--method fdm|adaptive|dr|auto]
 //! [--prestress LEVEL] [--stiffness EA] [--out SCENE.toml] [--svg F] [--json]`: the engine's
 //! `formfind` request ([`FormfindRequest`], the topology positional), one call
-//! ([`formfind::admitted`]: the estimate checked against the limits, the form found and its
-//! prestress synthesised); the scene and the figure are opened before the work.
+//! ([`formfind::admitted`]: the estimate of the method that will run checked against the
+//! limits, the form found and its prestress synthesised); the scene and the figure are opened
+//! before the work. What `--method auto` chose, and why, is printed as a warning; the
+//! tolerance an iterative method stopped at is printed beside its iterations.
 
 use super::figure_args::StructureArgs;
 use super::output;
@@ -38,9 +40,10 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
     let request: FormfindRequest = args.request.request()?;
     let scene = output::open("--out", args.out.as_deref(), FileSink::open)?;
     let figure = args.figure.open("--svg", args.svg.as_deref())?;
-    let found = formfind::admitted(&request, super::guard::optional)?;
+    let found = formfind::admitted(&request, super::guard::optional).map_err(as_flag)?;
+    // the method `auto` chose is the report's first warning
     for w in &found.report.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     if let Some(sink) = scene {
         let structure = found.structure.as_ref().context(
@@ -55,13 +58,26 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
         super::output::print_json(&found.report)?;
         return Ok(());
     }
-    print_report(&found.report);
+    print_report(&found.report, found.found.tolerance);
     for (flag, path) in [("scene", &args.out), ("figure", &args.svg)] {
         if let Some(p) = path {
             println!("wrote {flag} {}", p.display());
         }
     }
     Ok(())
+}
+
+/// A request parameter the library refuses after reading the topology (a `--stiffness` or
+/// `--prestress` whose numbers overflow or fall below precision) named as its flag.
+fn as_flag(e: anyhow::Error) -> anyhow::Error {
+    use tensegrity_engine::formfind::FormfindFailure;
+    let parameter = match e.downcast_ref::<FormfindFailure>() {
+        Some(FormfindFailure::FormFind(::formfind::FormFindError::InvalidParameter(p))) => {
+            p.clone()
+        }
+        _ => return e,
+    };
+    super::request_args::usage(parameter)
 }
 
 /// The found form drawn by the figures crate: isometric and from above, or in the one view,
@@ -87,9 +103,10 @@ fn drawing(found: &Formfound, how: &StructureArgs) -> tensegrity_io::figure::Fig
     draw::drawing_figure_of(vec![panel], 560)
 }
 
-fn print_report(r: &FormfindReport) {
+fn print_report(r: &FormfindReport, tolerance: Option<f64>) {
+    let tolerance = tolerance.map_or(String::new(), |t| format!(" (tolerance {t:.1e})"));
     println!(
-        "{}: {} nodes, {} bars, {} strings; method {}, iterations {}",
+        "{}: {} nodes, {} bars, {} strings; method {}, iterations {}{tolerance}",
         r.source, r.n_nodes, r.n_bars, r.n_strings, r.method, r.iterations
     );
     println!(

@@ -52,9 +52,14 @@ pub struct RollArgs {
 }
 
 impl RollArgs {
-    /// The library request the flags describe.
+    /// The library request the flags describe; a setting of the full model under
+    /// `--fidelity rigid` is refused ([`RollRequest::check_rigid_reads`], exit 2).
     pub fn request(&self) -> Result<RollRequest> {
-        self.request.request()
+        let request: RollRequest = self.request.request()?;
+        request
+            .check_rigid_reads()
+            .map_err(super::request_args::usage)?;
+        Ok(request)
     }
 
     /// Every --frames time within the run.
@@ -114,7 +119,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
         super::animate::finish(animation, args.animate.animate.as_deref())?;
     }
     for w in &report.summary.warnings {
-        eprintln!("warning: {}", super::spell::flags(w));
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     if let (Some(sink), false) = (figure, interrupted) {
         sink.finish(&tensegrity_figures::roll_figure(
@@ -233,7 +238,7 @@ fn print_roll(r: &RollReport) {
         print_ensemble(e);
     }
     for w in &s.warnings {
-        println!("warning: {}", super::spell::flags(w));
+        println!("warning: {}", super::spell::flags(&w.to_string()));
     }
 }
 

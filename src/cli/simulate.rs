@@ -1,10 +1,12 @@
 //! `tensegrity simulate SCENE.toml [--t-end S]
-//! [--integrator rk4|rk45|rattle|sdirk|imex|imex-ark] [--dt S] [--rtol X] [--atol X]
-//! [--out traj.csv] [--output-interval S] [--json]`.
+//! [--integrator rk4|rk45|rattle|sdirk|imex|imex-ark|rk4-flight] [--dt S] [--rtol X]
+//! [--atol X] [--out traj.csv] [--output-interval S] [--json]`.
 //!
 //! The flags are the engine's `simulate` request ([`SimulateCommand`]): the scene's
 //! `[simulation]`, `[ground]` and `[[actuation]]` tables configure the run and the flags
-//! override the file ([`SimulateCommand::apply`]); the run's estimate is checked, the run
+//! override the file ([`SimulateCommand::apply`]: each integrator's default step, a fixed
+//! step longer than the output interval refused as a bad `--dt`, exit 2); the run's estimate
+//! is checked, the run
 //! streamed to the outputs opened before it. With `--json` the report is one JSON object with
 //! exactly the keys `t_end`, `steps`, `rhs_evals`, `final_nodes` (n×3, file node numbering:
 //! class-1 copies merged back), `final_velocities`, `energy_drift` (max relative),

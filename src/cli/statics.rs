@@ -43,9 +43,10 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
     let command: StaticsCommand = args.request.request()?;
     let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let limits = super::guard::limits();
+    let drawn = modes_estimate(args, &command);
     // the sparse path's cost after its QR grows with the self-stresses it finds, which no
     // estimate before the run knows: the spinner shows whatever the estimate
-    let admit = |e: Option<Estimate>| match e {
+    let admit = |e: Option<Estimate>| match with_figure(e, drawn.clone()) {
         Some(e) => {
             let rank_dependent = e.what.starts_with("the sparse statics");
             super::guard::check_with(e, rank_dependent)
@@ -63,7 +64,7 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
     }
     if args.json {
         if let Some(w) = &report.statics_warning {
-            eprintln!("warning: {w}");
+            eprintln!("warning: {}", super::spell::flags(w));
         }
         super::output::print_json(&report)?;
     } else {
@@ -72,12 +73,45 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
     if let Some(sink) = figure {
         let style = args.drawing.style(default_view(scene.structure.nodes()));
         let fig = match command.modes {
-            Some(k) => structures::modes_figure(&scene.structure, k, command.mass, &style)?,
+            Some(k) => {
+                let panels = structures::mode_panels(k);
+                if panels < k {
+                    eprintln!("note: --svg draws the {panels} lowest of the {k} modes of --modes (at most {} panels)", structures::MAX_MODE_PANELS);
+                }
+                structures::modes_figure(&scene.structure, k, command.mass, &style)?
+            }
             None => structures::statics_figure(&scene.structure, &report, &style),
         };
         sink.finish(&fig)?;
     }
     Ok(())
+}
+
+/// The estimate of the `--svg` figure of `--modes K` (its dense modes and its panels,
+/// [`structures::modes_figure_estimate`]), checked with the statics' before any work; none
+/// without it, or for a scene that cannot be read (the statics then says why).
+fn modes_estimate(args: &StaticsArgs, command: &StaticsCommand) -> Option<Estimate> {
+    let k = command.modes.filter(|_| args.svg.is_some())?;
+    let scene = command.source().ok()?.load().ok()?;
+    Some(structures::modes_figure_estimate(&scene.structure, k))
+}
+
+/// The statics' estimate and the figure's, one after the other, named by both.
+fn with_figure(statics: Option<Estimate>, figure: Option<Estimate>) -> Option<Estimate> {
+    match (statics, figure) {
+        (Some(s), Some(f)) => {
+            let parameters = f
+                .parameters
+                .0
+                .iter()
+                .fold(s.parameters.clone(), |p, (n, v)| p.and(n.clone(), v));
+            Some(Estimate {
+                parameters,
+                ..s.then(f)
+            })
+        }
+        (s, f) => s.or(f),
+    }
 }
 
 /// Prints a readable report.
@@ -191,6 +225,7 @@ fn print_notes(r: &StaticsReport) {
         println!("factorisation: {}{note}", method.describe());
     }
     if let Some(w) = &r.statics_warning {
+        let w = super::spell::flags(w);
         println!("warning: {w}");
         eprintln!("warning: {w}");
     }

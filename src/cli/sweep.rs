@@ -1,10 +1,14 @@
-//! `tensegrity sweep SPEC.toml --out results.csv [--threads N] [--shard K/N] [--resume]
-//! [--quiet] [--units]`, `tensegrity sweep merge A.csv B.csv … --out all.csv` and
+//! `tensegrity sweep SPEC.toml --out results.csv [--threads N [--oversubscribe]] [--shard K/N]
+//! [--resume] [--quiet] [--units]`, `tensegrity sweep merge A.csv B.csv … --out all.csv` and
 //! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--where COL=VALUE]…
 //! [--log-x] [--log-y] --out fig.svg`: parse the
 //! flags, make one call into the sweeps crate ([`sweeps::run`], [`sweeps::merge`]) and draw
 //! its progress ([`tensegrity_io::progress`]: a bar with ETA on a terminal, a line with
 //! percent and ETA every few seconds when stderr is a file or a pipe; nothing with `--quiet`).
+//! The spec is read under the limits ([`Spec::read_within`]: its axes sized before their
+//! values are made, a refusal naming the axis and the flag that raises the limit), and
+//! `--threads` above the machine's cores is capped at them unless `--oversubscribe`, with a
+//! note on stderr ([`sweeps::Threads`]).
 
 use anyhow::{Context, Result};
 use std::path::PathBuf;
@@ -23,9 +27,13 @@ pub struct SweepArgs {
     /// Output CSV; rows are appended to it as the cases finish, in case order.
     #[arg(long, value_name = "FILE", required = true)]
     pub out: Option<PathBuf>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; more than the cores only with --oversubscribe).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+    /// Run the --threads asked for even when they are more than the machine's cores (else
+    /// they are capped at the cores, with a note on stderr).
+    #[arg(long, requires = "threads")]
+    pub oversubscribe: bool,
     /// Run only the cases with id ≡ K−1 (mod N); combine the files with `sweep merge`.
     #[arg(long, value_name = "K/N", value_parser = parse_shard)]
     pub shard: Option<Shard>,
@@ -147,12 +155,20 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     let (Some(spec_path), Some(out)) = (&args.spec, &args.out) else {
         anyhow::bail!("usage: tensegrity sweep SPEC.toml --out results.csv");
     };
-    let spec = Spec::read(spec_path)?;
+    let spec = read_spec(spec_path)?;
+    let threads = sweeps::Threads::choose(args.threads.map(usize::from), args.oversubscribe);
+    if threads.capped() {
+        eprintln!(
+            "note: --threads {} capped at the {} cores of this machine (--oversubscribe runs more threads than cores)",
+            threads.requested.unwrap_or_default(),
+            threads.cores
+        );
+    }
     let progress = super::guard::sweep(spec.case_count()?, args.quiet)?;
     // the workers stop at a signal; the file keeps its rows, marked incomplete (exit 130)
     let _polled = tensegrity_io::interrupt::polled();
     let opts = RunOptions {
-        threads: args.threads.map(usize::from),
+        threads: Some(threads.used),
         shard: args.shard.unwrap_or(Shard::ALL),
         resume: args.resume,
         units: args.units,
@@ -164,7 +180,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         return super::output::print_json(&serde_json::json!({
             "total_cases": summary.total_cases, "shard_cases": summary.shard_cases,
             "written": summary.written, "resumed": summary.resumed, "errors": summary.errors,
-            "out": out.display().to_string()}));
+            "threads": threads.used, "out": out.display().to_string()}));
     }
     if !args.quiet {
         println!(
@@ -178,6 +194,21 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The spec under the limits of this process: an axis whose values, or a product whose
+/// CSV, is estimated over a limit is refused before the values are made, by the guard (the
+/// flag that raises the limit, exit code 2).
+fn read_spec(path: &std::path::Path) -> Result<Spec> {
+    match Spec::read_within(path, &super::guard::limits()) {
+        Err(sweeps::SweepError::OverBudget { over }) => {
+            // the same estimate against the same limits: the guard's refusal names the flag
+            let refused = super::guard::check(over.estimate.clone()).err();
+            let e = refused.unwrap_or_else(|| sweeps::SweepError::OverBudget { over }.into());
+            Err(e.context(format!("sweep {}", path.display())))
+        }
+        other => Ok(other?),
+    }
 }
 
 fn merge(args: &MergeArgs) -> Result<()> {

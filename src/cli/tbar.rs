@@ -89,7 +89,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
     let outputs = outputs::open(args)?;
     let report = tbar_wheel::tbar_report(&req)?;
     for w in &report.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     outputs.write(&req)?;
     if args.json {
@@ -162,8 +162,13 @@ fn print_report(r: &TbarReport) {
         println!("at prestress {p} N: slack fraction {f:.6}");
     }
     if let Some(m) = &r.mass {
+        let invalid = if r.envelope_carried == Some(false) {
+            " — NOT A VALID SIZING: the prestress is below the minimum, the envelope is not carried"
+        } else {
+            ""
+        };
         println!(
-            "mass {:.6e} kg ({}), Michell truss {:.6e} kg, ratio per tread {:.4}",
+            "mass {:.6e} kg ({}), Michell truss {:.6e} kg, ratio per tread {:.4}{invalid}",
             m.mass_kg, m.material, m.michell_mass_kg, m.mass_ratio
         );
     }

@@ -194,6 +194,6 @@ fn print_full(row: &TbarRollRow) {
         first(row.tbar_rigid_reference.as_ref())
     );
     for w in &s.warnings {
-        println!("     warning: {}", super::spell::flags(w));
+        println!("     warning: {}", super::spell::flags(&w.to_string()));
     }
 }

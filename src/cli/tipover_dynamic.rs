@@ -46,7 +46,7 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
     let sink = open_history(out, &["t", "lean", "downhill", "across"])?;
     let r = req.report().context("rolling lean run failed")?;
     for w in &r.warnings {
-        eprintln!("warning: {}", super::spell::flags(w));
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     let rows = r
         .samples
@@ -112,7 +112,7 @@ pub fn run(
         .context("dynamic tip-over run failed")?;
     super::animate::finish(animation, animate.animate.as_deref())?;
     for w in &report.warnings {
-        eprintln!("warning: {}", super::spell::flags(w));
+        eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
     let rows = report
         .samples

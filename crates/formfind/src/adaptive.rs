@@ -41,7 +41,7 @@ use std::collections::BTreeMap;
 
 /// Largest topology (nodes) of the adaptive method, which takes a dense eigendecomposition
 /// of D per iteration.
-pub const MAX_NODES: usize = 1200;
+pub const MAX_NODES: usize = fdm::DENSE_MAX_NODES;
 
 /// The force-density parameters: member k has q_k = p[param[k]].
 struct Params {
@@ -146,6 +146,9 @@ pub(crate) fn run(
             hint: "the groups' force-density matrices are linearly dependent".into(),
         })?;
     let mut p = DVector::from_vec(pr.start.clone());
+    // D and the iteration are homogeneous in p: start at unit scale, so force densities
+    // near the largest double do not overflow the eigenvalues
+    p /= p.amax().max(f64::MIN_POSITIVE);
     if !pr.given {
         scale_bars(&pairs, &pr, n, &mut p)?;
     }
@@ -194,10 +197,17 @@ pub(crate) fn run(
     if let Some((_, p_best, it_best)) = best {
         return finish(topology, &pr, p_best, it_best);
     }
+    if !err.is_finite() {
+        return Err(FormFindError::NonFinite {
+            method: "adaptive".into(),
+            item: "the force densities".into(),
+        });
+    }
     Err(FormFindError::NotConverged {
         method: "adaptive".into(),
         iterations: settings.max_iterations,
         residual: err,
+        tolerance: settings.tolerance,
     })
 }
 

@@ -56,7 +56,7 @@ pub enum FormFindError {
         reason: String,
     },
     /// An iteration did not converge.
-    #[error("{method} did not converge in {iterations} iterations (residual {residual:e})")]
+    #[error("{method} did not converge in {iterations} iterations (residual {residual:e}, tolerance {tolerance:e})")]
     NotConverged {
         /// The method (`adaptive`, `dr`).
         method: String,
@@ -64,6 +64,17 @@ pub enum FormFindError {
         iterations: usize,
         /// The residual reached.
         residual: f64,
+        /// The tolerance it had to reach (for `dr` the effective one, module `dr`).
+        tolerance: f64,
+    },
+    /// A number of the computation overflowed (or came out NaN); the parameters were
+    /// finite, so the method diverged.
+    #[error("{method}: {item} came out non-finite (an overflow): scale the force densities, stiffnesses or lengths towards 1")]
+    NonFinite {
+        /// The method (`fdm`, `adaptive`, `dr`).
+        method: String,
+        /// What overflowed (`node 3`, `strings[2].force_density`, `the residual`).
+        item: String,
     },
     /// Something this crate does not do.
     #[error("not supported: {what}")]
@@ -94,7 +105,8 @@ impl Categorized for FormFindError {
             Self::RankDeficiency { .. }
             | Self::SingularSystem { .. }
             | Self::NoPrestress { .. }
-            | Self::NotConverged { .. } => Category::Numerical,
+            | Self::NotConverged { .. }
+            | Self::NonFinite { .. } => Category::Numerical,
             Self::Core(e) => e.category(),
         }
     }

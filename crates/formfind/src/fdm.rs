@@ -98,8 +98,13 @@ pub(crate) fn dense_matrix(pairs: &[[usize; 2]], q: &[f64], n: usize) -> DMatrix
     d
 }
 
-/// The geometry of the force density method for force densities `q`.
+/// The geometry of the force density method for force densities `q`. The geometry does not
+/// change when q is scaled, so it is found for q / max|q|: force densities near the largest
+/// double do not overflow D.
 pub(crate) fn geometry(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
+    let scale = q.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let unit: Vec<f64> = q.iter().map(|x| x / scale.max(f64::MIN_POSITIVE)).collect();
+    let q = unit.as_slice();
     if !topology.fixed.is_empty() {
         let fixed: Vec<(usize, Vector3<f64>)> = topology
             .fixed
@@ -135,7 +140,8 @@ pub(crate) fn null_space(d: &DMatrix<f64>) -> Result<DMatrix<f64>> {
             hint: format!(
                 "the smallest |eigenvalues| of D relative to the largest are [{}] (zero below \
                  {NULL_SPACE_TOLERANCE:e}); change the force-density ratios (e.g. scale the \
-                 bars' group) or use the adaptive method, which finds admissible ones",
+                 bars' group) or let the adaptive method find admissible ones (`method = \
+                 adaptive`, started from these, which it replaces)",
                 shown.join(", ")
             ),
         });
@@ -454,8 +460,11 @@ fn anchored(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64>>> {
             hint: format!(
                 "with four nodes anchored the anchors stay out of balance (residual \
                  {:.2e} relative): the force densities admit no free-standing 3-D form; \
-                 change their ratios",
-                res / (qmax * size)
+                 change their ratios (the adaptive method, `method = adaptive`, takes at \
+                 most {} nodes)",
+                res / (qmax * size),
+                // the adaptive method's bound is its dense eigensolver's, this one
+                DENSE_MAX_NODES
             ),
         });
     }

@@ -14,8 +14,11 @@
 //!   prestress-stable self-stress; reported when none exists.
 //! - [`Method::Dr`]: dynamic relaxation with kinetic damping from rest lengths and axial
 //!   stiffnesses.
-//! - [`Method::Auto`] (the default) chooses among them from what the topology gives
-//!   ([`form_find`]).
+//! - [`Method::Given`] (the default) takes the one the topology's data call for: `fdm` for
+//!   force densities on every member, `dr` for lengths on every member, `adaptive` for
+//!   neither; data given is never ignored, and a failing method never silently becomes
+//!   another ([`form_find`]). [`Method::Auto`] (asked for by name) may fall back from `fdm`
+//!   to `adaptive`, and says so.
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
 //!   prestress level.
 //!
@@ -63,6 +66,7 @@
 mod adaptive;
 mod analysis;
 mod builtin;
+mod choice;
 mod dr;
 mod error;
 mod estimate;
@@ -75,83 +79,119 @@ mod topology;
 
 pub use analysis::{STABILITY_MAX_MEMBERS, WITNESS_TOLERANCE};
 pub use builtin::{builtin, prism_twist, BUILTINS, MAX_GRID, MAX_PRISM, MAX_STAGES};
+pub use dr::PRECISION_FLOOR;
 pub use error::{FormFindError, Result};
-pub use estimate::estimate;
+pub use estimate::{estimate, ADAPTIVE_START, DR_FLOPS_PER_MEMBER, EIGEN_FLOPS};
 pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
 pub use method::{Method, Settings, Synthesis};
 pub use report::{find, scale_group, FormfindReport, Formfound};
 pub use result::FormFound;
-pub use synth::{rest_lengths, synthesize, synthesize_with, RestLengths};
-pub use topology::{FixedNode, Group, Member, Topology};
+pub use synth::{rest_lengths, synthesize, synthesize_with, RestLengths, MIN_STRAIN};
+pub use topology::{too_many_nodes, FixedNode, Group, Member, Topology};
 
 use nalgebra::Vector3;
 
 /// Finds the form of `topology` by the method and tolerances of `settings`.
 ///
-/// [`Method::Auto`] takes the force density method when every member has a force density
-/// (falling back to the adaptive method, started from them, when they admit no free-standing
-/// form), dynamic relaxation when instead every member has a length and the topology has
-/// nodes, and the adaptive method otherwise. The result's `method` is the one that found it.
+/// The method that runs follows from the one asked for and the data the topology gives, and
+/// no given data is ignored (the `choice` module docs): [`Method::Given`] (the default) takes
+/// the force density method when every member has a force density, dynamic relaxation when
+/// every member has a length instead, and the adaptive method when it gives neither; a
+/// failure of the force density method is the error (naming `method = adaptive`), never a
+/// silent switch. Only [`Method::Auto`] falls back to the adaptive method (started from the
+/// given force densities, which it replaces) and says so in [`FormFound::choice`]. The
+/// result's `method` is the one that found the form.
 pub fn form_find(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     topology.validate()?;
     settings.validate()?;
-    match settings.method {
-        Method::Fdm => {
-            let q = topology.force_densities()?;
-            let nodes = fdm::geometry(topology, &q)?;
-            finish(topology, Method::Fdm, nodes, q, 1)
-        }
-        Method::Adaptive => {
-            let (nodes, q, it) = adaptive::run(topology, settings)?;
-            finish(topology, Method::Adaptive, nodes, q, it)
-        }
+    let choice = choice::choose(topology, settings.method)?;
+    let found = match choice.method {
+        Method::Fdm => run_fdm(topology),
         Method::Dr => {
-            let (nodes, q, it) = dr::run(topology, settings)?;
-            finish(topology, Method::Dr, nodes, q, it)
+            let (nodes, q, it, tol) = dr::run(topology, settings)?;
+            finish(topology, Method::Dr, nodes, q, (it, Some(tol)))
         }
-        Method::Auto => auto(topology, settings),
-    }
-}
-
-/// [`Method::Auto`] (see [`form_find`]).
-fn auto(topology: &Topology, settings: &Settings) -> Result<FormFound> {
-    let with = |method| Settings {
-        method,
-        ..settings.clone()
+        _ => run_adaptive(topology, settings),
     };
-    let given = topology.given_force_densities();
-    if given.iter().all(Option::is_some) {
-        let q = topology.force_densities()?;
-        return match fdm::geometry(topology, &q) {
-            Ok(nodes) => finish(topology, Method::Fdm, nodes, q, 1),
-            Err(FormFindError::RankDeficiency { .. })
-                if topology.fixed.is_empty() && topology.n_nodes <= adaptive::MAX_NODES =>
-            {
-                form_find(topology, &with(Method::Adaptive))
-            }
-            Err(e) => Err(e),
-        };
-    }
-    if topology.nodes.is_some() && topology.given_lengths().iter().all(Option::is_some) {
-        return form_find(topology, &with(Method::Dr));
-    }
-    form_find(topology, &with(Method::Adaptive))
+    let (found, reason) = match found {
+        Err(e) if choice.fallback && falls_back(topology, &e) => {
+            let reason = format!(
+                "method auto chose adaptive: the force density method found no form ({}); \
+                 the adaptive method replaced the given force densities",
+                summary(&e)
+            );
+            (run_adaptive(topology, settings), Some(reason))
+        }
+        other => (other, choice.reason),
+    };
+    found.map(|f| FormFound {
+        choice: reason,
+        ..f
+    })
 }
 
-/// The statics of the found geometry, packed as a [`FormFound`].
+/// The force density method's failure in a few words (the warning of `auto`'s fallback).
+fn summary(e: &FormFindError) -> String {
+    match e {
+        FormFindError::RankDeficiency {
+            found, required, ..
+        } => {
+            format!("the force density matrix has rank deficiency {found}, {required} is required")
+        }
+        e => e.to_string(),
+    }
+}
+
+/// Whether `auto` falls back from the force density method's error `e` to the adaptive
+/// method: a rank deficiency of a free-standing form the adaptive method can take.
+fn falls_back(topology: &Topology, e: &FormFindError) -> bool {
+    matches!(e, FormFindError::RankDeficiency { .. })
+        && topology.fixed.is_empty()
+        && topology.n_nodes <= adaptive::MAX_NODES
+}
+
+fn run_fdm(topology: &Topology) -> Result<FormFound> {
+    let q = topology.force_densities()?;
+    let nodes = fdm::geometry(topology, &q)?;
+    finish(topology, Method::Fdm, nodes, q, (1, None))
+}
+
+fn run_adaptive(topology: &Topology, settings: &Settings) -> Result<FormFound> {
+    let (nodes, q, it) = adaptive::run(topology, settings)?;
+    let tol = Some(settings.tolerance);
+    finish(topology, Method::Adaptive, nodes, q, (it, tol))
+}
+
+/// The statics of the found geometry, packed as a [`FormFound`]; a non-finite node, force
+/// density or residual is refused (an overflow never reaches a result). The statics take
+/// q / max|q| (they are invariant under a positive scale), so force densities near the
+/// largest double do not overflow them.
 fn finish(
     topology: &Topology,
     method: Method,
     nodes: Vec<Vector3<f64>>,
     q: Vec<f64>,
-    iterations: usize,
+    (iterations, tolerance): (usize, Option<f64>),
 ) -> Result<FormFound> {
+    let non_finite = |item: String| FormFindError::NonFinite {
+        method: method.to_string(),
+        item,
+    };
     if let Some(i) = nodes.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
-        return Err(FormFindError::SingularSystem {
-            hint: format!("{method}: node {i} came out non-finite"),
-        });
+        return Err(non_finite(format!("node {i}")));
     }
-    let a = analysis::analyse(topology, &nodes, &q)?;
+    if let Some(k) = q.iter().position(|x| !x.is_finite()) {
+        return Err(non_finite(format!(
+            "{}.force_density",
+            topology.member_name(k)
+        )));
+    }
+    let scale = q.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let unit: Vec<f64> = q.iter().map(|x| x / scale.max(f64::MIN_POSITIVE)).collect();
+    let a = analysis::analyse(topology, &nodes, &unit)?;
+    if !a.residual.is_finite() {
+        return Err(non_finite("the residual".into()));
+    }
     Ok(FormFound {
         method,
         nodes,
@@ -161,6 +201,8 @@ fn finish(
         prestress_stable: a.prestress_stable,
         residual: a.residual,
         iterations,
+        tolerance,
+        choice: None,
     })
 }
 

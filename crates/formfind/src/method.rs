@@ -14,11 +14,18 @@ pub enum Method {
     Adaptive,
     /// Dynamic relaxation with kinetic damping from rest lengths and stiffnesses.
     Dr,
-    /// The force density method when every member has a force density (the adaptive method
-    /// from them when they admit no free-standing form), dynamic relaxation when every member
-    /// has a length instead, else the adaptive method ([`crate::form_find`]).
-    #[default]
+    /// As [`Method::Given`], except that force densities which admit no free-standing form,
+    /// and force densities given on only some members, fall back to the adaptive method
+    /// (started from them, so it replaces them); the result says what was chosen and why
+    /// ([`crate::FormFound::choice`]). Asked for by name only (`auto`).
     Auto,
+    /// The method the topology's data call for (the default): the force density method
+    /// when every member has a force density, dynamic relaxation when every member has a
+    /// length instead, the adaptive method when it gives neither; data some members give
+    /// and others do not is refused, and so is the failure of the force density method
+    /// (no fallback: its error names the adaptive method). See [`crate::form_find`].
+    #[default]
+    Given,
 }
 
 impl fmt::Display for Method {
@@ -28,6 +35,7 @@ impl fmt::Display for Method {
             Method::Adaptive => "adaptive",
             Method::Dr => "dr",
             Method::Auto => "auto",
+            Method::Given => "given",
         })
     }
 }

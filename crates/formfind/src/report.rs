@@ -9,10 +9,11 @@
 //! placed) and the longest bar.
 
 use crate::synth::{rest_lengths, synthesize_with};
-use crate::{form_find, FormFound, Method, Result, Settings, Synthesis, Topology};
+use crate::{form_find, FormFindError, FormFound, Method, Result, Settings, Synthesis, Topology};
 use serde::Serialize;
 use tensegrity_core::request::InvalidParameter;
 use tensegrity_core::Structure;
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 
 /// The report of a form-finding run (module docs). Member lists are bars then strings, in topology
@@ -43,6 +44,10 @@ pub struct FormfindReport {
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
     pub iterations: usize,
+    /// The convergence tolerance the iterative method stopped at (null for a direct solve;
+    /// for dynamic relaxation at least the floor double precision reaches at the members'
+    /// stiffness, see the `dr` module).
+    pub tolerance: Option<f64>,
     /// The extent along z of the nodes the method placed (every node of a free-standing
     /// form, the free ones where nodes are held) (m).
     #[column(unit = "m")]
@@ -59,7 +64,7 @@ pub struct FormfindReport {
     /// scene.
     pub rest_length: Option<Vec<f64>>,
     /// What the caller should know (a form that is not prestress-stable, no scene, …).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Everything a `formfind` run makes: the topology, the found form, the structure realising
@@ -77,8 +82,9 @@ pub struct Formfound {
 }
 
 /// Finds the form of `topology` (`source`: its label in the report) and synthesises the
-/// prestressed structure; a synthesis that fails leaves `structure` unset and says why in
-/// the report's warnings.
+/// prestressed structure; a synthesis that fails for the form (no string in tension) leaves
+/// `structure` unset and says why in the report's warnings, one that fails for a prestress
+/// or stiffness out of range (an overflow, a strain below precision) is the error.
 pub fn find(
     topology: Topology,
     source: String,
@@ -86,22 +92,32 @@ pub fn find(
     synthesis: &Synthesis,
 ) -> Result<Formfound> {
     let found = form_find(&topology, settings)?;
-    let mut warnings = Vec::new();
+    let mut warnings: Vec<Warning> = found
+        .choice
+        .iter()
+        .map(|reason| Warning::MethodChosen {
+            reason: reason.clone(),
+        })
+        .collect();
     if !found.prestressable {
-        warnings.push("the self-stress is not prestressable: no state with every string in tension and every bar in compression".to_string());
+        warnings.push(Warning::NotPrestressable);
     } else if !found.prestress_stable {
-        warnings.push(
-            "the prestressed form is not stable: a mechanism is not stiffened by the prestress"
-                .to_string(),
-        );
+        warnings.push(Warning::NotPrestressStable);
     }
     // the rest lengths once: the structure is built from them
     let synthesised = rest_lengths(&topology, &found, synthesis)
         .and_then(|r| Ok((synthesize_with(&topology, &found, synthesis, &r)?, r)));
     let (structure, rest) = match synthesised {
         Ok((s, r)) => (Some(s), Some(r)),
+        // a prestress or stiffness out of range (an overflow, a strain below precision) is
+        // the caller's input, refused; a form that cannot be prestressed is reported
+        Err(e @ (FormFindError::InvalidParameter(_) | FormFindError::InvalidTopology { .. })) => {
+            return Err(e)
+        }
         Err(e) => {
-            warnings.push(format!("no prestressed structure: {e}"));
+            warnings.push(Warning::NoPrestressedStructure {
+                reason: e.to_string(),
+            });
             (None, None)
         }
     };
@@ -118,6 +134,7 @@ pub fn find(
         prestress_stable: found.prestress_stable,
         residual: found.residual,
         iterations: found.iterations,
+        tolerance: found.tolerance,
         height: extent_z(&topology, &found),
         max_bar_length: topology
             .bars

@@ -26,6 +26,13 @@ pub struct FormFound {
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
     pub iterations: usize,
+    /// The convergence tolerance the iterative method stopped at: the one asked for, or for
+    /// dynamic relaxation the floor double precision reaches at the members' stiffness when
+    /// that is larger (`None` for a direct solve; see the `dr` module docs).
+    pub tolerance: Option<f64>,
+    /// What method `auto` chose and why (`None` unless `auto` was asked for): a front end
+    /// shows it as a warning.
+    pub choice: Option<String>,
 }
 
 impl FormFound {

@@ -11,6 +11,14 @@
 //! gives γ = T / L = α q at t = 0, exactly the scaled force density. Bars are rigid in the
 //! core's dynamics: they keep their found length and carry mass `bar_mass`; their rest
 //! length s0 (for an elastic bar, or dynamic relaxation) is reported by [`rest_lengths`].
+//!
+//! **Precision.** A string's tension in the written structure is k (L − s0) with
+//! L − s0 = L · (T/EA)/(1 + T/EA), a difference of two lengths that double precision holds
+//! to about ε L: the tension keeps a relative accuracy of about ε / (T/EA). A string whose
+//! strain T/EA is below [`MIN_STRAIN`] (10⁻⁴ of its tension lost to rounding; EA/T above
+//! about 4.5·10¹¹) is refused naming it and the stiffness, and so is a prestress or stiffness
+//! whose numbers overflow; nothing non-finite is ever returned. The scale α is computed for
+//! q / max|q| (the same α q), so force densities near the largest double do not overflow it.
 
 use crate::error::{FormFindError, Result};
 use crate::method::Synthesis;
@@ -31,6 +39,10 @@ pub struct RestLengths {
     /// Rest length s0 = L / (1 + T/EA) of each member (m).
     pub rest_length: Vec<f64>,
 }
+
+/// The smallest strain T/EA of a synthesised string: below it rounding loses more than 10⁻⁴
+/// of its tension (ε / 10⁻⁴; module docs).
+pub const MIN_STRAIN: f64 = f64::EPSILON * 1e4;
 
 fn check(name: &'static str, v: f64) -> Result<()> {
     if !(v.is_finite() && v > 0.0) {
@@ -60,18 +72,27 @@ pub fn rest_lengths(
         .map(|&[i, j]| (found.nodes[j] - found.nodes[i]).norm())
         .collect();
     let nb = topology.bars.len();
+    let qmax = found
+        .force_density
+        .iter()
+        .fold(0.0f64, |a, q| a.max(q.abs()));
+    let q: Vec<f64> = found
+        .force_density
+        .iter()
+        .map(|x| x / qmax.max(f64::MIN_POSITIVE))
+        .collect();
     let mut max_tension = 0.0f64;
     for k in nb..pairs.len() {
-        let q = found.force_density[k];
-        if q.is_nan() || q <= 0.0 {
+        if q[k].is_nan() || q[k] <= 0.0 {
             return Err(FormFindError::NoPrestress {
                 reason: format!(
-                    "{} has force density {q}: a string must be in tension",
-                    topology.member_name(k)
+                    "{} has force density {}: a string must be in tension",
+                    topology.member_name(k),
+                    found.force_density[k]
                 ),
             });
         }
-        max_tension = max_tension.max(q * lengths[k]);
+        max_tension = max_tension.max(q[k] * lengths[k]);
     }
     if max_tension <= 0.0 {
         return Err(FormFindError::NoPrestress {
@@ -80,31 +101,74 @@ pub fn rest_lengths(
     }
     let scale = synthesis.prestress / max_tension;
     let mut out = RestLengths {
-        scale,
+        scale: scale / qmax,
         tension: Vec::with_capacity(pairs.len()),
         stiffness: Vec::with_capacity(pairs.len()),
         rest_length: Vec::with_capacity(pairs.len()),
     };
     for (k, m) in topology.members().enumerate() {
-        let t = scale * found.force_density[k] * lengths[k];
+        let t = scale * q[k] * lengths[k];
         let ea = m.stiffness.unwrap_or(synthesis.stiffness);
-        if t <= -ea {
-            return Err(FormFindError::InvalidParameter(InvalidParameter::new(
-                "prestress",
-                synthesis.prestress,
-                format!(
-                    "{} would carry a compression of {:.3e} N, beyond its stiffness EA = \
-                     {ea:.3e} N",
-                    topology.member_name(k),
-                    -t
-                ),
-            )));
-        }
+        let s0 = lengths[k] / (1.0 + t / ea);
+        check_member(topology, k, synthesis, (t, ea, s0))?;
         out.tension.push(t);
         out.stiffness.push(ea);
-        out.rest_length.push(lengths[k] / (1.0 + t / ea));
+        out.rest_length.push(s0);
     }
     Ok(out)
+}
+
+/// Member k's tension `t`, stiffness `ea` and rest length `s0` in range (module docs): the
+/// error names the prestress or the stiffness (the member's own, else the synthesis') and
+/// the member.
+fn check_member(
+    topology: &Topology,
+    k: usize,
+    synthesis: &Synthesis,
+    (t, ea, s0): (f64, f64, f64),
+) -> Result<()> {
+    let name = topology.member_name(k);
+    let stiffness = |reason: String| -> FormFindError {
+        let own = topology.members().nth(k).and_then(|m| m.stiffness);
+        match own {
+            Some(v) => FormFindError::InvalidTopology {
+                item: format!("{name}.stiffness"),
+                reason: format!("{v:e} N: {reason}"),
+            },
+            None => InvalidParameter::new("stiffness", synthesis.stiffness, reason).into(),
+        }
+    };
+    if !t.is_finite() {
+        let reason = format!("{name}'s tension overflows (lower the prestress)");
+        return Err(InvalidParameter::new("prestress", synthesis.prestress, reason).into());
+    }
+    if t <= -ea {
+        return Err(FormFindError::InvalidParameter(InvalidParameter::new(
+            "prestress",
+            synthesis.prestress,
+            format!(
+                "{name} would carry a compression of {:.3e} N, beyond its stiffness EA = \
+                 {ea:.3e} N",
+                -t
+            ),
+        )));
+    }
+    if !topology.is_bar(k) && t / ea < MIN_STRAIN {
+        return Err(stiffness(format!(
+            "{name} would stretch by T/EA = {:.2e} under its {t:.3e} N, below the {MIN_STRAIN:.1e} \
+             double precision keeps its tension to 10⁻⁴ with: lower the stiffness (at most \
+             {:.3e} N) or raise the prestress",
+            t / ea,
+            t / MIN_STRAIN
+        )));
+    }
+    if !(s0.is_finite() && s0 > 0.0 && (ea / s0).is_finite()) {
+        return Err(stiffness(format!(
+            "{name}'s rest length {s0:e} m or spring constant EA/s0 is out of the range of a \
+             double"
+        )));
+    }
+    Ok(())
 }
 
 /// The structure realising `found` (see the module docs): nodes at the found positions,

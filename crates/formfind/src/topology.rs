@@ -97,7 +97,10 @@ impl Topology {
         }
     }
 
-    /// Checks indices, groups, fixed nodes and numbers; every failure names the item.
+    /// Checks indices, groups, fixed nodes and numbers; every failure names the item. The
+    /// node count is checked against what the members and fixed nodes can reach (every node
+    /// is on a member or fixed, so at most 2 · members + fixed) before anything per node is
+    /// allocated.
     pub fn validate(&self) -> Result<()> {
         let bad = |item: String, reason: String| FormFindError::InvalidTopology { item, reason };
         if let Some(nodes) = &self.nodes {
@@ -159,6 +162,14 @@ impl Topology {
                 }
             }
         }
+        if self.n_members() == 0 {
+            return Err(bad("bars".into(), "the topology has no members".into()));
+        }
+        let (members, fixed) = (self.n_members(), self.fixed.len());
+        if self.n_nodes > members.saturating_mul(2).saturating_add(fixed) {
+            let reason = too_many_nodes(self.n_nodes, members, fixed);
+            return Err(bad("n_nodes".into(), reason));
+        }
         let mut seen = std::collections::HashMap::new();
         let mut touched = vec![false; self.n_nodes];
         for (k, m) in self.members().enumerate() {
@@ -176,9 +187,6 @@ impl Topology {
             }
             touched[key.0] = true;
             touched[key.1] = true;
-        }
-        if self.n_members() == 0 {
-            return Err(bad("bars".into(), "the topology has no members".into()));
         }
         for f in &self.fixed {
             if let Some(t) = touched.get_mut(f.node) {
@@ -233,6 +241,15 @@ impl Topology {
         }
         Ok(())
     }
+}
+
+/// Why `n_nodes` nodes are too many for `members` members and `fixed` fixed nodes.
+pub fn too_many_nodes(n_nodes: usize, members: usize, fixed: usize) -> String {
+    format!(
+        "{n_nodes} nodes, but every node must be on a member or fixed, and {members} \
+         member(s) and {fixed} fixed node(s) reach at most {}",
+        members.saturating_mul(2).saturating_add(fixed)
+    )
 }
 
 /// Whether force density `q` has the sign of its member's kind (bar < 0 < string).
@@ -328,11 +345,16 @@ impl Topology {
     }
 
     /// The same topology with `lengths` (bars then strings) as every member's target length
-    /// and `stiffness` (bars then strings, EA in N) as its axial stiffness: the input of
-    /// dynamic relaxation that reproduces a synthesized form ([`crate::rest_lengths`]).
+    /// and `stiffness` (bars then strings, EA in N) as its axial stiffness, and no force
+    /// densities (dynamic relaxation refuses them): the input of dynamic relaxation that
+    /// reproduces a synthesized form ([`crate::rest_lengths`]).
     pub fn with_lengths(&self, lengths: &[f64], stiffness: &[f64]) -> Topology {
         let mut t = self.clone();
+        for g in t.groups.values_mut() {
+            g.force_density = None;
+        }
         for (k, m) in t.bars.iter_mut().chain(t.strings.iter_mut()).enumerate() {
+            m.force_density = None;
             if let Some(&l) = lengths.get(k) {
                 m.length = Some(l);
             }

@@ -128,13 +128,25 @@ fn a_topology_without_prestress_is_reported() {
 }
 
 #[test]
-fn dynamic_relaxation_needs_nodes_and_lengths() {
+fn dynamic_relaxation_needs_nodes_and_lengths_and_refuses_force_densities() {
     let mut t = prism3();
+    // the built-in's force densities: dynamic relaxation would ignore them
+    let e = err(&t, Method::Dr).to_string();
+    assert!(
+        e.starts_with("bars[0].force_density: dynamic relaxation ignores"),
+        "{e}"
+    );
+    for m in t.bars.iter_mut().chain(t.strings.iter_mut()) {
+        m.force_density = None;
+    }
+    for g in t.groups.values_mut() {
+        g.force_density = None;
+    }
     let e = err(&t, Method::Dr).to_string();
     assert!(e.contains("bars[0].length"), "{e}");
     t.nodes = None;
     let e = err(&t, Method::Dr).to_string();
-    assert!(e.contains("nodes"), "{e}");
+    assert!(e.starts_with("nodes: dynamic relaxation"), "{e}");
 }
 
 #[test]

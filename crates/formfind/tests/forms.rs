@@ -165,11 +165,20 @@ fn adaptive_prism_from_unequal_rings_keeps_a_valid_family_member() {
     t.groups.get_mut("top").unwrap().force_density = Some(1.5);
     let f = form_find(&t, &settings(Method::Adaptive)).unwrap();
     check_prism(5, &f);
-    // The default method falls back to the adaptive one when the given q admit no form.
-    let auto = form_find(&t, &Settings::default()).unwrap();
+    // The default method never falls back: q that admit no form are the error, naming the
+    // adaptive method; `auto` falls back to it and says why.
+    let e = form_find(&t, &Settings::default()).unwrap_err();
+    assert!(
+        matches!(e, formfind::FormFindError::RankDeficiency { .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("`method = adaptive`"), "{e}");
+    let auto = form_find(&t, &settings(Method::Auto)).unwrap();
     assert_eq!(auto.method, Method::Adaptive);
+    let why = auto.choice.unwrap();
+    assert!(why.starts_with("method auto chose adaptive: the force density method found no form (the force density matrix has rank deficiency 2"), "{why}");
     let exact = form_find(&builtin("prism:5").unwrap(), &Settings::default()).unwrap();
-    assert_eq!(exact.method, Method::Fdm);
+    assert_eq!((exact.method, exact.choice), (Method::Fdm, None));
 }
 
 fn check_octahedron(f: &FormFound) {

@@ -91,6 +91,14 @@ pub enum SweepError {
         /// [`crate::MAX_CASES`].
         limit: u64,
     },
+    /// The axes of a spec, estimated before their values are made, over a resource limit:
+    /// the values of one axis (memory) or the CSV of their product (output)
+    /// ([`crate::limits::admit_axes`]); the estimate names the axes.
+    #[error("{over}")]
+    OverBudget {
+        /// The estimate over its limit.
+        over: Box<tensegrity_core::budget::OverBudget>,
+    },
     /// A `--shard K/N` that is not 1 ≤ K ≤ N.
     #[error("invalid shard `{shard}`: {reason}")]
     InvalidShard {
@@ -184,6 +192,7 @@ impl tensegrity_core::request::Categorized for SweepError {
         match self {
             SweepError::Output(e) => tensegrity_core::request::Categorized::category(e),
             SweepError::Interrupted { .. } => Category::Interrupted,
+            SweepError::OverBudget { .. } => Category::Resource,
             SweepError::Io { .. } => Category::Numerical,
             _ => Category::Input,
         }

@@ -34,7 +34,8 @@
 //! let summary = run(&spec, &out, &RunOptions::default(), &mut Silent)?;
 //! assert_eq!((summary.written, summary.errors), (6, 0));
 //! let text = std::fs::read_to_string(&out).unwrap();
-//! assert!(text.starts_with("case,sigma,epsilon,mass_kg,rho,epsilon,sigma,"));
+//! // each name once: the report's `sigma` and `epsilon` are the axes' columns
+//! assert!(text.starts_with("case,sigma,epsilon,mass_kg,rho,cot_theta,"));
 //! assert!(text.lines().nth(2).unwrap().starts_with("1,0.3,0.5,"));
 //! # std::fs::remove_file(&out).unwrap();
 //! # Ok::<(), sweeps::SweepError>(())
@@ -43,6 +44,7 @@
 
 /// The angle parser of every front end ([`tensegrity_core::angle`]).
 pub use tensegrity_core::angle;
+pub mod case_error;
 pub mod error;
 pub mod expr;
 pub mod grids;
@@ -55,9 +57,10 @@ pub mod spec;
 pub mod table;
 pub mod values;
 
+pub use case_error::CaseError;
 pub use error::{Result, SweepError};
 pub use merge::{merge, MergeSummary};
-pub use run::{run, Progress, RunOptions, Shard, Silent, Summary};
+pub use run::{run, Progress, RunOptions, Shard, Silent, Summary, Threads};
 pub use spec::{Spec, MAX_CASES};
 pub use tensegrity_engine::{Column, Context};
 

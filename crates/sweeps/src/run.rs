@@ -19,6 +19,7 @@
 //! take no new case, the rows finished in order are written, and the file ends with an
 //! `# incomplete: interrupted after N of M cases …` line, which `resume` cuts off.
 
+use crate::case_error::CaseError;
 use crate::error::{Result, SweepError};
 pub use crate::shard::Shard;
 use crate::spec::Spec;
@@ -38,7 +39,8 @@ use tensegrity_io::sink::PathLock;
 /// How to run a sweep.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
-    /// Worker threads (`None`: one per core).
+    /// Worker threads (`None`: one per core); run as given (a front end caps a request
+    /// above the cores with [`Threads::choose`]).
     pub threads: Option<usize>,
     /// The shard to run.
     pub shard: Shard,
@@ -60,6 +62,59 @@ impl Default for RunOptions {
             units: false,
             limits: None,
         }
+    }
+}
+
+/// The worker threads of a sweep: those asked for, those that run, the machine's cores
+/// ([`std::thread::available_parallelism`]). A sweep's cases are CPU-bound: more workers
+/// than cores only share the cores (and each holds a case's memory), so a request above the
+/// cores is capped at them unless oversubscribing is asked for explicitly.
+///
+/// ```
+/// use sweeps::run::Threads;
+/// let cores = Threads::cores();
+/// let t = Threads::choose(Some(65535), false);
+/// assert_eq!((t.used, t.capped()), (cores, cores < 65535));
+/// assert_eq!(Threads::choose(Some(65535), true).used, 65535);
+/// assert_eq!(Threads::choose(None, false).used, cores);
+/// assert!(!Threads::choose(Some(1), false).capped());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Threads {
+    /// The threads asked for (`None`: one per core).
+    pub requested: Option<usize>,
+    /// The threads that run.
+    pub used: usize,
+    /// The machine's cores.
+    pub cores: usize,
+}
+
+impl Threads {
+    /// The cores of this machine (1 when unknown).
+    pub fn cores() -> usize {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    }
+
+    /// `requested` threads (at least 1; `None`: one per core), capped at the cores unless
+    /// `oversubscribe`.
+    pub fn choose(requested: Option<usize>, oversubscribe: bool) -> Threads {
+        let cores = Self::cores();
+        let asked = requested.unwrap_or(cores).max(1);
+        let used = if oversubscribe {
+            asked
+        } else {
+            asked.min(cores)
+        };
+        Threads {
+            requested,
+            used,
+            cores,
+        }
+    }
+
+    /// Whether fewer threads run than were asked for.
+    pub fn capped(&self) -> bool {
+        self.requested.is_some_and(|r| r > self.used)
     }
 }
 
@@ -146,10 +201,7 @@ pub fn run(
         (f, 0)
     };
     progress.start(shard_cases, resumed);
-    let threads = opts
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .max(1);
+    let threads = opts.threads.unwrap_or_else(Threads::cores).max(1);
     let (written, errors) = if resumed < shard_cases {
         execute(
             spec,
@@ -249,13 +301,16 @@ impl Shared<'_> {
         let result = case.params.and_then(|p| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 if let Some(limits) = &self.limits {
-                    crate::limits::admit(self.spec.study, &p, limits).map_err(|e| e.to_string())?;
+                    crate::limits::admit(self.spec.study, &p, limits)?;
                 }
-                self.spec.study.run(p, &self.ctx).map_err(|e| match e {
-                    tensegrity_engine::RunError::InvalidParameter(p) => {
-                        SweepError::from(p).to_string()
-                    }
-                    other => other.to_string(),
+                self.spec.study.run(p, &self.ctx).map_err(|e| {
+                    let message = match e {
+                        tensegrity_engine::RunError::InvalidParameter(p) => {
+                            SweepError::from(p).to_string()
+                        }
+                        other => other.to_string(),
+                    };
+                    CaseError::Analysis { message }
                 })
             }))
             .unwrap_or_else(|panic| {
@@ -264,7 +319,7 @@ impl Shared<'_> {
                     .cloned()
                     .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
                     .unwrap_or_default();
-                Err(format!("the analysis panicked: {msg}"))
+                Err(CaseError::Panicked { message: msg })
             })
         });
         (

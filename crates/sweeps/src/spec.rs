@@ -27,17 +27,23 @@
 //! (so ids are stable for a given spec). Each case's parameters are the fixed values, its axis
 //! values and then the derived rules, evaluated in dependency order.
 
+mod axes;
+
 use crate::error::{Result, SweepError};
 use crate::expr::Expr;
-use crate::values::{self, from_toml, numeric, written};
+use crate::values::{self, from_toml, numeric};
 use crate::{Column, Study};
 use serde::Deserialize;
 use serde_json::{Map, Value};
 use std::collections::{BTreeMap, BTreeSet};
+use tensegrity_core::budget::Limits;
 use tensegrity_core::request::Param;
 
 /// Largest number of cases a spec may describe.
-pub const MAX_CASES: u64 = 100_000_000;
+pub use crate::limits::MAX_CASES;
+
+/// The table's own columns: no result column takes these names.
+pub const RESERVED: [&str; 3] = ["case", "status", "message"];
 
 /// Largest spec file read (16 MiB; a larger file, or an endless stream, is refused before it
 /// is read in full).
@@ -97,17 +103,6 @@ struct RawOutput {
     columns: Option<Vec<String>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRange {
-    from: toml::Value,
-    to: toml::Value,
-    steps: Option<i64>,
-    step: Option<toml::Value>,
-    #[serde(default)]
-    log: bool,
-}
-
 /// A case: its id, axis texts and parameters (or why they could not be formed).
 #[derive(Debug, Clone)]
 pub struct Case {
@@ -116,13 +111,34 @@ pub struct Case {
     /// The axis texts, one per axis.
     pub axis_texts: Vec<String>,
     /// The case's values by parameter name, or the message of a derived rule that failed.
-    pub params: std::result::Result<Map<String, Value>, String>,
+    pub params: std::result::Result<Map<String, Value>, crate::CaseError>,
 }
 
 impl Spec {
     /// Parses and checks a spec (unknown studies, parameters and columns, bad axes and
-    /// derived rules are errors here, before any case runs).
+    /// derived rules are errors here, before any case runs), its axes sized before their
+    /// values are made: an axis whose values would not fit the memory this process may use
+    /// ([`tensegrity_engine::limits::for_this_process`]) is refused
+    /// ([`SweepError::OverBudget`]); the output is not limited ([`Spec::parse_within`]
+    /// limits it too).
     pub fn parse(text: &str) -> Result<Spec> {
+        Self::parse_within(text, &memory_only())
+    }
+
+    /// [`Spec::parse`] under `limits`: before any axis value is made, the values of every
+    /// axis (memory), the number of cases ([`MAX_CASES`]) and the sweep's CSV (output) are
+    /// estimated and checked ([`crate::limits::admit_axes`]); one over a limit is
+    /// [`SweepError::OverBudget`], naming the axis.
+    ///
+    /// ```
+    /// use sweeps::{Spec, SweepError};
+    /// use tensegrity_core::budget::Limits;
+    /// let text = "study = \"tipover\"\n[axes]\nsigma = { from = 0.1, to = 0.9, steps = 100000000 }\n";
+    /// let e = Spec::parse_within(text, &Limits::default()).unwrap_err();
+    /// assert!(matches!(e, SweepError::OverBudget { .. }));
+    /// assert!(e.to_string().contains("axis sigma (100000000 values)"), "{e}");
+    /// ```
+    pub fn parse_within(text: &str, limits: &Limits) -> Result<Spec> {
         let spec_err = |e: toml::de::Error| SweepError::Spec {
             message: e.to_string(),
         };
@@ -133,7 +149,7 @@ impl Spec {
                 known: tensegrity_engine::registry::names(),
             })?;
         let fixed = fixed_values(study, &raw.fixed)?;
-        let axes = axes(study, text, &raw.axes)?;
+        let axes = axes::axes(study, text, &raw.axes, limits)?;
         for a in &axes {
             if fixed.contains_key(&a.name) {
                 return Err(duplicate(&a.name, "fixed", "axes"));
@@ -142,7 +158,7 @@ impl Spec {
         let derived = derived_rules(study, &raw.derived, &fixed, &axes)?;
         let spec = Spec {
             study,
-            columns: columns(study, raw.output.columns)?,
+            columns: columns(study, raw.output.columns, &axes)?,
             fixed,
             axes,
             derived,
@@ -152,10 +168,15 @@ impl Spec {
         Ok(spec)
     }
 
-    /// Reads and parses a spec file.
+    /// Reads and parses a spec file ([`Spec::parse`]).
     pub fn read(path: &std::path::Path) -> Result<Spec> {
+        Self::read_within(path, &memory_only())
+    }
+
+    /// Reads and parses a spec file under `limits` ([`Spec::parse_within`]).
+    pub fn read_within(path: &std::path::Path, limits: &Limits) -> Result<Spec> {
         let text = tensegrity_io::read::read_text(path, MAX_SPEC_BYTES, "a sweep spec")?;
-        Spec::parse(&text).map_err(|e| match e {
+        Spec::parse_within(&text, limits).map_err(|e| match e {
             SweepError::Spec { message } => SweepError::Spec {
                 message: format!("{}: {message}", path.display()),
             },
@@ -235,8 +256,11 @@ impl Spec {
                 Ok(x) => {
                     values.insert(name.clone(), values::number(x));
                 }
-                Err(msg) => {
-                    failed = Some(format!("derived `{name}`: {msg}"));
+                Err(source) => {
+                    failed = Some(crate::CaseError::Derived {
+                        name: name.clone(),
+                        source,
+                    });
                     break;
                 }
             }
@@ -246,6 +270,15 @@ impl Spec {
             axis_texts,
             params: failed.map_or(Ok(values), Err),
         }
+    }
+}
+
+/// The limits of [`Spec::parse`]: the memory this process may use, no output or work limit.
+fn memory_only() -> Limits {
+    Limits {
+        output_bytes: f64::INFINITY,
+        work_s: f64::INFINITY,
+        ..tensegrity_engine::limits::for_this_process()
     }
 }
 
@@ -286,201 +319,6 @@ fn fixed_values(study: Study, table: &toml::Table) -> Result<BTreeMap<String, Va
         out.insert(name.clone(), value);
     }
     Ok(out)
-}
-
-/// The `[axes]` entries in document order, with the source text of every list item.
-fn axes(study: Study, text: &str, table: &toml::Table) -> Result<Vec<Axis>> {
-    let spans = axis_spans(text)?;
-    let mut out = Vec::new();
-    for (name, item_spans) in spans {
-        let p = check_name(study, "axes", &name)?;
-        let v = table.get(&name).ok_or_else(|| SweepError::Spec {
-            message: format!("axis `{name}` not found"),
-        })?;
-        let values = match v {
-            toml::Value::Array(items) => {
-                list_values(&name, items, &item_spans, text, p.kind.is_list())?
-            }
-            toml::Value::Table(t) => {
-                let r: RawRange = t.clone().try_into().map_err(|e: toml::de::Error| {
-                    axis_err(
-                        &name,
-                        format!("a range is {{ from, to, steps | step, log }}: {e}"),
-                    )
-                })?;
-                range_values(&name, &r)?
-            }
-            _ => return Err(axis_err(&name, "expected a list or a range table".into())),
-        };
-        if values.is_empty() {
-            return Err(axis_err(&name, "no values".into()));
-        }
-        out.push(Axis { name, values });
-    }
-    Ok(out)
-}
-
-fn axis_err(axis: &str, reason: String) -> SweepError {
-    SweepError::InvalidAxis {
-        axis: axis.to_string(),
-        reason,
-    }
-}
-
-/// Axis names in document order, each with the byte spans of its list items (empty for a
-/// range).
-fn axis_spans(text: &str) -> Result<Vec<(String, Vec<std::ops::Range<usize>>)>> {
-    use toml::de::{DeTable, DeValue};
-    let doc = DeTable::parse(text).map_err(|e| SweepError::Spec {
-        message: e.to_string(),
-    })?;
-    let Some(axes) = doc.get_ref().get("axes") else {
-        return Ok(Vec::new());
-    };
-    let DeValue::Table(axes) = axes.get_ref() else {
-        return Ok(Vec::new());
-    };
-    let mut entries: Vec<(usize, String, Vec<std::ops::Range<usize>>)> = axes
-        .iter()
-        .map(|(k, v)| {
-            let items = match v.get_ref() {
-                DeValue::Array(a) => a.iter().map(|item| item.span()).collect(),
-                _ => Vec::new(),
-            };
-            (k.span().start, k.get_ref().to_string(), items)
-        })
-        .collect();
-    entries.sort_by_key(|e| e.0);
-    Ok(entries.into_iter().map(|(_, k, v)| (k, v)).collect())
-}
-
-fn list_values(
-    name: &str,
-    items: &[toml::Value],
-    spans: &[std::ops::Range<usize>],
-    text: &str,
-    lists: bool,
-) -> Result<Vec<AxisValue>> {
-    items
-        .iter()
-        .enumerate()
-        .map(|(i, item)| {
-            let value = from_toml(item, lists).ok_or_else(|| {
-                axis_err(
-                    name,
-                    format!("item {} is not a number, string or boolean", i + 1),
-                )
-            })?;
-            let text = match (&value, spans.get(i)) {
-                (Value::String(s), _) => s.clone(),
-                (_, Some(span)) => text
-                    .get(span.clone())
-                    .map_or_else(|| written(&value), |t| t.trim().to_string()),
-                (_, None) => written(&value),
-            };
-            Ok(AxisValue { value, text })
-        })
-        .collect()
-}
-
-fn number(name: &str, what: &str, v: &toml::Value) -> Result<f64> {
-    let x = match v {
-        toml::Value::Integer(i) => *i as f64,
-        toml::Value::Float(x) => *x,
-        _ => return Err(axis_err(name, format!("`{what}` must be a number"))),
-    };
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(axis_err(name, format!("`{what}` must be finite")))
-    }
-}
-
-/// Decimals of `x` in its shortest round-trip form (`0.25` → 2, `3` → 0).
-fn decimals(x: f64) -> usize {
-    let s = x.to_string();
-    s.split_once('.').map_or(0, |(_, d)| d.len())
-}
-
-fn range_values(name: &str, r: &RawRange) -> Result<Vec<AxisValue>> {
-    let (from, to) = (number(name, "from", &r.from)?, number(name, "to", &r.to)?);
-    let xs: Vec<f64> = match (r.steps, &r.step) {
-        (Some(n), None) => {
-            if n < 1 || n as u64 > MAX_CASES {
-                return Err(axis_err(
-                    name,
-                    format!("`steps` must be in 1..={MAX_CASES}"),
-                ));
-            }
-            if r.log && !(from > 0.0 && to > 0.0) {
-                return Err(axis_err(name, "a log range needs from, to > 0".into()));
-            }
-            let n = n as usize;
-            // interior points rounded to 15 significant digits: 1e-5, not 1.0000000000000003e-5
-            let round = |x: f64| format!("{x:.14e}").parse().unwrap_or(x);
-            (0..n)
-                .map(|i| match (i, n) {
-                    (0, _) => from,
-                    (i, n) if i == n - 1 => to,
-                    _ if r.log => round(from * (to / from).powf(i as f64 / (n - 1) as f64)),
-                    _ => round(from + (to - from) * i as f64 / (n - 1) as f64),
-                })
-                .collect()
-        }
-        (None, Some(step)) if !r.log => {
-            let h = number(name, "step", step)?;
-            let count = (to - from) / h;
-            if h == 0.0 || count < -1e-9 {
-                return Err(axis_err(
-                    name,
-                    "`step` must be non-zero and point from `from` to `to`".into(),
-                ));
-            }
-            let count = (count + 1e-9).floor() + 1.0;
-            if count > MAX_CASES as f64 {
-                return Err(axis_err(name, format!("more than {MAX_CASES} values")));
-            }
-            let d = decimals(from).max(decimals(h));
-            (0..count as usize)
-                .map(|i| {
-                    let x = from + i as f64 * h;
-                    format!("{x:.d$}").parse().unwrap_or(x)
-                })
-                .collect()
-        }
-        (None, Some(_)) => {
-            return Err(axis_err(
-                name,
-                "a log range takes `steps`, not `step`".into(),
-            ))
-        }
-        _ => {
-            return Err(axis_err(
-                name,
-                "give exactly one of `steps` and `step`".into(),
-            ))
-        }
-    };
-    let integers = matches!(r.from, toml::Value::Integer(_))
-        && matches!(r.to, toml::Value::Integer(_))
-        && r.step
-            .as_ref()
-            .is_none_or(|s| matches!(s, toml::Value::Integer(_)))
-        && xs.iter().all(|x| x.fract() == 0.0 && x.abs() < 9e15);
-    Ok(xs
-        .into_iter()
-        .map(|x| {
-            let value = if integers {
-                Value::from(x as i64)
-            } else {
-                values::number(x)
-            };
-            AxisValue {
-                text: written(&value),
-                value,
-            }
-        })
-        .collect())
 }
 
 /// Parses the `[derived]` rules and orders them so that every rule comes after the rules
@@ -560,24 +398,32 @@ fn order_rules(rules: BTreeMap<String, Expr>) -> Result<Vec<(String, Expr)>> {
     Ok(out)
 }
 
-fn columns(study: Study, wanted: Option<Vec<String>>) -> Result<Vec<Column>> {
+/// The result columns written: `[output] columns` (default: all of the study's), each name
+/// once (a repeated entry is written once, at its first place), and none that repeats a
+/// column the table has anyway: a result column named as an axis is left out (the axis
+/// column holds that value, as the spec writes it), and so is one named `case`, `status` or
+/// `message` (the table's own).
+fn columns(study: Study, wanted: Option<Vec<String>>, axes: &[Axis]) -> Result<Vec<Column>> {
     let all = study.columns;
-    let Some(wanted) = wanted else {
-        return Ok(all.to_vec());
+    let chosen: Vec<Column> = match wanted {
+        None => all.to_vec(),
+        Some(wanted) => wanted
+            .iter()
+            .map(|w| {
+                all.iter()
+                    .find(|c| c.name == w)
+                    .copied()
+                    .ok_or_else(|| SweepError::UnknownColumn {
+                        study: study.name,
+                        column: w.clone(),
+                        known: all.iter().map(|c| c.name).collect::<Vec<_>>().join(", "),
+                    })
+            })
+            .collect::<Result<_>>()?,
     };
-    wanted
-        .iter()
-        .map(|w| {
-            all.iter()
-                .find(|c| c.name == w)
-                .copied()
-                .ok_or_else(|| SweepError::UnknownColumn {
-                    study: study.name,
-                    column: w.clone(),
-                    known: all.iter().map(|c| c.name).collect::<Vec<_>>().join(", "),
-                })
-        })
-        .collect()
+    let mut seen: BTreeSet<&str> = RESERVED.iter().copied().collect();
+    seen.extend(axes.iter().map(|a| a.name.as_str()));
+    Ok(chosen.into_iter().filter(|c| seen.insert(c.name)).collect())
 }
 
 #[cfg(test)]

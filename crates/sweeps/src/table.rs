@@ -3,9 +3,12 @@
 //! Columns: `case` (0-based id in the full product order), one column per axis named as in
 //! the spec (the values as the spec writes them), the result columns named by the
 //! single-point report's JSON keys (nested keys joined with `.`; scalars only: arrays are
-//! left out), then `status` (`ok` or `error`) and `message` (empty for `ok`). A name that is
-//! both an axis and a result key (e.g. `sides` of `roll`) appears twice: the axis as written,
-//! the result as computed. Numbers in result columns are written in Rust's shortest
+//! left out), then `status` (`ok` or `error`) and `message` (empty for `ok`). Every name
+//! appears once: a result key that is also an axis (e.g. `sides`, `t_end`, `integrator` of
+//! `roll`, which the report echoes) is left out of the result columns — the axis column holds
+//! that value, as the spec writes it — and so is a result key named like the table's own
+//! columns ([`RESERVED`]) or repeated in `[output] columns` (kept at its first place); a
+//! `[fixed]` value has no column of its own and stays in the result columns. Numbers in result columns are written in Rust's shortest
 //! round-trip form (`{}` of f64: parsing the text gives back the same f64), integers as
 //! integers, booleans as `true`/`false`, JSON `null` (a missing optional, or a NaN) as an
 //! empty field; an error row leaves every result column empty.
@@ -18,6 +21,7 @@
 //! one line), so a file cut anywhere is its complete rows plus at most one partial line.
 
 use crate::spec::Spec;
+pub use crate::spec::RESERVED;
 
 /// The header row's fields.
 pub fn header(spec: &Spec) -> Vec<String> {
@@ -141,7 +145,7 @@ pub fn row(
     spec: &Spec,
     id: usize,
     axis_texts: &[String],
-    result: &Result<serde_json::Value, String>,
+    result: &Result<serde_json::Value, crate::CaseError>,
 ) -> Vec<u8> {
     let mut fields = Vec::with_capacity(3 + axis_texts.len() + spec.columns.len());
     fields.push(id.to_string());
@@ -156,10 +160,10 @@ pub fn row(
             fields.push("ok".into());
             fields.push(String::new());
         }
-        Err(message) => {
+        Err(error) => {
             fields.extend(spec.columns.iter().map(|_| String::new()));
             fields.push("error".into());
-            fields.push(one_line(message));
+            fields.push(one_line(&error.to_string()));
         }
     }
     record(&fields)

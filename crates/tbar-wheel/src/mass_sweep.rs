@@ -58,7 +58,7 @@ pub fn mass_sweep(
                     delta,
                     min_prestress: r.min_prestress,
                     mass: r.mass,
-                    note: r.warnings.first().cloned(),
+                    note: r.warnings.first().map(ToString::to_string),
                 },
                 Err(e) => MassRow {
                     complexity: q,

@@ -5,6 +5,12 @@
 //! When the envelope does not exist (the elastic stiffness has a mechanism, or no prestress
 //! is admissible) its fields are `null` and the reason is in `warnings`; the geometry and the
 //! statics are still reported.
+//!
+//! A `prestress` (the slack map's bar compression, and the state the mass is sized for)
+//! below the minimum prestress is analysed as asked, but the envelope is not carried: strings
+//! slacken under some of its loads, so the mass is not a sizing for it. The report says so
+//! (`envelope_carried: false` and the warning `prestress_below_minimum`, with the minimum
+//! and the slack fraction).
 
 use crate::envelope::{
     self, min_prestress, scaled_state, slack_map, CriticalMember, LoadResponse, SlackPoint,
@@ -16,6 +22,7 @@ use crate::params::{RimMode, TbarParams};
 use crate::statics::{backend, summarise};
 use serde::Serialize;
 use tensegrity_core::Structure;
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 use tensegrity_statics::{Certification, Factorization, SpectralGap, StaticsBackend};
 
@@ -152,8 +159,14 @@ pub struct TbarReport {
     /// Masses against the Michell truss.
     #[column(nested)]
     pub mass: Option<MassComparison>,
+    /// Whether the prestress of the sizing carries the load envelope: `true` at the minimum
+    /// prestress or a `prestress` at least that, `false` for a `prestress` below it (the
+    /// mass is then that of a structure whose strings slacken under some loads of the
+    /// envelope: not a valid sizing, warning `prestress_below_minimum`); `null` without an
+    /// envelope.
+    pub envelope_carried: Option<bool>,
     /// Everything the analysis could not do, and why.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The singular values on either side of the rank tolerance behind the counts (the
     /// narrowest block's for a wheel).
     #[column(nested)]
@@ -196,7 +209,11 @@ fn report_with(req: &TbarRequest, cyclic: bool) -> Result<TbarReport> {
         Certification::Certified => None,
         Certification::NotCertified { reason } => Some(reason),
     };
-    warnings.extend(statics_warning.clone());
+    warnings.extend(
+        statics_warning
+            .clone()
+            .map(|reason| Warning::StaticsNotCertified { reason }),
+    );
     let summary = summarise(statics.as_ref())?;
     let mut report = base_report(req, &geometry, &structure);
     report.warnings = warnings;
@@ -215,15 +232,13 @@ fn report_with(req: &TbarRequest, cyclic: bool) -> Result<TbarReport> {
             crate::rim::prestressability(statics.as_ref(), geometry.bars.len(), rim.bars.len())?;
         report.prestress_margin = margin;
         report.prestressable = margin > tensegrity_statics::PRESTRESS_TOLERANCE;
-        report.warnings.push(
-            "rim body: free-body statics (six rigid-body motions, no supports); the load \
-             envelope, minimum prestress and mass are computed with the rigid rim (rim = fixed)"
-                .into(),
-        );
+        report.warnings.push(Warning::RimFreeBody);
         return Ok(report);
     }
     if let Err(e) = add_envelope(req, &geometry, statics.as_ref(), &mut report) {
-        report.warnings.push(format!("no load envelope: {e}"));
+        report.warnings.push(Warning::NoLoadEnvelope {
+            reason: e.to_string(),
+        });
     }
     Ok(report)
 }
@@ -264,9 +279,30 @@ fn base_report(req: &TbarRequest, g: &TbarGeometry, s: &Structure) -> TbarReport
         slack_map: None,
         mass_kg: None,
         mass: None,
+        envelope_carried: None,
         warnings: Vec::new(),
         spectral_gap: SpectralGap::default(),
         statics_warning: None,
+    }
+}
+
+/// Relative margin under the minimum prestress within which a `prestress` counts as the
+/// minimum (the minimum written to 9 digits and given back).
+const AT_MINIMUM: f64 = 1e-9;
+
+/// Whether the `prestress` of the slack map and the sizing carries the envelope of minimum
+/// `minimum`; below it, the [`Warning::PrestressBelowMinimum`] with the slack fraction of
+/// the map.
+fn below_minimum(prestress: f64, minimum: f64, load: f64, slack: f64, report: &mut TbarReport) {
+    let carried = prestress >= minimum * (1.0 - AT_MINIMUM);
+    report.envelope_carried = Some(carried);
+    if !carried {
+        report.warnings.push(Warning::PrestressBelowMinimum {
+            prestress,
+            minimum,
+            load,
+            slack_fraction: slack,
+        });
     }
 }
 
@@ -290,9 +326,13 @@ fn add_envelope(
             report.min_strings_carrying = Some(map.min_strings_carrying);
             report.bar_always_carries = Some(map.bar_always_carries);
             report.slack_map = Some(map.points);
+            below_minimum(p, sol.min_prestress, req.load, map.slack_fraction, report);
             state
         }
-        None => sol.prestress_force.clone(),
+        None => {
+            report.envelope_carried = Some(true);
+            sol.prestress_force.clone()
+        }
     };
     report.min_prestress = Some(sol.min_prestress);
     report.critical_member = Some(sol.critical_member.clone());

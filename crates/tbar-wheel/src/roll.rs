@@ -239,7 +239,8 @@ impl Request for TbarRollRequest {
     const NAME: &'static str = "tbar_roll";
 
     /// Finite numbers and `dt` within the output interval ([`RollSettings::check`]); the full
-    /// model needs the rim body; one parameterisation; the treads given, at most
+    /// model needs the rim body; μ_k ≤ μ_s ([`TbarRollRequest::check_friction`]); one
+    /// parameterisation; the treads given, at most
     /// [`crate::params::MAX_TREADS`].
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         self.settings.check()?;
@@ -257,6 +258,7 @@ impl Request for TbarRollRequest {
             ("min_tension", self.min_tension.unwrap_or(1.0)),
         ])?;
         self.rim()?;
+        self.check_friction()?;
         if self.cylindrical.is_some() && self.spherical.is_some() {
             return Err(InvalidParameter::raw(
                 "spherical",
@@ -280,6 +282,36 @@ impl Request for TbarRollRequest {
 }
 
 impl TbarRollRequest {
+    /// μ_k ≤ μ_s, the rule of a scene's ground: a kinetic friction above the static one is
+    /// refused before any run (each run would refuse it, leaving every row empty).
+    ///
+    /// ```
+    /// use tbar_wheel::roll::TbarRollRequest;
+    /// let r = TbarRollRequest { mu_static: 0.8, mu_kinetic: Some(0.9), ..Default::default() };
+    /// let e = r.check_friction().unwrap_err();
+    /// assert_eq!(e.name, "mu_kinetic");
+    /// assert_eq!(
+    ///     e.reason,
+    ///     "mu_kinetic (0.9) exceeds mu_static (0.8); kinetic friction must not exceed static friction"
+    /// );
+    /// assert!(TbarRollRequest { mu_kinetic: Some(0.8), ..r }.check_friction().is_ok());
+    /// ```
+    pub fn check_friction(&self) -> std::result::Result<(), InvalidParameter> {
+        let short = tensegrity_core::number::short_number;
+        match self.mu_kinetic {
+            Some(mu_k) if mu_k > self.mu_static => Err(InvalidParameter::new(
+                "mu_kinetic",
+                mu_k,
+                format!(
+                    "mu_kinetic ({}) exceeds mu_static ({}); kinetic friction must not exceed static friction",
+                    short(mu_k),
+                    short(self.mu_static)
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// The simulated time: `t_end`, else 10 s for the rigid model
     /// ([`wheel_rolling::defaults::ROLL_T_END`]) or 1 s for the full model ([`FULL_T_END`]).
     pub fn t_end(&self) -> f64 {

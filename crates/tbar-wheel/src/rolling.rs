@@ -29,6 +29,7 @@ use crate::geometry::TbarGeometry;
 use crate::params::Layout;
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 
 /// Default bar density (kg/m): the toroid crate's.
@@ -147,7 +148,7 @@ pub struct TipOver {
     /// Smallest static friction coefficient for which it tips before sliding, ρ/2.
     pub min_friction_to_tip: f64,
     /// What the figures assume and where they do not hold.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Tip-over of the structure `g` (a wheel or an extended wheel) of mass `mass` (kg).
@@ -163,12 +164,7 @@ pub fn tipover(g: &TbarGeometry, mass: f64, gravity: f64) -> Result<TipOver> {
     let track = match g.params.layout {
         Layout::Extended { offset } => offset.abs(),
         Layout::Tread | Layout::Wheel => {
-            warnings.push(
-                "a single loop stands on tips in one plane (track 0): it tips under any \
-                 lateral force; the extended wheel (a copy at an offset along the axle) gives \
-                 the track"
-                    .to_string(),
-            );
+            warnings.push(Warning::SingleLoopTrack);
             0.0
         }
     };

@@ -148,18 +148,20 @@ impl FullWheel {
     /// beyond the prestress's capacity (the wheel's weight m g on one tip, as when it lands on
     /// a single contact group) may slacken strings, which the model allows but the envelope
     /// does not cover.
-    pub fn warnings(&self, gravity: f64) -> Vec<String> {
+    pub fn warnings(&self, gravity: f64) -> Vec<tensegrity_core::Warning> {
         let weight = self.mass.mass * gravity;
         let tips = self.contact_groups.first().map_or(1, Vec::len).max(1);
         let per_tip = weight / tips as f64;
         let mut out = Vec::new();
-        if per_tip > self.prestress.tip_load_capacity {
-            out.push(format!(
-                "the prestress (smallest string tension {:.3} N) keeps every string taut only for tip loads up to {:.3} N, less than the wheel's weight per landing tip m g / {tips} = {per_tip:.3} N: strings may go slack in contact (raise min_tension to about {:.3} N)",
-                self.prestress.min_string_tension,
-                self.prestress.tip_load_capacity,
-                self.prestress.min_string_tension * per_tip / self.prestress.tip_load_capacity
-            ));
+        let p = &self.prestress;
+        if per_tip > p.tip_load_capacity {
+            out.push(tensegrity_core::Warning::SlackInContact {
+                min_tension: p.min_string_tension,
+                capacity: p.tip_load_capacity,
+                tips,
+                per_tip,
+                suggested_min_tension: p.min_string_tension * per_tip / p.tip_load_capacity,
+            });
         }
         out
     }

@@ -16,6 +16,7 @@ use crate::geometry::TbarGeometry;
 use crate::params::Layout;
 use crate::statics::{summarise, StaticsSummary};
 use nalgebra::Vector3;
+use tensegrity_core::Warning;
 use tensegrity_core::{CoreError, StaticsError, Structure};
 use tensegrity_statics::symmetry::{CyclicStatics, CyclicSymmetry, SymmetryError};
 
@@ -53,7 +54,7 @@ pub fn wheel_symmetry(geometry: &TbarGeometry, structure: &Structure) -> Result<
 pub fn find_symmetry(
     geometry: &TbarGeometry,
     structure: &Structure,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Option<CyclicSymmetry> {
     if geometry.params.layout == Layout::Tread {
         return None;
@@ -66,9 +67,9 @@ pub fn find_symmetry(
             None
         }
         Err(e) => {
-            warnings.push(format!(
-                "no cyclic symmetry ({e}): the statics take the dense SVD"
-            ));
+            warnings.push(Warning::NoCyclicSymmetry {
+                reason: e.to_string(),
+            });
             None
         }
     }

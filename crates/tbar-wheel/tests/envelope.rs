@@ -125,3 +125,43 @@ fn report_fields() {
     assert!((pw - pt).abs() < 1e-8 * pt, "{pw} {pt}");
     println!("{}", serde_json::to_string(&t).unwrap());
 }
+
+/// A `prestress` below the minimum (issue 42: 1 N against 3.236 N was sized silently, mass
+/// ratio 0.685): the slack map at it, the warning with the minimum and the slack fraction,
+/// and the sizing marked as not carrying the envelope; at the minimum, carried.
+#[test]
+fn a_prestress_below_the_minimum_is_warned_and_not_a_valid_sizing() {
+    let mut req = TbarRequest::new(tread(BarBase::Rim, 0.25));
+    let min = tbar_report(&req).unwrap().min_prestress.unwrap();
+    req.prestress = Some(1.0);
+    let r = tbar_report(&req).unwrap();
+    assert_eq!(r.envelope_carried, Some(false));
+    let w: Vec<_> = r
+        .warnings
+        .iter()
+        .filter(|w| w.kind() == "prestress_below_minimum")
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", r.warnings);
+    let tensegrity_core::Warning::PrestressBelowMinimum {
+        prestress,
+        minimum,
+        load,
+        slack_fraction,
+    } = *w[0]
+    else {
+        panic!("{:?}", w[0]);
+    };
+    assert_eq!((prestress, minimum, load), (1.0, min, 1.0));
+    assert_eq!(Some(slack_fraction), r.slack_fraction);
+    assert!(slack_fraction > 0.5, "{slack_fraction}");
+    // the undersized mass is below the envelope's: strings sized for slack loads
+    req.prestress = Some(min);
+    let at_min = tbar_report(&req).unwrap();
+    assert_eq!(at_min.envelope_carried, Some(true));
+    assert_eq!(at_min.slack_fraction, Some(0.0));
+    assert!(at_min
+        .warnings
+        .iter()
+        .all(|w| w.kind() != "prestress_below_minimum"));
+    assert!(r.mass_kg.unwrap() < at_min.mass_kg.unwrap());
+}

@@ -134,11 +134,23 @@ fn the_prestress_level_is_the_envelopes() {
     assert!((low.prestress.min_string_tension - 1.0).abs() < 1e-12);
     let w = low.warnings(9.81);
     assert_eq!(w.len(), 1);
+    let text = w[0].to_string();
     assert!(
-        w[0].contains("raise min_tension") && !w[0].contains("--"),
-        "{}",
-        w[0]
+        text.contains("raise min_tension") && !text.contains("--"),
+        "{text}"
     );
+    // the fields carry the numbers the text shows: the weight per tip over the capacity
+    let tensegrity_core::Warning::SlackInContact {
+        capacity,
+        per_tip,
+        suggested_min_tension,
+        ..
+    } = w[0]
+    else {
+        panic!("{:?}", w[0]);
+    };
+    assert!(per_tip > capacity);
+    assert!((suggested_min_tension - per_tip / capacity).abs() < 1e-12);
 }
 
 #[test]

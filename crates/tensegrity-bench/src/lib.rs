@@ -4,12 +4,15 @@
 //! TsgFEM, run by this toolkit) against the reference codes' stored times, the scaling series
 //! ([`series`]: towers, lattices, toroids and T-bar wheels of growing size) and their cost
 //! exponents (a least-squares power law t = c·sᵖ in log–log, [`fit`]), in time and in
-//! instructions counted by callgrind ([`count`]); [`suite`] runs them as one request. The
+//! instructions counted by callgrind ([`count`]); [`suite`] runs them as one request, whose
+//! resources [`estimate`] estimates before it runs (a front end checks them against its
+//! limits). The
 //! work–precision study of the integrators is the engine's `bench_work_precision` command.
 #![warn(missing_docs)]
 
 pub mod anchors;
 pub mod count;
+pub mod estimate;
 pub mod fit;
 pub mod series;
 pub mod suite;

@@ -20,6 +20,7 @@ use crate::BenchError;
 use serde::Serialize;
 use serde_json::json;
 use std::time::Instant;
+use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::Request;
 use tensegrity_core::{test_models, Structure};
 use tensegrity_statics::{statics_report, StaticsRequest};
@@ -195,6 +196,33 @@ fn prepare(kind: SeriesKind, size: usize, steps: u64) -> Result<Prepared, BenchE
             request.t_end = steps as f64 * request.spec().full_dt();
             Prepared::Rolling(Box::new(request))
         }
+    })
+}
+
+/// Bytes a joint of a Michell truss holds (nodes, members, forces, sizing), as the engine's
+/// estimate of the `michell` commands counts it.
+const MICHELL_BYTES_PER_JOINT: f64 = 2048.0;
+
+/// The estimate of one call of the series at `size` (what [`measure`] times once), from the
+/// library that runs it ([`crate::estimate`]): the toroid's statics, the tower's statics, the
+/// Michell truss's analysis by its joints, the rolling run.
+pub fn estimate_point(kind: SeriesKind, size: usize, quick: bool) -> Result<Estimate, BenchError> {
+    let steps = kind.steps(quick).unwrap_or(0);
+    Ok(match prepare(kind, size, steps)? {
+        Prepared::Toroid(request) => toroid::budget::statics(&request),
+        Prepared::Towers(tower) => {
+            let command = tensegrity_engine::statics::StaticsCommand::default();
+            tensegrity_engine::statics::estimate(&tower, &command)
+                .unwrap_or_else(|| Estimate::new("the tower's statics", ""))
+        }
+        Prepared::Michell(_) => {
+            let geometry = michell3d::Geometry::Cylindrical { delta: 0.25 };
+            let joints = michell3d::optimize::joint_count(geometry, size) as f64;
+            Estimate::new(format!("the Michell truss of {joints} joints"), "")
+                .memory(MICHELL_BYTES_PER_JOINT * joints)
+                .work(tensegrity_engine::estimate::MICHELL_TABLE_S_PER_JOINT * joints)
+        }
+        Prepared::Rolling(request) => toroid::budget::roll(&request),
     })
 }
 

@@ -14,8 +14,10 @@
 //!   the shared [`request::InvalidParameter`] and the error [`request::Category`];
 //! - [`columns`]: the scalar result columns of a report ([`columns::Column`]), declared on
 //!   its fields with `#[derive(Columns)]` (crate `tensegrity-derive`);
+//! - [`precision`]: the rounding of node coordinates judged from their digits;
 //! - [`angle`]: the angle forms of every front end (`30deg`, `pi/8`, radians);
 //! - [`material`]: materials and the built-in table;
+//! - [`warning`]: [`Warning`], the warnings of every report as data (`{kind, message, …}`);
 //! - [`error`]: [`CoreError`] and its concerns (model, statics, dynamics, numerics), shared
 //!   by every layer;
 //! - `test_models` (feature `test-models`): canonical structures with reference answers.
@@ -36,11 +38,13 @@ pub mod error;
 pub mod material;
 pub mod member_id;
 pub mod number;
+pub mod precision;
 pub mod request;
 pub mod structure;
 #[cfg(any(test, feature = "test-models"))]
 pub mod test_models;
 pub mod validate;
+pub mod warning;
 
 pub use connectivity::{Connectivity, Incidence};
 pub use error::{
@@ -49,6 +53,7 @@ pub use error::{
 pub use material::{Material, MaterialTable};
 pub use member_id::MemberId;
 pub use structure::{Bar, Load, StringMember, Structure, StructureBuilder, Support};
+pub use warning::Warning;
 
 /// The README's examples, compiled and run as doc-tests.
 #[cfg(doctest)]

@@ -8,7 +8,13 @@
 //! > r = |q_{h/2} − q_h| / max(|q_h|, |q_{h/2}|, s)
 //!
 //! with s the quantity's scale floor (so that a quantity near zero is compared absolutely,
-//! e.g. s = 1 for a fraction of the run). It is `converged` when r ≤ τ/2 for its tolerance τ:
+//! e.g. s = 1 for a fraction of the run). A quantity compared as a whole (the final nodes or
+//! velocities of a run, [`Convergence::compare_change`]) takes the largest difference d
+//! between the two runs against its magnitude m (e.g. the largest final speed) and its
+//! scale s, r = d / max(m, s): a quantity near zero (a structure come to rest) is judged
+//! against the scale the problem states (a speed √(g L) of its size L), not against its own
+//! noise. Each caller states its scales (`tensegrity_engine::simulate`: the structure's size
+//! and the speeds of its motion). It is `converged` when r ≤ τ/2 for its tolerance τ:
 //! for a method of order p ≥ 1 the errors at h, h/2, h/4, … fall geometrically, so the change
 //! from q_h to the converged value (and to any finer run, a quarter of the step included) is at
 //! most r (1 + 2⁻ᵖ + 2⁻²ᵖ + …) ≤ 2 r ≤ τ. A quantity that moves more is `converged: false`,
@@ -16,6 +22,7 @@
 //! valid.
 
 use serde::{Deserialize, Serialize};
+use tensegrity_core::warning::Warning;
 use tensegrity_derive::Columns;
 
 /// One headline quantity at the run's and at the refined resolution.
@@ -108,14 +115,37 @@ impl Convergence {
     }
 
     /// Records a quantity whose change was measured directly (e.g. the largest distance
-    /// between two runs' final nodes over the structure's size): `relative_change` against
-    /// `tolerance`, with no single value to show.
+    /// between two runs' final nodes): `change` against the larger of its `magnitude` and
+    /// its `scale` (module docs), within `tolerance`, with no single value to show. A NaN
+    /// change counts as unconverged; a zero denominator as no change.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::Convergence;
+    /// let mut c = Convergence::new("dt/2");
+    /// // final speeds of 1 mm/s that moved by 0.5 mm/s, judged against a 3 m/s scale
+    /// c.compare_change("final_velocities", 5e-4, 1e-3, 3.0, 0.02);
+    /// assert!(c.converged);
+    /// assert!((c.quantities[0].relative_change.unwrap() - 5e-4 / 3.0).abs() < 1e-15);
+    /// // the same change against the speeds alone: 50 %
+    /// c.compare_change("final_velocities", 5e-4, 1e-3, 0.0, 0.02);
+    /// assert!(!c.converged);
+    /// ```
     pub fn compare_change(
         &mut self,
         name: &str,
-        relative_change: f64,
+        change: f64,
+        magnitude: f64,
+        scale: f64,
         tolerance: f64,
     ) -> &mut Self {
+        let denominator = magnitude.abs().max(scale);
+        let relative_change = if denominator > 0.0 {
+            change / denominator
+        } else if change == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        };
         let converged = relative_change <= 0.5 * tolerance;
         self.converged &= converged;
         self.quantities.push(QuantityConvergence {
@@ -129,47 +159,28 @@ impl Convergence {
         self
     }
 
-    /// One sentence per quantity that did not converge; for a result marked unconverged with
-    /// no such quantity (its refined run failed), one sentence naming the refinement.
-    pub fn warnings(&self) -> Vec<String> {
+    /// One warning per quantity that did not converge ([`Warning::NotConverged`]); for a
+    /// result marked unconverged with no such quantity (its refined run failed), one
+    /// [`Warning::RefinementFailed`] naming the refinement.
+    pub fn warnings(&self) -> Vec<Warning> {
         if !self.converged && self.quantities.iter().all(|q| q.converged) {
-            return vec![format!("not converged: {}", self.refinement)];
+            return vec![Warning::RefinementFailed {
+                refinement: self.refinement.clone(),
+            }];
         }
         self.quantities
             .iter()
             .filter(|q| !q.converged)
-            .map(|q| match q.relative_change {
-                Some(r) if q.value.is_none() => format!(
-                    "not converged: `{}` moved by {:.2} % at the refined resolution ({}) (tolerance {:.2} %: converged when the change is at most half of it)",
-                    q.name,
-                    100.0 * r,
-                    self.refinement,
-                    100.0 * q.tolerance
-                ),
-                Some(r) => format!(
-                    "not converged: `{}` moved by {:.2} % at the refined resolution ({}): {} -> {} (tolerance {:.2} %: converged when the change is at most half of it)",
-                    q.name,
-                    100.0 * r,
-                    self.refinement,
-                    show(q.value),
-                    show(q.refined),
-                    100.0 * q.tolerance
-                ),
-                None => format!(
-                    "not converged: `{}` is {} but {} at the refined resolution ({})",
-                    q.name,
-                    show(q.value),
-                    show(q.refined),
-                    self.refinement
-                ),
+            .map(|q| Warning::NotConverged {
+                quantity: q.name.clone(),
+                value: q.value,
+                refined: q.refined,
+                relative_change: q.relative_change,
+                tolerance: q.tolerance,
+                refinement: self.refinement.clone(),
             })
             .collect()
     }
-}
-
-/// A value or "none".
-fn show(x: Option<f64>) -> String {
-    x.map_or_else(|| "none".to_string(), |x| format!("{x:.6}"))
 }
 
 #[cfg(test)]
@@ -190,12 +201,32 @@ mod tests {
         // an event found by one run only
         let mut e = Convergence::new("dt/2");
         e.compare("first_impact.t", None, Some(0.7), 0.01, 0.0);
-        assert!(!e.converged && e.warnings()[0].contains("none"));
+        assert!(!e.converged && e.warnings()[0].to_string().contains("none"));
         e.compare("x", None, None, 0.01, 0.0);
         assert_eq!(e.quantities.len(), 2);
         let nan = Convergence::new("dt/2")
             .compare("n", Some(f64::NAN), Some(1.0), 0.01, 0.0)
             .converged;
         assert!(!nan);
+    }
+
+    #[test]
+    fn a_change_near_zero_is_judged_against_its_scale() {
+        // velocities of a structure come to rest: 0.5 mm/s moved at the refined run of a
+        // largest final speed of 2 mm/s (25 %), on a scale of 3 m/s
+        let mut c = Convergence::new("dt/2");
+        c.compare_change("final_velocities", 5e-4, 2e-3, 3.0, 0.02);
+        assert!(c.converged, "{c:?}");
+        let r = c.quantities[0].relative_change.unwrap();
+        assert!((r - 5e-4 / 3.0).abs() < 1e-15, "{r}");
+        // a change as large as the scale does not converge
+        c.compare_change("final_nodes", 0.5, 0.0, 1.0, 0.01);
+        assert!(!c.converged);
+        // nothing to compare: converged; a NaN change: not
+        let mut z = Convergence::new("dt/2");
+        z.compare_change("x", 0.0, 0.0, 0.0, 0.01);
+        assert!(z.converged && z.quantities[0].relative_change == Some(0.0));
+        z.compare_change("y", f64::NAN, 1.0, 1.0, 0.01);
+        assert!(!z.converged);
     }
 }

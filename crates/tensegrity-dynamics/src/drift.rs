@@ -25,6 +25,7 @@ use super::forces::{Ground, GroundModel};
 use super::integrator::IntegratorKind;
 use super::model::Model;
 use std::fmt;
+use tensegrity_core::warning::{DriftInvariant, Warning};
 
 /// Default of [`DriftLimits::implicit_solve`]: a tenth of the stages. Measured under
 /// IMEX-ARK on the toroid wheel (penalty ground): 3.0 % at its default 2.5·10⁻⁴ s on the
@@ -61,21 +62,8 @@ impl Default for DriftLimits {
     }
 }
 
-/// The invariant a warning is about.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum DriftQuantity {
-    /// Total energy of a conservative model.
-    Energy,
-    /// Total energy of a passive model, which may only fall.
-    EnergyGrowth,
-    /// Rigid bar lengths.
-    BarLength,
-    /// The linear constraints N P = D.
-    Constraint,
-    /// The stage equations of an implicit method (the fraction left unconverged).
-    ImplicitSolve,
-}
+/// The invariant a warning is about (the core's [`DriftInvariant`]).
+pub type DriftQuantity = DriftInvariant;
 
 /// One invariant past its limit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,20 +78,10 @@ pub struct DriftWarning {
     pub integrator: IntegratorKind,
 }
 
-impl fmt::Display for DriftWarning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let what = match self.quantity {
-            DriftQuantity::Energy => "energy of this conservative model drifted",
-            DriftQuantity::EnergyGrowth => {
-                "energy of this passive (damped or conservative) model grew"
-            }
-            DriftQuantity::BarLength => "bar lengths drifted",
-            DriftQuantity::Constraint => "joint and support constraints (N P = D) drifted",
-            DriftQuantity::ImplicitSolve => {
-                "implicit contact stages were left unconverged (Newton's residual above its acceptance)"
-            }
-        };
-        let remedy = match (self.quantity, self.integrator) {
+impl DriftWarning {
+    /// What to change: depends on the invariant and the integrator that ran.
+    pub fn remedy(&self) -> &'static str {
+        match (self.quantity, self.integrator) {
             (DriftQuantity::ImplicitSolve, _) => "use a smaller `dt`",
             (_, IntegratorKind::Rattle) => "use a smaller `dt`",
             (DriftQuantity::EnergyGrowth, _) => {
@@ -116,22 +94,25 @@ impl fmt::Display for DriftWarning {
                 "use a smaller `dt`, `integrator = rk45`, or `integrator = rattle` (symplectic, no secular drift)"
             }
             _ => "use a smaller `dt`, `integrator = rattle` (keeps lengths and joints exactly), or projection ([simulation] project = true)",
-        };
-        if self.quantity == DriftQuantity::ImplicitSolve {
-            // 100 × 0.1 is 10.000000000000002: print the limit to 3 decimals, trimmed
-            let limit = format!("{:.3}", 100.0 * self.limit);
-            let limit = limit.trim_end_matches('0').trim_end_matches('.');
-            return write!(
-                f,
-                "{what}: {:.1} % of them, above the limit {limit} %; the trajectory is not trustworthy: {remedy}",
-                100.0 * self.value,
-            );
         }
-        write!(
-            f,
-            "{what}: {:.3e} relative, above the limit {:.1e}; the trajectory is not trustworthy: {remedy}",
-            self.value, self.limit
-        )
+    }
+}
+
+impl From<DriftWarning> for Warning {
+    fn from(w: DriftWarning) -> Warning {
+        Warning::Drift {
+            invariant: w.quantity,
+            value: w.value,
+            limit: w.limit,
+            remedy: w.remedy().to_string(),
+        }
+    }
+}
+
+impl fmt::Display for DriftWarning {
+    /// The text of the core's [`Warning::Drift`] (warnings are rendered in one place).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        Warning::from(*self).fmt(f)
     }
 }
 

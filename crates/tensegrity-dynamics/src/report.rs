@@ -3,6 +3,7 @@
 
 use super::simulation::SimulationResult;
 use serde::Serialize;
+use tensegrity_core::warning::Warning;
 use tensegrity_derive::Columns;
 
 /// Summary of a run: final state, cost and drift of the invariants.
@@ -49,7 +50,7 @@ pub struct SimulationReport {
     /// The invariants that drifted past their limits, each with its remedy (absent when the
     /// run is within them).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The final state re-estimated at a refined resolution (set by the front end that ran
     /// the refined run; absent when not checked).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -69,7 +70,7 @@ impl From<&SimulationResult> for SimulationReport {
             bar_length_drift: r.bar_length_drift,
             constraint_drift: r.constraint_drift,
             wall_time_s: r.wall_time_s,
-            warnings: r.warnings.iter().map(ToString::to_string).collect(),
+            warnings: r.warnings.iter().map(|&w| w.into()).collect(),
             convergence: None,
         }
     }

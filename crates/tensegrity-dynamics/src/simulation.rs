@@ -3,7 +3,8 @@
 //!
 //! Each pass of the loop asks the step control for the next step (fixed-step methods: the
 //! grid t_k = k·dt, shortened to land on output times; adaptive ones: their proposal capped
-//! at `dt`, the end time and refused below `h_min`), lets the integrator attempt it, and on
+//! at `dt`, the end time and refused below `h_min`, and for one without dense output (flight
+//! steps) shortened to land on output times too), lets the integrator attempt it, and on
 //! acceptance checks the state (NaN, blow-up), locates events, records samples (through the
 //! dense output where the integrator has one), projects non-conserving methods back onto the
 //! constraints if asked, and updates the monitors.
@@ -215,6 +216,7 @@ impl Simulation {
                 h: h0,
                 h_max,
                 h_min: s.h_min,
+                lands: !integrator.has_dense_output(),
             }
         } else {
             StepControl::Grid { dt: s.dt, k: 0 }
@@ -328,8 +330,15 @@ enum StepControl {
     /// Fixed steps on the grid t_k = k·dt (k counts grid points reached), shortened to land on
     /// output times.
     Grid { dt: f64, k: u64 },
-    /// The integrator's proposal `h`, capped at `h_max` and the end time.
-    Adaptive { h: f64, h_max: f64, h_min: f64 },
+    /// The integrator's proposal `h`, capped at `h_max` and the end time; with `lands` (a
+    /// method without dense output, e.g. flight steps) also shortened to land on the next
+    /// output time, so that its samples are taken at their times.
+    Adaptive {
+        h: f64,
+        h_max: f64,
+        h_min: f64,
+        lands: bool,
+    },
 }
 
 impl StepControl {
@@ -350,8 +359,17 @@ impl StepControl {
                 };
                 Ok((target - t, target))
             }
-            StepControl::Adaptive { h, h_max, h_min } => {
-                let h = h.min(t_end - t).min(h_max);
+            StepControl::Adaptive {
+                h,
+                h_max,
+                h_min,
+                lands,
+            } => {
+                let mut h = h.min(t_end - t).min(h_max);
+                match next_output {
+                    Some(to) if lands && to > t + eps && to < t + h - eps => h = to - t,
+                    _ => {}
+                }
                 if h < h_min {
                     return Err(DynamicsError::StepSizeTooSmall { t, h_min }.into());
                 }

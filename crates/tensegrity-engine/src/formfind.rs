@@ -1,9 +1,11 @@
 //! `formfind`: the form of a tensegrity from its connectivity ([`FormfindRequest`], a request
 //! named `formfind`) — a topology file or a built-in form, read here (the library knows no
 //! file format), then one call of the library's [`formfind::find`]: the form (force density,
-//! adaptive force density or dynamic relaxation), the found self-stress scaled to the
-//! prestress level and the string rest lengths that realise it at the given axial stiffness, a
-//! [`tensegrity_core::Structure`] that starts in equilibrium (the scene `--out` writes).
+//! adaptive force density or dynamic relaxation; unset, the one the topology's data call for,
+//! and `auto` the only value that may fall back from one to another, with a warning), the
+//! found self-stress scaled to the prestress level and the string rest lengths that realise it
+//! at the given axial stiffness, a [`tensegrity_core::Structure`] that starts in equilibrium
+//! (the scene `--out` writes).
 //!
 //! The report ([`FormfindReport`]) holds the found geometry (`nodes`), the force densities q
 //! (tension-positive, bars then strings in topology order, as the method normalises them),
@@ -43,7 +45,7 @@ pub struct FormfindRequest {
     /// The topology: a TOML file, or its text (excludes `builtin`).
     #[param(
         text,
-        help = "The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a value with a line break or `=`)",
+        help = "The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a value naming no file, with a line break or an `=`, and not one line ending in .toml)",
         optional
     )]
     pub topology: Option<SceneSource>,
@@ -57,8 +59,8 @@ pub struct FormfindRequest {
     /// The last size of the built-in, appended to its name (`prism` with n = 5: `prism:5`).
     #[param(count, help = "The last size of the built-in form, appended to its name (builtin prism, n 5: prism:5), for sweeps", rule = AtLeast(1.0), optional)]
     pub n: Option<usize>,
-    /// The method (`None`: `fdm` when every member has a force density, else `adaptive`).
-    #[param(choice = ["fdm", "adaptive", "dr"], help = "Method: fdm (force density, every member's given), adaptive (force densities found from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses); default: fdm when every member has a force density, else adaptive", optional)]
+    /// The method (`None`: the one the topology's data call for, [`Method::Given`]).
+    #[param(choice = ["fdm", "adaptive", "dr", "auto"], help = "Method: fdm (force density, every member's given), adaptive (force densities found from the connectivity), dr (dynamic relaxation from every member's length and stiffness) or auto (as the default, but falling back from fdm to adaptive with a warning); default: fdm when every member has a force density, dr when every member has a length, adaptive when neither is given (data given is never ignored, and fdm failing is an error)", optional)]
     pub method: Option<Method>,
     /// The group whose force density `ratio` multiplies.
     #[param(
@@ -202,6 +204,10 @@ impl FormfindRequest {
                 tensegrity_io::topology::from_str_named(text, "topology text")?,
                 "topology text".to_string(),
             ),
+            (Some(SceneSource::Data(_)), _) => {
+                let reason = "a topology is a file or its TOML text, not structure data";
+                return Err(InvalidParameter::raw("topology", "structure data", reason).into());
+            }
             (None, Some(name)) => (::formfind::builtin(&name)?, name),
             (None, None) => {
                 let reason = "give a topology file or a `builtin` form";
@@ -214,10 +220,11 @@ impl FormfindRequest {
         Ok((topology, source))
     }
 
-    /// The settings of the library's form-finding (an unset method: [`Method::Auto`]).
+    /// The settings of the library's form-finding (an unset method: [`Method::Given`], the
+    /// one the topology's data call for, with no fallback).
     pub fn settings(&self) -> Settings {
         Settings {
-            method: self.method.unwrap_or(Method::Auto),
+            method: self.method.unwrap_or(Method::Given),
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
             stiffness: self.stiffness,
@@ -271,15 +278,24 @@ pub fn formfind(request: &FormfindRequest) -> Result<FormfindReport, FormfindFai
 }
 
 /// The library's estimate of finding the form of `topology` ([`::formfind::estimate`]: the
-/// method's solve and the statics of the form, from the sizes), named by what the request
-/// gives: `builtin = grid:40`, `n = 40` or `topology = FILE`.
+/// method that will run and the statics of the form, from the sizes), named by what the
+/// request gives: `builtin = grid:40`, `n = 40` or `topology = FILE`, and `max_iterations`
+/// where an iterative method's cap drives the work.
 pub fn estimate_of(request: &FormfindRequest, topology: &Topology, source: &str) -> Estimate {
     let mut e = ::formfind::estimate(topology, &request.settings());
-    e.parameters = match (request.n, &request.builtin) {
+    let mut named = match (request.n, &request.builtin) {
         (Some(n), Some(_)) => Parameters::default().and("n", n),
         (None, Some(_)) => Parameters::default().and("builtin", source),
         _ => Parameters::default().and("topology", source),
     };
+    if e.parameters
+        .0
+        .iter()
+        .any(|(name, _)| name == "max_iterations")
+    {
+        named = named.and("max_iterations", request.max_iterations);
+    }
+    e.parameters = named;
     e
 }
 
@@ -377,6 +393,24 @@ mod tests {
         assert_eq!(
             estimate(&named).unwrap().unwrap().parameters.to_string(),
             "builtin = prism:3"
+        );
+        // an iterative method's estimate names the cap that drives it
+        let chain =
+            "[[bars]]\nnodes = [0, 1]\n[[bars]]\nnodes = [1, 2]\n[[strings]]\nnodes = [0, 2]\n";
+        let adaptive = FormfindRequest {
+            topology: Some(SceneSource::parse(chain)),
+            max_iterations: 500,
+            ..Default::default()
+        };
+        let e = estimate(&adaptive).unwrap().unwrap();
+        assert_eq!(
+            e.parameters.to_string(),
+            "topology = topology text, max_iterations = 500"
+        );
+        assert!(
+            e.what.starts_with("the adaptive force density iteration"),
+            "{}",
+            e.what
         );
         // a built-in the library refuses is the run's error, named
         let bad = FormfindRequest {

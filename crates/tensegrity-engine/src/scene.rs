@@ -1,14 +1,25 @@
-//! The scene of the scene commands (`statics`, `simulate`): a TOML scene file, or the TOML
-//! text itself ([`SceneSource`]), read by [`tensegrity_io::scene`]; and [`SceneError`], what
-//! a scene command fails with.
+//! The scene of the scene commands (`statics`, `simulate`): a TOML scene file, the TOML
+//! text itself, or the scene as data — the structure's arrays and the dynamics tables
+//! ([`SceneSource`], [`tensegrity_io::scene::SceneArrays`]) — read and validated by
+//! [`tensegrity_io::scene`]; and [`SceneError`], what a scene command fails with.
 //!
-//! A scene travels as one string (a flag, a sweep value, a Python argument). The rule: a
-//! string holding a line break or an `=` is TOML text (no scene file is named that way, and
-//! every scene has at least one `key = value` line); any other string is a path, relative to
-//! the working directory.
+//! A scene given as a string (a flag, a sweep value, a Python argument) is a file or TOML
+//! text. The rule: a string naming an existing file is that file; one line ending in `.toml`
+//! is a path (so `a=b.toml` that does not exist says it cannot be read); other text holding a
+//! line break or an `=` is TOML text (every scene has at least one `key = value` line); any
+//! other string is a path, relative to the working directory. A scene given as an object (a front end that
+//! holds the structure as arrays: the Python package's `Structure`) is data, validated as a
+//! file is ([`tensegrity_io::scene::Scene::from_arrays`]); its errors name the item, with no
+//! line.
+//!
+//! The serde form is the string, or the object of the arrays: it reads back as the same
+//! source. No report echoes its request's scene, so the form of the data is the data itself
+//! rather than a summary (a summary would not read back); messages name it `structure data`
+//! ([`fmt::Display`]).
 //!
 //! ```
 //! use tensegrity_engine::scene::SceneSource;
+//! use serde_json::json;
 //! let file = SceneSource::parse("examples/prism.toml");
 //! assert_eq!(file, SceneSource::Path("examples/prism.toml".into()));
 //! let text = SceneSource::parse("nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\n");
@@ -16,74 +27,122 @@
 //! let scene = text.load().unwrap();
 //! assert_eq!(scene.structure.n_bars(), 1);
 //! // the serde form is the string itself
-//! assert_eq!(serde_json::to_value(&file).unwrap(), serde_json::json!("examples/prism.toml"));
+//! assert_eq!(serde_json::to_value(&file).unwrap(), json!("examples/prism.toml"));
+//! // an object is the scene as data: the same structure, and its own serde form
+//! let data = json!({"nodes": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], "bars": [[0, 1]]});
+//! let given: SceneSource = serde_json::from_value(data.clone()).unwrap();
+//! assert_eq!((given.to_string(), given.load().unwrap().structure), ("structure data".into(), scene.structure));
+//! assert_eq!(serde_json::to_value(&given).unwrap()["bars"], data["bars"]);
+//! // a bad index names its bar
+//! let bad: SceneSource = serde_json::from_value(json!({"nodes": [[0.0, 0.0, 0.0]], "bars": [[0, -1]]})).unwrap();
+//! let e = bad.load().unwrap_err().to_string();
+//! assert!(e.starts_with("structure data: bar 0: node index -1 is out of range"), "{e}");
 //! ```
 
+use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::path::PathBuf;
 use tensegrity_core::request::{Categorized, Category, InvalidParameter};
 use tensegrity_core::CoreError;
-use tensegrity_io::scene::Scene;
+use tensegrity_io::scene::{Scene, SceneArrays};
 use tensegrity_io::IoError;
 
+/// What messages call a scene given as data.
+const DATA_NAME: &str = "structure data";
+
 /// Where a scene comes from.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum SceneSource {
     /// A TOML scene file.
     Path(PathBuf),
     /// The TOML text of a scene.
     Toml(String),
+    /// The scene as data: the structure's arrays and the dynamics tables (validated when
+    /// loaded).
+    Data(Box<SceneArrays>),
 }
 
 impl SceneSource {
-    /// The source a string names (module docs: text with a line break or `=` is TOML).
+    /// The source a string names: an existing file is that file; one line ending in `.toml`
+    /// is a path (so `a=b.toml`, missing, cannot be read); other text with a line break or an
+    /// `=` is TOML (every scene has a `key = value` line); anything else is a path.
     pub fn parse(s: &str) -> Self {
-        if s.contains(['\n', '=']) {
-            SceneSource::Toml(s.to_string())
-        } else {
+        let path = std::path::Path::new(s);
+        let one_line_toml_name = !s.contains(['\n', '\r']) && s.ends_with(".toml");
+        if path.is_file() || one_line_toml_name || !s.contains(['\n', '=']) {
             SceneSource::Path(PathBuf::from(s))
+        } else {
+            SceneSource::Toml(s.to_string())
         }
     }
 
-    /// Reads and validates the scene; errors name the file (or `scene text`), the item and
-    /// its line.
+    /// Reads and validates the scene; errors name the file (or `scene text`, or `structure
+    /// data`), the item and its line (data has none).
     pub fn load(&self) -> Result<Scene, IoError> {
         match self {
             SceneSource::Path(p) => Scene::from_path(p),
             SceneSource::Toml(text) => Scene::from_str_named(text, "scene text"),
+            SceneSource::Data(arrays) => Scene::from_arrays((**arrays).clone(), DATA_NAME),
         }
     }
 
-    /// The string form (the path, or the text).
+    /// The string form (the path, or the text; `structure data` for data, whose serde form
+    /// is the object of its arrays).
     pub fn as_str(&self) -> std::borrow::Cow<'_, str> {
         match self {
             SceneSource::Path(p) => p.to_string_lossy(),
             SceneSource::Toml(text) => text.as_str().into(),
+            SceneSource::Data(_) => DATA_NAME.into(),
         }
     }
 }
 
 impl fmt::Display for SceneSource {
-    /// The path, or `scene text` (for messages).
+    /// The path, `scene text` or `structure data` (for messages).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SceneSource::Path(p) => write!(f, "{}", p.display()),
             SceneSource::Toml(_) => f.write_str("scene text"),
+            SceneSource::Data(_) => f.write_str(DATA_NAME),
         }
     }
 }
 
 impl Serialize for SceneSource {
+    /// The string (path or text), or the object of the data's arrays (module docs).
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(&self.as_str())
+        match self {
+            SceneSource::Data(arrays) => arrays.serialize(s),
+            other => s.serialize_str(&other.as_str()),
+        }
     }
 }
 
 impl<'de> Deserialize<'de> for SceneSource {
+    /// A string is a path or TOML text ([`SceneSource::parse`]), an object the data.
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let s = String::deserialize(d)?;
-        Ok(SceneSource::parse(&s))
+        d.deserialize_any(SourceVisitor)
+    }
+}
+
+/// Reads a string or an object as a [`SceneSource`].
+struct SourceVisitor;
+
+impl<'de> Visitor<'de> for SourceVisitor {
+    type Value = SceneSource;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a scene file's path, the scene's TOML text, or the scene as data (an object of its arrays)")
+    }
+
+    fn visit_str<E: de::Error>(self, s: &str) -> Result<SceneSource, E> {
+        Ok(SceneSource::parse(s))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<SceneSource, A::Error> {
+        let arrays = SceneArrays::deserialize(de::value::MapAccessDeserializer::new(map))?;
+        Ok(SceneSource::Data(Box::new(arrays)))
     }
 }
 
@@ -108,10 +167,10 @@ pub enum SceneError {
     #[error(transparent)]
     Core(#[from] CoreError),
     /// A `strict` simulation whose invariants drifted past their limits.
-    #[error("strict: {} warning(s): {}", warnings.len(), warnings.join("; "))]
+    #[error("strict: {} warning(s): {}", warnings.len(), tensegrity_core::warning::joined(warnings))]
     Strict {
         /// The warnings of the run.
-        warnings: Vec<String>,
+        warnings: Vec<tensegrity_core::Warning>,
     },
 }
 

@@ -5,10 +5,23 @@
 //!
 //! The overrides ([`SimulateCommand::apply`]): `t_end`, `integrator`, `dt`, `rtol`, `atol`
 //! replace the scene's values; with no `dt` anywhere an adaptive integrator (rk45, sdirk) is
-//! unbounded below t_end (dt = t_end); when samples are written (a front end's trajectory or
-//! VTK output) the node positions are recorded every `output_interval` (default: the scene's
-//! output times, else t_end / 200). A `strict` run whose invariants drifted past their limits
-//! fails ([`SceneError::Strict`]) after its outputs are written.
+//! unbounded below t_end (dt = t_end) and a fixed-step one takes its [`default_step`] (rk4,
+//! rattle, rk4-flight 1 ms, imex 0.5 ms, imex-ark 0.25 ms), shortened to the output
+//! interval; when samples are written (a front end's trajectory or VTK output) the node
+//! positions are recorded every `output_interval` (default: the scene's output times, else
+//! t_end / 200, no finer than a step given). A fixed step given (by the request or the
+//! scene) longer than the output interval is refused naming `dt`: the driver cuts its steps
+//! at the sample times, so it would not be the step that runs. The contact integrators
+//! (imex, imex-ark, rk4-flight) project onto the constraints after every step
+//! ([`contact_integrator`]). A `strict` run whose invariants drifted past their limits fails
+//! ([`SceneError::Strict`]) after its outputs are written.
+//!
+//! The convergence check ([`SimulateCommand::run_beside`]) runs the scene again at the
+//! refined resolution ([`SimulateCommand::refine`]) and compares the final states on the
+//! problem's absolute [`Scales`]: the final nodes against the structure's size L, the final
+//! velocities against the largest of the final and initial speeds and √(|g| L), at least
+//! 1 mm/s ([`SimulateCommand::convergence`]), so that a structure come to rest under gravity
+//! (final speeds of millimetres per second) is not judged on the noise of its own speeds.
 //!
 //! Its resource estimate ([`estimate`], [`tensegrity_dynamics::estimate::simulation`]): the steps t_end / dt (a
 //! fixed step lands on every output time, an adaptive run takes at least as many), the
@@ -45,6 +58,67 @@ use tensegrity_io::scene::{Scene, SimulationSpec};
 /// Samples per run when the scene names no output times and no interval is given.
 pub const DEFAULT_SAMPLES: f64 = 200.0;
 
+/// Default step of `rk4`, `rattle` and `rk4-flight` (its contact step) when neither the
+/// request nor the scene gives `dt` (s).
+pub const DEFAULT_DT: f64 = 1e-3;
+/// Default step of `imex` (s): the full rolling model's
+/// (`wheel_rolling::defaults::IMEX_ROLL_DT`); on `examples/prism_drop.toml` for 3 s it gives
+/// a valid run (1 ms: the final nodes move 1.1 % at half the step).
+pub const DEFAULT_DT_IMEX: f64 = 5e-4;
+/// Default step of `imex-ark` (s): the full rolling model's
+/// (`wheel_rolling::defaults::IMEX_ARK_ROLL_DT`: on the creeping pivot its stage equations
+/// stall more often at longer steps); a valid run of `examples/prism_drop.toml` for 3 s (its
+/// final nodes move 0.05 % of the prism's size at half the step; 1 ms is valid there too,
+/// 0.16 %).
+pub const DEFAULT_DT_IMEX_ARK: f64 = 2.5e-4;
+
+/// The step of a fixed-step integrator when neither the request nor the scene gives `dt`
+/// (s): [`DEFAULT_DT`] for `rk4`, `rattle` and `rk4-flight`, [`DEFAULT_DT_IMEX`],
+/// [`DEFAULT_DT_IMEX_ARK`]; `None` for the adaptive ones (their largest step is then
+/// t_end). A front end shortens it to the output interval ([`SimulateCommand::apply`]).
+///
+/// ```
+/// use tensegrity_dynamics::IntegratorKind;
+/// use tensegrity_engine::simulate::default_step;
+/// assert_eq!(default_step(IntegratorKind::Rk4), Some(1e-3));
+/// assert_eq!(default_step(IntegratorKind::ImexArk), Some(2.5e-4));
+/// assert_eq!(default_step(IntegratorKind::Sdirk), None);
+/// ```
+pub fn default_step(kind: IntegratorKind) -> Option<f64> {
+    match kind {
+        IntegratorKind::Rk4 | IntegratorKind::Rattle | IntegratorKind::Rk4Flight => {
+            Some(DEFAULT_DT)
+        }
+        IntegratorKind::Imex => Some(DEFAULT_DT_IMEX),
+        IntegratorKind::ImexArk => Some(DEFAULT_DT_IMEX_ARK),
+        IntegratorKind::Rk45 | IntegratorKind::Sdirk => None,
+    }
+}
+
+/// The contact integrators (`imex`, `imex-ark`, `rk4-flight`): their explicit part drifts
+/// the bar lengths as RK4 does, so `simulate` projects their states onto the constraints
+/// after every step, as the full rolling model runs them.
+pub fn contact_integrator(kind: IntegratorKind) -> bool {
+    matches!(
+        kind,
+        IntegratorKind::Imex | IntegratorKind::ImexArk | IntegratorKind::Rk4Flight
+    )
+}
+
+/// Who gave the step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StepSource {
+    Request,
+    Scene,
+}
+
+/// Who gave the output interval.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum IntervalSource {
+    Request,
+    Scene,
+}
+
 /// A scene run in time, as data: every field unset keeps the scene's value.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
 #[serde(default, deny_unknown_fields)]
@@ -66,13 +140,14 @@ pub struct SimulateCommand {
     )]
     pub t_end: Option<f64>,
     /// Integrator; overrides `[simulation] integrator`.
-    #[param(choice = ["rk4", "rk45", "rattle", "sdirk", "imex", "imex-ark"], help = "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage)", optional)]
+    #[param(choice = IntegratorKind::NAMES, help = "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage), RK4-flight (RK4, 5x longer steps while no contact node is near the ground); imex, imex-ark and rk4-flight project onto the constraints after every step", optional)]
     pub integrator: Option<IntegratorKind>,
-    /// Fixed step (rk4, rattle) or largest step (rk45, sdirk), s.
+    /// Fixed step (rk4, rattle, imex, imex-ark; the contact step of rk4-flight) or largest
+    /// step (rk45, sdirk), s; unset: the scene's, else [`default_step`].
     #[param(
         number,
         unit = "s",
-        help = "Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)",
+        help = "Fixed step, at most the output interval (default: rk4, rattle and rk4-flight 1e-3, imex 5e-4, imex-ark 2.5e-4, shortened to the output interval; rk4-flight's contact step, 5x in flight) or maximum step (rk45, sdirk; default t_end)",
         positive,
         optional
     )]
@@ -133,7 +208,9 @@ impl SimulateCommand {
 
     /// Lays the overrides over the scene's settings (module docs); `file` is the scene's
     /// `[simulation]` table, `written` whether samples are written. A scene without `t_end`
-    /// needs the request's.
+    /// needs the request's. The step: the request's `dt`, else the scene's, else the
+    /// integrator's [`default_step`] (no finer than the output interval); a given step of a
+    /// fixed-step integrator longer than the output interval is refused (module docs).
     pub fn apply(
         &self,
         s: &mut SimulationSettings,
@@ -154,23 +231,78 @@ impl SimulateCommand {
         if let Some(i) = self.integrator {
             s.integrator = i;
         }
-        if let Some(dt) = self.dt {
-            s.dt = dt;
-        } else if s.integrator.is_adaptive() && file.and_then(|x| x.dt).is_none() {
-            // no step given anywhere: rk45/sdirk choose their own, unbounded below t_end
-            s.dt = s.t_end;
+        let given = match (self.dt, file.and_then(|x| x.dt)) {
+            (Some(dt), _) => Some((dt, StepSource::Request)),
+            (None, Some(dt)) => Some((dt, StepSource::Scene)),
+            (None, None) => None,
+        };
+        // no step given anywhere: the integrator's own (adaptive: unbounded below t_end)
+        s.dt = given.map_or_else(|| default_step(s.integrator).unwrap_or(s.t_end), |g| g.0);
+        if contact_integrator(s.integrator) {
+            s.project = true;
         }
         s.rtol = self.rtol.unwrap_or(s.rtol);
         s.atol = self.atol.unwrap_or(s.atol);
+        // the request's interval applies to the samples written; the scene's always
+        let mut interval = s
+            .output_interval
+            .map(|dt_out| (dt_out, IntervalSource::Scene));
         if written {
             s.quantities.nodes = true;
             if let Some(dt_out) = self.output_interval {
                 s.output_interval = Some(dt_out);
+                interval = Some((dt_out, IntervalSource::Request));
             } else if s.output_times.is_empty() && s.output_interval.is_none() {
-                s.output_interval = Some(s.t_end / DEFAULT_SAMPLES);
+                // the default sampling, no finer than a step given
+                let dt_out = s.t_end / DEFAULT_SAMPLES;
+                s.output_interval = Some(given.map_or(dt_out, |g| dt_out.max(g.0)));
             }
         }
-        Ok(())
+        Self::check_step(s, given, interval)
+    }
+
+    /// The step against the output interval: a fixed step (and the contact step of
+    /// `rk4-flight`) is cut at every sample time, so a step given (by the request or the
+    /// scene) longer than the interval would not be the step that runs, and the convergence
+    /// check's half step would refine nothing: refused, naming `dt` and where the interval
+    /// comes from. The default step is shortened to the interval instead. Adaptive
+    /// integrators sample their dense output: their largest step may exceed it.
+    fn check_step(
+        s: &mut SimulationSettings,
+        given: Option<(f64, StepSource)>,
+        interval: Option<(f64, IntervalSource)>,
+    ) -> Result<(), InvalidParameter> {
+        let Some(dt_out) = s.output_interval else {
+            return Ok(());
+        };
+        if s.integrator.is_adaptive() || !(dt_out > 0.0 && s.dt > dt_out * (1.0 + 1e-9)) {
+            return Ok(());
+        }
+        let Some((dt, source)) = given else {
+            // (an interval too fine for `max_steps` keeps the step: the run's estimate, which
+            // counts its steps at the interval, refuses it by its size)
+            if (s.t_end / dt_out).ceil() <= s.max_steps as f64 {
+                s.dt = dt_out;
+            }
+            return Ok(());
+        };
+        let of = match interval.map(|i| i.1) {
+            Some(IntervalSource::Scene) => "the scene's `[simulation] output_interval`",
+            _ => "`output_interval`",
+        };
+        let which = match source {
+            StepSource::Request => "must not exceed",
+            StepSource::Scene => "(the scene's `[simulation] dt`) must not exceed",
+        };
+        Err(InvalidParameter::new(
+            "dt",
+            dt,
+            format!(
+                "{which} the output interval {dt_out} s ({of}): a fixed step is cut at every \
+                 sample time, so a longer one is not the step that runs; give a `dt` of at \
+                 most {dt_out} s, or a longer output interval"
+            ),
+        ))
     }
 
     /// The runnable simulation of a scene already read, under the overrides.
@@ -238,8 +370,70 @@ pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneErro
 
 /// Tolerance of the final node positions (relative to the structure's size).
 pub const CONVERGENCE_NODES: f64 = 1e-2;
-/// Tolerance of the final velocities (relative to the largest final speed).
+/// Tolerance of the final velocities (relative to the speed scale of the run, [`Scales`]).
 pub const CONVERGENCE_VELOCITIES: f64 = 2e-2;
+/// The smallest length scale (m) and speed scale (m/s) of the convergence check.
+pub const SCALE_FLOOR: (f64, f64) = (1e-3, 1e-3);
+
+/// The absolute scales the final state of a run is judged against (module docs): a length,
+/// the structure's size L (the largest distance of a node from the centroid, at the start or
+/// at the end, at least 1 mm), and a speed V, the largest of the run's final and initial
+/// speeds and √(|g| L) (the speed of a fall through its own size), at least 1 mm/s
+/// ([`SCALE_FLOOR`]). A structure that comes to rest has final speeds near zero: their
+/// change between two runs is noise against themselves and is judged against V instead.
+/// (Without gravity nor initial speeds, V is the final speeds' own, at least 1 mm/s.)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// The structure's size L (m).
+    pub length: f64,
+    /// The speed scale V (m/s), before the final speeds of the two runs are taken in.
+    pub speed: f64,
+}
+
+/// The largest distance of a point from their centroid (0 for none).
+fn radius(points: &[[f64; 3]]) -> f64 {
+    let n = points.len().max(1) as f64;
+    let c = points.iter().fold([0.0; 3], |s, p| {
+        [s[0] + p[0] / n, s[1] + p[1] / n, s[2] + p[2] / n]
+    });
+    points.iter().map(|p| distance(p, &c)).fold(0.0, f64::max)
+}
+
+fn distance(p: &[f64; 3], q: &[f64; 3]) -> f64 {
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+}
+
+/// The largest distance between corresponding points of two lists.
+fn gap(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| distance(p, q))
+        .fold(0.0, f64::max)
+}
+
+/// The largest length of a list of vectors.
+fn largest(v: &[[f64; 3]]) -> f64 {
+    v.iter().map(|p| distance(p, &[0.0; 3])).fold(0.0, f64::max)
+}
+
+impl Scales {
+    /// The scales of a run of `scene` (the size and the speeds at the end are taken in by
+    /// [`SimulateCommand::convergence`]).
+    pub fn of(scene: &Scene) -> Self {
+        let s = &scene.structure;
+        let nodes: Vec<[f64; 3]> = s.nodes().iter().map(|p| [p.x, p.y, p.z]).collect();
+        let length = radius(&nodes).max(SCALE_FLOOR.0);
+        let v0: Vec<[f64; 3]> = s
+            .velocities()
+            .unwrap_or_default()
+            .iter()
+            .map(|v| [v.x, v.y, v.z])
+            .collect();
+        let g = s.gravity().map_or(0.0, |g| g.norm());
+        let speed = largest(&v0).max((g * length).sqrt()).max(SCALE_FLOOR.1);
+        Self { length, speed }
+    }
+}
 
 impl SimulateCommand {
     /// The refined resolution of `settings`: a fixed step (rk4, rattle) halved; an adaptive
@@ -255,40 +449,33 @@ impl SimulateCommand {
         }
     }
 
-    /// The convergence of a run's final state against the refined run's: the largest distance
-    /// between their final nodes over the structure's size (the largest distance of a final
-    /// node from their centroid, at least 1 mm) within [`CONVERGENCE_NODES`], the largest
-    /// difference of their final velocities over the largest final speed (at least 1 mm/s)
-    /// within [`CONVERGENCE_VELOCITIES`].
+    /// The convergence of a run's final state against the refined run's, on the absolute
+    /// `scales` of the problem ([`Scales`]): the largest distance between their final nodes
+    /// against the structure's size (the larger of `scales.length` and the final nodes'
+    /// radius) within [`CONVERGENCE_NODES`], the largest difference of their final
+    /// velocities against the larger of the two runs' largest final speed and
+    /// `scales.speed` within [`CONVERGENCE_VELOCITIES`].
     pub fn convergence(
         main: &SimulationReport,
         refined: &SimulationReport,
         label: &str,
+        scales: Scales,
     ) -> Convergence {
-        let gap = |a: &[[f64; 3]], b: &[[f64; 3]]| {
-            a.iter()
-                .zip(b)
-                .map(|(p, q)| {
-                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-                })
-                .fold(0.0, f64::max)
-        };
-        let n = main.final_nodes.len().max(1) as f64;
-        let c = main.final_nodes.iter().fold([0.0; 3], |s, p| {
-            [s[0] + p[0] / n, s[1] + p[1] / n, s[2] + p[2] / n]
-        });
-        let size = gap(&main.final_nodes, &vec![c; main.final_nodes.len()]).max(1e-3);
-        let zero = vec![[0.0; 3]; main.final_velocities.len()];
-        let speed = gap(&main.final_velocities, &zero).max(1e-3);
+        let size = radius(&main.final_nodes).max(scales.length);
+        let speed = largest(&main.final_velocities).max(largest(&refined.final_velocities));
         let mut conv = Convergence::new(label);
         conv.compare_change(
             "final_nodes",
-            gap(&main.final_nodes, &refined.final_nodes) / size,
+            gap(&main.final_nodes, &refined.final_nodes),
+            size,
+            scales.length,
             CONVERGENCE_NODES,
         )
         .compare_change(
             "final_velocities",
-            gap(&main.final_velocities, &refined.final_velocities) / speed,
+            gap(&main.final_velocities, &refined.final_velocities),
+            speed,
+            scales.speed,
             CONVERGENCE_VELOCITIES,
         );
         conv
@@ -314,11 +501,13 @@ impl SimulateCommand {
         simulation: &Simulation,
         sink: &mut dyn SampleSink,
     ) -> Result<Checked, SceneError> {
+        let scales = Scales::of(scene);
         if !self.convergence_check {
             let main = simulation.run_streaming(sink);
             return Ok(Checked {
                 main,
                 refined: None,
+                scales,
             });
         }
         let mut fine = self.simulation(scene, false)?;
@@ -336,6 +525,7 @@ impl SimulateCommand {
             Checked {
                 main,
                 refined: Some((label, refined)),
+                scales,
             }
         }))
     }
@@ -370,6 +560,8 @@ pub struct Checked {
     pub main: Result<SimulationResult, CoreError>,
     /// What the refined run changed, and its result; `None` when not checked.
     pub refined: Option<(&'static str, Result<SimulationResult, CoreError>)>,
+    /// The absolute scales the final state is judged against ([`Scales`]).
+    pub scales: Scales,
 }
 
 impl Checked {
@@ -379,9 +571,12 @@ impl Checked {
         let mut report = SimulationReport::from(&self.main?);
         let convergence = match self.refined {
             None => return Ok(report),
-            Some((label, Ok(fine))) => {
-                SimulateCommand::convergence(&report, &SimulationReport::from(&fine), label)
-            }
+            Some((label, Ok(fine))) => SimulateCommand::convergence(
+                &report,
+                &SimulationReport::from(&fine),
+                label,
+                self.scales,
+            ),
             Some((label, Err(e))) => {
                 let mut c = Convergence::new(format!("{label}: the refined run failed: {e}"));
                 c.converged = false;
@@ -468,6 +663,127 @@ mod tests {
         c.apply(&mut s, None, true).unwrap();
         assert_eq!(s.dt, 3.0);
         assert_eq!(s.output_interval, Some(3.0 / DEFAULT_SAMPLES));
+    }
+
+    const DROP: &str = "../../examples/prism_drop.toml";
+
+    /// The settings of `c` over the scene `path` (`written`: samples written).
+    fn applied(
+        c: &SimulateCommand,
+        path: &str,
+        written: bool,
+    ) -> Result<SimulationSettings, InvalidParameter> {
+        let scene = SceneSource::parse(path).load().unwrap();
+        let file = scene.file.simulation.as_ref();
+        let mut s = file.map_or_else(SimulationSettings::default, |f| f.to_settings());
+        c.apply(&mut s, file, written)?;
+        Ok(s)
+    }
+
+    #[test]
+    fn a_fixed_step_longer_than_the_output_interval_is_refused() {
+        // the scene samples every 10 ms; its rk45 has no step
+        let rk4 = |dt| SimulateCommand {
+            integrator: Some(IntegratorKind::Rk4),
+            dt: Some(dt),
+            ..Default::default()
+        };
+        let e = applied(&rk4(0.02), DROP, false).unwrap_err();
+        assert_eq!((e.name.as_ref(), e.value.as_str()), ("dt", "0.02"));
+        assert!(
+            e.reason
+                .starts_with("must not exceed the output interval 0.01 s (the scene's"),
+            "{e}"
+        );
+        assert_eq!(applied(&rk4(0.01), DROP, false).unwrap().dt, 0.01);
+        // an adaptive method samples its dense output: its largest step may be longer
+        let rk45 = SimulateCommand {
+            dt: Some(0.5),
+            ..Default::default()
+        };
+        assert_eq!(applied(&rk45, DROP, false).unwrap().dt, 0.5);
+        // the request's interval, when samples are written
+        let out = SimulateCommand {
+            output_interval: Some(1e-3),
+            ..rk4(2e-3)
+        };
+        assert!(applied(&out, DROP, false).is_ok());
+        let e = applied(&out, DROP, true).unwrap_err();
+        assert!(e.reason.contains("0.001 s (`output_interval`)"), "{e}");
+        // the scene's own step
+        let text = std::fs::read_to_string(DROP)
+            .unwrap()
+            .replace("integrator = \"rk45\"", "integrator = \"rk4\"\ndt = 0.02");
+        let e = applied(&SimulateCommand::default(), &text, false).unwrap_err();
+        assert!(
+            e.reason
+                .starts_with("(the scene's `[simulation] dt`) must not exceed"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_unset_step_is_the_integrators_default_within_the_output_interval() {
+        let with = |kind| SimulateCommand {
+            integrator: Some(kind),
+            ..Default::default()
+        };
+        // the scene's rk45 has no step: the one chosen follows the integrator asked for
+        let ark = applied(&with(IntegratorKind::ImexArk), DROP, false).unwrap();
+        assert_eq!((ark.dt, ark.project), (DEFAULT_DT_IMEX_ARK, true));
+        let imex = applied(&with(IntegratorKind::Imex), DROP, false).unwrap();
+        assert_eq!(imex.dt, DEFAULT_DT_IMEX);
+        let rk4 = applied(&with(IntegratorKind::Rk4), DROP, false).unwrap();
+        assert_eq!((rk4.dt, rk4.project), (DEFAULT_DT, false));
+        let sdirk = applied(&with(IntegratorKind::Sdirk), DROP, false).unwrap();
+        assert_eq!(sdirk.dt, 3.0);
+        // a finer sampling shortens the default step, not a given one
+        let fine = SimulateCommand {
+            output_interval: Some(2e-4),
+            ..with(IntegratorKind::Rk4)
+        };
+        assert_eq!(applied(&fine, DROP, true).unwrap().dt, 2e-4);
+        // the default sampling is no finer than a step given
+        let coarse = SimulateCommand {
+            t_end: Some(1.0),
+            dt: Some(0.05),
+            ..with(IntegratorKind::Rk4)
+        };
+        let s = applied(&coarse, "../../examples/dbar.toml", true).unwrap();
+        assert_eq!((s.dt, s.output_interval), (0.05, Some(0.05)));
+        let s = applied(
+            &SimulateCommand { dt: None, ..coarse },
+            "../../examples/dbar.toml",
+            true,
+        );
+        assert_eq!(s.unwrap().output_interval, Some(1.0 / DEFAULT_SAMPLES));
+    }
+
+    #[test]
+    fn final_speeds_near_zero_are_judged_on_the_problems_speed() {
+        let scene = SceneSource::parse(DROP).load().unwrap();
+        let scales = Scales::of(&scene);
+        // the prism's nodes lie 1.118 m from their centroid; g = 9.81 m/s²
+        assert!((scales.length - 1.25f64.sqrt()).abs() < 1e-12, "{scales:?}");
+        assert!((scales.speed - (9.81 * scales.length).sqrt()).abs() < 1e-12);
+        let c = SimulateCommand {
+            scene: Some(SceneSource::parse(DROP)),
+            t_end: Some(0.05),
+            ..Default::default()
+        };
+        let main = simulate(&c).unwrap();
+        // a structure come to rest: final speeds of 2 mm/s that moved by 1 mm/s (50 %)
+        let at_rest = |v: f64| SimulationReport {
+            final_velocities: vec![[v, 0.0, 0.0]; main.final_velocities.len()],
+            ..main.clone()
+        };
+        let conv = SimulateCommand::convergence(&at_rest(2e-3), &at_rest(1e-3), "dt/2", scales);
+        assert!(conv.converged, "{conv:?}");
+        let r = conv.quantities[1].relative_change.unwrap();
+        assert!((r - 1e-3 / scales.speed).abs() < 1e-15, "{r}");
+        // the same change of speeds as large as the scale does not converge
+        let fast = SimulateCommand::convergence(&at_rest(4.0), &at_rest(3.8), "dt/2", scales);
+        assert!(!fast.converged && fast.quantities[0].converged, "{fast:?}");
     }
 
     #[test]

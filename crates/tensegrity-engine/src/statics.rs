@@ -42,7 +42,7 @@ pub struct StaticsCommand {
     /// The scene: a TOML file, or its text (required).
     #[param(
         text,
-        help = "The scene file (TOML), or the scene's TOML text (a value with a line break or `=`)",
+        help = "The scene file (TOML), or the scene's TOML text (a value naming no file, with a line break or an `=`, and not one line ending in .toml)",
         required
     )]
     pub scene: Option<SceneSource>,
@@ -54,6 +54,15 @@ pub struct StaticsCommand {
         optional
     )]
     pub rank_tol: Option<f64>,
+    /// Relative precision of the node coordinates (a fraction of the largest coordinate),
+    /// in [0, 0.1): the rank decision discounts the singular values rounding of this size
+    /// can create (`None`: judged from the coordinates' digits; 0: exact data).
+    #[param(
+        number,
+        help = "Relative precision of the node coordinates, a fraction of the largest one, in [0, 0.1) (default: judged from their digits, e.g. 5e-10 for coordinates written to 9 significant digits; 0: exact); the rank decision discounts the singular values rounding of this size can create",
+        optional
+    )]
+    pub input_precision: Option<f64>,
     /// Also report the k lowest natural frequencies.
     #[param(
         count,
@@ -79,13 +88,21 @@ pub struct StaticsCommand {
 impl Request for StaticsCommand {
     const NAME: &'static str = "statics";
 
-    /// A relative rank tolerance lies strictly between 0 and 1.
+    /// A relative rank tolerance lies strictly between 0 and 1, a relative input precision
+    /// in [0, 0.1).
     fn check(&self) -> Result<(), InvalidParameter> {
-        match self.rank_tol {
-            Some(tol) if tol >= 1.0 => Err(InvalidParameter::new(
+        if let Some(tol) = self.rank_tol.filter(|&t| t >= 1.0) {
+            return Err(InvalidParameter::new(
                 "rank_tol",
                 tol,
                 "a relative tolerance must lie strictly between 0 and 1",
+            ));
+        }
+        match self.input_precision {
+            Some(p) if !(0.0..0.1).contains(&p) => Err(InvalidParameter::new(
+                "input_precision",
+                p,
+                "a relative precision of the coordinates must lie in [0, 0.1)",
             )),
             _ => Ok(()),
         }
@@ -110,6 +127,7 @@ impl StaticsCommand {
             settings: StaticsSettings {
                 method: self.method,
                 rank_tolerance: self.rank_tol,
+                input_precision: self.input_precision,
                 memory_limit: limits.map(|l| l.memory_bytes),
                 work_limit: limits.map(|l| l.work_s),
                 ..StaticsSettings::default()

@@ -243,19 +243,19 @@ pub const FIGURES: [FigureSpec; COUNT] = [
     FigureSpec::new(
         "5.1",
         "T-bar tread",
-        ("Single Tread of T-Bar Wheel", "cylindrical q = 2, β = π/6, φ = π/8, δ = 0.25"),
+        ("Single Tread of T-Bar Wheel", "q = 1 (the thesis draws q = 2, which `tbar` reports not prestressable: with every lattice member a string only q = 1 treads are; q = 1 is the smallest prestressable tread), cylindrical, β = π/6, φ = π/8, δ = 0.25"),
         tbar::fig_5_1,
     ),
     FigureSpec::new(
         "5.2",
         "T-bar wheel",
-        ("T-Bar Wheel", "cylindrical q = 2, β = π/6, φ = π/8, δ = 0.25"),
+        ("T-Bar Wheel", "q = 1 (the thesis draws q = 2, which `tbar` reports not prestressable: with every lattice member a string only q = 1 treads are; q = 1 is the smallest prestressable tread), cylindrical, β = π/6, φ = π/8, δ = 0.25"),
         tbar::fig_5_2,
     ),
     FigureSpec::new(
         "5.3",
         "extended T-bar wheel",
-        ("Extended T-Bar Wheel", "a copy 0.5 m along ι1"),
+        ("Extended T-Bar Wheel", "q = 1 (the thesis draws q = 2, which `tbar` reports not prestressable: with every lattice member a string only q = 1 treads are; q = 1 is the smallest prestressable tread), cylindrical, β = π/6, φ = π/8, δ = 0.25; a copy 0.5 m along ι1"),
         tbar::fig_5_3,
     ),
 ];

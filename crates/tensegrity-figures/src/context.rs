@@ -37,11 +37,11 @@ impl Context {
     }
 
     /// Records a warning for figure `number`.
-    pub fn warn(&self, number: &'static str, message: String) {
+    pub fn warn(&self, number: &'static str, warning: tensegrity_core::Warning) {
         let mut w = self.warnings.lock().unwrap_or_else(|e| e.into_inner());
         w.push(Warning {
             figure: number,
-            message,
+            warning,
         });
     }
 

@@ -28,7 +28,7 @@ pub struct IndexEntry {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     /// Where the figure's model was used outside its assumptions.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<tensegrity_core::Warning>,
 }
 
 impl IndexEntry {

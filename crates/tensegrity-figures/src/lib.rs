@@ -25,6 +25,7 @@
 //! | [`wheels`] | chapter 3: Figs. 3.1, 3.2, 3.3, 3.8, 3.9, 3.10, 3.11, 3.13 |
 //! | [`michell`] | chapter 4: Figs. 4.1–4.20 and the mass-table figure |
 //! | [`tbar`] | chapter 5: Figs. 5.1–5.3 and the side and top views of any T-bar |
+//! | [`page`] | the size and resolution of a run's figures checked against every chosen figure before any is computed |
 //! | [`rolling`] | [`FigRollingRequest`] and [`fig_rolling`]; the panels of one rolling run |
 //! | [`work_precision`] | error against wall time of every integrator |
 //!
@@ -53,6 +54,7 @@ pub mod driver;
 pub mod error;
 pub mod index;
 pub mod michell;
+pub mod page;
 pub mod rolling;
 pub mod structures;
 pub mod sweep_plot;

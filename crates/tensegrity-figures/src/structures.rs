@@ -9,6 +9,7 @@
 use crate::draw::{drawing_figure_of, drawing_panel, ColorBy, Drawing, Style};
 use crate::error::Result;
 use nalgebra::{DMatrix, Vector3};
+use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::Structure;
 use tensegrity_io::figure::Figure;
 use tensegrity_statics::stiffness::{self, MassModel};
@@ -81,8 +82,79 @@ fn extent(nodes: &[Vector3<f64>]) -> f64 {
         .max(1e-9)
 }
 
+/// The most mode panels [`modes_figure`] draws: a request for more draws the
+/// [`MAX_MODE_PANELS`] lowest (a front end says so).
+pub const MAX_MODE_PANELS: usize = 12;
+
+/// Bytes of the SVG of one member or node drawn in a panel (a 3-prism tower of 603 nodes and
+/// 1803 members: 615 kB a panel, 256 bytes an item).
+pub const SVG_BYTES_PER_ITEM: f64 = 300.0;
+
+/// The panels [`modes_figure`] draws for `k` modes asked: at most [`MAX_MODE_PANELS`].
+pub fn mode_panels(k: usize) -> usize {
+    k.min(MAX_MODE_PANELS)
+}
+
+/// Sustained rate of the dense SVDs of the figure's equilibrium matrix (flop/s): measured
+/// 2.6·10¹⁰ on the project's 2-core VM (the mechanisms of a free tower of 200 prisms, 1809 ×
+/// 1803: 5.9 s; of 300 prisms: 18.8 s), rounded down.
+pub const SVD_FLOP_RATE: f64 = 2e10;
+
+/// Flops of the dense modal analysis of n degrees of freedom per n³: the mass factor's
+/// inverse, two products and the symmetric eigendecomposition with vectors (measured: 13 s
+/// for n = 1809 on the project's 2-core VM at [`budget::DENSE_FLOP_RATE`]: 16.6 s estimated).
+pub const MODAL_FLOPS_PER_N3: f64 = 14.0;
+
+/// The resource estimate of [`modes_figure`] of `structure` for `k` modes, before any work:
+/// the equilibrium force densities (an SVD of the n × m equilibrium matrix), then the dense
+/// modes of the n free degrees of freedom where the model has what they need (string
+/// stiffness and rest lengths, bar materials, masses: checked member by member, no solve),
+/// else the mechanisms (a second such SVD); and the panels drawn ([`mode_panels`]),
+/// [`SVG_BYTES_PER_ITEM`] a member or node each. Named `modes = k`.
+///
+/// ```
+/// use tensegrity_core::test_models::snelson_tower_free;
+/// use tensegrity_figures::structures::modes_figure_estimate;
+/// let small = modes_figure_estimate(&snelson_tower_free(2).unwrap(), 1000);
+/// assert!(small.work_s < 0.1 && small.output_bytes < 1e6, "{small:?}");
+/// assert_eq!(small.parameters.to_string(), "modes = 1000");
+/// let large = modes_figure_estimate(&snelson_tower_free(1000).unwrap(), 1000);
+/// assert!(large.work_s > 600.0, "{large:?}"); // 9009 degrees of freedom, dense
+/// ```
+pub fn modes_figure_estimate(structure: &Structure, k: usize) -> Estimate {
+    let dofs = DofMap::of(structure);
+    let (n, m) = (dofs.len(), structure.n_members());
+    let panels = mode_panels(k);
+    let svd_s = budget::svd_flops(n, m) / SVD_FLOP_RATE;
+    let masses = stiffness::lumped_masses(structure);
+    let modal = stiffness::axial_stiffness(structure).is_ok()
+        && dofs.free.iter().all(|&(node, _)| masses[node] > 0.0);
+    let nf = n as f64;
+    let (second, memory, how) = if modal {
+        let work = MODAL_FLOPS_PER_N3 * nf * nf * nf / budget::DENSE_FLOP_RATE;
+        (
+            work,
+            64.0 * nf * nf,
+            format!("the dense modes of {n} degrees of freedom"),
+        )
+    } else {
+        let how = format!("the mechanisms of the {n} × {m} equilibrium matrix");
+        (svd_s, budget::dense_statics_bytes(n, m), how)
+    };
+    let items = (structure.n_nodes() + m) as f64;
+    let svg = panels as f64 * items * SVG_BYTES_PER_ITEM;
+    Estimate::new(
+        format!("the mode-shape figure ({how}, {panels} panels)"),
+        format!("modes = {k}"),
+    )
+    .memory(memory.max(budget::dense_statics_bytes(n, m)) + svg)
+    .work(svd_s + second)
+    .output(svg)
+}
+
 /// The `k` lowest mode shapes (titles with their frequencies), or the first `k` internal
-/// mechanisms where the modes cannot be computed; an error when neither exists.
+/// mechanisms where the modes cannot be computed; at most [`MAX_MODE_PANELS`] of them
+/// ([`mode_panels`]); an error when neither exists.
 pub fn modes_figure(
     structure: &Structure,
     k: usize,
@@ -122,7 +194,7 @@ pub fn modes_figure(
         color_by: ColorBy::Kind,
         ..style.clone()
     };
-    let panels = (0..k.min(shapes.ncols()))
+    let panels = (0..mode_panels(k).min(shapes.ncols()))
         .map(|i| {
             let col: Vec<f64> = shapes.column(i).iter().copied().collect();
             let d = Drawing {

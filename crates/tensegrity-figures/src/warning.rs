@@ -4,16 +4,16 @@
 
 /// A figure drawn from a model used outside its assumptions: what the front end shows beside
 /// the list of files.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Warning {
     /// The figure's number.
     pub figure: &'static str,
     /// What is outside the model's assumptions.
-    pub message: String,
+    pub warning: tensegrity_core::Warning,
 }
 
 impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Fig. {}: {}", self.figure, self.message)
+        write!(f, "Fig. {}: {}", self.figure, self.warning)
     }
 }

@@ -27,6 +27,7 @@ use crate::context::Context as Ctx;
 use crate::data::{Drawn, StructureFigure};
 use crate::draw::{Group, View, BLUE, GREY, RED};
 use crate::error::Result;
+use tensegrity_core::warning::LiftOff;
 use tensegrity_io::figure::{Figure, Panel, Series};
 use tensegrity_io::figure_data::Value;
 use toroid::{
@@ -337,23 +338,26 @@ fn snap_to_contact(frame: &mut wheel_rolling::WheelFrame, sample: &wheel_rolling
 /// Flags the runs whose net normal force went negative: the model keeps the wheel on the
 /// slope where the real one would leave it, so the curves there are outside its assumptions.
 fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> bool {
-    let lifted: Vec<String> = runs
+    let lifted: Vec<LiftOff> = runs
         .iter()
         .filter(|r| r.summary.min_normal_force < 0.0)
-        .map(|r| format!("n = {} (min {:.1} N)", r.sides, r.summary.min_normal_force))
+        .map(|r| LiftOff {
+            sides: r.sides,
+            min_normal: r.summary.min_normal_force,
+        })
         .collect();
-    if !lifted.is_empty() {
+    let flagged = !lifted.is_empty();
+    if flagged {
+        let model = fidelity(runs[0]).to_string();
         ctx.warn(
             number,
-            format!(
-                "the {}'s net normal force goes negative for {}: the wheel would leave the \
-                 slope there, outside the model's assumptions",
-                fidelity(runs[0]),
-                lifted.join(", ")
-            ),
+            tensegrity_core::Warning::LiftOff {
+                model,
+                runs: lifted,
+            },
         );
     }
-    !lifted.is_empty()
+    flagged
 }
 
 /// The title's note when a run is outside its model's assumptions.

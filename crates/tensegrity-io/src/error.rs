@@ -93,13 +93,14 @@ pub enum IoError {
     },
     /// A `[[supports]]` entry gives both `directions` and `fixed`.
     #[error(
-        "{file} (line {line}): support {support}: give either `directions` or `fixed`, not both"
+        "{file}{}: support {support}: give either `directions` or `fixed`, not both",
+        line_suffix(*.line)
     )]
     ConflictingSupport {
         /// The file name.
         file: String,
-        /// 1-based line of the entry.
-        line: usize,
+        /// 1-based line of the entry (`None`: structure data, which has no lines).
+        line: Option<usize>,
         /// Index of the support.
         support: usize,
     },
@@ -117,18 +118,45 @@ pub enum IoError {
         what: &'static str,
     },
     /// A `[[bars]]` or `[[strings]]` entry whose `nodes` does not hold exactly two indices.
-    #[error("{file} (line {line}): {member}: `nodes` must hold exactly two node indices, got {count} ({nodes:?})")]
+    #[error("{file}{}: {member}: `nodes` must hold exactly two node indices, got {count} ({nodes:?})", line_suffix(*.line))]
     NodeCount {
         /// The file name.
         file: String,
-        /// 1-based line of the entry.
-        line: usize,
+        /// 1-based line of the entry (`None`: structure data, which has no lines).
+        line: Option<usize>,
         /// The member, e.g. `bar 2`.
         member: String,
         /// How many indices were given.
         count: usize,
         /// The indices given.
         nodes: Vec<usize>,
+    },
+    /// A node index of structure data ([`crate::scene::SceneArrays`]) that is negative.
+    #[error("{file}: {item}: node index {index} is out of range (the structure has {n_nodes} nodes, 0-based)")]
+    NegativeIndex {
+        /// The name labelling the data.
+        file: String,
+        /// The item holding the index, e.g. `bar 3` or `support 0`.
+        item: String,
+        /// The index given.
+        index: i64,
+        /// Number of nodes of the structure.
+        n_nodes: usize,
+    },
+    /// A per-member column of structure data ([`crate::scene::SceneArrays`]) that does not
+    /// hold one entry per member.
+    #[error("{file}: {column}: expected one entry per {member} ({expected}), got {got}")]
+    ColumnLength {
+        /// The name labelling the data.
+        file: String,
+        /// The column, e.g. `bar_mass`.
+        column: &'static str,
+        /// `bar` or `string`.
+        member: &'static str,
+        /// The number of members.
+        expected: usize,
+        /// The number of entries given.
+        got: usize,
     },
     /// A dynamics table of a scene file is invalid; the line of the item it names.
     #[error("{file}{}: {source}", line_suffix(*.line))]

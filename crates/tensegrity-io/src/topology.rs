@@ -22,7 +22,9 @@
 //! ```
 //!
 //! Members are numbered bars first, then strings, in file order (the order of the force
-//! densities a form-finding reports). The reader is strict: unknown keys, a member without
+//! densities a form-finding reports). The reader is strict: a node count beyond what the
+//! members and fixed nodes can reach (2 · members + fixed: refused before anything per node
+//! is allocated, so `n_nodes = 1000000000000` is an error, not an abort), unknown keys, a member without
 //! exactly two indices, an index past the last node, a member joining a node to itself, two
 //! members on the same pair of nodes, an unknown or unused group, a force density of the
 //! wrong sign (a bar's q < 0, a string's q > 0, tension-positive) or given both by a member
@@ -241,8 +243,30 @@ impl TopologyFile {
         Ok(())
     }
 
-    /// The number of nodes: `n_nodes`, the positions given, or the largest index + 1.
+    /// The number of nodes: `n_nodes`, the positions given, or the largest index + 1; at
+    /// most what the members and fixed nodes reach (every node is on a member or fixed),
+    /// checked before anything per node is allocated.
     fn node_count(&self) -> Result<usize, Failed> {
+        let n = self.given_node_count()?;
+        let (members, fixed) = (self.bars.len() + self.strings.len(), self.fixed.len());
+        if n > members.saturating_mul(2).saturating_add(fixed) {
+            let at = match (&self.n_nodes, &self.nodes) {
+                (Some(given), _) => Some(given.span().start),
+                (None, Some(nodes)) => Some(nodes.span().start),
+                (None, None) => None,
+            };
+            let item = if self.n_nodes.is_some() {
+                "n_nodes"
+            } else {
+                "nodes"
+            };
+            return Err(bad(at, item, formfind::too_many_nodes(n, members, fixed)));
+        }
+        Ok(n)
+    }
+
+    /// The number of nodes as given: `n_nodes`, the positions, or the largest index + 1.
+    fn given_node_count(&self) -> Result<usize, Failed> {
         let largest = self
             .members()
             .flat_map(|(_, _, m)| m.get_ref().nodes.iter().copied())
@@ -595,6 +619,16 @@ position = [1.0, 0.0, 0.0]
         );
         let e = err("");
         assert!(e.contains("no member"), "{e}");
+        // a count no member reaches is refused by the line of `n_nodes`, before a vector
+        // per node is allocated (10¹² nodes aborted on allocation)
+        let e = err(&format!("\nn_nodes = 1000000000000\n{body}"));
+        assert_eq!(
+            e,
+            "t.toml (line 2): n_nodes: 1000000000000 nodes, but every node must be on a member \
+             or fixed, and 3 member(s) and 0 fixed node(s) reach at most 6"
+        );
+        let e = err(&format!("n_nodes = {}\n{body}", i64::MAX));
+        assert!(e.contains("line 1") && e.contains("reach at most 6"), "{e}");
     }
 
     #[test]

@@ -2,9 +2,11 @@
 //!
 //! Inward ([`from_py`]): `None`, `bool`, `int`, `float`, `str`, lists and tuples, dicts with
 //! string keys, `os.PathLike` (its path), numpy scalars and arrays (their `tolist()`), and an
-//! object with `to_toml()` (a `Structure`: its scene) become the engine's values; a
-//! non-finite float crosses as its text (`nan`, `inf`), which every numeric parameter refuses
-//! by name. Anything else is an input error naming the keyword.
+//! object with `_arrays()` (a `Structure`: the dict of its arrays and tables, which the
+//! engine reads as a scene given as data, `SceneSource::Data`; no TOML text is written)
+//! become the engine's values; a non-finite float crosses as its text (`nan`, `inf`), which
+//! every numeric parameter refuses by name. Anything else is an input error naming the
+//! keyword.
 //!
 //! Outward ([`to_py`]): objects become dicts, strings, booleans and numbers as they are, and
 //! every rectangular list of numbers (any depth) a numpy array: int64 when every entry is an
@@ -24,6 +26,23 @@ const LIST_KEYS: [&str; 7] = [
     "warnings", "errors", "notes", "frames", "impacts", "rows", "samples",
 ];
 
+/// Why a Python value cannot cross to the engine: what was found (the caller names the
+/// keyword).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unconvertible(pub String);
+
+impl std::fmt::Display for Unconvertible {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl From<PyErr> for Unconvertible {
+    fn from(e: PyErr) -> Self {
+        Unconvertible(e.to_string())
+    }
+}
+
 /// A dict of keyword values as the engine's named values (`None` values left out: the
 /// engine then applies its default, as for an absent flag).
 pub fn named(values: &Bound<'_, PyDict>) -> Result<Map<String, Value>, Failure> {
@@ -35,7 +54,7 @@ pub fn named(values: &Bound<'_, PyDict>) -> Result<Map<String, Value>, Failure> 
         if v.is_none() {
             continue;
         }
-        let value = from_py(&v).map_err(|reason| {
+        let value = from_py(&v).map_err(|Unconvertible(reason)| {
             Failure::invalid(&InvalidParameter::raw(key.clone(), "(value)", reason))
         })?;
         out.insert(key, value);
@@ -44,7 +63,7 @@ pub fn named(values: &Bound<'_, PyDict>) -> Result<Map<String, Value>, Failure> 
 }
 
 /// One Python value as the engine's value (module docs); the error is the reason.
-pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, String> {
+pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, Unconvertible> {
     if v.is_none() {
         return Ok(Value::Null);
     }
@@ -58,10 +77,10 @@ pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, String> {
         if let Ok(u) = v.extract::<u64>() {
             return Ok(Value::from(u));
         }
-        return Err("the integer is out of range".into());
+        return Err(Unconvertible("the integer is out of range".into()));
     }
     if v.is_instance_of::<PyFloat>() {
-        let x: f64 = v.extract().map_err(|e: PyErr| e.to_string())?;
+        let x: f64 = v.extract().map_err(|e: PyErr| Unconvertible::from(e))?;
         return Ok(Number::from_f64(x).map_or_else(|| Value::String(x.to_string()), Value::Number));
     }
     if let Ok(s) = v.cast::<PyString>() {
@@ -70,7 +89,9 @@ pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, String> {
     if let Ok(d) = v.cast::<PyDict>() {
         let mut out = Map::new();
         for (k, x) in d.iter() {
-            let key: String = k.extract().map_err(|_| "dict keys must be strings")?;
+            let key: String = k
+                .extract()
+                .map_err(|_| Unconvertible("dict keys must be strings".into()))?;
             out.insert(key, from_py(&x)?);
         }
         return Ok(Value::Object(out));
@@ -90,20 +111,23 @@ pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, String> {
             .map(Value::Array);
     }
     let py = v.py();
-    if v.hasattr("to_toml").unwrap_or(false) {
-        let text = v.call_method0("to_toml").map_err(|e| e.to_string())?;
-        return from_py(&text);
+    // a Structure: the dict of its arrays (a scene as data)
+    if v.hasattr("_arrays").unwrap_or(false) {
+        let data = v.call_method0("_arrays").map_err(Unconvertible::from)?;
+        return from_py(&data);
     }
-    let os = py.import("os").map_err(|e| e.to_string())?;
-    if v.is_instance(&os.getattr("PathLike").map_err(|e| e.to_string())?)
+    let os = py.import("os").map_err(Unconvertible::from)?;
+    if v.is_instance(&os.getattr("PathLike").map_err(Unconvertible::from)?)
         .unwrap_or(false)
     {
-        let path = os.call_method1("fspath", (v,)).map_err(|e| e.to_string())?;
+        let path = os
+            .call_method1("fspath", (v,))
+            .map_err(Unconvertible::from)?;
         return from_py(&path);
     }
     // numpy arrays and scalars: their Python equivalents
     if v.hasattr("tolist").unwrap_or(false) {
-        let plain = v.call_method0("tolist").map_err(|e| e.to_string())?;
+        let plain = v.call_method0("tolist").map_err(Unconvertible::from)?;
         return from_py(&plain);
     }
     let kind = v
@@ -111,7 +135,9 @@ pub fn from_py(v: &Bound<'_, PyAny>) -> Result<Value, String> {
         .name()
         .map(|n| n.to_string())
         .unwrap_or_default();
-    Err(format!("a value of type {kind} cannot be passed"))
+    Err(Unconvertible(format!(
+        "a value of type {kind} cannot be passed"
+    )))
 }
 
 /// The element kind of a rectangular numeric list.

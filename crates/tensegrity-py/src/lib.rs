@@ -9,8 +9,9 @@
 //! objects built from the engine's values, every vector or matrix a numpy array ([`convert`]:
 //! no text crosses, keyword values go in typed). `simulate` and `roll` stream through the
 //! library calls the CLI makes ([`runs`]), sweeps run through the sweeps crate ([`sweep`]),
-//! and the structure model is built from numpy arrays ([`structure`]; it still reaches the
-//! engine's scene reader as the scene TOML the io crate writes). Errors become the package's
+//! and the structure model is built from numpy arrays ([`structure`]: a `Structure` crosses
+//! to the engine as data, the dict of its arrays, validated as a scene file is; scene TOML is
+//! only its explicit export and import). Errors become the package's
 //! exceptions by their category, naming keywords, never flags ([`errors`]). No physics and
 //! no second description of a parameter live here.
 
@@ -227,40 +228,52 @@ fn run_sweep(
     }
 }
 
-/// Scene TOML of a structure spec (a dict, see [`structure::build`]) and its other tables
-/// (`tables`: JSON object).
+/// Validates a structure's data (a dict of its arrays and tables, [`structure::scene`]):
+/// errors name the item.
 #[pyfunction]
-fn structure_toml(
-    py: Python<'_>,
-    spec: &Bound<'_, PyDict>,
-    tables: &Bound<'_, PyDict>,
-) -> PyResult<String> {
-    let s = raise(py, structure::build(spec)?)?;
-    let tables = raise(py, object(tables))?;
-    raise(py, structure::scene_text(&s, &tables))
+fn structure_check(py: Python<'_>, data: &Bound<'_, PyDict>) -> PyResult<()> {
+    let data = raise(py, object(data))?;
+    raise(py, structure::scene(&data).map(|_| ()))
 }
 
-/// The structure spec (a dict) of scene TOML; `name` labels its errors.
+/// The data of a structure as the engine gives it back (plain lists; [`structure::canonical`]).
+#[pyfunction]
+fn structure_arrays(py: Python<'_>, data: &Bound<'_, PyDict>) -> PyResult<Py<PyAny>> {
+    let data = raise(py, object(data))?;
+    let canonical = raise(py, structure::canonical(&data))?;
+    Ok(convert::to_plain(py, &canonical)?.unbind())
+}
+
+/// Scene TOML of a structure's data (the explicit export, [`structure::scene_text`]).
+#[pyfunction]
+fn structure_toml(py: Python<'_>, data: &Bound<'_, PyDict>) -> PyResult<String> {
+    let data = raise(py, object(data))?;
+    raise(py, structure::scene_text(&data))
+}
+
+/// The data (a dict of plain lists) of scene TOML; `name` labels its errors.
 #[pyfunction]
 fn structure_read(py: Python<'_>, text: &str, name: &str) -> PyResult<Py<PyAny>> {
-    let spec = raise(py, structure::read(text, name))?;
-    Ok(convert::to_plain(py, &spec)?.unbind())
+    let data = raise(py, structure::read(text, name))?;
+    Ok(convert::to_plain(py, &data)?.unbind())
 }
 
-/// C_b, C_s and the equilibrium matrix of scene TOML (a dict).
+/// C_b, C_s and the equilibrium matrix of a structure's data (a dict).
 #[pyfunction]
-fn matrices(py: Python<'_>, text: &str) -> PyResult<Py<PyAny>> {
-    let m = raise(py, structure::matrices(text))?;
+fn matrices(py: Python<'_>, data: &Bound<'_, PyDict>) -> PyResult<Py<PyAny>> {
+    let data = raise(py, object(data))?;
+    let m = raise(py, structure::matrices(&data))?;
     Ok(convert::to_plain(py, &m)?.unbind())
 }
 
-/// The structure of a topology crate as scene TOML (`toroid`, `michell`, `tbar`).
+/// The structure of a topology crate as data (`toroid`, `michell`, `tbar`, `formfind`): a
+/// dict of plain lists.
 #[pyfunction]
-fn topology(py: Python<'_>, kind: &str, values: &Bound<'_, PyDict>) -> PyResult<String> {
+fn topology(py: Python<'_>, kind: &str, values: &Bound<'_, PyDict>) -> PyResult<Py<PyAny>> {
     let values = raise(py, object(values))?;
     let kind = kind.to_string();
     match worker::run(py, false, move || structure::topology(&kind, values)) {
-        Ok(r) => raise(py, r),
+        Ok(r) => Ok(convert::to_plain(py, &raise(py, r)?)?.unbind()),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
 }
@@ -280,6 +293,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(roll, m)?)?;
     m.add_function(wrap_pyfunction!(run_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(structure_check, m)?)?;
+    m.add_function(wrap_pyfunction!(structure_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(structure_toml, m)?)?;
     m.add_function(wrap_pyfunction!(structure_read, m)?)?;
     m.add_function(wrap_pyfunction!(matrices, m)?)?;

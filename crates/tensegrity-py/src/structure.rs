@@ -1,130 +1,63 @@
-//! The structure model between Python and the core: a `Structure` spec (a dict of plain
-//! lists, from the numpy arrays of `tensegrity.Structure`) built through the core's
-//! validating builder and written as scene TOML by the io crate's writer
-//! ([`tensegrity_io::scene::to_toml`]); scene TOML read back by the io crate's reader into the
-//! same spec; the connectivity and equilibrium matrices of the core; the structures of the
-//! topology crates (toroid, Michell truss, T-bar) as scene TOML.
+//! The structure model between Python and the core: a `Structure` crosses as data — a dict
+//! of its arrays (`Structure._arrays()`: the keys of [`SceneArrays`], with the scene's
+//! `simulation`, `ground` and `actuation` tables) — validated by the io crate exactly as a
+//! scene file is ([`Scene::from_arrays`]: the core's builder, the checks of the dynamics
+//! tables; errors name the item); the connectivity and equilibrium matrices of the core from
+//! the same data; the structures of the topology crates (toroid, Michell truss, T-bar, form
+//! finding) as data. Scene TOML appears only as the explicit export and import
+//! (`Structure.to_toml`, `Structure.from_toml`: the io crate's writer and reader).
 
 use crate::errors::Failure;
-use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use serde::Deserialize;
 use tensegrity_core::connectivity::Connectivity;
 use tensegrity_core::request::{Categorized, Category, Request};
-use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
-use tensegrity_engine::value::{json, Map, Value};
-use tensegrity_io::scene::Scene;
+use tensegrity_engine::value::{json, to_value, Map, Value};
+use tensegrity_io::scene::{Scene, SceneArrays};
 use tensegrity_statics::{equilibrium_matrix, DofMap};
 
 /// The tables of a scene that are not the structure's: kept as given, written after it.
 pub const TABLES: &[&str] = &["simulation", "ground", "actuation"];
 
-fn item<'py, T: FromPyObjectOwned<'py>>(
-    spec: &Bound<'py, PyDict>,
-    key: &str,
-) -> PyResult<Option<T>> {
-    match spec.get_item(key)? {
-        Some(v) if !v.is_none() => Ok(Some(v.extract::<T>().map_err(Into::into)?)),
-        _ => Ok(None),
-    }
+/// What the errors of a structure's data are labelled with.
+const NAME: &str = "structure";
+
+fn io_failure(e: &tensegrity_io::IoError) -> Failure {
+    Failure::new(e.category(), e.to_string())
 }
 
-/// A member's two node indices, negative ones refused as out of range (the core's message).
-fn ends(nodes: (i64, i64), what: &str, k: usize, n_nodes: usize) -> Result<[usize; 2], Failure> {
-    let one = |i: i64| {
-        usize::try_from(i).map_err(|_| {
-            Failure::new(
-                Category::Input,
-                format!("{what} {k}: node index {i} is out of range (the structure has {n_nodes} nodes, 0-based)"),
-            )
-        })
-    };
-    Ok([one(nodes.0)?, one(nodes.1)?])
+/// The validated scene of a structure's data (errors name the item, or the key of a value
+/// that does not read).
+pub fn scene(data: &Map<String, Value>) -> Result<Scene, Failure> {
+    let arrays = SceneArrays::deserialize(Value::Object(data.clone()))
+        .map_err(|e| Failure::new(Category::Input, format!("{NAME}: {e}")))?;
+    Scene::from_arrays(arrays, NAME).map_err(|e| io_failure(&e))
 }
 
-type BarRow = ((i64, i64), Option<f64>, Option<String>, Option<f64>);
-type StringRow = ((i64, i64), Option<f64>, Option<f64>, f64, Option<String>);
-
-/// The core structure of a spec: `nodes` (n × 3), `velocities`, `materials` ({name:
-/// (density, E, yield)}), `bars` ([(i, j), mass, material, radius]), `strings` ([(i, j),
-/// stiffness, rest length, damping, material]), `supports` ([node, (fx, fy, fz)]), `loads`
-/// ([node, force]), `gravity`; validated by the core's builder (errors name the item).
-pub fn build(spec: &Bound<'_, PyDict>) -> PyResult<Result<Structure, Failure>> {
-    let nodes: Vec<[f64; 3]> = item(spec, "nodes")?.unwrap_or_default();
-    let n = nodes.len();
-    let mut b = Structure::builder().nodes(nodes);
-    if let Some(v) = item::<Vec<[f64; 3]>>(spec, "velocities")? {
-        b = b.velocities(v);
-    }
-    let materials: Vec<(String, (f64, f64, f64))> = item(spec, "materials")?.unwrap_or_default();
-    for (name, (rho, e, y)) in materials {
-        b = b.material(&name, Material::new(rho, e, y));
-    }
-    let bars: Vec<BarRow> = item(spec, "bars")?.unwrap_or_default();
-    for (k, (pair, mass, material, radius)) in bars.into_iter().enumerate() {
-        let nodes = match ends(pair, "bar", k, n) {
-            Ok(e) => e,
-            Err(f) => return Ok(Err(f)),
-        };
-        b = b.bar(Bar {
-            nodes,
-            mass,
-            material,
-            radius,
-        });
-    }
-    let strings: Vec<StringRow> = item(spec, "strings")?.unwrap_or_default();
-    for (k, (pair, stiffness, rest_length, damping, material)) in strings.into_iter().enumerate() {
-        let nodes = match ends(pair, "string", k, n) {
-            Ok(e) => e,
-            Err(f) => return Ok(Err(f)),
-        };
-        b = b.string(StringMember {
-            nodes,
-            stiffness,
-            rest_length,
-            damping,
-            material,
-        });
-    }
-    let supports: Vec<(i64, [bool; 3])> = item(spec, "supports")?.unwrap_or_default();
-    for (k, (node, fixed)) in supports.into_iter().enumerate() {
-        let Ok(node) = usize::try_from(node) else {
-            return Ok(Err(Failure::new(
-                Category::Input,
-                format!("support {k}: node index {node} is out of range (the structure has {n} nodes, 0-based)"),
-            )));
-        };
-        b = b.support(Support::directions(node, fixed));
-    }
-    let loads: Vec<(i64, [f64; 3])> = item(spec, "loads")?.unwrap_or_default();
-    for (k, (node, force)) in loads.into_iter().enumerate() {
-        let Ok(node) = usize::try_from(node) else {
-            return Ok(Err(Failure::new(
-                Category::Input,
-                format!("load {k}: node index {node} is out of range (the structure has {n} nodes, 0-based)"),
-            )));
-        };
-        b = b.load(node, force);
-    }
-    if let Some(g) = item::<[f64; 3]>(spec, "gravity")? {
-        b = b.gravity(g);
-    }
-    Ok(b.build()
-        .map_err(|e| Failure::new(e.category(), e.to_string())))
+/// The data of a scene as the engine gives it back (the columns of its structure, the
+/// materials its members name, its tables in full): what two equal structures share.
+pub fn canonical(data: &Map<String, Value>) -> Result<Value, Failure> {
+    let scene = scene(data)?;
+    as_value(&SceneArrays::of(&scene))
 }
 
-/// Scene TOML of a structure and its other tables (`tables`: JSON of `[simulation]`,
-/// `[ground]`, `[[actuation]]`), read back once so that the tables are checked as a scene
-/// file's are.
-pub fn scene_text(structure: &Structure, tables: &Map<String, Value>) -> Result<String, Failure> {
-    let mut text = tensegrity_io::scene::to_toml(structure);
-    let extra = toml_text(&Value::Object(tables.clone()))?;
+fn as_value(arrays: &SceneArrays) -> Result<Value, Failure> {
+    to_value(arrays).map_err(|e| Failure::new(Category::Input, format!("{NAME}: {e}")))
+}
+
+/// Scene TOML of a structure's data (the explicit export): the io crate's writer, then the
+/// tables as given.
+pub fn scene_text(data: &Map<String, Value>) -> Result<String, Failure> {
+    let scene = scene(data)?;
+    let mut text = tensegrity_io::scene::to_toml(&scene.structure);
+    let tables: Map<String, Value> = TABLES
+        .iter()
+        .filter_map(|t| Some((t.to_string(), data.get(*t)?.clone())))
+        .collect();
+    let extra = toml_text(&Value::Object(tables))?;
     if !extra.trim().is_empty() {
         text.push('\n');
         text.push_str(&extra);
     }
-    Scene::from_str_named(&text, "structure")
-        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     Ok(text)
 }
 
@@ -134,44 +67,20 @@ pub fn toml_text(value: &Value) -> Result<String, Failure> {
     tensegrity_io::tables::to_toml(value).map_err(|e| Failure::new(Category::Input, e.to_string()))
 }
 
-/// The spec of a scene (as [`build`] takes it, in JSON) and its other tables.
+/// The data of scene TOML (the import): the columns of its structure and its other tables
+/// as written.
 pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
-    let scene =
-        Scene::from_str_named(text, name).map_err(|e| Failure::new(e.category(), e.to_string()))?;
-    let s = &scene.structure;
-    let v3 = |v: &nalgebra::Vector3<f64>| json!([v.x, v.y, v.z]);
+    let scene = Scene::from_str_named(text, name).map_err(|e| io_failure(&e))?;
+    let mut data = as_value(&SceneArrays::from_structure(&scene.structure))?;
     let raw = tensegrity_io::tables::read(text);
-    let materials: Map<String, Value> = raw
-        .get("materials")
-        .and_then(Value::as_object)
-        .into_iter()
-        .flat_map(|t| t.keys())
-        .filter_map(|k| {
-            let m = s.materials().get(k)?;
-            Some((
-                k.clone(),
-                json!([m.density, m.youngs_modulus, m.yield_strength]),
-            ))
-        })
-        .collect();
-    let tables: Map<String, Value> = TABLES
-        .iter()
-        .filter_map(|t| {
-            let v = raw.get(*t)?.clone();
-            Some((t.to_string(), v))
-        })
-        .collect();
-    Ok(json!({
-        "nodes": s.nodes().iter().map(v3).collect::<Vec<_>>(),
-        "velocities": s.velocities().map(|v| v.iter().map(v3).collect::<Vec<_>>()),
-        "materials": materials,
-        "bars": s.bars().iter().map(|b| json!([b.nodes, b.mass, b.material, b.radius])).collect::<Vec<_>>(),
-        "strings": s.strings().iter().map(|x| json!([x.nodes, x.stiffness, x.rest_length, x.damping, x.material])).collect::<Vec<_>>(),
-        "supports": s.supports().iter().map(|x| json!([x.node, x.fixed])).collect::<Vec<_>>(),
-        "loads": s.loads().iter().map(|l| json!([l.node, v3(&l.force)])).collect::<Vec<_>>(),
-        "gravity": s.gravity().map(|g| v3(&g)),
-        "tables": tables,
-    }))
+    if let Value::Object(m) = &mut data {
+        for t in TABLES {
+            if let Some(v) = raw.get(*t) {
+                m.insert(t.to_string(), v.clone());
+            }
+        }
+    }
+    Ok(data)
 }
 
 /// A dense matrix as JSON: `{"shape": [r, c], "data": row-major}`.
@@ -184,10 +93,10 @@ fn dense(m: &nalgebra::DMatrix<f64>) -> Value {
 
 /// The connectivity matrices C_b, C_s (members × nodes; −1 at the first node, +1 at the
 /// second) and the equilibrium matrix A (free degrees of freedom × members, node-major rows,
-/// supported directions removed) with its free degrees of freedom `(node, direction)`.
-pub fn matrices(text: &str) -> Result<Value, Failure> {
-    let scene = Scene::from_str_named(text, "structure")
-        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
+/// supported directions removed) with its free degrees of freedom `(node, direction)`, of a
+/// structure's data.
+pub fn matrices(data: &Map<String, Value>) -> Result<Value, Failure> {
+    let scene = scene(data)?;
     let s = &scene.structure;
     let c = Connectivity::of(s);
     let dofs = DofMap::of(s);
@@ -199,12 +108,12 @@ pub fn matrices(text: &str) -> Result<Value, Failure> {
     }))
 }
 
-/// The structure of a topology crate as scene TOML: `toroid` (the `toroid` request, with
-/// stiff prestressed strings when it gives `string_stiffness`, as `--export-scene` writes
-/// it), `michell` (the truss of the `michell` request: members as bars, extra strings as
+/// The structure of a topology crate as data (its columns): `toroid` (the `toroid` request,
+/// with stiff prestressed strings when it gives `string_stiffness`, as `--export-scene`
+/// writes it), `michell` (the truss of the `michell` request: members as bars, extra strings as
 /// strings, the last level pinned), `tbar` (the tread or wheel of the `tbar` request),
 /// `formfind` (the prestressed structure of the `formfind` request, as its `--out` writes it).
-pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failure> {
+pub fn topology(kind: &str, values: Map<String, Value>) -> Result<Value, Failure> {
     let failed = |e: &dyn std::fmt::Display, c: Category| Failure::new(c, e.to_string());
     let structure = match kind {
         "toroid" => {
@@ -237,7 +146,7 @@ pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failur
                 .map_err(|e| Failure::invalid(&e))?;
             let found = r.run().map_err(|e| failed(&e, e.category()))?;
             found.structure.ok_or_else(|| {
-                let why = found.report.warnings.join("; ");
+                let why = tensegrity_core::warning::joined(&found.report.warnings);
                 Failure::new(
                     Category::Numerical,
                     format!("the form has no prestressed structure: {why}"),
@@ -251,5 +160,5 @@ pub fn topology(kind: &str, values: Map<String, Value>) -> Result<String, Failur
             ))
         }
     };
-    Ok(tensegrity_io::scene::to_toml(&structure))
+    as_value(&SceneArrays::from_structure(&structure))
 }

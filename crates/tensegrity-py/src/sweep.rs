@@ -19,7 +19,7 @@ pub enum Source {
 
 /// How to run it (the CLI's flags).
 pub struct Options {
-    /// Worker threads (`None`: one per core).
+    /// Worker threads (`None`: one per core; capped at the cores).
     pub threads: Option<usize>,
     /// Run shard `k` of `n` (1-based `k`).
     pub shard: Option<(usize, usize)>,
@@ -75,8 +75,10 @@ pub fn run(
     shard: Shard,
     opts: &Options,
 ) -> Result<usize, Failure> {
+    // at most one thread per core, as on the command line without --oversubscribe
+    let threads = sweeps::run::Threads::choose(opts.threads, false).used;
     let run_opts = RunOptions {
-        threads: opts.threads,
+        threads: Some(threads),
         shard,
         resume: opts.resume,
         units: opts.units,

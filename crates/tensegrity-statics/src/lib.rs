@@ -6,7 +6,8 @@
 //! the member's start node and +m_k at the rows of its end node (m_k = n_end − n_start). Rows
 //! of fixed degrees of freedom are removed from A; their reactions are reported separately.
 //!
-//! From the SVD A = U Σ Vᵀ with the rank r decided by [`tensegrity_linalg::rank_tolerance`]:
+//! From the SVD A = U Σ Vᵀ with the rank r decided by [`rank`] (the arithmetic's tolerance,
+//! [`tensegrity_linalg::rank_tolerance`], and the rounding of the data's coordinates):
 //! - self-stress states: the last (members − r) columns of V (null space of A);
 //! - mechanisms: 3·(free dofs) − r first-order motions (the null space of Aᵀ, i.e. the last
 //!   columns of U), rigid-body motions included when the supports allow them.
@@ -25,6 +26,7 @@ mod margin_ipm;
 pub mod nested;
 mod penalty;
 mod prestress;
+pub mod rank;
 pub mod report;
 mod select;
 pub mod sizing;
@@ -177,6 +179,11 @@ pub struct StaticsSettings {
     /// Relative rank tolerance (σ counts as zero when σ ≤ tol · σ_max); `None` uses
     /// max(m, n)·ε.
     pub rank_tolerance: Option<f64>,
+    /// Relative precision of the node coordinates, as a fraction of the largest coordinate
+    /// magnitude (e.g. 5e-10 for data written to nine significant digits); `None` judges it
+    /// from the digits of the coordinates, `Some(0.0)` takes them as exact ([`rank`]: the
+    /// rank decision discounts the singular values that rounding of this size can create).
+    pub input_precision: Option<f64>,
     /// The LP solver for prestressability.
     pub lp_solver: LpSolver,
     /// Memory the dense factorisation may use (bytes); `None` uses
@@ -212,6 +219,26 @@ impl StaticsSettings {
             ));
         }
         self.rank_tolerance = Some(rel);
+        Ok(self)
+    }
+
+    /// Sets the relative precision of the node coordinates, in [0, 0.1) ([`rank`]).
+    ///
+    /// ```
+    /// use tensegrity_statics::StaticsSettings;
+    /// assert!(StaticsSettings::default().input_precision(5e-10).is_ok());
+    /// assert!(StaticsSettings::default().input_precision(0.0).is_ok());
+    /// assert!(StaticsSettings::default().input_precision(0.5).is_err());
+    /// ```
+    pub fn input_precision(mut self, rel: f64) -> Result<Self> {
+        if !(0.0..0.1).contains(&rel) {
+            return Err(tensegrity_core::CoreError::invalid_parameter(
+                "input_precision",
+                rel,
+                "a relative precision of the coordinates must lie in [0, 0.1)",
+            ));
+        }
+        self.input_precision = Some(rel);
         Ok(self)
     }
 
@@ -277,9 +304,14 @@ impl<'a> Statics<'a> {
         let a = equilibrium_matrix(structure, &dofs);
         let svd = linalg::svd(&a)?;
         let s_max = svd.s.first().copied().unwrap_or(0.0);
-        let tolerance =
-            linalg::rank_tolerance(a.nrows(), a.ncols(), s_max, settings.rank_tolerance);
-        let rank = svd.rank(tolerance);
+        let (rank, tolerance) = rank::RankTolerance::of(
+            structure,
+            (m, n),
+            s_max,
+            settings.rank_tolerance,
+            settings.input_precision,
+        )
+        .decide(&svd.s);
         Ok(Self {
             structure,
             dofs,
@@ -412,7 +444,15 @@ impl StaticsBackend for Statics<'_> {
     fn certification(&self) -> Certification {
         let gap = Statics::spectral_gap(self);
         if gap.is_clear() {
-            return Certification::Certified;
+            return match rank::near_deficiency(&self.svd.s, self.rank) {
+                None => Certification::Certified,
+                Some((sigma, factor)) => Certification::NotCertified {
+                    reason: format!(
+                        "the smallest singular value counted non-zero, {sigma:.3e}, lies {factor:.1e} times below the next one up: the coordinates hold one more self-stress to about {:.1e} relative, as rounded data do (set `input_precision` to the coordinates' precision to count it)",
+                        sigma / self.svd.s[0]
+                    ),
+                },
+            };
         }
         Certification::NotCertified {
             reason: gap.warning("dense SVD"),

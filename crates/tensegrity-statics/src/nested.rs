@@ -75,7 +75,7 @@ use super::{DofMap, SpectralGap, StaticsSettings};
 use nalgebra::{DMatrix, DVector, Matrix3xX};
 use tensegrity_core::error::{CoreError, Result};
 use tensegrity_core::structure::Structure;
-use tensegrity_linalg::{self as linalg, CscMatrix, FrontalQr};
+use tensegrity_linalg::{CscMatrix, FrontalQr};
 
 /// Sub-domains of at most this many nodes are not dissected further (leaf fronts).
 pub const LEAF_NODES: usize = 24;
@@ -474,7 +474,14 @@ impl<'a> NestedStatics<'a> {
         let (m, n) = (dofs.len(), structure.n_members());
         let (fronts, parent) = dof_fronts(structure, &dofs);
         let sigma = sigma_max(&a);
-        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let tolerance = crate::rank::RankTolerance::of(
+            structure,
+            (m, n),
+            sigma,
+            settings.rank_tolerance,
+            settings.input_precision,
+        )
+        .absolute();
         let qr = FrontalQr::new(&a, &fronts, &parent, REJECT_FACTOR * tolerance)?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
         Ok(Self {
@@ -517,7 +524,14 @@ impl<'a> NestedStatics<'a> {
         let at = transpose(&a)?;
         let (fronts, parent) = member_fronts(structure);
         let sigma = sigma_max(&a);
-        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let tolerance = crate::rank::RankTolerance::of(
+            structure,
+            (m, n),
+            sigma,
+            settings.rank_tolerance,
+            settings.input_precision,
+        )
+        .absolute();
         let qr = FrontalQr::with_threshold(
             &at,
             &fronts,

@@ -103,6 +103,11 @@ pub struct StaticsReport {
     pub smallest_singular_value: f64,
     /// Absolute rank tolerance used.
     pub rank_tolerance: f64,
+    /// The rounding of the node coordinates the rank decision discounted (m; [`crate::rank`]):
+    /// judged from their digits, or the `input_precision` times the largest coordinate; 0
+    /// for data at full precision or under a user's rank tolerance.
+    #[column(unit = "m")]
+    pub input_rounding: f64,
     /// Force densities for the loads (N/m, tension positive).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub force_density: Option<Vec<f64>>,
@@ -197,6 +202,10 @@ pub fn report_from(
 ) -> Result<StaticsReport> {
     let structure = backend.structure();
     let mut report = base_report(backend)?;
+    let settings = &request.settings;
+    if settings.rank_tolerance.is_none() {
+        report.input_rounding = crate::rank::input_rounding(structure, settings.input_precision);
+    }
     if structure.is_loaded() {
         let sol = backend.solve_loads()?;
         add_load_solve(structure, sol, request.least_squares, &mut report)?;

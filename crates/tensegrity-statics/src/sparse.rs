@@ -400,7 +400,14 @@ impl<'a> SparseStatics<'a> {
         }
         let (m, n) = (dofs.len(), structure.n_members());
         let sigma = sigma_max(&a);
-        let tolerance = linalg::rank_tolerance(m, n, sigma, settings.rank_tolerance);
+        let tolerance = crate::rank::RankTolerance::of(
+            structure,
+            (m, n),
+            sigma,
+            settings.rank_tolerance,
+            settings.input_precision,
+        )
+        .absolute();
         let qr = RankRevealingQr::with_deferral(
             &a,
             &row_order,

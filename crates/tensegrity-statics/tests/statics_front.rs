@@ -255,7 +255,21 @@ fn a_dense_rank_decision_without_a_clear_gap_is_flagged() {
     assert!((g.sigma_above.unwrap() - 0.1 * 2f64.sqrt()).abs() < 1e-12);
     assert_eq!((g.sigma_below, g.block), (None, None));
     assert!((g.tolerance - 3.0 * f64::EPSILON * 2f64.sqrt()).abs() < 1e-20);
-    // near-degenerate: σ₂ = √2·2e-15 ≈ 3 τ, within the factor 10 of the gap rule
+    // near-degenerate: σ₂ = √2·2e-15 ≈ 3 τ. On the defaults the search above τ takes it as
+    // zero (the gap above it, 5·10¹⁴, is clear; the bars are collinear to rounding): rank 1
+    let searched = statics_report(&kinked_pair(2e-15), &request).unwrap();
+    assert_eq!((searched.rank, searched.self_stress_dim), (1, 1));
+    assert!(searched.statics_warning.is_none());
+    let g = searched.spectral_gap;
+    assert!(g.sigma_below.unwrap() < g.tolerance && g.tolerance < g.sigma_above.unwrap());
+    // under a caller's tolerance (no search) at the arithmetic's τ, the value lies within the
+    // factor 10 of the gap rule: flagged
+    let request = StaticsRequest {
+        settings: StaticsSettings::default()
+            .rank_tolerance(3.0 * f64::EPSILON)
+            .unwrap(),
+        ..StaticsRequest::default()
+    };
     let near = statics_report(&kinked_pair(2e-15), &request).unwrap();
     let w = near.statics_warning.as_deref().expect("flagged");
     assert!(

@@ -111,7 +111,8 @@ pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
 /// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
 /// model, or both — with their samples kept in memory (one per
 /// [`crate::defaults::ROLL_OUTPUT_DT`]), with `convergence_check` the same plan again at
-/// half the step, and with `ensemble` K its K copies and the other model's run; named `t_end = …, dt = …, sides = …`.
+/// half the step, and with `ensemble` K its K copies at the step and K at half of it, and the
+/// other model's run; named `t_end = …, dt = …, sides = …`.
 /// Each model is sized at its own step ([`wheel_rolling::RunSpec::rigid_dt`],
 /// [`wheel_rolling::RunSpec::full_dt`]); an IMEX step is counted as an RK4 step, which stays
 /// conservative: the default n = 24, 50°, 10 s full run with its check is estimated at 10.1 s
@@ -152,9 +153,10 @@ pub fn roll(request: &RollRequest) -> Estimate {
         run = run.then(at(0.5).0);
     }
     if request.ensemble >= 2 {
-        // K copies of the plan, then one run of the other model (at most the full one)
+        // K copies of the plan at the step and K at half of it (twice the steps each), then
+        // one run of the other model (at most the full one)
         let copies = Estimate {
-            work_s: request.ensemble as f64 * one.work_s,
+            work_s: 3.0 * request.ensemble as f64 * one.work_s,
             ..one
         };
         let other = wheel_rolling::estimate::full(&full_size, &sizes);

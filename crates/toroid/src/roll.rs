@@ -115,7 +115,9 @@ impl Request for RollRequest {
 
     /// Finite numbers (which the per-field rules cannot see otherwise), `dt` within the output
     /// interval ([`RollSettings::check`]), and the wheel's geometry rules across its
-    /// parameters (R_i < R_o).
+    /// parameters (R_i < R_o). (A front end also applies
+    /// [`RollRequest::check_rigid_reads`] to what its user gave; a library caller may compare
+    /// the two models on one set of settings.)
     fn check(&self) -> std::result::Result<(), InvalidParameter> {
         self.settings.check()?;
         wheel_rolling::settings::finite(&[
@@ -125,6 +127,69 @@ impl Request for RollRequest {
             ("bar_density", self.wheel.bar_density),
         ])?;
         self.wheel.check()
+    }
+}
+
+/// Why a setting of the full model is refused under `fidelity = rigid`.
+const READ_BY_FULL_ONLY: &str = "only the full model reads it, and `fidelity = rigid` runs the rigid polygon model, which ignores it: choose `fidelity = full` (or `fidelity = auto`, which may run the full model), or leave it out";
+
+impl RollRequest {
+    /// Under `fidelity = rigid` (and no `ensemble`, whose other run is the full model's) the
+    /// settings only the full model reads must keep their defaults: `integrator`, `contact`,
+    /// `string_stiffness`, `ground_stiffness`, `ground_damping`, `min_tension`. A value
+    /// given is refused naming it, rather than dropped without a word (the command line's
+    /// `roll` applies it to its flags).
+    ///
+    /// ```
+    /// use toroid::RollRequest;
+    /// use wheel_rolling::{ContactKind, FidelityChoice};
+    /// let rigid = RollRequest { fidelity: FidelityChoice::Rigid, ..Default::default() };
+    /// assert!(rigid.check_rigid_reads().is_ok());
+    /// let stick = RollRequest { contact: ContactKind::Stick, ..rigid };
+    /// let e = stick.check_rigid_reads().unwrap_err();
+    /// assert_eq!(e.name, "contact");
+    /// assert!(e.reason.contains("`fidelity = rigid`"), "{e}");
+    /// // the full model reads it, and so does the other run of an ensemble
+    /// assert!(RollRequest { fidelity: FidelityChoice::Full, ..stick }.check_rigid_reads().is_ok());
+    /// assert!(RollRequest { ensemble: 3, ..stick }.check_rigid_reads().is_ok());
+    /// ```
+    pub fn check_rigid_reads(&self) -> std::result::Result<(), InvalidParameter> {
+        if self.fidelity != FidelityChoice::Rigid || self.ensemble >= 2 {
+            return Ok(());
+        }
+        let (d, s) = (Self::default(), &self.settings);
+        let number = |name, value: f64, default: f64| {
+            (value != default).then(|| InvalidParameter::new(name, value, READ_BY_FULL_ONLY))
+        };
+        let text = |name, value: String, differs: bool| {
+            differs.then(|| InvalidParameter::text(name, value, READ_BY_FULL_ONLY))
+        };
+        let contact = format!("{:?}", self.contact).to_lowercase();
+        let unread = [
+            text(
+                "integrator",
+                self.integrator.to_string(),
+                self.integrator != d.integrator,
+            ),
+            text("contact", contact, self.contact != d.contact),
+            number(
+                "string_stiffness",
+                s.string_stiffness,
+                d.settings.string_stiffness,
+            ),
+            number(
+                "ground_stiffness",
+                s.ground_stiffness,
+                d.settings.ground_stiffness,
+            ),
+            s.ground_damping
+                .and_then(|c| number("ground_damping", c, f64::NAN)),
+            number("min_tension", self.min_tension, d.min_tension),
+        ];
+        match unread.into_iter().flatten().next() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
     }
 }
 

@@ -26,6 +26,7 @@ use crate::error::Result;
 use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity, REFINEMENT};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 use tensegrity_dynamics::{
     Convergence, IntegratorKind, Quantities, Simulation, SimulationSettings,
@@ -115,7 +116,7 @@ pub struct LeanRollingReport {
     pub valid: bool,
     /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
     /// quantity).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The headline quantities re-run at half the step and twice the ground stiffness
     /// ([`crate::request::TipoverRollingRequest`]); null when not checked.
     #[column(nested)]

@@ -47,6 +47,7 @@ use nalgebra::{Rotation3, Vector3};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::CoreError;
+use tensegrity_core::Warning;
 use tensegrity_derive::{Columns, Params};
 use tensegrity_dynamics::{
     Convergence, Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
@@ -236,7 +237,7 @@ pub struct DynamicTipoverReport {
     pub valid: bool,
     /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
     /// quantity).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The headline quantities re-run at half the step and twice the ground stiffness
     /// ([`crate::request::TipoverDynamicRequest`]); null when not checked.
     #[column(nested)]
@@ -468,7 +469,7 @@ pub(crate) struct RunValidity {
     /// Deepest contact node below the ground over the samples (m, ≥ 0).
     pub max_penetration: f64,
     /// What the run violated, one sentence each.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 impl RunValidity {
@@ -486,12 +487,13 @@ impl RunValidity {
             .flat_map(|x| (0..n).flat_map(move |k| [x[5 * k].z, x[5 * k + 1].z]))
             .map(|z| -(z + hub_height))
             .fold(0.0, f64::max);
-        let mut warnings: Vec<String> = result.warnings.iter().map(|w| w.to_string()).collect();
+        let mut warnings: Vec<Warning> = result.warnings.iter().map(|&w| w.into()).collect();
         let tolerance = crate::defaults::PENETRATION_TOLERANCE * toroid.params.outer_radius;
         if max_penetration > tolerance {
-            warnings.push(format!(
-                "a contact node sank {max_penetration:.4} m below the ground (tolerance {tolerance:.4} m)"
-            ));
+            warnings.push(Warning::SankBelowGround {
+                depth: max_penetration,
+                tolerance,
+            });
         }
         Self {
             max_penetration,
@@ -623,7 +625,7 @@ pub(crate) fn refined_failed(why: impl std::fmt::Display) -> Convergence {
 
 /// Lays `convergence` on a result's `warnings` (one per unconverged quantity, or the
 /// refined run's failure) and returns it.
-pub(crate) fn judge(convergence: Convergence, warnings: &mut Vec<String>) -> Option<Convergence> {
+pub(crate) fn judge(convergence: Convergence, warnings: &mut Vec<Warning>) -> Option<Convergence> {
     warnings.extend(convergence.warnings());
     Some(convergence)
 }

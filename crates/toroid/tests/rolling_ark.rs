@@ -109,8 +109,9 @@ fn a_run_whose_stage_equations_stall_is_flagged() {
     let stalled = |dt| {
         let (summary, _) = run(&pivot(IntegratorKind::ImexArk, Some(dt), 1.2));
         let flagged = summary.warnings.iter().any(|w| {
-            w.contains("implicit contact stages were left unconverged")
-                && w.contains("% of them, above the limit 10 %")
+            let text = w.to_string();
+            text.contains("implicit contact stages were left unconverged")
+                && text.contains("% of them, above the limit 10 %")
         });
         (flagged, summary.valid)
     };

@@ -38,7 +38,7 @@ fn what_is_reported_converged_holds_at_a_quarter_of_the_step() {
         .summary
         .warnings
         .iter()
-        .filter(|w| w.starts_with("not converged"))
+        .filter(|w| w.kind() == "not_converged" && w.to_string().starts_with("not converged"))
         .count();
     assert_eq!(moved, flagged, "{:?}", r.summary.warnings);
     assert_eq!(r.summary.valid, r.summary.warnings.is_empty());

@@ -171,7 +171,7 @@ fn a_run_that_fails_midway_keeps_what_it_computed_and_says_so() {
         r.validity
             .warnings
             .iter()
-            .any(|w| w.contains("stopped before t_end") && w.contains("`dt`")),
+            .any(|w| w.kind() == "stopped_early" && w.to_string().contains("`dt`")),
         "{:?}",
         r.validity.warnings
     );

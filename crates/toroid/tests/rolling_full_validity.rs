@@ -66,8 +66,16 @@ fn thesis_contact_runs_are_flagged() {
         "{}",
         r.summary.max_penetration
     );
-    assert!(r.summary.warnings.iter().any(|w| w.contains("pulled")));
-    assert!(r.summary.warnings.iter().any(|w| w.contains("sank")));
+    assert!(r
+        .summary
+        .warnings
+        .iter()
+        .any(|w| w.kind() == "ground_pulled" && w.to_string().contains("pulled")));
+    assert!(r
+        .summary
+        .warnings
+        .iter()
+        .any(|w| w.kind() == "sank_below_slope" && w.to_string().contains("sank")));
 }
 
 fn figures(r: &RollReport) -> [f64; 4] {

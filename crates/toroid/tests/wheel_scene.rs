@@ -73,7 +73,11 @@ fn a_full_run_stopped_by_its_observer_keeps_the_samples_it_handed_out() {
     assert!((t - 0.039).abs() < 1e-9, "{t}");
     assert_eq!(r.summary.stopped_at, Some(t));
     assert!(!r.summary.valid);
-    assert!(r.summary.warnings.iter().any(|w| w.contains("interrupted")));
+    assert!(r
+        .summary
+        .warnings
+        .iter()
+        .any(|w| w.kind() == "interrupted" && w.to_string().contains("interrupted")));
     // the JSON carries the stop like an integration failure's
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["stopped_at"].as_f64(), Some(t));

@@ -6,10 +6,23 @@
 //! turned by δ_k = (−1)ᵏ ⌊k/2 + 1⌋ · [`PERTURBATION`] (±10⁻⁶ rad, ±2·10⁻⁶ rad, …): the slope and
 //! the wheel on it are turned together about the axle, i.e. the incline is φ + δ_k. The copies
 //! run in parallel (one scoped thread per core, each taking the next copy), without the
-//! convergence check. Per quantity: the mean x̄, the sample standard deviation s and the
-//! interval x̄ ± 1.96 s (95 % of a normal spread), and — when the other model's run is given —
+//! convergence check. Per quantity: the mean x̄, the sample standard deviation s and the 95 %
+//! prediction interval of one more copy, x̄ ± c_K s with c_K = t_{0.975, K−1} √(1 + 1/K)
+//! ([`prediction_factor`]: Student's t, since s is itself estimated from K copies; 3.56 for
+//! K = 4, → 1.96 for many copies), and — when the other model's run is given —
 //! its value and whether the interval's width exceeds the distance |x̄ − x_other| between the
 //! models (then the models cannot be told apart on that quantity by single runs).
+//!
+//! The spread of the copies is chaotic spread, not the error of the step: the same K copies
+//! also run at the refined resolution ([`crate::convergence::refined`]: half the step, and for
+//! a penalty contact twice the ground stiffness), and the interval of each quantity covers
+//! both ensembles and the extrapolation of their means to a vanishing step with order 1,
+//! x̄_∞ = 2 x̄_{h/2} − x̄_h:
+//!
+//! > [low, high] = hull of x̄_h ± c_K s_h, x̄_{h/2} ± c_K s_{h/2}, x̄_∞ ± c_K s_{h/2}
+//!
+//! `bias` = x̄_{h/2} − x̄_h is reported beside it. The ensemble then costs K runs at the step
+//! and K at half of it (3 K runs' work).
 
 use crate::fidelity::Decision;
 use crate::run::{roll_decided, Wheel};
@@ -32,10 +45,16 @@ pub struct EnsembleQuantity {
     pub mean: f64,
     /// Sample standard deviation.
     pub std: f64,
-    /// Lower end of the 95 % interval, mean − 1.96 std.
+    /// Lower end of the 95 % prediction interval, mean − c_K std, widened to cover the refined
+    /// ensemble and the extrapolated mean (module docs).
     pub low: f64,
-    /// Upper end, mean + 1.96 std.
+    /// Upper end, mean + c_K std, widened to cover the refined ensemble and the
+    /// extrapolated mean (module docs).
     pub high: f64,
+    /// The mean of the copies at the refined resolution.
+    pub refined_mean: Option<f64>,
+    /// `refined_mean − mean`: the step's bias on the mean, to first order.
+    pub bias: Option<f64>,
     /// The other model's value (one unperturbed run), when it ran.
     pub other_model: Option<f64>,
     /// Whether the interval is wider than |mean − other model|.
@@ -49,6 +68,9 @@ pub struct Ensemble {
     pub members: usize,
     /// How the copies were perturbed.
     pub perturbation: String,
+    /// What the refined copies changed (empty when only one resolution ran).
+    #[serde(default)]
+    pub refinement: String,
     /// The copies that were not valid (their own assumptions, not convergence).
     pub invalid_members: usize,
     /// One entry per headline quantity.
@@ -114,38 +136,56 @@ where
     W: Wheel + Sync,
     W::Error: Send,
 {
+    let fine = crate::convergence::refined(spec);
+    // copies 0..K at the step, K..2K at the refined resolution, the costly ones first
+    let specs: Vec<RunSpec> = (0..2 * members)
+        .map(|j| {
+            let mut copy = if j < members { fine } else { *spec };
+            copy.settings.incline += offset(j % members);
+            copy
+        })
+        .collect();
     let next = AtomicUsize::new(0);
-    let out: Slots<W::Error> = Mutex::new((0..members).map(|_| None).collect());
+    let out: Slots<W::Error> = Mutex::new(specs.iter().map(|_| None).collect());
     std::thread::scope(|s| {
-        for _ in 0..threads.clamp(1, members.max(1)) {
+        for _ in 0..threads.clamp(1, specs.len().max(1)) {
             s.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= members {
+                let j = next.fetch_add(1, Ordering::Relaxed);
+                let Some(copy) = specs.get(j) else {
                     break;
-                }
-                let mut copy = *spec;
-                copy.settings.incline += offset(k);
-                let r = roll_decided(wheel, &copy, decision, &[], None).map(|r| {
+                };
+                let r = roll_decided(wheel, copy, decision, &[], None).map(|r| {
                     let summary = RunSummary::of(&r.result, spec.t_end);
                     (summary, r.result.samples)
                 });
-                out.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r);
+                out.lock().unwrap_or_else(|e| e.into_inner())[j] = Some(r);
             });
         }
     });
-    let mut runs = Vec::with_capacity(members);
+    let (mut runs, mut refined_runs) = (Vec::new(), Vec::new());
     let mut histories = Vec::with_capacity(members);
-    for r in out
-        .into_inner()
-        .unwrap_or_else(|e| e.into_inner())
-        .into_iter()
-        .flatten()
-    {
+    let slots = out.into_inner().unwrap_or_else(|e| e.into_inner());
+    for (j, r) in slots.into_iter().enumerate() {
+        let Some(r) = r else { continue };
         let (summary, samples) = r?;
-        runs.push(summary);
-        histories.push(samples);
+        if j < members {
+            refined_runs.push(summary);
+        } else {
+            runs.push(summary);
+            histories.push(samples);
+        }
     }
-    Ok((statistics(&runs, other), histories))
+    let label = crate::convergence::refinement(spec, decision_fidelity(decision));
+    let e = statistics(&runs, other).with_refined(&refined_runs, label);
+    Ok((e, histories))
+}
+
+/// The model a decision runs (the full one when it may run both: the costlier refinement).
+fn decision_fidelity(decision: &Decision) -> crate::fidelity::Fidelity {
+    match decision.plan {
+        crate::fidelity::Plan::Rigid => crate::fidelity::Fidelity::Rigid,
+        _ => crate::fidelity::Fidelity::Full,
+    }
 }
 
 /// A band over time: at each time t of the first history, the mean x̄(t) of `value` over
@@ -225,11 +265,13 @@ pub fn statistics(runs: &[RunSummary], other: Option<&RunSummary>) -> Ensemble {
             name: name.to_string(),
             mean,
             std,
-            low: mean - 1.96 * std,
-            high: mean + 1.96 * std,
+            low: mean - prediction_factor(xs.len()) * std,
+            high: mean + prediction_factor(xs.len()) * std,
+            refined_mean: None,
+            bias: None,
             other_model,
             spread_exceeds_model_difference: other_model
-                .map(|o| 2.0 * 1.96 * std > (mean - o).abs()),
+                .map(|o| 2.0 * prediction_factor(xs.len()) * std > (mean - o).abs()),
         });
     }
     let wide: Vec<&str> = quantities
@@ -251,9 +293,32 @@ pub fn statistics(runs: &[RunSummary], other: Option<&RunSummary>) -> Ensemble {
             "copy k on the incline φ + δ_k, δ_k = ±{PERTURBATION:.0e}, ±{:.0e}, … rad (the starting pose turned relative to gravity)",
             2.0 * PERTURBATION
         ),
+        refinement: String::new(),
         invalid_members: runs.iter().filter(|r| !r.valid).count(),
         quantities,
         note,
+    }
+}
+
+impl Ensemble {
+    /// The statistics widened by the same copies at the refined resolution, `refined`
+    /// (`refinement`: what it changed), as the module docs say.
+    pub fn with_refined(mut self, refined: &[RunSummary], refinement: &str) -> Self {
+        let fine = statistics(refined, None);
+        for q in &mut self.quantities {
+            let Some(f) = fine.quantities.iter().find(|f| f.name == q.name) else {
+                continue;
+            };
+            let limit = 2.0 * f.mean - q.mean;
+            let half = (f.high - f.low) / 2.0;
+            q.low = q.low.min(f.low).min(limit - half);
+            q.high = q.high.max(f.high).max(limit + half);
+            q.refined_mean = Some(f.mean);
+            q.bias = Some(f.mean - q.mean);
+        }
+        self.refinement = refinement.to_string();
+        self.invalid_members += fine.invalid_members;
+        self
     }
 }
 
@@ -272,6 +337,30 @@ impl RunSummary {
             "slip_fraction",
         ]
     }
+}
+
+/// Student's t quantile t_{0.975, ν} for ν = 1 … 30 degrees of freedom.
+const T_975: [f64; 30] = [
+    12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160,
+    2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056,
+    2.052, 2.048, 2.045, 2.042,
+];
+
+/// c_K = t_{0.975, K−1} √(1 + 1/K): the half-width of the 95 % prediction interval of one more
+/// draw in units of the sample standard deviation of K draws (1.96 beyond 30 degrees of
+/// freedom; 0 for K < 2, where no spread is known).
+///
+/// ```
+/// use wheel_rolling::ensemble::prediction_factor;
+/// assert!((prediction_factor(4) - 3.182 * 1.25f64.sqrt()).abs() < 1e-12);
+/// assert_eq!(prediction_factor(1), 0.0);
+/// ```
+pub fn prediction_factor(k: usize) -> f64 {
+    if k < 2 {
+        return 0.0;
+    }
+    let t = T_975.get(k - 2).copied().unwrap_or(1.96);
+    t * (1.0 + 1.0 / k as f64).sqrt()
 }
 
 #[cfg(test)]
@@ -303,8 +392,37 @@ mod tests {
             .find(|q| q.name == "mean_speed")
             .unwrap();
         assert_eq!((q.mean, q.std), (2.0, 1.0));
-        assert!((q.high - q.low - 2.0 * 1.96).abs() < 1e-12);
+        // K = 3: t_{0.975, 2} = 4.303, √(1 + 1/3)
+        let c = 4.303 * (4.0f64 / 3.0).sqrt();
+        assert!((q.high - q.low - 2.0 * c).abs() < 1e-12);
+        assert!((prediction_factor(1000) - 1.96).abs() < 0.01);
         assert_eq!(q.spread_exceeds_model_difference, Some(true));
         assert!(e.note.contains("mean_speed"), "{}", e.note);
+    }
+
+    #[test]
+    fn the_refined_ensemble_and_its_extrapolation_widen_the_interval() {
+        let base = crate::summary::RunSummary::of(&crate::sample::RollingResult::default(), 1.0);
+        let at = |v: f64| RunSummary {
+            mean_speed: v,
+            ..base.clone()
+        };
+        let coarse: Vec<RunSummary> = [10.0, 10.2, 10.4].iter().map(|&v| at(v)).collect();
+        // the refined copies sit 1 higher: the step's bias; the extrapolated mean 12.2
+        let fine: Vec<RunSummary> = [11.0, 11.2, 11.4].iter().map(|&v| at(v)).collect();
+        let e = statistics(&coarse, None).with_refined(&fine, "dt/2");
+        let q = e
+            .quantities
+            .iter()
+            .find(|q| q.name == "mean_speed")
+            .unwrap();
+        assert_eq!(e.refinement, "dt/2");
+        assert!((q.bias.unwrap() - 1.0).abs() < 1e-12);
+        assert!((q.refined_mean.unwrap() - 11.2).abs() < 1e-12);
+        let half = prediction_factor(3) * 0.2;
+        // from the coarse ensemble's lower end to the extrapolation's upper end
+        assert!((q.low - (10.2 - half)).abs() < 1e-12, "{q:?}");
+        assert!((q.high - (12.2 + half)).abs() < 1e-12, "{q:?}");
+        assert!((q.mean - 10.2).abs() < 1e-12);
     }
 }

@@ -3,6 +3,7 @@
 
 use tensegrity_core::request::{Categorized, Category, InvalidParameter};
 use tensegrity_core::CoreError;
+use tensegrity_core::Warning;
 use thiserror::Error;
 
 /// Result alias of the wheel-rolling crate.
@@ -31,10 +32,13 @@ pub enum RollingError {
     },
     /// A `strict` request whose result is not valid (outside its model's assumptions, or not
     /// converged): the result's warnings.
-    #[error("strict: the result is not valid: {}", warnings.join("; "))]
+    #[error(
+        "strict: the result is not valid: {}",
+        tensegrity_core::warning::joined(warnings)
+    )]
     Strict {
         /// The result's warnings.
-        warnings: Vec<String>,
+        warnings: Vec<Warning>,
     },
     /// An error of the core dynamics (which names the time and member where it stopped).
     #[error(transparent)]
@@ -66,11 +70,13 @@ impl Categorized for RollingError {
 /// ```
 /// use wheel_rolling::{strict_check, RollingError};
 /// assert!(strict_check(true, &[]).is_ok());
-/// assert!(strict_check(false, &["sank".to_string()]).is_ok());
-/// let e = strict_check(true, &["sank".to_string()]).unwrap_err();
-/// assert!(matches!(e, RollingError::Strict { .. }) && e.to_string().contains("sank"));
+/// use tensegrity_core::Warning;
+/// let sank = [Warning::SankBelowGround { depth: 0.1, tolerance: 0.01 }];
+/// assert!(strict_check(false, &sank).is_ok());
+/// let e = strict_check(true, &sank).unwrap_err();
+/// assert!(matches!(e, RollingError::Strict { .. }) && e.to_string().contains("sank 0.1000 m"));
 /// ```
-pub fn strict_check(strict: bool, warnings: &[String]) -> Result<()> {
+pub fn strict_check(strict: bool, warnings: &[Warning]) -> Result<()> {
     if strict && !warnings.is_empty() {
         return Err(RollingError::Strict {
             warnings: warnings.to_vec(),

@@ -197,7 +197,7 @@ impl Decision {
             return format!(
                 "{stiff} and rigid and full agree on the scene class `{}`, but the rigid run is not valid: {}",
                 class.name(),
-                r.validity.warnings.join("; ")
+                tensegrity_core::warning::joined(&r.validity.warnings)
             );
         }
         format!(

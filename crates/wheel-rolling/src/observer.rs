@@ -13,6 +13,7 @@
 
 use crate::frame::WheelFrame;
 use crate::sample::RollingSample;
+use tensegrity_core::Warning;
 
 /// What an observer asks of the run after each item.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -57,8 +58,6 @@ pub trait Observer {
 impl Observer for () {}
 
 /// The sentence of the warning of a run its observer stopped.
-pub(crate) fn interrupted_warning(t: f64, t_end: f64) -> String {
-    format!(
-        "the run was interrupted at t = {t} s of t_end = {t_end} s (its observer asked it to stop); every figure covers only [0, {t}] s"
-    )
+pub(crate) fn interrupted_warning(t: f64, t_end: f64) -> Warning {
+    Warning::Interrupted { t, t_end }
 }

@@ -77,6 +77,7 @@ use crate::validity::RollValidity;
 use hybrid::{Hybrid, Mode};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
+use tensegrity_core::Warning;
 use wheel::Wheel;
 
 /// Settings of a rigid rolling run.
@@ -329,10 +330,9 @@ impl RigidRolling {
         };
         let mut warnings = sim.warnings.clone();
         if energy_balance_error > defaults::RIGID_ENERGY_BALANCE_TOLERANCE {
-            warnings.push(format!(
-                "the rigid model's energy budget closes only to {energy_balance_error:.2e} \
-                 relative: reduce dt"
-            ));
+            warnings.push(Warning::RigidEnergyBudget {
+                error: energy_balance_error,
+            });
         }
         RollValidity {
             min_normal_force: sim.min_normal,

@@ -8,6 +8,7 @@ use crate::rigid::Polygon;
 use crate::sample::RollingResult;
 use crate::validity::ImpactRecord;
 use serde::{Deserialize, Serialize};
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 use tensegrity_dynamics::Convergence;
 
@@ -41,7 +42,7 @@ pub struct RunSummary {
     /// Whether the run stayed inside its model's assumptions (no warning).
     pub valid: bool,
     /// What the run violated, one sentence each.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// Set when the run stopped before `t_end` (an integration failure or its observer): the
     /// time (s) of the last state kept; every figure covers [0, stopped_at] only.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -7,6 +7,7 @@
 //! as well).
 
 use serde::{Deserialize, Serialize};
+use tensegrity_core::Warning;
 use tensegrity_dynamics::Convergence;
 
 /// One contact impact (a new contact pair touching the slope).
@@ -38,8 +39,8 @@ pub struct RollValidity {
     /// Residual of the energy budget (ΔE − impact losses − friction work − damping work)
     /// over the largest energy term of the run: dimensionless.
     pub energy_balance_error: f64,
-    /// What the run violated, one sentence each; empty when the run is valid.
-    pub warnings: Vec<String>,
+    /// What the run violated, one warning each; empty when the run is valid.
+    pub warnings: Vec<Warning>,
     /// When the integration failed before the end time, or the run's observer stopped it:
     /// the time (s) of the last state kept. The figures cover [0, stopped_at] only, and a
     /// warning says why it stopped.

@@ -71,7 +71,7 @@ fn a_rigid_run_stopped_after_k_samples_returns_them_flagged() {
         r.validity
             .warnings
             .iter()
-            .any(|w| w.contains("interrupted") && !w.contains("--")),
+            .any(|w| w.kind() == "interrupted" && !w.to_string().contains("--")),
         "{:?}",
         r.validity.warnings
     );

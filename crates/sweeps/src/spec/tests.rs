@@ -1,5 +1,6 @@
 use super::*;
 use serde_json::json;
+use tensegrity_core::budget::Limits;
 
 fn err(text: &str) -> String {
     Spec::parse(text).unwrap_err().to_string()
@@ -152,6 +153,96 @@ fn a_failing_derived_rule_fails_its_case_only() {
         "#,
     )
     .unwrap();
-    assert!(s.case(0).params.unwrap_err().contains("division by zero"));
+    assert!(s
+        .case(0)
+        .params
+        .unwrap_err()
+        .to_string()
+        .contains("division by zero"));
     assert_eq!(s.case(1).params.unwrap()["offset"], json!(0.1));
+}
+
+#[test]
+fn a_hundred_million_value_axis_is_refused_before_its_values_are_made() {
+    // the issue's one-axis sweep of 10⁸ values: 12.8 GB of values, 20 GB of CSV; refused
+    // from the sizes alone (it used to allocate the values and abort at the memory cap)
+    let text = "study = \"tipover\"\n[axes]\nsigma = { from = 0.1, to = 0.9, steps = 100000000 }\n";
+    let started = std::time::Instant::now();
+    let e = Spec::parse(text).unwrap_err();
+    let SweepError::OverBudget { over } = &e else {
+        panic!("{e}");
+    };
+    assert_eq!(over.resource, tensegrity_core::budget::Resource::Memory);
+    assert_eq!(over.estimated, 1e8 * crate::limits::AXIS_VALUE_BYTES);
+    assert!(
+        e.to_string().starts_with("axis sigma (100000000 values): "),
+        "{e}"
+    );
+    // with the memory there, the output limit refuses it, naming the axis and the cases
+    let roomy = Limits {
+        memory_bytes: 1e15,
+        ..Limits::default()
+    };
+    let e = Spec::parse_within(text, &roomy).unwrap_err().to_string();
+    assert!(
+        e.starts_with("axis sigma (100000000 values): 100000000 sweep cases"),
+        "{e}"
+    );
+    assert!(e.contains("18.626 GiB of output"), "{e}");
+    // a step range is sized the same way, and a product names every axis
+    let two = "study = \"tipover\"\n[axes]\nsides = { from = 3, to = 10002, step = 1 }\nsigma = { from = 0.1, to = 0.9, steps = 1000 }\n";
+    let e = Spec::parse_within(two, &Limits::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("axes sides (10000 values) × sigma (1000 values): 10000000 sweep cases"),
+        "{e}"
+    );
+    assert!(
+        started.elapsed().as_secs_f64() < 2.0,
+        "{:?}",
+        started.elapsed()
+    );
+    // more cases than MAX_CASES is still its own error, before any value is made
+    let many = "study = \"tipover\"\n[axes]\nsigma = { from = 0.1, to = 0.9, steps = 100000 }\nepsilon = { from = 0.1, to = 0.9, steps = 100000 }\n";
+    assert!(matches!(
+        Spec::parse(many),
+        Err(SweepError::TooManyCases {
+            cases: 10_000_000_000,
+            ..
+        })
+    ));
+}
+
+#[test]
+fn a_result_column_named_as_an_axis_is_left_out() {
+    // tipover's report echoes `sigma` and `epsilon`: the axes' columns hold them
+    let s = Spec::parse("study = \"tipover\"\n[axes]\nsigma = [0.3]\nepsilon = [0.25]\n").unwrap();
+    let h = crate::table::header(&s);
+    assert!(
+        h.starts_with(&[
+            "case".into(),
+            "sigma".into(),
+            "epsilon".into(),
+            "mass_kg".into(),
+            "rho".into(),
+            "cot_theta".into()
+        ]),
+        "{h:?}"
+    );
+    let mut names = h.clone();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), h.len(), "{h:?}");
+    // a fixed value keeps its result column (it has no axis column)
+    let f = Spec::parse("study = \"tipover\"\n[fixed]\nepsilon = 0.25\n[axes]\nsigma = [0.3]\n")
+        .unwrap();
+    assert!(f.columns.iter().any(|c| c.name == "epsilon"));
+    assert!(!f.columns.iter().any(|c| c.name == "sigma"));
+    // `[output] columns` repeated, or naming an axis: each name once
+    let o = Spec::parse("study = \"tipover\"\n[axes]\nsigma = [0.3]\n[output]\ncolumns = [\"rho\", \"mass_kg\", \"rho\", \"sigma\"]\n").unwrap();
+    assert_eq!(
+        crate::table::header(&o),
+        ["case", "sigma", "rho", "mass_kg", "status", "message"]
+    );
 }

@@ -6,6 +6,7 @@ use crate::rolling::{MassProperties, TipOver};
 use crate::rolling_full::{FullPrestress, FullWheel};
 use serde::Serialize;
 use std::f64::consts::PI;
+use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
 use wheel_rolling::{Fidelity, FidelityChoice, WheelRun};
 
@@ -129,7 +130,7 @@ pub struct TbarRollReport {
     /// ([`TbarRollReport::judged`]).
     pub valid: bool,
     /// Each run's warnings and each row's errors, prefixed by the row and the run.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// One row per number of treads.
     #[column(first)]
     pub rows: Vec<TbarRollRow>,
@@ -146,10 +147,13 @@ impl TbarRollReport {
             for (what, run) in [("T-bar", &row.tbar), ("toroid", &row.toroid)] {
                 if let Some(run) = run {
                     let w = &run.summary.warnings;
-                    warnings.extend(w.iter().map(|w| format!("n = {n}, {what}: {w}")));
+                    warnings.extend(w.iter().map(|w| w.clone().in_run(n, what)));
                 }
             }
-            warnings.extend(row.errors.iter().map(|e| format!("n = {n}: {e}")));
+            warnings.extend(row.errors.iter().map(|e| Warning::RowFailed {
+                sides: n,
+                error: e.to_string(),
+            }));
         }
         self.valid = warnings.is_empty();
         self.warnings = warnings;

@@ -19,7 +19,9 @@ pub enum Kind {
     Flag,
     /// One of a fixed set of names (`rigid`, `full`, `auto`).
     Choice(&'static [&'static str]),
-    /// A string the request parses itself (`spokes,inner`, a file path).
+    /// A string the request parses itself (`spokes,inner`, a file path); an object (data a
+    /// front end holds, such as a scene's arrays) is handed to the request as it is, for its
+    /// own deserialisation to read or refuse.
     Text,
     /// A list of counts (`8,12,16` or an array).
     Counts,
@@ -256,7 +258,8 @@ impl Param {
                 }
             }
             Kind::Text => match v {
-                Value::Array(_) | Value::Object(_) => Err(self.bad(v, "expected a string")),
+                Value::Array(_) => Err(self.bad(v, "expected a string")),
+                Value::Object(_) => Ok(v.clone()),
                 other => Ok(Value::String(scalar_text(other))),
             },
             Kind::Counts | Kind::Numbers => {
@@ -332,8 +335,10 @@ impl Param {
         match x {
             Some(x) if x.is_finite() => {
                 let r = x.round();
-                if r < 0.0 || (x - r).abs() > 1e-9 * r.abs().max(1.0) || r > u32::MAX as f64 {
+                if r < 0.0 || (x - r).abs() > 1e-9 * r.abs().max(1.0) {
                     Err(self.bad(v, "expected a non-negative integer"))
+                } else if r > u32::MAX as f64 {
+                    Err(self.bad(v, format!("must be at most {}", u32::MAX)))
                 } else {
                     Ok(r as u64)
                 }

@@ -2,17 +2,18 @@
 //! errors tied to the file and the line of the item they name.
 
 use super::dynamics::{self, Culprit};
-use super::{line_column, SceneFile};
+use super::{line_at, SceneFile};
 use crate::error::{IoError, Result};
 use tensegrity_core::Structure;
 
 impl SceneFile {
     /// μ_k ≤ μ_s, no node starting below the ground, one rest-length table per string; an
-    /// error names the file and the line of the node, `[ground]` or `[[actuation]]` table.
+    /// error names the file and the line of the node, `[ground]` or `[[actuation]]` table
+    /// (`text`: the scene text; `None` for structure data, whose errors have no line).
     pub(super) fn check_dynamics(
         &self,
         structure: &Structure,
-        text: &str,
+        text: Option<&str>,
         name: &str,
     ) -> Result<()> {
         let actuation: Vec<_> = self.actuation.iter().map(|a| a.get_ref().clone()).collect();
@@ -27,7 +28,7 @@ impl SceneFile {
                 };
                 IoError::InScene {
                     file: name.to_string(),
-                    line: start.map(|s| line_column(text, s).0),
+                    line: start.and_then(|s| line_at(text, s)),
                     source: Box::new(source),
                 }
             },

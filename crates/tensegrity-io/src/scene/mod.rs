@@ -1,12 +1,13 @@
 //! TOML scene files: nodes, materials, bars, strings, supports, loads and gravity, plus the
-//! dynamics tables of [`dynamics`].
+//! dynamics tables of [`dynamics`]; or the same scene as data ([`SceneArrays`]: the
+//! structure as columns, for a front end that holds it as arrays; [`Scene::from_arrays`]).
 //!
 //! The file schema ([`SceneFile`] and its `*Spec` tables) is mapped onto the core's builders
 //! ([`Structure::builder`], [`tensegrity_dynamics::Simulation::new`],
 //! [`tensegrity_dynamics::Ground::new`]); the core itself knows no file format.
 //!
 //! Node indices are 0-based. Unknown keys are rejected, and every error names the offending
-//! item and its line:
+//! item and its line (structure data has no lines: its errors name the item alone):
 //!
 //! ```toml
 //! nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
@@ -36,10 +37,12 @@
 //! acceleration = [0.0, 0.0, -9.81]
 //! ```
 
+mod arrays;
 mod checks;
 pub mod dynamics;
 mod write;
 
+pub use arrays::SceneArrays;
 pub use write::to_toml;
 
 pub use dynamics::{
@@ -48,7 +51,7 @@ pub use dynamics::{
 };
 
 use crate::error::{IoError, Result};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 use tensegrity_core::{Bar, CoreError, Material, ModelError, StringMember, Structure, Support};
@@ -94,7 +97,7 @@ pub struct SceneFile {
 }
 
 /// A `[materials.NAME]` table.
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// kg/m³.
@@ -182,7 +185,9 @@ pub struct GravitySpec {
 pub struct Scene {
     /// The structure.
     pub structure: Structure,
-    /// The file contents as parsed (for the tables other analyses read).
+    /// The file contents as parsed (for the tables other analyses read); for a scene given
+    /// as data ([`Scene::from_arrays`]) the same tables, their spans empty (`0..0`: data has
+    /// no text, and its errors no line).
     pub file: SceneFile,
 }
 
@@ -214,8 +219,7 @@ impl Scene {
                 message: e.message().trim_end().to_string(),
             }
         })?;
-        let structure = file.build_structure(text, name)?;
-        file.check_dynamics(&structure, text, name)?;
+        let structure = file.validate(Some(text), name)?;
         Ok(Scene { structure, file })
     }
 
@@ -241,10 +245,24 @@ impl SceneFile {
     /// Builds and validates the structure; errors carry the line of the item they name
     /// (`text` is the scene text these tables were parsed from, `name` labels the errors).
     pub fn build_structure(&self, text: &str, name: &str) -> Result<Structure> {
+        self.structure_at(Some(text), name)
+    }
+
+    /// The structure, validated, and the dynamics tables checked against it: what every
+    /// scene passes, read from text (`Some(text)`: errors carry the line of their item) or
+    /// given as data (`None`: no line).
+    pub(crate) fn validate(&self, text: Option<&str>, name: &str) -> Result<Structure> {
+        let structure = self.structure_at(text, name)?;
+        self.check_dynamics(&structure, text, name)?;
+        Ok(structure)
+    }
+
+    /// [`SceneFile::build_structure`], with the line of an error where `text` is given.
+    fn structure_at(&self, text: Option<&str>, name: &str) -> Result<Structure> {
         self.to_builder(text, name)?.build().map_err(|source| {
             let line = self
                 .line_of(&error_item(&source))
-                .map(|start| line_column(text, start).0);
+                .and_then(|start| line_at(text, start));
             IoError::InvalidStructure {
                 file: name.to_string(),
                 line,
@@ -254,7 +272,11 @@ impl SceneFile {
     }
 
     /// The core builder holding every table of the file (not yet validated).
-    fn to_builder(&self, text: &str, name: &str) -> Result<tensegrity_core::StructureBuilder> {
+    fn to_builder(
+        &self,
+        text: Option<&str>,
+        name: &str,
+    ) -> Result<tensegrity_core::StructureBuilder> {
         let mut b = Structure::builder().nodes(self.nodes.iter().map(|n| *n.get_ref()));
         if let Some(v) = &self.velocities {
             b = b.velocities(v.iter().copied());
@@ -304,7 +326,7 @@ impl SceneFile {
                 (Some(_), Some(_)) => {
                     return Err(IoError::ConflictingSupport {
                         file: name.to_string(),
-                        line: line_column(text, sup.span().start).0,
+                        line: line_at(text, sup.span().start),
                         support: i,
                     })
                 }
@@ -345,12 +367,12 @@ fn two_nodes(
     nodes: &[usize],
     member: impl Fn() -> String,
     start: usize,
-    text: &str,
+    text: Option<&str>,
     name: &str,
 ) -> Result<[usize; 2]> {
     <[usize; 2]>::try_from(nodes).map_err(|_| IoError::NodeCount {
         file: name.to_string(),
-        line: line_column(text, start).0,
+        line: line_at(text, start),
         member: member(),
         count: nodes.len(),
         nodes: nodes.to_vec(),
@@ -379,6 +401,12 @@ fn error_item(e: &CoreError) -> Option<(String, usize)> {
     let kind = words.next()?.to_string();
     let index = words.next()?.parse().ok()?;
     Some((kind, index))
+}
+
+/// The 1-based line of a byte offset of the scene text; `None` without text (structure data
+/// has no lines, and none is made up for it).
+pub(crate) fn line_at(text: Option<&str>, offset: usize) -> Option<usize> {
+    text.map(|t| line_column(t, offset).0)
 }
 
 /// 1-based line and column (in characters) of a byte offset.

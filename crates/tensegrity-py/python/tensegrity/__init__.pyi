@@ -22,6 +22,7 @@ def statics(
     scene: Scene,
     *,
     rank_tol: Optional[float] = ...,
+    input_precision: Optional[float] = ...,
     modes: Optional[int] = ...,
     mass: Literal['lumped', 'consistent'] = ...,
     least_squares: bool = ...,
@@ -37,11 +38,16 @@ def statics(
     Parameters
     ----------
     scene : str, os.PathLike or Structure
-        The scene file (TOML), or the scene's TOML text (a value with a line break or `=`).
-        Required
+        The scene file (TOML), or the scene's TOML text (a value naming no file, with a line
+        break or an `=`, and not one line ending in .toml). Required
     rank_tol : float, optional
         Relative rank tolerance of the SVD, in (0, 1) (default: max(rows, cols) · machine
         epsilon); must be finite and positive
+    input_precision : float, optional
+        Relative precision of the node coordinates, a fraction of the largest one, in [0,
+        0.1) (default: judged from their digits, e.g. 5e-10 for coordinates written to 9
+        significant digits; 0: exact); the rank decision discounts the singular values
+        rounding of this size can create; must be finite
     modes : int, optional
         Also report the K lowest natural frequencies about the current state (strings need
         stiffness and rest length, bars mass, material and radius); must be finite
@@ -75,7 +81,7 @@ def simulate(
     scene: Scene,
     *,
     t_end: Optional[float] = ...,
-    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark']] = ...,
+    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight']] = ...,
     dt: Optional[float] = ...,
     rtol: Optional[float] = ...,
     atol: Optional[float] = ...,
@@ -98,14 +104,18 @@ def simulate(
         or the scene's TOML text. Required
     t_end : float, optional
         End time; overrides `[simulation] t_end` (s); must be finite and positive
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark'}, optional
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight'}, optional
         Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4,
         adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff
         strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK
-        (penalty contact implicit in every stage)
+        (penalty contact implicit in every stage), RK4-flight (RK4, 5x longer steps while no
+        contact node is near the ground); imex, imex-ark and rk4-flight project onto the
+        constraints after every step
     dt : float, optional
-        Fixed step (rk4, rattle; default 1e-3) or maximum step (rk45, sdirk; default t_end)
-        (s); must be finite and positive
+        Fixed step, at most the output interval (default: rk4, rattle and rk4-flight 1e-3,
+        imex 5e-4, imex-ark 2.5e-4, shortened to the output interval; rk4-flight's contact
+        step, 5x in flight) or maximum step (rk45, sdirk; default t_end) (s); must be finite
+        and positive
     rtol : float, optional
         Relative tolerance (rk45, sdirk); must be finite and positive
     atol : float, optional
@@ -856,7 +866,7 @@ def formfind(
     topology: Optional[str] = ...,
     builtin: Optional[str] = ...,
     n: Optional[int] = ...,
-    method: Optional[Literal['fdm', 'adaptive', 'dr']] = ...,
+    method: Optional[Literal['fdm', 'adaptive', 'dr', 'auto']] = ...,
     group: Optional[str] = ...,
     ratio: float = ...,
     prestress: float = ...,
@@ -874,16 +884,19 @@ def formfind(
     ----------
     topology : str, optional
         The topology file (TOML: bars, strings, groups, fixed nodes), or its TOML text (a
-        value with a line break or `=`)
+        value naming no file, with a line break or an `=`, and not one line ending in .toml)
     builtin : str, optional
         A built-in form instead of a topology: prism:N, octahedron, tower:N:M, grid:K
     n : int, optional
         The last size of the built-in form, appended to its name (builtin prism, n 5:
         prism:5), for sweeps; must be at least 1
-    method : {'fdm', 'adaptive', 'dr'}, optional
+    method : {'fdm', 'adaptive', 'dr', 'auto'}, optional
         Method: fdm (force density, every member's given), adaptive (force densities found
-        from the connectivity) or dr (dynamic relaxation from lengths and stiffnesses);
-        default: fdm when every member has a force density, else adaptive
+        from the connectivity), dr (dynamic relaxation from every member's length and
+        stiffness) or auto (as the default, but falling back from fdm to adaptive with a
+        warning); default: fdm when every member has a force density, dr when every member
+        has a length, adaptive when neither is given (data given is never ignored, and fdm
+        failing is an error)
     group : str, optional
         The group of the topology whose force density `ratio` multiplies
     ratio : float

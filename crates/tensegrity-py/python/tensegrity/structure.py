@@ -1,8 +1,11 @@
 """The structure model from numpy: :class:`Structure`.
 
-A structure is validated by the engine when it is made (the core's builder: every error
-names the item, e.g. ``string 0: stiffness must be positive and finite, got -1``) and crosses
-to the engine as scene TOML written by the io crate's writer (``to_toml``), read back exactly.
+A structure is validated by the engine when it is made, exactly as a scene file is (the
+core's builder and the checks of the dynamics tables: every error names the item, e.g.
+``string 0: stiffness must be positive and finite, got -1``), and crosses to the engine as
+data: the dict of its arrays and tables (``_arrays()``), which the engine reads as a scene
+given as data. No TOML text is on the way; ``to_toml`` and ``from_toml`` are the explicit
+export and import of scene files (the io crate's writer and reader).
 Its arrays are read-only; :meth:`Structure.replace` makes a changed copy.
 """
 
@@ -100,8 +103,23 @@ def _loads(value, n_nodes):
     return [(i, a[i].tolist()) for i in range(n_nodes) if np.any(a[i] != 0.0)]
 
 
-def _opt(x):
-    return None if x is None or (isinstance(x, float) and np.isnan(x)) else float(x)
+def _materials(value):
+    """{name: (density, Young's modulus, yield strength)}: three numbers each."""
+    out = {}
+    for k, v in (value or {}).items():
+        if isinstance(v, dict):
+            v = (v.get("density"), v.get("youngs_modulus"), v.get("yield_strength"))
+        v = tuple(v)
+        if len(v) != 3:
+            raise InputError("materials: {}: expected (density, youngs_modulus, "
+                             "yield_strength), got {} values".format(k, len(v)))
+        out[str(k)] = tuple(float(x) for x in v)
+    return out
+
+
+def _column(a):
+    """A per-member column as data: NaN (unset) as None."""
+    return None if a is None else [None if np.isnan(x) else float(x) for x in a]
 
 
 class Structure:
@@ -166,8 +184,7 @@ class Structure:
         self.rest_length = _per_member(rest_length, ns, "rest_length")
         self.damping = _per_member(damping, ns, "damping")
         self.string_material = _names(string_material, ns, "string_material")
-        self.materials = {str(k): tuple(float(x) for x in v)
-                          for k, v in (materials or {}).items()}
+        self.materials = _materials(materials)
         self.supports = _supports(supports)
         self.loads = _loads(loads, n)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=np.float64)
@@ -183,34 +200,46 @@ class Structure:
                   self.velocities):
             if a is not None:
                 a.setflags(write=False)
-        self._toml = _native.structure_toml(self._spec(), dict(self.tables))
+        self._data = self._columns()
+        _native.structure_check(self._data)
 
-    def _spec(self):
-        def at(a, k):
-            return None if a is None else _opt(a[k])
-
-        def name(a, k):
-            return None if a is None else a[k]
-
-        return {
+    def _columns(self):
+        """The structure's arrays and tables as the engine reads a scene given as data."""
+        data = {
             "nodes": self.nodes.tolist(),
-            "velocities": None if self.velocities is None else self.velocities.tolist(),
-            "materials": list(self.materials.items()),
-            "bars": [((int(i), int(j)), at(self.bar_mass, k), name(self.bar_material, k),
-                      at(self.bar_radius, k)) for k, (i, j) in enumerate(self.bars)],
-            "strings": [((int(i), int(j)), at(self.stiffness, k), at(self.rest_length, k),
-                         at(self.damping, k) or 0.0, name(self.string_material, k))
-                        for k, (i, j) in enumerate(self.strings)],
-            "supports": self.supports,
-            "loads": self.loads,
-            "gravity": None if self.gravity is None else self.gravity.tolist(),
+            "bars": self.bars.tolist(),
+            "strings": self.strings.tolist(),
+            "materials": {k: {"density": v[0], "youngs_modulus": v[1], "yield_strength": v[2]}
+                          for k, v in self.materials.items()},
+            "supports": [[n, list(f)] for n, f in self.supports],
+            "loads": [[n, list(f)] for n, f in self.loads],
         }
+        optional = {
+            "velocities": None if self.velocities is None else self.velocities.tolist(),
+            "gravity": None if self.gravity is None else self.gravity.tolist(),
+            "bar_mass": _column(self.bar_mass),
+            "bar_radius": _column(self.bar_radius),
+            "bar_material": self.bar_material,
+            "stiffness": _column(self.stiffness),
+            "rest_length": _column(self.rest_length),
+            "damping": _column(self.damping),
+            "string_material": self.string_material,
+        }
+        data.update((k, v) for k, v in optional.items() if v is not None)
+        data.update(self.tables)
+        return data
+
+    def _arrays(self):
+        """The dict of the structure's arrays and tables: how it crosses to the engine (a
+        scene given as data, validated as a scene file is)."""
+        return self._data
 
     # --- scene TOML --------------------------------------------------------------------
 
     def to_toml(self):
-        """The structure as scene TOML (the io crate's writer; read back exactly)."""
-        return self._toml
+        """The structure as scene TOML (the io crate's writer; read back exactly): the
+        explicit export of a scene file."""
+        return _native.structure_toml(self._data)
 
     @classmethod
     def from_toml(cls, scene):
@@ -226,36 +255,33 @@ class Structure:
             name = path
         else:
             text, name = scene, "scene text"
-        spec = _native.structure_read(text, name)
-        return cls._from_spec(spec)
+        return cls._from_arrays(_native.structure_read(text, name))
 
     @classmethod
-    def _from_spec(cls, spec):
-        bars, strings = spec["bars"], spec["strings"]
+    def _from_arrays(cls, data):
+        """A structure from the engine's data of a scene (plain lists; ``None``: unset)."""
 
-        def column(rows, k, nan=True):
-            values = [r[k] for r in rows]
-            if all(v is None for v in values):
-                return None
-            return [float("nan") if v is None else v for v in values] if nan else values
+        def column(key):
+            values = data.get(key)
+            return None if values is None else [np.nan if v is None else v for v in values]
 
         return cls(
-            spec["nodes"] if spec["nodes"] else np.zeros((0, 3)),
-            [r[0] for r in bars],
-            [r[0] for r in strings],
-            bar_mass=column(bars, 1),
-            bar_material=column(bars, 2, nan=False),
-            bar_radius=column(bars, 3),
-            stiffness=column(strings, 1),
-            rest_length=column(strings, 2),
-            damping=column(strings, 3) if any(r[3] for r in strings) else None,
-            string_material=column(strings, 4, nan=False),
-            materials={k: tuple(v) for k, v in spec["materials"].items()},
-            supports={n: tuple(f) for n, f in spec["supports"]},
-            loads={n: f for n, f in spec["loads"]} or None,
-            gravity=spec["gravity"],
-            velocities=spec["velocities"],
-            **spec.get("tables", {}),
+            data["nodes"] if data["nodes"] else np.zeros((0, 3)),
+            data.get("bars", ()),
+            data.get("strings", ()),
+            bar_mass=column("bar_mass"),
+            bar_material=data.get("bar_material"),
+            bar_radius=column("bar_radius"),
+            stiffness=column("stiffness"),
+            rest_length=column("rest_length"),
+            damping=column("damping"),
+            string_material=data.get("string_material"),
+            materials=data.get("materials"),
+            supports={n: tuple(f) for n, f in data.get("supports", ())},
+            loads={n: f for n, f in data.get("loads", ())} or None,
+            gravity=data.get("gravity"),
+            velocities=data.get("velocities"),
+            **{t: data[t] for t in ("simulation", "ground", "actuation") if t in data},
         )
 
     def replace(self, **changes):
@@ -278,32 +304,32 @@ class Structure:
         """The toroid wheel of the ``toroid`` command's keywords (as ``toroid
         --export-scene`` writes it; with ``string_stiffness`` its strings are stiff and
         prestressed)."""
-        return cls.from_toml(_native.topology("toroid", kwargs))
+        return cls._from_arrays(_native.topology("toroid", kwargs))
 
     @classmethod
     def michell(cls, **kwargs):
         """The Michell truss of the ``michell`` command's keywords: members as bars, extra
         strings (``extra_strings``) as strings, the last level pinned."""
-        return cls.from_toml(_native.topology("michell", kwargs))
+        return cls._from_arrays(_native.topology("michell", kwargs))
 
     @classmethod
     def tbar(cls, **kwargs):
         """The T-bar tread or wheel of the ``tbar`` command's keywords (as ``tbar
         --export-scene`` writes it)."""
-        return cls.from_toml(_native.topology("tbar", kwargs))
+        return cls._from_arrays(_native.topology("tbar", kwargs))
 
     @classmethod
     def from_formfind(cls, **kwargs):
         """The form-found, prestressed structure of the ``formfind`` command's keywords (as
         ``formfind --out`` writes it: string rest lengths and stiffnesses realising the
         prestress), e.g. ``Structure.from_formfind(builtin="prism:3")``."""
-        return cls.from_toml(_native.topology("formfind", kwargs))
+        return cls._from_arrays(_native.topology("formfind", kwargs))
 
     # --- matrices ------------------------------------------------------------------------
 
     def _matrices(self):
         if not hasattr(self, "_m"):
-            m = _native.matrices(self._toml)
+            m = _native.matrices(self._data)
             out = {}
             for key in ("C_b", "C_s", "A"):
                 shape = tuple(m[key]["shape"])
@@ -369,7 +395,14 @@ class Structure:
         return "Structure({} nodes, {} bars, {} strings)".format(
             self.n_nodes, self.n_bars, self.n_strings)
 
+    def _canonical(self):
+        """The data as the engine gives it back (the materials the members name, the tables
+        in full): equal for equal structures, however they were given."""
+        if not hasattr(self, "_c"):
+            self._c = _native.structure_arrays(self._data)
+        return self._c
+
     def __eq__(self, other):
-        return isinstance(other, Structure) and self._toml == other._toml
+        return isinstance(other, Structure) and self._canonical() == other._canonical()
 
     __hash__ = None

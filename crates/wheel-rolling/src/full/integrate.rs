@@ -12,6 +12,7 @@ use crate::defaults;
 use crate::error::{Result, RollingError};
 use crate::observer::{interrupted_warning, Observer};
 use nalgebra::Vector3;
+use tensegrity_core::Warning;
 use tensegrity_core::{CoreError, Structure};
 use tensegrity_dynamics::{
     Ground, GroundModel, IntegratorKind, Quantities, Simulation, SimulationSettings,
@@ -98,15 +99,15 @@ pub(super) fn run(
     let mut run = monitor.finish(model.output_dt, wall_time_s);
     run.settled = settled;
     let validity = &mut run.result.validity;
-    validity
-        .warnings
-        .extend(drift.iter().map(|w| w.to_string()));
+    validity.warnings.extend(drift.iter().map(|&w| w.into()));
     let t = run.result.samples.last().map_or(0.0, |s| s.t);
     if let Some(e) = failure {
         validity.stopped_at = Some(t);
-        validity.warnings.push(format!(
-            "the integration stopped before t_end = {t_end} s ({e}); every figure covers only [0, {t}] s"
-        ));
+        validity.warnings.push(Warning::StoppedEarly {
+            t,
+            t_end,
+            reason: e.to_string(),
+        });
     } else if stopped {
         validity.stopped_at = Some(t);
         validity.warnings.push(interrupted_warning(t, t_end));

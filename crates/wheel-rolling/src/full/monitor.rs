@@ -14,6 +14,7 @@ use crate::validity::{ImpactRecord, RollValidity};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 use tensegrity_core::CoreError;
+use tensegrity_core::Warning;
 use tensegrity_dynamics::{Sample, SampleSink};
 
 /// What the monitor needs of the wheel and the slope.
@@ -477,23 +478,20 @@ impl<'o> Monitor<'o> {
         let tolerance = defaults::PENETRATION_TOLERANCE * self.g.r_o;
         let mut warnings = Vec::new();
         if self.max_penetration > tolerance {
-            warnings.push(format!(
-                "a contact node sank {:.4} m below the slope, more than the tolerance {:.4} m ({} % of R_o): the contact is too soft for this wheel",
-                self.max_penetration,
+            warnings.push(Warning::SankBelowSlope {
+                depth: self.max_penetration,
                 tolerance,
-                100.0 * defaults::PENETRATION_TOLERANCE
-            ));
+                tolerance_fraction: defaults::PENETRATION_TOLERANCE,
+            });
         }
         if min_normal < 0.0 {
-            warnings.push(format!(
-                "the ground pulled on the wheel (normal force down to {min_normal:.3} N): a real slope only pushes"
-            ));
+            warnings.push(Warning::GroundPulled { min_normal });
         }
         if energy_balance_error > defaults::ENERGY_BALANCE_TOLERANCE {
-            warnings.push(format!(
-                "the energy budget misses by {energy_balance_error:.2e} of its largest term (more than {:.0e}): reduce dt",
-                defaults::ENERGY_BALANCE_TOLERANCE
-            ));
+            warnings.push(Warning::EnergyBudget {
+                error: energy_balance_error,
+                tolerance: defaults::ENERGY_BALANCE_TOLERANCE,
+            });
         }
         RollValidity {
             min_normal_force: min_normal,

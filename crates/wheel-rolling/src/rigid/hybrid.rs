@@ -11,6 +11,7 @@
 
 use super::wheel::{Body, ContactState, Wheel};
 use crate::validity::ImpactRecord;
+use tensegrity_core::Warning;
 
 /// Gap below which a vertex counts as touching, as a fraction of R.
 pub(crate) const GAP_TOL: f64 = 1e-10;
@@ -95,7 +96,7 @@ pub(crate) struct Hybrid {
     /// Impacts whose restitution was lowered so as not to create energy.
     pub restitution_lowered: usize,
     /// Problems met.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Bisection of a predicate false at `lo` and true at `hi`, to round-off.
@@ -177,10 +178,10 @@ impl Hybrid {
                 } else {
                     format!("the event count reached its cap of {MAX_EVENTS}")
                 };
-                self.warnings.push(format!(
-                    "rigid rolling stopped at t = {:.6} s: {why}; the samples end there",
-                    self.t
-                ));
+                self.warnings.push(Warning::RigidStopped {
+                    t: self.t,
+                    reason: why,
+                });
                 return false;
             }
             let h = dt.min(t_out - self.t);
@@ -518,17 +519,17 @@ impl Hybrid {
             }
         }
         if !converged {
-            self.warnings.push(format!(
-                "the simultaneous impact at t = {at:.6} s did not converge in {MAX_SWEEPS} sweeps"
-            ));
+            self.warnings.push(Warning::ImpactNotConverged {
+                t: at,
+                sweeps: MAX_SWEEPS,
+            });
         }
         let dissipated = total.normal_loss + total.friction_loss;
         if dissipated < -1e-9 * kinetic_before {
-            self.warnings.push(format!(
-                "the impact at t = {at:.6} s created {:.3e} J (Newton restitution with friction \
-                 is not energy-consistent there)",
-                -dissipated
-            ));
+            self.warnings.push(Warning::ImpactCreatedEnergy {
+                t: at,
+                energy: -dissipated,
+            });
         }
         self.impact_loss += total.normal_loss;
         self.impulse_friction_loss += total.friction_loss;

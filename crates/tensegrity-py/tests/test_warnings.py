@@ -1,0 +1,23 @@
+"""Warnings cross as data: each one a dict with its ``kind`` (a stable name), its ``message``
+(the text the command line prints) and its numbers, equal to the command line's JSON."""
+
+import tensegrity as tg
+from conftest import EXAMPLES, assert_same
+
+
+def test_a_drift_warning_is_a_dict_with_its_numbers(cli_json):
+    scene = EXAMPLES / "prism_drop.toml"
+    py = tg.simulate(scene, integrator="rk4", dt=0.01, trajectory=False)
+    warnings = py["warnings"]
+    assert warnings, py
+    w = warnings[0]
+    assert isinstance(w, dict)
+    assert w["kind"] == "drift"
+    assert w["invariant"] == "bar_length"
+    # the warning's own numbers say why it was raised
+    assert w["value"] > w["limit"] > 0.0
+    assert "above the limit" in w["message"]
+    assert {x["kind"] for x in warnings[1:]} == {"not_converged"}
+    assert all(x["relative_change"] > x["tolerance"] / 2 for x in warnings[1:])
+    ref = cli_json("simulate", scene, "--integrator", "rk4", "--dt", "0.01")
+    assert_same(py, ref)
