@@ -58,3 +58,74 @@ fn huge_counts_are_estimated_and_refused_before_allocation() {
         assert!(err.contains(flag), "{args}: {err}");
     }
 }
+
+/// Found by a catalogue of every flag of eight commands given `nan`, `-1`, `0`, `1e308`,
+/// `1e-320`, `abc`, `4294967296`, `-0`, `inf`, `1e12` (1,430 runs, 2026-12-06): one panic, one
+/// NaN in a report and two hangs; each is now refused before work.
+#[test]
+fn the_catalogue_s_panic_nan_and_hangs_are_refused_before_work() {
+    let tbar = "tbar --beta 0.5 --phi 0.3 --complexity 1";
+    // a huge cylindrical offset overflowed the node merger's grid (a panic)
+    let (code, err) = run_capped(&format!("{tbar} --cylindrical 1e308"));
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("delta = 1e308") && err.contains("at most 1e8"),
+        "{err}"
+    );
+    // a subnormal load sized every member to 0 kg and the mass ratio to NaN
+    let (code, err) = run_capped(&format!("{tbar} --cylindrical 0.25 --load 1e-320"));
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("load = 1e-320"), "{err}");
+    // an adaptive run of 10¹² s was estimated at one step: 10¹⁴ samples now count
+    for t_end in ["1e12", "4294967296"] {
+        let start = std::time::Instant::now();
+        let (code, err) = run_capped(&format!(
+            "simulate examples/prism_drop.toml --t-end {t_end} --json"
+        ));
+        assert_eq!(code, Some(2), "{err}");
+        assert!(
+            err.contains("output samples") && err.contains("--max-work"),
+            "{err}"
+        );
+        assert!(start.elapsed() < std::time::Duration::from_secs(5));
+    }
+}
+
+/// `tbar roll --gravity 1e12`: the n = 24 row's speeds were NaN and marked valid. A run whose
+/// headline numbers are not finite is not valid, with a `non_finite` warning per quantity.
+#[test]
+fn a_run_that_leaves_double_precision_is_not_valid() {
+    let out = common::run(&[
+        "tbar",
+        "roll",
+        "--t-end",
+        "0.2",
+        "--no-convergence-check",
+        "--gravity",
+        "1e12",
+        "--json",
+    ]);
+    common::assert_ok(&out);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["valid"], false);
+    let mut non_finite_rows = 0;
+    for row in v["rows"].as_array().unwrap() {
+        let t = &row["tbar"];
+        let finite = ["mean_speed", "final_speed", "mean_axle_height"]
+            .iter()
+            .all(|k| t[k].as_f64().is_some_and(f64::is_finite));
+        if !finite {
+            non_finite_rows += 1;
+            assert_eq!(t["valid"], false, "{t}");
+            let kinds: Vec<&str> = t["warnings"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter_map(|w| w["kind"].as_str())
+                .collect();
+            assert!(kinds.contains(&"non_finite"), "{kinds:?}");
+        }
+    }
+    // the n = 24 row (and n = 8) leave double precision today
+    assert!(non_finite_rows >= 1);
+}

@@ -227,6 +227,23 @@ fn roll_refuses_the_full_models_flags_under_the_rigid_model() {
         "1.0",
         "--json",
     ]));
+    // fig-rolling refuses the same, before it rolls anything or opens its figure
+    let dir = scratch("runs", "fig_rigid");
+    let svg = dir.join("r.svg");
+    let err = refused(&run(&[
+        "fig-rolling",
+        "--fidelity",
+        "rigid",
+        "--contact",
+        "stick",
+        "--out",
+        svg.to_str().unwrap(),
+    ]));
+    assert!(
+        err.contains("invalid value for --contact") && err.contains("only the full model reads it"),
+        "{err}"
+    );
+    assert!(!svg.exists());
 }
 
 #[test]

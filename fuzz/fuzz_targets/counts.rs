@@ -52,10 +52,8 @@ fn run_topology(text: &str) {
         return;
     };
     let settings = formfind::Settings::default();
-    if let Ok(e) = formfind::estimate(&t, &settings) {
-        if LIMITS.check(&e).is_ok() {
-            let _ = formfind::form_find(&t, &settings);
-        }
+    if LIMITS.check(&formfind::estimate(&t, &settings)).is_ok() {
+        let _ = formfind::form_find(&t, &settings);
     }
 }
 

@@ -28,6 +28,11 @@ pub struct FigRollingArgs {
 pub fn run(args: &FigRollingArgs) -> Result<()> {
     let request: FigRollingRequest = args.request.request()?;
     let sides = FigRollingRequest::SIDES;
+    // a setting only the full model reads, under --fidelity rigid, is refused as by `roll`
+    request
+        .roll_request(sides[0])
+        .check_rigid_reads()
+        .map_err(super::request_args::usage)?;
     let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
     let sink = args.figure.open_required("--out", &args.out)?;
     let rolled = tensegrity_figures::fig_rolling(&request)?;

@@ -17,6 +17,10 @@ use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
 use tensegrity_derive::Columns;
 
+/// The largest offset |δ| of the cylindrical parameterisation (in radii): beyond it the
+/// axial coordinate r δ dwarfs the other two past double precision (10⁸ keeps 8 digits).
+pub const MAX_DELTA: f64 = 1e8;
+
 /// Largest complexity accepted for a 3-D truss ((q+1)(q+2)(q+3)/6 = 176 851 nodes at q = 100).
 pub const MAX_COMPLEXITY_3D: usize = 100;
 /// Largest complexity accepted for a planar truss ((q+1)(q+2)/2 = 501 501 nodes at q = 1000).
@@ -186,6 +190,15 @@ impl MichellParams {
                         "delta",
                         delta,
                         "must be finite and non-zero (δ = 0 collapses the 3-D truss onto the plane)",
+                    ));
+                }
+                if delta.abs() > MAX_DELTA {
+                    return Err(invalid(
+                        "delta",
+                        delta,
+                        format!(
+                            "|δ| must be at most {MAX_DELTA:e}: a node's offset of |δ| radii along the axis would leave its other two coordinates below double precision"
+                        ),
                     ));
                 }
             }

@@ -190,7 +190,12 @@ impl Merger {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let kk = [k[0] + dx, k[1] + dy, k[2] + dz];
+                    // saturating: a position far out (a huge offset) keeps a key
+                    let kk = [
+                        k[0].saturating_add(dx),
+                        k[1].saturating_add(dy),
+                        k[2].saturating_add(dz),
+                    ];
                     if let Some(list) = self.grid.get(&kk) {
                         if let Some(&i) = list
                             .iter()

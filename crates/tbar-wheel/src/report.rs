@@ -60,6 +60,14 @@ impl TbarRequest {
         if !(self.load.is_finite() && self.load > 0.0) {
             return Err(invalid("load", self.load, "must be finite and > 0"));
         }
+        // a subnormal load sizes every member to a mass that underflows to 0 (ratio 0/0)
+        if self.load < f64::MIN_POSITIVE / f64::EPSILON {
+            return Err(invalid(
+                "load",
+                self.load,
+                "is below the range where the member masses stay representable (at least 1e-292 N)",
+            ));
+        }
         if !(self.ea.is_finite() && self.ea > 0.0) {
             return Err(invalid("ea", self.ea, "must be finite and > 0"));
         }

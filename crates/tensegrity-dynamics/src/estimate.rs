@@ -1,14 +1,16 @@
 //! The resource estimate of a [`Simulation`](crate::Simulation) run, from its settings and
 //! the model's sizes (the core's `budget` types and flop counts).
 
-use tensegrity_core::budget::{integration, rhs_flops, Estimate, Parameters};
+use tensegrity_core::budget::{integration, rhs_flops, Estimate, Parameters, SCALAR_FLOP_RATE};
 
 /// Estimate of a [`Simulation`](crate::Simulation) run from its settings and model
 /// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
 /// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4 (with
 /// flight steps at most that),
 /// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
-/// memory unless `streamed`, and written at `bytes_per_number` when `written`.
+/// memory unless `streamed`, and written at `bytes_per_number` when `written`; each sample
+/// is computed (an interpolation and its quantities: 8 flops a number), which bounds an
+/// adaptive run's work from below however long its steps.
 pub fn simulation(
     sim: &crate::Simulation,
     streamed: bool,
@@ -50,8 +52,12 @@ pub fn simulation(
         + 3.0 * f64::from(u8::from(q.energy))
         + 4.0 * model.contact.len() as f64 * f64::from(u8::from(q.contact_forces));
     let run = integration(steps, rhs_per_step, flops, model.state_len(), parameters);
+    // every sample is computed, however long an adaptive step is: its interpolation and its
+    // recorded quantities, at least the numbers it holds a few times over
+    let sampling = samples * 8.0 * (model.state_len() as f64 + numbers) / SCALAR_FLOP_RATE;
     let sample_bytes = numbers * if streamed { 0.0 } else { 8.0 };
     Estimate {
+        work_s: run.work_s + sampling,
         memory_bytes: run.memory_bytes + samples * sample_bytes,
         output_bytes: if written {
             samples * numbers * bytes_per_number

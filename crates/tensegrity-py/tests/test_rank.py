@@ -37,6 +37,9 @@ def test_a_huge_node_count_is_an_input_error_not_an_abort():
                 "force_density = 1.0\n")
     with pytest.raises(tg.InputError, match="n_nodes"):
         tg.formfind(topology=topology)
-    # a huge count is refused by its estimate before anything is allocated, naming the keyword
-    with pytest.raises(tg.ResourceError, match="sides = 4294967296.*max_memory"):
+    # a count past u32 names the keyword and the bound, as on the command line; a huge one
+    # within it is refused by its estimate before anything is allocated
+    with pytest.raises(tg.InputError, match="sides = 4294967296: must be at most 4294967295"):
         tg.toroid(sides=2 ** 32)
+    with pytest.raises(tg.ResourceError, match="sides = 4294967295.*max_memory"):
+        tg.toroid(sides=2 ** 32 - 1)

@@ -69,7 +69,11 @@ fn parameter(request: &ToroidRequest) -> String {
 /// the prestress LP and the flexes (O(n²) memory, O(n³) work).
 pub fn dense_statics(request: &ToroidRequest) -> Estimate {
     let (nodes, bars, strings) = counts(&request.wheel, request.prism_only);
-    budget::dense_statics(3 * nodes, bars + strings, parameter(request))
+    budget::dense_statics(
+        3usize.saturating_mul(nodes),
+        bars.saturating_add(strings),
+        parameter(request),
+    )
 }
 
 /// The symmetry-adapted statics: n complex blocks of one sector's size (3·nodes/n rows ×
@@ -81,9 +85,14 @@ pub fn cyclic_statics(request: &ToroidRequest) -> Estimate {
     }
     let (nodes, bars, strings) = counts(&request.wheel, false);
     let n = request.wheel.params.sides.max(1);
-    let (rows, cols) = ((3 * nodes).div_ceil(n), (bars + strings).div_ceil(n));
+    // saturating: a library caller may ask for any number of sides; the estimate refuses it
+    let members = bars.saturating_add(strings);
+    let (rows, cols) = (
+        3usize.saturating_mul(nodes).div_ceil(n),
+        members.div_ceil(n),
+    );
     let work = 4.0 * n as f64 * budget::svd_flops(rows, cols) * budget::DENSE_OVERHEAD;
-    let memory = 256.0 * (nodes + bars + strings) as f64
+    let memory = 256.0 * (nodes as f64 + members as f64)
         + n as f64 * budget::dense_statics_bytes(rows, cols) * 2.0;
     Estimate::new(
         format!("the symmetry-adapted statics ({n} blocks of {rows} × {cols})"),
@@ -101,7 +110,7 @@ pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
         nodes,
         bars,
         strings,
-        constraint_rows: 3 * wheel.params.sides,
+        constraint_rows: 3usize.saturating_mul(wheel.params.sides),
         rhs_per_step: 4.0,
         extra_flops: 0.0,
     }
@@ -281,6 +290,18 @@ mod tests {
             );
             let m = crate::wheel_mass(s);
             assert!((wheel_mass(&w) - m).abs() <= 1e-12 * m, "{stabilize}");
+        }
+    }
+
+    #[test]
+    fn any_number_of_sides_is_estimated_without_overflow() {
+        // found by the fuzz target `counts`: 3 · nodes overflowed for ~10¹⁸ sides
+        for sides in [usize::MAX / 7, usize::MAX, 1 << 62] {
+            let mut r = ToroidRequest::default();
+            r.wheel.params.sides = sides;
+            let e = cyclic_statics(&r);
+            assert!(e.memory_bytes > 1e18 && e.work_s > 1e6, "{sides}: {e:?}");
+            let _ = full_sizes(&r.wheel);
         }
     }
 

@@ -100,9 +100,24 @@ impl RunSummary {
     /// first second when `t_end` > 1 s).
     pub fn of(r: &RollingResult, t_end: f64) -> Self {
         let v = &r.validity;
+        let mut warnings = v.warnings.clone();
+        // a run that left double precision says so: its numbers are no answer
+        let headline = [
+            ("mean_speed", r.mean_speed),
+            ("final_speed", r.final_speed),
+            ("mean_axle_height", r.mean_axle_height(t_end)),
+            ("axle_height_oscillation", r.axle_height_oscillation),
+            ("max_reaction", r.max_reaction),
+        ];
+        for (quantity, x) in headline {
+            if !x.is_finite() {
+                let quantity = quantity.to_string();
+                warnings.push(Warning::NonFinite { quantity });
+            }
+        }
         Self {
-            valid: v.valid(),
-            warnings: v.warnings.clone(),
+            valid: warnings.is_empty(),
+            warnings,
             stopped_at: v.stopped_at,
             impacts: r.impacts,
             first_impact: r.impact_log.first().map(FirstImpact::from),

@@ -325,7 +325,12 @@ impl Param {
     }
 
     fn count_of(&self, v: &Value) -> Result<u64, InvalidParameter> {
+        // every count is at most u32::MAX, from a flag or a JSON/Python integer alike (the
+        // estimates multiply counts in usize)
         if let Some(i) = v.as_u64() {
+            if i > u64::from(u32::MAX) {
+                return Err(self.bad(v, format!("must be at most {}", u32::MAX)));
+            }
             return Ok(i);
         }
         let x = match v {

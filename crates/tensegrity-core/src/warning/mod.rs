@@ -210,6 +210,11 @@ pub enum Warning {
         /// Why.
         reason: String,
     },
+    /// A reported quantity is not a finite number: the run left double precision.
+    NonFinite {
+        /// The quantity.
+        quantity: String,
+    },
     // --- convergence under refinement ---
     /// A quantity moved more than half its tolerance at the refined resolution.
     NotConverged {
@@ -278,6 +283,7 @@ impl Warning {
             W::StoppedEarly { .. } => "stopped_early",
             W::Interrupted { .. } => "interrupted",
             W::RigidStopped { .. } => "rigid_stopped",
+            W::NonFinite { .. } => "non_finite",
             W::NotConverged { .. } => "not_converged",
             W::RefinementFailed { .. } => "refinement_failed",
             W::InRun { .. } => "in_run",
@@ -415,6 +421,9 @@ mod tests {
                 relative_change: Some(0.1),
                 tolerance: 0.02,
                 refinement: "dt / 2".into(),
+            },
+            Warning::NonFinite {
+                quantity: "mean_speed".into(),
             },
             Warning::RefinementFailed {
                 refinement: "r".into(),

@@ -97,6 +97,10 @@ impl fmt::Display for Warning {
                 not_converged(f, quantity, *value, *refined, *relative_change, *tolerance, refinement)
             }
             W::RefinementFailed { refinement } => write!(f, "not converged: {refinement}"),
+            W::NonFinite { quantity } => write!(
+                f,
+                "`{quantity}` is not a finite number: the run left double precision (a gravity, speed or stiffness out of range), and its numbers are no answer"
+            ),
             W::InRun { sides, run, warning } => write!(f, "n = {sides}, {run}: {warning}"),
             W::RowFailed { sides, error } => write!(f, "n = {sides}: {error}"),
         }
