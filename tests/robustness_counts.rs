@@ -129,3 +129,31 @@ fn a_run_that_leaves_double_precision_is_not_valid() {
     // the n = 24 row (and n = 8) leave double precision today
     assert!(non_finite_rows >= 1);
 }
+
+/// A scene catalogue (every number of examples/prism_drop.toml set to `nan`, `-1`, `0`,
+/// `1e308`, `1e-320`, `1e12`, `-1e308`; 532 runs of `simulate` and `statics`): a string
+/// damping, stiffness or bar mass of 10¹² made the adaptive RK45 run crawl at its stability
+/// limit for hours (estimated at one step). The estimate now bounds its steps from below by
+/// t_end · λ / 3 for the model's fastest rate λ: refused at once.
+#[test]
+fn a_stiff_scene_under_an_adaptive_explicit_method_is_estimated_by_its_fastest_rate() {
+    let dir = common::scratch("counts", "stiff");
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/prism_drop.toml"),
+    )
+    .unwrap();
+    let stiff = dir.join("stiff.toml");
+    std::fs::write(&stiff, text.replace("damping = 2.0", "damping = 1e12")).unwrap();
+    let start = std::time::Instant::now();
+    let (code, err) = run_capped(&format!("simulate {} --json", stiff.display()));
+    assert_eq!(code, Some(2), "{err}");
+    // λ = 2c/m = 2·10¹² / 0.25 = 8·10¹² 1/s over 3 s: 8·10¹² steps
+    assert!(
+        err.contains("8.000e12 time steps") && err.contains("--max-work"),
+        "{err}"
+    );
+    assert!(start.elapsed() < std::time::Duration::from_secs(5));
+    // the bundled scene itself is unaffected
+    let (code, err) = run_capped("simulate examples/prism_drop.toml --json");
+    assert_eq!(code, Some(0), "{err}");
+}

@@ -5,7 +5,9 @@ use tensegrity_core::budget::{integration, rhs_flops, Estimate, Parameters, SCAL
 
 /// Estimate of a [`Simulation`](crate::Simulation) run from its settings and model
 /// sizes: fixed-step methods take t_end / min(dt, output interval) steps (they land on every
-/// output time), adaptive ones at least t_end / dt; right-hand sides per step: RK4 4 (with
+/// output time), adaptive ones at least t_end / dt, and RK45 at least t_end · λ / 3 for the
+/// fastest rate λ of the model ([`fastest_rate`]: its stability interval is about 3.3 along
+/// the real and imaginary axes); right-hand sides per step: RK4 4 (with
 /// flight steps at most that),
 /// RATTLE 2, RK45 6, SDIRK 12; the samples hold the recorded quantities and are kept in
 /// memory unless `streamed`, and written at `bytes_per_number` when `written`; each sample
@@ -27,7 +29,12 @@ pub fn simulation(
         (false, Some(dt_out)) => s.dt.min(dt_out),
         _ => s.dt,
     };
-    let steps = (s.t_end / step).ceil();
+    let mut steps = (s.t_end / step).ceil();
+    if s.integrator == K::Rk45 {
+        // an explicit adaptive method cannot step past its stability limit on the fastest
+        // mode, however smooth the motion: a lower bound that a stiff scene makes large
+        steps = steps.max((s.t_end * fastest_rate(model) / RK45_STABILITY).ceil());
+    }
     let rhs_per_step = match s.integrator {
         // flight steps: at most every step at dt (a run that never leaves the ground)
         K::Rk4 | K::Rk4Flight => 4.0,
@@ -67,4 +74,36 @@ pub fn simulation(
         what: format!("{} and {samples:.3e} output samples", run.what),
         ..run
     }
+}
+
+/// The length of RK45's stability interval used by the estimate (the Dormand–Prince method's
+/// reaches about 3.3 along the negative real axis and 3.4 along the imaginary one).
+pub const RK45_STABILITY: f64 = 3.0;
+
+/// The fastest rate λ (1/s) an explicit method must resolve: over the strings and a penalty
+/// ground, √(2k/m) for a stiffness k and 2c/m for a damping c, with m a quarter of the
+/// lightest bar's mass (a bar end's effective mass); 0 for a model without bars.
+pub fn fastest_rate(model: &crate::Model) -> f64 {
+    let lightest = model
+        .bars
+        .iter()
+        .map(|b| b.mass)
+        .fold(f64::INFINITY, f64::min);
+    let m = lightest / 4.0;
+    if !(m.is_finite() && m > 0.0) {
+        return 0.0;
+    }
+    let rate = |k: f64, c: f64| (2.0 * k / m).sqrt().max(2.0 * c / m);
+    let strings = model
+        .strings
+        .iter()
+        .map(|s| rate(s.law.stiffness, s.law.damping))
+        .fold(0.0, f64::max);
+    let ground = match model.ground.as_ref().map(|g| &g.model) {
+        Some(crate::GroundModel::Penalty {
+            stiffness, damping, ..
+        }) => rate(*stiffness, *damping),
+        _ => 0.0,
+    };
+    strings.max(ground)
 }
