@@ -59,6 +59,9 @@ fn old_checks(
         }
         seen.insert(key, id);
         let length = (nodes[b] - nodes[a]).norm();
+        if !length.is_finite() {
+            return Some(ModelError::MemberLengthOverflow { member: id, a, b });
+        }
         let scale = nodes[a].norm().max(nodes[b].norm()).max(1.0);
         if length <= 1e-12 * scale {
             return Some(ModelError::ZeroLengthMember {

@@ -80,6 +80,32 @@ fn zero_length_member() {
 }
 
 #[test]
+fn a_member_whose_length_overflows_is_named_as_such_not_as_zero_length() {
+    // finite coordinates whose squared distance overflows (found by a catalogue: it used to
+    // say "has zero length … length inf m")
+    let (e, m) = message(
+        Structure::builder()
+            .nodes([[0.0, 0.0, 0.0], [1e308, 0.0, 0.0], [-1e308, 0.0, 0.0]])
+            .bar(Bar::new(0, 1))
+            .string(StringMember::new(1, 2))
+            .string(StringMember::new(0, 2)),
+    );
+    assert!(
+        matches!(
+            e,
+            CoreError::Model(ModelError::MemberLengthOverflow {
+                member: MemberId::Bar(0),
+                a: 0,
+                b: 1,
+            })
+        ),
+        "{m}"
+    );
+    assert!(m.contains("bar 0") && m.contains("overflows"), "{m}");
+    assert!(!m.contains("zero length"), "{m}");
+}
+
+#[test]
 fn non_finite_coordinate() {
     let (e, m) = message(
         Structure::builder()

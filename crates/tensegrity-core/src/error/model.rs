@@ -41,6 +41,17 @@ pub enum ModelError {
         /// Second node of the pair.
         b: usize,
     },
+    /// A member whose length overflows double precision (coordinates beyond about 10¹⁵⁴ m,
+    /// whose squares overflow).
+    #[error("{member}: its length between nodes {a} and {b} overflows double precision (coordinates beyond about 1e154 m, whose squares overflow): scale the structure down")]
+    MemberLengthOverflow {
+        /// The offending member.
+        member: MemberId,
+        /// Start node.
+        a: usize,
+        /// End node.
+        b: usize,
+    },
     /// A member whose end nodes coincide.
     #[error("{member}: has zero length (nodes {a} and {b} coincide, length {length:e} m)")]
     ZeroLengthMember {

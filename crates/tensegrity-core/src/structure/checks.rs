@@ -106,6 +106,9 @@ fn own_problem(nodes: &[Vector3<f64>], id: MemberId, a: usize, b: usize) -> Opti
         );
     }
     let length = (nodes[b] - nodes[a]).norm();
+    if !length.is_finite() {
+        return Some(ModelError::MemberLengthOverflow { member: id, a, b }.into());
+    }
     let scale = nodes[a].norm().max(nodes[b].norm()).max(1.0);
     if length <= 1e-12 * scale {
         return Some(

@@ -389,7 +389,8 @@ fn error_item(e: &CoreError) -> Option<(String, usize)> {
         | CoreError::Model(ModelError::UnknownMaterial { item, .. }) => item.clone(),
         CoreError::Model(ModelError::SelfLoop { member, .. })
         | CoreError::Model(ModelError::DuplicateMember { member, .. })
-        | CoreError::Model(ModelError::ZeroLengthMember { member, .. }) => member.to_string(),
+        | CoreError::Model(ModelError::ZeroLengthMember { member, .. })
+        | CoreError::Model(ModelError::MemberLengthOverflow { member, .. }) => member.to_string(),
         CoreError::Model(ModelError::IsolatedNode { node }) => format!("node {node}"),
         CoreError::Model(ModelError::DuplicateSupport { support, .. })
         | CoreError::Model(ModelError::EmptySupport { support }) => {
