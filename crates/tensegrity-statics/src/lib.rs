@@ -242,6 +242,26 @@ impl StaticsSettings {
         Ok(self)
     }
 
+    /// The rank tolerance of a back-end that sees no full spectrum (the sparse and nested
+    /// QRs) for an m × n equilibrium matrix of `structure` with largest singular value
+    /// `sigma_max`: the larger of the arithmetic's tolerance and the coordinates' rounding
+    /// ([`rank::RankTolerance::absolute`]).
+    pub fn sparse_rank_tolerance(
+        &self,
+        structure: &Structure,
+        (m, n): (usize, usize),
+        sigma_max: f64,
+    ) -> f64 {
+        rank::RankTolerance::of(
+            structure,
+            (m, n),
+            sigma_max,
+            self.rank_tolerance,
+            self.input_precision,
+        )
+        .absolute()
+    }
+
     /// Chooses the prestressability LP solver.
     ///
     /// ```

@@ -474,14 +474,7 @@ impl<'a> NestedStatics<'a> {
         let (m, n) = (dofs.len(), structure.n_members());
         let (fronts, parent) = dof_fronts(structure, &dofs);
         let sigma = sigma_max(&a);
-        let tolerance = crate::rank::RankTolerance::of(
-            structure,
-            (m, n),
-            sigma,
-            settings.rank_tolerance,
-            settings.input_precision,
-        )
-        .absolute();
+        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
         let qr = FrontalQr::new(&a, &fronts, &parent, REJECT_FACTOR * tolerance)?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
         Ok(Self {
@@ -524,14 +517,7 @@ impl<'a> NestedStatics<'a> {
         let at = transpose(&a)?;
         let (fronts, parent) = member_fronts(structure);
         let sigma = sigma_max(&a);
-        let tolerance = crate::rank::RankTolerance::of(
-            structure,
-            (m, n),
-            sigma,
-            settings.rank_tolerance,
-            settings.input_precision,
-        )
-        .absolute();
+        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
         let qr = FrontalQr::with_threshold(
             &at,
             &fronts,

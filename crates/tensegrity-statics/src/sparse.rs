@@ -400,14 +400,7 @@ impl<'a> SparseStatics<'a> {
         }
         let (m, n) = (dofs.len(), structure.n_members());
         let sigma = sigma_max(&a);
-        let tolerance = crate::rank::RankTolerance::of(
-            structure,
-            (m, n),
-            sigma,
-            settings.rank_tolerance,
-            settings.input_precision,
-        )
-        .absolute();
+        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
         let qr = RankRevealingQr::with_deferral(
             &a,
             &row_order,
