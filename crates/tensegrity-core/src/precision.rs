@@ -5,11 +5,12 @@
 //! digits* d(x) are the fewest (1 to 17) whose shortest decimal reads back as exactly x. A
 //! structure whose coordinates need all 17 digits (or 16: the shortest round trip of most
 //! computed values) was written at full precision: its data are exact to rounding in the
-//! last bit. One whose longest coordinate has fewer than five digits was typed by hand
-//! (`0.5`, `2.0`, `1.25`): its values are taken as meant, exact. Between the two, with
-//! 5 ≤ d_max < 16, it was rounded to d_max digits (a writer prints every value to the same
-//! count, shorter ones being those whose trailing digits are zeros), and each coordinate may
-//! be off by half a unit in its d_max-th digit:
+//! last bit. Whole numbers are exact as written and are left out of the judgement; d_max is
+//! the longest count among the other values. With d_max below five the values were typed by
+//! hand (`0.5`, `1.25`, `0.866`): taken as meant, exact. With 5 ≤ d_max < 16, and at least
+//! two (and a quarter) of the non-whole values at d_max digits, a writer rounded them to
+//! d_max digits (it prints most computed values to that count, beside short values a user
+//! gave), and each coordinate may be off by half a unit in its d_max-th digit:
 //!
 //! > e = max_x ½ · 10^(⌊log₁₀|x|⌋ − d_max + 1)   (m)
 //!
