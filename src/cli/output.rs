@@ -32,23 +32,40 @@ pub fn invalid_mark(valid: bool) -> &'static str {
     }
 }
 
-/// One line on the convergence check: what was refined and which quantities held.
+/// One line on the convergence check: what the companion run changed, which quantities
+/// held, which are chaotic (single draws), and the check's cost in runs of work.
 pub fn print_convergence(c: Option<&tensegrity_dynamics::Convergence>) {
+    use tensegrity_dynamics::convergence::Status;
     let Some(c) = c else {
         return println!("convergence: not checked");
     };
-    let moved: Vec<&str> = c
-        .quantities
-        .iter()
-        .filter(|q| !q.converged)
-        .map(|q| q.name.as_str())
-        .collect();
-    let verdict = match (c.converged, moved.is_empty()) {
-        (true, _) => format!("all {} headline quantities converged", c.quantities.len()),
+    let named = |status: Status| -> Vec<&str> {
+        c.quantities
+            .iter()
+            .filter(|q| q.status == status)
+            .map(|q| q.name.as_str())
+            .collect()
+    };
+    let (moved, chaotic) = (named(Status::NotConverged), named(Status::Chaotic));
+    let held = c.quantities.len() - moved.len() - chaotic.len();
+    let mut verdict = match (c.converged, moved.is_empty()) {
+        (true, _) => format!(
+            "{held} of {} headline quantities converged",
+            c.quantities.len()
+        ),
         (false, true) => "not converged".to_string(),
         (false, false) => format!("not converged: {}", moved.join(", ")),
     };
-    println!("convergence ({}): {verdict}", c.refinement);
+    if !chaotic.is_empty() {
+        verdict.push_str(&format!(
+            "; chaotic (a start turned by 1e-6 moves them: single draws, see --ensemble): {}",
+            chaotic.join(", ")
+        ));
+    }
+    println!(
+        "convergence ({}; order {}; cost {} runs): {verdict}",
+        c.refinement, c.order, c.cost
+    );
 }
 
 /// Prints a report as pretty JSON with the conventional keys added beside its own

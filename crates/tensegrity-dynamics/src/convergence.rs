@@ -1,72 +1,186 @@
-//! Convergence of a dynamic result: each headline quantity re-estimated at a refined
-//! resolution (a second run at half the step, and for a penalty contact twice the ground
-//! stiffness) and compared with the result's own value.
+//! Convergence of a dynamic result: each headline quantity re-estimated by a companion run at
+//! another resolution (half the step, or twice it where the coarser run is inside the method's
+//! stability; for a penalty contact the ground stiffness moves with the step) and its error
+//! extrapolated with the method's documented order; and, where a motion may be chaotic, a
+//! twin run started 10⁻⁶ away that tells a chaotic quantity from a converging one.
 //!
-//! For a quantity q with value q_h at the run's resolution and q_{h/2} at the refined one, the
-//! relative change is
+//! **Relative change.** For a quantity q with value q_h at the run's resolution and q_c at the
+//! companion's, r = |q_c − q_h| / max(|q_h|, |q_c|, s), with s the quantity's scale floor (so
+//! that a quantity near zero is judged absolutely, e.g. s = 1 for a fraction of the run). A
+//! quantity compared as a whole (the final nodes or velocities, [`Convergence::compare_change`])
+//! takes the largest difference d between the two runs against its magnitude m and its scale
+//! s, r = d / max(m, s): a structure come to rest is judged on the speed √(g L) of its size L,
+//! not against its own noise. Each caller states its scales.
 //!
-//! > r = |q_{h/2} − q_h| / max(|q_h|, |q_{h/2}|, s)
+//! **Extrapolated error** (Richardson). If q_h = q* + C hᵖ with the documented order p, the
+//! error of the run's value is
 //!
-//! with s the quantity's scale floor (so that a quantity near zero is compared absolutely,
-//! e.g. s = 1 for a fraction of the run). A quantity compared as a whole (the final nodes or
-//! velocities of a run, [`Convergence::compare_change`]) takes the largest difference d
-//! between the two runs against its magnitude m (e.g. the largest final speed) and its
-//! scale s, r = d / max(m, s): a quantity near zero (a structure come to rest) is judged
-//! against the scale the problem states (a speed √(g L) of its size L), not against its own
-//! noise. Each caller states its scales (`tensegrity_engine::simulate`: the structure's size
-//! and the speeds of its motion). It is `converged` when r ≤ τ/2 for its tolerance τ:
-//! for a method of order p ≥ 1 the errors at h, h/2, h/4, … fall geometrically, so the change
-//! from q_h to the converged value (and to any finer run, a quarter of the step included) is at
-//! most r (1 + 2⁻ᵖ + 2⁻²ᵖ + …) ≤ 2 r ≤ τ. A quantity that moves more is `converged: false`,
-//! and so is the whole result ([`Convergence::converged`]), which a result then reports as not
-//! valid.
+//! > e = r · 2ᵖ / (2ᵖ − 1)   with a refined companion (h/2),
+//! > e = r / (2ᵖ − 1)        with a coarse companion (2h),
+//!
+//! and the quantity is `converged` when e ≤ τ, its tolerance. A finer run (h/4, h/8, …) then
+//! differs from the run's value by at most e (1 − 4⁻ᵖ) < τ. The order p is the caller's
+//! ([`Convergence::order`], documented where it is chosen): 1 for a step halved through
+//! contact events (every fixed-step scheme is first order at a landing), ½ where a penalty
+//! ground's stiffness doubles with it (a touch-down lasts π√(m/k), so event times and
+//! pivots move as k^(−½)). With p = 1 and a refined companion this is the old rule r ≤ τ/2.
+//!
+//! **Chaotic quantities** ([`Convergence::twin`]). A twin run at the run's own resolution,
+//! started from a state turned by 10⁻⁶ (rad), moves a quantity by r_twin. A quantity with
+//! r_twin > τ/8 is `chaotic`: the gap between two draws of a chaotic motion (another start,
+//! another step) is about 2.5 r_twin on average, so a single run cannot show it within τ. It is
+//! not `converged`, its value is one draw, and its answer is an ensemble's interval
+//! (`--ensemble K`); it does not by itself make a result unconverged, since no refinement
+//! could make it so ([`Convergence::converged`] judges the other quantities).
+//!
+//! A quantity that is neither converged nor chaotic makes the whole result unconverged
+//! ([`Convergence::converged`]), which a result then reports as not valid
+//! ([`Convergence::warnings`]). The error bar's cost is stated ([`Convergence::cost`]: the
+//! companion and twin runs' work relative to the run's: 2 for h/2, ½ for 2h, +1 for a twin).
 
 use serde::{Deserialize, Serialize};
 use tensegrity_core::warning::Warning;
 use tensegrity_derive::Columns;
 
-/// One headline quantity at the run's and at the refined resolution.
+/// The fraction of its tolerance a twin run may move a quantity before it is chaotic
+/// (module docs).
+pub const CHAOS_FRACTION: f64 = 0.125;
+
+/// The relative perturbation of a twin run's start (rad for a turned pose).
+pub const TWIN_PERTURBATION: f64 = 1e-6;
+
+/// Which resolution the companion run has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Companion {
+    /// Half the step (costs twice the run).
+    #[default]
+    Refined,
+    /// Twice the step (costs half the run); used where 2h stays inside the method's stability.
+    Coarse,
+}
+
+impl Companion {
+    /// The companion run's work relative to the run's.
+    pub fn cost(self) -> f64 {
+        match self {
+            Companion::Refined => 2.0,
+            Companion::Coarse => 0.5,
+        }
+    }
+
+    /// e / r for a method of order `p` (module docs).
+    pub fn error_factor(self, p: f64) -> f64 {
+        let g = 2f64.powf(p);
+        match self {
+            Companion::Refined => g / (g - 1.0),
+            Companion::Coarse => 1.0 / (g - 1.0),
+        }
+    }
+}
+
+/// What the checks concluded about one quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Its extrapolated error is within its tolerance.
+    #[default]
+    Converged,
+    /// Its extrapolated error exceeds its tolerance (or one run lacks it).
+    NotConverged,
+    /// A twin run 10⁻⁶ away moved it by more than [`CHAOS_FRACTION`] of its tolerance: one draw.
+    Chaotic,
+}
+
+/// One headline quantity at the run's and at the companion's resolution.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuantityConvergence {
     /// The quantity's report key (e.g. `mean_speed`, `first_impact.t`).
     pub name: String,
     /// Its value in the result (null when the run has none, e.g. no impact).
     pub value: Option<f64>,
-    /// Its value at the refined resolution.
+    /// Its value at the companion resolution (the refined one, or the coarse one where
+    /// the convergence's `companion` is `coarse`).
     pub refined: Option<f64>,
-    /// |refined − value| / max(|value|, |refined|, scale) (module docs); null when one of the
-    /// two is missing.
+    /// |companion − value| / max(|value|, |companion|, scale) (module docs); null when one of
+    /// the two is missing.
     pub relative_change: Option<f64>,
-    /// The tolerance τ of this quantity: converged when the relative change is at most τ/2.
+    /// The value's error extrapolated with the documented order (module docs), relative as
+    /// `relative_change`; null when one of the two is missing.
+    #[serde(default)]
+    pub estimated_error: Option<f64>,
+    /// The tolerance τ of this quantity: converged when the estimated error is at most τ.
     pub tolerance: f64,
-    /// Whether the quantity held within its tolerance.
+    /// Whether the quantity held within its tolerance (false for a chaotic one).
     pub converged: bool,
+    /// The twin run's relative change of it (module docs); absent without a twin.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub twin_change: Option<f64>,
+    /// `converged`, `not_converged` or `chaotic` (module docs).
+    #[serde(default)]
+    pub status: Status,
 }
 
 /// The convergence of a result's headline quantities (module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Columns, Deserialize)]
 pub struct Convergence {
-    /// What the refined run changed, e.g. `dt/2, ground stiffness x2`.
+    /// What the companion run changed, e.g. `dt/2`.
     pub refinement: String,
-    /// Whether every quantity held within its tolerance.
+    /// Whether every quantity that is not chaotic held within its tolerance.
     pub converged: bool,
+    /// Whether the companion is finer (`refined`) or coarser (`coarse`).
+    #[serde(default)]
+    pub companion: Companion,
+    /// The documented order p used to extrapolate the error (module docs).
+    #[serde(default = "one")]
+    pub order: f64,
+    /// The error bar's work: the companion (and twin) runs relative to the run itself.
+    #[serde(default)]
+    pub cost: f64,
     /// Each headline quantity.
     pub quantities: Vec<QuantityConvergence>,
 }
 
+fn one() -> f64 {
+    1.0
+}
+
 impl Convergence {
-    /// An empty comparison for the refinement described by `refinement`.
+    /// An empty comparison against a refined companion (h/2) of a first-order refinement
+    /// described by `refinement`: converged when a quantity moves by at most τ/2.
     pub fn new(refinement: impl Into<String>) -> Self {
+        Self::with(refinement, Companion::Refined, 1.0)
+    }
+
+    /// An empty comparison against `companion` for a refinement of documented order `order`.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::{Companion, Convergence};
+    /// // a coarse companion (2h) of a first-order method: the error is the change itself
+    /// let mut c = Convergence::with("2 dt", Companion::Coarse, 1.0);
+    /// c.compare("mean_speed", Some(10.0), Some(10.15), 0.02, 0.0);
+    /// assert!(c.converged);
+    /// assert!((c.quantities[0].estimated_error.unwrap() - 0.15 / 10.15).abs() < 1e-12);
+    /// // order ½ (a penalty ground refined with the step): 2.41 times the change
+    /// let mut k = Convergence::with("2 dt, ground stiffness / 2", Companion::Coarse, 0.5);
+    /// k.compare("mean_speed", Some(10.0), Some(10.15), 0.02, 0.0);
+    /// assert!(!k.converged);
+    /// ```
+    pub fn with(refinement: impl Into<String>, companion: Companion, order: f64) -> Self {
         Self {
             refinement: refinement.into(),
             converged: true,
+            companion,
+            order,
+            cost: companion.cost(),
             quantities: Vec::new(),
         }
     }
 
-    /// Compares `value` with `refined` (module docs): relative to the larger of the two and of
-    /// `scale`, within `tolerance`. Both missing counts as converged (nothing to compare), one
-    /// missing as not converged (the refined run found, or lost, an event).
+    /// Compares `value` with the companion's value `refined` (module docs): relative to the
+    /// larger of the two and of `scale`, extrapolated with the order, within `tolerance`. Both
+    /// missing counts as converged (nothing to compare), one missing as not converged (the
+    /// companion run found, or lost, an event).
     ///
     /// ```
     /// use tensegrity_dynamics::convergence::Convergence;
@@ -96,28 +210,23 @@ impl Convergence {
             }
             _ => None,
         };
-        let converged = match (value, refined, relative_change) {
-            (None, None, _) => true,
-            // NaN changes count as unconverged
-            (_, _, Some(r)) => r <= 0.5 * tolerance,
-            _ => false,
-        };
-        self.converged &= converged;
-        self.quantities.push(QuantityConvergence {
-            name: name.to_string(),
+        let both_missing = value.is_none() && refined.is_none();
+        self.push(
+            name,
             value,
             refined,
             relative_change,
             tolerance,
-            converged,
-        });
+            both_missing,
+        );
         self
     }
 
     /// Records a quantity whose change was measured directly (e.g. the largest distance
     /// between two runs' final nodes): `change` against the larger of its `magnitude` and
-    /// its `scale` (module docs), within `tolerance`, with no single value to show. A NaN
-    /// change counts as unconverged; a zero denominator as no change.
+    /// its `scale` (module docs), extrapolated with the order, within `tolerance`, with no
+    /// single value to show. A NaN change counts as unconverged; a zero denominator as no
+    /// change.
     ///
     /// ```
     /// use tensegrity_dynamics::convergence::Convergence;
@@ -146,36 +255,125 @@ impl Convergence {
         } else {
             f64::INFINITY
         };
-        let converged = relative_change <= 0.5 * tolerance;
-        self.converged &= converged;
-        self.quantities.push(QuantityConvergence {
-            name: name.to_string(),
-            value: None,
-            refined: None,
-            relative_change: Some(relative_change),
-            tolerance,
-            converged,
-        });
+        self.push(name, None, None, Some(relative_change), tolerance, false);
         self
     }
 
-    /// One warning per quantity that did not converge ([`Warning::NotConverged`]); for a
-    /// result marked unconverged with no such quantity (its refined run failed), one
-    /// [`Warning::RefinementFailed`] naming the refinement.
+    fn push(
+        &mut self,
+        name: &str,
+        value: Option<f64>,
+        refined: Option<f64>,
+        relative_change: Option<f64>,
+        tolerance: f64,
+        nothing_to_compare: bool,
+    ) {
+        let estimated_error = relative_change.map(|r| r * self.companion.error_factor(self.order));
+        // NaN errors count as unconverged
+        let converged = nothing_to_compare || estimated_error.is_some_and(|e| e <= tolerance);
+        self.converged &= converged;
+        self.quantities.push(QuantityConvergence {
+            name: name.to_string(),
+            value,
+            refined,
+            relative_change,
+            estimated_error,
+            tolerance,
+            converged,
+            twin_change: None,
+            status: if converged {
+                Status::Converged
+            } else {
+                Status::NotConverged
+            },
+        });
+    }
+
+    /// Judges the quantities against a twin run at the run's own resolution started
+    /// [`TWIN_PERTURBATION`] away (module docs): `twin` gives, per quantity name, the twin's
+    /// value (`compare`d quantities) or its measured change (`compare_change`d ones, relative
+    /// as there). A quantity the twin moves by more than [`CHAOS_FRACTION`] of its tolerance is
+    /// `chaotic`, no longer converged, and no longer counts against [`Convergence::converged`].
+    /// Adds the twin's cost (1).
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::{Convergence, Status};
+    /// let mut c = Convergence::new("dt/2");
+    /// c.compare("first_impact.t", Some(0.70), Some(0.7001), 0.01, 0.0)
+    ///     .compare("final_speed", Some(44.4), Some(47.3), 0.02, 1e-3);
+    /// assert!(!c.converged);
+    /// // a start turned by 1e-6 rad moves the final speed by 6 %: chaotic, a single draw
+    /// c.twin(|name| match name {
+    ///     "first_impact.t" => Some(0.70000001),
+    ///     _ => Some(47.1),
+    /// });
+    /// assert_eq!(c.quantities[1].status, Status::Chaotic);
+    /// assert!(c.converged && c.warnings().is_empty());
+    /// assert_eq!(c.chaotic(), vec!["final_speed"]);
+    /// assert_eq!(c.cost, 3.0);
+    /// ```
+    pub fn twin(&mut self, twin: impl Fn(&str) -> Option<f64>) -> &mut Self {
+        self.cost += 1.0;
+        for q in &mut self.quantities {
+            let Some(t) = twin(&q.name) else { continue };
+            let change = match q.value {
+                Some(v) => {
+                    let scale = match (q.refined, q.relative_change) {
+                        // recover the scale floor: r = |c − v| / max(|v|, |c|, s)
+                        (Some(c), Some(r)) if r > 0.0 => (c - v).abs() / r,
+                        _ => v.abs(),
+                    };
+                    let d = v.abs().max(t.abs()).max(scale);
+                    if d > 0.0 {
+                        (t - v).abs() / d
+                    } else {
+                        0.0
+                    }
+                }
+                None => t,
+            };
+            q.twin_change = Some(change);
+            // a NaN change counts as chaotic (nothing certain about it)
+            if change.is_nan() || change > CHAOS_FRACTION * q.tolerance {
+                q.status = Status::Chaotic;
+                q.converged = false;
+            }
+        }
+        self.converged = self
+            .quantities
+            .iter()
+            .all(|q| q.converged || q.status == Status::Chaotic);
+        self
+    }
+
+    /// The names of the chaotic quantities (module docs).
+    pub fn chaotic(&self) -> Vec<&str> {
+        self.quantities
+            .iter()
+            .filter(|q| q.status == Status::Chaotic)
+            .map(|q| q.name.as_str())
+            .collect()
+    }
+
+    /// One warning per quantity that did not converge and is not chaotic
+    /// ([`Warning::NotConverged`]); for a result marked unconverged with no such quantity (its
+    /// companion run failed), one [`Warning::RefinementFailed`] naming the refinement.
     pub fn warnings(&self) -> Vec<Warning> {
-        if !self.converged && self.quantities.iter().all(|q| q.converged) {
+        let unconverged = |q: &&QuantityConvergence| q.status == Status::NotConverged;
+        if !self.converged && !self.quantities.iter().any(|q| unconverged(&q)) {
             return vec![Warning::RefinementFailed {
                 refinement: self.refinement.clone(),
             }];
         }
         self.quantities
             .iter()
-            .filter(|q| !q.converged)
+            .filter(unconverged)
             .map(|q| Warning::NotConverged {
                 quantity: q.name.clone(),
                 value: q.value,
                 refined: q.refined,
                 relative_change: q.relative_change,
+                estimated_error: q.estimated_error,
                 tolerance: q.tolerance,
                 refinement: self.refinement.clone(),
             })

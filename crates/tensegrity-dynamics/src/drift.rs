@@ -17,6 +17,13 @@
 //!
 //! * Implicit stage equations ([`super::ImexArk`]): the fraction whose Newton residual
 //!   stayed above its acceptance must stay below [`DriftLimits::implicit_solve`] (10⁻¹).
+//! * Creep chatter ([`super::Imex`], the split): the fraction of contact node-steps whose
+//!   tangential velocity reversed its change from the previous step by a large part of the
+//!   node's speed ([`Integrator::contact_chatter`](super::Integrator::contact_chatter)) must
+//!   stay below [`DriftLimits::contact_chatter`] ([`CONTACT_CHATTER_LIMIT`]). Smooth motion
+//!   reverses its velocity change only at the velocity's extrema, where the change is small;
+//!   the split reverses it at nearly every step on a creeping contact whose friction
+//!   relaxation time is short against the step (module docs of [`super::imex`]).
 //!
 //! Each breach is a [`DriftWarning`] whose message names the remedy: a smaller step, the
 //! adaptive `rk45`, the constraint-preserving `rattle`, or projection.
@@ -34,6 +41,27 @@ use tensegrity_core::warning::{DriftInvariant, Warning};
 /// at 10⁻⁴ s; 37 % at 10⁻³ s, where the pivot's slip fraction is 0.58 against 0.035.
 pub const IMPLICIT_SOLVE_LIMIT: f64 = 0.1;
 
+/// Default of [`DriftLimits::contact_chatter`]: a tenth of the contact node-steps. Measured
+/// under the split IMEX on the toroid wheel's penalty ground (docs/notes/ROLLING.md,
+/// "Detecting the split's chatter"; slip fraction in brackets, against IMEX-ARK at 10⁻⁴ s):
+///
+/// * the n = 8, 30°, μ = 1.2 pivot (reference slip 0.035): 58 % at 5·10⁻⁴ s (0.876), 58 % at
+///   2.5·10⁻⁴ s (0.759), 53 % at 10⁻⁴ s (0.246), 7.2 % at 5·10⁻⁵ s (0.103), 5.3 % at
+///   2.5·10⁻⁵ s (0.042), 3.4 % at 10⁻⁵ s (0.035);
+/// * the hopping n = 8, 50° default (reference 0.213): 5.0 % at 5·10⁻⁴ s (0.218), 2.9 % at
+///   2.5·10⁻⁵ s (0.225); n = 8, 30° (reference 0.225, IMEX-ARK at its default 0.307): 21.5 % at
+///   5·10⁻⁴ s (0.354), 19.4 % at 10⁻⁴ s (0.325), 7.8 % at 2.5·10⁻⁵ s (0.263), 7.1 % at
+///   1.25·10⁻⁵ s (0.266);
+/// * the hopping n = 24, 50° (reference 0.396): 11.7 % at 5·10⁻⁴ s (0.450), 8.4 % at
+///   2.5·10⁻⁴ s (0.453), 8.8 % at 10⁻⁴ s (0.453), 5.7 % at 2.5·10⁻⁵ s (0.409).
+///
+/// The same count on IMEX-ARK's steps (which do not chatter: its implicit stages see the load)
+/// is 0.2–1.5 %. Converged split runs still count 3–8 % (the landings' high normal loads make
+/// even a short step long against the friction's relaxation time, for a few milliseconds),
+/// so the limit sits above them; split runs at 7–9 % are biased on the pivot (5·10⁻⁵ s) and on
+/// n = 24 (2.5·10⁻⁴ and 10⁻⁴ s) and pass it: the count cannot tell them from converged ones.
+pub const CONTACT_CHATTER_LIMIT: f64 = 0.1;
+
 /// Limits of the invariants' drift (relative; see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DriftLimits {
@@ -48,6 +76,9 @@ pub struct DriftLimits {
     /// Fraction of an implicit method's stage equations whose Newton residual stayed above
     /// its acceptance ([`Integrator::implicit_solves`](super::Integrator::implicit_solves)).
     pub implicit_solve: f64,
+    /// Fraction of contact node-steps whose tangential velocity chattered
+    /// ([`Integrator::contact_chatter`](super::Integrator::contact_chatter)).
+    pub contact_chatter: f64,
 }
 
 impl Default for DriftLimits {
@@ -58,6 +89,7 @@ impl Default for DriftLimits {
             bar_length: 1e-6,
             constraint: 1e-6,
             implicit_solve: IMPLICIT_SOLVE_LIMIT,
+            contact_chatter: CONTACT_CHATTER_LIMIT,
         }
     }
 }
@@ -83,6 +115,11 @@ impl DriftWarning {
     pub fn remedy(&self) -> &'static str {
         match (self.quantity, self.integrator) {
             (DriftQuantity::ImplicitSolve, _) => "use a smaller `dt`",
+            // IMEX-ARK's implicit stages see the explicit forces, so a creeping node's velocity
+            // balances its load within every stage at any step: the cure, not just a palliative
+            (DriftQuantity::CreepChatter, _) => {
+                "use `integrator = imex-ark` (its implicit stages see the load, so a creeping contact does not chatter), or a much smaller `dt`"
+            }
             (_, IntegratorKind::Rattle) => "use a smaller `dt`",
             (DriftQuantity::EnergyGrowth, _) => {
                 "use a smaller `dt`, or the L-stable `integrator = sdirk` for stiff strings and contact"
@@ -116,9 +153,19 @@ impl fmt::Display for DriftWarning {
     }
 }
 
+/// What an integrator counted along a run that [`check`] judges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct IntegratorCounts {
+    /// Implicit stage equations solved and those left unconverged
+    /// ([`Integrator::implicit_solves`](super::Integrator::implicit_solves)).
+    pub implicit_solves: (u64, u64),
+    /// Contact node-steps and those that chattered
+    /// ([`Integrator::contact_chatter`](super::Integrator::contact_chatter)).
+    pub contact_chatter: (u64, u64),
+}
+
 /// The warnings of a run with the given drifts (`energy`: relative drift, `energy_gain`:
-/// relative gain, `bar_length` and `constraint` in metres) and implicit stage solves
-/// (solved, unconverged).
+/// relative gain, `bar_length` and `constraint` in metres) and the integrator's `counts`.
 pub fn check(
     model: &Model,
     integrator: IntegratorKind,
@@ -126,8 +173,10 @@ pub fn check(
     [energy, energy_gain]: [f64; 2],
     bar_length: f64,
     constraint: f64,
-    (solves, unconverged): (u64, u64),
+    counts: IntegratorCounts,
 ) -> Vec<DriftWarning> {
+    let (solves, unconverged) = counts.implicit_solves;
+    let (node_steps, chattering) = counts.contact_chatter;
     let l_min = model.shortest_bar();
     let mut out = Vec::new();
     let mut push = |quantity, value: f64, limit: f64| {
@@ -166,6 +215,13 @@ pub fn check(
             DriftQuantity::ImplicitSolve,
             unconverged as f64 / solves as f64,
             limits.implicit_solve,
+        );
+    }
+    if node_steps > 0 {
+        push(
+            DriftQuantity::CreepChatter,
+            chattering as f64 / node_steps as f64,
+            limits.contact_chatter,
         );
     }
     out
@@ -215,5 +271,85 @@ fn ground_is_conservative(g: &Ground) -> bool {
             ..
         } => damping == 0.0 && mu_static == 0.0 && mu_kinetic == 0.0,
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_models::{dropped_prism, dropped_prism_ground};
+
+    /// The dropped prism on its (damped, frictional: passive) penalty ground.
+    fn model() -> Model {
+        let s = dropped_prism(0.1, 0.0).unwrap();
+        let mut model = Model::new(&s, None).unwrap();
+        model.set_ground(dropped_prism_ground(1e4, 50.0)).unwrap();
+        model
+    }
+
+    fn chatter(model: &Model, integrator: IntegratorKind, counts: (u64, u64)) -> Vec<DriftWarning> {
+        let counts = IntegratorCounts {
+            contact_chatter: counts,
+            ..Default::default()
+        };
+        check(
+            model,
+            integrator,
+            &DriftLimits::default(),
+            [0.0; 2],
+            0.0,
+            0.0,
+            counts,
+        )
+    }
+
+    #[test]
+    fn a_chattering_fraction_above_the_limit_is_a_warning_that_names_imex_ark() {
+        let model = model();
+        // 580 of 1000 node-steps: the split at its default step on the creeping pivot
+        let w = chatter(&model, IntegratorKind::Imex, (1000, 580));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].quantity, DriftQuantity::CreepChatter);
+        assert_eq!(w[0].value, 0.58);
+        assert_eq!(w[0].limit, CONTACT_CHATTER_LIMIT);
+        let text = w[0].to_string();
+        assert!(
+            text.contains("58.0 % of their steps, above the limit 10 %")
+                && text.contains("`integrator = imex-ark`")
+                && text.contains("`dt`"),
+            "{text}"
+        );
+        let json = serde_json::to_value(Warning::from(w[0])).unwrap();
+        assert_eq!(json["invariant"], "creep_chatter");
+        assert_eq!(json["value"], 0.58);
+    }
+
+    #[test]
+    fn a_chattering_fraction_at_or_below_the_limit_or_no_count_is_no_warning() {
+        let model = model();
+        // 5 %: the hopping default; exactly the limit passes; no node-steps: nothing to judge
+        for counts in [(1000, 50), (1000, 100), (0, 0)] {
+            let w = chatter(&model, IntegratorKind::Imex, counts);
+            assert!(w.is_empty(), "{counts:?}: {w:?}");
+        }
+        let tight = DriftLimits {
+            contact_chatter: 0.01,
+            ..Default::default()
+        };
+        let counts = IntegratorCounts {
+            contact_chatter: (1000, 50),
+            ..Default::default()
+        };
+        let w = check(
+            &model,
+            IntegratorKind::Imex,
+            &tight,
+            [0.0; 2],
+            0.0,
+            0.0,
+            counts,
+        );
+        assert_eq!(w.len(), 1, "the limit is the settings': {w:?}");
+        assert_eq!(w[0].limit, 0.01);
     }
 }

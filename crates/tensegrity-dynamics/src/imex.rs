@@ -92,6 +92,25 @@
 //! such creep. Measurements: docs/notes/ROLLING.md, "Work–precision on the default (penalty)
 //! ground".
 //!
+//! **Detecting the chatter** ([`Integrator::contact_chatter`]). Nothing else flags the bias:
+//! the budget closes and halving the step does not move it. So the integrator counts it. For
+//! each contact node that touches the ground (h < 0) at a step's start and end, the step's
+//! increment of its tangential velocity u_t = u − (n̂·u) n̂ is Δ = u_t(t + h) − u_t(t); when the
+//! node also touched through the previous step, this is a *contact node-step*, and it
+//! *chatters* when the two increments point against each other (Δ·Δ_prev < 0) and both exceed
+//! [`CHATTER_RATIO`] (a quarter) of the node's largest tangential speed at the three step ends
+//! (and [`CHATTER_FLOOR`]). In the linear model above the error e flips by −0.657 every step,
+//! so the increments are −1.657 e and then 1.09 e, each larger than half the speed |v_s| + |e|
+//! once the chatter is as large as the creep (the tanh law sustains it only then). Smooth
+//! motion reverses its increment only at an extremum of the velocity, where both increments
+//! are small against the speed. The test is relative to the node's own speed, not to g h: it
+//! needs no scale from the model, and it does not change with the step. The fraction of
+//! chattering node-steps above [`DriftLimits::contact_chatter`](super::DriftLimits::contact_chatter)
+//! is a drift warning naming IMEX-ARK. Measured (docs/notes/ROLLING.md, "Detecting the split's
+//! chatter"): 58 % of the node-steps at 5·10⁻⁴ s on the reference pivot, 3.4 % at 10⁻⁵ s where
+//! the split has converged; the same count on IMEX-ARK's steps 0–1.5 %. Test:
+//! `dynamics_chatter`.
+//!
 //! The bar constraints are kept as for RK4: the driver projects every accepted state back
 //! onto the bar lengths and N P = D ([`super::SimulationSettings::project`]). The thesis ground
 //! (whose reaction needs all contact nodes at once) stays in f_A.
@@ -144,6 +163,8 @@ pub struct Imex {
     /// that has just landed holds no force: module docs, "The held force at a landing").
     touched_before: Vec<bool>,
     stage: Vec<f64>,
+    /// The chatter count's per-node memory (module docs, "Detecting the chatter").
+    chatter: ChatterCount,
     /// Contact substeps taken and response-column refreshes (work counters).
     pub contact_substeps: u64,
     /// Times the response columns were recomputed.
@@ -165,9 +186,93 @@ impl Imex {
             frozen: Vec::new(),
             touched_before: vec![false; system.contact_points()],
             stage: Vec::new(),
+            chatter: ChatterCount::default(),
             contact_substeps: 0,
             refreshes: 0,
         }
+    }
+}
+
+/// Smallest ratio of a chattering velocity increment to the node's tangential speed (module
+/// docs, "Detecting the chatter"). Smooth motion reverses its increment only at an extremum
+/// of the velocity, where the increment is a small part of the speed (IMEX-ARK at 10⁻⁴ s on
+/// the reference pivot: no reversal above 0.32 of the speed); the split's chatter about the
+/// slaved creep swings by more than the creep itself (most of its reversals above 0.32 of the
+/// speed, many above 1).
+pub const CHATTER_RATIO: f64 = 0.25;
+
+/// Smallest chattering velocity increment (m/s): a thousandth of the rolling model's
+/// regularisation velocity (10⁻³ m/s) and far above round-off, so that a node at rest, whose
+/// increments are round-off and reverse at random (the ratio test alone would count them),
+/// is not counted.
+pub const CHATTER_FLOOR: f64 = 1e-6;
+
+/// The chatter count (module docs, "Detecting the chatter"): per contact node its tangential
+/// velocity at the step's start and its previous step's increment.
+#[derive(Debug, Default)]
+struct ChatterCount {
+    /// Per contact node: its tangential velocity at the step's start, `None` off the ground.
+    start: Vec<Option<Vector3<f64>>>,
+    /// Per contact node: the previous step's tangential increment and the larger tangential
+    /// speed at its ends, `None` unless the node touched the ground at both.
+    last: Vec<Option<(Vector3<f64>, f64)>>,
+    /// Scratch: the tangential velocities at the step's end.
+    end: Vec<Option<Vector3<f64>>>,
+    /// Contact node-steps: a contact node touching the ground at three consecutive step ends
+    /// (two increments to compare).
+    node_steps: u64,
+    /// Those whose increments chattered.
+    chattering: u64,
+}
+
+impl ChatterCount {
+    /// The tangential velocity of every contact node of `y` that touches the ground (`None`
+    /// for one that does not) into `out`.
+    fn tangential<S: ContactSystem>(system: &S, y: &[f64], out: &mut Vec<Option<Vector3<f64>>>) {
+        let (x, v) = y.split_at(y.len() / 2);
+        let normal = system.ground_normal();
+        out.clear();
+        out.extend((0..system.contact_points()).map(|k| {
+            let c = system.contact_node(k);
+            (system.ground_height(&vec3(x, c)) < 0.0).then(|| {
+                let u = vec3(v, c);
+                u - normal * normal.dot(&u)
+            })
+        }));
+    }
+
+    /// Takes note of the step's starting state `y`.
+    fn begin<S: ContactSystem>(&mut self, system: &S, y: &[f64]) {
+        Self::tangential(system, y, &mut self.start);
+        self.last.resize(self.start.len(), None);
+    }
+
+    /// Counts the step that ended at `y` (module docs, "Detecting the chatter").
+    fn end<S: ContactSystem>(&mut self, system: &S, y: &[f64]) {
+        let mut end = std::mem::take(&mut self.end);
+        Self::tangential(system, y, &mut end);
+        for ((start, end), last) in self.start.iter().zip(&end).zip(&mut self.last) {
+            let (Some(u0), Some(u1)) = (start, end) else {
+                *last = None;
+                continue;
+            };
+            let increment = u1 - u0;
+            let speed = u0.norm().max(u1.norm());
+            if let Some((previous, previous_speed)) = *last {
+                self.node_steps += 1;
+                // both increments large against the node's speed over the two steps: a
+                // reversal at a smooth extremum has small increments on both sides of it
+                let smaller = increment.norm().min(previous.norm());
+                if increment.dot(&previous) < 0.0
+                    && smaller > CHATTER_FLOOR
+                    && smaller > CHATTER_RATIO * speed.max(previous_speed)
+                {
+                    self.chattering += 1;
+                }
+            }
+            *last = Some((increment, speed));
+        }
+        self.end = end;
     }
 }
 
@@ -400,6 +505,7 @@ impl<S: ContactSystem> Integrator<S> for Imex {
         let mut work = system.contact_work(ws).unwrap_or_default();
         self.frozen.clear();
         if split {
+            self.chatter.begin(system, y);
             self.freeze(system, ws, y);
             let (wn, wt) = self.contact_substep(system, ws, y, 0.5 * h)?;
             work.0 += wn;
@@ -443,7 +549,12 @@ impl<S: ContactSystem> Integrator<S> for Imex {
             work.0 += wn;
             work.1 += wt;
             system.set_contact_work(ws, work);
+            self.chatter.end(system, y);
         }
         Ok(StepOutcome::fixed(h))
+    }
+
+    fn contact_chatter(&self) -> (u64, u64) {
+        (self.chatter.node_steps, self.chatter.chattering)
     }
 }

@@ -131,6 +131,15 @@ pub trait Integrator<S: System>: fmt::Debug {
     fn implicit_solves(&self) -> (u64, u64) {
         (0, 0)
     }
+
+    /// Contact node-steps counted so far (a contact node touching the ground at three
+    /// consecutive step ends) and how many of them chattered: the node's tangential velocity
+    /// changed in the opposite direction to its change over the previous step, by a large
+    /// part of its speed ([`Imex`](super::Imex), whose splitting lets a creeping node chatter;
+    /// (0, 0) for methods that cannot).
+    fn contact_chatter(&self) -> (u64, u64) {
+        (0, 0)
+    }
 }
 
 /// The last stage of the standard starting-step heuristic (Hairer, Nørsett & Wanner, §II.4):

@@ -10,7 +10,7 @@
 //! constraints if asked, and updates the monitors.
 
 use super::constraints::ConstraintSet;
-use super::drift::{self, DriftLimits, DriftWarning};
+use super::drift::{self, DriftLimits, DriftWarning, IntegratorCounts};
 use super::events::EventTracker;
 pub use super::events::{Event, EventFn, EventHit, StateView};
 pub use super::integrator::IntegratorKind;
@@ -112,6 +112,9 @@ pub struct SimulationResult {
     /// The invariants past their limits ([`SimulationSettings::drift_limits`]): a run with
     /// warnings integrated its equations too loosely to be trusted.
     pub warnings: Vec<DriftWarning>,
+    /// Contact node-steps and those that chattered
+    /// ([`Integrator::contact_chatter`]; (0, 0) for methods that do not count them).
+    pub contact_chatter: (u64, u64),
 }
 
 impl SimulationResult {
@@ -225,7 +228,11 @@ impl Simulation {
             return Err(diverged(e, driver.t, s));
         }
         let wall_time_s = (start.elapsed().as_secs_f64() - driver.diag_time).max(0.0);
-        Ok(driver.finish(wall_time_s, integrator.implicit_solves()))
+        let counts = IntegratorCounts {
+            implicit_solves: integrator.implicit_solves(),
+            contact_chatter: integrator.contact_chatter(),
+        };
+        Ok(driver.finish(wall_time_s, counts))
     }
 
     /// Checks the numerical settings of the chosen integrator (also done by
@@ -600,7 +607,7 @@ impl<'a> Driver<'a> {
     }
 
     /// The result of the run.
-    fn finish(mut self, wall_time_s: f64, implicit_solves: (u64, u64)) -> SimulationResult {
+    fn finish(mut self, wall_time_s: f64, counts: IntegratorCounts) -> SimulationResult {
         let model = &self.sim.model;
         self.stats.rhs_evals = self.ws.rhs_evals;
         let warnings = drift::check(
@@ -610,10 +617,11 @@ impl<'a> Driver<'a> {
             [self.monitor.energy_drift(), self.monitor.energy_gain()],
             self.monitor.bar_length_drift,
             self.monitor.constraint_drift,
-            implicit_solves,
+            counts,
         );
         SimulationResult {
             warnings,
+            contact_chatter: counts.contact_chatter,
             t_end: self.t,
             steps: self.stats.steps,
             rejected_steps: self.stats.rejected_steps,

@@ -16,12 +16,18 @@
 //! ([`contact_integrator`]). A `strict` run whose invariants drifted past their limits fails
 //! ([`SceneError::Strict`]) after its outputs are written.
 //!
-//! The convergence check ([`SimulateCommand::run_beside`]) runs the scene again at the
-//! refined resolution ([`SimulateCommand::refine`]) and compares the final states on the
-//! problem's absolute [`Scales`]: the final nodes against the structure's size L, the final
-//! velocities against the largest of the final and initial speeds and √(|g| L), at least
-//! 1 mm/s ([`SimulateCommand::convergence`]), so that a structure come to rest under gravity
-//! (final speeds of millimetres per second) is not judged on the noise of its own speeds.
+//! The convergence check ([`SimulateCommand::run_beside`]) runs the scene again beside the
+//! run, in a second thread, at another resolution ([`companion`]): a fixed step doubled
+//! where 2 dt stays well inside the method's stability (a coarse companion, half the run's
+//! work), else halved ([`SimulateCommand::refine`], twice the work; an adaptive integrator's
+//! tolerances divided by 10), a coarse run that fails followed by the refined one. It
+//! compares the final states on the problem's absolute [`Scales`]: the final nodes against
+//! the structure's size L, the final velocities against the largest of the final and initial
+//! speeds and √(|g| L), at least 1 mm/s ([`SimulateCommand::convergence`]), so that a
+//! structure come to rest under gravity (final speeds of millimetres per second) is not judged
+//! on the noise of its own speeds; each change is extrapolated to the run's error with the
+//! documented order ([`companion::documented_order`]) and the cost of the check is stated
+//! (`convergence.cost`).
 //!
 //! Its resource estimate ([`estimate`], [`tensegrity_dynamics::estimate::simulation`]): the steps t_end / dt (a
 //! fixed step lands on every output time, an adaptive run takes at least as many), the
@@ -54,6 +60,9 @@ use tensegrity_dynamics::{
     Convergence, IntegratorKind, SimulationReport, SimulationResult, SimulationSettings,
 };
 use tensegrity_io::scene::{Scene, SimulationSpec};
+
+pub mod companion;
+use companion::Refined;
 
 /// Samples per run when the scene names no output times and no interval is given.
 pub const DEFAULT_SAMPLES: f64 = 200.0;
@@ -173,8 +182,9 @@ pub struct SimulateCommand {
         help = "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge"
     )]
     pub strict: bool,
-    /// Re-run at a refined resolution beside the run ([`SimulateCommand::refine`]) and
-    /// report the final state's change in `convergence`.
+    /// Re-run at a companion resolution beside the run (2 dt where that stays stable, else
+    /// refined: [`companion`]) and report the final state's change, its extrapolated error and
+    /// the check's cost in `convergence`.
     #[param(flag, help = RunChecks::CONVERGENCE_CHECK_HELP)]
     pub convergence_check: bool,
 }
@@ -335,7 +345,7 @@ impl SimulateCommand {
     }
 }
 
-/// A sink that keeps no sample and stops the run once `.0` is set (the refined run of a run
+/// A sink that keeps no sample and stops the run once `.0` is set (the companion run of a run
 /// that failed or was interrupted).
 struct StopWhen<'a>(&'a AtomicBool);
 
@@ -358,8 +368,8 @@ impl SampleSink for Discard {
     }
 }
 
-/// Runs `simulate` without writing samples: reads the scene, runs it (beside its refined run
-/// with `convergence_check`), its report (an error under `strict` with drift warnings or an
+/// Runs `simulate` without writing samples: reads the scene, runs it (beside its companion
+/// run with `convergence_check`), its report (an error under `strict` with drift warnings or an
 /// unconverged final state).
 pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneError> {
     let (scene, simulation) = command.prepare(false)?;
@@ -436,8 +446,8 @@ impl Scales {
 }
 
 impl SimulateCommand {
-    /// The refined resolution of `settings`: a fixed step (rk4, rattle) halved; an adaptive
-    /// integrator's tolerances divided by 10 and its largest step halved. Returns what changed.
+    /// The refined resolution of `settings`: a fixed step halved; an adaptive integrator's
+    /// tolerances divided by 10 and its largest step halved. Returns what changed.
     pub fn refine(settings: &mut SimulationSettings) -> &'static str {
         settings.dt *= 0.5;
         if settings.integrator.is_adaptive() {
@@ -449,31 +459,31 @@ impl SimulateCommand {
         }
     }
 
-    /// The convergence of a run's final state against the refined run's, on the absolute
-    /// `scales` of the problem ([`Scales`]): the largest distance between their final nodes
-    /// against the structure's size (the larger of `scales.length` and the final nodes'
-    /// radius) within [`CONVERGENCE_NODES`], the largest difference of their final
-    /// velocities against the larger of the two runs' largest final speed and
-    /// `scales.speed` within [`CONVERGENCE_VELOCITIES`].
+    /// The convergence of a run's final state against its companion run's, filled into
+    /// `conv` (empty, with its companion and order: [`companion`]), on the absolute `scales`
+    /// of the problem ([`Scales`]): the largest distance between their final nodes against
+    /// the structure's size (the larger of `scales.length` and the final nodes' radius) within
+    /// [`CONVERGENCE_NODES`], the largest difference of their final velocities against the
+    /// larger of the two runs' largest final speed and `scales.speed` within
+    /// [`CONVERGENCE_VELOCITIES`], each change extrapolated to an error with `conv`'s order.
     pub fn convergence(
         main: &SimulationReport,
-        refined: &SimulationReport,
-        label: &str,
+        other: &SimulationReport,
+        mut conv: Convergence,
         scales: Scales,
     ) -> Convergence {
         let size = radius(&main.final_nodes).max(scales.length);
-        let speed = largest(&main.final_velocities).max(largest(&refined.final_velocities));
-        let mut conv = Convergence::new(label);
+        let speed = largest(&main.final_velocities).max(largest(&other.final_velocities));
         conv.compare_change(
             "final_nodes",
-            gap(&main.final_nodes, &refined.final_nodes),
+            gap(&main.final_nodes, &other.final_nodes),
             size,
             scales.length,
             CONVERGENCE_NODES,
         )
         .compare_change(
             "final_velocities",
-            gap(&main.final_velocities, &refined.final_velocities),
+            gap(&main.final_velocities, &other.final_velocities),
             speed,
             scales.speed,
             CONVERGENCE_VELOCITIES,
@@ -482,8 +492,8 @@ impl SimulateCommand {
     }
 
     /// Runs `simulation` (of `scene`, under this command) into `sink`, and with
-    /// `convergence_check` its refined run ([`SimulateCommand::refine`]) beside it in a second
-    /// thread: the report with its `convergence` and a warning per unconverged quantity.
+    /// `convergence_check` its companion run ([`companion`]) beside it in a second thread:
+    /// the report with its `convergence` and a warning per unconverged quantity.
     pub fn run_checked(
         &self,
         scene: &Scene,
@@ -493,8 +503,10 @@ impl SimulateCommand {
         Ok(self.run_beside(scene, simulation, sink)?.report()?)
     }
 
-    /// The run into `sink` and, with `convergence_check`, the refined run beside it (the
-    /// scene is read again for it: a second, independent model).
+    /// The run into `sink` and, with `convergence_check`, its companion run beside it (the
+    /// scene is read again for it: a second, independent model): at 2 dt where that serves
+    /// ([`companion::choose`]), and where that coarse run fails the refined one after it on
+    /// the same thread; else the refined one ([`SimulateCommand::refine`]).
     pub fn run_beside(
         &self,
         scene: &Scene,
@@ -506,25 +518,69 @@ impl SimulateCommand {
             let main = simulation.run_streaming(sink);
             return Ok(Checked {
                 main,
-                refined: None,
+                companion: None,
                 scales,
             });
         }
+        let kind = simulation.settings.integrator;
+        let order = companion::documented_order(kind, companion::smooth(scene, simulation));
+        // coarse where 2 dt serves (else why not), the refined run in reserve
+        let refused = companion::coarse_refused(simulation);
+        // the companions start from the run's step: a default step shortened to the written
+        // samples' interval is not the one a run that writes nothing would take
+        let companion_of = |c: &mut Simulation| c.settings.dt = simulation.settings.dt;
+        let coarse = match refused {
+            None => {
+                let mut c = self.simulation(scene, false)?;
+                companion_of(&mut c);
+                companion::coarsen(&mut c.settings);
+                Some(c)
+            }
+            Some(_) => None,
+        };
         let mut fine = self.simulation(scene, false)?;
-        let label = Self::refine(&mut fine.settings);
+        companion_of(&mut fine);
+        let what = Self::refine(&mut fine.settings);
         let stop = AtomicBool::new(false);
         Ok(std::thread::scope(|s| {
-            let watch = StopWhen(&stop);
-            let handle = s.spawn(move || fine.run_streaming(&mut { watch }));
+            let stop = &stop;
+            let handle = s.spawn(move || {
+                let mut watch = StopWhen(stop);
+                let mut failed = String::new();
+                if let Some(coarse) = coarse {
+                    let result = coarse.run_streaming(&mut watch);
+                    match companion::coarse_failure(&result) {
+                        // (the run failed: nothing is compared, nothing more to run)
+                        Some(why) if !stop.load(Ordering::Relaxed) => failed = why,
+                        _ => {
+                            return CompanionRun {
+                                convergence: companion::coarse(order),
+                                result,
+                            }
+                        }
+                    }
+                }
+                let why = match &refused {
+                    Some(_) if kind.is_adaptive() => Refined::Adaptive,
+                    Some(why) => Refined::Refused(why),
+                    // 2 dt served, and its run failed
+                    None => Refined::AfterCoarse(&failed),
+                };
+                let convergence = companion::refined(what, order, why);
+                CompanionRun {
+                    convergence,
+                    result: fine.run_streaming(&mut watch),
+                }
+            });
             let main = simulation.run_streaming(sink);
-            // a run that failed (or was interrupted) is not compared: stop the refined one
+            // a run that failed (or was interrupted) is not compared: stop the companion
             stop.store(main.is_err(), Ordering::Relaxed);
-            let refined = handle
+            let companion = handle
                 .join()
                 .unwrap_or_else(|p| std::panic::resume_unwind(p));
             Checked {
                 main,
-                refined: Some((label, refined)),
+                companion: Some(companion),
                 scales,
             }
         }))
@@ -532,8 +588,11 @@ impl SimulateCommand {
 }
 
 /// The resource estimate of the run of `simulation` under `command` ([`estimate`]), and
-/// with `convergence_check` its refined run's after it ([`SimulateCommand::refine`]: twice
-/// the work).
+/// with `convergence_check` its companion run's ([`companion::choose`]): ½ the run's work
+/// for a coarse companion, 2 for a refined one (an adaptive run's tolerances / 10 cost
+/// 10^(1/5) ≈ 1.6 times the steps of a fifth-order pair, 10^(1/3) ≈ 2.2 of SDIRK's third
+/// order: about twice too). A coarse companion that fails and is followed by the refined one
+/// is not foreseen.
 pub fn estimate_checked(
     command: &SimulateCommand,
     simulation: &Simulation,
@@ -544,43 +603,60 @@ pub fn estimate_checked(
     if !command.convergence_check {
         return Ok(e);
     }
-    // twice the steps, nothing written (adaptive: rtol/10 costs 10^(1/5) ≈ 1.6 times the
-    // steps of a fifth-order pair, 10^(1/3) ≈ 2.2 of SDIRK's third order: about twice too)
-    // the refined run writes nothing and shares the run's description
+    // the companion writes nothing and shares the run's description
+    let cost = companion::choose(simulation).cost();
     Ok(Estimate {
-        work_s: 3.0 * e.work_s,
+        work_s: (1.0 + cost) * e.work_s,
         ..e
     })
 }
 
-/// A run and its refined run ([`SimulateCommand::run_beside`]).
+/// The companion run of a convergence check: the comparison it is for (empty: its
+/// refinement, companion, order and cost) and its result.
+#[derive(Debug)]
+pub struct CompanionRun {
+    /// The empty comparison ([`companion`]), filled by [`Checked::report`].
+    pub convergence: Convergence,
+    /// The companion run's result.
+    pub result: Result<SimulationResult, CoreError>,
+}
+
+/// A run and its companion run ([`SimulateCommand::run_beside`]).
 #[derive(Debug)]
 pub struct Checked {
     /// The run (its error, an interrupt included, as the core gave it).
     pub main: Result<SimulationResult, CoreError>,
-    /// What the refined run changed, and its result; `None` when not checked.
-    pub refined: Option<(&'static str, Result<SimulationResult, CoreError>)>,
+    /// The companion run; `None` when not checked.
+    pub companion: Option<CompanionRun>,
     /// The absolute scales the final state is judged against ([`Scales`]).
     pub scales: Scales,
 }
 
 impl Checked {
     /// The run's report, with the convergence of its final state and a warning per
-    /// unconverged quantity (or for a refined run that failed).
+    /// unconverged quantity (or for a companion run that failed).
     pub fn report(self) -> Result<SimulationReport, CoreError> {
         let mut report = SimulationReport::from(&self.main?);
-        let convergence = match self.refined {
+        let convergence = match self.companion {
             None => return Ok(report),
-            Some((label, Ok(fine))) => SimulateCommand::convergence(
+            Some(CompanionRun {
+                convergence,
+                result: Ok(other),
+            }) => SimulateCommand::convergence(
                 &report,
-                &SimulationReport::from(&fine),
-                label,
+                &SimulationReport::from(&other),
+                convergence,
                 self.scales,
             ),
-            Some((label, Err(e))) => {
-                let mut c = Convergence::new(format!("{label}: the refined run failed: {e}"));
-                c.converged = false;
-                c
+            Some(CompanionRun {
+                mut convergence,
+                result: Err(e),
+            }) => {
+                // (a coarse companion that fails is followed by the refined one: this is it)
+                convergence.refinement =
+                    format!("{}: the refined run failed: {e}", convergence.refinement);
+                convergence.converged = false;
+                convergence
             }
         };
         report.warnings.extend(convergence.warnings());
@@ -777,12 +853,22 @@ mod tests {
             final_velocities: vec![[v, 0.0, 0.0]; main.final_velocities.len()],
             ..main.clone()
         };
-        let conv = SimulateCommand::convergence(&at_rest(2e-3), &at_rest(1e-3), "dt/2", scales);
+        let conv = SimulateCommand::convergence(
+            &at_rest(2e-3),
+            &at_rest(1e-3),
+            Convergence::new("dt/2"),
+            scales,
+        );
         assert!(conv.converged, "{conv:?}");
         let r = conv.quantities[1].relative_change.unwrap();
         assert!((r - 1e-3 / scales.speed).abs() < 1e-15, "{r}");
         // the same change of speeds as large as the scale does not converge
-        let fast = SimulateCommand::convergence(&at_rest(4.0), &at_rest(3.8), "dt/2", scales);
+        let fast = SimulateCommand::convergence(
+            &at_rest(4.0),
+            &at_rest(3.8),
+            Convergence::new("dt/2"),
+            scales,
+        );
         assert!(!fast.converged && fast.quantities[0].converged, "{fast:?}");
     }
 

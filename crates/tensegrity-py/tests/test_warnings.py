@@ -18,6 +18,7 @@ def test_a_drift_warning_is_a_dict_with_its_numbers(cli_json):
     assert w["value"] > w["limit"] > 0.0
     assert "above the limit" in w["message"]
     assert {x["kind"] for x in warnings[1:]} == {"not_converged"}
-    assert all(x["relative_change"] > x["tolerance"] / 2 for x in warnings[1:])
+    # not converged: the error extrapolated from the companion run exceeds the tolerance
+    assert all(x["estimated_error"] > x["tolerance"] for x in warnings[1:])
     ref = cli_json("simulate", scene, "--integrator", "rk4", "--dt", "0.01")
     assert_same(py, ref)

@@ -120,7 +120,7 @@ pub fn full_sizes(wheel: &WheelSpec) -> FullSizes {
 /// ([`RollRequest::decision`]) may run — the rigid model (one degree of freedom), the full
 /// model, or both — with their samples kept in memory (one per
 /// [`crate::defaults::ROLL_OUTPUT_DT`]), with `convergence_check` the same plan again at
-/// half the step, and with `ensemble` K its K copies at the step and K at half of it, and the
+/// half the step and once more (the twin), and with `ensemble` K its K copies at the step and K at half of it, and the
 /// other model's run; named `t_end = …, dt = …, sides = …`.
 /// Each model is sized at its own step ([`wheel_rolling::RunSpec::rigid_dt`],
 /// [`wheel_rolling::RunSpec::full_dt`]); an IMEX step is counted as an RK4 step, which stays
@@ -158,8 +158,9 @@ pub fn roll(request: &RollRequest) -> Estimate {
     };
     let mut run = one.clone();
     if request.checks.convergence_check {
-        // the refined run beside it: half the step, twice the steps
-        run = run.then(at(0.5).0);
+        // the refined run beside it (half the step, twice the steps) and the twin (the run
+        // again from a start turned by 1e-6 rad: `wheel_rolling::convergence`)
+        run = run.then(at(0.5).0).then(one.clone());
     }
     if request.ensemble >= 2 {
         // K copies of the plan at the step and K at half of it (twice the steps each), then
@@ -313,7 +314,7 @@ mod tests {
         };
         assert_eq!(
             roll(&r).parameters.to_string(),
-            "t_end = 1000000000, dt = 0.0005, sides = 8"
+            "t_end = 1000000000, dt = 0.00025, sides = 8"
         );
         let e = roll(&r);
         // 1e12 samples kept in memory

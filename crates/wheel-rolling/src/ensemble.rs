@@ -14,8 +14,8 @@
 //! models (then the models cannot be told apart on that quantity by single runs).
 //!
 //! The spread of the copies is chaotic spread, not the error of the step: the same K copies
-//! also run at the refined resolution ([`crate::convergence::refined`]: half the step, and for
-//! a penalty contact twice the ground stiffness), and the interval of each quantity covers
+//! also run at the refined resolution ([`crate::convergence::refined`]: half the step; the
+//! ground is the model's), and the interval of each quantity covers
 //! both ensembles and the extrapolation of their means to a vanishing step with order 1,
 //! x̄_∞ = 2 x̄_{h/2} − x̄_h:
 //!

@@ -38,6 +38,10 @@ pub enum DriftInvariant {
     Constraint,
     /// The stage equations of an implicit method (the fraction left unconverged).
     ImplicitSolve,
+    /// The tangential velocity of touching contact nodes under the split IMEX (the fraction of
+    /// contact node-steps whose velocity change reversed against the previous step's: a
+    /// creeping contact chattering about its slaved creep).
+    CreepChatter,
 }
 
 /// A side and the smallest net normal force of one rolling run.
@@ -180,7 +184,8 @@ pub enum Warning {
     Drift {
         /// Which invariant.
         invariant: DriftInvariant,
-        /// The measured relative drift (for `implicit_solve`: the fraction unconverged).
+        /// The measured relative drift (for `implicit_solve`: the fraction unconverged; for
+        /// `creep_chatter`: the fraction of contact node-steps that chattered).
         value: f64,
         /// The limit it passed.
         limit: f64,
@@ -216,16 +221,20 @@ pub enum Warning {
         quantity: String,
     },
     // --- convergence under refinement ---
-    /// A quantity moved more than half its tolerance at the refined resolution.
+    /// A quantity whose error, extrapolated from its change at the companion resolution,
+    /// exceeds its tolerance.
     NotConverged {
         /// The quantity.
         quantity: String,
         /// Its value at the run's resolution (absent for a measured change).
         value: Option<f64>,
-        /// Its value at the refined resolution.
+        /// Its value at the companion resolution (finer, or coarser: `refinement` says).
         refined: Option<f64>,
         /// The relative change (absent when one of the two values is missing).
         relative_change: Option<f64>,
+        /// The error extrapolated with the documented order (relative).
+        #[serde(default)]
+        estimated_error: Option<f64>,
         /// The tolerance (relative).
         tolerance: f64,
         /// The refinement (e.g. `dt / 2`).
@@ -419,6 +428,7 @@ mod tests {
                 value: Some(1.0),
                 refined: Some(1.1),
                 relative_change: Some(0.1),
+                estimated_error: Some(0.2),
                 tolerance: 0.02,
                 refinement: "dt / 2".into(),
             },

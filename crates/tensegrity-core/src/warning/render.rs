@@ -93,8 +93,8 @@ impl fmt::Display for Warning {
             W::RigidStopped { t, reason } => {
                 write!(f, "rigid rolling stopped at t = {t:.6} s: {reason}; the samples end there")
             }
-            W::NotConverged { quantity, value, refined, relative_change, tolerance, refinement } => {
-                not_converged(f, quantity, *value, *refined, *relative_change, *tolerance, refinement)
+            W::NotConverged { quantity, value, refined, relative_change, estimated_error, tolerance, refinement } => {
+                not_converged(f, quantity, [*value, *refined], *relative_change, *estimated_error, *tolerance, refinement)
             }
             W::RefinementFailed { refinement } => write!(f, "not converged: {refinement}"),
             W::NonFinite { quantity } => write!(
@@ -125,14 +125,22 @@ fn drift(
         DriftInvariant::ImplicitSolve => {
             "implicit contact stages were left unconverged (Newton's residual above its acceptance)"
         }
+        DriftInvariant::CreepChatter => {
+            "contact nodes chattered on the ground (the change of their tangential velocity reversed from one step to the next: the split IMEX's bias on a creeping contact)"
+        }
     };
-    if invariant == DriftInvariant::ImplicitSolve {
+    let of = match invariant {
+        DriftInvariant::ImplicitSolve => "of them",
+        DriftInvariant::CreepChatter => "of their steps",
+        _ => "",
+    };
+    if !of.is_empty() {
         // 100 × 0.1 is 10.000000000000002: print the limit to 3 decimals, trimmed
         let limit = format!("{:.3}", 100.0 * limit);
         let limit = limit.trim_end_matches('0').trim_end_matches('.');
         return write!(
             f,
-            "{what}: {:.1} % of them, above the limit {limit} %; the trajectory is not trustworthy: {remedy}",
+            "{what}: {:.1} % {of}, above the limit {limit} %; the trajectory is not trustworthy: {remedy}",
             100.0 * value,
         );
     }
@@ -146,31 +154,34 @@ fn drift(
 fn not_converged(
     f: &mut fmt::Formatter<'_>,
     quantity: &str,
-    value: Option<f64>,
-    refined: Option<f64>,
+    [value, refined]: [Option<f64>; 2],
     relative_change: Option<f64>,
+    estimated_error: Option<f64>,
     tolerance: f64,
     refinement: &str,
 ) -> fmt::Result {
     let show = |x: Option<f64>| x.map_or_else(|| "none".to_string(), |x| format!("{x:.6}"));
+    let error = |e: Option<f64>, r: f64| 100.0 * e.unwrap_or(2.0 * r);
     match relative_change {
         Some(r) if value.is_none() => write!(
             f,
-            "not converged: `{quantity}` moved by {:.2} % at the refined resolution ({refinement}) (tolerance {:.2} %: converged when the change is at most half of it)",
+            "not converged: `{quantity}` moved by {:.2} % at the companion resolution ({refinement}): its error, extrapolated, is {:.2} % (tolerance {:.2} %)",
             100.0 * r,
+            error(estimated_error, r),
             100.0 * tolerance
         ),
         Some(r) => write!(
             f,
-            "not converged: `{quantity}` moved by {:.2} % at the refined resolution ({refinement}): {} -> {} (tolerance {:.2} %: converged when the change is at most half of it)",
+            "not converged: `{quantity}` moved by {:.2} % at the companion resolution ({refinement}): {} -> {}; its error, extrapolated, is {:.2} % (tolerance {:.2} %)",
             100.0 * r,
             show(value),
             show(refined),
+            error(estimated_error, r),
             100.0 * tolerance
         ),
         None => write!(
             f,
-            "not converged: `{quantity}` is {} but {} at the refined resolution ({refinement})",
+            "not converged: `{quantity}` is {} but {} at the companion resolution ({refinement})",
             show(value),
             show(refined),
         ),

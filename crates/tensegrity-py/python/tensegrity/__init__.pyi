@@ -127,9 +127,10 @@ def simulate(
         Fail (after writing the outputs) when the run has a drift warning or its final state
         did not converge
     convergence_check : bool
-        Re-run at half the step (penalty contact: and twice the ground stiffness), in
-        parallel, and report each headline quantity's change in `convergence`; an
-        unconverged result is not valid
+        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
+        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
+        chaotic quantities), in parallel, and report each headline quantity's change,
+        extrapolated error and status in `convergence`; an unconverged result is not valid
     trajectory : bool, optional
         Keep the node positions at the output times: the result also holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True.
     max_memory : float or str, optional
@@ -312,16 +313,17 @@ def roll(
         Smallest string tension of the full model's prestress (N); must be finite and
         positive. Default: 20.0
     integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight'}
-        Integrator of the full model. Default: 'imex'
+        Integrator of the full model. Default: 'imex-ark'
     gravity : float
         Gravity (m/s^2); must be finite and positive. Default: 9.81
     strict : bool
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at half the step (penalty contact: and twice the ground stiffness), in
-        parallel, and report each headline quantity's change in `convergence`; an
-        unconverged result is not valid
+        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
+        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
+        chaotic quantities), in parallel, and report each headline quantity's change,
+        extrapolated error and status in `convergence`; an unconverged result is not valid
     ensemble : int
         Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in
         parallel) and report the mean and 95 % interval of every headline quantity against
@@ -454,9 +456,10 @@ def tipover(
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at half the step (penalty contact: and twice the ground stiffness), in
-        parallel, and report each headline quantity's change in `convergence`; an
-        unconverged result is not valid
+        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
+        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
+        chaotic quantities), in parallel, and report each headline quantity's change,
+        extrapolated error and status in `convergence`; an unconverged result is not valid
     incline : float or str
         Incline downhill, e.g. `30deg` (rad); radians, or a string such as '30deg', 'pi/8',
         '3pi/4'; must lie in [0, 1.5707963267948966). Default: 0.5235987755982988
@@ -842,9 +845,10 @@ def tbar_roll(
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at half the step (penalty contact: and twice the ground stiffness), in
-        parallel, and report each headline quantity's change in `convergence`; an
-        unconverged result is not valid
+        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
+        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
+        chaotic quantities), in parallel, and report each headline quantity's change,
+        extrapolated error and status in `convergence`; an unconverged result is not valid
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
