@@ -160,7 +160,18 @@ fn rolling(text: bool) -> Result<Vec<Value>> {
     if !text {
         return Ok(rows);
     }
-    for r in &runs {
+    print_rows(&runs);
+    for r in runs.iter().filter(|r| !r.summary.valid) {
+        let why: Vec<String> = r.summary.warnings.iter().map(short).collect();
+        println!("  * n = {}: {}", r.sides, why.join("; "));
+    }
+    Ok(rows)
+}
+
+/// One line per rolling run, `~` after a number that is a chaotic single draw, and the line
+/// that explains the mark.
+fn print_rows(runs: &[toroid::RollReport]) {
+    for r in runs {
         let draw = |name: &str| if chaotic(r, name) { "~" } else { " " };
         println!(
             "  {:<5} n = {:>2}, {} s: mass {:>7.3} kg, I1 {:>7.3} kg m^2, mean axle height {:.4} m{}, mean speed {:.3} m/s{}, airborne {:>5.1} %{}{}",
@@ -185,11 +196,6 @@ fn rolling(text: bool) -> Result<Vec<Value>> {
     }) {
         println!("  ~ a single draw of the chaotic hops (a start turned by 1e-6 rad moves it): `tensegrity roll --ensemble 8` gives its interval");
     }
-    for r in runs.iter().filter(|r| !r.summary.valid) {
-        let why: Vec<String> = r.summary.warnings.iter().map(short).collect();
-        println!("  * n = {}: {}", r.sides, why.join("; "));
-    }
-    Ok(rows)
 }
 
 /// The step of the demo's full-model row (s): half the full model's default.

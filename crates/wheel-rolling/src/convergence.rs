@@ -34,12 +34,11 @@
 
 use crate::contact::ContactKind;
 use crate::defaults as d;
-use crate::ensemble::headline;
 use crate::fidelity::{Decision, Fidelity};
 use crate::observer::Observer;
 use crate::run::{roll_decided, Rolled, Wheel};
 use crate::settings::RunSpec;
-use crate::summary::RunSummary;
+use crate::summary::{headline, RunSummary};
 use std::sync::atomic::{AtomicBool, Ordering};
 use tensegrity_dynamics::convergence::TWIN_PERTURBATION;
 use tensegrity_dynamics::Convergence;

@@ -83,21 +83,7 @@ pub struct Ensemble {
 /// One slot per copy for its summary and samples (or error).
 type Slots<E> = Mutex<Vec<Option<Result<(RunSummary, Vec<RollingSample>), E>>>>;
 
-/// The headline quantities of a summary, by key (those it has).
-pub fn headline(s: &RunSummary) -> Vec<(&'static str, Option<f64>)> {
-    let first = s.first_impact;
-    vec![
-        ("first_impact.t", first.map(|i| i.t)),
-        ("first_impact.omega_before", first.map(|i| i.omega_before)),
-        ("impacts", Some(s.impacts as f64)),
-        ("mean_axle_height", Some(s.mean_axle_height)),
-        ("axle_height_oscillation", Some(s.axle_height_oscillation)),
-        ("mean_speed", Some(s.mean_speed)),
-        ("final_speed", Some(s.final_speed)),
-        ("airborne_fraction", Some(s.airborne_fraction)),
-        ("slip_fraction", Some(s.slip_fraction)),
-    ]
-}
+pub use crate::summary::headline;
 
 /// The incline offset of copy k (module docs).
 pub fn offset(k: usize) -> f64 {

@@ -183,3 +183,19 @@ impl WheelRun {
         }
     }
 }
+
+/// The headline quantities of a summary, by key (those it has).
+pub fn headline(s: &RunSummary) -> Vec<(&'static str, Option<f64>)> {
+    let first = s.first_impact;
+    vec![
+        ("first_impact.t", first.map(|i| i.t)),
+        ("first_impact.omega_before", first.map(|i| i.omega_before)),
+        ("impacts", Some(s.impacts as f64)),
+        ("mean_axle_height", Some(s.mean_axle_height)),
+        ("axle_height_oscillation", Some(s.axle_height_oscillation)),
+        ("mean_speed", Some(s.mean_speed)),
+        ("final_speed", Some(s.final_speed)),
+        ("airborne_fraction", Some(s.airborne_fraction)),
+        ("slip_fraction", Some(s.slip_fraction)),
+    ]
+}
