@@ -399,7 +399,8 @@ fn the_t_bar_figures_draw_a_tread_tbar_reports_prestressable() {
 
 /// `tbar roll --extended 0.5 --fidelity full` (refused at the default `--max-work`: 1.074 min
 /// estimated, its refined run counted after the run it runs beside) starts on the defaults:
-/// its progress shows the estimate of the pair (43.7 s), and the run is stopped there.
+/// its progress shows the estimate of the run beside its refined and twin runs (44.5 s), and
+/// the run is stopped there.
 #[test]
 fn the_default_full_extended_roll_starts_at_the_default_work_limit() {
     let mut child = common::bin()
@@ -423,7 +424,7 @@ fn the_default_full_extended_roll_starts_at_the_default_work_limit() {
     }
     assert!(
         first.starts_with("the full rolling runs of n = [8]")
-            && first.contains("(by the estimate of 43.7 s)"),
+            && first.contains("(by the estimate of 44.5 s)"),
         "{first}"
     );
 }
