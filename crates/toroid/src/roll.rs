@@ -225,7 +225,7 @@ impl RollRequest {
     ///
     /// ```
     /// let r = toroid::RollRequest::default();
-    /// assert_eq!(r.coarser_step(), 5e-4); // IMEX on the penalty ground
+    /// assert_eq!(r.coarser_step(), 2.5e-4); // IMEX-ARK on the penalty ground
     /// ```
     pub fn coarser_step(&self) -> f64 {
         let spec = self.spec();

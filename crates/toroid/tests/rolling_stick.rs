@@ -149,12 +149,15 @@ fn a_short_stick_contact_run_closes_its_energy_budget() {
     }
 }
 
-/// The default IMEX step with strings and ground of 10⁶ N/m (penalty contact, the default):
-/// 5·10⁻⁴ s · √(2·10⁴ / 10⁶) = 7.1·10⁻⁵ s, below the old floor of 10⁻⁴ s at which this run
-/// missed its energy budget by 1.3·10⁻² (measured 3.3·10⁻³ at the scaled step, release).
+/// The default steps with strings and ground of 10⁶ N/m (penalty contact, the default),
+/// scaled as √(2·10⁴ / 10⁶): the split IMEX's 5·10⁻⁴ s → 7.1·10⁻⁵ s, below the old floor of
+/// 10⁻⁴ s at which this run missed its energy budget by 1.3·10⁻² (measured 3.3·10⁻³ at the
+/// scaled step, release) — but its creeping contacts chatter there (36 % of the contact
+/// node-steps, the `creep_chatter` warning: not valid); IMEX-ARK's (the default since
+/// 2026-12-06) 2.5·10⁻⁴ s → 3.5·10⁻⁵ s closes the budget (5.5·10⁻³) and is valid.
 #[test]
 fn stiff_strings_and_ground_get_a_default_step_that_closes_the_budget() {
-    let req = RollRequest {
+    let base = RollRequest {
         fidelity: FidelityChoice::Full,
         t_end: 3.0,
         mu: 1.2,
@@ -166,19 +169,38 @@ fn stiff_strings_and_ground_get_a_default_step_that_closes_the_budget() {
             ..RollSettings::default()
         },
         checks: RunChecks::NONE,
-        // the split IMEX's scaled step (IMEX-ARK, the default since 2026-12-06, scales alike)
-        integrator: IntegratorKind::Imex,
         ..RollRequest::with_sides(8)
     };
-    assert_eq!(req.contact, ContactKind::Penalty);
-    let dt = req.spec().full_dt();
-    assert!((dt - 5e-4 * 0.02f64.sqrt()).abs() < 1e-12, "{dt}");
-    let r = roll_observed(&req, &[], None).unwrap();
-    assert!(r.summary.valid, "{:?}", r.summary.warnings);
-    assert!(
-        r.summary.energy_balance_error < 5e-3,
-        "{}",
-        r.summary.energy_balance_error
-    );
-    assert!(r.summary.impacts >= 3, "{}", r.summary.impacts);
+    assert_eq!(base.contact, ContactKind::Penalty);
+    assert_eq!(base.integrator, IntegratorKind::ImexArk);
+    let split = RollRequest {
+        integrator: IntegratorKind::Imex,
+        ..base
+    };
+    for (req, dt0) in [(base, 2.5e-4), (split, 5e-4)] {
+        let dt = req.spec().full_dt();
+        assert!((dt - dt0 * 0.02f64.sqrt()).abs() < 1e-12, "{dt}");
+        let r = roll_observed(&req, &[], None).unwrap();
+        // within the full model's limit of 10⁻² (measured: IMEX-ARK 5.5·10⁻³, the split
+        // 3.3·10⁻³)
+        assert!(
+            r.summary.energy_balance_error < 7e-3,
+            "{}",
+            r.summary.energy_balance_error
+        );
+        assert!(r.summary.impacts >= 3, "{}", r.summary.impacts);
+        let chatter: Vec<_> = r
+            .summary
+            .warnings
+            .iter()
+            .filter(|w| w.to_string().contains("chattered"))
+            .collect();
+        if req.integrator == IntegratorKind::ImexArk {
+            assert!(r.summary.valid, "{:?}", r.summary.warnings);
+        } else {
+            // the only thing wrong with the split here is its chatter
+            assert_eq!(chatter.len(), 1, "{:?}", r.summary.warnings);
+            assert_eq!(r.summary.warnings.len(), 1, "{:?}", r.summary.warnings);
+        }
+    }
 }
