@@ -70,7 +70,7 @@ pub struct FigRollingRequest {
     #[param(
         number,
         unit = "s",
-        help = "Integration step of both models (unset: each model's default, as roll's --dt; 1.25e-4 makes the full n = 16 and 24 runs converge)",
+        help = "Integration step of both models (unset: each model's default, as roll's dt; 1.25e-4 makes the full n = 16 and 24 runs converge)",
         positive,
         optional
     )]
