@@ -120,6 +120,31 @@ fn quick_figures_are_all_written_with_their_data() {
     );
     let fig310 = std::fs::read_to_string(dir.join("fig_3_10.svg")).unwrap();
     assert_eq!(fig310.contains("lifts off"), lifts);
+    // and, when none lifts off, a run that is not valid (e.g. not converged) is said so in
+    // the title and in a warning naming its wheel, never drawn without a word
+    let invalid: Vec<usize> = [8usize, 12, 16, 24]
+        .into_iter()
+        .filter(|n| {
+            let out = run(&[
+                "roll",
+                "--fidelity",
+                "rigid",
+                "--t-end",
+                "2",
+                "--sides",
+                &n.to_string(),
+                "--json",
+            ]);
+            let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            !v["valid"].as_bool().unwrap()
+        })
+        .collect();
+    if !lifts {
+        assert_eq!(fig310.contains("a run is not valid"), !invalid.is_empty());
+        for n in &invalid {
+            assert!(stdout.contains(&format!("n = {n}, rigid")), "{n}: {stdout}");
+        }
+    }
 
     // Fig. 3.13, a tipover sweep over real wheels: F_f/F_e = −(σ + ε)/(1 − σ) (eq. 3.29)
     let (h, rows) = table(&dir.join("data/fig_3_13.csv"));

@@ -229,7 +229,9 @@ pub fn fig_3_9(_: &Ctx) -> Result<Drawn> {
     Ok(fig.finish())
 }
 
-/// The default rolling request, shorter and on the reduced rigid model with `quick`.
+/// The default rolling request at half the full model's default step (there the n = 16 and
+/// 24 wheels' first impact and impact count converge, as `fig-rolling --dt 1.25e-4`), shorter
+/// and on the reduced rigid model with `quick`.
 fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
     let d = RollRequest::default();
     if ctx.quick() {
@@ -239,7 +241,9 @@ fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
             ..d
         }
     } else {
-        d
+        let mut r = d;
+        r.settings.dt = Some(0.5 * d.spec().full_dt());
+        r
     }
 }
 
@@ -335,9 +339,11 @@ fn snap_to_contact(frame: &mut wheel_rolling::WheelFrame, sample: &wheel_rolling
     }
 }
 
-/// Flags the runs whose net normal force went negative: the model keeps the wheel on the
-/// slope where the real one would leave it, so the curves there are outside its assumptions.
-fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> bool {
+/// Flags the runs whose net normal force went negative (the model keeps the wheel on the
+/// slope where the real one would leave it, so the curves there are outside its assumptions),
+/// and else the runs not valid for another reason (each warning of theirs, `in_run`): a
+/// figure never draws a run that is not valid without a word.
+fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> Flag {
     let lifted: Vec<LiftOff> = runs
         .iter()
         .filter(|r| r.summary.min_normal_force < 0.0)
@@ -346,8 +352,7 @@ fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> bool 
             min_normal: r.summary.min_normal_force,
         })
         .collect();
-    let flagged = !lifted.is_empty();
-    if flagged {
+    if !lifted.is_empty() {
         let model = fidelity(runs[0]).to_string();
         ctx.warn(
             number,
@@ -356,16 +361,36 @@ fn flag_lift_off(ctx: &Ctx, number: &'static str, runs: &[&RollReport]) -> bool 
                 runs: lifted,
             },
         );
+        return Flag::LiftOff;
     }
-    flagged
+    // a run outside its assumptions or not converged is drawn, and said so
+    let mut flag = Flag::None;
+    for r in runs.iter().filter(|r| !r.summary.valid) {
+        flag = Flag::Invalid;
+        for w in &r.summary.warnings {
+            ctx.warn(number, w.clone().in_run(r.sides, fidelity(r).to_string()));
+        }
+    }
+    flag
 }
 
-/// The title's note when a run is outside its model's assumptions.
-fn note(flagged: bool) -> &'static str {
-    if flagged {
-        " — lifts off: see warning"
-    } else {
-        ""
+/// What a figure's runs were flagged for ([`flag_lift_off`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Flag {
+    /// Every run valid.
+    None,
+    /// A run's ground pulled.
+    LiftOff,
+    /// A run not valid for another reason (e.g. not converged).
+    Invalid,
+}
+
+/// The title's note when a run is outside its model's assumptions or not converged.
+fn note(flag: Flag) -> &'static str {
+    match flag {
+        Flag::None => "",
+        Flag::LiftOff => " — lifts off: see warning",
+        Flag::Invalid => " — a run is not valid: see warnings",
     }
 }
 
