@@ -31,7 +31,7 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
     // a setting only the full model reads, under --fidelity rigid, is refused as by `roll`
     request
         .roll_request(sides[0])
-        .check_rigid_reads()
+        .check_rigid_given(|name| args.request.given(name))
         .map_err(super::request_args::usage)?;
     let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
     let sink = args.figure.open_required("--out", &args.out)?;

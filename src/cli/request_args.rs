@@ -105,6 +105,12 @@ pub struct RequestArgs<F> {
 }
 
 impl<F: Flags> RequestArgs<F> {
+    /// Whether the field `name` was given on the command line (at any value, its default's
+    /// included).
+    pub fn given(&self, name: &str) -> bool {
+        self.given.contains_key(name)
+    }
+
     /// The request of the given values over its defaults; a value of a flag that is not one
     /// of `R`'s (another mode's) or that `R` refuses is a usage error naming the flag.
     pub fn request<R: Request>(&self) -> anyhow::Result<R> {

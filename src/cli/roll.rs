@@ -53,11 +53,11 @@ pub struct RollArgs {
 
 impl RollArgs {
     /// The library request the flags describe; a setting of the full model under
-    /// `--fidelity rigid` is refused ([`RollRequest::check_rigid_reads`], exit 2).
+    /// `--fidelity rigid` is refused, at any value given ([`RollRequest::check_rigid_given`], exit 2).
     pub fn request(&self) -> Result<RollRequest> {
         let request: RollRequest = self.request.request()?;
         request
-            .check_rigid_reads()
+            .check_rigid_given(|name| self.request.given(name))
             .map_err(super::request_args::usage)?;
         Ok(request)
     }

@@ -140,9 +140,15 @@ pub struct RollOutcome {
     pub incomplete: Option<Failure>,
 }
 
-/// The request of `roll` (a bad value refused before any work).
+/// The request of `roll` (a bad value refused before any work; under `fidelity = "rigid"` a
+/// setting only the full model reads is refused when given, as on the command line).
 pub fn roll_request(values: Map<String, Value>) -> Result<RollRequest, Failure> {
-    RollRequest::from_values(values).map_err(|e| Failure::invalid(&e))
+    let given: Vec<String> = values.keys().cloned().collect();
+    let request = RollRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
+    request
+        .check_rigid_given(|name| given.iter().any(|g| g == name))
+        .map_err(|e| Failure::invalid(&e))?;
+    Ok(request)
 }
 
 /// Runs `roll` as the CLI does: observed, stopping on the interrupt flag (on the worker

@@ -157,3 +157,22 @@ def test_numpy_values_cross_as_their_numbers_and_other_objects_are_refused_by_na
         tg.toroid(sides=object())
     assert e.value.parameter == "sides"
     assert "cannot be passed" in str(e.value) and "--" not in str(e.value)
+
+
+def test_a_full_model_setting_under_the_rigid_model_is_refused_by_name(cli):
+    # given at another value or at its default: the rigid model ignores it either way, so it
+    # is refused before any work, as on the command line
+    for name, value in [("integrator", "imex-ark"), ("contact", "stick"), ("ground_stiffness", 1e5)]:
+        with pytest.raises(ValueError) as e:
+            tg.roll(fidelity="rigid", t_end=0.1, **{name: value})
+        assert isinstance(e.value, tg.InputError)
+        assert name in str(e.value) and "only the full model reads it" in str(e.value), str(e.value)
+    # the same refusal as the command line's (which spells the flags)
+    with pytest.raises(ValueError) as e:
+        tg.roll(fidelity="rigid", t_end=0.1, integrator="imex-ark")
+    cli_message = message(cli, "roll", "--fidelity", "rigid", "--t-end", "0.1",
+                          "--integrator", "imex-ark")
+    assert 'integrator = "imex-ark": only the full model reads it' in str(e.value)
+    assert 'integrator = "imex-ark": only the full model reads it' in cli_message
+    # what the rigid model reads is taken
+    assert tg.roll(fidelity="rigid", t_end=0.1, mu=1.0)["mu"] == 1.0

@@ -156,6 +156,36 @@ impl RollRequest {
     /// assert!(RollRequest { ensemble: 3, ..stick }.check_rigid_reads().is_ok());
     /// ```
     pub fn check_rigid_reads(&self) -> std::result::Result<(), InvalidParameter> {
+        self.check_rigid_given(|_| false)
+    }
+
+    /// The settings only the full model reads ([`RollRequest::check_rigid_reads`]).
+    pub const FULL_MODEL_ONLY: [&'static str; 6] = [
+        "integrator",
+        "contact",
+        "string_stiffness",
+        "ground_stiffness",
+        "ground_damping",
+        "min_tension",
+    ];
+
+    /// [`RollRequest::check_rigid_reads`], and also refusing a setting only the full model
+    /// reads that the caller `given` (e.g. a flag on the command line), even at its default
+    /// value: `--fidelity rigid --integrator imex-ark` is refused like any other value.
+    ///
+    /// ```
+    /// use toroid::RollRequest;
+    /// use wheel_rolling::FidelityChoice;
+    /// let rigid = RollRequest { fidelity: FidelityChoice::Rigid, ..Default::default() };
+    /// let e = rigid.check_rigid_given(|name| name == "integrator").unwrap_err();
+    /// assert_eq!(e.name, "integrator");
+    /// assert!(e.value.contains("imex-ark"), "{}", e.value);
+    /// assert!(rigid.check_rigid_given(|name| name == "incline").is_ok());
+    /// ```
+    pub fn check_rigid_given(
+        &self,
+        given: impl Fn(&str) -> bool,
+    ) -> std::result::Result<(), InvalidParameter> {
         if self.fidelity != FidelityChoice::Rigid || self.ensemble >= 2 {
             return Ok(());
         }
@@ -166,14 +196,21 @@ impl RollRequest {
         let text = |name, value: String, differs: bool| {
             differs.then(|| InvalidParameter::text(name, value, READ_BY_FULL_ONLY))
         };
+        let number = |name, value: f64, default: f64| {
+            number(name, value, if given(name) { f64::NAN } else { default })
+        };
         let contact = format!("{:?}", self.contact).to_lowercase();
         let unread = [
             text(
                 "integrator",
                 self.integrator.to_string(),
-                self.integrator != d.integrator,
+                self.integrator != d.integrator || given("integrator"),
             ),
-            text("contact", contact, self.contact != d.contact),
+            text(
+                "contact",
+                contact,
+                self.contact != d.contact || given("contact"),
+            ),
             number(
                 "string_stiffness",
                 s.string_stiffness,
