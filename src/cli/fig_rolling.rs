@@ -72,6 +72,27 @@ fn print_series(rolled: &FigRolling) {
             eprintln!("warning (n = {}): {w}", r.sides);
         }
     }
+    // the remedy of a run that only failed to converge: a finer step
+    let unconverged: Vec<&toroid::RollReport> = rolled
+        .runs
+        .iter()
+        .filter(|r| {
+            !r.summary.valid
+                && r.summary
+                    .warnings
+                    .iter()
+                    .all(|w| w.kind() == "not_converged")
+        })
+        .collect();
+    if let Some(first) = unconverged.first() {
+        let sides: Vec<String> = unconverged.iter().map(|r| r.sides.to_string()).collect();
+        println!(
+            "note: n = {} not converged at dt = {} s: rerun with --dt {} (twice the work: raise --max-work)",
+            sides.join(", "),
+            first.dt,
+            0.5 * first.dt
+        );
+    }
     println!("\nimpact impulse per new contact (§3.3.1), means over each run's impacts:");
     println!(
         "{:>4} {:>8} {:>14} {:>18} {:>16} {:>14}",
