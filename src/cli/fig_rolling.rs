@@ -35,7 +35,11 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
         .map_err(super::request_args::usage)?;
     let _progress = super::guard::rolling_series(&request.roll_request(sides[0]), &sides)?;
     let sink = args.figure.open_required("--out", &args.out)?;
-    let rolled = tensegrity_figures::fig_rolling(&request)?;
+    // a wheel that only failed to converge is re-run at half its step if that fits the
+    // work limit (measured wall time; said so below)
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let budget = super::guard::limits().work_s;
+    let rolled = tensegrity_figures::fig_rolling_within(&request, budget, cores)?;
     sink.finish(&rolled.figure())?;
     if args.json {
         let (runs, impacts, figure) = (&rolled.runs, rolled.impacts(), args.out.display());
@@ -43,7 +47,7 @@ pub fn run(args: &FigRollingArgs) -> Result<()> {
         let notes = rolled.ensemble_notes();
         return super::output::print_json(
             &serde_json::json!({"runs": runs, "impacts": impacts, "figure": figure,
-                "ensemble_notes": notes}),
+                "ensemble_notes": notes, "refined": rolled.refined}),
         );
     }
     print_series(&rolled);
@@ -71,6 +75,12 @@ fn print_series(rolled: &FigRolling) {
         for w in &r.summary.warnings {
             eprintln!("warning (n = {}): {w}", r.sides);
         }
+    }
+    for r in &rolled.refined {
+        println!(
+            "n = {}: not converged at dt = {} s, refined automatically to dt = {} s (within --max-work)",
+            r.sides, r.from_dt, r.to_dt
+        );
     }
     // the remedy of a run that only failed to converge: a finer step
     let unconverged: Vec<&toroid::RollReport> = rolled

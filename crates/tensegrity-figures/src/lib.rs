@@ -68,4 +68,4 @@ pub use data::Drawn;
 pub use driver::{build_figures, Built, Context, Warning};
 pub use error::{FigureError, Result};
 pub use index::{FigureIndex, IndexEntry};
-pub use rolling::{fig_rolling, roll_figure, FigRolling, FigRollingRequest};
+pub use rolling::{fig_rolling, fig_rolling_within, roll_figure, FigRolling, FigRollingRequest};

@@ -149,6 +149,20 @@ impl FigRollingRequest {
 pub struct FigRolling {
     /// One report per wheel.
     pub runs: Vec<RollReport>,
+    /// The wheels re-run at a finer step by [`fig_rolling_within`], each once.
+    pub refined: Vec<Refined>,
+}
+
+/// A wheel re-run at half its step because its first run only failed to converge
+/// ([`fig_rolling_within`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Refined {
+    /// The wheel's sides n.
+    pub sides: usize,
+    /// The step of the first run (s).
+    pub from_dt: f64,
+    /// The step of the run kept (s).
+    pub to_dt: f64,
 }
 
 /// Means over one run's impacts (§3.3.1).
@@ -301,12 +315,82 @@ impl FigRolling {
 /// Rolls the four wheels of `request` in parallel (one thread per wheel).
 pub fn fig_rolling(request: &FigRollingRequest) -> Result<FigRolling> {
     request.validate()?;
-    let runs = std::thread::scope(|scope| {
-        let handles: Vec<_> = FigRollingRequest::SIDES
+    let requests: Vec<RollRequest> = FigRollingRequest::SIDES
+        .iter()
+        .map(|&n| request.roll_request(n))
+        .collect();
+    let runs = roll_all(&requests)?.into_iter().map(|(r, _)| r).collect();
+    Ok(FigRolling {
+        runs,
+        refined: Vec::new(),
+    })
+}
+
+/// [`fig_rolling`], then, once, the wheels whose only warnings are unconverged quantities
+/// re-run at half their step, when that fits the `budget_s` seconds of wall time left: the
+/// refined runs are predicted at twice their first runs' wall time, shared over the cores
+/// (`cores`). What was refined is in [`FigRolling::refined`]; a wheel that does not fit keeps
+/// its first run, not valid. This is `fig-rolling` refining within its work limit: on its
+/// defaults the full n = 16 and 24 runs do not converge at 2.5·10⁻⁴ s and do at 1.25·10⁻⁴ s.
+pub fn fig_rolling_within(
+    request: &FigRollingRequest,
+    budget_s: f64,
+    cores: usize,
+) -> Result<FigRolling> {
+    request.validate()?;
+    let start = std::time::Instant::now();
+    let requests: Vec<RollRequest> = FigRollingRequest::SIDES
+        .iter()
+        .map(|&n| request.roll_request(n))
+        .collect();
+    let first = roll_all(&requests)?;
+    let only_unconverged = |r: &RollReport| {
+        !r.summary.valid
+            && r.summary.stopped_at.is_none()
+            && r.summary
+                .warnings
+                .iter()
+                .all(|w| w.kind() == "not_converged")
+    };
+    let redo: Vec<usize> = (0..first.len())
+        .filter(|&i| only_unconverged(&first[i].0))
+        .collect();
+    let predicted: f64 = 2.0 * redo.iter().map(|&i| first[i].1).sum::<f64>()
+        / redo.len().clamp(1, cores.max(1)) as f64;
+    let mut runs: Vec<RollReport> = first.into_iter().map(|(r, _)| r).collect();
+    let mut refined = Vec::new();
+    if !redo.is_empty() && start.elapsed().as_secs_f64() + predicted <= budget_s {
+        let finer: Vec<RollRequest> = redo
             .iter()
-            .map(|&n| {
-                let r = request.roll_request(n);
-                scope.spawn(move || toroid::roll(&r))
+            .map(|&i| {
+                let mut r = requests[i];
+                r.settings.dt = Some(0.5 * runs[i].dt);
+                r
+            })
+            .collect();
+        for (k, (report, _)) in roll_all(&finer)?.into_iter().enumerate() {
+            let i = redo[k];
+            refined.push(Refined {
+                sides: runs[i].sides,
+                from_dt: runs[i].dt,
+                to_dt: report.dt,
+            });
+            runs[i] = report;
+        }
+    }
+    Ok(FigRolling { runs, refined })
+}
+
+/// Rolls each request on its own thread: the reports and each run's wall time (s).
+fn roll_all(requests: &[RollRequest]) -> Result<Vec<(RollReport, f64)>> {
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = requests
+            .iter()
+            .map(|r| {
+                scope.spawn(move || {
+                    let t = std::time::Instant::now();
+                    toroid::roll(r).map(|report| (report, t.elapsed().as_secs_f64()))
+                })
             })
             .collect();
         handles
@@ -316,8 +400,7 @@ pub fn fig_rolling(request: &FigRollingRequest) -> Result<FigRolling> {
                 Err(_) => Err(FigureError::Panicked),
             })
             .collect::<Result<Vec<_>>>()
-    })?;
-    Ok(FigRolling { runs })
+    })
 }
 
 /// The figure of one `roll` run: with `frame_times`, the wheel's members at those times
@@ -491,6 +574,35 @@ mod tests {
         assert_eq!(e.name, "t_end");
     }
 
+    /// `fig_rolling_within`: the wheels whose only warnings are unconverged quantities are
+    /// re-run once at half their step when the budget allows, and kept; with no budget none
+    /// is. On 1 s of the four full wheels every first run is unconverged (IMEX-ARK at
+    /// 2.5·10⁻⁴ s); at 1.25·10⁻⁴ s n = 12 and 16 converge.
+    #[test]
+    fn unconverged_wheels_are_refined_within_the_budget() {
+        let request = FigRollingRequest {
+            fidelity: FidelityChoice::Full,
+            t_end: 1.0,
+            ..FigRollingRequest::default()
+        };
+        let none = fig_rolling_within(&request, 0.0, 2).unwrap();
+        assert!(none.refined.is_empty());
+        assert!(none.runs.iter().all(|r| !r.summary.valid && r.dt == 2.5e-4));
+        let all = fig_rolling_within(&request, 1e9, 2).unwrap();
+        let sides: Vec<usize> = all.refined.iter().map(|r| r.sides).collect();
+        assert_eq!(sides, [8, 12, 16, 24]);
+        for (r, run) in all.refined.iter().zip(&all.runs) {
+            assert_eq!((r.from_dt, r.to_dt, run.dt), (2.5e-4, 1.25e-4, 1.25e-4));
+        }
+        let valid: Vec<usize> = all
+            .runs
+            .iter()
+            .filter(|r| r.summary.valid)
+            .map(|r| r.sides)
+            .collect();
+        assert_eq!(valid, [12, 16]);
+    }
+
     /// `ensemble = K`: each wheel's axle height is the mean of its K copies between the two
     /// edges of the 95 % band (one colour per wheel), and the output says, per wheel,
     /// whether the spread exceeds the difference between the models.
@@ -508,6 +620,7 @@ mod tests {
             toroid::roll(&r).unwrap()
         };
         let rolled = FigRolling {
+            refined: Vec::new(),
             runs: vec![roll(8), roll(24)],
         };
         assert_eq!(rolled.runs[0].ensemble_samples.len(), 3);
@@ -560,6 +673,7 @@ mod tests {
     #[test]
     fn fig_rolling_draws_every_axle_height_and_the_reactions_of_8_and_16() {
         let runs = FigRolling {
+            refined: Vec::new(),
             runs: vec![run(8, true), run(12, false), run(16, true), run(24, true)],
         };
         let f = runs.figure();
