@@ -76,13 +76,34 @@ fn print_series(rolled: &FigRolling) {
             eprintln!("warning (n = {}): {w}", r.sides);
         }
     }
+    print_refinements(rolled);
+    println!("\nimpact impulse per new contact (§3.3.1), means over each run's impacts:");
+    println!(
+        "{:>4} {:>8} {:>14} {:>18} {:>16} {:>14}",
+        "n", "impacts", "normal [N s]", "tangential [N s]", "normal/m [m/s]", "omega+/omega-"
+    );
+    for m in rolled.impacts() {
+        println!(
+            "{:>4} {:>8} {:>14.5} {:>18.5} {:>16.5} {:>14.5}",
+            m.sides,
+            m.impacts,
+            m.normal_impulse,
+            m.tangential_impulse,
+            m.normal_per_mass,
+            m.omega_ratio
+        );
+    }
+}
+
+/// What was refined automatically, and the remedy of a run that only failed to converge
+/// and was not: a finer step.
+fn print_refinements(rolled: &FigRolling) {
     for r in &rolled.refined {
         println!(
             "n = {}: not converged at dt = {} s, refined automatically to dt = {} s (within --max-work)",
             r.sides, r.from_dt, r.to_dt
         );
     }
-    // the remedy of a run that only failed to converge: a finer step
     let unconverged: Vec<&toroid::RollReport> = rolled
         .runs
         .iter()
@@ -101,22 +122,6 @@ fn print_series(rolled: &FigRolling) {
             sides.join(", "),
             first.dt,
             0.5 * first.dt
-        );
-    }
-    println!("\nimpact impulse per new contact (§3.3.1), means over each run's impacts:");
-    println!(
-        "{:>4} {:>8} {:>14} {:>18} {:>16} {:>14}",
-        "n", "impacts", "normal [N s]", "tangential [N s]", "normal/m [m/s]", "omega+/omega-"
-    );
-    for m in rolled.impacts() {
-        println!(
-            "{:>4} {:>8} {:>14.5} {:>18.5} {:>16.5} {:>14.5}",
-            m.sides,
-            m.impacts,
-            m.normal_impulse,
-            m.tangential_impulse,
-            m.normal_per_mass,
-            m.omega_ratio
         );
     }
 }
