@@ -47,6 +47,9 @@ pub struct SimulationReport {
     /// Wall time of the integration alone (s).
     #[column(unit = "s")]
     pub wall_time_s: f64,
+    /// Whether the run is valid: no warning (its invariants within their limits and, when
+    /// checked, its final state converged), as every dynamic result states it.
+    pub valid: bool,
     /// The invariants that drifted past their limits, each with its remedy (absent when the
     /// run is within them).
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -70,6 +73,7 @@ impl From<&SimulationResult> for SimulationReport {
             bar_length_drift: r.bar_length_drift,
             constraint_drift: r.constraint_drift,
             wall_time_s: r.wall_time_s,
+            valid: r.warnings.is_empty(),
             warnings: r.warnings.iter().map(|&w| w.into()).collect(),
             convergence: None,
         }

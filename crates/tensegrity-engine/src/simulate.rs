@@ -660,6 +660,7 @@ impl Checked {
             }
         };
         report.warnings.extend(convergence.warnings());
+        report.valid = report.warnings.is_empty();
         report.convergence = Some(convergence);
         Ok(report)
     }
