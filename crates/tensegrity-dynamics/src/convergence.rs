@@ -119,6 +119,9 @@ pub struct QuantityConvergence {
     /// `converged`, `not_converged` or `chaotic` (module docs).
     #[serde(default)]
     pub status: Status,
+    /// The scale floor s of the relative changes (module docs), kept for the twin's.
+    #[serde(skip)]
+    scale: f64,
 }
 
 /// The convergence of a result's headline quantities (module docs).
@@ -213,10 +216,9 @@ impl Convergence {
         let both_missing = value.is_none() && refined.is_none();
         self.push(
             name,
-            value,
-            refined,
+            [value, refined],
             relative_change,
-            tolerance,
+            [tolerance, scale],
             both_missing,
         );
         self
@@ -255,17 +257,22 @@ impl Convergence {
         } else {
             f64::INFINITY
         };
-        self.push(name, None, None, Some(relative_change), tolerance, false);
+        self.push(
+            name,
+            [None, None],
+            Some(relative_change),
+            [tolerance, scale],
+            false,
+        );
         self
     }
 
     fn push(
         &mut self,
         name: &str,
-        value: Option<f64>,
-        refined: Option<f64>,
+        [value, refined]: [Option<f64>; 2],
         relative_change: Option<f64>,
-        tolerance: f64,
+        [tolerance, scale]: [f64; 2],
         nothing_to_compare: bool,
     ) {
         let estimated_error = relative_change.map(|r| r * self.companion.error_factor(self.order));
@@ -286,6 +293,7 @@ impl Convergence {
             } else {
                 Status::NotConverged
             },
+            scale,
         });
     }
 
@@ -311,6 +319,12 @@ impl Convergence {
     /// assert!(c.converged && c.warnings().is_empty());
     /// assert_eq!(c.chaotic(), vec!["final_speed"]);
     /// assert_eq!(c.cost, 3.0);
+    /// // a fraction near zero is judged on its scale (1) by the twin too: 10⁻⁴ of the run
+    /// let mut f = Convergence::new("dt/2");
+    /// f.compare("airborne_fraction", Some(0.0), Some(0.0), 0.02, 1.0);
+    /// f.twin(|_| Some(1e-4));
+    /// assert_eq!(f.quantities[0].status, Status::Converged);
+    /// assert_eq!(f.quantities[0].twin_change, Some(1e-4));
     /// ```
     pub fn twin(&mut self, twin: impl Fn(&str) -> Option<f64>) -> &mut Self {
         self.cost += 1.0;
@@ -318,12 +332,7 @@ impl Convergence {
             let Some(t) = twin(&q.name) else { continue };
             let change = match q.value {
                 Some(v) => {
-                    let scale = match (q.refined, q.relative_change) {
-                        // recover the scale floor: r = |c − v| / max(|v|, |c|, s)
-                        (Some(c), Some(r)) if r > 0.0 => (c - v).abs() / r,
-                        _ => v.abs(),
-                    };
-                    let d = v.abs().max(t.abs()).max(scale);
+                    let d = v.abs().max(t.abs()).max(q.scale);
                     if d > 0.0 {
                         (t - v).abs() / d
                     } else {
