@@ -107,13 +107,7 @@ fn print_refinements(rolled: &FigRolling) {
     let unconverged: Vec<&toroid::RollReport> = rolled
         .runs
         .iter()
-        .filter(|r| {
-            !r.summary.valid
-                && r.summary
-                    .warnings
-                    .iter()
-                    .all(|w| w.kind() == "not_converged")
-        })
+        .filter(|r| r.summary.only_unconverged())
         .collect();
     if let Some(first) = unconverged.first() {
         let sides: Vec<String> = unconverged.iter().map(|r| r.sides.to_string()).collect();

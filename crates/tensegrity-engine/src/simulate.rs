@@ -70,9 +70,11 @@ pub const DEFAULT_SAMPLES: f64 = 200.0;
 /// Default step of `rk4`, `rattle` and `rk4-flight` (its contact step) when neither the
 /// request nor the scene gives `dt` (s).
 pub const DEFAULT_DT: f64 = 1e-3;
-/// Default step of `imex` (s): the full rolling model's
-/// (`wheel_rolling::defaults::IMEX_ROLL_DT`); on `examples/prism_drop.toml` for 3 s it gives
-/// a valid run (1 ms: the final nodes move 1.1 % at half the step).
+/// Default step of `imex` (s): the split IMEX's in the full rolling model
+/// (`wheel_rolling::defaults::IMEX_ROLL_DT`); on `examples/prism_drop.toml` for 3 s its final
+/// nodes hold at half the step (1 ms: they move 1.1 %), but the landed prism's feet creep and
+/// chatter there (20 % of the contact steps: a `creep_chatter` warning, not valid; use
+/// `imex-ark`).
 pub const DEFAULT_DT_IMEX: f64 = 5e-4;
 /// Default step of `imex-ark` (s): the full rolling model's
 /// (`wheel_rolling::defaults::IMEX_ARK_ROLL_DT`: on the creeping pivot its stage equations

@@ -344,16 +344,8 @@ pub fn fig_rolling_within(
         .map(|&n| request.roll_request(n))
         .collect();
     let first = roll_all(&requests)?;
-    let only_unconverged = |r: &RollReport| {
-        !r.summary.valid
-            && r.summary.stopped_at.is_none()
-            && r.summary
-                .warnings
-                .iter()
-                .all(|w| w.kind() == "not_converged")
-    };
     let redo: Vec<usize> = (0..first.len())
-        .filter(|&i| only_unconverged(&first[i].0))
+        .filter(|&i| first[i].0.summary.only_unconverged())
         .collect();
     let predicted: f64 = 2.0 * redo.iter().map(|&i| first[i].1).sum::<f64>()
         / redo.len().clamp(1, cores.max(1)) as f64;

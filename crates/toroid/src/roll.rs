@@ -93,7 +93,7 @@ pub struct RollRequest {
 
 impl Default for RollRequest {
     /// The reference wheel down 50° for 10 s, the rigid model at a 0.1 ms step and the full
-    /// one by IMEX at 0.5 ms ([`wheel_rolling::defaults::full_dt`]),
+    /// one by IMEX-ARK at 0.25 ms ([`wheel_rolling::defaults::full_dt`]),
     /// `auto` fidelity, penalty contact with e = 0, and the contact and string defaults of
     /// [`crate::defaults`].
     fn default() -> Self {

@@ -96,6 +96,14 @@ pub struct RunSummary {
 }
 
 impl RunSummary {
+    /// Whether the run is not valid only because headline quantities did not converge (it
+    /// finished, and every warning is `not_converged`): a finer step is its remedy.
+    pub fn only_unconverged(&self) -> bool {
+        !self.valid
+            && self.stopped_at.is_none()
+            && self.warnings.iter().all(|w| w.kind() == "not_converged")
+    }
+
     /// The summary of `r`, a run asked for `t_end` seconds (the mean axle height skips the
     /// first second when `t_end` > 1 s).
     pub fn of(r: &RollingResult, t_end: f64) -> Self {
