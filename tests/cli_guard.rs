@@ -256,3 +256,40 @@ fn under_an_address_space_limit_the_default_memory_limit_follows_it() {
         other => panic!("exit {other:?}: {err}"),
     }
 }
+
+/// `figures` used to accept `--max-work` and ignore it (42 s of rolling runs under
+/// `--max-work 10`): its figures' measured work is summed before any directory is made, and
+/// the refusal names the figures and `--only`; a cheap selection runs under the same limit.
+#[test]
+fn figures_are_refused_above_max_work_before_the_directory_is_made() {
+    let dir = scratch("figures").join("out");
+    let out = dir.to_str().unwrap();
+    let err = assert_refused(
+        &["figures", "--out", out, "--max-work", "10"],
+        &[
+            "30 figure(s)",
+            "Figs. 3.10 and 3.11",
+            "49.600 s",
+            "--max-work",
+            "--only",
+        ],
+    );
+    assert!(err.contains("only = 2.2,3.1"), "{err}");
+    assert!(!dir.exists(), "nothing made before the refusal");
+    let (ok, _) = run(&[
+        "figures",
+        "--out",
+        out,
+        "--only",
+        "4.1",
+        "--max-work",
+        "10",
+        "--quiet",
+    ]);
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    assert!(dir.join("fig_4_1.svg").exists());
+}

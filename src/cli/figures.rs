@@ -4,7 +4,9 @@
 //! The directory, its `data/` (the sweeps' CSVs) and one figure sink per figure — and one for
 //! its data, `fig_3_10.csv` — are opened before any work; a figure that fails is reported and
 //! the others are still written, and the command then exits non-zero naming the failed
-//! figures. `index.json` and `index.md` list every figure: caption, files, the command that
+//! figures. The chosen figures' work is estimated first
+//! ([`tensegrity_figures::estimate::figures`]) and refused above `--max-work`, naming
+//! `--only`. `index.json` and `index.md` list every figure: caption, files, the command that
 //! reproduces it and what differs from the thesis.
 
 use super::output;
@@ -14,7 +16,7 @@ use serde_json::json;
 use std::path::PathBuf;
 use tensegrity_figures::{Built, FigureError, FigureIndex, FigureSpec, FiguresRequest, IndexEntry};
 use tensegrity_io::figure::RenderOptions;
-use tensegrity_io::progress::{Measure, Progress};
+use tensegrity_io::progress::Measure;
 use tensegrity_io::sink::{CsvSink, FigureSink, FileSink, JsonSink, OutputDir};
 
 /// Arguments of `tensegrity figures`.
@@ -58,6 +60,13 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         threads: args.threads.map(usize::from),
     };
     let (chosen, options) = chosen(args, &request)?;
+    // the work of every chosen figure against --max-work, before any directory is made
+    let estimate = tensegrity_figures::estimate::figures(&request, &chosen);
+    let measure = Measure::Count {
+        total: chosen.len(),
+        unit: "figures",
+    };
+    let guarded = super::guard::counted(estimate, "figures", measure, !args.quiet)?;
     let ext = if args.pdf { "pdf" } else { request.extension() };
     let dir = output::open_required("--out", &args.out, OutputDir::create)?;
     let data = output::open_required("--out", &dir.join("data"), OutputDir::create)?;
@@ -65,15 +74,7 @@ pub fn run(args: &FiguresArgs) -> Result<()> {
         output::open_required("--out", &dir.join("index.json"), JsonSink::open)?,
         output::open_required("--out", &dir.join("index.md"), FileSink::open)?,
     );
-    let unit = "figures";
-    let progress = Progress::auto(
-        "figures",
-        Measure::Count {
-            total: chosen.len(),
-            unit,
-        },
-        args.quiet,
-    );
+    let progress = guarded.handle();
     // two sinks per figure (picture, data), before any work; a figure whose files cannot be
     // opened fails alone
     let jobs = chosen

@@ -57,15 +57,52 @@ pub fn print_convergence(c: Option<&tensegrity_dynamics::Convergence>) {
         (false, false) => format!("not converged: {}", moved.join(", ")),
     };
     if !chaotic.is_empty() {
+        let ranged: Vec<String> = c
+            .quantities
+            .iter()
+            .filter(|q| q.status == Status::Chaotic)
+            .map(|q| match q.interval {
+                Some([lo, hi]) => format!("{} {} … {}", q.name, short(lo), short(hi)),
+                None => q.name.clone(),
+            })
+            .collect();
         verdict.push_str(&format!(
-            "; chaotic (a start turned by 1e-6 moves them: single draws, see --ensemble): {}",
-            chaotic.join(", ")
+            "; chaotic (a start turned by 1e-6 moves them: single draws, each with the 95 % interval of another run from these three runs): {}",
+            ranged.join(", ")
         ));
     }
     println!(
         "convergence ({}; order {}; cost {} runs): {verdict}",
         c.refinement, c.order, c.cost
     );
+}
+
+/// A number to 4 significant digits, without an exponent in the usual range.
+fn short(v: f64) -> String {
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-3..1e5).contains(&v.abs()) {
+        let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Four significant digits in the usual range, an exponent outside it, and zero (whose
+    /// logarithm has no digits) as `0`.
+    #[test]
+    fn short_numbers_keep_four_digits() {
+        use super::short;
+        assert_eq!(short(24.8123), "24.81");
+        assert_eq!(short(0.0647339), "0.06473");
+        assert_eq!(short(188.21), "188.2");
+        assert_eq!(short(0.0), "0");
+        assert_eq!(short(-0.318), "-0.3180");
+        assert_eq!(short(2.5e-7), "2.500e-7");
+    }
 }
 
 /// Prints a report as pretty JSON with the conventional keys added beside its own

@@ -75,6 +75,12 @@ pub fn run_rolling(req: &TipoverRollingRequest, out: Option<&Path>, json: bool) 
                 None => "did not fall (ends inside its tip angle)".to_string(),
             }
         );
+        if r.convergence
+            .as_ref()
+            .is_some_and(|c| c.chaotic().contains(&"fell"))
+        {
+            println!("whether it fell is a draw: it wobbles past its tip angles and the final lean's interval lies on both sides of one");
+        }
         println!("{}", validity_line(r.valid, r.max_penetration));
         super::output::print_convergence(r.convergence.as_ref());
     }

@@ -31,7 +31,13 @@
 //! another step) is about 2.5 r_twin on average, so a single run cannot show it within τ. It is
 //! not `converged`, its value is one draw, and its answer is an ensemble's interval
 //! (`--ensemble K`); it does not by itself make a result unconverged, since no refinement
-//! could make it so ([`Convergence::converged`] judges the other quantities).
+//! could make it so ([`Convergence::converged`] judges the other quantities). What the check
+//! has already run gives it an interval at no extra cost: its three draws (the run, the
+//! companion at another step, the twin at another start) are a small ensemble at two
+//! resolutions, and another draw (another start, or a finer step whose bias is of the size the
+//! companion showed) lies with 95 % probability within the prediction interval
+//! m ± t₀.₉₇₅,₂ · s · √(1 + 1/3) of their mean m and sample deviation s (Student's t at 2
+//! degrees of freedom, 4.303, for a spread estimated from three draws): `interval`.
 //!
 //! A quantity that is neither converged nor chaotic makes the whole result unconverged
 //! ([`Convergence::converged`]), which a result then reports as not valid
@@ -119,9 +125,33 @@ pub struct QuantityConvergence {
     /// `converged`, `not_converged` or `chaotic` (module docs).
     #[serde(default)]
     pub status: Status,
+    /// For a chaotic quantity, the 95 % prediction interval of another draw (another start or
+    /// a finer step) from its three draws: the run, the companion run (another step) and the
+    /// twin (another start), m ± t₀.₉₇₅,₂ · s · √(1 + 1/3) with their mean m, their sample
+    /// deviation s and Student's t at 2 degrees of freedom (4.303) (module docs). Absent
+    /// otherwise, or when a draw is missing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interval: Option<[f64; 2]>,
     /// The scale floor s of the relative changes (module docs), kept for the twin's.
     #[serde(skip)]
     scale: f64,
+}
+
+/// Student's t at 2 degrees of freedom, two-sided 95 %.
+const STUDENT_T_975_2: f64 = 4.302_652_729_911_275;
+
+/// The 95 % prediction interval of a fourth draw of a chaotic quantity from its three draws
+/// (the run's value, the companion's, the twin's): m ± t · s · √(1 + 1/3) (module docs);
+/// `None` when a draw is missing or not finite.
+fn prediction_interval(value: Option<f64>, companion: Option<f64>, twin: f64) -> Option<[f64; 2]> {
+    let draws = [value?, companion?, twin];
+    if !draws.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let mean = draws.iter().sum::<f64>() / 3.0;
+    let variance = draws.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / 2.0;
+    let half = STUDENT_T_975_2 * variance.sqrt() * (4.0f64 / 3.0).sqrt();
+    Some([mean - half, mean + half])
 }
 
 /// The convergence of a result's headline quantities (module docs).
@@ -288,6 +318,7 @@ impl Convergence {
             tolerance,
             converged,
             twin_change: None,
+            interval: None,
             status: if converged {
                 Status::Converged
             } else {
@@ -319,6 +350,11 @@ impl Convergence {
     /// assert!(c.converged && c.warnings().is_empty());
     /// assert_eq!(c.chaotic(), vec!["final_speed"]);
     /// assert_eq!(c.cost, 3.0);
+    /// // its three draws (run 44.4, refined 47.3, twin 47.1): mean 46.27, deviation 1.62,
+    /// // another draw within 46.27 ± 4.303 · 1.62 · 1.155 = 46.27 ± 8.05 (95 %)
+    /// let [lo, hi] = c.quantities[1].interval.unwrap();
+    /// assert!((lo - 38.22).abs() < 0.01 && (hi - 54.31).abs() < 0.01);
+    /// assert_eq!(c.quantities[0].interval, None);
     /// // a fraction near zero is judged on its scale (1) by the twin too: 10⁻⁴ of the run
     /// let mut f = Convergence::new("dt/2");
     /// f.compare("airborne_fraction", Some(0.0), Some(0.0), 0.02, 1.0);
@@ -346,7 +382,57 @@ impl Convergence {
             if change.is_nan() || change > CHAOS_FRACTION * q.tolerance {
                 q.status = Status::Chaotic;
                 q.converged = false;
+                q.interval = prediction_interval(q.value, q.refined, t);
             }
+        }
+        self.converged = self
+            .quantities
+            .iter()
+            .all(|q| q.converged || q.status == Status::Chaotic);
+        self
+    }
+
+    /// Clips the interval of each quantity in `names` to the range `[lo, hi]` its values can
+    /// take (a count or a largest magnitude is never negative, a fraction or a yes/no at most
+    /// 1): the prediction interval assumes a spread symmetric about the draws' mean, which
+    /// such a quantity's cannot be near its bound. Call after [`Convergence::twin`].
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::Convergence;
+    /// let mut c = Convergence::new("dt/2");
+    /// c.compare("max_lean", Some(0.09), Some(0.22), 0.05, 0.01);
+    /// c.twin(|_| Some(0.02));
+    /// assert!(c.quantities[0].interval.unwrap()[0] < 0.0);
+    /// c.bound(&["max_lean"], [0.0, f64::INFINITY]);
+    /// assert_eq!(c.quantities[0].interval.unwrap()[0], 0.0);
+    /// ```
+    pub fn bound(&mut self, names: &[&str], [lo, hi]: [f64; 2]) -> &mut Self {
+        for q in self.quantities.iter_mut() {
+            if let (true, Some([a, b])) = (names.contains(&q.name.as_str()), q.interval) {
+                q.interval = Some([a.clamp(lo, hi), b.clamp(lo, hi)]);
+            }
+        }
+        self
+    }
+
+    /// Marks `name` chaotic because it is decided by a chaotic quantity whose interval
+    /// straddles the decision's threshold (e.g. whether a wobbling wheel ends past its tip
+    /// angle): no refinement can settle it either. Its interval stays unset (a decision has
+    /// none); the result's `converged` is judged again. Unknown names are ignored.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::{Convergence, Status};
+    /// let mut c = Convergence::new("dt/2");
+    /// c.compare("fell", Some(1.0), Some(0.0), 0.5, 1.0);
+    /// assert!(!c.converged);
+    /// c.mark_chaotic("fell");
+    /// assert_eq!(c.quantities[0].status, Status::Chaotic);
+    /// assert!(c.converged && c.warnings().is_empty());
+    /// ```
+    pub fn mark_chaotic(&mut self, name: &str) -> &mut Self {
+        for q in self.quantities.iter_mut().filter(|q| q.name == name) {
+            q.status = Status::Chaotic;
+            q.converged = false;
         }
         self.converged = self
             .quantities

@@ -52,6 +52,7 @@ pub mod data;
 pub mod draw;
 pub mod driver;
 pub mod error;
+pub mod estimate;
 pub mod index;
 pub mod michell;
 pub mod page;

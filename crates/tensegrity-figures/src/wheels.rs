@@ -233,8 +233,13 @@ pub fn fig_3_9(_: &Ctx) -> Result<Drawn> {
 /// 24 wheels' first impact and impact count converge, as `fig-rolling --dt 1.25e-4`), shorter
 /// and on the reduced rigid model with `quick`.
 fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
+    rolling_request_of(ctx.quick(), t_end)
+}
+
+/// [`rolling_request`] of a context that is `quick` or not.
+fn rolling_request_of(quick: bool, t_end: f64) -> RollRequest {
     let d = RollRequest::default();
-    if ctx.quick() {
+    if quick {
         RollRequest {
             t_end,
             fidelity: FidelityChoice::Rigid,
@@ -250,14 +255,19 @@ fn rolling_request(ctx: &Ctx, t_end: f64) -> RollRequest {
 /// Fig. 3.8: the n = 8 wheel at t = 0, 1.5 and 3 s (0, 0.25, 0.5 s with `quick`), from the
 /// run's own node frames in the incline's frame ([`fig_3_8_of`]).
 pub fn fig_3_8(ctx: &Ctx) -> Result<Drawn> {
-    let times = if ctx.quick() {
-        [0.0, 0.25, 0.5]
-    } else {
-        [0.0, 1.5, 3.0]
-    };
+    let times = fig_3_8_times(ctx.quick());
     let mut req = rolling_request(ctx, times[2]);
     req.wheel.params.sides = 8;
     fig_3_8_of(ctx, &req, &times)
+}
+
+/// Fig. 3.8's three instants (s).
+fn fig_3_8_times(quick: bool) -> [f64; 3] {
+    if quick {
+        [0.0, 0.25, 0.5]
+    } else {
+        [0.0, 1.5, 3.0]
+    }
 }
 
 /// The frames of one `roll` run at `times`, as the run placed the wheel

@@ -14,13 +14,14 @@
 
 use crate::error::Result;
 use crate::report::{TipoverRequest, ToroidRequest, WheelSpec};
-use crate::rolling_lean::{LeanRolling, LeanRollingReport};
+use crate::rolling_lean::{LeanRolling, LeanRollingReport, LEAN_REFINEMENT};
 use crate::tipover_dynamic::{beside, judge, refined_failed, DynamicTipover, DynamicTipoverReport};
 use crate::ToroidParams;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle;
 use tensegrity_core::request::{InvalidParameter, Request, RunChecks};
 use tensegrity_derive::Params;
+use tensegrity_dynamics::Convergence;
 
 impl Request for ToroidRequest {
     const NAME: &'static str = "toroid";
@@ -135,6 +136,9 @@ pub const ROLLING_INCLINE_DEG: f64 = 30.0;
 pub const ROLLING_SIDE_SLOPE_DEG: f64 = 5.0;
 /// Default simulated time of `tipover --rolling` (s).
 pub const ROLLING_T_END: f64 = 3.0;
+/// Default RK4 step of `tipover --rolling` (s): a quarter of the standing wheel's, since the
+/// rolling wheel's wobble is damped away by coarser steps ([`crate::rolling_lean`]).
+pub const ROLLING_DT: f64 = 2.5e-5;
 
 /// `tipover --rolling` (study `tipover_rolling`, alias `lean`): the wheel rolling down a plane
 /// with a side slope, its lean recorded ([`LeanRolling`]); the wheel, ground and integration
@@ -199,19 +203,19 @@ pub struct TipoverRollingRequest {
         positive
     )]
     pub friction_regularization: f64,
-    /// RK4 step (s).
+    /// RK4 step (s); [`ROLLING_DT`] by default.
     #[param(
         number,
         unit = "s",
-        help = "RK4 step; stiffer strings need a smaller one",
+        help = crate::tipover_dynamic::help::DT,
         positive
     )]
     pub dt: f64,
     /// Output interval (s).
     #[param(number, unit = "s", help = "Output interval of the history", positive)]
     pub output_dt: f64,
-    /// `strict` and `convergence_check` (the run again at half the step and twice the ground
-    /// stiffness, beside it).
+    /// `strict` and `convergence_check` (the run again at half the step and from a start
+    /// turned by 10⁻⁶ rad, beside it: [`LeanRollingReport::convergence`]).
     #[serde(flatten)]
     pub checks: RunChecks,
 }
@@ -234,7 +238,7 @@ impl Default for TipoverRollingRequest {
             ground_damping: d.ground_damping,
             mu: d.mu,
             friction_regularization: d.friction_regularization,
-            dt: d.dt,
+            dt: ROLLING_DT,
             output_dt: d.output_dt,
             checks: RunChecks::default(),
         }
@@ -273,29 +277,49 @@ impl TipoverRollingRequest {
     }
 
     /// Builds the wheel and rolls it, with `convergence_check` beside the refined run (half
-    /// the step, twice the ground stiffness); the report whatever its validity.
+    /// the step) and the twin (the incline + 10⁻⁶ rad), in two more threads
+    /// ([`LeanRollingReport::convergence`]); the report whatever its validity. A failed twin
+    /// leaves the quantities judged by the refinement alone, and says so.
     pub fn report(&self) -> Result<LeanRollingReport> {
         let wheel = self.wheel.build()?;
         let main = self.lean_rolling();
-        let fine = LeanRolling {
-            wheel: main.wheel.refined(),
-            ..main
-        };
-        let (r, refined) = beside(
+        let (fine, twin) = (main.refined(), main.twin());
+        let (r, companions) = beside(
             self.checks.convergence_check,
             || main.run(&wheel),
-            || fine.run(&wheel),
+            || {
+                std::thread::scope(|s| {
+                    let t = s.spawn(|| twin.run(&wheel));
+                    let f = fine.run(&wheel);
+                    (f, t.join().ok().and_then(|t| t.ok()))
+                })
+            },
         );
         let mut r = r?;
-        let convergence = match refined {
-            Some(Ok(f)) => r.convergence(&f),
-            Some(Err(e)) => refined_failed(e),
+        let convergence = match companions {
+            Some((Ok(f), twin)) => {
+                let mut c = r.convergence(&f, twin.as_ref());
+                if twin.is_none() {
+                    c.refinement = format!(
+                        "{LEAN_REFINEMENT}; the twin run (start turned by 1e-6 rad) failed"
+                    );
+                }
+                c
+            }
+            Some((Err(e), _)) => lean_refined_failed(e),
             None => return Ok(r),
         };
         r.convergence = judge(convergence, &mut r.warnings);
         r.valid = r.warnings.is_empty();
         Ok(r)
     }
+}
+
+/// The convergence of a lean-while-rolling run whose refined run failed (its error named).
+fn lean_refined_failed(why: impl std::fmt::Display) -> Convergence {
+    let mut c = Convergence::new(format!("{LEAN_REFINEMENT}: the refined run failed: {why}"));
+    c.converged = false;
+    c
 }
 
 impl Request for TipoverRollingRequest {
@@ -380,7 +404,16 @@ mod tests {
         let lean = r.lean_rolling();
         assert!((lean.incline - 20f64.to_radians()).abs() < 1e-15);
         assert_eq!(lean.side_slope, 5f64.to_radians());
-        assert_eq!(lean.wheel, DynamicTipover::default());
+        // the standing wheel's settings, at the rolling wheel's own default step
+        let standing = DynamicTipover::default();
+        assert_eq!(lean.wheel.dt, ROLLING_DT);
+        assert_eq!(
+            lean.wheel,
+            DynamicTipover {
+                dt: ROLLING_DT,
+                ..standing
+            }
+        );
         let d = TipoverDynamicRequest::from_values([("ramp_to", json!(1.1))]).unwrap();
         assert_eq!(d.settings.ramp_to, 1.1);
         assert!(TipoverDynamicRequest::from_values([("incline", json!(0.1))]).is_err());

@@ -19,15 +19,31 @@
 //! wheel has `fell` when it **ends** leaning beyond one of them (on its side, or past the point
 //! where its weight turns it over); `fall_time` is when that last excursion began. A wheel
 //! that passed the angle and came back (rolling can right it) has not fallen.
+//!
+//! **A wobble is chaotic.** Rolling fast, the wheel rocks from one tread edge to the other
+//! with a growing amplitude (on 30°: ±0.03 rad after 1.5 s, ±0.4 rad at 3 s, past both tip
+//! angles and held up by the rolling); the phase of that wobble at any instant, and so the
+//! largest and the final lean, move by 5–50 % under a start turned by 10⁻⁶ rad. The
+//! root-mean-square lean over the run, `rms_lean`, is the time statistic of the wobble; the
+//! convergence check ([`LeanRollingReport::convergence`]) runs the step halved (the ground's
+//! stiffness is the model's, as in `roll`) and a twin from the incline + 10⁻⁶ rad, reports a
+//! quantity the twin moves as `chaotic` with the 95 % interval of another run, and judges
+//! the others. Whether it `fell` is decided by the final lean: when that is chaotic and its
+//! interval reaches past a tip angle while part of it stays inside, `fell` and `fall_time`
+//! are chaotic too (on 30°, 3 s the default run ends past α₋, a run at a quarter of its step
+//! does not). RK4 must resolve the wobble: at 10⁻⁴ s it damps it (RMS lean 0.045 rad against
+//! 0.155–0.169 rad at 2.5·10⁻⁵ and 1.25·10⁻⁵ s), hence the finer default step of
+//! [`crate::request::ROLLING_DT`].
 
 use crate::analysis::analyse;
 use crate::builder::Toroid;
 use crate::error::Result;
-use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity, REFINEMENT};
+use crate::tipover_dynamic::{lean_and_hub, tip_angle, DynamicTipover, RunValidity};
 use serde::Serialize;
 use std::f64::consts::PI;
 use tensegrity_core::Warning;
 use tensegrity_derive::Columns;
+use tensegrity_dynamics::convergence::TWIN_PERTURBATION;
 use tensegrity_dynamics::{
     Convergence, IntegratorKind, Quantities, Simulation, SimulationSettings,
 };
@@ -94,12 +110,19 @@ pub struct LeanRollingReport {
     /// Largest |lean| (rad).
     #[column(unit = "rad")]
     pub max_lean: f64,
+    /// Root-mean-square lean over the run's samples (rad): the wobble's time statistic.
+    #[column(unit = "rad")]
+    pub rms_lean: f64,
     /// Lean at the end (rad).
     #[column(unit = "rad")]
     pub final_lean: f64,
     /// The static tip angle atan(T/2h) on a level plane (rad).
     #[column(unit = "rad")]
     pub static_tip_angle: f64,
+    /// The tip angles on the side slope, α₊ (over the downhill-side edge, a positive lean)
+    /// and α₋ (over the other, a lean below −α₋) (rad; module docs).
+    #[column(skip)]
+    pub tip_angles: [f64; 2],
     /// Whether it fell: it ends leaning past the tip angle of the side slope, α₊ or −α₋
     /// (module docs).
     pub fell: bool,
@@ -117,8 +140,8 @@ pub struct LeanRollingReport {
     /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
     /// quantity).
     pub warnings: Vec<Warning>,
-    /// The headline quantities re-run at half the step and twice the ground stiffness
-    /// ([`crate::request::TipoverRollingRequest`]); null when not checked.
+    /// The headline quantities re-run at half the step and from a start turned by 10⁻⁶ rad
+    /// ([`LeanRollingReport::convergence`]); null when not checked.
     #[column(nested)]
     pub convergence: Option<Convergence>,
     /// The history (not serialised).
@@ -126,7 +149,27 @@ pub struct LeanRollingReport {
     pub samples: Vec<RollingLeanSample>,
 }
 
+/// What the convergence check of a lean-while-rolling run changes: the step only (the
+/// ground's penalty stiffness is part of the model, as in `roll`).
+pub const LEAN_REFINEMENT: &str = "dt/2 (the ground's stiffness is the model's)";
+
 impl LeanRolling {
+    /// The same run at half the step ([`LEAN_REFINEMENT`]).
+    pub fn refined(&self) -> Self {
+        let mut r = *self;
+        r.wheel.dt *= 0.5;
+        r
+    }
+
+    /// The twin of the convergence check: the same run from a start turned by
+    /// [`TWIN_PERTURBATION`] rad relative to gravity (the incline + 10⁻⁶).
+    pub fn twin(&self) -> Self {
+        Self {
+            incline: self.incline + TWIN_PERTURBATION,
+            ..*self
+        }
+    }
+
     /// Rolls `toroid` down the cross-sloped plane.
     pub fn run(&self, toroid: &Toroid) -> Result<LeanRollingReport> {
         use tensegrity_core::validate::{finite, non_negative, positive};
@@ -188,6 +231,11 @@ impl LeanRolling {
             .collect();
         let last = samples.last().copied();
         let max_lean = samples.iter().map(|s| s.lean.abs()).fold(0.0, f64::max);
+        let rms_lean = if samples.is_empty() {
+            0.0
+        } else {
+            (samples.iter().map(|s| s.lean * s.lean).sum::<f64>() / samples.len() as f64).sqrt()
+        };
         let tread = toroid.params.outer_tread;
         let (plus, minus) = (tip_angle(tread, h, ss, cs), tip_angle(tread, h, -ss, cs));
         let beyond = |s: &RollingLeanSample| s.lean > plus || s.lean < -minus;
@@ -204,8 +252,10 @@ impl LeanRolling {
             mass_kg: analyse(toroid)?.mass_kg,
             static_critical_side_slope: (toroid.params.outer_tread / (2.0 * h)).atan(),
             max_lean,
+            rms_lean,
             final_lean: last.map_or(0.0, |s| s.lean),
             static_tip_angle: tip_angle(tread, h, 0.0, 1.0),
+            tip_angles: [plus, minus],
             fell,
             fall_time,
             downhill: last.map_or(0.0, |s| s.downhill),
@@ -219,40 +269,92 @@ impl LeanRolling {
 }
 
 impl LeanRollingReport {
-    /// The convergence of this report's headline quantities against the `refined` run's:
-    /// the largest and the final lean within 5 % (on a scale of at least 0.01 rad), the
-    /// travel downhill within 2 % (at least 1 cm), the fall time within 2 %, and whether it fell.
-    pub fn convergence(&self, refined: &Self) -> Convergence {
-        let mut c = Convergence::new(REFINEMENT);
-        c.compare(
-            "max_lean",
-            Some(self.max_lean),
-            Some(refined.max_lean),
-            0.05,
-            0.01,
-        )
-        .compare(
-            "final_lean",
-            Some(self.final_lean),
-            Some(refined.final_lean),
-            0.05,
-            0.01,
-        )
-        .compare(
-            "downhill",
-            Some(self.downhill),
-            Some(refined.downhill),
-            0.02,
-            0.01,
-        )
-        .compare("fall_time", self.fall_time, refined.fall_time, 0.02, 0.0)
-        .compare(
-            "fell",
-            Some(f64::from(u8::from(self.fell))),
-            Some(f64::from(u8::from(refined.fell))),
-            0.5,
-            1.0,
-        );
+    /// The convergence of this report's headline quantities against the `refined` run's
+    /// (half the step, [`LEAN_REFINEMENT`]), order 1 (the contacts' events), told chaotic
+    /// against the `twin` run's when there is one (module docs): the largest, the RMS and the
+    /// final lean within 5 % (on a scale of at least 0.01 rad), the travel downhill within
+    /// 2 % (at least 1 cm), the fall time within 2 %, and whether it fell.
+    ///
+    /// ```no_run
+    /// use toroid::{rolling_lean::LeanRolling, WheelSpec};
+    /// let wheel = WheelSpec::default().build().unwrap();
+    /// let run = LeanRolling::default();
+    /// let (a, b, t) = (run.run(&wheel), run.refined().run(&wheel), run.twin().run(&wheel));
+    /// let c = a.unwrap().convergence(&b.unwrap(), Some(&t.unwrap()));
+    /// assert_eq!(c.cost, 3.0);
+    /// ```
+    pub fn convergence(&self, refined: &Self, twin: Option<&Self>) -> Convergence {
+        let mut c = Convergence::new(LEAN_REFINEMENT);
+        for (name, value, fine, tolerance, scale) in self.headline(refined) {
+            c.compare(name, value, fine, tolerance, scale);
+        }
+        if let Some(twin) = twin {
+            let values = twin.headline(twin);
+            c.twin(|name| values.iter().find(|q| q.0 == name).and_then(|q| q.1));
+            c.bound(&["max_lean", "rms_lean"], [0.0, f64::INFINITY])
+                .bound(&["fell"], [0.0, 1.0]);
+            if self.fall_undecided(&c) {
+                c.mark_chaotic("fell").mark_chaotic("fall_time");
+            }
+        }
         c
+    }
+
+    /// Whether the final lean is chaotic with an interval that reaches past a tip angle
+    /// while another part of it does not: whether the wheel ends fallen is then the phase of
+    /// its wobble at the last instant, a draw.
+    fn fall_undecided(&self, c: &Convergence) -> bool {
+        use tensegrity_dynamics::convergence::Status;
+        let [plus, minus] = self.tip_angles;
+        let final_lean = c.quantities.iter().find(|q| q.name == "final_lean");
+        let Some([lo, hi]) = final_lean
+            .filter(|q| q.status == Status::Chaotic)
+            .map(|q| q.interval.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]))
+        else {
+            return false;
+        };
+        let beyond = |x: f64| x > plus || x < -minus;
+        // some of [lo, hi] beyond, some inside: the interval meets an edge of (−α₋, α₊)
+        let inside = hi > -minus && lo < plus;
+        let outside = beyond(lo) || beyond(hi);
+        inside && outside
+    }
+
+    /// The headline quantities of this run and of `other`, with their tolerance and scale.
+    #[allow(clippy::type_complexity)]
+    fn headline(&self, other: &Self) -> Vec<(&'static str, Option<f64>, Option<f64>, f64, f64)> {
+        let fell = |r: &Self| Some(f64::from(u8::from(r.fell)));
+        vec![
+            (
+                "max_lean",
+                Some(self.max_lean),
+                Some(other.max_lean),
+                0.05,
+                0.01,
+            ),
+            (
+                "rms_lean",
+                Some(self.rms_lean),
+                Some(other.rms_lean),
+                0.05,
+                0.01,
+            ),
+            (
+                "final_lean",
+                Some(self.final_lean),
+                Some(other.final_lean),
+                0.05,
+                0.01,
+            ),
+            (
+                "downhill",
+                Some(self.downhill),
+                Some(other.downhill),
+                0.02,
+                0.01,
+            ),
+            ("fall_time", self.fall_time, other.fall_time, 0.02, 0.0),
+            ("fell", fell(self), fell(other), 0.5, 1.0),
+        ]
     }
 }

@@ -57,6 +57,8 @@ use tensegrity_dynamics::{
 pub(crate) mod help {
     /// `string_stiffness`.
     pub const STRING_STIFFNESS: &str = "String stiffness of the wheel: the threshold is the rigid one only for a stiff wheel (a soft one deforms and tips early)";
+    /// `dt`, whose default differs between the standing and the rolling wheel.
+    pub const DT: &str = "RK4 step; stiffer strings need a smaller one (default 1e-4 s for the standing wheel under a ramp, 2.5e-5 s for the rolling one, whose wobble coarser steps damp away)";
 }
 
 /// Settings of a dynamic tip-over run (flat serde form, flattened into
@@ -145,7 +147,7 @@ pub struct DynamicTipover {
     #[param(
         number,
         unit = "s",
-        help = "RK4 step; stiffer strings need a smaller one",
+        help = crate::tipover_dynamic::help::DT,
         positive
     )]
     pub dt: f64,

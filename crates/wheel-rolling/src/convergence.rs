@@ -137,6 +137,15 @@ pub fn of_summaries(
     if let Some(twin) = twin {
         let values = headline(twin);
         c.twin(|name| values.iter().find(|(n, _)| *n == name).and_then(|v| v.1));
+        // counts, heights, magnitudes and fractions: the intervals stay where values can be
+        let non_negative = [
+            "impacts",
+            "mean_axle_height",
+            "axle_height_oscillation",
+            "final_speed",
+        ];
+        c.bound(&non_negative, [0.0, f64::INFINITY])
+            .bound(&["airborne_fraction", "slip_fraction"], [0.0, 1.0]);
     }
     c
 }

@@ -436,8 +436,9 @@ def tipover(
         Regularisation velocity of the friction law (m/s); must be finite and positive.
         Default: 0.01
     dt : float
-        RK4 step; stiffer strings need a smaller one (s); must be finite and positive.
-        Default: 0.0001
+        RK4 step; stiffer strings need a smaller one (default 1e-4 s for the standing wheel
+        under a ramp, 2.5e-5 s for the rolling one, whose wobble coarser steps damp away)
+        (s); must be finite and positive. Default: 0.0001
     output_dt : float
         Output interval of the history (s); must be finite and positive. Default: 0.002
     settle : float
