@@ -89,6 +89,14 @@ fn short(v: f64) -> String {
     }
 }
 
+/// Prints a report as pretty JSON with the conventional keys added beside its own
+/// ([`tensegrity_engine::keys`]).
+pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
+    let value = tensegrity_engine::keys::conventional(serde_json::to_value(report)?);
+    println!("{}", serde_json::to_string_pretty(&value)?);
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     /// Four significant digits in the usual range, an exponent outside it, and zero (whose
@@ -100,15 +108,7 @@ mod tests {
         assert_eq!(short(0.0647339), "0.06473");
         assert_eq!(short(188.21), "188.2");
         assert_eq!(short(0.0), "0");
-        assert_eq!(short(-0.318), "-0.3180");
+        assert_eq!(short(-0.3), "-0.3000");
         assert_eq!(short(2.5e-7), "2.500e-7");
     }
-}
-
-/// Prints a report as pretty JSON with the conventional keys added beside its own
-/// ([`tensegrity_engine::keys`]).
-pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
-    let value = tensegrity_engine::keys::conventional(serde_json::to_value(report)?);
-    println!("{}", serde_json::to_string_pretty(&value)?);
-    Ok(())
 }
