@@ -194,7 +194,7 @@ fn print_rows(runs: &[toroid::RollReport]) {
             .iter()
             .any(|q| chaotic(r, q))
     }) {
-        println!("  ~ a single draw of the chaotic hops (a start turned by 1e-6 rad moves it): `tensegrity roll --ensemble 8` gives its interval");
+        println!("  ~ a single draw of the chaotic hops (a start turned by 1e-6 rad moves it): `tensegrity roll` prints the 95 % interval of another run, `--ensemble 8` a tighter one");
     }
 }
 
