@@ -49,6 +49,9 @@ enum Command {
     Sweep(cli::sweep::SweepArgs),
     /// Regenerate every figure of the thesis the project computes (SVG, one per figure).
     Figures(cli::figures::FiguresArgs),
+    /// Load path of a scene: elastic bars, tension-only strings, large displacements, through
+    /// limit points (arc length) or in load steps, with a stability verdict at every point.
+    Solve(cli::solve::SolveArgs),
 }
 
 fn main() {
@@ -71,6 +74,7 @@ fn main() {
         Command::Tbar(args) => cli::tbar::run(args),
         Command::Sweep(args) => cli::sweep::run(args),
         Command::Figures(args) => cli::figures::run(args),
+        Command::Solve(args) => cli::solve::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

@@ -4,7 +4,10 @@
 //! ([`formfind::admitted`]: the estimate of the method that will run checked against the
 //! limits, the form found and its prestress synthesised); the scene and the figure are opened
 //! before the work. What `--method auto` chose, and why, is printed as a warning; the
-//! tolerance an iterative method stopped at is printed beside its iterations.
+//! tolerance an iterative method stopped at is printed beside its iterations. A topology with
+//! `[[loads]]` (or members' `weight`) prints the loads, the reactions at the fixed nodes and
+//! the equilibrium residual, and `--out` writes the loaded scene (its `[[supports]]` and
+//! `[[loads]]` kept).
 
 use super::figure_args::StructureArgs;
 use super::output;
@@ -20,7 +23,8 @@ pub struct FormfindArgs {
     #[command(flatten)]
     request: RequestArgs<FormfindRequest>,
     /// Write the prestressed structure as a scene (rest lengths and stiffnesses realising the
-    /// prestress) that `statics`, `simulate` and every other command read.
+    /// prestress; a loaded form's supports and loads kept) that `statics`, `simulate` and every
+    /// other command read.
     #[arg(long, value_name = "SCENE.toml")]
     out: Option<PathBuf>,
     /// Draw the found structure (SVG, PNG or PDF by the extension).
@@ -58,7 +62,11 @@ pub fn run(args: &FormfindArgs) -> Result<()> {
         super::output::print_json(&found.report)?;
         return Ok(());
     }
-    print_report(&found.report, found.found.tolerance);
+    print_report(
+        &found.report,
+        found.found.tolerance,
+        found.topology.is_loaded(),
+    );
     for (flag, path) in [("scene", &args.out), ("figure", &args.svg)] {
         if let Some(p) = path {
             println!("wrote {flag} {}", p.display());
@@ -103,7 +111,7 @@ fn drawing(found: &Formfound, how: &StructureArgs) -> tensegrity_io::figure::Fig
     draw::drawing_figure_of(vec![panel], 560)
 }
 
-fn print_report(r: &FormfindReport, tolerance: Option<f64>) {
+fn print_report(r: &FormfindReport, tolerance: Option<f64>, loaded: bool) {
     let tolerance = tolerance.map_or(String::new(), |t| format!(" (tolerance {t:.1e})"));
     println!(
         "{}: {} nodes, {} bars, {} strings; method {}, iterations {}{tolerance}",
@@ -120,7 +128,11 @@ fn print_report(r: &FormfindReport, tolerance: Option<f64>) {
         println!("  {i:4}  {:+.9} {:+.9} {:+.9}", c(p[0]), c(p[1]), c(p[2]));
     }
     let force = r.member_force.as_deref().unwrap_or(&[]);
-    println!("members: q [N/m], force at prestress {} N:", r.prestress);
+    if loaded {
+        println!("members: q [N/m], force q·L under the loads [N]:");
+    } else {
+        println!("members: q [N/m], force at prestress {} N:", r.prestress);
+    }
     for (k, q) in r.force_density.iter().enumerate() {
         let name = match k.checked_sub(r.n_bars) {
             None => format!("bar {k}"),
@@ -128,5 +140,23 @@ fn print_report(r: &FormfindReport, tolerance: Option<f64>) {
         };
         let f = force.get(k).map_or(String::new(), |f| format!("{f:>14.6}"));
         println!("  {name:<12} {q:>14.9} {f}");
+    }
+    print_forces("loads (N):", &r.loading.loads);
+    print_forces("reactions at the fixed nodes (N):", &r.loading.reactions);
+    if let Some(e) = r.loading.equilibrium_residual {
+        println!("equilibrium residual at the free nodes {e:.3e} (relative)");
+    }
+}
+
+/// A list of nodal forces under its heading (nothing for an empty list).
+fn print_forces(heading: &str, forces: &[::formfind::NodeForce]) {
+    if forces.is_empty() {
+        return;
+    }
+    println!("{heading}");
+    let c = |x: f64| if x.abs() < 5e-10 { 0.0 } else { x };
+    for f in forces {
+        let [x, y, z] = f.force;
+        println!("  {:4}  {:+.9} {:+.9} {:+.9}", f.node, c(x), c(y), c(z));
     }
 }

@@ -17,6 +17,7 @@ pub mod output;
 pub mod request_args;
 pub mod roll;
 pub mod simulate;
+pub mod solve;
 pub mod spell;
 pub mod statics;
 pub mod sweep;

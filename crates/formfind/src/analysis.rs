@@ -1,9 +1,15 @@
 //! The statics of a found form: residual, self-stress dimension, prestressability and
 //! prestress stability.
 //!
-//! - residual: ‖A q‖ / ‖q‖ with A the equilibrium matrix at the found nodes (rows of fixed
-//!   nodes removed), i.e. the out-of-balance force of the force densities q per unit force
-//!   density (m);
+//! - residual: ‖A q + p‖ / ‖q‖ with A the equilibrium matrix at the found nodes (rows of
+//!   fixed nodes removed) and p the loads (zero without), i.e. the out-of-balance force of the
+//!   force densities q per unit force density (m);
+//! - with loads, the found q balances them rather than being a self-stress: it is no witness
+//!   of prestressability (the core's margin LP decides whether the geometry admits a
+//!   self-stress with the members' signs; a loaded cable net usually admits none, and needs
+//!   none), and the stability certificate below (q balancing the loads with the members'
+//!   signs, D_ff positive definite) is that of the loaded form under its dead loads (its
+//!   geometric stiffness D_ff ⊗ I₃ alone is positive definite);
 //! - self-stress dimension: members − rank A (the rank tolerance relative to σ_max is the
 //!   core's default, or 100 × ‖A q‖/(‖q‖ · size) up to 10⁻⁶ for a form in equilibrium only to
 //!   an iteration's tolerance). When the form is certified (below) and A Aᵀ,
@@ -48,11 +54,13 @@ pub(crate) struct Analysis {
     pub residual: f64,
 }
 
-/// The unbalanced nodal forces A q (one per node; zero at fixed nodes).
-pub(crate) fn out_of_balance(
+/// The members' pull Σ_j q_ij (x_j − x_i) on every node plus its load p_i (`p`: one per
+/// node, or empty for none): the out-of-balance force, −r_i at a held node.
+pub(crate) fn nodal_balance(
     topology: &Topology,
     nodes: &[Vector3<f64>],
     q: &[f64],
+    p: &[Vector3<f64>],
 ) -> Vec<Vector3<f64>> {
     let mut f = vec![Vector3::zeros(); topology.n_nodes];
     for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
@@ -60,15 +68,67 @@ pub(crate) fn out_of_balance(
         f[i] += m;
         f[j] -= m;
     }
+    for (fi, pi) in f.iter_mut().zip(p) {
+        *fi += pi;
+    }
+    f
+}
+
+/// The unbalanced nodal forces A q + p (one per node; zero at fixed nodes).
+pub(crate) fn out_of_balance(
+    topology: &Topology,
+    nodes: &[Vector3<f64>],
+    q: &[f64],
+    p: &[Vector3<f64>],
+) -> Vec<Vector3<f64>> {
+    let mut f = nodal_balance(topology, nodes, q, p);
     for fx in &topology.fixed {
         f[fx.node] = Vector3::zeros();
     }
     f
 }
 
-/// ‖A q‖ / ‖q‖.
-pub(crate) fn residual(topology: &Topology, nodes: &[Vector3<f64>], q: &[f64]) -> f64 {
-    let f = out_of_balance(topology, nodes, q);
+/// The reactions r_i = (D X)_i − p_i at the held nodes (in `topology.fixed` order) and the
+/// relative equilibrium residual of the free nodes, ‖(D X)_f − P_f‖ / ‖F_f‖ with
+/// F_i = Σ_k∋i |q_k| L_k + ‖p_i‖ the size of the forces meeting at node i (0 when no force
+/// meets a free node).
+pub(crate) fn reactions(
+    topology: &Topology,
+    nodes: &[Vector3<f64>],
+    q: &[f64],
+    p: &[Vector3<f64>],
+) -> (Vec<Vector3<f64>>, f64) {
+    let f = nodal_balance(topology, nodes, q, p);
+    let r = topology.fixed.iter().map(|fx| -f[fx.node]).collect();
+    let mut magnitude: Vec<f64> = (0..topology.n_nodes)
+        .map(|i| p.get(i).map_or(0.0, |x| x.norm()))
+        .collect();
+    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+        let t = qk.abs() * (nodes[j] - nodes[i]).norm();
+        magnitude[i] += t;
+        magnitude[j] += t;
+    }
+    let mut held = vec![false; topology.n_nodes];
+    for fx in &topology.fixed {
+        held[fx.node] = true;
+    }
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in (0..topology.n_nodes).filter(|&i| !held[i]) {
+        num += f[i].norm_squared();
+        den += magnitude[i] * magnitude[i];
+    }
+    let relative = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
+    (r, relative)
+}
+
+/// ‖A q + p‖ / ‖q‖ at the free nodes (`p` empty: no loads).
+pub(crate) fn residual(
+    topology: &Topology,
+    nodes: &[Vector3<f64>],
+    q: &[f64],
+    p: &[Vector3<f64>],
+) -> f64 {
+    let f = out_of_balance(topology, nodes, q, p);
     let num = f.iter().map(|v| v.norm_squared()).sum::<f64>().sqrt();
     let den = q.iter().map(|x| x * x).sum::<f64>().sqrt();
     if den > 0.0 {
@@ -109,16 +169,25 @@ pub(crate) fn bare_structure(topology: &Topology, nodes: &[Vector3<f64>]) -> Res
     Ok(b.build()?)
 }
 
-/// The statics of force densities `q` at `nodes` (see the module docs).
-pub(crate) fn analyse(topology: &Topology, nodes: &[Vector3<f64>], q: &[f64]) -> Result<Analysis> {
-    let residual = residual(topology, nodes, q);
+/// The statics of force densities `q` at `nodes` under the loads `p` (one per node, in the
+/// units of `q`; empty: none; see the module docs).
+pub(crate) fn analyse(
+    topology: &Topology,
+    nodes: &[Vector3<f64>],
+    q: &[f64],
+    p: &[Vector3<f64>],
+) -> Result<Analysis> {
+    let residual = residual(topology, nodes, q, p);
     let signs_ok = (0..q.len()).all(|k| crate::topology::member_kind_ok(topology.is_bar(k), q[k]));
     let scale = size(nodes).max(f64::MIN_POSITIVE);
     let witness = signs_ok && residual <= WITNESS_TOLERANCE * scale;
     let certified = witness && super_stable(topology, nodes, q);
+    // Under loads q balances them, so it witnesses no self-stress: prestressability is the
+    // core's decision for the geometry.
+    let loaded = p.iter().any(|x| *x != Vector3::zeros());
     // The sparse shortcut: a witness, a super-stability certificate and no first-order
     // mechanism settle everything without the core's statics.
-    if certified {
+    if certified && !loaded {
         if let Some(rank) = rigid_rank(topology, nodes) {
             return Ok(Analysis {
                 self_stress_dim: q.len() - rank,
@@ -139,7 +208,7 @@ pub(crate) fn analyse(topology: &Topology, nodes: &[Vector3<f64>], q: &[f64]) ->
     }
     let statics = backend(&structure, settings)?;
     let self_stress_dim = statics.self_stress_dim();
-    let prestressable = witness || statics.prestressability()?.prestressable;
+    let prestressable = (witness && !loaded) || statics.prestressability()?.prestressable;
     let prestress_stable = if certified {
         true
     } else if witness && q.len() <= STABILITY_MAX_MEMBERS {

@@ -123,6 +123,7 @@ fn group(q: f64) -> Group {
     Group {
         force_density: Some(q),
         length: None,
+        weight: None,
     }
 }
 
@@ -164,6 +165,7 @@ fn prism(n: usize) -> Topology {
             ("vertical", 1.0),
         ]),
         fixed: Vec::new(),
+        loads: Vec::new(),
     }
 }
 
@@ -200,6 +202,7 @@ fn octahedron() -> Topology {
         strings,
         groups: groups(&[("bars", -1.5), ("strings", 1.0)]),
         fixed: Vec::new(),
+        loads: Vec::new(),
     }
 }
 
@@ -243,6 +246,7 @@ fn tower(n: usize, m: usize) -> Topology {
             ("vertical", 1.0),
         ]),
         fixed: Vec::new(),
+        loads: Vec::new(),
     }
 }
 
@@ -356,5 +360,6 @@ fn grid(k: usize) -> Topology {
             ("vertical", 1.0),
         ]),
         fixed,
+        loads: Vec::new(),
     }
 }

@@ -9,6 +9,9 @@
 //! | `adaptive` | the force densities given, as its start (it replaces them) | any length |
 //! | `dr` | every member's length, the nodes, the stiffnesses | any force density (`fdm` uses them) |
 //!
+//! Loads (`loads`, members' `weight`) are the force density method's alone: under `adaptive`
+//! or `dr` (asked for, or chosen by the data) they are refused naming the first of them.
+//!
 //! [`Method::Given`] (the default) takes `fdm` when every member has a force density, `dr`
 //! when every member has a length instead and `adaptive` when neither is given; force
 //! densities and lengths together, or given on only some members, are refused naming the
@@ -76,7 +79,39 @@ pub(crate) fn choose(topology: &Topology, asked: Method) -> Result<Choice> {
         },
         Method::Given | Method::Auto => by_data(topology, asked, &q, &l),
     };
-    chosen.and_then(|c| starts(topology, c, with_length))
+    chosen
+        .and_then(|c| starts(topology, c, with_length))
+        .and_then(|c| loaded(topology, c))
+}
+
+/// Loads and weights are the force density method's: under another method they are refused
+/// by name (the first load, else the first weighted member).
+fn loaded(topology: &Topology, c: Choice) -> Result<Choice> {
+    if c.method == Method::Fdm || !topology.is_loaded() {
+        return Ok(c);
+    }
+    let item = if topology.loads.is_empty() {
+        let k = topology
+            .given_weights()
+            .iter()
+            .position(Option::is_some)
+            .unwrap_or(0);
+        format!("{}.weight", topology.member_name(k))
+    } else {
+        "loads[0]".to_string()
+    };
+    let why = c
+        .reason
+        .as_deref()
+        .map_or(String::new(), |r| format!(" ({r})"));
+    Err(refused(
+        item,
+        format!(
+            "the {} method{why} takes no loads; the force density method (`method = fdm`, a \
+             force density on every member) finds the loaded form",
+            c.method
+        ),
+    ))
 }
 
 /// Dynamic relaxation starts from the topology's nodes: without them the lengths it would

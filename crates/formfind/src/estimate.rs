@@ -11,7 +11,9 @@
 //!   g × g Gram matrix; `auto` with every force density given may fall back to it, so its
 //!   estimate is the force density method's plus the adaptive method's;
 //! - sparse solve (fixed nodes, or large free-standing topologies): a sparse LU of the
-//!   (planar-like) D_ff, ≈ 200 n^1.5 flops, and a few hundred bytes per member;
+//!   (planar-like) D_ff, ≈ 200 n^1.5 flops, and a few hundred bytes per member; with members'
+//!   self-weight, `max_iterations` more solves with the factors at most (the fixed point, the
+//!   `fdm` module), ≈ 100 n flops each;
 //! - dynamic relaxation: ≈ [`DR_FLOPS_PER_MEMBER`] · m flops per step, `max_iterations` steps
 //!   at most;
 //! - the statics of the result: the core's dense statics estimate of the 3n × m equilibrium
@@ -59,7 +61,12 @@ pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
         .and("nodes", n)
         .and("members", m)
         .and("method", chosen.method);
-    if chosen.method != Method::Fdm || chosen.fallback {
+    let weighted = !topology.fixed.is_empty()
+        && topology
+            .given_weights()
+            .iter()
+            .any(|w| w.is_some_and(|w| w > 0.0));
+    if chosen.method != Method::Fdm || chosen.fallback || weighted {
         params = params.and("max_iterations", settings.max_iterations);
     }
     let find = match chosen.method {
@@ -67,6 +74,13 @@ pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
         Method::Adaptive => adaptive(topology, settings, params.clone()),
         _ if chosen.fallback => {
             fdm(topology, params.clone()).then(adaptive(topology, settings, params.clone()))
+        }
+        _ if weighted => {
+            let solves = settings.max_iterations as f64 * 100.0 * n as f64;
+            let iteration = Estimate::new("the self-weight's fixed point", params.clone())
+                .memory(48.0 * n as f64)
+                .work(solves / SCALAR_FLOP_RATE);
+            fdm(topology, params.clone()).then(iteration)
         }
         _ => fdm(topology, params.clone()),
     };

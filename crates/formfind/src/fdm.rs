@@ -32,8 +32,32 @@
 //!
 //! **Fixed nodes**: the free coordinates solve D_ff X_f = −D_fx X_x (sparse LU; D_ff is
 //! indefinite when bars are present).
+//!
+//! **Loads** (fixed nodes only; a free-standing topology with loads is refused, see
+//! [`crate::Topology`]): with point loads P (one row per node, summed over the `loads` on it)
+//! the equilibrium of node i is Σ_j q_ij (x_j − x_i) + p_i + r_i = 0, r_i the reaction, zero
+//! at a free node. The free coordinates solve
+//!
+//! D_ff X_f = P_f − D_fx X_x,
+//!
+//! and the reaction at a held node is r_i = (D X)_i − p_i (a load on a held node goes straight
+//! into its reaction). The force densities are physical here (N/m, loads in N): the form
+//! changes when q is scaled, unlike the unloaded one. q and P are divided by max|q| for the
+//! solve (the same X), so force densities near the largest double do not overflow D.
+//!
+//! **Self-weight**: a member of weight w per length (N/m, its own `weight` or its group's)
+//! adds w L / 2 along −z at each end node, L its length in the found form. The loads then
+//! depend on X, so X is the fixed point of X ↦ solve(P(X)), started from the form under the
+//! point loads alone, with D_ff factored once: it stops when the largest change of a node
+//! coordinate is at most `tolerance` (the settings', default 10⁻¹²) times the form's size (the
+//! diagonal of its bounding box), and fails with [`FormFindError::NotConverged`] after
+//! `max_iterations`. The map contracts when the weights' change with the geometry is small
+//! against the force densities (a light net, taut strings); a net whose weight dominates its
+//! force densities may not converge — raise the force densities. The reported loads are
+//! P(X) at the returned X.
 
 use crate::error::{FormFindError, Result};
+use crate::method::Settings;
 use crate::topology::Topology;
 use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3, Vector4};
 use tensegrity_linalg::{self as linalg, CscMatrix, SparseLu};
@@ -291,97 +315,246 @@ pub(crate) fn fixed_solve(
     q: &[f64],
     fixed: &[(usize, Vector3<f64>)],
 ) -> Result<Vec<Vector3<f64>>> {
-    let n = topology.n_nodes;
-    let mut position: Vec<Option<Vector3<f64>>> = vec![None; n];
-    for &(i, x) in fixed {
-        position[i] = Some(x);
-    }
-    let mut free_index = vec![usize::MAX; n];
-    let mut free = Vec::new();
-    for i in 0..n {
-        if position[i].is_none() {
-            free_index[i] = free.len();
-            free.push(i);
+    FixedSystem::new(topology, q, fixed)?.solve(&[])
+}
+
+/// D_ff factored once for held nodes: the solves of D_ff X_f = P_f − D_fx X_x for any loads
+/// P (the self-weight iteration solves it once per iteration).
+pub(crate) struct FixedSystem {
+    /// The position of every held node, `None` for a free one.
+    position: Vec<Option<Vector3<f64>>>,
+    /// The free nodes, in index order.
+    free: Vec<usize>,
+    /// D_ff.
+    a: CscMatrix,
+    /// Its LU factors.
+    lu: Option<SparseLu>,
+    /// −D_fx X_x, one row per free node.
+    rhs: Vec<Vector3<f64>>,
+    /// max |q|.
+    dmax: f64,
+}
+
+impl FixedSystem {
+    /// Assembles and factors D_ff; a numerically singular one is the error.
+    pub(crate) fn new(
+        topology: &Topology,
+        q: &[f64],
+        fixed: &[(usize, Vector3<f64>)],
+    ) -> Result<Self> {
+        let n = topology.n_nodes;
+        let mut position: Vec<Option<Vector3<f64>>> = vec![None; n];
+        for &(i, x) in fixed {
+            position[i] = Some(x);
         }
+        let mut free_index = vec![usize::MAX; n];
+        let mut free = Vec::new();
+        for i in 0..n {
+            if position[i].is_none() {
+                free_index[i] = free.len();
+                free.push(i);
+            }
+        }
+        let nf = free.len();
+        let mut t = Vec::new();
+        let mut rhs = vec![Vector3::zeros(); nf];
+        let mut dmax = 0.0f64;
+        for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+            dmax = dmax.max(qk.abs());
+            for (a, b) in [(i, j), (j, i)] {
+                if position[a].is_some() {
+                    continue;
+                }
+                let fa = free_index[a];
+                t.push((fa, fa, qk));
+                match position[b] {
+                    Some(xb) => rhs[fa] += qk * xb,
+                    None => t.push((fa, free_index[b], -qk)),
+                }
+            }
+        }
+        let a = CscMatrix::from_triplets(nf, nf, &t)?;
+        let lu = if nf == 0 {
+            None
+        } else {
+            let mut lu = SparseLu::new(&a).map_err(|e| singular(nf, e.to_string()))?;
+            // A numerically singular D_ff factors without complaint: solve D_ff y = D_ff z
+            // for a fixed pseudo-random z and require y = z.
+            let z: Vec<f64> = (0..nf).map(|i| (0.7 + 1.3 * i as f64).sin()).collect();
+            let mut y = a.mul_vec(&z);
+            lu.solve_in_place(&mut y);
+            let dev = y
+                .iter()
+                .zip(&z)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            if dev.is_nan() || dev > SINGULARITY_TOLERANCE {
+                return Err(singular(
+                    nf,
+                    format!(
+                        "a test solve is off by {dev:.1e}: D has null vectors that vanish at \
+                         the held nodes"
+                    ),
+                ));
+            }
+            Some(lu)
+        };
+        Ok(FixedSystem {
+            position,
+            free,
+            a,
+            lu,
+            rhs,
+            dmax,
+        })
     }
-    if free.is_empty() {
-        return Ok(position
+
+    /// Every node's position under the loads `p` (one per node, or none: unloaded); the
+    /// solve's residual is checked.
+    pub(crate) fn solve(&mut self, p: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>>> {
+        let nf = self.free.len();
+        let mut position = self.position.clone();
+        if let Some(lu) = &mut self.lu {
+            let rhs: Vec<Vector3<f64>> = self
+                .free
+                .iter()
+                .zip(&self.rhs)
+                .map(|(&i, r)| r + p.get(i).copied().unwrap_or_default())
+                .collect();
+            let mut x = vec![Vector3::zeros(); nf];
+            for axis in 0..3 {
+                let mut b: Vec<f64> = rhs.iter().map(|r| r[axis]).collect();
+                lu.solve_in_place(&mut b);
+                for (xi, bi) in x.iter_mut().zip(&b) {
+                    xi[axis] = *bi;
+                }
+            }
+            // Residual of the solve, against the size of its terms.
+            let size = x
+                .iter()
+                .chain(self.position.iter().flatten())
+                .fold(0.0f64, |a, p| a.max(p.amax()));
+            let pmax = p.iter().fold(0.0f64, |a, f| a.max(f.amax()));
+            let mut res = 0.0f64;
+            for axis in 0..3 {
+                let xa: Vec<f64> = x.iter().map(|p| p[axis]).collect();
+                let ax = self.a.mul_vec(&xa);
+                for (k, v) in ax.iter().enumerate() {
+                    res = res.max((v - rhs[k][axis]).abs());
+                }
+            }
+            let scale = self.dmax * size.max(1e-300) + pmax;
+            if !size.is_finite() || !res.is_finite() || res > SOLVE_TOLERANCE * scale {
+                return Err(singular(nf, format!("solve residual {res:.2e}")));
+            }
+            for (k, &i) in self.free.iter().enumerate() {
+                position[i] = Some(x[k]);
+            }
+        }
+        Ok(position
             .into_iter()
             .map(|p| p.unwrap_or_default())
-            .collect());
+            .collect())
     }
-    let nf = free.len();
-    let mut t = Vec::new();
-    let mut rhs = vec![Vector3::zeros(); nf];
-    let mut dmax = 0.0f64;
-    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
-        dmax = dmax.max(qk.abs());
-        for (a, b) in [(i, j), (j, i)] {
-            if position[a].is_some() {
-                continue;
-            }
-            let fa = free_index[a];
-            t.push((fa, fa, qk));
-            match position[b] {
-                Some(xb) => rhs[fa] += qk * xb,
-                None => t.push((fa, free_index[b], -qk)),
-            }
-        }
-    }
-    let singular = |detail: String| FormFindError::SingularSystem {
+}
+
+/// D_ff of `nf` free nodes is singular (`detail`: how it showed).
+fn singular(nf: usize, detail: String) -> FormFindError {
+    FormFindError::SingularSystem {
         hint: format!(
             "D_ff of the {nf} free nodes is singular ({detail}): the fixed nodes do not \
              determine the free ones with these force densities; fix more nodes or change \
              the force densities"
         ),
-    };
-    let a = CscMatrix::from_triplets(nf, nf, &t)?;
-    let mut lu = SparseLu::new(&a).map_err(|e| singular(e.to_string()))?;
-    // A numerically singular D_ff factors without complaint: solve D_ff y = D_ff z for a
-    // fixed pseudo-random z and require y = z.
-    let z: Vec<f64> = (0..nf).map(|i| (0.7 + 1.3 * i as f64).sin()).collect();
-    let mut y = a.mul_vec(&z);
-    lu.solve_in_place(&mut y);
-    let dev = y
-        .iter()
-        .zip(&z)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    if dev.is_nan() || dev > SINGULARITY_TOLERANCE {
-        return Err(singular(format!(
-            "a test solve is off by {dev:.1e}: D has null vectors that vanish at the held nodes"
-        )));
     }
-    let mut x = vec![Vector3::zeros(); nf];
-    for axis in 0..3 {
-        let mut b: Vec<f64> = rhs.iter().map(|r| r[axis]).collect();
-        lu.solve_in_place(&mut b);
-        for (xi, bi) in x.iter_mut().zip(&b) {
-            xi[axis] = *bi;
+}
+
+/// A loaded form: the nodes, the load on every node (N) and the iterations.
+pub(crate) type Loaded = (Vec<Vector3<f64>>, Vec<Vector3<f64>>, usize);
+
+/// The loaded form (module docs, **Loads**): the nodes, the loads each node carries at them
+/// (point loads plus the lumped self-weight; N, in the units of `q`) and the iterations of the
+/// self-weight's fixed point (1 without weights). `q` and the loads are scaled together by
+/// 1 / max|q| for the solve.
+pub(crate) fn loaded(topology: &Topology, q: &[f64], settings: &Settings) -> Result<Loaded> {
+    let scale = q
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    let unit: Vec<f64> = q.iter().map(|x| x / scale).collect();
+    let fixed: Vec<(usize, Vector3<f64>)> = topology
+        .fixed
+        .iter()
+        .map(|f| (f.node, Vector3::from(f.position)))
+        .collect();
+    let mut system = FixedSystem::new(topology, &unit, &fixed)?;
+    let point = point_loads(topology);
+    let weights: Vec<f64> = topology
+        .given_weights()
+        .iter()
+        .map(|w| w.unwrap_or(0.0))
+        .collect();
+    let weighted = weights.iter().any(|&w| w > 0.0);
+    let scaled =
+        |p: &[Vector3<f64>]| -> Vec<Vector3<f64>> { p.iter().map(|f| f / scale).collect() };
+    let mut nodes = system.solve(&scaled(&point))?;
+    if !weighted {
+        return Ok((nodes, point, 1));
+    }
+    // The self-weight's fixed point: P(X) = P_point + lumped w L(X), solved until the
+    // largest change of a node is at most the tolerance times the form's size.
+    let (mut change, mut done) = (f64::INFINITY, 0);
+    for iteration in 1..=settings.max_iterations {
+        done = iteration;
+        let p = with_weight(topology, &point, &weights, &nodes);
+        let next = system.solve(&scaled(&p))?;
+        change = next
+            .iter()
+            .zip(&nodes)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).amax()));
+        let size = crate::analysis::size(&next).max(f64::MIN_POSITIVE);
+        nodes = next;
+        if !change.is_finite() {
+            break;
+        }
+        if change <= settings.tolerance * size {
+            let p = with_weight(topology, &point, &weights, &nodes);
+            return Ok((nodes, p, iteration));
+        }
+        change /= size;
+    }
+    Err(FormFindError::NotConverged {
+        method: "fdm (the self-weight's fixed point X = solve(P(X)))".into(),
+        iterations: done,
+        residual: change,
+        tolerance: settings.tolerance,
+    })
+}
+
+/// The point loads summed per node (N).
+pub(crate) fn point_loads(topology: &Topology) -> Vec<Vector3<f64>> {
+    let mut p = vec![Vector3::zeros(); topology.n_nodes];
+    for l in &topology.loads {
+        p[l.node] += Vector3::from(l.force);
+    }
+    p
+}
+
+/// The point loads plus each member's weight w L at `nodes`, half at each end, along −z.
+pub(crate) fn with_weight(
+    topology: &Topology,
+    point: &[Vector3<f64>],
+    weights: &[f64],
+    nodes: &[Vector3<f64>],
+) -> Vec<Vector3<f64>> {
+    let mut p = point.to_vec();
+    for (&[i, j], &w) in topology.member_nodes().iter().zip(weights) {
+        if w > 0.0 {
+            let half = 0.5 * w * (nodes[j] - nodes[i]).norm();
+            p[i].z -= half;
+            p[j].z -= half;
         }
     }
-    // Residual of the solve.
-    let size = x
-        .iter()
-        .chain(fixed.iter().map(|(_, p)| p))
-        .fold(0.0f64, |a, p| a.max(p.amax()));
-    let mut res = 0.0f64;
-    for axis in 0..3 {
-        let xa: Vec<f64> = x.iter().map(|p| p[axis]).collect();
-        let ax = a.mul_vec(&xa);
-        for (k, v) in ax.iter().enumerate() {
-            res = res.max((v - rhs[k][axis]).abs());
-        }
-    }
-    if !size.is_finite() || !res.is_finite() || res > SOLVE_TOLERANCE * dmax * size.max(1e-300) {
-        return Err(singular(format!("solve residual {res:.2e}")));
-    }
-    for (k, &i) in free.iter().enumerate() {
-        position[i] = Some(x[k]);
-    }
-    Ok(position
-        .into_iter()
-        .map(|p| p.unwrap_or_default())
-        .collect())
+    p
 }
 
 /// Four affinely independent nodes, well spread: the farthest from the centroid, the

@@ -19,8 +19,13 @@
 //!   neither; data given is never ignored, and a failing method never silently becomes
 //!   another ([`form_find`]). [`Method::Auto`] (asked for by name) may fall back from `fdm`
 //!   to `adaptive`, and says so.
+//! - Loads ([`Topology::loads`], members' [`Member::weight`]): the force density method with
+//!   fixed nodes solves D_ff X_f = P_f − D_fx X_x, the self-weight by a fixed-point iteration,
+//!   and reports the loads carried, the reactions r_i = (D X)_i − p_i at the fixed nodes and
+//!   the equilibrium residual ([`FormFound::reactions`]); free-standing topologies with loads
+//!   and other methods are refused (the `fdm` module docs).
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
-//!   prestress level.
+//!   prestress level (a loaded form: the forces q L the loads set, and the loads kept).
 //!
 //! Topologies come from a [`Topology`] (built in Rust, read from a TOML file by the io crate)
 //! or from [`builtin`] (`prism:N`, `octahedron`, `tower:N:M`, `grid:K`, …).
@@ -84,10 +89,10 @@ pub use error::{FormFindError, Result};
 pub use estimate::{estimate, ADAPTIVE_START, DR_FLOPS_PER_MEMBER, EIGEN_FLOPS};
 pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
 pub use method::{Method, Settings, Synthesis};
-pub use report::{find, scale_group, FormfindReport, Formfound};
-pub use result::FormFound;
+pub use report::{find, scale_group, FormfindReport, Formfound, Loading};
+pub use result::{FormFound, NodeForce};
 pub use synth::{rest_lengths, synthesize, synthesize_with, RestLengths, MIN_STRAIN};
-pub use topology::{too_many_nodes, FixedNode, Group, Member, Topology};
+pub use topology::{too_many_nodes, FixedNode, Group, Member, NodeLoad, Topology};
 
 use nalgebra::Vector3;
 
@@ -106,7 +111,7 @@ pub fn form_find(topology: &Topology, settings: &Settings) -> Result<FormFound> 
     settings.validate()?;
     let choice = choice::choose(topology, settings.method)?;
     let found = match choice.method {
-        Method::Fdm => run_fdm(topology),
+        Method::Fdm => run_fdm(topology, settings),
         Method::Dr => {
             let (nodes, q, it, tol) = dr::run(topology, settings)?;
             finish(topology, Method::Dr, nodes, q, (it, Some(tol)))
@@ -150,8 +155,17 @@ fn falls_back(topology: &Topology, e: &FormFindError) -> bool {
         && topology.n_nodes <= adaptive::MAX_NODES
 }
 
-fn run_fdm(topology: &Topology) -> Result<FormFound> {
+fn run_fdm(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     let q = topology.force_densities()?;
+    if topology.is_loaded() && !topology.fixed.is_empty() {
+        let (nodes, loads, iterations) = fdm::loaded(topology, &q, settings)?;
+        let weighted = topology
+            .given_weights()
+            .iter()
+            .any(|w| w.unwrap_or(0.0) > 0.0);
+        let tolerance = weighted.then_some(settings.tolerance);
+        return finish_loaded(topology, nodes, q, &loads, (iterations, tolerance));
+    }
     let nodes = fdm::geometry(topology, &q)?;
     finish(topology, Method::Fdm, nodes, q, (1, None))
 }
@@ -171,6 +185,36 @@ fn finish(
     method: Method,
     nodes: Vec<Vector3<f64>>,
     q: Vec<f64>,
+    iterations: (usize, Option<f64>),
+) -> Result<FormFound> {
+    finish_with(topology, method, nodes, q, &[], iterations)
+}
+
+/// [`finish`] of the force density method under `loads` (one per node, N).
+fn finish_loaded(
+    topology: &Topology,
+    nodes: Vec<Vector3<f64>>,
+    q: Vec<f64>,
+    loads: &[Vector3<f64>],
+    iterations: (usize, Option<f64>),
+) -> Result<FormFound> {
+    if let Some(i) = loads.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
+        return Err(FormFindError::NonFinite {
+            method: Method::Fdm.to_string(),
+            item: format!("the load on node {i}"),
+        });
+    }
+    finish_with(topology, Method::Fdm, nodes, q, loads, iterations)
+}
+
+/// [`finish`] with the loads (`loads`: one per node in N, or empty), the reactions and the
+/// equilibrium residual.
+fn finish_with(
+    topology: &Topology,
+    method: Method,
+    nodes: Vec<Vector3<f64>>,
+    q: Vec<f64>,
+    loads: &[Vector3<f64>],
     (iterations, tolerance): (usize, Option<f64>),
 ) -> Result<FormFound> {
     let non_finite = |item: String| FormFindError::NonFinite {
@@ -188,10 +232,40 @@ fn finish(
     }
     let scale = q.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let unit: Vec<f64> = q.iter().map(|x| x / scale.max(f64::MIN_POSITIVE)).collect();
-    let a = analysis::analyse(topology, &nodes, &unit)?;
+    let unit_loads: Vec<Vector3<f64>> = loads
+        .iter()
+        .map(|p| p / scale.max(f64::MIN_POSITIVE))
+        .collect();
+    let a = analysis::analyse(topology, &nodes, &unit, &unit_loads)?;
     if !a.residual.is_finite() {
         return Err(non_finite("the residual".into()));
     }
+    let (reactions, equilibrium_residual) = if topology.fixed.is_empty() {
+        (Vec::new(), None)
+    } else {
+        let (r, relative) = analysis::reactions(topology, &nodes, &unit, &unit_loads);
+        let mut reactions = Vec::with_capacity(r.len());
+        for (f, r) in topology.fixed.iter().zip(r) {
+            let force = r * scale;
+            if !force.iter().all(|x| x.is_finite()) || !relative.is_finite() {
+                return Err(non_finite(format!("the reaction at node {}", f.node)));
+            }
+            reactions.push(NodeForce {
+                node: f.node,
+                force: [force.x, force.y, force.z],
+            });
+        }
+        (reactions, Some(relative))
+    };
+    let loads = loads
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| **p != Vector3::zeros() || topology.loads.iter().any(|l| l.node == *i))
+        .map(|(node, p)| NodeForce {
+            node,
+            force: [p.x, p.y, p.z],
+        })
+        .collect();
     Ok(FormFound {
         method,
         nodes,
@@ -203,6 +277,9 @@ fn finish(
         iterations,
         tolerance,
         choice: None,
+        loads,
+        reactions,
+        equilibrium_residual,
     })
 }
 

@@ -5,11 +5,16 @@
 //! At the prestress level P (the largest string tension) the member forces are
 //! T_k = α q_k L_k with α = P / max_strings(q_k L_k), and each string's rest length is
 //! s0 = L / (1 + T / EA) (see [`rest_lengths`]). The report also holds the equilibrium
-//! residual ‖A q‖ / ‖q‖ of the found geometry, its height (the z extent of the nodes the method
-//! placed) and the longest bar.
+//! residual ‖A q + p‖ / ‖q‖ of the found geometry (p the loads), its height (the z extent of
+//! the nodes the method placed) and the longest bar; with fixed nodes the reactions and the
+//! relative equilibrium residual of the free nodes, with loads the loads carried
+//! ([`Loading`]). A loaded form is not scaled to a prestress level: its force densities
+//! balance loads in N, so T_k = q_k L_k (the `synth` module).
 
 use crate::synth::{rest_lengths, synthesize_with};
-use crate::{form_find, FormFindError, FormFound, Method, Result, Settings, Synthesis, Topology};
+use crate::{
+    form_find, FormFindError, FormFound, Method, NodeForce, Result, Settings, Synthesis, Topology,
+};
 use serde::Serialize;
 use tensegrity_core::request::InvalidParameter;
 use tensegrity_core::Structure;
@@ -36,11 +41,13 @@ pub struct FormfindReport {
     pub force_density: Vec<f64>,
     /// Dimension of the self-stress space of the found geometry.
     pub self_stress_dim: usize,
-    /// Whether a self-stress with strings in tension and bars in compression exists.
+    /// Whether a self-stress with strings in tension and bars in compression exists (for a
+    /// loaded form: besides the stress that carries the loads, which a loaded form needs
+    /// instead; no warning when it is false there).
     pub prestressable: bool,
     /// Whether the prestressed structure is stable.
     pub prestress_stable: bool,
-    /// ‖A q‖ / ‖q‖ at the found geometry.
+    /// ‖A q + p‖ / ‖q‖ at the found geometry (p the loads, zero without; m).
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
     pub iterations: usize,
@@ -55,7 +62,9 @@ pub struct FormfindReport {
     /// The longest bar (m; 0 without bars).
     #[column(unit = "m")]
     pub max_bar_length: f64,
-    /// The prestress level of the exported structure: the largest string tension (N).
+    /// The prestress level of the exported structure: the largest string tension (N). For a
+    /// loaded form the loads set the member forces (q L) and this is their largest string
+    /// tension; the requested level is not applied.
     #[column(unit = "N")]
     pub prestress: f64,
     /// Member forces at that level (N, tension-positive), `null` where there is no scene.
@@ -63,8 +72,33 @@ pub struct FormfindReport {
     /// Rest length of each string of the exported structure (m), `null` where there is no
     /// scene.
     pub rest_length: Option<Vec<f64>>,
+    /// The loads, the reactions and the equilibrium residual, as top-level keys (`loads`,
+    /// `reactions`, `equilibrium_residual`), each present only where it applies.
+    #[serde(flatten)]
+    #[column(skip)]
+    pub loading: Loading,
     /// What the caller should know (a form that is not prestress-stable, no scene, …).
     pub warnings: Vec<Warning>,
+}
+
+/// The loads a form carries and the reactions that balance them (keys of
+/// [`FormfindReport`], flattened into it).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Loading {
+    /// The loads on the nodes (N), one per loaded node in node order: point loads summed per
+    /// node plus the lumped self-weight at the found lengths; absent without loads.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<NodeForce>,
+    /// The reaction at each fixed node, r_i = (D X)_i − p_i (N, in the `fixed` order), so
+    /// that Σ r + Σ p = 0; absent without fixed nodes. In the units of `force_density` × m:
+    /// physical where the force densities are (the force density method), relative where a
+    /// method normalises them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reactions: Vec<NodeForce>,
+    /// ‖(D X)_f − P_f‖ / ‖F_f‖ at the free nodes, F_i = Σ_k∋i |q_k| L_k + ‖p_i‖ (relative);
+    /// absent without fixed nodes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equilibrium_residual: Option<f64>,
 }
 
 /// Everything a `formfind` run makes: the topology, the found form, the structure realising
@@ -99,7 +133,8 @@ pub fn find(
             reason: reason.clone(),
         })
         .collect();
-    if !found.prestressable {
+    // a loaded form is stressed by its loads and needs no self-stress
+    if !found.prestressable && !topology.is_loaded() {
         warnings.push(Warning::NotPrestressable);
     } else if !found.prestress_stable {
         warnings.push(Warning::NotPrestressStable);
@@ -141,9 +176,18 @@ pub fn find(
             .iter()
             .map(|b| (found.nodes[b.nodes[1]] - found.nodes[b.nodes[0]]).norm())
             .fold(0.0, f64::max),
-        prestress: synthesis.prestress,
+        prestress: if topology.is_loaded() {
+            loaded_prestress(&topology, &found)
+        } else {
+            synthesis.prestress
+        },
         member_force: rest.as_ref().map(|r| r.tension.clone()),
         rest_length: rest.map(|r| r.rest_length),
+        loading: Loading {
+            loads: found.loads.clone(),
+            reactions: found.reactions.clone(),
+            equilibrium_residual: found.equilibrium_residual,
+        },
         warnings,
     };
     Ok(Formfound {
@@ -187,6 +231,17 @@ pub fn scale_group(
         return Err(InvalidParameter::text("group", name, reason));
     }
     Ok(())
+}
+
+/// The largest string tension q L of a loaded form (N; 0 without strings): the loads set it.
+fn loaded_prestress(topology: &Topology, found: &FormFound) -> f64 {
+    let nb = topology.bars.len();
+    topology
+        .strings
+        .iter()
+        .zip(&found.force_density[nb..])
+        .map(|(m, q)| q * (found.nodes[m.nodes[1]] - found.nodes[m.nodes[0]]).norm())
+        .fold(0.0, f64::max)
 }
 
 /// The extent along z of the nodes that are not held.

@@ -22,7 +22,8 @@ pub struct FormFound {
     /// Whether the prestressed structure is stable (positive-definite stiffness on the
     /// non-rigid motions).
     pub prestress_stable: bool,
-    /// ‖A q‖ / ‖q‖ at the found geometry (A the equilibrium matrix, q the force densities).
+    /// ‖A q + p‖ / ‖q‖ at the found geometry (A the equilibrium matrix without the rows of
+    /// fixed nodes, q the force densities, p the loads: zero without).
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
     pub iterations: usize,
@@ -33,6 +34,27 @@ pub struct FormFound {
     /// What method `auto` chose and why (`None` unless `auto` was asked for): a front end
     /// shows it as a warning.
     pub choice: Option<String>,
+    /// The loads the form carries, one per loaded node in node order (N): the point loads
+    /// summed per node plus the members' lumped self-weight at the found lengths (empty
+    /// without loads).
+    pub loads: Vec<NodeForce>,
+    /// The reaction r_i = (D X)_i − p_i at each fixed node, in the topology's `fixed` order
+    /// (N, in the units of `force_density` times m; empty without fixed nodes): with the
+    /// loads, Σ r + Σ p = 0.
+    pub reactions: Vec<NodeForce>,
+    /// The relative equilibrium residual of the free nodes, ‖(D X)_f − P_f‖ / ‖F_f‖ with
+    /// F_i = Σ_k∋i |q_k| L_k + ‖p_i‖ the size of the forces meeting at node i (`None`
+    /// without fixed nodes).
+    pub equilibrium_residual: Option<f64>,
+}
+
+/// A force at a node: a load or a reaction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NodeForce {
+    /// The node index.
+    pub node: usize,
+    /// The force [x, y, z] (N).
+    pub force: [f64; 3],
 }
 
 impl FormFound {

@@ -2,7 +2,11 @@
 //! equilibrium at t = 0.
 //!
 //! The self-stress is scaled by α = P / max_s(q_s L_s) so that the largest string tension is
-//! the prestress level P (N); member k then carries T_k = α q_k L_k. With axial stiffness
+//! the prestress level P (N); member k then carries T_k = α q_k L_k. A loaded form (point
+//! loads or weights, the `fdm` module) is not scaled: its force densities balance loads given
+//! in N, so T_k = q_k L_k and the prestress level is not applied (the largest string tension
+//! follows from the loads); its structure carries the loads (point loads plus the lumped
+//! self-weight) on its nodes, so the written scene is in equilibrium under them. With axial stiffness
 //! EA_k (N) the rest length solving T = EA (L − s0)/s0 is
 //!
 //! s0 = L / (1 + T / EA),
@@ -81,6 +85,7 @@ pub fn rest_lengths(
         .iter()
         .map(|x| x / qmax.max(f64::MIN_POSITIVE))
         .collect();
+    let loaded = topology.is_loaded();
     let mut max_tension = 0.0f64;
     for k in nb..pairs.len() {
         if q[k].is_nan() || q[k] <= 0.0 {
@@ -94,12 +99,17 @@ pub fn rest_lengths(
         }
         max_tension = max_tension.max(q[k] * lengths[k]);
     }
-    if max_tension <= 0.0 {
+    if max_tension <= 0.0 && !loaded {
         return Err(FormFindError::NoPrestress {
             reason: "no string carries tension".into(),
         });
     }
-    let scale = synthesis.prestress / max_tension;
+    // the loads fix the forces: T = q L in N (the prestress level is not applied)
+    let scale = if loaded {
+        qmax
+    } else {
+        synthesis.prestress / max_tension
+    };
     let mut out = RestLengths {
         scale: scale / qmax,
         tension: Vec::with_capacity(pairs.len()),
@@ -173,7 +183,7 @@ fn check_member(
 
 /// The structure realising `found` (see the module docs): nodes at the found positions,
 /// bars of mass `bar_mass`, strings with rest length s0 and spring constant EA/s0, fixed
-/// nodes pinned.
+/// nodes pinned, the form's loads (if any) on their nodes.
 pub fn synthesize(
     topology: &Topology,
     found: &FormFound,
@@ -210,6 +220,9 @@ pub fn synthesize_with(
     }
     for f in &topology.fixed {
         b = b.support(Support::pinned(f.node));
+    }
+    for l in &found.loads {
+        b = b.load(l.node, l.force);
     }
     Ok(b.build()?)
 }

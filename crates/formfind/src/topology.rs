@@ -1,6 +1,13 @@
 //! A form-finding topology: nodes (optionally with positions, an initial guess), bars and
-//! strings (node pairs, optional force density, group and target length), named groups of
-//! members sharing a force density, and fixed nodes with their coordinates.
+//! strings (node pairs, optional force density, group, target length and weight per length),
+//! named groups of members sharing a force density, fixed nodes with their coordinates, and
+//! point loads on nodes.
+//!
+//! Loads (point loads and members' self-weight) are taken by the force density method only,
+//! and only with fixed nodes to carry them: the fixed nodes' reactions balance them. A
+//! free-standing topology with loads is refused naming `loads` (or the first weighted member):
+//! loads whose sum is not zero cannot be in equilibrium without supports, and self-balanced
+//! loads would leave the form undetermined up to the affine null space of D.
 
 use crate::error::{FormFindError, Result};
 use serde::{Deserialize, Serialize};
@@ -19,6 +26,10 @@ pub struct Member {
     pub length: Option<f64>,
     /// Axial stiffness EA in N, for dynamic relaxation and synthesis (default: the settings').
     pub stiffness: Option<f64>,
+    /// Weight per unit length (N/m, acting along −z), for the force density method's
+    /// self-weight: half of w · L at each end node, L the found length.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weight: Option<f64>,
 }
 
 impl Member {
@@ -30,6 +41,7 @@ impl Member {
             group: None,
             length: None,
             stiffness: None,
+            weight: None,
         }
     }
 
@@ -53,6 +65,9 @@ pub struct Group {
     pub force_density: Option<f64>,
     /// Target (rest) length of every member of the group (m).
     pub length: Option<f64>,
+    /// Weight per unit length of every member of the group (N/m, along −z).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weight: Option<f64>,
 }
 
 /// A node held at given coordinates.
@@ -62,6 +77,15 @@ pub struct FixedNode {
     pub node: usize,
     /// Its coordinates (m).
     pub position: [f64; 3],
+}
+
+/// A point load on a node (the force density method's external force p_i).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NodeLoad {
+    /// The node index.
+    pub node: usize,
+    /// The force (N).
+    pub force: [f64; 3],
 }
 
 /// A connectivity to find the form of. Members are numbered bars first, then strings, in
@@ -80,6 +104,9 @@ pub struct Topology {
     pub groups: BTreeMap<String, Group>,
     /// Fixed nodes.
     pub fixed: Vec<FixedNode>,
+    /// Point loads (several on one node add up); they need fixed nodes (module docs).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<NodeLoad>,
 }
 
 impl Topology {
@@ -153,6 +180,14 @@ impl Topology {
                     }
                 }
             }
+            if let Some(w) = m.weight {
+                if !(w.is_finite() && w >= 0.0) {
+                    return Err(bad(
+                        format!("{name}.weight"),
+                        format!("{w} must be finite and not negative (N/m)"),
+                    ));
+                }
+            }
             if let Some(g) = &m.group {
                 if !self.groups.contains_key(g) {
                     return Err(bad(
@@ -216,6 +251,14 @@ impl Topology {
                     ));
                 }
             }
+            if let Some(w) = g.weight {
+                if !(w.is_finite() && w >= 0.0) {
+                    return Err(bad(
+                        format!("groups.{name}.weight"),
+                        format!("{w} must be finite and not negative (N/m)"),
+                    ));
+                }
+            }
         }
         let mut fixed_seen = std::collections::HashMap::new();
         for (i, f) in self.fixed.iter().enumerate() {
@@ -238,6 +281,70 @@ impl Topology {
             if f.position.iter().any(|x| !x.is_finite()) {
                 return Err(bad(format!("fixed[{i}].position"), "must be finite".into()));
             }
+        }
+        self.validate_loads()
+    }
+
+    /// Loads on existing nodes, finite, and only with fixed nodes to carry them (module docs).
+    fn validate_loads(&self) -> Result<()> {
+        let bad = |item: String, reason: String| FormFindError::InvalidTopology { item, reason };
+        for (i, l) in self.loads.iter().enumerate() {
+            if l.node >= self.n_nodes {
+                return Err(bad(
+                    format!("loads[{i}]"),
+                    format!(
+                        "node {} out of range (the topology has {} nodes)",
+                        l.node, self.n_nodes
+                    ),
+                ));
+            }
+            if l.force.iter().any(|x| !x.is_finite()) {
+                return Err(bad(
+                    format!("loads[{i}].force"),
+                    format!("{:?} must be finite", l.force),
+                ));
+            }
+        }
+        if !self.fixed.is_empty() {
+            return Ok(());
+        }
+        let weighted = self
+            .given_weights()
+            .iter()
+            .position(|w| w.is_some_and(|w| w > 0.0));
+        if !self.loads.is_empty() {
+            let mut sum = [0.0; 3];
+            for l in &self.loads {
+                for (s, f) in sum.iter_mut().zip(l.force) {
+                    *s += f;
+                }
+            }
+            let balance = if sum.iter().any(|&s| s != 0.0) {
+                format!(
+                    "they sum to {sum:?} N, which nothing balances without supports (the \
+                     equilibrium of the whole needs Σ p = 0)"
+                )
+            } else {
+                "even self-balanced loads leave a free-standing form undetermined (any \
+                 affine image of the null space of D may be added)"
+                    .to_string()
+            };
+            return Err(bad(
+                "loads".into(),
+                format!(
+                    "{} load(s) on a free-standing topology (no [[fixed]] nodes): {balance}; \
+                     hold the nodes that carry them (`fixed`, the supports)",
+                    self.loads.len()
+                ),
+            ));
+        }
+        if let Some(k) = weighted {
+            return Err(bad(
+                format!("{}.weight", self.member_name(k)),
+                "self-weight on a free-standing topology (no [[fixed]] nodes): nothing \
+                 balances it; hold the nodes that carry it (`fixed`, the supports)"
+                    .into(),
+            ));
         }
         Ok(())
     }
@@ -321,6 +428,25 @@ impl Topology {
                 Ok(q)
             })
             .collect()
+    }
+
+    /// The weight per unit length of every member (N/m): its own, else its group's.
+    pub fn given_weights(&self) -> Vec<Option<f64>> {
+        self.members()
+            .map(|m| {
+                m.weight.or_else(|| {
+                    m.group
+                        .as_ref()
+                        .and_then(|g| self.groups.get(g))
+                        .and_then(|g| g.weight)
+                })
+            })
+            .collect()
+    }
+
+    /// Whether the topology carries loads: a point load, or a member with a weight.
+    pub fn is_loaded(&self) -> bool {
+        !self.loads.is_empty() || self.given_weights().iter().any(Option::is_some)
     }
 
     /// The target (rest) length of every member: its own, else its group's.

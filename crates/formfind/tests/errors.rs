@@ -47,6 +47,7 @@ fn bad_topologies_name_the_item() {
         Group {
             force_density: Some(f64::INFINITY),
             length: None,
+            weight: None,
         },
     );
     let e = err(&t, Method::Fdm).to_string();

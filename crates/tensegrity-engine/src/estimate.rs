@@ -122,6 +122,13 @@ impl Estimated for StaticsCommand {
     }
 }
 
+impl Estimated for crate::solve::SolveCommand {
+    fn estimate(&self) -> Result<Option<Estimate>, RunError> {
+        let scene = self.source()?.load().map_err(failed)?;
+        Ok(Some(crate::solve::estimate(&scene.structure, self)))
+    }
+}
+
 impl Estimated for SimulateCommand {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         let scene = self.source()?.load().map_err(failed)?;

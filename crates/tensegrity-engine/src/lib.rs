@@ -28,6 +28,7 @@
 //! | `tbar_roll` | [`tbar_wheel::TbarRollRequest`] | [`tbar_roll::tbar_roll`] (the toroid column composed here) |
 //! | `statics` | [`statics::StaticsCommand`] | [`statics::statics`] (a scene's statics report) |
 //! | `simulate` | [`simulate::SimulateCommand`] | [`simulate::simulate`] (a scene run in time) |
+//! | `solve` | [`solve::SolveCommand`] | [`solve::solve`] (a scene's load path, elastic, through limit points) |
 //! | `formfind` | [`formfind::FormfindRequest`] | [`formfind::formfind`] (form-finding, then the rest lengths of the prestress) |
 //! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision`] |
 //!
@@ -48,6 +49,7 @@ pub mod registry;
 mod run_error;
 pub mod scene;
 pub mod simulate;
+pub mod solve;
 pub mod spelling;
 pub mod statics;
 pub mod tbar_roll;

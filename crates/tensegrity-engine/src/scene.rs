@@ -166,6 +166,9 @@ pub enum SceneError {
     /// The analysis failed.
     #[error(transparent)]
     Core(#[from] CoreError),
+    /// A load path failed (or its model is not usable).
+    #[error(transparent)]
+    Path(#[from] tensegrity_path::PathError),
     /// A `strict` simulation whose invariants drifted past their limits.
     #[error("strict: {} warning(s): {}", warnings.len(), tensegrity_core::warning::joined(warnings))]
     Strict {
@@ -186,7 +189,13 @@ impl Categorized for SceneError {
             }
             SceneError::Core(CoreError::OverBudget(_)) => Category::Resource,
             SceneError::Core(CoreError::Interrupted { .. }) => Category::Interrupted,
-            SceneError::Core(_) | SceneError::Strict { .. } => Category::Numerical,
+            SceneError::Path(
+                tensegrity_path::PathError::InvalidModel { .. }
+                | tensegrity_path::PathError::InvalidSetting { .. },
+            ) => Category::Input,
+            SceneError::Core(_) | SceneError::Path(_) | SceneError::Strict { .. } => {
+                Category::Numerical
+            }
         }
     }
 }

@@ -539,6 +539,7 @@ fn formfind_describes_its_fields_round_trips_and_its_columns_are_its_scalars() {
         prestress: 100.0,
         member_force: Some(vec![1.0; 12]),
         rest_length: Some(vec![1.0; 9]),
+        loading: Default::default(),
         warnings: vec![tensegrity_core::Warning::NotPrestressable],
     };
     check_columns("formfind", &[report], &[]);

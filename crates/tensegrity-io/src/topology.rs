@@ -1,6 +1,7 @@
 //! TOML topology files of form-finding: a connectivity (bars, strings, optional node
-//! positions as the initial guess, groups sharing a force density, fixed nodes) read into a
-//! [`formfind::Topology`], and written back ([`to_toml`]).
+//! positions as the initial guess, groups sharing a force density, fixed nodes, point loads
+//! and members' weights for the force density method) read into a [`formfind::Topology`],
+//! and written back ([`to_toml`]).
 //!
 //! ```toml
 //! n_nodes = 6                    # optional: given by `nodes`, else the largest index + 1
@@ -8,17 +9,22 @@
 //! [groups.vertical]
 //! force_density = 1.0            # N/m, tension-positive (optional)
 //! length = 1.2                   # m, target length (optional)
+//! weight = 0.5                   # N/m, weight per length along −z (optional; fdm only)
 //! [[bars]]
 //! nodes = [0, 3]                 # exactly two node indices (0-based)
 //! force_density = -1.0           # N/m (a bar's is negative), optional
 //! group = "bars"                 # optional: takes the group's force density and length
 //! length = 1.5                   # m, optional target (rest) length
 //! stiffness = 1e5                # N, optional axial stiffness EA
+//! weight = 0.5                   # N/m, optional weight per length along −z (fdm only)
 //! [[strings]]
 //! nodes = [0, 1]                 # same keys as a bar; a string's force density is positive
 //! [[fixed]]
 //! node = 0
 //! position = [0.0, 0.0, 0.0]     # m
+//! [[loads]]                      # point loads (fdm only, with fixed nodes); one node may
+//! node = 4                       # carry several, they add up
+//! force = [0.0, 0.0, -1.0]       # N
 //! ```
 //!
 //! Members are numbered bars first, then strings, in file order (the order of the force
@@ -28,9 +34,10 @@
 //! exactly two indices, an index past the last node, a member joining a node to itself, two
 //! members on the same pair of nodes, an unknown or unused group, a force density of the
 //! wrong sign (a bar's q < 0, a string's q > 0, tension-positive) or given both by a member
-//! and its group, a node on no member, a node fixed twice and any non-finite number are
+//! and its group, a node on no member, a node fixed twice, a load on a node past the last, a
+//! negative weight, loads or weights without fixed nodes and any non-finite number are
 //! refused; every error names the file, the line and the item (`bars[3]`, `strings[0].group`,
-//! `groups.top`, `fixed[1]`).
+//! `groups.top`, `fixed[1]`, `loads[0].force`).
 //!
 //! ```
 //! use tensegrity_io::topology::{from_str_named, to_toml};
@@ -48,7 +55,7 @@
 
 use crate::error::{IoError, Result};
 use crate::scene::line_column;
-use formfind::{FixedNode, FormFindError, Group, Member, Topology};
+use formfind::{FixedNode, FormFindError, Group, Member, NodeLoad, Topology};
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -74,6 +81,9 @@ pub struct TopologyFile {
     /// Fixed nodes.
     #[serde(default)]
     pub fixed: Vec<Spanned<FixedSpec>>,
+    /// Point loads.
+    #[serde(default)]
+    pub loads: Vec<Spanned<LoadSpec>>,
 }
 
 /// A `[[bars]]` or `[[strings]]` entry.
@@ -90,6 +100,8 @@ pub struct MemberSpec {
     pub length: Option<f64>,
     /// Axial stiffness EA (N).
     pub stiffness: Option<f64>,
+    /// Weight per length (N/m, along −z).
+    pub weight: Option<f64>,
 }
 
 /// A `[groups.NAME]` table.
@@ -100,6 +112,8 @@ pub struct GroupSpec {
     pub force_density: Option<f64>,
     /// Target length of every member of the group (m).
     pub length: Option<f64>,
+    /// Weight per length of every member of the group (N/m, along −z).
+    pub weight: Option<f64>,
 }
 
 /// A `[[fixed]]` entry.
@@ -110,6 +124,16 @@ pub struct FixedSpec {
     pub node: usize,
     /// Its coordinates (m).
     pub position: [f64; 3],
+}
+
+/// A `[[loads]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// The loaded node.
+    pub node: usize,
+    /// The force (N).
+    pub force: [f64; 3],
 }
 
 /// Reads a topology file (at most [`crate::read::MAX_SCENE_BYTES`]); errors name the file,
@@ -213,6 +237,7 @@ impl TopologyFile {
             let group = Group {
                 force_density: g.force_density,
                 length: g.length,
+                weight: g.weight,
             };
             (name.clone(), group)
         });
@@ -223,6 +248,7 @@ impl TopologyFile {
             strings: members.1,
             groups: groups.collect(),
             fixed,
+            loads: self.loads(n_nodes)?,
         };
         topology.validate().map_err(|e| (self.offset_of(&e), e))?;
         Ok(topology)
@@ -239,6 +265,7 @@ impl TopologyFile {
                 false,
             )?;
             finite(at, format!("groups.{name}.length"), spec.length, true)?;
+            finite(at, format!("groups.{name}.weight"), spec.weight, false)?;
         }
         Ok(())
     }
@@ -323,6 +350,7 @@ impl TopologyFile {
         finite(at, format!("{name}.force_density"), m.force_density, false)?;
         finite(at, format!("{name}.length"), m.length, true)?;
         finite(at, format!("{name}.stiffness"), m.stiffness, true)?;
+        finite(at, format!("{name}.weight"), m.weight, false)?;
         let group_q = match &m.group {
             Some(g) => match self.groups.get(g) {
                 Some(spec) => spec.get_ref().force_density,
@@ -362,6 +390,7 @@ impl TopologyFile {
             group: m.group.clone(),
             length: m.length,
             stiffness: m.stiffness,
+            weight: m.weight,
         })
     }
 
@@ -393,6 +422,30 @@ impl TopologyFile {
             });
         }
         Ok(fixed)
+    }
+
+    /// The point loads, checked: in range, finite.
+    fn loads(&self, n_nodes: usize) -> Result<Vec<NodeLoad>, Failed> {
+        let mut loads = Vec::with_capacity(self.loads.len());
+        for (i, l) in self.loads.iter().enumerate() {
+            let (at, spec) = (Some(l.span().start), l.get_ref());
+            if spec.node >= n_nodes {
+                let reason = format!(
+                    "node {} out of range (the topology has {n_nodes} nodes)",
+                    spec.node
+                );
+                return Err(bad(at, format!("loads[{i}]"), reason));
+            }
+            if spec.force.iter().any(|x| !x.is_finite()) {
+                let reason = format!("{:?} must be finite", spec.force);
+                return Err(bad(at, format!("loads[{i}].force"), reason));
+            }
+            loads.push(NodeLoad {
+                node: spec.node,
+                force: spec.force,
+            });
+        }
+        Ok(loads)
     }
 
     /// The error of a node on no member: where the count of nodes was inferred, the member
@@ -430,12 +483,16 @@ impl TopologyFile {
             return None;
         };
         let head = item.split('.').next()?;
+        if head == "loads" {
+            return Some(self.loads.first()?.span().start);
+        }
         let (kind, index) = head.split_once('[')?;
         let index: usize = index.strip_suffix(']')?.parse().ok()?;
         match kind {
             "bars" => Some(self.bars.get(index)?.span().start),
             "strings" => Some(self.strings.get(index)?.span().start),
             "fixed" => Some(self.fixed.get(index)?.span().start),
+            "loads" => Some(self.loads.get(index)?.span().start),
             "nodes" => self.node_span(index),
             _ => None,
         }
@@ -463,6 +520,9 @@ pub fn to_toml(t: &Topology) -> String {
         if let Some(l) = g.length {
             let _ = writeln!(out, "length = {l:?}");
         }
+        if let Some(w) = g.weight {
+            let _ = writeln!(out, "weight = {w:?}");
+        }
     }
     for (table, members) in [("bars", &t.bars), ("strings", &t.strings)] {
         for m in members {
@@ -483,6 +543,9 @@ pub fn to_toml(t: &Topology) -> String {
             if let Some(k) = m.stiffness {
                 let _ = writeln!(out, "stiffness = {k:?}");
             }
+            if let Some(w) = m.weight {
+                let _ = writeln!(out, "weight = {w:?}");
+            }
         }
     }
     for f in &t.fixed {
@@ -491,6 +554,14 @@ pub fn to_toml(t: &Topology) -> String {
             "\n[[fixed]]\nnode = {}\nposition = {}\n",
             f.node,
             v3(&f.position)
+        );
+    }
+    for l in &t.loads {
+        let _ = write!(
+            out,
+            "\n[[loads]]\nnode = {}\nforce = {}\n",
+            l.node,
+            v3(&l.force)
         );
     }
     out
@@ -598,6 +669,66 @@ position = [1.0, 0.0, 0.0]
             s.group = Some("vertical \"v\" strings".into());
         }
         assert_eq!(from_str_named(&to_toml(&odd), "odd").unwrap(), odd);
+    }
+
+    #[test]
+    fn loads_and_weights_read_round_trip_and_bad_ones_are_named_by_line() {
+        let net = "[groups.cable]\nforce_density = 1.0\nweight = 0.25\n\
+                   [[strings]]\nnodes = [0, 2]\ngroup = \"cable\"\n\
+                   [[strings]]\nnodes = [1, 2]\nforce_density = 2.0\nweight = 0.5\n\
+                   [[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]\n\
+                   [[fixed]]\nnode = 1\nposition = [2.0, 0.0, 0.0]\n\
+                   [[loads]]\nnode = 2\nforce = [0.0, 0.0, -1.5]\n\
+                   [[loads]]\nnode = 2\nforce = [0.1, 0.0, 0.0]\n";
+        let t = from_str_named(net, "net.toml").unwrap();
+        assert_eq!(t.groups["cable"].weight, Some(0.25));
+        assert_eq!(t.strings[1].weight, Some(0.5));
+        assert_eq!(t.loads.len(), 2);
+        assert_eq!(t.loads[0].force, [0.0, 0.0, -1.5]);
+        assert_eq!(from_str_named(&to_toml(&t), "again").unwrap(), t);
+        let cases: &[(&str, &str, &[&str])] = &[
+            (
+                "node = 2\nforce = [0.0, 0.0, -1.5]",
+                "node = 7\nforce = [0.0, 0.0, -1.5]",
+                &["line 17", "loads[0]", "node 7 out of range"],
+            ),
+            (
+                "[0.0, 0.0, -1.5]",
+                "[0.0, inf, -1.5]",
+                &["line 17", "loads[0].force", "finite"],
+            ),
+            (
+                "weight = 0.5",
+                "weight = -0.5",
+                &["line 7", "strings[1].weight", "not negative"],
+            ),
+            (
+                "weight = 0.25",
+                "weight = nan",
+                &["line 1", "groups.cable.weight", "finite"],
+            ),
+            (
+                "force = [0.1, 0.0, 0.0]",
+                "force = [0.1, 0.0, 0.0]\nmoment = [0.0, 0.0, 0.0]",
+                &["unknown field `moment`"],
+            ),
+        ];
+        for (from, to, wants) in cases {
+            assert!(net.contains(from), "{from}");
+            let e = err(&net.replacen(from, to, 1));
+            for w in *wants {
+                assert!(e.contains(w), "{from} → {to}: {e}");
+            }
+        }
+        // without fixed nodes the loads are refused by the line of the first
+        let free = net
+            .replace("[[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]\n", "")
+            .replace("[[fixed]]\nnode = 1\nposition = [2.0, 0.0, 0.0]\n", "");
+        let e = err(&free);
+        assert!(
+            e.starts_with("t.toml (line 11): loads: 2 load(s) on a free-standing topology"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -187,3 +187,14 @@ def test_sweep_out_file_is_the_clis(cli, tmp_path):
     assert code == 0, err
     tg.sweep(path, out=b, threads=2)
     assert a.read_text() == b.read_text()
+
+
+def test_solve_is_the_cli_s_load_path(cli_json):
+    """The two-bar truss through both limit points: the Python dict equals the CLI's JSON,
+    and its first limit point is the closed form's λ* = 1.2058608 (examples/von_mises.toml)."""
+    scene = EXAMPLES / "von_mises.toml"
+    py = tg.solve(scene, target=2.0)
+    assert_same(py, cli_json("solve", scene, "--target", "2"))
+    assert py["limit_points"] == 2
+    assert abs(py["first_limit_load_factor"] - 1.2058607502775498) < 1e-9
+    assert py["path"]["points"][-1]["stability"] == "stable"

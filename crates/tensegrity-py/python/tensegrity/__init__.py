@@ -3,7 +3,7 @@
 Every command of the ``tensegrity`` command line is a function here — :func:`statics`,
 :func:`simulate`, :func:`toroid`, :func:`roll`, :func:`tipover`, :func:`michell`,
 :func:`michell_optimize`, :func:`michell_table`, :func:`tbar`, :func:`tbar_roll`,
-:func:`formfind`, :func:`sweep` — taking the command's parameters as keyword arguments
+:func:`formfind`, :func:`solve`, :func:`sweep` — taking the command's parameters as keyword arguments
 (the flag names in snake_case, the same defaults; angles in radians or as text such as
 ``'30deg'`` or ``'pi/8'``) and returning the command's ``--json`` report as a dict, every
 vector or matrix a numpy array. A scene argument is a path, TOML text or a
@@ -33,7 +33,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
-    "michell_table", "tbar", "tbar_roll", "formfind", "sweep", "run", "commands",
+    "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
     "Structure", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
@@ -64,6 +64,10 @@ SUMMARIES = {
                  "(``tensegrity tbar roll --json``).",
     "formfind": "Form-finding: a connectivity (built-in topology or file) to a geometry in "
                 "equilibrium with a self-stress (``tensegrity formfind --json``).",
+    "solve": "Load path of a scene: elastic bars and tension-only strings under its loads "
+             "scaled by a load factor, with large displacements, through limit points (arc "
+             "length) or in load steps, a stability verdict at every point "
+             "(``tensegrity solve SCENE --json``).",
 }
 
 _SCENE_DOC = """\
@@ -79,6 +83,7 @@ michell_optimize = _make("michell_optimize", "michell_optimize", SUMMARIES["mich
 michell_table = _make("michell_table", "michell_table", SUMMARIES["michell_table"])
 tbar = _make("tbar", "tbar", SUMMARIES["tbar"])
 tbar_roll = _make("tbar_roll", "tbar_roll", SUMMARIES["tbar_roll"])
+solve = _make("solve", "solve", SUMMARIES["solve"], ("scene",), _SCENE_DOC)
 
 if "formfind" in _REGISTRY:
     formfind = _make("formfind", "formfind", SUMMARIES["formfind"])

@@ -937,6 +937,50 @@ def formfind(
     ...
 
 
+def solve(
+    scene: Scene,
+    *,
+    load_steps: Optional[int] = ...,
+    target: float = ...,
+    max_steps: int = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> Dict[str, Any]:
+    """Load path of a scene: elastic bars and tension-only strings under its loads scaled by a load factor, with large displacements, through limit points (arc length) or in load steps, a stability verdict at every point (``tensegrity solve SCENE --json``).
+
+    ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
+
+    Parameters
+    ----------
+    scene : str, os.PathLike or Structure
+        The scene file (TOML), or the scene's TOML text: bars with a material and a radius
+        (elastic, EA = E π r²), strings with a stiffness and a rest length, supports and
+        loads. Required
+    load_steps : int, optional
+        Load control in K equal steps of the load factor, Newton at each (it cannot pass a
+        limit point; default: the arc-length path, which can); must be finite
+    target : float
+        The load factor λ to reach: the load is λ times the scene's loads (negative:
+        reversed); must be finite. Default: 1.0
+    max_steps : int
+        The largest number of points of the arc-length path; must be finite. Default: 500
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    dict
+        The command's ``--json`` report, every vector or matrix a numpy array.
+    """
+    ...
+
+
 def sweep(
     spec: Union[Dict[str, Any], str, "os.PathLike[str]"],
     threads: Optional[int] = ...,

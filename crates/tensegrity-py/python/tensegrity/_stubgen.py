@@ -112,6 +112,8 @@ def stubs():
     else:
         out.append('def formfind(**kwargs: Any) -> Dict[str, Any]:\n'
                    '    """Form-finding (not in this build of the engine)."""\n    ...\n')
+    out.append(function("solve", ["solve"], SUMMARIES["solve"] + "\n\n" + scene,
+                        positional=("scene",)))
     out.append('''def sweep(
     spec: Union[Dict[str, Any], str, "os.PathLike[str]"],
     threads: Optional[int] = ...,

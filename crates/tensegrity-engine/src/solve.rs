@@ -1,0 +1,235 @@
+//! `solve`: the load path of a scene ([`SolveCommand`], a request named `solve`) — its bars
+//! elastic (EA = E π r² from their material and radius), its strings tension-only (their
+//! stiffness and rest length), the scene's loads scaled by the load factor λ from 0 to a
+//! target: followed by its arc length through limit points ([`tensegrity_path::follow`]), or
+//! in K load steps with Newton at each ([`tensegrity_path::load_steps`]).
+//!
+//! Its estimate ([`estimate`]) is dense: per path point about ten factorisations and one
+//! symmetric eigendecomposition of the m × m tangent stiffness (m the free coordinates),
+//! (10 · m³/3 + 9 m³) flops at [`budget::DENSE_FLOP_RATE`], and 3 m² numbers held.
+//!
+//! ```
+//! use tensegrity_core::request::Request;
+//! use tensegrity_engine::solve::{solve, SolveCommand};
+//! let c = SolveCommand::from_values([("scene", serde_json::json!("../../examples/von_mises.toml")), ("target", serde_json::json!(2.0))])?;
+//! let r = solve(&c)?;
+//! assert_eq!(r.limit_points, 2);
+//! assert_eq!(r.final_load_factor, 2.0);
+//! // the limit point of the closed form (examples/von_mises.toml)
+//! assert!((r.first_limit_load_factor.unwrap() - 1.2058608).abs() < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::scene::{required, SceneError, SceneSource};
+use serde::{Deserialize, Serialize};
+use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_core::Structure;
+use tensegrity_derive::{Columns, Params};
+use tensegrity_path::point::{Event, Stop};
+use tensegrity_path::stability::Stability;
+use tensegrity_path::{ElasticModel, PathReport, PathSettings};
+
+/// The load path of a scene, as data.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Params)]
+#[serde(default, deny_unknown_fields)]
+pub struct SolveCommand {
+    /// The scene: a TOML file, or its text (required).
+    #[param(
+        text,
+        help = "The scene file (TOML), or the scene's TOML text: bars with a material and a radius (elastic, EA = E π r²), strings with a stiffness and a rest length, supports and loads",
+        required
+    )]
+    pub scene: Option<SceneSource>,
+    /// Load steps of load control (`None`: the arc-length path).
+    #[param(
+        count,
+        help = "Load control in K equal steps of the load factor, Newton at each (it cannot pass a limit point; default: the arc-length path, which can)",
+        optional
+    )]
+    pub load_steps: Option<usize>,
+    /// The load factor to reach.
+    #[param(
+        number,
+        help = "The load factor λ to reach: the load is λ times the scene's loads (negative: reversed)"
+    )]
+    pub target: f64,
+    /// The largest number of path points.
+    #[param(count, help = "The largest number of points of the arc-length path")]
+    pub max_steps: usize,
+}
+
+impl Default for SolveCommand {
+    /// λ up to 1 by the arc-length path, at most 500 points.
+    fn default() -> Self {
+        Self {
+            scene: None,
+            load_steps: None,
+            target: 1.0,
+            max_steps: 500,
+        }
+    }
+}
+
+impl Request for SolveCommand {
+    const NAME: &'static str = "solve";
+
+    /// A target of zero or not finite, and zero steps, are refused.
+    fn check(&self) -> Result<(), InvalidParameter> {
+        if !self.target.is_finite() || self.target == 0.0 {
+            return Err(InvalidParameter::new(
+                "target",
+                self.target,
+                "must be finite and not zero",
+            ));
+        }
+        if self.load_steps == Some(0) {
+            return Err(InvalidParameter::new(
+                "load_steps",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        if self.max_steps == 0 {
+            return Err(InvalidParameter::new(
+                "max_steps",
+                0.0,
+                "must be at least 1",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The report of `solve`: the path's summary (its result columns) and the path itself.
+#[derive(Debug, Clone, PartialEq, Serialize, Columns)]
+pub struct SolveReport {
+    /// `path` (arc length) or `load_steps`.
+    pub method: String,
+    /// The load factor of the last point.
+    pub final_load_factor: f64,
+    /// The largest node displacement at the last point (m).
+    #[column(unit = "m")]
+    pub max_displacement: f64,
+    /// The number of points.
+    pub points: usize,
+    /// The number of limit points passed.
+    pub limit_points: usize,
+    /// The load factor of the first limit point (null when none).
+    pub first_limit_load_factor: Option<f64>,
+    /// The number of bifurcations found.
+    pub bifurcations: usize,
+    /// The load factor where a string first went slack (null when none did).
+    pub first_slack_load_factor: Option<f64>,
+    /// The slack strings at the last point.
+    pub slack_strings: usize,
+    /// The last point's stability: `stable`, `unstable`, `neutral` or `unknown`.
+    pub stability: Stability,
+    /// Why the path stopped: `reached_target`, `max_steps` or `step_too_small`.
+    pub stop: String,
+    /// The path: its points and events (not a column).
+    #[column(skip)]
+    pub path: PathReport,
+}
+
+impl SolveReport {
+    /// The summary of `path` made by `method`.
+    pub fn of(method: &str, path: PathReport) -> Self {
+        let last = path.points.last();
+        let folds: Vec<f64> = path
+            .events
+            .iter()
+            .filter_map(|e| match e {
+                Event::LimitPoint { lambda, .. } => Some(*lambda),
+                _ => None,
+            })
+            .collect();
+        let first_slack = path.events.iter().find_map(|e| match e {
+            Event::Slackened { lambda, .. } => Some(*lambda),
+            _ => None,
+        });
+        let stop = match &path.stop {
+            Stop::ReachedTarget => "reached_target",
+            Stop::MaxSteps => "max_steps",
+            Stop::StepTooSmall { .. } => "step_too_small",
+        };
+        Self {
+            method: method.to_string(),
+            final_load_factor: last.map_or(0.0, |p| p.lambda),
+            max_displacement: last.map_or(0.0, |p| p.max_displacement),
+            points: path.points.len(),
+            limit_points: folds.len(),
+            first_limit_load_factor: folds.first().copied(),
+            bifurcations: path
+                .events
+                .iter()
+                .filter(|e| matches!(e, Event::Bifurcation { .. }))
+                .count(),
+            first_slack_load_factor: first_slack,
+            slack_strings: last.map_or(0, |p| p.slack.len()),
+            stability: last.map_or(Stability::Unknown, |p| p.stability),
+            stop: stop.to_string(),
+            path,
+        }
+    }
+}
+
+impl SolveCommand {
+    /// The scene (required).
+    pub fn source(&self) -> Result<&SceneSource, InvalidParameter> {
+        required(&self.scene)
+    }
+
+    /// The path of `structure` (the scene already read).
+    pub fn report(&self, structure: &Structure) -> Result<SolveReport, SceneError> {
+        let model = ElasticModel::from_structure(structure)?;
+        Ok(match self.load_steps {
+            Some(k) => SolveReport::of(
+                "load_steps",
+                tensegrity_path::load_steps(&model, k, self.target)?,
+            ),
+            None => {
+                let settings = PathSettings {
+                    target: self.target,
+                    max_steps: self.max_steps,
+                    ..PathSettings::default()
+                };
+                SolveReport::of("path", tensegrity_path::follow(&model, &settings)?)
+            }
+        })
+    }
+}
+
+/// Runs `solve`: reads the scene, one path.
+pub fn solve(command: &SolveCommand) -> Result<SolveReport, SceneError> {
+    let scene = command.source()?.load()?;
+    command.report(&scene.structure)
+}
+
+/// The resource estimate of the path of `structure` (module docs).
+///
+/// ```
+/// use tensegrity_core::test_models::oscillating_prism;
+/// use tensegrity_engine::solve::{estimate, SolveCommand};
+/// let e = estimate(&oscillating_prism().unwrap(), &SolveCommand::default());
+/// assert!(e.work_s < 1e-2, "{}", e.work_s);
+/// ```
+pub fn estimate(structure: &Structure, command: &SolveCommand) -> Estimate {
+    let m = 3.0 * structure.n_nodes() as f64;
+    let points = match command.load_steps {
+        Some(k) => k as f64 + 1.0,
+        None => command.max_steps as f64,
+    };
+    let flops = points * (10.0 * m * m * m / 3.0 + 9.0 * m * m * m);
+    Estimate::new(
+        format!("a load path of {points} point(s), each dense on {m} coordinates"),
+        format!(
+            "max_steps = {}, load_steps = {:?} ({} nodes)",
+            command.max_steps,
+            command.load_steps,
+            structure.n_nodes()
+        ),
+    )
+    .memory(3.0 * m * m * 8.0)
+    .work(flops / budget::DENSE_FLOP_RATE)
+}

@@ -1,0 +1,107 @@
+//! The members' tensions and resisting forces at a configuration (crate docs):
+//! t_k = EA_k (L_k − L₀,k)/L₀,k, zero for a string shorter than its rest length, and
+//! R_i = −Σ t_k n_k over the members leaving node i (n_k the unit vector to the other node);
+//! and what the load factor's drivers do to R at fixed free coordinates ([`driven_forces`]).
+
+use crate::model::{ElasticModel, MemberKind};
+use nalgebra::{Matrix3, Vector3};
+
+/// A member's state at a configuration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MemberState {
+    /// Its length L (m).
+    pub length: f64,
+    /// Its unit vector n from the start to the end node.
+    pub direction: Vector3<f64>,
+    /// Its rest length L₀ at the load factor of the state (m).
+    pub rest_length: f64,
+    /// Its tension t (N, compression negative).
+    pub tension: f64,
+    /// Whether it is a string shorter than its rest length (no force, no stiffness).
+    pub slack: bool,
+}
+
+/// The state of every member at the node positions `x` and load factor `lambda` (which sets
+/// the driven rest lengths, [`ElasticModel::rest_length`]).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use tensegrity_path::{forces::member_states, ElasticMember, ElasticModel, MemberKind};
+/// let string = ElasticMember { nodes: [0, 1], kind: MemberKind::String, ea: 100.0, rest_length: 1.0 };
+/// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![string],
+///     supports: vec![], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
+/// let s = member_states(&m, &[Vector3::zeros(), Vector3::new(1.1, 0.0, 0.0)], 0.0);
+/// assert!((s[0].tension - 10.0).abs() < 1e-12 && !s[0].slack);
+/// let s = member_states(&m, &[Vector3::zeros(), Vector3::new(0.9, 0.0, 0.0)], 0.0);
+/// assert!(s[0].tension == 0.0 && s[0].slack);
+/// ```
+pub fn member_states(model: &ElasticModel, x: &[Vector3<f64>], lambda: f64) -> Vec<MemberState> {
+    model
+        .members
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let [i, j] = m.nodes;
+            let d = x[j] - x[i];
+            let length = d.norm();
+            let rest_length = model.rest_length(k, lambda);
+            let stretch = length - rest_length;
+            let slack = m.kind == MemberKind::String && stretch <= 0.0;
+            MemberState {
+                length,
+                direction: d / length,
+                rest_length,
+                tension: if slack {
+                    0.0
+                } else {
+                    m.ea * stretch / rest_length
+                },
+                slack,
+            }
+        })
+        .collect()
+}
+
+/// The resisting forces R_i at every node (crate docs) from the member states.
+pub fn resisting_forces(model: &ElasticModel, states: &[MemberState]) -> Vec<Vector3<f64>> {
+    let mut r = vec![Vector3::zeros(); model.nodes.len()];
+    for (m, s) in model.members.iter().zip(states) {
+        let f = s.direction * s.tension;
+        r[m.nodes[0]] -= f;
+        r[m.nodes[1]] += f;
+    }
+    r
+}
+
+/// dR/dλ at fixed free coordinates: what the driven rest lengths (dt/dλ = −EA L ΔL₀/L₀²) and
+/// the held nodes' motion (K_k (d_j − d_i) per member, `held_motion` per unit λ) do to the
+/// resisting forces; zero without drivers.
+pub fn driven_forces(
+    model: &ElasticModel,
+    states: &[MemberState],
+    held_motion: &[Vector3<f64>],
+) -> Vec<Vector3<f64>> {
+    let mut r = vec![Vector3::zeros(); model.nodes.len()];
+    let changes = &model.drivers.rest_length_changes;
+    for (k, (m, s)) in model.members.iter().zip(states).enumerate() {
+        if s.slack {
+            continue;
+        }
+        let [i, j] = m.nodes;
+        let mut f = Vector3::zeros();
+        if let Some(&dl0) = changes.get(k) {
+            let dt = -m.ea * s.length / (s.rest_length * s.rest_length) * dl0;
+            f += s.direction * dt;
+        }
+        let rel = held_motion[j] - held_motion[i];
+        if rel.norm() > 0.0 {
+            let nn = s.direction * s.direction.transpose();
+            let local =
+                nn * (m.ea / s.rest_length) + (Matrix3::identity() - nn) * (s.tension / s.length);
+            f += local * rel;
+        }
+        r[i] -= f;
+        r[j] += f;
+    }
+    r
+}

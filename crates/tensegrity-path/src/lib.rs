@@ -1,0 +1,50 @@
+//! Load paths: how an elastic bar-and-string structure deforms under a load that grows, with
+//! large displacements, strings that go slack and re-tension, and limit points passed.
+//!
+//! **Model** ([`model`]). Nodes x, members k from node i to node j with an axial stiffness
+//! EA_k and a rest length L₀,k; the tension of member k at length L_k = ‖x_j − x_i‖ is
+//!
+//! > t_k = EA_k (L_k − L₀,k) / L₀,k,
+//!
+//! for a string only while L_k > L₀,k (a string is slack at zero force, never compressed).
+//! Supports hold a node along given unit directions (any direction, not only x, y, z). The
+//! reference load P (one force per node) is scaled by the load factor λ.
+//!
+//! **Equilibrium** ([`forces`]). With n_k = (x_j − x_i)/L_k the members' resisting force on
+//! node i is R_i = −Σ t_k n_k (member k leaving i), and equilibrium is R(x) = λ P on the
+//! free directions; the supports take the rest (the reactions, −(R − λ P) on the held
+//! directions).
+//!
+//! **Tangent stiffness** ([`tangent`]). dR/dx assembles, per taut member,
+//!
+//! > K_k = (EA_k/L₀,k) n nᵀ + (t_k/L_k)(I − n nᵀ)   (material + geometric),
+//!
+//! as [[K_k, −K_k], [−K_k, K_k]] on (x_i, x_j); a slack string adds nothing. Its eigenvalues
+//! on the free directions are the stability verdict ([`stability`]): all positive, stable; a
+//! negative one, unstable (its eigenvector the mode); one near zero, a mechanism.
+//!
+//! **Paths.** [`newton`] solves R(x) = λ P at a given λ (load control: [`load_steps`]);
+//! [`arclength`] follows the path (x(s), λ(s)) by its arc length s — a tangent predictor and a
+//! Newton corrector on the hyperplane normal to the tangent, in coordinates scaled so that a
+//! unit of λ and the linear response to P weigh alike — which passes limit points where λ
+//! turns back, locates each (λ to 10⁻⁸ relative, by bisection of the step on the sign of
+//! dλ/ds) and reports its mode.
+
+#![warn(missing_docs)]
+
+pub mod arclength;
+pub mod dofs;
+pub mod error;
+pub mod forces;
+pub mod load_steps;
+pub mod model;
+pub mod newton;
+pub mod point;
+pub mod stability;
+pub mod tangent;
+
+pub use arclength::{follow, PathSettings};
+pub use error::{PathError, Result};
+pub use load_steps::load_steps;
+pub use model::{ElasticMember, ElasticModel, MemberKind, Support};
+pub use point::{Event, PathPoint, PathReport};

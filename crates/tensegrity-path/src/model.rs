@@ -1,0 +1,332 @@
+//! The elastic model of a load path (crate docs): nodes, members with an axial stiffness EA
+//! and a rest length L₀, supports along any directions, and the reference load P.
+
+use crate::error::{PathError, Result};
+use nalgebra::Vector3;
+use serde::Serialize;
+use tensegrity_core::Structure;
+
+/// Whether a member carries compression.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MemberKind {
+    /// Tension and compression.
+    Bar,
+    /// Tension only: slack (no force, no stiffness) while shorter than its rest length.
+    String,
+}
+
+/// A member: its nodes, kind, axial stiffness EA (N) and rest length L₀ (m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ElasticMember {
+    /// Start and end node.
+    pub nodes: [usize; 2],
+    /// Bar or string.
+    pub kind: MemberKind,
+    /// Axial stiffness EA (N): the tension is EA (L − L₀)/L₀.
+    pub ea: f64,
+    /// Rest length L₀ (m).
+    pub rest_length: f64,
+}
+
+/// A node held along some directions (each a unit vector; one to three, independent).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    /// The held node.
+    pub node: usize,
+    /// The directions along which it cannot move.
+    pub directions: Vec<Vector3<f64>>,
+}
+
+impl Support {
+    /// A node held in all three directions.
+    pub fn pinned(node: usize) -> Self {
+        Self {
+            node,
+            directions: vec![Vector3::x(), Vector3::y(), Vector3::z()],
+        }
+    }
+}
+
+/// What else the load factor λ drives besides the load λ P (TsgFEM's forced motions and rest
+/// lengths): each member's rest length L₀ + λ ΔL₀ and each supported node's position moved by
+/// λ d along its held directions.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Drivers {
+    /// ΔL₀ of every member at λ = 1 (m; empty: none).
+    pub rest_length_changes: Vec<f64>,
+    /// The motion d of every node at λ = 1 (m; empty: none); only supported nodes may move,
+    /// along their held directions.
+    pub displacements: Vec<Vector3<f64>>,
+}
+
+impl Drivers {
+    /// Whether λ drives anything but the load.
+    pub fn is_empty(&self) -> bool {
+        self.rest_length_changes.iter().all(|&d| d == 0.0)
+            && self.displacements.iter().all(|d| d.norm() == 0.0)
+    }
+}
+
+/// The model (crate docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElasticModel {
+    /// Node positions of the reference state (m).
+    pub nodes: Vec<Vector3<f64>>,
+    /// The members.
+    pub members: Vec<ElasticMember>,
+    /// The supports.
+    pub supports: Vec<Support>,
+    /// The reference load P, one force per node (N); the load is λ P.
+    pub load: Vec<Vector3<f64>>,
+    /// Rest lengths and support motions driven by λ beside the load.
+    pub drivers: Drivers,
+}
+
+impl ElasticModel {
+    /// The rest length of member `k` at load factor `lambda`, L₀ + λ ΔL₀.
+    pub fn rest_length(&self, k: usize, lambda: f64) -> f64 {
+        let change = self
+            .drivers
+            .rest_length_changes
+            .get(k)
+            .copied()
+            .unwrap_or(0.0);
+        self.members[k].rest_length + lambda * change
+    }
+
+    /// Checks every item: node indices in range, finite positive EA and L₀, finite loads
+    /// and nodes, support directions finite and non-zero (normalised here) and independent.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_path::{ElasticMember, ElasticModel, MemberKind, Support};
+    /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1e4, rest_length: 1.0 };
+    /// let m = ElasticModel {
+    ///     nodes: vec![Vector3::zeros(), Vector3::x()],
+    ///     members: vec![bar],
+    ///     supports: vec![Support::pinned(0)],
+    ///     load: vec![Vector3::zeros(), Vector3::x()],
+    ///     drivers: Default::default(),
+    /// };
+    /// assert!(m.clone().validated().is_ok());
+    /// let mut bad = m;
+    /// bad.members[0].nodes = [0, 5];
+    /// assert_eq!(bad.validated().unwrap_err().to_string(),
+    ///     "member 0 (bar): node 5 does not exist (2 nodes)");
+    /// ```
+    pub fn validated(mut self) -> Result<Self> {
+        let n = self.nodes.len();
+        for (i, x) in self.nodes.iter().enumerate() {
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(PathError::model(
+                    format!("node {i}"),
+                    "its coordinates must be finite",
+                ));
+            }
+        }
+        if self.load.len() != n {
+            return Err(PathError::model(
+                "load",
+                format!("{} forces for {n} nodes", self.load.len()),
+            ));
+        }
+        for (i, p) in self.load.iter().enumerate() {
+            if !p.iter().all(|v| v.is_finite()) {
+                return Err(PathError::model(
+                    format!("load on node {i}"),
+                    "must be finite",
+                ));
+            }
+        }
+        for (k, m) in self.members.iter().enumerate() {
+            let name = format!("member {k} ({})", kind_name(m.kind));
+            if let Some(&bad) = m.nodes.iter().find(|&&i| i >= n) {
+                return Err(PathError::model(
+                    name,
+                    format!("node {bad} does not exist ({n} nodes)"),
+                ));
+            }
+            if m.nodes[0] == m.nodes[1] {
+                return Err(PathError::model(name, "joins a node to itself"));
+            }
+            if !(m.ea.is_finite() && m.ea > 0.0) {
+                return Err(PathError::model(
+                    name,
+                    format!(
+                        "its axial stiffness EA = {} N must be finite and positive",
+                        m.ea
+                    ),
+                ));
+            }
+            if !(m.rest_length.is_finite() && m.rest_length > 0.0) {
+                return Err(PathError::model(
+                    name,
+                    format!(
+                        "its rest length {} m must be finite and positive",
+                        m.rest_length
+                    ),
+                ));
+            }
+        }
+        let d = &self.drivers;
+        if !d.rest_length_changes.is_empty() && d.rest_length_changes.len() != self.members.len() {
+            return Err(PathError::model(
+                "rest_length_changes",
+                format!(
+                    "{} changes for {} members",
+                    d.rest_length_changes.len(),
+                    self.members.len()
+                ),
+            ));
+        }
+        if !d.displacements.is_empty() && d.displacements.len() != n {
+            return Err(PathError::model(
+                "displacements",
+                format!("{} motions for {n} nodes", d.displacements.len()),
+            ));
+        }
+        for (k, c) in d.rest_length_changes.iter().enumerate() {
+            if !c.is_finite() {
+                return Err(PathError::model(
+                    format!("member {k}"),
+                    "its rest length change must be finite",
+                ));
+            }
+        }
+        for (i, v) in d.displacements.iter().enumerate() {
+            if !v.iter().all(|c| c.is_finite()) {
+                return Err(PathError::model(
+                    format!("displacement of node {i}"),
+                    "must be finite",
+                ));
+            }
+        }
+        for s in &mut self.supports {
+            let item = format!("support of node {}", s.node);
+            if s.node >= n {
+                return Err(PathError::model(
+                    item,
+                    format!("node {} does not exist ({n} nodes)", s.node),
+                ));
+            }
+            if s.directions.is_empty() || s.directions.len() > 3 {
+                return Err(PathError::model(
+                    item,
+                    format!("{} directions: give one to three", s.directions.len()),
+                ));
+            }
+            for d in &mut s.directions {
+                let norm = d.norm();
+                if !(norm.is_finite() && norm > 0.0) {
+                    return Err(PathError::model(
+                        item,
+                        "a direction must be finite and non-zero",
+                    ));
+                }
+                *d /= norm;
+            }
+        }
+        Ok(self)
+    }
+
+    /// The model of a scene's structure: bars elastic with EA = E · π r² (their material's
+    /// Young's modulus and their `radius`) and rest length their length in the scene;
+    /// strings with their `stiffness` k (N/m) and `rest_length` (default: their length in the
+    /// scene, no prestress), EA = k L₀; the supports along the flagged axes; the scene's
+    /// loads as P. A bar without a radius, a string without a stiffness and a scene with
+    /// gravity (self-weight is not modelled yet) are errors naming the item.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Material, Structure, StringMember, Support};
+    /// let s = Structure::builder()
+    ///     .node([0.0, 0.0, 0.0]).node([2.0, 0.0, 0.0])
+    ///     .material("alu", Material::new(2700.0, 70e9, 100e6))
+    ///     .bar(Bar::new(0, 1).material("alu").radius(0.01))
+    ///     .support(Support::pinned(0))
+    ///     .build().unwrap();
+    /// let m = tensegrity_path::ElasticModel::from_structure(&s).unwrap();
+    /// let ea = 70e9 * std::f64::consts::PI * 1e-4;
+    /// assert!((m.members[0].ea - ea).abs() < 1e-6 * ea);
+    /// assert_eq!(m.members[0].rest_length, 2.0);
+    /// ```
+    pub fn from_structure(s: &Structure) -> Result<Self> {
+        if s.gravity().is_some() {
+            return Err(PathError::model(
+                "gravity",
+                "self-weight is not modelled by load paths yet: remove [gravity] and give the members' weights as [[loads]]",
+            ));
+        }
+        let x = s.nodes();
+        let length = |[i, j]: [usize; 2]| (x[j] - x[i]).norm();
+        let mut members = Vec::with_capacity(s.n_members());
+        for (k, b) in s.bars().iter().enumerate() {
+            let Some(radius) = b.radius else {
+                return Err(PathError::model(
+                    format!("bar {k}"),
+                    "an elastic bar needs a radius (its area π r²) and a material with a Young's modulus in the scene",
+                ));
+            };
+            let Some(name) = b.material.as_deref() else {
+                return Err(PathError::model(
+                    format!("bar {k}"),
+                    "an elastic bar needs a material (its Young's modulus) beside its radius in the scene",
+                ));
+            };
+            let material = s.materials().get(name).ok_or_else(|| {
+                PathError::model(format!("bar {k}"), format!("unknown material `{name}`"))
+            })?;
+            members.push(ElasticMember {
+                nodes: b.nodes,
+                kind: MemberKind::Bar,
+                ea: material.youngs_modulus * std::f64::consts::PI * radius * radius,
+                rest_length: length(b.nodes),
+            });
+        }
+        for (k, st) in s.strings().iter().enumerate() {
+            let Some(stiffness) = st.stiffness else {
+                return Err(PathError::model(
+                    format!("string {k}"),
+                    "an elastic string needs a stiffness (N/m) in the scene",
+                ));
+            };
+            let rest_length = st.rest_length.unwrap_or_else(|| length(st.nodes));
+            members.push(ElasticMember {
+                nodes: st.nodes,
+                kind: MemberKind::String,
+                ea: stiffness * rest_length,
+                rest_length,
+            });
+        }
+        let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
+        let supports = s
+            .supports()
+            .iter()
+            .map(|sp| Support {
+                node: sp.node,
+                directions: (0..3).filter(|&a| sp.fixed[a]).map(|a| axes[a]).collect(),
+            })
+            .filter(|sp| !sp.directions.is_empty())
+            .collect();
+        let mut load = vec![Vector3::zeros(); x.len()];
+        for l in s.loads() {
+            load[l.node] += l.force;
+        }
+        Self {
+            nodes: x.to_vec(),
+            members,
+            supports,
+            load,
+            drivers: Drivers::default(),
+        }
+        .validated()
+    }
+}
+
+/// `bar` or `string`.
+pub(crate) fn kind_name(kind: MemberKind) -> &'static str {
+    match kind {
+        MemberKind::Bar => "bar",
+        MemberKind::String => "string",
+    }
+}

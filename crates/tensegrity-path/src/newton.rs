@@ -1,0 +1,138 @@
+//! Newton's method for R(x) = λ P on the free coordinates at a fixed load factor (crate
+//! docs): K(x) δq = λ P − R(x), x ← x + δx, until the largest residual force component is
+//! within the tolerance ([`tolerance`]).
+
+use crate::dofs::Dofs;
+use crate::error::{PathError, Result};
+use crate::forces::{member_states, resisting_forces, MemberState};
+use crate::model::ElasticModel;
+use crate::tangent::tangent_stiffness;
+use nalgebra::{DVector, Vector3};
+
+/// Newton iterations before giving up.
+pub const MAX_ITERATIONS: usize = 50;
+
+/// The relative residual accepted: 10⁻¹⁰ of the force scale (the load and the members'
+/// tensions).
+pub const RELATIVE_TOLERANCE: f64 = 1e-10;
+
+/// An equilibrium: positions, load factor, member states and the residual left.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equilibrium {
+    /// Node positions (m).
+    pub x: Vec<Vector3<f64>>,
+    /// The load factor λ.
+    pub lambda: f64,
+    /// Every member's state.
+    pub states: Vec<MemberState>,
+    /// The largest residual force component on a free coordinate (N).
+    pub residual: f64,
+}
+
+/// The residual force on the free coordinates, λ P − R(x), of `states`.
+pub fn residual(
+    model: &ElasticModel,
+    dofs: &Dofs,
+    states: &[MemberState],
+    lambda: f64,
+) -> DVector<f64> {
+    let r = resisting_forces(model, states);
+    let f: Vec<Vector3<f64>> = model
+        .load
+        .iter()
+        .zip(&r)
+        .map(|(p, r)| p * lambda - r)
+        .collect();
+    dofs.reduce(&f)
+}
+
+/// The residual accepted at load factor `lambda` (N): [`RELATIVE_TOLERANCE`] of the larger of
+/// |λ| ‖P‖∞ and the largest |tension|, and never below what double precision resolves on
+/// the stiffest member, 64 ε · max(EA/L₀) · max‖x‖.
+pub fn tolerance(
+    model: &ElasticModel,
+    states: &[MemberState],
+    x: &[Vector3<f64>],
+    lambda: f64,
+) -> f64 {
+    let load = model.load.iter().map(|p| p.amax()).fold(0.0, f64::max) * lambda.abs();
+    let tension = states.iter().map(|s| s.tension.abs()).fold(0.0, f64::max);
+    let stiff = model
+        .members
+        .iter()
+        .zip(states)
+        .map(|(m, s)| m.ea / s.rest_length)
+        .fold(0.0, f64::max);
+    let size = x.iter().map(|v| v.norm()).fold(1e-3, f64::max);
+    (RELATIVE_TOLERANCE * load.max(tension)).max(64.0 * f64::EPSILON * stiff * size)
+}
+
+/// ∂(λP − R)/∂λ on the free coordinates at fixed free coordinates: the reference load less
+/// what the drivers do to the resisting forces ([`crate::forces::driven_forces`]) — the
+/// right-hand side of the path's tangent, K v = dλ this.
+pub fn load_rate(model: &ElasticModel, dofs: &Dofs, states: &[MemberState]) -> DVector<f64> {
+    let driven = crate::forces::driven_forces(model, states, &dofs.held_motion);
+    let f: Vec<Vector3<f64>> = model.load.iter().zip(&driven).map(|(p, d)| p - d).collect();
+    dofs.reduce(&f)
+}
+
+/// Refuses a load factor at which a driven rest length is no longer positive.
+pub fn check_rest_lengths(model: &ElasticModel, lambda: f64) -> Result<()> {
+    for k in 0..model.members.len() {
+        let l0 = model.rest_length(k, lambda);
+        if l0.is_nan() || l0 <= 0.0 {
+            return Err(PathError::model(
+                format!("member {k}"),
+                format!(
+                    "its driven rest length L0 + λ ΔL0 = {l0} m is not positive at λ = {lambda}"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Newton at load factor `lambda` from `x0`, an equilibrium (or guess) at `lambda0`: the
+/// held nodes first moved by their motion over λ − λ₀.
+pub fn solve(
+    model: &ElasticModel,
+    dofs: &Dofs,
+    x0: &[Vector3<f64>],
+    lambda0: f64,
+    lambda: f64,
+) -> Result<Equilibrium> {
+    check_rest_lengths(model, lambda)?;
+    let mut x = dofs.drive(x0, lambda - lambda0);
+    for iteration in 0..=MAX_ITERATIONS {
+        let states = member_states(model, &x, lambda);
+        let r = residual(model, dofs, &states, lambda);
+        let worst = r.amax();
+        let tol = tolerance(model, &states, &x, lambda);
+        if worst <= tol {
+            return Ok(Equilibrium {
+                x,
+                lambda,
+                states,
+                residual: worst,
+            });
+        }
+        if iteration == MAX_ITERATIONS || !worst.is_finite() {
+            // the last iteration or a residual that left double precision
+            return Err(PathError::NotConverged {
+                lambda,
+                residual: worst,
+                tolerance: tol,
+                iterations: iteration,
+                hint:
+                    "; smaller load steps, or the arc-length path if a limit point lies on the way"
+                        .into(),
+            });
+        }
+        let k = tangent_stiffness(model, dofs, &states);
+        let dq = k.lu().solve(&r).ok_or(PathError::Singular { lambda })?;
+        for (u, xi) in dofs.expand(&dq, x.len()).iter().zip(x.iter_mut()) {
+            *xi += u;
+        }
+    }
+    Err(PathError::Singular { lambda })
+}

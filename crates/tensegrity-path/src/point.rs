@@ -1,0 +1,125 @@
+//! A point of a load path, the events between points, and the path's report.
+
+use crate::stability::Stability;
+use serde::Serialize;
+
+/// One equilibrium of the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathPoint {
+    /// Its index on the path (0: the unloaded state).
+    pub step: usize,
+    /// The load factor λ (the load is λ P).
+    pub lambda: f64,
+    /// Node positions (m).
+    pub nodes: Vec<[f64; 3]>,
+    /// Each node's displacement from the reference state (m).
+    pub displacements: Vec<[f64; 3]>,
+    /// The largest node displacement (m).
+    pub max_displacement: f64,
+    /// Each member's tension (N, compression negative).
+    pub tensions: Vec<f64>,
+    /// The slack strings (member indices).
+    pub slack: Vec<usize>,
+    /// The reactions: node, the held direction, the force along it (N).
+    pub reactions: Vec<Reaction>,
+    /// Up to three smallest eigenvalues of the tangent stiffness (N/m).
+    pub smallest_eigenvalues: Vec<f64>,
+    /// The stability verdict.
+    pub stability: Stability,
+    /// The largest residual force left (N).
+    pub residual: f64,
+}
+
+/// A support's reaction along one held direction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Reaction {
+    /// The node.
+    pub node: usize,
+    /// The unit direction.
+    pub direction: [f64; 3],
+    /// The force the support applies along it (N).
+    pub force: f64,
+}
+
+/// What happened between two points.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Event {
+    /// A limit point (fold): λ reaches an extremum along the path; located by bisection.
+    LimitPoint {
+        /// The load factor there.
+        lambda: f64,
+        /// The point's index after which it lies.
+        after_step: usize,
+        /// The largest node displacement there (m).
+        max_displacement: f64,
+        /// The buckling mode (node displacements, unit largest component).
+        mode: Vec<[f64; 3]>,
+    },
+    /// The number of negative eigenvalues changed without a limit point: a bifurcation.
+    Bifurcation {
+        /// The load factor there.
+        lambda: f64,
+        /// The point's index after which it lies.
+        after_step: usize,
+        /// The mode (node displacements, unit largest component).
+        mode: Vec<[f64; 3]>,
+    },
+    /// Load control jumped between two load steps: the equilibrium found moved far more than
+    /// the tangent predicts (more than [`crate::load_steps::JUMP_RATIO`] times), as past a
+    /// limit point where the structure snaps to another branch; the arc-length path shows
+    /// what lies between.
+    Jump {
+        /// The load factor before the jump.
+        from_lambda: f64,
+        /// The load factor after it.
+        to_lambda: f64,
+        /// The displacement increment against the tangent's prediction.
+        ratio: f64,
+    },
+    /// Strings went slack; located by bisection (λ where the first of them reaches zero
+    /// tension).
+    Slackened {
+        /// Their indices.
+        members: Vec<usize>,
+        /// The load factor where the set of slack strings changed.
+        lambda: f64,
+        /// The point's index at which they are first slack.
+        at_step: usize,
+    },
+    /// Slack strings took tension again; located alike.
+    Retensioned {
+        /// Their indices.
+        members: Vec<usize>,
+        /// The load factor where the set of slack strings changed.
+        lambda: f64,
+        /// The point's index at which they are first taut.
+        at_step: usize,
+    },
+}
+
+/// Why the path stopped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Stop {
+    /// It reached the target load factor.
+    ReachedTarget,
+    /// It made the largest number of steps.
+    MaxSteps,
+    /// The arc-length step fell below its smallest size (the message says why).
+    StepTooSmall {
+        /// The error's text.
+        message: String,
+    },
+}
+
+/// A load path: its points, its events and why it stopped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PathReport {
+    /// The equilibria, in path order.
+    pub points: Vec<PathPoint>,
+    /// Limit points, bifurcations and slack changes, in path order.
+    pub events: Vec<Event>,
+    /// Why it stopped.
+    pub stop: Stop,
+}

@@ -1,0 +1,57 @@
+//! The tangent stiffness K = dR/dx on the free coordinates (crate docs): per taut member
+//! K_k = (EA/L₀) n nᵀ + (t/L)(I − n nᵀ) on [[K_k, −K_k], [−K_k, K_k]], projected onto each
+//! node's free directions. Dense: the load paths of this crate serve structures up to a few
+//! thousand free coordinates.
+
+use crate::dofs::Dofs;
+use crate::forces::MemberState;
+use crate::model::ElasticModel;
+use nalgebra::{DMatrix, Matrix3};
+
+/// The tangent stiffness on the free coordinates of `dofs` at the member `states`.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use tensegrity_path::{dofs::Dofs, forces::member_states, tangent::tangent_stiffness};
+/// use tensegrity_path::{ElasticMember, ElasticModel, MemberKind, Support};
+/// // a bar along x, node 0 pinned: EA/L₀ along x, t/L across
+/// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 100.0, rest_length: 1.0 };
+/// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+///     supports: vec![Support::pinned(0)], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
+/// let x = [Vector3::zeros(), Vector3::new(1.1, 0.0, 0.0)];
+/// let k = tangent_stiffness(&m, &Dofs::of(&m).unwrap(), &member_states(&m, &x, 0.0));
+/// let t = 100.0 * 0.1;
+/// assert!((k.trace() - (100.0 + 2.0 * t / 1.1)).abs() < 1e-12);
+/// ```
+pub fn tangent_stiffness(
+    model: &ElasticModel,
+    dofs: &Dofs,
+    states: &[MemberState],
+) -> DMatrix<f64> {
+    let mut k = DMatrix::zeros(dofs.len(), dofs.len());
+    for (m, s) in model.members.iter().zip(states) {
+        if s.slack {
+            continue;
+        }
+        let n = s.direction;
+        let nn = n * n.transpose();
+        let local =
+            nn * (m.ea / s.rest_length) + (Matrix3::identity() - nn) * (s.tension / s.length);
+        let [a, b] = m.nodes;
+        for (p, sp) in [(a, 1.0), (b, -1.0)] {
+            let (p0, pc) = dofs.of_node[p];
+            for (q, sq) in [(a, 1.0), (b, -1.0)] {
+                let (q0, qc) = dofs.of_node[q];
+                for r in 0..pc {
+                    let er = dofs.free[p0 + r].1;
+                    let kr = local * er;
+                    for c in 0..qc {
+                        let ec = dofs.free[q0 + c].1;
+                        k[(p0 + r, q0 + c)] += sp * sq * ec.dot(&kr);
+                    }
+                }
+            }
+        }
+    }
+    k
+}

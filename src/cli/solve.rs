@@ -1,0 +1,135 @@
+//! `tensegrity solve SCENE.toml [--path | --load-steps K] [--target Λ] [--max-steps N]
+//! [--out path.csv] [--json]`: the engine's `solve` request ([`SolveCommand`]): the scene's
+//! load path, elastic bars and tension-only strings, the loads scaled by λ up to the target,
+//! followed by its arc length through limit points (or in K load steps), printed as text or
+//! JSON; `--out` writes one row per point (opened before the run).
+
+use super::request_args::RequestArgs;
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+use tensegrity_engine::solve::{SolveCommand, SolveReport};
+use tensegrity_io::sink::CsvSink;
+use tensegrity_path::point::Event;
+
+/// The columns of `--out`.
+const COLUMNS: [&str; 7] = [
+    "step",
+    "lambda",
+    "max_displacement",
+    "slack_strings",
+    "min_eigenvalue",
+    "stability",
+    "residual",
+];
+
+/// Arguments of `tensegrity solve`.
+#[derive(clap::Args, Debug)]
+pub struct SolveArgs {
+    #[command(flatten)]
+    request: RequestArgs<SolveCommand>,
+    /// Follow the path by its arc length, through limit points (the default; refused with
+    /// --load-steps).
+    #[arg(long, conflicts_with = "load_steps")]
+    path: bool,
+    /// Write one row per path point (step, lambda, max_displacement (m), slack_strings,
+    /// min_eigenvalue (N/m), stability, residual (N)) to this CSV.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Print JSON (the summary and the whole path: every point's nodes, tensions, reactions).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Entry point of `tensegrity solve`.
+pub fn run(args: &SolveArgs) -> Result<()> {
+    let command: SolveCommand = args.request.request()?;
+    let mut sink = super::output::open("--out", args.out.as_deref(), |p| {
+        CsvSink::with_header(p, "load path", &COLUMNS)
+    })?;
+    let scene = command
+        .source()
+        .map_err(super::request_args::usage)?
+        .load()?;
+    let _progress = super::guard::check(tensegrity_engine::solve::estimate(
+        &scene.structure,
+        &command,
+    ))?;
+    let report = command
+        .report(&scene.structure)
+        .context("load path failed")?;
+    if let Some(sink) = sink.as_mut() {
+        for p in &report.path.points {
+            let min = p
+                .smallest_eigenvalues
+                .first()
+                .map_or(String::new(), |v| v.to_string());
+            let stability = serde_json::to_value(p.stability)?
+                .as_str()
+                .unwrap_or("")
+                .to_string();
+            sink.record([
+                p.step.to_string(),
+                p.lambda.to_string(),
+                p.max_displacement.to_string(),
+                p.slack.len().to_string(),
+                min,
+                stability,
+                p.residual.to_string(),
+            ])?;
+        }
+    }
+    if let Some(sink) = sink {
+        sink.finish()?;
+    }
+    if args.json {
+        super::output::print_json(&report)
+    } else {
+        print(&report);
+        Ok(())
+    }
+}
+
+fn print(r: &SolveReport) {
+    let how = if r.method == "path" {
+        "arc-length path"
+    } else {
+        "load steps"
+    };
+    println!(
+        "load path ({how}): {} points, λ to {} ({})",
+        r.points,
+        r.final_load_factor,
+        r.stop.replace('_', " ")
+    );
+    for e in &r.path.events {
+        match e {
+            Event::LimitPoint { lambda, max_displacement, .. } => {
+                println!("limit point at λ = {lambda:.9} (largest displacement {max_displacement:.6} m)")
+            }
+            Event::Bifurcation { lambda, .. } => println!("bifurcation at λ = {lambda:.9}"),
+            Event::Slackened { members, lambda, .. } => {
+                println!("slack from λ = {lambda:.9}: member(s) {members:?}")
+            }
+            Event::Retensioned { members, lambda, .. } => {
+                println!("taut again from λ = {lambda:.9}: member(s) {members:?}")
+            }
+            Event::Jump { from_lambda, to_lambda, ratio } => eprintln!(
+                "warning: the load steps jumped between λ = {from_lambda} and {to_lambda} (the structure moved {ratio:.1} times the tangent's prediction): a limit point lies between and the last points are on another branch; --path follows the path through it"
+            ),
+        }
+    }
+    if let tensegrity_path::point::Stop::StepTooSmall { message } = &r.path.stop {
+        println!("stopped: {message}");
+    }
+    if let Some(p) = r.path.points.last() {
+        let stability = serde_json::to_value(p.stability).ok();
+        println!(
+            "last point: λ = {}, largest displacement {:.6} m, {} slack string(s), {} (smallest eigenvalue {})",
+            p.lambda,
+            p.max_displacement,
+            p.slack.len(),
+            stability.as_ref().and_then(|v| v.as_str()).unwrap_or("?"),
+            p.smallest_eigenvalues.first().map_or("not computed".to_string(), |v| format!("{v:.6e} N/m")),
+        );
+    }
+}

@@ -1,0 +1,106 @@
+//! `tensegrity solve`: the load path of a scene end to end — the two-bar truss through both
+//! limit points at the closed form's load factor, the CSV of its points, and bad input refused
+//! before any work, naming the flag or the item.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_tensegrity"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("binary runs")
+}
+
+/// λ* of the two-bar truss of examples/von_mises.toml: L*³ = a² L₀, w* = √(L*² − a²),
+/// λ* = 2 EA w* (1/L* − 1/L₀) / 100 N.
+fn closed_form_fold() -> f64 {
+    let (a, h, ea) = (1.0f64, 0.5f64, 1e7 * std::f64::consts::PI * 1e-4);
+    let l0 = a.hypot(h);
+    let l = (a * a * l0).cbrt();
+    let w = (l * l - a * a).sqrt();
+    2.0 * ea * w * (1.0 / l - 1.0 / l0) / 100.0
+}
+
+#[test]
+fn the_two_bar_truss_snaps_through_at_the_closed_form_load() {
+    let dir = std::env::temp_dir().join(format!("tensegrity-solve-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("path.csv");
+    let out = run(&[
+        "solve",
+        "examples/von_mises.toml",
+        "--target",
+        "2",
+        "--json",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let fold = closed_form_fold();
+    assert_eq!(json["limit_points"], 2);
+    let first = json["first_limit_load_factor"].as_f64().unwrap();
+    assert!((first - fold).abs() < 1e-8 * fold, "{first} against {fold}");
+    assert_eq!(json["final_load_factor"], 2.0);
+    assert_eq!(json["stop"], "reached_target");
+    // one CSV row per point, λ as in the JSON
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    let points = json["path"]["points"].as_array().unwrap();
+    assert_eq!(rows.len(), points.len());
+    let lambda: f64 = rows[rows.len() - 1]
+        .split(',')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(lambda, 2.0);
+    // the text names both folds
+    let text = run(&["solve", "examples/von_mises.toml", "--target", "2"]);
+    let stdout = String::from_utf8_lossy(&text.stdout);
+    assert_eq!(stdout.matches("limit point at λ = ").count(), 2, "{stdout}");
+}
+
+#[test]
+fn bad_input_is_refused_naming_the_flag_or_the_item() {
+    for (args, needle) in [
+        (
+            vec!["solve", "examples/von_mises.toml", "--target", "0"],
+            "--target",
+        ),
+        (
+            vec!["solve", "examples/von_mises.toml", "--load-steps", "0"],
+            "--load-steps",
+        ),
+        (
+            vec![
+                "solve",
+                "examples/von_mises.toml",
+                "--path",
+                "--load-steps",
+                "3",
+            ],
+            "--load-steps",
+        ),
+        // bars without a radius: not elastic
+        (
+            vec!["solve", "examples/dbar_loaded.toml"],
+            "bar 0: an elastic bar needs a radius",
+        ),
+        // nothing loaded
+        (
+            vec!["solve", "examples/prism.toml"],
+            "the reference load is zero",
+        ),
+    ] {
+        let out = run(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
