@@ -4,9 +4,11 @@
 //! target: followed by its arc length through limit points ([`tensegrity_path::follow`]), or
 //! in K load steps with Newton at each ([`tensegrity_path::load_steps`]).
 //!
-//! Its estimate ([`estimate`]) is dense: per path point about ten factorisations and one
-//! symmetric eigendecomposition of the m × m tangent stiffness (m the free coordinates),
-//! (10 · m³/3 + 9 m³) flops at [`budget::DENSE_FLOP_RATE`], and 3 m² numbers held.
+//! Its estimate ([`estimate`]): per path point about ten factorisations of the m × m tangent
+//! stiffness (m the free coordinates); up to [`tensegrity_path::factor::DENSE_MAX`] dense
+//! with one symmetric eigendecomposition, (10 · m³/3 + 9 m³) flops at
+//! [`budget::DENSE_FLOP_RATE`] and 3 m² numbers held; above, sparse, linear in m
+//! ([`SPARSE_S_PER_COORDINATE`], [`SPARSE_BYTES_PER_COORDINATE`], calibrated on towers).
 //!
 //! ```
 //! use tensegrity_core::request::Request;
@@ -220,16 +222,37 @@ pub fn estimate(structure: &Structure, command: &SolveCommand) -> Estimate {
         Some(k) => k as f64 + 1.0,
         None => command.max_steps as f64,
     };
-    let flops = points * (10.0 * m * m * m / 3.0 + 9.0 * m * m * m);
-    Estimate::new(
-        format!("a load path of {points} point(s), each dense on {m} coordinates"),
-        format!(
-            "max_steps = {}, load_steps = {:?} ({} nodes)",
+    let parameter = match command.load_steps {
+        Some(k) => format!("load_steps = {k} ({} nodes)", structure.n_nodes()),
+        None => format!(
+            "max_steps = {} ({} nodes)",
             command.max_steps,
-            command.load_steps,
             structure.n_nodes()
         ),
+    };
+    if m <= tensegrity_path::factor::DENSE_MAX as f64 {
+        let flops = points * (10.0 * m * m * m / 3.0 + 9.0 * m * m * m);
+        return Estimate::new(
+            format!("a load path of {points} point(s), each dense on {m} coordinates"),
+            parameter,
+        )
+        .memory(3.0 * m * m * 8.0)
+        .work(flops / budget::DENSE_FLOP_RATE);
+    }
+    Estimate::new(
+        format!("a load path of {points} point(s), each sparse on {m} coordinates"),
+        parameter,
     )
-    .memory(3.0 * m * m * 8.0)
-    .work(flops / budget::DENSE_FLOP_RATE)
+    .memory(SPARSE_BYTES_PER_COORDINATE * m)
+    .work(points * 10.0 * SPARSE_S_PER_COORDINATE * m)
 }
+
+/// Seconds per free coordinate of one sparse factorisation with its assembly and solves,
+/// calibrated on truss towers (`scripts/truss-tower`, 1,111 stages, 10,008 coordinates: 5.2 s
+/// for 101 points of about four factorisations, 1.3 µs a coordinate), doubled; a structure
+/// of wide band (a lattice) costs more per coordinate.
+pub const SPARSE_S_PER_COORDINATE: f64 = 3e-6;
+
+/// Bytes per free coordinate of a sparse path (measured 6.6 kB on the same tower, whole
+/// process).
+pub const SPARSE_BYTES_PER_COORDINATE: f64 = 8e3;

@@ -19,12 +19,12 @@
 
 use crate::dofs::Dofs;
 use crate::error::{PathError, Result};
+use crate::factor::Factored;
 use crate::forces::{member_states, resisting_forces};
 use crate::model::{ElasticModel, MemberKind};
 use crate::newton::{self, residual, tolerance, Equilibrium};
 use crate::point::{Event, PathPoint, PathReport, Reaction, Stop};
 use crate::stability::{spectrum, Spectrum};
-use crate::tangent::tangent_stiffness;
 use nalgebra::{DVector, Vector3};
 
 /// Settings of [`follow`].
@@ -105,11 +105,11 @@ impl Tracer<'_> {
     /// The state at `eq` with its tangent oriented along `previous` (or with dλ of the sign
     /// of the target).
     fn state(&self, eq: Equilibrium, previous: Option<(&DVector<f64>, f64)>) -> Result<State> {
-        let k = tangent_stiffness(self.model, &self.dofs, &eq.states);
-        let spectrum = spectrum(&k);
+        let mut k = Factored::of(self.model, &self.dofs, &eq.states)
+            .ok_or(PathError::Singular { lambda: eq.lambda })?;
+        let spectrum = k.spectrum();
         let rate = newton::load_rate(self.model, &self.dofs, &eq.states);
         let v = k
-            .lu()
             .solve(&rate)
             .ok_or(PathError::Singular { lambda: eq.lambda })?;
         let mut t_q = v / self.u_ref;
@@ -169,7 +169,9 @@ impl Tracer<'_> {
             if iteration == newton::MAX_ITERATIONS || !g.amax().is_finite() {
                 break;
             }
-            let lu = tangent_stiffness(self.model, &self.dofs, &states).lu();
+            let Some(mut lu) = Factored::of(self.model, &self.dofs, &states) else {
+                return Err(PathError::Singular { lambda });
+            };
             let rate = newton::load_rate(self.model, &self.dofs, &states);
             let (Some(a), Some(b)) = (lu.solve(&g), lu.solve(&rate)) else {
                 return Err(PathError::Singular { lambda });
@@ -222,6 +224,10 @@ impl Tracer<'_> {
     }
 
     fn mode(&self, st: &State) -> Vec<[f64; 3]> {
+        if st.spectrum.mode.len() != self.dofs.len() {
+            // not computed (a sparse tangent)
+            return Vec::new();
+        }
         let u = self.dofs.expand(&st.spectrum.mode, self.model.nodes.len());
         let largest = u
             .iter()
@@ -244,7 +250,10 @@ pub(crate) fn point_of(
     let spectrum = match spectrum_given {
         Some(s) => s,
         None => {
-            computed = spectrum(&tangent_stiffness(model, dofs, &eq.states));
+            computed = Factored::of(model, dofs, &eq.states).map_or_else(
+                || spectrum(&nalgebra::DMatrix::zeros(0, 0)),
+                |k| k.spectrum(),
+            );
             &computed
         }
     };
@@ -323,10 +332,8 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
     if p.amax() == 0.0 {
         return Err(PathError::model("load", "the reference load is zero on every free direction and nothing else is driven: give [[loads]] on nodes that can move"));
     }
-    let k0 = tangent_stiffness(model, &dofs, &start.states);
-    let v0 = k0
-        .lu()
-        .solve(&p)
+    let v0 = Factored::of(model, &dofs, &start.states)
+        .and_then(|mut k| k.solve(&p))
         .ok_or(PathError::Singular { lambda: 0.0 })?;
     let tracer = Tracer {
         model,

@@ -35,6 +35,7 @@
 pub mod arclength;
 pub mod dofs;
 pub mod error;
+pub mod factor;
 pub mod forces;
 pub mod load_steps;
 pub mod model;

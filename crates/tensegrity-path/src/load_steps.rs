@@ -68,7 +68,7 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
         if let Some(prev) = report.points.last() {
             // the tangent's prediction of this step against what Newton found
             let states = crate::forces::member_states(model, &x, prev.lambda);
-            let k_t = crate::tangent::tangent_stiffness(model, &dofs, &states);
+            let k_t = crate::factor::Factored::of(model, &dofs, &states);
             let dp = newton::load_rate(model, &dofs, &states) * (lambda - prev.lambda);
             // the free part of the step: less the held nodes' driven motion
             let driven = dofs.drive(&x, lambda - prev.lambda);
@@ -78,7 +78,7 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
                     .map(|(a, b)| (a - b).norm_squared())
                     .sum::<f64>()
                     .sqrt();
-            if let Some(v) = k_t.lu().solve(&dp) {
+            if let Some(v) = k_t.and_then(|mut k| k.solve(&dp)) {
                 let predicted = v.norm();
                 if moved > JUMP_RATIO * predicted {
                     report.events.push(Event::Jump {

@@ -4,9 +4,9 @@
 
 use crate::dofs::Dofs;
 use crate::error::{PathError, Result};
+use crate::factor::Factored;
 use crate::forces::{member_states, resisting_forces, MemberState};
 use crate::model::ElasticModel;
-use crate::tangent::tangent_stiffness;
 use nalgebra::{DVector, Vector3};
 
 /// Newton iterations before giving up.
@@ -128,8 +128,9 @@ pub fn solve(
                         .into(),
             });
         }
-        let k = tangent_stiffness(model, dofs, &states);
-        let dq = k.lu().solve(&r).ok_or(PathError::Singular { lambda })?;
+        let dq = Factored::of(model, dofs, &states)
+            .and_then(|mut k| k.solve(&r))
+            .ok_or(PathError::Singular { lambda })?;
         for (u, xi) in dofs.expand(&dq, x.len()).iter().zip(x.iter_mut()) {
             *xi += u;
         }

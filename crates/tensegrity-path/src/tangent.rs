@@ -1,7 +1,7 @@
 //! The tangent stiffness K = dR/dx on the free coordinates (crate docs): per taut member
 //! K_k = (EA/L₀) n nᵀ + (t/L)(I − n nᵀ) on [[K_k, −K_k], [−K_k, K_k]], projected onto each
-//! node's free directions. Dense: the load paths of this crate serve structures up to a few
-//! thousand free coordinates.
+//! node's free directions: [`tangent_stiffness`] dense, [`tangent_triplets`] as triplets for
+//! the sparse factorisations of large structures ([`crate::factor`]).
 
 use crate::dofs::Dofs;
 use crate::forces::MemberState;
@@ -29,6 +29,20 @@ pub fn tangent_stiffness(
     states: &[MemberState],
 ) -> DMatrix<f64> {
     let mut k = DMatrix::zeros(dofs.len(), dofs.len());
+    for (r, c, v) in tangent_triplets(model, dofs, states) {
+        k[(r, c)] += v;
+    }
+    k
+}
+
+/// The tangent's entries as (row, column, value) triplets on the free coordinates, both
+/// triangles, repeated entries to be summed (sparse assembly, [`crate::factor`]).
+pub fn tangent_triplets(
+    model: &ElasticModel,
+    dofs: &Dofs,
+    states: &[MemberState],
+) -> Vec<(usize, usize, f64)> {
+    let mut t = Vec::with_capacity(36 * model.members.len());
     for (m, s) in model.members.iter().zip(states) {
         if s.slack {
             continue;
@@ -47,11 +61,11 @@ pub fn tangent_stiffness(
                     let kr = local * er;
                     for c in 0..qc {
                         let ec = dofs.free[q0 + c].1;
-                        k[(p0 + r, q0 + c)] += sp * sq * ec.dot(&kr);
+                        t.push((p0 + r, q0 + c, sp * sq * ec.dot(&kr)));
                     }
                 }
             }
         }
     }
-    k
+    t
 }
