@@ -289,6 +289,21 @@ fn output_flags(dir: &Path) -> Vec<(&'static str, Vec<String>, bool)> {
         ("simulate --animate", format!("{sim} --animate {{}}"), false),
         ("roll --animate", format!("{roll} --animate {{}}"), false),
         (
+            "solve --out",
+            "solve examples/von_mises.toml --target 2 --out {}".into(),
+            false,
+        ),
+        (
+            "solve --svg",
+            "solve examples/von_mises.toml --target 2 --svg {}".into(),
+            false,
+        ),
+        (
+            "solve --vtk",
+            "solve examples/von_mises.toml --target 2 --vtk {}".into(),
+            true,
+        ),
+        (
             "tipover --dynamic --animate",
             "tipover --dynamic --hold 1e4 --animate {}".into(),
             false,

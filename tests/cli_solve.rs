@@ -60,6 +60,42 @@ fn the_two_bar_truss_snaps_through_at_the_closed_form_load() {
         .parse()
         .unwrap();
     assert_eq!(lambda, 2.0);
+    // the figure and the VTK series: one frame per point, the member forces as cell data
+    let (svg, vtk) = (dir.join("path.svg"), dir.join("vtk"));
+    let out = run(&[
+        "solve",
+        "examples/von_mises.toml",
+        "--target",
+        "2",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--vtk",
+        vtk.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        picture.contains("limit point") && picture.contains("unstable"),
+        "legend"
+    );
+    let frames = std::fs::read_dir(&vtk)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "vtu")
+        })
+        .count();
+    assert_eq!(frames, points.len());
+    let last =
+        std::fs::read_to_string(vtk.join(format!("frame_{:05}.vtu", points.len() - 1))).unwrap();
+    assert!(last.contains(r#"Name="force""#));
     // the text names both folds
     let text = run(&["solve", "examples/von_mises.toml", "--target", "2"]);
     let stdout = String::from_utf8_lossy(&text.stdout);

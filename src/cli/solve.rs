@@ -1,14 +1,18 @@
 //! `tensegrity solve SCENE.toml [--path | --load-steps K] [--target Λ] [--max-steps N]
-//! [--out path.csv] [--json]`: the engine's `solve` request ([`SolveCommand`]): the scene's
-//! load path, elastic bars and tension-only strings, the loads scaled by λ up to the target,
-//! followed by its arc length through limit points (or in K load steps), printed as text or
-//! JSON; `--out` writes one row per point (opened before the run).
+//! [--out path.csv] [--svg FILE] [--vtk DIR] [--json]`: the engine's `solve` request
+//! ([`SolveCommand`]): the scene's load path, elastic bars and tension-only strings, the loads
+//! scaled by λ up to the target, followed by its arc length through limit points (or in K
+//! load steps), printed as text or JSON; `--out` writes one row per point, `--svg` the
+//! load–displacement figure ([`tensegrity_figures::load_path`]), `--vtk` one frame per point
+//! with the member forces (all opened before the run).
 
 use super::request_args::RequestArgs;
 use anyhow::{Context, Result};
+use nalgebra::Vector3;
 use std::path::PathBuf;
 use tensegrity_engine::solve::{SolveCommand, SolveReport};
-use tensegrity_io::sink::CsvSink;
+use tensegrity_io::sink::{CsvSink, VtkSeriesSink};
+use tensegrity_io::vtk::FrameData;
 use tensegrity_path::point::Event;
 
 /// The columns of `--out`.
@@ -35,6 +39,16 @@ pub struct SolveArgs {
     /// min_eigenvalue (N/m), stability, residual (N)) to this CSV.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Draw the load–displacement curve (λ against the largest node displacement; limit
+    /// points marked, stable and unstable stretches apart) to FILE (.svg, .png or .pdf).
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
+    /// Write a VTK series to DIR: one frame per path point (its step as the time), the member
+    /// forces as cell data `force` (N), and series.pvd.
+    #[arg(long, value_name = "DIR")]
+    vtk: Option<PathBuf>,
     /// Print JSON (the summary and the whole path: every point's nodes, tensions, reactions).
     #[arg(long)]
     json: bool,
@@ -46,10 +60,14 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     let mut sink = super::output::open("--out", args.out.as_deref(), |p| {
         CsvSink::with_header(p, "load path", &COLUMNS)
     })?;
+    let figure = args.figure.open("--svg", args.svg.as_deref())?;
     let scene = command
         .source()
         .map_err(super::request_args::usage)?
         .load()?;
+    let mut vtk = super::output::open("--vtk", args.vtk.as_deref(), |d| {
+        VtkSeriesSink::open(d, &scene.structure)
+    })?;
     let _progress = super::guard::check(tensegrity_engine::solve::estimate(
         &scene.structure,
         &command,
@@ -57,6 +75,22 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     let report = command
         .report(&scene.structure)
         .context("load path failed")?;
+    if let Some(series) = vtk.as_mut() {
+        for p in &report.path.points {
+            let nodes: Vec<Vector3<f64>> = p.nodes.iter().map(|&x| x.into()).collect();
+            let data = FrameData {
+                velocities: None,
+                member_forces: Some(&p.tensions),
+            };
+            series.frame_with(p.step as f64, &nodes, &data)?;
+        }
+    }
+    if let Some(series) = vtk {
+        series.finish()?;
+    }
+    if let Some(sink) = figure {
+        sink.finish(&curve(&report))?;
+    }
     if let Some(sink) = sink.as_mut() {
         for p in &report.path.points {
             let min = p
@@ -87,6 +121,37 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         print(&report);
         Ok(())
     }
+}
+
+/// The load–displacement figure of the path.
+fn curve(r: &SolveReport) -> tensegrity_io::figure::Figure {
+    use tensegrity_path::stability::Stability;
+    let points: Vec<_> = r
+        .path
+        .points
+        .iter()
+        .map(|p| {
+            (
+                p.max_displacement,
+                p.lambda,
+                p.stability != Stability::Unstable,
+            )
+        })
+        .collect();
+    let folds: Vec<(f64, f64)> = r
+        .path
+        .events
+        .iter()
+        .filter_map(|e| match e {
+            Event::LimitPoint {
+                lambda,
+                max_displacement,
+                ..
+            } => Some((*max_displacement, *lambda)),
+            _ => None,
+        })
+        .collect();
+    tensegrity_figures::load_path::figure(&points, &folds)
 }
 
 fn print(r: &SolveReport) {

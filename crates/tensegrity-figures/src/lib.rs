@@ -54,6 +54,7 @@ pub mod driver;
 pub mod error;
 pub mod estimate;
 pub mod index;
+pub mod load_path;
 pub mod michell;
 pub mod page;
 pub mod rolling;
