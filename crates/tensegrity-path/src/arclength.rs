@@ -274,7 +274,7 @@ pub(crate) fn point_of(
         .map(|(i, d)| Reaction {
             node: *i,
             direction: (*d).into(),
-            force: d.dot(&(r[*i] - model.load[*i] * eq.lambda)),
+            force: d.dot(&(r[*i] - model.load[*i] * eq.lambda - model.dead_load(*i))),
         })
         .collect();
     PathPoint {

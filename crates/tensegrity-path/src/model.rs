@@ -58,6 +58,9 @@ pub struct Drivers {
     /// The motion d of every node at λ = 1 (m; empty: none); only supported nodes may move,
     /// along their held directions.
     pub displacements: Vec<Vector3<f64>>,
+    /// A load D on every node that does not grow with λ (N; empty: none): the self-weight,
+    /// present from λ = 0 (the path starts from the structure standing under it).
+    pub dead_load: Vec<Vector3<f64>>,
 }
 
 impl Drivers {
@@ -65,6 +68,7 @@ impl Drivers {
     pub fn is_empty(&self) -> bool {
         self.rest_length_changes.iter().all(|&d| d == 0.0)
             && self.displacements.iter().all(|d| d.norm() == 0.0)
+            && self.dead_load.iter().all(|d| d.norm() == 0.0)
     }
 }
 
@@ -84,6 +88,15 @@ pub struct ElasticModel {
 }
 
 impl ElasticModel {
+    /// The dead load on node `i` (zero without one).
+    pub fn dead_load(&self, i: usize) -> Vector3<f64> {
+        self.drivers
+            .dead_load
+            .get(i)
+            .copied()
+            .unwrap_or_else(Vector3::zeros)
+    }
+
     /// The rest length of member `k` at load factor `lambda`, L₀ + λ ΔL₀.
     pub fn rest_length(&self, k: usize, lambda: f64) -> f64 {
         let change = self
@@ -180,6 +193,22 @@ impl ElasticModel {
                 ),
             ));
         }
+        if !d.dead_load.is_empty() && d.dead_load.len() != n {
+            return Err(PathError::model(
+                "dead_load",
+                format!("{} forces for {n} nodes", d.dead_load.len()),
+            ));
+        }
+        if let Some(i) = d
+            .dead_load
+            .iter()
+            .position(|v| !v.iter().all(|c| c.is_finite()))
+        {
+            return Err(PathError::model(
+                format!("dead load on node {i}"),
+                "must be finite",
+            ));
+        }
         if !d.displacements.is_empty() && d.displacements.len() != n {
             return Err(PathError::model(
                 "displacements",
@@ -234,8 +263,9 @@ impl ElasticModel {
     /// Young's modulus and their `radius`) and rest length their length in the scene;
     /// strings with their `stiffness` k (N/m) and `rest_length` (default: their length in the
     /// scene, no prestress), EA = k L₀; the supports along the flagged axes; the scene's
-    /// loads as P. A bar without a radius, a string without a stiffness and a scene with
-    /// gravity (self-weight is not modelled yet) are errors naming the item.
+    /// loads as P; with `[gravity]`, the weight of every bar with a `mass` (half at each end,
+    /// as the statics counts it) as the dead load, present from λ = 0. A bar without a radius
+    /// and a string without a stiffness are errors naming the item.
     ///
     /// ```
     /// use tensegrity_core::{Bar, Material, Structure, StringMember, Support};
@@ -251,12 +281,6 @@ impl ElasticModel {
     /// assert_eq!(m.members[0].rest_length, 2.0);
     /// ```
     pub fn from_structure(s: &Structure) -> Result<Self> {
-        if s.gravity().is_some() {
-            return Err(PathError::model(
-                "gravity",
-                "self-weight is not modelled by load paths yet: remove [gravity] and give the members' weights as [[loads]]",
-            ));
-        }
         let x = s.nodes();
         let length = |[i, j]: [usize; 2]| (x[j] - x[i]).norm();
         let mut members = Vec::with_capacity(s.n_members());
@@ -312,12 +336,25 @@ impl ElasticModel {
         for l in s.loads() {
             load[l.node] += l.force;
         }
+        // the self-weight, as the statics counts it (half of each bar's mass at each end)
+        let w = s.W();
+        let dead_load: Vec<Vector3<f64>> = (0..x.len())
+            .map(|i| Vector3::from(w.column(i)) - load[i])
+            .collect();
+        let dead_load = if dead_load.iter().all(|d| d.norm() == 0.0) {
+            Vec::new()
+        } else {
+            dead_load
+        };
         Self {
             nodes: x.to_vec(),
             members,
             supports,
             load,
-            drivers: Drivers::default(),
+            drivers: Drivers {
+                dead_load,
+                ..Drivers::default()
+            },
         }
         .validated()
     }

@@ -29,7 +29,8 @@ pub struct Equilibrium {
     pub residual: f64,
 }
 
-/// The residual force on the free coordinates, λ P − R(x), of `states`.
+/// The residual force on the free coordinates, D + λ P − R(x), of `states` (D the dead load,
+/// [`crate::model::Drivers::dead_load`]).
 pub fn residual(
     model: &ElasticModel,
     dofs: &Dofs,
@@ -37,11 +38,8 @@ pub fn residual(
     lambda: f64,
 ) -> DVector<f64> {
     let r = resisting_forces(model, states);
-    let f: Vec<Vector3<f64>> = model
-        .load
-        .iter()
-        .zip(&r)
-        .map(|(p, r)| p * lambda - r)
+    let f: Vec<Vector3<f64>> = (0..r.len())
+        .map(|i| model.load[i] * lambda + model.dead_load(i) - r[i])
         .collect();
     dofs.reduce(&f)
 }
@@ -55,7 +53,13 @@ pub fn tolerance(
     x: &[Vector3<f64>],
     lambda: f64,
 ) -> f64 {
-    let load = model.load.iter().map(|p| p.amax()).fold(0.0, f64::max) * lambda.abs();
+    let dead = model
+        .drivers
+        .dead_load
+        .iter()
+        .map(|d| d.amax())
+        .fold(0.0, f64::max);
+    let load = model.load.iter().map(|p| p.amax()).fold(0.0, f64::max) * lambda.abs() + dead;
     let tension = states.iter().map(|s| s.tension.abs()).fold(0.0, f64::max);
     let stiff = model
         .members

@@ -48,6 +48,7 @@ fn a_driven_rest_length_moves_the_node_as_the_closed_form() {
     let model = series(Drivers {
         rest_length_changes: vec![delta, 0.0],
         displacements: vec![],
+        dead_load: vec![],
     });
     let path = follow(&model, &PathSettings::default()).unwrap();
     assert!(path.points.len() > 3);
@@ -81,6 +82,7 @@ fn a_driven_support_moves_the_node_and_its_reaction_is_the_tension() {
         &series(Drivers {
             rest_length_changes: vec![],
             displacements: motion,
+            dead_load: vec![],
         }),
         &PathSettings::default(),
     )
@@ -117,6 +119,7 @@ fn a_displacement_on_a_free_direction_and_a_vanishing_rest_length_are_refused() 
         &series(Drivers {
             rest_length_changes: vec![],
             displacements: motion,
+            dead_load: vec![],
         }),
         &PathSettings::default(),
     )
@@ -129,6 +132,7 @@ fn a_displacement_on_a_free_direction_and_a_vanishing_rest_length_are_refused() 
         &series(Drivers {
             rest_length_changes: vec![-2.0, 0.0],
             displacements: vec![],
+            dead_load: vec![],
         }),
         &PathSettings::default(),
     )

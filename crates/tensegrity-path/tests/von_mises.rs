@@ -227,3 +227,49 @@ fn load_control_that_lands_past_the_fold_reports_the_jump() {
     );
     assert!(path.points.last().unwrap().nodes[2][1] < -H);
 }
+
+/// Self-weight (a scene with `[gravity]` and bar masses): each bar puts half its weight on
+/// the apex from the start, so the live load at the fold is the closed form's less the bars'
+/// weight on the apex: λ* P − (m g/2)·2.
+#[test]
+fn the_bars_weight_is_a_dead_load_that_lowers_the_fold_by_itself() {
+    use tensegrity_core::{Bar, Material, Structure, Support as Held};
+    let (mass, g) = (1.5, 9.81);
+    // E π r² = EA: r = 0.01 m, E = EA/(π 10⁻⁴)
+    let e = EA / (std::f64::consts::PI * 1e-4);
+    let s = Structure::builder()
+        .node([-A, 0.0, 0.0])
+        .node([A, 0.0, 0.0])
+        .node([0.0, H, 0.0])
+        .material("soft", Material::new(1000.0, e, 1e6))
+        .bar(Bar::new(0, 2).material("soft").radius(0.01).mass(mass))
+        .bar(Bar::new(1, 2).material("soft").radius(0.01).mass(mass))
+        .support(Held::pinned(0))
+        .support(Held::pinned(1))
+        .support(Held::directions(2, [false, false, true]))
+        .load(2, [0.0, -P, 0.0])
+        .gravity([0.0, -g, 0.0])
+        .build()
+        .unwrap();
+    let model = ElasticModel::from_structure(&s).unwrap();
+    assert!((model.drivers.dead_load[2].y + mass * g).abs() < 1e-12);
+    let path = follow(&model, &PathSettings::default()).unwrap();
+    let (_, l_star) = fold();
+    let expected = l_star - mass * g / P;
+    let first = path.events.iter().find_map(|e| match e {
+        Event::LimitPoint { lambda, .. } => Some(*lambda),
+        _ => None,
+    });
+    let first = first.unwrap();
+    assert!(
+        (first - expected).abs() < 1e-8 * expected,
+        "{first} against {expected}"
+    );
+    // at λ = 0 the truss already sags under its weight: the closed form at m g
+    let y0 = path.points[0].nodes[2][1];
+    assert!(
+        (lambda_at(y0) * P - mass * g).abs() < 1e-9 * P,
+        "{}",
+        lambda_at(y0) * P
+    );
+}
