@@ -140,3 +140,48 @@ fn bad_input_is_refused_naming_the_flag_or_the_item() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// examples/column.toml: the braced column bifurcates near λ_c = 2 k L/P = 2 (the bar's
+/// shortening and the strings' share of the load move it by 10⁻⁵), and `--switch-branch`
+/// follows the leaning branch, on which the string it leans to slackens.
+#[test]
+fn the_braced_column_bifurcates_and_the_switch_follows_the_leaning_branch() {
+    let out = run(&[
+        "solve",
+        "examples/column.toml",
+        "--switch-branch",
+        "--max-steps",
+        "60",
+        "--target",
+        "3",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let events = json["path"]["events"].as_array().unwrap();
+    let first = &events[0];
+    assert_eq!(first["kind"], "bifurcation");
+    assert_eq!(first["switched"], true);
+    assert!(
+        (first["lambda"].as_f64().unwrap() - 2.0).abs() < 1e-4,
+        "{first}"
+    );
+    assert!(events
+        .iter()
+        .any(|e| e["kind"] == "slackened" && e["members"] == serde_json::json!([2])));
+    assert_eq!(json["stability"], "unstable");
+    // without the switch the column stays straight
+    let straight = run(&["solve", "examples/column.toml", "--target", "3", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&straight.stdout).unwrap();
+    let last = json["path"]["points"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .clone();
+    assert!(last["nodes"][1][0].as_f64().unwrap().abs() < 1e-9);
+}

@@ -171,7 +171,12 @@ fn print(r: &SolveReport) {
             Event::LimitPoint { lambda, max_displacement, .. } => {
                 println!("limit point at λ = {lambda:.9} (largest displacement {max_displacement:.6} m)")
             }
-            Event::Bifurcation { lambda, .. } => println!("bifurcation at λ = {lambda:.9}"),
+            Event::Bifurcation {
+                lambda, switched, ..
+            } => println!(
+                "bifurcation at λ = {lambda:.9}{}",
+                if *switched { " (the path leaves along its mode)" } else { "" }
+            ),
             Event::Slackened { members, lambda, .. } => {
                 println!("slack from λ = {lambda:.9}: member(s) {members:?}")
             }

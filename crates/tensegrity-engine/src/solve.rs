@@ -59,6 +59,12 @@ pub struct SolveCommand {
     /// The largest number of path points.
     #[param(count, help = "The largest number of points of the arc-length path")]
     pub max_steps: usize,
+    /// At the first bifurcation, follow the other branch.
+    #[param(
+        flag,
+        help = "At the first bifurcation of the arc-length path, leave it along the critical mode and follow the other branch (structures of up to 200 free coordinates, whose modes are computed)"
+    )]
+    pub switch_branch: bool,
 }
 
 impl Default for SolveCommand {
@@ -69,6 +75,7 @@ impl Default for SolveCommand {
             load_steps: None,
             target: 1.0,
             max_steps: 500,
+            switch_branch: false,
         }
     }
 }
@@ -90,6 +97,13 @@ impl Request for SolveCommand {
                 "load_steps",
                 0.0,
                 "must be at least 1",
+            ));
+        }
+        if self.switch_branch && self.load_steps.is_some() {
+            return Err(InvalidParameter::text(
+                "switch_branch",
+                "true",
+                "load steps follow no branch: switching needs the arc-length path (drop load_steps)",
             ));
         }
         if self.max_steps == 0 {
@@ -194,6 +208,7 @@ impl SolveCommand {
                 let settings = PathSettings {
                     target: self.target,
                     max_steps: self.max_steps,
+                    switch_branch: self.switch_branch,
                     ..PathSettings::default()
                 };
                 SolveReport::of("path", tensegrity_path::follow(&model, &settings)?)

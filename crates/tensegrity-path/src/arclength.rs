@@ -16,6 +16,13 @@
 //! negative eigenvalues without one is a bifurcation, bisected alike on that count. Strings
 //! that go slack or take tension again are reported at the first point where they do, with
 //! the load factor where the slack set changes (bisected alike on that set).
+//!
+//! **Branch switching** (`switch_branch`, dense tangents). At the first bifurcation the path
+//! leaves along the critical mode φ (the eigenvector of the eigenvalue that crossed zero,
+//! oriented by its largest component): the predictor is z + s (φ, 0), the corrector holds
+//! the displacement along φ (its hyperplane) and finds λ. On the new branch the displacement
+//! is scaled by [`BRANCH_SCALE`] of the structure's size (the linear response that scales
+//! the path before it can be far smaller than the buckled motion).
 
 use crate::dofs::Dofs;
 use crate::error::{PathError, Result};
@@ -40,6 +47,9 @@ pub struct PathSettings {
     pub max_step: f64,
     /// The smallest step before the path stops.
     pub min_step: f64,
+    /// At the first bifurcation (dense tangents only: its mode is needed), leave the path
+    /// along the mode: the branch on the side of the mode's largest component.
+    pub switch_branch: bool,
 }
 
 impl Default for PathSettings {
@@ -51,6 +61,7 @@ impl Default for PathSettings {
             initial_step: 0.05,
             max_step: 0.25,
             min_step: 1e-8,
+            switch_branch: false,
         }
     }
 }
@@ -292,6 +303,20 @@ pub(crate) fn point_of(
     }
 }
 
+/// The displacement per unit arc length on a switched branch, as a fraction of the
+/// structure's size (module docs).
+pub const BRANCH_SCALE: f64 = 0.01;
+
+/// The diagonal of the nodes' bounding box (m).
+fn size(model: &ElasticModel) -> f64 {
+    let (mut lo, mut hi) = (model.nodes[0], model.nodes[0]);
+    for x in &model.nodes {
+        lo = lo.inf(x);
+        hi = hi.sup(x);
+    }
+    (hi - lo).norm()
+}
+
 /// The slack strings of an equilibrium.
 fn slack(model: &ElasticModel, eq: &Equilibrium) -> Vec<usize> {
     model
@@ -335,7 +360,7 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
     let v0 = Factored::of(model, &dofs, &start.states)
         .and_then(|mut k| k.solve(&p))
         .ok_or(PathError::Singular { lambda: 0.0 })?;
-    let tracer = Tracer {
+    let mut tracer = Tracer {
         model,
         dofs,
         u_ref: v0.norm().max(f64::MIN_POSITIVE),
@@ -346,6 +371,7 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
     let mut events = Vec::new();
     let mut s = settings.initial_step;
     let target = settings.target;
+    let mut switched = false;
     while points.len() <= settings.max_steps {
         let (eq, iterations) = match tracer.step(&current, s) {
             Ok(r) => r,
@@ -380,13 +406,39 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
                 mode: tracer.mode(&fold),
             });
         } else if next.spectrum.negative != current.spectrum.negative {
-            let n0 = current.spectrum.negative;
-            let branch = tracer.bisect(&current, s, move |st| st.spectrum.negative == n0)?;
+            // located where the eigenvalue crosses zero itself (the trigger above has a
+            // tolerance against round-off)
+            let n0 = current.spectrum.below_zero;
+            let branch = tracer.bisect(&current, s, move |st| st.spectrum.below_zero == n0)?;
+            let switch = settings.switch_branch
+                && !switched
+                && branch.spectrum.mode.len() == tracer.dofs.len();
             events.push(Event::Bifurcation {
                 lambda: branch.eq.lambda,
                 after_step: step - 1,
                 mode: tracer.mode(&branch),
+                switched: switch,
             });
+            if switch {
+                // on to the other branch: the bifurcation point, then a tangent along the
+                // mode (λ held in the predictor), the orientation of its largest component
+                switched = true;
+                let mut along = branch.clone();
+                let phi = &branch.spectrum.mode;
+                let largest = phi
+                    .iter()
+                    .fold(0.0f64, |m, &v| if v.abs() > m.abs() { v } else { m });
+                along.t_q = phi.normalize() * largest.signum();
+                along.t_lambda = 0.0;
+                points.push(tracer.point(step, &branch));
+                // the new branch moves along the mode at a nearly constant λ: its steps are
+                // measured on the structure's size, not on the (possibly tiny) linear
+                // response to the load that scales the path before it
+                tracer.u_ref = tracer.u_ref.max(BRANCH_SCALE * size(model));
+                current = along;
+                s = settings.initial_step;
+                continue;
+            }
         }
         let (before, after) = (slack(model, &current.eq), slack(model, &next.eq));
         let went: Vec<usize> = after

@@ -108,12 +108,14 @@ impl Factored {
             Factored::Cholesky(_) => Spectrum {
                 smallest: Vec::new(),
                 negative: 0,
+                below_zero: 0,
                 mode: DVector::zeros(0),
                 stability: Stability::Stable,
             },
             Factored::Lu(_) => Spectrum {
                 smallest: Vec::new(),
                 negative: 1,
+                below_zero: 1,
                 mode: DVector::zeros(0),
                 stability: Stability::Unstable,
             },

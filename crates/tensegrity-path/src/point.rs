@@ -62,8 +62,10 @@ pub enum Event {
         lambda: f64,
         /// The point's index after which it lies.
         after_step: usize,
-        /// The mode (node displacements, unit largest component).
+        /// The mode (node displacements, unit largest component; empty on a sparse tangent).
         mode: Vec<[f64; 3]>,
+        /// Whether the path left here along the mode (`switch_branch`).
+        switched: bool,
     },
     /// Load control jumped between two load steps: the equilibrium found moved far more than
     /// the tangent predicts (more than [`crate::load_steps::JUMP_RATIO`] times), as past a

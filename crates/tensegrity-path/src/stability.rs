@@ -33,6 +33,9 @@ pub struct Spectrum {
     pub smallest: Vec<f64>,
     /// How many are negative (below the zero tolerance).
     pub negative: usize,
+    /// How many are below zero itself (no tolerance): where a crossing is located, to the
+    /// round-off of the eigenvalues (≈ ε × the largest).
+    pub below_zero: usize,
     /// The eigenvector of the eigenvalue of smallest magnitude (reduced coordinates).
     pub mode: DVector<f64>,
     /// The verdict.
@@ -55,6 +58,7 @@ pub fn spectrum(k: &DMatrix<f64>) -> Spectrum {
         return Spectrum {
             smallest: Vec::new(),
             negative: 0,
+            below_zero: 0,
             mode: DVector::zeros(m),
             stability: if m == 0 {
                 Stability::Stable
@@ -70,6 +74,7 @@ pub fn spectrum(k: &DMatrix<f64>) -> Spectrum {
     let largest = eig.eigenvalues.amax();
     let zero = ZERO_EIGENVALUE * largest;
     let negative = eig.eigenvalues.iter().filter(|&&v| v < -zero).count();
+    let below_zero = eig.eigenvalues.iter().filter(|&&v| v < 0.0).count();
     let softest = (0..m)
         .min_by(|&a, &b| {
             eig.eigenvalues[a]
@@ -87,6 +92,7 @@ pub fn spectrum(k: &DMatrix<f64>) -> Spectrum {
     Spectrum {
         smallest: order.iter().take(3).map(|&a| eig.eigenvalues[a]).collect(),
         negative,
+        below_zero,
         mode: eig.eigenvectors.column(softest).into_owned(),
         stability,
     }

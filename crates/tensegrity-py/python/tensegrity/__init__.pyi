@@ -943,6 +943,7 @@ def solve(
     load_steps: Optional[int] = ...,
     target: float = ...,
     max_steps: int = ...,
+    switch_branch: bool = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -965,6 +966,10 @@ def solve(
         reversed); must be finite. Default: 1.0
     max_steps : int
         The largest number of points of the arc-length path; must be finite. Default: 500
+    switch_branch : bool
+        At the first bifurcation of the arc-length path, leave it along the critical mode
+        and follow the other branch (structures of up to 200 free coordinates, whose modes
+        are computed)
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
