@@ -57,7 +57,7 @@ pub struct SolveArgs {
 /// Entry point of `tensegrity solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
     let command: SolveCommand = args.request.request()?;
-    let mut sink = super::output::open("--out", args.out.as_deref(), |p| {
+    let sink = super::output::open("--out", args.out.as_deref(), |p| {
         CsvSink::with_header(p, "load path", &COLUMNS)
     })?;
     let figure = args.figure.open("--svg", args.svg.as_deref())?;
@@ -65,7 +65,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         .source()
         .map_err(super::request_args::usage)?
         .load()?;
-    let mut vtk = super::output::open("--vtk", args.vtk.as_deref(), |d| {
+    let vtk = super::output::open("--vtk", args.vtk.as_deref(), |d| {
         VtkSeriesSink::open(d, &scene.structure)
     })?;
     let _progress = super::guard::check(tensegrity_engine::solve::estimate(
@@ -75,45 +75,14 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     let report = command
         .report(&scene.structure)
         .context("load path failed")?;
-    if let Some(series) = vtk.as_mut() {
-        for p in &report.path.points {
-            let nodes: Vec<Vector3<f64>> = p.nodes.iter().map(|&x| x.into()).collect();
-            let data = FrameData {
-                velocities: None,
-                member_forces: Some(&p.tensions),
-            };
-            series.frame_with(p.step as f64, &nodes, &data)?;
-        }
-    }
     if let Some(series) = vtk {
-        series.finish()?;
+        write_frames(series, &report)?;
     }
     if let Some(sink) = figure {
         sink.finish(&curve(&report))?;
     }
-    if let Some(sink) = sink.as_mut() {
-        for p in &report.path.points {
-            let min = p
-                .smallest_eigenvalues
-                .first()
-                .map_or(String::new(), |v| v.to_string());
-            let stability = serde_json::to_value(p.stability)?
-                .as_str()
-                .unwrap_or("")
-                .to_string();
-            sink.record([
-                p.step.to_string(),
-                p.lambda.to_string(),
-                p.max_displacement.to_string(),
-                p.slack.len().to_string(),
-                min,
-                stability,
-                p.residual.to_string(),
-            ])?;
-        }
-    }
     if let Some(sink) = sink {
-        sink.finish()?;
+        write_rows(sink, &report)?;
     }
     if args.json {
         super::output::print_json(&report)
@@ -121,6 +90,45 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         print(&report);
         Ok(())
     }
+}
+
+/// One VTK frame per path point, its member forces as cell data.
+fn write_frames(mut series: VtkSeriesSink<'_>, report: &SolveReport) -> Result<()> {
+    for p in &report.path.points {
+        let nodes: Vec<Vector3<f64>> = p.nodes.iter().map(|&x| x.into()).collect();
+        let data = FrameData {
+            velocities: None,
+            member_forces: Some(&p.tensions),
+        };
+        series.frame_with(p.step as f64, &nodes, &data)?;
+    }
+    series.finish()?;
+    Ok(())
+}
+
+/// One CSV row per path point ([`COLUMNS`]).
+fn write_rows(mut sink: CsvSink, report: &SolveReport) -> Result<()> {
+    for p in &report.path.points {
+        let min = p
+            .smallest_eigenvalues
+            .first()
+            .map_or(String::new(), |v| v.to_string());
+        let stability = serde_json::to_value(p.stability)?
+            .as_str()
+            .unwrap_or("")
+            .to_string();
+        sink.record([
+            p.step.to_string(),
+            p.lambda.to_string(),
+            p.max_displacement.to_string(),
+            p.slack.len().to_string(),
+            min,
+            stability,
+            p.residual.to_string(),
+        ])?;
+    }
+    sink.finish()?;
+    Ok(())
 }
 
 /// The load–displacement figure of the path.

@@ -120,14 +120,17 @@ impl Tracer<'_> {
             .ok_or(PathError::Singular { lambda: eq.lambda })?;
         let spectrum = k.spectrum();
         let rate = newton::load_rate(self.model, &self.dofs, &eq.states);
-        let v = k
-            .solve(&rate)
-            .ok_or(PathError::Singular { lambda: eq.lambda })?;
-        let mut t_q = v / self.u_ref;
-        let mut t_lambda = 1.0;
-        let norm = (t_q.norm_squared() + 1.0).sqrt();
-        t_q /= norm;
-        t_lambda /= norm;
+        let (mut t_q, mut t_lambda) = match k.solve(&rate) {
+            Some(v) => {
+                let t_q = v / self.u_ref;
+                let norm = (t_q.norm_squared() + 1.0).sqrt();
+                (t_q / norm, 1.0 / norm)
+            }
+            // exactly at a limit point (a bisection can land there) the tangent is the
+            // critical mode at a stationary λ
+            None if spectrum.mode.len() == self.dofs.len() => (spectrum.mode.normalize(), 0.0),
+            None => return Err(PathError::Singular { lambda: eq.lambda }),
+        };
         let flip = match previous {
             Some((pq, pl)) => t_q.dot(pq) + t_lambda * pl < 0.0,
             None => t_lambda * self.direction < 0.0,
