@@ -185,3 +185,37 @@ fn the_braced_column_bifurcates_and_the_switch_follows_the_leaning_branch() {
         .clone();
     assert!(last["nodes"][1][0].as_f64().unwrap().abs() < 1e-9);
 }
+
+/// The drivers from a scene (examples/solve_drivers.toml): a bar's `rest_length_change` and a
+/// support's `displacement` move node 1 as the closed form of two bars in series; `statics`
+/// and `simulate` refuse the scene rather than ignore the keys.
+#[test]
+fn scene_drivers_move_the_node_as_the_closed_form_and_other_commands_refuse_them() {
+    let out = run(&["solve", "examples/solve_drivers.toml", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let last = json["path"]["points"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .clone();
+    let (ea, eb, dl, d) = (1000.0, 3000.0, 0.2, 0.1);
+    let u = (ea * dl + eb * d * (1.0 + dl)) / (ea + eb * (1.0 + dl));
+    let z = last["nodes"][1][2].as_f64().unwrap();
+    assert!((z - 1.0 - u).abs() < 1e-12, "{z} against {}", 1.0 + u);
+    assert!((last["nodes"][2][2].as_f64().unwrap() - 2.1).abs() < 1e-15);
+    for command in ["statics", "simulate"] {
+        let out = run(&[command, "examples/solve_drivers.toml"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command}: {err}");
+        assert!(
+            err.contains("bar 0: rest_length_change is read by `solve` only"),
+            "{command}: {err}"
+        );
+    }
+}

@@ -72,9 +72,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         &scene.structure,
         &command,
     ))?;
-    let report = command
-        .report(&scene.structure)
-        .context("load path failed")?;
+    let report = command.report(&scene).context("load path failed")?;
     if let Some(series) = vtk {
         write_frames(series, &report)?;
     }

@@ -177,6 +177,22 @@ pub enum SceneError {
     },
 }
 
+/// Refuses a scene that carries a key only `solve` reads (a load path's drivers: a rest-length
+/// change, a support displacement), naming the first and the command that would ignore it.
+pub fn refuse_path_keys(
+    scene: &tensegrity_io::scene::Scene,
+    command: &str,
+) -> Result<(), InvalidParameter> {
+    match scene.file.path_keys().first() {
+        None => Ok(()),
+        Some(key) => Err(InvalidParameter::text(
+            "scene",
+            key,
+            format!("{key} is read by `solve` only (a load path's driver); `{command}` would ignore it: remove it, or run `tensegrity solve`"),
+        )),
+    }
+}
+
 impl Categorized for SceneError {
     /// An invalid value or an unreadable scene is bad input; the analysis's own error keeps
     /// its category; a `strict` run that drifted failed numerically.

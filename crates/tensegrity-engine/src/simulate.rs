@@ -332,6 +332,7 @@ impl SimulateCommand {
     /// written), the scene kept (its structure labels the outputs).
     pub fn prepare(&self, written: bool) -> Result<(Scene, Simulation), SceneError> {
         let scene = self.source()?.load()?;
+        crate::scene::refuse_path_keys(&scene, "simulate")?;
         let simulation = self.simulation(&scene, written)?;
         Ok((scene, simulation))
     }

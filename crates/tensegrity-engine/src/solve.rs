@@ -28,6 +28,7 @@ use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::request::{InvalidParameter, Request};
 use tensegrity_core::Structure;
 use tensegrity_derive::{Columns, Params};
+use tensegrity_io::scene::Scene;
 use tensegrity_path::point::{Event, Stop};
 use tensegrity_path::stability::Stability;
 use tensegrity_path::{ElasticModel, PathReport, PathSettings};
@@ -196,9 +197,18 @@ impl SolveCommand {
         required(&self.scene)
     }
 
-    /// The path of `structure` (the scene already read).
-    pub fn report(&self, structure: &Structure) -> Result<SolveReport, SceneError> {
-        let model = ElasticModel::from_structure(structure)?;
+    /// The path of `scene` (already read): its structure's model
+    /// ([`ElasticModel::from_structure`]) with the scene's drivers, `rest_length_change` on
+    /// bars and strings and `displacement` on supports ([`tensegrity_io::scene::SceneFile::path_drivers`]).
+    pub fn report(&self, scene: &Scene) -> Result<SolveReport, SceneError> {
+        let mut model = ElasticModel::from_structure(&scene.structure)?;
+        let (changes, motion) = scene.file.path_drivers(model.nodes.len());
+        if changes.iter().any(|&c| c != 0.0) {
+            model.drivers.rest_length_changes = changes;
+        }
+        if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
+            model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
+        }
         Ok(match self.load_steps {
             Some(k) => SolveReport::of(
                 "load_steps",
@@ -220,7 +230,7 @@ impl SolveCommand {
 /// Runs `solve`: reads the scene, one path.
 pub fn solve(command: &SolveCommand) -> Result<SolveReport, SceneError> {
     let scene = command.source()?.load()?;
-    command.report(&scene.structure)
+    command.report(&scene)
 }
 
 /// The resource estimate of the path of `structure` (module docs).

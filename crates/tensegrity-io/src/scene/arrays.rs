@@ -270,6 +270,7 @@ impl SceneArrays {
                 mass: entry(&self.bar_mass, k),
                 material: entry(&self.bar_material, k),
                 radius: entry(&self.bar_radius, k),
+                rest_length_change: None,
             }));
         }
         let mut strings = Vec::with_capacity(self.strings.len());
@@ -280,6 +281,7 @@ impl SceneArrays {
                 rest_length: entry(&self.rest_length, k),
                 damping: entry(&self.damping, k),
                 material: entry(&self.string_material, k),
+                rest_length_change: None,
             }));
         }
         let (supports, loads) = self.nodal_items(file)?;
@@ -313,6 +315,7 @@ impl SceneArrays {
                 node: node_index(file, || format!("support {k}"), node, n)?,
                 directions: None,
                 fixed: Some(fixed),
+                displacement: None,
             }));
         }
         let mut loads = Vec::with_capacity(self.loads.len());

@@ -120,6 +120,9 @@ pub struct BarSpec {
     pub material: Option<String>,
     /// Cross-section radius (m).
     pub radius: Option<f64>,
+    /// The change of its rest length at load factor 1 along a load path (m), read by
+    /// `solve` only ([`SceneFile::path_keys`]).
+    pub rest_length_change: Option<f64>,
 }
 
 /// A `[[strings]]` entry.
@@ -136,6 +139,9 @@ pub struct StringSpec {
     pub damping: Option<f64>,
     /// Material name.
     pub material: Option<String>,
+    /// The change of its rest length at load factor 1 along a load path (m), read by
+    /// `solve` only ([`SceneFile::path_keys`]).
+    pub rest_length_change: Option<f64>,
 }
 
 /// A direction letter in a support.
@@ -160,6 +166,9 @@ pub struct SupportSpec {
     pub directions: Option<Vec<Axis>>,
     /// Alternative to `directions`: fixed flags for x, y, z.
     pub fixed: Option<[bool; 3]>,
+    /// The node's motion at load factor 1 along a load path (m; its fixed components act),
+    /// read by `solve` only ([`SceneFile::path_keys`]).
+    pub displacement: Option<[f64; 3]>,
 }
 
 /// A `[[loads]]` entry.
@@ -189,6 +198,64 @@ pub struct Scene {
     /// as data ([`Scene::from_arrays`]) the same tables, their spans empty (`0..0`: data has
     /// no text, and its errors no line).
     pub file: SceneFile,
+}
+
+impl SceneFile {
+    /// The items that carry a key only a load path reads (`rest_length_change` on a bar or a
+    /// string, `displacement` on a support), as `bar 0: rest_length_change`: every other
+    /// analysis refuses a scene that has one rather than ignore it.
+    ///
+    /// ```
+    /// use tensegrity_io::scene::Scene;
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\nrest_length_change = -0.1\n";
+    /// let scene = Scene::from_str_named(text, "a.toml").unwrap();
+    /// assert_eq!(scene.file.path_keys(), vec!["bar 0: rest_length_change".to_string()]);
+    /// ```
+    pub fn path_keys(&self) -> Vec<String> {
+        let bars = self.bars.iter().enumerate();
+        let strings = self.strings.iter().enumerate();
+        let supports = self.supports.iter().enumerate();
+        let mut keys: Vec<String> = bars
+            .filter(|(_, b)| b.get_ref().rest_length_change.is_some())
+            .map(|(i, _)| format!("bar {i}: rest_length_change"))
+            .collect();
+        keys.extend(
+            strings
+                .filter(|(_, s)| s.get_ref().rest_length_change.is_some())
+                .map(|(i, _)| format!("string {i}: rest_length_change")),
+        );
+        keys.extend(
+            supports
+                .filter(|(_, s)| s.get_ref().displacement.is_some())
+                .map(|(i, _)| format!("support {i}: displacement")),
+        );
+        keys
+    }
+
+    /// The rest-length changes of the members (bars then strings, 0 where not given) and the
+    /// motion of every node (from its supports' `displacement`, added), for a load path.
+    pub fn path_drivers(&self, n_nodes: usize) -> (Vec<f64>, Vec<[f64; 3]>) {
+        let changes = self
+            .bars
+            .iter()
+            .map(|b| b.get_ref().rest_length_change.unwrap_or(0.0))
+            .chain(
+                self.strings
+                    .iter()
+                    .map(|s| s.get_ref().rest_length_change.unwrap_or(0.0)),
+            )
+            .collect();
+        let mut motion = vec![[0.0; 3]; n_nodes];
+        for s in &self.supports {
+            let s = s.get_ref();
+            if let (Some(d), Some(m)) = (s.displacement, motion.get_mut(s.node)) {
+                for a in 0..3 {
+                    m[a] += d[a];
+                }
+            }
+        }
+        (changes, motion)
+    }
 }
 
 impl Scene {
