@@ -219,3 +219,56 @@ fn scene_drivers_move_the_node_as_the_closed_form_and_other_commands_refuse_them
         );
     }
 }
+
+/// A support `along` a direction of any orientation: the two-bar truss turned by 40° about x
+/// (its apex held along the turned normal of its plane, the load turned with it) snaps
+/// through at the same load factor as the upright one; `statics` refuses the key.
+#[test]
+fn a_support_along_any_direction_gives_the_turned_truss_the_same_fold() {
+    let (s, c) = 40f64.to_radians().sin_cos();
+    let scene = format!(
+        r#"nodes = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, {:?}, {:?}]]
+[materials.soft]
+density = 1000.0
+youngs_modulus = 1e7
+yield_strength = 1e6
+[[bars]]
+nodes = [0, 2]
+material = "soft"
+radius = 0.01
+[[bars]]
+nodes = [1, 2]
+material = "soft"
+radius = 0.01
+[[supports]]
+node = 0
+[[supports]]
+node = 1
+[[supports]]
+node = 2
+along = [[0.0, {:?}, {:?}]]
+[[loads]]
+node = 2
+force = [0.0, {:?}, {:?}]
+"#,
+        0.5 * c,
+        0.5 * s,
+        -s,
+        c,
+        -100.0 * c,
+        -100.0 * s
+    );
+    let out = run(&["solve", &scene, "--target", "2", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["limit_points"], 2);
+    let fold = json["first_limit_load_factor"].as_f64().unwrap();
+    assert!((fold - closed_form_fold()).abs() < 1e-8 * fold, "{fold}");
+    let out = run(&["statics", &scene]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("support 2: along"));
+}

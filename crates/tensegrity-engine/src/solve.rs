@@ -199,7 +199,8 @@ impl SolveCommand {
 
     /// The path of `scene` (already read): its structure's model
     /// ([`ElasticModel::from_structure`]) with the scene's drivers, `rest_length_change` on
-    /// bars and strings and `displacement` on supports ([`tensegrity_io::scene::SceneFile::path_drivers`]).
+    /// bars and strings and `displacement` on supports ([`tensegrity_io::scene::SceneFile::path_drivers`]),
+    /// and its supports `along` directions of any orientation.
     pub fn report(&self, scene: &Scene) -> Result<SolveReport, SceneError> {
         let mut model = ElasticModel::from_structure(&scene.structure)?;
         let (changes, motion) = scene.file.path_drivers(model.nodes.len());
@@ -208,6 +209,14 @@ impl SolveCommand {
         }
         if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
             model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
+        }
+        // supports along directions of any orientation replace the node's x, y, z ones
+        for (node, along) in scene.file.held_along() {
+            model.supports.retain(|s| s.node != node);
+            model.supports.push(tensegrity_path::Support {
+                node,
+                directions: along.into_iter().map(Into::into).collect(),
+            });
         }
         Ok(match self.load_steps {
             Some(k) => SolveReport::of(

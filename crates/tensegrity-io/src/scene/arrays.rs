@@ -316,6 +316,7 @@ impl SceneArrays {
                 directions: None,
                 fixed: Some(fixed),
                 displacement: None,
+                along: None,
             }));
         }
         let mut loads = Vec::with_capacity(self.loads.len());

@@ -169,6 +169,9 @@ pub struct SupportSpec {
     /// The node's motion at load factor 1 along a load path (m; its fixed components act),
     /// read by `solve` only ([`SceneFile::path_keys`]).
     pub displacement: Option<[f64; 3]>,
+    /// Directions of any orientation the node is held along (one to three, independent), in
+    /// place of `directions`: read by `solve` only ([`SceneFile::path_keys`]).
+    pub along: Option<Vec<[f64; 3]>>,
 }
 
 /// A `[[loads]]` entry.
@@ -202,7 +205,7 @@ pub struct Scene {
 
 impl SceneFile {
     /// The items that carry a key only a load path reads (`rest_length_change` on a bar or a
-    /// string, `displacement` on a support), as `bar 0: rest_length_change`: every other
+    /// string, `displacement` or `along` on a support), as `bar 0: rest_length_change`: every other
     /// analysis refuses a scene that has one rather than ignore it.
     ///
     /// ```
@@ -224,12 +227,27 @@ impl SceneFile {
                 .filter(|(_, s)| s.get_ref().rest_length_change.is_some())
                 .map(|(i, _)| format!("string {i}: rest_length_change")),
         );
-        keys.extend(
-            supports
-                .filter(|(_, s)| s.get_ref().displacement.is_some())
-                .map(|(i, _)| format!("support {i}: displacement")),
-        );
+        for (i, s) in supports {
+            let s = s.get_ref();
+            if s.displacement.is_some() {
+                keys.push(format!("support {i}: displacement"));
+            }
+            if s.along.is_some() {
+                keys.push(format!("support {i}: along"));
+            }
+        }
         keys
+    }
+
+    /// The supports held along directions of any orientation (`along`): node and directions.
+    pub fn held_along(&self) -> Vec<(usize, Vec<[f64; 3]>)> {
+        self.supports
+            .iter()
+            .filter_map(|s| {
+                let s = s.get_ref();
+                s.along.clone().map(|a| (s.node, a))
+            })
+            .collect()
     }
 
     /// The rest-length changes of the members (bars then strings, 0 where not given) and the
