@@ -21,14 +21,22 @@
 //!
 //! as [[K_k, −K_k], [−K_k, K_k]] on (x_i, x_j); a slack string adds nothing. Its eigenvalues
 //! on the free directions are the stability verdict ([`stability`]): all positive, stable; a
-//! negative one, unstable (its eigenvector the mode); one near zero, a mechanism.
+//! negative one, unstable (its eigenvector the mode); one near zero, a mechanism. Above
+//! [`factor::DENSE_MAX`] free coordinates the tangent is sparse and the verdict is whether its
+//! Cholesky factorisation succeeds ([`factor`]).
 //!
-//! **Paths.** [`newton`] solves R(x) = λ P at a given λ (load control: [`load_steps`]);
+//! **Beside the load** ([`model::Drivers`]) λ may drive rest lengths (L₀ + λ ΔL₀) and the
+//! motion of supported nodes (λ d), and a dead load D (the bars' weight) acts from λ = 0:
+//! equilibrium is R(x, λ) = D + λ P.
+//!
+//! **Paths.** [`newton`] solves R(x) = λ P at a given λ (load control: [`load_steps()`]);
 //! [`arclength`] follows the path (x(s), λ(s)) by its arc length s — a tangent predictor and a
 //! Newton corrector on the hyperplane normal to the tangent, in coordinates scaled so that a
 //! unit of λ and the linear response to P weigh alike — which passes limit points where λ
 //! turns back, locates each (λ to 10⁻⁸ relative, by bisection of the step on the sign of
-//! dλ/ds) and reports its mode.
+//! dλ/ds) and reports its mode; bifurcations (an eigenvalue crossing zero without a fold) are
+//! located alike, and the path may leave the first one along its mode
+//! ([`PathSettings::switch_branch`]).
 
 #![warn(missing_docs)]
 
