@@ -47,7 +47,7 @@ pub fn work_precision(request: &WorkPrecisionRequest) -> Result<WorkPrecisionRep
     work_precision_observed(request, &mut |_, _| {})
 }
 
-/// [`work_precision`], telling `progress(done, total)` after each point.
+/// [`work_precision()`], telling `progress(done, total)` after each point.
 pub fn work_precision_observed(
     request: &WorkPrecisionRequest,
     progress: &mut dyn FnMut(usize, usize),

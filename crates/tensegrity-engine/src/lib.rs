@@ -16,7 +16,7 @@
 //! | command (study) | request | library call |
 //! |---|---|---|
 //! | `toroid` | [`toroid::ToroidRequest`] | [`toroid::toroid_report`] |
-//! | `roll` | [`toroid::RollRequest`] | [`toroid::roll`] |
+//! | `roll` | [`toroid::RollRequest`] | [`toroid::roll()`] |
 //! | `tipover` | [`toroid::TipoverRequest`] | [`toroid::tipover_report`] |
 //! | `tipover_dynamic` | [`toroid::TipoverDynamicRequest`] | its `run` |
 //! | `tipover_rolling` (alias `lean`) | [`toroid::TipoverRollingRequest`] | its `run` |
@@ -30,7 +30,7 @@
 //! | `simulate` | [`simulate::SimulateCommand`] | [`simulate::simulate`] (a scene run in time) |
 //! | `solve` | [`solve::SolveCommand`] | [`solve::solve`] (a scene's load path, elastic, through limit points) |
 //! | `formfind` | [`formfind::FormfindRequest`] | [`formfind::formfind`] (form-finding, then the rest lengths of the prestress) |
-//! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision`] |
+//! | `bench_work_precision` | [`bench::WorkPrecisionRequest`] | [`bench::work_precision()`] |
 //!
 //! Every command's resource estimate is here too ([`estimate`]: the [`estimate::Estimated`]
 //! requests, and the grids front ends add), so every front end refuses the same requests;

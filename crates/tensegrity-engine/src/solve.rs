@@ -2,7 +2,7 @@
 //! elastic (EA = E π r² from their material and radius), its strings tension-only (their
 //! stiffness and rest length), the scene's loads scaled by the load factor λ from 0 to a
 //! target: followed by its arc length through limit points ([`tensegrity_path::follow`]), or
-//! in K load steps with Newton at each ([`tensegrity_path::load_steps`]).
+//! in K load steps with Newton at each ([`tensegrity_path::load_steps()`]).
 //!
 //! Its estimate ([`estimate`]): per path point about ten factorisations of the m × m tangent
 //! stiffness (m the free coordinates); up to [`tensegrity_path::factor::DENSE_MAX`] dense
