@@ -272,3 +272,67 @@ force = [0.0, {:?}, {:?}]
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("support 2: along"));
 }
+
+/// A scene not in equilibrium unloaded (a string to an anchor below, stretched to twice its
+/// rest length, pulls the soft bar's top down at λ = 0) is solved from its equilibrium, with a
+/// warning that the displacements count that move; a support giving `along` and `directions`
+/// is refused.
+#[test]
+fn an_unbalanced_start_is_warned_and_an_ambiguous_support_refused() {
+    let scene = |support: &str| {
+        format!(
+            r#"nodes = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]]
+[materials.soft]
+density = 1000.0
+youngs_modulus = 1e7
+yield_strength = 1e6
+[[bars]]
+nodes = [0, 1]
+material = "soft"
+radius = 0.01
+[[strings]]
+nodes = [1, 2]
+stiffness = 1000.0
+rest_length = 1.0
+[[supports]]
+node = 0
+[[supports]]
+node = 2
+[[supports]]
+node = 1
+{support}
+[[loads]]
+node = 1
+force = [0.0, 0.0, -1.0]
+"#
+        )
+    };
+    let out = run(&["solve", &scene("directions = [\"x\", \"y\"]"), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the unloaded scene is not in equilibrium"),
+        "{err}"
+    );
+    // the moved start is the closed form: the string's k z balances the bar's EA (1 − z),
+    // EA = 1e7 π 10⁻⁴
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let z = json["path"]["points"][0]["nodes"][1][2].as_f64().unwrap();
+    let ea = 1e7 * std::f64::consts::PI * 1e-4;
+    let l = ea / (ea + 1000.0);
+    assert!((z - l).abs() < 1e-12, "{z} against {l}");
+    let out = run(&[
+        "solve",
+        &scene("directions = [\"x\", \"y\"]\nalong = [[1.0, 0.0, 0.0]]"),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("\"support 2\": give either along"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -73,6 +73,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         &command,
     ))?;
     let report = command.report(&scene).context("load path failed")?;
+    warn_outside(&report, &command, scene.structure.nodes());
     if let Some(series) = vtk {
         write_frames(series, &report)?;
     }
@@ -127,6 +128,31 @@ fn write_rows(mut sink: CsvSink, report: &SolveReport) -> Result<()> {
     }
     sink.finish()?;
     Ok(())
+}
+
+/// Warnings beside numbers a reader could take for more than they are: a path that stopped
+/// before its target (its last point is not at the target), and a scene that was not in
+/// equilibrium unloaded (its λ = 0 point moved from the scene's nodes, and every displacement
+/// counts that move).
+fn warn_outside(report: &SolveReport, command: &SolveCommand, scene_nodes: &[Vector3<f64>]) {
+    if report.stop != "reached_target" {
+        eprintln!(
+            "warning: the path stopped at λ = {} before its target {} ({}): the last point's numbers are not the target's",
+            report.final_load_factor,
+            command.target,
+            report.stop.replace('_', " ")
+        );
+    }
+    let size = tensegrity_path::model::extent(scene_nodes);
+    if let Some(start) = report.path.points.first() {
+        if start.max_displacement > 1e-3 * size {
+            eprintln!(
+                "warning: the unloaded scene is not in equilibrium with its rest lengths: at λ = 0 its nodes moved up to {:.6e} m ({:.3} % of its size) before any load; every displacement is measured from the scene's nodes",
+                start.max_displacement,
+                100.0 * start.max_displacement / size
+            );
+        }
+    }
 }
 
 /// The load–displacement figure of the path.

@@ -210,7 +210,16 @@ impl SolveCommand {
         if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
             model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
         }
-        // supports along directions of any orientation replace the node's x, y, z ones
+        // supports along directions of any orientation replace the node's x, y, z ones, so a
+        // support that gives both is ambiguous
+        let both = scene.file.supports.iter().enumerate().find(|(_, s)| {
+            let s = s.get_ref();
+            s.along.is_some() && (s.directions.is_some() || s.fixed.is_some())
+        });
+        if let Some((i, _)) = both {
+            let why = "give either along (any orientation) or directions/fixed (x, y, z), not both";
+            return Err(InvalidParameter::text("scene", format!("support {i}"), why).into());
+        }
         for (node, along) in scene.file.held_along() {
             model.supports.retain(|s| s.node != node);
             model.supports.push(tensegrity_path::Support {

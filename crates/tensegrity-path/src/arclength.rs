@@ -310,16 +310,6 @@ pub(crate) fn point_of(
 /// structure's size (module docs).
 pub const BRANCH_SCALE: f64 = 0.01;
 
-/// The diagonal of the nodes' bounding box (m).
-fn size(model: &ElasticModel) -> f64 {
-    let (mut lo, mut hi) = (model.nodes[0], model.nodes[0]);
-    for x in &model.nodes {
-        lo = lo.inf(x);
-        hi = hi.sup(x);
-    }
-    (hi - lo).norm()
-}
-
 /// The slack strings of an equilibrium.
 fn slack(model: &ElasticModel, eq: &Equilibrium) -> Vec<usize> {
     model
@@ -437,7 +427,9 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
                 // the new branch moves along the mode at a nearly constant λ: its steps are
                 // measured on the structure's size, not on the (possibly tiny) linear
                 // response to the load that scales the path before it
-                tracer.u_ref = tracer.u_ref.max(BRANCH_SCALE * size(model));
+                tracer.u_ref = tracer
+                    .u_ref
+                    .max(BRANCH_SCALE * crate::model::extent(&model.nodes));
                 current = along;
                 s = settings.initial_step;
                 continue;

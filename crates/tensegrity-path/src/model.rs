@@ -360,6 +360,23 @@ impl ElasticModel {
     }
 }
 
+/// The diagonal of the bounding box of `nodes` (m): a structure's size, the scale of its
+/// displacements.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// assert_eq!(tensegrity_path::model::extent(&[Vector3::zeros(), Vector3::new(3.0, 4.0, 0.0)]), 5.0);
+/// ```
+pub fn extent(nodes: &[Vector3<f64>]) -> f64 {
+    let Some(first) = nodes.first() else {
+        return 0.0;
+    };
+    let (lo, hi) = nodes
+        .iter()
+        .fold((*first, *first), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
+    (hi - lo).norm()
+}
+
 /// `bar` or `string`.
 pub(crate) fn kind_name(kind: MemberKind) -> &'static str {
     match kind {
