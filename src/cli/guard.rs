@@ -195,6 +195,18 @@ pub fn simulation(
     counted(e, "simulate", Measure::Simulated { t_end }, shown)
 }
 
+/// `tensegrity simulate` of an elastic scene: its estimate
+/// ([`tensegrity_engine::simulate::elastic::ElasticRun::estimate`]) checked, its simulated
+/// time shown as for a rigid run.
+pub fn elastic_simulation(
+    e: Estimate,
+    settings: &tensegrity_dynamics::SimulationSettings,
+) -> Result<Progress> {
+    let shown = e.work_s >= SPINNER_AFTER_S || settings.integrator.is_adaptive();
+    let t_end = settings.t_end;
+    counted(e, "simulate", Measure::Simulated { t_end }, shown)
+}
+
 /// `tensegrity michell --sign-map` (nothing without it).
 pub fn sign_map(grid: (usize, usize), members: usize, requested: bool) -> Result<Progress> {
     optional(requested.then(|| estimate::sign_map(grid, members)))

@@ -1,5 +1,5 @@
 //! `tensegrity simulate SCENE.toml [--t-end S]
-//! [--integrator rk4|rk45|rattle|sdirk|imex|imex-ark|rk4-flight] [--dt S] [--rtol X]
+//! [--integrator rk4|rk45|rattle|sdirk|imex|imex-ark|rk4-flight|newmark] [--dt S] [--rtol X]
 //! [--atol X] [--out traj.csv] [--output-interval S] [--json]`.
 //!
 //! The flags are the engine's `simulate` request ([`SimulateCommand`]): the scene's
@@ -13,16 +13,18 @@
 //! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
 //! `wall_time_s` (the integration alone, without parsing and output). `--animate FILE.gif`
 //! draws the structure over the run ([`super::animate`]); the progress (simulated time) goes
-//! to stderr.
+//! to stderr. An elastic scene (`[simulation] bars = "elastic"`, or strings with point
+//! masses and no bar) runs the elastic dynamics ([`elastic`]) with the same flags, outputs
+//! and report (`--animate` aside).
 
 use super::output;
 use super::request_args::{usage, RequestArgs};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
+use tensegrity_core::request::InvalidParameter;
 use tensegrity_core::CoreError;
-use tensegrity_dynamics::Simulation;
-use tensegrity_dynamics::{IntegratorKind, SimulationReport};
-use tensegrity_engine::simulate::SimulateCommand;
+use tensegrity_dynamics::{IntegratorKind, SampleSink, SimulationReport};
+use tensegrity_engine::simulate::{elastic, Checked, SimulateCommand};
 use tensegrity_engine::{SceneError, SceneSource};
 use tensegrity_figures::animation::Scenery;
 use tensegrity_io::interrupt::{self, Interrupted};
@@ -53,13 +55,18 @@ pub struct SimulateArgs {
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let command: SimulateCommand = args.request.request()?;
+    let scene = command
+        .source()
+        .map_err(usage)?
+        .load()
+        .map_err(|e| usage_of(e.into()))?;
+    if elastic::is_elastic(&scene) {
+        return run_elastic(args, &command, &scene);
+    }
     let (csv, vtk) = (args.out.is_some(), args.vtk.is_some());
     let opened = args.animate.open()?;
     let sampled = csv || vtk || opened.is_some();
-    let (scene, mut simulation) = command.prepare(sampled).map_err(|e| match e {
-        SceneError::InvalidParameter(p) => usage(p),
-        e => e.into(),
-    })?;
+    let (scene, mut simulation) = command.prepare_scene(scene, sampled).map_err(usage_of)?;
     let progress = super::guard::simulation(&command, &simulation, csv, vtk)?;
     let mut animation = opened.map(|o| {
         let scenery =
@@ -74,18 +81,58 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             .extend_from_slice(a.times());
     }
     let frames = animation.as_mut().map(|a| a as &mut dyn NodeFrames);
-    let run = Run(&command, &simulation, &scene, progress.handle(), frames);
-    let report = run_with_outputs(args, run)?;
+    let run = Run(&command, &scene, progress.handle(), frames);
+    let report = run_with_outputs(args, run, |sink| {
+        command.run_beside(&scene, &simulation, sink)
+    })?;
     super::animate::finish(animation, args.animate.animate.as_deref())?;
+    finish(args, &command, simulation.settings.integrator, &report)
+}
+
+/// A request's bad parameter is a usage error (exit 2).
+fn usage_of(e: SceneError) -> anyhow::Error {
+    match e {
+        SceneError::InvalidParameter(p) => usage(p),
+        e => e.into(),
+    }
+}
+
+/// Prints the report (or its JSON) and its warnings; the `strict` rule.
+fn finish(
+    args: &SimulateArgs,
+    command: &SimulateCommand,
+    integrator: IntegratorKind,
+    report: &SimulationReport,
+) -> Result<()> {
     if args.json {
-        super::output::print_json(&report)?;
+        super::output::print_json(report)?;
     } else {
-        print_report(simulation.settings.integrator, &report);
+        print_report(integrator, report);
     }
     for w in &report.warnings {
         eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
-    Ok(command.strict_check(&report)?)
+    Ok(command.strict_check(report)?)
+}
+
+/// An elastic scene ([`elastic`]): the same outputs but `--animate`, which draws rigid-bar
+/// runs only.
+fn run_elastic(args: &SimulateArgs, command: &SimulateCommand, scene: &Scene) -> Result<()> {
+    if let Some(gif) = &args.animate.animate {
+        return Err(usage(InvalidParameter::text(
+            "animate",
+            gif.display(),
+            "draws rigid-bar runs only: write the elastic run's trajectory with --out or --vtk",
+        )));
+    }
+    let (csv, vtk) = (args.out.is_some(), args.vtk.is_some());
+    let run = command.elastic(scene, csv || vtk).map_err(usage_of)?;
+    let estimate = run.estimate(command.convergence_check, csv, vtk)?;
+    let progress = super::guard::elastic_simulation(estimate, &run.settings)?;
+    let report = run_with_outputs(args, Run(command, scene, progress.handle(), None), |sink| {
+        Ok(run.run_beside(command, scene, sink))
+    })?;
+    finish(args, command, run.settings.integrator, &report)
 }
 
 /// The animation's title: the scene's file name.
@@ -97,18 +144,22 @@ fn title(command: &SimulateCommand) -> String {
     name.unwrap_or_else(|| "scene".into())
 }
 
-/// What a run needs: the command, its simulation and scene, its progress and its animation.
+/// What a run needs: the command, its scene, its progress and its animation.
 struct Run<'a>(
     &'a SimulateCommand,
-    &'a Simulation,
     &'a Scene,
     Progress,
     Option<&'a mut dyn NodeFrames>,
 );
 
-/// The run streamed to `--out` and `--vtk` (opened before it), what was written said.
-fn run_with_outputs(args: &SimulateArgs, run: Run<'_>) -> Result<SimulationReport> {
-    let Run(command, simulation, scene, progress, frames) = run;
+/// The run (`beside`: the run and its companion into a sink) streamed to `--out` and `--vtk`
+/// (opened before it), what was written said.
+fn run_with_outputs(
+    args: &SimulateArgs,
+    run: Run<'_>,
+    beside: impl FnOnce(&mut dyn SampleSink) -> Result<Checked, SceneError>,
+) -> Result<SimulationReport> {
+    let Run(command, scene, progress, frames) = run;
     let (structure, source) = (&scene.structure, command.source()?);
     let csv = output::open("--out", args.out.as_deref(), |p| {
         TrajectoryWriter::create(p, structure)
@@ -121,7 +172,7 @@ fn run_with_outputs(args: &SimulateArgs, run: Run<'_>) -> Result<SimulationRepor
         outputs = outputs.with_frames(f);
     }
     let _polled = interrupt::polled();
-    let checked = command.run_beside(scene, simulation, &mut outputs)?;
+    let checked = beside(&mut outputs)?;
     let written = outputs.finish(checked.main.as_ref().err())?;
     let report = match checked.report() {
         Err(CoreError::Interrupted { t }) => {

@@ -168,8 +168,15 @@ fn print_load_solve(structure: &Structure, r: &StaticsReport) {
         );
     }
     for rc in r.reactions.iter().flatten() {
+        // a support along directions of any orientation: its force along each of them
+        let along = if rc.along.is_empty() {
+            String::new()
+        } else {
+            let parts: Vec<String> = rc.along.iter().map(|a| format!("{a:.6}")).collect();
+            format!(" (along its given directions: {} N)", parts.join(", "))
+        };
         println!(
-            "  reaction at node {}: [{:.6}, {:.6}, {:.6}] N",
+            "  reaction at node {}: [{:.6}, {:.6}, {:.6}] N{along}",
             rc.node, rc.force[0], rc.force[1], rc.force[2]
         );
     }

@@ -141,14 +141,33 @@ impl StringMember {
     }
 }
 
-/// A node held fixed in some (by default all) of the three directions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A node held in some directions: some (by default all) of x, y, z, and any further
+/// directions of any orientation ([`Support::along`]); rigidly, or by a spring of stiffness k
+/// along each held direction ([`Support::elastic`]).
+///
+/// The held directions are the flagged axes (`fixed`, in x, y, z order) followed by the
+/// `along` directions; together they must be unit vectors (to [`UNIT_TOLERANCE`]), finite and
+/// independent (one to three), which [`StructureBuilder::build`] checks, naming the support.
+/// Analyses that read only the axes ([`Structure::fixed_dofs`]: the dynamics) see the `fixed`
+/// flags alone; front ends refuse to hand them a support with `along` directions or a
+/// stiffness.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Support {
     /// The supported node.
     pub node: usize,
-    /// Which of x, y, z are fixed.
+    /// Which of x, y, z are held.
     pub fixed: [bool; 3],
+    /// Further held directions of any orientation (unit vectors), after the flagged axes.
+    pub along: Vec<Vector3<f64>>,
+    /// The stiffness k (N/m) of a spring along each held direction (an elastic support);
+    /// `None`: held rigidly.
+    pub stiffness: Option<f64>,
 }
+
+/// How far from 1 the norm of a support's `along` direction may be (absolute): a direction
+/// is a unit vector, and a wrong one (a normal not normalised, a typo) is refused rather
+/// than silently normalised.
+pub const UNIT_TOLERANCE: f64 = 1e-6;
 
 impl Support {
     /// A node fixed in all three directions.
@@ -158,10 +177,7 @@ impl Support {
     /// assert_eq!(Support::pinned(3).fixed, [true; 3]);
     /// ```
     pub fn pinned(node: usize) -> Self {
-        Self {
-            node,
-            fixed: [true; 3],
-        }
+        Self::directions(node, [true; 3])
     }
 
     /// A node fixed only in the directions flagged `true` (x, y, z).
@@ -172,8 +188,125 @@ impl Support {
     /// assert_eq!(roller.fixed, [false, false, true]);
     /// ```
     pub fn directions(node: usize, fixed: [bool; 3]) -> Self {
-        Self { node, fixed }
+        Self {
+            node,
+            fixed,
+            along: Vec::new(),
+            stiffness: None,
+        }
     }
+
+    /// A node held along directions of any orientation (unit vectors, one to three,
+    /// independent), none of x, y, z flagged: a roller on an incline is held along the
+    /// incline's normal.
+    ///
+    /// ```
+    /// use tensegrity_core::Support;
+    /// // a roller on a 30° incline: held along its normal (−sin 30°, 0, cos 30°)
+    /// let (s, c) = 30f64.to_radians().sin_cos();
+    /// let roller = Support::along(1, [[-s, 0.0, c]]);
+    /// assert_eq!((roller.fixed, roller.along.len()), ([false; 3], 1));
+    /// assert_eq!(roller.held_directions()[0].z, c);
+    /// ```
+    pub fn along<I: IntoIterator<Item = [f64; 3]>>(node: usize, directions: I) -> Self {
+        Self {
+            along: directions.into_iter().map(Vector3::from).collect(),
+            ..Self::directions(node, [false; 3])
+        }
+    }
+
+    /// The same support held by a spring of stiffness `k` (N/m) along each held direction
+    /// instead of rigidly.
+    ///
+    /// ```
+    /// use tensegrity_core::Support;
+    /// let spring = Support::directions(2, [false, false, true]).elastic(1e4);
+    /// assert_eq!((spring.stiffness, spring.is_elastic()), (Some(1e4), true));
+    /// assert!(!Support::pinned(0).is_elastic());
+    /// ```
+    pub fn elastic(mut self, k: f64) -> Self {
+        self.stiffness = Some(k);
+        self
+    }
+
+    /// Whether the support is a spring ([`Support::elastic`]).
+    pub fn is_elastic(&self) -> bool {
+        self.stiffness.is_some()
+    }
+
+    /// The held directions: the flagged axes (x, y, z order), then the `along` directions.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_core::Support;
+    /// let mut s = Support::directions(0, [false, false, true]);
+    /// s.along.push(Vector3::new(0.6, 0.8, 0.0));
+    /// assert_eq!(s.held_directions(), vec![Vector3::z(), Vector3::new(0.6, 0.8, 0.0)]);
+    /// ```
+    pub fn held_directions(&self) -> Vec<Vector3<f64>> {
+        (0..3)
+            .filter(|&d| self.fixed[d])
+            .map(|d| Vector3::ith(d, 1.0))
+            .chain(self.along.iter().copied())
+            .collect()
+    }
+
+    /// An orthonormal basis of the span of the held directions (Gram–Schmidt in the order of
+    /// [`Support::held_directions`]), or why there is none: a direction that is not finite,
+    /// not of unit norm (to [`UNIT_TOLERANCE`]), or dependent on the ones before it (a
+    /// residual below 10⁻⁹). The message names the direction, not the support.
+    ///
+    /// ```
+    /// use tensegrity_core::Support;
+    /// let basis = Support::along(0, [[0.6, 0.8, 0.0], [0.0, 0.0, 1.0]]).held_basis().unwrap();
+    /// assert_eq!(basis.len(), 2);
+    /// let e = Support::along(0, [[0.6, 0.8, 0.0], [-0.6, -0.8, 0.0]]).held_basis().unwrap_err();
+    /// assert!(e.contains("dependent"), "{e}");
+    /// let e = Support::along(0, [[1.0, 1.0, 0.0]]).held_basis().unwrap_err();
+    /// assert!(e.contains("norm 1.414"), "{e}");
+    /// ```
+    pub fn held_basis(&self) -> std::result::Result<Vec<Vector3<f64>>, String> {
+        let n_fixed = self.fixed.iter().filter(|&&f| f).count();
+        let mut basis: Vec<Vector3<f64>> = Vec::with_capacity(3);
+        for (h, d) in self.held_directions().into_iter().enumerate() {
+            let name = || match h.checked_sub(n_fixed) {
+                Some(a) => format!("along direction {a} {}", show(&d)),
+                None => format!("direction {}", show(&d)),
+            };
+            if !d.iter().all(|v| v.is_finite()) {
+                return Err(format!("{} is not finite", name()));
+            }
+            let norm = d.norm();
+            if (norm - 1.0).abs() > UNIT_TOLERANCE {
+                let hint = if norm > 0.0 {
+                    format!(", e.g. {}", show(&(d / norm)))
+                } else {
+                    String::new()
+                };
+                return Err(format!(
+                    "{} has norm {norm:.6}, not 1: give a unit vector (to {UNIT_TOLERANCE:e}){hint}",
+                    name()
+                ));
+            }
+            let mut v = d / norm;
+            for b in &basis {
+                v -= b * b.dot(&v);
+            }
+            if basis.len() == 3 || v.norm() < 1e-9 {
+                return Err(format!(
+                    "{} is dependent on the held directions before it (a direction repeated, or in the plane of two others): give one to three independent directions",
+                    name()
+                ));
+            }
+            basis.push(v.normalize());
+        }
+        Ok(basis)
+    }
+}
+
+/// A direction as `[x, y, z]` (shortest round-trip numbers), for messages.
+fn show(v: &Vector3<f64>) -> String {
+    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
 }
 
 /// An external force applied at a node.
@@ -340,7 +473,9 @@ impl Structure {
         self.materials.get(name)
     }
 
-    /// For each node, which directions are fixed.
+    /// For each node, which of x, y, z its support flags (`fixed`). A support's `along`
+    /// directions and its stiffness are not seen here: the statics and the load paths read
+    /// the supports themselves ([`Structure::supports`], [`Support::held_basis`]).
     pub fn fixed_dofs(&self) -> Vec<[bool; 3]> {
         let mut fixed = vec![[false; 3]; self.nodes.len()];
         for s in &self.supports {
@@ -572,7 +707,8 @@ impl StructureBuilder {
         self
     }
 
-    /// Adds a support.
+    /// Adds a support (rigid or elastic, along x, y, z or any directions: [`Support`]); the
+    /// build checks it, naming it by its index (`support 2: ...`).
     ///
     /// ```
     /// use tensegrity_core::{Bar, Structure, Support};
@@ -747,8 +883,21 @@ impl StructureBuilder {
                 }
                 .into());
             }
-            if !s.fixed.iter().any(|&f| f) {
+            if !s.fixed.iter().any(|&f| f) && s.along.is_empty() {
                 return Err(ModelError::EmptySupport { support: i }.into());
+            }
+            if let Err(reason) = s.held_basis() {
+                return Err(ModelError::InvalidSupport { support: i, reason }.into());
+            }
+            if let Some(k) = s.stiffness {
+                if !(k.is_finite() && k > 0.0) {
+                    return Err(ModelError::NonPositiveConstant {
+                        item: format!("support {i}"),
+                        name: "stiffness",
+                        value: k,
+                    }
+                    .into());
+                }
             }
             supported[s.node] = Some(i);
         }

@@ -45,6 +45,8 @@ pub fn simulation(
         K::Imex => 3.0,
         // four right-hand sides, four responses and the Newton solves of the stages
         K::ImexArk => 6.0,
+        // (elastic models only: a rigid model refuses it before any estimate)
+        K::Newmark => 3.0,
     };
     let flops = rhs_flops(
         model.bars.len(),

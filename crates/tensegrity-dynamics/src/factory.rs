@@ -12,7 +12,7 @@ use crate::rattle::Rattle;
 use crate::rk4::Rk4;
 use crate::rk45::Dopri5;
 use crate::sdirk::Sdirk;
-use tensegrity_core::error::CoreError;
+use tensegrity_core::error::{CoreError, DynamicsError};
 
 impl IntegratorKind {
     /// A fresh integrator of this kind for `model`; `rtol` and `atol` are used by the
@@ -32,6 +32,13 @@ impl IntegratorKind {
             Self::Imex => Box::new(Imex::new(model)),
             Self::ImexArk => Box::new(ImexArk::new(model)),
             Self::Rk4Flight => Box::new(Flight::new(model, Box::new(Rk4::new(n)), self)),
+            Self::Newmark => {
+                return Err(DynamicsError::Unsupported {
+                    item: "integrator = newmark".into(),
+                    reason: "Newmark steps elastic models only: give the scene `[simulation] bars = \"elastic\"`, or integrate rigid bars with rk4, rk45, rattle, sdirk, imex, imex-ark or rk4-flight".into(),
+                }
+                .into())
+            }
         })
     }
 }

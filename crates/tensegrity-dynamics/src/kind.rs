@@ -62,6 +62,11 @@ pub enum IntegratorKind {
     /// [`FLIGHT_RATIO`](crate::flight::FLIGHT_RATIO)·dt in flight ([`Flight`](crate::Flight)).
     #[serde(rename = "rk4-flight")]
     Rk4Flight,
+    /// Fixed-step Newmark average acceleration (the implicit trapezoidal rule: 2nd order,
+    /// unconditionally stable, no numerical damping) with Newton on the tangent stiffness:
+    /// elastic models only (`tensegrity_path::transient`), whose stiff axial modes it steps
+    /// over at the step of the motion.
+    Newmark,
 }
 
 impl IntegratorKind {
@@ -75,9 +80,16 @@ impl IntegratorKind {
         "imex",
         "imex-ark",
         "rk4-flight",
+        "newmark",
     ];
 
-    /// Every integrator, in the order of [`NAMES`](Self::NAMES) (for studies and tests).
+    /// The names of the integrators of rigid-bar models ([`NAMES`](Self::NAMES) but
+    /// `newmark`): the choices of a front end that runs rigid bars only.
+    pub const RIGID_NAMES: &'static [&'static str] = Self::NAMES.split_at(7).0;
+
+    /// Every integrator of rigid-bar models, in the order of [`NAMES`](Self::NAMES) (for
+    /// studies and tests; [`IntegratorKind::Newmark`], the last name, steps elastic models
+    /// only).
     pub const ALL: [IntegratorKind; 7] = [
         Self::Rk4,
         Self::Rk45,
@@ -147,6 +159,13 @@ impl IntegratorKind {
                 false,
                 "contact scenes that spend long phases in flight",
             ),
+            Self::Newmark => (
+                2,
+                Implicit::Full,
+                false,
+                false,
+                "elastic members with stiff axial modes (elastic models only)",
+            ),
         };
         IntegratorFacts {
             order,
@@ -174,15 +193,15 @@ impl fmt::Display for IntegratorKind {
             IntegratorKind::Imex => "imex",
             IntegratorKind::ImexArk => "imex-ark",
             IntegratorKind::Rk4Flight => "rk4-flight",
+            IntegratorKind::Newmark => "newmark",
         })
     }
 }
 
 impl FromStr for IntegratorKind {
     type Err = String;
-    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk`, `imex`, `imex-ark` (or `ark`) or
-    /// `rk4-flight`
-    /// (case-insensitive).
+    /// Parses `rk4`, `rk45` (or `dopri5`), `rattle`, `sdirk`, `imex`, `imex-ark` (or `ark`),
+    /// `rk4-flight` or `newmark` (case-insensitive).
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
             "rk4" => Ok(Self::Rk4),
@@ -192,8 +211,9 @@ impl FromStr for IntegratorKind {
             "imex" => Ok(Self::Imex),
             "imex-ark" | "ark" => Ok(Self::ImexArk),
             "rk4-flight" | "rk4flight" => Ok(Self::Rk4Flight),
+            "newmark" => Ok(Self::Newmark),
             other => Err(format!(
-                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk, imex, imex-ark or rk4-flight)"
+                "unknown integrator \"{other}\" (expected rk4, rk45, rattle, sdirk, imex, imex-ark, rk4-flight or newmark)"
             )),
         }
     }

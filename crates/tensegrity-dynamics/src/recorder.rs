@@ -191,6 +191,20 @@ impl Recorder {
         Ok(())
     }
 
+    /// Records a sample built by the caller (a model other than [`Model`], e.g. an elastic
+    /// one) at the next output time, and advances.
+    pub fn record_sample(&mut self, sample: Sample) {
+        self.last = Some(sample.t);
+        self.samples.push(sample);
+        let due = self.next_time();
+        self.advance(due);
+    }
+
+    /// What this recorder samples.
+    pub fn quantities(&self) -> Quantities {
+        self.quantities
+    }
+
     /// Records the state `y` at time `t` unless the last sample was taken at `t`, without
     /// moving past any output time (the samples of
     /// [`SimulationSettings::sample_every_step`](super::SimulationSettings::sample_every_step)).

@@ -80,6 +80,46 @@ impl Default for SimulationSettings {
     }
 }
 
+impl SimulationSettings {
+    /// Checks the numerical settings of the chosen integrator: positive finite times, steps
+    /// and tolerances, and a fixed-step run that fits in `max_steps`.
+    pub fn validate(&self) -> Result<(), CoreError> {
+        let s = self;
+        positive("t_end", s.t_end)?;
+        match s.integrator {
+            IntegratorKind::Rk4
+            | IntegratorKind::Rattle
+            | IntegratorKind::Imex
+            | IntegratorKind::ImexArk
+            | IntegratorKind::Rk4Flight
+            | IntegratorKind::Newmark => positive("dt", s.dt)?,
+            IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
+                positive("rtol", s.rtol)?;
+                positive("atol", s.atol)?;
+                positive("dt", s.dt)?;
+            }
+        }
+        if let Some(dt_out) = s.output_interval {
+            positive("output_interval", dt_out)?;
+        }
+        // a fixed-step run that cannot finish is refused before it starts, not after
+        // max_steps steps of work
+        let steps = (s.t_end / s.dt).ceil();
+        if !s.integrator.is_adaptive() && steps > s.max_steps as f64 {
+            return Err(CoreError::invalid_parameter(
+                "dt",
+                s.dt,
+                format!(
+                    "t_end / dt = {steps:e} fixed steps, more than max_steps = {}: use a \
+                     larger `dt` or a shorter `t_end`",
+                    s.max_steps
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The outcome of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationResult {
@@ -239,38 +279,7 @@ impl Simulation {
     /// [`run`](Self::run)): positive finite times, steps and tolerances, and a fixed-step run
     /// that fits in `max_steps`.
     pub fn validate(&self) -> Result<(), CoreError> {
-        let s = &self.settings;
-        positive("t_end", s.t_end)?;
-        match s.integrator {
-            IntegratorKind::Rk4
-            | IntegratorKind::Rattle
-            | IntegratorKind::Imex
-            | IntegratorKind::ImexArk
-            | IntegratorKind::Rk4Flight => positive("dt", s.dt)?,
-            IntegratorKind::Rk45 | IntegratorKind::Sdirk => {
-                positive("rtol", s.rtol)?;
-                positive("atol", s.atol)?;
-                positive("dt", s.dt)?;
-            }
-        }
-        if let Some(dt_out) = s.output_interval {
-            positive("output_interval", dt_out)?;
-        }
-        // a fixed-step run that cannot finish is refused before it starts, not after
-        // max_steps steps of work
-        let steps = (s.t_end / s.dt).ceil();
-        if !s.integrator.is_adaptive() && steps > s.max_steps as f64 {
-            return Err(CoreError::invalid_parameter(
-                "dt",
-                s.dt,
-                format!(
-                    "t_end / dt = {steps:e} fixed steps, more than max_steps = {}: use a \
-                     larger `dt` or a shorter `t_end`",
-                    s.max_steps
-                ),
-            ));
-        }
-        Ok(())
+        self.settings.validate()
     }
 
     /// The recorder of the output times: the explicit ones within [0, t_end] merged with the

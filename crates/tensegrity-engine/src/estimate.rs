@@ -132,6 +132,13 @@ impl Estimated for crate::solve::SolveCommand {
 impl Estimated for SimulateCommand {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         let scene = self.source()?.load().map_err(failed)?;
+        if crate::simulate::elastic::is_elastic(&scene) {
+            let run = self.elastic(&scene, false).map_err(failed)?;
+            return run
+                .estimate(self.convergence_check, false, false)
+                .map(Some)
+                .map_err(failed);
+        }
         let simulation = self.simulation(&scene, false).map_err(failed)?;
         crate::simulate::estimate_checked(self, &simulation, false, false)
             .map(Some)

@@ -24,7 +24,7 @@ pub struct IntegratorsRequest {
     #[param(text, help = "A scene of the work–precision study", required)]
     pub scene: Option<String>,
     /// The integrator (required).
-    #[param(choice = IntegratorKind::NAMES, help = "The integrator", required)]
+    #[param(choice = IntegratorKind::RIGID_NAMES, help = "The integrator", required)]
     pub integrator: Option<IntegratorKind>,
     /// dt (s) of a fixed-step integrator, rtol of an adaptive one (required).
     #[param(

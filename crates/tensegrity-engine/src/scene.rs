@@ -177,13 +177,33 @@ pub enum SceneError {
     },
 }
 
-/// Refuses a scene that carries a key only `solve` reads (a load path's drivers: a rest-length
-/// change, a support displacement), naming the first and the command that would ignore it.
+/// Refuses a scene that carries a key the dynamics does not read — a load path's drivers (a
+/// rest-length change, a support displacement: `solve` only) or a support along directions
+/// of any orientation or on a spring (`along`, `stiffness`: `solve` and `statics`) —, naming
+/// the first and the command that would ignore it.
 pub fn refuse_path_keys(
     scene: &tensegrity_io::scene::Scene,
     command: &str,
 ) -> Result<(), InvalidParameter> {
-    match scene.file.path_keys().first() {
+    refuse_driver_keys(scene, command)?;
+    match scene.file.support_keys().first() {
+        None => Ok(()),
+        Some(key) => Err(InvalidParameter::text(
+            "scene",
+            key,
+            format!("{key} is read by `solve`, `statics` and elastic `simulate` scenes only (a support of any orientation or on a spring); `{command}` would ignore it: remove it, or run `tensegrity solve` or `tensegrity statics`, or give the scene `[simulation] bars = \"elastic\"`"),
+        )),
+    }
+}
+
+/// Refuses a scene that carries a load path's driver (a rest-length change, a support
+/// displacement), which only `solve` reads, naming the first and the command that would
+/// ignore it.
+pub fn refuse_driver_keys(
+    scene: &tensegrity_io::scene::Scene,
+    command: &str,
+) -> Result<(), InvalidParameter> {
+    match scene.file.driver_keys().first() {
         None => Ok(()),
         Some(key) => Err(InvalidParameter::text(
             "scene",

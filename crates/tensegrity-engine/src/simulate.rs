@@ -62,6 +62,7 @@ use tensegrity_dynamics::{
 use tensegrity_io::scene::{Scene, SimulationSpec};
 
 pub mod companion;
+pub mod elastic;
 use companion::Refined;
 
 /// Samples per run when the scene names no output times and no interval is given.
@@ -97,9 +98,10 @@ pub const DEFAULT_DT_IMEX_ARK: f64 = 2.5e-4;
 /// ```
 pub fn default_step(kind: IntegratorKind) -> Option<f64> {
     match kind {
-        IntegratorKind::Rk4 | IntegratorKind::Rattle | IntegratorKind::Rk4Flight => {
-            Some(DEFAULT_DT)
-        }
+        IntegratorKind::Rk4
+        | IntegratorKind::Rattle
+        | IntegratorKind::Rk4Flight
+        | IntegratorKind::Newmark => Some(DEFAULT_DT),
         IntegratorKind::Imex => Some(DEFAULT_DT_IMEX),
         IntegratorKind::ImexArk => Some(DEFAULT_DT_IMEX_ARK),
         IntegratorKind::Rk45 | IntegratorKind::Sdirk => None,
@@ -151,7 +153,7 @@ pub struct SimulateCommand {
     )]
     pub t_end: Option<f64>,
     /// Integrator; overrides `[simulation] integrator`.
-    #[param(choice = IntegratorKind::NAMES, help = "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage), RK4-flight (RK4, 5x longer steps while no contact node is near the ground); imex, imex-ark and rk4-flight project onto the constraints after every step", optional)]
+    #[param(choice = IntegratorKind::NAMES, help = "Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4, adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK (penalty contact implicit in every stage), RK4-flight (RK4, 5x longer steps while no contact node is near the ground); imex, imex-ark and rk4-flight project onto the constraints after every step; an elastic scene takes rk4, rk45 or newmark (implicit trapezoidal rule, stable at any step)", optional)]
     pub integrator: Option<IntegratorKind>,
     /// Fixed step (rk4, rattle, imex, imex-ark; the contact step of rk4-flight) or largest
     /// step (rk45, sdirk), s; unset: the scene's, else [`default_step`].
@@ -331,8 +333,18 @@ impl SimulateCommand {
     /// Reads the scene and sets up its run under the overrides (`written`: samples are
     /// written), the scene kept (its structure labels the outputs).
     pub fn prepare(&self, written: bool) -> Result<(Scene, Simulation), SceneError> {
-        let scene = self.source()?.load()?;
+        self.prepare_scene(self.source()?.load()?, written)
+    }
+
+    /// [`SimulateCommand::prepare`] of a scene already read (a rigid one: an elastic scene
+    /// runs through [`SimulateCommand::elastic`]; its keys are refused here).
+    pub fn prepare_scene(
+        &self,
+        scene: Scene,
+        written: bool,
+    ) -> Result<(Scene, Simulation), SceneError> {
         crate::scene::refuse_path_keys(&scene, "simulate")?;
+        elastic::refuse_elastic_keys(&scene, "simulate (rigid bars)")?;
         let simulation = self.simulation(&scene, written)?;
         Ok((scene, simulation))
     }
@@ -375,7 +387,14 @@ impl SampleSink for Discard {
 /// run with `convergence_check`), its report (an error under `strict` with drift warnings or an
 /// unconverged final state).
 pub fn simulate(command: &SimulateCommand) -> Result<SimulationReport, SceneError> {
-    let (scene, simulation) = command.prepare(false)?;
+    let scene = command.source()?.load()?;
+    if elastic::is_elastic(&scene) {
+        let run = command.elastic(&scene, false)?;
+        let report = run.run_checked(command, &scene, &mut Discard)?;
+        command.strict_check(&report)?;
+        return Ok(report);
+    }
+    let (scene, simulation) = command.prepare_scene(scene, false)?;
     let report = command.run_checked(&scene, &simulation, &mut Discard)?;
     command.strict_check(&report)?;
     Ok(report)

@@ -63,7 +63,7 @@ pub struct SolveCommand {
     /// At the first bifurcation, follow the other branch.
     #[param(
         flag,
-        help = "At the first bifurcation of the arc-length path, leave it along the critical mode and follow the other branch (structures of up to 200 free coordinates, whose modes are computed)"
+        help = "At the first bifurcation of the arc-length path, leave it along the critical mode and follow the other branch (dense and sparse tangents alike: the mode is computed on both)"
     )]
     pub switch_branch: bool,
 }
@@ -198,34 +198,22 @@ impl SolveCommand {
     }
 
     /// The path of `scene` (already read): its structure's model
-    /// ([`ElasticModel::from_structure`]) with the scene's drivers, `rest_length_change` on
+    /// ([`ElasticModel::from_structure`], the bars' `rest_length` where given; under
+    /// `[gravity]` the weight of the bars, the strings' `mass` and the `[[masses]]` as the
+    /// dead load) with the scene's drivers, `rest_length_change` on
     /// bars and strings and `displacement` on supports ([`tensegrity_io::scene::SceneFile::path_drivers`]),
-    /// and its supports `along` directions of any orientation.
+    /// and its supports along directions of any orientation (`along`) and elastic ones
+    /// (`stiffness`, N/m: a spring along each held direction).
     pub fn report(&self, scene: &Scene) -> Result<SolveReport, SceneError> {
         let mut model = ElasticModel::from_structure(&scene.structure)?;
+        crate::simulate::elastic::with_bar_rest_lengths(&mut model, scene);
+        crate::simulate::elastic::with_string_and_point_weights(&mut model, scene)?;
         let (changes, motion) = scene.file.path_drivers(model.nodes.len());
         if changes.iter().any(|&c| c != 0.0) {
             model.drivers.rest_length_changes = changes;
         }
         if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
             model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
-        }
-        // supports along directions of any orientation replace the node's x, y, z ones, so a
-        // support that gives both is ambiguous
-        let both = scene.file.supports.iter().enumerate().find(|(_, s)| {
-            let s = s.get_ref();
-            s.along.is_some() && (s.directions.is_some() || s.fixed.is_some())
-        });
-        if let Some((i, _)) = both {
-            let why = "give either along (any orientation) or directions/fixed (x, y, z), not both";
-            return Err(InvalidParameter::text("scene", format!("support {i}"), why).into());
-        }
-        for (node, along) in scene.file.held_along() {
-            model.supports.retain(|s| s.node != node);
-            model.supports.push(tensegrity_path::Support {
-                node,
-                directions: along.into_iter().map(Into::into).collect(),
-            });
         }
         Ok(match self.load_steps {
             Some(k) => SolveReport::of(

@@ -147,7 +147,8 @@ impl StaticsCommand {
 /// Runs `statics`: reads the scene, one report.
 pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
-    crate::scene::refuse_path_keys(&scene, "statics")?;
+    crate::scene::refuse_driver_keys(&scene, "statics")?;
+    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics")?;
     Ok(command.report(&scene.structure)?)
 }
 
@@ -156,7 +157,8 @@ pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
 /// estimate before the run let through is refused before its bases are allocated.
 pub fn statics_in(command: &StaticsCommand, ctx: &Context) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
-    crate::scene::refuse_path_keys(&scene, "statics")?;
+    crate::scene::refuse_driver_keys(&scene, "statics")?;
+    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics")?;
     let request = command.request_within(ctx.limits());
     Ok(statics_report(&scene.structure, &request)?)
 }
@@ -182,7 +184,8 @@ pub fn admitted<G, E: From<SceneError>>(
 ) -> Result<(Scene, StaticsReport), E> {
     let scene = command.source().map_err(SceneError::from)?;
     let scene = scene.load().map_err(SceneError::from)?;
-    crate::scene::refuse_path_keys(&scene, "statics").map_err(SceneError::from)?;
+    crate::scene::refuse_driver_keys(&scene, "statics").map_err(SceneError::from)?;
+    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics").map_err(SceneError::from)?;
     let _admitted = admit(estimate(&scene.structure, command))?;
     let request = command.request_within(limits);
     let report = statics_report(&scene.structure, &request).map_err(SceneError::from)?;

@@ -57,8 +57,8 @@ fn displaced(
     amplitude: f64,
 ) -> Vec<Vector3<f64>> {
     let mut delta = vec![Vector3::zeros(); nodes.len()];
-    for (&(node, dim), &v) in dofs.free.iter().zip(shape) {
-        delta[node][dim] = v;
+    for (&(node, axis), &v) in dofs.free.iter().zip(shape) {
+        delta[node] += dofs.axis(node, axis) * v;
     }
     let largest = delta.iter().map(|d| d.norm()).fold(0.0f64, f64::max);
     let s = if largest > 0.0 {
@@ -128,7 +128,7 @@ pub fn modes_figure_estimate(structure: &Structure, k: usize) -> Estimate {
     let svd_s = budget::svd_flops(n, m) / SVD_FLOP_RATE;
     let masses = stiffness::lumped_masses(structure);
     let modal = stiffness::axial_stiffness(structure).is_ok()
-        && dofs.free.iter().all(|&(node, _)| masses[node] > 0.0);
+        && (DofMap::stiffness_of(structure).free.iter()).all(|&(node, _)| masses[node] > 0.0);
     let nf = n as f64;
     let (second, memory, how) = if modal {
         let work = MODAL_FLOPS_PER_N3 * nf * nf * nf / budget::DENSE_FLOP_RATE;
@@ -161,9 +161,13 @@ pub fn modes_figure(
     mass: MassModel,
     style: &Style,
 ) -> Result<Figure> {
-    let dofs = DofMap::of(structure);
     let modes = stiffness::equilibrium_force_densities(structure)
         .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
+    // the modes move the nodes of elastic supports, the mechanisms do not
+    let dofs = match &modes {
+        Ok(_) => DofMap::stiffness_of(structure),
+        Err(_) => DofMap::of(structure),
+    };
     let (shapes, titles): (DMatrix<f64>, Vec<String>) = match modes {
         Ok(m) => {
             // rigid-body motions the supports allow are zero modes: not drawn

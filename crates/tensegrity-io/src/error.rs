@@ -104,6 +104,20 @@ pub enum IoError {
         /// Index of the support.
         support: usize,
     },
+    /// A support giving `along` (directions of any orientation, which replace its x, y, z
+    /// ones) beside `directions` or `fixed`.
+    #[error(
+        "{file}{}: support {support}: give either along (any orientation) or directions/fixed (x, y, z), not both",
+        line_suffix(*.line)
+    )]
+    AmbiguousSupport {
+        /// The file name.
+        file: String,
+        /// 1-based line of the entry (`None`: structure data, which has no lines).
+        line: Option<usize>,
+        /// Index of the support.
+        support: usize,
+    },
     /// A file over the size limit of its kind (refused before it is read in full).
     #[error("{}: {} bytes, over the limit of {limit} bytes for {what}", path.display(), size_text(*.size, *.limit))]
     TooLarge {
@@ -151,7 +165,7 @@ pub enum IoError {
         file: String,
         /// The column, e.g. `bar_mass`.
         column: &'static str,
-        /// `bar` or `string`.
+        /// `bar`, `string` or `support`.
         member: &'static str,
         /// The number of members.
         expected: usize,

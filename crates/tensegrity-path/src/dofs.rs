@@ -1,11 +1,36 @@
 //! The free directions of the nodes: each node's displacement is Σ_b q_b e_b over an
 //! orthonormal basis e_b of the complement of its support's directions, so the unknowns are
 //! the reduced coordinates q (a node held along d moves in the plane normal to d, one held
-//! along two directions along their common normal, a pinned node not at all).
+//! along two directions along their common normal, a pinned node not at all). The
+//! directions of an elastic support stay free: its springs ([`Spring`]) act on them.
 
 use crate::error::{PathError, Result};
 use crate::model::ElasticModel;
 use nalgebra::{Matrix3, Vector3};
+
+/// A spring of an elastic support (crate docs): it adds k d (d·(u − λ a)) to the node's
+/// resisting force and k d dᵀ to the tangent, u the node's displacement from the reference
+/// state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// The node.
+    pub node: usize,
+    /// Its unit direction d.
+    pub direction: Vector3<f64>,
+    /// Its stiffness k (N/m).
+    pub stiffness: f64,
+    /// The motion a of its anchor per unit load factor (m; the node's driven displacement
+    /// beyond its rigidly held directions, zero without one).
+    pub anchor: Vector3<f64>,
+}
+
+impl Spring {
+    /// The spring's force on its node along its direction, −k d·(u − λ a) (N), at node
+    /// displacement `u` and load factor `lambda`.
+    pub fn force(&self, u: &Vector3<f64>, lambda: f64) -> f64 {
+        -self.stiffness * self.direction.dot(&(u - self.anchor * lambda))
+    }
+}
 
 /// The reduced coordinates: one (node, unit direction) per free coordinate.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,6 +44,9 @@ pub struct Dofs {
     /// Each node's motion per unit load factor (its driven displacement along its held
     /// directions; zero for free nodes).
     pub held_motion: Vec<Vector3<f64>>,
+    /// The springs of the elastic supports, one per direction (their nodes' directions stay
+    /// free coordinates).
+    pub springs: Vec<Spring>,
 }
 
 impl Dofs {
@@ -31,7 +59,7 @@ impl Dofs {
     /// let m = ElasticModel {
     ///     nodes: vec![Vector3::zeros(); 2],
     ///     members: vec![],
-    ///     supports: vec![Support { node: 1, directions: vec![Vector3::new(1.0, 1.0, 0.0).normalize()] }],
+    ///     supports: vec![Support::along(1, vec![Vector3::new(1.0, 1.0, 0.0).normalize()])],
     ///     load: vec![Vector3::zeros(); 2],
     ///     drivers: Default::default(),
     /// };
@@ -47,11 +75,16 @@ impl Dofs {
     pub fn of(model: &ElasticModel) -> Result<Self> {
         let n = model.nodes.len();
         let mut held_at: Vec<Vec<Vector3<f64>>> = vec![Vec::new(); n];
+        let mut springs_at: Vec<Vec<(Vector3<f64>, f64)>> = vec![Vec::new(); n];
         for s in &model.supports {
-            held_at[s.node].extend(s.directions.iter().copied());
+            match s.stiffness {
+                None => held_at[s.node].extend(s.directions.iter().copied()),
+                Some(k) => springs_at[s.node].extend(s.directions.iter().map(|d| (*d, k))),
+            }
         }
         let (mut free, mut held, mut of_node) = (Vec::new(), Vec::new(), Vec::with_capacity(n));
         let mut held_motion = Vec::with_capacity(n);
+        let mut springs = Vec::new();
         for (i, dirs) in held_at.iter().enumerate() {
             // orthonormalise the held directions (Gram–Schmidt), refusing dependent ones
             let mut basis: Vec<Vector3<f64>> = Vec::new();
@@ -76,12 +109,31 @@ impl Dofs {
                 .copied()
                 .unwrap_or_else(Vector3::zeros);
             let along: Vector3<f64> = basis.iter().map(|b| b * b.dot(&d)).sum();
-            if (d - along).norm() > 1e-12 * d.norm().max(f64::MIN_POSITIVE) {
+            // what is left moves the anchor of the node's springs, along their directions
+            let anchor = d - along;
+            let mut spring_span: Vec<Vector3<f64>> = basis.clone();
+            for (s, _) in &springs_at[i] {
+                let mut v = *s;
+                for b in &spring_span {
+                    v -= b * b.dot(&v);
+                }
+                if v.norm() > 1e-9 {
+                    spring_span.push(v.normalize());
+                }
+            }
+            let spanned: Vector3<f64> = spring_span.iter().map(|b| b * b.dot(&d)).sum();
+            if (d - spanned).norm() > 1e-12 * d.norm().max(f64::MIN_POSITIVE) {
                 return Err(PathError::model(
                     format!("displacement of node {i}"),
-                    "a driven displacement moves a node along its held directions only: support the node along it (its free directions follow from equilibrium)",
+                    "a driven displacement moves a node along its held directions only (or the anchor of its springs along theirs): support the node along it (its free directions follow from equilibrium)",
                 ));
             }
+            springs.extend(springs_at[i].iter().map(|&(direction, stiffness)| Spring {
+                node: i,
+                direction,
+                stiffness,
+                anchor,
+            }));
             held_motion.push(along);
             // the complement: eigenvectors of I − Σ b bᵀ with eigenvalue 1
             let projector = Matrix3::identity()
@@ -103,7 +155,24 @@ impl Dofs {
             held,
             of_node,
             held_motion,
+            springs,
         })
+    }
+
+    /// The springs' resisting forces at every node, Σ k d (d·(u − λ a)) (N; crate docs), at
+    /// node positions `x` and load factor `lambda` (u = x − `reference`).
+    pub fn spring_forces(
+        &self,
+        reference: &[Vector3<f64>],
+        x: &[Vector3<f64>],
+        lambda: f64,
+    ) -> Vec<Vector3<f64>> {
+        let mut r = vec![Vector3::zeros(); x.len()];
+        for s in &self.springs {
+            let u = x[s.node] - reference[s.node];
+            r[s.node] -= s.direction * s.force(&u, lambda);
+        }
+        r
     }
 
     /// The number of free coordinates.

@@ -7,7 +7,10 @@
 //! > t_k = EA_k (L_k − L₀,k) / L₀,k,
 //!
 //! for a string only while L_k > L₀,k (a string is slack at zero force, never compressed).
-//! Supports hold a node along given unit directions (any direction, not only x, y, z). The
+//! Supports hold a node along given unit directions (any direction, not only x, y, z), or —
+//! elastic supports — put a spring of stiffness k along each: the direction stays free, the
+//! spring adds k d (d·u) to the resisting force (u the node's displacement from the reference
+//! state) and k d dᵀ to the tangent, and its reaction is the spring's force −k d·u. The
 //! reference load P (one force per node) is scaled by the load factor λ.
 //!
 //! **Equilibrium** ([`forces`]). With n_k = (x_j − x_i)/L_k the members' resisting force on
@@ -22,8 +25,9 @@
 //! as [[K_k, −K_k], [−K_k, K_k]] on (x_i, x_j); a slack string adds nothing. Its eigenvalues
 //! on the free directions are the stability verdict ([`stability`]): all positive, stable; a
 //! negative one, unstable (its eigenvector the mode); one near zero, a mechanism. Above
-//! [`factor::DENSE_MAX`] free coordinates the tangent is sparse and the verdict is whether its
-//! Cholesky factorisation succeeds ([`factor`]).
+//! [`factor::DENSE_MAX`] free coordinates the tangent is sparse: the verdict is whether its
+//! Cholesky factorisation succeeds, and its eigenvalues nearest zero and the mode come from
+//! shift-invert subspace iteration with that factorisation ([`factor`]).
 //!
 //! **Beside the load** ([`model::Drivers`]) λ may drive rest lengths (L₀ + λ ΔL₀) and the
 //! motion of supported nodes (λ d), and a dead load D (the bars' weight) acts from λ = 0:
@@ -37,6 +41,13 @@
 //! dλ/ds) and reports its mode; bifurcations (an eigenvalue crossing zero without a fold) are
 //! located alike, and the path may leave the first one along its mode
 //! ([`PathSettings::switch_branch`]).
+//!
+//! **Dynamics** ([`transient`]). The same model in time: every node a point mass (member
+//! masses lumped or consistent, and point masses: [`mass`]), M_r q̈ = Qᵀ(P + W − R − D) on the
+//! free coordinates with axial dashpots D, stepped by the explicit RK4 and RK45 of
+//! `tensegrity-dynamics` (RK4 refused above its stability limit on the stiffest axial mode)
+//! or by Newmark's implicit trapezoidal rule with Newton on (4/h²) M_r + K_T + (2/h) C_T
+//! ([`newmark`]); TsgFEM's T-bar dynamics example is reproduced to round-off.
 
 #![warn(missing_docs)]
 
@@ -46,14 +57,19 @@ pub mod error;
 pub mod factor;
 pub mod forces;
 pub mod load_steps;
+pub mod mass;
 pub mod model;
+pub mod newmark;
 pub mod newton;
 pub mod point;
 pub mod stability;
 pub mod tangent;
+pub mod transient;
 
 pub use arclength::{follow, PathSettings};
 pub use error::{PathError, Result};
 pub use load_steps::load_steps;
+pub use mass::{MassDistribution, Masses};
 pub use model::{ElasticMember, ElasticModel, MemberKind, Support};
 pub use point::{Event, PathPoint, PathReport};
+pub use transient::ElasticDynamics;

@@ -29,22 +29,57 @@ pub struct ElasticMember {
     pub rest_length: f64,
 }
 
-/// A node held along some directions (each a unit vector; one to three, independent).
+/// A node held along some directions (each a unit vector; one to three, independent):
+/// rigidly, or by a spring of stiffness k along each of them (an elastic support, `stiffness`).
+///
+/// A rigid support removes its directions from the node's free coordinates ([`crate::dofs`]);
+/// an elastic one leaves them free and adds, per direction d, the force k d (d·(u − λ a))
+/// to the resisting forces (u the node's displacement from the reference state, a its
+/// support's driven `displacement` per unit λ: the spring's anchor moves) and k d dᵀ to the
+/// tangent; its reaction is the spring's force, −k d·(u − λ a) along d.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Support {
     /// The held node.
     pub node: usize,
-    /// The directions along which it cannot move.
+    /// The directions along which it cannot move (or along which its springs act).
     pub directions: Vec<Vector3<f64>>,
+    /// The stiffness k (N/m) of a spring along each direction; `None`: held rigidly.
+    pub stiffness: Option<f64>,
 }
 
 impl Support {
     /// A node held in all three directions.
     pub fn pinned(node: usize) -> Self {
+        Self::along(node, vec![Vector3::x(), Vector3::y(), Vector3::z()])
+    }
+
+    /// A node held rigidly along `directions`.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_path::Support;
+    /// let roller = Support::along(1, vec![Vector3::z()]);
+    /// assert_eq!((roller.directions.len(), roller.stiffness), (1, None));
+    /// ```
+    pub fn along(node: usize, directions: Vec<Vector3<f64>>) -> Self {
         Self {
             node,
-            directions: vec![Vector3::x(), Vector3::y(), Vector3::z()],
+            directions,
+            stiffness: None,
         }
+    }
+
+    /// The same support held by a spring of stiffness `k` (N/m) along each direction.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_path::Support;
+    /// let spring = Support::along(1, vec![Vector3::x()]).elastic(1e4);
+    /// assert_eq!(spring.stiffness, Some(1e4));
+    /// ```
+    pub fn elastic(mut self, k: f64) -> Self {
+        self.stiffness = Some(k);
+        self
     }
 }
 
@@ -56,7 +91,7 @@ pub struct Drivers {
     /// ΔL₀ of every member at λ = 1 (m; empty: none).
     pub rest_length_changes: Vec<f64>,
     /// The motion d of every node at λ = 1 (m; empty: none); only supported nodes may move,
-    /// along their held directions.
+    /// along their held directions (of an elastic support: its springs' anchor moves).
     pub displacements: Vec<Vector3<f64>>,
     /// A load D on every node that does not grow with λ (N; empty: none): the self-weight,
     /// present from λ = 0 (the path starts from the structure standing under it).
@@ -109,7 +144,9 @@ impl ElasticModel {
     }
 
     /// Checks every item: node indices in range, finite positive EA and L₀, finite loads
-    /// and nodes, support directions finite and non-zero (normalised here) and independent.
+    /// and nodes, support directions finite and non-zero (normalised here) and independent,
+    /// a support's stiffness finite and positive; an error names the support by its index
+    /// and node (`support 2 (node 5)`).
     ///
     /// ```
     /// use nalgebra::Vector3;
@@ -231,8 +268,8 @@ impl ElasticModel {
                 ));
             }
         }
-        for s in &mut self.supports {
-            let item = format!("support of node {}", s.node);
+        for (k, s) in self.supports.iter_mut().enumerate() {
+            let item = format!("support {k} (node {})", s.node);
             if s.node >= n {
                 return Err(PathError::model(
                     item,
@@ -245,6 +282,7 @@ impl ElasticModel {
                     format!("{} directions: give one to three", s.directions.len()),
                 ));
             }
+            let mut basis: Vec<Vector3<f64>> = Vec::with_capacity(3);
             for d in &mut s.directions {
                 let norm = d.norm();
                 if !(norm.is_finite() && norm > 0.0) {
@@ -254,6 +292,25 @@ impl ElasticModel {
                     ));
                 }
                 *d /= norm;
+                let mut v = *d;
+                for b in &basis {
+                    v -= b * b.dot(&v);
+                }
+                if v.norm() < 1e-9 {
+                    return Err(PathError::model(
+                        item,
+                        "its directions are dependent (a direction repeated or in the plane of two others): give independent ones",
+                    ));
+                }
+                basis.push(v.normalize());
+            }
+            if let Some(k) = s.stiffness {
+                if !(k.is_finite() && k > 0.0) {
+                    return Err(PathError::model(
+                        item,
+                        format!("its stiffness k = {k} N/m must be finite and positive"),
+                    ));
+                }
             }
         }
         Ok(self)
@@ -262,7 +319,8 @@ impl ElasticModel {
     /// The model of a scene's structure: bars elastic with EA = E · π r² (their material's
     /// Young's modulus and their `radius`) and rest length their length in the scene;
     /// strings with their `stiffness` k (N/m) and `rest_length` (default: their length in the
-    /// scene, no prestress), EA = k L₀; the supports along the flagged axes; the scene's
+    /// scene, no prestress), EA = k L₀; the supports along their held directions (the
+    /// flagged axes and the `along` ones), rigid or elastic (their `stiffness`); the scene's
     /// loads as P; with `[gravity]`, the weight of every bar with a `mass` (half at each end,
     /// as the statics counts it) as the dead load, present from λ = 0. A bar without a radius
     /// and a string without a stiffness are errors naming the item.
@@ -322,13 +380,13 @@ impl ElasticModel {
                 rest_length,
             });
         }
-        let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
         let supports = s
             .supports()
             .iter()
             .map(|sp| Support {
                 node: sp.node,
-                directions: (0..3).filter(|&a| sp.fixed[a]).map(|a| axes[a]).collect(),
+                directions: sp.held_directions(),
+                stiffness: sp.stiffness,
             })
             .filter(|sp| !sp.directions.is_empty())
             .collect();

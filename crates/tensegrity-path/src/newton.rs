@@ -29,24 +29,46 @@ pub struct Equilibrium {
     pub residual: f64,
 }
 
-/// The residual force on the free coordinates, D + λ P − R(x), of `states` (D the dead load,
-/// [`crate::model::Drivers::dead_load`]).
+/// The residual force on the free coordinates, D + λ P − R(x), at node positions `x` with
+/// the member `states` there (D the dead load, [`crate::model::Drivers::dead_load`]; R the
+/// members' and the springs' resisting forces, [`Dofs::spring_forces`]).
 pub fn residual(
     model: &ElasticModel,
     dofs: &Dofs,
+    x: &[Vector3<f64>],
     states: &[MemberState],
     lambda: f64,
 ) -> DVector<f64> {
     let r = resisting_forces(model, states);
+    let springs = dofs.spring_forces(&model.nodes, x, lambda);
     let f: Vec<Vector3<f64>> = (0..r.len())
-        .map(|i| model.load[i] * lambda + model.dead_load(i) - r[i])
+        .map(|i| model.load[i] * lambda + model.dead_load(i) - r[i] - springs[i])
         .collect();
     dofs.reduce(&f)
 }
 
+/// The largest absolute component of the residual `r` (N); infinite when a component is not
+/// finite, so that a residual that left double precision never passes as converged (a
+/// maximum that skipped NaN would).
+///
+/// ```
+/// use nalgebra::dvector;
+/// use tensegrity_path::newton::largest_residual;
+/// assert_eq!(largest_residual(&dvector![1.0, -3.0]), 3.0);
+/// assert_eq!(largest_residual(&dvector![1.0, f64::NAN]), f64::INFINITY);
+/// ```
+pub fn largest_residual(r: &DVector<f64>) -> f64 {
+    if r.iter().all(|v| v.is_finite()) {
+        r.amax()
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// The residual accepted at load factor `lambda` (N): [`RELATIVE_TOLERANCE`] of the larger of
 /// |λ| ‖P‖∞ and the largest |tension|, and never below what double precision resolves on
-/// the stiffest member, 64 ε · max(EA/L₀) · max‖x‖.
+/// the stiffest member or spring, 64 ε · max(EA/L₀, k) · max‖x‖ (a spring's force is
+/// balanced by the load and the tensions, so they bound it).
 pub fn tolerance(
     model: &ElasticModel,
     states: &[MemberState],
@@ -61,11 +83,13 @@ pub fn tolerance(
         .fold(0.0, f64::max);
     let load = model.load.iter().map(|p| p.amax()).fold(0.0, f64::max) * lambda.abs() + dead;
     let tension = states.iter().map(|s| s.tension.abs()).fold(0.0, f64::max);
+    let springs = model.supports.iter().filter_map(|s| s.stiffness);
     let stiff = model
         .members
         .iter()
         .zip(states)
         .map(|(m, s)| m.ea / s.rest_length)
+        .chain(springs)
         .fold(0.0, f64::max);
     let size = x.iter().map(|v| v.norm()).fold(1e-3, f64::max);
     (RELATIVE_TOLERANCE * load.max(tension)).max(64.0 * f64::EPSILON * stiff * size)
@@ -76,7 +100,11 @@ pub fn tolerance(
 /// right-hand side of the path's tangent, K v = dλ this.
 pub fn load_rate(model: &ElasticModel, dofs: &Dofs, states: &[MemberState]) -> DVector<f64> {
     let driven = crate::forces::driven_forces(model, states, &dofs.held_motion);
-    let f: Vec<Vector3<f64>> = model.load.iter().zip(&driven).map(|(p, d)| p - d).collect();
+    let mut f: Vec<Vector3<f64>> = model.load.iter().zip(&driven).map(|(p, d)| p - d).collect();
+    // a spring whose anchor moves: its resisting force k d d·(u − λ a) falls by k d (d·a)
+    for s in &dofs.springs {
+        f[s.node] += s.direction * (s.stiffness * s.direction.dot(&s.anchor));
+    }
     dofs.reduce(&f)
 }
 
@@ -109,8 +137,8 @@ pub fn solve(
     let mut x = dofs.drive(x0, lambda - lambda0);
     for iteration in 0..=MAX_ITERATIONS {
         let states = member_states(model, &x, lambda);
-        let r = residual(model, dofs, &states, lambda);
-        let worst = r.amax();
+        let r = residual(model, dofs, &x, &states, lambda);
+        let worst = largest_residual(&r);
         let tol = tolerance(model, &states, &x, lambda);
         if worst <= tol {
             return Ok(Equilibrium {
@@ -121,15 +149,19 @@ pub fn solve(
             });
         }
         if iteration == MAX_ITERATIONS || !worst.is_finite() {
-            // the last iteration or a residual that left double precision
+            // the last iteration or a residual that left double precision (no NaN in the
+            // error: the tolerance of a state that is not finite is not one)
             return Err(PathError::NotConverged {
                 lambda,
                 residual: worst,
-                tolerance: tol,
+                tolerance: if tol.is_finite() { tol } else { 0.0 },
                 iterations: iteration,
-                hint:
+                hint: if worst.is_finite() {
                     "; smaller load steps, or the arc-length path if a limit point lies on the way"
-                        .into(),
+                } else {
+                    "; the iteration left double precision: smaller load steps, or the arc-length path if a limit point lies on the way"
+                }
+                .into(),
             });
         }
         let dq = Factored::of(model, dofs, &states)

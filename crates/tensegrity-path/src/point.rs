@@ -62,7 +62,8 @@ pub enum Event {
         lambda: f64,
         /// The point's index after which it lies.
         after_step: usize,
-        /// The mode (node displacements, unit largest component; empty on a sparse tangent).
+        /// The mode (node displacements, unit largest component; dense and sparse tangents
+        /// alike, empty only where a sparse tangent's shift-invert iteration found none).
         mode: Vec<[f64; 3]>,
         /// Whether the path left here along the mode (`switch_branch`).
         switched: bool,
@@ -79,8 +80,9 @@ pub enum Event {
         /// The displacement increment against the tangent's prediction.
         ratio: f64,
     },
-    /// Strings went slack; located by bisection (λ where the first of them reaches zero
-    /// tension).
+    /// Strings went slack: λ where the first of them reaches zero tension on the path with
+    /// the slack set held (the others within the residual tolerance of zero there go with it;
+    /// [`crate::arclength`]).
     Slackened {
         /// Their indices.
         members: Vec<usize>,
@@ -108,9 +110,11 @@ pub enum Stop {
     ReachedTarget,
     /// It made the largest number of steps.
     MaxSteps,
-    /// The arc-length step fell below its smallest size (the message says why).
+    /// The path could not go on: every step down to the smallest size failed (no
+    /// equilibrium, a residual that left double precision, a singular tangent). The points
+    /// so far are kept.
     StepTooSmall {
-        /// The error's text.
+        /// Why, with the load factor of the last point and the last step's error.
         message: String,
     },
 }

@@ -1,7 +1,8 @@
 //! The tangent stiffness K = dR/dx on the free coordinates (crate docs): per taut member
 //! K_k = (EA/L₀) n nᵀ + (t/L)(I − n nᵀ) on [[K_k, −K_k], [−K_k, K_k]], projected onto each
-//! node's free directions: [`tangent_stiffness`] dense, [`tangent_triplets`] as triplets for
-//! the sparse factorisations of large structures ([`crate::factor`]).
+//! node's free directions, and k d dᵀ per spring of an elastic support ([`crate::dofs::Spring`]):
+//! [`tangent_stiffness`] dense, [`tangent_triplets`] as triplets for the sparse
+//! factorisations of large structures ([`crate::factor`]).
 
 use crate::dofs::Dofs;
 use crate::forces::MemberState;
@@ -42,15 +43,54 @@ pub fn tangent_triplets(
     dofs: &Dofs,
     states: &[MemberState],
 ) -> Vec<(usize, usize, f64)> {
-    let mut t = Vec::with_capacity(36 * model.members.len());
-    for (m, s) in model.members.iter().zip(states) {
-        if s.slack {
-            continue;
+    let mut t = member_block_triplets(
+        model,
+        dofs,
+        |k, s| {
+            let m = &model.members[k];
+            (!s.slack).then(|| {
+                let nn = s.direction * s.direction.transpose();
+                nn * (m.ea / s.rest_length) + (Matrix3::identity() - nn) * (s.tension / s.length)
+            })
+        },
+        states,
+    );
+    t.extend(spring_triplets(dofs));
+    t
+}
+
+/// The springs of the elastic supports ([`crate::dofs::Spring`]): k d dᵀ on each spring's
+/// node, projected onto its free directions, as triplets (part of [`tangent_triplets`]).
+pub fn spring_triplets(dofs: &Dofs) -> Vec<(usize, usize, f64)> {
+    let mut t = Vec::new();
+    for s in &dofs.springs {
+        let (p0, pc) = dofs.of_node[s.node];
+        for r in 0..pc {
+            let dr = s.direction.dot(&dofs.free[p0 + r].1);
+            for c in 0..pc {
+                let dc = s.direction.dot(&dofs.free[p0 + c].1);
+                t.push((p0 + r, p0 + c, s.stiffness * dr * dc));
+            }
         }
-        let n = s.direction;
-        let nn = n * n.transpose();
-        let local =
-            nn * (m.ea / s.rest_length) + (Matrix3::identity() - nn) * (s.tension / s.length);
+    }
+    t
+}
+
+/// Assembles per-member 3 × 3 blocks B_k (from `block`, given the member's index and state;
+/// `None`: nothing) as [[B_k, −B_k], [−B_k, B_k]] on its two nodes, projected onto their
+/// free directions, as triplets (both triangles, repeated entries to be summed): the
+/// tangent's pattern, also the dashpots' c n nᵀ of the implicit dynamics.
+pub fn member_block_triplets(
+    model: &ElasticModel,
+    dofs: &Dofs,
+    block: impl Fn(usize, &MemberState) -> Option<Matrix3<f64>>,
+    states: &[MemberState],
+) -> Vec<(usize, usize, f64)> {
+    let mut t = Vec::with_capacity(36 * model.members.len());
+    for (k, (m, s)) in model.members.iter().zip(states).enumerate() {
+        let Some(local) = block(k, s) else {
+            continue;
+        };
         let [a, b] = m.nodes;
         for (p, sp) in [(a, 1.0), (b, -1.0)] {
             let (p0, pc) = dofs.of_node[p];

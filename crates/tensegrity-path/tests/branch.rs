@@ -49,6 +49,7 @@ fn column() -> ElasticModel {
             Support {
                 node: 1,
                 directions: vec![Vector3::y()],
+                stiffness: None,
             },
             Support::pinned(2),
             Support::pinned(3),

@@ -34,6 +34,7 @@ fn series(drivers: Drivers) -> ElasticModel {
             Support {
                 node: 1,
                 directions: vec![Vector3::x(), Vector3::y()],
+                stiffness: None,
             },
             Support::pinned(2),
         ],

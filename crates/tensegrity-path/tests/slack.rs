@@ -42,6 +42,7 @@ fn rod() -> ElasticModel {
             Support {
                 node: 1,
                 directions: vec![Vector3::x(), Vector3::y()],
+                stiffness: None,
             },
         ],
         load: vec![Vector3::zeros(), Vector3::new(0.0, 0.0, -F)],

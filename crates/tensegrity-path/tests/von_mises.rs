@@ -40,6 +40,7 @@ fn truss() -> ElasticModel {
             Support {
                 node: 2,
                 directions: vec![Vector3::z()],
+                stiffness: None,
             },
         ],
         load: vec![

@@ -6,7 +6,7 @@ use crate::errors::Failure;
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::CoreError;
 use tensegrity_dynamics::{Sample, SampleSink};
-use tensegrity_engine::simulate::SimulateCommand;
+use tensegrity_engine::simulate::{elastic, SimulateCommand};
 use tensegrity_engine::value::{Map, Value};
 use tensegrity_engine::SceneError;
 use tensegrity_io::interrupt;
@@ -63,14 +63,30 @@ pub fn prepare_simulation(
     limits: &tensegrity_core::budget::Limits,
 ) -> Result<PreparedSimulation, Failure> {
     let command = SimulateCommand::from_values(values).map_err(|e| Failure::invalid(&e))?;
-    let (scene, simulation) = command.prepare(trajectory).map_err(|e| match e {
+    let refused = |e: SceneError| match e {
         SceneError::InvalidParameter(p) => Failure::invalid(&p),
         e => Failure::new(e.category(), e.to_string()),
-    })?;
+    };
+    let scene = command
+        .source()
+        .map_err(|e| Failure::invalid(&e))?
+        .load()
+        .map_err(|e| refused(e.into()))?;
     // the run and, with `convergence_check`, its refined run: the CLI's estimate
-    let estimate =
-        tensegrity_engine::simulate::estimate_checked(&command, &simulation, false, false)
+    let (estimate, simulation) = if elastic::is_elastic(&scene) {
+        let run = command.elastic(&scene, trajectory).map_err(refused)?;
+        let e = run
+            .estimate(command.convergence_check, false, false)
+            .map_err(refused)?;
+        (e, Run::Elastic(run))
+    } else {
+        let (_, simulation) = command
+            .prepare_scene(scene.clone(), trajectory)
+            .map_err(refused)?;
+        let e = tensegrity_engine::simulate::estimate_checked(&command, &simulation, false, false)
             .map_err(|e| Failure::new(e.category(), e.to_string()))?;
+        (e, Run::Rigid(simulation))
+    };
     limits
         .check(&estimate)
         .map_err(|over| Failure::over_budget(&over))?;
@@ -85,7 +101,13 @@ pub fn prepare_simulation(
 pub struct PreparedSimulation {
     command: SimulateCommand,
     scene: tensegrity_io::scene::Scene,
-    simulation: tensegrity_dynamics::Simulation,
+    simulation: Run,
+}
+
+/// A rigid-bar or an elastic run.
+enum Run {
+    Rigid(tensegrity_dynamics::Simulation),
+    Elastic(elastic::ElasticRun),
 }
 
 /// Runs a prepared simulation (on the worker thread) as the CLI does: with
@@ -104,7 +126,11 @@ pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
     let failed = |e: &dyn std::fmt::Display, category: Category| {
         Failure::new(category, e.to_string()).context(&format!("simulating {source}"))
     };
-    let (report, interrupted_at) = match command.run_beside(&scene, &simulation, &mut trajectory) {
+    let checked = match &simulation {
+        Run::Rigid(simulation) => command.run_beside(&scene, simulation, &mut trajectory),
+        Run::Elastic(run) => Ok(run.run_beside(&command, &scene, &mut trajectory)),
+    };
+    let (report, interrupted_at) = match checked {
         Err(e) => (Err(failed(&e, e.category())), None),
         Ok(checked) => match &checked.main {
             Err(CoreError::Interrupted { t }) => (

@@ -71,6 +71,15 @@ pub fn toml_text(value: &Value) -> Result<String, Failure> {
 /// as written.
 pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
     let scene = Scene::from_str_named(text, name).map_err(|e| io_failure(&e))?;
+    // the Python structure holds supports along x, y, z only: refused rather than dropped
+    let other = (scene.structure.supports().iter().enumerate())
+        .find(|(_, s)| !s.along.is_empty() || s.stiffness.is_some());
+    if let Some((i, _)) = other {
+        return Err(Failure::new(
+            Category::Input,
+            format!("{name}: support {i}: a Structure holds supports along x, y, z only (not `along` directions or a `stiffness`): give the scene file's path to the command instead"),
+        ));
+    }
     let mut data = as_value(&SceneArrays::from_structure(&scene.structure))?;
     let raw = tensegrity_io::tables::read(text);
     if let Value::Object(m) = &mut data {

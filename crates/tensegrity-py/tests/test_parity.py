@@ -61,6 +61,24 @@ def test_simulate_without_trajectory_is_the_plain_report(cli_json):
     assert_same(py, ref)
 
 
+def test_simulate_of_an_elastic_scene_is_the_clis(cli, tmp_path):
+    # TsgFEM's T-bar as elastic members (`[simulation] bars = "elastic"`): the same run,
+    # report and samples as the command line
+    scene = EXAMPLES / "anchors" / "tsgfem_tbar_elastic.toml"
+    out = tmp_path / "traj.csv"
+    code, stdout, err = cli("simulate", scene, "--json", "--out", out)
+    assert code == 0, err
+    ref = json.loads(stdout)
+    py = tg.simulate(scene)
+    t, traj = py.pop("t"), py.pop("trajectory")
+    assert_same(py, ref)
+    assert ref["bar_length_drift"] == 0.0 and ref["valid"]
+    rows = [r for r in csv.reader(open(out)) if r and not r[0].startswith("#")]
+    table = np.array(rows[1:], dtype=float)
+    np.testing.assert_allclose(t, table[:, 0], rtol=1e-15, atol=0)
+    np.testing.assert_allclose(traj[-1], np.array(ref["final_nodes"]), rtol=1e-12, atol=1e-12)
+
+
 def test_toroid(cli_json):
     assert_same(tg.toroid(), cli_json("toroid"))
     assert_same(tg.toroid(sides=12, stabilize="inner,outer"),

@@ -6,6 +6,31 @@
 //! the member's start node and +m_k at the rows of its end node (m_k = n_end − n_start). Rows
 //! of fixed degrees of freedom are removed from A; their reactions are reported separately.
 //!
+//! **Supports.** A support holds its node along the x, y, z axes it flags and along any
+//! further unit directions (`along`, any orientation; [`tensegrity_core::Support`]). With
+//! e₁ … e_k an orthonormal basis of the held directions (Gram–Schmidt) and f_1 … f_{3−k} one
+//! of their complement, the node's three rows of A are replaced by its rows on the free
+//! axes, f_aᵀ(−m_k) and f_aᵀ(+m_k) (the same projection as the free coordinates of
+//! `tensegrity-path`): its balance along the held directions is the support's reaction,
+//! r = Σ e_h e_hᵀ (A_full q − w)_node, which lies in their span ([`reaction_components`]
+//! gives it along each given direction). A node held along coordinate axes keeps x, y, z
+//! ([`DofMap`]), so the rows, the rank, the self-stresses, the mechanisms, the prestress
+//! test, the load solve, the rigid-body motions (Σ e_hᵀ(a + ω × n) = 0 on the held
+//! directions) and the stiffness analyses all see the same held directions.
+//!
+//! **Elastic supports** (a spring of stiffness k along each held direction d,
+//! [`tensegrity_core::Support::elastic`]). The equilibrium analyses — rank, self-stress and
+//! mechanism counts, prestressability, the prestress-stability test and the load solve —
+//! count a spring as a support, as the classical count of restraints does: it carries a
+//! reaction (reported as the support's, the spring's force), members being rigid there, and
+//! the minimal-norm load solve of an indeterminate structure is the same with a spring as
+//! with a rigid hold (only a compatible solve would differ, and this one is not compatible
+//! in either case). The prestress-stability test is scale-free (a self-stress of any level):
+//! it is the test at a prestress small against k, where a spring holds like a support. The
+//! stiffness analyses, whose numbers have the actual forces and stiffnesses, leave the node
+//! free there and add the spring, K += k d dᵀ on the node ([`DofMap::stiffness_of`],
+//! [`stiffness::tangent_stiffness`], the modes of [`stiffness::modal_analysis_with`]).
+//!
 //! From the SVD A = U Σ Vᵀ with the rank r decided by [`rank`] (the arithmetic's tolerance,
 //! [`tensegrity_linalg::rank_tolerance`], and the rounding of the data's coordinates):
 //! - self-stress states: the last (members − r) columns of V (null space of A);
@@ -38,7 +63,7 @@ pub mod symmetry;
 pub use flexes::Flexes;
 pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use gap::{SpectralGap, GAP_FACTOR};
-pub use load::{LoadSolution, LOAD_RESIDUAL_TOLERANCE};
+pub use load::{reaction_components, LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use nested::NestedStatics;
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use report::{statics_report, StaticsReport, StaticsRequest};
@@ -46,28 +71,130 @@ pub use select::{backend, cyclic_backend};
 pub use sparse::{sparse_after_qr, sparse_statics_bytes, SparseStatics, SPARSE_FLOP_RATE};
 pub use stability::PrestressStability;
 
-use nalgebra::Matrix3xX;
 use nalgebra::{DMatrix, DVector};
+use nalgebra::{Matrix3, Matrix3xX, Vector3};
 use tensegrity_core::error::Result;
 use tensegrity_core::structure::Structure;
 use tensegrity_linalg::{self as linalg, Svd};
 
-/// Maps the free degrees of freedom (node, direction) to rows of A.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Maps the free degrees of freedom (node, axis) to rows of A (module docs).
+///
+/// Each node has three orthonormal axes: x, y, z, except a node whose support holds
+/// directions spanning no set of coordinate axes (`along` directions of any orientation),
+/// whose axes are a frame of its own: first the held directions (orthonormalised in order),
+/// then their complement. A row is one free axis of one node, its equation the node's
+/// balance projected on that axis; held axes have no row.
+///
+/// [`DofMap::of`] holds every support, elastic ones included (the equilibrium analyses);
+/// [`DofMap::stiffness_of`] holds the rigid supports only and keeps the springs of the
+/// elastic ones (the stiffness analyses).
+#[derive(Debug, Clone, PartialEq)]
 pub struct DofMap {
-    /// `(node, direction)` of each free row.
+    /// `(node, axis)` of each free row (axis 0, 1, 2: x, y, z unless the node has a frame,
+    /// [`DofMap::axis`]).
     pub free: Vec<(usize, usize)>,
-    /// Row of each node's direction, `None` when fixed.
+    /// Row of each node's axis, `None` when held.
     pub row: Vec<[Option<usize>; 3]>,
+    /// The frame of each node whose axes are not x, y, z (columns: its axes).
+    frames: Vec<Option<Box<Matrix3<f64>>>>,
+    /// The springs of the elastic supports left free: node and Σ k d dᵀ (N/m, in x, y, z).
+    springs: Vec<(usize, Matrix3<f64>)>,
 }
 
+/// A projector Σ b bᵀ counts as the projector on coordinate axes when it differs from a
+/// diagonal 0/1 matrix by at most this: an `along` direction that is a coordinate axis (to
+/// round-off) then gives the same rows as the axis flagged in `fixed`.
+const AXIS_ALIGNED_TOLERANCE: f64 = 1e-12;
+
 impl DofMap {
-    /// The free degrees of freedom of `structure` in node-major order.
+    /// The free degrees of freedom of `structure` in node-major order, every support held
+    /// (elastic ones included: the equilibrium analyses count a spring's reaction as a
+    /// support's).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure, Support};
+    /// use tensegrity_statics::DofMap;
+    /// // node 1 on a roller held along (0.6, 0.8, 0): its two free axes are normal to it
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .support(Support::pinned(0))
+    ///     .support(Support::along(1, [[0.6, 0.8, 0.0]]))
+    ///     .build()
+    ///     .unwrap();
+    /// let dofs = DofMap::of(&s);
+    /// assert_eq!(dofs.len(), 2);
+    /// for r in 0..2 {
+    ///     assert!(dofs.direction(r).dot(&nalgebra::Vector3::new(0.6, 0.8, 0.0)).abs() < 1e-15);
+    /// }
+    /// ```
     pub fn of(structure: &Structure) -> Self {
-        let fixed = structure.fixed_dofs();
+        Self::build(structure, true)
+    }
+
+    /// The free degrees of freedom of the stiffness analyses: the rigid supports held, the
+    /// nodes of elastic supports free, their springs Σ k d dᵀ kept ([`DofMap::springs`]).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure, Support};
+    /// use tensegrity_statics::DofMap;
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///     .bar(Bar::new(0, 1))
+    ///     .support(Support::pinned(0))
+    ///     .support(Support::directions(1, [true, false, false]).elastic(1e4))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!((DofMap::of(&s).len(), DofMap::stiffness_of(&s).len()), (2, 3));
+    /// assert_eq!(DofMap::stiffness_of(&s).springs()[0].1[(0, 0)], 1e4);
+    /// ```
+    pub fn stiffness_of(structure: &Structure) -> Self {
+        Self::build(structure, false)
+    }
+
+    fn build(structure: &Structure, hold_elastic: bool) -> Self {
+        let n = structure.n_nodes();
+        let mut held = vec![[false; 3]; n];
+        let mut frames: Vec<Option<Box<Matrix3<f64>>>> = vec![None; n];
+        let mut springs = Vec::new();
+        for s in structure.supports() {
+            if let (Some(k), false) = (s.stiffness, hold_elastic) {
+                let ks = s
+                    .held_directions()
+                    .iter()
+                    .map(|d| {
+                        let d = d.normalize();
+                        d * d.transpose() * k
+                    })
+                    .sum();
+                springs.push((s.node, ks));
+                continue;
+            }
+            if s.along.is_empty() {
+                for d in 0..3 {
+                    held[s.node][d] |= s.fixed[d];
+                }
+                continue;
+            }
+            // the builder checked the directions: a basis exists
+            let basis = s.held_basis().unwrap_or_default();
+            let p: Matrix3<f64> = basis.iter().map(|b| b * b.transpose()).sum();
+            let diagonal = Matrix3::from_diagonal(&p.diagonal().map(f64::round));
+            if (p - diagonal).amax() <= AXIS_ALIGNED_TOLERANCE {
+                for d in 0..3 {
+                    held[s.node][d] |= diagonal[(d, d)] > 0.5;
+                }
+                continue;
+            }
+            let frame = complete_frame(&basis);
+            for (a, h) in held[s.node].iter_mut().enumerate() {
+                *h = a < basis.len();
+            }
+            frames[s.node] = Some(Box::new(frame));
+        }
         let mut free = Vec::new();
-        let mut row = vec![[None; 3]; fixed.len()];
-        for (i, f) in fixed.iter().enumerate() {
+        let mut row = vec![[None; 3]; n];
+        for (i, f) in held.iter().enumerate() {
             for d in 0..3 {
                 if !f[d] {
                     row[i][d] = Some(free.len());
@@ -75,7 +202,12 @@ impl DofMap {
                 }
             }
         }
-        Self { free, row }
+        Self {
+            free,
+            row,
+            frames,
+            springs,
+        }
     }
 
     /// Number of free degrees of freedom.
@@ -88,10 +220,119 @@ impl DofMap {
         self.free.is_empty()
     }
 
-    /// Restricts a 3×n nodal matrix to the free rows, as a vector.
-    pub fn gather(&self, w: &nalgebra::Matrix3xX<f64>) -> DVector<f64> {
-        DVector::from_iterator(self.free.len(), self.free.iter().map(|&(i, d)| w[(d, i)]))
+    /// Whether every node's axes are x, y, z.
+    pub fn is_axis_aligned(&self) -> bool {
+        self.frames.iter().all(Option::is_none)
     }
+
+    /// The frame of `node` (columns: its axes), `None` when its axes are x, y, z.
+    pub fn frame(&self, node: usize) -> Option<&Matrix3<f64>> {
+        self.frames.get(node).and_then(|f| f.as_deref())
+    }
+
+    /// Axis `a` of `node` (a unit vector).
+    pub fn axis(&self, node: usize, a: usize) -> Vector3<f64> {
+        match self.frame(node) {
+            Some(f) => f.column(a).into_owned(),
+            None => Vector3::ith(a, 1.0),
+        }
+    }
+
+    /// The direction of free row `row` (a unit vector).
+    pub fn direction(&self, row: usize) -> Vector3<f64> {
+        let (node, a) = self.free[row];
+        self.axis(node, a)
+    }
+
+    /// The component of `v` along axis `a` of `node`.
+    pub fn component(&self, node: usize, a: usize, v: &Vector3<f64>) -> f64 {
+        match self.frame(node) {
+            Some(f) => f.column(a).dot(v),
+            None => v[a],
+        }
+    }
+
+    /// The components of `v` on the axes of `node` (Fᵀ v).
+    pub fn to_local(&self, node: usize, v: &Vector3<f64>) -> Vector3<f64> {
+        match self.frame(node) {
+            Some(f) => f.transpose() * v,
+            None => *v,
+        }
+    }
+
+    /// A 3×3 block between `i` and `j` (in x, y, z) on their axes: F_iᵀ B F_j.
+    pub fn local_block(&self, i: usize, j: usize, b: &Matrix3<f64>) -> Matrix3<f64> {
+        match (self.frame(i), self.frame(j)) {
+            (None, None) => *b,
+            (fi, fj) => {
+                let id = Matrix3::identity();
+                fi.unwrap_or(&id).transpose() * b * fj.unwrap_or(&id)
+            }
+        }
+    }
+
+    /// The weights e_{i,a} · e_{j,b} of axis `a` of node `i` on the axes b = 0, 1, 2 of node
+    /// `j` (for two nodes of axes x, y, z: 1 on b = a, 0 elsewhere).
+    pub fn coupling(&self, i: usize, a: usize, j: usize) -> [f64; 3] {
+        match (self.frame(i), self.frame(j)) {
+            (None, None) => {
+                let mut w = [0.0; 3];
+                w[a] = 1.0;
+                w
+            }
+            _ => {
+                let e = self.axis(i, a);
+                [0, 1, 2].map(|b| e.dot(&self.axis(j, b)))
+            }
+        }
+    }
+
+    /// The nodal vectors (3 × nodes) of a vector on the free rows: Σ x_r e_r at each node.
+    pub fn expand(&self, x: &[f64]) -> Vec<Vector3<f64>> {
+        let mut u = vec![Vector3::zeros(); self.row.len()];
+        for (r, &(node, a)) in self.free.iter().enumerate() {
+            u[node] += self.axis(node, a) * x[r];
+        }
+        u
+    }
+
+    /// The springs of the elastic supports this map leaves free ([`DofMap::stiffness_of`]):
+    /// node and Σ k d dᵀ over its held directions d (N/m, in x, y, z); empty for
+    /// [`DofMap::of`].
+    pub fn springs(&self) -> &[(usize, Matrix3<f64>)] {
+        &self.springs
+    }
+
+    /// Restricts a 3×n nodal matrix to the free rows, as a vector (each node's column
+    /// projected on its free axes).
+    pub fn gather(&self, w: &nalgebra::Matrix3xX<f64>) -> DVector<f64> {
+        DVector::from_iterator(
+            self.free.len(),
+            self.free.iter().map(|&(i, d)| match self.frame(i) {
+                Some(f) => f.column(d).dot(&w.column(i)),
+                None => w[(d, i)],
+            }),
+        )
+    }
+}
+
+/// An orthonormal frame whose first columns are the orthonormal `basis` (one or two
+/// vectors) and whose others span its complement (for one vector: the coordinate axis least
+/// aligned with it, orthogonalised, then the cross product).
+fn complete_frame(basis: &[Vector3<f64>]) -> Matrix3<f64> {
+    let b0 = basis[0];
+    let (e1, e2) = match basis.get(1) {
+        Some(&b1) => (b1, b0.cross(&b1).normalize()),
+        None => {
+            let least = (0..3)
+                .min_by(|&a, &b| b0[a].abs().total_cmp(&b0[b].abs()))
+                .unwrap_or(0);
+            let a = Vector3::ith(least, 1.0);
+            let e1 = (a - b0 * b0.dot(&a)).normalize();
+            (e1, b0.cross(&e1))
+        }
+    };
+    Matrix3::from_columns(&[b0, e1, e2])
 }
 
 /// The full equilibrium matrix (3n × members, no rows removed), node-major rows.
@@ -127,10 +368,10 @@ pub fn equilibrium_matrix(structure: &Structure, dofs: &DofMap) -> DMatrix<f64> 
         let m = structure.nodes()[j] - structure.nodes()[i];
         for d in 0..3 {
             if let Some(r) = dofs.row[i][d] {
-                a[(r, k)] = -m[d];
+                a[(r, k)] = -dofs.component(i, d, &m);
             }
             if let Some(r) = dofs.row[j][d] {
-                a[(r, k)] = m[d];
+                a[(r, k)] = dofs.component(j, d, &m);
             }
         }
     }

@@ -3,15 +3,18 @@
 //! equilibrium residual.
 //!
 //! The reaction at a fixed degree of freedom is whatever the support must supply so that the
-//! node balances: r = (A_full q − w) at that row. When w is not in the range of A (the load
+//! node balances: r = (A_full q − w) at that row; at a node held along directions of any
+//! orientation, the node's unbalance projected on the span of its held directions (the
+//! reaction lies in that span: [`reaction_components`] gives it along each held direction).
+//! An elastic support counts as a support here (its spring carries the reaction). When w is not in the range of A (the load
 //! drives a mechanism), the least-squares q is returned and the residual ‖A q − w‖ says by how
 //! much equilibrium fails. A load counts as carried when ‖A q − w‖₂ ≤
 //! [`LOAD_RESIDUAL_TOLERANCE`]·‖w‖₂; otherwise [`LoadSolution::unbalanced`] names the nodes whose
 //! residual force exceeds that tolerance.
 
 use super::{DofMap, Statics};
-use nalgebra::{DVector, Vector3};
-use tensegrity_core::structure::Structure;
+use nalgebra::{DVector, Matrix3, Vector3};
+use tensegrity_core::structure::{Structure, Support};
 
 /// Relative equilibrium residual ‖A q − w‖₂ / ‖w‖₂ above which a load is not carried (the
 /// minimal-norm solve of a consistent system leaves round-off of order κ(A)·ε).
@@ -82,16 +85,16 @@ pub(super) fn assemble_solution(
         internal[i] -= t;
         internal[j] += t;
     }
+    // the node's unbalance projected on its held axes (x, y, z, or its frame's held ones)
     let reactions = structure
         .supports()
         .iter()
         .map(|s| {
-            let mut r = Vector3::zeros();
-            for d in 0..3 {
-                if s.fixed[d] {
-                    r[d] = internal[s.node][d] - w_nodes[(d, s.node)];
-                }
-            }
+            let f = internal[s.node] - Vector3::from(w_nodes.column(s.node));
+            let r: Vector3<f64> = (0..3)
+                .filter(|&a| dofs.row[s.node][a].is_none())
+                .map(|a| dofs.axis(s.node, a) * dofs.component(s.node, a, &f))
+                .sum();
             (s.node, r)
         })
         .collect();
@@ -105,6 +108,33 @@ pub(super) fn assemble_solution(
     }
 }
 
+/// The reaction `reaction` of `support` as forces along each of its held directions
+/// ([`Support::held_directions`]: the flagged axes, then the `along` directions), r = Σ a_h
+/// d_h, solved on the Gram matrix of the directions (independent: the builder checks it).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use tensegrity_core::Support;
+/// use tensegrity_statics::reaction_components;
+/// let s = Support::along(0, [[0.6, 0.8, 0.0]]);
+/// let a = reaction_components(&s, &Vector3::new(3.0, 4.0, 0.0));
+/// assert!((a[0] - 5.0).abs() < 1e-15);
+/// ```
+pub fn reaction_components(support: &Support, reaction: &Vector3<f64>) -> Vec<f64> {
+    let d = support.held_directions();
+    let k = d.len();
+    let mut g = Matrix3::identity();
+    let mut b = Vector3::zeros();
+    for a in 0..k {
+        b[a] = d[a].dot(reaction);
+        for c in 0..k {
+            g[(a, c)] = d[a].dot(&d[c]);
+        }
+    }
+    let x = g.lu().solve(&b).unwrap_or(b);
+    (0..k).map(|a| x[a]).collect()
+}
+
 /// Nodes whose residual force (free directions of `r`, node by node) exceeds `tol`.
 fn unbalanced_nodes(
     structure: &Structure,
@@ -114,7 +144,7 @@ fn unbalanced_nodes(
 ) -> Vec<(usize, Vector3<f64>)> {
     let mut per_node = vec![Vector3::zeros(); structure.n_nodes()];
     for (row, &(node, d)) in dofs.free.iter().enumerate() {
-        per_node[node][d] = r[row];
+        per_node[node] += dofs.axis(node, d) * r[row];
     }
     per_node
         .into_iter()

@@ -48,18 +48,24 @@ pub(super) fn stable_by_penalty(
         let mut slots = Vec::with_capacity(6);
         for d in 0..3 {
             let (a, b) = (at(i, d), at(j, d));
-            for (r, s, v) in [(a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)] {
-                if let (Some(r), Some(s)) = (r, s) {
-                    if r >= s {
-                        t_stress.push((r, s, q[k] * v));
+            for r in [a, b].into_iter().flatten() {
+                t_stress.push((r, r, q[k]));
+            }
+            // −q between axis d of i and the axes of j (axis d alone, weight 1, unless a
+            // node has a frame)
+            if let Some(a) = a {
+                for (c, w) in dofs.coupling(i, d, j).into_iter().enumerate() {
+                    if let (Some(b), true) = (at(j, c), w != 0.0) {
+                        let (r, s) = if a >= b { (a, b) } else { (b, a) };
+                        t_stress.push((r, s, -q[k] * w));
                     }
                 }
             }
             if let Some(a) = a {
-                slots.push((a, -e[d]));
+                slots.push((a, -dofs.component(i, d, &e)));
             }
             if let Some(b) = b {
-                slots.push((b, e[d]));
+                slots.push((b, dofs.component(j, d, &e)));
             }
         }
         for &(r, vr) in &slots {

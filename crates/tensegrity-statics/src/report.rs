@@ -60,8 +60,15 @@ pub struct StaticsRequest {
 pub struct Reaction {
     /// The supported node.
     pub node: usize,
-    /// Reaction force (N).
+    /// Reaction force (N): in the span of the support's held directions (an elastic
+    /// support's spring force).
     pub force: [f64; 3],
+    /// For a support with `along` directions: the force along each of them (N), from
+    /// `force` = Σ a_h d_h over all its held directions (flagged axes, then `along`;
+    /// [`reaction_components`](crate::reaction_components)); empty (and not written)
+    /// otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub along: Vec<f64>,
 }
 
 /// Everything `tensegrity statics` reports; serialises to its JSON.
@@ -328,9 +335,18 @@ fn add_load_solve(
     report.reactions = Some(
         sol.reactions
             .iter()
-            .map(|(node, r)| Reaction {
-                node: *node,
-                force: [r.x, r.y, r.z],
+            .zip(structure.supports())
+            .map(|((node, r), support)| {
+                let skip = support.fixed.iter().filter(|&&f| f).count();
+                Reaction {
+                    node: *node,
+                    force: [r.x, r.y, r.z],
+                    along: if support.along.is_empty() {
+                        Vec::new()
+                    } else {
+                        crate::reaction_components(support, r).split_off(skip)
+                    },
+                }
             })
             .collect(),
     );

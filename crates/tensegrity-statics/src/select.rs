@@ -13,7 +13,8 @@
 //! - [`cyclic_backend`] (structures with a validated Cₙ descriptor): the symmetry-adapted
 //!   blocks ([`CyclicStatics`]); an uncertified block rank decision falls back to the dense
 //!   SVD when it fits the memory budget and the work limit, and is otherwise returned as is.
-//!   `method = Dense` or `Sparse` forces that back-end.
+//!   `method = Dense` or `Sparse` forces that back-end; a structure with a support along
+//!   directions of any orientation (`along`, which the blocks do not know) takes [`backend`].
 
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
 use super::{
@@ -135,6 +136,11 @@ pub fn cyclic_backend<'a>(
         StaticsMethod::Dense => return Ok(Box::new(Statics::with_settings(structure, settings)?)),
         StaticsMethod::Sparse => {
             return Ok(Box::new(SparseStatics::with_settings(structure, settings)?))
+        }
+        // the blocks know supports along x, y, z only: any other orientation takes the
+        // general path
+        StaticsMethod::Auto if structure.supports().iter().any(|s| !s.along.is_empty()) => {
+            return backend(structure, settings);
         }
         StaticsMethod::Auto => {}
     }

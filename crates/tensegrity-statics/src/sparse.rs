@@ -131,10 +131,10 @@ pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result
         let m = structure.nodes()[j] - structure.nodes()[i];
         for d in 0..3 {
             if let Some(r) = dofs.row[i][d] {
-                t.push((r, k, -m[d]));
+                t.push((r, k, -dofs.component(i, d, &m)));
             }
             if let Some(r) = dofs.row[j][d] {
-                t.push((r, k, m[d]));
+                t.push((r, k, dofs.component(j, d, &m)));
             }
         }
     }
@@ -685,7 +685,7 @@ impl SparseStatics<'_> {
             for d in 0..3 {
                 for (node, sign) in [(i, -1.0), (j, 1.0)] {
                     if let Some(c) = self.dofs.row[node][d].and_then(|r| index[r]) {
-                        t.push((k, c, sign * e[d]));
+                        t.push((k, c, sign * self.dofs.component(node, d, &e)));
                     }
                 }
             }
@@ -761,8 +761,12 @@ impl SparseStatics<'_> {
                 add(r, -sigma * v, &mut y);
                 for &(other, qk) in &adjacent[node] {
                     add(r, qk * v, &mut y);
-                    if let Some(r2) = kept_at(other, dir) {
-                        add(r2, -qk * v, &mut y);
+                    // the other node's axes weighted by their alignment with this one's
+                    // (the same axis, weight 1, unless a node has a frame)
+                    for (b, w) in self.dofs.coupling(node, dir, other).into_iter().enumerate() {
+                        if let (Some(r2), true) = (kept_at(other, b), w != 0.0) {
+                            add(r2, -qk * v * w, &mut y);
+                        }
                     }
                 }
             }
@@ -808,6 +812,9 @@ impl SparseStatics<'_> {
 
     /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C.
     fn stress_matrix_times(&self, q: &DVector<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
+        if !self.dofs.is_axis_aligned() {
+            return stress_matrix_times_framed(self.structure, &self.dofs, q, x);
+        }
         let mut y = DMatrix::zeros(x.nrows(), x.ncols());
         let pairs: Vec<(f64, Option<usize>, Option<usize>)> = self
             .structure
@@ -875,6 +882,32 @@ fn csc_rows(m: &CscMatrix) -> Vec<Vec<(usize, f64)>> {
         }
     }
     rows
+}
+
+/// (Ω ⊗ I₃) X on the free dofs of a map with node frames: each column expanded to the nodes'
+/// vectors, Σ_k q_k (u_i − u_j) at i (minus at j), projected back on the free axes.
+fn stress_matrix_times_framed(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    x: &DMatrix<f64>,
+) -> DMatrix<f64> {
+    let mut y = DMatrix::zeros(x.nrows(), x.ncols());
+    let members = structure.member_nodes();
+    for (xc, mut yc) in x.column_iter().zip(y.column_iter_mut()) {
+        let xs: Vec<f64> = xc.iter().copied().collect();
+        let u = dofs.expand(&xs);
+        let mut f = vec![Vector3::zeros(); u.len()];
+        for (k, &[i, j]) in members.iter().enumerate() {
+            let t = (u[i] - u[j]) * q[k];
+            f[i] += t;
+            f[j] -= t;
+        }
+        for (r, &(node, a)) in dofs.free.iter().enumerate() {
+            yc[r] = dofs.component(node, a, &f[node]);
+        }
+    }
+    y
 }
 
 /// The penalised stress-matrix certificate (`statics/penalty.rs`) for `structure` on its
@@ -947,11 +980,13 @@ pub(super) fn rigid_motions(structure: &Structure, dofs: &DofMap) -> Result<DMat
     for (i, p) in structure.nodes().iter().enumerate() {
         let r = p - centre;
         for c in 0..3 {
-            // row (i, c) of T: translation c, rotations (e_d × r)_c
+            // row (i, c) of T on the node's axis c: translations and rotations (e_d × r)
+            // along it
+            let axis = dofs.axis(i, c);
             let mut row = [0.0; 6];
-            row[c] = 1.0;
             for d in 0..3 {
-                row[3 + d] = Vector3::ith(d, 1.0).cross(&r)[c];
+                row[d] = axis[d];
+                row[3 + d] = Vector3::ith(d, 1.0).cross(&r).dot(&axis);
             }
             match dofs.row[i][c] {
                 Some(fr) => (0..6).for_each(|j| t_free[(fr, j)] = row[j]),

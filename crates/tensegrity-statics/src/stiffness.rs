@@ -19,8 +19,13 @@
 //! [`Statics::flexes`]: crate::Statics::flexes
 //! [`Statics::prestress_stability`]: crate::Statics::prestress_stability
 //!
+//! An elastic support (a spring of stiffness k along each held direction d) adds k d dᵀ on
+//! its node, which it leaves free ([`DofMap::stiffness_of`]); a node held along directions
+//! of any orientation has the blocks on its free axes, F_iᵀ K_k F_j ([`DofMap::local_block`]).
+//!
 //! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
-//! of its ends; strings are massless).
+//! of its ends; strings are massless), on the free dofs of [`DofMap::stiffness_of`] (a node
+//! on a spring moves, and needs mass).
 
 use crate::DofMap;
 pub use crate::{Flexes, PrestressStability};
@@ -42,6 +47,8 @@ fn assemble(
         let b = block(k);
         for (a, sa) in [(i, 1.0), (j, -1.0)] {
             for (c, sc) in [(i, 1.0), (j, -1.0)] {
+                // the block on the two nodes' axes (x, y, z unless a node has a frame)
+                let b = dofs.local_block(a, c, &b);
                 for d1 in 0..3 {
                     let Some(r) = dofs.row[a][d1] else { continue };
                     for d2 in 0..3 {
@@ -54,6 +61,24 @@ fn assemble(
         }
     }
     k_mat
+}
+
+/// Adds the springs of the elastic supports that `dofs` leaves free (Σ k d dᵀ on their
+/// nodes' axes, [`DofMap::stiffness_of`]) to `k_mat`.
+fn add_springs(dofs: &DofMap, k_mat: &mut DMatrix<f64>) {
+    for (node, ks) in dofs.springs() {
+        let b = dofs.local_block(*node, *node, ks);
+        for d1 in 0..3 {
+            let Some(r) = dofs.row[*node][d1] else {
+                continue;
+            };
+            for d2 in 0..3 {
+                if let Some(c) = dofs.row[*node][d2] {
+                    k_mat[(r, c)] += b[(d1, d2)];
+                }
+            }
+        }
+    }
 }
 
 /// The stress (geometric stiffness) matrix Ω ⊗ I₃ on the free degrees of freedom for force
@@ -76,18 +101,39 @@ pub fn stress_matrix(structure: &Structure, dofs: &DofMap, q: &DVector<f64>) -> 
 }
 
 /// The tangent stiffness (material + geometric) on the free degrees of freedom for force
-/// densities `q` and axial stiffnesses `axial` (N/m, one per member).
+/// densities `q` and axial stiffnesses `axial` (N/m, one per member), plus the springs of
+/// the elastic supports that `dofs` leaves free (k d dᵀ per held direction d: with
+/// [`DofMap::stiffness_of`]; [`DofMap::of`] holds them instead).
+///
+/// ```
+/// use nalgebra::DVector;
+/// use tensegrity_core::{StringMember, Structure, Support};
+/// use tensegrity_statics::{stiffness, DofMap};
+/// // a string along x from a pinned node to a node on a spring of 300 N/m along x
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .string(StringMember::new(0, 1).stiffness(100.0))
+///     .support(Support::pinned(0))
+///     .support(Support::directions(1, [true, false, false]).elastic(300.0))
+///     .build()
+///     .unwrap();
+/// let dofs = DofMap::stiffness_of(&s);
+/// let k = stiffness::tangent_stiffness(&s, &dofs, &DVector::zeros(1), &[100.0]);
+/// assert_eq!(k[(0, 0)], 400.0); // string and spring in parallel on the node's x
+/// ```
 pub fn tangent_stiffness(
     structure: &Structure,
     dofs: &DofMap,
     q: &DVector<f64>,
     axial: &[f64],
 ) -> DMatrix<f64> {
-    assemble(structure, dofs, |k| {
+    let mut k_mat = assemble(structure, dofs, |k| {
         let e: Vector3<f64> = structure.member_vector(k).normalize();
         let eet = e * e.transpose();
         eet * axial[k] + (Matrix3::identity() - eet) * q[k]
-    })
+    });
+    add_springs(dofs, &mut k_mat);
+    k_mat
 }
 
 /// Axial stiffness of every member: k for strings (0 when slack at the current length), E·πr²/l
@@ -193,13 +239,15 @@ pub fn rigid_body_motions(structure: &Structure, dofs: &DofMap) -> Result<DMatri
     let n = structure.n_nodes();
     let centre = structure.nodes().iter().sum::<Vector3<f64>>() / n as f64;
     // T: 3n × 6, columns = three translations and three rotations about the centroid.
+    // (rows on each node's axes: x, y, z unless it has a frame)
     let mut t = DMatrix::zeros(3 * n, 6);
     for (i, p) in structure.nodes().iter().enumerate() {
         let r = p - centre;
         for d in 0..3 {
-            t[(3 * i + d, d)] = 1.0;
-            let w = Vector3::ith(d, 1.0).cross(&r);
+            let a = dofs.to_local(i, &Vector3::ith(d, 1.0));
+            let w = dofs.to_local(i, &Vector3::ith(d, 1.0).cross(&r));
             for c in 0..3 {
+                t[(3 * i + c, d)] = a[c];
                 t[(3 * i + c, 3 + d)] = w[c];
             }
         }
@@ -277,7 +325,7 @@ pub fn modal_analysis_with(
     q: &DVector<f64>,
     mass: MassModel,
 ) -> Result<Modes> {
-    let dofs = DofMap::of(structure);
+    let dofs = DofMap::stiffness_of(structure);
     let axial = axial_stiffness(structure)?;
     let k_t = tangent_stiffness(structure, &dofs, q, &axial);
     let masses = lumped_masses(structure);
@@ -302,11 +350,13 @@ pub fn modal_analysis_with(
                     (0, 1, 1.0 / 6.0),
                     (1, 0, 1.0 / 6.0),
                 ] {
+                    let (i, j) = (b.nodes[x], b.nodes[y]);
                     for d in 0..3 {
-                        if let (Some(r), Some(col)) =
-                            (dofs.row[b.nodes[x]][d], dofs.row[b.nodes[y]][d])
-                        {
-                            m[(r, col)] += c * mb;
+                        let Some(r) = dofs.row[i][d] else { continue };
+                        for (e, w) in dofs.coupling(i, d, j).into_iter().enumerate() {
+                            if let (Some(col), true) = (dofs.row[j][e], w != 0.0) {
+                                m[(r, col)] += c * mb * w;
+                            }
                         }
                     }
                 }

@@ -76,7 +76,7 @@ pub struct RollRequest {
     /// IMEX-ARK by default (its implicit contact stages see the explicit forces, so a pivot's
     /// first impact converges with the step: `wheel_rolling::convergence`); the split `imex`
     /// is cheaper (about ½) where only statistics of hops are asked.
-    #[param(choice = IntegratorKind::NAMES, help = "Integrator of the full model")]
+    #[param(choice = IntegratorKind::RIGID_NAMES, help = "Integrator of the full model")]
     pub integrator: IntegratorKind,
     /// `strict` (an invalid result is an error) and `convergence_check` (the run repeated at
     /// a refined resolution, [`wheel_rolling::convergence`]).

@@ -132,6 +132,41 @@ pub enum DynamicsError {
         /// Remaining constraint residual.
         residual: f64,
     },
+    /// An explicit method's step above its stability limit on the stiffest axial mode of an
+    /// elastic model (RK4: h ω_max ≤ 2√2 on the imaginary axis): the run would blow up.
+    #[error("the step {dt:.3e} s of `{integrator}` exceeds its stability limit {limit:.3e} s on the stiffest axial mode (ω = {omega:.4e} rad/s, period {period:.4e} s): use `integrator = newmark` (implicit, stable at any step) or a `dt` of at most {limit:.3e} s")]
+    StepAboveStabilityLimit {
+        /// The step (s).
+        dt: f64,
+        /// The largest stable step (s).
+        limit: f64,
+        /// The highest angular frequency of the model (rad/s).
+        omega: f64,
+        /// Its period 2π/ω (s).
+        period: f64,
+        /// The integrator's name.
+        integrator: &'static str,
+    },
+    /// An implicit step whose Newton iteration did not reach equilibrium.
+    #[error("the implicit step from t = {t:?} s (step {dt:?} s) did not converge: the force residual stayed at {residual:e} N after {iterations} Newton iterations: use a smaller `dt`")]
+    ImplicitStepFailed {
+        /// Time at the start of the step (s).
+        t: f64,
+        /// The step (s).
+        dt: f64,
+        /// The largest residual force component left (N).
+        residual: f64,
+        /// The iterations made.
+        iterations: usize,
+    },
+    /// A setting a model does not take (an integrator of rigid bars on an elastic model, …).
+    #[error("{item}: {reason}")]
+    Unsupported {
+        /// The setting (`integrator = rattle`, …).
+        item: String,
+        /// Why, and what to use.
+        reason: String,
+    },
 }
 
 impl Categorized for DynamicsError {
@@ -143,7 +178,9 @@ impl Categorized for DynamicsError {
             | Self::InconsistentVelocity { .. }
             | Self::NoBars
             | Self::GroundNodeOutOfRange { .. }
-            | Self::InvalidGroundNormal { .. } => Category::Input,
+            | Self::InvalidGroundNormal { .. }
+            | Self::StepAboveStabilityLimit { .. }
+            | Self::Unsupported { .. } => Category::Input,
             _ => Category::Numerical,
         }
     }

@@ -121,10 +121,19 @@ pub enum ModelError {
         node: usize,
     },
     /// A support that fixes no direction.
-    #[error("support {support}: fixes no direction")]
+    #[error("support {support}: holds no direction (no axis fixed, no `along` direction)")]
     EmptySupport {
         /// Index of the support.
         support: usize,
+    },
+    /// A support whose held directions are not usable: a direction not finite, not a unit
+    /// vector, or dependent on the others.
+    #[error("support {support}: {reason}")]
+    InvalidSupport {
+        /// Index of the support.
+        support: usize,
+        /// What is wrong, naming the direction.
+        reason: String,
     },
     /// A list whose length must match the number of nodes or members does not.
     #[error("{what}: expected {expected} entries, got {found}")]
@@ -178,9 +187,9 @@ impl ModelError {
             | Self::DuplicateMember { member, .. }
             | Self::ZeroLengthMember { member, .. } => Some(member.to_string()),
             Self::IsolatedNode { node } => Some(format!("node {node}")),
-            Self::DuplicateSupport { support, .. } | Self::EmptySupport { support } => {
-                Some(format!("support {support}"))
-            }
+            Self::DuplicateSupport { support, .. }
+            | Self::EmptySupport { support }
+            | Self::InvalidSupport { support, .. } => Some(format!("support {support}")),
             _ => None,
         }
     }

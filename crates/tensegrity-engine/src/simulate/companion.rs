@@ -69,13 +69,15 @@ pub const STABILITY_MARGIN: f64 = 0.5;
 /// assert_eq!(stability_bound(IntegratorKind::Rk4), Some(2.6));
 /// assert_eq!(stability_bound(IntegratorKind::Sdirk), None);
 /// ```
+/// Newmark (elastic models only) is unconditionally stable: `None`.
 pub fn stability_bound(kind: IntegratorKind) -> Option<f64> {
     match kind {
         // imex's explicit part is one RK4 step; rk4-flight's inner method is RK4
         IntegratorKind::Rk4 | IntegratorKind::Imex | IntegratorKind::Rk4Flight => Some(2.6),
         IntegratorKind::ImexArk => Some(2.4),
         IntegratorKind::Rattle => Some(2.0),
-        IntegratorKind::Rk45 | IntegratorKind::Sdirk => None,
+        // (Newmark runs elastic models, whose companion is always refined)
+        IntegratorKind::Rk45 | IntegratorKind::Sdirk | IntegratorKind::Newmark => None,
     }
 }
 

@@ -98,6 +98,17 @@ pub struct SceneArrays {
     /// Supports: the node and its fixed directions x, y, z.
     #[serde(default)]
     pub supports: Vec<(i64, [bool; 3])>,
+    /// Supports' `along` directions of any orientation (unit vectors), one entry per
+    /// support (`null`: none; a support with some and no fixed axis holds them alone).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support_along: Option<Vec<Option<Vec<[f64; 3]>>>>,
+    /// Supports' spring stiffness (N/m, `null`: held rigidly), one entry per support.
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub support_stiffness: Option<Vec<Option<f64>>>,
     /// Nodal loads: the node and the force (N).
     #[serde(default, deserialize_with = "number::loads")]
     pub loads: Vec<(i64, [f64; 3])>,
@@ -183,6 +194,13 @@ impl SceneArrays {
             supports: (structure.supports().iter())
                 .map(|s| (index(s.node), s.fixed))
                 .collect(),
+            support_along: column(
+                structure
+                    .supports()
+                    .iter()
+                    .map(|s| (!s.along.is_empty()).then(|| s.along.iter().map(v3).collect())),
+            ),
+            support_stiffness: column(structure.supports().iter().map(|s| s.stiffness)),
             loads: (structure.loads().iter())
                 .map(|l| (index(l.node), v3(&l.force)))
                 .collect(),
@@ -217,7 +235,8 @@ impl SceneArrays {
         }
     }
 
-    /// Every per-member column holds one entry per member.
+    /// Every per-member column holds one entry per member, and every per-support column
+    /// one per support.
     fn check_columns(&self, file: &str) -> Result<()> {
         let numbers = |c: &Option<Vec<Option<f64>>>| c.as_ref().map(Vec::len);
         let names = |c: &Option<Vec<Option<String>>>| c.as_ref().map(Vec::len);
@@ -230,6 +249,24 @@ impl SceneArrays {
             ("damping", numbers(&self.damping)),
             ("string_material", names(&self.string_material)),
         ];
+        let supports = [
+            ("support_along", self.support_along.as_ref().map(Vec::len)),
+            ("support_stiffness", numbers(&self.support_stiffness)),
+        ];
+        for (column, got) in supports {
+            match got {
+                Some(got) if got != self.supports.len() => {
+                    return Err(IoError::ColumnLength {
+                        file: file.to_string(),
+                        column,
+                        member: "support",
+                        expected: self.supports.len(),
+                        got,
+                    })
+                }
+                _ => {}
+            }
+        }
         for (column, got) in lengths {
             let (member, expected) = match column.starts_with("bar_") {
                 true => ("bar", self.bars.len()),
@@ -271,6 +308,7 @@ impl SceneArrays {
                 material: entry(&self.bar_material, k),
                 radius: entry(&self.bar_radius, k),
                 rest_length_change: None,
+                rest_length: None,
             }));
         }
         let mut strings = Vec::with_capacity(self.strings.len());
@@ -282,6 +320,7 @@ impl SceneArrays {
                 damping: entry(&self.damping, k),
                 material: entry(&self.string_material, k),
                 rest_length_change: None,
+                mass: None,
             }));
         }
         let (supports, loads) = self.nodal_items(file)?;
@@ -299,6 +338,7 @@ impl SceneArrays {
             simulation: self.simulation,
             ground: self.ground.map(unspanned),
             actuation: self.actuation.into_iter().map(unspanned).collect(),
+            masses: Vec::new(),
         })
     }
 
@@ -311,12 +351,15 @@ impl SceneArrays {
         let n = self.nodes.len();
         let mut supports = Vec::with_capacity(self.supports.len());
         for (k, &(node, fixed)) in self.supports.iter().enumerate() {
+            let along: Option<Vec<[f64; 3]>> = entry(&self.support_along, k);
             supports.push(unspanned(SupportSpec {
                 node: node_index(file, || format!("support {k}"), node, n)?,
                 directions: None,
-                fixed: Some(fixed),
+                // `along` alone holds its own directions only, as in a scene file
+                fixed: (along.is_none() || fixed != [false; 3]).then_some(fixed),
                 displacement: None,
-                along: None,
+                along,
+                stiffness: entry(&self.support_stiffness, k),
             }));
         }
         let mut loads = Vec::with_capacity(self.loads.len());

@@ -21,6 +21,9 @@
 //! output_interval = 0.01       # and/or output_times = [0.5, 1.0]
 //! record = ["nodes", "energy"] # nodes, velocities, member_forces, energy, contact_forces
 //! project = false              # project rk4/rk45 states onto the constraints
+//! bars = "elastic"             # rigid (default) | elastic: every member an axial spring,
+//!                              # the mass at the nodes; integrator rk4, rk45 or newmark
+//! mass_matrix = "consistent"   # elastic: lumped (default) | consistent
 //!
 //! [ground]
 //! point = [0, 0, 0]
@@ -79,6 +82,48 @@ pub struct SimulationSpec {
     /// Project RK states onto the constraints after every step.
     #[serde(default)]
     pub project: bool,
+    /// The bars: rigid (the default: the rigid-bar dynamics) or elastic (every member an
+    /// axial spring, the mass at the nodes: `tensegrity_path::transient`).
+    #[serde(default, skip_serializing_if = "BarModel::is_rigid")]
+    pub bars: BarModel,
+    /// How an elastic model's member masses are distributed onto its nodes: `lumped` (the
+    /// default: half at each end) or `consistent` (TsgFEM's `lumped = 0`).
+    #[serde(default, skip_serializing_if = "MassMatrixKind::is_lumped")]
+    pub mass_matrix: MassMatrixKind,
+}
+
+/// Rigid or elastic bars (`[simulation] bars`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BarModel {
+    /// Rigid bars with their length constraint (the thesis' dynamics).
+    #[default]
+    Rigid,
+    /// Elastic bars: axial springs EA = E π r² with their mass at their ends.
+    Elastic,
+}
+
+impl BarModel {
+    fn is_rigid(&self) -> bool {
+        *self == Self::Rigid
+    }
+}
+
+/// The mass distribution of an elastic model (`[simulation] mass_matrix`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MassMatrixKind {
+    /// Half of a member's mass at each end.
+    #[default]
+    Lumped,
+    /// (m/6) [[2, 1], [1, 2]] per member.
+    Consistent,
+}
+
+impl MassMatrixKind {
+    fn is_lumped(&self) -> bool {
+        *self == Self::Lumped
+    }
 }
 
 /// A recordable quantity name.

@@ -7,7 +7,12 @@
 //! [`tensegrity_dynamics::Ground::new`]); the core itself knows no file format.
 //!
 //! Node indices are 0-based. Unknown keys are rejected, and every error names the offending
-//! item and its line (structure data has no lines: its errors name the item alone):
+//! item and its line (structure data has no lines: its errors name the item alone). A
+//! support's `along` directions must be unit vectors (to
+//! [`UNIT_TOLERANCE`](tensegrity_core::structure::UNIT_TOLERANCE)), finite and independent,
+//! and its `stiffness` positive and finite (`support 2: ...`); `along` and `stiffness` are
+//! read by `statics` and `solve` ([`SceneFile::support_keys`]), a load path's drivers by
+//! `solve` alone ([`SceneFile::driver_keys`]):
 //!
 //! ```toml
 //! nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
@@ -30,6 +35,11 @@
 //! [[supports]]
 //! node = 0
 //! directions = ["x", "y", "z"]   # optional, all three by default (or fixed = [true, true, true])
+//! [[supports]]
+//! node = 2
+//! along = [[0.0, 0.6, 0.8]]      # optional: held along unit directions of any orientation
+//!                                # (one to three, independent), in place of directions/fixed
+//! stiffness = 1e4                # N/m, optional: a spring along each held direction
 //! [[loads]]
 //! node = 1
 //! force = [-1.0e4, 0.0, 0.0]
@@ -46,8 +56,8 @@ pub use arrays::SceneArrays;
 pub use write::to_toml;
 
 pub use dynamics::{
-    build_simulation, ActuationSpec, GroundModelKind, GroundSpec, RecordQuantity, SimulationSpec,
-    GROUND_START_TOLERANCE,
+    build_simulation, ActuationSpec, BarModel, GroundModelKind, GroundSpec, MassMatrixKind,
+    RecordQuantity, SimulationSpec, GROUND_START_TOLERANCE,
 };
 
 use crate::error::{IoError, Result};
@@ -94,6 +104,20 @@ pub struct SceneFile {
     /// `[[actuation]]`: time tables of string rest lengths or nodal loads.
     #[serde(default)]
     pub actuation: Vec<Spanned<ActuationSpec>>,
+    /// `[[masses]]`: point masses at nodes, read by the elastic dynamics only
+    /// ([`SceneFile::elastic_keys`]).
+    #[serde(default)]
+    pub masses: Vec<Spanned<PointMassSpec>>,
+}
+
+/// A `[[masses]]` entry: a point mass at a node (kg).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointMassSpec {
+    /// The node.
+    pub node: usize,
+    /// Its mass (kg).
+    pub mass: f64,
 }
 
 /// A `[materials.NAME]` table.
@@ -123,6 +147,9 @@ pub struct BarSpec {
     /// The change of its rest length at load factor 1 along a load path (m), read by
     /// `solve` only ([`SceneFile::path_keys`]).
     pub rest_length_change: Option<f64>,
+    /// Its rest length as an elastic bar (m; default its length in the scene: unstressed),
+    /// read by `solve` and the elastic dynamics only ([`SceneFile::elastic_keys`]).
+    pub rest_length: Option<f64>,
 }
 
 /// A `[[strings]]` entry.
@@ -142,6 +169,8 @@ pub struct StringSpec {
     /// The change of its rest length at load factor 1 along a load path (m), read by
     /// `solve` only ([`SceneFile::path_keys`]).
     pub rest_length_change: Option<f64>,
+    /// Its mass (kg), read by the elastic dynamics only ([`SceneFile::elastic_keys`]).
+    pub mass: Option<f64>,
 }
 
 /// A direction letter in a support.
@@ -166,12 +195,17 @@ pub struct SupportSpec {
     pub directions: Option<Vec<Axis>>,
     /// Alternative to `directions`: fixed flags for x, y, z.
     pub fixed: Option<[bool; 3]>,
-    /// The node's motion at load factor 1 along a load path (m; its fixed components act),
-    /// read by `solve` only ([`SceneFile::path_keys`]).
+    /// The node's motion at load factor 1 along a load path (m; its fixed components act; on
+    /// an elastic support, its springs' anchor moves), read by `solve` only
+    /// ([`SceneFile::driver_keys`]).
     pub displacement: Option<[f64; 3]>,
-    /// Directions of any orientation the node is held along (one to three, independent), in
-    /// place of `directions`: read by `solve` only ([`SceneFile::path_keys`]).
+    /// Directions of any orientation the node is held along (unit vectors, one to three,
+    /// independent), in place of `directions`: read by `solve` and `statics`
+    /// ([`SceneFile::support_keys`]).
     pub along: Option<Vec<[f64; 3]>>,
+    /// The stiffness k (N/m) of a spring along each held direction (an elastic support;
+    /// default: held rigidly): read by `solve` and `statics` ([`SceneFile::support_keys`]).
+    pub stiffness: Option<f64>,
 }
 
 /// A `[[loads]]` entry.
@@ -204,17 +238,44 @@ pub struct Scene {
 }
 
 impl SceneFile {
-    /// The items that carry a key only a load path reads (`rest_length_change` on a bar or a
-    /// string, `displacement` or `along` on a support), as `bar 0: rest_length_change`: every other
-    /// analysis refuses a scene that has one rather than ignore it.
+    /// The items that carry a key the dynamics does not read: a load path's drivers
+    /// ([`SceneFile::driver_keys`]) and the supports' `along` and `stiffness`
+    /// ([`SceneFile::support_keys`]), as `bar 0: rest_length_change`: `simulate` refuses a
+    /// scene that has one rather than ignore it.
     ///
     /// ```
     /// use tensegrity_io::scene::Scene;
-    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\nrest_length_change = -0.1\n";
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\nrest_length_change = -0.1\n[[supports]]\nnode = 0\nstiffness = 1e4\n";
     /// let scene = Scene::from_str_named(text, "a.toml").unwrap();
-    /// assert_eq!(scene.file.path_keys(), vec!["bar 0: rest_length_change".to_string()]);
+    /// assert_eq!(scene.file.path_keys(), ["bar 0: rest_length_change", "support 0: stiffness"]);
+    /// assert_eq!(scene.file.driver_keys(), ["bar 0: rest_length_change"]);
     /// ```
     pub fn path_keys(&self) -> Vec<String> {
+        let mut keys = self.driver_keys();
+        keys.extend(self.support_keys());
+        keys
+    }
+
+    /// The supports that carry `along` (directions of any orientation) or `stiffness` (an
+    /// elastic support), as `support 2: along`: read by `solve` and `statics`.
+    pub fn support_keys(&self) -> Vec<String> {
+        let mut keys = Vec::new();
+        for (i, s) in self.supports.iter().enumerate() {
+            let s = s.get_ref();
+            if s.along.is_some() {
+                keys.push(format!("support {i}: along"));
+            }
+            if s.stiffness.is_some() {
+                keys.push(format!("support {i}: stiffness"));
+            }
+        }
+        keys
+    }
+
+    /// The items that carry a load path's driver (`rest_length_change` on a bar or a string,
+    /// `displacement` on a support), as `bar 0: rest_length_change`: read by `solve` only,
+    /// every other analysis refuses a scene that has one rather than ignore it.
+    pub fn driver_keys(&self) -> Vec<String> {
         let bars = self.bars.iter().enumerate();
         let strings = self.strings.iter().enumerate();
         let supports = self.supports.iter().enumerate();
@@ -228,15 +289,65 @@ impl SceneFile {
                 .map(|(i, _)| format!("string {i}: rest_length_change")),
         );
         for (i, s) in supports {
-            let s = s.get_ref();
-            if s.displacement.is_some() {
+            if s.get_ref().displacement.is_some() {
                 keys.push(format!("support {i}: displacement"));
-            }
-            if s.along.is_some() {
-                keys.push(format!("support {i}: along"));
             }
         }
         keys
+    }
+
+    /// The items that carry a key only the elastic models read (a bar's `rest_length`: `solve`
+    /// and the elastic dynamics; a string's `mass`, a `[[masses]]` entry: the elastic
+    /// dynamics), as `string 2: mass`: the rigid-bar dynamics and the static analyses refuse
+    /// a scene that has one rather than ignore it.
+    ///
+    /// ```
+    /// use tensegrity_io::scene::Scene;
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[strings]]\nnodes = [0, 1]\nmass = 0.1\n[[masses]]\nnode = 1\nmass = 2.0\n";
+    /// let scene = Scene::from_str_named(text, "a.toml").unwrap();
+    /// assert_eq!(scene.file.elastic_keys(), vec!["string 0: mass", "masses 0"]);
+    /// ```
+    pub fn elastic_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = self
+            .bars
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.get_ref().rest_length.is_some())
+            .map(|(i, _)| format!("bar {i}: rest_length"))
+            .collect();
+        keys.extend(
+            self.strings
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.get_ref().mass.is_some())
+                .map(|(i, _)| format!("string {i}: mass")),
+        );
+        keys.extend((0..self.masses.len()).map(|i| format!("masses {i}")));
+        keys
+    }
+
+    /// Whether the scene is run by the elastic dynamics: `[simulation] bars = "elastic"`, or
+    /// no bar at all and some point mass (a net of strings whose mass is at its nodes).
+    pub fn is_elastic(&self) -> bool {
+        let asked = self
+            .simulation
+            .as_ref()
+            .is_some_and(|s| s.bars == dynamics::BarModel::Elastic);
+        asked || (self.bars.is_empty() && !self.masses.is_empty())
+    }
+
+    /// Each bar's `rest_length` (`None` where not given).
+    pub fn bar_rest_lengths(&self) -> Vec<Option<f64>> {
+        self.bars.iter().map(|b| b.get_ref().rest_length).collect()
+    }
+
+    /// The `[[masses]]` entries as (node, mass in kg), unchecked (the elastic dynamics
+    /// checks them against the structure, naming the entry).
+    pub fn point_masses(&self) -> Vec<(usize, f64)> {
+        self.masses
+            .iter()
+            .map(|m| (m.get_ref().node, m.get_ref().mass))
+            .collect()
     }
 
     /// The supports held along directions of any orientation (`along`): node and directions.
@@ -415,11 +526,25 @@ impl SceneFile {
                         support: i,
                     })
                 }
+                _ if s.along.is_some() && (s.directions.is_some() || s.fixed.is_some()) => {
+                    return Err(IoError::AmbiguousSupport {
+                        file: name.to_string(),
+                        line: line_at(text, sup.span().start),
+                        support: i,
+                    })
+                }
                 (Some(dirs), None) => [Axis::X, Axis::Y, Axis::Z].map(|a| dirs.contains(&a)),
                 (None, Some(flags)) => flags,
+                // `along` holds its own directions only
+                (None, None) if s.along.is_some() => [false; 3],
                 (None, None) => [true; 3],
             };
-            b = b.support(Support::directions(s.node, fixed));
+            let mut support = Support::directions(s.node, fixed);
+            support.along = (s.along.iter().flatten().copied())
+                .map(nalgebra::Vector3::from)
+                .collect();
+            support.stiffness = s.stiffness;
+            b = b.support(support);
         }
         for load in &self.loads {
             let l = load.get_ref();
@@ -478,7 +603,8 @@ fn error_item(e: &CoreError) -> Option<(String, usize)> {
         | CoreError::Model(ModelError::MemberLengthOverflow { member, .. }) => member.to_string(),
         CoreError::Model(ModelError::IsolatedNode { node }) => format!("node {node}"),
         CoreError::Model(ModelError::DuplicateSupport { support, .. })
-        | CoreError::Model(ModelError::EmptySupport { support }) => {
+        | CoreError::Model(ModelError::EmptySupport { support })
+        | CoreError::Model(ModelError::InvalidSupport { support, .. }) => {
             format!("support {support}")
         }
         _ => return None,

@@ -14,6 +14,7 @@ use tensegrity_core::Structure;
 ///     .string(StringMember::new(1, 2).stiffness(100.0).rest_length(0.5))
 ///     .string(StringMember::new(2, 0))
 ///     .support(Support::directions(0, [true, false, true]))
+///     .support(Support::along(1, [[0.0, 0.6, 0.8]]).elastic(1e4))
 ///     .load(2, [0.0, 0.0, -5.0])
 ///     .build()
 ///     .unwrap();
@@ -95,12 +96,25 @@ pub fn to_toml(structure: &Structure) -> String {
     }
     for s in structure.supports() {
         let _ = write!(out, "\n[[supports]]\nnode = {}\n", s.node);
-        if s.fixed != [true; 3] {
+        // `along` alone holds no axis; with axes too, they are written as flags
+        let axes_default = if s.along.is_empty() {
+            [true; 3]
+        } else {
+            [false; 3]
+        };
+        if s.fixed != axes_default {
             let _ = writeln!(
                 out,
                 "fixed = [{}, {}, {}]",
                 s.fixed[0], s.fixed[1], s.fixed[2]
             );
+        }
+        if !s.along.is_empty() {
+            let dirs: Vec<String> = s.along.iter().map(v3).collect();
+            let _ = writeln!(out, "along = [{}]", dirs.join(", "));
+        }
+        if let Some(k) = s.stiffness {
+            let _ = writeln!(out, "stiffness = {k:?}");
         }
     }
     for l in structure.loads() {

@@ -81,7 +81,7 @@ def simulate(
     scene: Scene,
     *,
     t_end: Optional[float] = ...,
-    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight']] = ...,
+    integrator: Optional[Literal['rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight', 'newmark']] = ...,
     dt: Optional[float] = ...,
     rtol: Optional[float] = ...,
     atol: Optional[float] = ...,
@@ -104,13 +104,14 @@ def simulate(
         or the scene's TOML text. Required
     t_end : float, optional
         End time; overrides `[simulation] t_end` (s); must be finite and positive
-    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight'}, optional
+    integrator : {'rk4', 'rk45', 'rattle', 'sdirk', 'imex', 'imex-ark', 'rk4-flight', 'newmark'}, optional
         Integrator; overrides `[simulation] integrator` (default rk4): fixed-step RK4,
         adaptive RK45, constraint-preserving RATTLE, adaptive L-stable SDIRK for stiff
         strings and contact, IMEX (penalty contact split off, linearly implicit), IMEX-ARK
         (penalty contact implicit in every stage), RK4-flight (RK4, 5x longer steps while no
         contact node is near the ground); imex, imex-ark and rk4-flight project onto the
-        constraints after every step
+        constraints after every step; an elastic scene takes rk4, rk45 or newmark (implicit
+        trapezoidal rule, stable at any step)
     dt : float, optional
         Fixed step, at most the output interval (default: rk4, rattle and rk4-flight 1e-3,
         imex 5e-4, imex-ark 2.5e-4, shortened to the output interval; rk4-flight's contact

@@ -92,6 +92,10 @@ impl<'a> CyclicStatics<'a> {
         symmetry: &'a CyclicSymmetry,
         settings: StaticsSettings,
     ) -> Result<Self> {
+        if structure.supports().iter().any(|s| !s.along.is_empty()) {
+            return Err(Factorization::Cyclic
+                .unsupported("supports along directions of any orientation (`along`)"));
+        }
         let n = symmetry.order();
         let ctx = BlockContext::new(structure, symmetry);
         let mut factored = Vec::with_capacity(n / 2 + 1);
