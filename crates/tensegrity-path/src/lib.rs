@@ -65,6 +65,7 @@ pub mod point;
 pub mod stability;
 pub mod tangent;
 pub mod transient;
+pub mod transient_run;
 
 pub use arclength::{follow, PathSettings};
 pub use error::{PathError, Result};
