@@ -969,8 +969,8 @@ def solve(
         The largest number of points of the arc-length path; must be finite. Default: 500
     switch_branch : bool
         At the first bifurcation of the arc-length path, leave it along the critical mode
-        and follow the other branch (structures of up to 200 free coordinates, whose modes
-        are computed)
+        and follow the other branch (dense and sparse tangents alike: the mode is computed
+        on both)
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
