@@ -464,6 +464,35 @@ impl Structure {
         }
     }
 
+    /// The mass of bar `k` (kg): its `mass`, or else ρ π r² l from its material's density, its
+    /// radius and its length; `None` when it has neither.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Material, Structure};
+    /// let s = Structure::builder()
+    ///     .node([0.0, 0.0, 0.0]).node([2.0, 0.0, 0.0])
+    ///     .material("m", Material::new(1000.0, 1e9, 1e6))
+    ///     .bar(Bar::new(0, 1).material("m").radius(0.1))
+    ///     .build().unwrap();
+    /// let m = s.bar_mass(0).unwrap();
+    /// assert!((m - 1000.0 * std::f64::consts::PI * 0.01 * 2.0).abs() < 1e-12);
+    /// ```
+    pub fn bar_mass(&self, k: usize) -> Option<f64> {
+        let bar = &self.bars[k];
+        bar.mass.or_else(|| {
+            let material = self.member_material(MemberId::Bar(k))?;
+            let r = bar.radius?;
+            let [a, b] = bar.nodes;
+            Some(
+                material.density
+                    * std::f64::consts::PI
+                    * r
+                    * r
+                    * (self.nodes[b] - self.nodes[a]).norm(),
+            )
+        })
+    }
+
     /// The material of member `id`, if it names one.
     pub fn member_material(&self, id: MemberId) -> Option<&Material> {
         let name = match id {

@@ -268,15 +268,8 @@ impl Model {
         for (k, bar) in structure.bars().iter().enumerate() {
             let [a, b] = bar.nodes;
             // The mass, or else ρ π r² l from the bar's material and radius.
-            let derived = match (structure.member_material(MemberId::Bar(k)), bar.radius) {
-                (Some(mat), Some(r)) => {
-                    Some(mat.density * std::f64::consts::PI * r * r * (nodes[b] - nodes[a]).norm())
-                }
-                _ => None,
-            };
-            let mass = bar
-                .mass
-                .or(derived)
+            let mass = structure
+                .bar_mass(k)
                 .filter(|m| m.is_finite() && *m > 0.0)
                 .ok_or(ModelError::MissingProperty {
                     member: MemberId::Bar(k),

@@ -6,51 +6,13 @@
 //! path went on without a limit point. Both folds are found at the closed form ±λ*, on the
 //! dense path (21 trusses, 42 free coordinates) and the sparse one (101 trusses, 202).
 
-use nalgebra::Vector3;
+mod common;
+use common::von_mises_row;
+
 use tensegrity_path::dofs::Dofs;
 use tensegrity_path::factor::DENSE_MAX;
 use tensegrity_path::point::{Event, Stop};
-use tensegrity_path::{follow, ElasticMember, ElasticModel, MemberKind, PathSettings, Support};
-
-/// Two-bar (von Mises) trusses side by side, each from supports at x = c ± 1 to an apex at
-/// its height h (`heights`, m), EA = 1000 N, pushed down by 100 N: two free coordinates a
-/// truss (as in `sparse_spectrum.rs`).
-fn von_mises_row(heights: &[f64]) -> ElasticModel {
-    let (mut nodes, mut members, mut supports, mut load) = (vec![], vec![], vec![], vec![]);
-    for (t, &h) in heights.iter().enumerate() {
-        let c = 3.0 * t as f64;
-        let first = nodes.len();
-        nodes.extend([
-            Vector3::new(c - 1.0, 0.0, 0.0),
-            Vector3::new(c + 1.0, 0.0, 0.0),
-            Vector3::new(c, h, 0.0),
-        ]);
-        for end in [first, first + 1] {
-            members.push(ElasticMember {
-                nodes: [end, first + 2],
-                kind: MemberKind::Bar,
-                ea: 1000.0,
-                rest_length: (1.0 + h * h).sqrt(),
-            });
-            supports.push(Support::pinned(end));
-        }
-        supports.push(Support::along(first + 2, vec![Vector3::z()]));
-        load.extend([
-            Vector3::zeros(),
-            Vector3::zeros(),
-            Vector3::new(0.0, -100.0, 0.0),
-        ]);
-    }
-    ElasticModel {
-        nodes,
-        members,
-        supports,
-        load,
-        drivers: Default::default(),
-    }
-    .validated()
-    .unwrap()
-}
+use tensegrity_path::{follow, PathSettings};
 
 /// The closed form of the low truss's folds: ±λ* at L*³ = L₀ (half-span a = 1 m).
 fn lambda_star() -> f64 {

@@ -4,6 +4,9 @@
 //! eigendecomposition — for stable tangents (the sparse Cholesky) and unstable ones (the
 //! sparse LU) — and on the points and folds of paths through the public API.
 
+mod common;
+use common::von_mises_row;
+
 use nalgebra::{DMatrix, DVector, Vector3};
 use tensegrity_path::dofs::Dofs;
 use tensegrity_path::factor::{Factored, DENSE_MAX};
@@ -67,47 +70,6 @@ fn tower(stages: usize) -> ElasticModel {
         supports: (0..3).map(Support::pinned).collect(),
         nodes,
         members,
-        load,
-        drivers: Default::default(),
-    }
-    .validated()
-    .unwrap()
-}
-
-/// Two-bar (von Mises) trusses side by side, each from supports at x = c ± 1 to an apex at
-/// its height h (`heights`, m), EA = 1000 N, pushed down by 100 N: two free coordinates a
-/// truss. Past its fold (apex below w*: 0.278 m for h = 0.5 m, 0.0577 m for h = 0.1 m) a
-/// truss's tangent has one negative eigenvalue.
-fn von_mises_row(heights: &[f64]) -> ElasticModel {
-    let (mut nodes, mut members, mut supports, mut load) = (vec![], vec![], vec![], vec![]);
-    for (t, &h) in heights.iter().enumerate() {
-        let c = 3.0 * t as f64;
-        let first = nodes.len();
-        nodes.extend([
-            Vector3::new(c - 1.0, 0.0, 0.0),
-            Vector3::new(c + 1.0, 0.0, 0.0),
-            Vector3::new(c, h, 0.0),
-        ]);
-        for end in [first, first + 1] {
-            members.push(ElasticMember {
-                nodes: [end, first + 2],
-                kind: MemberKind::Bar,
-                ea: 1000.0,
-                rest_length: (1.0 + h * h).sqrt(),
-            });
-            supports.push(Support::pinned(end));
-        }
-        supports.push(Support::along(first + 2, vec![Vector3::z()]));
-        load.extend([
-            Vector3::zeros(),
-            Vector3::zeros(),
-            Vector3::new(0.0, -100.0, 0.0),
-        ]);
-    }
-    ElasticModel {
-        nodes,
-        members,
-        supports,
         load,
         drivers: Default::default(),
     }

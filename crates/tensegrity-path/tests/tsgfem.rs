@@ -9,6 +9,9 @@
 //! TsgFEM's `material{2} = 0` (no slack, as in these examples, for the comparison with ANSYS)
 //! lets strings carry compression: every member is a bar here.
 
+mod common;
+use common::{floats, vec3s};
+
 use nalgebra::Vector3;
 use tensegrity_path::model::Drivers;
 use tensegrity_path::{
@@ -20,29 +23,6 @@ struct Example {
     model: ElasticModel,
     nodes_end: Vec<Vector3<f64>>,
     t_end: Vec<f64>,
-}
-
-fn vec3s(v: &serde_json::Value) -> Vec<Vector3<f64>> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|r| {
-            let r: Vec<f64> = r
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            Vector3::new(r[0], r[1], r[2])
-        })
-        .collect()
-}
-
-fn floats(v: &serde_json::Value) -> Vec<f64> {
-    match v {
-        serde_json::Value::Array(a) => a.iter().map(|x| x.as_f64().unwrap()).collect(),
-        x => vec![x.as_f64().unwrap()],
-    }
 }
 
 fn example(name: &str) -> Example {

@@ -16,6 +16,9 @@
 //! they are elastic bars here) and with TsgFEM's slack option (`material{2} = 1`: strings
 //! tension-only; two of them end slack).
 
+mod common;
+use common::{floats, vec3s};
+
 use nalgebra::Vector3;
 use tensegrity_core::error::CoreError;
 use tensegrity_dynamics::{IntegratorKind, Sample, SimulationSettings};
@@ -31,25 +34,6 @@ struct Example {
     t_end: Vec<f64>,
     state_end: Vec<f64>,
     mass_matrix: Vec<Vec<f64>>,
-}
-
-fn vec3s(v: &serde_json::Value) -> Vec<Vector3<f64>> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|r| {
-            let r = floats(r);
-            Vector3::new(r[0], r[1], r[2])
-        })
-        .collect()
-}
-
-fn floats(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 fn example(name: &str) -> Example {

@@ -23,7 +23,6 @@ use crate::scene::SceneError;
 use nalgebra::Vector3;
 use tensegrity_core::budget::{Estimate, Parameters};
 use tensegrity_core::request::InvalidParameter;
-use tensegrity_core::structure::MemberId;
 use tensegrity_dynamics::recorder::SampleSink;
 use tensegrity_dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
 use tensegrity_io::scene::{MassMatrixKind, Scene};
@@ -77,18 +76,8 @@ pub fn dynamics_of(scene: &Scene) -> Result<ElasticDynamics, SceneError> {
     let s = &scene.structure;
     let mut model = ElasticModel::from_structure(s)?;
     with_bar_rest_lengths(&mut model, scene);
-    let x = s.nodes();
-    let bars = s.bars().iter().enumerate().map(|(k, b)| {
-        // the bar's mass, or ρ π r² L from its material and radius (as the rigid model)
-        let material = s.member_material(MemberId::Bar(k));
-        let derived = match (material, b.radius) {
-            (Some(m), Some(r)) => {
-                m.density * std::f64::consts::PI * r * r * (x[b.nodes[1]] - x[b.nodes[0]]).norm()
-            }
-            _ => 0.0,
-        };
-        b.mass.unwrap_or(derived)
-    });
+    // the bar's mass, or ρ π r² L from its material and radius (as the rigid model)
+    let bars = (0..s.n_bars()).map(|k| s.bar_mass(k).unwrap_or(0.0));
     let strings = file
         .strings
         .iter()

@@ -62,7 +62,7 @@ use crate::contact::ContactModel;
 use crate::defaults;
 use crate::error::Result;
 use nalgebra::Vector3;
-use tensegrity_core::{CoreError, MemberId, Structure};
+use tensegrity_core::{CoreError, Structure};
 use tensegrity_dynamics::{
     ConstraintSet, Ground, GroundModel, Integrator, Model, NodeRef, Rk4, System, Workspace,
 };
@@ -381,21 +381,8 @@ impl System for PseudoDynamics<'_> {
 /// The mass of every bar: given, or ρ π r² l from its material and radius (as the model
 /// takes it).
 fn bar_masses(structure: &Structure) -> Vec<f64> {
-    let nodes = structure.nodes();
-    structure
-        .bars()
-        .iter()
-        .enumerate()
-        .map(|(k, bar)| {
-            let derived = structure
-                .member_material(MemberId::Bar(k))
-                .zip(bar.radius)
-                .map(|(mat, r)| {
-                    let [a, b] = bar.nodes;
-                    mat.density * std::f64::consts::PI * r * r * (nodes[b] - nodes[a]).norm()
-                });
-            bar.mass.or(derived).unwrap_or(1.0)
-        })
+    (0..structure.n_bars())
+        .map(|k| structure.bar_mass(k).unwrap_or(1.0))
         .collect()
 }
 
