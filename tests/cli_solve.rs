@@ -476,3 +476,36 @@ fn the_prism_lands_on_a_target_past_its_collapse_and_keeps_its_points_beyond() {
         .all(|p| p["lambda"].as_f64().is_some_and(f64::is_finite)));
     assert!(json["first_limit_load_factor"].as_f64().unwrap() < 2.5);
 }
+
+/// A path whose points outrun `--max-work` (the two-bar truss toward λ = 10⁶, millions of
+/// points away) stops at the limit with its points, says so beside them and how to go on;
+/// the estimate counts at most 100 points, so a `--max-steps` of 4·10⁹ is not refused.
+#[test]
+fn a_path_that_outruns_its_work_limit_keeps_its_points_and_says_so() {
+    let out = run(&[
+        "solve",
+        "examples/von_mises.toml",
+        "--target",
+        "1e6",
+        "--max-steps",
+        "4000000000",
+        "--max-work",
+        "0.05",
+        "--json",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains(
+            "before its target 1000000 (its work limit of 0.05 s spent: raise it with --max-work)"
+        ),
+        "{err}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["stop"], "max_work");
+    let points = v["points"].as_u64().unwrap();
+    assert!(points > 10 && v["path"]["points"].as_array().unwrap().len() as u64 == points);
+    // past both folds, on the inverted truss
+    assert_eq!(v["limit_points"], 2);
+    assert!(v["final_load_factor"].as_f64().unwrap() > 1.3);
+}

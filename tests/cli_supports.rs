@@ -9,7 +9,7 @@
 //! - `solve` of a leaning bar held at its top by horizontal springs: the state built by hand
 //!   to balance, the spring's force its reaction;
 //! - bad directions and stiffnesses refused before any work, naming the support and its line;
-//!   `simulate` refuses both keys, `statics` still refuses a load path's drivers.
+//!   `simulate` refuses both keys and a support's `displacement`.
 
 mod common;
 
@@ -217,7 +217,7 @@ fn bad_directions_and_stiffnesses_are_refused_naming_the_support_and_its_line() 
 }
 
 #[test]
-fn simulate_refuses_the_support_keys_and_statics_the_drivers() {
+fn simulate_refuses_the_support_keys_and_a_displacement() {
     let out = run(&[
         "simulate",
         &roller_with("stiffness = 1e4\nfixed = [false, false, true]"),
@@ -235,13 +235,17 @@ fn simulate_refuses_the_support_keys_and_statics_the_drivers() {
     assert!(stderr(&out).contains(
         "support 1: along is read by `solve`, `statics` and elastic `simulate` scenes only"
     ));
+    // `statics` reads a support's displacement (its linear response,
+    // tests/statics_response.rs); `simulate` refuses it
     let out = run(&[
-        "statics",
+        "simulate",
         &roller_with("fixed = [false, false, true]\ndisplacement = [0.0, 0.0, 0.1]"),
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
-        stderr(&out).contains("support 1: displacement is read by `solve` only"),
+        stderr(&out).contains(
+            "support 1: displacement is read by `solve` (a load path's driver) and `statics` (its linear response) only"
+        ),
         "{}",
         stderr(&out)
     );

@@ -102,7 +102,16 @@ pub fn message(e: &anyhow::Error) -> String {
         }
     }
     let text = parts.join(": ");
-    if e.chain().any(|c| c.is::<SweepError>()) {
+    // a sweep's errors name its spec's keys, a scene file's parse errors the file's keys
+    // (`missing field `mass``): neither is a flag
+    let file_keys = |c: &(dyn std::error::Error + 'static)| {
+        let parse = |e: Option<&IoError>| matches!(e, Some(IoError::Parse { .. }));
+        c.is::<SweepError>()
+            || parse(c.downcast_ref::<IoError>())
+            // a transparent wrapper hides the io error from the chain
+            || matches!(c.downcast_ref::<SceneError>(), Some(SceneError::Io(e)) if parse(Some(e)))
+    };
+    if e.chain().any(file_keys) {
         text
     } else {
         super::spell::flags(&text)
@@ -133,6 +142,20 @@ mod tests {
         let stopped = RollingError::Core(CoreError::Interrupted { t: 0.5 });
         assert_eq!(code(&anyhow::Error::new(stopped)), INTERRUPTED);
         assert_eq!(code(&anyhow::anyhow!("no category")), FAILURE);
+    }
+
+    /// A scene file's parse error names the file's key (`mass`), which is not the flag
+    /// `--mass` of another command.
+    #[test]
+    fn a_scene_files_parse_error_keeps_its_keys() {
+        let parse = IoError::Parse {
+            file: "s.toml".into(),
+            line: 69,
+            column: 1,
+            message: "missing field `mass`".into(),
+        };
+        let text = message(&anyhow::Error::new(SceneError::Io(parse)).context("simulating s.toml"));
+        assert!(text.ends_with("missing field `mass`"), "{text}");
     }
 
     #[test]

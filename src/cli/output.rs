@@ -89,6 +89,16 @@ fn short(v: f64) -> String {
     }
 }
 
+/// A number as given (every digit that round-trips), with an exponent outside 10⁻⁴ … 10¹⁵
+/// so that `1e300` does not print as 301 digits.
+pub fn exact(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+        v.to_string()
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// Prints a report as pretty JSON with the conventional keys added beside its own
 /// ([`tensegrity_engine::keys`]).
 pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
@@ -101,6 +111,17 @@ pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
 mod tests {
     /// Four significant digits in the usual range, an exponent outside it, and zero (whose
     /// logarithm has no digits) as `0`.
+    /// Every digit in the usual range, an exponent beyond it.
+    #[test]
+    fn exact_numbers_keep_every_digit_and_an_exponent_when_huge() {
+        use super::exact;
+        assert_eq!(exact(107.99708115084809), "107.99708115084809");
+        assert_eq!(exact(-1e6), "-1000000");
+        assert_eq!(exact(1e300), "1e300");
+        assert_eq!(exact(-2.5e-7), "-2.5e-7");
+        assert_eq!(exact(0.0), "0");
+    }
+
     #[test]
     fn short_numbers_keep_four_digits() {
         use super::short;

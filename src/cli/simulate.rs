@@ -13,8 +13,8 @@
 //! `bar_length_drift` (max absolute, m), `constraint_drift` (max absolute ‖N P − D‖, m) and
 //! `wall_time_s` (the integration alone, without parsing and output). `--animate FILE.gif`
 //! draws the structure over the run ([`super::animate`]); the progress (simulated time) goes
-//! to stderr. An elastic scene (`[simulation] bars = "elastic"`, or strings with point
-//! masses and no bar) runs the elastic dynamics ([`elastic`]) with the same flags, outputs
+//! to stderr. An elastic scene (`[simulation] bars = "elastic"` or a bar's `elastic = true`,
+//! its other bars rigid length constraints; or strings with point masses and no bar) runs the elastic dynamics ([`elastic`]) with the same flags, outputs
 //! and report (`--animate` aside).
 
 use super::output;

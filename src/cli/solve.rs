@@ -72,7 +72,10 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         &scene.structure,
         &command,
     ))?;
-    let report = command.report(&scene).context("load path failed")?;
+    let limits = super::guard::limits();
+    let report = command
+        .report_within(&scene, Some(&limits))
+        .context("load path failed")?;
     warn_outside(&report, &command, scene.structure.nodes());
     if let Some(series) = vtk {
         write_frames(series, &report)?;
@@ -136,11 +139,17 @@ fn write_rows(mut sink: CsvSink, report: &SolveReport) -> Result<()> {
 /// counts that move).
 fn warn_outside(report: &SolveReport, command: &SolveCommand, scene_nodes: &[Vector3<f64>]) {
     if report.stop != "reached_target" {
+        let why = match report.stop.as_str() {
+            "max_work" => format!(
+                "its work limit of {} s spent: raise it with --max-work",
+                super::guard::limits().work_s
+            ),
+            stop => stop.replace('_', " "),
+        };
         eprintln!(
-            "warning: the path stopped at λ = {} before its target {} ({}): the last point's numbers are not the target's",
-            report.final_load_factor,
-            command.target,
-            report.stop.replace('_', " ")
+            "warning: the path stopped at λ = {} before its target {} ({why}): the last point's numbers are not the target's",
+            super::output::exact(report.final_load_factor),
+            super::output::exact(command.target),
         );
     }
     let size = tensegrity_path::model::extent(scene_nodes);

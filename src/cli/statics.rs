@@ -1,8 +1,9 @@
 //! `tensegrity statics SCENE.toml [--json] [--rank-tol REL] [--modes K] [--mass M]
-//! [--least-squares] [--method M] [--svg FILE [--view V] [--color-by BY] [--labels L]
+//! [--least-squares] [--response] [--method M] [--svg FILE [--view V] [--color-by BY] [--labels L]
 //! [--size WxH] [--dpi D]]`: the engine's `statics` request ([`StaticsCommand`]), one
 //! call ([`statics::admitted`]: the scene read, its estimate checked against the limits, one
-//! report) printed as text or JSON; `--svg` draws the structure coloured by force with its
+//! report, with the linear response when asked or when a support has a `displacement`)
+//! printed as text or JSON; `--svg` draws the structure coloured by force with its
 //! reactions ([`tensegrity_figures::structures::statics_figure`]), or with `--modes K` the K
 //! lowest mode shapes ([`tensegrity_figures::structures::modes_figure`]).
 
@@ -15,6 +16,7 @@ use tensegrity_core::Structure;
 use tensegrity_engine::statics::{self, StaticsCommand};
 use tensegrity_figures::draw::default_view;
 use tensegrity_figures::structures;
+use tensegrity_statics::report::Reaction;
 use tensegrity_statics::Factorization;
 use tensegrity_statics::StaticsReport;
 
@@ -61,6 +63,9 @@ pub fn run(args: &StaticsArgs) -> Result<()> {
             report.residual.unwrap_or(f64::NAN),
             report.unbalanced_nodes.as_deref().unwrap_or(&[])
         );
+    }
+    for w in report.linear_response.iter().flat_map(|r| &r.warnings) {
+        eprintln!("warning: {w}");
     }
     if args.json {
         if let Some(w) = &report.statics_warning {
@@ -124,6 +129,7 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
         }
     }
     print_load_solve(structure, r);
+    print_response(structure, r);
     print_sizing(structure, r);
     print_notes(r);
 }
@@ -167,8 +173,13 @@ fn print_load_solve(structure: &Structure, r: &StaticsReport) {
             f[k]
         );
     }
-    for rc in r.reactions.iter().flatten() {
-        // a support along directions of any orientation: its force along each of them
+    print_reactions(r.reactions.iter().flatten());
+}
+
+/// One line per reaction: its force and, for a support along directions of any orientation,
+/// its force along each of them.
+fn print_reactions<'a>(reactions: impl Iterator<Item = &'a Reaction>) {
+    for rc in reactions {
         let along = if rc.along.is_empty() {
             String::new()
         } else {
@@ -179,6 +190,35 @@ fn print_load_solve(structure: &Structure, r: &StaticsReport) {
             "  reaction at node {}: [{:.6}, {:.6}, {:.6}] N{along}",
             rc.node, rc.force[0], rc.force[1], rc.force[2]
         );
+    }
+}
+
+/// The linear response: the largest displacement, each member's force change, the moved
+/// nodes and the reactions (its warnings go to stderr).
+fn print_response(structure: &Structure, r: &StaticsReport) {
+    let Some(lr) = &r.linear_response else {
+        return;
+    };
+    println!(
+        "linear response at this geometry (largest displacement {:.6e} m):",
+        lr.max_displacement
+    );
+    println!("  {:<10} {:>14} {:>14}", "member", "t0 [N]", "change [N]");
+    for (k, dt) in lr.member_force_change.iter().enumerate() {
+        let id = structure.member_id(k).to_string();
+        println!("  {id:<10} {:>14.6} {dt:>14.6}", lr.initial_force[k]);
+    }
+    for (i, u) in lr.displacements.iter().enumerate() {
+        if u.iter().any(|&v| v != 0.0) {
+            println!(
+                "  node {i} moves [{:.6e}, {:.6e}, {:.6e}] m",
+                u[0], u[1], u[2]
+            );
+        }
+    }
+    print_reactions(lr.reactions.iter());
+    if !lr.slack.is_empty() {
+        println!("  strings that would go slack: {:?}", lr.slack);
     }
 }
 

@@ -941,6 +941,15 @@ impl StructureBuilder {
             }
             check_finite(|| format!("load {i}"), &l.force)?;
         }
+        // loads on one node add up: their sum must stay finite too (two loads of 1e308)
+        let mut sums = vec![Vector3::zeros(); n];
+        for (i, l) in loads.iter().enumerate() {
+            sums[l.node] += l.force;
+            check_finite(
+                || format!("load {i} (the sum of the loads on node {})", l.node),
+                &sums[l.node],
+            )?;
+        }
         if let Some(g) = &gravity {
             check_finite(|| "gravity".to_string(), g)?;
         }

@@ -124,6 +124,19 @@ fn non_finite_coordinate() {
             .load(2, [f64::INFINITY, 0.0, 0.0]),
     );
     assert!(m.contains("load 0"), "{m}");
+    // two finite loads on one node whose sum overflows: named by the second
+    let (_, m) = message(
+        base()
+            .bar(Bar::new(0, 1))
+            .bar(Bar::new(1, 2))
+            .load(2, [0.0, -1e308, 0.0])
+            .load(1, [0.0, -1e308, 0.0])
+            .load(2, [0.0, -1e308, 0.0]),
+    );
+    assert_eq!(
+        m,
+        "load 2 (the sum of the loads on node 2): component y is not finite (-inf)"
+    );
 }
 
 #[test]

@@ -108,6 +108,8 @@ pub struct DriftWarning {
     pub limit: f64,
     /// The integrator that ran (the remedy depends on it).
     pub integrator: IntegratorKind,
+    /// Whether the model was elastic (node masses, no rigid-bar integrator to point to).
+    pub elastic: bool,
 }
 
 impl DriftWarning {
@@ -115,6 +117,11 @@ impl DriftWarning {
     pub fn remedy(&self) -> &'static str {
         match (self.quantity, self.integrator) {
             (DriftQuantity::ImplicitSolve, _) => "use a smaller `dt`",
+            // the rigid-bar methods are refused on an elastic model
+            (_, IntegratorKind::Newmark) => {
+                "use a smaller `dt` (the trapezoidal rule keeps the energy of a linear model; it drifts where strings slacken or members turn far within a step)"
+            }
+            _ if self.elastic => "use a smaller `dt`, or `integrator = newmark` (implicit, energy-conserving on a linear model)",
             // IMEX-ARK's implicit stages see the explicit forces, so a creeping node's velocity
             // balances its load within every stage at any step: the cure, not just a palliative
             (DriftQuantity::CreepChatter, _) => {
@@ -187,6 +194,7 @@ pub fn check(
                 value,
                 limit,
                 integrator,
+                elastic: false,
             });
         }
     };

@@ -26,7 +26,7 @@ pub(crate) fn all() -> Vec<Command> {
         estimated(crate::simulate::simulate),
         entry(crate::bench::work_precision),
         estimated(crate::formfind::formfind),
-        estimated(crate::solve::solve),
+        estimated_in(crate::solve::solve_in),
     ]
 }
 

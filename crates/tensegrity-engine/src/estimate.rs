@@ -118,7 +118,12 @@ impl Estimated for TbarRollRequest {
 impl Estimated for StaticsCommand {
     fn estimate(&self) -> Result<Option<Estimate>, RunError> {
         let scene = self.source()?.load().map_err(failed)?;
-        Ok(crate::statics::estimate(&scene.structure, self))
+        // the linear response, asked or driven by a support's displacement, counts too
+        let asked = StaticsCommand {
+            response: crate::statics::wants_response(self, &scene),
+            ..self.clone()
+        };
+        Ok(crate::statics::estimate(&scene.structure, &asked))
     }
 }
 

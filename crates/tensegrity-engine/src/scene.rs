@@ -197,13 +197,35 @@ pub fn refuse_path_keys(
 }
 
 /// Refuses a scene that carries a load path's driver (a rest-length change, a support
-/// displacement), which only `solve` reads, naming the first and the command that would
-/// ignore it.
+/// displacement), which `solve` reads (and `statics` a support's displacement,
+/// [`refuse_rest_length_changes`]), naming the first and the command that would ignore it.
 pub fn refuse_driver_keys(
     scene: &tensegrity_io::scene::Scene,
     command: &str,
 ) -> Result<(), InvalidParameter> {
     match scene.file.driver_keys().first() {
+        None => Ok(()),
+        Some(key) if key.ends_with(": displacement") => Err(InvalidParameter::text(
+            "scene",
+            key,
+            format!("{key} is read by `solve` (a load path's driver) and `statics` (its linear response) only; `{command}` would ignore it: remove it, or run `tensegrity solve` or `tensegrity statics`"),
+        )),
+        Some(key) => Err(InvalidParameter::text(
+            "scene",
+            key,
+            format!("{key} is read by `solve` only (a load path's driver); `{command}` would ignore it: remove it, or run `tensegrity solve`"),
+        )),
+    }
+}
+
+/// Refuses a scene that carries a rest-length change (a load path's driver, which only
+/// `solve` reads), naming the first and the command that would ignore it: `statics`, which
+/// reads a support's `displacement` (its linear response), refuses these.
+pub fn refuse_rest_length_changes(
+    scene: &tensegrity_io::scene::Scene,
+    command: &str,
+) -> Result<(), InvalidParameter> {
+    match scene.file.rest_length_change_keys().first() {
         None => Ok(()),
         Some(key) => Err(InvalidParameter::text(
             "scene",

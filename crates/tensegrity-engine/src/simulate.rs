@@ -344,7 +344,7 @@ impl SimulateCommand {
         written: bool,
     ) -> Result<(Scene, Simulation), SceneError> {
         crate::scene::refuse_path_keys(&scene, "simulate")?;
-        elastic::refuse_elastic_keys(&scene, "simulate (rigid bars)")?;
+        elastic::refuse_elastic_keys_of_rigid_run(&scene, "simulate (rigid bars)")?;
         let simulation = self.simulation(&scene, written)?;
         Ok((scene, simulation))
     }

@@ -9,6 +9,9 @@
 //! with one symmetric eigendecomposition, (10 · m³/3 + 9 m³) flops at
 //! [`budget::DENSE_FLOP_RATE`] and 3 m² numbers held; above, sparse, linear in m
 //! ([`SPARSE_S_PER_COORDINATE`], [`SPARSE_BYTES_PER_COORDINATE`], calibrated on towers).
+//! The points: K + 1 in load steps; on the arc-length path, whose count is not known in
+//! advance, `max_steps` but at most [`EXPECTED_PATH_POINTS`] — and the path itself stops at
+//! the front end's work limit, keeping its points (`stop = "max_work"`, with a warning).
 //!
 //! ```
 //! use tensegrity_core::request::Request;
@@ -23,8 +26,9 @@
 //! ```
 
 use crate::scene::{required, SceneError, SceneSource};
+use crate::Context;
 use serde::{Deserialize, Serialize};
-use tensegrity_core::budget::{self, Estimate};
+use tensegrity_core::budget::{self, Estimate, Limits};
 use tensegrity_core::request::{InvalidParameter, Request};
 use tensegrity_core::Structure;
 use tensegrity_derive::{Columns, Params};
@@ -142,7 +146,8 @@ pub struct SolveReport {
     pub slack_strings: usize,
     /// The last point's stability: `stable`, `unstable`, `neutral` or `unknown`.
     pub stability: Stability,
-    /// Why the path stopped: `reached_target`, `max_steps` or `step_too_small`.
+    /// Why the path stopped: `reached_target`, `max_steps`, `step_too_small` or `max_work`
+    /// (the work limit spent before the target; the points so far are kept).
     pub stop: String,
     /// The path: its points and events (not a column).
     #[column(skip)]
@@ -169,6 +174,7 @@ impl SolveReport {
             Stop::ReachedTarget => "reached_target",
             Stop::MaxSteps => "max_steps",
             Stop::StepTooSmall { .. } => "step_too_small",
+            Stop::WorkLimit { .. } => "max_work",
         };
         Self {
             method: method.to_string(),
@@ -205,6 +211,28 @@ impl SolveCommand {
     /// and its supports along directions of any orientation (`along`) and elastic ones
     /// (`stiffness`, N/m: a spring along each held direction).
     pub fn report(&self, scene: &Scene) -> Result<SolveReport, SceneError> {
+        self.report_within(scene, None)
+    }
+
+    /// [`SolveCommand::report`] under a front end's `limits`: the arc-length path, whose
+    /// number of points is not known in advance ([`estimate`] counts
+    /// [`EXPECTED_PATH_POINTS`]), stops at the work limit keeping its points
+    /// (`stop = "max_work"`).
+    pub fn report_within(
+        &self,
+        scene: &Scene,
+        limits: Option<&Limits>,
+    ) -> Result<SolveReport, SceneError> {
+        // every bar of a load path is elastic: a rigid one (`simulate`'s) would be ignored
+        let bars = &scene.file.bars;
+        if let Some(k) = bars.iter().position(|b| b.get_ref().elastic == Some(false)) {
+            return Err(InvalidParameter::text(
+                "scene",
+                format!("bar {k}: elastic"),
+                format!("bar {k}: elastic = false is read by `simulate` only; `solve` models every bar elastic: remove it"),
+            )
+            .into());
+        }
         let mut model = ElasticModel::from_structure(&scene.structure)?;
         crate::simulate::elastic::with_bar_rest_lengths(&mut model, scene);
         crate::simulate::elastic::with_string_and_point_weights(&mut model, scene)?;
@@ -225,6 +253,7 @@ impl SolveCommand {
                     target: self.target,
                     max_steps: self.max_steps,
                     switch_branch: self.switch_branch,
+                    max_seconds: limits.map(|l| l.work_s),
                     ..PathSettings::default()
                 };
                 SolveReport::of("path", tensegrity_path::follow(&model, &settings)?)
@@ -235,9 +264,20 @@ impl SolveCommand {
 
 /// Runs `solve`: reads the scene, one path.
 pub fn solve(command: &SolveCommand) -> Result<SolveReport, SceneError> {
-    let scene = command.source()?.load()?;
-    command.report(&scene)
+    solve_in(command, &Context::default())
 }
+
+/// [`solve`] under the limits of `ctx` ([`SolveCommand::report_within`]).
+pub fn solve_in(command: &SolveCommand, ctx: &Context) -> Result<SolveReport, SceneError> {
+    let scene = command.source()?.load()?;
+    command.report_within(&scene, ctx.limits())
+}
+
+/// The points an arc-length path is estimated with when `max_steps` allows more: the
+/// bundled examples take 9–64 points to their targets (the two-bar truss through both folds
+/// to λ = 2: 64; to λ = 10: 99), the 9,999-member tower 10. A path that needs more stops at
+/// the work limit with its points ([`SolveCommand::report_within`]).
+pub const EXPECTED_PATH_POINTS: usize = 100;
 
 /// The resource estimate of the path of `structure` (module docs).
 ///
@@ -251,7 +291,7 @@ pub fn estimate(structure: &Structure, command: &SolveCommand) -> Estimate {
     let m = 3.0 * structure.n_nodes() as f64;
     let points = match command.load_steps {
         Some(k) => k as f64 + 1.0,
-        None => command.max_steps as f64,
+        None => command.max_steps.min(EXPECTED_PATH_POINTS) as f64,
     };
     let parameter = match command.load_steps {
         Some(k) => format!("load_steps = {k} ({} nodes)", structure.n_nodes()),

@@ -24,7 +24,8 @@ use crate::context::Context;
 use crate::scene::{required, SceneError, SceneSource};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{self, Estimate, Limits};
-use tensegrity_core::request::{InvalidParameter, Request};
+use tensegrity_core::error::ModelError;
+use tensegrity_core::request::{Categorized, Category, InvalidParameter, Request};
 use tensegrity_core::{CoreError, Structure};
 use tensegrity_derive::Params;
 use tensegrity_io::scene::Scene;
@@ -80,6 +81,13 @@ pub struct StaticsCommand {
         help = "When the loads cannot be carried (the structure is a mechanism for them), report the least-squares force densities marked `load_carried: false`, without sizing, instead of failing"
     )]
     pub least_squares: bool,
+    /// Also report the linear response at the scene's geometry (small displacements under
+    /// the loads; always computed when a support has a prescribed `displacement`).
+    #[param(
+        flag,
+        help = "Also report the linear response at the scene's geometry: node displacements, member force changes and reactions under the loads, from the tangent stiffness (bars need material and radius, strings stiffness); computed whenever a support has a `displacement`"
+    )]
+    pub response: bool,
     /// The factorisation: by size, the dense SVD or the sparse QR.
     #[param(choice = ["auto", "dense", "sparse"], help = "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 300 dofs and members on), dense or sparse")]
     pub method: StaticsMethod,
@@ -144,12 +152,74 @@ impl StaticsCommand {
     }
 }
 
-/// Runs `statics`: reads the scene, one report.
+/// Runs `statics`: reads the scene, one report (with the linear response when asked or
+/// driven by a support's `displacement`, [`with_response`]).
 pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
-    crate::scene::refuse_driver_keys(&scene, "statics")?;
-    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics")?;
-    Ok(command.report(&scene.structure)?)
+    refuse_unread_keys(&scene)?;
+    let mut report = command.report(&scene.structure)?;
+    with_response(command, &scene, &mut report)?;
+    Ok(report)
+}
+
+/// Refuses what `statics` does not read: a rest-length change (a load path's driver, `solve`
+/// only) and the elastic models' keys.
+fn refuse_unread_keys(scene: &Scene) -> Result<(), SceneError> {
+    crate::scene::refuse_rest_length_changes(scene, "statics")?;
+    crate::simulate::elastic::refuse_elastic_keys(scene, "statics")?;
+    Ok(())
+}
+
+/// Whether the report carries the linear response: asked (`response`), or driven by a
+/// support's prescribed `displacement`.
+pub fn wants_response(command: &StaticsCommand, scene: &Scene) -> bool {
+    command.response
+        || scene
+            .file
+            .support_displacements()
+            .iter()
+            .any(Option::is_some)
+}
+
+/// Adds the linear response ([`tensegrity_statics::response::linear_response`]) to `report`
+/// when [`wants_response`]: the supports' `displacement` prescribed. An error the core
+/// files as bad input (a member without an axial stiffness, a displacement off the held
+/// directions) is refused as the scene's, naming the item.
+///
+/// ```
+/// use tensegrity_core::request::Request;
+/// use tensegrity_engine::statics::{statics, StaticsCommand};
+/// let c = StaticsCommand::from_values([("scene", serde_json::json!("../../examples/prescribed_displacement.toml"))])?;
+/// let r = statics(&c)?.linear_response.unwrap();
+/// // the top support raised 0.1 m: node 1 rises EA_b / (EA_a + EA_b) of it
+/// assert!((r.displacements[1][2] - 0.075).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn with_response(
+    command: &StaticsCommand,
+    scene: &Scene,
+    report: &mut StaticsReport,
+) -> Result<(), SceneError> {
+    if !wants_response(command, scene) {
+        return Ok(());
+    }
+    let displacements: Vec<_> = (scene.file.support_displacements().into_iter())
+        .map(|d| d.map(nalgebra::Vector3::from))
+        .collect();
+    let response = tensegrity_statics::response::linear_response(&scene.structure, &displacements)
+        .map_err(|e| match e {
+            CoreError::Model(m) if m.category() == Category::Input => {
+                let item = match &m {
+                    ModelError::MissingProperty { member, .. } => Some(member.to_string()),
+                    other => other.item(),
+                };
+                let item = item.unwrap_or_else(|| "scene".into());
+                SceneError::InvalidParameter(InvalidParameter::text("scene", item, m.to_string()))
+            }
+            e => SceneError::Core(e),
+        })?;
+    report.linear_response = Some(response);
+    Ok(())
 }
 
 /// Runs `statics` in a sweep's (or another front end's) [`Context`]: as [`statics`], with the
@@ -157,10 +227,11 @@ pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
 /// estimate before the run let through is refused before its bases are allocated.
 pub fn statics_in(command: &StaticsCommand, ctx: &Context) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
-    crate::scene::refuse_driver_keys(&scene, "statics")?;
-    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics")?;
+    refuse_unread_keys(&scene)?;
     let request = command.request_within(ctx.limits());
-    Ok(statics_report(&scene.structure, &request)?)
+    let mut report = statics_report(&scene.structure, &request)?;
+    with_response(command, &scene, &mut report)?;
+    Ok(report)
 }
 
 /// Runs `statics` under a front end's check of its estimate: reads the scene, hands the
@@ -184,11 +255,15 @@ pub fn admitted<G, E: From<SceneError>>(
 ) -> Result<(Scene, StaticsReport), E> {
     let scene = command.source().map_err(SceneError::from)?;
     let scene = scene.load().map_err(SceneError::from)?;
-    crate::scene::refuse_driver_keys(&scene, "statics").map_err(SceneError::from)?;
-    crate::simulate::elastic::refuse_elastic_keys(&scene, "statics").map_err(SceneError::from)?;
-    let _admitted = admit(estimate(&scene.structure, command))?;
+    refuse_unread_keys(&scene)?;
+    let asked = StaticsCommand {
+        response: wants_response(command, &scene),
+        ..command.clone()
+    };
+    let _admitted = admit(estimate(&scene.structure, &asked))?;
     let request = command.request_within(limits);
-    let report = statics_report(&scene.structure, &request).map_err(SceneError::from)?;
+    let mut report = statics_report(&scene.structure, &request).map_err(SceneError::from)?;
+    with_response(command, &scene, &mut report)?;
     Ok((scene, report))
 }
 
@@ -202,6 +277,40 @@ pub fn admitted<G, E: From<SceneError>>(
 /// assert!(e.work_s < 1e-3 && e.parameters.to_string().starts_with("method = auto"));
 /// ```
 pub fn estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estimate> {
+    let statics = statics_estimate(structure, command);
+    if !command.response {
+        return statics;
+    }
+    let response = response_estimate(structure);
+    Some(match statics {
+        Some(s) => s.then(response),
+        None => response,
+    })
+}
+
+/// The estimate of the linear response ([`with_response`]): the dense tangent stiffness on
+/// the m free coordinates and its symmetric eigendecomposition, 3 m² numbers held and about
+/// 9 m³ flops at [`budget::DENSE_FLOP_RATE`].
+///
+/// ```
+/// use tensegrity_core::test_models::oscillating_prism;
+/// use tensegrity_engine::statics::response_estimate;
+/// let e = response_estimate(&oscillating_prism().unwrap());
+/// assert!(e.work_s < 1e-3 && e.what.contains("linear response"));
+/// ```
+pub fn response_estimate(structure: &Structure) -> Estimate {
+    let m = DofMap::stiffness_of(structure).len();
+    let mf = m as f64;
+    Estimate::new(
+        format!("the linear response (the eigendecomposition of the {m} × {m} tangent stiffness)"),
+        format!("response ({} nodes)", structure.n_nodes()),
+    )
+    .memory(24.0 * mf * mf)
+    .work(budget::DENSE_OVERHEAD * 9.0 * mf * mf * mf / budget::DENSE_FLOP_RATE)
+}
+
+/// The estimate of the statics without the linear response (module docs).
+fn statics_estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estimate> {
     let (dofs, members) = (DofMap::of(structure).len(), structure.n_members());
     let dense = match command.method {
         StaticsMethod::Dense => true,

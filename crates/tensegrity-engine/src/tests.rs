@@ -252,6 +252,7 @@ fn the_scene_requests_round_trip_through_json_and_the_registry() {
         modes: Some(2),
         mass: MassModel::Consistent,
         least_squares: true,
+        response: true,
         method: StaticsMethod::Sparse,
     };
     round_trip(&s);

@@ -445,6 +445,22 @@ impl TopologyFile {
                 force: spec.force,
             });
         }
+        // loads on one node add up: their sum must stay finite too (two loads of 1e308)
+        let mut sums = std::collections::BTreeMap::<usize, [f64; 3]>::new();
+        for (i, l) in loads.iter().enumerate() {
+            let sum = sums.entry(l.node).or_default();
+            for (s, f) in sum.iter_mut().zip(l.force) {
+                *s += f;
+            }
+            if sum.iter().any(|x| !x.is_finite()) {
+                let reason = format!(
+                    "the loads on node {} add up past the largest double (an overflow): give their sum as one finite load",
+                    l.node
+                );
+                let at = Some(self.loads[i].span().start);
+                return Err(bad(at, format!("loads[{i}].force"), reason));
+            }
+        }
         Ok(loads)
     }
 
@@ -720,6 +736,15 @@ position = [1.0, 0.0, 0.0]
                 assert!(e.contains(w), "{from} → {to}: {e}");
             }
         }
+        let twice = net
+            .replace("[0.0, 0.0, -1.5]", "[0.0, 0.0, 1e308]")
+            .replace("[0.1, 0.0, 0.0]", "[0.1, 0.0, 1e308]");
+        let e = err(&twice);
+        assert!(
+            e.contains("line 20")
+                && e.contains("loads[1].force: the loads on node 2 add up past the largest double"),
+            "{e}"
+        );
         // without fixed nodes the loads are refused by the line of the first
         let free = net
             .replace("[[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]\n", "")

@@ -86,10 +86,15 @@ pub struct PathSettings {
     /// where the mode could not be computed): the branch on the side of the mode's largest
     /// component.
     pub switch_branch: bool,
+    /// Stop, keeping the points so far, once this much wall time (s) has passed
+    /// ([`Stop::WorkLimit`]): how a front end keeps a path whose number of points is not
+    /// known in advance within its work limit. `None`: no limit.
+    pub max_seconds: Option<f64>,
 }
 
 impl Default for PathSettings {
-    /// λ up to 1, at most 500 points, steps from 0.05 (up to 0.25, down to 10⁻⁸).
+    /// λ up to 1, at most 500 points, steps from 0.05 (up to 0.25, down to 10⁻⁸), no time
+    /// limit.
     fn default() -> Self {
         Self {
             target: 1.0,
@@ -98,6 +103,7 @@ impl Default for PathSettings {
             max_step: 0.25,
             min_step: 1e-8,
             switch_branch: false,
+            max_seconds: None,
         }
     }
 }
@@ -125,6 +131,9 @@ impl PathSettings {
         }
         if self.max_steps == 0 {
             return Err(bad("max_steps", 0.0, "must be at least 1"));
+        }
+        if let Some(t) = self.max_seconds.filter(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(bad("max_seconds", t, "must be finite and positive"));
         }
         Ok(())
     }
@@ -881,7 +890,17 @@ pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathRepor
     let mut s = settings.initial_step;
     let target = settings.target;
     let mut switched = false;
+    let started = std::time::Instant::now();
     while points.len() <= settings.max_steps {
+        if let Some(seconds) = settings.max_seconds {
+            if started.elapsed().as_secs_f64() > seconds {
+                return Ok(PathReport {
+                    points,
+                    events,
+                    stop: Stop::WorkLimit { seconds },
+                });
+            }
+        }
         let step = points.len();
         let may_switch = settings.switch_branch && !switched;
         let advance = match tracer.advance(&current, s, step, target, may_switch) {

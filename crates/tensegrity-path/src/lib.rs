@@ -47,7 +47,9 @@
 //! free coordinates with axial dashpots D, stepped by the explicit RK4 and RK45 of
 //! `tensegrity-dynamics` (RK4 refused above its stability limit on the stiffest axial mode)
 //! or by Newmark's implicit trapezoidal rule with Newton on (4/h²) M_r + K_T + (2/h) C_T
-//! ([`newmark`]); TsgFEM's T-bar dynamics example is reproduced to round-off.
+//! ([`newmark`]); TsgFEM's T-bar dynamics example is reproduced to round-off. Bars may be
+//! rigid beside elastic members ([`rigid_bars`]): each keeps its length through the
+//! constraint ½(‖x_j − x_i‖² − L²) = 0 and its force Gᵀμ, its mass consistent.
 
 #![warn(missing_docs)]
 
@@ -60,8 +62,10 @@ pub mod load_steps;
 pub mod mass;
 pub mod model;
 pub mod newmark;
+pub mod newmark_rigid;
 pub mod newton;
 pub mod point;
+pub mod rigid_bars;
 pub mod stability;
 pub mod tangent;
 pub mod transient;

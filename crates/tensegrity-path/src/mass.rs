@@ -122,6 +122,12 @@ impl Masses {
         self.lumped(model).into_iter().map(|m| g * m).collect()
     }
 
+    /// Whether member k takes the consistent matrix: all members under
+    /// [`MassDistribution::Consistent`], none under lumped.
+    fn all_consistent(&self) -> Vec<bool> {
+        vec![self.distribution == MassDistribution::Consistent; self.members.len()]
+    }
+
     /// The kinetic energy ½ vᵀ M v of the node velocities `v` (J).
     pub fn kinetic_energy(&self, model: &ElasticModel, v: &[Vector3<f64>]) -> f64 {
         match self.distribution {
@@ -152,29 +158,56 @@ impl Masses {
         }
     }
 
+    /// The kinetic energy ½ vᵀ M v (J) with member k's mass consistent where `consistent[k]`
+    /// and lumped elsewhere (the rigid bars of [`crate::rigid_bars`] take the consistent
+    /// matrix whatever the distribution).
+    pub fn kinetic_energy_mixed(
+        &self,
+        model: &ElasticModel,
+        v: &[Vector3<f64>],
+        consistent: &[bool],
+    ) -> f64 {
+        let half = |m: f64, v: &Vector3<f64>| 0.5 * m * v.norm_squared();
+        let mut e: f64 = self.nodes.iter().zip(v).map(|(m, v)| half(*m, v)).sum();
+        for ((member, &mk), &c) in model.members.iter().zip(&self.members).zip(consistent) {
+            let (a, b) = (v[member.nodes[0]], v[member.nodes[1]]);
+            e += if c {
+                mk / 6.0 * (a.norm_squared() + a.dot(&b) + b.norm_squared())
+            } else {
+                half(0.5 * mk, &a) + half(0.5 * mk, &b)
+            };
+        }
+        e
+    }
+
     /// The reduced mass matrix M_r = Qᵀ M Q as (row, column, value) triplets on the free
     /// coordinates of `dofs`, both triangles, repeated entries to be summed.
     pub fn triplets(&self, model: &ElasticModel, dofs: &Dofs) -> Vec<(usize, usize, f64)> {
-        // the node blocks m I₃ (lumped, or the consistent diagonal Σ m_k/3 + m_i) reduce to
-        // m on the node's orthonormal free directions
-        let diagonal: Vec<f64> = match self.distribution {
-            MassDistribution::Lumped => self.lumped(model),
-            MassDistribution::Consistent => {
-                let mut d = self.nodes.clone();
-                for (member, &mk) in model.members.iter().zip(&self.members) {
-                    for i in member.nodes {
-                        d[i] += mk / 3.0;
-                    }
-                }
-                d
+        self.triplets_mixed(model, dofs, &self.all_consistent())
+    }
+
+    /// [`Masses::triplets`] with member k's mass consistent where `consistent[k]` and lumped
+    /// elsewhere.
+    pub fn triplets_mixed(
+        &self,
+        model: &ElasticModel,
+        dofs: &Dofs,
+        consistent: &[bool],
+    ) -> Vec<(usize, usize, f64)> {
+        // the node blocks m I₃ (lumped m_k/2, or the consistent diagonal m_k/3, plus m_i)
+        // reduce to m on the node's orthonormal free directions
+        let mut diagonal = self.nodes.clone();
+        for ((member, &mk), &c) in model.members.iter().zip(&self.members).zip(consistent) {
+            for i in member.nodes {
+                diagonal[i] += if c { mk / 3.0 } else { 0.5 * mk };
             }
-        };
+        }
         let mut t = Vec::new();
         for (i, &(first, count)) in dofs.of_node.iter().enumerate() {
             t.extend((first..first + count).map(|b| (b, b, diagonal[i])));
         }
-        if self.distribution == MassDistribution::Consistent {
-            for (member, &mk) in model.members.iter().zip(&self.members) {
+        for ((member, &mk), &c) in model.members.iter().zip(&self.members).zip(consistent) {
+            if c {
                 let [a, b] = member.nodes;
                 let ((a0, ac), (b0, bc)) = (dofs.of_node[a], dofs.of_node[b]);
                 for r in a0..a0 + ac {
@@ -207,15 +240,24 @@ pub enum MassSolver {
 impl MassSolver {
     /// Factors the reduced mass matrix of `masses` (checked) on `dofs`.
     pub fn new(masses: &Masses, model: &ElasticModel, dofs: &Dofs) -> Result<Self> {
-        let n = dofs.len();
-        let triplets = masses.triplets(model, dofs);
+        let diagonal = masses.distribution == MassDistribution::Lumped;
+        Self::from_triplets(dofs.len(), masses.triplets(model, dofs), diagonal)
+    }
+
+    /// Factors the n × n reduced mass matrix given as triplets ([`Masses::triplets_mixed`]):
+    /// its diagonal alone when `diagonal` (every mass lumped), else Cholesky.
+    pub fn from_triplets(
+        n: usize,
+        triplets: Vec<(usize, usize, f64)>,
+        diagonal: bool,
+    ) -> Result<Self> {
         let singular = || {
             PathError::model(
                 "masses",
                 "the mass matrix on the free coordinates is not positive definite",
             )
         };
-        if masses.distribution == MassDistribution::Lumped {
+        if diagonal {
             let mut d = vec![0.0; n];
             for (r, _, v) in triplets {
                 d[r] += v;

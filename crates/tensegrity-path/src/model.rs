@@ -6,6 +6,13 @@ use nalgebra::Vector3;
 use serde::Serialize;
 use tensegrity_core::Structure;
 
+/// The largest ratio of two stiffnesses of one model (members' EA/L₀, elastic supports' k)
+/// that is accepted. Newton's residual floor is 64 ε k_max ‖x‖ ([`crate::newton::tolerance`]):
+/// at 10¹⁰ it is 1.4·10⁻⁴ of the softest item's force at a strain of one (its k_min ‖x‖),
+/// beyond it the softest item's response is round-off. Steel bars beside rubber strings are
+/// about 10⁶.
+pub const MAX_STIFFNESS_RATIO: f64 = 1e10;
+
 /// Whether a member carries compression.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -313,7 +320,43 @@ impl ElasticModel {
                 }
             }
         }
+        self.check_stiffness_ratio()?;
         Ok(self)
+    }
+
+    /// Refuses stiffnesses (members' EA/L₀, elastic supports' k) whose ratio exceeds
+    /// [`MAX_STIFFNESS_RATIO`], naming the stiffest and the softest item: the tangent's
+    /// eigenvalues and Newton's corrections carry about 16 digits relative to the stiffest,
+    /// so the softest would be round-off (and near the largest double the tangent overflows).
+    fn check_stiffness_ratio(&self) -> Result<()> {
+        let members = self.members.iter().enumerate().map(|(k, m)| {
+            (
+                format!("member {k} ({}): EA/L0", kind_name(m.kind)),
+                m.ea / m.rest_length,
+            )
+        });
+        let supports = self.supports.iter().enumerate().filter_map(|(k, s)| {
+            s.stiffness
+                .map(|v| (format!("support {k} (node {}): stiffness", s.node), v))
+        });
+        let all: Vec<(String, f64)> = members.chain(supports).collect();
+        let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
+        let (Some(stiff), Some(soft)) = (all.iter().max_by(by), all.iter().min_by(by)) else {
+            return Ok(());
+        };
+        if stiff.1.is_finite() && stiff.1 <= MAX_STIFFNESS_RATIO * soft.1 {
+            return Ok(());
+        }
+        Err(PathError::model(
+            stiff.0.clone(),
+            format!(
+                "{:e} N/m is {:.1e} times {} = {:e} N/m, beyond the ratio {MAX_STIFFNESS_RATIO:e} that double precision resolves: hold a direction rigidly instead of on a stiff spring, or check the units",
+                stiff.1,
+                stiff.1 / soft.1,
+                soft.0,
+                soft.1
+            ),
+        ))
     }
 
     /// The model of a scene's structure: bars elastic with EA = E · π r² (their material's
@@ -339,10 +382,47 @@ impl ElasticModel {
     /// assert_eq!(m.members[0].rest_length, 2.0);
     /// ```
     pub fn from_structure(s: &Structure) -> Result<Self> {
+        Self::from_structure_mixed(s, &[])
+    }
+
+    /// [`ElasticModel::from_structure`] with the bars k where `rigid[k]` (missing entries:
+    /// elastic) rigid, for the dynamics of [`crate::rigid_bars`]: such a bar needs no radius
+    /// nor material, its rest length is its length in the scene (the length it keeps) and
+    /// its EA a placeholder of 1 N that nothing reads; a rigid bar of zero length is an error
+    /// naming it.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Structure};
+    /// let s = Structure::builder()
+    ///     .node([0.0, 0.0, 0.0]).node([2.0, 0.0, 0.0])
+    ///     .bar(Bar::new(0, 1).mass(1.0))
+    ///     .build().unwrap();
+    /// let m = tensegrity_path::ElasticModel::from_structure_mixed(&s, &[true]).unwrap();
+    /// assert_eq!(m.members[0].rest_length, 2.0);
+    /// // elastic, it would need its axial stiffness
+    /// assert!(tensegrity_path::ElasticModel::from_structure(&s).is_err());
+    /// ```
+    pub fn from_structure_mixed(s: &Structure, rigid: &[bool]) -> Result<Self> {
         let x = s.nodes();
         let length = |[i, j]: [usize; 2]| (x[j] - x[i]).norm();
         let mut members = Vec::with_capacity(s.n_members());
         for (k, b) in s.bars().iter().enumerate() {
+            if rigid.get(k).copied().unwrap_or(false) {
+                let l = length(b.nodes);
+                if !(l.is_finite() && l > 0.0) {
+                    return Err(PathError::model(
+                        format!("bar {k}"),
+                        format!("a rigid bar of length {l} m: its two nodes must be apart (a rigid bar keeps its length in the scene)"),
+                    ));
+                }
+                members.push(ElasticMember {
+                    nodes: b.nodes,
+                    kind: MemberKind::Bar,
+                    ea: 1.0,
+                    rest_length: l,
+                });
+                continue;
+            }
             let Some(radius) = b.radius else {
                 return Err(PathError::model(
                     format!("bar {k}"),

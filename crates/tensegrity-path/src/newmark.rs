@@ -12,7 +12,8 @@
 //!
 //! K_T the tangent stiffness ([`crate::tangent`]) and C_T the dashpots' c n nᵀ; a step whose
 //! iteration does not converge is retried at half the step (counted as rejected), up to
-//! [`MAX_HALVINGS`] times.
+//! [`MAX_HALVINGS`] times. With rigid bars the multipliers join the unknowns
+//! ([`crate::newmark_rigid`]).
 
 use crate::factor::{Factored, DENSE_MAX};
 use crate::tangent::{member_block_triplets, tangent_triplets};
@@ -49,7 +50,9 @@ impl Newmark {
             .model()
             .members
             .iter()
-            .map(|m| m.ea / m.rest_length)
+            .enumerate()
+            .filter(|(k, _)| !system.is_rigid(*k))
+            .map(|(_, m)| m.ea / m.rest_length)
             .fold(0.0, f64::max);
         Self {
             stiffest,
@@ -90,6 +93,25 @@ impl Newmark {
             .map(|v| v.norm())
             .fold(1e-3, f64::max);
         let floor = 64.0 * f64::EPSILON * self.stiffest * size;
+        if system.rigid_bars().is_some_and(|b| !b.is_empty()) {
+            let step = crate::newmark_rigid::Step {
+                t,
+                h,
+                floor,
+                tolerance: TOLERANCE,
+                max_iterations: MAX_ITERATIONS,
+            };
+            let jacobian = |q1: &DVector<f64>, u1: &DVector<f64>| Self::jacobian(system, q1, u1, h);
+            return crate::newmark_rigid::solve(
+                system,
+                ws,
+                y,
+                a0,
+                &step,
+                &mut self.iterations,
+                jacobian,
+            );
+        }
         for _ in 0..MAX_ITERATIONS {
             self.iterations += 1;
             let q1 = &base + &a1 * c_q;

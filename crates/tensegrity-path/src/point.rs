@@ -117,6 +117,12 @@ pub enum Stop {
         /// Why, with the load factor of the last point and the last step's error.
         message: String,
     },
+    /// It spent its work limit ([`crate::PathSettings::max_seconds`]) before its target.
+    /// The points so far are kept.
+    WorkLimit {
+        /// The limit (s of wall time).
+        seconds: f64,
+    },
 }
 
 /// A load path: its points, its events and why it stopped.

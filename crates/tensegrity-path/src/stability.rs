@@ -111,7 +111,10 @@ pub fn spectrum(k: &DMatrix<f64>) -> Spectrum {
                 .total_cmp(&eig.eigenvalues[b].abs())
         })
         .unwrap_or(0);
-    let stability = if negative > 0 {
+    // a tangent that overflowed (a stiffness near the largest double) has no verdict
+    let stability = if eig.eigenvalues.iter().any(|v| !v.is_finite()) {
+        Stability::Unknown
+    } else if negative > 0 {
         Stability::Unstable
     } else if eig.eigenvalues[order[0]] <= zero {
         Stability::Neutral

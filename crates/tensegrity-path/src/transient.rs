@@ -20,14 +20,19 @@
 //!
 //! [`ElasticDynamics`] is a [`System`] for the explicit methods of `tensegrity-dynamics`
 //! ([`Rk4`], [`Dopri5`]); [`ElasticDynamics::run`] drives one of them or Newmark and
-//! returns the same [`SimulationResult`] as a rigid-bar run (its bar-length and constraint
-//! drifts zero: nothing is constrained but the supports, which hold exactly).
+//! returns the same [`SimulationResult`] as a rigid-bar run (its constraint drift zero:
+//! the supports hold exactly; its bar-length drift that of the rigid bars, if any).
+//!
+//! Some bars may be rigid ([`ElasticDynamics::with_rigid_bars`], [`crate::rigid_bars`]): they
+//! hold their length by a constraint force, their mass is consistent, and they have no axial
+//! mode (no stiffness, no strain energy, no dashpot).
 
 use crate::dofs::Dofs;
 use crate::error::Result;
 use crate::forces::{member_states, MemberState};
 use crate::mass::{MassSolver, Masses};
 use crate::model::{ElasticModel, MemberKind};
+use crate::rigid_bars::RigidBars;
 use crate::PathError;
 use nalgebra::{DVector, Vector3};
 use tensegrity_core::error::{CoreError, DynamicsError, StepHint};
@@ -50,6 +55,7 @@ pub struct ElasticDynamics {
     v0: DVector<f64>,
     /// Each member's name in the scene (bar k or string k), for errors.
     pub(crate) member_ids: Vec<MemberId>,
+    rigid: Option<RigidBars>,
 }
 
 /// The buffers of the right-hand side, and its count.
@@ -158,7 +164,178 @@ impl ElasticDynamics {
             applied,
             v0,
             member_ids,
+            rigid: None,
         })
+    }
+
+    /// The same dynamics with the members `rigid` (bars, by their index in the model) rigid
+    /// ([`crate::rigid_bars`]): each keeps the length between its nodes in the model (its
+    /// rest length and EA are not read), its mass takes the consistent matrix whatever the
+    /// distribution, and it may carry no dashpot. The initial velocities must keep the rigid
+    /// bars' lengths (to 10⁻⁹ of the ends' speeds; then projected to round-off); errors name
+    /// the bar.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_path::{ElasticDynamics, ElasticMember, ElasticModel, MassDistribution,
+    ///     Masses, MemberKind};
+    /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1.0, rest_length: 1.0 };
+    /// let model = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+    ///     supports: vec![], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
+    /// let masses = Masses { members: vec![1.0], nodes: vec![0.0; 2],
+    ///     distribution: MassDistribution::Lumped };
+    /// let spin = [Vector3::new(0.0, -1.0, 0.0), Vector3::new(0.0, 1.0, 0.0)];
+    /// let d = ElasticDynamics::new(model, masses, vec![], None, &spin).unwrap()
+    ///     .with_rigid_bars(&[0]).unwrap();
+    /// // rotation about the centre at 2 rad/s with the rod's inertia m L²/12
+    /// let e = d.energy(&d.initial_state());
+    /// assert!((e.kinetic - 0.5 * (1.0 / 12.0) * 4.0).abs() < 1e-15);
+    /// ```
+    pub fn with_rigid_bars(mut self, rigid: &[usize]) -> Result<Self> {
+        if rigid.is_empty() {
+            return Ok(self);
+        }
+        let bars = RigidBars::new(&self.model, &self.dofs, rigid)?;
+        for &k in rigid {
+            let [i, j] = self.model.members[k].nodes;
+            self.model.members[k].rest_length = (self.model.nodes[j] - self.model.nodes[i]).norm();
+            if self.damping(k) != 0.0 {
+                return Err(PathError::model(
+                    self.member_name(k),
+                    "a rigid bar has no dashpot (it does not stretch)",
+                ));
+            }
+        }
+        let consistent = self.consistent(&bars);
+        self.mass_triplets = self
+            .masses
+            .triplets_mixed(&self.model, &self.dofs, &consistent);
+        self.solver =
+            MassSolver::from_triplets(self.dofs.len(), self.mass_triplets.clone(), false)?;
+        let x = self.model.nodes.clone();
+        let v = self.velocities_of(&self.initial_state());
+        let rows = bars.rows(&self.model, &self.dofs, &x);
+        for (row, &k) in rows.iter().zip(&bars.members) {
+            let [i, j] = self.model.members[k].nodes;
+            let rate = crate::rigid_bars::dot(row, self.v0.as_slice());
+            let scale = (x[j] - x[i]).norm() * (v[i].norm() + v[j].norm());
+            if rate.abs() > 1e-9 * scale {
+                return Err(PathError::model(
+                    self.member_name(k),
+                    format!("a rigid bar whose initial velocities stretch it at {:e} m/s: give its two ends the same speed along it", rate / (x[j] - x[i]).norm()),
+                ));
+            }
+        }
+        let mut v0 = self.v0.clone();
+        bars.project_velocities(&self.model, &self.dofs, &self.solver, &x, v0.as_mut_slice())
+            .map_err(|e| PathError::model("rigid bars", e.to_string()))?;
+        self.v0 = v0;
+        self.rigid = Some(bars);
+        Ok(self)
+    }
+
+    /// Whether each member takes the consistent mass matrix: the rigid bars always.
+    fn consistent(&self, bars: &RigidBars) -> Vec<bool> {
+        let all = self.masses.distribution == crate::mass::MassDistribution::Consistent;
+        bars.is_rigid.iter().map(|&r| r || all).collect()
+    }
+
+    /// `bar k` or `string k` (the member's name in the scene).
+    fn member_name(&self, k: usize) -> String {
+        self.member_ids[k].to_string()
+    }
+
+    /// The rigid bars, if any ([`ElasticDynamics::with_rigid_bars`]).
+    pub fn rigid_bars(&self) -> Option<&RigidBars> {
+        self.rigid.as_ref()
+    }
+
+    /// Whether member `k` is a rigid bar.
+    pub fn is_rigid(&self, k: usize) -> bool {
+        self.rigid.as_ref().is_some_and(|r| r.is_rigid[k])
+    }
+
+    /// The node positions x = x₀ + Q q of free coordinates `q`.
+    pub fn positions(&self, q: &[f64]) -> Vec<Vector3<f64>> {
+        let mut x = self.model.nodes.clone();
+        self.add_expanded(q, &mut x);
+        x
+    }
+
+    /// Projects a state onto the rigid bars' lengths and G q̇ = 0 (nothing without rigid
+    /// bars; [`RigidBars::project`]); whether it changed the state. `t`: its time, for the
+    /// error of a projection that does not converge.
+    pub fn project(&self, t: f64, y: &mut [f64]) -> std::result::Result<bool, CoreError> {
+        let Some(bars) = self.rigid.as_ref().filter(|b| !b.is_empty()) else {
+            return Ok(false);
+        };
+        let (q, qd) = y.split_at_mut(self.n_free());
+        let converged = bars.project(
+            &self.model,
+            &self.dofs,
+            &self.solver,
+            |q| self.positions(q),
+            q,
+            qd,
+        )?;
+        if !converged {
+            return Err(DynamicsError::Diverged {
+                t,
+                what: "the projection onto the rigid bars' lengths did not converge",
+            }
+            .into());
+        }
+        Ok(true)
+    }
+
+    /// Projects the velocities `qd` at free coordinates `q` onto G q̇ = 0 (nothing without
+    /// rigid bars).
+    pub fn project_velocities(
+        &self,
+        q: &[f64],
+        qd: &mut [f64],
+    ) -> std::result::Result<(), CoreError> {
+        match &self.rigid {
+            Some(bars) => bars.project_velocities(
+                &self.model,
+                &self.dofs,
+                &self.solver,
+                &self.positions(q),
+                qd,
+            ),
+            None => Ok(()),
+        }
+    }
+
+    /// The largest |‖x_j − x_i‖ − L_k| over the rigid bars at a state (m; 0 without one).
+    pub fn bar_length_error(&self, y: &[f64]) -> f64 {
+        let Some(bars) = &self.rigid else {
+            return 0.0;
+        };
+        let x = self.positions(&y[..self.n_free()]);
+        bars.members
+            .iter()
+            .zip(&bars.lengths)
+            .map(|(&k, &l)| {
+                let [i, j] = self.model.members[k].nodes;
+                ((x[j] - x[i]).norm() - l).abs()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The rigid bars' multipliers μ at a state (the index-1 system of
+    /// [`crate::rigid_bars`]; empty without rigid bars).
+    pub fn multipliers(&self, y: &[f64]) -> std::result::Result<DVector<f64>, CoreError> {
+        let Some(bars) = &self.rigid else {
+            return Ok(DVector::zeros(0));
+        };
+        let m = self.n_free();
+        let mut ws = TransientWorkspace::default();
+        let f = self.reduced_forces(0.0, &y[..m], &y[m..], &mut ws)?;
+        let rows = bars.rows(&self.model, &self.dofs, &ws.x);
+        let bias = bars.bias(&self.model, &ws.v);
+        let mut a = f.as_slice().to_vec();
+        bars.accelerations(&self.solver, &rows, &bias, &mut a)
     }
 
     /// The model (validated).
@@ -223,6 +400,15 @@ impl ElasticDynamics {
     /// (velocities `v`; a string's total tension clipped at zero, module docs).
     pub fn member_states(&self, x: &[Vector3<f64>], v: &[Vector3<f64>]) -> Vec<MemberState> {
         let mut states = member_states(&self.model, x, 0.0);
+        if let Some(bars) = &self.rigid {
+            // a rigid bar acts through its constraint force alone
+            for (s, &r) in states.iter_mut().zip(&bars.is_rigid) {
+                if r {
+                    s.tension = 0.0;
+                    s.slack = true;
+                }
+            }
+        }
         if !self.damping.is_empty() {
             for ((s, m), &c) in states
                 .iter_mut()
@@ -325,8 +511,9 @@ impl ElasticDynamics {
         let strain = member_states(&self.model, &x, 0.0)
             .iter()
             .zip(&self.model.members)
-            .filter(|(s, _)| !s.slack)
-            .map(|(s, m)| {
+            .enumerate()
+            .filter(|(k, (s, _))| !s.slack && !self.is_rigid(*k))
+            .map(|(_, (s, m))| {
                 let e = s.length - s.rest_length;
                 0.5 * m.ea * e * e / s.rest_length
             })
@@ -346,8 +533,14 @@ impl ElasticDynamics {
             .zip(&self.applied)
             .map(|((x, x0), p)| p.dot(&(x - x0)))
             .sum::<f64>();
+        let kinetic = match &self.rigid {
+            Some(bars) => self
+                .masses
+                .kinetic_energy_mixed(&self.model, &v, &self.consistent(bars)),
+            None => self.masses.kinetic_energy(&self.model, &v),
+        };
         Energy {
-            kinetic: self.masses.kinetic_energy(&self.model, &v),
+            kinetic,
             strain,
             load,
         }
@@ -378,13 +571,26 @@ impl ElasticDynamics {
     }
 
     /// Every member's tension at a state (N, bars then strings in the model's order),
-    /// dashpots included.
+    /// dashpots included; a rigid bar's −μ L from its constraint force (NaN where the
+    /// constraint system cannot be solved).
     pub fn member_forces(&self, y: &[f64]) -> Vec<f64> {
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
-        self.member_states(&x, &v)
+        let mut forces: Vec<f64> = self
+            .member_states(&x, &v)
             .iter()
             .map(|s| s.tension)
-            .collect()
+            .collect();
+        if let Some(bars) = &self.rigid {
+            match self.multipliers(y) {
+                Ok(mu) => {
+                    for (k, t) in bars.tensions(&self.model, &x, &mu) {
+                        forces[k] = t;
+                    }
+                }
+                Err(_) => bars.members.iter().for_each(|&k| forces[k] = f64::NAN),
+            }
+        }
+        forces
     }
 
     /// The highest angular frequency ω_max of the undamped model about the start (rad/s):
@@ -397,7 +603,28 @@ impl ElasticDynamics {
         for s in &mut states {
             s.slack = false;
         }
-        let k = crate::tangent::tangent_triplets(&self.model, &self.dofs, &states);
+        // a rigid bar: no axial stiffness, its geometric one (t/L)(I − n nᵀ) at its start
+        let mut model = std::borrow::Cow::Borrowed(&self.model);
+        if let Some(bars) = &self.rigid {
+            let model = model.to_mut();
+            for (m, &r) in model.members.iter_mut().zip(&bars.is_rigid) {
+                if r {
+                    m.ea = 0.0;
+                }
+            }
+            let y = self.initial_state();
+            let forces = self.member_forces(&y);
+            for (k, s) in states.iter_mut().enumerate() {
+                if bars.is_rigid[k] {
+                    s.tension = if forces[k].is_finite() {
+                        forces[k]
+                    } else {
+                        0.0
+                    };
+                }
+            }
+        }
+        let k = crate::tangent::tangent_triplets(&model, &self.dofs, &states);
         let m = self.n_free();
         if m == 0 {
             return 0.0;
@@ -489,7 +716,14 @@ impl System for ElasticDynamics {
         let (dq, dqd) = dy.split_at_mut(m);
         dq.copy_from_slice(qd);
         dqd.copy_from_slice(f.as_slice());
-        self.solver.solve_in_place(dqd);
+        match &self.rigid {
+            Some(bars) => {
+                let rows = bars.rows(&self.model, &self.dofs, &ws.x);
+                let bias = bars.bias(&self.model, &ws.v);
+                bars.accelerations(&self.solver, &rows, &bias, dqd)?;
+            }
+            None => self.solver.solve_in_place(dqd),
+        }
         Ok(())
     }
 }

@@ -211,3 +211,38 @@ fn bad_stiffnesses_and_dependent_directions_name_the_support() {
         "{e}"
     );
 }
+
+/// A spring more than 10¹⁰ times stiffer than the string beside it (or a string 10⁻³⁰⁰ as
+/// stiff as its spring) is refused naming both items: Newton's residual floor would hold the
+/// soft one in round-off, and near the largest double the tangent overflows (its eigenvalues
+/// NaN, which once read "stable"). At 10⁹ the string's series stiffness is found to 10⁻⁴.
+#[test]
+fn stiffness_ratios_beyond_double_precision_name_both_items() {
+    let ea = 2e3;
+    let l0 = 2.0 * (1.0 - 1e-3);
+    let string = ea / l0;
+    for k_s in [1.01e10 * string, 1e308] {
+        let e = string_on_spring(k_s, ea, 10.0, 1.0)
+            .validated()
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("support 0 (node 0): stiffness: ")
+                && e.contains("member 0 (string): EA/L0")
+                && e.contains("double precision"),
+            "{e}"
+        );
+    }
+    let e = string_on_spring(1e4, 1e-300, 10.0, 1.0)
+        .validated()
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("support 0 (node 0): stiffness: "), "{e}");
+    // within the ratio: the string's extension under 1 N on top of the dead load
+    let k_s = 1e9 * string;
+    let model = string_on_spring(k_s, ea, 10.0, 1.0).validated().unwrap();
+    let path = load_steps(&model, 1, 1.0).unwrap();
+    let moved = path.points[1].nodes[1][0] - path.points[0].nodes[1][0];
+    let series = 1.0 / (1.0 / k_s + 1.0 / string);
+    assert!((moved * series - 1.0).abs() < 1e-4, "{moved}");
+}

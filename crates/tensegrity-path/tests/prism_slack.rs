@@ -620,5 +620,8 @@ fn past_the_collapse_the_path_keeps_its_points_and_says_why_it_stopped() {
         tensegrity_path::point::Stop::StepTooSmall { message } => {
             assert!(message.contains("load factor"), "{message}")
         }
+        stop @ tensegrity_path::point::Stop::WorkLimit { .. } => {
+            panic!("no work limit was given: {stop:?}")
+        }
     }
 }

@@ -188,3 +188,42 @@ fn strings_that_slacken_together_into_a_mechanism_leave_the_path_on_an_edge() {
         }
     }
 }
+
+/// A path given a work limit stops there with `Stop::WorkLimit`, its points kept and each an
+/// equilibrium on the two-bar truss's path (λ growing past both folds on the inverted truss
+/// toward a target it cannot reach in the time); a limit that is not positive is refused.
+#[test]
+fn a_path_out_of_time_keeps_its_points() {
+    let mut truss = truss_with_a_driven_string();
+    truss.members.truncate(2);
+    truss.drivers = Drivers::default();
+    let limited = PathSettings {
+        target: 1e6,
+        max_steps: usize::MAX,
+        max_seconds: Some(0.02),
+        ..PathSettings::default()
+    };
+    let path = follow(&truss, &limited).unwrap();
+    assert_eq!(path.stop, Stop::WorkLimit { seconds: 0.02 });
+    assert!(path.points.len() > 10, "{}", path.points.len());
+    for p in &path.points {
+        assert_finite(p);
+        // Newton's tolerance is relative to the load, 100 |λ| N
+        let load = 100.0 * p.lambda.abs().max(1.0);
+        assert!(p.residual < 1e-8 * load, "step {}: {}", p.step, p.residual);
+    }
+    let last = path.points.last().unwrap().lambda;
+    assert!(last > 1.2 && last < 1e6, "{last}");
+    for bad in [0.0, -1.0, f64::NAN] {
+        let e = follow(
+            &truss,
+            &PathSettings {
+                max_seconds: Some(bad),
+                ..PathSettings::default()
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("max_seconds"), "{e}");
+    }
+}

@@ -48,7 +48,7 @@ fn as_value(arrays: &SceneArrays) -> Result<Value, Failure> {
 /// tables as given.
 pub fn scene_text(data: &Map<String, Value>) -> Result<String, Failure> {
     let scene = scene(data)?;
-    let mut text = tensegrity_io::scene::to_toml(&scene.structure);
+    let mut text = tensegrity_io::scene::scene_to_toml(&scene);
     let tables: Map<String, Value> = TABLES
         .iter()
         .filter_map(|t| Some((t.to_string(), data.get(*t)?.clone())))
@@ -71,16 +71,7 @@ pub fn toml_text(value: &Value) -> Result<String, Failure> {
 /// as written.
 pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
     let scene = Scene::from_str_named(text, name).map_err(|e| io_failure(&e))?;
-    // the Python structure holds supports along x, y, z only: refused rather than dropped
-    let other = (scene.structure.supports().iter().enumerate())
-        .find(|(_, s)| !s.along.is_empty() || s.stiffness.is_some());
-    if let Some((i, _)) = other {
-        return Err(Failure::new(
-            Category::Input,
-            format!("{name}: support {i}: a Structure holds supports along x, y, z only (not `along` directions or a `stiffness`): give the scene file's path to the command instead"),
-        ));
-    }
-    let mut data = as_value(&SceneArrays::from_structure(&scene.structure))?;
+    let mut data = as_value(&SceneArrays::with_file_keys(&scene))?;
     let raw = tensegrity_io::tables::read(text);
     if let Value::Object(m) = &mut data {
         for t in TABLES {

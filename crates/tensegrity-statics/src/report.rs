@@ -33,6 +33,8 @@
 use super::front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 use super::prestress::Prestressability;
 use super::{SpectralGap, StaticsSettings};
+pub use crate::reaction::Reaction;
+use crate::response::LinearResponse;
 use crate::sizing::{self, Governing, SizingReport};
 use crate::stiffness::{self, MassModel};
 use serde::Serialize;
@@ -53,22 +55,6 @@ pub struct StaticsRequest {
     /// Report the least-squares solution of a load the structure cannot carry (marked
     /// `load_carried: false`, without sizing) instead of failing.
     pub least_squares: bool,
-}
-
-/// A support reaction.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Reaction {
-    /// The supported node.
-    pub node: usize,
-    /// Reaction force (N): in the span of the support's held directions (an elastic
-    /// support's spring force).
-    pub force: [f64; 3],
-    /// For a support with `along` directions: the force along each of them (N), from
-    /// `force` = Σ a_h d_h over all its held directions (flagged axes, then `along`;
-    /// [`reaction_components`](crate::reaction_components)); empty (and not written)
-    /// otherwise.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub along: Vec<f64>,
 }
 
 /// Everything `tensegrity statics` reports; serialises to its JSON.
@@ -179,6 +165,13 @@ pub struct StaticsReport {
     /// clear gap (a value within a factor 10 of the tolerance) is flagged in `statics_warning`.
     #[column(nested)]
     pub spectral_gap: SpectralGap,
+    /// The linear response at the scene's geometry (small displacements: node displacements,
+    /// member force changes, reactions; [`crate::response`]), when asked or driven by a
+    /// support's prescribed displacement; added by the caller that knows the displacements
+    /// ([`crate::response::linear_response`]), not by [`statics_report`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
+    pub linear_response: Option<LinearResponse>,
 }
 
 /// Runs every statics analysis of one structure (see the module documentation).
@@ -336,18 +329,7 @@ fn add_load_solve(
         sol.reactions
             .iter()
             .zip(structure.supports())
-            .map(|((node, r), support)| {
-                let skip = support.fixed.iter().filter(|&&f| f).count();
-                Reaction {
-                    node: *node,
-                    force: [r.x, r.y, r.z],
-                    along: if support.along.is_empty() {
-                        Vec::new()
-                    } else {
-                        crate::reaction_components(support, r).split_off(skip)
-                    },
-                }
-            })
+            .map(|((_, r), support)| Reaction::of(support, r))
             .collect(),
     );
     report.residual = Some(sol.residual);

@@ -31,6 +31,18 @@ pub enum StaticsError {
         /// The unbalanced nodes.
         nodes: Vec<usize>,
     },
+    /// A linear response asked of a structure whose tangent stiffness is singular on its
+    /// free coordinates: mechanisms that neither the prestress nor a spring stiffens (the
+    /// small-displacement answer does not exist; `solve` follows the large motion).
+    #[error("the linear response has no answer: the tangent stiffness is singular on the free coordinates ({mechanisms} mechanism(s) stiffened neither by prestress nor by a spring; the first moves node {node} most, along [{:.6}, {:.6}, {:.6}]): add supports or members, or prestress the structure", direction[0], direction[1], direction[2])]
+    SingularStiffness {
+        /// The number of zero eigenvalues of the tangent stiffness on the free coordinates.
+        mechanisms: usize,
+        /// The node the first mechanism moves most.
+        node: usize,
+        /// That node's motion in the mechanism (a unit vector).
+        direction: [f64; 3],
+    },
     /// A cyclic-symmetry descriptor that does not describe the structure (boxed: the
     /// variant names nodes, members and positions).
     #[error(transparent)]

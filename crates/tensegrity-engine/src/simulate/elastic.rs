@@ -1,21 +1,29 @@
-//! Elastic scenes in `simulate`: a scene with `[simulation] bars = "elastic"`, or a net of
-//! strings with point masses and no bar (`[[masses]]`), runs the elastic dynamics of
-//! `tensegrity_path::transient` instead of the rigid-bar model — every member an axial
-//! spring (a bar EA = E π r² from its material and radius, its rest length its `rest_length`
-//! or its length in the scene; a string its stiffness k, EA = k L₀, tension only), the mass
-//! at the nodes: each bar's `mass` (or ρ π r² L), each string's
+//! Elastic scenes in `simulate`: a scene with `[simulation] bars = "elastic"` (or some bar
+//! `elastic = true`), or a net of strings with point masses and no bar (`[[masses]]`), runs
+//! the elastic dynamics of `tensegrity_path::transient` instead of the rigid-bar model —
+//! every member an axial spring (a bar EA = E π r² from its material and radius, its rest
+//! length its `rest_length` or its length in the scene; a string its stiffness k, EA = k L₀,
+//! tension only), the mass at the nodes: each bar's `mass` (or ρ π r² L), each string's
 //! `mass` (default massless), every `[[masses]]` point mass, distributed by
 //! `[simulation] mass_matrix` (lumped, the default, or consistent), the strings' `damping`
 //! as axial dashpots, the scene's loads from t = 0 and the weights under `[gravity]`; supports
 //! along any direction (`along`) and on springs (`stiffness`) as in `solve`.
 //!
-//! The same request ([`SimulateCommand`]) and report ([`SimulationReport`]: its bar-length
-//! and constraint drifts are zero, nothing being constrained but the supports, which hold
-//! exactly) as a rigid run; the integrators are rk4 (its step refused above the stability
-//! limit of the stiffest axial mode, and by default half that limit when below 1 ms), rk45
-//! and newmark (implicit: stable at any step). The convergence check reruns the scene at the
-//! refined resolution ([`SimulateCommand::refine`]) and compares the final states as for a
-//! rigid run. `[ground]` and `[[actuation]]` are refused (not modelled for elastic members).
+//! The same request ([`SimulateCommand`]) and report ([`SimulationReport`]: its constraint
+//! drift is zero, the supports holding exactly, and its bar-length drift that of the rigid
+//! bars of a mixed scene, below) as a rigid run; the integrators are rk4 (its step refused
+//! above the stability limit of the stiffest axial mode, and by default half that limit when
+//! below 1 ms), rk45 and newmark (implicit: stable at any step). The convergence check reruns
+//! the scene at the refined resolution ([`SimulateCommand::refine`]) and compares the final
+//! states as for a rigid run. `[ground]` and `[[actuation]]` are refused (not modelled for
+//! elastic members).
+//!
+//! **Mixed scenes.** A bar's `elastic = true | false` overrides `[simulation] bars` for it;
+//! a scene with some elastic bar runs this model with its rigid bars as length constraints
+//! (`tensegrity_path::rigid_bars`: no radius nor material needed, their mass always
+//! consistent, their force −μ L in the member forces, the largest length error the
+//! report's `bar_length_drift`); a scene whose bars are all rigid runs the rigid-bar
+//! dynamics. A rigid bar here takes no `rest_length` (it keeps its length in the scene).
 
 use super::companion::{self, Refined};
 use super::{Checked, CompanionRun, Scales, SimulateCommand};
@@ -43,9 +51,26 @@ pub fn is_elastic(scene: &Scene) -> bool {
     scene.file.is_elastic()
 }
 
-/// Refuses the keys only the elastic dynamics reads (a string's `mass`, `[[masses]]`) in a
-/// scene that `command` runs otherwise, naming the first.
+/// Refuses the keys only the elastic dynamics reads (a string's `mass`, `[[masses]]`) and
+/// the bars' `elastic` (read by `simulate` alone) in a scene that `command` runs otherwise,
+/// naming the first.
 pub fn refuse_elastic_keys(scene: &Scene, command: &str) -> Result<(), InvalidParameter> {
+    if let Some(key) = scene.file.bar_model_keys().first() {
+        return Err(InvalidParameter::text(
+            "scene",
+            key,
+            format!("{key} is read by `simulate` only (a bar elastic or rigid in the dynamics); `{command}` would ignore it: remove it"),
+        ));
+    }
+    refuse_elastic_keys_of_rigid_run(scene, command)
+}
+
+/// [`refuse_elastic_keys`] for the rigid-bar dynamics, which reads the bars' `elastic`
+/// (every one false there: a scene with an elastic bar runs the elastic dynamics).
+pub fn refuse_elastic_keys_of_rigid_run(
+    scene: &Scene,
+    command: &str,
+) -> Result<(), InvalidParameter> {
     match scene.file.elastic_keys().first() {
         None => Ok(()),
         Some(key) => Err(InvalidParameter::text(
@@ -74,8 +99,17 @@ pub fn dynamics_of(scene: &Scene) -> Result<ElasticDynamics, SceneError> {
         .into());
     }
     let s = &scene.structure;
-    let mut model = ElasticModel::from_structure(s)?;
-    with_bar_rest_lengths(&mut model, scene);
+    let rigid = rigid_bars(scene)?;
+    let mut model = ElasticModel::from_structure_mixed(s, &rigid)?;
+    for (member, (l0, &r)) in model
+        .members
+        .iter_mut()
+        .zip(file.bar_rest_lengths().into_iter().zip(&rigid))
+    {
+        if let (Some(l0), false) = (l0, r) {
+            member.rest_length = l0;
+        }
+    }
     // the bar's mass, or ρ π r² L from its material and radius (as the rigid model)
     let bars = (0..s.n_bars()).map(|k| s.bar_mass(k).unwrap_or(0.0));
     let strings = file
@@ -101,13 +135,26 @@ pub fn dynamics_of(scene: &Scene) -> Result<ElasticDynamics, SceneError> {
         damping
     };
     let velocities = s.velocities().unwrap_or_default();
-    Ok(ElasticDynamics::new(
-        model,
-        masses,
-        damping,
-        s.gravity(),
-        velocities,
-    )?)
+    let rigid: Vec<usize> = (0..rigid.len()).filter(|&k| rigid[k]).collect();
+    Ok(
+        ElasticDynamics::new(model, masses, damping, s.gravity(), velocities)?
+            .with_rigid_bars(&rigid)?,
+    )
+}
+
+/// Which bars of an elastic scene are rigid (their `elastic = false`, or `[simulation]
+/// bars` rigid where not given); a rigid bar with a `rest_length` is an error naming it.
+fn rigid_bars(scene: &Scene) -> Result<Vec<bool>, SceneError> {
+    let rigid: Vec<bool> = scene.file.elastic_bars().iter().map(|e| !e).collect();
+    let lengths = scene.file.bar_rest_lengths();
+    if let Some(k) = (0..rigid.len()).find(|&k| rigid[k] && lengths[k].is_some()) {
+        return Err(PathError::model(
+            format!("bar {k}"),
+            "a rigid bar keeps its length in the scene: remove its `rest_length`, or make it elastic (`elastic = true`)",
+        )
+        .into());
+    }
+    Ok(rigid)
 }
 
 /// Sets the bars' rest lengths of `model` (built from `scene`'s structure: bars first) to the
@@ -170,14 +217,14 @@ fn point_masses(scene: &Scene) -> Result<Vec<f64>, SceneError> {
     for (k, (node, mass)) in scene.file.point_masses().into_iter().enumerate() {
         if node >= n {
             return Err(PathError::model(
-                format!("masses {k}"),
+                format!("point mass {k}"),
                 format!("node {node} does not exist ({n} nodes)"),
             )
             .into());
         }
         if !(mass.is_finite() && mass >= 0.0) {
             return Err(PathError::model(
-                format!("masses {k}"),
+                format!("point mass {k}"),
                 format!("mass {mass}: give a finite mass ≥ 0 (kg)"),
             )
             .into());

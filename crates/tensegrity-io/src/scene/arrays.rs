@@ -5,8 +5,8 @@
 //! [`SceneArrays::from_structure`] give the columns of a scene or structure back.
 
 use super::{
-    ActuationSpec, BarSpec, GravitySpec, GroundSpec, LoadSpec, MaterialSpec, Scene, SceneFile,
-    SimulationSpec, StringSpec, SupportSpec,
+    ActuationSpec, BarSpec, GravitySpec, GroundSpec, LoadSpec, MaterialSpec, PointMassSpec, Scene,
+    SceneFile, SimulationSpec, StringSpec, SupportSpec,
 };
 use crate::error::{IoError, Result};
 use serde::{Deserialize, Serialize};
@@ -109,6 +109,49 @@ pub struct SceneArrays {
         skip_serializing_if = "Option::is_none"
     )]
     pub support_stiffness: Option<Vec<Option<f64>>>,
+    /// Supports' prescribed displacements (m, `null`: none), one entry per support
+    /// (`statics`' linear response; `solve`: at load factor 1).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column_points",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub support_displacement: Option<Vec<Option<[f64; 3]>>>,
+    /// Bar rest lengths as elastic bars (m), one per bar (`solve`, elastic `simulate`).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub bar_rest_length: Option<Vec<Option<f64>>>,
+    /// Bar rest-length changes at load factor 1 (m), one per bar (`solve`).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub bar_rest_length_change: Option<Vec<Option<f64>>>,
+    /// String rest-length changes at load factor 1 (m), one per string (`solve`).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub rest_length_change: Option<Vec<Option<f64>>>,
+    /// Per bar: elastic (`true`) or rigid (`false`) in `simulate`, over `[simulation] bars`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bar_elastic: Option<Vec<Option<bool>>>,
+    /// String masses (kg), one per string (elastic `simulate`; a dead load in `solve`).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub string_mass: Option<Vec<Option<f64>>>,
+    /// Point masses: the node and its mass (kg) (elastic `simulate`; a dead load in
+    /// `solve`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub masses: Vec<(i64, f64)>,
     /// Nodal loads: the node and the force (N).
     #[serde(default, deserialize_with = "number::loads")]
     pub loads: Vec<(i64, [f64; 3])>,
@@ -231,6 +274,44 @@ impl SceneArrays {
             simulation: file.simulation.clone(),
             ground: file.ground.as_ref().map(|g| g.get_ref().clone()),
             actuation: file.actuation.iter().map(|a| a.get_ref().clone()).collect(),
+            ..SceneArrays::with_file_keys(scene)
+        }
+    }
+
+    /// The columns of a scene's structure ([`SceneArrays::from_structure`]) with the keys its
+    /// file holds beside the structure: bars' `rest_length`, `rest_length_change` and
+    /// `elastic`, strings' `mass` and `rest_length_change`, supports' `displacement`, the
+    /// `[[masses]]`; not its dynamics tables.
+    ///
+    /// ```
+    /// use tensegrity_io::scene::{Scene, SceneArrays};
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n[[strings]]\nnodes = [0, 1]\n\
+    ///             stiffness = 10.0\nmass = 0.5\n[[supports]]\nnode = 0\n\
+    ///             displacement = [0.0, 0.0, 0.1]\n[[masses]]\nnode = 1\nmass = 2.0\n";
+    /// let scene = Scene::from_str_named(text, "net.toml")?;
+    /// let a = SceneArrays::with_file_keys(&scene);
+    /// assert_eq!(a.string_mass, Some(vec![Some(0.5)]));
+    /// assert_eq!(a.support_displacement, Some(vec![Some([0.0, 0.0, 0.1])]));
+    /// assert_eq!(a.masses, vec![(1, 2.0)]);
+    /// let back = Scene::from_arrays(a, "data")?;
+    /// assert_eq!(back.file.point_masses(), vec![(1, 2.0)]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_file_keys(scene: &Scene) -> SceneArrays {
+        let file = &scene.file;
+        let index = |i: usize| i64::try_from(i).unwrap_or(i64::MAX);
+        let bars = || file.bars.iter().map(|b| b.get_ref());
+        let strings = || file.strings.iter().map(|s| s.get_ref());
+        SceneArrays {
+            support_displacement: column(file.supports.iter().map(|s| s.get_ref().displacement)),
+            bar_rest_length: column(bars().map(|b| b.rest_length)),
+            bar_rest_length_change: column(bars().map(|b| b.rest_length_change)),
+            rest_length_change: column(strings().map(|s| s.rest_length_change)),
+            bar_elastic: column(bars().map(|b| b.elastic)),
+            string_mass: column(strings().map(|s| s.mass)),
+            masses: (file.masses.iter())
+                .map(|m| (index(m.get_ref().node), m.get_ref().mass))
+                .collect(),
             ..SceneArrays::from_structure(&scene.structure)
         }
     }
@@ -248,10 +329,22 @@ impl SceneArrays {
             ("rest_length", numbers(&self.rest_length)),
             ("damping", numbers(&self.damping)),
             ("string_material", names(&self.string_material)),
+            ("bar_rest_length", numbers(&self.bar_rest_length)),
+            (
+                "bar_rest_length_change",
+                numbers(&self.bar_rest_length_change),
+            ),
+            ("rest_length_change", numbers(&self.rest_length_change)),
+            ("bar_elastic", self.bar_elastic.as_ref().map(Vec::len)),
+            ("string_mass", numbers(&self.string_mass)),
         ];
         let supports = [
             ("support_along", self.support_along.as_ref().map(Vec::len)),
             ("support_stiffness", numbers(&self.support_stiffness)),
+            (
+                "support_displacement",
+                self.support_displacement.as_ref().map(Vec::len),
+            ),
         ];
         for (column, got) in supports {
             match got {
@@ -307,8 +400,9 @@ impl SceneArrays {
                 mass: entry(&self.bar_mass, k),
                 material: entry(&self.bar_material, k),
                 radius: entry(&self.bar_radius, k),
-                rest_length_change: None,
-                rest_length: None,
+                rest_length_change: entry(&self.bar_rest_length_change, k),
+                rest_length: entry(&self.bar_rest_length, k),
+                elastic: entry(&self.bar_elastic, k),
             }));
         }
         let mut strings = Vec::with_capacity(self.strings.len());
@@ -319,11 +413,16 @@ impl SceneArrays {
                 rest_length: entry(&self.rest_length, k),
                 damping: entry(&self.damping, k),
                 material: entry(&self.string_material, k),
-                rest_length_change: None,
-                mass: None,
+                rest_length_change: entry(&self.rest_length_change, k),
+                mass: entry(&self.string_mass, k),
             }));
         }
         let (supports, loads) = self.nodal_items(file)?;
+        let mut masses = Vec::with_capacity(self.masses.len());
+        for (k, &(node, mass)) in self.masses.iter().enumerate() {
+            let node = node_index(file, || format!("point mass {k}"), node, n)?;
+            masses.push(unspanned(PointMassSpec { node, mass }));
+        }
         Ok(SceneFile {
             nodes: self.nodes.into_iter().map(unspanned).collect(),
             velocities: self.velocities,
@@ -338,7 +437,7 @@ impl SceneArrays {
             simulation: self.simulation,
             ground: self.ground.map(unspanned),
             actuation: self.actuation.into_iter().map(unspanned).collect(),
-            masses: Vec::new(),
+            masses,
         })
     }
 
@@ -357,7 +456,7 @@ impl SceneArrays {
                 directions: None,
                 // `along` alone holds its own directions only, as in a scene file
                 fixed: (along.is_none() || fixed != [false; 3]).then_some(fixed),
-                displacement: None,
+                displacement: entry(&self.support_displacement, k),
                 along,
                 stiffness: entry(&self.support_stiffness, k),
             }));
@@ -507,6 +606,15 @@ mod number {
     ) -> Result<Option<Vec<Option<f64>>>, D::Error> {
         let given = Option::<Vec<Option<Number>>>::deserialize(d)?;
         Ok(given.map(|v| v.into_iter().map(|x| x.map(|x| x.0)).collect()))
+    }
+
+    /// A column of three numbers or null each, or none.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn opt_column_points<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Vec<Option<[f64; 3]>>>, D::Error> {
+        let given = Option::<Vec<Option<[Number; 3]>>>::deserialize(d)?;
+        Ok(given.map(|v| v.into_iter().map(|p| p.map(point)).collect()))
     }
 
     /// Nodes with a force each.

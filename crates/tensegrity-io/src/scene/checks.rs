@@ -1,5 +1,6 @@
-//! The scene reader's checks of the dynamics tables ([`dynamics::check_tables`]), their
-//! errors tied to the file and the line of the item they name.
+//! The scene reader's checks of the dynamics tables ([`dynamics::check_tables`]) and of the
+//! masses only the elastic dynamics reads (`[[masses]]`, a string's `mass`), their errors
+//! tied to the file and the line of the item they name.
 
 use super::dynamics::{self, Culprit};
 use super::{line_at, SceneFile};
@@ -33,5 +34,49 @@ impl SceneFile {
                 }
             },
         )
+    }
+
+    /// Every `[[masses]]` entry on an existing node with a mass finite and ≥ 0, and every
+    /// string's `mass` finite and ≥ 0: errors name `point mass K` or `string K` and its line.
+    pub(super) fn check_masses(
+        &self,
+        n_nodes: usize,
+        text: Option<&str>,
+        name: &str,
+    ) -> Result<()> {
+        let at = |start: usize, source: IoError| IoError::InScene {
+            file: name.to_string(),
+            line: line_at(text, start),
+            source: Box::new(source),
+        };
+        let negative = |table: String, value: f64| IoError::NegativeValue {
+            table,
+            name: "mass",
+            value,
+        };
+        for (k, m) in self.masses.iter().enumerate() {
+            let (start, spec) = (m.span().start, m.get_ref());
+            if spec.node >= n_nodes {
+                let unknown = IoError::UnknownIndex {
+                    table: format!("point mass {k}"),
+                    kind: "node",
+                    index: spec.node,
+                    count: n_nodes,
+                };
+                return Err(at(start, unknown));
+            }
+            if !(spec.mass.is_finite() && spec.mass >= 0.0) {
+                return Err(at(start, negative(format!("point mass {k}"), spec.mass)));
+            }
+        }
+        for (k, st) in self.strings.iter().enumerate() {
+            match st.get_ref().mass {
+                Some(m) if !(m.is_finite() && m >= 0.0) => {
+                    return Err(at(st.span().start, negative(format!("string {k}"), m)))
+                }
+                _ => {}
+            }
+        }
+        Ok(())
     }
 }

@@ -83,7 +83,9 @@ pub struct SimulationSpec {
     #[serde(default)]
     pub project: bool,
     /// The bars: rigid (the default: the rigid-bar dynamics) or elastic (every member an
-    /// axial spring, the mass at the nodes: `tensegrity_path::transient`).
+    /// axial spring, the mass at the nodes: `tensegrity_path::transient`); a bar's own
+    /// `elastic` key overrides it, and a scene with rigid and elastic bars runs the node-mass
+    /// model with its rigid bars as length constraints (`tensegrity_path::rigid_bars`).
     #[serde(default, skip_serializing_if = "BarModel::is_rigid")]
     pub bars: BarModel,
     /// How an elastic model's member masses are distributed onto its nodes: `lumped` (the

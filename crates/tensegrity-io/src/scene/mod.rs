@@ -12,7 +12,8 @@
 //! [`UNIT_TOLERANCE`](tensegrity_core::structure::UNIT_TOLERANCE)), finite and independent,
 //! and its `stiffness` positive and finite (`support 2: ...`); `along` and `stiffness` are
 //! read by `statics` and `solve` ([`SceneFile::support_keys`]), a load path's drivers by
-//! `solve` alone ([`SceneFile::driver_keys`]):
+//! `solve` ([`SceneFile::driver_keys`]), a support's `displacement` also by `statics` (its
+//! linear response, [`SceneFile::support_displacements`]):
 //!
 //! ```toml
 //! nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]
@@ -26,6 +27,8 @@
 //! mass = 1.0                # kg, optional
 //! material = "alu"          # optional
 //! radius = 0.01             # m, optional
+//! elastic = true            # optional: this bar elastic (true) or rigid (false) in
+//!                           # `simulate`, whatever `[simulation] bars` says
 //! [[strings]]
 //! nodes = [0, 2]
 //! stiffness = 100.0         # N/m, optional
@@ -53,7 +56,7 @@ pub mod dynamics;
 mod write;
 
 pub use arrays::SceneArrays;
-pub use write::to_toml;
+pub use write::{scene_to_toml, to_toml};
 
 pub use dynamics::{
     build_simulation, ActuationSpec, BarModel, GroundModelKind, GroundSpec, MassMatrixKind,
@@ -150,6 +153,46 @@ pub struct BarSpec {
     /// Its rest length as an elastic bar (m; default its length in the scene: unstressed),
     /// read by `solve` and the elastic dynamics only ([`SceneFile::elastic_keys`]).
     pub rest_length: Option<f64>,
+    /// Whether `simulate` runs it elastic (`true`: an axial spring, which needs a material
+    /// and a radius) or rigid (`false`), over `[simulation] bars`; read by `simulate` only
+    /// ([`SceneFile::bar_model_keys`]). Another value than a boolean is an error naming
+    /// the bar and the key.
+    #[serde(default, deserialize_with = "bar_model_flag")]
+    pub elastic: Option<bool>,
+}
+
+/// A bar's `elastic`: a boolean, else an error naming the key (the bar is named by
+/// [`Scene::from_str_named`] from the error's position).
+fn bar_model_flag<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<bool>, D::Error> {
+    match toml::Value::deserialize(d)? {
+        toml::Value::Boolean(b) => Ok(Some(b)),
+        other => Err(serde::de::Error::custom(format!(
+            "{BAR_MODEL_KEY} = {other}: give true (an elastic bar) or false (a rigid one)"
+        ))),
+    }
+}
+
+/// The key of [`BarSpec::elastic`].
+const BAR_MODEL_KEY: &str = "elastic";
+
+/// The `[[bars]]` entry that holds byte `offset` of `text` (its index), if any: the number
+/// of `[[bars]]` headers before it, provided the last table header before it is one.
+fn bar_at(text: &str, offset: usize) -> Option<usize> {
+    let before = text.get(..offset)?;
+    let mut bar = None;
+    let mut count = 0;
+    for line in before.lines() {
+        let line = line.trim_start();
+        if line.starts_with('[') {
+            bar = (line.trim_end() == "[[bars]]").then_some(count);
+            if bar.is_some() {
+                count += 1;
+            }
+        }
+    }
+    bar
 }
 
 /// A `[[strings]]` entry.
@@ -195,9 +238,10 @@ pub struct SupportSpec {
     pub directions: Option<Vec<Axis>>,
     /// Alternative to `directions`: fixed flags for x, y, z.
     pub fixed: Option<[bool; 3]>,
-    /// The node's motion at load factor 1 along a load path (m; its fixed components act; on
-    /// an elastic support, its springs' anchor moves), read by `solve` only
-    /// ([`SceneFile::driver_keys`]).
+    /// The node's prescribed motion (m; along its held directions; on an elastic support,
+    /// its springs' anchor moves): at load factor 1 along a load path (`solve`), and the
+    /// linear response of `statics` ([`SceneFile::support_displacements`]); refused by the
+    /// dynamics ([`SceneFile::driver_keys`]).
     pub displacement: Option<[f64; 3]>,
     /// Directions of any orientation the node is held along (unit vectors, one to three,
     /// independent), in place of `directions`: read by `solve` and `statics`
@@ -273,12 +317,34 @@ impl SceneFile {
     }
 
     /// The items that carry a load path's driver (`rest_length_change` on a bar or a string,
-    /// `displacement` on a support), as `bar 0: rest_length_change`: read by `solve` only,
-    /// every other analysis refuses a scene that has one rather than ignore it.
+    /// `displacement` on a support), as `bar 0: rest_length_change`: read by `solve` (and a
+    /// support's `displacement` by `statics`, [`SceneFile::rest_length_change_keys`]); the
+    /// dynamics refuses a scene that has one rather than ignore it.
     pub fn driver_keys(&self) -> Vec<String> {
+        let mut keys = self.rest_length_change_keys();
+        for (i, s) in self.supports.iter().enumerate() {
+            if s.get_ref().displacement.is_some() {
+                keys.push(format!("support {i}: displacement"));
+            }
+        }
+        keys
+    }
+
+    /// The bars and strings that carry a `rest_length_change` (a load path's driver, read by
+    /// `solve` only), as `string 2: rest_length_change`: `statics`, which reads a support's
+    /// `displacement`, refuses these.
+    ///
+    /// ```
+    /// use tensegrity_io::scene::Scene;
+    /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\n[[supports]]\nnode = 0\n[[supports]]\nnode = 1\ndisplacement = [0.01, 0.0, 0.0]\n";
+    /// let scene = Scene::from_str_named(text, "a.toml").unwrap();
+    /// assert!(scene.file.rest_length_change_keys().is_empty());
+    /// assert_eq!(scene.file.driver_keys(), ["support 1: displacement"]);
+    /// assert_eq!(scene.file.support_displacements(), [None, Some([0.01, 0.0, 0.0])]);
+    /// ```
+    pub fn rest_length_change_keys(&self) -> Vec<String> {
         let bars = self.bars.iter().enumerate();
         let strings = self.strings.iter().enumerate();
-        let supports = self.supports.iter().enumerate();
         let mut keys: Vec<String> = bars
             .filter(|(_, b)| b.get_ref().rest_length_change.is_some())
             .map(|(i, _)| format!("bar {i}: rest_length_change"))
@@ -288,12 +354,16 @@ impl SceneFile {
                 .filter(|(_, s)| s.get_ref().rest_length_change.is_some())
                 .map(|(i, _)| format!("string {i}: rest_length_change")),
         );
-        for (i, s) in supports {
-            if s.get_ref().displacement.is_some() {
-                keys.push(format!("support {i}: displacement"));
-            }
-        }
         keys
+    }
+
+    /// Each support's `displacement` (m), in support order (`None` where not given): the
+    /// prescribed displacements of `statics`' linear response.
+    pub fn support_displacements(&self) -> Vec<Option<[f64; 3]>> {
+        self.supports
+            .iter()
+            .map(|s| s.get_ref().displacement)
+            .collect()
     }
 
     /// The items that carry a key only the elastic models read (a bar's `rest_length`: `solve`
@@ -305,7 +375,7 @@ impl SceneFile {
     /// use tensegrity_io::scene::Scene;
     /// let text = "nodes = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]\n[[strings]]\nnodes = [0, 1]\nmass = 0.1\n[[masses]]\nnode = 1\nmass = 2.0\n";
     /// let scene = Scene::from_str_named(text, "a.toml").unwrap();
-    /// assert_eq!(scene.file.elastic_keys(), vec!["string 0: mass", "masses 0"]);
+    /// assert_eq!(scene.file.elastic_keys(), vec!["string 0: mass", "point mass 0"]);
     /// ```
     pub fn elastic_keys(&self) -> Vec<String> {
         let mut keys: Vec<String> = self
@@ -322,18 +392,58 @@ impl SceneFile {
                 .filter(|(_, s)| s.get_ref().mass.is_some())
                 .map(|(i, _)| format!("string {i}: mass")),
         );
-        keys.extend((0..self.masses.len()).map(|i| format!("masses {i}")));
+        keys.extend((0..self.masses.len()).map(|i| format!("point mass {i}")));
         keys
     }
 
-    /// Whether the scene is run by the elastic dynamics: `[simulation] bars = "elastic"`, or
-    /// no bar at all and some point mass (a net of strings whose mass is at its nodes).
+    /// Whether the scene is run by the elastic (node-mass) dynamics: some bar is elastic
+    /// ([`SceneFile::elastic_bars`]), or the scene has no bar and asks for elastic bars
+    /// (`[simulation] bars = "elastic"`) or has some point mass (a net of strings whose mass
+    /// is at its nodes). Its rigid bars are then length constraints of that model.
+    ///
+    /// ```
+    /// use tensegrity_io::scene::Scene;
+    /// let bars = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\n[[bars]]\nnodes = [0, 1]\nmass = 1.0\n[[bars]]\nnodes = [1, 2]\nmass = 1.0\n";
+    /// let rigid = Scene::from_str_named(bars, "a.toml").unwrap();
+    /// assert!(!rigid.file.is_elastic());
+    /// let one = format!("{bars}elastic = true\n");
+    /// let mixed = Scene::from_str_named(&one, "a.toml").unwrap();
+    /// assert_eq!((mixed.file.is_elastic(), mixed.file.elastic_bars()), (true, vec![false, true]));
+    /// assert_eq!(mixed.file.bar_model_keys(), ["bar 1: elastic"]);
+    /// ```
     pub fn is_elastic(&self) -> bool {
         let asked = self
             .simulation
             .as_ref()
             .is_some_and(|s| s.bars == dynamics::BarModel::Elastic);
-        asked || (self.bars.is_empty() && !self.masses.is_empty())
+        if self.bars.is_empty() {
+            return asked || !self.masses.is_empty();
+        }
+        self.elastic_bars().contains(&true)
+    }
+
+    /// Whether each bar is elastic: its `elastic` key, else `[simulation] bars`.
+    pub fn elastic_bars(&self) -> Vec<bool> {
+        let asked = self
+            .simulation
+            .as_ref()
+            .is_some_and(|s| s.bars == dynamics::BarModel::Elastic);
+        self.bars
+            .iter()
+            .map(|b| b.get_ref().elastic.unwrap_or(asked))
+            .collect()
+    }
+
+    /// The bars that carry an `elastic` key, as `bar 2: elastic`: read by `simulate` only
+    /// (the static analyses refuse it; `solve`, whose bars are all elastic, refuses
+    /// `elastic = false`).
+    pub fn bar_model_keys(&self) -> Vec<String> {
+        self.bars
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.get_ref().elastic.is_some())
+            .map(|(i, _)| format!("bar {i}: elastic"))
+            .collect()
     }
 
     /// Each bar's `rest_length` (`None` where not given).
@@ -408,11 +518,17 @@ impl Scene {
         let file: SceneFile = toml::from_str(text).map_err(|e| {
             let offset = e.span().map_or(0, |s| s.start);
             let (line, column) = line_column(text, offset);
+            let mut message = e.message().trim_end().to_string();
+            if message.starts_with(&format!("{BAR_MODEL_KEY} = ")) {
+                if let Some(k) = bar_at(text, offset) {
+                    message = format!("bar {k}: {message}");
+                }
+            }
             IoError::Parse {
                 file: name.to_string(),
                 line,
                 column,
-                message: e.message().trim_end().to_string(),
+                message,
             }
         })?;
         let structure = file.validate(Some(text), name)?;
@@ -450,6 +566,7 @@ impl SceneFile {
     pub(crate) fn validate(&self, text: Option<&str>, name: &str) -> Result<Structure> {
         let structure = self.structure_at(text, name)?;
         self.check_dynamics(&structure, text, name)?;
+        self.check_masses(structure.n_nodes(), text, name)?;
         Ok(structure)
     }
 

@@ -1,5 +1,7 @@
-//! [`to_toml`]: a structure written back as scene TOML.
+//! [`to_toml`]: a structure written back as scene TOML; [`scene_to_toml`]: a scene's
+//! structure with the keys its file holds beside it.
 
+use super::{Scene, SceneFile};
 use tensegrity_core::Structure;
 
 /// Writes a structure as scene TOML that [`super::Scene::from_str_named`] reads back exactly
@@ -22,6 +24,30 @@ use tensegrity_core::Structure;
 /// assert_eq!(back.structure, s);
 /// ```
 pub fn to_toml(structure: &Structure) -> String {
+    write(structure, None)
+}
+
+/// [`to_toml`] of a scene's structure with the keys its file holds beside it (bars'
+/// `rest_length`, `rest_length_change` and `elastic`, strings' `mass` and
+/// `rest_length_change`, supports' `displacement`, the `[[masses]]`), read back exactly; not
+/// its dynamics tables.
+///
+/// ```
+/// use tensegrity_io::scene::{scene_to_toml, Scene, SceneArrays};
+/// let text = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n[[strings]]\nnodes = [0, 1]\n\
+///             stiffness = 10.0\nmass = 0.5\nrest_length_change = -0.1\n[[supports]]\n\
+///             node = 0\ndisplacement = [0.0, 0.0, 0.1]\n[[masses]]\nnode = 1\nmass = 2.0\n";
+/// let scene = Scene::from_str_named(text, "net.toml")?;
+/// let back = Scene::from_str_named(&scene_to_toml(&scene), "again")?;
+/// assert_eq!(SceneArrays::of(&back), SceneArrays::of(&scene));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn scene_to_toml(scene: &Scene) -> String {
+    write(&scene.structure, Some(&scene.file))
+}
+
+/// The writer of [`to_toml`] and [`scene_to_toml`].
+fn write(structure: &Structure, file: Option<&SceneFile>) -> String {
     use std::fmt::Write;
     let mut out = String::new();
     let v3 = |v: &nalgebra::Vector3<f64>| format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z);
@@ -59,7 +85,7 @@ pub fn to_toml(structure: &Structure) -> String {
             );
         }
     }
-    for b in structure.bars() {
+    for (k, b) in structure.bars().iter().enumerate() {
         let _ = write!(
             out,
             "\n[[bars]]\nnodes = [{}, {}]\n",
@@ -74,8 +100,19 @@ pub fn to_toml(structure: &Structure) -> String {
         if let Some(r) = b.radius {
             let _ = writeln!(out, "radius = {r:?}");
         }
+        if let Some(spec) = file.and_then(|f| f.bars.get(k)).map(|b| b.get_ref()) {
+            if let Some(l) = spec.rest_length {
+                let _ = writeln!(out, "rest_length = {l:?}");
+            }
+            if let Some(d) = spec.rest_length_change {
+                let _ = writeln!(out, "rest_length_change = {d:?}");
+            }
+            if let Some(e) = spec.elastic {
+                let _ = writeln!(out, "elastic = {e}");
+            }
+        }
     }
-    for s in structure.strings() {
+    for (k, s) in structure.strings().iter().enumerate() {
         let _ = write!(
             out,
             "\n[[strings]]\nnodes = [{}, {}]\n",
@@ -93,8 +130,16 @@ pub fn to_toml(structure: &Structure) -> String {
         if let Some(name) = &s.material {
             let _ = writeln!(out, "material = \"{name}\"");
         }
+        if let Some(spec) = file.and_then(|f| f.strings.get(k)).map(|s| s.get_ref()) {
+            if let Some(m) = spec.mass {
+                let _ = writeln!(out, "mass = {m:?}");
+            }
+            if let Some(d) = spec.rest_length_change {
+                let _ = writeln!(out, "rest_length_change = {d:?}");
+            }
+        }
     }
-    for s in structure.supports() {
+    for (i, s) in structure.supports().iter().enumerate() {
         let _ = write!(out, "\n[[supports]]\nnode = {}\n", s.node);
         // `along` alone holds no axis; with axes too, they are written as flags
         let axes_default = if s.along.is_empty() {
@@ -116,6 +161,17 @@ pub fn to_toml(structure: &Structure) -> String {
         if let Some(k) = s.stiffness {
             let _ = writeln!(out, "stiffness = {k:?}");
         }
+        let moved = file.and_then(|f| f.supports.get(i)?.get_ref().displacement);
+        if let Some(d) = moved {
+            let _ = writeln!(out, "displacement = [{:?}, {:?}, {:?}]", d[0], d[1], d[2]);
+        }
+    }
+    for m in file.iter().flat_map(|f| &f.masses).map(|m| m.get_ref()) {
+        let _ = write!(
+            out,
+            "\n[[masses]]\nnode = {}\nmass = {:?}\n",
+            m.node, m.mass
+        );
     }
     for l in structure.loads() {
         let _ = write!(

@@ -26,6 +26,7 @@ def statics(
     modes: Optional[int] = ...,
     mass: Literal['lumped', 'consistent'] = ...,
     least_squares: bool = ...,
+    response: bool = ...,
     method: Literal['auto', 'dense', 'sparse'] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
@@ -58,6 +59,11 @@ def statics(
         When the loads cannot be carried (the structure is a mechanism for them), report the
         least-squares force densities marked `load_carried: false`, without sizing, instead
         of failing
+    response : bool
+        Also report the linear response at the scene's geometry: node displacements, member
+        force changes and reactions under the loads, from the tangent stiffness (bars need
+        material and radius, strings stiffness); computed whenever a support has a
+        `displacement`
     method : {'auto', 'dense', 'sparse'}
         Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing
         QR from 300 dofs and members on), dense or sparse. Default: 'auto'

@@ -88,6 +88,52 @@ def _supports(value):
     return out
 
 
+def _by_node(value, name, convert):
+    """{node: value} of a per-node option (``None``: empty), each value converted."""
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise InputError("{}: expected a dict {{node: value}}, got {}".format(
+            name, type(value).__name__))
+    out = {}
+    for node, v in value.items():
+        try:
+            out[int(node)] = convert(v)
+        except (TypeError, ValueError) as e:
+            raise InputError("{} of node {}: {}".format(name, node, e)) from None
+    return out
+
+
+def _vector(v):
+    a = np.asarray(v, dtype=np.float64).ravel()
+    if a.shape != (3,):
+        raise ValueError("expected three components, got {}".format(a.size))
+    return [float(x) for x in a]
+
+
+def _vectors(v):
+    a = np.asarray(v, dtype=np.float64)
+    if a.ndim == 1:
+        a = a.reshape(1, -1)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError("expected directions of three components, got shape {}".format(
+            a.shape))
+    return a.tolist()
+
+
+def _flags(value, count, name):
+    """A per-bar flag: None (unset), one bool for all, or one per bar (None: unset)."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)):
+        return [bool(value)] * count
+    flags = [None if v is None else bool(v) for v in value]
+    if len(flags) != count:
+        raise InputError("{}: expected one flag per bar ({}), got {}".format(
+            name, count, len(flags)))
+    return flags
+
+
 def _loads(value, n_nodes):
     """[(node, force)] from a dict {node: force} or an (n, 3) array of nodal loads (rows of
     zeros left out)."""
@@ -149,6 +195,26 @@ class Structure:
     supports : dict or sequence of int, optional
         ``{node: "xyz"}`` (the fixed directions, or three booleans), or nodes fixed in all
         three directions.
+    support_along : dict, optional
+        ``{node: [[dx, dy, dz], ...]}``: held directions of any orientation (unit vectors,
+        one to three, independent; beside the node's ``supports`` flags, or alone).
+    support_stiffness : dict, optional
+        ``{node: k}`` (N/m): the node's support is a spring of stiffness k along each held
+        direction (``statics``, ``solve`` and elastic ``simulate``).
+    support_displacement : dict, optional
+        ``{node: (dx, dy, dz)}`` (m): the supported node's prescribed displacement
+        (``statics``' linear response; ``solve``: at load factor 1).
+    bar_rest_length : float or array_like, optional
+        Rest lengths of elastic bars (m; default: their length).
+    bar_rest_length_change, rest_length_change : float or array_like, optional
+        Rest-length change of bars and strings at load factor 1 (m; ``solve``).
+    bar_elastic : bool or sequence of bool, optional
+        Per bar: elastic (True) or rigid (False) in ``simulate``, over the scene's
+        ``[simulation] bars``.
+    string_mass : float or array_like, optional
+        String masses (kg; elastic ``simulate``, and as dead load in ``solve``).
+    masses : dict, optional
+        ``{node: kg}``: point masses (elastic ``simulate``, and as dead load in ``solve``).
     loads : dict or array_like, optional
         ``{node: (Fx, Fy, Fz)}`` (N), or an (n, 3) array of nodal loads.
     gravity : array_like, shape (3,), optional
@@ -172,7 +238,10 @@ class Structure:
     def __init__(self, nodes, bars=(), strings=(), *, bar_mass=None, bar_radius=None,
                  bar_material=None, stiffness=None, rest_length=None, damping=None,
                  string_material=None, materials=None, supports=None, loads=None,
-                 gravity=None, velocities=None, simulation=None, ground=None, actuation=None):
+                 gravity=None, velocities=None, simulation=None, ground=None, actuation=None,
+                 support_along=None, support_stiffness=None, support_displacement=None,
+                 bar_rest_length=None, bar_rest_length_change=None, rest_length_change=None,
+                 bar_elastic=None, string_mass=None, masses=None):
         self.nodes = _matrix(nodes, 3, "nodes", np.float64)
         self.bars = _integers(bars, "bars")
         self.strings = _integers(strings, "strings")
@@ -186,6 +255,17 @@ class Structure:
         self.string_material = _names(string_material, ns, "string_material")
         self.materials = _materials(materials)
         self.supports = _supports(supports)
+        self.support_along = _by_node(support_along, "support_along", _vectors)
+        self.support_stiffness = _by_node(support_stiffness, "support_stiffness", float)
+        self.support_displacement = _by_node(support_displacement, "support_displacement",
+                                             _vector)
+        self.bar_rest_length = _per_member(bar_rest_length, nb, "bar_rest_length")
+        self.bar_rest_length_change = _per_member(bar_rest_length_change, nb,
+                                                  "bar_rest_length_change")
+        self.rest_length_change = _per_member(rest_length_change, ns, "rest_length_change")
+        self.bar_elastic = _flags(bar_elastic, nb, "bar_elastic")
+        self.string_mass = _per_member(string_mass, ns, "string_mass")
+        self.masses = _by_node(masses, "masses", float)
         self.loads = _loads(loads, n)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=np.float64)
         self.velocities = (None if velocities is None
@@ -197,7 +277,8 @@ class Structure:
                 self.tables[name] = table
         for a in (self.nodes, self.bars, self.strings, self.bar_mass, self.bar_radius,
                   self.stiffness, self.rest_length, self.damping, self.gravity,
-                  self.velocities):
+                  self.velocities, self.bar_rest_length, self.bar_rest_length_change,
+                  self.rest_length_change, self.string_mass):
             if a is not None:
                 a.setflags(write=False)
         self._data = self._columns()
@@ -211,8 +292,9 @@ class Structure:
             "strings": self.strings.tolist(),
             "materials": {k: {"density": v[0], "youngs_modulus": v[1], "yield_strength": v[2]}
                           for k, v in self.materials.items()},
-            "supports": [[n, list(f)] for n, f in self.supports],
+            "supports": [[n, list(f)] for n, f in self._support_rows()],
             "loads": [[n, list(f)] for n, f in self.loads],
+            "masses": [[n, m] for n, m in self.masses.items()],
         }
         optional = {
             "velocities": None if self.velocities is None else self.velocities.tolist(),
@@ -224,10 +306,37 @@ class Structure:
             "rest_length": _column(self.rest_length),
             "damping": _column(self.damping),
             "string_material": self.string_material,
+            "bar_rest_length": _column(self.bar_rest_length),
+            "bar_rest_length_change": _column(self.bar_rest_length_change),
+            "rest_length_change": _column(self.rest_length_change),
+            "bar_elastic": self.bar_elastic,
+            "string_mass": _column(self.string_mass),
         }
+        rows = self._support_rows()
+        for key, by_node in (("support_along", self.support_along),
+                             ("support_stiffness", self.support_stiffness),
+                             ("support_displacement", self.support_displacement)):
+            if by_node:
+                optional[key] = [by_node.get(n) for n, _ in rows]
         data.update((k, v) for k, v in optional.items() if v is not None)
         data.update(self.tables)
         return data
+
+    def _support_rows(self):
+        """[(node, flags)]: the ``supports``, then a row (no axis flagged) for each node
+        that only ``support_along`` holds. A stiffness or displacement on a node no support
+        holds is an error naming the node."""
+        rows = list(self.supports)
+        held = {n for n, _ in rows}
+        rows += [(n, (False, False, False)) for n in self.support_along if n not in held]
+        held |= set(self.support_along)
+        for name, by_node in (("support_stiffness", self.support_stiffness),
+                              ("support_displacement", self.support_displacement)):
+            for n in by_node:
+                if n not in held:
+                    raise InputError("{} of node {}: the node has no support (give it in "
+                                     "supports or support_along)".format(name, n))
+        return rows
 
     def _arrays(self):
         """The dict of the structure's arrays and tables: how it crosses to the engine (a
@@ -265,6 +374,12 @@ class Structure:
             values = data.get(key)
             return None if values is None else [np.nan if v is None else v for v in values]
 
+        rows = data.get("supports", ())
+
+        def per_support(key):
+            values = data.get(key) or [None] * len(rows)
+            return {n: v for (n, _), v in zip(rows, values) if v is not None} or None
+
         return cls(
             data["nodes"] if data["nodes"] else np.zeros((0, 3)),
             data.get("bars", ()),
@@ -277,10 +392,19 @@ class Structure:
             damping=column("damping"),
             string_material=data.get("string_material"),
             materials=data.get("materials"),
-            supports={n: tuple(f) for n, f in data.get("supports", ())},
+            supports={n: tuple(f) for n, f in rows if any(f)},
+            support_along=per_support("support_along"),
+            support_stiffness=per_support("support_stiffness"),
+            support_displacement=per_support("support_displacement"),
             loads={n: f for n, f in data.get("loads", ())} or None,
             gravity=data.get("gravity"),
             velocities=data.get("velocities"),
+            bar_rest_length=column("bar_rest_length"),
+            bar_rest_length_change=column("bar_rest_length_change"),
+            rest_length_change=column("rest_length_change"),
+            bar_elastic=data.get("bar_elastic"),
+            string_mass=column("string_mass"),
+            masses={n: m for n, m in data.get("masses", ())} or None,
             **{t: data[t] for t in ("simulation", "ground", "actuation") if t in data},
         )
 
@@ -293,7 +417,13 @@ class Structure:
             string_material=self.string_material, materials=self.materials,
             supports={n: f for n, f in self.supports},
             loads={n: f for n, f in self.loads} or None, gravity=self.gravity,
-            velocities=self.velocities, **self.tables)
+            velocities=self.velocities, support_along=self.support_along or None,
+            support_stiffness=self.support_stiffness or None,
+            support_displacement=self.support_displacement or None,
+            bar_rest_length=self.bar_rest_length,
+            bar_rest_length_change=self.bar_rest_length_change,
+            rest_length_change=self.rest_length_change, bar_elastic=self.bar_elastic,
+            string_mass=self.string_mass, masses=self.masses or None, **self.tables)
         args.update(changes)
         return Structure(**args)
 
