@@ -17,8 +17,8 @@ use tensegrity_engine::statics::{self, StaticsCommand};
 use tensegrity_figures::draw::default_view;
 use tensegrity_figures::structures;
 use tensegrity_statics::report::Reaction;
-use tensegrity_statics::Factorization;
 use tensegrity_statics::StaticsReport;
+use tensegrity_statics::{column_name, Factorization};
 
 /// Arguments of `tensegrity statics`: the request's flags ([`StaticsCommand`], the scene
 /// positional) and the output.
@@ -125,7 +125,7 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
     if let Some(q) = &r.prestress {
         println!("max-margin prestress (force density, max|q| = 1):");
         for (k, v) in q.iter().enumerate() {
-            println!("  {:<10} {:>12.6}", structure.member_id(k).to_string(), v);
+            println!("  {:<10} {:>12.6}", column_name(structure, k), v);
         }
     }
     print_load_solve(structure, r);
@@ -135,7 +135,14 @@ pub fn print_report(structure: &Structure, r: &StaticsReport) {
 }
 
 fn print_summary(r: &StaticsReport) {
-    println!("nodes {}  bars {}  strings {}", r.nodes, r.bars, r.strings);
+    let clusters = match r.clusters {
+        0 => String::new(),
+        n => format!("  clusters {n}"),
+    };
+    println!(
+        "nodes {}  bars {}  strings {}{clusters}",
+        r.nodes, r.bars, r.strings
+    );
     println!(
         "rank {}  self-stress states {}  mechanisms {} ({} internal)",
         r.rank, r.self_stress_dim, r.mechanisms, r.internal_mechanisms
@@ -168,7 +175,7 @@ fn print_load_solve(structure: &Structure, r: &StaticsReport) {
     for k in 0..q.len() {
         println!(
             "  {:<10} {:>14.6} {:>14.6}",
-            structure.member_id(k).to_string(),
+            column_name(structure, k),
             q[k],
             f[k]
         );
@@ -205,7 +212,7 @@ fn print_response(structure: &Structure, r: &StaticsReport) {
     );
     println!("  {:<10} {:>14} {:>14}", "member", "t0 [N]", "change [N]");
     for (k, dt) in lr.member_force_change.iter().enumerate() {
-        let id = structure.member_id(k).to_string();
+        let id = column_name(structure, k);
         println!("  {id:<10} {:>14.6} {dt:>14.6}", lr.initial_force[k]);
     }
     for (i, u) in lr.displacements.iter().enumerate() {
@@ -219,6 +226,9 @@ fn print_response(structure: &Structure, r: &StaticsReport) {
     print_reactions(lr.reactions.iter());
     if !lr.slack.is_empty() {
         println!("  strings that would go slack: {:?}", lr.slack);
+    }
+    if !lr.slack_clusters.is_empty() {
+        println!("  clusters that would go slack: {:?}", lr.slack_clusters);
     }
 }
 
@@ -239,7 +249,7 @@ fn print_sizing(structure: &Structure, r: &StaticsReport) {
     for k in 0..radii.len() {
         println!(
             "  {:<10} {:>12.4} {:>12.6} {:>10}",
-            structure.member_id(k).to_string(),
+            column_name(structure, k),
             radii[k] * 1e3,
             masses[k],
             gov[k]

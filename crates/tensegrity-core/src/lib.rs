@@ -32,6 +32,7 @@ extern crate self as tensegrity_core;
 
 pub mod angle;
 pub mod budget;
+pub mod cluster;
 pub mod columns;
 pub mod connectivity;
 pub mod error;
@@ -46,6 +47,7 @@ pub mod test_models;
 pub mod validate;
 pub mod warning;
 
+pub use cluster::Cluster;
 pub use connectivity::{Connectivity, Incidence};
 pub use error::{
     CoreError, DynamicsError, ModelError, NumericsError, Result, StaticsError, StepHint,

@@ -9,6 +9,7 @@
 //! member's or node's name (`bar 3`, `node 7`) being formatted only for the error that
 //! reports it (the `checks` submodule).
 
+use crate::cluster::Cluster;
 use crate::error::{ModelError, Result};
 use crate::material::{Material, MaterialTable};
 pub use crate::member_id::MemberId;
@@ -325,6 +326,7 @@ pub struct Structure {
     velocities: Option<Vec<Vector3<f64>>>,
     bars: Vec<Bar>,
     strings: Vec<StringMember>,
+    clusters: Vec<Cluster>,
     supports: Vec<Support>,
     loads: Vec<Load>,
     gravity: Option<Vector3<f64>>,
@@ -376,6 +378,41 @@ impl Structure {
     /// The strings.
     pub fn strings(&self) -> &[StringMember] {
         &self.strings
+    }
+
+    /// The clustered strings ([`Cluster`]): continuous strings through several nodes.
+    pub fn clusters(&self) -> &[Cluster] {
+        &self.clusters
+    }
+
+    /// Whether the structure has clustered strings: an analysis that does not model them
+    /// refuses the structure rather than leave them out ([`Structure::refuse_clusters`]).
+    pub fn has_clusters(&self) -> bool {
+        !self.clusters.is_empty()
+    }
+
+    /// Refuses a structure with clustered strings for an `analysis` that does not model
+    /// them, naming the first cluster.
+    ///
+    /// ```
+    /// use tensegrity_core::{Cluster, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [2.0, 0.0, 0.0]])
+    ///     .cluster(Cluster::new([0, 1, 2]))
+    ///     .build()
+    ///     .unwrap();
+    /// let e = s.refuse_clusters("the rigid-bar dynamics").unwrap_err().to_string();
+    /// assert!(e.starts_with("cluster 0: clustered strings are not modelled by the rigid-bar dynamics"), "{e}");
+    /// ```
+    pub fn refuse_clusters(&self, analysis: &'static str) -> Result<()> {
+        match self.clusters.is_empty() {
+            true => Ok(()),
+            false => Err(ModelError::ClustersNotModelled {
+                cluster: 0,
+                analysis,
+            }
+            .into()),
+        }
     }
 
     /// The supports.
@@ -601,6 +638,7 @@ impl Structure {
             velocities: self.velocities.clone(),
             bars: self.bars.clone(),
             strings: self.strings.clone(),
+            clusters: self.clusters.clone(),
             supports: self.supports.clone(),
             loads: self.loads.clone(),
             gravity: self.gravity,
@@ -618,6 +656,7 @@ pub struct StructureBuilder {
     velocities: Option<Vec<Vector3<f64>>>,
     bars: Vec<Bar>,
     strings: Vec<StringMember>,
+    clusters: Vec<Cluster>,
     supports: Vec<Support>,
     loads: Vec<Load>,
     gravity: Option<Vector3<f64>>,
@@ -736,6 +775,32 @@ impl StructureBuilder {
         self
     }
 
+    /// Appends a clustered string ([`Cluster`]); the build checks it
+    /// ([`Cluster::check`]), its segments against the members (a segment duplicating a bar,
+    /// a string or another cluster's segment is refused) and its material.
+    ///
+    /// ```
+    /// use tensegrity_core::{Cluster, Structure};
+    /// // a string from node 0 over a pulley at node 1 down to node 2
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [2.0, 0.0, 0.0]])
+    ///     .cluster(Cluster::new([0, 1, 2]).stiffness(1e3).rest_length(2.5))
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(s.clusters().len(), 1);
+    /// assert!((s.clusters()[0].length(s.nodes()) - 2.0 * 2f64.sqrt()).abs() < 1e-15);
+    /// let twice = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [2.0, 0.0, 0.0]])
+    ///     .string(tensegrity_core::StringMember::new(2, 1))
+    ///     .cluster(Cluster::new([0, 1, 2]))
+    ///     .build();
+    /// assert_eq!(twice.unwrap_err().to_string(), "cluster 0: segment 1 (nodes 1 and 2) duplicates string 0");
+    /// ```
+    pub fn cluster(mut self, cluster: Cluster) -> Self {
+        self.clusters.push(cluster);
+        self
+    }
+
     /// Adds a support (rigid or elastic, along x, y, z or any directions: [`Support`]); the
     /// build checks it, naming it by its index (`support 2: ...`).
     ///
@@ -831,6 +896,7 @@ impl StructureBuilder {
             velocities,
             bars,
             strings,
+            clusters,
             supports,
             loads,
             gravity,
@@ -858,11 +924,20 @@ impl StructureBuilder {
                 check_finite(|| format!("velocity of node {i}"), p)?;
             }
         }
-        if bars.is_empty() && strings.is_empty() {
+        if bars.is_empty() && strings.is_empty() && clusters.is_empty() {
             return Err(ModelError::NoMembers.into());
         }
 
-        checks::check_members(&nodes, &bars, &strings, allow_isolated)?;
+        // nodes on a cluster only are not isolated: the clusters are checked after
+        checks::check_members(&nodes, &bars, &strings, true)?;
+        checks::check_clusters(&nodes, &bars, &strings, &clusters, allow_isolated)?;
+        for (k, c) in clusters.iter().enumerate() {
+            if let Some(name) = &c.material {
+                if materials.get(name).is_none() {
+                    materials.lookup(name, &format!("cluster {k}"))?;
+                }
+            }
+        }
 
         // the item's name is formatted only for an error
         for (i, b) in bars.iter().enumerate() {
@@ -959,6 +1034,7 @@ impl StructureBuilder {
             velocities,
             bars,
             strings,
+            clusters,
             supports,
             loads,
             gravity,

@@ -310,8 +310,10 @@ impl ConstrainedSystem for Model {
         apply_minv(self, f, scale, out);
     }
 
-    /// A ground or a damped string.
+    /// A ground, a damped string or a damped cluster.
     fn velocity_dependent_forces(&self) -> bool {
-        self.ground.is_some() || self.strings.iter().any(|s| s.law.damping > 0.0)
+        self.ground.is_some()
+            || self.strings.iter().any(|s| s.law.damping > 0.0)
+            || self.clusters.iter().any(|c| c.damping > 0.0)
     }
 }

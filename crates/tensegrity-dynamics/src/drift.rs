@@ -236,10 +236,12 @@ pub fn check(
 }
 
 impl Model {
-    /// Whether total energy is conserved by the equations: no string damping, no damping or
-    /// friction at a penalty ground, no thesis ground, no rest-length or load schedules.
+    /// Whether total energy is conserved by the equations: no string or cluster damping, no
+    /// damping or friction at a penalty ground, no thesis ground, no rest-length or load
+    /// schedules.
     pub fn is_conservative(&self) -> bool {
         self.strings.iter().all(|s| s.law.damping == 0.0)
+            && self.clusters.iter().all(|c| c.damping == 0.0)
             && self.rest_fn.is_none()
             && self.load_fn.is_none()
             && self.ground.as_ref().is_none_or(ground_is_conservative)

@@ -100,6 +100,7 @@ pub fn fastest_rate(model: &crate::Model) -> f64 {
         .strings
         .iter()
         .map(|s| rate(s.law.stiffness, s.law.damping))
+        .chain(model.clusters.iter().map(|c| rate(c.stiffness, c.damping)))
         .fold(0.0, f64::max);
     let ground = match model.ground.as_ref().map(|g| &g.model) {
         Some(crate::GroundModel::Penalty {

@@ -59,6 +59,7 @@
 
 pub mod anchor;
 pub mod ark;
+pub mod cluster_forces;
 pub mod constraints;
 mod contact_split;
 pub mod convergence;

@@ -28,6 +28,7 @@
 //! Because N P = D is linear, every Runge–Kutta method keeps it to round-off when the initial
 //! velocities satisfy Ṅ P = 0.
 
+use super::cluster_forces::{ClusterData, ClusterEnd};
 use super::forces::{Ground, GroundModel};
 use super::omega::joint_space::{JointScratch, JointSpace};
 use super::omega::{axis_of, ConstraintMatrix, Row, RowEntry};
@@ -39,7 +40,7 @@ use tensegrity_core::error::{CoreError, DynamicsError, ModelError, StepHint};
 use tensegrity_core::structure::{MemberId, Structure};
 
 /// Time-varying rest lengths: called with t and the slice of rest lengths (one per string,
-/// pre-filled with the static values) to overwrite.
+/// then one per cluster, pre-filled with the static values) to overwrite.
 pub type RestLengthFn = Box<dyn Fn(f64, &mut [f64]) + Send + Sync>;
 /// Time-varying loads: called with t and a zeroed slice (one force per file node) to fill;
 /// these forces are added to the static loads.
@@ -105,6 +106,8 @@ pub struct Model {
     pub(crate) inv_mass: Vec<f64>,
     pub(crate) node_map: Vec<NodeRef>,
     pub(crate) strings: Vec<StringData>,
+    /// The clustered strings (module `cluster_forces`).
+    pub(crate) clusters: Vec<ClusterData>,
     pub(crate) w_const: Vec<Vector3<f64>>,
     pub(crate) linear_rows: Vec<LinearRow>,
     pub(crate) ground: Option<Ground>,
@@ -297,7 +300,8 @@ impl Model {
                     continue;
                 }
                 // Nodes that no member touches at all are harmless: ignore them as anchors.
-                let touched = structure.strings().iter().any(|s| s.nodes.contains(&i));
+                let touched = structure.strings().iter().any(|s| s.nodes.contains(&i))
+                    || structure.clusters().iter().any(|c| c.nodes.contains(&i));
                 if touched {
                     return Err(DynamicsError::FreeNodeWithoutBar { node: i }.into());
                 }
@@ -359,6 +363,7 @@ impl Model {
                 },
             });
         }
+        let clusters = clusters_of(structure, &node_map)?;
         let mut w_const = vec![Vector3::zeros(); n1];
         for l in structure.loads() {
             if let NodeRef::Free(i) = node_map[l.node] {
@@ -428,6 +433,7 @@ impl Model {
             inv_mass,
             node_map,
             strings,
+            clusters,
             w_const,
             linear_rows,
             ground: None,
@@ -482,7 +488,7 @@ impl Model {
         Ok(())
     }
 
-    /// Makes the string rest lengths follow `f` in time (actuation).
+    /// Makes the string and cluster rest lengths follow `f` in time (actuation; [`RestLengthFn`]).
     pub fn set_rest_length_schedule(&mut self, f: RestLengthFn) {
         self.rest_fn = Some(f);
     }
@@ -569,7 +575,12 @@ impl Model {
                 true,
             )?)
         };
-        let rest = self.strings.iter().map(|s| s.law.rest_length).collect();
+        let rest = self
+            .strings
+            .iter()
+            .map(|s| s.law.rest_length)
+            .chain(self.clusters.iter().map(|c| c.rest_length))
+            .collect();
         Ok(Workspace {
             f: vec![Vector3::zeros(); self.n1],
             rest,
@@ -630,6 +641,10 @@ impl Model {
             for (r, s) in ws.rest.iter_mut().zip(&self.strings) {
                 *r = s.law.rest_length;
             }
+            let clusters = ws.rest.iter_mut().skip(self.strings.len());
+            for (r, c) in clusters.zip(&self.clusters) {
+                *r = c.rest_length;
+            }
             rest_fn(t, &mut ws.rest);
         }
         if let Some(ends) = &self.string_nodes {
@@ -675,6 +690,10 @@ impl Model {
                     ws.f[j] -= t;
                 }
             }
+        }
+        let cluster_rest = &ws.rest[self.strings.len()..];
+        for (c, &rest) in self.clusters.iter().zip(cluster_rest) {
+            c.add_forces(x, v, rest, &mut ws.f);
         }
         if let Some(g) = &self.ground {
             match g.model {
@@ -882,8 +901,9 @@ impl Model {
             .collect()
     }
 
-    /// Axial member forces (N, tension positive, bars then strings) at (t, y):
-    /// bars −λ_k l_k with λ from the closed form including Ω, strings γ‖s‖.
+    /// Axial member forces (N, tension positive, bars then strings, then one per cluster) at
+    /// (t, y): bars −λ_k l_k with λ from the closed form including Ω, strings γ‖s‖, clusters
+    /// their tension t (module `cluster_forces`).
     pub fn member_forces(
         &self,
         t: f64,
@@ -908,6 +928,9 @@ impl Model {
             let (xb, _) = self.end_state(s.ends[1], x, v);
             out.push(ws.gamma[k] * (xb - xa).norm());
         }
+        let rest = &ws.rest[self.strings.len()..];
+        let clusters = self.clusters.iter().zip(rest);
+        out.extend(clusters.map(|(c, &r)| c.tension_at_rest_length(x, v, r)));
         Ok(out)
     }
 
@@ -927,6 +950,47 @@ impl Model {
             .map(|(&(i, _), f)| (i, *f))
             .collect()
     }
+}
+
+/// The clustered strings of `structure` (module `cluster_forces`): each node a bar's
+/// representative class-1 node or a fixed point (a free node on no bar is refused, naming
+/// it); a cluster with pulley friction or without a stiffness is refused, naming it; a
+/// missing rest length is its length in the structure.
+fn clusters_of(structure: &Structure, node_map: &[NodeRef]) -> Result<Vec<ClusterData>, CoreError> {
+    let fixed = structure.fixed_dofs();
+    let mut out = Vec::with_capacity(structure.clusters().len());
+    for (k, c) in structure.clusters().iter().enumerate() {
+        let invalid = |reason: &str| -> CoreError {
+            ModelError::InvalidCluster {
+                cluster: k,
+                reason: reason.to_string(),
+            }
+            .into()
+        };
+        if !c.is_frictionless() {
+            return Err(invalid("pulley friction (the capstan law) is not modelled by the rigid-bar dynamics yet: give it no `friction`"));
+        }
+        let stiffness = c.stiffness.ok_or_else(|| {
+            invalid("the dynamics needs its stiffness (N/m, of the whole cluster)")
+        })?;
+        let mut ends = Vec::with_capacity(c.nodes.len());
+        for &i in &c.nodes {
+            ends.push(match node_map[i] {
+                NodeRef::Free(r) => ClusterEnd::Free(r),
+                NodeRef::Anchor(p) if fixed[i] == [true; 3] => ClusterEnd::Fixed(p),
+                NodeRef::Anchor(_) => {
+                    return Err(DynamicsError::FreeNodeWithoutBar { node: i }.into())
+                }
+            });
+        }
+        out.push(ClusterData {
+            ends,
+            stiffness,
+            rest_length: c.rest_length.unwrap_or_else(|| c.length(structure.nodes())),
+            damping: c.damping,
+        });
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Run monitors: total energy, bar-length drift, ‖N P − D‖, and the NaN / blow-up guard.
 //!
 //! Energy E = Σ_bars (m/6)(‖v_a‖² + ‖v_b‖² + v_a·v_b) (that is ½m‖ṙ‖² + ½J‖ḃ‖², J = m/12)
-//! plus Σ_strings ½k(‖s‖ − s0)₊², minus Σ_nodes w·x (constant loads and gravity), plus
+//! plus Σ_strings ½k(‖s‖ − s0)₊² and Σ_clusters ½k(L − L₀)₊² (module `cluster_forces`), minus Σ_nodes w·x (constant loads and gravity), plus
 //! Σ ½k_g δ² (penalty ground). It is conserved without damping, friction, actuation or the
 //! thesis ground model.
 
@@ -25,7 +25,8 @@ impl Model {
             .sum()
     }
 
-    /// Potential energy (J): strings (static rest lengths), constant loads and gravity, ground.
+    /// Potential energy (J): strings (static rest lengths), clusters, constant loads and
+    /// gravity, ground.
     pub fn potential_energy(&self, y: &[f64]) -> f64 {
         let x = &y[..3 * self.n1];
         let pos = |r: NodeRef| match r {
@@ -54,7 +55,8 @@ impl Model {
                 .sum(),
             None => 0.0,
         };
-        strings + loads + ground
+        let clusters: f64 = self.clusters.iter().map(|c| c.potential(x)).sum();
+        strings + clusters + loads + ground
     }
 
     /// Total energy (J).

@@ -4,9 +4,10 @@
 //! scene's structure.
 //!
 //! Its resource estimate ([`estimate`]) is that of the dense SVD of the m × n equilibrium
-//! matrix (m free degrees of freedom, n members: O(m² + n²) memory, O(max(m,n)² min(m,n))
-//! work, [`budget::dense_statics`]) when the method takes the dense path — `dense`, or
-//! `auto` below [`SPARSE_MIN_SIZE`] — and otherwise that of the sparse QR, whose cost is linear in
+//! matrix (m free degrees of freedom, n columns, members then clustered strings: O(m² + n²)
+//! memory, O(max(m,n)² min(m,n)) work, [`budget::dense_statics`]) when the method takes the
+//! dense path — `dense`, or `auto` below [`SPARSE_MIN_SIZE`] or with clustered strings, which
+//! only the dense SVD models (the report names them `cluster 0`, … after the strings) — and otherwise that of the sparse QR, whose cost is linear in
 //! the band of the structure: its memory is the QR's profile and the dense bases it reports
 //! (mechanisms or self-stresses, at least the difference of dofs and members), so that a
 //! structure too large for either is refused before it is read into a factorisation.
@@ -31,7 +32,8 @@ use tensegrity_derive::Params;
 use tensegrity_io::scene::Scene;
 use tensegrity_statics::stiffness::MassModel;
 use tensegrity_statics::{
-    sparse_after_qr, DofMap, StaticsMethod, StaticsSettings, SPARSE_FLOP_RATE, SPARSE_MIN_SIZE,
+    n_columns, sparse_after_qr, DofMap, StaticsMethod, StaticsSettings, SPARSE_FLOP_RATE,
+    SPARSE_MIN_SIZE,
 };
 use tensegrity_statics::{statics_report, StaticsReport, StaticsRequest};
 
@@ -157,9 +159,23 @@ impl StaticsCommand {
 pub fn statics(command: &StaticsCommand) -> Result<StaticsReport, SceneError> {
     let scene = command.source()?.load()?;
     refuse_unread_keys(&scene)?;
-    let mut report = command.report(&scene.structure)?;
+    let mut report = command.report(&scene.structure).map_err(refused)?;
     with_response(command, &scene, &mut report)?;
     Ok(report)
+}
+
+/// A statics error as the scene's: a clustered string the chosen back-end does not model
+/// (`cluster 0: the sparse QR back-end …`) is bad input naming the cluster, as the
+/// linear response's missing properties are ([`with_response`]); any other error keeps its
+/// own category.
+fn refused(e: CoreError) -> SceneError {
+    match e {
+        CoreError::Model(m @ ModelError::InvalidCluster { .. }) => {
+            let item = m.item().unwrap_or_else(|| "scene".into());
+            SceneError::InvalidParameter(InvalidParameter::text("scene", item, m.to_string()))
+        }
+        e => SceneError::Core(e),
+    }
 }
 
 /// Refuses what `statics` does not read: a rest-length change (a load path's driver, `solve`
@@ -229,7 +245,7 @@ pub fn statics_in(command: &StaticsCommand, ctx: &Context) -> Result<StaticsRepo
     let scene = command.source()?.load()?;
     refuse_unread_keys(&scene)?;
     let request = command.request_within(ctx.limits());
-    let mut report = statics_report(&scene.structure, &request)?;
+    let mut report = statics_report(&scene.structure, &request).map_err(refused)?;
     with_response(command, &scene, &mut report)?;
     Ok(report)
 }
@@ -262,7 +278,7 @@ pub fn admitted<G, E: From<SceneError>>(
     };
     let _admitted = admit(estimate(&scene.structure, &asked))?;
     let request = command.request_within(limits);
-    let mut report = statics_report(&scene.structure, &request).map_err(SceneError::from)?;
+    let mut report = statics_report(&scene.structure, &request).map_err(refused)?;
     with_response(command, &scene, &mut report)?;
     Ok((scene, report))
 }
@@ -311,11 +327,13 @@ pub fn response_estimate(structure: &Structure) -> Estimate {
 
 /// The estimate of the statics without the linear response (module docs).
 fn statics_estimate(structure: &Structure, command: &StaticsCommand) -> Option<Estimate> {
-    let (dofs, members) = (DofMap::of(structure).len(), structure.n_members());
+    // the columns of the equilibrium matrix: members, then clustered strings
+    let (dofs, members) = (DofMap::of(structure).len(), n_columns(structure));
     let dense = match command.method {
         StaticsMethod::Dense => true,
         StaticsMethod::Sparse => false,
-        StaticsMethod::Auto => dofs.min(members) < SPARSE_MIN_SIZE,
+        // clusters: the dense SVD, the only back-end that models them
+        StaticsMethod::Auto => dofs.min(members) < SPARSE_MIN_SIZE || structure.has_clusters(),
     };
     let method = serde_json::to_value(command.method).unwrap_or_default();
     let parameter = format!(

@@ -131,7 +131,10 @@ impl Scenery {
         Self {
             title: title.into(),
             bars: structure.bars().iter().map(|b| b.nodes).collect(),
-            strings: structure.strings().iter().map(|s| s.nodes).collect(),
+            // a clustered string is drawn as strings, segment by segment
+            strings: (structure.strings().iter().map(|s| s.nodes))
+                .chain(structure.clusters().iter().flat_map(|c| c.segments()))
+                .collect(),
             ground: ground.map(|g| (g.point, g.normal)),
             view: View::Side,
             tilt: 0.0,

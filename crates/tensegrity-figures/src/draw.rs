@@ -397,7 +397,10 @@ impl Drawing {
         Self {
             nodes: structure.nodes().to_vec(),
             bars: structure.bars().iter().map(|b| b.nodes).collect(),
-            strings: structure.strings().iter().map(|s| s.nodes).collect(),
+            // a clustered string is drawn as strings, segment by segment
+            strings: (structure.strings().iter().map(|s| s.nodes))
+                .chain(structure.clusters().iter().flat_map(|c| c.segments()))
+                .collect(),
             supports: structure.supports().iter().map(|s| s.node).collect(),
             loads: structure
                 .loads()

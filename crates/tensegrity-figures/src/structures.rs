@@ -12,6 +12,7 @@ use nalgebra::{DMatrix, Vector3};
 use tensegrity_core::budget::{self, Estimate};
 use tensegrity_core::Structure;
 use tensegrity_io::figure::Figure;
+use tensegrity_statics::cluster_columns::per_segment;
 use tensegrity_statics::stiffness::{self, MassModel};
 use tensegrity_statics::DofMap;
 use tensegrity_statics::{Statics, StaticsReport};
@@ -21,11 +22,15 @@ use tensegrity_statics::{Statics, StaticsReport};
 /// from what the report has; a colouring the report cannot give falls back to the other.
 pub fn statics_figure(structure: &Structure, report: &StaticsReport, style: &Style) -> Figure {
     let mut d = Drawing::of(structure);
-    d.force = report.member_force.clone();
-    d.force_density = report
-        .force_density
-        .clone()
-        .or_else(|| report.prestress.clone());
+    // one value per column (a cluster's after the strings) spread onto the drawn lines (a
+    // cluster's segments after the strings)
+    let spread = |v: &Option<Vec<f64>>, density| {
+        v.as_ref()
+            .map(|v| per_segment(structure, v, density).unwrap_or_else(|| v.clone()))
+    };
+    d.force = spread(&report.member_force, false);
+    d.force_density =
+        spread(&report.force_density, true).or_else(|| spread(&report.prestress, true));
     d.reactions = report
         .reactions
         .iter()

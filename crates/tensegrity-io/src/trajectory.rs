@@ -6,8 +6,9 @@
 //! Columns (all numbers `{:.17e}`, exact round trip), each group present when recorded:
 //! `t [s]`; positions `n{i}_x [m]`, `n{i}_y [m]`, `n{i}_z [m]`; velocities `v{i}_x [m/s]`…;
 //! axial member forces, tension positive, `{member}_force [N]` with members named
-//! `bar{k}` / `string{k}`, and with positions their force densities
-//! `{member}_force_density [N/m]` (force over current length); `kinetic_energy [J]`, `total_energy [J]`; ground contact forces
+//! `bar{k}` / `string{k}`, then one per clustered string `cluster{c}` (its one tension), and
+//! with positions their force densities `{member}_force_density [N/m]` (force over current
+//! length; a cluster's over its whole length); `kinetic_energy [J]`, `total_energy [J]`; ground contact forces
 //! `c{node}_x [N]`… of every contact node. With positions only, the file is exactly the one
 //! [`crate::csv::write_trajectory`] writes.
 //!
@@ -50,7 +51,8 @@ use tensegrity_dynamics::Sample;
 pub struct TrajectoryWriter {
     sink: CsvSink,
     members: Vec<String>,
-    ends: Vec<[usize; 2]>,
+    /// The nodes of every member, then of every cluster (its length: the path through them).
+    ends: Vec<Vec<usize>>,
     header_written: bool,
 }
 
@@ -59,16 +61,24 @@ impl TrajectoryWriter {
     /// missing directory, an unwritable path or another writer fails before the run starts.
     pub fn create(path: &Path, structure: &Structure) -> Result<Self> {
         let sink = CsvSink::open_records(path, "trajectory CSV")?;
+        let clusters = structure.clusters();
         let members = (0..structure.n_members())
             .map(|k| match structure.member_id(k) {
                 MemberId::Bar(i) => format!("bar{i}"),
                 MemberId::String(i) => format!("string{i}"),
             })
+            .chain((0..clusters.len()).map(|c| format!("cluster{c}")))
+            .collect();
+        let ends = structure
+            .member_nodes()
+            .into_iter()
+            .map(|e| e.to_vec())
+            .chain(clusters.iter().map(|c| c.nodes.clone()))
             .collect();
         Ok(Self {
             sink,
             members,
-            ends: structure.member_nodes(),
+            ends,
             header_written: false,
         })
     }
@@ -147,7 +157,7 @@ impl TrajectoryWriter {
     }
 }
 
-fn row(s: &Sample, ends: &[[usize; 2]]) -> Vec<String> {
+fn row(s: &Sample, ends: &[Vec<usize>]) -> Vec<String> {
     let f = |v: f64| format!("{v:.17e}");
     let mut r = vec![f(s.t)];
     for p in s.nodes.iter().chain(&s.velocities).flatten() {
@@ -156,12 +166,13 @@ fn row(s: &Sample, ends: &[[usize; 2]]) -> Vec<String> {
     r.extend(s.member_forces.iter().flatten().map(|&v| f(v)));
     if let (Some(forces), Some(nodes)) = (&s.member_forces, &s.nodes) {
         // q = force / current length (tension positive)
-        r.extend(
-            forces
-                .iter()
-                .zip(ends)
-                .map(|(&force, &[i, j])| f(force / (nodes[j] - nodes[i]).norm())),
-        );
+        r.extend(forces.iter().zip(ends).map(|(&force, path)| {
+            let length: f64 = path
+                .windows(2)
+                .map(|w| (nodes[w[1]] - nodes[w[0]]).norm())
+                .sum();
+            f(force / length)
+        }));
     }
     if let Some((k, e)) = s.energy {
         r.extend([f(k), f(e)]);

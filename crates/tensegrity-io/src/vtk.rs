@@ -2,8 +2,11 @@
 //! per frame and a `.pvd` collection that indexes the frames by time.
 //!
 //! Points are the node positions (m, file numbering), cells are VTK_LINE (type 3) from start to
-//! end node of every member (bars first, then strings), cell data `member_kind` (0 bar,
-//! 1 string) and `member_index` (its index among its kind). Numbers are written with `{:e}`,
+//! end node of every member (bars first, then strings, then each segment of each clustered
+//! string), cell data `member_kind` (0 bar, 1 string, 2 a cluster's segment) and
+//! `member_index` (its index among its kind: a segment carries its cluster's), and `force`
+//! when the frame gives one per member and per cluster (a cluster's tension on each of its
+//! segments). Numbers are written with `{:e}`,
 //! the shortest text that reads back to the same f64. Series are written through the
 //! [`VtkSeriesSink`] (frames renamed into place one by one, `series.pvd` rewritten atomically).
 
@@ -55,7 +58,13 @@ pub struct FrameData<'a> {
 /// assert!(xml.contains("0e0 0e0 -1e0") && xml.contains("-5e0"));
 /// ```
 pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<'_>) -> String {
-    let members = structure.member_nodes();
+    let n_members = structure.n_members();
+    // cells: the members, then every segment of every cluster (its cluster's index kept)
+    let segments: Vec<(usize, [usize; 2])> = (structure.clusters().iter().enumerate())
+        .flat_map(|(c, cluster)| cluster.segments().map(move |pair| (c, pair)))
+        .collect();
+    let mut members = structure.member_nodes();
+    members.extend(segments.iter().map(|&(_, pair)| pair));
     let nb = structure.n_bars();
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
@@ -104,7 +113,11 @@ pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<
         r#"<DataArray type="Int32" Name="member_kind" format="ascii">"#
     );
     let kinds: Vec<&str> = (0..members.len())
-        .map(|k| if k < nb { "0" } else { "1" })
+        .map(|k| match k {
+            _ if k < nb => "0",
+            _ if k < n_members => "1",
+            _ => "2",
+        })
         .collect();
     let _ = writeln!(s, "{}", kinds.join(" "));
     let _ = writeln!(s, "</DataArray>");
@@ -113,11 +126,29 @@ pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<
         r#"<DataArray type="Int32" Name="member_index" format="ascii">"#
     );
     let index: Vec<String> = (0..members.len())
-        .map(|k| if k < nb { k } else { k - nb }.to_string())
+        .map(|k| match k {
+            _ if k < nb => k,
+            _ if k < n_members => k - nb,
+            _ => segments[k - n_members].0,
+        })
+        .map(|i| i.to_string())
         .collect();
     let _ = writeln!(s, "{}", index.join(" "));
     let _ = writeln!(s, "</DataArray>");
-    if let Some(f) = data.member_forces {
+    // one force per member then per cluster (each cluster's on all its segments); forces
+    // of another length cannot be matched to the cells and are left out
+    let per_cell = data
+        .member_forces
+        .filter(|f| f.len() == n_members + structure.clusters().len())
+        .map(|f| {
+            let clusters = segments.iter().map(|&(c, _)| f[n_members + c]);
+            f[..n_members]
+                .iter()
+                .copied()
+                .chain(clusters)
+                .collect::<Vec<f64>>()
+        });
+    if let Some(f) = per_cell {
         let _ = writeln!(
             s,
             r#"<DataArray type="Float64" Name="force" format="ascii">"#

@@ -64,6 +64,7 @@ fn actuated_rest_length_changes_string_tension() {
     let s = snelson_prism(&PrismParams::default()).unwrap();
     let s0 = s.strings()[6].rest_length.unwrap();
     let act = ActuationSpec {
+        cluster: None,
         string: Some(6),
         node: None,
         times: vec![0.0, 0.1],
@@ -98,6 +99,7 @@ fn actuated_rest_length_changes_string_tension() {
     assert!(moved < 1e-10);
     // bad tables are rejected with the table named
     let bad = ActuationSpec {
+        cluster: None,
         string: Some(6),
         node: None,
         times: vec![0.1, 0.0],

@@ -107,3 +107,48 @@ fn an_unwritable_directory_is_named() {
     assert!(e.to_string().contains("vtk-blocked"), "{e}");
     std::fs::remove_file(&blocker).unwrap();
 }
+
+/// A clustered string is drawn segment by segment after the members: kind 2, its cluster's
+/// index, its tension on every segment; forces of a length that does not count the clusters
+/// are left out rather than shifted onto the wrong cells.
+#[test]
+fn a_clusters_segments_are_cells_with_its_tension() {
+    use tensegrity_core::Cluster;
+    use tensegrity_io::vtk::{vtu_with, FrameData};
+    let s = Structure::builder()
+        .nodes([
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 1.0],
+        ])
+        .bar(Bar::new(0, 1))
+        .cluster(Cluster::new([1, 2, 3, 0]))
+        .build()
+        .unwrap();
+    let forces = [-5.0, 7.5];
+    let data = FrameData {
+        velocities: None,
+        member_forces: Some(&forces),
+    };
+    let xml = vtu_with(&s, s.nodes(), &data);
+    let doc = roxmltree::Document::parse(&xml).unwrap();
+    assert_eq!(numbers::<i64>(array(&doc, "member_kind")), vec![0, 2, 2, 2]);
+    assert_eq!(
+        numbers::<i64>(array(&doc, "member_index")),
+        vec![0, 0, 0, 0]
+    );
+    assert_eq!(
+        numbers::<i64>(array(&doc, "connectivity")),
+        vec![0, 1, 1, 2, 2, 3, 3, 0]
+    );
+    assert_eq!(
+        numbers::<f64>(array(&doc, "force")),
+        vec![-5.0, 7.5, 7.5, 7.5]
+    );
+    let short = FrameData {
+        velocities: None,
+        member_forces: Some(&forces[..1]),
+    };
+    assert!(!vtu_with(&s, s.nodes(), &short).contains(r#"Name="force""#));
+}

@@ -218,18 +218,48 @@ fn held_states(
             m.ea * (s.length - s.rest_length) / s.rest_length
         };
     }
+    // a cluster's segments follow its first segment's entry in `like`
+    for (c, cluster) in model.clusters.iter().enumerate() {
+        let range = model.cluster_states(c);
+        let held = like[range.start].slack;
+        if states[range.start].slack == held {
+            continue;
+        }
+        let length = crate::clusters::cluster_length(model, c, &states);
+        let tension = if held {
+            0.0
+        } else {
+            cluster.stiffness * (length - cluster.rest_length)
+        };
+        for s in &mut states[range] {
+            s.slack = held;
+            s.tension = tension;
+        }
+    }
     states
 }
 
 /// A string's margin to a change of its state (N): a taut string's tension, a slack one's
 /// tension as if taut with the sign turned (positive while it is shorter than its rest
-/// length); a bar never changes (infinite).
-fn margin(model: &ElasticModel, k: usize, s: &MemberState) -> f64 {
-    let m = &model.members[k];
-    if m.kind != MemberKind::String {
-        f64::INFINITY
-    } else if s.slack {
-        -m.ea * (s.length - s.rest_length) / s.rest_length
+/// length); a bar never changes (infinite). A cluster's margin is its first segment's
+/// entry (its tension, or −k (L − L₀) when slack); its other segments' are infinite.
+fn margin(model: &ElasticModel, k: usize, states: &[MemberState]) -> f64 {
+    let s = &states[k];
+    if let Some(m) = model.members.get(k) {
+        return if m.kind != MemberKind::String {
+            f64::INFINITY
+        } else if s.slack {
+            -m.ea * (s.length - s.rest_length) / s.rest_length
+        } else {
+            s.tension
+        };
+    }
+    let Some(c) = model.reported_index(k).map(|r| r - model.members.len()) else {
+        return f64::INFINITY;
+    };
+    if s.slack {
+        let length = crate::clusters::cluster_length(model, c, states);
+        -model.clusters[c].stiffness * (length - model.clusters[c].rest_length)
     } else {
         s.tension
     }
@@ -239,7 +269,7 @@ fn margin(model: &ElasticModel, k: usize, s: &MemberState) -> f64 {
 /// stretched).
 fn negative_margins(model: &ElasticModel, states: &[MemberState]) -> Vec<usize> {
     (0..states.len())
-        .filter(|&k| margin(model, k, &states[k]) < 0.0)
+        .filter(|&k| margin(model, k, states) < 0.0)
         .collect()
 }
 
@@ -448,7 +478,7 @@ impl Tracer<'_> {
         let g = |eq: &Equilibrium| {
             strings
                 .iter()
-                .map(|&k| margin(model, k, &eq.states[k]))
+                .map(|&k| margin(model, k, &eq.states))
                 .fold(f64::INFINITY, f64::min)
         };
         let f0 = g(&from.eq);
@@ -532,7 +562,7 @@ impl Tracer<'_> {
         let mut eq = at.eq;
         // a string held taut that ended a round-off below zero force is slack there
         for (k, s) in eq.states.iter_mut().enumerate() {
-            if self.model.members[k].kind == MemberKind::String && !s.slack && s.tension < 0.0 {
+            if self.model.is_tension_only(k) && !s.slack && s.tension < 0.0 {
                 s.slack = true;
                 s.tension = 0.0;
             }
@@ -689,7 +719,7 @@ impl Tracer<'_> {
             let tol = tolerance(model, &eq.states, &eq.x, eq.lambda);
             let flips: Vec<usize> = turned
                 .into_iter()
-                .filter(|&k| margin(model, k, &eq.states[k]) <= tol)
+                .filter(|&k| margin(model, k, &eq.states) <= tol)
                 .collect();
             let mut like = eq.states.clone();
             for &k in &flips {
@@ -707,6 +737,12 @@ impl Tracer<'_> {
             let lambda = eq.lambda;
             let (went, back): (Vec<usize>, Vec<usize>) =
                 flips.iter().partition(|&&k| next.eq.states[k].slack);
+            let reported = |v: Vec<usize>| -> Vec<usize> {
+                v.into_iter()
+                    .filter_map(|k| model.reported_index(k))
+                    .collect()
+            };
+            let (went, back) = (reported(went), reported(back));
             let mut changes = Vec::new();
             if !went.is_empty() {
                 changes.push(Event::Slackened {
@@ -820,7 +856,7 @@ pub(crate) fn point_of(
         nodes: eq.x.iter().map(|x| (*x).into()).collect(),
         displacements,
         max_displacement,
-        tensions: eq.states.iter().map(|s| s.tension).collect(),
+        tensions: model.reported(&eq.states.iter().map(|s| s.tension).collect::<Vec<_>>()),
         slack: slack(model, eq),
         reactions,
         smallest_eigenvalues: spectrum.smallest.clone(),
@@ -833,15 +869,11 @@ pub(crate) fn point_of(
 /// structure's size (module docs).
 pub const BRANCH_SCALE: f64 = 0.01;
 
-/// The slack strings of an equilibrium.
+/// The slack strings and clusters of an equilibrium (clusters numbered after the members).
 fn slack(model: &ElasticModel, eq: &Equilibrium) -> Vec<usize> {
-    model
-        .members
-        .iter()
-        .zip(&eq.states)
-        .enumerate()
-        .filter(|(_, (m, s))| m.kind == MemberKind::String && s.slack)
-        .map(|(k, _)| k)
+    (0..eq.states.len())
+        .filter(|&k| model.is_tension_only(k) && eq.states[k].slack)
+        .filter_map(|k| model.reported_index(k))
         .collect()
 }
 
@@ -857,6 +889,7 @@ fn slack(model: &ElasticModel, eq: &Equilibrium) -> Vec<usize> {
 /// // a bar along x pulled along x: linear to within its stretch, λ up to 1
 /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1e4, rest_length: 1.0 };
 /// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+///     clusters: Vec::new(),
 ///     supports: vec![Support::pinned(0), Support::along(1, vec![Vector3::y(), Vector3::z()])],
 ///     load: vec![Vector3::zeros(), Vector3::new(100.0, 0.0, 0.0)], drivers: Default::default() };
 /// let path = follow(&m, &PathSettings::default()).unwrap();

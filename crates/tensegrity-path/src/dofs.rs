@@ -59,6 +59,7 @@ impl Dofs {
     /// let m = ElasticModel {
     ///     nodes: vec![Vector3::zeros(); 2],
     ///     members: vec![],
+    ///     clusters: Vec::new(),
     ///     supports: vec![Support::along(1, vec![Vector3::new(1.0, 1.0, 0.0).normalize()])],
     ///     load: vec![Vector3::zeros(); 2],
     ///     drivers: Default::default(),

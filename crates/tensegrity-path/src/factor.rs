@@ -301,6 +301,7 @@ mod tests {
         ElasticModel {
             nodes,
             members,
+            clusters: Vec::new(),
             supports,
             load,
             drivers: Default::default(),

@@ -1,6 +1,7 @@
 //! The members' tensions and resisting forces at a configuration (crate docs):
 //! t_k = EA_k (L_k − L₀,k)/L₀,k, zero for a string shorter than its rest length, and
-//! R_i = −Σ t_k n_k over the members leaving node i (n_k the unit vector to the other node);
+//! R_i = −Σ t_k n_k over the members leaving node i (n_k the unit vector to the other node),
+//! the clusters' segments counted alike with their cluster's tension ([`crate::clusters`]);
 //! and what the load factor's drivers do to R at fixed free coordinates ([`driven_forces`]).
 
 use crate::model::{ElasticModel, MemberKind};
@@ -22,13 +23,15 @@ pub struct MemberState {
 }
 
 /// The state of every member at the node positions `x` and load factor `lambda` (which sets
-/// the driven rest lengths, [`ElasticModel::rest_length`]).
+/// the driven rest lengths, [`ElasticModel::rest_length`]), then of every cluster's segments
+/// ([`segment_states`]).
 ///
 /// ```
 /// use nalgebra::Vector3;
 /// use tensegrity_path::{forces::member_states, ElasticMember, ElasticModel, MemberKind};
 /// let string = ElasticMember { nodes: [0, 1], kind: MemberKind::String, ea: 100.0, rest_length: 1.0 };
 /// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![string],
+///     clusters: Vec::new(),
 ///     supports: vec![], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
 /// let s = member_states(&m, &[Vector3::zeros(), Vector3::new(1.1, 0.0, 0.0)], 0.0);
 /// assert!((s[0].tension - 10.0).abs() < 1e-12 && !s[0].slack);
@@ -59,16 +62,44 @@ pub fn member_states(model: &ElasticModel, x: &[Vector3<f64>], lambda: f64) -> V
                 slack,
             }
         })
+        .chain(segment_states(model, x))
         .collect()
 }
 
-/// The resisting forces R_i at every node (crate docs) from the member states.
+/// The states of the clusters' segments at positions `x` ([`crate::clusters`]), in order.
+pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberState> {
+    let mut out = Vec::new();
+    for c in &model.clusters {
+        let start = out.len();
+        for [a, b] in c.segments() {
+            let d = x[b] - x[a];
+            let length = d.norm();
+            out.push(MemberState {
+                length,
+                direction: d / length,
+                rest_length: c.rest_length,
+                tension: 0.0,
+                slack: true,
+            });
+        }
+        let total: f64 = out[start..].iter().map(|s| s.length).sum();
+        let slack = total <= c.rest_length;
+        for s in &mut out[start..] {
+            s.slack = slack;
+            s.tension = if slack { 0.0 } else { c.tension(total) };
+        }
+    }
+    out
+}
+
+/// The resisting forces R_i at every node (crate docs) from the member states (a cluster's
+/// segments pull like strings with the cluster's tension, [`crate::clusters`]).
 pub fn resisting_forces(model: &ElasticModel, states: &[MemberState]) -> Vec<Vector3<f64>> {
     let mut r = vec![Vector3::zeros(); model.nodes.len()];
-    for (m, s) in model.members.iter().zip(states) {
+    for ([a, b], s) in model.state_nodes().zip(states) {
         let f = s.direction * s.tension;
-        r[m.nodes[0]] -= f;
-        r[m.nodes[1]] += f;
+        r[a] -= f;
+        r[b] += f;
     }
     r
 }

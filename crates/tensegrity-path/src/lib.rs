@@ -13,6 +13,11 @@
 //! state) and k d dᵀ to the tangent, and its reaction is the spring's force −k d·u. The
 //! reference load P (one force per node) is scaled by the load factor λ.
 //!
+//! **Clustered strings** ([`clusters`]). A cluster runs through several nodes over
+//! frictionless pulleys with one tension t = k (L − L₀) (L the sum of its segments' lengths,
+//! slack when L ≤ L₀) pulling along every segment; its tangent is k g gᵀ + Σ (t/l_i)(I − e_i
+//! e_iᵀ) (g = ∂L/∂x). Reported tensions give the members, then one per cluster.
+//!
 //! **Equilibrium** ([`forces`]). With n_k = (x_j − x_i)/L_k the members' resisting force on
 //! node i is R_i = −Σ t_k n_k (member k leaving i), and equilibrium is R(x) = λ P on the
 //! free directions; the supports take the rest (the reactions, −(R − λ P) on the held
@@ -54,6 +59,7 @@
 #![warn(missing_docs)]
 
 pub mod arclength;
+pub mod clusters;
 pub mod dofs;
 pub mod error;
 pub mod factor;
@@ -75,6 +81,6 @@ pub use arclength::{follow, PathSettings};
 pub use error::{PathError, Result};
 pub use load_steps::load_steps;
 pub use mass::{MassDistribution, Masses};
-pub use model::{ElasticMember, ElasticModel, MemberKind, Support};
+pub use model::{ElasticCluster, ElasticMember, ElasticModel, MemberKind, Support};
 pub use point::{Event, PathPoint, PathReport};
 pub use transient::ElasticDynamics;

@@ -22,6 +22,7 @@ pub const JUMP_RATIO: f64 = 3.0;
 /// use tensegrity_path::{load_steps, ElasticMember, ElasticModel, MemberKind, Support};
 /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1e4, rest_length: 1.0 };
 /// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+///     clusters: Vec::new(),
 ///     supports: vec![Support::pinned(0), Support::along(1, vec![Vector3::y(), Vector3::z()])],
 ///     load: vec![Vector3::zeros(), Vector3::new(100.0, 0.0, 0.0)], drivers: Default::default() };
 /// let path = load_steps(&m, 4, 1.0).unwrap();

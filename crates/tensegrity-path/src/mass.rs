@@ -53,7 +53,7 @@ impl Masses {
     /// use tensegrity_path::{ElasticMember, ElasticModel, MemberKind, Support};
     /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1e4, rest_length: 1.0 };
     /// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x(), Vector3::y()],
-    ///     members: vec![bar], supports: vec![Support::pinned(0)],
+    ///     members: vec![bar], clusters: Vec::new(), supports: vec![Support::pinned(0)],
     ///     load: vec![Vector3::zeros(); 3], drivers: Default::default() };
     /// let masses = Masses { members: vec![2.0], nodes: vec![0.0; 3],
     ///     distribution: MassDistribution::Lumped };

@@ -4,6 +4,7 @@
 use crate::error::{PathError, Result};
 use nalgebra::Vector3;
 use serde::Serialize;
+use std::ops::Range;
 use tensegrity_core::Structure;
 
 /// The largest ratio of two stiffnesses of one model (members' EA/L₀, elastic supports' k)
@@ -114,6 +115,95 @@ impl Drivers {
     }
 }
 
+/// A clustered string of the elastic model ([`crate::clusters`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElasticCluster {
+    /// The nodes it passes through, in order (at least three).
+    pub nodes: Vec<usize>,
+    /// Stiffness k of the whole cluster (N/m; EA = k L₀).
+    pub stiffness: f64,
+    /// Rest length L₀ of the whole cluster (m).
+    pub rest_length: f64,
+    /// Damping c on the rate of its length (N·s/m; read by the dynamics only).
+    pub damping: f64,
+}
+
+impl ElasticCluster {
+    /// Its segments, as node pairs in order.
+    pub fn segments(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        self.nodes.windows(2).map(|w| [w[0], w[1]])
+    }
+
+    /// The number of its segments.
+    pub fn n_segments(&self) -> usize {
+        self.nodes.len().saturating_sub(1)
+    }
+
+    /// Its tension at length `length` (taut only; no damping): k (L − L₀), or 0 when slack.
+    ///
+    /// ```
+    /// use tensegrity_path::model::ElasticCluster;
+    /// let c = ElasticCluster { nodes: vec![0, 1, 2], stiffness: 100.0, rest_length: 2.0, damping: 0.0 };
+    /// assert_eq!((c.tension(2.5), c.tension(1.5)), (50.0, 0.0));
+    /// ```
+    pub fn tension(&self, length: f64) -> f64 {
+        (self.stiffness * (length - self.rest_length)).max(0.0)
+    }
+}
+
+impl ElasticModel {
+    /// The state indices of cluster `c`'s segments (after the members' and the earlier
+    /// clusters' segments: module docs).
+    pub fn cluster_states(&self, c: usize) -> Range<usize> {
+        let start = self.members.len()
+            + self.clusters[..c]
+                .iter()
+                .map(ElasticCluster::n_segments)
+                .sum::<usize>();
+        start..start + self.clusters[c].n_segments()
+    }
+
+    /// The two nodes of every state entry: the members', then the clusters' segments.
+    pub fn state_nodes(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        let segments = self.clusters.iter().flat_map(|c| c.segments());
+        self.members.iter().map(|m| m.nodes).chain(segments)
+    }
+
+    /// What a state index reports as: the member itself, or `members.len() + c` for a
+    /// segment of cluster c (`None` for a cluster's segment after its first: one entry per
+    /// cluster).
+    pub fn reported_index(&self, k: usize) -> Option<usize> {
+        let nm = self.members.len();
+        if k < nm {
+            return Some(k);
+        }
+        (0..self.clusters.len())
+            .find(|&c| self.cluster_states(c).contains(&k))
+            .filter(|&c| self.cluster_states(c).start == k)
+            .map(|c| nm + c)
+    }
+
+    /// One value per member, then one per cluster (its first segment's), of per-state
+    /// `values` (e.g. the tensions): the order of every report ([`crate::clusters`]).
+    pub fn reported<T: Copy>(&self, values: &[T]) -> Vec<T> {
+        let nm = self.members.len();
+        let mut out: Vec<T> = values[..nm.min(values.len())].to_vec();
+        for c in 0..self.clusters.len() {
+            if let Some(v) = values.get(self.cluster_states(c).start) {
+                out.push(*v);
+            }
+        }
+        out
+    }
+
+    /// Whether the state entry `k` carries tension only (a string or a cluster's segment).
+    pub fn is_tension_only(&self, k: usize) -> bool {
+        self.members
+            .get(k)
+            .is_none_or(|m| m.kind == MemberKind::String)
+    }
+}
+
 /// The model (crate docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElasticModel {
@@ -121,6 +211,9 @@ pub struct ElasticModel {
     pub nodes: Vec<Vector3<f64>>,
     /// The members.
     pub members: Vec<ElasticMember>,
+    /// The clustered strings ([`crate::clusters`]; their states and reported tensions come
+    /// after the members').
+    pub clusters: Vec<ElasticCluster>,
     /// The supports.
     pub supports: Vec<Support>,
     /// The reference load P, one force per node (N); the load is λ P.
@@ -162,6 +255,7 @@ impl ElasticModel {
     /// let m = ElasticModel {
     ///     nodes: vec![Vector3::zeros(), Vector3::x()],
     ///     members: vec![bar],
+    ///     clusters: Vec::new(),
     ///     supports: vec![Support::pinned(0)],
     ///     load: vec![Vector3::zeros(), Vector3::x()],
     ///     drivers: Default::default(),
@@ -226,6 +320,7 @@ impl ElasticModel {
                 ));
             }
         }
+        self.check_clusters()?;
         let d = &self.drivers;
         if !d.rest_length_changes.is_empty() && d.rest_length_changes.len() != self.members.len() {
             return Err(PathError::model(
@@ -324,6 +419,54 @@ impl ElasticModel {
         Ok(self)
     }
 
+    /// Checks the clusters: at least three nodes, each in range, no segment joining a node
+    /// to itself, k and L₀ finite and positive, c finite and ≥ 0; an error names `cluster c`.
+    fn check_clusters(&self) -> Result<()> {
+        let n = self.nodes.len();
+        for (c, cl) in self.clusters.iter().enumerate() {
+            let name = format!("cluster {c}");
+            if cl.nodes.len() < 3 {
+                return Err(PathError::model(
+                    name,
+                    format!(
+                        "passes through {} node(s): a cluster runs through at least three",
+                        cl.nodes.len()
+                    ),
+                ));
+            }
+            if let Some(&bad) = cl.nodes.iter().find(|&&i| i >= n) {
+                return Err(PathError::model(
+                    name,
+                    format!("node {bad} does not exist ({n} nodes)"),
+                ));
+            }
+            if let Some([a, _]) = cl.segments().find(|[a, b]| a == b) {
+                return Err(PathError::model(
+                    name,
+                    format!("a segment joins node {a} to itself"),
+                ));
+            }
+            for (what, v, unit) in [
+                ("stiffness k", cl.stiffness, "N/m"),
+                ("rest length", cl.rest_length, "m"),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(PathError::model(
+                        name,
+                        format!("its {what} {v} {unit} must be finite and positive"),
+                    ));
+                }
+            }
+            if !(cl.damping.is_finite() && cl.damping >= 0.0) {
+                return Err(PathError::model(
+                    name,
+                    format!("its damping {} N s/m must be finite and ≥ 0", cl.damping),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Refuses stiffnesses (members' EA/L₀, elastic supports' k) whose ratio exceeds
     /// [`MAX_STIFFNESS_RATIO`], naming the stiffest and the softest item: the tangent's
     /// eigenvalues and Newton's corrections carry about 16 digits relative to the stiffest,
@@ -339,7 +482,12 @@ impl ElasticModel {
             s.stiffness
                 .map(|v| (format!("support {k} (node {}): stiffness", s.node), v))
         });
-        let all: Vec<(String, f64)> = members.chain(supports).collect();
+        let clusters = self
+            .clusters
+            .iter()
+            .enumerate()
+            .map(|(c, cl)| (format!("cluster {c}: stiffness"), cl.stiffness));
+        let all: Vec<(String, f64)> = members.chain(supports).chain(clusters).collect();
         let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
         let (Some(stiff), Some(soft)) = (all.iter().max_by(by), all.iter().min_by(by)) else {
             return Ok(());
@@ -460,6 +608,7 @@ impl ElasticModel {
                 rest_length,
             });
         }
+        let clusters = elastic_clusters(s)?;
         let supports = s
             .supports()
             .iter()
@@ -487,6 +636,7 @@ impl ElasticModel {
         Self {
             nodes: x.to_vec(),
             members,
+            clusters,
             supports,
             load,
             drivers: Drivers {
@@ -496,6 +646,34 @@ impl ElasticModel {
         }
         .validated()
     }
+}
+
+/// The clusters of a scene's structure ([`crate::clusters`]): their `stiffness` k, their
+/// `rest_length` (default: their length in the scene, no prestress) and `damping`; a cluster
+/// without a stiffness, or with pulley friction (not modelled), is an error naming it.
+fn elastic_clusters(s: &Structure) -> Result<Vec<ElasticCluster>> {
+    let mut out = Vec::with_capacity(s.clusters().len());
+    for (c, cl) in s.clusters().iter().enumerate() {
+        if !cl.is_frictionless() {
+            return Err(PathError::model(
+                format!("cluster {c}"),
+                "pulley friction (the capstan law) is not modelled yet: give it no `friction` (frictionless pulleys)",
+            ));
+        }
+        let Some(stiffness) = cl.stiffness else {
+            return Err(PathError::model(
+                format!("cluster {c}"),
+                "an elastic cluster needs a stiffness (N/m, of the whole cluster) in the scene",
+            ));
+        };
+        out.push(ElasticCluster {
+            nodes: cl.nodes.clone(),
+            stiffness,
+            rest_length: cl.rest_length.unwrap_or_else(|| cl.length(s.nodes())),
+            damping: cl.damping,
+        });
+    }
+    Ok(out)
 }
 
 /// The diagonal of the bounding box of `nodes` (m): a structure's size, the scale of its

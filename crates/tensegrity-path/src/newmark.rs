@@ -172,6 +172,17 @@ impl Newmark {
             },
             &states,
         ));
+        // the clusters' dashpots: (2/h) c g gᵀ while taut
+        t.extend(crate::clusters::rank_one_triplets(
+            model,
+            dofs,
+            &states,
+            |c| {
+                let damping = model.clusters[c].damping;
+                let taut = !states[model.cluster_states(c).start].slack;
+                (damping > 0.0 && taut).then_some(2.0 / h * damping)
+            },
+        ));
         t
     }
 }

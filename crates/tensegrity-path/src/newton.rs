@@ -90,6 +90,7 @@ pub fn tolerance(
         .zip(states)
         .map(|(m, s)| m.ea / s.rest_length)
         .chain(springs)
+        .chain(model.clusters.iter().map(|c| c.stiffness))
         .fold(0.0, f64::max);
     let size = x.iter().map(|v| v.norm()).fold(1e-3, f64::max);
     (RELATIVE_TOLERANCE * load.max(tension)).max(64.0 * f64::EPSILON * stiff * size)
@@ -99,7 +100,8 @@ pub fn tolerance(
 /// what the drivers do to the resisting forces ([`crate::forces::driven_forces`]) — the
 /// right-hand side of the path's tangent, K v = dλ this.
 pub fn load_rate(model: &ElasticModel, dofs: &Dofs, states: &[MemberState]) -> DVector<f64> {
-    let driven = crate::forces::driven_forces(model, states, &dofs.held_motion);
+    let mut driven = crate::forces::driven_forces(model, states, &dofs.held_motion);
+    crate::clusters::add_driven_forces(model, states, &dofs.held_motion, &mut driven);
     let mut f: Vec<Vector3<f64>> = model.load.iter().zip(&driven).map(|(p, d)| p - d).collect();
     // a spring whose anchor moves: its resisting force k d d·(u − λ a) falls by k d (d·a)
     for s in &dofs.springs {

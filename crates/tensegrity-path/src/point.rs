@@ -16,9 +16,10 @@ pub struct PathPoint {
     pub displacements: Vec<[f64; 3]>,
     /// The largest node displacement (m).
     pub max_displacement: f64,
-    /// Each member's tension (N, compression negative).
+    /// Each member's tension (N, compression negative), then each cluster's (index
+    /// `members + c` is cluster c: [`crate::clusters`]).
     pub tensions: Vec<f64>,
-    /// The slack strings (member indices).
+    /// The slack strings and clusters (indices as in `tensions`).
     pub slack: Vec<usize>,
     /// The reactions: node, the held direction, the force along it (N).
     pub reactions: Vec<Reaction>,
@@ -84,7 +85,7 @@ pub enum Event {
     /// the slack set held (the others within the residual tolerance of zero there go with it;
     /// [`crate::arclength`]).
     Slackened {
-        /// Their indices.
+        /// Their indices (as in [`PathPoint::tensions`]: clusters after the members).
         members: Vec<usize>,
         /// The load factor where the set of slack strings changed.
         lambda: f64,
@@ -93,7 +94,7 @@ pub enum Event {
     },
     /// Slack strings took tension again; located alike.
     Retensioned {
-        /// Their indices.
+        /// Their indices (as in [`PathPoint::tensions`]: clusters after the members).
         members: Vec<usize>,
         /// The load factor where the set of slack strings changed.
         lambda: f64,

@@ -1,6 +1,7 @@
 //! The tangent stiffness K = dR/dx on the free coordinates (crate docs): per taut member
 //! K_k = (EA/L₀) n nᵀ + (t/L)(I − n nᵀ) on [[K_k, −K_k], [−K_k, K_k]], projected onto each
-//! node's free directions, and k d dᵀ per spring of an elastic support ([`crate::dofs::Spring`]):
+//! node's free directions, the clusters' k g gᵀ + Σ (t/l_i)(I − e_i e_iᵀ)
+//! ([`crate::clusters`]), and k d dᵀ per spring of an elastic support ([`crate::dofs::Spring`]):
 //! [`tangent_stiffness`] dense, [`tangent_triplets`] as triplets for the sparse
 //! factorisations of large structures ([`crate::factor`]).
 
@@ -18,6 +19,7 @@ use nalgebra::{DMatrix, Matrix3};
 /// // a bar along x, node 0 pinned: EA/L₀ along x, t/L across
 /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 100.0, rest_length: 1.0 };
 /// let m = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+///     clusters: Vec::new(),
 ///     supports: vec![Support::pinned(0)], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
 /// let x = [Vector3::zeros(), Vector3::new(1.1, 0.0, 0.0)];
 /// let k = tangent_stiffness(&m, &Dofs::of(&m).unwrap(), &member_states(&m, &x, 0.0));
@@ -56,6 +58,7 @@ pub fn tangent_triplets(
         states,
     );
     t.extend(spring_triplets(dofs));
+    t.extend(crate::clusters::cluster_triplets(model, dofs, states));
     t
 }
 

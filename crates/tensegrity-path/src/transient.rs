@@ -15,7 +15,8 @@
 //! stepped over by the implicit Newmark method ([`crate::newmark`]).
 //!
 //! The energy E = T + U − (P + W)ᵀ(x − x₀), T = ½ ẋᵀMẋ, U = Σ ½ EA (L − L₀)²/L₀ over the
-//! taut members, plus the work the dashpots dissipated, is constant along the exact
+//! taut members and Σ ½ k (L − L₀)² over the taut clusters ([`crate::clusters`]: one tension
+//! along all the segments of a clustered string, its dashpot c L̇), plus the work the dashpots dissipated, is constant along the exact
 //! solution; its largest relative change is the run's `energy_drift`.
 //!
 //! [`ElasticDynamics`] is a [`System`] for the explicit methods of `tensegrity-dynamics`
@@ -181,6 +182,7 @@ impl ElasticDynamics {
     ///     Masses, MemberKind};
     /// let bar = ElasticMember { nodes: [0, 1], kind: MemberKind::Bar, ea: 1.0, rest_length: 1.0 };
     /// let model = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![bar],
+    ///     clusters: Vec::new(),
     ///     supports: vec![], load: vec![Vector3::zeros(); 2], drivers: Default::default() };
     /// let masses = Masses { members: vec![1.0], nodes: vec![0.0; 2],
     ///     distribution: MassDistribution::Lumped };
@@ -425,6 +427,18 @@ impl ElasticDynamics {
                 }
             }
         }
+        // a cluster's dashpot c L̇, the total clipped at zero, on all its segments
+        for (c, cluster) in self.model.clusters.iter().enumerate() {
+            let range = self.model.cluster_states(c);
+            if cluster.damping == 0.0 || states[range.start].slack {
+                continue;
+            }
+            let rate = crate::clusters::cluster_rate(&self.model, c, &states, v);
+            let t = (states[range.start].tension + cluster.damping * rate).max(0.0);
+            for s in &mut states[range] {
+                s.tension = t;
+            }
+        }
         states
     }
 
@@ -438,24 +452,29 @@ impl ElasticDynamics {
         f: &mut [Vector3<f64>],
     ) -> std::result::Result<(), CoreError> {
         f.copy_from_slice(&self.applied);
-        for (k, (m, s)) in self
+        for (k, ([a, b], s)) in self
             .model
-            .members
-            .iter()
+            .state_nodes()
             .zip(self.member_states(x, v))
             .enumerate()
         {
             let pull = s.direction * s.tension;
             if !pull.iter().all(|c| c.is_finite()) {
-                return Err(DynamicsError::NonFiniteState {
-                    t,
-                    member: self.member_ids[k],
-                    hint: StepHint::Unknown,
+                return Err(match self.member_ids.get(k) {
+                    Some(&member) => DynamicsError::NonFiniteState {
+                        t,
+                        member,
+                        hint: StepHint::Unknown,
+                    },
+                    None => DynamicsError::Diverged {
+                        t,
+                        what: "a clustered string's tension is not finite",
+                    },
                 }
                 .into());
             }
-            f[m.nodes[0]] += pull;
-            f[m.nodes[1]] -= pull;
+            f[a] += pull;
+            f[b] -= pull;
         }
         // elastic supports: −k d dᵀ u at their nodes
         for spring in &self.dofs.springs {
@@ -526,7 +545,8 @@ impl ElasticDynamics {
                     let u = sp.direction.dot(&(x[sp.node] - self.model.nodes[sp.node]));
                     0.5 * sp.stiffness * u * u
                 })
-                .sum::<f64>();
+                .sum::<f64>()
+            + crate::clusters::strain_energy(&self.model, &member_states(&self.model, &x, 0.0));
         let load = -x
             .iter()
             .zip(&self.model.nodes)
@@ -546,14 +566,28 @@ impl ElasticDynamics {
         }
     }
 
-    /// The power the dashpots dissipate at a state, Σ c_k L̇_k² (W; a slack string's none).
+    /// The power the dashpots dissipate at a state, Σ c_k L̇_k² (W; a slack string's none),
+    /// the clusters' c L̇² included.
     pub fn dissipation(&self, y: &[f64]) -> f64 {
-        if self.damping.is_empty() {
+        let clustered = self.model.clusters.iter().any(|c| c.damping > 0.0);
+        if self.damping.is_empty() && !clustered {
             return 0.0;
         }
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
         let states = member_states(&self.model, &x, 0.0);
         let mut p = 0.0;
+        for (c, cluster) in self.model.clusters.iter().enumerate() {
+            let s = &states[self.model.cluster_states(c).start];
+            if cluster.damping > 0.0 && !s.slack {
+                let rate = crate::clusters::cluster_rate(&self.model, c, &states, &v);
+                let t = s.tension + cluster.damping * rate;
+                p += if t < 0.0 {
+                    -s.tension * rate
+                } else {
+                    cluster.damping * rate * rate
+                };
+            }
+        }
         for ((s, m), &c) in states.iter().zip(&self.model.members).zip(&self.damping) {
             if c > 0.0 && !s.slack {
                 let rate = s.direction.dot(&(v[m.nodes[1]] - v[m.nodes[0]]));
@@ -570,16 +604,17 @@ impl ElasticDynamics {
         p
     }
 
-    /// Every member's tension at a state (N, bars then strings in the model's order),
-    /// dashpots included; a rigid bar's −μ L from its constraint force (NaN where the
-    /// constraint system cannot be solved).
+    /// Every member's tension at a state (N, bars then strings in the model's order, then
+    /// one per cluster: [`crate::clusters`]), dashpots included; a rigid bar's −μ L from its
+    /// constraint force (NaN where the constraint system cannot be solved).
     pub fn member_forces(&self, y: &[f64]) -> Vec<f64> {
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
-        let mut forces: Vec<f64> = self
+        let tensions: Vec<f64> = self
             .member_states(&x, &v)
             .iter()
             .map(|s| s.tension)
             .collect();
+        let mut forces = self.model.reported(&tensions);
         if let Some(bars) = &self.rigid {
             match self.multipliers(y) {
                 Ok(mu) => {
@@ -614,7 +649,7 @@ impl ElasticDynamics {
             }
             let y = self.initial_state();
             let forces = self.member_forces(&y);
-            for (k, s) in states.iter_mut().enumerate() {
+            for (k, s) in states.iter_mut().enumerate().take(bars.is_rigid.len()) {
                 if bars.is_rigid[k] {
                     s.tension = if forces[k].is_finite() {
                         forces[k]

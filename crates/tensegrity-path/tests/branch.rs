@@ -44,6 +44,7 @@ fn column() -> ElasticModel {
             string(2),
             string(3),
         ],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support {

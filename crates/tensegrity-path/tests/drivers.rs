@@ -29,6 +29,7 @@ fn series(drivers: Drivers) -> ElasticModel {
     ElasticModel {
         nodes: vec![Vector3::zeros(), Vector3::z(), Vector3::new(0.0, 0.0, 2.0)],
         members: vec![a, b],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support {

@@ -26,6 +26,7 @@ fn string_on_spring(k_s: f64, ea: f64, p0: f64, p: f64) -> ElasticModel {
     ElasticModel {
         nodes: vec![Vector3::zeros(), Vector3::new(2.0, 0.0, 0.0)],
         members: vec![string],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0).elastic(k_s),
             Support::along(1, vec![Vector3::y(), Vector3::z()]),
@@ -96,6 +97,7 @@ fn leaning_bar(u: f64, w: f64) -> (ElasticModel, f64, f64) {
     let model = ElasticModel {
         nodes: vec![Vector3::zeros(), Vector3::new(1.0, 0.0, 1.0)],
         members: vec![bar],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::along(1, vec![Vector3::x(), Vector3::y()]).elastic(k),
@@ -159,6 +161,7 @@ fn a_driven_anchor_moves_its_node_through_the_spring() {
     let model = ElasticModel {
         nodes: vec![Vector3::zeros(), Vector3::new(l0, 0.0, 0.0)],
         members: vec![bar],
+        clusters: Vec::new(),
         supports: vec![Support::pinned(0).elastic(k), Support::pinned(1)],
         load: vec![Vector3::zeros(); 2],
         drivers: tensegrity_path::model::Drivers {

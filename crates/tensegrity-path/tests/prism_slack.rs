@@ -144,6 +144,7 @@ fn prism() -> ElasticModel {
     ElasticModel {
         nodes,
         members,
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::along(1, vec![Vector3::x(), Vector3::z()]),

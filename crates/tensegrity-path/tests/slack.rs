@@ -37,6 +37,7 @@ fn rod() -> ElasticModel {
                 rest_length: lb,
             },
         ],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support {

@@ -76,6 +76,7 @@ fn padded_column() -> ElasticModel {
     ElasticModel {
         nodes,
         members,
+        clusters: Vec::new(),
         supports,
         load,
         drivers: Default::default(),

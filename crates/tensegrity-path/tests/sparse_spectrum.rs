@@ -67,6 +67,7 @@ fn tower(stages: usize) -> ElasticModel {
         load[3 * stages + i] = Vector3::new(force, 0.0, -force);
     }
     ElasticModel {
+        clusters: Vec::new(),
         supports: (0..3).map(Support::pinned).collect(),
         nodes,
         members,

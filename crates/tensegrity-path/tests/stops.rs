@@ -56,6 +56,7 @@ fn truss_with_a_driven_string() -> ElasticModel {
                 rest_length: 10.0,
             },
         ],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::along(1, vec![Vector3::x(), Vector3::z()]),
@@ -134,6 +135,7 @@ fn strings() -> ElasticModel {
     ElasticModel {
         nodes: vec![Vector3::zeros(), Vector3::z(), Vector3::new(0.0, 0.0, 2.0)],
         members: vec![string([0, 1]), string([1, 2])],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::along(1, vec![Vector3::x(), Vector3::y()]),

@@ -19,6 +19,7 @@ fn oscillator(kind: MemberKind, ea: f64, m: f64, c: f64, stretch: f64) -> Elasti
             ea,
             rest_length: 1.0,
         }],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::along(1, vec![Vector3::y(), Vector3::z()]),
@@ -90,6 +91,7 @@ fn a_mass_on_an_elastic_support_oscillates_at_the_closed_form() {
         nodes: vec![Vector3::zeros()],
         members: vec![],
         // held rigidly across the spring's direction, on the spring along it
+        clusters: Vec::new(),
         supports: vec![
             Support::along(
                 0,
@@ -137,6 +139,7 @@ fn a_free_bars_axial_frequency_is_the_closed_forms() {
                 ea,
                 rest_length: 1.0,
             }],
+            clusters: Vec::new(),
             supports: vec![],
             load: vec![Vector3::zeros(); 2],
             drivers: Default::default(),
@@ -200,6 +203,7 @@ fn models_that_cannot_run_are_refused_naming_the_item() {
             ea: 100.0,
             rest_length: 1.0,
         }],
+        clusters: Vec::new(),
         supports: vec![Support::pinned(0)],
         load: vec![Vector3::zeros(); 2],
         drivers: Default::default(),

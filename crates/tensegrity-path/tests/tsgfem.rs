@@ -75,6 +75,7 @@ fn example(name: &str) -> Example {
     let model = ElasticModel {
         nodes,
         members,
+        clusters: Vec::new(),
         supports,
         load: (0..n)
             .map(|i| Vector3::new(load[3 * i], load[3 * i + 1], load[3 * i + 2]))

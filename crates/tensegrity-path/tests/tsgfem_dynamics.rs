@@ -73,6 +73,7 @@ fn example(name: &str) -> Example {
     let model = ElasticModel {
         nodes,
         members,
+        clusters: Vec::new(),
         supports: vec![],
         load: vec![Vector3::zeros(); n],
         drivers: Default::default(),

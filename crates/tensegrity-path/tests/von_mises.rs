@@ -34,6 +34,7 @@ fn truss() -> ElasticModel {
             Vector3::new(0.0, H, 0.0),
         ],
         members: vec![bar(0), bar(1)],
+        clusters: Vec::new(),
         supports: vec![
             Support::pinned(0),
             Support::pinned(1),

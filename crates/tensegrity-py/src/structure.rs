@@ -98,6 +98,8 @@ fn dense(m: &nalgebra::DMatrix<f64>) -> Value {
 pub fn matrices(data: &Map<String, Value>) -> Result<Value, Failure> {
     let scene = scene(data)?;
     let s = &scene.structure;
+    s.refuse_clusters("the connectivity and equilibrium matrices")
+        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     let c = Connectivity::of(s);
     let dofs = DofMap::of(s);
     Ok(json!({

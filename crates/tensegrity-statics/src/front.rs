@@ -139,9 +139,9 @@ pub trait StaticsBackend {
     /// Rank of A.
     fn rank(&self) -> usize;
 
-    /// Dimension of the self-stress space, members − rank.
+    /// Dimension of the self-stress space, columns (members and clusters) − rank.
     fn self_stress_dim(&self) -> usize {
-        self.structure().n_members() - self.rank()
+        crate::n_columns(self.structure()) - self.rank()
     }
 
     /// First-order mechanisms, free dofs − rank (rigid-body motions included).

@@ -6,6 +6,13 @@
 //! the member's start node and +m_k at the rows of its end node (m_k = n_end − n_start). Rows
 //! of fixed degrees of freedom are removed from A; their reactions are reported separately.
 //!
+//! **Clustered strings** ([`tensegrity_core::Cluster`]) add one column each, after the bars
+//! and the strings: its unknown is q_c = t_c / L_c (the tension over the cluster's total
+//! length), its column Σ_i (L_c / l_i) m_i over its segments, distributed as a string's
+//! ([`cluster_columns`]). The dense SVD ([`Statics`]) models them; the sparse, nested and
+//! cyclic back-ends refuse them, naming the cluster ([`backend`] takes the dense SVD for a
+//! structure with clusters when the method is automatic).
+//!
 //! **Supports.** A support holds its node along the x, y, z axes it flags and along any
 //! further unit directions (`along`, any orientation; [`tensegrity_core::Support`]). With
 //! e₁ … e_k an orthonormal basis of the held directions (Gram–Schmidt) and f_1 … f_{3−k} one
@@ -42,6 +49,7 @@
 //! back-ends of one front, [`StaticsBackend`] ([`front`]); [`backend`] and [`cyclic_backend`]
 //! choose one (`select.rs`), and [`report::report_from`] builds the statics report from any.
 
+pub mod cluster_columns;
 mod dense_lp;
 mod flexes;
 pub mod front;
@@ -62,6 +70,7 @@ mod stability;
 pub mod stiffness;
 pub mod symmetry;
 
+pub use cluster_columns::{column_lengths, column_name, n_columns};
 pub use flexes::Flexes;
 pub use front::{Certification, Factorization, SelfStressBasis, StaticsBackend};
 pub use gap::{SpectralGap, GAP_FACTOR};
@@ -337,7 +346,8 @@ fn complete_frame(basis: &[Vector3<f64>]) -> Matrix3<f64> {
     Matrix3::from_columns(&[b0, e1, e2])
 }
 
-/// The full equilibrium matrix (3n × members, no rows removed), node-major rows.
+/// The full equilibrium matrix (3n × columns: members, then clusters; no rows removed),
+/// node-major rows.
 ///
 /// ```
 /// use tensegrity_core::{Bar, Structure};
@@ -352,7 +362,7 @@ fn complete_frame(basis: &[Vector3<f64>]) -> Matrix3<f64> {
 /// ```
 pub fn equilibrium_matrix_full(structure: &Structure) -> DMatrix<f64> {
     let n = structure.n_nodes();
-    let mut a = DMatrix::zeros(3 * n, structure.n_members());
+    let mut a = DMatrix::zeros(3 * n, n_columns(structure));
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
         let m = structure.nodes()[j] - structure.nodes()[i];
         for d in 0..3 {
@@ -360,12 +370,23 @@ pub fn equilibrium_matrix_full(structure: &Structure) -> DMatrix<f64> {
             a[(3 * j + d, k)] = m[d];
         }
     }
+    let nm = structure.n_members();
+    for (c, geometry) in cluster_columns::cluster_geometries(structure)
+        .iter()
+        .enumerate()
+    {
+        for (node, v) in geometry.column() {
+            for d in 0..3 {
+                a[(3 * node + d, nm + c)] += v[d];
+            }
+        }
+    }
     a
 }
 
 /// The equilibrium matrix restricted to free degrees of freedom.
 pub fn equilibrium_matrix(structure: &Structure, dofs: &DofMap) -> DMatrix<f64> {
-    let mut a = DMatrix::zeros(dofs.len(), structure.n_members());
+    let mut a = DMatrix::zeros(dofs.len(), n_columns(structure));
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
         let m = structure.nodes()[j] - structure.nodes()[i];
         for d in 0..3 {
@@ -374,6 +395,19 @@ pub fn equilibrium_matrix(structure: &Structure, dofs: &DofMap) -> DMatrix<f64> 
             }
             if let Some(r) = dofs.row[j][d] {
                 a[(r, k)] = dofs.component(j, d, &m);
+            }
+        }
+    }
+    let nm = structure.n_members();
+    for (c, geometry) in cluster_columns::cluster_geometries(structure)
+        .iter()
+        .enumerate()
+    {
+        for (node, v) in geometry.column() {
+            for d in 0..3 {
+                if let Some(r) = dofs.row[node][d] {
+                    a[(r, nm + c)] += dofs.component(node, d, &v);
+                }
             }
         }
     }
@@ -552,7 +586,7 @@ impl<'a> Statics<'a> {
     /// Factors the equilibrium matrix of `structure`.
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
         let dofs = DofMap::of(structure);
-        let (m, n) = (dofs.len(), structure.n_members());
+        let (m, n) = (dofs.len(), n_columns(structure));
         let bytes = dense_statics_bytes(m, n);
         let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
         if bytes > limit {
@@ -632,9 +666,10 @@ impl<'a> Statics<'a> {
         self.a.nrows() - self.rank
     }
 
-    /// An orthonormal basis of the self-stress space (one column per state, members bars first).
+    /// An orthonormal basis of the self-stress space (one column per state; rows: bars,
+    /// strings, then clusters).
     ///
-    /// Each state is oriented so that its strings sum to a positive value (when they sum to
+    /// Each state is oriented so that its strings (and clusters) sum to a positive value (when they sum to
     /// zero, its first significant entry is positive), which makes a one-dimensional basis
     /// unique.
     pub fn self_stress_basis(&self) -> DMatrix<f64> {

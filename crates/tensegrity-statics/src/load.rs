@@ -23,9 +23,10 @@ pub const LOAD_RESIDUAL_TOLERANCE: f64 = 1e-8;
 /// The solution of a load problem.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadSolution {
-    /// Force densities q (N/m, tension positive), bars then strings.
+    /// Force densities q (N/m, tension positive), bars, strings, then clusters (q_c = t_c /
+    /// L_c).
     pub force_density: DVector<f64>,
-    /// Axial forces q·l (N, tension positive).
+    /// Axial forces q·l (N, tension positive; a cluster's tension t_c = q_c L_c).
     pub member_force: DVector<f64>,
     /// `(node, reaction)` for every supported node, in support order (free directions of a
     /// partially supported node carry 0).
@@ -72,7 +73,7 @@ pub(super) fn assemble_solution(
     r: DVector<f64>,
 ) -> LoadSolution {
     let w_norm = dofs.gather(w_nodes).norm();
-    let lengths = structure.member_lengths();
+    let lengths = crate::column_lengths(structure);
     let member_force = DVector::from_iterator(q.len(), q.iter().zip(&lengths).map(|(q, l)| q * l));
     let residual = r.norm();
     let relative_residual = if w_norm > 0.0 { residual / w_norm } else { 0.0 };
@@ -84,6 +85,16 @@ pub(super) fn assemble_solution(
         let t = structure.member_vector(k) * q[k];
         internal[i] -= t;
         internal[j] += t;
+    }
+    // a cluster's column: q_c L_c g (−t e_i at a segment's start, +t e_i at its end)
+    let nm = structure.n_members();
+    for (c, g) in crate::cluster_columns::cluster_geometries(structure)
+        .iter()
+        .enumerate()
+    {
+        for (node, v) in g.column() {
+            internal[node] += v * q[nm + c];
+        }
     }
     // the node's unbalance projected on its held axes (x, y, z, or its frame's held ones)
     let reactions = structure

@@ -469,6 +469,7 @@ pub enum Orientation {
 impl<'a> NestedStatics<'a> {
     /// Orders, factors and estimates σ_min(R_acc).
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
+        crate::cluster_columns::refuse_clusters_in(structure, "nested-dissection QR")?;
         let dofs = DofMap::of(structure);
         let a = equilibrium_matrix_sparse(structure, &dofs)?;
         let (m, n) = (dofs.len(), structure.n_members());
@@ -511,6 +512,7 @@ impl<'a> NestedStatics<'a> {
         structure: &'a Structure,
         settings: StaticsSettings,
     ) -> Result<Self> {
+        crate::cluster_columns::refuse_clusters_in(structure, "nested-dissection QR")?;
         let dofs = DofMap::of(structure);
         let a = equilibrium_matrix_sparse(structure, &dofs)?;
         let (m, n) = (dofs.len(), structure.n_members());

@@ -67,7 +67,8 @@ impl MemberSign {
         }
     }
 
-    /// The prestressability signs of a structure: bars in compression, strings in tension.
+    /// The prestressability signs of a structure: bars in compression, strings and clusters
+    /// (after the strings) in tension.
     ///
     /// ```
     /// use tensegrity_statics::MemberSign;
@@ -80,13 +81,12 @@ impl MemberSign {
     /// assert_eq!(MemberSign::standard(&s), vec![MemberSign::Compression]);
     /// ```
     pub fn standard(structure: &tensegrity_core::structure::Structure) -> Vec<MemberSign> {
-        let nb = structure.n_bars();
-        (0..structure.n_members())
+        (0..crate::n_columns(structure))
             .map(|k| {
-                if k < nb {
-                    MemberSign::Compression
-                } else {
+                if crate::cluster_columns::is_tension_only(structure, k) {
                     MemberSign::Tension
+                } else {
+                    MemberSign::Compression
                 }
             })
             .collect()

@@ -55,7 +55,8 @@ pub struct RankTolerance {
     /// e: the rounding of the coordinates (m; 0 for exact data or under a caller's
     /// tolerance).
     pub rounding: f64,
-    /// τ_d = 2e √(6 n_members): the largest singular value the rounding can create.
+    /// τ_d = 2e √(6 n_members): the largest singular value the rounding can create (a
+    /// cluster counts each segment i with the weight (L_c / l_i)², the scale of its entries).
     pub data: f64,
     /// Whether the spectrum is searched (false under a caller's tolerance: τ₀ decides).
     pub search: bool,
@@ -78,7 +79,12 @@ impl RankTolerance {
             Some(_) => 0.0,
             None => input_rounding(structure, input_precision),
         };
-        let data = 2.0 * rounding * (6.0 * structure.n_members() as f64).sqrt();
+        // a cluster's column holds its segments' vectors scaled by L_c / l_i
+        let clustered: f64 = crate::cluster_columns::cluster_geometries(structure)
+            .iter()
+            .flat_map(|g| g.segments.iter().map(|s| (g.length / s.length).powi(2)))
+            .sum();
+        let data = 2.0 * rounding * (6.0 * (structure.n_members() as f64 + clustered)).sqrt();
         Self {
             base,
             rounding,

@@ -3,7 +3,10 @@
 //! One call ([`statics_report`]) runs, in order:
 //!
 //! 1. the SVD of the equilibrium matrix A (A q = w, q tension-positive force densities, bars
-//!    then strings): rank r, self-stress dimension s = members − r, mechanisms m = dofs − r,
+//!    then strings then clustered strings, [`crate::cluster_columns`]: every per-member
+//!    array of the report, `force_density`, `member_force`, `self_stress`, `prestress` and
+//!    the sizing, has that order, a cluster's force its tension t_c = q_c L_c): rank r,
+//!    self-stress dimension s = columns − r, mechanisms m = dofs − r,
 //!    the orthonormal self-stress basis and the smallest singular value;
 //! 2. prestressability (the max-margin LP) and, when prestressable, prestress stability of the
 //!    max-margin stress; internal mechanisms (first-order flexes beyond rigid-body motions);
@@ -66,6 +69,11 @@ pub struct StaticsReport {
     pub bars: usize,
     /// Number of strings.
     pub strings: usize,
+    /// Number of clustered strings (left out of the JSON when 0); their entries follow the
+    /// strings' in every per-member array (`cluster 0`, …; [`crate::cluster_columns`]).
+    #[serde(skip_serializing_if = "is_zero")]
+    #[column(skip)]
+    pub clusters: usize,
     /// Rank of the equilibrium matrix.
     pub rank: usize,
     /// Dimension of the self-stress space.
@@ -81,7 +89,7 @@ pub struct StaticsReport {
     /// Prestress stability with the max-margin stress (only when prestressable).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prestress_stable: Option<bool>,
-    /// Orthonormal self-stress basis (force densities), members bars then strings.
+    /// Orthonormal self-stress basis (force densities), members bars, strings, then clusters.
     pub self_stress: Vec<Vec<f64>>,
     /// Set when `self_stress` is left empty although the space is not: why (its dimension
     /// and size; see [`SELF_STRESS_LIST_MAX`](super::sparse::SELF_STRESS_LIST_MAX)).
@@ -174,6 +182,10 @@ pub struct StaticsReport {
     pub linear_response: Option<LinearResponse>,
 }
 
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 /// Runs every statics analysis of one structure (see the module documentation).
 ///
 /// ```
@@ -227,10 +239,11 @@ fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
             notes.push(format!(
                 "prestressability not computed (prestressable and prestress_margin are not answers): {e}"
             ));
-            Prestressability::none(structure.n_members())
+            Prestressability::none(super::n_columns(structure))
         }
         Err(e) => return Err(e),
     };
+    notes.extend(crate::cluster_columns::friction_note(structure));
     let internal_mechanisms = backend.internal_mechanisms()?;
     if let Certification::NotCertified { reason } = backend.certification() {
         notes.push(reason);
@@ -269,6 +282,7 @@ fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
         nodes: structure.n_nodes(),
         bars: structure.n_bars(),
         strings: structure.n_strings(),
+        clusters: structure.clusters().len(),
         rank: backend.rank(),
         self_stress_dim: backend.self_stress_dim(),
         mechanisms: backend.mechanisms(),
@@ -316,7 +330,8 @@ fn add_load_solve(
         report.unbalanced_nodes = Some(sol.unbalanced.iter().map(|(n, _)| *n).collect());
     }
     let has_materials = (0..structure.n_members())
-        .any(|k| structure.member_material(structure.member_id(k)).is_some());
+        .any(|k| structure.member_material(structure.member_id(k)).is_some())
+        || structure.clusters().iter().any(|c| c.material.is_some());
     if has_materials && carried {
         match sizing::size_structure_lenient(structure, &sol.member_force) {
             Ok((s, compressed)) => add_sizing(&s, &compressed, report),
@@ -338,10 +353,12 @@ fn add_load_solve(
 
 /// Copies a sizing into the report, with a warning naming the compressed strings.
 fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsReport) {
-    if !compressed.is_empty() {
-        let names: Vec<String> = compressed.iter().map(|id| id.to_string()).collect();
+    let names: Vec<String> = (compressed.iter().map(|id| id.to_string()))
+        .chain(s.compressed_clusters.iter().map(|c| format!("cluster {c}")))
+        .collect();
+    if !names.is_empty() {
         report.sizing_warning = Some(format!(
-            "the minimal-norm solution puts {} in compression; sized for yield on |force|, but a string cannot carry compression: add prestress (a self-stress) or make it a bar",
+            "the minimal-norm solution puts {} in compression; sized for yield on |force|, but a string (or cluster) cannot carry compression: add prestress (a self-stress) or make it a bar",
             names.join(", ")
         ));
     }

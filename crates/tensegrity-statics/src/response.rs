@@ -12,7 +12,9 @@
 //!
 //! K_k = k_k e_k e_kᵀ + (t₀_k / l_k)(I₃ − e_k e_kᵀ)   (material + geometric)
 //!
-//! on its two nodes, plus k d dᵀ for each held direction d of an elastic support, whose node
+//! on its two nodes, and for each clustered string K_c = k_c g gᵀ + t₀_c Σ_i (1/l_i)(I₃ −
+//! e_i e_iᵀ) over its segments (g = ∂L_c/∂x; t₀_c = k_c (L_c − L₀) when taut:
+//! [`crate::cluster_columns`]), plus k d dᵀ for each held direction d of an elastic support, whose node
 //! stays free ([`DofMap::stiffness_of`], [`stiffness::tangent_stiffness`]).
 //!
 //! **Partition.** The coordinates are each node's three axes (x, y, z, or the frame of a node
@@ -34,7 +36,7 @@
 //! a warning.
 //!
 //! **Results.** u = (u_f, d_p) on every node; the member force change
-//! Δt_k = k_k e_k·(u_j − u_i) (member from node i to node j); the reaction of a rigid support,
+//! Δt_k = k_k e_k·(u_j − u_i) (member from node i to node j), a cluster's Δt_c = k_c gᵀu; the reaction of a rigid support,
 //! the force it exerts on the node, (K u − P)_p = K_pf u_f + K_pp d_p − P_p along its held
 //! directions (as [`Reaction`], the load solve's shape); of an elastic support, its springs'
 //! force k d (d·(a − u)). A string with t₀ + Δt < 0 would go slack: the linear answer is then
@@ -60,6 +62,7 @@
 //! assert!((r.reactions[1].force[0] + 5.0).abs() < 1e-9);
 //! ```
 
+use crate::cluster_columns::cluster_geometries;
 use crate::reaction::Reaction;
 use crate::stiffness;
 use crate::DofMap;
@@ -84,11 +87,12 @@ pub struct LinearResponse {
     /// The displacement u of every node (m, x, y, z); held coordinates carry their prescribed
     /// value.
     pub displacements: Vec<[f64; 3]>,
-    /// The change Δt of every member's axial force (N, tension positive; bars then strings,
-    /// as `member_force`).
+    /// The change Δt of every member's axial force (N, tension positive; bars, strings, then
+    /// clusters, as `member_force`: a cluster's Δt = k_c δL_c).
     pub member_force_change: Vec<f64>,
-    /// The force state t₀ the stiffness is taken about (N, tension positive, bars then
-    /// strings): the strings' from their rest lengths, the bars' balancing them.
+    /// The force state t₀ the stiffness is taken about (N, tension positive, bars, strings,
+    /// then clusters): the strings' and clusters' from their rest lengths, the bars'
+    /// balancing them.
     pub initial_force: Vec<f64>,
     /// The reaction of every support (N), the force it exerts on its node, in support order
     /// (an elastic support's: its springs' force).
@@ -98,6 +102,10 @@ pub struct LinearResponse {
     /// The strings (their indices among the strings) whose force t₀ + Δt is negative: they
     /// would go slack, and the linear answer is outside its assumptions.
     pub slack: Vec<usize>,
+    /// The clusters (their indices among the clusters) that would go slack, as `slack`
+    /// (left out of the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub slack_clusters: Vec<usize>,
     /// What the numbers need beside them: strings that would go slack, an unstable or
     /// unbalanced force state.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -132,7 +140,7 @@ pub fn linear_response(
     let axial = stiffness::axial_stiffness(structure)?;
     let mut warnings = Vec::new();
     let t0 = prestress(structure, &mut warnings)?;
-    let lengths = structure.member_lengths();
+    let lengths = crate::column_lengths(structure);
     let q = DVector::from_iterator(t0.len(), t0.iter().zip(&lengths).map(|(t, l)| t / l));
     let springs = spring_matrices(structure);
     let prescribed = prescribed_motion(structure, &dofs, &given)?;
@@ -162,17 +170,20 @@ pub fn linear_response(
         .zip(&prescribed)
         .map(|(free, held)| free + held)
         .collect();
-    let member_force_change: Vec<f64> = structure
-        .member_nodes()
-        .into_iter()
-        .enumerate()
+    let nm = structure.n_members();
+    let member_force_change: Vec<f64> = (structure.member_nodes().into_iter().enumerate())
         .map(|(k, [i, j])| {
             let e = structure.member_vector(k) / lengths[k];
             axial[k] * e.dot(&(u[j] - u[i]))
         })
+        .chain(
+            (cluster_geometries(structure).iter().enumerate())
+                .map(|(c, g)| axial[nm + c] * g.length_change(&u)),
+        )
         .collect();
     let reactions = reactions(structure, &dofs, &q, &axial, &springs, &u, &force, &given);
-    let slack = slack_strings(structure, &t0, &member_force_change, &mut warnings);
+    let (slack, slack_clusters) =
+        slack_strings(structure, &t0, &member_force_change, &mut warnings);
     Ok(LinearResponse {
         max_displacement: u.iter().map(|v| v.norm()).fold(0.0, f64::max),
         displacements: u.iter().map(|v| [v.x, v.y, v.z]).collect(),
@@ -180,6 +191,7 @@ pub fn linear_response(
         initial_force: t0.iter().copied().collect(),
         reactions,
         slack,
+        slack_clusters,
         warnings,
     })
 }
@@ -208,6 +220,15 @@ fn check_axial_stiffness(structure: &Structure) -> Result<()> {
             return Err(missing(MemberId::String(i), "stiffness"));
         }
     }
+    for (c, cluster) in structure.clusters().iter().enumerate() {
+        if cluster.stiffness.is_none() {
+            return Err(stiffness::missing_cluster_property(
+                c,
+                "the linear response (an axial stiffness)",
+                "stiffness",
+            ));
+        }
+    }
     Ok(())
 }
 
@@ -215,13 +236,20 @@ fn check_axial_stiffness(structure: &Structure) -> Result<()> {
 /// minimal-norm forces balancing them; a balance that fails (the rest lengths realise no
 /// self-stress) is a warning.
 fn prestress(structure: &Structure, warnings: &mut Vec<String>) -> Result<DVector<f64>> {
-    let lengths = structure.member_lengths();
+    let lengths = crate::column_lengths(structure);
     let nb = structure.n_bars();
-    let mut q = DVector::zeros(structure.n_members());
+    let nm = structure.n_members();
+    let mut q = DVector::zeros(lengths.len());
     for (i, s) in structure.strings().iter().enumerate() {
         let l = lengths[nb + i];
         if let (Some(k), Some(l0)) = (s.stiffness, s.rest_length) {
             q[nb + i] = if l > l0 { k * (l - l0) / l } else { 0.0 };
+        }
+    }
+    for (c, cluster) in structure.clusters().iter().enumerate() {
+        let l = lengths[nm + c];
+        if let (Some(k), Some(l0)) = (cluster.stiffness, cluster.rest_length) {
+            q[nm + c] = if l > l0 { k * (l - l0) / l } else { 0.0 };
         }
     }
     if q.iter().all(|&v| v == 0.0) {
@@ -343,6 +371,13 @@ fn resisting_forces(
         f[i] += g;
         f[j] -= g;
     }
+    let nm = structure.n_members();
+    for (c, geometry) in cluster_geometries(structure).iter().enumerate() {
+        let t = q[nm + c] * geometry.length;
+        for (a, b, block) in geometry.stiffness_blocks(axial[nm + c], t) {
+            f[a] += block * u[b];
+        }
+    }
     for (support, ks) in structure.supports().iter().zip(springs) {
         if let Some(ks) = ks {
             f[support.node] += ks * u[support.node];
@@ -431,24 +466,30 @@ fn reactions(
         .collect()
 }
 
-/// The strings whose force t₀ + Δt is negative (indices among the strings), with a warning
-/// naming them.
+/// The strings and the clusters (indices among their kind) whose force t₀ + Δt is
+/// negative, with a warning naming them.
 fn slack_strings(
     structure: &Structure,
     t0: &DVector<f64>,
     change: &[f64],
     warnings: &mut Vec<String>,
-) -> Vec<usize> {
+) -> (Vec<usize>, Vec<usize>) {
     let nb = structure.n_bars();
+    let nm = structure.n_members();
     let slack: Vec<usize> = (0..structure.n_strings())
         .filter(|&i| t0[nb + i] + change[nb + i] < 0.0)
         .collect();
-    if !slack.is_empty() {
-        let names: Vec<String> = slack.iter().map(|i| format!("string {i}")).collect();
+    let clusters: Vec<usize> = (0..structure.clusters().len())
+        .filter(|&c| t0[nm + c] + change[nm + c] < 0.0)
+        .collect();
+    let names: Vec<String> = (slack.iter().map(|i| format!("string {i}")))
+        .chain(clusters.iter().map(|c| format!("cluster {c}")))
+        .collect();
+    if !names.is_empty() {
         warnings.push(format!(
             "{} would go slack (t + Δt < 0): the linear response is outside its assumptions (strings carry no compression); `solve` follows the slack strings",
             names.join(", ")
         ));
     }
-    slack
+    (slack, clusters)
 }

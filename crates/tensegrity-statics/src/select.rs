@@ -15,6 +15,9 @@
 //!   SVD when it fits the memory budget and the work limit, and is otherwise returned as is.
 //!   `method = Dense` or `Sparse` forces that back-end; a structure with a support along
 //!   directions of any orientation (`along`, which the blocks do not know) takes [`backend`].
+//! - A structure with clustered strings takes the dense SVD, the only back-end that models
+//!   them ([`crate::cluster_columns`]); `method = Sparse`, or an automatic method whose SVD
+//!   would not fit, is refused naming the cluster, never answered without it.
 
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
 use super::{
@@ -29,7 +32,7 @@ use tensegrity_core::structure::Structure;
 /// beyond it would run for minutes unannounced, so the uncertified decision is returned
 /// (flagged) instead.
 fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
-    let (m, n) = (DofMap::of(structure).len(), structure.n_members());
+    let (m, n) = (DofMap::of(structure).len(), super::n_columns(structure));
     let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
     let work = tensegrity_core::budget::dense_statics(m, n, "").work_s;
     dense_statics_bytes(m, n) <= limit && work <= tensegrity_core::budget::DEFAULT_MAX_WORK_S
@@ -65,6 +68,9 @@ pub fn backend<'a>(
     structure: &'a Structure,
     settings: StaticsSettings,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
+    if structure.has_clusters() {
+        return clustered(structure, settings);
+    }
     if wants_sparse(structure, &settings) {
         let fallback = settings.method == StaticsMethod::Auto && dense_fits(structure, &settings);
         if settings.method == StaticsMethod::Auto && super::nested::prefers_nested(structure) {
@@ -83,6 +89,30 @@ pub fn backend<'a>(
         if sparse.is_certified() || !fallback {
             return Ok(Box::new(sparse));
         }
+    }
+    Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+/// A structure with clusters: the dense SVD, the only back-end that models them, unless the
+/// method names another (the sparse QR: refused, naming the cluster) or the SVD does not fit
+/// the memory budget and the default work limit under the automatic method (refused, naming
+/// the cluster, rather than a back-end that would drop it).
+fn clustered<'a>(
+    structure: &'a Structure,
+    settings: StaticsSettings,
+) -> Result<Box<dyn StaticsBackend + 'a>> {
+    match settings.method {
+        StaticsMethod::Sparse => {
+            crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?
+        }
+        StaticsMethod::Auto if !dense_fits(structure, &settings) => {
+            return Err(tensegrity_core::error::ModelError::InvalidCluster {
+                cluster: 0,
+                reason: "the dense SVD, the only back-end of the statics that models clustered strings, does not fit the memory budget or the work limit of this structure, and the sparse back-ends would leave the clusters out: give their segments as strings, or raise the limits".into(),
+            }
+            .into())
+        }
+        _ => {}
     }
     Ok(Box::new(Statics::with_settings(structure, settings)?))
 }
@@ -132,6 +162,9 @@ pub fn cyclic_backend<'a>(
     symmetry: &'a CyclicSymmetry,
     settings: StaticsSettings,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
+    if structure.has_clusters() {
+        return clustered(structure, settings);
+    }
     match settings.method {
         StaticsMethod::Dense => return Ok(Box::new(Statics::with_settings(structure, settings)?)),
         StaticsMethod::Sparse => {

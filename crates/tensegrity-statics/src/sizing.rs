@@ -11,6 +11,11 @@
 //!   be in tension ([`StaticsError::StringInCompression`](tensegrity_core::error::StaticsError::StringInCompression) otherwise).
 //!
 //! Total mass is Σ ρ π r² l (eq. 4.60–4.61 times density).
+//!
+//! A clustered string ([`tensegrity_core::Cluster`]) is sized like a string from its tension
+//! t_c (its force, after the strings) and its material, over its total length L_c: r_Y =
+//! √(t_c / (π σ_Y)), m = (ρ/σ_Y) t_c L_c; in compression it is an error (the lenient sizing
+//! lists it in [`SizingReport::compressed_clusters`]).
 
 use nalgebra::DVector;
 use std::f64::consts::PI;
@@ -198,16 +203,20 @@ pub fn size_bar(material: &Material, force: f64, length: f64) -> MemberSize {
 /// Sizes of every member of a structure for given member forces.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SizingReport {
-    /// One entry per member, bars then strings.
+    /// One entry per column: bars, strings, then clusters (a cluster sized like a string
+    /// from its tension, over its total length).
     pub members: Vec<MemberSize>,
     /// Σ mass of the bars (kg).
     pub bar_mass: f64,
-    /// Σ mass of the strings (kg).
+    /// Σ mass of the strings and clusters (kg).
     pub string_mass: f64,
     /// Total mass (kg).
     pub total_mass: f64,
     /// Total mass if only yield were considered (kg).
     pub yield_only_mass: f64,
+    /// The clusters (indices among the clusters) that the lenient sizing found in
+    /// compression and sized for yield on |t| ([`size_structure_lenient`]).
+    pub compressed_clusters: Vec<usize>,
 }
 
 /// Sizes every member of `structure` for the axial forces `member_force` (bars then strings,
@@ -252,62 +261,48 @@ fn size_members(
     lenient: bool,
 ) -> Result<(SizingReport, Vec<MemberId>)> {
     let mut compressed = Vec::new();
-    let lengths = structure.member_lengths();
+    let mut compressed_clusters = Vec::new();
+    let lengths = crate::column_lengths(structure);
     let f_scale = member_force.amax();
     let mut members = Vec::with_capacity(lengths.len());
     let (mut bar_mass, mut string_mass, mut yield_only) = (0.0, 0.0, 0.0);
     for (k, &l) in lengths.iter().enumerate() {
-        let id = structure.member_id(k);
         let mut f = member_force[k];
         if f.abs() <= 1e-12 * f_scale {
             f = 0.0;
         }
-        let material = match structure.member_material(id) {
-            Some(m) => m,
-            None if f == 0.0 => {
-                members.push(MemberSize {
-                    force: 0.0,
-                    length: l,
-                    radius: 0.0,
-                    mass: 0.0,
-                    yield_mass: 0.0,
-                    buckling_mass: None,
-                    governing: Governing::Unloaded,
-                });
-                continue;
-            }
-            None => {
-                return Err(ModelError::MissingProperty {
-                    member: id,
-                    analysis: "sizing",
-                    property: "material",
-                }
-                .into())
-            }
+        let Some(material) = column_material(structure, k, f)? else {
+            members.push(MemberSize {
+                force: 0.0,
+                length: l,
+                radius: 0.0,
+                mass: 0.0,
+                yield_mass: 0.0,
+                buckling_mass: None,
+                governing: Governing::Unloaded,
+            });
+            continue;
         };
-        let size = match id {
-            MemberId::Bar(_) => {
+        let size = match crate::cluster_columns::column_member(structure, k) {
+            Some(MemberId::Bar(_)) => {
                 let s = size_bar(material, f, l);
                 bar_mass += s.mass;
                 s
             }
-            MemberId::String(_) => {
+            id => {
                 let s = match size_string(material, f, l) {
                     Some(s) => s,
                     None if lenient => {
-                        compressed.push(id);
+                        match id {
+                            Some(id) => compressed.push(id),
+                            None => compressed_clusters.push(k - structure.n_members()),
+                        }
                         MemberSize {
                             force: f,
                             ..size_bar(material, -f, l)
                         }
                     }
-                    None => {
-                        return Err(StaticsError::StringInCompression {
-                            member: id,
-                            force: f,
-                        }
-                        .into())
-                    }
+                    None => return Err(in_compression(structure, k, f)),
                 };
                 string_mass += s.mass;
                 s
@@ -322,6 +317,50 @@ fn size_members(
         string_mass,
         total_mass: bar_mass + string_mass,
         yield_only_mass: yield_only,
+        compressed_clusters,
     };
     Ok((report, compressed))
+}
+
+/// The material of column `k` (a member's, or a cluster's `material`); `None` for an
+/// unloaded column without one; an error naming a loaded one without.
+fn column_material(structure: &Structure, k: usize, f: f64) -> Result<Option<&Material>> {
+    let material = match crate::cluster_columns::column_member(structure, k) {
+        Some(id) => structure.member_material(id),
+        None => structure.clusters()[k - structure.n_members()]
+            .material
+            .as_deref()
+            .and_then(|name| structure.materials().get(name)),
+    };
+    match (material, f == 0.0) {
+        (Some(m), _) => Ok(Some(m)),
+        (None, true) => Ok(None),
+        (None, false) => Err(match crate::cluster_columns::column_member(structure, k) {
+            Some(member) => ModelError::MissingProperty {
+                member,
+                analysis: "sizing",
+                property: "material",
+            }
+            .into(),
+            None => crate::stiffness::missing_cluster_property(
+                k - structure.n_members(),
+                "sizing",
+                "material",
+            ),
+        }),
+    }
+}
+
+/// The error of a string or cluster (column `k`) in compression `f`.
+fn in_compression(structure: &Structure, k: usize, f: f64) -> tensegrity_core::CoreError {
+    match crate::cluster_columns::column_member(structure, k) {
+        Some(member) => StaticsError::StringInCompression { member, force: f }.into(),
+        None => ModelError::InvalidCluster {
+            cluster: k - structure.n_members(),
+            reason: format!(
+                "in compression ({f:.6e} N) for the loads: a cluster carries tension only; add prestress (a self-stress) or replace it with bars"
+            ),
+        }
+        .into(),
+    }
 }

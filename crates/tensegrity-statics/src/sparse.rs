@@ -126,6 +126,7 @@ const REJECT_FACTOR: f64 = 1e3;
 
 /// The sparse equilibrium matrix A (free dofs × members), rows as [`DofMap`] numbers them.
 pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result<CscMatrix> {
+    crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?;
     let mut t = Vec::with_capacity(6 * structure.n_members());
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
         let m = structure.nodes()[j] - structure.nodes()[i];
@@ -384,6 +385,7 @@ impl<'a> SparseStatics<'a> {
     /// Orders, bounds the memory against the budget of `settings`, factors and builds the
     /// orthonormal self-stress basis.
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
+        crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?;
         let dofs = DofMap::of(structure);
         let a = equilibrium_matrix_sparse(structure, &dofs)?;
         let (row_order, pos_of_row) = row_ordering(structure, &dofs);

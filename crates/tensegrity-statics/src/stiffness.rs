@@ -23,10 +23,16 @@
 //! its node, which it leaves free ([`DofMap::stiffness_of`]); a node held along directions
 //! of any orientation has the blocks on its free axes, F_iᵀ K_k F_j ([`DofMap::local_block`]).
 //!
+//! A clustered string adds its own blocks, K_c = k_c g gᵀ + t_c Σ_i (1/l_i) P_i per
+//! segment (g = ∂L_c/∂x couples every node of the cluster), and to the stress matrix its
+//! geometric part t_c Σ_i (1/l_i) P_i ([`crate::cluster_columns`]); q, the axial stiffnesses
+//! and the force densities have one entry per column, the clusters after the members.
+//!
 //! Modal analysis solves K φ = ω² M φ with the lumped mass M (half of each bar's mass at each
 //! of its ends; strings are massless), on the free dofs of [`DofMap::stiffness_of`] (a node
 //! on a spring moves, and needs mass).
 
+use crate::cluster_columns::cluster_geometries;
 use crate::DofMap;
 pub use crate::{Flexes, PrestressStability};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -63,6 +69,39 @@ fn assemble(
     k_mat
 }
 
+/// Adds 3×3 blocks (row node, column node, block in x, y, z) to the free-dof matrix, on the
+/// nodes' axes: the clusters' blocks
+/// ([`ClusterGeometry::stiffness_blocks`](crate::cluster_columns::ClusterGeometry::stiffness_blocks)).
+fn add_blocks(dofs: &DofMap, k_mat: &mut DMatrix<f64>, blocks: &[(usize, usize, Matrix3<f64>)]) {
+    for (a, c, b) in blocks {
+        let b = dofs.local_block(*a, *c, b);
+        for d1 in 0..3 {
+            let Some(r) = dofs.row[*a][d1] else { continue };
+            for d2 in 0..3 {
+                if let Some(col) = dofs.row[*c][d2] {
+                    k_mat[(r, col)] += b[(d1, d2)];
+                }
+            }
+        }
+    }
+}
+
+/// Adds every cluster's tangent stiffness (module docs of [`crate::cluster_columns`]) with
+/// force densities `q` and axial stiffnesses `axial` (their entries after the members').
+fn add_clusters(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    axial: &[f64],
+    k_mat: &mut DMatrix<f64>,
+) {
+    let nm = structure.n_members();
+    for (c, g) in cluster_geometries(structure).iter().enumerate() {
+        let t = q[nm + c] * g.length;
+        add_blocks(dofs, k_mat, &g.stiffness_blocks(axial[nm + c], t));
+    }
+}
+
 /// Adds the springs of the elastic supports that `dofs` leaves free (Σ k d dᵀ on their
 /// nodes' axes, [`DofMap::stiffness_of`]) to `k_mat`.
 fn add_springs(dofs: &DofMap, k_mat: &mut DMatrix<f64>) {
@@ -97,7 +136,10 @@ fn add_springs(dofs: &DofMap, k_mat: &mut DMatrix<f64>) {
 /// assert_eq!((k[(0, 0)], k[(0, 3)]), (2.0, -2.0));
 /// ```
 pub fn stress_matrix(structure: &Structure, dofs: &DofMap, q: &DVector<f64>) -> DMatrix<f64> {
-    assemble(structure, dofs, |k| Matrix3::identity() * q[k])
+    let mut omega = assemble(structure, dofs, |k| Matrix3::identity() * q[k]);
+    let zero = vec![0.0; q.len()];
+    add_clusters(structure, dofs, q, &zero, &mut omega);
+    omega
 }
 
 /// The tangent stiffness (material + geometric) on the free degrees of freedom for force
@@ -132,15 +174,17 @@ pub fn tangent_stiffness(
         let eet = e * e.transpose();
         eet * axial[k] + (Matrix3::identity() - eet) * q[k]
     });
+    add_clusters(structure, dofs, q, axial, &mut k_mat);
     add_springs(dofs, &mut k_mat);
     k_mat
 }
 
-/// Axial stiffness of every member: k for strings (0 when slack at the current length), E·πr²/l
-/// for bars with a material and a radius.
+/// Axial stiffness of every column: k for strings (0 when slack at the current length), E·πr²/l
+/// for bars with a material and a radius, then k of each cluster (of its whole length; 0 when
+/// slack, L_c ≤ L₀).
 pub fn axial_stiffness(structure: &Structure) -> Result<Vec<f64>> {
     let lengths = structure.member_lengths();
-    (0..structure.n_members())
+    let mut axial = (0..structure.n_members())
         .map(|k| match structure.member_id(k) {
             MemberId::Bar(i) => {
                 let bar = &structure.bars()[i];
@@ -168,15 +212,42 @@ pub fn axial_stiffness(structure: &Structure) -> Result<Vec<f64>> {
                 Ok(if taut { k_s } else { 0.0 })
             }
         })
-        .collect()
+        .collect::<Result<Vec<f64>>>()?;
+    for (c, cluster) in structure.clusters().iter().enumerate() {
+        let k_c = cluster
+            .stiffness
+            .ok_or_else(|| missing_cluster_property(c, "tangent stiffness", "stiffness"))?;
+        let length = cluster.length(structure.nodes());
+        let taut = cluster.rest_length.is_none_or(|l0| length > l0);
+        axial.push(if taut { k_c } else { 0.0 });
+    }
+    Ok(axial)
+}
+
+/// The error of cluster `c` without a `property` that `analysis` needs.
+pub(crate) fn missing_cluster_property(c: usize, analysis: &str, property: &str) -> CoreError {
+    ModelError::InvalidCluster {
+        cluster: c,
+        reason: format!("{analysis} needs its {property}, which is not given"),
+    }
+    .into()
 }
 
 /// Force densities of the strings from their rest lengths, q = k(1 − s0/l) when taut, else 0
-/// (bars get 0: their forces follow from equilibrium).
+/// (bars get 0: their forces follow from equilibrium), then of the clusters, q_c = t_c / L_c
+/// = k(1 − L₀/L_c) when taut, else 0.
 pub fn string_force_densities(structure: &Structure) -> Result<DVector<f64>> {
     let lengths = structure.member_lengths();
     let nb = structure.n_bars();
-    let mut q = DVector::zeros(structure.n_members());
+    let nm = structure.n_members();
+    let mut q = DVector::zeros(crate::n_columns(structure));
+    for (c, cluster) in structure.clusters().iter().enumerate() {
+        let missing = |property| missing_cluster_property(c, "the string tension", property);
+        let k = cluster.stiffness.ok_or_else(|| missing("stiffness"))?;
+        let l0 = cluster.rest_length.ok_or_else(|| missing("rest_length"))?;
+        let l = cluster.length(structure.nodes());
+        q[nm + c] = if l > l0 { k * (1.0 - l0 / l) } else { 0.0 };
+    }
     for (i, s) in structure.strings().iter().enumerate() {
         let missing = |property| {
             CoreError::Model(ModelError::MissingProperty {

@@ -105,7 +105,7 @@ pub enum ModelError {
         known: String,
     },
     /// A node that no member touches.
-    #[error("node {node} is isolated: no bar or string is attached to it")]
+    #[error("node {node} is isolated: no bar, string or cluster is attached to it")]
     IsolatedNode {
         /// The isolated node.
         node: usize,
@@ -134,6 +134,25 @@ pub enum ModelError {
         support: usize,
         /// What is wrong, naming the direction.
         reason: String,
+    },
+    /// A clustered string that cannot be built: too few nodes, a segment of zero length, a
+    /// friction coefficient per pulley missing or extra, or a segment that duplicates a
+    /// member.
+    #[error("cluster {cluster}: {reason}")]
+    InvalidCluster {
+        /// Index of the cluster.
+        cluster: usize,
+        /// What is wrong, naming the segment or node.
+        reason: String,
+    },
+    /// A structure with clustered strings given to an analysis that does not model them
+    /// (rather than leave them out).
+    #[error("cluster {cluster}: clustered strings are not modelled by {analysis}: give its segments as [[strings]] there, or use an analysis that models clusters")]
+    ClustersNotModelled {
+        /// The first cluster.
+        cluster: usize,
+        /// The analysis, e.g. `the rigid-bar dynamics`.
+        analysis: &'static str,
     },
     /// A list whose length must match the number of nodes or members does not.
     #[error("{what}: expected {expected} entries, got {found}")]
@@ -190,6 +209,9 @@ impl ModelError {
             Self::DuplicateSupport { support, .. }
             | Self::EmptySupport { support }
             | Self::InvalidSupport { support, .. } => Some(format!("support {support}")),
+            Self::InvalidCluster { cluster, .. } | Self::ClustersNotModelled { cluster, .. } => {
+                Some(format!("cluster {cluster}"))
+            }
             _ => None,
         }
     }

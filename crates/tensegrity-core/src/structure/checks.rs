@@ -6,7 +6,9 @@
 //! member in this order: its end nodes in range, not a self-loop, not a duplicate of an
 //! earlier member (the same unordered pair {a, b}; the error names the first member with that
 //! pair), not of zero length (‖n_b − n_a‖ ≤ 10⁻¹² · max(‖n_a‖, ‖n_b‖, 1)); then, unless
-//! isolated nodes are allowed, every node on a member.
+//! isolated nodes are allowed, every node on a member. The clusters come after
+//! ([`check_clusters`]): each on its own ([`Cluster::check`]), then no segment duplicating a
+//! member or an earlier segment, then every node on a member or a cluster.
 //!
 //! Duplicates are found without hashing: a counting sort of the pairs on their smaller node
 //! (each bucket in member order), then each bucket scanned (small) or sorted on the larger
@@ -14,6 +16,7 @@
 //! per member before.
 
 use super::{Bar, StringMember};
+use crate::cluster::Cluster;
 use crate::error::{CoreError, ModelError, Result};
 use crate::member_id::MemberId;
 use nalgebra::Vector3;
@@ -182,4 +185,64 @@ pub(super) fn first_duplicate(pairs: &[[usize; 2]], n: usize) -> Option<(usize, 
         }
     }
     best
+}
+
+/// The clusters' checks (module docs): each on its own, no segment duplicating a bar, a
+/// string or an earlier segment (the error names the cluster, the segment and the other),
+/// then, unless isolated nodes are allowed, every node on a member or a cluster. A hash map
+/// of the member pairs is built only when there are clusters.
+pub(super) fn check_clusters(
+    nodes: &[Vector3<f64>],
+    bars: &[Bar],
+    strings: &[StringMember],
+    clusters: &[Cluster],
+    allow_isolated: bool,
+) -> Result<()> {
+    for (k, c) in clusters.iter().enumerate() {
+        c.check(k, nodes)?;
+    }
+    if !clusters.is_empty() {
+        let key = |[a, b]: [usize; 2]| (a.min(b), a.max(b));
+        let mut seen: std::collections::HashMap<(usize, usize), String> = bars
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (key(b.nodes), MemberId::Bar(i).to_string()))
+            .chain(
+                (strings.iter().enumerate())
+                    .map(|(i, s)| (key(s.nodes), MemberId::String(i).to_string())),
+            )
+            .collect();
+        for (k, c) in clusters.iter().enumerate() {
+            for (i, pair) in c.segments().enumerate() {
+                let name = format!("segment {i} of cluster {k}");
+                if let Some(other) = seen.insert(key(pair), name) {
+                    return Err(ModelError::InvalidCluster {
+                        cluster: k,
+                        reason: format!(
+                            "segment {i} (nodes {} and {}) duplicates {other}",
+                            pair[0], pair[1]
+                        ),
+                    }
+                    .into());
+                }
+            }
+        }
+    }
+    if !allow_isolated {
+        let mut touched = vec![false; nodes.len()];
+        let ends = bars
+            .iter()
+            .map(|b| b.nodes)
+            .chain(strings.iter().map(|s| s.nodes));
+        for i in ends
+            .flatten()
+            .chain(clusters.iter().flat_map(|c| c.nodes.iter().copied()))
+        {
+            touched[i] = true;
+        }
+        if let Some(node) = touched.iter().position(|&t| !t) {
+            return Err(ModelError::IsolatedNode { node }.into());
+        }
+    }
+    Ok(())
 }

@@ -7,7 +7,9 @@
 //! `mass` (default massless), every `[[masses]]` point mass, distributed by
 //! `[simulation] mass_matrix` (lumped, the default, or consistent), the strings' `damping`
 //! as axial dashpots, the scene's loads from t = 0 and the weights under `[gravity]`; supports
-//! along any direction (`along`) and on springs (`stiffness`) as in `solve`.
+//! along any direction (`along`) and on springs (`stiffness`) as in `solve`; `[[clusters]]`
+//! (clustered strings over frictionless pulleys, massless: `tensegrity_path::clusters`) with
+//! their `stiffness`, `rest_length` and `damping`.
 //!
 //! The same request ([`SimulateCommand`]) and report ([`SimulationReport`]: its constraint
 //! drift is zero, the supports holding exactly, and its bar-length drift that of the rigid

@@ -5,8 +5,8 @@
 //! [`SceneArrays::from_structure`] give the columns of a scene or structure back.
 
 use super::{
-    ActuationSpec, BarSpec, GravitySpec, GroundSpec, LoadSpec, MaterialSpec, PointMassSpec, Scene,
-    SceneFile, SimulationSpec, StringSpec, SupportSpec,
+    ActuationSpec, BarSpec, ClusterSpec, GravitySpec, GroundSpec, LoadSpec, MaterialSpec,
+    PointMassSpec, Scene, SceneFile, SimulationSpec, StringSpec, SupportSpec,
 };
 use crate::error::{IoError, Result};
 use serde::{Deserialize, Serialize};
@@ -95,6 +95,37 @@ pub struct SceneArrays {
     /// String material names, one per string.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub string_material: Option<Vec<Option<String>>>,
+    /// Clustered strings: the nodes each passes through, in order, 0-based.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub clusters: Vec<Vec<i64>>,
+    /// Cluster axial stiffnesses (N/m, of the whole cluster), one per cluster.
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub cluster_stiffness: Option<Vec<Option<f64>>>,
+    /// Cluster rest lengths (m, of the whole cluster), one per cluster.
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub cluster_rest_length: Option<Vec<Option<f64>>>,
+    /// Cluster damping (N·s/m; unset: 0), one per cluster.
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub cluster_damping: Option<Vec<Option<f64>>>,
+    /// The pulleys' friction coefficients of each cluster (one per inner node; `null`:
+    /// frictionless), one entry per cluster.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cluster_friction: Option<Vec<Option<Vec<f64>>>>,
+    /// Cluster material names, one per cluster.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cluster_material: Option<Vec<Option<String>>>,
     /// Supports: the node and its fixed directions x, y, z.
     #[serde(default)]
     pub supports: Vec<(i64, [bool; 3])>,
@@ -234,6 +265,20 @@ impl SceneArrays {
             rest_length: column(strings.iter().map(|s| s.rest_length)),
             damping: damped.then(|| strings.iter().map(|s| Some(s.damping)).collect()),
             string_material: column(strings.iter().map(|s| s.material.clone())),
+            clusters: (structure.clusters().iter())
+                .map(|c| c.nodes.iter().map(|&i| index(i)).collect())
+                .collect(),
+            cluster_stiffness: column(structure.clusters().iter().map(|c| c.stiffness)),
+            cluster_rest_length: column(structure.clusters().iter().map(|c| c.rest_length)),
+            cluster_damping: (structure.clusters().iter().any(|c| c.damping != 0.0)).then(|| {
+                structure
+                    .clusters()
+                    .iter()
+                    .map(|c| Some(c.damping))
+                    .collect()
+            }),
+            cluster_friction: column(structure.clusters().iter().map(|c| c.friction.clone())),
+            cluster_material: column(structure.clusters().iter().map(|c| c.material.clone())),
             supports: (structure.supports().iter())
                 .map(|s| (index(s.node), s.fixed))
                 .collect(),
@@ -338,6 +383,30 @@ impl SceneArrays {
             ("bar_elastic", self.bar_elastic.as_ref().map(Vec::len)),
             ("string_mass", numbers(&self.string_mass)),
         ];
+        let clusters = [
+            ("cluster_stiffness", numbers(&self.cluster_stiffness)),
+            ("cluster_rest_length", numbers(&self.cluster_rest_length)),
+            ("cluster_damping", numbers(&self.cluster_damping)),
+            (
+                "cluster_friction",
+                self.cluster_friction.as_ref().map(Vec::len),
+            ),
+            ("cluster_material", names(&self.cluster_material)),
+        ];
+        for (column, got) in clusters {
+            match got {
+                Some(got) if got != self.clusters.len() => {
+                    return Err(IoError::ColumnLength {
+                        file: file.to_string(),
+                        column,
+                        member: "cluster",
+                        expected: self.clusters.len(),
+                        got,
+                    })
+                }
+                _ => {}
+            }
+        }
         let supports = [
             ("support_along", self.support_along.as_ref().map(Vec::len)),
             ("support_stiffness", numbers(&self.support_stiffness)),
@@ -417,6 +486,21 @@ impl SceneArrays {
                 mass: entry(&self.string_mass, k),
             }));
         }
+        let mut clusters = Vec::with_capacity(self.clusters.len());
+        for (k, path) in self.clusters.iter().enumerate() {
+            let mut nodes = Vec::with_capacity(path.len());
+            for &i in path {
+                nodes.push(node_index(file, || format!("cluster {k}"), i, n)?);
+            }
+            clusters.push(unspanned(ClusterSpec {
+                nodes,
+                stiffness: entry(&self.cluster_stiffness, k),
+                rest_length: entry(&self.cluster_rest_length, k),
+                damping: entry(&self.cluster_damping, k),
+                friction: entry(&self.cluster_friction, k),
+                material: entry(&self.cluster_material, k),
+            }));
+        }
         let (supports, loads) = self.nodal_items(file)?;
         let mut masses = Vec::with_capacity(self.masses.len());
         for (k, &(node, mass)) in self.masses.iter().enumerate() {
@@ -429,6 +513,7 @@ impl SceneArrays {
             materials: self.materials,
             bars,
             strings,
+            clusters,
             supports,
             loads,
             gravity: self
@@ -488,7 +573,9 @@ fn used_materials(structure: &Structure) -> BTreeMap<String, MaterialSpec> {
         .strings()
         .iter()
         .filter_map(|s| s.material.as_deref());
+    let clusters = (structure.clusters().iter()).filter_map(|c| c.material.as_deref());
     bars.chain(strings)
+        .chain(clusters)
         .filter_map(|name| {
             let m = structure.materials().get(name)?;
             let spec = MaterialSpec {

@@ -42,6 +42,11 @@
 //! times = [0.0, 1.0]
 //! rest_lengths = [0.9, 0.8]
 //!
+//! [[actuation]]                # a clustered string's whole rest length: all its segments
+//! cluster = 0
+//! times = [0.0, 2.0]
+//! rest_lengths = [5.1, 4.6]
+//!
 //! [[actuation]]
 //! node = 5
 //! times = [0.0, 0.5]
@@ -190,13 +195,17 @@ pub struct GroundSpec {
     pub nodes: Option<Vec<usize>>,
 }
 
-/// One `[[actuation]]` table: a piecewise-linear time table for one string's rest length or
-/// one node's extra load.
+/// One `[[actuation]]` table: a piecewise-linear time table for one string's or one
+/// cluster's rest length, or one node's extra load.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActuationSpec {
     /// The string whose rest length is driven.
     pub string: Option<usize>,
+    /// The clustered string whose (whole) rest length is driven: one actuator for all its
+    /// segments.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cluster: Option<usize>,
     /// The node that gets the extra load.
     pub node: Option<usize>,
     /// Increasing times (s).
@@ -290,6 +299,20 @@ pub(crate) fn check_tables(
                 string: a.string.unwrap_or_default(),
                 first: format!("actuation {first}"),
             };
+            return Err(Box::new((e, Culprit::Actuation(k))));
+        }
+        *slot = Some(k);
+    }
+    let mut clusters: Vec<Option<usize>> = vec![None; structure.clusters().len()];
+    for (k, a) in actuation.iter().enumerate() {
+        let Some(slot) = a.cluster.and_then(|c| clusters.get_mut(c)) else {
+            continue;
+        };
+        if slot.is_some() {
+            let e = invalid(
+                format!("actuation {k}"),
+                "its cluster already has a rest-length table: give one table per cluster",
+            );
             return Err(Box::new((e, Culprit::Actuation(k))));
         }
         *slot = Some(k);
@@ -514,6 +537,29 @@ impl ActuationSpec {
             index,
             count,
         };
+        if let Some(c) = self.cluster {
+            let (Some(r), None, None, None) =
+                (&self.rest_lengths, &self.forces, self.string, self.node)
+            else {
+                return Err(invalid(
+                    table,
+                    "give `cluster` with `rest_lengths` only (no `string`, `node` or `forces`)",
+                ));
+            };
+            let count = structure.clusters().len();
+            if c >= count {
+                return Err(unknown("cluster", c, count));
+            }
+            if r.len() != self.times.len() {
+                return Err(invalid(table, "rest_lengths and times differ in length"));
+            }
+            if r.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(invalid(table, "rest lengths must be positive"));
+            }
+            // the schedule's slots: the strings', then the clusters'
+            let slot = structure.n_strings() + c;
+            return Ok(Actuation::RestLength((slot, self.times.clone(), r.clone())));
+        }
         match (self.string, self.node, &self.rest_lengths, &self.forces) {
             (Some(s), None, Some(r), None) => {
                 if s >= structure.n_strings() {
@@ -542,7 +588,7 @@ impl ActuationSpec {
             }
             _ => Err(invalid(
                 table,
-                "give either `string` with `rest_lengths` or `node` with `forces`",
+                "give either `string` (or `cluster`) with `rest_lengths` or `node` with `forces`",
             )),
         }
     }

@@ -89,6 +89,9 @@ pub struct SceneFile {
     /// Strings.
     #[serde(default)]
     pub strings: Vec<Spanned<StringSpec>>,
+    /// Clustered strings: one continuous string through several nodes (pulleys).
+    #[serde(default)]
+    pub clusters: Vec<Spanned<ClusterSpec>>,
     /// Supports.
     #[serde(default)]
     pub supports: Vec<Spanned<SupportSpec>>,
@@ -214,6 +217,25 @@ pub struct StringSpec {
     pub rest_length_change: Option<f64>,
     /// Its mass (kg), read by the elastic dynamics only ([`SceneFile::elastic_keys`]).
     pub mass: Option<f64>,
+}
+
+/// A `[[clusters]]` entry: a clustered string ([`tensegrity_core::Cluster`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClusterSpec {
+    /// The nodes it passes through, in order (at least three; inner nodes are pulleys).
+    pub nodes: Vec<usize>,
+    /// Axial stiffness of the whole cluster (N/m: EA/L₀).
+    pub stiffness: Option<f64>,
+    /// Rest length of the whole cluster (m).
+    pub rest_length: Option<f64>,
+    /// N·s/m, on the rate of its length.
+    pub damping: Option<f64>,
+    /// The friction coefficient μ of the pulley at each inner node (capstan law); absent:
+    /// frictionless.
+    pub friction: Option<Vec<f64>>,
+    /// Material name.
+    pub material: Option<String>,
 }
 
 /// A direction letter in a support.
@@ -633,6 +655,17 @@ impl SceneFile {
                 material: s.material.clone(),
             });
         }
+        for c in &self.clusters {
+            let c = c.get_ref();
+            b = b.cluster(tensegrity_core::Cluster {
+                nodes: c.nodes.clone(),
+                stiffness: c.stiffness,
+                rest_length: c.rest_length,
+                damping: c.damping.unwrap_or(0.0),
+                friction: c.friction.clone(),
+                material: c.material.clone(),
+            });
+        }
         for (i, sup) in self.supports.iter().enumerate() {
             let s = sup.get_ref();
             let fixed = match (&s.directions, s.fixed) {
@@ -680,6 +713,7 @@ impl SceneFile {
         let span = match kind.as_str() {
             "bar" => self.bars.get(*i)?.span(),
             "string" => self.strings.get(*i)?.span(),
+            "cluster" => self.clusters.get(*i)?.span(),
             "support" => self.supports.get(*i)?.span(),
             "load" => self.loads.get(*i)?.span(),
             "node" => self.nodes.get(*i)?.span(),
@@ -719,6 +753,9 @@ fn error_item(e: &CoreError) -> Option<(String, usize)> {
         | CoreError::Model(ModelError::ZeroLengthMember { member, .. })
         | CoreError::Model(ModelError::MemberLengthOverflow { member, .. }) => member.to_string(),
         CoreError::Model(ModelError::IsolatedNode { node }) => format!("node {node}"),
+        CoreError::Model(ModelError::InvalidCluster { cluster, .. }) => {
+            format!("cluster {cluster}")
+        }
         CoreError::Model(ModelError::DuplicateSupport { support, .. })
         | CoreError::Model(ModelError::EmptySupport { support })
         | CoreError::Model(ModelError::InvalidSupport { support, .. }) => {

@@ -11,12 +11,13 @@ use tensegrity_core::Structure;
 /// use tensegrity_io::scene::{to_toml, Scene};
 /// use tensegrity_core::{Bar, StringMember, Structure, Support};
 /// let s = Structure::builder()
-///     .nodes([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3], [1.0 / 3.0, 0.0, 1.0]])
+///     .nodes([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3], [1.0 / 3.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
 ///     .bar(Bar::new(0, 1).mass(2.0))
 ///     .string(StringMember::new(1, 2).stiffness(100.0).rest_length(0.5))
 ///     .string(StringMember::new(2, 0))
 ///     .support(Support::directions(0, [true, false, true]))
 ///     .support(Support::along(1, [[0.0, 0.6, 0.8]]).elastic(1e4))
+///     .cluster(tensegrity_core::Cluster::new([0, 3, 2]).stiffness(50.0).friction([0.2]))
 ///     .load(2, [0.0, 0.0, -5.0])
 ///     .build()
 ///     .unwrap();
@@ -72,6 +73,12 @@ fn write(structure: &Structure, file: Option<&SceneFile>) -> String {
                 .strings()
                 .iter()
                 .filter_map(|s| s.material.as_deref()),
+        )
+        .chain(
+            structure
+                .clusters()
+                .iter()
+                .filter_map(|c| c.material.as_deref()),
         )
         .collect();
     names.sort_unstable();
@@ -137,6 +144,26 @@ fn write(structure: &Structure, file: Option<&SceneFile>) -> String {
             if let Some(d) = spec.rest_length_change {
                 let _ = writeln!(out, "rest_length_change = {d:?}");
             }
+        }
+    }
+    for c in structure.clusters() {
+        let nodes: Vec<String> = c.nodes.iter().map(usize::to_string).collect();
+        let _ = write!(out, "\n[[clusters]]\nnodes = [{}]\n", nodes.join(", "));
+        if let Some(k) = c.stiffness {
+            let _ = writeln!(out, "stiffness = {k:?}");
+        }
+        if let Some(l0) = c.rest_length {
+            let _ = writeln!(out, "rest_length = {l0:?}");
+        }
+        if c.damping != 0.0 {
+            let _ = writeln!(out, "damping = {:?}", c.damping);
+        }
+        if let Some(mu) = &c.friction {
+            let mu: Vec<String> = mu.iter().map(|m| format!("{m:?}")).collect();
+            let _ = writeln!(out, "friction = [{}]", mu.join(", "));
+        }
+        if let Some(name) = &c.material {
+            let _ = writeln!(out, "material = \"{name}\"");
         }
     }
     for (i, s) in structure.supports().iter().enumerate() {

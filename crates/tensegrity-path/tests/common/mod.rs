@@ -38,6 +38,7 @@ pub fn von_mises_row(heights: &[f64]) -> ElasticModel {
     ElasticModel {
         nodes,
         members,
+        clusters: Vec::new(),
         supports,
         load,
         drivers: Default::default(),

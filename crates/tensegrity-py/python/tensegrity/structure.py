@@ -134,6 +134,33 @@ def _flags(value, count, name):
     return flags
 
 
+def _clusters(value):
+    """[[node, ...]] of the clustered strings: each a sequence of at least three node
+    indices (whole numbers)."""
+    out = []
+    for k, path in enumerate(value or ()):
+        a = np.asarray(path)
+        if a.ndim != 1 or (a.size and a.dtype.kind not in "iu" and not (
+                a.dtype.kind == "f" and np.all(np.isfinite(a)) and np.all(a == np.round(a)))):
+            raise InputError("clusters[{}]: expected a sequence of node indices".format(k))
+        out.append([int(i) for i in a])
+    return out
+
+
+def _per_cluster(value, count, name, convert):
+    """A per-cluster option: None (unset), or one entry per cluster (None: unset)."""
+    if value is None:
+        return None
+    values = list(value)
+    if len(values) != count:
+        raise InputError("{}: expected one entry per cluster ({}), got {}".format(
+            name, count, len(values)))
+    try:
+        return [None if v is None else convert(v) for v in values]
+    except (TypeError, ValueError) as e:
+        raise InputError("{}: {}".format(name, e)) from None
+
+
 def _loads(value, n_nodes):
     """[(node, force)] from a dict {node: force} or an (n, 3) array of nodal loads (rows of
     zeros left out)."""
@@ -215,6 +242,17 @@ class Structure:
         String masses (kg; elastic ``simulate``, and as dead load in ``solve``).
     masses : dict, optional
         ``{node: kg}``: point masses (elastic ``simulate``, and as dead load in ``solve``).
+    clusters : sequence of sequences of int, optional
+        Clustered strings: each the nodes one continuous string passes through, in order
+        (at least three; the inner ones are frictionless pulleys unless ``cluster_friction``).
+    cluster_stiffness, cluster_rest_length, cluster_damping : sequence of float, optional
+        Per cluster (None: unset): the whole cluster's stiffness k (N/m), rest length (m)
+        and damping (N s/m).
+    cluster_friction : sequence of sequences of float, optional
+        Per cluster (None: frictionless): the pulleys' friction coefficients, one per inner
+        node.
+    cluster_material : sequence of str, optional
+        Per cluster: material names.
     loads : dict or array_like, optional
         ``{node: (Fx, Fy, Fz)}`` (N), or an (n, 3) array of nodal loads.
     gravity : array_like, shape (3,), optional
@@ -241,7 +279,9 @@ class Structure:
                  gravity=None, velocities=None, simulation=None, ground=None, actuation=None,
                  support_along=None, support_stiffness=None, support_displacement=None,
                  bar_rest_length=None, bar_rest_length_change=None, rest_length_change=None,
-                 bar_elastic=None, string_mass=None, masses=None):
+                 bar_elastic=None, string_mass=None, masses=None, clusters=None,
+                 cluster_stiffness=None, cluster_rest_length=None, cluster_damping=None,
+                 cluster_friction=None, cluster_material=None):
         self.nodes = _matrix(nodes, 3, "nodes", np.float64)
         self.bars = _integers(bars, "bars")
         self.strings = _integers(strings, "strings")
@@ -266,6 +306,15 @@ class Structure:
         self.bar_elastic = _flags(bar_elastic, nb, "bar_elastic")
         self.string_mass = _per_member(string_mass, ns, "string_mass")
         self.masses = _by_node(masses, "masses", float)
+        self.clusters = _clusters(clusters)
+        nc = len(self.clusters)
+        self.cluster_stiffness = _per_cluster(cluster_stiffness, nc, "cluster_stiffness", float)
+        self.cluster_rest_length = _per_cluster(cluster_rest_length, nc, "cluster_rest_length",
+                                                float)
+        self.cluster_damping = _per_cluster(cluster_damping, nc, "cluster_damping", float)
+        self.cluster_friction = _per_cluster(cluster_friction, nc, "cluster_friction",
+                                             lambda mu: [float(m) for m in mu])
+        self.cluster_material = _per_cluster(cluster_material, nc, "cluster_material", str)
         self.loads = _loads(loads, n)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=np.float64)
         self.velocities = (None if velocities is None
@@ -311,7 +360,14 @@ class Structure:
             "rest_length_change": _column(self.rest_length_change),
             "bar_elastic": self.bar_elastic,
             "string_mass": _column(self.string_mass),
+            "cluster_stiffness": self.cluster_stiffness,
+            "cluster_rest_length": self.cluster_rest_length,
+            "cluster_damping": self.cluster_damping,
+            "cluster_friction": self.cluster_friction,
+            "cluster_material": self.cluster_material,
         }
+        if self.clusters:
+            optional["clusters"] = self.clusters
         rows = self._support_rows()
         for key, by_node in (("support_along", self.support_along),
                              ("support_stiffness", self.support_stiffness),
@@ -405,6 +461,12 @@ class Structure:
             bar_elastic=data.get("bar_elastic"),
             string_mass=column("string_mass"),
             masses={n: m for n, m in data.get("masses", ())} or None,
+            clusters=data.get("clusters"),
+            cluster_stiffness=data.get("cluster_stiffness"),
+            cluster_rest_length=data.get("cluster_rest_length"),
+            cluster_damping=data.get("cluster_damping"),
+            cluster_friction=data.get("cluster_friction"),
+            cluster_material=data.get("cluster_material"),
             **{t: data[t] for t in ("simulation", "ground", "actuation") if t in data},
         )
 
@@ -423,7 +485,11 @@ class Structure:
             bar_rest_length=self.bar_rest_length,
             bar_rest_length_change=self.bar_rest_length_change,
             rest_length_change=self.rest_length_change, bar_elastic=self.bar_elastic,
-            string_mass=self.string_mass, masses=self.masses or None, **self.tables)
+            string_mass=self.string_mass, masses=self.masses or None,
+            clusters=self.clusters or None, cluster_stiffness=self.cluster_stiffness,
+            cluster_rest_length=self.cluster_rest_length,
+            cluster_damping=self.cluster_damping, cluster_friction=self.cluster_friction,
+            cluster_material=self.cluster_material, **self.tables)
         args.update(changes)
         return Structure(**args)
 
@@ -520,6 +586,11 @@ class Structure:
     def n_strings(self):
         """Number of strings."""
         return len(self.strings)
+
+    @property
+    def n_clusters(self):
+        """Number of clustered strings."""
+        return len(self.clusters)
 
     def __repr__(self):
         return "Structure({} nodes, {} bars, {} strings)".format(

@@ -92,6 +92,7 @@ impl<'a> CyclicStatics<'a> {
         symmetry: &'a CyclicSymmetry,
         settings: StaticsSettings,
     ) -> Result<Self> {
+        crate::cluster_columns::refuse_clusters_in(structure, "cyclic-symmetry block")?;
         if structure.supports().iter().any(|s| !s.along.is_empty()) {
             return Err(Factorization::Cyclic
                 .unsupported("supports along directions of any orientation (`along`)"));

@@ -39,6 +39,7 @@ pub fn elastic_response(
     stiffness: &[f64],
     node: usize,
 ) -> Result<DMatrix<f64>> {
+    crate::cluster_columns::refuse_clusters_in(structure, "cyclic-symmetry block")?;
     check_inputs(structure, symmetry, stiffness, node)?;
     let n = symmetry.order();
     let ctx = BlockContext::new(structure, symmetry);

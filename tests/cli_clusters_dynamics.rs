@@ -1,0 +1,193 @@
+//! `tensegrity simulate` and `solve` of scenes with clustered strings (`[[clusters]]`, issue
+//! 44) against closed forms: the Atwood machine (examples/atwood.toml) falls at
+//! a = (m₁ − m₂) g/(m₁ + m₂) with the tension T = 2 m₁ m₂ g/(m₁ + m₂) in its trajectory,
+//! and a weight hanging over a pulley on a load path (examples/pulley_load.toml) carries
+//! t = W + λP with node 2 sinking by λP/k; pulley friction is refused naming the cluster.
+
+mod common;
+
+use common::{run, scratch};
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn z(v: &serde_json::Value) -> f64 {
+    v[2].as_f64().unwrap()
+}
+
+#[test]
+fn the_atwood_machine_falls_at_the_closed_form_acceleration() {
+    let (m1, m2, g, t) = (3.0, 1.0, 9.81, 0.5);
+    let a = (m1 - m2) * g / (m1 + m2);
+    let fall = 0.5 * a * t * t;
+    let r = json(&["simulate", "examples/atwood.toml", "--json"]);
+    assert_eq!(r["valid"], true, "{r}");
+    let x = &r["final_nodes"];
+    assert!((z(&x[1]) - (-1.0 - fall)).abs() < 1e-9 * fall, "{}", x[1]);
+    assert!((z(&x[2]) - (-1.5 + fall)).abs() < 1e-9 * fall, "{}", x[2]);
+    let v = &r["final_velocities"];
+    assert!((z(&v[1]) + a * t).abs() < 1e-9 * a * t, "{}", v[1]);
+    assert!(r["energy_drift"].as_f64().unwrap() < 1e-9, "{r}");
+    // the trajectory's force column: the cluster's, after the (no) members, at T throughout
+    let dir = scratch("clusters", "atwood");
+    let csv = dir.join("atwood.csv");
+    let scene = dir.join("atwood.toml");
+    let text = std::fs::read_to_string("examples/atwood.toml").unwrap();
+    std::fs::write(
+        &scene,
+        text.replace(
+            "dt = 1e-3",
+            "dt = 1e-3\noutput_interval = 0.1\nrecord = [\"nodes\", \"member_forces\"]",
+        ),
+    )
+    .unwrap();
+    let out = run(&[
+        "simulate",
+        scene.to_str().unwrap(),
+        "--out",
+        csv.to_str().unwrap(),
+        "--no-convergence-check",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = header
+        .iter()
+        .position(|h| *h == "cluster0_force [N]")
+        .unwrap_or_else(|| panic!("{header:?}"));
+    assert!(
+        header.contains(&"cluster0_force_density [N/m]"),
+        "{header:?}"
+    );
+    let tension = 2.0 * m1 * m2 * g / (m1 + m2);
+    let mut rows = 0;
+    for line in lines {
+        let f: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
+        assert!(
+            (f - tension).abs() < 1e-6 * tension,
+            "{f} against {tension}"
+        );
+        assert_eq!(line.split(',').count(), header.len());
+        rows += 1;
+    }
+    assert_eq!(rows, 6);
+}
+
+#[test]
+fn a_weight_over_a_pulley_carries_its_load_along_the_cluster() {
+    let (w, p, k) = (10.0 * 9.81, 50.0, 1e4);
+    let r = json(&["solve", "examples/pulley_load.toml", "--json"]);
+    let points = r["path"]["points"].as_array().unwrap();
+    assert!(points.len() > 2);
+    for point in points {
+        let lambda = point["lambda"].as_f64().unwrap();
+        let t = point["tensions"][0].as_f64().unwrap();
+        assert_eq!(point["tensions"].as_array().unwrap().len(), 1);
+        assert!(
+            (t - (w + lambda * p)).abs() < 1e-10 * (w + p),
+            "{t} at λ {lambda}"
+        );
+        let u = &point["displacements"][2];
+        assert!((z(u) + lambda * p / k).abs() < 1e-10 * p / k, "{u}");
+        // the anchor holds the tension along the horizontal segment
+        let anchor = point["reactions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["node"] == 0 && r["direction"][0] == 1.0)
+            .unwrap();
+        assert!((anchor["force"].as_f64().unwrap() + t).abs() < 1e-9 * t);
+    }
+    assert_eq!(points.last().unwrap()["lambda"], 1.0);
+}
+
+#[test]
+fn pulley_friction_is_refused_naming_the_cluster() {
+    let dir = scratch("clusters", "friction");
+    let text = std::fs::read_to_string("examples/pulley_load.toml").unwrap();
+    let scene = dir.join("friction.toml");
+    std::fs::write(
+        &scene,
+        text.replace(
+            "rest_length = 1.99019",
+            "rest_length = 1.99019\nfriction = [0.2]",
+        ),
+    )
+    .unwrap();
+    let out = run(&["solve", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cluster 0") && err.contains("friction"),
+        "{err}"
+    );
+}
+
+/// One `[[actuation]]` table naming the cluster drives its whole rest length: at the end of
+/// examples/cluster_deploy.toml the cluster's recorded tension is k (L − 4.8 m) with L the
+/// loop's length in the same row (a static L₀ would give k (L − 5.144) ≈ 0), the bottom ring
+/// has closed and the prism has risen.
+#[test]
+fn one_clustered_actuator_deploys_the_prism() {
+    let dir = scratch("clusters", "deploy");
+    let csv = dir.join("deploy.csv");
+    let out = run(&[
+        "simulate",
+        "examples/cluster_deploy.toml",
+        "--out",
+        csv.to_str().unwrap(),
+        "--no-convergence-check",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("{name}: {header:?}"))
+    };
+    let last: Vec<f64> = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let node = |i: usize| {
+        let c = col(&format!("n{i}_x [m]"));
+        [last[c], last[c + 1], last[c + 2]]
+    };
+    let dist = |a: [f64; 3], b: [f64; 3]| -> f64 {
+        (0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>().sqrt()
+    };
+    let loop_length = dist(node(0), node(1)) + dist(node(1), node(2)) + dist(node(2), node(0));
+    let k = 1000.0 / 3.0;
+    let tension = last[col("cluster0_force [N]")];
+    // the dashpot's c L̇ is small once settled
+    let expected = k * (loop_length - 4.8);
+    assert!(expected > 10.0, "{expected}");
+    assert!(
+        (tension - expected).abs() < 1e-2 * expected,
+        "{tension} vs {expected}"
+    );
+    assert!(loop_length < 5.0, "the ring did not close: {loop_length}");
+    let height = node(3)[2] - node(0)[2];
+    assert!(height > 1.02, "the prism did not rise: {height}");
+}
