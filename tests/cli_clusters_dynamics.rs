@@ -6,17 +6,7 @@
 
 mod common;
 
-use common::{run, scratch};
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use common::{json, run, scratch};
 
 fn z(v: &serde_json::Value) -> f64 {
     v[2].as_f64().unwrap()

@@ -6,17 +6,7 @@
 
 mod common;
 
-use common::run;
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use common::{json, run};
 
 fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
     v.as_array()

@@ -6,19 +6,9 @@
 
 mod common;
 
-use common::run;
+use common::{json, run};
 
 const SCENE: &str = "examples/mixed_bars.toml";
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
     v.as_array()

@@ -80,3 +80,14 @@ pub fn chain(dir: &Path, n: usize) -> String {
     std::fs::write(&path, s).unwrap();
     path.display().to_string()
 }
+
+/// The JSON that `tensegrity ARGS` prints (the run must succeed; its stderr shown if not).
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}

@@ -259,15 +259,7 @@ fn prestress(structure: &Structure, warnings: &mut Vec<String>) -> Result<DVecto
     let a = crate::equilibrium_matrix(structure, &dofs);
     let strings_force = &a * &q;
     if nb > 0 {
-        let a_b = a.columns(0, nb).into_owned();
-        let d = linalg::svd(&a_b)?;
-        let tol = linalg::rank_tolerance(
-            a_b.nrows(),
-            a_b.ncols(),
-            d.s.first().copied().unwrap_or(0.0),
-            None,
-        );
-        let q_b = d.solve_min_norm(&(-&strings_force), d.rank(tol));
+        let q_b = crate::stiffness::bars_balancing(&a, nb, &(-&strings_force))?;
         q.rows_mut(0, nb).copy_from(&q_b);
     }
     let residual = (&a * &q).norm();

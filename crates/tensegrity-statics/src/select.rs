@@ -28,14 +28,15 @@ use tensegrity_core::error::{CoreError, Result};
 use tensegrity_core::structure::Structure;
 
 /// Whether the dense SVD of `structure` fits the memory budget of `settings` and its
-/// estimated work the default work limit ([`tensegrity_core::budget::DEFAULT_MAX_WORK_S`]): a fallback
-/// beyond it would run for minutes unannounced, so the uncertified decision is returned
-/// (flagged) instead.
+/// estimated work the work limit of `settings` (the front end's `--max-work`; without one
+/// the default, [`tensegrity_core::budget::DEFAULT_MAX_WORK_S`]): a fallback beyond it would
+/// run for minutes unannounced, so the uncertified decision is returned (flagged) instead.
 fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
     let (m, n) = (DofMap::of(structure).len(), super::n_columns(structure));
     let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
     let work = tensegrity_core::budget::dense_statics(m, n, "").work_s;
-    dense_statics_bytes(m, n) <= limit && work <= tensegrity_core::budget::DEFAULT_MAX_WORK_S
+    let work_limit = (settings.work_limit).unwrap_or(tensegrity_core::budget::DEFAULT_MAX_WORK_S);
+    dense_statics_bytes(m, n) <= limit && work <= work_limit
 }
 
 /// Whether `settings` send `structure` to the sparse QR.
@@ -182,4 +183,40 @@ pub fn cyclic_backend<'a>(
         return Ok(Box::new(cyclic));
     }
     Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tensegrity_core::{Cluster, StringMember};
+
+    /// A clustered structure takes the dense SVD where it fits the front end's work limit,
+    /// and is refused naming the cluster where it does not: the limit is the settings' (a
+    /// raised `--max-work` admits it), not the default.
+    #[test]
+    fn the_dense_fit_follows_the_given_work_limit() {
+        let s = Structure::builder()
+            .nodes([
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 1.0],
+                [2.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ])
+            .string(StringMember::new(0, 3))
+            .cluster(Cluster::new([0, 1, 2]))
+            .build()
+            .unwrap();
+        let tiny = StaticsSettings {
+            work_limit: Some(1e-15),
+            ..StaticsSettings::default()
+        };
+        assert!(dense_fits(&s, &StaticsSettings::default()));
+        assert!(!dense_fits(&s, &tiny));
+        let e = backend(&s, tiny).err().unwrap().to_string();
+        assert!(e.starts_with("cluster 0: the dense SVD"), "{e}");
+        assert_eq!(
+            backend(&s, StaticsSettings::default()).unwrap().kind(),
+            crate::Factorization::Svd
+        );
+    }
 }

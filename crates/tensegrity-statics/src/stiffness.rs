@@ -289,8 +289,21 @@ pub fn equilibrium_force_densities(structure: &Structure) -> Result<(DVector<f64
     let a = crate::equilibrium_matrix(structure, &dofs);
     let w = dofs.gather(&structure.W());
     let nb = structure.n_bars();
+    let q_b = bars_balancing(&a, nb, &(&w - &a * &q))?;
+    q.rows_mut(0, nb).copy_from(&q_b);
+    let residual = (&a * &q - &w).norm();
+    Ok((q, residual))
+}
+
+/// The bars' force densities of least norm that balance `rhs` (A_b q_b = rhs in the least
+/// squares sense; A_b the first `nb` columns of `a`): the bars' forces under a given force
+/// state of the other members.
+pub(crate) fn bars_balancing(
+    a: &DMatrix<f64>,
+    nb: usize,
+    rhs: &DVector<f64>,
+) -> Result<DVector<f64>> {
     let a_b = a.columns(0, nb).into_owned();
-    let rhs = &w - &a * &q;
     let d = linalg::svd(&a_b)?;
     let tol = linalg::rank_tolerance(
         a_b.nrows(),
@@ -298,10 +311,7 @@ pub fn equilibrium_force_densities(structure: &Structure) -> Result<(DVector<f64
         d.s.first().copied().unwrap_or(0.0),
         None,
     );
-    let q_b = d.solve_min_norm(&rhs, d.rank(tol));
-    q.rows_mut(0, nb).copy_from(&q_b);
-    let residual = (&a * &q - &w).norm();
-    Ok((q, residual))
+    Ok(d.solve_min_norm(rhs, d.rank(tol)))
 }
 
 /// Rigid-body motions on the free degrees of freedom that the supports allow: an orthonormal
