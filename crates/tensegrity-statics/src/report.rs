@@ -203,7 +203,57 @@ fn is_zero(n: &usize) -> bool {
 /// ```
 pub fn statics_report(structure: &Structure, request: &StaticsRequest) -> Result<StaticsReport> {
     let backend = super::select::backend(structure, request.settings)?;
-    report_from(backend.as_ref(), request)
+    let sparse = backend.kind() == Factorization::SparseQr;
+    match report_from(backend.as_ref(), request) {
+        // a sparse result that fails its own check (a load solve that leaves a residual, an
+        // LP that stalls: a Levy dome of 4,080 members) is answered by the dense SVD where
+        // the automatic choice allows it within the limits, and the report says so
+        Err(e)
+            if sparse
+                && failed_check(&e)
+                && super::select::dense_fallback(structure, &request.settings) =>
+        {
+            let dense = super::Statics::with_settings(structure, request.settings)?;
+            let mut report = report_from(&dense, request)?;
+            let note = format!(
+                "the sparse QR's answer failed its check ({}); the dense SVD answered",
+                first_words(&e)
+            );
+            report.statics_warning = Some(match report.statics_warning.take() {
+                Some(w) => format!("{note}; {w}"),
+                None => note,
+            });
+            Ok(report)
+        }
+        // without the dense answer, say that it is the sparse factorisation's check that
+        // failed (not that the structure is a mechanism) and what the dense one would cost
+        Err(e)
+            if sparse
+                && failed_check(&e)
+                && request.settings.method == super::StaticsMethod::Auto =>
+        {
+            Err(StaticsError::SparseCheckFailed {
+                failure: first_words(&e),
+                dense_work_s: super::select::dense_work_s(structure),
+            }
+            .into())
+        }
+        r => r,
+    }
+}
+
+/// Whether `e` is a result that failed its own numerical check (not an input error).
+fn failed_check(e: &CoreError) -> bool {
+    matches!(
+        e,
+        CoreError::Statics(StaticsError::LoadNotCarried { .. }) | CoreError::Numerics(_)
+    )
+}
+
+/// The message of `e` up to its first `;` (the residual, not the node list and remedy).
+fn first_words(e: &CoreError) -> String {
+    let text = e.to_string();
+    text.split(';').next().unwrap_or(&text).to_string()
 }
 
 /// The statics report from any back-end: counts, self-stress, prestressability and

@@ -34,9 +34,21 @@ use tensegrity_core::structure::Structure;
 fn dense_fits(structure: &Structure, settings: &StaticsSettings) -> bool {
     let (m, n) = (DofMap::of(structure).len(), super::n_columns(structure));
     let limit = settings.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT);
-    let work = tensegrity_core::budget::dense_statics(m, n, "").work_s;
+    let work = dense_work_s(structure);
     let work_limit = (settings.work_limit).unwrap_or(tensegrity_core::budget::DEFAULT_MAX_WORK_S);
     dense_statics_bytes(m, n) <= limit && work <= work_limit
+}
+
+/// The dense SVD's estimated work on `structure` (s).
+pub(crate) fn dense_work_s(structure: &Structure) -> f64 {
+    let (m, n) = (DofMap::of(structure).len(), super::n_columns(structure));
+    tensegrity_core::budget::dense_statics(m, n, "").work_s
+}
+
+/// Whether a sparse result that failed its check may be answered by the dense SVD: the
+/// automatic method, and the SVD within the limits ([`dense_fits`]).
+pub(crate) fn dense_fallback(structure: &Structure, settings: &StaticsSettings) -> bool {
+    settings.method == StaticsMethod::Auto && dense_fits(structure, settings)
 }
 
 /// Whether `settings` send `structure` to the sparse QR.

@@ -568,8 +568,25 @@ impl SparseStatics<'_> {
         if self.self_stress_dim() == 0 {
             return Ok(Prestressability::none(n));
         }
-        let c = super::prestress::solve_null_space_lp(&self.null_basis, signs)?;
-        let q = DVector::from_vec(self.null_basis.mul_vec(&c));
+        let q = match super::prestress::solve_null_space_lp(&self.null_basis, signs) {
+            Ok(c) => DVector::from_vec(self.null_basis.mul_vec(&c)),
+            // the sparse basis is not orthonormal, and its LP can stall (a Levy dome of 4,080
+            // members: NumericalError); where the orthonormal basis is small enough to hold,
+            // the same LP over it (same optimum: the rows constrain q = N c alike)
+            Err(e) if n.saturating_mul(self.self_stress_dim()) > SELF_STRESS_LIST_MAX => {
+                return Err(e)
+            }
+            Err(_) => {
+                let basis = self.self_stress_basis();
+                let x = super::prestress::margin_lp(
+                    basis,
+                    signs,
+                    super::LpSolver::default(),
+                    "prestressability LP (orthonormal self-stress basis, after the sparse one failed)",
+                )?;
+                basis * x
+            }
+        };
         Ok(Prestressability::from_signed(q, signs))
     }
 

@@ -31,7 +31,7 @@ pub use crate::number::short_number;
 pub use dynamics::{DynamicsError, StepHint};
 pub use model::ModelError;
 pub use numerics::{FactorizationFailure, NumericsError};
-pub use statics::StaticsError;
+pub use statics::{node_list, StaticsError};
 pub use symmetry::SymmetryError;
 
 use crate::request::{Categorized, Category, InvalidParameter};

@@ -22,7 +22,7 @@ pub enum StaticsError {
     },
     /// The structure cannot carry its loads: the least-squares force densities leave an
     /// equilibrium residual (the loads drive a mechanism).
-    #[error("the loads cannot be carried: equilibrium residual {residual:.6e} N ({relative_residual:.3e} of the load) at nodes {nodes:?}; the structure is a mechanism for these loads (add members or supports, or ask for the least-squares answer)")]
+    #[error("the loads cannot be carried: equilibrium residual {residual:.6e} N ({relative_residual:.3e} of the load) at {}; the structure is a mechanism for these loads (add members or supports, or ask for the least-squares answer)", node_list(nodes))]
     LoadNotCarried {
         /// ‖A q − w‖₂ (N).
         residual: f64,
@@ -42,6 +42,15 @@ pub enum StaticsError {
         node: usize,
         /// That node's motion in the mechanism (a unit vector).
         direction: [f64; 3],
+    },
+    /// The sparse QR's answer failed its own check (a load solve that left a residual, an LP
+    /// that stalled), and the dense SVD that would answer instead is above the work limit.
+    #[error("the sparse QR's answer failed its check ({failure}): a mechanism, or the sparse factorisation's round-off; the dense SVD would tell them apart but needs an estimated {dense_work_s:.0} s of work, above the work limit: raise `max_work` (e.g. `max_work = {}`) or give `method = dense`", dense_work_s.ceil())]
+    SparseCheckFailed {
+        /// What failed, e.g. the load solve's residual.
+        failure: String,
+        /// The dense SVD's estimated work (s).
+        dense_work_s: f64,
     },
     /// A cyclic-symmetry descriptor that does not describe the structure (boxed: the
     /// variant names nodes, members and positions).
@@ -69,5 +78,20 @@ impl Categorized for StaticsError {
 impl Categorized for SymmetryError {
     fn category(&self) -> Category {
         Category::Input
+    }
+}
+
+/// Nodes named in a message: all of them up to ten, else the first ten and the count.
+///
+/// ```
+/// use tensegrity_core::error::node_list;
+/// assert_eq!(node_list(&[3, 7]), "nodes [3, 7]");
+/// let many: Vec<usize> = (0..25).collect();
+/// assert_eq!(node_list(&many), "25 nodes, the first [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]");
+/// ```
+pub fn node_list(nodes: &[usize]) -> String {
+    match nodes.len() {
+        0..=10 => format!("nodes {nodes:?}"),
+        n => format!("{n} nodes, the first {:?}", &nodes[..10]),
     }
 }
