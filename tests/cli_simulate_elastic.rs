@@ -239,4 +239,19 @@ fn elastic_runs_name_remedies_and_keys_they_can_use() {
         &["simulate", long.to_str().unwrap()],
         "times member 0 (bar): EA/L0",
     );
+    // a run-away elastic run (a cluster's dashpot of 1e300 N s/m) names a smaller step and
+    // Newmark, not the rigid-bar integrators (sdirk, rk45) it cannot take
+    let atwood = std::fs::read_to_string("examples/atwood.toml").unwrap();
+    let damped = dir.join("damped.toml");
+    let text = atwood.replacen("stiffness = 1e4", "stiffness = 1e4\ndamping = 1e300", 1);
+    std::fs::write(&damped, text).unwrap();
+    let out = run(&["simulate", damped.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.code() == Some(1)
+            && err.contains("the elastic dynamics diverged at t = ")
+            && err.contains("use a smaller --dt, or --integrator newmark")
+            && !err.contains("sdirk"),
+        "{err}"
+    );
 }

@@ -120,7 +120,9 @@ impl ElasticDynamics {
                 }
             }
             previous.copy_from_slice(&y);
-            let outcome = method.step(self, &mut ws, t, &mut y, step)?;
+            let outcome = method
+                .step(self, &mut ws, t, &mut y, step)
+                .map_err(|e| elastic_remedy(e, step))?;
             h = outcome.h_next;
             if !outcome.accepted {
                 rejected += 1;
@@ -140,12 +142,12 @@ impl ElasticDynamics {
             };
             steps += 1;
             if let Some(k) = y.iter().position(|v| !v.is_finite()) {
-                return Err(DynamicsError::NonFiniteState {
+                let e = DynamicsError::NonFiniteState {
                     t: t_new,
                     member: self.member_at(k),
-                    hint: StepHint::FixedStep { dt: step },
-                }
-                .into());
+                    hint: StepHint::Unknown,
+                };
+                return Err(elastic_remedy(e.into(), step));
             }
             if self.project(t_new, &mut y)? && settings.integrator == IntegratorKind::Rk45 {
                 method.invalidate();
@@ -292,5 +294,25 @@ impl EnergyMonitor {
         } else {
             0.0
         }
+    }
+}
+
+/// A run-away state of the elastic dynamics with the remedy an elastic model can take (a
+/// smaller step, `newmark`): the rigid-bar integrators the core's messages name are refused
+/// here.
+fn elastic_remedy(e: CoreError, dt: f64) -> CoreError {
+    match e {
+        CoreError::Dynamics(DynamicsError::Diverged { t, what }) => {
+            DynamicsError::ElasticDiverged { t, dt, what }.into()
+        }
+        CoreError::Dynamics(DynamicsError::NonFiniteState { t, member, .. }) => {
+            DynamicsError::NonFiniteState {
+                t,
+                member,
+                hint: StepHint::Elastic { dt },
+            }
+            .into()
+        }
+        e => e,
     }
 }

@@ -110,6 +110,18 @@ pub enum DynamicsError {
         /// What failed.
         what: &'static str,
     },
+    /// The elastic (node-mass) dynamics ran away: a force became non-finite. Its remedy names
+    /// what an elastic model can run (a smaller step, the implicit Newmark method), not the
+    /// rigid-bar integrators.
+    #[error("the elastic dynamics diverged at t = {t:?} s ({what}): the step ({dt:?} s) is likely too large for the members' stiffness or damping; use a smaller `dt`, or `integrator = newmark` (implicit, stable at any step)")]
+    ElasticDiverged {
+        /// Time of the last accepted state (s).
+        t: f64,
+        /// The step (s).
+        dt: f64,
+        /// What failed.
+        what: &'static str,
+    },
     /// A RATTLE step whose constraint iteration failed: the step moved the bars so far that the
     /// Newton iteration on their lengths (and N P = D) did not converge, or its matrix
     /// G M⁻¹ Gᵀ lost rank on the way. The constraints themselves are fine (they factored at the
@@ -204,6 +216,12 @@ pub enum StepHint {
     /// An adaptive integrator (`rk45`, `sdirk`): the step follows the error estimate, so the
     /// motion itself ran away.
     Adaptive,
+    /// The elastic (node-mass) dynamics at step `dt` (s): its remedies are a smaller step and
+    /// the implicit Newmark method (the rigid-bar integrators do not run it).
+    Elastic {
+        /// The step (s).
+        dt: f64,
+    },
 }
 
 impl std::fmt::Display for StepHint {
@@ -213,6 +231,10 @@ impl std::fmt::Display for StepHint {
             Self::FixedStep { dt } => write!(
                 f,
                 "; the step ({dt:?} s) is likely too large for the stiffness of the strings or the ground: use a smaller `dt`, or `integrator = sdirk` (implicit, for stiff strings and contact) or `integrator = rk45` (adaptive)"
+            ),
+            Self::Elastic { dt } => write!(
+                f,
+                "; the step ({dt:?} s) is likely too large for the members' stiffness or damping: use a smaller `dt`, or `integrator = newmark` (implicit, stable at any step)"
             ),
             Self::Adaptive => write!(
                 f,
