@@ -536,7 +536,8 @@ impl ElasticModel {
     /// [`ElasticModel::from_structure`] with the bars k where `rigid[k]` (missing entries:
     /// elastic) rigid, for the dynamics of [`crate::rigid_bars`]: such a bar needs no radius
     /// nor material, its rest length is its length in the scene (the length it keeps) and
-    /// its EA a placeholder of 1 N that nothing reads; a rigid bar of zero length is an error
+    /// its EA a placeholder that nothing reads (the stiffest elastic member's EA/L₀ at its
+    /// length, else 1 N, so that it sets no stiffness ratio); a rigid bar of zero length is an error
     /// naming it.
     ///
     /// ```
@@ -607,6 +608,20 @@ impl ElasticModel {
                 ea: stiffness * rest_length,
                 rest_length,
             });
+        }
+        // a rigid bar's EA is read by nothing but the check of the stiffness ratio and the
+        // round-off floors: the stiffest elastic member's EA/L₀ at its length keeps both as
+        // the elastic members set them (a placeholder of 1 N beside steel columns of
+        // EA/L₀ = 10¹¹ N/m would be refused as a ratio beyond double precision)
+        let is_rigid = |k: usize| k < s.n_bars() && rigid.get(k).copied().unwrap_or(false);
+        let stiffest = (members.iter().enumerate())
+            .filter(|(k, _)| !is_rigid(*k))
+            .map(|(_, m)| m.ea / m.rest_length)
+            .fold(0.0, f64::max);
+        for (k, m) in members.iter_mut().enumerate() {
+            if is_rigid(k) && stiffest > 0.0 {
+                m.ea = stiffest * m.rest_length;
+            }
         }
         let clusters = elastic_clusters(s)?;
         let supports = s

@@ -416,3 +416,28 @@ fn a_rigid_bar_that_cannot_be_is_an_error_naming_it() {
         "{e}"
     );
 }
+
+/// A rigid bar beside a stiff steel column (EA/L₀ = 1.6·10¹¹ N/m) and a soft string: the
+/// rigid bar's unread EA takes the stiffest elastic member's EA/L₀, so it sets no stiffness
+/// ratio (a placeholder of 1 N made the model 10¹¹ apart and refused it).
+#[test]
+fn a_rigid_bar_beside_a_stiff_column_sets_no_stiffness_ratio() {
+    use tensegrity_core::Material;
+    let s = Structure::builder()
+        .material("steel", Material::new(7850.0, 200e9, 250e6))
+        .nodes([
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0],
+        ])
+        .bar(Bar::new(0, 1).material("steel").radius(0.5).mass(1.0))
+        .bar(Bar::new(1, 2).mass(1.0))
+        .string(StringMember::new(2, 3).stiffness(100.0))
+        .build()
+        .unwrap();
+    let m = ElasticModel::from_structure_mixed(&s, &[false, true]).unwrap();
+    let column = 200e9 * std::f64::consts::PI * 0.25;
+    assert!((m.members[0].ea - column).abs() < 1e-6 * column);
+    assert!((m.members[1].ea / m.members[1].rest_length - column).abs() < 1e-6 * column);
+}
