@@ -6,23 +6,7 @@
 
 mod common;
 
-use common::{json, run};
-
-fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            let p: Vec<f64> = p
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            [p[0], p[1], p[2]]
-        })
-        .collect()
-}
+use common::{json, points, run};
 
 fn gap(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
     a.iter()

@@ -6,25 +6,9 @@
 
 mod common;
 
-use common::{json, run};
+use common::{json, points, run};
 
 const SCENE: &str = "examples/mixed_bars.toml";
-
-fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            let p: Vec<f64> = p
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            [p[0], p[1], p[2]]
-        })
-        .collect()
-}
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>().sqrt()

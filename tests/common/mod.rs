@@ -91,3 +91,20 @@ pub fn json(args: &[&str]) -> serde_json::Value {
     );
     serde_json::from_slice(&out.stdout).unwrap()
 }
+
+/// A JSON list of [x, y, z] points (nodes, velocities) as arrays.
+pub fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let p: Vec<f64> = p
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            [p[0], p[1], p[2]]
+        })
+        .collect()
+}

@@ -64,6 +64,9 @@
 
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
+mod common;
+
+use common::assert_finite;
 use tensegrity_path::point::{Event, PathPoint};
 use tensegrity_path::stability::Stability;
 use tensegrity_path::{
@@ -454,22 +457,6 @@ fn slack_events(path: &tensegrity_path::PathReport) -> Vec<(f64, Vec<usize>, usi
             _ => None,
         })
         .collect()
-}
-
-/// Every number of a point is finite (no NaN reaches a report).
-fn assert_finite(p: &PathPoint) {
-    let numbers = p
-        .nodes
-        .iter()
-        .chain(&p.displacements)
-        .flatten()
-        .chain(&p.tensions)
-        .chain(&p.smallest_eigenvalues)
-        .chain(p.reactions.iter().map(|r| &r.force))
-        .chain([&p.lambda, &p.residual, &p.max_displacement]);
-    for v in numbers {
-        assert!(v.is_finite(), "step {}: {v}", p.step);
-    }
 }
 
 #[test]

@@ -4,23 +4,11 @@
 
 use nalgebra::Vector3;
 use tensegrity_path::model::Drivers;
-use tensegrity_path::point::{Event, PathPoint, Stop};
-use tensegrity_path::{follow, ElasticMember, ElasticModel, MemberKind, PathSettings, Support};
+mod common;
 
-fn assert_finite(p: &PathPoint) {
-    let numbers = p
-        .nodes
-        .iter()
-        .chain(&p.displacements)
-        .flatten()
-        .chain(&p.tensions)
-        .chain(&p.smallest_eigenvalues)
-        .chain(p.reactions.iter().map(|r| &r.force))
-        .chain([&p.lambda, &p.residual, &p.max_displacement]);
-    for v in numbers {
-        assert!(v.is_finite(), "step {}: {v}", p.step);
-    }
-}
+use common::assert_finite;
+use tensegrity_path::point::{Event, Stop};
+use tensegrity_path::{follow, ElasticMember, ElasticModel, MemberKind, PathSettings, Support};
 
 /// The two-bar truss of examples/von_mises.toml (supports at x = ±1, the apex at y = 0.5,
 /// EA = 10⁷ Pa × π (0.01 m)², 100 N down on the apex; the apex moves along y), beside a

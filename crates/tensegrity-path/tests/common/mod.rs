@@ -66,3 +66,19 @@ pub fn floats(v: &serde_json::Value) -> Vec<f64> {
         x => vec![x.as_f64().unwrap()],
     }
 }
+
+/// Every number of a point is finite (no NaN reaches a report).
+pub fn assert_finite(p: &tensegrity_path::point::PathPoint) {
+    let numbers = p
+        .nodes
+        .iter()
+        .chain(&p.displacements)
+        .flatten()
+        .chain(&p.tensions)
+        .chain(&p.smallest_eigenvalues)
+        .chain(p.reactions.iter().map(|r| &r.force))
+        .chain([&p.lambda, &p.residual, &p.max_displacement]);
+    for v in numbers {
+        assert!(v.is_finite(), "step {}: {v}", p.step);
+    }
+}
