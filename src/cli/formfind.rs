@@ -7,7 +7,9 @@
 //! tolerance an iterative method stopped at is printed beside its iterations. A topology with
 //! `[[loads]]` (or members' `weight`) prints the loads, the reactions at the fixed nodes and
 //! the equilibrium residual, and `--out` writes the loaded scene (its `[[supports]]` and
-//! `[[loads]]` kept).
+//! `[[loads]]` kept). Clustered strings (`[[clusters]]`, one tension each) are printed with
+//! their tension, length, rest length and segment force densities, and written as the
+//! scene's `[[clusters]]`.
 
 use super::figure_args::StructureArgs;
 use super::output;
@@ -94,17 +96,29 @@ fn drawing(found: &Formfound, how: &StructureArgs) -> tensegrity_io::figure::Fig
     use tensegrity_figures::draw;
     let t = &found.topology;
     let bars: Vec<[usize; 2]> = t.bars.iter().map(|m| m.nodes).collect();
-    let strings: Vec<[usize; 2]> = t.strings.iter().map(|m| m.nodes).collect();
+    // a cluster drawn as strings, segment by segment (after the strings)
+    let segments = t.clusters.iter().flat_map(|c| c.segments());
+    let strings: Vec<[usize; 2]> = t.strings.iter().map(|m| m.nodes).chain(segments).collect();
     if how.view.is_none() && how.color_by.is_none() && how.labels.is_empty() {
         let nodes = &found.found.nodes;
         return draw::structure_figure(&found.report.source, nodes, bars, strings);
     }
+    // per segment: its cluster's tension and its own force density t / l
+    let clusters = &found.report.loading.clusters;
+    let per_segment = |f: &dyn Fn(&::formfind::ClusterReport, usize) -> f64| -> Vec<f64> {
+        let each = clusters
+            .iter()
+            .map(|c| (0..c.segment_length.len()).map(|i| f(c, i)));
+        each.flatten().collect()
+    };
+    let tension = per_segment(&|c, _| c.tension.unwrap_or(c.force));
+    let q = per_segment(&|c, i| c.segment_force_density[i]);
     let d = draw::Drawing {
         nodes: found.found.nodes.clone(),
         bars,
         strings,
-        force: found.report.member_force.clone(),
-        force_density: Some(found.report.force_density.clone()),
+        force: (found.report.member_force.clone()).map(|f| [f, tension].concat()),
+        force_density: Some([found.report.force_density.clone(), q].concat()),
         ..draw::Drawing::default()
     };
     let panel = draw::drawing_panel(&found.report.source, &d, &how.style(draw::View::Iso));
@@ -114,8 +128,17 @@ fn drawing(found: &Formfound, how: &StructureArgs) -> tensegrity_io::figure::Fig
 fn print_report(r: &FormfindReport, tolerance: Option<f64>, loaded: bool) {
     let tolerance = tolerance.map_or(String::new(), |t| format!(" (tolerance {t:.1e})"));
     println!(
-        "{}: {} nodes, {} bars, {} strings; method {}, iterations {}{tolerance}",
-        r.source, r.n_nodes, r.n_bars, r.n_strings, r.method, r.iterations
+        "{}: {} nodes, {} bars, {} strings{}; method {}, iterations {}{tolerance}",
+        r.source,
+        r.n_nodes,
+        r.n_bars,
+        r.n_strings,
+        match r.loading.clusters.len() {
+            0 => String::new(),
+            n => format!(", {n} clusters"),
+        },
+        r.method,
+        r.iterations
     );
     println!(
         "self-stress states {}  prestressable {}  prestress stable {}  residual {:.3e}",
@@ -141,10 +164,31 @@ fn print_report(r: &FormfindReport, tolerance: Option<f64>, loaded: bool) {
         let f = force.get(k).map_or(String::new(), |f| format!("{f:>14.6}"));
         println!("  {name:<12} {q:>14.9} {f}");
     }
+    print_clusters(&r.loading.clusters);
     print_forces("loads (N):", &r.loading.loads);
     print_forces("reactions at the fixed nodes (N):", &r.loading.reactions);
     if let Some(e) = r.loading.equilibrium_residual {
         println!("equilibrium residual at the free nodes {e:.3e} (relative)");
+    }
+}
+
+/// The clustered strings: tension, length, rest length and the segments' force densities
+/// (nothing without clusters).
+fn print_clusters(clusters: &[::formfind::ClusterReport]) {
+    if clusters.is_empty() {
+        return;
+    }
+    println!("clusters: tension t [N] (at the prestress level), length L, rest length L0 [m]:");
+    for (c, k) in clusters.iter().enumerate() {
+        let t = k.tension.unwrap_or(k.force);
+        let l0 = k
+            .rest_length
+            .map_or(String::new(), |l| format!("  L0 {l:.9}"));
+        println!("  cluster {c:<4} t {t:.9}  L {:.9}{l0}", k.length);
+        let q: Vec<String> = (k.segment_force_density.iter())
+            .map(|q| format!("{q:.9}"))
+            .collect();
+        println!("    segment q = t/l [N/m]: {}", q.join(" "));
     }
 }
 

@@ -29,12 +29,16 @@
 //!   fails, the core's second-order test (stress matrix on the internal mechanisms) decides
 //!   for structures of up to [`STABILITY_MAX_MEMBERS`] members; larger ones are reported not
 //!   stable (not certified).
+//! - with clustered strings (the `cluster` module), the core's dense statics of the structure
+//!   with its clusters decides all three (one column per cluster, q_c = t_c / L_c; the
+//!   prestress-stability test takes the cluster's stress matrix t_c ∇²L_c), the residual
+//!   counting every segment at its tension t_c.
 
 use crate::fdm::anchors;
 use crate::topology::Topology;
 use crate::Result;
 use nalgebra::{DVector, Matrix6, Vector3, Vector6};
-use tensegrity_core::{Bar, StringMember, Structure, Support};
+use tensegrity_core::{Bar, Cluster, StringMember, Structure, Support};
 use tensegrity_linalg::{CscMatrix, SparseCholesky};
 use tensegrity_statics::{backend, StaticsSettings};
 
@@ -63,7 +67,7 @@ pub(crate) fn nodal_balance(
     p: &[Vector3<f64>],
 ) -> Vec<Vector3<f64>> {
     let mut f = vec![Vector3::zeros(); topology.n_nodes];
-    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+    for (&[i, j], &qk) in topology.force_pairs().iter().zip(q) {
         let m = qk * (nodes[j] - nodes[i]);
         f[i] += m;
         f[j] -= m;
@@ -103,7 +107,7 @@ pub(crate) fn reactions(
     let mut magnitude: Vec<f64> = (0..topology.n_nodes)
         .map(|i| p.get(i).map_or(0.0, |x| x.norm()))
         .collect();
-    for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+    for (&[i, j], &qk) in topology.force_pairs().iter().zip(q) {
         let t = qk.abs() * (nodes[j] - nodes[i]).norm();
         magnitude[i] += t;
         magnitude[j] += t;
@@ -163,6 +167,9 @@ pub(crate) fn bare_structure(topology: &Topology, nodes: &[Vector3<f64>]) -> Res
     for m in &topology.strings {
         b = b.string(StringMember::new(m.nodes[0], m.nodes[1]));
     }
+    for c in &topology.clusters {
+        b = b.cluster(Cluster::new(c.nodes.iter().copied()));
+    }
     for f in &topology.fixed {
         b = b.support(Support::pinned(f.node));
     }
@@ -181,10 +188,13 @@ pub(crate) fn analyse(
     let signs_ok = (0..q.len()).all(|k| crate::topology::member_kind_ok(topology.is_bar(k), q[k]));
     let scale = size(nodes).max(f64::MIN_POSITIVE);
     let witness = signs_ok && residual <= WITNESS_TOLERANCE * scale;
-    let certified = witness && super_stable(topology, nodes, q);
     // Under loads q balances them, so it witnesses no self-stress: prestressability is the
     // core's decision for the geometry.
     let loaded = p.iter().any(|x| *x != Vector3::zeros());
+    if !topology.clusters.is_empty() {
+        return clustered(topology, nodes, q, (residual, witness, loaded));
+    }
+    let certified = witness && super_stable(topology, nodes, q);
     // The sparse shortcut: a witness, a super-stability certificate and no first-order
     // mechanism settle everything without the core's statics.
     if certified && !loaded {
@@ -221,6 +231,50 @@ pub(crate) fn analyse(
     };
     Ok(Analysis {
         self_stress_dim,
+        prestressable,
+        prestress_stable,
+        residual,
+    })
+}
+
+/// [`analyse`] of a topology with clusters (module docs): the core's dense statics of the
+/// structure with its clusters, one column per cluster with q_c = t_c / L_c (`q`: the
+/// members' force densities, then t_c / l_i of every segment).
+fn clustered(
+    topology: &Topology,
+    nodes: &[Vector3<f64>],
+    q: &[f64],
+    (residual, witness, loaded): (f64, bool, bool),
+) -> Result<Analysis> {
+    let structure = bare_structure(topology, nodes)?;
+    let nm = topology.n_members();
+    let mut columns = q[..nm].to_vec();
+    let mut s = nm;
+    for c in &topology.clusters {
+        let l: Vec<f64> = c
+            .segments()
+            .map(|[a, b]| (nodes[b] - nodes[a]).norm())
+            .collect();
+        let length: f64 = l.iter().sum();
+        // t_c = q_i l_i on any segment (the same on all): the first one's
+        columns.push(q[s] * l[0] / length);
+        s += l.len();
+    }
+    let mut settings = StaticsSettings::default();
+    let relative = residual / size(nodes).max(f64::MIN_POSITIVE);
+    if witness && relative > 1e-14 {
+        settings = settings.rank_tolerance((100.0 * relative).min(1e-6))?;
+    }
+    let statics = backend(&structure, settings)?;
+    let prestressable = (witness && !loaded) || statics.prestressability()?.prestressable;
+    let prestress_stable = witness
+        && columns.len() <= STABILITY_MAX_MEMBERS
+        && statics
+            .prestress_stability(&DVector::from_column_slice(&columns))
+            .map(|s| s.stable)
+            .unwrap_or(false);
+    Ok(Analysis {
+        self_stress_dim: statics.self_stress_dim(),
         prestressable,
         prestress_stable,
         residual,

@@ -166,6 +166,7 @@ fn prism(n: usize) -> Topology {
         ]),
         fixed: Vec::new(),
         loads: Vec::new(),
+        clusters: Vec::new(),
     }
 }
 
@@ -203,6 +204,7 @@ fn octahedron() -> Topology {
         groups: groups(&[("bars", -1.5), ("strings", 1.0)]),
         fixed: Vec::new(),
         loads: Vec::new(),
+        clusters: Vec::new(),
     }
 }
 
@@ -247,6 +249,7 @@ fn tower(n: usize, m: usize) -> Topology {
         ]),
         fixed: Vec::new(),
         loads: Vec::new(),
+        clusters: Vec::new(),
     }
 }
 
@@ -361,5 +364,6 @@ fn grid(k: usize) -> Topology {
         ]),
         fixed,
         loads: Vec::new(),
+        clusters: Vec::new(),
     }
 }

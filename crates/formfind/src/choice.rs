@@ -9,6 +9,11 @@
 //! | `adaptive` | the force densities given, as its start (it replaces them) | any length |
 //! | `dr` | every member's length, the nodes, the stiffnesses | any force density (`fdm` uses them) |
 //!
+//! Clusters (`clusters`, a prescribed tension each) are taken by the force density method on
+//! held nodes and by dynamic relaxation; the adaptive method, and the force density method on
+//! a free-standing topology, refuse them naming `clusters[0]`; a topology of clusters only
+//! (no members) takes the force density method.
+//!
 //! Loads (`loads`, members' `weight`) are the force density method's alone: under `adaptive`
 //! or `dr` (asked for, or chosen by the data) they are refused naming the first of them.
 //!
@@ -80,8 +85,52 @@ pub(crate) fn choose(topology: &Topology, asked: Method) -> Result<Choice> {
         Method::Given | Method::Auto => by_data(topology, asked, &q, &l),
     };
     chosen
+        .and_then(|c| clustered(topology, asked, c))
         .and_then(|c| starts(topology, c, with_length))
         .and_then(|c| loaded(topology, c))
+}
+
+/// Clusters (module docs): the force density method on held nodes (the members' force
+/// densities given, or no members) and dynamic relaxation take them; the adaptive method, and
+/// the force density method on a free-standing topology, refuse them naming `clusters[0]`.
+fn clustered(topology: &Topology, asked: Method, c: Choice) -> Result<Choice> {
+    if topology.clusters.is_empty() {
+        return Ok(c);
+    }
+    let by_data = matches!(asked, Method::Given | Method::Auto);
+    let c = match c.method {
+        Method::Adaptive if by_data && topology.n_members() == 0 => Choice {
+            method: Method::Fdm,
+            reason: (asked == Method::Auto)
+                .then(|| "method auto chose fdm: the topology has clusters only".to_string()),
+            fallback: false,
+        },
+        Method::Adaptive => {
+            return Err(refused(
+                "clusters[0]".into(),
+                "the adaptive method finds force densities and takes no clusters (their \
+                 tension is given): give the members force densities (the force density \
+                 method, with held nodes) or rest lengths (dynamic relaxation)"
+                    .into(),
+            ))
+        }
+        // the adaptive method cannot take over: no fallback
+        _ => Choice {
+            fallback: false,
+            ..c
+        },
+    };
+    if c.method == Method::Fdm && topology.fixed.is_empty() {
+        return Err(refused(
+            "clusters[0]".into(),
+            "the force density method takes clusters on held nodes only: a free-standing \
+             form is fixed only up to an affine map, which changes the segments' lengths and \
+             so their force densities t/l; hold nodes (`[[fixed]]`), or give the members rest \
+             lengths (dynamic relaxation)"
+                .into(),
+        ));
+    }
+    Ok(c)
 }
 
 /// Loads and weights are the force density method's: under another method they are refused

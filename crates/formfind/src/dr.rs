@@ -18,6 +18,10 @@
 //! when max_i ‖R_i‖ ≤ τ · max_k |T_k| and fails with [`FormFindError::NotConverged`] after
 //! `max_iterations` steps. The force densities reported are T_k / L_k.
 //!
+//! A clustered string (the `cluster` module) acts on every segment with its prescribed
+//! tension t_c: T = t_c whatever the length, its geometric stiffness t_c / l_i in the masses
+//! and no axial term; its segments' force densities are reported as t_c / l_i.
+//!
 //! **The tolerance τ** is the one asked for ([`crate::Settings::tolerance`]) or, when that is
 //! below what double precision can reach, the floor
 //!
@@ -57,10 +61,15 @@ struct State {
 }
 
 struct Problem {
+    /// Members, then the clusters' segments.
     pairs: Vec<[usize; 2]>,
     rest: Vec<f64>,
     ea: Vec<f64>,
     nb: usize,
+    /// The number of members: the elements past it are segments of constant tension.
+    nm: usize,
+    /// The tension of every segment (N).
+    segment_tension: Vec<f64>,
     fixed: Vec<bool>,
 }
 
@@ -75,10 +84,13 @@ impl Problem {
         for (k, &[i, j]) in self.pairs.iter().enumerate() {
             let d = x[j] - x[i];
             let l = d.norm();
-            let mut t = self.ea[k] * (l - self.rest[k]) / self.rest[k];
-            if k >= self.nb {
-                t = t.max(0.0);
-            }
+            let t = if k >= self.nm {
+                self.segment_tension[k - self.nm]
+            } else if k >= self.nb {
+                (self.ea[k] * (l - self.rest[k]) / self.rest[k]).max(0.0)
+            } else {
+                self.ea[k] * (l - self.rest[k]) / self.rest[k]
+            };
             let f = d * (t / l);
             s.residual[i] += f;
             s.residual[j] -= f;
@@ -127,20 +139,26 @@ pub(crate) fn run(topology: &Topology, settings: &Settings) -> Result<Relaxed> {
             })
         })
         .collect::<Result<Vec<f64>>>()?;
-    let ea: Vec<f64> = topology
+    let mut ea: Vec<f64> = topology
         .members()
         .map(|m| m.stiffness.unwrap_or(settings.stiffness))
         .collect();
+    // a segment of a cluster: a constant force (no axial stiffness, no rest length)
+    let mut rest = rest;
+    rest.resize(topology.n_members() + topology.n_segments(), 1.0);
+    ea.resize(rest.len(), 0.0);
     let mut fixed = vec![false; topology.n_nodes];
     for f in &topology.fixed {
         fixed[f.node] = true;
         x[f.node] = Vector3::from(f.position);
     }
     let pb = Problem {
-        pairs: topology.member_nodes(),
+        pairs: topology.force_pairs(),
         rest,
         ea,
         nb: topology.bars.len(),
+        nm: topology.n_members(),
+        segment_tension: topology.segment_tensions(),
         fixed,
     };
     check_overflow(topology, &pb, &x, settings)?;

@@ -13,7 +13,8 @@
 //! - sparse solve (fixed nodes, or large free-standing topologies): a sparse LU of the
 //!   (planar-like) D_ff, ≈ 200 n^1.5 flops, and a few hundred bytes per member; with members'
 //!   self-weight, `max_iterations` more solves with the factors at most (the fixed point, the
-//!   `fdm` module), ≈ 100 n flops each;
+//!   `fdm` module), ≈ 100 n flops each; with clusters, `max_iterations` sparse solves at most
+//!   (the fixed point q_i ← t/l_i, the `cluster` module refactors D_ff each step);
 //! - dynamic relaxation: ≈ [`DR_FLOPS_PER_MEMBER`] · m flops per step, `max_iterations` steps
 //!   at most;
 //! - the statics of the result: the core's dense statics estimate of the 3n × m equilibrium
@@ -50,7 +51,9 @@ pub const DR_FLOPS_PER_MEMBER: f64 = 20.0;
 /// ```
 pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
     let n = topology.n_nodes;
-    let m = topology.n_members();
+    // the clusters' segments are elements of the methods (the statics: one column each
+    // cluster, fewer)
+    let m = topology.n_members() + topology.n_segments();
     // a choice the topology's data refuse fails before any work: the cheap estimate
     let chosen = choice::choose(topology, settings.method).unwrap_or(choice::Choice {
         method: Method::Fdm,
@@ -66,11 +69,21 @@ pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
             .given_weights()
             .iter()
             .any(|w| w.is_some_and(|w| w > 0.0));
-    if chosen.method != Method::Fdm || chosen.fallback || weighted {
+    let clustered = !topology.clusters.is_empty();
+    if chosen.method != Method::Fdm || chosen.fallback || weighted || clustered {
         params = params.and("max_iterations", settings.max_iterations);
     }
     let find = match chosen.method {
         Method::Dr => dr(topology, settings, params.clone()),
+        _ if clustered => {
+            let solves = settings.max_iterations as f64 * 200.0 * (n as f64).powf(1.5);
+            Estimate::new(
+                "the clusters' fixed point (a sparse solve per step)",
+                params.clone(),
+            )
+            .memory(400.0 * (n + m) as f64)
+            .work(solves / SCALAR_FLOP_RATE)
+        }
         Method::Adaptive => adaptive(topology, settings, params.clone()),
         _ if chosen.fallback => {
             fdm(topology, params.clone()).then(adaptive(topology, settings, params.clone()))
@@ -129,7 +142,10 @@ fn adaptive(topology: &Topology, settings: &Settings, params: Parameters) -> Est
 
 /// Dynamic relaxation: `max_iterations` steps over the members.
 fn dr(topology: &Topology, settings: &Settings, params: Parameters) -> Estimate {
-    let (n, m) = (topology.n_nodes, topology.n_members());
+    let (n, m) = (
+        topology.n_nodes,
+        topology.n_members() + topology.n_segments(),
+    );
     Estimate::new("dynamic relaxation", params)
         .memory(200.0 * (n + m) as f64)
         .work(DR_FLOPS_PER_MEMBER * m as f64 * settings.max_iterations as f64 / SCALAR_FLOP_RATE)

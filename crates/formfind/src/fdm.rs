@@ -359,7 +359,7 @@ impl FixedSystem {
         let mut t = Vec::new();
         let mut rhs = vec![Vector3::zeros(); nf];
         let mut dmax = 0.0f64;
-        for (&[i, j], &qk) in topology.member_nodes().iter().zip(q) {
+        for (&[i, j], &qk) in topology.force_pairs().iter().zip(q) {
             dmax = dmax.max(qk.abs());
             for (a, b) in [(i, j), (j, i)] {
                 if position[a].is_some() {

@@ -24,6 +24,12 @@
 //!   and reports the loads carried, the reactions r_i = (D X)_i − p_i at the fixed nodes and
 //!   the equilibrium residual ([`FormFound::reactions`]); free-standing topologies with loads
 //!   and other methods are refused (the `fdm` module docs).
+//! - Clustered strings ([`Topology::clusters`]: one prescribed tension t along a string
+//!   through several nodes): each segment's force density t / l_i depends on the form, so
+//!   the force density method (held nodes) iterates q_i ← t / l_i to a fixed point and
+//!   dynamic relaxation applies t e_i directly (the `cluster` module docs);
+//!   [`FormFound::clusters`] reports each one, and the synthesis writes it as a core
+//!   [`tensegrity_core::Cluster`] of rest length L / (1 + t/EA).
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
 //!   prestress level (a loaded form: the forces q L the loads set, and the loads kept).
 //!
@@ -72,6 +78,7 @@ mod adaptive;
 mod analysis;
 mod builtin;
 mod choice;
+mod cluster;
 mod dr;
 mod error;
 mod estimate;
@@ -84,15 +91,16 @@ mod topology;
 
 pub use analysis::{STABILITY_MAX_MEMBERS, WITNESS_TOLERANCE};
 pub use builtin::{builtin, prism_twist, BUILTINS, MAX_GRID, MAX_PRISM, MAX_STAGES};
+pub use cluster::ClusterState;
 pub use dr::PRECISION_FLOOR;
 pub use error::{FormFindError, Result};
 pub use estimate::{estimate, ADAPTIVE_START, DR_FLOPS_PER_MEMBER, EIGEN_FLOPS};
 pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
 pub use method::{Method, Settings, Synthesis};
-pub use report::{find, scale_group, FormfindReport, Formfound, Loading};
+pub use report::{find, scale_group, ClusterReport, FormfindReport, Formfound, Loading};
 pub use result::{FormFound, NodeForce};
-pub use synth::{rest_lengths, synthesize, synthesize_with, RestLengths, MIN_STRAIN};
-pub use topology::{too_many_nodes, FixedNode, Group, Member, NodeLoad, Topology};
+pub use synth::{rest_lengths, synthesize, synthesize_with, ClusterRest, RestLengths, MIN_STRAIN};
+pub use topology::{too_many_nodes, ClusterString, FixedNode, Group, Member, NodeLoad, Topology};
 
 use nalgebra::Vector3;
 
@@ -157,6 +165,11 @@ fn falls_back(topology: &Topology, e: &FormFindError) -> bool {
 
 fn run_fdm(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     let q = topology.force_densities()?;
+    if !topology.clusters.is_empty() {
+        let (nodes, loads, q, iterations) = cluster::fixed_point(topology, &q, settings)?;
+        let tolerance = Some(settings.tolerance);
+        return finish_loaded(topology, nodes, q, &loads, (iterations, tolerance));
+    }
     if topology.is_loaded() && !topology.fixed.is_empty() {
         let (nodes, loads, iterations) = fdm::loaded(topology, &q, settings)?;
         let weighted = topology
@@ -266,8 +279,12 @@ fn finish_with(
             force: [p.x, p.y, p.z],
         })
         .collect();
+    let clusters = cluster::states(topology, &nodes);
+    let mut q = q;
+    q.truncate(topology.n_members());
     Ok(FormFound {
         method,
+        clusters,
         nodes,
         force_density: q,
         self_stress_dim: a.self_stress_dim,

@@ -11,7 +11,7 @@
 //! ([`Loading`]). A loaded form is not scaled to a prestress level: its force densities
 //! balance loads in N, so T_k = q_k L_k (the `synth` module).
 
-use crate::synth::{rest_lengths, synthesize_with};
+use crate::synth::{rest_lengths, synthesize_with, RestLengths};
 use crate::{
     form_find, FormFindError, FormFound, Method, NodeForce, Result, Settings, Synthesis, Topology,
 };
@@ -72,8 +72,9 @@ pub struct FormfindReport {
     /// Rest length of each string of the exported structure (m), `null` where there is no
     /// scene.
     pub rest_length: Option<Vec<f64>>,
-    /// The loads, the reactions and the equilibrium residual, as top-level keys (`loads`,
-    /// `reactions`, `equilibrium_residual`), each present only where it applies.
+    /// The loads, the reactions, the equilibrium residual and the clusters, as top-level keys
+    /// (`loads`, `reactions`, `equilibrium_residual`, `clusters`), each present only where it
+    /// applies.
     #[serde(flatten)]
     #[column(skip)]
     pub loading: Loading,
@@ -81,8 +82,33 @@ pub struct FormfindReport {
     pub warnings: Vec<Warning>,
 }
 
-/// The loads a form carries and the reactions that balance them (keys of
-/// [`FormfindReport`], flattened into it).
+/// One clustered string in a [`FormfindReport`] (the `cluster` and `synth` modules).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClusterReport {
+    /// The nodes it passes through, in order.
+    pub nodes: Vec<usize>,
+    /// Its prescribed tension t (N), the same on every segment.
+    pub force: f64,
+    /// Its length L = Σ l_i in the found form (m).
+    pub length: f64,
+    /// The length l_i of each segment (m).
+    pub segment_length: Vec<f64>,
+    /// The force density t / l_i of each segment (N/m).
+    pub segment_force_density: Vec<f64>,
+    /// Its tension at the prestress level, α t (N; t for a loaded form), `null` where there
+    /// is no scene.
+    pub tension: Option<f64>,
+    /// Its axial stiffness EA (N), `null` where there is no scene.
+    pub axial_stiffness: Option<f64>,
+    /// Its stiffness k = EA / L₀ (N/m, the scene's), `null` where there is no scene.
+    pub stiffness: Option<f64>,
+    /// Its whole rest length L₀ = L / (1 + α t / EA) = L − α t / k (m), `null` where there
+    /// is no scene.
+    pub rest_length: Option<f64>,
+}
+
+/// The loads a form carries, the reactions that balance them and its clustered strings (keys
+/// of [`FormfindReport`], flattened into it; each present only where it applies).
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Loading {
     /// The loads on the nodes (N), one per loaded node in node order: point loads summed per
@@ -99,6 +125,10 @@ pub struct Loading {
     /// absent without fixed nodes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub equilibrium_residual: Option<f64>,
+    /// Each clustered string (absent without): its prescribed tension, the found lengths and
+    /// segment force densities, and its rest length at the prestress level.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub clusters: Vec<ClusterReport>,
 }
 
 /// Everything a `formfind` run makes: the topology, the found form, the structure realising
@@ -182,11 +212,12 @@ pub fn find(
             synthesis.prestress
         },
         member_force: rest.as_ref().map(|r| r.tension.clone()),
-        rest_length: rest.map(|r| r.rest_length),
+        rest_length: rest.as_ref().map(|r| r.rest_length.clone()),
         loading: Loading {
             loads: found.loads.clone(),
             reactions: found.reactions.clone(),
             equilibrium_residual: found.equilibrium_residual,
+            clusters: cluster_reports(&found, rest.as_ref()),
         },
         warnings,
     };
@@ -233,7 +264,8 @@ pub fn scale_group(
     Ok(())
 }
 
-/// The largest string tension q L of a loaded form (N; 0 without strings): the loads set it.
+/// The largest string tension q L of a loaded form, a cluster's tension included (N; 0
+/// without strings): the loads set it.
 fn loaded_prestress(topology: &Topology, found: &FormFound) -> f64 {
     let nb = topology.bars.len();
     topology
@@ -241,7 +273,25 @@ fn loaded_prestress(topology: &Topology, found: &FormFound) -> f64 {
         .iter()
         .zip(&found.force_density[nb..])
         .map(|(m, q)| q * (found.nodes[m.nodes[1]] - found.nodes[m.nodes[0]]).norm())
+        .chain(found.clusters.iter().map(|c| c.tension))
         .fold(0.0, f64::max)
+}
+
+/// The report's clusters: the found state, with the rest lengths where there is a scene.
+fn cluster_reports(found: &FormFound, rest: Option<&RestLengths>) -> Vec<ClusterReport> {
+    let rest = |c: usize| rest.and_then(|r| r.clusters.get(c));
+    let report = |(c, s): (usize, &crate::ClusterState)| ClusterReport {
+        nodes: s.nodes.clone(),
+        force: s.tension,
+        length: s.length,
+        segment_length: s.segment_length.clone(),
+        segment_force_density: s.segment_force_density.clone(),
+        tension: rest(c).map(|r| r.tension),
+        axial_stiffness: rest(c).map(|r| r.axial_stiffness),
+        stiffness: rest(c).map(|r| r.stiffness),
+        rest_length: rest(c).map(|r| r.rest_length),
+    };
+    found.clusters.iter().enumerate().map(report).collect()
 }
 
 /// The extent along z of the nodes that are not held.

@@ -46,6 +46,10 @@ pub struct FormFound {
     /// F_i = Σ_k∋i |q_k| L_k + ‖p_i‖ the size of the forces meeting at node i (`None`
     /// without fixed nodes).
     pub equilibrium_residual: Option<f64>,
+    /// Each clustered string at the found form: its tension, length and its segments' lengths
+    /// and force densities t / l_i (empty without clusters; the `cluster` module).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub clusters: Vec<crate::ClusterState>,
 }
 
 /// A force at a node: a load or a reaction.

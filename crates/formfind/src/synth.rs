@@ -16,6 +16,12 @@
 //! core's dynamics: they keep their found length and carry mass `bar_mass`; their rest
 //! length s0 (for an elastic bar, or dynamic relaxation) is reported by [`rest_lengths`].
 //!
+//! A clustered string (the `cluster` module) carries α t (t its prescribed tension, counted
+//! among the string tensions for α) along its whole length L = Σ l_i; with axial stiffness EA
+//! its whole rest length is L₀ = L / (1 + α t / EA) and the core's cluster is written with
+//! rest length L₀ and stiffness k = EA / L₀ (N/m), so that k (L − L₀) = α t at t = 0
+//! ([`ClusterRest`]).
+//!
 //! **Precision.** A string's tension in the written structure is k (L − s0) with
 //! L − s0 = L · (T/EA)/(1 + T/EA), a difference of two lengths that double precision holds
 //! to about ε L: the tension keeps a relative accuracy of about ε / (T/EA). A string whose
@@ -29,7 +35,7 @@ use crate::method::Synthesis;
 use crate::result::FormFound;
 use crate::topology::Topology;
 use tensegrity_core::request::InvalidParameter;
-use tensegrity_core::{Bar, StringMember, Structure, Support};
+use tensegrity_core::{Bar, Cluster, StringMember, Structure, Support};
 
 /// The rest lengths realising a found form at a prestress level (bars then strings).
 #[derive(Debug, Clone, PartialEq)]
@@ -42,6 +48,23 @@ pub struct RestLengths {
     pub stiffness: Vec<f64>,
     /// Rest length s0 = L / (1 + T/EA) of each member (m).
     pub rest_length: Vec<f64>,
+    /// Each cluster's (the `cluster` module): its tension, stiffness and whole rest length.
+    pub clusters: Vec<ClusterRest>,
+}
+
+/// The rest length of a clustered string realising its tension (the `cluster` module docs).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ClusterRest {
+    /// Its tension at the prestress level, α t (N).
+    pub tension: f64,
+    /// Its length L = Σ l_i in the found form (m).
+    pub length: f64,
+    /// Its axial stiffness EA (N).
+    pub axial_stiffness: f64,
+    /// Its stiffness k = EA / L₀ as a whole (N/m): the written scene's `stiffness`.
+    pub stiffness: f64,
+    /// Its whole rest length L₀ = L / (1 + α t / EA) = L − α t / k (m).
+    pub rest_length: f64,
 }
 
 /// The smallest strain T/EA of a synthesised string: below it rounding loses more than 10⁻⁴
@@ -76,9 +99,17 @@ pub fn rest_lengths(
         .map(|&[i, j]| (found.nodes[j] - found.nodes[i]).norm())
         .collect();
     let nb = topology.bars.len();
+    if found.clusters.len() != topology.clusters.len() {
+        return Err(FormFindError::InvalidTopology {
+            item: "form".into(),
+            reason: "the found form does not belong to this topology (its clusters)".into(),
+        });
+    }
+    let segment_q = found.clusters.iter().flat_map(|c| &c.segment_force_density);
     let qmax = found
         .force_density
         .iter()
+        .chain(segment_q)
         .fold(0.0f64, |a, q| a.max(q.abs()));
     let q: Vec<f64> = found
         .force_density
@@ -99,6 +130,11 @@ pub fn rest_lengths(
         }
         max_tension = max_tension.max(q[k] * lengths[k]);
     }
+    // a cluster's tension, in the units of q / max|q| as the members' q L
+    let unit = |t: f64| t / qmax.max(f64::MIN_POSITIVE);
+    for c in &found.clusters {
+        max_tension = max_tension.max(unit(c.tension));
+    }
     if max_tension <= 0.0 && !loaded {
         return Err(FormFindError::NoPrestress {
             reason: "no string carries tension".into(),
@@ -115,6 +151,7 @@ pub fn rest_lengths(
         tension: Vec::with_capacity(pairs.len()),
         stiffness: Vec::with_capacity(pairs.len()),
         rest_length: Vec::with_capacity(pairs.len()),
+        clusters: Vec::with_capacity(found.clusters.len()),
     };
     for (k, m) in topology.members().enumerate() {
         let t = scale * q[k] * lengths[k];
@@ -125,7 +162,64 @@ pub fn rest_lengths(
         out.stiffness.push(ea);
         out.rest_length.push(s0);
     }
+    for (c, (spec, state)) in topology.clusters.iter().zip(&found.clusters).enumerate() {
+        let t = scale * unit(state.tension);
+        let ea = spec.axial_stiffness(synthesis.stiffness);
+        let l0 = state.length / (1.0 + t / ea);
+        check_cluster(c, spec, synthesis, (t, ea, l0))?;
+        out.clusters.push(ClusterRest {
+            tension: t,
+            length: state.length,
+            axial_stiffness: ea,
+            stiffness: ea / l0,
+            rest_length: l0,
+        });
+    }
     Ok(out)
+}
+
+/// Cluster c's tension `t`, stiffness `ea` and rest length `l0` in range, as
+/// [`check_member`] checks a string's: the error names the prestress or the stiffness (the
+/// cluster's own, else the synthesis').
+fn check_cluster(
+    c: usize,
+    spec: &crate::ClusterString,
+    synthesis: &Synthesis,
+    (t, ea, l0): (f64, f64, f64),
+) -> Result<()> {
+    let name = format!("clusters[{c}]");
+    let stiffness = |reason: String| -> FormFindError {
+        match (spec.stiffness, spec.area) {
+            (Some(v), _) => FormFindError::InvalidTopology {
+                item: format!("{name}.stiffness"),
+                reason: format!("{v:e} N: {reason}"),
+            },
+            (None, Some(a)) => FormFindError::InvalidTopology {
+                item: format!("{name}.area"),
+                reason: format!("{a:e} m² (EA = {ea:e} N): {reason}"),
+            },
+            _ => InvalidParameter::new("stiffness", synthesis.stiffness, reason).into(),
+        }
+    };
+    if !t.is_finite() {
+        let reason = format!("{name}'s tension overflows (lower the prestress)");
+        return Err(InvalidParameter::new("prestress", synthesis.prestress, reason).into());
+    }
+    if t / ea < MIN_STRAIN {
+        return Err(stiffness(format!(
+            "{name} would stretch by T/EA = {:.2e} under its {t:.3e} N, below the \
+             {MIN_STRAIN:.1e} double precision keeps its tension to 10⁻⁴ with: lower the \
+             stiffness (at most {:.3e} N) or raise the prestress",
+            t / ea,
+            t / MIN_STRAIN
+        )));
+    }
+    if !(l0.is_finite() && l0 > 0.0 && (ea / l0).is_finite()) {
+        return Err(stiffness(format!(
+            "{name}'s rest length {l0:e} m or stiffness EA/L₀ is out of the range of a double"
+        )));
+    }
+    Ok(())
 }
 
 /// Member k's tension `t`, stiffness `ea` and rest length `s0` in range (module docs): the
@@ -217,6 +311,15 @@ pub fn synthesize_with(
                 .rest_length(s0)
                 .stiffness(ea / s0),
         );
+    }
+    for (spec, rest) in topology.clusters.iter().zip(&r.clusters) {
+        let mut c = Cluster::new(spec.nodes.iter().copied())
+            .rest_length(rest.rest_length)
+            .stiffness(rest.stiffness);
+        if let Some(m) = &spec.material {
+            c = c.material(m);
+        }
+        b = b.cluster(c);
     }
     for f in &topology.fixed {
         b = b.support(Support::pinned(f.node));

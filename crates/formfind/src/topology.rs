@@ -88,8 +88,61 @@ pub struct NodeLoad {
     pub force: [f64; 3],
 }
 
+/// A clustered string of a topology: one continuous string through `nodes` (in order, at
+/// least three) over frictionless pulleys or sliding joints, with one prescribed tension
+/// `force` along every segment (the `cluster` module docs: how the methods find its form).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ClusterString {
+    /// The nodes it passes through, in order (at least three: two segments).
+    pub nodes: Vec<usize>,
+    /// Its prescribed tension t (N), the same in every segment.
+    pub force: Option<f64>,
+    /// Axial stiffness EA of the string (N), as a member's `stiffness`, for the rest-length
+    /// synthesis (default: the synthesis' stiffness, or E · `area` of its `material`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Material name (one of the core's materials): carried into the written scene, and with
+    /// `area` its stiffness EA = E A.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+    /// Cross-section area A (m²), with `material`: EA = E A.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area: Option<f64>,
+}
+
+impl ClusterString {
+    /// A cluster through `nodes` with tension `force` (N), nothing else given.
+    pub fn new<I: IntoIterator<Item = usize>>(nodes: I, force: f64) -> Self {
+        ClusterString {
+            nodes: nodes.into_iter().collect(),
+            force: Some(force),
+            ..ClusterString::default()
+        }
+    }
+
+    /// The segments, as node pairs in order.
+    pub fn segments(&self) -> impl Iterator<Item = [usize; 2]> + '_ {
+        self.nodes.windows(2).map(|w| [w[0], w[1]])
+    }
+
+    /// Its axial stiffness EA (N): its own `stiffness`, else E · `area` of its `material`,
+    /// else `default`.
+    pub fn axial_stiffness(&self, default: f64) -> f64 {
+        if let Some(ea) = self.stiffness {
+            return ea;
+        }
+        let table = tensegrity_core::MaterialTable::builtin();
+        match (&self.material, self.area) {
+            (Some(m), Some(a)) => table.get(m).map_or(default, |m| m.youngs_modulus * a),
+            _ => default,
+        }
+    }
+}
+
 /// A connectivity to find the form of. Members are numbered bars first, then strings, in
-/// the order given.
+/// the order given; the segments of the clusters follow them where the methods need one
+/// force density per two-node element (bars, strings, then every cluster's segments in
+/// order: [`Topology::force_pairs`]).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Topology {
     /// Number of nodes.
@@ -107,6 +160,9 @@ pub struct Topology {
     /// Point loads (several on one node add up); they need fixed nodes (module docs).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub loads: Vec<NodeLoad>,
+    /// Clustered strings with a prescribed tension (the `cluster` module docs).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub clusters: Vec<ClusterString>,
 }
 
 impl Topology {
@@ -115,13 +171,52 @@ impl Topology {
         self.bars.iter().chain(self.strings.iter())
     }
 
-    /// The name of member k (`bars[i]` or `strings[j]`), as errors name it.
+    /// The name of member k (`bars[i]` or `strings[j]`), as errors name it; past the
+    /// members, the cluster whose segment k is in the order of [`Topology::force_pairs`]
+    /// (`clusters[c]`).
     pub fn member_name(&self, k: usize) -> String {
         if k < self.bars.len() {
             format!("bars[{k}]")
-        } else {
+        } else if k < self.n_members() {
             format!("strings[{}]", k - self.bars.len())
+        } else {
+            let mut s = k - self.n_members();
+            for (c, cl) in self.clusters.iter().enumerate() {
+                let n = cl.nodes.len().saturating_sub(1);
+                if s < n {
+                    return format!("clusters[{c}]");
+                }
+                s -= n;
+            }
+            format!("element {k}")
         }
+    }
+
+    /// The node pairs of the two-node elements the methods take one force density each:
+    /// the members (bars then strings), then every cluster's segments in order.
+    pub fn force_pairs(&self) -> Vec<[usize; 2]> {
+        let mut p = self.member_nodes();
+        for c in &self.clusters {
+            p.extend(c.segments());
+        }
+        p
+    }
+
+    /// The number of cluster segments (over all clusters).
+    pub fn n_segments(&self) -> usize {
+        let n = |c: &ClusterString| c.nodes.len().saturating_sub(1);
+        self.clusters.iter().map(n).sum()
+    }
+
+    /// The tension (N) of every cluster segment, in the order of [`Topology::force_pairs`]
+    /// (0 where a cluster gives no `force`).
+    pub fn segment_tensions(&self) -> Vec<f64> {
+        let mut t = Vec::with_capacity(self.n_segments());
+        for c in &self.clusters {
+            let f = c.force.unwrap_or(0.0);
+            t.extend(std::iter::repeat_n(f, c.nodes.len().saturating_sub(1)));
+        }
+        t
     }
 
     /// Checks indices, groups, fixed nodes and numbers; every failure names the item. The
@@ -197,14 +292,24 @@ impl Topology {
                 }
             }
         }
-        if self.n_members() == 0 {
+        if self.n_members() == 0 && self.clusters.is_empty() {
             return Err(bad("bars".into(), "the topology has no members".into()));
         }
         let (members, fixed) = (self.n_members(), self.fixed.len());
-        if self.n_nodes > members.saturating_mul(2).saturating_add(fixed) {
+        let reach = self.reach();
+        if self.n_nodes > reach {
             let reason = too_many_nodes(self.n_nodes, members, fixed);
+            let reason = if self.clusters.is_empty() {
+                reason
+            } else {
+                format!(
+                    "{reason} (plus {} cluster node(s))",
+                    reach - 2 * members - fixed
+                )
+            };
             return Err(bad("n_nodes".into(), reason));
         }
+        self.validate_clusters()?;
         let mut seen = std::collections::HashMap::new();
         let mut touched = vec![false; self.n_nodes];
         for (k, m) in self.members().enumerate() {
@@ -226,6 +331,30 @@ impl Topology {
         for f in &self.fixed {
             if let Some(t) = touched.get_mut(f.node) {
                 *t = true; // a held node may stand alone (an anchor of nothing)
+            }
+        }
+        let mut segments: std::collections::HashMap<(usize, usize), usize> = Default::default();
+        for (c, cl) in self.clusters.iter().enumerate() {
+            for [a, b] in cl.segments() {
+                let key = (a.min(b), a.max(b));
+                let other = match (seen.get(&key), segments.get(&key)) {
+                    (Some(&k), _) => Some(self.member_name(k)),
+                    (None, Some(&d)) if d == c => Some("another of its segments".to_string()),
+                    (None, Some(&d)) => Some(format!("a segment of clusters[{d}]")),
+                    (None, None) => None,
+                };
+                if let Some(other) = other {
+                    return Err(bad(
+                        format!("clusters[{c}]"),
+                        format!(
+                            "its segment joins nodes {} and {}, as {other} does",
+                            key.0, key.1
+                        ),
+                    ));
+                }
+                segments.insert(key, c);
+                touched[a] = true;
+                touched[b] = true;
             }
         }
         if let Some(i) = touched.iter().position(|t| !t) {
@@ -283,6 +412,96 @@ impl Topology {
             }
         }
         self.validate_loads()
+    }
+
+    /// What the members, fixed nodes and clusters reach: 2 · members + fixed + the nodes the
+    /// clusters list (every node is on one of them).
+    fn reach(&self) -> usize {
+        let cluster_nodes = self.clusters.iter().map(|c| c.nodes.len());
+        let listed = cluster_nodes.fold(0usize, usize::saturating_add);
+        let members = self.n_members().saturating_mul(2);
+        members
+            .saturating_add(self.fixed.len())
+            .saturating_add(listed)
+    }
+
+    /// Each cluster: at least three nodes, in range, no zero segment (two equal nodes in a
+    /// row), a positive finite tension `force`, a positive finite `stiffness` or `area`, a known
+    /// `material`, `area` only with a `material` and not with a `stiffness`.
+    fn validate_clusters(&self) -> Result<()> {
+        let bad = |item: String, reason: String| FormFindError::InvalidTopology { item, reason };
+        for (c, cl) in self.clusters.iter().enumerate() {
+            let name = format!("clusters[{c}]");
+            if cl.nodes.len() < 3 {
+                return Err(bad(
+                    name,
+                    format!(
+                        "passes through {} node(s): a cluster runs through at least three (two \
+                         segments); give a two-node string as [[strings]]",
+                        cl.nodes.len()
+                    ),
+                ));
+            }
+            if let Some(&i) = cl.nodes.iter().find(|&&i| i >= self.n_nodes) {
+                return Err(bad(
+                    name,
+                    format!(
+                        "node {i} out of range (the topology has {} nodes)",
+                        self.n_nodes
+                    ),
+                ));
+            }
+            if let Some((s, [a, _])) = cl.segments().enumerate().find(|(_, [a, b])| a == b) {
+                return Err(bad(
+                    name,
+                    format!("segment {s} has both ends on node {a} (zero length)"),
+                ));
+            }
+            match cl.force {
+                None => {
+                    return Err(bad(
+                        format!("{name}.force"),
+                        "no tension given: a cluster's one tension t (N) is prescribed, the \
+                         form is found for it"
+                            .into(),
+                    ))
+                }
+                Some(t) if !(t.is_finite() && t > 0.0) => {
+                    return Err(bad(
+                        format!("{name}.force"),
+                        format!("{t} must be finite and positive (a string's tension, N)"),
+                    ))
+                }
+                _ => {}
+            }
+            for (what, v) in [("stiffness", cl.stiffness), ("area", cl.area)] {
+                if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
+                    return Err(bad(
+                        format!("{name}.{what}"),
+                        format!("{v} must be finite and positive"),
+                    ));
+                }
+            }
+            let table = tensegrity_core::MaterialTable::builtin();
+            if let Some(m) = cl.material.as_deref().filter(|m| table.get(m).is_none()) {
+                return Err(bad(
+                    format!("{name}.material"),
+                    format!(
+                        "unknown material \"{m}\" (known: {})",
+                        table.names().join(", ")
+                    ),
+                ));
+            }
+            if cl.area.is_some() && (cl.material.is_none() || cl.stiffness.is_some()) {
+                return Err(bad(
+                    format!("{name}.area"),
+                    "an area gives the stiffness E A with a `material`, and only without a \
+                     `stiffness`: give a material and no stiffness, or no area"
+                        .into(),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Loads on existing nodes, finite, and only with fixed nodes to carry them (module docs).

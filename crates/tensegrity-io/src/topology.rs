@@ -25,7 +25,17 @@
 //! [[loads]]                      # point loads (fdm only, with fixed nodes); one node may
 //! node = 4                       # carry several, they add up
 //! force = [0.0, 0.0, -1.0]       # N
+//! [[clusters]]                   # one string through several nodes over frictionless
+//! nodes = [0, 4, 1]              # pulleys, in order (at least three nodes)
+//! force = 10.0                   # N: its one tension, the same on every segment
+//! stiffness = 1e5                # N, optional axial stiffness EA (rest-length synthesis)
+//! material = "steel"             # optional (the written scene's); with `area` (m²) EA = E A
 //! ```
+//!
+//! A cluster gives its tension `force`, never a force density (one q along segments of
+//! different lengths would give different tensions, which a frictionless string cannot
+//! carry: `force_density` is refused with that reason), and no `friction` (form-finding is
+//! frictionless: refused by name).
 //!
 //! Members are numbered bars first, then strings, in file order (the order of the force
 //! densities a form-finding reports). The reader is strict: a node count beyond what the
@@ -55,7 +65,7 @@
 
 use crate::error::{IoError, Result};
 use crate::scene::line_column;
-use formfind::{FixedNode, FormFindError, Group, Member, NodeLoad, Topology};
+use formfind::{ClusterString, FixedNode, FormFindError, Group, Member, NodeLoad, Topology};
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -84,6 +94,29 @@ pub struct TopologyFile {
     /// Point loads.
     #[serde(default)]
     pub loads: Vec<Spanned<LoadSpec>>,
+    /// Clustered strings.
+    #[serde(default)]
+    pub clusters: Vec<Spanned<ClusterSpec>>,
+}
+
+/// A `[[clusters]]` entry: one string through several nodes with one prescribed tension.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClusterSpec {
+    /// The nodes it passes through, in order (at least three).
+    pub nodes: Vec<usize>,
+    /// Its prescribed tension t (N), the same on every segment.
+    pub force: Option<f64>,
+    /// Refused with the reason (one force density along the segments is not one tension).
+    pub force_density: Option<f64>,
+    /// Axial stiffness EA (N), as a member's.
+    pub stiffness: Option<f64>,
+    /// Material name (a built-in material).
+    pub material: Option<String>,
+    /// Cross-section area (m²), with `material`: EA = E A.
+    pub area: Option<f64>,
+    /// Refused with the reason (form-finding is frictionless).
+    pub friction: Option<Vec<f64>>,
 }
 
 /// A `[[bars]]` or `[[strings]]` entry.
@@ -224,6 +257,12 @@ impl TopologyFile {
                 reason,
             ));
         }
+        let clusters = self.clusters(n_nodes)?;
+        for c in &clusters {
+            for &i in &c.nodes {
+                used[i] = true;
+            }
+        }
         if let Some(node) = used.iter().position(|u| !u) {
             return Err(self.unused_node(node, n_nodes));
         }
@@ -249,6 +288,7 @@ impl TopologyFile {
             groups: groups.collect(),
             fixed,
             loads: self.loads(n_nodes)?,
+            clusters,
         };
         topology.validate().map_err(|e| (self.offset_of(&e), e))?;
         Ok(topology)
@@ -276,20 +316,40 @@ impl TopologyFile {
     fn node_count(&self) -> Result<usize, Failed> {
         let n = self.given_node_count()?;
         let (members, fixed) = (self.bars.len() + self.strings.len(), self.fixed.len());
-        if n > members.saturating_mul(2).saturating_add(fixed) {
-            let at = match (&self.n_nodes, &self.nodes) {
-                (Some(given), _) => Some(given.span().start),
-                (None, Some(nodes)) => Some(nodes.span().start),
-                (None, None) => None,
+        let listed = (self.clusters.iter().map(|c| c.get_ref().nodes.len()))
+            .fold(0usize, usize::saturating_add);
+        let reach = members.saturating_mul(2).saturating_add(fixed);
+        if n > reach.saturating_add(listed) {
+            let (at, item) = match (&self.n_nodes, &self.nodes) {
+                (Some(given), _) => (Some(given.span().start), "n_nodes".to_string()),
+                (None, Some(nodes)) => (Some(nodes.span().start), "nodes".to_string()),
+                (None, None) => self.largest_index_cluster(n - 1),
             };
-            let item = if self.n_nodes.is_some() {
-                "n_nodes"
-            } else {
-                "nodes"
-            };
-            return Err(bad(at, item, formfind::too_many_nodes(n, members, fixed)));
+            let mut reason = formfind::too_many_nodes(n, members, fixed);
+            if listed > 0 {
+                reason.push_str(&format!(" (plus the {listed} node(s) the clusters list)"));
+            }
+            if item.starts_with("clusters") {
+                reason = format!(
+                    "node {} makes the topology {n} nodes (the largest index + 1): {reason}; \
+                     fix the index or give `n_nodes`",
+                    n - 1
+                );
+            }
+            return Err(bad(at, item, reason));
         }
         Ok(n)
+    }
+
+    /// Where the inferred node count comes from when a cluster lists the largest index
+    /// `node` (its line and name), else `nodes` without a line.
+    fn largest_index_cluster(&self, node: usize) -> (Option<usize>, String) {
+        let cluster =
+            (self.clusters.iter().enumerate()).find(|(_, c)| c.get_ref().nodes.contains(&node));
+        match cluster {
+            Some((c, spanned)) => (Some(spanned.span().start), format!("clusters[{c}]")),
+            None => (None, "nodes".to_string()),
+        }
     }
 
     /// The number of nodes as given: `n_nodes`, the positions, or the largest index + 1.
@@ -298,6 +358,11 @@ impl TopologyFile {
             .members()
             .flat_map(|(_, _, m)| m.get_ref().nodes.iter().copied())
             .chain(self.fixed.iter().map(|f| f.get_ref().node))
+            .chain(
+                self.clusters
+                    .iter()
+                    .flat_map(|c| c.get_ref().nodes.iter().copied()),
+            )
             .max();
         let given = self
             .nodes
@@ -312,7 +377,7 @@ impl TopologyFile {
             (Some(n), _) => Ok(*n.get_ref()),
             (None, Some((len, _))) => Ok(len),
             (None, None) => match largest {
-                Some(i) => Ok(i + 1),
+                Some(i) => Ok(i.saturating_add(1)),
                 None => Err(bad(None, "bars", "the topology has no member")),
             },
         }
@@ -392,6 +457,60 @@ impl TopologyFile {
             stiffness: m.stiffness,
             weight: m.weight,
         })
+    }
+
+    /// The clusters, checked: at least three nodes in range, a finite positive `force`, no
+    /// force density and no friction (each refused with the reason), finite positive
+    /// `stiffness` and `area` (the rest: [`Topology::validate`]).
+    fn clusters(&self, n_nodes: usize) -> Result<Vec<ClusterString>, Failed> {
+        let mut out = Vec::with_capacity(self.clusters.len());
+        for (c, spanned) in self.clusters.iter().enumerate() {
+            let (at, spec) = (spanned.span().start, spanned.get_ref());
+            let name = format!("clusters[{c}]");
+            if spec.nodes.len() < 3 {
+                let reason = format!(
+                    "`nodes` passes through {} node(s) ({:?}): a cluster runs through at least \
+                     three (two segments); give a two-node string as [[strings]]",
+                    spec.nodes.len(),
+                    spec.nodes
+                );
+                return Err(bad(Some(at), name, reason));
+            }
+            if let Some(&i) = spec.nodes.iter().find(|&&i| i >= n_nodes) {
+                let reason = format!("node {i} out of range (the topology has {n_nodes} nodes)");
+                return Err(bad(Some(at), name, reason));
+            }
+            if let Some(s) = spec.nodes.windows(2).position(|w| w[0] == w[1]) {
+                let a = spec.nodes[s];
+                let reason = format!("segment {s} has both ends on node {a} (zero length)");
+                return Err(bad(Some(at), name, reason));
+            }
+            if let Some(q) = spec.force_density {
+                let reason = format!(
+                    "{q}: a cluster takes its one tension `force` (N), not a force density: one \
+                     q along segments of different lengths l_i would give different tensions \
+                     q l_i, which a string over frictionless pulleys cannot carry (the segments' \
+                     force densities t/l_i are found with the form)"
+                );
+                return Err(bad(Some(at), format!("{name}.force_density"), reason));
+            }
+            if spec.friction.is_some() {
+                let reason = "form-finding takes clusters frictionless (one tension along the \
+                              whole cluster): remove `friction` (a scene's cluster may have it)";
+                return Err(bad(Some(at), format!("{name}.friction"), reason));
+            }
+            finite(at, format!("{name}.force"), spec.force, true)?;
+            finite(at, format!("{name}.stiffness"), spec.stiffness, true)?;
+            finite(at, format!("{name}.area"), spec.area, true)?;
+            out.push(ClusterString {
+                nodes: spec.nodes.clone(),
+                force: spec.force,
+                stiffness: spec.stiffness,
+                material: spec.material.clone(),
+                area: spec.area,
+            });
+        }
+        Ok(out)
     }
 
     /// The fixed nodes, checked: in range, finite, each node once.
@@ -509,6 +628,7 @@ impl TopologyFile {
             "strings" => Some(self.strings.get(index)?.span().start),
             "fixed" => Some(self.fixed.get(index)?.span().start),
             "loads" => Some(self.loads.get(index)?.span().start),
+            "clusters" => Some(self.clusters.get(index)?.span().start),
             "nodes" => self.node_span(index),
             _ => None,
         }
@@ -579,6 +699,22 @@ pub fn to_toml(t: &Topology) -> String {
             l.node,
             v3(&l.force)
         );
+    }
+    for c in &t.clusters {
+        let nodes: Vec<String> = c.nodes.iter().map(usize::to_string).collect();
+        let _ = write!(out, "\n[[clusters]]\nnodes = [{}]\n", nodes.join(", "));
+        for (key, v) in [
+            ("force", c.force),
+            ("stiffness", c.stiffness),
+            ("area", c.area),
+        ] {
+            if let Some(v) = v {
+                let _ = writeln!(out, "{key} = {v:?}");
+            }
+        }
+        if let Some(m) = &c.material {
+            let _ = writeln!(out, "material = {}", toml_string(m));
+        }
     }
     out
 }
@@ -752,6 +888,101 @@ position = [1.0, 0.0, 0.0]
         let e = err(&free);
         assert!(
             e.starts_with("t.toml (line 11): loads: 2 load(s) on a free-standing topology"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn clusters_read_round_trip_and_bad_ones_are_named_by_line() {
+        let line = "[[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]\n\
+                    [[fixed]]\nnode = 2\nposition = [4.0, 0.0, 1.0]\n\
+                    [[loads]]\nnode = 1\nforce = [0.0, 0.0, -10.0]\n\
+                    [[clusters]]\nnodes = [0, 1, 2]\nforce = 10.0\nmaterial = \"steel\"\narea = 1e-6\n";
+        let t = from_str_named(line, "line.toml").unwrap();
+        assert_eq!((t.n_nodes, t.n_members(), t.clusters.len()), (3, 0, 1));
+        let c = &t.clusters[0];
+        assert_eq!(
+            (c.nodes.clone(), c.force, c.area),
+            (vec![0, 1, 2], Some(10.0), Some(1e-6))
+        );
+        assert_eq!(c.axial_stiffness(1.0), 206e9 * 1e-6);
+        assert_eq!(from_str_named(&to_toml(&t), "again").unwrap(), t);
+        let cases: &[(&str, &str, &[&str])] = &[
+            (
+                "force = 10.0",
+                "force = 10.0\nforce_density = 1.0",
+                &[
+                    "line 10",
+                    "clusters[0].force_density",
+                    "not a force density",
+                ],
+            ),
+            (
+                "force = 10.0",
+                "force = 10.0\nfriction = [0.2]",
+                &["line 10", "clusters[0].friction", "frictionless"],
+            ),
+            (
+                "force = 10.0",
+                "force = nan",
+                &["line 10", "clusters[0].force", "finite"],
+            ),
+            (
+                "force = 10.0\n",
+                "",
+                &["line 10", "clusters[0].force: no tension given"],
+            ),
+            (
+                "material = \"steel\"",
+                "material = \"wood\"",
+                &[
+                    "line 10",
+                    "clusters[0].material",
+                    "unknown material \"wood\"",
+                ],
+            ),
+            (
+                "material = \"steel\"",
+                "stiffness = 1e4",
+                &["line 10", "clusters[0].area", "with a `material`"],
+            ),
+            (
+                "area = 1e-6",
+                "area = -1.0",
+                &["line 10", "clusters[0].area", "positive"],
+            ),
+            (
+                "nodes = [0, 1, 2]",
+                "nodes = [0, 1]",
+                &["line 10", "at least three"],
+            ),
+            (
+                "nodes = [0, 1, 2]",
+                "nodes = [0, 1, 2, 1, 0]",
+                &[
+                    "line 10",
+                    "clusters[0]: its segment joins nodes 1 and 2, as another",
+                ],
+            ),
+            (
+                "area = 1e-6",
+                "area = 1e-6\nlength = 1.0",
+                &["unknown field `length`"],
+            ),
+        ];
+        for (from, to, wants) in cases {
+            assert!(line.contains(from), "{from}");
+            let e = err(&line.replacen(from, to, 1));
+            for w in *wants {
+                assert!(e.contains(w), "{from} → {to}: {e}");
+            }
+        }
+        // a cluster's segment on a member's nodes, named with the member
+        let on_member = line.replace("[[clusters]]", "[[strings]]\nnodes = [1, 2]\n[[clusters]]");
+        let e = err(&on_member);
+        assert!(
+            e.contains("line 12")
+                && e.contains("clusters[0]: its segment joins nodes 1 and 2, as strings[0] does"),
             "{e}"
         );
     }
