@@ -2,7 +2,8 @@
 //! 44) against closed forms: the Atwood machine (examples/atwood.toml) falls at
 //! a = (m₁ − m₂) g/(m₁ + m₂) with the tension T = 2 m₁ m₂ g/(m₁ + m₂) in its trajectory,
 //! and a weight hanging over a pulley on a load path (examples/pulley_load.toml) carries
-//! t = W + λP with node 2 sinking by λP/k; pulley friction is refused naming the cluster.
+//! t = W + λP with node 2 sinking by λP/k; the rigid-bar dynamics refuses pulley friction
+//! naming the cluster (tests/cli_clusters_friction.rs runs it elastic).
 
 mod common;
 
@@ -104,23 +105,23 @@ fn a_weight_over_a_pulley_carries_its_load_along_the_cluster() {
 }
 
 #[test]
-fn pulley_friction_is_refused_naming_the_cluster() {
+fn the_rigid_bar_dynamics_refuses_pulley_friction_naming_the_elastic_run() {
     let dir = scratch("clusters", "friction");
-    let text = std::fs::read_to_string("examples/pulley_load.toml").unwrap();
+    let text = std::fs::read_to_string("examples/cluster_deploy.toml").unwrap();
     let scene = dir.join("friction.toml");
     std::fs::write(
         &scene,
         text.replace(
-            "rest_length = 1.99019",
-            "rest_length = 1.99019\nfriction = [0.2]",
+            "rest_length = 5.144190898479565",
+            "rest_length = 5.144190898479565\nfriction = [0.2, 0.2]",
         ),
     )
     .unwrap();
-    let out = run(&["solve", scene.to_str().unwrap()]);
+    let out = run(&["simulate", scene.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2), "{out:?}");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("cluster 0") && err.contains("friction"),
+        err.contains("cluster 0") && err.contains("friction") && err.contains("bars = \"elastic\""),
         "{err}"
     );
 }

@@ -32,6 +32,7 @@ extern crate self as tensegrity_core;
 
 pub mod angle;
 pub mod budget;
+pub mod capstan;
 pub mod cluster;
 pub mod columns;
 pub mod connectivity;

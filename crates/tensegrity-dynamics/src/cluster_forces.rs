@@ -10,7 +10,8 @@
 //! the drift checks honest. Every node of a cluster is a bar node (its representative
 //! class-1 copy, which also carries its strings) or a node fixed in all three directions; a
 //! free node on no bar has no mass and is refused (`FreeNodeWithoutBar`). Pulley friction is
-//! not modelled: such a cluster is refused, naming it. An `[[actuation]]` table naming the
+//! modelled by the elastic dynamics only (`tensegrity_path::clusters`): here such a cluster
+//! is refused, naming it and the elastic run. An `[[actuation]]` table naming the
 //! cluster drives its rest length L₀(t) (the model's rest-length schedule holds the strings'
 //! rest lengths, then the clusters'): one actuator changes all its segments.
 

@@ -968,7 +968,7 @@ fn clusters_of(structure: &Structure, node_map: &[NodeRef]) -> Result<Vec<Cluste
             .into()
         };
         if !c.is_frictionless() {
-            return Err(invalid("pulley friction (the capstan law) is not modelled by the rigid-bar dynamics yet: give it no `friction`"));
+            return Err(invalid("pulley friction (the capstan law) is modelled by the elastic dynamics, not the rigid-bar one: run the scene with `[simulation] bars = \"elastic\"` (or give the cluster no `friction`)"));
         }
         let stiffness = c.stiffness.ok_or_else(|| {
             invalid("the dynamics needs its stiffness (N/m, of the whole cluster)")

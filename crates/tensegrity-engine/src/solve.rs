@@ -243,7 +243,19 @@ impl SolveCommand {
         if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
             model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
         }
-        Ok(match self.load_steps {
+        if self.switch_branch && model.has_friction() {
+            return Err(InvalidParameter::new(
+                "switch_branch",
+                1.0,
+                "a path with pulley friction follows load steps, which switch no branch (drop switch_branch)",
+            )
+            .into());
+        }
+        // pulley friction depends on the path's history: load control, each step settled
+        let load_steps = self
+            .load_steps
+            .or(model.has_friction().then_some(FRICTION_LOAD_STEPS));
+        Ok(match load_steps {
             Some(k) => SolveReport::of(
                 "load_steps",
                 tensegrity_path::load_steps(&model, k, self.target)?,
@@ -261,6 +273,11 @@ impl SolveCommand {
         })
     }
 }
+
+/// The load steps of a path whose clusters have pulley friction when `load_steps` is not
+/// given: the arc-length path does not take friction (its sliding depends on the history),
+/// load control does, each step settled to the capstan law (`tensegrity_path::load_steps`).
+pub const FRICTION_LOAD_STEPS: usize = 20;
 
 /// Runs `solve`: reads the scene, one path.
 pub fn solve(command: &SolveCommand) -> Result<SolveReport, SceneError> {

@@ -856,12 +856,43 @@ pub(crate) fn point_of(
         nodes: eq.x.iter().map(|x| (*x).into()).collect(),
         displacements,
         max_displacement,
-        tensions: model.reported(&eq.states.iter().map(|s| s.tension).collect::<Vec<_>>()),
+        tensions: model.reported_tensions(&eq.states.iter().map(|s| s.tension).collect::<Vec<_>>()),
         slack: slack(model, eq),
+        segment_tensions: (0..model.clusters.len())
+            .map(|c| {
+                eq.states[model.cluster_states(c)]
+                    .iter()
+                    .map(|s| s.tension)
+                    .collect()
+            })
+            .collect(),
+        pulleys: if model.has_friction() {
+            model
+                .clusters
+                .iter()
+                .map(|c| {
+                    c.friction.as_ref().map_or_else(Vec::new, |f| {
+                        f.pulleys.iter().map(|p| pulley_name(*p)).collect()
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        },
         reactions,
         smallest_eigenvalues: spectrum.smallest.clone(),
         stability: spectrum.stability,
         residual: eq.residual,
+    }
+}
+
+/// A pulley state's name in reports.
+fn pulley_name(p: tensegrity_core::capstan::Pulley) -> &'static str {
+    use tensegrity_core::capstan::Pulley;
+    match p {
+        Pulley::Stick => "stick",
+        Pulley::SlipForward => "slip_forward",
+        Pulley::SlipBackward => "slip_backward",
     }
 }
 
@@ -899,6 +930,12 @@ fn slack(model: &ElasticModel, eq: &Equilibrium) -> Vec<usize> {
 /// ```
 pub fn follow(model: &ElasticModel, settings: &PathSettings) -> Result<PathReport> {
     settings.check()?;
+    if let Some(c) = model.clusters.iter().position(|c| c.friction.is_some()) {
+        return Err(PathError::model(
+            format!("cluster {c}"),
+            "pulley friction makes the path depend on its history: follow it by load control (`load_steps`), each step settled to the capstan law",
+        ));
+    }
     let model = &model.clone().validated()?;
     // driven rest lengths are linear in λ: positive at both ends, positive between
     newton::check_rest_lengths(model, settings.target)?;

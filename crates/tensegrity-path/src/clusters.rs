@@ -1,5 +1,5 @@
 //! Clustered strings in the elastic model ([`ElasticCluster`]): one continuous string
-//! through the nodes n₀, n₁, …, n_p over frictionless pulleys at its inner nodes, so one
+//! through the nodes n₀, n₁, …, n_p over pulleys at its inner nodes; frictionless, one
 //! tension acts along all its segments (issue 44; the scene's `[[clusters]]`,
 //! `tensegrity_core::Cluster`).
 //!
@@ -28,13 +28,30 @@
 //! ([`ElasticModel::reported`]): index `members.len() + c` is cluster c (also in the slack
 //! lists and events of a load path).
 //!
-//! Pulley friction (the capstan law) is not modelled: a cluster with a friction coefficient
-//! is refused ([`ElasticModel::from_structure`]).
+//! **Pulley friction** (`friction`, one μ per inner node; [`ElasticCluster::friction`]):
+//! the cluster's material is a state, each segment's rest length s_i (Σ s_i = L₀; at the
+//! start spread in proportion to the segments' lengths: one strain, the frictionless state),
+//! and segment i is a string of rigidity EA = k L₀ at rest length s_i: t_i = EA (l_i − s_i)/s_i,
+//! tangent (EA/s_i) e eᵀ + (t_i/l_i)(I − e eᵀ), strain energy ½ (EA/s_i)(l_i − s_i)². Material
+//! passes a pulley only at the capstan limit t_out = e^{μθ} t_in (θ the wrap angle between
+//! the segments' directions): [`slide`] is the return map of that law over an increment
+//! (`tensegrity_core::capstan`). A load path follows it by load control (`load_steps`: at
+//! each step Newton at fixed rest lengths and the slide alternate until no rest length moves
+//! by 10⁻¹⁴ of the cluster; the arc-length path refuses friction, as the sliding depends on
+//! the path's history). The dynamics (the string is massless, so it slides at once) slides
+//! from the last accepted step's rest lengths at every force evaluation — the force is a
+//! continuous function of the positions within a step — and keeps the slide at the step's
+//! end; the friction's work, Σ_j |t_j − t_{j−1}| |f_j| over the material f_j passed
+//! (trapezoidal in the step), enters the energy balance. A slipping pulley's ratio holds to
+//! about 10⁻¹² on a load path; the dynamics' sliding is first order in the step where a
+//! pulley switches between stick and slip.
 
 use crate::dofs::Dofs;
+use crate::error::{PathError, Result};
 use crate::forces::MemberState;
-use crate::model::ElasticModel;
+use crate::model::{ElasticCluster, ElasticModel};
 use nalgebra::{Matrix3, Vector3};
+use tensegrity_core::capstan::{self, Pulley};
 
 /// The length L of cluster `c` from its segments' `states` (all the states).
 pub fn cluster_length(model: &ElasticModel, c: usize, states: &[MemberState]) -> f64 {
@@ -114,18 +131,34 @@ pub fn cluster_triplets(
 ) -> Vec<(usize, usize, f64)> {
     let taut = |c: usize| !states[model.cluster_states(c).start].slack;
     let mut t = rank_one_triplets(model, dofs, states, |c| {
-        taut(c).then_some(model.clusters[c].stiffness)
+        (taut(c) && model.clusters[c].friction.is_none()).then_some(model.clusters[c].stiffness)
     });
     let nodes: Vec<[usize; 2]> = model.state_nodes().collect();
-    for (k, s) in states.iter().enumerate().skip(model.members.len()) {
-        if s.slack {
-            continue;
+    for (c, cluster) in model.clusters.iter().enumerate() {
+        for k in model.cluster_states(c) {
+            if !states[k].slack {
+                push_block(
+                    &mut t,
+                    dofs,
+                    nodes[k],
+                    &segment_tangent(cluster, &states[k]),
+                );
+            }
         }
-        let nn = s.direction * s.direction.transpose();
-        let local = (Matrix3::identity() - nn) * (s.tension / s.length);
-        push_block(&mut t, dofs, nodes[k], &local);
     }
     t
+}
+
+/// A taut segment's 3 × 3 tangent: (t/l)(I − e eᵀ), plus (EA/s_i) e eᵀ on a frictional
+/// cluster (its stuck material: a string of rest length s_i).
+fn segment_tangent(cluster: &ElasticCluster, s: &MemberState) -> Matrix3<f64> {
+    let nn = s.direction * s.direction.transpose();
+    let geometric = (Matrix3::identity() - nn) * (s.tension / s.length);
+    if cluster.friction.is_some() {
+        geometric + nn * (cluster.stiffness * cluster.rest_length / s.rest_length)
+    } else {
+        geometric
+    }
 }
 
 /// [[B, −B], [−B, B]] on the nodes `[a, b]`, projected onto their free directions.
@@ -159,6 +192,16 @@ pub fn add_driven_forces(
 ) {
     for (c, cluster) in model.clusters.iter().enumerate() {
         let range = model.cluster_states(c);
+        if cluster.friction.is_some() {
+            for ([a, b], s) in cluster.segments().zip(&states[range]) {
+                if !s.slack {
+                    let f = segment_tangent(cluster, s) * (held_motion[b] - held_motion[a]);
+                    r[a] -= f;
+                    r[b] += f;
+                }
+            }
+            continue;
+        }
         if states[range.start].slack {
             continue;
         }
@@ -183,6 +226,15 @@ pub fn add_driven_forces(
 pub fn strain_energy(model: &ElasticModel, states: &[MemberState]) -> f64 {
     (0..model.clusters.len())
         .map(|c| {
+            let cluster = &model.clusters[c];
+            if cluster.friction.is_some() {
+                let ea = cluster.stiffness * cluster.rest_length;
+                return states[model.cluster_states(c)]
+                    .iter()
+                    .filter(|s| !s.slack)
+                    .map(|s| 0.5 * ea / s.rest_length * (s.length - s.rest_length).powi(2))
+                    .sum();
+            }
             let e = cluster_length(model, c, states) - model.clusters[c].rest_length;
             if e > 0.0 {
                 0.5 * model.clusters[c].stiffness * e * e
@@ -191,4 +243,80 @@ pub fn strain_energy(model: &ElasticModel, states: &[MemberState]) -> f64 {
             }
         })
         .sum()
+}
+
+/// The frictional clusters' segment rest lengths (one list per cluster; empty for a
+/// frictionless one): the state that [`slide`] changes.
+pub fn friction_rest_lengths(model: &ElasticModel) -> Vec<Vec<f64>> {
+    model
+        .clusters
+        .iter()
+        .map(|c| {
+            c.friction
+                .as_ref()
+                .map_or_else(Vec::new, |f| f.rest_lengths.clone())
+        })
+        .collect()
+}
+
+/// Sets the frictional clusters' segment states from the rest lengths `rest` (as
+/// [`friction_rest_lengths`] gives them) instead of the model's.
+pub fn apply_rest_lengths(model: &ElasticModel, states: &mut [MemberState], rest: &[Vec<f64>]) {
+    for (c, cluster) in model.clusters.iter().enumerate() {
+        if cluster.friction.is_some() {
+            let ea = cluster.stiffness * cluster.rest_length;
+            for (s, &r) in states[model.cluster_states(c)].iter_mut().zip(&rest[c]) {
+                crate::forces::set_segment(s, ea, r);
+            }
+        }
+    }
+}
+
+/// What one increment of pulley friction gives ([`slide`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Slid {
+    /// Each cluster's segment rest lengths after the slide (empty for a frictionless one).
+    pub rest: Vec<Vec<f64>>,
+    /// Each cluster's pulley states (empty for a frictionless one).
+    pub pulleys: Vec<Vec<Pulley>>,
+    /// The largest change of a rest length (m).
+    pub moved: f64,
+}
+
+/// One increment of pulley friction (module docs): from the rest lengths `start` (as
+/// [`friction_rest_lengths`] gives them) at the increment's start, the rest lengths after
+/// sliding to the capstan law at the segments' `states` at its end
+/// (`tensegrity_core::capstan::slide`), each pulley's state, and the largest change of a
+/// rest length (m). An error names the cluster whose sliding failed.
+pub fn slide(model: &ElasticModel, states: &[MemberState], start: &[Vec<f64>]) -> Result<Slid> {
+    let mut rest = start.to_vec();
+    let mut pulleys = vec![Vec::new(); model.clusters.len()];
+    let mut moved = 0.0_f64;
+    for (c, cluster) in model.clusters.iter().enumerate() {
+        let Some(friction) = &cluster.friction else {
+            continue;
+        };
+        let seg = &states[model.cluster_states(c)];
+        let lengths: Vec<f64> = seg.iter().map(|s| s.length).collect();
+        let mu_theta: Vec<f64> = friction
+            .mu
+            .iter()
+            .zip(seg.windows(2))
+            .map(|(mu, w)| mu * capstan::wrap_angle(&w[0].direction, &w[1].direction))
+            .collect();
+        let out = capstan::slide(
+            &lengths,
+            &mut rest[c],
+            cluster.stiffness * cluster.rest_length,
+            &mu_theta,
+        )
+        .map_err(|e| PathError::model(format!("cluster {c}"), format!("pulley friction: {e}")))?;
+        moved = moved.max(out.moved);
+        pulleys[c] = out.pulleys;
+    }
+    Ok(Slid {
+        rest,
+        pulleys,
+        moved,
+    })
 }

@@ -82,6 +82,14 @@ pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberSta
                 slack: true,
             });
         }
+        if let Some(friction) = &c.friction {
+            // each segment its own material s_i (crate::clusters): a string of rigidity k L₀
+            let ea = c.stiffness * c.rest_length;
+            for (s, &rest) in out[start..].iter_mut().zip(&friction.rest_lengths) {
+                set_segment(s, ea, rest);
+            }
+            continue;
+        }
         let total: f64 = out[start..].iter().map(|s| s.length).sum();
         let slack = total <= c.rest_length;
         for s in &mut out[start..] {
@@ -90,6 +98,14 @@ pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberSta
         }
     }
     out
+}
+
+/// A frictional cluster's segment state at its own rest length `rest` (m), the cluster's
+/// rigidity `ea` (N): t = EA (l − s)/s, slack when l ≤ s.
+pub fn set_segment(s: &mut MemberState, ea: f64, rest: f64) {
+    s.rest_length = rest;
+    s.slack = s.length <= rest;
+    s.tension = tensegrity_core::capstan::segment_tension(ea, s.length, rest);
 }
 
 /// The resisting forces R_i at every node (crate docs) from the member states (a cluster's

@@ -16,7 +16,10 @@
 //! **Clustered strings** ([`clusters`]). A cluster runs through several nodes over
 //! frictionless pulleys with one tension t = k (L − L₀) (L the sum of its segments' lengths,
 //! slack when L ≤ L₀) pulling along every segment; its tangent is k g gᵀ + Σ (t/l_i)(I − e_i
-//! e_iᵀ) (g = ∂L/∂x). Reported tensions give the members, then one per cluster.
+//! e_iᵀ) (g = ∂L/∂x). With pulley friction each segment keeps its own share of the material
+//! and slides over a pulley only at the capstan limit t_out = e^{μθ} t_in (load control
+//! and the dynamics; module docs of [`clusters`]). Reported tensions give the members, then
+//! one per cluster (its largest segment's), and each cluster's segment tensions.
 //!
 //! **Equilibrium** ([`forces`]). With n_k = (x_j − x_i)/L_k the members' resisting force on
 //! node i is R_i = −Σ t_k n_k (member k leaving i), and equilibrium is R(x) = λ P on the
@@ -58,6 +61,7 @@
 
 #![warn(missing_docs)]
 
+pub mod actuation;
 pub mod arclength;
 pub mod clusters;
 pub mod dofs;

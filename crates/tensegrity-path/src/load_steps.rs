@@ -37,10 +37,10 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
             reason: "must be at least 1".into(),
         });
     }
-    let model = &model.clone().validated()?;
-    newton::check_rest_lengths(model, target)?;
-    let dofs = Dofs::of(model)?;
-    let mut x = model.nodes.clone();
+    let mut owned = model.clone().validated()?;
+    newton::check_rest_lengths(&owned, target)?;
+    let dofs = Dofs::of(&owned)?;
+    let mut x = owned.nodes.clone();
     let mut report = PathReport {
         points: Vec::new(),
         events: Vec::new(),
@@ -49,7 +49,7 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
     for k in 0..=steps {
         let lambda = target * k as f64 / steps as f64;
         let lambda0 = report.points.last().map_or(0.0, |p| p.lambda);
-        let eq = newton::solve(model, &dofs, &x, lambda0, lambda).map_err(|e| match e {
+        let eq = newton::solve(&owned, &dofs, &x, lambda0, lambda).map_err(|e| match e {
             PathError::NotConverged {
                 lambda,
                 residual,
@@ -66,6 +66,12 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
             },
             e => e,
         })?;
+        let eq = if owned.has_friction() {
+            settle_friction(&mut owned, &dofs, eq)?
+        } else {
+            eq
+        };
+        let model = &owned;
         if let Some(prev) = report.points.last() {
             // the tangent's prediction of this step against what Newton found
             let states = crate::forces::member_states(model, &x, prev.lambda);
@@ -94,4 +100,52 @@ pub fn load_steps(model: &ElasticModel, steps: usize, target: f64) -> Result<Pat
         report.points.push(point_of(model, &dofs, k, &eq, None));
     }
     Ok(report)
+}
+
+/// Fixed-point iterations of a load step with pulley friction before it is refused.
+pub const MAX_FRICTION_ITERATIONS: usize = 500;
+
+/// Pulley friction at one load step (crate docs, [`crate::clusters`]): from the equilibrium
+/// `eq` at the step's start rest lengths, the clusters' material slides to the capstan law
+/// at its geometry ([`crate::clusters::slide`], always from the step's start), Newton finds
+/// the equilibrium of the new rest lengths, and so on until no rest length moves more than
+/// 10⁻¹⁴ of the longest cluster: then equilibrium and the capstan law hold together (a
+/// slipping pulley's tension ratio at e^{μθ} to about 10⁻¹² relative). The model keeps the
+/// rest lengths and the pulleys' states.
+fn settle_friction(
+    model: &mut ElasticModel,
+    dofs: &Dofs,
+    mut eq: newton::Equilibrium,
+) -> Result<newton::Equilibrium> {
+    let start = crate::clusters::friction_rest_lengths(model);
+    let scale = model
+        .clusters
+        .iter()
+        .map(|c| c.rest_length)
+        .fold(0.0, f64::max);
+    for _ in 0..MAX_FRICTION_ITERATIONS {
+        let crate::clusters::Slid { rest, pulleys, .. } =
+            crate::clusters::slide(model, &eq.states, &start)?;
+        let mut change = 0.0_f64;
+        for ((cluster, rest), pulleys) in model.clusters.iter_mut().zip(rest).zip(pulleys) {
+            if let Some(f) = &mut cluster.friction {
+                for (old, new) in f.rest_lengths.iter().zip(&rest) {
+                    change = change.max((old - new).abs());
+                }
+                f.rest_lengths = rest;
+                f.pulleys = pulleys;
+            }
+        }
+        eq = newton::solve(model, dofs, &eq.x, eq.lambda, eq.lambda)?;
+        if change <= 1e-14 * scale {
+            return Ok(eq);
+        }
+    }
+    Err(PathError::model(
+        "pulley friction",
+        format!(
+            "the clusters' sliding did not settle in {MAX_FRICTION_ITERATIONS} iterations at load factor {:e}: more load steps",
+            eq.lambda
+        ),
+    ))
 }

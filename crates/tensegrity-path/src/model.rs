@@ -126,6 +126,41 @@ pub struct ElasticCluster {
     pub rest_length: f64,
     /// Damping c on the rate of its length (N·s/m; read by the dynamics only).
     pub damping: f64,
+    /// Pulley friction (the capstan law, [`crate::clusters`]); `None`: frictionless
+    /// pulleys, one tension along the cluster.
+    pub friction: Option<ClusterFriction>,
+}
+
+/// The pulley friction of a cluster and its material's distribution over its segments
+/// ([`crate::clusters`], `tensegrity_core::capstan`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClusterFriction {
+    /// The friction coefficient μ of the pulley at each inner node.
+    pub mu: Vec<f64>,
+    /// Each segment's rest length s_i (m; Σ s_i = L₀): the state that sliding changes.
+    pub rest_lengths: Vec<f64>,
+    /// Each pulley's state after the last increment (all stuck at the start).
+    pub pulleys: Vec<tensegrity_core::capstan::Pulley>,
+}
+
+impl ClusterFriction {
+    /// Friction `mu` on a cluster of rest length `rest_length` whose segments have the
+    /// lengths `lengths`: its material spread in proportion to them (one strain along the
+    /// cluster: the frictionless state).
+    ///
+    /// ```
+    /// use tensegrity_path::model::ClusterFriction;
+    /// let f = ClusterFriction::spread(vec![0.2], 1.5, &[1.0, 2.0]);
+    /// assert_eq!(f.rest_lengths, vec![0.5, 1.0]);
+    /// ```
+    pub fn spread(mu: Vec<f64>, rest_length: f64, lengths: &[f64]) -> Self {
+        let total: f64 = lengths.iter().sum();
+        Self {
+            pulleys: vec![tensegrity_core::capstan::Pulley::Stick; mu.len()],
+            mu,
+            rest_lengths: lengths.iter().map(|l| rest_length * l / total).collect(),
+        }
+    }
 }
 
 impl ElasticCluster {
@@ -143,7 +178,7 @@ impl ElasticCluster {
     ///
     /// ```
     /// use tensegrity_path::model::ElasticCluster;
-    /// let c = ElasticCluster { nodes: vec![0, 1, 2], stiffness: 100.0, rest_length: 2.0, damping: 0.0 };
+    /// let c = ElasticCluster { nodes: vec![0, 1, 2], stiffness: 100.0, rest_length: 2.0, damping: 0.0, friction: None };
     /// assert_eq!((c.tension(2.5), c.tension(1.5)), (50.0, 0.0));
     /// ```
     pub fn tension(&self, length: f64) -> f64 {
@@ -191,6 +226,25 @@ impl ElasticModel {
         for c in 0..self.clusters.len() {
             if let Some(v) = values.get(self.cluster_states(c).start) {
                 out.push(*v);
+            }
+        }
+        out
+    }
+
+    /// Whether a cluster has pulley friction.
+    pub fn has_friction(&self) -> bool {
+        self.clusters.iter().any(|c| c.friction.is_some())
+    }
+
+    /// One tension per member, then per cluster the largest of its segments' (they are one
+    /// tension on frictionless pulleys), from the states' `tensions`.
+    pub fn reported_tensions(&self, tensions: &[f64]) -> Vec<f64> {
+        let mut out = self.reported(tensions);
+        for c in 0..self.clusters.len() {
+            let range = self.cluster_states(c);
+            if let (Some(t), Some(seg)) = (out.get_mut(self.members.len() + c), tensions.get(range))
+            {
+                *t = seg.iter().fold(*t, |a, &b| a.max(b));
             }
         }
         out
@@ -664,28 +718,35 @@ impl ElasticModel {
 }
 
 /// The clusters of a scene's structure ([`crate::clusters`]): their `stiffness` k, their
-/// `rest_length` (default: their length in the scene, no prestress) and `damping`; a cluster
-/// without a stiffness, or with pulley friction (not modelled), is an error naming it.
+/// `rest_length` (default: their length in the scene, no prestress), `damping` and pulley
+/// `friction` (its material spread over the segments as in the scene: one strain along it);
+/// a cluster without a stiffness is an error naming it.
 fn elastic_clusters(s: &Structure) -> Result<Vec<ElasticCluster>> {
     let mut out = Vec::with_capacity(s.clusters().len());
     for (c, cl) in s.clusters().iter().enumerate() {
-        if !cl.is_frictionless() {
-            return Err(PathError::model(
-                format!("cluster {c}"),
-                "pulley friction (the capstan law) is not modelled yet: give it no `friction` (frictionless pulleys)",
-            ));
-        }
         let Some(stiffness) = cl.stiffness else {
             return Err(PathError::model(
                 format!("cluster {c}"),
                 "an elastic cluster needs a stiffness (N/m, of the whole cluster) in the scene",
             ));
         };
+        let rest_length = cl.rest_length.unwrap_or_else(|| cl.length(s.nodes()));
+        let friction = match &cl.friction {
+            Some(mu) if !cl.is_frictionless() => {
+                let lengths: Vec<f64> = cl
+                    .segments()
+                    .map(|[a, b]| (s.nodes()[b] - s.nodes()[a]).norm())
+                    .collect();
+                Some(ClusterFriction::spread(mu.clone(), rest_length, &lengths))
+            }
+            _ => None,
+        };
         out.push(ElasticCluster {
             nodes: cl.nodes.clone(),
             stiffness,
-            rest_length: cl.rest_length.unwrap_or_else(|| cl.length(s.nodes())),
+            rest_length,
             damping: cl.damping,
+            friction,
         });
     }
     Ok(out)

@@ -101,7 +101,8 @@ impl Newmark {
                 tolerance: TOLERANCE,
                 max_iterations: MAX_ITERATIONS,
             };
-            let jacobian = |q1: &DVector<f64>, u1: &DVector<f64>| Self::jacobian(system, q1, u1, h);
+            let jacobian =
+                |q1: &DVector<f64>, u1: &DVector<f64>| Self::jacobian(system, t + h, q1, u1, h);
             return crate::newmark_rigid::solve(
                 system,
                 ws,
@@ -125,7 +126,7 @@ impl Newmark {
                 return Ok(Ok((q1, u1, a1)));
             }
             // dr/da₁ = M_r + (h²/4) K_T + (h/2) C_T = (h²/4) J
-            let triplets = Self::jacobian(system, &q1, &u1, h);
+            let triplets = Self::jacobian(system, t + h, &q1, &u1, h);
             let Some(mut factor) = Factored::from_triplets(m, &triplets, DENSE_MAX) else {
                 return Ok(Err(residual));
             };
@@ -144,9 +145,10 @@ impl Newmark {
         Ok(Err(residual))
     }
 
-    /// (4/h²) M_r + K_T + (2/h) C_T at (q₁, q̇₁), as triplets.
+    /// (4/h²) M_r + K_T + (2/h) C_T at time `t` and (q₁, q̇₁), as triplets.
     fn jacobian(
         system: &ElasticDynamics,
+        t: f64,
         q1: &DVector<f64>,
         u1: &DVector<f64>,
         h: f64,
@@ -154,7 +156,7 @@ impl Newmark {
         let mut y = q1.as_slice().to_vec();
         y.extend_from_slice(u1.as_slice());
         let (x, v) = (system.nodes_of(&y), system.velocities_of(&y));
-        let states = system.member_states(&x, &v);
+        let states = system.member_states(t, &x, &v);
         let (model, dofs) = (system.model(), system.dofs());
         let mut t = tangent_triplets(model, dofs, &states);
         t.extend(

@@ -21,6 +21,16 @@ pub struct PathPoint {
     pub tensions: Vec<f64>,
     /// The slack strings and clusters (indices as in `tensions`).
     pub slack: Vec<usize>,
+    /// Each cluster's segment tensions in order along it (N; one value repeated on
+    /// frictionless pulleys, the cluster's entry in `tensions` is their largest); absent
+    /// without clusters.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub segment_tensions: Vec<Vec<f64>>,
+    /// Each cluster's pulleys after the step: `stick`, `slip_forward` (material passed to
+    /// the next segment: t_{j+1} = e^{μθ} t_j) or `slip_backward` (t_j = e^{μθ} t_{j+1});
+    /// an empty list for a frictionless cluster; absent without pulley friction.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pulleys: Vec<Vec<&'static str>>,
     /// The reactions: node, the held direction, the force along it (N).
     pub reactions: Vec<Reaction>,
     /// Up to three smallest eigenvalues of the tangent stiffness (N/m).

@@ -57,6 +57,12 @@ pub struct ElasticDynamics {
     /// Each member's name in the scene (bar k or string k), for errors.
     pub(crate) member_ids: Vec<MemberId>,
     rigid: Option<RigidBars>,
+    /// The frictional clusters' segment rest lengths now ([`crate::clusters::slide`] after
+    /// each step; one list per cluster, empty for a frictionless one); behind a lock, as the
+    /// right-hand side only borrows the model, and reset at the start of every run.
+    friction: std::sync::Mutex<Vec<Vec<f64>>>,
+    /// The time tables that drive rest lengths and loads ([`crate::actuation`]).
+    actuation: crate::actuation::ElasticActuation,
 }
 
 /// The buffers of the right-hand side, and its count.
@@ -155,6 +161,7 @@ impl ElasticDynamics {
                 }
             })
             .collect();
+        let friction = crate::clusters::friction_rest_lengths(&model);
         Ok(Self {
             model,
             dofs,
@@ -164,9 +171,46 @@ impl ElasticDynamics {
             damping,
             applied,
             v0,
+            friction: std::sync::Mutex::new(friction),
+            actuation: Default::default(),
             member_ids,
             rigid: None,
         })
+    }
+
+    /// The same dynamics driven by the time tables of `actuation` ([`crate::actuation`]):
+    /// strings' and clusters' rest lengths, extra node loads; checked against the model
+    /// (errors name `actuation k`). A driven run has no energy check.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use tensegrity_path::actuation::{Driven, ElasticActuation, RestLengthTable};
+    /// use tensegrity_path::{ElasticDynamics, ElasticMember, ElasticModel, MassDistribution,
+    ///     Masses, MemberKind, Support};
+    /// let string = ElasticMember { nodes: [0, 1], kind: MemberKind::String, ea: 100.0, rest_length: 1.0 };
+    /// let model = ElasticModel { nodes: vec![Vector3::zeros(), Vector3::x()], members: vec![string],
+    ///     clusters: Vec::new(), supports: vec![Support::pinned(0)],
+    ///     load: vec![Vector3::zeros(); 2], drivers: Default::default() };
+    /// let masses = Masses { members: vec![0.0], nodes: vec![0.0, 1.0],
+    ///     distribution: MassDistribution::Lumped };
+    /// let reel = ElasticActuation { rest_lengths: vec![RestLengthTable {
+    ///     driven: Driven::Member(0), times: vec![0.0, 1.0], rest_lengths: vec![1.0, 0.5] }],
+    ///     loads: vec![] };
+    /// let d = ElasticDynamics::new(model, masses, vec![], None, &[]).unwrap()
+    ///     .with_actuation(reel).unwrap();
+    /// // at t = 0.5 the rest length is 0.75: t = EA (1 − 0.75)/0.75
+    /// let f = d.member_forces_at(0.5, &d.initial_state());
+    /// assert!((f[0] - 100.0 / 3.0).abs() < 1e-12);
+    /// ```
+    pub fn with_actuation(mut self, actuation: crate::actuation::ElasticActuation) -> Result<Self> {
+        actuation.check(&self.model)?;
+        self.actuation = actuation;
+        Ok(self)
+    }
+
+    /// Whether time tables drive the run.
+    pub fn is_actuated(&self) -> bool {
+        !self.actuation.is_empty()
     }
 
     /// The same dynamics with the members `rigid` (bars, by their index in the model) rigid
@@ -398,10 +442,84 @@ impl ElasticDynamics {
         }
     }
 
-    /// The members' states at positions `x` with their tensions including the dashpots
-    /// (velocities `v`; a string's total tension clipped at zero, module docs).
-    pub fn member_states(&self, x: &[Vector3<f64>], v: &[Vector3<f64>]) -> Vec<MemberState> {
+    /// The members' states at time `t` (the actuated rest lengths) and positions `x` without
+    /// dashpots; a frictional cluster's
+    /// segments at the rest lengths its material slides to at `x` from where it was at the
+    /// last accepted step ([`crate::clusters::slide`]: the string is massless, so within a
+    /// step the pulleys stick or slip at once, the force a continuous function of `x`).
+    pub fn elastic_states(&self, t: f64, x: &[Vector3<f64>]) -> Vec<MemberState> {
         let mut states = member_states(&self.model, x, 0.0);
+        self.actuation.apply(&self.model, t, &mut states);
+        if self.model.has_friction() {
+            let start = self.friction_rest_lengths();
+            crate::clusters::apply_rest_lengths(&self.model, &mut states, &start);
+            // a slide that fails (a rest length collapsing) leaves the pulleys stuck here;
+            // the step's commit ([`Self::slide`]) reports it
+            if let Ok(slid) = crate::clusters::slide(&self.model, &states, &start) {
+                crate::clusters::apply_rest_lengths(&self.model, &mut states, &slid.rest);
+            }
+        }
+        states
+    }
+
+    /// The frictional clusters' segment rest lengths now (one list per cluster, empty for a
+    /// frictionless one).
+    pub fn friction_rest_lengths(&self) -> Vec<Vec<f64>> {
+        self.friction
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
+    /// Sets the frictional clusters' segment rest lengths (as [`Self::friction_rest_lengths`]
+    /// gives them).
+    pub fn set_friction_rest_lengths(&self, rest: Vec<Vec<f64>>) {
+        *self.friction.lock().unwrap_or_else(|e| e.into_inner()) = rest;
+    }
+
+    /// Pulley friction at the end of an accepted step from the state `y0` to `y`: the
+    /// material's slide there from the last step's rest lengths ([`crate::clusters::slide`])
+    /// becomes the state the next step starts from. Returns the friction's work over the
+    /// step, Σ_j ½ (|Δt_j(y0)| + |Δt_j(y)|) |f_j| (J: each pulley's tension difference,
+    /// trapezoidal over the step, times the material f_j that passed over it), for the
+    /// energy balance.
+    pub fn slide(&self, y0: &[f64], y: &[f64]) -> Result<f64> {
+        let start = self.friction_rest_lengths();
+        let states_at = |y: &[f64]| {
+            let mut states = member_states(&self.model, &self.nodes_of(y), 0.0);
+            crate::clusters::apply_rest_lengths(&self.model, &mut states, &start);
+            states
+        };
+        let before = states_at(y0);
+        let mut states = states_at(y);
+        let rest = crate::clusters::slide(&self.model, &states, &start)?.rest;
+        crate::clusters::apply_rest_lengths(&self.model, &mut states, &rest);
+        let mut work = 0.0;
+        for (c, (new, old)) in rest.iter().zip(&start).enumerate() {
+            let range = self.model.cluster_states(c);
+            let (s0, s1) = (&before[range.clone()], &states[range]);
+            // the flow over pulley j is the material segments 0..=j lost
+            let mut flow = 0.0;
+            for j in 0..new.len().saturating_sub(1) {
+                flow += old[j] - new[j];
+                let jump = |s: &[MemberState]| (s[j + 1].tension - s[j].tension).abs();
+                work += 0.5 * (jump(s0) + jump(s1)) * flow.abs();
+            }
+        }
+        self.set_friction_rest_lengths(rest);
+        Ok(work)
+    }
+
+    /// The members' states at time `t` (the actuated rest lengths) and positions `x` with
+    /// their tensions including the dashpots (velocities `v`; a string's total tension
+    /// clipped at zero, module docs).
+    pub fn member_states(
+        &self,
+        t: f64,
+        x: &[Vector3<f64>],
+        v: &[Vector3<f64>],
+    ) -> Vec<MemberState> {
+        let mut states = self.elastic_states(t, x);
         if let Some(bars) = &self.rigid {
             // a rigid bar acts through its constraint force alone
             for (s, &r) in states.iter_mut().zip(&bars.is_rigid) {
@@ -427,16 +545,15 @@ impl ElasticDynamics {
                 }
             }
         }
-        // a cluster's dashpot c L̇, the total clipped at zero, on all its segments
+        // a cluster's dashpot c L̇, the total clipped at zero, on all its (taut) segments
         for (c, cluster) in self.model.clusters.iter().enumerate() {
             let range = self.model.cluster_states(c);
-            if cluster.damping == 0.0 || states[range.start].slack {
+            if cluster.damping == 0.0 || states[range.clone()].iter().all(|s| s.slack) {
                 continue;
             }
             let rate = crate::clusters::cluster_rate(&self.model, c, &states, v);
-            let t = (states[range.start].tension + cluster.damping * rate).max(0.0);
-            for s in &mut states[range] {
-                s.tension = t;
+            for s in states[range].iter_mut().filter(|s| !s.slack) {
+                s.tension = (s.tension + cluster.damping * rate).max(0.0);
             }
         }
         states
@@ -452,10 +569,11 @@ impl ElasticDynamics {
         f: &mut [Vector3<f64>],
     ) -> std::result::Result<(), CoreError> {
         f.copy_from_slice(&self.applied);
+        self.actuation.add_loads(t, f);
         for (k, ([a, b], s)) in self
             .model
             .state_nodes()
-            .zip(self.member_states(x, v))
+            .zip(self.member_states(t, x, v))
             .enumerate()
         {
             let pull = s.direction * s.tension;
@@ -524,10 +642,18 @@ impl ElasticDynamics {
         out
     }
 
-    /// The energy's parts at a state (module docs).
+    /// The energy's parts at a state (module docs), the actuation tables at t = 0
+    /// ([`Self::energy_at`]).
     pub fn energy(&self, y: &[f64]) -> Energy {
+        self.energy_at(0.0, y)
+    }
+
+    /// The energy's parts at time `t` (the actuated rest lengths; a driven cluster's strain
+    /// energy with its rest length in the model) and state `y`.
+    pub fn energy_at(&self, t: f64, y: &[f64]) -> Energy {
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
-        let strain = member_states(&self.model, &x, 0.0)
+        let states = self.elastic_states(t, &x);
+        let strain = states
             .iter()
             .zip(&self.model.members)
             .enumerate()
@@ -546,7 +672,7 @@ impl ElasticDynamics {
                     0.5 * sp.stiffness * u * u
                 })
                 .sum::<f64>()
-            + crate::clusters::strain_energy(&self.model, &member_states(&self.model, &x, 0.0));
+            + crate::clusters::strain_energy(&self.model, &states);
         let load = -x
             .iter()
             .zip(&self.model.nodes)
@@ -567,25 +693,36 @@ impl ElasticDynamics {
     }
 
     /// The power the dashpots dissipate at a state, Σ c_k L̇_k² (W; a slack string's none),
-    /// the clusters' c L̇² included.
+    /// the clusters' c L̇² included; the actuation tables at t = 0
+    /// ([`Self::dissipation_at`]).
     pub fn dissipation(&self, y: &[f64]) -> f64 {
+        self.dissipation_at(0.0, y)
+    }
+
+    /// [`Self::dissipation`] at time `t` (the actuated rest lengths).
+    pub fn dissipation_at(&self, t: f64, y: &[f64]) -> f64 {
         let clustered = self.model.clusters.iter().any(|c| c.damping > 0.0);
         if self.damping.is_empty() && !clustered {
             return 0.0;
         }
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
-        let states = member_states(&self.model, &x, 0.0);
+        let states = self.elastic_states(t, &x);
         let mut p = 0.0;
         for (c, cluster) in self.model.clusters.iter().enumerate() {
-            let s = &states[self.model.cluster_states(c).start];
-            if cluster.damping > 0.0 && !s.slack {
-                let rate = crate::clusters::cluster_rate(&self.model, c, &states, &v);
-                let t = s.tension + cluster.damping * rate;
-                p += if t < 0.0 {
-                    -s.tension * rate
-                } else {
-                    cluster.damping * rate * rate
-                };
+            if cluster.damping == 0.0 {
+                continue;
+            }
+            // the dashpot's added tension on each taut segment (clipped where the total
+            // would push) times the segment's rate: c L̇² on frictionless pulleys
+            let rate = crate::clusters::cluster_rate(&self.model, c, &states, &v);
+            for ([a, b], s) in cluster
+                .segments()
+                .zip(&states[self.model.cluster_states(c)])
+            {
+                if !s.slack {
+                    let added = (s.tension + cluster.damping * rate).max(0.0) - s.tension;
+                    p += added * s.direction.dot(&(v[b] - v[a]));
+                }
             }
         }
         for ((s, m), &c) in states.iter().zip(&self.model.members).zip(&self.damping) {
@@ -606,15 +743,21 @@ impl ElasticDynamics {
 
     /// Every member's tension at a state (N, bars then strings in the model's order, then
     /// one per cluster: [`crate::clusters`]), dashpots included; a rigid bar's −μ L from its
-    /// constraint force (NaN where the constraint system cannot be solved).
+    /// constraint force (NaN where the constraint system cannot be solved); the actuation
+    /// tables at t = 0 ([`Self::member_forces_at`]).
     pub fn member_forces(&self, y: &[f64]) -> Vec<f64> {
+        self.member_forces_at(0.0, y)
+    }
+
+    /// [`Self::member_forces`] at time `t` (the actuated rest lengths).
+    pub fn member_forces_at(&self, t: f64, y: &[f64]) -> Vec<f64> {
         let (x, v) = (self.nodes_of(y), self.velocities_of(y));
         let tensions: Vec<f64> = self
-            .member_states(&x, &v)
+            .member_states(t, &x, &v)
             .iter()
             .map(|s| s.tension)
             .collect();
-        let mut forces = self.model.reported(&tensions);
+        let mut forces = self.model.reported_tensions(&tensions);
         if let Some(bars) = &self.rigid {
             match self.multipliers(y) {
                 Ok(mu) => {

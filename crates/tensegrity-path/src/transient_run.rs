@@ -58,9 +58,9 @@ impl ElasticDynamics {
             t,
             nodes: q.nodes.then(|| self.nodes_of(y)),
             velocities: q.velocities.then(|| self.velocities_of(y)),
-            member_forces: q.member_forces.then(|| self.member_forces(y)),
+            member_forces: q.member_forces.then(|| self.member_forces_at(t, y)),
             energy: q.energy.then(|| {
-                let e = self.energy(y);
+                let e = self.energy_at(t, y);
                 (e.kinetic, e.total())
             }),
             contact_forces: None,
@@ -88,6 +88,8 @@ impl ElasticDynamics {
         };
         let mut ws = TransientWorkspace::default();
         let mut y = self.initial_state();
+        // every run starts from the model's distribution of the clusters' material
+        self.set_friction_rest_lengths(crate::clusters::friction_rest_lengths(self.model()));
         let mut recorder = Recorder::new(settings.output_times.clone(), settings.quantities);
         if let Some(dt_out) = settings.output_interval {
             recorder = recorder.with_interval(dt_out, settings.t_end);
@@ -152,8 +154,20 @@ impl ElasticDynamics {
             if self.project(t_new, &mut y)? && settings.integrator == IntegratorKind::Rk45 {
                 method.invalidate();
             }
+            if self.model().has_friction() {
+                // the pulleys slide at the step's end; the strain energy that releases is
+                // the friction's work (in the energy balance), and the forces jump
+                monitor.dissipated += self.slide(&previous, &y).map_err(|_| {
+                    DynamicsError::ElasticDiverged {
+                    t,
+                    dt: step,
+                    what: "a cluster's material slid over its pulleys past a segment's rest length",
+                }
+                })?;
+                method.invalidate();
+            }
             length_drift = length_drift.max(self.bar_length_error(&y));
-            monitor.step(self, &y, step);
+            monitor.step(self, t_new, &y, step);
             let dense = method.has_dense_output().then_some(&*method);
             self.emit_between(t, t_new, &y, &mut recorder, sink, dense, &mut buffer)?;
             t = t_new;
@@ -168,7 +182,9 @@ impl ElasticDynamics {
         let wall_time_s = start.elapsed().as_secs_f64();
         let energy_drift = monitor.drift();
         let mut warnings = Vec::new();
-        if energy_drift > settings.drift_limits.energy {
+        // an actuator does work: a driven run has no energy check (module docs of
+        // crate::actuation)
+        if energy_drift > settings.drift_limits.energy && !self.is_actuated() {
             warnings.push(DriftWarning {
                 quantity: DriftQuantity::Energy,
                 value: energy_drift,
@@ -256,7 +272,7 @@ impl ElasticDynamics {
 }
 
 /// The energy balance along a run: E(t) + the dashpots' work (trapezoidal rule at the step
-/// ends) against E(0), relative to the largest of |E(0)|, T + U and the load's potential met.
+/// ends) + the pulleys' friction work (the strain energy their sliding released) against E(0), relative to the largest of |E(0)|, T + U and the load's potential met.
 #[derive(Debug, Clone, Copy)]
 struct EnergyMonitor {
     e0: f64,
@@ -277,9 +293,9 @@ impl EnergyMonitor {
         }
     }
 
-    fn step(&mut self, system: &ElasticDynamics, y: &[f64], h: f64) {
-        let e = system.energy(y);
-        let power = system.dissipation(y);
+    fn step(&mut self, system: &ElasticDynamics, t: f64, y: &[f64], h: f64) {
+        let e = system.energy_at(t, y);
+        let power = system.dissipation_at(t, y);
         self.dissipated += 0.5 * h * (self.power + power);
         self.power = power;
         self.scale = self.scale.max(e.kinetic + e.strain).max(e.load.abs());

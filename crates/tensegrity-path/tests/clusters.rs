@@ -35,6 +35,7 @@ fn atwood(m1: f64, m2: f64, k: f64, c: f64, v: &[Vector3<f64>]) -> (ElasticDynam
             stiffness: k,
             rest_length: 2.5 - tension / k,
             damping: c,
+            friction: None,
         }],
         supports: vec![Support::pinned(0)],
         load: vec![Vector3::zeros(); 3],
@@ -184,6 +185,7 @@ fn hanging(k: f64, t0: f64, p: f64) -> ElasticModel {
             stiffness: k,
             rest_length: 2.0 - t0 / k,
             damping: 0.0,
+            friction: None,
         }],
         supports: vec![Support::pinned(0), Support::pinned(1)],
         load: vec![
@@ -289,6 +291,7 @@ fn the_cluster_tangent_is_the_derivative_of_its_forces() {
             stiffness: 250.0,
             rest_length: 3.0,
             damping: 0.0,
+            friction: None,
         }],
         supports: vec![Support::pinned(0)],
         load: vec![Vector3::zeros(); 4],
@@ -318,10 +321,74 @@ fn the_cluster_tangent_is_the_derivative_of_its_forces() {
     assert!(k[(a, b)].abs() > 1.0 || k[(a + 1, b)].abs() > 1.0 || k[(a + 2, b)].abs() > 1.0);
 }
 
-/// From a scene's structure: the cluster's stiffness and rest length (default: its length),
-/// its damping; friction and a missing stiffness refused naming the cluster.
+/// With pulley friction each segment is a string at its own rest length (the pulleys stuck
+/// within an increment): (EA/s_i) e eᵀ + (t_i/l_i)(I − e eᵀ) per segment, no coupling
+/// between segments; central differences to 10⁻⁷, and the strain energy's gradient is the
+/// resisting force.
 #[test]
-fn a_structure_s_clusters_enter_the_model_and_friction_is_refused() {
+fn a_frictional_cluster_s_tangent_is_the_derivative_of_its_forces() {
+    let nodes = vec![
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(1.0, 0.2, 0.3),
+        Vector3::new(1.7, 1.1, -0.4),
+        Vector3::new(0.4, 1.9, 0.8),
+    ];
+    let model = ElasticModel {
+        nodes: nodes.clone(),
+        members: vec![],
+        clusters: vec![ElasticCluster {
+            nodes: vec![0, 1, 2, 3],
+            stiffness: 250.0,
+            rest_length: 3.0,
+            damping: 0.0,
+            friction: Some(tensegrity_path::model::ClusterFriction::spread(
+                vec![0.3, 0.1],
+                3.0,
+                &[1.2, 0.9, 0.9],
+            )),
+        }],
+        supports: vec![Support::pinned(0)],
+        load: vec![Vector3::zeros(); 4],
+        drivers: Default::default(),
+    };
+    let dofs = Dofs::of(&model).unwrap();
+    let states = member_states(&model, &nodes, 0.0);
+    // three different tensions: the segments carry their own
+    assert!((states[0].tension - states[1].tension).abs() > 1.0);
+    let k = tangent_stiffness(&model, &dofs, &states);
+    let at = |q: &DVector<f64>| {
+        let u = dofs.expand(q, nodes.len());
+        let x: Vec<Vector3<f64>> = nodes.iter().zip(&u).map(|(a, b)| a + b).collect();
+        let st = member_states(&model, &x, 0.0);
+        (
+            dofs.reduce(&resisting_forces(&model, &st)),
+            tensegrity_path::clusters::strain_energy(&model, &st),
+        )
+    };
+    let h = 1e-6;
+    let (mut worst, mut worst_force): (f64, f64) = (0.0, 0.0);
+    let r0 = at(&DVector::zeros(dofs.len())).0;
+    for c in 0..dofs.len() {
+        let mut q = DVector::zeros(dofs.len());
+        q[c] = h;
+        let plus = at(&q);
+        q[c] = -h;
+        let minus = at(&q);
+        worst = worst.max(((&plus.0 - &minus.0) / (2.0 * h) - k.column(c)).amax());
+        worst_force = worst_force.max(((plus.1 - minus.1) / (2.0 * h) - r0[c]).abs());
+    }
+    assert!(worst < 1e-7 * k.amax(), "{worst} against {}", k.amax());
+    assert!(
+        worst_force < 1e-7 * r0.amax(),
+        "{worst_force} against {}",
+        r0.amax()
+    );
+}
+
+/// From a scene's structure: the cluster's stiffness and rest length (default: its length),
+/// its damping and friction; a missing stiffness refused naming the cluster.
+#[test]
+fn a_structure_s_clusters_enter_the_model() {
     let build = |c: Cluster| {
         Structure::builder()
             .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [2.0, 0.0, 0.0]])
@@ -337,9 +404,16 @@ fn a_structure_s_clusters_enter_the_model_and_friction_is_refused() {
         (50.0, 2.0)
     );
     assert!((m.clusters[0].rest_length - 2.0 * 2f64.sqrt()).abs() < 1e-15);
+    // friction: the material spread in proportion to the segments (√2 each), stuck
     let s = build(Cluster::new([0, 1, 2]).stiffness(50.0).friction([0.2]));
-    let e = ElasticModel::from_structure(&s).unwrap_err().to_string();
-    assert!(e.contains("cluster 0") && e.contains("friction"), "{e}");
+    let m = ElasticModel::from_structure(&s).unwrap();
+    let f = m.clusters[0].friction.as_ref().unwrap();
+    assert_eq!(f.mu, vec![0.2]);
+    assert!(f
+        .rest_lengths
+        .iter()
+        .all(|r| (r - 2f64.sqrt()).abs() < 1e-15));
+    assert_eq!(f.pulleys, vec![tensegrity_core::capstan::Pulley::Stick]);
     let s = build(Cluster::new([0, 1, 2]));
     let e = ElasticModel::from_structure(&s).unwrap_err().to_string();
     assert!(e.contains("cluster 0") && e.contains("stiffness"), "{e}");

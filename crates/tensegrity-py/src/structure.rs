@@ -92,19 +92,35 @@ fn dense(m: &nalgebra::DMatrix<f64>) -> Value {
 }
 
 /// The connectivity matrices C_b, C_s (members × nodes; −1 at the first node, +1 at the
-/// second) and the equilibrium matrix A (free degrees of freedom × members, node-major rows,
-/// supported directions removed) with its free degrees of freedom `(node, direction)`, of a
-/// structure's data.
+/// second), the clusters' segment connectivity C_c (their segments in order, cluster after
+/// cluster) and clustering matrix S (clusters × segments: 1 where a segment belongs to a
+/// cluster; CTSFEM's S), and the equilibrium matrix A (free degrees of freedom × columns:
+/// bars, strings, then one per cluster, `tensegrity_statics::cluster_columns`; node-major
+/// rows, supported directions removed) with its free degrees of freedom `(node,
+/// direction)`, of a structure's data.
 pub fn matrices(data: &Map<String, Value>) -> Result<Value, Failure> {
     let scene = scene(data)?;
     let s = &scene.structure;
-    s.refuse_clusters("the connectivity and equilibrium matrices")
-        .map_err(|e| Failure::new(e.category(), e.to_string()))?;
     let c = Connectivity::of(s);
     let dofs = DofMap::of(s);
+    let segments: Vec<(usize, [usize; 2])> = s
+        .clusters()
+        .iter()
+        .enumerate()
+        .flat_map(|(k, cl)| cl.segments().map(move |seg| (k, seg)))
+        .collect();
+    let mut c_c = nalgebra::DMatrix::zeros(segments.len(), s.n_nodes());
+    let mut clustering = nalgebra::DMatrix::zeros(s.clusters().len(), segments.len());
+    for (i, (k, [a, b])) in segments.iter().enumerate() {
+        c_c[(i, *a)] = -1.0;
+        c_c[(i, *b)] = 1.0;
+        clustering[(*k, i)] = 1.0;
+    }
     Ok(json!({
         "C_b": dense(&c.C_b()),
         "C_s": dense(&c.C_s()),
+        "C_c": dense(&c_c),
+        "S": dense(&clustering),
         "A": dense(&equilibrium_matrix(s, &dofs)),
         "free_dofs": dofs.free,
     }))

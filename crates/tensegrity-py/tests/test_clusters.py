@@ -41,9 +41,26 @@ def test_bad_clusters_are_named(kwargs, says):
     assert says in str(e.value)
 
 
-def test_a_cluster_is_refused_where_it_is_not_modelled():
-    with pytest.raises(tg.InputError, match="cluster 0: clustered strings are not modelled"):
-        pulley().equilibrium_matrix
+def test_the_equilibrium_matrix_clusters_the_segments_columns():
+    """A's cluster column is Σ_i (L_c / l_i) times its segments' columns (built here from
+    C_c and the nodes): A_seg diag(L_c / l) Sᵀ, CTSFEM's clustering; the clustered prism's
+    counts are the hand count (10 columns, rank 9: one self-stress)."""
+    s = tg.Structure.from_toml(__import__("conftest").EXAMPLES / "clustered_prism.toml")
+    x = np.asarray(s.nodes, dtype=float)
+    cc, S, A = s.C_c, s.clustering_matrix, s.equilibrium_matrix
+    assert S.shape == (1, cc.shape[0]) and np.all(S == 1.0)
+    seg = cc @ x                                   # segment vectors, segments × 3
+    lengths = np.linalg.norm(seg, axis=1)
+    full = np.zeros((3 * len(x), cc.shape[0]))
+    for i in range(cc.shape[0]):
+        a, b = int(np.argmin(cc[i])), int(np.argmax(cc[i]))
+        full[3 * a:3 * a + 3, i] -= seg[i]
+        full[3 * b:3 * b + 3, i] += seg[i]
+    rows = [3 * n + d for n, d in s.free_dofs]
+    ours = full[rows] @ np.diag(lengths.sum() / lengths) @ S.T
+    assert np.abs(A[:, -1:] - ours).max() < 1e-14 * np.abs(ours).max()
+    assert A.shape[1] == s.n_bars + s.n_strings + 1 == 10
+    assert np.linalg.matrix_rank(A) == 9
 
 
 @pytest.mark.parametrize("example,command,flags,keywords", [

@@ -8,8 +8,8 @@
 //! `[simulation] mass_matrix` (lumped, the default, or consistent), the strings' `damping`
 //! as axial dashpots, the scene's loads from t = 0 and the weights under `[gravity]`; supports
 //! along any direction (`along`) and on springs (`stiffness`) as in `solve`; `[[clusters]]`
-//! (clustered strings over frictionless pulleys, massless: `tensegrity_path::clusters`) with
-//! their `stiffness`, `rest_length` and `damping`.
+//! (clustered strings, massless: `tensegrity_path::clusters`) with their `stiffness`,
+//! `rest_length`, `damping` and pulley `friction`.
 //!
 //! The same request ([`SimulateCommand`]) and report ([`SimulationReport`]: its constraint
 //! drift is zero, the supports holding exactly, and its bar-length drift that of the rigid
@@ -17,8 +17,9 @@
 //! above the stability limit of the stiffest axial mode, and by default half that limit when
 //! below 1 ms), rk45 and newmark (implicit: stable at any step). The convergence check reruns
 //! the scene at the refined resolution ([`SimulateCommand::refine`]) and compares the final
-//! states as for a rigid run. `[ground]` and `[[actuation]]` are refused (not modelled for
-//! elastic members).
+//! states as for a rigid run. `[[actuation]]` drives strings' and clusters' rest lengths
+//! and node loads (`tensegrity_path::actuation`; no energy check then); `[ground]` is refused
+//! (not modelled for elastic members).
 //!
 //! **Mixed scenes.** A bar's `elastic = true | false` overrides `[simulation] bars` for it;
 //! a scene with some elastic bar runs this model with its rigid bars as length constraints
@@ -36,6 +37,7 @@ use tensegrity_core::request::InvalidParameter;
 use tensegrity_dynamics::recorder::SampleSink;
 use tensegrity_dynamics::{IntegratorKind, SimulationReport, SimulationSettings};
 use tensegrity_io::scene::{MassMatrixKind, Scene};
+use tensegrity_path::actuation::{Driven, ElasticActuation, LoadTable, RestLengthTable};
 use tensegrity_path::transient::RK4_STABILITY;
 use tensegrity_path::{ElasticDynamics, ElasticModel, MassDistribution, Masses, PathError};
 
@@ -87,16 +89,11 @@ pub fn refuse_elastic_keys_of_rigid_run(
 pub fn dynamics_of(scene: &Scene) -> Result<ElasticDynamics, SceneError> {
     crate::scene::refuse_driver_keys(scene, "simulate")?;
     let file = &scene.file;
-    if file.ground.is_some() || !file.actuation.is_empty() {
-        let key = if file.ground.is_some() {
-            "[ground]"
-        } else {
-            "[[actuation]]"
-        };
+    if file.ground.is_some() {
         return Err(InvalidParameter::text(
             "scene",
-            key,
-            format!("{key} is not modelled for elastic members: remove it, or run the scene with rigid bars"),
+            "[ground]",
+            "[ground] is not modelled for elastic members: remove it, or run the scene with rigid bars",
         )
         .into());
     }
@@ -140,8 +137,53 @@ pub fn dynamics_of(scene: &Scene) -> Result<ElasticDynamics, SceneError> {
     let rigid: Vec<usize> = (0..rigid.len()).filter(|&k| rigid[k]).collect();
     Ok(
         ElasticDynamics::new(model, masses, damping, s.gravity(), velocities)?
-            .with_rigid_bars(&rigid)?,
+            .with_rigid_bars(&rigid)?
+            .with_actuation(actuation_of(scene)?)?,
     )
+}
+
+/// The scene's `[[actuation]]` tables for the elastic model (strings after the bars):
+/// a string's or a cluster's rest length, a node's extra load (`tensegrity_path::actuation`);
+/// a cluster with pulley friction is not driven (an error naming the table).
+fn actuation_of(scene: &Scene) -> Result<ElasticActuation, SceneError> {
+    let n_bars = scene.structure.n_bars();
+    let mut out = ElasticActuation::default();
+    for (i, a) in scene.file.actuation.iter().map(|a| a.get_ref()).enumerate() {
+        let driven = match (a.string, a.cluster) {
+            (Some(k), _) => Some(Driven::Member(n_bars + k)),
+            (None, Some(c)) => Some(Driven::Cluster(c)),
+            _ => None,
+        };
+        if let Some(c) = a.cluster {
+            if scene
+                .structure
+                .clusters()
+                .get(c)
+                .is_some_and(|cl| !cl.is_frictionless())
+            {
+                return Err(PathError::model(
+                    format!("actuation {i}"),
+                    format!("cluster {c} has pulley friction: where its actuator takes in the material is not modelled; drive a frictionless cluster"),
+                )
+                .into());
+            }
+        }
+        if let (Some(driven), Some(rest)) = (driven, &a.rest_lengths) {
+            out.rest_lengths.push(RestLengthTable {
+                driven,
+                times: a.times.clone(),
+                rest_lengths: rest.clone(),
+            });
+        }
+        if let (Some(node), Some(forces)) = (a.node, &a.forces) {
+            out.loads.push(LoadTable {
+                node,
+                times: a.times.clone(),
+                forces: forces.iter().map(|&f| f.into()).collect(),
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// Which bars of an elastic scene are rigid (their `elastic = false`, or `[simulation]

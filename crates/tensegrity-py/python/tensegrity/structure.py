@@ -527,7 +527,7 @@ class Structure:
         if not hasattr(self, "_m"):
             m = _native.matrices(self._data)
             out = {}
-            for key in ("C_b", "C_s", "A"):
+            for key in ("C_b", "C_s", "C_c", "S", "A"):
                 shape = tuple(m[key]["shape"])
                 a = np.array(m[key]["data"], dtype=np.float64).reshape(shape)
                 a.setflags(write=False)
@@ -547,10 +547,24 @@ class Structure:
         return self._matrices()["C_s"]
 
     @property
+    def C_c(self):
+        """Cluster segment connectivity (segments × nodes): every cluster's segments in
+        order, cluster after cluster; −1 at a segment's first node, +1 at its second."""
+        return self._matrices()["C_c"]
+
+    @property
+    def clustering_matrix(self):
+        """The clustering matrix S (clusters × segments of ``C_c``): 1 where a segment
+        belongs to a cluster (CTSFEM's S: one tension per row)."""
+        return self._matrices()["S"]
+
+    @property
     def equilibrium_matrix(self):
-        """The equilibrium matrix A (free degrees of freedom × members, bars then strings):
-        A q = w for force densities q (tension positive) and the free components w of the
-        nodal loads; rows node-major, supported directions removed (see ``free_dofs``)."""
+        """The equilibrium matrix A (free degrees of freedom × columns: bars, strings, then
+        one per cluster): A q = w for force densities q (tension positive; a cluster's the
+        force density on its whole length, q_c = t_c / L_c, its column Σ_i (L_c / l_i) times
+        its segment i's) and the free components w of the nodal loads; rows node-major,
+        supported directions removed (see ``free_dofs``)."""
         return self._matrices()["A"]
 
     @property
@@ -560,12 +574,15 @@ class Structure:
         return self._matrices()["free_dofs"]
 
     def sparse(self, name):
-        """``C_b``, ``C_s`` or ``equilibrium_matrix`` as scipy-compatible triplets ``(row,
+        """``C_b``, ``C_s``, ``C_c``, ``clustering_matrix`` or ``equilibrium_matrix`` as
+        scipy-compatible triplets ``(row,
         col, val, shape)``: ``scipy.sparse.coo_matrix((val, (row, col)), shape=shape)``."""
-        a = {"C_b": self.C_b, "C_s": self.C_s,
+        a = {"C_b": self.C_b, "C_s": self.C_s, "C_c": self.C_c,
+             "clustering_matrix": self.clustering_matrix, "S": self.clustering_matrix,
              "equilibrium_matrix": self.equilibrium_matrix, "A": self.equilibrium_matrix}
         if name not in a:
-            raise InputError("no matrix {!r} (C_b, C_s, equilibrium_matrix)".format(name))
+            raise InputError("no matrix {!r} (C_b, C_s, C_c, clustering_matrix, "
+                             "equilibrium_matrix)".format(name))
         m = a[name]
         row, col = np.nonzero(m)
         return row.astype(np.int64), col.astype(np.int64), m[row, col], m.shape
