@@ -182,3 +182,41 @@ fn one_clustered_actuator_deploys_the_prism() {
     let height = node(3)[2] - node(0)[2];
     assert!(height > 1.02, "the prism did not rise: {height}");
 }
+
+/// A cluster's `rest_length_change` drives its whole rest length along the load path (EA
+/// kept): the weight over the pulley (examples/pulley_load.toml without its load) keeps its
+/// tension W at every point and rises by −ΔL₀ (1 + W/EA) at λ = 1, to 10⁻¹².
+#[test]
+fn a_clusters_rest_length_change_reels_a_weight_along_the_load_path() {
+    let dir = scratch("clusters", "reel_path");
+    let text = std::fs::read_to_string("examples/pulley_load.toml").unwrap();
+    let scene = dir.join("reel.toml");
+    let unloaded = &text[..text.find("[[loads]]").unwrap()];
+    std::fs::write(
+        &scene,
+        unloaded.replace(
+            "rest_length = 1.99019",
+            "rest_length = 1.99019\nrest_length_change = -0.1",
+        ),
+    )
+    .unwrap();
+    let r = json(&["solve", scene.to_str().unwrap(), "--json"]);
+    assert_eq!(r["stop"], "reached_target", "{r}");
+    let (w, ea) = (98.1, 1e4 * 1.99019);
+    for p in r["path"]["points"].as_array().unwrap() {
+        let t = p["tensions"][0].as_f64().unwrap();
+        assert!((t - w).abs() < 1e-10 * w, "{p}");
+        let lambda = p["lambda"].as_f64().unwrap();
+        let rise = p["displacements"][2][2].as_f64().unwrap();
+        let expected = 0.1 * lambda * (1.0 + w / ea);
+        assert!(
+            (rise - expected).abs() < 1e-12,
+            "{rise} vs {expected} at {lambda}"
+        );
+    }
+    // `simulate` and `statics` would ignore it: refused naming it
+    let out = run(&["statics", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("cluster 0: rest_length_change"), "{err}");
+}

@@ -7,13 +7,14 @@
 //! position against the run's largest node displacement (a scale the comparison cannot
 //! hide behind: the structures are metres across and move by centimetres to metres).
 //! Measured (debug build, 2026-12-06), the largest errors:
-//! - T-bar statics (`solve`): forces 5.6e-13, nodes 1.7e-15 m (1.8e-15 of 0.94 m moved);
+//! - T-bar statics (`solve`, the rest-length changes driven along the path, the cluster's
+//!   too): forces 5.7e-12, nodes 1.75e-12 m (1.9e-12 of 0.94 m moved);
 //! - T-bar dynamics (`simulate`, RK4 at CTSFEM's step): nodes 1.0e-14 m at 0.05 to 0.2 s
 //!   (2.1e-13 of the 0.048 m moved), forces at 0.2 s from those nodes 3.0e-10 (the stiff
 //!   bars' forces carry the nodes' round-off times EA/L); with the lumped mass matrix in
 //!   place of CTSFEM's consistent one the nodes would be 3.3e-4 m off;
-//! - clustered prism statics (`solve`, the equilibrium at lambda = 0): forces 4.2e-11,
-//!   nodes 1.2e-13 m (8.5e-14 of 1.42 m moved);
+//! - clustered prism statics (`solve`, its four clusters driven along the path to
+//!   lambda = 1): forces 8.5e-12, nodes 2.0e-15 m (1.4e-15 of 1.42 m moved);
 //! - cable dome prestress (`solve` at lambda = 0): forces 9.2e-12, nodes moved 0 m; the
 //!   three smallest tangent eigenvalues (-30545.7 N/m and a pair at -30396.8 N/m) within
 //!   2.3e-11 of those of CTSFEM's internal force differentiated numerically; the
@@ -208,16 +209,18 @@ fn tbar_dynamics_matches_ctsfem() {
     );
 }
 
-/// CTSFEM's clustered two-stage prism: its four clusters shortened by 0.7 m each; the
-/// equilibrium (the path's first point, lambda = 0) against static_solver_CTS.
+/// CTSFEM's clustered two-stage prism: its four clusters shortened by 0.7 m each along the
+/// load path (one `rest_length_change` per cluster); the equilibrium at its end (lambda = 1)
+/// against static_solver_CTS.
 #[test]
 fn prism_statics_matches_ctsfem() {
     let r = reference("prism");
     let out = common::json(&["solve", "examples/ctsfem/prism_static.toml", "--json"]);
-    let first = &out["path"]["points"][0];
-    assert_eq!(first["lambda"].as_f64().unwrap(), 0.0);
-    assert_eq!(first["stability"], "stable");
-    let nodes = common::points(&first["nodes"]);
+    assert_eq!(out["stop"], "reached_target");
+    let last = out["path"]["points"].as_array().unwrap().last().unwrap();
+    assert_eq!(last["lambda"].as_f64().unwrap(), 1.0);
+    assert_eq!(last["stability"], "stable");
+    let nodes = common::points(&last["nodes"]);
     let start = common::points(&r["nodes_initial"]);
     let (_, moved) = node_error(&nodes, &start, &start);
     assert_nodes(
@@ -228,7 +231,7 @@ fn prism_statics_matches_ctsfem() {
     );
     let theirs = ours_order(&r, &numbers(&r["element_force_static"]));
     assert!(theirs[8..].iter().all(|&t| t > 0.0), "a string is slack");
-    assert_forces("prism statics", &numbers(&first["tensions"]), &theirs);
+    assert_forces("prism statics", &numbers(&last["tensions"]), &theirs);
 }
 
 /// CTSFEM's clustered Levy cable dome: its designed prestress holds the dome as drawn

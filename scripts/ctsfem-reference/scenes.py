@@ -37,7 +37,10 @@ def tbar(data, out):
                 s += f"mass = {f(m[k])}\n"
             s += "\n"
         s += "[[clusters]]\nnodes = [0, 1, 2]\n"
-        s += f"stiffness = {f(Es * A[2] / rest[2])}\nrest_length = {f(rest[2])}\n\n"
+        s += f"stiffness = {f(Es * A[2] / rest[2])}\nrest_length = {f(rest[2])}\n"
+        if change and change[2]:
+            s += f"rest_length_change = {f(change[2])}\n"
+        s += "\n"
         for k, nodes in [(3, (2, 3)), (4, (3, 0))]:
             s += f"[[strings]]\nnodes = [{nodes[0]}, {nodes[1]}]\n"
             s += f"stiffness = {f(Es * A[k] / rest[k])}\nrest_length = {f(rest[k])}\n"
@@ -57,19 +60,16 @@ def tbar(data, out):
 # Written by scripts/ctsfem-reference/scenes.py; see docs/notes/CTSFEM.md.
 """
     static = head + """#
-# Statics (`tensegrity solve`): the example's rest-length change, the cluster shortened by
-# 2 m (its rest length below is the shortened one: `solve` drives no cluster yet, so the
-# path's first point is the equilibrium with the cluster shortened, found from the drawn
-# prestressed shape) and strings 2-3, 3-0 lengthened by 0.5 m each (rest_length_change,
-# driven along the path). The
+# Statics (`tensegrity solve`): the example's rest-length changes driven along the load
+# path (rest_length_change, EA kept as CTSFEM keeps it): the cluster shortened by 2 m and
+# strings 2-3, 3-0 lengthened by 0.5 m each. The
 # structure floats in its plane: node 0 is held in x and y and node 2 in y only to remove
 # the rigid motions (they carry no force). tests/ctsfem_reference.rs compares the nodes and
 # forces with CTSFEM's static_solver_CTS.
 """
     static += nodes_block(r["nodes_initial"]) + "\n"
     rest = list(r["rest_length"])
-    rest[2] = r["rest_length_static"][2]
-    change = [0.0, 0.0, 0.0] + [r["rest_length_static"][k] - r["rest_length"][k] for k in (3, 4)]
+    change = [r["rest_length_static"][k] - r["rest_length"][k] for k in range(5)]
     static += members(rest, False, change)
     static += '[[supports]]\nnode = 0\ndirections = ["x", "y", "z"]\n\n'
     static += '[[supports]]\nnode = 1\ndirections = ["z"]\n\n'
@@ -101,10 +101,12 @@ output_interval = 0.05
     (out / "tbar_dynamic.toml").write_text(dyn.rstrip() + "\n")
 
 
-def members_block(r, rest_key):
+def members_block(r, rest_key, driven_key=None):
     """Bars, strings and clusters of a CTSFEM model dumped member by member (C's rows) and
     element by element (the clustering matrix S's rows), with the rest lengths r[rest_key]
-    per element; bars in member order, then strings, then clusters in S's order."""
+    per element; bars in member order, then strings, then clusters in S's order. With
+    `driven_key`, a cluster whose r[driven_key] differs gets the difference as its
+    rest_length_change (driven along `solve`'s load path, its EA kept)."""
     Eb, Es = r["youngs_modulus_bar"], r["youngs_modulus_string"]
     ne = len(r["member_start"])
     ends = [(int(r["member_start"][k]) - 1, int(r["member_end"][k]) - 1) for k in range(ne)]
@@ -151,7 +153,10 @@ def members_block(r, rest_key):
         area, rest = r["element_area"][e], r[rest_key][e]
         s += f"# CTSFEM clustered element {e + 1} (members {[k + 1 for k in segs]})\n"
         s += f"[[clusters]]\nnodes = {path}\n"
-        s += f"stiffness = {f(Es * area / rest)}\nrest_length = {f(rest)}\n\n"
+        s += f"stiffness = {f(Es * area / rest)}\nrest_length = {f(rest)}\n"
+        if driven_key and r[driven_key][e] != rest:
+            s += f"rest_length_change = {f(r[driven_key][e] - rest)}\n"
+        s += "\n"
     for n in r["pinned_nodes"]:
         s += f"[[supports]]\nnode = {int(n) - 1}\n\n"
     return s
@@ -191,16 +196,14 @@ def prism(data, out):
 # upper stage. Sizes, Young's moduli and the prestress are CTSFEM's design
 # (scripts/ctsfem-reference, tests/data/ctsfem/prism.json; the middle ring's area 1e-8 m^2
 # as in the example); a bar's E pi r^2 is CTSFEM's E A, a string's or a cluster's stiffness
-# its E A / l0. The four clusters' rest lengths are CTSFEM's shortened by 0.7 m each (the
-# example's actuation): `tensegrity solve` finds the equilibrium at lambda = 0 from the drawn
-# prestressed shape (the first point of the path), which tests/ctsfem_reference.rs compares
-# with CTSFEM's static_solver_CTS. The 1 N loads on the top nodes are there only because
-# `solve` needs something to drive (it drives no cluster rest length); lambda = 0 has none.
+# its E A / l0. The example's actuation, the four clusters shortened by 0.7 m each, is
+# driven along `tensegrity solve`'s load path (rest_length_change, EA kept as CTSFEM keeps
+# it); tests/ctsfem_reference.rs compares its last point (lambda = 1) with CTSFEM's
+# static_solver_CTS.
 # Written by scripts/ctsfem-reference/scenes.py; see docs/notes/CTSFEM.md.
 """
-    s += nodes_block(r["nodes_initial"]) + "\n" + members_block(r, "element_rest_length_static")
-    for n in range(8, 12):
-        s += f"[[loads]]\nnode = {n}\nforce = [0.0, 0.0, -1.0]\n\n"
+    s += nodes_block(r["nodes_initial"]) + "\n"
+    s += members_block(r, "element_rest_length", "element_rest_length_static")
     (out / "prism_static.toml").write_text(s.rstrip() + "\n")
 
 

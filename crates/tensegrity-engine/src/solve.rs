@@ -240,6 +240,10 @@ impl SolveCommand {
         if changes.iter().any(|&c| c != 0.0) {
             model.drivers.rest_length_changes = changes;
         }
+        let reels = scene.file.cluster_rest_length_changes();
+        if reels.iter().any(|&c| c != 0.0) {
+            model.drivers.cluster_rest_length_changes = reels;
+        }
         if motion.iter().any(|m| m.iter().any(|&v| v != 0.0)) {
             model.drivers.displacements = motion.iter().map(|&m| m.into()).collect();
         }

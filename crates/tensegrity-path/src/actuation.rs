@@ -3,10 +3,12 @@
 //! a load to a node — the scene's `[[actuation]]` tables, as the rigid-bar dynamics reads
 //! them.
 //!
-//! A driven string keeps its EA: t = EA (l − L₀(t))/L₀(t) while l > L₀(t), else slack. A
-//! driven cluster keeps its stiffness k, as in the rigid-bar dynamics: one tension
-//! t = k (L − L₀(t)) along all its segments (L = Σ l_i), so one actuator reels every
-//! segment. An actuator does work, so a driven run has no energy check (its `energy_drift`
+//! A driven string or cluster keeps its EA (its material does not change as it is reeled; a
+//! cluster's EA = k L₀ from its scene stiffness k and rest length L₀): t = EA (l − L₀(t))/L₀(t)
+//! while l > L₀(t), else slack, a cluster's one tension along all its segments (l = L = Σ l_i),
+//! so one actuator reels every segment. (The rigid-bar dynamics keeps a driven string's or
+//! cluster's stiffness k instead, the thesis's string model; the two agree to first order in
+//! the change of the rest length.) An actuator does work, so a driven run has no energy check (its `energy_drift`
 //! includes the actuators' work). A cluster with pulley friction cannot be driven (where
 //! its actuator takes in the material is not modelled): refused naming it.
 
@@ -160,7 +162,7 @@ impl ElasticActuation {
                     let tension = if slack {
                         0.0
                     } else {
-                        model.clusters[c].stiffness * (length - rest)
+                        model.clusters[c].stiffness_at(rest) * (length - rest)
                     };
                     for s in &mut states[range] {
                         s.rest_length = rest;

@@ -229,7 +229,8 @@ fn held_states(
         let tension = if held {
             0.0
         } else {
-            cluster.stiffness * (length - cluster.rest_length)
+            let rest = model.cluster_rest_length(c, lambda);
+            cluster.stiffness_at(rest) * (length - rest)
         };
         for s in &mut states[range] {
             s.slack = held;
@@ -258,8 +259,9 @@ fn margin(model: &ElasticModel, k: usize, states: &[MemberState]) -> f64 {
         return f64::INFINITY;
     };
     if s.slack {
+        // the segment's state carries the cluster's rest length at the state's load factor
         let length = crate::clusters::cluster_length(model, c, states);
-        -model.clusters[c].stiffness * (length - model.clusters[c].rest_length)
+        -model.clusters[c].stiffness_at(s.rest_length) * (length - s.rest_length)
     } else {
         s.tension
     }

@@ -131,7 +131,10 @@ pub fn cluster_triplets(
 ) -> Vec<(usize, usize, f64)> {
     let taut = |c: usize| !states[model.cluster_states(c).start].slack;
     let mut t = rank_one_triplets(model, dofs, states, |c| {
-        (taut(c) && model.clusters[c].friction.is_none()).then_some(model.clusters[c].stiffness)
+        let cluster = &model.clusters[c];
+        // a driven cluster's stiffness at its rest length now (the states carry it)
+        let rest = states[model.cluster_states(c).start].rest_length;
+        (taut(c) && cluster.friction.is_none()).then_some(cluster.stiffness_at(rest))
     });
     let nodes: Vec<[usize; 2]> = model.state_nodes().collect();
     for (c, cluster) in model.clusters.iter().enumerate() {
@@ -182,8 +185,9 @@ fn push_block(
     }
 }
 
-/// What moving the held nodes by `held_motion` (per unit load factor) does to the clusters'
-/// resisting forces: their tangent applied to the motion, into `r`.
+/// What the load factor's drivers do to the clusters' resisting forces at fixed free
+/// coordinates, into `r`: their tangent applied to the held nodes' motion `held_motion` (per
+/// unit load factor), and a driven rest length's dt/dλ = −EA L/L₀² ΔL₀ along every segment.
 pub fn add_driven_forces(
     model: &ElasticModel,
     states: &[MemberState],
@@ -205,6 +209,15 @@ pub fn add_driven_forces(
         if states[range.start].slack {
             continue;
         }
+        // a driven rest length: t = EA (L − L₀)/L₀, dt/dλ = −EA L/L₀² ΔL₀ on every segment
+        let rest = states[range.start].rest_length;
+        let length = cluster_length(model, c, states);
+        let change = (model.drivers.cluster_rest_length_changes)
+            .get(c)
+            .copied()
+            .unwrap_or(0.0);
+        let reel = -cluster.stiffness * cluster.rest_length * length / (rest * rest) * change;
+        let k = cluster.stiffness_at(rest);
         let segs: Vec<[usize; 2]> = cluster.segments().collect();
         let rate: f64 = segs
             .iter()
@@ -215,7 +228,7 @@ pub fn add_driven_forces(
             let rel = held_motion[*b] - held_motion[*a];
             let nn = s.direction * s.direction.transpose();
             let f = (Matrix3::identity() - nn) * rel * (s.tension / s.length)
-                + s.direction * (cluster.stiffness * rate);
+                + s.direction * (k * rate + reel);
             r[*a] -= f;
             r[*b] += f;
         }

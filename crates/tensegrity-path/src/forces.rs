@@ -62,14 +62,17 @@ pub fn member_states(model: &ElasticModel, x: &[Vector3<f64>], lambda: f64) -> V
                 slack,
             }
         })
-        .chain(segment_states(model, x))
+        .chain(segment_states(model, x, lambda))
         .collect()
 }
 
-/// The states of the clusters' segments at positions `x` ([`crate::clusters`]), in order.
-pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberState> {
+/// The states of the clusters' segments at positions `x` and load factor `lambda` (the
+/// driven rest lengths, [`ElasticModel::cluster_rest_length`]; [`crate::clusters`]), in
+/// order.
+pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>], lambda: f64) -> Vec<MemberState> {
     let mut out = Vec::new();
-    for c in &model.clusters {
+    for (k, c) in model.clusters.iter().enumerate() {
+        let rest_length = model.cluster_rest_length(k, lambda);
         let start = out.len();
         for [a, b] in c.segments() {
             let d = x[b] - x[a];
@@ -77,7 +80,7 @@ pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberSta
             out.push(MemberState {
                 length,
                 direction: d / length,
-                rest_length: c.rest_length,
+                rest_length,
                 tension: 0.0,
                 slack: true,
             });
@@ -91,10 +94,14 @@ pub fn segment_states(model: &ElasticModel, x: &[Vector3<f64>]) -> Vec<MemberSta
             continue;
         }
         let total: f64 = out[start..].iter().map(|s| s.length).sum();
-        let slack = total <= c.rest_length;
+        let slack = total <= rest_length;
         for s in &mut out[start..] {
             s.slack = slack;
-            s.tension = if slack { 0.0 } else { c.tension(total) };
+            s.tension = if slack {
+                0.0
+            } else {
+                c.stiffness_at(rest_length) * (total - rest_length)
+            };
         }
     }
     out

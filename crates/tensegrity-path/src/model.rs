@@ -98,6 +98,9 @@ impl Support {
 pub struct Drivers {
     /// ΔL₀ of every member at λ = 1 (m; empty: none).
     pub rest_length_changes: Vec<f64>,
+    /// ΔL₀ of every cluster's whole rest length at λ = 1 (m; empty: none): one actuator
+    /// reeling all its segments (not a cluster with pulley friction).
+    pub cluster_rest_length_changes: Vec<f64>,
     /// The motion d of every node at λ = 1 (m; empty: none); only supported nodes may move,
     /// along their held directions (of an elastic support: its springs' anchor moves).
     pub displacements: Vec<Vector3<f64>>,
@@ -110,6 +113,7 @@ impl Drivers {
     /// Whether λ drives anything but the load.
     pub fn is_empty(&self) -> bool {
         self.rest_length_changes.iter().all(|&d| d == 0.0)
+            && self.cluster_rest_length_changes.iter().all(|&d| d == 0.0)
             && self.displacements.iter().all(|d| d.norm() == 0.0)
             && self.dead_load.iter().all(|d| d.norm() == 0.0)
     }
@@ -183,6 +187,18 @@ impl ElasticCluster {
     /// ```
     pub fn tension(&self, length: f64) -> f64 {
         (self.stiffness * (length - self.rest_length)).max(0.0)
+    }
+
+    /// Its stiffness at the rest length `rest` (N/m): EA/`rest`, its EA = k L₀ kept (a
+    /// driven cluster's material does not change as it is reeled, as a driven string's).
+    ///
+    /// ```
+    /// use tensegrity_path::model::ElasticCluster;
+    /// let c = ElasticCluster { nodes: vec![0, 1, 2], stiffness: 100.0, rest_length: 2.0, damping: 0.0, friction: None };
+    /// assert_eq!((c.stiffness_at(2.0), c.stiffness_at(1.0)), (100.0, 200.0));
+    /// ```
+    pub fn stiffness_at(&self, rest: f64) -> f64 {
+        self.stiffness * self.rest_length / rest
     }
 }
 
@@ -297,6 +313,18 @@ impl ElasticModel {
         self.members[k].rest_length + lambda * change
     }
 
+    /// Cluster `c`'s whole rest length at load factor `lambda`: L₀ + λ ΔL₀ with its
+    /// driven change ([`Drivers::cluster_rest_length_changes`]).
+    pub fn cluster_rest_length(&self, c: usize, lambda: f64) -> f64 {
+        let change = self
+            .drivers
+            .cluster_rest_length_changes
+            .get(c)
+            .copied()
+            .unwrap_or(0.0);
+        self.clusters[c].rest_length + lambda * change
+    }
+
     /// Checks every item: node indices in range, finite positive EA and L₀, finite loads
     /// and nodes, support directions finite and non-zero (normalised here) and independent,
     /// a support's stiffness finite and positive; an error names the support by its index
@@ -385,6 +413,31 @@ impl ElasticModel {
                     self.members.len()
                 ),
             ));
+        }
+        let changes = &d.cluster_rest_length_changes;
+        if !changes.is_empty() && changes.len() != self.clusters.len() {
+            return Err(PathError::model(
+                "cluster_rest_length_changes",
+                format!(
+                    "{} changes for {} clusters",
+                    changes.len(),
+                    self.clusters.len()
+                ),
+            ));
+        }
+        for (c, change) in changes.iter().enumerate() {
+            if !change.is_finite() {
+                return Err(PathError::model(
+                    format!("cluster {c}"),
+                    "its rest length change must be finite",
+                ));
+            }
+            if *change != 0.0 && self.clusters[c].friction.is_some() {
+                return Err(PathError::model(
+                    format!("cluster {c}"),
+                    "a cluster with pulley friction takes no rest_length_change (where its actuator takes in the material is not modelled)",
+                ));
+            }
         }
         if !d.dead_load.is_empty() && d.dead_load.len() != n {
             return Err(PathError::model(

@@ -123,6 +123,17 @@ pub fn check_rest_lengths(model: &ElasticModel, lambda: f64) -> Result<()> {
             ));
         }
     }
+    for c in 0..model.clusters.len() {
+        let l0 = model.cluster_rest_length(c, lambda);
+        if l0.is_nan() || l0 <= 0.0 {
+            return Err(PathError::model(
+                format!("cluster {c}"),
+                format!(
+                    "its driven rest length L0 + λ ΔL0 = {l0} m is not positive at λ = {lambda}"
+                ),
+            ));
+        }
+    }
     Ok(())
 }
 

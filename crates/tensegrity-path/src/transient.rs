@@ -106,7 +106,9 @@ impl ElasticDynamics {
         velocities: &[Vector3<f64>],
     ) -> Result<Self> {
         let mut model = model.validated()?;
-        if !model.drivers.rest_length_changes.is_empty() || !model.drivers.displacements.is_empty()
+        if !model.drivers.rest_length_changes.is_empty()
+            || !model.drivers.cluster_rest_length_changes.is_empty()
+            || !model.drivers.displacements.is_empty()
         {
             return Err(PathError::model(
                 "drivers",

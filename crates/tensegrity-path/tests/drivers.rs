@@ -51,6 +51,7 @@ fn a_driven_rest_length_moves_the_node_as_the_closed_form() {
         rest_length_changes: vec![delta, 0.0],
         displacements: vec![],
         dead_load: vec![],
+        ..Default::default()
     });
     let path = follow(&model, &PathSettings::default()).unwrap();
     assert!(path.points.len() > 3);
@@ -85,6 +86,7 @@ fn a_driven_support_moves_the_node_and_its_reaction_is_the_tension() {
             rest_length_changes: vec![],
             displacements: motion,
             dead_load: vec![],
+            ..Default::default()
         }),
         &PathSettings::default(),
     )
@@ -122,6 +124,7 @@ fn a_displacement_on_a_free_direction_and_a_vanishing_rest_length_are_refused() 
             rest_length_changes: vec![],
             displacements: motion,
             dead_load: vec![],
+            ..Default::default()
         }),
         &PathSettings::default(),
     )
@@ -135,6 +138,7 @@ fn a_displacement_on_a_free_direction_and_a_vanishing_rest_length_are_refused() 
             rest_length_changes: vec![-2.0, 0.0],
             displacements: vec![],
             dead_load: vec![],
+            ..Default::default()
         }),
         &PathSettings::default(),
     )

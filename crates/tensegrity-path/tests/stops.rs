@@ -63,6 +63,7 @@ fn truss_with_a_driven_string() -> ElasticModel {
             rest_length_changes: vec![0.0, 0.0, 20.0],
             displacements: vec![],
             dead_load: vec![],
+            ..Default::default()
         },
     }
 }
@@ -134,6 +135,7 @@ fn strings() -> ElasticModel {
             rest_length_changes: vec![0.2, 0.1],
             displacements: vec![],
             dead_load: vec![],
+            ..Default::default()
         },
     }
 }

@@ -86,6 +86,7 @@ fn example(name: &str) -> Example {
                 .map(|i| Vector3::new(motion[3 * i], motion[3 * i + 1], motion[3 * i + 2]))
                 .collect(),
             dead_load: Vec::new(),
+            ..Default::default()
         },
     };
     Example {

@@ -86,3 +86,24 @@ def test_the_atwood_machine_falls_as_the_closed_form():
     drop = 0.5 * (m1 - m2) * g / (m1 + m2) * r["t_end"] ** 2
     assert abs(r["final_nodes"][1][2] - (-1.0 - drop)) < 1e-9
     assert abs(r["final_nodes"][2][2] - (-1.5 + drop)) < 1e-9
+
+
+def test_a_cluster_rest_length_change_reels_along_the_load_path(cli_json, tmp_path):
+    """``cluster_rest_length_change`` drives the whole rest length along ``solve``'s path
+    (EA kept): the 10 kg weight over the pulley keeps its tension W and rises by
+    0.1 (1 + W/EA) at λ = 1, as the CLI on the written scene says."""
+    w, ea = 98.1, 1e4 * 1.99019
+    s = tg.Structure([[-1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, -1.0]],
+                     clusters=[[0, 1, 2]], cluster_stiffness=[1e4],
+                     cluster_rest_length=[1.99019], cluster_rest_length_change=[-0.1],
+                     supports=[0, 1], masses={2: 10.0}, gravity=(0.0, 0.0, -9.81))
+    r = tg.solve(s)
+    last = r["path"]["points"][-1]
+    assert last["lambda"] == 1.0
+    assert abs(last["tensions"][0] - w) < 1e-9 * w
+    assert abs(last["displacements"][2][2] - 0.1 * (1.0 + w / ea)) < 1e-12
+    path = tmp_path / "reel.toml"
+    path.write_text(s.to_toml())
+    assert "rest_length_change = -0.1" in path.read_text()
+    from conftest import assert_same
+    assert_same(r, cli_json("solve", path), rtol=1e-12)

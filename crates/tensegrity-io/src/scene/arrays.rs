@@ -169,6 +169,13 @@ pub struct SceneArrays {
         skip_serializing_if = "Option::is_none"
     )]
     pub rest_length_change: Option<Vec<Option<f64>>>,
+    /// Cluster rest-length changes at load factor 1 (m), one per cluster (`solve`).
+    #[serde(
+        default,
+        deserialize_with = "number::opt_column",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub cluster_rest_length_change: Option<Vec<Option<f64>>>,
     /// Per bar: elastic (`true`) or rigid (`false`) in `simulate`, over `[simulation] bars`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bar_elastic: Option<Vec<Option<bool>>>,
@@ -325,7 +332,8 @@ impl SceneArrays {
 
     /// The columns of a scene's structure ([`SceneArrays::from_structure`]) with the keys its
     /// file holds beside the structure: bars' `rest_length`, `rest_length_change` and
-    /// `elastic`, strings' `mass` and `rest_length_change`, supports' `displacement`, the
+    /// `elastic`, strings' `mass` and `rest_length_change`, clusters' `rest_length_change`,
+    /// supports' `displacement`, the
     /// `[[masses]]`; not its dynamics tables.
     ///
     /// ```
@@ -352,6 +360,9 @@ impl SceneArrays {
             bar_rest_length: column(bars().map(|b| b.rest_length)),
             bar_rest_length_change: column(bars().map(|b| b.rest_length_change)),
             rest_length_change: column(strings().map(|s| s.rest_length_change)),
+            cluster_rest_length_change: column(
+                file.clusters.iter().map(|c| c.get_ref().rest_length_change),
+            ),
             bar_elastic: column(bars().map(|b| b.elastic)),
             string_mass: column(strings().map(|s| s.mass)),
             masses: (file.masses.iter())
@@ -392,6 +403,10 @@ impl SceneArrays {
                 self.cluster_friction.as_ref().map(Vec::len),
             ),
             ("cluster_material", names(&self.cluster_material)),
+            (
+                "cluster_rest_length_change",
+                numbers(&self.cluster_rest_length_change),
+            ),
         ];
         for (column, got) in clusters {
             match got {
@@ -499,6 +514,7 @@ impl SceneArrays {
                 damping: entry(&self.cluster_damping, k),
                 friction: entry(&self.cluster_friction, k),
                 material: entry(&self.cluster_material, k),
+                rest_length_change: entry(&self.cluster_rest_length_change, k),
             }));
         }
         let (supports, loads) = self.nodal_items(file)?;

@@ -234,6 +234,10 @@ pub struct ClusterSpec {
     /// The friction coefficient μ of the pulley at each inner node (capstan law); absent:
     /// frictionless.
     pub friction: Option<Vec<f64>>,
+    /// The change of its whole rest length at load factor 1 (m; `solve` only: one actuator
+    /// reeling every segment along a load path).
+    #[serde(default)]
+    pub rest_length_change: Option<f64>,
     /// Material name.
     pub material: Option<String>,
 }
@@ -376,7 +380,23 @@ impl SceneFile {
                 .filter(|(_, s)| s.get_ref().rest_length_change.is_some())
                 .map(|(i, _)| format!("string {i}: rest_length_change")),
         );
+        keys.extend(
+            self.clusters
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.get_ref().rest_length_change.is_some())
+                .map(|(i, _)| format!("cluster {i}: rest_length_change")),
+        );
         keys
+    }
+
+    /// Each cluster's `rest_length_change` (m at λ = 1; 0 where not given), in cluster
+    /// order: a load path's driver of its whole rest length.
+    pub fn cluster_rest_length_changes(&self) -> Vec<f64> {
+        self.clusters
+            .iter()
+            .map(|c| c.get_ref().rest_length_change.unwrap_or(0.0))
+            .collect()
     }
 
     /// Each support's `displacement` (m), in support order (`None` where not given): the

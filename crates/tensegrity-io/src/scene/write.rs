@@ -146,7 +146,7 @@ fn write(structure: &Structure, file: Option<&SceneFile>) -> String {
             }
         }
     }
-    for c in structure.clusters() {
+    for (k, c) in structure.clusters().iter().enumerate() {
         let nodes: Vec<String> = c.nodes.iter().map(usize::to_string).collect();
         let _ = write!(out, "\n[[clusters]]\nnodes = [{}]\n", nodes.join(", "));
         if let Some(k) = c.stiffness {
@@ -164,6 +164,10 @@ fn write(structure: &Structure, file: Option<&SceneFile>) -> String {
         }
         if let Some(name) = &c.material {
             let _ = writeln!(out, "material = \"{name}\"");
+        }
+        let spec = file.and_then(|f| f.clusters.get(k)).map(|c| c.get_ref());
+        if let Some(d) = spec.and_then(|c| c.rest_length_change) {
+            let _ = writeln!(out, "rest_length_change = {d:?}");
         }
     }
     for (i, s) in structure.supports().iter().enumerate() {

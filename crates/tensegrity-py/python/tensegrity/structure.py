@@ -253,6 +253,9 @@ class Structure:
         node.
     cluster_material : sequence of str, optional
         Per cluster: material names.
+    cluster_rest_length_change : sequence of float, optional
+        Per cluster (None: unset): the change of its whole rest length at load factor 1
+        (m; ``solve`` only: one actuator reeling every segment along the load path).
     loads : dict or array_like, optional
         ``{node: (Fx, Fy, Fz)}`` (N), or an (n, 3) array of nodal loads.
     gravity : array_like, shape (3,), optional
@@ -281,7 +284,8 @@ class Structure:
                  bar_rest_length=None, bar_rest_length_change=None, rest_length_change=None,
                  bar_elastic=None, string_mass=None, masses=None, clusters=None,
                  cluster_stiffness=None, cluster_rest_length=None, cluster_damping=None,
-                 cluster_friction=None, cluster_material=None):
+                 cluster_friction=None, cluster_material=None,
+                 cluster_rest_length_change=None):
         self.nodes = _matrix(nodes, 3, "nodes", np.float64)
         self.bars = _integers(bars, "bars")
         self.strings = _integers(strings, "strings")
@@ -315,6 +319,8 @@ class Structure:
         self.cluster_friction = _per_cluster(cluster_friction, nc, "cluster_friction",
                                              lambda mu: [float(m) for m in mu])
         self.cluster_material = _per_cluster(cluster_material, nc, "cluster_material", str)
+        self.cluster_rest_length_change = _per_cluster(
+            cluster_rest_length_change, nc, "cluster_rest_length_change", float)
         self.loads = _loads(loads, n)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=np.float64)
         self.velocities = (None if velocities is None
@@ -365,6 +371,7 @@ class Structure:
             "cluster_damping": self.cluster_damping,
             "cluster_friction": self.cluster_friction,
             "cluster_material": self.cluster_material,
+            "cluster_rest_length_change": self.cluster_rest_length_change,
         }
         if self.clusters:
             optional["clusters"] = self.clusters
@@ -467,6 +474,7 @@ class Structure:
             cluster_damping=data.get("cluster_damping"),
             cluster_friction=data.get("cluster_friction"),
             cluster_material=data.get("cluster_material"),
+            cluster_rest_length_change=data.get("cluster_rest_length_change"),
             **{t: data[t] for t in ("simulation", "ground", "actuation") if t in data},
         )
 
