@@ -220,3 +220,61 @@ fn a_clusters_rest_length_change_reels_a_weight_along_the_load_path() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("cluster 0: rest_length_change"), "{err}");
 }
+
+/// Ground contact with a cluster in the rigid-bar dynamics: the Snelson prism of
+/// examples/prism_drop.toml dropped on a frictionless penalty ground, once with its bottom
+/// ring as three strings and once as one cluster 0 → 1 → 2 → 0 (k/3, 3 L₀, damping c/3):
+/// the drop keeps the prism's three-fold symmetry, so the segments stay equal and the
+/// cluster pulls as the three strings do; the two runs land and bounce alike to 10⁻¹⁰ m.
+#[test]
+fn a_clustered_ring_lands_on_the_ground_as_its_three_strings() {
+    let dir = scratch("clusters", "drop");
+    let text = std::fs::read_to_string("examples/prism_drop.toml")
+        .unwrap()
+        .replace("integrator = \"rk45\"", "integrator = \"rk4\"\ndt = 2e-4")
+        .replace("rtol = 1e-8\n", "")
+        .replace("atol = 1e-10\n", "")
+        .replace("t_end = 3.0", "t_end = 1.5")
+        .replace("mu_static = 0.8\n", "")
+        .replace("mu_kinetic = 0.6\n", "");
+    let ring = [
+        "[[strings]]\nnodes = [0, 1]\nstiffness = 1000.0\nrest_length = 1.7147302994931883\ndamping = 2.0\n\n",
+        "[[strings]]\nnodes = [1, 2]\nstiffness = 1000.0\nrest_length = 1.7147302994931883\ndamping = 2.0\n\n",
+        "[[strings]]\nnodes = [2, 0]\nstiffness = 1000.0\nrest_length = 1.7147302994931888\ndamping = 2.0\n\n",
+    ];
+    let mut clustered = text.clone();
+    for r in ring {
+        assert!(clustered.contains(r), "{r}");
+        clustered = clustered.replace(r, "");
+    }
+    clustered = clustered.replace(
+        "[gravity]",
+        "[[clusters]]\nnodes = [0, 1, 2, 0]\nstiffness = 333.3333333333333\nrest_length = 5.144190898479565\ndamping = 0.6666666666666666\n\n[gravity]",
+    );
+    let run_scene = |name: &str, body: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, body).unwrap();
+        json(&[
+            "simulate",
+            path.to_str().unwrap(),
+            "--json",
+            "--no-convergence-check",
+        ])
+    };
+    let (strings, cluster) = (
+        run_scene("strings.toml", &text),
+        run_scene("cluster.toml", &clustered),
+    );
+    assert_eq!(cluster["valid"], true, "{cluster}");
+    let (a, b) = (
+        common::points(&strings["final_nodes"]),
+        common::points(&cluster["final_nodes"]),
+    );
+    // it landed: the bottom nodes on the ground (penalty: sunk by about 1 mm)
+    assert!(b[..3].iter().all(|p| p[2].abs() < 2e-3), "{b:?}");
+    for (p, q) in a.iter().zip(&b) {
+        for d in 0..3 {
+            assert!((p[d] - q[d]).abs() < 1e-10, "{p:?} vs {q:?}");
+        }
+    }
+}

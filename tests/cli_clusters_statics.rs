@@ -6,7 +6,7 @@
 //!   `cluster 0` in the text report;
 //! - a mass over a pulley, sized: t = W, the pulley's reaction t(e₁ − e₂) and the cluster's
 //!   mass (ρ/σ_Y) t L over its whole length;
-//! - `--method sparse` refused (exit 2) naming the cluster and `--method dense`.
+//! - `--method sparse` (the banded sparse QR) models the cluster as the dense SVD does.
 
 mod common;
 
@@ -108,10 +108,24 @@ fn a_mass_over_a_pulley_is_carried_reacted_and_sized_over_the_whole_length() {
 }
 
 #[test]
-fn the_sparse_back_end_refuses_a_cluster_by_name() {
-    let out = run(&["statics", PRISM, "--method", "sparse"]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("cluster 0: the sparse QR back-end"), "{err}");
-    assert!(err.contains("--method dense"), "{err}");
+fn the_sparse_back_end_models_a_cluster_as_the_dense_one() {
+    let sparse = json(&run(&["statics", PRISM, "--method", "sparse", "--json"]));
+    let dense = json(&run(&["statics", PRISM, "--method", "dense", "--json"]));
+    assert_eq!(sparse["statics_method"], "sparse_qr");
+    for k in [
+        "rank",
+        "self_stress_dim",
+        "internal_mechanisms",
+        "prestressable",
+        "prestress_stable",
+    ] {
+        assert_eq!(sparse[k], dense[k], "{k}");
+    }
+    let (a, b) = (&sparse["prestress"], &dense["prestress"]);
+    for (x, y) in a.as_array().unwrap().iter().zip(b.as_array().unwrap()) {
+        assert!(
+            (x.as_f64().unwrap() - y.as_f64().unwrap()).abs() < 1e-12,
+            "{a} vs {b}"
+        );
+    }
 }

@@ -332,8 +332,7 @@ fn statics_estimate(structure: &Structure, command: &StaticsCommand) -> Option<E
     let dense = match command.method {
         StaticsMethod::Dense => true,
         StaticsMethod::Sparse => false,
-        // clusters: the dense SVD, the only back-end that models them
-        StaticsMethod::Auto => dofs.min(members) < SPARSE_MIN_SIZE || structure.has_clusters(),
+        StaticsMethod::Auto => dofs.min(members) < SPARSE_MIN_SIZE,
     };
     let method = serde_json::to_value(command.method).unwrap_or_default();
     let parameter = format!(
@@ -344,17 +343,15 @@ fn statics_estimate(structure: &Structure, command: &StaticsCommand) -> Option<E
     if dense {
         return Some(budget::dense_statics(dofs, members, parameter));
     }
-    // a wide unloaded structure (a lattice) takes the nested-dissection path
-    if command.method == StaticsMethod::Auto
-        && tensegrity_statics::nested::prefers_nested(structure)
-    {
+    // a wide unloaded structure (a lattice) takes the nested-dissection path (never one with
+    // clusters, which the nested dissection does not model)
+    let nested = command.method == StaticsMethod::Auto && !structure.has_clusters();
+    if nested && tensegrity_statics::nested::prefers_nested(structure) {
         return tensegrity_statics::nested::nested_estimate(structure, parameter).ok();
     }
     // a large unloaded structure of narrow band (a tower) takes the nested dissection of A
     // itself first; the banded QR it may still choose checks its own bound and budget
-    if command.method == StaticsMethod::Auto
-        && tensegrity_statics::nested::prefers_nested_members(structure)
-    {
+    if nested && tensegrity_statics::nested::prefers_nested_members(structure) {
         return tensegrity_statics::nested::nested_members_estimate(structure, parameter).ok();
     }
     // the sparse QR within its profile (a bound of what the factorisation stores), its work

@@ -145,6 +145,7 @@ pub fn nested_estimate(
     structure: &Structure,
     parameter: String,
 ) -> Result<tensegrity_core::budget::Estimate> {
+    crate::cluster_columns::refuse_clusters_in(structure, "nested-dissection QR")?;
     let dofs = DofMap::of(structure);
     let a = equilibrium_matrix_sparse(structure, &dofs)?;
     let (fronts, parent) = dof_fronts(structure, &dofs);
@@ -273,6 +274,7 @@ pub fn nested_members_estimate(
     structure: &Structure,
     parameter: String,
 ) -> Result<tensegrity_core::budget::Estimate> {
+    crate::cluster_columns::refuse_clusters_in(structure, "nested-dissection QR")?;
     let dofs = DofMap::of(structure);
     let at = transpose(&equilibrium_matrix_sparse(structure, &dofs)?)?;
     let (fronts, parent) = member_fronts(structure);

@@ -15,9 +15,11 @@
 //!   SVD when it fits the memory budget and the work limit, and is otherwise returned as is.
 //!   `method = Dense` or `Sparse` forces that back-end; a structure with a support along
 //!   directions of any orientation (`along`, which the blocks do not know) takes [`backend`].
-//! - A structure with clustered strings takes the dense SVD, the only back-end that models
-//!   them ([`crate::cluster_columns`]); `method = Sparse`, or an automatic method whose SVD
-//!   would not fit, is refused naming the cluster, never answered without it.
+//! - A structure with clustered strings takes the dense SVD or the banded sparse QR, the
+//!   back-ends that model them ([`crate::cluster_columns`]: one column per cluster), by the
+//!   same rule as above (the nested dissection, which does not, is never chosen); the cyclic
+//!   blocks do not model them either, and a symmetric structure with clusters takes this
+//!   general choice.
 
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
 use super::{
@@ -58,7 +60,7 @@ fn wants_sparse(structure: &Structure, settings: &StaticsSettings) -> bool {
         StaticsMethod::Sparse => true,
         StaticsMethod::Auto => {
             let dofs = DofMap::of(structure).len();
-            dofs.min(structure.n_members()) >= SPARSE_MIN_SIZE
+            dofs.min(crate::n_columns(structure)) >= SPARSE_MIN_SIZE
         }
     }
 }
@@ -106,26 +108,25 @@ pub fn backend<'a>(
     Ok(Box::new(Statics::with_settings(structure, settings)?))
 }
 
-/// A structure with clusters: the dense SVD, the only back-end that models them, unless the
-/// method names another (the sparse QR: refused, naming the cluster) or the SVD does not fit
-/// the memory budget and the default work limit under the automatic method (refused, naming
-/// the cluster, rather than a back-end that would drop it).
+/// A structure with clusters: the dense SVD or the banded sparse QR, the back-ends that
+/// model them (a cluster is one column of A over all its nodes); the nested dissection does
+/// not, and the automatic method takes the sparse QR where [`wants_sparse`] would, falling
+/// back to the SVD when its rank is not certified and the SVD fits.
 fn clustered<'a>(
     structure: &'a Structure,
     settings: StaticsSettings,
 ) -> Result<Box<dyn StaticsBackend + 'a>> {
-    match settings.method {
-        StaticsMethod::Sparse => {
-            crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?
+    let sparse = match settings.method {
+        StaticsMethod::Sparse => true,
+        StaticsMethod::Auto => wants_sparse(structure, &settings),
+        _ => false,
+    };
+    if sparse {
+        let fallback = settings.method == StaticsMethod::Auto && dense_fits(structure, &settings);
+        let sparse = SparseStatics::with_settings(structure, settings)?;
+        if sparse.is_certified() || !fallback {
+            return Ok(Box::new(sparse));
         }
-        StaticsMethod::Auto if !dense_fits(structure, &settings) => {
-            return Err(tensegrity_core::error::ModelError::InvalidCluster {
-                cluster: 0,
-                reason: "the dense SVD, the only back-end of the statics that models clustered strings, does not fit the memory budget or the work limit of this structure, and the sparse back-ends would leave the clusters out: give their segments as strings, or raise the limits".into(),
-            }
-            .into())
-        }
-        _ => {}
     }
     Ok(Box::new(Statics::with_settings(structure, settings)?))
 }
@@ -202,9 +203,9 @@ mod tests {
     use super::*;
     use tensegrity_core::{Cluster, StringMember};
 
-    /// A clustered structure takes the dense SVD where it fits the front end's work limit,
-    /// and is refused naming the cluster where it does not: the limit is the settings' (a
-    /// raised `--max-work` admits it), not the default.
+    /// The dense fit follows the given work limit (a raised `--max-work` admits the SVD),
+    /// not the default; a small clustered structure takes the SVD as any small structure,
+    /// and the sparse QR where the method names it (it models clusters).
     #[test]
     fn the_dense_fit_follows_the_given_work_limit() {
         let s = Structure::builder()
@@ -224,8 +225,11 @@ mod tests {
         };
         assert!(dense_fits(&s, &StaticsSettings::default()));
         assert!(!dense_fits(&s, &tiny));
-        let e = backend(&s, tiny).err().unwrap().to_string();
-        assert!(e.starts_with("cluster 0: the dense SVD"), "{e}");
+        let sparse = StaticsSettings::default().method(StaticsMethod::Sparse);
+        assert_eq!(
+            backend(&s, sparse).unwrap().kind(),
+            crate::Factorization::SparseQr
+        );
         assert_eq!(
             backend(&s, StaticsSettings::default()).unwrap().kind(),
             crate::Factorization::Svd

@@ -30,6 +30,13 @@
 //! memory budget and the method is automatic, and is flagged in the report otherwise (see
 //! [`report`](super::report)).
 //!
+//! Clustered strings ([`crate::cluster_columns`]) are columns like the members': one per
+//! cluster over all its nodes (its segments join the node graph of the ordering), so the
+//! counts, the self-stress basis, the LP and the load solve take them as they are; the
+//! stress matrix of the dense-mechanism stability test adds each cluster's geometric part
+//! q_c L_c Σ_i (1/l_i) P_i segment by segment, and the large-structure tests (the flex QR,
+//! the penalised certificate) give no decision with clusters.
+//!
 //! # What is computed
 //!
 //! - rank r, self-stress dimension members − r, mechanisms dofs − r;
@@ -94,6 +101,22 @@ pub const FLEX_QR_ENTRIES_PER_DOF: usize = 256;
 /// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
 pub const DENSE_MECHANISMS_MAX: usize = 250_000;
 
+/// [`DENSE_MECHANISMS_MAX`] for a structure with clusters, whose large-structure tests (the
+/// flex QR, the penalised certificate) give no decision: the dense test up to 32 MB of basis
+/// (a clustered Levy dome of 4,080 members, 4,032 free dofs × 611 mechanisms, 2.5·10⁶
+/// numbers: about 1 s) rather than no answer.
+pub const DENSE_MECHANISMS_MAX_CLUSTERED: usize = 4_000_000;
+
+/// The largest dense mechanism basis (free dofs × mechanisms) the stability test of
+/// `structure` takes.
+fn dense_mechanisms_max(structure: &Structure) -> usize {
+    if structure.has_clusters() {
+        DENSE_MECHANISMS_MAX_CLUSTERED
+    } else {
+        DENSE_MECHANISMS_MAX
+    }
+}
+
 /// Power-method steps for σ_max of the equilibrium matrix.
 const POWER_STEPS: usize = 40;
 /// Inverse-iteration steps for the σ_min(R_acc) estimate.
@@ -124,9 +147,9 @@ fn defer_level(m: usize, n: usize, sigma_max: f64, tolerance: f64) -> f64 {
 /// structures.
 const REJECT_FACTOR: f64 = 1e3;
 
-/// The sparse equilibrium matrix A (free dofs × members), rows as [`DofMap`] numbers them.
+/// The sparse equilibrium matrix A (free dofs × columns: members, then one per cluster,
+/// [`crate::cluster_columns`]), rows as [`DofMap`] numbers them.
 pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result<CscMatrix> {
-    crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?;
     let mut t = Vec::with_capacity(6 * structure.n_members());
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
         let m = structure.nodes()[j] - structure.nodes()[i];
@@ -139,9 +162,23 @@ pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result
             }
         }
     }
+    let nm = structure.n_members();
+    for (c, geometry) in crate::cluster_columns::cluster_geometries(structure)
+        .iter()
+        .enumerate()
+    {
+        for (node, v) in geometry.column() {
+            for d in 0..3 {
+                if let Some(r) = dofs.row[node][d] {
+                    // a pulley's two entries add in the triplets
+                    t.push((r, nm + c, dofs.component(node, d, &v)));
+                }
+            }
+        }
+    }
     Ok(CscMatrix::from_triplets(
         dofs.len(),
-        structure.n_members(),
+        crate::n_columns(structure),
         &t,
     )?)
 }
@@ -152,7 +189,8 @@ pub fn equilibrium_matrix_sparse(structure: &Structure, dofs: &DofMap) -> Result
 pub fn node_order_rcm(structure: &Structure) -> Vec<usize> {
     let n = structure.n_nodes();
     let mut adj = vec![Vec::new(); n];
-    for [i, j] in structure.member_nodes() {
+    let segments = structure.clusters().iter().flat_map(|c| c.segments());
+    for [i, j] in structure.member_nodes().into_iter().chain(segments) {
         adj[i].push(j);
         adj[j].push(i);
     }
@@ -259,10 +297,16 @@ pub fn sparse_after_qr(
     r: usize,
     entries: usize,
 ) -> tensegrity_core::budget::Estimate {
-    after_qr(m, n, r, entries)
+    after_qr(m, n, r, entries, DENSE_MECHANISMS_MAX)
 }
 
-fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> tensegrity_core::budget::Estimate {
+fn after_qr(
+    m: usize,
+    n: usize,
+    r: usize,
+    entries: usize,
+    dense_max: usize,
+) -> tensegrity_core::budget::Estimate {
     let (mf, nf, e) = (m as f64, n as f64, entries as f64);
     let s = n.saturating_sub(r) as f64;
     let d = m.saturating_sub(r) as f64;
@@ -274,11 +318,7 @@ fn after_qr(m: usize, n: usize, r: usize, entries: usize) -> tensegrity_core::bu
         0.0
     };
     // the dense mechanism test below its size, else the flex QR and the sparse test
-    let dense_mech = if mf * d <= DENSE_MECHANISMS_MAX as f64 {
-        1.0
-    } else {
-        0.0
-    };
+    let dense_mech = if mf * d <= dense_max as f64 { 1.0 } else { 0.0 };
     let memory = 16.0 * e
         + listed * 32.0 * nf * s
         + stressed * (48.0 * e + dense_mech * 32.0 * mf * d + (1.0 - dense_mech) * 32.0 * e);
@@ -385,7 +425,6 @@ impl<'a> SparseStatics<'a> {
     /// Orders, bounds the memory against the budget of `settings`, factors and builds the
     /// orthonormal self-stress basis.
     pub fn with_settings(structure: &'a Structure, settings: StaticsSettings) -> Result<Self> {
-        crate::cluster_columns::refuse_clusters_in(structure, "sparse QR")?;
         let dofs = DofMap::of(structure);
         let a = equilibrium_matrix_sparse(structure, &dofs)?;
         let (row_order, pos_of_row) = row_ordering(structure, &dofs);
@@ -395,12 +434,12 @@ impl<'a> SparseStatics<'a> {
             return Err(CoreError::TooLarge {
                 what: "the sparse QR of the equilibrium matrix",
                 rows: dofs.len(),
-                cols: structure.n_members(),
+                cols: crate::n_columns(structure),
                 bytes,
                 limit,
             });
         }
-        let (m, n) = (dofs.len(), structure.n_members());
+        let (m, n) = (dofs.len(), crate::n_columns(structure));
         let sigma = sigma_max(&a);
         let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
         let qr = RankRevealingQr::with_deferral(
@@ -411,7 +450,13 @@ impl<'a> SparseStatics<'a> {
         )?;
         // the rank is known: the bases, the LP and the stability test are estimated and
         // checked before they are allocated
-        let after = after_qr(m, n, qr.rank(), qr.stored_entries());
+        let after = after_qr(
+            m,
+            n,
+            qr.rank(),
+            qr.stored_entries(),
+            dense_mechanisms_max(structure),
+        );
         let limits = tensegrity_core::budget::Limits {
             memory_bytes: limit,
             work_s: settings.work_limit.unwrap_or(f64::INFINITY),
@@ -467,7 +512,7 @@ impl<'a> SparseStatics<'a> {
 
     /// Dimension of the self-stress space.
     pub fn self_stress_dim(&self) -> usize {
-        self.structure.n_members() - self.rank()
+        crate::n_columns(self.structure) - self.rank()
     }
 
     /// First-order mechanisms, rigid-body motions included.
@@ -489,7 +534,7 @@ impl<'a> SparseStatics<'a> {
     /// An estimate of the smallest singular value of A: the rejected residual norm (an upper
     /// bound, ≤ τ) when A is rank deficient, else the σ_min(R_acc) estimate.
     pub fn smallest_singular_value_estimate(&self) -> f64 {
-        let (m, n) = (self.dofs.len(), self.structure.n_members());
+        let (m, n) = (self.dofs.len(), crate::n_columns(self.structure));
         if self.rank() < m.min(n) {
             self.qr.rejected_residual()
         } else {
@@ -563,7 +608,7 @@ impl SparseStatics<'_> {
     /// The margin LP with the given member signs ([`MemberSign`]) over the member force
     /// densities.
     pub fn prestressability_with(&self, signs: &[MemberSign]) -> Result<Prestressability> {
-        let n = self.structure.n_members();
+        let n = crate::n_columns(self.structure);
         super::prestress::check_signs(signs, n)?;
         if self.self_stress_dim() == 0 {
             return Ok(Prestressability::none(n));
@@ -629,7 +674,7 @@ impl SparseStatics<'_> {
     /// [`CoreError::Unsupported`] (the report then says that stability was not tested).
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         let (m, d) = (self.dofs.len(), self.mechanisms());
-        if m.saturating_mul(d) <= DENSE_MECHANISMS_MAX {
+        if m.saturating_mul(d) <= dense_mechanisms_max(self.structure) {
             let (phi, _) = self.internal_mechanisms()?;
             return self.prestress_stability_on(&phi, q);
         }
@@ -674,7 +719,13 @@ impl SparseStatics<'_> {
     /// quotient lies within the pinning's conditioning of σ.
     pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<Option<bool>> {
         let q_max = q.amax();
-        if q.len() != self.structure.n_members() || !(q_max > 0.0 && q_max.is_finite()) {
+        // the flex test and the penalised certificate assemble the stress matrix member by
+        // member: a cluster's (its geometric part over all its segments) is not in them, so
+        // they give no decision for a structure with clusters
+        if q.len() != self.structure.n_members()
+            || self.structure.has_clusters()
+            || !(q_max > 0.0 && q_max.is_finite())
+        {
             return Ok(None);
         }
         let rigid = rigid_motions(self.structure, &self.dofs)?;
@@ -829,9 +880,11 @@ impl SparseStatics<'_> {
         PrestressStability::from_projected(&(phi.transpose() * omega_phi), q.amax())
     }
 
-    /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C.
+    /// (Ω ⊗ I₃) X on the free dofs, member by member: Ω = Cᵀ diag(q) C; a cluster's
+    /// column q_c adds its geometric part q_c L_c Σ_i (1/l_i) [[P_i, −P_i], [−P_i, P_i]]
+    /// (P_i = I − e_i e_iᵀ, [`crate::cluster_columns`]), as the dense path's stress matrix.
     fn stress_matrix_times(&self, q: &DVector<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
-        if !self.dofs.is_axis_aligned() {
+        if !self.dofs.is_axis_aligned() || self.structure.has_clusters() {
             return stress_matrix_times_framed(self.structure, &self.dofs, q, x);
         }
         let mut y = DMatrix::zeros(x.nrows(), x.ncols());
@@ -913,6 +966,7 @@ fn stress_matrix_times_framed(
 ) -> DMatrix<f64> {
     let mut y = DMatrix::zeros(x.nrows(), x.ncols());
     let members = structure.member_nodes();
+    let clusters = crate::cluster_columns::cluster_geometries(structure);
     for (xc, mut yc) in x.column_iter().zip(y.column_iter_mut()) {
         let xs: Vec<f64> = xc.iter().copied().collect();
         let u = dofs.expand(&xs);
@@ -921,6 +975,16 @@ fn stress_matrix_times_framed(
             let t = (u[i] - u[j]) * q[k];
             f[i] += t;
             f[j] -= t;
+        }
+        for (c, g) in clusters.iter().enumerate() {
+            let w = q[members.len() + c] * g.length;
+            for s in &g.segments {
+                let [i, j] = s.nodes;
+                let du = u[i] - u[j];
+                let t = (du - s.unit * s.unit.dot(&du)) * (w / s.length);
+                f[i] += t;
+                f[j] -= t;
+            }
         }
         for (r, &(node, a)) in dofs.free.iter().enumerate() {
             yc[r] = dofs.component(node, a, &f[node]);
@@ -1061,7 +1125,7 @@ impl StaticsBackend for SparseStatics<'_> {
     fn spectral_gap(&self) -> SpectralGap {
         let (m, n) = (
             self.dofs().len(),
-            SparseStatics::structure(self).n_members(),
+            crate::n_columns(SparseStatics::structure(self)),
         );
         let above = self.sigma_min_r_estimate();
         let below = SparseStatics::factorization(self).rejected_residual();
@@ -1089,7 +1153,7 @@ impl StaticsBackend for SparseStatics<'_> {
     }
     fn self_stress(&self) -> SelfStressBasis {
         let (n, dim) = (
-            SparseStatics::structure(self).n_members(),
+            crate::n_columns(SparseStatics::structure(self)),
             SparseStatics::self_stress_dim(self),
         );
         if n.saturating_mul(dim) > SELF_STRESS_LIST_MAX {
