@@ -445,9 +445,8 @@ impl ElasticDynamics {
     }
 
     /// The members' states at time `t` (the actuated rest lengths) and positions `x` without
-    /// dashpots; a frictional cluster's
-    /// segments at the rest lengths its material slides to at `x` from where it was at the
-    /// last accepted step ([`crate::clusters::slide`]: the string is massless, so within a
+    /// dashpots; a frictional cluster's segments at the rest lengths its material slides to
+    /// at `x` from where it was at the last accepted step ([`crate::clusters::slide`]: the string is massless, so within a
     /// step the pulleys stick or slip at once, the force a continuous function of `x`).
     pub fn elastic_states(&self, t: f64, x: &[Vector3<f64>]) -> Vec<MemberState> {
         let mut states = member_states(&self.model, x, 0.0);
