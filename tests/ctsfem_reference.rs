@@ -23,6 +23,8 @@
 
 mod common;
 
+use common::numbers;
+
 use serde_json::Value;
 
 const TOL: f64 = 1e-6;
@@ -33,14 +35,6 @@ fn reference(name: &str) -> Value {
         env!("CARGO_MANIFEST_DIR")
     );
     serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// The largest distance between two node sets, and the largest move of `ours` from `start`.

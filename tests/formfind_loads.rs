@@ -6,19 +6,13 @@
 
 mod common;
 
+use common::numbers;
+
 use serde_json::Value;
 
 fn json(out: &std::process::Output) -> Value {
     common::assert_ok(out);
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// The node and force of each entry of a `loads` or `reactions` list.

@@ -4,6 +4,8 @@
 //! flag (exit 2 for bad input), or found correctly with its warning.
 
 mod common;
+
+use common::numbers;
 use common::{assert_ok, run, scratch};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -29,14 +31,6 @@ fn refused(out: &Output) -> String {
 fn json(out: &Output) -> Value {
     assert_ok(out);
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// The 3-bar prism's members (bars, bottom ring, top ring, verticals), as prism3.toml.

@@ -108,3 +108,12 @@ pub fn points(v: &serde_json::Value) -> Vec<[f64; 3]> {
         })
         .collect()
 }
+
+/// A JSON list of numbers as a vector.
+pub fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}

@@ -56,7 +56,7 @@
 //! > L₀ = L / (1 + α t_c / EA) = L − α t_c / k,  k = EA / L₀ (N/m, the scene's stiffness).
 
 use crate::error::{FormFindError, Result};
-use crate::fdm::{point_loads, with_weight, FixedSystem};
+use crate::fdm::{held_positions, member_weights, point_loads, with_weight, FixedSystem};
 use crate::method::Settings;
 use crate::topology::Topology;
 use nalgebra::Vector3;
@@ -148,17 +148,9 @@ pub(crate) fn fixed_point(
     q: &[f64],
     settings: &Settings,
 ) -> Result<Clustered> {
-    let fixed: Vec<(usize, Vector3<f64>)> = topology
-        .fixed
-        .iter()
-        .map(|f| (f.node, Vector3::from(f.position)))
-        .collect();
+    let fixed = held_positions(topology);
     let point = point_loads(topology);
-    let weights: Vec<f64> = topology
-        .given_weights()
-        .iter()
-        .map(|w| w.unwrap_or(0.0))
-        .collect();
+    let weights = member_weights(topology);
     let mut x = start(topology);
     let (mut change, mut bound, mut done) = (f64::INFINITY, f64::INFINITY, 0);
     for iteration in 1..=settings.max_iterations {

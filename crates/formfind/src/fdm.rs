@@ -130,12 +130,7 @@ pub(crate) fn geometry(topology: &Topology, q: &[f64]) -> Result<Vec<Vector3<f64
     let unit: Vec<f64> = q.iter().map(|x| x / scale.max(f64::MIN_POSITIVE)).collect();
     let q = unit.as_slice();
     if !topology.fixed.is_empty() {
-        let fixed: Vec<(usize, Vector3<f64>)> = topology
-            .fixed
-            .iter()
-            .map(|f| (f.node, Vector3::from(f.position)))
-            .collect();
-        return fixed_solve(topology, q, &fixed);
+        return fixed_solve(topology, q, &held_positions(topology));
     }
     if topology.n_nodes <= DENSE_MAX_NODES {
         let d = dense_matrix(&topology.member_nodes(), q, topology.n_nodes);
@@ -481,18 +476,10 @@ pub(crate) fn loaded(topology: &Topology, q: &[f64], settings: &Settings) -> Res
         .fold(0.0f64, |a, x| a.max(x.abs()))
         .max(f64::MIN_POSITIVE);
     let unit: Vec<f64> = q.iter().map(|x| x / scale).collect();
-    let fixed: Vec<(usize, Vector3<f64>)> = topology
-        .fixed
-        .iter()
-        .map(|f| (f.node, Vector3::from(f.position)))
-        .collect();
+    let fixed = held_positions(topology);
     let mut system = FixedSystem::new(topology, &unit, &fixed)?;
     let point = point_loads(topology);
-    let weights: Vec<f64> = topology
-        .given_weights()
-        .iter()
-        .map(|w| w.unwrap_or(0.0))
-        .collect();
+    let weights = member_weights(topology);
     let weighted = weights.iter().any(|&w| w > 0.0);
     let scaled =
         |p: &[Vector3<f64>]| -> Vec<Vector3<f64>> { p.iter().map(|f| f / scale).collect() };
@@ -528,6 +515,24 @@ pub(crate) fn loaded(topology: &Topology, q: &[f64], settings: &Settings) -> Res
         residual: change,
         tolerance: settings.tolerance,
     })
+}
+
+/// The held nodes with their positions.
+pub(crate) fn held_positions(topology: &Topology) -> Vec<(usize, Vector3<f64>)> {
+    topology
+        .fixed
+        .iter()
+        .map(|f| (f.node, Vector3::from(f.position)))
+        .collect()
+}
+
+/// Each member's weight per length (N/m; 0 where not given).
+pub(crate) fn member_weights(topology: &Topology) -> Vec<f64> {
+    topology
+        .given_weights()
+        .iter()
+        .map(|w| w.unwrap_or(0.0))
+        .collect()
 }
 
 /// The point loads summed per node (N).

@@ -273,13 +273,7 @@ fn an_unsymmetric_cluster_keeps_one_tension_and_the_plain_method_agrees() {
         equilibrium(&topology, &found)
     );
     // q_i = t / l_i as plain strings: the same nodes in one solve
-    let mut plain = topology.clone();
-    plain.clusters.clear();
-    for (s, [a, b]) in topology.clusters[0].segments().enumerate() {
-        plain
-            .strings
-            .push(Member::new(a, b).force_density(7.0 / l[s]));
-    }
+    let plain = as_strings(&topology, 7.0, l);
     let by_hand = form_find(&plain, &Settings::default()).unwrap();
     for (a, b) in by_hand.nodes.iter().zip(&found.nodes) {
         assert!((a - b).amax() < 1e-11, "{a:?} against {b:?}");
@@ -295,13 +289,7 @@ fn self_weight_and_a_cluster_iterate_together() {
     }
     let found = form_find(&topology, &Settings::default()).unwrap();
     let l = &found.clusters[0].segment_length;
-    let mut plain = topology.clone();
-    plain.clusters.clear();
-    for (s, [a, b]) in topology.clusters[0].segments().enumerate() {
-        plain
-            .strings
-            .push(Member::new(a, b).force_density(7.0 / l[s]));
-    }
+    let plain = as_strings(&topology, 7.0, l);
     // the plain method's own self-weight fixed point with those q: the same form and loads
     let by_hand = form_find(&plain, &Settings::default()).unwrap();
     for (a, b) in by_hand.nodes.iter().zip(&found.nodes) {
@@ -459,4 +447,17 @@ fn methods_that_cannot_take_clusters_refuse_them_by_name() {
         e.contains("clusters[0]: its segment joins nodes 1 and 4, as strings[0] does"),
         "{e}"
     );
+}
+
+/// `topology` with its one cluster (tension `t`) given as plain strings of force densities
+/// t / l_i at the segments' lengths `l`: one linear force density solve of the same form.
+fn as_strings(topology: &Topology, t: f64, l: &[f64]) -> Topology {
+    let mut plain = topology.clone();
+    plain.clusters.clear();
+    for (s, [a, b]) in topology.clusters[0].segments().enumerate() {
+        plain
+            .strings
+            .push(Member::new(a, b).force_density(t / l[s]));
+    }
+    plain
 }

@@ -112,22 +112,14 @@ pub fn load_rate(model: &ElasticModel, dofs: &Dofs, states: &[MemberState]) -> D
 
 /// Refuses a load factor at which a driven rest length is no longer positive.
 pub fn check_rest_lengths(model: &ElasticModel, lambda: f64) -> Result<()> {
-    for k in 0..model.members.len() {
-        let l0 = model.rest_length(k, lambda);
+    // the item's name is only written for the error (this runs at every Newton iteration)
+    let members = (0..model.members.len()).map(|k| ("member", k, model.rest_length(k, lambda)));
+    let clusters =
+        (0..model.clusters.len()).map(|c| ("cluster", c, model.cluster_rest_length(c, lambda)));
+    for (kind, k, l0) in members.chain(clusters) {
         if l0.is_nan() || l0 <= 0.0 {
             return Err(PathError::model(
-                format!("member {k}"),
-                format!(
-                    "its driven rest length L0 + λ ΔL0 = {l0} m is not positive at λ = {lambda}"
-                ),
-            ));
-        }
-    }
-    for c in 0..model.clusters.len() {
-        let l0 = model.cluster_rest_length(c, lambda);
-        if l0.is_nan() || l0 <= 0.0 {
-            return Err(PathError::model(
-                format!("cluster {c}"),
+                format!("{kind} {k}"),
                 format!(
                     "its driven rest length L0 + λ ΔL0 = {l0} m is not positive at λ = {lambda}"
                 ),
