@@ -52,6 +52,9 @@ enum Command {
     /// Load path of a scene: elastic bars, tension-only strings, large displacements, through
     /// limit points (arc length) or in load steps, with a stability verdict at every point.
     Solve(cli::solve::SolveArgs),
+    /// Another code's model as a scene: `import motes`, MOTES's or TsgFEM's matrices N, C_b,
+    /// C_s (text or CSV).
+    Import(cli::import::ImportArgs),
 }
 
 fn main() {
@@ -75,6 +78,7 @@ fn main() {
         Command::Sweep(args) => cli::sweep::run(args),
         Command::Figures(args) => cli::figures::run(args),
         Command::Solve(args) => cli::solve::run(args),
+        Command::Import(args) => cli::import::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

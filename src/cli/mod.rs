@@ -10,6 +10,7 @@ pub mod figure_args;
 pub mod figures;
 pub mod formfind;
 pub mod guard;
+pub mod import;
 pub mod michell;
 pub mod michell_optimize;
 pub mod michell_text;

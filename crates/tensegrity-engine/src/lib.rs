@@ -59,7 +59,7 @@ pub mod tbar_roll;
 /// natively (the Python package converts its objects to and from it, without text); it is
 /// serde_json's value tree, re-exported so that a front end needs no serde_json of its own.
 pub mod value {
-    pub use serde_json::{json, to_value, Error, Map, Number, Value};
+    pub use serde_json::{from_value, json, to_value, Error, Map, Number, Value};
 }
 
 pub use estimate::Estimated;

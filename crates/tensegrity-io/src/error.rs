@@ -91,6 +91,15 @@ pub enum IoError {
         #[source]
         source: Box<formfind::FormFindError>,
     },
+    /// A matrix of a MOTES/TsgFEM model (N, C_b, C_s, a per-member list) that does not fit
+    /// ([`crate::matrices`]).
+    #[error("{matrix}: {reason}")]
+    InvalidMatrix {
+        /// The matrix, e.g. `C_s` or `bar masses`.
+        matrix: String,
+        /// What is wrong, naming the row.
+        reason: String,
+    },
     /// A `[[supports]]` entry gives both `directions` and `fixed`.
     #[error(
         "{file}{}: support {support}: give either `directions` or `fixed`, not both",

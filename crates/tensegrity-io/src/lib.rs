@@ -7,6 +7,8 @@
 //! - [`scene`]: the TOML scene schema (nodes, materials, bars, strings, supports, loads,
 //!   gravity, `[simulation]`, `[ground]`, `[[actuation]]`), parsed with line-numbered errors
 //!   and mapped onto the core's builders; [`scene::to_toml`] writes a structure back;
+//! - [`matrices`]: MOTES's and TsgFEM's matrix form of a model (N, C_b, C_s as text or CSV,
+//!   per-member masses, stiffnesses and rest lengths) read into a structure;
 //! - [`csv`]: tables through the `csv` crate, with a header row whose column names carry the
 //!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
@@ -42,6 +44,7 @@ pub mod error;
 pub mod figure;
 pub mod figure_data;
 pub mod interrupt;
+pub mod matrices;
 pub mod progress;
 pub mod read;
 pub mod scene;

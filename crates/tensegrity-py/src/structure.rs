@@ -126,6 +126,38 @@ pub fn matrices(data: &Map<String, Value>) -> Result<Value, Failure> {
     }))
 }
 
+/// The structure of MOTES's or TsgFEM's matrices given as lists (`N`, `C_b`, `C_s`,
+/// `bar_mass`, `stiffness`, `rest_length`, `pinned`): [`tensegrity_io::matrices`].
+fn matrices_structure(values: &Map<String, Value>) -> Result<tensegrity_core::Structure, Failure> {
+    fn field<T: serde::de::DeserializeOwned>(
+        values: &Map<String, Value>,
+        key: &str,
+    ) -> Result<Option<T>, Failure> {
+        match values.get(key) {
+            None | Some(Value::Null) => Ok(None),
+            Some(v) => tensegrity_engine::value::from_value(v.clone())
+                .map(Some)
+                .map_err(|e| Failure::new(Category::Input, format!("{key}: {e}"))),
+        }
+    }
+    let rows = |key: &str| -> Result<Vec<Vec<f64>>, Failure> {
+        Ok(field::<Vec<Vec<f64>>>(values, key)?.unwrap_or_default())
+    };
+    let options = tensegrity_io::matrices::MatrixOptions {
+        bar_masses: field(values, "bar_mass")?,
+        string_stiffness: field(values, "stiffness")?,
+        string_rest_lengths: field(values, "rest_length")?,
+        pinned: field(values, "pinned")?.unwrap_or_default(),
+    };
+    tensegrity_io::matrices::structure_from_rows(
+        &rows("N")?,
+        &rows("C_b")?,
+        &rows("C_s")?,
+        &options,
+    )
+    .map_err(|e| Failure::new(Category::Input, e.to_string()))
+}
+
 /// The structure of a topology crate as data (its columns): `toroid` (the `toroid` request,
 /// with stiff prestressed strings when it gives `string_stiffness`, as `--export-scene`
 /// writes it), `michell` (the truss of the `michell` request: members as bars, extra strings as
@@ -171,10 +203,11 @@ pub fn topology(kind: &str, values: Map<String, Value>) -> Result<Value, Failure
                 )
             })?
         }
+        "matrices" => matrices_structure(&values)?,
         other => {
             return Err(Failure::new(
                 Category::Input,
-                format!("no topology `{other}` (known: toroid, michell, tbar, formfind)"),
+                format!("no topology `{other}` (known: toroid, michell, tbar, formfind, matrices)"),
             ))
         }
     };

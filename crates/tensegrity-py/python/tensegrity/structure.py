@@ -529,6 +529,26 @@ class Structure:
         prestress), e.g. ``Structure.from_formfind(builtin="prism:3")``."""
         return cls._from_arrays(_native.topology("formfind", kwargs))
 
+    @classmethod
+    def from_matrices(cls, N, C_b, C_s=None, bar_mass=None, stiffness=None, rest_length=None,
+                      pinned=()):
+        """The structure of MOTES's or TsgFEM's matrices (as ``tensegrity import motes``
+        reads them from text): the node matrix ``N`` (3 × n, a node per column, or n × 3),
+        the connectivities ``C_b`` and ``C_s`` (a member per row: −1 at its first node, +1
+        at its second), one bar mass (kg), string stiffness (N/m) and rest length (m) per
+        member where given, and the ``pinned`` nodes. Bad matrices raise ``InputError``
+        naming the row."""
+        def rows(a):
+            return None if a is None else np.asarray(a, dtype=np.float64).tolist()
+
+        def values(a):
+            return None if a is None else np.asarray(a, dtype=np.float64).ravel().tolist()
+
+        return cls._from_arrays(_native.topology("matrices", {
+            "N": rows(N), "C_b": rows(C_b), "C_s": rows(C_s), "bar_mass": values(bar_mass),
+            "stiffness": values(stiffness), "rest_length": values(rest_length),
+            "pinned": [int(i) for i in pinned]}))
+
     # --- matrices ------------------------------------------------------------------------
 
     def _matrices(self):
