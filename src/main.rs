@@ -53,7 +53,7 @@ enum Command {
     /// limit points (arc length) or in load steps, with a stability verdict at every point.
     Solve(cli::solve::SolveArgs),
     /// Another code's model as a scene: `import motes`, MOTES's or TsgFEM's matrices N, C_b,
-    /// C_s (text or CSV).
+    /// C_s (text or CSV); `import ntrt`, an NTRT YAML model.
     Import(cli::import::ImportArgs),
 }
 

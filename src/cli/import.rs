@@ -1,7 +1,9 @@
 //! `tensegrity import motes N C_b [C_s] [--bar-mass F] [--stiffness F] [--rest-length F]
-//! [--pinned NODES] [--out SCENE.toml]`: another code's model as a scene
-//! ([`tensegrity_io::matrices`]): MOTES's and TsgFEM's node and connectivity matrices as text
-//! or CSV, written as scene TOML (to stdout without `--out`). No mechanics here.
+//! [--pinned NODES] [--out SCENE.toml]` and `tensegrity import ntrt MODEL.yaml [--pinned
+//! NODES] [--out SCENE.toml]`: another code's model as a scene: MOTES's and TsgFEM's node and
+//! connectivity matrices as text or CSV ([`tensegrity_io::matrices`]), NTRT's YAML models
+//! ([`tensegrity_io::ntrt`]), written as scene TOML (to stdout without `--out`). No
+//! mechanics here.
 
 use super::output;
 use anyhow::{Context, Result};
@@ -24,6 +26,24 @@ enum ImportFormat {
     /// and the connectivity matrices C_b and C_s (a member per row: −1 at its first node, +1
     /// at its second), as text or CSV (commas or spaces; `%` and `#` comment lines).
     Motes(MotesArgs),
+    /// NTRT's YAML model: `nodes`, `pair_groups` and `builders` (rods: tgRodInfo's density
+    /// and radius; strings: an actuator's stiffness, damping and pretension); node names are
+    /// listed in a comment at the top of the scene, in order.
+    Ntrt(NtrtArgs),
+}
+
+/// Arguments of `tensegrity import ntrt`.
+#[derive(clap::Args, Debug)]
+struct NtrtArgs {
+    /// The NTRT model (YAML).
+    #[arg(value_name = "MODEL.yaml")]
+    model: PathBuf,
+    /// Nodes held in all three directions (comma-separated, 0-based in the file's order).
+    #[arg(long, value_delimiter = ',', value_name = "NODES")]
+    pinned: Vec<usize>,
+    /// Write the scene here (default: print it).
+    #[arg(long, value_name = "SCENE.toml")]
+    out: Option<PathBuf>,
 }
 
 /// Arguments of `tensegrity import motes`.
@@ -59,7 +79,33 @@ struct MotesArgs {
 pub fn run(args: &ImportArgs) -> Result<()> {
     match &args.format {
         ImportFormat::Motes(a) => motes(a),
+        ImportFormat::Ntrt(a) => ntrt(a),
     }
+}
+
+fn ntrt(a: &NtrtArgs) -> Result<()> {
+    let sink = output::open("--out", a.out.as_deref(), FileSink::open)?;
+    let text = read_text(&a.model, MAX_SCENE_BYTES, "an NTRT model")
+        .with_context(|| format!("reading {}", a.model.display()))?;
+    let name = a.model.display().to_string();
+    let model = tensegrity_io::ntrt::structure_from_ntrt(&text, &name, &a.pinned)?;
+    let mut scene = format!(
+        "# imported from NTRT's {name}; its nodes in order:
+"
+    );
+    for (k, n) in model.names.iter().enumerate() {
+        scene += &format!("#   {k}: {n}\n");
+    }
+    scene += &tensegrity_io::scene::to_toml(&model.structure);
+    write(sink, scene)
+}
+
+fn write(sink: Option<FileSink>, scene: String) -> Result<()> {
+    match sink {
+        Some(sink) => sink.finish_with(scene)?,
+        None => print!("{scene}"),
+    }
+    Ok(())
 }
 
 fn motes(a: &MotesArgs) -> Result<()> {
@@ -82,10 +128,5 @@ fn motes(a: &MotesArgs) -> Result<()> {
     let c_s = a.strings.as_deref().map(text).transpose()?;
     let structure =
         structure_from_matrices(&text(&a.nodes)?, &text(&a.bars)?, c_s.as_deref(), &options)?;
-    let scene = tensegrity_io::scene::to_toml(&structure);
-    match sink {
-        Some(sink) => sink.finish_with(scene)?,
-        None => print!("{scene}"),
-    }
-    Ok(())
+    write(sink, tensegrity_io::scene::to_toml(&structure))
 }

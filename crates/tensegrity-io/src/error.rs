@@ -100,6 +100,16 @@ pub enum IoError {
         /// What is wrong, naming the row.
         reason: String,
     },
+    /// Another code's model file that does not fit ([`crate::ntrt`]): the item it names.
+    #[error("{file}: {item}: {reason}")]
+    InvalidModel {
+        /// The file name.
+        file: String,
+        /// The item, e.g. `node top1` or `builder rod`.
+        item: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A `[[supports]]` entry gives both `directions` and `fixed`.
     #[error(
         "{file}{}: support {support}: give either `directions` or `fixed`, not both",

@@ -8,7 +8,8 @@
 //!   gravity, `[simulation]`, `[ground]`, `[[actuation]]`), parsed with line-numbered errors
 //!   and mapped onto the core's builders; [`scene::to_toml`] writes a structure back;
 //! - [`matrices`]: MOTES's and TsgFEM's matrix form of a model (N, C_b, C_s as text or CSV,
-//!   per-member masses, stiffnesses and rest lengths) read into a structure;
+//!   per-member masses, stiffnesses and rest lengths) read into a structure; [`ntrt`]: NTRT's
+//!   YAML models (nodes, pair groups, rod and actuator builders);
 //! - [`csv`]: tables through the `csv` crate, with a header row whose column names carry the
 //!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
@@ -45,6 +46,7 @@ pub mod figure;
 pub mod figure_data;
 pub mod interrupt;
 pub mod matrices;
+pub mod ntrt;
 pub mod progress;
 pub mod read;
 pub mod scene;
