@@ -151,3 +151,60 @@ fn bad_models_are_refused_naming_the_item() {
         assert!(err.contains(says), "{name}: {err}");
     }
 }
+
+/// The SUPERball's connectivity as a topology (`--topology`), form-found by the adaptive
+/// force density method from its drawn nodes: the expanded octahedron — one self-stress,
+/// prestressable and stable, bars and strings at force densities −1 : 2/3 (−3/2 : 1), six
+/// equal bars and twenty-four equal strings of √6/4 the bar's length, the bars in three
+/// parallel pairs half a bar length apart.
+#[test]
+fn form_finding_the_superballs_connectivity_gives_the_expanded_octahedron() {
+    let dir = scratch("ntrt", "formfind");
+    let topo = dir.join("superball_topology.toml");
+    let o = run(&[
+        "import",
+        "ntrt",
+        "examples/ntrt/superball.yaml",
+        "--topology",
+        "--out",
+        topo.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = json(&[
+        "formfind",
+        topo.to_str().unwrap(),
+        "--method",
+        "adaptive",
+        "--json",
+    ]);
+    assert_eq!(r["self_stress_dim"], 1);
+    assert_eq!(
+        (&r["prestressable"], &r["prestress_stable"]),
+        (&true.into(), &true.into())
+    );
+    let q: Vec<f64> = common::numbers(&r["force_density"]);
+    assert!((q[6] / q[0] + 2.0 / 3.0).abs() < 1e-9, "{q:?}");
+    let x = common::points(&r["nodes"]);
+    let dist = |a: usize, b: usize| -> f64 {
+        (0..3)
+            .map(|d| (x[a][d] - x[b][d]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let text = std::fs::read_to_string(&topo).unwrap();
+    let m = members(&text);
+    let bar = dist(m[0].1[0], m[0].1[1]);
+    for (kind, [a, b], _) in &m {
+        let expected = if kind == "bars" {
+            bar
+        } else {
+            bar * 6f64.sqrt() / 4.0
+        };
+        assert!(
+            (dist(*a, *b) - expected).abs() < 1e-9 * bar,
+            "{kind} {a}-{b}"
+        );
+    }
+    // the two vertical rods (nodes 0-1 and 2-3) are parallel, half a bar length apart
+    assert!((dist(0, 2) - 0.5 * bar).abs() < 1e-9 * bar);
+}

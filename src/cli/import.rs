@@ -39,9 +39,18 @@ struct NtrtArgs {
     #[arg(value_name = "MODEL.yaml")]
     model: PathBuf,
     /// Nodes held in all three directions (comma-separated, 0-based in the file's order).
-    #[arg(long, value_delimiter = ',', value_name = "NODES")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "NODES",
+        conflicts_with = "topology"
+    )]
     pinned: Vec<usize>,
-    /// Write the scene here (default: print it).
+    /// Write the connectivity as a form-finding topology instead (its nodes as the start,
+    /// bars and strings with nothing else given), for `tensegrity formfind`.
+    #[arg(long)]
+    topology: bool,
+    /// Write the scene (or the topology) here (default: print it).
     #[arg(long, value_name = "SCENE.toml")]
     out: Option<PathBuf>,
 }
@@ -89,14 +98,14 @@ fn ntrt(a: &NtrtArgs) -> Result<()> {
         .with_context(|| format!("reading {}", a.model.display()))?;
     let name = a.model.display().to_string();
     let model = tensegrity_io::ntrt::structure_from_ntrt(&text, &name, &a.pinned)?;
-    let mut scene = format!(
-        "# imported from NTRT's {name}; its nodes in order:
-"
-    );
+    let mut scene = format!("# imported from NTRT's {name}; its nodes in order:\n");
     for (k, n) in model.names.iter().enumerate() {
         scene += &format!("#   {k}: {n}\n");
     }
-    scene += &tensegrity_io::scene::to_toml(&model.structure);
+    scene += &match a.topology {
+        true => tensegrity_io::topology::to_toml(&tensegrity_io::ntrt::topology_of(&model)),
+        false => tensegrity_io::scene::to_toml(&model.structure),
+    };
     write(sink, scene)
 }
 

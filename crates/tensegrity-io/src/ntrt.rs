@@ -174,6 +174,39 @@ pub fn structure_from_ntrt(text: &str, file: &str, pinned: &[usize]) -> Result<N
     Ok(NtrtModel { structure, names })
 }
 
+/// The model's connectivity as a form-finding topology (`tensegrity import ntrt
+/// --topology`): its nodes as the start, its bars and strings with nothing else given, so
+/// that `formfind` finds their self-stressed form (the adaptive force density method, or
+/// force densities set in the file).
+///
+/// ```
+/// use tensegrity_io::ntrt::{structure_from_ntrt, topology_of};
+/// let yaml = "nodes:\n  a: [0, 0, 0]\n  b: [0, 0, 2]\npair_groups:\n  rod:\n    - [a, b]\n\
+///             builders:\n  rod:\n    class: tgRodInfo\n    parameters: {density: 1, radius: 0.1}\n";
+/// let t = topology_of(&structure_from_ntrt(yaml, "m.yaml", &[])?);
+/// assert_eq!((t.n_nodes, t.bars.len(), t.strings.len()), (2, 1, 0));
+/// # Ok::<(), tensegrity_io::error::IoError>(())
+/// ```
+pub fn topology_of(model: &NtrtModel) -> formfind::Topology {
+    let s = &model.structure;
+    formfind::Topology {
+        n_nodes: s.n_nodes(),
+        nodes: Some(s.nodes().iter().map(|p| [p.x, p.y, p.z]).collect()),
+        bars: s
+            .bars()
+            .iter()
+            .map(|b| formfind::Member::new(b.nodes[0], b.nodes[1]))
+            .collect(),
+        strings: (s.strings().iter())
+            .map(|m| formfind::Member::new(m.nodes[0], m.nodes[1]))
+            .collect(),
+        groups: Default::default(),
+        fixed: Vec::new(),
+        loads: Vec::new(),
+        clusters: Vec::new(),
+    }
+}
+
 /// A YAML scalar as a name (NTRT's node and tag names may be numbers).
 fn scalar_name(y: &Yaml) -> String {
     match y {
