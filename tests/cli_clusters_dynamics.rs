@@ -9,6 +9,37 @@ mod common;
 
 use common::{json, run, scratch};
 
+/// Runs `simulate SCENE --out CSV` and reads the trajectory back: its header and its rows.
+fn trajectory(scene: &str, csv: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let out = run(&[
+        "simulate",
+        scene,
+        "--out",
+        csv.to_str().unwrap(),
+        "--no-convergence-check",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = std::fs::read_to_string(csv).unwrap();
+    let mut lines = table.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+/// The index of the column `name` of a trajectory's header.
+fn column(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("{name}: {header:?}"))
+}
+
 fn z(v: &serde_json::Value) -> f64 {
     v[2].as_f64().unwrap()
 }
@@ -39,38 +70,21 @@ fn the_atwood_machine_falls_at_the_closed_form_acceleration() {
         ),
     )
     .unwrap();
-    let out = run(&[
-        "simulate",
-        scene.to_str().unwrap(),
-        "--out",
-        csv.to_str().unwrap(),
-        "--no-convergence-check",
-    ]);
+    let (header, table) = trajectory(scene.to_str().unwrap(), &csv);
+    let col = column(&header, "cluster0_force [N]");
     assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let table = std::fs::read_to_string(&csv).unwrap();
-    let mut lines = table.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = header
-        .iter()
-        .position(|h| *h == "cluster0_force [N]")
-        .unwrap_or_else(|| panic!("{header:?}"));
-    assert!(
-        header.contains(&"cluster0_force_density [N/m]"),
+        header.iter().any(|h| h == "cluster0_force_density [N/m]"),
         "{header:?}"
     );
     let tension = 2.0 * m1 * m2 * g / (m1 + m2);
     let mut rows = 0;
-    for line in lines {
-        let f: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
+    for row in &table {
+        let f = row[col];
         assert!(
             (f - tension).abs() < 1e-6 * tension,
             "{f} against {tension}"
         );
-        assert_eq!(line.split(',').count(), header.len());
+        assert_eq!(row.len(), header.len());
         rows += 1;
     }
     assert_eq!(rows, 6);
@@ -134,33 +148,9 @@ fn the_rigid_bar_dynamics_refuses_pulley_friction_naming_the_elastic_run() {
 fn one_clustered_actuator_deploys_the_prism() {
     let dir = scratch("clusters", "deploy");
     let csv = dir.join("deploy.csv");
-    let out = run(&[
-        "simulate",
-        "examples/cluster_deploy.toml",
-        "--out",
-        csv.to_str().unwrap(),
-        "--no-convergence-check",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let table = std::fs::read_to_string(&csv).unwrap();
-    let mut lines = table.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .unwrap_or_else(|| panic!("{name}: {header:?}"))
-    };
-    let last: Vec<f64> = lines
-        .last()
-        .unwrap()
-        .split(',')
-        .map(|v| v.parse().unwrap())
-        .collect();
+    let (header, table) = trajectory("examples/cluster_deploy.toml", &csv);
+    let col = |name: &str| column(&header, name);
+    let last = table.last().unwrap();
     let node = |i: usize| {
         let c = col(&format!("n{i}_x [m]"));
         [last[c], last[c + 1], last[c + 2]]

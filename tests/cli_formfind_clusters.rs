@@ -91,35 +91,15 @@ fn a_cluster_through_two_loaded_nodes_keeps_its_tension_in_the_written_scene() {
     let c = &r["clusters"][0];
     // steel, 1 mm²: EA = 2.06·10⁵ N
     assert!((f(&c["axial_stiffness"]) - 2.06e5).abs() < 1e-6);
-    let q: Vec<f64> = c["segment_force_density"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(f)
-        .collect();
-    let l: Vec<f64> = c["segment_length"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(f)
-        .collect();
+    let q: Vec<f64> = common::numbers(&c["segment_force_density"]);
+    let l: Vec<f64> = common::numbers(&c["segment_length"]);
     for (q, l) in q.iter().zip(&l) {
         assert!((q * l - 7.0).abs() < 1e-12, "{q} · {l}");
     }
     assert!((q[0] - q[1]).abs() > 1.0, "{q:?}");
     let s = common::json(&["statics", &scene, "--json"]);
-    let force: Vec<f64> = s["member_force"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(f)
-        .collect();
-    let members: Vec<f64> = r["member_force"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(f)
-        .collect();
+    let force: Vec<f64> = common::numbers(&s["member_force"]);
+    let members: Vec<f64> = common::numbers(&r["member_force"]);
     assert_eq!(force.len(), 3, "{force:?}");
     assert!((force[2] - 7.0).abs() < 1e-9, "{force:?}");
     for (a, b) in force.iter().zip(&members) {
@@ -185,12 +165,7 @@ fn an_unloaded_form_scales_the_cluster_with_the_prestress() {
     );
     let c = &r["clusters"][0];
     assert!((f(&c["tension"]) - 100.0).abs() < 1e-12);
-    let members: Vec<f64> = r["member_force"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(f)
-        .collect();
+    let members: Vec<f64> = common::numbers(&r["member_force"]);
     assert!(
         members.iter().all(|t| (t - 40.0).abs() < 1e-12),
         "{members:?}"

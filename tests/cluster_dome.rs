@@ -62,9 +62,19 @@ fn python() -> bool {
 
 /// Runs the generator with `args` (plus the small dome's size), writing `out`.
 fn generate(out: &Path, args: &[&str]) {
+    generate_sized(out, S, R, args);
+}
+
+/// Runs the generator for a dome of `sectors` × `rings` with `args`, writing `out`.
+fn generate_sized(out: &Path, sectors: usize, rings: usize, args: &[&str]) {
     let o = Command::new("python3")
         .arg("scripts/clustered-dome")
-        .args(["--sectors", &S.to_string(), "--rings", &R.to_string()])
+        .args([
+            "--sectors",
+            &sectors.to_string(),
+            "--rings",
+            &rings.to_string(),
+        ])
         .args(args)
         .arg("--out")
         .arg(out)
@@ -273,10 +283,7 @@ fn a_sparse_answer_that_fails_its_check_names_the_dense_one() {
     }
     let dir = scratch("cluster-dome", "large");
     let dome = dir.join("dome48u.toml");
-    generate(
-        &dome,
-        &["--sectors", "48", "--rings", "14", "--unclustered"],
-    );
+    generate_sized(&dome, 48, 14, &["--unclustered"]);
     let out = run(&["statics", dome.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
@@ -301,20 +308,7 @@ fn the_sparse_qr_answers_the_clustered_dome_as_the_dense_svd() {
     let dir = scratch("cluster-dome", "sparse");
     for (sectors, rings) in [(S, R), (12, 3)] {
         let scene = dir.join(format!("dome{sectors}x{rings}.toml"));
-        let o = Command::new("python3")
-            .arg("scripts/clustered-dome")
-            .args([
-                "--sectors",
-                &sectors.to_string(),
-                "--rings",
-                &rings.to_string(),
-            ])
-            .arg("--out")
-            .arg(&scene)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .expect("python3 runs");
-        assert_ok(&o);
+        generate_sized(&scene, sectors, rings, &[]);
         let path = scene.to_str().unwrap();
         let dense = json(&["statics", path, "--json", "--method", "dense"]);
         let sparse = json(&["statics", path, "--json", "--method", "sparse"]);

@@ -149,6 +149,12 @@ pub fn structure_from_ntrt(text: &str, file: &str, pinned: &[usize]) -> Result<N
                         string = string.damping(c);
                     }
                     let t0 = parameter("pretension").unwrap_or(0.0);
+                    if k > 0.0 && t0 / k >= length {
+                        return Err(bad(
+                            &format!("builder {tag}"),
+                            format!("pretension {t0} stretches pair [{}, {}] (length {length}) past its whole length at stiffness {k}: its rest length would not be positive", names[i], names[j]),
+                        ));
+                    }
                     string = string.rest_length(length - t0 / k);
                     builder.string(string)
                 }

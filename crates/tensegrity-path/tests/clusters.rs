@@ -277,26 +277,8 @@ fn a_cluster_lifted_past_its_weight_goes_slack() {
 /// central differences on a 4-node cluster in a general position, to 10⁻⁷.
 #[test]
 fn the_cluster_tangent_is_the_derivative_of_its_forces() {
-    let nodes = vec![
-        Vector3::new(0.0, 0.0, 0.0),
-        Vector3::new(1.0, 0.2, 0.3),
-        Vector3::new(1.7, 1.1, -0.4),
-        Vector3::new(0.4, 1.9, 0.8),
-    ];
-    let model = ElasticModel {
-        nodes: nodes.clone(),
-        members: vec![],
-        clusters: vec![ElasticCluster {
-            nodes: vec![0, 1, 2, 3],
-            stiffness: 250.0,
-            rest_length: 3.0,
-            damping: 0.0,
-            friction: None,
-        }],
-        supports: vec![Support::pinned(0)],
-        load: vec![Vector3::zeros(); 4],
-        drivers: Default::default(),
-    };
+    let model = general_cluster(None);
+    let nodes = model.nodes.clone();
     let dofs = Dofs::of(&model).unwrap();
     let (worst, scale, _) = against_differences(&model, &dofs);
     assert!(worst < 1e-7 * scale, "{worst} against {scale}");
@@ -313,30 +295,12 @@ fn the_cluster_tangent_is_the_derivative_of_its_forces() {
 /// resisting force.
 #[test]
 fn a_frictional_cluster_s_tangent_is_the_derivative_of_its_forces() {
-    let nodes = vec![
-        Vector3::new(0.0, 0.0, 0.0),
-        Vector3::new(1.0, 0.2, 0.3),
-        Vector3::new(1.7, 1.1, -0.4),
-        Vector3::new(0.4, 1.9, 0.8),
-    ];
-    let model = ElasticModel {
-        nodes: nodes.clone(),
-        members: vec![],
-        clusters: vec![ElasticCluster {
-            nodes: vec![0, 1, 2, 3],
-            stiffness: 250.0,
-            rest_length: 3.0,
-            damping: 0.0,
-            friction: Some(tensegrity_path::model::ClusterFriction::spread(
-                vec![0.3, 0.1],
-                3.0,
-                &[1.2, 0.9, 0.9],
-            )),
-        }],
-        supports: vec![Support::pinned(0)],
-        load: vec![Vector3::zeros(); 4],
-        drivers: Default::default(),
-    };
+    let model = general_cluster(Some(tensegrity_path::model::ClusterFriction::spread(
+        vec![0.3, 0.1],
+        3.0,
+        &[1.2, 0.9, 0.9],
+    )));
+    let nodes = model.nodes.clone();
     let dofs = Dofs::of(&model).unwrap();
     let states = member_states(&model, &nodes, 0.0);
     // three different tensions: the segments carry their own
@@ -345,6 +309,30 @@ fn a_frictional_cluster_s_tangent_is_the_derivative_of_its_forces() {
     assert!(worst < 1e-7 * scale, "{worst} against {scale}");
     let r0 = dofs.reduce(&resisting_forces(&model, &states)).amax();
     assert!(worst_force < 1e-7 * r0, "{worst_force} against {r0}");
+}
+
+/// A cluster through four nodes in a general position (k = 250 N/m, L₀ = 3 m, node 0
+/// pinned), with `friction`.
+fn general_cluster(friction: Option<tensegrity_path::model::ClusterFriction>) -> ElasticModel {
+    ElasticModel {
+        nodes: vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.2, 0.3),
+            Vector3::new(1.7, 1.1, -0.4),
+            Vector3::new(0.4, 1.9, 0.8),
+        ],
+        members: vec![],
+        clusters: vec![ElasticCluster {
+            nodes: vec![0, 1, 2, 3],
+            stiffness: 250.0,
+            rest_length: 3.0,
+            damping: 0.0,
+            friction,
+        }],
+        supports: vec![Support::pinned(0)],
+        load: vec![Vector3::zeros(); 4],
+        drivers: Default::default(),
+    }
 }
 
 /// The tangent at the model's nodes against central differences (step 10⁻⁶) of the
