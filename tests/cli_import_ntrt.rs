@@ -133,6 +133,11 @@ fn bad_models_are_refused_naming_the_item() {
             "pair group vertical_string: no builder of this tag",
         ),
         (
+            "pretension",
+            good.replace("pretension: 3000", "pretension: 1e6"),
+            "builder horizontal_string: pretension 1000000 stretches pair [bottom1, bottom2]",
+        ),
+        (
             "sub",
             format!("{good}\nsubstructures:\n  a:\n    path: x.yaml\n"),
             "substructures: substructures (offsets, rotations, bonds) are not imported",
