@@ -55,6 +55,9 @@ enum Command {
     /// Another code's model as a scene: `import motes`, MOTES's or TsgFEM's matrices N, C_b,
     /// C_s (text or CSV); `import ntrt`, an NTRT YAML model.
     Import(cli::import::ImportArgs),
+    /// A scene as another code's model file: `export mjcf`, MuJoCo's MJCF (bars as bodies
+    /// with free joints, strings as spatial tendons with a slack dead band).
+    Export(cli::export::ExportArgs),
 }
 
 fn main() {
@@ -79,6 +82,7 @@ fn main() {
         Command::Figures(args) => cli::figures::run(args),
         Command::Solve(args) => cli::solve::run(args),
         Command::Import(args) => cli::import::run(args),
+        Command::Export(args) => cli::export::run(args),
     };
     if let Err(e) = result {
         let code = cli::exit::code(&e);

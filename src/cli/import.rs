@@ -27,8 +27,11 @@ enum ImportFormat {
     /// at its second), as text or CSV (commas or spaces; `%` and `#` comment lines).
     Motes(MotesArgs),
     /// NTRT's YAML model: `nodes`, `pair_groups` and `builders` (rods: tgRodInfo's density
-    /// and radius; strings: an actuator's stiffness, damping and pretension); node names are
-    /// listed in a comment at the top of the scene, in order.
+    /// and radius; strings: an actuator's stiffness, damping and pretension), and combined
+    /// models: `substructures` (paths relative to the file, placed by rotation, scale,
+    /// offset, translation) joined by `bond_groups` (node_node, node_edge); node names (a
+    /// substructure's as `child.node`) are listed in a comment at the top of the scene, in
+    /// order.
     Ntrt(NtrtArgs),
 }
 
@@ -38,7 +41,8 @@ struct NtrtArgs {
     /// The NTRT model (YAML).
     #[arg(value_name = "MODEL.yaml")]
     model: PathBuf,
-    /// Nodes held in all three directions (comma-separated, 0-based in the file's order).
+    /// Nodes held in all three directions (comma-separated, 0-based in the scene's order, as
+    /// listed at its top: a substructure's nodes first, then the file's own).
     #[arg(
         long,
         value_delimiter = ',',

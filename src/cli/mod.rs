@@ -5,6 +5,7 @@ pub mod bench;
 pub mod bench_anchors;
 pub mod demo;
 pub mod exit;
+pub mod export;
 pub mod fig_rolling;
 pub mod figure_args;
 pub mod figures;

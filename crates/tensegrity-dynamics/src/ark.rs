@@ -107,7 +107,7 @@ pub const NEWTON_TOLERANCE: f64 = 1e-10;
 pub const NEWTON_ACCEPT: f64 = 1e-6;
 
 /// The IMEX-ARK stepper (module docs).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct ImexArk {
     /// Without a penalty or stick ground: plain RK4.
     rk4: Rk4,
@@ -441,6 +441,10 @@ impl ImexArk {
 }
 
 impl<S: ContactSystem> Integrator<S> for ImexArk {
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        Some(Box::new(self.clone()))
+    }
+
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::ImexArk
     }

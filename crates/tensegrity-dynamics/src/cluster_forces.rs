@@ -121,7 +121,12 @@ impl ClusterData {
 
     /// Its potential energy ½ k (L − L₀)² while taut (J).
     pub fn potential(&self, x: &[f64]) -> f64 {
-        let e = (self.length(x) - self.rest_length).max(0.0);
+        self.potential_at(x, self.rest_length)
+    }
+
+    /// Its potential energy ½ k (L − r)² while taut (J) at rest length `r`.
+    pub fn potential_at(&self, x: &[f64], r: f64) -> f64 {
+        let e = (self.length(x) - r).max(0.0);
         0.5 * self.stiffness * e * e
     }
 }

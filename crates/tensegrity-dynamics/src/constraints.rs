@@ -153,6 +153,12 @@ impl ConstraintSet {
         }
         apply_minv(model, &self.cf, scale, out);
     }
+    /// Drops the factor kept from the last projection: the next one factors at its own
+    /// positions (a restart from a saved state then projects as the original run did after
+    /// the same call).
+    pub fn forget(&mut self) {
+        self.factored = false;
+    }
 
     /// Projects positions onto g = 0 along M⁻¹Gᵀ, then velocities onto G v = 0 with G at the
     /// corrected positions. The position step's G is the previous projection's (a quasi-Newton

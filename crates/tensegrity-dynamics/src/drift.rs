@@ -244,6 +244,7 @@ impl Model {
             && self.clusters.iter().all(|c| c.damping == 0.0)
             && self.rest_fn.is_none()
             && self.load_fn.is_none()
+            && self.drives.is_empty()
             && self.ground.as_ref().is_none_or(ground_is_conservative)
     }
 
@@ -253,6 +254,7 @@ impl Model {
     pub fn is_passive(&self) -> bool {
         self.rest_fn.is_none()
             && self.load_fn.is_none()
+            && self.drives.is_empty()
             && self.ground.as_ref().is_none_or(|g| {
                 matches!(
                     g.model,

@@ -174,7 +174,18 @@ fn rejected(h_next: f64) -> StepOutcome {
     }
 }
 
-impl<S: ContactSystem> Integrator<S> for Flight<S> {
+impl<S: ContactSystem + 'static> Integrator<S> for Flight<S> {
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        Some(Box::new(Flight {
+            inner: self.inner.boxed_clone()?,
+            kind: self.kind,
+            fine: self.fine,
+            backup: self.backup.clone(),
+            flight_steps: self.flight_steps,
+            landings: self.landings,
+        }))
+    }
+
     fn kind(&self) -> IntegratorKind {
         self.kind
     }

@@ -142,7 +142,7 @@ const _: () = assert!(WEIGHT_DIVISOR == 6.0 && MIDDLE_WEIGHT == 2.0);
 pub const REFRESH: u32 = 8;
 
 /// The IMEX stepper (module docs).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Imex {
     k: [Vec<f64>; 4],
     tmp: Vec<f64>,
@@ -209,7 +209,7 @@ pub const CHATTER_FLOOR: f64 = 1e-6;
 
 /// The chatter count (module docs, "Detecting the chatter"): per contact node its tangential
 /// velocity at the step's start and its previous step's increment.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 struct ChatterCount {
     /// Per contact node: its tangential velocity at the step's start, `None` off the ground.
     start: Vec<Option<Vector3<f64>>>,
@@ -290,7 +290,7 @@ fn velocity_dependent<S: ContactSystem>(
 
 /// The constrained response P_C F of forces on contact nodes (module docs), with its
 /// buffers; shared by [`Imex`] and [`ImexArk`](super::ImexArk).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(super) struct Response {
     /// The forces per node, nonzero on the contact nodes only; [`Response::respond`] leaves
     /// the joint forces that keep N P = D added to them.
@@ -488,6 +488,10 @@ impl Imex {
 }
 
 impl<S: ContactSystem> Integrator<S> for Imex {
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        Some(Box::new(self.clone()))
+    }
+
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Imex
     }

@@ -119,6 +119,14 @@ pub trait Integrator<S: System>: fmt::Debug {
     /// Forgets cached stages (the state was changed outside the integrator).
     fn invalidate(&mut self) {}
 
+    /// A copy of this integrator with everything it keeps between steps (stages, Jacobians,
+    /// contact memory): a saved state of a stepped simulation restores it, so the restored
+    /// run takes the steps the original took. `None`: a method that cannot be copied (its
+    /// restore restarts it instead).
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        None
+    }
+
     /// The largest step the driver lets an adaptive method take in a run of step `dt`
     /// (`dt` itself, except for methods that take multiples of it, e.g. [`Flight`](super::Flight)).
     fn max_step(&self, dt: f64) -> f64 {

@@ -46,6 +46,35 @@ pub type RestLengthFn = Box<dyn Fn(f64, &mut [f64]) + Send + Sync>;
 /// these forces are added to the static loads.
 pub type LoadFn = Box<dyn Fn(f64, &mut [Vector3<f64>]) + Send + Sync>;
 
+/// One rest length driven over one control period [t0, t1] of a [`Stepper`](crate::Stepper):
+/// r(t) = r0 (1 − w) + r1 w with w = (t − t0)/(t1 − t0), held at r0 before and r1 after (the
+/// interpolation of a scene's actuation tables, so that a stepped run and a table reproduce
+/// each other bit for bit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Drive {
+    /// The rest-length slot (strings, then clusters).
+    pub slot: usize,
+    pub t0: f64,
+    pub t1: f64,
+    pub r0: f64,
+    pub r1: f64,
+}
+
+impl Drive {
+    /// The rest length at `t`.
+    #[inline]
+    pub(crate) fn at(&self, t: f64) -> f64 {
+        if t <= self.t0 {
+            self.r0
+        } else if t >= self.t1 {
+            self.r1
+        } else {
+            let w = (t - self.t0) / (self.t1 - self.t0);
+            self.r0 * (1.0 - w) + self.r1 * w
+        }
+    }
+}
+
 /// Where a file node lives in the class-1 model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NodeRef {
@@ -115,6 +144,8 @@ pub struct Model {
     pub(crate) total_weight: Vector3<f64>,
     pub(crate) rest_fn: Option<RestLengthFn>,
     pub(crate) load_fn: Option<LoadFn>,
+    /// Rest lengths set step by step by a [`Stepper`](crate::Stepper) (after `rest_fn`).
+    pub(crate) drives: Vec<Drive>,
     pub(crate) constrained_bars: Vec<usize>,
     /// The entries of N P = D as (row, class-1 node, axis d, sign s) when every gradient is
     /// s·e_d (always, for the rows built here): the Ω right-hand side and the constraint forces
@@ -441,6 +472,7 @@ impl Model {
             total_weight,
             rest_fn: None,
             load_fn: None,
+            drives: Vec::new(),
             constrained_bars,
             axis_entries,
             axis_rows,
@@ -491,6 +523,24 @@ impl Model {
     /// Makes the string and cluster rest lengths follow `f` in time (actuation; [`RestLengthFn`]).
     pub fn set_rest_length_schedule(&mut self, f: RestLengthFn) {
         self.rest_fn = Some(f);
+    }
+
+    /// The rest lengths at `t` (one per string, then one per cluster): the static ones,
+    /// overwritten by the rest-length schedule and then by a stepper's drives.
+    pub fn rest_lengths_at(&self, t: f64) -> Vec<f64> {
+        let mut rest: Vec<f64> = self
+            .strings
+            .iter()
+            .map(|s| s.law.rest_length)
+            .chain(self.clusters.iter().map(|c| c.rest_length))
+            .collect();
+        if let Some(f) = &self.rest_fn {
+            f(t, &mut rest);
+        }
+        for d in &self.drives {
+            rest[d.slot] = d.at(t);
+        }
+        rest
     }
 
     /// Adds the time-varying nodal loads of `f` (actuation).
@@ -646,6 +696,9 @@ impl Model {
                 *r = c.rest_length;
             }
             rest_fn(t, &mut ws.rest);
+        }
+        for d in &self.drives {
+            ws.rest[d.slot] = d.at(t);
         }
         if let Some(ends) = &self.string_nodes {
             // every string between class-1 nodes: the same law without the anchor cases

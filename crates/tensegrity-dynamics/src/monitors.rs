@@ -28,17 +28,26 @@ impl Model {
     /// Potential energy (J): strings (static rest lengths), clusters, constant loads and
     /// gravity, ground.
     pub fn potential_energy(&self, y: &[f64]) -> f64 {
+        self.potential_energy_with(y, None)
+    }
+
+    /// Potential energy (J) with the string and cluster rest lengths `rest` (one per string,
+    /// then one per cluster; `None`: the static ones).
+    pub fn potential_energy_with(&self, y: &[f64], rest: Option<&[f64]>) -> f64 {
         let x = &y[..3 * self.n1];
         let pos = |r: NodeRef| match r {
             NodeRef::Free(i) => vec3(x, i),
             NodeRef::Anchor(p) => p,
         };
+        let n_s = self.strings.len();
+        let rest_of = |k: usize, fixed: f64| rest.map_or(fixed, |r| r[k]);
         let strings: f64 = self
             .strings
             .iter()
-            .map(|s| {
-                s.law
-                    .potential(&(pos(s.ends[1]) - pos(s.ends[0])), s.law.rest_length)
+            .enumerate()
+            .map(|(k, s)| {
+                let s0 = rest_of(k, s.law.rest_length);
+                s.law.potential(&(pos(s.ends[1]) - pos(s.ends[0])), s0)
             })
             .sum();
         let loads: f64 = self
@@ -55,7 +64,12 @@ impl Model {
                 .sum(),
             None => 0.0,
         };
-        let clusters: f64 = self.clusters.iter().map(|c| c.potential(x)).sum();
+        let clusters: f64 = self
+            .clusters
+            .iter()
+            .enumerate()
+            .map(|(k, c)| c.potential_at(x, rest_of(n_s + k, c.rest_length)))
+            .sum();
         strings + clusters + loads + ground
     }
 

@@ -54,6 +54,10 @@ impl Rk4 {
 }
 
 impl<S: System> Integrator<S> for Rk4 {
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        Some(Box::new(self.clone()))
+    }
+
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Rk4
     }

@@ -65,6 +65,10 @@ impl Dopri5 {
 }
 
 impl<S: System> Integrator<S> for Dopri5 {
+    fn boxed_clone(&self) -> Option<Box<dyn Integrator<S>>> {
+        Some(Box::new(self.clone()))
+    }
+
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Rk45
     }

@@ -299,7 +299,7 @@ impl Simulation {
 /// A constraint system that factored at t = 0 and fails later fails because the state ran
 /// away (a step too large for the stiffness), not because the constraints are redundant:
 /// say so. A blow-up or a NaN names the remedy of the run's integrator.
-fn diverged(e: CoreError, t: f64, settings: &SimulationSettings) -> CoreError {
+pub(crate) fn diverged(e: CoreError, t: f64, settings: &SimulationSettings) -> CoreError {
     let hint = if settings.integrator.is_adaptive() {
         StepHint::Adaptive
     } else {
@@ -341,8 +341,8 @@ fn diverged(e: CoreError, t: f64, settings: &SimulationSettings) -> CoreError {
 }
 
 /// How the driver chooses the next step.
-#[derive(Debug, Clone, Copy)]
-enum StepControl {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum StepControl {
     /// Fixed steps on the grid t_k = k·dt (k counts grid points reached), shortened to land on
     /// output times.
     Grid { dt: f64, k: u64 },
@@ -359,7 +359,7 @@ enum StepControl {
 
 impl StepControl {
     /// The step to attempt from `t` and the time it ends at.
-    fn next(
+    pub(crate) fn next(
         &self,
         t: f64,
         t_end: f64,
@@ -396,7 +396,7 @@ impl StepControl {
     }
 
     /// Takes note of an attempted step that was to end at `t_new`.
-    fn update(&mut self, t_new: f64, t_end: f64, outcome: &StepOutcome) {
+    pub(crate) fn update(&mut self, t_new: f64, t_end: f64, outcome: &StepOutcome) {
         match self {
             StepControl::Grid { dt, k } => {
                 if outcome.accepted && t_new == ((*k + 1) as f64 * *dt).min(t_end) {

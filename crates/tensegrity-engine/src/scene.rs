@@ -1,12 +1,14 @@
-//! The scene of the scene commands (`statics`, `simulate`): a TOML scene file, the TOML
-//! text itself, or the scene as data — the structure's arrays and the dynamics tables
+//! The scene of the scene commands (`statics`, `simulate`): a scene file (TOML, or JSON
+//! when its name ends in `.json`), its text (JSON when it starts with `{`), or the scene as
+//! data — the structure's arrays and the dynamics tables
 //! ([`SceneSource`], [`tensegrity_io::scene::SceneArrays`]) — read and validated by
 //! [`tensegrity_io::scene`]; and [`SceneError`], what a scene command fails with.
 //!
 //! A scene given as a string (a flag, a sweep value, a Python argument) is a file or TOML
 //! text. The rule: a string naming an existing file is that file; one line ending in `.toml`
 //! is a path (so `a=b.toml` that does not exist says it cannot be read); other text holding a
-//! line break or an `=` is TOML text (every scene has at least one `key = value` line); any
+//! line break or an `=` is TOML text (every scene has at least one `key = value` line), and
+//! text starting with `{` is JSON text; any
 //! other string is a path, relative to the working directory. A scene given as an object (a front end that
 //! holds the structure as arrays: the Python package's `Structure`) is data, validated as a
 //! file is ([`tensegrity_io::scene::Scene::from_arrays`]); its errors name the item, with no
@@ -56,7 +58,7 @@ const DATA_NAME: &str = "structure data";
 pub enum SceneSource {
     /// A TOML scene file.
     Path(PathBuf),
-    /// The TOML text of a scene.
+    /// The text of a scene: TOML, or JSON of the same shape when it starts with `{`.
     Toml(String),
     /// The scene as data: the structure's arrays and the dynamics tables (validated when
     /// loaded).
@@ -70,7 +72,8 @@ impl SceneSource {
     pub fn parse(s: &str) -> Self {
         let path = std::path::Path::new(s);
         let one_line_toml_name = !s.contains(['\n', '\r']) && s.ends_with(".toml");
-        if path.is_file() || one_line_toml_name || !s.contains(['\n', '=']) {
+        let json = s.trim_start().starts_with('{');
+        if path.is_file() || one_line_toml_name || !(json || s.contains(['\n', '='])) {
             SceneSource::Path(PathBuf::from(s))
         } else {
             SceneSource::Toml(s.to_string())
@@ -82,6 +85,9 @@ impl SceneSource {
     pub fn load(&self) -> Result<Scene, IoError> {
         match self {
             SceneSource::Path(p) => Scene::from_path(p),
+            SceneSource::Toml(text) if text.trim_start().starts_with('{') => {
+                Scene::from_json_named(text, "scene text")
+            }
             SceneSource::Toml(text) => Scene::from_str_named(text, "scene text"),
             SceneSource::Data(arrays) => Scene::from_arrays((**arrays).clone(), DATA_NAME),
         }

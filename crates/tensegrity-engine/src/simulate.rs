@@ -63,6 +63,7 @@ use tensegrity_io::scene::{Scene, SimulationSpec};
 
 pub mod companion;
 pub mod elastic;
+pub mod stepped;
 use companion::Refined;
 
 /// Samples per run when the scene names no output times and no interval is given.

@@ -100,6 +100,15 @@ pub enum IoError {
         /// What is wrong, naming the row.
         reason: String,
     },
+    /// A JSON scene whose values do not fit the scene description (an unknown key, a wrong
+    /// type, a `null`): the key path and the reason.
+    #[error("{file}: {message}")]
+    InvalidJsonScene {
+        /// The file name.
+        file: String,
+        /// What does not fit, and where.
+        message: String,
+    },
     /// Another code's model file that does not fit ([`crate::ntrt`]): the item it names.
     #[error("{file}: {item}: {reason}")]
     InvalidModel {

@@ -9,7 +9,9 @@
 //!   and mapped onto the core's builders; [`scene::to_toml`] writes a structure back;
 //! - [`matrices`]: MOTES's and TsgFEM's matrix form of a model (N, C_b, C_s as text or CSV,
 //!   per-member masses, stiffnesses and rest lengths) read into a structure; [`ntrt`]: NTRT's
-//!   YAML models (nodes, pair groups, rod and actuator builders);
+//!   YAML models (nodes, pair groups, rod and actuator builders); [`mjcf`]: a structure
+//!   written as a MuJoCo model (bars as free bodies, strings as spatial tendons with a slack
+//!   dead band);
 //! - [`csv`]: tables through the `csv` crate, with a header row whose column names carry the
 //!   units (`t [s]`, `force_N`), e.g. trajectories, rolling histories, sign maps;
 //! - [`vtk`]: ParaView `.vtu` frames and a `.pvd` series;
@@ -46,6 +48,7 @@ pub mod figure;
 pub mod figure_data;
 pub mod interrupt;
 pub mod matrices;
+pub mod mjcf;
 pub mod ntrt;
 pub mod progress;
 pub mod read;

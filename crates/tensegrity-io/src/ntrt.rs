@@ -1,35 +1,89 @@
 //! NTRT's YAML models ([`structure_from_ntrt`]): the NASA Tensegrity Robotics Toolkit's
-//! `nodes` (a name and [x, y, z] each), `pair_groups` (a tag and its node pairs) and
-//! `builders` (per tag, a `class` and its `parameters`).
+//! `nodes` (a name and [x, y, z] each), `pair_groups` (tags and their node pairs), `builders`
+//! (per tag, a `class` and its `parameters`), and its combined structures: `substructures`
+//! (other model files placed by `rotation`, `scale`, `translation` and `offset`) joined by
+//! `bond_groups` (`node_node` strings, `node_edge` attachments).
 //!
-//! A tag built by `tgRodInfo` gives bars: mass ρ π r² L from its `density` and `radius` (in
-//! the model's units). A tag built by an actuator class (`tgBasicActuatorInfo`,
-//! `tgKinematicActuatorInfo`) gives strings: its `stiffness` k, its `damping`, and the rest
-//! length that carries its `pretension` t₀ at the drawn length, L₀ = L − t₀/k (NTRT sets the
-//! actuators' rest lengths so). Nodes keep the file's order (the scene numbers them from 0;
-//! [`NtrtModel::names`] keeps the names), bars and strings the order of the pair groups and
-//! their pairs. Contact, friction and control parameters (`friction`, `restitution`,
-//! `history`, `max_tension`, `target_velocity`, …) are not read. A model built from
-//! `substructures` (NTRT's offsets, rotations and bonds) is refused naming the key, as is any
-//! other unknown key, a pair naming an unknown node, a tag without a builder, or a builder of
-//! another class. NTRT's lengths are usually decimetres (gravity 98.1): the numbers are taken
-//! as they are.
+//! **Members.** A pair takes the builder whose tag words are all among the pair's tags (a
+//! group `prism rod` has the tags `prism` and `rod`); where several match, a rod class wins
+//! over a string class, and among those the builder defined last wins, as in NTRT. Builders
+//! are defined in load order: NTRT's defaults `rod` (`tgRodInfo`) and `string`
+//! (`tgBasicActuatorInfo`) first, then each substructure's (recursively, in order), then the
+//! file's own, so that a parent's builder overrides a child's of the same tag. A rod class
+//! (`tgRodInfo`) gives bars: mass ρ π r² L from its `density` and `radius` (in the model's
+//! units). An actuator or cable class (`tgBasicActuatorInfo`, `tgBasicContactCableInfo`,
+//! `tgKinematicActuatorInfo`, `tgKinematicContactCableInfo`) gives strings: its `stiffness`
+//! k, its `damping`, and the rest length that carries its `pretension` t₀ at the drawn
+//! length, L₀ = L − t₀/k (NTRT sets the actuators' rest lengths so). A parameter left out
+//! takes NTRT's default (density 1, radius 0.5; stiffness 1000, damping 10, pretension 0).
+//! Contact, friction and control parameters (`friction`, `restitution`, `history`,
+//! `max_tension`, `target_velocity`, …) are not read. NTRT's lengths are usually decimetres
+//! (gravity 98.1): the numbers are taken as they are.
+//!
+//! **Substructures.** `substructures` maps names to a `path` (relative to the file that
+//! names it) and transforms; `t1/t2/t3` gives the same attributes to several children, and
+//! a child may take attributes from several entries. As in NTRT, every child's `rotation`
+//! (`axis`, `angle` in degrees, about `reference`, by default the child's centre: the mean
+//! of all its nodes, its substructures' included) comes first; then, per child, `scale`
+//! (about its centre at that point), `offset` (the k-th name of a slash series, from 0,
+//! moves by k times it) and `translation`. A child's nodes are named `child.node` (and
+//! `child.grandchild.node`); a reference to a node in `pair_groups` or `bond_groups` is a
+//! dot path or a bare name, which means the nearest node of that name (the structure's own,
+//! then its children's, then theirs); two such nodes at the same depth make it ambiguous,
+//! which is refused (NTRT would take the first). Structure names in a dot path or a bond
+//! are found the same way. Nodes come in load order: each substructure's (recursively),
+//! then the file's own.
+//!
+//! **Bonds.** `bond_groups` maps tags to bonds (or bonds to tags) of the form
+//! `a/b/c/TYPE`, each a list of pairs, bonding each two adjacent structures of the series
+//! (a–b, b–c). `node_node`: a string per `[node of a, node of b]` pair, with the builder
+//! matching the bond's tags, the structure names and `a/b`. `node_edge` (NTRT's algorithm,
+//! three or more `[node, node1/node2]` pairs, either way round): the second structure is
+//! turned about the centre of its attachment points (nodes, or edge middles) so that the
+//! normal of the plane of its first three is the first structure's, moved so that the
+//! centres agree, and turned about that normal so that its first attachment point lies in
+//! the first one's direction from the centre; then each edge and each string between
+//! attached nodes is taken out (an edge that is a rod is refused, as in NTRT) and each node
+//! is joined to both ends of its edge by strings of the bond's tags.
+//!
+//! Refused, naming the file and the item: an unknown key, a missing or unreadable
+//! substructure file, a file that includes itself (directly or not), nesting deeper than
+//! [`MAX_DEPTH`] or a model of more than [`MAX_NODES`] nodes, an unknown or ambiguous node or
+//! structure name, a pair without a matching builder, a builder of another class, a bond
+//! type other than `node_node` and `node_edge`.
 
 use crate::error::IoError;
+use std::collections::HashMap;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
 use tensegrity_core::{Bar, StringMember, Structure, Support};
 use yaml_rust2::{Yaml, YamlLoader};
+
+/// The deepest nesting of substructures read (the top file is depth 0).
+pub const MAX_DEPTH: usize = 16;
+
+/// The most nodes a model may expand to, its substructures' copies included.
+pub const MAX_NODES: usize = 1 << 20;
+
+/// The most pairs (members) a model may expand to.
+const MAX_PAIRS: usize = 1 << 22;
+
+/// The most substructures a model may expand to.
+const MAX_STRUCTURES: usize = 1 << 16;
 
 /// A structure read from an NTRT model, with its node names.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NtrtModel {
-    /// The structure (bars, then strings, in the pair groups' order).
+    /// The structure (bars, then strings, in the order their pairs were read).
     pub structure: Structure,
-    /// The node names, in the structure's node order.
+    /// The node names, in the structure's node order: a substructure's nodes with their dot
+    /// path (`t2.front`, `leg.hip.center`).
     pub names: Vec<String>,
 }
 
-/// The model of an NTRT YAML file's text (module docs); `file` labels the errors; `pinned`
-/// names nodes held in all three directions.
+/// The model of an NTRT YAML file's text (module docs); `file` labels the errors and is the
+/// path that substructure paths are relative to (their files are read from disk, each under
+/// [`crate::read::MAX_SCENE_BYTES`]); `pinned` names nodes held in all three directions.
 ///
 /// ```
 /// use tensegrity_io::ntrt::structure_from_ntrt;
@@ -45,139 +99,17 @@ pub struct NtrtModel {
 /// # Ok::<(), tensegrity_io::error::IoError>(())
 /// ```
 pub fn structure_from_ntrt(text: &str, file: &str, pinned: &[usize]) -> Result<NtrtModel, IoError> {
-    let bad = |item: &str, why: String| IoError::InvalidModel {
-        file: file.to_string(),
-        item: item.to_string(),
-        reason: why,
-    };
-    let docs = YamlLoader::load_from_str(text).map_err(|e| IoError::Parse {
-        file: file.to_string(),
-        line: e.marker().line(),
-        column: e.marker().col() + 1,
-        message: e.info().to_string(),
-    })?;
-    let root = docs.first().and_then(Yaml::as_hash).ok_or_else(|| {
-        bad(
-            "the file",
-            "expected a map with `nodes`, `pair_groups` and `builders`".into(),
-        )
-    })?;
-    for key in root.keys() {
-        match key.as_str() {
-            Some("nodes" | "pair_groups" | "builders") => {}
-            Some("substructures" | "bond_groups") => {
-                return Err(bad(
-                    key.as_str().unwrap_or_default(),
-                    "substructures (offsets, rotations, bonds) are not imported: give the model as one structure of nodes, pair groups and builders".into(),
-                ))
-            }
-            other => {
-                return Err(bad(
-                    other.unwrap_or("a key"),
-                    "not an NTRT model key (nodes, pair_groups, builders)".into(),
-                ))
-            }
-        }
+    let root = parse(text, file)?;
+    let mut loader = Loader::default();
+    if let Ok(path) = std::fs::canonicalize(file) {
+        loader.stack.push(path);
     }
-    let section = |key: &str| root.get(&Yaml::String(key.into())).and_then(Yaml::as_hash);
-    let nodes_yaml = section("nodes").ok_or_else(|| bad("nodes", "missing".into()))?;
-    let mut names = Vec::with_capacity(nodes_yaml.len());
-    let mut nodes = Vec::with_capacity(nodes_yaml.len());
-    for (name, value) in nodes_yaml {
-        let name = scalar_name(name);
-        let xyz: Option<Vec<f64>> = value
-            .as_vec()
-            .map(|v| v.iter().filter_map(number).collect());
-        match xyz {
-            Some(p) if p.len() == 3 => nodes.push([p[0], p[1], p[2]]),
-            _ => return Err(bad(&format!("node {name}"), "give [x, y, z]".into())),
-        }
-        names.push(name);
-    }
-    let index = |group: &str, name: &Yaml| -> Result<usize, IoError> {
-        let name = scalar_name(name);
-        names.iter().position(|n| *n == name).ok_or_else(|| {
-            bad(
-                &format!("pair group {group}"),
-                format!("node {name} is not among the nodes"),
-            )
-        })
-    };
-    let builders = section("builders").ok_or_else(|| bad("builders", "missing".into()))?;
-    let groups = section("pair_groups").ok_or_else(|| bad("pair_groups", "missing".into()))?;
-    let mut builder = Structure::builder().nodes(nodes.clone());
-    for (tag, pairs) in groups {
-        let tag = scalar_name(tag);
-        let spec = builders.get(&Yaml::String(tag.clone())).ok_or_else(|| {
-            bad(
-                &format!("pair group {tag}"),
-                "no builder of this tag".into(),
-            )
-        })?;
-        let class = spec["class"].as_str().unwrap_or("");
-        let parameter = |key: &str| number(&spec["parameters"][key]);
-        let pairs = pairs.as_vec().ok_or_else(|| {
-            bad(
-                &format!("pair group {tag}"),
-                "give a list of [node, node]".into(),
-            )
-        })?;
-        for pair in pairs {
-            let ends = pair.as_vec().filter(|v| v.len() == 2).ok_or_else(|| {
-                bad(
-                    &format!("pair group {tag}"),
-                    "a pair is [node, node]".into(),
-                )
-            })?;
-            let (i, j) = (index(&tag, &ends[0])?, index(&tag, &ends[1])?);
-            let length = distance(nodes[i], nodes[j]);
-            builder = match class {
-                "tgRodInfo" => {
-                    let (rho, r) = (parameter("density"), parameter("radius"));
-                    let mut bar = Bar::new(i, j);
-                    if let (Some(rho), Some(r)) = (rho, r) {
-                        bar = bar.mass(rho * std::f64::consts::PI * r * r * length);
-                    }
-                    builder.bar(bar)
-                }
-                "tgBasicActuatorInfo" | "tgKinematicActuatorInfo" => {
-                    let k = parameter("stiffness").ok_or_else(|| {
-                        bad(&format!("builder {tag}"), "an actuator needs its stiffness".into())
-                    })?;
-                    let mut string = StringMember::new(i, j).stiffness(k);
-                    if let Some(c) = parameter("damping") {
-                        string = string.damping(c);
-                    }
-                    let t0 = parameter("pretension").unwrap_or(0.0);
-                    if k > 0.0 && t0 / k >= length {
-                        return Err(bad(
-                            &format!("builder {tag}"),
-                            format!("pretension {t0} stretches pair [{}, {}] (length {length}) past its whole length at stiffness {k}: its rest length would not be positive", names[i], names[j]),
-                        ));
-                    }
-                    string = string.rest_length(length - t0 / k);
-                    builder.string(string)
-                }
-                other => {
-                    return Err(bad(
-                        &format!("builder {tag}"),
-                        format!("class `{other}` is not imported (tgRodInfo, tgBasicActuatorInfo, tgKinematicActuatorInfo)"),
-                    ))
-                }
-            };
-        }
-    }
-    for &node in pinned {
-        builder = builder.support(Support::pinned(node));
-    }
-    let structure = builder
-        .build()
-        .map_err(|source| IoError::InvalidStructure {
-            file: file.to_string(),
-            line: None,
-            source,
-        })?;
-    Ok(NtrtModel { structure, names })
+    let dir = Path::new(file)
+        .parent()
+        .unwrap_or(Path::new(""))
+        .to_path_buf();
+    loader.load(&root, file, &dir, "", 0)?;
+    loader.finish(file, pinned)
 }
 
 /// The model's connectivity as a form-finding topology (`tensegrity import ntrt
@@ -213,6 +145,918 @@ pub fn topology_of(model: &NtrtModel) -> formfind::Topology {
     }
 }
 
+/// An `InvalidModel` error.
+fn bad(file: &str, item: &str, reason: impl Into<String>) -> IoError {
+    IoError::InvalidModel {
+        file: file.to_string(),
+        item: item.to_string(),
+        reason: reason.into(),
+    }
+}
+
+/// The YAML document of a model file's text.
+fn parse(text: &str, file: &str) -> Result<Yaml, IoError> {
+    let docs = YamlLoader::load_from_str(text).map_err(|e| IoError::Parse {
+        file: file.to_string(),
+        line: e.marker().line(),
+        column: e.marker().col() + 1,
+        message: e.info().to_string(),
+    })?;
+    Ok(docs.into_iter().next().unwrap_or(Yaml::Null))
+}
+
+/// A loaded structure: a file's nodes and its substructures', placed.
+struct Tree {
+    /// Its name among its parent's substructures ("" for the top file).
+    name: String,
+    /// Its nodes and its substructures', in the loader's node list.
+    nodes: Range<usize>,
+    /// Its substructures.
+    children: Vec<Tree>,
+    /// The nodes of the whole tree by their own name: (depth, node), nearest first.
+    index: HashMap<String, Vec<(usize, usize)>>,
+    /// Its pairs and its substructures' (its pair groups and bonds included).
+    pairs: Range<usize>,
+}
+
+/// A `substructures` entry: its names (`a/b/c`) and attributes.
+type Entry<'y> = (Vec<String>, &'y yaml_rust2::yaml::Hash);
+
+/// A pair of nodes to be built as a bar or a string.
+struct Pair {
+    ends: [usize; 2],
+    tags: Vec<String>,
+    file: String,
+    item: String,
+    /// Taken out by a `node_edge` bond.
+    removed: bool,
+}
+
+/// A builder: its tag, its words, its class and parameters, the file that defines it.
+struct BuilderSpec {
+    tag: String,
+    words: Vec<String>,
+    class: String,
+    parameters: Yaml,
+    file: String,
+}
+
+/// The state of loading a model and its substructures.
+#[derive(Default)]
+struct Loader {
+    points: Vec<[f64; 3]>,
+    names: Vec<String>,
+    pairs: Vec<Pair>,
+    builders: Vec<BuilderSpec>,
+    /// The canonical paths of the files being loaded, outermost first.
+    stack: Vec<PathBuf>,
+    /// Parsed substructure files by canonical path.
+    cache: HashMap<PathBuf, Yaml>,
+    structures: usize,
+}
+
+const ROD_CLASSES: [&str; 3] = ["tgRodInfo", "tgBoxInfo", "tgSphereInfo"];
+const STRING_CLASSES: [&str; 4] = [
+    "tgBasicActuatorInfo",
+    "tgBasicContactCableInfo",
+    "tgKinematicActuatorInfo",
+    "tgKinematicContactCableInfo",
+];
+
+impl Loader {
+    /// Loads one file's model (`root`, labelled `file`, in directory `dir`) with its
+    /// substructures, its nodes named `prefix` + name.
+    fn load(
+        &mut self,
+        root: &Yaml,
+        file: &str,
+        dir: &Path,
+        prefix: &str,
+        depth: usize,
+    ) -> Result<Tree, IoError> {
+        if self.builders.is_empty() {
+            self.default_builders();
+        }
+        let root =
+            match root {
+                Yaml::Hash(h) => h.clone(),
+                Yaml::Null => Default::default(),
+                _ => return Err(bad(
+                    file,
+                    "the file",
+                    "expected a map of nodes, pair_groups, builders, substructures, bond_groups",
+                )),
+            };
+        for key in root.keys() {
+            match key.as_str() {
+                Some("nodes" | "pair_groups" | "builders" | "substructures" | "bond_groups") => {}
+                other => {
+                    return Err(bad(
+                        file,
+                        other.unwrap_or("a key"),
+                        "not an NTRT model key (nodes, pair_groups, builders, substructures, bond_groups)",
+                    ))
+                }
+            }
+        }
+        let section = |key: &str| root.get(&Yaml::String(key.into())).filter(|y| !y.is_null());
+        let (start, first_pair) = (self.points.len(), self.pairs.len());
+        let children = match section("substructures") {
+            Some(subs) => self.substructures(subs, file, dir, prefix, depth)?,
+            None => Vec::new(),
+        };
+        if let Some(builders) = section("builders") {
+            self.add_builders(builders, file)?;
+        }
+        let mut own = Vec::new();
+        if let Some(nodes) = section("nodes") {
+            let nodes = nodes
+                .as_hash()
+                .ok_or_else(|| bad(file, "nodes", "give a map of name: [x, y, z]"))?;
+            for (name, value) in nodes {
+                let name = scalar_name(name);
+                let item = format!("node {name}");
+                if name.is_empty() || name.contains(['.', '/']) {
+                    return Err(bad(
+                        file,
+                        &item,
+                        "a node name is not empty and has no `.` or `/`",
+                    ));
+                }
+                let p = vec3(value).ok_or_else(|| bad(file, &item, "give [x, y, z]"))?;
+                if self.points.len() >= MAX_NODES {
+                    return Err(bad(
+                        file,
+                        &item,
+                        format!("the model has more than {MAX_NODES} nodes"),
+                    ));
+                }
+                own.push((name.clone(), self.points.len()));
+                self.points.push(p);
+                self.names.push(format!("{prefix}{name}"));
+            }
+        }
+        let mut index: HashMap<String, Vec<(usize, usize)>> = HashMap::new();
+        for (name, k) in own {
+            index.entry(name).or_default().push((0, k));
+        }
+        for child in &children {
+            for (name, list) in &child.index {
+                let entry = index.entry(name.clone()).or_default();
+                entry.extend(list.iter().map(|&(d, k)| (d + 1, k)));
+            }
+        }
+        for list in index.values_mut() {
+            list.sort_by_key(|&(d, _)| d);
+        }
+        let mut tree = Tree {
+            name: String::new(),
+            nodes: start..self.points.len(),
+            children,
+            index,
+            pairs: 0..0,
+        };
+        if let Some(groups) = section("pair_groups") {
+            self.pair_groups(&tree, groups, file)?;
+        }
+        if let Some(bonds) = section("bond_groups") {
+            self.bond_groups(&tree, bonds, file)?;
+        }
+        tree.pairs = first_pair..self.pairs.len();
+        Ok(tree)
+    }
+
+    /// NTRT's default builders, overridden by any of the same tag.
+    fn default_builders(&mut self) {
+        for (tag, class) in [("rod", "tgRodInfo"), ("string", "tgBasicActuatorInfo")] {
+            self.builders.push(BuilderSpec {
+                tag: tag.into(),
+                words: vec![tag.into()],
+                class: class.into(),
+                parameters: Yaml::Null,
+                file: "NTRT's defaults".into(),
+            });
+        }
+    }
+
+    /// The file's builders, after those loaded before.
+    fn add_builders(&mut self, builders: &Yaml, file: &str) -> Result<(), IoError> {
+        let builders = builders
+            .as_hash()
+            .ok_or_else(|| bad(file, "builders", "give a map of tag: {class, parameters}"))?;
+        for (tag, spec) in builders {
+            let tag = scalar_name(tag);
+            let class = spec["class"]
+                .as_str()
+                .ok_or_else(|| bad(file, &format!("builder {tag}"), "give its class"))?;
+            self.builders.push(BuilderSpec {
+                words: tag.split_whitespace().map(str::to_string).collect(),
+                tag,
+                class: class.to_string(),
+                parameters: spec["parameters"].clone(),
+                file: file.to_string(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Loads the substructures of a file and places them (module docs: rotations first,
+    /// then scale, offset and translation per child).
+    fn substructures(
+        &mut self,
+        subs: &Yaml,
+        file: &str,
+        dir: &Path,
+        prefix: &str,
+        depth: usize,
+    ) -> Result<Vec<Tree>, IoError> {
+        let subs = subs
+            .as_hash()
+            .ok_or_else(|| bad(file, "substructures", "give a map of name: {path, …}"))?;
+        let mut entries = Vec::with_capacity(subs.len());
+        for (key, attributes) in subs {
+            let key = scalar_name(key);
+            let item = format!("substructure {key}");
+            let attributes = attributes.as_hash().ok_or_else(|| {
+                bad(
+                    file,
+                    &item,
+                    "give a map of path, rotation, scale, translation, offset",
+                )
+            })?;
+            for a in attributes.keys() {
+                let a = scalar_name(a);
+                if !matches!(
+                    a.as_str(),
+                    "path" | "rotation" | "translation" | "scale" | "offset"
+                ) {
+                    return Err(bad(file, &item, format!("`{a}` is not a substructure attribute (path, rotation, scale, translation, offset)")));
+                }
+            }
+            let names: Vec<String> = key.split('/').map(str::to_string).collect();
+            if names
+                .iter()
+                .any(|n| n.is_empty() || n.contains('.') || n.contains(char::is_whitespace))
+            {
+                return Err(bad(file, &item, "a substructure name is not empty and has no `.` or space (`a/b/c` names three)"));
+            }
+            entries.push((names, attributes));
+        }
+        let mut children: Vec<Tree> = Vec::new();
+        for (names, attributes) in &entries {
+            let Some(path) = attributes.get(&Yaml::String("path".into())) else {
+                continue;
+            };
+            for name in names {
+                let item = format!("substructure {name}");
+                if children.iter().any(|c| c.name == *name) {
+                    return Err(bad(file, &item, "given a path twice"));
+                }
+                let path = path
+                    .as_str()
+                    .ok_or_else(|| bad(file, &item, "its path is a file name"))?;
+                let mut tree = self.load_child(
+                    file,
+                    dir,
+                    name,
+                    path,
+                    &format!("{prefix}{name}."),
+                    depth + 1,
+                )?;
+                tree.name = name.clone();
+                children.push(tree);
+            }
+        }
+        self.turn(&children, &entries, file)?;
+        self.shift(&children, &entries, file)?;
+        Ok(children)
+    }
+
+    /// The children's rotations (all before any other transform, as in NTRT).
+    fn turn(&mut self, children: &[Tree], entries: &[Entry], file: &str) -> Result<(), IoError> {
+        for (names, attributes) in entries {
+            let Some(rotation) = attributes.get(&Yaml::String("rotation".into())) else {
+                continue;
+            };
+            for name in names {
+                let c = child(children, name, file)?;
+                let item = format!("substructure {name}");
+                let axis = vec3(&rotation["axis"])
+                    .filter(|a| a.iter().any(|x| *x != 0.0))
+                    .ok_or_else(|| bad(file, &item, "a rotation's axis is a non-zero [x, y, z]"))?;
+                let angle = number(&rotation["angle"])
+                    .filter(|a| a.is_finite())
+                    .ok_or_else(|| bad(file, &item, "a rotation's angle is a number (degrees)"))?;
+                let reference = match &rotation["reference"] {
+                    Yaml::BadValue | Yaml::Null => self.centre(&children[c].nodes),
+                    r => vec3(r)
+                        .ok_or_else(|| bad(file, &item, "a rotation's reference is [x, y, z]"))?,
+                };
+                let range = children[c].nodes.clone();
+                for p in &mut self.points[range] {
+                    *p = rotate(*p, reference, axis, angle.to_radians());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Per child: its scale (about its centre), its offset (k times it for the k-th name of
+    /// a slash series) and its translation.
+    fn shift(&mut self, children: &[Tree], entries: &[Entry], file: &str) -> Result<(), IoError> {
+        for (names, attributes) in entries {
+            let get = |key: &str| attributes.get(&Yaml::String(key.into()));
+            for (k, name) in names.iter().enumerate() {
+                let c = child(children, name, file)?;
+                let item = format!("substructure {name}");
+                let range = children[c].nodes.clone();
+                if let Some(scale) = get("scale") {
+                    let s = number(scale)
+                        .filter(|s| s.is_finite() && *s != 0.0)
+                        .ok_or_else(|| bad(file, &item, "its scale is a non-zero number"))?;
+                    let centre = self.centre(&range);
+                    for p in &mut self.points[range.clone()] {
+                        *p = std::array::from_fn(|d| centre[d] + s * (p[d] - centre[d]));
+                    }
+                }
+                let mut shift = [0.0; 3];
+                if let Some(offset) = get("offset") {
+                    let o =
+                        vec3(offset).ok_or_else(|| bad(file, &item, "its offset is [x, y, z]"))?;
+                    shift = std::array::from_fn(|d| o[d] * k as f64);
+                }
+                if let Some(translation) = get("translation") {
+                    let t = vec3(translation)
+                        .ok_or_else(|| bad(file, &item, "its translation is [x, y, z]"))?;
+                    shift = std::array::from_fn(|d| shift[d] + t[d]);
+                }
+                for p in &mut self.points[range] {
+                    *p = std::array::from_fn(|d| p[d] + shift[d]);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads, parses and loads one substructure file (`path`, relative to `dir`).
+    fn load_child(
+        &mut self,
+        file: &str,
+        dir: &Path,
+        name: &str,
+        path: &str,
+        prefix: &str,
+        depth: usize,
+    ) -> Result<Tree, IoError> {
+        let item = format!("substructure {name}");
+        let child_path = dir.join(path);
+        let label = child_path.display().to_string();
+        if depth > MAX_DEPTH {
+            return Err(bad(
+                file,
+                &item,
+                format!("substructures nest deeper than {MAX_DEPTH} files (at {label})"),
+            ));
+        }
+        self.structures += 1;
+        if self.structures > MAX_STRUCTURES {
+            return Err(bad(
+                file,
+                &item,
+                format!("the model has more than {MAX_STRUCTURES} substructures"),
+            ));
+        }
+        let unreadable = |e: IoError| bad(file, &item, format!("{e}"));
+        let canonical = std::fs::canonicalize(&child_path).map_err(|source| {
+            unreadable(IoError::Read {
+                path: child_path.clone(),
+                source,
+            })
+        })?;
+        if let Some(k) = self.stack.iter().position(|p| *p == canonical) {
+            let chain: Vec<String> = (self.stack[k..].iter())
+                .chain([&canonical])
+                .map(|p| p.display().to_string())
+                .collect();
+            return Err(bad(
+                file,
+                &item,
+                format!("{label} includes itself: {}", chain.join(" → ")),
+            ));
+        }
+        let root = match self.cache.get(&canonical) {
+            Some(root) => root.clone(),
+            None => {
+                let text = crate::read::read_text(
+                    &child_path,
+                    crate::read::MAX_SCENE_BYTES,
+                    "an NTRT model",
+                )
+                .map_err(unreadable)?;
+                let root = parse(&text, &label)?;
+                self.cache.insert(canonical.clone(), root.clone());
+                root
+            }
+        };
+        let child_dir = child_path.parent().unwrap_or(Path::new("")).to_path_buf();
+        self.stack.push(canonical);
+        let tree = self.load(&root, &label, &child_dir, prefix, depth);
+        self.stack.pop();
+        tree
+    }
+
+    /// The mean of the nodes in `range` (the origin for none).
+    fn centre(&self, range: &Range<usize>) -> [f64; 3] {
+        let n = range.len().max(1) as f64;
+        let mut c = [0.0; 3];
+        for p in &self.points[range.clone()] {
+            for d in 0..3 {
+                c[d] += p[d];
+            }
+        }
+        c.map(|x| x / n)
+    }
+
+    /// A pair of `tags` between two referenced nodes.
+    fn push_pair(
+        &mut self,
+        ends: [usize; 2],
+        tags: Vec<String>,
+        file: &str,
+        item: &str,
+    ) -> Result<(), IoError> {
+        if self.pairs.len() >= MAX_PAIRS {
+            return Err(bad(
+                file,
+                item,
+                format!("the model has more than {MAX_PAIRS} pairs"),
+            ));
+        }
+        self.pairs.push(Pair {
+            ends,
+            tags,
+            file: file.to_string(),
+            item: item.to_string(),
+            removed: false,
+        });
+        Ok(())
+    }
+
+    /// The file's pair groups: pairs of nodes of this structure or its substructures.
+    fn pair_groups(&mut self, tree: &Tree, groups: &Yaml, file: &str) -> Result<(), IoError> {
+        let groups = groups
+            .as_hash()
+            .ok_or_else(|| bad(file, "pair_groups", "give a map of tag: [[node, node], …]"))?;
+        for (tags, pairs) in groups {
+            let tags = scalar_name(tags);
+            let item = format!("pair group {tags}");
+            for ends in
+                node_pairs(pairs).ok_or_else(|| bad(file, &item, "give a list of [node, node]"))?
+            {
+                let a = resolve(tree, &ends[0], self).map_err(|e| bad(file, &item, e))?;
+                let b = resolve(tree, &ends[1], self).map_err(|e| bad(file, &item, e))?;
+                let words = tags.split_whitespace().map(str::to_string).collect();
+                self.push_pair([a, b], words, file, &item)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The file's bond groups: `tag: {a/b/…/node_node: pairs}` or `a/b/…/node_node: {tag:
+    /// pairs}`.
+    fn bond_groups(&mut self, tree: &Tree, groups: &Yaml, file: &str) -> Result<(), IoError> {
+        let groups = groups.as_hash().ok_or_else(|| {
+            bad(
+                file,
+                "bond_groups",
+                "give a map of tag: {a/b/node_node: pairs}",
+            )
+        })?;
+        for (outer, inner) in groups {
+            let outer = scalar_name(outer);
+            let inner = inner.as_hash().ok_or_else(|| {
+                bad(
+                    file,
+                    &format!("bond group {outer}"),
+                    "give a map of a/b/node_node (or tag): pairs",
+                )
+            })?;
+            for (key, pairs) in inner {
+                let key = scalar_name(key);
+                let (tags, bond) = match (outer.contains('/'), key.contains('/')) {
+                    (false, true) => (&outer, &key),
+                    (true, false) => (&key, &outer),
+                    _ => {
+                        return Err(bad(
+                            file,
+                            &format!("bond group {outer}: {key}"),
+                            "a bond (a/b/node_node) is nested in a tag or a tag in a bond",
+                        ))
+                    }
+                };
+                self.bonds(tree, tags, bond, pairs, file)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// One bond `a/b/…/type` of `tags`.
+    fn bonds(
+        &mut self,
+        tree: &Tree,
+        tags: &str,
+        bond: &str,
+        pairs: &Yaml,
+        file: &str,
+    ) -> Result<(), IoError> {
+        let item = format!("bond group {tags}: {bond}");
+        let mut parts: Vec<&str> = bond.split('/').collect();
+        let kind = parts.pop().unwrap_or_default();
+        if parts.len() < 2 {
+            return Err(bad(
+                file,
+                &item,
+                "a bond names two or more structures and its type (a/b/node_node)",
+            ));
+        }
+        let pairs =
+            node_pairs(pairs).ok_or_else(|| bad(file, &item, "give a list of [node, node]"))?;
+        match kind {
+            "node_node" => {}
+            "node_edge" => {
+                for w in parts.windows(2) {
+                    self.node_edge(tree, tags, [w[0], w[1]], &pairs, file, &item)?;
+                }
+                return Ok(());
+            }
+            other => {
+                return Err(bad(
+                    file,
+                    &item,
+                    format!("`{other}` is not a bond type (node_node, node_edge)"),
+                ))
+            }
+        }
+        for w in parts.windows(2) {
+            let a = find_structure(tree, w[0]).map_err(|e| bad(file, &item, e))?;
+            let b = find_structure(tree, w[1]).map_err(|e| bad(file, &item, e))?;
+            let mut words: Vec<String> = tags.split_whitespace().map(str::to_string).collect();
+            words.extend([
+                w[0].to_string(),
+                w[1].to_string(),
+                format!("{}/{}", w[0], w[1]),
+            ]);
+            for ends in &pairs {
+                let i = resolve(a, &ends[0], self)
+                    .map_err(|e| bad(file, &item, format!("in {}: {e}", w[0])))?;
+                let j = resolve(b, &ends[1], self)
+                    .map_err(|e| bad(file, &item, format!("in {}: {e}", w[1])))?;
+                self.push_pair([i, j], words.clone(), file, &item)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A `node_edge` bond between structures `names` (module docs): moves and turns the
+    /// second to fit, takes out the edges and the strings between the attached nodes, and
+    /// joins each node to its edge's ends.
+    fn node_edge(
+        &mut self,
+        tree: &Tree,
+        tags: &str,
+        names: [&str; 2],
+        pairs: &[[String; 2]],
+        file: &str,
+        item: &str,
+    ) -> Result<(), IoError> {
+        let fail = |why: String| bad(file, item, why);
+        if pairs.len() < 3 {
+            return Err(fail(
+                "a node_edge bond needs three or more [node, node1/node2] pairs".into(),
+            ));
+        }
+        let s = [
+            find_structure(tree, names[0]).map_err(fail)?,
+            find_structure(tree, names[1]).map_err(fail)?,
+        ];
+        let (mut refs, mut ligands, mut receptors) =
+            ([Vec::new(), Vec::new()], Vec::new(), Vec::new());
+        for pair in pairs {
+            if pair[0].contains('/') == pair[1].contains('/') {
+                return Err(fail(format!(
+                    "[{}, {}] is not a node and an edge (node1/node2)",
+                    pair[0], pair[1]
+                )));
+            }
+            for side in 0..2 {
+                let find = |r: &str| {
+                    resolve(s[side], r, self).map_err(|e| fail(format!("in {}: {e}", names[side])))
+                };
+                match pair[side].split_once('/') {
+                    Some((a, b)) => {
+                        let (i, j) = (find(a)?, find(b)?);
+                        let (p, q) = (self.points[i], self.points[j]);
+                        refs[side].push(std::array::from_fn(|d| 0.5 * (p[d] + q[d])));
+                        receptors.push([i, j]);
+                    }
+                    None => {
+                        let k = find(&pair[side])?;
+                        refs[side].push(self.points[k]);
+                        ligands.push(k);
+                    }
+                }
+            }
+        }
+        self.fit(s[1].nodes.clone(), &refs).map_err(|why| {
+            fail(format!(
+                "{} cannot be fitted to {}: {why}",
+                names[1], names[0]
+            ))
+        })?;
+        let words: Vec<String> = tags.split_whitespace().map(str::to_string).collect();
+        for (&l, &[a, b]) in ligands.iter().zip(&receptors) {
+            for t in s {
+                if !self.take_out(t.pairs.clone(), [a, b], true) {
+                    return Err(fail(format!(
+                        "the edge {}/{} is a rod: a node_edge bond attaches to strings",
+                        self.names[a], self.names[b]
+                    )));
+                }
+                for &m in &ligands {
+                    self.take_out(t.pairs.clone(), [l, m], false);
+                }
+            }
+            self.push_pair([a, l], words.clone(), file, item)?;
+            self.push_pair([l, b], words.clone(), file, item)?;
+        }
+        Ok(())
+    }
+
+    /// Moves and turns the nodes `moving` as NTRT does to fit the attachment points
+    /// `refs[1]` (theirs) to `refs[0]`: the normal of the plane of their first three onto
+    /// the other's about their centre, then their centre onto the other's, then about that
+    /// normal to bring the first point's direction from the centre onto the other's.
+    fn fit(&mut self, moving: Range<usize>, refs: &[Vec<[f64; 3]>; 2]) -> Result<(), String> {
+        let c = [centroid(&refs[0]), centroid(&refs[1])];
+        let n = [plane_normal(&refs[0])?, plane_normal(&refs[1])?];
+        let fallback = unit(sub(refs[1][1], refs[1][0])).ok_or("two attachments coincide")?;
+        let (axis, angle) = between(n[1], n[0], fallback)?;
+        let shift = sub(c[0], c[1]);
+        for p in &mut self.points[moving.clone()] {
+            *p = add(rotate(*p, c[1], axis, angle), shift);
+        }
+        let first = add(rotate(refs[1][0], c[1], axis, angle), shift);
+        let (axis, angle) = between(sub(first, c[0]), sub(refs[0][0], c[0]), n[0])?;
+        for p in &mut self.points[moving] {
+            *p = rotate(*p, c[0], axis, angle);
+        }
+        Ok(())
+    }
+
+    /// Takes out the pairs in `range` between the nodes `ends` (either way), unless a rod
+    /// builder defined so far matches the first such: false for a rod (then nothing is
+    /// taken out) when `edge`.
+    fn take_out(&mut self, range: Range<usize>, ends: [usize; 2], edge: bool) -> bool {
+        let joins = |p: &Pair| !p.removed && (p.ends == ends || p.ends == [ends[1], ends[0]]);
+        let Some(first) = self.pairs[range.clone()].iter().find(|p| joins(p)) else {
+            return true;
+        };
+        let rod = (self.builders.iter()).any(|b| {
+            ROD_CLASSES.contains(&b.class.as_str())
+                && b.words.iter().all(|w| first.tags.contains(w))
+        });
+        if rod {
+            return !edge;
+        }
+        for p in &mut self.pairs[range] {
+            if joins(p) {
+                p.removed = true;
+            }
+        }
+        true
+    }
+
+    /// The builder of a pair: among those whose words are all among its tags, the last of a
+    /// rod class, else the last of a string class, else the last of any.
+    fn builder_of(&self, pair: &Pair) -> Option<&BuilderSpec> {
+        let matching = || {
+            (self.builders.iter().rev()).filter(|b| b.words.iter().all(|w| pair.tags.contains(w)))
+        };
+        matching()
+            .find(|b| ROD_CLASSES.contains(&b.class.as_str()))
+            .or_else(|| matching().find(|b| STRING_CLASSES.contains(&b.class.as_str())))
+            .or_else(|| matching().next())
+    }
+
+    /// The structure of the loaded model.
+    fn finish(self, file: &str, pinned: &[usize]) -> Result<NtrtModel, IoError> {
+        let mut builder = Structure::builder().nodes(self.points.clone());
+        for pair in self.pairs.iter().filter(|p| !p.removed) {
+            let spec = self.builder_of(pair).ok_or_else(|| {
+                bad(
+                    &pair.file,
+                    &pair.item,
+                    format!("no builder matches its tags ({})", pair.tags.join(" ")),
+                )
+            })?;
+            let item = format!("builder {}", spec.tag);
+            let parameter = |key: &str, default: f64| -> Result<f64, IoError> {
+                match &spec.parameters[key] {
+                    Yaml::BadValue | Yaml::Null => Ok(default),
+                    y => number(y)
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| bad(&spec.file, &item, format!("its {key} is a number"))),
+                }
+            };
+            let [i, j] = pair.ends;
+            let length = distance(self.points[i], self.points[j]);
+            builder = match spec.class.as_str() {
+                "tgRodInfo" => {
+                    let (rho, r) = (parameter("density", 1.0)?, parameter("radius", 0.5)?);
+                    builder.bar(Bar::new(i, j).mass(rho * std::f64::consts::PI * r * r * length))
+                }
+                c if STRING_CLASSES.contains(&c) => {
+                    let k = parameter("stiffness", 1000.0)?;
+                    let c = parameter("damping", 10.0)?;
+                    let t0 = parameter("pretension", 0.0)?;
+                    if k <= 0.0 {
+                        return Err(bad(&spec.file, &item, format!("its stiffness {k} is not positive")));
+                    }
+                    if t0 / k >= length {
+                        return Err(bad(
+                            &spec.file,
+                            &item,
+                            format!("pretension {t0} stretches pair [{}, {}] (length {length}) past its whole length at stiffness {k}: its rest length would not be positive", self.names[i], self.names[j]),
+                        ));
+                    }
+                    builder.string(StringMember::new(i, j).stiffness(k).damping(c).rest_length(length - t0 / k))
+                }
+                other => {
+                    return Err(bad(
+                        &spec.file,
+                        &item,
+                        format!("class `{other}` is not imported (tgRodInfo; tgBasicActuatorInfo, tgBasicContactCableInfo, tgKinematicActuatorInfo, tgKinematicContactCableInfo)"),
+                    ))
+                }
+            };
+        }
+        for &node in pinned {
+            builder = builder.support(Support::pinned(node));
+        }
+        let structure = builder
+            .build()
+            .map_err(|source| IoError::InvalidStructure {
+                file: file.to_string(),
+                line: None,
+                source,
+            })?;
+        Ok(NtrtModel {
+            structure,
+            names: self.names,
+        })
+    }
+}
+
+/// The index of the child `name` (one given a path in this file).
+fn child(children: &[Tree], name: &str, file: &str) -> Result<usize, IoError> {
+    children.iter().position(|c| c.name == name).ok_or_else(|| {
+        bad(
+            file,
+            &format!("substructure {name}"),
+            "no path is given for it in this file",
+        )
+    })
+}
+
+/// A list of `[node, node]` pairs as names.
+fn node_pairs(pairs: &Yaml) -> Option<Vec<[String; 2]>> {
+    (pairs.as_vec()?.iter())
+        .map(|p| match p.as_vec()?.as_slice() {
+            [a, b] => Some([scalar_name(a), scalar_name(b)]),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The nearest substructure of `tree` named `name` (its children, then theirs, …).
+fn find_structure<'t>(tree: &'t Tree, name: &str) -> Result<&'t Tree, String> {
+    let mut level: Vec<&Tree> = tree.children.iter().collect();
+    while !level.is_empty() {
+        let found: Vec<&Tree> = level.iter().copied().filter(|t| t.name == name).collect();
+        match found.len() {
+            0 => level = level.iter().flat_map(|t| t.children.iter()).collect(),
+            1 => return Ok(found[0]),
+            n => return Err(format!("structure `{name}` is ambiguous: {n} substructures at the same depth have this name")),
+        }
+    }
+    Err(format!("no substructure `{name}`"))
+}
+
+/// The node of `tree` that `reference` names: `a.b.node` (a dot path) or `node` (the
+/// nearest node of that name).
+fn resolve(tree: &Tree, reference: &str, loader: &Loader) -> Result<usize, String> {
+    let mut parts: Vec<&str> = reference.split('.').collect();
+    let name = parts.pop().unwrap_or_default();
+    let mut t = tree;
+    for part in parts {
+        t = find_structure(t, part).map_err(|e| format!("node {reference}: {e}"))?;
+    }
+    let list = t.index.get(name).map(Vec::as_slice).unwrap_or_default();
+    match list {
+        [] => Err(format!("node {reference} is not among the nodes")),
+        [(_, k)] => Ok(*k),
+        [(d0, k), (d1, _), ..] if d0 < d1 => Ok(*k),
+        _ => {
+            let d0 = list[0].0;
+            let same: Vec<&str> = (list.iter())
+                .take_while(|(d, _)| *d == d0)
+                .map(|(_, k)| loader.names[*k].as_str())
+                .collect();
+            Err(format!(
+                "node {reference} is ambiguous: {} nodes at the same depth have this name ({}); give its dot path",
+                same.len(),
+                same.join(", ")
+            ))
+        }
+    }
+}
+
+/// `p` rotated by `angle` (radians, right-handed) about `axis` through `centre`.
+fn rotate(p: [f64; 3], centre: [f64; 3], axis: [f64; 3], angle: f64) -> [f64; 3] {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let k = axis.map(|x| x / n);
+    let v: [f64; 3] = std::array::from_fn(|d| p[d] - centre[d]);
+    let kxv = [
+        k[1] * v[2] - k[2] * v[1],
+        k[2] * v[0] - k[0] * v[2],
+        k[0] * v[1] - k[1] * v[0],
+    ];
+    let kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    let (s, c) = angle.sin_cos();
+    std::array::from_fn(|d| centre[d] + v[d] * c + kxv[d] * s + k[d] * kv * (1.0 - c))
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|d| a[d] + b[d])
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|d| a[d] - b[d])
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `v` over its length (none for a zero or non-finite vector).
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (n > 0.0 && n.is_finite()).then(|| v.map(|x| x / n))
+}
+
+fn centroid(points: &[[f64; 3]]) -> [f64; 3] {
+    let n = points.len().max(1) as f64;
+    let sum = points.iter().fold([0.0; 3], |s, p| add(s, *p));
+    sum.map(|x| x / n)
+}
+
+/// The unit normal (p₁ − p₀) × (p₂ − p₀) of the first three points.
+fn plane_normal(p: &[[f64; 3]]) -> Result<[f64; 3], String> {
+    unit(cross(sub(p[1], p[0]), sub(p[2], p[0])))
+        .ok_or_else(|| "its first three attachment points are on a line".to_string())
+}
+
+/// The rotation (axis, angle) that turns the direction of `a` onto that of `b` (NTRT's:
+/// none when they agree to 10⁻⁵, a half turn about `fallback` when opposite).
+fn between(a: [f64; 3], b: [f64; 3], fallback: [f64; 3]) -> Result<([f64; 3], f64), String> {
+    let why = || "an attachment point is at the centre of the attachments".to_string();
+    let (a, b) = (unit(a).ok_or_else(why)?, unit(b).ok_or_else(why)?);
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if norm(sub(a, b)) < 1e-5 {
+        return Ok(([0.0, 0.0, 1.0], 0.0));
+    }
+    if norm(add(a, b)) < 1e-5 {
+        return Ok((fallback, std::f64::consts::PI));
+    }
+    let dot = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).clamp(-1.0, 1.0);
+    Ok((unit(cross(a, b)).ok_or_else(why)?, dot.acos()))
+}
+
+/// A finite [x, y, z].
+fn vec3(y: &Yaml) -> Option<[f64; 3]> {
+    match y.as_vec()?.as_slice() {
+        [x, y, z] => {
+            let p = [number(x)?, number(y)?, number(z)?];
+            p.iter().all(|v| v.is_finite()).then_some(p)
+        }
+        _ => None,
+    }
+}
+
 /// A YAML scalar as a name (NTRT's node and tag names may be numbers).
 fn scalar_name(y: &Yaml) -> String {
     match y {
@@ -234,4 +1078,58 @@ fn number(y: &Yaml) -> Option<f64> {
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn rotation_is_right_handed_about_the_reference() {
+        // +90° about z through (1, 1, 0): (2, 1, 5) − c = (1, 0, 5) → (0, 1, 5)
+        let p = rotate([2.0, 1.0, 5.0], [1.0, 1.0, 0.0], [0.0, 0.0, 3.0], FRAC_PI_2);
+        assert!(
+            (0..3).all(|d| (p[d] - [1.0, 2.0, 5.0][d]).abs() < 1e-15),
+            "{p:?}"
+        );
+        // +120° about (1, 1, 1) permutes the axes: x → y
+        let p = rotate(
+            [1.0, 0.0, 0.0],
+            [0.0; 3],
+            [1.0; 3],
+            2.0 * std::f64::consts::FRAC_PI_3,
+        );
+        assert!(
+            (0..3).all(|d| (p[d] - [0.0, 1.0, 0.0][d]).abs() < 1e-15),
+            "{p:?}"
+        );
+    }
+
+    /// A bare name means the nearest node of that name: the file's own `a` over its child's
+    /// `a`; the child's `b` over its grandchild's.
+    #[test]
+    fn a_bare_name_is_the_nearest_node_of_that_name() {
+        let dir = std::env::temp_dir().join(format!("tensegrity-ntrt-unit-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        std::fs::write(
+            dir.join("sub/leaf.yaml"),
+            "nodes:\n  b: [0, 0, 0]\n  c: [0, 0, 1]\n",
+        )
+        .unwrap();
+        std::fs::write(
+            dir.join("sub/mid.yaml"),
+            "substructures:\n  leaf:\n    path: leaf.yaml\n    translation: [0, 5, 0]\nnodes:\n  a: [1, 0, 0]\n  b: [2, 0, 0]\n",
+        )
+        .unwrap();
+        let top = "substructures:\n  m:\n    path: sub/mid.yaml\nnodes:\n  a: [0, 9, 0]\n\
+                   pair_groups:\n  string:\n    - [a, b]\n    - [a, c]\n    - [m.a, m.leaf.b]\n";
+        let file = dir.join("top.yaml");
+        let m = structure_from_ntrt(top, file.to_str().unwrap(), &[]).unwrap();
+        assert_eq!(m.names, ["m.leaf.b", "m.leaf.c", "m.a", "m.b", "a"]);
+        let ends: Vec<[usize; 2]> = m.structure.strings().iter().map(|s| s.nodes).collect();
+        assert_eq!(ends, [[4, 3], [4, 1], [2, 0]]);
+        assert_eq!(m.structure.nodes()[1].y, 5.0);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

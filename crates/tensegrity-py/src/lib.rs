@@ -19,6 +19,7 @@ mod commands;
 mod convert;
 mod errors;
 mod runs;
+mod stepping;
 mod structure;
 mod sweep;
 mod worker;
@@ -300,6 +301,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(matrices, m)?)?;
     m.add_function(wrap_pyfunction!(topology, m)?)?;
     m.add_function(wrap_pyfunction!(toml_text, m)?)?;
+    m.add_class::<stepping::PyStepper>()?;
+    m.add_class::<stepping::PyStepperState>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
     Ok(())
 }

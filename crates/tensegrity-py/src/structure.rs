@@ -16,7 +16,7 @@ use tensegrity_io::scene::{Scene, SceneArrays};
 use tensegrity_statics::{equilibrium_matrix, DofMap};
 
 /// The tables of a scene that are not the structure's: kept as given, written after it.
-pub const TABLES: &[&str] = &["simulation", "ground", "actuation"];
+pub const TABLES: &[&str] = &["simulation", "ground", "actuation", "actuators"];
 
 /// What the errors of a structure's data are labelled with.
 const NAME: &str = "structure";
@@ -70,7 +70,14 @@ pub fn toml_text(value: &Value) -> Result<String, Failure> {
 /// The data of scene TOML (the import): the columns of its structure and its other tables
 /// as written.
 pub fn read(text: &str, name: &str) -> Result<Value, Failure> {
-    let scene = Scene::from_str_named(text, name).map_err(|e| io_failure(&e))?;
+    // JSON of the same shape when the file's name ends in `.json` or the text is an object
+    let json = name.to_ascii_lowercase().ends_with(".json") || text.trim_start().starts_with('{');
+    let scene = if json {
+        Scene::from_json_named(text, name)
+    } else {
+        Scene::from_str_named(text, name)
+    }
+    .map_err(|e| io_failure(&e))?;
     let mut data = as_value(&SceneArrays::with_file_keys(&scene))?;
     let raw = tensegrity_io::tables::read(text);
     if let Value::Object(m) = &mut data {

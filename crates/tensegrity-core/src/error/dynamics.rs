@@ -171,6 +171,26 @@ pub enum DynamicsError {
         /// The iterations made.
         iterations: usize,
     },
+    /// An action of a stepped simulation that cannot be applied: a non-finite rest length or
+    /// rate (its actuator named, counted from 0 in the simulation's actuator list).
+    #[error("actuator {actuator}: action {value:?} {reason}")]
+    InvalidAction {
+        /// The actuator.
+        actuator: usize,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// An actuator of a stepped simulation that cannot be built: an unknown string or
+    /// cluster, a bad limit.
+    #[error("actuator {actuator}: {reason}")]
+    InvalidActuator {
+        /// The actuator.
+        actuator: usize,
+        /// What is wrong, and what to give.
+        reason: String,
+    },
     /// A setting a model does not take (an integrator of rigid bars on an elastic model, …).
     #[error("{item}: {reason}")]
     Unsupported {
@@ -192,6 +212,8 @@ impl Categorized for DynamicsError {
             | Self::GroundNodeOutOfRange { .. }
             | Self::InvalidGroundNormal { .. }
             | Self::StepAboveStabilityLimit { .. }
+            | Self::InvalidAction { .. }
+            | Self::InvalidActuator { .. }
             | Self::Unsupported { .. } => Category::Input,
             _ => Category::Numerical,
         }

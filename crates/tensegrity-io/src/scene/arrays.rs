@@ -5,8 +5,8 @@
 //! [`SceneArrays::from_structure`] give the columns of a scene or structure back.
 
 use super::{
-    ActuationSpec, BarSpec, ClusterSpec, GravitySpec, GroundSpec, LoadSpec, MaterialSpec,
-    PointMassSpec, Scene, SceneFile, SimulationSpec, StringSpec, SupportSpec,
+    ActuationSpec, ActuatorSpec, BarSpec, ClusterSpec, GravitySpec, GroundSpec, LoadSpec,
+    MaterialSpec, PointMassSpec, Scene, SceneFile, SimulationSpec, StringSpec, SupportSpec,
 };
 use crate::error::{IoError, Result};
 use serde::{Deserialize, Serialize};
@@ -209,6 +209,9 @@ pub struct SceneArrays {
     /// The `[[actuation]]` tables.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub actuation: Vec<ActuationSpec>,
+    /// The `[[actuators]]` tables.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub actuators: Vec<ActuatorSpec>,
 }
 
 /// An item of the data: no text, so no span (and no line in its errors).
@@ -326,6 +329,7 @@ impl SceneArrays {
             simulation: file.simulation.clone(),
             ground: file.ground.as_ref().map(|g| g.get_ref().clone()),
             actuation: file.actuation.iter().map(|a| a.get_ref().clone()).collect(),
+            actuators: file.actuators.iter().map(|a| a.get_ref().clone()).collect(),
             ..SceneArrays::with_file_keys(scene)
         }
     }
@@ -538,6 +542,7 @@ impl SceneArrays {
             simulation: self.simulation,
             ground: self.ground.map(unspanned),
             actuation: self.actuation.into_iter().map(unspanned).collect(),
+            actuators: self.actuators.into_iter().map(unspanned).collect(),
             masses,
         })
     }

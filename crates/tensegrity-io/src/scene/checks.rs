@@ -17,6 +17,18 @@ impl SceneFile {
         text: Option<&str>,
         name: &str,
     ) -> Result<()> {
+        for (k, table) in self.actuators.iter().enumerate() {
+            // each table alone, then all of them (a rest length driven twice)
+            let upto: Vec<_> = self.actuators[..=k]
+                .iter()
+                .map(|a| a.get_ref().clone())
+                .collect();
+            super::actuators(&upto, structure).map_err(|e| IoError::InScene {
+                file: name.to_string(),
+                line: line_at(text, table.span().start),
+                source: Box::new(e),
+            })?;
+        }
         let actuation: Vec<_> = self.actuation.iter().map(|a| a.get_ref().clone()).collect();
         let ground = self.ground.as_ref();
         dynamics::check_tables(structure, ground.map(|g| g.get_ref()), &actuation).map_err(

@@ -55,6 +55,7 @@
 
 use crate::error::{IoError, Result};
 use nalgebra::Vector3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::Structure;
 use tensegrity_dynamics::{
@@ -62,13 +63,14 @@ use tensegrity_dynamics::{
 };
 
 /// The `[simulation]` table.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSpec {
     /// End time (s).
     pub t_end: f64,
     /// Integrator (default rk4).
     #[serde(default)]
+    #[schemars(schema_with = "integrator_schema")]
     pub integrator: IntegratorKind,
     /// Fixed step (rk4, rattle; default 1e-3 s) or maximum step (rk45; default t_end).
     pub dt: Option<f64>,
@@ -99,8 +101,17 @@ pub struct SimulationSpec {
     pub mass_matrix: MassMatrixKind,
 }
 
+/// The JSON Schema of an integrator's name: one of [`IntegratorKind::NAMES`].
+fn integrator_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "string",
+        "enum": IntegratorKind::NAMES,
+        "default": "rk4",
+    })
+}
+
 /// Rigid or elastic bars (`[simulation] bars`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum BarModel {
     /// Rigid bars with their length constraint (the thesis' dynamics).
@@ -117,7 +128,7 @@ impl BarModel {
 }
 
 /// The mass distribution of an elastic model (`[simulation] mass_matrix`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum MassMatrixKind {
     /// Half of a member's mass at each end.
@@ -134,7 +145,7 @@ impl MassMatrixKind {
 }
 
 /// A recordable quantity name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RecordQuantity {
     /// Node positions.
@@ -150,7 +161,7 @@ pub enum RecordQuantity {
 }
 
 /// The ground reaction model name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum GroundModelKind {
     /// Penalty spring–damper with regularised Coulomb friction.
@@ -165,7 +176,7 @@ fn up() -> [f64; 3] {
 }
 
 /// The `[ground]` table.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GroundSpec {
     /// A point of the plane (default origin).
@@ -197,7 +208,7 @@ pub struct GroundSpec {
 
 /// One `[[actuation]]` table: a piecewise-linear time table for one string's or one
 /// cluster's rest length, or one node's extra load.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ActuationSpec {
     /// The string whose rest length is driven.

@@ -50,12 +50,16 @@
 //! acceleration = [0.0, 0.0, -9.81]
 //! ```
 
+mod actuators;
 mod arrays;
 mod checks;
 pub mod dynamics;
+mod json;
 mod write;
 
+pub use actuators::{actuators, ActuatorSpec};
 pub use arrays::SceneArrays;
+pub use json::json_schema;
 pub use write::{scene_to_toml, to_toml};
 
 pub use dynamics::{
@@ -64,6 +68,7 @@ pub use dynamics::{
 };
 
 use crate::error::{IoError, Result};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -71,11 +76,13 @@ use tensegrity_core::{Bar, CoreError, Material, ModelError, StringMember, Struct
 use tensegrity_dynamics::Simulation;
 use toml::Spanned;
 
-/// The raw contents of a scene file.
-#[derive(Debug, Clone, Deserialize)]
+/// The raw contents of a scene file (TOML, or JSON of the same shape: [`Scene::from_json_named`];
+/// its JSON Schema: [`json_schema`]).
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
     /// Node positions (m).
+    #[schemars(with = "Vec<[f64; 3]>")]
     pub nodes: Vec<Spanned<[f64; 3]>>,
     /// Initial node velocities (m/s), one per node.
     #[serde(default)]
@@ -85,18 +92,23 @@ pub struct SceneFile {
     pub materials: BTreeMap<String, MaterialSpec>,
     /// Bars.
     #[serde(default)]
+    #[schemars(with = "Vec<BarSpec>")]
     pub bars: Vec<Spanned<BarSpec>>,
     /// Strings.
     #[serde(default)]
+    #[schemars(with = "Vec<StringSpec>")]
     pub strings: Vec<Spanned<StringSpec>>,
     /// Clustered strings: one continuous string through several nodes (pulleys).
     #[serde(default)]
+    #[schemars(with = "Vec<ClusterSpec>")]
     pub clusters: Vec<Spanned<ClusterSpec>>,
     /// Supports.
     #[serde(default)]
+    #[schemars(with = "Vec<SupportSpec>")]
     pub supports: Vec<Spanned<SupportSpec>>,
     /// Nodal loads.
     #[serde(default)]
+    #[schemars(with = "Vec<LoadSpec>")]
     pub loads: Vec<Spanned<LoadSpec>>,
     /// Gravity.
     #[serde(default)]
@@ -106,18 +118,26 @@ pub struct SceneFile {
     pub simulation: Option<SimulationSpec>,
     /// `[ground]`: a plane, its contact model and the nodes that can touch it.
     #[serde(default)]
+    #[schemars(with = "Option<GroundSpec>")]
     pub ground: Option<Spanned<GroundSpec>>,
     /// `[[actuation]]`: time tables of string rest lengths or nodal loads.
     #[serde(default)]
+    #[schemars(with = "Vec<ActuationSpec>")]
     pub actuation: Vec<Spanned<ActuationSpec>>,
+    /// `[[actuators]]`: the rest lengths a controller of a stepped simulation sets, and
+    /// their limits (module [`actuators`](fn@actuators)).
+    #[serde(default)]
+    #[schemars(with = "Vec<ActuatorSpec>")]
+    pub actuators: Vec<Spanned<ActuatorSpec>>,
     /// `[[masses]]`: point masses at nodes, read by the elastic dynamics only
     /// ([`SceneFile::elastic_keys`]).
     #[serde(default)]
+    #[schemars(with = "Vec<PointMassSpec>")]
     pub masses: Vec<Spanned<PointMassSpec>>,
 }
 
 /// A `[[masses]]` entry: a point mass at a node (kg).
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointMassSpec {
     /// The node.
@@ -127,7 +147,7 @@ pub struct PointMassSpec {
 }
 
 /// A `[materials.NAME]` table.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// kg/m³.
@@ -139,7 +159,7 @@ pub struct MaterialSpec {
 }
 
 /// A `[[bars]]` entry.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BarSpec {
     /// Start and end node (exactly two; checked when the structure is built).
@@ -199,7 +219,7 @@ fn bar_at(text: &str, offset: usize) -> Option<usize> {
 }
 
 /// A `[[strings]]` entry.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StringSpec {
     /// Start and end node (exactly two; checked when the structure is built).
@@ -220,7 +240,7 @@ pub struct StringSpec {
 }
 
 /// A `[[clusters]]` entry: a clustered string ([`tensegrity_core::Cluster`]).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ClusterSpec {
     /// The nodes it passes through, in order (at least three; inner nodes are pulleys).
@@ -243,7 +263,7 @@ pub struct ClusterSpec {
 }
 
 /// A direction letter in a support.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Axis {
     /// x.
@@ -255,7 +275,7 @@ pub enum Axis {
 }
 
 /// A `[[supports]]` entry.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SupportSpec {
     /// The supported node.
@@ -279,7 +299,7 @@ pub struct SupportSpec {
 }
 
 /// A `[[loads]]` entry.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
     /// The loaded node.
@@ -289,7 +309,7 @@ pub struct LoadSpec {
 }
 
 /// The `[gravity]` table.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GravitySpec {
     /// Acceleration (m/s²).
@@ -540,12 +560,20 @@ impl SceneFile {
 }
 
 impl Scene {
-    /// Reads and validates a scene file; errors name the file, the item and its line. A
+    /// Reads and validates a scene file (TOML; JSON when its name ends in `.json`: module
+    /// `json`); errors name the file, the item and its line (JSON: no line). A
     /// file over [`crate::read::MAX_SCENE_BYTES`] (or a stream giving more) is refused
     /// before it is read in full.
     pub fn from_path(path: &Path) -> Result<Scene> {
         let text = crate::read::read_text(path, crate::read::MAX_SCENE_BYTES, "a scene file")?;
-        Self::from_str_named(&text, &path.display().to_string())
+        let name = path.display().to_string();
+        if path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+        {
+            return Self::from_json_named(&text, &name);
+        }
+        Self::from_str_named(&text, &name)
     }
 
     /// Parses and validates scene text; `name` labels error messages.
@@ -575,6 +603,18 @@ impl Scene {
         })?;
         let structure = file.validate(Some(text), name)?;
         Ok(Scene { structure, file })
+    }
+
+    /// The actuators of a stepped simulation of this scene: its `[[actuators]]` tables, or
+    /// every string then every cluster without limits (see [`actuators`](fn@actuators)).
+    pub fn actuators(&self) -> Result<Vec<tensegrity_dynamics::Actuator>> {
+        let tables: Vec<ActuatorSpec> = self
+            .file
+            .actuators
+            .iter()
+            .map(|a| a.get_ref().clone())
+            .collect();
+        actuators(&tables, &self.structure)
     }
 
     /// The runnable simulation of this scene: its structure with the `[simulation]`,

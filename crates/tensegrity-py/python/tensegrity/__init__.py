@@ -14,6 +14,10 @@ keywords, defaults and docstrings are the engine's own descriptions. Long comput
 with the GIL released and stop on Ctrl-C (:class:`~tensegrity.errors.Interrupted`, with the
 results so far). Bad input raises :class:`~tensegrity.errors.InputError` (a ``ValueError``)
 with the command line's message.
+
+A simulation a controller steps and steers is a :class:`Simulator` (``reset``, ``step`` with
+rest lengths or rates, ``get_state``/``set_state``, observations as numpy arrays); Gymnasium
+environments built on it are in :mod:`tensegrity.envs` (``pip install gymnasium``).
 """
 
 import copy as _copy
@@ -27,6 +31,7 @@ from ._commands import make_tipover as _make_tipover
 from ._commands import read_rows, sweep
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
+from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
 __version__ = "0.1.0"
@@ -34,7 +39,7 @@ __version__ = "0.1.0"
 __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
-    "Structure", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "Structure", "Simulator", "Observation", "Actuator", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
 

@@ -268,6 +268,10 @@ class Structure:
         "stiffness": 1e4, "damping": 100.0}``).
     actuation : list of dict, optional
         The scene's ``[[actuation]]`` tables.
+    actuators : list of dict, optional
+        The scene's ``[[actuators]]`` tables: the rest lengths a :class:`Simulator`'s actions
+        set and their limits, e.g. ``[{"strings": [0, 1], "min_length": 0.2, "max_rate":
+        0.1}]`` (default: every string, then every cluster, without limits).
 
     Raises
     ------
@@ -280,7 +284,7 @@ class Structure:
                  bar_material=None, stiffness=None, rest_length=None, damping=None,
                  string_material=None, materials=None, supports=None, loads=None,
                  gravity=None, velocities=None, simulation=None, ground=None, actuation=None,
-                 support_along=None, support_stiffness=None, support_displacement=None,
+                 actuators=None, support_along=None, support_stiffness=None, support_displacement=None,
                  bar_rest_length=None, bar_rest_length_change=None, rest_length_change=None,
                  bar_elastic=None, string_mass=None, masses=None, clusters=None,
                  cluster_stiffness=None, cluster_rest_length=None, cluster_damping=None,
@@ -327,7 +331,7 @@ class Structure:
                            else _matrix(velocities, 3, "velocities", np.float64))
         self.tables = {}
         for name, table in (("simulation", simulation), ("ground", ground),
-                            ("actuation", actuation)):
+                            ("actuation", actuation), ("actuators", actuators)):
             if table is not None:
                 self.tables[name] = table
         for a in (self.nodes, self.bars, self.strings, self.bar_mass, self.bar_radius,
@@ -416,8 +420,11 @@ class Structure:
     @classmethod
     def from_toml(cls, scene):
         """A structure from scene TOML text or a scene file's path (the io crate's reader:
-        errors name the file, the item and its line)."""
-        if isinstance(scene, os.PathLike) or ("\n" not in scene and "=" not in scene):
+        errors name the file, the item and its line); JSON of the same shape is read too
+        (a file whose name ends in ``.json``, or text starting with ``{``)."""
+        is_text = not isinstance(scene, os.PathLike) and (
+            "\n" in scene or "=" in scene or scene.lstrip().startswith("{"))
+        if not is_text:
             path = os.fspath(scene)
             try:
                 with open(path, encoding="utf-8") as f:
@@ -475,7 +482,8 @@ class Structure:
             cluster_friction=data.get("cluster_friction"),
             cluster_material=data.get("cluster_material"),
             cluster_rest_length_change=data.get("cluster_rest_length_change"),
-            **{t: data[t] for t in ("simulation", "ground", "actuation") if t in data},
+            **{t: data[t] for t in ("simulation", "ground", "actuation", "actuators")
+               if t in data},
         )
 
     def replace(self, **changes):
@@ -497,7 +505,8 @@ class Structure:
             clusters=self.clusters or None, cluster_stiffness=self.cluster_stiffness,
             cluster_rest_length=self.cluster_rest_length,
             cluster_damping=self.cluster_damping, cluster_friction=self.cluster_friction,
-            cluster_material=self.cluster_material, **self.tables)
+            cluster_material=self.cluster_material,
+            cluster_rest_length_change=self.cluster_rest_length_change, **self.tables)
         args.update(changes)
         return Structure(**args)
 
