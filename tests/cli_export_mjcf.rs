@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{run, scratch};
+use common::{assert_refused, run, scratch};
 use roxmltree::{Document, Node};
 
 /// Two bars sharing node 1 (a class-2 joint), one with a mass and one with a material's
@@ -301,9 +301,7 @@ fn what_mjcf_cannot_say_is_refused_naming_the_item() {
     ];
     for (scene, message) in cases {
         let o = export(&dir, &scene, &[]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{message}: {err}");
-        assert!(err.contains(message), "expected `{message}` in: {err}");
+        assert_refused(&o, message, message);
         assert!(o.stdout.is_empty());
     }
 }

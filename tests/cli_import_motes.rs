@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{json, run, scratch};
+use common::{assert_refused, json, run, scratch};
 use std::path::Path;
 
 /// One model in matrix form (the anchor scene's numbers).
@@ -173,9 +173,7 @@ fn bad_matrices_are_refused_naming_the_row() {
         let c = dir.join("C_b.txt");
         std::fs::write(&c, text).unwrap();
         let o = run(&["import", "motes", n.to_str().unwrap(), c.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{text}: {o:?}");
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(says), "{text}: {err}");
+        assert_refused(&o, text, says);
     }
 }
 

@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{json, run, scratch};
+use common::{assert_refused, json, run, scratch};
 
 /// A member of a written scene: its kind, its nodes, the numbers of its other keys by name.
 type Member = (String, [usize; 2], Vec<(String, f64)>);
@@ -154,9 +154,7 @@ fn bad_models_are_refused_naming_the_item() {
         let path = dir.join(format!("{name}.yaml"));
         std::fs::write(&path, text).unwrap();
         let o = run(&["import", "ntrt", path.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{name}: {o:?}");
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(says), "{name}: {err}");
+        assert_refused(&o, name, says);
     }
 }
 
@@ -478,9 +476,7 @@ fn bad_combined_models_are_refused_naming_the_item() {
         let path = dir.join(format!("{name}.yaml"));
         std::fs::write(&path, text).unwrap();
         let o = run(&["import", "ntrt", path.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{name}: {o:?}");
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(says), "{name}: {err}");
+        let err = assert_refused(&o, name, says);
         if name == "missing" {
             assert!(err.contains("nowhere/leg.yaml: cannot read"), "{err}");
         }
@@ -508,9 +504,7 @@ fn bad_combined_models_are_refused_naming_the_item() {
         )
         .unwrap();
         let o = run(&["import", "ntrt", path.to_str().unwrap()]);
-        assert_eq!(o.status.code(), Some(2), "{name}: {o:?}");
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(says), "{name}: {err}");
+        assert_refused(&o, name, says);
     }
 }
 

@@ -23,6 +23,15 @@ pub fn assert_ok(out: &Output) {
     );
 }
 
+/// Asserts the exit 2 of bad input and that stderr says `says` (`case` labels the failure);
+/// returns stderr.
+pub fn assert_refused(out: &Output, case: &str, says: &str) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{case}: {err}");
+    assert!(err.contains(says), "{case}: expected `{says}` in: {err}");
+    err
+}
+
 /// A fresh directory `tensegrity-PREFIX-NAME-PID` under the system's temporary directory.
 pub fn scratch(prefix: &str, name: &str) -> PathBuf {
     let dir =

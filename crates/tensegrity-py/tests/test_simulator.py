@@ -69,7 +69,7 @@ def test_actuator_limits_from_the_scene():
     assert sim.n_actuators == 1
     assert sim.actuators[0] == t.Actuator("string", 2, 1.6, np.inf, 0.1)
     r0 = sim.reset().rest_lengths[0]
-    o = sim.step([0.0], n_steps=100)             # 0.1 s at 0.1 m/s
+    o = sim.step([0.0], duration=0.1)            # 100 ticks at 0.1 m/s
     assert abs(o.rest_lengths[0] - (r0 - 0.01)) < 1e-12
     o = sim.step([-5.0], n_steps=1500, mode="rate")  # at the rate limit, to min_length
     assert abs(o.rest_lengths[0] - 1.6) < 1e-12
@@ -103,6 +103,8 @@ def test_bad_actions_are_named():
         sim.step(np.ones(9), mode="torque")
     with pytest.raises(ValueError, match="n_steps = 0"):
         sim.step(None, n_steps=0)
+    with pytest.raises(ValueError, match="not a whole number of ticks"):
+        sim.step(None, duration=0.0015)
     assert sim.t == 0.0
     with pytest.raises(t.InputError, match="actuators 0: string 40 does not exist"):
         t.Simulator(prism(actuators=[{"string": 40}]))

@@ -54,6 +54,12 @@ mod tests {
     use crate::scene::SceneSource;
     use tensegrity_dynamics::{Action, ActuatorTarget, IntegratorKind};
 
+    /// A bar hanging by a string from a pinned node (the scene's lines 1 to 9).
+    const BAR_ON_A_STRING: &str = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\n\
+                                   [[bars]]\nnodes = [0, 1]\nmass = 1.0\n\
+                                   [[strings]]\nnodes = [1, 2]\nstiffness = 10.0\n\
+                                   [[supports]]\nnode = 2\n";
+
     fn command(scene: SceneSource) -> SimulateCommand {
         SimulateCommand {
             scene: Some(scene),
@@ -79,11 +85,7 @@ mod tests {
 
     #[test]
     fn a_scene_without_a_step_or_tables_gets_a_tick_and_every_string() {
-        let text = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\n\
-                    [[bars]]\nnodes = [0, 1]\nmass = 1.0\n\
-                    [[strings]]\nnodes = [1, 2]\nstiffness = 10.0\n\
-                    [[supports]]\nnode = 2\n";
-        let mut c = command(SceneSource::parse(text));
+        let mut c = command(SceneSource::parse(BAR_ON_A_STRING));
         let (_, st) = stepper(&c).unwrap();
         assert_eq!((st.dt(), st.actuators().len()), (1e-3, 1));
         c.integrator = Some(IntegratorKind::Rk45);
@@ -93,10 +95,7 @@ mod tests {
 
     #[test]
     fn bad_actuator_tables_and_elastic_scenes_are_named() {
-        let base = "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\n\
-                    [[bars]]\nnodes = [0, 1]\nmass = 1.0\n\
-                    [[strings]]\nnodes = [1, 2]\nstiffness = 10.0\n\
-                    [[supports]]\nnode = 2\n";
+        let base = BAR_ON_A_STRING;
         let cases = [
             (
                 "[[actuators]]\nstring = 4\n",

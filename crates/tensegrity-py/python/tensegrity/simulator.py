@@ -135,9 +135,10 @@ class Simulator:
         self._native.reset(None if angle is None else float(angle))
         return self.observe()
 
-    def step(self, action=None, n_steps=1, *, mode="rest_length", observe=True):
-        """Advances ``n_steps`` ticks of ``dt`` and returns the observation (``None`` with
-        ``observe=False``).
+    def step(self, action=None, n_steps=None, *, duration=None, mode="rest_length",
+             observe=True):
+        """Advances ``n_steps`` ticks of ``dt`` (default 1), or ``duration`` seconds (a whole
+        number of ticks), and returns the observation (``None`` with ``observe=False``).
 
         ``action``: one value per actuator, the rest lengths (m) to reach at the end of the
         period (``mode="rest_length"``) or their rates (m/s, ``mode="rate"``); the rest
@@ -145,7 +146,15 @@ class Simulator:
         clamped to [min_length, max_length], then the change to max_rate × period; a rate
         to ±max_rate). ``None`` holds every rest length.
         """
-        n_steps = int(n_steps)
+        if duration is not None:
+            if n_steps is not None:
+                raise TypeError("step(): give n_steps or duration, not both")
+            ticks = float(duration) / self.dt
+            n_steps = round(ticks)
+            if not abs(ticks - n_steps) <= 1e-9 * max(1.0, ticks):
+                raise ValueError(f"duration = {duration}: not a whole number of ticks of "
+                                 f"dt = {self.dt}")
+        n_steps = 1 if n_steps is None else int(n_steps)
         if n_steps < 1:
             raise ValueError(f"n_steps = {n_steps}: must be at least 1")
         if action is None:
