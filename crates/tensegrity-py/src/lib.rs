@@ -32,9 +32,8 @@ use tensegrity_core::request::Category;
 use tensegrity_engine::value::{Map, Value};
 use worker::Stopped;
 
-/// What `simulate` hands back: the report, the sample times and node positions (raw f64
-/// bytes) and the node count.
-type SimulateResult = (Py<PyAny>, Py<PyAny>, Py<PyAny>, usize);
+/// What `simulate` hands back: the report and the samples ([`samples`]).
+type SimulateResult = (Py<PyAny>, Py<PyAny>);
 
 /// Keyword values as the engine's named values ([`convert::named`]).
 fn object(values: &Bound<'_, PyDict>) -> Result<Map<String, Value>, Failure> {
@@ -120,8 +119,35 @@ fn bytes(py: Python<'_>, xs: &[f64]) -> Py<PyAny> {
     PyBytes::new(py, &raw).into_any().unbind()
 }
 
-/// Runs `simulate` on `values` (`trajectory`: keep the node positions at the output times,
-/// as the CLI's `--out`): (report JSON, times bytes, positions bytes, nodes per sample).
+/// The samples of a run as a dict of raw f64 bytes and counts (`t`, `nodes`, `n_nodes`, and
+/// where recorded `velocities`, `member_forces` with `n_members`, `energy` (kinetic, total
+/// per sample), `contact_forces` with `contact_nodes`): `tensegrity._commands._samples`
+/// views them as numpy arrays.
+fn samples(py: Python<'_>, t: &runs::Trajectory) -> PyResult<Py<PyAny>> {
+    let d = PyDict::new(py);
+    d.set_item("t", bytes(py, &t.t))?;
+    d.set_item("nodes", bytes(py, &t.nodes))?;
+    d.set_item("n_nodes", t.n_nodes)?;
+    if !t.velocities.is_empty() {
+        d.set_item("velocities", bytes(py, &t.velocities))?;
+    }
+    if t.n_members > 0 {
+        d.set_item("member_forces", bytes(py, &t.member_forces))?;
+        d.set_item("n_members", t.n_members)?;
+    }
+    if !t.energy.is_empty() {
+        let flat: Vec<f64> = t.energy.iter().flatten().copied().collect();
+        d.set_item("energy", bytes(py, &flat))?;
+    }
+    if !t.contact_nodes.is_empty() {
+        d.set_item("contact_forces", bytes(py, &t.contact_forces))?;
+        d.set_item("contact_nodes", t.contact_nodes.clone())?;
+    }
+    Ok(d.into_any().unbind())
+}
+
+/// Runs `simulate` on `values` (`trajectory`: keep the samples at the output times, as the
+/// CLI's `--out`): (report, [`samples`]).
 #[pyfunction]
 fn simulate(
     py: Python<'_>,
@@ -133,23 +159,19 @@ fn simulate(
     let limits = raise(py, limits_of(limits))?;
     let prepared = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
     let outcome = worker::run(py, true, move || runs::simulate(prepared));
-    let samples = |t: &runs::Trajectory| (bytes(py, &t.t), bytes(py, &t.nodes), t.n_nodes);
     match outcome {
         Ok(o) => {
             if o.interrupted_at.is_some() {
                 let e = Failure::raw(Category::Interrupted, "interrupted").into_pyerr(py);
-                let _ = e.value(py).setattr("partial_raw", samples(&o.trajectory));
+                let _ = e
+                    .value(py)
+                    .setattr("partial_raw", samples(py, &o.trajectory)?);
                 return Err(e);
             }
             let r = report(py, &raise(py, o.report)?)?;
-            let (t, x, n) = samples(&o.trajectory);
-            Ok((r, t, x, n))
+            Ok((r, samples(py, &o.trajectory)?))
         }
-        Err(s) => Err(stopped(py, s, |o| {
-            samples(&o.trajectory)
-                .into_pyobject(py)
-                .map(|b| b.into_any().unbind())
-        })),
+        Err(s) => Err(stopped(py, s, |o| samples(py, &o.trajectory))),
     }
 }
 
@@ -166,21 +188,33 @@ fn roll(
     let c = raise(py, commands::find("roll"))?;
     raise(py, commands::admit(c, &values, &limits))?;
     let request = raise(py, runs::roll_request(values))?;
+    // the history's rows as raw f64 bytes (`_commands._history` views them)
+    let history = |rows: &[[f64; 9]]| {
+        let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+        bytes(py, &flat)
+    };
     match worker::run(py, true, move || runs::roll(request)) {
         Ok(o) => {
             let r = report(py, &raise(py, o.report)?)?;
+            let h = history(&o.history);
             match o.incomplete {
-                None => Ok(r),
+                None => Ok((r, h).into_pyobject(py)?.into_any().unbind()),
                 Some(f) => {
                     let e = f.into_pyerr(py);
-                    let _ = e.value(py).setattr("partial_raw", r);
+                    let _ = e.value(py).setattr("partial_raw", (r, h));
                     Err(e)
                 }
             }
         }
-        Err(s) => Err(stopped(py, s, |o| match o.report.ok() {
-            Some(v) => report(py, &v),
-            None => Ok(py.None()),
+        Err(s) => Err(stopped(py, s, |o| {
+            let r = match o.report.ok() {
+                Some(v) => report(py, &v)?,
+                None => py.None(),
+            };
+            Ok((r, history(&o.history))
+                .into_pyobject(py)?
+                .into_any()
+                .unbind())
         })),
     }
 }
@@ -304,5 +338,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<stepping::PyStepper>()?;
     m.add_class::<stepping::PyStepperState>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
+    m.add("ROLL_HISTORY_COLUMNS", runs::HISTORY_COLUMNS.to_vec())?;
     Ok(())
 }

@@ -13,7 +13,9 @@ use tensegrity_io::interrupt;
 use tensegrity_io::sink::RollingOutputs;
 use toroid::RollRequest;
 
-/// The samples of a run: times and node positions (row-major: sample, node, xyz).
+/// The samples of a run, as the CLI's `--out` CSV holds them: times, node positions
+/// (row-major: sample, node, xyz) and, where the scene records them (`[simulation] record`),
+/// velocities, member forces, energies and contact forces per sample.
 #[derive(Debug, Default)]
 pub struct Trajectory {
     /// Sample times (s).
@@ -22,6 +24,18 @@ pub struct Trajectory {
     pub nodes: Vec<f64>,
     /// Nodes per sample.
     pub n_nodes: usize,
+    /// Velocities, 3 per node per sample (m/s), if recorded.
+    pub velocities: Vec<f64>,
+    /// Axial forces per sample (N, tension positive: bars, strings, clusters), if recorded.
+    pub member_forces: Vec<f64>,
+    /// Members per sample.
+    pub n_members: usize,
+    /// Kinetic and total energy per sample (J), if recorded.
+    pub energy: Vec<[f64; 2]>,
+    /// The contact nodes (file numbering), if contact forces are recorded.
+    pub contact_nodes: Vec<usize>,
+    /// Contact forces, 3 per contact node per sample (N).
+    pub contact_forces: Vec<f64>,
     last_t: f64,
 }
 
@@ -35,6 +49,22 @@ impl SampleSink for Trajectory {
             self.t.push(sample.t);
             self.nodes
                 .extend(nodes.iter().flat_map(|n| [n.x, n.y, n.z]));
+            if let Some(v) = &sample.velocities {
+                self.velocities
+                    .extend(v.iter().flat_map(|n| [n.x, n.y, n.z]));
+            }
+            if let Some(f) = &sample.member_forces {
+                self.n_members = f.len();
+                self.member_forces.extend(f);
+            }
+            if let Some((kinetic, total)) = sample.energy {
+                self.energy.push([kinetic, total]);
+            }
+            if let Some(c) = &sample.contact_forces {
+                self.contact_nodes = c.iter().map(|(node, _)| *node).collect();
+                self.contact_forces
+                    .extend(c.iter().flat_map(|(_, f)| [f.x, f.y, f.z]));
+            }
         }
         self.last_t = sample.t;
         Ok(())
@@ -156,11 +186,62 @@ pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
     }
 }
 
+/// The columns of a rolling history, as the CLI's `roll --out` CSV names them.
+pub const HISTORY_COLUMNS: [&str; 9] = [
+    "t",
+    "axle_s",
+    "axle_h",
+    "omega",
+    "pivot_m",
+    "normal_N",
+    "tangential_N",
+    "energy_J",
+    "slip_m_s",
+];
+
+/// The observer of a rolling run from Python: every sample kept as a history row
+/// ([`HISTORY_COLUMNS`]), everything else handed to the run's outputs.
+struct History<'a> {
+    outputs: RollingOutputs<'a>,
+    rows: Vec<[f64; 9]>,
+}
+
+impl wheel_rolling::Observer for History<'_> {
+    fn sample(&mut self, s: &wheel_rolling::RollingSample) -> wheel_rolling::Flow {
+        self.rows.push([
+            s.t,
+            s.s,
+            s.h,
+            s.omega,
+            s.pivot,
+            s.normal,
+            s.tangential,
+            s.energy,
+            s.slip,
+        ]);
+        self.outputs.sample(s)
+    }
+
+    fn frame(&mut self, frame: &wheel_rolling::WheelFrame) -> wheel_rolling::Flow {
+        self.outputs.frame(frame)
+    }
+
+    fn keep_going(&mut self) -> bool {
+        self.outputs.keep_going()
+    }
+
+    fn keeps_frames(&self) -> bool {
+        self.outputs.keeps_frames()
+    }
+}
+
 /// What a rolling run gave: the report (JSON text, also when interrupted or stopped by its
-/// integration: the partial run's, as the CLI prints it) and how it ended.
+/// integration: the partial run's, as the CLI prints it), its history and how it ended.
 pub struct RollOutcome {
     /// The report.
     pub report: Result<Value, Failure>,
+    /// Every sample, a row of [`HISTORY_COLUMNS`] (those before a stop).
+    pub history: Vec<[f64; 9]>,
     /// Why the run is incomplete: interrupted, or stopped by its integration (the CLI's exit
     /// 1 message).
     pub incomplete: Option<Failure>,
@@ -180,19 +261,24 @@ pub fn roll_request(values: Map<String, Value>) -> Result<RollRequest, Failure> 
 /// Runs `roll` as the CLI does: observed, stopping on the interrupt flag (on the worker
 /// thread).
 pub fn roll(request: RollRequest) -> RollOutcome {
-    let mut outputs = RollingOutputs::new(None, None);
-    let run = toroid::roll_observed(&request, &[], Some(&mut outputs));
+    let mut observer = History {
+        outputs: RollingOutputs::new(None, None),
+        rows: Vec::new(),
+    };
+    let run = toroid::roll_observed(&request, &[], Some(&mut observer));
     let interrupted = interrupt::requested();
+    let history = std::mem::take(&mut observer.rows);
     let mut report = match run {
         Ok(r) => r,
         Err(e) => {
             return RollOutcome {
                 report: Err(Failure::new(e.category(), e.to_string())),
+                history,
                 incomplete: None,
             }
         }
     };
-    report.frames = outputs.take_frames();
+    report.frames = observer.outputs.take_frames();
     let incomplete = match (report.summary.stopped_at, interrupted) {
         (Some(_), true) => Some(Failure::new(Category::Interrupted, "interrupted")),
         (Some(t), false) => Some(Failure::new(
@@ -207,6 +293,7 @@ pub fn roll(request: RollRequest) -> RollOutcome {
     let json = conventional_json(&report);
     RollOutcome {
         report: json,
+        history,
         incomplete,
     }
 }

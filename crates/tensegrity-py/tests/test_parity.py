@@ -1,8 +1,8 @@
 """Every command from Python against the command line's ``--json`` on the same input: the
 same keys, every number equal to 1e-12 (relative, absolute below 1). The only keys left out
-are wall-clock timings (``wall_time_s``, conftest.TIMING_KEYS); ``simulate``'s ``t`` and
-``trajectory`` are compared with the CLI's ``--out`` CSV instead (the CLI writes the samples
-there)."""
+are wall-clock timings (``wall_time_s``, conftest.TIMING_KEYS); ``simulate``'s samples
+(``t``, ``trajectory`` and the histories the scene records) are compared with the CLI's
+``--out`` CSV instead (the CLI writes the samples there; test_simulate_histories.py)."""
 
 import csv
 import json
@@ -12,6 +12,18 @@ import pytest
 
 import tensegrity as tg
 from conftest import EXAMPLES, assert_same
+
+#: The per-sample histories ``simulate`` adds to the report (the CLI writes them to ``--out``).
+HISTORIES = ("velocities", "member_forces", "kinetic_energy", "energy", "contact_nodes",
+             "contact_forces")
+
+
+def pop_samples(py):
+    """``t``, ``trajectory``, and the histories taken out of a ``simulate`` result."""
+    t, traj = py.pop("t"), py.pop("trajectory")
+    for key in HISTORIES:
+        py.pop(key, None)
+    return t, traj
 
 
 def test_statics_prism(cli_json):
@@ -42,7 +54,7 @@ def test_simulate_report_and_trajectory(cli, tmp_path):
     assert code == 0, err
     ref = json.loads(stdout)
     py = tg.simulate(scene, t_end=0.2, integrator="rk45", rtol=1e-9)
-    t, traj = py.pop("t"), py.pop("trajectory")
+    t, traj = pop_samples(py)
     assert_same(py, ref)
     rows = [r for r in csv.reader(open(out)) if r and not r[0].startswith("#")]
     table = np.array(rows[1:], dtype=float)
@@ -70,7 +82,7 @@ def test_simulate_of_an_elastic_scene_is_the_clis(cli, tmp_path):
     assert code == 0, err
     ref = json.loads(stdout)
     py = tg.simulate(scene)
-    t, traj = py.pop("t"), py.pop("trajectory")
+    t, traj = pop_samples(py)
     assert_same(py, ref)
     assert ref["bar_length_drift"] == 0.0 and ref["valid"]
     rows = [r for r in csv.reader(open(out)) if r and not r[0].startswith("#")]
@@ -90,15 +102,41 @@ def test_toroid_angles_and_flags(cli_json):
                 cli_json("toroid", "--prism-only", "--rim-window"))
 
 
+def roll(**kw):
+    """``tg.roll`` without its ``history`` (the CLI writes it to ``--out``; compared in
+    test_roll_history_is_the_clis_csv)."""
+    out = tg.roll(**kw)
+    out.pop("history")
+    return out
+
+
 def test_roll_rigid_and_full(cli_json):
-    assert_same(tg.roll(fidelity="rigid", t_end=1.0, incline="40deg"),
+    assert_same(roll(fidelity="rigid", t_end=1.0, incline="40deg"),
                 cli_json("roll", "--fidelity", "rigid", "--t-end", "1", "--incline", "40deg"))
-    assert_same(tg.roll(fidelity="full", t_end=0.3),
+    assert_same(roll(fidelity="full", t_end=0.3),
                 cli_json("roll", "--fidelity", "full", "--t-end", "0.3"))
 
 
+def test_roll_history_is_the_clis_csv(cli, tmp_path):
+    out = tmp_path / "history.csv"
+    code, stdout, err = cli("roll", "--fidelity", "full", "--t-end", "0.3", "--out", out,
+                            "--json")
+    assert code == 0, err
+    py = tg.roll(fidelity="full", t_end=0.3)
+    rows = [r for r in csv.reader(open(out)) if r and not r[0].startswith("#")]
+    header, table = rows[0], np.array(rows[1:], dtype=float)
+    assert [h.split(" [")[0] for h in header] == list(py["history"])
+    for k, name in enumerate(py["history"]):
+        np.testing.assert_allclose(py["history"][name], table[:, k], rtol=1e-12, atol=1e-12)
+    # a history that means what it says: 1 ms samples, energy zero at the start, the axle
+    # going downhill
+    h = py["history"]
+    assert len(h["t"]) == 301 and np.allclose(np.diff(h["t"]), 1e-3, rtol=0, atol=1e-12)
+    assert h["energy_J"][0] == 0.0 and h["axle_s"][-1] > h["axle_s"][0]
+
+
 def test_roll_full_under_imex_ark(cli_json):
-    py = tg.roll(fidelity="full", t_end=0.3, integrator="imex-ark", incline="30deg", mu=1.2)
+    py = roll(fidelity="full", t_end=0.3, integrator="imex-ark", incline="30deg", mu=1.2)
     assert_same(py, cli_json("roll", "--fidelity", "full", "--t-end", "0.3",
                              "--integrator", "imex-ark", "--incline", "30deg", "--mu", "1.2"))
     # its own default step (wheel_rolling::defaults::IMEX_ARK_ROLL_DT), not the split's

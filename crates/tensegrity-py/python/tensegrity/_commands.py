@@ -182,25 +182,49 @@ def make_simulate(summary, doc_extra):
         keep = bool(bound.pop("trajectory", True))
         values = _given(bound)
         try:
-            out, t, x, n = _native.simulate(values, limits, keep)
+            out, raw = _native.simulate(values, limits, keep)
         except Interrupted as e:
-            raise _partial(e, lambda raw: _samples(*raw)) from None
+            raise _partial(e, _samples) from None
         if keep:
-            out.update(_samples(t, x, n))
+            out.update(_samples(raw))
         return out
 
     extra_doc = """\
     trajectory : bool, optional
-        Keep the node positions at the output times (the scene's, else ``output_interval``,
-        else t_end/200), as the command line's ``--out`` writes them: the result then also
-        holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True."""
+        Keep the samples at the output times (the scene's, else ``output_interval``, else
+        t_end/200), as the command line's ``--out`` writes them: the result then also holds
+        ``t`` (samples,) and ``trajectory`` (samples, nodes, 3, m), and what the scene's
+        ``[simulation] record`` lists: ``velocities`` (samples, nodes, 3, m/s),
+        ``member_forces`` (samples, members, N, tension positive: bars, strings, clusters),
+        ``kinetic_energy`` and ``energy`` (samples,, J), ``contact_nodes`` with
+        ``contact_forces`` (samples, contact nodes, 3, N). Default: True."""
     return finish(simulate, "simulate", sig, summary, params, doc_extra, extra_doc)
 
 
-def _samples(t, x, n):
-    t = np.frombuffer(t, dtype=np.float64).copy()
-    x = np.frombuffer(x, dtype=np.float64).copy()
-    return {"t": t, "trajectory": x.reshape(len(t), n, 3) if len(t) else x.reshape(0, n, 3)}
+def _samples(raw):
+    """The samples' arrays (read-only views of the bytes from Rust): ``t`` (S,),
+    ``trajectory`` (S, n, 3), and where the scene records them ``velocities`` (S, n, 3),
+    ``member_forces`` (S, m), ``kinetic_energy`` and ``energy`` (S,), ``contact_nodes`` (c,)
+    with ``contact_forces`` (S, c, 3)."""
+
+    def arr(key):
+        return np.frombuffer(raw[key], dtype=np.float64)
+
+    t, n = arr("t"), raw["n_nodes"]
+    s = len(t)
+    out = {"t": t, "trajectory": arr("nodes").reshape(s, n, 3)}
+    if "velocities" in raw:
+        out["velocities"] = arr("velocities").reshape(s, n, 3)
+    if "member_forces" in raw:
+        out["member_forces"] = arr("member_forces").reshape(s, raw["n_members"])
+    if "energy" in raw:
+        e = arr("energy").reshape(s, 2)
+        out["kinetic_energy"], out["energy"] = e[:, 0], e[:, 1]
+    if "contact_forces" in raw:
+        nodes = np.asarray(raw["contact_nodes"], dtype=np.int64)
+        out["contact_nodes"] = nodes
+        out["contact_forces"] = arr("contact_forces").reshape(s, len(nodes), 3)
+    return out
 
 
 def make_roll(summary, doc_extra):
@@ -212,11 +236,34 @@ def make_roll(summary, doc_extra):
         limits = _limits(bound)
         values = _given(bound)
         try:
-            return _native.roll(values, limits)
+            out, raw = _native.roll(values, limits)
         except (Interrupted, TensegrityError) as e:
-            raise _partial(e, lambda raw: raw) from None
+            raise _partial(e, _with_history) from None
+        out["history"] = _history(raw)
+        return out
 
-    return finish(roll, "roll", sig, summary, params, doc_extra)
+    extra_doc = """\
+    The result's ``history`` holds every sample (1 ms) as numpy arrays, the columns of the
+    command line's ``roll --out`` CSV: ``t`` (s), ``axle_s`` (m, downhill), ``axle_h`` (m),
+    ``omega`` (rad/s), ``pivot_m`` (m), ``normal_N`` and ``tangential_N`` (N),
+    ``energy_J`` (J, zero at the start), ``slip_m_s`` (m/s)."""
+    return finish(roll, "roll", sig, summary, params, doc_extra, extra_doc)
+
+
+def _history(raw):
+    """A rolling history's columns (read-only views of the bytes from Rust)."""
+    cols = _native.ROLL_HISTORY_COLUMNS
+    rows = np.frombuffer(raw, dtype=np.float64).reshape(-1, len(cols))
+    return {name: rows[:, k] for k, name in enumerate(cols)}
+
+
+def _with_history(raw):
+    """The partial result of a stopped roll: its report (if any) with its history."""
+    report, history = raw
+    if report is None:
+        return None
+    report["history"] = _history(history)
+    return report
 
 
 def make_tipover(summary, doc_extra):
