@@ -149,16 +149,25 @@ fn samples(py: Python<'_>, t: &runs::Trajectory) -> PyResult<Py<PyAny>> {
 /// Runs `simulate` on `values` (`trajectory`: keep the samples at the output times, as the
 /// CLI's `--out`): (report, [`samples`]).
 #[pyfunction]
+#[pyo3(signature = (values, limits, trajectory, progress = None))]
 fn simulate(
     py: Python<'_>,
     values: &Bound<'_, PyDict>,
     limits: &Bound<'_, PyDict>,
     trajectory: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<SimulateResult> {
     let values = raise(py, object(values))?;
     let limits = raise(py, limits_of(limits))?;
     let prepared = raise(py, runs::prepare_simulation(values, trajectory, &limits))?;
-    let outcome = worker::run(py, true, move || runs::simulate(prepared));
+    let watch = progress.map(|cb| worker::Watch::new(prepared.t_end(), cb));
+    let counter = watch.as_ref().map(worker::Watch::counter);
+    let outcome = worker::run_watched(
+        py,
+        true,
+        move || runs::simulate(prepared, counter),
+        watch.as_ref(),
+    );
     match outcome {
         Ok(o) => {
             if o.interrupted_at.is_some() {
@@ -178,10 +187,12 @@ fn simulate(
 /// Runs `roll` on `values` as the CLI does (observed, stopping on Ctrl-C): the report JSON;
 /// an interrupted or stopped run raises with the partial report in `partial_raw`.
 #[pyfunction]
+#[pyo3(signature = (values, limits, progress = None))]
 fn roll(
     py: Python<'_>,
     values: &Bound<'_, PyDict>,
     limits: &Bound<'_, PyDict>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Py<PyAny>> {
     let values = raise(py, object(values))?;
     let limits = raise(py, limits_of(limits))?;
@@ -193,7 +204,15 @@ fn roll(
         let flat: Vec<f64> = rows.iter().flatten().copied().collect();
         bytes(py, &flat)
     };
-    match worker::run(py, true, move || runs::roll(request)) {
+    let watch = progress.map(|cb| worker::Watch::new(request.t_end, cb));
+    let counter = watch.as_ref().map(worker::Watch::counter);
+    let outcome = worker::run_watched(
+        py,
+        true,
+        move || runs::roll(request, counter),
+        watch.as_ref(),
+    );
+    match outcome {
         Ok(o) => {
             let r = report(py, &raise(py, o.report)?)?;
             let h = history(&o.history);

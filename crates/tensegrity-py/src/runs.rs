@@ -3,6 +3,8 @@
 //! line, stopping at their next step once the interrupt flag is set, with the results so far.
 
 use crate::errors::Failure;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 use tensegrity_core::request::{Categorized, Category, Request};
 use tensegrity_core::CoreError;
 use tensegrity_dynamics::{Sample, SampleSink};
@@ -36,6 +38,8 @@ pub struct Trajectory {
     pub contact_nodes: Vec<usize>,
     /// Contact forces, 3 per contact node per sample (N).
     pub contact_forces: Vec<f64>,
+    /// Where the simulated time goes for a progress report (f64 bits).
+    pub progress: Option<Arc<AtomicU64>>,
     last_t: f64,
 }
 
@@ -72,6 +76,12 @@ impl SampleSink for Trajectory {
 
     fn keep_going(&mut self) -> bool {
         !interrupt::requested()
+    }
+
+    fn progress(&mut self, t: f64) {
+        if let Some(p) = &self.progress {
+            p.store(t.to_bits(), Ordering::Relaxed);
+        }
     }
 }
 
@@ -134,6 +144,16 @@ pub struct PreparedSimulation {
     simulation: Run,
 }
 
+impl PreparedSimulation {
+    /// The end time of the run (s): the total of its progress.
+    pub fn t_end(&self) -> f64 {
+        match &self.simulation {
+            Run::Rigid(s) => s.settings.t_end,
+            Run::Elastic(run) => run.settings.t_end,
+        }
+    }
+}
+
 /// A rigid-bar or an elastic run.
 enum Run {
     Rigid(tensegrity_dynamics::Simulation),
@@ -142,13 +162,16 @@ enum Run {
 
 /// Runs a prepared simulation (on the worker thread) as the CLI does: with
 /// `convergence_check` its refined run beside it, the report with its `convergence`.
-pub fn simulate(prepared: PreparedSimulation) -> SimulateOutcome {
+pub fn simulate(prepared: PreparedSimulation, progress: Option<Arc<AtomicU64>>) -> SimulateOutcome {
     let PreparedSimulation {
         command,
         scene,
         simulation,
     } = prepared;
-    let mut trajectory = Trajectory::default();
+    let mut trajectory = Trajectory {
+        progress,
+        ..Trajectory::default()
+    };
     let source = command
         .source()
         .map(ToString::to_string)
@@ -204,6 +227,8 @@ pub const HISTORY_COLUMNS: [&str; 9] = [
 struct History<'a> {
     outputs: RollingOutputs<'a>,
     rows: Vec<[f64; 9]>,
+    /// Where the simulated time goes for a progress report (f64 bits).
+    progress: Option<Arc<AtomicU64>>,
 }
 
 impl wheel_rolling::Observer for History<'_> {
@@ -219,6 +244,9 @@ impl wheel_rolling::Observer for History<'_> {
             s.energy,
             s.slip,
         ]);
+        if let Some(p) = &self.progress {
+            p.store(s.t.to_bits(), Ordering::Relaxed);
+        }
         self.outputs.sample(s)
     }
 
@@ -260,10 +288,11 @@ pub fn roll_request(values: Map<String, Value>) -> Result<RollRequest, Failure> 
 
 /// Runs `roll` as the CLI does: observed, stopping on the interrupt flag (on the worker
 /// thread).
-pub fn roll(request: RollRequest) -> RollOutcome {
+pub fn roll(request: RollRequest, progress: Option<Arc<AtomicU64>>) -> RollOutcome {
     let mut observer = History {
         outputs: RollingOutputs::new(None, None),
         rows: Vec::new(),
+        progress,
     };
     let run = toroid::roll_observed(&request, &[], Some(&mut observer));
     let interrupted = interrupt::requested();

@@ -13,8 +13,9 @@
 //! releases its file) before it clears the flag and starts.
 
 use pyo3::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
+use std::sync::Arc;
 use std::sync::Mutex;
 use std::time::Duration;
 use tensegrity_io::interrupt;
@@ -67,9 +68,61 @@ pub enum Stopped<T> {
     Panic(String),
 }
 
+/// The progress of long work as Python sees it: the work stores how far it is (an f64's
+/// bits: simulated time, cases) in `done`; the waiting thread calls `callback(done, total)`
+/// at most every [`POLL`] when it changed, and once at the end.
+pub struct Watch {
+    /// How far the work is (f64 bits), written by the work.
+    pub done: Arc<AtomicU64>,
+    /// Where it ends.
+    pub total: f64,
+    /// `callback(done, total)`; an exception it raises stops the work as Ctrl-C does.
+    pub callback: Py<PyAny>,
+}
+
+impl Watch {
+    /// A watch of work that ends at `total`, reporting to `callback`.
+    pub fn new(total: f64, callback: Py<PyAny>) -> Self {
+        Self {
+            done: Arc::new(AtomicU64::new(0f64.to_bits())),
+            total,
+            callback,
+        }
+    }
+
+    /// The counter the work writes.
+    pub fn counter(&self) -> Arc<AtomicU64> {
+        self.done.clone()
+    }
+
+    /// Calls the callback if the work moved since `last` (its bits); returns the new bits.
+    fn report(&self, py: Python<'_>, last: u64) -> PyResult<u64> {
+        let bits = self.done.load(Ordering::Relaxed);
+        if bits != last {
+            self.callback
+                .call1(py, (f64::from_bits(bits), self.total))?;
+        }
+        Ok(bits)
+    }
+}
+
 /// Runs `work` on its own thread with the GIL released (module docs); `polls`: the work
 /// stops on the interrupt flag.
 pub fn run<T, F>(py: Python<'_>, polls: bool, work: F) -> Result<T, Stopped<T>>
+where
+    T: Send + 'static,
+    F: FnOnce() -> T + Send + 'static,
+{
+    run_watched(py, polls, work, None)
+}
+
+/// [`run`] with its progress reported to a Python callback ([`Watch`]).
+pub fn run_watched<T, F>(
+    py: Python<'_>,
+    polls: bool,
+    work: F,
+    watch: Option<&Watch>,
+) -> Result<T, Stopped<T>>
 where
     T: Send + 'static,
     F: FnOnce() -> T + Send + 'static,
@@ -105,15 +158,26 @@ where
             .unwrap_or_default();
         Stopped::Panic(msg)
     };
+    let mut last = 0f64.to_bits();
     loop {
         match py.detach(|| recv(POLL)) {
-            Ok(result) => return result.map_err(panicked),
+            Ok(result) => {
+                if let Some(w) = watch {
+                    // the last report: where the work ended (an error here is the caller's)
+                    let _ = w.report(py, last);
+                }
+                return result.map_err(panicked);
+            }
             Err(RecvTimeoutError::Disconnected) => {
                 return Err(Stopped::Panic("the work ended without a result".into()))
             }
             Err(RecvTimeoutError::Timeout) => {}
         }
-        if let Err(signal) = py.check_signals() {
+        let reported = match watch {
+            Some(w) => w.report(py, last).map(|bits| last = bits),
+            None => Ok(()),
+        };
+        if let Err(signal) = reported.and_then(|()| py.check_signals()) {
             interrupt::request();
             let partial = py.detach(|| recv(STOP_WAIT)).ok();
             if POLLING.load(Ordering::SeqCst) == 0 {

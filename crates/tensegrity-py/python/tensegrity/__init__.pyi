@@ -2,7 +2,7 @@
 ``python -m tensegrity._stubgen``; do not edit by hand)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -97,6 +97,7 @@ def simulate(
     strict: bool = ...,
     convergence_check: bool = ...,
     trajectory: bool = ...,
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -141,7 +142,9 @@ def simulate(
         chaotic quantities), in parallel, and report each headline quantity's change,
         extrapolated error and status in `convergence`; an unconverged result is not valid
     trajectory : bool, optional
-        Keep the node positions at the output times: the result also holds ``t`` (samples,) and ``trajectory`` (samples, nodes, 3). Default: True.
+        Keep the samples at the output times: the result also holds ``t`` (samples,), ``trajectory`` (samples, nodes, 3) and the histories the scene records (``velocities``, ``member_forces``, ``kinetic_energy``, ``energy``, ``contact_nodes``, ``contact_forces``). Default: True.
+    progress : callable or bool, optional
+        ``callback(done, total)`` (simulated seconds, end time) while the run goes on; ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -258,6 +261,7 @@ def roll(
     strict: bool = ...,
     convergence_check: bool = ...,
     ensemble: int = ...,
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -337,6 +341,9 @@ def roll(
         Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in
         parallel) and report the mean and 95 % interval of every headline quantity against
         the other model (0: none); must be finite. Default: 0
+    The result's ``history``: every 1 ms sample (``t``, ``axle_s``, ``axle_h``, ``omega``, ``pivot_m``, ``normal_N``, ``tangential_N``, ``energy_J``, ``slip_m_s``) as arrays.
+    progress : callable or bool, optional
+        ``callback(done, total)`` (simulated seconds, end time) while the run goes on; ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).

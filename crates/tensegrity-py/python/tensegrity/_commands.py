@@ -173,18 +173,21 @@ def docstring(summary, params, doc_extra="", extra_doc=""):
 
 def make_simulate(summary, doc_extra):
     params = REGISTRY["simulate"]["params"]
-    extra = (("trajectory", True),)
+    extra = (("trajectory", True), ("progress", None))
     sig = _signature(params, ("scene",), extra)
 
     def simulate(*args, **kwargs):
         bound = _call("simulate", sig, args, kwargs)
         limits = _limits(bound)
         keep = bool(bound.pop("trajectory", True))
+        report = _reporter(bound.pop("progress", None), "simulate", "s simulated")
         values = _given(bound)
         try:
-            out, raw = _native.simulate(values, limits, keep)
+            out, raw = _native.simulate(values, limits, keep, report)
         except Interrupted as e:
             raise _partial(e, _samples) from None
+        finally:
+            _close(report)
         if keep:
             out.update(_samples(raw))
         return out
@@ -197,7 +200,9 @@ def make_simulate(summary, doc_extra):
         ``[simulation] record`` lists: ``velocities`` (samples, nodes, 3, m/s),
         ``member_forces`` (samples, members, N, tension positive: bars, strings, clusters),
         ``kinetic_energy`` and ``energy`` (samples,, J), ``contact_nodes`` with
-        ``contact_forces`` (samples, contact nodes, 3, N). Default: True."""
+        ``contact_forces`` (samples, contact nodes, 3, N). Default: True.
+    progress : callable or bool, optional
+        """ + PROGRESS_DOC
     return finish(simulate, "simulate", sig, summary, params, doc_extra, extra_doc)
 
 
@@ -227,18 +232,81 @@ def _samples(raw):
     return out
 
 
+#: The documentation of the ``progress`` keyword.
+PROGRESS_DOC = """Reports the progress of the run: ``callback(done, total)`` (simulated seconds
+        and the end time) at most every 50 ms while it runs and once at its end, from the
+        calling thread (an exception it raises stops the run as Ctrl-C does, with the
+        results so far); ``True``: a ``tqdm`` bar (``tqdm.auto``, in notebooks too) when tqdm
+        is installed, else a line on stderr every few seconds. Default: none."""
+
+
+def _reporter(progress, what, unit):
+    """The callback of a ``progress`` keyword (``None`` for none)."""
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return _LineReporter(what, unit)
+    return _TqdmReporter(tqdm, what, unit)
+
+
+def _close(report):
+    close = getattr(report, "close", None)
+    if close is not None:
+        close()
+
+
+class _TqdmReporter:
+    """A tqdm bar fed by ``(done, total)`` calls."""
+
+    def __init__(self, tqdm, what, unit):
+        self.tqdm, self.what, self.unit, self.bar = tqdm, what, unit, None
+
+    def __call__(self, done, total):
+        if self.bar is None:
+            self.bar = self.tqdm(total=total, desc=self.what, unit=self.unit.split()[0])
+        self.bar.update(done - self.bar.n)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.close()
+
+
+class _LineReporter:
+    """A line on stderr every few seconds: ``simulate: 42 % (0.42 of 1 s simulated)``."""
+
+    def __init__(self, what, unit, every=5.0):
+        self.what, self.unit, self.every, self.last = what, unit, every, None
+
+    def __call__(self, done, total):
+        import sys
+        import time
+        now = time.monotonic()
+        if self.last is None or now - self.last >= self.every or done >= total:
+            self.last = now
+            percent = 100.0 * done / total if total > 0 else 100.0
+            print(f"{self.what}: {percent:.0f} % ({done:g} of {total:g} {self.unit})",
+                  file=sys.stderr)
+
+
 def make_roll(summary, doc_extra):
     params = REGISTRY["roll"]["params"]
-    sig = _signature(params)
+    sig = _signature(params, (), (("progress", None),))
 
     def roll(*args, **kwargs):
         bound = _call("roll", sig, args, kwargs)
         limits = _limits(bound)
+        report = _reporter(bound.pop("progress", None), "roll", "s simulated")
         values = _given(bound)
         try:
-            out, raw = _native.roll(values, limits)
+            out, raw = _native.roll(values, limits, report)
         except (Interrupted, TensegrityError) as e:
             raise _partial(e, _with_history) from None
+        finally:
+            _close(report)
         out["history"] = _history(raw)
         return out
 
@@ -246,7 +314,10 @@ def make_roll(summary, doc_extra):
     The result's ``history`` holds every sample (1 ms) as numpy arrays, the columns of the
     command line's ``roll --out`` CSV: ``t`` (s), ``axle_s`` (m, downhill), ``axle_h`` (m),
     ``omega`` (rad/s), ``pivot_m`` (m), ``normal_N`` and ``tangential_N`` (N),
-    ``energy_J`` (J, zero at the start), ``slip_m_s`` (m/s)."""
+    ``energy_J`` (J, zero at the start), ``slip_m_s`` (m/s).
+
+    progress : callable or bool, optional
+        """ + PROGRESS_DOC
     return finish(roll, "roll", sig, summary, params, doc_extra, extra_doc)
 
 

@@ -25,7 +25,7 @@ _HEAD = '''"""Type stubs of the package ``tensegrity`` (generated from the engin
 ``python -m tensegrity._stubgen``; do not edit by hand)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -94,14 +94,24 @@ def stubs():
     scene = "``scene`` is a scene file's path, the TOML text of a scene, or a Structure."
     out.append(function("statics", ["statics"], SUMMARIES["statics"] + "\n\n" + scene,
                         positional=("scene",)))
+    progress = ("progress", "Union[bool, Callable[[float, float], Any], None]")
+    progress_doc = ("progress : callable or bool, optional\n    ``callback(done, total)`` "
+                    "(simulated seconds, end time) while the run goes on; ``True``: a tqdm bar, "
+                    "else lines on stderr. Default: none.")
     out.append(function(
         "simulate", ["simulate"], SUMMARIES["simulate"] + "\n\n" + scene, positional=("scene",),
-        extra=(("trajectory", "bool"),),
-        extra_doc="trajectory : bool, optional\n    Keep the node positions at the output "
-                  "times: the result also holds ``t`` (samples,) and ``trajectory`` "
-                  "(samples, nodes, 3). Default: True."))
+        extra=(("trajectory", "bool"), progress),
+        extra_doc="trajectory : bool, optional\n    Keep the samples at the output times: the "
+                  "result also holds ``t`` (samples,), ``trajectory`` (samples, nodes, 3) and "
+                  "the histories the scene records (``velocities``, ``member_forces``, "
+                  "``kinetic_energy``, ``energy``, ``contact_nodes``, ``contact_forces``). "
+                  "Default: True.\n" + progress_doc))
     out.append(function("toroid", ["toroid"], SUMMARIES["toroid"]))
-    out.append(function("roll", ["roll"], SUMMARIES["roll"]))
+    out.append(function(
+        "roll", ["roll"], SUMMARIES["roll"], extra=(progress,),
+        extra_doc="The result's ``history``: every 1 ms sample (``t``, ``axle_s``, ``axle_h``, "
+                  "``omega``, ``pivot_m``, ``normal_N``, ``tangential_N``, ``energy_J``, "
+                  "``slip_m_s``) as arrays.\n" + progress_doc))
     out.append(function(
         "tipover", ["tipover", "tipover_dynamic", "tipover_rolling"], SUMMARIES["tipover"],
         extra=(("dynamic", "bool"), ("rolling", "bool")),
