@@ -31,6 +31,7 @@ from ._commands import make_tipover as _make_tipover
 from ._commands import read_rows, sweep
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
+from .results import Result
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -39,7 +40,7 @@ __version__ = "0.1.0"
 __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
-    "Structure", "Simulator", "Observation", "Actuator", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "Structure", "Simulator", "Observation", "Actuator", "Result", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
 
@@ -114,3 +115,15 @@ def commands():
     """The engine's registry: ``{name: {"params": [...], "columns": [...], "aliases": [...]}}``
     with every parameter's name, kind, choices, unit, help, rule and default."""
     return _copy.deepcopy(_REGISTRY)
+
+
+def _export_results():
+    """The result classes (:mod:`tensegrity.results`) as names of the package."""
+    from . import results
+    for name in results.COMMANDS:
+        cls = results.result_class(name)
+        globals()[cls.__name__] = cls
+        __all__.append(cls.__name__)
+
+
+_export_results()

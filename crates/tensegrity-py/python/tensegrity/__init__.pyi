@@ -20,6 +20,625 @@ Scene = Union[str, "os.PathLike[str]", Structure]
 Size = Union[float, str, None]
 
 
+class Result(Dict[str, Any]):
+    """A command's report: a dict whose keys are also attributes."""
+    def __getattr__(self, name: str) -> Any: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+
+
+class StaticsResult(Result):
+    """The result of :func:`tensegrity.statics`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    nodes
+    bars
+    strings
+    rank
+    self_stress_dim
+    mechanisms
+    internal_mechanisms
+    prestressable
+    prestress_margin
+    prestress_stable
+    smallest_singular_value
+    rank_tolerance
+    input_rounding : float [m]
+    residual : float [N]
+    load_carried
+    mass_kg : float [kg]
+    sizing_warning
+    modal_error
+    sizing_error
+    statics_method
+    statics_warning
+    spectral_gap.tolerance
+    spectral_gap.sigma_above
+    spectral_gap.sigma_below
+    spectral_gap.ratio
+    spectral_gap.block
+    """
+    nodes: Any
+    bars: Any
+    strings: Any
+    rank: Any
+    self_stress_dim: Any
+    mechanisms: Any
+    internal_mechanisms: Any
+    prestressable: Any
+    prestress_margin: Any
+    prestress_stable: Any
+    smallest_singular_value: Any
+    rank_tolerance: Any
+    input_rounding: float
+    residual: float
+    load_carried: Any
+    mass_kg: float
+    sizing_warning: Any
+    modal_error: Any
+    sizing_error: Any
+    statics_method: Any
+    statics_warning: Any
+
+
+class SimulateResult(Result):
+    """The result of :func:`tensegrity.simulate`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    t_end : float [s]
+    steps
+    rhs_evals
+    energy_drift
+    bar_length_drift : float [m]
+    constraint_drift : float [m]
+    wall_time_s : float [s]
+    valid
+    convergence.refinement
+    convergence.converged
+    convergence.companion
+    convergence.order
+    convergence.cost
+    t : ndarray (samples,) s
+        sample times
+    trajectory : ndarray (samples, nodes, 3) m
+        node positions
+    velocities : ndarray (samples, nodes, 3) m/s
+        node velocities, if recorded
+    member_forces : ndarray (samples, members) N
+        axial forces, tension positive (bars, strings, clusters), if recorded
+    kinetic_energy : ndarray (samples,) J
+        kinetic energy, if recorded
+    energy : ndarray (samples,) J
+        total energy, if recorded
+    contact_nodes : ndarray (contact nodes,)
+        the nodes that can touch the ground
+    contact_forces : ndarray (samples, contact nodes, 3) N
+        ground forces, if recorded
+    """
+    t_end: float
+    steps: Any
+    rhs_evals: Any
+    energy_drift: Any
+    bar_length_drift: float
+    constraint_drift: float
+    wall_time_s: float
+    valid: Any
+    t: np.ndarray
+    trajectory: np.ndarray
+    velocities: np.ndarray
+    member_forces: np.ndarray
+    kinetic_energy: np.ndarray
+    energy: np.ndarray
+    contact_nodes: np.ndarray
+    contact_forces: np.ndarray
+
+
+class ToroidResult(Result):
+    """The result of :func:`tensegrity.toroid`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    nodes
+    bars
+    strings
+    stabilize
+    rank
+    self_stress_dim
+    prestressable
+    prestress_margin
+    internal_mechanisms
+    mass_kg : float [kg]
+    I1 : float [kg m^2]
+    spectral_gap.tolerance
+    spectral_gap.sigma_above
+    spectral_gap.sigma_below
+    spectral_gap.ratio
+    spectral_gap.block
+    statics_warning
+    """
+    nodes: Any
+    bars: Any
+    strings: Any
+    stabilize: Any
+    rank: Any
+    self_stress_dim: Any
+    prestressable: Any
+    prestress_margin: Any
+    internal_mechanisms: Any
+    mass_kg: float
+    I1: float
+    statics_warning: Any
+
+
+class RollResult(Result):
+    """The result of :func:`tensegrity.roll`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    fidelity
+    fidelity_reason
+    contact
+    sides
+    incline_rad : float [rad]
+    t_end : float [s]
+    mass_kg : float [kg]
+    I1 : float [kg m^2]
+    mu
+    restitution
+    ground_damping : float [N s/m]
+    integrator
+    dt : float [s]
+    valid
+    impacts
+    first_impact.t : float [s]
+    first_impact.omega_before : float [rad/s]
+    first_impact.omega_after : float [rad/s]
+    axle_height_oscillation : float [m]
+    mean_axle_height : float [m]
+    mean_speed : float [m/s]
+    final_speed : float [m/s]
+    max_reaction : float [N]
+    min_normal_force : float [N]
+    airborne_fraction
+    slip_fraction
+    max_penetration : float [m]
+    energy_balance_error
+    lift_off_time : float [s]
+    required_friction
+    mean_slip_speed : float [m/s]
+    convergence.refinement
+    convergence.converged
+    convergence.companion
+    convergence.order
+    convergence.cost
+    history : ndarray dict of (samples,) arrays
+        every 1 ms sample: t [s], axle_s [m], axle_h [m], omega [rad/s], pivot_m [m], normal_N [N], tangential_N [N], energy_J [J], slip_m_s [m/s]
+    """
+    fidelity: Any
+    fidelity_reason: Any
+    contact: Any
+    sides: Any
+    incline_rad: float
+    t_end: float
+    mass_kg: float
+    I1: float
+    mu: Any
+    restitution: Any
+    ground_damping: float
+    integrator: Any
+    dt: float
+    valid: Any
+    impacts: Any
+    axle_height_oscillation: float
+    mean_axle_height: float
+    mean_speed: float
+    final_speed: float
+    max_reaction: float
+    min_normal_force: float
+    airborne_fraction: Any
+    slip_fraction: Any
+    max_penetration: float
+    energy_balance_error: Any
+    lift_off_time: float
+    required_friction: Any
+    mean_slip_speed: float
+    history: Dict[str, np.ndarray]
+
+
+class TipoverResult(Result):
+    """The result of :func:`tensegrity.tipover`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    mass_kg : float [kg]
+    rho
+    epsilon
+    sigma
+    cot_theta
+    critical_lateral_force : float [N]
+    normalized_friction
+    min_friction_to_tip
+    sides
+    outer_tread : float [m]
+    hub_height : float [m]
+    static_threshold : float [N]
+    dynamic_threshold : float [N]
+    relative_difference
+    max_lean : float [rad]
+    final_lean : float [rad]
+    static_tip_angle : float [rad]
+    tipped
+    tip_time : float [s]
+    max_penetration : float [m]
+    valid
+    convergence.refinement
+    convergence.converged
+    convergence.companion
+    convergence.order
+    convergence.cost
+    static_critical_side_slope : float [rad]
+    rms_lean : float [rad]
+    fell
+    fall_time : float [s]
+    downhill : float [m]
+    """
+    mass_kg: float
+    rho: Any
+    epsilon: Any
+    sigma: Any
+    cot_theta: Any
+    critical_lateral_force: float
+    normalized_friction: Any
+    min_friction_to_tip: Any
+    sides: Any
+    outer_tread: float
+    hub_height: float
+    static_threshold: float
+    dynamic_threshold: float
+    relative_difference: Any
+    max_lean: float
+    final_lean: float
+    static_tip_angle: float
+    tipped: Any
+    tip_time: float
+    max_penetration: float
+    valid: Any
+    static_critical_side_slope: float
+    rms_lean: float
+    fell: Any
+    fall_time: float
+    downhill: float
+
+
+class MichellResult(Result):
+    """The result of :func:`tensegrity.michell`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    params.complexity
+    params.r0 : float [m]
+    params.beta : float [rad]
+    params.phi : float [rad]
+    params.geometry.kind
+    params.geometry.delta
+    params.geometry.epsilon : float [rad]
+    method
+    material
+    prestress : float [N]
+    mass_kg.yield : float [kg]
+    mass_kg.yield_buckling : float [kg]
+    normalized_yield_mass
+    """
+    method: Any
+    material: Any
+    prestress: float
+    normalized_yield_mass: Any
+
+
+class MichellOptimizeResult(Result):
+    """The result of :func:`tensegrity.michell_optimize`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    geometry.kind
+    geometry.delta
+    geometry.epsilon : float [rad]
+    radius_ratio
+    beta : float [rad]
+    phi : float [rad]
+    complexity
+    mass_kg : float [kg]
+    member_mass_kg : float [kg]
+    joint_mass_kg : float [kg]
+    joints
+    normalized_yield_mass
+    continuum_normalized_mass
+    planar_mass_kg : float [kg]
+    mass_penalty
+    searched_to
+    """
+    radius_ratio: Any
+    beta: float
+    phi: float
+    complexity: Any
+    mass_kg: float
+    member_mass_kg: float
+    joint_mass_kg: float
+    joints: Any
+    normalized_yield_mass: Any
+    continuum_normalized_mass: Any
+    planar_mass_kg: float
+    mass_penalty: Any
+    searched_to: Any
+
+
+class MichellTableResult(Result):
+    """The result of :func:`tensegrity.michell_table`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    """
+
+
+class TbarResult(Result):
+    """The result of :func:`tensegrity.tbar`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    params.michell.complexity
+    params.michell.r0 : float [m]
+    params.michell.beta : float [rad]
+    params.michell.phi : float [rad]
+    params.michell.geometry.kind
+    params.michell.geometry.delta
+    params.michell.geometry.epsilon : float [rad]
+    params.bar_base
+    params.layout.kind
+    params.layout.offset : float [m]
+    params.rim
+    nodes
+    bars
+    rim
+    rim_bars
+    strings
+    treads
+    rank
+    self_stress_dim
+    mechanisms
+    internal_mechanisms
+    statics_method
+    prestressable
+    prestress_margin
+    load : float [N]
+    ea : float [N]
+    min_prestress : float [N]
+    critical_member.member
+    critical_member.kind
+    critical_member.index
+    critical_member.tread
+    critical_member.azimuth : float [rad]
+    critical_member.polar : float [rad]
+    prestress : float [N]
+    slack_fraction
+    bar_always_compressed
+    min_strings_carrying
+    bar_always_carries
+    mass_kg : float [kg]
+    mass.material
+    mass.mass_kg : float [kg]
+    mass.yield_mass_kg : float [kg]
+    mass.michell_mass_kg : float [kg]
+    mass.mass_ratio
+    envelope_carried
+    spectral_gap.tolerance
+    spectral_gap.sigma_above
+    spectral_gap.sigma_below
+    spectral_gap.ratio
+    spectral_gap.block
+    statics_warning
+    """
+    nodes: Any
+    bars: Any
+    rim: Any
+    rim_bars: Any
+    strings: Any
+    treads: Any
+    rank: Any
+    self_stress_dim: Any
+    mechanisms: Any
+    internal_mechanisms: Any
+    statics_method: Any
+    prestressable: Any
+    prestress_margin: Any
+    load: float
+    ea: float
+    min_prestress: float
+    prestress: float
+    slack_fraction: Any
+    bar_always_compressed: Any
+    min_strings_carrying: Any
+    bar_always_carries: Any
+    mass_kg: float
+    envelope_carried: Any
+    statics_warning: Any
+
+
+class TbarRollResult(Result):
+    """The result of :func:`tensegrity.tbar_roll`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    model
+    fidelity
+    full_tensegrity_rolling
+    structure
+    rim
+    incline_rad : float [rad]
+    t_end : float [s]
+    valid
+    rows.0.treads
+    rows.0.phi : float [rad]
+    rows.0.tbar.mass_kg : float [kg]
+    rows.0.tbar.I1 : float [kg m^2]
+    rows.0.tbar.impact_ratio
+    rows.0.tbar.valid
+    rows.0.tbar.impacts
+    rows.0.tbar.first_impact.t : float [s]
+    rows.0.tbar.axle_height_oscillation : float [m]
+    rows.0.tbar.mean_speed : float [m/s]
+    rows.0.tbar.final_speed : float [m/s]
+    rows.0.tbar.min_normal_force : float [N]
+    rows.0.tbar.airborne_fraction
+    rows.0.tbar.slip_fraction
+    rows.0.tbar.max_penetration : float [m]
+    rows.0.tbar.energy_balance_error
+    rows.0.tbar.convergence.converged
+    rows.0.toroid.mass_kg : float [kg]
+    rows.0.toroid.I1 : float [kg m^2]
+    rows.0.toroid.valid
+    rows.0.toroid.impacts
+    rows.0.toroid.axle_height_oscillation : float [m]
+    rows.0.toroid.mean_speed : float [m/s]
+    rows.0.tipover.critical_lateral_force : float [N]
+    rows.0.tipover.min_friction_to_tip
+    """
+    model: Any
+    fidelity: Any
+    full_tensegrity_rolling: Any
+    structure: Any
+    rim: Any
+    incline_rad: float
+    t_end: float
+    valid: Any
+
+
+class FormfindResult(Result):
+    """The result of :func:`tensegrity.formfind`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    source
+    n_nodes
+    n_bars
+    n_strings
+    method
+    self_stress_dim
+    prestressable
+    prestress_stable
+    residual
+    iterations
+    tolerance
+    height : float [m]
+    max_bar_length : float [m]
+    prestress : float [N]
+    """
+    source: Any
+    n_nodes: Any
+    n_bars: Any
+    n_strings: Any
+    method: Any
+    self_stress_dim: Any
+    prestressable: Any
+    prestress_stable: Any
+    residual: Any
+    iterations: Any
+    tolerance: Any
+    height: float
+    max_bar_length: float
+    prestress: float
+
+
+class SolveResult(Result):
+    """The result of :func:`tensegrity.solve`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    method
+    final_load_factor
+    max_displacement : float [m]
+    points
+    limit_points
+    first_limit_load_factor
+    bifurcations
+    first_slack_load_factor
+    slack_strings
+    stability
+    stop
+    """
+    method: Any
+    final_load_factor: Any
+    max_displacement: float
+    points: Any
+    limit_points: Any
+    first_limit_load_factor: Any
+    bifurcations: Any
+    first_slack_load_factor: Any
+    slack_strings: Any
+    stability: Any
+    stop: Any
+
+
 def statics(
     scene: Scene,
     *,
@@ -33,7 +652,7 @@ def statics(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> StaticsResult:
     """Statics of a scene: rank of the equilibrium matrix, self-stress, mechanisms, prestressability, load solve, reactions and minimum-mass sizing (``tensegrity statics SCENE --json``).
 
     ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
@@ -79,8 +698,9 @@ def statics(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.StaticsResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -101,7 +721,7 @@ def simulate(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> SimulateResult:
     """Simulate a scene in time: rigid-bar dynamics with strings, gravity, ground contact and actuation (``tensegrity simulate SCENE --json``).
 
     ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
@@ -155,8 +775,9 @@ def simulate(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.SimulateResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -180,7 +801,7 @@ def toroid(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> ToroidResult:
     """Build and analyse the 3-bar-prism tensegrity toroid wheel: counts, rank, prestress, flexes, inertia (``tensegrity toroid --json``).
 
     Parameters
@@ -227,8 +848,9 @@ def toroid(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.ToroidResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -265,7 +887,7 @@ def roll(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> RollResult:
     """Roll the toroid wheel down an incline, rigid or full model, with its validity (``tensegrity roll --json``).
 
     Parameters
@@ -354,8 +976,9 @@ def roll(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.RollResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -398,7 +1021,7 @@ def tipover(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> TipoverResult:
     """Tip-over of the toroid wheel under a lateral force; ``dynamic=True`` checks the threshold with the full dynamics, ``rolling=True`` the lean while rolling down a side slope (``tensegrity tipover [--dynamic|--rolling] --json``).
 
     Parameters
@@ -499,8 +1122,9 @@ def tipover(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.TipoverResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -523,7 +1147,7 @@ def michell(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> MichellResult:
     """Discrete Michell truss (planar, cylindrical or spherical) under a tip load: nodes, member forces, sizing (``tensegrity michell --json``).
 
     Parameters
@@ -574,8 +1198,9 @@ def michell(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.MichellResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -595,7 +1220,7 @@ def michell_optimize(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> MichellOptimizeResult:
     """Mass-optimal Michell truss for a fixed radius ratio (``tensegrity michell optimize --json``).
 
     Parameters
@@ -636,8 +1261,9 @@ def michell_optimize(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.MichellOptimizeResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -650,7 +1276,7 @@ def michell_table(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> MichellTableResult:
     """Michell truss mass against complexity, planar and 3-D (thesis Fig. 4.18; ``tensegrity michell-table``).
 
     Parameters
@@ -672,8 +1298,9 @@ def michell_table(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.MichellTableResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -698,7 +1325,7 @@ def tbar(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> TbarResult:
     """T-bar tread or wheel (thesis ch. 5): geometry, statics, omnidirectional load envelope, mass (``tensegrity tbar --json``).
 
     Parameters
@@ -752,8 +1379,9 @@ def tbar(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.TbarResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -789,7 +1417,7 @@ def tbar_roll(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> TbarRollResult:
     """Roll the T-bar wheel beside the toroid of equal outer radius, with tip-over (``tensegrity tbar roll --json``).
 
     Parameters
@@ -876,8 +1504,9 @@ def tbar_roll(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.TbarRollResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -898,7 +1527,7 @@ def formfind(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> FormfindResult:
     """Form-finding: a connectivity (built-in topology or file) to a geometry in equilibrium with a self-stress (``tensegrity formfind --json``).
 
     Parameters
@@ -947,8 +1576,9 @@ def formfind(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.FormfindResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 
@@ -963,7 +1593,7 @@ def solve(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, Any]:
+) -> SolveResult:
     """Load path of a scene: elastic bars and tension-only strings under its loads scaled by a load factor, with large displacements, through limit points (arc length) or in load steps, a stability verdict at every point (``tensegrity solve SCENE --json``).
 
     ``scene`` is a scene file's path, the TOML text of a scene, or a Structure.
@@ -996,8 +1626,9 @@ def solve(
 
     Returns
     -------
-    dict
-        The command's ``--json`` report, every vector or matrix a numpy array.
+    tensegrity.results.SolveResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
     """
     ...
 

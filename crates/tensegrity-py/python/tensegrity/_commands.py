@@ -140,15 +140,26 @@ def make(pyname, command, summary, positional=(), doc_extra=""):
 
 
 def finish(f, pyname, sig, summary, params, doc_extra="", extra_doc=""):
-    """Names ``f``, and gives it its signature and its docstring."""
-    f.__name__ = f.__qualname__ = pyname
-    f.__signature__ = sig
-    f.__module__ = "tensegrity"
-    f.__doc__ = docstring(summary, params, doc_extra, extra_doc)
-    return f
+    """The function ``pyname`` running ``f``: its result typed (:mod:`tensegrity.results`),
+    its signature and its docstring."""
+
+    def typed(*args, **kwargs):
+        from .results import wrap
+        return wrap(pyname, f(*args, **kwargs))
+
+    typed.__name__ = typed.__qualname__ = pyname
+    typed.__signature__ = sig
+    typed.__module__ = "tensegrity"
+    typed.__doc__ = docstring(summary, params, doc_extra, extra_doc, returns=pyname)
+    return typed
 
 
-def docstring(summary, params, doc_extra="", extra_doc=""):
+def result_class_name(pyname):
+    """``statics`` → ``StaticsResult`` (:mod:`tensegrity.results`)."""
+    return "".join(w.capitalize() for w in pyname.split("_")) + "Result"
+
+
+def docstring(summary, params, doc_extra="", extra_doc="", returns=None):
     """The docstring of a command function (also written into the stubs)."""
     parts = [summary.strip(), ""]
     if doc_extra:
@@ -158,12 +169,14 @@ def docstring(summary, params, doc_extra="", extra_doc=""):
     if extra_doc:
         parts.append(textwrap.dedent(extra_doc).rstrip())
     parts.append(_LIMITS_DOC.rstrip())
+    kind = "dict" if returns is None else f"tensegrity.results.{result_class_name(returns)}"
     parts += [
         "",
         "Returns",
         "-------",
-        "dict",
-        "    The command's ``--json`` report, every vector or matrix a numpy array.",
+        kind,
+        "    The command's ``--json`` report, every vector or matrix a numpy array (a dict",
+        "    whose keys are also attributes; its fields and units: the class's docstring).",
     ]
     return "\n".join(parts) + "\n"
 

@@ -6,10 +6,11 @@ every parameter of every command with the registry's own description:
 The tests regenerate them and compare with the file shipped (tests/test_stubs.py).
 """
 
+import keyword
 import sys
 
-from . import SUMMARIES
-from ._commands import LIMITS, REGISTRY, docstring, params_of
+from . import SUMMARIES, results
+from ._commands import LIMITS, REGISTRY, docstring, params_of, result_class_name
 
 _TYPE = {
     "count": "int",
@@ -79,18 +80,39 @@ def function(name, command_names, summary, positional=(), extra=(), extra_doc=""
         args.append("{}: {} = ...".format(n, t))
     for n in LIMITS:
         args.append("{}: Size = ...".format(n))
-    doc = docstring(summary, params, extra_doc=extra_doc)
+    doc = docstring(summary, params, extra_doc=extra_doc, returns=name)
     lines = ["def {}(".format(name)]
     lines += ["    {},".format(a) for a in args]
-    lines.append(") -> Dict[str, Any]:")
+    lines.append(") -> {}:".format(result_class_name(name)))
     lines.append('    """' + _indent(doc).lstrip() + '\n    """')
     lines.append("    ...")
     return "\n".join(lines) + "\n"
 
 
+_RESULT = 'class Result(Dict[str, Any]):\n    """A command\'s report: a dict whose keys are also attributes."""\n    def __getattr__(self, name: str) -> Any: ...\n    def to_dict(self) -> Dict[str, Any]: ...\n'
+
+
+def result_classes():
+    """The stubs of the result classes (:mod:`tensegrity.results`): every scalar field of
+    the registry's columns (``float`` where it has a unit) and every array a function adds."""
+    out = [_RESULT]
+    for name in results.COMMANDS:
+        lines = ["class {}(Result):".format(result_class_name(name))]
+        lines.append('    """' + _indent(results.fields_doc(name)).lstrip() + '\n    """')
+        for column, unit in results.columns(name):
+            # a column such as `mass_kg.yield` is a key only (r["mass_kg.yield"])
+            if column.isidentifier() and not keyword.iskeyword(column):
+                lines.append("    {}: {}".format(column, "float" if unit else "Any"))
+        for field, _, _ in results.EXTRA_FIELDS.get(name, ()):
+            kind = "Dict[str, np.ndarray]" if field == "history" else "np.ndarray"
+            lines.append("    {}: {}".format(field, kind))
+        out.append("\n".join(lines) + "\n")
+    return out
+
+
 def stubs():
     """The text of ``__init__.pyi``."""
-    out = [_HEAD]
+    out = [_HEAD] + result_classes()
     scene = "``scene`` is a scene file's path, the TOML text of a scene, or a Structure."
     out.append(function("statics", ["statics"], SUMMARIES["statics"] + "\n\n" + scene,
                         positional=("scene",)))

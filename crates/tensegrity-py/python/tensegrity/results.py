@@ -1,0 +1,113 @@
+"""Typed results: every command function returns a :class:`Result` of its own class
+(``StaticsResult``, ``SimulateResult``, ``RollResult``, …), a ``dict`` of the command's
+``--json`` report whose keys are also attributes (``r.energy_drift`` is
+``r["energy_drift"]``), with ``to_dict()`` and a docstring that lists the report's scalar
+fields with their units (from the engine's registry: its result columns) and the arrays a
+function adds (``simulate``'s histories, ``roll``'s ``history``). Being a dict, a result
+compares, prints and serialises as the report does.
+"""
+
+from ._commands import REGISTRY, result_class_name
+
+#: The registry commands whose columns each function's result holds.
+COMMANDS = {
+    "statics": ("statics",), "simulate": ("simulate",), "toroid": ("toroid",),
+    "roll": ("roll",), "tipover": ("tipover", "tipover_dynamic", "tipover_rolling"),
+    "michell": ("michell",), "michell_optimize": ("michell_optimize",),
+    "michell_table": ("michell_table",), "tbar": ("tbar",), "tbar_roll": ("tbar_roll",),
+    "formfind": ("formfind",), "solve": ("solve",),
+}
+
+#: The arrays a function adds to its report: (name, shape and unit, meaning).
+EXTRA_FIELDS = {
+    "simulate": (
+        ("t", "(samples,) s", "sample times"),
+        ("trajectory", "(samples, nodes, 3) m", "node positions"),
+        ("velocities", "(samples, nodes, 3) m/s", "node velocities, if recorded"),
+        ("member_forces", "(samples, members) N",
+         "axial forces, tension positive (bars, strings, clusters), if recorded"),
+        ("kinetic_energy", "(samples,) J", "kinetic energy, if recorded"),
+        ("energy", "(samples,) J", "total energy, if recorded"),
+        ("contact_nodes", "(contact nodes,)", "the nodes that can touch the ground"),
+        ("contact_forces", "(samples, contact nodes, 3) N", "ground forces, if recorded"),
+    ),
+    "roll": (
+        ("history", "dict of (samples,) arrays",
+         "every 1 ms sample: t [s], axle_s [m], axle_h [m], omega [rad/s], pivot_m [m], "
+         "normal_N [N], tangential_N [N], energy_J [J], slip_m_s [m/s]"),
+    ),
+}
+
+
+class Result(dict):
+    """A command's report: a ``dict`` whose keys are also attributes."""
+
+    __slots__ = ()
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(
+                f"{type(self).__name__} has no field {name!r} (its fields: "
+                f"{', '.join(sorted(self))})") from None
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self))
+
+    def to_dict(self):
+        """The report as a plain ``dict`` (its values as they are)."""
+        return dict(self)
+
+
+def columns(pyname):
+    """The scalar fields of ``pyname``'s report: ``(name, unit)``, each once, in the
+    registry's order."""
+    seen, out = set(), []
+    for command in COMMANDS.get(pyname, ()):
+        for c in REGISTRY.get(command, {}).get("columns", ()):
+            if c["name"] not in seen:
+                seen.add(c["name"])
+                out.append((c["name"], c["unit"]))
+    return out
+
+
+def fields_doc(pyname):
+    """The docstring of ``pyname``'s result class."""
+    lines = [f"The result of :func:`tensegrity.{pyname}`: its ``--json`` report as a dict",
+             "whose keys are also attributes (``to_dict()`` gives the plain dict).", "",
+             "Fields: the report's scalars (with a unit: a float in that unit; without: a",
+             "count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the",
+             "report also holds its vectors and tables, every one a numpy array.", "",
+             "Fields", "------"]
+    for name, unit in columns(pyname):
+        lines.append(f"{name} : float [{unit}]" if unit else name)
+    for name, shape, meaning in EXTRA_FIELDS.get(pyname, ()):
+        lines.append(f"{name} : ndarray {shape}")
+        lines.append(f"    {meaning}")
+    return "\n".join(lines) + "\n"
+
+
+_CLASSES = {}
+
+
+def result_class(pyname):
+    """The result class of the function ``pyname`` (made once)."""
+    cls = _CLASSES.get(pyname)
+    if cls is None:
+        cls = type(result_class_name(pyname), (Result,), {"__slots__": (), "__doc__": fields_doc(pyname),
+                                                   "__module__": "tensegrity.results"})
+        _CLASSES[pyname] = cls
+        globals()[cls.__name__] = cls
+    return cls
+
+
+def wrap(pyname, report):
+    """``report`` (a dict) as the result class of ``pyname``; anything else as it is."""
+    if isinstance(report, dict) and not isinstance(report, Result):
+        return result_class(pyname)(report)
+    return report
+
+
+for _name in COMMANDS:
+    result_class(_name)
