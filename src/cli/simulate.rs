@@ -135,13 +135,13 @@ fn run_elastic(args: &SimulateArgs, command: &SimulateCommand, scene: &Scene) ->
     finish(args, command, run.settings.integrator, &report)
 }
 
-/// The animation's title: the scene's file name.
+/// The animation's title: the scene's file name, drawn as written (never as math).
 fn title(command: &SimulateCommand) -> String {
     let name = match command.source() {
         Ok(SceneSource::Path(p)) => p.file_name().map(|n| n.to_string_lossy().into_owned()),
         _ => None,
     };
-    name.unwrap_or_else(|| "scene".into())
+    tensegrity_io::figure::literal(&name.unwrap_or_else(|| "scene".into()))
 }
 
 /// What a run needs: the command, its scene, its progress and its animation.

@@ -261,7 +261,14 @@ fn print_sizing(structure: &Structure, r: &StaticsReport) {
 fn print_notes(r: &StaticsReport) {
     if let Some(f) = &r.natural_frequencies_hz {
         let list: Vec<String> = f.iter().map(|x| format!("{x:.4}")).collect();
-        println!("lowest natural frequencies [Hz]: {}", list.join(", "));
+        let skipped = match r.zero_modes_skipped {
+            Some(n) if n > 0 => format!(" ({n} zero-frequency modes skipped)"),
+            _ => String::new(),
+        };
+        println!(
+            "lowest natural frequencies [Hz]{skipped}: {}",
+            list.join(", ")
+        );
     }
     if let Some(e) = &r.modal_error {
         println!("modes not computed: {e}");

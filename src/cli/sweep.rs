@@ -1,7 +1,7 @@
 //! `tensegrity sweep SPEC.toml --out results.csv [--threads N [--oversubscribe]] [--shard K/N]
 //! [--resume] [--quiet] [--units]`, `tensegrity sweep merge A.csv B.csv … --out all.csv` and
 //! `tensegrity sweep plot RESULTS.csv --x COL --y COL [--group COL] [--where COL=VALUE]…
-//! [--log-x] [--log-y] --out fig.svg`: parse the
+//! [--log-x] [--log-y] [--title T] [--xlabel T] [--ylabel T] --out fig.svg`: parse the
 //! flags, make one call into the sweeps crate ([`sweeps::run`], [`sweeps::merge`]) and draw
 //! its progress ([`tensegrity_io::progress`]: a bar with ETA on a terminal, a line with
 //! percent and ETA every few seconds when stderr is a file or a pipe; nothing with `--quiet`).
@@ -57,7 +57,7 @@ pub enum SweepCommand {
     /// Combine the files of the shards of one sweep into the single-run file.
     Merge(MergeArgs),
     /// Plot one result column against another, one curve per value of a group column.
-    Plot(PlotArgs),
+    Plot(Box<PlotArgs>),
 }
 
 /// Arguments of `tensegrity sweep plot`.
@@ -85,6 +85,16 @@ pub struct PlotArgs {
     /// Logarithmic y axis.
     #[arg(long)]
     pub log_y: bool,
+    /// The title (default: the file name); drawn as written, math only between `$` pairs
+    /// (`$F_f/F_e$`).
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// The x-axis label (default: the x column, with `[deg]` for angles); text as for --title.
+    #[arg(long, value_name = "TEXT")]
+    pub xlabel: Option<String>,
+    /// The y-axis label (default: the y column, with `[deg]` for angles); text as for --title.
+    #[arg(long, value_name = "TEXT")]
+    pub ylabel: Option<String>,
     /// The figure: SVG, PNG or PDF by the extension.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
@@ -106,6 +116,9 @@ fn plot(args: &PlotArgs) -> Result<()> {
         filter: args.filter.clone(),
         log_x: args.log_x,
         log_y: args.log_y,
+        title: args.title.clone(),
+        x_label: args.xlabel.clone(),
+        y_label: args.ylabel.clone(),
     }
     .build()?;
     sink.finish(&figure)?;

@@ -293,7 +293,7 @@ impl Scenery {
             // turned: the axes are the page's, not the structure's
             (panel.x_label, panel.y_label) = ("horizontal [m]".into(), "vertical [m]".into());
         } else if self.along_y && self.view == View::Side {
-            panel.x_label = "ι1 [m]".into();
+            panel.x_label = "ι₁ [m]".into();
         }
         if let Some(segment) = self.ground_segment(&r, (x0, x1, y0, y1)) {
             panel

@@ -97,6 +97,9 @@ impl StructureData {
         force: &dyn Fn(usize, usize, [usize; 2]) -> Option<f64>,
     ) {
         let (number, title) = p.panel;
+        // the title as the figure code wrote it, without the dollars that mark its math
+        let title = title.replace('$', "");
+        let title = title.as_str();
         for (i, n) in p.nodes.iter().enumerate() {
             let (u, v) = p.view.project(n);
             let mut row: Vec<Value> = vec![

@@ -90,10 +90,10 @@ impl View {
     pub fn labels(self) -> (String, String) {
         let pair = |a: &str, b: &str| (a.to_string(), b.to_string());
         match self {
-            View::Side => pair("ι2 [m]", "ι3 [m]"),
-            View::Top => pair("ι2 [m]", "ι1 [m]"),
-            View::Xy => pair("ι1 [m]", "ι2 [m]"),
-            View::Xz => pair("ι1 [m]", "ι3 [m]"),
+            View::Side => pair("ι₂ [m]", "ι₃ [m]"),
+            View::Top => pair("ι₂ [m]", "ι₁ [m]"),
+            View::Xy => pair("ι₁ [m]", "ι₂ [m]"),
+            View::Xz => pair("ι₁ [m]", "ι₃ [m]"),
             View::Iso => pair("isometric, across [m]", "isometric, up [m]"),
             View::Orbit { azimuth, elevation } => {
                 let v = format!(

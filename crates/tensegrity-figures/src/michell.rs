@@ -304,7 +304,7 @@ pub fn fig_4_4(_: &Ctx) -> Result<Drawn> {
     let force = |_: usize, _: usize, e: [usize; 2]| forces.get(&e).copied();
     let nodes = positions(&a);
     fig.add(
-        "q = 4: force regions of the tip load θ00",
+        "q = 4: force regions of the tip load θ₀₀",
         View::Side,
         &nodes,
         &groups,
@@ -478,7 +478,7 @@ fn sign_map(ctx: &Ctx, member: usize) -> Result<SignMap> {
 /// one sign is a segment, red for tension and blue for compression.
 fn sign_map_panel(map: &SignMap, name: &str) -> Panel {
     let mut panel = Panel::new(
-        format!("sign of λ{name} (red tension, blue compression)"),
+        format!("sign of $λ{name}$ (red tension, blue compression)"),
         "load azimuth φ [rad]",
         "load polar angle γ [rad]",
     );

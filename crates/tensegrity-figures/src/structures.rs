@@ -157,7 +157,9 @@ pub fn modes_figure_estimate(structure: &Structure, k: usize) -> Estimate {
     .output(svg)
 }
 
-/// The `k` lowest mode shapes (titles with their frequencies), or the first `k` internal
+/// The `k` lowest mode shapes of nonzero frequency, the zero modes skipped as the statics
+/// report skips them (titles `mode i: f = … Hz`, i counted over all modes, so `mode 7` of a
+/// free structure follows its six rigid-body modes), or the first `k` internal
 /// mechanisms where the modes cannot be computed; at most [`MAX_MODE_PANELS`] of them
 /// ([`mode_panels`]); an error when neither exists.
 pub fn modes_figure(
@@ -175,11 +177,9 @@ pub fn modes_figure(
     };
     let (shapes, titles): (DMatrix<f64>, Vec<String>) = match modes {
         Ok(m) => {
-            // rigid-body motions the supports allow are zero modes: not drawn
-            let top = m.eigenvalues.iter().fold(0.0f64, |a, &w| a.max(w.abs()));
-            let kept: Vec<usize> = (0..m.eigenvalues.len())
-                .filter(|&i| m.eigenvalues[i] > 1e-9 * top)
-                .collect();
+            // zero modes (rigid-body motions the supports allow) are not drawn, as the
+            // report does not list them: the panels are its natural_frequencies_hz
+            let kept = m.nonzero();
             let titles = kept
                 .iter()
                 .map(|&i| format!("mode {}: f = {:.4} Hz", i + 1, m.frequencies_hz[i]))

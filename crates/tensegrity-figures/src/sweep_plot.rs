@@ -1,13 +1,16 @@
 //! `sweep plot`: one result column of a sweep's CSV against another, one curve per value of
 //! a group column, rows filtered by exact texts; error rows left out. A column of angles
 //! written with their unit (`30deg`, `pi/6`: the axes of angle parameters such as `incline`)
-//! is plotted in degrees and its axis says so.
+//! is plotted in degrees and its axis says so. Column names, group values and the file name
+//! are drawn as plain text ([`tensegrity_io::figure::literal`]: `mean_speed` keeps its
+//! underscore); a title or axis label given by the caller is drawn as given, math only between
+//! `$` pairs.
 
 use crate::error::Result;
 use serde::Serialize;
 use std::path::PathBuf;
 use tensegrity_io::csv::{column_is_angle, read_series_where};
-use tensegrity_io::figure::{Figure, Panel, Scale, Series};
+use tensegrity_io::figure::{literal, Figure, Panel, Scale, Series};
 
 /// What to plot.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -26,6 +29,12 @@ pub struct SweepPlot {
     pub log_x: bool,
     /// Logarithmic y axis.
     pub log_y: bool,
+    /// The title (default: the CSV's file name).
+    pub title: Option<String>,
+    /// The x-axis label (default: the x column, `[deg]` for angles).
+    pub x_label: Option<String>,
+    /// The y-axis label (default: the y column, `[deg]` for angles).
+    pub y_label: Option<String>,
 }
 
 /// One curve of the plot.
@@ -83,15 +92,20 @@ impl SweepPlot {
         }
         let x_deg = column_is_angle(&self.results, &self.x)?;
         let y_deg = column_is_angle(&self.results, &self.y)?;
-        let label = |c: &str, deg: bool| match deg {
-            true => format!("{c} [deg]"),
-            false => c.to_string(),
+        let label = |given: &Option<String>, c: &str, deg: bool| match (given, deg) {
+            (Some(given), _) => given.clone(),
+            (None, true) => format!("{} [deg]", literal(c)),
+            (None, false) => literal(c),
         };
-        let title = self
-            .results
-            .file_name()
-            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-        let mut panel = Panel::new(title, label(&self.x, x_deg), label(&self.y, y_deg));
+        let title = self.title.clone().unwrap_or_else(|| {
+            let name = self.results.file_name();
+            literal(&name.map_or(String::new(), |n| n.to_string_lossy().into_owned()))
+        });
+        let mut panel = Panel::new(
+            title,
+            label(&self.x_label, &self.x, x_deg),
+            label(&self.y_label, &self.y, y_deg),
+        );
         let scale = |log: bool| if log { Scale::Log } else { Scale::Linear };
         (panel.x_scale, panel.y_scale) = (scale(self.log_x), scale(self.log_y));
         let group = self.group.as_deref().unwrap_or("");
@@ -112,8 +126,8 @@ impl SweepPlot {
                 points: points.len(),
             });
             let label = match group.is_empty() {
-                true => label,
-                false => format!("{group} = {label}"),
+                true => literal(&label),
+                false => literal(&format!("{group} = {label}")),
             };
             panel = panel.series(Series::new(label, points).with_markers());
         }

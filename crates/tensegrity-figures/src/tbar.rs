@@ -23,10 +23,10 @@ use tensegrity_io::figure::{Figure, Panel, Series};
 
 fn panel(g: &TbarGeometry, view: View, title: &str) -> Panel {
     let y = match view {
-        View::Side => "ι3 [m]",
-        View::Top => "ι1 [m]",
+        View::Side => "ι₃ [m]",
+        View::Top => "ι₁ [m]",
     };
-    let mut p = Panel::new(title, "ι2 [m]", y);
+    let mut p = Panel::new(title, "ι₂ [m]", y);
     let mut colour = RED;
     for line in polylines(g, view) {
         // the strings come first, then the bars (labelled "bars")
@@ -107,13 +107,13 @@ pub fn side_and_top(g: &TbarGeometry) -> Figure {
     let panel = |view: View, title: &str, y: &str| {
         polylines(g, view)
             .into_iter()
-            .fold(Panel::new(title, "ι2 [m]", y), |p, l| {
+            .fold(Panel::new(title, "ι₂ [m]", y), |p, l| {
                 p.series(Series::new(l.label, l.points))
             })
     };
     Figure::new(vec![
-        panel(View::Side, "T-bar, side view", "ι3 [m]"),
-        panel(View::Top, "T-bar, top view", "ι1 [m]"),
+        panel(View::Side, "T-bar, side view", "ι₃ [m]"),
+        panel(View::Top, "T-bar, top view", "ι₁ [m]"),
     ])
 }
 

@@ -155,7 +155,7 @@ pub fn fig_3_2(_: &Ctx) -> Result<Drawn> {
     let nodes = t.structure.nodes();
     let none = &crate::data::no_forces;
     fig.add(
-        "side: R_o, R_m, R_i",
+        "side: $R_o$, $R_m$, $R_i$",
         View::Side,
         nodes,
         &groups,
@@ -172,9 +172,9 @@ pub fn fig_3_2(_: &Ctx) -> Result<Drawn> {
     };
     let side = fig.panels.last_mut().expect("just added");
     for (name, r, rgb) in [
-        ("R_o", p.outer_radius, GREY),
-        ("R_m", p.rim_radius, (0x2c, 0xa0, 0x2c)),
-        ("R_i", p.inner_radius, (0x94, 0x67, 0xbd)),
+        ("$R_o$", p.outer_radius, GREY),
+        ("$R_m$", p.rim_radius, (0x2c, 0xa0, 0x2c)),
+        ("$R_i$", p.inner_radius, (0x94, 0x67, 0xbd)),
     ] {
         let label = format!("{name} = {r} m");
         side.series
@@ -482,8 +482,8 @@ pub fn fig_3_13(ctx: &Ctx) -> Result<Drawn> {
     let curves = ctx.sweep("fig_3_13", &spec, "sigma", "normalized_friction", "epsilon")?;
     let mut panel = Panel::new(
         "friction at the tip-over threshold (Fig. 3.13)",
-        "σ = R_i/R_o [–]",
-        "F_f/F_e [–]",
+        "σ = $R_i/R_o$ [–]",
+        "$F_f/F_e$ [–]",
     );
     for (eps, pts) in curves {
         panel = panel.series(Series::new(format!("ε = {eps}"), pts));

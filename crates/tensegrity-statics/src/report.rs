@@ -146,9 +146,18 @@ pub struct StaticsReport {
     /// compression).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sizing_warning: Option<String>,
-    /// The lowest natural frequencies (Hz) about the current state, with modes requested.
+    /// The lowest natural frequencies (Hz) about the current state, with modes requested: the
+    /// K lowest modes of nonzero frequency, the zero modes skipped (the modes the `--modes`
+    /// figure draws).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub natural_frequencies_hz: Option<Vec<f64>>,
+    /// With modes: how many zero-frequency modes (rigid-body motions the supports allow,
+    /// mechanisms the prestress does not stiffen; |ω²| ≤
+    /// [`stiffness::ZERO_MODE_TOLERANCE`] · max |ω²|) were skipped before
+    /// `natural_frequencies_hz`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[column(skip)]
+    pub zero_modes_skipped: Option<usize>,
     /// Why the modes could not be computed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub modal_error: Option<String>,
@@ -418,13 +427,22 @@ fn add_sizing(s: &SizingReport, compressed: &[MemberId], report: &mut StaticsRep
     report.governing = Some(s.members.iter().map(|m| m.governing).collect());
 }
 
-/// The `k` lowest natural frequencies about the equilibrium force densities.
+/// The `k` lowest nonzero natural frequencies about the equilibrium force densities, and how
+/// many zero modes were skipped before them ([`stiffness::Modes::nonzero`]).
 fn add_modes(structure: &Structure, k: usize, mass: MassModel, report: &mut StaticsReport) {
     let modes = stiffness::equilibrium_force_densities(structure)
         .and_then(|(q, _)| stiffness::modal_analysis_with(structure, &q, mass));
     match modes {
         Ok(m) => {
-            report.natural_frequencies_hz = Some(m.frequencies_hz.into_iter().take(k).collect())
+            let nonzero = m.nonzero();
+            report.zero_modes_skipped = Some(m.eigenvalues.len() - nonzero.len());
+            report.natural_frequencies_hz = Some(
+                nonzero
+                    .iter()
+                    .take(k)
+                    .map(|&i| m.frequencies_hz[i])
+                    .collect(),
+            )
         }
         Err(e) => report.modal_error = Some(e.to_string()),
     }

@@ -378,6 +378,33 @@ pub struct Modes {
     pub shapes: DMatrix<f64>,
 }
 
+/// The size, relative to the largest |ω²|, at or below which a mode's ω² counts as zero: a
+/// rigid-body motion the supports allow, or a mechanism the prestress does not stiffen.
+pub const ZERO_MODE_TOLERANCE: f64 = 1e-9;
+
+impl Modes {
+    /// The indices of the modes of nonzero ω² (|ω²| > [`ZERO_MODE_TOLERANCE`] · max |ω²|),
+    /// ascending: the modes a report lists and a figure draws, the zero modes skipped in both.
+    /// A negative ω² (an unstable mode) is kept.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use tensegrity_statics::stiffness::Modes;
+    /// let modes = Modes {
+    ///     eigenvalues: vec![-1e-12, 3e-11, 4.0, 9.0],
+    ///     frequencies_hz: vec![0.0, 0.0, 1.0 / std::f64::consts::PI, 1.5 / std::f64::consts::PI],
+    ///     shapes: DMatrix::identity(4, 4),
+    /// };
+    /// assert_eq!(modes.nonzero(), vec![2, 3]);
+    /// ```
+    pub fn nonzero(&self) -> Vec<usize> {
+        let top = self.eigenvalues.iter().fold(0.0f64, |a, &w| a.max(w.abs()));
+        (0..self.eigenvalues.len())
+            .filter(|&i| self.eigenvalues[i].abs() > ZERO_MODE_TOLERANCE * top)
+            .collect()
+    }
+}
+
 /// How bar mass enters modal analysis (serialised `lumped`, `consistent`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -19,9 +19,11 @@
 //! written with the same number of decimals, and a common factor ×10ᵉ when |values| ≥ 10⁴ or
 //! < 10⁻²; a linear y axis gets 5 % padding. A panel with [`Panel::equal_axes`] has the same
 //! scale (pixels per unit) in x and y: the data range is widened along one axis until
-//! (x₁ − x₀)/w = (y₁ − y₀)/h for the plot area w × h. Text takes a small markup: `_x` or `_{xy}`
-//! a subscript, `^x` or `^{xy}` a superscript, and digits right after a Greek letter become
-//! subscripts (`ι2` → ι₂).
+//! (x₁ − x₀)/w = (y₁ − y₀)/h for the plot area w × h. Text is drawn as written (`mean_speed`
+//! keeps its underscore) except between a pair of `$`, which marks math: there `_x` or
+//! `_{xy}` is a subscript, `^x` or `^{xy}` a superscript, and digits right after a Greek
+//! letter become subscripts (`$ι2$` → ι₂); [`literal`] makes any text plain (its dollars
+//! escaped), for text from a user or a file.
 //!
 //! The legend goes where it covers no data: the corner or edge of the plot area whose box
 //! covers the fewest sampled points of the curves, marks and arrows, or, when every place
@@ -48,6 +50,7 @@ pub mod svg;
 mod text;
 
 pub use size::{PageSize, RenderOptions, Unit};
+pub use text::{literal, plain as plain_text};
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVuSans-LICENSE.txt`).
 pub(crate) static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
@@ -406,8 +409,8 @@ impl Figure {
 
     /// The figure as a one-page PDF under `options`: the page is the size in points.
     pub fn to_pdf_with(&self, options: &RenderOptions) -> Result<Vec<u8>> {
-        let text = self.to_svg_with(options)?;
-        render::pdf(&text)
+        let size = self.page_px(options)?;
+        render::pdf(&svg::write_points(self, size))
     }
 }
 

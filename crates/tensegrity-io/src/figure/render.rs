@@ -1,7 +1,8 @@
 //! PNG and PDF from a figure's SVG: parsed by usvg with the embedded DejaVu Sans as its only
 //! font (no system fonts), rasterised by resvg onto white at dpi/96 pixels per CSS pixel, or
-//! converted by svg2pdf to a one-page PDF whose page is the SVG's size at 72 points per inch
-//! (text stays text, with the font subset embedded).
+//! converted by svg2pdf to a one-page PDF whose page is the figure's size at 72 points per inch
+//! (text stays text, with the font subset embedded; the SVG for a PDF carries its size in
+//! points, [`super::svg::write_points`]).
 
 use super::{FONT, FONT_FAMILY};
 use crate::error::{IoError, Result};
@@ -70,13 +71,16 @@ pub fn rgb(svg: &str, dpi: f64) -> Result<(Vec<u8>, (u32, u32))> {
     Ok((rgb, (w, h)))
 }
 
-/// The SVG as a one-page PDF, the page its size in points.
+/// The SVG as a one-page PDF whose page is the SVG's size read as points (one user unit a
+/// point: [`super::svg::write_points`] writes a figure so). The conversion runs at 72 dpi, so
+/// svg2pdf adds no scale of its own: at any other dpi svg2pdf 0.13 scales the drawing but not
+/// the pattern matrices of its gradients, and a colour bar's stops land in the wrong places.
 pub fn pdf(svg: &str) -> Result<Vec<u8>> {
     let tree = tree(svg)?;
     svg2pdf::to_pdf(
         &tree,
         svg2pdf::ConversionOptions::default(),
-        svg2pdf::PageOptions { dpi: 96.0 },
+        svg2pdf::PageOptions { dpi: 72.0 },
     )
     .map_err(drawing_error)
 }

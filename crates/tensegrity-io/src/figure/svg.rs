@@ -83,14 +83,29 @@ fn label(out: &mut String, t: &str, (x, y): (f64, f64), size: f64, anchor: &str,
 pub fn write(figure: &Figure, (w, h): (f64, f64), unit: Option<Unit>) -> String {
     let unit = unit.unwrap_or_default();
     let (pw, ph) = (w / unit.px(), h / unit.px());
+    let width = format!("{}{}", num(pw), unit.suffix());
+    let height = format!("{}{}", num(ph), unit.suffix());
+    write_with_size(figure, (w, h), (&width, &height))
+}
+
+/// The SVG of `figure` laid out on `size` CSS pixels, its `width` and `height` the page's
+/// size in points written as user units (0.75 of the pixels), what [`super::render::pdf`]
+/// takes: the 96 → 72 scale then lies in the SVG's own `viewBox`, inside the drawing, where
+/// svg2pdf places gradients with it (svg2pdf 0.13 leaves its own dpi scale out of a
+/// gradient's pattern matrix: a colour bar converted at 96 dpi has its stops 4/3 too far
+/// apart, zero 74 % up the bar).
+pub fn write_points(figure: &Figure, (w, h): (f64, f64)) -> String {
+    let (width, height) = (num(0.75 * w), num(0.75 * h));
+    write_with_size(figure, (w, h), (&width, &height))
+}
+
+/// The SVG of `figure` laid out on `size` CSS pixels with these `width` and `height`
+/// attributes.
+fn write_with_size(figure: &Figure, (w, h): (f64, f64), (width, height): (&str, &str)) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}{}\" height=\"{}{}\" viewBox=\"0 0 {} {}\" font-family=\"{FONT_FAMILY}, sans-serif\">",
-        num(pw),
-        unit.suffix(),
-        num(ph),
-        unit.suffix(),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {} {}\" font-family=\"{FONT_FAMILY}, sans-serif\">",
         num(w),
         num(h)
     );
