@@ -142,6 +142,7 @@ class SimulateResult(Result):
     energy: np.ndarray
     contact_nodes: np.ndarray
     contact_forces: np.ndarray
+    def plot(self, what: str = ..., ax: Any = ...) -> Any: ...
 
 
 class ToroidResult(Result):
@@ -264,6 +265,7 @@ class RollResult(Result):
     required_friction: Any
     mean_slip_speed: float
     history: Dict[str, np.ndarray]
+    def plot(self, ax: Any = ...) -> Any: ...
 
 
 class TipoverResult(Result):

@@ -106,6 +106,7 @@ def result_classes():
         for field, _, _ in results.EXTRA_FIELDS.get(name, ()):
             kind = "Dict[str, np.ndarray]" if field == "history" else "np.ndarray"
             lines.append("    {}: {}".format(field, kind))
+        lines += ["    " + m for m in results.METHOD_STUBS.get(name, ())]
         out.append("\n".join(lines) + "\n")
     return out
 

@@ -7,6 +7,8 @@ function adds (``simulate``'s histories, ``roll``'s ``history``). Being a dict, 
 compares, prints and serialises as the report does.
 """
 
+import numpy as np
+
 from ._commands import REGISTRY, result_class_name
 
 #: The registry commands whose columns each function's result holds.
@@ -111,3 +113,77 @@ def wrap(pyname, report):
 
 for _name in COMMANDS:
     result_class(_name)
+
+
+def _pyplot():
+    """matplotlib's pyplot, or an ImportError that says how to install it."""
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise ImportError("plotting needs matplotlib: pip install "
+                          "\"tensegrity-toolkit[plot]\" (or pip install matplotlib)") from None
+    return plt
+
+
+def _axes(ax):
+    return ax if ax is not None else _pyplot().subplots()[1]
+
+
+def _plot_simulate(self, what="heights", ax=None):
+    """Plots the run against time on ``ax`` (new axes by default) and returns the axes:
+    ``what="heights"`` every node's height (the last coordinate of ``trajectory``, m),
+    ``"energy"`` the kinetic and total energy (J, when the scene records ``energy``),
+    ``"forces"`` every member's axial force (N, when it records ``member_forces``)."""
+    t = self["t"]
+    if what == "heights":
+        series, label = self["trajectory"][:, :, 2], "node height [m]"
+    elif what == "energy":
+        if "energy" not in self:
+            raise KeyError("energy: the scene does not record it ([simulation] record)")
+        series, label = np.c_[self["kinetic_energy"], self["energy"]], "energy [J]"
+    elif what == "forces":
+        if "member_forces" not in self:
+            raise KeyError("member_forces: the scene does not record it ([simulation] record)")
+        series, label = self["member_forces"], "axial force [N] (tension +)"
+    else:
+        raise ValueError(f"what = {what!r}: one of 'heights', 'energy', 'forces'")
+    ax = _axes(ax)
+    ax.plot(t, series)
+    if what == "energy":
+        ax.legend(["kinetic", "total"])
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(label)
+    if not self.get("valid", True):
+        ax.set_title("not valid: " + "; ".join(w.get("kind", "?") for w in self.get("warnings", [])))
+    return ax
+
+
+def _plot_roll(self, ax=None):
+    """Plots the rolling history (the thesis's Figs. 3.10–3.11): the axle's position along
+    the slope and its height on the left axis (m), the normal and tangential contact forces on
+    a right axis (N); returns the left axes."""
+    h = self["history"]
+    ax = _axes(ax)
+    ax.plot(h["t"], h["axle_s"], label="axle position s [m]")
+    ax.plot(h["t"], h["axle_h"], label="axle height h [m]")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("m")
+    right = ax.twinx()
+    right.plot(h["t"], h["normal_N"], "--", label="normal force [N]")
+    right.plot(h["t"], h["tangential_N"], ":", label="tangential force [N]")
+    right.set_ylabel("N")
+    lines = ax.get_lines() + right.get_lines()
+    ax.legend(lines, [line.get_label() for line in lines], loc="best")
+    if not self.get("valid", True):
+        ax.set_title("not valid: " + "; ".join(w.get("kind", "?") for w in self.get("warnings", [])))
+    return ax
+
+
+result_class("simulate").plot = _plot_simulate
+result_class("roll").plot = _plot_roll
+
+#: The stub signatures of the result classes' methods beyond the dict's.
+METHOD_STUBS = {
+    "simulate": ("def plot(self, what: str = ..., ax: Any = ...) -> Any: ...",),
+    "roll": ("def plot(self, ax: Any = ...) -> Any: ...",),
+}

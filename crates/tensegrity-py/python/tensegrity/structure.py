@@ -486,6 +486,40 @@ class Structure:
                if t in data},
         )
 
+    def plot(self, forces=None, nodes=None, ax=None):
+        """Draws the structure in 3-D on ``ax`` (new 3-D axes by default) and returns the
+        axes: bars thick, strings thin, at ``nodes`` (default the structure's; e.g. a
+        ``simulate`` trajectory's sample). With ``forces`` (one per member, bars then strings,
+        N, tension positive: a ``statics`` report's ``prestress`` or a run's
+        ``member_forces`` sample) members are coloured by sign and size (tension red,
+        compression blue; the project's diverging map) and a colour bar is added. Needs
+        matplotlib (``pip install "tensegrity-toolkit[plot]"``)."""
+        from .results import _pyplot
+        plt = _pyplot()
+        x = self.nodes if nodes is None else np.asarray(nodes, dtype=np.float64)
+        if ax is None:
+            ax = plt.figure().add_subplot(projection="3d")
+        members = [(b, 2.5) for b in self.bars] + [(st, 1.0) for st in self.strings]
+        if forces is not None:
+            forces = np.asarray(forces, dtype=np.float64).ravel()
+            if len(forces) < len(members):
+                raise ValueError(f"forces: expected {len(members)} (bars then strings), got "
+                                 f"{len(forces)}")
+            scale = max(float(np.abs(forces[:len(members)]).max()), 1e-300)
+            cmap = plt.get_cmap("RdBu_r")
+        for k, ((i, j), width) in enumerate(members):
+            color = "0.2" if width > 1.0 else "0.5"
+            if forces is not None:
+                color = cmap(0.5 + 0.5 * forces[k] / scale)
+            ax.plot(*x[[i, j]].T, color=color, linewidth=width)
+        if forces is not None:
+            mappable = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(-scale, scale))
+            ax.figure.colorbar(mappable, ax=ax, label="axial force [N] (tension +)")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_zlabel("z [m]")
+        return ax
+
     def replace(self, **changes):
         """A copy with some arguments of the constructor changed."""
         args = dict(
