@@ -269,7 +269,9 @@ impl Stepper {
         }
         let slots = slots_of(&model, &actuators)?;
         let ws = model.workspace()?;
-        let rest0: Vec<f64> = slots.iter().map(|&s| ws.rest[s]).collect();
+        // the rest lengths at t = 0: the static ones under the scene's actuation tables
+        let at0 = model.rest_lengths_at(0.0);
+        let rest0: Vec<f64> = slots.iter().map(|&s| at0[s]).collect();
         for (k, (a, &r)) in actuators.iter().zip(&rest0).enumerate() {
             if r < a.min_length || r > a.max_length {
                 return Err(DynamicsError::InvalidActuator {
@@ -435,9 +437,7 @@ impl Stepper {
         let eps = 1e-12 * t1.max(1.0);
         if let Err(e) = self.advance(t1, eps) {
             // the rest lengths where the run stopped, for a next period from there
-            for (r, d) in self.rest.iter_mut().zip(&self.model.drives) {
-                *r = d.at(self.t);
-            }
+            self.sync_rest();
             return Err(diverged(e, self.t, &self.settings));
         }
         self.ticks = ticks;
@@ -523,12 +523,20 @@ impl Stepper {
             self.monitor.observe(&self.model, &self.y);
             self.t = t_new;
         }
-        // the period's rest lengths are reached
-        for (r, d) in self.rest.iter_mut().zip(&self.model.drives) {
-            *r = d.r1;
-        }
         self.t = t1;
+        // the period's rest lengths are reached (or the tables', for an actuator not yet
+        // driven)
+        self.sync_rest();
         Ok(())
+    }
+
+    /// The actuators' rest lengths at the current time, as the model applies them (drives,
+    /// else the actuation tables, else the static values).
+    fn sync_rest(&mut self) {
+        let all = self.model.rest_lengths_at(self.t);
+        for (r, &slot) in self.rest.iter_mut().zip(&self.slots) {
+            *r = all[slot];
+        }
     }
 
     /// The current state, to restore with [`set_state`](Self::set_state), with a copy of

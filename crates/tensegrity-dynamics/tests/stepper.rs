@@ -242,3 +242,27 @@ fn resets_and_restores_repeat_a_projected_run_exactly() {
         assert_eq!(max_diff(&c, &d), 0.0, "a restored state repeats the run");
     }
 }
+
+#[test]
+fn an_actuation_table_drives_a_rest_length_until_an_action_takes_it_over() {
+    let mut sim = prism(IntegratorKind::Rk4, 1e-3);
+    let r0 = string_rest(&sim)[0];
+    // string 0 shortened by 10 % over the first second by the scene's table
+    sim.model.set_rest_length_schedule(Box::new(move |t, rest| {
+        rest[0] = r0 * (1.0 - 0.1 * t.clamp(0.0, 1.0));
+    }));
+    let mut st = Stepper::new(sim, vec![Actuator::string(0)]).unwrap();
+    st.step(Action::Hold, 500).unwrap();
+    assert!(
+        (st.rest_lengths()[0] - 0.95 * r0).abs() < 1e-12,
+        "the table at t = 0.5"
+    );
+    // an action starts from where the table left it, and holds from then on
+    st.step(Action::Rates(&[0.0]), 100).unwrap();
+    assert!((st.rest_lengths()[0] - 0.95 * r0).abs() < 1e-12);
+    st.step(Action::Hold, 400).unwrap();
+    assert!(
+        (st.rest_lengths()[0] - 0.95 * r0).abs() < 1e-12,
+        "the action holds it"
+    );
+}
