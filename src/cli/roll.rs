@@ -116,6 +116,8 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     });
     let written = outputs.finish(reason.as_deref())?;
     if !interrupted {
+        let (valid, warnings) = (report.summary.valid, &report.summary.warnings);
+        let animation = animation.map(|a| a.marked(valid, warnings));
         super::animate::finish(animation, args.animate.animate.as_deref())?;
     }
     for w in &report.summary.warnings {

@@ -85,6 +85,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let report = run_with_outputs(args, run, |sink| {
         command.run_beside(&scene, &simulation, sink)
     })?;
+    let animation = animation.map(|a| a.marked(report.valid, &report.warnings));
     super::animate::finish(animation, args.animate.animate.as_deref())?;
     finish(args, &command, simulation.settings.integrator, &report)
 }

@@ -52,6 +52,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
         None => None,
     };
     let report = watched_report(&request, animation.as_mut())?;
+    let animation = animation.map(|a| a.marked(report.valid, &report.warnings));
     super::animate::finish(animation, args.animate.animate.as_deref())?;
     if let Some(csv) = csv {
         write_rows(csv, &report)?;

@@ -153,6 +153,7 @@ pub struct Animation {
     tolerance: f64,
     next: usize,
     kept: Vec<(f64, Vec<Vector3<f64>>)>,
+    invalid: Option<String>,
 }
 
 impl Animation {
@@ -168,6 +169,7 @@ impl Animation {
             tolerance,
             next: 0,
             kept: Vec::new(),
+            invalid: None,
         }
     }
 
@@ -187,12 +189,29 @@ impl Animation {
         self.kept.len()
     }
 
+    /// Marks every frame as showing a run that is not valid, `reason`
+    /// ([`tensegrity_io::figure::Figure::mark_invalid`]); the run's validity is known at its
+    /// end, before [`Animation::finish`] draws the frames.
+    pub fn mark_invalid(&mut self, reason: impl Into<String>) {
+        self.invalid = Some(reason.into());
+    }
+
+    /// The same animation marked when `valid` is false, the reason from `warnings`
+    /// ([`crate::warning::invalid_reason`]).
+    pub fn marked(mut self, valid: bool, warnings: &[tensegrity_core::Warning]) -> Self {
+        if !valid {
+            self.mark_invalid(crate::warning::invalid_reason(warnings));
+        }
+        self
+    }
+
     /// Draws the frames kept and writes the file; the number of frames.
     pub fn finish(self) -> Result<usize> {
         let Self {
             mut sink,
             scenery,
             kept,
+            invalid,
             ..
         } = self;
         let turned: Vec<(f64, Vec<(f64, f64)>)> = kept
@@ -203,7 +222,8 @@ impl Animation {
         // one size for every frame: the first's (the windows' aspects agree to round-off)
         let mut size = None;
         for ((t, nodes), window) in kept.iter().zip(windows) {
-            let figure = scenery.frame(*t, nodes, window);
+            let mut figure = scenery.frame(*t, nodes, window);
+            figure.invalid.clone_from(&invalid);
             let (w, h) = *size.get_or_insert(figure.panel_size);
             sink.frame(&figure.with_panel_size(w, h))?;
         }

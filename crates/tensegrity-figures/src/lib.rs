@@ -61,7 +61,7 @@ pub mod rolling;
 pub mod structures;
 pub mod sweep_plot;
 pub mod tbar;
-mod warning;
+pub mod warning;
 pub mod wheels;
 pub mod work_precision;
 

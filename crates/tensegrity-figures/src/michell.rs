@@ -39,7 +39,7 @@ use michell3d::{AnalysisRequest, Branch, MemberKind, Method, MichellAnalysis, Mi
 use nalgebra::Vector3;
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_6, PI};
-use tensegrity_io::figure::{Figure, Panel, Series};
+use tensegrity_io::figure::{diverging_color, Figure, Panel, Series};
 use tensegrity_io::figure_data::{FigureData, Value};
 
 const BETA: f64 = FRAC_PI_6;
@@ -317,9 +317,11 @@ pub fn fig_4_4(_: &Ctx) -> Result<Drawn> {
     panel
         .series
         .push(Series::new("blue region [π+β, 2π−β]", fan(tip, blue, 0.3)).with_color(light_blue));
-    panel
-        .series
-        .push(Series::new("red region [β, π−β]", fan(tip, red, 0.3)).with_color(light_red));
+    panel.series.push(
+        Series::new("red region [β, π−β] (dashed)", fan(tip, red, 0.3))
+            .with_color(light_red)
+            .dashed(),
+    );
     Ok(fig.finish())
 }
 
@@ -508,7 +510,8 @@ fn sign_map_panel(map: &SignMap, name: &str) -> Panel {
                 (false, false) => "compression",
             };
             labelled[slot] = true;
-            let color = if sign > 0 { RED } else { BLUE };
+            // the diverging map's ends: they differ in lightness, so the signs differ in print
+            let color = diverging_color(f64::from(sign), 1.0);
             panel = panel.series(Series::new(label, vec![(x, lo), (x, hi)]).with_color(color));
         }
     }
@@ -646,7 +649,7 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Drawn> {
             "force density q [N/m]",
         );
         let curves = [
-            (&sweep.base_force, &base_len, "truss members", None),
+            (&sweep.base_force, &base_len, "", None),
             (&sweep.extra_force, &extra_len, "extra strings", Some(GREY)),
         ];
         for (forces, lengths, label, color) in curves {
@@ -656,7 +659,13 @@ pub fn fig_4_20(ctx: &Ctx) -> Result<Drawn> {
                     .iter()
                     .zip(forces.iter())
                     .map(|(&g, f)| (g, f[j] / l));
-                let s = Series::new(if j == 0 { label } else { "" }, pts.collect());
+                // each truss member its own style (colour, dash, marker) and legend entry
+                let label = match color {
+                    None => format!("member {}", j + 1),
+                    Some(_) if j == 0 => label.to_string(),
+                    Some(_) => String::new(),
+                };
+                let s = Series::new(label, pts.collect());
                 panel = panel.series(match color {
                     Some(c) => s.with_color(c),
                     None => s,

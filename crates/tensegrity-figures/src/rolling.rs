@@ -209,13 +209,12 @@ impl ImpactMeans {
     }
 }
 
-/// A fixed colour per wheel (n = 8, 12, 16, 24), so that a band and its mean share it.
-const WHEEL_COLOURS: [(u8, u8, u8); 4] = [
-    (31, 119, 180),
-    (214, 39, 40),
-    (44, 160, 44),
-    (148, 103, 189),
-];
+/// A fixed colour per wheel (n = 8, 12, 16, 24), so that a band and its mean share it: the
+/// first four of the series palette ([`tensegrity_io::figure::style::PALETTE`]).
+const WHEEL_COLOURS: [(u8, u8, u8); 4] = {
+    let p = tensegrity_io::figure::style::PALETTE;
+    [p[0], p[1], p[2], p[3]]
+};
 
 impl FigRolling {
     /// Figs. 3.10 (axle height of every wheel) and 3.11 (reactions of n = 8 and 16) side by
@@ -245,7 +244,19 @@ impl FigRolling {
         } else {
             axle_panel(&labelled)
         };
-        Figure::new(vec![axle, reaction_panel(&some)])
+        let invalid: Vec<tensegrity_core::Warning> = (self.runs.iter())
+            .filter(|r| !r.summary.valid)
+            .flat_map(|r| {
+                let run = r.fidelity.name();
+                (r.summary.warnings.iter()).map(move |w| w.clone().in_run(r.sides, run))
+            })
+            .collect();
+        let valid = self.runs.iter().all(|r| r.summary.valid);
+        crate::warning::marked(
+            Figure::new(vec![axle, reaction_panel(&some)]),
+            valid,
+            &invalid,
+        )
     }
 
     /// The axle height of every wheel as its ensemble's mean and 95 % band (a wheel without
@@ -397,8 +408,21 @@ fn roll_all(requests: &[RollRequest]) -> Result<Vec<(RollReport, f64)>> {
 
 /// The figure of one `roll` run: with `frame_times`, the wheel's members at those times
 /// (the report's frames within one step `dt` of each time, thesis Fig. 3.8); without, the
-/// axle height above the slope and the normal reaction against time.
+/// axle height above the slope and the normal reaction against time. A run that is not valid
+/// is marked on the figure (`NOT VALID: <first warning's kind>`,
+/// [`crate::warning::invalid_reason`]).
 pub fn roll_figure(
+    request: &RollRequest,
+    report: &RollReport,
+    frame_times: Option<&[f64]>,
+) -> Result<Figure> {
+    let figure = run_figure(request, report, frame_times)?;
+    let s = &report.summary;
+    Ok(crate::warning::marked(figure, s.valid, &s.warnings))
+}
+
+/// [`roll_figure`] unmarked.
+fn run_figure(
     request: &RollRequest,
     report: &RollReport,
     frame_times: Option<&[f64]>,
@@ -663,6 +687,33 @@ mod tests {
     }
 
     #[test]
+    fn a_figure_of_a_run_that_is_not_valid_is_marked_with_its_first_warning() {
+        let valid = run(8, true);
+        let fig = roll_figure(&RollRequest::with_sides(8), &valid, None).unwrap();
+        assert!(fig.invalid.is_none());
+        assert!(!fig.to_svg().unwrap().contains("class=\"invalid\""));
+        let mut bad = run(8, false);
+        bad.summary.warnings = vec![
+            tensegrity_core::Warning::NotPrestressable,
+            tensegrity_core::Warning::RimFreeBody,
+        ];
+        let fig = roll_figure(&RollRequest::with_sides(8), &bad, None).unwrap();
+        let svg = fig.to_svg().unwrap();
+        assert!(
+            svg.contains("NOT VALID: not_prestressable (+1 more)"),
+            "{svg}"
+        );
+        let all = FigRolling {
+            refined: Vec::new(),
+            runs: vec![valid, bad],
+        };
+        assert_eq!(
+            all.figure().invalid.as_deref(),
+            Some("n = 8: not_prestressable (+1 more)")
+        );
+    }
+
+    #[test]
     fn fig_rolling_draws_every_axle_height_and_the_reactions_of_8_and_16() {
         let runs = FigRolling {
             refined: Vec::new(),
@@ -681,6 +732,8 @@ mod tests {
             ]
         );
         assert_eq!(labels(&f.panels[1]), ["n = 8 rigid", "n = 16 rigid"]);
+        // the figure says so above its panels (issue 46): the run not valid, without warnings
+        assert_eq!(f.invalid.as_deref(), Some("see the report"));
         let first = &runs.runs[0].samples;
         assert_eq!(f.panels[0].series[0].points[0], (first[0].t, first[0].h));
         assert_eq!(

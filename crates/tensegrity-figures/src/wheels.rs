@@ -314,7 +314,9 @@ pub fn fig_3_8_of(ctx: &Ctx, req: &RollRequest, times: &[f64]) -> Result<Drawn> 
         let panel = fig.panels.last_mut().expect("just added");
         panel.series.push(ground.with_color(GREY));
     }
-    Ok(fig.finish())
+    let mut drawn = fig.finish();
+    drawn.figure = mark(drawn.figure, flagged, &[&report]);
+    Ok(drawn)
 }
 
 /// The rigid model's frame turned onto its contact: the frame places the wheel by the turn
@@ -395,6 +397,26 @@ enum Flag {
     Invalid,
 }
 
+/// `figure` marked ([`tensegrity_io::figure::Figure::mark_invalid`]) when its runs were
+/// flagged: `lift_off`, or the first warning of the first run not valid (`n = 8: …`).
+fn mark(figure: Figure, flag: Flag, runs: &[&RollReport]) -> Figure {
+    match flag {
+        Flag::None => figure,
+        Flag::LiftOff => figure.mark_invalid("lift_off (the model holds the wheel on the slope)"),
+        Flag::Invalid => {
+            let warnings: Vec<tensegrity_core::Warning> = runs
+                .iter()
+                .filter(|r| !r.summary.valid)
+                .flat_map(|r| {
+                    let run = fidelity(r);
+                    (r.summary.warnings.iter()).map(move |w| w.clone().in_run(r.sides, run))
+                })
+                .collect();
+            figure.mark_invalid(crate::warning::invalid_reason(&warnings))
+        }
+    }
+}
+
 /// The title's note when a run is outside its model's assumptions or not converged.
 fn note(flag: Flag) -> &'static str {
     match flag {
@@ -434,8 +456,13 @@ pub fn fig_3_10(ctx: &Ctx) -> Result<Drawn> {
         let pts = r.samples.iter().map(|s| (s.t, s.h - mean)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
     }
-    Ok(Drawn::plot(
+    let figure = mark(
         Figure::new(vec![panel]),
+        flagged,
+        &runs.iter().collect::<Vec<_>>(),
+    );
+    Ok(Drawn::plot(
+        figure,
         ("t", "s"),
         ("axle_height_minus_mean", "m"),
     ))
@@ -455,12 +482,12 @@ pub fn fig_3_11(ctx: &Ctx) -> Result<Drawn> {
         "time [s]",
         "normal force [N]",
     );
-    for r in runs {
+    for r in &runs {
         let pts = r.samples.iter().map(|s| (s.t, s.normal)).collect();
         panel = panel.series(Series::new(format!("n = {}", r.sides), pts));
     }
     Ok(Drawn::plot(
-        Figure::new(vec![panel]),
+        mark(Figure::new(vec![panel]), flagged, &runs),
         ("t", "s"),
         ("normal_force", "N"),
     ))
@@ -493,4 +520,27 @@ pub fn fig_3_13(ctx: &Ctx) -> Result<Drawn> {
         ("sigma", "1"),
         ("normalized_friction", "1"),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_figure_of_flagged_runs_is_marked_and_of_valid_runs_not() {
+        let mut r = toroid::roll(&RollRequest {
+            fidelity: FidelityChoice::Rigid,
+            t_end: 0.01,
+            ..RollRequest::with_sides(8)
+        })
+        .unwrap();
+        let fig = || Figure::new(vec![Panel::new("t", "x", "y")]);
+        assert!(mark(fig(), Flag::None, &[&r]).invalid.is_none());
+        let lifted = mark(fig(), Flag::LiftOff, &[&r]).invalid.unwrap();
+        assert!(lifted.starts_with("lift_off"), "{lifted}");
+        r.summary.valid = false;
+        r.summary.warnings = vec![tensegrity_core::Warning::RimFreeBody];
+        let invalid = mark(fig(), Flag::Invalid, &[&r]).invalid;
+        assert_eq!(invalid.as_deref(), Some("n = 8: rim_free_body"));
+    }
 }

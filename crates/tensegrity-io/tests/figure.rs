@@ -63,13 +63,15 @@ fn the_svg_is_xml_with_one_polyline_per_series_and_the_labels() {
     ] {
         assert!(texts.contains(&label), "{label} missing from {texts:?}");
     }
-    // markers on the two marked series only (5 points), and on their 2 legend samples
-    assert_eq!(
-        doc.descendants()
-            .filter(|n| n.has_tag_name("circle"))
-            .count(),
-        7
-    );
+    // markers on the two marked series only (5 points), and on their 2 legend samples: the
+    // first style's circles and the second's squares (issue 46: one style table)
+    let shapes: Vec<&str> = doc
+        .descendants()
+        .filter_map(|n| n.attribute("data-marker"))
+        .collect();
+    assert_eq!(shapes.len(), 7);
+    assert_eq!(shapes.iter().filter(|&&s| s == "circle").count(), 4);
+    assert_eq!(shapes.iter().filter(|&&s| s == "square").count(), 3);
 }
 
 #[test]
@@ -93,7 +95,10 @@ fn the_png_decodes_at_the_requested_size_and_is_not_blank() {
     );
     let colored = pixels
         .chunks(3)
-        .filter(|p| p == &[0xd6, 0x27, 0x28])
+        .filter(|p| {
+            let c = tensegrity_io::figure::style::PALETTE[1];
+            p == &[c.0, c.1, c.2]
+        })
         .count();
     assert!(
         colored > 100,

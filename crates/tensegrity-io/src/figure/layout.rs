@@ -10,8 +10,9 @@
 //! common 10ᵉ shown once at the axis end (×10ᵉ). A log axis is labelled 10ⁿ at its decades
 //! (every second or more when there are many).
 
+use super::style::{series_style, Dash, Marker};
 use super::text::{self, superscript};
-use super::{Panel, Scale, Series, COLORS};
+use super::{Panel, Scale};
 
 /// Font sizes (px).
 pub const TITLE_SIZE: f64 = 14.0;
@@ -65,10 +66,10 @@ pub enum Glyph {
         color: (u8, u8, u8),
         /// Width (px).
         width: f64,
-        /// Dashed.
-        dashed: bool,
-        /// With a circle.
-        marker: bool,
+        /// Dash pattern.
+        dash: Dash,
+        /// With this marker.
+        marker: Option<Marker>,
     },
     /// An arrow.
     Arrow((u8, u8, u8)),
@@ -121,9 +122,63 @@ impl PanelLayout {
     }
 }
 
-/// The colour of series `k`.
-pub fn series_color(k: usize, s: &Series) -> (u8, u8, u8) {
-    s.color.unwrap_or(COLORS[k % COLORS.len()])
+/// Where a series' markers go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Markers {
+    /// None.
+    None,
+    /// At every point ([`super::Series::markers`]).
+    Every,
+    /// Every ~70 px along the curve (a plain line in a panel of more styled series than
+    /// dash patterns).
+    Spaced,
+}
+
+/// How one series is drawn: colour, dash, marker and where its markers go.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stroke {
+    /// RGB colour.
+    pub color: (u8, u8, u8),
+    /// Dash pattern.
+    pub dash: Dash,
+    /// Marker shape.
+    pub marker: Marker,
+    /// Where the markers go.
+    pub markers: Markers,
+}
+
+/// The stroke of every series of `panel`, in order: a series without a colour of its own
+/// takes the next style of [`super::style::series_style`] (counted over such series only);
+/// one with its own colour is solid (dashed if asked) with circles.
+pub fn strokes(panel: &Panel) -> Vec<Stroke> {
+    let styled = panel.series.iter().filter(|s| s.color.is_none()).count();
+    let mut k = 0;
+    panel
+        .series
+        .iter()
+        .map(|s| {
+            let (color, dash, marker, spaced) = match s.color {
+                Some(c) => (c, Dash::Solid, Marker::Circle, false),
+                None => {
+                    let style = series_style(k);
+                    k += 1;
+                    (style.color, style.dash, style.marker, styled > 6)
+                }
+            };
+            let markers = match (s.markers, spaced) {
+                (true, _) => Markers::Every,
+                (false, true) => Markers::Spaced,
+                (false, false) => Markers::None,
+            };
+            let dash = if s.dashed { Dash::Dashed } else { dash };
+            Stroke {
+                color,
+                dash,
+                marker,
+                markers,
+            }
+        })
+        .collect()
 }
 
 /// A step 1, 2 or 5 × 10ᵏ with at most `max_ticks` ticks over `span`.
@@ -250,12 +305,12 @@ fn legend_entries(panel: &Panel) -> Vec<(Glyph, String)> {
             out.push((glyph, label.to_string()));
         }
     };
-    for (k, s) in panel.series.iter().enumerate() {
+    for (s, st) in panel.series.iter().zip(strokes(panel)) {
         let glyph = Glyph::Line {
-            color: series_color(k, s),
+            color: st.color,
             width: s.width,
-            dashed: s.dashed,
-            marker: s.markers,
+            dash: st.dash,
+            marker: (st.markers != Markers::None).then_some(st.marker),
         };
         add(glyph, &s.label);
     }
@@ -467,6 +522,7 @@ fn best_place(panel: &Panel, layout: &PanelLayout, (w, h): (f64, f64)) -> Option
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::figure::Series;
 
     #[test]
     fn linear_ticks_share_their_decimals_and_factor_out_large_powers() {

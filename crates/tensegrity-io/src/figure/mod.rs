@@ -28,7 +28,11 @@
 //! The legend goes where it covers no data: the corner or edge of the plot area whose box
 //! covers the fewest sampled points of the curves, marks and arrows, or, when every place
 //! inside covers some, outside to the right of the plot. Each series is one `<polyline>`, so
-//! an SVG holds exactly one polyline per series (markers are circles).
+//! an SVG holds exactly one polyline per series (markers are circles, squares, triangles or
+//! diamonds, each with a `data-marker` naming its shape). Every series without a colour of its
+//! own takes the next of 12 styles (colour, dash, marker: [`style`], colour-blind- and
+//! greyscale-safe). A figure of a run that is not valid carries a red `NOT VALID: reason`
+//! above its panels ([`Figure::mark_invalid`]).
 //!
 //! ```
 //! use tensegrity_io::figure::{Figure, Panel, Series};
@@ -46,6 +50,7 @@ pub mod layout;
 pub mod render;
 mod save;
 mod size;
+pub mod style;
 pub mod svg;
 mod text;
 
@@ -58,15 +63,10 @@ pub(crate) static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 /// The font family name of [`FONT`], as the SVG names it.
 pub const FONT_FAMILY: &str = "DejaVu Sans";
 
-/// The series colours, in order.
-pub const COLORS: [(u8, u8, u8); 6] = [
-    (0x1f, 0x77, 0xb4),
-    (0xd6, 0x27, 0x28),
-    (0x2c, 0xa0, 0x2c),
-    (0x94, 0x67, 0xbd),
-    (0xff, 0x7f, 0x0e),
-    (0x17, 0xbe, 0xcf),
-];
+/// The series colours, in order: [`style::PALETTE`] (Okabe–Ito and Paul Tol's "muted",
+/// colour-blind-safe); each series also has a dash pattern and a marker of its own
+/// ([`style::series_style`]).
+pub const COLORS: [(u8, u8, u8); 12] = style::PALETTE;
 
 /// The scale of an axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -191,9 +191,12 @@ pub struct ColorBar {
 }
 
 /// The diverging colour of `value` on [−`max_abs`, `max_abs`]: compression (negative) from
-/// light to dark blue, tension (positive) from light to dark red, 0 light grey. The luminance
-/// falls with the magnitude on both sides; tension and compression are told apart in
-/// greyscale by the line style of a structure drawing (dashed tension), not by the colour.
+/// light grey to dark navy (#08306b, the darkest of ColorBrewer's "Blues", CIELAB L\* 21),
+/// tension (positive) from light grey to red (#e34a33, of ColorBrewer's "OrRd", L\* 53), 0
+/// light grey (#c8c8c8, L\* 81). The lightness falls with the magnitude on both sides, and the
+/// two ends differ in lightness by 32 (greyscale-safe: at full magnitude compression prints
+/// near black, tension mid grey); a structure drawing also dashes tension, so any two members
+/// of opposite sign differ in greyscale.
 pub fn diverging_color(value: f64, max_abs: f64) -> (u8, u8, u8) {
     let t = if max_abs > 0.0 && value.is_finite() {
         (value.abs() / max_abs).clamp(0.0, 1.0)
@@ -202,7 +205,7 @@ pub fn diverging_color(value: f64, max_abs: f64) -> (u8, u8, u8) {
     };
     let grey = (0xc8 as f64, 0xc8 as f64, 0xc8 as f64);
     let end = if value >= 0.0 {
-        (0xa5 as f64, 0x0f as f64, 0x15 as f64)
+        (0xe3 as f64, 0x4a as f64, 0x33 as f64)
     } else {
         (0x08 as f64, 0x30 as f64, 0x6b as f64)
     };
@@ -329,6 +332,9 @@ pub struct Figure {
     pub panels: Vec<Panel>,
     /// Width and height of one panel (CSS pixels; SVG user units).
     pub panel_size: (u32, u32),
+    /// Why the run the figure shows is not valid ([`Figure::mark_invalid`]): drawn in red,
+    /// `NOT VALID: reason`, in a band along the figure's top left, above the panels.
+    pub invalid: Option<String>,
 }
 
 impl Figure {
@@ -337,7 +343,28 @@ impl Figure {
         Self {
             panels,
             panel_size: (540, 400),
+            invalid: None,
         }
+    }
+
+    /// The same figure marked as showing a run that is not valid, `reason` (e.g. the first
+    /// warning's kind): the writer draws `NOT VALID: reason` in red (an SVG `<text
+    /// class="invalid">`, so in the PNG and PDF too) in a band of its own along the top of the
+    /// figure, the panels below it, so the mark never covers a panel. The text is plain (no
+    /// math); a reason wider than the figure is cut with `…`.
+    ///
+    /// ```
+    /// use tensegrity_io::figure::{Figure, Panel, Series};
+    /// let panel = Panel::new("run", "t [s]", "h [m]").series(Series::new("h", vec![(0.0, 1.0), (1.0, 0.5)]));
+    /// let fig = Figure::new(vec![panel]);
+    /// assert!(!fig.to_svg()?.contains("NOT VALID"));
+    /// let svg = fig.mark_invalid("not_converged").to_svg()?;
+    /// assert!(svg.contains("NOT VALID: not_converged"));
+    /// # Ok::<(), tensegrity_io::IoError>(())
+    /// ```
+    pub fn mark_invalid(mut self, reason: impl Into<String>) -> Self {
+        self.invalid = Some(reason.into());
+        self
     }
 
     /// The same figure with another panel size (pixels).
@@ -450,7 +477,7 @@ mod tests {
     #[test]
     fn the_diverging_map_is_grey_at_zero_and_darker_with_magnitude() {
         assert_eq!(diverging_color(0.0, 1.0), (0xc8, 0xc8, 0xc8));
-        assert_eq!(diverging_color(2.0, 1.0), (0xa5, 0x0f, 0x15));
+        assert_eq!(diverging_color(2.0, 1.0), (0xe3, 0x4a, 0x33));
         assert_eq!(diverging_color(-1.0, 1.0), (0x08, 0x30, 0x6b));
         let lum = |(r, g, b): (u8, u8, u8)| 0.3 * r as f64 + 0.59 * g as f64 + 0.11 * b as f64;
         assert!(lum(diverging_color(0.5, 1.0)) > lum(diverging_color(0.9, 1.0)));

@@ -6,7 +6,8 @@
 //! `data-x-range` and `data-y-range` (drawing coordinates) give the map from data to pixels:
 //! x_px = left + (x − x₀)·width/(x₁ − x₀), y_px = top + height − (y − y₀)·height/(y₁ − y₀).
 
-use super::layout::{self, Glyph, PanelLayout, Rect, LABEL_SIZE, TICK_SIZE, TITLE_SIZE};
+use super::layout::{self, Glyph, Markers, PanelLayout, Rect, LABEL_SIZE, TICK_SIZE, TITLE_SIZE};
+use super::style::{Dash, Marker};
 use super::text::{self, Shift, SCRIPT_SCALE};
 use super::{diverging_color, Figure, MarkShape, Panel, Unit, FONT_FAMILY};
 use std::fmt::Write;
@@ -110,19 +111,40 @@ fn write_with_size(figure: &Figure, (w, h): (f64, f64), (width, height): (&str, 
         num(h)
     );
     out.push_str("<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
+    let band = match &figure.invalid {
+        Some(reason) => invalid_mark(&mut out, reason, w),
+        None => 0.0,
+    };
     let panel_w = w / figure.panels.len() as f64;
     for (k, panel) in figure.panels.iter().enumerate() {
         let area = Rect {
             x: k as f64 * panel_w,
-            y: 0.0,
+            y: band,
             w: panel_w,
-            h,
+            h: h - band,
         };
         let l = layout::place(panel, area);
         write_panel(&mut out, panel, &l, k);
     }
     out.push_str("</svg>\n");
     out
+}
+
+/// The red `NOT VALID: reason` of [`Figure::mark_invalid`] at the figure's top left, plain
+/// text cut with `…` to the figure's width `w`; the height of its band (px), which the panels
+/// are laid out below.
+fn invalid_mark(out: &mut String, reason: &str, w: f64) -> f64 {
+    const SIZE: f64 = 11.0;
+    let mut t = format!("NOT VALID: {}", text::literal(reason));
+    while text::width(&t, SIZE) > w - 12.0 && t.chars().count() > 12 {
+        t = t.trim_end_matches('…').to_string();
+        t.pop();
+        t.push('…');
+    }
+    let _ = write!(out, "<g class=\"invalid\" fill=\"#d00000\">");
+    label(out, &t, (6.0, 4.0 + SIZE), SIZE, "start", false);
+    out.push_str("</g>\n");
+    SIZE + 8.0
 }
 
 fn write_panel(out: &mut String, panel: &Panel, l: &PanelLayout, k: usize) {
@@ -259,20 +281,23 @@ fn write_axes(out: &mut String, panel: &Panel, l: &PanelLayout) {
     }
 }
 
-fn polyline(out: &mut String, pts: &[(f64, f64)], color: (u8, u8, u8), width: f64, dashed: bool) {
+/// The `stroke-dasharray` attribute of `dash` on a line `width` px wide (empty if solid).
+fn dasharray(dash: Dash, width: f64) -> String {
+    match dash.pattern(width) {
+        Some(p) => {
+            let p: Vec<String> = p.iter().map(|&v| num(v)).collect();
+            format!(" stroke-dasharray=\"{}\"", p.join(" "))
+        }
+        None => String::new(),
+    }
+}
+
+fn polyline(out: &mut String, pts: &[(f64, f64)], color: (u8, u8, u8), width: f64, dash: Dash) {
     let points: Vec<String> = pts
         .iter()
         .map(|&(x, y)| format!("{},{}", num(x), num(y)))
         .collect();
-    let dash = if dashed {
-        format!(
-            " stroke-dasharray=\"{} {}\"",
-            num(3.0 * width.max(1.5)),
-            num(2.0 * width.max(1.5))
-        )
-    } else {
-        String::new()
-    };
+    let dash = dasharray(dash, width);
     let _ = writeln!(
         out,
         "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\"{dash}/>",
@@ -280,6 +305,73 @@ fn polyline(out: &mut String, pts: &[(f64, f64)], color: (u8, u8, u8), width: f6
         rgb(color),
         num(width)
     );
+}
+
+/// A series marker of `shape` centred at (x, y), about 6 px across, with a thin white edge
+/// so that overlapping markers stay apart (`data-marker` names the shape).
+fn marker(out: &mut String, shape: Marker, (x, y): (f64, f64), color: (u8, u8, u8)) {
+    let c = rgb(color);
+    let edge = "stroke=\"#ffffff\" stroke-width=\"0.6\"";
+    let poly = |pts: &[(f64, f64)]| -> String {
+        let p: Vec<String> = pts
+            .iter()
+            .map(|&(dx, dy)| format!("{},{}", num(x + dx), num(y + dy)))
+            .collect();
+        p.join(" ")
+    };
+    let _ = match shape {
+        Marker::Circle => writeln!(
+            out,
+            "<circle data-marker=\"circle\" cx=\"{}\" cy=\"{}\" r=\"3.2\" fill=\"{c}\" {edge}/>",
+            num(x),
+            num(y)
+        ),
+        Marker::Ring => writeln!(
+            out,
+            "<circle data-marker=\"ring\" cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"#ffffff\" stroke=\"{c}\" stroke-width=\"1.5\"/>",
+            num(x),
+            num(y)
+        ),
+        Marker::Square => writeln!(
+            out,
+            "<rect data-marker=\"square\" x=\"{}\" y=\"{}\" width=\"5.6\" height=\"5.6\" fill=\"{c}\" {edge}/>",
+            num(x - 2.8),
+            num(y - 2.8)
+        ),
+        Marker::TriangleUp => writeln!(
+            out,
+            "<polygon data-marker=\"triangle-up\" points=\"{}\" fill=\"{c}\" {edge}/>",
+            poly(&[(0.0, -4.0), (3.6, 2.6), (-3.6, 2.6)])
+        ),
+        Marker::TriangleDown => writeln!(
+            out,
+            "<polygon data-marker=\"triangle-down\" points=\"{}\" fill=\"{c}\" {edge}/>",
+            poly(&[(0.0, 4.0), (3.6, -2.6), (-3.6, -2.6)])
+        ),
+        Marker::Diamond => writeln!(
+            out,
+            "<polygon data-marker=\"diamond\" points=\"{}\" fill=\"{c}\" {edge}/>",
+            poly(&[(0.0, -4.0), (3.4, 0.0), (0.0, 4.0), (-3.4, 0.0)])
+        ),
+    };
+}
+
+/// Points every `step` px along the polyline `px`, the first `offset` px from its start.
+fn spaced(px: &[(f64, f64)], step: f64, offset: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut next = offset;
+    let mut walked = 0.0;
+    for w in px.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        while len > 0.0 && next <= walked + len {
+            let f = (next - walked) / len;
+            out.push((a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1)));
+            next += step;
+        }
+        walked += len;
+    }
+    out
 }
 
 /// A straight stroke as `<line>` (legend samples, arrow shafts: not a series, so no
@@ -290,17 +382,9 @@ fn segment(
     b: (f64, f64),
     color: (u8, u8, u8),
     width: f64,
-    dashed: bool,
+    dash: Dash,
 ) {
-    let dash = if dashed {
-        format!(
-            " stroke-dasharray=\"{} {}\"",
-            num(3.0 * width.max(1.5)),
-            num(2.0 * width.max(1.5))
-        )
-    } else {
-        String::new()
-    };
+    let dash = dasharray(dash, width);
     let _ = writeln!(
         out,
         "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{dash}/>",
@@ -322,7 +406,7 @@ fn arrow(out: &mut String, from: (f64, f64), to: (f64, f64), color: (u8, u8, u8)
     let (ux, uy) = (dx / len, dy / len);
     let head = 8.0f64.min(0.6 * len);
     let base = (to.0 - head * ux, to.1 - head * uy);
-    segment(out, from, base, color, 1.6, false);
+    segment(out, from, base, color, 1.6, Dash::Solid);
     let (nx, ny) = (-uy * 0.4 * head, ux * 0.4 * head);
     let _ = writeln!(
         out,
@@ -366,27 +450,26 @@ fn mark(out: &mut String, shape: MarkShape, (x, y): (f64, f64), color: (u8, u8, 
                 (x + 8.0, y + 12.0),
                 color,
                 1.2,
-                false,
+                Dash::Solid,
             );
         }
     }
 }
 
 fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) {
-    for (k, (s, pts)) in panel.series.iter().zip(panel.drawn_points()).enumerate() {
-        let color = layout::series_color(k, s);
+    let strokes = layout::strokes(panel);
+    let lines = panel.series.iter().zip(panel.drawn_points()).zip(&strokes);
+    for (k, ((s, pts), st)) in lines.enumerate() {
         let px: Vec<(f64, f64)> = pts.iter().map(|&p| l.px(p)).collect();
-        polyline(out, &px, color, s.width, s.dashed);
-        if s.markers {
-            for &(x, y) in &px {
-                let _ = writeln!(
-                    out,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>",
-                    num(x),
-                    num(y),
-                    rgb(color)
-                );
-            }
+        polyline(out, &px, st.color, s.width, st.dash);
+        let at = match st.markers {
+            Markers::None => Vec::new(),
+            Markers::Every => px,
+            // staggered by series, so that curves that coincide show each marker
+            Markers::Spaced => spaced(&px, 70.0, 12.0 + 4.7 * (k % 12) as f64),
+        };
+        for p in at {
+            marker(out, st.marker, p, st.color);
         }
     }
     for a in &panel.arrows {
@@ -426,18 +509,12 @@ fn write_legend(out: &mut String, legend: &layout::Legend) {
             Glyph::Line {
                 color,
                 width,
-                dashed,
-                marker,
+                dash,
+                marker: shape,
             } => {
-                segment(out, (x0, y), (x1, y), color, width.min(4.0), dashed);
-                if marker {
-                    let _ = writeln!(
-                        out,
-                        "<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>",
-                        num(0.5 * (x0 + x1)),
-                        num(y),
-                        rgb(color)
-                    );
+                segment(out, (x0, y), (x1, y), color, width.min(4.0), dash);
+                if let Some(shape) = shape {
+                    marker(out, shape, (0.5 * (x0 + x1), y), color);
                 }
             }
             Glyph::Arrow(color) => arrow(out, (x0, y), (x1, y), color),
