@@ -1,11 +1,13 @@
-//! `--animate FILE.gif [--fps F] [--duration S]` of `simulate` and `roll`: the GIF sink is
+//! `--animate FILE.gif [--fps F] [--duration S]` of `simulate`, `roll` and `tbar roll`, at
+//! the command's `--size`/`--dpi` ([`super::figure_args::FigureArgs`]): the GIF sink is
 //! opened before the work, the run hands its nodes to a
 //! [`tensegrity_figures::animation::Animation`], which draws round(F·S) frames spread over
 //! the run when it ends.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use std::path::PathBuf;
 use tensegrity_figures::animation::{Animation, AnimationSpec, Scenery};
+use tensegrity_io::figure::{Figure, Panel, RenderOptions};
 use tensegrity_io::sink::GifSink;
 
 /// The animation flags.
@@ -27,14 +29,25 @@ pub struct AnimateArgs {
 pub struct Opened(GifSink, AnimationSpec);
 
 impl AnimateArgs {
-    /// The spec checked and the file opened (before the work), if asked for.
+    /// The spec checked and the file opened (before the work), if asked for; the frames at
+    /// their own size and 96 dpi.
     pub fn open(&self) -> Result<Option<Opened>> {
+        self.open_with(RenderOptions::default())
+    }
+
+    /// [`AnimateArgs::open`] with the frames drawn under `options` (`--size`, `--dpi`).
+    pub fn open_with(&self, options: RenderOptions) -> Result<Option<Opened>> {
         let Some(path) = &self.animate else {
             return Ok(None);
         };
         let spec =
             AnimationSpec::new(self.fps, self.duration).map_err(super::request_args::usage)?;
-        let sink = super::output::open_required("--animate", path, |p| GifSink::open(p, spec.fps))?;
+        // a size no frame can have is refused before the run (exit 2)
+        let blank = Figure::new(vec![Panel::new("", "", "")]);
+        blank.page_px(&options).context("--size")?;
+        let sink = super::output::open_required("--animate", path, |p| {
+            GifSink::open_with(p, spec.fps, options)
+        })?;
         Ok(Some(Opened(sink, spec)))
     }
 }

@@ -91,7 +91,7 @@ pub fn run_roll(args: &RollArgs) -> Result<()> {
     let progress = super::guard::roll(&request)?;
     let t_end = request.t_end;
     args.check_frames(t_end)?;
-    let opened = args.animate.open()?;
+    let opened = args.animate.open_with(args.figure.options()?)?;
     // the VTK series and the animation draw the built wheel's members
     let wheel = (args.vtk.is_some() || opened.is_some())
         .then(|| request.wheel.build())

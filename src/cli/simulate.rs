@@ -50,6 +50,8 @@ pub struct SimulateArgs {
     pub json: bool,
     #[command(flatten)]
     animate: super::animate::AnimateArgs,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Entry point of `tensegrity simulate`: reads the scene, runs it, prints the report.
@@ -64,7 +66,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         return run_elastic(args, &command, &scene);
     }
     let (csv, vtk) = (args.out.is_some(), args.vtk.is_some());
-    let opened = args.animate.open()?;
+    let opened = args.animate.open_with(args.figure.options()?)?;
     let sampled = csv || vtk || opened.is_some();
     let (scene, mut simulation) = command.prepare_scene(scene, sampled).map_err(usage_of)?;
     let progress = super::guard::simulation(&command, &simulation, csv, vtk)?;

@@ -35,6 +35,8 @@ pub struct TbarRollArgs {
     out: Option<PathBuf>,
     #[command(flatten)]
     animate: super::animate::AnimateArgs,
+    #[command(flatten)]
+    figure: super::figure_args::FigureArgs,
 }
 
 /// Entry point of `tensegrity tbar roll`.
@@ -47,7 +49,7 @@ pub fn run(args: &TbarRollArgs) -> Result<()> {
     let csv = output::open("--out", args.out.as_deref(), |p| {
         CsvSink::with_header(p, "tbar roll rows CSV", &row_columns().collect::<Vec<_>>())
     })?;
-    let mut animation = match args.animate.open()? {
+    let mut animation = match args.animate.open_with(args.figure.options()?)? {
         Some(o) => Some(tbar_animation(o, &request)?),
         None => None,
     };

@@ -1,7 +1,8 @@
 //! Animations of a structure over time (`--animate FILE.gif` of `simulate` and `roll`): the
 //! members drawn with [`crate::draw`] (to scale, bars and strings as the drawings draw them),
 //! the ground as a grey line and the time in the title, one frame per wanted time, encoded
-//! as an animated GIF by the io crate's [`GifSink`].
+//! as an animated GIF by the io crate's [`GifSink`] (at its size and dpi, the frames drawn in
+//! parallel into one palette).
 //!
 //! Frames: N = round(fps · duration) ≥ 2 frames ([`AnimationSpec`]) at the simulated times
 //! t_k = k·t_end/(N − 1), k = 0 … N − 1, shown 1/fps s each, so the whole run plays in
@@ -221,12 +222,18 @@ impl Animation {
         let windows = scenery.windows(&turned);
         // one size for every frame: the first's (the windows' aspects agree to round-off)
         let mut size = None;
-        for ((t, nodes), window) in kept.iter().zip(windows) {
-            let mut figure = scenery.frame(*t, nodes, window);
-            figure.invalid.clone_from(&invalid);
-            let (w, h) = *size.get_or_insert(figure.panel_size);
-            sink.frame(&figure.with_panel_size(w, h))?;
-        }
+        let figures: Vec<_> = kept
+            .iter()
+            .zip(windows)
+            .map(|((t, nodes), window)| {
+                let mut figure = scenery.frame(*t, nodes, window);
+                figure.invalid.clone_from(&invalid);
+                let (w, h) = *size.get_or_insert(figure.panel_size);
+                figure.with_panel_size(w, h)
+            })
+            .collect();
+        // drawn in parallel, one palette
+        sink.frames_of(&figures)?;
         Ok(sink.finish()?)
     }
 }

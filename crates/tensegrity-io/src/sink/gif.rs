@@ -1,17 +1,33 @@
 //! Animated GIF files ([`GifSink`]): frames are [`Figure`]s drawn to RGB
-//! ([`Figure::to_rgb`]), each quantised to its own 256-colour palette (NeuQuant, the `gif`
-//! crate's `Frame::from_rgb_speed`) and LZW-encoded as it comes, so only one frame's pixels
-//! are held at a time. The file loops forever; every frame shows for the same delay
-//! (hundredths of a second: 100/fps rounded, at least 2, as browsers clamp shorter ones).
-//! On an interrupt the file is removed, like any picture ([`FileSink`]).
+//! ([`Figure::to_rgb_with`], at the sink's [`RenderOptions`]: `--size`/`--dpi`), rasterised
+//! and LZW-encoded in parallel (rayon, a batch of frames at a time, so only a batch's pixels
+//! are held), every frame indexed into one global palette built once ([`palette`]): the
+//! figures' own colours (the series style table, the text and axis greys, the NOT VALID red,
+//! the colours the figures name) exactly, each with three tints towards white (the
+//! anti-aliased edges), and a ramp of greys; a pixel takes the nearest palette colour. The
+//! file loops forever; every frame shows for the same delay (hundredths of a second: 100/fps
+//! rounded, at least 2, as browsers clamp shorter ones). On an interrupt the file is
+//! removed, like any picture ([`FileSink`]).
 
 use super::file::FileSink;
 use crate::error::{IoError, Result};
-use crate::figure::Figure;
+use crate::figure::{style, Figure, RenderOptions};
+use rayon::prelude::*;
 use std::path::Path;
 
-/// NeuQuant sampling factor: 1 best, 30 fastest (figures have few colours).
-const QUANTISE_SPEED: i32 = 20;
+/// Frames rasterised together (their RGB held at once).
+const BATCH: usize = 32;
+
+/// The colours every figure may draw besides its own: white, black, the axis and text
+/// greys, the NOT VALID red.
+const FIXED: [(u8, u8, u8); 6] = [
+    (0xff, 0xff, 0xff),
+    (0x00, 0x00, 0x00),
+    (0x44, 0x44, 0x44),
+    (0x66, 0x66, 0x66),
+    (0xe3, 0xe3, 0xe3),
+    (0xd0, 0x00, 0x00),
+];
 
 /// An animated GIF, opened before the work that draws its frames.
 ///
@@ -36,6 +52,8 @@ pub struct GifSink {
     state: State,
     delay_cs: u16,
     frames: usize,
+    options: RenderOptions,
+    palette: Option<Vec<(u8, u8, u8)>>,
 }
 
 enum State {
@@ -52,6 +70,7 @@ impl std::fmt::Debug for GifSink {
         f.debug_struct("GifSink")
             .field("delay_cs", &self.delay_cs)
             .field("frames", &self.frames)
+            .field("options", &self.options)
             .finish_non_exhaustive()
     }
 }
@@ -64,8 +83,14 @@ fn encoding(e: gif::EncodingError) -> IoError {
 
 impl GifSink {
     /// Checks the extension (`.gif`), locks `path` and creates its temporary file; frames
-    /// will show at `fps` frames per second.
+    /// will show at `fps` frames per second, drawn at each figure's own size and 96 dpi.
     pub fn open(path: &Path, fps: f64) -> Result<Self> {
+        Self::open_with(path, fps, RenderOptions::default())
+    }
+
+    /// [`GifSink::open`] with frames drawn under `options` (a size, a dpi: the GIF is
+    /// size × dpi pixels).
+    pub fn open_with(path: &Path, fps: f64, options: RenderOptions) -> Result<Self> {
         let ext = path.extension().and_then(|e| e.to_str());
         if !ext.is_some_and(|e| e.eq_ignore_ascii_case("gif")) {
             return Err(IoError::UnsupportedFormat {
@@ -82,6 +107,8 @@ impl GifSink {
             state: State::Open(FileSink::open(path)?),
             delay_cs: delay as u16,
             frames: 0,
+            options,
+            palette: None,
         })
     }
 
@@ -95,19 +122,44 @@ impl GifSink {
         self.frames
     }
 
+    /// The global palette (at most 256 colours), once the first frame has fixed it.
+    pub fn palette(&self) -> Option<&[(u8, u8, u8)]> {
+        self.palette.as_deref()
+    }
+
     /// Draws `figure` and appends it as the next frame; every frame must have the first's
     /// size.
     pub fn frame(&mut self, figure: &Figure) -> Result<()> {
-        let (rgb, (w, h)) = figure.to_rgb()?;
-        if w > u32::from(u16::MAX) || h > u32::from(u16::MAX) {
-            return Err(IoError::InvalidFigure {
-                reason: "a GIF frame is at most 65535 pixels a side",
-            });
+        self.frames_of(std::slice::from_ref(figure))
+    }
+
+    /// Draws `figures` (in parallel) and appends them in order; the palette is fixed by the
+    /// first call's figures ([`palette`]), and every frame must have the first's size.
+    pub fn frames_of(&mut self, figures: &[Figure]) -> Result<()> {
+        let palette = self.palette.get_or_insert_with(|| palette(figures)).clone();
+        for batch in figures.chunks(BATCH) {
+            let encoded: Vec<(gif::Frame<'static>, (u32, u32))> = batch
+                .par_iter()
+                .map(|f| encoded_frame(f, &self.options, &palette, self.delay_cs))
+                .collect::<Result<_>>()?;
+            for (frame, size) in encoded {
+                self.write(&frame, size, &palette)?;
+            }
         }
+        Ok(())
+    }
+
+    fn write(
+        &mut self,
+        frame: &gif::Frame<'_>,
+        (w, h): (u32, u32),
+        pal: &[(u8, u8, u8)],
+    ) -> Result<()> {
         let state = std::mem::replace(&mut self.state, State::Gone);
         let mut encoder = match state {
             State::Open(file) => {
-                let mut e = gif::Encoder::new(file, w as u16, h as u16, &[]).map_err(encoding)?;
+                let flat: Vec<u8> = pal.iter().flat_map(|&(r, g, b)| [r, g, b]).collect();
+                let mut e = gif::Encoder::new(file, w as u16, h as u16, &flat).map_err(encoding)?;
                 e.set_repeat(gif::Repeat::Infinite).map_err(encoding)?;
                 e
             }
@@ -123,9 +175,9 @@ impl GifSink {
                 })
             }
         };
-        let mut frame = gif::Frame::from_rgb_speed(w as u16, h as u16, &rgb, QUANTISE_SPEED);
-        frame.delay = self.delay_cs;
-        encoder.write_frame(&frame).map_err(encoding)?;
+        encoder
+            .write_lzw_pre_encoded_frame(frame)
+            .map_err(encoding)?;
         self.state = State::Encoding(encoder, (w, h));
         self.frames += 1;
         Ok(())
@@ -142,6 +194,114 @@ impl GifSink {
             _ => Err(IoError::InvalidFigure {
                 reason: "an animation needs at least one frame",
             }),
+        }
+    }
+}
+
+/// One frame drawn, indexed into `palette` and LZW-encoded, with its size.
+fn encoded_frame(
+    figure: &Figure,
+    options: &RenderOptions,
+    palette: &[(u8, u8, u8)],
+    delay_cs: u16,
+) -> Result<(gif::Frame<'static>, (u32, u32))> {
+    let (rgb, (w, h)) = figure.to_rgb_with(options)?;
+    if w > u32::from(u16::MAX) || h > u32::from(u16::MAX) {
+        return Err(IoError::InvalidFigure {
+            reason: "a GIF frame is at most 65535 pixels a side",
+        });
+    }
+    let mut frame =
+        gif::Frame::from_indexed_pixels(w as u16, h as u16, indexed(&rgb, palette), None);
+    frame.delay = delay_cs;
+    frame.make_lzw_pre_encoded();
+    Ok((frame, (w, h)))
+}
+
+/// Each RGB pixel's nearest palette index (squared RGB distance), through a direct-mapped
+/// cache of 4096 colours (a figure has few).
+pub fn indexed(rgb: &[u8], palette: &[(u8, u8, u8)]) -> Vec<u8> {
+    const EMPTY: u32 = u32::MAX;
+    let mut cache = vec![(EMPTY, 0u8); 4096];
+    rgb.chunks_exact(3)
+        .map(|p| {
+            let key = u32::from(p[0]) << 16 | u32::from(p[1]) << 8 | u32::from(p[2]);
+            let slot = &mut cache[(key.wrapping_mul(0x9E37_79B1) >> 20) as usize];
+            if slot.0 != key {
+                *slot = (key, nearest([p[0], p[1], p[2]], palette));
+            }
+            slot.1
+        })
+        .collect()
+}
+
+fn nearest([r, g, b]: [u8; 3], palette: &[(u8, u8, u8)]) -> u8 {
+    let d = |&(pr, pg, pb): &(u8, u8, u8)| {
+        let (dr, dg, db) = (
+            i32::from(pr) - i32::from(r),
+            i32::from(pg) - i32::from(g),
+            i32::from(pb) - i32::from(b),
+        );
+        dr * dr + dg * dg + db * db
+    };
+    (0..palette.len())
+        .min_by_key(|&k| d(&palette[k]))
+        .unwrap_or(0) as u8
+}
+
+/// The global palette of `figures`, at most 256 colours: the [`FIXED`] ones, the series
+/// style table ([`style::PALETTE`]) and every colour the figures name (series, arrows,
+/// marks), each exactly, then each of them (greys aside) at 1/4, 1/2 and 3/4 of the way to
+/// white, then greys every 8 levels; a colour already there is not repeated.
+pub fn palette(figures: &[Figure]) -> Vec<(u8, u8, u8)> {
+    let mut named: Vec<(u8, u8, u8)> = FIXED.to_vec();
+    named.extend(style::PALETTE);
+    for panel in figures.iter().flat_map(|f| &f.panels) {
+        named.extend(panel.series.iter().filter_map(|s| s.color));
+        named.extend(panel.arrows.iter().map(|a| a.color));
+        named.extend(panel.marks.iter().map(|m| m.color));
+    }
+    let mut out: Vec<(u8, u8, u8)> = Vec::with_capacity(256);
+    let push = |c: (u8, u8, u8), out: &mut Vec<(u8, u8, u8)>| {
+        if out.len() < 256 && !out.contains(&c) {
+            out.push(c);
+        }
+    };
+    for &c in &named {
+        push(c, &mut out);
+    }
+    let tint = |v: u8, f: u32| (u32::from(v) + (255 - u32::from(v)) * f / 4) as u8;
+    for f in 1..4 {
+        for &(r, g, b) in &named {
+            if !(r == g && g == b) {
+                push((tint(r, f), tint(g, f), tint(b, f)), &mut out);
+            }
+        }
+    }
+    for v in (0..=255u32).step_by(8) {
+        push((v as u8, v as u8, v as u8), &mut out);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::{Panel, Series};
+
+    #[test]
+    fn the_palette_holds_the_figures_colours_exactly_and_indexes_them_to_themselves() {
+        let own = (0x1b, 0x2a, 0x49);
+        let p = Panel::new("t", "x", "y")
+            .series(Series::new("bar", vec![(0.0, 0.0), (1.0, 1.0)]).with_color(own));
+        let pal = palette(&[Figure::new(vec![p])]);
+        assert!(pal.len() <= 256);
+        for c in FIXED.iter().chain(&style::PALETTE).chain([&own]) {
+            let k = pal
+                .iter()
+                .position(|p| p == c)
+                .expect("colour in the palette");
+            assert_eq!(indexed(&[c.0, c.1, c.2], &pal), vec![k as u8]);
         }
     }
 }
