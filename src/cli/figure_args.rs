@@ -16,7 +16,8 @@ pub struct FigureArgs {
     /// 16x10cm (default: each figure's own size in px). A PDF's page is this size.
     #[arg(long, value_name = "WxH", value_parser = parse_page)]
     pub size: Option<PageSize>,
-    /// PNG resolution in pixels per inch (10 to 2400; default 96, one pixel per px).
+    /// Resolution of PNG images and animation frames in pixels per inch (10 to 2400; default
+    /// 96, one pixel per px).
     #[arg(long, value_name = "DPI")]
     pub dpi: Option<f64>,
 }

@@ -109,7 +109,8 @@ impl std::str::FromStr for PageSize {
     }
 }
 
-/// How a figure is rendered: its size (its own when `None`) and the PNG resolution.
+/// How a figure is rendered: its size (its own when `None`) and the resolution of PNG images
+/// and animation frames.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderOptions {
     /// The physical size (`None`: the figure's own, in pixels).
