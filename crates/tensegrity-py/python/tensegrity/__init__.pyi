@@ -234,7 +234,7 @@ class RollResult(Result):
     convergence.order
     convergence.cost
     history : ndarray dict of (samples,) arrays
-        every 1 ms sample: t [s], axle_s [m], axle_h [m], omega [rad/s], pivot_m [m], normal_N [N], tangential_N [N], energy_J [J], slip_m_s [m/s]
+        every 1 ms sample, the columns of ``roll --out``: t, axle_s, axle_h, omega, pivot_m, normal_N, tangential_N, energy_J, slip_m_s (s, m along the slope, m, rad/s, m, N, N, J, m/s)
     """
     fidelity: Any
     fidelity_reason: Any
@@ -764,7 +764,7 @@ def simulate(
         chaotic quantities), in parallel, and report each headline quantity's change,
         extrapolated error and status in `convergence`; an unconverged result is not valid
     trajectory : bool, optional
-        Keep the samples at the output times: the result also holds ``t`` (samples,), ``trajectory`` (samples, nodes, 3) and the histories the scene records (``velocities``, ``member_forces``, ``kinetic_energy``, ``energy``, ``contact_nodes``, ``contact_forces``). Default: True.
+        Keep the samples at the output times: the result also holds ``t``, ``trajectory`` and the histories the scene records (SimulateResult lists them). Default: True.
     progress : callable or bool, optional
         ``callback(done, total)`` (simulated seconds, end time) while the run goes on; ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional
@@ -965,7 +965,7 @@ def roll(
         Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in
         parallel) and report the mean and 95 % interval of every headline quantity against
         the other model (0: none); must be finite. Default: 0
-    The result's ``history``: every 1 ms sample (``t``, ``axle_s``, ``axle_h``, ``omega``, ``pivot_m``, ``normal_N``, ``tangential_N``, ``energy_J``, ``slip_m_s``) as arrays.
+    The result's ``history``: every 1 ms sample as arrays (RollResult lists its columns).
     progress : callable or bool, optional
         ``callback(done, total)`` (simulated seconds, end time) while the run goes on; ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional

@@ -209,11 +209,8 @@ def make_simulate(summary, doc_extra):
     trajectory : bool, optional
         Keep the samples at the output times (the scene's, else ``output_interval``, else
         t_end/200), as the command line's ``--out`` writes them: the result then also holds
-        ``t`` (samples,) and ``trajectory`` (samples, nodes, 3, m), and what the scene's
-        ``[simulation] record`` lists: ``velocities`` (samples, nodes, 3, m/s),
-        ``member_forces`` (samples, members, N, tension positive: bars, strings, clusters),
-        ``kinetic_energy`` and ``energy`` (samples,, J), ``contact_nodes`` with
-        ``contact_forces`` (samples, contact nodes, 3, N). Default: True.
+        ``t``, ``trajectory`` and the histories the scene's ``[simulation] record`` lists
+        (their shapes and units: :class:`tensegrity.results.SimulateResult`). Default: True.
     progress : callable or bool, optional
         """ + PROGRESS_DOC
     return finish(simulate, "simulate", sig, summary, params, doc_extra, extra_doc)
@@ -325,9 +322,7 @@ def make_roll(summary, doc_extra):
 
     extra_doc = """\
     The result's ``history`` holds every sample (1 ms) as numpy arrays, the columns of the
-    command line's ``roll --out`` CSV: ``t`` (s), ``axle_s`` (m, downhill), ``axle_h`` (m),
-    ``omega`` (rad/s), ``pivot_m`` (m), ``normal_N`` and ``tangential_N`` (N),
-    ``energy_J`` (J, zero at the start), ``slip_m_s`` (m/s).
+    command line's ``roll --out`` CSV (their units: :class:`tensegrity.results.RollResult`).
 
     progress : callable or bool, optional
         """ + PROGRESS_DOC

@@ -125,16 +125,13 @@ def stubs():
         "simulate", ["simulate"], SUMMARIES["simulate"] + "\n\n" + scene, positional=("scene",),
         extra=(("trajectory", "bool"), progress),
         extra_doc="trajectory : bool, optional\n    Keep the samples at the output times: the "
-                  "result also holds ``t`` (samples,), ``trajectory`` (samples, nodes, 3) and "
-                  "the histories the scene records (``velocities``, ``member_forces``, "
-                  "``kinetic_energy``, ``energy``, ``contact_nodes``, ``contact_forces``). "
-                  "Default: True.\n" + progress_doc))
+                  "result also holds ``t``, ``trajectory`` and the histories the scene records "
+                  "(SimulateResult lists them). Default: True.\n" + progress_doc))
     out.append(function("toroid", ["toroid"], SUMMARIES["toroid"]))
     out.append(function(
         "roll", ["roll"], SUMMARIES["roll"], extra=(progress,),
-        extra_doc="The result's ``history``: every 1 ms sample (``t``, ``axle_s``, ``axle_h``, "
-                  "``omega``, ``pivot_m``, ``normal_N``, ``tangential_N``, ``energy_J``, "
-                  "``slip_m_s``) as arrays.\n" + progress_doc))
+        extra_doc="The result's ``history``: every 1 ms sample as arrays (RollResult lists "
+                  "its columns).\n" + progress_doc))
     out.append(function(
         "tipover", ["tipover", "tipover_dynamic", "tipover_rolling"], SUMMARIES["tipover"],
         extra=(("dynamic", "bool"), ("rolling", "bool")),

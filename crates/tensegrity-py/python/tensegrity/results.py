@@ -9,6 +9,7 @@ compares, prints and serialises as the report does.
 
 import numpy as np
 
+from . import _native
 from ._commands import REGISTRY, result_class_name
 
 #: The registry commands whose columns each function's result holds.
@@ -35,8 +36,9 @@ EXTRA_FIELDS = {
     ),
     "roll": (
         ("history", "dict of (samples,) arrays",
-         "every 1 ms sample: t [s], axle_s [m], axle_h [m], omega [rad/s], pivot_m [m], "
-         "normal_N [N], tangential_N [N], energy_J [J], slip_m_s [m/s]"),
+         "every 1 ms sample, the columns of ``roll --out``: "
+         + ", ".join(_native.ROLL_HISTORY_COLUMNS)
+         + " (s, m along the slope, m, rad/s, m, N, N, J, m/s)"),
     ),
 }
 

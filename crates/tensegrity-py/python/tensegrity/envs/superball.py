@@ -78,4 +78,8 @@ class SuperBallRollEnv(gymnasium.Env):
         reached = d < self.goal_radius
         if reached:
             reward += 10.0
-        return obs, float(reward), bool(reached), False, {"distance": d, "t": o.t}
+        info = {"distance": d, "t": o.t}
+        warnings = self.sim.warnings
+        if warnings:  # the run drifted past its limits: its numbers are not to be trusted
+            info["warnings"] = warnings
+        return obs, float(reward), bool(reached), False, info

@@ -73,5 +73,8 @@ class ToroidWheelEnv(gymnasium.Env):
         obs, y = self._observe(o)
         reward, self._y = y - self._y, y
         angle = tilt(o.nodes)
-        return obs, float(reward), bool(angle > self.max_tilt), False, {"tilt": angle,
-                                                                          "t": o.t}
+        info = {"tilt": angle, "t": o.t}
+        warnings = self.sim.warnings
+        if warnings:  # the run drifted past its limits: its numbers are not to be trusted
+            info["warnings"] = warnings
+        return obs, float(reward), bool(angle > self.max_tilt), False, info
