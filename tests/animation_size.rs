@@ -3,7 +3,7 @@
 //! one global palette (no local ones) that holds the figure's colours exactly, and the
 //! members are drawn in them; a size no frame can have is refused before the run.
 
-mod common;
+use crate::common;
 use common::{assert_ok, run, scratch};
 
 use std::fs::File;

@@ -1,6 +1,6 @@
 //! The `tensegrity` binary end to end: `statics --json` on the bundled scenes and on bad input.
 
-mod common;
+use crate::common;
 use common::{assert_ok, run};
 
 use std::process::Command;

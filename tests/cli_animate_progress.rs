@@ -5,7 +5,7 @@
 //! and ETA; the JSON of `demo`, `figures`, `michell-table` and `sweep plot` parses and carries
 //! its keys; `sweep plot` draws an angle-valued axis (`incline`, written `30deg`) in degrees.
 
-mod common;
+use crate::common;
 use common::{assert_ok, bin, run, scratch};
 
 use std::fs::File;

@@ -6,7 +6,7 @@
 //! cost is linear in its sides (the cyclic path), fit an exponent within [0.8, 1.2] (skipped,
 //! with a message, without valgrind).
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, run, scratch};
 use serde_json::Value;

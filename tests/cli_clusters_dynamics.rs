@@ -5,7 +5,7 @@
 //! t = W + λP with node 2 sinking by λP/k; the rigid-bar dynamics refuses pulley friction
 //! naming the cluster (tests/cli_clusters_friction.rs runs it elastic).
 
-mod common;
+use crate::common;
 
 use common::{json, run, scratch};
 

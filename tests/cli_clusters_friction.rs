@@ -11,7 +11,7 @@
 //!   work holds; above μ = ln(m₁/m₂)/π the pulley holds the weights (the string's first
 //!   oscillations slip at their peaks, then it sticks): they move by the string's stretch.
 
-mod common;
+use crate::common;
 
 use common::{json, points, scratch};
 

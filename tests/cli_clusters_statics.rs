@@ -8,7 +8,7 @@
 //!   mass (ρ/σ_Y) t L over its whole length;
 //! - `--method sparse` (the banded sparse QR) models the cluster as the dense SVD does.
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, run, scratch};
 

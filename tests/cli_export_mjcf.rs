@@ -5,7 +5,7 @@
 //! where none is given); what MJCF cannot say refused naming the item. MuJoCo itself loads
 //! and settles the model in crates/tensegrity-py/tests/test_mjcf.py.
 
-mod common;
+use crate::common;
 
 use common::{assert_refused, run, scratch};
 use roxmltree::{Document, Node};

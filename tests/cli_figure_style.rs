@@ -4,7 +4,7 @@
 //! draws K mode shapes; `--size` and `--dpi` give a PDF page and a PNG of the stated size;
 //! bad sizes, views and dpi are refused naming the flag (exit 2) before any work.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -4,7 +4,7 @@
 //! structure's size), the figure `--svg` draws, bad topology files (exit 2, the file, the
 //! line and the item named) and the refusal of a form too large for the limits.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 use std::path::Path;

@@ -5,7 +5,7 @@
 //! form whose written cluster carries the scaled tension k (L − L₀) = α t; bad clusters
 //! refused with exit 2 naming the file, the line and the item.
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 

@@ -6,7 +6,7 @@
 //! the structure, the T-bar's roller and load and both `[simulation]` tables, appended to
 //! the imported scene), to the last digit; bad matrices are refused naming the row.
 
-mod common;
+use crate::common;
 
 use common::{assert_refused, json, run, scratch};
 use std::path::Path;

@@ -8,7 +8,7 @@
 //! as NTRT places them, named by dot path, bonded node to node or node to edge, the parent's
 //! builders winning; bad models are refused naming the item.
 
-mod common;
+use crate::common;
 
 use common::{assert_refused, json, run, scratch};
 

@@ -2,7 +2,7 @@
 //! the run, every recorded quantity in the CSV, SIGINT keeping the rows so far as a complete
 //! file marked incomplete, and kill -9 never leaving a partial file at the requested path.
 
-mod common;
+use crate::common;
 
 use common::{bin, listing, NO_LIMITS};
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! `tensegrity roll` and `fig-rolling` outputs: the CSV contract, the frame drawings, the VTK
 //! series, warnings on stderr, and the impulse table.
 
-mod common;
+use crate::common;
 use common::{assert_ok, run};
 
 #[test]

@@ -4,7 +4,7 @@
 //! complete CSV with its `# incomplete` trailer and a `series.pvd` listing only frames that
 //! exist (exit 130). `tbar roll --out` (one row per tread count) is opened before its runs.
 
-mod common;
+use crate::common;
 
 use common::{bin, listing, NO_LIMITS};
 use std::path::{Path, PathBuf};

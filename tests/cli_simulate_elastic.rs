@@ -4,7 +4,7 @@
 //! where `solve` puts the same net under the masses' weights; the keys of elastic scenes are
 //! refused where they would be ignored.
 
-mod common;
+use crate::common;
 
 use common::{json, points, run};
 

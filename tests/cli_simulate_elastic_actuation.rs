@@ -5,7 +5,7 @@
 //! on a spring under a ramp, w(t) = (F/k)(t − sin(ωt)/ω), and a cluster with pulley friction
 //! that is not driven.
 
-mod common;
+use crate::common;
 
 use common::{json, run, scratch};
 

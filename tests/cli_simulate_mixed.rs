@@ -4,7 +4,7 @@
 //! scene whose bars are all made rigid runs the rigid-bar dynamics unchanged; bad `elastic`
 //! keys are errors naming the bar, and the commands that would ignore the key refuse it.
 
-mod common;
+use crate::common;
 
 use common::{json, points, run};
 

@@ -4,7 +4,7 @@
 //! of the public contract and must come with a reason.
 //!
 //! Re-record after an intended change with
-//! `TENSEGRITY_UPDATE_SNAPSHOTS=1 cargo test --test cli_snapshots`.
+//! `TENSEGRITY_UPDATE_SNAPSHOTS=1 cargo test --test integration cli_snapshots::`.
 
 use serde_json::Value;
 use std::path::PathBuf;

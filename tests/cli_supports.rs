@@ -11,7 +11,7 @@
 //! - bad directions and stiffnesses refused before any work, naming the support and its line;
 //!   `simulate` refuses both keys and a support's `displacement`.
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, run};
 

@@ -226,7 +226,7 @@ fn the_stick_contact_converges_where_the_regularised_friction_does_not() {
 /// ground stiffness, for the T-bar and the toroid column (stick contact; the slip counted on
 /// the contact's load-weighted slip speed), and `--strict` exits 0. Release, about 25 s of
 /// CPU (33 s wall on a shared 2-core machine), too slow for the default run:
-/// `cargo test --release --test cli_tbar_roll_full -- --ignored`. Its fast counterpart on
+/// `cargo test --release --test integration cli_tbar_roll_full:: -- --ignored`. Its fast counterpart on
 /// 0.3 s is `the_stick_contact_converges_where_the_regularised_friction_does_not`.
 #[test]
 #[ignore = "release, ~33 s: the default full T-bar roll with its convergence check"]

@@ -40,7 +40,7 @@
 //! each hoop ring stays symmetric, so no segment slides) end 0.2 s at the same nodes to
 //! 10⁻⁹ m: the cluster's force element against S strings in series.
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, json, run, scratch};
 use std::path::Path;

@@ -21,7 +21,7 @@
 //!   self-stress of `statics` parallel to CTSFEM's to 2.2e-14; rank 44 and one self-stress,
 //!   as CTSFEM's clustered equilibrium matrix.
 
-mod common;
+use crate::common;
 
 use common::numbers;
 

@@ -15,7 +15,7 @@
 //!
 //! - `<!-- checked: exit N -->`: each command is run by the default test and must exit with N;
 //! - `<!-- checked slow: exit N -->`: the same, run only by the ignored test
-//!   `slow_examples_in_the_docs` (`cargo test --release --test docs_commands -- --ignored`,
+//!   `slow_examples_in_the_docs` (`cargo test --release --test integration docs_commands:: -- --ignored`,
 //!   minutes): commands that take longer than a few seconds in the test build;
 //! - `<!-- not run: REASON -->`: the block is only parsed; REASON says why (a synopsis with
 //!   placeholders, a measured timing that depends on the machine, an hour of cluster work).
@@ -761,7 +761,7 @@ fn every_stated_outcome_in_the_docs_is_what_the_command_does() {
 }
 
 #[test]
-#[ignore = "minutes: cargo test --release --test docs_commands -- --ignored"]
+#[ignore = "minutes: cargo test --release --test integration docs_commands:: -- --ignored"]
 fn slow_examples_in_the_docs() {
     let (ran, failures) = run_examples("slow", |m| match m {
         Marker::Slow(c) => Some((*c, SLOW_LIMIT)),

@@ -7,7 +7,7 @@
 //! under the split IMEX (its first impact's ω⁻ not converged) and `simulate` of the damped
 //! prism drop by RATTLE at 0.01 s (its energy grows).
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, run, scratch};
 use std::collections::HashSet;

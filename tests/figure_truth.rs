@@ -4,7 +4,7 @@
 //! text (`mean_speed` with its underscore), and its `--title`, `--xlabel`, `--ylabel` replace
 //! the defaults, math only between `$` pairs.
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, json, run, scratch};
 

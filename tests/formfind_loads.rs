@@ -4,7 +4,7 @@
 //! finds the same force densities and reactions by its own load solve; jax_fdm's loaded arch
 //! as topology text; bad loads refused with exit 2, the file, the line and the item named.
 
-mod common;
+use crate::common;
 
 use common::numbers;
 

@@ -3,7 +3,7 @@
 //! `examples/sweeps/formfind_net_ratio.toml` (a force-density ratio of Schek's cable net),
 //! each run to a CSV whose rows are checked against what the forms must give.
 
-mod common;
+use crate::common;
 
 /// Runs a spec to a CSV; its header and rows.
 fn sweep(spec: &str, name: &str) -> (csv::StringRecord, Vec<csv::StringRecord>) {

@@ -11,7 +11,7 @@
 //! requests run short (`t_end` fixed small, the rigid model, one tread count) so that a sweep
 //! takes a fraction of a second (the four requests' every field: a few seconds).
 
-mod common;
+use crate::common;
 
 use serde_json::Value;
 use tensegrity_core::request::{Kind, Param, Request};

@@ -3,7 +3,7 @@
 //! allocated, or estimated and refused over the limits; never an abort. Each command runs
 //! under a 4 GB address-space limit, so an allocation of the count's size would fail the test.
 
-mod common;
+use crate::common;
 use std::process::Command;
 
 /// Runs `tensegrity ARGS` under `ulimit -v 4000000`; (exit code, stderr).

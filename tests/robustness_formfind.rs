@@ -3,7 +3,7 @@
 //! misread is now refused before the work with a message naming the item, the file or the
 //! flag (exit 2 for bad input), or found correctly with its warning.
 
-mod common;
+use crate::common;
 
 use common::numbers;
 use common::{assert_ok, run, scratch};

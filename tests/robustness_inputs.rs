@@ -2,7 +2,7 @@
 //! accepted silently is now refused by the binary with exit code 2 and a message naming the
 //! file, the item and (in a scene) its line.
 
-mod common;
+use crate::common;
 use common::{run, scratch};
 use std::path::{Path, PathBuf};
 use std::process::Output;

@@ -2,7 +2,7 @@
 //! its sibling refuses, end to end. Each is refused at once (exit 2, within a few seconds,
 //! one line naming the parameter, the limit and the flag that raises it), or answers.
 
-mod common;
+use crate::common;
 
 use common::{chain, scratch};
 use std::path::Path;

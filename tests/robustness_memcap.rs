@@ -11,7 +11,7 @@
 //!
 //! Linux only (`ulimit -v` and /proc); each test returns at once elsewhere.
 
-mod common;
+use crate::common;
 
 use common::{chain, scratch};
 use std::path::Path;
@@ -411,9 +411,9 @@ fn the_quick_figures_and_bench_complete_under_the_cap() {
 /// The rank case under a cap: `toroid --sides 30000` is refused cleanly under 2 GB
 /// (1.55 GiB estimated) and under 3 GB gives 4n + 1 self-stresses and no internal mechanism,
 /// certified (seconds in release, longer in the test build:
-/// `cargo test --release --test robustness_memcap -- --ignored`).
+/// `cargo test --release --test integration robustness_memcap:: -- --ignored`).
 #[test]
-#[ignore = "seconds in release: cargo test --release --test robustness_memcap -- --ignored"]
+#[ignore = "seconds in release: cargo test --release --test integration robustness_memcap:: -- --ignored"]
 fn thirty_thousand_sides_are_certified_under_the_cap() {
     if !linux() {
         return;

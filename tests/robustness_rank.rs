@@ -4,7 +4,7 @@
 //! the same form; data taken as exact (`--input-precision 0`) lose it, and data rounded
 //! coarser than the judged precision say so in a warning naming `--input-precision`.
 
-mod common;
+use crate::common;
 use common::{assert_ok, run, scratch};
 use std::path::{Path, PathBuf};
 

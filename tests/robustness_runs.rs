@@ -2,7 +2,7 @@
 //! cut, dropped or computed before refusing is now a clear error before any work (exit code
 //! 2, naming the flag) or a valid result.
 
-mod common;
+use crate::common;
 use common::{assert_ok, bin, run, scratch};
 use std::path::Path;
 use std::process::Output;

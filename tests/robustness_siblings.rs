@@ -9,7 +9,7 @@
 //! `michell optimize`, `tbar`, `tbar roll`), and `simulate`'s flags against the scene's
 //! `[simulation]` table.
 
-mod common;
+use crate::common;
 
 use common::scratch;
 use std::collections::BTreeMap;

@@ -2,7 +2,7 @@
 //! catalogue found mishandled is now refused before any work (exit code 2, the message naming
 //! the axis or the flag) or answered correctly with its warning.
 
-mod common;
+use crate::common;
 use common::{assert_ok, run, scratch};
 use std::io::BufRead;
 use std::path::{Path, PathBuf};

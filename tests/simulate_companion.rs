@@ -4,7 +4,7 @@
 //! run's error against a finer run, the companion is refined where 2 dt would leave the
 //! stability bound, and the cost is stated.
 
-mod common;
+use crate::common;
 
 use tensegrity_dynamics::convergence::Companion;
 use tensegrity_dynamics::{Convergence, IntegratorKind, QuantityConvergence, SimulationReport};
@@ -292,7 +292,7 @@ const NOISE: f64 = 1e-5;
 /// has an error within τ, bounded by e but for round-off ([`NOISE`]) and the [`IRREGULAR`]
 /// cases. (`dbar_loaded.toml` and `tbar.toml` give no bar masses: statics only; `dbar.toml`,
 /// `tower.toml`, `tower200.toml` stand still: every change is 0.) Print the table with
-/// `cargo test --release --test simulate_companion -- --nocapture measured`.
+/// `cargo test --release --test integration -- --nocapture simulate_companion::measured`.
 #[test]
 fn measured_orders_on_the_bundled_examples() {
     use IntegratorKind as K;

@@ -12,7 +12,7 @@
 //! - bad input: a member without an axial stiffness (exit 2, named), a mechanism (exit 1,
 //!   named, no NaN), and `simulate` still refusing a `displacement`.
 
-mod common;
+use crate::common;
 
 use common::{assert_ok, run};
 use nalgebra::Vector3;

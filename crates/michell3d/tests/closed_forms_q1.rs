@@ -2,7 +2,7 @@
 //! conditions 4.21–4.23 (4.23 as corrected by ERRATA 4.13), the member lengths of ERRATA
 //! 4.26–4.27 and the buckling criterion of eq. 4.65 (ERRATA 4.28). The formulas are typed in
 //! here independently of the crate.
-mod common;
+use crate::common;
 
 use common::Rng;
 use michell3d::sizing::q1_bar_buckling_governs;

@@ -1,5 +1,4 @@
 //! Node and member counts, tuple merging and numbering (ERRATA 4.6).
-mod common;
 
 use michell3d::nodes::{self, NodeTuple};
 use michell3d::{MichellParams, MichellTruss};

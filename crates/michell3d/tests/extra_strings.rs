@@ -1,6 +1,5 @@
 //! Extra strings (§4.6, ERRATA 4.30): counts, one self-stress per string (checked against
 //! tensegrity-core's SVD), equilibrium of the prestress, and the γ sweep of Fig. 4.20.
-mod common;
 
 use michell3d::*;
 use std::f64::consts::{FRAC_PI_6, PI};

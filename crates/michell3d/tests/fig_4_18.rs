@@ -1,5 +1,4 @@
 //! The mass–complexity table of Fig. 4.18 (ERRATA 4.4, 4.24).
-mod common;
 
 use michell3d::complexity::{mass_vs_complexity, FIG_4_18_DELTAS};
 use michell3d::planar::yield_mass_normalized;

@@ -2,9 +2,9 @@
 //! a load at a deep node reaches the supports through the same forces.
 //!
 //! The q = 100 case is ignored by default (it builds a truss of 1.7·10⁵ nodes); run it with
-//! `cargo test --release -p michell3d --test global_levels -- --ignored --nocapture`, which
+//! `cargo test --release -p michell3d --test integration global_levels:: -- --ignored --nocapture`, which
 //! prints both timings.
-mod common;
+use crate::common;
 
 use common::rel_diff;
 use michell3d::complexity::fig_4_18_params;

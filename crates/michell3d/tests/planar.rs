@@ -1,6 +1,5 @@
 //! Skelton's planar truss: yield mass closed form (ERRATA 4.3), the published normalised
 //! masses (ERRATA 4.4), Michell's continuum limit, and the force regions of Fig. 4.4 (ERRATA 4.2).
-mod common;
 
 use michell3d::planar::{
     force_regions, michell_continuum_normalized, tip_member_force, yield_mass_normalized,

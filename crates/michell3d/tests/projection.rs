@@ -1,6 +1,6 @@
 //! The 3-D truss projected on the y–z plane is the planar truss (§4.3, Fig. 4.6, 4.11), and
 //! the 3-D force pattern for in-plane loads (ERRATA 4.24).
-mod common;
+use crate::common;
 
 use michell3d::complexity::{fig_4_18_params, sign_changes_vs_planar};
 use michell3d::*;

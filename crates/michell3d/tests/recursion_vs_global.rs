@@ -1,7 +1,7 @@
 //! The recursive method of joints equals the global sparse solve (ERRATA 4.23) for q ≤ 10, in
 //! both parameterisations, the planar truss, random parameters and random load directions; and
 //! both satisfy global equilibrium (reactions balance the loads, moments included).
-mod common;
+use crate::common;
 
 use common::{rel_diff, Rng};
 use michell3d::*;

@@ -1,5 +1,4 @@
 //! The analysis behind `tensegrity michell` and its JSON.
-mod common;
 
 use michell3d::*;
 use std::f64::consts::{FRAC_PI_6, PI};

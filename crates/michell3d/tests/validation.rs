@@ -1,5 +1,4 @@
 //! Every invalid parameter gives a clear error naming it; no panic, no NaN.
-mod common;
 
 use michell3d::*;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_6, PI};

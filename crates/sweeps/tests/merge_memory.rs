@@ -3,7 +3,7 @@
 //! process, /proc/self/status, reset through clear_refs) stays far below the size of its
 //! inputs. Alone in its test binary, so no other test's allocations count.
 
-mod shards;
+use crate::shards;
 
 use shards::{row, shard, HEADER};
 use std::path::PathBuf;

@@ -5,7 +5,7 @@
 //! rows, a gap, an interrupted file, a file cut inside a row, two specs), each naming the
 //! file. (The memory a merge holds: `merge_memory.rs`.)
 
-mod shards;
+use crate::shards;
 
 use shards::{row, shard, HEADER};
 use std::path::{Path, PathBuf};

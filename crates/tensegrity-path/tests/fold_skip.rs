@@ -6,7 +6,7 @@
 //! path went on without a limit point. Both folds are found at the closed form ±λ*, on the
 //! dense path (21 trusses, 42 free coordinates) and the sparse one (101 trusses, 202).
 
-mod common;
+use crate::common;
 use common::von_mises_row;
 
 use tensegrity_path::dofs::Dofs;

@@ -62,9 +62,9 @@
 //! motions: the tangent's smallest eigenvalues jump from +171 N/m to negative, and the path
 //! reports a bifurcation at the same load factor. The slack load is the prism's collapse load.
 
+use crate::common;
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
-mod common;
 
 use common::assert_finite;
 use tensegrity_path::point::{Event, PathPoint};

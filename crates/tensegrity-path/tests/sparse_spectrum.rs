@@ -4,7 +4,7 @@
 //! eigendecomposition — for stable tangents (the sparse Cholesky) and unstable ones (the
 //! sparse LU) — and on the points and folds of paths through the public API.
 
-mod common;
+use crate::common;
 use common::von_mises_row;
 
 use nalgebra::{DMatrix, DVector, Vector3};

@@ -2,9 +2,9 @@
 //! load factor), never an error that loses them, never NaN; and strings that slacken into a
 //! mechanism do not stop it.
 
+use crate::common;
 use nalgebra::Vector3;
 use tensegrity_path::model::Drivers;
-mod common;
 
 use common::assert_finite;
 use tensegrity_path::point::{Event, Stop};

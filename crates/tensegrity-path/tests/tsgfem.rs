@@ -9,7 +9,7 @@
 //! TsgFEM's `material{2} = 0` (no slack, as in these examples, for the comparison with ANSYS)
 //! lets strings carry compression: every member is a bar here.
 
-mod common;
+use crate::common;
 use common::{floats, vec3s};
 
 use nalgebra::Vector3;

@@ -16,7 +16,7 @@
 //! they are elastic bars here) and with TsgFEM's slack option (`material{2} = 1`: strings
 //! tension-only; two of them end slack).
 
-mod common;
+use crate::common;
 use common::{floats, vec3s};
 
 use nalgebra::Vector3;

@@ -259,7 +259,7 @@ fn the_dissection_is_an_elimination_tree() {
 /// K = 8, 12, 16 against the dense path, checked at K = 20, 40, 60 by this path and at K = 20
 /// by the banded path), no mechanism, and its rank is certified at every size; K = 86 is the
 /// 10⁵-member lattice of issue 25 (103,716 members). Slow in the dev profile:
-/// `cargo test --release -p tensegrity-core --test nested_statics -- --ignored --nocapture`.
+/// `cargo test --release -p tensegrity-statics --test integration nested_statics:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn large_lattices_have_the_closed_form_self_stress_count() {

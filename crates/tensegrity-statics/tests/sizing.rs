@@ -1,6 +1,6 @@
 //! Minimum-mass sizing against the published benchmark values (thesis eq. 4.54–4.61).
 
-mod common;
+use crate::common;
 
 use approx::assert_relative_eq;
 use common::*;

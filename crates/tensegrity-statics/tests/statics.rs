@@ -1,7 +1,7 @@
 //! Statics against closed forms and published values: D-bar connectivity (thesis eq. 2.8–2.10),
 //! Snelson prisms (ERRATA P.1), load solves, prestressability margins.
 
-mod common;
+use crate::common;
 
 use approx::assert_relative_eq;
 use common::*;

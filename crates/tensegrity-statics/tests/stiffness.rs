@@ -1,7 +1,7 @@
 //! Tangent stiffness against finite differences, flex counts, prestress stability and modal
 //! frequencies against closed forms.
 
-mod common;
+use crate::common;
 
 use approx::assert_relative_eq;
 use common::*;

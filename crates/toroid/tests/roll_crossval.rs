@@ -5,7 +5,7 @@
 //!
 //! The default test checks the first pivot, where both models apply; the ignored harness
 //! prints the table of docs/notes/ROLLING.md:
-//! `cargo test --release -p toroid --test roll_crossval -- --ignored --nocapture`.
+//! `cargo test --release -p toroid --test integration roll_crossval:: -- --ignored --nocapture`.
 
 use std::f64::consts::PI;
 use toroid::{roll, FidelityChoice, RollReport, RollRequest, WheelSpec};
@@ -109,7 +109,7 @@ fn cell(a: f64, b: f64) -> String {
 
 /// The cross-validation table (slopes 10°–50°, n = 8…24), printed as Markdown.
 #[test]
-#[ignore = "slow: 20 full runs; cargo test --release -p toroid --test roll_crossval -- --ignored --nocapture"]
+#[ignore = "slow: 20 full runs; cargo test --release -p toroid --test integration roll_crossval:: -- --ignored --nocapture"]
 fn cross_validation_table() {
     println!("| φ | n | first impact t [s] | ω⁻ [rad/s] | ω⁺ [rad/s] | track diff. to 1st impact [m] | to 3rd rigid impact [m] | mean speed [m/s] | airborne | valid | run time [s] |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
@@ -151,7 +151,7 @@ fn cross_validation_table() {
 /// chatter at the start on 15°, n = 20, and the sliding pivot's hops on 55°, n = 6, which
 /// each made a wrong first impact before, are not impacts).
 #[test]
-#[ignore = "slow: 17 full runs; cargo test --release -p toroid --test roll_crossval -- --ignored --nocapture"]
+#[ignore = "slow: 17 full runs; cargo test --release -p toroid --test integration roll_crossval:: -- --ignored --nocapture"]
 fn first_impacts_agree_on_a_sweep() {
     for phi in [15.0f64, 25.0, 35.0, 45.0, 55.0] {
         for n in [6usize, 10, 14, 20] {

@@ -5,7 +5,7 @@
 //! 2.5·10⁻⁶ s before the impact) and, in release mode, against RK4 at 4·10⁻⁶ s.
 //!
 //! The slow case runs in release mode only:
-//! `cargo test --release -p toroid --test rolling_ark -- --ignored`.
+//! `cargo test --release -p toroid --test integration rolling_ark:: -- --ignored`.
 
 use tensegrity_dynamics::IntegratorKind;
 use toroid::{roll_observed, RollRequest};
@@ -89,7 +89,7 @@ fn imex_ark_follows_the_creeping_pivot_at_its_default_step() {
 /// work–precision table): ARK at 2.5·10⁻⁴ s within 10⁻⁵ m before the impact (measured
 /// 1.5·10⁻⁶ m) and the first impact within 10⁻³ of its time.
 #[test]
-#[ignore = "release mode: cargo test --release -p toroid --test rolling_ark -- --ignored"]
+#[ignore = "release mode: cargo test --release -p toroid --test integration rolling_ark:: -- --ignored"]
 fn imex_ark_agrees_with_fine_rk4_through_the_first_impact() {
     let (rk4, reference) = run(&pivot(IntegratorKind::Rk4, Some(4e-6), 1.2));
     let (ark, samples) = run(&pivot(IntegratorKind::ImexArk, Some(2.5e-4), 1.2));

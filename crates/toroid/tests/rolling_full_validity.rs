@@ -163,7 +163,7 @@ fn the_impact_log_matches_the_count_and_the_first_impact() {
 }
 
 #[test]
-#[ignore = "slow (10 s of the full model): cargo test --release -p toroid --test rolling_full_validity -- --ignored"]
+#[ignore = "slow (10 s of the full model): cargo test --release -p toroid --test integration rolling_full_validity:: -- --ignored"]
 fn the_default_roll_is_valid_over_the_thesis_10_seconds() {
     // `tensegrity roll` with no flags: auto picks the full model for the default strings;
     // measured: penetration 5.4 mm, budget 5.3·10⁻³, airborne 76 %

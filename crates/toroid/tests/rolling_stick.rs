@@ -3,7 +3,7 @@
 //! RK4 on the reference wheel, and the default step with stiff strings and ground.
 //!
 //! The slow cases run in release mode only:
-//! `cargo test --release -p toroid --test rolling_stick -- --ignored`.
+//! `cargo test --release -p toroid --test integration rolling_stick:: -- --ignored`.
 
 use tensegrity_dynamics::IntegratorKind;
 use toroid::{roll_observed, RollRequest};
@@ -82,7 +82,7 @@ fn against_rigid(k: f64, dt: f64) -> (f64, f64) {
 /// −0.01 % and +0.02 % (released from its unloaded shape: −2.0 % / +6.3 % and −0.64 % /
 /// +2.0 %). The default test `rolling_pivot` checks 1 % on three wheels.
 #[test]
-#[ignore = "release mode: cargo test --release -p toroid --test rolling_stick -- --ignored"]
+#[ignore = "release mode: cargo test --release -p toroid --test integration rolling_stick:: -- --ignored"]
 fn the_full_pivot_approaches_the_rigid_one_as_strings_and_ground_stiffen() {
     let (impact6, travel6) = against_rigid(1e6, 5e-5);
     let (impact7, travel7) = against_rigid(1e7, 2e-5);
@@ -97,7 +97,7 @@ fn the_full_pivot_approaches_the_rigid_one_as_strings_and_ground_stiffen() {
 /// impact within 0.1 %, and both energy budgets closed to 10⁻³ (measured: 4.8·10⁻⁴ m,
 /// 2.4·10⁻⁴ and 1.0·10⁻³).
 #[test]
-#[ignore = "release mode: cargo test --release -p toroid --test rolling_stick -- --ignored"]
+#[ignore = "release mode: cargo test --release -p toroid --test integration rolling_stick:: -- --ignored"]
 fn imex_agrees_with_rk4_on_the_reference_wheel_and_closes_its_energy_budget() {
     let at = |integrator: IntegratorKind, dt: f64| {
         let mut req = pivot(

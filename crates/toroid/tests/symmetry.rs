@@ -1,7 +1,7 @@
 //! The symmetry-adapted statics of the toroid against the dense path: rank, self-stress
 //! dimension, internal mechanisms and prestress margin for every stabilising option set.
 //! The quick sizes run by default; the full list n ∈ {3..12, 24, 50, 100} with
-//! `cargo test -p toroid --test symmetry -- --ignored` (12 min on the loaded 2-core machine,
+//! `cargo test -p toroid --test integration symmetry:: -- --ignored` (12 min on the loaded 2-core machine,
 //! most of it the dense SVDs and LPs at n = 50 and 100).
 
 use toroid::*;
@@ -82,7 +82,7 @@ fn symmetric_equals_dense_quick() {
 }
 
 #[test]
-#[ignore = "minutes (the dense path at n = 100): cargo test -p toroid --test symmetry -- --ignored"]
+#[ignore = "minutes (the dense path at n = 100): cargo test -p toroid --test integration symmetry:: -- --ignored"]
 fn symmetric_equals_dense_every_size() {
     for n in (3..=12).chain([24, 50, 100]) {
         for o in OPTION_SETS {

@@ -310,7 +310,7 @@ fn large_wheels_keep_4n_plus_1_self_stresses_with_a_certified_gap() {
 
 /// The catalogue's case (issue 26): the global dense tolerance counted 7 genuine block
 /// singular values (~1.1e-8) as zero at n = 3·10⁴. Run with
-/// `cargo test -p toroid --test toroid -- --ignored thirty_thousand` (the test profile is
+/// `cargo test -p toroid --test integration -- --ignored toroid::thirty_thousand` (the test profile is
 /// optimised: about 2 s).
 #[test]
 #[ignore = "n = 30000: about 2 s in the optimised test profile"]

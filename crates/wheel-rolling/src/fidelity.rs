@@ -28,7 +28,7 @@
 //! `fidelity_reason`).
 //!
 //! **The table is data.** Each row of [`MEASURED`] is a measurement of rigid against full
-//! (`cargo test --release -p toroid --test fidelity_classes -- --ignored --nocapture`
+//! (`cargo test --release -p toroid --test integration fidelity_classes:: -- --ignored --nocapture`
 //! prints the rows to paste here): per scene of the class, for each headline quantity q the
 //! difference d_q = |x_rigid − x_full| / max(|x_rigid|, |x_full|, floor_q) and the combined
 //! uncertainty U_q = u_rigid + u_full, each model's u being its stated convergence

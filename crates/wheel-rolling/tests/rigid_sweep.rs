@@ -1,6 +1,6 @@
 //! A grid of rigid rolling runs over sides, slope, friction, restitution and inertia: every run
 //! must finish without a warning, never pull, never penetrate and close its energy budget.
-//! Slow (a few hundred runs): `cargo test -p wheel-rolling --test rigid_sweep -- --ignored`.
+//! Slow (a few hundred runs): `cargo test -p wheel-rolling --test integration rigid_sweep:: -- --ignored`.
 
 use std::f64::consts::PI;
 use wheel_rolling::RigidRolling;

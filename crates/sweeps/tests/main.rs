@@ -1,0 +1,12 @@
+//! The integration tests of this package, one test binary (one link instead of one per
+//! file: a clean `cargo test --workspace` fits the CI machine's disk). Each file of this
+//! directory is a module; run one with `cargo test --test integration FILE::`.
+
+mod examples;
+mod interrupt;
+mod merge_memory;
+mod merge_spec;
+mod merge_stream;
+mod shards;
+mod spec_fuzz;
+mod sweeps;

@@ -1,0 +1,7 @@
+//! The integration tests of this package, one test binary (one link instead of one per
+//! file: a clean `cargo test --workspace` fits the CI machine's disk). Each file of this
+//! directory is a module; run one with `cargo test --test integration FILE::`.
+
+mod request_validation;
+mod structure_build;
+mod validation;

@@ -1,0 +1,6 @@
+//! The integration tests of this package, one test binary (one link instead of one per
+//! file: a clean `cargo test --workspace` fits the CI machine's disk). Each file of this
+//! directory is a module; run one with `cargo test --test integration FILE::`.
+
+mod drawing_scale;
+mod figure_data;
