@@ -1,6 +1,7 @@
-//! `--animate FILE.gif [--fps F] [--duration S]` of `simulate`, `roll` and `tbar roll`, at
-//! the command's `--size`/`--dpi` ([`super::figure_args::FigureArgs`]): the GIF sink is
-//! opened before the work, the run hands its nodes to a
+//! `--animate FILE.gif|FILE.webm [--fps F] [--duration S]` of `simulate`, `roll` and `tbar
+//! roll`, at the command's `--size`/`--dpi` ([`super::figure_args::FigureArgs`]): the sink
+//! ([`AnimationSink`]: an animated GIF, or AV1 video in WebM, by the extension; `.mp4` is
+//! refused with the reason, exit 2) is opened before the work, the run hands its nodes to a
 //! [`tensegrity_figures::animation::Animation`], which draws round(F·S) frames spread over
 //! the run when it ends.
 
@@ -8,14 +9,16 @@ use anyhow::{Context, Result};
 use std::path::PathBuf;
 use tensegrity_figures::animation::{Animation, AnimationSpec, Scenery};
 use tensegrity_io::figure::{Figure, Panel, RenderOptions};
-use tensegrity_io::sink::GifSink;
+use tensegrity_io::sink::AnimationSink;
 
 /// The animation flags.
 #[derive(clap::Args, Debug, Clone)]
 pub struct AnimateArgs {
-    /// Write an animated GIF of the structure over time (to scale, with the ground and the
-    /// time): round(fps × duration) frames spread evenly over the run.
-    #[arg(long, value_name = "FILE.gif")]
+    /// Write an animation of the structure over time (to scale, with the ground and the
+    /// time): round(fps × duration) frames spread evenly over the run; FILE.gif an animated
+    /// GIF, FILE.webm an AV1 video in WebM (an odd pixel width or height padded to even with
+    /// white). MP4 is not written.
+    #[arg(long, value_name = "FILE.gif|FILE.webm")]
     pub animate: Option<PathBuf>,
     /// Frames per second of --animate (default 10).
     #[arg(long, value_name = "F", requires = "animate")]
@@ -26,7 +29,7 @@ pub struct AnimateArgs {
 }
 
 /// An opened animation not yet given its scenery.
-pub struct Opened(GifSink, AnimationSpec);
+pub struct Opened(AnimationSink, AnimationSpec);
 
 impl AnimateArgs {
     /// The spec checked and the file opened (before the work), if asked for; the frames at
@@ -46,7 +49,7 @@ impl AnimateArgs {
         let blank = Figure::new(vec![Panel::new("", "", "")]);
         blank.page_px(&options).context("--size")?;
         let sink = super::output::open_required("--animate", path, |p| {
-            GifSink::open_with(p, spec.fps, options)
+            AnimationSink::open(p, spec.fps, options)
         })?;
         Ok(Some(Opened(sink, spec)))
     }

@@ -43,10 +43,10 @@ pub struct TbarArgs {
     #[arg(long)]
     mass_sweep: bool,
     /// Complexities q of `--mass-sweep`.
-    #[arg(long, value_delimiter = ',', default_values_t = [1usize, 2, 3])]
+    #[arg(long, value_delimiter = ',', default_values_t = tbar_wheel::MASS_SWEEP_COMPLEXITIES)]
     sweep_complexities: Vec<usize>,
     /// Offsets δ (or angles ε, radians) of `--mass-sweep`.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.05, 0.1, 0.25, 0.5, 1.0])]
+    #[arg(long, value_delimiter = ',', default_values_t = tbar_wheel::MASS_SWEEP_OFFSETS)]
     sweep_deltas: Vec<f64>,
     /// Write the structure as a scene file.
     #[arg(long, value_name = "FILE")]

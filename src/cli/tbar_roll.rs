@@ -5,7 +5,7 @@
 //! `--out FILE.csv` writes one row per tread count: the per-row result columns of the engine
 //! (the `rows.0.` columns of [`TbarRollReport`]'s `Columns`, the prefix left out), opened
 //! before the run.
-//! `--animate FILE.gif` draws the T-bar wheel of the first tread count rolling
+//! `--animate FILE.gif|FILE.webm` draws the T-bar wheel of the first tread count rolling
 //! ([`super::animate`]; the nodes of [`TbarRollRequest::drawing`] from its run's frames: the
 //! full model's nodes, or the rigid model's pose placing them), also opened before the run.
 

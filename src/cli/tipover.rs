@@ -32,10 +32,10 @@ pub struct TipoverArgs {
     #[arg(long)]
     grid: Option<PathBuf>,
     /// Grid points per axis.
-    #[arg(long, default_value_t = 50, value_parser = values::at_least_two)]
+    #[arg(long, default_value_t = sweeps::grids::FRICTION_GRID_POINTS, value_parser = values::at_least_two)]
     grid_points: usize,
     /// Largest ε of the grid.
-    #[arg(long, default_value_t = 1.0, value_parser = values::positive)]
+    #[arg(long, default_value_t = sweeps::grids::FRICTION_GRID_EPS_MAX, value_parser = values::positive)]
     eps_max: f64,
     /// Write the history of --dynamic (t, force, lean, near_normal, far_normal) or --rolling
     /// (t, lean, downhill, across) to this CSV.

@@ -3,7 +3,7 @@
 //! [`TipoverDynamicRequest::run`]); `--rolling` the lean while rolling down a cross-sloped
 //! plane ([`TipoverRollingRequest::run`]).
 //!
-//! `--animate FILE.gif` (with `--dynamic`) draws the wheel under the ramp from the run's
+//! `--animate FILE.gif|FILE.webm` (with `--dynamic`) draws the wheel under the ramp from the run's
 //! samples ([`super::animate`]). `--out` is opened before the run (a bad path: exit 2 at once) and renamed into place once
 //! its rows are written; the runs do not poll the interrupt flag, so SIGINT leaves no file.
 

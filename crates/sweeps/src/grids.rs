@@ -60,6 +60,13 @@ pub fn mass_vs_complexity(
     Ok(all)
 }
 
+/// Grid points per axis of [`friction_grid`] unless told (`tipover --grid`, Python's
+/// `tipover(grid=True)`).
+pub const FRICTION_GRID_POINTS: usize = 50;
+
+/// The largest ε of [`friction_grid`] unless told.
+pub const FRICTION_GRID_EPS_MAX: f64 = 1.0;
+
 /// F_f/F_e over a σ × ε grid (Fig. 3.13): [`toroid::friction_grid`]'s rows `(σ, ε, F_f/F_e)`,
 /// σ outer on `n` points of (0, 1), ε inner on `n` points of (0, `eps_max`], σ rows on threads.
 pub fn friction_grid(n: usize, eps_max: f64) -> toroid::Result<Vec<(f64, f64, f64)>> {

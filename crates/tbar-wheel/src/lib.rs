@@ -53,6 +53,7 @@ pub mod symmetry;
 
 pub use error::{Result, TbarError};
 pub use geometry::TbarGeometry;
+pub use mass_sweep::{MASS_SWEEP_COMPLEXITIES, MASS_SWEEP_OFFSETS};
 pub use params::{BarBase, Layout, RimMode, TbarParams};
 pub use report::{tbar_report, tbar_report_dense, TbarReport, TbarRequest};
 pub use request::TbarStaticRequest;

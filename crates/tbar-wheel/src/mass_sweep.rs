@@ -22,6 +22,13 @@ pub struct MassRow {
     pub note: Option<String>,
 }
 
+/// The complexities q of a mass sweep unless told (`tbar --mass-sweep`, Python's
+/// `tbar(mass_sweep=True)`).
+pub const MASS_SWEEP_COMPLEXITIES: [usize; 3] = [1, 2, 3];
+
+/// The offsets δ (or angles ε, radians) of a mass sweep unless told.
+pub const MASS_SWEEP_OFFSETS: [f64; 5] = [0.05, 0.1, 0.25, 0.5, 1.0];
+
 /// The mass price of the envelope over complexities and δ (single treads with the rigid rim,
 /// cylindrical with δ, or spherical with ε when `base` is spherical).
 pub fn mass_sweep(

@@ -41,6 +41,7 @@ pub mod bench;
 mod context;
 mod entries;
 pub mod estimate;
+pub mod exports;
 pub mod formfind;
 pub mod integrators;
 pub mod keys;

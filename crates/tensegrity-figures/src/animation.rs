@@ -1,8 +1,8 @@
-//! Animations of a structure over time (`--animate FILE.gif` of `simulate` and `roll`): the
-//! members drawn with [`crate::draw`] (to scale, bars and strings as the drawings draw them),
-//! the ground as a grey line and the time in the title, one frame per wanted time, encoded
-//! as an animated GIF by the io crate's [`GifSink`] (at its size and dpi, the frames drawn in
-//! parallel into one palette).
+//! Animations of a structure over time (`--animate FILE.gif` or `FILE.webm` of `simulate`
+//! and `roll`): the members drawn with [`crate::draw`] (to scale, bars and strings as the
+//! drawings draw them), the ground as a grey line and the time in the title, one frame per
+//! wanted time, written by the io crate's [`AnimationSink`] (at its size and dpi, the frames
+//! drawn in parallel): an animated GIF in one palette, or an AV1 video in WebM.
 //!
 //! Frames: N = round(fps · duration) ≥ 2 frames ([`AnimationSpec`]) at the simulated times
 //! t_k = k·t_end/(N − 1), k = 0 … N − 1, shown 1/fps s each, so the whole run plays in
@@ -22,7 +22,7 @@ use crate::error::Result;
 use nalgebra::{Rotation3, Vector3};
 use tensegrity_core::request::InvalidParameter;
 use tensegrity_io::figure::{Figure, Series};
-use tensegrity_io::sink::{GifSink, NodeFrames};
+use tensegrity_io::sink::{AnimationSink, NodeFrames};
 
 /// Frames per second unless told.
 pub const DEFAULT_FPS: f64 = 10.0;
@@ -148,7 +148,7 @@ impl Scenery {
 /// An animation being recorded: a [`NodeFrames`] for the run's outputs.
 #[derive(Debug)]
 pub struct Animation {
-    sink: GifSink,
+    sink: AnimationSink,
     scenery: Scenery,
     times: Vec<f64>,
     tolerance: f64,
@@ -160,7 +160,7 @@ pub struct Animation {
 impl Animation {
     /// An animation into `sink` (opened before the run) of the frames at `spec.times(t_end)`;
     /// a node sample counts for a wanted time from `tolerance` (s) before it.
-    pub fn new(sink: GifSink, scenery: Scenery, spec: &AnimationSpec, t_end: f64) -> Self {
+    pub fn new(sink: AnimationSink, scenery: Scenery, spec: &AnimationSpec, t_end: f64) -> Self {
         let times = spec.times(t_end);
         let tolerance = 1e-9 * t_end.abs().max(1e-300);
         Self {
@@ -407,7 +407,8 @@ mod tests {
     #[test]
     fn a_sample_past_several_wanted_times_stands_for_each() {
         let dir = tempfile::tempdir().unwrap();
-        let sink = GifSink::open(&dir.path().join("a.gif"), 10.0).unwrap();
+        let sink =
+            AnimationSink::open(&dir.path().join("a.gif"), 10.0, Default::default()).unwrap();
         let scenery = Scenery {
             title: "bar".into(),
             bars: vec![[0, 1]],

@@ -295,6 +295,15 @@ pub enum IoError {
         /// The extensions understood, e.g. `svg, png`.
         expected: &'static str,
     },
+    /// A file type that is known but not written, e.g. an `.mp4` animation: why, and what to
+    /// write instead.
+    #[error("{}: {reason}", path.display())]
+    UnwrittenFormat {
+        /// The file.
+        path: PathBuf,
+        /// Why it is not written and what is.
+        reason: &'static str,
+    },
     /// A figure has nothing to draw or a bad size.
     #[error("figure: {reason}")]
     InvalidFigure {

@@ -8,7 +8,10 @@
 //! while the caller polls for signals ([`worker`]) — and hands back the report as Python
 //! objects built from the engine's values, every vector or matrix a numpy array ([`convert`]:
 //! no text crosses, keyword values go in typed). `simulate` and `roll` stream through the
-//! library calls the CLI makes ([`runs`]), sweeps run through the sweeps crate ([`sweep`]),
+//! library calls the CLI makes ([`runs`]), the files the CLI writes beside its reports
+//! (`tipover`'s and `tbar roll`'s histories, the friction grid, the T-bar studies, the
+//! exports and the project's figures) come from the same library calls ([`studies`]),
+//! sweeps run through the sweeps crate ([`sweep`]),
 //! and the structure model is built from numpy arrays ([`structure`]: a `Structure` crosses
 //! to the engine as data, the dict of its arrays, validated as a scene file is; scene TOML is
 //! only its explicit export and import). Errors become the package's
@@ -21,6 +24,7 @@ mod errors;
 mod runs;
 mod stepping;
 mod structure;
+mod studies;
 mod sweep;
 mod worker;
 
@@ -339,6 +343,191 @@ fn toml_text(py: Python<'_>, value: &Bound<'_, PyDict>) -> PyResult<String> {
     raise(py, structure::toml_text(&Value::Object(v)))
 }
 
+/// Runs `tipover` in its dynamic mode (`rolling`: its rolling mode) as the CLI does, the call
+/// offering the parameters of `modes`: (report, the rows of its `--out` history as raw f64
+/// bytes: [`studies::TIPOVER_DYNAMIC_COLUMNS`] or [`studies::TIPOVER_ROLLING_COLUMNS`]).
+#[pyfunction]
+fn tipover_history(
+    py: Python<'_>,
+    rolling: bool,
+    values: &Bound<'_, PyDict>,
+    limits: &Bound<'_, PyDict>,
+    modes: Vec<String>,
+) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
+    let name = if rolling {
+        "tipover_rolling"
+    } else {
+        "tipover_dynamic"
+    };
+    let c = raise(py, commands::find(name))?;
+    let values = raise(py, object(values))?;
+    let limits = raise(py, limits_of(limits))?;
+    let modes: Vec<_> = raise(py, modes.iter().map(|m| commands::find(m)).collect())?;
+    raise(py, commands::check_modes(c, &modes, &values))?;
+    raise(py, commands::admit(c, &values, &limits))?;
+    match worker::run(py, false, move || studies::tipover(rolling, values)) {
+        Ok(r) => {
+            let (r, rows) = raise(py, r)?;
+            Ok((report(py, &r)?, bytes(py, &rows)))
+        }
+        Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
+    }
+}
+
+/// `tipover --grid`: F_f/F_e over `grid_points` × `grid_points` (σ, ε) points, ε up to
+/// `eps_max`, its estimate checked against `limits`: the rows (σ, ε, F_f/F_e; σ outer) as
+/// raw f64 bytes.
+#[pyfunction]
+fn friction_grid(
+    py: Python<'_>,
+    grid_points: usize,
+    eps_max: f64,
+    limits: &Bound<'_, PyDict>,
+) -> PyResult<Py<PyAny>> {
+    let limits = raise(py, limits_of(limits))?;
+    raise(py, studies::admit_friction_grid(grid_points, &limits))?;
+    match worker::run(py, false, move || {
+        studies::friction_grid(grid_points, eps_max)
+    }) {
+        Ok(r) => Ok(bytes(py, &raise(py, r)?)),
+        Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
+    }
+}
+
+/// The T-bar studies of `tbar`'s parameters `values`: `study` = `loop_study` (the six cases)
+/// or `mass_sweep` (over `complexities` × `deltas`); the rows as `--json` prints them.
+#[pyfunction]
+#[pyo3(signature = (study, values, complexities = Vec::new(), deltas = Vec::new()))]
+fn tbar_study(
+    py: Python<'_>,
+    study: &str,
+    values: &Bound<'_, PyDict>,
+    complexities: Vec<usize>,
+    deltas: Vec<f64>,
+) -> PyResult<Py<PyAny>> {
+    let values = raise(py, object(values))?;
+    let work: Box<dyn FnOnce() -> Result<Value, Failure> + Send> = match study {
+        "loop_study" => Box::new(move || studies::loop_study(values)),
+        "mass_sweep" => Box::new(move || studies::mass_sweep(values, &complexities, &deltas)),
+        other => {
+            let p = tensegrity_core::request::InvalidParameter::raw(
+                "study",
+                other,
+                "one of loop_study, mass_sweep",
+            );
+            return Err(Failure::invalid(&p).into_pyerr(py));
+        }
+    };
+    match worker::run(py, false, work) {
+        Ok(r) => report(py, &raise(py, r)?),
+        Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
+    }
+}
+
+/// Runs `tbar roll` on `values` as the CLI does, the T-bar run of its first row observed:
+/// (report, that run's samples as raw f64 bytes, rows of `ROLL_HISTORY_COLUMNS`).
+#[pyfunction]
+fn tbar_roll(
+    py: Python<'_>,
+    values: &Bound<'_, PyDict>,
+    limits: &Bound<'_, PyDict>,
+) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
+    let c = raise(py, commands::find("tbar_roll"))?;
+    let values = raise(py, object(values))?;
+    let limits = raise(py, limits_of(limits))?;
+    raise(py, commands::admit(c, &values, &limits))?;
+    let request = raise(py, studies::tbar_roll_request(values))?;
+    match worker::run(py, false, move || studies::tbar_roll(request)) {
+        Ok((r, rows)) => {
+            let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+            Ok((report(py, &raise(py, r)?)?, bytes(py, &flat)))
+        }
+        Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
+    }
+}
+
+/// The scene of `values["scene"]` (a path, TOML or JSON text, or a Structure) as the
+/// engine's value.
+fn scene_value(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Value> {
+    let mut values = raise(py, object(values))?;
+    match values.remove("scene") {
+        Some(v) => Ok(v),
+        None => {
+            let p = tensegrity_core::request::InvalidParameter::raw(
+                "scene",
+                "(unset)",
+                "must be given",
+            );
+            Err(Failure::invalid(&p).into_pyerr(py))
+        }
+    }
+}
+
+/// `export mjcf`: the MJCF text of `values["scene"]`; `source` names it in the model.
+#[pyfunction]
+#[pyo3(signature = (values, source, timestep, ground_height = None))]
+fn export_mjcf(
+    py: Python<'_>,
+    values: &Bound<'_, PyDict>,
+    source: String,
+    timestep: f64,
+    ground_height: Option<f64>,
+) -> PyResult<String> {
+    let scene = scene_value(py, values)?;
+    raise(py, studies::mjcf(scene, source, timestep, ground_height))
+}
+
+/// `export json`: the JSON text of `values["scene"]`.
+#[pyfunction]
+fn export_json(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<String> {
+    let scene = scene_value(py, values)?;
+    raise(py, studies::scene_json(scene))
+}
+
+/// `export schema`: the JSON Schema of scene files (text).
+#[pyfunction]
+fn export_schema(py: Python<'_>) -> PyResult<String> {
+    raise(py, studies::schema())
+}
+
+/// Builds the figure `name` (`3.10`, `fig_3_10`) and writes it to `path` (SVG, PNG or PDF by
+/// its extension), its data table to `data` if given, its sweeps' CSVs into `data_dir`.
+#[pyfunction]
+#[pyo3(signature = (name, path, data, data_dir, quick, limits, size = None, dpi = None))]
+#[allow(clippy::too_many_arguments)]
+fn figure(
+    py: Python<'_>,
+    name: &str,
+    path: std::path::PathBuf,
+    data: Option<std::path::PathBuf>,
+    data_dir: std::path::PathBuf,
+    quick: bool,
+    limits: &Bound<'_, PyDict>,
+    size: Option<String>,
+    dpi: Option<f64>,
+) -> PyResult<()> {
+    let limits = raise(py, limits_of(limits))?;
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let (spec, options) = raise(
+        py,
+        studies::figure_spec(name, quick, size.as_deref(), dpi, png, &limits),
+    )?;
+    match worker::run(py, false, move || {
+        studies::write_figure(spec, options, quick, &path, data.as_deref(), &data_dir)
+    }) {
+        Ok(r) => raise(py, r),
+        Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
+    }
+}
+
+/// The project's figures: (number, description, file stem) each.
+#[pyfunction]
+fn figures() -> Vec<(&'static str, &'static str, String)> {
+    studies::figure_catalog()
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -354,9 +543,45 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(matrices, m)?)?;
     m.add_function(wrap_pyfunction!(topology, m)?)?;
     m.add_function(wrap_pyfunction!(toml_text, m)?)?;
+    m.add_function(wrap_pyfunction!(tipover_history, m)?)?;
+    m.add_function(wrap_pyfunction!(friction_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(tbar_study, m)?)?;
+    m.add_function(wrap_pyfunction!(tbar_roll, m)?)?;
+    m.add_function(wrap_pyfunction!(export_mjcf, m)?)?;
+    m.add_function(wrap_pyfunction!(export_json, m)?)?;
+    m.add_function(wrap_pyfunction!(export_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(figure, m)?)?;
+    m.add_function(wrap_pyfunction!(figures, m)?)?;
     m.add_class::<stepping::PyStepper>()?;
     m.add_class::<stepping::PyStepperState>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
     m.add("ROLL_HISTORY_COLUMNS", runs::HISTORY_COLUMNS.to_vec())?;
+    m.add(
+        "TIPOVER_DYNAMIC_COLUMNS",
+        studies::TIPOVER_DYNAMIC_COLUMNS.to_vec(),
+    )?;
+    m.add(
+        "TIPOVER_ROLLING_COLUMNS",
+        studies::TIPOVER_ROLLING_COLUMNS.to_vec(),
+    )?;
+    m.add(
+        "FRICTION_GRID_COLUMNS",
+        studies::FRICTION_GRID_COLUMNS.to_vec(),
+    )?;
+    m.add("MJCF_TIMESTEP", tensegrity_io::mjcf::DEFAULT_TIMESTEP)?;
+    // the defaults of the studies, the CLI's flags' own
+    m.add("FRICTION_GRID_POINTS", sweeps::grids::FRICTION_GRID_POINTS)?;
+    m.add(
+        "FRICTION_GRID_EPS_MAX",
+        sweeps::grids::FRICTION_GRID_EPS_MAX,
+    )?;
+    m.add(
+        "MASS_SWEEP_COMPLEXITIES",
+        tbar_wheel::MASS_SWEEP_COMPLEXITIES.to_vec(),
+    )?;
+    m.add(
+        "MASS_SWEEP_OFFSETS",
+        tbar_wheel::MASS_SWEEP_OFFSETS.to_vec(),
+    )?;
     Ok(())
 }

@@ -224,11 +224,28 @@ pub const HISTORY_COLUMNS: [&str; 9] = [
 
 /// The observer of a rolling run from Python: every sample kept as a history row
 /// ([`HISTORY_COLUMNS`]), everything else handed to the run's outputs.
-struct History<'a> {
+pub struct History<'a> {
     outputs: RollingOutputs<'a>,
     rows: Vec<[f64; 9]>,
     /// Where the simulated time goes for a progress report (f64 bits).
     progress: Option<Arc<AtomicU64>>,
+}
+
+impl<'a> History<'a> {
+    /// An observer keeping every sample, handing everything to `outputs`; `progress`: where
+    /// the simulated time goes.
+    pub fn new(outputs: RollingOutputs<'a>, progress: Option<Arc<AtomicU64>>) -> Self {
+        Self {
+            outputs,
+            rows: Vec::new(),
+            progress,
+        }
+    }
+
+    /// The rows kept so far (taken out).
+    pub fn take_rows(&mut self) -> Vec<[f64; 9]> {
+        std::mem::take(&mut self.rows)
+    }
 }
 
 impl wheel_rolling::Observer for History<'_> {

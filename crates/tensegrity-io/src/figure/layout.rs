@@ -10,6 +10,7 @@
 //! common 10ᵉ shown once at the axis end (×10ᵉ). A log axis is labelled 10ⁿ at its decades
 //! (every second or more when there are many).
 
+use super::fit::{fit, Fitted};
 use super::style::{series_style, Dash, Marker};
 use super::text::{self, superscript};
 use super::{Panel, Scale};
@@ -77,13 +78,39 @@ pub enum Glyph {
     Mark(super::MarkShape, (u8, u8, u8)),
 }
 
-/// The legend: its box and entries.
+/// The legend: its box and entries, in `columns` columns filled row by row (one column:
+/// the usual stacked legend; several: a legend row under the panel or the figure).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Legend {
     /// The box.
     pub rect: Rect,
     /// Entries: glyph and text.
     pub entries: Vec<(Glyph, String)>,
+    /// Columns (≥ 1).
+    pub columns: usize,
+    /// The size of its text, rows and samples relative to the usual (1, or down to
+    /// [`super::fit::MIN_SCALE`] for a legend that would take too much of a small figure).
+    pub scale: f64,
+}
+
+/// A text placed: its fitted lines and size, anchored in the middle at `at` (the first
+/// line's baseline; a y-axis label is turned by −90° about it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placed {
+    /// The text.
+    pub text: Fitted,
+    /// Anchor point (px).
+    pub at: (f64, f64),
+}
+
+/// How [`place_with`] lays a panel out.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlaceOptions {
+    /// For a panel with equal axes, the scale (px per drawing unit) to draw it at, at most
+    /// its own: the figure's one scale across its structure panels ([`super::arrange`]).
+    pub scale: Option<f64>,
+    /// The legend is the figure's (drawn once for all panels): none in the panel.
+    pub shared_legend: bool,
 }
 
 /// Everything placed of one panel.
@@ -101,6 +128,15 @@ pub struct PanelLayout {
     pub legend: Option<Legend>,
     /// The colour bar's rectangle, if any.
     pub colorbar: Option<Rect>,
+    /// The title (up to two lines).
+    pub title: Placed,
+    /// The x-axis label.
+    pub x_label: Placed,
+    /// The y-axis label (turned by −90°).
+    pub y_label: Placed,
+    /// For equal axes, the scale the panel is drawn at (px per drawing unit); `None` for
+    /// other panels.
+    pub equal_scale: Option<f64>,
 }
 
 impl PanelLayout {
@@ -298,7 +334,7 @@ fn drawn_extent(panel: &Panel) -> Vec<(f64, f64)> {
 }
 
 /// The legend entries of a panel: labelled series, arrows and marks, each label once.
-fn legend_entries(panel: &Panel) -> Vec<(Glyph, String)> {
+pub(crate) fn legend_entries(panel: &Panel) -> Vec<(Glyph, String)> {
     let mut out: Vec<(Glyph, String)> = Vec::new();
     let mut add = |glyph: Glyph, label: &str| {
         if !label.is_empty() && !out.iter().any(|(_, l)| l == label) {
@@ -323,15 +359,45 @@ fn legend_entries(panel: &Panel) -> Vec<(Glyph, String)> {
     out
 }
 
-fn legend_size(entries: &[(Glyph, String)]) -> (f64, f64) {
+/// The legend scales tried, largest first.
+pub(crate) const LEGEND_SCALES: [f64; 3] = [1.0, 0.85, super::fit::MIN_SCALE];
+
+/// The width of one legend column at `scale`: sample, gap, the widest text, padding (px).
+fn legend_column(entries: &[(Glyph, String)], scale: f64) -> f64 {
     let text = entries
         .iter()
         .map(|(_, t)| text::width(t, TICK_SIZE))
         .fold(0.0, f64::max);
+    scale * (8.0 + 24.0 + 6.0 + text + 8.0)
+}
+
+/// The size of a legend of `entries` in `columns` columns at `scale` (px).
+pub(crate) fn legend_size(entries: &[(Glyph, String)], columns: usize, scale: f64) -> (f64, f64) {
+    let columns = columns.clamp(1, entries.len().max(1));
+    let rows = entries.len().div_ceil(columns);
     (
-        8.0 + 24.0 + 6.0 + text + 8.0,
-        6.0 + ROW * entries.len() as f64 + 2.0,
+        legend_column(entries, scale) * columns as f64,
+        scale * (6.0 + ROW * rows as f64 + 2.0),
     )
+}
+
+/// A legend of `entries` in rows across `room_w` px, at the largest scale whose height is at
+/// most `max_h` px (else the smallest): its columns, scale and size.
+pub(crate) fn legend_rows(
+    entries: &[(Glyph, String)],
+    room_w: f64,
+    max_h: f64,
+) -> (usize, f64, (f64, f64)) {
+    let mut best = (1, 1.0, (0.0, 0.0));
+    for scale in LEGEND_SCALES {
+        let columns = ((room_w / legend_column(entries, scale)).floor() as usize)
+            .clamp(1, entries.len().max(1));
+        best = (columns, scale, legend_size(entries, columns, scale));
+        if best.2 .1 <= max_h {
+            break;
+        }
+    }
+    best
 }
 
 /// The widest tick label of an axis.
@@ -370,15 +436,21 @@ fn axes(panel: &Panel, x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> (Axis, A
     )
 }
 
-/// Places `panel` in `area`.
+/// Places `panel` in `area` on its own (its own scale and legend).
 pub fn place(panel: &Panel, area: Rect) -> PanelLayout {
+    place_with(panel, area, PlaceOptions::default())
+}
+
+/// The data ranges of a panel before any layout: the drawing's extent, padded (5 % on a
+/// linear y axis; 4 % of the larger span on every side for equal axes) and with the legend's
+/// headroom.
+fn data_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     let pts = drawn_extent(panel);
     let equal = panel.equal_axes;
     let pad = if equal { 0.0 } else { 0.05 };
     let mut x = axis_range(pts.iter().map(|p| p.0), panel.x_scale, 0.0);
     let mut y = axis_range(pts.iter().map(|p| p.1), panel.y_scale, pad);
     if equal {
-        // the same margin on every side: 4 % of the larger span
         let m = 0.04 * (x.1 - x.0).max(y.1 - y.0);
         x = (x.0 - m, x.1 + m);
         y = (y.0 - m, y.1 + m);
@@ -386,38 +458,106 @@ pub fn place(panel: &Panel, area: Rect) -> PanelLayout {
     if panel.y_scale == Scale::Linear && panel.legend_headroom > 0.0 {
         y.1 += panel.legend_headroom * (y.1 - y.0) / 1.1;
     }
-    let entries = legend_entries(panel);
-    let (lw, lh) = legend_size(&entries);
-    let top = 8.0 + if panel.title.is_empty() { 8.0 } else { 22.0 };
+    (x, y)
+}
+
+/// The smallest side of an equal-axes plot (px): a flat structure seen edge on still gets a
+/// readable strip.
+const MIN_SIDE: f64 = 24.0;
+
+/// `range` widened about its middle to `span`, if shorter.
+fn widened((lo, hi): (f64, f64), span: f64) -> (f64, f64) {
+    if hi - lo >= span {
+        return (lo, hi);
+    }
+    let c = 0.5 * (lo + hi);
+    (c - 0.5 * span, c + 0.5 * span)
+}
+
+/// Places `panel` in `area` under `options`.
+///
+/// Margins come from the measured text: the title (fitted to the area's width, up to two
+/// lines, [`fit`]), the x tick labels and label below, the y tick labels (the widest of them)
+/// and label to the left, the colour bar to the right. A panel with equal axes gets a plot
+/// box of its data's own aspect, centred in the room left (so the structure fills its axes at
+/// any size), at the scale of `options` or the largest that fits. The legend goes inside the
+/// plot where it covers no data, else to the right of it when that takes at most ~35 % of the
+/// area's width, else in rows under the panel.
+pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayout {
+    let (x, y) = data_ranges(panel);
+    let equal = panel.equal_axes;
+    let entries = if options.shared_legend {
+        Vec::new()
+    } else {
+        legend_entries(panel)
+    };
+    let title = fit(&panel.title, TITLE_SIZE, area.w - 8.0, 2);
+    // a common factor ×10ᵉ of the y labels sits above the plot, under the title
+    // (probed on the area's height: at least the ticks the plot will have)
+    let factor = axes(panel, x, y, area.w, area.h).1.factor.is_some();
+    let top = match title.lines.len() {
+        0 => 16.0,
+        n => 8.0 + title.size + (n - 1) as f64 * title.line_height() + 8.0,
+    } + if factor { TICK_SIZE + 2.0 } else { 0.0 };
     let bottom = 8.0 + TICK_SIZE + 6.0 + LABEL_SIZE + 8.0;
     let colorbar_w = if panel.colorbar.is_some() { 86.0 } else { 0.0 };
-    let build = |outside: f64| {
+    let build = |outside: f64, below: f64| {
         let right = 14.0 + colorbar_w + outside;
         // the y tick labels' width depends on the ticks, which depend on the height only
-        let h = (area.h - top - bottom).max(20.0);
+        let h = (area.h - top - bottom - below).max(20.0);
         let (_, probe) = axes(panel, x, y, (area.w - 90.0 - right).max(20.0), h);
         let mut left = 8.0 + LABEL_SIZE + 8.0 + widest(&probe.ticks) + 6.0;
         let mut w = (area.w - left - right).max(20.0);
-        let (mut xa, mut ya) = axes(panel, x, y, w, h);
-        // with equal axes the y range, and so its labels, depend on the width: widen once
-        let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
-        if needed > left {
-            left = needed;
-            w = (area.w - left - right).max(20.0);
-            (xa, ya) = axes(panel, x, y, w, h);
+        let (mut plot, mut xr, mut yr, mut equal_scale) = (
+            Rect {
+                x: area.x + left,
+                y: area.y + top,
+                w,
+                h,
+            },
+            x,
+            y,
+            None,
+        );
+        let (mut xa, mut ya) = axes(panel, xr, yr, w, h);
+        if equal {
+            // the data's own aspect, at the figure's scale or the largest that fits
+            let fits = (w / (x.1 - x.0)).min(h / (y.1 - y.0));
+            let s = options.scale.map_or(fits, |s| s.min(fits));
+            xr = widened(x, MIN_SIDE / s);
+            yr = widened(y, MIN_SIDE / s);
+            let (pw, ph) = (((xr.1 - xr.0) * s).min(w), ((yr.1 - yr.0) * s).min(h));
+            (xr, yr) = (widened(xr, pw / s), widened(yr, ph / s));
+            (xa, ya) = axes(panel, xr, yr, pw, ph);
+            let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
+            if needed > left {
+                left = needed;
+                w = (area.w - left - right).max(20.0);
+            }
+            plot = Rect {
+                x: area.x + left + 0.5 * (w - pw).max(0.0),
+                y: area.y + top + 0.5 * (h - ph).max(0.0),
+                w: pw,
+                h: ph,
+            };
+            equal_scale = Some(s);
+        } else {
+            let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
+            if needed > left {
+                left = needed;
+                w = (area.w - left - right).max(20.0);
+                (xa, ya) = axes(panel, xr, yr, w, h);
+                plot.x = area.x + left;
+                plot.w = w;
+            }
         }
-        let plot = Rect {
-            x: area.x + left,
-            y: area.y + top,
-            w,
-            h,
-        };
         let colorbar = panel.colorbar.as_ref().map(|_| Rect {
-            x: plot.x + w + 16.0 + outside,
-            y: plot.y + 0.1 * h,
+            x: plot.x + plot.w + 16.0 + outside,
+            y: plot.y + 0.1 * plot.h,
             w: 12.0,
-            h: 0.8 * h,
+            h: 0.8 * plot.h,
         });
+        let (title, x_label, y_label) = texts(panel, area, plot, &title, widest(&ya.ticks));
         PanelLayout {
             area,
             plot,
@@ -425,27 +565,111 @@ pub fn place(panel: &Panel, area: Rect) -> PanelLayout {
             y: ya,
             legend: None,
             colorbar,
+            title,
+            x_label,
+            y_label,
+            equal_scale,
         }
     };
-    let mut layout = build(0.0);
+    let mut layout = build(0.0, 0.0);
     if entries.is_empty() {
         return layout;
     }
-    let inside = best_place(panel, &layout, (lw, lh));
-    match inside {
-        Some(rect) => layout.legend = Some(Legend { rect, entries }),
-        None => {
-            layout = build(lw + 10.0);
+    let (lw, lh) = legend_size(&entries, 1, 1.0);
+    if let Some(rect) = best_place(panel, &layout, (lw, lh)) {
+        layout.legend = Some(Legend {
+            rect,
+            entries,
+            columns: 1,
+            scale: 1.0,
+        });
+        return layout;
+    }
+    let room_h = area.h - top - bottom;
+    for scale in LEGEND_SCALES {
+        let (lw, lh) = legend_size(&entries, 1, scale);
+        if lw + 10.0 <= 0.35 * area.w && lh <= room_h {
+            layout = build(lw + 10.0, 0.0);
             let rect = Rect {
                 x: layout.plot.x + layout.plot.w + 8.0,
                 y: layout.plot.y,
                 w: lw,
                 h: lh,
             };
-            layout.legend = Some(Legend { rect, entries });
+            layout.legend = Some(Legend {
+                rect,
+                entries,
+                columns: 1,
+                scale,
+            });
+            return layout;
         }
     }
+    let (columns, scale, (lw, lh)) = legend_rows(&entries, area.w - 16.0, 0.3 * area.h);
+    layout = build(0.0, lh + 6.0);
+    let rect = Rect {
+        x: area.x + 0.5 * (area.w - lw).max(0.0),
+        y: area.y + area.h - lh - 4.0,
+        w: lw,
+        h: lh,
+    };
+    layout.legend = Some(Legend {
+        rect,
+        entries,
+        columns,
+        scale,
+    });
     layout
+}
+
+/// The title, x label and y label of a panel whose plot is `plot` (`tick_w`: the widest y
+/// tick label), each fitted to its room in `area` and kept inside it.
+fn texts(
+    panel: &Panel,
+    area: Rect,
+    plot: Rect,
+    title: &Fitted,
+    tick_w: f64,
+) -> (Placed, Placed, Placed) {
+    // a centre that keeps a text of width `w` within [lo, hi]
+    let centre = |c: f64, w: f64, lo: f64, hi: f64| c.min(hi - 0.5 * w).max(lo + 0.5 * w);
+    let title = Placed {
+        at: (
+            centre(
+                plot.x + 0.5 * plot.w,
+                title.width(),
+                area.x + 4.0,
+                area.x + area.w - 4.0,
+            ),
+            area.y + 8.0 + title.size,
+        ),
+        text: title.clone(),
+    };
+    let xl = fit(&panel.x_label, LABEL_SIZE, area.w - 8.0, 1);
+    let x_label = Placed {
+        at: (
+            centre(
+                plot.x + 0.5 * plot.w,
+                xl.width(),
+                area.x + 4.0,
+                area.x + area.w - 4.0,
+            ),
+            plot.y + plot.h + 6.0 + TICK_SIZE + 6.0 + LABEL_SIZE,
+        ),
+        text: xl,
+    };
+    // beside the plot, below the title: it may run down past the plot to the x tick labels,
+    // not up into the title nor down to the x label
+    let (lo, hi) = (plot.y, (plot.y + plot.h + 20.0).min(area.y + area.h - 4.0));
+    let yl = fit(&panel.y_label, LABEL_SIZE, hi - lo, 1);
+    let y_label = Placed {
+        at: (
+            (plot.x - tick_w - 14.0).max(area.x + 4.0 + yl.size),
+            centre(plot.y + 0.5 * plot.h, yl.width(), lo, hi),
+        ),
+        text: yl,
+    };
+    (title, x_label, y_label)
 }
 
 /// Points along everything drawn in a panel, in pixels, ~3 px apart.

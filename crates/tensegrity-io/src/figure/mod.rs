@@ -25,9 +25,16 @@
 //! letter become subscripts (`$ι2$` → ι₂); [`literal`] makes any text plain (its dollars
 //! escaped), for text from a user or a file.
 //!
-//! The legend goes where it covers no data: the corner or edge of the plot area whose box
+//! Layout ([`layout`], [`arrange`], [`fit`]) is measured, not fixed: titles and labels are
+//! measured on the font and broken into lines or set smaller when wider than their room, a
+//! structure panel's plot box takes its drawing's aspect so the drawing fills its axes at any
+//! size, the structure panels of a figure share one scale, and a figure of several panels
+//! has one legend under them.
+//!
+//! The legend of a single panel goes where it covers no data: the corner or edge of the plot area whose box
 //! covers the fewest sampled points of the curves, marks and arrows, or, when every place
-//! inside covers some, outside to the right of the plot. Each series is one `<polyline>`, so
+//! inside covers some, outside to the right of the plot (in rows under the panel when that
+//! would take more than ~35 % of its width). Each series is one `<polyline>`, so
 //! an SVG holds exactly one polyline per series (markers are circles, squares, triangles or
 //! diamonds, each with a `data-marker` naming its shape). Every series without a colour of its
 //! own takes the next of 12 styles (colour, dash, marker: [`style`], colour-blind- and
@@ -46,6 +53,8 @@
 
 use crate::error::{IoError, Result};
 
+pub mod arrange;
+pub mod fit;
 pub mod layout;
 pub mod render;
 mod save;
@@ -335,6 +344,9 @@ pub struct Figure {
     /// Why the run the figure shows is not valid ([`Figure::mark_invalid`]): drawn in red,
     /// `NOT VALID: reason`, in a band along the figure's top left, above the panels.
     pub invalid: Option<String>,
+    /// Each structure panel drawn at its own largest scale, not at one scale across the
+    /// figure ([`arrange`]); a figure that sets this says so in its titles.
+    pub independent_scales: bool,
 }
 
 impl Figure {
@@ -344,7 +356,29 @@ impl Figure {
             panels,
             panel_size: (540, 400),
             invalid: None,
+            independent_scales: false,
         }
+    }
+
+    /// The same figure with each structure panel at its own scale (a detail beside an
+    /// overview), where by default all are drawn at one scale.
+    ///
+    /// ```
+    /// use tensegrity_io::figure::{arrange::arrange, Figure, Panel, Series};
+    /// let bar = |len: f64| {
+    ///     Panel::new("bar", "x [m]", "z [m]")
+    ///         .with_equal_axes()
+    ///         .series(Series::new("", vec![(0.0, 0.0), (len, 0.5 * len)]))
+    /// };
+    /// let fig = Figure::new(vec![bar(1.0), bar(2.0)]).with_independent_scales();
+    /// let a = arrange(&fig, (800.0, 300.0), 0.0);
+    /// // each fills its panel: the short bar at about twice the scale
+    /// let (s0, s1) = (a.panels[0].scales().0, a.panels[1].scales().0);
+    /// assert!((s0 / s1 - 2.0).abs() < 0.05);
+    /// ```
+    pub fn with_independent_scales(mut self) -> Self {
+        self.independent_scales = true;
+        self
     }
 
     /// The same figure marked as showing a run that is not valid, `reason` (e.g. the first

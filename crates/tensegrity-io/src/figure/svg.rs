@@ -6,7 +6,8 @@
 //! `data-x-range` and `data-y-range` (drawing coordinates) give the map from data to pixels:
 //! x_px = left + (x − x₀)·width/(x₁ − x₀), y_px = top + height − (y − y₀)·height/(y₁ − y₀).
 
-use super::layout::{self, Glyph, Markers, PanelLayout, Rect, LABEL_SIZE, TICK_SIZE, TITLE_SIZE};
+use super::arrange;
+use super::layout::{self, Glyph, Markers, PanelLayout, Rect, TICK_SIZE};
 use super::style::{Dash, Marker};
 use super::text::{self, Shift, SCRIPT_SCALE};
 use super::{diverging_color, Figure, MarkShape, Panel, Unit, FONT_FAMILY};
@@ -79,6 +80,15 @@ fn label(out: &mut String, t: &str, (x, y): (f64, f64), size: f64, anchor: &str,
     out.push_str("</text>\n");
 }
 
+/// A placed text, each line centred on its anchor, the lines `line_height` apart (a y-axis
+/// label, one line, turned by −90°).
+fn placed(out: &mut String, p: &layout::Placed, rotate: bool) {
+    for (i, line) in p.text.lines.iter().enumerate() {
+        let y = p.at.1 + i as f64 * p.text.line_height();
+        label(out, line, (p.at.0, y), p.text.size, "middle", rotate);
+    }
+}
+
 /// The SVG of `figure` laid out on `size` CSS pixels; `unit` the unit of its `width` and
 /// `height` attributes (pixels when `None`).
 pub fn write(figure: &Figure, (w, h): (f64, f64), unit: Option<Unit>) -> String {
@@ -115,16 +125,12 @@ fn write_with_size(figure: &Figure, (w, h): (f64, f64), (width, height): (&str, 
         Some(reason) => invalid_mark(&mut out, reason, w),
         None => 0.0,
     };
-    let panel_w = w / figure.panels.len() as f64;
-    for (k, panel) in figure.panels.iter().enumerate() {
-        let area = Rect {
-            x: k as f64 * panel_w,
-            y: band,
-            w: panel_w,
-            h: h - band,
-        };
-        let l = layout::place(panel, area);
-        write_panel(&mut out, panel, &l, k);
+    let arranged = arrange::arrange(figure, (w, h), band);
+    for (k, (panel, l)) in figure.panels.iter().zip(&arranged.panels).enumerate() {
+        write_panel(&mut out, panel, l, k);
+    }
+    if let Some(legend) = &arranged.legend {
+        write_legend(&mut out, legend);
     }
     out.push_str("</svg>\n");
     out
@@ -161,17 +167,7 @@ fn write_panel(out: &mut String, panel: &Panel, l: &PanelLayout, k: usize) {
         l.y.lo,
         l.y.hi
     );
-    if !panel.title.is_empty() {
-        let title_y = l.area.y + 8.0 + TITLE_SIZE;
-        label(
-            out,
-            &panel.title,
-            (p.x + 0.5 * p.w, title_y),
-            TITLE_SIZE,
-            "middle",
-            false,
-        );
-    }
+    placed(out, &l.title, false);
     write_axes(out, panel, l);
     let _ = writeln!(
         out,
@@ -195,7 +191,7 @@ fn write_panel(out: &mut String, panel: &Panel, l: &PanelLayout, k: usize) {
         write_legend(out, legend);
     }
     if let (Some(bar), Some(rect)) = (&panel.colorbar, l.colorbar) {
-        write_colorbar(out, bar, rect, k);
+        write_colorbar(out, bar, rect, k, l);
     }
     out.push_str("</g>\n");
 }
@@ -253,24 +249,9 @@ fn write_axes(out: &mut String, panel: &Panel, l: &PanelLayout) {
             false,
         );
     }
-    let x_label_y = bottom + 6.0 + TICK_SIZE + 6.0 + LABEL_SIZE;
-    label(
-        out,
-        &panel.x_label,
-        (p.x + 0.5 * p.w, x_label_y),
-        LABEL_SIZE,
-        "middle",
-        false,
-    );
-    let y_label_x = l.area.x + 8.0 + LABEL_SIZE;
-    label(
-        out,
-        &panel.y_label,
-        (y_label_x, p.y + 0.5 * p.h),
-        LABEL_SIZE,
-        "middle",
-        true,
-    );
+    placed(out, &l.x_label, false);
+    placed(out, &l.y_label, true);
+    let x_label_y = l.x_label.at.1;
     if let Some(e) = l.x.factor {
         let t = format!("×{}", layout::power_of_ten(e));
         label(out, &t, (p.x + p.w, x_label_y), TICK_SIZE, "end", false);
@@ -502,9 +483,13 @@ fn write_legend(out: &mut String, legend: &layout::Legend) {
         num(r.w),
         num(r.h)
     );
+    let column_w = r.w / legend.columns.max(1) as f64;
+    let k = legend.scale;
     for (i, (glyph, t)) in legend.entries.iter().enumerate() {
-        let y = r.y + 6.0 + 16.0 * i as f64 + 8.0;
-        let (x0, x1) = (r.x + 8.0, r.x + 32.0);
+        let (row, column) = (i / legend.columns.max(1), i % legend.columns.max(1));
+        let y = r.y + k * (6.0 + 16.0 * row as f64 + 8.0);
+        let x = r.x + column_w * column as f64;
+        let (x0, x1) = (x + 8.0 * k, x + 32.0 * k);
         match *glyph {
             Glyph::Line {
                 color,
@@ -529,15 +514,15 @@ fn write_legend(out: &mut String, legend: &layout::Legend) {
         label(
             out,
             t,
-            (x1 + 6.0, y + 0.35 * TICK_SIZE),
-            TICK_SIZE,
+            (x1 + 6.0 * k, y + 0.35 * TICK_SIZE * k),
+            TICK_SIZE * k,
             "start",
             false,
         );
     }
 }
 
-fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize) {
+fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize, l: &PanelLayout) {
     let _ = write!(
         out,
         "<linearGradient id=\"cbar{k}\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">"
@@ -585,8 +570,21 @@ fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize) {
     if let Some(e) = factor {
         title = format!("{title} ×{}", layout::power_of_ten(e));
     }
-    let x = r.x + r.w + 56.0;
-    label(out, &title, (x, r.y + 0.5 * r.h), TICK_SIZE, "middle", true);
+    // turned, beside the bar: fitted to the panel's height below its title
+    let (lo, hi) = (l.plot.y, l.area.y + l.area.h - 4.0);
+    let fitted = super::fit::fit(&title, TICK_SIZE, hi - lo, 1);
+    let half = 0.5 * fitted.width();
+    let y = (r.y + 0.5 * r.h).min(hi - half).max(lo + half);
+    for line in &fitted.lines {
+        label(
+            out,
+            line,
+            (r.x + r.w + 56.0, y),
+            fitted.size,
+            "middle",
+            true,
+        );
+    }
     label(out, "tension", (r.x, r.y - 5.0), 9.0, "start", false);
     label(
         out,

@@ -7,6 +7,7 @@
 //! | [`FileSink`] | any bytes (scene TOML, one `.vtu`, a table written at once) | through [`std::io::Write`] | removed |
 //! | [`FigureSink`] | SVG or PNG by the extension | drawn at the end | removed |
 //! | [`JsonSink`] | one JSON document | written at the end | removed |
+//! | [`GifSink`], [`WebmSink`] ([`AnimationSink`] picks by extension) | an animation (`.gif`; `.webm`: AV1 in WebM) | frames drawn in parallel batches; a GIF streamed, a video's coded frames held and written at the end | removed |
 //! | [`OutputDir`] | a directory that outputs go into | — | removed if this run created it and it is empty |
 //!
 //! A run's outputs together: [`SimulationOutputs`] (a simulation's trajectory CSV and VTK
@@ -61,6 +62,7 @@
 //! # Ok::<(), tensegrity_io::IoError>(())
 //! ```
 
+mod animation;
 mod csv;
 mod dir;
 mod file;
@@ -69,8 +71,12 @@ mod lock;
 mod rolling;
 mod simulation;
 pub(crate) mod staged;
+mod video;
 mod vtk;
+pub mod webm;
+pub mod yuv;
 
+pub use self::animation::{AnimationSink, MP4_REFUSED};
 pub use self::csv::CsvSink;
 pub use self::dir::OutputDir;
 pub use self::file::{FigureSink, FileSink, ImageFormat, JsonSink};
@@ -78,6 +84,7 @@ pub use self::gif::GifSink;
 pub use self::lock::PathLock;
 pub use self::rolling::RollingOutputs;
 pub use self::simulation::{NodeFrames, SimulationOutputs, Written};
+pub use self::video::WebmSink;
 pub use self::vtk::{VtkSeriesSink, PVD_INTERVAL};
 
 #[cfg(test)]

@@ -15,6 +15,10 @@ with the GIL released and stop on Ctrl-C (:class:`~tensegrity.errors.Interrupted
 results so far). Bad input raises :class:`~tensegrity.errors.InputError` (a ``ValueError``)
 with the command line's message.
 
+The command line's exports are :func:`export_mjcf`, :func:`export_json` and
+:func:`export_schema`; :func:`figure` writes one of the project's figures (SVG, PNG or PDF),
+drawn by the same Rust code as ``tensegrity figures``.
+
 A simulation a controller steps and steers is a :class:`Simulator` (``reset``, ``step`` with
 rest lengths or rates, ``get_state``/``set_state``, observations as numpy arrays); Gymnasium
 environments built on it are in :mod:`tensegrity.envs` (``pip install gymnasium``).
@@ -27,8 +31,11 @@ from ._commands import REGISTRY as _REGISTRY
 from ._commands import make as _make
 from ._commands import make_roll as _make_roll
 from ._commands import make_simulate as _make_simulate
+from ._commands import make_tbar as _make_tbar
+from ._commands import make_tbar_roll as _make_tbar_roll
 from ._commands import make_tipover as _make_tipover
 from ._commands import read_rows, sweep
+from ._exports import export_json, export_mjcf, export_schema, figure, figures
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
 from .results import Result
@@ -40,6 +47,7 @@ __version__ = "0.1.0"
 __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
+    "export_mjcf", "export_json", "export_schema", "figure", "figures",
     "Structure", "Simulator", "Observation", "Actuator", "Result", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
@@ -87,8 +95,8 @@ tipover = _make_tipover(SUMMARIES["tipover"], "")
 michell = _make("michell", "michell", SUMMARIES["michell"])
 michell_optimize = _make("michell_optimize", "michell_optimize", SUMMARIES["michell_optimize"])
 michell_table = _make("michell_table", "michell_table", SUMMARIES["michell_table"])
-tbar = _make("tbar", "tbar", SUMMARIES["tbar"])
-tbar_roll = _make("tbar_roll", "tbar_roll", SUMMARIES["tbar_roll"])
+tbar = _make_tbar(SUMMARIES["tbar"], "")
+tbar_roll = _make_tbar_roll(SUMMARIES["tbar_roll"], "")
 solve = _make("solve", "solve", SUMMARIES["solve"], ("scene",), _SCENE_DOC)
 
 if "formfind" in _REGISTRY:

@@ -309,6 +309,10 @@ class TipoverResult(Result):
     fell
     fall_time : float [s]
     downhill : float [m]
+    history : ndarray dict of (samples,) arrays
+        with ``dynamic=True``: every ``output_dt`` sample, the columns of ``tipover --dynamic --out``: t, force, lean, near_normal, far_normal (s, N lateral hub force, rad lean, N summed normal force on the near and the far tread edge); with ``rolling=True`` those of ``tipover --rolling --out``: t, lean, downhill, across (s, rad lean, m hub travel downhill, m hub drift across the slope)
+    grid : ndarray dict: sigma (grid_points,), epsilon (grid_points,), normalized_friction (grid_points, grid_points)
+        with ``grid=True``: the map of ``tipover --grid`` (Fig. 3.13), F_f/F_e (dimensionless) at [σ, ε]; its axes σ = R_i/R_o and ε = t/T (dimensionless); the CSV's rows are σ outer, ε inner
     """
     mass_kg: float
     rho: Any
@@ -336,6 +340,8 @@ class TipoverResult(Result):
     fell: Any
     fall_time: float
     downhill: float
+    history: Dict[str, np.ndarray]
+    grid: Dict[str, np.ndarray]
 
 
 class MichellResult(Result):
@@ -484,6 +490,12 @@ class TbarResult(Result):
     spectral_gap.ratio
     spectral_gap.block
     statics_warning
+    rows : ndarray list of dicts
+        with ``loop_study=True`` or ``mass_sweep=True``: the study's rows as its ``--json``
+    loop_study : ndarray dict of (6,) arrays
+        with ``loop_study=True``: the rows as columns: structure, stance (text), contacts, nodes, members, free_dofs, rank, self_stress_dim, mechanisms (counts), rigid, in_plane, out_of_plane, internal (mechanism counts by kind), prestress_margin (dimensionless)
+    mass_sweep : ndarray dict of (complexities × deltas,) arrays
+        with ``mass_sweep=True``: the rows as columns: complexity, delta (δ, or ε in rad), min_prestress (N), mass.mass_kg, mass.michell_mass_kg, mass.yield_mass_kg (kg), mass.mass_ratio, mass.material, note (NaN or "" where a tread has no load envelope)
     """
     nodes: Any
     bars: Any
@@ -509,6 +521,9 @@ class TbarResult(Result):
     mass_kg: float
     envelope_carried: Any
     statics_warning: Any
+    rows: List[Dict[str, Any]]
+    loop_study: Dict[str, np.ndarray]
+    mass_sweep: Dict[str, np.ndarray]
 
 
 class TbarRollResult(Result):
@@ -554,6 +569,10 @@ class TbarRollResult(Result):
     rows.0.toroid.mean_speed : float [m/s]
     rows.0.tipover.critical_lateral_force : float [N]
     rows.0.tipover.min_friction_to_tip
+    table : ndarray dict of (tread counts,) arrays
+        the rows of ``tbar roll --out``, one per number of treads, by the CSV's column names (treads; phi rad; tbar.mass_kg kg; tbar.I1 kg m²; speeds m/s; forces N; lengths m; flags as bool; NaN for an empty cell)
+    history : ndarray dict of (samples,) arrays
+        every 1 ms sample of the first row's T-bar run, the columns of ``roll``'s history: t, axle_s, axle_h, omega, pivot_m, normal_N, tangential_N, energy_J, slip_m_s (s, m along the slope, m, rad/s, m, N, N, J, m/s)
     """
     model: Any
     fidelity: Any
@@ -563,6 +582,8 @@ class TbarRollResult(Result):
     incline_rad: float
     t_end: float
     valid: Any
+    table: Dict[str, np.ndarray]
+    history: Dict[str, np.ndarray]
 
 
 class FormfindResult(Result):
@@ -1020,6 +1041,9 @@ def tipover(
     t_end: float = ...,
     dynamic: bool = ...,
     rolling: bool = ...,
+    grid: bool = ...,
+    grid_points: Optional[int] = ...,
+    eps_max: Optional[float] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -1111,9 +1135,15 @@ def tipover(
     t_end : float
         Simulated time (s); must be finite and positive. Default: 3.0
     dynamic : bool, optional
-        The threshold checked by the full dynamics.
+        The threshold checked by the full dynamics; the result's ``history`` holds the samples of ``--out``.
     rolling : bool, optional
-        The lean while rolling down a side slope.
+        The lean while rolling down a side slope; ``history`` as for dynamic.
+    grid : bool, optional
+        The F_f/F_e map over σ × ε (Fig. 3.13) in the result's ``grid``.
+    grid_points : int, optional
+        Grid points per axis (default 50).
+    eps_max : float, optional
+        Largest ε of the grid (default 1.0).
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1324,6 +1354,10 @@ def tbar(
     prestress: Optional[float] = ...,
     directions: int = ...,
     material: str = ...,
+    loop_study: bool = ...,
+    mass_sweep: bool = ...,
+    sweep_complexities: Optional[Sequence[int]] = ...,
+    sweep_deltas: Optional[Sequence[float]] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -1371,6 +1405,14 @@ def tbar(
         Default: 2000
     material : str
         Material of the sizing (built-in table). Default: 'steel'
+    loop_study : bool, optional
+        The single loop against the extended wheel (``rows``, ``loop_study``).
+    mass_sweep : bool, optional
+        The mass price against the Michell truss (``rows``, ``mass_sweep``).
+    sweep_complexities : sequence of int, optional
+        Default (1, 2, 3).
+    sweep_deltas : sequence of float, optional
+        Default (0.05, 0.1, 0.25, 0.5, 1.0).
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1496,6 +1538,7 @@ def tbar_roll(
         fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
         chaotic quantities), in parallel, and report each headline quantity's change,
         extrapolated error and status in `convergence`; an unconverged result is not valid
+    The result's ``table``: the rows of ``tbar roll --out``; its ``history``: the 1 ms samples of the first row's T-bar run (TbarRollResult lists both).
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1660,4 +1703,46 @@ def run(command: str, **kwargs: Any) -> Dict[str, Any]:
 
 def commands() -> Dict[str, Dict[str, Any]]:
     """The engine's registry: every command with its parameters and result columns."""
+    ...
+
+def export_mjcf(
+    scene: Scene,
+    path: Union[str, "os.PathLike[str]", None] = ...,
+    *,
+    timestep: Optional[float] = ...,
+    ground_height: Optional[float] = ...,
+    source: Optional[str] = ...,
+) -> str:
+    """MuJoCo's MJCF of a scene (``tensegrity export mjcf``): the XML text, also written to
+    ``path`` if given; ``timestep`` in s (default 0.001), ``ground_height`` in m."""
+    ...
+
+def export_json(scene: Scene, path: Union[str, "os.PathLike[str]", None] = ...) -> str:
+    """The scene as JSON (``tensegrity export json``): the text, also written to ``path``."""
+    ...
+
+def export_schema(path: Union[str, "os.PathLike[str]", None] = ...) -> Dict[str, Any]:
+    """The JSON Schema of scene files (``tensegrity export schema``), also written to
+    ``path`` if given."""
+    ...
+
+def figures() -> Dict[str, str]:
+    """The project's figures: number → description."""
+    ...
+
+def figure(
+    name: str,
+    path: Union[str, "os.PathLike[str]"],
+    size: Optional[str] = ...,
+    dpi: Optional[float] = ...,
+    *,
+    quick: bool = ...,
+    data: Union[bool, str, "os.PathLike[str]"] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> str:
+    """Writes the project's figure ``name`` (``"3.10"``) to ``path`` (SVG, PNG or PDF by its
+    extension; ``size`` such as ``"6x4in"``, ``dpi`` for PNG), as ``tensegrity figures``
+    draws it; its data table beside it as CSV (``data``). Returns the path."""
     ...

@@ -345,28 +345,257 @@ def _with_history(raw):
     return report
 
 
+def _count(value, name, least):
+    """``value`` as an int of at least ``least``, else an InputError naming ``name``."""
+    import operator
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise _input(name, f"{name} = {value!r}: expected a whole number") from None
+    if n < least:
+        raise _input(name, f"{name} = {n}: must be at least {least}")
+    return n
+
+
+def _real(value, name):
+    """``value`` as a finite float, else an InputError naming ``name``."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise _input(name, f"{name} = {value!r}: expected a number") from None
+    if not np.isfinite(x):
+        raise _input(name, f"{name} = {x}: must be finite")
+    return x
+
+
+def _input(name, message):
+    from .errors import InputError
+    e = InputError(message)
+    e.parameter = name
+    return e
+
+
+def _columns(raw, names):
+    """Rows of f64 (raw bytes from Rust) as a dict of read-only column views."""
+    rows = np.frombuffer(raw, dtype=np.float64).reshape(-1, len(names))
+    return {name: rows[:, k] for k, name in enumerate(names)}
+
+
+def _friction_grid(raw, grid_points):
+    """The rows of ``tipover --grid`` (σ outer) as its axes and its map."""
+    cols = _columns(raw, _native.FRICTION_GRID_COLUMNS)
+    n = grid_points
+    return {
+        "sigma": cols["sigma"][::n].copy(),
+        "epsilon": cols["epsilon"][:n].copy(),
+        "normalized_friction": cols["normalized_friction"].reshape(n, n),
+    }
+
+
 def make_tipover(summary, doc_extra):
     modes = ("tipover", "tipover_dynamic", "tipover_rolling")
     params = params_of(*modes)
-    sig = _signature(params, (), (("dynamic", False), ("rolling", False)))
+    sig = _signature(params, (), (("dynamic", False), ("rolling", False), ("grid", False),
+                                  ("grid_points", None), ("eps_max", None)))
 
     def tipover(*args, **kwargs):
         bound = _call("tipover", sig, args, kwargs)
         limits = _limits(bound)
         dynamic, rolling = bool(bound.pop("dynamic", False)), bool(bound.pop("rolling", False))
+        grid = bool(bound.pop("grid", False))
+        grid_points, eps_max = bound.pop("grid_points", None), bound.pop("eps_max", None)
         if dynamic and rolling:
             raise TypeError("tipover(): dynamic and rolling cannot be used together")
-        command = modes[1] if dynamic else modes[2] if rolling else modes[0]
+        if grid and (dynamic or rolling):
+            raise TypeError("tipover(): grid cannot be used with dynamic or rolling")
         values = _given(bound)
-        return _native.run(command, values, limits, list(modes))
+        if grid:
+            if values:
+                name = next(iter(values))
+                raise _input(name, f"{name} does not apply to the grid (it depends on σ and ε "
+                                   "only: grid_points, eps_max)")
+            n = _count(GRID_POINTS if grid_points is None else grid_points, "grid_points", 2)
+            e = _real(EPS_MAX if eps_max is None else eps_max, "eps_max")
+            raw = _native.friction_grid(n, e, limits)
+            return {"grid_points": n, "eps_max": e, "grid": _friction_grid(raw, n)}
+        for name, v in (("grid_points", grid_points), ("eps_max", eps_max)):
+            if v is not None:
+                raise _input(name, f"{name} applies to the grid only (grid=True)")
+        if dynamic or rolling:
+            out, raw = _native.tipover_history(rolling, values, limits, list(modes))
+            cols = (_native.TIPOVER_ROLLING_COLUMNS if rolling
+                    else _native.TIPOVER_DYNAMIC_COLUMNS)
+            out["history"] = _columns(raw, cols)
+            return out
+        return _native.run(modes[0], values, limits, list(modes))
 
     extra_doc = """\
     dynamic : bool, optional
         Check the threshold with the full 3-D dynamics (the command line's ``--dynamic``):
-        the wheel at rest on a side on level ground, a lateral force ramped at the hub.
+        the wheel at rest on a side on level ground, a lateral force ramped at the hub. The
+        result's ``history`` holds the samples of ``--out``: t (s), force (N), lean (rad),
+        near_normal and far_normal (N).
     rolling : bool, optional
-        Roll the wheel down a plane with a side slope and report its lean (``--rolling``)."""
+        Roll the wheel down a plane with a side slope and report its lean (``--rolling``).
+        The result's ``history`` holds the samples of ``--out``: t (s), lean (rad),
+        downhill and across (m).
+    grid : bool, optional
+        Instead of one wheel, F_f/F_e over a σ × ε grid (Fig. 3.13, the command line's
+        ``--grid FILE``): the result's ``grid`` holds the axes ``sigma`` (grid_points,) and
+        ``epsilon`` (grid_points,) and the map ``normalized_friction`` (grid_points,
+        grid_points), indexed [σ, ε] (dimensionless); no other wheel keyword applies.
+    grid_points : int, optional
+        Grid points per axis, at least 2 (``--grid-points``). Default: 50.
+    eps_max : float, optional
+        Largest ε of the grid, positive (``--eps-max``). Default: 1.0."""
     return finish(tipover, "tipover", sig, summary, params, doc_extra, extra_doc)
+
+
+#: The command line's defaults of ``tipover --grid``: points per axis and the largest ε.
+GRID_POINTS, EPS_MAX = _native.FRICTION_GRID_POINTS, _native.FRICTION_GRID_EPS_MAX
+#: The command line's defaults of ``tbar --mass-sweep``: complexities and offsets δ (or ε).
+SWEEP_COMPLEXITIES = tuple(_native.MASS_SWEEP_COMPLEXITIES)
+SWEEP_DELTAS = tuple(_native.MASS_SWEEP_OFFSETS)
+
+
+def table(rows):
+    """A list of report rows (dicts) as a dict of numpy columns: nested fields by dotted
+    name (``mass.mass_kg``); numbers as float64 (int64 when every one is whole; a null
+    NaN), flags as bool, text as str (a null ``""``), a column null in every row NaN; a
+    row's vector as an object array."""
+    names = []
+    flat_rows = []
+    for row in rows:
+        flat = {}
+        _flatten(row, "", flat)
+        flat_rows.append(flat)
+        for k in flat:
+            if k not in names:
+                names.append(k)
+    # a field null in some rows and an object in others: its dotted fields only
+    names = [n for n in names if not any(m.startswith(n + ".") for m in names)]
+    out = {}
+    for name in names:
+        cells = [r.get(name) for r in flat_rows]
+        out[name] = _cells(cells)
+    return out
+
+
+def _flatten(value, prefix, out):
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _flatten(v, f"{prefix}{k}" if not prefix else f"{prefix}.{k}", out)
+    else:
+        out[prefix] = value
+
+
+def _cells(cells):
+    known = [c for c in cells if c is not None]
+    if not known:
+        return np.full(len(cells), np.nan)
+    if known and all(isinstance(c, (bool, np.bool_)) for c in known) and len(known) == len(cells):
+        return np.array(cells, dtype=bool)
+    numeric = all(isinstance(c, (int, float, np.integer, np.floating))
+                  and not isinstance(c, (bool, np.bool_)) for c in known)
+    if numeric and known:
+        if len(known) == len(cells) and all(isinstance(c, (int, np.integer)) for c in cells):
+            return np.array(cells, dtype=np.int64)
+        return np.array([np.nan if c is None else float(c) for c in cells], dtype=np.float64)
+    if all(isinstance(c, str) for c in known):
+        return np.array(["" if c is None else c for c in cells], dtype=str)
+    arr = np.empty(len(cells), dtype=object)
+    arr[:] = cells
+    return arr
+
+
+def make_tbar(summary, doc_extra):
+    params = REGISTRY["tbar"]["params"]
+    sig = _signature(params, (), (("loop_study", False), ("mass_sweep", False),
+                                  ("sweep_complexities", None), ("sweep_deltas", None)))
+
+    def tbar(*args, **kwargs):
+        bound = _call("tbar", sig, args, kwargs)
+        limits = _limits(bound)
+        loop, mass = bool(bound.pop("loop_study", False)), bool(bound.pop("mass_sweep", False))
+        qs, ds = bound.pop("sweep_complexities", None), bound.pop("sweep_deltas", None)
+        if loop and mass:
+            raise TypeError("tbar(): loop_study and mass_sweep cannot be used together")
+        if not mass:
+            for name, v in (("sweep_complexities", qs), ("sweep_deltas", ds)):
+                if v is not None:
+                    raise _input(name, f"{name} applies to the mass sweep only (mass_sweep=True)")
+        values = _given(bound)
+        if loop:
+            rows = _native.tbar_study("loop_study", values)
+            return {"loop_study": table(rows), "rows": rows}
+        if mass:
+            qs = [_count(q, "sweep_complexities", 1)
+                  for q in _sequence(SWEEP_COMPLEXITIES if qs is None else qs,
+                                     "sweep_complexities")]
+            ds = [_real(d, "sweep_deltas")
+                  for d in _sequence(SWEEP_DELTAS if ds is None else ds, "sweep_deltas")]
+            rows = _native.tbar_study("mass_sweep", values, qs, ds)
+            return {"mass_sweep": table(rows), "rows": rows}
+        return _native.run("tbar", values, limits)
+
+    extra_doc = """\
+    loop_study : bool, optional
+        Instead of one analysis, the single loop against the extended wheel (copy at
+        ``extended``, default 0.5 r₀) with a free rim body, free and standing on the ground
+        (the command line's ``--loop-study``): the result's ``rows`` are its ``--json`` rows
+        and ``loop_study`` the same as numpy columns (counts; in_plane, out_of_plane,
+        internal, rigid: mechanism counts as numbers; prestress_margin dimensionless).
+    mass_sweep : bool, optional
+        Instead of one analysis, the mass price against the Michell truss of single treads
+        over ``sweep_complexities`` × ``sweep_deltas`` (``--mass-sweep``): ``rows`` as its
+        ``--json`` and ``mass_sweep`` as columns (min_prestress N, mass.mass_kg kg,
+        mass.michell_mass_kg kg, mass.yield_mass_kg kg, mass.mass_ratio; NaN and "" where a
+        tread has no load envelope, ``note`` says why).
+    sweep_complexities : sequence of int, optional
+        Complexities q of the mass sweep, each at least 1. Default: (1, 2, 3).
+    sweep_deltas : sequence of float, optional
+        Offsets δ (or angles ε, radians, with ``spherical``) of the mass sweep. Default:
+        (0.05, 0.1, 0.25, 0.5, 1.0)."""
+    return finish(tbar, "tbar", sig, summary, params, doc_extra, extra_doc)
+
+
+def _sequence(value, name):
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise _input(name, f"{name} = {value!r}: expected a sequence")
+    return list(value)
+
+
+def make_tbar_roll(summary, doc_extra):
+    params = REGISTRY["tbar_roll"]["params"]
+    sig = _signature(params)
+    row_columns = [c["name"][len("rows.0."):] for c in REGISTRY["tbar_roll"]["columns"]
+                   if c["name"].startswith("rows.0.")]
+
+    def tbar_roll(*args, **kwargs):
+        bound = _call("tbar_roll", sig, args, kwargs)
+        limits = _limits(bound)
+        values = _given(bound)
+        out, raw = _native.tbar_roll(values, limits)
+        out["table"] = {c: _cells([_lookup(row, c) for row in out["rows"]])
+                        for c in row_columns}
+        out["history"] = _columns(raw, _native.ROLL_HISTORY_COLUMNS)
+        return out
+
+    extra_doc = """\
+    The result's ``table`` holds the command line's ``tbar roll --out`` CSV as numpy columns
+    (one entry per number of treads; its columns and units: ``TbarRollResult``), its
+    ``history`` every 1 ms sample of the first row's T-bar run (the columns of ``roll``'s
+    history); each row's ``tbar.convergence`` is the run's convergence object."""
+    return finish(tbar_roll, "tbar_roll", sig, summary, params, doc_extra, extra_doc)
+
+
+def _lookup(row, dotted):
+    v = row
+    for part in dotted.split("."):
+        if not isinstance(v, dict) or part not in v:
+            return None
+        v = v[part]
+    return v
 
 
 # --- sweeps -------------------------------------------------------------------------------

@@ -104,7 +104,9 @@ def result_classes():
             if column.isidentifier() and not keyword.iskeyword(column):
                 lines.append("    {}: {}".format(column, "float" if unit else "Any"))
         for field, _, _ in results.EXTRA_FIELDS.get(name, ()):
-            kind = "Dict[str, np.ndarray]" if field == "history" else "np.ndarray"
+            kind = ("Dict[str, np.ndarray]" if field in ("history", "grid", "table",
+                                                         "loop_study", "mass_sweep")
+                    else "List[Dict[str, Any]]" if field == "rows" else "np.ndarray")
             lines.append("    {}: {}".format(field, kind))
         lines += ["    " + m for m in results.METHOD_STUBS.get(name, ())]
         out.append("\n".join(lines) + "\n")
@@ -134,11 +136,34 @@ def stubs():
                   "its columns).\n" + progress_doc))
     out.append(function(
         "tipover", ["tipover", "tipover_dynamic", "tipover_rolling"], SUMMARIES["tipover"],
-        extra=(("dynamic", "bool"), ("rolling", "bool")),
-        extra_doc="dynamic : bool, optional\n    The threshold checked by the full dynamics.\n"
-                  "rolling : bool, optional\n    The lean while rolling down a side slope."))
-    for name in ("michell", "michell_optimize", "michell_table", "tbar", "tbar_roll"):
+        extra=(("dynamic", "bool"), ("rolling", "bool"), ("grid", "bool"),
+               ("grid_points", "Optional[int]"), ("eps_max", "Optional[float]")),
+        extra_doc="dynamic : bool, optional\n    The threshold checked by the full dynamics; "
+                  "the result's ``history`` holds the samples of ``--out``.\n"
+                  "rolling : bool, optional\n    The lean while rolling down a side slope; "
+                  "``history`` as for dynamic.\n"
+                  "grid : bool, optional\n    The F_f/F_e map over σ × ε (Fig. 3.13) in the "
+                  "result's ``grid``.\n"
+                  "grid_points : int, optional\n    Grid points per axis (default 50).\n"
+                  "eps_max : float, optional\n    Largest ε of the grid (default 1.0)."))
+    for name in ("michell", "michell_optimize", "michell_table"):
         out.append(function(name, [name], SUMMARIES[name]))
+    out.append(function(
+        "tbar", ["tbar"], SUMMARIES["tbar"],
+        extra=(("loop_study", "bool"), ("mass_sweep", "bool"),
+               ("sweep_complexities", "Optional[Sequence[int]]"),
+               ("sweep_deltas", "Optional[Sequence[float]]")),
+        extra_doc="loop_study : bool, optional\n    The single loop against the extended "
+                  "wheel (``rows``, ``loop_study``).\n"
+                  "mass_sweep : bool, optional\n    The mass price against the Michell truss "
+                  "(``rows``, ``mass_sweep``).\n"
+                  "sweep_complexities : sequence of int, optional\n    Default (1, 2, 3).\n"
+                  "sweep_deltas : sequence of float, optional\n    Default (0.05, 0.1, 0.25, "
+                  "0.5, 1.0)."))
+    out.append(function(
+        "tbar_roll", ["tbar_roll"], SUMMARIES["tbar_roll"],
+        extra_doc="The result's ``table``: the rows of ``tbar roll --out``; its ``history``: "
+                  "the 1 ms samples of the first row's T-bar run (TbarRollResult lists both)."))
     if "formfind" in REGISTRY:
         out.append(function("formfind", ["formfind"], SUMMARIES["formfind"]))
     else:
@@ -171,6 +196,48 @@ def run(command: str, **kwargs: Any) -> Dict[str, Any]:
 
 def commands() -> Dict[str, Dict[str, Any]]:
     """The engine's registry: every command with its parameters and result columns."""
+    ...
+
+def export_mjcf(
+    scene: Scene,
+    path: Union[str, "os.PathLike[str]", None] = ...,
+    *,
+    timestep: Optional[float] = ...,
+    ground_height: Optional[float] = ...,
+    source: Optional[str] = ...,
+) -> str:
+    """MuJoCo's MJCF of a scene (``tensegrity export mjcf``): the XML text, also written to
+    ``path`` if given; ``timestep`` in s (default 0.001), ``ground_height`` in m."""
+    ...
+
+def export_json(scene: Scene, path: Union[str, "os.PathLike[str]", None] = ...) -> str:
+    """The scene as JSON (``tensegrity export json``): the text, also written to ``path``."""
+    ...
+
+def export_schema(path: Union[str, "os.PathLike[str]", None] = ...) -> Dict[str, Any]:
+    """The JSON Schema of scene files (``tensegrity export schema``), also written to
+    ``path`` if given."""
+    ...
+
+def figures() -> Dict[str, str]:
+    """The project's figures: number → description."""
+    ...
+
+def figure(
+    name: str,
+    path: Union[str, "os.PathLike[str]"],
+    size: Optional[str] = ...,
+    dpi: Optional[float] = ...,
+    *,
+    quick: bool = ...,
+    data: Union[bool, str, "os.PathLike[str]"] = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> str:
+    """Writes the project's figure ``name`` (``"3.10"``) to ``path`` (SVG, PNG or PDF by its
+    extension; ``size`` such as ``"6x4in"``, ``dpi`` for PNG), as ``tensegrity figures``
+    draws it; its data table beside it as CSV (``data``). Returns the path."""
     ...
 ''')
     return "\n\n".join(out)

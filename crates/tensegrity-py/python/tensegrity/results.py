@@ -3,7 +3,8 @@
 ``--json`` report whose keys are also attributes (``r.energy_drift`` is
 ``r["energy_drift"]``), with ``to_dict()`` and a docstring that lists the report's scalar
 fields with their units (from the engine's registry: its result columns) and the arrays a
-function adds (``simulate``'s histories, ``roll``'s ``history``). Being a dict, a result
+function adds (``simulate``'s histories, ``roll``'s, ``tipover``'s and ``tbar_roll``'s
+``history``, ``tipover``'s ``grid``, ``tbar_roll``'s ``table``, ``tbar``'s studies). Being a dict, a result
 compares, prints and serialises as the report does.
 """
 
@@ -37,6 +38,44 @@ EXTRA_FIELDS = {
     "roll": (
         ("history", "dict of (samples,) arrays",
          "every 1 ms sample, the columns of ``roll --out``: "
+         + ", ".join(_native.ROLL_HISTORY_COLUMNS)
+         + " (s, m along the slope, m, rad/s, m, N, N, J, m/s)"),
+    ),
+    "tipover": (
+        ("history", "dict of (samples,) arrays",
+         "with ``dynamic=True``: every ``output_dt`` sample, the columns of ``tipover "
+         "--dynamic --out``: " + ", ".join(_native.TIPOVER_DYNAMIC_COLUMNS)
+         + " (s, N lateral hub force, rad lean, N summed normal force on the near and the far "
+         "tread edge); with ``rolling=True`` those of ``tipover --rolling --out``: "
+         + ", ".join(_native.TIPOVER_ROLLING_COLUMNS)
+         + " (s, rad lean, m hub travel downhill, m hub drift across the slope)"),
+        ("grid", "dict: sigma (grid_points,), epsilon (grid_points,), "
+         "normalized_friction (grid_points, grid_points)",
+         "with ``grid=True``: the map of ``tipover --grid`` (Fig. 3.13), F_f/F_e "
+         "(dimensionless) at [σ, ε]; its axes σ = R_i/R_o and ε = t/T (dimensionless); the "
+         "CSV's rows are σ outer, ε inner"),
+    ),
+    "tbar": (
+        ("rows", "list of dicts",
+         "with ``loop_study=True`` or ``mass_sweep=True``: the study's rows as its ``--json``"),
+        ("loop_study", "dict of (6,) arrays",
+         "with ``loop_study=True``: the rows as columns: structure, stance (text), contacts, "
+         "nodes, members, free_dofs, rank, self_stress_dim, mechanisms (counts), rigid, "
+         "in_plane, out_of_plane, internal (mechanism counts by kind), prestress_margin "
+         "(dimensionless)"),
+        ("mass_sweep", "dict of (complexities × deltas,) arrays",
+         "with ``mass_sweep=True``: the rows as columns: complexity, delta (δ, or ε in rad), "
+         "min_prestress (N), mass.mass_kg, mass.michell_mass_kg, mass.yield_mass_kg (kg), "
+         "mass.mass_ratio, mass.material, note (NaN or \"\" where a tread has no load "
+         "envelope)"),
+    ),
+    "tbar_roll": (
+        ("table", "dict of (tread counts,) arrays",
+         "the rows of ``tbar roll --out``, one per number of treads, by the CSV's column names "
+         "(treads; phi rad; tbar.mass_kg kg; tbar.I1 kg m²; speeds m/s; forces N; lengths m; "
+         "flags as bool; NaN for an empty cell)"),
+        ("history", "dict of (samples,) arrays",
+         "every 1 ms sample of the first row's T-bar run, the columns of ``roll``'s history: "
          + ", ".join(_native.ROLL_HISTORY_COLUMNS)
          + " (s, m along the slope, m, rad/s, m, N, N, J, m/s)"),
     ),
