@@ -161,7 +161,7 @@ fn every_recorded_quantity_is_in_the_csv_with_its_closed_form() {
     assert!((last[col("total_energy [J]")] - rows[0][col("total_energy [J]")]).abs() < 1e-8);
     // the VTK frames carry the recorded velocities (point data) and forces (cell data)
     let frame = std::fs::read_to_string(vtk.join("frame_00002.vtu")).unwrap();
-    assert!(frame.contains(r#"Name="velocity""#) && frame.contains(r#"Name="force""#));
+    assert!(frame.contains(r#"Name="velocity [m/s]""#) && frame.contains(r#"Name="force [N]""#));
 }
 
 /// Starts a run that would take hours and waits until its CSV has rows.

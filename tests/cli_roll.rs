@@ -83,7 +83,7 @@ fn frames_draw_the_members_and_vtk_writes_a_series() {
     // the rigid model's frames carry its node velocities (a rigid body has no member force)
     let frame = std::fs::read_to_string(vtk.join("frame_00050.vtu")).unwrap();
     assert!(
-        frame.contains(r#"Name="velocity""#) && !frame.contains(r#"Name="force""#),
+        frame.contains(r#"Name="velocity [m/s]""#) && !frame.contains(r#"Name="force [N]""#),
         "{frame}"
     );
     let out = run(&["roll", "--t-end", "1", "--frames", "2", "--svg", "x.svg"]);
@@ -245,7 +245,7 @@ fn the_full_series_carries_forces_and_strict_fails_an_invalid_run() {
     ]);
     assert_ok(&out);
     let frame = std::fs::read_to_string(vtk.join("frame_00003.vtu")).unwrap();
-    assert!(frame.contains(r#"Name="velocity""#) && frame.contains(r#"Name="force""#));
+    assert!(frame.contains(r#"Name="velocity [m/s]""#) && frame.contains(r#"Name="force [N]""#));
     let strict = run(&[
         "roll",
         "--contact",

@@ -95,7 +95,7 @@ fn the_two_bar_truss_snaps_through_at_the_closed_form_load() {
     assert_eq!(frames, points.len());
     let last =
         std::fs::read_to_string(vtk.join(format!("frame_{:05}.vtu", points.len() - 1))).unwrap();
-    assert!(last.contains(r#"Name="force""#));
+    assert!(last.contains(r#"Name="force [N]""#));
     // the text names both folds
     let text = run(&["solve", "examples/von_mises.toml", "--target", "2"]);
     let stdout = String::from_utf8_lossy(&text.stdout);

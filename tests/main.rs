@@ -32,6 +32,7 @@ mod cli_tbar;
 mod cli_tbar_roll;
 mod cli_tbar_roll_full;
 mod cli_thesis_claims;
+mod cli_vtk_arrays;
 mod cluster_dome;
 mod common;
 mod ctsfem_reference;

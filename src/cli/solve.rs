@@ -101,6 +101,7 @@ fn write_frames(mut series: VtkSeriesSink<'_>, report: &SolveReport) -> Result<(
         let data = FrameData {
             velocities: None,
             member_forces: Some(&p.tensions),
+            contact_forces: None,
         };
         series.frame_with(p.step as f64, &nodes, &data)?;
     }

@@ -91,7 +91,7 @@ pub fn run(args: &TbarArgs) -> Result<()> {
     for w in &report.warnings {
         eprintln!("warning: {}", super::spell::flags(&w.to_string()));
     }
-    outputs.write(&req)?;
+    outputs.write(&req, report.prestress_force.as_deref())?;
     if args.json {
         super::output::print_json(&report)?;
     } else {

@@ -4,9 +4,11 @@
 //! Points are the node positions (m, file numbering), cells are VTK_LINE (type 3) from start to
 //! end node of every member (bars first, then strings, then each segment of each clustered
 //! string), cell data `member_kind` (0 bar, 1 string, 2 a cluster's segment) and
-//! `member_index` (its index among its kind: a segment carries its cluster's), and `force`
+//! `member_index` (its index among its kind: a segment carries its cluster's), and `force [N]`
 //! when the frame gives one per member and per cluster (a cluster's tension on each of its
-//! segments). Numbers are written with `{:e}`,
+//! segments); point data `velocity [m/s]` and `contact_force [N]` (the ground's force on each
+//! node, zero off the ground) when recorded. Every array of a physical quantity carries its
+//! unit in its name, as ParaView shows it. Numbers are written with `{:e}`,
 //! the shortest text that reads back to the same f64. Series are written through the
 //! [`VtkSeriesSink`] (frames renamed into place one by one, `series.pvd` rewritten atomically).
 
@@ -33,14 +35,24 @@ pub fn vtu(structure: &Structure, nodes: &[Vector3<f64>]) -> String {
     vtu_with(structure, nodes, &FrameData::default())
 }
 
-/// Recorded quantities written with a frame: node velocities as point data `velocity`
-/// (m/s) and axial member forces, tension positive, as cell data `force` (N).
+/// The name of the cell data of axial member forces (tension positive).
+pub const FORCE: &str = "force [N]";
+/// The name of the point data of node velocities.
+pub const VELOCITY: &str = "velocity [m/s]";
+/// The name of the point data of the ground's force on each node.
+pub const CONTACT_FORCE: &str = "contact_force [N]";
+
+/// Recorded quantities written with a frame: node velocities as point data [`VELOCITY`],
+/// the ground's forces on the nodes as point data [`CONTACT_FORCE`] and axial member forces,
+/// tension positive, as cell data [`FORCE`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct FrameData<'a> {
     /// Node velocities (file numbering).
     pub velocities: Option<&'a [Vector3<f64>]>,
     /// Member forces, bars then strings.
     pub member_forces: Option<&'a [f64]>,
+    /// The ground's force on the contact nodes: (file node, force); nodes not listed get 0.
+    pub contact_forces: Option<&'a [(usize, Vector3<f64>)]>,
 }
 
 /// [`vtu`] with the recorded quantities of `data`.
@@ -52,10 +64,17 @@ pub struct FrameData<'a> {
 /// let s = Structure::builder().nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 ///     .bar(Bar::new(0, 1)).build().unwrap();
 /// let v = [Vector3::new(0.0, 0.0, -1.0); 2];
-/// let data = FrameData { velocities: Some(&v), member_forces: Some(&[-5.0]) };
+/// let ground = [(0, Vector3::new(0.0, 0.0, 9.81))];
+/// let data = FrameData {
+///     velocities: Some(&v),
+///     member_forces: Some(&[-5.0]),
+///     contact_forces: Some(&ground),
+/// };
 /// let xml = vtu_with(&s, &s.nodes(), &data);
-/// assert!(xml.contains(r#"Name="velocity""#) && xml.contains(r#"Name="force""#));
+/// assert!(xml.contains(r#"Name="velocity [m/s]""#) && xml.contains(r#"Name="force [N]""#));
 /// assert!(xml.contains("0e0 0e0 -1e0") && xml.contains("-5e0"));
+/// // the ground's force on node 0, none on node 1
+/// assert!(xml.contains(r#"Name="contact_force [N]""#) && xml.contains("0e0 0e0 9.81e0\n0e0 0e0 0e0"));
 /// ```
 pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<'_>) -> String {
     let n_members = structure.n_members();
@@ -151,23 +170,40 @@ pub fn vtu_with(structure: &Structure, nodes: &[Vector3<f64>], data: &FrameData<
     if let Some(f) = per_cell {
         let _ = writeln!(
             s,
-            r#"<DataArray type="Float64" Name="force" format="ascii">"#
+            r#"<DataArray type="Float64" Name="{FORCE}" format="ascii">"#
         );
         let text: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
         let _ = writeln!(s, "{}", text.join(" "));
         let _ = writeln!(s, "</DataArray>");
     }
     let _ = writeln!(s, "</CellData>");
-    if let Some(v) = data.velocities {
-        let _ = writeln!(s, r#"<PointData Vectors="velocity">"#);
-        let _ = writeln!(
-            s,
-            r#"<DataArray type="Float64" Name="velocity" NumberOfComponents="3" format="ascii">"#
-        );
-        for p in v {
-            let _ = writeln!(s, "{:e} {:e} {:e}", p.x, p.y, p.z);
+    // the ground's force on every node: zero off the ground
+    let contact = data.contact_forces.map(|c| {
+        let mut all = vec![Vector3::zeros(); nodes.len()];
+        for &(node, f) in c.iter().filter(|(node, _)| *node < nodes.len()) {
+            all[node] = f;
         }
-        let _ = writeln!(s, "</DataArray>");
+        all
+    });
+    let vectors: Vec<(&str, &[Vector3<f64>])> = [
+        (VELOCITY, data.velocities),
+        (CONTACT_FORCE, contact.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(name, v)| v.filter(|v| v.len() == nodes.len()).map(|v| (name, v)))
+    .collect();
+    if let Some((first, _)) = vectors.first() {
+        let _ = writeln!(s, r#"<PointData Vectors="{first}">"#);
+        for (name, v) in &vectors {
+            let _ = writeln!(
+                s,
+                r#"<DataArray type="Float64" Name="{name}" NumberOfComponents="3" format="ascii">"#
+            );
+            for p in v.iter() {
+                let _ = writeln!(s, "{:e} {:e} {:e}", p.x, p.y, p.z);
+            }
+            let _ = writeln!(s, "</DataArray>");
+        }
         let _ = writeln!(s, "</PointData>");
     }
     let _ = writeln!(s, "</Piece>\n</UnstructuredGrid>\n</VTKFile>");

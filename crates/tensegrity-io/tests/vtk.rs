@@ -128,8 +128,8 @@ fn a_clusters_segments_are_cells_with_its_tension() {
         .unwrap();
     let forces = [-5.0, 7.5];
     let data = FrameData {
-        velocities: None,
         member_forces: Some(&forces),
+        ..FrameData::default()
     };
     let xml = vtu_with(&s, s.nodes(), &data);
     let doc = roxmltree::Document::parse(&xml).unwrap();
@@ -143,12 +143,12 @@ fn a_clusters_segments_are_cells_with_its_tension() {
         vec![0, 1, 1, 2, 2, 3, 3, 0]
     );
     assert_eq!(
-        numbers::<f64>(array(&doc, "force")),
+        numbers::<f64>(array(&doc, "force [N]")),
         vec![-5.0, 7.5, 7.5, 7.5]
     );
     let short = FrameData {
-        velocities: None,
         member_forces: Some(&forces[..1]),
+        ..FrameData::default()
     };
-    assert!(!vtu_with(&s, s.nodes(), &short).contains(r#"Name="force""#));
+    assert!(!vtu_with(&s, s.nodes(), &short).contains(r#"Name="force [N]""#));
 }

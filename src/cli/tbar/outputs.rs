@@ -36,8 +36,9 @@ pub fn open(args: &TbarArgs) -> Result<Outputs> {
 }
 
 impl Outputs {
-    /// Writes the structure (scene, VTK) and the drawing of `req` into the opened sinks.
-    pub fn write(self, req: &TbarRequest) -> Result<()> {
+    /// Writes the structure (scene, VTK) and the drawing of `req` into the opened sinks; the
+    /// VTK carries `forces` (N, bars first: the minimum-prestress state) as cell data.
+    pub fn write(self, req: &TbarRequest, forces: Option<&[f64]>) -> Result<()> {
         if self.scene.is_none() && self.vtk.is_none() && self.svg.is_none() {
             return Ok(());
         }
@@ -47,7 +48,11 @@ impl Outputs {
             sink.finish_with(tensegrity_io::scene::to_toml(&s))?;
         }
         if let Some(sink) = self.vtk {
-            sink.finish_with(tensegrity_io::vtk::vtu(&s, s.nodes()))?;
+            let data = tensegrity_io::vtk::FrameData {
+                member_forces: forces,
+                ..Default::default()
+            };
+            sink.finish_with(tensegrity_io::vtk::vtu_with(&s, s.nodes(), &data))?;
         }
         if let Some(sink) = self.svg {
             let drawing = Drawing::of(&s);

@@ -165,6 +165,7 @@ impl Observer for RollingOutputs<'_> {
         let data = FrameData {
             velocities: (!frame.velocities.is_empty()).then_some(&frame.velocities[..]),
             member_forces: (!frame.member_forces.is_empty()).then_some(&frame.member_forces[..]),
+            contact_forces: None,
         };
         let written = match self.vtk.as_mut() {
             Some(vtk) => {

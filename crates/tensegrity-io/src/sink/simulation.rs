@@ -101,6 +101,7 @@ impl<'a> SimulationOutputs<'a> {
             let data = FrameData {
                 velocities: s.velocities.as_deref(),
                 member_forces: s.member_forces.as_deref(),
+                contact_forces: s.contact_forces.as_deref(),
             };
             w.frame_with(s.t, nodes, &data)?;
         }
