@@ -508,7 +508,7 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
         let (_, probe) = axes(panel, x, y, (area.w - 90.0 - right).max(20.0), h);
         let mut left = 8.0 + LABEL_SIZE + 8.0 + widest(&probe.ticks) + 6.0;
         let mut w = (area.w - left - right).max(20.0);
-        let (mut plot, mut xr, mut yr, mut equal_scale) = (
+        let (mut plot, xr, yr, mut equal_scale) = (
             Rect {
                 x: area.x + left,
                 y: area.y + top,
@@ -521,18 +521,26 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
         );
         let (mut xa, mut ya) = axes(panel, xr, yr, w, h);
         if equal {
-            // the data's own aspect, at the figure's scale or the largest that fits
-            let fits = (w / (x.1 - x.0)).min(h / (y.1 - y.0));
-            let s = options.scale.map_or(fits, |s| s.min(fits));
-            xr = widened(x, MIN_SIDE / s);
-            yr = widened(y, MIN_SIDE / s);
-            let (pw, ph) = (((xr.1 - xr.0) * s).min(w), ((yr.1 - yr.0) * s).min(h));
-            (xr, yr) = (widened(xr, pw / s), widened(yr, ph / s));
-            (xa, ya) = axes(panel, xr, yr, pw, ph);
+            // the data's own aspect, at the figure's scale or the largest that fits a room
+            // `w` wide: the scale, the ranges, the box and its axes
+            let at = |w: f64| {
+                let fits = (w / (x.1 - x.0)).min(h / (y.1 - y.0));
+                let s = options.scale.map_or(fits, |s| s.min(fits));
+                let (xr, yr) = (widened(x, MIN_SIDE / s), widened(y, MIN_SIDE / s));
+                let (pw, ph) = (((xr.1 - xr.0) * s).min(w), ((yr.1 - yr.0) * s).min(h));
+                let (xr, yr) = (widened(xr, pw / s), widened(yr, ph / s));
+                let (xa, ya) = axes(panel, xr, yr, pw, ph);
+                (s, xr, yr, pw, ph, xa, ya)
+            };
+            let (mut s, mut pw, mut ph);
+            (s, _, _, pw, ph, xa, ya) = at(w);
+            // the y tick labels of the box's own range may be wider than the probe's: a
+            // wider margin, and the box fitted again to the narrower room
             let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
             if needed > left {
                 left = needed;
                 w = (area.w - left - right).max(20.0);
+                (s, _, _, pw, ph, xa, ya) = at(w);
             }
             plot = Rect {
                 x: area.x + left + 0.5 * (w - pw).max(0.0),
