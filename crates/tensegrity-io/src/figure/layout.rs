@@ -523,8 +523,10 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
         if equal {
             // the data's own aspect, at the figure's scale or the largest that fits a room
             // `w` wide: the scale, the ranges, the box and its axes
+            // (a drawing of one point has no extent: a floor keeps the scale finite)
+            let span = |(lo, hi): (f64, f64)| (hi - lo).max(1e-9 * lo.abs().max(hi.abs()).max(1.0));
             let at = |w: f64| {
-                let fits = (w / (x.1 - x.0)).min(h / (y.1 - y.0));
+                let fits = (w / span(x)).min(h / span(y));
                 let s = options.scale.map_or(fits, |s| s.min(fits));
                 let (xr, yr) = (widened(x, MIN_SIDE / s), widened(y, MIN_SIDE / s));
                 let (pw, ph) = (((xr.1 - xr.0) * s).min(w), ((yr.1 - yr.0) * s).min(h));
@@ -770,6 +772,28 @@ mod tests {
         assert_eq!(power_of_ten(-3), "10⁻³");
         let (lo, hi) = axis_range([-3.2, -1.5].into_iter(), Scale::Log, 0.0);
         assert_eq!((lo, hi), (-4.0, -1.0));
+    }
+
+    #[test]
+    fn a_structure_of_one_point_or_none_gets_a_finite_box() {
+        let area = Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 300.0,
+            h: 200.0,
+        };
+        for pts in [vec![(1.0, 2.0)], vec![]] {
+            let panel = Panel::new("t", "y [m]", "z [m]")
+                .with_equal_axes()
+                .series(Series::new("bar", pts));
+            let l = place(&panel, area);
+            let p = l.plot;
+            assert!([p.x, p.y, p.w, p.h, l.x.lo, l.x.hi, l.y.lo, l.y.hi]
+                .iter()
+                .all(|v| v.is_finite()));
+            assert!(p.w >= MIN_SIDE - 1e-9 && p.h >= MIN_SIDE - 1e-9, "{p:?}");
+            assert!(p.x + p.w <= area.w && p.y + p.h <= area.h);
+        }
     }
 
     #[test]
