@@ -14,14 +14,7 @@ use std::process::{Output, Stdio};
 
 /// The frames of an animated GIF: (width, height, delay) of each.
 fn frames(path: &Path) -> Vec<(u16, u16, u16)> {
-    let mut options = gif::DecodeOptions::new();
-    options.set_color_output(gif::ColorOutput::RGBA);
-    let mut decoder = options.read_info(File::open(path).unwrap()).unwrap();
-    let mut out = Vec::new();
-    while let Some(f) = decoder.read_next_frame().unwrap() {
-        out.push((f.width, f.height, f.delay));
-    }
-    out
+    common::gif_frames(path).1
 }
 
 /// Runs the binary with stderr redirected to a file (as a batch job's log); the log's text.

@@ -95,15 +95,9 @@ fn roll_writes_the_same_frames_as_video_and_as_gif() {
         ]);
         assert_ok(&out);
     }
-    let mut decoder = gif::DecodeOptions::new()
-        .read_info(std::fs::File::open(&gif).unwrap())
-        .unwrap();
-    let (w, h) = (decoder.width() as u32, decoder.height() as u32);
-    let mut frames = 0;
-    while decoder.read_next_frame().unwrap().is_some() {
-        frames += 1;
-    }
-    assert_eq!(frames, 10);
+    let ((w, h), frames) = common::gif_frames(&gif);
+    let (w, h) = (w as u32, h as u32);
+    assert_eq!(frames.len(), 10);
     check(&video, 10, 5.0, (w + (w & 1), h + (h & 1)));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -126,3 +126,21 @@ pub fn numbers(v: &serde_json::Value) -> Vec<f64> {
         .map(|x| x.as_f64().unwrap())
         .collect()
 }
+
+/// One frame of an animated GIF: width, height, delay (1/100 s).
+pub type GifFrame = (u16, u16, u16);
+
+/// The frames of an animated GIF: its logical screen (width, height) and each frame.
+pub fn gif_frames(path: &Path) -> ((u16, u16), Vec<GifFrame>) {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options
+        .read_info(std::fs::File::open(path).unwrap())
+        .unwrap();
+    let screen = (decoder.width(), decoder.height());
+    let mut frames = Vec::new();
+    while let Some(f) = decoder.read_next_frame().unwrap() {
+        frames.push((f.width, f.height, f.delay));
+    }
+    (screen, frames)
+}

@@ -232,15 +232,21 @@ pub fn figure_spec(
         threads: Some(1),
     };
     let chosen = request.selected().map_err(|e| bad(e, "name"))?;
-    let options = RenderOptions::parse(size, dpi).map_err(|e| {
-        let name = if e.to_string().contains("dpi") {
-            "dpi"
-        } else {
-            "size"
-        };
+    // the size parsed first, then the dpi: each error names its own argument
+    let page = size
+        .map(str::parse::<tensegrity_io::figure::PageSize>)
+        .transpose()
+        .map_err(|e| {
+            Failure::invalid(&InvalidParameter::raw(
+                "size",
+                size.unwrap_or(""),
+                e.to_string(),
+            ))
+        })?;
+    let options = RenderOptions::new(page, dpi).map_err(|e| {
         Failure::invalid(&InvalidParameter::raw(
-            name,
-            size.unwrap_or(""),
+            "dpi",
+            dpi.map_or(String::new(), |d| d.to_string()),
             e.to_string(),
         ))
     })?;
