@@ -24,6 +24,7 @@ fn a_builtin_prism_reports_the_issue_keys() {
         "formfind",
         "--builtin",
         "prism:3",
+        "--analyse",
         "--json",
     ]));
     for key in [
@@ -62,6 +63,71 @@ fn a_builtin_prism_reports_the_issue_keys() {
     assert!(r["residual"].as_f64().unwrap() < 1e-12, "{r}");
 }
 
+/// `--analyse` (issue 48): the form, its force densities, residual and synthesis are the same
+/// to the bit with and without it (the JSON numbers print the shortest round-trip form, so
+/// equal text is equal bits); with it the statics are the values reported before the flag
+/// existed (always computed then), without it they are null and the text says how to get
+/// them.
+/// The arguments of a `formfind` run and its statics: self-stress dimension, prestressable,
+/// prestress stable.
+type AnalysedCase<'a> = (&'a [&'a str], (u64, bool, bool));
+
+#[test]
+fn the_statics_of_the_form_come_with_analyse_only_and_change_nothing_else() {
+    let cases: [AnalysedCase; 6] = [
+        (&["--builtin", "prism:3"], (1, true, true)),
+        (&["--builtin", "octahedron"], (1, true, true)),
+        (&["--builtin", "grid:4"], (121, true, true)),
+        (&["--builtin", "tower:3:2"], (2, true, true)),
+        (&["examples/formfind/loaded_net.toml"], (0, false, true)),
+        (&["examples/formfind/prism3_dr.toml"], (1, true, true)),
+    ];
+    let statics = ["self_stress_dim", "prestressable", "prestress_stable"];
+    for (source, (dim, prestressable, stable)) in cases {
+        let run = |extra: &[&str]| {
+            let mut args = vec!["formfind"];
+            args.extend_from_slice(source);
+            args.extend_from_slice(extra);
+            json(&common::run(&args))
+        };
+        let (plain, analysed) = (run(&["--json"]), run(&["--analyse", "--json"]));
+        let (mut a, mut b) = (plain.clone(), analysed.clone());
+        for key in statics.iter().chain(&["wall_time_s"]) {
+            a.as_object_mut().unwrap().remove(*key);
+            b.as_object_mut().unwrap().remove(*key);
+        }
+        assert_eq!(a, b, "{source:?}: the form differs with --analyse");
+        for key in [
+            "nodes",
+            "force_density",
+            "residual",
+            "member_force",
+            "rest_length",
+        ] {
+            assert!(!plain[key].is_null(), "{source:?}: {key}");
+        }
+        for key in statics {
+            assert!(
+                plain[key].is_null(),
+                "{source:?}: {key} without --analyse: {plain}"
+            );
+        }
+        assert_eq!(analysed["self_stress_dim"], dim, "{source:?}");
+        assert_eq!(analysed["prestressable"], prestressable, "{source:?}");
+        assert_eq!(analysed["prestress_stable"], stable, "{source:?}");
+    }
+    let text = common::run(&["formfind", "--builtin", "prism:3"]);
+    common::assert_ok(&text);
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("not analysed (--analyse)"), "{text}");
+    let text = common::run(&["formfind", "--builtin", "prism:3", "--analyse"]);
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("self-stress states 1  prestressable true  prestress stable true"),
+        "{text}"
+    );
+}
+
 /// The scene of `formfind --builtin NAME --out`, and the form's report.
 fn export(name: &str, dir: &Path) -> (std::path::PathBuf, Value) {
     let scene = dir.join(format!("{}.toml", name.replace(':', "_")));
@@ -75,6 +141,7 @@ fn export(name: &str, dir: &Path) -> (std::path::PathBuf, Value) {
         "2e4",
         "--out",
         scene.to_str().unwrap(),
+        "--analyse",
         "--json",
     ];
     let report = json(&common::run(&args));

@@ -181,6 +181,7 @@ fn form_finding_the_superballs_connectivity_gives_the_expanded_octahedron() {
         topo.to_str().unwrap(),
         "--method",
         "adaptive",
+        "--analyse",
         "--json",
     ]);
     assert_eq!(r["self_stress_dim"], 1);

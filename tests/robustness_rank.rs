@@ -23,6 +23,7 @@ fn found(topology: &str, dir: &Path) -> (PathBuf, serde_json::Value) {
         topology,
         "--out",
         scene.to_str().unwrap(),
+        "--analyse",
         "--json",
     ]);
     (scene, report)

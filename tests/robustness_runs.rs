@@ -381,7 +381,7 @@ fn a_figure_size_is_checked_before_any_figure_is_computed() {
     let err = refused(&out);
     assert!(
         err.contains(
-            "invalid value for --size: size = \"1x1\": each panel must be at least 80 × 80 px"
+            "invalid value for --size: size = \"1x1\": each panel must be at least 72 × 72 px"
         ),
         "{err}"
     );

@@ -99,7 +99,8 @@ fn a_formfind_size_axis_gets_the_per_case_estimate() {
     let spec = write(
         &dir,
         "ff.toml",
-        "study = \"formfind\"\n[fixed]\nbuiltin = \"grid\"\n[axes]\nn = [2, 300]\n",
+        // analysed: the estimate counts the statics of the form too
+        "study = \"formfind\"\n[fixed]\nbuiltin = \"grid\"\nanalyse = true\n[axes]\nn = [2, 300]\n",
     );
     let out = dir.join("ff.csv");
     let o = run(&[

@@ -108,13 +108,13 @@ pub fn series_run(args: &SeriesRunArgs) -> Result<()> {
 }
 
 fn print(r: &AnchorsReport) {
-    println!("anchor                steps   best ms  µs/step  instr/step  final error m       reference       ratio");
+    println!("anchor                steps   best ms  µs/step  instr/step  final error m       stored reference (not this run)");
     for a in &r.anchors {
         let instr = a
             .instructions_per_step
             .map_or("-".to_string(), |i| format!("{i:.0}"));
         println!(
-            "{:<20} {:>6} {:>9.3} {:>8.3} {:>11} {:>8.1e} (≤ {:.0e}) {:<7}{:>6.2} s {:>8.0}×",
+            "{:<20} {:>6} {:>9.3} {:>8.3} {:>11} {:>8.1e} (≤ {:.0e}) {:<7}{:>6.2} s ({})",
             a.anchor.name(),
             a.steps,
             a.best_s * 1e3,
@@ -124,7 +124,7 @@ fn print(r: &AnchorsReport) {
             a.final_tolerance_m,
             a.reference.code,
             a.reference.seconds,
-            a.ratio
+            a.reference.measured
         );
     }
     println!("{}", r.reference_note);

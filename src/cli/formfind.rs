@@ -1,9 +1,12 @@
 //! `tensegrity formfind (TOPOLOGY.toml | --builtin NAME) [--method fdm|adaptive|dr|auto]
-//! [--prestress LEVEL] [--stiffness EA] [--out SCENE.toml] [--svg F] [--json]`: the engine's
+//! [--prestress LEVEL] [--stiffness EA] [--analyse] [--out SCENE.toml] [--svg F] [--json]`:
+//! the engine's
 //! `formfind` request ([`FormfindRequest`], the topology positional), one call
 //! ([`formfind::admitted`]: the estimate of the method that will run checked against the
 //! limits, the form found and its prestress synthesised); the scene and the figure are opened
-//! before the work. What `--method auto` chose, and why, is printed as a warning; the
+//! before the work. The statics of the form (self-stress states, prestressability,
+//! stability) are printed with `--analyse` only (`not analysed (--analyse)` otherwise). What
+//! `--method auto` chose, and why, is printed as a warning; the
 //! tolerance an iterative method stopped at is printed beside its iterations. A topology with
 //! `[[loads]]` (or members' `weight`) prints the loads, the reactions at the fixed nodes and
 //! the equilibrium residual, and `--out` writes the loaded scene (its `[[supports]]` and
@@ -140,10 +143,18 @@ fn print_report(r: &FormfindReport, tolerance: Option<f64>, loaded: bool) {
         r.method,
         r.iterations
     );
-    println!(
-        "self-stress states {}  prestressable {}  prestress stable {}  residual {:.3e}",
-        r.self_stress_dim, r.prestressable, r.prestress_stable, r.residual
-    );
+    match (r.self_stress_dim, r.prestressable, r.prestress_stable) {
+        (Some(dim), Some(prestressable), Some(stable)) => println!(
+            "self-stress states {dim}  prestressable {prestressable}  prestress stable {stable}  \
+             residual {:.3e}",
+            r.residual
+        ),
+        _ => println!(
+            "self-stress states, prestressability, stability: not analysed (--analyse)  \
+             residual {:.3e}",
+            r.residual
+        ),
+    }
     println!("nodes (m):");
     // round-off below the printed digits shown as 0, not as -0.000000000
     let c = |x: f64| if x.abs() < 5e-10 { 0.0 } else { x };

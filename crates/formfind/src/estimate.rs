@@ -17,7 +17,7 @@
 //!   (the fixed point q_i ← t/l_i, the `cluster` module refactors D_ff each step);
 //! - dynamic relaxation: ≈ [`DR_FLOPS_PER_MEMBER`] · m flops per step, `max_iterations` steps
 //!   at most;
-//! - the statics of the result: the core's dense statics estimate of the 3n × m equilibrium
+//! - the statics of the result (only with [`Settings::analyse`]): the core's dense statics estimate of the 3n × m equilibrium
 //!   matrix up to 300 free dofs or members, beyond it the sparse QR, estimated like the sparse
 //!   solve on the 3n × m matrix.
 //!
@@ -97,6 +97,9 @@ pub fn estimate(topology: &Topology, settings: &Settings) -> Estimate {
         }
         _ => fdm(topology, params.clone()),
     };
+    if !settings.analyse {
+        return find;
+    }
     let rows = 3 * n;
     let statics = if rows.min(m) < tensegrity_statics::SPARSE_MIN_SIZE {
         budget::dense_statics(rows, m, params)

@@ -30,8 +30,9 @@
 //! anchors' own rows of D X are checked to vanish (which proves rank deficiency ≥ 4), and the
 //! affine map closest in least squares to the initial nodes is applied.
 //!
-//! **Fixed nodes**: the free coordinates solve D_ff X_f = −D_fx X_x (sparse LU; D_ff is
-//! indefinite when bars are present).
+//! **Fixed nodes**: the free coordinates solve D_ff X_f = −D_fx X_x: by sparse Cholesky
+//! (AMD ordering) where D_ff is positive definite — every force density positive, or bars
+//! braced by enough strings, as in the built-in grid — else by sparse LU (D_ff indefinite).
 //!
 //! **Loads** (fixed nodes only; a free-standing topology with loads is refused, see
 //! [`crate::Topology`]): with point loads P (one row per node, summed over the `loads` on it)
@@ -60,7 +61,7 @@ use crate::error::{FormFindError, Result};
 use crate::method::Settings;
 use crate::topology::Topology;
 use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3, Vector4};
-use tensegrity_linalg::{self as linalg, CscMatrix, SparseLu};
+use tensegrity_linalg::{self as linalg, CscMatrix, SparseCholesky, SparseLu};
 
 /// Relative tolerance of the null space of D: |λ| ≤ tol · max|λ| counts as zero.
 pub const NULL_SPACE_TOLERANCE: f64 = 1e-9;
@@ -304,13 +305,64 @@ pub(crate) fn orient_and_scale(topology: &Topology, mut p: Vec<Vector3<f64>>) ->
     p
 }
 
-/// The free coordinates with `fixed` nodes held: D_ff X_f = −D_fx X_x by sparse LU.
+/// The free coordinates with `fixed` nodes held: D_ff X_f = −D_fx X_x by sparse Cholesky
+/// (D_ff positive definite) or LU.
 pub(crate) fn fixed_solve(
     topology: &Topology,
     q: &[f64],
     fixed: &[(usize, Vector3<f64>)],
 ) -> Result<Vec<Vector3<f64>>> {
     FixedSystem::new(topology, q, fixed)?.solve(&[])
+}
+
+/// The factors of D_ff: a sparse Cholesky (AMD ordering) where D_ff is positive definite
+/// (every force density positive, or bars braced enough: the usual held form), else a sparse
+/// LU (D_ff indefinite, bars present).
+enum Factors {
+    Cholesky(SparseCholesky),
+    Lu(SparseLu),
+}
+
+impl Factors {
+    /// Cholesky when it succeeds, else LU; a failing LU is the error (`nf` free nodes).
+    fn new(a: &CscMatrix, nf: usize) -> Result<Self> {
+        if let Some(c) = cholesky(a) {
+            return Ok(Factors::Cholesky(c));
+        }
+        let lu = SparseLu::new(a).map_err(|e| singular(nf, e.to_string()))?;
+        Ok(Factors::Lu(lu))
+    }
+
+    fn solve_in_place(&mut self, b: &mut [f64]) {
+        match self {
+            Factors::Cholesky(c) => c.solve_in_place(b),
+            Factors::Lu(lu) => lu.solve_in_place(b),
+        }
+    }
+}
+
+/// The sparse Cholesky factors of the symmetric `a` (both triangles stored) from its lower
+/// triangle, `None` where it is not (numerically) positive definite.
+fn cholesky(a: &CscMatrix) -> Option<SparseCholesky> {
+    let p = a.pattern();
+    let n = p.ncols();
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut rows = Vec::with_capacity(p.nnz() / 2 + n);
+    let mut values = Vec::with_capacity(p.nnz() / 2 + n);
+    col_ptr.push(0);
+    for c in 0..n {
+        for s in p.col_ptr()[c]..p.col_ptr()[c + 1] {
+            if p.row_idx()[s] >= c {
+                rows.push(p.row_idx()[s]);
+                values.push(a.values()[s]);
+            }
+        }
+        col_ptr.push(rows.len());
+    }
+    let lower = linalg::CscPattern::new(n, col_ptr, rows).ok()?;
+    let mut chol = SparseCholesky::new(&lower).ok()?;
+    chol.factor(&values).ok()?;
+    Some(chol)
 }
 
 /// D_ff factored once for held nodes: the solves of D_ff X_f = P_f − D_fx X_x for any loads
@@ -322,8 +374,8 @@ pub(crate) struct FixedSystem {
     free: Vec<usize>,
     /// D_ff.
     a: CscMatrix,
-    /// Its LU factors.
-    lu: Option<SparseLu>,
+    /// Its factors (`None` without free nodes).
+    lu: Option<Factors>,
     /// −D_fx X_x, one row per free node.
     rhs: Vec<Vector3<f64>>,
     /// max |q|.
@@ -372,7 +424,7 @@ impl FixedSystem {
         let lu = if nf == 0 {
             None
         } else {
-            let mut lu = SparseLu::new(&a).map_err(|e| singular(nf, e.to_string()))?;
+            let mut lu = Factors::new(&a, nf)?;
             // A numerically singular D_ff factors without complaint: solve D_ff y = D_ff z
             // for a fixed pseudo-random z and require y = z.
             let z: Vec<f64> = (0..nf).map(|i| (0.7 + 1.3 * i as f64).sin()).collect();
@@ -671,4 +723,55 @@ pub(crate) fn affine_fit(x: &[Vector3<f64>], x0: &[Vector3<f64>]) -> Vec<Vector3
             m.transpose() * y
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// D_ff of the held grid is positive definite: the Cholesky runs, and its form is the LU's
+    /// to round-off. A free node between a bar and a weaker string (D_ff = q_b + q_s < 0) is
+    /// indefinite: the LU runs, and places the node where the closed form does.
+    #[test]
+    fn the_cholesky_runs_where_d_ff_is_positive_definite_and_the_lu_elsewhere() {
+        let t = crate::builtin("grid:4").unwrap();
+        let q = t.force_densities().unwrap();
+        let held = held_positions(&t);
+        let system = FixedSystem::new(&t, &q, &held).unwrap();
+        assert!(matches!(system.lu, Some(Factors::Cholesky(_))));
+        let mut cholesky = FixedSystem::new(&t, &q, &held).unwrap();
+        let mut lu = FixedSystem::new(&t, &q, &held).unwrap();
+        lu.lu = Some(Factors::Lu(SparseLu::new(&lu.a).unwrap()));
+        let (a, b) = (cholesky.solve(&[]).unwrap(), lu.solve(&[]).unwrap());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).amax() < 1e-12, "{x} vs {y}");
+        }
+        // node 1 between node 0 (a bar, q = −2) and node 2 (a string, q = 1), both held
+        let line = Topology {
+            n_nodes: 3,
+            bars: vec![crate::Member::new(0, 1).force_density(-2.0)],
+            strings: vec![crate::Member::new(1, 2).force_density(1.0)],
+            fixed: vec![
+                crate::FixedNode {
+                    node: 0,
+                    position: [0.0, 0.0, 0.0],
+                },
+                crate::FixedNode {
+                    node: 2,
+                    position: [1.0, 0.0, 0.0],
+                },
+            ],
+            ..Topology::default()
+        };
+        let q = line.force_densities().unwrap();
+        let mut system = FixedSystem::new(&line, &q, &held_positions(&line)).unwrap();
+        assert!(matches!(system.lu, Some(Factors::Lu(_))));
+        // −2 (x₀ − x₁) + 1 (x₂ − x₁) = 0 → x₁ = −1
+        let x = system.solve(&[]).unwrap();
+        assert!(
+            (x[1] - Vector3::new(-1.0, 0.0, 0.0)).norm() < 1e-15,
+            "{}",
+            x[1]
+        );
+    }
 }

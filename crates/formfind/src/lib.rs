@@ -30,6 +30,11 @@
 //!   dynamic relaxation applies t e_i directly (the `cluster` module docs);
 //!   [`FormFound::clusters`] reports each one, and the synthesis writes it as a core
 //!   [`tensegrity_core::Cluster`] of rest length L / (1 + t/EA).
+//! - The statics of the found form ([`Settings::analyse`], off by default: [`ANALYSE`]): the
+//!   self-stress dimension, prestressability (the margin LP where no witness settles it) and
+//!   prestress stability, the costly part of a large form; without them the result holds the
+//!   form, its force densities and the cheap residual ‖A q + p‖ / ‖q‖, and
+//!   [`FormFound::analyse`] adds them later to a form found without.
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
 //!   prestress level (a loaded form: the forces q L the loads set, and the loads kept).
 //!
@@ -59,9 +64,12 @@
 //!     groups: BTreeMap::from([group("bars"), group("bottom"), group("top"), group("vertical")]),
 //!     ..Topology::default()
 //! };
-//! let found = form_find(&topology, &Settings::default()).unwrap();
+//! // The statics of the found form (self-stress dimension, prestressability, stability) only
+//! // where asked for: `analyse` (default `false`, [`ANALYSE`]).
+//! let settings = Settings { analyse: true, ..Settings::default() };
+//! let found = form_find(&topology, &settings).unwrap();
 //! assert_eq!(found.method, Method::Adaptive);
-//! assert!(found.prestressable && found.prestress_stable);
+//! assert_eq!((found.prestressable, found.prestress_stable), (Some(true), Some(true)));
 //! // Bars average −1; for the symmetric prism every vertical string then carries 1.
 //! let vertical = found.force_density[3 + 2]; // strings[2], the first vertical
 //! assert!((vertical - 1.0).abs() < 1e-9);
@@ -96,7 +104,7 @@ pub use dr::PRECISION_FLOOR;
 pub use error::{FormFindError, Result};
 pub use estimate::{estimate, ADAPTIVE_START, DR_FLOPS_PER_MEMBER, EIGEN_FLOPS};
 pub use fdm::{force_density_matrix, DENSE_MAX_NODES, NULL_SPACE_TOLERANCE};
-pub use method::{Method, Settings, Synthesis};
+pub use method::{Method, Settings, Synthesis, ANALYSE};
 pub use report::{find, scale_group, ClusterReport, FormfindReport, Formfound, Loading};
 pub use result::{FormFound, NodeForce};
 pub use synth::{rest_lengths, synthesize, synthesize_with, ClusterRest, RestLengths, MIN_STRAIN};
@@ -122,7 +130,7 @@ pub fn form_find(topology: &Topology, settings: &Settings) -> Result<FormFound> 
         Method::Fdm => run_fdm(topology, settings),
         Method::Dr => {
             let (nodes, q, it, tol) = dr::run(topology, settings)?;
-            finish(topology, Method::Dr, nodes, q, (it, Some(tol)))
+            finish(topology, settings, Method::Dr, nodes, q, (it, Some(tol)))
         }
         _ => run_adaptive(topology, settings),
     };
@@ -168,7 +176,14 @@ fn run_fdm(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     if !topology.clusters.is_empty() {
         let (nodes, loads, q, iterations) = cluster::fixed_point(topology, &q, settings)?;
         let tolerance = Some(settings.tolerance);
-        return finish_loaded(topology, nodes, q, &loads, (iterations, tolerance));
+        return finish_loaded(
+            topology,
+            settings,
+            nodes,
+            q,
+            &loads,
+            (iterations, tolerance),
+        );
     }
     if topology.is_loaded() && !topology.fixed.is_empty() {
         let (nodes, loads, iterations) = fdm::loaded(topology, &q, settings)?;
@@ -177,35 +192,52 @@ fn run_fdm(topology: &Topology, settings: &Settings) -> Result<FormFound> {
             .iter()
             .any(|w| w.unwrap_or(0.0) > 0.0);
         let tolerance = weighted.then_some(settings.tolerance);
-        return finish_loaded(topology, nodes, q, &loads, (iterations, tolerance));
+        return finish_loaded(
+            topology,
+            settings,
+            nodes,
+            q,
+            &loads,
+            (iterations, tolerance),
+        );
     }
     let nodes = fdm::geometry(topology, &q)?;
-    finish(topology, Method::Fdm, nodes, q, (1, None))
+    finish(topology, settings, Method::Fdm, nodes, q, (1, None))
 }
 
 fn run_adaptive(topology: &Topology, settings: &Settings) -> Result<FormFound> {
     let (nodes, q, it) = adaptive::run(topology, settings)?;
     let tol = Some(settings.tolerance);
-    finish(topology, Method::Adaptive, nodes, q, (it, tol))
+    finish(topology, settings, Method::Adaptive, nodes, q, (it, tol))
 }
 
-/// The statics of the found geometry, packed as a [`FormFound`]; a non-finite node, force
-/// density or residual is refused (an overflow never reaches a result). The statics take
-/// q / max|q| (they are invariant under a positive scale), so force densities near the
-/// largest double do not overflow them.
+/// The found geometry packed as a [`FormFound`] with its residual, and its statics where
+/// `settings.analyse` asks for them; a non-finite node, force density or residual is refused
+/// (an overflow never reaches a result). The statics take q / max|q| (they are invariant
+/// under a positive scale), so force densities near the largest double do not overflow them.
 fn finish(
     topology: &Topology,
+    settings: &Settings,
     method: Method,
     nodes: Vec<Vector3<f64>>,
     q: Vec<f64>,
     iterations: (usize, Option<f64>),
 ) -> Result<FormFound> {
-    finish_with(topology, method, nodes, q, &[], iterations)
+    finish_with(
+        topology,
+        settings.analyse,
+        method,
+        nodes,
+        q,
+        &[],
+        iterations,
+    )
 }
 
 /// [`finish`] of the force density method under `loads` (one per node, N).
 fn finish_loaded(
     topology: &Topology,
+    settings: &Settings,
     nodes: Vec<Vector3<f64>>,
     q: Vec<f64>,
     loads: &[Vector3<f64>],
@@ -217,13 +249,22 @@ fn finish_loaded(
             item: format!("the load on node {i}"),
         });
     }
-    finish_with(topology, Method::Fdm, nodes, q, loads, iterations)
+    finish_with(
+        topology,
+        settings.analyse,
+        Method::Fdm,
+        nodes,
+        q,
+        loads,
+        iterations,
+    )
 }
 
 /// [`finish`] with the loads (`loads`: one per node in N, or empty), the reactions and the
-/// equilibrium residual.
+/// equilibrium residual; the statics only when `analyse` asks for them.
 fn finish_with(
     topology: &Topology,
+    analyse: bool,
     method: Method,
     nodes: Vec<Vector3<f64>>,
     q: Vec<f64>,
@@ -249,8 +290,8 @@ fn finish_with(
         .iter()
         .map(|p| p / scale.max(f64::MIN_POSITIVE))
         .collect();
-    let a = analysis::analyse(topology, &nodes, &unit, &unit_loads)?;
-    if !a.residual.is_finite() {
+    let residual = analysis::residual(topology, &nodes, &unit, &unit_loads);
+    if !residual.is_finite() {
         return Err(non_finite("the residual".into()));
     }
     let (reactions, equilibrium_residual) = if topology.fixed.is_empty() {
@@ -280,23 +321,32 @@ fn finish_with(
         })
         .collect();
     let clusters = cluster::states(topology, &nodes);
+    let statics = if analyse {
+        Some(analysis::analyse(topology, &nodes, &unit, &unit_loads)?)
+    } else {
+        None
+    };
     let mut q = q;
     q.truncate(topology.n_members());
-    Ok(FormFound {
+    let found = FormFound {
         method,
         clusters,
         nodes,
         force_density: q,
-        self_stress_dim: a.self_stress_dim,
-        prestressable: a.prestressable,
-        prestress_stable: a.prestress_stable,
-        residual: a.residual,
+        self_stress_dim: None,
+        prestressable: None,
+        prestress_stable: None,
+        residual,
         iterations,
         tolerance,
         choice: None,
         loads,
         reactions,
         equilibrium_residual,
+    };
+    Ok(match statics {
+        Some(a) => found.with_analysis(&a),
+        None => found,
     })
 }
 

@@ -66,7 +66,16 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Default axial stiffness EA (N) of members that give none (dynamic relaxation).
     pub stiffness: f64,
+    /// Whether to analyse the found form: its self-stress dimension, prestressability and
+    /// prestress stability (the `analysis` module; default [`ANALYSE`]). Without, those
+    /// fields of the result are `None` and the form costs the method alone.
+    pub analyse: bool,
 }
+
+/// Whether form-finding analyses the found form unless told otherwise: no — the form is
+/// returned at the cost of the method, and the statics (rank, the prestress-margin LP,
+/// stability: most of the time on a large form) only where asked for.
+pub const ANALYSE: bool = false;
 
 impl Default for Settings {
     fn default() -> Self {
@@ -75,6 +84,7 @@ impl Default for Settings {
             tolerance: 1e-12,
             max_iterations: 10_000,
             stiffness: 1e5,
+            analyse: ANALYSE,
         }
     }
 }

@@ -8,7 +8,9 @@
 //! residual ‖A q + p‖ / ‖q‖ of the found geometry (p the loads), its height (the z extent of
 //! the nodes the method placed) and the longest bar; with fixed nodes the reactions and the
 //! relative equilibrium residual of the free nodes, with loads the loads carried
-//! ([`Loading`]). A loaded form is not scaled to a prestress level: its force densities
+//! ([`Loading`]). The statics of the self-stress (self-stress dimension, prestressability,
+//! prestress stability) are in it only where [`Settings::analyse`] asks for them (`null`
+//! otherwise, and then no warning about them); the synthesis needs none of them. A loaded form is not scaled to a prestress level: its force densities
 //! balance loads in N, so T_k = q_k L_k (the `synth` module).
 
 use crate::synth::{rest_lengths, synthesize_with, RestLengths};
@@ -39,14 +41,15 @@ pub struct FormfindReport {
     pub nodes: Vec<[f64; 3]>,
     /// Force density q per member (N/m, tension-positive), normalised by the method.
     pub force_density: Vec<f64>,
-    /// Dimension of the self-stress space of the found geometry.
-    pub self_stress_dim: usize,
+    /// Dimension of the self-stress space of the found geometry (`null` unless the form was
+    /// analysed: `analyse`).
+    pub self_stress_dim: Option<usize>,
     /// Whether a self-stress with strings in tension and bars in compression exists (for a
     /// loaded form: besides the stress that carries the loads, which a loaded form needs
-    /// instead; no warning when it is false there).
-    pub prestressable: bool,
-    /// Whether the prestressed structure is stable.
-    pub prestress_stable: bool,
+    /// instead; no warning when it is false there; `null` unless analysed).
+    pub prestressable: Option<bool>,
+    /// Whether the prestressed structure is stable (`null` unless analysed).
+    pub prestress_stable: Option<bool>,
     /// ‖A q + p‖ / ‖q‖ at the found geometry (p the loads, zero without; m).
     pub residual: f64,
     /// Iterations of the method (1 for a direct solve).
@@ -163,10 +166,11 @@ pub fn find(
             reason: reason.clone(),
         })
         .collect();
-    // a loaded form is stressed by its loads and needs no self-stress
-    if !found.prestressable && !topology.is_loaded() {
+    // a loaded form is stressed by its loads and needs no self-stress; nothing is said of a
+    // form that was not analysed (the statics were not asked for)
+    if found.prestressable == Some(false) && !topology.is_loaded() {
         warnings.push(Warning::NotPrestressable);
-    } else if !found.prestress_stable {
+    } else if found.prestress_stable == Some(false) {
         warnings.push(Warning::NotPrestressStable);
     }
     // the rest lengths once: the structure is built from them

@@ -15,13 +15,15 @@ pub struct FormFound {
     /// Force density per member (N/m, tension-positive), bars then strings in topology order,
     /// normalised as documented by the method.
     pub force_density: Vec<f64>,
-    /// Dimension of the self-stress space of the found geometry.
-    pub self_stress_dim: usize,
-    /// Whether a self-stress with every string in tension and every bar in compression exists.
-    pub prestressable: bool,
+    /// Dimension of the self-stress space of the found geometry (`None`: not analysed, see
+    /// [`crate::Settings::analyse`] and [`FormFound::analyse`]).
+    pub self_stress_dim: Option<usize>,
+    /// Whether a self-stress with every string in tension and every bar in compression exists
+    /// (`None`: not analysed).
+    pub prestressable: Option<bool>,
     /// Whether the prestressed structure is stable (positive-definite stiffness on the
-    /// non-rigid motions).
-    pub prestress_stable: bool,
+    /// non-rigid motions; `None`: not analysed).
+    pub prestress_stable: Option<bool>,
     /// ‖A q + p‖ / ‖q‖ at the found geometry (A the equilibrium matrix without the rows of
     /// fixed nodes, q the force densities, p the loads: zero without).
     pub residual: f64,
@@ -62,6 +64,49 @@ pub struct NodeForce {
 }
 
 impl FormFound {
+    /// Whether the statics of the form are in it (found with [`crate::Settings::analyse`], or
+    /// added by [`FormFound::analyse`]).
+    pub fn is_analysed(&self) -> bool {
+        self.self_stress_dim.is_some()
+    }
+
+    /// Adds the statics of the form (self-stress dimension, prestressability, prestress
+    /// stability: the `analysis` module) where they are missing, from the form, its force
+    /// densities (the clusters' segments at t / l_i of the found lengths), and its loads, all
+    /// scaled by max|q| as the form-finding does; `topology` is the one it was found from.
+    /// Nothing is recomputed where they are present.
+    pub fn analyse(&mut self, topology: &crate::Topology) -> crate::Result<()> {
+        if self.is_analysed() {
+            return Ok(());
+        }
+        let segments = self.clusters.iter().flat_map(|c| &c.segment_force_density);
+        let q: Vec<f64> = self.force_density.iter().chain(segments).copied().collect();
+        let scale = q.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let unit: Vec<f64> = q.iter().map(|x| x / scale.max(f64::MIN_POSITIVE)).collect();
+        let mut loads = Vec::new();
+        if !self.loads.is_empty() {
+            loads = vec![Vector3::zeros(); self.nodes.len()];
+            for f in &self.loads {
+                loads[f.node] = Vector3::from(f.force) / scale.max(f64::MIN_POSITIVE);
+            }
+        }
+        let a = crate::analysis::analyse(topology, &self.nodes, &unit, &loads)?;
+        self.self_stress_dim = Some(a.self_stress_dim);
+        self.prestressable = Some(a.prestressable);
+        self.prestress_stable = Some(a.prestress_stable);
+        Ok(())
+    }
+
+    /// The form with the statics `a`.
+    pub(crate) fn with_analysis(self, a: &crate::analysis::Analysis) -> Self {
+        FormFound {
+            self_stress_dim: Some(a.self_stress_dim),
+            prestressable: Some(a.prestressable),
+            prestress_stable: Some(a.prestress_stable),
+            ..self
+        }
+    }
+
     /// The size of the form: the diagonal of the nodes' bounding box (m).
     pub fn structure_size(&self) -> f64 {
         crate::analysis::size(&self.nodes)

@@ -177,7 +177,7 @@ fn arch() -> Topology {
 
 #[test]
 fn jax_fdm_s_loaded_arch_is_reproduced_to_its_baseline() {
-    let found = form_find(&arch(), &Settings::default()).unwrap();
+    let mut found = form_find(&arch(), &Settings::default()).unwrap();
     // jax_fdm tests/baselines/arch_coordinates.json (x, z of nodes 0…10; y = 0)
     let baseline: [[f64; 2]; 11] = [
         [-2.5, 0.0],
@@ -211,8 +211,11 @@ fn jax_fdm_s_loaded_arch_is_reproduced_to_its_baseline() {
     assert!((reaction(&found, 10) - Vector3::new(-0.5, 0.0, 0.9)).norm() < 1e-12);
     assert!(imbalance(&found) < 1e-12);
     assert!(found.equilibrium_residual.unwrap() < 1e-14);
-    // a hinged arch of bars is a mechanism its compression does not stiffen
-    assert!(!found.prestress_stable);
+    // a hinged arch of bars is a mechanism its compression does not stiffen (the statics
+    // added to the form found without them, as asked)
+    assert_eq!(found.prestress_stable, None);
+    found.analyse(&arch()).unwrap();
+    assert_eq!(found.prestress_stable, Some(false));
 
     // the report: no strings, so no prestress to scale; the member forces are q L
     let made = find(
@@ -287,7 +290,11 @@ fn net(k: usize, qx: f64, qy: f64, pz: f64) -> (Topology, Vec<[usize; 2]>) {
 fn a_cable_net_under_uniform_loads_equals_an_independent_dense_solve() {
     let (k, qx, qy, pz) = (5, 1.0, 2.5, -1.5);
     let (t, at) = net(k, qx, qy, pz);
-    let found = form_find(&t, &Settings::default()).unwrap();
+    let analysed = Settings {
+        analyse: true,
+        ..Settings::default()
+    };
+    let found = form_find(&t, &analysed).unwrap();
     // the dense solve: D = Cᵀ diag(q) C assembled from the incidence matrix, its free block
     // solved by nalgebra's LU with partial pivoting
     let q = t.force_densities().unwrap();
@@ -332,9 +339,14 @@ fn a_cable_net_under_uniform_loads_equals_an_independent_dense_solve() {
     assert!(imbalance(&found) < 1e-12);
     assert!(found.equilibrium_residual.unwrap() < 1e-14);
     // a loaded net is stable under its loads (D_ff positive definite), has no self-stress
-    assert!(found.prestress_stable);
-    assert_eq!(found.self_stress_dim, 0);
-    assert!(!found.prestressable);
+    assert_eq!(found.prestress_stable, Some(true));
+    assert_eq!(found.self_stress_dim, Some(0));
+    assert_eq!(found.prestressable, Some(false));
+    // added later to the form found without them: the same
+    let mut lazy = form_find(&t, &Settings::default()).unwrap();
+    assert_eq!(lazy.nodes, found.nodes);
+    lazy.analyse(&t).unwrap();
+    assert_eq!(lazy, found);
 }
 
 #[test]

@@ -87,10 +87,12 @@ pub struct AnchorResult {
     pub final_error_m: f64,
     /// What that difference may be: the RK4 error at the scene's step (m).
     pub final_tolerance_m: f64,
-    /// The reference code and its time, measured on that machine.
+    /// The reference code and its stored time, with when and where it was measured.
     pub reference: ReferenceTime,
-    /// The reference time over `best_s`.
-    pub ratio: f64,
+    /// The reference time over `best_s`, only for a reference measured in the same run:
+    /// never for the stored times ([`crate::anchors::MEASURED_ON`]), so always absent
+    /// (`null`) today.
+    pub ratio: Option<f64>,
 }
 
 /// What `bench anchors` measured.
@@ -100,7 +102,7 @@ pub struct AnchorsReport {
     pub request: AnchorsRequest,
     /// The anchors.
     pub anchors: Vec<AnchorResult>,
-    /// The label of every reference time and ratio.
+    /// The label of every reference time.
     pub reference_note: &'static str,
     /// Why instructions were not counted (absent when they were, or not asked for).
     pub instructions_note: Option<String>,
@@ -129,9 +131,9 @@ pub struct BenchRow {
     pub instructions_per_step: Option<f64>,
     /// Reference code (anchors).
     pub reference_code: Option<&'static str>,
-    /// Its time, measured on that machine (s).
+    /// Its stored time (s), measured on [`crate::anchors::REFERENCE_MEASURED`].
     pub reference_s: Option<f64>,
-    /// Reference time over ours.
+    /// Reference time over ours, for a reference measured in the same run (none today).
     pub ratio: Option<f64>,
     /// The series' fitted cost exponent.
     pub exponent: Option<f64>,
@@ -155,7 +157,7 @@ impl AnchorsReport {
             instructions_per_step: a.instructions_per_step,
             reference_code: Some(a.reference.code),
             reference_s: Some(a.reference.seconds),
-            ratio: Some(a.ratio),
+            ratio: a.ratio,
             exponent: None,
             instructions: None,
             instructions_exponent: None,
@@ -250,7 +252,8 @@ fn measure_anchor(anchor: Anchor, repeats: usize) -> Result<AnchorResult, BenchE
         final_error_m,
         final_tolerance_m: anchor.tolerance(),
         reference,
-        ratio: reference.seconds / best.wall_time_s,
+        // the stored reference was not measured in this run: no ratio to it
+        ratio: None,
     })
 }
 

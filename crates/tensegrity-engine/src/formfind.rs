@@ -9,8 +9,9 @@
 //!
 //! The report ([`FormfindReport`]) holds the found geometry (`nodes`), the force densities q
 //! (tension-positive, bars then strings in topology order, as the method normalises them),
-//! the statics of that self-stress (`self_stress_dim`, `prestressable`, `prestress_stable`),
-//! the equilibrium residual ‖A q‖ / ‖q‖ of the found geometry (A the equilibrium matrix, so
+//! the statics of that self-stress (`self_stress_dim`, `prestressable`, `prestress_stable`;
+//! only with `analyse`, null otherwise: they cost most of a large form's time), the
+//! equilibrium residual ‖A q‖ / ‖q‖ of the found geometry (A the equilibrium matrix, so
 //! A q = vec(N Cᵀ diag(q) C) at the free nodes) and the iterations of the method; and, at the
 //! prestress level P (the largest string tension), the member forces f_k = s q_k l_k with
 //! s = P / max_strings(q_k l_k) and the strings' rest lengths.
@@ -110,6 +111,13 @@ pub struct FormfindRequest {
     /// Iteration cap of the iterative methods.
     #[param(count, help = "Iteration cap of the iterative methods", rule = AtLeast(1.0))]
     pub max_iterations: usize,
+    /// Analyse the found form: its self-stress dimension, prestressability and prestress
+    /// stability (default: not, [`::formfind::ANALYSE`]; those report fields are then null).
+    #[param(
+        flag,
+        help = "Analyse the found form: self-stress dimension (the rank of the equilibrium matrix), prestressability (the prestress-margin LP where the force densities are no witness) and prestress stability, the costly part on a large form; without it those report fields are null"
+    )]
+    pub analyse: bool,
 }
 
 impl Default for FormfindRequest {
@@ -127,6 +135,7 @@ impl Default for FormfindRequest {
             bar_mass: synthesis.bar_mass,
             tolerance: settings.tolerance,
             max_iterations: settings.max_iterations,
+            analyse: settings.analyse,
         }
     }
 }
@@ -228,6 +237,7 @@ impl FormfindRequest {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
             stiffness: self.stiffness,
+            analyse: self.analyse,
         }
     }
 

@@ -519,6 +519,7 @@ fn formfind_describes_its_fields_round_trips_and_its_columns_are_its_scalars() {
         topology: Some(SceneSource::parse("../../examples/formfind/cable_net.toml")),
         group: Some("y".into()),
         ratio: 2.0,
+        analyse: true,
         ..Default::default()
     });
     let report = formfind::FormfindReport {
@@ -529,9 +530,9 @@ fn formfind_describes_its_fields_round_trips_and_its_columns_are_its_scalars() {
         method: ::formfind::Method::Fdm,
         nodes: vec![[0.0; 3]; 6],
         force_density: vec![1.0; 12],
-        self_stress_dim: 1,
-        prestressable: true,
-        prestress_stable: true,
+        self_stress_dim: Some(1),
+        prestressable: Some(true),
+        prestress_stable: Some(true),
         residual: 0.0,
         iterations: 1,
         tolerance: None,

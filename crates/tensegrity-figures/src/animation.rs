@@ -21,7 +21,7 @@ use crate::draw::{self, Group, View};
 use crate::error::Result;
 use nalgebra::{Rotation3, Vector3};
 use tensegrity_core::request::InvalidParameter;
-use tensegrity_io::figure::{Figure, Series};
+use tensegrity_io::figure::{Figure, Note, Series};
 use tensegrity_io::sink::{AnimationSink, NodeFrames};
 
 /// Frames per second unless told.
@@ -326,9 +326,33 @@ impl Scenery {
             panel
                 .series
                 .push(Series::new("ground", segment).with_color(draw::GREY));
+        } else if let Some(gap) = self.ground_gap(nodes) {
+            // the ground left the window (a wheel in flight, followed by the camera): say
+            // where it is, so the frame does not show a structure floating over nothing
+            let at = (x0 + 0.04 * (x1 - x0), y0 + 0.04 * (y1 - y0));
+            panel.notes.push(Note {
+                at,
+                text: format!("ground {gap:.2} m below the lowest node (out of view)"),
+                color: draw::GREY,
+            });
         }
         panel.series.extend(members.series);
         draw::drawing_figure(vec![panel])
+    }
+
+    /// How far the ground plane lies below the structure's lowest node (m), in the side view
+    /// with a ground: min over the nodes of n̂ · (p − p₀).
+    fn ground_gap(&self, nodes: &[Vector3<f64>]) -> Option<f64> {
+        let (p0, n) = self.ground?;
+        if self.view != View::Side || n.norm() < 1e-12 {
+            return None;
+        }
+        let n = n.normalize();
+        nodes
+            .iter()
+            .map(|p| n.dot(&(p - p0)))
+            .reduce(f64::min)
+            .filter(|d| d.is_finite())
     }
 
     /// The ground's line in the picture, clipped to the window (side view only).
@@ -427,5 +451,36 @@ mod tests {
         }
         assert_eq!(a.kept(), 5);
         assert_eq!(a.finish().unwrap(), 5);
+    }
+
+    #[test]
+    fn a_structure_followed_out_of_sight_of_the_ground_says_how_far_it_is() {
+        let scenery = Scenery {
+            title: "wheel".into(),
+            bars: vec![[0, 1]],
+            strings: vec![],
+            // a slope of 30° through the origin, its normal up the slope's face
+            ground: Some((Vector3::zeros(), Vector3::new(0.0, -0.5, 3f64.sqrt() / 2.0))),
+            view: View::Side,
+            tilt: 0.0,
+            along_y: false,
+            camera: Camera::Follow,
+        };
+        // a bar 3 m above the slope (lowest node), the window around it only
+        let n = Vector3::new(0.0, -0.5, 3f64.sqrt() / 2.0);
+        let low = 3.0 * n;
+        let nodes = [low, low + Vector3::new(0.0, 0.3, 0.4)];
+        assert!((scenery.ground_gap(&nodes).unwrap() - 3.0).abs() < 1e-12);
+        let window = (low.y - 0.5, low.y + 0.8, low.z - 0.5, low.z + 0.8);
+        let figure = scenery.frame(1.0, &nodes, window);
+        let panel = &figure.panels[0];
+        assert!(panel.series.iter().all(|s| s.label != "ground"));
+        assert_eq!(panel.notes.len(), 1);
+        assert!(panel.notes[0].text.starts_with("ground 3.00 m below"));
+        // in view, the ground is drawn and no note is needed
+        let wide = (-5.0, 5.0, -5.0, 5.0);
+        let figure = scenery.frame(1.0, &nodes, wide);
+        assert!(figure.panels[0].series.iter().any(|s| s.label == "ground"));
+        assert!(figure.panels[0].notes.is_empty());
     }
 }

@@ -1,6 +1,6 @@
 //! The render options of a run of thesis figures checked before any figure is computed
 //! ([`check_options`]): a size given for every figure must fit each chosen figure's panels
-//! (the rule of [`Figure::page_px`]: each panel at least 80 × 80 px, the figure at most
+//! (the rule of [`Figure::page_px`]: each panel at least 72 × 72 px, the figure at most
 //! 20000 px a side), and a PNG at that size and resolution at most
 //! [`render::MAX_PIXELS`]. Each figure's panels side by side are [`panels`] (a table checked
 //! against every figure built, in this crate's tests).
@@ -8,7 +8,7 @@
 use crate::catalog::FigureSpec;
 use crate::error::Result;
 use tensegrity_core::request::InvalidParameter;
-use tensegrity_io::figure::{render, Figure, Panel, RenderOptions};
+use tensegrity_io::figure::{render, Figure, Panel, RenderOptions, MIN_PANEL_PX};
 use tensegrity_io::IoError;
 
 /// Panels side by side in the thesis figure numbered `number` (1 unless listed).
@@ -38,6 +38,7 @@ pub fn panels(number: &str) -> usize {
 /// assert!(check_options(&one, &narrow, false).is_ok());
 /// let e = check_options(&all, &narrow, false).unwrap_err();
 /// assert!(e.to_string().contains("Fig. 3.3"), "{e}");
+/// assert!(e.to_string().ends_with("the smallest size it is drawn at is 216x300"), "{e}");
 /// let huge = RenderOptions::parse(Some("10000x10000"), Some(2400.0)).unwrap();
 /// assert!(check_options(&one, &huge, false).is_ok());
 /// assert!(check_options(&one, &huge, true).is_err());
@@ -55,7 +56,16 @@ pub fn check_options(chosen: &[&FigureSpec], options: &RenderOptions, png: bool)
                 IoError::InvalidFigure { reason } => reason.to_string(),
                 e => e.to_string(),
             };
-            let reason = format!("{rule} (Fig. {} has {n} panel(s) side by side)", f.number);
+            let mut reason = format!("{rule} (Fig. {} has {n} panel(s) side by side)", f.number);
+            let (w, h) = size.px();
+            let (min_w, min_h) = (MIN_PANEL_PX * n as f64, MIN_PANEL_PX);
+            if w < min_w || h < min_h {
+                // the smallest size that takes it, in the unit given, rounded up
+                let up = |v: f64| (v / size.unit.px() * 100.0).ceil() / 100.0;
+                let (sw, sh) = (up(w.max(min_w)), up(h.max(min_h)));
+                let unit = size.unit.suffix();
+                reason = format!("{reason}: the smallest size it is drawn at is {sw}x{sh}{unit}");
+            }
             return Err(InvalidParameter::text("size", &text, reason).into());
         }
     }

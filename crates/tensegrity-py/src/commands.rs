@@ -142,15 +142,20 @@ pub fn check_modes(
 }
 
 /// Checks the estimate of `c` on `values` against `limits` (the CLI's guard); a bad value
-/// is refused here, before any work, as the run would refuse it.
-pub fn admit(c: &Command, values: &Map<String, Value>, limits: &Limits) -> Result<(), Failure> {
+/// is refused here, before any work, as the run would refuse it. The estimated work (s), if
+/// the command estimates one (what paces a progress report that cannot count).
+pub fn admit(
+    c: &Command,
+    values: &Map<String, Value>,
+    limits: &Limits,
+) -> Result<Option<f64>, Failure> {
     let estimate = c.estimate(values.clone()).map_err(Failure::run)?;
-    if let Some(e) = estimate {
+    if let Some(e) = &estimate {
         limits
-            .check(&e)
+            .check(e)
             .map_err(|over| Failure::over_budget(&over))?;
     }
-    Ok(())
+    Ok(estimate.map(|e| e.work_s))
 }
 
 /// The command line's context of a failed library call of `c` (`michell truss analysis

@@ -11,7 +11,9 @@
 //! library calls the CLI makes ([`runs`]), the files the CLI writes beside its reports
 //! (`tipover`'s and `tbar roll`'s histories, the friction grid, the T-bar studies, the
 //! exports and the project's figures) come from the same library calls ([`studies`]),
-//! sweeps run through the sweeps crate ([`sweep`]),
+//! sweeps run through the sweeps crate ([`sweep`]); the long calls (`simulate`, `roll`,
+//! `tbar roll`, `tipover`'s timed runs, sweeps) report their progress to a Python callback
+//! ([`worker::Watch`]),
 //! and the structure model is built from numpy arrays ([`structure`]: a `Structure` crosses
 //! to the engine as data, the dict of its arrays, validated as a scene file is; scene TOML is
 //! only its explicit export and import). Errors become the package's
@@ -242,10 +244,20 @@ fn roll(
     }
 }
 
+/// The spec of `spec`: a path (`is_path`) or TOML text.
+fn sweep_source(spec: &str, is_path: bool) -> sweep::Source {
+    if is_path {
+        sweep::Source::Path(spec.into())
+    } else {
+        sweep::Source::Text(spec.to_string())
+    }
+}
+
 /// Runs a sweep: `spec` is a path (`is_path`) or TOML text; the rows go to `out` (read back
-/// by the caller). Returns the number of rows in the file.
+/// by the caller); `progress(done, total)`: the cases in the file of the shard's cases
+/// ([`worker::Watch`]). Returns the number of rows in the file.
 #[pyfunction(name = "sweep")]
-#[pyo3(signature = (spec, is_path, out, limits, threads = None, shard = None, resume = false, units = false))]
+#[pyo3(signature = (spec, is_path, out, limits, threads = None, shard = None, resume = false, units = false, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn run_sweep(
     py: Python<'_>,
@@ -257,12 +269,9 @@ fn run_sweep(
     shard: Option<(usize, usize)>,
     resume: bool,
     units: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<usize> {
-    let source = if is_path {
-        sweep::Source::Path(spec.into())
-    } else {
-        sweep::Source::Text(spec.to_string())
-    };
+    let source = sweep_source(spec, is_path);
     let limits = raise(py, limits_of(limits))?;
     if threads == Some(0) {
         let p = tensegrity_core::request::InvalidParameter::raw("threads", 0, "must be at least 1");
@@ -276,14 +285,28 @@ fn run_sweep(
         limits,
     };
     let (spec, what) = raise(py, sweep::spec(&source))?;
-    let shard = raise(py, sweep::admit(&spec, &opts))?;
+    let (shard, cases) = raise(py, sweep::admit(&spec, &opts))?;
     let out = std::path::PathBuf::from(out);
-    match worker::run(py, true, move || {
-        sweep::run(&spec, &what, &out, shard, &opts)
-    }) {
+    let watch = progress.map(|cb| worker::Watch::new(cases as f64, cb));
+    let counter = watch.as_ref().map(worker::Watch::counter);
+    let outcome = worker::run_watched(
+        py,
+        true,
+        move || sweep::run(&spec, &what, &out, shard, &opts, counter),
+        watch.as_ref(),
+    );
+    match outcome {
         Ok(rows) => raise(py, rows),
         Err(s) => Err(stopped(py, s, |_| Ok(py.None()))),
     }
+}
+
+/// The columns of a sweep's CSV with their units (`""` where none): `spec` a path
+/// (`is_path`) or TOML text.
+#[pyfunction]
+fn sweep_columns(py: Python<'_>, spec: &str, is_path: bool) -> PyResult<Vec<(String, String)>> {
+    let (spec, _) = raise(py, sweep::spec(&sweep_source(spec, is_path)))?;
+    Ok(sweep::columns(&spec))
 }
 
 /// Validates a structure's data (a dict of its arrays and tables, [`structure::scene`]):
@@ -345,14 +368,18 @@ fn toml_text(py: Python<'_>, value: &Bound<'_, PyDict>) -> PyResult<String> {
 
 /// Runs `tipover` in its dynamic mode (`rolling`: its rolling mode) as the CLI does, the call
 /// offering the parameters of `modes`: (report, the rows of its `--out` history as raw f64
-/// bytes: [`studies::TIPOVER_DYNAMIC_COLUMNS`] or [`studies::TIPOVER_ROLLING_COLUMNS`]).
+/// bytes: [`studies::TIPOVER_DYNAMIC_COLUMNS`] or [`studies::TIPOVER_ROLLING_COLUMNS`]);
+/// `progress(done, total)`: simulated seconds of the end time, paced by the estimate while
+/// the run goes on ([`worker::Watch::paced`]), the run's end once it ran.
 #[pyfunction]
+#[pyo3(signature = (rolling, values, limits, modes, progress = None))]
 fn tipover_history(
     py: Python<'_>,
     rolling: bool,
     values: &Bound<'_, PyDict>,
     limits: &Bound<'_, PyDict>,
     modes: Vec<String>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
     let name = if rolling {
         "tipover_rolling"
@@ -364,8 +391,22 @@ fn tipover_history(
     let limits = raise(py, limits_of(limits))?;
     let modes: Vec<_> = raise(py, modes.iter().map(|m| commands::find(m)).collect())?;
     raise(py, commands::check_modes(c, &modes, &values))?;
-    raise(py, commands::admit(c, &values, &limits))?;
-    match worker::run(py, false, move || studies::tipover(rolling, values)) {
+    let work_s = raise(py, commands::admit(c, &values, &limits))?;
+    let watch = match progress {
+        Some(cb) => {
+            let t_end = raise(py, studies::tipover_t_end(rolling, &values))?;
+            Some(worker::Watch::paced(t_end, work_s, cb))
+        }
+        None => None,
+    };
+    let counter = watch.as_ref().map(worker::Watch::counter);
+    let outcome = worker::run_watched(
+        py,
+        false,
+        move || studies::tipover(rolling, values, counter),
+        watch.as_ref(),
+    );
+    match outcome {
         Ok(r) => {
             let (r, rows) = raise(py, r)?;
             Ok((report(py, &r)?, bytes(py, &rows)))
@@ -425,19 +466,31 @@ fn tbar_study(
 }
 
 /// Runs `tbar roll` on `values` as the CLI does, the T-bar run of its first row observed:
-/// (report, that run's samples as raw f64 bytes, rows of `ROLL_HISTORY_COLUMNS`).
+/// (report, that run's samples as raw f64 bytes, rows of `ROLL_HISTORY_COLUMNS`);
+/// `progress(done, total)`: simulated seconds over every row's T-bar run
+/// ([`studies::tbar_roll`]).
 #[pyfunction]
+#[pyo3(signature = (values, limits, progress = None))]
 fn tbar_roll(
     py: Python<'_>,
     values: &Bound<'_, PyDict>,
     limits: &Bound<'_, PyDict>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
     let c = raise(py, commands::find("tbar_roll"))?;
     let values = raise(py, object(values))?;
     let limits = raise(py, limits_of(limits))?;
     raise(py, commands::admit(c, &values, &limits))?;
     let request = raise(py, studies::tbar_roll_request(values))?;
-    match worker::run(py, false, move || studies::tbar_roll(request)) {
+    let watch = progress.map(|cb| worker::Watch::new(studies::tbar_roll_total(&request), cb));
+    let counter = watch.as_ref().map(worker::Watch::counter);
+    let outcome = worker::run_watched(
+        py,
+        false,
+        move || studies::tbar_roll(request, counter),
+        watch.as_ref(),
+    );
+    match outcome {
         Ok((r, rows)) => {
             let flat: Vec<f64> = rows.iter().flatten().copied().collect();
             Ok((report(py, &raise(py, r)?)?, bytes(py, &flat)))
@@ -536,6 +589,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(roll, m)?)?;
     m.add_function(wrap_pyfunction!(run_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_columns, m)?)?;
     m.add_function(wrap_pyfunction!(structure_check, m)?)?;
     m.add_function(wrap_pyfunction!(structure_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(structure_toml, m)?)?;

@@ -7,7 +7,9 @@
 
 use crate::errors::Failure;
 use std::path::Path;
-use tbar_wheel::roll::{TbarRollRequest, Watch};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use tbar_wheel::roll::{TbarRollReport, TbarRollRequest, Watch};
 use tensegrity_core::budget::Limits;
 use tensegrity_core::request::{Categorized, Category, InvalidParameter, Request};
 use tensegrity_engine::value::{to_value, Map, Value};
@@ -15,6 +17,7 @@ use tensegrity_engine::SceneSource;
 use tensegrity_io::figure::RenderOptions;
 use tensegrity_io::sink::{CsvSink, FigureSink, RollingOutputs};
 use toroid::{TipoverDynamicRequest, TipoverRollingRequest};
+use wheel_rolling::{Fidelity, Observer};
 
 /// The columns of `tipover --dynamic --out`.
 pub const TIPOVER_DYNAMIC_COLUMNS: [&str; 5] = ["t", "force", "lean", "near_normal", "far_normal"];
@@ -39,9 +42,15 @@ fn json(report: &impl serde::Serialize) -> Result<Value, Failure> {
 }
 
 /// Runs `tipover --dynamic` (`rolling`: `--rolling`) on `values` as the CLI does: the report
-/// (under `strict`, one that is not valid is an error) and its history, the rows of `--out`.
-pub fn tipover(rolling: bool, values: Map<String, Value>) -> Result<(Value, Rows), Failure> {
-    if rolling {
+/// (under `strict`, one that is not valid is an error) and its history, the rows of `--out`;
+/// `progress`: where the run's end time (its last sample's) goes once it ran (the library
+/// runs it in one call: a progress report paces it by its estimate meanwhile).
+pub fn tipover(
+    rolling: bool,
+    values: Map<String, Value>,
+    progress: Option<Arc<AtomicU64>>,
+) -> Result<(Value, Rows), Failure> {
+    let (report, rows, end) = if rolling {
         let req = TipoverRollingRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
         let r = req
             .run()
@@ -51,7 +60,8 @@ pub fn tipover(rolling: bool, values: Map<String, Value>) -> Result<(Value, Rows
             .iter()
             .flat_map(|s| [s.t, s.lean, s.downhill, s.across])
             .collect();
-        Ok((json(&r)?, rows))
+        let end = r.samples.last().map_or(req.t_end, |s| s.t);
+        (json(&r)?, rows, end)
     } else {
         let req = TipoverDynamicRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
         let r = req
@@ -62,7 +72,25 @@ pub fn tipover(rolling: bool, values: Map<String, Value>) -> Result<(Value, Rows
             .iter()
             .flat_map(|s| [s.t, s.force, s.lean, s.near_normal, s.far_normal])
             .collect();
-        Ok((json(&r)?, rows))
+        let end = r.samples.last().map_or(req.settings.t_end(), |s| s.t);
+        (json(&r)?, rows, end)
+    };
+    if let Some(p) = progress {
+        p.store(end.to_bits(), Ordering::Relaxed);
+    }
+    Ok((report, rows))
+}
+
+/// The simulated time of `tipover --dynamic` (`rolling`: `--rolling`) on `values` (s): the
+/// total of its progress.
+pub fn tipover_t_end(rolling: bool, values: &Map<String, Value>) -> Result<f64, Failure> {
+    let values = values.clone();
+    if rolling {
+        let req = TipoverRollingRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
+        Ok(req.t_end)
+    } else {
+        let req = TipoverDynamicRequest::from_values(values).map_err(|e| Failure::invalid(&e))?;
+        Ok(req.settings.t_end())
     }
 }
 
@@ -148,19 +176,110 @@ pub fn mass_sweep(
 /// `tbar roll` on `values` as the CLI runs it, the T-bar run of its first row (the first
 /// number of treads) observed: the report and that run's samples, rows of
 /// [`crate::runs::HISTORY_COLUMNS`].
-pub fn tbar_roll(request: TbarRollRequest) -> (Result<Value, Failure>, Vec<[f64; 9]>) {
+///
+/// With `progress` (simulated seconds over every row's T-bar run: row k counts from
+/// k·t_end, [`tbar_roll_total`]), each number of treads runs as a request of its own, its
+/// T-bar run observed, in the order the engine runs them; the report is the engine's
+/// report of the row whose model ran the full dynamics (else the first) holding every row,
+/// judged again over them ([`TbarRollReport::judged`]): the rows are those of one call.
+pub fn tbar_roll(
+    request: TbarRollRequest,
+    progress: Option<Arc<AtomicU64>>,
+) -> (Result<Value, Failure>, Vec<[f64; 9]>) {
     let mut history = crate::runs::History::new(RollingOutputs::new(None, None), None);
-    let watch = Watch {
-        times: &[],
-        observer: &mut history,
+    let report = match progress {
+        None => {
+            let watch = Watch {
+                times: &[],
+                observer: &mut history,
+            };
+            tensegrity_engine::tbar_roll::report_watched(&request, Some(watch))
+                .map_err(|e| failed(&e, ""))
+        }
+        Some(p) => rows_counted(&request, &mut history, &p),
     };
-    let report = tensegrity_engine::tbar_roll::report_watched(&request, Some(watch))
-        .map_err(|e| failed(&e, ""))
-        .and_then(|r| {
-            tensegrity_engine::tbar_roll::strict_check(&request, &r).map_err(|e| failed(&e, ""))?;
-            json(&r)
-        });
+    let report = report.and_then(|r| {
+        tensegrity_engine::tbar_roll::strict_check(&request, &r).map_err(|e| failed(&e, ""))?;
+        json(&r)
+    });
     (report, history.take_rows())
+}
+
+/// The total of `tbar roll`'s progress: t_end for every number of treads (s).
+pub fn tbar_roll_total(request: &TbarRollRequest) -> f64 {
+    request.treads().len() as f64 * request.t_end()
+}
+
+/// `tbar roll` one number of treads at a time (see [`tbar_roll`]): the first row's T-bar
+/// run kept in `history`, every row's simulated time counted into `progress`.
+fn rows_counted(
+    request: &TbarRollRequest,
+    history: &mut crate::runs::History<'_>,
+    progress: &Arc<AtomicU64>,
+) -> Result<TbarRollReport, Failure> {
+    let t_end = request.t_end();
+    let mut reports: Vec<TbarRollReport> = Vec::new();
+    for (k, n) in request.treads().into_iter().enumerate() {
+        let one = TbarRollRequest {
+            treads: Some(vec![n]),
+            ..request.clone()
+        };
+        let mut outputs = RollingOutputs::new(None, None);
+        let observer: &mut dyn Observer = if k == 0 { &mut *history } else { &mut outputs };
+        let mut counted = Counted {
+            inner: observer,
+            offset: k as f64 * t_end,
+            progress,
+        };
+        let watch = Watch {
+            times: &[],
+            observer: &mut counted,
+        };
+        let r = tensegrity_engine::tbar_roll::report_watched(&one, Some(watch))
+            .map_err(|e| failed(&e, ""))?;
+        progress.store(((k + 1) as f64 * t_end).to_bits(), Ordering::Relaxed);
+        reports.push(r);
+    }
+    if reports.is_empty() {
+        // no number of treads: the engine's own answer
+        return tensegrity_engine::tbar_roll::report(request).map_err(|e| failed(&e, ""));
+    }
+    let rows: Vec<_> = reports
+        .iter()
+        .flat_map(|r| r.rows.iter().cloned())
+        .collect();
+    let full = reports.iter().position(|r| r.model == Fidelity::Full);
+    let mut report = reports.swap_remove(full.unwrap_or(0));
+    report.rows = rows;
+    Ok(report.judged())
+}
+
+/// An observer of a T-bar run handing everything to `inner`, its simulated time (from
+/// `offset`) to `progress`.
+struct Counted<'a> {
+    inner: &'a mut dyn Observer,
+    offset: f64,
+    progress: &'a Arc<AtomicU64>,
+}
+
+impl Observer for Counted<'_> {
+    fn sample(&mut self, s: &wheel_rolling::RollingSample) -> wheel_rolling::Flow {
+        let done = self.offset + s.t;
+        self.progress.store(done.to_bits(), Ordering::Relaxed);
+        self.inner.sample(s)
+    }
+
+    fn frame(&mut self, frame: &wheel_rolling::WheelFrame) -> wheel_rolling::Flow {
+        self.inner.frame(frame)
+    }
+
+    fn keep_going(&mut self) -> bool {
+        self.inner.keep_going()
+    }
+
+    fn keeps_frames(&self) -> bool {
+        self.inner.keeps_frames()
+    }
 }
 
 /// The `tbar roll` request of `values` (refused before any work, as the CLI refuses it).

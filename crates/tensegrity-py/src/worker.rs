@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::Arc;
 use std::sync::Mutex;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use tensegrity_io::interrupt;
 
 /// How often the waiting thread runs the signal handlers.
@@ -70,7 +70,13 @@ pub enum Stopped<T> {
 
 /// The progress of long work as Python sees it: the work stores how far it is (an f64's
 /// bits: simulated time, cases) in `done`; the waiting thread calls `callback(done, total)`
-/// at most every [`POLL`] when it changed, and once at the end.
+/// at most every [`POLL`] when it moved forward, and once at the end (never with a `done`
+/// below one already reported).
+///
+/// Work that cannot count as it goes (a library call that runs in one piece) is *paced*
+/// ([`Watch::paced`]): while it runs, `done` is the elapsed time against the engine's work
+/// estimate, scaled to `total` and held below [`PACED_CAP`] of it; at its end, what the work
+/// stored (its end).
 pub struct Watch {
     /// How far the work is (f64 bits), written by the work.
     pub done: Arc<AtomicU64>,
@@ -78,7 +84,12 @@ pub struct Watch {
     pub total: f64,
     /// `callback(done, total)`; an exception it raises stops the work as Ctrl-C does.
     pub callback: Py<PyAny>,
+    /// Paced work: when it started and its estimated work (s).
+    paced: Option<(Instant, f64)>,
 }
+
+/// The largest fraction of its total a paced work reports before it ends.
+pub const PACED_CAP: f64 = 0.99;
 
 impl Watch {
     /// A watch of work that ends at `total`, reporting to `callback`.
@@ -87,6 +98,19 @@ impl Watch {
             done: Arc::new(AtomicU64::new(0f64.to_bits())),
             total,
             callback,
+            paced: None,
+        }
+    }
+
+    /// A watch of work that cannot count as it goes, estimated at `work_s` seconds
+    /// (`None`: no report before its end).
+    pub fn paced(total: f64, work_s: Option<f64>, callback: Py<PyAny>) -> Self {
+        let start = Instant::now();
+        Self {
+            paced: work_s
+                .filter(|w| w.is_finite() && *w > 0.0)
+                .map(|w| (start, w)),
+            ..Self::new(total, callback)
         }
     }
 
@@ -95,13 +119,21 @@ impl Watch {
         self.done.clone()
     }
 
-    /// Calls the callback if the work moved since `last` (its bits); returns the new bits.
-    fn report(&self, py: Python<'_>, last: u64) -> PyResult<u64> {
-        let bits = self.done.load(Ordering::Relaxed);
-        if bits != last {
-            self.callback
-                .call1(py, (f64::from_bits(bits), self.total))?;
+    /// Calls the callback if the work moved forward since `last` (its bits; `ended`: the
+    /// work's own count, paced or not); returns the bits reported last.
+    fn report(&self, py: Python<'_>, last: u64, ended: bool) -> PyResult<u64> {
+        let bits = match self.paced {
+            Some((start, work_s)) if !ended => {
+                let fraction = (start.elapsed().as_secs_f64() / work_s).min(PACED_CAP);
+                (fraction * self.total).to_bits()
+            }
+            _ => self.done.load(Ordering::Relaxed),
+        };
+        let (now, before) = (f64::from_bits(bits), f64::from_bits(last));
+        if bits == last || now.is_nan() || now < before {
+            return Ok(last);
         }
+        self.callback.call1(py, (now, self.total))?;
         Ok(bits)
     }
 }
@@ -164,7 +196,7 @@ where
             Ok(result) => {
                 if let Some(w) = watch {
                     // the last report: where the work ended (an error here is the caller's)
-                    let _ = w.report(py, last);
+                    let _ = w.report(py, last, true);
                 }
                 return result.map_err(panicked);
             }
@@ -174,7 +206,7 @@ where
             Err(RecvTimeoutError::Timeout) => {}
         }
         let reported = match watch {
-            Some(w) => w.report(py, last).map(|bits| last = bits),
+            Some(w) => w.report(py, last, false).map(|bits| last = bits),
             None => Ok(()),
         };
         if let Err(signal) = reported.and_then(|()| py.check_signals()) {

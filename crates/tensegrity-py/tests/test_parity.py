@@ -219,6 +219,20 @@ def test_formfind(cli_json, cli, tmp_path):
     assert tg.statics(s)["self_stress_dim"] >= 1
 
 
+@pytest.mark.skipif("formfind" not in tg.commands(), reason="no formfind command in this engine")
+def test_formfind_analyse(cli_json):
+    # the statics of the form with `analyse` only (`--analyse`); the form itself the same bits
+    plain = tg.formfind(builtin="grid:3")
+    analysed = tg.formfind(builtin="grid:3", analyse=True)
+    assert_same(analysed, cli_json("formfind", "--builtin", "grid:3", "--analyse"))
+    for key in ("self_stress_dim", "prestressable", "prestress_stable"):
+        assert plain[key] is None, key
+    assert analysed["prestressable"] and analysed["prestress_stable"]
+    assert analysed["self_stress_dim"] > 0
+    for key in ("nodes", "force_density", "member_force", "rest_length"):
+        assert np.array_equal(np.asarray(plain[key]), np.asarray(analysed[key])), key
+
+
 def test_sweep_against_the_cli(cli, tmp_path):
     spec = {"study": "tipover", "axes": {"sigma": [0.3, 0.6],
                                          "epsilon": {"from": 0.25, "to": 0.75, "step": 0.25}}}

@@ -332,3 +332,50 @@ fn the_sparse_stability_tests_agree_with_the_eigen_test_beyond_the_flex_guard() 
     assert_eq!(r.prestress_stable, Some(true), "{:?}", r.statics_warning);
     assert!(r.statics_warning.is_none(), "{:?}", r.statics_warning);
 }
+
+/// The margin LP's method by the fill of the sparse self-stress basis N: on a lattice whose N
+/// has filled in (more than `NULL_BASIS_FILL_MAX` times A's entries) the interior point on
+/// A D⁻¹ Aᵀ answers, on a tower whose N is local the LP over N; both give the dense path's
+/// margin, and a stress that is a self-stress.
+#[test]
+fn the_margin_lp_runs_on_the_smaller_formulation_and_agrees_with_the_dense_path() {
+    use tensegrity_statics::sparse::{equilibrium_matrix_sparse, NULL_BASIS_FILL_MAX};
+    let cases = [
+        (
+            test_models::double_layer_grid(8).unwrap(),
+            "8 × 8 lattice",
+            true,
+        ),
+        (
+            test_models::snelson_tower(40).unwrap(),
+            "tower of 40",
+            false,
+        ),
+    ];
+    for (s, what, fills) in cases {
+        let sparse = SparseStatics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let dense = Statics::with_settings(&s, StaticsSettings::default()).unwrap();
+        let a = equilibrium_matrix_sparse(&s, dense.dofs()).unwrap();
+        let fill =
+            sparse.sparse_self_stress_basis().values().len() as f64 / a.values().len() as f64;
+        assert_eq!(
+            fill > NULL_BASIS_FILL_MAX as f64,
+            fills,
+            "{what}: N is {fill:.1} × A"
+        );
+        let (p, q) = (
+            dense.prestressability().unwrap(),
+            sparse.prestressability().unwrap(),
+        );
+        assert!(p.prestressable && q.prestressable, "{what}");
+        assert!(
+            (p.margin - q.margin).abs() < 1e-9,
+            "{what}: margin {} (dense) vs {} (sparse)",
+            p.margin,
+            q.margin
+        );
+        let aq = a.mul_vec(q.stress.as_slice());
+        let worst = aq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(worst < 1e-8, "{what}: |A q| = {worst:e}");
+    }
+}

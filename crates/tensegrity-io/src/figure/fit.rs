@@ -66,6 +66,19 @@ fn breaks(t: &str) -> Vec<usize> {
 /// assert!(f.lines[0].ends_with('…') && f.size == 14.0 * MIN_SCALE);
 /// ```
 pub fn fit(t: &str, size: f64, room: f64, max_lines: usize) -> Fitted {
+    fit_at_least(t, size, 0.0, room, max_lines)
+}
+
+/// [`fit`], never set smaller than `min` px (nor than `size`): what does not fit at `min` is
+/// cut there (a small page keeps its text legible, cut rather than tiny).
+///
+/// ```
+/// use tensegrity_io::figure::fit::fit_at_least;
+/// let f = fit_at_least("isometric, across [m]", 9.0, 7.92, 60.0, 1);
+/// assert_eq!(f.size, 7.92);
+/// assert!(f.lines[0].ends_with('…'));
+/// ```
+pub fn fit_at_least(t: &str, size: f64, min: f64, room: f64, max_lines: usize) -> Fitted {
     if t.is_empty() {
         return Fitted {
             lines: Vec::new(),
@@ -73,8 +86,9 @@ pub fn fit(t: &str, size: f64, room: f64, max_lines: usize) -> Fitted {
         };
     }
     let spaces = breaks(t);
+    let smallest = (size * MIN_SCALE).max(min.min(size));
     for scale in [1.0, 0.9, 0.8, MIN_SCALE] {
-        let s = size * scale;
+        let s = (size * scale).max(smallest);
         if text::width(t, s) <= room {
             return Fitted {
                 lines: vec![t.to_string()],
@@ -99,10 +113,9 @@ pub fn fit(t: &str, size: f64, room: f64, max_lines: usize) -> Fitted {
             }
         }
     }
-    let s = size * MIN_SCALE;
     Fitted {
-        lines: vec![cut(t, &spaces, s, room)],
-        size: s,
+        lines: vec![cut(t, &spaces, smallest, room)],
+        size: smallest,
     }
 }
 

@@ -10,7 +10,7 @@
 //! common 10ᵉ shown once at the axis end (×10ᵉ). A log axis is labelled 10ⁿ at its decades
 //! (every second or more when there are many).
 
-use super::fit::{fit, Fitted};
+use super::fit::{fit_at_least, Fitted};
 use super::style::{series_style, Dash, Marker};
 use super::text::{self, superscript};
 use super::{Panel, Scale};
@@ -23,6 +23,40 @@ pub const LABEL_SIZE: f64 = 12.5;
 pub const TICK_SIZE: f64 = 11.0;
 /// A legend row's height.
 const ROW: f64 = 16.0;
+/// The smallest [`text_scale`]: 8 px tick labels (6 pt), 9 px axis labels, 10 px titles.
+pub const MIN_TEXT: f64 = 0.72;
+
+/// The size of a figure's text and of the gaps around it, relative to the usual, for panels
+/// of `w` × `h` px each: 1 where each is at least 105 px wide and 190 px high (a journal's
+/// column, 8.5 × 6 cm, and larger), in proportion below that, down to [`MIN_TEXT`] (a
+/// 6 × 4 cm figure: about 0.8 for one or two panels, 0.72 for three side by side), so a small
+/// page keeps room for its drawings.
+///
+/// ```
+/// use tensegrity_io::figure::layout::{text_scale, MIN_TEXT};
+/// assert_eq!(text_scale(321.0, 227.0), 1.0);
+/// assert!((text_scale(227.0, 151.0) - 151.0 / 190.0).abs() < 1e-12);
+/// assert_eq!(text_scale(75.0, 151.0), MIN_TEXT);
+/// ```
+pub fn text_scale(w: f64, h: f64) -> f64 {
+    (w / 105.0).min(h / 190.0).clamp(MIN_TEXT, 1.0)
+}
+
+/// The smallest a title or label is fitted at on a page of text scale `k` (px): on a small
+/// page the smallest tick label's size (7.92 px, 6 pt), so what does not fit is cut rather
+/// than set tinier; elsewhere no floor but [`fit_at_least`]'s own.
+pub(crate) fn smallest_text(k: f64) -> f64 {
+    if k < 1.0 {
+        MIN_TEXT * TICK_SIZE
+    } else {
+        0.0
+    }
+}
+
+/// The size of a colour bar's `tension` and `compression` at text scale `k` (px).
+pub(crate) fn colorbar_note_size(k: f64) -> f64 {
+    (9.0 * k).max(smallest_text(k))
+}
 
 /// A rectangle: left, top, width, height.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,6 +125,60 @@ pub struct Legend {
     /// The size of its text, rows and samples relative to the usual (1, or down to
     /// [`super::fit::MIN_SCALE`] for a legend that would take too much of a small figure).
     pub scale: f64,
+    /// Its rows and gaps at scale 1 ([`LEGEND`]; [`COMPACT_LEGEND`] on a small page).
+    pub geometry: LegendGeometry,
+}
+
+/// The rows and gaps of a legend at scale 1 (px): padding above the first row and below the
+/// last, a row's height, and across a column the gap before the sample, the sample's length,
+/// the gap before the text and the gap after it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LegendGeometry {
+    /// Above the first row.
+    pub top: f64,
+    /// A row's height.
+    pub row: f64,
+    /// Below the last row.
+    pub bottom: f64,
+    /// Before the sample.
+    pub left: f64,
+    /// The sample's length.
+    pub sample: f64,
+    /// Between the sample and the text.
+    pub gap: f64,
+    /// After the text.
+    pub right: f64,
+}
+
+/// The usual legend.
+pub const LEGEND: LegendGeometry = LegendGeometry {
+    top: 6.0,
+    row: ROW,
+    bottom: 2.0,
+    left: 8.0,
+    sample: 24.0,
+    gap: 6.0,
+    right: 8.0,
+};
+
+/// A legend on a small page ([`text_scale`] < 1): shorter samples, tighter rows and gaps.
+pub const COMPACT_LEGEND: LegendGeometry = LegendGeometry {
+    top: 3.0,
+    row: 13.5,
+    bottom: 3.0,
+    left: 5.0,
+    sample: 18.0,
+    gap: 4.0,
+    right: 5.0,
+};
+
+/// The legend geometry on a page of text scale `text`.
+pub(crate) fn legend_geometry(text: f64) -> LegendGeometry {
+    if text < 1.0 {
+        COMPACT_LEGEND
+    } else {
+        LEGEND
+    }
 }
 
 /// A text placed: its fitted lines and size, anchored in the middle at `at` (the first
@@ -104,13 +192,29 @@ pub struct Placed {
 }
 
 /// How [`place_with`] lays a panel out.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaceOptions {
     /// For a panel with equal axes, the scale (px per drawing unit) to draw it at, at most
     /// its own: the figure's one scale across its structure panels ([`super::arrange`]).
     pub scale: Option<f64>,
     /// The legend is the figure's (drawn once for all panels): none in the panel.
     pub shared_legend: bool,
+    /// The size of the text and of the gaps around it relative to the usual ([`text_scale`];
+    /// 1 by default).
+    pub text: f64,
+    /// The y-axis label is left out (a narrow panel right of one with the same label).
+    pub no_y_label: bool,
+}
+
+impl Default for PlaceOptions {
+    fn default() -> Self {
+        Self {
+            scale: None,
+            shared_legend: false,
+            text: 1.0,
+            no_y_label: false,
+        }
+    }
 }
 
 /// Everything placed of one panel.
@@ -137,6 +241,16 @@ pub struct PanelLayout {
     /// For equal axes, the scale the panel is drawn at (px per drawing unit); `None` for
     /// other panels.
     pub equal_scale: Option<f64>,
+    /// The size of the tick labels, the colour bar's text and the gaps relative to the usual
+    /// ([`PlaceOptions::text`]).
+    pub text: f64,
+}
+
+impl PanelLayout {
+    /// The size of the tick labels and the colour bar's text (px).
+    pub fn tick_size(&self) -> f64 {
+        TICK_SIZE * self.text
+    }
 }
 
 impl PanelLayout {
@@ -281,6 +395,24 @@ pub fn linear_ticks(
     (ticks, factor)
 }
 
+/// The ticks of a colour bar over ±`max_abs` on a bar `h` px tall, their labels at `k` of the
+/// usual size, and their common factor 10ᵉ.
+pub(crate) fn colorbar_ticks(max_abs: f64, h: f64, k: f64) -> (Vec<(f64, String)>, Option<i32>) {
+    linear_ticks(-max_abs, max_abs, h, 30.0 * k)
+}
+
+/// How far right of a colour bar's left edge its texts reach (px) — the bar (12 px), its tick
+/// labels `ticks_w` px wide, `tension` and `compression` above and below it (9 px) — at
+/// text scale `k`: its label goes right of them.
+pub(crate) fn colorbar_texts_w(ticks_w: f64, k: f64) -> f64 {
+    ((12.0 + 5.0) * k + ticks_w).max(text::width("compression", colorbar_note_size(k)))
+}
+
+/// The widest of `ticks` at `size` px.
+pub(crate) fn widest_label(ticks: &[(f64, String)], size: f64) -> f64 {
+    widest(ticks, size)
+}
+
 /// The decades of a log axis over [lo, hi] (exponents), every k-th when there are many.
 fn log_ticks(lo: f64, hi: f64, length: f64) -> Vec<(f64, String)> {
     let (a, b) = (lo.ceil() as i32, hi.floor() as i32);
@@ -362,37 +494,58 @@ pub(crate) fn legend_entries(panel: &Panel) -> Vec<(Glyph, String)> {
 /// The legend scales tried, largest first.
 pub(crate) const LEGEND_SCALES: [f64; 3] = [1.0, 0.85, super::fit::MIN_SCALE];
 
+/// The legend scales tried on a page of text scale `text`: none larger than it.
+pub(crate) fn legend_scales(text: f64) -> [f64; 3] {
+    LEGEND_SCALES.map(|s| s.min(text))
+}
+
 /// The width of one legend column at `scale`: sample, gap, the widest text, padding (px).
-fn legend_column(entries: &[(Glyph, String)], scale: f64) -> f64 {
+fn legend_column(entries: &[(Glyph, String)], scale: f64, g: LegendGeometry) -> f64 {
     let text = entries
         .iter()
         .map(|(_, t)| text::width(t, TICK_SIZE))
         .fold(0.0, f64::max);
-    scale * (8.0 + 24.0 + 6.0 + text + 8.0)
+    scale * (g.left + g.sample + g.gap + text + g.right)
 }
 
 /// The size of a legend of `entries` in `columns` columns at `scale` (px).
-pub(crate) fn legend_size(entries: &[(Glyph, String)], columns: usize, scale: f64) -> (f64, f64) {
+pub(crate) fn legend_size(
+    entries: &[(Glyph, String)],
+    columns: usize,
+    scale: f64,
+    g: LegendGeometry,
+) -> (f64, f64) {
     let columns = columns.clamp(1, entries.len().max(1));
     let rows = entries.len().div_ceil(columns);
     (
-        legend_column(entries, scale) * columns as f64,
-        scale * (6.0 + ROW * rows as f64 + 2.0),
+        legend_column(entries, scale, g) * columns as f64,
+        scale * (g.top + g.row * rows as f64 + g.bottom),
     )
 }
 
-/// A legend of `entries` in rows across `room_w` px, at the largest scale whose height is at
-/// most `max_h` px (else the smallest): its columns, scale and size.
+/// The columns of a legend of `entries` at `scale` that fit `room_w` px (at least one).
+pub(crate) fn legend_columns(
+    entries: &[(Glyph, String)],
+    room_w: f64,
+    scale: f64,
+    g: LegendGeometry,
+) -> usize {
+    ((room_w / legend_column(entries, scale, g)).floor() as usize).clamp(1, entries.len().max(1))
+}
+
+/// A legend of `entries` in rows across `room_w` px, at the largest scale up to `text`
+/// whose height is at most `max_h` px (else the smallest): its columns, scale and size.
 pub(crate) fn legend_rows(
     entries: &[(Glyph, String)],
     room_w: f64,
     max_h: f64,
+    text: f64,
 ) -> (usize, f64, (f64, f64)) {
+    let g = legend_geometry(text);
     let mut best = (1, 1.0, (0.0, 0.0));
-    for scale in LEGEND_SCALES {
-        let columns = ((room_w / legend_column(entries, scale)).floor() as usize)
-            .clamp(1, entries.len().max(1));
-        best = (columns, scale, legend_size(entries, columns, scale));
+    for scale in legend_scales(text) {
+        let columns = legend_columns(entries, room_w, scale, g);
+        best = (columns, scale, legend_size(entries, columns, scale, g));
         if best.2 .1 <= max_h {
             break;
         }
@@ -400,16 +553,17 @@ pub(crate) fn legend_rows(
     best
 }
 
-/// The widest tick label of an axis.
-fn widest(ticks: &[(f64, String)]) -> f64 {
+/// The widest tick label of an axis, at `size` px.
+fn widest(ticks: &[(f64, String)], size: f64) -> f64 {
     ticks
         .iter()
-        .map(|(_, t)| text::width(t, TICK_SIZE))
+        .map(|(_, t)| text::width(t, size))
         .fold(0.0, f64::max)
 }
 
-/// The axes over the data ranges for a plot of `w` × `h` px (ranges widened for equal axes).
-fn axes(panel: &Panel, x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> (Axis, Axis) {
+/// The axes over the data ranges for a plot of `w` × `h` px (ranges widened for equal axes),
+/// their labels at `k` of the usual size (and spacing).
+fn axes(panel: &Panel, x: (f64, f64), y: (f64, f64), w: f64, h: f64, k: f64) -> (Axis, Axis) {
     let (mut x, mut y) = (x, y);
     if panel.equal_axes {
         let s = ((x.1 - x.0) / w).max((y.1 - y.0) / h);
@@ -431,8 +585,8 @@ fn axes(panel: &Panel, x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> (Axis, A
         }
     };
     (
-        axis(x, panel.x_scale, w, 52.0),
-        axis(y, panel.y_scale, h, 36.0),
+        axis(x, panel.x_scale, w, 52.0 * k),
+        axis(y, panel.y_scale, h, 36.0 * k),
     )
 }
 
@@ -477,36 +631,66 @@ fn widened((lo, hi): (f64, f64), span: f64) -> (f64, f64) {
 /// Places `panel` in `area` under `options`.
 ///
 /// Margins come from the measured text: the title (fitted to the area's width, up to two
-/// lines, [`fit`]), the x tick labels and label below, the y tick labels (the widest of them)
+/// lines, [`super::fit::fit`]), the x tick labels and label below, the y tick labels (the widest of them)
 /// and label to the left, the colour bar to the right. A panel with equal axes gets a plot
 /// box of its data's own aspect, centred in the room left (so the structure fills its axes at
 /// any size), at the scale of `options` or the largest that fits. The legend goes inside the
 /// plot where it covers no data, else to the right of it when that takes at most ~35 % of the
-/// area's width, else in rows under the panel.
+/// area's width, else in rows under the panel. On a small page (`options.text` < 1: text,
+/// gaps and legend rows smaller, titles and labels cut rather than set under 6 pt) a legend
+/// that does not fit inside goes right of the plot or under the panel, whichever leaves the
+/// plot the larger smaller side.
 pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayout {
     let (x, y) = data_ranges(panel);
     let equal = panel.equal_axes;
+    // text and gaps at `k` of their usual size on a small page
+    let k = options.text;
+    let tick = TICK_SIZE * k;
     let entries = if options.shared_legend {
         Vec::new()
     } else {
         legend_entries(panel)
     };
-    let title = fit(&panel.title, TITLE_SIZE, area.w - 8.0, 2);
+    let title = fit_at_least(
+        &panel.title,
+        TITLE_SIZE * k,
+        smallest_text(k),
+        area.w - 8.0 * k,
+        2,
+    );
     // a common factor ×10ᵉ of the y labels sits above the plot, under the title
     // (probed on the area's height: at least the ticks the plot will have)
-    let factor = axes(panel, x, y, area.w, area.h).1.factor.is_some();
+    let factor = axes(panel, x, y, area.w, area.h, k).1.factor.is_some();
     let top = match title.lines.len() {
-        0 => 16.0,
-        n => 8.0 + title.size + (n - 1) as f64 * title.line_height() + 8.0,
-    } + if factor { TICK_SIZE + 2.0 } else { 0.0 };
-    let bottom = 8.0 + TICK_SIZE + 6.0 + LABEL_SIZE + 8.0;
-    let colorbar_w = if panel.colorbar.is_some() { 86.0 } else { 0.0 };
-    let build = |outside: f64, below: f64| {
-        let right = 14.0 + colorbar_w + outside;
+        0 => 16.0 * k,
+        n => 8.0 * k + title.size + (n - 1) as f64 * title.line_height() + 8.0 * k,
+    } + if factor { tick + 2.0 * k } else { 0.0 };
+    let bottom = (8.0 + 6.0 + 8.0 + LABEL_SIZE) * k + tick;
+    // the colour bar's column: bar, tick labels and its label turned (on a small page as
+    // wide as they need)
+    let colorbar_w = match &panel.colorbar {
+        None => 0.0,
+        Some(_) if k >= 1.0 => 86.0,
+        Some(bar) => {
+            let probe = colorbar_ticks(bar.max_abs, area.h - top - bottom, k).0;
+            16.0 * k + colorbar_texts_w(widest(&probe, tick), k) + 10.0 * k + tick
+        }
+    };
+    // the y-axis label's column, left of the tick labels
+    let y_label_w = if options.no_y_label {
+        0.0
+    } else {
+        (LABEL_SIZE + 8.0) * k
+    };
+    let margin = |ticks: &[(f64, String)]| (8.0 + 6.0) * k + y_label_w + widest(ticks, tick);
+    // the layout with `outside` px right of the plot and `below` px under the panel taken
+    // (by a legend), at the scale `fixed` for equal axes or the largest that fits
+    let build = |outside: f64, below: f64, fixed: Option<f64>| {
+        let right = 14.0 * k + colorbar_w + outside;
         // the y tick labels' width depends on the ticks, which depend on the height only
         let h = (area.h - top - bottom - below).max(20.0);
-        let (_, probe) = axes(panel, x, y, (area.w - 90.0 - right).max(20.0), h);
-        let mut left = 8.0 + LABEL_SIZE + 8.0 + widest(&probe.ticks) + 6.0;
+        let (_, probe) = axes(panel, x, y, (area.w - 90.0 * k - right).max(20.0), h, k);
+        let mut left = margin(&probe.ticks);
         let mut w = (area.w - left - right).max(20.0);
         let (mut plot, xr, yr, mut equal_scale) = (
             Rect {
@@ -519,7 +703,7 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
             y,
             None,
         );
-        let (mut xa, mut ya) = axes(panel, xr, yr, w, h);
+        let (mut xa, mut ya) = axes(panel, xr, yr, w, h, k);
         if equal {
             // the data's own aspect, at the figure's scale or the largest that fits a room
             // `w` wide: the scale, the ranges, the box and its axes
@@ -527,18 +711,19 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
             let span = |(lo, hi): (f64, f64)| (hi - lo).max(1e-9 * lo.abs().max(hi.abs()).max(1.0));
             let at = |w: f64| {
                 let fits = (w / span(x)).min(h / span(y));
-                let s = options.scale.map_or(fits, |s| s.min(fits));
-                let (xr, yr) = (widened(x, MIN_SIDE / s), widened(y, MIN_SIDE / s));
+                let s = fixed.map_or(fits, |s| s.min(fits));
+                let min_side = MIN_SIDE * k;
+                let (xr, yr) = (widened(x, min_side / s), widened(y, min_side / s));
                 let (pw, ph) = (((xr.1 - xr.0) * s).min(w), ((yr.1 - yr.0) * s).min(h));
                 let (xr, yr) = (widened(xr, pw / s), widened(yr, ph / s));
-                let (xa, ya) = axes(panel, xr, yr, pw, ph);
+                let (xa, ya) = axes(panel, xr, yr, pw, ph, k);
                 (s, xr, yr, pw, ph, xa, ya)
             };
             let (mut s, mut pw, mut ph);
             (s, _, _, pw, ph, xa, ya) = at(w);
             // the y tick labels of the box's own range may be wider than the probe's: a
             // wider margin, and the box fitted again to the narrower room
-            let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
+            let needed = margin(&ya.ticks);
             if needed > left {
                 left = needed;
                 w = (area.w - left - right).max(20.0);
@@ -552,22 +737,37 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
             };
             equal_scale = Some(s);
         } else {
-            let needed = 8.0 + LABEL_SIZE + 8.0 + widest(&ya.ticks) + 6.0;
+            let needed = margin(&ya.ticks);
             if needed > left {
                 left = needed;
                 w = (area.w - left - right).max(20.0);
-                (xa, ya) = axes(panel, xr, yr, w, h);
+                (xa, ya) = axes(panel, xr, yr, w, h, k);
                 plot.x = area.x + left;
                 plot.w = w;
             }
         }
-        let colorbar = panel.colorbar.as_ref().map(|_| Rect {
-            x: plot.x + plot.w + 16.0 + outside,
-            y: plot.y + 0.1 * plot.h,
-            w: 12.0,
-            h: 0.8 * plot.h,
+        // the colour bar leaves room above and below it for its `tension` and
+        // `compression`, inside the plot's height (clear of the title and the x labels)
+        let colorbar = panel.colorbar.as_ref().map(|_| {
+            let inset = (0.1 * plot.h).max(14.0 * k);
+            Rect {
+                x: plot.x + plot.w + 16.0 * k + outside,
+                y: plot.y + inset,
+                w: 12.0 * k,
+                h: (plot.h - 2.0 * inset).max(4.0),
+            }
         });
-        let (title, x_label, y_label) = texts(panel, area, plot, &title, widest(&ya.ticks));
+        // (on a small page a legend right of the plot may run down beside the x label)
+        let (title, x_label, y_label) = texts(
+            panel,
+            area,
+            plot,
+            &title,
+            widest(&ya.ticks, tick),
+            k,
+            !options.no_y_label,
+            if k < 1.0 { outside } else { 0.0 },
+        );
         PanelLayout {
             area,
             plot,
@@ -579,67 +779,120 @@ pub fn place_with(panel: &Panel, area: Rect, options: PlaceOptions) -> PanelLayo
             x_label,
             y_label,
             equal_scale,
+            text: k,
         }
     };
-    let mut layout = build(0.0, 0.0);
+    let mut layout = build(0.0, 0.0, options.scale);
     if entries.is_empty() {
         return layout;
     }
-    let (lw, lh) = legend_size(&entries, 1, 1.0);
-    if let Some(rect) = best_place(panel, &layout, (lw, lh)) {
-        layout.legend = Some(Legend {
-            rect,
-            entries,
-            columns: 1,
-            scale: 1.0,
-        });
-        return layout;
-    }
-    let room_h = area.h - top - bottom;
-    for scale in LEGEND_SCALES {
-        let (lw, lh) = legend_size(&entries, 1, scale);
-        if lw + 10.0 <= 0.35 * area.w && lh <= room_h {
-            layout = build(lw + 10.0, 0.0);
-            let rect = Rect {
-                x: layout.plot.x + layout.plot.w + 8.0,
-                y: layout.plot.y,
-                w: lw,
-                h: lh,
-            };
-            layout.legend = Some(Legend {
-                rect,
-                entries,
-                columns: 1,
-                scale,
-            });
-            return layout;
-        }
-    }
-    let (columns, scale, (lw, lh)) = legend_rows(&entries, area.w - 16.0, 0.3 * area.h);
-    layout = build(0.0, lh + 6.0);
-    let rect = Rect {
-        x: area.x + 0.5 * (area.w - lw).max(0.0),
-        y: area.y + area.h - lh - 4.0,
-        w: lw,
-        h: lh,
-    };
-    layout.legend = Some(Legend {
+    let g = legend_geometry(k);
+    let legend = |rect: Rect, entries: Vec<(Glyph, String)>, columns: usize, scale: f64| Legend {
         rect,
         entries,
         columns,
         scale,
-    });
-    layout
+        geometry: g,
+    };
+    let (lw, lh) = legend_size(&entries, 1, k, g);
+    if let Some(rect) = best_place(panel, &layout, (lw, lh), k) {
+        layout.legend = Some(legend(rect, entries, 1, k));
+        return layout;
+    }
+    let room_h = area.h - top - bottom;
+    // where a legend goes: to the right of the plot (`outside` its width) or in rows under
+    // the panel, at a scale, in columns
+    let right = |scale: f64, layout: PanelLayout| {
+        let (lw, lh) = legend_size(&entries, 1, scale, g);
+        // beside the plot's top (a small page: its middle, not above the title's room)
+        // (a small page: beside its middle, from under the title down to the page's foot,
+        // clear of the last x tick label where it runs down past the plot)
+        let p = layout.plot;
+        let (mut x, mut y) = (p.x + p.w + 8.0 * k, p.y);
+        if k < 1.0 {
+            y = (p.y + 0.5 * (p.h - lh))
+                .min(area.y + area.h - 4.0 * k - lh)
+                .max(area.y + top);
+            if y + lh > p.y + p.h {
+                x += 0.5 * widest(&layout.x.ticks, tick);
+            }
+        }
+        let rect = Rect { x, y, w: lw, h: lh };
+        PanelLayout {
+            legend: Some(legend(rect, entries.clone(), 1, scale)),
+            ..layout
+        }
+    };
+    let under = |columns: usize, scale: f64, layout: PanelLayout| {
+        let (lw, lh) = legend_size(&entries, columns, scale, g);
+        let rect = Rect {
+            x: area.x + 0.5 * (area.w - lw).max(0.0),
+            y: area.y + area.h - lh - 4.0 * k,
+            w: lw,
+            h: lh,
+        };
+        PanelLayout {
+            legend: Some(legend(rect, entries.clone(), columns, scale)),
+            ..layout
+        }
+    };
+    if k < 1.0 {
+        // a small page: of the places right of the plot and under the panel, at each scale,
+        // the one that leaves the plot the most room (its smaller side, each at its own
+        // scale, so every panel of a figure chooses as it did alone)
+        let mut best: Option<(f64, f64, usize, f64)> = None;
+        for scale in legend_scales(k) {
+            let (lw, lh) = legend_size(&entries, 1, scale, g);
+            let mut tries = Vec::new();
+            if lh <= area.h - top - 4.0 * k {
+                let outside = lw + 10.0 * k;
+                let probe = build(outside, 0.0, None);
+                tries.push((outside + 0.5 * widest(&probe.x.ticks, tick), 0.0, 0));
+            }
+            let columns = legend_columns(&entries, area.w - 16.0 * k, scale, g);
+            tries.push((
+                0.0,
+                legend_size(&entries, columns, scale, g).1 + 6.0 * k,
+                columns,
+            ));
+            for (outside, below, columns) in tries {
+                let l = build(outside, below, None);
+                let room = l.plot.w.min(l.plot.h);
+                if best.is_none_or(|b| room > b.0 + 1e-9) {
+                    best = Some((room, scale, columns, outside.max(below)));
+                }
+            }
+        }
+        let (_, scale, columns, taken) = best.expect("a legend place");
+        return if columns == 0 {
+            right(scale, build(taken, 0.0, options.scale))
+        } else {
+            under(columns, scale, build(0.0, taken, options.scale))
+        };
+    }
+    for scale in legend_scales(k) {
+        let (lw, lh) = legend_size(&entries, 1, scale, g);
+        if lw + 10.0 * k <= 0.35 * area.w && lh <= room_h {
+            return right(scale, build(lw + 10.0 * k, 0.0, options.scale));
+        }
+    }
+    let (columns, scale, (_, lh)) = legend_rows(&entries, area.w - 16.0 * k, 0.3 * area.h, k);
+    under(columns, scale, build(0.0, lh + 6.0 * k, options.scale))
 }
 
-/// The title, x label and y label of a panel whose plot is `plot` (`tick_w`: the widest y
-/// tick label), each fitted to its room in `area` and kept inside it.
+/// The title, x label and y label (none unless `y_label`) of a panel whose plot is `plot`
+/// (`tick_w`: the widest y tick label), at `k` of their usual size, each fitted to its room
+/// in `area` and kept inside it (the x label left of the `right` px a legend takes).
+#[allow(clippy::too_many_arguments)]
 fn texts(
     panel: &Panel,
     area: Rect,
     plot: Rect,
     title: &Fitted,
     tick_w: f64,
+    k: f64,
+    y_label: bool,
+    right: f64,
 ) -> (Placed, Placed, Placed) {
     // a centre that keeps a text of width `w` within [lo, hi]
     let centre = |c: f64, w: f64, lo: f64, hi: f64| c.min(hi - 0.5 * w).max(lo + 0.5 * w);
@@ -648,33 +901,48 @@ fn texts(
             centre(
                 plot.x + 0.5 * plot.w,
                 title.width(),
-                area.x + 4.0,
-                area.x + area.w - 4.0,
+                area.x + 4.0 * k,
+                area.x + area.w - 4.0 * k,
             ),
-            area.y + 8.0 + title.size,
+            area.y + 8.0 * k + title.size,
         ),
         text: title.clone(),
     };
-    let xl = fit(&panel.x_label, LABEL_SIZE, area.w - 8.0, 1);
+    let xl = fit_at_least(
+        &panel.x_label,
+        LABEL_SIZE * k,
+        smallest_text(k),
+        area.w - 8.0 * k - right,
+        1,
+    );
     let x_label = Placed {
         at: (
             centre(
                 plot.x + 0.5 * plot.w,
                 xl.width(),
-                area.x + 4.0,
-                area.x + area.w - 4.0,
+                area.x + 4.0 * k,
+                area.x + area.w - 4.0 * k - right,
             ),
-            plot.y + plot.h + 6.0 + TICK_SIZE + 6.0 + LABEL_SIZE,
+            plot.y + plot.h + (6.0 + 6.0) * k + TICK_SIZE * k + LABEL_SIZE * k,
         ),
         text: xl,
     };
     // beside the plot, below the title: it may run down past the plot to the x tick labels,
     // not up into the title nor down to the x label
-    let (lo, hi) = (plot.y, (plot.y + plot.h + 20.0).min(area.y + area.h - 4.0));
-    let yl = fit(&panel.y_label, LABEL_SIZE, hi - lo, 1);
+    let (lo, hi) = (
+        plot.y,
+        (plot.y + plot.h + 20.0 * k).min(area.y + area.h - 4.0 * k),
+    );
+    let yl = fit_at_least(
+        if y_label { &panel.y_label } else { "" },
+        LABEL_SIZE * k,
+        smallest_text(k),
+        hi - lo,
+        1,
+    );
     let y_label = Placed {
         at: (
-            (plot.x - tick_w - 14.0).max(area.x + 4.0 + yl.size),
+            (plot.x - tick_w - 14.0 * k).max(area.x + 4.0 * k + yl.size),
             centre(plot.y + 0.5 * plot.h, yl.width(), lo, hi),
         ),
         text: yl,
@@ -717,16 +985,17 @@ fn sampled(panel: &Panel, layout: &PanelLayout) -> Vec<(f64, f64)> {
     out
 }
 
-/// The legend box inside the plot covering no sampled point, in order of preference (upper
+/// The legend box (`k`: the text scale) inside the plot covering no sampled point, in order of preference (upper
 /// right, upper left, lower right, lower left, top and bottom centre, centre right and left);
 /// `None` when every place covers some.
-fn best_place(panel: &Panel, layout: &PanelLayout, (w, h): (f64, f64)) -> Option<Rect> {
+fn best_place(panel: &Panel, layout: &PanelLayout, (w, h): (f64, f64), k: f64) -> Option<Rect> {
     let p = layout.plot;
-    if w + 12.0 > p.w || h + 12.0 > p.h {
+    let gap = 6.0 * k;
+    if w + 2.0 * gap > p.w || h + 2.0 * gap > p.h {
         return None;
     }
-    let (l, r) = (p.x + 6.0, p.x + p.w - 6.0 - w);
-    let (t, b) = (p.y + 6.0, p.y + p.h - 6.0 - h);
+    let (l, r) = (p.x + gap, p.x + p.w - gap - w);
+    let (t, b) = (p.y + gap, p.y + p.h - gap - h);
     let (cx, cy) = (p.x + 0.5 * (p.w - w), p.y + 0.5 * (p.h - h));
     let candidates = [
         (r, t),

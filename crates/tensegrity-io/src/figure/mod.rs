@@ -334,6 +334,10 @@ impl Panel {
     }
 }
 
+/// The smallest side of a panel (px, 0.75 in): [`Figure::page_px`] refuses a page that
+/// leaves a panel less.
+pub const MIN_PANEL_PX: f64 = 72.0;
+
 /// A figure: panels side by side, each `panel_size` pixels unless a size is given.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Figure {
@@ -414,7 +418,8 @@ impl Figure {
     }
 
     /// The figure's size in CSS pixels under `options` (its own size unless one is given),
-    /// checked: at least one panel, each at least 80 × 80 px, at most 20000 px a side.
+    /// checked: at least one panel, each at least [`MIN_PANEL_PX`] px a side (three panels
+    /// side by side on a 6 cm wide page), the figure at most 20000 px a side.
     pub fn page_px(&self, options: &RenderOptions) -> Result<(f64, f64)> {
         if self.panels.is_empty() {
             return Err(IoError::InvalidFigure {
@@ -429,9 +434,9 @@ impl Figure {
             }
         };
         let pw = w / self.panels.len() as f64;
-        if pw < 80.0 || h < 80.0 || w > 20_000.0 || h > 20_000.0 {
+        if pw < MIN_PANEL_PX || h < MIN_PANEL_PX || w > 20_000.0 || h > 20_000.0 {
             return Err(IoError::InvalidFigure {
-                reason: "each panel must be at least 80 × 80 px (0.84 in) and the figure at most 20000 px a side",
+                reason: "each panel must be at least 72 × 72 px (0.75 in) and the figure at most 20000 px a side",
             });
         }
         Ok((w, h))

@@ -169,15 +169,22 @@ fn write_panel(out: &mut String, panel: &Panel, l: &PanelLayout, k: usize) {
     );
     placed(out, &l.title, false);
     write_axes(out, panel, l);
-    let _ = writeln!(
-        out,
-        "<clipPath id=\"plot{k}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath>\n<g clip-path=\"url(#plot{k})\">",
-        num(p.x),
-        num(p.y),
-        num(p.w),
-        num(p.h)
-    );
-    write_data(out, panel, l);
+    // the data clipped to the plot box only where it reaches the box's edge: a clip costs
+    // the rasteriser a layer of the whole page (a fifth of an animation frame's time)
+    let mut data = String::new();
+    if write_data(&mut data, panel, l) {
+        let _ = writeln!(
+            out,
+            "<clipPath id=\"plot{k}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath>\n<g class=\"data\" clip-path=\"url(#plot{k})\">",
+            num(p.x),
+            num(p.y),
+            num(p.w),
+            num(p.h)
+        );
+    } else {
+        out.push_str("<g class=\"data\">\n");
+    }
+    out.push_str(&data);
     out.push_str("</g>\n");
     let _ = writeln!(
         out,
@@ -219,46 +226,34 @@ fn write_axes(out: &mut String, panel: &Panel, l: &PanelLayout) {
         );
     };
     let bottom = p.y + p.h;
+    // tick labels and gaps at the layout's text scale (smaller on a small page)
+    let (size, k) = (l.tick_size(), l.text);
     for (v, t) in &l.x.ticks {
         let x = l.px((*v, l.y.lo)).0;
         if panel.grid {
             grid(out, (x, p.y), (x, bottom));
         }
-        tick(out, (x, bottom), (x, bottom + 4.0));
-        label(
-            out,
-            t,
-            (x, bottom + 6.0 + TICK_SIZE),
-            TICK_SIZE,
-            "middle",
-            false,
-        );
+        tick(out, (x, bottom), (x, bottom + 4.0 * k));
+        label(out, t, (x, bottom + 6.0 * k + size), size, "middle", false);
     }
     for (v, t) in &l.y.ticks {
         let y = l.px((l.x.lo, *v)).1;
         if panel.grid {
             grid(out, (p.x, y), (p.x + p.w, y));
         }
-        tick(out, (p.x - 4.0, y), (p.x, y));
-        label(
-            out,
-            t,
-            (p.x - 6.0, y + 0.35 * TICK_SIZE),
-            TICK_SIZE,
-            "end",
-            false,
-        );
+        tick(out, (p.x - 4.0 * k, y), (p.x, y));
+        label(out, t, (p.x - 6.0 * k, y + 0.35 * size), size, "end", false);
     }
     placed(out, &l.x_label, false);
     placed(out, &l.y_label, true);
     let x_label_y = l.x_label.at.1;
     if let Some(e) = l.x.factor {
         let t = format!("×{}", layout::power_of_ten(e));
-        label(out, &t, (p.x + p.w, x_label_y), TICK_SIZE, "end", false);
+        label(out, &t, (p.x + p.w, x_label_y), size, "end", false);
     }
     if let Some(e) = l.y.factor {
         let t = format!("×{}", layout::power_of_ten(e));
-        label(out, &t, (p.x, p.y - 4.0), TICK_SIZE, "start", false);
+        label(out, &t, (p.x, p.y - 4.0 * k), size, "start", false);
     }
 }
 
@@ -437,11 +432,24 @@ fn mark(out: &mut String, shape: MarkShape, (x, y): (f64, f64), color: (u8, u8, 
     }
 }
 
-fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) {
+/// Writes the panel's data (series, arrows, marks, notes); whether any of it reaches within
+/// its own reach (half a line's width, a marker, an arrow head, any note) of the plot box's
+/// edge, so that it needs the clip.
+fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) -> bool {
+    let p = l.plot;
+    let near_edge = |(x, y): (f64, f64), reach: f64| {
+        !(x - reach > p.x && x + reach < p.x + p.w && y - reach > p.y && y + reach < p.y + p.h)
+    };
+    let mut clip = !panel.notes.is_empty();
     let strokes = layout::strokes(panel);
     let lines = panel.series.iter().zip(panel.drawn_points()).zip(&strokes);
     for (k, ((s, pts), st)) in lines.enumerate() {
         let px: Vec<(f64, f64)> = pts.iter().map(|&p| l.px(p)).collect();
+        let reach = match st.markers {
+            Markers::None => 0.5 * s.width + 1.0,
+            _ => 0.5 * s.width + 6.0,
+        };
+        clip = clip || px.iter().any(|&q| near_edge(q, reach));
         polyline(out, &px, st.color, s.width, st.dash);
         let at = match st.markers {
             Markers::None => Vec::new(),
@@ -455,11 +463,14 @@ fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) {
     }
     for a in &panel.arrows {
         if let (Some(p), Some(q)) = (panel.to_drawing(a.from), panel.to_drawing(a.to)) {
-            arrow(out, l.px(p), l.px(q), a.color);
+            let (p, q) = (l.px(p), l.px(q));
+            clip = clip || near_edge(p, 8.0) || near_edge(q, 8.0);
+            arrow(out, p, q, a.color);
         }
     }
     for m in &panel.marks {
         if let Some(p) = panel.to_drawing(m.at) {
+            clip = clip || near_edge(l.px(p), 8.0);
             mark(out, m.shape, l.px(p), m.color);
         }
     }
@@ -471,6 +482,7 @@ fn write_data(out: &mut String, panel: &Panel, l: &PanelLayout) {
             out.push_str("</g>\n");
         }
     }
+    clip
 }
 
 fn write_legend(out: &mut String, legend: &layout::Legend) {
@@ -484,12 +496,12 @@ fn write_legend(out: &mut String, legend: &layout::Legend) {
         num(r.h)
     );
     let column_w = r.w / legend.columns.max(1) as f64;
-    let k = legend.scale;
+    let (k, g) = (legend.scale, legend.geometry);
     for (i, (glyph, t)) in legend.entries.iter().enumerate() {
         let (row, column) = (i / legend.columns.max(1), i % legend.columns.max(1));
-        let y = r.y + k * (6.0 + 16.0 * row as f64 + 8.0);
+        let y = r.y + k * (g.top + g.row * row as f64 + 0.5 * g.row);
         let x = r.x + column_w * column as f64;
-        let (x0, x1) = (x + 8.0 * k, x + 32.0 * k);
+        let (x0, x1) = (x + g.left * k, x + (g.left + g.sample) * k);
         match *glyph {
             Glyph::Line {
                 color,
@@ -514,7 +526,7 @@ fn write_legend(out: &mut String, legend: &layout::Legend) {
         label(
             out,
             t,
-            (x1 + 6.0 * k, y + 0.35 * TICK_SIZE * k),
+            (x1 + g.gap * k, y + 0.35 * TICK_SIZE * k),
             TICK_SIZE * k,
             "start",
             false,
@@ -546,7 +558,10 @@ fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize, l:
         num(r.w),
         num(r.h)
     );
-    let (ticks, factor) = layout::linear_ticks(-bar.max_abs, bar.max_abs, r.h, 30.0);
+    // its text and gaps at the layout's text scale (smaller on a small page)
+    let (size, k) = (l.tick_size(), l.text);
+    let (ticks, factor) = layout::colorbar_ticks(bar.max_abs, r.h, k);
+    let ticks_w = layout::widest_label(&ticks, size);
     for (v, t) in ticks {
         let y = r.y + r.h * (1.0 - (v / bar.max_abs + 1.0) / 2.0);
         let _ = writeln!(
@@ -554,14 +569,14 @@ fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize, l:
             "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#000000\" stroke-width=\"0.8\"/>",
             num(r.x + r.w),
             num(y),
-            num(r.x + r.w + 3.0),
+            num(r.x + r.w + 3.0 * k),
             num(y)
         );
         label(
             out,
             &t,
-            (r.x + r.w + 5.0, y + 0.35 * TICK_SIZE),
-            TICK_SIZE,
+            (r.x + r.w + 5.0 * k, y + 0.35 * size),
+            size,
             "start",
             false,
         );
@@ -571,26 +586,32 @@ fn write_colorbar(out: &mut String, bar: &super::ColorBar, r: Rect, k: usize, l:
         title = format!("{title} ×{}", layout::power_of_ten(e));
     }
     // turned, beside the bar: fitted to the panel's height below its title
-    let (lo, hi) = (l.plot.y, l.area.y + l.area.h - 4.0);
-    let fitted = super::fit::fit(&title, TICK_SIZE, hi - lo, 1);
+    // (and above a legend under the panel)
+    let mut hi = l.area.y + l.area.h - 4.0 * k;
+    if let Some(legend) = l.legend.as_ref().filter(|g| g.rect.y > l.plot.y + l.plot.h) {
+        hi = hi.min(legend.rect.y - 2.0 * k);
+    }
+    let lo = l.plot.y;
+    let fitted = super::fit::fit_at_least(&title, size, layout::smallest_text(k), hi - lo, 1);
     let half = 0.5 * fitted.width();
     let y = (r.y + 0.5 * r.h).min(hi - half).max(lo + half);
+    // its baseline right of the tick labels (on a small page just clear of them)
+    let x = if k < 1.0 {
+        r.x + layout::colorbar_texts_w(ticks_w, k) + 4.0 * k + 0.8 * fitted.size
+    } else {
+        r.x + r.w + 56.0
+    };
     for line in &fitted.lines {
-        label(
-            out,
-            line,
-            (r.x + r.w + 56.0, y),
-            fitted.size,
-            "middle",
-            true,
-        );
+        label(out, line, (x, y), fitted.size, "middle", true);
     }
-    label(out, "tension", (r.x, r.y - 5.0), 9.0, "start", false);
+    // above and below the bar, in the room the layout leaves inside the plot's height
+    let note = layout::colorbar_note_size(k);
+    label(out, "tension", (r.x, r.y - 5.0 * k), note, "start", false);
     label(
         out,
         "compression",
-        (r.x, r.y + r.h + 12.0),
-        9.0,
+        (r.x, r.y + r.h + 12.0 * k),
+        note,
         "start",
         false,
     );

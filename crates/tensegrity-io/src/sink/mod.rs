@@ -68,6 +68,7 @@ mod dir;
 mod file;
 mod gif;
 mod lock;
+pub mod lzw;
 mod rolling;
 mod simulation;
 pub(crate) mod staged;

@@ -12,7 +12,8 @@ vector or matrix a numpy array. A scene argument is a path, TOML text or a
 The functions are built from the engine's registry of commands (:func:`commands`), so their
 keywords, defaults and docstrings are the engine's own descriptions. Long computations run
 with the GIL released and stop on Ctrl-C (:class:`~tensegrity.errors.Interrupted`, with the
-results so far). Bad input raises :class:`~tensegrity.errors.InputError` (a ``ValueError``)
+results so far); ``simulate``, ``roll``, ``tipover`` (dynamic or rolling), ``tbar_roll`` and
+``sweep`` take ``progress=`` (a callable ``(done, total)``, or ``True`` for a bar). Bad input raises :class:`~tensegrity.errors.InputError` (a ``ValueError``)
 with the command line's message.
 
 The command line's exports are :func:`export_mjcf`, :func:`export_json` and
@@ -38,7 +39,7 @@ from ._commands import read_rows, sweep
 from ._exports import export_json, export_mjcf, export_schema, figure, figures
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
-from .results import Result
+from .results import Result, SweepResult, SweepRow
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -48,7 +49,7 @@ __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
-    "Structure", "Simulator", "Observation", "Actuator", "Result", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "Structure", "Simulator", "Observation", "Actuator", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
 

@@ -84,6 +84,7 @@ class StaticsResult(Result):
     sizing_error: Any
     statics_method: Any
     statics_warning: Any
+    def plot(self, structure: Any = ..., ax: Any = ...) -> Any: ...
 
 
 class SimulateResult(Result):
@@ -185,6 +186,7 @@ class ToroidResult(Result):
     mass_kg: float
     I1: float
     statics_warning: Any
+    def plot(self, structure: Any = ..., ax: Any = ...) -> Any: ...
 
 
 class RollResult(Result):
@@ -342,6 +344,7 @@ class TipoverResult(Result):
     downhill: float
     history: Dict[str, np.ndarray]
     grid: Dict[str, np.ndarray]
+    def plot(self, ax: Any = ...) -> Any: ...
 
 
 class MichellResult(Result):
@@ -372,6 +375,7 @@ class MichellResult(Result):
     material: Any
     prestress: float
     normalized_yield_mass: Any
+    def plot(self, ax: Any = ...) -> Any: ...
 
 
 class MichellOptimizeResult(Result):
@@ -524,6 +528,7 @@ class TbarResult(Result):
     rows: List[Dict[str, Any]]
     loop_study: Dict[str, np.ndarray]
     mass_sweep: Dict[str, np.ndarray]
+    def plot(self, ax: Any = ...) -> Any: ...
 
 
 class TbarRollResult(Result):
@@ -584,6 +589,7 @@ class TbarRollResult(Result):
     valid: Any
     table: Dict[str, np.ndarray]
     history: Dict[str, np.ndarray]
+    def plot(self, ax: Any = ...) -> Any: ...
 
 
 class FormfindResult(Result):
@@ -625,6 +631,7 @@ class FormfindResult(Result):
     height: float
     max_bar_length: float
     prestress: float
+    def plot(self, structure: Any = ..., ax: Any = ...) -> Any: ...
 
 
 class SolveResult(Result):
@@ -660,6 +667,41 @@ class SolveResult(Result):
     slack_strings: Any
     stability: Any
     stop: Any
+    def plot(self, ax: Any = ...) -> Any: ...
+
+
+class SweepRow(Result):
+    """One row of a sweep (:meth:`SweepResult.rows`, :meth:`SweepResult.row`): a dict of
+    the row's CSV cells by column name whose keys are also attributes (``row.case``,
+    ``row.sides``; a dotted name such as ``mass.mass_kg`` by key), each a Python scalar:
+    ``int`` in a column of whole numbers, ``float`` in a numeric one (``nan`` for an empty
+    cell), ``str`` in a text one (``status``, ``message``, choices).
+    """
+
+
+class SweepResult(Result):
+    """The rows of a sweep (:func:`tensegrity.sweep`, :func:`tensegrity.read_rows`): a dict
+    of numpy columns, one per column of the CSV in its order (``r["case"]``, ``r.sides``;
+    ``to_dict()`` gives the plain dict), with the rows as objects and the columns' units.
+
+    ``rows()``
+        Every row as a :class:`SweepRow` (its cells as Python scalars).
+    ``row(k)``
+        Row ``k`` (0-based, negative from the end) as a :class:`SweepRow`.
+    ``columns``
+        The columns as ``(name, unit)`` pairs in the CSV's order; ``unit`` is the spec's
+        (the sweep's ``# units:`` line: a parameter's unit from the registry for an axis,
+        the report column's for a result), ``None`` where it has none (counts, flags, text,
+        dimensionless numbers) or where the file read gives none.
+    ``plot(x, y, group=None, ax=None)``
+        Column ``y`` against column ``x`` (matplotlib), one line per value of ``group``.
+    """
+    def __init__(self, columns: Any = ..., units: Optional[Dict[str, str]] = ...) -> None: ...
+    @property
+    def columns(self) -> List[Tuple[str, Optional[str]]]: ...
+    def rows(self) -> List[SweepRow]: ...
+    def row(self, k: int) -> SweepRow: ...
+    def plot(self, x: str, y: str, group: Optional[str] = ..., ax: Any = ...) -> Any: ...
 
 
 def statics(
@@ -1044,6 +1086,7 @@ def tipover(
     grid: bool = ...,
     grid_points: Optional[int] = ...,
     eps_max: Optional[float] = ...,
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -1144,6 +1187,8 @@ def tipover(
         Grid points per axis (default 50).
     eps_max : float, optional
         Largest ε of the grid (default 1.0).
+    progress : callable or bool, optional
+        With dynamic or rolling only: ``callback(done, total)`` (simulated seconds, end time; paced by the work estimate until the run ends); ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1458,6 +1503,7 @@ def tbar_roll(
     ground_damping: Optional[float] = ...,
     strict: bool = ...,
     convergence_check: bool = ...,
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -1539,6 +1585,8 @@ def tbar_roll(
         chaotic quantities), in parallel, and report each headline quantity's change,
         extrapolated error and status in `convergence`; an unconverged result is not valid
     The result's ``table``: the rows of ``tbar roll --out``; its ``history``: the 1 ms samples of the first row's T-bar run (TbarRollResult lists both).
+    progress : callable or bool, optional
+        ``callback(done, total)`` (simulated seconds of every row's T-bar run, tread counts × t_end); ``True``: a tqdm bar, else lines on stderr. Default: none.
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1569,6 +1617,7 @@ def formfind(
     bar_mass: float = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
+    analyse: bool = ...,
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
@@ -1611,6 +1660,11 @@ def formfind(
         and positive. Default: 1e-12
     max_iterations : int
         Iteration cap of the iterative methods; must be at least 1. Default: 10000
+    analyse : bool
+        Analyse the found form: self-stress dimension (the rank of the equilibrium matrix),
+        prestressability (the prestress-margin LP where the force densities are no witness)
+        and prestress stability, the costly part on a large form; without it those report
+        fields are null
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
@@ -1688,13 +1742,16 @@ def sweep(
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, np.ndarray]:
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
+) -> SweepResult:
     """Run a parameter study (``tensegrity sweep SPEC --out FILE``): the spec as a dict,
-    TOML text or a path; ``threads`` workers; the rows as a dict of numpy columns."""
+    TOML text or a path; ``threads`` workers; ``progress``: ``callback(done, total)`` (cases
+    written, cases) or ``True`` for a bar; the rows as a SweepResult, a dict of numpy
+    columns with ``rows()``, ``row(k)`` and ``columns`` (names with units)."""
     ...
 
-def read_rows(path: Union[str, "os.PathLike[str]"]) -> Dict[str, np.ndarray]:
-    """The rows of a sweep's CSV as a dict of numpy columns."""
+def read_rows(path: Union[str, "os.PathLike[str]"]) -> SweepResult:
+    """The rows of a sweep's CSV as a SweepResult (a dict of numpy columns)."""
     ...
 
 def run(command: str, **kwargs: Any) -> Dict[str, Any]:

@@ -145,7 +145,10 @@ def finish(f, pyname, sig, summary, params, doc_extra="", extra_doc=""):
 
     def typed(*args, **kwargs):
         from .results import wrap
-        return wrap(pyname, f(*args, **kwargs))
+        report = f(*args, **kwargs)
+        # the call's arguments kept with the result: its plot() draws what they describe
+        # (bound after the call, which has checked them and named any error its own way)
+        return wrap(pyname, report, inputs=sig.bind(*args, **kwargs).arguments)
 
     typed.__name__ = typed.__qualname__ = pyname
     typed.__signature__ = sig
@@ -242,20 +245,35 @@ def _samples(raw):
     return out
 
 
-#: The documentation of the ``progress`` keyword.
-PROGRESS_DOC = """Reports the progress of the run: ``callback(done, total)`` (simulated seconds
-        and the end time) at most every 50 ms while it runs and once at its end, from the
-        calling thread (an exception it raises stops the run as Ctrl-C does, with the
-        results so far); ``True``: a ``tqdm`` bar (``tqdm.auto``, in notebooks too) when tqdm
-        is installed, else a line on stderr every few seconds. Default: none."""
+def progress_doc(measure, note="", lead=""):
+    """The documentation of a ``progress`` keyword whose ``(done, total)`` are ``measure``
+    (``note``: what else to know about this call's count; ``lead``: a sentence before)."""
+    text = (lead + "Reports the progress of the run: ``callback(done, total)`` ({}) at most "
+            "every 50 ms while it runs and once at its end, from the calling thread, ``done`` "
+            "never decreasing (an exception it raises stops the run as Ctrl-C does, with the "
+            "results so far); ``True``: a ``tqdm`` bar (``tqdm.auto``, in notebooks too) when "
+            "tqdm is installed, else a line on stderr every few seconds; any other value but "
+            "``None`` or ``False`` is a TypeError. {}Default: none.").format(
+        measure, (note.strip() + " ") if note else "")
+    indent = " " * 8
+    return textwrap.fill(text, 88, initial_indent=indent, subsequent_indent=indent).lstrip()
+
+
+#: The documentation of the ``progress`` keyword of ``simulate`` and ``roll``.
+PROGRESS_DOC = progress_doc("simulated seconds and the end time")
 
 
 def _reporter(progress, what, unit):
-    """The callback of a ``progress`` keyword (``None`` for none)."""
-    if progress is None or progress is False:
+    """The callback of a ``progress`` keyword (``None`` for none); a value that is neither
+    a callable nor a flag is a TypeError naming the keyword."""
+    if progress is None or (isinstance(progress, (bool, np.bool_)) and not progress):
         return None
     if callable(progress):
         return progress
+    if not isinstance(progress, (bool, np.bool_)):
+        raise TypeError(f"{what}(): progress = {progress!r}: expected a callable "
+                        "progress(done, total), True (a bar or lines on stderr), or "
+                        "None/False (none)")
     try:
         from tqdm.auto import tqdm
     except ImportError:
@@ -396,7 +414,8 @@ def make_tipover(summary, doc_extra):
     modes = ("tipover", "tipover_dynamic", "tipover_rolling")
     params = params_of(*modes)
     sig = _signature(params, (), (("dynamic", False), ("rolling", False), ("grid", False),
-                                  ("grid_points", None), ("eps_max", None)))
+                                  ("grid_points", None), ("eps_max", None),
+                                  ("progress", None)))
 
     def tipover(*args, **kwargs):
         bound = _call("tipover", sig, args, kwargs)
@@ -404,6 +423,10 @@ def make_tipover(summary, doc_extra):
         dynamic, rolling = bool(bound.pop("dynamic", False)), bool(bound.pop("rolling", False))
         grid = bool(bound.pop("grid", False))
         grid_points, eps_max = bound.pop("grid_points", None), bound.pop("eps_max", None)
+        report = _reporter(bound.pop("progress", None), "tipover", "s simulated")
+        if report is not None and not (dynamic or rolling):
+            raise TypeError("tipover(): progress applies to the timed runs only (dynamic=True "
+                            "or rolling=True)")
         if dynamic and rolling:
             raise TypeError("tipover(): dynamic and rolling cannot be used together")
         if grid and (dynamic or rolling):
@@ -422,7 +445,10 @@ def make_tipover(summary, doc_extra):
             if v is not None:
                 raise _input(name, f"{name} applies to the grid only (grid=True)")
         if dynamic or rolling:
-            out, raw = _native.tipover_history(rolling, values, limits, list(modes))
+            try:
+                out, raw = _native.tipover_history(rolling, values, limits, list(modes), report)
+            finally:
+                _close(report)
             cols = (_native.TIPOVER_ROLLING_COLUMNS if rolling
                     else _native.TIPOVER_DYNAMIC_COLUMNS)
             out["history"] = _columns(raw, cols)
@@ -447,7 +473,15 @@ def make_tipover(summary, doc_extra):
     grid_points : int, optional
         Grid points per axis, at least 2 (``--grid-points``). Default: 50.
     eps_max : float, optional
-        Largest ε of the grid, positive (``--eps-max``). Default: 1.0."""
+        Largest ε of the grid, positive (``--eps-max``). Default: 1.0.
+    progress : callable or bool, optional
+        """ + progress_doc(
+        "simulated seconds and the run's end time: ``settle + ramp_time + hold`` with "
+        "``dynamic``, ``t_end`` with ``rolling``",
+        "The library runs the wheel in one call and cannot count as it goes: until the run "
+        "ends, ``done`` is the elapsed time against the engine's work estimate scaled to the "
+        "end time (at most 99 % of it); at its end, the time of its last sample.",
+        lead="With ``dynamic`` or ``rolling`` only (else a TypeError). ")
     return finish(tipover, "tipover", sig, summary, params, doc_extra, extra_doc)
 
 
@@ -567,15 +601,19 @@ def _sequence(value, name):
 
 def make_tbar_roll(summary, doc_extra):
     params = REGISTRY["tbar_roll"]["params"]
-    sig = _signature(params)
+    sig = _signature(params, (), (("progress", None),))
     row_columns = [c["name"][len("rows.0."):] for c in REGISTRY["tbar_roll"]["columns"]
                    if c["name"].startswith("rows.0.")]
 
     def tbar_roll(*args, **kwargs):
         bound = _call("tbar_roll", sig, args, kwargs)
         limits = _limits(bound)
+        report = _reporter(bound.pop("progress", None), "tbar_roll", "s simulated")
         values = _given(bound)
-        out, raw = _native.tbar_roll(values, limits)
+        try:
+            out, raw = _native.tbar_roll(values, limits, report)
+        finally:
+            _close(report)
         out["table"] = {c: _cells([_lookup(row, c) for row in out["rows"]])
                         for c in row_columns}
         out["history"] = _columns(raw, _native.ROLL_HISTORY_COLUMNS)
@@ -585,7 +623,15 @@ def make_tbar_roll(summary, doc_extra):
     The result's ``table`` holds the command line's ``tbar roll --out`` CSV as numpy columns
     (one entry per number of treads; its columns and units: ``TbarRollResult``), its
     ``history`` every 1 ms sample of the first row's T-bar run (the columns of ``roll``'s
-    history); each row's ``tbar.convergence`` is the run's convergence object."""
+    history); each row's ``tbar.convergence`` is the run's convergence object.
+
+    progress : callable or bool, optional
+        """ + progress_doc(
+        "simulated seconds of every row's T-bar run and their total, the number of tread "
+        "counts times t_end",
+        "Row k counts from k·t_end; its toroid column and tip-over run after its T-bar run, "
+        "so the count holds at (k+1)·t_end meanwhile. With a callback each tread count runs "
+        "as a call of its own (the rows are the same to the bit).")
     return finish(tbar_roll, "tbar_roll", sig, summary, params, doc_extra, extra_doc)
 
 
@@ -619,19 +665,28 @@ resume : bool, optional
     Continue the rows already in ``out``.
 units : bool, optional
     Write the ``# units:`` line into ``out``.
+progress : callable or bool, optional
+    """ + progress_doc(
+    "the cases in the file and the cases of the sweep (of its shard)",
+    "Counted by the sweeps crate's own hook, the one the command line's bar is fed by: a "
+    "case counts once its row is written, in case order; with ``resume`` the rows already "
+    "in the file count from the start.").replace("\n        ", "\n    ") + """
 """ + _LIMITS_DOC + """
 Returns
 -------
-dict
-    One entry per column of the CSV, in its order: numeric columns as float64 (int64 for
-    whole numbers) numpy arrays, an empty cell NaN; text columns (``error``, choices) as
-    numpy arrays of str. A result column that repeats an axis column of the same name with
-    the same values is given once.
+tensegrity.results.SweepResult
+    A dict with one entry per column of the CSV, in its order: numeric columns as float64
+    (int64 for whole numbers) numpy arrays, an empty cell NaN; text columns (``status``,
+    ``message``, choices) as numpy arrays of str. A result column that repeats an axis
+    column of the same name with the same values is given once. ``rows()`` (or ``row(k)``)
+    gives the rows as :class:`tensegrity.results.SweepRow` objects (the cells as Python
+    scalars, the column names as attributes), ``columns`` the names with their units, and
+    ``to_dict()`` the plain dict of columns.
 """
 
 
 def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
-          max_memory=None, max_work=None, max_output=None):
+          max_memory=None, max_work=None, max_output=None, progress=None):
     limits = {"max_memory": max_memory, "max_work": max_work, "max_output": max_output}
     if isinstance(spec, dict):
         text, is_path = _native.toml_text(dict(spec)), False
@@ -641,6 +696,7 @@ def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
         text, is_path = spec, False
     if shard is not None:
         shard = (int(shard[0]), int(shard[1]))
+    report = _reporter(progress, "sweep", "cases")
     temporary = out is None
     if temporary:
         fd, path = tempfile.mkstemp(prefix="tensegrity-sweep-", suffix=".csv")
@@ -652,11 +708,15 @@ def sweep(spec, threads=None, out=None, shard=None, resume=False, units=False,
         try:
             _native.sweep(text, is_path, path, limits,
                           None if threads is None else int(threads), shard,
-                          bool(resume), bool(units))
+                          bool(resume), bool(units), report)
         except Interrupted as e:
             e.partial = read_rows(path) if os.path.exists(path) else None
             raise e from None
-        return read_rows(path)
+        finally:
+            _close(report)
+        rows = read_rows(path)
+        from .results import SweepResult
+        return SweepResult(rows, dict(_native.sweep_columns(text, is_path)))
     finally:
         if temporary:
             for p in (path, os.path.join(os.path.dirname(path),
@@ -669,13 +729,21 @@ sweep.__doc__ = _SWEEP_DOC
 
 
 def read_rows(path):
-    """The rows of a sweep's CSV as a dict of numpy columns (see :func:`sweep`)."""
+    """The rows of a sweep's CSV as a :class:`tensegrity.results.SweepResult` (a dict of
+    numpy columns, see :func:`sweep`; the units of its ``# units:`` line, if it has one)."""
+    from .results import SweepResult
     with open(path, newline="", encoding="utf-8") as f:
-        lines = [line for line in f if not line.startswith("#")]
+        lines = list(f)
+    units_line = next((line for line in lines if line.startswith("# units:")), None)
+    lines = [line for line in lines if not line.startswith("#")]
     rows = list(csv.reader(lines))
     if not rows:
-        return {}
+        return SweepResult()
     header, body = rows[0], rows[1:]
+    units = {}
+    if units_line is not None:
+        fields = next(csv.reader([units_line[len("# units:"):].strip()]), [])
+        units = {name: ("" if u == "-" else u) for name, u in zip(header, fields)}
     columns = {}
     for j, name in enumerate(header):
         cells = [r[j] if j < len(r) else "" for r in body]
@@ -687,9 +755,10 @@ def read_rows(path):
             k = 1
             while "{}.{}".format(name, k) in columns:
                 k += 1
+            units["{}.{}".format(name, k)] = units.get(name, "")
             name = "{}.{}".format(name, k)
         columns[name] = col
-    return columns
+    return SweepResult(columns, units)
 
 
 def _column(cells):

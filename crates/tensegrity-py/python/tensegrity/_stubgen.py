@@ -110,7 +110,29 @@ def result_classes():
             lines.append("    {}: {}".format(field, kind))
         lines += ["    " + m for m in results.METHOD_STUBS.get(name, ())]
         out.append("\n".join(lines) + "\n")
+    out.append(_SWEEP_CLASSES)
     return out
+
+
+def _class_doc(cls):
+    import inspect
+    return '    """' + _indent(inspect.getdoc(cls)).lstrip() + '\n    """'
+
+
+_SWEEP_CLASSES = "\n".join([
+    "class SweepRow(Result):",
+    _class_doc(results.SweepRow),
+    "",
+    "",
+    "class SweepResult(Result):",
+    _class_doc(results.SweepResult),
+    "    def __init__(self, columns: Any = ..., units: Optional[Dict[str, str]] = ...) "
+    "-> None: ...",
+    "    @property",
+    "    def columns(self) -> List[Tuple[str, Optional[str]]]: ...",
+    "    def rows(self) -> List[SweepRow]: ...",
+    "    def row(self, k: int) -> SweepRow: ...",
+] + ["    " + m for m in results.METHOD_STUBS.get("sweep", ())]) + "\n"
 
 
 def stubs():
@@ -137,7 +159,7 @@ def stubs():
     out.append(function(
         "tipover", ["tipover", "tipover_dynamic", "tipover_rolling"], SUMMARIES["tipover"],
         extra=(("dynamic", "bool"), ("rolling", "bool"), ("grid", "bool"),
-               ("grid_points", "Optional[int]"), ("eps_max", "Optional[float]")),
+               ("grid_points", "Optional[int]"), ("eps_max", "Optional[float]"), progress),
         extra_doc="dynamic : bool, optional\n    The threshold checked by the full dynamics; "
                   "the result's ``history`` holds the samples of ``--out``.\n"
                   "rolling : bool, optional\n    The lean while rolling down a side slope; "
@@ -145,7 +167,11 @@ def stubs():
                   "grid : bool, optional\n    The F_f/F_e map over σ × ε (Fig. 3.13) in the "
                   "result's ``grid``.\n"
                   "grid_points : int, optional\n    Grid points per axis (default 50).\n"
-                  "eps_max : float, optional\n    Largest ε of the grid (default 1.0)."))
+                  "eps_max : float, optional\n    Largest ε of the grid (default 1.0).\n"
+                  "progress : callable or bool, optional\n    With dynamic or rolling only: "
+                  "``callback(done, total)`` (simulated seconds, end time; paced by the "
+                  "work estimate until the run ends); ``True``: a tqdm bar, else lines on "
+                  "stderr. Default: none."))
     for name in ("michell", "michell_optimize", "michell_table"):
         out.append(function(name, [name], SUMMARIES[name]))
     out.append(function(
@@ -161,9 +187,12 @@ def stubs():
                   "sweep_deltas : sequence of float, optional\n    Default (0.05, 0.1, 0.25, "
                   "0.5, 1.0)."))
     out.append(function(
-        "tbar_roll", ["tbar_roll"], SUMMARIES["tbar_roll"],
+        "tbar_roll", ["tbar_roll"], SUMMARIES["tbar_roll"], extra=(progress,),
         extra_doc="The result's ``table``: the rows of ``tbar roll --out``; its ``history``: "
-                  "the 1 ms samples of the first row's T-bar run (TbarRollResult lists both)."))
+                  "the 1 ms samples of the first row's T-bar run (TbarRollResult lists both).\n"
+                  "progress : callable or bool, optional\n    ``callback(done, total)`` "
+                  "(simulated seconds of every row's T-bar run, tread counts × t_end); "
+                  "``True``: a tqdm bar, else lines on stderr. Default: none."))
     if "formfind" in REGISTRY:
         out.append(function("formfind", ["formfind"], SUMMARIES["formfind"]))
     else:
@@ -181,13 +210,16 @@ def stubs():
     max_memory: Size = ...,
     max_work: Size = ...,
     max_output: Size = ...,
-) -> Dict[str, np.ndarray]:
+    progress: Union[bool, Callable[[float, float], Any], None] = ...,
+) -> SweepResult:
     """Run a parameter study (``tensegrity sweep SPEC --out FILE``): the spec as a dict,
-    TOML text or a path; ``threads`` workers; the rows as a dict of numpy columns."""
+    TOML text or a path; ``threads`` workers; ``progress``: ``callback(done, total)`` (cases
+    written, cases) or ``True`` for a bar; the rows as a SweepResult, a dict of numpy
+    columns with ``rows()``, ``row(k)`` and ``columns`` (names with units)."""
     ...
 
-def read_rows(path: Union[str, "os.PathLike[str]"]) -> Dict[str, np.ndarray]:
-    """The rows of a sweep's CSV as a dict of numpy columns."""
+def read_rows(path: Union[str, "os.PathLike[str]"]) -> SweepResult:
+    """The rows of a sweep's CSV as a SweepResult (a dict of numpy columns)."""
     ...
 
 def run(command: str, **kwargs: Any) -> Dict[str, Any]:
