@@ -101,10 +101,10 @@ fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     Some(&tag[at..at + len])
 }
 
-/// `svg` without its texts that lie outside clipped groups, and those texts. The figures'
-/// writer ([`super::svg`]) sets a text's place by the `x` and `y` of its `<text>` (a turned
-/// one by `rotate(-90 x y)` about the same point) and its colour by an enclosing `<g
-/// fill>`; a text it cannot read so stays in the SVG.
+/// `svg` without its texts that lie outside clipped or transformed groups, and those texts.
+/// The figures' writer ([`super::svg`]) sets a text's place by the `x` and `y` of its
+/// `<text>` (a turned one by `rotate(-90 x y)` about the same point) and its colour by an
+/// enclosing `<g fill>`; a text it cannot read so stays in the SVG.
 fn split_texts(svg: &str) -> (String, Vec<PlacedText>) {
     let mut rest = String::with_capacity(svg.len());
     let mut texts = Vec::new();
@@ -122,7 +122,11 @@ fn split_texts(svg: &str) -> (String, Vec<PlacedText>) {
         if tag.starts_with("<g") {
             let (fill, clip) = groups.last().cloned().unwrap_or_default();
             let fill = attribute(tag, "fill").map_or(fill, str::to_string);
-            let clip = clip || attribute(tag, "clip-path").is_some();
+            // a clipped or transformed group keeps its texts (drawn moved, they would escape
+            // the clip or miss the transform)
+            let clip = clip
+                || attribute(tag, "clip-path").is_some()
+                || attribute(tag, "transform").is_some();
             groups.push((fill, clip));
         } else if tag.starts_with("</g") {
             groups.pop();
@@ -264,9 +268,10 @@ mod tests {
 
     #[test]
     fn a_clipped_text_stays_in_the_drawing() {
-        let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"20\"><g clip-path=\"url(#c)\"><text x=\"1\" y=\"9\" font-size=\"9\">a</text></g><text x=\"2\" y=\"19\" font-size=\"9\" text-anchor=\"end\" transform=\"rotate(-90 2 19)\">b</text></svg>";
+        let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"20\"><g clip-path=\"url(#c)\"><text x=\"1\" y=\"9\" font-size=\"9\">a</text></g><g transform=\"scale(2)\"><text x=\"1\" y=\"9\" font-size=\"9\">c</text></g><text x=\"2\" y=\"19\" font-size=\"9\" text-anchor=\"end\" transform=\"rotate(-90 2 19)\">b</text></svg>";
         let (rest, texts) = split_texts(svg);
-        assert!(rest.contains(">a</text>") && !rest.contains(">b</text>"));
+        assert!(rest.contains(">a</text>") && rest.contains(">c</text>"));
+        assert!(!rest.contains(">b</text>"));
         assert_eq!(texts.len(), 1);
         assert_eq!((texts[0].x, texts[0].y), (2.0, 19.0));
         assert!(
