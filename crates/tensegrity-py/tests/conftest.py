@@ -1,9 +1,13 @@
 """Shared fixtures: the repository root, its example scenes, and the command line to compare
 with (``TENSEGRITY_CLI``, else the workspace's debug or release binary)."""
 
+import builtins
 import json
 import os
+import signal
 import subprocess
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -90,3 +94,39 @@ def _flat(v):
             yield from _flat(x)
     else:
         yield v
+
+
+@pytest.fixture
+def python_handles_sigint():
+    """Python's own SIGINT handler (KeyboardInterrupt), as in an interactive session: a
+    process started in the background by a non-interactive shell (a CI job) inherits SIGINT
+    ignored, and Python then installs no handler."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
+def interrupt_after(delay):
+    """Sends SIGINT to this process after ``delay`` s; returns a list that receives the time
+    it was sent."""
+    sent = []
+
+    def fire():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Timer(delay, fire).start()
+    return sent
+
+
+@pytest.fixture
+def without_tqdm(monkeypatch):
+    """Imports of tqdm fail, as where it is not installed."""
+    real_import = builtins.__import__
+
+    def no_tqdm(name, *args, **kwargs):
+        if name.startswith("tqdm"):
+            raise ImportError(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_tqdm)

@@ -4,44 +4,23 @@ checks for signals every 50 ms, then gives a stopping command 0.3 s), raising
 ``tensegrity.Interrupted`` — a ``KeyboardInterrupt`` — with the results so far, as the
 command line keeps them; the next call runs normally (the stop flag is cleared)."""
 
-import os
 import signal
-import threading
 import time
 
 import numpy as np
 import pytest
 
 import tensegrity as tg
-from conftest import EXAMPLES
+from conftest import EXAMPLES, interrupt_after
 
-pytestmark = pytest.mark.skipif(not hasattr(signal, "pthread_kill"), reason="POSIX signals")
+pytestmark = [
+    pytest.mark.skipif(not hasattr(signal, "pthread_kill"), reason="POSIX signals"),
+    # Python's own SIGINT handler, which a CI job's background process lacks (conftest)
+    pytest.mark.usefixtures("python_handles_sigint"),
+]
 
 #: The limit the issue sets on the time from Ctrl-C to control back in Python.
 LIMIT_S = 0.5
-
-
-@pytest.fixture(autouse=True)
-def python_handles_sigint():
-    """Python's own SIGINT handler (KeyboardInterrupt), as in an interactive session: a
-    process started in the background by a non-interactive shell (a CI job) inherits SIGINT
-    ignored, and Python then installs no handler."""
-    before = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, before)
-
-
-def interrupt_after(delay):
-    """Sends SIGINT to this process after ``delay`` s; returns a list that receives the time
-    it was sent."""
-    sent = []
-
-    def fire():
-        sent.append(time.monotonic())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    threading.Timer(delay, fire).start()
-    return sent
 
 
 def long_simulation(**kwargs):

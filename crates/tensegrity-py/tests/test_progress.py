@@ -33,16 +33,7 @@ def test_an_exception_in_the_callback_stops_the_run():
                     convergence_check=False, progress=stop)
 
 
-def test_progress_true_prints_lines_without_tqdm(capsys, monkeypatch):
-    import builtins
-    real_import = builtins.__import__
-
-    def no_tqdm(name, *args, **kwargs):
-        if name.startswith("tqdm"):
-            raise ImportError(name)
-        return real_import(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", no_tqdm)
+def test_progress_true_prints_lines_without_tqdm(capsys, without_tqdm):
     tg.simulate(EXAMPLES / "prism_drop.toml", t_end=0.2, convergence_check=False,
                 progress=True)
     err = capsys.readouterr().err

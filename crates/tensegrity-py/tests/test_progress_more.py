@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import tensegrity as tg
-from conftest import EXAMPLES, ROOT
+from conftest import EXAMPLES, ROOT, interrupt_after
 
 SWEEPS = ROOT / "examples" / "sweeps"
 
@@ -186,16 +186,7 @@ def test_sweep_resumed_counts_the_rows_already_in_the_file(tmp_path):
     assert_progress(calls, 6.0)
 
 
-def test_sweep_progress_true_prints_lines_without_tqdm(capsys, monkeypatch):
-    import builtins
-    real_import = builtins.__import__
-
-    def no_tqdm(name, *args, **kwargs):
-        if name.startswith("tqdm"):
-            raise ImportError(name)
-        return real_import(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", no_tqdm)
+def test_sweep_progress_true_prints_lines_without_tqdm(capsys, without_tqdm):
     tg.sweep(TOROID, threads=1, progress=True)
     assert "sweep: 100 % (6 of 6 cases)" in capsys.readouterr().err
 
@@ -295,35 +286,9 @@ def test_sweep_rows_are_the_cli_csv_cells(cli, tmp_path, spec):
 # --- Ctrl-C with a callback -----------------------------------------------------------------
 
 
-@pytest.fixture
-def python_handles_sigint():
-    """Python's own SIGINT handler (KeyboardInterrupt), as in test_interrupt.py."""
-    import signal
-    before = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, before)
-
-
-def interrupt_after(delay):
-    """Sends SIGINT to this process after ``delay`` s; the list receives when it was sent."""
-    import os
-    import signal
-    import threading
-    import time
-    sent = []
-
-    def fire():
-        sent.append(time.monotonic())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    threading.Timer(delay, fire).start()
-    return sent
-
-
 @pytest.mark.skipif(not hasattr(__import__("signal"), "pthread_kill"), reason="POSIX signals")
 def test_ctrl_c_still_stops_a_sweep_and_a_tbar_roll_with_a_callback(python_handles_sigint,
                                                                        tmp_path):
-    import time
     spec = small_spec("roll_n_slope.toml", {"sides": list(range(6, 16))},
                       {"fidelity": "full", "t_end": 0.5, "integrator": "rk4"})
     callback, calls = recorder()
