@@ -43,12 +43,22 @@ pub fn significant_digits(x: f64) -> u32 {
     if x == 0.0 || !x.is_finite() {
         return 0;
     }
-    (1..=17)
-        .find(|&d| {
-            let text = format!("{:.*e}", (d - 1) as usize, x);
-            text.parse::<f64>() == Ok(x)
-        })
-        .unwrap_or(17)
+    let reads_back = |d: u32| {
+        let text = format!("{:.*e}", (d - 1) as usize, x);
+        text.parse::<f64>() == Ok(x)
+    };
+    // the shortest decimal that reads back (`{:e}` writes it) has d₀ digits; the value
+    // correctly rounded to d₀ digits reads back as well but for a tie at the edge of x's
+    // rounding interval, so d₀ is checked, and the search goes on above it should it fail
+    // (one formatting instead of up to 17: the rank decision judges every coordinate)
+    let shortest = format!("{x:e}");
+    let mantissa = shortest.split('e').next().unwrap_or("");
+    let d0 = mantissa
+        .bytes()
+        .filter(u8::is_ascii_digit)
+        .count()
+        .clamp(1, 17) as u32;
+    (d0..=17).find(|&d| reads_back(d)).unwrap_or(17)
 }
 
 /// The rounding e (same unit as the values) of values written to a common number of
@@ -96,6 +106,43 @@ mod tests {
         assert_eq!(significant_digits(1.23456789), 9);
         assert_eq!(significant_digits(x), 16);
         assert_eq!(significant_digits(f64::NAN), 0);
+    }
+
+    /// The count from the shortest decimal equals the definition's search from one digit up
+    /// (the fewest digits whose correctly rounded decimal reads back), on values rounded to
+    /// every digit count, at every scale, at powers of two (whose rounding interval is
+    /// lopsided) and on bit patterns spread over the doubles.
+    #[test]
+    fn the_count_from_the_shortest_decimal_equals_the_search_from_one_digit() {
+        let search = |x: f64| {
+            (1..=17u32)
+                .find(|&d| format!("{:.*e}", (d - 1) as usize, x).parse::<f64>() == Ok(x))
+                .unwrap_or(17)
+        };
+        let mut values = vec![0.1, 0.5, 1.0 / 3.0, 2.0f64.sqrt(), 9.5, 1e-300, 1.7e308];
+        for k in -60..60 {
+            values.push(2f64.powi(k));
+            values.push(-(2f64.powi(k)) * 0.7);
+        }
+        for d in 0..17 {
+            for base in [std::f64::consts::PI, std::f64::consts::E, 0.123456789012345] {
+                for scale in [1e-9, 1e-3, 1.0, 1e4, 1e12] {
+                    values.push(format!("{:.*e}", d, base * scale).parse().unwrap());
+                }
+            }
+        }
+        // a multiplicative hash walks over bit patterns of finite doubles
+        let mut bits: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..2000 {
+            bits = bits.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let x = f64::from_bits(bits >> 2 | 0x3000_0000_0000_0000);
+            values.push(x);
+        }
+        for x in values {
+            if x != 0.0 && x.is_finite() {
+                assert_eq!(significant_digits(x), search(x), "{x:e}");
+            }
+        }
     }
 
     #[test]

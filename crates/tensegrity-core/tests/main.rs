@@ -2,6 +2,7 @@
 //! file: a clean `cargo test --workspace` fits the CI machine's disk). Each file of this
 //! directory is a module; run one with `cargo test --test integration FILE::`.
 
+mod derive_macros;
 mod request_validation;
 mod structure_build;
 mod validation;

@@ -26,7 +26,11 @@
 //! of its struct variants by the same rule (a name shared by several variants once). Generic
 //! types and other enums are refused.
 //!
-//! ```
+//! (This example and the one below run as tests of tensegrity-core,
+//! `crates/tensegrity-core/tests/derive_macros.rs`: a proc-macro crate's own tests would be
+//! built for the build host, compiling the workspace's numerics a second time.)
+//!
+//! ```ignore
 //! use serde::Serialize;
 //! use tensegrity_core::columns::{col, Columns};
 //! use tensegrity_derive::Columns;
@@ -107,7 +111,7 @@
 //!
 //! A field without `#[param]` (not flattened, not skipped) is refused at compile time.
 //!
-//! ```
+//! ```ignore
 //! use serde::{Deserialize, Serialize};
 //! use tensegrity_core::request::{Kind, Param, Params, Rule};
 //! use tensegrity_derive::Params;

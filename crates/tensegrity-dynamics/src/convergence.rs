@@ -25,28 +25,62 @@
 //! ground's stiffness doubles with it (a touch-down lasts π√(m/k), so event times and
 //! pivots move as k^(−½)). With p = 1 and a refined companion this is the old rule r ≤ τ/2.
 //!
-//! **Chaotic quantities** ([`Convergence::twin`]). A twin run at the run's own resolution,
-//! started from a state turned by 10⁻⁶ (rad), moves a quantity by r_twin. A quantity with
-//! r_twin > τ/8 is `chaotic`: the gap between two draws of a chaotic motion (another start,
-//! another step) is about 2.5 r_twin on average, so a single run cannot show it within τ. It is
-//! not `converged`, its value is one draw, and its answer is an ensemble's interval
-//! (`--ensemble K`); it does not by itself make a result unconverged, since no refinement
-//! could make it so ([`Convergence::converged`] judges the other quantities). What the check
-//! has already run gives it an interval at no extra cost: its three draws (the run, the
-//! companion at another step, the twin at another start) are a small ensemble at two
-//! resolutions, and another draw (another start, or a finer step whose bias is of the size the
-//! companion showed) lies with 95 % probability within the prediction interval
-//! m ± t₀.₉₇₅,₂ · s · √(1 + 1/3) of their mean m and sample deviation s (Student's t at 2
-//! degrees of freedom, 4.303, for a spread estimated from three draws): `interval`.
+//! **Chaotic quantities** ([`Convergence::twin`], [`Convergence::twin_of_companion`]). A twin
+//! run started from a state turned by 10⁻⁶ (rad) moves a quantity by r_twin against the run
+//! it is compared with at its own resolution (the run itself, or the companion where the twin
+//! runs at the companion's step). A quantity with r_twin > τ/8 is `chaotic`: the gap between
+//! two draws of a chaotic motion (another start, another step) is about 2.5 r_twin on average,
+//! so a single run cannot show it within τ. It is not `converged`, its value is one draw, and
+//! its answer is an ensemble's interval (`--ensemble K`); it does not by itself make a result
+//! unconverged, since no refinement could make it so ([`Convergence::converged`] judges the
+//! other quantities). What the check has already run gives it an interval at no extra cost:
+//! its three draws (the run, the companion at another step, the twin at another start) are a
+//! small ensemble at two resolutions, and another draw (another start, or a finer step whose
+//! bias is of the size the companion showed) lies with 95 % probability within the prediction
+//! interval m ± t₀.₉₇₅,₂ · s · √(1 + 1/3) of their mean m and sample deviation s (Student's t
+//! at 2 degrees of freedom, 4.303, for a spread estimated from three draws): `interval`.
+//!
+//! **The lazy twin** ([`Convergence::twin_needed`]). A caller that may meet chaos starts its
+//! companion from the twin's start (turned by 10⁻⁶): the companion then differs from the run
+//! by both a step and a start, and its change r of a quantity holds both effects, the step's
+//! bias c and the start's t (r = |c + t|). Where every quantity has r ≤ τ/8 (and none is
+//! missing from one run only), the start moved none by more than the twin's threshold τ/8 and
+//! the step's error e = r·2ᵖ/(2ᵖ − 1) or r/(2ᵖ − 1) is within τ (for p ≥ ½): every quantity
+//! is converged and none is chaotic, and no twin runs. The rule holds barring a cancellation
+//! of c and t to within τ/8 where both exceed it, as unlikely as a chaotic quantity's single
+//! twin landing within τ/8 of the run. Why the companion must carry the perturbation rather
+//! than stand in for it: a step change is not a larger perturbation than 10⁻⁶ everywhere. The
+//! rigid rolling model locates its events to round-off and integrates its smooth phases by
+//! RK4, so halving its step moves the first impact by 10⁻¹⁴ (the default n = 8 wheel on 50°:
+//! 1.6·10⁻¹⁴ of its time) where the twin moves it by 5·10⁻⁷; there the impact count agreed at
+//! both steps (16) and the twin's was 17 (a chaotic quantity the step change alone does not
+//! show). Where some quantity moved by more than τ/8, a second run separates the two effects:
+//! the companion from the run's own start (at the companion's step, so that the perturbed run
+//! is the twin, compared with it at the same resolution: [`Convergence::twin_of_companion`]),
+//! or, where that would cost more than a twin at the run's step (a refined companion), the
+//! twin at the run's step ([`Convergence::twin`]). Without a twin no quantity has
+//! `twin_change` or `interval` (null: a converged quantity needs no interval).
+//!
+//! **Which companion.** A coarse companion (2h) serves where 2h stays inside the method's
+//! stability with a margin, 2h · λ ≤ [`STABILITY_MARGIN`] × [`stability_bound`] for the
+//! fastest rate λ its explicit part must resolve ([`explicit_rate`]), and inside the run
+//! (2h ≤ t_end, and no longer than an output interval where the steps are cut at the samples).
+//! Otherwise, and for adaptive methods, it is refined (h/2). A coarse run that fails or leaves
+//! its regime (its state not finite, a drift or validity warning the run does not carry) is
+//! followed by the refined one, its cost added.
 //!
 //! A quantity that is neither converged nor chaotic makes the whole result unconverged
 //! ([`Convergence::converged`]), which a result then reports as not valid
 //! ([`Convergence::warnings`]). The error bar's cost is stated ([`Convergence::cost`]: the
-//! companion and twin runs' work relative to the run's: 2 for h/2, ½ for 2h, +1 for a twin).
+//! companion and twin runs' work relative to the run's: 2 for h/2, ½ for 2h, +1 for a twin at
+//! the run's step, +½ for a second run at 2h, +½ for a coarse run that failed before a
+//! refined one).
 
 use serde::{Deserialize, Serialize};
 use tensegrity_core::warning::Warning;
 use tensegrity_derive::Columns;
+
+use crate::IntegratorKind;
 
 /// The fraction of its tolerance a twin run may move a quantity before it is chaotic
 /// (module docs).
@@ -54,6 +88,85 @@ pub const CHAOS_FRACTION: f64 = 0.125;
 
 /// The relative perturbation of a twin run's start (rad for a turned pose).
 pub const TWIN_PERTURBATION: f64 = 1e-6;
+
+/// The fraction of a method's stability bound a coarse companion's step may use
+/// (2h · λ ≤ margin × bound, module docs): it keeps the coarse run where its error behaves as
+/// C (2h)ᵖ; near the edge of the stability region the amplification of the fastest mode, not
+/// the truncation error, sets the difference.
+pub const STABILITY_MARGIN: f64 = 0.5;
+
+/// The largest h·λ of an explicit step (the edge of its stability region, module docs), for
+/// the fixed-step methods; `None` for the adaptive ones and Newmark (their companion is
+/// refined). Taken as the smallest radius over the rays of the damped oscillations
+/// λ(−ζ + i√(1−ζ²)), 0 ≤ ζ ≤ 1, that a string or a penalty ground makes: RK4 2.6 (2.83 on the
+/// imaginary axis, 2.79 on the real one, 2.62 at ζ = ½), ARK3(2)4L\[2\]SA's explicit tableau
+/// 2.4 (2.49 on the imaginary axis), RATTLE (Störmer–Verlet) 2 (ω h < 2). IMEX's explicit
+/// part is one RK4 step, and rk4-flight's inner method is RK4.
+///
+/// ```
+/// use tensegrity_dynamics::{convergence::stability_bound, IntegratorKind};
+/// assert_eq!(stability_bound(IntegratorKind::Rk4), Some(2.6));
+/// assert_eq!(stability_bound(IntegratorKind::Sdirk), None);
+/// ```
+pub fn stability_bound(kind: IntegratorKind) -> Option<f64> {
+    match kind {
+        IntegratorKind::Rk4 | IntegratorKind::Imex | IntegratorKind::Rk4Flight => Some(2.6),
+        IntegratorKind::ImexArk => Some(2.4),
+        IntegratorKind::Rattle => Some(2.0),
+        IntegratorKind::Rk45 | IntegratorKind::Sdirk | IntegratorKind::Newmark => None,
+    }
+}
+
+/// The fastest rate λ (1/s) the explicit part of `kind` must resolve on `model` (module
+/// docs), with m a quarter of the lightest bar's mass (a bar end's effective mass): √(2k/m)
+/// of every string's and the ground's spring (a penalty or stick ground's normal stiffness,
+/// and the stick's tangential one), and 2c/m of their dampers where the method treats them
+/// explicitly. IMEX and IMEX-ARK take the ground's dampers (normal, tangential, the
+/// regularised friction's slope) in their implicit part, so only the ground's springs count
+/// for them; for every other method this is
+/// [`fastest_rate`](crate::estimate::fastest_rate) (and the stick's tangential spring and
+/// damper). A thesis ground's damping counts for every method (conservative). The regularised
+/// friction's slope μN/v_reg, which depends on the load, is not counted: an explicit method
+/// whose step it bounds shows it as a coarse run that fails or drifts, and the refined
+/// companion follows.
+pub fn explicit_rate(model: &crate::Model, kind: IntegratorKind) -> f64 {
+    let lightest = model
+        .bars
+        .iter()
+        .map(|b| b.mass)
+        .fold(f64::INFINITY, f64::min);
+    let m = lightest / 4.0;
+    if !(m.is_finite() && m > 0.0) {
+        return 0.0;
+    }
+    let rate = |k: f64, c: f64| (2.0 * k / m).sqrt().max(2.0 * c / m);
+    let strings = model
+        .strings
+        .iter()
+        .map(|s| rate(s.law.stiffness, s.law.damping))
+        .chain(model.clusters.iter().map(|c| rate(c.stiffness, c.damping)))
+        .fold(0.0, f64::max);
+    let implicit_damping = matches!(kind, IntegratorKind::Imex | IntegratorKind::ImexArk);
+    let damping = |c: f64| if implicit_damping { 0.0 } else { c };
+    let ground = match model.ground.as_ref().map(|g| &g.model) {
+        Some(crate::GroundModel::Penalty {
+            stiffness,
+            damping: c,
+            ..
+        }) => rate(*stiffness, damping(*c)),
+        Some(crate::GroundModel::Stick {
+            stiffness,
+            damping: c,
+            tangential_stiffness,
+            tangential_damping,
+            ..
+        }) => rate(*stiffness, damping(*c))
+            .max(rate(*tangential_stiffness, damping(*tangential_damping))),
+        Some(crate::GroundModel::Thesis { damping: c, .. }) => rate(0.0, *c),
+        None => 0.0,
+    };
+    strings.max(ground)
+}
 
 /// Which resolution the companion run has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -119,8 +232,10 @@ pub struct QuantityConvergence {
     pub tolerance: f64,
     /// Whether the quantity held within its tolerance (false for a chaotic one).
     pub converged: bool,
-    /// The twin run's relative change of it (module docs); absent without a twin.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// The twin run's relative change of it (module docs): against the run, or against the
+    /// companion where the twin ran at the companion's step; null where no twin ran (the
+    /// lazy twin, module docs).
+    #[serde(default)]
     pub twin_change: Option<f64>,
     /// `converged`, `not_converged` or `chaotic` (module docs).
     #[serde(default)]
@@ -128,9 +243,9 @@ pub struct QuantityConvergence {
     /// For a chaotic quantity, the 95 % prediction interval of another draw (another start or
     /// a finer step) from its three draws: the run, the companion run (another step) and the
     /// twin (another start), m ± t₀.₉₇₅,₂ · s · √(1 + 1/3) with their mean m, their sample
-    /// deviation s and Student's t at 2 degrees of freedom (4.303) (module docs). Absent
-    /// otherwise, or when a draw is missing.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// deviation s and Student's t at 2 degrees of freedom (4.303) (module docs). Null
+    /// otherwise (a converged quantity needs none), or when a draw is missing.
+    #[serde(default)]
     pub interval: Option<[f64; 2]>,
     /// The scale floor s of the relative changes (module docs), kept for the twin's.
     #[serde(skip)]
@@ -364,9 +479,61 @@ impl Convergence {
     /// ```
     pub fn twin(&mut self, twin: impl Fn(&str) -> Option<f64>) -> &mut Self {
         self.cost += 1.0;
+        self.judge_twin(false, twin)
+    }
+
+    /// As [`Convergence::twin`] for a twin run at the companion's resolution (module docs:
+    /// the lazy twin): each quantity's twin value is compared with the companion's value
+    /// (`refined`), at the same step, and the twin's cost is the companion's.
+    /// `compare_change`d quantities take the twin's change against the companion as given.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::{Companion, Convergence, Status};
+    /// let mut c = Convergence::with("2 dt", Companion::Coarse, 1.0);
+    /// c.compare("mean_speed", Some(10.0), Some(10.01), 0.02, 0.0)
+    ///     .compare("final_speed", Some(44.4), Some(45.0), 0.02, 0.0);
+    /// assert!(c.twin_needed());
+    /// // the twin at 2 dt moves the final speed by 4 % from the companion: chaotic
+    /// c.twin_of_companion(|name| match name {
+    ///     "mean_speed" => Some(10.0101),
+    ///     _ => Some(46.8),
+    /// });
+    /// assert_eq!(c.cost, 1.0);
+    /// assert_eq!(c.quantities[0].status, Status::Converged);
+    /// assert_eq!(c.quantities[1].status, Status::Chaotic);
+    /// assert!((c.quantities[1].twin_change.unwrap() - 1.8 / 46.8).abs() < 1e-12);
+    /// ```
+    pub fn twin_of_companion(&mut self, twin: impl Fn(&str) -> Option<f64>) -> &mut Self {
+        self.cost += self.companion.cost();
+        self.judge_twin(true, twin)
+    }
+
+    /// Whether a twin must run (module docs, the lazy twin): some quantity's change against a
+    /// companion that started from the twin's start exceeds [`CHAOS_FRACTION`] of its
+    /// tolerance, or is missing (one run has the quantity, the other not; a NaN change too).
+    /// Otherwise every quantity is converged and none can be chaotic.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::{Companion, Convergence};
+    /// let mut c = Convergence::with("2 dt", Companion::Coarse, 1.0);
+    /// c.compare("mean_speed", Some(10.0), Some(10.02), 0.02, 0.0);
+    /// assert!(!c.twin_needed() && c.converged);
+    /// // 1.5 % is converged (e ≤ 2 %) but more than τ/8: it could be a chaotic draw
+    /// c.compare("final_speed", Some(10.0), Some(10.15), 0.02, 0.0);
+    /// assert!(c.converged && c.twin_needed());
+    /// ```
+    pub fn twin_needed(&self) -> bool {
+        self.quantities.iter().any(|q| match q.relative_change {
+            Some(r) => r.is_nan() || r > CHAOS_FRACTION * q.tolerance,
+            None => !q.converged,
+        })
+    }
+
+    fn judge_twin(&mut self, of_companion: bool, twin: impl Fn(&str) -> Option<f64>) -> &mut Self {
         for q in &mut self.quantities {
             let Some(t) = twin(&q.name) else { continue };
-            let change = match q.value {
+            let reference = if of_companion { q.refined } else { q.value };
+            let change = match reference {
                 Some(v) => {
                     let d = v.abs().max(t.abs()).max(q.scale);
                     if d > 0.0 {
@@ -375,6 +542,7 @@ impl Convergence {
                         0.0
                     }
                 }
+                // a `compare_change`d quantity: the twin's change as given
                 None => t,
             };
             q.twin_change = Some(change);
@@ -479,6 +647,54 @@ impl Convergence {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_implicit_methods_leave_the_ground_damper_out_of_the_explicit_rate() {
+        use crate::test_models::{dropped_prism, dropped_prism_ground};
+        let s = dropped_prism(0.1, 0.0).unwrap();
+        let mut model = crate::Model::new(&s, None).unwrap();
+        let bare = explicit_rate(&model, IntegratorKind::Rk4);
+        assert_eq!(bare, crate::estimate::fastest_rate(&model));
+        // a ground whose damper is far faster than its spring
+        model.set_ground(dropped_prism_ground(1e4, 1e4)).unwrap();
+        let rk4 = explicit_rate(&model, IntegratorKind::Rk4);
+        assert_eq!(rk4, crate::estimate::fastest_rate(&model));
+        let ark = explicit_rate(&model, IntegratorKind::ImexArk);
+        assert_eq!(ark, explicit_rate(&model, IntegratorKind::Imex));
+        assert!(ark < rk4 / 10.0 && ark >= bare, "{ark} {rk4} {bare}");
+        // the spring counts for every method
+        let mut stiff = crate::Model::new(&s, None).unwrap();
+        stiff.set_ground(dropped_prism_ground(1e9, 0.0)).unwrap();
+        let spring = explicit_rate(&stiff, IntegratorKind::ImexArk);
+        assert!(spring > 10.0 * bare, "{spring} {bare}");
+    }
+
+    #[test]
+    fn the_lazy_twin_runs_only_where_a_quantity_moved_past_an_eighth_of_its_tolerance() {
+        let mut c = Convergence::with("2 dt", Companion::Coarse, 1.0);
+        c.compare("a", Some(1.0), Some(1.001), 0.01, 0.0);
+        assert!(!c.twin_needed());
+        // an event found by one run only needs the twin
+        let mut e = Convergence::with("2 dt", Companion::Coarse, 1.0);
+        e.compare("first_impact.t", None, Some(0.7), 0.01, 0.0);
+        assert!(e.twin_needed());
+        // both missing: nothing moved
+        let mut n = Convergence::with("2 dt", Companion::Coarse, 1.0);
+        n.compare("first_impact.t", None, None, 0.01, 0.0);
+        assert!(!n.twin_needed());
+        // a NaN change needs it
+        let mut x = Convergence::with("2 dt", Companion::Coarse, 1.0);
+        x.compare("a", Some(f64::NAN), Some(1.0), 0.01, 0.0);
+        assert!(x.twin_needed());
+        // the twin at the companion's step is compared with the companion: the same
+        // value as the companion is no change, whatever the run's value
+        let mut t = Convergence::with("2 dt", Companion::Coarse, 1.0);
+        t.compare("b", Some(1.0), Some(1.2), 0.1, 0.0);
+        t.twin_of_companion(|_| Some(1.2));
+        assert_eq!(t.quantities[0].twin_change, Some(0.0));
+        assert_eq!(t.quantities[0].status, Status::NotConverged);
+        assert_eq!(t.cost, 1.0);
+    }
 
     #[test]
     fn a_change_within_half_the_tolerance_converges() {

@@ -208,7 +208,10 @@ fn toroid_column(
 /// the rigid model the toroid column's statics and rigid run ([`toroid::budget::roll`] of
 /// the rigid model) and the T-bar's rigid run of the same size (its steps and samples grow
 /// with `t_end`, the statics with the treads); for the full model the T-bar's and the
-/// toroid's full runs; each again at half the step with `convergence_check`. The T-bar's
+/// toroid's full runs; each again at half the step with `convergence_check` (the refined
+/// companion and its twin: the check's cost where 2 dt does not serve; a coarse companion
+/// costs ½ or 1 run, [`wheel_rolling::convergence`], so the estimate stays an upper bound
+/// of the usual case). The T-bar's
 /// refined run runs beside its run, on a thread of its own
 /// ([`wheel_rolling::roll_checked`]): on two cores or more the pair takes the time of the
 /// longer, refined run, not the sum ([`checked_pair`]). Named
@@ -228,8 +231,9 @@ pub fn estimate(request: &TbarRollRequest) -> Result<Option<Estimate>, TbarError
     estimate_on(request, cores)
 }
 
-/// A full run beside the refined and the twin runs of its convergence check, which run at
-/// once (three threads, [`wheel_rolling::roll_checked`]): memory and output add; the wall
+/// A full run beside the refined and the twin runs of its convergence check, counted as
+/// running at once (three threads; [`wheel_rolling::roll_checked`] runs the companion beside
+/// the run and the twin only where needed, after them): memory and output add; the wall
 /// time is that of the three on at most two cores, the sum on one
 /// ([`wheel_rolling::estimate::parallel`]).
 ///

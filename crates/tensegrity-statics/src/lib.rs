@@ -78,7 +78,7 @@ pub use load::{reaction_components, LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use nested::NestedStatics;
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use report::{statics_report, StaticsReport, StaticsRequest};
-pub use select::{backend, cyclic_backend};
+pub use select::{backend, cyclic_backend, ROUNDED_SPARSE_MIN_SIZE};
 pub use sparse::{sparse_after_qr, sparse_statics_bytes, SparseStatics, SPARSE_FLOP_RATE};
 pub use stability::PrestressStability;
 
@@ -444,8 +444,14 @@ pub enum StaticsMethod {
 }
 
 /// [`StaticsMethod::Auto`] uses the sparse path when both the free dofs and the members
-/// number at least this many.
-pub const SPARSE_MIN_SIZE: usize = 300;
+/// number at least this many. The sparse path is the cheaper one from about 60 members up
+/// (a free tower of 10 prisms, 93 members: 3.8 ms against the SVD's 5.2 ms for the whole
+/// process; of 25 prisms: 7.4 against 17.4 ms; a double-layer grid of 516 members and 255
+/// dofs: 0.01 against 0.09 s, release, docs/notes/PERFORMANCE.md "Statics cost against
+/// size"), so that with the limit at 100 the cost rises with size across the switch; it was
+/// 300, where the dense path's O(members·s²) margin LP made mid-size lattices cost more than
+/// larger ones.
+pub const SPARSE_MIN_SIZE: usize = 100;
 
 /// Settings of a statics analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -328,7 +328,7 @@ fn base_report(backend: &dyn StaticsBackend) -> Result<StaticsReport> {
     }
     let self_stress_omitted = match &basis {
         SelfStressBasis::Omitted { dim, basis } => Some(format!(
-            "the {dim}-dimensional self-stress basis of {} members ({} numbers) is not listed: above {} numbers its orthonormalisation would dominate the analysis",
+            "the {dim}-dimensional self-stress basis of {} members ({} numbers) is not listed: above {} numbers its orthonormalisation would dominate the analysis (the dense SVD method lists it at any size)",
             basis.nrows(),
             dim * basis.nrows(),
             super::sparse::SELF_STRESS_LIST_MAX

@@ -1,7 +1,9 @@
 //! Which back-end answers a statics question ([`StaticsBackend`]).
 //!
 //! - [`backend`] (general structures, [`StaticsMethod`]): the dense SVD below
-//!   [`SPARSE_MIN_SIZE`] free dofs or members, the sparse rank-revealing QR from there on
+//!   [`SPARSE_MIN_SIZE`] free dofs or members (below [`ROUNDED_SPARSE_MIN_SIZE`] for
+//!   coordinates judged rounded, whose rank decision reads the SVD's spectral gap), the
+//!   sparse rank-revealing QR from there on
 //!   (automatic method: along the band, or along a nested dissection for an unloaded
 //!   structure whose band is wide, a lattice: [`prefers_nested`](super::nested::prefers_nested);
 //!   for a large unloaded structure of narrow band, a tower, along a nested dissection of A
@@ -54,13 +56,27 @@ pub(crate) fn dense_fallback(structure: &Structure, settings: &StaticsSettings) 
 }
 
 /// Whether `settings` send `structure` to the sparse QR.
+/// [`StaticsMethod::Auto`] keeps the dense SVD below this many free dofs or members (rather
+/// than [`SPARSE_MIN_SIZE`]) for coordinates judged rounded: the rank decision on rounded
+/// data reads the gap of the singular values (the report's `spectral_gap`), which the
+/// sparse QR only bounds. At this size the SVD still costs a few tens of milliseconds.
+pub const ROUNDED_SPARSE_MIN_SIZE: usize = 300;
+
 fn wants_sparse(structure: &Structure, settings: &StaticsSettings) -> bool {
     match settings.method {
         StaticsMethod::Dense => false,
         StaticsMethod::Sparse => true,
         StaticsMethod::Auto => {
-            let dofs = DofMap::of(structure).len();
-            dofs.min(crate::n_columns(structure)) >= SPARSE_MIN_SIZE
+            let size = DofMap::of(structure).len().min(crate::n_columns(structure));
+            if size < SPARSE_MIN_SIZE {
+                return false;
+            }
+            // rounded coordinates (judged from their digits, or the user's precision) keep
+            // the SVD's spectrum a little longer: its gap is what tells a self-stress the
+            // rounding hid from a mechanism (crate::rank)
+            let rounded = settings.rank_tolerance.is_none()
+                && crate::rank::input_rounding(structure, settings.input_precision) > 0.0;
+            !rounded || size >= ROUNDED_SPARSE_MIN_SIZE
         }
     }
 }

@@ -81,8 +81,20 @@ use tensegrity_linalg::{self as linalg, CscMatrix, RankRevealingQr};
 
 /// Largest self-stress basis (members × dimension numbers) the statics report lists; a
 /// larger one is left out of the report (its dimension is given), since its
-/// orthonormalisation costs O(members·s²) and its listing members·s numbers.
-pub const SELF_STRESS_LIST_MAX: usize = 1_000_000;
+/// orthonormalisation costs O(members·s²) and its listing members·s numbers (written as
+/// JSON, about 800 instructions a number). At 2.5·10⁴ numbers both cost a few milliseconds,
+/// so the analysis costs about as much on either side of the limit; at 10⁶ it was a step (the
+/// grid of 1,420 members cost 0.18 s with its basis listed, that of 1,716 members 0.02 s
+/// without), and at 10⁵ still one of 2–3× (grid:5, 360 members × 180 self-stresses: 21 ms
+/// listed against grid:6's 8 ms; docs/notes/PERFORMANCE.md, "Statics cost against size").
+/// The dense SVD path lists its basis at any size.
+pub const SELF_STRESS_LIST_MAX: usize = 25_000;
+
+/// Largest orthonormal self-stress basis (members × dimension numbers) the margin LP falls
+/// back on when the LP over the sparse basis stalls (the unclustered Levy dome of 4,080
+/// members); above the listing limit [`SELF_STRESS_LIST_MAX`], since the fallback is rare and
+/// an answer is worth its O(members·s²).
+pub const ORTHONORMAL_LP_MAX: usize = 1_000_000;
 
 /// The sparse flex basis of [`SparseStatics::stable_by_cholesky`] may hold this many entries
 /// per kept dof; beyond, the flexes are not local and the test gives no decision.
@@ -100,6 +112,14 @@ pub const FLEX_QR_ENTRIES_PER_DOF: usize = 256;
 /// stability takes the dense eigenvalue test (O(dofs·d²) flops); larger structures take the
 /// sparse Cholesky test ([`SparseStatics::prestress_stability`]).
 pub const DENSE_MECHANISMS_MAX: usize = 250_000;
+
+/// Up to this many numbers of the internal-mechanism basis (free dofs × mechanisms) the
+/// dense eigenvalue test runs first; above, the sparse Cholesky test
+/// ([`SparseStatics::stable_by_cholesky`]) runs first and the dense one (up to
+/// [`DENSE_MECHANISMS_MAX`]) only where it gives no decision. The dense test's O(dofs·d²) made
+/// a tower of 100 prisms (909 dofs × 106 mechanisms) cost more than one of 200, which took
+/// the sparse test (docs/notes/PERFORMANCE.md, "Statics cost against size").
+pub const DENSE_MECHANISMS_FIRST: usize = 25_000;
 
 /// [`DENSE_MECHANISMS_MAX`] for a structure with clusters, whose large-structure tests (the
 /// flex QR, the penalised certificate) give no decision: the dense test up to 32 MB of basis
@@ -641,7 +661,7 @@ impl SparseStatics<'_> {
             // the sparse basis is not orthonormal, and its LP can stall (a Levy dome of 4,080
             // members: NumericalError); where the orthonormal basis is small enough to hold,
             // the same LP over it (same optimum: the rows constrain q = N c alike)
-            Err(e) if n.saturating_mul(self.self_stress_dim()) > SELF_STRESS_LIST_MAX => {
+            Err(e) if n.saturating_mul(self.self_stress_dim()) > ORTHONORMAL_LP_MAX => {
                 return Err(e)
             }
             Err(_) => {
@@ -697,7 +717,12 @@ impl SparseStatics<'_> {
     /// [`CoreError::Unsupported`] (the report then says that stability was not tested).
     pub fn prestress_stability(&self, q: &DVector<f64>) -> Result<PrestressStability> {
         let (m, d) = (self.dofs.len(), self.mechanisms());
-        if m.saturating_mul(d) <= dense_mechanisms_max(self.structure) {
+        let basis = m.saturating_mul(d);
+        let dense_fits = basis <= dense_mechanisms_max(self.structure);
+        // the dense test first where it is cheap, or where the sparse one cannot answer (a
+        // structure with clusters); the sparse test first from DENSE_MECHANISMS_FIRST on, the
+        // dense one then only where the sparse one gives no decision
+        if dense_fits && (basis <= DENSE_MECHANISMS_FIRST || self.structure.has_clusters()) {
             let (phi, _) = self.internal_mechanisms()?;
             return self.prestress_stability_on(&phi, q);
         }
@@ -711,6 +736,10 @@ impl SparseStatics<'_> {
                 eigenvalues: Vec::new(),
                 stable,
             }),
+            None if dense_fits => {
+                let (phi, _) = self.internal_mechanisms()?;
+                self.prestress_stability_on(&phi, q)
+            }
             None => Err(Factorization::SparseQr.unsupported(
                 "prestress stability of a structure this large whose flexes are not local (or disagree with the rank)",
             )),

@@ -15,7 +15,10 @@
 use crate::error::Result;
 use crate::report::{TipoverRequest, ToroidRequest, WheelSpec};
 use crate::rolling_lean::{LeanRolling, LeanRollingReport, LEAN_REFINEMENT};
-use crate::tipover_dynamic::{beside, judge, refined_failed, DynamicTipover, DynamicTipoverReport};
+use crate::tipover_dynamic::{
+    beside, coarse_failure, judge, refined_failed, DynamicTipover, DynamicTipoverReport,
+    COARSENING, REFINEMENT,
+};
 use crate::ToroidParams;
 use serde::{Deserialize, Serialize};
 use tensegrity_core::angle::serde_angle;
@@ -75,8 +78,9 @@ pub struct TipoverDynamicRequest {
     /// The run (its [`Default`]: a quasi-static ramp on a stiff wheel and ground).
     #[serde(flatten)]
     pub settings: DynamicTipover,
-    /// `strict` and `convergence_check` (the ramp again at half the step and twice the
-    /// ground stiffness, beside it).
+    /// `strict` and `convergence_check` (the ramp again beside it: at twice the step and half
+    /// the ground stiffness where that stays inside RK4's stability, else at half the step and
+    /// twice the ground stiffness: [`DynamicTipover::coarse_refused`]).
     #[serde(flatten)]
     pub checks: RunChecks,
 }
@@ -90,8 +94,11 @@ impl TipoverDynamicRequest {
         Ok(r)
     }
 
-    /// Builds the wheel and runs the ramp, with `convergence_check` beside the refined ramp
-    /// ([`DynamicTipover::refined`]); the report whatever its validity.
+    /// Builds the wheel and runs the ramp, with `convergence_check` beside the companion ramp
+    /// ([`DynamicTipover::coarse`] where [`DynamicTipover::coarse_refused`] allows it, else
+    /// [`DynamicTipover::refined`]; a coarse ramp that fails or carries a warning the run does
+    /// not is followed by the refined one, its half run added to the cost); the report
+    /// whatever its validity.
     pub fn report(&self) -> Result<DynamicTipoverReport> {
         self.report_watched(None)
     }
@@ -102,18 +109,49 @@ impl TipoverDynamicRequest {
         &self,
         watch: Option<&mut crate::tipover_dynamic::FrameWatch<'_>>,
     ) -> Result<DynamicTipoverReport> {
+        use tensegrity_dynamics::convergence::Companion;
         let wheel = self.wheel.build()?;
-        let fine = self.settings.refined();
-        let (main, refined) = beside(
-            self.checks.convergence_check,
+        let check = self.checks.convergence_check;
+        // the coarse companion (2 dt, k/2) where it serves, else the refined one (dt/2, 2k)
+        let refused = if check {
+            self.settings.coarse_refused(&wheel)?
+        } else {
+            None
+        };
+        let companion = match refused {
+            None => self.settings.coarse(),
+            Some(_) => self.settings.refined(),
+        };
+        let (main, first) = beside(
+            check,
             || self.settings.run_watched(&wheel, watch),
-            || fine.run(&wheel),
+            || companion.run(&wheel),
         );
         let mut r = main?;
-        let convergence = match refined {
-            Some(Ok(f)) => r.convergence(&f),
-            Some(Err(e)) => refined_failed(e),
-            None => return Ok(r),
+        let Some(first) = first else { return Ok(r) };
+        let refined_label = |why: &str| format!("{REFINEMENT} (refined companion: {why})");
+        let convergence = match (refused, first) {
+            (Some(why), Ok(f)) => r.convergence_with(&f, Convergence::new(refined_label(&why))),
+            (Some(why), Err(e)) => refined_failed(format!("{why}; {e}")),
+            (None, first) => match (coarse_failure(&r, &first), first) {
+                (None, Ok(f)) => {
+                    r.convergence_with(&f, Convergence::with(COARSENING, Companion::Coarse, 1.0))
+                }
+                (why, _) => {
+                    let why = why.unwrap_or_default();
+                    let label = format!(
+                        "{REFINEMENT} (refined companion, run after the coarse one at 2 dt: {why})"
+                    );
+                    let mut c = match self.settings.refined().run(&wheel) {
+                        Ok(f) => r.convergence_with(&f, Convergence::new(label)),
+                        Err(e) => {
+                            refined_failed(format!("{e} (after the coarse one at 2 dt: {why})"))
+                        }
+                    };
+                    c.cost += Companion::Coarse.cost();
+                    c
+                }
+            },
         };
         r.convergence = judge(convergence, &mut r.warnings);
         r.valid = r.warnings.is_empty();
@@ -277,36 +315,45 @@ impl TipoverRollingRequest {
     }
 
     /// Builds the wheel and rolls it, with `convergence_check` beside the refined run (half
-    /// the step) and the twin (the incline + 10⁻⁶ rad), in two more threads
-    /// ([`LeanRollingReport::convergence`]); the report whatever its validity. A failed twin
-    /// leaves the quantities judged by the refinement alone, and says so.
+    /// the step) from the twin's start (the incline + 10⁻⁶ rad), and the twin at the run's
+    /// step after them only where the refined run moved some quantity by more than τ/8 (the
+    /// lazy twin, [`tensegrity_dynamics::convergence`]; [`LeanRollingReport::convergence`]):
+    /// cost 2, or 3 with the twin. The report whatever its validity. A failed twin leaves the
+    /// quantities judged by the refinement alone, and says so. (RK4 on the default stiff,
+    /// damped ground keeps the refined companion: the ground damper's rate, 4·10⁴ 1/s on
+    /// the default wheel, puts 2 dt = 5·10⁻⁵ s at 2.0, past ½ × RK4's bound 2.6, as for
+    /// `tipover --dynamic` ([`DynamicTipover::coarse_refused`]).)
     pub fn report(&self) -> Result<LeanRollingReport> {
         let wheel = self.wheel.build()?;
         let main = self.lean_rolling();
-        let (fine, twin) = (main.refined(), main.twin());
-        let (r, companions) = beside(
+        let (fine, twin) = (main.refined().twin(), main.twin());
+        let (r, first) = beside(
             self.checks.convergence_check,
             || main.run(&wheel),
-            || {
-                std::thread::scope(|s| {
-                    let t = s.spawn(|| twin.run(&wheel));
-                    let f = fine.run(&wheel);
-                    (f, t.join().ok().and_then(|t| t.ok()))
-                })
-            },
+            || fine.run(&wheel),
         );
         let mut r = r?;
-        let convergence = match companions {
-            Some((Ok(f), twin)) => {
-                let mut c = r.convergence(&f, twin.as_ref());
-                if twin.is_none() {
+        let turned = format!("{LEAN_REFINEMENT}, from a start turned by 1e-6 rad");
+        let convergence = match first {
+            Some(Ok(f)) => {
+                let mut c = r.convergence(&f, None);
+                if c.twin_needed() {
+                    let t = twin.run(&wheel).ok();
+                    c = r.convergence(&f, t.as_ref());
+                    c.refinement = if t.is_none() {
+                        c.converged = false;
+                        format!("{turned}; the twin run (start turned by 1e-6 rad) failed")
+                    } else {
+                        format!("{turned}; twin at dt")
+                    };
+                } else {
                     c.refinement = format!(
-                        "{LEAN_REFINEMENT}; the twin run (start turned by 1e-6 rad) failed"
+                        "{turned}; no quantity moved by an eighth of its tolerance: no twin"
                     );
                 }
                 c
             }
-            Some((Err(e), _)) => lean_refined_failed(e),
+            Some(Err(e)) => lean_refined_failed(e),
             None => return Ok(r),
         };
         r.convergence = judge(convergence, &mut r.warnings);

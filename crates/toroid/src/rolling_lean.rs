@@ -140,8 +140,10 @@ pub struct LeanRollingReport {
     /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
     /// quantity).
     pub warnings: Vec<Warning>,
-    /// The headline quantities re-run at half the step and from a start turned by 10⁻⁶ rad
-    /// ([`LeanRollingReport::convergence`]); null when not checked.
+    /// The headline quantities re-run at half the step from a start turned by 10⁻⁶ rad, and
+    /// by the twin at the step where that moved one by more than τ/8
+    /// ([`LeanRollingReport::convergence`], [`crate::TipoverRollingRequest::report`]); null
+    /// when not checked.
     #[column(nested)]
     pub convergence: Option<Convergence>,
     /// The history (not serialised).

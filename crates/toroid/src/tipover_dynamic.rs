@@ -240,8 +240,10 @@ pub struct DynamicTipoverReport {
     /// What the run violated (penetration past 1 % of R_o, integrator drift, an unconverged
     /// quantity).
     pub warnings: Vec<Warning>,
-    /// The headline quantities re-run at half the step and twice the ground stiffness
-    /// ([`crate::request::TipoverDynamicRequest`]); null when not checked.
+    /// The headline quantities re-run at a companion resolution: twice the step and half the
+    /// ground stiffness where 2 dt stays inside RK4's stability
+    /// ([`DynamicTipover::coarse_refused`]), else half the step and twice the ground
+    /// stiffness ([`crate::request::TipoverDynamicRequest`]); null when not checked.
     #[column(nested)]
     pub convergence: Option<Convergence>,
     /// The history (not serialised; `--out` writes it as CSV).
@@ -551,6 +553,10 @@ fn report(
 /// The refinement of the timed runs' convergence check.
 pub const REFINEMENT: &str = "dt/2, ground stiffness x2";
 
+/// The coarsening of the timed runs' convergence check, where it serves
+/// ([`DynamicTipover::coarse_refused`]).
+pub const COARSENING: &str = "2 dt, ground stiffness / 2 (coarse companion)";
+
 impl DynamicTipover {
     /// The same run at the refined resolution: half the step, twice the ground stiffness.
     pub fn refined(&self) -> Self {
@@ -560,6 +566,50 @@ impl DynamicTipover {
             ..*self
         }
     }
+
+    /// The same run at the coarse resolution ([`COARSENING`]): twice the step, half the
+    /// ground stiffness (the refined run's change undone), half the work.
+    pub fn coarse(&self) -> Self {
+        Self {
+            dt: 2.0 * self.dt,
+            ground_stiffness: 0.5 * self.ground_stiffness,
+            ..*self
+        }
+    }
+
+    /// Why the coarse companion does not serve this run on `toroid`, or `None` when it does:
+    /// its step 2 dt must stay within the output interval and the run, and 2 dt·λ within
+    /// [`STABILITY_MARGIN`](tensegrity_dynamics::convergence::STABILITY_MARGIN) × RK4's
+    /// stability bound, λ the fastest rate of the standing wheel on the coarse ground
+    /// ([`tensegrity_dynamics::convergence::explicit_rate`]: RK4 takes the ground's damper
+    /// explicitly, 2c/m). On the defaults (10⁶ N/m, 2000 N·s/m) it does not: the damper's rate
+    /// puts 2 dt far past the bound, and a run at 2·10⁻⁴ s reads a threshold of 26.6 N
+    /// against 30.4 N at 10⁻⁴ s and 30.7 N at 5·10⁻⁵ s (each with its refined ground).
+    pub fn coarse_refused(&self, toroid: &Toroid) -> Result<Option<String>> {
+        use tensegrity_dynamics::convergence::{explicit_rate, stability_bound, STABILITY_MARGIN};
+        let coarse = self.coarse();
+        if coarse.dt > self.output_dt {
+            return Ok(Some(format!(
+                "2 dt exceeds the output interval {} s",
+                self.output_dt
+            )));
+        }
+        if coarse.dt > self.t_end() {
+            return Ok(Some("2 dt exceeds the run".into()));
+        }
+        let (structure, ground) = coarse.standing_model(toroid, [0.0, 0.0, -self.gravity])?;
+        let model = tensegrity_dynamics::Model::new(&structure, Some(ground))?;
+        let rate = explicit_rate(&model, IntegratorKind::Rk4);
+        let bound = stability_bound(IntegratorKind::Rk4).unwrap_or(0.0);
+        let reach = coarse.dt * rate;
+        // (a NaN rate refuses it too)
+        if reach.is_nan() || reach > STABILITY_MARGIN * bound {
+            return Ok(Some(format!(
+                "2 dt times λ, {reach:.3}, exceeds {STABILITY_MARGIN} × rk4's stability bound {bound}"
+            )));
+        }
+        Ok(None)
+    }
 }
 
 impl DynamicTipoverReport {
@@ -567,7 +617,15 @@ impl DynamicTipoverReport {
     /// the dynamic threshold and the tip time within 2 %, the largest and the final lean
     /// within 5 % (on a scale of at least 0.01 rad), and whether it tipped.
     pub fn convergence(&self, refined: &Self) -> Convergence {
-        let mut c = Convergence::new(REFINEMENT);
+        self.convergence_with(refined, Convergence::new(REFINEMENT))
+    }
+
+    /// As [`DynamicTipoverReport::convergence`] against a `companion` of either resolution,
+    /// into the empty comparison `c` (its label, companion, order and cost): the order is 1
+    /// for both (measured: the threshold reads 30.44, 30.71 and 30.73 N at (dt, k) = (1, ½,
+    /// ¼)·10⁻⁴ s × (1, 2, 4)·10⁶ N/m, changes that fall fourteenfold, faster than order 1: a
+    /// quasi-static ramp has no landing whose duration moves as k^(−½)).
+    pub fn convergence_with(&self, refined: &Self, mut c: Convergence) -> Convergence {
         let lean_scale = 0.01;
         c.compare(
             "dynamic_threshold",
@@ -623,6 +681,27 @@ pub(crate) fn refined_failed(why: impl std::fmt::Display) -> Convergence {
     let mut c = Convergence::new(format!("{REFINEMENT}: the refined run failed: {why}"));
     c.converged = false;
     c
+}
+
+/// Why a coarse companion's report cannot be compared with `main`'s: its run failed, or it
+/// carries a warning of a kind the run does not (it left its regime: it sank, it drifted);
+/// `None` when it can.
+pub(crate) fn coarse_failure(
+    main: &DynamicTipoverReport,
+    coarse: &Result<DynamicTipoverReport>,
+) -> Option<String> {
+    let r = match coarse {
+        Err(e) => return Some(format!("its run failed: {e}")),
+        Ok(r) => r,
+    };
+    let kinds: Vec<&str> = main.warnings.iter().map(|w| w.kind()).collect();
+    let new: Vec<String> = r
+        .warnings
+        .iter()
+        .filter(|w| !kinds.contains(&w.kind()))
+        .map(|w| w.to_string())
+        .collect();
+    (!new.is_empty()).then(|| format!("it carries warnings the run does not: {}", new.join("; ")))
 }
 
 /// Lays `convergence` on a result's `warnings` (one per unconverged quantity, or the

@@ -63,7 +63,9 @@ fn the_default_rolling_run_is_valid_and_its_wobble_is_chaotic() {
     let r = toroid::TipoverRollingRequest::default().report().unwrap();
     assert!(r.valid, "{:?}", r.warnings);
     let c = r.convergence.as_ref().unwrap();
+    // the refined run (from the twin's start) moved the wobble: the twin ran after it
     assert_eq!(c.cost, 3.0);
+    assert!(c.refinement.ends_with("; twin at dt"), "{}", c.refinement);
     for name in ["max_lean", "rms_lean", "final_lean", "fell"] {
         let q = c.quantities.iter().find(|q| q.name == name).unwrap();
         assert_eq!(q.status, Status::Chaotic, "{name}: {q:?}");

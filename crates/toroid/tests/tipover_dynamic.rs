@@ -121,3 +121,24 @@ fn a_diverged_run_names_the_step_it_ran_at_and_no_integrator() {
     assert!(text.contains("use a smaller `dt`"), "{text}");
     assert!(!text.contains("integrator"), "{text}");
 }
+
+/// The convergence check's coarse companion (2 dt, ground stiffness / 2) does not serve the
+/// default ramp: RK4 takes the ground's 2000 N·s/m damper explicitly, and its rate puts 2 dt
+/// far past the stability bound (a run at 2·10⁻⁴ s reads a threshold 12 % low), so the
+/// companion stays refined and the label says why; the coarse resolution itself is 2 dt and
+/// k/2.
+#[test]
+fn the_default_ramp_keeps_its_refined_companion() {
+    let wheel = WheelSpec::default().build().unwrap();
+    let d = DynamicTipover::default();
+    let why = d.coarse_refused(&wheel).unwrap().expect("2 dt is unstable");
+    assert!(
+        why.starts_with("2 dt times λ") && why.contains("exceeds 0.5 × rk4's stability bound 2.6"),
+        "{why}"
+    );
+    let c = d.coarse();
+    assert_eq!(
+        (c.dt, c.ground_stiffness),
+        (2.0 * d.dt, 0.5 * d.ground_stiffness)
+    );
+}

@@ -184,6 +184,20 @@ impl FullRolling {
         integrate::run(self, scene, t_end, observer)
     }
 
+    /// The fastest rate λ (1/s) the explicit part of its integrator must resolve on the wheel
+    /// of `scene` under its ground ([`tensegrity_dynamics::convergence::explicit_rate`]): the
+    /// strings and the ground's springs, and the ground's dampers where the method treats them
+    /// explicitly (not under IMEX and IMEX-ARK). What decides whether the convergence check's
+    /// coarse companion serves ([`crate::convergence`]).
+    pub fn explicit_rate(&self, scene: &WheelScene) -> crate::Result<f64> {
+        let (structure, ground) = integrate::scene_model(self, scene)?;
+        let model = tensegrity_dynamics::Model::new(&structure, Some(ground))?;
+        Ok(tensegrity_dynamics::convergence::explicit_rate(
+            &model,
+            self.integrator,
+        ))
+    }
+
     fn validate(&self, t_end: f64) -> crate::Result<()> {
         for (name, v) in [
             ("gravity", self.gravity),

@@ -29,8 +29,9 @@
 //! - [`observer`]: the hook that receives every sample and frame as it is made and may stop
 //!   the run ([`Observer`]);
 //! - [`run`]: [`roll_wheel`], one run of any [`Wheel`] under the decision;
-//! - [`convergence`]: [`roll_checked`], the run and its repetition at half the step (and
-//!   twice the penalty ground's stiffness) side by side, each headline quantity compared;
+//! - [`convergence`]: [`roll_checked`], the run and its repetition at a companion step
+//!   (twice it where that serves, else half of it) side by side, from a start turned by
+//!   10⁻⁶ rad, each headline quantity compared, and a twin only where one moved;
 //! - [`ensemble`]: K copies from perturbed starting poses in parallel, the mean and 95 %
 //!   interval of every headline quantity against the other model;
 //! - [`frames`]: the rigid model's node frames; [`defaults`]: the named defaults.

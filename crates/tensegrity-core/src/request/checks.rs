@@ -47,5 +47,5 @@ impl RunChecks {
 
     /// The help text of `convergence_check` (also of the requests that spell the field
     /// themselves, `simulate`).
-    pub const CONVERGENCE_CHECK_HELP: &'static str = "Re-run at a companion resolution (half the step, or twice it where `simulate`'s fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells chaotic quantities), in parallel, and report each headline quantity's change, extrapolated error and status in `convergence`; an unconverged result is not valid";
+    pub const CONVERGENCE_CHECK_HELP: &'static str = "Re-run at a companion resolution beside the run (twice a fixed step where that stays stable and accurate, half a run's work; else half the step) and report each headline quantity's change, extrapolated error and status, and the check's cost, in `convergence`; rolling: the companion starts turned by 1e-6 rad, and where a quantity moved a second run tells chaotic quantities; an unconverged result is not valid";
 }

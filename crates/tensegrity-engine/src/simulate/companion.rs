@@ -53,33 +53,10 @@ use tensegrity_dynamics::{
 use tensegrity_io::scene::Scene;
 
 /// The fraction of a method's stability bound a coarse companion's step may use
-/// (2 dt·λ ≤ margin × bound, module docs).
-pub const STABILITY_MARGIN: f64 = 0.5;
-
-/// The largest h·λ of an explicit step (the edge of its stability region, module docs), for
-/// the fixed-step methods; `None` for the adaptive ones (their companion is refined). Taken
-/// as the smallest radius over the rays of the damped oscillations λ(−ζ + i√(1−ζ²)),
-/// 0 ≤ ζ ≤ 1, that a string or a penalty ground makes: RK4 2.6 (2.83 on the imaginary axis,
-/// 2.79 on the real one, 2.62 at ζ = ½), ARK3(2)4L\[2\]SA's explicit tableau 2.4 (2.49 on the
-/// imaginary axis), RATTLE (Störmer–Verlet) 2 (ω h < 2).
-///
-/// ```
-/// use tensegrity_dynamics::IntegratorKind;
-/// use tensegrity_engine::simulate::companion::stability_bound;
-/// assert_eq!(stability_bound(IntegratorKind::Rk4), Some(2.6));
-/// assert_eq!(stability_bound(IntegratorKind::Sdirk), None);
-/// ```
-/// Newmark (elastic models only) is unconditionally stable: `None`.
-pub fn stability_bound(kind: IntegratorKind) -> Option<f64> {
-    match kind {
-        // imex's explicit part is one RK4 step; rk4-flight's inner method is RK4
-        IntegratorKind::Rk4 | IntegratorKind::Imex | IntegratorKind::Rk4Flight => Some(2.6),
-        IntegratorKind::ImexArk => Some(2.4),
-        IntegratorKind::Rattle => Some(2.0),
-        // (Newmark runs elastic models, whose companion is always refined)
-        IntegratorKind::Rk45 | IntegratorKind::Sdirk | IntegratorKind::Newmark => None,
-    }
-}
+/// (2 dt·λ ≤ margin × bound, module docs), and the largest h·λ of each fixed-step method:
+/// shared with the rolling checks (`wheel_rolling::convergence`), so defined beside
+/// [`Convergence`].
+pub use tensegrity_dynamics::convergence::{stability_bound, STABILITY_MARGIN};
 
 /// Whether a run of `simulation` (of `scene`) is smooth: no ground (no landings, no
 /// contact switching), no events and no actuation (its tables are piecewise linear in time:

@@ -822,10 +822,12 @@ def simulate(
         Fail (after writing the outputs) when the run has a drift warning or its final state
         did not converge
     convergence_check : bool
-        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
-        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
-        chaotic quantities), in parallel, and report each headline quantity's change,
-        extrapolated error and status in `convergence`; an unconverged result is not valid
+        Re-run at a companion resolution beside the run (twice a fixed step where that stays
+        stable and accurate, half a run's work; else half the step) and report each headline
+        quantity's change, extrapolated error and status, and the check's cost, in
+        `convergence`; rolling: the companion starts turned by 1e-6 rad, and where a
+        quantity moved a second run tells chaotic quantities; an unconverged result is not
+        valid
     trajectory : bool, optional
         Keep the samples at the output times: the result also holds ``t``, ``trajectory`` and the histories the scene records (SimulateResult lists them). Default: True.
     progress : callable or bool, optional
@@ -1020,10 +1022,12 @@ def roll(
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
-        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
-        chaotic quantities), in parallel, and report each headline quantity's change,
-        extrapolated error and status in `convergence`; an unconverged result is not valid
+        Re-run at a companion resolution beside the run (twice a fixed step where that stays
+        stable and accurate, half a run's work; else half the step) and report each headline
+        quantity's change, extrapolated error and status, and the check's cost, in
+        `convergence`; rolling: the companion starts turned by 1e-6 rad, and where a
+        quantity moved a second run tells chaotic quantities; an unconverged result is not
+        valid
     ensemble : int
         Also roll K copies from starting poses turned by ±1e-6 rad, ±2e-6 rad, … (in
         parallel) and report the mean and 95 % interval of every headline quantity against
@@ -1165,10 +1169,12 @@ def tipover(
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
-        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
-        chaotic quantities), in parallel, and report each headline quantity's change,
-        extrapolated error and status in `convergence`; an unconverged result is not valid
+        Re-run at a companion resolution beside the run (twice a fixed step where that stays
+        stable and accurate, half a run's work; else half the step) and report each headline
+        quantity's change, extrapolated error and status, and the check's cost, in
+        `convergence`; rolling: the companion starts turned by 1e-6 rad, and where a
+        quantity moved a second run tells chaotic quantities; an unconverged result is not
+        valid
     incline : float or str
         Incline downhill, e.g. `30deg` (rad); radians, or a string such as '30deg', 'pi/8',
         '3pi/4'; must lie in [0, 1.5707963267948966). Default: 0.5235987755982988
@@ -1580,10 +1586,12 @@ def tbar_roll(
         Fail (exit 1, after writing the outputs) when the result is not valid: outside its
         model's assumptions or not converged
     convergence_check : bool
-        Re-run at a companion resolution (half the step, or twice it where `simulate`'s
-        fixed step stays stable; rolling: also from a start turned by 1e-6 rad, which tells
-        chaotic quantities), in parallel, and report each headline quantity's change,
-        extrapolated error and status in `convergence`; an unconverged result is not valid
+        Re-run at a companion resolution beside the run (twice a fixed step where that stays
+        stable and accurate, half a run's work; else half the step) and report each headline
+        quantity's change, extrapolated error and status, and the check's cost, in
+        `convergence`; rolling: the companion starts turned by 1e-6 rad, and where a
+        quantity moved a second run tells chaotic quantities; an unconverged result is not
+        valid
     The result's ``table``: the rows of ``tbar roll --out``; its ``history``: the 1 ms samples of the first row's T-bar run (TbarRollResult lists both).
     progress : callable or bool, optional
         ``callback(done, total)`` (simulated seconds of every row's T-bar run, tread counts × t_end); ``True``: a tqdm bar, else lines on stderr. Default: none.

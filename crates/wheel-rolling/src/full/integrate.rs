@@ -116,7 +116,7 @@ pub(super) fn run(
 }
 
 /// The scene's structure under the tilted gravity, and the slope under groups 0 and 1.
-fn scene_model(model: &FullRolling, scene: &WheelScene) -> Result<(Structure, Ground)> {
+pub(super) fn scene_model(model: &FullRolling, scene: &WheelScene) -> Result<(Structure, Ground)> {
     let (sin, cos) = model.incline.sin_cos();
     let structure = scene
         .structure
