@@ -174,7 +174,7 @@ impl SweepError {
     pub(crate) fn io(
         what: &'static str,
         path: &std::path::Path,
-    ) -> impl FnOnce(std::io::Error) -> Self {
+    ) -> impl FnOnce(std::io::Error) -> Self + use<> {
         let path = path.to_path_buf();
         move |source| SweepError::Io { what, path, source }
     }

@@ -349,7 +349,7 @@ impl TbarGeometry {
         for &[s, e] in &self.strings {
             b = b.string(StringMember::new(s, e));
         }
-        for (i, _) in self.supported.iter().enumerate().filter(|(_, &s)| s) {
+        for (i, _) in self.supported.iter().enumerate().filter(|&(_, &s)| s) {
             b = b.support(Support::pinned(i));
         }
         Ok(b.build()?)

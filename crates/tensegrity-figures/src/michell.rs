@@ -413,7 +413,7 @@ pub fn fig_4_9(_: &Ctx) -> Result<Drawn> {
     classes.dedup();
     // one marker per node (a polyline of one point twice: no line), labelled once a class
     for z in classes {
-        let members = nodes.iter().zip(&z_of).filter(|(_, &c)| c == z);
+        let members = nodes.iter().zip(&z_of).filter(|&(_, &c)| c == z);
         for (k, (n, _)) in members.enumerate() {
             let p = View::Xy.project(n);
             let label = if k == 0 {

@@ -91,7 +91,7 @@ pub(crate) fn solve(
         let max_step = |v: &DVector<f64>, dv: &DVector<f64>| {
             v.iter()
                 .zip(dv.iter())
-                .filter(|(_, &d)| d < 0.0)
+                .filter(|&(_, &d)| d < 0.0)
                 .map(|(&x, &d)| -x / d)
                 .fold(1.0f64, f64::min)
         };

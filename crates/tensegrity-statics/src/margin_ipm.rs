@@ -153,7 +153,7 @@ pub fn solve(a: &CscMatrix, signs: &[MemberSign], ordering: Option<&[usize]>) ->
         let step = |x: &[f64], dx: &[f64]| {
             x.iter()
                 .zip(dx)
-                .filter(|(_, &d)| d < 0.0)
+                .filter(|&(_, &d)| d < 0.0)
                 .fold(1.0f64, |a, (&x, &d)| a.min(-x / d))
         };
         // predictor

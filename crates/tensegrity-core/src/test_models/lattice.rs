@@ -69,7 +69,7 @@ pub fn double_layer_grid(k: usize) -> Result<Structure> {
     for [i, j] in strings {
         builder = builder.string(StringMember::new(i, j));
     }
-    for (i, _) in fix.iter().enumerate().filter(|(_, &f)| f) {
+    for (i, _) in fix.iter().enumerate().filter(|&(_, &f)| f) {
         builder = builder.support(Support::pinned(i));
     }
     builder.build()

@@ -61,7 +61,7 @@ impl<W> Staged<W> {
     }
 
     /// A write error naming the target.
-    pub(crate) fn write_error(&self) -> impl Fn(std::io::Error) -> IoError {
+    pub(crate) fn write_error(&self) -> impl Fn(std::io::Error) -> IoError + use<W> {
         let path = self.target.clone();
         move |source| IoError::Write {
             path: path.clone(),
