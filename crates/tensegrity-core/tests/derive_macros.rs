@@ -3,8 +3,8 @@
 //! fields, and an internally tagged enum) and `#[derive(Params)]` (a request's parameters, with
 //! kinds, units, rules, a flattened part and an explicit order). They run here, as tests of the
 //! crate the macros implement the traits of, rather than as doc-tests of the proc-macro crate:
-//! a proc-macro crate's tests are built for the build host, which compiled tensegrity-core,
-//! its linear algebra and faer a second time (without optimisation) in every test build.
+//! a proc-macro crate's tests are built for the build host, which compiled tensegrity-core
+//! and its linear algebra a second time (without optimisation) in every test build.
 
 // the examples' types exist to be derived on: some fields and variants are never read
 #[allow(dead_code)]
