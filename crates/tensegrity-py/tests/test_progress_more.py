@@ -28,6 +28,8 @@ SWEEPS = ROOT / "examples" / "sweeps"
 TBAR_ROLL = {"treads": [8, 12], "t_end": 0.3}
 #: The same over the default 10 s (rigid model: about a second, reported as it goes).
 TBAR_ROLL_LONG = {"treads": [8, 12], "t_end": 10.0}
+#: A T-bar roll of about 2 s in a release build (0.2 s for TBAR_ROLL_LONG), to be interrupted.
+TBAR_ROLL_INTERRUPTED = {"treads": [8, 12, 16, 24], "t_end": 30.0}
 #: A short dynamic tip-over ramp (0.3 s simulated).
 DYNAMIC = {"settle": 0.05, "ramp_time": 0.25, "output_dt": 0.01}
 #: A short rolling lean run.
@@ -304,7 +306,7 @@ def test_ctrl_c_still_stops_a_sweep_and_a_tbar_roll_with_a_callback(python_handl
 
     sent = interrupt_after(0.3)
     with pytest.raises(KeyboardInterrupt):
-        tg.tbar_roll(progress=lambda d, t: None, **TBAR_ROLL_LONG)
+        tg.tbar_roll(progress=lambda d, t: None, **TBAR_ROLL_INTERRUPTED)
     back = time.monotonic()
     assert sent and back - sent[0] < 0.5, back - sent[0]
     # the next call runs
