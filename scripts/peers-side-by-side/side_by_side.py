@@ -82,25 +82,12 @@ def child(args):
 
 
 def tower_toml(n):
-    """The free tower of N Snelson prisms (scripts/statics-scaling/run.sh's generator): rings
-    of 3 nodes twisted pi/6 a level, per stage 3 bars, 3 vertical and 3 ring strings."""
-    import math
-
-    out = ["nodes = ["]
-    for i in range(n + 1):
-        for j in range(3):
-            a = 2 * math.pi * j / 3 + i * math.pi / 6
-            out.append(f"  [{math.cos(a)!r}, {math.sin(a)!r}, {float(i)!r}],")
-    out.append("]")
-    for i in range(n):
-        for j in range(3):
-            out.append(f"[[bars]]\nnodes = [{3*i+j}, {3*(i+1)+(j+1)%3}]\nmass = 0.5")
-    for i in range(n + 1):
-        for j in range(3):
-            if i < n:
-                out.append(f"[[strings]]\nnodes = [{3*i+j}, {3*(i+1)+j}]\nstiffness = 2000.0")
-            out.append(f"[[strings]]\nnodes = [{3*i+j}, {3*i+(j+1)%3}]\nstiffness = 2000.0")
-    return "\n".join(out) + "\n"
+    """The free tower of N Snelson prisms: scripts/statics-scaling/tower.py's scene."""
+    path = os.path.join(ROOT, "scripts", "statics-scaling", "tower.py")
+    spec = importlib.util.spec_from_file_location("tower", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.tower_toml(n)
 
 
 def svd(scene):

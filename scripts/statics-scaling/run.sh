@@ -24,26 +24,8 @@ if [ "$QUICK" = --quick ]; then
     TOWERS="2 3 5 10 25 50 100 200 400 800 1600"
 fi
 
-tower() { # N: the free tower of N prisms, rings twisted pi/6, 3 bars, 3 verticals, 3 ring strings a stage
-    python3 - "$1" <<'PY'
-import math, sys
-n = int(sys.argv[1])
-out = ["nodes = ["]
-for i in range(n + 1):
-    for j in range(3):
-        a = 2 * math.pi * j / 3 + i * math.pi / 6
-        out.append(f"  [{math.cos(a)!r}, {math.sin(a)!r}, {float(i)!r}],")
-out.append("]")
-for i in range(n):
-    for j in range(3):
-        out.append(f"[[bars]]\nnodes = [{3*i+j}, {3*(i+1)+(j+1)%3}]\nmass = 0.5")
-for i in range(n + 1):
-    for j in range(3):
-        if i < n:
-            out.append(f"[[strings]]\nnodes = [{3*i+j}, {3*(i+1)+j}]\nstiffness = 2000.0")
-        out.append(f"[[strings]]\nnodes = [{3*i+j}, {3*i+(j+1)%3}]\nstiffness = 2000.0")
-print("\n".join(out))
-PY
+tower() { # N: the free tower of N prisms (tower.py beside this script)
+    python3 "$(dirname "$0")/tower.py" "$1"
 }
 
 best() { # SCENE: the least CPU (user + sys, from getrusage) of three runs of statics --json

@@ -130,22 +130,9 @@ pub fn stability_bound(kind: IntegratorKind) -> Option<f64> {
 /// whose step it bounds shows it as a coarse run that fails or drifts, and the refined
 /// companion follows.
 pub fn explicit_rate(model: &crate::Model, kind: IntegratorKind) -> f64 {
-    let lightest = model
-        .bars
-        .iter()
-        .map(|b| b.mass)
-        .fold(f64::INFINITY, f64::min);
-    let m = lightest / 4.0;
-    if !(m.is_finite() && m > 0.0) {
+    let Some((rate, strings)) = crate::estimate::spring_rates(model) else {
         return 0.0;
-    }
-    let rate = |k: f64, c: f64| (2.0 * k / m).sqrt().max(2.0 * c / m);
-    let strings = model
-        .strings
-        .iter()
-        .map(|s| rate(s.law.stiffness, s.law.damping))
-        .chain(model.clusters.iter().map(|c| rate(c.stiffness, c.damping)))
-        .fold(0.0, f64::max);
+    };
     let implicit_damping = matches!(kind, IntegratorKind::Imex | IntegratorKind::ImexArk);
     let damping = |c: f64| if implicit_damping { 0.0 } else { c };
     let ground = match model.ground.as_ref().map(|g| &g.model) {

@@ -82,10 +82,10 @@ pub fn simulation(
 /// reaches about 3.3 along the negative real axis and 3.4 along the imaginary one).
 pub const RK45_STABILITY: f64 = 3.0;
 
-/// The fastest rate λ (1/s) an explicit method must resolve: over the strings and a penalty
-/// ground, √(2k/m) for a stiffness k and 2c/m for a damping c, with m a quarter of the
-/// lightest bar's mass (a bar end's effective mass); 0 for a model without bars.
-pub fn fastest_rate(model: &crate::Model) -> f64 {
+/// The rate of a spring k and damper c at a bar end's effective mass m (a quarter of the
+/// lightest bar's), √(2k/m) or 2c/m, whichever is larger, and the fastest of the strings' and
+/// clusters' rates; `None` for a model without bars (nothing to resolve).
+pub(crate) fn spring_rates(model: &crate::Model) -> Option<(impl Fn(f64, f64) -> f64, f64)> {
     let lightest = model
         .bars
         .iter()
@@ -93,15 +93,25 @@ pub fn fastest_rate(model: &crate::Model) -> f64 {
         .fold(f64::INFINITY, f64::min);
     let m = lightest / 4.0;
     if !(m.is_finite() && m > 0.0) {
-        return 0.0;
+        return None;
     }
-    let rate = |k: f64, c: f64| (2.0 * k / m).sqrt().max(2.0 * c / m);
+    let rate = move |k: f64, c: f64| (2.0 * k / m).sqrt().max(2.0 * c / m);
     let strings = model
         .strings
         .iter()
         .map(|s| rate(s.law.stiffness, s.law.damping))
         .chain(model.clusters.iter().map(|c| rate(c.stiffness, c.damping)))
         .fold(0.0, f64::max);
+    Some((rate, strings))
+}
+
+/// The fastest rate λ (1/s) an explicit method must resolve: over the strings and a penalty
+/// ground, √(2k/m) for a stiffness k and 2c/m for a damping c, with m a quarter of the
+/// lightest bar's mass (a bar end's effective mass); 0 for a model without bars.
+pub fn fastest_rate(model: &crate::Model) -> f64 {
+    let Some((rate, strings)) = spring_rates(model) else {
+        return 0.0;
+    };
     let ground = match model.ground.as_ref().map(|g| &g.model) {
         Some(crate::GroundModel::Penalty {
             stiffness, damping, ..
