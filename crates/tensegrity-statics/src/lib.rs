@@ -446,7 +446,7 @@ pub enum StaticsMethod {
 /// [`StaticsMethod::Auto`] uses the sparse path when both the free dofs and the members
 /// number at least this many. The sparse path is the cheaper one from about 60 members up
 /// (a free tower of 10 prisms, 93 members: 3.8 ms against the SVD's 5.2 ms for the whole
-/// process; of 25 prisms: 7.4 against 17.4 ms; a double-layer grid of 516 members and 255
+/// process; of 25 prisms: 7.4 against 17.4 ms; a double-layer grid of 516 members and 267
 /// dofs: 0.01 against 0.09 s, release, docs/notes/PERFORMANCE.md "Statics cost against
 /// size"), so that with the limit at 100 the cost rises with size across the switch; it was
 /// 300, where the dense path's O(members·s²) margin LP made mid-size lattices cost more than
