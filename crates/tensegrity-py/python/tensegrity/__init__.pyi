@@ -752,7 +752,8 @@ def statics(
         `displacement`
     method : {'auto', 'dense', 'sparse'}
         Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing
-        QR from 300 dofs and members on), dense or sparse. Default: 'auto'
+        QR from 100 dofs and members on, 300 for coordinates judged rounded), dense or
+        sparse. Default: 'auto'
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
         ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
