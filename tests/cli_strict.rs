@@ -8,7 +8,7 @@
 //! - `tbar roll`: the full model of the T-bar wheel of 8 treads for 0.1 s on a ground of
 //!   10³ N/m, into which it sinks more than 1 % of R_o (the rigid run of 8 treads on 50° that
 //!   was here is valid since issue 48: the quantities its check had found unconverged were
-//!   chaotic hops, which its twin at 2 dt tells);
+//!   chaotic hops, which its twin at the companion's step tells);
 //! - `tipover --dynamic` and `tipover --rolling`: a ground of 10³ N/m, into which the wheel
 //!   sinks more than 1 % of R_o;
 //! - `simulate`: RATTLE at 0.01 s on the damped prism drop (its energy grows).

@@ -1,6 +1,6 @@
-//! `simulate`'s convergence check with a coarse companion (2 dt, half the run's work) where
-//! that step stays well inside the method's stability, and a refined one (dt/2, twice)
-//! otherwise (`tensegrity_engine::simulate::companion`): the extrapolated error bounds the
+//! `simulate`'s convergence check with a coarse companion (4 dt, a quarter of the run's work,
+//! else 2 dt, half of it) where that step stays well inside the method's stability, and a
+//! refined one (dt/2, twice) otherwise (`tensegrity_engine::simulate::companion`): the extrapolated error bounds the
 //! run's error against a finer run, the companion is refined where 2 dt would leave the
 //! stability bound, and the cost is stated.
 
@@ -70,19 +70,19 @@ fn quantity<'a>(report: &'a SimulationReport, name: &str) -> &'a QuantityConverg
 }
 
 /// (a) The double pendulum under RK4 at 1 ms (smooth: no ground, no actuation): the coarse
-/// companion (2 ms) moves its final state by r; extrapolated at the documented order 1, e = r
-/// bounds the run's error against a run at dt/8, and is within τ where it is reported
-/// converged: e = 3.8·10⁻⁹ of the pendulum's size against an error of 2.6·10⁻¹⁰. (The error
-/// is r/15, RK4's fourth order, which order 1 over-states 15-fold.)
+/// companion (4 ms) moves its final state by r; extrapolated at the documented order 1,
+/// e = r/3 bounds the run's error against a run at dt/8, and is within τ where it is reported
+/// converged: e = 2.2·10⁻⁸ of the pendulum's size against an error of 2.6·10⁻¹⁰. (The error
+/// is r/255, RK4's fourth order, which order 1 over-states 85-fold.)
 #[test]
 fn a_coarse_companion_bounds_the_error_of_a_smooth_run() {
     let c = command("anchors/double_pendulum_rk4.toml", None, None, Some(2.0));
     let report = simulate(&c).unwrap();
     let conv = report.convergence.as_ref().unwrap();
-    assert_eq!(conv.companion, Companion::Coarse, "{conv:?}");
+    assert_eq!(conv.companion, Companion::Coarser, "{conv:?}");
     assert_eq!(
         (conv.refinement.as_str(), conv.order, conv.cost),
-        ("2 dt (coarse companion)", 1.0, 0.5)
+        ("4 dt (coarse companion)", 1.0, 0.25)
     );
     assert!(conv.converged, "{conv:?}");
     let (dt, scales) = step_and_scales(&c);
@@ -92,17 +92,20 @@ fn a_coarse_companion_bounds_the_error_of_a_smooth_run() {
     for (i, name) in ["final_nodes", "final_velocities"].iter().enumerate() {
         let q = quantity(&report, name);
         let (r, e) = (q.relative_change.unwrap(), q.estimated_error.unwrap());
-        assert_eq!(e, r, "{q:?}");
-        // a change of 10⁻⁹…10⁻⁷ of the size and the speed scale
-        assert!(r > 1e-9 && r < 1e-7, "{q:?}");
+        assert!((e - r / 3.0).abs() <= 1e-15 * r, "{q:?}");
+        // a change of 10⁻⁹…10⁻⁶ of the size and the speed scale
+        assert!(r > 1e-9 && r < 1e-6, "{q:?}");
         assert!(
             error[i] <= e && e <= q.tolerance,
             "{name}: error {} e {e}",
             error[i]
         );
-        // fourth order: the change from 2 dt is (2⁴ − 1)/(1 − 8⁻⁴) ≈ 15 times the error
+        // fourth order: the change from 4 dt is (4⁴ − 1)/(1 − 8⁻⁴) ≈ 255 times the error
         let ratio = r / error[i];
-        assert!(ratio > 13.0 && ratio < 17.0, "{name}: r / error = {ratio}");
+        assert!(
+            ratio > 220.0 && ratio < 290.0,
+            "{name}: r / error = {ratio}"
+        );
     }
 }
 
@@ -146,8 +149,8 @@ fn a_companion_that_would_leave_the_stability_bound_is_refined() {
 }
 
 /// A coarse run that drifts where the run does not (RK4 with flight steps on the MOTES prism:
-/// its energy at 2 ms, flight steps of 10 ms, drifts by 1.02·10⁻³, past its limit of 10⁻³) is
-/// not compared: the refined run follows it, `refinement` says so and the cost is 2½ runs.
+/// its energy at 4 ms, flight steps of 20 ms, drifts by 2.6·10⁻², past its limit of 10⁻³) is
+/// not compared: the refined run follows it, `refinement` says so and the cost is 2¼ runs.
 #[test]
 fn a_coarse_companion_that_drifts_is_followed_by_the_refined_one() {
     let c = command(
@@ -159,10 +162,10 @@ fn a_coarse_companion_that_drifts_is_followed_by_the_refined_one() {
     let report = simulate(&c).unwrap();
     assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     let conv = report.convergence.as_ref().unwrap();
-    assert_eq!((conv.companion, conv.cost), (Companion::Refined, 2.5));
+    assert_eq!((conv.companion, conv.cost), (Companion::Refined, 2.25));
     assert!(
         conv.refinement.starts_with(
-            "dt/2 (refined companion, run after the coarse one at 2 dt: it drifted (energy 1.0"
+            "dt/2 (refined companion, run after the coarse one at 4 dt: it drifted (energy 2.5"
         ),
         "{}",
         conv.refinement
@@ -170,10 +173,10 @@ fn a_coarse_companion_that_drifts_is_followed_by_the_refined_one() {
     assert!(conv.converged, "{conv:?}");
 }
 
-/// (c) The check's cost: ½ the run's work for a coarse companion, 2 for a refined one, in
-/// the report and in the resource estimate (1.5 and 3 times the run's).
+/// (c) The check's cost: ¼ the run's work for a coarse companion at 4 dt, 2 for a refined
+/// one, in the report and in the resource estimate (1.25 and 3 times the run's).
 #[test]
-fn the_cost_of_the_check_is_half_a_run_coarse_and_two_refined() {
+fn the_cost_of_the_check_is_a_quarter_run_coarse_and_two_refined() {
     let coarse = command("anchors/motes_dbar.toml", None, None, Some(0.5));
     let refined = command(
         "prism_drop.toml",
@@ -181,7 +184,7 @@ fn the_cost_of_the_check_is_half_a_run_coarse_and_two_refined() {
         Some(1e-3),
         Some(0.2),
     );
-    for (c, cost) in [(&coarse, 0.5), (&refined, 2.0)] {
+    for (c, cost) in [(&coarse, 0.25), (&refined, 2.0)] {
         let report = simulate(c).unwrap();
         assert_eq!(report.convergence.as_ref().unwrap().cost, cost);
         let (_, simulation) = c.prepare(false).unwrap();
@@ -222,7 +225,7 @@ fn the_cli_states_the_companion_and_the_cost() {
         .find(|l| l.starts_with("convergence ("))
         .unwrap_or_else(|| panic!("{text}"));
     assert!(
-        line.contains("2 dt (coarse companion)") && line.contains("0.5"),
+        line.contains("4 dt (coarse companion)") && line.contains("0.25"),
         "{line}"
     );
     let out = common::run(&[&args[..], &["--json"]].concat());
@@ -231,7 +234,7 @@ fn the_cli_states_the_companion_and_the_cost() {
     let c = &json["convergence"];
     assert_eq!(
         (c["companion"].as_str(), c["cost"].as_f64()),
-        (Some("coarse"), Some(0.5)),
+        (Some("coarser"), Some(0.25)),
         "{c}"
     );
 }
@@ -270,15 +273,12 @@ fn the_companion_starts_from_the_step_the_run_took() {
 }
 
 /// Where a converged quantity's extrapolated error e does not bound its error against dt/4
-/// (`companion::documented_order`): the final state moves irregularly with the step, at
-/// errors far inside τ — RATTLE on the MOTES D-bar (strings going slack and taut; 1.1·10⁻⁵
-/// of L, τ = 10⁻²) and rk4-flight's final velocities on the dropped prism (sliding and
-/// rocking on its friction ground: 7.8·10⁻³, τ = 2·10⁻²).
-const IRREGULAR: &[(&str, &str, &str)] = &[
-    ("prism_drop.toml", "rk4-flight", "final_velocities"),
-    ("anchors/motes_dbar.toml", "rattle", "final_nodes"),
-    ("anchors/motes_dbar.toml", "rattle", "final_velocities"),
-];
+/// (`companion::documented_order`): the final state moves irregularly with the step, at an
+/// error far inside τ — rk4-flight's final velocities on the dropped prism (sliding and
+/// rocking on its friction ground: 7.8·10⁻³, τ = 2·10⁻², against its refined companion).
+/// (RATTLE on the MOTES D-bar, unbounded at 2 dt, is bounded at 4 dt: e = 3.3·10⁻⁵ against
+/// 1.1·10⁻⁵ of L.)
+const IRREGULAR: &[(&str, &str, &str)] = &[("prism_drop.toml", "rk4-flight", "final_velocities")];
 
 /// Errors below this fraction of τ are round-off and the solvers' tolerances (a structure
 /// that barely moves: the prism at rest), not the step's.
@@ -335,7 +335,9 @@ fn measured_orders_on_the_bundled_examples() {
             let (r, e) = (q.relative_change.unwrap(), q.estimated_error.unwrap());
             // the largest order whose extrapolation still bounds the error
             let p = match conv.companion {
-                Companion::Coarse => (1.0 + r / error[i]).log2(),
+                Companion::Coarse | Companion::Coarser | Companion::Coarsest => {
+                    (1.0 + r / error[i]).log2() / conv.companion.step_ratio().log2()
+                }
                 Companion::Refined if r >= error[i] => f64::INFINITY,
                 Companion::Refined => (error[i] / (error[i] - r)).log2(),
             };
@@ -357,4 +359,32 @@ fn measured_orders_on_the_bundled_examples() {
         .map(|&(s, n, q)| (s, n.to_string(), q.to_string()))
         .collect();
     assert_eq!(unbounded, known);
+}
+
+/// A quantity past its tolerance against the 4 dt companion is checked again at 2 dt, whose
+/// verdict stands (the order-1 rule over-states the error of a higher-order method, the more
+/// the coarser the companion): RATTLE on the MOTES prism moves its final velocities by 20 %
+/// at 4 dt (e = 6.6 %) and 4.8 % at 2 dt (e = 4.8 %, τ = 2 %; 1.6 % against dt/4): the cost
+/// is ¼ + ½, and the label names the quantity.
+#[test]
+fn a_quantity_past_its_tolerance_at_4_dt_is_checked_again_at_2_dt() {
+    let c = command(
+        "anchors/motes_prism.toml",
+        Some(IntegratorKind::Rattle),
+        None,
+        None,
+    );
+    let report = simulate(&c).unwrap();
+    let conv = report.convergence.as_ref().unwrap();
+    assert_eq!((conv.companion, conv.cost), (Companion::Coarse, 0.75));
+    assert_eq!(
+        conv.refinement,
+        "2 dt (coarse companion, run after the one at 4 dt found final_velocities past its tolerance)"
+    );
+    // the 2 dt rule: e = r
+    let q = quantity(&report, "final_velocities");
+    assert_eq!(q.estimated_error, q.relative_change);
+    let r = q.relative_change.unwrap();
+    assert!(r > 0.03 && r < 0.07, "{q:?}");
+    assert!(!conv.converged && !report.valid);
 }

@@ -16,7 +16,7 @@
 //! error of the run's value is
 //!
 //! > e = r · 2ᵖ / (2ᵖ − 1)   with a refined companion (h/2),
-//! > e = r / (2ᵖ − 1)        with a coarse companion (2h),
+//! > e = r / (kᵖ − 1)        with a coarse companion (kh, k = 2, 4 or 8),
 //!
 //! and the quantity is `converged` when e ≤ τ, its tolerance. A finer run (h/4, h/8, …) then
 //! differs from the run's value by at most e (1 − 4⁻ᵖ) < τ. The order p is the caller's
@@ -45,7 +45,7 @@
 //! by both a step and a start, and its change r of a quantity holds both effects, the step's
 //! bias c and the start's t (r = |c + t|). Where every quantity has r ≤ τ/8 (and none is
 //! missing from one run only), the start moved none by more than the twin's threshold τ/8 and
-//! the step's error e = r·2ᵖ/(2ᵖ − 1) or r/(2ᵖ − 1) is within τ (for p ≥ ½): every quantity
+//! the step's error e = r·2ᵖ/(2ᵖ − 1) or r/(kᵖ − 1) is within τ (for p ≥ ½): every quantity
 //! is converged and none is chaotic, and no twin runs. The rule holds barring a cancellation
 //! of c and t to within τ/8 where both exceed it, as unlikely as a chaotic quantity's single
 //! twin landing within τ/8 of the run. Why the companion must carry the perturbation rather
@@ -61,20 +61,26 @@
 //! twin at the run's step ([`Convergence::twin`]). Without a twin no quantity has
 //! `twin_change` or `interval` (null: a converged quantity needs no interval).
 //!
-//! **Which companion.** A coarse companion (2h) serves where 2h stays inside the method's
-//! stability with a margin, 2h · λ ≤ [`STABILITY_MARGIN`] × [`stability_bound`] for the
+//! **Which companion.** A coarse companion (kh) serves where kh stays inside the method's
+//! stability with a margin, kh · λ ≤ [`STABILITY_MARGIN`] × [`stability_bound`] for the
 //! fastest rate λ its explicit part must resolve ([`explicit_rate`]), and inside the run
-//! (2h ≤ t_end, and no longer than an output interval where the steps are cut at the samples).
-//! Otherwise, and for adaptive methods, it is refined (h/2). A coarse run that fails or leaves
-//! its regime (its state not finite, a drift or validity warning the run does not carry) is
-//! followed by the refined one, its cost added.
+//! (kh ≤ t_end, and no longer than an output interval where the steps are cut at the samples).
+//! Each caller takes the coarsest of the ratios it allows ([`Companion::COARSE`]) and states
+//! why: `simulate` 4h, else 2h; the rigid rolling model 8h; the full rolling model 2h. The
+//! coarser the companion, the cheaper (¼ of the run at 4h, ⅛ at 8h), and the more the
+//! order-1 rule over-states the error of a higher-order method (RK4 on a smooth scene: 85-fold
+//! at 4h, 15-fold at 2h): a caller whose quantity is past its tolerance at 4h or 8h checks it
+//! again with a finer companion, whose verdict stands. Otherwise, and for adaptive methods,
+//! it is refined (h/2). A coarse run that fails or leaves its regime (its state not finite, a
+//! drift or validity warning the run does not carry) is followed by the refined one, its cost
+//! added.
 //!
 //! A quantity that is neither converged nor chaotic makes the whole result unconverged
 //! ([`Convergence::converged`]), which a result then reports as not valid
 //! ([`Convergence::warnings`]). The error bar's cost is stated ([`Convergence::cost`]: the
-//! companion and twin runs' work relative to the run's: 2 for h/2, ½ for 2h, +1 for a twin at
-//! the run's step, +½ for a second run at 2h, +½ for a coarse run that failed before a
-//! refined one).
+//! companion and twin runs' work relative to the run's: 2 for h/2, 1/k for kh (½, ¼, ⅛), +1
+//! for a twin at the run's step, +1/k for a second run at kh, +1/k for a coarse run that
+//! failed before a refined one).
 
 use serde::{Deserialize, Serialize};
 use tensegrity_core::warning::Warning;
@@ -162,25 +168,80 @@ pub enum Companion {
     /// Half the step (costs twice the run).
     #[default]
     Refined,
-    /// Twice the step (costs half the run); used where 2h stays inside the method's stability.
+    /// Twice the step (costs half the run); used where 2h stays inside the method's stability
+    /// (module docs, "Which companion").
     Coarse,
+    /// Four times the step (costs a quarter of the run); used where 4h stays inside the
+    /// method's stability and the caller's other conditions (module docs, "Which companion").
+    Coarser,
+    /// Eight times the step (costs an eighth of the run); used by the rigid rolling model,
+    /// whose events are located to round-off whatever the step (`wheel_rolling::convergence`).
+    Coarsest,
 }
 
 impl Companion {
-    /// The companion run's work relative to the run's.
-    pub fn cost(self) -> f64 {
+    /// The companion's step over the run's: ½, 2, 4 or 8.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::Companion;
+    /// assert_eq!(Companion::Coarser.step_ratio(), 4.0);
+    /// assert_eq!(Companion::Refined.step_ratio(), 0.5);
+    /// ```
+    pub fn step_ratio(self) -> f64 {
         match self {
-            Companion::Refined => 2.0,
-            Companion::Coarse => 0.5,
+            Companion::Refined => 0.5,
+            Companion::Coarse => 2.0,
+            Companion::Coarser => 4.0,
+            Companion::Coarsest => 8.0,
         }
     }
 
-    /// e / r for a method of order `p` (module docs).
+    /// The coarse companions, the cheapest first: 8h, 4h, then 2h (each caller states which
+    /// it allows).
+    pub const COARSE: [Companion; 3] = [Companion::Coarsest, Companion::Coarser, Companion::Coarse];
+
+    /// The companion run's work relative to the run's: the inverse of its step ratio.
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::Companion;
+    /// assert_eq!(
+    ///     Companion::COARSE.map(Companion::cost),
+    ///     [0.125, 0.25, 0.5]
+    /// );
+    /// ```
+    pub fn cost(self) -> f64 {
+        1.0 / self.step_ratio()
+    }
+
+    /// e / r for a method of order `p` (module docs): 2ᵖ/(2ᵖ − 1) for h/2, and 1/(kᵖ − 1)
+    /// for a coarse step kh (1/(2ᵖ − 1) for 2h, 1/(4ᵖ − 1) for 4h).
+    ///
+    /// ```
+    /// use tensegrity_dynamics::convergence::Companion;
+    /// assert_eq!(Companion::Refined.error_factor(1.0), 2.0);
+    /// assert_eq!(Companion::Coarse.error_factor(1.0), 1.0);
+    /// assert!((Companion::Coarser.error_factor(1.0) - 1.0 / 3.0).abs() < 1e-15);
+    /// ```
     pub fn error_factor(self, p: f64) -> f64 {
-        let g = 2f64.powf(p);
         match self {
-            Companion::Refined => g / (g - 1.0),
-            Companion::Coarse => 1.0 / (g - 1.0),
+            Companion::Refined => {
+                let g = 2f64.powf(p);
+                g / (g - 1.0)
+            }
+            Companion::Coarse | Companion::Coarser | Companion::Coarsest => {
+                1.0 / (self.step_ratio().powf(p) - 1.0)
+            }
+        }
+    }
+
+    /// How the companion's run differs from the run, for a label: `dt/2`, `2 dt`, `4 dt`,
+    /// `8 dt`.
+    pub fn step_label(self) -> &'static str {
+        match self {
+            Companion::Refined => "dt/2",
+            Companion::Coarse => "2 dt",
+            Companion::Coarser => "4 dt",
+            Companion::Coarsest => "8 dt",
         }
     }
 }

@@ -17,10 +17,12 @@
 //! ([`SceneError::Strict`]) after its outputs are written.
 //!
 //! The convergence check ([`SimulateCommand::run_beside`]) runs the scene again beside the
-//! run, in a second thread, at another resolution ([`companion`]): a fixed step doubled
-//! where 2 dt stays well inside the method's stability (a coarse companion, half the run's
-//! work), else halved ([`SimulateCommand::refine`], twice the work; an adaptive integrator's
-//! tolerances divided by 10), a coarse run that fails followed by the refined one. It
+//! run, in a second thread, at another resolution ([`companion`]): a fixed step times 4, or
+//! 2, where that step stays well inside the method's stability (a coarse companion, a quarter
+//! or half of the run's work; one at 4 dt that finds a quantity past its tolerance followed by
+//! one at 2 dt), else halved ([`SimulateCommand::refine`], twice the work; an adaptive
+//! integrator's tolerances divided by 10), a coarse run that fails followed by the refined
+//! one. It
 //! compares the final states on the problem's absolute [`Scales`]: the final nodes against
 //! the structure's size L, the final velocities against the largest of the final and initial
 //! speeds and √(|g| L), at least 1 mm/s ([`SimulateCommand::convergence`]), so that a
@@ -54,6 +56,7 @@ use tensegrity_core::budget::Estimate;
 use tensegrity_core::request::{InvalidParameter, Request, RunChecks};
 use tensegrity_core::CoreError;
 use tensegrity_derive::Params;
+use tensegrity_dynamics::convergence::Companion;
 use tensegrity_dynamics::recorder::{Sample, SampleSink};
 use tensegrity_dynamics::Simulation;
 use tensegrity_dynamics::{
@@ -187,8 +190,8 @@ pub struct SimulateCommand {
         help = "Fail (after writing the outputs) when the run has a drift warning or its final state did not converge"
     )]
     pub strict: bool,
-    /// Re-run at a companion resolution beside the run (2 dt where that stays stable, else
-    /// refined: [`companion`]) and report the final state's change, its extrapolated error and
+    /// Re-run at a companion resolution beside the run (4 dt or 2 dt where that stays stable,
+    /// else refined: [`companion`]) and report the final state's change, its extrapolated error and
     /// the check's cost in `convergence`.
     #[param(flag, help = RunChecks::CONVERGENCE_CHECK_HELP)]
     pub convergence_check: bool,
@@ -527,9 +530,11 @@ impl SimulateCommand {
     }
 
     /// The run into `sink` and, with `convergence_check`, its companion run beside it (the
-    /// scene is read again for it: a second, independent model): at 2 dt where that serves
-    /// ([`companion::choose`]), and where that coarse run fails the refined one after it on
-    /// the same thread; else the refined one ([`SimulateCommand::refine`]).
+    /// scene is read again for it: a second, independent model): at 4 dt or 2 dt where that
+    /// serves ([`companion::choose`]), and where that coarse run fails the refined one after it
+    /// on the same thread; else the refined one ([`SimulateCommand::refine`]). A 4 dt companion
+    /// that finds a quantity past its tolerance is followed by one at 2 dt after the run, whose
+    /// verdict stands ([`companion`], "A 4 dt estimate past its tolerance").
     pub fn run_beside(
         &self,
         scene: &Scene,
@@ -547,8 +552,12 @@ impl SimulateCommand {
         }
         let kind = simulation.settings.integrator;
         let order = companion::documented_order(kind, companion::smooth(scene, simulation));
-        // coarse where 2 dt serves (else why not), the refined run in reserve
-        let refused = companion::coarse_refused(simulation);
+        // coarse where 4 dt or 2 dt serves (else why 2 dt does not), the refined run in reserve
+        let chosen = companion::choose(simulation);
+        let refused = match chosen {
+            Companion::Refined => companion::coarse_refused(simulation),
+            _ => None,
+        };
         // the companions start from the run's step: a default step shortened to the written
         // samples' interval is not the one a run that writes nothing would take
         let companion_of = |c: &mut Simulation| c.settings.dt = simulation.settings.dt;
@@ -556,7 +565,7 @@ impl SimulateCommand {
             None => {
                 let mut c = self.simulation(scene, false)?;
                 companion_of(&mut c);
-                companion::coarsen(&mut c.settings);
+                companion::coarsen(&mut c.settings, chosen);
                 Some(c)
             }
             Some(_) => None,
@@ -565,7 +574,7 @@ impl SimulateCommand {
         companion_of(&mut fine);
         let what = Self::refine(&mut fine.settings);
         let stop = AtomicBool::new(false);
-        Ok(std::thread::scope(|s| {
+        let checked = std::thread::scope(|s| {
             let stop = &stop;
             let handle = s.spawn(move || {
                 let mut watch = StopWhen(stop);
@@ -577,7 +586,7 @@ impl SimulateCommand {
                         Some(why) if !stop.load(Ordering::Relaxed) => failed = why,
                         _ => {
                             return CompanionRun {
-                                convergence: companion::coarse(order),
+                                convergence: companion::coarse(order, chosen),
                                 result,
                             }
                         }
@@ -586,8 +595,8 @@ impl SimulateCommand {
                 let why = match &refused {
                     Some(_) if kind.is_adaptive() => Refined::Adaptive,
                     Some(why) => Refined::Refused(why),
-                    // 2 dt served, and its run failed
-                    None => Refined::AfterCoarse(&failed),
+                    // 4 dt or 2 dt served, and its run failed
+                    None => Refined::AfterCoarse(chosen, &failed),
                 };
                 let convergence = companion::refined(what, order, why);
                 CompanionRun {
@@ -606,16 +615,66 @@ impl SimulateCommand {
                 companion: Some(companion),
                 scales,
             }
-        }))
+        });
+        self.escalated(scene, simulation, checked)
+    }
+
+    /// `checked` whose 4 dt companion finds a quantity past its tolerance, checked again
+    /// against the companion at 2 dt, whose verdict stands ([`companion`], "A 4 dt estimate
+    /// past its tolerance"); any other `checked` as it is.
+    fn escalated(
+        &self,
+        scene: &Scene,
+        simulation: &Simulation,
+        checked: Checked,
+    ) -> Result<Checked, SceneError> {
+        let (Ok(main), Some(run)) = (&checked.main, &checked.companion) else {
+            return Ok(checked);
+        };
+        let (Companion::Coarser, Ok(other)) = (run.convergence.companion, &run.result) else {
+            return Ok(checked);
+        };
+        let judged = Self::convergence(
+            &SimulationReport::from(main),
+            &SimulationReport::from(other),
+            run.convergence.clone(),
+            checked.scales,
+        );
+        if judged.converged {
+            return Ok(checked);
+        }
+        let past: Vec<&str> = judged
+            .quantities
+            .iter()
+            .filter(|q| !q.converged)
+            .map(|q| q.name.as_str())
+            .collect();
+        let mut coarse = self.simulation(scene, false)?;
+        coarse.settings.dt = simulation.settings.dt;
+        companion::coarsen(&mut coarse.settings, Companion::Coarse);
+        let result = coarse.run_streaming(&mut StopWhen(&AtomicBool::new(false)));
+        let mut convergence = companion::coarse(judged.order, Companion::Coarse);
+        convergence.refinement = format!(
+            "2 dt (coarse companion, run after the one at 4 dt found {} past its tolerance)",
+            past.join(", ")
+        );
+        convergence.cost += Companion::Coarser.cost();
+        Ok(Checked {
+            companion: Some(CompanionRun {
+                convergence,
+                result,
+            }),
+            ..checked
+        })
     }
 }
 
 /// The resource estimate of the run of `simulation` under `command` ([`estimate`]), and
-/// with `convergence_check` its companion run's ([`companion::choose`]): ½ the run's work
-/// for a coarse companion, 2 for a refined one (an adaptive run's tolerances / 10 cost
-/// 10^(1/5) ≈ 1.6 times the steps of a fifth-order pair, 10^(1/3) ≈ 2.2 of SDIRK's third
-/// order: about twice too). A coarse companion that fails and is followed by the refined one
-/// is not foreseen.
+/// with `convergence_check` its companion run's ([`companion::choose`]): ¼ or ½ the run's
+/// work for a coarse companion at 4 dt or 2 dt, 2 for a refined one (an adaptive run's
+/// tolerances / 10 cost 10^(1/5) ≈ 1.6 times the steps of a fifth-order pair, 10^(1/3) ≈ 2.2
+/// of SDIRK's third order: about twice too). A coarse companion that fails and is followed by
+/// the refined one, or one at 4 dt followed by one at 2 dt, is not foreseen.
 pub fn estimate_checked(
     command: &SimulateCommand,
     simulation: &Simulation,
@@ -675,9 +734,14 @@ impl Checked {
                 mut convergence,
                 result: Err(e),
             }) => {
-                // (a coarse companion that fails is followed by the refined one: this is it)
+                // (a coarse companion that fails is followed by the refined one, and one at
+                // 4 dt past a tolerance by one at 2 dt: this is it)
+                let which = match convergence.companion {
+                    Companion::Refined => "refined",
+                    _ => "coarse",
+                };
                 convergence.refinement =
-                    format!("{}: the refined run failed: {e}", convergence.refinement);
+                    format!("{}: the {which} run failed: {e}", convergence.refinement);
                 convergence.converged = false;
                 convergence
             }

@@ -209,9 +209,9 @@ fn toroid_column(
 /// the rigid model) and the T-bar's rigid run of the same size (its steps and samples grow
 /// with `t_end`, the statics with the treads); for the full model the T-bar's and the
 /// toroid's full runs; each again at half the step with `convergence_check` (the refined
-/// companion and its twin: the check's cost where 2 dt does not serve; a coarse companion
-/// costs ½ or 1 run, [`wheel_rolling::convergence`], so the estimate stays an upper bound
-/// of the usual case). The T-bar's
+/// companion and its twin: the check's cost where no coarse companion serves; a coarse one
+/// costs ⅛ or ¼ run (rigid), ½ or 1 (full), [`wheel_rolling::convergence`], so the estimate
+/// stays an upper bound of the usual case). The T-bar's
 /// refined run runs beside its run, on a thread of its own
 /// ([`wheel_rolling::roll_checked`]): on two cores or more the pair takes the time of the
 /// longer, refined run, not the sum ([`checked_pair`]). Named

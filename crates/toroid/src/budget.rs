@@ -162,8 +162,9 @@ pub fn roll(request: &RollRequest) -> Estimate {
     let mut run = one.clone();
     if request.checks.convergence_check {
         // the refined companion (half the step, twice the steps) and the twin (the run
-        // again from a start turned by 1e-6 rad): the check's cost where 2 dt does not serve;
-        // a coarse companion costs ½ or 1 run (`wheel_rolling::convergence`)
+        // again from a start turned by 1e-6 rad): the check's cost where no coarse companion
+        // serves; a coarse one costs ⅛ or ¼ run (rigid), ½ or 1 (full)
+        // (`wheel_rolling::convergence`)
         run = run.then(at(0.5).0).then(one.clone());
     }
     if request.ensemble >= 2 {

@@ -1,21 +1,29 @@
 //! Convergence of a rolling run ([`roll_checked`]): the run is repeated at a companion
-//! resolution, twice the step where that serves ([`coarse`], [`coarse_refused`]) and else half
-//! of it ([`refined`]), from a start turned by 10⁻⁶ rad (the twin's, [`twin`]) in a thread
+//! resolution, 8 or 2 times the step where that serves ([`coarse_by`], [`coarse_refused_at`])
+//! and else half of it ([`refined`]), from a start turned by 10⁻⁶ rad (the twin's, [`twin`]) in a thread
 //! beside the run, and each headline quantity of the two summaries is compared
 //! ([`of_summaries`], the rules of [`tensegrity_dynamics::convergence`]). A second run follows
 //! only where some quantity moved by more than τ/8 (the lazy twin, below).
 //!
-//! **Which companion.** The coarse one (2 dt, half the run's work) where
+//! **Which companion.** The coarse one at k dt (k = 8 for the rigid model alone, an eighth
+//! of the run's work; else 2, half of it; the rules below with k dt for 2 dt; 4 dt, then
+//! 2 dt, where 8 dt does not serve) where
 //!
-//! * 2 dt is no longer than the 1 ms output interval (both models cut their steps at the
+//! * k dt is no longer than the 1 ms output interval (both models cut their steps at the
 //!   sample times: a longer step would not be the step that runs) nor than t_end;
 //! * the rigid model (if the plan runs it): its events (impacts, lift-off, stick–slip, a
 //!   neighbour touching) are located by bisection to round-off whatever the step, and its
 //!   smooth phases are RK4 steps of a pendulum-like motion whose rates are of order
-//!   √(g/R_o) (the pivot's is √(m g R_o/(I₁ + m R_o²)) ≤ √(g/R_o)): 2 dt·√(g/R_o) ≤
+//!   √(g/R_o) (the pivot's is √(m g R_o/(I₁ + m R_o²)) ≤ √(g/R_o)): k dt·√(g/R_o) ≤
 //!   [`STABILITY_MARGIN`] × 2.6, RK4's bound ([`stability_bound`]), which every step the
-//!   request allows meets (10⁻³ s on R_o = 1 m: 6·10⁻³ against 1.3);
-//! * the full model (if the plan runs it): a fixed-step integrator other than the split IMEX
+//!   output interval allows meets (10⁻³ s on R_o = 1 m: 3·10⁻³ against 1.3). Its step error
+//!   is round-off either way (the first impact of the default wheel moves by 10⁻¹⁴ of its
+//!   time from dt to 2 dt), so 8 dt (⅛ of the run's work) serves as well as 2 dt, and the
+//!   order-1 rule e = r/7 only over-states it;
+//! * the full model (if the plan runs it): k = 2 at most (at a quarter of the default step,
+//!   4 dt reaches the default step, where the error is not C dtᵖ: on 1 s of the default
+//!   wheel under IMEX-ARK at 6.25·10⁻⁵ s, 4 dt would estimate the first impact's ω⁻ 1.3·10⁻³
+//!   where dt/2 estimates 3.7·10⁻⁵, the values below); a fixed-step integrator other than the split IMEX
 //!   (its creep bias survives a change of its own step: below); 2 dt no longer than the
 //!   model's default step for its integrator, contact and strings
 //!   ([`crate::defaults::full_dt`]: the
@@ -41,13 +49,13 @@
 //! **The lazy twin.** The companion starts from the twin's start, so its change r of a
 //! quantity holds both the step's bias and the start's effect
 //! ([`tensegrity_dynamics::convergence`], "The lazy twin"). Where every quantity has r ≤ τ/8,
-//! every one is converged and none chaotic, and nothing more runs: the check costs ½ (coarse)
-//! or 2 (refined). A step change alone would not do: the rigid model's error at its step is
+//! every one is converged and none chaotic, and nothing more runs: the check costs 1/k
+//! (coarse: ⅛ rigid, ½ full) or 2 (refined). A step change alone would not do: the rigid model's error at its step is
 //! 10⁻¹⁴ of the first impact's time, far below the twin's 5·10⁻⁷, and on the default n = 8
 //! wheel on 50° the impact count agreed at dt and dt/2 (16) while the twin's was 17. Where some
 //! quantity moved by more than τ/8, a second run separates the two effects: with a coarse
-//! companion the companion again at 2 dt from the run's own start (½), the first run then
-//! being the twin, compared with it at the same step (cost 1 in all); with a refined one the
+//! companion the companion again at k dt from the run's own start (1/k), the first run then
+//! being the twin, compared with it at the same step (cost 2/k in all: ¼ rigid, 1 full); with a refined one the
 //! twin at the run's step (1, compared with the run: cost 3 in all, the refined companion
 //! keeping the turned start, whose effect on a quantity that is not chaotic is at most τ/8).
 //! The two runs (or the run and the twin) are then three draws, and a chaotic quantity gets
@@ -57,12 +65,13 @@
 //! method of higher order, and the coarse companion's more than the refined one's (on 1 s of
 //! the default wheel under IMEX-ARK at 1.25·10⁻⁴ s the mean speed's error, 2.2·10⁻⁴ against a
 //! run at dt/4, is estimated 1.1·10⁻³ at 2 dt and 6.6·10⁻⁴ at dt/2). Where a quantity that
-//! is not chaotic is past its tolerance at 2 dt, the check of a refined companion runs after
+//! is not chaotic is past its tolerance at k dt, the check of a refined companion runs after
 //! the coarse one and decides ([`escalated`]): the refined companion (dt/2, from the run's
 //! start) and the twin at the run's step, in two threads, as without a coarse companion,
 //! whose verdicts replace the coarse check's (the two twins need not agree: each is one draw
-//! of a chaotic quantity's sensitivity). Such a run costs 4 runs (½ + ½ + 2 + 1) where it
-//! cost 3; a run whose quantities hold at 2 dt costs ½ or 1.
+//! of a chaotic quantity's sensitivity). Such a run costs 3 + 2/k runs (4 for the full
+//! model, ½ + ½ + 2 + 1) where it cost 3; a run whose quantities hold at k dt costs 1/k or
+//! 2/k.
 //!
 //! **What is refined.** The step only (refined or coarse): the ground's stiffness and
 //! damping are the model's (a penalty ground is a soft ground the user chose; its
@@ -81,7 +90,7 @@
 //! the same reason a split-IMEX run gets no coarse companion.
 //!
 //! **Order.** p = 1 (every fixed-step scheme is first order through a landing): the error
-//! of a value is estimated as its change at twice the step (e = r/(2ᵖ − 1)), or twice its
+//! of a value is estimated as its change at k times the step (e = r/(kᵖ − 1)), or twice its
 //! change at half the step (e = r·2ᵖ/(2ᵖ − 1)), and it is `converged` when that is within its
 //! tolerance τ.
 //!
@@ -96,9 +105,10 @@
 //! `axle_height_oscillation` and `impacts` 10 %; `airborne_fraction` and `slip_fraction` 0.02
 //! absolute. `max_reaction` is not checked: the peak of a penalty force grows with √k.
 //!
-//! The check costs ½ of the run's work with a coarse companion and no twin, 1 with the second
-//! run at 2 dt, 4 when the refined check runs after that; 2 with a refined companion and 3
-//! with its twin, and ½ more after a coarse run that failed ([`Convergence::cost`]); the
+//! The check costs 1/k of the run's work with a coarse companion at k dt and no twin, 2/k
+//! with the second run at k dt, 3 + 2/k when the refined check runs after that; 2 with a
+//! refined companion and 3 with its twin, and 1/k more after a coarse run that failed
+//! ([`Convergence::cost`]); the
 //! first companion runs on a thread beside the run,
 //! the second after both. An unconverged quantity that is not chaotic adds a warning, so the
 //! run is not `valid`. A run that stopped early (interrupted, or its integration failed) is
@@ -154,8 +164,20 @@ pub fn refined(spec: &RunSpec) -> RunSpec {
 /// assert_eq!((c.step_scale, c.rigid_dt()), (2.0, 2e-4));
 /// ```
 pub fn coarse(spec: &RunSpec) -> RunSpec {
+    coarse_by(spec, Companion::Coarse)
+}
+
+/// The run of `spec` at the coarse `companion`'s step (2 dt or 4 dt) of either model.
+///
+/// ```
+/// use tensegrity_dynamics::convergence::Companion;
+/// use wheel_rolling::{convergence::coarse_by, RunSpec};
+/// let c = coarse_by(&RunSpec::default(), Companion::Coarser);
+/// assert_eq!((c.step_scale, c.rigid_dt()), (4.0, 4e-4));
+/// ```
+pub fn coarse_by(spec: &RunSpec, companion: Companion) -> RunSpec {
     let mut r = *spec;
-    r.step_scale *= 2.0;
+    r.step_scale *= companion.step_ratio();
     r
 }
 
@@ -190,15 +212,48 @@ pub fn twin(spec: &RunSpec) -> RunSpec {
 /// assert!(coarse_refused(&split, Plan::Full, &octagon).unwrap().contains("imex"));
 /// ```
 pub fn coarse_refused(spec: &RunSpec, plan: Plan, polygon: &Polygon) -> Option<String> {
+    coarse_refused_at(spec, plan, polygon, Companion::Coarse)
+}
+
+/// As [`coarse_refused`] for the coarse `companion` (2 dt or 4 dt: k dt in each rule).
+///
+/// ```
+/// use tensegrity_dynamics::convergence::Companion;
+/// use wheel_rolling::fidelity::Plan;
+/// use wheel_rolling::{convergence::coarse_refused_at, Polygon, RollSettings, RunSpec};
+/// let octagon = Polygon { sides: 8, outer_radius: 1.0, mass: 12.0, i1: 7.5 };
+/// let rigid = |c| coarse_refused_at(&RunSpec::default(), Plan::Rigid, &octagon, c);
+/// assert_eq!(rigid(Companion::Coarser), None);
+/// // at 3·10⁻⁴ s, 4 dt passes the 1 ms output interval and 2 dt does not
+/// let long = RunSpec {
+///     settings: RollSettings { dt: Some(3e-4), ..RollSettings::default() },
+///     ..RunSpec::default()
+/// };
+/// let at = |c| coarse_refused_at(&long, Plan::Rigid, &octagon, c);
+/// assert!(at(Companion::Coarser).unwrap().contains("4 dt"));
+/// assert_eq!(at(Companion::Coarse), None);
+/// ```
+pub fn coarse_refused_at(
+    spec: &RunSpec,
+    plan: Plan,
+    polygon: &Polygon,
+    companion: Companion,
+) -> Option<String> {
+    let (k, label) = (companion.step_ratio(), companion.step_label());
+    if k > 2.0 && plan.may_run_full() {
+        return Some(format!(
+            "the full model's coarse companion is at most 2 dt, not {label} (module docs)"
+        ));
+    }
     let steps = |dt: f64, model: &str| {
-        if 2.0 * dt > spec.output_dt {
+        if k * dt > spec.output_dt {
             Some(format!(
-                "the {model} model's 2 dt, {:.3e} s, exceeds the output interval {} s",
-                2.0 * dt,
+                "the {model} model's {label}, {:.3e} s, exceeds the output interval {} s",
+                k * dt,
                 spec.output_dt
             ))
-        } else if 2.0 * dt > spec.t_end {
-            Some("2 dt exceeds t_end".to_string())
+        } else if k * dt > spec.t_end {
+            Some(format!("{label} exceeds t_end"))
         } else {
             None
         }
@@ -209,11 +264,11 @@ pub fn coarse_refused(spec: &RunSpec, plan: Plan, polygon: &Polygon) -> Option<S
             return Some(why);
         }
         let rate = (spec.settings.gravity / polygon.outer_radius).sqrt();
-        let reach = 2.0 * dt * rate;
+        let reach = k * dt * rate;
         let bound = STABILITY_MARGIN * 2.6;
         if reach.is_nan() || reach > bound {
             return Some(format!(
-                "the rigid model's 2 dt times sqrt(g/R_o), {reach:.3}, exceeds {bound}"
+                "the rigid model's {label} times sqrt(g/R_o), {reach:.3}, exceeds {bound}"
             ));
         }
     }
@@ -239,10 +294,10 @@ pub fn coarse_refused(spec: &RunSpec, plan: Plan, polygon: &Polygon) -> Option<S
             spec.contact,
             spec.settings.string_stiffness,
         );
-        if 2.0 * dt > default * (1.0 + 1e-12) {
+        if k * dt > default * (1.0 + 1e-12) {
             return Some(format!(
-                "the full model's 2 dt, {:.3e} s, exceeds its default step {default:.3e} s under {}, the longest measured to be accurate",
-                2.0 * dt,
+                "the full model's {label}, {:.3e} s, exceeds its default step {default:.3e} s under {}, the longest measured to be accurate",
+                k * dt,
                 spec.integrator
             ));
         }
@@ -250,10 +305,15 @@ pub fn coarse_refused(spec: &RunSpec, plan: Plan, polygon: &Polygon) -> Option<S
     None
 }
 
-/// Why the full model's coarse run (`coarse`, its spec at 2 dt) does not serve on the wheel
-/// of `scene`: 2 dt·λ past [`STABILITY_MARGIN`] × its integrator's bound, λ
-/// [`FullRolling::explicit_rate`] (module docs); `None` when it does.
-pub fn coarse_refused_full(coarse: &RunSpec, scene: &WheelScene) -> Option<String> {
+/// Why the full model's coarse run (`coarse`, its spec at the `companion`'s step, 2 dt or
+/// 4 dt) does not serve on the wheel of `scene`: k dt·λ past [`STABILITY_MARGIN`] × its
+/// integrator's bound, λ [`FullRolling::explicit_rate`] (module docs); `None` when it does.
+pub fn coarse_refused_full(
+    coarse: &RunSpec,
+    scene: &WheelScene,
+    companion: Companion,
+) -> Option<String> {
+    let label = companion.step_label();
     let model = FullRolling::new(coarse, &scene.polygon());
     let Some(bound) = stability_bound(model.integrator) else {
         return Some(format!("{} is adaptive", model.integrator));
@@ -264,8 +324,14 @@ pub fn coarse_refused_full(coarse: &RunSpec, scene: &WheelScene) -> Option<Strin
     };
     // rk4-flight's steps in flight are FLIGHT_RATIO·dt long
     let (ratio, step) = match model.integrator {
-        IntegratorKind::Rk4Flight => (f64::from(FLIGHT_RATIO), "its flight step 2·5 dt"),
-        _ => (1.0, "2 dt"),
+        IntegratorKind::Rk4Flight => (
+            f64::from(FLIGHT_RATIO),
+            format!(
+                "its flight step {}·{FLIGHT_RATIO} dt",
+                companion.step_ratio()
+            ),
+        ),
+        _ => (1.0, label.to_string()),
     };
     let reach = ratio * model.dt * rate;
     // (a NaN rate refuses it too)
@@ -291,13 +357,14 @@ pub fn refinement(spec: &RunSpec, fidelity: Fidelity) -> &'static str {
     }
 }
 
-/// What [`coarse`] changed for a run of `fidelity`.
-pub fn coarsening(spec: &RunSpec, fidelity: Fidelity) -> &'static str {
+/// What [`coarse_by`] changed for a run of `fidelity` at the coarse `companion`.
+pub fn coarsening(spec: &RunSpec, fidelity: Fidelity, companion: Companion) -> String {
+    let step = companion.step_label();
     match (fidelity, spec.contact) {
         (Fidelity::Full, ContactKind::Penalty | ContactKind::Stick) => {
-            "2 dt (coarse companion; the ground's stiffness is the model's)"
+            format!("{step} (coarse companion; the ground's stiffness is the model's)")
         }
-        _ => "2 dt (coarse companion)",
+        _ => format!("{step} (coarse companion)"),
     }
 }
 
@@ -421,13 +488,14 @@ pub fn of_companion(
         return c;
     }
     match (kind, second()) {
-        (Companion::Coarse, Ok(clean)) => {
+        (Companion::Coarse | Companion::Coarser | Companion::Coarsest, Ok(clean)) => {
             // the clean run is the companion, the first one the twin at its step
             let mut c = compared(
                 main,
                 &clean,
                 empty(format!(
-                    "{label}; twin at 2 dt from a start turned by {TWIN_PERTURBATION:e} rad"
+                    "{label}; twin at {} from a start turned by {TWIN_PERTURBATION:e} rad",
+                    kind.step_label()
                 )),
             );
             let values = headline(companion);
@@ -452,7 +520,7 @@ pub fn of_companion(
             let mut c = c;
             c.converged = false;
             c.cost += match kind {
-                Companion::Coarse => Companion::Coarse.cost(),
+                Companion::Coarse | Companion::Coarser | Companion::Coarsest => kind.cost(),
                 Companion::Refined => 1.0,
             };
             c.refinement = format!(
@@ -477,6 +545,7 @@ impl Observer for StopWhen<'_> {
 struct Guarded<'a, W> {
     wheel: &'a W,
     spec: RunSpec,
+    companion: Companion,
     refused: Mutex<Option<String>>,
 }
 
@@ -493,7 +562,7 @@ impl<W: Wheel> Wheel for Guarded<'_, W> {
 
     fn scene(&self) -> Result<WheelScene, W::Error> {
         let scene = self.wheel.scene()?;
-        match coarse_refused_full(&self.spec, &scene) {
+        match coarse_refused_full(&self.spec, &scene, self.companion) {
             None => Ok(scene),
             Some(why) => {
                 let e = RollingError::invalid("dt", self.spec.full_dt(), why.clone());
@@ -511,8 +580,8 @@ enum WhyRefined {
     /// Before any run ([`coarse_refused`]) or when its full model was built
     /// ([`coarse_refused_full`]).
     Refused(String),
-    /// The coarse run failed or left its regime ([`coarse_failure`]).
-    AfterCoarse(String),
+    /// The coarse run (2 dt or 4 dt) failed or left its regime ([`coarse_failure`]).
+    AfterCoarse(Companion, String),
 }
 
 /// Why a coarse companion's result cannot be compared with `main` (module docs): its run
@@ -579,36 +648,38 @@ where
         roll_decided(wheel, run, decision, &[], Some(&mut watch))
     };
     // the first companion, from the twin's start: coarse where it serves, else refined
+    // (the coarsest that serves: 4 dt, else 2 dt; the reason 2 dt does not, else)
     let first = || -> (Companion, Option<WhyRefined>, Result<Rolled, W::Error>) {
-        let refused = coarse_refused(spec, decision.plan, &wheel.polygon());
-        if let Some(why) = refused {
-            return (
-                Companion::Refined,
-                Some(WhyRefined::Refused(why)),
-                companion(&twin(&refined(spec))),
+        let mut why_not = String::new();
+        for kind in Companion::COARSE {
+            if let Some(why) = coarse_refused_at(spec, decision.plan, &wheel.polygon(), kind) {
+                why_not = why;
+                continue;
+            }
+            let guarded = Guarded {
+                wheel,
+                spec: coarse_by(spec, kind),
+                companion: kind,
+                refused: Mutex::new(None),
+            };
+            let mut watch = StopWhen(&stop);
+            let run = roll_decided(
+                &guarded,
+                &twin(&guarded.spec),
+                decision,
+                &[],
+                Some(&mut watch),
             );
+            match guarded.refused.into_inner().ok().flatten() {
+                Some(why) => why_not = why,
+                None => return (kind, None, run),
+            }
         }
-        let guarded = Guarded {
-            wheel,
-            spec: coarse(spec),
-            refused: Mutex::new(None),
-        };
-        let mut watch = StopWhen(&stop);
-        let run = roll_decided(
-            &guarded,
-            &twin(&guarded.spec),
-            decision,
-            &[],
-            Some(&mut watch),
-        );
-        match guarded.refused.into_inner().ok().flatten() {
-            Some(why) => (
-                Companion::Refined,
-                Some(WhyRefined::Refused(why)),
-                companion(&twin(&refined(spec))),
-            ),
-            None => (Companion::Coarse, None, run),
-        }
+        (
+            Companion::Refined,
+            Some(WhyRefined::Refused(why_not)),
+            companion(&twin(&refined(spec))),
+        )
     };
     let (main, first_run) = std::thread::scope(|s| {
         let handle = s.spawn(first);
@@ -625,33 +696,41 @@ where
     let Ok((mut kind, mut why, mut run)) = first_run else {
         return Ok(attach(main, failed("the companion", "its thread panicked")));
     };
-    if kind == Companion::Coarse {
+    if kind != Companion::Refined {
         if let Some(failure) = coarse_failure(&main, &run) {
+            why = Some(WhyRefined::AfterCoarse(kind, failure));
             kind = Companion::Refined;
-            why = Some(WhyRefined::AfterCoarse(failure));
             run = companion(&twin(&refined(spec)));
         }
     }
     let base = match kind {
-        Companion::Coarse => coarsening(spec, main.fidelity).to_string(),
+        Companion::Coarse | Companion::Coarser | Companion::Coarsest => {
+            coarsening(spec, main.fidelity, kind)
+        }
         Companion::Refined => {
             let what = refinement(spec, main.fidelity);
             match &why {
                 None => what.to_string(),
                 Some(WhyRefined::Refused(why)) => format!("{what} (refined companion: {why})"),
-                Some(WhyRefined::AfterCoarse(why)) => {
-                    format!("{what} (refined companion, run after the coarse one at 2 dt: {why})")
-                }
+                Some(WhyRefined::AfterCoarse(coarse, why)) => format!(
+                    "{what} (refined companion, run after the coarse one at {}: {why})",
+                    coarse.step_label()
+                ),
             }
         }
     };
-    let after_coarse = matches!(why, Some(WhyRefined::AfterCoarse(_)));
+    let after_coarse = match &why {
+        Some(WhyRefined::AfterCoarse(coarse, _)) => coarse.cost(),
+        _ => 0.0,
+    };
     let convergence = match run {
         Ok(r) if r.result.validity.stopped_at.is_none() => {
             let a = RunSummary::of(&main.result, spec.t_end);
             let b = RunSummary::of(&r.result, spec.t_end);
             let second_spec = match kind {
-                Companion::Coarse => coarse(spec),
+                Companion::Coarse | Companion::Coarser | Companion::Coarsest => {
+                    coarse_by(spec, kind)
+                }
                 Companion::Refined => twin(spec),
             };
             let main_fidelity = main.fidelity;
@@ -673,7 +752,7 @@ where
                     "{base}; the companion run chose the {} model",
                     r.fidelity.name()
                 );
-            } else if kind == Companion::Coarse && c.warnings().iter().any(is_unconverged) {
+            } else if kind != Companion::Refined && c.warnings().iter().any(is_unconverged) {
                 // the coarse estimate exceeds a tolerance: the refined companion and the
                 // twin at the run's step decide, as without a coarse one (module docs)
                 let what = refinement(spec, main.fidelity);
@@ -712,9 +791,7 @@ where
         Err(e) => failed(&base, &e.to_string()),
     };
     let mut convergence = convergence;
-    if after_coarse {
-        convergence.cost += Companion::Coarse.cost();
-    }
+    convergence.cost += after_coarse;
     Ok(attach(main, convergence))
 }
 
@@ -742,7 +819,8 @@ pub fn escalated(
         .map(|q| q.name.as_str())
         .collect();
     let label = format!(
-        "{what} (refined companion and twin at dt, run after the coarse check at 2 dt found {} past its tolerance)",
+        "{what} (refined companion and twin at dt, run after the coarse check at {} found {} past its tolerance)",
+        coarse.companion.step_label(),
         unconverged.join(", ")
     );
     let mut c = of_summaries(main, refined, twin, &label);
