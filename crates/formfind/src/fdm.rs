@@ -455,6 +455,19 @@ impl FixedSystem {
         })
     }
 
+    /// The free nodes, in index order (the rows of D_ff).
+    pub(crate) fn free(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// Solves D_ff y = b for one column `b` (one entry per free node), in place, with the
+    /// factors of D_ff (nothing to do without free nodes).
+    pub(crate) fn solve_free_in_place(&mut self, b: &mut [f64]) {
+        if let Some(lu) = &mut self.lu {
+            lu.solve_in_place(b);
+        }
+    }
+
     /// Every node's position under the loads `p` (one per node, or none: unloaded); the
     /// solve's residual is checked.
     pub(crate) fn solve(&mut self, p: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>>> {

@@ -7,3 +7,4 @@ mod edges;
 mod errors;
 mod forms;
 mod loads;
+mod sensitivity;
