@@ -64,6 +64,7 @@ pub mod reaction;
 pub mod report;
 pub mod response;
 mod select;
+pub mod sensitivity;
 pub mod sizing;
 pub mod sparse;
 mod stability;

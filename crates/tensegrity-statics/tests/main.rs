@@ -7,6 +7,7 @@ mod common;
 mod nested_statics;
 mod properties;
 mod response;
+mod sensitivity;
 mod sizing;
 mod sparse_statics;
 mod sparse_statics_scaling;

@@ -1,0 +1,272 @@
+//! Exact derivatives of the tangent stiffness's eigenvalues and of the natural frequencies
+//! with respect to the force densities, the members' axial stiffnesses and the prestress
+//! level (issue 47, item 3).
+//!
+//! The tangent stiffness ([`crate::stiffness`]) is K = Σ_k Bₖ ⊗ K_k on the free degrees of
+//! freedom, K_k = a_k e_k e_kᵀ + q_k (I₃ − e_k e_kᵀ) for member k with axial stiffness a_k,
+//! force density q_k and unit vector e_k, plus the springs of elastic supports. It is linear
+//! in q and a, so for a member whose ends move by u_i and u_j under a vector of the free
+//! degrees of freedom (expanded to the nodes, [`crate::DofMap::expand`]), d = u_j − u_i:
+//!
+//! > vᵀ (∂K/∂q_k) v = |d|² − (e_k · d)²,   vᵀ (∂K/∂a_k) v = (e_k · d)².
+//!
+//! **A simple eigenvalue** λ of K with unit eigenvector v (K v = λ v) has the derivative
+//! dλ/dθ = vᵀ (∂K/∂θ) v; **a natural frequency** (K φ = ω² M φ, φ M-orthonormal, the lumped
+//! mass of [`crate::stiffness::modal_analysis`], which q and a leave alone) dω²/dθ =
+//! φᵀ (∂K/∂θ) φ and df/dθ = dω²/dθ / (8π² f) for f = ω / 2π. **The prestress level** α scales
+//! the force densities, q = α q₀ at α = 1: dλ/dα = Σ_k q_k ∂λ/∂q_k.
+//!
+//! **Repeated eigenvalues** (within [`REPEATED_TOLERANCE`] of the largest |λ| of another) are
+//! not differentiable — any combination of their eigenvectors is one, and the derivative
+//! depends on the direction of the change: they are reported with their multiplicity and no
+//! derivatives ([`EigenDerivative::multiplicity`]).
+//!
+//! Not covered yet: the nodes' positions (K depends on them through e_k and a bar's EA/l),
+//! clustered strings (their blocks couple every node of the cluster) and the prestress margin
+//! (the dual of its linear program); a structure with clusters is refused by name.
+
+use crate::stiffness::{axial_stiffness, lumped_masses, tangent_stiffness, ZERO_MODE_TOLERANCE};
+use crate::DofMap;
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+use tensegrity_core::error::{ModelError, Result};
+use tensegrity_core::structure::Structure;
+use tensegrity_linalg as linalg;
+
+/// Two eigenvalues closer than this, relative to the largest |λ|, count as one repeated
+/// eigenvalue (module docs).
+pub const REPEATED_TOLERANCE: f64 = 1e-8;
+
+/// An eigenvalue (or a natural frequency) and its derivatives (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EigenDerivative {
+    /// The eigenvalue λ (N/m), or the natural frequency f (Hz).
+    pub value: f64,
+    /// How many eigenvalues share it (module docs): 1 for a simple one, whose derivatives
+    /// follow; more for a repeated one, which has none.
+    pub multiplicity: usize,
+    /// d value / d q_k, one per member (bars then strings); empty when repeated.
+    pub force_densities: Vec<f64>,
+    /// d value / d a_k, one per member's axial stiffness; empty when repeated.
+    pub axial_stiffnesses: Vec<f64>,
+    /// d value / d α for the force densities scaled by α at α = 1; `None` when repeated.
+    pub prestress_level: Option<f64>,
+}
+
+/// Refuses a structure with clusters, or `q` and `axial` of the wrong length.
+fn check(structure: &Structure, q: &DVector<f64>, axial: &[f64]) -> Result<()> {
+    let m = structure.n_members();
+    if !structure.clusters().is_empty() {
+        return Err(ModelError::ClustersNotModelled {
+            cluster: 0,
+            analysis: "the eigenvalue derivatives",
+        }
+        .into());
+    }
+    for (what, found) in [
+        ("force densities", q.len()),
+        ("axial stiffnesses", axial.len()),
+    ] {
+        if found != m {
+            return Err(ModelError::LengthMismatch {
+                what: what.to_string(),
+                expected: m,
+                found,
+            }
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The derivatives (module docs) of the quadratic form vᵀ K v along the free-dof vector `v`,
+/// multiplied by `factor`: (per q_k, per a_k, per α).
+fn quadratic(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    v: &[f64],
+    factor: f64,
+) -> (Vec<f64>, Vec<f64>, f64) {
+    let u = dofs.expand(v);
+    let mut dq = Vec::with_capacity(q.len());
+    let mut da = Vec::with_capacity(q.len());
+    for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
+        let e = structure.member_vector(k).normalize();
+        let d = u[j] - u[i];
+        let along = e.dot(&d).powi(2);
+        dq.push(factor * (d.norm_squared() - along));
+        da.push(factor * along);
+    }
+    let level = dq.iter().zip(q.iter()).map(|(g, q)| g * q).sum();
+    (dq, da, level)
+}
+
+/// How many of `values` (ascending) lie within [`REPEATED_TOLERANCE`] × max|λ| of `values[i]`.
+fn multiplicity(values: &[f64], i: usize) -> usize {
+    let top = values.iter().fold(0.0f64, |a, &w| a.max(w.abs()));
+    let tol = REPEATED_TOLERANCE * top;
+    values
+        .iter()
+        .filter(|&&w| (w - values[i]).abs() <= tol)
+        .count()
+}
+
+/// The smallest nonzero eigenvalue of the tangent stiffness of `structure` (on the free
+/// degrees of freedom of [`DofMap::stiffness_of`]: supports held, elastic ones as springs)
+/// for force densities `q` and axial stiffnesses `axial` (one per member), with its
+/// derivatives (module docs). "Nonzero": above [`ZERO_MODE_TOLERANCE`] × max|λ| in
+/// magnitude (rigid-body motions the supports allow are zero; a negative eigenvalue, an
+/// unstable direction, counts). `None` when every eigenvalue is zero.
+///
+/// ```
+/// use nalgebra::DVector;
+/// use tensegrity_core::{StringMember, Structure, Support};
+/// use tensegrity_statics::sensitivity::smallest_stiffness_eigenvalue;
+/// // a string of 100 N/m at q = 2 N/m from a pinned node to a free one: K = diag(100, 2, 2)
+/// // on the free node, λ_min = q (repeated: y and z), then a
+/// let s = Structure::builder()
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .string(StringMember::new(0, 1).stiffness(100.0))
+///     .support(Support::pinned(0))
+///     .build()
+///     .unwrap();
+/// let q = DVector::from_element(1, 2.0);
+/// let d = smallest_stiffness_eigenvalue(&s, &q, &[100.0]).unwrap().unwrap();
+/// assert_eq!((d.value, d.multiplicity), (2.0, 2));
+/// assert!(d.force_densities.is_empty());
+/// ```
+pub fn smallest_stiffness_eigenvalue(
+    structure: &Structure,
+    q: &DVector<f64>,
+    axial: &[f64],
+) -> Result<Option<EigenDerivative>> {
+    check(structure, q, axial)?;
+    let dofs = DofMap::stiffness_of(structure);
+    let k = tangent_stiffness(structure, &dofs, q, axial);
+    let (w, v) = linalg::symmetric_eigen(&k)?;
+    let top = w.iter().fold(0.0f64, |a, &x| a.max(x.abs()));
+    let Some(i) = (0..w.len()).find(|&i| w[i].abs() > ZERO_MODE_TOLERANCE * top) else {
+        return Ok(None);
+    };
+    Ok(Some(derivative(structure, &dofs, q, &w, &v, i, 1.0, w[i])))
+}
+
+/// The derivative of eigenvalue `i` of `w` (eigenvectors `v`), each scaled by `factor` and
+/// reported as `value` (module docs); none when it is repeated.
+#[allow(clippy::too_many_arguments)]
+fn derivative(
+    structure: &Structure,
+    dofs: &DofMap,
+    q: &DVector<f64>,
+    w: &[f64],
+    v: &DMatrix<f64>,
+    i: usize,
+    factor: f64,
+    value: f64,
+) -> EigenDerivative {
+    let repeated = multiplicity(w, i);
+    if repeated > 1 {
+        return EigenDerivative {
+            value,
+            multiplicity: repeated,
+            force_densities: Vec::new(),
+            axial_stiffnesses: Vec::new(),
+            prestress_level: None,
+        };
+    }
+    let column: Vec<f64> = v.column(i).iter().copied().collect();
+    let (dq, da, level) = quadratic(structure, dofs, q, &column, factor);
+    EigenDerivative {
+        value,
+        multiplicity: 1,
+        force_densities: dq,
+        axial_stiffnesses: da,
+        prestress_level: Some(level),
+    }
+}
+
+/// The natural frequencies (Hz) of `structure` with force densities `q` and axial
+/// stiffnesses `axial`, the lumped mass of [`crate::stiffness::modal_analysis`], ascending,
+/// each with its derivatives (module docs; a zero or negative ω², a rigid-body motion or an
+/// unstable mode, has frequency 0 and no derivatives, as does a repeated one). Every free
+/// node needs mass.
+///
+/// ```
+/// use nalgebra::DVector;
+/// use tensegrity_core::{Bar, Material, Structure, Support};
+/// use tensegrity_statics::sensitivity::natural_frequencies;
+/// // a bar of axial stiffness a on a pinned node, 1 kg at each end: f = √(a / m_free) / 2π
+/// // with m_free = 1 kg, and df/da = f / (2 a)
+/// let s = Structure::builder()
+///     .material("steel", Material::new(7800.0, 200e9, 500e6))
+///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+///     .bar(Bar::new(0, 1).mass(2.0).material("steel").radius(0.001))
+///     .support(Support::pinned(0))
+///     .support(Support::directions(1, [false, true, true]))
+///     .build()
+///     .unwrap();
+/// let a = 1.0e4;
+/// let f = natural_frequencies(&s, &DVector::zeros(1), &[a]).unwrap();
+/// let expected = a.sqrt() / (2.0 * std::f64::consts::PI);
+/// assert!((f[0].value - expected).abs() < 1e-12 * expected);
+/// assert!((f[0].axial_stiffnesses[0] - expected / (2.0 * a)).abs() < 1e-12);
+/// ```
+pub fn natural_frequencies(
+    structure: &Structure,
+    q: &DVector<f64>,
+    axial: &[f64],
+) -> Result<Vec<EigenDerivative>> {
+    check(structure, q, axial)?;
+    let dofs = DofMap::stiffness_of(structure);
+    let k = tangent_stiffness(structure, &dofs, q, axial);
+    let masses = lumped_masses(structure);
+    let mut scale = Vec::with_capacity(dofs.len());
+    for &(node, _) in &dofs.free {
+        if masses[node] <= 0.0 {
+            return Err(ModelError::NoLumpedMass { node }.into());
+        }
+        scale.push(1.0 / masses[node].sqrt());
+    }
+    // M^(−½) K M^(−½) ψ = ω² ψ, φ = M^(−½) ψ (M-orthonormal)
+    let n = dofs.len();
+    let scaled = DMatrix::from_fn(n, n, |r, c| scale[r] * k[(r, c)] * scale[c]);
+    let (w, psi) = linalg::symmetric_eigen(&scaled)?;
+    let phi = DMatrix::from_fn(n, n, |r, c| scale[r] * psi[(r, c)]);
+    let top = w.iter().fold(0.0f64, |a, &x| a.max(x.abs()));
+    Ok((0..w.len())
+        .map(|i| {
+            let f = w[i].max(0.0).sqrt() / (2.0 * PI);
+            if w[i] <= ZERO_MODE_TOLERANCE * top {
+                return EigenDerivative {
+                    value: f,
+                    multiplicity: multiplicity(&w, i),
+                    force_densities: Vec::new(),
+                    axial_stiffnesses: Vec::new(),
+                    prestress_level: None,
+                };
+            }
+            // df = dω² / (8π² f)
+            derivative(
+                structure,
+                &dofs,
+                q,
+                &w,
+                &phi,
+                i,
+                1.0 / (8.0 * PI * PI * f),
+                f,
+            )
+        })
+        .collect())
+}
+
+/// [`smallest_stiffness_eigenvalue`] with the structure's own axial stiffnesses
+/// ([`axial_stiffness`]: strings' k, bars' E·πr²/l).
+pub fn smallest_stiffness_eigenvalue_of(
+    structure: &Structure,
+    q: &DVector<f64>,
+) -> Result<Option<EigenDerivative>> {
+    let axial = axial_stiffness(structure)?;
+    smallest_stiffness_eigenvalue(structure, q, &axial)
+}
