@@ -251,6 +251,39 @@ impl FdmSensitivity {
         })
     }
 
+    /// [`FdmSensitivity::new`] with the force densities `topology` gives (each member's own,
+    /// else its group's); a member with neither is the error, naming it.
+    ///
+    /// ```
+    /// use formfind::sensitivity::FdmSensitivity;
+    /// let grid = formfind::builtin("grid:2").unwrap();
+    /// let s = FdmSensitivity::given(&grid).unwrap();
+    /// assert_eq!(s.nodes().len(), grid.n_nodes);
+    /// let prism = formfind::builtin("prism:3").unwrap(); // free-standing: refused
+    /// assert!(FdmSensitivity::given(&prism).is_err());
+    /// ```
+    pub fn given(topology: &Topology) -> Result<Self> {
+        let given = topology.given_force_densities();
+        if let Some(k) = given.iter().position(Option::is_none) {
+            return Err(FormFindError::InvalidTopology {
+                item: format!("member {k}"),
+                reason: "no force density (its own or its group's): the derivatives are those of the force density method".into(),
+            });
+        }
+        let q: Vec<f64> = given.into_iter().flatten().collect();
+        Self::new(topology, &q)
+    }
+
+    /// The force densities the form was found with (bars then strings).
+    pub fn force_densities(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The held nodes, in [`Topology::fixed`]'s order.
+    pub fn held(&self) -> &[usize] {
+        &self.held
+    }
+
     /// The found nodes.
     pub fn nodes(&self) -> &[Vector3<f64>] {
         &self.nodes

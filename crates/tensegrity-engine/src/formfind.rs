@@ -30,8 +30,8 @@
 //! ```
 
 use crate::scene::SceneSource;
+pub use ::formfind::{sensitivity, FormfindReport, Formfound};
 use ::formfind::{FormFindError, Method, Settings, Synthesis, Topology};
-pub use ::formfind::{FormfindReport, Formfound};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{Estimate, Parameters};
 use tensegrity_core::request::{exclusive, Categorized, Category, InvalidParameter, Request};
@@ -248,6 +248,14 @@ impl FormfindRequest {
             stiffness: self.stiffness,
             bar_mass: self.bar_mass,
         }
+    }
+
+    /// The force density form of the topology asked for, factored for its exact derivatives
+    /// ([`::formfind::sensitivity`]: held nodes, the topology's force densities and point
+    /// loads), for a front end that differentiates it (Python's `FormSensitivity`).
+    pub fn sensitivity(&self) -> Result<sensitivity::FdmSensitivity, FormfindFailure> {
+        let (topology, _) = self.topology()?;
+        Ok(sensitivity::FdmSensitivity::given(&topology)?)
     }
 
     /// Runs the form-finding and the synthesis (module docs).

@@ -24,6 +24,7 @@ mod commands;
 mod convert;
 mod errors;
 mod runs;
+mod sensitivity;
 mod stepping;
 mod structure;
 mod studies;
@@ -608,6 +609,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(figures, m)?)?;
     m.add_class::<stepping::PyStepper>()?;
     m.add_class::<stepping::PyStepperState>()?;
+    m.add_class::<sensitivity::PyFormSensitivity>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
     m.add("ROLL_HISTORY_COLUMNS", runs::HISTORY_COLUMNS.to_vec())?;
     m.add(

@@ -23,6 +23,10 @@ drawn by the same Rust code as ``tensegrity figures``.
 A simulation a controller steps and steers is a :class:`Simulator` (``reset``, ``step`` with
 rest lengths or rates, ``get_state``/``set_state``, observations as numpy arrays); Gymnasium
 environments built on it are in :mod:`tensegrity.envs` (``pip install gymnasium``).
+
+The exact derivatives of a force density form with held nodes (with respect to its force
+densities, loads and held positions; forward, one solve a parameter, and adjoint, one solve
+an objective) are a :class:`FormSensitivity`, every array numpy.
 """
 
 import copy as _copy
@@ -40,6 +44,7 @@ from ._exports import export_json, export_mjcf, export_schema, figure, figures
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
 from .results import Result, SweepResult, SweepRow
+from .sensitivity import FormDerivative, FormGradient, FormSensitivity
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -49,7 +54,8 @@ __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
-    "Structure", "Simulator", "Observation", "Actuator", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative",
+    "FormGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
 

@@ -9,6 +9,8 @@ import numpy as np
 from .errors import (ComputationError as ComputationError, InputError as InputError,
                      Interrupted as Interrupted, ResourceError as ResourceError,
                      TensegrityError as TensegrityError)
+from .sensitivity import (FormDerivative as FormDerivative, FormGradient as FormGradient,
+                          FormSensitivity as FormSensitivity)
 from .simulator import (Actuator as Actuator, Observation as Observation,
                         Simulator as Simulator)
 from .structure import Structure as Structure

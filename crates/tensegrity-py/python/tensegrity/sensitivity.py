@@ -1,0 +1,140 @@
+"""Exact derivatives of a force density form: :class:`FormSensitivity`.
+
+A topology with held nodes and a force density on every member (its own or its group's) is
+solved by the force density method, ``D_ff X_f = P_f - D_fx X_x``, exactly as
+:func:`tensegrity.formfind` solves it, and factored once. Its derivatives with respect to the
+force densities, the point loads and the held positions then cost one sparse solve each
+(:meth:`FormSensitivity.forward`: nodes, member lengths, forces and reactions), and the
+gradient of any scalar objective one solve whatever the number of parameters
+(:meth:`FormSensitivity.adjoint`, from the objective's partial derivatives, which a Python
+callable may compute). The equations are in the Rust crate ``formfind``, module
+``sensitivity``.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _native
+
+_KINDS = ("force_density", "load", "fixed")
+
+
+def _vectors(raw):
+    return np.frombuffer(raw, dtype=np.float64).reshape(-1, 3)
+
+
+@dataclass(frozen=True)
+class FormDerivative:
+    """A form, or its derivative with respect to one parameter (numpy arrays).
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (n, 3)
+        Node positions (m), or their derivatives.
+    lengths : ndarray, shape (m,)
+        Member lengths (bars then strings), or their derivatives.
+    forces : ndarray, shape (m,)
+        Member forces q L (N, tension positive), or their derivatives.
+    reactions : ndarray, shape (h, 3)
+        The supports' forces on the held nodes (N), in the topology's ``fixed`` order, or
+        their derivatives.
+    """
+
+    nodes: np.ndarray
+    lengths: np.ndarray
+    forces: np.ndarray
+    reactions: np.ndarray
+
+
+@dataclass(frozen=True)
+class FormGradient:
+    """The gradient of a scalar objective of a form (numpy arrays).
+
+    Attributes
+    ----------
+    force_densities : ndarray, shape (m,)
+        df/dq, one per member (bars then strings).
+    loads : ndarray, shape (n, 3)
+        df/dp, one per node (zero at held nodes: their loads go to the reactions).
+    fixed : ndarray, shape (h, 3)
+        df/dx of each held node's position, in the topology's ``fixed`` order.
+    """
+
+    force_densities: np.ndarray
+    loads: np.ndarray
+    fixed: np.ndarray
+
+
+def _derivative(raw):
+    nodes, lengths, forces, reactions = raw
+    return FormDerivative(_vectors(nodes), np.asarray(lengths, dtype=np.float64),
+                          np.asarray(forces, dtype=np.float64), _vectors(reactions))
+
+
+class FormSensitivity:
+    """A force density form with held nodes, factored for its exact derivatives.
+
+    Parameters
+    ----------
+    topology : str or os.PathLike, optional
+        A topology file (as :func:`tensegrity.formfind` reads it) with ``fixed`` nodes and a
+        force density on every member; or
+    builtin : str, optional
+        A built-in topology with held nodes (``"grid:K"``).
+    group, ratio : optional
+        Scale a group's force densities, as in :func:`tensegrity.formfind`.
+
+    Examples
+    --------
+    >>> s = FormSensitivity(builtin="grid:2")
+    >>> d = s.forward("force_density", 0)            # d(nodes, lengths, ...)/dq_0
+    >>> g = s.adjoint(np.tile([0.0, 0.0, 1.0], (s.n_nodes, 1)))   # f = sum of heights
+    >>> bool(np.allclose(g.force_densities[0], d.nodes[:, 2].sum()))
+    True
+    """
+
+    def __init__(self, topology=None, *, builtin=None, group=None, ratio=None):
+        values = {"topology": topology, "builtin": builtin, "group": group, "ratio": ratio}
+        self._native = _native.FormSensitivity({k: v for k, v in values.items()
+                                                if v is not None})
+        self.n_nodes = self._native.n_nodes
+        self.held = np.asarray(self._native.held, dtype=np.int64)
+        self.force_densities = np.asarray(self._native.force_densities, dtype=np.float64)
+        self.n_members = len(self.force_densities)
+
+    def form(self):
+        """The form: nodes, member lengths and forces, reactions (:class:`FormDerivative`)."""
+        return _derivative(self._native.form())
+
+    def forward(self, kind, index, axis=0):
+        """The derivative of the form with respect to one parameter (:class:`FormDerivative`):
+        ``kind`` ``"force_density"`` (``index`` the member, bars then strings), ``"load"``
+        (``index`` the node, ``axis`` 0, 1, 2 for x, y, z) or ``"fixed"`` (``index`` in the
+        topology's ``fixed`` list, ``axis``). One sparse solve."""
+        if kind not in _KINDS:
+            raise ValueError("kind must be one of {}, not {!r}".format(_KINDS, kind))
+        return _derivative(self._native.forward(kind, int(index), int(axis)))
+
+    def adjoint(self, dnodes, dforce_densities=None):
+        """The gradient (:class:`FormGradient`) of a scalar objective f from its partial
+        derivatives: ``dnodes`` (n, 3), df/dx of every node, and ``dforce_densities`` (m,),
+        df/dq at fixed nodes (where f depends on q directly, e.g. through the forces q L;
+        default zero). One sparse solve, whatever the number of parameters."""
+        dnodes = np.asarray(dnodes, dtype=np.float64)
+        if dnodes.shape != (self.n_nodes, 3):
+            raise ValueError("dnodes must have shape ({}, 3), not {}".format(self.n_nodes,
+                                                                              dnodes.shape))
+        if dforce_densities is None:
+            dforce_densities = np.zeros(self.n_members)
+        dq = np.asarray(dforce_densities, dtype=np.float64).ravel()
+        q, loads, fixed = self._native.adjoint(dnodes.ravel().tolist(), dq.tolist())
+        return FormGradient(np.asarray(q, dtype=np.float64), _vectors(loads), _vectors(fixed))
+
+    def gradient(self, objective):
+        """The value and gradient of ``objective(form)``, a Python callable that takes the
+        :class:`FormDerivative` of :meth:`form` and returns ``(f, dnodes, dforce_densities)``
+        (its partial derivatives, ``dforce_densities`` may be ``None``): ``(f,``
+        :class:`FormGradient` ``)``."""
+        f, dnodes, dq = objective(self.form())
+        return float(f), self.adjoint(dnodes, dq)

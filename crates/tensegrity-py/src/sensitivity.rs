@@ -1,0 +1,150 @@
+//! The force density method's exact derivatives in Python: `_native.FormSensitivity`, built
+//! from `formfind`'s values (a topology with held nodes and force densities) by the engine
+//! ([`tensegrity_engine::formfind::FormfindRequest::sensitivity`]), differentiated by the
+//! library ([`formfind::sensitivity`]); every vector crosses as raw f64 bytes, which the
+//! Python class `tensegrity.FormSensitivity` views as numpy arrays. No mathematics here.
+
+use crate::errors::Failure;
+use nalgebra::Vector3;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use tensegrity_core::request::{Categorized, Category, Request};
+use tensegrity_engine::formfind::sensitivity::{Cotangent, FdmSensitivity, Parameter};
+use tensegrity_engine::formfind::FormfindRequest;
+
+fn failure(e: &impl std::fmt::Display, category: Category) -> PyErr {
+    Python::attach(|py| Failure::new(category, e.to_string()).into_pyerr(py))
+}
+
+/// Raw f64 bytes of 3-vectors (x, y, z each).
+fn vectors<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyBytes> {
+    let raw: Vec<u8> = v
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z])
+        .flat_map(|x| x.to_ne_bytes())
+        .collect();
+    PyBytes::new(py, &raw)
+}
+
+/// A force density form with held nodes, factored for its derivatives
+/// (`tensegrity.FormSensitivity` wraps it).
+#[pyclass(unsendable, module = "tensegrity._native", name = "FormSensitivity")]
+pub struct PyFormSensitivity {
+    inner: FdmSensitivity,
+}
+
+/// Three raw f64 byte strings (nodes, then reactions) and two lists (lengths, forces).
+type Derivative<'py> = (Bound<'py, PyBytes>, Vec<f64>, Vec<f64>, Bound<'py, PyBytes>);
+
+#[pymethods]
+impl PyFormSensitivity {
+    /// The form of `formfind`'s values (`topology` or `builtin`, `group`, `ratio`).
+    #[new]
+    fn new(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
+        let request = FormfindRequest::from_values(values)
+            .map_err(|e| Failure::invalid(&e).into_pyerr(py))?;
+        let inner = request
+            .sensitivity()
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok(Self { inner })
+    }
+
+    /// The number of nodes.
+    #[getter]
+    fn n_nodes(&self) -> usize {
+        self.inner.nodes().len()
+    }
+
+    /// The held nodes, in the topology's `fixed` order.
+    #[getter]
+    fn held(&self) -> Vec<usize> {
+        self.inner.held().to_vec()
+    }
+
+    /// The force densities (bars then strings).
+    #[getter]
+    fn force_densities(&self) -> Vec<f64> {
+        self.inner.force_densities().to_vec()
+    }
+
+    /// The form: nodes (raw f64, 3n), member lengths, member forces, reactions (raw f64,
+    /// 3 per held node).
+    fn form<'py>(&self, py: Python<'py>) -> Derivative<'py> {
+        (
+            vectors(py, self.inner.nodes()),
+            self.inner.lengths(),
+            self.inner.forces(),
+            vectors(py, &self.inner.reactions()),
+        )
+    }
+
+    /// The derivative with respect to one parameter: `kind` "force_density" (`index` the
+    /// member), "load" (`index` the node, `axis` 0–2) or "fixed" (`index` in `fixed`,
+    /// `axis`); as [`PyFormSensitivity::form`].
+    #[pyo3(signature = (kind, index, axis = 0))]
+    fn forward<'py>(
+        &mut self,
+        py: Python<'py>,
+        kind: &str,
+        index: usize,
+        axis: usize,
+    ) -> PyResult<Derivative<'py>> {
+        let parameter = match kind {
+            "force_density" => Parameter::ForceDensity(index),
+            "load" => Parameter::Load { node: index, axis },
+            "fixed" => Parameter::Fixed { index, axis },
+            other => {
+                return Err(failure(
+                    &format!(
+                        "parameter: {other:?} is not one of \"force_density\", \"load\", \"fixed\""
+                    ),
+                    Category::Input,
+                ))
+            }
+        };
+        let d = self
+            .inner
+            .forward(parameter)
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok((
+            vectors(py, &d.nodes),
+            d.lengths,
+            d.forces,
+            vectors(py, &d.reactions),
+        ))
+    }
+
+    /// The gradient of a scalar objective given its partial derivatives: `dnodes` (3n, by
+    /// node) and `dforce_densities` (one per member, at fixed nodes): (df/dq, df/dp as raw
+    /// f64 3n, df/dx_fixed as raw f64 3 per held node).
+    fn adjoint<'py>(
+        &mut self,
+        py: Python<'py>,
+        dnodes: Vec<f64>,
+        dforce_densities: Vec<f64>,
+    ) -> PyResult<(Vec<f64>, Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
+        if dnodes.len() % 3 != 0 {
+            return Err(failure(
+                &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
+                Category::Input,
+            ));
+        }
+        let df = Cotangent {
+            nodes: dnodes
+                .chunks(3)
+                .map(|c| Vector3::new(c[0], c[1], c[2]))
+                .collect(),
+            force_densities: dforce_densities,
+        };
+        let g = self
+            .inner
+            .adjoint(&df)
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok((
+            g.force_densities,
+            vectors(py, &g.loads),
+            vectors(py, &g.fixed),
+        ))
+    }
+}
