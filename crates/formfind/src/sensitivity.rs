@@ -390,8 +390,11 @@ impl FdmSensitivity {
                 }
             }
             Parameter::Load { node, axis } => {
-                if node >= n || axis > 2 {
-                    return out_of_range("load", node.max(axis), n);
+                if node >= n {
+                    return out_of_range("load", node, n);
+                }
+                if axis > 2 {
+                    return out_of_range("axis", axis, 3);
                 }
                 dp[node][axis] = 1.0;
                 v[axis] = 1.0;
@@ -400,8 +403,11 @@ impl FdmSensitivity {
                 }
             }
             Parameter::Fixed { index, axis } => {
-                if index >= self.held.len() || axis > 2 {
-                    return out_of_range("fixed", index.max(axis), self.held.len());
+                if index >= self.held.len() {
+                    return out_of_range("fixed", index, self.held.len());
+                }
+                if axis > 2 {
+                    return out_of_range("axis", axis, 3);
                 }
                 let h = self.held[index];
                 v[axis] = 1.0;

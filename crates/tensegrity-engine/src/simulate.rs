@@ -653,6 +653,18 @@ impl SimulateCommand {
         coarse.settings.dt = simulation.settings.dt;
         companion::coarsen(&mut coarse.settings, Companion::Coarse);
         let result = coarse.run_streaming(&mut StopWhen(&AtomicBool::new(false)));
+        if let Some(why) = companion::coarse_failure(&result) {
+            // the 4 dt verdict stands, its label saying that the run at 2 dt failed
+            let mut checked = checked;
+            if let Some(run) = checked.companion.as_mut() {
+                run.convergence.refinement = format!(
+                    "{}; the run at 2 dt after it failed: {why}",
+                    run.convergence.refinement
+                );
+                run.convergence.cost += Companion::Coarse.cost();
+            }
+            return Ok(checked);
+        }
         let mut convergence = companion::coarse(judged.order, Companion::Coarse);
         convergence.refinement = format!(
             "2 dt (coarse companion, run after the one at 4 dt found {} past its tolerance)",

@@ -124,7 +124,7 @@ impl PyFormSensitivity {
         dnodes: Vec<f64>,
         dforce_densities: Vec<f64>,
     ) -> PyResult<(Vec<f64>, Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
-        if dnodes.len() % 3 != 0 {
+        if !dnodes.len().is_multiple_of(3) {
             return Err(failure(
                 &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
                 Category::Input,

@@ -1,7 +1,7 @@
 //! Convergence of a rolling run ([`roll_checked`]): the run is repeated at a companion
-//! resolution, 8 or 2 times the step where that serves ([`coarse_by`], [`coarse_refused_at`])
-//! and else half of it ([`refined`]), from a start turned by 10⁻⁶ rad (the twin's, [`twin`]) in a thread
-//! beside the run, and each headline quantity of the two summaries is compared
+//! resolution, 8 or 2 times the step where that serves ([`coarse_by`],
+//! [`coarse_refused_at`]) and else half of it ([`refined`]), from a start turned by 10⁻⁶ rad
+//! (the twin's, [`twin`]) in a thread beside the run, and each headline quantity of the two summaries is compared
 //! ([`of_summaries`], the rules of [`tensegrity_dynamics::convergence`]). A second run follows
 //! only where some quantity moved by more than τ/8 (the lazy twin, below).
 //!
@@ -23,7 +23,9 @@
 //! * the full model (if the plan runs it): k = 2 at most (at a quarter of the default step,
 //!   4 dt reaches the default step, where the error is not C dtᵖ: on 1 s of the default
 //!   wheel under IMEX-ARK at 6.25·10⁻⁵ s, 4 dt would estimate the first impact's ω⁻ 1.3·10⁻³
-//!   where dt/2 estimates 3.7·10⁻⁵, the values below); a fixed-step integrator other than the split IMEX
+//!   where dt/2 estimates 3.7·10⁻⁵, the values below, and it under-states the mean speed's
+//!   error of a 2 s roll, 4.0·10⁻³ against 8.6·10⁻³ at dt/4); a fixed-step integrator other
+//!   than the split IMEX
 //!   (its creep bias survives a change of its own step: below); 2 dt no longer than the
 //!   model's default step for its integrator, contact and strings
 //!   ([`crate::defaults::full_dt`]: the
@@ -50,12 +52,14 @@
 //! quantity holds both the step's bias and the start's effect
 //! ([`tensegrity_dynamics::convergence`], "The lazy twin"). Where every quantity has r ≤ τ/8,
 //! every one is converged and none chaotic, and nothing more runs: the check costs 1/k
-//! (coarse: ⅛ rigid, ½ full) or 2 (refined). A step change alone would not do: the rigid model's error at its step is
+//! (coarse: ⅛ rigid, ½ full) or 2 (refined). A step change alone would not do: the rigid
+//! model's error at its step is
 //! 10⁻¹⁴ of the first impact's time, far below the twin's 5·10⁻⁷, and on the default n = 8
 //! wheel on 50° the impact count agreed at dt and dt/2 (16) while the twin's was 17. Where some
 //! quantity moved by more than τ/8, a second run separates the two effects: with a coarse
 //! companion the companion again at k dt from the run's own start (1/k), the first run then
-//! being the twin, compared with it at the same step (cost 2/k in all: ¼ rigid, 1 full); with a refined one the
+//! being the twin, compared with it at the same step (cost 2/k in all: ¼ rigid, 1 full); with
+//! a refined one the
 //! twin at the run's step (1, compared with the run: cost 3 in all, the refined companion
 //! keeping the turned start, whose effect on a quantity that is not chaotic is at most τ/8).
 //! The two runs (or the run and the twin) are then three draws, and a chaotic quantity gets
@@ -167,7 +171,7 @@ pub fn coarse(spec: &RunSpec) -> RunSpec {
     coarse_by(spec, Companion::Coarse)
 }
 
-/// The run of `spec` at the coarse `companion`'s step (2 dt or 4 dt) of either model.
+/// The run of `spec` at the coarse `companion`'s step (2, 4 or 8 dt) of either model.
 ///
 /// ```
 /// use tensegrity_dynamics::convergence::Companion;
@@ -215,7 +219,8 @@ pub fn coarse_refused(spec: &RunSpec, plan: Plan, polygon: &Polygon) -> Option<S
     coarse_refused_at(spec, plan, polygon, Companion::Coarse)
 }
 
-/// As [`coarse_refused`] for the coarse `companion` (2 dt or 4 dt: k dt in each rule).
+/// As [`coarse_refused`] for the coarse `companion` (2, 4 or 8 dt: k dt in each rule; the
+/// full model's at most 2 dt, module docs).
 ///
 /// ```
 /// use tensegrity_dynamics::convergence::Companion;
@@ -305,8 +310,8 @@ pub fn coarse_refused_at(
     None
 }
 
-/// Why the full model's coarse run (`coarse`, its spec at the `companion`'s step, 2 dt or
-/// 4 dt) does not serve on the wheel of `scene`: k dt·λ past [`STABILITY_MARGIN`] × its
+/// Why the full model's coarse run (`coarse`, its spec at the `companion`'s step) does not
+/// serve on the wheel of `scene`: k dt·λ past [`STABILITY_MARGIN`] × its
 /// integrator's bound, λ [`FullRolling::explicit_rate`] (module docs); `None` when it does.
 pub fn coarse_refused_full(
     coarse: &RunSpec,

@@ -33,7 +33,8 @@
 //! RK4 e is 85 times the error against dt/8 at 4 dt, 15 times at 2 dt. Where a quantity's e
 //! exceeds its tolerance at 4 dt, the companion runs again at 2 dt after the run
 //! (`SimulateCommand::run_beside`), and its verdict stands: `refinement` names the quantity and
-//! the cost is ¾. (RATTLE on the MOTES prism: the final velocities' e is 6.6 % at 4 dt and
+//! the cost is ¾ (a 2 dt run that fails or drifts leaves the 4 dt verdict, its label saying
+//! so). (RATTLE on the MOTES prism: the final velocities' e is 6.6 % at 4 dt and
 //! 4.8 % at 2 dt against τ = 2 %; not converged either way.)
 //!
 //! **When the coarse run fails.** A coarse run that errs, ends with a state that is not
