@@ -10,6 +10,14 @@
 //!
 //! > vᵀ (∂K/∂q_k) v = |d|² − (e_k · d)²,   vᵀ (∂K/∂a_k) v = (e_k · d)².
 //!
+//! **Node positions** enter through e_k = (x_j − x_i)/l_k alone at fixed q and a: member k's
+//! share of the quadratic form, s_k = q_k |d|² + (a_k − q_k)(e_k · d)², has
+//!
+//! > ∂s_k/∂x_j = −∂s_k/∂x_i = 2 (a_k − q_k)(e_k · d)(d − (e_k · d) e_k) / l_k
+//!
+//! (a bar whose axial stiffness is E A / l changes a_k too: add ∂λ/∂a_k · ∂a_k/∂x, with
+//! ∂a_k/∂x_j = −(a_k / l_k) e_k).
+//!
 //! **A simple eigenvalue** λ of K with unit eigenvector v (K v = λ v) has the derivative
 //! dλ/dθ = vᵀ (∂K/∂θ) v; **a natural frequency** (K φ = ω² M φ, φ M-orthonormal, the lumped
 //! mass of [`crate::stiffness::modal_analysis`], which q and a leave alone) dω²/dθ =
@@ -21,13 +29,12 @@
 //! depends on the direction of the change: they are reported with their multiplicity and no
 //! derivatives ([`EigenDerivative::multiplicity`]).
 //!
-//! Not covered yet: the nodes' positions (K depends on them through e_k and a bar's EA/l),
-//! clustered strings (their blocks couple every node of the cluster) and the prestress margin
+//! Not covered yet: clustered strings (their blocks couple every node of the cluster) and the prestress margin
 //! (the dual of its linear program); a structure with clusters is refused by name.
 
 use crate::stiffness::{axial_stiffness, lumped_masses, tangent_stiffness, ZERO_MODE_TOLERANCE};
 use crate::DofMap;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 use std::f64::consts::PI;
 use tensegrity_core::error::{ModelError, Result};
 use tensegrity_core::structure::Structure;
@@ -51,6 +58,9 @@ pub struct EigenDerivative {
     pub axial_stiffnesses: Vec<f64>,
     /// d value / d α for the force densities scaled by α at α = 1; `None` when repeated.
     pub prestress_level: Option<f64>,
+    /// d value / d x_i of every node's position (held ones too: their members turn), at
+    /// fixed force densities and axial stiffnesses; empty when repeated.
+    pub nodes: Vec<Vector3<f64>>,
 }
 
 /// Refuses a structure with clusters, or `q` and `axial` of the wrong length.
@@ -79,27 +89,37 @@ fn check(structure: &Structure, q: &DVector<f64>, axial: &[f64]) -> Result<()> {
     Ok(())
 }
 
+/// The derivatives of a quadratic form: per q_k, per a_k, per α, per node.
+type Quadratic = (Vec<f64>, Vec<f64>, f64, Vec<Vector3<f64>>);
+
 /// The derivatives (module docs) of the quadratic form vᵀ K v along the free-dof vector `v`,
-/// multiplied by `factor`: (per q_k, per a_k, per α).
+/// for axial stiffnesses `axial`, multiplied by `factor`.
 fn quadratic(
     structure: &Structure,
     dofs: &DofMap,
     q: &DVector<f64>,
+    axial: &[f64],
     v: &[f64],
     factor: f64,
-) -> (Vec<f64>, Vec<f64>, f64) {
+) -> Quadratic {
     let u = dofs.expand(v);
     let mut dq = Vec::with_capacity(q.len());
     let mut da = Vec::with_capacity(q.len());
+    let mut dx = vec![Vector3::zeros(); structure.n_nodes()];
     for (k, [i, j]) in structure.member_nodes().into_iter().enumerate() {
-        let e = structure.member_vector(k).normalize();
+        let m = structure.member_vector(k);
+        let l = m.norm();
+        let e = m / l;
         let d = u[j] - u[i];
-        let along = e.dot(&d).powi(2);
-        dq.push(factor * (d.norm_squared() - along));
-        da.push(factor * along);
+        let ed = e.dot(&d);
+        dq.push(factor * (d.norm_squared() - ed * ed));
+        da.push(factor * ed * ed);
+        let turn = (d - ed * e) * (2.0 * (axial[k] - q[k]) * ed / l * factor);
+        dx[j] += turn;
+        dx[i] -= turn;
     }
     let level = dq.iter().zip(q.iter()).map(|(g, q)| g * q).sum();
-    (dq, da, level)
+    (dq, da, level, dx)
 }
 
 /// How many of `values` (ascending) lie within [`REPEATED_TOLERANCE`] × max|λ| of `values[i]`.
@@ -149,7 +169,9 @@ pub fn smallest_stiffness_eigenvalue(
     let Some(i) = (0..w.len()).find(|&i| w[i].abs() > ZERO_MODE_TOLERANCE * top) else {
         return Ok(None);
     };
-    Ok(Some(derivative(structure, &dofs, q, &w, &v, i, 1.0, w[i])))
+    Ok(Some(derivative(
+        structure, &dofs, q, axial, &w, &v, i, 1.0, w[i],
+    )))
 }
 
 /// The derivative of eigenvalue `i` of `w` (eigenvectors `v`), each scaled by `factor` and
@@ -159,6 +181,7 @@ fn derivative(
     structure: &Structure,
     dofs: &DofMap,
     q: &DVector<f64>,
+    axial: &[f64],
     w: &[f64],
     v: &DMatrix<f64>,
     i: usize,
@@ -173,16 +196,18 @@ fn derivative(
             force_densities: Vec::new(),
             axial_stiffnesses: Vec::new(),
             prestress_level: None,
+            nodes: Vec::new(),
         };
     }
     let column: Vec<f64> = v.column(i).iter().copied().collect();
-    let (dq, da, level) = quadratic(structure, dofs, q, &column, factor);
+    let (dq, da, level, dx) = quadratic(structure, dofs, q, axial, &column, factor);
     EigenDerivative {
         value,
         multiplicity: 1,
         force_densities: dq,
         axial_stiffnesses: da,
         prestress_level: Some(level),
+        nodes: dx,
     }
 }
 
@@ -244,19 +269,12 @@ pub fn natural_frequencies(
                     force_densities: Vec::new(),
                     axial_stiffnesses: Vec::new(),
                     prestress_level: None,
+                    nodes: Vec::new(),
                 };
             }
             // df = dω² / (8π² f)
-            derivative(
-                structure,
-                &dofs,
-                q,
-                &w,
-                &phi,
-                i,
-                1.0 / (8.0 * PI * PI * f),
-                f,
-            )
+            let factor = 1.0 / (8.0 * PI * PI * f);
+            derivative(structure, &dofs, q, axial, &w, &phi, i, factor, f)
         })
         .collect())
 }

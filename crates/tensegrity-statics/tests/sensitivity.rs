@@ -1,13 +1,14 @@
 //! Exact derivatives of the tangent stiffness's smallest nonzero eigenvalue and of the
 //! natural frequencies (issue 47, item 3; `tensegrity_statics::sensitivity`) with respect to
-//! every force density, every axial stiffness and the prestress level, against extrapolated
+//! every force density, every axial stiffness, the prestress level and every node's position
+//! (at fixed force densities and axial stiffnesses), against extrapolated
 //! central differences to 10⁻⁶ relative: Snelson prisms of 3 and 4 bars free-standing and the
 //! 3-bar one pinned at its base (both quantities), and the loaded D-bar (the eigenvalue).
 //! Repeated eigenvalues are reported with their multiplicity and no derivative; clusters and
 //! wrong lengths are refused by name.
 
 use crate::common::*;
-use nalgebra::DVector;
+use nalgebra::{DVector, Vector3};
 use tensegrity_core::test_models::snelson_twist;
 use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
 use tensegrity_statics::sensitivity::{
@@ -127,6 +128,42 @@ fn check(
     worst
 }
 
+/// Checks the derivatives by every node's coordinates in `exact` against central differences
+/// of `f` (of the structure moved) with steps of 10⁻⁴ of the structure's size, extrapolated;
+/// returns the worst error relative to the larger of the largest derivative and |value| /
+/// size.
+fn check_nodes(
+    name: &str,
+    exact: &EigenDerivative,
+    s: &Structure,
+    f: impl Fn(&Structure) -> f64,
+) -> f64 {
+    let nodes: Vec<Vector3<f64>> = s.nodes().to_vec();
+    let size = nodes.iter().fold(0.0f64, |m, x| m.max(x.amax()));
+    let floor = exact.value.abs() / size;
+    let largest = exact.nodes.iter().fold(floor, |m, x| m.max(x.amax()));
+    let mut worst = 0.0f64;
+    for i in 0..nodes.len() {
+        for axis in 0..3 {
+            let at = |h: f64| {
+                let moved = |sign: f64| {
+                    let mut x = nodes.clone();
+                    x[i][axis] += sign * h;
+                    f(&s.with_nodes(x).unwrap())
+                };
+                (moved(1.0) - moved(-1.0)) / (2.0 * h)
+            };
+            let h = 1e-4 * size;
+            let fd = (4.0 * at(0.5 * h) - at(h)) / 3.0;
+            let e = exact.nodes[i][axis];
+            let r = (e - fd).abs() / largest;
+            assert!(r < 1e-6, "{name} node {i} axis {axis}: exact {e} fd {fd}");
+            worst = worst.max(r);
+        }
+    }
+    worst
+}
+
 #[test]
 fn the_smallest_eigenvalue_derivatives_match_central_differences() {
     let mut cases = vec![];
@@ -169,7 +206,16 @@ fn the_smallest_eigenvalue_derivatives_match_central_differences() {
         let rank = all(&q, &a).iter().position(|&w| w == exact.value).unwrap();
         let f = |q: &DVector<f64>, a: &[f64]| all(q, a)[rank];
         let worst = check(&name, &exact, f, &q, &a);
-        println!("{name}: λ = {:.6e}, worst {worst:.1e}", exact.value);
+        // the node positions, at fixed q and a
+        let moved = |m: &Structure| {
+            let k = stiffness::tangent_stiffness(m, &DofMap::stiffness_of(m), &q, &a);
+            tensegrity_linalg::symmetric_eigen(&k).unwrap().0[rank]
+        };
+        let nodes = check_nodes(&name, &exact, &s, moved);
+        println!(
+            "{name}: λ = {:.6e}, worst {worst:.1e}, by the nodes {nodes:.1e}",
+            exact.value
+        );
     }
 }
 
@@ -201,7 +247,12 @@ fn the_natural_frequency_derivatives_match_central_differences() {
             let f = |q: &DVector<f64>, a: &[f64]| natural_frequencies(&s, q, a).unwrap()[i].value;
             let name = format!("prism {p} pinned {pinned} mode {i}");
             let worst = check(&name, mode, f, &q, &a);
-            println!("{name}: f = {:.4} Hz, worst {worst:.1e}", mode.value);
+            let moved = |m: &Structure| natural_frequencies(m, &q, &a).unwrap()[i].value;
+            let nodes = check_nodes(&name, mode, &s, moved);
+            println!(
+                "{name}: f = {:.4} Hz, worst {worst:.1e}, by the nodes {nodes:.1e}",
+                mode.value
+            );
             checked += 1;
         }
         assert!(checked >= 2, "prism {p}: {modes:?}");
