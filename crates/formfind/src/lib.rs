@@ -35,10 +35,11 @@
 //!   prestress stability, the costly part of a large form; without them the result holds the
 //!   form, its force densities and the cheap residual ‖A q + p‖ / ‖q‖, and
 //!   [`FormFound::analyse`] adds them later to a form found without.
-//! - [`sensitivity`]: exact derivatives of a form with held nodes with respect to its force
-//!   densities, loads and held positions — forward (one sparse solve per parameter, the
-//!   nodes, lengths, forces and reactions) and adjoint (one solve per scalar objective,
-//!   whatever the number of parameters), reusing the factors of D_ff.
+//! - [`sensitivity`]: exact derivatives of a form with held nodes — the force density
+//!   method's with respect to its force densities, loads and held positions, dynamic
+//!   relaxation's with respect to the rest lengths and stiffnesses — forward (one sparse
+//!   solve per parameter) and adjoint (one solve per scalar objective, whatever the number of
+//!   parameters), reusing the factors the form was found with.
 //! - [`synthesize`]: rest lengths from the found geometry and self-stress scaled to a
 //!   prestress level (a loaded form: the forces q L the loads set, and the loads kept).
 //!

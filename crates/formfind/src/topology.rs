@@ -56,6 +56,28 @@ impl Member {
         self.group = Some(name.to_string());
         self
     }
+
+    /// With a rest length (m), for dynamic relaxation.
+    ///
+    /// ```
+    /// let m = formfind::Member::new(0, 1).length(0.8);
+    /// assert_eq!(m.length, Some(0.8));
+    /// ```
+    pub fn length(mut self, length: f64) -> Self {
+        self.length = Some(length);
+        self
+    }
+
+    /// With an axial stiffness EA (N), for dynamic relaxation and the synthesis.
+    ///
+    /// ```
+    /// let m = formfind::Member::new(0, 1).stiffness(100.0);
+    /// assert_eq!(m.stiffness, Some(100.0));
+    /// ```
+    pub fn stiffness(mut self, ea: f64) -> Self {
+        self.stiffness = Some(ea);
+        self
+    }
 }
 
 /// A named group of members sharing a force density (and optionally a target length).

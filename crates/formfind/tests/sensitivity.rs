@@ -409,3 +409,151 @@ fn what_is_not_covered_is_refused_by_name() {
         .to_string()
         .contains("cotangent"));
 }
+
+/// Dynamic relaxation's form with held nodes (`formfind::sensitivity::DrSensitivity`):
+/// the cable net on its saddle, pretensioned by rest lengths 0.8 of the spacing, and the
+/// self-stressed 3-bar prism held at its base (rest lengths that carry its self-stress).
+fn relaxed_forms() -> Vec<(&'static str, Topology)> {
+    let (mut net, _) = cable_net(3);
+    let k = 3usize;
+    net.nodes = Some(
+        (0..(k + 1) * (k + 1))
+            .map(|i| {
+                let (u, v) = (i % (k + 1), i / (k + 1));
+                let (x, y) = (u as f64 / k as f64 - 0.5, v as f64 / k as f64 - 0.5);
+                [x, y, x * x - y * y]
+            })
+            .collect(),
+    );
+    net.loads.clear();
+    for (j, m) in net.strings.iter_mut().enumerate() {
+        m.length = Some(0.8 / k as f64 * (1.0 + 0.05 * spread(j)));
+        m.stiffness = Some(50.0);
+    }
+    let mut prism = builtin("prism:3").unwrap();
+    let found = form_find(&prism, &Settings::default()).unwrap();
+    prism.nodes = Some(found.nodes.iter().map(|x| [x.x, x.y, x.z]).collect());
+    prism.fixed = (0..3)
+        .map(|i| FixedNode {
+            node: i,
+            position: found.nodes[i].into(),
+        })
+        .collect();
+    let lengths: Vec<f64> = prism
+        .member_nodes()
+        .iter()
+        .map(|&[a, b]| (found.nodes[b] - found.nodes[a]).norm())
+        .collect();
+    let n_bars = prism.bars.len();
+    for (j, m) in prism
+        .bars
+        .iter_mut()
+        .chain(prism.strings.iter_mut())
+        .enumerate()
+    {
+        let ea = if j < n_bars { 1e4 } else { 1e2 };
+        let t = found.force_density[j] * lengths[j];
+        m.stiffness = Some(ea);
+        m.length = Some(lengths[j] / (1.0 + t / ea));
+    }
+    vec![("cable net", net), ("prism", prism)]
+}
+
+#[test]
+fn relaxed_form_derivatives_match_central_differences() {
+    use formfind::sensitivity::{DrParameter, DrSensitivity};
+    let settings = Settings::default();
+    for (name, t) in relaxed_forms() {
+        let mut s = DrSensitivity::find(&t, &settings).unwrap();
+        let nodes_of = |t: &Topology| -> Vec<f64> {
+            DrSensitivity::find(t, &settings)
+                .unwrap()
+                .nodes()
+                .iter()
+                .flat_map(|p| p.iter().copied())
+                .collect()
+        };
+        // f = Σ w_i · x_i and its adjoint gradient
+        let w: Vec<Vector3<f64>> = (0..t.n_nodes).map(weight).collect();
+        let g = s.adjoint(&w).unwrap();
+        let mut worst = 0.0f64;
+        for k in 0..t.n_members() {
+            for (parameter, exact_f) in [
+                (DrParameter::RestLength(k), g.rest_lengths[k]),
+                (DrParameter::Stiffness(k), g.stiffnesses[k]),
+            ] {
+                let d = s.forward(parameter).unwrap();
+                let exact: Vec<f64> = d.nodes.iter().flat_map(|p| p.iter().copied()).collect();
+                let base = match parameter {
+                    DrParameter::RestLength(_) => t.given_lengths()[k].unwrap(),
+                    DrParameter::Stiffness(_) => t.members().nth(k).unwrap().stiffness.unwrap(),
+                };
+                let at = |h: f64| -> Vec<f64> {
+                    let moved = |sign: f64| {
+                        let mut m = t.clone();
+                        let member = m
+                            .bars
+                            .iter_mut()
+                            .chain(m.strings.iter_mut())
+                            .nth(k)
+                            .unwrap();
+                        match parameter {
+                            DrParameter::RestLength(_) => member.length = Some(base + sign * h),
+                            DrParameter::Stiffness(_) => member.stiffness = Some(base + sign * h),
+                        }
+                        nodes_of(&m)
+                    };
+                    let (a, b) = (moved(1.0), moved(-1.0));
+                    a.iter().zip(&b).map(|(x, y)| (x - y) / (2.0 * h)).collect()
+                };
+                let h = 1e-4 * base;
+                let fd: Vec<f64> = at(0.5 * h)
+                    .iter()
+                    .zip(&at(h))
+                    .map(|(f, c)| (4.0 * f - c) / 3.0)
+                    .collect();
+                // against the largest derivative, at least the form's size over the parameter
+                let floor = 1.0 / base;
+                let r = relative(&exact, &fd).min(
+                    exact
+                        .iter()
+                        .zip(&fd)
+                        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+                        / floor,
+                );
+                assert!(r < 1e-6, "{name} {parameter:?}: {r:.2e}");
+                worst = worst.max(r);
+                // the adjoint's entry is the forward derivative of f
+                let forward: f64 = d.nodes.iter().zip(&w).map(|(x, w)| x.dot(w)).sum();
+                assert!(
+                    (exact_f - forward).abs() <= 1e-9 * (1.0 + forward.abs()),
+                    "{name} {parameter:?}: adjoint {exact_f} forward {forward}"
+                );
+            }
+        }
+        println!("{name}: relaxed form against central differences, worst {worst:.1e}");
+    }
+}
+
+#[test]
+fn relaxed_forms_without_held_nodes_or_with_loads_are_refused() {
+    use formfind::sensitivity::DrSensitivity;
+    let forms = relaxed_forms();
+    let mut free = forms[1].1.clone();
+    free.fixed.clear();
+    let e = DrSensitivity::find(&free, &Settings::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("fixed"), "{e}");
+    let mut loaded = forms[0].1.clone();
+    loaded.loads.push(NodeLoad {
+        node: 5,
+        force: [0.0, 0.0, -1.0],
+    });
+    let e = DrSensitivity::find(&loaded, &Settings::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("loads"), "{e}");
+}

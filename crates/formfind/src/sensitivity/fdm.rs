@@ -1,4 +1,4 @@
-//! Exact derivatives of the force density method's form with held nodes (issue 47, item 1).
+//! Exact derivatives of the force density method's form with held nodes.
 //!
 //! With force densities q (one per member, bars then strings), point loads P and held node
 //! positions X_x, the free coordinates solve (the `fdm` module docs)
