@@ -2,11 +2,53 @@
 //! the benches and the work–precision study).
 #![allow(dead_code, unused_imports)]
 
+use nalgebra::DVector;
+use tensegrity_core::test_models::snelson_twist;
 pub use tensegrity_core::test_models::{alu, dbar_frame as dbar, snelson};
-use tensegrity_core::Structure;
+use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
 
 /// The 45° D-bar spanning `span` with one string, compressed by `load` at node 3, node 0
 /// supported; all members of the benchmark aluminium.
 pub fn loaded_dbar(span: f64, load: f64) -> Structure {
     tensegrity_core::test_models::loaded_dbar(span, load).unwrap()
+}
+
+/// The p-bar Snelson prism with steel bars of 1 kg and `radius`, strings of 2 kN/m whose rest
+/// lengths carry its self-stress at 50 N/m (k (l − s0) = q l), optionally pinned at its base:
+/// the structure and its force densities.
+pub fn prestressed_snelson(p: usize, radius: f64, pinned: bool) -> (Structure, DVector<f64>) {
+    let base = snelson(p, snelson_twist(p), 1.0, 1.0, 1.0).build().unwrap();
+    let q = tensegrity_statics::Statics::new(&base)
+        .unwrap()
+        .prestressability()
+        .unwrap()
+        .stress
+        * 50.0;
+    let lengths = base.member_lengths();
+    let mut b = Structure::builder()
+        .material("rod", Material::new(7800.0, 200e9, 500e6))
+        .nodes(base.nodes().iter().map(|x| [x.x, x.y, x.z]));
+    for bar in base.bars() {
+        b = b.bar(
+            Bar::new(bar.nodes[0], bar.nodes[1])
+                .mass(1.0)
+                .material("rod")
+                .radius(radius),
+        );
+    }
+    let k = 2000.0;
+    for (i, st) in base.strings().iter().enumerate() {
+        let m = p + i;
+        b = b.string(
+            StringMember::new(st.nodes[0], st.nodes[1])
+                .stiffness(k)
+                .rest_length(lengths[m] * (1.0 - q[m] / k)),
+        );
+    }
+    if pinned {
+        for i in 0..p {
+            b = b.support(Support::pinned(i));
+        }
+    }
+    (b.build().unwrap(), q)
 }

@@ -10,50 +10,16 @@
 use crate::common::*;
 use nalgebra::{DVector, Vector3};
 use tensegrity_core::test_models::snelson_twist;
-use tensegrity_core::{Bar, Material, StringMember, Structure, Support};
+use tensegrity_core::Structure;
 use tensegrity_statics::sensitivity::{
     natural_frequencies, smallest_stiffness_eigenvalue, EigenDerivative,
 };
 use tensegrity_statics::stiffness::{self, axial_stiffness};
-use tensegrity_statics::{DofMap, Statics};
+use tensegrity_statics::DofMap;
 
-/// A p-bar Snelson prism with steel bars of 1 kg and strings of 2 kN/m carrying its
-/// self-stress at 50 N/m, optionally pinned at its base: the structure and its force
-/// densities.
+/// The p-bar Snelson prism of [`prestressed_snelson`] with bars of 2 mm radius.
 fn prism(p: usize, pinned: bool) -> (Structure, DVector<f64>) {
-    let base = snelson(p, snelson_twist(p), 1.0, 1.0, 1.0).build().unwrap();
-    let q = Statics::new(&base)
-        .unwrap()
-        .prestressability()
-        .unwrap()
-        .stress
-        * 50.0;
-    let lengths = base.member_lengths();
-    let mut b = Structure::builder()
-        .material("rod", Material::new(7800.0, 200e9, 500e6))
-        .nodes(base.nodes().iter().map(|x| [x.x, x.y, x.z]));
-    for bar in base.bars() {
-        b = b.bar(
-            Bar::new(bar.nodes[0], bar.nodes[1])
-                .mass(1.0)
-                .material("rod")
-                .radius(0.002),
-        );
-    }
-    for (i, st) in base.strings().iter().enumerate() {
-        let k = p + i;
-        b = b.string(
-            StringMember::new(st.nodes[0], st.nodes[1])
-                .stiffness(2000.0)
-                .rest_length(lengths[k] * (1.0 - q[k] / 2000.0)),
-        );
-    }
-    if pinned {
-        for i in 0..p {
-            b = b.support(Support::pinned(i));
-        }
-    }
-    (b.build().unwrap(), q)
+    prestressed_snelson(p, 0.002, pinned)
 }
 
 /// The derivative of `f` (of force densities and axial stiffnesses) along `(dq, da)`,

@@ -46,36 +46,7 @@ fn internal_forces(s: &Structure, x: &[Vector3<f64>], dofs: &DofMap) -> DVector<
 }
 
 fn prestressed_prism() -> Structure {
-    let base = snelson(3, PI / 6.0, 1.0, 1.0, 1.0).build().unwrap();
-    let q = Statics::new(&base)
-        .unwrap()
-        .prestressability()
-        .unwrap()
-        .stress
-        * 50.0;
-    let lengths = base.member_lengths();
-    let mut b = Structure::builder()
-        .material("rod", Material::new(7800.0, 200e9, 500e6))
-        .nodes(base.nodes().iter().map(|p| [p.x, p.y, p.z]));
-    for bar in base.bars() {
-        b = b.bar(
-            Bar::new(bar.nodes[0], bar.nodes[1])
-                .mass(1.0)
-                .material("rod")
-                .radius(0.005),
-        );
-    }
-    let k = 2000.0;
-    for (i, st) in base.strings().iter().enumerate() {
-        let kk = 3 + i;
-        // k (l − s0) = q l  ⇒  s0 = l (1 − q/k)
-        b = b.string(
-            StringMember::new(st.nodes[0], st.nodes[1])
-                .stiffness(k)
-                .rest_length(lengths[kk] * (1.0 - q[kk] / k)),
-        );
-    }
-    b.build().unwrap()
+    prestressed_snelson(3, 0.005, false).0
 }
 
 #[test]

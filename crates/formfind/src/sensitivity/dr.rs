@@ -106,26 +106,20 @@ impl DrSensitivity {
     /// assert!((d.nodes[2].x - 0.625).abs() < 1e-9, "{}", d.nodes[2]);
     /// ```
     pub fn find(topology: &Topology, settings: &Settings) -> Result<Self> {
-        let refuse = |item: &str, reason: &str| {
-            Err(FormFindError::InvalidTopology {
-                item: item.into(),
-                reason: reason.into(),
-            })
-        };
         if topology.fixed.is_empty() {
-            return refuse(
+            return super::refused(
                 "fixed",
                 "the derivatives of a relaxed form need held nodes: without them its tangent stiffness is singular (rigid-body motions)",
             );
         }
         if !topology.clusters.is_empty() {
-            return refuse(
+            return super::refused(
                 "clusters",
                 "the derivatives of a relaxed form with clustered strings are not available yet",
             );
         }
         if !topology.loads.is_empty() {
-            return refuse(
+            return super::refused(
                 "loads",
                 "dynamic relaxation takes no loads: the derivatives of a loaded form are the force density method's (FdmSensitivity)",
             );

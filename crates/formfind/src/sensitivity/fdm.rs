@@ -190,20 +190,14 @@ impl FdmSensitivity {
     /// a topology without held nodes, with member weights, or with clustered strings (module
     /// docs); a wrong count of force densities; a singular D_ff.
     pub fn new(topology: &Topology, q: &[f64]) -> Result<Self> {
-        let refuse = |item: &str, reason: &str| {
-            Err(FormFindError::InvalidTopology {
-                item: item.into(),
-                reason: reason.into(),
-            })
-        };
         if topology.fixed.is_empty() {
-            return refuse(
+            return super::refused(
                 "fixed",
                 "the derivatives of a form need held nodes: a free-standing form is a normalised null space of D, not a solve",
             );
         }
         if !topology.clusters.is_empty() {
-            return refuse(
+            return super::refused(
                 "clusters",
                 "the derivatives of a form with clustered strings are not available yet: their force densities depend on the form",
             );
@@ -212,15 +206,15 @@ impl FdmSensitivity {
             .iter()
             .any(|&w| w != 0.0)
         {
-            return refuse(
+            return super::refused(
                 "weight",
                 "the derivatives of a form under self-weight are not available yet: its loads depend on the form",
             );
         }
         if q.len() != topology.n_members() {
-            return refuse(
+            return super::refused(
                 "force_density",
-                &format!(
+                format!(
                     "{} force densities for {} members",
                     q.len(),
                     topology.n_members()
@@ -228,9 +222,9 @@ impl FdmSensitivity {
             );
         }
         if let Some(k) = q.iter().position(|x| !x.is_finite()) {
-            return refuse(
+            return super::refused(
                 "force_density",
-                &format!("member {k}'s force density is not finite"),
+                format!("member {k}'s force density is not finite"),
             );
         }
         let mut system = FixedSystem::new(topology, q, &held_positions(topology))?;

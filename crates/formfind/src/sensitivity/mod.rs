@@ -14,5 +14,16 @@
 mod dr;
 mod fdm;
 
+use crate::error::FormFindError;
+
+/// What the derivatives refuse, naming the topology's `item` (a missing held node, a cluster,
+/// a load): the error both kinds of form return.
+fn refused<T>(item: &str, reason: impl Into<String>) -> crate::error::Result<T> {
+    Err(FormFindError::InvalidTopology {
+        item: item.into(),
+        reason: reason.into(),
+    })
+}
+
 pub use dr::{DrDerivative, DrGradient, DrParameter, DrSensitivity};
 pub use fdm::{Cotangent, FdmSensitivity, FormDerivative, FormGradient, Parameter};
