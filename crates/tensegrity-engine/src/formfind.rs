@@ -258,6 +258,18 @@ impl FormfindRequest {
         Ok(sensitivity::FdmSensitivity::given(&topology)?)
     }
 
+    /// Dynamic relaxation's form of the topology asked for (held nodes, rest lengths and
+    /// stiffnesses; this request's tolerance, iterations and default stiffness), its tangent
+    /// stiffness factored for its exact derivatives ([`::formfind::sensitivity::DrSensitivity`]),
+    /// for a front end that differentiates it (Python's `RelaxedSensitivity`).
+    pub fn relaxed_sensitivity(&self) -> Result<sensitivity::DrSensitivity, FormfindFailure> {
+        let (topology, _) = self.topology()?;
+        Ok(sensitivity::DrSensitivity::find(
+            &topology,
+            &self.settings(),
+        )?)
+    }
+
     /// Runs the form-finding and the synthesis (module docs).
     pub fn run(&self) -> Result<Formfound, FormfindFailure> {
         let (topology, source) = self.topology()?;

@@ -610,6 +610,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<stepping::PyStepper>()?;
     m.add_class::<stepping::PyStepperState>()?;
     m.add_class::<sensitivity::PyFormSensitivity>()?;
+    m.add_class::<sensitivity::PyRelaxedSensitivity>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
     m.add("ROLL_HISTORY_COLUMNS", runs::HISTORY_COLUMNS.to_vec())?;
     m.add(

@@ -1,15 +1,19 @@
-//! The force density method's exact derivatives in Python: `_native.FormSensitivity`, built
-//! from `formfind`'s values (a topology with held nodes and force densities) by the engine
-//! ([`tensegrity_engine::formfind::FormfindRequest::sensitivity`]), differentiated by the
-//! library ([`formfind::sensitivity`]); every vector crosses as raw f64 bytes, which the
-//! Python class `tensegrity.FormSensitivity` views as numpy arrays. No mathematics here.
+//! Found forms' exact derivatives in Python: `_native.FormSensitivity` (the force density
+//! method) and `_native.RelaxedSensitivity` (dynamic relaxation), built from `formfind`'s
+//! values (a topology with held nodes) by the engine
+//! ([`tensegrity_engine::formfind::FormfindRequest::sensitivity`] and `relaxed_sensitivity`),
+//! differentiated by the library (`formfind::sensitivity`); every vector crosses as raw f64
+//! bytes, which the Python classes `tensegrity.FormSensitivity` and
+//! `tensegrity.RelaxedSensitivity` view as numpy arrays. No mathematics here.
 
 use crate::errors::Failure;
 use nalgebra::Vector3;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use tensegrity_core::request::{Categorized, Category, Request};
-use tensegrity_engine::formfind::sensitivity::{Cotangent, FdmSensitivity, Parameter};
+use tensegrity_engine::formfind::sensitivity::{
+    Cotangent, DrParameter, DrSensitivity, FdmSensitivity, Parameter,
+};
 use tensegrity_engine::formfind::FormfindRequest;
 
 fn failure(e: &impl std::fmt::Display, category: Category) -> PyErr {
@@ -146,5 +150,87 @@ impl PyFormSensitivity {
             vectors(py, &g.loads),
             vectors(py, &g.fixed),
         ))
+    }
+}
+
+/// Dynamic relaxation's form with held nodes, factored for its derivatives
+/// (`tensegrity.RelaxedSensitivity` wraps it).
+#[pyclass(unsendable, module = "tensegrity._native", name = "RelaxedSensitivity")]
+pub struct PyRelaxedSensitivity {
+    inner: DrSensitivity,
+}
+
+#[pymethods]
+impl PyRelaxedSensitivity {
+    /// The relaxed form of `formfind`'s values (`topology` or `builtin`, `stiffness`,
+    /// `tolerance`, `max_iterations`).
+    #[new]
+    fn new(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
+        let request = FormfindRequest::from_values(values)
+            .map_err(|e| Failure::invalid(&e).into_pyerr(py))?;
+        let inner = request
+            .relaxed_sensitivity()
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok(Self { inner })
+    }
+
+    /// The number of nodes.
+    #[getter]
+    fn n_nodes(&self) -> usize {
+        self.inner.nodes().len()
+    }
+
+    /// The form: nodes (raw f64, 3n) and the members' tensions (N).
+    fn form<'py>(&self, py: Python<'py>) -> (Bound<'py, PyBytes>, Vec<f64>) {
+        (
+            vectors(py, self.inner.nodes()),
+            self.inner.tensions().to_vec(),
+        )
+    }
+
+    /// The derivatives of the nodes (raw f64, 3n) and tensions with respect to one
+    /// parameter: `kind` "rest_length" or "stiffness" of member `index`.
+    fn forward<'py>(
+        &mut self,
+        py: Python<'py>,
+        kind: &str,
+        index: usize,
+    ) -> PyResult<(Bound<'py, PyBytes>, Vec<f64>)> {
+        let parameter = match kind {
+            "rest_length" => DrParameter::RestLength(index),
+            "stiffness" => DrParameter::Stiffness(index),
+            other => {
+                return Err(failure(
+                    &format!("parameter: {other:?} is not one of \"rest_length\", \"stiffness\""),
+                    Category::Input,
+                ))
+            }
+        };
+        let d = self
+            .inner
+            .forward(parameter)
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok((vectors(py, &d.nodes), d.tensions))
+    }
+
+    /// The gradient of a scalar objective of the nodes from its partial derivatives
+    /// `dnodes` (3n, by node): (df/ds0, df/dEA), one per member.
+    fn adjoint(&mut self, dnodes: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
+        if !dnodes.len().is_multiple_of(3) {
+            return Err(failure(
+                &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
+                Category::Input,
+            ));
+        }
+        let dnodes: Vec<Vector3<f64>> = dnodes
+            .chunks(3)
+            .map(|c| Vector3::new(c[0], c[1], c[2]))
+            .collect();
+        let g = self
+            .inner
+            .adjoint(&dnodes)
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok((g.rest_lengths, g.stiffnesses))
     }
 }

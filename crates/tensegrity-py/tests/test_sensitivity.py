@@ -97,3 +97,51 @@ def test_bad_input_is_refused():
         s.forward("force_density", 10_000)
     with pytest.raises(ValueError, match="shape"):
         s.adjoint(np.zeros((2, 3)))
+
+
+LINE = """nodes = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.1, 0.0, 0.0]]
+[[strings]]
+nodes = [0, 2]
+length = 0.8
+stiffness = 100.0
+[[strings]]
+nodes = [2, 1]
+length = 0.6
+stiffness = 100.0
+[[fixed]]
+node = 0
+position = [-1.0, 0.0, 0.0]
+[[fixed]]
+node = 1
+position = [1.0, 0.0, 0.0]
+"""
+
+
+def test_a_relaxed_form_and_its_derivatives_have_their_closed_forms(tmp_path):
+    """A node on two strings (rest lengths a = 0.8, b = 0.6, equal stiffness) between anchors
+    2 m apart: equal tensions put it at x = -1 + 2a/(a + b), so dx/da = 2b/(a + b)^2 and
+    dx/db = -2a/(a + b)^2; the tension EA (L_a - a)/a; stiffening the first string pulls
+    the node towards its anchor, dx/dEA_a = -(L_a/a - 1) / (EA (1/a + 1/b))."""
+    (tmp_path / "line.toml").write_text(LINE)
+    s = tensegrity.RelaxedSensitivity(tmp_path / "line.toml")
+    a, b = 0.8, 0.6
+    form = s.form()
+    assert np.isclose(form.nodes[2, 0], -1.0 + 2 * a / (a + b), atol=1e-9)
+    la = 2 * a / (a + b)
+    assert np.allclose(form.tensions, 100.0 * (la - a) / a, rtol=1e-9)
+    da = s.forward("rest_length", 0)
+    assert np.isclose(da.nodes[2, 0], 2 * b / (a + b) ** 2, rtol=1e-8)
+    db = s.forward("rest_length", 1)
+    assert np.isclose(db.nodes[2, 0], -2 * a / (a + b) ** 2, rtol=1e-8)
+    dk = s.forward("stiffness", 0)
+    dx_dk = -(la / a - 1.0) / (100.0 * (1.0 / a + 1.0 / b))
+    assert np.isclose(dk.nodes[2, 0], dx_dk, rtol=1e-8)
+    # the adjoint of f = x_2 gives the same two derivatives
+    w = np.zeros((3, 3))
+    w[2, 0] = 1.0
+    g = s.adjoint(w)
+    assert np.allclose(g.rest_lengths, [da.nodes[2, 0], db.nodes[2, 0]], rtol=1e-10)
+    assert np.allclose(g.stiffnesses, [dx_dk, s.forward("stiffness", 1).nodes[2, 0]],
+                       rtol=1e-10)
+    with pytest.raises(ValueError, match="kind"):
+        s.forward("force_density", 0)

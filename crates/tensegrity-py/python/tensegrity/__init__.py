@@ -26,7 +26,9 @@ environments built on it are in :mod:`tensegrity.envs` (``pip install gymnasium`
 
 The exact derivatives of a force density form with held nodes (with respect to its force
 densities, loads and held positions; forward, one solve a parameter, and adjoint, one solve
-an objective) are a :class:`FormSensitivity`, every array numpy.
+an objective) are a :class:`FormSensitivity`, those of a form found by dynamic relaxation
+(with respect to rest lengths and stiffnesses) a :class:`RelaxedSensitivity`, every array
+numpy.
 """
 
 import copy as _copy
@@ -44,7 +46,8 @@ from ._exports import export_json, export_mjcf, export_schema, figure, figures
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
 from .results import Result, SweepResult, SweepRow
-from .sensitivity import FormDerivative, FormGradient, FormSensitivity
+from .sensitivity import (FormDerivative, FormGradient, FormSensitivity, RelaxedDerivative,
+                          RelaxedGradient, RelaxedSensitivity)
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -55,7 +58,7 @@ __all__ = [
     "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
     "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative",
-    "FormGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
+    "FormGradient", "RelaxedSensitivity", "RelaxedDerivative", "RelaxedGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
 

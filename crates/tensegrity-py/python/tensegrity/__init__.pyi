@@ -10,7 +10,10 @@ from .errors import (ComputationError as ComputationError, InputError as InputEr
                      Interrupted as Interrupted, ResourceError as ResourceError,
                      TensegrityError as TensegrityError)
 from .sensitivity import (FormDerivative as FormDerivative, FormGradient as FormGradient,
-                          FormSensitivity as FormSensitivity)
+                          FormSensitivity as FormSensitivity,
+                          RelaxedDerivative as RelaxedDerivative,
+                          RelaxedGradient as RelaxedGradient,
+                          RelaxedSensitivity as RelaxedSensitivity)
 from .simulator import (Actuator as Actuator, Observation as Observation,
                         Simulator as Simulator)
 from .structure import Structure as Structure

@@ -1,4 +1,5 @@
-"""Exact derivatives of a force density form: :class:`FormSensitivity`.
+"""Exact derivatives of found forms: :class:`FormSensitivity` (the force density method) and
+:class:`RelaxedSensitivity` (dynamic relaxation, with respect to rest lengths and stiffnesses).
 
 A topology with held nodes and a force density on every member (its own or its group's) is
 solved by the force density method, ``D_ff X_f = P_f - D_fx X_x``, exactly as
@@ -138,3 +139,88 @@ class FormSensitivity:
         :class:`FormGradient` ``)``."""
         f, dnodes, dq = objective(self.form())
         return float(f), self.adjoint(dnodes, dq)
+
+
+@dataclass(frozen=True)
+class RelaxedDerivative:
+    """A relaxed form, or its derivative with respect to one parameter (numpy arrays).
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (n, 3)
+        Node positions (m), or their derivatives (zero at held nodes).
+    tensions : ndarray, shape (m,)
+        Member tensions (N), or their derivatives.
+    """
+
+    nodes: np.ndarray
+    tensions: np.ndarray
+
+
+@dataclass(frozen=True)
+class RelaxedGradient:
+    """The gradient of a scalar objective of a relaxed form's nodes (numpy arrays).
+
+    Attributes
+    ----------
+    rest_lengths : ndarray, shape (m,)
+        df/ds0, one per member (bars then strings).
+    stiffnesses : ndarray, shape (m,)
+        df/dEA, one per member.
+    """
+
+    rest_lengths: np.ndarray
+    stiffnesses: np.ndarray
+
+
+class RelaxedSensitivity:
+    """Dynamic relaxation's form with held nodes, its tangent stiffness factored for its exact
+    derivatives with respect to the members' rest lengths and axial stiffnesses.
+
+    Parameters
+    ----------
+    topology : str or os.PathLike
+        A topology file (as :func:`tensegrity.formfind` reads it) with ``fixed`` nodes,
+        initial ``nodes``, and a ``length`` on every member (its own or its group's).
+    stiffness, tolerance, max_iterations : optional
+        As in :func:`tensegrity.formfind` (``stiffness``: the EA of a member without its own).
+
+    Examples
+    --------
+    >>> s = RelaxedSensitivity("net.toml")                        # doctest: +SKIP
+    >>> d = s.forward("rest_length", 0)                           # d(nodes, tensions)/ds0_0
+    >>> g = s.adjoint(np.tile([0.0, 0.0, 1.0], (s.n_nodes, 1)))  # f = sum of heights
+    """
+
+    def __init__(self, topology=None, *, builtin=None, stiffness=None, tolerance=None,
+                 max_iterations=None):
+        values = {"topology": topology, "builtin": builtin, "stiffness": stiffness,
+                  "tolerance": tolerance, "max_iterations": max_iterations}
+        self._native = _native.RelaxedSensitivity({k: v for k, v in values.items()
+                                                   if v is not None})
+        self.n_nodes = self._native.n_nodes
+
+    def form(self):
+        """The form: nodes and tensions (:class:`RelaxedDerivative`)."""
+        nodes, tensions = self._native.form()
+        return RelaxedDerivative(_vectors(nodes), np.asarray(tensions, dtype=np.float64))
+
+    def forward(self, kind, index):
+        """The derivatives of the nodes and tensions (:class:`RelaxedDerivative`) with respect
+        to ``kind`` ``"rest_length"`` or ``"stiffness"`` of member ``index`` (bars then
+        strings). One sparse solve."""
+        if kind not in ("rest_length", "stiffness"):
+            raise ValueError("kind must be 'rest_length' or 'stiffness', not {!r}".format(kind))
+        nodes, tensions = self._native.forward(kind, int(index))
+        return RelaxedDerivative(_vectors(nodes), np.asarray(tensions, dtype=np.float64))
+
+    def adjoint(self, dnodes):
+        """The gradient (:class:`RelaxedGradient`) of a scalar objective f of the nodes from
+        ``dnodes`` (n, 3), df/dx of every node. One sparse solve, whatever the number of
+        parameters."""
+        dnodes = np.asarray(dnodes, dtype=np.float64)
+        if dnodes.shape != (self.n_nodes, 3):
+            raise ValueError("dnodes must have shape ({}, 3), not {}".format(self.n_nodes,
+                                                                              dnodes.shape))
+        s0, ea = self._native.adjoint(dnodes.ravel().tolist())
+        return RelaxedGradient(np.asarray(s0, dtype=np.float64), np.asarray(ea, dtype=np.float64))
