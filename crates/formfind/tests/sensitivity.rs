@@ -305,7 +305,7 @@ fn cotangent(s: &FdmSensitivity, n_nodes: usize, n_members: usize) -> Cotangent 
         *v = weight(i);
     }
     let dg: Vec<f64> = (0..n_members).map(|k| spread(k + 5)).collect();
-    c.forces(s, &dg)
+    c.forces(s, &dg).unwrap()
 }
 
 #[test]
@@ -408,6 +408,12 @@ fn what_is_not_covered_is_refused_by_name() {
         .unwrap()
         .to_string()
         .contains("cotangent"));
+    let e = Cotangent::zeros(net.n_nodes, net.n_members())
+        .forces(&s, &[1.0])
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("forces") && e.contains("1 derivatives"), "{e}");
 }
 
 /// Dynamic relaxation's form with held nodes (`formfind::sensitivity::DrSensitivity`):

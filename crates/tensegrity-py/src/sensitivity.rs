@@ -30,6 +30,27 @@ fn vectors<'py>(py: Python<'py>, v: &[Vector3<f64>]) -> Bound<'py, PyBytes> {
     PyBytes::new(py, &raw)
 }
 
+/// `formfind`'s request of Python's `values` (a bad value: the input error naming it).
+fn request(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<FormfindRequest> {
+    let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
+    FormfindRequest::from_values(values).map_err(|e| Failure::invalid(&e).into_pyerr(py))
+}
+
+/// A flat list of node derivatives (3 per node) as vectors; another length is the input
+/// error naming `dnodes`.
+fn node_vectors(dnodes: &[f64]) -> PyResult<Vec<Vector3<f64>>> {
+    if !dnodes.len().is_multiple_of(3) {
+        return Err(failure(
+            &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
+            Category::Input,
+        ));
+    }
+    Ok(dnodes
+        .chunks(3)
+        .map(|c| Vector3::new(c[0], c[1], c[2]))
+        .collect())
+}
+
 /// A force density form with held nodes, factored for its derivatives
 /// (`tensegrity.FormSensitivity` wraps it).
 #[pyclass(unsendable, module = "tensegrity._native", name = "FormSensitivity")]
@@ -45,10 +66,7 @@ impl PyFormSensitivity {
     /// The form of `formfind`'s values (`topology` or `builtin`, `group`, `ratio`).
     #[new]
     fn new(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
-        let request = FormfindRequest::from_values(values)
-            .map_err(|e| Failure::invalid(&e).into_pyerr(py))?;
-        let inner = request
+        let inner = request(py, values)?
             .sensitivity()
             .map_err(|e| failure(&e, e.category()))?;
         Ok(Self { inner })
@@ -128,17 +146,8 @@ impl PyFormSensitivity {
         dnodes: Vec<f64>,
         dforce_densities: Vec<f64>,
     ) -> PyResult<(Vec<f64>, Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
-        if !dnodes.len().is_multiple_of(3) {
-            return Err(failure(
-                &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
-                Category::Input,
-            ));
-        }
         let df = Cotangent {
-            nodes: dnodes
-                .chunks(3)
-                .map(|c| Vector3::new(c[0], c[1], c[2]))
-                .collect(),
+            nodes: node_vectors(&dnodes)?,
             force_densities: dforce_densities,
         };
         let g = self
@@ -166,10 +175,7 @@ impl PyRelaxedSensitivity {
     /// `tolerance`, `max_iterations`).
     #[new]
     fn new(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
-        let request = FormfindRequest::from_values(values)
-            .map_err(|e| Failure::invalid(&e).into_pyerr(py))?;
-        let inner = request
+        let inner = request(py, values)?
             .relaxed_sensitivity()
             .map_err(|e| failure(&e, e.category()))?;
         Ok(Self { inner })
@@ -217,16 +223,7 @@ impl PyRelaxedSensitivity {
     /// The gradient of a scalar objective of the nodes from its partial derivatives
     /// `dnodes` (3n, by node): (df/ds0, df/dEA), one per member.
     fn adjoint(&mut self, dnodes: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        if !dnodes.len().is_multiple_of(3) {
-            return Err(failure(
-                &format!("dnodes: {} numbers is not 3 per node", dnodes.len()),
-                Category::Input,
-            ));
-        }
-        let dnodes: Vec<Vector3<f64>> = dnodes
-            .chunks(3)
-            .map(|c| Vector3::new(c[0], c[1], c[2]))
-            .collect();
+        let dnodes = node_vectors(&dnodes)?;
         let g = self
             .inner
             .adjoint(&dnodes)

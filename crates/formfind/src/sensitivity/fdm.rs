@@ -161,20 +161,40 @@ impl Cotangent {
         }
     }
 
+    /// Refuses a cotangent or a list of per-member derivatives `given` (named `what`) that
+    /// does not fit the form `s`.
+    fn fits(&self, s: &FdmSensitivity, what: &str, given: usize) -> Result<()> {
+        let (n, m) = (s.nodes.len(), s.pairs.len());
+        if self.nodes.len() != n || self.force_densities.len() != m || given != m {
+            return super::refused(
+                what,
+                format!(
+                    "a cotangent of {} nodes and {} members with {given} derivatives, for a form of {n} nodes and {m} members",
+                    self.nodes.len(),
+                    self.force_densities.len()
+                ),
+            );
+        }
+        Ok(())
+    }
+
     /// Adds the cotangent of g(L) with ∂g/∂L_k = `dg_dl[k]` at the form `s` (module docs):
-    /// ∂L_k/∂x_b = e_k = −∂L_k/∂x_a.
-    pub fn lengths(mut self, s: &FdmSensitivity, dg_dl: &[f64]) -> Self {
+    /// ∂L_k/∂x_b = e_k = −∂L_k/∂x_a. A list or cotangent of the wrong size is the error.
+    pub fn lengths(mut self, s: &FdmSensitivity, dg_dl: &[f64]) -> Result<Self> {
+        self.fits(s, "lengths", dg_dl.len())?;
         for (k, &[a, b]) in s.pairs.iter().enumerate() {
             let e = s.unit(k);
             self.nodes[b] += dg_dl[k] * e;
             self.nodes[a] -= dg_dl[k] * e;
         }
-        self
+        Ok(self)
     }
 
     /// Adds the cotangent of g(F) with ∂g/∂F_k = `dg_df[k]` for the member forces F_k = q_k L_k
-    /// at the form `s`: ∂F_k/∂q_k = L_k and ∂F_k/∂x = q_k ∂L_k/∂x.
-    pub fn forces(mut self, s: &FdmSensitivity, dg_df: &[f64]) -> Self {
+    /// at the form `s`: ∂F_k/∂q_k = L_k and ∂F_k/∂x = q_k ∂L_k/∂x. A list or cotangent of the
+    /// wrong size is the error.
+    pub fn forces(mut self, s: &FdmSensitivity, dg_df: &[f64]) -> Result<Self> {
+        self.fits(s, "forces", dg_df.len())?;
         let lengths = s.lengths();
         let scaled: Vec<f64> = dg_df.iter().zip(&s.q).map(|(g, q)| g * q).collect();
         for (k, g) in dg_df.iter().enumerate() {
