@@ -1,7 +1,8 @@
 //! A sweep stopped by an interrupt: whole rows in order and an `# incomplete` line, which
 //! `resume` cuts off to finish the single run's file; `merge` refuses such a file; a second
-//! sweep of the same file is refused while the first runs. One test: the interrupt flag is
-//! process-wide.
+//! sweep of the same file is refused while the first runs. One test, in a test binary of its
+//! own: the interrupt flag is process-wide (in the shared binary it stopped another test's
+//! sweep running beside it).
 
 use std::path::Path;
 use sweeps::{merge, run, Progress, RunOptions, Silent, Spec, SweepError};
