@@ -26,6 +26,10 @@ enum Command {
     /// Form-finding: the equilibrium geometry and prestress of a topology file or a built-in
     /// form (force density, adaptive, dynamic relaxation), written as a scene.
     Formfind(cli::formfind::FormfindArgs),
+    /// Inverse form-finding: the force densities whose form best meets a design file's goals
+    /// (positions, shape, lengths, forces, reactions, load path, smoothness), by L-BFGS-B on
+    /// the exact gradient.
+    Design(cli::design::DesignArgs),
     /// Benchmarks: the work–precision report of the integrators; `bench anchors`, the anchor
     /// scenes and the scaling series.
     Bench(cli::bench::BenchArgs),
@@ -70,6 +74,7 @@ fn main() {
         Command::Statics(args) => cli::statics::run(args),
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Formfind(args) => cli::formfind::run(args),
+        Command::Design(args) => cli::design::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Michell(args) => cli::michell::run(args),
         Command::MichellTable(args) => cli::michell::run_table(args),

@@ -11,6 +11,7 @@ mod cli_bench_anchors;
 mod cli_clusters_dynamics;
 mod cli_clusters_friction;
 mod cli_clusters_statics;
+mod cli_design;
 mod cli_export_mjcf;
 mod cli_figure_style;
 mod cli_formfind;

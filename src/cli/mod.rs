@@ -4,6 +4,7 @@ pub mod animate;
 pub mod bench;
 pub mod bench_anchors;
 pub mod demo;
+pub mod design;
 pub mod exit;
 pub mod export;
 pub mod fig_rolling;

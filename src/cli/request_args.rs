@@ -23,7 +23,7 @@ use std::marker::PhantomData;
 use tensegrity_core::request::{InvalidParameter, Kind, Param, Request};
 
 /// The parameters taken by position rather than as a flag (first the first).
-pub const POSITIONAL: &[&str] = &["scene", "topology"];
+pub const POSITIONAL: &[&str] = &["scene", "topology", "design"];
 
 pub use tensegrity_engine::spelling::flag_of;
 

@@ -2,8 +2,10 @@
 //! square cable nets of k × k cells (2 k (k + 1) strings, the boundary held on a saddle, every
 //! inner node loaded): the plain solve (assembling and factoring D_ff and solving for the
 //! form), the adjoint gradient of one objective (one solve with those factors, whatever the
-//! parameter count) and the forward derivatives with respect to every force density (one
-//! solve each), for k = 2, 4, 7, 22 (12, 40, 112, 1 012 force densities). One size:
+//! parameter count), the forward-mode gradient of that objective by the first 50 force
+//! densities (or all, below 50: one solve each, [`FdmSensitivity::forward_gradient`]) and the
+//! forward derivatives of the whole form with respect to every force density (one solve
+//! each), for k = 2, 4, 7, 22 (12, 40, 112, 1 012 force densities). One size:
 //! `cargo bench -p formfind --bench sensitivity -- sensitivity/adjoint/1012`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -66,6 +68,11 @@ fn bench_sensitivity(c: &mut Criterion) {
         }
         group.bench_with_input(BenchmarkId::new("adjoint", m), &(), |b, _| {
             b.iter(|| black_box(s.adjoint(&df).unwrap()))
+        });
+        // the forward-mode gradient of the one objective by (at most) 50 force densities
+        let fifty: Vec<Parameter> = (0..m.min(50)).map(Parameter::ForceDensity).collect();
+        group.bench_with_input(BenchmarkId::new("forward_gradient_50", m), &(), |b, _| {
+            b.iter(|| black_box(s.forward_gradient(&df, &fifty).unwrap()))
         });
         group.bench_with_input(BenchmarkId::new("forward_all", m), &(), |b, _| {
             b.iter(|| {

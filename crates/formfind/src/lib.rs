@@ -92,6 +92,7 @@ mod analysis;
 mod builtin;
 mod choice;
 mod cluster;
+pub mod design;
 mod dr;
 mod error;
 mod estimate;

@@ -3,6 +3,7 @@
 //! directory is a module; run one with `cargo test --test integration FILE::`.
 
 mod clusters;
+mod design;
 mod edges;
 mod errors;
 mod forms;

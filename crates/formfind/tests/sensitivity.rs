@@ -11,7 +11,7 @@ use formfind::{builtin, form_find, FixedNode, Member, NodeLoad, Settings, Topolo
 use nalgebra::Vector3;
 
 /// A deterministic spread in [−1, 1] (no random crate: the same numbers everywhere).
-fn spread(i: usize) -> f64 {
+pub(crate) fn spread(i: usize) -> f64 {
     (0.7 + 1.37 * i as f64).sin()
 }
 
@@ -58,7 +58,7 @@ fn held_form(mut t: Topology, held: &[usize], bars: f64) -> (Topology, Vec<f64>)
 
 /// A cable net: a (k+1) × (k+1) grid of strings whose boundary is held on a saddle, every
 /// inner node loaded downwards.
-fn cable_net(k: usize) -> (Topology, Vec<f64>) {
+pub(crate) fn cable_net(k: usize) -> (Topology, Vec<f64>) {
     let id = |u: usize, v: usize| v * (k + 1) + u;
     let mut strings = Vec::new();
     for v in 0..=k {
@@ -123,7 +123,7 @@ fn loaded_grid(k: usize) -> (Topology, Vec<f64>) {
 }
 
 /// The five structures of the module docs.
-fn structures() -> Vec<(&'static str, Topology, Vec<f64>)> {
+pub(crate) fn structures() -> Vec<(&'static str, Topology, Vec<f64>)> {
     let (prism, q_prism) = held_form(builtin("prism:3").unwrap(), &[0, 1, 2], 0.5);
     let (octa, q_octa) = held_form(builtin("octahedron").unwrap(), &[0, 2, 4], 1.0);
     let tower = builtin("tower:3:2").unwrap();
@@ -344,9 +344,13 @@ fn the_adjoint_gradient_matches_the_forward_one_and_central_differences() {
                 })[0],
             );
         }
+        // the forward-mode gradient of the objective alone (one solve per parameter)
+        let gradient = s.forward_gradient(&c, &parameters(&t)).unwrap();
         let (r_forward, r_fd) = (relative(&adjoint, &forward), relative(&adjoint, &fd));
-        println!("{name}: adjoint against forward {r_forward:.1e}, against central differences {r_fd:.1e}");
+        let r_gradient = relative(&adjoint, &gradient);
+        println!("{name}: adjoint against forward {r_forward:.1e} (gradient {r_gradient:.1e}), against central differences {r_fd:.1e}");
         assert!(r_forward < 1e-10, "{name}: {r_forward:.2e}");
+        assert!(r_gradient < 1e-10, "{name}: {r_gradient:.2e}");
         assert!(r_fd < 1e-6, "{name}: {r_fd:.2e}");
     }
 }

@@ -26,6 +26,7 @@ pub(crate) fn all() -> Vec<Command> {
         estimated(crate::simulate::simulate),
         entry(crate::bench::work_precision),
         estimated(crate::formfind::formfind),
+        entry(crate::design::design),
         estimated_in(crate::solve::solve_in),
     ]
 }

@@ -30,7 +30,7 @@
 //! ```
 
 use crate::scene::SceneSource;
-pub use ::formfind::{sensitivity, FormfindReport, Formfound};
+pub use ::formfind::{design, sensitivity, FormfindReport, Formfound};
 use ::formfind::{FormFindError, Method, Settings, Synthesis, Topology};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::budget::{Estimate, Parameters};

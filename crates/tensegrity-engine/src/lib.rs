@@ -39,6 +39,7 @@
 
 pub mod bench;
 mod context;
+pub mod design;
 mod entries;
 pub mod estimate;
 pub mod exports;

@@ -43,6 +43,7 @@
 #![warn(missing_docs)]
 
 pub mod csv;
+pub mod design;
 pub mod error;
 pub mod figure;
 pub mod figure_data;

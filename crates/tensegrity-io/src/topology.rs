@@ -30,6 +30,8 @@
 //! force = 10.0                   # N: its one tension, the same on every segment
 //! stiffness = 1e5                # N, optional axial stiffness EA (rest-length synthesis)
 //! material = "steel"             # optional (the written scene's); with `area` (m²) EA = E A
+//! [design]                       # optional: an inverse form-finding problem, read by
+//!                                # `tensegrity design` (the `design` module); ignored here
 //! ```
 //!
 //! A cluster gives its tension `force`, never a force density (one q along segments of
@@ -97,6 +99,10 @@ pub struct TopologyFile {
     /// Clustered strings.
     #[serde(default)]
     pub clusters: Vec<Spanned<ClusterSpec>>,
+    /// A design problem on the topology (read by [`crate::design`]; form-finding starts from
+    /// the force densities given and ignores it).
+    #[serde(default)]
+    pub design: Option<serde::de::IgnoredAny>,
 }
 
 /// A `[[clusters]]` entry: one string through several nodes with one prescribed tension.

@@ -611,6 +611,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<stepping::PyStepperState>()?;
     m.add_class::<sensitivity::PyFormSensitivity>()?;
     m.add_class::<sensitivity::PyRelaxedSensitivity>()?;
+    m.add_class::<sensitivity::PyDesignProblem>()?;
     m.add("POLL_S", worker::POLL.as_secs_f64())?;
     m.add("ROLL_HISTORY_COLUMNS", runs::HISTORY_COLUMNS.to_vec())?;
     m.add(

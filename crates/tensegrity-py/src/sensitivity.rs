@@ -231,3 +231,46 @@ impl PyRelaxedSensitivity {
         Ok((g.rest_lengths, g.stiffnesses))
     }
 }
+
+/// A design problem (`design`'s file: a topology with a `[design]` table) compiled for its
+/// objective and exact gradient at any force densities (`tensegrity.DesignProblem` wraps it):
+/// the engine reads the file ([`tensegrity_engine::design::DesignRequest::problem`]), the
+/// library evaluates (`formfind::design::DesignProblem`).
+#[pyclass(unsendable, module = "tensegrity._native", name = "DesignProblem")]
+pub struct PyDesignProblem {
+    inner: tensegrity_engine::formfind::design::DesignProblem,
+}
+
+#[pymethods]
+impl PyDesignProblem {
+    /// The problem of `design`'s values (`design`: the file or its TOML text).
+    #[new]
+    fn new(py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
+        use tensegrity_engine::design::DesignRequest;
+        let values = crate::convert::named(values).map_err(|f| f.into_pyerr(py))?;
+        let request =
+            DesignRequest::from_values(values).map_err(|e| Failure::invalid(&e).into_pyerr(py))?;
+        let (topology, spec, _) = request.problem().map_err(|e| failure(&e, e.category()))?;
+        let inner = tensegrity_engine::formfind::design::DesignProblem::new(&topology, &spec)
+            .map_err(|e| failure(&e, e.category()))?;
+        Ok(Self { inner })
+    }
+
+    /// The variables' start values, lower and upper bounds (±inf for none), and the members
+    /// each sets.
+    fn variables(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<Vec<usize>>) {
+        (
+            self.inner.start(),
+            self.inner.lower(),
+            self.inner.upper(),
+            self.inner.members(),
+        )
+    }
+
+    /// The objective, its gradient and each term's value at `values`.
+    fn objective(&self, values: Vec<f64>) -> PyResult<(f64, Vec<f64>, Vec<f64>)> {
+        self.inner
+            .objective_with_terms(&values)
+            .map_err(|e| failure(&e, e.category()))
+    }
+}

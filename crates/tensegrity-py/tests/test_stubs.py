@@ -17,7 +17,7 @@ FUNCTIONS = {
     "statics": ["statics"], "simulate": ["simulate"], "toroid": ["toroid"], "roll": ["roll"],
     "tipover": ["tipover", "tipover_dynamic", "tipover_rolling"], "michell": ["michell"],
     "michell_optimize": ["michell_optimize"], "michell_table": ["michell_table"],
-    "tbar": ["tbar"], "tbar_roll": ["tbar_roll"],
+    "tbar": ["tbar"], "tbar_roll": ["tbar_roll"], "design": ["design"],
 }
 if "formfind" in tg.commands():
     FUNCTIONS["formfind"] = ["formfind"]

@@ -105,6 +105,18 @@ pub struct FormGradient {
     pub fixed: Vec<Vector3<f64>>,
 }
 
+/// −∂R/∂θ of one parameter as a column b over the free nodes times a direction v, and the
+/// parameter's own moves (`FdmSensitivity::column`).
+struct Column {
+    b: Vec<f64>,
+    v: Vector3<f64>,
+    /// The member whose force density moves (∂q_k = 1).
+    member: Option<usize>,
+    /// The load component that moves (∂p = 1 at that node and axis).
+    load: Option<(usize, usize)>,
+    held_move: Option<(usize, Vector3<f64>)>,
+}
+
 /// The form of the force density method with held nodes, factored for its derivatives
 /// (module docs).
 ///
@@ -374,68 +386,20 @@ impl FdmSensitivity {
     pub fn forward(&mut self, parameter: Parameter) -> Result<FormDerivative> {
         let n = self.nodes.len();
         let m = self.pairs.len();
-        let nf = self.system.free().len();
-        let out_of_range = |item: &str, i: usize, count: usize| {
-            Err(FormFindError::InvalidTopology {
-                item: item.into(),
-                reason: format!("index {i} is out of range ({count} of them)"),
-            })
-        };
-        // −∂R/∂θ on the free rows is b vᵀ, one column b times a direction v (module docs):
-        // one solve of D_ff y = b gives ∂X_f = y vᵀ
-        let mut b = vec![0.0; nf];
-        let mut v = Vector3::zeros();
+        let Column {
+            mut b,
+            v,
+            member,
+            load,
+            held_move,
+        } = self.column(parameter)?;
         let mut dq = vec![0.0; m];
+        if let Some(k) = member {
+            dq[k] = 1.0;
+        }
         let mut dp = vec![Vector3::zeros(); n];
-        let mut held_move = None;
-        match parameter {
-            Parameter::ForceDensity(k) => {
-                if k >= m {
-                    return out_of_range("force_density", k, m);
-                }
-                dq[k] = 1.0;
-                let [start, end] = self.pairs[k];
-                v = self.nodes[start] - self.nodes[end];
-                if let Some(f) = self.free_index[start] {
-                    b[f] -= 1.0;
-                }
-                if let Some(f) = self.free_index[end] {
-                    b[f] += 1.0;
-                }
-            }
-            Parameter::Load { node, axis } => {
-                if node >= n {
-                    return out_of_range("load", node, n);
-                }
-                if axis > 2 {
-                    return out_of_range("axis", axis, 3);
-                }
-                dp[node][axis] = 1.0;
-                v[axis] = 1.0;
-                if let Some(f) = self.free_index[node] {
-                    b[f] = 1.0;
-                }
-            }
-            Parameter::Fixed { index, axis } => {
-                if index >= self.held.len() {
-                    return out_of_range("fixed", index, self.held.len());
-                }
-                if axis > 2 {
-                    return out_of_range("axis", axis, 3);
-                }
-                let h = self.held[index];
-                v[axis] = 1.0;
-                held_move = Some((h, v));
-                for (k, &[start, end]) in self.pairs.iter().enumerate() {
-                    for (at, other) in [(start, end), (end, start)] {
-                        if at == h {
-                            if let Some(f) = self.free_index[other] {
-                                b[f] += self.q[k];
-                            }
-                        }
-                    }
-                }
-            }
+        if let Some((node, axis)) = load {
+            dp[node][axis] = 1.0;
         }
         self.system.solve_free_in_place(&mut b);
         let mut nodes = vec![Vector3::zeros(); n];
@@ -467,6 +431,138 @@ impl FdmSensitivity {
             forces,
             reactions,
         })
+    }
+
+    /// −∂R/∂θ of one parameter on the free rows, b vᵀ (module docs, forward), with the
+    /// parameter's own moves: ∂q, ∂p and a held node's ∂x. An index out of range is the
+    /// error, naming it.
+    fn column(&self, parameter: Parameter) -> Result<Column> {
+        let n = self.nodes.len();
+        let m = self.pairs.len();
+        let nf = self.system.free().len();
+        let out_of_range = |item: &str, i: usize, count: usize| {
+            Err(FormFindError::InvalidTopology {
+                item: item.into(),
+                reason: format!("index {i} is out of range ({count} of them)"),
+            })
+        };
+        // −∂R/∂θ on the free rows is b vᵀ, one column b times a direction v (module docs):
+        // one solve of D_ff y = b gives ∂X_f = y vᵀ
+        let mut b = vec![0.0; nf];
+        let mut v = Vector3::zeros();
+        let (mut member, mut load) = (None, None);
+        let mut held_move = None;
+        match parameter {
+            Parameter::ForceDensity(k) => {
+                if k >= m {
+                    return out_of_range("force_density", k, m);
+                }
+                member = Some(k);
+                let [start, end] = self.pairs[k];
+                v = self.nodes[start] - self.nodes[end];
+                if let Some(f) = self.free_index[start] {
+                    b[f] -= 1.0;
+                }
+                if let Some(f) = self.free_index[end] {
+                    b[f] += 1.0;
+                }
+            }
+            Parameter::Load { node, axis } => {
+                if node >= n {
+                    return out_of_range("load", node, n);
+                }
+                if axis > 2 {
+                    return out_of_range("axis", axis, 3);
+                }
+                load = Some((node, axis));
+                v[axis] = 1.0;
+                if let Some(f) = self.free_index[node] {
+                    b[f] = 1.0;
+                }
+            }
+            Parameter::Fixed { index, axis } => {
+                if index >= self.held.len() {
+                    return out_of_range("fixed", index, self.held.len());
+                }
+                if axis > 2 {
+                    return out_of_range("axis", axis, 3);
+                }
+                let h = self.held[index];
+                v[axis] = 1.0;
+                held_move = Some((h, v));
+                for (k, &[start, end]) in self.pairs.iter().enumerate() {
+                    for (at, other) in [(start, end), (end, start)] {
+                        if at == h {
+                            if let Some(f) = self.free_index[other] {
+                                b[f] += self.q[k];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Column {
+            b,
+            v,
+            member,
+            load,
+            held_move,
+        })
+    }
+
+    /// The derivatives of one scalar objective f(X, q) (its partial derivatives `df`, as
+    /// [`FdmSensitivity::adjoint`] takes them) with respect to each of `parameters`, in
+    /// forward mode: one solve per parameter and no other work per node or member than the
+    /// product with ∂f/∂X (df/dθ = Σ_f (∂f/∂x_f · v) y_f + ∂f/∂θ, ∂X_f = y vᵀ). The adjoint
+    /// gives the same for every parameter at once; this is the cheaper for a few of them.
+    ///
+    /// ```
+    /// use formfind::sensitivity::{Cotangent, FdmSensitivity, Parameter};
+    /// let grid = formfind::builtin("grid:2").unwrap();
+    /// let mut s = FdmSensitivity::given(&grid).unwrap();
+    /// let mut df = Cotangent::zeros(grid.n_nodes, grid.n_members());
+    /// df.nodes[4].z = 1.0;
+    /// let params = [Parameter::ForceDensity(0), Parameter::ForceDensity(5)];
+    /// let forward = s.forward_gradient(&df, &params).unwrap();
+    /// let adjoint = s.adjoint(&df).unwrap();
+    /// assert!((forward[1] - adjoint.force_densities[5]).abs() < 1e-14);
+    /// ```
+    pub fn forward_gradient(
+        &mut self,
+        df: &Cotangent,
+        parameters: &[Parameter],
+    ) -> Result<Vec<f64>> {
+        let n = self.nodes.len();
+        let m = self.pairs.len();
+        if df.nodes.len() != n || df.force_densities.len() != m {
+            return Err(FormFindError::InvalidTopology {
+                item: "cotangent".into(),
+                reason: format!(
+                    "{} node and {} member derivatives for {n} nodes and {m} members",
+                    df.nodes.len(),
+                    df.force_densities.len()
+                ),
+            });
+        }
+        let free: Vec<Vector3<f64>> = self.system.free().iter().map(|&i| df.nodes[i]).collect();
+        let mut out = Vec::with_capacity(parameters.len());
+        for &parameter in parameters {
+            let mut column = self.column(parameter)?;
+            self.system.solve_free_in_place(&mut column.b);
+            let mut d: f64 = free
+                .iter()
+                .zip(&column.b)
+                .map(|(c, y)| y * c.dot(&column.v))
+                .sum();
+            if let Parameter::ForceDensity(k) = parameter {
+                d += df.force_densities[k];
+            }
+            if let Some((h, unit)) = column.held_move {
+                d += df.nodes[h].dot(&unit);
+            }
+            out.push(d);
+        }
+        Ok(out)
     }
 
     /// The gradient of a scalar objective f(X, q) given by its partial derivatives `df`

@@ -46,8 +46,8 @@ from ._exports import export_json, export_mjcf, export_schema, figure, figures
 from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
 from .results import Result, SweepResult, SweepRow
-from .sensitivity import (FormDerivative, FormGradient, FormSensitivity, RelaxedDerivative,
-                          RelaxedGradient, RelaxedSensitivity)
+from .sensitivity import (DesignProblem, FormDerivative, FormGradient, FormSensitivity,
+                          RelaxedDerivative, RelaxedGradient, RelaxedSensitivity)
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -55,9 +55,10 @@ __version__ = "0.1.0"
 
 __all__ = [
     "statics", "simulate", "toroid", "roll", "tipover", "michell", "michell_optimize",
-    "michell_table", "tbar", "tbar_roll", "formfind", "solve", "sweep", "run", "commands",
+    "michell_table", "tbar", "tbar_roll", "formfind", "design", "solve", "sweep", "run",
+    "commands",
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
-    "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative",
+    "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative", "DesignProblem",
     "FormGradient", "RelaxedSensitivity", "RelaxedDerivative", "RelaxedGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]
@@ -88,6 +89,11 @@ SUMMARIES = {
                  "(``tensegrity tbar roll --json``).",
     "formfind": "Form-finding: a connectivity (built-in topology or file) to a geometry in "
                 "equilibrium with a self-stress (``tensegrity formfind --json``).",
+    "design": "Inverse form-finding: the force densities (within bounds, shared by groups) "
+              "whose force density form best meets a design file's goals (node positions or "
+              "shape, member lengths, forces and directions, reactions, load path, "
+              "smoothness), by L-BFGS-B on the exact gradient; the designed form and the "
+              "history (``tensegrity design DESIGN.toml --json``).",
     "solve": "Load path of a scene: elastic bars and tension-only strings under its loads "
              "scaled by a load factor, with large displacements, through limit points (arc "
              "length) or in load steps, a stability verdict at every point "
@@ -108,6 +114,8 @@ michell_table = _make("michell_table", "michell_table", SUMMARIES["michell_table
 tbar = _make_tbar(SUMMARIES["tbar"], "")
 tbar_roll = _make_tbar_roll(SUMMARIES["tbar_roll"], "")
 solve = _make("solve", "solve", SUMMARIES["solve"], ("scene",), _SCENE_DOC)
+design = _make("design", "design", SUMMARIES["design"], ("design",),
+               "``design`` is a design file's path or its TOML text.")
 
 if "formfind" in _REGISTRY:
     formfind = _make("formfind", "formfind", SUMMARIES["formfind"])

@@ -9,7 +9,8 @@ import numpy as np
 from .errors import (ComputationError as ComputationError, InputError as InputError,
                      Interrupted as Interrupted, ResourceError as ResourceError,
                      TensegrityError as TensegrityError)
-from .sensitivity import (FormDerivative as FormDerivative, FormGradient as FormGradient,
+from .sensitivity import (DesignProblem as DesignProblem,
+                          FormDerivative as FormDerivative, FormGradient as FormGradient,
                           FormSensitivity as FormSensitivity,
                           RelaxedDerivative as RelaxedDerivative,
                           RelaxedGradient as RelaxedGradient,
@@ -673,6 +674,33 @@ class SolveResult(Result):
     stability: Any
     stop: Any
     def plot(self, ax: Any = ...) -> Any: ...
+
+
+class DesignResult(Result):
+    """The result of :func:`tensegrity.design`: its ``--json`` report as a dict
+    whose keys are also attributes (``to_dict()`` gives the plain dict).
+
+    Fields: the report's scalars (with a unit: a float in that unit; without: a
+    count, a flag or a name), a dotted name ``a.b`` being ``r['a']['b']``; the
+    report also holds its vectors and tables, every one a numpy array.
+
+    Fields
+    ------
+    source
+    initial_objective
+    objective
+    converged
+    stop
+    iterations
+    evaluations
+    """
+    source: Any
+    initial_objective: Any
+    objective: Any
+    converged: Any
+    stop: Any
+    iterations: Any
+    evaluations: Any
 
 
 class SweepRow(Result):
@@ -1740,6 +1768,54 @@ def solve(
     Returns
     -------
     tensegrity.results.SolveResult
+        The command's ``--json`` report, every vector or matrix a numpy array (a dict
+        whose keys are also attributes; its fields and units: the class's docstring).
+    """
+    ...
+
+
+def design(
+    design: Optional[str],
+    *,
+    max_iterations: Optional[int] = ...,
+    prestress: float = ...,
+    stiffness: float = ...,
+    bar_mass: float = ...,
+    max_memory: Size = ...,
+    max_work: Size = ...,
+    max_output: Size = ...,
+) -> DesignResult:
+    """Inverse form-finding: the force densities (within bounds, shared by groups) whose force density form best meets a design file's goals (node positions or shape, member lengths, forces and directions, reactions, load path, smoothness), by L-BFGS-B on the exact gradient; the designed form and the history (``tensegrity design DESIGN.toml --json``).
+
+    ``design`` is a design file's path or its TOML text.
+
+    Parameters
+    ----------
+    design : str, optional
+        The design file (TOML: a topology with a [design] table of parameters, terms and
+        goals), or its TOML text
+    max_iterations : int, optional
+        Iteration cap of the optimiser (default: the file's, else 1000); must be at least 1
+    prestress : float
+        Prestress level of the written scene of a form without loads (a loaded form's forces
+        are those of its loads) (N); must be finite and positive. Default: 100.0
+    stiffness : float
+        Axial stiffness EA of the members that give none (the scene's rest lengths) (N);
+        must be finite and positive. Default: 100000.0
+    bar_mass : float
+        Mass of each bar of the written scene (kg); must be finite and positive. Default:
+        1.0
+    max_memory : float or str, optional
+        Refuse the call when its estimated peak memory is above this (bytes, or a size such as
+        ``"500M"``, ``"16Gi"``; default: the smaller of 8 GiB and 3/4 of the available memory).
+    max_work : float, optional
+        Refuse the call when its estimated work is above this many seconds (default 60).
+    max_output : float or str, optional
+        Refuse the call when its estimated output is above this (default 1 GiB).
+
+    Returns
+    -------
+    tensegrity.results.DesignResult
         The command's ``--json`` report, every vector or matrix a numpy array (a dict
         whose keys are also attributes; its fields and units: the class's docstring).
     """

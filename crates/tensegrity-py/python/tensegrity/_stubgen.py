@@ -33,7 +33,8 @@ import numpy as np
 from .errors import (ComputationError as ComputationError, InputError as InputError,
                      Interrupted as Interrupted, ResourceError as ResourceError,
                      TensegrityError as TensegrityError)
-from .sensitivity import (FormDerivative as FormDerivative, FormGradient as FormGradient,
+from .sensitivity import (DesignProblem as DesignProblem,
+                          FormDerivative as FormDerivative, FormGradient as FormGradient,
                           FormSensitivity as FormSensitivity,
                           RelaxedDerivative as RelaxedDerivative,
                           RelaxedGradient as RelaxedGradient,
@@ -205,6 +206,8 @@ def stubs():
                    '    """Form-finding (not in this build of the engine)."""\n    ...\n')
     out.append(function("solve", ["solve"], SUMMARIES["solve"] + "\n\n" + scene,
                         positional=("scene",)))
+    out.append(function("design", ["design"], SUMMARIES["design"] + "\n\n``design`` is a "
+                        "design file's path or its TOML text.", positional=("design",)))
     out.append('''def sweep(
     spec: Union[Dict[str, Any], str, "os.PathLike[str]"],
     threads: Optional[int] = ...,

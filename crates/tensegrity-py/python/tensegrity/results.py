@@ -29,7 +29,7 @@ COMMANDS = {
     "roll": ("roll",), "tipover": ("tipover", "tipover_dynamic", "tipover_rolling"),
     "michell": ("michell",), "michell_optimize": ("michell_optimize",),
     "michell_table": ("michell_table",), "tbar": ("tbar",), "tbar_roll": ("tbar_roll",),
-    "formfind": ("formfind",), "solve": ("solve",),
+    "formfind": ("formfind",), "solve": ("solve",), "design": ("design",),
 }
 
 #: The arrays a function adds to its report: (name, shape and unit, meaning).

@@ -224,3 +224,74 @@ class RelaxedSensitivity:
                                                                               dnodes.shape))
         s0, ea = self._native.adjoint(dnodes.ravel().tolist())
         return RelaxedGradient(np.asarray(s0, dtype=np.float64), np.asarray(ea, dtype=np.float64))
+
+
+class DesignProblem:
+    """A design problem (:func:`tensegrity.design`'s file: a topology with a ``[design]``
+    table) compiled for its objective and exact gradient at any values of its variables, for
+    an optimiser of your own (``scipy.optimize.minimize(..., jac=True, bounds=p.bounds)``) or
+    an objective that adds Python terms to the file's. One force density solve and one
+    adjoint solve per evaluation (the equations: the Rust crate ``formfind``, module
+    ``design``).
+
+    Parameters
+    ----------
+    design : str or os.PathLike
+        The design file, or its TOML text.
+
+    Attributes
+    ----------
+    start, lower, upper : ndarray, shape (k,)
+        The variables' start values (the file's force densities) and bounds (N/m; ±inf for
+        none).
+    members : list of list of int
+        The members (bars then strings) whose force density each variable sets.
+
+    Examples
+    --------
+    >>> text = '''
+    ... [[strings]]
+    ... nodes = [0, 1]
+    ... force_density = 1.0
+    ... [[fixed]]
+    ... node = 0
+    ... position = [0.0, 0.0, 0.0]
+    ... [[loads]]
+    ... node = 1
+    ... force = [1.0, 0.0, 0.0]
+    ... [[design.terms]]
+    ... [[design.terms.goals]]
+    ... kind = "length"
+    ... target = 2.0
+    ... '''
+    >>> p = DesignProblem(text)
+    >>> f, g = p.objective([1.0])        # length 1 / q = 1: f = (1 - 2)^2, df/dq = 2
+    >>> float(f), float(g[0])
+    (1.0, 2.0)
+    """
+
+    def __init__(self, design):
+        import os
+        self._native = _native.DesignProblem({"design": os.fspath(design)
+                                              if isinstance(design, os.PathLike) else design})
+        start, lower, upper, members = self._native.variables()
+        self.start = np.asarray(start, dtype=np.float64)
+        self.lower = np.asarray(lower, dtype=np.float64)
+        self.upper = np.asarray(upper, dtype=np.float64)
+        self.members = [list(m) for m in members]
+
+    @property
+    def bounds(self):
+        """The bounds as ``(lower, upper)`` pairs with ``None`` for none (scipy's form)."""
+        return [(lo if np.isfinite(lo) else None, up if np.isfinite(up) else None)
+                for lo, up in zip(self.lower, self.upper)]
+
+    def objective(self, values):
+        """The objective and its gradient (ndarray) at ``values`` (one per variable)."""
+        f, g, _ = self._native.objective([float(v) for v in np.asarray(values).ravel()])
+        return f, np.asarray(g, dtype=np.float64)
+
+    def terms(self, values):
+        """Each term's value at ``values`` (ndarray, in the file's order)."""
+        _, _, t = self._native.objective([float(v) for v in np.asarray(values).ravel()])
+        return np.asarray(t, dtype=np.float64)

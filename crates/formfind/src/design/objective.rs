@@ -1,0 +1,344 @@
+//! The objective of a design problem and its exact gradient.
+//!
+//! With the force densities q(v) of the design variables v (each variable sets the q of its
+//! members; the other members keep theirs), the form X(q) of the force density method with
+//! held nodes and the goals' predictions p_j(X, q), each term is
+//!
+//! > T = α A(Σ_j e_j),  e_j = w_j ‖p_j − t_j‖² (squared), w_j ‖p_j − t_j‖₁ (absolute) or
+//! > w_j Σ p_j (prediction),
+//!
+//! A the identity, the mean S / n or the root mean √(S / n) over the term's n goals, and the
+//! objective f = Σ T. Its gradient is one adjoint solve ([`crate::sensitivity`]): the chain
+//! rule gives ∂f/∂p_j = α A′(S) ∂e_j/∂p_j, and each prediction's partial derivatives with
+//! respect to X and q make the cotangent:
+//!
+//! - a position x_i: ∂/∂x_i = I;
+//! - a length L_k and a force q_k L_k: [`Cotangent::lengths`], [`Cotangent::forces`];
+//! - a direction u = d / L, d = x_b − x_a: ∂u/∂d = (I − u uᵀ) / L;
+//! - a reaction r_h = Σ_k q_k (x_h − x_o) − p_h: ∂/∂x_h = Σ q_k I, ∂/∂x_o = −q_k I,
+//!   ∂/∂q_k = x_h − x_o; its limit excess max(0, ‖r‖ − r_max) through r / ‖r‖;
+//! - the load path Σ |q_k| L_k²: ∂/∂L_k = 2 |q_k| L_k, ∂/∂q_k = sign(q_k) L_k²;
+//! - smoothness x_i − (1/d_i) Σ_j x_j over the d_i neighbours j: I at i, −I / d_i at each j.
+//!
+//! df/dv is then the sum of df/dq_k over the members of each variable.
+
+use super::spec::ErrorKind;
+use crate::error::Result;
+use crate::sensitivity::{Cotangent, FdmSensitivity};
+use crate::topology::Topology;
+use nalgebra::Vector3;
+
+/// One design variable: the members whose force density it sets, and its bounds.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Variable {
+    pub members: Vec<usize>,
+    pub lower: f64,
+    pub upper: f64,
+    pub start: f64,
+}
+
+/// One goal on one node or member (a term holds n of them).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Goal {
+    Position { node: usize, target: Vector3<f64> },
+    Length { member: usize, target: f64 },
+    Force { member: usize, target: f64 },
+    Direction { member: usize, target: Vector3<f64> },
+    Reaction { held: usize, target: Vector3<f64> },
+    ReactionLimit { held: usize, limit: f64 },
+    LoadPath { members: Vec<usize>, target: f64 },
+    Smoothness { node: usize, neighbours: Vec<usize> },
+}
+
+/// A compiled term: its error over its weighted goals.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Term {
+    pub name: String,
+    pub error: ErrorKind,
+    pub weight: f64,
+    pub goals: Vec<(Goal, f64)>,
+}
+
+/// A design problem compiled against its topology (`super::compile`).
+#[derive(Debug, Clone)]
+pub(super) struct Problem {
+    pub topology: Topology,
+    /// Every member's force density at the start (the varied ones are overwritten).
+    pub base: Vec<f64>,
+    pub variables: Vec<Variable>,
+    pub terms: Vec<Term>,
+}
+
+/// The objective at one point: its value, each term's, and the form found there.
+pub(super) struct Evaluation {
+    pub objective: f64,
+    pub terms: Vec<f64>,
+    pub gradient: Vec<f64>,
+    pub form: FdmSensitivity,
+}
+
+/// A prediction: 1 or 3 numbers.
+#[derive(Clone, Copy)]
+struct Prediction {
+    value: Vector3<f64>,
+    dim: usize,
+}
+
+impl Prediction {
+    fn scalar(v: f64) -> Self {
+        Self {
+            value: Vector3::new(v, 0.0, 0.0),
+            dim: 1,
+        }
+    }
+    fn vector(v: Vector3<f64>) -> Self {
+        Self { value: v, dim: 3 }
+    }
+}
+
+impl Problem {
+    /// Every member's force density for the variables `v`.
+    pub fn force_densities(&self, v: &[f64]) -> Vec<f64> {
+        let mut q = self.base.clone();
+        for (var, &value) in self.variables.iter().zip(v) {
+            for &k in &var.members {
+                q[k] = value;
+            }
+        }
+        q
+    }
+
+    /// The form at `v`, the objective, its terms and its gradient with respect to `v`
+    /// (module docs).
+    pub fn evaluate(&self, v: &[f64]) -> Result<Evaluation> {
+        let q = self.force_densities(v);
+        let mut form = FdmSensitivity::new(&self.topology, &q)?;
+        let nodes = form.nodes().to_vec();
+        let pairs = self.topology.member_nodes();
+        let lengths = form.lengths();
+        let reactions = form.reactions();
+        let held = form.held().to_vec();
+        let m = q.len();
+        let predict = |goal: &Goal| -> (Prediction, Vector3<f64>) {
+            match goal {
+                Goal::Position { node, target } => (Prediction::vector(nodes[*node]), *target),
+                Goal::Length { member, target } => (
+                    Prediction::scalar(lengths[*member]),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
+                Goal::Force { member, target } => (
+                    Prediction::scalar(q[*member] * lengths[*member]),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
+                Goal::Direction { member, target } => {
+                    let [a, b] = pairs[*member];
+                    let d = nodes[b] - nodes[a];
+                    let l = d.norm();
+                    let u = if l > 0.0 { d / l } else { Vector3::zeros() };
+                    (Prediction::vector(u), *target)
+                }
+                Goal::Reaction { held, target } => (Prediction::vector(reactions[*held]), *target),
+                Goal::ReactionLimit { held, limit } => (
+                    Prediction::scalar((reactions[*held].norm() - limit).max(0.0)),
+                    Vector3::zeros(),
+                ),
+                Goal::LoadPath { members, target } => (
+                    Prediction::scalar(
+                        members
+                            .iter()
+                            .map(|&k| q[k].abs() * lengths[k] * lengths[k])
+                            .sum(),
+                    ),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
+                Goal::Smoothness { node, neighbours } => {
+                    let mean = neighbours
+                        .iter()
+                        .fold(Vector3::zeros(), |s, &j| s + nodes[j])
+                        / neighbours.len() as f64;
+                    (Prediction::vector(nodes[*node] - mean), Vector3::zeros())
+                }
+            }
+        };
+        let mut cot = Cotangent::zeros(nodes.len(), m);
+        let mut dl = vec![0.0; m];
+        let mut dforce = vec![0.0; m];
+        let mut values = Vec::with_capacity(self.terms.len());
+        for term in &self.terms {
+            let predicted: Vec<_> = term.goals.iter().map(|(g, _)| predict(g)).collect();
+            let sum: f64 = predicted
+                .iter()
+                .zip(&term.goals)
+                .map(|((p, t), (_, w))| element_error(term.error, p, t, *w))
+                .sum();
+            let n = term.goals.len() as f64;
+            let (value, dvalue) = aggregate(term.error, sum, n);
+            values.push(term.weight * value);
+            let scale = term.weight * dvalue;
+            if scale == 0.0 {
+                continue;
+            }
+            for ((p, t), (goal, w)) in predicted.iter().zip(&term.goals) {
+                let g = scale * element_slope(term.error, p, t, *w);
+                self.pull_back(goal, g, &nodes, &q, &lengths, &reactions, &held, &pairs)
+                    .apply(&mut cot, &mut dl, &mut dforce);
+            }
+        }
+        let cot = cot.lengths(&form, &dl)?.forces(&form, &dforce)?;
+        let grad = form.adjoint(&cot)?;
+        let gradient = self
+            .variables
+            .iter()
+            .map(|var| var.members.iter().map(|&k| grad.force_densities[k]).sum())
+            .collect();
+        Ok(Evaluation {
+            objective: values.iter().sum(),
+            terms: values,
+            gradient,
+            form,
+        })
+    }
+
+    /// The partial derivatives of f through one goal's prediction, given ∂f/∂p = `g`.
+    #[allow(clippy::too_many_arguments)]
+    fn pull_back(
+        &self,
+        goal: &Goal,
+        g: Vector3<f64>,
+        nodes: &[Vector3<f64>],
+        q: &[f64],
+        lengths: &[f64],
+        reactions: &[Vector3<f64>],
+        held: &[usize],
+        pairs: &[[usize; 2]],
+    ) -> Pullback {
+        let mut out = Pullback::default();
+        let reaction = |out: &mut Pullback, index: usize, g: Vector3<f64>| {
+            let h = held[index];
+            for (k, &[a, b]) in pairs.iter().enumerate() {
+                for (end, other) in [(a, b), (b, a)] {
+                    if end == h {
+                        out.nodes.push((h, q[k] * g));
+                        out.nodes.push((other, -q[k] * g));
+                        out.q.push((k, g.dot(&(nodes[h] - nodes[other]))));
+                    }
+                }
+            }
+        };
+        match goal {
+            Goal::Position { node, .. } => out.nodes.push((*node, g)),
+            Goal::Length { member, .. } => out.lengths.push((*member, g.x)),
+            Goal::Force { member, .. } => out.forces.push((*member, g.x)),
+            Goal::Direction { member, .. } => {
+                let [a, b] = pairs[*member];
+                let d = nodes[b] - nodes[a];
+                let l = d.norm();
+                if l > 0.0 {
+                    let u = d / l;
+                    let gd = (g - u * u.dot(&g)) / l;
+                    out.nodes.push((b, gd));
+                    out.nodes.push((a, -gd));
+                }
+            }
+            Goal::Reaction { held, .. } => reaction(&mut out, *held, g),
+            Goal::ReactionLimit { held, limit } => {
+                let r = reactions[*held];
+                let norm = r.norm();
+                if norm > *limit && norm > 0.0 {
+                    reaction(&mut out, *held, g.x * r / norm);
+                }
+            }
+            Goal::LoadPath { members, .. } => {
+                for &k in members {
+                    out.lengths.push((k, g.x * 2.0 * q[k].abs() * lengths[k]));
+                    out.q
+                        .push((k, g.x * q[k].signum() * lengths[k] * lengths[k]));
+                }
+            }
+            Goal::Smoothness { node, neighbours } => {
+                out.nodes.push((*node, g));
+                let share = g / neighbours.len() as f64;
+                for &j in neighbours {
+                    out.nodes.push((j, -share));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Partial derivatives of f from one goal: on nodes, lengths, forces and q directly.
+#[derive(Default)]
+struct Pullback {
+    nodes: Vec<(usize, Vector3<f64>)>,
+    lengths: Vec<(usize, f64)>,
+    forces: Vec<(usize, f64)>,
+    q: Vec<(usize, f64)>,
+}
+
+impl Pullback {
+    fn apply(self, cot: &mut Cotangent, dl: &mut [f64], dforce: &mut [f64]) {
+        for (i, g) in self.nodes {
+            cot.nodes[i] += g;
+        }
+        for (k, g) in self.lengths {
+            dl[k] += g;
+        }
+        for (k, g) in self.forces {
+            dforce[k] += g;
+        }
+        for (k, g) in self.q {
+            cot.force_densities[k] += g;
+        }
+    }
+}
+
+/// e_j of one goal (module docs).
+fn element_error(error: ErrorKind, p: &Prediction, t: &Vector3<f64>, w: f64) -> f64 {
+    let r = (0..p.dim).map(|c| p.value[c] - t[c]);
+    match error {
+        ErrorKind::Squared | ErrorKind::MeanSquared | ErrorKind::RootMeanSquared => {
+            w * r.map(|x| x * x).sum::<f64>()
+        }
+        ErrorKind::Absolute | ErrorKind::MeanAbsolute => w * r.map(f64::abs).sum::<f64>(),
+        ErrorKind::Prediction | ErrorKind::MeanPrediction => {
+            w * (0..p.dim).map(|c| p.value[c]).sum::<f64>()
+        }
+    }
+}
+
+/// ∂e_j/∂p_j.
+fn element_slope(error: ErrorKind, p: &Prediction, t: &Vector3<f64>, w: f64) -> Vector3<f64> {
+    let mut g = Vector3::zeros();
+    for c in 0..p.dim {
+        let r = p.value[c] - t[c];
+        g[c] = match error {
+            ErrorKind::Squared | ErrorKind::MeanSquared | ErrorKind::RootMeanSquared => 2.0 * w * r,
+            ErrorKind::Absolute | ErrorKind::MeanAbsolute => {
+                if r == 0.0 {
+                    0.0
+                } else {
+                    w * r.signum()
+                }
+            }
+            ErrorKind::Prediction | ErrorKind::MeanPrediction => w,
+        };
+    }
+    g
+}
+
+/// A(S) and A′(S) over n goals.
+fn aggregate(error: ErrorKind, sum: f64, n: f64) -> (f64, f64) {
+    match error {
+        ErrorKind::Squared | ErrorKind::Absolute | ErrorKind::Prediction => (sum, 1.0),
+        ErrorKind::MeanSquared | ErrorKind::MeanAbsolute | ErrorKind::MeanPrediction => {
+            (sum / n, 1.0 / n)
+        }
+        ErrorKind::RootMeanSquared => {
+            let rms = (sum / n).max(0.0).sqrt();
+            // at an exact fit the root has no derivative: the fit is the minimum, slope 0
+            let slope = if rms > 0.0 { 0.5 / (n * rms) } else { 0.0 };
+            (rms, slope)
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! `tensegrity design` end to end (issue 47, item 2): jax-fdm's published cable-net example
+//! (`examples/design/cablenet.toml`: its docs report the boundary forces at 19.998 to 20.002
+//! and the interior lengths at 0.97 to 1.05 after L-BFGS-B, final loss 0.0008) reaches the
+//! same: boundary forces within 20 ± 0.005, interior lengths within 1 ± 0.055, loss below
+//! 8.2·10⁻⁴; the history CSV, the designed topology (form-found again by `formfind`: the same
+//! nodes) and the scene (read by `statics`; its nodes the designed ones) it writes; bad design files
+//! refused with exit 2 naming the file, the line or the item.
+
+use crate::common::{self, json, numbers, points};
+
+#[test]
+fn the_published_cable_net_reaches_its_targets_and_writes_its_outputs() {
+    let dir = common::scratch("design", "cablenet");
+    let (scene, form, history) = (
+        dir.join("scene.toml"),
+        dir.join("form.toml"),
+        dir.join("history.csv"),
+    );
+    let r = json(&[
+        "design",
+        "examples/design/cablenet.toml",
+        "--out",
+        scene.to_str().unwrap(),
+        "--form",
+        form.to_str().unwrap(),
+        "--history",
+        history.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(r["converged"], true);
+    let objective = r["objective"].as_f64().unwrap();
+    assert!(objective < 8.2e-4 && objective > 7.0e-4, "{objective}");
+    assert!(r["initial_objective"].as_f64().unwrap() > 12.0);
+    // the file's goals: the boundary strings' forces, the interior strings' lengths
+    // (the file's two `members = [...]` lines, in order)
+    let text = std::fs::read_to_string("examples/design/cablenet.toml").unwrap();
+    let lists: Vec<Vec<usize>> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("members = ["))
+        .map(|l| {
+            let l = l.trim_end_matches(']');
+            l.split(',').map(|k| k.trim().parse().unwrap()).collect()
+        })
+        .collect();
+    let members = |t: usize| lists[t].clone();
+    let (force, length) = (numbers(&r["force"]), numbers(&r["length"]));
+    for k in members(0) {
+        assert!((force[k] - 20.0).abs() < 5e-3, "boundary {k}: {}", force[k]);
+    }
+    for k in members(1) {
+        assert!(
+            (length[k] - 1.0).abs() < 0.055,
+            "interior {k}: {}",
+            length[k]
+        );
+    }
+    // the terms add up to the objective; every force density kept its bound
+    let sum: f64 = numbers(&r["terms"]).iter().sum();
+    assert!((sum - objective).abs() <= 1e-15 * objective);
+    assert!(numbers(&r["force_density"]).iter().all(|&q| q >= 0.1));
+    // the history: a header and one row per iteration, the last the result
+    let csv = std::fs::read_to_string(&history).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert!(rows[0].starts_with("iteration,objective,BoundaryForce,InteriorLength"));
+    assert_eq!(rows.len(), r["iterations"].as_u64().unwrap() as usize + 2);
+    let last: f64 = rows
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(last, objective);
+    // the designed topology form-found again, and the scene, hold the designed nodes
+    let nodes = points(&r["nodes"]);
+    let again = json(&["formfind", form.to_str().unwrap(), "--json"]);
+    let statics = json(&["statics", scene.to_str().unwrap(), "--json"]);
+    assert_eq!(statics["nodes"], 121);
+    let written = tensegrity_io::scene::Scene::from_path(&scene).unwrap();
+    let written: Vec<[f64; 3]> = (written.structure.nodes().iter())
+        .map(|p| [p.x, p.y, p.z])
+        .collect();
+    for found in [points(&again["nodes"]), written] {
+        for (a, b) in found.iter().zip(&nodes) {
+            for c in 0..3 {
+                assert!((a[c] - b[c]).abs() < 1e-9, "{a:?} {b:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_design_files_are_refused_naming_the_item() {
+    let dir = common::scratch("design", "bad");
+    let base = "[[strings]]\nnodes = [0, 1]\nforce_density = 1.0\n\
+                [[fixed]]\nnode = 0\nposition = [0.0, 0.0, 0.0]\n\
+                [[loads]]\nnode = 1\nforce = [1.0, 0.0, 0.0]\n";
+    let cases = [
+        (
+            format!("{base}[[design.terms]]\n[[design.terms.goals]]\nkind = \"length\"\ntarget = 2.0\ntargte = 1.0\n"),
+            vec!["line 11", "targte"],
+        ),
+        (
+            format!("{base}[[design.terms]]\n[[design.terms.goals]]\nkind = \"length\"\nmembers = [4]\ntarget = 2.0\n"),
+            vec!["design.terms[0].goals[0].members", "member 4"],
+        ),
+        (
+            format!("{base}[[design.terms]]\n[[design.terms.goals]]\nkind = \"shape\"\n"),
+            vec!["unknown variant `shape`"],
+        ),
+        (base.to_string(), vec!["no [design] table"]),
+    ];
+    for (text, needles) in cases {
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, &text).unwrap();
+        let out = common::run(&["design", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{text}");
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert!(e.contains("bad.toml"), "{e}");
+        for n in needles {
+            assert!(e.contains(n), "{n}: {e}");
+        }
+    }
+}
