@@ -55,22 +55,8 @@ pub fn run(args: &DesignArgs) -> Result<()> {
             d.stop, d.iterations
         );
     }
-    if let Some(mut sink) = history {
-        let mut header = vec!["iteration".to_string(), "objective".to_string()];
-        header.extend(d.term_names.iter().cloned());
-        header.extend(["projected_gradient", "step [N/m]", "evaluations"].map(String::from));
-        sink.record(&header)?;
-        for it in &d.history {
-            let mut row = vec![it.iteration.to_string(), format!("{:?}", it.objective)];
-            row.extend(it.terms.iter().map(|t| format!("{t:?}")));
-            row.extend([
-                format!("{:?}", it.projected_gradient),
-                format!("{:?}", it.step),
-                it.evaluations.to_string(),
-            ]);
-            sink.record(&row)?;
-        }
-        sink.finish()?;
+    if let Some(sink) = history {
+        write_history(sink, d)?;
     }
     if let Some(sink) = form {
         sink.finish_with(tensegrity_io::topology::to_toml(&d.topology))?;
@@ -100,6 +86,26 @@ pub fn run(args: &DesignArgs) -> Result<()> {
             println!("wrote {what} {}", p.display());
         }
     }
+    Ok(())
+}
+
+/// The history as CSV: iteration, objective, each term, projected gradient, step, evaluations.
+fn write_history(mut sink: CsvSink, d: &tensegrity_engine::formfind::design::Designed) -> Result<()> {
+    let mut header = vec!["iteration".to_string(), "objective".to_string()];
+    header.extend(d.term_names.iter().cloned());
+    header.extend(["projected_gradient", "step [N/m]", "evaluations"].map(String::from));
+    sink.record(&header)?;
+    for it in &d.history {
+        let mut row = vec![it.iteration.to_string(), format!("{:?}", it.objective)];
+        row.extend(it.terms.iter().map(|t| format!("{t:?}")));
+        row.extend([
+            format!("{:?}", it.projected_gradient),
+            format!("{:?}", it.step),
+            it.evaluations.to_string(),
+        ]);
+        sink.record(&row)?;
+    }
+    sink.finish()?;
     Ok(())
 }
 
