@@ -90,7 +90,10 @@ pub fn run(args: &DesignArgs) -> Result<()> {
 }
 
 /// The history as CSV: iteration, objective, each term, projected gradient, step, evaluations.
-fn write_history(mut sink: CsvSink, d: &tensegrity_engine::formfind::design::Designed) -> Result<()> {
+fn write_history(
+    mut sink: CsvSink,
+    d: &tensegrity_engine::formfind::design::Designed,
+) -> Result<()> {
     let mut header = vec!["iteration".to_string(), "objective".to_string()];
     header.extend(d.term_names.iter().cloned());
     header.extend(["projected_gradient", "step [N/m]", "evaluations"].map(String::from));

@@ -623,6 +623,62 @@ impl Structure {
         b.build()
     }
 
+    /// A copy with its members' properties replaced (masses, stiffnesses, rest lengths,
+    /// dampings): `bars` and `strings` must be the same members in the same order (each the
+    /// same node pair), else the error names the first that is not; validated again.
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, StringMember, Structure};
+    /// let s = Structure::builder()
+    ///     .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    ///     .bar(Bar::new(0, 1).mass(1.0))
+    ///     .string(StringMember::new(1, 2).stiffness(100.0))
+    ///     .build()
+    ///     .unwrap();
+    /// let mut strings = s.strings().to_vec();
+    /// strings[0].damping = 2.0;
+    /// let t = s.with_members(s.bars().to_vec(), strings).unwrap();
+    /// assert_eq!(t.strings()[0].damping, 2.0);
+    /// assert!(s.with_members(vec![], s.strings().to_vec()).is_err());
+    /// ```
+    pub fn with_members(&self, bars: Vec<Bar>, strings: Vec<StringMember>) -> Result<Structure> {
+        let same = |what: &str, k: usize, a: [usize; 2], b: Option<[usize; 2]>| {
+            if b == Some(a) {
+                Ok(())
+            } else {
+                Err(crate::request::InvalidParameter::raw(
+                    format!("{what} {k}"),
+                    format!("{a:?}"),
+                    "not the structure's member (the same members, in order, are replaced)",
+                ))
+            }
+        };
+        for (what, found, expected) in [
+            ("bars", bars.len(), self.bars.len()),
+            ("strings", strings.len(), self.strings.len()),
+        ] {
+            if found != expected {
+                let what = what.to_string();
+                return Err(ModelError::LengthMismatch {
+                    what,
+                    expected,
+                    found,
+                }
+                .into());
+            }
+        }
+        for (k, b) in bars.iter().enumerate() {
+            same("bar", k, b.nodes, self.bars.get(k).map(|x| x.nodes))?;
+        }
+        for (k, s) in strings.iter().enumerate() {
+            same("string", k, s.nodes, self.strings.get(k).map(|x| x.nodes))?;
+        }
+        let mut b = self.to_builder();
+        b.bars = bars;
+        b.strings = strings;
+        b.build()
+    }
+
     /// A builder holding everything in this structure except its strings (to re-add them
     /// with new properties, in order).
     pub fn to_builder_without_strings(&self) -> StructureBuilder {

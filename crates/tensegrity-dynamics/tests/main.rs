@@ -13,4 +13,5 @@ mod dynamics_orders;
 mod dynamics_stick;
 mod dynamics_stiff;
 mod integrator_stats;
+mod sensitivity;
 mod stepper;

@@ -50,6 +50,7 @@ pub mod limits;
 pub mod registry;
 mod run_error;
 pub mod scene;
+pub mod sensitivity;
 pub mod simulate;
 pub mod solve;
 pub mod spelling;

@@ -22,6 +22,7 @@
 
 mod commands;
 mod convert;
+mod dynamics_sensitivity;
 mod errors;
 mod runs;
 mod sensitivity;
@@ -587,6 +588,11 @@ fn figures() -> Vec<(&'static str, &'static str, String)> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(list_commands, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        dynamics_sensitivity::trajectory_sensitivity,
+        m
+    )?)?;
+    m.add_function(wrap_pyfunction!(dynamics_sensitivity::identify, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(roll, m)?)?;
     m.add_function(wrap_pyfunction!(run_sweep, m)?)?;

@@ -14,6 +14,7 @@
 //! | dropped prism | [`dropped_prism`], `tensegrity_dynamics::test_models::dropped_prism_ground` | rest penetration m g / (3 k) per foot ([`dropped_prism_penetration`]) |
 //! | spinning bar | [`spinning_bar`] | exact rotation ([`spinning_bar_exact`]) |
 //! | double-layer lattice | [`double_layer_grid`] | sparse statics scaling; dense agreement |
+//! | six-bar icosahedron | [`six_bar`], [`six_bar_nodes`] | self-equilibrium with bar force density −(3/2) q (closed form at a node) |
 //! | chains and towers | [`dbar_chain`], [`prism_stack`], [`snelson_tower`], [`snelson_tower_free`] | size scaling for benches |
 
 mod chains;
@@ -23,6 +24,7 @@ mod dropped_prism;
 mod lattice;
 mod motes_dbar;
 mod motes_prism;
+mod six_bar;
 mod snelson;
 mod spinning_bar;
 
@@ -35,5 +37,6 @@ pub use dropped_prism::{dropped_prism, dropped_prism_penetration, DROPPED_PRISM_
 pub use lattice::double_layer_grid;
 pub use motes_dbar::{motes_anchor_dbar, motes_dbar, MOTES_DBAR_DT, MOTES_DBAR_STEPS};
 pub use motes_prism::motes_anchor_prism;
+pub use six_bar::{six_bar, six_bar_nodes};
 pub use snelson::{oscillating_prism, snelson, snelson_prism, snelson_twist, PrismParams};
 pub use spinning_bar::{spinning_bar, spinning_bar_exact};

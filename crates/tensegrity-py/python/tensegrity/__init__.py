@@ -47,7 +47,9 @@ from .errors import (ComputationError, InputError, Interrupted, ResourceError,
                      TensegrityError)
 from .results import Result, SweepResult, SweepRow
 from .sensitivity import (DesignProblem, FormDerivative, FormGradient, FormSensitivity,
-                          RelaxedDerivative, RelaxedGradient, RelaxedSensitivity)
+                          Identification, RelaxedDerivative, RelaxedGradient,
+                          RelaxedSensitivity, TrajectorySensitivity, identify,
+                          trajectory_sensitivity)
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -59,6 +61,7 @@ __all__ = [
     "commands",
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
     "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative", "DesignProblem",
+    "TrajectorySensitivity", "trajectory_sensitivity", "Identification", "identify",
     "FormGradient", "RelaxedSensitivity", "RelaxedDerivative", "RelaxedGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]

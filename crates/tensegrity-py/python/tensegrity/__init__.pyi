@@ -9,7 +9,10 @@ import numpy as np
 from .errors import (ComputationError as ComputationError, InputError as InputError,
                      Interrupted as Interrupted, ResourceError as ResourceError,
                      TensegrityError as TensegrityError)
-from .sensitivity import (DesignProblem as DesignProblem,
+from .sensitivity import (DesignProblem as DesignProblem, Identification as Identification,
+                          TrajectorySensitivity as TrajectorySensitivity,
+                          identify as identify,
+                          trajectory_sensitivity as trajectory_sensitivity,
                           FormDerivative as FormDerivative, FormGradient as FormGradient,
                           FormSensitivity as FormSensitivity,
                           RelaxedDerivative as RelaxedDerivative,

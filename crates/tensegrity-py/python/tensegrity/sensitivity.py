@@ -295,3 +295,119 @@ class DesignProblem:
         """Each term's value at ``values`` (ndarray, in the file's order)."""
         _, _, t = self._native.objective([float(v) for v in np.asarray(values).ravel()])
         return np.asarray(t, dtype=np.float64)
+
+
+def _scene(scene):
+    import os
+    return os.fspath(scene) if isinstance(scene, os.PathLike) else scene
+
+
+def _parameters(parameters):
+    """``("stiffness", 3)`` or ``("initial_velocity", 0, 2)`` as (kind, index, axis)."""
+    out = []
+    for p in parameters:
+        p = tuple(p)
+        if len(p) not in (2, 3):
+            raise ValueError("a parameter is (kind, index) or (kind, bar, axis), not {!r}"
+                             .format(p))
+        out.append((str(p[0]), int(p[1]), int(p[2]) if len(p) == 3 else 0))
+    return out
+
+
+@dataclass(frozen=True)
+class TrajectorySensitivity:
+    """A trajectory and its sensitivities (numpy arrays).
+
+    Attributes
+    ----------
+    times : ndarray, shape (s,)
+        The sample times (s), 0 first.
+    nodes : ndarray, shape (s, n, 3)
+        The node positions at each sample (m).
+    sensitivities : ndarray, shape (s, k, n, 3)
+        d(node position)/d(parameter) at each sample, one slice per parameter.
+    events : list of (float, str)
+        The kinks met (a string slack or taut, a node touching or leaving the ground): the
+        start of the step and what.
+    rhs_evaluations : int
+        Right-hand side evaluations made.
+    """
+
+    times: np.ndarray
+    nodes: np.ndarray
+    sensitivities: np.ndarray
+    events: list
+    rhs_evaluations: int
+
+
+def trajectory_sensitivity(scene, parameters, *, dt, t_end, every=1):
+    """The trajectory of a scene's rigid-bar dynamics (RK4 steps of ``dt`` to ``t_end``, a
+    sample every ``every`` steps) and its exact forward sensitivities, integrated alongside
+    the state, to ``parameters``: ``("stiffness", j)``, ``("damping", j)``,
+    ``("rest_length", j)`` of string j, ``("mass", k)`` of bar k,
+    ``("initial_position", k, axis)`` and ``("initial_velocity", k, axis)`` of bar k (both
+    ends moved together). ``scene`` as :func:`tensegrity.simulate` takes it (its
+    ``[ground]`` included; ``[[actuation]]``, elastic bars and clusters are refused). The
+    equations: the Rust crate ``tensegrity-dynamics``, module ``sensitivity``.
+    Returns a :class:`TrajectorySensitivity`.
+
+    Examples
+    --------
+    >>> s = trajectory_sensitivity("examples/prism_drop.toml", [("mass", 0)],
+    ...                            dt=1e-3, t_end=0.05)            # doctest: +SKIP
+    >>> s.sensitivities.shape                                        # doctest: +SKIP
+    (51, 1, 6, 3)
+    """
+    params = _parameters(parameters)
+    times, nodes, sens, events, evals = _native.trajectory_sensitivity(
+        {"scene": _scene(scene)}, params, float(dt), float(t_end), int(every))
+    times = np.asarray(times, dtype=np.float64)
+    nodes = np.frombuffer(nodes, dtype=np.float64).reshape(len(times), -1, 3)
+    sens = np.frombuffer(sens, dtype=np.float64).reshape(len(times), len(params),
+                                                         nodes.shape[1], 3)
+    return TrajectorySensitivity(times, nodes, sens, list(events), int(evals))
+
+
+@dataclass(frozen=True)
+class Identification:
+    """The result of :func:`identify`.
+
+    Attributes
+    ----------
+    values, standard_errors : ndarray, shape (k,)
+        The identified parameters and their standard errors.
+    rms_start, rms : float
+        The root-mean-square position residual at the start and identified (m).
+    iterations : int
+        Levenberg–Marquardt iterations.
+    converged : bool
+        Whether no parameter moved by more than the tolerance in the last iteration.
+    """
+
+    values: np.ndarray
+    standard_errors: np.ndarray
+    rms_start: float
+    rms: float
+    iterations: int
+    converged: bool
+
+
+def identify(scene, parameters, measured, *, dt, every=1, observed=None, max_iterations=50,
+             tolerance=1e-9):
+    """System identification: the ``parameters`` (as :func:`trajectory_sensitivity` names
+    them; model parameters only) of a scene whose simulated motion best fits ``measured``,
+    the positions of the ``observed`` nodes (default: all) at every sample (shape (s, o, 3):
+    sample 0 the start, sample i at i * every * dt), by Levenberg–Marquardt on the exact
+    sensitivities. The scene's values are the start. Returns an :class:`Identification`."""
+    params = _parameters(parameters)
+    measured = np.asarray(measured, dtype=np.float64)
+    if measured.ndim != 3 or measured.shape[2] != 3:
+        raise ValueError("measured must have shape (samples, observed nodes, 3), not {}"
+                         .format(measured.shape))
+    if observed is None:
+        observed = list(range(measured.shape[1]))
+    values, errors, rms0, rms, iterations, converged = _native.identify(
+        {"scene": _scene(scene)}, params, [int(i) for i in observed], measured.ravel().tolist(),
+        float(dt), int(every), int(max_iterations), float(tolerance))
+    return Identification(np.asarray(values), np.asarray(errors), rms0, rms, iterations,
+                          converged)
