@@ -85,6 +85,19 @@ fn every_goal(t: &Topology) -> DesignSpec {
         target: None,
         weight: 0.1,
     };
+    let heights = GoalSpec::Coordinate {
+        nodes: Some(free.clone()),
+        axis: 2,
+        target: Some(0.3),
+        targets: None,
+        weight: 0.9,
+    };
+    let magnitudes = GoalSpec::ReactionForce {
+        nodes: None,
+        target: Some(0.4),
+        targets: None,
+        weight: 1.1,
+    };
     let smooth = GoalSpec::Smoothness {
         nodes: None,
         weight: 0.5,
@@ -102,6 +115,7 @@ fn every_goal(t: &Topology) -> DesignSpec {
             term(ErrorKind::Prediction, 1.0, vec![load_path]),
             term(ErrorKind::MeanAbsolute, 0.3, vec![lengths, forces, limit]),
             term(ErrorKind::Absolute, 0.2, vec![positions]),
+            term(ErrorKind::Squared, 0.6, vec![heights, magnitudes]),
         ],
         optimizer: OptimizerSpec::default(),
     }

@@ -31,9 +31,17 @@ fn unsupported(item: impl Into<String>, reason: impl Into<String>) -> SceneError
 /// ```
 /// use tensegrity_engine::sensitivity::scene_dynamics;
 /// use tensegrity_engine::SceneSource;
-/// let (s, ground) = scene_dynamics(&SceneSource::parse("examples/prism_drop.toml")).unwrap();
-/// assert_eq!(s.n_bars(), 3);
+/// let text = "nodes = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [2.0, 0.0, 1.0]]\n\
+///             [[bars]]\nnodes = [0, 1]\nmass = 1.0\n\
+///             [[strings]]\nnodes = [1, 2]\nstiffness = 100.0\n[[supports]]\nnode = 2\n\
+///             [ground]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmodel = \"penalty\"\n\
+///             stiffness = 1e4\n";
+/// let (s, ground) = scene_dynamics(&SceneSource::parse(text)).unwrap();
+/// assert_eq!((s.n_bars(), s.n_strings()), (1, 1));
 /// assert!(ground.is_some());
+/// let acted = format!("{text}[[actuation]]\nstring = 0\ntimes = [0.0, 1.0]\nrest_lengths = [1.0, 0.9]\n");
+/// let e = scene_dynamics(&SceneSource::parse(&acted)).unwrap_err().to_string();
+/// assert!(e.contains("do not differentiate [[actuation]]"), "{e}");
 /// ```
 pub fn scene_dynamics(source: &SceneSource) -> Result<(Structure, Option<Ground>), SceneError> {
     let scene = source.load()?;

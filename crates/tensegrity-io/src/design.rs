@@ -17,16 +17,18 @@
 //! error = "mean_squared"           # squared (default), mean_squared, root_mean_squared,
 //! weight = 1.0                     # absolute, mean_absolute, prediction, mean_prediction
 //! [[design.terms.goals]]
-//! kind = "force"                   # position, length, force, direction, reaction,
-//! members = [0, 1, 2]              # reaction_limit, load_path, smoothness
+//! kind = "force"                   # position, coordinate, length, force, direction,
+//! members = [0, 1, 2]              # reaction, reaction_force, reaction_limit, load_path,
+//!                                  # smoothness
 //! target = 20.0                    # or targets = [...], one per member or node
 //! weight = 1.0
 //! ```
 //!
-//! Positions, smoothness and reactions take `nodes` (default: the free nodes, the held ones
-//! for reactions), the member goals `members` or `group` (default: every member); a position
-//! goal without a target aims at the file's own `nodes` (shape matching); `reaction_limit`
-//! takes `limit` (N). Unknown keys are refused with the line; what the keys name (a member,
+//! Positions, coordinates, smoothness and reactions take `nodes` (default: the free nodes, the
+//! held ones for reactions), the member goals `members` or `group` (default: every member); a
+//! position goal without a target aims at the file's own `nodes` (shape matching); a
+//! `coordinate` takes `axis` (0, 1, 2) and a number as its target; `reaction_limit` takes
+//! `limit` (N). Unknown keys are refused with the line; what the keys name (a member,
 //! node or group the topology lacks, a target count that does not match) is checked by
 //! [`formfind::design::design`], naming the item (`design.terms[0].goals[1].members`).
 //!
@@ -47,7 +49,6 @@
 //! ```
 
 use crate::error::{IoError, Result};
-use crate::scene::line_column;
 use formfind::design::DesignSpec;
 use formfind::Topology;
 use serde::Deserialize;
@@ -72,15 +73,7 @@ pub fn from_path(path: &Path) -> Result<(Topology, DesignSpec)> {
 /// `[design]` table is refused: it is a topology only.
 pub fn from_str_named(text: &str, name: &str) -> Result<(Topology, DesignSpec)> {
     let topology = crate::topology::from_str_named(text, name)?;
-    let file: DesignFile = toml::from_str(text).map_err(|e| {
-        let (line, column) = line_column(text, e.span().map_or(0, |s| s.start));
-        IoError::Parse {
-            file: name.to_string(),
-            line,
-            column,
-            message: e.message().trim_end().to_string(),
-        }
-    })?;
+    let file: DesignFile = crate::topology::parse(text, name)?;
     let spec = file.design.ok_or_else(|| IoError::InvalidTopology {
         file: name.to_string(),
         line: None,

@@ -184,7 +184,19 @@ pub fn from_path(path: &Path) -> Result<Topology> {
 
 /// Parses and checks topology text; `name` labels the errors (module docs).
 pub fn from_str_named(text: &str, name: &str) -> Result<Topology> {
-    let file: TopologyFile = toml::from_str(text).map_err(|e| {
+    let file: TopologyFile = parse(text, name)?;
+    file.topology()
+        .map_err(|(at, source)| IoError::InvalidTopology {
+            file: name.to_string(),
+            line: at.map(|start| line_column(text, start).0),
+            source: Box::new(source),
+        })
+}
+
+/// The TOML `text` (named `name`) deserialised, a parse error naming the file, the line and
+/// the column (the design files' reader shares it).
+pub(crate) fn parse<T: serde::de::DeserializeOwned>(text: &str, name: &str) -> Result<T> {
+    toml::from_str(text).map_err(|e| {
         let (line, column) = line_column(text, e.span().map_or(0, |s| s.start));
         IoError::Parse {
             file: name.to_string(),
@@ -192,13 +204,7 @@ pub fn from_str_named(text: &str, name: &str) -> Result<Topology> {
             column,
             message: e.message().trim_end().to_string(),
         }
-    })?;
-    file.topology()
-        .map_err(|(at, source)| IoError::InvalidTopology {
-            file: name.to_string(),
-            line: at.map(|start| line_column(text, start).0),
-            source: Box::new(source),
-        })
+    })
 }
 
 /// A failed check: the byte offset of the item (where known) and the error naming it.

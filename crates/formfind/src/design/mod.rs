@@ -7,8 +7,8 @@
 //! member's, a group's shared one, listed members; bounds that keep each member's sign), the
 //! terms of the objective ([`TermSpec`]: an error over goals, as jax-fdm's losses: squared,
 //! mean squared, root mean squared, absolute, prediction) and the goals ([`GoalSpec`]: node
-//! positions or the topology's own shape, member lengths, forces and directions, reactions and
-//! reaction limits, the load path, smoothness). [`design`] starts from the topology's force
+//! positions or the topology's own shape, single coordinates, member lengths, forces and
+//! directions, reactions, their magnitudes and limits, the load path, smoothness). [`design`] starts from the topology's force
 //! densities (the form of the force density method with held nodes: free-standing forms,
 //! self-weight and clusters are refused by name, as by the derivatives) and returns the
 //! designed topology (every member's force density set; the form found from it is the
@@ -614,6 +614,54 @@ fn compile_goal(
                 ));
             }
         }
+        GoalSpec::Coordinate {
+            nodes,
+            axis,
+            target,
+            targets: ts,
+            weight,
+        } => {
+            let w = weight_ok(*weight)?;
+            if *axis > 2 {
+                return refused(
+                    format!("{item}.axis"),
+                    format!("{axis}: 0, 1 or 2 for x, y, z"),
+                );
+            }
+            let ns = nodes_of(nodes, free)?;
+            let t = targets(item, *target, ts, ns.len())?.ok_or_else(|| need("target"))?;
+            for (node, t) in ns.into_iter().zip(t) {
+                let target = finite(t, "target")?;
+                goals.push((
+                    Goal::Coordinate {
+                        node,
+                        axis: *axis,
+                        target,
+                    },
+                    w,
+                ));
+            }
+        }
+        GoalSpec::ReactionForce {
+            nodes,
+            target,
+            targets: ts,
+            weight,
+        } => {
+            let w = weight_ok(*weight)?;
+            let hs = held_of(nodes)?;
+            let t = targets(item, *target, ts, hs.len())?.ok_or_else(|| need("target"))?;
+            for (index, t) in hs.into_iter().zip(t) {
+                let target = finite(t, "target")?;
+                goals.push((
+                    Goal::ReactionForce {
+                        held: index,
+                        target,
+                    },
+                    w,
+                ));
+            }
+        }
         GoalSpec::Length {
             members,
             group,
@@ -737,6 +785,5 @@ fn compile_goal(
             }
         }
     }
-    let _ = m;
     Ok(())
 }

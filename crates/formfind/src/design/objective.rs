@@ -12,11 +12,12 @@
 //! rule gives ∂f/∂p_j = α A′(S) ∂e_j/∂p_j, and each prediction's partial derivatives with
 //! respect to X and q make the cotangent:
 //!
-//! - a position x_i: ∂/∂x_i = I;
+//! - a position x_i: ∂/∂x_i = I (a coordinate: the unit vector of its axis);
 //! - a length L_k and a force q_k L_k: [`Cotangent::lengths`], [`Cotangent::forces`];
 //! - a direction u = d / L, d = x_b − x_a: ∂u/∂d = (I − u uᵀ) / L;
 //! - a reaction r_h = Σ_k q_k (x_h − x_o) − p_h: ∂/∂x_h = Σ q_k I, ∂/∂x_o = −q_k I,
-//!   ∂/∂q_k = x_h − x_o; its limit excess max(0, ‖r‖ − r_max) through r / ‖r‖;
+//!   ∂/∂q_k = x_h − x_o; its magnitude ‖r‖ and its limit excess max(0, ‖r‖ − r_max) through
+//!   r / ‖r‖;
 //! - the load path Σ |q_k| L_k²: ∂/∂L_k = 2 |q_k| L_k, ∂/∂q_k = sign(q_k) L_k²;
 //! - smoothness x_i − (1/d_i) Σ_j x_j over the d_i neighbours j: I at i, −I / d_i at each j.
 //!
@@ -40,14 +41,47 @@ pub(super) struct Variable {
 /// One goal on one node or member (a term holds n of them).
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Goal {
-    Position { node: usize, target: Vector3<f64> },
-    Length { member: usize, target: f64 },
-    Force { member: usize, target: f64 },
-    Direction { member: usize, target: Vector3<f64> },
-    Reaction { held: usize, target: Vector3<f64> },
-    ReactionLimit { held: usize, limit: f64 },
-    LoadPath { members: Vec<usize>, target: f64 },
-    Smoothness { node: usize, neighbours: Vec<usize> },
+    Position {
+        node: usize,
+        target: Vector3<f64>,
+    },
+    Coordinate {
+        node: usize,
+        axis: usize,
+        target: f64,
+    },
+    Length {
+        member: usize,
+        target: f64,
+    },
+    Force {
+        member: usize,
+        target: f64,
+    },
+    Direction {
+        member: usize,
+        target: Vector3<f64>,
+    },
+    Reaction {
+        held: usize,
+        target: Vector3<f64>,
+    },
+    ReactionForce {
+        held: usize,
+        target: f64,
+    },
+    ReactionLimit {
+        held: usize,
+        limit: f64,
+    },
+    LoadPath {
+        members: Vec<usize>,
+        target: f64,
+    },
+    Smoothness {
+        node: usize,
+        neighbours: Vec<usize>,
+    },
 }
 
 /// A compiled term: its error over its weighted goals.
@@ -122,6 +156,10 @@ impl Problem {
         let predict = |goal: &Goal| -> (Prediction, Vector3<f64>) {
             match goal {
                 Goal::Position { node, target } => (Prediction::vector(nodes[*node]), *target),
+                Goal::Coordinate { node, axis, target } => (
+                    Prediction::scalar(nodes[*node][*axis]),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
                 Goal::Length { member, target } => (
                     Prediction::scalar(lengths[*member]),
                     Vector3::new(*target, 0.0, 0.0),
@@ -138,6 +176,10 @@ impl Problem {
                     (Prediction::vector(u), *target)
                 }
                 Goal::Reaction { held, target } => (Prediction::vector(reactions[*held]), *target),
+                Goal::ReactionForce { held, target } => (
+                    Prediction::scalar(reactions[*held].norm()),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
                 Goal::ReactionLimit { held, limit } => (
                     Prediction::scalar((reactions[*held].norm() - limit).max(0.0)),
                     Vector3::zeros(),
@@ -227,6 +269,11 @@ impl Problem {
         };
         match goal {
             Goal::Position { node, .. } => out.nodes.push((*node, g)),
+            Goal::Coordinate { node, axis, .. } => {
+                let mut v = Vector3::zeros();
+                v[*axis] = g.x;
+                out.nodes.push((*node, v));
+            }
             Goal::Length { member, .. } => out.lengths.push((*member, g.x)),
             Goal::Force { member, .. } => out.forces.push((*member, g.x)),
             Goal::Direction { member, .. } => {
@@ -241,6 +288,13 @@ impl Problem {
                 }
             }
             Goal::Reaction { held, .. } => reaction(&mut out, *held, g),
+            Goal::ReactionForce { held, .. } => {
+                let r = reactions[*held];
+                let norm = r.norm();
+                if norm > 0.0 {
+                    reaction(&mut out, *held, g.x * r / norm);
+                }
+            }
             Goal::ReactionLimit { held, limit } => {
                 let r = reactions[*held];
                 let norm = r.norm();

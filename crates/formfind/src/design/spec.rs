@@ -139,6 +139,23 @@ pub enum GoalSpec {
         #[serde(default = "one")]
         weight: f64,
     },
+    /// One coordinate of a node's position (m): `axis` 0, 1, 2 for x, y, z (a height goal).
+    Coordinate {
+        /// The nodes.
+        #[serde(default)]
+        nodes: Option<Vec<usize>>,
+        /// The coordinate: 0, 1 or 2.
+        axis: usize,
+        /// One target (m).
+        #[serde(default)]
+        target: Option<f64>,
+        /// A target per node (m).
+        #[serde(default)]
+        targets: Option<Vec<f64>>,
+        /// The weight w (default 1).
+        #[serde(default = "one")]
+        weight: f64,
+    },
     /// A member's length L_k (m).
     Length {
         /// The members.
@@ -205,6 +222,21 @@ pub enum GoalSpec {
         /// A target reaction per node (N).
         #[serde(default)]
         targets: Option<Vec<[f64; 3]>>,
+        /// The weight w (default 1).
+        #[serde(default = "one")]
+        weight: f64,
+    },
+    /// The magnitude ‖r_h‖ of a held node's reaction (N; jax-fdm's residual force goal).
+    ReactionForce {
+        /// The held nodes (default: all).
+        #[serde(default)]
+        nodes: Option<Vec<usize>>,
+        /// One target (N).
+        #[serde(default)]
+        target: Option<f64>,
+        /// A target per node (N).
+        #[serde(default)]
+        targets: Option<Vec<f64>>,
         /// The weight w (default 1).
         #[serde(default = "one")]
         weight: f64,

@@ -433,6 +433,24 @@ impl FdmSensitivity {
         })
     }
 
+    /// The node and member counts, checked against a cotangent's (the wrong size is the
+    /// error, naming it).
+    fn check(&self, df: &Cotangent) -> Result<(usize, usize)> {
+        let n = self.nodes.len();
+        let m = self.pairs.len();
+        if df.nodes.len() != n || df.force_densities.len() != m {
+            return Err(FormFindError::InvalidTopology {
+                item: "cotangent".into(),
+                reason: format!(
+                    "{} node and {} member derivatives for {n} nodes and {m} members",
+                    df.nodes.len(),
+                    df.force_densities.len()
+                ),
+            });
+        }
+        Ok((n, m))
+    }
+
     /// −∂R/∂θ of one parameter on the free rows, b vᵀ (module docs, forward), with the
     /// parameter's own moves: ∂q, ∂p and a held node's ∂x. An index out of range is the
     /// error, naming it.
@@ -532,18 +550,7 @@ impl FdmSensitivity {
         df: &Cotangent,
         parameters: &[Parameter],
     ) -> Result<Vec<f64>> {
-        let n = self.nodes.len();
-        let m = self.pairs.len();
-        if df.nodes.len() != n || df.force_densities.len() != m {
-            return Err(FormFindError::InvalidTopology {
-                item: "cotangent".into(),
-                reason: format!(
-                    "{} node and {} member derivatives for {n} nodes and {m} members",
-                    df.nodes.len(),
-                    df.force_densities.len()
-                ),
-            });
-        }
+        self.check(df)?;
         let free: Vec<Vector3<f64>> = self.system.free().iter().map(|&i| df.nodes[i]).collect();
         let mut out = Vec::with_capacity(parameters.len());
         for &parameter in parameters {
@@ -569,18 +576,7 @@ impl FdmSensitivity {
     /// (module docs, adjoint): one solve with the factors of D_ff, whatever the number of
     /// parameters. A cotangent of the wrong size is the error.
     pub fn adjoint(&mut self, df: &Cotangent) -> Result<FormGradient> {
-        let n = self.nodes.len();
-        let m = self.pairs.len();
-        if df.nodes.len() != n || df.force_densities.len() != m {
-            return Err(FormFindError::InvalidTopology {
-                item: "cotangent".into(),
-                reason: format!(
-                    "{} node and {} member derivatives for {n} nodes and {m} members",
-                    df.nodes.len(),
-                    df.force_densities.len()
-                ),
-            });
-        }
+        let (n, m) = self.check(df)?;
         let free = self.system.free().to_vec();
         let mut lambda: Vec<Vector3<f64>> = free.iter().map(|&i| df.nodes[i]).collect();
         self.solve(&mut lambda);
