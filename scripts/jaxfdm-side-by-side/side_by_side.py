@@ -220,6 +220,9 @@ def design_toml(p, tol=None):
         "select = \"all\"",
     ]
     lower, upper = p["bounds"]
+    if (lower is None or lower < 0) and (upper is None or upper > 0):
+        # bounds across zero: jax-fdm's edges have no kind, ours keep their sign unless told
+        out.append("sign = \"free\"")
     if lower is not None:
         out.append(f"lower = {num(lower)}")
     if upper is not None:

@@ -55,6 +55,13 @@ pub fn run(args: &DesignArgs) -> Result<()> {
             d.stop, d.iterations
         );
     }
+    if !d.changed_kind.is_empty() {
+        eprintln!(
+            "warning: members {:?} changed sign (sign = \"free\"): the designed topology lists \
+             them as the other kind (a bar in tension as a string)",
+            d.changed_kind
+        );
+    }
     if let Some(sink) = history {
         write_history(sink, d)?;
     }

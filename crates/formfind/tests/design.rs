@@ -489,3 +489,67 @@ fn attainable_goals_are_met_to_round_off() {
         }
     }
 }
+
+#[test]
+fn a_sign_free_member_may_become_a_bar() {
+    // a node between anchors at x = 0 and x = 2, strings of q₁ (to 0) and q₂ = 1 (to 2): it
+    // sits at x = 2 q₂ / (q₁ + q₂), so the target x = 3 past the anchors needs q₁ = −1/3, a
+    // bar in compression
+    let t = Topology {
+        n_nodes: 3,
+        strings: vec![
+            formfind::Member::new(0, 1).force_density(1.0),
+            formfind::Member::new(1, 2).force_density(1.0),
+        ],
+        fixed: vec![
+            formfind::FixedNode {
+                node: 0,
+                position: [0.0, 0.0, 0.0],
+            },
+            formfind::FixedNode {
+                node: 2,
+                position: [2.0, 0.0, 0.0],
+            },
+        ],
+        ..Topology::default()
+    };
+    let goal = GoalSpec::Coordinate {
+        nodes: Some(vec![1]),
+        axis: 0,
+        target: Some(3.0),
+        targets: None,
+        weight: 1.0,
+    };
+    let mut spec = DesignSpec {
+        parameters: vec![ParameterSpec {
+            members: vec![0],
+            ..ParameterSpec::default()
+        }],
+        terms: vec![term(ErrorKind::Squared, 1.0, vec![goal])],
+        optimizer: OptimizerSpec {
+            ftol: 0.0,
+            gtol: 1e-12,
+            ..OptimizerSpec::default()
+        },
+    };
+    // with the member's sign kept, x = 2 / (q₁ + 1) < 2 and the goal is out of reach: q₁ at
+    // its floor
+    let kept = design(&t, &spec).unwrap();
+    assert_eq!(kept.force_density[0], formfind::design::SIGN_FLOOR);
+    assert!(kept.changed_kind.is_empty());
+    spec.parameters[0].sign = Some("free".into());
+    let d = design(&t, &spec).unwrap();
+    assert!(
+        (d.force_density[0] + 1.0 / 3.0).abs() < 1e-9,
+        "{:?}",
+        d.force_density
+    );
+    assert!(d.objective < 1e-18);
+    assert_eq!(d.changed_kind, vec![0]);
+    assert_eq!((d.topology.bars.len(), d.topology.strings.len()), (1, 1));
+    let found = formfind::form_find(&d.topology, &formfind::Settings::default()).unwrap();
+    assert!((found.nodes[1].x - 3.0).abs() < 1e-9);
+    spec.parameters[0].sign = Some("either".into());
+    let e = design(&t, &spec).unwrap_err().to_string();
+    assert!(e.contains("design.parameters[0].sign"), "{e}");
+}

@@ -125,6 +125,9 @@ pub struct Designed {
     pub reactions: Vec<[f64; 3]>,
     /// The history, the start first.
     pub history: Vec<DesignIterate>,
+    /// The members (bars then strings, as given) whose sign-free force density changed sign:
+    /// the designed topology lists them as the other kind (a bar with q > 0 as a string).
+    pub changed_kind: Vec<usize>,
     /// The topology with every member's designed force density (its groups' force densities
     /// removed; the found nodes as its `nodes`): the form-finding of it is the designed form.
     #[serde(skip)]
@@ -182,16 +185,32 @@ pub fn design(topology: &Topology, spec: &DesignSpec) -> Result<Designed> {
     for g in designed.groups.values_mut() {
         g.force_density = None;
     }
-    for (k, m) in designed
-        .bars
-        .iter_mut()
-        .chain(designed.strings.iter_mut())
+    // every member its designed q; one whose sign-free q changed sign is the other kind
+    let mut members: Vec<(bool, crate::topology::Member)> = topology
+        .members()
         .enumerate()
-    {
-        m.force_density = Some(q[k]);
-    }
+        .map(|(k, m)| {
+            let mut m = m.clone();
+            m.force_density = Some(q[k]);
+            (q[k] < 0.0 || (q[k] == 0.0 && topology.is_bar(k)), m)
+        })
+        .collect();
+    let changed_kind: Vec<usize> = (0..q.len())
+        .filter(|&k| members[k].0 != topology.is_bar(k))
+        .collect();
+    designed.bars = members
+        .iter()
+        .filter(|(bar, _)| *bar)
+        .map(|(_, m)| m.clone())
+        .collect();
+    designed.strings = members
+        .drain(..)
+        .filter(|(bar, _)| !bar)
+        .map(|(_, m)| m)
+        .collect();
     designed.nodes = Some(nodes.clone());
     Ok(Designed {
+        changed_kind,
         term_names: problem.terms.iter().map(|t| t.name.clone()).collect(),
         initial_objective: minimum.history[0].objective,
         objective: at.objective,
@@ -304,8 +323,9 @@ fn refused<T>(item: String, reason: impl Into<String>) -> Result<T> {
     })
 }
 
-/// Members that share one variable, its bounds as given and the item that asked for it.
-type MemberSet = (Vec<usize>, Option<f64>, Option<f64>, String);
+/// Members that share one variable, its bounds as given, the item that asked for it and
+/// whether its sign is free.
+type MemberSet = (Vec<usize>, Option<f64>, Option<f64>, String, bool);
 
 /// The problem of `spec` on `topology`, its indices checked (the items named as in the file).
 fn compile(topology: &Topology, spec: &DesignSpec) -> Result<Problem> {
@@ -347,15 +367,25 @@ fn compile(topology: &Topology, spec: &DesignSpec) -> Result<Problem> {
                     if !seen_groups.contains(g) {
                         seen_groups.push(g.clone());
                         let members = group_members(g, "design.parameters")?;
-                        sets.push((members, None, None, format!("groups.{g}")));
+                        sets.push((members, None, None, format!("groups.{g}"), false));
                     }
                 }
-                _ => sets.push((vec![k], None, None, topology.member_name(k))),
+                _ => sets.push((vec![k], None, None, topology.member_name(k), false)),
             }
         }
     }
     for (i, p) in spec.parameters.iter().enumerate() {
         let item = format!("design.parameters[{i}]");
+        let free = match p.sign.as_deref() {
+            None | Some("member") => false,
+            Some("free") => true,
+            Some(other) => {
+                return refused(
+                    format!("{item}.sign"),
+                    format!("{other:?}: \"member\" (the default: a bar's q < 0, a string's > 0) or \"free\""),
+                )
+            }
+        };
         let chosen = [!p.members.is_empty(), p.group.is_some(), p.select.is_some()];
         if chosen.iter().filter(|&&c| c).count() != 1 {
             return refused(item, "give exactly one of `members`, `group` and `select`");
@@ -367,31 +397,31 @@ fn compile(topology: &Topology, spec: &DesignSpec) -> Result<Problem> {
         }
         if let Some(g) = &p.group {
             let members = group_members(g, &format!("{item}.group"))?;
-            sets.push((members, p.lower, p.upper, item));
+            sets.push((members, p.lower, p.upper, item, free));
         } else if let Some(sel) = p.select {
             for k in (0..m).filter(|&k| match sel {
                 Selection::All => true,
                 Selection::Bars => topology.is_bar(k),
                 Selection::Strings => !topology.is_bar(k),
             }) {
-                sets.push((vec![k], p.lower, p.upper, item.clone()));
+                sets.push((vec![k], p.lower, p.upper, item.clone(), free));
             }
         } else {
             check_members(&p.members, &format!("{item}.members"))?;
             if p.shared {
-                sets.push((p.members.clone(), p.lower, p.upper, item));
+                sets.push((p.members.clone(), p.lower, p.upper, item, free));
             } else {
                 for &k in &p.members {
-                    sets.push((vec![k], p.lower, p.upper, item.clone()));
+                    sets.push((vec![k], p.lower, p.upper, item.clone(), free));
                 }
             }
         }
     }
     let mut owner = vec![None; m];
     let mut variables = Vec::with_capacity(sets.len());
-    for (members, lower, upper, item) in sets {
+    for (members, lower, upper, item, free) in sets {
         let bars = members.iter().filter(|&&k| topology.is_bar(k)).count();
-        if bars != 0 && bars != members.len() {
+        if !free && bars != 0 && bars != members.len() {
             return refused(
                 item,
                 "one force density for bars and strings: their signs differ",
@@ -405,7 +435,9 @@ fn compile(topology: &Topology, spec: &DesignSpec) -> Result<Problem> {
                 );
             }
         }
-        let (sign_lower, sign_upper) = if bars > 0 {
+        let (sign_lower, sign_upper) = if free {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else if bars > 0 {
             (f64::NEG_INFINITY, -SIGN_FLOOR)
         } else {
             (SIGN_FLOOR, f64::INFINITY)

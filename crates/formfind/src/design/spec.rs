@@ -36,9 +36,11 @@ pub enum Selection {
 
 /// Force densities that vary: the members of a `group` (one shared value), a list of
 /// `members` (each its own value, or one shared with `shared`) or a `select`ion (each its own
-/// value); exactly one of the three. Bounds always keep the member's sign (a bar's
-/// q ≤ −[`super::SIGN_FLOOR`], a string's q ≥ [`super::SIGN_FLOOR`]: a member of the other sign
-/// would be the other kind); `lower` and `upper` narrow them.
+/// value); exactly one of the three. Bounds keep the member's sign (a bar's
+/// q ≤ −[`super::SIGN_FLOOR`], a string's q ≥ [`super::SIGN_FLOOR`]); `lower` and `upper` narrow
+/// them. With `sign = "free"` only `lower` and `upper` bound it (jax-fdm's edges have no
+/// kind): a member whose designed q changes sign becomes the other kind in the designed
+/// topology ([`super::Designed::changed_kind`]).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterSpec {
@@ -60,6 +62,9 @@ pub struct ParameterSpec {
     /// Upper bound (N/m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub upper: Option<f64>,
+    /// `"member"` (the default: the member's sign kept) or `"free"` (either sign).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sign: Option<String>,
 }
 
 /// How a term measures its goals' predictions p against their targets t (w a goal's weight,
