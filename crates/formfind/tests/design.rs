@@ -271,8 +271,15 @@ fn the_optimum_meets_the_kkt_conditions_with_bounds_active() {
     }
     assert_eq!(d.history.last().unwrap().objective, d.objective);
     assert_eq!(d.history[0].objective, d.initial_objective);
-    let terms: f64 = d.history.last().unwrap().terms.iter().sum();
-    assert!((terms - d.objective).abs() <= 1e-15 * d.objective.max(1e-300));
+    // every row's terms are its own point's (the line search may accept an earlier trial
+    // than its last)
+    for row in &d.history {
+        let terms: f64 = row.terms.iter().sum();
+        assert!(
+            (terms - row.objective).abs() <= 1e-14 * row.objective,
+            "{row:?}"
+        );
+    }
     // the designed topology reproduces the designed form by the plain force density method
     let found = formfind::form_find(&d.topology, &formfind::Settings::default()).unwrap();
     for (a, b) in found.nodes.iter().zip(&d.nodes) {

@@ -126,6 +126,9 @@ pub struct Iterate {
     pub step: f64,
     /// Objective evaluations so far.
     pub evaluations: usize,
+    /// The evaluation (counted from 1) that gave this iterate: the line search may accept an
+    /// earlier trial than its last.
+    pub evaluation: usize,
 }
 
 /// The result of [`minimize`].
@@ -185,6 +188,7 @@ pub fn minimize<E>(
         projected_gradient: projected_gradient_norm(&x, &g, lower, upper),
         step: 0.0,
         evaluations,
+        evaluation: 1,
     }];
     let mut pairs: VecDeque<(Vec<f64>, Vec<f64>)> = VecDeque::new();
     let (mut xt, mut gt) = (vec![0.0; n], vec![0.0; n]);
@@ -234,13 +238,13 @@ pub fn minimize<E>(
                 evaluations: &mut evaluations,
                 max_evaluations: settings.max_evaluations,
             };
-            if let Some(ft) = search.wolfe(f, &g, first, &mut xt, &mut gt) {
-                accepted = Some(ft);
+            if let Some(found) = search.wolfe(f, &g, first, &mut xt, &mut gt) {
+                accepted = Some(found);
                 break;
             }
             pairs.clear();
         }
-        let Some(ft) = accepted else {
+        let Some((ft, evaluation)) = accepted else {
             break if evaluations >= settings.max_evaluations {
                 Stop::Evaluations
             } else {
@@ -268,6 +272,7 @@ pub fn minimize<E>(
             projected_gradient: projected_gradient_norm(&x, &g, lower, upper),
             step: s.iter().fold(0.0, |m, v| m.max(v.abs())),
             evaluations,
+            evaluation,
         });
         if decreased <= settings.ftol * scale {
             break Stop::Objective;
@@ -297,6 +302,8 @@ struct Search<'a, F> {
 
 /// A point of the line search: α, φ(α) = f(x(α)), φ′(α) and the iterate and gradient there.
 struct Trial {
+    /// The evaluation it was (counted from 1).
+    evaluation: usize,
     alpha: f64,
     phi: f64,
     slope: f64,
@@ -331,6 +338,7 @@ where
             .map(|i| g[i] * self.d[i])
             .sum();
         Some(Trial {
+            evaluation: *self.evaluations,
             alpha,
             phi,
             slope,
@@ -343,7 +351,7 @@ where
     /// |φ′(α)| ≤ c₂ |φ′(0)| (Nocedal and Wright, algorithms 3.5 and 3.6: bracketing, then
     /// zooming by safeguarded cubic interpolation), from α = `first`; else the best step
     /// that meets the first condition; `None` if none does. The accepted point and its
-    /// gradient are written into `xt`, `gt`.
+    /// gradient are written into `xt`, `gt`; f there and the evaluation it was are returned.
     fn wolfe(
         &mut self,
         f0: f64,
@@ -351,11 +359,12 @@ where
         first: f64,
         xt: &mut Vec<f64>,
         gt: &mut Vec<f64>,
-    ) -> Option<f64> {
+    ) -> Option<(f64, usize)> {
         let slope0 = dot(g0, self.d);
         let armijo = |t: &Trial| t.phi <= f0 + ARMIJO * t.alpha * slope0;
         let curvature = |t: &Trial| t.slope.abs() <= -CURVATURE * slope0;
         let mut previous = Trial {
+            evaluation: 0,
             alpha: 0.0,
             phi: f0,
             slope: slope0,
@@ -391,7 +400,7 @@ where
         let t = found.or(best).filter(|t| t.alpha > 0.0 && armijo(t))?;
         *xt = t.x;
         *gt = t.g;
-        Some(t.phi)
+        Some((t.phi, t.evaluation))
     }
 
     /// The zoom phase between `lo` (meets the first condition, the lower φ) and `hi`.
@@ -435,6 +444,7 @@ where
 impl Trial {
     fn clone_point(&self) -> Trial {
         Trial {
+            evaluation: self.evaluation,
             alpha: self.alpha,
             phi: self.phi,
             slope: self.slope,

@@ -173,7 +173,7 @@ pub fn design(topology: &Topology, spec: &DesignSpec) -> Result<Designed> {
         .map(|it| DesignIterate {
             iteration: it.iteration,
             objective: it.objective,
-            terms: term_rows[it.evaluations - 1].clone(),
+            terms: term_rows[it.evaluation - 1].clone(),
             projected_gradient: it.projected_gradient,
             step: it.step,
             evaluations: it.evaluations,
