@@ -98,6 +98,25 @@ fn every_goal(t: &Topology) -> DesignSpec {
         targets: None,
         weight: 1.1,
     };
+    let plane = GoalSpec::Plane {
+        nodes: None,
+        point: [0.1, 0.2, 0.3],
+        normal: [0.3, -0.2, 1.0],
+        weight: 0.7,
+    };
+    let line = GoalSpec::Line {
+        nodes: Some(free.iter().take(3).copied().collect()),
+        point: [0.0, 0.1, 0.0],
+        direction: [1.0, 0.5, 0.2],
+        weight: 0.4,
+    };
+    let regulariser = GoalSpec::ForceDensity {
+        members: None,
+        group: None,
+        target: None,
+        targets: None,
+        weight: 1e-3,
+    };
     let smooth = GoalSpec::Smoothness {
         nodes: None,
         weight: 0.5,
@@ -116,6 +135,7 @@ fn every_goal(t: &Topology) -> DesignSpec {
             term(ErrorKind::MeanAbsolute, 0.3, vec![lengths, forces, limit]),
             term(ErrorKind::Absolute, 0.2, vec![positions]),
             term(ErrorKind::Squared, 0.6, vec![heights, magnitudes]),
+            term(ErrorKind::MeanSquared, 0.5, vec![plane, line, regulariser]),
         ],
         optimizer: OptimizerSpec::default(),
     }

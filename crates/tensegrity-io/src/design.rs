@@ -17,9 +17,9 @@
 //! error = "mean_squared"           # squared (default), mean_squared, root_mean_squared,
 //! weight = 1.0                     # absolute, mean_absolute, prediction, mean_prediction
 //! [[design.terms.goals]]
-//! kind = "force"                   # position, coordinate, length, force, direction,
-//! members = [0, 1, 2]              # reaction, reaction_force, reaction_limit, load_path,
-//!                                  # smoothness
+//! kind = "force"                   # position, coordinate, plane, line, length, force,
+//! members = [0, 1, 2]              # direction, force_density, reaction, reaction_force,
+//!                                  # reaction_limit, load_path, smoothness
 //! target = 20.0                    # or targets = [...], one per member or node
 //! weight = 1.0
 //! ```
@@ -27,8 +27,8 @@
 //! Positions, coordinates, smoothness and reactions take `nodes` (default: the free nodes, the
 //! held ones for reactions), the member goals `members` or `group` (default: every member); a
 //! position goal without a target aims at the file's own `nodes` (shape matching); a
-//! `coordinate` takes `axis` (0, 1, 2) and a number as its target; `reaction_limit` takes
-//! `limit` (N). Unknown keys are refused with the line; what the keys name (a member,
+//! `coordinate` takes `axis` (0, 1, 2) and a number as its target, `plane` a `point` and a
+//! `normal`, `line` a `point` and a `direction`; `reaction_limit` takes `limit` (N). Unknown keys are refused with the line; what the keys name (a member,
 //! node or group the topology lacks, a target count that does not match) is checked by
 //! [`formfind::design::design`], naming the item (`design.terms[0].goals[1].members`).
 //!

@@ -7,8 +7,9 @@
 //! member's, a group's shared one, listed members; bounds that keep each member's sign), the
 //! terms of the objective ([`TermSpec`]: an error over goals, as jax-fdm's losses: squared,
 //! mean squared, root mean squared, absolute, prediction) and the goals ([`GoalSpec`]: node
-//! positions or the topology's own shape, single coordinates, member lengths, forces and
-//! directions, reactions, their magnitudes and limits, the load path, smoothness). [`design`] starts from the topology's force
+//! positions or the topology's own shape, single coordinates, distances to planes and lines,
+//! member lengths, forces, directions and force densities (an L2 regulariser), reactions,
+//! their magnitudes and limits, the load path, smoothness). [`design`] starts from the topology's force
 //! densities (the form of the force density method with held nodes: free-standing forms,
 //! self-weight and clusters are refused by name, as by the derivatives) and returns the
 //! designed topology (every member's force density set; the form found from it is the
@@ -672,6 +673,68 @@ fn compile_goal(
                     },
                     w,
                 ));
+            }
+        }
+        GoalSpec::Plane {
+            nodes,
+            point,
+            normal,
+            weight,
+        } => {
+            let w = weight_ok(*weight)?;
+            let (p, n) = (finite3(point, "point")?, finite3(normal, "normal")?);
+            if n.norm() == 0.0 {
+                return refused(format!("{item}.normal"), "a normal of zero length");
+            }
+            for node in nodes_of(nodes, free)? {
+                let (point, normal) = (p, n.normalize());
+                goals.push((
+                    Goal::Plane {
+                        node,
+                        point,
+                        normal,
+                    },
+                    w,
+                ));
+            }
+        }
+        GoalSpec::Line {
+            nodes,
+            point,
+            direction,
+            weight,
+        } => {
+            let w = weight_ok(*weight)?;
+            let (p, u) = (finite3(point, "point")?, finite3(direction, "direction")?);
+            if u.norm() == 0.0 {
+                return refused(format!("{item}.direction"), "a direction of zero length");
+            }
+            for node in nodes_of(nodes, free)? {
+                let (point, direction) = (p, u.normalize());
+                goals.push((
+                    Goal::Line {
+                        node,
+                        point,
+                        direction,
+                    },
+                    w,
+                ));
+            }
+        }
+        GoalSpec::ForceDensity {
+            members,
+            group,
+            target,
+            targets: ts,
+            weight,
+        } => {
+            let w = weight_ok(*weight)?;
+            let ks = members_of(members, group)?;
+            let t = targets(item, target.or(ts.is_none().then_some(0.0)), ts, ks.len())?
+                .ok_or_else(|| need("target"))?;
+            for (member, t) in ks.into_iter().zip(t) {
+                let target = finite(t, "target")?;
+                goals.push((Goal::ForceDensity { member, target }, w));
             }
         }
         GoalSpec::ReactionForce {

@@ -12,7 +12,9 @@
 //! rule gives ∂f/∂p_j = α A′(S) ∂e_j/∂p_j, and each prediction's partial derivatives with
 //! respect to X and q make the cotangent:
 //!
-//! - a position x_i: ∂/∂x_i = I (a coordinate: the unit vector of its axis);
+//! - a position x_i: ∂/∂x_i = I (a coordinate: the unit vector of its axis; the distance to
+//!   a plane (x − p) · n̂: n̂; the offset from a line (I − ûûᵀ)(x − p): I − ûûᵀ);
+//! - a force density q_k: ∂/∂q_k = 1 at fixed X;
 //! - a length L_k and a force q_k L_k: [`Cotangent::lengths`], [`Cotangent::forces`];
 //! - a direction u = d / L, d = x_b − x_a: ∂u/∂d = (I − u uᵀ) / L;
 //! - a reaction r_h = Σ_k q_k (x_h − x_o) − p_h: ∂/∂x_h = Σ q_k I, ∂/∂x_o = −q_k I,
@@ -48,6 +50,20 @@ pub(super) enum Goal {
     Coordinate {
         node: usize,
         axis: usize,
+        target: f64,
+    },
+    Plane {
+        node: usize,
+        point: Vector3<f64>,
+        normal: Vector3<f64>,
+    },
+    Line {
+        node: usize,
+        point: Vector3<f64>,
+        direction: Vector3<f64>,
+    },
+    ForceDensity {
+        member: usize,
         target: f64,
     },
     Length {
@@ -156,6 +172,29 @@ impl Problem {
         let predict = |goal: &Goal| -> (Prediction, Vector3<f64>) {
             match goal {
                 Goal::Position { node, target } => (Prediction::vector(nodes[*node]), *target),
+                Goal::Plane {
+                    node,
+                    point,
+                    normal,
+                } => (
+                    Prediction::scalar((nodes[*node] - point).dot(normal)),
+                    Vector3::zeros(),
+                ),
+                Goal::Line {
+                    node,
+                    point,
+                    direction,
+                } => {
+                    let d = nodes[*node] - point;
+                    (
+                        Prediction::vector(d - direction * direction.dot(&d)),
+                        Vector3::zeros(),
+                    )
+                }
+                Goal::ForceDensity { member, target } => (
+                    Prediction::scalar(q[*member]),
+                    Vector3::new(*target, 0.0, 0.0),
+                ),
                 Goal::Coordinate { node, axis, target } => (
                     Prediction::scalar(nodes[*node][*axis]),
                     Vector3::new(*target, 0.0, 0.0),
@@ -269,6 +308,11 @@ impl Problem {
         };
         match goal {
             Goal::Position { node, .. } => out.nodes.push((*node, g)),
+            Goal::Plane { node, normal, .. } => out.nodes.push((*node, g.x * normal)),
+            Goal::Line {
+                node, direction, ..
+            } => out.nodes.push((*node, g - direction * direction.dot(&g))),
+            Goal::ForceDensity { member, .. } => out.q.push((*member, g.x)),
             Goal::Coordinate { node, axis, .. } => {
                 let mut v = Vector3::zeros();
                 v[*axis] = g.x;

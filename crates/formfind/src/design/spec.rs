@@ -161,6 +161,53 @@ pub enum GoalSpec {
         #[serde(default = "one")]
         weight: f64,
     },
+    /// A node's signed distance (x − p) · n̂ to a plane through `point` with normal `normal`
+    /// (m), target 0: with a squared error, jax-fdm's plane goal.
+    Plane {
+        /// The nodes.
+        #[serde(default)]
+        nodes: Option<Vec<usize>>,
+        /// A point of the plane (m).
+        point: [f64; 3],
+        /// Its normal (made unit).
+        normal: [f64; 3],
+        /// The weight w (default 1).
+        #[serde(default = "one")]
+        weight: f64,
+    },
+    /// A node's offset (I − ûûᵀ)(x − p) from a line through `point` along `direction` (m),
+    /// target 0: with a squared error, jax-fdm's line goal.
+    Line {
+        /// The nodes.
+        #[serde(default)]
+        nodes: Option<Vec<usize>>,
+        /// A point of the line (m).
+        point: [f64; 3],
+        /// Its direction (made unit).
+        direction: [f64; 3],
+        /// The weight w (default 1).
+        #[serde(default = "one")]
+        weight: f64,
+    },
+    /// A member's force density q_k (N/m), target default 0: with a squared error and the
+    /// term's weight α, jax-fdm's L2 regulariser α Σ q².
+    ForceDensity {
+        /// The members.
+        #[serde(default)]
+        members: Option<Vec<usize>>,
+        /// A group's members instead.
+        #[serde(default)]
+        group: Option<String>,
+        /// One target (N/m; default 0).
+        #[serde(default)]
+        target: Option<f64>,
+        /// A target per member (N/m).
+        #[serde(default)]
+        targets: Option<Vec<f64>>,
+        /// The weight w (default 1).
+        #[serde(default = "one")]
+        weight: f64,
+    },
     /// A member's length L_k (m).
     Length {
         /// The members.
