@@ -91,6 +91,29 @@ fn the_published_cable_net_reaches_its_targets_and_writes_its_outputs() {
 }
 
 #[test]
+fn a_run_stopped_by_its_cap_says_so_and_keeps_its_best_point() {
+    let r = json(&[
+        "design",
+        "examples/design/cablenet.toml",
+        "--max-iterations",
+        "5",
+        "--json",
+    ]);
+    assert_eq!(r["converged"], false);
+    assert_eq!(r["stop"], "iterations");
+    assert_eq!(r["iterations"], 5);
+    let w = &r["warnings"][0];
+    assert_eq!(w["kind"], "optimizer_not_converged");
+    assert_eq!(w["objective"], r["objective"]);
+    // the best point after five iterations: below the start, far above the optimum
+    let (f, f0) = (
+        r["objective"].as_f64().unwrap(),
+        r["initial_objective"].as_f64().unwrap(),
+    );
+    assert!(f < 0.1 * f0 && f > 1e-2, "{f} {f0}");
+}
+
+#[test]
 fn bad_design_files_are_refused_naming_the_item() {
     let dir = common::scratch("design", "bad");
     let base = "[[strings]]\nnodes = [0, 1]\nforce_density = 1.0\n\

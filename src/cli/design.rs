@@ -48,19 +48,8 @@ pub fn run(args: &DesignArgs) -> Result<()> {
     })?;
     let report = design::design(&request)?;
     let d = &report.designed;
-    if !d.converged {
-        eprintln!(
-            "warning: the optimiser did not converge (stopped by {} after {} iterations); the \
-             best point found is reported and written",
-            d.stop, d.iterations
-        );
-    }
-    if !d.changed_kind.is_empty() {
-        eprintln!(
-            "warning: members {:?} changed sign (sign = \"free\"): the designed topology lists \
-             them as the other kind (a bar in tension as a string)",
-            d.changed_kind
-        );
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
     }
     if let Some(sink) = history {
         write_history(sink, d)?;

@@ -100,6 +100,9 @@ pub struct DesignReport {
     /// The result: objective, verdict, designed force densities and form, history.
     #[serde(flatten)]
     pub designed: Designed,
+    /// What the caller should know: an optimiser that did not converge, members that
+    /// changed kind.
+    pub warnings: Vec<tensegrity_core::Warning>,
 }
 
 impl DesignRequest {
@@ -146,7 +149,24 @@ pub fn design(request: &DesignRequest) -> Result<DesignReport, FormfindFailure> 
         }
         e => e.into(),
     })?;
-    Ok(DesignReport { source, designed })
+    let mut warnings = Vec::new();
+    if !designed.converged {
+        warnings.push(tensegrity_core::Warning::OptimizerNotConverged {
+            stop: designed.stop.to_string(),
+            iterations: designed.iterations,
+            objective: designed.objective,
+        });
+    }
+    if !designed.changed_kind.is_empty() {
+        warnings.push(tensegrity_core::Warning::MembersChangedKind {
+            members: designed.changed_kind.clone(),
+        });
+    }
+    Ok(DesignReport {
+        source,
+        designed,
+        warnings,
+    })
 }
 
 /// The designed topology form-found by the force density method and synthesised as

@@ -240,6 +240,22 @@ pub enum Warning {
         /// The refinement (e.g. `dt / 2`).
         refinement: String,
     },
+    /// An optimiser (inverse form-finding) stopped by a cap or a failed line search before
+    /// its convergence rule: the best point found is reported.
+    OptimizerNotConverged {
+        /// Why it stopped (`iterations`, `evaluations`, `line_search`).
+        stop: String,
+        /// The iterations it made.
+        iterations: usize,
+        /// The objective at the best point.
+        objective: f64,
+    },
+    /// Members whose sign-free force density changed sign in a design: the designed topology
+    /// lists them as the other kind.
+    MembersChangedKind {
+        /// The members (bars then strings, as given).
+        members: Vec<usize>,
+    },
     /// The refined run gave no result: nothing is known converged.
     RefinementFailed {
         /// The refinement and why it failed.
@@ -297,6 +313,8 @@ impl Warning {
             W::RefinementFailed { .. } => "refinement_failed",
             W::InRun { .. } => "in_run",
             W::RowFailed { .. } => "row_failed",
+            W::OptimizerNotConverged { .. } => "optimizer_not_converged",
+            W::MembersChangedKind { .. } => "members_changed_kind",
         }
     }
 
@@ -442,6 +460,14 @@ mod tests {
             Warning::RowFailed {
                 sides: 5,
                 error: "e".into(),
+            },
+            Warning::OptimizerNotConverged {
+                stop: "iterations".into(),
+                iterations: 10,
+                objective: 0.5,
+            },
+            Warning::MembersChangedKind {
+                members: vec![0, 3],
             },
         ];
         for w in all {

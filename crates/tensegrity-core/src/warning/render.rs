@@ -103,6 +103,14 @@ impl fmt::Display for Warning {
             ),
             W::InRun { sides, run, warning } => write!(f, "n = {sides}, {run}: {warning}"),
             W::RowFailed { sides, error } => write!(f, "n = {sides}: {error}"),
+            W::OptimizerNotConverged { stop, iterations, objective } => write!(
+                f,
+                "the optimiser did not converge (stopped by {stop} after {iterations} iterations); the best point found, objective {objective:e}, is reported and written"
+            ),
+            W::MembersChangedKind { members } => write!(
+                f,
+                "members {members:?} changed sign (sign = \"free\"): the designed topology lists them as the other kind (a bar in tension as a string)"
+            ),
         }
     }
 }
