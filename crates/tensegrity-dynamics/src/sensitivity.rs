@@ -24,7 +24,7 @@
 //! Non-smooth events: a string going slack or taut and a node touching or leaving the penalty
 //! ground put a kink in f (its derivative jumps, f stays continuous); the trajectory stays
 //! differentiable in the parameters, and an RK4 step across one is differentiated as taken
-//! (checked through a landing on the ground to 10⁻⁷). A force that itself jumps is another
+//! (checked through a landing on the ground to 2·10⁻⁷). A force that itself jumps is another
 //! matter: the penalty ground's normal damping c adds c times the impact speed the instant a
 //! node touches, and the trajectory's derivative then jumps by a term (the saltation of the
 //! event time) that the variational equation does not carry — give the ground no normal
