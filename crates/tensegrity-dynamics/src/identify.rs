@@ -19,6 +19,7 @@ use crate::forces::Ground;
 use crate::sensitivity::{forward_sensitivities, with_parameter, DynamicsParameter};
 use nalgebra::{DMatrix, DVector, Vector3};
 use tensegrity_core::error::DynamicsError;
+use tensegrity_core::warning::Warning;
 use tensegrity_core::{CoreError, Structure};
 
 /// The sampling of the simulated runs and the stopping rules of [`identify`].
@@ -62,6 +63,12 @@ pub struct Identified {
     pub converged: bool,
     /// The structure with the identified values.
     pub structure: Structure,
+    /// The bar-length drift of the run at the identified values
+    /// ([`TrajectorySensitivity::bar_length_drift`](crate::sensitivity::TrajectorySensitivity::bar_length_drift)).
+    pub bar_length_drift: f64,
+    /// That run's warnings: a drift past `simulate`'s limit means the fit is that of a model
+    /// whose bars stretched (use a smaller `dt`).
+    pub warnings: Vec<Warning>,
 }
 
 /// The value of `p` in `structure` (a rest length without one: the string's length).
@@ -155,9 +162,7 @@ pub fn identify(
         Ok(s)
     };
     // residuals (and their Jacobian when asked) of one run
-    let run = |values: &[f64],
-               jacobian: bool|
-     -> Result<(DVector<f64>, Option<DMatrix<f64>>), CoreError> {
+    let run = |values: &[f64], jacobian: bool| -> Result<Run, CoreError> {
         let s = at(values)?;
         let params: &[DynamicsParameter] = if jacobian { parameters } else { &[] };
         let tr = forward_sensitivities(
@@ -184,9 +189,9 @@ pub fn identify(
                 }
             }
         }
-        Ok((r, j))
+        Ok((r, j, (tr.bar_length_drift, tr.warnings)))
     };
-    let (mut r, mut jac) = run(&values, true)?;
+    let (mut r, mut jac, _) = run(&values, true)?;
     let rms_start = (r.norm_squared() / m as f64).sqrt();
     let mut mu = 1e-3;
     let mut iterations = 0;
@@ -219,7 +224,7 @@ pub fn identify(
                 .map(|(v, d)| (d / v.abs().max(f64::MIN_POSITIVE)).abs())
                 .fold(0.0, f64::max);
             match run(&trial, false) {
-                Ok((rt, _)) if rt.norm_squared() < cost => {
+                Ok((rt, _, _)) if rt.norm_squared() < cost => {
                     values = trial;
                     mu = (mu / 3.0).max(1e-12);
                     accepted = true;
@@ -245,7 +250,7 @@ pub fn identify(
         r = next.0;
         jac = next.1;
     }
-    let (r, jac) = run(&values, true)?;
+    let (r, jac, (bar_length_drift, warnings)) = run(&values, true)?;
     let dof = (m - k) as f64;
     let sigma2 = r.norm_squared() / dof;
     let j = jac.expect("asked for");
@@ -263,5 +268,13 @@ pub fn identify(
         rms: (r.norm_squared() / m as f64).sqrt(),
         iterations,
         converged,
+        bar_length_drift,
+        warnings,
     })
 }
+
+/// A run's bar-length drift and warnings.
+type Checks = (f64, Vec<Warning>);
+
+/// A run's residuals, their Jacobian when asked, and its checks.
+type Run = (DVector<f64>, Option<DMatrix<f64>>, Checks);

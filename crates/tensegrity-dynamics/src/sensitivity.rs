@@ -32,14 +32,21 @@
 //! ([`TrajectorySensitivity::events`]: the step in which a string's strain or a contact node's
 //! penetration changed sign), so that a caller can see which derivatives cross one.
 //!
+//! The steps are not projected on the bar lengths (a projection would need its own
+//! derivative): each run reports its [`TrajectorySensitivity::bar_length_drift`], the largest
+//! bar-length error relative to the shortest bar, and a [`Warning::Drift`] past the limit
+//! `simulate` keeps (10⁻⁶), beside the numbers it concerns.
+//!
 //! Parameters: [`DynamicsParameter`]. The initial state moves a whole bar (both ends, its
 //! length kept) in position or velocity; a bar sharing a node with another bar or a support
 //! (a class-k joint) is refused by name, since moving it alone would break the joint.
 
 use crate::forces::Ground;
 use crate::model::Model;
+use crate::system::vec3;
 use nalgebra::Vector3;
 use tensegrity_core::error::DynamicsError;
+use tensegrity_core::warning::{DriftInvariant, Warning};
 use tensegrity_core::{CoreError, Structure};
 
 /// A parameter of the dynamics (module docs).
@@ -117,6 +124,13 @@ pub struct TrajectorySensitivity {
     pub events: Vec<SensitivityEvent>,
     /// Right-hand side evaluations made.
     pub rhs_evaluations: usize,
+    /// The largest bar-length error over the run, max_k |‖b_k‖ − l_k| relative to the
+    /// shortest bar (module docs: the steps are not projected).
+    pub bar_length_drift: f64,
+    /// A [`Warning::Drift`] when `bar_length_drift` passed the limit `simulate` keeps
+    /// ([`crate::drift::DriftLimits`]' `bar_length`, 10⁻⁶): the trajectory (and its
+    /// derivatives) is then that of a model whose bars have stretched.
+    pub warnings: Vec<Warning>,
 }
 
 /// The step η of a central difference, relative to `scale` (module docs).
@@ -328,7 +342,16 @@ pub fn forward_sensitivities(
         state_sensitivities: Vec::new(),
         events: Vec::new(),
         rhs_evaluations: 0,
+        bar_length_drift: 0.0,
+        warnings: Vec::new(),
     };
+    let bar_lengths = |y: &[f64]| -> Vec<f64> {
+        (0..nb)
+            .map(|b| (vec3(y, 2 * b + 1) - vec3(y, 2 * b)).norm())
+            .collect()
+    };
+    let lengths0 = bar_lengths(&y);
+    let shortest = lengths0.iter().copied().fold(f64::INFINITY, f64::min);
     let mut evals = 0usize;
     let sample = |out: &mut TrajectorySensitivity, t: f64, y: &[f64], s: &[Vec<f64>]| {
         out.times.push(t);
@@ -440,12 +463,26 @@ pub fn forward_sensitivities(
             ));
         }
         kinks.step(t, &model, &y, &mut out.events);
+        let error = bar_lengths(&y)
+            .iter()
+            .zip(&lengths0)
+            .fold(0.0f64, |e, (l, l0)| e.max((l - l0).abs()));
+        out.bar_length_drift = out.bar_length_drift.max(error / shortest);
         t += h;
         if step % every == 0 || step == steps {
             sample(&mut out, t, &y, &s);
         }
     }
     out.rhs_evaluations = evals;
+    let limit = crate::drift::DriftLimits::default().bar_length;
+    if out.bar_length_drift > limit {
+        out.warnings.push(Warning::Drift {
+            invariant: DriftInvariant::BarLength,
+            value: out.bar_length_drift,
+            limit,
+            remedy: "use a smaller `dt`: the sensitivities integrate RK4 without projecting on the bar lengths".into(),
+        });
+    }
     Ok(out)
 }
 

@@ -4,9 +4,11 @@
 //! dropped onto the penalty ground (through its contact, whose events are reported); then the
 //! system identification of the six-bar icosahedron's 24 string stiffnesses and 24 dampings
 //! from a noisy trajectory (issue 47, item 5), each within 1 % and within four of its reported
-//! standard errors; the refusals.
+//! standard errors; the bar-length drift of the unprojected steps, reported and warned past
+//! `simulate`'s limit; the refusals.
 
 use nalgebra::Vector3;
+use tensegrity_core::warning::Warning;
 use tensegrity_core::Structure;
 use tensegrity_dynamics::identify::identify;
 use tensegrity_dynamics::sensitivity::{forward_sensitivities, with_parameter, DynamicsParameter};
@@ -184,6 +186,60 @@ fn sensitivities_through_ground_contact_match_central_differences() {
         events.iter().any(|e| e.contains("touches the ground")),
         "the contact is reported: {events:?}"
     );
+}
+
+#[test]
+fn the_bar_length_drift_is_reported_and_warned_past_simulates_limit() {
+    let prism = with_velocities(&oscillating_prism().unwrap(), 0.3);
+    let params = [DynamicsParameter::Stiffness(3)];
+    // the largest relative bar-length error of the samples, measured on the file nodes
+    let sampled = |tr: &tensegrity_dynamics::sensitivity::TrajectorySensitivity| {
+        let lengths = |x: &[Vector3<f64>]| -> Vec<f64> {
+            prism
+                .bars()
+                .iter()
+                .map(|b| (x[b.nodes[1]] - x[b.nodes[0]]).norm())
+                .collect()
+        };
+        let l0 = lengths(&tr.nodes[0]);
+        let shortest = l0.iter().copied().fold(f64::INFINITY, f64::min);
+        tr.nodes
+            .iter()
+            .map(|x| {
+                lengths(x)
+                    .iter()
+                    .zip(&l0)
+                    .fold(0.0f64, |e, (l, l0)| e.max((l - l0).abs()))
+            })
+            .fold(0.0, f64::max)
+            / shortest
+    };
+    // 1 ms steps: RK4's drift of the lengths stays far below simulate's limit of 1e-6
+    let fine = forward_sensitivities(&prism, None, &params, 1e-3, 0.5, 1).unwrap();
+    assert!(
+        fine.bar_length_drift < 1e-8 && fine.warnings.is_empty(),
+        "{}",
+        fine.bar_length_drift
+    );
+    assert!(fine.bar_length_drift >= sampled(&fine));
+    // 20 ms steps: the lengths drift past it, and the run says so
+    let coarse = forward_sensitivities(&prism, None, &params, 2e-2, 0.5, 1).unwrap();
+    assert!(
+        coarse.bar_length_drift > 1e-6,
+        "{}",
+        coarse.bar_length_drift
+    );
+    assert!(
+        coarse.bar_length_drift >= sampled(&coarse)
+            && sampled(&coarse) > 0.5 * coarse.bar_length_drift
+    );
+    match coarse.warnings.as_slice() {
+        [w @ Warning::Drift { value, limit, .. }] => {
+            assert_eq!((*value, *limit), (coarse.bar_length_drift, 1e-6));
+            assert!(w.to_string().contains("smaller `dt`"), "{w}");
+        }
+        w => panic!("{w:?}"),
+    }
 }
 
 #[test]

@@ -51,13 +51,16 @@ fn raw<'py>(py: Python<'py>, v: impl Iterator<Item = f64>) -> Bound<'py, PyBytes
 }
 
 /// Times, nodes (raw, samples × n × 3), node sensitivities (raw, samples × k × n × 3), the
-/// events (time, what) and the right-hand side evaluations.
+/// events (time, what), the right-hand side evaluations, the bar-length drift and the drift
+/// warnings (as `simulate` words them).
 type Sensitivities<'py> = (
     Vec<f64>,
     Bound<'py, PyBytes>,
     Bound<'py, PyBytes>,
     Vec<(f64, String)>,
     usize,
+    f64,
+    Vec<String>,
 );
 
 /// The trajectory of a scene by RK4 steps of `dt` to `t_end`, sampled every `every` steps,
@@ -87,11 +90,21 @@ pub fn trajectory_sensitivity<'py>(
             .flat_map(|p| [p.x, p.y, p.z]),
     );
     let events = tr.events.iter().map(|e| (e.time, e.what.clone())).collect();
-    Ok((tr.times, nodes, sens, events, tr.rhs_evaluations))
+    let warnings = tr.warnings.iter().map(|w| w.to_string()).collect();
+    Ok((
+        tr.times,
+        nodes,
+        sens,
+        events,
+        tr.rhs_evaluations,
+        tr.bar_length_drift,
+        warnings,
+    ))
 }
 
-/// Identified values, standard errors, rms at the start and the end, iterations, converged.
-type Identification = (Vec<f64>, Vec<f64>, f64, f64, usize, bool);
+/// Identified values, standard errors, rms at the start and the end, iterations, converged,
+/// the bar-length drift of the last run and its drift warnings.
+type Identification = (Vec<f64>, Vec<f64>, f64, f64, usize, bool, f64, Vec<String>);
 
 /// Identifies `parameters` of a scene from the `measured` positions (flat: samples ×
 /// observed × 3) of the `observed` nodes, sampled every `every` RK4 steps of `dt`.
@@ -144,5 +157,7 @@ pub fn identify(
         id.rms,
         id.iterations,
         id.converged,
+        id.bar_length_drift,
+        id.warnings.iter().map(|w| w.to_string()).collect(),
     ))
 }

@@ -26,6 +26,7 @@ mod dynamics_sensitivity;
 mod errors;
 mod runs;
 mod sensitivity;
+mod statics_sensitivity;
 mod stepping;
 mod structure;
 mod studies;
@@ -593,6 +594,14 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m
     )?)?;
     m.add_function(wrap_pyfunction!(dynamics_sensitivity::identify, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        statics_sensitivity::stiffness_sensitivity,
+        m
+    )?)?;
+    m.add_function(wrap_pyfunction!(
+        statics_sensitivity::margin_sensitivity,
+        m
+    )?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(roll, m)?)?;
     m.add_function(wrap_pyfunction!(run_sweep, m)?)?;

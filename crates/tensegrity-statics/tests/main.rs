@@ -4,6 +4,7 @@
 
 mod clusters;
 mod common;
+mod margin;
 mod nested_statics;
 mod properties;
 mod response;

@@ -49,7 +49,8 @@ from .results import Result, SweepResult, SweepRow
 from .sensitivity import (DesignProblem, FormDerivative, FormGradient, FormSensitivity,
                           Identification, RelaxedDerivative, RelaxedGradient,
                           RelaxedSensitivity, TrajectorySensitivity, identify,
-                          trajectory_sensitivity)
+                          trajectory_sensitivity, EigenSensitivity, StiffnessSensitivity,
+                          MarginSensitivity, stiffness_sensitivity, margin_sensitivity)
 from .simulator import Actuator, Observation, Simulator
 from .structure import Structure
 
@@ -62,6 +63,8 @@ __all__ = [
     "export_mjcf", "export_json", "export_schema", "figure", "figures",
     "Structure", "Simulator", "Observation", "Actuator", "FormSensitivity", "FormDerivative", "DesignProblem",
     "TrajectorySensitivity", "trajectory_sensitivity", "Identification", "identify",
+    "EigenSensitivity", "StiffnessSensitivity", "stiffness_sensitivity", "MarginSensitivity",
+    "margin_sensitivity",
     "FormGradient", "RelaxedSensitivity", "RelaxedDerivative", "RelaxedGradient", "Result", "SweepResult", "SweepRow", "read_rows", "TensegrityError", "InputError", "ComputationError",
     "ResourceError", "Interrupted",
 ]

@@ -41,7 +41,12 @@ from .sensitivity import (DesignProblem as DesignProblem, Identification as Iden
                           FormSensitivity as FormSensitivity,
                           RelaxedDerivative as RelaxedDerivative,
                           RelaxedGradient as RelaxedGradient,
-                          RelaxedSensitivity as RelaxedSensitivity)
+                          RelaxedSensitivity as RelaxedSensitivity,
+                          EigenSensitivity as EigenSensitivity,
+                          StiffnessSensitivity as StiffnessSensitivity,
+                          stiffness_sensitivity as stiffness_sensitivity,
+                          MarginSensitivity as MarginSensitivity,
+                          margin_sensitivity as margin_sensitivity)
 from .simulator import (Actuator as Actuator, Observation as Observation,
                         Simulator as Simulator)
 from .structure import Structure as Structure

@@ -331,6 +331,12 @@ class TrajectorySensitivity:
         start of the step and what.
     rhs_evaluations : int
         Right-hand side evaluations made.
+    bar_length_drift : float
+        The largest bar-length error over the run relative to the shortest bar (the RK4
+        steps are not projected on the bar lengths).
+    warnings : list of str
+        A drift past ``simulate``'s limit (10⁻⁶): the trajectory and its derivatives are
+        then those of a model whose bars stretched; use a smaller ``dt``.
     """
 
     times: np.ndarray
@@ -338,6 +344,8 @@ class TrajectorySensitivity:
     sensitivities: np.ndarray
     events: list
     rhs_evaluations: int
+    bar_length_drift: float
+    warnings: list
 
 
 def trajectory_sensitivity(scene, parameters, *, dt, t_end, every=1):
@@ -359,13 +367,14 @@ def trajectory_sensitivity(scene, parameters, *, dt, t_end, every=1):
     (51, 1, 6, 3)
     """
     params = _parameters(parameters)
-    times, nodes, sens, events, evals = _native.trajectory_sensitivity(
+    times, nodes, sens, events, evals, drift, warnings = _native.trajectory_sensitivity(
         {"scene": _scene(scene)}, params, float(dt), float(t_end), int(every))
     times = np.asarray(times, dtype=np.float64)
     nodes = np.frombuffer(nodes, dtype=np.float64).reshape(len(times), -1, 3)
     sens = np.frombuffer(sens, dtype=np.float64).reshape(len(times), len(params),
                                                          nodes.shape[1], 3)
-    return TrajectorySensitivity(times, nodes, sens, list(events), int(evals))
+    return TrajectorySensitivity(times, nodes, sens, list(events), int(evals), float(drift),
+                                 list(warnings))
 
 
 @dataclass(frozen=True)
@@ -382,6 +391,12 @@ class Identification:
         Levenberg–Marquardt iterations.
     converged : bool
         Whether no parameter moved by more than the tolerance in the last iteration.
+    bar_length_drift : float
+        The bar-length drift of the run at the identified values (as
+        :class:`TrajectorySensitivity` reports it).
+    warnings : list of str
+        That run's drift past ``simulate``'s limit, if any: the fit is then that of a model
+        whose bars stretched; use a smaller ``dt``.
     """
 
     values: np.ndarray
@@ -390,6 +405,8 @@ class Identification:
     rms: float
     iterations: int
     converged: bool
+    bar_length_drift: float
+    warnings: list
 
 
 def identify(scene, parameters, measured, *, dt, every=1, observed=None, max_iterations=50,
@@ -406,8 +423,144 @@ def identify(scene, parameters, measured, *, dt, every=1, observed=None, max_ite
                          .format(measured.shape))
     if observed is None:
         observed = list(range(measured.shape[1]))
-    values, errors, rms0, rms, iterations, converged = _native.identify(
+    values, errors, rms0, rms, iterations, converged, drift, warnings = _native.identify(
         {"scene": _scene(scene)}, params, [int(i) for i in observed], measured.ravel().tolist(),
         float(dt), int(every), int(max_iterations), float(tolerance))
     return Identification(np.asarray(values), np.asarray(errors), rms0, rms, iterations,
-                          converged)
+                          converged, float(drift), list(warnings))
+
+
+@dataclass(frozen=True)
+class EigenSensitivity:
+    """An eigenvalue of the tangent stiffness (N/m) or a natural frequency (Hz) and its exact
+    derivatives (numpy arrays; ``None`` when the value is repeated, which has none).
+
+    Attributes
+    ----------
+    value : float
+        The eigenvalue, or the frequency.
+    multiplicity : int
+        How many eigenvalues share it: 1 for a simple one, whose derivatives follow.
+    force_densities, axial_stiffnesses : ndarray, shape (m,), or None
+        d value / d q_k and d value / d a_k, one per member (bars then strings).
+    prestress_level : float or None
+        d value / d α for the force densities scaled by α at α = 1.
+    nodes : ndarray, shape (n, 3), or None
+        d value / d x_i at fixed force densities and axial stiffnesses (held nodes too).
+    """
+
+    value: float
+    multiplicity: int
+    force_densities: np.ndarray
+    axial_stiffnesses: np.ndarray
+    prestress_level: float
+    nodes: np.ndarray
+
+
+@dataclass(frozen=True)
+class StiffnessSensitivity:
+    """The result of :func:`stiffness_sensitivity`.
+
+    Attributes
+    ----------
+    force_densities, axial_stiffnesses : ndarray, shape (m,)
+        The state differentiated about: the equilibrium force densities (N/m) of the
+        strings' rest lengths and stiffnesses (the bars' balancing them) and the members'
+        axial stiffnesses (N/m: a string's k, a bar's E A / l).
+    smallest_eigenvalue : EigenSensitivity or None
+        The smallest nonzero eigenvalue of the tangent stiffness (None when every one is zero).
+    frequencies : list of EigenSensitivity
+        The lowest nonzero natural frequencies asked for (lumped mass).
+    """
+
+    force_densities: np.ndarray
+    axial_stiffnesses: np.ndarray
+    smallest_eigenvalue: object
+    frequencies: list
+
+
+def _eigen(t):
+    value, multiplicity, dq, da, level, nodes = t
+    if multiplicity != 1:
+        return EigenSensitivity(float(value), int(multiplicity), None, None, None, None)
+    return EigenSensitivity(float(value), int(multiplicity),
+                            np.asarray(dq, dtype=np.float64), np.asarray(da, dtype=np.float64),
+                            float(level), np.frombuffer(nodes, dtype=np.float64).reshape(-1, 3))
+
+
+def stiffness_sensitivity(scene, *, modes=0):
+    """The smallest nonzero eigenvalue of a scene's tangent stiffness and its ``modes``
+    lowest nonzero natural frequencies, with their exact derivatives with respect to every
+    force density, every axial stiffness, the prestress level and every node's position, about
+    the equilibrium force densities of its strings (rest lengths and stiffnesses needed; bars
+    need material and radius, and mass for the frequencies). ``scene`` as
+    :func:`tensegrity.statics` takes it. The equations: the Rust crate
+    ``tensegrity-statics``, module ``sensitivity``. Returns a :class:`StiffnessSensitivity`.
+    """
+    q, a, smallest, freqs = _native.stiffness_sensitivity({"scene": _scene(scene)}, int(modes))
+    return StiffnessSensitivity(np.asarray(q, dtype=np.float64), np.asarray(a, dtype=np.float64),
+                                None if smallest is None else _eigen(smallest),
+                                [_eigen(f) for f in freqs])
+
+
+@dataclass(frozen=True)
+class MarginSensitivity:
+    """The result of :func:`margin_sensitivity`.
+
+    Attributes
+    ----------
+    margin : float
+        The prestress margin t* in [0, 1] (the statics report's ``prestress_margin``).
+    smoothness : str
+        ``"differentiable"``; ``"no_self_stress"`` (margin 0 nearby, zero gradient);
+        ``"at_zero"`` (a self-stress, none sign-consistent); ``"tie"`` (more members at the
+        margin or the bound than unknowns, typical of symmetric structures: a kink);
+        ``"not_unique"`` (the slope differs across a face of optima); ``"special_geometry"``
+        (the self-stress couples with a mechanism and lives only on this geometry, as a
+        Snelson prism's does: no derivative at all).
+    detail : dict
+        The numbers behind ``smoothness``: ``at_margin``, ``at_bound``, ``unknowns`` for a
+        tie, ``directions`` for not_unique, ``mechanisms`` and ``coupling`` for
+        special_geometry.
+    stress : ndarray, shape (m,)
+        The optimal self-stress (force densities, max |q| = 1).
+    at_margin, at_bound : list of int
+        The members that limit the margin, and those at |q| = 1.
+    nodes : ndarray, shape (n, 3), or None
+        d margin / d x_i (held nodes too); None when not differentiable.
+    prestress_level : float
+        0: the margin does not depend on the prestress level.
+    axial_stiffnesses : ndarray, shape (m,)
+        Zeros: nor on the members' stiffnesses.
+    """
+
+    margin: float
+    smoothness: str
+    detail: dict
+    stress: np.ndarray
+    at_margin: list
+    at_bound: list
+    nodes: object
+    prestress_level: float
+    axial_stiffnesses: np.ndarray
+
+
+_DETAIL = {"tie": ("at_margin", "at_bound", "unknowns"), "not_unique": ("directions",),
+           "special_geometry": ("mechanisms", "coupling")}
+
+
+def margin_sensitivity(scene):
+    """The prestress margin of a scene (bars compressed, strings in tension) with its exact
+    derivative with respect to every node's position where it has one, and why not where it
+    has none (:class:`MarginSensitivity`); its derivatives with respect to the prestress
+    level and the stiffnesses are zero. ``scene`` as :func:`tensegrity.statics` takes it.
+    The equations: the Rust crate ``tensegrity-statics``, module ``sensitivity::margin``."""
+    (margin, kind, numbers, stress, at_margin, at_bound, nodes, level,
+     axial) = _native.margin_sensitivity({"scene": _scene(scene)})
+    detail = {k: (int(v) if k != "coupling" else float(v))
+              for k, v in zip(_DETAIL.get(kind, ()), numbers)}
+    grad = np.frombuffer(nodes, dtype=np.float64).reshape(-1, 3)
+    return MarginSensitivity(float(margin), kind, detail, np.asarray(stress, dtype=np.float64),
+                             list(at_margin), list(at_bound),
+                             grad if kind in ("differentiable", "no_self_stress") else None,
+                             float(level), np.asarray(axial, dtype=np.float64))

@@ -29,8 +29,18 @@
 //! depends on the direction of the change: they are reported with their multiplicity and no
 //! derivatives ([`EigenDerivative::multiplicity`]).
 //!
-//! Not covered yet: clustered strings (their blocks couple every node of the cluster) and the prestress margin
-//! (the dual of its linear program); a structure with clusters is refused by name.
+//! **The prestress margin** is the value of a linear programme, a property of the geometry and
+//! the member kinds: [`prestress_margin`] gives its derivative in the node positions by the
+//! LP's multipliers where it has one (a unique, non-degenerate optimum whose self-stress
+//! survives node moves), says why not where it has none, and gives zero for the prestress level
+//! and the stiffnesses, which do not enter it ([`margin`]).
+//!
+//! Not covered yet: clustered strings (their blocks couple every node of the cluster); a
+//! structure with clusters is refused by name.
+
+pub mod margin;
+
+pub use margin::{prestress_margin, MarginDerivative, MarginSmoothness};
 
 use crate::stiffness::{axial_stiffness, lumped_masses, tangent_stiffness, ZERO_MODE_TOLERANCE};
 use crate::DofMap;
@@ -261,10 +271,10 @@ pub fn natural_frequencies(
     let top = w.iter().fold(0.0f64, |a, &x| a.max(x.abs()));
     Ok((0..w.len())
         .map(|i| {
-            let f = w[i].max(0.0).sqrt() / (2.0 * PI);
             if w[i] <= ZERO_MODE_TOLERANCE * top {
+                // a rigid-body motion's ω² is round-off: its frequency is 0, as documented
                 return EigenDerivative {
-                    value: f,
+                    value: 0.0,
                     multiplicity: multiplicity(&w, i),
                     force_densities: Vec::new(),
                     axial_stiffnesses: Vec::new(),
@@ -272,6 +282,7 @@ pub fn natural_frequencies(
                     nodes: Vec::new(),
                 };
             }
+            let f = w[i].sqrt() / (2.0 * PI);
             // df = dω² / (8π² f)
             let factor = 1.0 / (8.0 * PI * PI * f);
             derivative(structure, &dofs, q, axial, &w, &phi, i, factor, f)
