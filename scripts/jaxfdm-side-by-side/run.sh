@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# jax-fdm against `tensegrity design` on two of jax-fdm's published inverse form-finding
+# jax-fdm against `tensegrity design` on three of jax-fdm's published inverse form-finding
 # examples, side by side (issue 47): a venv under target/ with jax-fdm from PyPI (jax on CPU),
 # the release binary, then the table of side_by_side.py: at the examples' own stopping rules
-# (no argument) or at a tolerance given to both (e.g. 1e-16: the optimum itself compared).
+# (no argument) or at a tolerance given to all (e.g. 1e-16: the optimum itself compared).
 #
 #   scripts/jaxfdm-side-by-side/run.sh [TOL]
+#   scripts/jaxfdm-side-by-side/run.sh optimum        # scipy's least_squares, independently
 #   scripts/jaxfdm-side-by-side/run.sh export DIR     # rewrite the design files
 #
 # Environment: PYTHON (default python3), REPEATS (default 3), PROBLEMS (default
-# cablenet,dome).
+# cablenet,dome,pringle).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -24,5 +25,8 @@ cargo build --release --quiet --bin tensegrity
 "$venv/bin/python" -c "import jax_fdm, jax, scipy; print('jax-fdm', jax_fdm.__version__, 'jax', jax.__version__, 'scipy', scipy.__version__)"
 if [ "${1:-}" = "export" ]; then
     exec "$venv/bin/python" "$here/side_by_side.py" export "${2:-examples/design}"
+fi
+if [ "${1:-}" = "optimum" ]; then
+    exec "$venv/bin/python" "$here/side_by_side.py" optimum
 fi
 "$venv/bin/python" "$here/side_by_side.py" table "$@"

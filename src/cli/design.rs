@@ -1,5 +1,5 @@
-//! `tensegrity design DESIGN.toml [--max-iterations N] [--out SCENE.toml] [--form FORM.toml]
-//! [--history HISTORY.csv] [--json]`: the engine's `design` request ([`DesignRequest`], the
+//! `tensegrity design DESIGN.toml [--max-iterations N] [--method lbfgsb|levenberg_marquardt]
+//! [--out SCENE.toml] [--form FORM.toml] [--history HISTORY.csv] [--json]`: the engine's `design` request ([`DesignRequest`], the
 //! design file positional): inverse form-finding, the force densities whose form best meets
 //! the file's goals. Prints the objective (start and designed, each term), the optimiser's
 //! verdict (a run that did not converge is a warning, and its best point is still written),
@@ -111,12 +111,13 @@ fn write_history(
 fn print_report(r: &DesignReport) {
     let d = &r.designed;
     println!(
-        "{}: {} variables, {} terms; objective {:.9e} → {:.9e} ({} iterations, {} evaluations, {} by {})",
+        "{}: {} variables, {} terms; objective {:.9e} → {:.9e} ({}: {} iterations, {} evaluations, {} by {})",
         r.source,
         d.variables.len(),
         d.term_names.len(),
         d.initial_objective,
         d.objective,
+        d.method,
         d.iterations,
         d.evaluations,
         if d.converged { "converged" } else { "NOT converged" },

@@ -2,13 +2,16 @@
 //! gradient against central finite differences on the five structures of the sensitivity
 //! tests, every goal kind and every error kind; the optimiser's optimum against the
 //! Karush–Kuhn–Tucker conditions and, for one variable, against a golden-section search of
-//! the objective; a reachable target met exactly; the refusals naming their item.
+//! the objective; a reachable target met exactly; the refusals naming their item. The
+//! residuals of sum-of-squares problems: ‖r‖² and 2 Jᵀ r against the objective and its
+//! gradient, J against central differences, and Levenberg–Marquardt reaching L-BFGS-B's
+//! optimum with bounds active.
 
 use crate::sensitivity::{cable_net, spread, structures};
 use formfind::design::lbfgsb::{minimize, LbfgsbSettings};
 use formfind::design::{
-    design, DesignProblem, DesignSpec, ErrorKind, GoalSpec, OptimizerSpec, ParameterSpec,
-    Selection, TermSpec,
+    design, DesignProblem, DesignSpec, ErrorKind, GoalSpec, OptimizerMethod, OptimizerSpec,
+    ParameterSpec, Selection, TermSpec,
 };
 use formfind::Topology;
 
@@ -579,4 +582,120 @@ fn a_sign_free_member_may_become_a_bar() {
     spec.parameters[0].sign = Some("either".into());
     let e = design(&t, &spec).unwrap_err().to_string();
     assert!(e.contains("design.parameters[0].sign"), "{e}");
+}
+
+/// `every_goal` with every term's error made a sum of squares (root-mean-squared and
+/// mean-absolute become mean-squared, the others squared): every goal kind, as residuals.
+fn every_goal_squared(t: &Topology) -> DesignSpec {
+    let mut spec = every_goal(t);
+    for term in &mut spec.terms {
+        term.error = match term.error {
+            ErrorKind::MeanSquared | ErrorKind::RootMeanSquared | ErrorKind::MeanAbsolute => {
+                ErrorKind::MeanSquared
+            }
+            _ => ErrorKind::Squared,
+        };
+    }
+    spec
+}
+
+#[test]
+fn the_residuals_jacobian_matches_the_gradient_and_central_differences() {
+    let mut worst = 0.0f64;
+    for (name, t, q) in structures() {
+        let t = with_q(t, &q);
+        let p = DesignProblem::new(&t, &every_goal_squared(&t)).unwrap();
+        let v = p.start();
+        let (r, j) = p.residuals(&v).unwrap();
+        let (f, g) = p.objective(&v).unwrap();
+        // f = ‖r‖² and ∇f = 2 Jᵀ r: the residuals against the objective's own adjoint
+        let rr: f64 = r.iter().map(|x| x * x).sum();
+        assert!((rr - f).abs() <= 1e-12 * f, "{name}: ‖r‖² {rr} f {f}");
+        let scale = g.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        for (c, gc) in g.iter().enumerate() {
+            let jtr: f64 = (0..r.len()).map(|i| j[(i, c)] * r[i]).sum();
+            assert!((2.0 * jtr - gc).abs() <= 1e-10 * scale, "{name}: {c}");
+        }
+        // each column against central differences of the residuals
+        let jmax = j.amax();
+        for c in 0..v.len() {
+            let h = 1e-4 * v[c].abs().max(1e-3);
+            let at = |h: f64| {
+                let (mut a, mut b) = (v.clone(), v.clone());
+                a[c] += h;
+                b[c] -= h;
+                let (ra, _) = p.residuals(&a).unwrap();
+                let (rb, _) = p.residuals(&b).unwrap();
+                ra.iter()
+                    .zip(&rb)
+                    .map(|(x, y)| (x - y) / (2.0 * h))
+                    .collect::<Vec<f64>>()
+            };
+            let (d1, d2) = (at(h), at(h / 2.0));
+            for i in 0..r.len() {
+                let fd = (4.0 * d2[i] - d1[i]) / 3.0;
+                let e = (j[(i, c)] - fd).abs() / jmax;
+                worst = worst.max(e);
+                assert!(
+                    e < 1e-6,
+                    "{name}: dr{i}/dv{c}: exact {} central {fd}",
+                    j[(i, c)]
+                );
+            }
+        }
+    }
+    eprintln!("worst relative difference of the Jacobian: {worst:.1e}");
+}
+
+#[test]
+fn levenberg_marquardt_reaches_the_lbfgsb_optimum_with_bounds_active() {
+    // the KKT problem above: a floor on which some force densities rest
+    let (t, mut spec) = net_problem(2.0);
+    let quasi_newton = design(&t, &spec).unwrap();
+    spec.optimizer.method = OptimizerMethod::LevenbergMarquardt;
+    let lm = design(&t, &spec).unwrap();
+    assert!(
+        lm.converged && lm.method == "levenberg_marquardt",
+        "{}",
+        lm.stop
+    );
+    let rel = (lm.objective - quasi_newton.objective).abs() / quasi_newton.objective;
+    assert!(rel < 1e-8, "{} {}", lm.objective, quasi_newton.objective);
+    for (a, b) in lm.variables.iter().zip(&quasi_newton.variables) {
+        assert!((a.value - b.value).abs() < 1e-5 * b.value, "{a:?} {b:?}");
+    }
+    assert!(lm.variables.iter().any(|v| v.value == v.lower));
+    // in far fewer iterations: Gauss–Newton near a small-residual minimum
+    assert!(
+        lm.iterations * 4 < quasi_newton.iterations,
+        "{} {}",
+        lm.iterations,
+        quasi_newton.iterations
+    );
+    for w in lm.history.windows(2) {
+        assert!(w[1].objective < w[0].objective);
+    }
+    for row in &lm.history {
+        let terms: f64 = row.terms.iter().sum();
+        assert!(
+            (terms - row.objective).abs() <= 1e-14 * row.objective,
+            "{row:?}"
+        );
+    }
+}
+
+#[test]
+fn levenberg_marquardt_refuses_a_term_that_is_not_a_sum_of_squares() {
+    let (t, q) = cable_net(4);
+    let t = with_q(t, &q);
+    let mut spec = every_goal(&t);
+    spec.optimizer.method = OptimizerMethod::LevenbergMarquardt;
+    let e = design(&t, &spec).unwrap_err().to_string();
+    assert!(
+        e.contains("design.terms[2].error") && e.contains("root_mean_squared"),
+        "{e}"
+    );
+    let p = DesignProblem::new(&t, &spec).unwrap();
+    let e = p.residuals(&p.start()).unwrap_err().to_string();
+    assert!(e.contains("design.terms[2].error"), "{e}");
 }

@@ -24,7 +24,7 @@
 
 use crate::formfind::{FormfindFailure, FormfindRequest, Formfound};
 use crate::scene::SceneSource;
-use ::formfind::design::Designed;
+use ::formfind::design::{Designed, OptimizerMethod};
 use ::formfind::{Method, Topology};
 use serde::{Deserialize, Serialize};
 use tensegrity_core::request::{InvalidParameter, Request};
@@ -45,6 +45,9 @@ pub struct DesignRequest {
     /// The optimiser's iteration cap, replacing the file's `[design.optimizer]` one.
     #[param(count, help = "Iteration cap of the optimiser (default: the file's, else 1000)", rule = AtLeast(1.0), optional)]
     pub max_iterations: Option<usize>,
+    /// The optimiser, replacing the file's `[design.optimizer] method`.
+    #[param(choice = ["lbfgsb", "levenberg_marquardt"], help = "Optimiser: lbfgsb (bound-constrained quasi-Newton, any objective) or levenberg_marquardt (projected Levenberg-Marquardt on the residuals' exact Jacobian, for terms with squared or mean_squared errors: fast where L-BFGS crawls along a flat valley); default: the file's, else lbfgsb", optional)]
+    pub method: Option<OptimizerMethod>,
     /// Prestress level of a designed form without loads: the largest string tension (N).
     #[param(
         number,
@@ -77,6 +80,7 @@ impl Default for DesignRequest {
         Self {
             design: None,
             max_iterations: None,
+            method: None,
             prestress: f.prestress,
             stiffness: f.stiffness,
             bar_mass: f.bar_mass,
@@ -130,6 +134,9 @@ impl DesignRequest {
         };
         if let Some(n) = self.max_iterations {
             spec.optimizer.max_iterations = n;
+        }
+        if let Some(m) = self.method {
+            spec.optimizer.method = m;
         }
         Ok((topology, spec, source))
     }

@@ -273,4 +273,21 @@ impl PyDesignProblem {
             .objective_with_terms(&values)
             .map_err(|e| failure(&e, e.category()))
     }
+
+    /// The residuals at `values` and their Jacobian (raw, residuals × variables, row-major).
+    fn residuals<'py>(
+        &self,
+        py: Python<'py>,
+        values: Vec<f64>,
+    ) -> PyResult<(Vec<f64>, Bound<'py, PyBytes>)> {
+        let (r, j) = self
+            .inner
+            .residuals(&values)
+            .map_err(|e| failure(&e, e.category()))?;
+        let bytes: Vec<u8> = (0..j.nrows())
+            .flat_map(|i| (0..j.ncols()).map(move |c| (i, c)))
+            .flat_map(|(i, c)| j[(i, c)].to_ne_bytes())
+            .collect();
+        Ok((r, PyBytes::new(py, &bytes)))
+    }
 }

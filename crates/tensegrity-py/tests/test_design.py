@@ -3,7 +3,8 @@ equals the command line's ``design --json``, meets an attainable goal (a node he
 strings driven to a target point: the closed form x = (sum q_k x_k + p) / sum q at the
 designed q), and :class:`tensegrity.DesignProblem` gives the file's objective and its exact
 gradient (against central differences; stationary at the design) for an optimiser of one's
-own; bad input refused."""
+own, and its residuals with their exact Jacobian (f = |r|^2, against central differences) for
+a least-squares one; Levenberg-Marquardt meets the same target; bad input refused."""
 
 import json
 import os
@@ -90,6 +91,33 @@ def test_the_problem_gives_the_exact_gradient_stationary_at_the_design():
     f, g = p.objective(vd)
     assert np.isclose(f, r.objective, rtol=1e-12, atol=1e-300)
     assert np.abs(g).max() < 1e-9, g
+
+
+def test_the_residuals_and_levenberg_marquardt():
+    # the star's terms are squared and mean-squared: f = |r|^2, grad f = 2 J^T r
+    p = DesignProblem(STAR)
+    v = p.start * np.array([1.0, 1.5, 0.7, 1.2])
+    r, j = p.residuals(v)
+    f, g = p.objective(v)
+    # 3 position components, and one reaction limit per held node (4)
+    assert r.shape == (7,) and j.shape == (7, 4)
+    assert np.isclose(r @ r, f, rtol=1e-13)
+    assert np.allclose(2 * j.T @ r, g, rtol=1e-10, atol=1e-12 * np.abs(g).max())
+    for c in range(4):
+        h = 1e-5 * v[c]
+        e = np.zeros(4)
+        e[c] = h
+        fd = (p.residual(v + e) - p.residual(v - e)) / (2 * h)
+        assert np.allclose(fd, j[:, c], rtol=1e-6, atol=1e-7 * np.abs(j).max()), c
+    # the file's design by Levenberg-Marquardt meets the same attainable target
+    lm = tensegrity.design(STAR, method="levenberg_marquardt")
+    assert lm.method == "levenberg_marquardt" and lm.converged and lm.objective < 1e-12
+    q = np.asarray(lm.force_density)
+    assert np.allclose((q @ ANCHORS + P) / q.sum(), TARGET, atol=1e-6)
+    # a term that is not a sum of squares has no residuals
+    absolute = STAR.replace('name = "aim"', 'name = "aim"\nerror = "absolute"')
+    with pytest.raises(tensegrity.TensegrityError, match=r"design.terms\[0\].error"):
+        DesignProblem(absolute).residuals(p.start)
 
 
 def test_bad_design_files_are_refused_naming_the_item():

@@ -151,10 +151,47 @@ pub struct Minimum {
 }
 
 /// x − P(x − g), the projected gradient, in the max norm.
-fn projected_gradient_norm(x: &[f64], g: &[f64], lower: &[f64], upper: &[f64]) -> f64 {
+pub(super) fn projected_gradient_norm(x: &[f64], g: &[f64], lower: &[f64], upper: &[f64]) -> f64 {
     (0..x.len())
         .map(|i| (x[i] - (x[i] - g[i]).clamp(lower[i], upper[i])).abs())
         .fold(0.0, f64::max)
+}
+
+/// `x` projected on the box.
+pub(super) fn project(x: &mut [f64], lower: &[f64], upper: &[f64]) {
+    for i in 0..x.len() {
+        x[i] = x[i].clamp(lower[i], upper[i]);
+    }
+}
+
+/// The first entry of the history: the start x with f and ∇f there.
+pub(super) fn start(f: f64, x: &[f64], g: &[f64], lower: &[f64], upper: &[f64]) -> Iterate {
+    Iterate {
+        iteration: 0,
+        objective: f,
+        projected_gradient: projected_gradient_norm(x, g, lower, upper),
+        step: 0.0,
+        evaluations: 1,
+        evaluation: 1,
+    }
+}
+
+/// The rules checked before each iteration: the gradient rule, then the caps.
+pub(super) fn stop_before_iteration(
+    (x, g): (&[f64], &[f64]),
+    (lower, upper): (&[f64], &[f64]),
+    (iterations, evaluations): (usize, usize),
+    settings: &LbfgsbSettings,
+) -> Option<Stop> {
+    if projected_gradient_norm(x, g, lower, upper) <= settings.gtol {
+        Some(Stop::Gradient)
+    } else if iterations >= settings.max_iterations {
+        Some(Stop::Iterations)
+    } else if evaluations >= settings.max_evaluations {
+        Some(Stop::Evaluations)
+    } else {
+        None
+    }
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -172,36 +209,20 @@ pub fn minimize<E>(
     settings: &LbfgsbSettings,
 ) -> Result<Minimum, E> {
     let n = x0.len();
-    let project = |x: &mut [f64]| {
-        for i in 0..n {
-            x[i] = x[i].clamp(lower[i], upper[i]);
-        }
-    };
+    let project = |x: &mut [f64]| project(x, lower, upper);
     let mut x = x0.to_vec();
     project(&mut x);
     let mut g = vec![0.0; n];
     let mut f = fg(&x, &mut g)?;
     let mut evaluations = 1;
-    let mut history = vec![Iterate {
-        iteration: 0,
-        objective: f,
-        projected_gradient: projected_gradient_norm(&x, &g, lower, upper),
-        step: 0.0,
-        evaluations,
-        evaluation: 1,
-    }];
+    let mut history = vec![start(f, &x, &g, lower, upper)];
     let mut pairs: VecDeque<(Vec<f64>, Vec<f64>)> = VecDeque::new();
     let (mut xt, mut gt) = (vec![0.0; n], vec![0.0; n]);
     let mut iterations = 0;
     let stop = loop {
-        if projected_gradient_norm(&x, &g, lower, upper) <= settings.gtol {
-            break Stop::Gradient;
-        }
-        if iterations >= settings.max_iterations {
-            break Stop::Iterations;
-        }
-        if evaluations >= settings.max_evaluations {
-            break Stop::Evaluations;
+        let counts = (iterations, evaluations);
+        if let Some(stop) = stop_before_iteration((&x, &g), (lower, upper), counts, settings) {
+            break stop;
         }
         let free: Vec<bool> = (0..n)
             .map(|i| !((x[i] <= lower[i] && g[i] > 0.0) || (x[i] >= upper[i] && g[i] < 0.0)))

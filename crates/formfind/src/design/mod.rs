@@ -41,11 +41,13 @@
 //! ```
 
 pub mod lbfgsb;
+pub mod levenberg_marquardt;
 mod objective;
 mod spec;
 
 pub use spec::{
-    DesignSpec, ErrorKind, GoalSpec, OptimizerSpec, ParameterSpec, Selection, TermSpec,
+    DesignSpec, ErrorKind, GoalSpec, OptimizerMethod, OptimizerSpec, ParameterSpec, Selection,
+    TermSpec,
 };
 
 use crate::error::{FormFindError, Result};
@@ -106,11 +108,16 @@ pub struct Designed {
     pub terms: Vec<f64>,
     /// Whether the optimiser converged (the gradient or the objective rule).
     pub converged: bool,
-    /// Why it stopped: `gradient`, `objective`, `iterations`, `evaluations`, `line_search`.
+    /// Why it stopped: `gradient`, `objective`, `iterations`, `evaluations`, `line_search`
+    /// (for `levenberg_marquardt`: no damped step decreased the objective).
     pub stop: &'static str,
+    /// The optimiser: `lbfgsb` or `levenberg_marquardt` ([`OptimizerMethod`]).
+    pub method: &'static str,
     /// Iterations.
     pub iterations: usize,
-    /// Objective evaluations (one form and one adjoint solve each).
+    /// Objective evaluations (L-BFGS-B: one form and one adjoint solve each;
+    /// Levenberg–Marquardt: one form each, and one adjoint solve per residual for each
+    /// Jacobian).
     pub evaluations: usize,
     /// The variables.
     pub variables: Vec<DesignVariable>,
@@ -147,25 +154,53 @@ pub fn design(topology: &Topology, spec: &DesignSpec) -> Result<Designed> {
     let upper: Vec<f64> = problem.variables.iter().map(|v| v.upper).collect();
     let start: Vec<f64> = problem.variables.iter().map(|v| v.start).collect();
     let mut term_rows: Vec<Vec<f64>> = Vec::new();
-    let mut first_error = None;
-    let minimum = lbfgsb::minimize(
-        |v, g| match problem.evaluate(v) {
-            Ok(e) => {
-                g.copy_from_slice(&e.gradient);
-                term_rows.push(e.terms);
-                Ok(e.objective)
+    let failed = vec![f64::NAN; problem.terms.len()];
+    let minimum = match spec.optimizer.method {
+        OptimizerMethod::Lbfgsb => lbfgsb::minimize(
+            |v, g| match problem.evaluate(v) {
+                Ok(e) => {
+                    g.copy_from_slice(&e.gradient);
+                    term_rows.push(e.terms);
+                    Ok(e.objective)
+                }
+                Err(e) => {
+                    term_rows.push(failed.clone());
+                    Err(e)
+                }
+            },
+            &start,
+            &lower,
+            &upper,
+            &settings,
+        )?,
+        OptimizerMethod::LevenbergMarquardt => {
+            if let Err(i) = problem.least_squares() {
+                return refused(
+                    format!("design.terms[{i}].error"),
+                    format!(
+                        "levenberg_marquardt minimises a sum of squares: every term's error must be squared or mean_squared, not {}",
+                        problem.terms[i].error.name()
+                    ),
+                );
             }
-            Err(e) => {
-                term_rows.push(vec![f64::NAN; problem.terms.len()]);
-                first_error.get_or_insert_with(|| e.to_string());
-                Err(e)
-            }
-        },
-        &start,
-        &lower,
-        &upper,
-        &settings,
-    )?;
+            levenberg_marquardt::minimize(
+                |v, jacobian| match problem.residuals(v, jacobian) {
+                    Ok(r) => {
+                        term_rows.push(r.terms);
+                        Ok((r.values, r.jacobian))
+                    }
+                    Err(e) => {
+                        term_rows.push(failed.clone());
+                        Err(e)
+                    }
+                },
+                &start,
+                &lower,
+                &upper,
+                &settings,
+            )?
+        }
+    };
     let at = problem.evaluate(&minimum.x)?;
     let q = problem.force_densities(&minimum.x);
     let history = minimum
@@ -218,6 +253,7 @@ pub fn design(topology: &Topology, spec: &DesignSpec) -> Result<Designed> {
         terms: at.terms,
         converged: minimum.stop.converged(),
         stop: minimum.stop.name(),
+        method: spec.optimizer.method.name(),
         iterations: minimum.iterations,
         evaluations: minimum.evaluations,
         variables: problem
@@ -302,7 +338,46 @@ impl DesignProblem {
         Ok((e.objective, e.gradient, e.terms))
     }
 
-    fn evaluate(&self, v: &[f64]) -> Result<objective::Evaluation> {
+    /// The residuals r (f = ‖r‖², one per component of each goal: √(α w / n) (p − t), n the
+    /// term's goal count for a mean-squared error, else 1) and their exact Jacobian dr/dv
+    /// (residuals × variables; one adjoint solve per residual) at `v`: the model of the
+    /// `levenberg_marquardt` optimiser, for scipy's `least_squares` or a check. A problem
+    /// with a term whose error is not `squared` or `mean_squared` is refused naming it.
+    ///
+    /// ```
+    /// use formfind::design::{DesignProblem, DesignSpec, ErrorKind, GoalSpec, TermSpec};
+    /// let grid = formfind::builtin("grid:2").unwrap();
+    /// let goal = GoalSpec::LoadPath { members: None, target: None, weight: 1.0 };
+    /// let term = TermSpec { goals: vec![goal], ..TermSpec::default() }; // squared
+    /// let spec = DesignSpec { terms: vec![term], ..DesignSpec::default() };
+    /// let p = DesignProblem::new(&grid, &spec).unwrap();
+    /// let v = p.start();
+    /// let (r, j) = p.residuals(&v).unwrap();
+    /// let (f, g) = p.objective(&v).unwrap();
+    /// // f = ‖r‖² and ∇f = 2 Jᵀ r: two routes to the same numbers
+    /// assert!((r.iter().map(|x| x * x).sum::<f64>() - f).abs() < 1e-12 * f);
+    /// for (c, gc) in g.iter().enumerate() {
+    ///     let jtr: f64 = (0..r.len()).map(|i| j[(i, c)] * r[i]).sum();
+    ///     assert!((2.0 * jtr - gc).abs() < 1e-10 * f.max(1.0));
+    /// }
+    /// ```
+    pub fn residuals(&self, v: &[f64]) -> Result<(Vec<f64>, nalgebra::DMatrix<f64>)> {
+        self.check_length(v)?;
+        if let Err(i) = self.0.least_squares() {
+            return refused(
+                format!("design.terms[{i}].error"),
+                format!(
+                    "residuals need a sum of squares: the error is {}, not squared or mean_squared",
+                    self.0.terms[i].error.name()
+                ),
+            );
+        }
+        let r = self.0.residuals(v, true)?;
+        let j = r.jacobian.expect("asked for");
+        Ok((r.values, j))
+    }
+
+    fn check_length(&self, v: &[f64]) -> Result<()> {
         if v.len() != self.0.variables.len() {
             return refused(
                 "design.parameters".into(),
@@ -313,6 +388,11 @@ impl DesignProblem {
                 ),
             );
         }
+        Ok(())
+    }
+
+    fn evaluate(&self, v: &[f64]) -> Result<objective::Evaluation> {
+        self.check_length(v)?;
         self.0.evaluate(v)
     }
 }

@@ -29,7 +29,7 @@ use super::spec::ErrorKind;
 use crate::error::Result;
 use crate::sensitivity::{Cotangent, FdmSensitivity};
 use crate::topology::Topology;
-use nalgebra::Vector3;
+use nalgebra::{DMatrix, Vector3};
 
 /// One design variable: the members whose force density it sets, and its bounds.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,6 +127,27 @@ pub(super) struct Evaluation {
     pub form: FdmSensitivity,
 }
 
+/// The residuals of a sum-of-squares problem ([`Problem::residuals`]).
+pub(super) struct Residuals {
+    /// r, f = ‖r‖².
+    pub values: Vec<f64>,
+    /// dr/dv (residuals × variables), when asked.
+    pub jacobian: Option<DMatrix<f64>>,
+    /// Each term's value.
+    pub terms: Vec<f64>,
+}
+
+/// The form at one point and what the goals read from it.
+struct State {
+    q: Vec<f64>,
+    form: FdmSensitivity,
+    nodes: Vec<Vector3<f64>>,
+    pairs: Vec<[usize; 2]>,
+    lengths: Vec<f64>,
+    reactions: Vec<Vector3<f64>>,
+    held: Vec<usize>,
+}
+
 /// A prediction: 1 or 3 numbers.
 #[derive(Clone, Copy)]
 struct Prediction {
@@ -158,95 +179,110 @@ impl Problem {
         q
     }
 
+    /// The form at `v` and what the goals read from it.
+    fn state(&self, v: &[f64]) -> Result<State> {
+        let q = self.force_densities(v);
+        let form = FdmSensitivity::new(&self.topology, &q)?;
+        Ok(State {
+            nodes: form.nodes().to_vec(),
+            pairs: self.topology.member_nodes(),
+            lengths: form.lengths(),
+            reactions: form.reactions(),
+            held: form.held().to_vec(),
+            form,
+            q,
+        })
+    }
+
+    /// One goal's prediction at `st` and its target (3 numbers; a scalar in the first).
+    fn predict(&self, st: &State, goal: &Goal) -> (Prediction, Vector3<f64>) {
+        match goal {
+            Goal::Position { node, target } => (Prediction::vector(st.nodes[*node]), *target),
+            Goal::Plane {
+                node,
+                point,
+                normal,
+            } => (
+                Prediction::scalar((st.nodes[*node] - point).dot(normal)),
+                Vector3::zeros(),
+            ),
+            Goal::Line {
+                node,
+                point,
+                direction,
+            } => {
+                let d = st.nodes[*node] - point;
+                (
+                    Prediction::vector(d - direction * direction.dot(&d)),
+                    Vector3::zeros(),
+                )
+            }
+            Goal::ForceDensity { member, target } => (
+                Prediction::scalar(st.q[*member]),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::Coordinate { node, axis, target } => (
+                Prediction::scalar(st.nodes[*node][*axis]),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::Length { member, target } => (
+                Prediction::scalar(st.lengths[*member]),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::Force { member, target } => (
+                Prediction::scalar(st.q[*member] * st.lengths[*member]),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::Direction { member, target } => {
+                let [a, b] = st.pairs[*member];
+                let d = st.nodes[b] - st.nodes[a];
+                let l = d.norm();
+                let u = if l > 0.0 { d / l } else { Vector3::zeros() };
+                (Prediction::vector(u), *target)
+            }
+            Goal::Reaction { held, target } => (Prediction::vector(st.reactions[*held]), *target),
+            Goal::ReactionForce { held, target } => (
+                Prediction::scalar(st.reactions[*held].norm()),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::ReactionLimit { held, limit } => (
+                Prediction::scalar((st.reactions[*held].norm() - limit).max(0.0)),
+                Vector3::zeros(),
+            ),
+            Goal::LoadPath { members, target } => (
+                Prediction::scalar(
+                    members
+                        .iter()
+                        .map(|&k| st.q[k].abs() * st.lengths[k] * st.lengths[k])
+                        .sum(),
+                ),
+                Vector3::new(*target, 0.0, 0.0),
+            ),
+            Goal::Smoothness { node, neighbours } => {
+                let mean = neighbours
+                    .iter()
+                    .fold(Vector3::zeros(), |s, &j| s + st.nodes[j])
+                    / neighbours.len() as f64;
+                (Prediction::vector(st.nodes[*node] - mean), Vector3::zeros())
+            }
+        }
+    }
+
     /// The form at `v`, the objective, its terms and its gradient with respect to `v`
     /// (module docs).
     pub fn evaluate(&self, v: &[f64]) -> Result<Evaluation> {
-        let q = self.force_densities(v);
-        let mut form = FdmSensitivity::new(&self.topology, &q)?;
-        let nodes = form.nodes().to_vec();
-        let pairs = self.topology.member_nodes();
-        let lengths = form.lengths();
-        let reactions = form.reactions();
-        let held = form.held().to_vec();
-        let m = q.len();
-        let predict = |goal: &Goal| -> (Prediction, Vector3<f64>) {
-            match goal {
-                Goal::Position { node, target } => (Prediction::vector(nodes[*node]), *target),
-                Goal::Plane {
-                    node,
-                    point,
-                    normal,
-                } => (
-                    Prediction::scalar((nodes[*node] - point).dot(normal)),
-                    Vector3::zeros(),
-                ),
-                Goal::Line {
-                    node,
-                    point,
-                    direction,
-                } => {
-                    let d = nodes[*node] - point;
-                    (
-                        Prediction::vector(d - direction * direction.dot(&d)),
-                        Vector3::zeros(),
-                    )
-                }
-                Goal::ForceDensity { member, target } => (
-                    Prediction::scalar(q[*member]),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::Coordinate { node, axis, target } => (
-                    Prediction::scalar(nodes[*node][*axis]),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::Length { member, target } => (
-                    Prediction::scalar(lengths[*member]),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::Force { member, target } => (
-                    Prediction::scalar(q[*member] * lengths[*member]),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::Direction { member, target } => {
-                    let [a, b] = pairs[*member];
-                    let d = nodes[b] - nodes[a];
-                    let l = d.norm();
-                    let u = if l > 0.0 { d / l } else { Vector3::zeros() };
-                    (Prediction::vector(u), *target)
-                }
-                Goal::Reaction { held, target } => (Prediction::vector(reactions[*held]), *target),
-                Goal::ReactionForce { held, target } => (
-                    Prediction::scalar(reactions[*held].norm()),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::ReactionLimit { held, limit } => (
-                    Prediction::scalar((reactions[*held].norm() - limit).max(0.0)),
-                    Vector3::zeros(),
-                ),
-                Goal::LoadPath { members, target } => (
-                    Prediction::scalar(
-                        members
-                            .iter()
-                            .map(|&k| q[k].abs() * lengths[k] * lengths[k])
-                            .sum(),
-                    ),
-                    Vector3::new(*target, 0.0, 0.0),
-                ),
-                Goal::Smoothness { node, neighbours } => {
-                    let mean = neighbours
-                        .iter()
-                        .fold(Vector3::zeros(), |s, &j| s + nodes[j])
-                        / neighbours.len() as f64;
-                    (Prediction::vector(nodes[*node] - mean), Vector3::zeros())
-                }
-            }
-        };
-        let mut cot = Cotangent::zeros(nodes.len(), m);
+        let mut st = self.state(v)?;
+        let m = st.q.len();
+        let mut cot = Cotangent::zeros(st.nodes.len(), m);
         let mut dl = vec![0.0; m];
         let mut dforce = vec![0.0; m];
         let mut values = Vec::with_capacity(self.terms.len());
         for term in &self.terms {
-            let predicted: Vec<_> = term.goals.iter().map(|(g, _)| predict(g)).collect();
+            let predicted: Vec<_> = term
+                .goals
+                .iter()
+                .map(|(g, _)| self.predict(&st, g))
+                .collect();
             let sum: f64 = predicted
                 .iter()
                 .zip(&term.goals)
@@ -261,38 +297,103 @@ impl Problem {
             }
             for ((p, t), (goal, w)) in predicted.iter().zip(&term.goals) {
                 let g = scale * element_slope(term.error, p, t, *w);
-                self.pull_back(goal, g, &nodes, &q, &lengths, &reactions, &held, &pairs)
+                self.pull_back(goal, g, &st)
                     .apply(&mut cot, &mut dl, &mut dforce);
             }
         }
-        let cot = cot.lengths(&form, &dl)?.forces(&form, &dforce)?;
-        let grad = form.adjoint(&cot)?;
-        let gradient = self
-            .variables
-            .iter()
-            .map(|var| var.members.iter().map(|&k| grad.force_densities[k]).sum())
-            .collect();
+        let cot = cot.lengths(&st.form, &dl)?.forces(&st.form, &dforce)?;
+        let grad = st.form.adjoint(&cot)?;
         Ok(Evaluation {
             objective: values.iter().sum(),
             terms: values,
-            gradient,
-            form,
+            gradient: self.by_variable(&grad.force_densities),
+            form: st.form,
+        })
+    }
+
+    /// df/dv from df/dq: each variable's members summed.
+    fn by_variable(&self, dq: &[f64]) -> Vec<f64> {
+        self.variables
+            .iter()
+            .map(|var| var.members.iter().map(|&k| dq[k]).sum())
+            .collect()
+    }
+
+    /// Whether every term is a sum of squares (squared or mean-squared errors), so that
+    /// f = ‖r‖² ([`Self::residuals`]); the first term that is not, otherwise.
+    pub fn least_squares(&self) -> std::result::Result<(), usize> {
+        match self
+            .terms
+            .iter()
+            .position(|t| !matches!(t.error, ErrorKind::Squared | ErrorKind::MeanSquared))
+        {
+            Some(i) => Err(i),
+            None => Ok(()),
+        }
+    }
+
+    /// The residuals r at `v` of a problem whose terms are all squared or mean-squared
+    /// errors, f = ‖r‖² (module docs), each term's value, and, when `jacobian`, J = dr/dv
+    /// (one adjoint solve per residual, the factorisation reused).
+    pub fn residuals(&self, v: &[f64], jacobian: bool) -> Result<Residuals> {
+        let mut st = self.state(v)?;
+        let m = st.q.len();
+        let mut values = Vec::new();
+        let mut seeds = Vec::new();
+        let mut terms = Vec::with_capacity(self.terms.len());
+        for term in &self.terms {
+            let n = if term.error == ErrorKind::MeanSquared {
+                term.goals.len() as f64
+            } else {
+                1.0
+            };
+            let mut sum = 0.0;
+            for (goal, w) in &term.goals {
+                let (p, t) = self.predict(&st, goal);
+                let scale = (term.weight * w / n).sqrt();
+                for c in 0..p.dim {
+                    let r = scale * (p.value[c] - t[c]);
+                    values.push(r);
+                    sum += r * r;
+                    let mut g = Vector3::zeros();
+                    g[c] = scale;
+                    seeds.push((goal, g));
+                }
+            }
+            terms.push(sum);
+        }
+        let jacobian = if jacobian {
+            let mut j = DMatrix::zeros(values.len(), self.variables.len());
+            for (row, (goal, g)) in seeds.into_iter().enumerate() {
+                let mut cot = Cotangent::zeros(st.nodes.len(), m);
+                let (mut dl, mut dforce) = (vec![0.0; m], vec![0.0; m]);
+                self.pull_back(goal, g, &st)
+                    .apply(&mut cot, &mut dl, &mut dforce);
+                let cot = cot.lengths(&st.form, &dl)?.forces(&st.form, &dforce)?;
+                let grad = st.form.adjoint(&cot)?;
+                for (col, d) in self
+                    .by_variable(&grad.force_densities)
+                    .into_iter()
+                    .enumerate()
+                {
+                    j[(row, col)] = d;
+                }
+            }
+            Some(j)
+        } else {
+            None
+        };
+        Ok(Residuals {
+            values,
+            jacobian,
+            terms,
         })
     }
 
     /// The partial derivatives of f through one goal's prediction, given ∂f/∂p = `g`.
-    #[allow(clippy::too_many_arguments)]
-    fn pull_back(
-        &self,
-        goal: &Goal,
-        g: Vector3<f64>,
-        nodes: &[Vector3<f64>],
-        q: &[f64],
-        lengths: &[f64],
-        reactions: &[Vector3<f64>],
-        held: &[usize],
-        pairs: &[[usize; 2]],
-    ) -> Pullback {
+    fn pull_back(&self, goal: &Goal, g: Vector3<f64>, st: &State) -> Pullback {
+        let (nodes, q, lengths) = (&st.nodes, &st.q, &st.lengths);
+        let (reactions, held, pairs) = (&st.reactions, &st.held, &st.pairs);
         let mut out = Pullback::default();
         let reaction = |out: &mut Pullback, index: usize, g: Vector3<f64>| {
             let h = held[index];

@@ -89,6 +89,26 @@ pub enum ErrorKind {
     MeanPrediction,
 }
 
+impl ErrorKind {
+    /// Its name in a design file (`mean_squared`).
+    ///
+    /// ```
+    /// use formfind::design::ErrorKind;
+    /// assert_eq!(ErrorKind::MeanSquared.name(), "mean_squared");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            ErrorKind::Squared => "squared",
+            ErrorKind::MeanSquared => "mean_squared",
+            ErrorKind::RootMeanSquared => "root_mean_squared",
+            ErrorKind::Absolute => "absolute",
+            ErrorKind::MeanAbsolute => "mean_absolute",
+            ErrorKind::Prediction => "prediction",
+            ErrorKind::MeanPrediction => "mean_prediction",
+        }
+    }
+}
+
 /// One term of the objective: `weight` times its error over its goals (default: no name,
 /// squared error, weight 1, no goals).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -338,8 +358,40 @@ pub struct OptimizerSpec {
     pub ftol: f64,
     /// Largest projected-gradient component below which it stops (scipy's `gtol`).
     pub gtol: f64,
-    /// Pairs of the limited-memory Hessian.
+    /// Pairs of the limited-memory Hessian (L-BFGS-B).
     pub memory: usize,
+    /// The method (default L-BFGS-B).
+    pub method: OptimizerMethod,
+}
+
+/// The optimiser of a design problem (the file's `[design.optimizer] method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OptimizerMethod {
+    /// `lbfgsb`: the bound-constrained quasi-Newton method ([`super::lbfgsb`]), for any
+    /// objective (jax-fdm's default).
+    #[default]
+    Lbfgsb,
+    /// `levenberg_marquardt`: the projected Levenberg–Marquardt method on the residuals'
+    /// exact Jacobian ([`super::levenberg_marquardt`]), for problems whose every term is a
+    /// squared or mean-squared error: Gauss–Newton's fast convergence where L-BFGS crawls
+    /// along a flat valley.
+    LevenbergMarquardt,
+}
+
+impl OptimizerMethod {
+    /// Its name in a design file (`levenberg_marquardt`).
+    ///
+    /// ```
+    /// use formfind::design::OptimizerMethod;
+    /// assert_eq!(OptimizerMethod::LevenbergMarquardt.name(), "levenberg_marquardt");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            OptimizerMethod::Lbfgsb => "lbfgsb",
+            OptimizerMethod::LevenbergMarquardt => "levenberg_marquardt",
+        }
+    }
 }
 
 impl Default for OptimizerSpec {
@@ -350,6 +402,7 @@ impl Default for OptimizerSpec {
             ftol: s.ftol,
             gtol: s.gtol,
             memory: s.memory,
+            method: OptimizerMethod::default(),
         }
     }
 }

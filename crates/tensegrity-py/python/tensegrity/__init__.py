@@ -98,7 +98,8 @@ SUMMARIES = {
     "design": "Inverse form-finding: the force densities (within bounds, shared by groups) "
               "whose force density form best meets a design file's goals (node positions or "
               "shape, member lengths, forces and directions, reactions, load path, "
-              "smoothness), by L-BFGS-B on the exact gradient; the designed form and the "
+              "smoothness), by L-BFGS-B on the exact gradient (or Levenberg-Marquardt on the "
+              "residuals' exact Jacobian); the designed form and the "
               "history (``tensegrity design DESIGN.toml --json``).",
     "solve": "Load path of a scene: elastic bars and tension-only strings under its loads "
              "scaled by a load factor, with large displacements, through limit points (arc "

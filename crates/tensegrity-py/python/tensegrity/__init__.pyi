@@ -699,6 +699,7 @@ class DesignResult(Result):
     objective
     converged
     stop
+    method
     iterations
     evaluations
     """
@@ -707,6 +708,7 @@ class DesignResult(Result):
     objective: Any
     converged: Any
     stop: Any
+    method: Any
     iterations: Any
     evaluations: Any
 
@@ -1786,6 +1788,7 @@ def design(
     design: Optional[str],
     *,
     max_iterations: Optional[int] = ...,
+    method: Optional[Literal['lbfgsb', 'levenberg_marquardt']] = ...,
     prestress: float = ...,
     stiffness: float = ...,
     bar_mass: float = ...,
@@ -1793,7 +1796,7 @@ def design(
     max_work: Size = ...,
     max_output: Size = ...,
 ) -> DesignResult:
-    """Inverse form-finding: the force densities (within bounds, shared by groups) whose force density form best meets a design file's goals (node positions or shape, member lengths, forces and directions, reactions, load path, smoothness), by L-BFGS-B on the exact gradient; the designed form and the history (``tensegrity design DESIGN.toml --json``).
+    """Inverse form-finding: the force densities (within bounds, shared by groups) whose force density form best meets a design file's goals (node positions or shape, member lengths, forces and directions, reactions, load path, smoothness), by L-BFGS-B on the exact gradient (or Levenberg-Marquardt on the residuals' exact Jacobian); the designed form and the history (``tensegrity design DESIGN.toml --json``).
 
     ``design`` is a design file's path or its TOML text.
 
@@ -1804,6 +1807,11 @@ def design(
         goals), or its TOML text
     max_iterations : int, optional
         Iteration cap of the optimiser (default: the file's, else 1000); must be at least 1
+    method : {'lbfgsb', 'levenberg_marquardt'}, optional
+        Optimiser: lbfgsb (bound-constrained quasi-Newton, any objective) or
+        levenberg_marquardt (projected Levenberg-Marquardt on the residuals' exact Jacobian,
+        for terms with squared or mean_squared errors: fast where L-BFGS crawls along a flat
+        valley); default: the file's, else lbfgsb
     prestress : float
         Prestress level of the written scene of a form without loads (a loaded form's forces
         are those of its loads) (N); must be finite and positive. Default: 100.0

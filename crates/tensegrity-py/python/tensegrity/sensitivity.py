@@ -291,6 +291,24 @@ class DesignProblem:
         f, g, _ = self._native.objective([float(v) for v in np.asarray(values).ravel()])
         return f, np.asarray(g, dtype=np.float64)
 
+    def residuals(self, values):
+        """The residuals r (ndarray, shape (r,); f = |r|^2) and their exact Jacobian (ndarray,
+        shape (r, k)) at ``values``, for a file whose every term is a ``squared`` or
+        ``mean_squared`` error (else refused naming the term): the model of
+        ``method = "levenberg_marquardt"``, for ``scipy.optimize.least_squares(p.residual,
+        p.start, jac=p.jacobian, bounds=(p.lower, p.upper))``."""
+        r, j = self._native.residuals([float(v) for v in np.asarray(values).ravel()])
+        r = np.asarray(r, dtype=np.float64)
+        return r, np.frombuffer(j, dtype=np.float64).reshape(len(r), -1)
+
+    def residual(self, values):
+        """The residuals alone (see :meth:`residuals`)."""
+        return self.residuals(values)[0]
+
+    def jacobian(self, values):
+        """The Jacobian alone (see :meth:`residuals`)."""
+        return self.residuals(values)[1]
+
     def terms(self, values):
         """Each term's value at ``values`` (ndarray, in the file's order)."""
         _, _, t = self._native.objective([float(v) for v in np.asarray(values).ravel()])
