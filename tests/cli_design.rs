@@ -6,7 +6,8 @@
 //! nodes) and the scene (read by `statics`; its nodes the designed ones) it writes; bad design files
 //! refused with exit 2 naming the file, the line or the item. With `--method
 //! levenberg_marquardt` the cable net reaches the optimum scipy's least_squares finds
-//! independently, 12 % below where L-BFGS-B stops.
+//! independently, 12 % below where L-BFGS-B stops; jax-fdm's monkey saddle, run to tol 1e-16,
+//! reaches jax-fdm's own optimum to its 10 printed digits.
 
 use crate::common::{self, json, numbers, points};
 
@@ -155,6 +156,34 @@ fn levenberg_marquardt_reaches_the_cable_nets_optimum_where_lbfgsb_stops_short()
     assert!(
         err.contains("design.terms[0].error") && err.contains("mean_absolute"),
         "{err}"
+    );
+}
+
+#[test]
+fn the_monkey_saddle_reaches_jax_fdms_optimum() {
+    // jax-fdm 0.14.1's L-BFGS-B on its own monkey-saddle example run to tol 1e-16 (scipy
+    // 1.17.1): 107.83598165 (`scripts/jaxfdm-side-by-side/run.sh 1e-16`, 10 digits printed)
+    let jax_fdm = 107.83598165;
+    let text = std::fs::read_to_string("examples/design/monkey_saddle.toml")
+        .unwrap()
+        .replacen("ftol = 0.001", "ftol = 1e-16", 1)
+        .replacen("gtol = 0.001", "gtol = 1e-16", 1);
+    let dir = common::scratch("design", "monkey-saddle");
+    let path = dir.join("tight.toml");
+    std::fs::write(&path, text).unwrap();
+    let r = json(&["design", path.to_str().unwrap(), "--json"]);
+    let f = r["objective"].as_f64().unwrap();
+    assert!((f - jax_fdm).abs() < 1e-9 * jax_fdm, "{f}");
+    // from 1237.8 at the start, its four terms the example's
+    assert!((r["initial_objective"].as_f64().unwrap() - 1237.8).abs() < 0.1);
+    assert_eq!(
+        r["term_names"],
+        serde_json::json!([
+            "EdgeLengthGoal",
+            "ReactionForceGoal",
+            "LoadPathGoal",
+            "L2Regularizer"
+        ])
     );
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# jax-fdm against `tensegrity design` on three of jax-fdm's published inverse form-finding
+# jax-fdm against `tensegrity design` on four of jax-fdm's published inverse form-finding
 # examples, side by side (issue 47): a venv under target/ with jax-fdm from PyPI (jax on CPU),
 # the release binary, then the table of side_by_side.py: at the examples' own stopping rules
 # (no argument) or at a tolerance given to all (e.g. 1e-16: the optimum itself compared).
@@ -9,7 +9,8 @@
 #   scripts/jaxfdm-side-by-side/run.sh export DIR     # rewrite the design files
 #
 # Environment: PYTHON (default python3), REPEATS (default 3), PROBLEMS (default
-# cablenet,dome,pringle).
+# cablenet,dome,pringle,monkey_saddle), JAXFDM_DATA (a folder with jax-fdm's
+# data/json/monkey_saddle.json; default: downloaded into target/jaxfdm-data).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"

@@ -1,4 +1,4 @@
-"""jax-fdm against `tensegrity design` on three of jax-fdm's published inverse form-finding
+"""jax-fdm against `tensegrity design` on four of jax-fdm's published inverse form-finding
 examples (issue 47): the cable-net prestress of its docs (docs/examples/cablenet.md: a 10 x 10
 quad net hung from four corners, a diagonal pair lifted 5 m, 220 force densities >= 0.1, the
 boundary cables' forces aimed at 20 and the interior cables' lengths at 1, mean squared error
@@ -9,14 +9,21 @@ L-BFGS-B, maxiter 10000, tol 1e-8) and the pringle of its examples
 (examples/pringle/pringle.py: a 10 x 9 vault anchored at its arches' ends, 161 force
 densities in [-5, -0.1], the anchors' reaction magnitudes aimed at 0.45 to 2 (weight 100),
 every free node kept in its transversal plane (weight 10) and the cross edges at their
-lengths, squared errors, SLSQP, maxiter 1000, tol 1e-9).
+lengths, squared errors, SLSQP, maxiter 1000, tol 1e-9) and the monkey saddle of its
+examples (examples/monkey_saddle/monkey_saddle.py: its coarse mesh, data/json/
+monkey_saddle.json, read from $JAXFDM_DATA or downloaded from GitHub at a pinned commit,
+subdivided twice; 216 force densities in [-20, -0.01], every edge's length (weight 1), the
+supports' reaction magnitudes rising towards the corners (weight 10), the load path as a
+prediction error (alpha 0.01) and the L2 regulariser (alpha 0.1), L-BFGS-B, maxiter 500,
+tol 1e-3).
 
 Run by run.sh beside it (which makes the venv with jax-fdm from PyPI and builds the release
 binary). Three modes:
 
   side_by_side.py export DIR        build the problems with jax-fdm's own datastructures and
                                     write them as design files (DIR/cablenet.toml,
-                                    DIR/dome.toml, DIR/pringle.toml): the same nodes, edges,
+                                    DIR/dome.toml, DIR/pringle.toml,
+                                    DIR/monkey_saddle.toml): the same nodes, edges,
                                     supports, loads, start force densities, bounds, goals and
                                     stopping rules
   side_by_side.py table [TOL]       for each problem: jax-fdm's constrained_fdm (jax on CPU,
@@ -30,7 +37,7 @@ binary). Three modes:
                                     to ours, 1.5 million), and the objective of each result
                                     recomputed here by one formula from its forces, geometry
                                     and reactions
-  side_by_side.py optimum           for each problem: scipy's least_squares (trust-region
+  side_by_side.py optimum           for each sum-of-squares problem: scipy's least_squares (trust-region
                                     reflective, bounds, tolerances 1e-15) on residuals written
                                     here in jax from the problem's arrays (the force density
                                     method by a dense solve, the Jacobian by jax.jacfwd): an
@@ -277,7 +284,110 @@ def pringle():
     return network, parameters, loss, problem
 
 
-PROBLEMS = {"cablenet": cablenet, "dome": dome, "pringle": pringle}
+# jax-fdm's coarse monkey-saddle mesh (data/json/monkey_saddle.json, 1.4 kB) at the commit
+# read: from $JAXFDM_DATA when set, else downloaded once into target/
+JAXFDM_COMMIT = "71d449076d7384104108cfd133108be01278c18d"
+
+
+def jaxfdm_data(name):
+    folder = os.environ.get("JAXFDM_DATA")
+    if folder:
+        return os.path.join(folder, name)
+    path = os.path.join(ROOT, "target", "jaxfdm-data", name)
+    if not os.path.exists(path):
+        import urllib.request
+
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        url = ("https://raw.githubusercontent.com/arpastrana/jax_fdm/"
+               f"{JAXFDM_COMMIT}/data/json/{name}")
+        urllib.request.urlretrieve(url, path)
+    return path
+
+
+def monkey_saddle():
+    from compas.itertools import pairwise
+    from compas.topology import dijkstra_path
+    from jax_fdm.datastructures import FDMesh
+    from jax_fdm.goals import EdgeLengthGoal, MeshLoadPathGoal, VertexResidualForceGoal
+    from jax_fdm.losses import L2Regularizer, Loss, PredictionError, SquaredError
+    from jax_fdm.parameters import EdgeForceDensityParameter
+
+    q0, load = -2.0, [0.0, 0.0, -1.0]
+    qmin, qmax, rmin, rmax, r_exp = -20.0, -0.01, 4.0, 8.0, 0.5
+    mesh = FDMesh.from_json(jaxfdm_data("monkey_saddle.json")).subdivided(scheme="quad", k=2)
+    # the supports: the boundary's polyedges (split at the degree-2 corners) shorter than
+    # their mean
+    corners = {v for v in mesh.vertices() if mesh.vertex_degree(v) == 2}
+    boundary = mesh.vertices_on_boundaries()[0]
+    if boundary[0] == boundary[-1]:
+        boundary = boundary[:-1]
+    first = next(i for i, v in enumerate(boundary) if v in corners)
+    boundary = boundary[first:] + boundary[:first]
+    polyedges, polyedge = [], [boundary[0]]
+    for v in boundary[1:] + [boundary[0]]:
+        polyedge.append(v)
+        if v in corners:
+            polyedges.append(polyedge)
+            polyedge = [v]
+    lengths = {tuple(pe): sum(mesh.edge_length(e) for e in pairwise(pe)) for pe in polyedges}
+    mean = sum(lengths.values()) / len(lengths)
+    supports = set(v for pe, length in lengths.items() if length < mean for v in pe)
+    # each support's target reaction falls with its steps (along the mesh) from a corner
+    adjacency = mesh.adjacency
+    weight = {(u, v): 1.0 for u in adjacency for v in adjacency[u]}
+    steps = {}
+    for v in supports:
+        steps[v] = 0 if v in corners else min(
+            len(dijkstra_path(adjacency, weight, v, c)) - 1 for c in corners)
+    top = max(steps.values())
+    steps = {v: top - step for v, step in steps.items()}
+    for v in supports:
+        mesh.vertex_support(v)
+    mesh.vertices_loads(load, keys=list(mesh.vertices_free()))
+    mesh.edges_forcedensities(q0)
+    parameters = [EdgeForceDensityParameter(e, qmin, qmax) for e in mesh.edges()]
+    edges = list(mesh.edges())
+    index = {e: k for k, e in enumerate(edges)}
+    vertex = {v: i for i, v in enumerate(mesh.vertices())}
+    goals_a = [EdgeLengthGoal(e, mesh.edge_length(e), weight=1.0) for e in edges]
+    length_goals = [{"kind": "length", "members": [index[e]], "target": mesh.edge_length(e),
+                     "weight": 1.0} for e in edges]
+    goals_b, reaction_goals = [], []
+    for v in mesh.vertices_supports():
+        reaction = (1 - steps[v] / top) ** r_exp * (rmax - rmin) + rmin
+        goals_b.append(VertexResidualForceGoal(v, reaction, weight=10.0))
+        reaction_goals.append({"kind": "reaction_force", "nodes": [vertex[v]],
+                               "target": reaction, "weight": 10.0})
+    loss = Loss(
+        SquaredError(goals_a, alpha=1.0, name="EdgeLengthGoal"),
+        SquaredError(goals_b, alpha=1.0, name="ReactionForceGoal"),
+        PredictionError([MeshLoadPathGoal()], alpha=0.01, name="LoadPathGoal"),
+        L2Regularizer(alpha=0.1),
+    )
+    problem = {
+        "name": "monkey_saddle",
+        "kind": "bars",
+        "nodes": [mesh.vertex_coordinates(v) for v in mesh.vertices()],
+        "vertex": vertex,
+        "edges": edges,
+        "q": [mesh.edge_forcedensity(e) for e in edges],
+        "supports": list(mesh.vertices_supports()),
+        "loads": {v: load for v in mesh.vertices_free()},
+        "bounds": (qmin, qmax),
+        "terms": [
+            ("EdgeLengthGoal", "squared", length_goals),
+            ("ReactionForceGoal", "squared", reaction_goals),
+            ("LoadPathGoal", "prediction", [{"kind": "load_path"}], 0.01),
+            ("L2Regularizer", "squared", [{"kind": "force_density"}], 0.1),
+        ],
+        "maxiter": 500,
+        "tol": 1e-3,
+    }
+    return mesh, parameters, loss, problem
+
+
+PROBLEMS = {"cablenet": cablenet, "dome": dome, "pringle": pringle,
+            "monkey_saddle": monkey_saddle}
 
 
 # ------------------------------------------------------------------------------------------
@@ -291,6 +401,15 @@ def num(x):
 
 def vec(v):
     return "[" + ", ".join(num(x) for x in v) + "]"
+
+
+def term_weight(term):
+    return term[3] if isinstance(term[2], list) and len(term) == 4 else 1.0
+
+
+def least_squares_only(p):
+    """Whether every term is a sum of squares (levenberg_marquardt's problems)."""
+    return all(term[1] in ("squared", "mean_squared") for term in p["terms"])
 
 
 def design_toml(p, tol=None):
@@ -336,6 +455,8 @@ def design_toml(p, tol=None):
     for term in p["terms"]:
         name, error = term[0], term[1]
         out += ["", "[[design.terms]]", f"name = \"{name}\"", f"error = \"{error}\""]
+        if term_weight(term) != 1.0:
+            out.append(f"weight = {num(term_weight(term))}")
         for goal in goals_of(term):
             out.append("[[design.terms.goals]]")
             for key, value in goal.items():
@@ -353,9 +474,10 @@ def design_toml(p, tol=None):
 
 
 def goals_of(term):
-    """A term's goals as dicts: (name, error, [goal, ...]) or the one-goal short form (name,
-    error, kind, members, target or targets)."""
-    if len(term) == 3:
+    """A term's goals as dicts: (name, error, [goal, ...]) or (name, error, [goal, ...],
+    term weight), or the one-goal short form (name, error, kind, members, target or
+    targets)."""
+    if isinstance(term[2], list):
         return term[2]
     _, _, kind, members, target = term
     goal = {"kind": kind, "members": members}
@@ -372,15 +494,22 @@ def objective(p, forces, lengths, vectors, nodes, reactions):
     """The example's loss from the result's member forces, lengths and vectors, node positions
     (by file index) and reactions (by file index of the held node)."""
     total = 0.0
+    q = [f / length for f, length in zip(forces, lengths)]
+    every = list(range(len(forces)))
     for term in p["terms"]:
         error = term[1]
         errs = []
         for goal in goals_of(term):
             kind, w = goal["kind"], goal.get("weight", 1.0)
-            items = goal.get("members", goal.get("nodes"))
-            targets = goal.get("targets") or [goal.get("target")] * len(items)
+            if kind == "load_path":
+                errs.append(w * sum(abs(q[k]) * lengths[k] ** 2 for k in every))
+                continue
+            items = goal.get("members", goal.get("nodes", every))
+            targets = goal.get("targets") or [goal.get("target", 0.0)] * len(items)
             for k, t in zip(items, targets):
-                if kind == "force":
+                if kind == "force_density":
+                    errs.append(w * (q[k] - t) ** 2)
+                elif kind == "force":
                     errs.append(w * (forces[k] - t) ** 2)
                 elif kind == "length":
                     errs.append(w * (lengths[k] - t) ** 2)
@@ -397,7 +526,7 @@ def objective(p, forces, lengths, vectors, nodes, reactions):
                     vn = math.sqrt(sum(x * x for x in v))
                     errs.append(w * sum((v[c] / vn - t[c] / tn) ** 2 for c in range(3)))
         s = sum(errs)
-        total += s / len(errs) if error == "mean_squared" else s
+        total += term_weight(term) * (s / len(errs) if error == "mean_squared" else s)
     return total
 
 
@@ -473,13 +602,16 @@ def table(tol):
     for name in os.environ.get("PROBLEMS", ",".join(PROBLEMS)).split(","):
         p, cold, warm, fj, _ = jax_run(name, tol)
         wall, fo, report = ours_run(p, tol)
-        wall_lm, fl, report_lm = ours_run(p, tol, "levenberg_marquardt")
+        if least_squares_only(p):
+            wall_lm, fl, report_lm = ours_run(p, tol, "levenberg_marquardt")
+            lm = f"{fl:.10e}", f"{wall_lm:.3f}", f"{report_lm['iterations']} ({report_lm['stop']})"
+        else:
+            lm = "— (not a sum of squares)", "—", "—"
         rel = abs(fj - fo) / max(abs(fj), abs(fo))
         t = p["tol"] if tol is None else tol
         print(f"| {name} | {t:g} | {fj:.10e} ({p.get('optimizer', 'L-BFGS-B')}) | {fo:.10e} "
-              f"| {fl:.10e} | {rel:.1e} | {cold:.2f} | {warm:.3f} | {wall:.3f} | {wall_lm:.3f} "
-              f"| {report['iterations']} ({report['stop']}), {report_lm['iterations']} "
-              f"({report_lm['stop']}) |")
+              f"| {lm[0]} | {rel:.1e} | {cold:.2f} | {warm:.3f} | {wall:.3f} | {lm[1]} "
+              f"| {report['iterations']} ({report['stop']}), {lm[2]} |")
         sys.stdout.flush()
 
 
@@ -555,6 +687,8 @@ def optimum():
     print("|---|---:|---:|---:|---:|---:|---:|")
     for name in os.environ.get("PROBLEMS", ",".join(PROBLEMS)).split(","):
         _, _, _, p = PROBLEMS[name]()
+        if not least_squares_only(p):
+            continue
         r = jax.jit(residuals_in_jax(p))
         jac = jax.jit(jax.jacfwd(residuals_in_jax(p)))
         lower, upper = p["bounds"]
