@@ -5,9 +5,9 @@
 //!
 //! | back-end | factorisation | [`Factorization`] |
 //! |---|---|---|
-//! | [`Statics`] | dense SVD A = U Σ Vᵀ | `Svd` |
-//! | [`SparseStatics`] | rank-revealing sparse QR along the band | `SparseQr` |
-//! | [`CyclicStatics`] | one SVD per Fourier block of a Cₙ-symmetric structure | `Cyclic` |
+//! | [`Statics`](crate::Statics) | dense SVD A = U Σ Vᵀ | `Svd` |
+//! | [`SparseStatics`](crate::SparseStatics) | rank-revealing sparse QR along the band | `SparseQr` |
+//! | [`CyclicStatics`](crate::symmetry::CyclicStatics) | one SVD per Fourier block of a Cₙ-symmetric structure | `Cyclic` |
 //!
 //! Each answers, through [`StaticsBackend`]: rank r, self-stress dimension members − r,
 //! mechanisms dofs − r, the rigid-body motions the supports allow and the internal mechanisms
@@ -20,7 +20,7 @@
 //! stresses and loads need not be symmetric), never a silent approximation.
 //!
 //! The statics report is built once over this trait ([`super::report::report_from`]); the
-//! back-end is chosen in [`super::select`].
+//! back-end is chosen in `select`.
 
 use super::load::LoadSolution;
 use super::prestress::{MemberSign, Prestressability};
@@ -35,13 +35,13 @@ use tensegrity_core::structure::Structure;
 /// Which factorisation answered (serialised as the report's `statics_method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Factorization {
-    /// The dense SVD ([`Statics`]).
+    /// The dense SVD ([`Statics`](crate::Statics)).
     #[serde(rename = "svd")]
     Svd,
-    /// The sparse rank-revealing QR ([`SparseStatics`]).
+    /// The sparse rank-revealing QR ([`SparseStatics`](crate::SparseStatics)).
     #[serde(rename = "sparse_qr")]
     SparseQr,
-    /// The symmetry-adapted blocks of a cyclic structure ([`CyclicStatics`]).
+    /// The symmetry-adapted blocks of a cyclic structure ([`CyclicStatics`](crate::symmetry::CyclicStatics)).
     #[serde(rename = "cyclic")]
     Cyclic,
 }
@@ -161,7 +161,7 @@ pub trait StaticsBackend {
     fn tolerance(&self) -> f64;
 
     /// The smallest singular value of A (an estimate for the sparse QR: see
-    /// [`SparseStatics::smallest_singular_value_estimate`]).
+    /// [`SparseStatics::smallest_singular_value_estimate`](crate::SparseStatics::smallest_singular_value_estimate)).
     fn smallest_singular_value(&self) -> f64;
 
     /// The singular values on either side of the tolerance behind the rank decision (the

@@ -414,7 +414,7 @@ pub enum MassModel {
     Lumped,
     /// The rigid-bar mass matrix of the dynamics, m [[1/3, 1/6], [1/6, 1/3]] ⊗ I₃ per bar
     /// (J = m/12 about the centre plus m at the centre), so the frequencies are those of small
-    /// oscillations of [`tensegrity_dynamics`] with very stiff bars.
+    /// oscillations of `tensegrity_dynamics` with very stiff bars.
     Consistent,
 }
 

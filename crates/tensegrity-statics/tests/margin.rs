@@ -250,6 +250,9 @@ fn the_margin_says_why_it_has_no_derivative() {
         _ => panic!("the prism: {d:?}"),
     }
     assert!(d.nodes.is_empty());
+    // its bars and vertical strings at |q| = 1 and its six ring strings at the margin 1/√3,
+    // reported all the same
+    assert_eq!((d.at_bound.len(), d.at_margin.len()), (6, 6), "{d:?}");
     // moved off the twist by ~10⁻³ of its size, A's smallest singular value grows from
     // round-off to the size of the move: the self-stress is gone (to within the rank
     // tolerance, which keeps it for data rounded that much), and no derivative could have

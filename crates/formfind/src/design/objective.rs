@@ -24,6 +24,12 @@
 //! - smoothness x_i − (1/d_i) Σ_j x_j over the d_i neighbours j: I at i, −I / d_i at each j.
 //!
 //! df/dv is then the sum of df/dq_k over the members of each variable.
+//!
+//! **Residuals.** When every term is a squared or mean-squared error, f = ‖r‖² with one
+//! residual per component of each goal, r = √(α w / n) (p − t) (n the term's goal count for a
+//! mean, else 1), and row i of the Jacobian dr/dv is the gradient above with the cotangent of
+//! r_i alone, ∂r_i/∂p = √(α w / n) e_c: one adjoint solve per residual, the factorisation of
+//! the form reused ([`Problem::residuals`], the model of `super::levenberg_marquardt`).
 
 use super::spec::ErrorKind;
 use crate::error::Result;

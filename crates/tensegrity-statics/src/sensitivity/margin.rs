@@ -1,4 +1,4 @@
-//! The derivative of the prestress margin ([`crate::prestress`]) with respect to the node
+//! The derivative of the prestress margin ([`Statics::prestressability`]) with respect to the node
 //! positions, where it exists, and why it does not where it does not.
 //!
 //! The margin is the value of the linear programme
@@ -200,14 +200,6 @@ pub fn prestress_margin(structure: &Structure) -> Result<MarginDerivative> {
         out.smoothness = MarginSmoothness::AtZero;
         return Ok(out);
     }
-    let coupled = coupling(&statics, &lp.stress)?;
-    if coupled.0 > 0 {
-        out.smoothness = MarginSmoothness::SpecialGeometry {
-            mechanisms: coupled.0,
-            coupling: coupled.1,
-        };
-        return Ok(out);
-    }
     let q = &lp.stress;
     out.at_margin = (0..m)
         .filter(|&k| sigma[k] * q[k] <= lp.margin + ACTIVE_TOLERANCE)
@@ -215,6 +207,14 @@ pub fn prestress_margin(structure: &Structure) -> Result<MarginDerivative> {
     out.at_bound = (0..m)
         .filter(|&k| q[k].abs() >= 1.0 - ACTIVE_TOLERANCE)
         .collect();
+    let coupled = coupling(&statics, q)?;
+    if coupled.0 > 0 {
+        out.smoothness = MarginSmoothness::SpecialGeometry {
+            mechanisms: coupled.0,
+            coupling: coupled.1,
+        };
+        return Ok(out);
+    }
     let tie = MarginSmoothness::Tie {
         at_margin: out.at_margin.len(),
         at_bound: out.at_bound.len(),
