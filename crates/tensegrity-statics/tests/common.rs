@@ -77,3 +77,27 @@ pub fn node_central_differences(
         })
         .collect()
 }
+
+/// The worst difference of `exact` from `fd` (node gradients) relative to `largest`,
+/// asserted below 10⁻⁶ at every coordinate (the message names `name`, the node and axis).
+pub fn worst_node_error(
+    name: &str,
+    exact: &[nalgebra::Vector3<f64>],
+    fd: &[nalgebra::Vector3<f64>],
+    largest: f64,
+) -> f64 {
+    let mut worst = 0.0f64;
+    for (i, (e, d)) in exact.iter().zip(fd).enumerate() {
+        for axis in 0..3 {
+            let r = (e[axis] - d[axis]).abs() / largest;
+            assert!(
+                r < 1e-6,
+                "{name} node {i} axis {axis}: exact {} fd {}",
+                e[axis],
+                d[axis]
+            );
+            worst = worst.max(r);
+        }
+    }
+    worst
+}

@@ -109,20 +109,7 @@ fn check_nodes(
     let floor = exact.value.abs() / size;
     let largest = exact.nodes.iter().fold(floor, |m, x| m.max(x.amax()));
     let fd = node_central_differences(s, 1e-4 * size, f);
-    let mut worst = 0.0f64;
-    for (i, fd) in fd.iter().enumerate() {
-        for axis in 0..3 {
-            let e = exact.nodes[i][axis];
-            let r = (e - fd[axis]).abs() / largest;
-            assert!(
-                r < 1e-6,
-                "{name} node {i} axis {axis}: exact {e} fd {}",
-                fd[axis]
-            );
-            worst = worst.max(r);
-        }
-    }
-    worst
+    worst_node_error(name, &exact.nodes, &fd, largest)
 }
 
 #[test]
