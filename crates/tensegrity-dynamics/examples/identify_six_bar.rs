@@ -67,6 +67,14 @@ fn main() {
             "NOT converged"
         }
     );
+    // the fit is that of a model whose bars kept their lengths only within this
+    println!(
+        "bar-length drift of the final run {:.1e}",
+        id.bar_length_drift
+    );
+    for w in &id.warnings {
+        println!("warning: {w}");
+    }
     println!(
         "one 0.4 s run (400 RK4 steps): {:.2} ms plain, {:.1} ms with the sensitivities to {} \
          parameters ({:.0}×, {:.2}× per parameter)",

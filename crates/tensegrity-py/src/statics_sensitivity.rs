@@ -15,9 +15,8 @@ use tensegrity_engine::scene::SceneError;
 use tensegrity_engine::statics::StaticsCommand;
 use tensegrity_statics::sensitivity::{
     natural_frequencies, prestress_margin, smallest_stiffness_eigenvalue, EigenDerivative,
-    MarginSmoothness,
+    EquilibriumState, MarginSmoothness,
 };
-use tensegrity_statics::stiffness::{axial_stiffness, equilibrium_force_densities};
 
 fn failure(e: &SceneError) -> PyErr {
     Python::attach(|py| Failure::new(e.category(), e.to_string()).into_pyerr(py))
@@ -65,13 +64,20 @@ fn eigen<'py>(py: Python<'py>, d: &EigenDerivative) -> Eigen<'py> {
     )
 }
 
-/// The force densities, the axial stiffnesses, the smallest nonzero eigenvalue and the
-/// `modes` lowest nonzero natural frequencies.
-type Stiffness<'py> = (Vec<f64>, Vec<f64>, Option<Eigen<'py>>, Vec<Eigen<'py>>);
+/// The force densities, the axial stiffnesses, the smallest nonzero eigenvalue, the `modes`
+/// lowest nonzero natural frequencies, the balance residual (N) and the warnings.
+type Stiffness<'py> = (
+    Vec<f64>,
+    Vec<f64>,
+    Option<Eigen<'py>>,
+    Vec<Eigen<'py>>,
+    f64,
+    Vec<String>,
+);
 
 /// The derivatives of the smallest nonzero eigenvalue of a scene's tangent stiffness and of
-/// its `modes` lowest nonzero natural frequencies, about the equilibrium force densities of
-/// its strings' rest lengths and stiffnesses (the bars' balancing them).
+/// its `modes` lowest nonzero natural frequencies, about the library's
+/// [`EquilibriumState`] (with its warning when that state is out of balance).
 #[pyfunction]
 pub fn stiffness_sensitivity<'py>(
     py: Python<'py>,
@@ -80,17 +86,17 @@ pub fn stiffness_sensitivity<'py>(
 ) -> PyResult<Stiffness<'py>> {
     let s = structure(py, values)?;
     let core = |e| failure(&SceneError::Core(e));
-    let (q, _) = equilibrium_force_densities(&s).map_err(core)?;
-    let axial = axial_stiffness(&s).map_err(core)?;
-    let smallest = smallest_stiffness_eigenvalue(&s, &q, &axial).map_err(core)?;
+    let state = EquilibriumState::of(&s).map_err(core)?;
+    let (q, axial) = (&state.force_densities, &state.axial_stiffnesses);
+    let smallest = smallest_stiffness_eigenvalue(&s, q, axial).map_err(core)?;
     let frequencies = if modes > 0 {
-        natural_frequencies(&s, &q, &axial).map_err(core)?
+        natural_frequencies(&s, q, axial).map_err(core)?
     } else {
         Vec::new()
     };
     Ok((
         q.iter().copied().collect(),
-        axial,
+        axial.clone(),
         smallest.as_ref().map(|d| eigen(py, d)),
         frequencies
             .iter()
@@ -98,6 +104,8 @@ pub fn stiffness_sensitivity<'py>(
             .take(modes)
             .map(|f| eigen(py, f))
             .collect(),
+        state.residual,
+        state.warning().into_iter().collect(),
     ))
 }
 

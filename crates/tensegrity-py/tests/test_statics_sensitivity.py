@@ -69,6 +69,17 @@ def test_the_prism_margin_lives_on_its_special_geometry():
     report = tensegrity.statics(str(ROOT / "examples" / "prism.toml"), modes=2)
     assert [f.value for f in s.frequencies] == pytest.approx(report["natural_frequencies_hz"],
                                                             rel=1e-9)
+    # its rest lengths realise its self-stress: the state is balanced, no warning
+    assert s.equilibrium_residual < 1e-9 and s.warnings == []
+    # a ring string shortened by 1 cm realises none: the derivatives come with a warning
+    text = (ROOT / "examples" / "prism.toml").read_text()
+    first = text.index("rest_length = ")
+    end = text.index("\n", first)
+    value = float(text[first + len("rest_length = "):end])
+    off = text[:first] + "rest_length = {!r}".format(value - 0.01) + text[end:]
+    s = stiffness_sensitivity(off)
+    assert s.equilibrium_residual > 1e-3 and len(s.warnings) == 1
+    assert "out of equilibrium" in s.warnings[0]
 
 
 BAR = """

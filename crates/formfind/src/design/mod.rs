@@ -683,6 +683,14 @@ fn compile_goal(
             refused(format!("{item}.{what}"), "not finite")
         }
     };
+    // a plane's normal or a line's direction: finite, nonzero, made unit
+    let unit = |v: &[f64; 3], what: &str| -> Result<Vector3<f64>> {
+        let u = finite3(v, what)?;
+        if u.norm() == 0.0 {
+            return refused(format!("{item}.{what}"), format!("a {what} of zero length"));
+        }
+        Ok(u.normalize())
+    };
     let finite = |v: f64, what: &str| -> Result<f64> {
         if v.is_finite() {
             Ok(v)
@@ -762,12 +770,8 @@ fn compile_goal(
             weight,
         } => {
             let w = weight_ok(*weight)?;
-            let (p, n) = (finite3(point, "point")?, finite3(normal, "normal")?);
-            if n.norm() == 0.0 {
-                return refused(format!("{item}.normal"), "a normal of zero length");
-            }
+            let (point, normal) = (finite3(point, "point")?, unit(normal, "normal")?);
             for node in nodes_of(nodes, free)? {
-                let (point, normal) = (p, n.normalize());
                 goals.push((
                     Goal::Plane {
                         node,
@@ -785,12 +789,8 @@ fn compile_goal(
             weight,
         } => {
             let w = weight_ok(*weight)?;
-            let (p, u) = (finite3(point, "point")?, finite3(direction, "direction")?);
-            if u.norm() == 0.0 {
-                return refused(format!("{item}.direction"), "a direction of zero length");
-            }
+            let (point, direction) = (finite3(point, "point")?, unit(direction, "direction")?);
             for node in nodes_of(nodes, free)? {
-                let (point, direction) = (p, u.normalize());
                 goals.push((
                     Goal::Line {
                         node,

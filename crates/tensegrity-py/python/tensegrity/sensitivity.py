@@ -489,12 +489,20 @@ class StiffnessSensitivity:
         The smallest nonzero eigenvalue of the tangent stiffness (None when every one is zero).
     frequencies : list of EigenSensitivity
         The lowest nonzero natural frequencies asked for (lumped mass).
+    equilibrium_residual : float
+        ‖A q − w‖ (N): how far the strings' force densities, the bars' and the loads are from
+        balance.
+    warnings : list of str
+        A state out of balance (residual above 1e-6 of the largest force): the stiffness and
+        its derivatives are then those of no equilibrium.
     """
 
     force_densities: np.ndarray
     axial_stiffnesses: np.ndarray
     smallest_eigenvalue: object
     frequencies: list
+    equilibrium_residual: float
+    warnings: list
 
 
 def _eigen(t):
@@ -515,10 +523,11 @@ def stiffness_sensitivity(scene, *, modes=0):
     :func:`tensegrity.statics` takes it. The equations: the Rust crate
     ``tensegrity-statics``, module ``sensitivity``. Returns a :class:`StiffnessSensitivity`.
     """
-    q, a, smallest, freqs = _native.stiffness_sensitivity({"scene": _scene(scene)}, int(modes))
+    q, a, smallest, freqs, residual, warnings = _native.stiffness_sensitivity(
+        {"scene": _scene(scene)}, int(modes))
     return StiffnessSensitivity(np.asarray(q, dtype=np.float64), np.asarray(a, dtype=np.float64),
                                 None if smallest is None else _eigen(smallest),
-                                [_eigen(f) for f in freqs])
+                                [_eigen(f) for f in freqs], float(residual), list(warnings))
 
 
 @dataclass(frozen=True)

@@ -290,6 +290,87 @@ pub fn natural_frequencies(
         .collect())
 }
 
+/// A balance residual above this, relative to the largest member force or load, is a
+/// state out of equilibrium ([`EquilibriumState::warning`]).
+pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
+
+/// The state the stiffness is differentiated about: the strings' force densities from their
+/// rest lengths and stiffnesses, the bars' balancing them and the loads
+/// ([`crate::stiffness::equilibrium_force_densities`]), the members' axial stiffnesses, and
+/// how far from balance that leaves the nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EquilibriumState {
+    /// The force densities q (N/m), bars then strings.
+    pub force_densities: DVector<f64>,
+    /// The axial stiffnesses a (N/m).
+    pub axial_stiffnesses: Vec<f64>,
+    /// ‖A q − w‖ (N) on the free degrees of freedom.
+    pub residual: f64,
+    /// The residual relative to the largest member force |q_k| L_k or load.
+    pub relative_residual: f64,
+}
+
+impl EquilibriumState {
+    /// The state of `structure` (strings need rest lengths and stiffnesses; bars material
+    /// and radius, or their errors name them).
+    ///
+    /// ```
+    /// use tensegrity_core::{Bar, Material, StringMember, Structure};
+    /// use tensegrity_statics::sensitivity::EquilibriumState;
+    /// // strings along a bar: 10 N/m in the strings, −5 N/m in the bar, balanced
+    /// let build = |rest: f64| {
+    ///     Structure::builder()
+    ///         .material("steel", Material::new(7800.0, 200e9, 500e6))
+    ///         .nodes([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    ///         .bar(Bar::new(0, 2).material("steel").radius(0.001))
+    ///         .string(StringMember::new(0, 1).stiffness(100.0).rest_length(0.9))
+    ///         .string(StringMember::new(1, 2).stiffness(100.0).rest_length(rest))
+    ///         .build()
+    ///         .unwrap()
+    /// };
+    /// let e = EquilibriumState::of(&build(0.9)).unwrap();
+    /// assert!((e.force_densities[0] + 5.0).abs() < 1e-12 && e.warning().is_none());
+    /// // unequal strings, 10 N and 20 N: the bar's best force, 15 N, leaves 5, 10 and 5 N
+    /// // unbalanced at the three nodes
+    /// let e = EquilibriumState::of(&build(0.8)).unwrap();
+    /// assert!((e.residual - 150f64.sqrt()).abs() < 1e-9 && e.warning().is_some());
+    /// ```
+    pub fn of(structure: &Structure) -> Result<Self> {
+        let (q, residual) = crate::stiffness::equilibrium_force_densities(structure)?;
+        let axial = axial_stiffness(structure)?;
+        let forces = (0..q.len()).map(|k| (q[k] * structure.member_vector(k).norm()).abs());
+        let loads = structure
+            .W()
+            .column_iter()
+            .map(|w| w.norm())
+            .collect::<Vec<_>>();
+        let scale = forces.chain(loads).fold(0.0f64, f64::max);
+        let relative_residual = if scale > 0.0 {
+            residual / scale
+        } else {
+            residual
+        };
+        Ok(Self {
+            force_densities: q,
+            axial_stiffnesses: axial,
+            residual,
+            relative_residual,
+        })
+    }
+
+    /// Why derivatives about this state describe no equilibrium, when the relative residual
+    /// passes [`EQUILIBRIUM_TOLERANCE`]: the rest lengths realise no self-stress the bars can
+    /// balance (or the loads are not carried).
+    pub fn warning(&self) -> Option<String> {
+        (self.relative_residual > EQUILIBRIUM_TOLERANCE).then(|| {
+            format!(
+                "the strings' force densities from their rest lengths are not balanced by the bars and loads (residual {:.3e} N, {:.1e} of the largest force): the stiffness and its derivatives are those of a state out of equilibrium",
+                self.residual, self.relative_residual
+            )
+        })
+    }
+}
+
 /// [`smallest_stiffness_eigenvalue`] with the structure's own axial stiffnesses
 /// ([`axial_stiffness`]: strings' k, bars' E·πr²/l).
 pub fn smallest_stiffness_eigenvalue_of(
