@@ -91,7 +91,7 @@ pub struct StaticsCommand {
     )]
     pub response: bool,
     /// The factorisation: by size, the dense SVD or the sparse QR.
-    #[param(choice = ["auto", "dense", "sparse"], help = "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 100 dofs and members on, 300 for coordinates judged rounded), dense or sparse")]
+    #[param(choice = ["auto", "dense", "sparse"], help = "Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing QR from 50 dofs and members on, 300 for coordinates judged rounded), dense or sparse")]
     pub method: StaticsMethod,
 }
 

@@ -445,14 +445,15 @@ pub enum StaticsMethod {
 }
 
 /// [`StaticsMethod::Auto`] uses the sparse path when both the free dofs and the members
-/// number at least this many. The sparse path is the cheaper one from about 60 members up
-/// (a free tower of 10 prisms, 93 members: 3.8 ms against the SVD's 5.2 ms for the whole
-/// process; of 25 prisms: 7.4 against 17.4 ms; a double-layer grid of 516 members and 267
-/// dofs: 0.01 against 0.09 s, release, docs/notes/PERFORMANCE.md "Statics cost against
-/// size"), so that with the limit at 100 the cost rises with size across the switch; it was
-/// 300, where the dense path's O(members·s²) margin LP made mid-size lattices cost more than
-/// larger ones.
-pub const SPARSE_MIN_SIZE: usize = 100;
+/// number at least this many. The two paths cost the same (the process start, 3.5 ms) up to
+/// about 50 members and the sparse one less from there on (whole process, release, best of
+/// 11: free towers of 5…11 prisms, 48…102 members, 3.3–4.4 ms sparse against 3.5–5.8 ms
+/// dense; a double-layer grid of 132 members, 8.9 against 6.0 ms; of 25 prisms: 7.4
+/// against 17.4 ms; docs/notes/PERFORMANCE.md "Statics cost against size"), so that with
+/// the limit at 50 the cost rises with size across the switch. At 100 a tower of 10 prisms
+/// (93 members, dense) cost 5.2 ms and one of 11 (sparse) 4.4 ms; at 300 the dense path's
+/// O(members·s²) margin LP made mid-size lattices cost more than larger ones.
+pub const SPARSE_MIN_SIZE: usize = 50;
 
 /// Settings of a statics analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

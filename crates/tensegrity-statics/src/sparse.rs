@@ -58,8 +58,9 @@
 //!   path;
 //! - prestress stability: below [`DENSE_MECHANISMS_MAX`] the stress matrix applied member by
 //!   member to the internal mechanisms, then a small symmetric eigenproblem; beyond, the
-//!   sparse flex test ([`SparseStatics::stable_by_cholesky`]); when that cannot decide, the
-//!   report says stability was not tested;
+//!   penalised stress matrix, then the sparse flex test
+//!   ([`SparseStatics::stable_by_cholesky`]); when neither decides, the report says
+//!   stability was not tested;
 //! - the minimal-norm load solve: the basic solution R_acc x = (Qᵀw)_{1..r} minus its
 //!   projection on the self-stress space (a sparse Cholesky factorisation of NᵀN,
 //!   refined twice).
@@ -619,16 +620,65 @@ impl<'a> SparseStatics<'a> {
 }
 
 /// How many times A's entries the sparse self-stress basis N may hold before the margin LP
-/// runs on A (the interior point on A D⁻¹ Aᵀ) instead of on N: N's LP costs about a
-/// factorisation of N's pattern, A's about one of a stiffness matrix's, and a lattice's N
-/// fills in (grid:8…10 of `formfind --builtin`: 8–13 times A) where a tower's stays local
-/// (1–2 times).
-pub const NULL_BASIS_FILL_MAX: usize = 4;
+/// runs on A (the interior point on A D⁻¹ Aᵀ) instead of on N: N's LP (Clarabel) costs
+/// about a factorisation of N's pattern, A's about one of a stiffness matrix's. Measured by
+/// `tensegrity-statics`' `lp_scaling` example (the LP alone, release): a tower's N is
+/// local (0.22 × A), where the LP over N costs 6.9 ms at 200 prisms against 15 ms on A; a
+/// lattice's N fills in (0.82 × A at K = 3, 1.5 × at K = 4, 8–13 × at K = 8…10), where the
+/// LP on A costs 0.19 and 0.52 ms against 0.79 and 2.4 ms over N. At the earlier limit of 4
+/// the LP of the lattice K = 4 cost three times that of K = 5 (on the nested path).
+pub const NULL_BASIS_FILL_MAX: f64 = 0.5;
+
+/// Largest ‖A n‖∞ / (σ_max(A)·‖n‖∞) over the columns n of the sparse self-stress basis for
+/// which the self-stresses count as exact ([`prefers_equilibrium_lp`]): round-off is
+/// 10⁻¹⁵–10⁻¹³, a self-stress that rounded coordinates hold only to their precision
+/// (10⁻⁴–10⁻⁸) is far above.
+const EXACT_SELF_STRESS_RESIDUAL: f64 = 1e-10;
 
 /// Whether the margin LP should run on the equilibrium rows of `a` rather than on the basis
-/// `null_basis` ([`NULL_BASIS_FILL_MAX`]).
-fn prefers_equilibrium_lp(null_basis: &CscMatrix, a: &CscMatrix) -> bool {
-    null_basis.values().len() > NULL_BASIS_FILL_MAX * a.values().len()
+/// `null_basis`: where N holds more than [`NULL_BASIS_FILL_MAX`] times A's entries, and
+/// only if its columns are exact self-stresses (A n = 0 to round-off,
+/// [`EXACT_SELF_STRESS_RESIDUAL`]). The interior point imposes A q = 0 exactly, so on
+/// coordinates rounded to a few digits, whose self-stresses the rank decision counts at
+/// the coordinates' precision, it would find none: measured on rounded forms of the
+/// gallery (`--input-precision 1e-4`), margin 0 or a different one where the LP over N
+/// gives the dense path's.
+fn prefers_equilibrium_lp(null_basis: &CscMatrix, a: &CscMatrix, sigma_max: f64) -> bool {
+    let fill = null_basis.values().len() as f64 / a.values().len().max(1) as f64;
+    if fill <= NULL_BASIS_FILL_MAX {
+        return false;
+    }
+    let (cp, ri, vals) = (
+        null_basis.pattern().col_ptr(),
+        null_basis.pattern().row_idx(),
+        null_basis.values(),
+    );
+    let (acp, ari, avals) = (a.pattern().col_ptr(), a.pattern().row_idx(), a.values());
+    // A n from the columns of A that n touches (its members), in a scatter vector
+    let (mut y, mut touched) = (vec![0.0; a.pattern().nrows()], Vec::new());
+    for c in 0..null_basis.pattern().ncols() {
+        let mut norm = 0.0f64;
+        for slot in cp[c]..cp[c + 1] {
+            let (k, v) = (ri[slot], vals[slot]);
+            norm = norm.max(v.abs());
+            for s in acp[k]..acp[k + 1] {
+                y[ari[s]] += avals[s] * v;
+                touched.push(ari[s]);
+            }
+        }
+        let mut residual = 0.0f64;
+        for &r in &touched {
+            residual = residual.max(y[r].abs());
+            y[r] = 0.0;
+        }
+        touched.clear();
+        // (a NaN residual is not exact either)
+        let exact = residual <= EXACT_SELF_STRESS_RESIDUAL * sigma_max * norm;
+        if !exact {
+            return false;
+        }
+    }
+    true
 }
 
 impl SparseStatics<'_> {
@@ -651,7 +701,7 @@ impl SparseStatics<'_> {
         // (a stiffness pattern) where N has filled in (a lattice's basis: grid:10, 1,420
         // members, N 107,160 entries against A's 8,520, took 0.49 s by the first and 0.01 s
         // by the second); the other one should the chosen one fail
-        if prefers_equilibrium_lp(&self.null_basis, &self.a) {
+        if prefers_equilibrium_lp(&self.null_basis, &self.a, self.sigma_max) {
             if let Ok(q) = super::margin_ipm::solve(&self.a, signs, None) {
                 return Ok(Prestressability::from_signed(DVector::from_vec(q), signs));
             }
@@ -748,14 +798,58 @@ impl SparseStatics<'_> {
 
     /// The sparse prestress-stability test: `Some(stable)` with the dense path's decision
     /// (the stress matrix Ω̄ = Ω ⊗ I₃ on the internal mechanisms, Rayleigh quotients above
-    /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when the sparse
-    /// flexes do not match the rank of A, or when they are not local (more than
-    /// [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would then grow
-    /// quadratically; a long tower's flexes span a growing part of it), or, without trying,
-    /// when the factor of A holds more than [`FLEX_QR_ENTRIES_PER_DOF`] entries per kept dof.
-    /// In those cases the penalised stress matrix (`statics/penalty.rs`, a banded sparse
-    /// Cholesky of Ω̄ − σ′I + μAAᵀ on the kept dofs) may still certify `Some(true)`; it never
-    /// answers "unstable".
+    /// σ = 10⁻⁹·max|q|) but in a borderline case; `None` (no decision) when neither of its
+    /// two tests decides.
+    ///
+    /// First the penalised stress matrix (`statics/penalty.rs`, a banded sparse Cholesky of
+    /// Ω̄ − σ′I + μAAᵀ on the kept dofs, linear in the size): it certifies `Some(true)` or
+    /// gives no decision, never "unstable". It goes first because the flex test's product
+    /// Mᵀ Ω̄ M grows faster than linearly as a tower's flexes lengthen: with the flex test
+    /// first a tower of 475 prisms cost 119 ms and one of 575, whose flexes are past the
+    /// locality limit, 75 ms (`docs/notes/PERFORMANCE.md`, "Statics cost against size").
+    ///
+    /// Where it gives no decision (an unstable structure, or a μ ladder too short), the
+    /// flex test [`stable_by_flexes`](Self::stable_by_flexes) decides.
+    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<Option<bool>> {
+        let q_max = q.amax();
+        if !self.member_by_member(q) {
+            return Ok(None);
+        }
+        let rigid = rigid_motions(self.structure, &self.dofs)?;
+        let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
+        let certificate = stable_by_penalty(
+            self.structure,
+            &self.dofs,
+            &index,
+            kept,
+            q,
+            1e-9 * q_max,
+            self.sigma_max,
+        )?;
+        if certificate.is_some() {
+            return Ok(certificate);
+        }
+        self.stable_by_flexes(q)
+    }
+
+    /// Whether the stability tests that assemble the stress matrix member by member apply
+    /// to `q`: a cluster's stress matrix (its geometric part over all its segments) is not
+    /// in them, so they give no decision for a structure with clusters.
+    fn member_by_member(&self, q: &DVector<f64>) -> bool {
+        let q_max = q.amax();
+        q.len() == self.structure.n_members()
+            && !self.structure.has_clusters()
+            && q_max > 0.0
+            && q_max.is_finite()
+    }
+
+    /// The flex test alone: `Some(stable)` with the dense path's decision (as
+    /// [`stable_by_cholesky`](Self::stable_by_cholesky)) but in a borderline case; `None`
+    /// (no decision) when the sparse flexes do not match the rank of A, or are not local
+    /// (more than [`FLEX_ENTRIES_PER_DOF`] entries per kept dof: the product Mᵀ Ω̄ M would
+    /// then grow quadratically; a long tower's flexes span a growing part of it), or,
+    /// without trying, when the factor of A holds more than [`FLEX_QR_ENTRIES_PER_DOF`]
+    /// entries per kept dof.
     ///
     /// A few free dofs are pinned (the rows of the rigid-body basis T with the largest
     /// pivots, one per rigid motion the supports allow), so that every internal mechanism
@@ -769,34 +863,16 @@ impl SparseStatics<'_> {
     /// the orthogonal representative is the shortest of its class, so K positive definite
     /// implies the dense test's "stable"; the converse holds unless the smallest Rayleigh
     /// quotient lies within the pinning's conditioning of σ.
-    pub fn stable_by_cholesky(&self, q: &DVector<f64>) -> Result<Option<bool>> {
+    pub fn stable_by_flexes(&self, q: &DVector<f64>) -> Result<Option<bool>> {
         let q_max = q.amax();
-        // the flex test and the penalised certificate assemble the stress matrix member by
-        // member: a cluster's (its geometric part over all its segments) is not in them, so
-        // they give no decision for a structure with clusters
-        if q.len() != self.structure.n_members()
-            || self.structure.has_clusters()
-            || !(q_max > 0.0 && q_max.is_finite())
-        {
+        if !self.member_by_member(q) {
             return Ok(None);
         }
         let rigid = rigid_motions(self.structure, &self.dofs)?;
         let internal = self.mechanisms().saturating_sub(rigid.ncols());
         let (index, kept) = kept_dofs(self.dofs.len(), &pinned_rows(&rigid));
-        let penalty = || {
-            let sigma = 1e-9 * q_max;
-            stable_by_penalty(
-                self.structure,
-                &self.dofs,
-                &index,
-                kept,
-                q,
-                sigma,
-                self.sigma_max,
-            )
-        };
         if self.qr.stored_entries() > FLEX_QR_ENTRIES_PER_DOF.saturating_mul(kept) {
-            return penalty();
+            return Ok(None);
         }
         // Aᵀ on the kept dofs: members × kept dofs, members in the band order of the nodes
         let n = self.structure.n_members();
@@ -827,10 +903,10 @@ impl SparseStatics<'_> {
             defer_level(n, kept, self.sigma_max, self.tolerance),
         )?;
         if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
-            return penalty();
+            return Ok(None);
         }
         let Some(m) = flexes.sparse_null_vectors_within(FLEX_ENTRIES_PER_DOF * kept)? else {
-            return penalty();
+            return Ok(None);
         };
         let kmat = self.projected_stress_lower(&m, q, &index, 1e-9 * q_max)?;
         let mut chol = linalg::SparseCholesky::new(kmat.pattern())?;

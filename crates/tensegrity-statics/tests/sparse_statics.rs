@@ -244,6 +244,12 @@ fn towers_and_a_lattice_match_the_dense_path_on_the_near_linear_path() {
             dense.prestress_stable,
             "{what}"
         );
+        // and so does the flex test alone (the penalised matrix certifies these first)
+        assert_eq!(
+            st.stable_by_flexes(&q).unwrap(),
+            dense.prestress_stable,
+            "{what}"
+        );
         // the sparse path's orthonormal basis spans the dense path's self-stress space
         let d = projector_distance(&basis(&dense), st.self_stress_basis());
         assert!(d < 1e-9, "{what}: self-stress spaces differ by {d:e}");
@@ -293,11 +299,12 @@ fn a_large_self_stress_basis_is_not_listed() {
 
 /// The two sparse stability tests against the eigenvalue test on an orthonormal basis of
 /// the internal mechanisms (one prism's self-stress: unstable, the other prisms'
-/// mechanisms unstiffened; all prisms' self-stresses, bars compressed: stable). At 400
-/// prisms (factor below `FLEX_QR_ENTRIES_PER_DOF`) the local-flex Cholesky decides both; at
-/// 500 (fill past the guard, flexes not local) the penalised stress matrix certifies the
-/// stable one and gives no decision — never "stable" — on the unstable one; the report
-/// then says "stable" with no warning.
+/// mechanisms unstiffened; all prisms' self-stresses, bars compressed: stable). The
+/// penalised stress matrix, which `stable_by_cholesky` tries first, certifies the stable
+/// one and gives no decision — never "stable" — on the unstable one. At 400 prisms (factor
+/// below `FLEX_QR_ENTRIES_PER_DOF`) the local-flex Cholesky (`stable_by_flexes`) decides
+/// both, so `stable_by_cholesky` does too; at 500 (fill past the guard, flexes not local)
+/// the flex test gives no decision, and the report says "stable" with no warning.
 #[test]
 fn the_sparse_stability_tests_agree_with_the_eigen_test_beyond_the_flex_guard() {
     for stages in [400, 500] {
@@ -324,10 +331,13 @@ fn the_sparse_stability_tests_agree_with_the_eigen_test_beyond_the_flex_guard() 
             let dense = st.prestress_stability_on(&phi, q).unwrap().stable;
             assert_eq!(dense, stable, "{stages}: {what}");
             let sparse = st.stable_by_cholesky(q).unwrap();
+            let flexes = st.stable_by_flexes(q).unwrap();
             if stages == 400 {
                 assert_eq!(sparse, Some(dense), "{stages}: {what}");
+                assert_eq!(flexes, Some(dense), "{stages}: {what}");
             } else {
                 assert_eq!(sparse, dense.then_some(true), "{stages}: {what}");
+                assert_eq!(flexes, None, "{stages}: {what}");
             }
         }
     }
@@ -366,7 +376,7 @@ fn the_margin_lp_runs_on_the_smaller_formulation_and_agrees_with_the_dense_path(
         let fill =
             sparse.sparse_self_stress_basis().values().len() as f64 / a.values().len() as f64;
         assert_eq!(
-            fill > NULL_BASIS_FILL_MAX as f64,
+            fill > NULL_BASIS_FILL_MAX,
             fills,
             "{what}: N is {fill:.1} × A"
         );
@@ -385,4 +395,76 @@ fn the_margin_lp_runs_on_the_smaller_formulation_and_agrees_with_the_dense_path(
         let worst = aq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         assert!(worst < 1e-8, "{what}: |A q| = {worst:e}");
     }
+}
+
+/// The margin LP runs on A (the interior point imposes A q = 0 exactly) only where the
+/// sparse basis holds exact self-stresses. A lattice of 4 × 4 prisms, whose basis fills in
+/// past `NULL_BASIS_FILL_MAX`, beside a generic affine image of a Snelson prism with its
+/// coordinates rounded to five decimals (its self-stress holds to about 10⁻⁵, counted at
+/// `input_precision` 10⁻⁵): the LP stays on the basis and gives the dense path's margin,
+/// the prism's 1/√3 to the rounding. On A (measured without the exactness test) the
+/// interior point converged to a margin of 1.5·10⁻¹¹: the rounded prism has no exact
+/// self-stress, so its bars got no compression.
+#[test]
+fn a_rounded_self_stress_keeps_the_margin_lp_on_the_basis() {
+    use tensegrity_statics::sparse::{equilibrium_matrix_sparse, NULL_BASIS_FILL_MAX};
+    let lattice = test_models::double_layer_grid(4).unwrap();
+    let prism = test_models::snelson_prism(&test_models::PrismParams::default()).unwrap();
+    let offset = lattice.nodes().len();
+    let round = |x: f64| (x * 1e5).round() / 1e5;
+    let mut b = Structure::builder()
+        .nodes(lattice.nodes().iter().map(|p| [p.x, p.y, p.z]))
+        .nodes(
+            prism
+                .nodes()
+                .iter()
+                // a generic affine image (self-stresses are affinely invariant), rounded
+                .map(|p| {
+                    [
+                        round(0.93 * p.x + 0.21 * p.y + 0.17 * p.z - 2.0),
+                        round(-0.12 * p.x + 1.07 * p.y + 0.29 * p.z),
+                        round(0.08 * p.x - 0.19 * p.y + 0.89 * p.z),
+                    ]
+                }),
+        );
+    for bar in lattice.bars() {
+        b = b.bar(Bar::new(bar.nodes[0], bar.nodes[1]));
+    }
+    for bar in prism.bars() {
+        b = b.bar(Bar::new(offset + bar.nodes[0], offset + bar.nodes[1]));
+    }
+    for st in lattice.strings() {
+        b = b.string(StringMember::new(st.nodes[0], st.nodes[1]));
+    }
+    for st in prism.strings() {
+        b = b.string(StringMember::new(
+            offset + st.nodes[0],
+            offset + st.nodes[1],
+        ));
+    }
+    for sup in lattice.supports() {
+        b = b.support(sup.clone());
+    }
+    let s = b.build().unwrap();
+    let settings = StaticsSettings::default().input_precision(1e-5).unwrap();
+    let dense = Statics::with_settings(&s, settings).unwrap();
+    let sparse = SparseStatics::with_settings(&s, settings).unwrap();
+    let lattice_only = Statics::with_settings(&lattice, StaticsSettings::default()).unwrap();
+    // the prism's self-stress is counted on both paths, and the basis has filled in
+    assert_eq!(dense.self_stress_dim(), lattice_only.self_stress_dim() + 1);
+    assert_eq!(sparse.self_stress_dim(), dense.self_stress_dim());
+    let a = equilibrium_matrix_sparse(&s, dense.dofs()).unwrap();
+    let fill = sparse.sparse_self_stress_basis().values().len() as f64 / a.values().len() as f64;
+    assert!(fill > NULL_BASIS_FILL_MAX, "N is {fill:.2} × A");
+    let (p, q) = (
+        dense.prestressability().unwrap(),
+        sparse.prestressability().unwrap(),
+    );
+    assert!((p.margin - 1.0 / 3f64.sqrt()).abs() < 1e-3, "{}", p.margin);
+    assert!(
+        (p.margin - q.margin).abs() < 1e-9,
+        "margin {} (dense) vs {} (sparse)",
+        p.margin,
+        q.margin
+    );
 }

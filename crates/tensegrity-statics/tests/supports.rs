@@ -235,6 +235,14 @@ fn the_prestress_tests_see_the_skew_supports_as_the_turned_axes() {
         ),
         (Some(true), Some(true))
     );
+    // the flex test alone agrees (the penalised stress matrix certified these first)
+    assert_eq!(
+        (
+            xa.stable_by_flexes(&q).unwrap(),
+            xb.stable_by_flexes(&q).unwrap()
+        ),
+        (Some(true), Some(true))
+    );
     // a stress that softens the mechanism is unstable on both
     assert_eq!(
         (

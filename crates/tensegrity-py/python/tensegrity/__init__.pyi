@@ -795,7 +795,7 @@ def statics(
         `displacement`
     method : {'auto', 'dense', 'sparse'}
         Factorisation: auto (the dense SVD for small structures, the sparse rank-revealing
-        QR from 100 dofs and members on, 300 for coordinates judged rounded), dense or
+        QR from 50 dofs and members on, 300 for coordinates judged rounded), dense or
         sparse. Default: 'auto'
     max_memory : float or str, optional
         Refuse the call when its estimated peak memory is above this (bytes, or a size such as
