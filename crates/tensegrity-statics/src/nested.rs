@@ -25,6 +25,11 @@
 //!   pattern, one sparse Cholesky a step in the order of this dissection; Clarabel on the
 //!   same rows should it fail), up to
 //!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
+//!   Its rows impose A q = 0 exactly, so it runs only where the rank decision rejected
+//!   round-off alone ([`NestedStatics::rank_is_exact`]); on coordinates whose rounding the
+//!   rank decision discounts, some counted self-stress holds only to their precision, and
+//!   the margin is not computed here either (the banded and dense paths compute it over the
+//!   counted self-stresses);
 //!
 //! Not computed here (the report says so, or the banded path answers): the self-stress basis
 //! (its dimension is given) and the load solve; prestress stability is "stable" without
@@ -567,6 +572,13 @@ impl<'a> NestedStatics<'a> {
         self.sigma_min_estimate
     }
 
+    /// Whether the rejected part is round-off: ‖E‖_F ≤ 10⁻¹⁰·σ_max(A), so that every
+    /// counted self-stress (and mechanism) is exact. Rounded coordinates whose rank
+    /// decision discounts their rounding leave more.
+    pub fn rank_is_exact(&self) -> bool {
+        self.qr.rejected_residual() <= super::sparse::EXACT_SELF_STRESS_RESIDUAL * self.sigma_max
+    }
+
     /// Whether the rank decision is certified: σ_min(R_acc) > 100·max(τ, ‖E‖_F).
     pub fn is_certified(&self) -> bool {
         let noise = self.qr.rejected_residual().max(self.tolerance);
@@ -649,6 +661,15 @@ impl StaticsBackend for NestedStatics<'_> {
                 let q = DVector::from_vec(basis.mul_vec(&c));
                 return Ok(Prestressability::from_signed(q, signs));
             }
+        }
+        // the interior point imposes A q = 0 exactly: where the rank decision rejected more
+        // than round-off (coordinates rounded to their precision), some self-stress it counts
+        // holds only to that precision, and the margin over the exact ones would not be this
+        // structure's (a rounded prism beside a lattice: 1.5·10⁻¹¹ against 0.577)
+        if !self.rank_is_exact() {
+            return Err(Factorization::SparseQr.unsupported(
+                "the prestressability margin where some self-stress holds only to the coordinates' precision (rejected residual above round-off; the interior point on A needs exact ones): the banded sparse QR or the dense SVD computes it over the counted self-stresses",
+            ));
         }
         // the interior point on A D⁻¹ Aᵀ; Clarabel on the same rows should it fail
         // the normal matrix A D⁻¹ Aᵀ has the pattern of a stiffness matrix: the structure's

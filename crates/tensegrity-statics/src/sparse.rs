@@ -633,7 +633,7 @@ pub const NULL_BASIS_FILL_MAX: f64 = 0.5;
 /// which the self-stresses count as exact ([`prefers_equilibrium_lp`]): round-off is
 /// 10⁻¹⁵–10⁻¹³, a self-stress that rounded coordinates hold only to their precision
 /// (10⁻⁴–10⁻⁸) is far above.
-const EXACT_SELF_STRESS_RESIDUAL: f64 = 1e-10;
+pub(crate) const EXACT_SELF_STRESS_RESIDUAL: f64 = 1e-10;
 
 /// Whether the margin LP should run on the equilibrium rows of `a` rather than on the basis
 /// `null_basis`: where N holds more than [`NULL_BASIS_FILL_MAX`] times A's entries, and

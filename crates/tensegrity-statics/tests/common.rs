@@ -101,3 +101,42 @@ pub fn worst_node_error(
     }
     worst
 }
+
+/// `lattice` with, beside it (x shifted by −2), a generic affine image of the default Snelson
+/// prism (self-stresses are affinely invariant) with its coordinates rounded to multiples of
+/// 1/`scale`: its one self-stress holds only to about that precision. Bars and strings are
+/// plain members; the lattice keeps its supports.
+pub fn lattice_beside_rounded_prism(lattice: &Structure, scale: f64) -> Structure {
+    use tensegrity_core::test_models::{snelson_prism, PrismParams};
+    let prism = snelson_prism(&PrismParams::default()).unwrap();
+    let offset = lattice.nodes().len();
+    let round = |x: f64| (x * scale).round() / scale;
+    let mut b = Structure::builder()
+        .nodes(lattice.nodes().iter().map(|p| [p.x, p.y, p.z]))
+        .nodes(prism.nodes().iter().map(|p| {
+            [
+                round(0.93 * p.x + 0.21 * p.y + 0.17 * p.z - 2.0),
+                round(-0.12 * p.x + 1.07 * p.y + 0.29 * p.z),
+                round(0.08 * p.x - 0.19 * p.y + 0.89 * p.z),
+            ]
+        }));
+    for bar in lattice.bars() {
+        b = b.bar(Bar::new(bar.nodes[0], bar.nodes[1]));
+    }
+    for bar in prism.bars() {
+        b = b.bar(Bar::new(offset + bar.nodes[0], offset + bar.nodes[1]));
+    }
+    for st in lattice.strings() {
+        b = b.string(StringMember::new(st.nodes[0], st.nodes[1]));
+    }
+    for st in prism.strings() {
+        b = b.string(StringMember::new(
+            offset + st.nodes[0],
+            offset + st.nodes[1],
+        ));
+    }
+    for sup in lattice.supports() {
+        b = b.support(sup.clone());
+    }
+    b.build().unwrap()
+}

@@ -278,3 +278,46 @@ fn large_lattices_have_the_closed_form_self_stress_count() {
         assert_eq!(nested.mechanisms(), 0, "K = {k}");
     }
 }
+
+/// The nested path's margin LP (the interior point on A, A q = 0 exactly) runs only where the
+/// rank decision rejected round-off alone. A lattice of 8 × 8 prisms beside a prism rounded
+/// to five decimals (its self-stress counted at `input_precision` 10⁻⁵): the rejected
+/// residual is the rounding's, the margin is not computed here and the report says so, where
+/// the dense path gives the prism's 1/√3 to the rounding; the exact lattice alone is exact
+/// and gets the dense path's margin.
+#[test]
+fn a_rounded_self_stress_is_not_given_the_exact_margin() {
+    let lattice = test_models::double_layer_grid(8).unwrap();
+    let s = crate::common::lattice_beside_rounded_prism(&lattice, 1e5);
+    assert!(prefers_nested(&s));
+    let settings = StaticsSettings::default().input_precision(1e-5).unwrap();
+    let nested = NestedStatics::with_settings(&s, settings).unwrap();
+    let dense = Statics::with_settings(&s, settings).unwrap();
+    assert_eq!(nested.self_stress_dim(), dense.self_stress_dim());
+    assert!(!nested.rank_is_exact());
+    let margin = dense.prestressability().unwrap().margin;
+    assert!((margin - 1.0 / 3f64.sqrt()).abs() < 1e-3, "{margin}");
+    let err = nested.prestressability().unwrap_err().to_string();
+    assert!(err.contains("coordinates' precision"), "{err}");
+    let request = StaticsRequest {
+        settings: settings.method(StaticsMethod::Auto),
+        ..Default::default()
+    };
+    let r = statics_report(&s, &request).unwrap();
+    assert_eq!(r.statics_method, Some(Factorization::SparseQr));
+    let why = r.statics_warning.unwrap_or_default();
+    assert!(why.contains("prestressability not computed"), "{why}");
+    // the exact lattice: the interior point's margin is the dense path's
+    let exact = NestedStatics::with_settings(&lattice, StaticsSettings::default()).unwrap();
+    assert!(exact.rank_is_exact());
+    let (p, q) = (
+        Statics::new(&lattice).unwrap().prestressability().unwrap(),
+        exact.prestressability().unwrap(),
+    );
+    assert!(
+        (p.margin - q.margin).abs() < 1e-9,
+        "{} vs {}",
+        p.margin,
+        q.margin
+    );
+}

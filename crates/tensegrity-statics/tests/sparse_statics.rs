@@ -409,43 +409,7 @@ fn the_margin_lp_runs_on_the_smaller_formulation_and_agrees_with_the_dense_path(
 fn a_rounded_self_stress_keeps_the_margin_lp_on_the_basis() {
     use tensegrity_statics::sparse::{equilibrium_matrix_sparse, NULL_BASIS_FILL_MAX};
     let lattice = test_models::double_layer_grid(4).unwrap();
-    let prism = test_models::snelson_prism(&test_models::PrismParams::default()).unwrap();
-    let offset = lattice.nodes().len();
-    let round = |x: f64| (x * 1e5).round() / 1e5;
-    let mut b = Structure::builder()
-        .nodes(lattice.nodes().iter().map(|p| [p.x, p.y, p.z]))
-        .nodes(
-            prism
-                .nodes()
-                .iter()
-                // a generic affine image (self-stresses are affinely invariant), rounded
-                .map(|p| {
-                    [
-                        round(0.93 * p.x + 0.21 * p.y + 0.17 * p.z - 2.0),
-                        round(-0.12 * p.x + 1.07 * p.y + 0.29 * p.z),
-                        round(0.08 * p.x - 0.19 * p.y + 0.89 * p.z),
-                    ]
-                }),
-        );
-    for bar in lattice.bars() {
-        b = b.bar(Bar::new(bar.nodes[0], bar.nodes[1]));
-    }
-    for bar in prism.bars() {
-        b = b.bar(Bar::new(offset + bar.nodes[0], offset + bar.nodes[1]));
-    }
-    for st in lattice.strings() {
-        b = b.string(StringMember::new(st.nodes[0], st.nodes[1]));
-    }
-    for st in prism.strings() {
-        b = b.string(StringMember::new(
-            offset + st.nodes[0],
-            offset + st.nodes[1],
-        ));
-    }
-    for sup in lattice.supports() {
-        b = b.support(sup.clone());
-    }
-    let s = b.build().unwrap();
+    let s = crate::common::lattice_beside_rounded_prism(&lattice, 1e5);
     let settings = StaticsSettings::default().input_precision(1e-5).unwrap();
     let dense = Statics::with_settings(&s, settings).unwrap();
     let sparse = SparseStatics::with_settings(&s, settings).unwrap();
