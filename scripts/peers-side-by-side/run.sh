@@ -8,8 +8,8 @@
 #   scripts/peers-side-by-side/run.sh
 #   TSGFEM=/path/to/TsgFEM REPEATS=3 scripts/peers-side-by-side/run.sh
 #
-# Needs the release binary (target/release/tensegrity) and the `grid_cost` example of
-# formfind (built here if missing), python3, and for the peers the venv target/compas-fd-venv
+# Needs the release binary (target/release/tensegrity), the `grid_cost` example of formfind
+# and the `statics_cost` example of tensegrity-io (built here if missing), python3, and for the peers the venv target/compas-fd-venv
 # (made here with compas_fd, which brings numpy and scipy). TSGFEM: a TsgFEM work tree or its
 # git directory; without it (or without `octave`) the TsgFEM row says so. Writes nothing in the
 # repository but under target/; its scenes go to a temporary folder, removed at the end.
@@ -23,6 +23,9 @@ export TENSEGRITY_BIN="${TENSEGRITY_BIN:-$root/target/release/tensegrity}"
 [ -x "$TENSEGRITY_BIN" ] || { echo "no binary at $TENSEGRITY_BIN (cargo build --release)" >&2; exit 2; }
 if [ ! -x target/release/examples/grid_cost ]; then
     cargo build --release --quiet -p formfind --example grid_cost
+fi
+if [ ! -x target/release/examples/statics_cost ]; then
+    cargo build --release --quiet -p tensegrity-io --example statics_cost
 fi
 venv="$root/target/compas-fd-venv"
 if [ ! -x "$venv/bin/python" ]; then

@@ -16,8 +16,10 @@ The peers:
   agreement: the largest difference of the nodes;
 - numpy SVD (statics): free towers of N Snelson prisms (the scenes of examples/tower200.toml
   continued, the generator of scripts/statics-scaling/run.sh); ours `tensegrity statics
-  SCENE --json` (the full report: rank, self-stress, margin LP, prestress stability);
-  agreement: rank and self-stress dimension equal;
+  SCENE --json` (the full report: rank, self-stress, margin LP, prestress stability), and
+  in-process the rank alone (the `statics_cost` example of tensegrity-io: the factorisation
+  and rank decision the automatic method builds, least wall time of five, one thread)
+  beside numpy's SVD and rank alone; agreement: rank and self-stress dimension equal;
 - TsgFEM (dynamics): its T-bar dynamics example with its slack option, run under GNU Octave
   by scripts/tsgfem-export (TsgFEM's `dynamic_solver` timed by tic/toc), against
   `tensegrity simulate examples/anchors/tsgfem_tbar_elastic.toml --no-convergence-check
@@ -26,7 +28,7 @@ The peers:
 - MOTES: not run here (no MOTES set-up on this machine); the row gives the stored reference
   time with its date and our time, and no ratio.
 
-Environment: TENSEGRITY_BIN, GRID_COST_BIN, REPEATS (default 3), GRIDS (default "27 85"),
+Environment: TENSEGRITY_BIN, GRID_COST_BIN, STATICS_COST_BIN, REPEATS (default 3), GRIDS (default "27 85"),
 TOWERS (default "50 200 800"), TSGFEM (a TsgFEM work tree, or its git directory: exported to a
 temporary folder), WORK (a temporary folder for the scenes; run.sh makes one).
 """
@@ -48,6 +50,8 @@ REPEATS = int(os.environ.get("REPEATS", "3"))
 WORK = os.environ.get("WORK", "/tmp")
 # a numpy run longer than this (CPU seconds) is not repeated
 SVD_REPEAT_MAX_S = 20.0
+STATICS_COST = os.environ.get(
+    "STATICS_COST_BIN", os.path.join(ROOT, "target", "release", "examples", "statics_cost"))
 # towers up to this many members also run our dense path (--method dense) beside numpy's SVD
 DENSE_MEMBERS_MAX = 2000
 
@@ -209,6 +213,17 @@ def numpy_rows(rows, versions):
         rows.append((problem, versions["numpy"],
                      "numpy SVD + rank alone (CPU) / our whole process" + once,
                      best["np_svd"], best["ours_cpu"], agree))
+        if os.path.exists(STATICS_COST):
+            # the rank alone on both sides: numpy's SVD and rank, our factorisation and rank
+            out, _, _ = child([STATICS_COST, scene])
+            cost = json.loads(out)
+            same = (cost["rank"], cost["self_stress_dim"]) == (peer["rank"],
+                                                             peer["self_stress_dim"])
+            rows.append((problem, versions["numpy"],
+                         "numpy SVD + rank alone (CPU) / our factorisation + rank alone "
+                         "(wall, in-process)" + once,
+                         best["np_svd"], cost["rank_s"],
+                         agree if same else "rank or self-stress dimension differ"))
         if peer["members"] <= DENSE_MEMBERS_MAX:
             # SVD against SVD: our dense path (the SVD with its vectors, then the same report)
             for _ in range(runs):
