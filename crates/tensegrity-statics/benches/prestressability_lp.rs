@@ -17,20 +17,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use tensegrity_core::{test_models, Structure};
-use tensegrity_statics::nested::{prefers_nested, prefers_nested_members};
-use tensegrity_statics::{backend, Factorization, StaticsSettings};
-
-/// Which back-end the automatic choice built for `s` (its kind, and for the sparse QR which
-/// ordering: the choice in `tensegrity_statics::backend`).
-fn path(s: &Structure, kind: Factorization) -> &'static str {
-    match kind {
-        Factorization::Svd => "svd",
-        Factorization::Cyclic => "cyclic",
-        Factorization::SparseQr if prefers_nested(s) => "nested",
-        Factorization::SparseQr if prefers_nested_members(s) => "nested_members",
-        Factorization::SparseQr => "sparse_qr",
-    }
-}
+use tensegrity_statics::{backend, backend_path, StaticsSettings};
 
 fn bench(c: &mut Criterion) {
     let mut cases: Vec<(String, Structure)> = Vec::new();
@@ -48,7 +35,7 @@ fn bench(c: &mut Criterion) {
         let statics = backend(s, StaticsSettings::default()).expect("factored");
         assert!(statics.self_stress_dim() > 0, "{name}: no self-stress");
         let id = format!("{name}_{}members", s.n_members());
-        let method = path(s, statics.kind());
+        let method = backend_path(s, statics.kind());
         group.bench_function(BenchmarkId::new(method, &id), |b| {
             b.iter(|| black_box(statics.prestressability().expect("margin LP")))
         });

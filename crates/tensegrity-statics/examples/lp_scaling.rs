@@ -10,21 +10,10 @@
 #![allow(missing_docs)]
 
 use std::time::Instant;
-use tensegrity_core::{test_models, Structure};
-use tensegrity_statics::nested::{prefers_nested, prefers_nested_members};
-use tensegrity_statics::{backend, Factorization, StaticsSettings};
+use tensegrity_core::test_models;
+use tensegrity_statics::{backend, backend_path, StaticsSettings};
 
 const REPEAT: usize = 5;
-
-fn path(s: &Structure, kind: Factorization) -> &'static str {
-    match kind {
-        Factorization::Svd => "svd",
-        Factorization::Cyclic => "cyclic",
-        Factorization::SparseQr if prefers_nested(s) => "nested",
-        Factorization::SparseQr if prefers_nested_members(s) => "nested_members",
-        Factorization::SparseQr => "sparse_qr",
-    }
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -92,7 +81,7 @@ fn main() {
             println!(
                 "{family},{n},{},{},{best:.6}",
                 s.n_members(),
-                path(&s, statics.kind())
+                backend_path(&s, statics.kind())
             );
             if let Some((m, t)) = last {
                 if best < 0.9 * t {

@@ -79,7 +79,7 @@ pub use load::{reaction_components, LoadSolution, LOAD_RESIDUAL_TOLERANCE};
 pub use nested::NestedStatics;
 pub use prestress::{solve_lp, MemberSign, Prestressability, PRESTRESS_TOLERANCE};
 pub use report::{statics_report, StaticsReport, StaticsRequest};
-pub use select::{backend, cyclic_backend, ROUNDED_SPARSE_MIN_SIZE};
+pub use select::{backend, backend_path, cyclic_backend, ROUNDED_SPARSE_MIN_SIZE};
 pub use sparse::{sparse_after_qr, sparse_statics_bytes, SparseStatics, SPARSE_FLOP_RATE};
 pub use stability::PrestressStability;
 
@@ -448,8 +448,8 @@ pub enum StaticsMethod {
 /// number at least this many. The two paths cost the same (the process start, 3.5 ms) up to
 /// about 50 members and the sparse one less from there on (whole process, release, best of
 /// 11: free towers of 5…11 prisms, 48…102 members, 3.3–4.4 ms sparse against 3.5–5.8 ms
-/// dense; a double-layer grid of 132 members, 8.9 against 6.0 ms; of 25 prisms: 7.4
-/// against 17.4 ms; docs/notes/PERFORMANCE.md "Statics cost against size"), so that with
+/// dense; a double-layer grid of 132 members, 6.0 ms sparse against 8.9 ms dense; a tower of
+/// 25 prisms, 7.4 against 17.4 ms; docs/notes/PERFORMANCE.md "Statics cost against size"), so that with
 /// the limit at 50 the cost rises with size across the switch. At 100 a tower of 10 prisms
 /// (93 members, dense) cost 5.2 ms and one of 11 (sparse) 4.4 ms; at 300 the dense path's
 /// O(members·s²) margin LP made mid-size lattices cost more than larger ones.

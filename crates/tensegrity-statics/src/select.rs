@@ -23,6 +23,7 @@
 //!   blocks do not model them either, and a symmetric structure with clusters takes this
 //!   general choice.
 
+use super::front::Factorization;
 use super::symmetry::{CyclicStatics, CyclicSymmetry};
 use super::{
     dense_statics_bytes, DofMap, SparseStatics, Statics, StaticsBackend, StaticsMethod,
@@ -122,6 +123,30 @@ pub fn backend<'a>(
         }
     }
     Ok(Box::new(Statics::with_settings(structure, settings)?))
+}
+
+/// The name of the path a back-end of `kind` built for `structure` takes, as the benches and
+/// the scaling example label it: `svd`, `cyclic`, and for the sparse QR `nested` (a wide
+/// lattice), `nested_members` (a long structure) or `sparse_qr` (the banded QR), by the
+/// automatic method's rules.
+///
+/// ```
+/// use tensegrity_core::test_models::snelson_tower_free;
+/// use tensegrity_statics::{backend, backend_path, StaticsSettings};
+/// let tower = snelson_tower_free(20).unwrap();
+/// let b = backend(&tower, StaticsSettings::default()).unwrap();
+/// assert_eq!(backend_path(&tower, b.kind()), "sparse_qr");
+/// ```
+pub fn backend_path(structure: &Structure, kind: Factorization) -> &'static str {
+    match kind {
+        Factorization::Svd => "svd",
+        Factorization::Cyclic => "cyclic",
+        Factorization::SparseQr if super::nested::prefers_nested(structure) => "nested",
+        Factorization::SparseQr if super::nested::prefers_nested_members(structure) => {
+            "nested_members"
+        }
+        Factorization::SparseQr => "sparse_qr",
+    }
 }
 
 /// A structure with clusters: the dense SVD or the banded sparse QR, the back-ends that
