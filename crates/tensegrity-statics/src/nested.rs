@@ -15,13 +15,13 @@
 //!   dissected again down to [`LEAF_NODES`] nodes; no member joins two sibling sub-domains,
 //!   so a member touches one front and its ancestors;
 //! - **factorisation**: the rank-revealing multifrontal QR of Aᵀ
-//!   ([`FrontalQr`](tensegrity_linalg::FrontalQr)) along that tree, with the banded path's
+//!   ([`tensegrity_linalg::FrontalQr`]) along that tree, with the banded path's
 //!   tolerances: τ = max(m, n)·ε·σ_max (σ_max by the power method), rejection at 1000·τ;
 //! - **certificate**: as on the banded path, σ_min(R_acc) (inverse iteration) must exceed
 //!   100·max(τ, ‖E‖_F), ‖E‖_F the rejected residuals;
 //! - **margin**: the LP `max t  s.t.  A q = 0,  σ_k q_k ≥ t,  σ_k q_k ≤ 1` over the force
 //!   densities themselves (equality rows A, no self-stress basis), by an interior-point
-//!   method on the normal matrix A D⁻¹ Aᵀ ([`margin_ipm`](super::margin_ipm): a stiffness
+//!   method on the normal matrix A D⁻¹ Aᵀ (`margin_ipm`: a stiffness
 //!   pattern, one sparse Cholesky a step in the order of this dissection; Clarabel on the
 //!   same rows should it fail), up to
 //!   [`LP_MEMBERS_MAX`] members; beyond, the margin is not computed (the report says so).
@@ -62,7 +62,7 @@
 //! - **margin**: the banded path's LP over that sparse basis, q = N c (Clarabel), the
 //!   interior point on A D⁻¹ Aᵀ should it fail or the basis not be local;
 //! - **stability** with internal mechanisms: the penalised stress matrix
-//!   ([`penalty`](super::penalty): Ω̄ − σ′I + μAAᵀ positive definite proves the dense test's
+//!   (`penalty`: Ω̄ − σ′I + μAAᵀ positive definite proves the dense test's
 //!   "stable", a banded Cholesky, linear), then the banded test where few mechanisms keep its
 //!   factor small, else "not tested".
 //!
@@ -144,7 +144,7 @@ const FIXED_BYTES: f64 = 4.0 * 1024.0 * 1024.0;
 /// members), its Cholesky factor with the factor's symbolic structure and workspace (≤ 12 bytes
 /// for each of E entries: 10.4 M entries of L against E = 14.1 M at K = 86), the normal
 /// matrix's member contributions (24 bytes each) and its vectors; then the dissection and
-/// the report ([`REPORT_BYTES_PER_MEMBER`], [`FIXED_BYTES`]); work
+/// the report (`REPORT_BYTES_PER_MEMBER`, `FIXED_BYTES`); work
 /// the fronts' 2·rows·columns·pivots flops and the LP.
 pub fn nested_estimate(
     structure: &Structure,

@@ -16,7 +16,7 @@
 //!    Euler buckling), with a warning when a string ends up in compression. A load the
 //!    structure cannot carry (relative residual above
 //!    [`LOAD_RESIDUAL_TOLERANCE`](super::load::LOAD_RESIDUAL_TOLERANCE)) is the error
-//!    [`StaticsError::LoadNotCarried`](tensegrity_core::error::StaticsError::LoadNotCarried) naming the residual and
+//!    [`tensegrity_core::error::StaticsError::LoadNotCarried`] naming the residual and
 //!    the unbalanced nodes, unless [`StaticsRequest::least_squares`] asks for the
 //!    least-squares answer, which is then reported with `load_carried: false` and no sizing;
 //! 4. with [`StaticsRequest::modes`] = Some(k): the k lowest natural frequencies about the

@@ -8,7 +8,7 @@
 //! - Euler buckling of a pinned–pinned solid rod in compression, |f| = π³ E r⁴ / (4 l²):
 //!   r_B = (4 |f| l² / (π³ E))^¼ and m_B = 2 ρ l² √(|f| / (π E))  (eq. 4.57, 4.59);
 //! - a bar in compression takes r = max(r_Y, r_B); a bar in tension only yields; a string must
-//!   be in tension ([`StaticsError::StringInCompression`](tensegrity_core::error::StaticsError::StringInCompression) otherwise).
+//!   be in tension ([`tensegrity_core::error::StaticsError::StringInCompression`] otherwise).
 //!
 //! Total mass is Σ ρ π r² l (eq. 4.60–4.61 times density).
 //!

@@ -9,7 +9,7 @@
 //! AᵀA or AAᵀ square the condition number, so a rank decision at max(m, n)·ε·σ_max is
 //! impossible there. Structures are meshes: after a reverse Cuthill–McKee ordering of the
 //! nodes, A is banded. The factorisation is therefore a Householder QR confined to A's profile
-//! ([`RankRevealingQr`](tensegrity_linalg::RankRevealingQr)): the members are processed along the
+//! ([`tensegrity_linalg::RankRevealingQr`]): the members are processed along the
 //! band and a member whose column lies within the rejection tolerance of the span of the
 //! members accepted before it is rejected (it carries a self-stress). A member whose
 //! acceptance would drop the incremental condition estimate of the accepted set below

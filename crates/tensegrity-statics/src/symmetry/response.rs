@@ -32,7 +32,7 @@ const ORBIT_TOLERANCE: f64 = 1e-9;
 /// elastic structure with axial stiffnesses `stiffness` (N/m per member, constant on member
 /// orbits) under a unit load on `node`, which must be free in every direction (see the
 /// module documentation). A singular block (a mechanism) is
-/// [`NumericsError::Factorization`](tensegrity_core::error::NumericsError::Factorization).
+/// [`tensegrity_core::error::NumericsError::Factorization`].
 pub fn elastic_response(
     structure: &Structure,
     symmetry: &CyclicSymmetry,
@@ -219,7 +219,7 @@ impl<'a> MemberRotations<'a> {
         &self.at[self.symmetry.member_places()[e].orbit]
     }
 
-    /// The response of every member under the load rotated by p: out[πᵖ(e)] = Rᵖ r[e].
+    /// The response of every member under the load rotated by p: out\[πᵖ(e)\] = Rᵖ r\[e\].
     pub fn rotate(&self, response: &[Vector3<f64>], p: usize) -> Vec<Vector3<f64>> {
         let rp = self.symmetry.rotation(p);
         let mut out = vec![Vector3::zeros(); response.len()];
