@@ -49,7 +49,14 @@ fn main() {
         };
         let request = StaticsRequest::default();
         let (report_s, r) = best(|| statics_report(s, &request));
-        let margin = r.map(|r| r.prestress_margin).unwrap_or(f64::NAN);
+        // the margin, or null (with the reason on stderr) where the report failed
+        let margin = match r {
+            Ok(r) => r.prestress_margin.to_string(),
+            Err(e) => {
+                eprintln!("{arg}: the report: {e}");
+                "null".to_string()
+            }
+        };
         println!(
             "{{\"scene\": {:?}, \"members\": {}, \"rank\": {}, \"self_stress_dim\": {}, \"method\": \"{:?}\", \"rank_s\": {rank_s:e}, \"report_s\": {report_s:e}, \"prestress_margin\": {margin}}}",
             arg,
