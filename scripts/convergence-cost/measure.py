@@ -18,6 +18,7 @@ COMMANDS = [
     ["simulate", "examples/anchors/motes_dbar.toml"],
     ["simulate", "examples/prism_drop.toml"],
     ["roll", "--fidelity", "rigid"],
+    ["roll", "--fidelity", "full", "--t-end", "2", "--dt", "3.125e-5"],
     ["roll", "--fidelity", "full", "--t-end", "2", "--dt", "6.25e-5"],
     ["roll", "--fidelity", "full", "--t-end", "2", "--dt", "1.25e-4"],
     ["roll", "--fidelity", "full", "--t-end", "2"],

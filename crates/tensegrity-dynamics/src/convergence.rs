@@ -66,7 +66,9 @@
 //! fastest rate λ its explicit part must resolve ([`explicit_rate`]), and inside the run
 //! (kh ≤ t_end, and no longer than an output interval where the steps are cut at the samples).
 //! Each caller takes the coarsest of the ratios it allows ([`Companion::COARSE`]) and states
-//! why: `simulate` 4h, else 2h; the rigid rolling model 8h; the full rolling model 2h. The
+//! why: `simulate` 4h, else 2h; the rigid rolling model 8h; the full rolling model 4h where
+//! 4h is within half its default step, else 2h (its estimate deciding only within τ/2:
+//! `wheel_rolling::convergence`). The
 //! coarser the companion, the cheaper (¼ of the run at 4h, ⅛ at 8h), and the more the
 //! order-1 rule over-states the error of a higher-order method (RK4 on a smooth scene: 85-fold
 //! at 4h, 15-fold at 2h): a caller whose quantity is past its tolerance at 4h or 8h checks it

@@ -210,7 +210,7 @@ fn toroid_column(
 /// with `t_end`, the statics with the treads); for the full model the T-bar's and the
 /// toroid's full runs; each again at half the step with `convergence_check` (the refined
 /// companion and its twin: the check's cost where no coarse companion serves; a coarse one
-/// costs ⅛ or ¼ run (rigid), ½ or 1 (full), [`wheel_rolling::convergence`], so the estimate
+/// costs ⅛ or ¼ run (rigid), ¼ to 1 (full), [`wheel_rolling::convergence`], so the estimate
 /// stays an upper bound of the usual case). The T-bar's
 /// refined run runs beside its run, on a thread of its own
 /// ([`wheel_rolling::roll_checked`]): on two cores or more the pair takes the time of the

@@ -163,7 +163,7 @@ pub fn roll(request: &RollRequest) -> Estimate {
     if request.checks.convergence_check {
         // the refined companion (half the step, twice the steps) and the twin (the run
         // again from a start turned by 1e-6 rad): the check's cost where no coarse companion
-        // serves; a coarse one costs ⅛ or ¼ run (rigid), ½ or 1 (full)
+        // serves; a coarse one costs ⅛ or ¼ run (rigid), ¼ to 1 (full)
         // (`wheel_rolling::convergence`)
         run = run.then(at(0.5).0).then(one.clone());
     }
