@@ -537,6 +537,17 @@ impl StaticsSettings {
         (m, n): (usize, usize),
         sigma_max: f64,
     ) -> f64 {
+        self.rank_scales(structure, (m, n), sigma_max).absolute()
+    }
+
+    /// The scales of the rank decision of an m × n equilibrium matrix of `structure` with
+    /// largest singular value `sigma_max` under these settings ([`rank::RankTolerance::of`]).
+    pub fn rank_scales(
+        &self,
+        structure: &Structure,
+        (m, n): (usize, usize),
+        sigma_max: f64,
+    ) -> rank::RankTolerance {
         rank::RankTolerance::of(
             structure,
             (m, n),
@@ -544,7 +555,6 @@ impl StaticsSettings {
             self.rank_tolerance,
             self.input_precision,
         )
-        .absolute()
     }
 
     /// Chooses the prestressability LP solver.

@@ -452,6 +452,9 @@ pub struct NestedStatics<'a> {
     qr: FrontalQr,
     orientation: Orientation,
     tolerance: f64,
+    /// The residual at or below which a column is rejected
+    /// ([`crate::rank::RankTolerance::reject_level`]).
+    reject: f64,
     sigma_max: f64,
     sigma_min_estimate: f64,
     /// The sparse self-stress basis (members orientation, when its vectors are local).
@@ -482,8 +485,9 @@ impl<'a> NestedStatics<'a> {
         let (m, n) = (dofs.len(), structure.n_members());
         let (fronts, parent) = dof_fronts(structure, &dofs);
         let sigma = sigma_max(&a);
-        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
-        let qr = FrontalQr::new(&a, &fronts, &parent, REJECT_FACTOR * tolerance)?;
+        let scales = settings.rank_scales(structure, (m, n), sigma);
+        let (tolerance, reject) = (scales.absolute(), scales.reject_level(REJECT_FACTOR));
+        let qr = FrontalQr::new(&a, &fronts, &parent, reject)?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
         Ok(Self {
             structure,
@@ -492,6 +496,7 @@ impl<'a> NestedStatics<'a> {
             qr,
             orientation: Orientation::Dofs,
             tolerance,
+            reject,
             sigma_max: sigma,
             sigma_min_estimate,
             null_basis: None,
@@ -526,14 +531,9 @@ impl<'a> NestedStatics<'a> {
         let at = transpose(&a)?;
         let (fronts, parent) = member_fronts(structure);
         let sigma = sigma_max(&a);
-        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
-        let qr = FrontalQr::with_threshold(
-            &at,
-            &fronts,
-            &parent,
-            REJECT_FACTOR * tolerance,
-            MEMBER_PIVOT_THRESHOLD,
-        )?;
+        let scales = settings.rank_scales(structure, (m, n), sigma);
+        let (tolerance, reject) = (scales.absolute(), scales.reject_level(REJECT_FACTOR));
+        let qr = FrontalQr::with_threshold(&at, &fronts, &parent, reject, MEMBER_PIVOT_THRESHOLD)?;
         let sigma_min_estimate = qr.sigma_min_estimate(INVERSE_STEPS);
         let null_basis =
             qr.sparse_null_vectors_within(NULL_ENTRIES_PER_MEMBER.saturating_mul(n))?;
@@ -544,6 +544,7 @@ impl<'a> NestedStatics<'a> {
             qr,
             orientation: Orientation::Members,
             tolerance,
+            reject,
             sigma_max: sigma,
             sigma_min_estimate,
             null_basis,
@@ -579,8 +580,12 @@ impl<'a> NestedStatics<'a> {
         self.qr.rejected_residual() <= super::sparse::EXACT_SELF_STRESS_RESIDUAL * self.sigma_max
     }
 
-    /// Whether the rank decision is certified: σ_min(R_acc) > 100·max(τ, ‖E‖_F).
+    /// Whether the rank decision is certified: σ_min(R_acc) > 100·max(τ, ‖E‖_F); a rank of
+    /// 0 only where σ_max(A) is within the rejection level.
     pub fn is_certified(&self) -> bool {
+        if self.rank() == 0 {
+            return self.sigma_max <= self.reject;
+        }
         let noise = self.qr.rejected_residual().max(self.tolerance);
         self.sigma_min_estimate > CERTIFY_FACTOR * noise
     }

@@ -41,6 +41,12 @@
 use tensegrity_core::precision::coordinate_rounding;
 use tensegrity_core::Structure;
 
+/// The multiple of the coordinates' rounding e at which a QR back-end rejects a column
+/// ([`RankTolerance::reject_level`]): a rounding of e moves a member's column of A (two
+/// nodes' three coordinates, differences of two rounded values) by at most 2√6 e ≈ 4.9 e,
+/// and a dof's row by 2√d e for the d members at its node; 10 e covers both up to d = 25.
+pub const DATA_REJECT_FACTOR: f64 = 10.0;
+
 /// The smallest gap σ_{r−1} / floor that moves the cut below the arithmetic's decision.
 pub const CUT_GAP: f64 = 100.0;
 
@@ -97,6 +103,24 @@ impl RankTolerance {
     /// value at the rounding's size is noise).
     pub fn absolute(&self) -> f64 {
         self.base.max(self.rounding)
+    }
+
+    /// The residual at or below which a QR back-end rejects a column: `arithmetic` × τ₀
+    /// (the QR's own round-off, κ(A_acc)·ε·‖A‖, exceeds the SVD's) or
+    /// [`DATA_REJECT_FACTOR`] × e (what the rounding can leave of a dependent column),
+    /// whichever is larger. The factor of the round-off is not applied to e: a rounding
+    /// of 10⁻³ of a 10 m grid (e = 1 cm) would otherwise reject every member shorter than
+    /// 10 m (rank 0, every member a self-stress).
+    ///
+    /// ```
+    /// use tensegrity_statics::rank::{RankTolerance, DATA_REJECT_FACTOR};
+    /// let t = RankTolerance { base: 1e-14, rounding: 1e-2, data: 1.8, search: true };
+    /// assert_eq!(t.reject_level(1e3), DATA_REJECT_FACTOR * 1e-2);
+    /// let exact = RankTolerance { base: 1e-14, rounding: 0.0, data: 0.0, search: true };
+    /// assert_eq!(exact.reject_level(1e3), 1e-11);
+    /// ```
+    pub fn reject_level(&self, arithmetic: f64) -> f64 {
+        (arithmetic * self.base).max(DATA_REJECT_FACTOR * self.rounding)
     }
 
     /// The rank and its tolerance from the singular values `values` (non-increasing; those

@@ -155,11 +155,11 @@ const DEFER_BELOW: f64 = 1e-3;
 /// most of its members, and a deferred member spans the whole band (quadratic work and
 /// global null vectors); the certificate (σ_min(R_acc) against the rejected residuals)
 /// still catches an accepted set that went bad.
-fn defer_level(m: usize, n: usize, sigma_max: f64, tolerance: f64) -> f64 {
+fn defer_level(m: usize, n: usize, sigma_max: f64, reject: f64) -> f64 {
     if m.max(n) <= 1000 {
         DEFER_BELOW * sigma_max
     } else {
-        10.0 * REJECT_FACTOR * tolerance
+        10.0 * reject
     }
 }
 /// Columns are rejected when their residual is at most this multiple of τ: the residual of
@@ -436,6 +436,9 @@ pub struct SparseStatics<'a> {
     a: CscMatrix,
     qr: RankRevealingQr,
     tolerance: f64,
+    /// The residual at or below which a column is rejected
+    /// ([`crate::rank::RankTolerance::reject_level`]).
+    reject: f64,
     sigma_max: f64,
     sigma_min_estimate: f64,
     null_basis: CscMatrix,
@@ -462,12 +465,13 @@ impl<'a> SparseStatics<'a> {
         }
         let (m, n) = (dofs.len(), crate::n_columns(structure));
         let sigma = sigma_max(&a);
-        let tolerance = settings.sparse_rank_tolerance(structure, (m, n), sigma);
+        let scales = settings.rank_scales(structure, (m, n), sigma);
+        let (tolerance, reject) = (scales.absolute(), scales.reject_level(REJECT_FACTOR));
         let qr = RankRevealingQr::with_deferral(
             &a,
             &row_order,
-            REJECT_FACTOR * tolerance,
-            defer_level(m, n, sigma, tolerance),
+            reject,
+            defer_level(m, n, sigma, reject),
         )?;
         // the rank is known: the bases, the LP and the stability test are estimated and
         // checked before they are allocated
@@ -494,6 +498,7 @@ impl<'a> SparseStatics<'a> {
             a,
             qr,
             tolerance,
+            reject,
             sigma_max: sigma,
             sigma_min_estimate,
             null_basis,
@@ -541,8 +546,13 @@ impl<'a> SparseStatics<'a> {
         self.dofs.len() - self.rank()
     }
 
-    /// Whether the rank decision is certified (see the module documentation).
+    /// Whether the rank decision is certified (see the module documentation); a rank of 0
+    /// only where all of A is below the rejection level (σ_max ≤ it), since no accepted
+    /// column then bounds the gap.
     pub fn is_certified(&self) -> bool {
+        if self.rank() == 0 {
+            return self.sigma_max <= self.reject;
+        }
         let noise = self.qr.rejected_residual().max(self.tolerance);
         self.sigma_min_estimate > CERTIFY_FACTOR * noise
     }
@@ -899,8 +909,8 @@ impl SparseStatics<'_> {
         let flexes = RankRevealingQr::with_deferral(
             &at,
             &member_order,
-            REJECT_FACTOR * self.tolerance,
-            defer_level(n, kept, self.sigma_max, self.tolerance),
+            self.reject,
+            defer_level(n, kept, self.sigma_max, self.reject),
         )?;
         if flexes.rank() != self.rank() || kept - flexes.rank() != internal {
             return Ok(None);

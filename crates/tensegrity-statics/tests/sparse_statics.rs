@@ -432,3 +432,42 @@ fn a_rounded_self_stress_keeps_the_margin_lp_on_the_basis() {
         q.margin
     );
 }
+
+/// A coarse input precision rejects no member the arithmetic keeps: on a 6 m double-layer
+/// grid given to 10⁻⁴ and 10⁻³ of its size (e = 0.6 and 6 mm), the banded QR (forced)
+/// counts the exact data's rank and self-stresses, as the SVD does. It rejected columns at
+/// 10³ e before (the factor meant for its own round-off), every member shorter than 6 m at
+/// 10⁻³: rank 0, every member a self-stress, and certified (`statics` of `grid:10` at
+/// `--input-precision 1e-3` reported 1,420 self-stresses and 795 mechanisms, no warning).
+/// A rank of 0 is now certified only where σ_max(A) is within the rejection level.
+#[test]
+fn a_coarse_input_precision_rejects_no_member() {
+    use tensegrity_statics::rank::DATA_REJECT_FACTOR;
+    let grid = test_models::double_layer_grid(6).unwrap();
+    let exact = Statics::with_settings(&grid, StaticsSettings::default()).unwrap();
+    assert!(exact.self_stress_dim() > 0);
+    let size = grid
+        .nodes()
+        .iter()
+        .flat_map(|p| [p.x.abs(), p.y.abs(), p.z.abs()])
+        .fold(0.0, f64::max);
+    for precision in [1e-4, 1e-3] {
+        let settings = StaticsSettings::default()
+            .input_precision(precision)
+            .unwrap();
+        let dense = Statics::with_settings(&grid, settings).unwrap();
+        let sparse = SparseStatics::with_settings(&grid, settings).unwrap();
+        println!(
+            "{precision:e}: rank {} (SVD {}, exact {}), certified {}",
+            sparse.rank(),
+            dense.rank(),
+            exact.rank(),
+            sparse.is_certified()
+        );
+        assert_eq!(dense.rank(), exact.rank());
+        assert_eq!(sparse.rank(), exact.rank());
+        assert_eq!(sparse.self_stress_dim(), exact.self_stress_dim());
+        // the rejection level stays below the shortest member (1 m)
+        assert!(DATA_REJECT_FACTOR * precision * size < 1.0);
+    }
+}
