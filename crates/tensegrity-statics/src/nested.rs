@@ -93,7 +93,8 @@ pub const BAND_NODES_MAX: usize = 24;
 /// a lattice: about 2 s); beyond, the report says it was not computed.
 pub const LP_MEMBERS_MAX: usize = 400_000;
 
-/// Rejection and certificate factors, as on the banded path.
+/// Rejection (of the arithmetic's tolerance τ₀, [`crate::rank::RankTolerance::reject_level`])
+/// and certificate factors, as on the banded path.
 const REJECT_FACTOR: f64 = 1e3;
 const CERTIFY_FACTOR: f64 = 100.0;
 const INVERSE_STEPS: usize = 12;

@@ -148,9 +148,10 @@ const CERTIFY_FACTOR: f64 = 100.0;
 /// of σ_max is deferred to the end of the factorisation; another level for larger structures ([`defer_level`]).
 const DEFER_BELOW: f64 = 1e-3;
 
-/// The deferral level of an m × n matrix with rank tolerance τ: 10⁻³·σ_max up to 1000 rows
-/// and columns (a condition estimate of R_acc within 10³ of A's scale), and beyond that
-/// 10·[`REJECT_FACTOR`]·τ, ten times the rejection level. A long structure's own σ_r falls
+/// The deferral level of an m × n matrix whose columns are rejected at `reject`
+/// ([`crate::rank::RankTolerance::reject_level`]): 10⁻³·σ_max up to 1000 rows and columns
+/// (a condition estimate of R_acc within 10³ of A's scale), and beyond that ten times the
+/// rejection level. A long structure's own σ_r falls
 /// with its size (a tower of N prisms: σ_r ∝ 1/N²), so a fixed fraction of σ_max would defer
 /// most of its members, and a deferred member spans the whole band (quadratic work and
 /// global null vectors); the certificate (σ_min(R_acc) against the rejected residuals)
@@ -162,10 +163,11 @@ fn defer_level(m: usize, n: usize, sigma_max: f64, reject: f64) -> f64 {
         10.0 * reject
     }
 }
-/// Columns are rejected when their residual is at most this multiple of τ: the residual of
-/// an exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the
-/// SVD's ε·‖A‖, so τ itself would accept some dependent columns of ill-conditioned
-/// structures.
+/// Columns are rejected when their residual is at most this multiple of the arithmetic's
+/// tolerance τ₀ (or [`crate::rank::DATA_REJECT_FACTOR`] times the coordinates' rounding e,
+/// whichever is larger: [`crate::rank::RankTolerance::reject_level`]): the residual of an
+/// exactly dependent column carries rounding of order κ(A_acc)·ε·‖A‖, larger than the SVD's
+/// ε·‖A‖, so τ₀ itself would accept some dependent columns of ill-conditioned structures.
 const REJECT_FACTOR: f64 = 1e3;
 
 /// The sparse equilibrium matrix A (free dofs × columns: members, then one per cluster,
