@@ -302,6 +302,23 @@ pub struct QuantityConvergence {
     scale: f64,
 }
 
+impl QuantityConvergence {
+    /// The scale floor s of its relative changes (module docs; 0 after a round trip through
+    /// JSON, which does not carry it).
+    ///
+    /// ```
+    /// use tensegrity_dynamics::{convergence::Companion, Convergence};
+    /// let mut c = Convergence::with("2 dt", Companion::Coarse, 1.0);
+    /// c.compare("airborne_fraction", Some(0.01), Some(0.02), 0.02, 1.0);
+    /// let q = &c.quantities[0];
+    /// assert_eq!(q.scale(), 1.0);
+    /// assert_eq!(q.relative_change, Some(0.01));
+    /// ```
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+}
+
 /// Student's t at 2 degrees of freedom, two-sided 95 %.
 const STUDENT_T_975_2: f64 = 4.302_652_729_911_275;
 
