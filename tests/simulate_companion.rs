@@ -388,3 +388,53 @@ fn a_quantity_past_its_tolerance_at_4_dt_is_checked_again_at_2_dt() {
     assert!(r > 0.03 && r < 0.07, "{q:?}");
     assert!(!conv.converged && !report.valid);
 }
+
+/// A sink that keeps no sample and whose stop flag is set from the start (a Ctrl-C that
+/// arrived while the run went on: the run reads its own interrupt through `keep_going`).
+struct StopFlagSet;
+
+/// The set flag of [`StopFlagSet`].
+static STOP_SET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+impl tensegrity_dynamics::SampleSink for StopFlagSet {
+    fn accept(&mut self, _: tensegrity_dynamics::Sample) -> Result<(), tensegrity_core::CoreError> {
+        Ok(())
+    }
+
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        Some(&STOP_SET)
+    }
+}
+
+/// The companion runs stop once the run's sink's stop flag is set (a Ctrl-C during the check
+/// stops it at the companion's next step instead of after it): the double pendulum's 2 s
+/// run is whole, its 4 dt companion and the refined run after it both end interrupted at
+/// their first step, and the report says the check failed, with a warning.
+#[test]
+fn a_stop_requested_during_the_check_stops_its_companion_runs() {
+    use tensegrity_core::CoreError;
+    let c = command("anchors/double_pendulum_rk4.toml", None, None, Some(2.0));
+    let (scene, simulation) = c.prepare(false).unwrap();
+    let checked = c.run_beside(&scene, &simulation, &mut StopFlagSet).unwrap();
+    let main = checked.main.as_ref().unwrap();
+    assert!((main.t_end - 2.0).abs() < 1e-9, "{}", main.t_end);
+    let run = checked.companion.as_ref().unwrap();
+    assert_eq!(run.convergence.companion, Companion::Refined);
+    assert!(
+        matches!(run.result, Err(CoreError::Interrupted { t }) if t < 0.01),
+        "{:?}",
+        run.result.as_ref().err()
+    );
+    let report = checked.report().unwrap();
+    let convergence = report.convergence.as_ref().unwrap();
+    assert!(!convergence.converged);
+    assert!(
+        convergence.refinement.contains("after the coarse one")
+            && convergence
+                .refinement
+                .contains("the refined run failed: interrupted"),
+        "{}",
+        convergence.refinement
+    );
+    assert!(!report.valid);
+}

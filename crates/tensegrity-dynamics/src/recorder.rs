@@ -82,6 +82,14 @@ pub trait SampleSink {
     fn progress(&mut self, t: f64) {
         let _ = t;
     }
+
+    /// A flag whose setting stops a convergence check's companion runs as well, those beside
+    /// the run and those after it, which write to no sink (e.g. the process's interrupt flag,
+    /// which [`SampleSink::keep_going`] reads for the run itself). `None` (the default): they
+    /// stop only when the run itself failed.
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        None
+    }
 }
 
 impl SampleSink for Vec<Sample> {

@@ -365,8 +365,9 @@ impl SimulateCommand {
 }
 
 /// A sink that keeps no sample and stops the run once `.0` is set (the companion run of a run
-/// that failed or was interrupted).
-struct StopWhen<'a>(&'a AtomicBool);
+/// that failed or was interrupted) or the run's sink's [`SampleSink::stop_flag`] `.1` is (a
+/// Ctrl-C during a companion run after the run).
+struct StopWhen<'a>(&'a AtomicBool, Option<&'static AtomicBool>);
 
 impl SampleSink for StopWhen<'_> {
     fn accept(&mut self, _: Sample) -> Result<(), CoreError> {
@@ -374,7 +375,7 @@ impl SampleSink for StopWhen<'_> {
     }
 
     fn keep_going(&mut self) -> bool {
-        !self.0.load(Ordering::Relaxed)
+        !self.0.load(Ordering::Relaxed) && !self.1.is_some_and(|f| f.load(Ordering::Relaxed))
     }
 }
 
@@ -574,10 +575,11 @@ impl SimulateCommand {
         companion_of(&mut fine);
         let what = Self::refine(&mut fine.settings);
         let stop = AtomicBool::new(false);
+        let external = sink.stop_flag();
         let checked = std::thread::scope(|s| {
             let stop = &stop;
             let handle = s.spawn(move || {
-                let mut watch = StopWhen(stop);
+                let mut watch = StopWhen(stop, external);
                 let mut failed = String::new();
                 if let Some(coarse) = coarse {
                     let result = coarse.run_streaming(&mut watch);
@@ -616,17 +618,19 @@ impl SimulateCommand {
                 scales,
             }
         });
-        self.escalated(scene, simulation, checked)
+        self.escalated(scene, simulation, checked, external)
     }
 
     /// `checked` whose 4 dt companion finds a quantity past its tolerance, checked again
     /// against the companion at 2 dt, whose verdict stands ([`companion`], "A 4 dt estimate
-    /// past its tolerance"); any other `checked` as it is.
+    /// past its tolerance"); any other `checked` as it is. The run at 2 dt stops once
+    /// `stop_flag` is set (the run's sink's [`SampleSink::stop_flag`]).
     fn escalated(
         &self,
         scene: &Scene,
         simulation: &Simulation,
         checked: Checked,
+        stop_flag: Option<&'static AtomicBool>,
     ) -> Result<Checked, SceneError> {
         let (Ok(main), Some(run)) = (&checked.main, &checked.companion) else {
             return Ok(checked);
@@ -652,7 +656,7 @@ impl SimulateCommand {
         let mut coarse = self.simulation(scene, false)?;
         coarse.settings.dt = simulation.settings.dt;
         companion::coarsen(&mut coarse.settings, Companion::Coarse);
-        let result = coarse.run_streaming(&mut StopWhen(&AtomicBool::new(false)));
+        let result = coarse.run_streaming(&mut StopWhen(&AtomicBool::new(false), stop_flag));
         if let Some(why) = companion::coarse_failure(&result) {
             // the 4 dt verdict stands, its label saying that the run at 2 dt failed
             let mut checked = checked;

@@ -78,6 +78,10 @@ impl SampleSink for Trajectory {
         !interrupt::requested()
     }
 
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        Some(interrupt::flag())
+    }
+
     fn progress(&mut self, t: f64) {
         if let Some(p) = &self.progress {
             p.store(t.to_bits(), Ordering::Relaxed);
@@ -273,6 +277,10 @@ impl wheel_rolling::Observer for History<'_> {
 
     fn keep_going(&mut self) -> bool {
         self.outputs.keep_going()
+    }
+
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        self.outputs.stop_flag()
     }
 
     fn keeps_frames(&self) -> bool {

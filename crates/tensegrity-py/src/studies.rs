@@ -277,6 +277,10 @@ impl Observer for Counted<'_> {
         self.inner.keep_going()
     }
 
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        self.inner.stop_flag()
+    }
+
     fn keeps_frames(&self) -> bool {
         self.inner.keeps_frames()
     }

@@ -333,7 +333,9 @@ pub fn roll_with_frames(request: &RollRequest, frame_times: &[f64]) -> Result<Ro
 /// As [`roll_with_frames`], handing every sample and frame to `observer` as the run makes it;
 /// an observer that stops the run gets the report of what was computed, with `stopped_at`
 /// and a warning (see [`wheel_rolling::observer`]). The report is returned whatever its
-/// validity: a front end writes it, then applies [`RollRequest::strict_check`].
+/// validity: a front end writes it, then applies [`RollRequest::strict_check`]. Once the
+/// observer's [`Observer::stop_flag`] is set the check's companion runs and the ensemble's
+/// copies stop too; an ensemble stopped so is left out (`ensemble` is `None`).
 pub fn roll_observed(
     request: &RollRequest,
     frame_times: &[f64],
@@ -349,6 +351,7 @@ pub fn roll_observed(
         min_tension: request.min_tension,
     };
     let spec = request.spec();
+    let stop = observer.as_ref().and_then(|o| o.stop_flag());
     let rolled = wheel_rolling::roll_checked(
         &wheel,
         &spec,
@@ -359,7 +362,7 @@ pub fn roll_observed(
     )?;
     let interrupted = rolled.result.validity.stopped_at.is_some();
     let ensemble = match (request.ensemble, interrupted) {
-        (k, false) if k >= 2 => Some(ensemble(request, &wheel, &spec, rolled.fidelity)?),
+        (k, false) if k >= 2 => ensemble(request, &wheel, &spec, rolled.fidelity, stop)?,
         _ => None,
     };
     let mut report = RollReport::of(request, rolled);
@@ -371,16 +374,17 @@ pub fn roll_observed(
 }
 
 /// The ensemble of `request` (its model: the one that ran, `fidelity`) against one
-/// unperturbed run of the other model, and each copy's sampled history.
+/// unperturbed run of the other model, and each copy's sampled history; `None` where `stop`
+/// was set before its runs ended.
 fn ensemble(
     request: &RollRequest,
     wheel: &ToroidWheel,
     spec: &RunSpec,
     fidelity: wheel_rolling::Fidelity,
-) -> Result<(
-    wheel_rolling::Ensemble,
-    Vec<Vec<wheel_rolling::RollingSample>>,
-)> {
+    stop: Option<&'static std::sync::atomic::AtomicBool>,
+) -> Result<Option<wheel_rolling::ensemble::WithHistories>> {
+    static NEVER: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    let stop = stop.unwrap_or(&NEVER);
     let choice = |f: wheel_rolling::Fidelity| match f {
         wheel_rolling::Fidelity::Rigid => FidelityChoice::Rigid,
         wheel_rolling::Fidelity::Full => FidelityChoice::Full,
@@ -405,21 +409,25 @@ fn ensemble(
         &other_spec,
         &decide(choice(other_fidelity)),
         &[],
-        None,
+        Some(&mut wheel_rolling::observer::StopOn(stop)),
     )?;
+    if stop.load(std::sync::atomic::Ordering::Relaxed) {
+        return Ok(None);
+    }
     let other = wheel_rolling::RunSummary::of(&other.result, spec.t_end);
     let same = RunSpec {
         fidelity: choice(fidelity),
         ..*spec
     };
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    wheel_rolling::ensemble::ensemble_with_samples(
+    wheel_rolling::ensemble::ensemble_until(
         wheel,
         &same,
         &decide(choice(fidelity)),
         request.ensemble,
         threads,
         Some(&other),
+        stop,
     )
 }
 

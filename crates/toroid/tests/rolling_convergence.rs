@@ -532,3 +532,54 @@ fn a_companion_that_would_leave_the_stability_bound_is_refined() {
         .contains("exceeds 0.5 × rk4's stability bound 2.6"));
     assert!(c.cost == 2.0 || c.cost == 3.0, "{}", c.cost);
 }
+
+/// An observer that watches nothing and whose stop flag is set from the start (a Ctrl-C that
+/// arrived while the run went on: the run reads its own interrupt through `keep_going`).
+struct StopFlagSet;
+
+/// The set flag of [`StopFlagSet`].
+static STOP_SET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+impl wheel_rolling::Observer for StopFlagSet {
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        Some(&STOP_SET)
+    }
+}
+
+/// The companion runs stop once the run's observer's stop flag is set (a Ctrl-C during the
+/// check stops it at the companion's next sample instead of after every run it would make):
+/// the rigid roll of 3 s is whole, its 8 dt companion and the refined run after it stop at
+/// their first sample, and the check is reported failed, with a warning. An ensemble's
+/// copies stop too, and the ensemble is left out rather than drawn from copies cut short.
+#[test]
+fn a_stop_requested_during_the_check_stops_its_companion_runs() {
+    let request = RollRequest {
+        fidelity: FidelityChoice::Rigid,
+        t_end: 3.0,
+        ..RollRequest::default()
+    };
+    let r = roll_observed(&request, &[], Some(&mut StopFlagSet)).unwrap();
+    assert_eq!(r.summary.stopped_at, None);
+    assert!((r.samples.last().unwrap().t - 3.0).abs() < 1e-9);
+    let c = r.summary.convergence.clone().expect("checked by default");
+    assert!(!c.converged);
+    assert!(
+        c.refinement
+            .contains("run after the coarse one at 8 dt: it stopped at t = ")
+            && c.refinement
+                .contains("the companion run failed: it stopped at t = "),
+        "{}",
+        c.refinement
+    );
+    assert!(!r.summary.valid);
+    let with_ensemble = RollRequest {
+        ensemble: 4,
+        checks: RunChecks::NONE,
+        ..request
+    };
+    let r = roll_observed(&with_ensemble, &[], Some(&mut StopFlagSet)).unwrap();
+    assert_eq!(r.summary.stopped_at, None);
+    assert!(r.ensemble.is_none());
+    let whole = roll_observed(&with_ensemble, &[], None).unwrap();
+    assert_eq!(whole.ensemble.expect("not stopped").members, 4);
+}

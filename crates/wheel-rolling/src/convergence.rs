@@ -564,12 +564,13 @@ pub fn of_companion(
     }
 }
 
-/// Stops the companion runs once the run itself has stopped early.
-struct StopWhen<'a>(&'a AtomicBool);
+/// Stops the companion runs once the run itself has stopped early, or once the run's
+/// observer's [`Observer::stop_flag`] is set (a Ctrl-C during a run after the run).
+struct StopWhen<'a>(&'a AtomicBool, Option<&'static AtomicBool>);
 
 impl Observer for StopWhen<'_> {
     fn keep_going(&mut self) -> bool {
-        !self.0.load(Ordering::Relaxed)
+        !self.0.load(Ordering::Relaxed) && !self.1.is_some_and(|f| f.load(Ordering::Relaxed))
     }
 }
 
@@ -676,8 +677,9 @@ where
         return roll_decided(wheel, spec, decision, frame_times, observer);
     }
     let stop = AtomicBool::new(false);
+    let external = observer.as_ref().and_then(|o| o.stop_flag());
     let companion = |run: &RunSpec| {
-        let mut watch = StopWhen(&stop);
+        let mut watch = StopWhen(&stop, external);
         roll_decided(wheel, run, decision, &[], Some(&mut watch))
     };
     // the first companion, from the twin's start: coarse where it serves, else refined
@@ -695,7 +697,7 @@ where
                 companion: kind,
                 refused: Mutex::new(None),
             };
-            let mut watch = StopWhen(&stop);
+            let mut watch = StopWhen(&stop, external);
             let run = roll_decided(
                 &guarded,
                 &twin(&guarded.spec),

@@ -30,7 +30,7 @@ use crate::sample::RollingSample;
 use crate::settings::RunSpec;
 use crate::summary::RunSummary;
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// The size of the first perturbation of the starting pose (rad).
@@ -80,6 +80,9 @@ pub struct Ensemble {
     pub note: String,
 }
 
+/// An ensemble and each copy's sampled history (in copy order).
+pub type WithHistories = (Ensemble, Vec<Vec<RollingSample>>);
+
 /// One slot per copy for its summary and samples (or error).
 type Slots<E> = Mutex<Vec<Option<Result<(RunSummary, Vec<RollingSample>), E>>>>;
 
@@ -122,6 +125,46 @@ where
     W: Wheel + Sync,
     W::Error: Send,
 {
+    let (ensemble, _) = copies(wheel, spec, decision, members, threads, other, None)?;
+    Ok(ensemble)
+}
+
+/// As [`ensemble_with_samples`], every copy stopping at its next sample once `stop` is set
+/// (the run's observer's [`Observer::stop_flag`](crate::Observer::stop_flag), e.g. on
+/// Ctrl-C): then `None`, no statistics drawn from copies cut short, and no copy started
+/// after it.
+pub fn ensemble_until<W>(
+    wheel: &W,
+    spec: &RunSpec,
+    decision: &Decision,
+    members: usize,
+    threads: usize,
+    other: Option<&RunSummary>,
+    stop: &AtomicBool,
+) -> Result<Option<WithHistories>, W::Error>
+where
+    W: Wheel + Sync,
+    W::Error: Send,
+{
+    let (ensemble, stopped) = copies(wheel, spec, decision, members, threads, other, Some(stop))?;
+    Ok((!stopped).then_some(ensemble))
+}
+
+/// The ensemble's copies run and gathered, and whether `stop` was set before they all ended.
+fn copies<W>(
+    wheel: &W,
+    spec: &RunSpec,
+    decision: &Decision,
+    members: usize,
+    threads: usize,
+    other: Option<&RunSummary>,
+    stop: Option<&AtomicBool>,
+) -> Result<(WithHistories, bool), W::Error>
+where
+    W: Wheel + Sync,
+    W::Error: Send,
+{
+    let stopped = || stop.is_some_and(|f| f.load(Ordering::Relaxed));
     let fine = crate::convergence::refined(spec);
     // copies 0..K at the step, K..2K at the refined resolution, the costly ones first
     let specs: Vec<RunSpec> = (0..2 * members)
@@ -137,10 +180,12 @@ where
         for _ in 0..threads.clamp(1, specs.len().max(1)) {
             s.spawn(|| loop {
                 let j = next.fetch_add(1, Ordering::Relaxed);
-                let Some(copy) = specs.get(j) else {
+                let Some(copy) = specs.get(j).filter(|_| !stopped()) else {
                     break;
                 };
-                let r = roll_decided(wheel, copy, decision, &[], None).map(|r| {
+                let mut until = stop.map(crate::observer::StopOn);
+                let observer = until.as_mut().map(|u| u as &mut dyn crate::Observer);
+                let r = roll_decided(wheel, copy, decision, &[], observer).map(|r| {
                     let summary = RunSummary::of(&r.result, spec.t_end);
                     (summary, r.result.samples)
                 });
@@ -148,6 +193,9 @@ where
             });
         }
     });
+    if stopped() {
+        return Ok(((statistics(&[], other), Vec::new()), true));
+    }
     let (mut runs, mut refined_runs) = (Vec::new(), Vec::new());
     let mut histories = Vec::with_capacity(members);
     let slots = out.into_inner().unwrap_or_else(|e| e.into_inner());
@@ -163,7 +211,7 @@ where
     }
     let label = crate::convergence::refinement(spec, decision_fidelity(decision));
     let e = statistics(&runs, other).with_refined(&refined_runs, label);
-    Ok((e, histories))
+    Ok(((e, histories), false))
 }
 
 /// The model a decision runs (the full one when it may run both: the costlier refinement).

@@ -13,6 +13,7 @@
 
 use crate::frame::WheelFrame;
 use crate::sample::RollingSample;
+use std::sync::atomic::AtomicBool;
 use tensegrity_core::Warning;
 
 /// What an observer asks of the run after each item.
@@ -46,6 +47,14 @@ pub trait Observer {
         true
     }
 
+    /// A flag whose setting stops the convergence check's companion runs as well, those
+    /// beside the run and those after it, which do not report to this observer (e.g. the
+    /// process's interrupt flag, which [`Observer::keep_going`] reads for the run itself).
+    /// `None` (the default): they stop only when the run itself stopped early.
+    fn stop_flag(&self) -> Option<&'static AtomicBool> {
+        None
+    }
+
     /// Whether the run also keeps the frames it hands to this observer in its result (the
     /// default). An observer that streams them elsewhere (a VTK series) answers `false`: the
     /// run then holds no frame, and its memory does not grow with the number of frames.
@@ -56,6 +65,27 @@ pub trait Observer {
 
 /// The observer that watches nothing.
 impl Observer for () {}
+
+/// The observer that watches nothing and stops the run once its flag is set (a run beside
+/// another whose observer's [`Observer::stop_flag`] it is).
+///
+/// ```
+/// use std::sync::atomic::{AtomicBool, Ordering};
+/// use wheel_rolling::{observer::StopOn, Observer};
+/// let flag = AtomicBool::new(false);
+/// let mut watch = StopOn(&flag);
+/// assert!(watch.keep_going());
+/// flag.store(true, Ordering::Relaxed);
+/// assert!(!watch.keep_going());
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct StopOn<'a>(pub &'a AtomicBool);
+
+impl Observer for StopOn<'_> {
+    fn keep_going(&mut self) -> bool {
+        !self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
 
 /// The sentence of the warning of a run its observer stopped.
 pub(crate) fn interrupted_warning(t: f64, t_end: f64) -> Warning {

@@ -181,6 +181,10 @@ impl Observer for RollingOutputs<'_> {
         self.failed.is_none() && !crate::interrupt::requested()
     }
 
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        Some(crate::interrupt::flag())
+    }
+
     fn keeps_frames(&self) -> bool {
         false
     }

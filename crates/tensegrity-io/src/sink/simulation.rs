@@ -154,6 +154,10 @@ impl SampleSink for SimulationOutputs<'_> {
         !crate::interrupt::requested()
     }
 
+    fn stop_flag(&self) -> Option<&'static std::sync::atomic::AtomicBool> {
+        Some(crate::interrupt::flag())
+    }
+
     fn progress(&mut self, t: f64) {
         self.progress.set(t);
     }
