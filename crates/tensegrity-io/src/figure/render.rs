@@ -55,7 +55,8 @@ pub fn rgb(svg: &str, dpi: f64) -> Result<(Vec<u8>, (u32, u32))> {
 /// [`rgb`] with each pixel's opacity after it (always 255: the page is opaque white), as
 /// the rasteriser leaves it: what an encoder that reads whole pixels takes without a copy.
 pub fn rgba(svg: &str, dpi: f64) -> Result<(Vec<u8>, (u32, u32))> {
-    let (rest, texts) = split_texts(svg);
+    let merged = merged_polylines(svg);
+    let (rest, texts) = split_texts(&merged);
     let tree = tree(&rest)?;
     let scale = dpi / 96.0;
     let size = tree.size();
@@ -83,6 +84,65 @@ pub fn rgba(svg: &str, dpi: f64) -> Result<(Vec<u8>, (u32, u32))> {
     }
     // opaque white underneath: the premultiplied RGBA is the RGB and 255
     Ok((pixmap.take(), (w, h)))
+}
+
+/// `svg` with each run of consecutive `<polyline>` lines that differ only in their points
+/// (the figure writer's members of one kind: one per line, [`super::svg`]) drawn as one
+/// `<path>` of as many subpaths: the same outline (each subpath stroked with its own caps
+/// and joins), filled at once. The rasteriser's work per element (parsing, a stroke, a
+/// fill's set-up) dominated a drawing of many short members: a rolling wheel's frame has
+/// 153. Where two members of one colour overlap, their union is filled once, so the
+/// anti-aliased edge inside the overlap is not blended twice. Only pictures are drawn so;
+/// the SVG keeps one polyline per series.
+fn merged_polylines(svg: &str) -> String {
+    const HEAD: &str = "<polyline points=\"";
+    let mut out = String::with_capacity(svg.len());
+    // the attributes after the points of the run being merged
+    let mut run: Option<&str> = None;
+    for line in svg.split_inclusive('\n') {
+        let parts = line
+            .strip_prefix(HEAD)
+            .and_then(|rest| rest.split_once('"'))
+            .filter(|(points, _)| !points.is_empty());
+        match (parts, run) {
+            (Some((points, style)), Some(open)) if style == open => {
+                subpath(&mut out, points);
+            }
+            (Some((points, style)), _) => {
+                if let Some(open) = run {
+                    out.push('"');
+                    out.push_str(open);
+                }
+                out.push_str("<path d=\"");
+                subpath(&mut out, points);
+                run = Some(style);
+            }
+            (None, _) => {
+                if let Some(open) = run.take() {
+                    out.push('"');
+                    out.push_str(open);
+                }
+                out.push_str(line);
+            }
+        }
+    }
+    if let Some(open) = run {
+        out.push('"');
+        out.push_str(open);
+    }
+    out
+}
+
+/// The points `x,y x,y …` of a polyline as the subpath `M x,y L x,y …`.
+fn subpath(out: &mut String, points: &str) {
+    for (k, p) in points.split(' ').enumerate() {
+        out.push_str(match k {
+            0 => " M",
+            1 => " L",
+            _ => " ",
+        });
+        out.push_str(p);
+    }
 }
 
 /// A text taken out of an SVG: its element moved to the origin, with its fill (the key of
@@ -264,6 +324,50 @@ mod tests {
                 assert_eq!(differ, 0, "{differ} of {} bytes differ", cached.len());
             }
         }
+    }
+
+    #[test]
+    fn members_of_one_kind_are_drawn_as_one_path_with_the_same_pixels() {
+        // eight separate members of one colour and width (a wheel's strings), one of
+        // another width, a one-point series: no two share a pixel
+        let mut panel = Panel::new("members", "x [m]", "y [m]");
+        for k in 0..8 {
+            let x = k as f64;
+            panel = panel.series(
+                Series::new("", vec![(x, 0.0), (x + 0.4, 1.0), (x, 2.0)])
+                    .with_color((200, 30, 30))
+                    .with_width(1.0),
+            );
+        }
+        panel = panel
+            .series(
+                Series::new("", vec![(0.0, 3.0), (7.0, 3.0)])
+                    .with_color((200, 30, 30))
+                    .with_width(3.0),
+            )
+            .series(Series::new("", vec![(3.0, 4.0), (3.0, 4.0)]).with_color((0, 0, 200)));
+        let svg = Figure::new(vec![panel])
+            .to_svg_with(&RenderOptions::default())
+            .unwrap();
+        let merged = merged_polylines(&svg);
+        assert_eq!(svg.matches("<polyline").count(), 10);
+        assert_eq!(merged.matches("<polyline").count(), 0);
+        // the eight thin ones, the thick one, the dot
+        assert_eq!(merged.matches("<path d=\"").count(), 3);
+        assert_eq!(merged.matches(" M").count(), 10);
+        assert_eq!(merged.matches("stroke-width=\"1\"").count(), 1);
+        // the rest of the drawing unchanged
+        let strip = |s: &str| -> String {
+            s.lines()
+                .filter(|l| !l.starts_with("<polyline") && !l.starts_with("<path d="))
+                .collect()
+        };
+        assert_eq!(strip(&svg), strip(&merged));
+        // the same pixels as each member drawn on its own (their pixels are apart)
+        let (drawn, _) = rgb(&svg, 96.0).unwrap();
+        let direct = whole(&svg);
+        let differ = drawn.iter().zip(&direct).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{differ} of {} bytes differ", drawn.len());
     }
 
     #[test]
