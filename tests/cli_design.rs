@@ -138,6 +138,28 @@ fn levenberg_marquardt_reaches_the_cable_nets_optimum_where_lbfgsb_stops_short()
     let qn = json(&["design", "examples/design/cablenet.toml", "--json"]);
     assert_eq!(qn["method"], "lbfgsb");
     assert!(qn["objective"].as_f64().unwrap() > 1.1 * f);
+    // ... converged by that rule, not stationary by its gradient rule, and the report says
+    // so: the projected gradient there is above gtol (1e-8), and a warning names the stall
+    assert_eq!(
+        (&qn["converged"], &qn["stop"]),
+        (&true.into(), &"objective".into())
+    );
+    assert_eq!(qn["stationary"], false);
+    let pg = qn["projected_gradient"].as_f64().unwrap();
+    assert!(pg > 1e-8, "{pg}");
+    let w = &qn["warnings"][0];
+    assert_eq!(w["kind"], "optimizer_stalled");
+    assert_eq!(
+        (&w["projected_gradient"], &w["gtol"]),
+        (&pg.into(), &1e-8.into())
+    );
+    // Levenberg–Marquardt, at the optimum, draws no such warning (its objective rule takes a
+    // Gauss–Newton step)
+    assert!(
+        lm["warnings"].as_array().unwrap().is_empty(),
+        "{}",
+        lm["warnings"]
+    );
     // a term that is not a sum of squares is refused by name
     let text = std::fs::read_to_string("examples/design/cablenet.toml")
         .unwrap()

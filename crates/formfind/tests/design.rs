@@ -271,6 +271,23 @@ fn the_optimum_meets_the_kkt_conditions_with_bounds_active() {
     let d = design(&t, &spec).unwrap();
     assert!(d.converged, "{}", d.stop);
     assert!(d.objective < 0.5 * d.initial_objective);
+    // the projected gradient from the variables' own values, bounds and gradients; the point
+    // stationary where it is within gtol, which the gradient rule's stop means
+    let pg = d.variables.iter().fold(0.0f64, |a, v| {
+        a.max((v.value - (v.value - v.gradient).clamp(v.lower, v.upper)).abs())
+    });
+    assert_eq!(d.projected_gradient, pg);
+    assert_eq!(d.stationary, pg <= spec.optimizer.gtol);
+    assert!(d.stop != "gradient" || d.stationary);
+    // stopped on the objective rule at once (ftol 0.5): converged, not stationary
+    let mut early = spec.clone();
+    early.optimizer.ftol = 0.5;
+    let e = design(&t, &early).unwrap();
+    assert_eq!(
+        (e.converged, e.stop, e.stationary),
+        (true, "objective", false)
+    );
+    assert!(e.projected_gradient > early.optimizer.gtol);
     let on_bound = d.variables.iter().filter(|v| v.value == v.lower).count();
     assert!(
         on_bound > 0,

@@ -164,6 +164,16 @@ pub fn design(request: &DesignRequest) -> Result<DesignReport, FormfindFailure> 
             objective: designed.objective,
         });
     }
+    // (Levenberg–Marquardt's objective rule takes only a nearly undamped Gauss–Newton step,
+    // near a minimum of its sum of squares: the cable net within 2·10⁻⁶ of its optimum,
+    // its projected gradient 3·10⁻⁶ against gtol 10⁻⁸; L-BFGS-B's stalls 13 % above it)
+    if designed.converged && !designed.stationary && designed.method == "lbfgsb" {
+        warnings.push(tensegrity_core::Warning::OptimizerStalled {
+            projected_gradient: designed.projected_gradient,
+            gtol: spec.optimizer.gtol,
+            objective: designed.objective,
+        });
+    }
     if !designed.changed_kind.is_empty() {
         warnings.push(tensegrity_core::Warning::MembersChangedKind {
             members: designed.changed_kind.clone(),

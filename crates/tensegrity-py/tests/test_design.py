@@ -69,6 +69,10 @@ def test_python_equals_the_command_line():
     assert r.objective == report["objective"]
     assert np.array_equal(np.asarray(r.force_density), np.asarray(report["force_density"]))
     assert r.iterations == report["iterations"]
+    # L-BFGS-B stalls on its objective rule 13 % above the net's optimum: not stationary
+    assert (r.converged, r.stop, r.stationary) == (True, "objective", False)
+    assert r.projected_gradient == report["projected_gradient"] > 1e-8
+    assert [w["kind"] for w in report["warnings"]] == ["optimizer_stalled"]
 
 
 def test_the_problem_gives_the_exact_gradient_stationary_at_the_design():

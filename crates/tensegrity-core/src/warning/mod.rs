@@ -250,6 +250,18 @@ pub enum Warning {
         /// The objective at the best point.
         objective: f64,
     },
+    /// An optimiser (inverse form-finding) stopped by its objective rule (the objective fell
+    /// by less than `ftol` in an iteration) at a point that its gradient rule does not call
+    /// stationary: the objective stalled, which on an ill-conditioned problem can lie well
+    /// above the optimum.
+    OptimizerStalled {
+        /// The projected gradient's largest entry there.
+        projected_gradient: f64,
+        /// The gradient rule's tolerance.
+        gtol: f64,
+        /// The objective there.
+        objective: f64,
+    },
     /// Members whose sign-free force density changed sign in a design: the designed topology
     /// lists them as the other kind.
     MembersChangedKind {
@@ -314,6 +326,7 @@ impl Warning {
             W::InRun { .. } => "in_run",
             W::RowFailed { .. } => "row_failed",
             W::OptimizerNotConverged { .. } => "optimizer_not_converged",
+            W::OptimizerStalled { .. } => "optimizer_stalled",
             W::MembersChangedKind { .. } => "members_changed_kind",
         }
     }
@@ -465,6 +478,11 @@ mod tests {
                 stop: "iterations".into(),
                 iterations: 10,
                 objective: 0.5,
+            },
+            Warning::OptimizerStalled {
+                projected_gradient: 3e-4,
+                gtol: 1e-5,
+                objective: 8e-4,
             },
             Warning::MembersChangedKind {
                 members: vec![0, 3],

@@ -107,6 +107,10 @@ impl fmt::Display for Warning {
                 f,
                 "the optimiser did not converge (stopped by {stop} after {iterations} iterations); the best point found, objective {objective:e}, is reported and written"
             ),
+            W::OptimizerStalled { projected_gradient, gtol, objective } => write!(
+                f,
+                "the optimiser stopped on its objective rule (the objective fell by less than ftol in an iteration) with the projected gradient at {projected_gradient:e}, above gtol {gtol:e}: objective {objective:e} is not a verified stationary point, and an ill-conditioned problem can stall well above its optimum (a smaller ftol, or the levenberg_marquardt method for a sum of squares)"
+            ),
             W::MembersChangedKind { members } => write!(
                 f,
                 "members {members:?} changed sign (sign = \"free\"): the designed topology lists them as the other kind (a bar in tension as a string)"

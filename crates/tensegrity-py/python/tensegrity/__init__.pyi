@@ -698,6 +698,8 @@ class DesignResult(Result):
     initial_objective
     objective
     converged
+    stationary
+    projected_gradient
     stop
     method
     iterations
@@ -707,6 +709,8 @@ class DesignResult(Result):
     initial_objective: Any
     objective: Any
     converged: Any
+    stationary: Any
+    projected_gradient: Any
     stop: Any
     method: Any
     iterations: Any
